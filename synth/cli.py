@@ -1,0 +1,177 @@
+"""The ``mechsynth`` command: the composition root of synth and (lazily) balance.
+
+Results go to stdout, progress to stderr, errors to stderr as one sentence with exit
+status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C).
+
+Example
+-------
+>>> main(["codes", "--dof", "1", "--loops", "2", "--format", "csv"])
+code,links,loops,v,assortment
+44/0,6,2,0,4 4
+52/1,6,2,1,5 2
+60/2,6,2,2,6
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections import Counter
+
+from ._output import FORMATS, write_rows
+from .errors import InvalidOption, SynthesisError
+
+__all__ = ["main"]
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that raises instead of printing usage and exiting."""
+
+    def error(self, message):  # noqa: D401 - argparse API
+        raise InvalidOption(f"{message} (see '{self.prog} --help')")
+
+
+def _parse_classes(text: str) -> dict[int, int]:
+    try:
+        pairs = [item.split("=") for item in text.split(",") if item.strip()]
+        return {int(h): int(k) for h, k in pairs}
+    except ValueError:
+        raise InvalidOption(f"loop classes are written H=K,H=K (e.g. 3=4,5=1), not {text!r}") from None
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+
+
+# ------------------------------------------------------------------- codes
+def _add_codes(sub):
+    p = sub.add_parser("codes", help="number synthesis: every standard code n2n3…/v")
+    p.add_argument("--dof", type=_int, required=True, help="required mobility W (0 = truss)")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--loops", help="K, or a range A..B")
+    g.add_argument("--links", help="n, or a range A..B")
+    g.add_argument("--loop-classes", help="heterogeneous systems: H=K_H,… (e.g. 3=4,5=1)")
+    p.add_argument("--v", help="multiple-joint count or range A..B (default: every possible)")
+    p.add_argument("--h", type=_int, default=3, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--f", type=_int, default=0, help="extra mobility of multi-DOF pairs")
+    p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
+    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
+    p.add_argument("--max-multiplicity", type=_int, help="largest number of links on one joint")
+    p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
+    p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
+                   help="design constraint on n_I, the links with I joints (repeatable)")
+    p.add_argument("--format", choices=FORMATS, default="table")
+    p.set_defaults(run=_run_codes)
+
+
+def _run_codes(args) -> int:
+    from .number_synthesis import number_synthesis
+
+    codes = number_synthesis(
+        args.dof, loops=args.loops, links=args.links,
+        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        h=args.h, f=args.f, v=args.v, n1=args.n1, max_link_degree=args.max_link_degree,
+        require=args.require, max_multiplicity=args.max_multiplicity, compositions=args.compositions,
+    )
+    if not codes:
+        print("no standard code satisfies these parameters and requirements", file=sys.stderr)
+        return 1
+    rows = [dict(c.to_dict(), dof=args.dof) for c in codes]
+    columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
+    write_rows(rows, columns, args.format)
+    if args.format == "table":
+        per_k = Counter(c.loops for c in codes)
+        summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
+        print(f"{len(codes)} codes ({summary})")
+    return 0
+
+
+# ----------------------------------------------------------------- analyze
+def _add_analyze(sub):
+    p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
+    p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
+    p.add_argument("--dof", type=_int, help="required W (for D and the criterion)")
+    p.add_argument("--v", type=_int, default=0, help="v, with explicit counts")
+    p.add_argument("--h", type=_int, default=3)
+    p.add_argument("--f", type=_int, default=0)
+    p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.set_defaults(run=_run_analyze)
+
+
+def _looks_like_chain(text: str) -> bool:
+    s = text.strip()
+    return s.startswith("{") or s.startswith("[") or "-" in s.split("/")[0] and "/" not in s
+
+
+def _run_analyze(args) -> int:
+    from .analysis import analyze
+
+    classes = _parse_classes(args.loop_classes) if args.loop_classes else None
+    subject = args.subject.strip()
+    if _looks_like_chain(subject):
+        from .chain_analysis import analyze_chain
+
+        result = analyze_chain(subject, dof=args.dof).to_dict()
+    elif "=" in subject and "/" not in subject:
+        counts = _parse_classes(subject)
+        result = analyze(counts=counts, v=args.v, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
+    else:
+        result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
+    if args.format == "json":
+        print(json.dumps(result, ensure_ascii=False))
+    else:
+        width = max(len(k) for k in result)
+        for key, value in result.items():
+            if isinstance(value, dict):
+                value = "; ".join(f"{k} = {v}" for k, v in value.items())
+            elif isinstance(value, list):
+                value = json.dumps(value, ensure_ascii=False)
+            print(f"{key.ljust(width)}  {value}")
+    return 0
+
+
+# ----------------------------------------------------------------- balance
+def _run_balance(argv: list[str]) -> int:
+    from balance.cli import main as balance_main  # lazy: synth never needs balance
+
+    return balance_main(argv)
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_codes(sub)
+    _add_analyze(sub)
+    from .cli_chains import add_commands
+
+    add_commands(sub)
+    sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the console script; returns the exit status."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if argv and argv[0] == "balance":
+            return _run_balance(argv[1:])
+        args = _build_parser().parse_args(argv)
+        return args.run(args)
+    except SynthesisError as exc:
+        print(f"mechsynth: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("mechsynth: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
