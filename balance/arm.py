@@ -93,9 +93,18 @@ class Link:
     com: float
     com_lateral: float = 0.0
     offset: float = 0.0
-    q_range: tuple[float, float] = (-math.pi, math.pi)
+    q_range: tuple[float, float] | None = None
     stroke: float = 0.0
     gear_ratio: float = 0.0
+
+    @property
+    def limits(self) -> tuple[float, float]:
+        """``q_range``, or by default a full turn (revolute) / the whole stroke (prismatic)."""
+        if self.q_range is not None:
+            return self.q_range
+        if self.joint == "prismatic":
+            return (-self.stroke / 2, self.stroke / 2)
+        return (-math.pi, math.pi)
 
 
 @dataclass(frozen=True)
@@ -153,7 +162,7 @@ class Arm:
             for label, v in (("com", ln.com), ("com_lateral", ln.com_lateral), ("offset", ln.offset)):
                 if not math.isfinite(v):
                     raise InvalidArm(f"link '{ln.name}': {label} must be finite, not {v}.")
-            lo, hi = ln.q_range
+            lo, hi = ln.limits
             if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
                 raise InvalidArm(
                     f"link '{ln.name}': the joint range must be finite with low < high, not [{lo}, {hi}]."
@@ -168,6 +177,10 @@ class Arm:
             if ln.joint == "prismatic":
                 if not ln.stroke > 0:
                     raise InvalidArm(f"link '{ln.name}': a prismatic joint needs a positive stroke.")
+                if lo < -ln.stroke / 2 - 1e-12 or hi > ln.stroke / 2 + 1e-12:
+                    raise InvalidArm(
+                        f"link '{ln.name}': the slide range [{lo}, {hi}] m leaves the stroke ±{ln.stroke / 2} m."
+                    )
                 if not ln.gear_ratio > 0:
                     raise InvalidArm(
                         f"link '{ln.name}': a prismatic joint needs a positive gear ratio k "
@@ -233,8 +246,8 @@ class Arm:
     def sample(self, count: int, seed: int = 0) -> np.ndarray:
         """``count`` configurations drawn uniformly from the joint ranges, fixed seed."""
         rng = np.random.default_rng(seed)
-        lo = np.array([ln.q_range[0] for ln in self.links])
-        hi = np.array([ln.q_range[1] for ln in self.links])
+        lo = np.array([ln.limits[0] for ln in self.links])
+        hi = np.array([ln.limits[1] for ln in self.links])
         return lo + (hi - lo) * rng.random((count, self.n))
 
     # ------------------------------------------------------------ kinematics

@@ -1,0 +1,227 @@
+"""Compression/tension spring fits: methods agree, scale invariance, hard cases, bad input."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+from scipy.optimize import linprog
+
+from balance import (
+    DEFAULT_METHOD, METHODS, FitFailed, InfeasibleBounds, InvalidInput, InvalidRange,
+    SpringBounds, WrongSense, fit_spring, solve_spring,
+)
+from balance.fit import relative_errors
+
+ISSUE = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
+FORCED = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0,
+                      max_free_length=1.5, max_deflection=0.4)
+RANGES = {"0..180": (0.0, 180.0), "20..160": (20.0, 160.0), "-90..90": (-90.0, 90.0)}
+#: agreement of the optimum reached (fit-grid error, relative): exact methods, and trf's
+#: Lawson iteration which only approximates the minimax point
+TOL = {"slsqp": 1e-4, "nelder-mead": 1e-4, "de": 1e-4, "trf": 1e-4}
+TOL_MAX_TRF = 1e-2
+
+
+def rad(rng):
+    return tuple(math.radians(v) for v in rng)
+
+
+def fit(rng, bounds=ISSUE, **kw):
+    return fit_spring("compression", kw.pop("moment", 100.0), rad(rng), bounds, **kw)
+
+
+def tol(method, norm):
+    return TOL_MAX_TRF if (method == "trf" and norm == "max") else TOL[method]
+
+
+# -------------------------------------------------------------- agreement
+@pytest.mark.parametrize("norm", ["max", "rms"])
+@pytest.mark.parametrize("rng", RANGES.values(), ids=RANGES.keys())
+def test_all_methods_agree_issue_bounds(rng, norm):
+    res = {m: fit(rng, method=m, norm=norm) for m in METHODS}
+    key = "grid_max_rel_error" if norm == "max" else "grid_rms_rel_error"
+    best = min(getattr(r, key) for r in res.values())
+    for m, r in res.items():
+        assert getattr(r, key) <= best * (1 + tol(m, norm)), m
+        assert r.active_bounds[:3] == ["r=min", "r0=max", "a=max"], m
+        assert (r.r, r.r0, r.a) == pytest.approx((0.01, 1.0, 1.0), rel=1e-6)
+
+
+@pytest.mark.parametrize("norm", ["max", "rms"])
+@pytest.mark.parametrize("rng", [(20.0, 160.0), (0.0, 180.0)], ids=["20..160", "0..180"])
+def test_all_methods_agree_interior_optimum(rng, norm):
+    """Force, free-length and deflection limits all active: a genuinely constrained optimum."""
+    res = {m: fit(rng, FORCED, method=m, norm=norm) for m in METHODS}
+    key = "grid_max_rel_error" if norm == "max" else "grid_rms_rel_error"
+    best = min(getattr(r, key) for r in res.values())
+    for m, r in res.items():
+        assert getattr(r, key) <= best * (1 + tol(m, norm)), m
+        assert r.max_force <= 2000.0 * (1 + 1e-6)
+        assert r.free_length <= 1.5 * (1 + 1e-9)
+        assert r.deflection <= 0.4 * (1 + 1e-6)
+    exact = [r for m, r in res.items() if tol(m, norm) < 1e-3]
+    for r in exact:  # and at the same point
+        assert r.r == pytest.approx(exact[0].r, rel=2e-2)
+        assert r.c == pytest.approx(exact[0].c, rel=2e-2)
+
+
+def test_corner_optimum_matches_independent_lp_minimax():
+    """At the corner the best c is a 1-D minimax; solve it as an LP on the same grid."""
+    res = fit((20.0, 160.0), norm="max")
+    phi = np.linspace(*rad((20.0, 160.0)), res.grid)
+    r, r0, a = 0.01, 1.0, 1.0
+    d = r + r0
+    L = np.sqrt(r * r + d * d - 2 * r * d * np.cos(phi))  # fine here: r0 ≫ r
+    h = np.sin(phi) * ((2 * r + r0 + a) / L - 1) * r * d / 100.0  # moment per unit c, over Φ0
+    s = np.sin(phi)
+    # min t  s.t. ±(c·h − s) ≤ t
+    A = np.block([[h[:, None], -np.ones((len(h), 1))], [-h[:, None], -np.ones((len(h), 1))]])
+    b = np.concatenate([s, -s])
+    lp = linprog([0, 1], A_ub=A, b_ub=b, bounds=[(0, None), (0, None)], method="highs")
+    assert res.grid_max_rel_error == pytest.approx(lp.fun, rel=1e-9)
+    assert res.c == pytest.approx(lp.x[0], rel=1e-6)
+
+
+def test_reported_error_is_measured_on_the_physical_device():
+    res = fit((20.0, 160.0))
+    phi = np.linspace(*rad((20.0, 160.0)), 100001)
+    e = relative_errors(res.device, 100.0, phi)
+    assert res.max_rel_error == pytest.approx(np.max(np.abs(e)), rel=1e-4)
+    assert res.max_rel_error >= res.grid_max_rel_error * (1 - 1e-12)
+
+
+# -------------------------------------------------------------- scale
+@pytest.mark.parametrize("method", ["trf", "slsqp"])
+def test_same_relative_error_from_1e_5_to_1e6(method):
+    ref = None
+    for m0 in [1e-5, 1e-2, 1.0, 100.0, 1e4, 1e6]:
+        res = fit((20.0, 160.0), moment=m0, method=method)
+        if ref is None:
+            ref = res
+        assert res.max_rel_error == pytest.approx(ref.max_rel_error, rel=1e-9)
+        assert res.c / m0 == pytest.approx(ref.c / 1e-5, rel=1e-9)
+        assert (res.r, res.r0, res.a) == pytest.approx((ref.r, ref.r0, ref.a), rel=1e-9)
+
+
+def test_scale_invariance_with_force_limit_scaled_too():
+    out = []
+    for m0 in [1e-5, 1.0, 1e6]:
+        b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=20.0 * m0)
+        out.append(fit((20.0, 160.0), b, moment=m0).max_rel_error)
+    assert out == pytest.approx([out[0]] * 3, rel=1e-7)
+
+
+# -------------------------------------------------------------- speed
+@pytest.mark.parametrize("norm", ["max", "rms"])
+@pytest.mark.parametrize("rng", RANGES.values(), ids=RANGES.keys())
+def test_default_method_under_100_ms(rng, norm):
+    best = min(fit(rng, norm=norm).seconds for _ in range(3))
+    assert best < 0.1
+    assert fit(rng, norm=norm).method == DEFAULT_METHOD[norm]
+
+
+# -------------------------------------------------------------- tension
+def test_tension_exact_when_zero_free_length_allowed():
+    res = fit_spring("tension", -100.0, rad((0.0, 180.0)), ISSUE)
+    assert res.method == "exact" and res.max_rel_error < 1e-13
+    assert res.a == res.r0 and res.c * res.r * res.d == pytest.approx(100.0)
+    assert "a=r0 (zero free length)" in res.active_bounds
+    # every numeric method finds the exact device too
+    for m in METHODS:
+        assert fit_spring("tension", -100.0, rad((0.0, 180.0)), ISSUE, method=m).max_rel_error < 1e-6, m
+
+
+def test_tension_without_zero_free_length_is_fitted():
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.3, 0.5), a=(0.0, 0.1))
+    res = fit_spring("tension", -100.0, rad((20.0, 160.0)), b)
+    assert res.method == DEFAULT_METHOD["max"]
+    assert 0 < res.max_rel_error < 0.5 and res.free_length > 0
+    assert any("zero free length" in n for n in res.notes)
+
+
+# -------------------------------------------------------------- hard cases
+def test_hard_r0_near_zero_with_phi_zero_in_range():
+    """r0 ≪ r and φ = 0 in range: L(0) = r0, the moment jumps within |φ| ≲ r0/r of 0.
+    Solved: the fit moves to the largest r0 it may and reports the (large) error honestly."""
+    b = SpringBounds(r=(0.05, 0.5), r0=(1e-9, 1e-6), a=(0.0, 1.0))
+    res = fit((0.0, 180.0), b)
+    assert np.isfinite(res.max_rel_error) and np.isfinite(res.c)
+    assert res.r0 == pytest.approx(1e-6) and "r0=max" in res.active_bounds
+    assert any("φ = 0" in n for n in res.notes)
+    # the verification grid resolves the jump: compare with an independent fine sample near 0
+    phi = np.concatenate([np.geomspace(1e-9, 1e-2, 20001), np.linspace(1e-2, math.pi, 20001)])
+    e = np.max(np.abs(relative_errors(res.device, 100.0, phi)))
+    assert res.max_rel_error == pytest.approx(e, rel=1e-2)
+    assert res.max_rel_error > 0.5  # a compression spring cannot do this job: reported
+
+
+@pytest.mark.parametrize("rng", [(0.0, 180.0), (-180.0, 0.0), (180.0, 360.0), (0.0, 360.0)])
+def test_ranges_touching_0_or_pi(rng):
+    res = fit(rng)
+    assert np.isfinite(res.max_rel_error) and res.max_rel_error < 0.02
+
+
+@pytest.mark.parametrize("rng", [(89.9, 90.1), (10.0, 10.001), (179.0, 180.0)])
+def test_narrow_ranges_all_methods_agree_on_error(rng):
+    errs = {m: fit(rng, method=m).grid_max_rel_error for m in ("trf", "slsqp", "nelder-mead")}
+    best = min(errs.values())
+    for m, e in errs.items():
+        assert e <= best + 1e-6, m
+    assert best < 1e-3
+
+
+def test_unbounded_a_refused_then_solved_with_free_length():
+    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, math.inf))
+    with pytest.raises(InfeasibleBounds, match="without limit") as ei:
+        fit((20.0, 160.0), b)
+    assert "\n" not in str(ei.value)
+    b2 = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, math.inf), max_free_length=3.0)
+    res = fit((20.0, 160.0), b2)
+    assert "max_free_length" in res.active_bounds and res.free_length == pytest.approx(3.0)
+
+
+def test_error_keeps_falling_as_a_grows():
+    """Why an unbounded a is refused: the optimum runs away with it."""
+    errs = [fit((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, ah))).max_rel_error
+            for ah in (0.5, 1.0, 10.0, 100.0)]
+    assert all(x > y for x, y in zip(errs, errs[1:]))
+
+
+# -------------------------------------------------------------- bad input
+@pytest.mark.parametrize("call, exc, words", [
+    (lambda: fit_spring("tension", 100.0, rad((0, 180)), ISSUE), WrongSense, "compression"),
+    (lambda: fit_spring("compression", -100.0, rad((0, 180)), ISSUE), WrongSense, "tension"),
+    (lambda: fit((160.0, 20.0)), InvalidRange, "inverted"),
+    (lambda: fit((20.0, 20.0)), InvalidRange, "empty"),
+    (lambda: fit((0.0, 720.0)), InvalidRange, "one turn"),
+    (lambda: fit((0, 180), SpringBounds((-0.1, 0.5), (0.01, 1), (0, 1))), InvalidRange, "positive"),
+    (lambda: fit((0, 180), SpringBounds((0.5, 0.1), (0.01, 1), (0, 1))), InvalidRange, "inverted"),
+    (lambda: fit((0, 180), SpringBounds((0.01, 0.5), (0.01, 1), (-1, 1))), InvalidRange, "negative"),
+    (lambda: fit((0, 180), SpringBounds((0.1, 0.5), (0.1, 1), (0, 1), max_free_length=0.2)), InfeasibleBounds, "free length"),
+    (lambda: fit((0, 180), SpringBounds((0.1, 0.5), (0.01, 0.05), (0, 1), max_deflection=0.1)), InfeasibleBounds, "deflection"),
+    (lambda: fit((0, 180), moment=0.0), InvalidInput, "non-zero"),
+    (lambda: fit((0, 180), method="bfgs"), InvalidInput, "trf"),
+    (lambda: fit((0, 180), norm="l1"), InvalidInput, "max"),
+])
+def test_bad_input_one_sentence(call, exc, words):
+    with pytest.raises(exc, match=words) as ei:
+        call()
+    msg = str(ei.value)
+    assert "\n" not in msg and msg.endswith(".")
+
+
+# -------------------------------------------------------------- model file
+def test_spring_compression_model_matches_expect(model):
+    doc = model("spring_compression")
+    exp = doc["expect"]
+    out = solve_spring(doc, "spring_compression.toml")
+    for k in ("r", "r0", "a"):
+        assert out[k] == pytest.approx(exp[k], rel=1e-6)
+    assert out["active_bounds"] == exp["active_bounds"]
+    assert out["sense"] == exp["sense"]
+    assert out["max_rel_error"] < exp["max_rel_error_below"]
+    best = min(solve_spring(doc)["seconds"] for _ in range(3))
+    assert best < exp["seconds_below"]
