@@ -1,0 +1,368 @@
+"""``mechsynth balance …`` commands (also ``python -m balance.cli …``).
+
+Results go to stdout (a readable table, or ``--format json``); a mistake prints one
+sentence to stderr and returns 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any, Sequence
+
+from .errors import BalanceError, InvalidRange
+
+__all__ = ["main", "build_parser"]
+
+PROG = "mechsynth balance"
+_RANGE_OPTS = {"--range", "--r", "--r0", "--a"}
+
+
+class _UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # noqa: D401 - argparse hook
+        raise _UsageError(message)
+
+
+def parse_range(text: str, name: str = "range") -> tuple[float, float]:
+    """``"A..B"`` → ``(A, B)``; ``inf`` allowed as B.
+
+    Examples
+    --------
+    >>> parse_range("-90..90")
+    (-90.0, 90.0)
+    """
+    if ".." not in text:
+        raise InvalidRange(f"{name} must be written low..high (e.g. 20..160), not {text!r}.")
+    a, b = text.split("..", 1)
+    try:
+        lo, hi = float(a), float(b)
+    except ValueError:
+        raise InvalidRange(f"{name} must be written low..high with numbers, not {text!r}.") from None
+    if math.isnan(lo) or math.isnan(hi):
+        raise InvalidRange(f"{name} {text!r} is not a range of numbers.")
+    return lo, hi
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog=PROG, description="Static and dynamic balancing of robot arms.")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    def common(sp):
+        sp.add_argument("--format", choices=("table", "json"), default="table")
+        sp.add_argument("--plot", metavar="FILE", help="write a figure (PNG, PDF or SVG)")
+
+    a = sub.add_parser("arm", help="balance an arm scene ([arm] TOML)")
+    a.add_argument("file")
+    a.add_argument("--samples", type=int, help="random configurations of the check (default from file or 1000)")
+    a.add_argument("--seed", type=int)
+    common(a)
+
+    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ")
+    s.add_argument("--kind", required=True, choices=("tension", "compression"))
+    s.add_argument("--moment", required=True, type=float, metavar="PHI0",
+                   help="Φ0 in N·m; + turns the crank away from the base point (compression), − towards it (tension)")
+    s.add_argument("--range", required=True, metavar="A..B", help="working range of φ in degrees")
+    s.add_argument("--r", required=True, metavar="A..B", help="crank length range (m)")
+    s.add_argument("--r0", required=True, metavar="A..B", help="spring length at φ = 0 (m); d = r + r0")
+    s.add_argument("--a", required=True, metavar="A..B", help="pre-extension/pre-load range (m), 'inf' allowed")
+    s.add_argument("--max-force", type=float, metavar="F")
+    s.add_argument("--max-free-length", type=float, metavar="L")
+    s.add_argument("--max-deflection", type=float, metavar="X", help="compression: largest (l0 − L_min)/l0")
+    s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"))
+    s.add_argument("--norm", choices=("max", "rms"), default="max")
+    s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61)")
+    common(s)
+
+    pr = sub.add_parser("prismatic", help="counter-masses for a sliding last link")
+    pr.add_argument("--mass", required=True, type=float, metavar="m")
+    pr.add_argument("--inertia", required=True, type=float, metavar="I")
+    pr.add_argument("--counter-mass", required=True, type=float, metavar="M")
+    pr.add_argument("--stroke", required=True, type=float, metavar="q_max", help="designed stroke half-amplitude (m)")
+    pr.add_argument("--travel", type=float, metavar="S", help="stroke actually travelled (default q_max)")
+    pr.add_argument("--C", type=float, dest="C", help="inertia constant (default C_min)")
+    common(pr)
+
+    pa = sub.add_parser("pantograph", help="pantograph balanced manipulator ([pantograph] TOML)")
+    pa.add_argument("file")
+    common(pa)
+
+    so = sub.add_parser("solve", help="any balance scene: [arm], [spring], [slider] or [pantograph]")
+    so.add_argument("file")
+    so.add_argument("--format", choices=("table", "json"), default="table")
+    return p
+
+
+def _fix_negative_ranges(argv: Sequence[str]) -> list[str]:
+    """Let ``--range -90..90`` through argparse (it would take ``-90..90`` for an option)."""
+    out: list[str] = []
+    argv = list(argv)
+    i = 0
+    while i < len(argv):
+        tok = argv[i]
+        if tok in _RANGE_OPTS and i + 1 < len(argv) and argv[i + 1].startswith("-") and ".." in argv[i + 1]:
+            out.append(f"{tok}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(tok)
+        i += 1
+    return out
+
+
+def _clean(obj: Any) -> Any:
+    """JSON-safe: non-finite floats become null, tuples lists."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean(v) for v in obj]
+    return obj
+
+
+def _num(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def _kv(rows: list[tuple[str, Any]]) -> str:
+    w = max(len(k) for k, _ in rows)
+    return "\n".join(f"{k:<{w}}  {_num(v)}" for k, v in rows)
+
+
+# ----------------------------------------------------------------- tables
+def _table_arm(out: dict) -> str:
+    lines = [f"arm: {out['name']}", ""]
+    head = f"{'#':>2}  {'amplitude':>11}  {'phase°':>8}  {'form (joints)':<24}  {'shafts (differential)':<24}  {'sine e·T':>10}"
+    lines += [head, "-" * len(head)]
+    for k, (t, d) in enumerate(zip(out["terms"], out["devices"])):
+        lines.append(
+            f"{k + 1:>2}  {t['amplitude']:>11.6g}  {t['phase_deg']:>8.4g}  {t['form_text']:<24}  "
+            f"{t['drive_form_text']:<24}  {d['sine']['eT']:>10.6g}"
+        )
+    ck = out["check"]
+    lines += ["", _kv([
+        ("check samples", ck["samples"]),
+        ("max residual (N·m or N)", out["max_residual"]),
+        ("largest gravity force", out["max_gravity_force"]),
+        ("relative residual", out["relative_residual"]),
+        ("potential spread (J)", out["potential_spread"]),
+    ])]
+    for p in out["prismatic"]:
+        lines += ["", _kv([
+            (f"prismatic {p['coordinate']} gear ratio k (m/rad)", p["gear_ratio"]),
+            ("γ_max (rad)", p["gamma_max"]),
+            ("relative error bound 1 − sinγ/γ", p["rel_error_bound"]),
+            ("residual bound per joint", ", ".join(_num(v) for v in p["residual_bound_per_joint"])),
+        ])]
+    if out["payload"]:
+        pl = out["payload"]
+        lines += ["", _kv([
+            ("payload max / tuned for (N)", f"{_num(pl['max_payload'])} / {_num(pl['tuned_for'])}"),
+            ("worst residual, payload 0..max", pl["max_residual"]),
+            ("effect of half the payload", pl["half_payload_effect"]),
+        ])]
+    cw = out.get("counterweights")
+    if cw:
+        if cw["available"]:
+            lines += ["", "counterweight alternative:"]
+            for r in cw["weights"]:
+                lines.append(f"  {r['link']:<14} {r['weight']:>10.5g} N at {r['arm']:.4g} m behind its joint")
+            lines.append(f"  added {cw['added_weight']:.5g} N ({cw['ratio']:.3g}× the arm), residual {cw['max_residual']:.3g}")
+        else:
+            lines += ["", f"counterweights: not available — {cw['reason']}"]
+    return "\n".join(lines)
+
+
+def _table_spring(out: dict) -> str:
+    rows = [
+        ("kind / sense", f"{out['kind']} / {out['sense_text']}"),
+        ("method / norm", f"{out['method']} / {out['norm']}"),
+        ("c (N/m)", out["c"]), ("r (m)", out["r"]), ("r0 (m)", out["r0"]), ("a (m)", out["a"]),
+        ("d = r + r0 (m)", out["d"]), ("free length l0 (m)", out["free_length"]),
+        ("max spring force (N)", out["max_force"]),
+        ("max relative error", out["max_rel_error"]), ("RMS relative error", out["rms_rel_error"]),
+        ("seconds", out["seconds"]), ("function evaluations", out["nfev"]),
+        ("active bounds", ", ".join(out["active_bounds"]) or "none"),
+        ("message", out["message"]),
+    ]
+    if out.get("deflection") is not None:
+        rows.insert(9, ("deflection (l0 − L_min)/l0", out["deflection"]))
+    s = _kv(rows)
+    for n in out.get("notes", []):
+        s += f"\nnote: {n}"
+    return s
+
+
+def _table_prismatic(out: dict) -> str:
+    rows = [
+        ("C_min (kg·m²)", out["C_min"]), ("C used", out["C"]),
+        ("stroke valid for C (m)", out["law_valid_stroke"]),
+        ("max centre-of-mass error (m)", out["max_com_error"]),
+        ("max inertia error (kg·m²)", out["max_inertia_error"]),
+        ("two-crank ±120° exact", out["crank"]["exact"]),
+        ("two-crank COM error (m)", out["crank"]["max_com_error"]),
+        ("two-crank inertia variation", out["crank"]["max_inertia_error"]),
+    ]
+    s = _kv(rows) + "\nlaws: z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M)"
+    for m in out["messages"]:
+        s += f"\nwarning: {m}"
+    return s
+
+
+def _table_pantograph(out: dict) -> str:
+    w = out["point_weights"]
+    rows = [
+        ("substitution weights (N)", ", ".join(f"{k} {v:.6g}" for k, v in w.items())),
+        ("spring amplitude c·r·d = e·T (N·m)", out["term"]["amplitude"]),
+        ("spring", out["spring_moment"]),
+        ("drive force at B (N)", out["drive_force"]),
+        ("drive force, payload 0..max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
+        ("max residual (check)", out["max_residual"]),
+        ("relative residual", out["relative_residual"]),
+    ]
+    if "c" in out["device"]["tension"]:
+        rows.insert(3, ("tension spring c (N/m)", out["device"]["tension"]["c"]))
+    return _kv(rows) + f"\nnote: {out['note']}"
+
+
+# ----------------------------------------------------------------- commands
+def _emit(out: dict, fmt: str, table) -> None:
+    if fmt == "json":
+        print(json.dumps(_clean(out), indent=2, ensure_ascii=False, allow_nan=False))
+    else:
+        print(table(out))
+
+
+def _cmd_arm(ns) -> dict:
+    from .arm import arm_from_dict
+    from .problems import load_toml, solve_arm
+
+    doc = load_toml(ns.file)
+    if ns.samples is not None or ns.seed is not None:
+        doc = dict(doc)
+        arm_t = dict(doc.get("arm", {}))
+        ck = dict(arm_t.get("check", {}))
+        if ns.samples is not None:
+            ck["samples"] = ns.samples
+        if ns.seed is not None:
+            ck["seed"] = ns.seed
+        arm_t["check"] = ck
+        doc["arm"] = arm_t
+    out = solve_arm(doc, ns.file)
+    if ns.plot:
+        from .plots import plot_arm
+
+        arm = arm_from_dict(doc, ns.file)
+        plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), ns.plot)
+    return out
+
+
+def _cmd_spring(ns) -> tuple[dict, Any]:
+    from .fit import DEFAULT_GRID, SpringBounds, fit_spring
+
+    lo, hi = parse_range(ns.range, "--range")
+    bounds = SpringBounds(parse_range(ns.r, "--r"), parse_range(ns.r0, "--r0"), parse_range(ns.a, "--a"),
+                          ns.max_force, ns.max_free_length, ns.max_deflection)
+    res = fit_spring(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds,
+                     method=ns.method, norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID)
+    if ns.plot:
+        from .plots import plot_spring
+
+        plot_spring(res, ns.plot)
+    return res.to_dict()
+
+
+def _cmd_prismatic(ns) -> dict:
+    from .countermass import verify_counter_mass
+
+    res = verify_counter_mass(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, stroke=ns.travel, C=ns.C)
+    if ns.plot:
+        from .plots import plot_prismatic
+
+        plot_prismatic(res.m, res.inertia, res.M, res.q_max, res.stroke, res.C, ns.plot)
+    return res.to_dict()
+
+
+def _cmd_pantograph(ns) -> dict:
+    from .pantograph import pantograph_from_dict
+    from .problems import load_toml, solve_pantograph
+
+    doc = load_toml(ns.file)
+    out = solve_pantograph(doc, ns.file)
+    if ns.plot:
+        from .plots import plot_pantograph
+
+        plot_pantograph(pantograph_from_dict(doc, ns.file)[0], ns.plot)
+    return out
+
+
+def _cmd_solve(ns) -> tuple[dict, Any]:
+    from . import problems
+    from .errors import SchemaError
+
+    doc = problems.load_toml(ns.file)
+    table = {"arm": (problems.solve_arm, _table_arm), "spring": (problems.solve_spring, _table_spring),
+             "slider": (problems.solve_prismatic, _table_prismatic),
+             "pantograph": (problems.solve_pantograph, _table_pantograph)}
+    kinds = [k for k in table if k in doc]
+    if len(kinds) != 1:
+        raise SchemaError(f"{ns.file}: a balance scene needs exactly one of [arm], [spring], [slider] or [pantograph].")
+    solve, tab = table[kinds[0]]
+    return solve(doc, ns.file), tab
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run ``mechsynth balance`` with ``argv`` (the arguments after ``balance``); return the exit code.
+
+    Examples
+    --------
+    >>> main(["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2",
+    ...       "--stroke", "0.5", "--format", "json"])  # doctest: +ELLIPSIS
+    {...
+    0
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        ns = build_parser().parse_args(_fix_negative_ranges(argv))
+    except _UsageError as exc:
+        msg = str(exc).rstrip(".")
+        print(f"{PROG}: error: {msg}.", file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help
+        return int(exc.code or 0)
+    try:
+        if ns.command == "arm":
+            _emit(_cmd_arm(ns), ns.format, _table_arm)
+        elif ns.command == "spring":
+            _emit(_cmd_spring(ns), ns.format, _table_spring)
+        elif ns.command == "prismatic":
+            _emit(_cmd_prismatic(ns), ns.format, _table_prismatic)
+        elif ns.command == "pantograph":
+            _emit(_cmd_pantograph(ns), ns.format, _table_pantograph)
+        elif ns.command == "solve":
+            out, tab = _cmd_solve(ns)
+            _emit(out, ns.format, tab)
+    except BalanceError as exc:
+        print(f"{PROG}: error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # output piped into `head`: not an error of ours
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    except OSError as exc:  # e.g. the plot file cannot be written
+        print(f"{PROG}: error: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
