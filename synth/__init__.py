@@ -2,6 +2,6 @@
 from .code import Code
 from .errors import *  # noqa: F401,F403
 from .errors import __all__ as _errors_all
-from .number_synthesis import number_synthesis
+from ._number_synthesis import number_synthesis
 
 __all__ = ["Code", "number_synthesis", *_errors_all]

@@ -70,7 +70,7 @@ def _add_codes(sub):
 
 
 def _run_codes(args) -> int:
-    from .number_synthesis import number_synthesis
+    from ._number_synthesis import number_synthesis
 
     codes = number_synthesis(
         args.dof, loops=args.loops, links=args.links,

@@ -1,0 +1,279 @@
+"""Realisation of a code as chains: two CP-SAT models and nauty.
+
+Every chain contracts to a multigraph H on its *branch vertices* — links with 3+
+joints and joints with 3+ links — whose edges are the strings of binary links and
+simple joints between them; the weight of an edge is its number of binary links.
+H is a subdivision-equivalent of the incidence graph, so
+
+* chains are isomorphic exactly when their H's are isomorphic by a map that keeps
+  the weights;  hence
+* stage A enumerates the multigraphs H of a code once each (CP-SAT with the
+  degree equations, connectivity by a flow, weight lower bounds and the sb*ℓ
+  lexicographic row constraints of Codish et al. between branch vertices of one
+  kind; nauty removes the remaining labelled copies), and
+* stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
+  exact sub-chain conditions of THEORY.md written on the edges, and lex-leader
+  constraints for the automorphisms of H, from nauty), so few labelled copies of
+  a chain come out; the exact test and nauty's certificate run on each.
+
+Planarity and fractionation are properties of H (a subdivision keeps both), so
+they are decided once per H.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+
+import networkx as nx
+import pynauty
+from ortools.sat.python import cp_model
+
+from ._cpsat import all_solutions
+from .chain import Chain
+from .code import Code
+from .mobility import check_subchains
+
+__all__ = ["Conventions", "Contracted", "contracted_graphs", "realise"]
+
+_GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
+_LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
+
+
+@dataclass(frozen=True)
+class Conventions:
+    """Which chains count: sub-chain rule, fractionated chains, planar graphs only."""
+
+    rigid_subchains: bool = False
+    fractionated: bool = True
+    planar_only: bool = False
+
+    @property
+    def threshold(self) -> int:
+        """Least W(S) allowed for a proper sub-chain S."""
+        return 0 if self.rigid_subchains else 1
+
+
+@dataclass(frozen=True)
+class Contracted:
+    """Branch-vertex multigraph H of a chain: ``kinds[u]`` is ('L', joints) or ('J', links)."""
+
+    kinds: tuple[tuple[str, int], ...]
+    edges: tuple[tuple[int, int], ...]
+    certificate: str
+
+    def _subdivided(self) -> pynauty.Graph:
+        m = len(self.kinds)
+        adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
+        cells: dict[tuple[str, int], set[int]] = {}
+        for u, kind in enumerate(self.kinds):
+            cells.setdefault(kind, set()).add(u)
+        coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
+        return pynauty.Graph(m + len(self.edges), adjacency_dict=adjacency, vertex_coloring=coloring)
+
+    def edge_group(self) -> list[tuple[int, ...]]:
+        """Automorphisms of H acting on its edge list (the whole group if small, else generators)."""
+        m, e = len(self.kinds), len(self.edges)
+        if e == 0:
+            return []
+        gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
+        gens = [tuple(g[m + k] - m for k in range(e)) for g in gens]
+        gens = [g for g in gens if any(g[k] != k for k in range(e))]
+        if size1 * 10.0**size2 > _GROUP_LIMIT:
+            return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens]  # and inverses
+        identity = tuple(range(e))
+        group, frontier = {identity}, [identity]
+        while frontier:
+            nxt = []
+            for a in frontier:
+                for g in gens:
+                    b = tuple(g[a[k]] for k in range(e))
+                    if b not in group:
+                        group.add(b)
+                        nxt.append(b)
+            frontier = nxt
+        group.discard(identity)
+        return sorted(group)
+
+
+def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
+    links = [("L", i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
+    comp = code.composition or ()
+    joints = [("J", k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
+    return tuple(links + joints)
+
+
+def _loop_lb(kind: str, conv: Conventions) -> int:
+    """Fewest binary links on a closed string through one branch vertex."""
+    # through a link: w links, w+1 joints, W = w − 2; through a joint: W = w − 3
+    return (2 if kind == "L" else 3) + (0 if conv.rigid_subchains else 1)
+
+
+def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A: every branch multigraph H of ``code`` (with composition), once each.
+
+    >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
+    [((0, 1), (0, 1), (0, 1))]
+    """
+    kinds = _branch_kinds(code)
+    n2 = code.count(2)
+    m = len(kinds)
+    if m == 0:
+        return []
+    deg = [k[1] for k in kinds]
+    model = cp_model.CpModel()
+    pairs = list(combinations(range(m), 2))
+    x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
+    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated else 0, f"y{u}") for u in range(m)]
+    for u in range(m):
+        model.Add(sum(x[min(u, v), max(u, v)] for v in range(m) if v != u) + 2 * y[u] == deg[u])
+    # weight lower bounds: parallel strings need binary links (the same rules as stage B)
+    lbs = []
+    for (u, v), var in x.items():
+        ku, kv = kinds[u][0], kinds[v][0]
+        lb = model.NewIntVar(0, 2 * min(deg[u], deg[v]), f"lb{u}_{v}")
+        if ku == kv == "L":
+            model.AddMaxEquality(lb, [0, 2 * var - (3 if conv.rigid_subchains else 2)])
+        elif ku == kv == "J":
+            model.AddMaxEquality(lb, [0, 2 * var - 1])
+        else:
+            model.AddMaxEquality(lb, [0, var - 1])
+        lbs.append(lb)
+    model.Add(sum(lbs) + sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m)) <= n2)
+    # connectivity: every cut around a set holding vertex 0 is crossed by an edge
+    for size in range(1, m):
+        for T in combinations(range(1, m), size - 1):
+            inside = {0, *T}
+            model.Add(sum(x[u, v] for u, v in pairs if (u in inside) != (v in inside)) >= 1)
+    # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
+    base = max(deg) + 1
+    for u, v in pairs:
+        if kinds[u] != kinds[v]:
+            continue
+
+        def row(a):
+            out = []
+            for k in range(m):
+                if k == v:
+                    continue
+                out.append(y[a] if k == u else x[min(a, k), max(a, k)])
+            return out
+
+        ru, rv = row(u), row(v)
+        L = len(ru)
+        model.Add(sum(base ** (L - 1 - i) * ru[i] for i in range(L)) <= sum(base ** (L - 1 - i) * rv[i] for i in range(L)))
+    variables = [x[p] for p in pairs] + y
+    seen: dict[str, Contracted] = {}
+    for sol in all_solutions(model, variables):
+        edges = []
+        for (u, v), k in zip(pairs, sol):
+            edges += [(u, v)] * k
+        for u, k in enumerate(sol[len(pairs):]):
+            edges += [(u, u)] * k
+        if not _keep_multigraph(m, edges, conv):
+            continue
+        h = Contracted(kinds, tuple(sorted(edges)), "")
+        cert = pynauty.certificate(h._subdivided()).hex()
+        if cert not in seen:
+            seen[cert] = Contracted(kinds, h.edges, cert)
+    return [seen[c] for c in sorted(seen)]
+
+
+def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
+    """Fractionation and planarity of the chain, decided on H."""
+    if not conv.fractionated:
+        if any(u == v for u, v in edges):
+            return False
+        if m == 2 and len(edges) < 2:
+            return False
+        if m > 2 and not nx.is_biconnected(nx.Graph(edges)):
+            return False
+    if conv.planar_only:
+        return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
+    return True
+
+
+def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
+    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
+    kinds, edges = h.kinds, h.edges
+    n2 = code.count(2)
+    model = cp_model.CpModel()
+    w = []
+    for k, (u, v) in enumerate(edges):
+        if u == v:
+            lb = _loop_lb(kinds[u][0], conv)
+        elif kinds[u][0] == kinds[v][0] == "J":
+            lb = 1
+        else:
+            lb = 0
+        w.append(model.NewIntVar(lb, n2, f"w{k}"))
+    model.Add(sum(w) == n2)
+    # parallel strings: non-decreasing (a symmetry of H) and at most one direct joint/incidence
+    for k in range(1, len(edges)):
+        if edges[k] == edges[k - 1]:
+            model.Add(w[k] >= w[k - 1])
+            u, v = edges[k]
+            if u != v:
+                model.Add(w[k] >= (2 if kinds[u][0] == kinds[v][0] == "J" else 1))
+    # exact sub-chain conditions on sets T of branch links joined by strings of 0 or 1 binary links
+    link_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+    ll = [k for k, (u, v) in enumerate(edges) if u != v and kinds[u][0] == kinds[v][0] == "L"]
+    z, o = {}, {}
+    for k in ll:
+        z[k], o[k] = model.NewBoolVar(f"z{k}"), model.NewBoolVar(f"o{k}")
+        model.Add(w[k] == 0).OnlyEnforceIf(z[k])
+        model.Add(w[k] == 1).OnlyEnforceIf(o[k])
+        model.Add(w[k] >= 2).OnlyEnforceIf([z[k].Not(), o[k].Not()])
+        model.AddBoolOr([z[k].Not(), o[k].Not()])
+    whole = len(link_vertices) == len(kinds)
+    dof = code.dof()
+    for size in range(2, len(link_vertices) + 1):
+        for T in combinations(link_vertices, size):
+            inside = [k for k in ll if edges[k][0] in T and edges[k][1] in T]
+            if not inside or 2 * len(inside) <= 3 * size - 3 - conv.threshold:
+                continue
+            if whole and size == len(kinds) and dof < conv.threshold:
+                continue  # S would be the whole chain when every string is short
+            model.Add(sum(2 * z[k] + o[k] for k in inside) <= 3 * size - 3 - conv.threshold)
+    # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
+    base = n2 + 1
+    prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
+    for g in h.edge_group():
+        lhs = sum(base ** (prefix - 1 - i) * w[i] for i in range(prefix))
+        rhs = sum(base ** (prefix - 1 - i) * w[g[i]] for i in range(prefix))
+        model.Add(lhs <= rhs)
+    found: dict[str, Chain] = {}
+    candidates = 0
+    for weights in all_solutions(model, w):
+        candidates += 1
+        chain = _expand(code, kinds, edges, weights)
+        if not check_subchains(chain, rigid_subchains=conv.rigid_subchains).ok:
+            continue
+        found.setdefault(chain.certificate, chain)
+    if stats is not None:
+        stats["candidates"] = stats.get("candidates", 0) + candidates
+    return [found[c] for c in sorted(found)]
+
+
+def _expand(code: Code, kinds, edges, weights) -> Chain:
+    """The chain of H with ``weights`` binary links on its strings (branch links numbered first)."""
+    n_branch_links = sum(1 for k in kinds if k[0] == "L")
+    link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
+    multiple = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
+    joints: list[tuple[int, ...]] = []
+    nxt = n_branch_links
+    for (u, v), wk in zip(edges, weights):
+        body = list(range(nxt, nxt + wk))
+        nxt += wk
+        ends = []
+        for end, first in ((u, True), (v, False)):
+            tip = (body[0] if first else body[-1]) if body else None
+            if kinds[end][0] == "L":
+                ends.append(link_id[end])
+            else:
+                ends.append(None)
+                multiple[end].append(tip if tip is not None else link_id[v if first else u])
+        seq = ([ends[0]] if ends[0] is not None else []) + body + ([ends[1]] if ends[1] is not None else [])
+        joints.extend(zip(seq, seq[1:]))
+    joints.extend(tuple(links) for links in multiple.values())
+    return Chain(nxt, tuple(joints))
