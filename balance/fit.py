@@ -464,7 +464,7 @@ METHODS: dict[str, Callable] = {
     "de": _fit_de,
 }
 #: fastest method that reaches the optimum on every case of the test-suite (see the benchmark)
-DEFAULT_METHOD = {"rms": "trf", "max": "slsqp"}
+DEFAULT_METHOD = {"rms": "slsqp", "max": "slsqp"}
 
 
 # --------------------------------------------------------------------------- driver
