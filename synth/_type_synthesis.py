@@ -1,0 +1,262 @@
+"""Type synthesis: every non-isomorphic chain (and mechanism) for W, n and v.
+
+Work is split into independent *units* (one code's branch-multigraph enumeration,
+then one branch multigraph's binary-link distribution), run inline or on a
+process pool; the output order is fixed by (code, multigraph certificate, chain
+certificate), so it does not depend on the number of workers.
+
+Example
+-------
+>>> sum(1 for _ in type_synthesis(1, 8, workers=1))
+16
+>>> count_chains(1, 6, v=(0, 2), workers=1)["by_code"]
+{'42/0': 2, '51/1': 1, '60/2': 1}
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import sys
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
+
+from ._number_synthesis import number_synthesis, parse_range
+from ._realise import Contracted, Conventions, contracted_graphs, realise
+from .chain import Chain, Mechanism
+from .code import Code
+from .errors import ImpossibleParameters, InvalidOption
+
+__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "type_synthesis", "count_chains", "mechanisms", "mechanisms_of", "run_unit"]
+
+
+@dataclass(frozen=True)
+class Unit:
+    """One independent piece of work: the chains of ``code`` whose branch multigraph is ``contracted``.
+
+    ``contracted`` is None for a code without branch vertices (the single loop).
+    """
+
+    code: Code
+    contracted: Contracted | None
+    conventions: Conventions
+
+    @property
+    def key(self) -> str:
+        """Stable name of the unit (code and multigraph certificate), used by atlases to resume."""
+        return f"{self.code}|{self.contracted.certificate if self.contracted else 'loop'}"
+
+
+def _conventions(dof: int, rigid_subchains: bool | None, fractionated: bool, planar_only: bool) -> Conventions:
+    if rigid_subchains is None:
+        rigid_subchains = dof == 0
+    return Conventions(bool(rigid_subchains), bool(fractionated), bool(planar_only))
+
+
+def plan_codes(
+    dof: int,
+    links: int | None = None,
+    *,
+    v: int | tuple | str = 0,
+    code: Code | str | None = None,
+    fractionated: bool = True,
+    require: Mapping | Iterable[str] | None = None,
+) -> list[Code]:
+    """The codes (with joint composition) a chain query covers, in output order.
+
+    >>> [str(c) for c in plan_codes(1, 8)]
+    ['440/0', '521/0', '602/0']
+    """
+    if code is not None:
+        code = Code.parse(code) if isinstance(code, str) else code
+        if code.n1:
+            raise ImpossibleParameters(f"code {code} has single-joint links: type synthesis builds closed chains")
+        if code.dof() != dof:
+            raise ImpossibleParameters(f"code {code} gives W = {code.dof()}, not the requested W = {dof}")
+        if links is not None and code.links != links:
+            raise ImpossibleParameters(f"code {code} has {code.links} links, not {links}")
+        exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}
+        codes = number_synthesis(dof, links=code.links, v=code.v, compositions=True,
+                                 max_link_degree=max(code.max_degree, 2), require=exact)
+        return [c for c in codes if code.composition is None or c.composition == code.composition]
+    if links is None:
+        raise InvalidOption("give the number of links (or a code)")
+    rng = parse_range(v, "v")
+    K = (links - dof - 1) // 2
+    imax = 2 * K if fractionated else K + 1
+    return number_synthesis(dof, links=links, v=rng, compositions=True, max_link_degree=max(imax, K + 1),
+                            require=require)
+
+
+def _stage_a(args) -> list[Unit]:
+    code, conv = args
+    if code.count(2) == code.links and code.v == 0:
+        return [Unit(code, None, conv)]
+    return [Unit(code, h, conv) for h in contracted_graphs(code, conv)]
+
+
+def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:
+    """The chains of one unit, sorted by certificate (deterministic)."""
+    if unit.contracted is None:
+        n = unit.code.links
+        return [Chain(n, tuple((i, (i + 1) % n) for i in range(n)))] if n >= 3 else []
+    return realise(unit.code, unit.contracted, unit.conventions, stats)
+
+
+def _validate(dof, links, workers):
+    if isinstance(dof, bool) or not isinstance(dof, int) or dof < 0:
+        raise ImpossibleParameters(f"the degree of freedom W must be 0 or more, not {dof!r}")
+    if links is not None and (isinstance(links, bool) or not isinstance(links, int) or links < 1):
+        raise ImpossibleParameters(f"the number of links must be 1 or more, not {links!r}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
+
+
+def _pool(workers: int):
+    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+    return ctx.Pool(workers)
+
+
+def _units(codes: list[Code], conv: Conventions, pool) -> list[Unit]:
+    jobs = [(c, conv) for c in codes]
+    results = pool.imap(_stage_a, jobs) if pool else map(_stage_a, jobs)
+    return [u for batch in results for u in batch]
+
+
+def plan_units(
+    dof: int,
+    links: int | None = None,
+    *,
+    v: int | tuple | str = 0,
+    code: Code | str | None = None,
+    rigid_subchains: bool | None = None,
+    fractionated: bool = True,
+    planar_only: bool = False,
+    require: Mapping | Iterable[str] | None = None,
+) -> list[Unit]:
+    """The independent work units of a chain query, in output order (runs stage A inline).
+
+    ``run_unit(u)`` for every unit, concatenated, equals ``list(type_synthesis(...))``.
+
+    >>> units = plan_units(1, 8); [u.key.split("|")[0] for u in units]
+    ['440/0', '440/0', '521/0', '521/0', '602/0']
+    >>> sum(len(run_unit(u)) for u in units)
+    16
+    """
+    _validate(dof, links, None)
+    conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
+    return _units(plan_codes(dof, links, v=v, code=code, fractionated=fractionated, require=require), conv, None)
+
+
+def type_synthesis(
+    dof: int,
+    links: int | None = None,
+    *,
+    v: int | tuple | str = 0,
+    code: Code | str | None = None,
+    rigid_subchains: bool | None = None,
+    fractionated: bool = True,
+    planar_only: bool = False,
+    require: Mapping | Iterable[str] | None = None,
+    workers: int | None = None,
+    progress: bool = False,
+) -> Iterator[Chain]:
+    """Every non-isomorphic planar chain with mobility ``dof`` and ``links`` links.
+
+    Parameters
+    ----------
+    dof : int
+        W (0 for trusses).
+    links : int
+        n, the frame included (or give ``code``).
+    v : int or range
+        Multiple-joint count(s), default 0 (simple joints); ``(0, 4)`` or ``"0..4"`` for a range.
+    code : Code or str, optional
+        Only this code (with or without composition).
+    rigid_subchains : bool, optional
+        Allow rigid sub-chains (W(S) ≥ 0); default True for W = 0, else False (non-degenerate).
+    fractionated : bool
+        Keep chains that a link or joint splits in two (default True).
+    planar_only : bool
+        Keep only chains with planar graphs.
+    require : design constraints ``"I=N"`` etc. on the link assortment (see number_synthesis).
+    workers : int, optional
+        Processes; default all cores; 1 runs inline.
+    progress : bool
+        A progress bar on stderr.
+
+    Yields
+    ------
+    Chain
+        In deterministic order: code, branch multigraph, certificate.
+
+    Notes
+    -----
+    Stage A (one CP-SAT model per code) and stage B (one per branch multigraph) are
+    independent units; the sub-chain test is exact and nauty removes duplicates.
+    """
+    _validate(dof, links, workers)
+    conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
+    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated, require=require)
+    workers = workers or os.cpu_count() or 1
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=0, unit=" units", file=sys.stderr, disable=None, leave=False)
+    pool = _pool(workers) if workers > 1 else None
+    try:
+        units = _units(codes, conv, pool)
+        if bar is not None:
+            bar.reset(total=len(units))
+        results = pool.imap(run_unit, units, chunksize=max(1, len(units) // (workers * 16))) if pool else map(run_unit, units)
+        for chains in results:
+            if bar is not None:
+                bar.update(1)
+            yield from chains
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+        if bar is not None:
+            bar.close()
+
+
+def count_chains(dof: int, links: int | None = None, **kwargs) -> dict:
+    """``{"count": N, "by_code": {code: count}}`` for the chains of :func:`type_synthesis`."""
+    by_code: dict[str, int] = {}
+    for chain in type_synthesis(dof, links, **kwargs):
+        key = str(chain.code)
+        by_code[key] = by_code.get(key, 0) + 1
+    return {"count": sum(by_code.values()), "by_code": by_code}
+
+
+def mechanisms_of(chain: Chain, *, input_link: bool = False) -> list[Mechanism]:
+    """Distinct mechanisms of one chain: a fixed link per automorphism orbit (and input links).
+
+    >>> [m.frame for m in mechanisms_of(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"))]
+    [0, 2, 4]
+    """
+    out = []
+    for orbit in chain.link_orbits:
+        frame = orbit[0]
+        if not input_link:
+            out.append(Mechanism(chain, frame))
+            continue
+        orbits = chain.automorphisms([frame])[2]
+        neighbours = sorted({x for j in chain.joints if frame in j for x in j if x != frame})
+        reps: dict[int, int] = {}
+        for x in neighbours:
+            reps.setdefault(orbits[x], x)
+        out += [Mechanism(chain, frame, x) for x in sorted(reps.values())]
+    return out
+
+
+def mechanisms(dof: int, links: int | None = None, *, input_link: bool = False, **kwargs) -> Iterator[Mechanism]:
+    """Every mechanism (chain + fixed link, optionally + input link) up to symmetry.
+
+    >>> sum(1 for _ in mechanisms(1, 6, workers=1))
+    5
+    """
+    for chain in type_synthesis(dof, links, **kwargs):
+        yield from mechanisms_of(chain, input_link=input_link)
