@@ -44,6 +44,7 @@ def all_solutions(
     solver.parameters.enumerate_all_solutions = True
     solver.parameters.num_workers = 1
     solver.parameters.linearization_level = 0  # pure enumeration: LP relaxation only costs time
+    solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
     if time_limit is not None:
         solver.parameters.max_time_in_seconds = time_limit
     collector = _Collector(variables, limit)

@@ -129,11 +129,13 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         model.Add(sum(x[min(u, v), max(u, v)] for v in range(m) if v != u) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
     lbs = []
+    # with W below the threshold the whole chain is exempt, so only the weaker truss bound is necessary
+    rigid_bound = conv.rigid_subchains or code.dof() < conv.threshold
     for (u, v), var in x.items():
         ku, kv = kinds[u][0], kinds[v][0]
         lb = model.NewIntVar(0, 2 * min(deg[u], deg[v]), f"lb{u}_{v}")
         if ku == kv == "L":
-            model.AddMaxEquality(lb, [0, 2 * var - (3 if conv.rigid_subchains else 2)])
+            model.AddMaxEquality(lb, [0, 2 * var - (3 if rigid_bound else 2)])
         elif ku == kv == "J":
             model.AddMaxEquality(lb, [0, 2 * var - 1])
         else:

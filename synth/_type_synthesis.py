@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 import sys
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
@@ -60,9 +61,14 @@ def plan_codes(
     v: int | tuple | str = 0,
     code: Code | str | None = None,
     fractionated: bool = True,
+    rigid_subchains: bool = False,
     require: Mapping | Iterable[str] | None = None,
 ) -> list[Code]:
     """The codes (with joint composition) a chain query covers, in output order.
+
+    A link of a non-fractionated chain carries at most K+1 joints, of a fractionated one
+    at most 2K; a non-degenerate chain with W = 1 is never fractionated (its parts would
+    each need W ≥ 1).
 
     >>> [str(c) for c in plan_codes(1, 8)]
     ['440/0', '521/0', '602/0']
@@ -83,7 +89,7 @@ def plan_codes(
         raise InvalidOption("give the number of links (or a code)")
     rng = parse_range(v, "v")
     K = (links - dof - 1) // 2
-    imax = 2 * K if fractionated else K + 1
+    imax = 2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1
     return number_synthesis(dof, links=links, v=rng, compositions=True, max_link_degree=max(imax, K + 1),
                             require=require)
 
@@ -112,9 +118,13 @@ def _validate(dof, links, workers):
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
 
 
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
+
+
 def _pool(workers: int):
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    return ctx.Pool(workers)
+    return ctx.Pool(workers, initializer=_ignore_sigint)
 
 
 def _units(codes: list[Code], conv: Conventions, pool) -> list[Unit]:
@@ -145,7 +155,9 @@ def plan_units(
     """
     _validate(dof, links, None)
     conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
-    return _units(plan_codes(dof, links, v=v, code=code, fractionated=fractionated, require=require), conv, None)
+    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
+                       rigid_subchains=conv.rigid_subchains, require=require)
+    return _units(codes, conv, None)
 
 
 def type_synthesis(
@@ -197,7 +209,8 @@ def type_synthesis(
     """
     _validate(dof, links, workers)
     conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
-    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated, require=require)
+    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
+                       rigid_subchains=conv.rigid_subchains, require=require)
     workers = workers or os.cpu_count() or 1
     bar = None
     if progress:
@@ -234,8 +247,8 @@ def count_chains(dof: int, links: int | None = None, **kwargs) -> dict:
 def mechanisms_of(chain: Chain, *, input_link: bool = False) -> list[Mechanism]:
     """Distinct mechanisms of one chain: a fixed link per automorphism orbit (and input links).
 
-    >>> [m.frame for m in mechanisms_of(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"))]
-    [0, 2, 4]
+    >>> [m.frame for m in mechanisms_of(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"))]  # Watt I and II
+    [0, 2]
     """
     out = []
     for orbit in chain.link_orbits:

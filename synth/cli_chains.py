@@ -1,5 +1,121 @@
-"""CLI commands for chains and mechanisms (type synthesis)."""
+"""CLI commands ``chains`` and ``mechanisms`` (type synthesis).
+
+Example
+-------
+>>> from synth.cli import main
+>>> main(["chains", "--dof", "1", "--links", "8", "--count", "--workers", "1"])
+{"count": 16, "by_code": {"440/0": 9, "521/0": 5, "602/0": 2}}
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from ._output import FORMATS, write_rows
+
+
+def _workers(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number of workers, not {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"--workers must be 1 or more, not {value}")
+    return value
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+
+
+def _add_selection(p) -> None:
+    p.add_argument("--dof", type=_int, help="mobility W (0 = trusses); default: the code's W")
+    p.add_argument("--links", type=_int, help="number of links n (frame included)")
+    p.add_argument("--v", default="0", help="multiple-joint count or range A..B (default 0: simple joints)")
+    p.add_argument("--code", help="only this code, e.g. 6301/0 or 620/0-1")
+    p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
+                   help="design constraint on n_I, the links with I joints (repeatable)")
+    p.add_argument("--rigid-subchains", action="store_true", default=None,
+                   help="allow rigid sub-chains, W(S) ≥ 0 (default only for W = 0)")
+    p.add_argument("--fractionated", action=argparse.BooleanOptionalAction, default=True,
+                   help="keep chains split by one link or joint (default: keep)")
+    p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
+    p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
+    p.add_argument("--workers", type=_workers, help="processes (default: all cores)")
+    p.add_argument("--format", choices=FORMATS, default="table")
 
 
 def add_commands(sub) -> None:
     """Mount ``chains`` and ``mechanisms`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("chains", help="type synthesis: every non-isomorphic chain")
+    _add_selection(p)
+    p.set_defaults(run=_run, what="chains")
+    p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
+    _add_selection(p)
+    p.add_argument("--input-link", action="store_true", help="also choose the input link, jointed to the frame")
+    p.set_defaults(run=_run, what="mechanisms")
+
+
+def _selection(args) -> tuple[int, dict]:
+    from .code import Code
+    from .errors import InvalidOption
+
+    if args.dof is None:
+        if args.code is None:
+            raise InvalidOption("give --dof (and --links), or --code")
+        args.dof = Code.parse(args.code).dof()
+    if args.links is None and args.code is None:
+        raise InvalidOption("give --links N (or --code C)")
+    return args.dof, dict(
+        v=args.v, code=args.code, rigid_subchains=args.rigid_subchains, fractionated=args.fractionated,
+        planar_only=args.planar_only, require=args.require, workers=args.workers, progress=True,
+    )
+
+
+def _run(args) -> int:
+    from ._type_synthesis import mechanisms, type_synthesis
+
+    dof, kwargs = _selection(args)
+    if args.what == "chains":
+        items = type_synthesis(dof, args.links, **kwargs)
+    else:
+        items = mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
+    if args.count:
+        by_code: dict[str, int] = {}
+        for item in items:
+            key = str((item if args.what == "chains" else item.chain).code)
+            by_code[key] = by_code.get(key, 0) + 1
+        print(json.dumps({"count": sum(by_code.values()), "by_code": by_code}))
+        return 0
+    rows = (_row(item, args.what, args.format) for item in items)
+    columns = ["index", "code", "links", "joints", "certificate"]
+    if args.what == "mechanisms":
+        columns[3:3] = ["frame", "input_link"]
+    n = write_rows(_indexed(rows), columns, args.format)
+    if args.format == "table":
+        print(f"{n} {args.what}")
+    if n == 0:
+        print(f"mechsynth: no {args.what} satisfy these parameters and conventions", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _indexed(rows):
+    for i, row in enumerate(rows, start=1):
+        row["index"] = i
+        yield row
+
+
+def _row(item, what: str, fmt: str) -> dict:
+    row = item.to_dict()
+    if fmt == "table":  # for people: the compact joint list and a short certificate
+        chain = item if what == "chains" else item.chain
+        row["joints"] = chain.compact()
+        row["certificate"] = "…" + row["certificate"][-16:]
+    return row

@@ -1,0 +1,195 @@
+"""Type synthesis against the published counts, itself, and random relabelling."""
+
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+import synth
+from synth import Chain, Code, ImpossibleParameters, InvalidOption, MalformedChain
+from synth.chain_analysis import analyze_chain
+
+W1_BY_CODE = {
+    8: {"440/0": 9, "521/0": 5, "602/0": 2},
+    10: {"4600/0": 50, "5410/0": 95, "6220/0": 57, "6301/0": 15, "7030/0": 3, "7111/0": 8, "8002/0": 2},
+}
+
+
+@pytest.mark.parametrize("links, count", [(4, 1), (6, 2), (8, 16), (10, 230), (12, 6856)])
+def test_one_dof_simple_joints(links, count):
+    result = synth.count_chains(1, links)
+    assert result["count"] == count
+    if links in W1_BY_CODE:
+        assert result["by_code"] == W1_BY_CODE[links]
+
+
+@pytest.mark.parametrize("links, non_planar", [(10, 11), (12, 938)])
+def test_non_planar_chains(links, non_planar):
+    total = synth.count_chains(1, links)["count"]
+    assert total - synth.count_chains(1, links, planar_only=True)["count"] == non_planar
+
+
+def test_non_planar_flag_agrees_with_networkx():
+    chains = list(synth.type_synthesis(1, 10, planar_only=True, workers=1))
+    assert all(c.is_planar() for c in chains)
+    assert sum(not c.is_planar() for c in synth.type_synthesis(1, 10, workers=1)) == 11
+
+
+@pytest.mark.parametrize(
+    "dof, links, with_fractionated, without",
+    [(2, 5, 1, 1), (2, 7, 4, 3), (2, 9, 40, 35), (3, 6, 1, 1), (3, 8, 7, 5), (3, 10, 98, 74)],
+)
+def test_multi_dof(dof, links, with_fractionated, without):
+    with_f = list(synth.type_synthesis(dof, links))
+    without_f = list(synth.type_synthesis(dof, links, fractionated=False))
+    assert (len(with_f), len(without_f)) == (with_fractionated, without)
+    assert sum(c.is_fractionated() for c in with_f) == with_fractionated - without
+    assert not any(c.is_fractionated() for c in without_f)
+
+
+def test_fractionated_links_exceed_k_plus_one():
+    # 3-DOF 8 links, K = 2: the figure-eight has a link with 4 > K + 1 joints
+    chains = list(synth.type_synthesis(3, 8))
+    assert any(max(c.degrees) == 4 for c in chains)
+    assert "701/0" in {str(c.code) for c in chains}
+
+
+@pytest.mark.parametrize(
+    "links, v_max, by_v",
+    [(6, 2, {0: 2, 1: 1, 2: 1}), (8, 4, {0: 16, 1: 20, 2: 18, 3: 4, 4: 2})],
+)
+def test_multiple_joints(links, v_max, by_v):
+    chains = list(synth.type_synthesis(1, links, v=(0, v_max)))
+    got = {}
+    for c in chains:
+        got[c.v] = got.get(c.v, 0) + 1
+    assert got == by_v
+    assert len({c.certificate for c in chains}) == len(chains)
+
+
+def test_certificates_survive_random_relabelling():
+    rng = random.Random(42)
+    chains = list(synth.type_synthesis(1, 8, v=(0, 4))) + list(synth.type_synthesis(3, 8))
+    certs = [c.certificate for c in chains]
+    assert len(set(certs)) == len(certs)
+    for chain in chains:
+        perm = list(range(chain.links))
+        rng.shuffle(perm)
+        assert chain.relabel(perm).certificate == chain.certificate
+
+
+def test_every_chain_analyses_to_its_own_code():
+    for chain in synth.type_synthesis(1, 8, v=(0, 4)):
+        a = analyze_chain(chain, dof=1)
+        assert (a.code, a.dof, a.subchain_defect) == (str(chain.code), 1, "none")
+        assert Code.parse(a.code).dof() == 1
+        assert Chain.from_json(chain.to_json()) == chain
+
+
+def test_worker_count_does_not_change_the_output():
+    one = [c.certificate for c in synth.type_synthesis(2, 9, workers=1)]
+    two = [c.certificate for c in synth.type_synthesis(2, 9, workers=2)]
+    assert one == two
+
+
+def test_units_partition_the_output():
+    units = synth.plan_units(1, 10)
+    assert len({u.key for u in units}) == len(units)
+    flat = [c.certificate for u in units for c in synth.run_unit(u)]
+    assert flat == [c.certificate for c in synth.type_synthesis(1, 10, workers=1)]
+
+
+def test_locomotive_drive_chains():
+    # W = 1, K = 4 (10 links), a frame with 5 joints for five parallel cranks: the seven codes
+    constrained = synth.count_chains(1, 10, v=(0, 3), require=["5=1.."])
+    seven = {"6301/0", "7111/0", "8002/0", "7201/1", "8011/1", "8101/2", "9001/3"}
+    assert {str(Code(Code.parse(k).assortment, Code.parse(k).v)) for k in constrained["by_code"]} <= seven
+    # the requirement inside the model gives exactly the filtered unconstrained search
+    everything = list(synth.type_synthesis(1, 10, v=(0, 3)))
+    filtered = {}
+    for c in everything:
+        if 5 in c.degrees:
+            key = str(Code(c.code.assortment, c.code.v))
+            filtered[key] = filtered.get(key, 0) + 1
+    got = {}
+    for key, n in constrained["by_code"].items():
+        plain = str(Code(Code.parse(key).assortment, Code.parse(key).v))
+        got[plain] = got.get(plain, 0) + n
+    assert got == filtered
+    assert got["6301/0"] == 15 and got["8002/0"] == 2
+
+
+def test_mechanisms_counts():
+    assert [sum(1 for _ in synth.mechanisms(1, n)) for n in (4, 6, 8)] == [1, 5, 71]
+
+
+def test_trusses_allow_rigid_subchains():
+    # K = 2: the 3-string truss and the double triangle (32/0), two triangles on one link (401/0)
+    assert synth.count_chains(0, 5)["by_code"] == {"32/0": 2, "401/0": 1}
+    assert synth.count_chains(0, 5, fractionated=False)["by_code"] == {"32/0": 2}
+    # without rigid sub-chains only the 3-string truss is left: no triangle
+    only = list(synth.type_synthesis(0, 5, rigid_subchains=False))
+    assert len(only) == 1 and sorted(only[0].degrees) == [2, 2, 2, 3, 3]
+
+
+@pytest.mark.parametrize(
+    "call, exc",
+    [
+        (lambda: list(synth.type_synthesis(1, 9)), ImpossibleParameters),
+        (lambda: list(synth.type_synthesis(1, code="8310/1")), ImpossibleParameters),
+        (lambda: list(synth.type_synthesis(1, 8, workers=0)), InvalidOption),
+        (lambda: Chain.from_json('{"joints": [[0, 1], [1'), MalformedChain),
+        (lambda: Chain.from_json('{"joints": [[0, 0]]}'), MalformedChain),
+        (lambda: Chain.parse("0-1 1-x"), MalformedChain),
+        (lambda: list(synth.type_synthesis(-1, 8)), ImpossibleParameters),
+    ],
+)
+def test_bad_input(call, exc):
+    with pytest.raises(exc):
+        call()
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["chains", "--dof", "1", "--links", "9"],
+        ["chains", "--dof", "1", "--code", "8310/1"],
+        ["chains", "--dof", "1", "--links", "8", "--workers", "0"],
+        ["chains", "--dof", "1", "--code", "72x1/1"],
+        ["analyze", '{"joints": [[0, 1], [1'],
+    ],
+)
+def test_cli_bad_input(capsys, argv):
+    from synth.cli import main
+
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and len(err.strip().splitlines()) == 1 and err.startswith("mechsynth: ")
+
+
+def test_cli_count_contract(capsys):
+    from synth.cli import main
+
+    assert main(["chains", "--dof", "1", "--links", "10", "--count"]) == 0
+    import json
+
+    data = json.loads(capsys.readouterr().out)
+    assert data == {"count": 230, "by_code": W1_BY_CODE[10]}
+
+
+def test_ctrl_c_stops_cleanly():
+    proc = subprocess.Popen([sys.executable, "-m", "synth.cli", "chains", "--dof", "1", "--links", "14", "--count"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.0)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130 and out == ""
+    assert "Traceback" not in err and err.strip() == "mechsynth: interrupted"
+
+
+@pytest.mark.slow
+def test_fourteen_links():
+    assert synth.count_chains(1, 14)["count"] == 318162
