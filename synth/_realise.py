@@ -244,17 +244,52 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
         lhs = sum(base ** (prefix - 1 - i) * w[i] for i in range(prefix))
         rhs = sum(base ** (prefix - 1 - i) * w[g[i]] for i in range(prefix))
         model.Add(lhs <= rhs)
+    solutions = all_solutions(model, w)
+    if whole:  # simple joints: exact test on H for all candidates at once
+        passed = _exact_on_h(kinds, edges, solutions, dof, conv)
+    else:
+        passed = [True] * len(solutions)
     found: dict[str, Chain] = {}
-    candidates = 0
-    for weights in all_solutions(model, w):
-        candidates += 1
+    for weights, ok in zip(solutions, passed):
         chain = _expand(code, kinds, edges, weights)
-        if not check_subchains(chain, rigid_subchains=conv.rigid_subchains).ok:
-            continue
-        found.setdefault(chain.certificate, chain)
+        if ok and (whole or check_subchains(chain, rigid_subchains=conv.rigid_subchains).ok):
+            found.setdefault(chain.certificate, chain)
+    candidates = len(solutions)
     if stats is not None:
         stats["candidates"] = stats.get("candidates", 0) + candidates
     return [found[c] for c in sorted(found)]
+
+
+def _exact_on_h(kinds, edges, solutions, dof: int, conv: Conventions) -> list[bool]:
+    """Exact sub-chain test of every candidate whose branch vertices are all links.
+
+    For a set T of branch links the least W(S) over sub-chains S with branch part T is
+    3(|T| − 1) − 2·#(strings of 0 binary links in T) − #(strings of 1 binary link in T):
+    adding a string of w ≥ 2 binary links changes W by w − 2 ≥ 0 and part of a string by
+    more; a closed string through one link has W = w − 2 (its lower bound in the model).
+    S is the whole chain only when T is all of H and every string has at most one link;
+    then the best proper S leaves out one single-link string (W + 1).
+    """
+    import numpy as np
+
+    if not solutions:
+        return []
+    m = len(kinds)
+    sol = np.asarray(solutions, dtype=np.int64)
+    ends = np.asarray(edges, dtype=np.int64)
+    subsets = np.arange(1 << m, dtype=np.int64)
+    inside = ((subsets[:, None] >> ends[None, :, 0]) & (subsets[:, None] >> ends[None, :, 1]) & 1).astype(np.int64)
+    inside[:, ends[:, 0] == ends[:, 1]] = 0  # closed strings are checked by their lower bound
+    size = np.array([bin(t).count("1") for t in range(1 << m)], dtype=np.int64)
+    short = (sol == 0) * 2 + (sol == 1)
+    W = 3 * (size[None, :] - 1) - short @ inside.T  # candidates × subsets
+    extra = (sol == 1) @ inside.T
+    valid = (size[None, :] + extra) >= 2
+    full = (1 << m) - 1
+    all_short = (sol <= 1).all(axis=1) & (ends[:, 0] != ends[:, 1]).all()
+    W[:, full] = np.where(all_short, np.where((sol == 1).any(axis=1), dof + 1, 10**6), W[:, full])
+    W[~valid] = 10**6
+    return list(W.min(axis=1) >= conv.threshold)
 
 
 def _expand(code: Code, kinds, edges, weights) -> Chain:
@@ -278,4 +313,4 @@ def _expand(code: Code, kinds, edges, weights) -> Chain:
         seq = ([ends[0]] if ends[0] is not None else []) + body + ([ends[1]] if ends[1] is not None else [])
         joints.extend(zip(seq, seq[1:]))
     joints.extend(tuple(links) for links in multiple.values())
-    return Chain(nxt, tuple(joints))
+    return Chain.trusted(nxt, joints)

@@ -83,6 +83,19 @@ class Chain:
         object.__setattr__(self, "joints", tuple(raw[k] for k in order))
         object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
 
+    @classmethod
+    def trusted(cls, links: int, joints) -> "Chain":
+        """Build a chain the engine constructed itself (valid by construction): skips the checks.
+
+        >>> Chain.trusted(3, [(1, 0), (1, 2), (2, 0)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
+        True
+        """
+        self = object.__new__(cls)
+        object.__setattr__(self, "links", links)
+        object.__setattr__(self, "joints", tuple(sorted(tuple(sorted(j)) for j in joints)))
+        object.__setattr__(self, "kinds", None)
+        return self
+
     # ---------------------------------------------------------------- numbers
     @property
     def degrees(self) -> tuple[int, ...]:
