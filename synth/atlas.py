@@ -1,0 +1,677 @@
+"""The SQLite atlas: chains and mechanisms of grid runs, resumable unit by unit.
+
+Schema (version 1, ``meta.schema_version``)
+-------------------------------------------
+``chains``      one row per chain, ``certificate`` (nauty, canonical) PRIMARY KEY; code (with
+                joint composition), base code (without), W, n, K, v, largest link degree,
+                sorted degrees, fractionated flag, the chain JSON (``Chain.to_dict``).
+``link_counts`` (certificate, degree, count): n_I of each chain, for ``--where n5>=1``.
+``members``     (cell, certificate) PRIMARY KEY: which grid cells produced the chain.  A
+                chain is stored once however many cells contain it (the same chain is in
+                the cell with and the cell without fractionated chains); the cell's own
+                convention set is read through this table.
+``mechanisms``  one row per mechanism, its certificate PRIMARY KEY, the chain certificate,
+                the fixed link and the input link (NULL for fixed-link-only mechanisms).
+``cells``       the grid cells (key, W, n, v range, conventions, constraints, unit count).
+``units``       (cell, unit key) PRIMARY KEY, status pending/done, chains, mechanisms,
+                attempts (runs that scheduled it), seconds, finished time, run id.
+``runs``        every grid run: pid, host, start/end, status, workers or scheduler.
+``run_lock``    at most one row: the run writing the atlas now (pid, host).
+
+Guarantees
+----------
+* One transaction per finished unit: its chains, memberships, mechanisms and its
+  ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
+  power loss) leaves every unit either fully stored or still pending.
+* A rerun of the same grid skips ``done`` units; ``INSERT OR IGNORE`` on certificates
+  means no chain or mechanism is ever stored twice.
+* A second run on the same atlas while the first is alive is refused (``run_lock``
+  row checked inside ``BEGIN IMMEDIATE``; a lock left by a killed run is taken over).
+
+Example
+-------
+>>> import tempfile, os
+>>> from synth.grid import parse_grid
+>>> grid = parse_grid('dof = 1\\nlinks = "4..8"')
+>>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+>>> run_grid(grid, db, workers=1).chains_new
+19
+>>> summary(db)["by_code"]["440/0"]
+9
+>>> sum(1 for _ in export(db, "mechanisms", where=["n=8"]))
+71
+"""
+
+from __future__ import annotations
+
+import json
+import multiprocessing
+import os
+import re
+import signal
+import socket
+import sqlite3
+import sys
+import time
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from ._type_synthesis import Unit, mechanisms_of, run_unit
+from .code import Code
+from .errors import InvalidOption, MalformedCode, SynthesisError
+from .grid import Cell, Grid
+
+__all__ = [
+    "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
+    "run_grid", "summary", "export", "parse_where", "open_atlas",
+]
+
+SCHEMA_VERSION = 1
+
+
+class AtlasError(SynthesisError):
+    """The atlas file cannot be opened, written, or is not an atlas of this version."""
+
+
+class AtlasLocked(AtlasError):
+    """Another run is writing the same atlas."""
+
+
+class SchedulerUnreachable(AtlasError):
+    """The Dask scheduler named by ``--scheduler`` did not answer."""
+
+
+_SCHEMA = """
+CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE chains (
+    certificate TEXT PRIMARY KEY,
+    code TEXT NOT NULL, base_code TEXT NOT NULL,
+    dof INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
+    max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
+    chain TEXT NOT NULL
+);
+CREATE INDEX chains_select ON chains (dof, links, v, code);
+CREATE TABLE link_counts (
+    certificate TEXT NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
+    PRIMARY KEY (certificate, degree)
+) WITHOUT ROWID;
+CREATE TABLE cells (
+    cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, links INTEGER NOT NULL,
+    v_min INTEGER NOT NULL, v_max INTEGER, rigid_subchains INTEGER NOT NULL,
+    fractionated INTEGER NOT NULL, planar_only INTEGER NOT NULL, require TEXT NOT NULL,
+    units INTEGER NOT NULL
+);
+CREATE TABLE members (
+    cell TEXT NOT NULL REFERENCES cells, certificate TEXT NOT NULL REFERENCES chains,
+    PRIMARY KEY (cell, certificate)
+) WITHOUT ROWID;
+CREATE INDEX members_chain ON members (certificate);
+CREATE TABLE mechanisms (
+    certificate TEXT PRIMARY KEY, chain TEXT NOT NULL REFERENCES chains,
+    frame INTEGER NOT NULL, input_link INTEGER
+);
+CREATE INDEX mechanisms_chain ON mechanisms (chain);
+CREATE TABLE units (
+    cell TEXT NOT NULL REFERENCES cells, unit TEXT NOT NULL, code TEXT NOT NULL,
+    status TEXT NOT NULL DEFAULT 'pending' CHECK (status IN ('pending', 'done')),
+    chains INTEGER, mechanisms INTEGER, attempts INTEGER NOT NULL DEFAULT 0,
+    seconds REAL, finished REAL, run INTEGER,
+    PRIMARY KEY (cell, unit)
+);
+CREATE TABLE runs (
+    id INTEGER PRIMARY KEY, pid INTEGER NOT NULL, host TEXT NOT NULL, grid TEXT NOT NULL,
+    started REAL NOT NULL, finished REAL, status TEXT NOT NULL, executor TEXT NOT NULL,
+    units_run INTEGER NOT NULL DEFAULT 0
+);
+CREATE TABLE run_lock (
+    id INTEGER PRIMARY KEY CHECK (id = 1), run INTEGER NOT NULL, pid INTEGER NOT NULL,
+    host TEXT NOT NULL, started REAL NOT NULL
+);
+"""
+
+
+# ------------------------------------------------------------------ opening
+def _writable(path: Path) -> None:
+    """Refuse before touching anything when the file or its directory is read-only.
+
+    Permission bits are checked as well as ``os.access`` so that a file made read-only
+    (``chmod a-w``) is respected even by the superuser.
+    """
+    if path.exists():
+        if path.is_dir():
+            raise AtlasError(f"the atlas path {path} is a directory, not a file")
+        if not os.access(path, os.W_OK) or not path.stat().st_mode & 0o222:
+            raise AtlasError(f"cannot write the atlas {path}: the file is read-only")
+    directory = path.parent if str(path.parent) else Path(".")
+    if not directory.is_dir():
+        raise AtlasError(f"cannot create the atlas {path}: the directory {directory} does not exist")
+    if not os.access(directory, os.W_OK) or not directory.stat().st_mode & 0o222:
+        raise AtlasError(f"cannot write the atlas {path}: the directory {directory} is read-only "
+                         "(SQLite needs to write its journal next to the file)")
+
+
+def _check_version(conn: sqlite3.Connection, path: Path) -> None:
+    try:
+        tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+    except sqlite3.DatabaseError as exc:
+        raise AtlasError(f"{path} is not an SQLite atlas ({exc})") from None
+    if "meta" not in tables:
+        raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
+    row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
+    version = row[0] if row else None
+    if version != str(SCHEMA_VERSION):
+        raise AtlasError(
+            f"{path} is an atlas of schema version {version}, but this mechsynth reads only version "
+            f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)"
+        )
+
+
+def open_atlas(path: str | Path, *, write: bool = False) -> sqlite3.Connection:
+    """Open an atlas (read-only by default), checking its schema version.
+
+    With ``write=True`` a missing file is created with the current schema; a read-only
+    file or directory is refused before anything is written.
+
+    Raises
+    ------
+    AtlasError
+        One sentence: missing file, read-only path, not an atlas, other schema version.
+    """
+    path = Path(path)
+    if write:
+        _writable(path)
+        fresh = not path.exists() or path.stat().st_size == 0
+        try:
+            conn = sqlite3.connect(path, timeout=30, isolation_level=None)
+            if fresh:
+                conn.execute("BEGIN IMMEDIATE")
+                if not conn.execute("SELECT 1 FROM sqlite_master WHERE name = 'meta'").fetchone():
+                    for statement in _SCHEMA.split(";"):
+                        if statement.strip():
+                            conn.execute(statement)
+                    conn.execute("INSERT INTO meta VALUES ('schema_version', ?), ('created', ?)",
+                                 (str(SCHEMA_VERSION), time.strftime("%Y-%m-%dT%H:%M:%S")))
+                conn.execute("COMMIT")
+        except sqlite3.DatabaseError as exc:
+            raise AtlasError(f"cannot write the atlas {path}: {exc}") from None
+    else:
+        if not path.is_file():
+            raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
+        try:
+            conn = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30, isolation_level=None)
+        except sqlite3.DatabaseError as exc:
+            raise AtlasError(f"cannot open the atlas {path}: {exc}") from None
+    try:
+        _check_version(conn, path)
+    except AtlasError:
+        conn.close()
+        raise
+    conn.execute("PRAGMA foreign_keys = OFF")
+    return conn
+
+
+# -------------------------------------------------------------------- locks
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) -> int:
+    host = socket.gethostname()
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        row = conn.execute("SELECT run, pid, host, started FROM run_lock WHERE id = 1").fetchone()
+        if row is not None:
+            run, pid, other_host, started = row
+            if other_host != host or (_alive(pid) and pid != os.getpid()):
+                when = time.strftime("%H:%M:%S", time.localtime(started))
+                raise AtlasLocked(
+                    f"the atlas {path} is being written by another grid run (pid {pid} on {other_host}, "
+                    f"started {when}); wait for it to finish or use another --db"
+                )
+            conn.execute("UPDATE runs SET status = 'killed', finished = ? WHERE id = ? AND status = 'running'",
+                         (time.time(), run))
+            conn.execute("DELETE FROM run_lock")
+        now = time.time()
+        run = conn.execute(
+            "INSERT INTO runs (pid, host, grid, started, status, executor) VALUES (?, ?, ?, ?, 'running', ?)",
+            (os.getpid(), host, grid.source, now, executor)).lastrowid
+        conn.execute("INSERT INTO run_lock VALUES (1, ?, ?, ?, ?)", (run, os.getpid(), host, now))
+        conn.execute("COMMIT")
+    except BaseException:
+        conn.execute("ROLLBACK")
+        raise
+    return run
+
+
+def _release(conn: sqlite3.Connection, run: int, status: str, units_run: int) -> None:
+    conn.execute("BEGIN IMMEDIATE")
+    conn.execute("UPDATE runs SET status = ?, finished = ?, units_run = ? WHERE id = ?",
+                 (status, time.time(), units_run, run))
+    conn.execute("DELETE FROM run_lock WHERE run = ?", (run,))
+    conn.execute("COMMIT")
+
+
+# ------------------------------------------------------------------- worker
+@dataclass(frozen=True)
+class _Task:
+    cell: str
+    unit: Unit
+    input_link: bool
+
+
+@dataclass
+class _Result:
+    cell: str
+    unit: str
+    chains: list[tuple]
+    link_counts: list[tuple]
+    mechanisms: list[tuple]
+    seconds: float
+
+
+def compute_unit(task: _Task) -> _Result:
+    """Run one unit and turn its chains and mechanisms into atlas rows (runs on a worker)."""
+    start = time.perf_counter()
+    chains, counts, mechs = [], [], []
+    for chain in run_unit(task.unit):
+        cert = chain.certificate
+        code = chain.code
+        degrees = chain.degrees
+        chains.append((cert, str(code), str(Code(code.assortment, code.v)), chain.dof, chain.links, chain.loops,
+                       chain.v, max(degrees), " ".join(map(str, sorted(degrees, reverse=True))),
+                       int(chain.is_fractionated()), json.dumps(chain.to_dict(), separators=(",", ":"))))
+        counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
+        found = mechanisms_of(chain)
+        if task.input_link:
+            found += mechanisms_of(chain, input_link=True)
+        mechs += [(m.certificate, cert, m.frame, m.input_link) for m in found]
+    return _Result(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
+
+
+def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
+    """Store one finished unit in one transaction; returns the number of new chains."""
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        before = conn.total_changes
+        conn.executemany("INSERT OR IGNORE INTO chains VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", result.chains)
+        new = conn.total_changes - before
+        conn.executemany("INSERT OR IGNORE INTO link_counts VALUES (?, ?, ?)", result.link_counts)
+        conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, c[0]) for c in result.chains])
+        conn.executemany("INSERT OR IGNORE INTO mechanisms VALUES (?, ?, ?, ?)", result.mechanisms)
+        conn.execute(
+            "UPDATE units SET status = 'done', chains = ?, mechanisms = ?, seconds = ?, finished = ?, run = ? "
+            "WHERE cell = ? AND unit = ?",
+            (len(result.chains), len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
+        conn.execute("COMMIT")
+    except BaseException:
+        conn.execute("ROLLBACK")
+        raise
+    return new
+
+
+# ------------------------------------------------------------------ running
+@dataclass
+class GridRunResult:
+    """What a grid run did: units (total, already done, run now), chains and mechanisms, time."""
+
+    status: str
+    units_total: int
+    units_skipped: int
+    units_run: int
+    chains_found: int = 0
+    chains_new: int = 0
+    mechanisms_found: int = 0
+    seconds: float = 0.0
+    executor: str = ""
+    cells: int = 0
+
+    @property
+    def chains_per_second(self) -> float:
+        return self.chains_found / self.seconds if self.seconds > 0 else 0.0
+
+    def to_dict(self) -> dict:
+        d = dict(self.__dict__)
+        d["chains_per_second"] = round(self.chains_per_second, 1)
+        d["seconds"] = round(self.seconds, 3)
+        return d
+
+
+def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]) -> None:
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        for cell, units in plans:
+            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         (cell.key, cell.dof, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
+                          int(cell.fractionated), int(cell.planar_only), json.dumps(cell.require), len(units)))
+            conn.executemany("INSERT OR IGNORE INTO units (cell, unit, code) VALUES (?, ?, ?)",
+                             [(cell.key, u.key, str(u.code)) for u in units])
+        conn.execute("COMMIT")
+    except BaseException:
+        conn.execute("ROLLBACK")
+        raise
+
+
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _local(tasks: list[_Task], workers: int) -> Iterator[_Result]:
+    if workers == 1 or len(tasks) <= 1:
+        for task in tasks:
+            yield compute_unit(task)
+        return
+    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+    pool = ctx.Pool(min(workers, len(tasks)), initializer=_ignore_sigint)
+    try:
+        yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
+    finally:
+        pool.terminate()
+        pool.join()
+
+
+def _connect(address: str, timeout: float):
+    """A Dask client for ``address``, or one sentence saying why there is none."""
+    try:
+        from distributed import Client
+    except ImportError:  # pragma: no cover - dask is a dependency
+        raise SchedulerUnreachable("--scheduler needs the 'distributed' package (pip install dask[distributed])") from None
+    try:
+        return Client(address, timeout=f"{timeout}s", set_as_default=False)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        detail = str(exc).splitlines()[0] if str(exc) else "no answer"
+        raise SchedulerUnreachable(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({type(exc).__name__}: {detail})"
+        ) from None
+
+
+def _dask(tasks: list[_Task], client) -> Iterator[_Result]:
+    from distributed import as_completed
+
+    futures = client.map(compute_unit, tasks, pure=False) if tasks else []
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            yield future.result()
+    finally:
+        if futures:
+            client.cancel(futures)
+
+
+def run_grid(
+    grid: Grid,
+    db: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+    connect_timeout: float = 5.0,
+) -> GridRunResult:
+    """Run every pending unit of ``grid`` and store the results in the atlas ``db``.
+
+    Parameters
+    ----------
+    grid : Grid
+        From :func:`synth.grid.load_grid`.
+    db : path
+        The SQLite atlas; created when missing.  Units already ``done`` are skipped.
+    workers : int, optional
+        Local processes (default: all cores; 1 runs inline).  Ignored with ``scheduler``.
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (``tcp://host:8786``): units run there.
+    progress : bool
+        A tqdm bar on stderr (units, chains found, rate, ETA).
+    connect_timeout : float
+        Seconds to wait for the scheduler.
+
+    Returns
+    -------
+    GridRunResult
+
+    Raises
+    ------
+    AtlasError, AtlasLocked, SchedulerUnreachable
+        With one sentence; the atlas is not modified by a refused run.
+
+    Notes
+    -----
+    Results are committed in completion order, one transaction per unit; the atlas's
+    content does not depend on that order, and every query orders its output.
+    """
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
+    workers = workers or os.cpu_count() or 1
+    executor = f"dask {scheduler}" if scheduler else f"local {workers}"
+    path = Path(db)
+    _writable(path)  # refuse a read-only atlas before connecting anywhere
+    client = _connect(scheduler, connect_timeout) if scheduler else None
+    start = time.perf_counter()
+    try:
+        conn = open_atlas(path, write=True)
+    except BaseException:
+        if client is not None:
+            client.close()
+        raise
+    try:
+        run = _acquire(conn, path, grid, executor)
+        status, done_now = "failed", 0
+        result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
+        try:
+            plans = [(cell, cell.plan()) for cell in grid.cells]
+            _register(conn, plans)
+            done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
+            tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans for u in units
+                     if (cell.key, u.key) not in done]
+            result.units_total = sum(len(units) for _, units in plans)
+            result.units_skipped = result.units_total - len(tasks)
+            if tasks:
+                conn.execute("BEGIN IMMEDIATE")
+                conn.executemany("UPDATE units SET attempts = attempts + 1 WHERE cell = ? AND unit = ?",
+                                 [(t.cell, t.unit.key) for t in tasks])
+                conn.execute("COMMIT")
+            bar = None
+            if progress:
+                from tqdm import tqdm
+
+                bar = tqdm(total=len(tasks), unit="unit", file=sys.stderr, disable=None, desc=grid.name,
+                           dynamic_ncols=True)
+            try:
+                results = _dask(tasks, client) if client is not None else _local(tasks, workers)
+                for res in results:
+                    result.chains_new += _commit(conn, res, run)
+                    result.chains_found += len(res.chains)
+                    result.mechanisms_found += len(res.mechanisms)
+                    done_now += 1
+                    if bar is not None:
+                        bar.set_postfix(chains=result.chains_found, refresh=False)
+                        bar.update(1)
+            finally:
+                if bar is not None:
+                    bar.close()
+            status = "done"
+        except KeyboardInterrupt:
+            status = "interrupted"
+            raise
+        finally:
+            result.units_run = done_now
+            result.status = status
+            result.seconds = time.perf_counter() - start
+            _release(conn, run, status, done_now)
+    finally:
+        conn.close()
+        if client is not None:
+            client.close()
+    return result
+
+
+# ------------------------------------------------------------------ queries
+_FIELDS = {
+    "code": "code", "dof": "dof", "w": "dof", "links": "links", "n": "links", "loops": "loops", "k": "loops",
+    "v": "v", "max_degree": "max_degree", "maxdeg": "max_degree", "fractionated": "fractionated", "cell": "cell",
+}
+_WHERE_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(<=|>=|!=|==|=|<|>)\s*(\S.*?)\s*$")
+_OPS = {"=": "=", "==": "=", "!=": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+def parse_where(items: Iterable[str]) -> tuple[str, list]:
+    """Turn ``--where`` conditions into an SQL condition on ``chains c`` and its parameters.
+
+    A condition is ``FIELD OP VALUE``; OP is one of ``= != < <= > >=``; conditions are
+    joined by AND.  Fields: ``code`` (= or !=, the code as the atlas shows it, e.g.
+    ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
+    ``fractionated`` (0/1), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
+    (= only, a cell key as shown by ``mechsynth atlas``).  With ``=`` a number may be a
+    range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
+
+    >>> parse_where(["code=6301/0", "n=8..10", "n3>=2"])[1]
+    ['6301/0', 8, 10, 3, 2]
+    """
+    clauses, params = [], []
+    for item in items:
+        m = _WHERE_RE.match(item) if isinstance(item, str) else None
+        if not m:
+            raise InvalidOption(f"cannot read the condition {item!r}: write FIELD OP VALUE, e.g. n=10, v<=1, code=6301/0")
+        name, op, value = m.group(1), _OPS[m.group(2)], m.group(3)
+        key = name.lower()
+        degree = re.fullmatch(r"n(\d+)", key)
+        if key in ("code", "basecode"):
+            if op not in ("=", "!="):
+                raise InvalidOption(f"a code is compared with = or != only, not {m.group(2)!r}")
+            try:
+                code = Code.parse(value)
+            except MalformedCode as exc:
+                raise InvalidOption(f"in --where {item!r}: {exc}") from None
+            if key == "code":
+                clauses.append(f"c.code {op} ?")
+                params.append(str(code))
+            else:
+                clauses.append(f"c.base_code {op} ?")
+                params.append(str(Code(code.assortment, code.v)))
+            continue
+        if key == "cell":
+            if op != "=":
+                raise InvalidOption("a cell is selected with = only")
+            clauses.append("EXISTS (SELECT 1 FROM members m WHERE m.certificate = c.certificate AND m.cell = ?)")
+            params.append(value)
+            continue
+        if degree:
+            column = "COALESCE((SELECT l.count FROM link_counts l WHERE l.certificate = c.certificate AND l.degree = ?), 0)"
+            col_params = [int(degree.group(1))]
+        elif key in _FIELDS:
+            column, col_params = f"c.{_FIELDS[key]}", []
+        else:
+            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, n, K, v, maxdeg, "
+                                "fractionated, nI such as n3, basecode, cell)")
+        if key == "fractionated" and value.lower() in ("true", "false"):
+            value = "1" if value.lower() == "true" else "0"
+        try:
+            if ".." in value:
+                if op != "=":
+                    raise InvalidOption(f"a range A..B goes with '=' only, not {m.group(2)!r} (in {item!r})")
+                lo, hi = value.split("..", 1)
+                bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
+                if bounds[0] is not None:
+                    clauses.append(f"{column} >= ?")
+                    params += col_params + [bounds[0]]
+                if bounds[1] is not None:
+                    clauses.append(f"{column} <= ?")
+                    params += col_params + [bounds[1]]
+                continue
+            number = int(value)
+        except ValueError:
+            raise InvalidOption(f"in --where {item!r}: {value!r} is not a whole number or a range A..B") from None
+        clauses.append(f"{column} {op} ?")
+        params += col_params + [number]
+    return (" AND ".join(clauses) or "1"), params
+
+
+_ORDER = "ORDER BY c.dof, c.links, c.v, c.code, c.certificate"
+
+
+def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -> Iterator[dict]:
+    """Rows of the atlas (chains or mechanisms) matching ``where``, in a fixed order.
+
+    Chain rows are ``Chain.to_dict()`` plus ``degrees``, ``fractionated`` and ``cells``;
+    mechanism rows add ``frame``, ``input_link`` and ``chain_certificate``.
+
+    >>> # export("atlas.sqlite", "chains", where=["code=6301/0", "v<=1"])
+    """
+    if what not in ("chains", "mechanisms"):
+        raise InvalidOption(f"export 'chains' or 'mechanisms', not {what!r}")
+    condition, params = parse_where(where)
+    conn = open_atlas(db)
+    try:
+        if what == "chains":
+            sql = (f"SELECT c.chain, c.degrees, c.fractionated, "
+                   f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.certificate = c.certificate) "
+                   f"FROM chains c WHERE {condition} {_ORDER}")
+            for chain, degrees, fractionated, cells in conn.execute(sql, params):
+                row = json.loads(chain)
+                row["degrees"] = [int(x) for x in degrees.split()]
+                row["fractionated"] = bool(fractionated)
+                row["cells"] = sorted(cells.split(";")) if cells else []
+                yield row
+        else:
+            sql = (f"SELECT c.chain, k.certificate, k.frame, k.input_link FROM mechanisms k "
+                   f"JOIN chains c ON c.certificate = k.chain WHERE {condition} "
+                   f"{_ORDER}, k.input_link IS NOT NULL, k.frame, k.input_link")
+            for chain, cert, frame, input_link in conn.execute(sql, params):
+                row = json.loads(chain)
+                row["chain_certificate"] = row.pop("certificate")
+                row.update(certificate=cert, frame=frame)
+                if input_link is not None:
+                    row["input_link"] = input_link
+                yield row
+    finally:
+        conn.close()
+
+
+def summary(db: str | Path) -> dict:
+    """What an atlas holds: chains and mechanisms by code, cells and units done / total, runs.
+
+    Returns a JSON-able dict with ``chains``, ``mechanisms``, ``by_code`` (chains),
+    ``mechanisms_by_code`` (fixed-link mechanisms), ``units`` {done, total}, ``cells``
+    (key, units done/total, chains, by_code), ``runs`` and ``locked_by``.
+    """
+    conn = open_atlas(db)
+    try:
+        order = "ORDER BY MIN(links), MIN(dof), MIN(v), code"
+        by_code = {code: n for code, n in conn.execute(
+            f"SELECT code, COUNT(*) FROM chains GROUP BY code {order}")}
+        mech_by_code = {code: n for code, n in conn.execute(
+            f"SELECT c.code, COUNT(*) FROM mechanisms k JOIN chains c ON c.certificate = k.chain "
+            f"WHERE k.input_link IS NULL GROUP BY c.code {order}")}
+        cells = []
+        for key, dof, links, total in conn.execute("SELECT cell, dof, links, units FROM cells ORDER BY dof, links, cell"):
+            done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
+            codes = {code: n for code, n in conn.execute(
+                "SELECT c.code, COUNT(*) FROM members m JOIN chains c ON c.certificate = m.certificate "
+                f"WHERE m.cell = ? GROUP BY c.code {order}", (key,))}
+            cells.append({"cell": key, "dof": dof, "links": links, "units_done": done, "units_total": total,
+                          "chains": sum(codes.values()), "by_code": codes})
+        units_done, units_total = conn.execute(
+            "SELECT COALESCE(SUM(status = 'done'), 0), COUNT(*) FROM units").fetchone()
+        lock = conn.execute("SELECT pid, host, started FROM run_lock").fetchone()
+        runs = [dict(zip(("id", "status", "executor", "units_run", "started", "finished"), r)) for r in conn.execute(
+            "SELECT id, status, executor, units_run, started, finished FROM runs ORDER BY id")]
+        return {
+            "db": str(db),
+            "schema_version": SCHEMA_VERSION,
+            "chains": conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0],
+            "mechanisms": conn.execute("SELECT COUNT(*) FROM mechanisms WHERE input_link IS NULL").fetchone()[0],
+            "mechanisms_with_input": conn.execute(
+                "SELECT COUNT(*) FROM mechanisms WHERE input_link IS NOT NULL").fetchone()[0],
+            "units": {"done": units_done, "total": units_total},
+            "by_code": by_code,
+            "mechanisms_by_code": mech_by_code,
+            "cells": cells,
+            "runs": runs,
+            "locked_by": None if lock is None else {"pid": lock[0], "host": lock[1]},
+        }
+    finally:
+        conn.close()

@@ -1,0 +1,200 @@
+"""CLI commands ``grid``, ``atlas`` and ``draw``: batch runs into an SQLite atlas, queries, drawings.
+
+Example
+-------
+>>> import tempfile, os
+>>> from synth.cli import main
+>>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+>>> main(["grid", "models/grid_small.toml", "--db", db, "--workers", "1", "--format", "json"])  # doctest: +ELLIPSIS
+{"status": "done", "units_total": 406, ...}
+0
+>>> main(["atlas", "--db", db, "--export", "mechanisms", "--where", "W=1", "--where", "n=8", "--where", "v=0", "--count"])
+{"count": 71, "by_code": {"440/0": 35, "521/0": 28, "602/0": 8}}
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from ._output import write_rows
+
+__all__ = ["add_commands"]
+
+
+def _positive(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
+    return value
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {value}")
+    return value
+
+
+def add_commands(sub) -> None:
+    """Mount ``grid``, ``atlas`` and ``draw`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("grid", help="run a grid file of W, n, v ranges into an SQLite atlas (resumable)")
+    p.add_argument("grid", help="grid file (TOML), e.g. models/grid_small.toml")
+    p.add_argument("--db", required=True, help="SQLite atlas to create or resume")
+    p.add_argument("--workers", type=_positive, help="local processes (default: all cores)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
+    p.add_argument("--timeout", type=_seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.set_defaults(run=_run_grid)
+
+    p = sub.add_parser("atlas", help="summarise an atlas, or export its chains / mechanisms")
+    p.add_argument("--db", required=True, help="SQLite atlas written by 'mechsynth grid'")
+    p.add_argument("--export", choices=("chains", "mechanisms"), help="print rows instead of the summary")
+    p.add_argument("--where", action="append", default=[], metavar="FIELD OP VALUE",
+                   help="filter, repeatable (AND): code=6301/0, W=1, n=8..10, v<=1, K=3, n3>=2, maxdeg<=4, "
+                        "fractionated=0, cell=KEY")
+    p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
+    p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
+                   help="summary: table or json; export: jsonl, csv or table")
+    p.set_defaults(run=_run_atlas)
+
+    p = sub.add_parser("draw", help="draw chains or mechanisms as a designer does (SVG/PNG)")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
+    g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
+    g.add_argument("--db", help="chains of an atlas selected with --where")
+    p.add_argument("--dof", type=int, help="with --code: W (default: the code's own, planar)")
+    p.add_argument("--where", action="append", default=[], metavar="FIELD OP VALUE", help="with --db: filter")
+    p.add_argument("--frame", type=int, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
+    p.add_argument("--columns", type=_positive, help="drawings per row of a sheet")
+    p.add_argument("--limit", type=_positive, default=400, help="refuse sheets larger than this (default 400)")
+    p.add_argument("--title", help="sheet title (default: the selection)")
+    p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
+    p.set_defaults(run=_run_draw)
+
+
+# --------------------------------------------------------------------- grid
+def _run_grid(args) -> int:
+    from .atlas import run_grid
+    from .grid import load_grid
+
+    grid = load_grid(args.grid)
+    result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
+                      progress=True, connect_timeout=args.timeout)
+    if args.format == "json":
+        print(json.dumps(result.to_dict()))
+    else:
+        print(f"grid {grid.name}: {len(grid.cells)} cells, {result.units_total} units "
+              f"({result.units_skipped} already done, {result.units_run} run) on {result.executor}; "
+              f"{result.chains_found} chains found ({result.chains_new} new), {result.mechanisms_found} mechanisms; "
+              f"{result.seconds:.1f} s, {result.chains_per_second:.0f} chains/s -> {args.db}")
+    return 0
+
+
+# -------------------------------------------------------------------- atlas
+_CHAIN_COLUMNS = ["code", "links", "dof", "v", "degrees", "joints", "certificate"]
+_MECH_COLUMNS = ["code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
+
+
+def _run_atlas(args) -> int:
+    from .atlas import export, summary
+    from .errors import InvalidOption
+
+    what = args.export or ("chains" if args.where or args.count else None)
+    if what is None:
+        fmt = args.format or "table"
+        if fmt not in ("table", "json"):
+            raise InvalidOption(f"the summary is printed as table or json, not {fmt} (use --export for {fmt})")
+        info = summary(args.db)
+        if fmt == "json":
+            print(json.dumps(info))
+        else:
+            _print_summary(info)
+        return 0
+    rows = export(args.db, what, where=args.where)
+    if args.count:
+        by_code: dict[str, int] = {}
+        for row in rows:
+            by_code[row["code"]] = by_code.get(row["code"], 0) + 1
+        print(json.dumps({"count": sum(by_code.values()), "by_code": by_code}))
+        return 0
+    fmt = args.format or "jsonl"
+    if fmt == "json":
+        raise InvalidOption("rows are exported as jsonl, csv or table, not json")
+    write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, fmt)
+    return 0
+
+
+def _print_summary(info: dict) -> None:
+    units = info["units"]
+    print(f"atlas {info['db']} (schema {info['schema_version']}): {info['chains']} chains, "
+          f"{info['mechanisms']} mechanisms (fixed link), units {units['done']}/{units['total']} done")
+    if info["locked_by"]:
+        print(f"being written by pid {info['locked_by']['pid']} on {info['locked_by']['host']}")
+    rows = [{"code": c, "chains": n, "mechanisms": info["mechanisms_by_code"].get(c, 0)}
+            for c, n in info["by_code"].items()]
+    if rows:
+        print()
+        write_rows(rows, ["code", "chains", "mechanisms"], "table")
+    if info["cells"]:
+        print()
+        write_rows([dict(c, units=f"{c['units_done']}/{c['units_total']}") for c in info["cells"]],
+                   ["cell", "units", "chains"], "table")
+
+
+# --------------------------------------------------------------------- draw
+def _run_draw(args) -> int:
+    from . import draw
+    from .chain import Chain, Mechanism
+    from .errors import InvalidOption
+
+    if args.where and not args.db:
+        raise InvalidOption("--where filters an atlas: give --db too")
+    if args.frame is not None and not args.chain:
+        raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
+    if args.chain:
+        chain = Chain.parse(args.chain)
+        if args.frame is not None:
+            items = [Mechanism(chain, args.frame)]
+        else:
+            items = draw.expand([chain], mechanisms=args.mechanisms)
+        title = args.title
+    elif args.code:
+        import synth
+        from .code import Code
+
+        code = Code.parse(args.code)
+        dof = code.dof() if args.dof is None else args.dof
+        chains = list(synth.type_synthesis(dof, code=code, v=code.v, workers=1))
+        if not chains:
+            print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
+            return 1
+        items = draw.expand(chains, mechanisms=args.mechanisms)
+        title = args.title or f"{code} (W = {dof}): {len(chains)} chains"
+    else:
+        from .atlas import export
+
+        chains = [Chain.from_dict(row) for row in export(args.db, "chains", where=args.where)]
+        if not chains:
+            print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
+            return 1
+        items = draw.expand(chains, mechanisms=args.mechanisms)
+        title = args.title or f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains"
+    if len(items) > args.limit:
+        raise InvalidOption(f"the selection has {len(items)} drawings, more than --limit {args.limit}; "
+                            "narrow it with --where or raise --limit")
+    if len(items) == 1 and not (args.code or args.db):
+        draw.draw_one(items[0], args.out, title=title)
+    else:
+        draw.draw_sheet(items, args.out, columns=args.columns, title=title)
+    print(f"{len(items)} drawing{'s' if len(items) != 1 else ''} -> {args.out}", file=sys.stderr)
+    return 0
