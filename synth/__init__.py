@@ -4,7 +4,7 @@ Example
 -------
 >>> import synth
 >>> [str(c) for c in synth.number_synthesis(1, loops=2)]
-['44/0', '52/1', '60/2']
+['42/0', '51/1', '60/2']
 >>> synth.count_chains(1, 8, workers=1)["count"]
 16
 """

@@ -13,7 +13,7 @@ Pozhbelko's system W = n2 − Σ_{i≥4}(i − 3)·n_i − v − 3 with Σ n_i =
 Example
 -------
 >>> [str(c) for c in number_synthesis(1, loops=2)]
-['44/0', '52/1', '60/2']
+['42/0', '51/1', '60/2']
 """
 
 from __future__ import annotations

@@ -7,8 +7,8 @@ Example
 -------
 >>> main(["codes", "--dof", "1", "--loops", "2", "--format", "csv"])
 code,links,loops,v,assortment
-44/0,6,2,0,4 4
-52/1,6,2,1,5 2
+42/0,6,2,0,4 2
+51/1,6,2,1,5 1
 60/2,6,2,2,6
 0
 """
