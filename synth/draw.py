@@ -89,32 +89,47 @@ def _faces(embedding) -> list[list]:
     return faces
 
 
-def _tutte(g, embedding, chain: Chain) -> dict:
-    faces = _faces(embedding)
-    # the outer face: the one with most joints (the longest loop), ties broken deterministically
-    outer = max(faces, key=lambda f: (sum(1 for x in f if x[0] == "J"), len(f), [-x[1] for x in f]))
+def _tutte(g, faces: list[list], outer: list) -> dict:
+    """Barycentric embedding with ``outer`` on a circle and a virtual centre vertex in every
+    inner face (so that paths meeting only at two vertices do not collapse onto one line)."""
+    # outer joints: a regular polygon; an outer link with 3+ joints sits on the circle between
+    # its two outer joints (a strictly convex corner); binary outer links are sides (their
+    # node position influences nothing else)
     outer_joints = [x for x in outer if x[0] == "J"]
-    pos = {}
     m = len(outer_joints)
-    for i, node in enumerate(outer_joints):
-        angle = math.pi / 2 + 2 * math.pi * i / m + (math.pi / m if m == 4 else 0.0)
-        pos[node] = np.array([math.cos(angle), math.sin(angle)])
+    angle = {x: math.pi / 2 + 2 * math.pi * i / m + (math.pi / m if m % 4 == 0 else 0.0)
+             for i, x in enumerate(outer_joints)}
+    pos = {x: np.array([math.cos(a), math.sin(a)]) for x, a in angle.items()}
     for i, node in enumerate(outer):
-        if node[0] == "L" and node not in pos:
-            pos[node] = (pos[outer[i - 1]] + pos[outer[(i + 1) % len(outer)]]) / 2
-    inner = [x for x in sorted(g.nodes) if x not in pos]
+        if node not in pos:
+            before, after = angle[outer[i - 1]], angle[outer[(i + 1) % len(outer)]]
+            if g.degree[node] > 2:
+                mid = before + ((after - before) % (2 * math.pi)) / 2
+                pos[node] = np.array([math.cos(mid), math.sin(mid)])
+            else:
+                pos[node] = (pos[outer[i - 1]] + pos[outer[(i + 1) % len(outer)]]) / 2
+    weights: dict = {x: {y: 1.0 for y in g[x]} for x in g.nodes}
+    for f, face in enumerate(faces):
+        if face is outer:
+            continue
+        centre = ("F", f)
+        weights[centre] = {}
+        for x in set(face):
+            weights[centre][x] = 0.5
+            weights[x][centre] = 0.5
+    inner = [x for x in sorted(weights) if x not in pos]
     if inner:
         index = {x: i for i, x in enumerate(inner)}
         a = np.zeros((len(inner), len(inner)))
         b = np.zeros((len(inner), 2))
         for x in inner:
             i = index[x]
-            a[i, i] = g.degree[x]
-            for y in g[x]:
+            for y, w in weights[x].items():
+                a[i, i] += w
                 if y in index:
-                    a[i, index[y]] -= 1
+                    a[i, index[y]] -= w
                 else:
-                    b[i] += pos[y]
+                    b[i] += w * pos[y]
         sol = np.linalg.solve(a, b)
         for x in inner:
             pos[x] = sol[index[x]]
@@ -143,7 +158,7 @@ def _defects(pos: np.ndarray, polygons: list[list[int]], tol: float, cache=None)
     d3, d4 = d1.T, d2.T
     straddle = ((d1 > eps) & (d2 < -eps)) | ((d1 < -eps) & (d2 > eps))
     cross = straddle & (((d3 > eps) & (d4 < -eps)) | ((d3 < -eps) & (d4 > eps)))
-    bad = int((cross & pairs).sum())
+    bad = 1000 * int((cross & pairs).sum())  # a crossing is never traded for a near miss
     ab = b - a
     t = np.clip(((pos[:, None, :] - a[None]) * ab[None]).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-12)[None], 0, 1)
     gap = np.linalg.norm(a[None] + t[..., None] * ab[None] - pos[:, None, :], axis=-1)
@@ -159,7 +174,7 @@ def _defects(pos: np.ndarray, polygons: list[list[int]], tol: float, cache=None)
             x = c0[None, :, 0] + (py - c0[None, :, 1]) * (c1[None, :, 0] - c0[None, :, 0]) / dy[None]
             inside = ((span & (x > pos[:, 0][:, None])).sum(1) % 2).astype(bool)
             inside[poly] = False
-            bad += int(inside.sum())
+            bad += 1000 * int(inside.sum())
     return bad
 
 
@@ -209,6 +224,21 @@ def _relax(pos: np.ndarray, polygons: list[list[int]], fixed: set[int], iteratio
     return pos
 
 
+def _polygons(chain: Chain, g, embedding, pos: dict) -> list[list[int]]:
+    """Each link's joints in polygon order: the embedding's rotation, else by angle."""
+    polygons = []
+    for i in range(chain.links):
+        node = ("L", i)
+        joints = [y[1] for y in g[node]]
+        if embedding is not None and len(joints) >= 3:
+            order = [y[1] for y in embedding.neighbors_cw_order(node)]
+        else:
+            centre = np.mean([pos[("J", k)] for k in joints], axis=0)
+            order = sorted(joints, key=lambda k: math.atan2(*(pos[("J", k)] - centre)[::-1]))
+        polygons.append(order)
+    return polygons
+
+
 def _normalise(pos: np.ndarray) -> np.ndarray:
     lo, hi = pos.min(axis=0), pos.max(axis=0)
     centre, span = (lo + hi) / 2, max(float((hi - lo).max()), 1e-9)
@@ -228,30 +258,32 @@ def layout(chain: Chain) -> Layout:
     planar, embedding = nx.check_planarity(g)
     fixed: set[int] = set()
     if planar and nx.is_biconnected(g) and g.number_of_nodes() > 2:
-        pos = _tutte(g, embedding, chain)
         faces = _faces(embedding)
-        outer = max(faces, key=lambda f: (sum(1 for x in f if x[0] == "J"), len(f), [-x[1] for x in f]))
+        # prefer the longest loop outside (as designers draw), but not one that degenerates
+        candidates = sorted(faces, key=lambda f: (-sum(1 for x in f if x[0] == "J"), -len(f), sorted(f)))
+        best = None
+        for outer in candidates[:6]:
+            trial = _tutte(g, faces, outer)
+            polys = _polygons(chain, g, embedding, trial)
+            joints_xy = np.array([trial[("J", k)] for k in range(len(chain.joints))])
+            score = _defects(_normalise(joints_xy), polys, 0.02)
+            if best is None or score < best[0]:
+                best = (score, trial, outer)
+            if score == 0:
+                break
+        _, pos, outer = best
         fixed = {x[1] for x in outer if x[0] == "J"}
     elif planar:
         pos = nx.planar_layout(g)
         pos = nx.kamada_kawai_layout(g, pos=pos)
     else:
         pos = nx.kamada_kawai_layout(g)
-    polygons = []
-    for i in range(chain.links):
-        node = ("L", i)
-        joints = [y[1] for y in g[node]]
-        if planar and embedding is not None and len(joints) >= 3:
-            order = [y[1] for y in embedding.neighbors_cw_order(node)]
-        else:
-            centre = np.mean([pos[("J", k)] for k in joints], axis=0)
-            order = sorted(joints, key=lambda k: math.atan2(*(pos[("J", k)] - centre)[::-1]))
-        polygons.append(order)
+    polygons = _polygons(chain, g, embedding if planar else None, pos)
     joints = np.array([pos[("J", k)] for k in range(len(chain.joints))], dtype=float)
     joints = _normalise(joints)
     if planar:
         joints = _normalise(_relax(joints, polygons, fixed))
-    return Layout(joints, polygons, planar)
+    return Layout(joints, polygons, planar and _defects(joints, polygons, 1e-3) == 0)
 
 
 # ------------------------------------------------------------------ drawing
@@ -331,9 +363,19 @@ def _check_out(out: str | Path) -> Path:
     return path
 
 
-def _save(fig, path: Path) -> None:
+def _save(fig, path: Path, dpi: int = 110) -> None:
+    kwargs = {"metadata": {"Date": None}} if path.suffix.lower() == ".svg" else {}
+    import matplotlib
+
     try:
-        fig.savefig(path, dpi=110, bbox_inches="tight", metadata={"Date": None} if path.suffix == ".svg" else None)
+        with matplotlib.rc_context({"svg.hashsalt": "mechsynth"}):  # stable SVG ids: same input, same file
+            fig.savefig(path, dpi=dpi, bbox_inches="tight", **kwargs)
+        if path.suffix.lower() == ".png":  # a 64-colour palette: line art, a third of the size
+            from PIL import Image
+
+            with Image.open(path) as image:
+                small = image.convert("RGB").quantize(colors=64)
+            small.save(path, optimize=True)
     except OSError as exc:
         raise DrawError(f"cannot write {path}: {exc.strerror or exc}") from None
 
@@ -397,6 +439,6 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
         if title:
             fig.suptitle(title, fontsize=11)
         fig.tight_layout(pad=0.4)
-        _save(fig, path)
+        _save(fig, path, dpi=80)
     finally:
         plt.close(fig)
