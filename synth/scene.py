@@ -83,6 +83,7 @@ _ALL = _SYNTH_KINDS
 
 # --------------------------------------------------------------------------- value types
 _RANGE_RE = re.compile(r"^\s*\d+\s*(\.\.\s*\d*\s*)?$")
+_REQUIRE_RE = re.compile(r"^\s*\d+\s*=\s*\d+\s*(\.\.\s*\d*\s*)?$")
 
 
 def _is_int(x: Any) -> bool:
@@ -114,9 +115,9 @@ _TYPES: dict[str, tuple[Callable[[Any], bool], str]] = {
                'a whole number ≥ 2, "K+1" or "K+W"'),
     "classes": (lambda x: _int_table(x) and len(x) > 0, "a table of loop classes {H = K_H, …} with whole numbers"),
     "counts": (lambda x: _int_table(x) and len(x) > 0, "a table of link counts {I = n_I, …} with whole numbers"),
-    "require": (lambda x: (isinstance(x, list) and all(isinstance(i, str) for i in x))
-                or (isinstance(x, Mapping) and all(str(k).strip().isdigit() and (_is_int(v) or isinstance(v, str))
-                                                   for k, v in x.items())),
+    "require": (lambda x: (isinstance(x, list) and all(isinstance(i, str) and _REQUIRE_RE.match(i) for i in x))
+                or (isinstance(x, Mapping) and all(str(k).strip().isdigit() and ((_is_int(v) and v >= 0) or (
+                    isinstance(v, str) and _RANGE_RE.match(v))) for k, v in x.items())),
                 'a list of strings like "5=1.." or a table {5 = "1.."}'),
     "list[str]": (lambda x: isinstance(x, list) and all(isinstance(i, str) for i in x), "a list of strings"),
     "list[nat]": (lambda x: isinstance(x, list) and all(_is_int(i) and i >= 0 for i in x), "a list of whole numbers"),
