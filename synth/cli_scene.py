@@ -102,6 +102,8 @@ def _summaries(kind: str, r: dict[str, Any]) -> list[str]:
         return lines
     if kind == "drawing":
         return [f"wrote {r['file']} ({r['items']} of {r['of']} items)"]
+    if kind == "plot":
+        return [f"wrote {', '.join(r['files'])}"]
     if kind == "balance arm":
         return [f"terms: {_list(round(a, 6) for a in r['amplitudes'])} (amplitudes)",
                 f"max residual {r['max_residual']:.3g}, relative {r['relative_residual']:.3g}"]

@@ -62,6 +62,7 @@ COMPUTE_KINDS: dict[str, str] = {
     "mechanisms": "chains with a fixed link (and input link) up to symmetry",
     "analysis": "W, K, Y, D of a code, of explicit counts or of a chain",
     "drawing": "an atlas sheet of the chains or mechanisms (needs synth.draw)",
+    "plot": "a figure of the balance result (balance.plots): device moment, laws or residuals",
     "balance arm": "static balancing of an [arm]: harmonic terms, devices, residuals",
     "balance spring": "fit of a crank-and-rocker spring device ([spring])",
     "balance prismatic": "counter-masses of a sliding link ([slider])",
@@ -78,7 +79,7 @@ BALANCE_TABLES: dict[str, tuple[str, str]] = {
 
 _CHAIN_KINDS = frozenset({"count", "chains", "mechanisms", "drawing"})
 _SYNTH_KINDS = frozenset({"codes", "analysis"}) | _CHAIN_KINDS
-_TOP_LEVEL = ("scene", "structure", "drawing", "expect") + tuple(t for t, _ in BALANCE_TABLES.values())
+_TOP_LEVEL = ("scene", "structure", "drawing", "plot", "expect") + tuple(t for t, _ in BALANCE_TABLES.values())
 _ALL = _SYNTH_KINDS
 
 # --------------------------------------------------------------------------- value types
@@ -208,6 +209,7 @@ _EXPECT: dict[str, _Expectation] = {
     "mechanisms": _E("mechanisms", "nat", ["mechanisms", "count"]),
     "mechanisms_by_code": _E("mechanisms", "table[nat]", ["mechanisms", "by_code"], "codes_table"),
     "drawn": _E("drawing", "nat", ["drawing", "items"]),
+    "plotted": _E("plot", "bool", ["plot", "written"]),
     # analysis
     **{k: _E("analysis", t, ["analysis", k], c) for k, t, c in [
         ("dof", "int", "equal"), ("loops", "int", "equal"), ("complexity", "int", "equal"),
@@ -263,8 +265,8 @@ class Scene:
     name, description : str
     compute : tuple of str
         Keys of :data:`COMPUTE_KINDS`, in the order given.
-    structure, drawing, expect : dict
-        The ``[structure]``, ``[drawing]`` and ``[expect]`` tables (empty when absent).
+    structure, drawing, expect, plot : dict
+        The ``[structure]``, ``[drawing]``, ``[expect]`` and ``[plot]`` tables (empty when absent).
     problem : dict
         The balance tables of the document (``arm``, ``spring``, ``slider``, ``pantograph``).
     rel_tol : float
@@ -281,6 +283,7 @@ class Scene:
     problem: dict = field(default_factory=dict)
     source: str = ""
     rel_tol: float = _DEFAULT_REL_TOL
+    plot: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -446,6 +449,7 @@ def load_scene(path: str | Path) -> Scene:
 
     structure = _validate_structure(path, doc, kinds)
     drawing = _validate_drawing(path, doc, kinds)
+    plot = _validate_plot(path, doc, kinds)
     problem = {}
     for kind, (table, _) in BALANCE_TABLES.items():
         if kind in kinds:
@@ -456,7 +460,7 @@ def load_scene(path: str | Path) -> Scene:
             raise SceneError(f"{path}: section [{table}] is given but [scene] compute does not list '{kind}'.")
     expect = _validate_expect(path, doc, kinds, structure)
     return Scene(str(path), scene["name"], scene["description"], compute, structure, drawing, expect, problem,
-                 scene.get("source", ""), rel_tol)
+                 scene.get("source", ""), rel_tol, plot)
 
 
 def _validate_structure(path, doc, kinds: set) -> dict:
@@ -517,10 +521,30 @@ def _validate_drawing(path, doc, kinds: set) -> dict:
         if key not in _DRAWING_KEYS:
             raise SceneError(f"{path}: [drawing] has an unknown key '{key}' (allowed: {', '.join(_DRAWING_KEYS)}).")
         _check_type(path, "[drawing]", key, _DRAWING_KEYS[key], value)
-    out = drawing.get("out")
-    if out is not None and (Path(out).suffix.lower() not in {".svg", ".png", ".pdf"} or Path(out).name != out):
-        raise SceneError(f"{path}: [drawing] key 'out' must be a file name ending in .svg, .png or .pdf, not {out!r}.")
+    _check_out_name(path, "drawing", drawing.get("out"))
     return drawing
+
+
+def _check_out_name(path, table: str, out: str | None) -> None:
+    if out is not None and (Path(out).suffix.lower() not in {".svg", ".png", ".pdf"} or Path(out).name != out):
+        raise SceneError(f"{path}: [{table}] key 'out' must be a file name ending in .svg, .png or .pdf, not {out!r}.")
+
+
+def _validate_plot(path, doc, kinds: set) -> dict:
+    if "plot" in kinds and not kinds & set(BALANCE_TABLES):
+        raise SceneError(f"{path}: [scene] compute 'plot' needs a balance computation "
+                         f"({', '.join(BALANCE_TABLES)}) to plot.")
+    if "plot" not in doc:
+        return {}
+    plot = _check_table(path, doc, "plot")
+    if "plot" not in kinds:
+        raise SceneError(f"{path}: section [plot] is given but [scene] compute does not list 'plot'.")
+    for key, value in plot.items():
+        if key != "out":
+            raise SceneError(f"{path}: [plot] has an unknown key '{key}' (allowed: out).")
+        _check_type(path, "[plot]", key, "str", value)
+    _check_out_name(path, "plot", plot.get("out"))
+    return plot
 
 
 def _parse_code(path, where: str, key: str, text: str):
@@ -721,6 +745,26 @@ def _solve_balance(scene: Scene, kind: str) -> dict:
     return out
 
 
+def _plot_balance(scene: Scene, kind: str, result: dict, out: Path) -> None:
+    """Write the balance package's figure of ``kind`` to ``out``."""
+    plots = importlib.import_module("balance.plots")
+    table = BALANCE_TABLES[kind][0]
+    doc = {table: scene.problem[table]}
+    if kind == "balance arm":
+        arm = importlib.import_module("balance.arm").arm_from_dict(doc, scene.path)
+        plots.plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), str(out))
+    elif kind == "balance spring":
+        problems = importlib.import_module("balance.problems")
+        fit = importlib.import_module("balance.fit").fit_spring
+        plots.plot_spring(fit(**problems.spring_from_dict(doc, scene.path)), str(out))
+    elif kind == "balance prismatic":
+        plots.plot_prismatic(result["m"], result["I"], result["M"], result["q_max"], result["stroke"], result["C"],
+                             str(out))
+    else:
+        pantograph = importlib.import_module("balance.pantograph").pantograph_from_dict(doc, scene.path)[0]
+        plots.plot_pantograph(pantograph, str(out))
+
+
 def run_scene(scene: Scene | str | Path, *, out_dir: str | Path | None = None, workers: int = 1) -> SceneResult:
     """Run one scene: compute what ``[scene] compute`` lists and check ``[expect]``.
 
@@ -791,6 +835,21 @@ def run_scene(scene: Scene | str | Path, *, out_dir: str | Path | None = None, w
         if kind in BALANCE_TABLES:
             results[kind] = _solve_balance(scene, kind)
             timings[kind] = lambda kind=kind: _solve_balance(scene, kind)
+    if "plot" in kinds:
+        balance_kinds = [k for k in scene.compute if k in BALANCE_TABLES]
+        written = []
+        for kind in balance_kinds:
+            suffix = "" if len(balance_kinds) == 1 else "_" + BALANCE_TABLES[kind][0]
+            name = scene.plot.get("out", f"{scene.name}.png")
+            out = out_dir / (Path(name).stem + suffix + Path(name).suffix)
+            out_dir.mkdir(parents=True, exist_ok=True)
+            try:
+                _plot_balance(scene, kind, results[kind], out)
+            except OSError as exc:
+                raise SceneError(f"{scene.path}: cannot write the plot {out} ({exc.strerror or exc}).") from None
+            written.append(str(out))
+        files.extend(written)
+        results["plot"] = {"files": written, "written": bool(written)}
     checks = tuple(_check_all(scene, results, timings))
     return SceneResult(scene.path, scene.name, scene.description, scene.compute, results, checks,
                        tuple(files), tuple(notes), time.perf_counter() - started)

@@ -134,6 +134,12 @@ def test_locomotive_drawing_written(tmp_path):
     assert result.results["drawing"]["items"] == 25
 
 
+def test_spring_plot_written(all_models):
+    (scene,) = [s for s in all_models["scenes"] if s["name"] == "spring_compression"]
+    (png,) = scene["files"]
+    assert png.endswith("spring_compression.png") and Path(png).stat().st_size > 10_000
+
+
 def test_drawing_skipped_not_failed_without_draw(tmp_path, monkeypatch):
     import synth.scene as scene_module
 
@@ -215,6 +221,9 @@ MALFORMED = {
     "impossible parameters": (GOOD.replace("loops = 2", "loops = 2\nrequire = [\"2=x\"]"), ["[structure]"]),
     "balance error": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                       "[slider]\nmass = -2.0\ncounter_mass = 2.0\nq_max = 0.5\n", ["mass"]),
+    "plot without balance": (GOOD.replace('["codes"]', '["codes", "plot"]'), ["'plot'", "balance"]),
+    "bad drawing file name": (GOOD.replace('["codes"]', '["count", "drawing"]').replace("[expect]", "[drawing]\nout = \"a/b.gif\"\n[expect]")
+                              .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["[drawing]", "'out'", "a/b.gif"]),
     "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                             "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
 }
