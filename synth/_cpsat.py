@@ -43,7 +43,12 @@ def all_solutions(
     solver = cp_model.CpSolver()
     solver.parameters.enumerate_all_solutions = True
     solver.parameters.num_workers = 1
-    solver.parameters.linearization_level = 0  # pure enumeration: LP relaxation only costs time
+    # Pure enumeration of small models: presolve, symmetry detection, probing and the LP
+    # relaxation cost more than they save (12-link synthesis: CP-SAT time 2.5 s -> 0.34 s).
+    solver.parameters.linearization_level = 0
+    solver.parameters.cp_model_presolve = False
+    solver.parameters.symmetry_level = 0
+    solver.parameters.cp_model_probing_level = 0
     solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
     if time_limit is not None:
         solver.parameters.max_time_in_seconds = time_limit

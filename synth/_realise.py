@@ -219,26 +219,32 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
             u, v = edges[k]
             if u != v:
                 model.Add(w[k] >= (2 if kinds[u][0] == kinds[v][0] == "J" else 1))
-    # exact sub-chain conditions on sets T of branch links joined by strings of 0 or 1 binary links
-    link_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
-    ll = [k for k, (u, v) in enumerate(edges) if u != v and kinds[u][0] == kinds[v][0] == "L"]
+    # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
+    # S = T_L + the binary link of every one-link string inside T has
+    # W(S) ≤ 3(|T_L| − 1) − 2·#(empty L–L strings) − #(one-link strings) − 2·Σ_{J∈T_J} (#T_L on J − 1),
+    # with equality when every J of T_J is touched: exact for simple joints, necessary otherwise.
     z, o = {}, {}
-    for k in ll:
-        z[k], o[k] = model.NewBoolVar(f"z{k}"), model.NewBoolVar(f"o{k}")
-        model.Add(w[k] == 0).OnlyEnforceIf(z[k])
+    for k, (u, v) in enumerate(edges):
+        if u == v:
+            continue
+        o[k] = model.NewBoolVar(f"o{k}")
         model.Add(w[k] == 1).OnlyEnforceIf(o[k])
+        if kinds[u][0] == "J" and kinds[v][0] == "J":
+            model.Add(w[k] >= 2).OnlyEnforceIf(o[k].Not())
+            continue
+        z[k] = model.NewBoolVar(f"z{k}")
+        model.Add(w[k] == 0).OnlyEnforceIf(z[k])
         model.Add(w[k] >= 2).OnlyEnforceIf([z[k].Not(), o[k].Not()])
         model.AddBoolOr([z[k].Not(), o[k].Not()])
-    whole = len(link_vertices) == len(kinds)
+    link_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+    joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    whole = not joint_vertices
     dof = code.dof()
-    for size in range(2, len(link_vertices) + 1):
-        for T in combinations(link_vertices, size):
-            inside = [k for k in ll if edges[k][0] in T and edges[k][1] in T]
-            if not inside or 2 * len(inside) <= 3 * size - 3 - conv.threshold:
-                continue
-            if whole and size == len(kinds) and dof < conv.threshold:
-                continue  # S would be the whole chain when every string is short
-            model.Add(sum(2 * z[k] + o[k] for k in inside) <= 3 * size - 3 - conv.threshold)
+    for size in range(1, len(link_vertices) + 1):
+        for TL in combinations(link_vertices, size):
+            for jsize in range(len(joint_vertices) + 1):
+                for TJ in combinations(joint_vertices, jsize):
+                    _subset_constraint(model, kinds, edges, z, o, set(TL), set(TJ), len(link_vertices), dof, conv)
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
@@ -264,6 +270,35 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
                            ("nauty_s", perf_counter() - t2)):
             stats[key] = stats.get(key, 0) + value
     return [found[c] for c in sorted(found)]
+
+
+def _subset_constraint(model, kinds, edges, z, o, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
+    """Add W(S_T) ≥ threshold for the set T = TL ∪ TJ of branch vertices (see realise)."""
+    T = TL | TJ
+    inside = [k for k, (u, v) in enumerate(edges) if u != v and u in T and v in T]
+    empty_ll = [k for k in inside if k in z and kinds[edges[k][0]][0] == kinds[edges[k][1]][0] == "L"]
+    on_joint = {J: [k for k in inside if k in z and J in edges[k]] for J in TJ}
+    if any(not ks for ks in on_joint.values()):
+        return  # a joint no link of T touches directly: a smaller T gives a stronger condition
+    if len(TL) == n_links and dof < conv.threshold:
+        return  # S may be the whole chain, which is exempt
+    if not empty_ll and not [k for k in inside if k in o] and not TJ:
+        return
+    bound = 3 * (len(TL) - 1) + 2 * len(TJ) - conv.threshold
+    most = sum(2 if k in z else 1 for k in inside) + 2 * sum(len(ks) for ks in on_joint.values())
+    if most <= bound:
+        return  # cannot be violated
+    expr = sum(2 * z[k] for k in empty_ll) + sum(o[k] for k in inside) + sum(
+        2 * z[k] for ks in on_joint.values() for k in ks)
+    if len(TL) >= 2:
+        model.Add(expr <= bound)
+    else:  # one link: S has two links or more only when a one-link string is inside T
+        some = model.NewBoolVar("")
+        ones = [o[k] for k in inside]
+        if not ones:
+            return
+        model.AddMaxEquality(some, ones)
+        model.Add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
 def _exact_on_h(kinds, edges, solutions, dof: int, conv: Conventions) -> list[bool]:
