@@ -979,7 +979,7 @@ def run_directory(directory: str | Path, *, out_dir: str | Path | None = None, w
     if not directory.is_dir():
         raise SceneError(f"{directory}: not a directory of scene files.")
     results, errors, skipped = [], [], []
-    for path in sorted(directory.glob("*.toml")):
+    for path in iter_scene_paths(directory):
         if progress:
             progress(str(path))
         try:

@@ -352,3 +352,29 @@ def test_lazy_through_the_package_import():
                      "the runner itself stays lazy (see the bare-package tests)")
     mods = _modules_after("slider_countermass.toml", mode="package")
     assert "synth._realise" not in mods and not {m for m in mods if m.startswith("ortools")}
+
+
+# ---------------------------------------------------------------------------- through mechsynth
+def test_through_the_mechsynth_command(tmp_path, monkeypatch, capsys):
+    """As mounted by ``cli_scene.add_commands`` in synth/cli.py (patched in here until it is)."""
+    from synth import cli
+
+    build = cli._build_parser
+
+    def with_scene():
+        parser = build()
+        sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+        if "scene" not in sub.choices:
+            cli_scene.add_commands(sub)
+        return parser
+
+    monkeypatch.setattr(cli, "_build_parser", with_scene)
+    assert cli.main(["scene", str(MODELS / "wedge_lever.toml")]) == 0
+    assert "6 of 6 expectations met" in capsys.readouterr().out
+    bad = tmp_path / "bad.toml"
+    bad.write_text(GOOD.replace("dof = 1", "dof = true"))
+    assert cli.main(["scene", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechsynth: ") and "'dof'" in err and err.count("\n") == 1
+    assert cli.main(["scene", str(bad), "--all", str(tmp_path)]) == 2
+    assert "not both" in capsys.readouterr().err
