@@ -2,16 +2,18 @@
 
 Schema (version 1, ``meta.schema_version``)
 -------------------------------------------
-``chains``      one row per chain, ``certificate`` (nauty, canonical) PRIMARY KEY; code (with
-                joint composition), base code (without), W, n, K, v, largest link degree,
-                sorted degrees, fractionated flag, the chain JSON (``Chain.to_dict``).
-``link_counts`` (certificate, degree, count): n_I of each chain, for ``--where n5>=1``.
-``members``     (cell, certificate) PRIMARY KEY: which grid cells produced the chain.  A
-                chain is stored once however many cells contain it (the same chain is in
-                the cell with and the cell without fractionated chains); the cell's own
-                convention set is read through this table.
-``mechanisms``  one row per mechanism, its certificate PRIMARY KEY, the chain certificate,
-                the fixed link and the input link (NULL for fixed-link-only mechanisms).
+``chains``      one row per chain: integer ``id``, ``certificate`` (nauty, canonical) UNIQUE; code
+                (with joint composition), base code (without), W, n, K, v, largest link degree,
+                sorted degrees, fractionated flag, and the chain JSON (``Chain.to_dict``) in its
+                *canonical labelling* (nauty's), so the same chain reads the same from any cell.
+``link_counts`` (chain, degree, count): n_I of each chain, for ``--where n5>=1``.
+``members``     (cell, chain) PRIMARY KEY: which grid cells produced the chain.  A chain is
+                stored once however many cells contain it (the same chain is in the cell with
+                and the cell without fractionated chains); a cell's own convention set is read
+                through this table.
+``mechanisms``  (chain, frame, input_link) PRIMARY KEY, links numbered as in the stored canonical
+                chain; the frame is the smallest link of its automorphism orbit, ``input_link``
+                is -1 for fixed-link-only mechanisms.  Exports add ``Mechanism.certificate``.
 ``cells``       the grid cells (key, W, n, v range, conventions, constraints, unit count).
 ``units``       (cell, unit key) PRIMARY KEY, status pending/done, chains, mechanisms,
                 attempts (runs that scheduled it), seconds, finished time, run id.
@@ -57,7 +59,10 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import pynauty
+
 from ._type_synthesis import Unit, mechanisms_of, run_unit
+from .chain import Chain, Mechanism
 from .code import Code
 from .errors import InvalidOption, MalformedCode, SynthesisError
 from .grid import Cell, Grid
@@ -85,7 +90,7 @@ class SchedulerUnreachable(AtlasError):
 _SCHEMA = """
 CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE chains (
-    certificate TEXT PRIMARY KEY,
+    id INTEGER PRIMARY KEY, certificate TEXT NOT NULL UNIQUE,
     code TEXT NOT NULL, base_code TEXT NOT NULL,
     dof INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
     max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
@@ -93,8 +98,8 @@ CREATE TABLE chains (
 );
 CREATE INDEX chains_select ON chains (dof, links, v, code);
 CREATE TABLE link_counts (
-    certificate TEXT NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
-    PRIMARY KEY (certificate, degree)
+    chain INTEGER NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
+    PRIMARY KEY (chain, degree)
 ) WITHOUT ROWID;
 CREATE TABLE cells (
     cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, links INTEGER NOT NULL,
@@ -103,15 +108,14 @@ CREATE TABLE cells (
     units INTEGER NOT NULL
 );
 CREATE TABLE members (
-    cell TEXT NOT NULL REFERENCES cells, certificate TEXT NOT NULL REFERENCES chains,
-    PRIMARY KEY (cell, certificate)
+    cell TEXT NOT NULL REFERENCES cells, chain INTEGER NOT NULL REFERENCES chains,
+    PRIMARY KEY (cell, chain)
 ) WITHOUT ROWID;
-CREATE INDEX members_chain ON members (certificate);
+CREATE INDEX members_chain ON members (chain);
 CREATE TABLE mechanisms (
-    certificate TEXT PRIMARY KEY, chain TEXT NOT NULL REFERENCES chains,
-    frame INTEGER NOT NULL, input_link INTEGER
-);
-CREATE INDEX mechanisms_chain ON mechanisms (chain);
+    chain INTEGER NOT NULL REFERENCES chains, frame INTEGER NOT NULL, input_link INTEGER NOT NULL,
+    PRIMARY KEY (chain, frame, input_link)
+) WITHOUT ROWID;
 CREATE TABLE units (
     cell TEXT NOT NULL REFERENCES cells, unit TEXT NOT NULL, code TEXT NOT NULL,
     status TEXT NOT NULL DEFAULT 'pending' CHECK (status IN ('pending', 'done')),
@@ -276,22 +280,38 @@ class _Result:
     seconds: float
 
 
+def _canonical(chain: Chain) -> Chain:
+    """The chain relabelled by nauty's canonical labelling (same joints for isomorphic chains)."""
+    labels = pynauty.canon_label(chain._nauty_graph())
+    permutation = [0] * chain.links
+    for position, link in enumerate(labels[: chain.links]):
+        permutation[link] = position
+    return chain.relabel(permutation)
+
+
 def compute_unit(task: _Task) -> _Result:
     """Run one unit and turn its chains and mechanisms into atlas rows (runs on a worker)."""
     start = time.perf_counter()
     chains, counts, mechs = [], [], []
-    for chain in run_unit(task.unit):
-        cert = chain.certificate
+    # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
+    fractionable = task.unit.conventions.rigid_subchains or task.unit.code.dof() != 1
+    for found in run_unit(task.unit):
+        cert = found.certificate
+        chain = _canonical(found)
         code = chain.code
         degrees = chain.degrees
+        row = {"code": str(code), "links": chain.links, "joints": [list(j) for j in chain.joints],
+               "certificate": cert, "dof": chain.dof, "loops": chain.loops, "v": chain.v}
+        if chain.kinds is not None:
+            row["kinds"] = list(chain.kinds)
         chains.append((cert, str(code), str(Code(code.assortment, code.v)), chain.dof, chain.links, chain.loops,
                        chain.v, max(degrees), " ".join(map(str, sorted(degrees, reverse=True))),
-                       int(chain.is_fractionated()), json.dumps(chain.to_dict(), separators=(",", ":"))))
+                       int(fractionable and chain.is_fractionated()), json.dumps(row, separators=(",", ":"))))
         counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
-        found = mechanisms_of(chain)
+        mechanisms = mechanisms_of(chain)
         if task.input_link:
-            found += mechanisms_of(chain, input_link=True)
-        mechs += [(m.certificate, cert, m.frame, m.input_link) for m in found]
+            mechanisms += mechanisms_of(chain, input_link=True)
+        mechs += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
     return _Result(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
 
 
@@ -300,11 +320,17 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
     conn.execute("BEGIN IMMEDIATE")
     try:
         before = conn.total_changes
-        conn.executemany("INSERT OR IGNORE INTO chains VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", result.chains)
+        conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, links, loops, v, "
+                         "max_degree, degrees, fractionated, chain) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         result.chains)
         new = conn.total_changes - before
-        conn.executemany("INSERT OR IGNORE INTO link_counts VALUES (?, ?, ?)", result.link_counts)
-        conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, c[0]) for c in result.chains])
-        conn.executemany("INSERT OR IGNORE INTO mechanisms VALUES (?, ?, ?, ?)", result.mechanisms)
+        ids = {c[0]: conn.execute("SELECT id FROM chains WHERE certificate = ?", (c[0],)).fetchone()[0]
+               for c in result.chains}
+        conn.executemany("INSERT OR IGNORE INTO link_counts VALUES (?, ?, ?)",
+                         [(ids[c], d, n) for c, d, n in result.link_counts])
+        conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, i) for i in ids.values()])
+        conn.executemany("INSERT OR IGNORE INTO mechanisms VALUES (?, ?, ?)",
+                         [(ids[c], f, i) for c, f, i in result.mechanisms])
         conn.execute(
             "UPDATE units SET status = 'done', chains = ?, mechanisms = ?, seconds = ?, finished = ?, run = ? "
             "WHERE cell = ? AND unit = ?",
@@ -459,6 +485,10 @@ def run_grid(
         raise
     try:
         run = _acquire(conn, path, grid, executor)
+        # WAL + synchronous=NORMAL: a commit survives kill -9 without an fsync per unit (a power
+        # cut may lose the last units, never consistency); back to a plain journal at the end
+        conn.execute("PRAGMA journal_mode = WAL")
+        conn.execute("PRAGMA synchronous = NORMAL")
         status, done_now = "failed", 0
         result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
         try:
@@ -503,6 +533,11 @@ def run_grid(
             result.seconds = time.perf_counter() - start
             _release(conn, run, status, done_now)
     finally:
+        if conn.execute("PRAGMA journal_mode").fetchone()[0] == "wal":
+            try:
+                conn.execute("PRAGMA journal_mode = DELETE")
+            except sqlite3.DatabaseError:
+                pass  # a reader keeps the WAL open: the file stays in WAL mode, still consistent
         conn.close()
         if client is not None:
             client.close()
@@ -556,11 +591,11 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
         if key == "cell":
             if op != "=":
                 raise InvalidOption("a cell is selected with = only")
-            clauses.append("EXISTS (SELECT 1 FROM members m WHERE m.certificate = c.certificate AND m.cell = ?)")
+            clauses.append("EXISTS (SELECT 1 FROM members m WHERE m.chain = c.id AND m.cell = ?)")
             params.append(value)
             continue
         if degree:
-            column = "COALESCE((SELECT l.count FROM link_counts l WHERE l.certificate = c.certificate AND l.degree = ?), 0)"
+            column = "COALESCE((SELECT l.count FROM link_counts l WHERE l.chain = c.id AND l.degree = ?), 0)"
             col_params = [int(degree.group(1))]
         elif key in _FIELDS:
             column, col_params = f"c.{_FIELDS[key]}", []
@@ -608,7 +643,7 @@ def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -
     try:
         if what == "chains":
             sql = (f"SELECT c.chain, c.degrees, c.fractionated, "
-                   f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.certificate = c.certificate) "
+                   f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.chain = c.id) "
                    f"FROM chains c WHERE {condition} {_ORDER}")
             for chain, degrees, fractionated, cells in conn.execute(sql, params):
                 row = json.loads(chain)
@@ -617,14 +652,15 @@ def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -
                 row["cells"] = sorted(cells.split(";")) if cells else []
                 yield row
         else:
-            sql = (f"SELECT c.chain, k.certificate, k.frame, k.input_link FROM mechanisms k "
-                   f"JOIN chains c ON c.certificate = k.chain WHERE {condition} "
-                   f"{_ORDER}, k.input_link IS NOT NULL, k.frame, k.input_link")
-            for chain, cert, frame, input_link in conn.execute(sql, params):
+            sql = (f"SELECT c.chain, k.frame, k.input_link FROM mechanisms k "
+                   f"JOIN chains c ON c.id = k.chain WHERE {condition} "
+                   f"{_ORDER}, k.input_link >= 0, k.frame, k.input_link")
+            for chain, frame, input_link in conn.execute(sql, params):
                 row = json.loads(chain)
+                mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
                 row["chain_certificate"] = row.pop("certificate")
-                row.update(certificate=cert, frame=frame)
-                if input_link is not None:
+                row.update(certificate=mechanism.certificate, frame=frame)
+                if input_link >= 0:
                     row["input_link"] = input_link
                 yield row
     finally:
@@ -644,13 +680,13 @@ def summary(db: str | Path) -> dict:
         by_code = {code: n for code, n in conn.execute(
             f"SELECT code, COUNT(*) FROM chains GROUP BY code {order}")}
         mech_by_code = {code: n for code, n in conn.execute(
-            f"SELECT c.code, COUNT(*) FROM mechanisms k JOIN chains c ON c.certificate = k.chain "
-            f"WHERE k.input_link IS NULL GROUP BY c.code {order}")}
+            f"SELECT c.code, COUNT(*) FROM mechanisms k JOIN chains c ON c.id = k.chain "
+            f"WHERE k.input_link < 0 GROUP BY c.code {order}")}
         cells = []
         for key, dof, links, total in conn.execute("SELECT cell, dof, links, units FROM cells ORDER BY dof, links, cell"):
             done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
             codes = {code: n for code, n in conn.execute(
-                "SELECT c.code, COUNT(*) FROM members m JOIN chains c ON c.certificate = m.certificate "
+                "SELECT c.code, COUNT(*) FROM members m JOIN chains c ON c.id = m.chain "
                 f"WHERE m.cell = ? GROUP BY c.code {order}", (key,))}
             cells.append({"cell": key, "dof": dof, "links": links, "units_done": done, "units_total": total,
                           "chains": sum(codes.values()), "by_code": codes})
@@ -663,9 +699,9 @@ def summary(db: str | Path) -> dict:
             "db": str(db),
             "schema_version": SCHEMA_VERSION,
             "chains": conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0],
-            "mechanisms": conn.execute("SELECT COUNT(*) FROM mechanisms WHERE input_link IS NULL").fetchone()[0],
+            "mechanisms": conn.execute("SELECT COUNT(*) FROM mechanisms WHERE input_link < 0").fetchone()[0],
             "mechanisms_with_input": conn.execute(
-                "SELECT COUNT(*) FROM mechanisms WHERE input_link IS NOT NULL").fetchone()[0],
+                "SELECT COUNT(*) FROM mechanisms WHERE input_link >= 0").fetchone()[0],
             "units": {"done": units_done, "total": units_total},
             "by_code": by_code,
             "mechanisms_by_code": mech_by_code,

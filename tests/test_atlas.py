@@ -31,14 +31,22 @@ def _digest(path: Path) -> str:
 def _content(db: Path) -> dict:
     """Everything a run produces, independent of timing and order."""
     with sqlite3.connect(db) as conn:
-        return {
-            "chains": sorted(conn.execute("SELECT * FROM chains")),
-            "members": sorted(conn.execute("SELECT * FROM members")),
-            "mechanisms": sorted(conn.execute("SELECT * FROM mechanisms")),
-            "link_counts": sorted(conn.execute("SELECT * FROM link_counts")),
+        content = {
+            "chains": sorted(conn.execute("SELECT certificate, code, base_code, dof, links, loops, v, max_degree, "
+                                          "degrees, fractionated, chain FROM chains")),
+            "members": sorted(conn.execute(
+                "SELECT m.cell, c.certificate FROM members m JOIN chains c ON c.id = m.chain")),
+            "mechanisms": sorted(conn.execute(
+                "SELECT c.certificate, k.frame, k.input_link FROM mechanisms k JOIN chains c ON c.id = k.chain")),
+            "link_counts": sorted(conn.execute(
+                "SELECT c.certificate, l.degree, l.count FROM link_counts l JOIN chains c ON c.id = l.chain")),
             "units": sorted(conn.execute("SELECT cell, unit, code, status, chains, mechanisms FROM units")),
             "cells": sorted(conn.execute("SELECT * FROM cells")),
+            "counts": [conn.execute(f"SELECT COUNT(*) FROM {t}").fetchone()[0]
+                       for t in ("chains", "members", "mechanisms", "link_counts")],
         }
+    conn.close()
+    return content
 
 
 @pytest.fixture(scope="module")

@@ -101,3 +101,13 @@ def test_cli_refuses_malformed_grid_without_touching_db(tmp_path, capsys, text):
 def test_missing_grid_file(tmp_path, capsys):
     assert main(["grid", str(tmp_path / "none.toml"), "--db", str(tmp_path / "a.sqlite")]) == 2
     assert "does not exist" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["synth.grid", "synth.atlas", "synth.draw", "synth.cli_atlas"])
+def test_docstring_examples(name, tmp_path, monkeypatch):
+    import doctest
+    import importlib
+
+    monkeypatch.chdir(ROOT)
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0 and result.attempted > 0
