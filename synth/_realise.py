@@ -42,11 +42,15 @@ _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constrai
 
 @dataclass(frozen=True)
 class Conventions:
-    """Which chains count: sub-chain rule, fractionated chains, planar graphs only."""
+    """Which chains count: sub-chain rule, fractionated chains, planar graphs only, and
+    required sub-structures ``cranks``: pairs (I, C) asking for a link with I joints that
+    carries at least C cranks (binary links jointed to it).
+    """
 
     rigid_subchains: bool = False
     fractionated: bool = True
     planar_only: bool = False
+    cranks: tuple[tuple[int, int], ...] = ()
 
     @property
     def threshold(self) -> int:
@@ -245,6 +249,21 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
             for jsize in range(len(joint_vertices) + 1):
                 for TJ in combinations(joint_vertices, jsize):
                     _subset_constraint(model, kinds, edges, z, o, set(TL), set(TJ), len(link_vertices), dof, conv)
+    # required sub-structure: a link with I joints carrying C cranks (invariant under Aut(H))
+    for joints_on_link, count in conv.cranks:
+        chosen = []
+        for u in link_vertices:
+            if kinds[u][1] != joints_on_link:
+                continue
+            ends = [1 - z[k] if k in z else 1 for k, e in enumerate(edges) if u in e and e[0] != e[1]]
+            ends += [2 for e in edges if e == (u, u)]
+            sel = model.NewBoolVar(f"cranks{u}")
+            model.Add(sum(ends) >= count).OnlyEnforceIf(sel)
+            model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
+            chosen.append(sel)
+        if not chosen:
+            return []
+        model.AddBoolOr(chosen)
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))

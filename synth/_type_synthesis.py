@@ -48,10 +48,41 @@ class Unit:
         return f"{self.code}|{self.contracted.certificate if self.contracted else 'loop'}"
 
 
-def _conventions(dof: int, rigid_subchains: bool | None, fractionated: bool, planar_only: bool) -> Conventions:
+def _conventions(dof: int, rigid_subchains: bool | None, fractionated: bool, planar_only: bool,
+                 cranks: Mapping | Iterable[str] | None) -> Conventions:
     if rigid_subchains is None:
         rigid_subchains = dof == 0
-    return Conventions(bool(rigid_subchains), bool(fractionated), bool(planar_only))
+    return Conventions(bool(rigid_subchains), bool(fractionated), bool(planar_only), _parse_cranks(cranks))
+
+
+def _parse_cranks(cranks: Mapping | Iterable[str] | None) -> tuple[tuple[int, int], ...]:
+    """``{5: 5}`` or ``["5=5"]``: a link with 5 joints carrying at least 5 cranks."""
+    if not cranks:
+        return ()
+    pairs = cranks.items() if isinstance(cranks, Mapping) else (str(c).split("=", 1) for c in cranks)
+    out = []
+    for pair in pairs:
+        try:
+            i, c = (int(x) for x in pair)
+        except (TypeError, ValueError):
+            raise InvalidOption(f"cranks are written I=C (a link with I joints carrying C cranks), not {pair!r}") from None
+        if i < 1 or c < 1 or c > i:
+            raise ImpossibleParameters(f"a link with {i} joints cannot carry {c} cranks")
+        out.append((i, c))
+    return tuple(sorted(out))
+
+
+def _with_crank_links(require, conv: Conventions):
+    """A crank requirement needs a link with I joints: say so to number synthesis too."""
+    if not conv.cranks:
+        return require
+    from ._number_synthesis import parse_requirements
+
+    merged = parse_requirements(require)
+    for i, _ in conv.cranks:
+        lo, hi = merged.get(i, (0, None))
+        merged[i] = (max(lo, 1), hi)
+    return merged
 
 
 def plan_codes(
@@ -143,6 +174,7 @@ def plan_units(
     fractionated: bool = True,
     planar_only: bool = False,
     require: Mapping | Iterable[str] | None = None,
+    cranks: Mapping | Iterable[str] | None = None,
 ) -> list[Unit]:
     """The independent work units of a chain query, in output order (runs stage A inline).
 
@@ -154,9 +186,9 @@ def plan_units(
     16
     """
     _validate(dof, links, None)
-    conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
+    conv = _conventions(dof, rigid_subchains, fractionated, planar_only, cranks)
     codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
-                       rigid_subchains=conv.rigid_subchains, require=require)
+                       rigid_subchains=conv.rigid_subchains, require=_with_crank_links(require, conv))
     return _units(codes, conv, None)
 
 
@@ -170,6 +202,7 @@ def type_synthesis(
     fractionated: bool = True,
     planar_only: bool = False,
     require: Mapping | Iterable[str] | None = None,
+    cranks: Mapping | Iterable[str] | None = None,
     workers: int | None = None,
     progress: bool = False,
 ) -> Iterator[Chain]:
@@ -192,6 +225,10 @@ def type_synthesis(
     planar_only : bool
         Keep only chains with planar graphs.
     require : design constraints ``"I=N"`` etc. on the link assortment (see number_synthesis).
+    cranks : mapping I -> C or strings ``"I=C"``
+        Required sub-structure: a link with I joints carrying at least C cranks (binary links
+        jointed to it), a constraint of the CP-SAT model (e.g. ``{5: 5}``: five parallel cranks
+        on a 5-joint frame).
     workers : int, optional
         Processes; default all cores; 1 runs inline.
     progress : bool
@@ -208,9 +245,9 @@ def type_synthesis(
     independent units; the sub-chain test is exact and nauty removes duplicates.
     """
     _validate(dof, links, workers)
-    conv = _conventions(dof, rigid_subchains, fractionated, planar_only)
+    conv = _conventions(dof, rigid_subchains, fractionated, planar_only, cranks)
     codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
-                       rigid_subchains=conv.rigid_subchains, require=require)
+                       rigid_subchains=conv.rigid_subchains, require=_with_crank_links(require, conv))
     workers = workers or os.cpu_count() or 1
     bar = None
     if progress:

@@ -41,6 +41,8 @@ def _add_selection(p) -> None:
     p.add_argument("--code", help="only this code, e.g. 6301/0 or 620/0-1")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
                    help="design constraint on n_I, the links with I joints (repeatable)")
+    p.add_argument("--cranks", action="append", default=[], metavar="I=C",
+                   help="required sub-structure: a link with I joints carrying ≥ C cranks (repeatable)")
     p.add_argument("--rigid-subchains", action="store_true", default=None,
                    help="allow rigid sub-chains, W(S) ≥ 0 (default only for W = 0)")
     p.add_argument("--fractionated", action=argparse.BooleanOptionalAction, default=True,
@@ -74,7 +76,8 @@ def _selection(args) -> tuple[int, dict]:
         raise InvalidOption("give --links N (or --code C)")
     return args.dof, dict(
         v=args.v, code=args.code, rigid_subchains=args.rigid_subchains, fractionated=args.fractionated,
-        planar_only=args.planar_only, require=args.require, workers=args.workers, progress=True,
+        planar_only=args.planar_only, require=args.require, cranks=args.cranks, workers=args.workers,
+        progress=True,
     )
 
 

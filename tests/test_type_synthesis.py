@@ -193,3 +193,23 @@ def test_ctrl_c_stops_cleanly():
 @pytest.mark.slow
 def test_fourteen_links():
     assert synth.count_chains(1, 14)["count"] == 318162
+
+
+def _carries_cranks(chain, joints_on_link, count):
+    deg = chain.degrees
+    for u in range(chain.links):
+        if deg[u] != joints_on_link:
+            continue
+        cranks = sum(1 for j in chain.joints if len(j) == 2 and u in j and deg[j[0] + j[1] - u] == 2)
+        if cranks >= count:
+            return True
+    return False
+
+
+@pytest.mark.parametrize("links, v, joints_on_link, count", [(10, (0, 3), 5, 5), (10, (0, 3), 5, 3), (8, (0, 4), 3, 2),
+                                                             (9, (0, 2), 4, 4)])
+def test_crank_substructure_equals_filter(links, v, joints_on_link, count):
+    dof = 1 if links % 2 == 0 else 2
+    constrained = [c.certificate for c in synth.type_synthesis(dof, links, v=v, cranks={joints_on_link: count})]
+    filtered = [c.certificate for c in synth.type_synthesis(dof, links, v=v) if _carries_cranks(c, joints_on_link, count)]
+    assert constrained == filtered and constrained
