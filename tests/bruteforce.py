@@ -78,7 +78,7 @@ from __future__ import annotations
 
 import itertools
 from collections import Counter
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import networkx as nx
 
@@ -221,7 +221,6 @@ class BruteChain:
     planar: bool
     fixed_link_orbits: int
     fractionated: bool = False
-    graph: nx.Graph = field(default=None, repr=False, compare=False, hash=False)
 
     @property
     def p(self) -> int:
