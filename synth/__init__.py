@@ -1,5 +1,8 @@
 """synth: structural synthesis of planar mechanisms after Pozhbelko's counting theory.
 
+The names below are loaded on first use, so ``import synth`` (and a balancing scene run
+through ``mechsynth``) does not load OR-Tools, nauty or networkx.
+
 Example
 -------
 >>> import synth
@@ -9,18 +12,31 @@ Example
 16
 """
 
-from ._number_synthesis import number_synthesis
-from ._type_synthesis import Conventions, Unit, count_chains, mechanisms, mechanisms_of, plan_codes, plan_units, run_unit, type_synthesis
-from .analysis import Analysis, analyze, mobility
-from .chain import Chain, Mechanism
-from .code import Code
+from importlib import import_module
+
 from .errors import *  # noqa: F401,F403
 from .errors import __all__ as _errors_all
-from .mobility import SubchainReport, check_subchains, subchain_mobility
 
-__all__ = [
-    "Code", "Chain", "Mechanism", "Conventions", "Unit", "Analysis", "SubchainReport",
-    "number_synthesis", "type_synthesis", "count_chains", "mechanisms", "mechanisms_of", "plan_codes", "plan_units", "run_unit",
-    "analyze", "mobility", "check_subchains", "subchain_mobility",
-    *_errors_all,
-]
+_WHERE = {
+    "Code": ".code", "Chain": ".chain", "Mechanism": ".chain",
+    "Analysis": ".analysis", "analyze": ".analysis", "mobility": ".analysis",
+    "SubchainReport": ".mobility", "check_subchains": ".mobility", "subchain_mobility": ".mobility",
+    "number_synthesis": "._number_synthesis",
+    "Conventions": "._type_synthesis", "Unit": "._type_synthesis", "type_synthesis": "._type_synthesis",
+    "count_chains": "._type_synthesis", "mechanisms": "._type_synthesis", "mechanisms_of": "._type_synthesis",
+    "plan_codes": "._type_synthesis", "plan_units": "._type_synthesis", "run_unit": "._type_synthesis",
+}
+
+__all__ = [*_WHERE, *_errors_all]
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        value = getattr(import_module(_WHERE[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'synth' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(__all__)

@@ -148,15 +148,10 @@ def _build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_codes(sub)
     _add_analyze(sub)
-    from . import cli_chains
+    from . import cli_atlas, cli_chains, cli_scene
 
-    cli_chains.add_commands(sub)
-    try:
-        from . import cli_atlas
-    except ImportError:  # the atlas commands are optional while they are being built
-        cli_atlas = None
-    if cli_atlas is not None:
-        cli_atlas.add_commands(sub)
+    for module in (cli_chains, cli_atlas, cli_scene):
+        module.add_commands(sub)
     sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
     return parser
 

@@ -33,7 +33,7 @@ def add_commands(sub) -> None:
     p.add_argument("file", nargs="?", help="the scene file (TOML)")
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table")
-    p.add_argument("--out", metavar="DIR", default=".", help="where drawings are written (default: .)")
+    p.add_argument("--out", metavar="DIR", default="out", help="where drawings and plots are written (default: out/)")
     p.add_argument("--workers", type=int, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
 

@@ -69,6 +69,8 @@ class Code:
 
     def __post_init__(self):
         object.__setattr__(self, "assortment", _strip(self.assortment))
+        if self.composition is None and self.v in (0, 1):
+            object.__setattr__(self, "composition", (self.v,)[: self.v])  # forced: none, or one double joint
         if self.composition is not None:
             comp = _strip(self.composition)
             object.__setattr__(self, "composition", comp)

@@ -7,14 +7,14 @@ from synth import Code, MalformedCode
 @pytest.mark.parametrize(
     "text, assortment, v, composition, canonical",
     [
-        ("6301/0", (6, 3, 0, 1), 0, None, "6301/0"),
-        ("4600/0", (4, 6), 0, None, "4600/0"),
+        ("6301/0", (6, 3, 0, 1), 0, (), "6301/0"),
+        ("4600/0", (4, 6), 0, (), "4600/0"),
         ("12.2000/6", (12, 2), 6, None, "12.2.0.0.0/6"),
         ("12,000/6", (12,), 6, None, "12.0.0.0/6"),
         ("12,000/4-1", (12,), 6, (4, 1), "12.0.0.0/4-1"),
         ("12.2.0.0.0/6", (12, 2), 6, None, "12.2.0.0.0/6"),
         ("2|50/2", (5,), 2, None, "2|5/2"),
-        ("64200/0", (6, 4, 2), 0, None, "64200/0"),
+        ("64200/0", (6, 4, 2), 0, (), "64200/0"),
     ],
 )
 def test_parse_and_format(text, assortment, v, composition, canonical):
@@ -38,6 +38,12 @@ def test_counts_of_seed_codes():
 def test_malformed(bad):
     with pytest.raises(MalformedCode):
         Code.parse(bad)
+
+
+def test_forced_compositions_are_filled_in():
+    # v = 0: no multiple joint; v = 1: exactly one double joint; v >= 2 stays unknown unless given
+    assert Code.parse("42/0") == Code((4, 2), 0, ()) and Code.parse("51/1") == Code((5, 1), 1, (1,))
+    assert Code.parse("620/2").composition is None
 
 
 def test_composition_must_match_v():

@@ -347,9 +347,7 @@ def test_lazy_through_the_package_import():
     """Same guarantee through ``import synth`` (how the mechsynth command loads the runner)."""
     base = subprocess.run([sys.executable, "-c", "import sys, synth; print('synth._realise' in sys.modules)"],
                           capture_output=True, text=True, check=True, cwd=ROOT).stdout.strip()
-    if base == "True":
-        pytest.xfail("synth/__init__.py imports _type_synthesis (hence _realise and ortools) eagerly; "
-                     "the runner itself stays lazy (see the bare-package tests)")
+    assert base == "False"  # synth/__init__.py loads its names lazily
     mods = _modules_after("slider_countermass.toml", mode="package")
     assert "synth._realise" not in mods and not {m for m in mods if m.startswith("ortools")}
 
