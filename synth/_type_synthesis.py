@@ -175,8 +175,11 @@ def plan_units(
     planar_only: bool = False,
     require: Mapping | Iterable[str] | None = None,
     cranks: Mapping | Iterable[str] | None = None,
+    workers: int | None = 1,
 ) -> list[Unit]:
-    """The independent work units of a chain query, in output order (runs stage A inline).
+    """The independent work units of a chain query, in output order.
+
+    Stage A (one CP-SAT model per code) runs inline, or on ``workers`` processes.
 
     ``run_unit(u)`` for every unit, concatenated, equals ``list(type_synthesis(...))``.
 
@@ -185,11 +188,19 @@ def plan_units(
     >>> sum(len(run_unit(u)) for u in units)
     16
     """
-    _validate(dof, links, None)
+    _validate(dof, links, workers)
     conv = _conventions(dof, rigid_subchains, fractionated, planar_only, cranks)
     codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
                        rigid_subchains=conv.rigid_subchains, require=_with_crank_links(require, conv))
-    return _units(codes, conv, None)
+    workers = workers or os.cpu_count() or 1
+    if workers == 1 or len(codes) < 2:
+        return _units(codes, conv, None)
+    pool = _pool(min(workers, len(codes)))
+    try:
+        return _units(codes, conv, pool)
+    finally:
+        pool.terminate()
+        pool.join()
 
 
 def type_synthesis(
