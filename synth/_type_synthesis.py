@@ -28,7 +28,7 @@ from .chain import Chain, Mechanism
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
 
-__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "type_synthesis", "count_chains", "mechanisms", "mechanisms_of", "run_unit"]
+__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "mechanisms", "mechanisms_of", "run_unit"]
 
 
 @dataclass(frozen=True)
@@ -180,7 +180,6 @@ def plan_units(
     """The independent work units of a chain query, in output order.
 
     Stage A (one CP-SAT model per code) runs inline, or on ``workers`` processes.
-
     ``run_unit(u)`` for every unit, concatenated, equals ``list(type_synthesis(...))``.
 
     >>> units = plan_units(1, 8); [u.key.split("|")[0] for u in units]
@@ -189,19 +188,54 @@ def plan_units(
     16
     """
     _validate(dof, links, workers)
-    conv = _conventions(dof, rigid_subchains, fractionated, planar_only, cranks)
-    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
-                       rigid_subchains=conv.rigid_subchains, require=_with_crank_links(require, conv))
+    query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
+                 planar_only=planar_only, require=require, cranks=cranks)
     workers = workers or os.cpu_count() or 1
-    if workers == 1 or len(codes) < 2:
-        return _units(codes, conv, None)
-    pool = _pool(min(workers, len(codes)))
+    if workers == 1:
+        return plan_many([query])[0]
+    pool = _pool(workers)
     try:
-        return _units(codes, conv, pool)
+        return plan_many([query], pool=pool)[0]
     finally:
         pool.terminate()
         pool.join()
 
+
+def plan_many(queries: Iterable[Mapping], *, pool=None, skip_impossible: bool = False) -> list[list[Unit]]:
+    """:func:`plan_units` for several queries at once: stage A of all their codes in one batch.
+
+    ``queries`` are keyword dictionaries of :func:`plan_units` (with ``dof`` and ``links``);
+    ``pool`` is an optional ``multiprocessing`` pool that runs stage A; with
+    ``skip_impossible`` a query the counting equations rule out gets no units instead of
+    raising :class:`ImpossibleParameters`.
+
+    >>> [len(units) for units in plan_many([dict(dof=1, links=8), dict(dof=1, links=9)], skip_impossible=True)]
+    [5, 0]
+    """
+    queries = list(queries)
+    jobs, owners = [], []
+    for index, query in enumerate(queries):
+        q = dict(query)
+        dof, links = q.pop("dof"), q.pop("links", None)
+        conv = _conventions(dof, q.pop("rigid_subchains", None), q.get("fractionated", True),
+                            q.pop("planar_only", False), q.pop("cranks", None))
+        try:
+            codes = plan_codes(dof, links, v=q.pop("v", 0), code=q.pop("code", None),
+                               fractionated=q.pop("fractionated", True), rigid_subchains=conv.rigid_subchains,
+                               require=_with_crank_links(q.pop("require", None), conv))
+        except ImpossibleParameters:
+            if not skip_impossible:
+                raise
+            codes = []
+        if q:
+            raise InvalidOption(f"unknown option(s) for a chain query: {', '.join(sorted(q))}")
+        jobs += [(c, conv) for c in codes]
+        owners += [index] * len(codes)
+    plans: list[list[Unit]] = [[] for _ in queries]
+    batches = pool.imap(_stage_a, jobs) if pool is not None else map(_stage_a, jobs)
+    for owner, batch in zip(owners, batches):
+        plans[owner].extend(batch)
+    return plans
 
 def type_synthesis(
     dof: int,

@@ -61,7 +61,7 @@ from pathlib import Path
 
 import pynauty
 
-from ._type_synthesis import Unit, mechanisms_of, run_unit
+from ._type_synthesis import Unit, mechanisms_of, plan_many, run_unit
 from .chain import Chain, Mechanism
 from .code import Code
 from .errors import InvalidOption, MalformedCode, SynthesisError
@@ -388,18 +388,20 @@ def _ignore_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _local(tasks: list[_Task], workers: int) -> Iterator[_Result]:
-    if workers == 1 or len(tasks) <= 1:
+def _local_pool(workers: int):
+    """The process pool of a local run (planning and units share it), or None for one worker."""
+    if workers == 1:
+        return None
+    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+    return ctx.Pool(workers, initializer=_ignore_sigint)
+
+
+def _local(tasks: list[_Task], pool) -> Iterator[_Result]:
+    if pool is None or len(tasks) <= 1:
         for task in tasks:
             yield compute_unit(task)
         return
-    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    pool = ctx.Pool(min(workers, len(tasks)), initializer=_ignore_sigint)
-    try:
-        yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
-    finally:
-        pool.terminate()
-        pool.join()
+    yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
 
 
 def _connect(address: str, timeout: float):
@@ -489,10 +491,12 @@ def run_grid(
         # cut may lose the last units, never consistency); back to a plain journal at the end
         conn.execute("PRAGMA journal_mode = WAL")
         conn.execute("PRAGMA synchronous = NORMAL")
-        status, done_now = "failed", 0
+        status, done_now, pool = "failed", 0, None
         result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
         try:
-            plans = [(cell, cell.plan()) for cell in grid.cells]
+            pool = _local_pool(workers) if client is None else None
+            plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
+                                                   skip_impossible=True)))
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
             tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans for u in units
@@ -511,7 +515,7 @@ def run_grid(
                 bar = tqdm(total=len(tasks), unit="unit", file=sys.stderr, disable=None, desc=grid.name,
                            dynamic_ncols=True)
             try:
-                results = _dask(tasks, client) if client is not None else _local(tasks, workers)
+                results = _dask(tasks, client) if client is not None else _local(tasks, pool)
                 for res in results:
                     result.chains_new += _commit(conn, res, run)
                     result.chains_found += len(res.chains)
@@ -528,6 +532,9 @@ def run_grid(
             status = "interrupted"
             raise
         finally:
+            if pool is not None:
+                pool.terminate()
+                pool.join()
             result.units_run = done_now
             result.status = status
             result.seconds = time.perf_counter() - start

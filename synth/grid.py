@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ._number_synthesis import parse_range, parse_requirements
-from ._type_synthesis import Unit, plan_units
+from ._type_synthesis import Unit, plan_many
 from .errors import ImpossibleParameters, SynthesisError
 
 __all__ = ["GridFileError", "Cell", "Grid", "load_grid", "parse_grid"]
@@ -103,12 +103,13 @@ class Cell:
         return dict(v=self.v, rigid_subchains=self.rigid_subchains, fractionated=self.fractionated,
                     planar_only=self.planar_only, require=dict(self.require) or None)
 
+    def query(self) -> dict:
+        """This cell as keyword arguments of :func:`synth.plan_units` / :func:`synth.plan_many`."""
+        return dict(dof=self.dof, links=self.links, **self.selection())
+
     def plan(self) -> list[Unit]:
         """The cell's work units (an empty list when the engine finds the cell impossible)."""
-        try:
-            return plan_units(self.dof, self.links, **self.selection())
-        except ImpossibleParameters:
-            return []
+        return plan_many([self.query()], skip_impossible=True)[0]
 
 
 @dataclass(frozen=True)
