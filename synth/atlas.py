@@ -324,8 +324,12 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
                          "max_degree, degrees, fractionated, chain) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          result.chains)
         new = conn.total_changes - before
-        ids = {c[0]: conn.execute("SELECT id FROM chains WHERE certificate = ?", (c[0],)).fetchone()[0]
-               for c in result.chains}
+        ids: dict[str, int] = {}
+        certs = [c[0] for c in result.chains]
+        for start in range(0, len(certs), 500):  # one lookup per batch, under SQLite's variable limit
+            batch = certs[start:start + 500]
+            ids.update(conn.execute(f"SELECT certificate, id FROM chains WHERE certificate IN "
+                                    f"({','.join('?' * len(batch))})", batch).fetchall())
         conn.executemany("INSERT OR IGNORE INTO link_counts VALUES (?, ?, ?)",
                          [(ids[c], d, n) for c, d, n in result.link_counts])
         conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, i) for i in ids.values()])
@@ -491,6 +495,8 @@ def run_grid(
         # cut may lose the last units, never consistency); back to a plain journal at the end
         conn.execute("PRAGMA journal_mode = WAL")
         conn.execute("PRAGMA synchronous = NORMAL")
+        conn.execute("PRAGMA cache_size = -65536")  # 64 MiB of pages: the certificate index stays in memory
+        conn.execute("PRAGMA wal_autocheckpoint = 10000")  # checkpoint rarely during a run (and at its end)
         status, done_now, pool = "failed", 0, None
         result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
         try:
