@@ -20,6 +20,7 @@ import json
 import sys
 from collections import Counter
 
+from ._argtypes import whole
 from ._output import FORMATS, write_rows
 from .errors import InvalidOption, SynthesisError
 
@@ -41,27 +42,20 @@ def _parse_classes(text: str) -> dict[int, int]:
         raise InvalidOption(f"loop classes are written H=K,H=K (e.g. 3=4,5=1), not {text!r}") from None
 
 
-def _int(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
-
-
 # ------------------------------------------------------------------- codes
 def _add_codes(sub):
     p = sub.add_parser("codes", help="number synthesis: every standard code n2n3…/v")
-    p.add_argument("--dof", type=_int, required=True, help="required mobility W (0 = truss)")
+    p.add_argument("--dof", type=whole, required=True, help="required mobility W (0 = truss)")
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--loops", help="K, or a range A..B")
     g.add_argument("--links", help="n, or a range A..B")
     g.add_argument("--loop-classes", help="heterogeneous systems: H=K_H,… (e.g. 3=4,5=1)")
     p.add_argument("--v", help="multiple-joint count or range A..B (default: every possible)")
-    p.add_argument("--h", type=_int, default=3, help="motion space of a loop (default 3, planar)")
-    p.add_argument("--f", type=_int, default=0, help="extra mobility of multi-DOF pairs")
+    p.add_argument("--h", type=whole, default=3, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
     p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
-    p.add_argument("--max-multiplicity", type=_int, help="largest number of links on one joint")
+    p.add_argument("--max-multiplicity", type=whole, help="largest number of links on one joint")
     p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
                    help="design constraint on n_I, the links with I joints (repeatable)")
@@ -95,10 +89,10 @@ def _run_codes(args) -> int:
 def _add_analyze(sub):
     p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
     p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
-    p.add_argument("--dof", type=_int, help="required W (for D and the criterion)")
-    p.add_argument("--v", type=_int, default=0, help="v, with explicit counts")
-    p.add_argument("--h", type=_int, default=3)
-    p.add_argument("--f", type=_int, default=0)
+    p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")
+    p.add_argument("--v", type=whole, default=0, help="v, with explicit counts")
+    p.add_argument("--h", type=whole, default=3)
+    p.add_argument("--f", type=whole, default=0)
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_analyze)

@@ -21,29 +21,10 @@ import argparse
 import json
 import sys
 
+from ._argtypes import positive, seconds, whole
 from ._output import write_rows
 
 __all__ = ["add_commands"]
-
-
-def _positive(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
-    return value
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {value}")
-    return value
 
 
 def add_commands(sub) -> None:
@@ -51,9 +32,9 @@ def add_commands(sub) -> None:
     p = sub.add_parser("grid", help="run a grid file of W, n, v ranges into an SQLite atlas (resumable)")
     p.add_argument("grid", help="grid file (TOML), e.g. models/grid_small.toml")
     p.add_argument("--db", required=True, help="SQLite atlas to create or resume")
-    p.add_argument("--workers", type=_positive, help="local processes (default: all cores)")
+    p.add_argument("--workers", type=positive, help="local processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("--timeout", type=_seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_grid)
 
@@ -73,12 +54,12 @@ def add_commands(sub) -> None:
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where")
-    p.add_argument("--dof", type=int, help="with --code: W (default: the code's own, planar)")
+    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own, planar)")
     p.add_argument("--where", action="append", default=[], metavar="FIELD OP VALUE", help="with --db: filter")
-    p.add_argument("--frame", type=int, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
-    p.add_argument("--columns", type=_positive, help="drawings per row of a sheet")
-    p.add_argument("--limit", type=_positive, default=400, help="refuse sheets larger than this (default 400)")
+    p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
+    p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
     p.add_argument("--title", help="sheet title (default: the selection)")
     p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
     p.set_defaults(run=_run_draw)

@@ -14,29 +14,13 @@ import argparse
 import json
 import sys
 
+from ._argtypes import positive, whole
 from ._output import FORMATS, write_rows
 
 
-def _workers(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number of workers, not {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"--workers must be 1 or more, not {value}")
-    return value
-
-
-def _int(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
-
-
 def _add_selection(p) -> None:
-    p.add_argument("--dof", type=_int, help="mobility W (0 = trusses); default: the code's W")
-    p.add_argument("--links", type=_int, help="number of links n (frame included)")
+    p.add_argument("--dof", type=whole, help="mobility W (0 = trusses); default: the code's W")
+    p.add_argument("--links", type=whole, help="number of links n (frame included)")
     p.add_argument("--v", default="0", help="multiple-joint count or range A..B (default 0: simple joints)")
     p.add_argument("--code", help="only this code, e.g. 6301/0 or 620/0-1")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
@@ -49,7 +33,7 @@ def _add_selection(p) -> None:
                    help="keep chains split by one link or joint (default: keep)")
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
-    p.add_argument("--workers", type=_workers, help="processes (default: all cores)")
+    p.add_argument("--workers", type=positive, help="processes (default: all cores)")
     p.add_argument("--format", choices=FORMATS, default="table")
 
 

@@ -20,6 +20,8 @@ import json
 import sys
 from typing import Any, TextIO
 
+from ._argtypes import positive
+
 __all__ = ["add_commands", "run_scene_command", "format_result"]
 
 _STATUS = {"met": "ok  ", "failed": "FAIL", "skipped": "skip"}
@@ -34,7 +36,7 @@ def add_commands(sub) -> None:
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", metavar="DIR", default="out", help="where drawings and plots are written (default: out/)")
-    p.add_argument("--workers", type=int, default=1, help="processes for type synthesis (default 1)")
+    p.add_argument("--workers", type=positive, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
 
 

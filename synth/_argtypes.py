@@ -1,0 +1,38 @@
+"""Value parsers shared by the CLI commands (argparse ``type=`` callables).
+
+>>> whole("3"), positive("2"), seconds("0.5")
+(3, 2, 0.5)
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["whole", "positive", "seconds"]
+
+
+def whole(text: str) -> int:
+    """A whole number (negative values are left to the command's own check)."""
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+
+
+def positive(text: str) -> int:
+    """A whole number ≥ 1 (workers, columns, limits)."""
+    value = whole(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
+    return value
+
+
+def seconds(text: str) -> float:
+    """A time in seconds > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {text!r}")
+    return value
