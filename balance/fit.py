@@ -615,10 +615,25 @@ def _phi_range(phi_range) -> tuple[float, float]:
     return lo, hi
 
 
+def _max_abs_sin(lo: float, hi: float) -> float:
+    """Largest |sin φ| over [lo, hi] (1 when a multiple of π/2 + kπ lies inside)."""
+    k = math.ceil((lo - math.pi / 2) / math.pi)
+    if math.pi / 2 + k * math.pi <= hi:
+        return 1.0
+    return max(abs(math.sin(lo)), abs(math.sin(hi)))
+
+
 def _check_feasible(p: _Problem) -> None:
     b = p.bounds
     if not math.isfinite(p.rho0_b[1]):
         raise InvalidRange("r0 needs a finite upper bound.")
+    peak = _max_abs_sin(p.lo, p.hi)
+    if p.Fhat < peak:  # a spring force F on a crank r gives at most F·r
+        raise InfeasibleBounds(
+            f"the force limit {b.max_force:g} N on a crank of at most {b.r[1]:g} m gives at most "
+            f"{b.max_force * b.r[1]:g} N·m, less than the {abs(p.moment) * peak:g} N·m the target needs in this "
+            f"range; raise --max-force or the longest crank."
+        )
     if p.kind == "compression":
         if not math.isfinite(p.al_b[1]) and not math.isfinite(p.Lf) and p.delta is None:
             raise InfeasibleBounds(

@@ -119,6 +119,43 @@ def run(quick: bool = False) -> list[dict]:
     return run_fit(quick) + run_arm(quick)
 
 
+HARD_CASES = {
+    # name: (range in degrees, bounds, Φ0)
+    "r0 → 0 with φ = 0 in range": ((0.0, 180.0), SpringBounds((0.05, 0.5), (1e-9, 1e-6), (0.0, 1.0)), 100.0),
+    "range touching 0 and π": ((0.0, 180.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 100.0),
+    "range across π": ((90.0, 270.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 100.0),
+    "narrow range 0.2°": ((89.9, 90.1), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 100.0),
+    "narrow range at π": ((179.0, 180.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 100.0),
+    "tiny moment Φ0 = 1e-5 N·m": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 1e-5),
+    "huge moment Φ0 = 1e6 N·m": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), 1e6),
+    "millimetre device (r ≤ 1 mm)": ((20.0, 160.0), SpringBounds((1e-4, 1e-3), (1e-4, 1e-2), (0.0, 1e-2)), 1e-2),
+    "unbounded pre-load a": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, math.inf)), 100.0),
+    "unbounded a, free length ≤ 3 m": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, math.inf),
+                                                                   max_free_length=3.0), 100.0),
+    "infeasible force limit": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0), max_force=1e-3),
+                               100.0),
+}
+
+
+def run_hard_cases() -> list[dict]:
+    """Every hard case with every method: solved (max error, time) or refused (the sentence)."""
+    from balance import BalanceError
+
+    rows = []
+    for name, (rng, bounds, moment) in HARD_CASES.items():
+        for method in ("slsqp", "trf", "nelder-mead"):
+            start = time.perf_counter()
+            try:
+                res = fit_spring("compression", moment, tuple(math.radians(x) for x in rng), bounds, method=method)
+                outcome = f"solved: max error {100 * res.max_rel_error:.4g} %"
+                active = " ".join(res.active_bounds)
+            except BalanceError as exc:
+                outcome, active = f"refused: {exc}", ""
+            rows.append({"case": name, "method": method, "outcome": outcome, "active_bounds": active,
+                         "seconds": round(time.perf_counter() - start, 4)})
+    return rows
+
+
 def _write_csv(path: Path, rows: list[dict]) -> None:
     with open(path, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))

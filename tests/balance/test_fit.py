@@ -183,6 +183,22 @@ def test_unbounded_a_refused_then_solved_with_free_length():
     assert "max_free_length" in res.active_bounds and res.free_length == pytest.approx(3.0)
 
 
+@pytest.mark.parametrize("max_force", [1e-3, 150.0])
+def test_force_limit_below_the_peak_moment_is_refused(max_force):
+    # F·r_max = max_force · 0.5 m < 100 N·m at φ = 90°: no device can reach the target's peak
+    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=max_force)
+    with pytest.raises(InfeasibleBounds, match="force limit") as ei:
+        fit((20.0, 160.0), b)
+    assert "\n" not in str(ei.value)
+
+
+def test_force_limit_checks_the_range_peak_only():
+    # over 0°..10° the target peaks at 100·sin 10° ≈ 17.4 N·m: 40 N on 0.5 m (20 N·m) may do
+    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=40.0)
+    res = fit((0.0, 10.0), b)
+    assert np.isfinite(res.max_rel_error)
+
+
 def test_error_keeps_falling_as_a_grows():
     """Why an unbounded a is refused: the optimum runs away with it."""
     errs = [fit((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, ah))).max_rel_error
