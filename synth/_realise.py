@@ -165,8 +165,9 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
                 out.append(y[a] if k == u else x[min(a, k), max(a, k)])
             return out
 
-        ru, rv = row(u), row(v)
-        L = len(ru)
+        # a prefix of the rows (exact coefficients); a lexicographic order implies it on any prefix
+        L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
+        ru, rv = row(u)[:L], row(v)[:L]
         model.Add(sum(base ** (L - 1 - i) * ru[i] for i in range(L)) <= sum(base ** (L - 1 - i) * rv[i] for i in range(L)))
     variables = [x[p] for p in pairs] + y
     seen: dict[str, Contracted] = {}
