@@ -63,6 +63,32 @@ def _grid(path: Path, repeat: int = 5) -> tuple[dict, dict]:
     return rows[0], rows[1]
 
 
+def _compute_only(path: Path, repeat: int = 3) -> tuple[dict, dict]:
+    """The same units without any database: how far the computation itself scales on this machine
+    (the reference for the grid's speed-up; the pool and the atlas cannot do better than this)."""
+    import multiprocessing
+
+    from synth.atlas import _Task, compute_unit
+
+    grid = load_grid(path)
+    tasks = [_Task(cell.key, u, grid.input_link) for cell in grid.cells for u in cell.plan()]
+    best = {1: float("inf"), 2: float("inf")}
+    for _ in range(repeat):
+        start = time.perf_counter()
+        for task in tasks:
+            compute_unit(task)
+        best[1] = min(best[1], time.perf_counter() - start)
+        with multiprocessing.get_context("fork").Pool(2) as pool:
+            start = time.perf_counter()
+            list(pool.imap_unordered(compute_unit, tasks, chunksize=1))
+            best[2] = min(best[2], time.perf_counter() - start)
+    rows = [{"case": f"compute only {grid.name}", "workers": w, "items": len(tasks), "unit": "units",
+             "seconds": round(best[w], 3), "per_second": round(len(tasks) / best[w], 1), "speedup": None,
+             "note": f"no database; best of {repeat}"} for w in (1, 2)]
+    rows[1]["speedup"] = round(best[1] / best[2], 2)
+    return rows[0], rows[1]
+
+
 def run(quick: bool = False) -> list[dict]:
     """Measure and write ``benchmarks/out/atlas.csv``; returns the rows."""
     rows = [_mechanisms(10)]
@@ -73,6 +99,8 @@ def run(quick: bool = False) -> list[dict]:
         one, two = _grid(path)
         two["speedup"] = round(one["seconds"] / two["seconds"], 2)
         rows += [one, two]
+        if not quick and path.name == "grid_12.toml":
+            rows += list(_compute_only(path))
     out = HERE / "out"
     out.mkdir(exist_ok=True)
     with open(out / "atlas.csv", "w", newline="") as fh:
