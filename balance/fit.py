@@ -35,7 +35,7 @@ import numpy as np
 from scipy import optimize
 
 from .errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
-from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice, crank_moment, spring_length
+from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice, spring_length
 
 __all__ = [
     "SpringBounds",

@@ -153,15 +153,10 @@ def _ignore_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
 
 
-def _pool(workers: int):
+def process_pool(workers: int):
+    """A process pool whose workers leave Ctrl-C to the parent (fork on Linux)."""
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     return ctx.Pool(workers, initializer=_ignore_sigint)
-
-
-def _units(codes: list[Code], conv: Conventions, pool) -> list[Unit]:
-    jobs = [(c, conv) for c in codes]
-    results = pool.imap(_stage_a, jobs) if pool else map(_stage_a, jobs)
-    return [u for batch in results for u in batch]
 
 
 def plan_units(
@@ -193,7 +188,7 @@ def plan_units(
     workers = workers or os.cpu_count() or 1
     if workers == 1:
         return plan_many([query])[0]
-    pool = _pool(workers)
+    pool = process_pool(workers)
     try:
         return plan_many([query], pool=pool)[0]
     finally:
@@ -290,18 +285,17 @@ def type_synthesis(
     independent units; the sub-chain test is exact and nauty removes duplicates.
     """
     _validate(dof, links, workers)
-    conv = _conventions(dof, rigid_subchains, fractionated, planar_only, cranks)
-    codes = plan_codes(dof, links, v=v, code=code, fractionated=fractionated,
-                       rigid_subchains=conv.rigid_subchains, require=_with_crank_links(require, conv))
+    query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
+                 planar_only=planar_only, require=require, cranks=cranks)
     workers = workers or os.cpu_count() or 1
     bar = None
     if progress:
         from tqdm import tqdm
 
         bar = tqdm(total=0, unit=" units", file=sys.stderr, disable=None, leave=False)
-    pool = _pool(workers) if workers > 1 else None
+    pool = process_pool(workers) if workers > 1 else None
     try:
-        units = _units(codes, conv, pool)
+        units = plan_many([query], pool=pool)[0]
         if bar is not None:
             bar.reset(total=len(units))
         results = pool.imap(run_unit, units, chunksize=max(1, len(units) // (workers * 16))) if pool else map(run_unit, units)

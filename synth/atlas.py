@@ -47,10 +47,8 @@ Example
 from __future__ import annotations
 
 import json
-import multiprocessing
 import os
 import re
-import signal
 import socket
 import sqlite3
 import sys
@@ -61,7 +59,7 @@ from pathlib import Path
 
 import pynauty
 
-from ._type_synthesis import Unit, mechanisms_of, plan_many, run_unit
+from ._type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from .chain import Chain, Mechanism
 from .code import Code
 from .errors import InvalidOption, MalformedCode, SynthesisError
@@ -388,16 +386,9 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]
         raise
 
 
-def _ignore_sigint() -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
 def _local_pool(workers: int):
     """The process pool of a local run (planning and units share it), or None for one worker."""
-    if workers == 1:
-        return None
-    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    return ctx.Pool(workers, initializer=_ignore_sigint)
+    return process_pool(workers) if workers > 1 else None
 
 
 def _local(tasks: list[_Task], pool) -> Iterator[_Result]:

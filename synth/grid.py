@@ -43,7 +43,7 @@ from pathlib import Path
 
 from ._number_synthesis import parse_range, parse_requirements
 from ._type_synthesis import Unit, plan_many
-from .errors import ImpossibleParameters, SynthesisError
+from .errors import SynthesisError
 
 __all__ = ["GridFileError", "Cell", "Grid", "load_grid", "parse_grid"]
 

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 import synth
-from synth.atlas import AtlasError, AtlasLocked, SchedulerUnreachable, export, parse_where, run_grid, summary
+from synth.atlas import AtlasLocked, SchedulerUnreachable, export, parse_where, run_grid, summary
 from synth.cli import main
 from synth.errors import InvalidOption
 from synth.grid import load_grid, parse_grid

@@ -9,7 +9,7 @@ import pytest
 
 from balance import (
     Arm, InvalidArm, Link, Load, SchemaError, arm_from_dict, balance_arm, check_terms,
-    counterweights, gear_ratio_for_accuracy, merge_terms, solve_arm,
+    gear_ratio_for_accuracy, merge_terms, solve_arm,
 )
 from balance.potential import terms_forces, terms_potential
 

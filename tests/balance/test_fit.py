@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
 from scipy.optimize import linprog
 
 from balance import (
-    DEFAULT_METHOD, METHODS, FitFailed, InfeasibleBounds, InvalidInput, InvalidRange,
+    DEFAULT_METHOD, METHODS, InfeasibleBounds, InvalidInput, InvalidRange,
     SpringBounds, WrongSense, fit_spring, solve_spring,
 )
 from balance.fit import relative_errors

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from balance import InvalidArm, Pantograph, SchemaError, balance_pantograph, solve_pantograph
+from balance import InvalidArm, Pantograph, SchemaError, solve_pantograph
 from balance.pantograph import pantograph_from_dict
 
 
