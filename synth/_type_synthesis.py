@@ -299,8 +299,11 @@ def type_synthesis(
         if bar is not None:
             bar.reset(total=len(units))
         results = pool.imap(run_unit, units, chunksize=max(1, len(units) // (workers * 16))) if pool else map(run_unit, units)
+        found = 0
         for chains in results:
             if bar is not None:
+                found += len(chains)
+                bar.set_postfix(chains=found, refresh=False)
                 bar.update(1)
             yield from chains
     finally:
