@@ -65,7 +65,8 @@ def _parse_cranks(cranks: Mapping | Iterable[str] | None) -> tuple[tuple[int, in
         try:
             i, c = (int(x) for x in pair)
         except (TypeError, ValueError):
-            raise InvalidOption(f"cranks are written I=C (a link with I joints carrying C cranks), not {pair!r}") from None
+            text = "=".join(map(str, pair))
+            raise InvalidOption(f"cranks are written I=C (a link with I joints carrying C cranks), not {text!r}") from None
         if i < 1 or c < 1 or c > i:
             raise ImpossibleParameters(f"a link with {i} joints cannot carry {c} cranks")
         out.append((i, c))
