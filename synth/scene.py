@@ -120,6 +120,9 @@ _TYPES: dict[str, tuple[Callable[[Any], bool], str]] = {
                 or (isinstance(x, Mapping) and all(str(k).strip().isdigit() and ((_is_int(v) and v >= 0) or (
                     isinstance(v, str) and _RANGE_RE.match(v))) for k, v in x.items())),
                 'a list of strings like "5=1.." or a table {5 = "1.."}'),
+    "cranks": (lambda x: isinstance(x, Mapping) and len(x) > 0 and all(
+        str(k).strip().isdigit() and _is_int(v) and v >= 1 for k, v in x.items()),
+        "a table {I = C, …}: a link with I joints carrying at least C cranks"),
     "list[str]": (lambda x: isinstance(x, list) and all(isinstance(i, str) for i in x), "a list of strings"),
     "list[nat]": (lambda x: isinstance(x, list) and all(_is_int(i) and i >= 0 for i in x), "a list of whole numbers"),
     "list[num]": (lambda x: isinstance(x, list) and all(_is_num(i) for i in x), "a list of numbers"),
@@ -154,6 +157,7 @@ _STRUCTURE_KEYS: dict[str, tuple[str, frozenset, str]] = {
     "max_multiplicity": ("pos", frozenset({"codes"}), "largest links on one joint"),
     "compositions": ("bool", frozenset({"codes"}), "split v into v2-v3-…"),
     "require": ("require", frozenset({"codes"}) | _CHAIN_KINDS, "design constraints on n_I"),
+    "cranks": ("cranks", _CHAIN_KINDS, "required sub-structure: a link with I joints carrying C cranks"),
     "rigid_subchains": ("bool", _CHAIN_KINDS, "allow rigid sub-chains"),
     "fractionated": ("bool", _CHAIN_KINDS, "keep fractionated chains"),
     "planar_only": ("bool", _CHAIN_KINDS, "keep planar graphs only"),
@@ -414,7 +418,7 @@ def load_scene(path: str | Path) -> Scene:
     ...     load_scene(p)
     ... except SceneError as exc:
     ...     print(str(exc).split(": ", 1)[1])
-    [structure] has an unknown key 'loopz' (allowed: chain, code, compositions, counts, dof, f, fractionated, h, input_link, links, loop_classes, loops, max_link_degree, max_multiplicity, n1, planar_only, require, rigid_subchains, v).
+    [structure] has an unknown key 'loopz' (allowed: chain, code, compositions, counts, cranks, dof, f, fractionated, h, input_link, links, loop_classes, loops, max_link_degree, max_multiplicity, n1, planar_only, require, rigid_subchains, v).
     """
     path = Path(path)
     doc = _read_toml(path)
@@ -646,7 +650,8 @@ def _chain_query(s: dict) -> tuple[int, int | None, dict]:
         links = s["dof"] + 1 + 2 * int(s["loops"])
     kwargs = {"v": _range_arg(s.get("v", 0)), "code": s.get("code"), "rigid_subchains": s.get("rigid_subchains"),
               "fractionated": s.get("fractionated", True), "planar_only": s.get("planar_only", False),
-              "require": _require_arg(s.get("require"))}
+              "require": _require_arg(s.get("require")),
+              "cranks": {int(k): int(v) for k, v in s.get("cranks", {}).items()} or None}
     return s["dof"], links, kwargs
 
 

@@ -5,7 +5,7 @@ import importlib
 
 import pytest
 
-MODULES = ["synth._argtypes", "synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
+MODULES = ["synth._argtypes", "synth.scene", "synth.cli_scene", "synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
            "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._cpsat",
            "synth._output", "synth.cli", "synth.cli_chains", "synth"]
 
