@@ -23,7 +23,7 @@ _WHERE = {
     "SubchainReport": ".mobility", "check_subchains": ".mobility", "subchain_mobility": ".mobility",
     "number_synthesis": "._number_synthesis",
     "Conventions": "._type_synthesis", "Unit": "._type_synthesis", "type_synthesis": "._type_synthesis",
-    "count_chains": "._type_synthesis", "mechanisms": "._type_synthesis", "mechanisms_of": "._type_synthesis",
+    "count_chains": "._type_synthesis", "count_mechanisms": "._type_synthesis", "mechanisms": "._type_synthesis", "mechanisms_of": "._type_synthesis",
     "plan_codes": "._type_synthesis", "plan_units": "._type_synthesis", "plan_many": "._type_synthesis", "run_unit": "._type_synthesis",
 }
 

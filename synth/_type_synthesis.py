@@ -28,7 +28,7 @@ from .chain import Chain, Mechanism
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
 
-__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "mechanisms", "mechanisms_of", "run_unit"]
+__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
 
 
 @dataclass(frozen=True)
@@ -288,6 +288,15 @@ def type_synthesis(
     _validate(dof, links, workers)
     query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
                  planar_only=planar_only, require=require, cranks=cranks)
+    for chains in _map_units(run_unit, query, workers, progress):
+        yield from chains
+
+
+def _map_units(work, query: dict, workers: int | None, progress: bool) -> Iterator:
+    """``work(unit)`` for every unit of ``query``, in unit order, inline or on a process pool.
+
+    ``work`` returns the unit's chains or a count; the progress bar adds up either.
+    """
     workers = workers or os.cpu_count() or 1
     bar = None
     if progress:
@@ -299,14 +308,15 @@ def type_synthesis(
         units = plan_many([query], pool=pool)[0]
         if bar is not None:
             bar.reset(total=len(units))
-        results = pool.imap(run_unit, units, chunksize=max(1, len(units) // (workers * 16))) if pool else map(run_unit, units)
+        chunk = max(1, len(units) // (workers * 16))
+        results = pool.imap(work, units, chunksize=chunk) if pool else map(work, units)
         found = 0
-        for chains in results:
+        for result in results:
             if bar is not None:
-                found += len(chains)
+                found += result[1] if isinstance(result, tuple) else len(result)
                 bar.set_postfix(chains=found, refresh=False)
                 bar.update(1)
-            yield from chains
+            yield result
     finally:
         if pool is not None:
             pool.terminate()
@@ -315,13 +325,50 @@ def type_synthesis(
             bar.close()
 
 
-def count_chains(dof: int, links: int | None = None, **kwargs) -> dict:
-    """``{"count": N, "by_code": {code: count}}`` for the chains of :func:`type_synthesis`."""
+def _count_unit(unit: Unit) -> tuple[str, int]:
+    """(code, number of chains) of one unit: counted where it is computed (every chain of a unit has its code)."""
+    return str(unit.code), len(run_unit(unit))
+
+
+def _count_unit_mechanisms(unit: Unit, input_link: bool = False) -> tuple[str, int]:
+    return str(unit.code), sum(len(mechanisms_of(c, input_link=input_link)) for c in run_unit(unit))
+
+
+def _count_unit_mechanisms_with_input(unit: Unit) -> tuple[str, int]:
+    return _count_unit_mechanisms(unit, input_link=True)
+
+
+def _tally(pairs) -> dict:
     by_code: dict[str, int] = {}
-    for chain in type_synthesis(dof, links, **kwargs):
-        key = str(chain.code)
-        by_code[key] = by_code.get(key, 0) + 1
+    for code, n in pairs:
+        if n:
+            by_code[code] = by_code.get(code, 0) + n
     return {"count": sum(by_code.values()), "by_code": by_code}
+
+
+def count_chains(dof: int, links: int | None = None, *, workers: int | None = None, progress: bool = False,
+                 **selection) -> dict:
+    """``{"count": N, "by_code": {code: count}}`` for the chains of :func:`type_synthesis`.
+
+    Chains are counted by the processes that find them, so memory stays flat however many there are.
+
+    >>> count_chains(1, 8, workers=1)
+    {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
+    """
+    _validate(dof, links, workers)
+    return _tally(_map_units(_count_unit, dict(dof=dof, links=links, **selection), workers, progress))
+
+
+def count_mechanisms(dof: int, links: int | None = None, *, input_link: bool = False, workers: int | None = None,
+                     progress: bool = False, **selection) -> dict:
+    """``{"count": N, "by_code": {code: count}}`` for the mechanisms of :func:`mechanisms`.
+
+    >>> count_mechanisms(1, 8, workers=1)["count"]
+    71
+    """
+    _validate(dof, links, workers)
+    work = _count_unit_mechanisms_with_input if input_link else _count_unit_mechanisms
+    return _tally(_map_units(work, dict(dof=dof, links=links, **selection), workers, progress))
 
 
 def mechanisms_of(chain: Chain, *, input_link: bool = False) -> list[Mechanism]:

@@ -66,20 +66,20 @@ def _selection(args) -> tuple[int, dict]:
 
 
 def _run(args) -> int:
-    from ._type_synthesis import mechanisms, type_synthesis
+    from ._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
     dof, kwargs = _selection(args)
+    if args.count:  # counted in the worker processes: flat memory at any size
+        if args.what == "chains":
+            result = count_chains(dof, args.links, **kwargs)
+        else:
+            result = count_mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
+        print(json.dumps(result))
+        return 0
     if args.what == "chains":
         items = type_synthesis(dof, args.links, **kwargs)
     else:
         items = mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
-    if args.count:
-        by_code: dict[str, int] = {}
-        for item in items:
-            key = str((item if args.what == "chains" else item.chain).code)
-            by_code[key] = by_code.get(key, 0) + 1
-        print(json.dumps({"count": sum(by_code.values()), "by_code": by_code}))
-        return 0
     rows = (_row(item, args.what, args.format) for item in items)
     columns = ["index", "code", "links", "joints", "certificate"]
     if args.what == "mechanisms":

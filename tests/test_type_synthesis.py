@@ -213,3 +213,14 @@ def test_crank_substructure_equals_filter(links, v, joints_on_link, count):
     constrained = [c.certificate for c in synth.type_synthesis(dof, links, v=v, cranks={joints_on_link: count})]
     filtered = [c.certificate for c in synth.type_synthesis(dof, links, v=v) if _carries_cranks(c, joints_on_link, count)]
     assert constrained == filtered and constrained
+
+
+@pytest.mark.parametrize("dof, links, v, input_link", [(1, 8, (0, 4), False), (3, 8, 0, True), (0, 7, (0, 2), False)])
+def test_counts_made_in_workers_equal_the_streamed_results(dof, links, v, input_link):
+    chains = list(synth.type_synthesis(dof, links, v=v, workers=2))
+    tally = {}
+    for c in chains:
+        tally[str(c.code)] = tally.get(str(c.code), 0) + 1
+    assert synth.count_chains(dof, links, v=v, workers=2) == {"count": len(chains), "by_code": tally}
+    mechs = list(synth.mechanisms(dof, links, v=v, input_link=input_link, workers=1))
+    assert synth.count_mechanisms(dof, links, v=v, input_link=input_link, workers=2)["count"] == len(mechs)
