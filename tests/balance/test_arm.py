@@ -27,6 +27,16 @@ def random_arm(rng: np.random.Generator, n: int, zero: str = "vertical") -> Arm:
 
 
 # ------------------------------------------------------------------ Example 1
+def _fd_forces(arm, q, h=1e-6):
+    """Generalised gravity forces −∂U/∂q by central differences."""
+    fd = np.zeros_like(q)
+    for j in range(arm.n):
+        dq = np.zeros(arm.n)
+        dq[j] = h
+        fd[:, j] = -(arm.potential(q + dq) - arm.potential(q - dq)) / (2 * h)
+    return fd
+
+
 def test_example1_matches_theory_and_expect(model):
     doc = model("arm_base_drives")
     out = solve_arm(doc, "arm_base_drives.toml")
@@ -86,12 +96,7 @@ def test_gravity_forces_match_finite_differences(seed):
     rng = np.random.default_rng(100 + seed)
     arm = random_arm(rng, 4)
     q = arm.sample(50, seed)
-    h = 1e-6
-    fd = np.zeros_like(q)
-    for j in range(arm.n):
-        dq = np.zeros(arm.n)
-        dq[j] = h
-        fd[:, j] = -(arm.potential(q + dq) - arm.potential(q - dq)) / (2 * h)
+    fd = _fd_forces(arm, q)
     np.testing.assert_allclose(arm.gravity_forces(q), fd, atol=1e-6 * 100)
     np.testing.assert_allclose(terms_forces(arm.harmonic_terms(), q), fd, atol=1e-6 * 100)
 
@@ -99,12 +104,7 @@ def test_gravity_forces_match_finite_differences(seed):
 def test_prismatic_gravity_forces_match_finite_differences(model):
     arm = arm_from_dict(model("arm_prismatic"))
     q = arm.sample(200, 3)
-    h = 1e-6
-    fd = np.zeros_like(q)
-    for j in range(arm.n):
-        dq = np.zeros(arm.n)
-        dq[j] = h
-        fd[:, j] = -(arm.potential(q + dq) - arm.potential(q - dq)) / (2 * h)
+    fd = _fd_forces(arm, q)
     np.testing.assert_allclose(arm.gravity_forces(q), fd, atol=1e-7)
 
 
