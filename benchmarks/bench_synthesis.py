@@ -54,7 +54,7 @@ def measure(series: str, dof: int, links: int, v: str, workers: int = 2) -> dict
     stats: dict = {}
     count = sum(len(synth.run_unit(u, stats)) for u in units)
     inline = time.perf_counter() - t0
-    cmd = [sys.executable, "-m", "synth.cli", "chains", "--dof", str(dof), "--links", str(links), "--v", v,
+    cmd = [sys.executable, "-m", "mechsynth", "chains", "--dof", str(dof), "--links", str(links), "--v", v,
            "--count", "--workers", str(workers)]
     t1 = time.perf_counter()
     proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, check=True)

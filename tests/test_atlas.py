@@ -16,7 +16,7 @@ import pytest
 
 import synth
 from synth.atlas import AtlasLocked, SchedulerUnreachable, export, parse_where, run_grid, summary
-from synth.cli import main
+from mechsynth.cli import main
 from synth.errors import InvalidOption
 from synth.grid import load_grid, parse_grid
 
@@ -105,7 +105,7 @@ def _done(db: Path) -> int:
 
 def test_sigkill_then_resume_equals_uninterrupted_run(small_atlas, tmp_path, capsys):
     db = tmp_path / "killed.sqlite"
-    command = [sys.executable, "-m", "synth.cli", "grid", str(SMALL), "--db", str(db), "--workers", "2"]
+    command = [sys.executable, "-m", "mechsynth", "grid", str(SMALL), "--db", str(db), "--workers", "2"]
     proc = subprocess.Popen(command, cwd=ROOT, start_new_session=True,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     try:

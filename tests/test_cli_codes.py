@@ -4,7 +4,7 @@ import sys
 
 import pytest
 
-from synth.cli import main
+from mechsynth.cli import main
 
 
 def run(capsys, *argv):
@@ -50,7 +50,7 @@ def test_bad_input_one_sentence(capsys, argv):
 
 
 def test_console_script_has_no_traceback():
-    proc = subprocess.run([sys.executable, "-m", "synth.cli", "codes", "--dof", "1", "--links", "11"],
+    proc = subprocess.run([sys.executable, "-m", "mechsynth", "codes", "--dof", "1", "--links", "11"],
                           capture_output=True, text=True)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and "multiple of h − 1" in proc.stderr
 

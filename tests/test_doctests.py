@@ -1,13 +1,15 @@
-"""Every docstring example of the synth package runs."""
+"""Every docstring example of the synth and mechsynth packages runs."""
 
 import doctest
 import importlib
 
 import pytest
 
-MODULES = ["synth._argtypes", "synth.scene", "synth.cli_scene", "synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
-           "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._cpsat",
-           "synth._output", "synth.cli", "synth.cli_chains", "synth"]
+MODULES = ["synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
+           "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._cpsat", "synth",
+           "mechsynth", "mechsynth._argtypes", "mechsynth._output", "mechsynth.scene", "mechsynth.cli",
+           "mechsynth.commands.codes", "mechsynth.commands.chains", "mechsynth.commands.scene",
+           "mechsynth.commands.balance"]
 
 
 @pytest.mark.parametrize("name", MODULES)

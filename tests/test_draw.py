@@ -8,7 +8,7 @@ import pytest
 import synth
 from synth import draw
 from synth.chain import Chain, Mechanism
-from synth.cli import main
+from mechsynth.cli import main
 
 
 @pytest.fixture(scope="module")

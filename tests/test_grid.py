@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 import synth
-from synth.cli import main
+from mechsynth.cli import main
 from synth.grid import Cell, GridFileError, load_grid, parse_grid
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -103,7 +103,7 @@ def test_missing_grid_file(tmp_path, capsys):
     assert "does not exist" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("name", ["synth.grid", "synth.atlas", "synth.draw", "synth.cli_atlas"])
+@pytest.mark.parametrize("name", ["synth.grid", "synth.atlas", "synth.draw", "mechsynth.commands.atlas"])
 def test_docstring_examples(name, tmp_path, monkeypatch):
     import doctest
     import importlib

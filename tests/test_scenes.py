@@ -18,9 +18,9 @@ from pathlib import Path
 
 import pytest
 
-from synth import cli_scene
+from mechsynth.commands import scene as cli_scene
 from synth.errors import InvalidOption, SynthesisError
-from synth.scene import COMPUTE_KINDS, SceneError, load_scene, run_directory, run_scene
+from mechsynth.scene import COMPUTE_KINDS, SceneError, load_scene, run_directory, run_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "models"
@@ -141,7 +141,7 @@ def test_spring_plot_written(all_models):
 
 
 def test_drawing_skipped_not_failed_without_draw(tmp_path, monkeypatch):
-    import synth.scene as scene_module
+    import mechsynth.scene as scene_module
 
     monkeypatch.setattr(scene_module, "_draw_module", lambda: None)
     result = run_scene(MODELS / "locomotive_drive.toml", out_dir=tmp_path)
@@ -301,24 +301,19 @@ def test_grid_file_alone_is_not_a_scene():
 
 # ---------------------------------------------------------------------------- lazy imports
 _PROBE = textwrap.dedent("""
-    import json, sys, types
+    import json, sys
     root = sys.argv[1]
-    if sys.argv[3] == "bare":
-        # load synth.scene without synth/__init__.py, which imports every solver eagerly
-        pkg = types.ModuleType("synth")
-        pkg.__path__ = [root + "/synth"]
-        sys.modules["synth"] = pkg
     sys.path.insert(0, root)
-    from synth.scene import run_scene
+    from mechsynth.scene import run_scene
     assert run_scene(root + "/models/" + sys.argv[2]).ok
     mods = sorted(m for m in sys.modules if m.startswith(("synth", "ortools", "pynauty", "networkx", "balance")))
     print(json.dumps(mods))
 """)
 
 
-def _modules_after(scene: str, mode: str = "bare") -> set[str]:
+def _modules_after(scene: str) -> set[str]:
     env = dict(os.environ, MPLBACKEND="Agg")
-    out = subprocess.run([sys.executable, "-c", _PROBE, str(ROOT), scene, mode], capture_output=True, text=True,
+    out = subprocess.run([sys.executable, "-c", _PROBE, str(ROOT), scene], capture_output=True, text=True,
                          check=True, env=env, cwd=ROOT)
     return set(json.loads(out.stdout))
 
@@ -328,7 +323,7 @@ def test_balancing_scene_imports_no_synth_solver():
     assert "balance.problems" in mods
     heavy = {m for m in mods if m.startswith(("ortools", "pynauty", "networkx", "synth._"))}
     assert not heavy, heavy
-    assert {m for m in mods if m.startswith("synth")} <= {"synth", "synth.scene", "synth.errors"}
+    assert {m for m in mods if m.startswith("synth")} <= {"synth", "synth.errors"}
 
 
 def test_codes_only_scene_builds_no_graph_model():
@@ -343,30 +338,18 @@ def test_analysis_scene_needs_no_solver():
     assert not {m for m in mods if m.startswith(("ortools", "synth._", "balance"))}
 
 
-def test_lazy_through_the_package_import():
-    """Same guarantee through ``import synth`` (how the mechsynth command loads the runner)."""
-    base = subprocess.run([sys.executable, "-c", "import sys, synth; print('synth._realise' in sys.modules)"],
-                          capture_output=True, text=True, check=True, cwd=ROOT).stdout.strip()
-    assert base == "False"  # synth/__init__.py loads its names lazily
-    mods = _modules_after("slider_countermass.toml", mode="package")
-    assert "synth._realise" not in mods and not {m for m in mods if m.startswith("ortools")}
+def test_import_synth_loads_no_solver():
+    """``import synth`` loads its names lazily: no CP-SAT, nauty or graph model until one is used."""
+    loaded = subprocess.run([sys.executable, "-c", "import sys, synth; print(sorted(m for m in sys.modules "
+                             "if m.startswith(('synth.', 'ortools', 'pynauty'))))"],
+                            capture_output=True, text=True, check=True, cwd=ROOT).stdout.strip()
+    assert loaded == "['synth.errors']"
 
 
 # ---------------------------------------------------------------------------- through mechsynth
-def test_through_the_mechsynth_command(tmp_path, monkeypatch, capsys):
-    """As mounted by ``cli_scene.add_commands`` in synth/cli.py (patched in here until it is)."""
-    from synth import cli
+def test_through_the_mechsynth_command(tmp_path, capsys):
+    from mechsynth import cli
 
-    build = cli._build_parser
-
-    def with_scene():
-        parser = build()
-        sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-        if "scene" not in sub.choices:
-            cli_scene.add_commands(sub)
-        return parser
-
-    monkeypatch.setattr(cli, "_build_parser", with_scene)
     assert cli.main(["scene", str(MODELS / "wedge_lever.toml")]) == 0
     assert "6 of 6 expectations met" in capsys.readouterr().out
     bad = tmp_path / "bad.toml"

@@ -163,7 +163,7 @@ def test_bad_input(call, exc):
     ],
 )
 def test_cli_bad_input(capsys, argv):
-    from synth.cli import main
+    from mechsynth.cli import main
 
     assert main(argv) == 2
     out, err = capsys.readouterr()
@@ -171,7 +171,7 @@ def test_cli_bad_input(capsys, argv):
 
 
 def test_cli_count_contract(capsys):
-    from synth.cli import main
+    from mechsynth.cli import main
 
     assert main(["chains", "--dof", "1", "--links", "10", "--count"]) == 0
     import json
@@ -181,7 +181,7 @@ def test_cli_count_contract(capsys):
 
 
 def test_ctrl_c_stops_cleanly():
-    proc = subprocess.Popen([sys.executable, "-m", "synth.cli", "chains", "--dof", "1", "--links", "14", "--count"],
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "chains", "--dof", "1", "--links", "14", "--count"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(2.0)
     proc.send_signal(signal.SIGINT)

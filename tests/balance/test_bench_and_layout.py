@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_balance_does_not_import_synth_or_matplotlib():
-    code = ("import sys, balance, balance.cli; "
+    code = ("import sys, balance, mechsynth.commands.balance; "
             "assert 'synth' not in sys.modules, 'synth imported'; "
             "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'")
     p = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)

@@ -1,4 +1,4 @@
-"""``mechsynth balance …`` through ``balance.cli.main`` and ``python -m balance.cli``."""
+"""``mechsynth balance …`` through ``mechsynth.commands.balance.main`` and ``python -m mechsynth balance``."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from balance.cli import main
+from mechsynth.commands.balance import main
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = ROOT / "models"
@@ -116,10 +116,10 @@ def test_bad_arm_file_names_file_and_key(capsys, tmp_path):
 
 
 def test_python_m_entry_point():
-    p = subprocess.run([sys.executable, "-m", "balance.cli", "prismatic", "--mass", "1", "--inertia", "0",
+    p = subprocess.run([sys.executable, "-m", "mechsynth", "balance", "prismatic", "--mass", "1", "--inertia", "0",
                         "--counter-mass", "1", "--stroke", "0.1", "--format", "json"],
                        capture_output=True, text=True, cwd=ROOT, timeout=60)
     assert p.returncode == 0 and json.loads(p.stdout)["C_min"] == pytest.approx(0.015)
-    p = subprocess.run([sys.executable, "-m", "balance.cli", "prismatic", "--mass", "x"],
+    p = subprocess.run([sys.executable, "-m", "mechsynth", "balance", "prismatic", "--mass", "x"],
                        capture_output=True, text=True, cwd=ROOT, timeout=60)
     assert p.returncode == 2 and p.stderr.count("\n") == 1

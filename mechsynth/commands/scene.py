@@ -1,6 +1,6 @@
 """``mechsynth scene``: run one scene file, or every scene of a directory with ``--all``.
 
-Mount with ``cli_scene.add_commands(sub)`` on the sub-parsers of ``mechsynth``.
+Mount with ``add_commands(sub)`` on the sub-parsers of ``mechsynth``.
 Exit status: 0 when every expectation is met, 1 when one fails, 2 when a scene is
 malformed or its problem impossible (one sentence naming the file and the key).
 
@@ -20,7 +20,7 @@ import json
 import sys
 from typing import Any, TextIO
 
-from ._argtypes import positive
+from .._argtypes import positive
 
 __all__ = ["add_commands", "run_scene_command", "format_result"]
 
@@ -42,8 +42,8 @@ def add_commands(sub) -> None:
 
 def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None) -> int:
     """Run the command parsed into ``args``; return the exit status."""
-    from .errors import InvalidOption
-    from .scene import run_directory, run_scene
+    from synth.errors import InvalidOption
+    from ..scene import run_directory, run_scene
 
     out = out or sys.stdout
     err = err or sys.stderr
@@ -123,9 +123,9 @@ def _summaries(kind: str, r: dict[str, Any]) -> list[str]:
 
 
 def format_result(result) -> str:
-    """A readable summary of a :class:`~synth.scene.SceneResult`.
+    """A readable summary of a :class:`~mechsynth.scene.SceneResult`.
 
-    >>> from synth.scene import SceneResult
+    >>> from mechsynth.scene import SceneResult
     >>> print(format_result(SceneResult("s.toml", "s", "demo", ("codes",), {"codes": {
     ...     "codes": ["44/0"], "count": 1, "by_loops": {"2": 1}, "links": [6], "i_max": 3}}, ())), end="")
     scene  s — demo (s.toml)

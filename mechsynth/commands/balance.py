@@ -1,4 +1,4 @@
-"""``mechsynth balance …`` commands (also ``python -m balance.cli …``).
+"""``mechsynth balance …`` commands (also ``python -m mechsynth balance …``).
 
 Results go to stdout (a readable table, or ``--format json``); a mistake prints one
 sentence to stderr and returns 2, never a traceback.
@@ -12,7 +12,7 @@ import math
 import sys
 from typing import Any, Sequence
 
-from .errors import BalanceError, InvalidRange
+from balance.errors import BalanceError, InvalidRange
 
 __all__ = ["main", "build_parser"]
 
@@ -242,8 +242,8 @@ def _emit(out: dict, fmt: str, table) -> None:
 
 
 def _cmd_arm(ns) -> dict:
-    from .arm import arm_from_dict
-    from .problems import load_toml, solve_arm
+    from balance.arm import arm_from_dict
+    from balance.problems import load_toml, solve_arm
 
     doc = load_toml(ns.file)
     if ns.samples is not None or ns.seed is not None:
@@ -258,7 +258,7 @@ def _cmd_arm(ns) -> dict:
         doc["arm"] = arm_t
     out = solve_arm(doc, ns.file)
     if ns.plot:
-        from .plots import plot_arm
+        from balance.plots import plot_arm
 
         arm = arm_from_dict(doc, ns.file)
         plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), ns.plot)
@@ -266,7 +266,7 @@ def _cmd_arm(ns) -> dict:
 
 
 def _cmd_spring(ns) -> tuple[dict, Any]:
-    from .fit import DEFAULT_GRID, SpringBounds, fit_spring
+    from balance.fit import DEFAULT_GRID, SpringBounds, fit_spring
 
     lo, hi = parse_range(ns.range, "--range")
     bounds = SpringBounds(parse_range(ns.r, "--r"), parse_range(ns.r0, "--r0"), parse_range(ns.a, "--a"),
@@ -274,39 +274,39 @@ def _cmd_spring(ns) -> tuple[dict, Any]:
     res = fit_spring(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds,
                      method=ns.method, norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID)
     if ns.plot:
-        from .plots import plot_spring
+        from balance.plots import plot_spring
 
         plot_spring(res, ns.plot)
     return res.to_dict()
 
 
 def _cmd_prismatic(ns) -> dict:
-    from .countermass import verify_counter_mass
+    from balance.countermass import verify_counter_mass
 
     res = verify_counter_mass(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, stroke=ns.travel, C=ns.C)
     if ns.plot:
-        from .plots import plot_prismatic
+        from balance.plots import plot_prismatic
 
         plot_prismatic(res.m, res.inertia, res.M, res.q_max, res.stroke, res.C, ns.plot)
     return res.to_dict()
 
 
 def _cmd_pantograph(ns) -> dict:
-    from .pantograph import pantograph_from_dict
-    from .problems import load_toml, solve_pantograph
+    from balance.pantograph import pantograph_from_dict
+    from balance.problems import load_toml, solve_pantograph
 
     doc = load_toml(ns.file)
     out = solve_pantograph(doc, ns.file)
     if ns.plot:
-        from .plots import plot_pantograph
+        from balance.plots import plot_pantograph
 
         plot_pantograph(pantograph_from_dict(doc, ns.file)[0], ns.plot)
     return out
 
 
 def _cmd_solve(ns) -> tuple[dict, Any]:
-    from . import problems
-    from .errors import SchemaError
+    from balance import problems
+    from balance.errors import SchemaError
 
     doc = problems.load_toml(ns.file)
     table = {"arm": (problems.solve_arm, _table_arm), "spring": (problems.solve_spring, _table_spring),

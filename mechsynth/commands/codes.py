@@ -1,10 +1,8 @@
-"""The ``mechsynth`` command: the composition root of synth and (lazily) balance.
-
-Results go to stdout, progress to stderr, errors to stderr as one sentence with exit
-status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C).
+"""CLI commands ``codes`` (number synthesis) and ``analyze`` (a code, counts or a chain).
 
 Example
 -------
+>>> from mechsynth.cli import main
 >>> main(["codes", "--dof", "1", "--loops", "2", "--format", "csv"])
 code,links,loops,v,assortment
 42/0,6,2,0,4 2
@@ -15,23 +13,22 @@ code,links,loops,v,assortment
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from collections import Counter
 
-from ._argtypes import whole
-from ._output import FORMATS, write_rows
-from .errors import InvalidOption, SynthesisError
+from synth.errors import InvalidOption
 
-__all__ = ["main"]
+from .._argtypes import whole
+from .._output import FORMATS, write_rows
+
+__all__ = ["add_commands"]
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse that raises instead of printing usage and exiting."""
-
-    def error(self, message):  # noqa: D401 - argparse API
-        raise InvalidOption(f"{message} (see '{self.prog} --help')")
+def add_commands(sub) -> None:
+    """Mount ``codes`` and ``analyze`` on the ``mechsynth`` parser."""
+    _add_codes(sub)
+    _add_analyze(sub)
 
 
 def _parse_classes(text: str) -> dict[int, int]:
@@ -64,7 +61,7 @@ def _add_codes(sub):
 
 
 def _run_codes(args) -> int:
-    from ._number_synthesis import number_synthesis
+    from synth._number_synthesis import number_synthesis
 
     codes = number_synthesis(
         args.dof, loops=args.loops, links=args.links,
@@ -104,12 +101,12 @@ def _looks_like_chain(text: str) -> bool:
 
 
 def _run_analyze(args) -> int:
-    from .analysis import analyze
+    from synth.analysis import analyze
 
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     if _looks_like_chain(subject):
-        from .chain_analysis import analyze_chain
+        from synth.chain_analysis import analyze_chain
 
         result = analyze_chain(subject, dof=args.dof).to_dict()
     elif "=" in subject and "/" not in subject:
@@ -128,45 +125,3 @@ def _run_analyze(args) -> int:
                 value = json.dumps(value, ensure_ascii=False)
             print(f"{key.ljust(width)}  {value}")
     return 0
-
-
-# ----------------------------------------------------------------- balance
-def _run_balance(argv: list[str]) -> int:
-    from balance.cli import main as balance_main  # lazy: synth never needs balance
-
-    return balance_main(argv)
-
-
-def _build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    _add_codes(sub)
-    _add_analyze(sub)
-    from . import cli_atlas, cli_chains, cli_scene
-
-    for module in (cli_chains, cli_atlas, cli_scene):
-        module.add_commands(sub)
-    sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
-    return parser
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of the console script; returns the exit status."""
-    argv = list(sys.argv[1:] if argv is None else argv)
-    try:
-        if argv and argv[0] == "balance":
-            return _run_balance(argv[1:])
-        args = _build_parser().parse_args(argv)
-        return args.run(args)
-    except SynthesisError as exc:
-        print(f"mechsynth: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("mechsynth: interrupted", file=sys.stderr)
-        return 130
-    except BrokenPipeError:
-        return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

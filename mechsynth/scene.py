@@ -41,7 +41,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .errors import SynthesisError
+from synth.errors import SynthesisError
 
 __all__ = [
     "SceneError", "Scene", "Check", "SceneResult", "DirectoryResult",
@@ -552,8 +552,8 @@ def _validate_plot(path, doc, kinds: set) -> dict:
 
 
 def _parse_code(path, where: str, key: str, text: str):
-    from .code import Code
-    from .errors import MalformedCode
+    from synth.code import Code
+    from synth.errors import MalformedCode
 
     try:
         return Code.parse(text)
@@ -621,7 +621,7 @@ def _int_keys(table: Mapping) -> dict[int, int]:
 
 
 def _compute_codes(s: dict) -> dict:
-    from ._number_synthesis import number_synthesis  # CP-SAT counting model only
+    from synth._number_synthesis import number_synthesis  # CP-SAT counting model only
 
     codes = number_synthesis(
         s["dof"], loops=s.get("loops"), links=s.get("links"),
@@ -656,7 +656,7 @@ def _chain_query(s: dict) -> tuple[int, int | None, dict]:
 
 
 def _compute_chains(s: dict, workers: int, listing: bool) -> tuple[dict, list]:
-    from ._type_synthesis import type_synthesis  # graph models: only for chain queries
+    from synth._type_synthesis import type_synthesis  # graph models: only for chain queries
 
     dof, links, kwargs = _chain_query(s)
     chains = list(type_synthesis(dof, links, workers=workers, **kwargs))
@@ -679,7 +679,7 @@ def _compute_chains(s: dict, workers: int, listing: bool) -> tuple[dict, list]:
 
 
 def _compute_mechanisms(s: dict, chains: list) -> tuple[dict, list]:
-    from ._type_synthesis import mechanisms_of
+    from synth._type_synthesis import mechanisms_of
 
     input_link = bool(s.get("input_link", False))
     mechs = [m for ch in chains for m in mechanisms_of(ch, input_link=input_link)]
@@ -691,10 +691,10 @@ def _compute_mechanisms(s: dict, chains: list) -> tuple[dict, list]:
 
 def _compute_analysis(s: dict) -> dict:
     if "chain" in s:
-        from .chain_analysis import analyze_chain
+        from synth.chain_analysis import analyze_chain
 
         return analyze_chain(s["chain"], dof=s.get("dof")).to_dict()
-    from .analysis import analyze  # pure counting: no solver
+    from synth.analysis import analyze  # pure counting: no solver
 
     common = dict(dof=s.get("dof"), h=s.get("h", 3), f=s.get("f", 0),
                   loop_classes=_int_keys(s["loop_classes"]) if "loop_classes" in s else None)
@@ -894,7 +894,7 @@ def _close(a: Any, b: Any, rel: float) -> bool:
 
 
 def _canonical_codes(texts) -> list[str]:
-    from .code import Code
+    from synth.code import Code
 
     return [str(Code.parse(t)) for t in texts]
 

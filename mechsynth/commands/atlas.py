@@ -3,7 +3,7 @@
 Example
 -------
 >>> import tempfile, pathlib
->>> from synth.cli import main
+>>> from mechsynth.cli import main
 >>> folder = pathlib.Path(tempfile.mkdtemp())
 >>> grid, db = str(folder / "g.toml"), str(folder / "a.sqlite")
 >>> _ = pathlib.Path(grid).write_text('dof = 1\\nlinks = "4..8"\\n')
@@ -20,8 +20,8 @@ from __future__ import annotations
 import json
 import sys
 
-from ._argtypes import positive, seconds, whole
-from ._output import write_rows
+from .._argtypes import positive, seconds, whole
+from .._output import write_rows
 
 __all__ = ["add_commands"]
 
@@ -66,8 +66,8 @@ def add_commands(sub) -> None:
 
 # --------------------------------------------------------------------- grid
 def _run_grid(args) -> int:
-    from .atlas import run_grid
-    from .grid import load_grid
+    from synth.atlas import run_grid
+    from synth.grid import load_grid
 
     grid = load_grid(args.grid)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
@@ -88,8 +88,8 @@ _MECH_COLUMNS = ["code", "links", "dof", "v", "frame", "input_link", "joints", "
 
 
 def _run_atlas(args) -> int:
-    from .atlas import export, summary
-    from .errors import InvalidOption
+    from synth.atlas import export, summary
+    from synth.errors import InvalidOption
 
     what = args.export or ("chains" if args.where or args.count else None)
     if what is None:
@@ -135,9 +135,9 @@ def _print_summary(info: dict) -> None:
 
 # --------------------------------------------------------------------- draw
 def _run_draw(args) -> int:
-    from . import draw
-    from .chain import Chain, Mechanism
-    from .errors import InvalidOption
+    from synth import draw
+    from synth.chain import Chain, Mechanism
+    from synth.errors import InvalidOption
 
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
@@ -152,7 +152,7 @@ def _run_draw(args) -> int:
         title = args.title
     elif args.code:
         import synth
-        from .code import Code
+        from synth.code import Code
 
         code = Code.parse(args.code)
         dof = code.dof() if args.dof is None else args.dof
@@ -163,7 +163,7 @@ def _run_draw(args) -> int:
         items = draw.expand(chains, mechanisms=args.mechanisms)
         title = args.title or f"{code} (W = {dof}): {len(chains)} chains"
     else:
-        from .atlas import export
+        from synth.atlas import export
 
         chains = [Chain.from_dict(row) for row in export(args.db, "chains", where=args.where)]
         if not chains:

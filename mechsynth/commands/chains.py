@@ -2,7 +2,7 @@
 
 Example
 -------
->>> from synth.cli import main
+>>> from mechsynth.cli import main
 >>> main(["chains", "--dof", "1", "--links", "8", "--count", "--workers", "1"])
 {"count": 16, "by_code": {"440/0": 9, "521/0": 5, "602/0": 2}}
 0
@@ -14,8 +14,8 @@ import argparse
 import json
 import sys
 
-from ._argtypes import positive, whole
-from ._output import FORMATS, write_rows
+from .._argtypes import positive, whole
+from .._output import FORMATS, write_rows
 
 
 def _add_selection(p) -> None:
@@ -49,8 +49,8 @@ def add_commands(sub) -> None:
 
 
 def _selection(args) -> tuple[int, dict]:
-    from .code import Code
-    from .errors import InvalidOption
+    from synth.code import Code
+    from synth.errors import InvalidOption
 
     if args.dof is None:
         if args.code is None:
@@ -66,7 +66,7 @@ def _selection(args) -> tuple[int, dict]:
 
 
 def _run(args) -> int:
-    from ._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
+    from synth._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
     dof, kwargs = _selection(args)
     if args.count:  # counted in the worker processes: flat memory at any size

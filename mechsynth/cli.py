@@ -1,0 +1,73 @@
+"""The ``mechsynth`` command: the root parser, ``--version`` and the error contract.
+
+Results go to stdout, progress to stderr, errors to stderr as one sentence with exit
+status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C).
+
+Example
+-------
+>>> main(["codes", "--dof", "1", "--loops", "2", "--format", "csv"])
+code,links,loops,v,assortment
+42/0,6,2,0,4 2
+51/1,6,2,1,5 1
+60/2,6,2,2,6
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from synth.errors import InvalidOption, SynthesisError
+
+from . import __version__
+
+__all__ = ["main"]
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that raises instead of printing usage and exiting."""
+
+    def error(self, message):  # noqa: D401 - argparse API
+        raise InvalidOption(f"{message} (see '{self.prog} --help')")
+
+
+# ----------------------------------------------------------------- balance
+def _run_balance(argv: list[str]) -> int:
+    from .commands.balance import main as balance_main  # lazy: a synthesis query never loads balance
+
+    return balance_main(argv)
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
+    parser.add_argument("--version", action="version", version=f"mechsynth {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    from .commands import atlas, chains, codes, scene
+
+    for module in (codes, chains, atlas, scene):
+        module.add_commands(sub)
+    sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the console script; returns the exit status."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if argv and argv[0] == "balance":
+            return _run_balance(argv[1:])
+        args = _build_parser().parse_args(argv)
+        return args.run(args)
+    except SynthesisError as exc:
+        print(f"mechsynth: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("mechsynth: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
