@@ -26,11 +26,11 @@ ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "models"
 SCENE_FILES = sorted(p for p in MODELS.glob("*.toml") if "scene" in tomllib.loads(p.read_text()))
 
-# the worked examples of THEORY.md (Part A and Part B) and the scene that runs each
+# the worked examples of docs/theory.md (structure and balancing) and the scene that runs each
 WORKED_EXAMPLES = {
     "universal table 1": "table1_universal",
     "locomotive drive": "locomotive_drive",
-    "64200/0 planetary lever analogue (Task 5)": "planetary_lever_64200",
+    "64200/0 planetary lever analogue": "planetary_lever_64200",
     "NaCl lattice 12,000/6": "nacl_lattice",
     "3-DOF drive 8310/1": "drive_3dof_8310",
     "trusses": "trusses",
@@ -41,10 +41,10 @@ WORKED_EXAMPLES = {
     "Bennett and spherical 4-bars": "bennett_spherical",
     "simplest 6-space loop": "spatial_loop_h6",
     "linear translator": "linear_translator",
-    "wedge-lever system (Task 3)": "wedge_lever",
-    "Task 1": "task1_24_links",
-    "Task 2": "task2_prismatic_loop",
-    "Task 4": "task4_elastic_coupling",
+    "wedge-lever system": "wedge_lever",
+    "24-link planar system": "task1_24_links",
+    "single loop with prismatic pairs": "task2_prismatic_loop",
+    "two links with an elastic coupling": "task4_elastic_coupling",
     "2-DOF pair loop": "two_dof_pair_loop",
     "8-link chain count": "chains_1dof_8links",
     "8-link multiple joints": "multiple_joints_1dof_8links",
