@@ -211,7 +211,7 @@ class Arm:
 
     @property
     def joint_names(self) -> list[str]:
-        """``q1 … qn`` labels (1-based, as in the seed)."""
+        """``q1 … qn`` labels (1-based, as in the balancing textbook)."""
         return [f"q{i + 1}" for i in range(self.n)]
 
     @property

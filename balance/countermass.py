@@ -1,4 +1,4 @@
-"""Dynamic balancing of a sliding last link by two counter-masses (seed 000).
+"""Dynamic balancing of a sliding last link by two counter-masses (docs/theory.md).
 
 The link (mass ``m``, principal central moment ``I``) slides by ``q`` along ``Z``; two
 equal counter-masses ``M`` at ``z1``, ``z2`` on the same axis keep the centre of mass

@@ -1,4 +1,4 @@
-"""Balanced manipulator with a pantograph (Fig. 6.6).
+"""Balanced manipulator with a pantograph (docs/theory.md; balancing textbook, Fig. 6.6).
 
 Geometry (angles from the horizontal, ``A`` the fixed pivot at the origin):
 

@@ -1,4 +1,4 @@
-"""Spring devices: the sine (Scotch-yoke) device and the crank-and-rocker device (Fig. 6.5).
+"""Spring devices: the sine (Scotch-yoke) device and the crank-and-rocker device (docs/theory.md).
 
 Crank-and-rocker geometry: the crank ``AB`` of length ``r`` turns about ``A`` by ``φ``
 measured from the direction ``A→C``; the spring runs from the pin ``B`` to the base

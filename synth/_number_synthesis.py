@@ -1,6 +1,6 @@
 """Number synthesis: every standard code of the counting equations, by CP-SAT.
 
-The counting system (THEORY.md, Part A) for a chain with n links, K loops and
+The counting system (docs/theory.md, counting equations) for a chain with n links, K loops and
 multiple-joint count v, in a motion space h (or loop classes K_h) with extra
 pair mobility f, is
 

@@ -12,7 +12,7 @@ H is a subdivision-equivalent of the incidence graph, so
   lexicographic row constraints of Codish et al. between branch vertices of one
   kind; nauty removes the remaining labelled copies), and
 * stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
-  exact sub-chain conditions of THEORY.md written on the edges, and lex-leader
+  exact sub-chain conditions of docs/theory.md written on the edges, and lex-leader
   constraints for the automorphisms of H, from nauty), so few labelled copies of
   a chain come out; the exact test and nauty's certificate run on each.
 

@@ -36,7 +36,7 @@ def mobility(links: int, loops: int, *, h: int = 3, f: int = 0, loop_classes: Ma
 class Analysis:
     """What the counting theory says about one code.
 
-    ``formulas`` holds W computed by each applicable formula of THEORY.md (they agree,
+    ``formulas`` holds W computed by each applicable formula of docs/theory.md (they agree,
     and the tests check it); ``defect`` is D = W(counts) − W(required) and ``advice`` a
     sentence on how to reach D = 0 when it is not.
     """

@@ -3,7 +3,7 @@
 A code is written ``n2 n3 … n_{K+1} / v`` (Pozhbelko): one digit per link kind,
 from binary links (2 joints) up to links with K+1 joints, then the number v of
 multiple-joint orders.  Where any count reaches 10 every count is separated by
-dots (``12.2.0.0.0/6``).  The parser also reads the seed's forms ``12.2000/6``,
+dots (``12.2.0.0.0/6``).  The parser also reads Pozhbelko's forms ``12.2000/6``,
 ``12,000/6`` and ``12,000/4-1`` (the last gives the composition v2=4, v3=1).
 Open chains carry links with a single joint; their count n1 is written in front,
 separated by a bar: ``2|50/2`` is n1=2, n2=5, n3=0, v=2.
@@ -130,7 +130,7 @@ class Code:
         counts = list(self.assortment) + [0] * (width - len(self.assortment))
         if any(c >= 10 for c in counts):
             if len(counts) == 1 or (len(counts) == 2 and counts[1] >= 10):
-                counts.append(0)  # '11.0', '12.20.0': never read back as the seed's '12.2000' form
+                counts.append(0)  # '11.0', '12.20.0': never read back as Pozhbelko's '12.2000' form
             left = ".".join(map(str, counts))
         else:
             left = "".join(map(str, counts))
@@ -144,7 +144,7 @@ class Code:
 
     @classmethod
     def parse(cls, text: str) -> "Code":
-        """Read a code in any notation of the seed or of DESIGN.md.
+        """Read a code in mechsynth's notation or in Pozhbelko's (docs/theory.md, standard codes).
 
         Raises
         ------
@@ -173,7 +173,7 @@ class Code:
         if len(parts) == 1:
             counts = [int(ch) for ch in parts[0]]
         elif len(parts) == 2 and len(parts[1]) > 1:
-            counts = [int(parts[0])] + [int(ch) for ch in parts[1]]  # seed form 12,000 / 12.2000
+            counts = [int(parts[0])] + [int(ch) for ch in parts[1]]  # Pozhbelko's form 12,000 / 12.2000
         else:
             counts = [int(p) for p in parts]
         numbers = [int(x) for x in right.split("-")]

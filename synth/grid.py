@@ -40,10 +40,14 @@ from __future__ import annotations
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Annotated, Any
 
-from ._number_synthesis import parse_range, parse_requirements
+from pydantic import Field, StrictInt, StrictStr
+
+from ._number_synthesis import parse_requirements
 from ._type_synthesis import Unit, plan_many
 from .errors import SynthesisError
+from .schema import Flag, RangeText, Require, Table, Text, expect, parse_range_text, refine, show
 
 __all__ = ["GridFileError", "Cell", "Grid", "load_grid", "parse_grid"]
 
@@ -54,9 +58,6 @@ class GridFileError(SynthesisError):
     """A grid file could not be read or has a key with a wrong name, type or value."""
 
 
-_TOP_ONLY = {"name": str, "description": str, "input_link": bool}
-_CELL_KEYS = ("dof", "links", "loops", "v", "rigid_subchains", "fractionated", "planar_only", "require")
-_BOOL_KEYS = ("rigid_subchains", "fractionated", "planar_only")
 _MAX_LINKS = 40  # beyond this no run would ever finish; a typo such as 100 is caught early
 
 
@@ -140,10 +141,51 @@ def load_grid(path: str | Path) -> Grid:
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise GridFileError(f"grid file {path} does not exist") from None
+        raise GridFileError(f"grid file {path} does not exist.") from None
     except (OSError, UnicodeDecodeError) as exc:
-        raise GridFileError(f"cannot read grid file {path}: {getattr(exc, 'strerror', None) or exc}") from None
+        raise GridFileError(f"cannot read grid file {path}: {getattr(exc, 'strerror', None) or exc}.") from None
     return parse_grid(text, source=str(path), default_name=path.stem.removeprefix("grid_"))
+
+
+def _values(minimum: int):
+    """A whole number, a closed range "A..B" or a list of whole numbers, read as the sorted values."""
+
+    def read(value: int | str | list[int]) -> list[int]:
+        if isinstance(value, list):
+            out = sorted(set(value))
+        else:
+            lo, hi = parse_range_text(value)
+            if hi is None:
+                raise ValueError(f"is the range {value!r} with no upper end")
+            out = list(range(lo, hi + 1))
+        if out[0] < minimum:
+            raise ValueError(f"must be at least {minimum}, not {show(value)}")
+        return out
+
+    return Annotated[RangeText | Annotated[list[Annotated[StrictInt, Field(ge=0)]], Field(min_length=1)],
+                     refine(read), expect('a whole number, a range "A..B" or a list of whole numbers')]
+
+
+class _Block(Table):
+    """The keys of one block of cells (the top level gives their defaults)."""
+
+    dof: _values(0) | None = None
+    links: _values(1) | None = None
+    loops: _values(1) | None = None
+    v: RangeText | None = None
+    rigid_subchains: Flag | None = None
+    fractionated: Flag | None = None
+    planar_only: Flag | None = None
+    require: Require | None = None
+
+
+class _GridFile(_Block):
+    """The top level of a grid file: run options, defaults of the blocks, and the blocks."""
+
+    name: Text | None = None
+    description: StrictStr = ""
+    input_link: Flag = False
+    block: Annotated[list[dict[str, Any]], Field(min_length=1), expect("[[block]] tables")] | None = None
 
 
 def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid") -> Grid:
@@ -151,111 +193,52 @@ def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise GridFileError(f"grid file {source} is not valid TOML: {exc}") from None
-
-    def fail(where: str, message: str):
-        raise GridFileError(f"grid file {source}, {where}: {message}")
-
-    allowed_top = set(_TOP_ONLY) | set(_CELL_KEYS) | {"block"}
-    for key in data:
-        if key not in allowed_top:
-            fail("top level", f"unknown key '{key}' (allowed: {', '.join(sorted(allowed_top))})")
-    for key, kind in _TOP_ONLY.items():
-        if key in data and not isinstance(data[key], kind):
-            fail(f"key '{key}'", f"must be {'true or false' if kind is bool else 'text'}, not {data[key]!r}")
-    blocks = data.get("block", [{}])
-    if not isinstance(blocks, list) or not all(isinstance(b, dict) for b in blocks) or not blocks:
-        fail("key 'block'", "blocks are written as [[block]] tables")
-    defaults = {k: data[k] for k in _CELL_KEYS if k in data}
-
+        raise GridFileError(f"grid file {source} is not valid TOML: {exc}.") from None
+    where = f"grid file {source}"
+    top = _GridFile.read(data, source=where, where="", error=GridFileError)
+    defaults = top.model_dump(include=set(_Block.model_fields) & top.given())
     cells: dict[str, Cell] = {}
-    for number, block in enumerate(blocks, 1):
-        where = "top level" if "block" not in data else f"[[block]] {number}"
-        for key in block:
-            if key not in _CELL_KEYS:
-                fail(where, f"unknown key '{key}' (allowed in a block: {', '.join(_CELL_KEYS)})")
-        spec = {**defaults, **block}
-        if "links" in block and "loops" not in block:
-            spec.pop("loops", None)
-        if "loops" in block and "links" not in block:
-            spec.pop("links", None)
-        for cell in _expand(spec, where, fail):
+    for number, raw in enumerate(data.get("block", [{}]), 1):
+        block = "" if top.block is None else f"[[block]] {number}"
+        spec = _Block.read(raw, source=where, where=block, error=GridFileError)
+        given = spec.given()
+        merged = {**defaults, **spec.model_dump(include=given)}
+        if "links" in given and "loops" not in given:
+            merged.pop("loops", None)
+        if "loops" in given and "links" not in given:
+            merged.pop("links", None)
+        for cell in _expand(merged, f"{where}: {block + ' ' if block else ''}"):
             cells.setdefault(cell.key, cell)
-    return Grid(name=data.get("name", default_name), cells=tuple(cells.values()),
-                description=data.get("description", ""), input_link=data.get("input_link", False), source=source)
+    return Grid(name=top.name or default_name, cells=tuple(cells.values()), description=top.description,
+                input_link=top.input_link, source=source)
 
 
-def _values(value, key: str, where: str, fail, *, minimum: int) -> list[int]:
-    """An integer, "A..B" or a list of integers -> the sorted values."""
-    if isinstance(value, list):
-        if not value or not all(isinstance(x, int) and not isinstance(x, bool) for x in value):
-            fail(f"key '{key}'", f"a list must hold whole numbers, not {value!r}")
-        out = sorted(set(value))
-        if out[0] < minimum:
-            fail(f"key '{key}'", f"values must be at least {minimum}, not {out[0]}")
-        return out
-    if isinstance(value, bool) or not isinstance(value, (int, str)):
-        fail(f"key '{key}'", f"must be a whole number, a range \"A..B\" or a list, not {value!r}")
-    try:
-        lo, hi = parse_range(value, key, minimum=minimum)
-    except SynthesisError as exc:
-        fail(f"key '{key}'", str(exc))
-    if hi is None:
-        fail(f"key '{key}'", f"the range {value!r} has no upper end")
-    return list(range(lo, hi + 1))
-
-
-def _expand(spec: dict, where: str, fail) -> list[Cell]:
+def _expand(spec: dict, where: str) -> list[Cell]:
+    """The cells of one block; ``where`` starts each error sentence."""
     if "dof" not in spec:
-        fail(where, "key 'dof' (W) is missing")
+        raise GridFileError(f"{where}key 'dof' (W) is missing.")
     if ("links" in spec) == ("loops" in spec):
-        fail(where, "give exactly one of 'links' (n) and 'loops' (K)")
-    dofs = _values(spec["dof"], "dof", where, fail, minimum=0)
-    v = spec.get("v", 0)
-    if isinstance(v, bool) or not isinstance(v, (int, str)):
-        fail("key 'v'", f"must be a whole number or a range \"A..B\", not {v!r}")
+        raise GridFileError(f"{where}needs exactly one of 'links' (n) and 'loops' (K).")
     try:
-        v_range = parse_range(v, "v")
+        reqs = tuple(parse_requirements(spec.get("require")).items())
     except SynthesisError as exc:
-        fail("key 'v'", str(exc))
-    flags = {}
-    for key in _BOOL_KEYS:
-        if key in spec and not isinstance(spec[key], bool):
-            fail(f"key '{key}'", f"must be true or false, not {spec[key]!r}")
-        flags[key] = spec.get(key)
-    require = spec.get("require")
-    if require is not None:
-        if isinstance(require, dict):
-            items = [f"{k}={val}" for k, val in require.items()]
-        elif isinstance(require, list) and all(isinstance(x, str) for x in require):
-            items = require
-        else:
-            fail("key 'require'", f"must be a list such as [\"5=0\", \"3=0..2\"] or a table, not {require!r}")
-        try:
-            reqs = tuple(parse_requirements(items).items())
-        except SynthesisError as exc:
-            fail("key 'require'", str(exc))
-    else:
-        reqs = ()
-
-    pairs = []
+        raise GridFileError(f"{where}key 'require': {str(exc).rstrip('.')}.") from None
     if "links" in spec:
-        for n in _values(spec["links"], "links", where, fail, minimum=1):
-            pairs += [(w, n) for w in dofs if n - w - 1 >= 2 and (n - w - 1) % 2 == 0]
-        top = max(_values(spec["links"], "links", where, fail, minimum=1))
+        pairs = [(w, n) for n in spec["links"] for w in spec["dof"] if n - w - 1 >= 2 and (n - w - 1) % 2 == 0]
+        top = max(spec["links"])
     else:
-        loops = _values(spec["loops"], "loops", where, fail, minimum=1)
-        pairs = [(w, w + 1 + 2 * k) for w in dofs for k in loops]
+        pairs = [(w, w + 1 + 2 * k) for w in spec["dof"] for k in spec["loops"]]
         top = max(n for _, n in pairs)
     if top > _MAX_LINKS:
-        fail(where, f"{top} links is beyond what a grid run can finish (at most {_MAX_LINKS})")
+        raise GridFileError(f"{where}{top} links is beyond what a grid run can finish (at most {_MAX_LINKS}).")
     if not pairs:
-        fail(where, "no (W, n) pair of the ranges gives a whole number of loops K ≥ 1 (n = W + 1 + 2K)")
-    pairs.sort()
+        raise GridFileError(f"{where}no (W, n) pair of the ranges gives a whole number of loops K ≥ 1 "
+                            "(n = W + 1 + 2K).")
+    rigid, fractionated = spec.get("rigid_subchains"), spec.get("fractionated")
     return [
-        Cell(w, n, v_range,
-             rigid_subchains=(w == 0) if flags["rigid_subchains"] is None else flags["rigid_subchains"],
-             fractionated=True if flags["fractionated"] is None else flags["fractionated"],
-             planar_only=bool(flags["planar_only"]), require=reqs)
-        for w, n in pairs
+        Cell(w, n, parse_range_text(spec.get("v", 0)),
+             rigid_subchains=(w == 0) if rigid is None else rigid,
+             fractionated=True if fractionated is None else fractionated,
+             planar_only=bool(spec.get("planar_only")), require=reqs)
+        for w, n in sorted(pairs)
     ]

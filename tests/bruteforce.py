@@ -5,8 +5,8 @@ to cross-check the fast engine (``synth``).  It deliberately shares **no** code
 with the engine: it imports neither ``synth`` nor ``ortools`` nor ``pynauty``.
 Only the standard library and ``networkx`` are used.
 
-Definitions (as in /work/shared/THEORY.md, "From codes to chains")
------------------------------------------------------------------
+Definitions (as in docs/theory.md, "From codes to chains" and "The sub-chain rule")
+-----------------------------------------------------------------------------------
 * A chain has links ``0..n-1`` and joints; a joint is a set of ``m >= 2``
   links (``m`` = multiplicity).  ``p = sum(m - 1)``, ``v = sum(m - 2)``,
   planar mobility ``W = 3(n - 1) - 2p``; loops ``K = p - n + 1``.

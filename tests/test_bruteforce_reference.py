@@ -2,7 +2,7 @@
 
 These tests do not touch the engine: they establish that the independent
 checker is right, so that tests/test_engine_vs_bruteforce.py can trust it.
-Reference numbers: /work/shared/THEORY.md, "Reference counts".
+Reference numbers: docs/theory.md, "Reference counts".
 """
 
 from __future__ import annotations
@@ -149,7 +149,7 @@ def test_truss_counts_consistency(links, with_frac, without_frac):
 
 
 def test_truss_standard_codes_present():
-    """THEORY.md lists 32/0 (5 links) and 430/1, 520/2 (7 links) as trusses."""
+    """docs/theory.md lists 32/0 (5 links) and 430/1, 520/2 (7 links) among the trusses."""
     assert ((3, 2), ()) in count_by_code(chains(5, 0, rigid=True))
     codes7 = count_by_code(chains(7, 0, v_max=2, rigid=True))
     assert any(k[0] == (4, 3) and sum(i * x for i, x in enumerate(k[1], 1)) == 1

@@ -75,7 +75,7 @@ def test_truss_cells_allow_rigid_subchains_by_default():
         ("dof = 1\nlinks = 5\n", ["whole number of loops"]),
         ("dof = 1\nlinks = \"4..\"\n", ["no upper end"]),
         ("dof = 1\nlinks = 8\nrequire = [\"x=1\"]\n", ["'require'"]),
-        ("dof = 1\nlinks = 8\nname = 3\n", ["'name'", "text"]),
+        ("dof = 1\nlinks = 8\nname = 3\n", ["'name'", "string"]),
     ],
 )
 def test_malformed_grid_is_one_sentence(text, words):

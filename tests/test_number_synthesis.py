@@ -1,4 +1,4 @@
-"""Number synthesis against the seed's tables and an independent brute force (plain loops)."""
+"""Number synthesis against Pozhbelko's tables (docs/theory.md) and an independent brute force (plain loops)."""
 
 import itertools
 

@@ -1,4 +1,4 @@
-"""Every worked example of THEORY.md's structure table, through the public API."""
+"""Every worked example of structure in docs/theory.md, through the public API."""
 
 from synth import Code, number_synthesis
 from synth.analysis import analyze, mobility

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import json
 import sys
-from typing import Any, TextIO
+from typing import TextIO
 
 from .._argtypes import workers
 
@@ -35,7 +35,8 @@ def add_commands(sub) -> None:
     p.add_argument("file", nargs="?", help="the scene file (TOML)")
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table")
-    p.add_argument("--out", metavar="DIR", default="out", help="where drawings and plots are written (default: out/)")
+    p.add_argument("--out", metavar="DIR", help="write drawings and plots to DIR (default: none is written, "
+                                                 "and their expectations are skipped)")
     p.add_argument("--workers", type=workers, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
 
@@ -67,59 +68,6 @@ def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None
 
 
 # --------------------------------------------------------------------------- table output
-def _list(items, limit: int = 12) -> str:
-    items = list(items)
-    text = " ".join(str(i) for i in items[:limit])
-    return text + (f" … (+{len(items) - limit})" if len(items) > limit else "")
-
-
-def _table(d: dict, limit: int = 12) -> str:
-    items = [f"{k}: {v}" for k, v in d.items()]
-    return ", ".join(items[:limit]) + (f", … (+{len(items) - limit})" if len(items) > limit else "")
-
-
-def _summaries(kind: str, r: dict[str, Any]) -> list[str]:
-    if kind == "codes":
-        return [f"{r['count']} codes: {_list(r['codes'])}", f"per K: {_table(r['by_loops'])}; i_max = {r['i_max']}"]
-    if kind in ("count", "chains"):
-        lines = [f"{r['count']} chains: {_table(r['by_code'])}",
-                 f"by v: {_table(r['by_v'])}; non-planar {r['nonplanar']}; fractionated {r['fractionated']}"]
-        for ch in r.get("chains", [])[:10]:
-            lines.append(f"  {ch['code']:<12} {ch['joints']}")
-        if len(r.get("chains", [])) > 10:
-            lines.append(f"  … (+{len(r['chains']) - 10} chains; --format json lists all)")
-        return lines
-    if kind == "mechanisms":
-        return [f"{r['count']} mechanisms: {_table(r['by_code'])}"]
-    if kind == "analysis":
-        keys = ["code", "links", "loops", "complexity", "v", "dof", "defect", "criterion_holds", "subchain_defect"]
-        head = ", ".join(f"{k} = {r[k]}" for k in keys if r.get(k) is not None)
-        lines = [head]
-        if r.get("formulas"):
-            lines.append("W by formula: " + _table(r["formulas"]))
-        if r.get("advice"):
-            lines.append(r["advice"])
-        return lines
-    if kind == "drawing":
-        return [f"wrote {r['file']} ({r['items']} of {r['of']} items)"]
-    if kind == "plot":
-        return [f"wrote {', '.join(r['files'])}"]
-    if kind == "balance arm":
-        return [f"terms: {_list(round(a, 6) for a in r['amplitudes'])} (amplitudes)",
-                f"max residual {r['max_residual']:.3g}, relative {r['relative_residual']:.3g}"]
-    if kind == "balance spring":
-        return [f"c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, r0 = {r['r0']:.6g} m, a = {r['a']:.6g} m",
-                f"max relative error {r['max_rel_error']:.4g}; active bounds {', '.join(r['active_bounds']) or 'none'}"]
-    if kind == "balance prismatic":
-        return [f"C_min = {r['C_min']:.6g}, C = {r['C']:.6g}; max com error {r['max_com_error']:.3g}, "
-                f"inertia error {r['max_inertia_error']:.3g}"]
-    if kind == "balance pantograph":
-        return [f"point weights {_table(r['point_weights'])}",
-                f"spring amplitude {r['term']['amplitude']:.6g} N·m, drive force {r['drive_force']:.6g} N, "
-                f"relative residual {r['relative_residual']:.3g}"]
-    return [json.dumps(r)[:200]]
-
-
 def format_result(result) -> str:
     """A readable summary of a :class:`~mechsynth.scene.SceneResult`.
 
@@ -131,20 +79,13 @@ def format_result(result) -> str:
            per K: 2: 1; i_max = 3
     no expectations (0.00 s)
     """
+    from ..scene import KINDS
+
     width = max([5, *(len(k) for k in result.compute)])
     lines = [f"{'scene':<{width}}  {result.name} — {result.description} ({result.path})"]
     for kind in result.compute:
-        key = kind
-        if kind == "count" and "count" not in result.results and "chains" in result.results:
-            continue
-        if key not in result.results:
-            continue
-        for i, line in enumerate(_summaries(kind, result.results[key])):
+        for i, line in enumerate(KINDS[kind].report(result.results[kind])):
             lines.append(f"{kind if i == 0 else '':<{width}}  {line}")
-    for note in result.notes:
-        lines.append(f"{'note':<{width}}  {note}")
-    for f in result.files:
-        lines.append(f"{'file':<{width}}  {f}")
     for c in result.checks:
         lines.append(f"  {_STATUS[c.status]}  {c.message}")
     met = sum(c.status == "met" for c in result.checks)

@@ -1,4 +1,4 @@
-"""Arm potential, harmonic terms, devices and residual checks (THEORY.md Part B, Examples 1–2)."""
+"""Arm potential, harmonic terms, devices and residual checks (docs/theory.md, Examples 1–2)."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def test_example1_matches_theory_and_expect(model):
     doc = model("arm_base_drives")
     out = solve_arm(doc, "arm_base_drives.toml")
     exp = doc["expect"]
-    # the amplitudes re-derived from U (THEORY.md): [G_Σ + …]·l
+    # the amplitudes re-derived from U (docs/theory.md, Example 1): [G_Σ + …]·l
     G2, G3, G4, GS, l2, l3, l4 = 120, 80, 40, 30, 0.6, 0.5, 0.3
     derived = [(GS + G4 + G3 + G2 / 2) * l2, (GS + G4 + G3 / 2) * l3, (GS + G4 / 2) * l4]
     assert derived == pytest.approx(exp["amplitudes"], rel=1e-15)
@@ -64,7 +64,7 @@ def test_example1_total_potential_constant_and_seed_forces(model):
     q = arm.sample(1000, seed=1)
     total = arm.potential(q) - terms_potential(terms, q)  # gravity + devices (−U_k each)
     assert np.ptp(total) < 1e-12 * 200
-    # the seed's generalised forces Q2, Q3, Q4 (re-derived, signs as in the seed)
+    # the textbook's generalised forces Q2, Q3, Q4 (re-derived, signs as in the textbook)
     a1, a2, a3 = 126.0, 55.0, 15.0
     q2, q3, q4 = q[:, 1], q[:, 2], q[:, 3]
     # gravity: Q = −∂U/∂q with U = Σ A cos(...)

@@ -1,4 +1,4 @@
-"""Counter-mass laws of a sliding last link (seed 000) and the two-crank construction."""
+"""Counter-mass laws of a sliding last link (docs/theory.md, counter-masses) and the two-crank construction."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ def test_com_and_inertia_constant_to_round_off(m, inertia, M, q_max, extra):
     r = verify_counter_mass(m, inertia, M, q_max, C=C)
     assert r.max_com_error < 1e-14 * q_max
     assert r.max_inertia_error < 1e-13 * C
-    # the laws at C_min, as written in THEORY.md
+    # the laws at C_min, as written in docs/theory.md
     q = np.linspace(-q_max, q_max, 101)
     z1, z2, _ = counter_mass_laws(q, m, inertia, M, c_min(m, inertia, M, q_max))
     root = np.sqrt(np.maximum((m * m + 2 * m * M) * (q_max ** 2 - q ** 2), 0))

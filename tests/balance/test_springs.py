@@ -33,7 +33,7 @@ def test_moment_equals_force_times_lever(kind, seed):
     got = crank_moment(phi, kind, c, r, r0, a)
     want = vector_moment(phi, kind, c, r, r0, a)
     np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-12 * c * r * (r + r0))
-    # THEORY.md writes each kind in its own sense: M_T = c·r·d·sin φ·(1 − l0/L) (towards C),
+    # docs/theory.md writes each kind in its own sense: M_T = c·r·d·sin φ·(1 − l0/L) (towards C),
     # M_C = c·r·d·sin φ·(l0/L − 1) (away from C)
     d = r + r0
     L = np.sqrt(r * r + d * d - 2 * r * d * np.cos(phi))

@@ -1,0 +1,205 @@
+"""Balancing computations of a scene: ``balance arm``, ``balance spring``, ``balance prismatic``,
+``balance pantograph`` and the ``plot`` of their results.
+
+The balance package owns its tables (``[arm]``, ``[spring]``, ``[slider]``,
+``[pantograph]``): the runner hands each table to ``balance.problems`` unchanged and
+turns a :class:`balance.errors.BalanceError` into the scene's one sentence.  Nothing here
+imports balance until a balancing scene runs, and nothing imports synth's solvers.
+
+To add a balance problem, call :func:`balance_kind` once: its table, the
+``balance.problems`` function that solves it, the ``[expect]`` keys of its result, its
+summary lines and, optionally, its figure.
+
+>>> sorted(k for k in KINDS if k.startswith("balance"))
+['balance arm', 'balance pantograph', 'balance prismatic', 'balance spring']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from pathlib import Path
+
+from synth.schema import FileName, Table
+
+from . import compare
+from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .results import Scene, SceneError
+from .types import Flag, Int, Number, NumberRows, Numbers, NumberTable, Texts
+
+__all__ = ["balance_kind", "Plot"]
+
+#: balance kind -> its figure: ``plot(scene, result, out)``.
+_PLOTTERS: dict[str, Callable[[Scene, dict, Path], None]] = {}
+
+
+def _read_balance_table(raw, path: str, compute: frozenset):
+    return dict(raw)  # validated by balance.problems when the scene runs
+
+
+def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
+                 expect: Mapping[str, Expectation], report: Callable[[dict], list[str]],
+                 after: Callable[[dict], dict] | None = None,
+                 plot: Callable[[Scene, dict, Path], None] | None = None) -> ComputeKind:
+    """Register the compute word ``name`` solving the table ``[table]`` with ``balance.problems.<solver>``.
+
+    ``after(result)`` adds derived values to the solver's result; ``plot`` draws its figure.
+    """
+
+    def run(r: Run) -> dict:
+        from balance import problems
+        from balance.errors import BalanceError
+
+        try:
+            out = getattr(problems, solver)({table: r.scene.tables[table]}, r.scene.path)
+        except BalanceError as exc:
+            msg = str(exc).rstrip(".")
+            prefix = f"{r.scene.path}: "
+            raise SceneError((msg if msg.startswith(prefix) else f"{prefix}[{table}] {msg}") + ".") from None
+        return after(out) if after else out
+
+    add_table(SceneTable(table, _read_balance_table, hint))
+    if plot is not None:
+        _PLOTTERS[name] = plot
+    return add_kind(ComputeKind(name, summary, table, run, expect=expect, report=report))
+
+
+# --------------------------------------------------------------------------- figures
+def _plot_arm(scene: Scene, result: dict, out: Path) -> None:
+    from balance.arm import arm_from_dict
+    from balance.plots import plot_arm
+
+    arm = arm_from_dict({"arm": scene.tables["arm"]}, scene.path)
+    plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), str(out))
+
+
+def _plot_spring(scene: Scene, result: dict, out: Path) -> None:
+    from balance.fit import fit_spring
+    from balance.plots import plot_spring
+    from balance.problems import spring_from_dict
+
+    plot_spring(fit_spring(**spring_from_dict({"spring": scene.tables["spring"]}, scene.path)), str(out))
+
+
+def _plot_prismatic(scene: Scene, r: dict, out: Path) -> None:
+    from balance.plots import plot_prismatic
+
+    plot_prismatic(r["m"], r["I"], r["M"], r["q_max"], r["stroke"], r["C"], str(out))
+
+
+def _plot_pantograph(scene: Scene, result: dict, out: Path) -> None:
+    from balance.pantograph import pantograph_from_dict
+    from balance.plots import plot_pantograph
+
+    plot_pantograph(pantograph_from_dict({"pantograph": scene.tables["pantograph"]}, scene.path)[0], str(out))
+
+
+# --------------------------------------------------------------------------- the kinds
+def _arm_terms(out: dict) -> dict:
+    terms = sorted(out["terms"], key=lambda t: -t["amplitude"])
+    out["amplitudes"] = [t["amplitude"] for t in terms]
+    out["phases_deg"] = [t["phase_deg"] for t in terms]
+    out["forms"] = [t["form"] for t in terms]
+    out["drive_forms"] = [t["drive_form"] for t in terms]
+    out["eT"] = sorted((d["sine"]["eT"] for d in out["devices"] if "sine" in d), reverse=True)
+    return out
+
+
+def _below(path: tuple = ()) -> Expectation:
+    return Expectation(Number, path, below=True)
+
+
+_RESIDUALS = {"relative_residual": _below(), "max_residual": _below()}
+
+balance_kind(
+    "balance arm", "arm", "solve_arm", "static balancing of an [arm]: harmonic terms, devices, residuals",
+    "the arm's links, joints and weights",
+    expect={
+        "amplitudes": Expectation(Numbers, compare=compare.multiset),
+        "phases_deg": Expectation(Numbers),
+        "forms": Expectation(NumberRows),
+        "drive_forms": Expectation(NumberRows),
+        "eT": Expectation(Numbers, compare=compare.multiset),
+        "gear_ratio": Expectation(Number, ("prismatic", 0, "gear_ratio")),
+        "gamma_max": Expectation(Number, ("prismatic", 0, "gamma_max")),
+        "residual_bound_per_joint": Expectation(Numbers, ("prismatic", 0, "residual_bound_per_joint")),
+        "potential_spread": _below(),
+        **_RESIDUALS,
+    },
+    report=lambda r: [f"terms: {' '.join(str(round(a, 6)) for a in r['amplitudes'])} (amplitudes)",
+                      f"max residual {r['max_residual']:.3g}, relative {r['relative_residual']:.3g}"],
+    after=_arm_terms, plot=_plot_arm)
+
+balance_kind(
+    "balance spring", "spring", "solve_spring", "fit of a crank-and-rocker spring device ([spring])",
+    "the moment, the angle range and the bounds of the device",
+    expect={
+        **{k: _below() for k in ("r", "r0", "a", "c", "d", "free_length", "max_force", "max_rel_error",
+                                 "rms_rel_error")},
+        "seconds": Expectation(Number, below=True, best_of=3),  # timings on a shared machine are noisy
+        "active_bounds": Expectation(Texts),
+        "sense": Expectation(Int),
+    },
+    report=lambda r: [f"c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, r0 = {r['r0']:.6g} m, a = {r['a']:.6g} m",
+                      f"max relative error {r['max_rel_error']:.4g}; "
+                      f"active bounds {', '.join(r['active_bounds']) or 'none'}"],
+    plot=_plot_spring)
+
+balance_kind(
+    "balance prismatic", "slider", "solve_prismatic", "counter-masses of a sliding link ([slider])",
+    "the sliding link's mass, counter-mass and stroke",
+    expect={**{k: _below() for k in ("C_min", "C", "max_com_error", "max_inertia_error")},
+            "crank_exact": Expectation(Flag, ("crank", "exact"))},
+    report=lambda r: [f"C_min = {r['C_min']:.6g}, C = {r['C']:.6g}; max com error {r['max_com_error']:.3g}, "
+                      f"inertia error {r['max_inertia_error']:.3g}"],
+    plot=_plot_prismatic)
+
+balance_kind(
+    "balance pantograph", "pantograph", "solve_pantograph", "pantograph balanced manipulator ([pantograph])",
+    "the pantograph's lengths, ratio and weights",
+    expect={
+        "point_weights": Expectation(NumberTable, compare=compare.table),
+        "spring_amplitude": _below(("term", "amplitude")),
+        "drive_force": _below(),
+        "drive_force_range": Expectation(Numbers),
+        **_RESIDUALS,
+    },
+    report=lambda r: [f"point weights {', '.join(f'{k}: {v}' for k, v in r['point_weights'].items())}",
+                      f"spring amplitude {r['term']['amplitude']:.6g} N·m, drive force {r['drive_force']:.6g} N, "
+                      f"relative residual {r['relative_residual']:.3g}"],
+    plot=_plot_pantograph)
+
+
+# --------------------------------------------------------------------------- plot
+class Plot(Table):
+    """The ``[plot]`` table: the figure's file name (default ``NAME.png``)."""
+
+    out: FileName | None = None
+
+
+def _check_plot(scene: Scene) -> None:
+    if not set(scene.compute) & set(_PLOTTERS):
+        raise scene.error(f"[scene] compute 'plot' needs a balance computation ({', '.join(_PLOTTERS)}) to plot")
+
+
+def _plot(run: Run) -> dict:
+    scene = run.scene
+    kinds = [k for k in scene.compute if k in _PLOTTERS]
+    name = Path((scene.tables.get("plot") or Plot()).out or f"{scene.name}.png")
+    names = [name.stem + ("" if len(kinds) == 1 else "_" + KINDS[k].table) + name.suffix for k in kinds]
+    if run.out_dir is None:
+        return {"files": [], "written": False, "skipped": f"no --out DIR given to write {', '.join(names)}"}
+    files = []
+    for kind, file_name in zip(kinds, names):
+        out = run.picture(file_name)
+        _PLOTTERS[kind](scene, run.results[kind], out)
+        files.append(str(out))
+    return {"files": files, "written": True}
+
+
+add_table(SceneTable("plot", lambda raw, path, compute: Plot.read(raw, source=path, where="[plot]", error=SceneError),
+                     "the figure's file name"))
+add_kind(ComputeKind(
+    "plot", "a figure of the balance result (balance.plots): device moment, laws or residuals, written to --out",
+    None, _plot, expect={"plotted": Expectation(Flag, ("written",))}, check=_check_plot,
+    report=lambda r: [f"not plotted: {r['skipped']}"] if r.get("skipped") else [f"wrote {', '.join(r['files'])}"],
+    reads=("plot",)))

@@ -1,0 +1,410 @@
+"""Structural computations of a scene: ``codes``, ``count``, ``chains``, ``mechanisms``, ``analysis``, ``drawing``.
+
+They read the ``[structure]`` table (:class:`Structure`) and, for the drawing,
+``[drawing]``.  Each imports only what it needs, when it runs: codes build the CP-SAT
+counting model and never the graph realisation, the analysis of a code is pure
+arithmetic.
+
+To add a ``[structure]`` key, add one field to :class:`Structure` with :func:`key`,
+naming the computations that use it; a scene that gives the key to no such
+computation is refused.
+
+>>> Structure.model_fields["dof"].json_schema_extra["used_by"]
+['analysis', 'chains', 'codes', 'count', 'drawing', 'mechanisms']
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validator
+
+from synth.schema import FileName, Table, expect, refine
+
+from . import compare
+from .registry import ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .results import Scene, SceneError
+from .types import (Flag, Int, IndexTable, Positive, RangeText, Require, Text, Whole, WholeTable, Wholes)
+
+__all__ = ["Structure", "Drawing", "CODES", "CHAINS", "ANALYSIS"]
+
+CODES = ("codes",)
+CHAINS = ("count", "chains", "mechanisms", "drawing")
+ANALYSIS = ("analysis",)
+
+
+# --------------------------------------------------------------------------- value types
+def _standard_code(text: str) -> str:
+    from synth.code import Code
+    from synth.errors import MalformedCode
+
+    try:
+        Code.parse(text)
+    except MalformedCode as exc:
+        raise ValueError(f"holds {text!r}, which is not a standard code ({str(exc).rstrip('.')})") from None
+    return text
+
+
+def _canonical(texts) -> list[str]:
+    from synth.code import Code
+
+    return [str(Code.parse(t)) for t in texts]
+
+
+CodeText = Annotated[StrictStr, refine(_standard_code), expect('a standard code such as "6301/0"')]
+Codes = Annotated[list[CodeText], expect('a list of standard codes such as ["6301/0"]')]
+CodeTable = Annotated[dict[Annotated[str, refine(_standard_code)], Whole],
+                      expect('a table of counts by code such as { "6301/0" = 15 }')]
+
+
+def _pair(value):
+    return tuple(value) if isinstance(value, list) else value
+
+
+#: v: one count, a range, or a pair [A, B].
+VRange = Annotated[RangeText | Annotated[list[Annotated[StrictInt, Field(ge=0)]], Field(min_length=2, max_length=2)],
+                   refine(_pair), expect('a whole number, a range "A..B" or a pair [A, B]')]
+Degree = Annotated[Annotated[StrictInt, Field(ge=2)] | Annotated[StrictStr, Field(pattern=r"(?i)^\s*K\s*\+\s*[1W]\s*$")],
+                   refine(lambda x: x if isinstance(x, int) else x.replace(" ", "").upper()),
+                   expect('a whole number ≥ 2, "K+1" or "K+W"')]
+
+
+def key(meaning: str, *used_by: str, default: Any = None) -> Any:
+    """A ``[structure]`` field: what it means and the computations that use it."""
+    return Field(default, description=meaning, json_schema_extra={"used_by": sorted(used_by)})
+
+
+# --------------------------------------------------------------------------- tables
+class Structure(Table):
+    """The ``[structure]`` table of a structural scene (every key optional unless a computation needs it)."""
+
+    dof: Whole | None = key("the required mobility W", *CODES, *CHAINS, *ANALYSIS)
+    loops: RangeText | None = key("K, independent loops", *CODES, *CHAINS)
+    links: RangeText | None = key("n, links with the frame", *CODES, *CHAINS)
+    loop_classes: IndexTable("a table of loop classes { H = K_H, … } with whole numbers") | None = key(
+        "K_h of a heterogeneous system", *CODES, *ANALYSIS)
+    h: Positive = key("motion space of a loop", *CODES, *ANALYSIS, *CHAINS, default=3)
+    f: Whole = key("extra mobility of multi-DOF pairs", *CODES, *ANALYSIS, *CHAINS, default=0)
+    v: VRange | None = key("multiple-joint count", *CODES, *CHAINS, *ANALYSIS)
+    n1: RangeText = key("single-joint links", *CODES, default=0)
+    max_link_degree: Degree | None = key("largest joints on one link", *CODES)
+    max_multiplicity: Positive | None = key("largest links on one joint", *CODES)
+    compositions: Flag = key("split v into v2-v3-…", *CODES, default=False)
+    require: Require | None = key("design constraints on n_I", *CODES, *CHAINS)
+    cranks: IndexTable("a table { I = C, … }: a link with I joints carrying at least C cranks", 1) | None = key(
+        "required sub-structure: a link with I joints carrying C cranks", *CHAINS)
+    rigid_subchains: Flag | None = key("allow rigid sub-chains", *CHAINS)
+    fractionated: Flag = key("keep fractionated chains", *CHAINS, default=True)
+    planar_only: Flag = key("keep planar graphs only", *CHAINS, default=False)
+    input_link: Flag = key("mark an input link too", "mechanisms", "drawing", default=False)
+    code: CodeText | None = key("one standard code", *ANALYSIS, *CHAINS)
+    counts: IndexTable("a table of link counts { I = n_I, … } with whole numbers") | None = key(
+        "explicit link counts { 1 = n1, 2 = n2, … }", *ANALYSIS)
+    chain: Text | None = key("a chain as a joint list '0-1 1-2 …'", *ANALYSIS)
+
+    @model_validator(mode="after")
+    def _every_key_used(self, info: ValidationInfo):
+        compute = set((info.context or {}).get("compute", ()))
+        for name in sorted(self.given(), key=list(type(self).model_fields).index):
+            field = type(self).model_fields[name]
+            used_by = field.json_schema_extra["used_by"]
+            if not compute & set(used_by):
+                mine = sorted(compute & {*CODES, *CHAINS, *ANALYSIS})
+                raise ValueError(f"key '{name}' ({field.description}) is not used by compute {mine}; "
+                                 f"remove it or add one of {used_by}")
+        return self
+
+
+class Drawing(Table):
+    """The ``[drawing]`` table: the atlas sheet of a ``drawing`` computation."""
+
+    out: FileName | None = None
+    mechanisms: Flag = False
+    columns: Positive | None = None
+    title: Text | None = None
+    labels: Flag = False
+    limit: Positive = 200
+
+
+add_table(SceneTable(
+    "structure", lambda raw, path, compute: Structure.read(raw, source=path, where="[structure]", error=SceneError,
+                                                           context={"compute": compute}),
+    "dof and loops, links, a code, counts or a chain"))
+add_table(SceneTable(
+    "drawing", lambda raw, path, compute: Drawing.read(raw, source=path, where="[drawing]", error=SceneError),
+    "the sheet's options"))
+
+
+# --------------------------------------------------------------------------- checks
+def _needs_dof(scene: Scene, s: Structure, what: str) -> None:
+    if s.dof is None:
+        raise scene.error(f"[structure] needs the key 'dof' (the required mobility W, a whole number ≥ 0) for {what}")
+
+
+def _check_codes(scene: Scene) -> None:
+    s = scene.tables["structure"]
+    _needs_dof(scene, s, "the codes")
+    if sum(x is not None for x in (s.loops, s.links, s.loop_classes)) != 1:
+        raise scene.error("[structure] needs exactly one of 'loops', 'links' or 'loop_classes' for the codes")
+
+
+def _check_chains(scene: Scene) -> None:
+    s = scene.tables["structure"]
+    _needs_dof(scene, s, "chains, mechanisms and drawings")
+    for name, allowed in (("h", 3), ("f", 0)):
+        if getattr(s, name) != allowed:
+            raise scene.error(f"[structure] key '{name}' must be {allowed} for chains, mechanisms and drawings "
+                              "(type synthesis builds planar chains with one-DOF pairs)")
+    for name in ("loops", "links"):
+        value = getattr(s, name)
+        if isinstance(value, str) and ".." in value:
+            raise scene.error(f"[structure] key '{name}' must be one whole number for chains, mechanisms and "
+                              f"drawings, not the range {value!r}")
+    if s.links is None and s.loops is None and s.code is None:
+        raise scene.error("[structure] needs 'links', 'loops' or 'code' for chains, mechanisms and drawings")
+
+
+#: [expect] keys of the analysis that only a code or counts give, and those only a chain gives.
+_CODE_ONLY = frozenset({"simple_joint_equivalents", "criterion_holds", "defect", "formulas_agree"})
+_CHAIN_ONLY = frozenset({"standard_code", "subchain_defect", "planar", "fractionated", "worst_subchain_mobility",
+                         "connected"})
+
+
+def _check_analysis(scene: Scene) -> None:
+    s = scene.tables["structure"]
+    given = [k for k in ("code", "counts", "chain") if getattr(s, k) is not None]
+    if len(given) != 1:
+        raise scene.error(f"[structure] needs exactly one of 'code', 'counts' or 'chain' for the analysis, "
+                          f"not {given or 'none'}")
+    if s.v is not None and not isinstance(s.v, int):
+        raise scene.error(f"[structure] key 'v' must be one whole number for the analysis, not {s.v!r}")
+    for name in scene.expect:
+        if name in _CODE_ONLY and s.chain is not None:
+            raise scene.error(f"[expect] key '{name}' belongs to the analysis of a code or counts, "
+                              "but [structure] gives a chain")
+        if name in _CHAIN_ONLY and s.chain is None:
+            raise scene.error(f"[expect] key '{name}' belongs to the analysis of a chain, but [structure] gives no 'chain'")
+        if name in {"defect", "criterion_holds"} and s.dof is None:
+            raise scene.error(f"[expect] key '{name}' needs 'dof' (the required W) in [structure]")
+
+
+# --------------------------------------------------------------------------- comparisons
+def _same_codes(expected: list, actual: list, rel_tol: float) -> tuple[bool, str]:
+    want = _canonical(expected)
+    missing = [c for c in want if c not in set(actual)]
+    extra = [c for c in actual if c not in set(want)]
+    parts = ([f"missing {', '.join(missing)}"] if missing else []) + ([f"unexpected {', '.join(extra)}"] if extra else [])
+    return not parts, "; ".join(parts)
+
+
+def _codes_include(expected: list, actual: list, rel_tol: float) -> tuple[bool, str]:
+    missing = [c for c in _canonical(expected) if c not in set(actual)]
+    return not missing, f"missing {', '.join(missing)}"
+
+
+def _codes_exclude(expected: list, actual: list, rel_tol: float) -> tuple[bool, str]:
+    present = [c for c in _canonical(expected) if c in set(actual)]
+    return not present, f"found {', '.join(present)}"
+
+
+def _same_code(expected: str, actual: str, rel_tol: float) -> tuple[bool, str]:
+    return _canonical([expected]) == _canonical([actual]), f"the run gave {actual!r}"
+
+
+def _codes_table(expected: dict, actual: dict, rel_tol: float) -> tuple[bool, str]:
+    want = dict(zip(_canonical(expected), expected.values()))
+    got = dict(zip(_canonical(actual), actual.values()))
+    diff = [f"{c}: expected {want.get(c, 0)}, got {got.get(c, 0)}" for c in sorted(set(want) | set(got))
+            if want.get(c, 0) != got.get(c, 0)]
+    return not diff, "; ".join(diff)
+
+
+# --------------------------------------------------------------------------- computations
+def _codes(run: Run) -> dict:
+    from synth._number_synthesis import number_synthesis  # CP-SAT counting model only
+
+    s = run.scene.tables["structure"]
+    codes = number_synthesis(
+        s.dof, loops=s.loops, links=s.links, loop_classes=s.loop_classes, h=s.h, f=s.f, v=s.v, n1=s.n1,
+        max_link_degree=s.max_link_degree, require=s.require, max_multiplicity=s.max_multiplicity,
+        compositions=s.compositions)
+    by_loops: dict[str, int] = {}
+    for c in codes:
+        by_loops[str(c.loops)] = by_loops.get(str(c.loops), 0) + 1
+    return {"codes": [str(c) for c in codes], "count": len(codes), "by_loops": by_loops,
+            "links": sorted({c.links for c in codes}), "i_max": max((c.max_degree for c in codes), default=0)}
+
+
+def _chain_list(run: Run) -> list:
+    """The chains of the structure, found once per run (count, chains, mechanisms and drawing share them)."""
+
+    def make() -> list:
+        from synth._type_synthesis import type_synthesis  # graph models: only for chain queries
+
+        s = run.scene.tables["structure"]
+        links = int(s.links) if s.links is not None else (
+            s.dof + 1 + 2 * int(s.loops) if s.loops is not None else None)
+        return list(type_synthesis(
+            s.dof, links, workers=run.workers, v=0 if s.v is None else s.v, code=s.code,
+            rigid_subchains=s.rigid_subchains, fractionated=s.fractionated, planar_only=s.planar_only,
+            require=s.require, cranks=s.cranks))
+
+    return run.shared("chains", make)
+
+
+def _mechanism_list(run: Run) -> list:
+    def make() -> list:
+        from synth._type_synthesis import mechanisms_of
+
+        input_link = run.scene.tables["structure"].input_link
+        return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=input_link)]
+
+    return run.shared("mechanisms", make)
+
+
+def _count(run: Run) -> dict:
+    chains = _chain_list(run)
+    by_code: dict[str, int] = {}
+    by_v: dict[str, int] = {}
+    for ch in chains:
+        by_code[str(ch.code)] = by_code.get(str(ch.code), 0) + 1
+        by_v[str(ch.v)] = by_v.get(str(ch.v), 0) + 1
+    return {"count": len(chains), "by_code": by_code, "by_v": dict(sorted(by_v.items(), key=lambda kv: int(kv[0]))),
+            "nonplanar": sum(1 for ch in chains if not ch.is_planar()),
+            "fractionated": sum(1 for ch in chains if ch.is_fractionated())}
+
+
+def _chains(run: Run) -> dict:
+    return {**_count(run), "chains": [{"code": str(ch.code), "joints": ch.compact(), "certificate": ch.certificate}
+                                      for ch in _chain_list(run)]}
+
+
+def _mechanisms(run: Run) -> dict:
+    mechs = _mechanism_list(run)
+    by_code: dict[str, int] = {}
+    for m in mechs:
+        by_code[str(m.chain.code)] = by_code.get(str(m.chain.code), 0) + 1
+    return {"count": len(mechs), "by_code": by_code, "input_link": run.scene.tables["structure"].input_link}
+
+
+def _analysis(run: Run) -> dict:
+    s = run.scene.tables["structure"]
+    if s.chain is not None:
+        from synth.chain_analysis import analyze_chain
+
+        return analyze_chain(s.chain, dof=s.dof).to_dict()
+    from synth.analysis import analyze  # pure counting: no solver
+
+    common = dict(dof=s.dof, h=s.h, f=s.f, loop_classes=s.loop_classes)
+    if s.code is not None:
+        out = analyze(s.code, **common).to_dict()
+    else:
+        out = analyze(counts=s.counts, v=s.v or 0, **common).to_dict()
+    out["formulas_agree"] = len(set(out["formulas"].values())) == 1
+    return out
+
+
+def _drawing(run: Run) -> dict:
+    scene = run.scene
+    opts = scene.tables.get("drawing") or Drawing()
+    name = opts.out or f"{scene.name}.svg"
+    out = run.picture(name)
+    if out is None:
+        return {"files": [], "skipped": f"no --out DIR given to write {name}"}
+    items = _mechanism_list(run) if opts.mechanisms else _chain_list(run)
+    chosen = items[: opts.limit]
+    from synth.draw import draw_sheet
+
+    draw_sheet(chosen, out, columns=opts.columns, title=opts.title or scene.description, labels=opts.labels)
+    return {"files": [str(out)], "items": len(chosen), "of": len(items)}
+
+
+# --------------------------------------------------------------------------- readable summaries
+def _list(items, limit: int = 12) -> str:
+    items = list(items)
+    text = " ".join(str(i) for i in items[:limit])
+    return text + (f" … (+{len(items) - limit})" if len(items) > limit else "")
+
+
+def table_text(d: dict, limit: int = 12) -> str:
+    """``k: v, …`` of a result table, shortened after ``limit`` items."""
+    items = [f"{k}: {v}" for k, v in d.items()]
+    return ", ".join(items[:limit]) + (f", … (+{len(items) - limit})" if len(items) > limit else "")
+
+
+def _report_codes(r: dict) -> list[str]:
+    return [f"{r['count']} codes: {_list(r['codes'])}", f"per K: {table_text(r['by_loops'])}; i_max = {r['i_max']}"]
+
+
+def _report_chains(r: dict) -> list[str]:
+    lines = [f"{r['count']} chains: {table_text(r['by_code'])}",
+             f"by v: {table_text(r['by_v'])}; non-planar {r['nonplanar']}; fractionated {r['fractionated']}"]
+    lines += [f"  {ch['code']:<12} {ch['joints']}" for ch in r.get("chains", [])[:10]]
+    if len(r.get("chains", [])) > 10:
+        lines.append(f"  … (+{len(r['chains']) - 10} chains; --format json lists all)")
+    return lines
+
+
+def _report_analysis(r: dict) -> list[str]:
+    keys = ["code", "links", "loops", "complexity", "v", "dof", "defect", "criterion_holds", "subchain_defect"]
+    lines = [", ".join(f"{k} = {r[k]}" for k in keys if r.get(k) is not None)]
+    if r.get("formulas"):
+        lines.append("W by formula: " + table_text(r["formulas"]))
+    if r.get("advice"):
+        lines.append(r["advice"])
+    return lines
+
+
+def _report_drawing(r: dict) -> list[str]:
+    if r.get("skipped"):
+        return [f"not drawn: {r['skipped']}"]
+    return [f"wrote {r['files'][0]} ({r['items']} of {r['of']} items)"]
+
+
+# --------------------------------------------------------------------------- the kinds
+_CHAIN_COUNTS = {
+    "count": Expectation(Whole),
+    "by_code": Expectation(CodeTable, compare=_codes_table),
+    "count_by_v": Expectation(WholeTable, ("by_v",), compare.table),
+    "count_nonplanar": Expectation(Whole, ("nonplanar",)),
+    "count_fractionated": Expectation(Whole, ("fractionated",)),
+}
+
+add_kind(ComputeKind(
+    "codes", "number synthesis: every standard code n2n3…/v for the structure", "structure", _codes,
+    expect={
+        "codes": Expectation(Codes, compare=_same_codes),
+        "codes_include": Expectation(Codes, ("codes",), _codes_include),
+        "codes_exclude": Expectation(Codes, ("codes",), _codes_exclude),
+        "code_count": Expectation(Whole, ("count",)),
+        "code_count_by_loops": Expectation(WholeTable, ("by_loops",), compare.table),
+        "code_links": Expectation(Wholes, ("links",)),
+        "i_max": Expectation(Whole),
+    },
+    check=_check_codes, report=_report_codes))
+add_kind(ComputeKind(
+    "count", "type synthesis: the number of chains, by code, by v, non-planar and fractionated", "structure",
+    _count, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
+add_kind(ComputeKind(
+    "chains", "type synthesis: the chains themselves (joint lists and certificates) and their counts", "structure",
+    _chains, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
+add_kind(ComputeKind(
+    "mechanisms", "chains with a fixed link (and input link) up to symmetry", "structure", _mechanisms,
+    expect={"mechanisms": Expectation(Whole, ("count",)),
+            "mechanisms_by_code": Expectation(CodeTable, ("by_code",), _codes_table)},
+    check=_check_chains, report=lambda r: [f"{r['count']} mechanisms: {table_text(r['by_code'])}"]))
+add_kind(ComputeKind(
+    "analysis", "W, K, Y, D of a code, of explicit counts or of a chain", "structure", _analysis,
+    expect={
+        **{k: Expectation(Int) for k in ("dof", "loops", "complexity", "defect", "worst_subchain_mobility")},
+        **{k: Expectation(Whole) for k in ("links", "joints", "v", "simple_joint_equivalents")},
+        **{k: Expectation(Flag) for k in ("criterion_holds", "formulas_agree", "standard_code", "planar",
+                                          "fractionated", "connected")},
+        "code": Expectation(CodeText, compare=_same_code),
+        "subchain_defect": Expectation(Text),
+    },
+    check=_check_analysis, report=_report_analysis))
+add_kind(ComputeKind(
+    "drawing", "an atlas sheet of the chains or mechanisms, written to --out", "structure", _drawing,
+    expect={"drawn": Expectation(Whole, ("items",))}, check=_check_chains, report=_report_drawing,
+    reads=("drawing",)))
