@@ -708,6 +708,7 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
             f"r0/r = {rho0 / rho:.3g} with φ = 0 in the range: the moment changes steeply within "
             f"|φ| ≲ {math.degrees(rho0 / rho):.3g}° of 0 (resolved by the verification grid)"
         )
+    notes.extend(dead_centre_notes(p.lo, p.hi, r, r0))
     return FitResult(
         kind=p.kind, method=method, norm=norm, moment=M, phi_range=(p.lo, p.hi),
         x=(rho, rho0, al, kappa), c=c, r=r, r0=r0, a=a, d=d, free_length=l0,
@@ -720,6 +721,28 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
         sense=KIND_SENSE[p.kind], sense_text=_SENSE_TEXT[KIND_SENSE[p.kind]],
         success=True, message=msg, reference_length=ell, notes=list(notes),
     )
+
+
+def dead_centre_notes(lo: float, hi: float, r: float, r0: float) -> list[str]:
+    """What the device does where the working range crosses φ = 0 or φ = 180° (mod 360°)."""
+    out = []
+    zeros = [k * 180 for k in range(math.ceil(math.degrees(lo) / 180 - 1e-12),
+                                     math.floor(math.degrees(hi) / 180 + 1e-12) + 1)]
+    inner = [z for z in zeros if math.radians(z) > lo + 1e-12 and math.radians(z) < hi - 1e-12]
+    if inner:
+        where = " and ".join(f"{z}°" for z in inner)
+        what = "the dead centres" if len(inner) > 1 else "the dead centre"
+        ends = []
+        if any(z % 360 == 0 for z in inner):
+            ends.append(f"at 0° the spring is shortest ({r0:.4g} m)")
+        if any(z % 360 == 180 for z in inner):
+            ends.append(f"at 180° longest (2r + r0 = {2 * r + r0:.4g} m)")
+        out.append(
+            f"the range crosses {what} φ = {where}, where crank AB and spring BC are in line: "
+            f"the device's moment and the target both pass through zero and change sign there, so the "
+            f"crank is held in both directions; {' and '.join(ends)}"
+        )
+    return out
 
 
 def _verify_grid(lo: float, hi: float, r: float, r0: float) -> np.ndarray:

@@ -125,38 +125,89 @@ def plot_prismatic(m: float, inertia: float, M: float, q_max: float, stroke: flo
     return path
 
 
-def plot_pantograph(p, path: str) -> str:
-    """Sketch at mid-range with the substitution weights, and the spring moment vs θ2."""
+def plot_pantograph(p, path: str, n: int = 61) -> str:
+    """The mechanism at mid-range with its links numbered, the cylinder force and the
+    operator's force over the workspace, and the spring moment against ``W_D``'s."""
+    from .pantograph import PAYLOADS
+
     plt = _plt()
     t2 = 0.5 * (p.range2[0] + p.range2[1])
     t3 = 0.5 * (p.range3[0] + p.range3[1])
-    u2 = np.array([math.cos(t2), math.sin(t2)])
-    u3 = np.array([math.cos(t3), math.sin(t3)])
-    A = np.zeros(2)
-    D = p.l2 * u2
-    C = D + p.l3 * u3
-    E = p.e * u2
-    B = E + p.g * u3
-    F = D + p.g * u3
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5), constrained_layout=True)
-    for P, Q in ((A, D), (D, C), (E, B), (F, B)):
-        ax1.plot([P[0], Q[0]], [P[1], Q[1]], "k-", lw=2)
-    ax1.plot([A[0], C[0]], [A[1], C[1]], "C0:", lw=1)
+    P = {k: v[0] for k, v in p.points(np.array([[t2, t3]])).items()}
+    base = p.cylinder_base
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9.5), constrained_layout=True)
+    ax = axes[0, 0]
+    bars = [("2", "A", "D"), ("3", "D", "C"), ("9", "E", "B"), ("8", "F", "B"), ("14", "A1", "D1"),
+            ("15", "D1", "C1"), ("16", "D", "D1"), ("4", "C", "C1")]
+    for num, a, b in bars:
+        ax.plot(*zip(P[a], P[b]), "k-", lw=2.5 if num in ("2", "3") else 1.5, solid_capstyle="round")
+        d = P[b] - P[a]
+        nrm = np.array([-d[1], d[0]]) / max(np.hypot(*d), 1e-12)
+        if (nrm[1] < 0) != (num in ("14", "15")):  # parallelogram bars labelled below, the rest above
+            nrm = -nrm
+        ax.annotate(num, 0.5 * (P[a] + P[b]), textcoords="offset points", xytext=tuple(11 * nrm),
+                    fontsize=9, color="C0", fontweight="bold", ha="center", va="center")
+    pts = np.array([v for v in P.values()])
+    lo_y, hi_y = pts[:, 1].min(), pts[:, 1].max()
+    span = max(np.ptp(pts[:, 0]), hi_y - lo_y)
+    bottom = lo_y - 0.35 * span
+    cut = P["B"] + (base - P["B"]) * min(1.0, (P["B"][1] - bottom) / max(P["B"][1] - base[1], 1e-12))
+    ax.plot(*zip(cut, P["B"]), color="C2", lw=6, alpha=0.6, solid_capstyle="butt")
+    ax.annotate(f"10: cylinder\nto P ({base[0]:.3g}, {base[1]:.3g}) m", cut, textcoords="offset points",
+                xytext=(-8, 4), fontsize=8, color="C2", ha="right")
+    ax.plot(*zip(P["A"], P["C"]), ":", color="0.5", lw=1)
+    for name in ("A", "A1"):
+        ax.plot(*P[name], "k^", ms=9)
+    ax.annotate("13: spring\non link 2", P["A"], textcoords="offset points", xytext=(-10, 12), fontsize=8,
+                color="C1", ha="right")
     w = p.point_weights()
-    for name, P in (("A", A), ("D", D), ("B", B), ("C", C)):
-        ax1.plot(*P, "o", ms=4 + 10 * w[name] / max(w.values()), color="C3")
-        ax1.annotate(f"{name}: {w[name]:.4g} N", P, textcoords="offset points", xytext=(6, 6), fontsize=8)
-    ax1.set_aspect("equal")
-    ax1.set_title("substitution weights (half payload)", fontsize=9)
-    th = np.linspace(*p.range2, 200)
+    wmax = max(w.values())
+    for name in "ADBC":
+        ax.plot(*P[name], "o", ms=5 + 12 * w[name] / wmax, color="C3", alpha=0.6)
+    for name in ("A", "B", "C", "D", "E", "F"):
+        ax.annotate(name, P[name], textcoords="offset points", xytext=(-4, 7), fontsize=9, ha="right")
+    ax.text(0.98, 0.97, "substitution weights (half payload):\n" + "\n".join(
+        f"W_{k} = {w[k]:.4g} N" for k in "ADBC"), transform=ax.transAxes, fontsize=8, ha="right", va="top",
+        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9})
+    ax.set_aspect("equal")
+    ax.set_ylim(bottom, hi_y + 0.45 * span)
+    ax.set_xlim(pts[:, 0].min() - 0.3 * span, pts[:, 0].max() + 0.15 * span)
+    ax.set_xlabel("x from A (m)")
+    ax.set_ylabel("height from A (m)")
+    ax.set_title("mechanism at mid-range (link numbers in blue)", fontsize=9)
+    ax.grid(alpha=0.3)
+
+    a2 = np.linspace(*p.range2, n)
+    a3 = np.linspace(*p.range3, n)
+    X, Y = np.meshgrid(a2, a3)
+    th = np.stack([X.ravel(), Y.ravel()], axis=1)
+    for ax, fn, label, title in (
+        (axes[0, 1], p.cylinder_force, "cylinder force F (N)", "cylinder 10 force, half payload"),
+        (axes[1, 0], p.hand_force, "operator's force along A→C (N)", "what the operator holds, half payload"),
+    ):
+        Z = fn(th, 0.5).reshape(X.shape)
+        im = ax.contourf(np.degrees(X), np.degrees(Y), Z, levels=14, cmap="viridis")
+        cs = ax.contour(np.degrees(X), np.degrees(Y), Z, levels=7, colors="w", linewidths=0.6)
+        ax.clabel(cs, fontsize=7, fmt="%.0f")
+        fig.colorbar(im, ax=ax, label=label)
+        ax.set_xlabel("upper arm angle θ2 (deg from horizontal)")
+        ax.set_ylabel("forearm angle θ3 (deg from horizontal)")
+        lo, hi = float(np.min(Z)), float(np.max(Z))
+        ax.set_title(f"{title}: {lo:.4g} … {hi:.4g} N", fontsize=9)
+    ax = axes[1, 1]
+    th2 = np.linspace(*p.range2, 200)
     t = p.term()
-    ax2.plot(np.degrees(th), t.moment(th), "C1", label="spring moment on the upper arm")
-    ax2.plot(np.degrees(th), -w["D"] * p.l2 * np.cos(th), "k--", label="gravity moment of W_D")
-    ax2.set_xlabel("θ2 (deg from horizontal)")
-    ax2.set_ylabel("N·m")
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3)
-    ax2.set_title(f"drive force at B: {p.drive_force():.4g} N (constant)", fontsize=9)
+    ax.plot(np.degrees(th2), t.moment(th2), "C1-", lw=2, label="spring 13 moment on link 2")
+    ax.plot(np.degrees(th2), -w["D"] * p.l2 * np.cos(th2), "k--", lw=1.5, label="gravity moment of W_D about A")
+    ax.set_xlabel("upper arm angle θ2 (deg from horizontal)")
+    ax.set_ylabel("moment about A (N·m)")
+    ax.legend(fontsize=8, loc="lower center")
+    ax.grid(alpha=0.3)
+    loads = ", ".join(f"{p.vertical_load(f):.4g}" for f in PAYLOADS)
+    ax.set_title(f"spring cancels W_D·l2·cos θ2 exactly; vertical load at B {loads} N (payload 0, ½, 1)",
+                 fontsize=9)
+    fig.suptitle(f"Pantograph manipulator, k = {p.k:g}: cylinder base P = ({base[0]:.3g}, {base[1]:.3g}) m",
+                 fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

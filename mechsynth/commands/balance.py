@@ -49,6 +49,30 @@ def parse_range(text: str, name: str = "range") -> tuple[float, float]:
     return lo, hi
 
 
+PLOT_FORMATS = (".png", ".pdf", ".svg")
+
+
+def plot_file(text: str) -> str:
+    """A figure path ending in .png, .pdf or .svg (checked before any work is done)."""
+    import os
+
+    ext = os.path.splitext(text)[1].lower()
+    if ext not in PLOT_FORMATS:
+        raise argparse.ArgumentTypeError(
+            f"a plot is written as PNG, PDF or SVG: end the file name in {', '.join(PLOT_FORMATS)}, not {text!r}")
+    return text
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog=PROG, description="Static and dynamic balancing of robot arms.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -56,11 +80,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     def common(sp):
         sp.add_argument("--format", choices=("table", "json"), default="table")
-        sp.add_argument("--plot", metavar="FILE", help="write a figure (PNG, PDF or SVG)")
+        sp.add_argument("--plot", metavar="FILE", type=plot_file, help="write a figure (.png, .pdf or .svg)")
 
     a = sub.add_parser("arm", help="balance an arm scene ([arm] TOML)")
     a.add_argument("file")
-    a.add_argument("--samples", type=int, help="random configurations of the check (default from file or 1000)")
+    a.add_argument("--samples", type=_count, help="random configurations of the check (default from file or 1000)")
     a.add_argument("--seed", type=int)
     common(a)
 
@@ -219,18 +243,26 @@ def _table_prismatic(out: dict) -> str:
 
 def _table_pantograph(out: dict) -> str:
     w = out["point_weights"]
+    cf, cy, hf = out["cylinder_force"], out["cylinder"], out["hand_force"]
     rows = [
         ("substitution weights (N)", ", ".join(f"{k} {v:.6g}" for k, v in w.items())),
         ("spring amplitude c·r·d = e·T (N·m)", out["term"]["amplitude"]),
         ("spring", out["spring_moment"]),
-        ("drive force at B (N)", out["drive_force"]),
-        ("drive force, payload 0..max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
-        ("max residual (check)", out["max_residual"]),
+        ("vertical load at B, W_B + k·W_C (N)", out["drive_force"]),
+        ("  payload 0 .. max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
+        ("cylinder force, half payload (N)", f"{_num(cf['half_payload']['min'])} .. {_num(cf['half_payload']['max'])}"),
+        ("cylinder force, payload 0..max (N)", f"{_num(cf['min'])} .. {_num(cf['max'])}"),
+        ("cylinder length (m)", f"{_num(cy['length_min'])} .. {_num(cy['length_max'])}"),
+        ("operator's force along A→C (N)", f"{_num(hf['min'])} .. {_num(hf['max'])}"),
+        ("max residual (virtual work)", out["max_residual"]),
         ("relative residual", out["relative_residual"]),
     ]
     if "c" in out["device"]["tension"]:
         rows.insert(3, ("tension spring c (N/m)", out["device"]["tension"]["c"]))
-    return _kv(rows) + f"\nnote: {out['note']}"
+    s = _kv(rows) + f"\nnote: {out['note']}"
+    for n in out.get("notes", []):
+        s += f"\nnote: {n}"
+    return s
 
 
 # ----------------------------------------------------------------- commands

@@ -36,5 +36,5 @@ def test_benchmark_quick_rows(tmp_path):
     fit = [r for r in rows if r["table"] == "fit"]
     arm = [r for r in rows if r["table"] == "arm_check"]
     assert fit and arm
-    assert all(r["seconds"] < 0.1 for r in fit if r["default"])
+    assert all(r["max_rel_error"] < 0.1 for r in fit if r["default"])  # timings are reported, never asserted
     assert all(r["relative_residual"] < 1e-9 for r in arm if r["arm"] == "arm_base_drives")

@@ -76,7 +76,7 @@ def test_prismatic_json(capsys, tmp_path):
 
 def test_pantograph_and_solve(capsys, tmp_path):
     code, out, _ = run(capsys, ["pantograph", str(MODELS / "pantograph.toml"), "--plot", str(tmp_path / "p.png")])
-    assert code == 0 and "drive force" in out
+    assert code == 0 and "cylinder force" in out
     for name in ("arm_base_drives", "arm_prismatic", "spring_compression", "pantograph", "slider_countermass"):
         code, out, _ = run(capsys, ["solve", str(MODELS / f"{name}.toml"), "--format", "json"])
         assert code == 0 and json.loads(out)
@@ -97,12 +97,26 @@ def test_pantograph_and_solve(capsys, tmp_path):
     (["spring", "--kind", "coil"], "invalid choice"),
     (["spring", "--kind", "compression"], "required"),
     (["frobnicate"], "invalid choice"),
+    # issue 14: each of these printed a traceback
+    (["arm", str(MODELS / "arm_base_drives.toml"), "--samples", "0"], "≥ 1"),
+    (["arm", str(MODELS / "arm_base_drives.toml"), "--samples", "-5"], "≥ 1"),
+    (["arm", str(MODELS / "arm_base_drives.toml"), "--plot", "x.txt"], "PNG, PDF or SVG"),
+    (["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5",
+      "--plot", "p.xyz"], "PNG, PDF or SVG"),
     ([], "required"),
 ])
 def test_bad_input_one_line_exit_2(capsys, argv, words):
     code, out, err = run(capsys, argv)
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+def test_range_across_0_and_pi_says_what_the_device_does(capsys):
+    argv = SPRING.copy()
+    argv[argv.index("20..160")] = "-30..200"
+    code, out, err = run(capsys, argv)
+    assert code == 0 and err == ""
+    assert "dead centres φ = 0° and 180°" in out and "change sign" in out
 
 
 def test_bad_arm_file_names_file_and_key(capsys, tmp_path):
