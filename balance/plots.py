@@ -23,20 +23,27 @@ def _plt():
     return plt
 
 
-def plot_spring(res: FitResult, path: str) -> str:
-    """Target ``Φ0·sin φ`` against the device moment, and the relative residual."""
+def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spring: dict | None = None) -> str:
+    """Target ``Φ0·sin φ`` against the device moment, the relative residual, and (given) the
+    Pareto front of error against free length and peak force."""
     plt = _plt()
     lo, hi = res.phi_range
     phi = np.linspace(lo, hi, 1001)
     dev = res.device
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
+    panels = 3 if front else 2
+    fig, axes = plt.subplots(panels, 1, figsize=(7.5, 3.2 * panels + 0.4), constrained_layout=True)
+    ax1, ax2 = axes[0], axes[1]
     deg = np.degrees(phi)
     ax1.plot(deg, res.moment * np.sin(phi), "k-", lw=2, label="target  Φ0·sin φ")
     ax1.plot(deg, dev.moment(phi), "C1--", lw=1.5, label=f"{res.kind} device")
     ax1.set_ylabel("moment on the crank (N·m)")
-    ax1.set_title(
-        f"{res.kind} spring, {res.method}/{res.norm}: c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
-        f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m", fontsize=9)
+    ax1.set_xlabel("crank angle φ (deg, from the base point C)")
+    title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
+             f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
+    if spring:
+        title += (f"\nspring: d = {1e3 * spring['wire_diameter_m']:.3g} mm, D = {1e3 * spring['mean_diameter_m']:.4g} mm, "
+                  f"n = {spring['active_coils']:g}, {spring['material']}")
+    ax1.set_title(title, fontsize=9)
     ax1.legend(loc="best", fontsize=8)
     ax1.grid(alpha=0.3)
     e = relative_errors(dev, res.moment, phi)
@@ -44,11 +51,43 @@ def plot_spring(res: FitResult, path: str) -> str:
     ax2.axhline(0, color="k", lw=0.5)
     ax2.set_ylabel("(M − Φ0·sin φ)/|Φ0|  (%)")
     ax2.set_xlabel("crank angle φ (deg, from the base point C)")
-    ax2.set_title(f"max {100 * res.max_rel_error:.3g} %, RMS {100 * res.rms_rel_error:.3g} %", fontsize=9)
+    if res.max_rel_error < 1e-12:
+        ax2.set_ylim(-1, 1)
+        ax2.set_title(f"exact to rounding: max |error| {res.max_rel_error:.2g}", fontsize=9)
+    else:
+        ax2.set_title(f"relative error: max {100 * res.max_rel_error:.3g} %, RMS {100 * res.rms_rel_error:.3g} %",
+                      fontsize=9)
     ax2.grid(alpha=0.3)
+    if front:
+        ax3 = axes[2]
+        groups: dict[float, list[dict]] = {}
+        for pt in front:
+            groups.setdefault(float(f"{pt['force']:.3g}"), []).append(pt)
+        cmap = plt.get_cmap("viridis")
+        levels = sorted(groups)
+        for i, f in enumerate(levels):
+            pts = sorted(groups[f], key=lambda q: q["size"])
+            ax3.plot([q["size"] for q in pts], [100 * q["error"] for q in pts], "o-", ms=4, lw=1.2,
+                     color=cmap(i / max(len(levels) - 1, 1)), label=f"peak force {f:.3g} N")
+        ax3.plot(res.free_length, 100 * (res.max_rel_error if res.norm == "max" else res.rms_rel_error), "o",
+                 ms=13, mfc="none", mec="red", mew=2, label="this fit")
+        ax3.set_xscale("log")
+        ax3.set_yscale("log")
+        ax3.set_xlabel("device size: free length 2r + r0 + a (m)")
+        ax3.set_ylabel(f"{res.norm} relative error (%)")
+        ax3.set_title("Pareto front: error against size, one line per peak spring force", fontsize=9)
+        ax3.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+        ax3.grid(alpha=0.3, which="both")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def _log_norm(values):
+    from matplotlib.colors import LogNorm
+
+    v = np.asarray(values)
+    return LogNorm(vmin=max(float(np.min(v)), 1e-12), vmax=max(float(np.max(v)), float(np.min(v)) * 1.01, 1e-12))
 
 
 def _two_joints(arm: Arm) -> tuple[int, int]:

@@ -13,13 +13,15 @@ from typing import Any, Mapping
 from .arm import arm_from_table
 from .counterweights import counterweights
 from .countermass import verify_counter_mass
-from .errors import SchemaError
+from .errors import InvalidInput, SchemaError
+from .helical import design_for_device
+from .tradeoff import advice, bound_sensitivity, pareto_front
 from .schema import load_toml, parse
-from .fit import SpringBounds, fit_spring
+from .fit import FitResult, SpringBounds, fit_spring
 from .pantograph import balance_pantograph, pantograph_from_dict
 from .static import balance_arm
 
-__all__ = ["solve_arm", "solve_spring", "solve_prismatic", "solve_pantograph", "load_toml"]
+__all__ = ["solve_arm", "solve_spring", "spring_problem", "solve_prismatic", "solve_pantograph", "load_toml"]
 
 
 def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
@@ -54,10 +56,17 @@ def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
 
 
 def spring_from_dict(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
-    """Arguments of :func:`~balance.fit.fit_spring` from a ``[spring]`` document."""
+    """Arguments of :func:`spring_problem` from a ``[spring]`` document."""
     t = parse(doc, "spring", source)
     if t.a is None:
         raise SchemaError(f"{source}: [spring] needs 'a' = [low, high] (m).")
+    design = None
+    if t.design is not None:
+        d = t.design
+        design = {"material": d.material, "max_outer_diameter": d.max_outer_diameter,
+                  "min_inner_diameter": d.min_inner_diameter, "ends": d.ends}
+        if d.guided is not None:
+            design["guided"] = d.guided
     return {
         "kind": t.kind,
         "moment": t.moment,
@@ -67,11 +76,49 @@ def spring_from_dict(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
         "method": t.method,
         "norm": t.norm,
         "grid": t.grid,
+        "target_error": t.target_error,
+        "pareto": t.pareto,
+        "design": design,
     }
 
 
+def spring_problem(kind: str, moment: float, phi_range, bounds: SpringBounds, method: str | None = None,
+                   norm: str = "max", grid: int = 61, target_error: float | None = None,
+                   pareto: bool = False, design: dict | None = None) -> tuple[dict, FitResult]:
+    """Fit a device, then (compression) the trade-off advice, and a helical spring on request.
+
+    Returns the JSON-able result (the fit's fields plus ``warnings``, ``sensitivity``,
+    ``pareto`` when asked, ``spring`` when ``design`` is given, ``target_met``) and the fit.
+    """
+    if target_error is not None and not (math.isfinite(target_error) and 0 < target_error < 1):
+        raise InvalidInput(f"the requested error must lie in (0, 1), not {target_error}.")
+    res = fit_spring(kind, moment, phi_range, bounds, method=method, norm=norm, grid=grid)
+    out = res.to_dict()
+    sens = bound_sensitivity(res, bounds) if res.method != "exact" else []
+    front = pareto_front(res, bounds) if pareto else None
+    if pareto and kind != "compression":
+        raise InvalidInput(f"the Pareto front is for the fitted compression device; a {kind} device is exact.")
+    out["sensitivity"] = sens
+    if front is not None:
+        out["pareto"] = front
+    out["warnings"] = advice(res, sens, target_error, front)
+    out["target_error"] = target_error
+    err = res.max_rel_error if norm == "max" else res.rms_rel_error
+    out["target_met"] = None if target_error is None else err <= target_error
+    if design is not None:
+        out["spring"] = design_for_device(res, **design)
+        if kind == "compression-lever":
+            out["lever"] = dict(out["lever"], **out["spring"].pop("lever"), designed_from_spring=True)
+        sp = out["spring"]
+        if sp.get("buckling") and not sp["buckling"]["safe"]:
+            out["warnings"].append(
+                f"the spring buckles (critical deflection {1e3 * sp['buckling']['critical_deflection_m']:.3g} mm < "
+                f"{1e3 * sp['buckling']['max_deflection_m']:.4g} mm): guide it on a rod or in a sleeve")
+    return out, res
+
+
 def solve_spring(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
-    """Fit the crank-and-rocker device of a ``[spring]`` document (see :func:`fit_spring`).
+    """Fit the crank-and-rocker device of a ``[spring]`` document (see :func:`spring_problem`).
 
     Examples
     --------
@@ -80,8 +127,7 @@ def solve_spring(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
     >>> solve_spring(doc)["max_rel_error"] < 1e-12
     True
     """
-    res = fit_spring(**spring_from_dict(doc, source))
-    out = res.to_dict()
+    out, _ = spring_problem(**spring_from_dict(doc, source))
     out["kind_of_problem"] = "spring"
     return out
 

@@ -73,6 +73,12 @@ def _count(text: str) -> int:
     return value
 
 
+def _materials():
+    from balance.helical import MATERIALS
+
+    return MATERIALS
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog=PROG, description="Static and dynamic balancing of robot arms.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -88,8 +94,9 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--seed", type=int)
     common(a)
 
-    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ")
-    s.add_argument("--kind", required=True, choices=("tension", "compression"))
+    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)")
+    s.add_argument("--kind", required=True, choices=("tension", "compression", "compression-lever"),
+                   help="compression-lever: compression spring on the lever beyond the pin, exact at a = r0")
     s.add_argument("--moment", required=True, type=float, metavar="PHI0",
                    help="Φ0 in N·m; + turns the crank away from the base point (compression), − towards it (tension)")
     s.add_argument("--range", required=True, metavar="A..B", help="working range of φ in degrees")
@@ -102,6 +109,18 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"))
     s.add_argument("--norm", choices=("max", "rms"), default="max")
     s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61)")
+    s.add_argument("--target-error", type=float, metavar="E",
+                   help="requested relative error (e.g. 0.01); missed: a warning and exit status 1")
+    s.add_argument("--pareto", action="store_true",
+                   help="compression: the front of error against free length and peak force (a few seconds)")
+    g = s.add_argument_group("helical spring design (EN 13906-1 formulas)")
+    g.add_argument("--design-spring", action="store_true", help="design a helical spring a maker can wind")
+    g.add_argument("--material", choices=tuple(_materials()), help="spring wire (default music-wire)")
+    g.add_argument("--max-outer-diameter", type=float, metavar="D", help="bore the coils must fit in (m)")
+    g.add_argument("--min-inner-diameter", type=float, metavar="D", help="rod the coils must fit over (m)")
+    g.add_argument("--spring-ends", choices=("pinned", "fixed-free", "fixed-pinned", "fixed"),
+                   help="end condition for buckling of a compression spring (default pinned)")
+    g.add_argument("--guided", action="store_true", help="the compression spring runs on a rod or in a sleeve")
     common(s)
 
     pr = sub.add_parser("prismatic", help="counter-masses for a sliding last link")
@@ -219,9 +238,44 @@ def _table_spring(out: dict) -> str:
     ]
     if out.get("deflection") is not None:
         rows.insert(9, ("deflection (l0 − L_min)/l0", out["deflection"]))
+    if out["kind"] == "compression-lever":
+        lv = out["lever"]
+        rows[7] = ("spring free length = stop from C (m)", lv["stop_distance_from_C"])
+        rows.insert(9, ("lever reach from C (m)", lv["reach_from_C"]))
+        rows.insert(10, ("  beyond the farthest pin (m)", lv["extra_length"]))
+        rows.insert(11, ("  a spring between C and B reaches (m)", lv["reach_from_C_fig_a"]))
     s = _kv(rows)
+    sp = out.get("spring")
+    if sp:
+        srows = [
+            ("spring", f"{sp['kind']}, {sp['material']} ({sp['material_description']})"),
+            ("wire diameter d (mm)", 1e3 * sp["wire_diameter_m"]),
+            ("mean coil diameter D (mm)", 1e3 * sp["mean_diameter_m"]),
+            ("outer / inner diameter (mm)", f"{1e3 * sp['outer_diameter_m']:.4g} / {1e3 * sp['inner_diameter_m']:.4g}"),
+            ("active / total coils", f"{sp['active_coils']:g} / {sp['total_coils']:g}"),
+            ("rate G·d⁴/(8·D³·n) (N/m)", sp["stiffness_N_per_m"]),
+            ("free length (m)", sp["free_length_m"]),
+            ("peak shear stress, corrected (MPa)", sp["max_shear_stress_Pa"] / 1e6),
+            ("allowed shear stress (MPa)", sp["allowed_shear_stress_Pa"] / 1e6),
+            ("mass (kg)", sp["mass_kg"]),
+        ]
+        if sp["kind"] == "compression":
+            b = sp["buckling"]
+            srows.insert(7, ("solid length (m)", sp["solid_length_m"]))
+            srows.append(("buckling", "guided: none" if b["guided"] else
+                          f"{'safe' if b['safe'] else 'BUCKLES'} ({b['end_condition']} ends, critical deflection "
+                          f"{_num(b['critical_deflection_m'])} m, working {_num(b['max_deflection_m'])} m)"))
+        else:
+            srows.append(("anchor offset beyond C (m)", sp["anchor_offset_m"]))
+        s += "\n\n" + _kv(srows)
+    if out.get("pareto"):
+        s += "\n\nPareto front (error, free length, peak force):"
+        for p in out["pareto"]:
+            s += f"\n  {100 * p['error']:8.4g} %  {p['size']:8.4g} m  {p['force']:10.5g} N"
     for n in out.get("notes", []):
         s += f"\nnote: {n}"
+    for w in out.get("warnings", []):
+        s += f"\nwarning: {w}"
     return s
 
 
@@ -297,19 +351,32 @@ def _cmd_arm(ns) -> dict:
     return out
 
 
-def _cmd_spring(ns) -> tuple[dict, Any]:
-    from balance.fit import DEFAULT_GRID, SpringBounds, fit_spring
+def _cmd_spring(ns) -> dict:
+    from balance.errors import InvalidInput
+    from balance.fit import DEFAULT_GRID, SpringBounds
+    from balance.problems import spring_problem
 
+    design_opts = {"material": ns.material, "max_outer_diameter": ns.max_outer_diameter,
+                   "min_inner_diameter": ns.min_inner_diameter, "ends": ns.spring_ends}
+    given = [f"--{k.replace('_', '-')}" for k, v in design_opts.items() if v is not None] + (["--guided"] if ns.guided else [])
+    if given and not ns.design_spring:
+        raise InvalidInput(f"{', '.join(given)} only apply with --design-spring.")
+    design = None
+    if ns.design_spring:
+        design = {k: v for k, v in design_opts.items() if v is not None}
+        if ns.guided:
+            design["guided"] = True
     lo, hi = parse_range(ns.range, "--range")
     bounds = SpringBounds(parse_range(ns.r, "--r"), parse_range(ns.r0, "--r0"), parse_range(ns.a, "--a"),
                           ns.max_force, ns.max_free_length, ns.max_deflection)
-    res = fit_spring(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds,
-                     method=ns.method, norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID)
+    out, res = spring_problem(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds, method=ns.method,
+                              norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID,
+                              target_error=ns.target_error, pareto=ns.pareto, design=design)
     if ns.plot:
         from balance.plots import plot_spring
 
-        plot_spring(res, ns.plot)
-    return res.to_dict()
+        plot_spring(res, ns.plot, out.get("pareto"), out.get("spring"))
+    return out
 
 
 def _cmd_prismatic(ns) -> dict:
@@ -374,7 +441,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         if ns.command == "arm":
             _emit(_cmd_arm(ns), ns.format, _table_arm)
         elif ns.command == "spring":
-            _emit(_cmd_spring(ns), ns.format, _table_spring)
+            out = _cmd_spring(ns)
+            _emit(out, ns.format, _table_spring)
+            if out.get("target_met") is False:
+                return 1  # a valid query whose requested error is not reached
         elif ns.command == "prismatic":
             _emit(_cmd_prismatic(ns), ns.format, _table_prismatic)
         elif ns.command == "pantograph":

@@ -84,7 +84,7 @@ def test_pantograph_and_solve(capsys, tmp_path):
 
 @pytest.mark.parametrize("argv, words", [
     (["spring", "--kind", "tension", "--moment", "100", "--range", "0..180", "--r", "0.01..0.5",
-      "--r0", "0.01..1", "--a", "0..1"], "compression spring"),
+      "--r0", "0.01..1", "--a", "0..1"], "compression device"),
     (SPRING[:6] + ["160..20"] + SPRING[7:], "inverted"),
     (SPRING[:6] + ["20..20"] + SPRING[7:], "empty"),
     (SPRING[:6] + ["20-160"] + SPRING[7:], "low..high"),
@@ -104,6 +104,18 @@ def test_pantograph_and_solve(capsys, tmp_path):
     (["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5",
       "--plot", "p.xyz"], "PNG, PDF or SVG"),
     ([], "required"),
+    (SPRING + ["--material", "steel"], "invalid choice"),
+    (SPRING + ["--material", "stainless"], "only apply with --design-spring"),
+    (SPRING + ["--guided"], "only apply with --design-spring"),
+    (SPRING + ["--design-spring", "--max-outer-diameter", "-1"], "outer diameter"),
+    (SPRING + ["--design-spring", "--max-outer-diameter", "0.001"], "fits"),
+    (SPRING + ["--target-error", "2"], "requested error"),
+    (SPRING + ["--target-error", "nan"], "requested error"),
+    (["spring", "--kind", "tension", "--moment", "-1", "--range", "0..90", "--r", "0.1..0.2", "--r0", "0.1..0.2",
+      "--a", "0..1", "--pareto"], "Pareto front"),
+    (["spring", "--kind", "compression-lever", "--moment", "-1", "--range", "0..90", "--r", "0.1..0.2",
+      "--r0", "0.1..0.2", "--a", "0.5..1"], "a = r0"),
+    (SPRING + ["--spring-ends", "glued", "--design-spring"], "invalid choice"),
 ])
 def test_bad_input_one_line_exit_2(capsys, argv, words):
     code, out, err = run(capsys, argv)
@@ -117,6 +129,22 @@ def test_range_across_0_and_pi_says_what_the_device_does(capsys):
     code, out, err = run(capsys, argv)
     assert code == 0 and err == ""
     assert "dead centres φ = 0° and 180°" in out and "change sign" in out
+
+
+def test_spring_design_lever_pareto_and_target(capsys, tmp_path):
+    png = tmp_path / "s.png"
+    code, out, err = run(capsys, SPRING + ["--max-force", "2000", "--max-free-length", "1.5", "--pareto",
+                                           "--target-error", "0.03", "--design-spring", "--material", "oil-tempered",
+                                           "--format", "json", "--plot", str(png)])
+    d = json.loads(out)
+    assert code == 1 and err == ""  # the requested error is missed: a result, a warning, exit 1
+    assert d["target_met"] is False and d["pareto"] and png.stat().st_size > 20_000
+    for k in ("wire_diameter_m", "mean_diameter_m", "active_coils", "shear_modulus_Pa", "stiffness_N_per_m",
+              "max_shear_stress_Pa", "allowed_shear_stress_Pa", "solid_length_m"):
+        assert k in d["spring"]
+    code, out, _ = run(capsys, ["spring", "--kind", "compression-lever", "--moment", "-100", "--range", "0..180",
+                                "--r", "0.05..0.2", "--r0", "0.1..0.4", "--a", "0..1", "--design-spring"])
+    assert code == 0 and "lever reach from C" in out and "beyond the farthest pin" in out
 
 
 def test_bad_arm_file_names_file_and_key(capsys, tmp_path):
