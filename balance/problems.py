@@ -16,6 +16,7 @@ from .countermass import verify_counter_mass
 from .errors import InvalidInput, SchemaError
 from .helical import design_for_device
 from .tradeoff import advice, bound_sensitivity, pareto_front
+from .transmission import transmissions
 from .schema import load_toml, parse
 from .fit import FitResult, SpringBounds, fit_spring
 from .pantograph import balance_pantograph, pantograph_from_dict
@@ -51,6 +52,8 @@ def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
         if b is not None:
             arms[i] = b
     out["counterweights"] = counterweights(res.arm, arms, samples=t.check.samples, seed=t.check.seed)
+    if t.transmission:
+        out["transmission"] = transmissions([term["drive_form"] for term in out["terms"]], arm.shaft_names)
     out["kind"] = "arm"
     return out
 

@@ -92,6 +92,8 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("file")
     a.add_argument("--samples", type=_count, help="random configurations of the check (default from file or 1000)")
     a.add_argument("--seed", type=int)
+    a.add_argument("--transmission", action="store_true",
+                   help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
     common(a)
 
     s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)")
@@ -212,6 +214,18 @@ def _table_arm(out: dict) -> str:
             ("worst residual, payload 0..max", pl["max_residual"]),
             ("effect of half the payload", pl["half_payload_effect"]),
         ])]
+    for tr in out.get("transmission", []):
+        lines += ["", f"gear train for {tr['shaft']} = {_form_text(tr['form'], out)} "
+                      f"(composed back: error {tr['error']:.2g}):"]
+        for el in tr["train"]:
+            if el["element"] == "differential":
+                lines.append(f"  differential: carrier {el['carrier']}, side gear {el['side']} → {el['output']}"
+                             " (ω_out = 2·ω_carrier − ω_side)")
+            elif el["element"] == "shaft":
+                lines.append(f"  the crank sits on shaft {el['input']}")
+            else:
+                rev = ", reversing" if el["reverses"] else ""
+                lines.append(f"  {el['element']} {el['input']} → {el['output']}, ratio {el['ratio']:.6g}{rev}")
     cw = out.get("counterweights")
     if cw:
         if cw["available"]:
@@ -222,6 +236,12 @@ def _table_arm(out: dict) -> str:
         else:
             lines += ["", f"counterweights: not available — {cw['reason']}"]
     return "\n".join(lines)
+
+
+def _form_text(form, out: dict) -> str:
+    from balance.potential import format_form
+
+    return format_form(form, [f"ψ{i + 1}" for i in range(len(form))])
 
 
 def _table_spring(out: dict) -> str:
@@ -332,9 +352,11 @@ def _cmd_arm(ns) -> dict:
     from balance.problems import load_toml, solve_arm
 
     doc = load_toml(ns.file)
-    if ns.samples is not None or ns.seed is not None:
+    if ns.samples is not None or ns.seed is not None or ns.transmission:
         doc = dict(doc)
         arm_t = dict(doc.get("arm", {}))
+        if ns.transmission:
+            arm_t["transmission"] = True
         ck = dict(arm_t.get("check", {}))
         if ns.samples is not None:
             ck["samples"] = ns.samples
