@@ -8,13 +8,17 @@ naming the source and the key.
 from __future__ import annotations
 
 import math
+import os
 from typing import Any, Mapping
+
+import numpy as np
 
 from .arm import arm_from_table
 from .counterweights import counterweights
 from .countermass import verify_counter_mass
 from .errors import InvalidInput, SchemaError
 from .helical import design_for_device
+from .urdf import pinocchio_check
 from .tradeoff import advice, bound_sensitivity, pareto_front
 from .transmission import transmissions
 from .schema import load_toml, parse
@@ -41,20 +45,58 @@ def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
     (5.0, True)
     """
     t = parse(doc, "arm", source)
-    arm = arm_from_table(t, source)
-    d = t.devices
-    opts = {"eccentricity": d.eccentricity, "r": d.r, "r0": d.r0}
-    res = balance_arm(arm, samples=t.check.samples, seed=t.check.seed, device_options=opts)
-    out = res.to_dict()
-    arms = {}
-    for i, ln in enumerate(t.links):
-        b = ln.counterweight_arm if ln.counterweight_arm is not None else t.counterweights.arm
-        if b is not None:
-            arms[i] = b
-    out["counterweights"] = counterweights(res.arm, arms, samples=t.check.samples, seed=t.check.seed)
+    if t.urdf is not None:
+        out = _solve_urdf_arm(t, source)
+    else:
+        arm = arm_from_table(t, source)
+        d = t.devices
+        opts = {"eccentricity": d.eccentricity, "r": d.r, "r0": d.r0}
+        res = balance_arm(arm, samples=t.check.samples, seed=t.check.seed, device_options=opts)
+        out = res.to_dict()
+        arms = {}
+        for i, ln in enumerate(t.links):
+            b = ln.counterweight_arm if ln.counterweight_arm is not None else t.counterweights.arm
+            if b is not None:
+                arms[i] = b
+        out["counterweights"] = counterweights(res.arm, arms, samples=t.check.samples, seed=t.check.seed)
+        out["pinocchio"] = pinocchio_check(res.arm, res.terms, t.check.samples, t.check.seed, t.g)
     if t.transmission:
-        out["transmission"] = transmissions([term["drive_form"] for term in out["terms"]], arm.shaft_names)
+        out["transmission"] = transmissions([term["drive_form"] for term in out["terms"]],
+                                            [f"ψ{i + 1}" for i in range(len(out["joints"]))])
     out["kind"] = "arm"
+    return out
+
+
+def _solve_urdf_arm(t, source: str) -> dict:
+    """Balance an arm read from URDF (path relative to the scene file); Pinocchio is the check."""
+    from .arm import _drive_matrix
+    from .static import ArmBalance, check_terms, device_table
+    from .urdf import load_urdf, pinocchio_check
+
+    if t.links or t.loads:
+        raise SchemaError(f"{source}: [arm] takes its links from 'urdf'; remove [[arm.links]] and [[arm.loads]].")
+    base = os.path.dirname(source) if os.path.exists(source) else ""
+    path = t.urdf if os.path.isabs(t.urdf) else os.path.join(base, t.urdf)
+    arm = load_urdf(path, accuracy=t.accuracy, g=t.g, name=t.name if t.name != "arm" else None)
+    if t.drives != "joint":
+        try:
+            arm.drive_matrix = np.asarray(_drive_matrix(t.drives, arm.n))
+        except (TypeError, ValueError):
+            raise SchemaError(f"{source}: 'drives' must be a {arm.n}×{arm.n} matrix for this URDF arm.") from None
+        if arm.drive_matrix.shape != (arm.n, arm.n) or abs(np.linalg.det(arm.drive_matrix)) < 1e-12:
+            raise SchemaError(f"{source}: 'drives' must be a non-singular {arm.n}×{arm.n} matrix for this URDF arm.")
+    terms = arm.harmonic_terms()
+    q = arm.sample(t.check.samples, t.check.seed)
+    check = check_terms(arm, terms, q=q, seed=t.check.seed)
+    d = t.devices
+    devices = device_table(arm, terms, {"eccentricity": d.eccentricity, "r": d.r, "r0": d.r0})
+    prismatic = [{"link": ln.name, "coordinate": f"q{i + 1}", "stroke": ln.stroke, "gear_ratio": ln.gear_ratio,
+                  "gamma_max": (ln.stroke / 2) / ln.gear_ratio}
+                 for i, ln in enumerate(arm.links) if ln.joint == "prismatic"]
+    out = ArmBalance(arm, terms, devices, check, prismatic, None).to_dict()
+    out["urdf"] = path
+    out["pinocchio"] = pinocchio_check(arm, terms, t.check.samples, t.check.seed, t.g)
+    out["counterweights"] = {"available": False, "reason": "not computed for URDF arms"}
     return out
 
 

@@ -88,8 +88,8 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--format", choices=("table", "json"), default="table")
         sp.add_argument("--plot", metavar="FILE", type=plot_file, help="write a figure (.png, .pdf or .svg)")
 
-    a = sub.add_parser("arm", help="balance an arm scene ([arm] TOML)")
-    a.add_argument("file")
+    a = sub.add_parser("arm", help="balance an arm ([arm] TOML, or a URDF file)")
+    a.add_argument("file", help="a TOML file with an [arm] table, or a .urdf file")
     a.add_argument("--samples", type=_count, help="random configurations of the check (default from file or 1000)")
     a.add_argument("--seed", type=int)
     a.add_argument("--transmission", action="store_true",
@@ -200,6 +200,13 @@ def _table_arm(out: dict) -> str:
         ("relative residual", out["relative_residual"]),
         ("potential spread (J)", out["potential_spread"]),
     ])]
+    pc = out.get("pinocchio")
+    if pc:
+        rows = [(f"Pinocchio {pc['pinocchio']} check: max residual", pc["max_residual"]),
+                ("  relative to the largest gravity force", pc["relative_residual"])]
+        if "gravity_agreement" in pc:
+            rows.append(("  arm model's gravity against Pinocchio's", pc["gravity_agreement"]))
+        lines += ["", _kv(rows)]
     for p in out["prismatic"]:
         lines += ["", _kv([
             (f"prismatic {p['coordinate']} gear ratio k (m/rad)", p["gear_ratio"]),
@@ -351,7 +358,16 @@ def _cmd_arm(ns) -> dict:
     from balance.arm import arm_from_dict
     from balance.problems import load_toml, solve_arm
 
-    doc = load_toml(ns.file)
+    import os
+
+    if ns.file.lower().endswith(".urdf"):
+        doc = {"arm": {"urdf": os.path.abspath(ns.file), "name": os.path.basename(ns.file)}}
+        if ns.plot:
+            from balance.errors import InvalidInput
+
+            raise InvalidInput("--plot draws TOML arms; for a URDF arm write a TOML file with [arm] urdf = \"…\".")
+    else:
+        doc = load_toml(ns.file)
     if ns.samples is not None or ns.seed is not None or ns.transmission:
         doc = dict(doc)
         arm_t = dict(doc.get("arm", {}))
