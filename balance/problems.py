@@ -188,7 +188,14 @@ def solve_prismatic(doc: Mapping[str, Any], source: str = "<slider>") -> dict:
     t = parse(doc, "slider", source)
     res = verify_counter_mass(t.mass, t.inertia, t.counter_mass, t.q_max, stroke=t.stroke, C=t.C,
                               samples=t.samples)
-    return res.to_dict()
+    out = res.to_dict()
+    if t.dynamics is not None:
+        from .dynamics import slide_dynamics
+
+        d = t.dynamics
+        out["dynamics"] = slide_dynamics(t.mass, t.inertia, t.counter_mass, t.q_max, d.arm, d.length, d.mass,
+                                         d.samples, d.seed)
+    return out
 
 
 def solve_pantograph(doc: Mapping[str, Any], source: str = "<pantograph>") -> dict:

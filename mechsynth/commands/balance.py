@@ -132,6 +132,9 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--stroke", required=True, type=float, metavar="q_max", help="designed stroke half-amplitude (m)")
     pr.add_argument("--travel", type=float, metavar="S", help="stroke actually travelled (default q_max)")
     pr.add_argument("--C", type=float, dest="C", help="inertia constant (default C_min)")
+    pr.add_argument("--dynamics", choices=("spatial", "planar"),
+                    help="mass matrix of a three-joint arm carrying the slide (Pinocchio): ∂M/∂q with and "
+                         "without the counter-masses")
     common(pr)
 
     pa = sub.add_parser("pantograph", help="pantograph balanced manipulator ([pantograph] TOML)")
@@ -319,6 +322,15 @@ def _table_prismatic(out: dict) -> str:
     s = _kv(rows) + "\nlaws: z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M)"
     for m in out["messages"]:
         s += f"\nwarning: {m}"
+    dyn = out.get("dynamics")
+    if dyn:
+        s += f"\n\nmass matrix of a {dyn['arm']} arm carrying the slide (Pinocchio, {dyn['samples']} configurations):"
+        for label, c in dyn["cases"].items():
+            s += (f"\n  {label:<45} max |∂M/∂{c['coordinate']}| {c['max_dM_relative']:.3g}, change over the "
+                  f"range {c['max_change_relative']:.3g} (relative to the largest entry)")
+        s += f"\n  counter-mass cranks: {dyn['crank_laws']}"
+        s += f"\n  one counter-mass: keeping the centre of mass, the {dyn['one_mass']['keeps_centre_of_mass']}"
+        s += f"\n  one counter-mass keeping the inertia: only for {dyn['one_mass']['valid_interval_text']}"
     return s
 
 
@@ -421,11 +433,16 @@ def _cmd_prismatic(ns) -> dict:
     from balance.countermass import verify_counter_mass
 
     res = verify_counter_mass(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, stroke=ns.travel, C=ns.C)
+    out = res.to_dict()
+    if ns.dynamics:
+        from balance.dynamics import slide_dynamics
+
+        out["dynamics"] = slide_dynamics(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, ns.dynamics)
     if ns.plot:
         from balance.plots import plot_prismatic
 
         plot_prismatic(res.m, res.inertia, res.M, res.q_max, res.stroke, res.C, ns.plot)
-    return res.to_dict()
+    return out
 
 
 def _cmd_pantograph(ns) -> dict:
