@@ -90,75 +90,111 @@ def _log_norm(values):
     return LogNorm(vmin=max(float(np.min(v)), 1e-12), vmax=max(float(np.max(v)), float(np.min(v)) * 1.01, 1e-12))
 
 
-def _two_joints(arm: Arm) -> tuple[int, int]:
-    moving = [i for i, ln in enumerate(arm.links) if ln.joint != "vertical"]
-    if len(moving) >= 2:
-        return moving[0], moving[1]
-    return moving[0], moving[0]
-
-
-def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 121) -> str:
-    """Residual generalised force (max over joints) over a 2-D slice of the workspace.
-
-    The slice spans the first two in-plane joints; the other joints sit at mid-range.
-    With a payload the right panel shows the residual at full payload.
-    """
+def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -> str:
+    """Per joint, swept over its range with the others at 80 % of theirs: the gravity moment the
+    devices must carry, the devices' moment, and the residual relative to the gravity moment
+    (at half, zero and full payload when the arm has one)."""
     plt = _plt()
-    i, j = _two_joints(arm)
     lim = [ln.limits for ln in arm.links]
-    mid = np.array([(a + b) / 2 for a, b in lim])
-    xi = np.linspace(*lim[i], n)
-    xj = np.linspace(*lim[j], n) if j != i else np.array([mid[j]])
-    X, Y = np.meshgrid(xi, xj)
-    q = np.tile(mid, (X.size, 1))
-    q[:, i] = X.ravel()
-    if j != i:
-        q[:, j] = Y.ravel()
-    panels = [("tuned (half payload)", arm.with_payload_fraction(0.5))]
-    if any(ld.payload for ld in arm.loads):
-        panels.append(("full payload", arm.with_payload_fraction(1.0)))
-    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 5), constrained_layout=True, squeeze=False)
-    for ax, (title, a) in zip(axes[0], panels):
-        res = np.max(np.abs(a.gravity_forces(q) - terms_forces(terms, q)), axis=1).reshape(X.shape)
-        scale = lambda v: np.degrees(v) if arm.links[i].joint == "revolute" else v  # noqa: E731
-        val = np.log10(np.maximum(res, 1e-16))
-        if j != i:
-            im = ax.pcolormesh(scale(X), np.degrees(Y) if arm.links[j].joint == "revolute" else Y, val,
-                               shading="auto", cmap="viridis")
-            fig.colorbar(im, ax=ax, label="log10 max |residual| (N·m or N)")
-            ax.set_ylabel(f"q{j + 1} ({'deg' if arm.links[j].joint == 'revolute' else 'm'})")
+    mid = np.array([a + 0.8 * (b - a) for a, b in lim])  # a generic pose: symmetric ones hide terms
+    joints = [i for i, ln in enumerate(arm.links) if ln.joint != "vertical"]
+    has_payload = any(ld.payload for ld in arm.loads)
+    tuned = arm.with_payload_fraction(0.5)
+    sweeps = {}
+    for i in joints:
+        x = np.linspace(*lim[i], n)
+        q = np.tile(mid, (n, 1))
+        q[:, i] = x
+        g = -tuned.gravity_forces(q)[:, i]  # what the drive would carry without devices
+        if np.max(np.abs(g)) > 0:
+            sweeps[i] = (x, q, g)
+    cols = max(len(sweeps), 1)
+    fig, axes = plt.subplots(2, cols, figsize=(max(4.3 * cols + 0.6, 9.0), 6.6), constrained_layout=True,
+                             squeeze=False)
+    for c, (i, (x, q, g)) in enumerate(sweeps.items()):
+        ln = arm.links[i]
+        rev = ln.joint == "revolute"
+        xs = np.degrees(x) if rev else x
+        unit, xunit = ("N·m", "deg") if rev else ("N", "m")
+        dev = -terms_forces(terms, q)[:, i]  # the devices' generalised force, opposing gravity
+        top, bot = axes[0][c], axes[1][c]
+        top.plot(xs, g, "k-", lw=2, label="gravity moment (to carry)")
+        top.plot(xs, dev, "C1--", lw=1.5, label="spring devices")
+        top.set_title(f"q{i + 1} ({ln.name}) swept, other joints at 80 % of their ranges", fontsize=9)
+        top.set_ylabel(f"generalised force on q{i + 1} ({unit})")
+        top.set_xlabel(f"q{i + 1} ({xunit})")
+        top.grid(alpha=0.3)
+        top.legend(fontsize=7, loc="best")
+        scale = float(np.max(np.abs(g)))
+        cases = [("half payload (tuned)" if has_payload else "balanced", tuned, "C3")]
+        if has_payload:
+            cases += [("no payload", arm.with_payload_fraction(0.0), "C0"),
+                      ("full payload", arm.with_payload_fraction(1.0), "C2")]
+        worst = 0.0
+        for label, a, color in cases:
+            res = (-a.gravity_forces(q)[:, i] - dev) / scale
+            worst = max(worst, float(np.max(np.abs(res))))
+            bot.plot(xs, 100 * res, color=color, lw=1.3, label=label)
+        bot.axhline(0, color="k", lw=0.5)
+        bot.set_xlabel(f"q{i + 1} ({xunit})")
+        bot.set_ylabel(f"residual / max |gravity moment| (%)")
+        if worst < 1e-12:
+            bot.set_ylim(-1, 1)
+            bot.set_title(f"exact to rounding: |residual| ≤ {worst:.1e} of {scale:.4g} {unit}", fontsize=9)
         else:
-            ax.semilogy(scale(xi), np.maximum(res.ravel(), 1e-16))
-            ax.set_ylabel("max |residual|")
-        ax.set_xlabel(f"q{i + 1} ({'deg' if arm.links[i].joint == 'revolute' else 'm'})")
-        ax.set_title(f"{arm.name}: {title}\nmax residual {np.max(res):.3g}", fontsize=9)
+            bot.set_title(f"largest residual {100 * worst:.3g} % of {scale:.4g} {unit}", fontsize=9)
+        if has_payload:
+            bot.legend(fontsize=7, loc="best")
+        bot.grid(alpha=0.3)
+    title = f"{arm.name}: gravity against the spring devices"
+    if has_payload:
+        total = sum(ld.weight for ld in arm.loads if ld.payload)
+        title += f" (tuned for half the payload, {total / 2:.4g} of {total:.4g} N)"
+    fig.suptitle(title, fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
 def plot_prismatic(m: float, inertia: float, M: float, q_max: float, stroke: float, C: float, path: str) -> str:
-    """Counter-mass laws ``z1(q)``, ``z2(q)`` and the inertia they keep."""
-    from .countermass import counter_mass_laws
+    """Counter-mass laws ``z1(q)``, ``z2(q)`` and the inertia they keep, with ``C`` against ``C_min``."""
+    from .countermass import c_min, counter_mass_laws
 
     plt = _plt()
+    cmin = c_min(m, inertia, M, q_max)
+    valid = math.sqrt(2 * M * (C - inertia) / (m * m + 2 * m * M))
     q = np.linspace(-stroke, stroke, 801)
     z1, z2, disc = counter_mass_laws(q, m, inertia, M, C)
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
-    ax1.plot(q, z1, label="z1(q)")
-    ax1.plot(q, z2, label="z2(q)")
-    ax1.plot(q, q, "k:", lw=1, label="link q")
-    ax1.set_ylabel("position along Z (m)")
-    ax1.set_title(f"m = {m:g} kg, I = {inertia:g} kg·m², M = {M:g} kg, C = {C:.4g} kg·m²", fontsize=9)
-    ax1.legend(fontsize=8)
-    ax1.grid(alpha=0.3)
-    inert = inertia + m * q * q + M * (z1 * z1 + z2 * z2)
-    ax2.plot(q, inert - C, "C3")
-    ax2.set_ylabel("I_total − C (kg·m²)")
-    ax2.set_xlabel("slide q (m)")
-    ax2.grid(alpha=0.3)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, constrained_layout=True)
+    ax1.plot(q, z1, "C0", lw=2, label="counter-mass 1: z1(q)")
+    ax1.plot(q, z2, "C2", lw=2, label="counter-mass 2: z2(q)")
+    ax1.plot(q, q, "k:", lw=1, label="sliding link: q")
+    for ax in (ax1, ax2):
+        if valid < stroke:
+            for side in (-1, 1):
+                ax.axvspan(side * valid, side * stroke, color="C3", alpha=0.12, lw=0)
+        ax.grid(alpha=0.3)
+    ax1.set_ylabel("position along the slide axis (m)")
+    ax1.set_title(f"laws z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M): m = {m:g} kg, I = {inertia:g} kg·m², "
+                  f"M = {M:g} kg", fontsize=9)
+    ax1.legend(fontsize=8, loc="upper right")
+    total = inertia + m * q * q + M * (z1 * z1 + z2 * z2)
+    ax2.plot(q, total, "C3", lw=2, label="transverse inertia I + m·q² + M·(z1² + z2²)")
+    ax2.axhline(C, color="k", lw=1, ls="--", label=f"C = {C:.4g} kg·m² (used)")
+    ax2.axhline(cmin, color="0.5", lw=1, ls=":", label=f"C_min = {cmin:.4g} kg·m² (full stroke ±{q_max:g} m)")
+    ax2.set_ylabel("inertia about the slide's origin (kg·m²)")
+    ax2.set_xlabel("slide q (m, from mid-stroke)")
+    margin = C - cmin
+    msg = (f"margin C − C_min = {margin:.3g} kg·m²: the laws are real for |q| ≤ {valid:.4g} m"
+           if margin >= -1e-15 else f"C is {-margin:.3g} kg·m² below C_min: real only for |q| ≤ {valid:.4g} m")
     if np.any(disc < 0):
-        ax2.set_title("stroke beyond the design limit: inertia no longer constant", fontsize=9)
+        msg += "; shaded: beyond it the inertia cannot be kept"
+    ax2.set_title(msg, fontsize=9)
+    lo = min(float(np.min(total)), cmin, C)
+    hi = max(float(np.max(total)), cmin, C)
+    pad = max(0.1 * (hi - lo), 0.05 * abs(C))
+    ax2.set_ylim(lo - pad, hi + pad)
+    ax2.legend(fontsize=8, loc="upper center")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
