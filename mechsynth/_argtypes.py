@@ -1,14 +1,15 @@
 """Value parsers shared by the CLI commands (argparse ``type=`` callables).
 
->>> whole("3"), positive("2"), seconds("0.5")
-(3, 2, 0.5)
+>>> whole("3"), positive("2"), seconds("0.5"), workers("1")
+(3, 2, 0.5, 1)
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 
-__all__ = ["whole", "positive", "seconds"]
+__all__ = ["whole", "positive", "seconds", "workers"]
 
 
 def whole(text: str) -> int:
@@ -35,4 +36,14 @@ def seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
     if not value > 0:
         raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {text!r}")
+    return value
+
+
+def workers(text: str) -> int:
+    """Local worker processes: 1 … the number of cores (more only slow each other down and fill memory)."""
+    value = positive(text)
+    cores = os.cpu_count() or 1
+    if value > cores:
+        raise argparse.ArgumentTypeError(
+            f"{value} workers is more than the {cores} cores of this machine (extra processes only wait for a core)")
     return value

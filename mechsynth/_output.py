@@ -1,4 +1,8 @@
-"""Writing result rows as a table for people, or jsonl / csv / json for programs."""
+"""Writing results for people (table) or programs (jsonl, csv, json), and the exit-status rule.
+
+Every command follows one rule, as grep does: exit status 0 when something matched, 1 when a
+valid query matched nothing — in every output form, ``--count`` included — and 2 for an error.
+"""
 
 from __future__ import annotations
 
@@ -7,9 +11,10 @@ import json
 import sys
 from collections.abc import Iterable, Sequence
 
-__all__ = ["FORMATS", "write_rows"]
+__all__ = ["FORMATS", "COUNT_FORMATS", "write_rows", "write_count", "nothing_found"]
 
-FORMATS = ("table", "jsonl", "csv")
+FORMATS = ("table", "jsonl", "csv", "json")
+COUNT_FORMATS = ("json", "table", "jsonl", "csv")  # --count: one JSON object by default (DESIGN contract)
 
 
 def _cell(value) -> str:
@@ -19,14 +24,18 @@ def _cell(value) -> str:
 
 
 def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None) -> int:
-    """Write ``rows`` (dicts) in ``fmt``; tables and csv show ``columns``, jsonl the whole dict.
+    """Write ``rows`` (dicts) in ``fmt``; tables and csv show ``columns``, jsonl and json the whole dict.
 
-    Returns the number of rows written.
+    ``json`` is one array, written as the rows come (no row is held back). Returns the number of rows.
 
     >>> write_rows([{"code": "44/0", "v": 0}], ["code", "v"], "csv")
     code,v
     44/0,0
     1
+    >>> write_rows([{"code": "44/0"}, {"code": "53/1"}], ["code"], "json")
+    [{"code": "44/0"},
+     {"code": "53/1"}]
+    2
     """
     out = out or sys.stdout
     count = 0
@@ -34,6 +43,11 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
         for row in rows:
             out.write(json.dumps(row) + "\n")
             count += 1
+    elif fmt == "json":
+        for row in rows:
+            out.write(("[" if count == 0 else ",\n ") + json.dumps(row))
+            count += 1
+        out.write("]\n" if count else "[]\n")
     elif fmt == "csv":
         writer = csv.writer(out, lineterminator="\n")
         writer.writerow(columns)
@@ -50,3 +64,36 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
             out.write("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip() + "\n")
         count = len(rows)
     return count
+
+
+def write_count(result: dict, fmt: str, out=None) -> int:
+    """Write a ``{"count": N, "by_code": {...}}`` result in ``fmt``; returns N.
+
+    ``json`` is the object itself; ``jsonl`` and ``csv`` give one row per code; ``table``
+    adds the total.
+
+    >>> write_count({"count": 3, "by_code": {"42/0": 2, "51/1": 1}}, "csv")
+    code,count
+    42/0,2
+    51/1,1
+    3
+    """
+    out = out or sys.stdout
+    if fmt == "json":
+        out.write(json.dumps(result) + "\n")
+    else:
+        rows = [{"code": code, "count": n} for code, n in result["by_code"].items()]
+        write_rows(rows, ["code", "count"], fmt, out)
+        if fmt == "table":
+            out.write(f"{result['count']} in all\n")
+    return result["count"]
+
+
+def nothing_found(what: str, err=None) -> int:
+    """Say on stderr that a valid query matched nothing; return exit status 1.
+
+    >>> import io; nothing_found("chains satisfy these parameters", io.StringIO())
+    1
+    """
+    (err or sys.stderr).write(f"mechsynth: no {what}\n")
+    return 1

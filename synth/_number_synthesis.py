@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from ortools.sat.python import cp_model
 
 from ._cpsat import all_solutions
+from ._params import check_dof, check_extra_mobility, check_motion_space
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
 
@@ -151,15 +152,7 @@ def make_problem(
     >>> make_problem(1, loops=4).links
     10
     """
-    for name, value in (("dof (W)", dof), ("h", h), ("f", f)):
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise InvalidOption(f"{name} must be a whole number, not {value!r}")
-    if dof < 0:
-        raise ImpossibleParameters(f"the degree of freedom W must be 0 or more, not {dof}")
-    if h < 1:
-        raise ImpossibleParameters(f"the motion space h of a loop is at least 1 (got h = {h})")
-    if f < 0:
-        raise ImpossibleParameters(f"the extra pair mobility f must be 0 or more, not {f}")
+    check_dof(dof), check_motion_space(h), check_extra_mobility(f)
     given = [x is not None for x in (loops, links, loop_classes)]
     if sum(given) != 1:
         raise InvalidOption("give exactly one of loops (K), links (n) or loop classes (K_h)")
@@ -210,13 +203,18 @@ def make_problem(
             raise InvalidOption(
                 f"the largest link degree is a whole number, 'K+1' or 'K+W', not {max_link_degree!r}"
             ) from None
+        least = 2 if closed else 1
+        if imax < least:
+            raise ImpossibleParameters(
+                f"the largest link degree must be {least} or more (a link of a {'closed' if closed else 'open'} "
+                f"chain carries at least {least} joint{'s' if least > 1 else ''}), not {imax}")
     imax = max(imax, 1 if not closed else 2)
     reqs = parse_requirements(require)
     for i, (lo, hi) in reqs.items():
         if i > imax and lo > 0:
             raise ImpossibleParameters(
-                f"a link with {i} joints is required but the largest link allowed carries {imax} "
-                f"(K+1 = {K + 1}); raise the bound with max_link_degree / --max-link-degree"
+                f"a link with {i} joints is required but the largest link allowed here carries {imax} joints "
+                f"(the bound {_bound_name(max_link_degree)} with K = {K} loops)"
             )
         if i == 1 and closed and lo > 0:
             raise ImpossibleParameters("a closed chain has no single-joint links; give n1 for an open chain")
@@ -229,6 +227,10 @@ def make_problem(
     if max_multiplicity is not None and max_multiplicity < 2:
         raise ImpossibleParameters("a joint joins at least 2 links: max multiplicity must be 2 or more")
     return Problem(dof, n, K, v_range, n1_range, imax, tuple(reqs.items()), max_multiplicity, compositions)
+
+
+def _bound_name(max_link_degree) -> str:
+    return "K+1" if max_link_degree is None else str(max_link_degree).replace(" ", "").upper()
 
 
 def _solve(problem: Problem) -> list[Code]:

@@ -22,7 +22,7 @@ import sys
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
-from ._number_synthesis import number_synthesis, parse_range
+from ._number_synthesis import number_synthesis, parse_range, parse_requirements
 from ._realise import Contracted, Conventions, contracted_graphs, realise
 from .chain import Chain, Mechanism
 from .code import Code
@@ -80,8 +80,11 @@ def _with_crank_links(require, conv: Conventions):
     from ._number_synthesis import parse_requirements
 
     merged = parse_requirements(require)
-    for i, _ in conv.cranks:
+    for i, c in conv.cranks:
         lo, hi = merged.get(i, (0, None))
+        if hi == 0:
+            raise ImpossibleParameters(f"cranks {i}={c} need a link with {i} joints, but the requirement n{i} = 0 "
+                                       "forbids one")
         merged[i] = (max(lo, 1), hi)
     return merged
 
@@ -90,7 +93,7 @@ def plan_codes(
     dof: int,
     links: int | None = None,
     *,
-    v: int | tuple | str = 0,
+    v: int | tuple | str | None = None,
     code: Code | str | None = None,
     fractionated: bool = True,
     rigid_subchains: bool = False,
@@ -107,6 +110,7 @@ def plan_codes(
     """
     if code is not None:
         code = Code.parse(code) if isinstance(code, str) else code
+        _check_code_against(code, v, require)
         if code.n1:
             raise ImpossibleParameters(f"code {code} has single-joint links: type synthesis builds closed chains")
         if code.dof() != dof:
@@ -119,11 +123,31 @@ def plan_codes(
         return [c for c in codes if code.composition is None or c.composition == code.composition]
     if links is None:
         raise InvalidOption("give the number of links (or a code)")
-    rng = parse_range(v, "v")
+    rng = parse_range(0 if v is None else v, "v")
     K = (links - dof - 1) // 2
     imax = 2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1
+    for i, (lo, _) in parse_requirements(require).items():
+        if i > imax and lo > 0 and K >= 1:
+            raise ImpossibleParameters(
+                f"no chain with W = {dof} and {links} links has a link with {i} joints: with K = {K} loops a link "
+                f"carries at most {imax} ({'2K, fractionated chains included' if imax == 2 * K else 'K+1'})")
     return number_synthesis(dof, links=links, v=rng, compositions=True, max_link_degree=max(imax, K + 1),
                             require=require)
+
+
+def _check_code_against(code: Code, v, require) -> None:
+    """Refuse a code that contradicts the other options of the same query (``v``, requirements)."""
+    if v is not None:
+        lo, hi = parse_range(v, "v")
+        if not lo <= code.v <= (code.v if hi is None else hi):
+            shown = f"{lo}" if lo == hi else f"{lo}..{'' if hi is None else hi}"
+            raise ImpossibleParameters(f"code {code} has v = {code.v}, outside the requested v = {shown}")
+    for i, (lo, hi) in parse_requirements(require).items():
+        n_i = code.count(i)
+        if n_i < lo or (hi is not None and n_i > hi):
+            shown = f"{lo}" if lo == hi else f"{lo}..{'' if hi is None else hi}"
+            raise ImpossibleParameters(
+                f"code {code} has {n_i} link(s) with {i} joints, but the requirement asks for n{i} = {shown}")
 
 
 def _stage_a(args) -> list[Unit]:
@@ -164,7 +188,7 @@ def plan_units(
     dof: int,
     links: int | None = None,
     *,
-    v: int | tuple | str = 0,
+    v: int | tuple | str | None = None,
     code: Code | str | None = None,
     rigid_subchains: bool | None = None,
     fractionated: bool = True,
@@ -216,7 +240,7 @@ def plan_many(queries: Iterable[Mapping], *, pool=None, skip_impossible: bool = 
         conv = _conventions(dof, q.pop("rigid_subchains", None), q.get("fractionated", True),
                             q.pop("planar_only", False), q.pop("cranks", None))
         try:
-            codes = plan_codes(dof, links, v=q.pop("v", 0), code=q.pop("code", None),
+            codes = plan_codes(dof, links, v=q.pop("v", None), code=q.pop("code", None),
                                fractionated=q.pop("fractionated", True), rigid_subchains=conv.rigid_subchains,
                                require=_with_crank_links(q.pop("require", None), conv))
         except ImpossibleParameters:
@@ -237,7 +261,7 @@ def type_synthesis(
     dof: int,
     links: int | None = None,
     *,
-    v: int | tuple | str = 0,
+    v: int | tuple | str | None = None,
     code: Code | str | None = None,
     rigid_subchains: bool | None = None,
     fractionated: bool = True,
@@ -256,7 +280,7 @@ def type_synthesis(
     links : int
         n, the frame included (or give ``code``).
     v : int or range
-        Multiple-joint count(s), default 0 (simple joints); ``(0, 4)`` or ``"0..4"`` for a range.
+        Multiple-joint count(s), default 0 (simple joints) or, with ``code``, the code's own; ``(0, 4)`` or ``"0..4"`` for a range.
     code : Code or str, optional
         Only this code (with or without composition).
     rigid_subchains : bool, optional

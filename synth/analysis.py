@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 
+from ._params import check_dof, check_extra_mobility, check_motion_space
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
 
@@ -115,8 +116,9 @@ def analyze(
         code = Code(assortment, int(v), None, int(counts.get(1, 0)))
     elif isinstance(code, str):
         code = Code.parse(code)
-    if h < 1:
-        raise ImpossibleParameters(f"the motion space h of a loop is at least 1 (got h = {h})")
+    check_motion_space(h), check_extra_mobility(f)
+    if dof is not None:
+        check_dof(dof)
     n, K = code.links, code.loops
     if K < 0:
         raise ImpossibleParameters(f"code {code} has fewer joints than a connected chain of {n} links needs")

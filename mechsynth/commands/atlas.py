@@ -20,8 +20,8 @@ from __future__ import annotations
 import json
 import sys
 
-from .._argtypes import positive, seconds, whole
-from .._output import write_rows
+from .._argtypes import positive, seconds, whole, workers
+from .._output import nothing_found, write_count, write_rows
 
 __all__ = ["add_commands"]
 
@@ -31,7 +31,7 @@ def add_commands(sub) -> None:
     p = sub.add_parser("grid", help="run a grid file of W, n, v ranges into an SQLite atlas (resumable)")
     p.add_argument("grid", help="grid file (TOML), e.g. models/grid_small.toml")
     p.add_argument("--db", required=True, help="SQLite atlas to create or resume")
-    p.add_argument("--workers", type=positive, help="local processes (default: all cores)")
+    p.add_argument("--workers", type=workers, help="local processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
     p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
     p.add_argument("--format", choices=("table", "json"), default="table")
@@ -40,8 +40,8 @@ def add_commands(sub) -> None:
     p = sub.add_parser("atlas", help="summarise an atlas, or export its chains / mechanisms")
     p.add_argument("--db", required=True, help="SQLite atlas written by 'mechsynth grid'")
     p.add_argument("--export", choices=("chains", "mechanisms"), help="print rows instead of the summary")
-    p.add_argument("--where", action="append", default=[], metavar="FIELD OP VALUE",
-                   help="filter, repeatable (AND): code=6301/0, W=1, n=8..10, v<=1, K=3, n3>=2, maxdeg<=4, "
+    p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
+                   help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
                         "fractionated=0, cell=KEY")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
@@ -54,7 +54,8 @@ def add_commands(sub) -> None:
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own, planar)")
-    p.add_argument("--where", action="append", default=[], metavar="FIELD OP VALUE", help="with --db: filter")
+    p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
+                   help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
@@ -91,6 +92,7 @@ def _run_atlas(args) -> int:
     from synth.atlas import export, summary
     from synth.errors import InvalidOption
 
+    args.where = _conditions(args.where)
     what = args.export or ("chains" if args.where or args.count else None)
     if what is None:
         fmt = args.format or "table"
@@ -107,13 +109,10 @@ def _run_atlas(args) -> int:
         by_code: dict[str, int] = {}
         for row in rows:
             by_code[row["code"]] = by_code.get(row["code"], 0) + 1
-        print(json.dumps({"count": sum(by_code.values()), "by_code": by_code}))
-        return 0
-    fmt = args.format or "jsonl"
-    if fmt == "json":
-        raise InvalidOption("rows are exported as jsonl, csv or table, not json")
-    write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, fmt)
-    return 0
+        found = write_count({"count": sum(by_code.values()), "by_code": by_code}, args.format or "json")
+    else:
+        found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
+    return 0 if found else nothing_found(f"{what} of the atlas match the selection")
 
 
 def _print_summary(info: dict) -> None:
@@ -133,12 +132,18 @@ def _print_summary(info: dict) -> None:
                    ["cell", "units", "chains"], "table")
 
 
+def _conditions(groups: list[list[str]]) -> list[str]:
+    """``--where n3 '>=' 2`` and ``--where n3>=2`` are the same condition."""
+    return ["".join(words) for words in groups]
+
+
 # --------------------------------------------------------------------- draw
 def _run_draw(args) -> int:
     from synth import draw
     from synth.chain import Chain, Mechanism
     from synth.errors import InvalidOption
 
+    args.where = _conditions(args.where)
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:

@@ -11,17 +11,15 @@ Example
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 
-from .._argtypes import positive, whole
-from .._output import FORMATS, write_rows
+from .._argtypes import whole, workers
+from .._output import FORMATS, nothing_found, write_count, write_rows
 
 
 def _add_selection(p) -> None:
     p.add_argument("--dof", type=whole, help="mobility W (0 = trusses); default: the code's W")
     p.add_argument("--links", type=whole, help="number of links n (frame included)")
-    p.add_argument("--v", default="0", help="multiple-joint count or range A..B (default 0: simple joints)")
+    p.add_argument("--v", help="multiple-joint count or range A..B (default 0: simple joints; with --code its own)")
     p.add_argument("--code", help="only this code, e.g. 6301/0 or 620/0-1")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
                    help="design constraint on n_I, the links with I joints (repeatable)")
@@ -33,8 +31,9 @@ def _add_selection(p) -> None:
                    help="keep chains split by one link or joint (default: keep)")
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
-    p.add_argument("--workers", type=positive, help="processes (default: all cores)")
-    p.add_argument("--format", choices=FORMATS, default="table")
+    p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default: all cores)")
+    p.add_argument("--format", choices=FORMATS,
+                   help="table (default), jsonl, csv or json; with --count json (default), table, jsonl or csv")
 
 
 def add_commands(sub) -> None:
@@ -74,22 +73,23 @@ def _run(args) -> int:
             result = count_chains(dof, args.links, **kwargs)
         else:
             result = count_mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
-        print(json.dumps(result))
+        if write_count(result, args.format or "json") == 0:
+            return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0
     if args.what == "chains":
         items = type_synthesis(dof, args.links, **kwargs)
     else:
         items = mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
-    rows = (_row(item, args.what, args.format) for item in items)
+    rows = (_row(item, args.what, args.format or "table") for item in items)
     columns = ["index", "code", "links", "joints", "certificate"]
     if args.what == "mechanisms":
         columns[3:3] = ["frame", "input_link"]
-    n = write_rows(_indexed(rows), columns, args.format)
-    if args.format == "table":
+    fmt = args.format or "table"
+    n = write_rows(_indexed(rows), columns, fmt)
+    if fmt == "table":
         print(f"{n} {args.what}")
     if n == 0:
-        print(f"mechsynth: no {args.what} satisfy these parameters and conventions", file=sys.stderr)
-        return 1
+        return nothing_found(f"{args.what} satisfy these parameters and conventions")
     return 0
 
 

@@ -20,7 +20,7 @@ from collections import Counter
 from synth.errors import InvalidOption
 
 from .._argtypes import whole
-from .._output import FORMATS, write_rows
+from .._output import FORMATS, nothing_found, write_rows
 
 __all__ = ["add_commands"]
 
@@ -69,12 +69,11 @@ def _run_codes(args) -> int:
         h=args.h, f=args.f, v=args.v, n1=args.n1, max_link_degree=args.max_link_degree,
         require=args.require, max_multiplicity=args.max_multiplicity, compositions=args.compositions,
     )
-    if not codes:
-        print("no standard code satisfies these parameters and requirements", file=sys.stderr)
-        return 1
     rows = [dict(c.to_dict(), dof=args.dof) for c in codes]
     columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
     write_rows(rows, columns, args.format)
+    if not codes:
+        return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
         per_k = Counter(c.loops for c in codes)
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
@@ -87,12 +86,20 @@ def _add_analyze(sub):
     p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
     p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
     p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")
-    p.add_argument("--v", type=whole, default=0, help="v, with explicit counts")
-    p.add_argument("--h", type=whole, default=3)
-    p.add_argument("--f", type=whole, default=0)
+    p.add_argument("--v", type=whole, help="v, with explicit counts (a code carries its own)")
+    p.add_argument("--h", type=whole, default=3, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_analyze)
+
+
+def _refuse_for_chain(args) -> None:
+    """A chain carries its own links, joints and v: options that describe counts do not apply."""
+    given = [name for name, value in (("--v", args.v), ("--f", args.f or None), ("--loop-classes", args.loop_classes),
+                                      ("--h", None if args.h == 3 else args.h)) if value is not None]
+    if given:
+        raise InvalidOption(f"{given[0]} does not apply to a chain (it describes codes and counts)")
 
 
 def _looks_like_chain(text: str) -> bool:
@@ -108,15 +115,20 @@ def _run_analyze(args) -> int:
     if _looks_like_chain(subject):
         from synth.chain_analysis import analyze_chain
 
+        _refuse_for_chain(args)
         result = analyze_chain(subject, dof=args.dof).to_dict()
     elif "=" in subject and "/" not in subject:
         counts = _parse_classes(subject)
-        result = analyze(counts=counts, v=args.v, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
+        result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=args.h, f=args.f,
+                         loop_classes=classes).to_dict()
     else:
+        if args.v is not None:
+            raise InvalidOption("--v goes with explicit counts: a code carries its own v")
         result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
     if args.format == "json":
         print(json.dumps(result, ensure_ascii=False))
     else:
+        result = {k: v for k, v in result.items() if v not in (None, "")}  # e.g. D without a required W
         width = max(len(k) for k in result)
         for key, value in result.items():
             if isinstance(value, dict):

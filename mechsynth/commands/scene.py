@@ -20,7 +20,7 @@ import json
 import sys
 from typing import Any, TextIO
 
-from .._argtypes import positive
+from .._argtypes import workers
 
 __all__ = ["add_commands", "run_scene_command", "format_result"]
 
@@ -36,7 +36,7 @@ def add_commands(sub) -> None:
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", metavar="DIR", default="out", help="where drawings and plots are written (default: out/)")
-    p.add_argument("--workers", type=positive, default=1, help="processes for type synthesis (default 1)")
+    p.add_argument("--workers", type=workers, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
 
 
@@ -49,8 +49,6 @@ def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None
     err = err or sys.stderr
     if (args.file is None) == (args.all is None):
         raise InvalidOption("give a scene file or --all DIR, not both or neither")
-    if args.workers < 1:
-        raise InvalidOption(f"--workers must be 1 or more, not {args.workers}")
     if args.all is not None:
         result = run_directory(args.all, out_dir=args.out, workers=args.workers)
         if args.format == "json":

@@ -1,0 +1,121 @@
+"""The command-line contract: one sentence and exit 2 for nonsense, 1 when a valid query matches
+nothing (in every output form), the same formats everywhere, and --version."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from mechsynth import __version__
+from mechsynth.cli import main
+
+REFUSED = [
+    # nonsense accepted in silence before
+    ("analyze 6301/0 --dof -2", "W must be 0 or more"),
+    ("analyze 6301/0 --h 7", "motion space h"),
+    ("analyze 6301/0 --f -1", "f must be 0 or more"),
+    ("analyze 6301/0 --v 1", "a code carries its own v"),
+    ("analyze 0-1,1-2,2-3,3-0 --v 2", "does not apply to a chain"),
+    ("codes --dof 1 --loops 3 --max-link-degree 0", "largest link degree must be 2 or more"),
+    ("codes --dof 1 --loops 3 --max-link-degree 1", "largest link degree must be 2 or more"),
+    ("codes --dof 1 --loops 3 --max-link-degree -5", "largest link degree must be 2 or more"),
+    ("codes --dof 1 --loops 3 --h 0", "motion space h"),
+    ("chains --code 6301/0 --require 5=0 --count", "asks for n5 = 0"),
+    ("chains --code 7201/1 --v 0 --count", "outside the requested v = 0"),
+    ("chains --dof 1 --links 8 --workers 100000 --count", "more than the"),
+    ("chains --dof 1 --links 10 --cranks 5=5 --require 5=0 --count", "forbids one"),
+    # advice names only options the command has
+    ("chains --dof 1 --links 10 --require 50=1", "carries at most 5"),
+    # old cases that must stay refused
+    ("chains --dof 1 --links 11 --count", "no whole number of loops"),
+    ("chains --dof 1 --links -4 --count", "1 or more"),
+    ("chains --code 63a1/0", "cannot read code"),
+    ("analyze '0-1 1-'", "cannot read joint"),
+    ("codes --dof 1 --loops 2 --format xml", "invalid choice"),
+]
+
+
+def _run(command: str, capsys) -> tuple[int, str, str]:
+    import shlex
+
+    status = main(shlex.split(command))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+@pytest.mark.parametrize("command,words", REFUSED)
+def test_refused_with_one_sentence(command, words, capsys):
+    status, out, err = _run(command, capsys)
+    assert status == 2, (command, out, err)
+    assert err.startswith("mechsynth: ") and err.count("\n") == 1 and words in err, err
+    assert "Traceback" not in err and out == ""
+
+
+def test_advice_does_not_name_missing_options(capsys):
+    _, _, err = _run("chains --dof 1 --links 10 --require 50=1", capsys)
+    assert "--max-link-degree" not in err
+
+
+EMPTY = "chains --dof 1 --links 8 --require 4=3"
+
+
+@pytest.mark.parametrize("form", ["", "--format jsonl", "--format csv", "--format json", "--count",
+                                  "--count --format table", "--count --format csv", "--count --format jsonl"])
+def test_nothing_matched_exits_1_in_every_form(form, capsys):
+    status, out, err = _run(f"{EMPTY} {form} --workers 1", capsys)
+    assert status == 1 and err == "mechsynth: no chains satisfy these parameters and conventions\n"
+
+
+def test_codes_nothing_matched(capsys):
+    status, out, err = _run("codes --dof 1 --loops 2 --require 3=0 --require 2=0 --format jsonl", capsys)
+    assert (status, out) == (1, "") and err.startswith("mechsynth: no standard code")
+
+
+@pytest.mark.parametrize("command", ["codes --dof 1 --loops 2", "chains --dof 1 --links 6 --workers 1",
+                                     "mechanisms --dof 1 --links 6 --workers 1"])
+def test_json_equals_jsonl(command, capsys):
+    status, as_json, _ = _run(f"{command} --format json", capsys)
+    status2, as_jsonl, _ = _run(f"{command} --format jsonl", capsys)
+    assert status == status2 == 0
+    rows = [json.loads(line) for line in as_jsonl.splitlines()]
+    assert json.loads(as_json) == rows and len(rows) >= 2
+
+
+def test_count_follows_format(capsys):
+    status, out, _ = _run("chains --dof 1 --links 8 --count --workers 1", capsys)
+    assert status == 0 and json.loads(out) == {"count": 16, "by_code": {"440/0": 9, "521/0": 5, "602/0": 2}}
+    _, out, _ = _run("chains --dof 1 --links 8 --count --format csv --workers 1", capsys)
+    assert out.splitlines() == ["code,count", "440/0,9", "521/0,5", "602/0,2"]
+    _, out, _ = _run("chains --dof 1 --links 8 --count --format jsonl --workers 1", capsys)
+    assert [json.loads(x)["count"] for x in out.splitlines()] == [9, 5, 2]
+    _, out, _ = _run("chains --dof 1 --links 8 --count --format table --workers 1", capsys)
+    assert out.splitlines()[-1] == "16 in all"
+
+
+def test_code_with_its_own_v_and_a_range_that_holds_it(capsys):
+    for extra in ("", "--v 1", "--v 0..2"):
+        status, out, _ = _run(f"chains --code 7201/1 {extra} --count --workers 1", capsys)
+        assert status == 0 and json.loads(out)["count"] == 27
+
+
+def test_analyze_without_dof_prints_no_empty_fields(capsys):
+    status, out, _ = _run("analyze 6301/0", capsys)
+    assert status == 0 and "None" not in out and not any(line.rstrip() == line.split()[0] for line in out.splitlines())
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0 and capsys.readouterr().out.strip() == f"mechsynth {__version__}"
+
+
+def test_no_traceback_through_the_real_command():
+    """The installed entry point (python -m mechsynth) keeps the contract too."""
+    env = dict(os.environ)
+    p = subprocess.run([sys.executable, "-m", "mechsynth", "analyze", "6301/0", "--dof", "-2"],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert p.returncode == 2 and p.stderr.count("\n") == 1 and "Traceback" not in p.stderr
