@@ -735,11 +735,15 @@ def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: in
         "reach_from_C": s, "reach_from_C_fig_a": lmax, "extra_length": s - lmax,
         "size_ratio": s / lmax,
     }
-    res.notes.append(
-        f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
-        f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression spring"
-    )
+    res.notes.append(lever_note(res.lever))
     return res
+
+
+def lever_note(lever: dict) -> str:
+    """The compression-lever device's size against a spring between C and B, in one sentence."""
+    s, lmax = lever["reach_from_C"], lever["reach_from_C_fig_a"]
+    return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
+            f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression spring")
 
 
 def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, notes) -> FitResult:

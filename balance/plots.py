@@ -73,6 +73,12 @@ def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spri
                  ms=13, mfc="none", mec="red", mew=2, label="this fit")
         ax3.set_xscale("log")
         ax3.set_yscale("log")
+        from matplotlib.ticker import FormatStrFormatter
+
+        for axis in (ax3.xaxis, ax3.yaxis):
+            axis.set_major_formatter(FormatStrFormatter("%g"))
+            axis.set_minor_formatter(FormatStrFormatter("%g"))
+        ax3.tick_params(which="minor", labelsize=7)
         ax3.set_xlabel("device size: free length 2r + r0 + a (m)")
         ax3.set_ylabel(f"{res.norm} relative error (%)")
         ax3.set_title("Pareto front: error against size, one line per peak spring force", fontsize=9)

@@ -22,7 +22,7 @@ from .urdf import pinocchio_check
 from .tradeoff import advice, bound_sensitivity, pareto_front
 from .transmission import transmissions
 from .schema import load_toml, parse
-from .fit import FitResult, SpringBounds, fit_spring
+from .fit import FitResult, SpringBounds, fit_spring, lever_note
 from .pantograph import balance_pantograph, pantograph_from_dict
 from .static import balance_arm
 
@@ -100,18 +100,16 @@ def _solve_urdf_arm(t, source: str) -> dict:
     return out
 
 
-def spring_from_dict(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
-    """Arguments of :func:`spring_problem` from a ``[spring]`` document."""
+def _spring_table(doc: Mapping[str, Any], source: str):
     t = parse(doc, "spring", source)
     if t.a is None:
         raise SchemaError(f"{source}: [spring] needs 'a' = [low, high] (m).")
-    design = None
-    if t.design is not None:
-        d = t.design
-        design = {"material": d.material, "max_outer_diameter": d.max_outer_diameter,
-                  "min_inner_diameter": d.min_inner_diameter, "ends": d.ends}
-        if d.guided is not None:
-            design["guided"] = d.guided
+    return t
+
+
+def spring_from_dict(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
+    """Arguments of :func:`~balance.fit.fit_spring` from a ``[spring]`` document."""
+    t = _spring_table(doc, source)
     return {
         "kind": t.kind,
         "moment": t.moment,
@@ -121,10 +119,20 @@ def spring_from_dict(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
         "method": t.method,
         "norm": t.norm,
         "grid": t.grid,
-        "target_error": t.target_error,
-        "pareto": t.pareto,
-        "design": design,
     }
+
+
+def spring_options(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
+    """The rest of :func:`spring_problem`'s arguments (target, Pareto front, spring design)."""
+    t = _spring_table(doc, source)
+    design = None
+    if t.design is not None:
+        d = t.design
+        design = {"material": d.material, "max_outer_diameter": d.max_outer_diameter,
+                  "min_inner_diameter": d.min_inner_diameter, "ends": d.ends}
+        if d.guided is not None:
+            design["guided"] = d.guided
+    return {"target_error": t.target_error, "pareto": t.pareto, "design": design}
 
 
 def spring_problem(kind: str, moment: float, phi_range, bounds: SpringBounds, method: str | None = None,
@@ -152,8 +160,13 @@ def spring_problem(kind: str, moment: float, phi_range, bounds: SpringBounds, me
     out["target_met"] = None if target_error is None else err <= target_error
     if design is not None:
         out["spring"] = design_for_device(res, **design)
-        if kind == "compression-lever":
-            out["lever"] = dict(out["lever"], **out["spring"].pop("lever"), designed_from_spring=True)
+        if kind == "compression-lever":  # the designed spring fixes the lever: the shortest the checks allow
+            lv = out["spring"].pop("lever")
+            s = lv["stop_distance_from_C"]
+            out["lever"] = dict(out["lever"], **lv, spring_free_length=s, deflection_ratio=lv["reach_from_C_fig_a"] / s,
+                                spring_length_min=s - lv["reach_from_C_fig_a"], designed_from_spring=True)
+            out["deflection"] = out["lever"]["deflection_ratio"]
+            out["notes"] = [n for n in out["notes"] if not n.startswith("the lever reaches")] + [lever_note(out["lever"])]
         sp = out["spring"]
         if sp.get("buckling") and not sp["buckling"]["safe"]:
             out["warnings"].append(
@@ -172,7 +185,7 @@ def solve_spring(doc: Mapping[str, Any], source: str = "<spring>") -> dict:
     >>> solve_spring(doc)["max_rel_error"] < 1e-12
     True
     """
-    out, _ = spring_problem(**spring_from_dict(doc, source))
+    out, _ = spring_problem(**spring_from_dict(doc, source), **spring_options(doc, source))
     out["kind_of_problem"] = "spring"
     return out
 

@@ -488,7 +488,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         ns = build_parser().parse_args(_fix_negative_ranges(argv))
     except _UsageError as exc:
         msg = str(exc).rstrip(".")
-        print(f"{PROG}: error: {msg}.", file=sys.stderr)
+        print(f"mechsynth: {msg} (see '{PROG} --help').", file=sys.stderr)
         return 2
     except SystemExit as exc:  # --help
         return int(exc.code or 0)
@@ -508,7 +508,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             out, tab = _cmd_solve(ns)
             _emit(out, ns.format, tab)
     except BalanceError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
+        print(f"mechsynth: {exc}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # output piped into `head`: not an error of ours
         import os
@@ -516,7 +516,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except OSError as exc:  # e.g. the plot file cannot be written
-        print(f"{PROG}: error: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
+        print(f"mechsynth: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
         return 2
     return 0
 
