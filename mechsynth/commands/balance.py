@@ -14,6 +14,8 @@ from typing import Any, Sequence
 
 from balance.errors import BalanceError, InvalidRange
 
+from .._argtypes import positive
+
 __all__ = ["main", "build_parser"]
 
 PROG = "mechsynth balance"
@@ -63,16 +65,6 @@ def plot_file(text: str) -> str:
     return text
 
 
-def _count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
-    return value
-
-
 def _materials():
     from balance.helical import MATERIALS
 
@@ -90,7 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     a = sub.add_parser("arm", help="balance an arm ([arm] TOML, or a URDF file)")
     a.add_argument("file", help="a TOML file with an [arm] table, or a .urdf file")
-    a.add_argument("--samples", type=_count, help="random configurations of the check (default from file or 1000)")
+    a.add_argument("--samples", type=positive, help="random configurations of the check (default from file or 1000)")
     a.add_argument("--seed", type=int)
     a.add_argument("--transmission", action="store_true",
                    help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
@@ -411,6 +403,9 @@ def _cmd_spring(ns) -> dict:
     given = [f"--{k.replace('_', '-')}" for k, v in design_opts.items() if v is not None] + (["--guided"] if ns.guided else [])
     if given and not ns.design_spring:
         raise InvalidInput(f"{', '.join(given)} only apply with --design-spring.")
+    if ns.kind == "tension" and (ns.spring_ends is not None or ns.guided):
+        raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
+                           "extension spring.")
     design = None
     if ns.design_spring:
         design = {k: v for k, v in design_opts.items() if v is not None}

@@ -12,10 +12,11 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def test_balance_does_not_import_synth_or_matplotlib():
+def test_balance_does_not_import_synth_matplotlib_or_pinocchio():
     code = ("import sys, balance, mechsynth.commands.balance; "
             "assert 'synth' not in sys.modules, 'synth imported'; "
-            "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'")
+            "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'; "
+            "assert 'pinocchio' not in sys.modules, 'pinocchio imported eagerly'")
     p = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
 

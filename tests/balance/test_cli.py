@@ -116,6 +116,13 @@ def test_pantograph_and_solve(capsys, tmp_path):
     (["spring", "--kind", "compression-lever", "--moment", "-1", "--range", "0..90", "--r", "0.1..0.2",
       "--r0", "0.1..0.2", "--a", "0.5..1"], "a = r0"),
     (SPRING + ["--spring-ends", "glued", "--design-spring"], "invalid choice"),
+    (["spring", "--kind", "tension", "--moment", "-1", "--range", "0..90", "--r", "0.1..0.2", "--r0", "0.1..0.2",
+      "--a", "0..1", "--design-spring", "--guided"], "extension spring"),
+    (["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5", "--dynamics",
+      "curved"], "invalid choice"),
+    (["arm", "/no/such/arm.urdf"], "no such URDF file"),
+    (["arm", str(MODELS / "pantograph.toml")], "unknown top-level key"),
+    (["arm", str(MODELS / "arm_base_drives.urdf"), "--plot", "a.png"], "URDF"),
 ])
 def test_bad_input_one_line_exit_2(capsys, argv, words):
     code, out, err = run(capsys, argv)
