@@ -29,7 +29,7 @@ from .errors import (
 from .fit import DEFAULT_METHOD, METHODS, NORMS, FitResult, SpringBounds, fit_spring
 from .pantograph import Pantograph, balance_pantograph, pantograph_from_dict
 from .potential import HarmonicTerm, merge_terms
-from .problems import load_toml, solve_arm, solve_pantograph, solve_prismatic, solve_spring
+from .problems import load_toml, solve_arm, solve_pantograph, solve_prismatic, solve_spring, spring_problem
 from .springs import CrankRockerDevice, SineDevice, crank_moment, spring_length
 from .static import ArmBalance, CheckResult, balance_arm, check_terms
 
@@ -41,7 +41,7 @@ __all__ = [
     "SpringBounds", "FitResult", "fit_spring", "METHODS", "NORMS", "DEFAULT_METHOD",
     "CounterMass", "c_min", "counter_mass_laws", "crank_construction", "verify_counter_mass",
     "Pantograph", "balance_pantograph", "pantograph_from_dict",
-    "solve_arm", "solve_spring", "solve_prismatic", "solve_pantograph", "load_toml",
+    "solve_arm", "solve_spring", "spring_problem", "solve_prismatic", "solve_pantograph", "load_toml",
     "BalanceError", "InvalidInput", "InvalidArm", "InvalidRange", "InfeasibleBounds",
     "WrongSense", "FitFailed", "SchemaError",
 ]

@@ -23,7 +23,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ._schema import check_keys, check_top_level, get_number, get_range
+from .schema import ArmTable, parse
 from .errors import InvalidArm, SchemaError
 from .potential import HarmonicTerm, format_form, merge_terms
 
@@ -399,40 +399,22 @@ class Arm:
         return bounds
 
 
-def _drive_matrix(kind_or_matrix: Any, n: int, source: str) -> tuple[tuple[float, ...], ...] | None:
-    if isinstance(kind_or_matrix, str):
-        if kind_or_matrix == "joint":
-            return None
-        if kind_or_matrix == "base":
-            # ψ_k = q_1 + … + q_k  ⇒  q = D·ψ with D bidiagonal (1 on, −1 below the diagonal)
-            d = np.eye(n) - np.eye(n, k=-1)
-            return tuple(tuple(float(v) for v in row) for row in d)
-        raise SchemaError(
-            f"{source}: 'drives' must be 'joint', 'base' or a matrix, not {kind_or_matrix!r}."
-        )
-    if isinstance(kind_or_matrix, list) and all(isinstance(r, list) for r in kind_or_matrix):
-        try:
-            return tuple(tuple(float(v) for v in row) for row in kind_or_matrix)
-        except (TypeError, ValueError):
-            pass
-    raise SchemaError(f"{source}: 'drives' must be 'joint', 'base' or a matrix of numbers.")
-
-
-_ARM_KEYS = {
-    "name", "zero", "g", "drives", "accuracy", "links", "loads", "devices", "check",
-    "counterweights",
-}
-_LINK_KEYS = {
-    "name", "joint", "length", "weight", "mass", "com", "com_lateral", "offset_deg",
-    "range", "range_deg", "stroke", "accuracy", "gear_ratio", "counterweight_arm",
-}
-_LOAD_KEYS = {"name", "link", "weight", "mass", "at", "lateral", "payload"}
+def _drive_matrix(drives: Any, n: int) -> tuple[tuple[float, ...], ...] | None:
+    """``"joint"`` → None (q = ψ); ``"base"`` → D with ψ_k = q_1 + … + q_k; a matrix as given."""
+    if drives == "joint":
+        return None
+    if drives == "base":
+        # ψ_k = q_1 + … + q_k  ⇒  q = D·ψ with D bidiagonal (1 on, −1 below the diagonal)
+        d = np.eye(n) - np.eye(n, k=-1)
+        return tuple(tuple(float(v) for v in row) for row in d)
+    return tuple(tuple(float(v) for v in row) for row in drives)
 
 
 def arm_from_dict(doc: Mapping[str, Any], source: str = "<arm>") -> Arm:
     """Build an :class:`Arm` from a parsed TOML document with an ``[arm]`` table.
 
-    See ``docs/balance.md`` for the schema; ``[scene]`` and ``[expect]`` are ignored.
+    See ``docs/balance.md`` for the schema (:class:`balance.schema.ArmTable`);
+    ``[scene]`` and ``[expect]`` are ignored.
 
     Examples
     --------
@@ -440,75 +422,65 @@ def arm_from_dict(doc: Mapping[str, Any], source: str = "<arm>") -> Arm:
     >>> arm_from_dict(doc).links[0].com
     0.5
     """
-    a = check_top_level(doc, "arm", source)
-    check_keys(a, _ARM_KEYS, "[arm]", source)
-    g = get_number(a, "g", "[arm]", source, default=9.80665)
-    zero = a.get("zero", "vertical")
-    eps_default = get_number(a, "accuracy", "[arm]", source, default=1e-3)
-    raw_links = a.get("links")
-    if not isinstance(raw_links, list) or not raw_links:
-        raise SchemaError(f"{source}: [arm] needs at least one [[arm.links]] table.")
+    a = parse(doc, "arm", source)
+    if a.urdf is not None:
+        raise SchemaError(f"{source}: [arm] reads its links from 'urdf'; use balance.urdf to load it.")
+    return arm_from_table(a, source)
+
+
+def arm_from_table(a: ArmTable, source: str = "<arm>") -> Arm:
+    """An :class:`Arm` from a validated ``[arm]`` table (see :func:`arm_from_dict`)."""
+    if not a.links:
+        raise SchemaError(f"{source}: [arm] needs at least one [[arm.links]] table (or 'urdf').")
     links: list[Link] = []
     names: dict[str, int] = {}
-    for i, t in enumerate(raw_links):
-        where = f"[[arm.links]] #{i + 1}"
-        if not isinstance(t, Mapping):
-            raise SchemaError(f"{source}: {where} must be a table.")
-        check_keys(t, _LINK_KEYS, where, source)
-        name = str(t.get("name", f"link{i + 1}"))
+    for i, t in enumerate(a.links):
+        name = t.name if t.name is not None else f"link{i + 1}"
         where = f"link '{name}'"
         if name in names:
             raise SchemaError(f"{source}: two links are named '{name}'.")
         names[name] = i
-        joint = t.get("joint", "revolute")
-        length = get_number(t, "length", where, source, default=0.0)
-        weight = _weight(t, where, source, g)
-        com = get_number(t, "com", where, source, default=length / 2)
-        lat = get_number(t, "com_lateral", where, source, default=0.0)
-        off = math.radians(get_number(t, "offset_deg", where, source, default=0.0))
-        stroke = get_number(t, "stroke", where, source, default=0.0)
+        weight = _weight(t, where, source, a.g)
+        com = t.length / 2 if t.com is None else t.com
+        off = math.radians(t.offset_deg)
         k = 0.0
-        if joint == "prismatic":
-            if not stroke > 0:
+        if t.joint == "prismatic":
+            if not t.stroke > 0:
                 raise InvalidArm(f"{source}: {where} is prismatic and needs a positive 'stroke' (m).")
-            rng = get_range(t, "range", where, source, default=(-stroke / 2, stroke / 2))
-            if "gear_ratio" in t:
-                k = get_number(t, "gear_ratio", where, source)
+            rng = tuple(t.range) if t.range is not None else (-t.stroke / 2, t.stroke / 2)
+            if t.gear_ratio is not None:
+                k = t.gear_ratio
             else:
-                eps = get_number(t, "accuracy", where, source, default=eps_default)
-                k = gear_ratio_for_accuracy(stroke, eps)
+                k = gear_ratio_for_accuracy(t.stroke, a.accuracy if t.accuracy is None else t.accuracy)
         else:
-            if "range" in t:
+            if t.range is not None:
                 raise SchemaError(f"{source}: {where}: give a revolute range as 'range_deg'.")
-            rd = get_range(t, "range_deg", where, source, default=(-180.0, 180.0))
+            rd = t.range_deg if t.range_deg is not None else (-180.0, 180.0)
             rng = (math.radians(rd[0]), math.radians(rd[1]))
-        links.append(Link(name, joint, length, weight, com, lat, off, rng, stroke, k))
+        links.append(Link(name, t.joint, t.length, weight, com, t.com_lateral, off, rng, t.stroke, k))
     loads: list[Load] = []
-    for i, t in enumerate(a.get("loads", [])):
+    for i, t in enumerate(a.loads):
         where = f"[[arm.loads]] #{i + 1}"
-        if not isinstance(t, Mapping):
-            raise SchemaError(f"{source}: {where} must be a table.")
-        check_keys(t, _LOAD_KEYS, where, source)
-        link = t.get("link", raw_links and links[-1].name)
+        link = t.link if t.link is not None else links[-1].name
         if link not in names:
             raise SchemaError(f"{source}: {where} refers to unknown link {link!r}.")
         li = names[link]
-        at = get_number(t, "at", where, source, default=links[li].length)
-        lat = get_number(t, "lateral", where, source, default=0.0)
-        payload = t.get("payload", False)
-        if not isinstance(payload, bool):
-            raise SchemaError(f"{source}: 'payload' in {where} must be true or false.")
-        loads.append(Load(li, _weight(t, where, source, g), at, lat, payload, str(t.get("name", f"load{i + 1}"))))
-    drives = _drive_matrix(a.get("drives", "joint"), len(links), source)
-    return Arm(tuple(links), tuple(loads), zero, drives, (), str(a.get("name", "arm")))
+        at = links[li].length if t.at is None else t.at
+        name = t.name if t.name is not None else f"load{i + 1}"
+        loads.append(Load(li, _weight(t, where, source, a.g), at, t.lateral, t.payload, name))
+    try:
+        drives = _drive_matrix(a.drives, len(links))
+        return Arm(tuple(links), tuple(loads), a.zero, drives, (), a.name)
+    except InvalidArm as exc:
+        raise InvalidArm(f"{source}: {exc}") from None
 
 
-def _weight(t: Mapping[str, Any], where: str, source: str, g: float) -> float:
-    if "weight" in t and "mass" in t:
+def _weight(t: Any, where: str, source: str, g: float) -> float:
+    if t.weight is not None and t.mass is not None:
         raise SchemaError(f"{source}: {where} gives both 'weight' (N) and 'mass' (kg); keep one.")
-    if "mass" in t:
-        return get_number(t, "mass", where, source) * g
-    return get_number(t, "weight", where, source, default=0.0)
+    if t.mass is not None:
+        return t.mass * g
+    return 0.0 if t.weight is None else t.weight
 
 
 def describe_form(arm: Arm, form: Sequence[float]) -> dict:

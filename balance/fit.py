@@ -117,6 +117,7 @@ class FitResult:
     message: str
     reference_length: float = 0.0
     notes: list[str] = field(default_factory=list)
+    lever: dict | None = None
 
     @property
     def device(self) -> CrankRockerDevice:
@@ -497,7 +498,7 @@ def fit_spring(
 
     Parameters
     ----------
-    kind : {"tension", "compression"}
+    kind : {"tension", "compression", "compression-lever"}
     moment : float
         ``Φ0`` (N·m), signed: positive turns the crank away from the base point ``C``
         (what a compression spring does), negative towards it (a tension spring).
@@ -534,7 +535,7 @@ def fit_spring(
     """
     t_start = time.perf_counter()
     if kind not in SPRING_KINDS:
-        raise InvalidInput(f"--kind must be 'tension' or 'compression', not {kind!r}.")
+        raise InvalidInput(f"--kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
     if norm not in NORMS:
         raise InvalidInput(f"--norm must be 'max' or 'rms', not {norm!r}.")
     if method is not None and method not in METHODS:
@@ -546,10 +547,10 @@ def fit_spring(
         raise InvalidInput(f"the moment amplitude Φ0 must be a finite non-zero number, not {moment}.")
     sense = KIND_SENSE[kind]
     if (moment > 0) != (sense > 0):
-        other = "compression" if kind == "tension" else "tension"
+        other = "compression" if sense < 0 else "tension or compression-lever"
         raise WrongSense(
-            f"a {kind} spring turns the crank {_SENSE_TEXT[sense]}, so it cannot give "
-            f"Φ0 = {moment:g} N·m; use a {other} spring, or turn the device by 180° and fit "
+            f"a {kind} device turns the crank {_SENSE_TEXT[sense]}, so it cannot give "
+            f"Φ0 = {moment:g} N·m; use a {other} device, or turn the device by 180° and fit "
             f"Φ0 = {-moment:g} N·m."
         )
     lo, hi = _phi_range(phi_range)
@@ -562,6 +563,8 @@ def fit_spring(
     if bounds.max_deflection is not None and not 0 < bounds.max_deflection < 1:
         raise InvalidInput(f"the maximum deflection ratio must lie in (0, 1), not {bounds.max_deflection}.")
     b = SpringBounds(r, r0, a, bounds.max_force, bounds.max_free_length, bounds.max_deflection)
+    if kind == "compression-lever":
+        return _lever_device(moment, lo, hi, b, grid, norm, t_start)
     p = _Problem(kind, moment, lo, hi, b, grid, norm)
     _check_feasible(p)
 
@@ -666,8 +669,9 @@ def _check_feasible(p: _Problem) -> None:
     raise InfeasibleBounds("no device within the stated bounds satisfies the free-length limit.")
 
 
-def _tension_exact(p: _Problem):
-    """A zero-free-length tension device within the bounds, least spring force first."""
+def _tension_exact(p: _Problem, max_lmax: float = math.inf):
+    """A zero-free-length tension device within the bounds, least spring force first
+    (only devices whose longest spring length is at most ``max_lmax``, in units of ℓ)."""
     best = None
     for rho in _span(*p.rho_b, 9):
         for rho0 in _span(*p.rho0_b, 17):
@@ -678,10 +682,68 @@ def _tension_exact(p: _Problem):
             if kmax < 1.0:
                 continue
             lmax = math.sqrt(rho0 * rho0 + 4 * rho * (rho + rho0) * p.s2max)
+            if lmax > max_lmax:
+                continue
             force = lmax / (rho * (rho + rho0))  # c·L_max in units of |Φ0|/ℓ
             if best is None or force < best[0]:
                 best = (force, (rho, rho0, rho0, 1.0))
     return None if best is None else best[1]
+
+
+#: deflection ratio (compression over free length) of the lever device's spring when none is given
+LEVER_DEFLECTION = 0.5
+
+
+def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: int, norm: str,
+                  t_start: float) -> FitResult:
+    """The compression-lever device at ``a = r0``: exact, with the lever it needs.
+
+    The crank geometry with the least spring force among ``a = r0`` devices (as for a
+    zero-free-length tension spring); the spring's own free length ``s`` (= the stop's
+    distance from ``C``) follows from the largest compression ``L_max`` it must take:
+    ``s = L_max/δ`` with ``δ`` = ``max_deflection`` (default 0.5).
+    """
+    delta = LEVER_DEFLECTION if b.max_deflection is None else b.max_deflection
+    p = _Problem("compression-lever", moment, lo, hi, SpringBounds(b.r, b.r0, b.a, b.max_force), grid, norm)
+    if not (b.a[0] <= b.r0[1] and b.a[1] >= b.r0[0]):
+        raise InfeasibleBounds(
+            f"the compression-lever device is exact only at a = r0, but a ∈ [{b.a[0]:g}, {b.a[1]:g}] m and "
+            f"r0 ∈ [{b.r0[0]:g}, {b.r0[1]:g}] m never meet; widen --a or --r0."
+        )
+    _check_feasible(p)
+    longest = math.inf if b.max_free_length is None else delta * b.max_free_length / p.ell
+    exact = _tension_exact(p, longest)
+    if exact is None:
+        limits = []
+        if b.max_force is not None:
+            limits.append(f"keeps the spring force below {b.max_force:g} N")
+        if b.max_free_length is not None:
+            limits.append(f"fits a spring of at most {b.max_free_length:g} m at a deflection ratio of {delta:g}")
+        raise InfeasibleBounds(
+            f"no compression-lever device with a = r0 {' and '.join(limits)}; raise --max-force, "
+            "--max-free-length or --max-deflection."
+        )
+    res = _finish(p, exact, "exact", norm, t_start, "compression spring on the lever beyond B, a = r0: exact", [])
+    lmax = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2max)
+    lmin = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2min)
+    s = lmax / delta
+    res.deflection = delta
+    res.lever = {
+        "stop_distance_from_C": s, "spring_free_length": s,
+        "spring_length_min": s - lmax, "spring_length_max": s - lmin,
+        "compression_min": lmin, "compression_max": lmax, "deflection_ratio": delta,
+        "reach_from_C": s, "reach_from_C_fig_a": lmax, "extra_length": s - lmax,
+        "size_ratio": s / lmax,
+    }
+    res.notes.append(lever_note(res.lever))
+    return res
+
+
+def lever_note(lever: dict) -> str:
+    """The compression-lever device's size against a spring between C and B, in one sentence."""
+    s, lmax = lever["reach_from_C"], lever["reach_from_C_fig_a"]
+    return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
+            f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression spring")
 
 
 def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, notes) -> FitResult:
@@ -708,6 +770,7 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
             f"r0/r = {rho0 / rho:.3g} with φ = 0 in the range: the moment changes steeply within "
             f"|φ| ≲ {math.degrees(rho0 / rho):.3g}° of 0 (resolved by the verification grid)"
         )
+    notes.extend(dead_centre_notes(p.lo, p.hi, r, r0))
     return FitResult(
         kind=p.kind, method=method, norm=norm, moment=M, phi_range=(p.lo, p.hi),
         x=(rho, rho0, al, kappa), c=c, r=r, r0=r0, a=a, d=d, free_length=l0,
@@ -720,6 +783,28 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
         sense=KIND_SENSE[p.kind], sense_text=_SENSE_TEXT[KIND_SENSE[p.kind]],
         success=True, message=msg, reference_length=ell, notes=list(notes),
     )
+
+
+def dead_centre_notes(lo: float, hi: float, r: float, r0: float) -> list[str]:
+    """What the device does where the working range crosses φ = 0 or φ = 180° (mod 360°)."""
+    out = []
+    zeros = [k * 180 for k in range(math.ceil(math.degrees(lo) / 180 - 1e-12),
+                                     math.floor(math.degrees(hi) / 180 + 1e-12) + 1)]
+    inner = [z for z in zeros if math.radians(z) > lo + 1e-12 and math.radians(z) < hi - 1e-12]
+    if inner:
+        where = " and ".join(f"{z}°" for z in inner)
+        what = "the dead centres" if len(inner) > 1 else "the dead centre"
+        ends = []
+        if any(z % 360 == 0 for z in inner):
+            ends.append(f"at 0° the spring is shortest ({r0:.4g} m)")
+        if any(z % 360 == 180 for z in inner):
+            ends.append(f"at 180° longest (2r + r0 = {2 * r + r0:.4g} m)")
+        out.append(
+            f"the range crosses {what} φ = {where}, where crank AB and spring BC are in line: "
+            f"the device's moment and the target both pass through zero and change sign there, so the "
+            f"crank is held in both directions; {' and '.join(ends)}"
+        )
+    return out
 
 
 def _verify_grid(lo: float, hi: float, r: float, r0: float) -> np.ndarray:

@@ -1,41 +1,61 @@
-"""Balanced manipulator with a pantograph (docs/theory.md; balancing textbook, Fig. 6.6).
+"""Balanced manipulator with a pantograph: the mechanism, its spring and its lifting cylinder.
 
-Geometry (angles from the horizontal, ``A`` the fixed pivot at the origin):
+Links are numbered as in the textbook figure this follows (see ``docs/theory.md``).
+Angles are measured from the horizontal; ``A`` is the fixed pivot at the origin:
 
-- upper arm (link 2) ``A→D``, length ``l2``, angle ``θ2``;
-- forearm (link 3) ``D→C``, length ``l3``, angle ``θ3``; ``C`` carries the tool and payload;
-- bar ``E→B`` parallel to the forearm, ``E`` on the upper arm at ``l2/k`` from ``A``, length ``l3/k``;
-- bar ``F→B`` parallel to the upper arm, ``F`` on the forearm at ``l3/k`` from ``D``.
-
-Then ``A``, ``B``, ``C`` are collinear and ``C − A = k·(B − A)``: the driven point ``B`` and
-the output ``C`` move similarly with ratio ``k``. A vertical drive at ``B`` holds its
-height; ``B`` moves freely sideways.
+- upper arm **2** ``A→D`` (length ``l2``, angle ``θ2``) and forearm **3** ``D→C`` (``l3``,
+  ``θ3``); ``C`` carries the wrist, tool and payload;
+- pantograph bars **9** ``E→B`` parallel to the forearm (``E`` on link 2 at ``l2/k`` from
+  ``A``, length ``l3/k``) and **8** ``F→B`` parallel to the upper arm (``F`` on link 3 at
+  ``l3/k`` from ``D``): ``A``, ``B``, ``C`` stay on one line with ``C − A = k·(B − A)``,
+  ``k = l3/|EB|`` the similarity ratio;
+- parallelograms **1-2-14-16** and **16-3-4-15** (bars 14, 15 at a vertical offset below
+  links 2, 3; the elbow plate 16 and the wrist plate 4 translate, so the gripper keeps its
+  orientation);
+- the hydraulic cylinder **10** from the frame pivot ``P`` to the driving point ``B``;
+- the spring device **13** on link 2 at ``A``.
 
 Each link's weight is replaced by point weights at its joints (substitution points);
-after moving the weights at ``E`` and ``F`` to the ends of their links, only ``A``, ``D``,
-``B`` and ``C`` carry weight. With ``y_B`` held, ``y_C = k·y_B`` is held too, and the
-potential that remains is ``W_D·l2·sin θ2``: one crank spring device on the upper arm
-balances it, and the drive carries the constant force ``W_B + k·W_C``.
+after moving the weights at ``E``, ``F`` and the parallelogram joints to the ends of the
+links that carry them, only ``A``, ``D``, ``B`` and ``C`` carry weight (``W_A … W_C``).
+With the cylinder holding ``B`` the potential that remains is ``W_D·l2·sin θ2``: the
+spring device cancels it exactly (``W_D·l2·cos θ2`` on link 2). The cylinder's force
+depends on the configuration: the moment of ``W_B`` and ``W_C`` about ``A`` divided by
+the cylinder's lever arm about ``A``,
+
+    F = (W_B·x_B + W_C·x_C) / ((B − A) × u),   u = (B − P)/|B − P|,
+
+and what the cylinder's line of action cannot hold along ``A→C`` the operator holds at
+the handle: ``R = (W·sin β − F·u·b̂)/k`` with ``W = W_B + k·W_C`` and ``b̂`` the unit
+vector ``A→B`` at angle ``β``. Both follow from virtual work (a rotation of the whole
+pantograph about ``A`` and a stretch along ``A→C``); :func:`virtual_work_forces` solves
+the same equilibrium from the links' own centres of mass as the independent check.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any, Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._schema import check_keys, check_top_level, get_number, get_range
-from .errors import InvalidArm, SchemaError
+from .errors import InvalidArm
 from .potential import HarmonicTerm
+from .schema import PantographTable, parse
 
-__all__ = ["Pantograph", "pantograph_from_dict", "balance_pantograph"]
+__all__ = ["Pantograph", "pantograph_from_dict", "balance_pantograph", "virtual_work_forces"]
+
+PAYLOADS = (0.0, 0.5, 1.0)
 
 
 @dataclass(frozen=True)
 class Pantograph:
     """A pantograph manipulator (SI units, weights in N). See the module docstring.
+
+    ``w8``/``w9``: pantograph bars F→B and E→B; ``w14``/``w15``: each parallelogram bar;
+    ``w16``/``w4``: elbow and wrist plates; ``offset``: the parallelograms' vertical side
+    (m); ``base``: the cylinder's frame pivot ``P`` relative to ``A`` (default below ``B``
+    at mid-range, ``2·l2`` lower).
 
     Examples
     --------
@@ -49,23 +69,29 @@ class Pantograph:
     k: float
     w2: float = 0.0
     w3: float = 0.0
-    w_eb: float = 0.0
-    w_fb: float = 0.0
+    w9: float = 0.0
+    w8: float = 0.0
+    w14: float = 0.0
+    w15: float = 0.0
+    w16: float = 0.0
+    w4: float = 0.0
     s2: float | None = None
     s3: float | None = None
     tool: float = 0.0
     payload: float = 0.0
+    offset: float = 0.15
+    base: tuple[float, float] | None = None
     range2: tuple[float, float] = (math.radians(-60), math.radians(80))
     range3: tuple[float, float] = (math.radians(-80), math.radians(60))
 
     def __post_init__(self) -> None:
-        for name in ("l2", "l3"):
+        for name in ("l2", "l3", "offset"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InvalidArm(f"the pantograph length {name} must be positive, not {v}.")
         if not (math.isfinite(self.k) and self.k > 1):
             raise InvalidArm(f"the pantograph ratio k = AC/AB must exceed 1, not {self.k}.")
-        for name in ("w2", "w3", "w_eb", "w_fb", "tool", "payload"):
+        for name in ("w2", "w3", "w9", "w8", "w14", "w15", "w16", "w4", "tool", "payload"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v >= 0):
                 raise InvalidArm(f"the pantograph weight {name} must be a finite number ≥ 0, not {v}.")
@@ -73,12 +99,15 @@ class Pantograph:
             if not (math.isfinite(rng[0]) and math.isfinite(rng[1]) and rng[0] < rng[1]):
                 raise InvalidArm(f"a pantograph angle range must be finite with low < high, not {rng}.")
 
+    # ------------------------------------------------------------------ geometry
     @property
     def e(self) -> float:
+        """``|AE| = l2/k``."""
         return self.l2 / self.k
 
     @property
     def g(self) -> float:
+        """``|EB| = |DF| = l3/k`` (link 9)."""
         return self.l3 / self.k
 
     def _s2(self) -> float:
@@ -87,57 +116,152 @@ class Pantograph:
     def _s3(self) -> float:
         return self.l3 / 2 if self.s3 is None else self.s3
 
+    @property
+    def cylinder_base(self) -> np.ndarray:
+        """Frame pivot ``P`` of the cylinder (m, relative to ``A``)."""
+        if self.base is not None:
+            return np.asarray(self.base, dtype=float)
+        t2 = 0.5 * (self.range2[0] + self.range2[1])
+        t3 = 0.5 * (self.range3[0] + self.range3[1])
+        b = self.points(np.array([[t2, t3]]))["B"][0]
+        return np.array([b[0], b[1] - 2 * self.l2])
+
+    def sample(self, count: int, seed: int = 0) -> np.ndarray:
+        """``count`` configurations ``(θ2, θ3)`` drawn uniformly from the ranges."""
+        rng = np.random.default_rng(seed)
+        lo = np.array([self.range2[0], self.range3[0]])
+        hi = np.array([self.range2[1], self.range3[1]])
+        return lo + (hi - lo) * rng.random((count, 2))
+
+    def points(self, th: np.ndarray) -> dict[str, np.ndarray]:
+        """Joint points at configurations ``th`` (m, 2): each an (m, 2) array."""
+        th = np.atleast_2d(th)
+        u2 = np.stack([np.cos(th[:, 0]), np.sin(th[:, 0])], axis=1)
+        u3 = np.stack([np.cos(th[:, 1]), np.sin(th[:, 1])], axis=1)
+        v = np.array([0.0, -self.offset])
+        A = np.zeros_like(u2)
+        D = self.l2 * u2
+        C = D + self.l3 * u3
+        E = self.e * u2
+        B = E + self.g * u3
+        F = D + self.g * u3
+        return {"A": A, "D": D, "C": C, "E": E, "B": B, "F": F,
+                "A1": A + v, "D1": D + v, "C1": C + v}
+
+    # ------------------------------------------------------------------- weights
     def point_weights(self, payload_fraction: float = 0.5) -> dict[str, float]:
         """Substitution weights at ``A``, ``D``, ``B``, ``C`` (N)."""
         k, l2, l3 = self.k, self.l2, self.l3
         s2, s3 = self._s2(), self._s3()
-        wa = self.w2 * (1 - s2 / l2)
-        wd = self.w2 * s2 / l2 + self.w3 * (1 - s3 / l3)
-        wc = self.w3 * s3 / l3 + self.tool + payload_fraction * self.payload
-        wb = 0.5 * self.w_eb + 0.5 * self.w_fb
-        we, wf = 0.5 * self.w_eb, 0.5 * self.w_fb  # bars' centres at mid-length
-        wa += we * (1 - 1 / k)
-        wd += we / k + wf * (1 - 1 / k)
-        wc += wf / k
+        wa = self.w2 * (1 - s2 / l2) + 0.5 * self.w9 * (1 - 1 / k) + 0.5 * self.w14
+        wd = (self.w2 * s2 / l2 + self.w3 * (1 - s3 / l3) + 0.5 * self.w9 / k + 0.5 * self.w8 * (1 - 1 / k)
+              + 0.5 * self.w14 + 0.5 * self.w15 + self.w16)
+        wb = 0.5 * self.w9 + 0.5 * self.w8
+        wc = (self.w3 * s3 / l3 + 0.5 * self.w8 / k + 0.5 * self.w15 + self.w4 + self.tool
+              + payload_fraction * self.payload)
         return {"A": wa, "D": wd, "B": wb, "C": wc}
 
-    def height_coefficients(self, payload_fraction: float = 0.5) -> list[tuple[float, float, float]]:
-        """Direct model (no substitution): ``(weight, a, b)`` with height ``a·sin θ2 + b·sin θ3``."""
+    def height_coefficients(self, payload_fraction: float = 0.5) -> list[tuple[str, float, float, float]]:
+        """Each body's own centre of mass: ``(link, weight, a, b)`` with height
+        ``a·sin θ2 + b·sin θ3`` (+ a constant) and horizontal position ``a·cos θ2 + b·cos θ3``."""
         l2, l3, e, g = self.l2, self.l3, self.e, self.g
         return [
-            (self.w2, self._s2(), 0.0),
-            (self.w3, l2, self._s3()),
-            (self.w_eb, e, g / 2),
-            (self.w_fb, (l2 + e) / 2, g),
-            (self.tool + payload_fraction * self.payload, l2, l3),
+            ("2", self.w2, self._s2(), 0.0),
+            ("3", self.w3, l2, self._s3()),
+            ("9", self.w9, e, g / 2),
+            ("8", self.w8, (l2 + e) / 2, g),
+            ("14", self.w14, l2 / 2, 0.0),
+            ("15", self.w15, l2, l3 / 2),
+            ("16", self.w16, l2, 0.0),
+            ("4", self.w4, l2, l3),
+            ("tool", self.tool, l2, l3),
+            ("payload", payload_fraction * self.payload, l2, l3),
         ]
+
+    def potential(self, th: np.ndarray, payload_fraction: float = 0.5) -> np.ndarray:
+        """Gravity potential of the links' own centres of mass (J, up to a constant)."""
+        th = np.atleast_2d(th)
+        return sum(w * (a * np.sin(th[:, 0]) + b * np.sin(th[:, 1]))
+                   for _, w, a, b in self.height_coefficients(payload_fraction))
 
     def gravity_forces(self, th: np.ndarray, payload_fraction: float = 0.5) -> np.ndarray:
         """Exact ``−∂U/∂(θ2, θ3)`` from the links' own centres of mass, shape (m, 2)."""
         th = np.atleast_2d(th)
         out = np.zeros_like(th)
-        for w, a, b in self.height_coefficients(payload_fraction):
+        for _, w, a, b in self.height_coefficients(payload_fraction):
             out[:, 0] -= w * a * np.cos(th[:, 0])
             out[:, 1] -= w * b * np.cos(th[:, 1])
         return out
 
+    # --------------------------------------------------------- spring and drive
     def term(self) -> HarmonicTerm:
         """The one harmonic term the spring cancels: ``W_D·l2·cos(θ2 − 90°)``."""
         return HarmonicTerm(self.point_weights()["D"] * self.l2, -math.pi / 2, (1.0, 0.0))
 
-    def drive_force(self, payload_fraction: float = 0.5) -> float:
-        """Vertical force the drive at ``B`` carries: ``W_B + k·W_C`` (N), the same everywhere."""
+    def vertical_load(self, payload_fraction: float = 0.5) -> float:
+        """Vertical load reduced to ``B``: ``W_B + k·W_C`` (N), the same in every configuration."""
         w = self.point_weights(payload_fraction)
         return w["B"] + self.k * w["C"]
+
+    def cylinder(self, th: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Cylinder length ``|B − P|`` (m), its unit vector ``u`` (P→B) and lever arm
+        ``(B − A) × u`` about ``A`` (m, signed: + turns the pantograph counter-clockwise)."""
+        B = self.points(th)["B"]
+        d = B - self.cylinder_base
+        length = np.hypot(d[:, 0], d[:, 1])
+        u = d / length[:, None]
+        return length, u, B[:, 0] * u[:, 1] - B[:, 1] * u[:, 0]
+
+    def cylinder_force(self, th: np.ndarray, payload_fraction: float = 0.5) -> np.ndarray:
+        """``F = (W_B·x_B + W_C·x_C)/lever`` (N, + pushes B away from P) at ``th``."""
+        w = self.point_weights(payload_fraction)
+        p = self.points(th)
+        moment = w["B"] * p["B"][:, 0] + w["C"] * p["C"][:, 0]
+        return moment / self.cylinder(th)[2]
+
+    def hand_force(self, th: np.ndarray, payload_fraction: float = 0.5) -> np.ndarray:
+        """Force along ``A→C`` (N, + outward) the operator holds at the handle: what the
+        cylinder's line of action leaves of the load along the pantograph's line."""
+        B = self.points(th)["B"]
+        bhat = B / np.hypot(B[:, 0], B[:, 1])[:, None]
+        _, u, _ = self.cylinder(th)
+        F = self.cylinder_force(th, payload_fraction)
+        return (self.vertical_load(payload_fraction) * bhat[:, 1] - F * np.sum(u * bhat, axis=1)) / self.k
+
+
+def _gradients(p: Pantograph, th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``∂s/∂θ`` of the cylinder length and ``∂ρ_C/∂θ`` of the reach ``|C − A|``, each (m, 2)."""
+    pts = p.points(th)
+    c2, s2, c3, s3 = np.cos(th[:, 0]), np.sin(th[:, 0]), np.cos(th[:, 1]), np.sin(th[:, 1])
+    dB = np.stack([np.stack([-p.e * s2, p.e * c2], 1), np.stack([-p.g * s3, p.g * c3], 1)], axis=2)
+    dC = np.stack([np.stack([-p.l2 * s2, p.l2 * c2], 1), np.stack([-p.l3 * s3, p.l3 * c3], 1)], axis=2)
+    _, u, _ = p.cylinder(th)
+    chat = pts["C"] / np.hypot(pts["C"][:, 0], pts["C"][:, 1])[:, None]
+    return np.einsum("mi,mij->mj", u, dB), np.einsum("mi,mij->mj", chat, dC)
+
+
+def virtual_work_forces(p: Pantograph, th: np.ndarray, payload_fraction: float = 0.5) -> np.ndarray:
+    """Cylinder and hand forces ``(F, R)`` from virtual work on the links' own masses.
+
+    Solves ``Q_gravity + Q_spring + F·∂s/∂θ + R·∂ρ_C/∂θ = 0`` for each configuration,
+    with ``s = |B − P|`` the cylinder's length and ``ρ_C = |C − A|``; independent of the
+    substitution weights and of the moment formula. Shape (m, 2).
+    """
+    th = np.atleast_2d(th)
+    ds, drho = _gradients(p, th)
+    q = p.gravity_forces(th, payload_fraction)
+    q[:, 0] += p.term().moment(th[:, 0])  # the spring's force on θ2: +W_D·l2·cos θ2
+    mat = np.stack([ds, drho], axis=2)  # (m, 2 equations, 2 unknowns)
+    return np.linalg.solve(mat, -q[..., None])[..., 0]
 
 
 def balance_pantograph(p: Pantograph, samples: int = 1000, seed: int = 0, r: float | None = None,
                        r0: float | None = None) -> dict:
-    """Spring device, drive force and residual check of a pantograph manipulator.
+    """Spring device, cylinder force over the workspace and the virtual-work check.
 
-    The check: at random ``(θ2, θ3)`` the generalised forces of gravity (direct model),
-    of the spring and of the constant drive force at ``B`` must cancel, i.e. with the
-    drive holding ``y_B`` the manipulator is in neutral equilibrium.
+    The check: at ``samples`` random ``(θ2, θ3)`` and payloads 0, ½, 1 the generalised
+    forces of the links' own weights, of the spring, of the cylinder force ``F`` and of
+    the operator's force ``R`` along ``A→C`` must cancel.
 
     Examples
     --------
@@ -145,85 +269,81 @@ def balance_pantograph(p: Pantograph, samples: int = 1000, seed: int = 0, r: flo
     >>> out["relative_residual"] < 1e-12
     True
     """
-    rng = np.random.default_rng(seed)
-    lo = np.array([p.range2[0], p.range3[0]])
-    hi = np.array([p.range2[1], p.range3[1]])
-    th = lo + (hi - lo) * rng.random((samples, 2))
+    th = p.sample(samples, seed)
     t = p.term()
-    jb = np.stack([p.e * np.cos(th[:, 0]), p.g * np.cos(th[:, 1])], axis=1)  # ∂y_B/∂θ
-    out_rows = {}
-    worst = 0.0
-    for frac in (0.0, 0.5, 1.0):
-        qg = p.gravity_forces(th, frac)
-        q_spring = np.zeros_like(th)
-        q_spring[:, 0] = t.moment(th[:, 0])
-        q_drive = p.drive_force(frac) * jb
-        res = qg + q_spring + q_drive
-        out_rows[frac] = float(np.max(np.abs(res)))
-        worst = max(worst, out_rows[frac])
-    mg = float(np.max(np.abs(p.gravity_forces(th, 0.5))))
+    length, u, lever = p.cylinder(th)
+    if np.min(np.abs(lever)) < 1e-9 * p.l2:
+        raise InvalidArm("the cylinder's line of action passes through A in the workspace, so it cannot hold "
+                         "the pantograph there; move its base (cylinder.base).")
+    ds, drho = _gradients(p, th)
+    worst, mg, forces, hands, by_payload = 0.0, 0.0, {}, {}, {}
+    for frac in PAYLOADS:
+        F = p.cylinder_force(th, frac)
+        R = p.hand_force(th, frac)
+        q = p.gravity_forces(th, frac)
+        q[:, 0] += t.moment(th[:, 0])
+        res = q + F[:, None] * ds + R[:, None] * drho
+        by_payload[str(frac)] = float(np.max(np.abs(res)))
+        worst = max(worst, by_payload[str(frac)])
+        mg = max(mg, float(np.max(np.abs(p.gravity_forces(th, frac)))))
+        forces[frac], hands[frac] = F, R
     dev = {"sine": {"eT": t.amplitude}, "tension": {"crd": t.amplitude, "zero_at_deg": 90.0}}
     if r is not None and r0 is not None:
         dev["tension"].update({"r": r, "r0": r0, "a": r0, "c": t.amplitude / (r * (r + r0))})
+    all_f = np.concatenate(list(forces.values()))
+    all_r = np.concatenate(list(hands.values()))
+    load = p.vertical_load(1.0)
+    notes = []
+    if np.min(all_f) < 0:
+        notes.append("the cylinder pulls somewhere in the workspace (negative force): it must be double-acting")
+    if np.max(np.abs(all_r)) > 0.05 * load:
+        notes.append(f"the operator holds up to {np.max(np.abs(all_r)):.3g} N along A→C "
+                     f"({100 * np.max(np.abs(all_r)) / load:.3g} % of the full load {load:.4g} N reduced to B): "
+                     "a base P further below B keeps the cylinder nearer vertical")
     return {
         "point_weights": p.point_weights(0.5),
         "point_weights_without_payload": p.point_weights(0.0),
         "term": t.to_dict() | {"form_text": "θ2"},
         "device": dev,
         "spring_moment": f"{t.amplitude:.6g}·cos θ2 on the upper arm (base point C above A)",
-        "drive_force": p.drive_force(0.5),
-        "drive_force_range": [p.drive_force(0.0), p.drive_force(1.0)],
+        "drive_force": p.vertical_load(0.5),
+        "drive_force_range": [p.vertical_load(0.0), p.vertical_load(1.0)],
+        "cylinder_force": {
+            "min": float(np.min(all_f)), "max": float(np.max(all_f)),
+            "half_payload": {"min": float(np.min(forces[0.5])), "max": float(np.max(forces[0.5]))},
+            "by_payload": {str(f): {"min": float(np.min(v)), "max": float(np.max(v))} for f, v in forces.items()},
+        },
+        "hand_force": {"min": float(np.min(all_r)), "max": float(np.max(all_r))},
+        "cylinder": {
+            "base": [float(v) for v in p.cylinder_base],
+            "length_min": float(np.min(length)), "length_max": float(np.max(length)),
+            "lever_min": float(np.min(np.abs(lever))), "lever_max": float(np.max(np.abs(lever))),
+        },
         "max_residual": worst,
-        "residual_by_payload": {str(k): v for k, v in out_rows.items()},
+        "residual_by_payload": by_payload,
         "max_gravity_force": mg,
         "relative_residual": worst / mg if mg > 0 else 0.0,
         "samples": samples,
         "seed": seed,
-        "note": "the payload sits at C, so it changes only the drive force, never the spring",
+        "notes": notes,
+        "note": "the payload sits at C: it changes the cylinder and hand forces, never the spring",
     }
 
 
-_KEYS = {"l2", "l3", "ratio", "upper", "forearm", "bar_eb", "bar_fb", "tool", "payload",
-         "range_upper_deg", "range_forearm_deg", "spring", "check"}
-
-
-def pantograph_from_dict(doc: Mapping[str, Any], source: str = "<pantograph>") -> tuple[Pantograph, dict]:
+def pantograph_from_dict(doc, source: str = "<pantograph>") -> tuple[Pantograph, dict]:
     """Parse a ``[pantograph]`` document; returns the model and options (spring, check)."""
-    t = check_top_level(doc, "pantograph", source)
-    check_keys(t, _KEYS, "[pantograph]", source)
-    w = "[pantograph]"
-
-    def link(name: str) -> tuple[float, float | None]:
-        sub = t.get(name, {})
-        if not isinstance(sub, Mapping):
-            raise SchemaError(f"{source}: [pantograph.{name}] must be a table.")
-        check_keys(sub, {"weight", "com"}, f"[pantograph.{name}]", source)
-        return (get_number(sub, "weight", f"[pantograph.{name}]", source, default=0.0),
-                get_number(sub, "com", f"[pantograph.{name}]", source, default=None))
-
-    w2, s2 = link("upper")
-    w3, s3 = link("forearm")
-    web, _ = link("bar_eb")
-    wfb, _ = link("bar_fb")
-    r2 = get_range(t, "range_upper_deg", w, source, default=(-60.0, 80.0))
-    r3 = get_range(t, "range_forearm_deg", w, source, default=(-80.0, 60.0))
-    p = Pantograph(
-        l2=get_number(t, "l2", w, source, required=True),
-        l3=get_number(t, "l3", w, source, required=True),
-        k=get_number(t, "ratio", w, source, required=True),
-        w2=w2, w3=w3, w_eb=web, w_fb=wfb, s2=s2, s3=s3,
-        tool=get_number(t, "tool", w, source, default=0.0),
-        payload=get_number(t, "payload", w, source, default=0.0),
-        range2=(math.radians(r2[0]), math.radians(r2[1])),
-        range3=(math.radians(r3[0]), math.radians(r3[1])),
-    )
-    opts: dict = {}
-    sp = t.get("spring", {})
-    check_keys(sp, {"r", "r0"}, "[pantograph.spring]", source)
-    opts["r"] = get_number(sp, "r", "[pantograph.spring]", source)
-    opts["r0"] = get_number(sp, "r0", "[pantograph.spring]", source)
-    ck = t.get("check", {})
-    check_keys(ck, {"samples", "seed"}, "[pantograph.check]", source)
-    opts["samples"] = int(get_number(ck, "samples", "[pantograph.check]", source, default=1000))
-    opts["seed"] = int(get_number(ck, "seed", "[pantograph.check]", source, default=0))
-    return p, opts
+    t: PantographTable = parse(doc, "pantograph", source)
+    try:
+        p = Pantograph(
+            l2=t.l2, l3=t.l3, k=t.ratio,
+            w2=t.upper.weight, w3=t.forearm.weight, w9=t.bar_eb.weight, w8=t.bar_fb.weight,
+            w14=t.parallelogram_bars.weight, w15=t.parallelogram_bars.weight,
+            w16=t.elbow_plate.weight, w4=t.wrist_plate.weight,
+            s2=t.upper.com, s3=t.forearm.com, tool=t.tool, payload=t.payload, offset=t.parallelogram_offset,
+            base=None if t.cylinder.base is None else tuple(t.cylinder.base),
+            range2=tuple(math.radians(v) for v in t.range_upper_deg),
+            range3=tuple(math.radians(v) for v in t.range_forearm_deg),
+        )
+    except InvalidArm as exc:
+        raise InvalidArm(f"{source}: {exc}") from None
+    return p, {"r": t.spring.r, "r0": t.spring.r0, "samples": t.check.samples, "seed": t.check.seed}

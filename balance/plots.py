@@ -23,20 +23,27 @@ def _plt():
     return plt
 
 
-def plot_spring(res: FitResult, path: str) -> str:
-    """Target ``Φ0·sin φ`` against the device moment, and the relative residual."""
+def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spring: dict | None = None) -> str:
+    """Target ``Φ0·sin φ`` against the device moment, the relative residual, and (given) the
+    Pareto front of error against free length and peak force."""
     plt = _plt()
     lo, hi = res.phi_range
     phi = np.linspace(lo, hi, 1001)
     dev = res.device
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
+    panels = 3 if front else 2
+    fig, axes = plt.subplots(panels, 1, figsize=(7.5, 3.2 * panels + 0.4), constrained_layout=True)
+    ax1, ax2 = axes[0], axes[1]
     deg = np.degrees(phi)
     ax1.plot(deg, res.moment * np.sin(phi), "k-", lw=2, label="target  Φ0·sin φ")
     ax1.plot(deg, dev.moment(phi), "C1--", lw=1.5, label=f"{res.kind} device")
     ax1.set_ylabel("moment on the crank (N·m)")
-    ax1.set_title(
-        f"{res.kind} spring, {res.method}/{res.norm}: c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
-        f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m", fontsize=9)
+    ax1.set_xlabel("crank angle φ (deg, from the base point C)")
+    title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
+             f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
+    if spring:
+        title += (f"\nspring: d = {1e3 * spring['wire_diameter_m']:.3g} mm, D = {1e3 * spring['mean_diameter_m']:.4g} mm, "
+                  f"n = {spring['active_coils']:g}, {spring['material']}")
+    ax1.set_title(title, fontsize=9)
     ax1.legend(loc="best", fontsize=8)
     ax1.grid(alpha=0.3)
     e = relative_errors(dev, res.moment, phi)
@@ -44,119 +51,244 @@ def plot_spring(res: FitResult, path: str) -> str:
     ax2.axhline(0, color="k", lw=0.5)
     ax2.set_ylabel("(M − Φ0·sin φ)/|Φ0|  (%)")
     ax2.set_xlabel("crank angle φ (deg, from the base point C)")
-    ax2.set_title(f"max {100 * res.max_rel_error:.3g} %, RMS {100 * res.rms_rel_error:.3g} %", fontsize=9)
+    if res.max_rel_error < 1e-12:
+        ax2.set_ylim(-1, 1)
+        ax2.set_title(f"exact to rounding: max |error| {res.max_rel_error:.2g}", fontsize=9)
+    else:
+        ax2.set_title(f"relative error: max {100 * res.max_rel_error:.3g} %, RMS {100 * res.rms_rel_error:.3g} %",
+                      fontsize=9)
     ax2.grid(alpha=0.3)
+    if front:
+        ax3 = axes[2]
+        groups: dict[float, list[dict]] = {}
+        for pt in front:
+            groups.setdefault(float(f"{pt['force']:.3g}"), []).append(pt)
+        cmap = plt.get_cmap("viridis")
+        levels = sorted(groups)
+        for i, f in enumerate(levels):
+            pts = sorted(groups[f], key=lambda q: q["size"])
+            ax3.plot([q["size"] for q in pts], [100 * q["error"] for q in pts], "o-", ms=4, lw=1.2,
+                     color=cmap(i / max(len(levels) - 1, 1)), label=f"peak force {f:.3g} N")
+        ax3.plot(res.free_length, 100 * (res.max_rel_error if res.norm == "max" else res.rms_rel_error), "o",
+                 ms=13, mfc="none", mec="red", mew=2, label="this fit")
+        ax3.set_xscale("log")
+        ax3.set_yscale("log")
+        from matplotlib.ticker import FormatStrFormatter
+
+        for axis in (ax3.xaxis, ax3.yaxis):
+            axis.set_major_formatter(FormatStrFormatter("%g"))
+            axis.set_minor_formatter(FormatStrFormatter("%g"))
+        ax3.tick_params(which="minor", labelsize=7)
+        ax3.set_xlabel("device size: free length 2r + r0 + a (m)")
+        ax3.set_ylabel(f"{res.norm} relative error (%)")
+        ax3.set_title("Pareto front: error against size, one line per peak spring force", fontsize=9)
+        ax3.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+        ax3.grid(alpha=0.3, which="both")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
-def _two_joints(arm: Arm) -> tuple[int, int]:
-    moving = [i for i, ln in enumerate(arm.links) if ln.joint != "vertical"]
-    if len(moving) >= 2:
-        return moving[0], moving[1]
-    return moving[0], moving[0]
+def _log_norm(values):
+    from matplotlib.colors import LogNorm
+
+    v = np.asarray(values)
+    return LogNorm(vmin=max(float(np.min(v)), 1e-12), vmax=max(float(np.max(v)), float(np.min(v)) * 1.01, 1e-12))
 
 
-def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 121) -> str:
-    """Residual generalised force (max over joints) over a 2-D slice of the workspace.
-
-    The slice spans the first two in-plane joints; the other joints sit at mid-range.
-    With a payload the right panel shows the residual at full payload.
-    """
+def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -> str:
+    """Per joint, swept over its range with the others at 80 % of theirs: the gravity moment the
+    devices must carry, the devices' moment, and the residual relative to the gravity moment
+    (at half, zero and full payload when the arm has one)."""
     plt = _plt()
-    i, j = _two_joints(arm)
     lim = [ln.limits for ln in arm.links]
-    mid = np.array([(a + b) / 2 for a, b in lim])
-    xi = np.linspace(*lim[i], n)
-    xj = np.linspace(*lim[j], n) if j != i else np.array([mid[j]])
-    X, Y = np.meshgrid(xi, xj)
-    q = np.tile(mid, (X.size, 1))
-    q[:, i] = X.ravel()
-    if j != i:
-        q[:, j] = Y.ravel()
-    panels = [("tuned (half payload)", arm.with_payload_fraction(0.5))]
-    if any(ld.payload for ld in arm.loads):
-        panels.append(("full payload", arm.with_payload_fraction(1.0)))
-    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 5), constrained_layout=True, squeeze=False)
-    for ax, (title, a) in zip(axes[0], panels):
-        res = np.max(np.abs(a.gravity_forces(q) - terms_forces(terms, q)), axis=1).reshape(X.shape)
-        scale = lambda v: np.degrees(v) if arm.links[i].joint == "revolute" else v  # noqa: E731
-        val = np.log10(np.maximum(res, 1e-16))
-        if j != i:
-            im = ax.pcolormesh(scale(X), np.degrees(Y) if arm.links[j].joint == "revolute" else Y, val,
-                               shading="auto", cmap="viridis")
-            fig.colorbar(im, ax=ax, label="log10 max |residual| (N·m or N)")
-            ax.set_ylabel(f"q{j + 1} ({'deg' if arm.links[j].joint == 'revolute' else 'm'})")
+    mid = np.array([a + 0.8 * (b - a) for a, b in lim])  # a generic pose: symmetric ones hide terms
+    joints = [i for i, ln in enumerate(arm.links) if ln.joint != "vertical"]
+    has_payload = any(ld.payload for ld in arm.loads)
+    tuned = arm.with_payload_fraction(0.5)
+    sweeps = {}
+    for i in joints:
+        x = np.linspace(*lim[i], n)
+        q = np.tile(mid, (n, 1))
+        q[:, i] = x
+        g = -tuned.gravity_forces(q)[:, i]  # what the drive would carry without devices
+        if np.max(np.abs(g)) > 0:
+            sweeps[i] = (x, q, g)
+    cols = max(len(sweeps), 1)
+    fig, axes = plt.subplots(2, cols, figsize=(max(4.3 * cols + 0.6, 9.0), 6.6), constrained_layout=True,
+                             squeeze=False)
+    for c, (i, (x, q, g)) in enumerate(sweeps.items()):
+        ln = arm.links[i]
+        rev = ln.joint == "revolute"
+        xs = np.degrees(x) if rev else x
+        unit, xunit = ("N·m", "deg") if rev else ("N", "m")
+        dev = -terms_forces(terms, q)[:, i]  # the devices' generalised force, opposing gravity
+        top, bot = axes[0][c], axes[1][c]
+        top.plot(xs, g, "k-", lw=2, label="gravity moment (to carry)")
+        top.plot(xs, dev, "C1--", lw=1.5, label="spring devices")
+        top.set_title(f"q{i + 1} ({ln.name}) swept, other joints at 80 % of their ranges", fontsize=9)
+        top.set_ylabel(f"generalised force on q{i + 1} ({unit})")
+        top.set_xlabel(f"q{i + 1} ({xunit})")
+        top.grid(alpha=0.3)
+        top.legend(fontsize=7, loc="best")
+        scale = float(np.max(np.abs(g)))
+        cases = [("half payload (tuned)" if has_payload else "balanced", tuned, "C3")]
+        if has_payload:
+            cases += [("no payload", arm.with_payload_fraction(0.0), "C0"),
+                      ("full payload", arm.with_payload_fraction(1.0), "C2")]
+        worst = 0.0
+        for label, a, color in cases:
+            res = (-a.gravity_forces(q)[:, i] - dev) / scale
+            worst = max(worst, float(np.max(np.abs(res))))
+            bot.plot(xs, 100 * res, color=color, lw=1.3, label=label)
+        bot.axhline(0, color="k", lw=0.5)
+        bot.set_xlabel(f"q{i + 1} ({xunit})")
+        bot.set_ylabel(f"residual / max |gravity moment| (%)")
+        if worst < 1e-12:
+            bot.set_ylim(-1, 1)
+            bot.set_title(f"exact to rounding: |residual| ≤ {worst:.1e} of {scale:.4g} {unit}", fontsize=9)
         else:
-            ax.semilogy(scale(xi), np.maximum(res.ravel(), 1e-16))
-            ax.set_ylabel("max |residual|")
-        ax.set_xlabel(f"q{i + 1} ({'deg' if arm.links[i].joint == 'revolute' else 'm'})")
-        ax.set_title(f"{arm.name}: {title}\nmax residual {np.max(res):.3g}", fontsize=9)
+            bot.set_title(f"largest residual {100 * worst:.3g} % of {scale:.4g} {unit}", fontsize=9)
+        if has_payload:
+            bot.legend(fontsize=7, loc="best")
+        bot.grid(alpha=0.3)
+    title = f"{arm.name}: gravity against the spring devices"
+    if has_payload:
+        total = sum(ld.weight for ld in arm.loads if ld.payload)
+        title += f" (tuned for half the payload, {total / 2:.4g} of {total:.4g} N)"
+    fig.suptitle(title, fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
 def plot_prismatic(m: float, inertia: float, M: float, q_max: float, stroke: float, C: float, path: str) -> str:
-    """Counter-mass laws ``z1(q)``, ``z2(q)`` and the inertia they keep."""
-    from .countermass import counter_mass_laws
+    """Counter-mass laws ``z1(q)``, ``z2(q)`` and the inertia they keep, with ``C`` against ``C_min``."""
+    from .countermass import c_min, counter_mass_laws
 
     plt = _plt()
+    cmin = c_min(m, inertia, M, q_max)
+    valid = math.sqrt(2 * M * (C - inertia) / (m * m + 2 * m * M))
     q = np.linspace(-stroke, stroke, 801)
     z1, z2, disc = counter_mass_laws(q, m, inertia, M, C)
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
-    ax1.plot(q, z1, label="z1(q)")
-    ax1.plot(q, z2, label="z2(q)")
-    ax1.plot(q, q, "k:", lw=1, label="link q")
-    ax1.set_ylabel("position along Z (m)")
-    ax1.set_title(f"m = {m:g} kg, I = {inertia:g} kg·m², M = {M:g} kg, C = {C:.4g} kg·m²", fontsize=9)
-    ax1.legend(fontsize=8)
-    ax1.grid(alpha=0.3)
-    inert = inertia + m * q * q + M * (z1 * z1 + z2 * z2)
-    ax2.plot(q, inert - C, "C3")
-    ax2.set_ylabel("I_total − C (kg·m²)")
-    ax2.set_xlabel("slide q (m)")
-    ax2.grid(alpha=0.3)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, constrained_layout=True)
+    ax1.plot(q, z1, "C0", lw=2, label="counter-mass 1: z1(q)")
+    ax1.plot(q, z2, "C2", lw=2, label="counter-mass 2: z2(q)")
+    ax1.plot(q, q, "k:", lw=1, label="sliding link: q")
+    for ax in (ax1, ax2):
+        if valid < stroke:
+            for side in (-1, 1):
+                ax.axvspan(side * valid, side * stroke, color="C3", alpha=0.12, lw=0)
+        ax.grid(alpha=0.3)
+    ax1.set_ylabel("position along the slide axis (m)")
+    ax1.set_title(f"laws z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M): m = {m:g} kg, I = {inertia:g} kg·m², "
+                  f"M = {M:g} kg", fontsize=9)
+    ax1.legend(fontsize=8, loc="upper right")
+    total = inertia + m * q * q + M * (z1 * z1 + z2 * z2)
+    ax2.plot(q, total, "C3", lw=2, label="transverse inertia I + m·q² + M·(z1² + z2²)")
+    ax2.axhline(C, color="k", lw=1, ls="--", label=f"C = {C:.4g} kg·m² (used)")
+    ax2.axhline(cmin, color="0.5", lw=1, ls=":", label=f"C_min = {cmin:.4g} kg·m² (full stroke ±{q_max:g} m)")
+    ax2.set_ylabel("inertia about the slide's origin (kg·m²)")
+    ax2.set_xlabel("slide q (m, from mid-stroke)")
+    margin = C - cmin
+    msg = (f"margin C − C_min = {margin:.3g} kg·m²: the laws are real for |q| ≤ {valid:.4g} m"
+           if margin >= -1e-15 else f"C is {-margin:.3g} kg·m² below C_min: real only for |q| ≤ {valid:.4g} m")
     if np.any(disc < 0):
-        ax2.set_title("stroke beyond the design limit: inertia no longer constant", fontsize=9)
+        msg += "; shaded: beyond it the inertia cannot be kept"
+    ax2.set_title(msg, fontsize=9)
+    lo = min(float(np.min(total)), cmin, C)
+    hi = max(float(np.max(total)), cmin, C)
+    pad = max(0.1 * (hi - lo), 0.05 * abs(C))
+    ax2.set_ylim(lo - pad, hi + pad)
+    ax2.legend(fontsize=8, loc="upper center")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
-def plot_pantograph(p, path: str) -> str:
-    """Sketch at mid-range with the substitution weights, and the spring moment vs θ2."""
+def plot_pantograph(p, path: str, n: int = 61) -> str:
+    """The mechanism at mid-range with its links numbered, the cylinder force and the
+    operator's force over the workspace, and the spring moment against ``W_D``'s."""
+    from .pantograph import PAYLOADS
+
     plt = _plt()
     t2 = 0.5 * (p.range2[0] + p.range2[1])
     t3 = 0.5 * (p.range3[0] + p.range3[1])
-    u2 = np.array([math.cos(t2), math.sin(t2)])
-    u3 = np.array([math.cos(t3), math.sin(t3)])
-    A = np.zeros(2)
-    D = p.l2 * u2
-    C = D + p.l3 * u3
-    E = p.e * u2
-    B = E + p.g * u3
-    F = D + p.g * u3
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5), constrained_layout=True)
-    for P, Q in ((A, D), (D, C), (E, B), (F, B)):
-        ax1.plot([P[0], Q[0]], [P[1], Q[1]], "k-", lw=2)
-    ax1.plot([A[0], C[0]], [A[1], C[1]], "C0:", lw=1)
+    P = {k: v[0] for k, v in p.points(np.array([[t2, t3]])).items()}
+    base = p.cylinder_base
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9.5), constrained_layout=True)
+    ax = axes[0, 0]
+    bars = [("2", "A", "D"), ("3", "D", "C"), ("9", "E", "B"), ("8", "F", "B"), ("14", "A1", "D1"),
+            ("15", "D1", "C1"), ("16", "D", "D1"), ("4", "C", "C1")]
+    for num, a, b in bars:
+        ax.plot(*zip(P[a], P[b]), "k-", lw=2.5 if num in ("2", "3") else 1.5, solid_capstyle="round")
+        d = P[b] - P[a]
+        nrm = np.array([-d[1], d[0]]) / max(np.hypot(*d), 1e-12)
+        if (nrm[1] < 0) != (num in ("14", "15")):  # parallelogram bars labelled below, the rest above
+            nrm = -nrm
+        ax.annotate(num, 0.5 * (P[a] + P[b]), textcoords="offset points", xytext=tuple(11 * nrm),
+                    fontsize=9, color="C0", fontweight="bold", ha="center", va="center")
+    pts = np.array([v for v in P.values()])
+    lo_y, hi_y = pts[:, 1].min(), pts[:, 1].max()
+    span = max(np.ptp(pts[:, 0]), hi_y - lo_y)
+    bottom = lo_y - 0.35 * span
+    cut = P["B"] + (base - P["B"]) * min(1.0, (P["B"][1] - bottom) / max(P["B"][1] - base[1], 1e-12))
+    ax.plot(*zip(cut, P["B"]), color="C2", lw=6, alpha=0.6, solid_capstyle="butt")
+    ax.annotate(f"10: cylinder\nto P ({base[0]:.3g}, {base[1]:.3g}) m", cut, textcoords="offset points",
+                xytext=(-8, 4), fontsize=8, color="C2", ha="right")
+    ax.plot(*zip(P["A"], P["C"]), ":", color="0.5", lw=1)
+    for name in ("A", "A1"):
+        ax.plot(*P[name], "k^", ms=9)
+    ax.annotate("13: spring\non link 2", P["A"], textcoords="offset points", xytext=(-10, 12), fontsize=8,
+                color="C1", ha="right")
     w = p.point_weights()
-    for name, P in (("A", A), ("D", D), ("B", B), ("C", C)):
-        ax1.plot(*P, "o", ms=4 + 10 * w[name] / max(w.values()), color="C3")
-        ax1.annotate(f"{name}: {w[name]:.4g} N", P, textcoords="offset points", xytext=(6, 6), fontsize=8)
-    ax1.set_aspect("equal")
-    ax1.set_title("substitution weights (half payload)", fontsize=9)
-    th = np.linspace(*p.range2, 200)
+    wmax = max(w.values())
+    for name in "ADBC":
+        ax.plot(*P[name], "o", ms=5 + 12 * w[name] / wmax, color="C3", alpha=0.6)
+    for name in ("A", "B", "C", "D", "E", "F"):
+        ax.annotate(name, P[name], textcoords="offset points", xytext=(-4, 7), fontsize=9, ha="right")
+    ax.text(0.98, 0.97, "substitution weights (half payload):\n" + "\n".join(
+        f"W_{k} = {w[k]:.4g} N" for k in "ADBC"), transform=ax.transAxes, fontsize=8, ha="right", va="top",
+        bbox={"fc": "white", "ec": "0.7", "alpha": 0.9})
+    ax.set_aspect("equal")
+    ax.set_ylim(bottom, hi_y + 0.45 * span)
+    ax.set_xlim(pts[:, 0].min() - 0.3 * span, pts[:, 0].max() + 0.15 * span)
+    ax.set_xlabel("x from A (m)")
+    ax.set_ylabel("height from A (m)")
+    ax.set_title("mechanism at mid-range (link numbers in blue)", fontsize=9)
+    ax.grid(alpha=0.3)
+
+    a2 = np.linspace(*p.range2, n)
+    a3 = np.linspace(*p.range3, n)
+    X, Y = np.meshgrid(a2, a3)
+    th = np.stack([X.ravel(), Y.ravel()], axis=1)
+    for ax, fn, label, title in (
+        (axes[0, 1], p.cylinder_force, "cylinder force F (N)", "cylinder 10 force, half payload"),
+        (axes[1, 0], p.hand_force, "operator's force along A→C (N)", "what the operator holds, half payload"),
+    ):
+        Z = fn(th, 0.5).reshape(X.shape)
+        im = ax.contourf(np.degrees(X), np.degrees(Y), Z, levels=14, cmap="viridis")
+        cs = ax.contour(np.degrees(X), np.degrees(Y), Z, levels=7, colors="w", linewidths=0.6)
+        ax.clabel(cs, fontsize=7, fmt="%.0f")
+        fig.colorbar(im, ax=ax, label=label)
+        ax.set_xlabel("upper arm angle θ2 (deg from horizontal)")
+        ax.set_ylabel("forearm angle θ3 (deg from horizontal)")
+        lo, hi = float(np.min(Z)), float(np.max(Z))
+        ax.set_title(f"{title}: {lo:.4g} … {hi:.4g} N", fontsize=9)
+    ax = axes[1, 1]
+    th2 = np.linspace(*p.range2, 200)
     t = p.term()
-    ax2.plot(np.degrees(th), t.moment(th), "C1", label="spring moment on the upper arm")
-    ax2.plot(np.degrees(th), -w["D"] * p.l2 * np.cos(th), "k--", label="gravity moment of W_D")
-    ax2.set_xlabel("θ2 (deg from horizontal)")
-    ax2.set_ylabel("N·m")
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3)
-    ax2.set_title(f"drive force at B: {p.drive_force():.4g} N (constant)", fontsize=9)
+    ax.plot(np.degrees(th2), t.moment(th2), "C1-", lw=2, label="spring 13 moment on link 2")
+    ax.plot(np.degrees(th2), -w["D"] * p.l2 * np.cos(th2), "k--", lw=1.5, label="gravity moment of W_D about A")
+    ax.set_xlabel("upper arm angle θ2 (deg from horizontal)")
+    ax.set_ylabel("moment about A (N·m)")
+    ax.legend(fontsize=8, loc="lower center")
+    ax.grid(alpha=0.3)
+    loads = ", ".join(f"{p.vertical_load(f):.4g}" for f in PAYLOADS)
+    ax.set_title(f"spring cancels W_D·l2·cos θ2 exactly; vertical load at B {loads} N (payload 0, ½, 1)",
+                 fontsize=9)
+    fig.suptitle(f"Pantograph manipulator, k = {p.k:g}: cylinder base P = ({base[0]:.3g}, {base[1]:.3g}) m",
+                 fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

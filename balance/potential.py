@@ -124,7 +124,7 @@ def merge_terms(
         phase = cmath.phase(z)
         if phase <= -math.pi:
             phase += 2 * math.pi
-        out.append(HarmonicTerm(abs(z), phase, f))
+        out.append(HarmonicTerm(abs(z), phase + 0.0, f))  # + 0.0: no −0.0 phases
     return out
 
 

@@ -9,10 +9,17 @@ turns the crank towards increasing ``φ``, i.e. pushes the pin away from ``C``. 
 
     M(φ) = −c·r·d·sin φ·(1 − l0/L)
 
-for both kinds, with ``l0 = r0 − a`` (tension, pre-extension ``a ≤ r0``) and
+for every kind, with ``l0 = r0 − a`` (tension, pre-extension ``a ≤ r0``) and
 ``l0 = 2r + r0 + a`` (compression, pre-load ``a ≥ 0``). A tension spring pulls the
 pin towards ``C`` (negative sense, exactly ``−c·r·d·sin φ`` for ``a = r0``); a
 compression spring pushes it away (positive sense).
+
+The compression-lever device (the textbook's second compression variant) puts a
+compression spring on the slotted lever *beyond* the pin: the lever turns about ``C``
+through ``B``, the spring sits between ``B`` and a stop on the lever at ``s`` from ``C``,
+so it is ``s − L`` long and pushes ``B`` towards ``C`` with ``c·(l_s − s + L)`` (``l_s`` its
+own free length). That is a pulling spring of effective free length ``s − l_s = r0 − a``
+(``a`` the pre-compression at ``φ = 0``): the tension formula, exact for ``a = r0``.
 """
 
 from __future__ import annotations
@@ -35,9 +42,9 @@ __all__ = [
     "SineDevice",
 ]
 
-SPRING_KINDS = ("tension", "compression")
+SPRING_KINDS = ("tension", "compression", "compression-lever")
 #: sense (+1 away from the base point C, −1 towards it) each spring kind produces
-KIND_SENSE = {"tension": -1, "compression": +1}
+KIND_SENSE = {"tension": -1, "compression": +1, "compression-lever": -1}
 
 
 def spring_length(phi, r: float, r0: float) -> np.ndarray:
@@ -62,12 +69,13 @@ def spring_length_textbook(phi, r: float, r0: float) -> np.ndarray:
 
 
 def free_length(kind: str, r: float, r0: float, a: float) -> float:
-    """``l0 = r0 − a`` for tension, ``2r + r0 + a`` for compression."""
-    if kind == "tension":
+    """``l0 = r0 − a`` for tension (and the compression-lever device's equivalent pulling
+    spring), ``2r + r0 + a`` for compression."""
+    if kind in ("tension", "compression-lever"):
         return r0 - a
     if kind == "compression":
         return 2 * r + r0 + a
-    raise InvalidInput(f"spring kind must be 'tension' or 'compression', not {kind!r}.")
+    raise InvalidInput(f"spring kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
 
 
 def crank_moment(phi, kind: str, c: float, r: float, r0: float, a: float) -> np.ndarray:

@@ -14,6 +14,8 @@ from typing import Any, Sequence
 
 from balance.errors import BalanceError, InvalidRange
 
+from .._argtypes import positive
+
 __all__ = ["main", "build_parser"]
 
 PROG = "mechsynth balance"
@@ -49,6 +51,26 @@ def parse_range(text: str, name: str = "range") -> tuple[float, float]:
     return lo, hi
 
 
+PLOT_FORMATS = (".png", ".pdf", ".svg")
+
+
+def plot_file(text: str) -> str:
+    """A figure path ending in .png, .pdf or .svg (checked before any work is done)."""
+    import os
+
+    ext = os.path.splitext(text)[1].lower()
+    if ext not in PLOT_FORMATS:
+        raise argparse.ArgumentTypeError(
+            f"a plot is written as PNG, PDF or SVG: end the file name in {', '.join(PLOT_FORMATS)}, not {text!r}")
+    return text
+
+
+def _materials():
+    from balance.helical import MATERIALS
+
+    return MATERIALS
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog=PROG, description="Static and dynamic balancing of robot arms.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -56,16 +78,19 @@ def build_parser() -> argparse.ArgumentParser:
 
     def common(sp):
         sp.add_argument("--format", choices=("table", "json"), default="table")
-        sp.add_argument("--plot", metavar="FILE", help="write a figure (PNG, PDF or SVG)")
+        sp.add_argument("--plot", metavar="FILE", type=plot_file, help="write a figure (.png, .pdf or .svg)")
 
-    a = sub.add_parser("arm", help="balance an arm scene ([arm] TOML)")
-    a.add_argument("file")
-    a.add_argument("--samples", type=int, help="random configurations of the check (default from file or 1000)")
+    a = sub.add_parser("arm", help="balance an arm ([arm] TOML, or a URDF file)")
+    a.add_argument("file", help="a TOML file with an [arm] table, or a .urdf file")
+    a.add_argument("--samples", type=positive, help="random configurations of the check (default from file or 1000)")
     a.add_argument("--seed", type=int)
+    a.add_argument("--transmission", action="store_true",
+                   help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
     common(a)
 
-    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ")
-    s.add_argument("--kind", required=True, choices=("tension", "compression"))
+    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)")
+    s.add_argument("--kind", required=True, choices=("tension", "compression", "compression-lever"),
+                   help="compression-lever: compression spring on the lever beyond the pin, exact at a = r0")
     s.add_argument("--moment", required=True, type=float, metavar="PHI0",
                    help="Φ0 in N·m; + turns the crank away from the base point (compression), − towards it (tension)")
     s.add_argument("--range", required=True, metavar="A..B", help="working range of φ in degrees")
@@ -78,6 +103,18 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"))
     s.add_argument("--norm", choices=("max", "rms"), default="max")
     s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61)")
+    s.add_argument("--target-error", type=float, metavar="E",
+                   help="requested relative error (e.g. 0.01); missed: a warning and exit status 1")
+    s.add_argument("--pareto", action="store_true",
+                   help="compression: the front of error against free length and peak force (a few seconds)")
+    g = s.add_argument_group("helical spring design (EN 13906-1 formulas)")
+    g.add_argument("--design-spring", action="store_true", help="design a helical spring a maker can wind")
+    g.add_argument("--material", choices=tuple(_materials()), help="spring wire (default music-wire)")
+    g.add_argument("--max-outer-diameter", type=float, metavar="D", help="bore the coils must fit in (m)")
+    g.add_argument("--min-inner-diameter", type=float, metavar="D", help="rod the coils must fit over (m)")
+    g.add_argument("--spring-ends", choices=("pinned", "fixed-free", "fixed-pinned", "fixed"),
+                   help="end condition for buckling of a compression spring (default pinned)")
+    g.add_argument("--guided", action="store_true", help="the compression spring runs on a rod or in a sleeve")
     common(s)
 
     pr = sub.add_parser("prismatic", help="counter-masses for a sliding last link")
@@ -87,6 +124,9 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--stroke", required=True, type=float, metavar="q_max", help="designed stroke half-amplitude (m)")
     pr.add_argument("--travel", type=float, metavar="S", help="stroke actually travelled (default q_max)")
     pr.add_argument("--C", type=float, dest="C", help="inertia constant (default C_min)")
+    pr.add_argument("--dynamics", choices=("spatial", "planar"),
+                    help="mass matrix of a three-joint arm carrying the slide (Pinocchio): ∂M/∂q with and "
+                         "without the counter-masses")
     common(pr)
 
     pa = sub.add_parser("pantograph", help="pantograph balanced manipulator ([pantograph] TOML)")
@@ -155,6 +195,13 @@ def _table_arm(out: dict) -> str:
         ("relative residual", out["relative_residual"]),
         ("potential spread (J)", out["potential_spread"]),
     ])]
+    pc = out.get("pinocchio")
+    if pc:
+        rows = [(f"Pinocchio {pc['pinocchio']} check: max residual", pc["max_residual"]),
+                ("  relative to the largest gravity force", pc["relative_residual"])]
+        if "gravity_agreement" in pc:
+            rows.append(("  arm model's gravity against Pinocchio's", pc["gravity_agreement"]))
+        lines += ["", _kv(rows)]
     for p in out["prismatic"]:
         lines += ["", _kv([
             (f"prismatic {p['coordinate']} gear ratio k (m/rad)", p["gear_ratio"]),
@@ -169,6 +216,18 @@ def _table_arm(out: dict) -> str:
             ("worst residual, payload 0..max", pl["max_residual"]),
             ("effect of half the payload", pl["half_payload_effect"]),
         ])]
+    for tr in out.get("transmission", []):
+        lines += ["", f"gear train for {tr['shaft']} = {_form_text(tr['form'], out)} "
+                      f"(composed back: error {tr['error']:.2g}):"]
+        for el in tr["train"]:
+            if el["element"] == "differential":
+                lines.append(f"  differential: carrier {el['carrier']}, side gear {el['side']} → {el['output']}"
+                             " (ω_out = 2·ω_carrier − ω_side)")
+            elif el["element"] == "shaft":
+                lines.append(f"  the crank sits on shaft {el['input']}")
+            else:
+                rev = ", reversing" if el["reverses"] else ""
+                lines.append(f"  {el['element']} {el['input']} → {el['output']}, ratio {el['ratio']:.6g}{rev}")
     cw = out.get("counterweights")
     if cw:
         if cw["available"]:
@@ -179,6 +238,12 @@ def _table_arm(out: dict) -> str:
         else:
             lines += ["", f"counterweights: not available — {cw['reason']}"]
     return "\n".join(lines)
+
+
+def _form_text(form, out: dict) -> str:
+    from balance.potential import format_form
+
+    return format_form(form, [f"ψ{i + 1}" for i in range(len(form))])
 
 
 def _table_spring(out: dict) -> str:
@@ -195,9 +260,44 @@ def _table_spring(out: dict) -> str:
     ]
     if out.get("deflection") is not None:
         rows.insert(9, ("deflection (l0 − L_min)/l0", out["deflection"]))
+    if out["kind"] == "compression-lever":
+        lv = out["lever"]
+        rows[7] = ("spring free length = stop from C (m)", lv["stop_distance_from_C"])
+        rows.insert(9, ("lever reach from C (m)", lv["reach_from_C"]))
+        rows.insert(10, ("  beyond the farthest pin (m)", lv["extra_length"]))
+        rows.insert(11, ("  a spring between C and B reaches (m)", lv["reach_from_C_fig_a"]))
     s = _kv(rows)
+    sp = out.get("spring")
+    if sp:
+        srows = [
+            ("spring", f"{sp['kind']}, {sp['material']} ({sp['material_description']})"),
+            ("wire diameter d (mm)", 1e3 * sp["wire_diameter_m"]),
+            ("mean coil diameter D (mm)", 1e3 * sp["mean_diameter_m"]),
+            ("outer / inner diameter (mm)", f"{1e3 * sp['outer_diameter_m']:.4g} / {1e3 * sp['inner_diameter_m']:.4g}"),
+            ("active / total coils", f"{sp['active_coils']:g} / {sp['total_coils']:g}"),
+            ("rate G·d⁴/(8·D³·n) (N/m)", sp["stiffness_N_per_m"]),
+            ("free length (m)", sp["free_length_m"]),
+            ("peak shear stress, corrected (MPa)", sp["max_shear_stress_Pa"] / 1e6),
+            ("allowed shear stress (MPa)", sp["allowed_shear_stress_Pa"] / 1e6),
+            ("mass (kg)", sp["mass_kg"]),
+        ]
+        if sp["kind"] == "compression":
+            b = sp["buckling"]
+            srows.insert(7, ("solid length (m)", sp["solid_length_m"]))
+            srows.append(("buckling", "guided: none" if b["guided"] else
+                          f"{'safe' if b['safe'] else 'BUCKLES'} ({b['end_condition']} ends, critical deflection "
+                          f"{_num(b['critical_deflection_m'])} m, working {_num(b['max_deflection_m'])} m)"))
+        else:
+            srows.append(("anchor offset beyond C (m)", sp["anchor_offset_m"]))
+        s += "\n\n" + _kv(srows)
+    if out.get("pareto"):
+        s += "\n\nPareto front (error, free length, peak force):"
+        for p in out["pareto"]:
+            s += f"\n  {100 * p['error']:8.4g} %  {p['size']:8.4g} m  {p['force']:10.5g} N"
     for n in out.get("notes", []):
         s += f"\nnote: {n}"
+    for w in out.get("warnings", []):
+        s += f"\nwarning: {w}"
     return s
 
 
@@ -214,23 +314,40 @@ def _table_prismatic(out: dict) -> str:
     s = _kv(rows) + "\nlaws: z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M)"
     for m in out["messages"]:
         s += f"\nwarning: {m}"
+    dyn = out.get("dynamics")
+    if dyn:
+        s += f"\n\nmass matrix of a {dyn['arm']} arm carrying the slide (Pinocchio, {dyn['samples']} configurations):"
+        for label, c in dyn["cases"].items():
+            s += (f"\n  {label:<45} max |∂M/∂{c['coordinate']}| {c['max_dM_relative']:.3g}, change over the "
+                  f"range {c['max_change_relative']:.3g} (relative to the largest entry)")
+        s += f"\n  counter-mass cranks: {dyn['crank_laws']}"
+        s += f"\n  one counter-mass: keeping the centre of mass, the {dyn['one_mass']['keeps_centre_of_mass']}"
+        s += f"\n  one counter-mass keeping the inertia: only for {dyn['one_mass']['valid_interval_text']}"
     return s
 
 
 def _table_pantograph(out: dict) -> str:
     w = out["point_weights"]
+    cf, cy, hf = out["cylinder_force"], out["cylinder"], out["hand_force"]
     rows = [
         ("substitution weights (N)", ", ".join(f"{k} {v:.6g}" for k, v in w.items())),
         ("spring amplitude c·r·d = e·T (N·m)", out["term"]["amplitude"]),
         ("spring", out["spring_moment"]),
-        ("drive force at B (N)", out["drive_force"]),
-        ("drive force, payload 0..max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
-        ("max residual (check)", out["max_residual"]),
+        ("vertical load at B, W_B + k·W_C (N)", out["drive_force"]),
+        ("  payload 0 .. max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
+        ("cylinder force, half payload (N)", f"{_num(cf['half_payload']['min'])} .. {_num(cf['half_payload']['max'])}"),
+        ("cylinder force, payload 0..max (N)", f"{_num(cf['min'])} .. {_num(cf['max'])}"),
+        ("cylinder length (m)", f"{_num(cy['length_min'])} .. {_num(cy['length_max'])}"),
+        ("operator's force along A→C (N)", f"{_num(hf['min'])} .. {_num(hf['max'])}"),
+        ("max residual (virtual work)", out["max_residual"]),
         ("relative residual", out["relative_residual"]),
     ]
     if "c" in out["device"]["tension"]:
         rows.insert(3, ("tension spring c (N/m)", out["device"]["tension"]["c"]))
-    return _kv(rows) + f"\nnote: {out['note']}"
+    s = _kv(rows) + f"\nnote: {out['note']}"
+    for n in out.get("notes", []):
+        s += f"\nnote: {n}"
+    return s
 
 
 # ----------------------------------------------------------------- commands
@@ -245,10 +362,21 @@ def _cmd_arm(ns) -> dict:
     from balance.arm import arm_from_dict
     from balance.problems import load_toml, solve_arm
 
-    doc = load_toml(ns.file)
-    if ns.samples is not None or ns.seed is not None:
+    import os
+
+    if ns.file.lower().endswith(".urdf"):
+        doc = {"arm": {"urdf": os.path.abspath(ns.file), "name": os.path.basename(ns.file)}}
+        if ns.plot:
+            from balance.errors import InvalidInput
+
+            raise InvalidInput("--plot draws TOML arms; for a URDF arm write a TOML file with [arm] urdf = \"…\".")
+    else:
+        doc = load_toml(ns.file)
+    if ns.samples is not None or ns.seed is not None or ns.transmission:
         doc = dict(doc)
         arm_t = dict(doc.get("arm", {}))
+        if ns.transmission:
+            arm_t["transmission"] = True
         ck = dict(arm_t.get("check", {}))
         if ns.samples is not None:
             ck["samples"] = ns.samples
@@ -265,30 +393,51 @@ def _cmd_arm(ns) -> dict:
     return out
 
 
-def _cmd_spring(ns) -> tuple[dict, Any]:
-    from balance.fit import DEFAULT_GRID, SpringBounds, fit_spring
+def _cmd_spring(ns) -> dict:
+    from balance.errors import InvalidInput
+    from balance.fit import DEFAULT_GRID, SpringBounds
+    from balance.problems import spring_problem
 
+    design_opts = {"material": ns.material, "max_outer_diameter": ns.max_outer_diameter,
+                   "min_inner_diameter": ns.min_inner_diameter, "ends": ns.spring_ends}
+    given = [f"--{k.replace('_', '-')}" for k, v in design_opts.items() if v is not None] + (["--guided"] if ns.guided else [])
+    if given and not ns.design_spring:
+        raise InvalidInput(f"{', '.join(given)} only apply with --design-spring.")
+    if ns.kind == "tension" and (ns.spring_ends is not None or ns.guided):
+        raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
+                           "extension spring.")
+    design = None
+    if ns.design_spring:
+        design = {k: v for k, v in design_opts.items() if v is not None}
+        if ns.guided:
+            design["guided"] = True
     lo, hi = parse_range(ns.range, "--range")
     bounds = SpringBounds(parse_range(ns.r, "--r"), parse_range(ns.r0, "--r0"), parse_range(ns.a, "--a"),
                           ns.max_force, ns.max_free_length, ns.max_deflection)
-    res = fit_spring(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds,
-                     method=ns.method, norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID)
+    out, res = spring_problem(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds, method=ns.method,
+                              norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID,
+                              target_error=ns.target_error, pareto=ns.pareto, design=design)
     if ns.plot:
         from balance.plots import plot_spring
 
-        plot_spring(res, ns.plot)
-    return res.to_dict()
+        plot_spring(res, ns.plot, out.get("pareto"), out.get("spring"))
+    return out
 
 
 def _cmd_prismatic(ns) -> dict:
     from balance.countermass import verify_counter_mass
 
     res = verify_counter_mass(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, stroke=ns.travel, C=ns.C)
+    out = res.to_dict()
+    if ns.dynamics:
+        from balance.dynamics import slide_dynamics
+
+        out["dynamics"] = slide_dynamics(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, ns.dynamics)
     if ns.plot:
         from balance.plots import plot_prismatic
 
         plot_prismatic(res.m, res.inertia, res.M, res.q_max, res.stroke, res.C, ns.plot)
-    return res.to_dict()
+    return out
 
 
 def _cmd_pantograph(ns) -> dict:
@@ -334,7 +483,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         ns = build_parser().parse_args(_fix_negative_ranges(argv))
     except _UsageError as exc:
         msg = str(exc).rstrip(".")
-        print(f"{PROG}: error: {msg}.", file=sys.stderr)
+        print(f"mechsynth: {msg} (see '{PROG} --help').", file=sys.stderr)
         return 2
     except SystemExit as exc:  # --help
         return int(exc.code or 0)
@@ -342,7 +491,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         if ns.command == "arm":
             _emit(_cmd_arm(ns), ns.format, _table_arm)
         elif ns.command == "spring":
-            _emit(_cmd_spring(ns), ns.format, _table_spring)
+            out = _cmd_spring(ns)
+            _emit(out, ns.format, _table_spring)
+            if out.get("target_met") is False:
+                return 1  # a valid query whose requested error is not reached
         elif ns.command == "prismatic":
             _emit(_cmd_prismatic(ns), ns.format, _table_prismatic)
         elif ns.command == "pantograph":
@@ -351,7 +503,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             out, tab = _cmd_solve(ns)
             _emit(out, ns.format, tab)
     except BalanceError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
+        print(f"mechsynth: {exc}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # output piped into `head`: not an error of ours
         import os
@@ -359,7 +511,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except OSError as exc:  # e.g. the plot file cannot be written
-        print(f"{PROG}: error: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
+        print(f"mechsynth: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
         return 2
     return 0
 

@@ -206,7 +206,7 @@ def test_counterweights_refused_for_prismatic(model):
 @pytest.mark.parametrize("patch, exc, words", [
     ({"weight": -1.0}, InvalidArm, "weight"),
     ({"length": -0.5}, InvalidArm, "length"),
-    ({"joint": "helical"}, InvalidArm, "joint"),
+    ({"joint": "helical"}, SchemaError, "joint"),
     ({"colour": "red"}, SchemaError, "colour"),
     ({"range_deg": [30, 10]}, InvalidArm, "range"),
 ])

@@ -1,0 +1,324 @@
+"""Arms from URDF through Pinocchio, and Pinocchio's gravity as the independent check.
+
+Reading: Pinocchio builds the rigid-body model (revolute, continuous and prismatic
+joints; fixed joints merged). Gravity is ``−g·z`` of the URDF's base frame.
+
+Decomposition: each body's height is a product of one rotation per joint, so the gravity
+potential of a revolute arm is a trigonometric polynomial of degree at most one in every
+joint angle, ``U(q) = Σ_k c_k·e^{i k·q}`` with ``k ∈ {−1, 0, 1}ⁿ``. Sampling ``U`` on the grid
+``q_j ∈ {0, 2π/3, 4π/3}`` (``3ⁿ`` potential evaluations) and a discrete Fourier transform give
+every ``c_k`` exactly (to rounding); ``k`` and ``−k`` pair into ``2|c_k|·cos(k·q + arg c_k)``, a
+harmonic term of the linear form ``k·q``. A prismatic joint enters affinely (each body's
+position once), so ``U`` is sampled at the slide's mid-stroke and one unit beyond, and its
+coefficient ``q`` is replaced by ``k·sin(q/k)`` (the gear-ratio substitution of
+:mod:`balance.arm`, accuracy ``ε`` over the stroke): ``q·e^{iφ} ≈ (k/2i)·(e^{i(φ+γ)} − e^{i(φ−γ)})``.
+
+Check: :func:`pinocchio_check` compares the project's gravity forces (its own arm model or
+the harmonic terms) with ``pinocchio.computeGeneralizedGravity`` at random configurations.
+A TOML arm is checked through :func:`arm_to_urdf`, which writes it as URDF.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+
+import numpy as np
+
+from .arm import Arm, gear_ratio_for_accuracy
+from .errors import InvalidArm, SchemaError
+from .potential import HarmonicTerm, merge_terms, terms_forces
+
+__all__ = ["UrdfArm", "load_urdf", "arm_to_urdf", "pinocchio_model", "pinocchio_check", "MAX_REVOLUTE"]
+
+#: 3ⁿ potential evaluations: beyond 12 revolute joints the sampling grid is refused
+MAX_REVOLUTE = 12
+_G = 9.80665
+
+
+def _pin():
+    try:
+        import pinocchio
+    except ImportError:  # pragma: no cover - pin is a dependency
+        raise InvalidArm("reading URDF needs Pinocchio: python -m pip install pin.") from None
+    return pinocchio
+
+
+@contextlib.contextmanager
+def _quiet_stderr():
+    """Silence file descriptor 2 (C++ libraries print there, bypassing sys.stderr)."""
+    fd = 2
+    try:
+        sys.stderr.flush()
+        saved = os.dup(fd)
+    except OSError:
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), fd)
+        yield
+    finally:
+        os.dup2(saved, fd)
+        os.close(saved)
+
+
+def pinocchio_model(urdf_text: str, g: float = _G):
+    """A fixed-base Pinocchio model from URDF text, gravity ``−g·z``."""
+    pin = _pin()
+    try:
+        with _quiet_stderr():  # the URDF parser writes its own diagnostics to stderr
+            model = pin.buildModelFromXML(urdf_text)
+    except (RuntimeError, ValueError) as exc:
+        raise SchemaError(f"not a URDF Pinocchio can read ({str(exc).splitlines()[0][:120]}).") from None
+    model.gravity.linear = np.array([0.0, 0.0, -g])
+    return model
+
+
+@dataclass
+class UrdfArm:
+    """A serial arm read from URDF: one coordinate per joint (continuous joints as an angle).
+
+    Quacks like :class:`~balance.arm.Arm` for :func:`~balance.static.check_terms` and the
+    device tables: ``n``, ``links``, ``sample``, ``potential``, ``gravity_forces``,
+    ``drives``, ``joint_names``, ``shaft_names``.
+    """
+
+    model: object
+    name: str = "urdf arm"
+    accuracy: float = 1e-3
+    drive_matrix: np.ndarray | None = None
+    kinds: list[str] = field(default_factory=list)
+    limits: list[tuple[float, float]] = field(default_factory=list)
+    joint_labels: list[str] = field(default_factory=list)
+    gear_ratios: list[float] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        m = self.model
+        for j in range(1, m.njoints):
+            jm = m.joints[j]
+            short = jm.shortname()
+            label = m.names[j]
+            if "Unbounded" in short or short.startswith("JointModelRUB"):
+                kind, lim = "revolute", (-math.pi, math.pi)
+            elif "Revolute" in short or short.startswith("JointModelR"):
+                kind = "revolute"
+                lo, hi = float(m.lowerPositionLimit[jm.idx_q]), float(m.upperPositionLimit[jm.idx_q])
+                lim = (max(lo, -math.pi), min(hi, math.pi)) if lo < hi else (-math.pi, math.pi)
+            elif "Prismatic" in short or short.startswith("JointModelP"):
+                kind = "prismatic"
+                lo, hi = float(m.lowerPositionLimit[jm.idx_q]), float(m.upperPositionLimit[jm.idx_q])
+                if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+                    raise InvalidArm(f"URDF joint '{label}' is prismatic and needs finite limits lower < upper.")
+                lim = (lo, hi)
+            else:
+                raise InvalidArm(f"URDF joint '{label}' is of a kind balance cannot take ({short}); "
+                                 "use revolute, continuous or prismatic joints.")
+            self.kinds.append(kind)
+            self.limits.append(lim)
+            self.joint_labels.append(label)
+            stroke = lim[1] - lim[0]
+            self.gear_ratios.append(gear_ratio_for_accuracy(stroke, self.accuracy) if kind == "prismatic" else 0.0)
+        if not self.kinds:
+            raise InvalidArm("the URDF has no movable joint.")
+        self.links = [SimpleNamespace(name=label, joint=kind, limits=lim, stroke=lim[1] - lim[0], gear_ratio=k)
+                      for label, kind, lim, k in zip(self.joint_labels, self.kinds, self.limits, self.gear_ratios)]
+        self._data = self.model.createData()
+
+    # ----------------------------------------------------------------- basics
+    @property
+    def n(self) -> int:
+        return len(self.kinds)
+
+    @property
+    def joint_names(self) -> list[str]:
+        return [f"q{i + 1}" for i in range(self.n)]
+
+    @property
+    def drives(self) -> np.ndarray:
+        return np.eye(self.n) if self.drive_matrix is None else np.asarray(self.drive_matrix, dtype=float)
+
+    @property
+    def shaft_names(self) -> list[str]:
+        return [f"ψ{i + 1}" for i in range(self.n)]
+
+    def sample(self, count: int, seed: int = 0) -> np.ndarray:
+        rng = np.random.default_rng(seed)
+        lo = np.array([lim[0] for lim in self.limits])
+        hi = np.array([lim[1] for lim in self.limits])
+        return lo + (hi - lo) * rng.random((count, self.n))
+
+    def config(self, q: np.ndarray) -> np.ndarray:
+        """Pinocchio's configuration vector for joint coordinates ``q`` (n,)."""
+        pin = _pin()
+        out = pin.neutral(self.model)
+        for j in range(1, self.model.njoints):
+            jm = self.model.joints[j]
+            v = float(q[j - 1])
+            if jm.nq == 2:
+                out[jm.idx_q], out[jm.idx_q + 1] = math.cos(v), math.sin(v)
+            else:
+                out[jm.idx_q] = v
+        return out
+
+    def potential(self, q: np.ndarray) -> np.ndarray:
+        pin = _pin()
+        qq = np.atleast_2d(q)
+        u = np.array([pin.computePotentialEnergy(self.model, self._data, self.config(row)) for row in qq])
+        return u[0] if np.ndim(q) == 1 else u
+
+    def gravity_forces(self, q: np.ndarray) -> np.ndarray:
+        """``−∂U/∂q`` from Pinocchio's generalised gravity."""
+        pin = _pin()
+        qq = np.atleast_2d(q)
+        g = np.array([pin.computeGeneralizedGravity(self.model, self._data, self.config(row)) for row in qq])
+        return -(g[0] if np.ndim(q) == 1 else g)
+
+    # ------------------------------------------------------- harmonic terms
+    def harmonic_terms(self) -> list[HarmonicTerm]:
+        """Exact harmonic terms for revolute joints (DFT on the 3-point grid), ``γ = q/k`` for slides."""
+        rev = [i for i, k in enumerate(self.kinds) if k == "revolute"]
+        pri = [i for i, k in enumerate(self.kinds) if k == "prismatic"]
+        if len(rev) > MAX_REVOLUTE:
+            raise InvalidArm(f"the URDF arm has {len(rev)} revolute joints; the exact decomposition samples 3ⁿ "
+                             f"configurations and stops at {MAX_REVOLUTE}.")
+        mids = {i: 0.5 * (self.limits[i][0] + self.limits[i][1]) for i in pri}
+        nodes = 2 * math.pi * np.arange(3) / 3
+        phasors: list[tuple[complex, np.ndarray]] = []
+        # U at slide offsets 0/1 from mid-stroke → affine coefficients by inclusion-exclusion
+        corner_values = {}
+        for corner in itertools.product((0, 1), repeat=len(pri)):
+            grid = np.zeros((3,) * len(rev))
+            for idx in itertools.product(range(3), repeat=len(rev)):
+                q = np.zeros(self.n)
+                for j, t in zip(rev, idx):
+                    q[j] = nodes[t]
+                for j, c in zip(pri, corner):
+                    q[j] = mids[j] + c
+                grid[idx] = self.potential(q)
+            corner_values[corner] = grid
+        for subset in itertools.product((0, 1), repeat=len(pri)):
+            grid = sum((-1) ** (sum(subset) - sum(t)) * corner_values[t]
+                       for t in itertools.product((0, 1), repeat=len(pri)) if all(a <= b for a, b in zip(t, subset)))
+            coef = np.fft.fftn(grid) / grid.size if rev else np.asarray(grid, dtype=complex)
+            tol = 1e-13 * max(float(np.max(np.abs(coef))), 1e-300)  # DFT rounding: parts below it are zero
+            coef = np.where(np.abs(coef.real) < tol, 0, coef.real) + 1j * np.where(np.abs(coef.imag) < tol, 0, coef.imag)
+            for idx in itertools.product(range(3), repeat=len(rev)):
+                c = complex(coef[idx]) if rev else complex(coef)
+                if c == 0:
+                    continue
+                form = np.zeros(self.n)
+                for j, t in zip(rev, idx):
+                    form[j] = (0, 1, -1)[t]  # bin t holds the coefficient of e^{i·f·q} with f ≡ t (mod 3)
+                slides = [j for j, b in zip(pri, subset) if b]
+                for signs in itertools.product((1, -1), repeat=len(slides)):
+                    z, f = c, form.copy()
+                    for j, s in zip(slides, signs):
+                        k = self.gear_ratios[j]
+                        z *= s * k / 2j * np.exp(-1j * s * mids[j] / k)
+                        f[j] += s / k
+                    phasors.append((z, f))
+        return merge_terms(phasors)
+
+
+def load_urdf(path: str, accuracy: float = 1e-3, g: float = _G, drives=None, name: str | None = None) -> UrdfArm:
+    """Read a URDF file into a :class:`UrdfArm` (one sentence naming the file on any failure)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+    except FileNotFoundError:
+        raise SchemaError(f"{path}: no such URDF file.") from None
+    except (IsADirectoryError, UnicodeDecodeError):
+        raise SchemaError(f"{path}: not a URDF text file.") from None
+    try:
+        model = pinocchio_model(text, g)
+        return UrdfArm(model, name or os.path.basename(path), accuracy, drives)
+    except (SchemaError, InvalidArm) as exc:
+        raise type(exc)(f"{path}: {exc}") from None
+
+
+# ----------------------------------------------------------------------------- TOML arms
+def _f(v) -> str:
+    return repr(float(v))
+
+
+def _point_inertia(points: list[tuple[float, np.ndarray]]) -> tuple[float, np.ndarray, np.ndarray]:
+    mass = sum(m for m, _ in points)
+    if mass == 0:
+        return 0.0, np.zeros(3), np.zeros((3, 3))
+    com = sum(m * p for m, p in points) / mass
+    inertia = sum(m * (np.dot(p - com, p - com) * np.eye(3) - np.outer(p - com, p - com)) for m, p in points)
+    return mass, com, inertia
+
+
+def arm_to_urdf(arm: Arm, g: float = _G) -> str:
+    """URDF of a planar :class:`~balance.arm.Arm`: plane x–z (x forward, z up), in-plane joints
+    about ``−y`` (counter-clockwise seen with x to the right), turntables about ``z``; point
+    weights become point masses ``G/g``."""
+    u0 = np.array([0.0, 0.0, 1.0]) if arm.zero == "vertical" else np.array([1.0, 0.0, 0.0])
+    nrm = np.array([-1.0, 0.0, 0.0]) if arm.zero == "vertical" else np.array([0.0, 0.0, 1.0])
+    masses: dict[int, list] = {i: [] for i in range(arm.n)}
+    for link, w, s, t in arm.masses():
+        if w == 0:
+            continue
+        if arm.links[link].joint == "vertical":
+            p = np.array([-t, 0.0, s])
+        else:
+            p = s * u0 + t * nrm
+        masses[link].append((w / g, p))
+    out = [f'<robot name="{arm.name}">', '  <link name="base"/>']
+    parent, along = "base", np.zeros(3)
+    for i, ln in enumerate(arm.links):
+        m, com, inertia = _point_inertia(masses[i])
+        ixx, iyy, izz = inertia[0, 0], inertia[1, 1], inertia[2, 2]
+        ixy, ixz, iyz = inertia[0, 1], inertia[0, 2], inertia[1, 2]
+        out.append(f'  <link name="link{i + 1}"><inertial><origin xyz="{_f(com[0])} {_f(com[1])} {_f(com[2])}"/>'
+                   f'<mass value="{_f(m)}"/><inertia ixx="{_f(ixx)}" ixy="{_f(ixy)}" ixz="{_f(ixz)}" iyy="{_f(iyy)}" '
+                   f'iyz="{_f(iyz)}" izz="{_f(izz)}"/></inertial></link>')
+        lo, hi = ln.limits
+        if ln.joint == "vertical":
+            axis, kind, rpy = "0 0 1", "revolute", 0.0
+        elif ln.joint == "revolute":
+            axis, kind, rpy = "0 -1 0", "revolute", ln.offset
+        else:
+            axis, kind, rpy = " ".join(repr(float(v)) for v in u0), "prismatic", ln.offset
+        out.append(f'  <joint name="joint{i + 1}" type="{kind}"><parent link="{parent}"/><child link="link{i + 1}"/>'
+                   f'<origin xyz="{_f(along[0])} {_f(along[1])} {_f(along[2])}" rpy="0 {_f(-rpy)} 0"/><axis xyz="{axis}"/>'
+                   f'<limit lower="{_f(lo)}" upper="{_f(hi)}" effort="1000" velocity="10"/></joint>')
+        parent = f"link{i + 1}"
+        along = ln.length * (np.array([0.0, 0.0, 1.0]) if ln.joint == "vertical" else u0)
+    out.append("</robot>")
+    return "\n".join(out)
+
+
+def pinocchio_check(arm, terms, samples: int = 1000, seed: int = 0, g: float = _G) -> dict:
+    """Residuals against Pinocchio's generalised gravity at ``samples`` random configurations.
+
+    ``gravity_agreement``: the arm model's own gravity forces against Pinocchio's (relative
+    to the largest); ``max_residual``: Pinocchio's gravity against the devices' forces
+    (N·m or N), ``relative_residual`` the same over the largest gravity force.
+    """
+    if isinstance(arm, UrdfArm):
+        pa = arm
+        own = None
+    else:
+        pa = UrdfArm(pinocchio_model(arm_to_urdf(arm, g), g), arm.name)
+        own = arm
+    q = arm.sample(samples, seed)
+    qg = pa.gravity_forces(q)
+    scale = float(np.max(np.abs(qg))) or 1.0
+    res = qg - terms_forces(terms, q)
+    out = {
+        "samples": samples, "seed": seed, "pinocchio": _pin().__version__,
+        "max_gravity_force": scale,
+        "max_residual": float(np.max(np.abs(res))),
+        "relative_residual": float(np.max(np.abs(res))) / scale,
+    }
+    if own is not None:
+        out["gravity_agreement"] = float(np.max(np.abs(own.gravity_forces(q) - qg))) / scale
+    return out
