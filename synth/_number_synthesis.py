@@ -21,9 +21,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from ortools.sat.python import cp_model
-
-from ._cpsat import all_solutions
+from ._cpsat import all_solutions, cp_model
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
 

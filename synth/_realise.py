@@ -27,9 +27,7 @@ from itertools import combinations
 from time import perf_counter
 
 import pynauty
-from ortools.sat.python import cp_model
-
-from ._cpsat import all_solutions
+from ._cpsat import all_solutions, cp_model
 from .chain import Chain
 from .code import Code
 from .mobility import check_subchains
@@ -188,6 +186,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
 
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     """Fractionation and planarity of the chain, decided on H."""
+    if conv.fractionated and not conv.planar_only:
+        return True  # without importing networkx (0.1 s of a small query's start-up)
     import networkx as nx
 
     if not conv.fractionated:
