@@ -1,0 +1,219 @@
+"""Running a query's plan: inline, on a local process pool, or on Dask — streamed, bounded, in order.
+
+A plan is a list of *items* (one per code); ``expand(item)`` (stage A) turns an item into
+its units and ``work(unit)`` (stage B) gives a unit's result (its chains, or a count).
+:func:`run_plan` yields ``(index, unit, result)`` for every unit and ``(index, None, n_units)``
+once item ``index`` is complete, in plan order, whatever the backend:
+
+* a small query runs inline and never pays for a process pool: items run in this process
+  until ``inline_seconds`` have passed, and only then are the remaining items handed to a pool;
+* the pool (or Dask) keeps at most ``window`` tasks in flight: stage A of the next items
+  runs ahead of stage B only that far, so memory stays flat however large the plan is;
+* units travel in batches sized from the measured time per unit (about ``task_seconds``
+  per task), so inter-process traffic stays small next to the work.
+
+Example
+-------
+>>> double = lambda xs: list(xs)
+>>> [e for e in run_plan([[1, 2], [3]], double, abs)]
+[(0, 1, 1), (0, 2, 2), (0, None, 2), (1, 3, 3), (1, None, 1)]
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import signal
+import sys
+import time
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator
+
+__all__ = ["process_pool", "run_plan"]
+
+
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
+
+
+def process_pool(workers: int):
+    """A process pool whose workers leave Ctrl-C to the parent (fork on Linux)."""
+    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+    return ctx.Pool(workers, initializer=_ignore_sigint)
+
+
+def _apply(args):
+    fn, arg = args
+    return fn(arg)
+
+
+def _apply_batch(args):
+    """Run ``work`` on a batch of units (in a worker); returns the results and the seconds taken."""
+    work, units = args
+    start = time.perf_counter()
+    return [work(u) for u in units], time.perf_counter() - start
+
+
+class _PoolTask:
+    def __init__(self, pool, fn, arg):
+        self._result = pool.apply_async(fn, (arg,))
+
+    def ready(self) -> bool:
+        return self._result.ready()
+
+    def get(self):
+        return self._result.get()
+
+
+class _DaskTask:
+    def __init__(self, client, fn, arg):
+        self._future = client.submit(fn, arg, pure=False)
+
+    def ready(self) -> bool:
+        return self._future.done()
+
+    def get(self):
+        return self._future.result()
+
+
+class _Item:
+    """One item of the plan on its way through the pipeline."""
+
+    __slots__ = ("index", "expansion", "units", "batches", "total")
+
+    def __init__(self, index: int, expansion):
+        self.index = index
+        self.expansion = expansion  # stage A task, None once its units are known
+        self.units: deque = deque()  # units not yet submitted
+        self.batches: deque = deque()  # (units, task) in flight, in order
+        self.total = 0
+
+
+def run_plan(
+    items: Iterable,
+    expand: Callable,
+    work: Callable,
+    *,
+    workers: int = 1,
+    client=None,
+    skip_item: Callable[[int], bool] | None = None,
+    skip_unit: Callable | None = None,
+    inline_seconds: float = 0.25,
+    window: int | None = None,
+    task_seconds: float | None = None,
+) -> Iterator[tuple]:
+    """Yield ``(index, unit, work(unit))`` for every unit and ``(index, None, n_units)`` per item, in order.
+
+    Parameters
+    ----------
+    items : iterable
+        The plan; ``expand(item)`` returns the item's units (a list).
+    expand, work : callables
+        Module-level functions (they are pickled to the workers).
+    workers : int
+        Local processes; 1 runs everything inline.
+    client : distributed.Client, optional
+        Run the tasks on this Dask cluster instead (no inline phase).
+    skip_item, skip_unit : callables, optional
+        Items (by index) and units already done elsewhere (a checkpoint): not run, not yielded;
+        ``n_units`` still counts every unit of the item.
+    inline_seconds : float
+        Run inline for this long before starting a pool (a small query finishes first).
+    window : int, optional
+        Tasks in flight at most (default 8 per worker).
+    task_seconds : float, optional
+        Target duration of one task (default 0.05 s on a pool, 0.5 s on Dask).
+    """
+    todo = [(i, item) for i, item in enumerate(items) if not (skip_item and skip_item(i))]
+    position = 0
+    if client is None:
+        start = time.perf_counter()
+        while position < len(todo) and (workers <= 1 or time.perf_counter() - start < inline_seconds):
+            index, item = todo[position]
+            units = expand(item)
+            for unit in units:
+                if not (skip_unit and skip_unit(unit)):
+                    yield index, unit, work(unit)
+            yield index, None, len(units)
+            position += 1
+        if position == len(todo):
+            return
+    if client is not None:
+        slots = max(1, sum(client.nthreads().values()))
+        submit = lambda fn, arg: _DaskTask(client, fn, arg)  # noqa: E731
+        pool = None
+    else:
+        slots = workers
+        pool = process_pool(workers)
+        submit = lambda fn, arg: _PoolTask(pool, fn, arg)  # noqa: E731
+    try:
+        yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * slots,
+                             task_seconds or (0.5 if client is not None else 0.05))
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+
+
+def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float) -> Iterator[tuple]:
+    """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight, results in order."""
+    pending = iter(todo)
+    entries: deque[_Item] = deque()
+    inflight = 0
+    per_unit: float | None = None  # measured seconds per unit
+
+    def take_units(entry: _Item) -> None:
+        nonlocal inflight
+        if entry.expansion is not None and entry.expansion.ready():
+            units = entry.expansion.get()
+            inflight -= 1
+            entry.expansion = None
+            entry.total = len(units)
+            entry.units = deque(u for u in units if not (skip_unit and skip_unit(u)))
+
+    def submit_batch(entry: _Item) -> None:
+        nonlocal inflight
+        size = 1 if per_unit is None else max(1, min(512, int(task_seconds / max(per_unit, 1e-6))))
+        batch = [entry.units.popleft() for _ in range(min(size, len(entry.units)))]
+        entry.batches.append((batch, submit(_apply_batch, (work, batch))))
+        inflight += 1
+
+    def top_up() -> None:
+        nonlocal inflight
+        while inflight < window:
+            target = None
+            for entry in entries:
+                take_units(entry)
+                if entry.units:
+                    target = entry
+                    break
+            if target is not None:
+                submit_batch(target)
+                continue
+            nxt = next(pending, None)
+            if nxt is None:
+                return
+            entries.append(_Item(nxt[0], submit(_apply, (expand, nxt[1]))))
+            inflight += 1
+
+    while True:
+        top_up()
+        if not entries:
+            return
+        head = entries[0]
+        if head.expansion is not None:
+            head.expansion.get()  # wait for stage A of the head item
+            take_units(head)
+            continue
+        if head.units and not head.batches:
+            submit_batch(head)  # the head goes first even with a full window
+        if head.batches:
+            batch, task = head.batches.popleft()
+            results, seconds = task.get()
+            inflight -= 1
+            rate = seconds / len(batch)
+            per_unit = rate if per_unit is None else 0.8 * per_unit + 0.2 * rate
+            for unit, result in zip(batch, results):
+                yield head.index, unit, result
+            continue
+        entries.popleft()
+        yield head.index, None, head.total
