@@ -25,9 +25,14 @@ from ._number_synthesis import number_synthesis, parse_range
 from ._realise import Contracted, Conventions, contracted_graphs, realise
 from .chain import Chain, Mechanism
 from .code import Code
-from .errors import ImpossibleParameters, InvalidOption
+from .errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 
 __all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
+
+
+# Stage A writes one connectivity constraint per set of branch vertices holding vertex 0:
+# 2^(m-1) of them; m = 18 gives 131 071, the most a model is allowed to hold.
+_MAX_BRANCH = 18
 
 
 @dataclass(frozen=True)
@@ -226,6 +231,12 @@ def _codes_of(query: Mapping, skip_impossible: bool = False) -> tuple[list[Code]
         codes = []
     if q:
         raise InvalidOption(f"unknown option(s) for a chain query: {', '.join(sorted(q))}")
+    for code in codes:
+        branch = code.links - code.count(2) + sum(code.composition or ())
+        if branch > _MAX_BRANCH:
+            raise QueryTooLarge(f"code {code} has {branch} branch vertices (links with 3+ joints and multiple "
+                                f"joints); its branch-multigraph model would need 2^{branch - 1} connectivity "
+                                f"constraints, more than this engine builds (at most {_MAX_BRANCH} branch vertices)")
     return codes, conv
 
 

@@ -73,7 +73,7 @@ class Checkpoint:
         self._log = log
         self._pending: list[tuple] = []
         self._last = time.monotonic()
-        self.committed_units = 0
+        self.committed_units = self.committed_codes = 0
         wanted = f"{PLAN_FORMAT}:{identity}"
         if self.path.is_dir():
             raise CheckpointError(f"the checkpoint {self.path} is a directory, not a file")
@@ -132,10 +132,11 @@ class Checkpoint:
         except sqlite3.DatabaseError as exc:
             raise CheckpointError(f"cannot write the checkpoint {self.path}: {exc}") from None
         self.committed_units += sum(1 for kind, *_ in pending if kind == "unit")
+        self.committed_codes += sum(1 for kind, *_ in pending if kind == "code")
         self._last = time.monotonic()
         if self._log is not None:
-            self._log(f"checkpoint {self.path}: {self.committed_units} units committed in this run "
-                      f"({self.resumed_units} done before)")
+            self._log(f"checkpoint {self.path}: {self.committed_units} units ({self.committed_codes} codes complete) "
+                      f"committed in this run, {self.resumed_units} units done before")
 
     def close(self) -> None:
         self.commit()
