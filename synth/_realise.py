@@ -27,7 +27,7 @@ from itertools import combinations
 from time import perf_counter
 
 import pynauty
-from ._cpsat import all_solutions, cp_model
+from ._cpsat import Model, all_solutions
 from .chain import Chain
 from .code import Code
 from .mobility import check_subchains
@@ -123,7 +123,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     if m == 0:
         return []
     deg = [k[1] for k in kinds]
-    model = cp_model.CpModel()
+    model = Model()
     pairs = list(combinations(range(m), 2))
     x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
     y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated else 0, f"y{u}") for u in range(m)]
@@ -206,7 +206,7 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
-    model = cp_model.CpModel()
+    model = Model()
     w = []
     for k, (u, v) in enumerate(edges):
         if u == v:
