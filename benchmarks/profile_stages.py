@@ -1,12 +1,14 @@
 """Where the time of a chain query goes: per stage, per unit size, per multiple-joint count v.
 
 One process, inline (no pool), with light timers wrapped around the engine's functions
-from outside (this script only; the engine is not changed).  Stages:
+from outside (this script only; the engine is not changed).  Times are CPU seconds of this
+process (``time.process_time``), so other work on a shared machine hardly changes them.
+Stages:
 
 * ``number synthesis``  the CP-SAT model of the counting equations (codes);
 * ``stage A``           branch multigraphs of every code (CP-SAT + nauty);
 * ``stage B model``     building the CP-SAT model of one multigraph (``realise`` minus the rest),
-  of which ``CpModel()`` is the construction of the empty model object itself;
+  of which ``CpModel()`` is the construction of the empty model object itself (``_cpsat.Model``);
 * ``stage B CP-SAT``    enumerating its solutions (``all_solutions``);
 * ``automorphisms``     nauty's group of H (lex-leader constraints);
 * ``sub-chain test``    ``_exact_on_h`` (simple joints) or ``check_subchains`` (multiple joints);
@@ -35,11 +37,11 @@ N: dict[str, int] = defaultdict(int)
 
 def _timed(name, fn):
     def wrapper(*args, **kwargs):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         try:
             return fn(*args, **kwargs)
         finally:
-            T[name] += time.perf_counter() - t0
+            T[name] += time.process_time() - t0
             N[name] += 1
 
     return wrapper
@@ -47,7 +49,7 @@ def _timed(name, fn):
 
 def instrument() -> None:
     """Wrap the engine's stage functions with timers (this process only)."""
-    from ortools.sat.python import cp_model
+    from synth._cpsat import cp_model
 
     from synth import _realise, _type_synthesis as ts
     from synth.chain import Chain
@@ -62,16 +64,19 @@ def instrument() -> None:
     _realise.Contracted.edge_group = _timed("automorphisms", _realise.Contracted.edge_group)
     cert = Chain.certificate.fget
     Chain.certificate = property(_timed("nauty", cert))
-    base = cp_model.CpModel
+    base = getattr(_realise, "Model", None) or cp_model.CpModel  # the class stages A and B build
 
     class TimedModel(base):
         def __init__(self, *args, **kwargs):
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             super().__init__(*args, **kwargs)
-            T["CpModel()"] += time.perf_counter() - t0
+            T["CpModel()"] += time.process_time() - t0
             N["CpModel()"] += 1
 
-    cp_model.CpModel = TimedModel
+    if hasattr(_realise, "Model"):
+        _realise.Model = TimedModel
+    else:
+        cp_model.CpModel = TimedModel
 
 
 def profile(dof: int, links: int, v: str) -> dict:
@@ -80,19 +85,19 @@ def profile(dof: int, links: int, v: str) -> dict:
 
     T.clear()
     N.clear()
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     units = ts.plan_units(dof, links, v=v, workers=1)
-    t_plan = time.perf_counter() - t0
+    t_plan = time.process_time() - t0
     records = []
     for unit in units:
         stats: dict = {}
-        t1 = time.perf_counter()
+        t1 = time.process_time()
         chains = ts.run_unit(unit, stats)
         records.append({"code": str(unit.code), "v": unit.code.v,
                         "edges": len(unit.contracted.edges) if unit.contracted else 0,
                         "candidates": stats.get("candidates", 0), "chains": len(chains),
-                        "seconds": time.perf_counter() - t1})
-    total = time.perf_counter() - t0
+                        "seconds": time.process_time() - t1})
+    total = time.process_time() - t0
     stage_b = T["stage B (all)"]
     inner = sum(T[k] for k in ("stage B CP-SAT", "sub-chain test", "Chain", "nauty", "automorphisms"))
     stages = {
@@ -153,7 +158,7 @@ def main(argv=None) -> int:
     instrument()
     result = profile(args.dof, args.links, args.v)
     print(f"W={args.dof} n={args.links} v={args.v}: {result['chains']} chains, {result['units']} units, "
-          f"{result['total']:.3f} s inline")
+          f"{result['total']:.3f} CPU s inline")
     for name, secs in result["stages"].items():
         print(f"  {name:38s} {secs:8.3f} s  {100 * secs / result['total']:5.1f} %")
     for row in by_size(result["records"]):
