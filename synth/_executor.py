@@ -5,8 +5,9 @@ its units and ``work(unit)`` (stage B) gives a unit's result (its chains, or a c
 :func:`run_plan` yields ``(index, unit, result)`` for every unit and ``(index, None, n_units)``
 once item ``index`` is complete, in plan order, whatever the backend:
 
-* a small query runs inline and never pays for a process pool: items run in this process
-  until ``inline_seconds`` have passed, and only then are the remaining items handed to a pool;
+* a small query runs inline and never pays for a process pool: units run in this process
+  until ``inline_seconds`` have passed, and only then are the remaining units and items handed
+  to a pool (the caller passes ``inline_seconds=0`` when one item's stage A alone may be long);
 * the pool (or Dask) keeps at most ``window`` tasks in flight: stage A of the next items
   runs ahead of stage B only that far, so memory stays flat however large the plan is;
 * units travel in batches sized from the measured time per unit (about ``task_seconds``
@@ -124,18 +125,24 @@ def run_plan(
         Target duration of one task (default 0.05 s on a pool, 0.5 s on Dask).
     """
     todo = [(i, item) for i, item in enumerate(items) if not (skip_item and skip_item(i))]
-    position = 0
+    position, first = 0, None
     if client is None:
         start = time.perf_counter()
-        while position < len(todo) and (workers <= 1 or time.perf_counter() - start < inline_seconds):
+        over = lambda: workers > 1 and time.perf_counter() - start >= inline_seconds  # noqa: E731
+        while position < len(todo) and not over():
             index, item = todo[position]
             units = expand(item)
-            for unit in units:
-                if not (skip_unit and skip_unit(unit)):
-                    yield index, unit, work(unit)
-            yield index, None, len(units)
             position += 1
-        if position == len(todo):
+            pending = deque(u for u in units if not (skip_unit and skip_unit(u)))
+            while pending and not over():
+                unit = pending.popleft()
+                yield index, unit, work(unit)
+            if pending:  # the rest of this item goes to the pool first
+                first = _Item(index, None)
+                first.units, first.total = pending, len(units)
+                break
+            yield index, None, len(units)
+        if position == len(todo) and first is None:
             return
     if client is not None:
         slots = max(1, sum(client.nthreads().values()))
@@ -147,17 +154,21 @@ def run_plan(
         submit = lambda fn, arg: _PoolTask(pool, fn, arg)  # noqa: E731
     try:
         yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * slots,
-                             task_seconds or (0.5 if client is not None else 0.05))
+                             task_seconds or (0.5 if client is not None else 0.05), first)
     finally:
         if pool is not None:
             pool.terminate()
             pool.join()
 
 
-def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float) -> Iterator[tuple]:
-    """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight, results in order."""
+def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float,
+              first: _Item | None = None) -> Iterator[tuple]:
+    """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight, results in order.
+
+    ``first`` is an item the inline phase expanded but did not finish (its remaining units).
+    """
     pending = iter(todo)
-    entries: deque[_Item] = deque()
+    entries: deque[_Item] = deque([first] if first is not None else [])
     inflight = 0
     per_unit: float | None = None  # measured seconds per unit
 

@@ -33,6 +33,15 @@ __all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type
 # Stage A writes one connectivity constraint per set of branch vertices holding vertex 0:
 # 2^(m-1) of them; m = 18 gives 131 071, the most a model is allowed to hold.
 _MAX_BRANCH = 18
+# A query runs inline for this long before it starts a pool, if no code has more branch
+# vertices than _INLINE_BRANCH (stage A of such a code takes milliseconds: 8 at 12 links).
+_INLINE_SECONDS = 0.25
+_INLINE_BRANCH = 8
+
+
+def _branch_vertices(code: Code) -> int:
+    """Links with 3+ joints and multiple joints: the vertices of the branch multigraph H."""
+    return code.links - code.count(2) + sum(code.composition or ())
 
 
 @dataclass(frozen=True)
@@ -232,7 +241,7 @@ def _codes_of(query: Mapping, skip_impossible: bool = False) -> tuple[list[Code]
     if q:
         raise InvalidOption(f"unknown option(s) for a chain query: {', '.join(sorted(q))}")
     for code in codes:
-        branch = code.links - code.count(2) + sum(code.composition or ())
+        branch = _branch_vertices(code)
         if branch > _MAX_BRANCH:
             raise QueryTooLarge(f"code {code} has {branch} branch vertices (links with 3+ joints and multiple "
                                 f"joints); its branch-multigraph model would need 2^{branch - 1} connectivity "
@@ -317,8 +326,11 @@ def _map_units(work, codes: list[Code], conv: Conventions, workers: int | None, 
         bar = tqdm(total=len(codes), unit=" codes", file=sys.stderr, leave=False)
     try:
         found = 0
+        # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
+        # a plan with such codes goes to the pool at once, a smaller one starts inline
+        inline = _INLINE_SECONDS if max(map(_branch_vertices, codes), default=0) <= _INLINE_BRANCH else 0.0
         for event in run_plan([(c, conv) for c in codes], _stage_a, work, workers=workers, client=client,
-                              skip_item=skip_code, skip_unit=skip_unit):
+                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline):
             if bar is not None:
                 if event[1] is None:
                     bar.update(1)

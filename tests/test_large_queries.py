@@ -47,6 +47,16 @@ def test_pool_pipeline_keeps_plan_order(window):
     assert [e for e in inline if e[1] is None] == [(0, None, 3), (1, None, 0), (2, None, 5), (3, None, 1), (4, None, 4)]
 
 
+def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
+    import itertools
+
+    ticks = itertools.count()
+    monkeypatch.setattr(_executor.time, "perf_counter", lambda: float(next(ticks)))  # a clock that counts calls
+    items = [5, 3]
+    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=3))
+    assert events == list(_executor.run_plan(items, _units, _square))
+
+
 def test_skipped_items_and_units_are_not_run():
     items = [3, 2]
     events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0,
