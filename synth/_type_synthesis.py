@@ -311,10 +311,11 @@ def type_synthesis(
 
 
 def _map_units(work, codes: list[Code], conv: Conventions, workers: int | None, progress: bool, *,
-               client=None, skip_code=None, skip_unit=None) -> Iterator[tuple]:
+               client=None, skip_code=None, skip_unit=None, ordered: bool = True) -> Iterator[tuple]:
     """``(code index, unit, work(unit))`` for every unit of ``codes``, then ``(index, None, units)``
-    when a code is complete, in order: inline for a small query, else streamed to a process pool
-    (or a Dask ``client``) with a bounded number of tasks in flight (see :mod:`synth._executor`).
+    when a code is complete: inline for a small query, else streamed to a process pool (or a
+    Dask ``client``) with a bounded number of tasks in flight (see :mod:`synth._executor`);
+    in plan order, or as units finish with ``ordered=False``.
 
     ``work`` returns the unit's chains or a (code, count) pair; the progress bar adds up either.
     """
@@ -330,7 +331,7 @@ def _map_units(work, codes: list[Code], conv: Conventions, workers: int | None, 
         # a plan with such codes goes to the pool at once, a smaller one starts inline
         inline = _INLINE_SECONDS if max(map(_branch_vertices, codes), default=0) <= _INLINE_BRANCH else 0.0
         for event in run_plan([(c, conv) for c in codes], _stage_a, work, workers=workers, client=client,
-                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline):
+                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
             if bar is not None:
                 if event[1] is None:
                     bar.update(1)
@@ -396,7 +397,7 @@ def _count(work, what: str, query: dict, workers, progress, checkpoint, schedule
             stack.callback(client.close)
         events = _map_units(work, codes, conv, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else None,
-                            skip_unit=(lambda u: u.key in ck.units) if ck else None)
+                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:

@@ -57,6 +57,16 @@ def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
     assert events == list(_executor.run_plan(items, _units, _square))
 
 
+@pytest.mark.parametrize("window", [1, 3, 64])
+def test_unordered_pipeline_yields_every_unit_before_its_item(window):
+    items = [3, 0, 5, 1, 4, 7, 2]
+    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0, window=window,
+                                     ordered=False))
+    assert sorted(events, key=repr) == sorted(_executor.run_plan(items, _units, _square), key=repr)
+    closed = {index: k for k, (index, unit, _) in enumerate(events) if unit is None}
+    assert all(k < closed[index] for k, (index, unit, _) in enumerate(events) if unit is not None)
+
+
 def test_skipped_items_and_units_are_not_run():
     items = [3, 2]
     events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0,
