@@ -12,7 +12,7 @@ Time is the largest calibration size's measured seconds per chain times the chai
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
-−2.6 % at 14 links, −5.1 % at 16 and −6.7 % at 18 against the published counts (318 162,
+−2.5 % at 14 links, −5.0 % at 16 and −6.7 % at 18 against the published counts (318 162,
 19 819 281, 1 535 380 884).  The time per chain falls as n grows (on one core: ≈ 120 µs at
 12 links, ≈ 110 µs at 14 and 16), so the time estimate is an upper bound of the right order,
 not a prediction: it assumes the workers scale perfectly and no faster per-chain rate.
