@@ -91,6 +91,15 @@ def test_pool_and_inline_counts_agree():
     assert count_mechanisms(1, 8, workers=2) == count_mechanisms(1, 8, workers=1)
 
 
+def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
+    from synth import _type_synthesis
+
+    inline = [c.certificate for c in synth.type_synthesis(1, 10, v="0..2", workers=1)]
+    monkeypatch.setattr(_type_synthesis, "_INLINE_SECONDS", 0.0)  # every unit goes to the pool
+    assert [c.certificate for c in synth.type_synthesis(1, 10, v="0..2", workers=2)] == inline
+    assert count_chains(1, 10, v="0..2", workers=2)["count"] == len(inline)
+
+
 def test_cp_sat_without_pandas():
     code = ("import sys, synth; synth.count_chains(1, 8, workers=1); "
             "assert 'pandas' not in sys.modules, 'pandas loaded'; "
