@@ -144,7 +144,7 @@ def main(argv=None) -> int:
                   "the chains; one process.", "", _table(by_v, list(by_v[0]))]
     if args.projection:
         projection = _load("bench_projection")
-        rows = [projection.project(1, args.projection, codes=40, units=40, seed=seed) for seed in (1, 2)]
+        rows = [projection.project(1, args.projection, codes=10**6, units=30, seed=1)]
         parts += ["", f"## Projection of the 1-DOF count at {args.projection} links from a sample of units", "",
                   "Two-stage random sample (codes, then units of each; method in `benchmarks/bench_projection.py` "
                   "and PROFILE.md); CPU seconds of one process, ± 2 standard errors.", "",
