@@ -147,7 +147,7 @@ def main(argv=None) -> int:
         rows = [projection.project(1, args.projection, codes=10**6, units=30, seed=1)]
         parts += ["", f"## Projection of the 1-DOF count at {args.projection} links from a sample of units", "",
                   "Two-stage random sample (codes, then units of each; method in `benchmarks/bench_projection.py` "
-                  "and PROFILE.md); CPU seconds of one process, ± 2 standard errors.", "",
+                  "and PROFILE.md): every code's stage A, 30 units of each; CPU seconds of one process; `_se`: one standard error.", "",
                   _table(rows, ["links", "codes", "codes_sampled", "units_sampled", "seed", "units_projected",
                                 "chains_projected", "chains_se", "published", "cpu_s_projected", "cpu_s_se",
                                 "sampling_s"])]
