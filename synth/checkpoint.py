@@ -135,7 +135,8 @@ class Checkpoint:
         self.committed_codes += sum(1 for kind, *_ in pending if kind == "code")
         self._last = time.monotonic()
         if self._log is not None:
-            self._log(f"checkpoint {self.path}: {self.committed_units} units ({self.committed_codes} codes complete) "
+            codes = f"{self.committed_codes} code{'s' * (self.committed_codes != 1)}"
+            self._log(f"checkpoint {self.path}: {self.committed_units} units ({codes} complete) "
                       f"committed in this run, {self.resumed_units} units done before")
 
     def close(self) -> None:
