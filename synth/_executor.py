@@ -3,7 +3,8 @@
 A plan is a list of *items* (one per code); ``expand(item)`` (stage A) turns an item into
 its units and ``work(unit)`` (stage B) gives a unit's result (its chains, or a count).
 :func:`run_plan` yields ``(index, unit, result)`` for every unit and ``(index, None, n_units)``
-once item ``index`` is complete, in plan order, whatever the backend:
+once item ``index`` is complete, in plan order (a listing) or as units finish (a count),
+whatever the backend:
 
 * a small query runs inline and never pays for a process pool: units run in this process
   until ``inline_seconds`` have passed, and only then are the remaining units and items handed
