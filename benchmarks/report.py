@@ -85,7 +85,7 @@ def _machine() -> str:
             f"OR-Tools {version('ortools')}; commit `{commit}`")
 
 
-def _load() -> str:
+def _load_average() -> str:
     try:
         return " / ".join(f"{x:.2f}" for x in os.getloadavg())
     except OSError:
@@ -102,7 +102,7 @@ def main(argv=None) -> int:
     os.environ.setdefault("MPLBACKEND", "Agg")
     started = time.perf_counter()
     run_id = dt.datetime.now().strftime("%Y-%m-%d %H:%M")
-    load_before = _load()
+    load_before = _load_average()
     gensparseg = os.environ.get("GENSPARSEG")
     parts = [
         "# Benchmark report",
@@ -178,7 +178,7 @@ def main(argv=None) -> int:
             parts += ["", "## Stability on the hard cases", "", _table(rows, list(rows[0]))]
 
     parts += ["", f"Total time of this run: {time.perf_counter() - started:.0f} s.", ""]
-    text = "\n".join(parts).replace("LOAD_AT_END", _load())
+    text = "\n".join(parts).replace("LOAD_AT_END", _load_average())
     (HERE / "REPORT.md").write_text(text)
     print(f"wrote {HERE / 'REPORT.md'} in {time.perf_counter() - started:.0f} s")
     return 0
