@@ -1,11 +1,19 @@
 """Synthesis time against link count, with counts checked against the published references.
 
 For every case: per-stage time in one process (stage A = branch multigraphs, CP-SAT of
-stage B, exact sub-chain test, nauty), candidates per unique chain, and the wall time of
-the real command ``mechsynth chains --count`` on 2 workers (start-up included).
-Writes ``benchmarks/out/synthesis.csv`` and ``benchmarks/out/synthesis.png``.
+stage B, exact sub-chain test, nauty), candidates per unique chain (and by v for multiple
+joints), and the wall time of the real command ``mechsynth chains --count`` on 2 workers
+(start-up included; the minimum of ``reps`` runs, with the CPU time of the fastest).
 
-Run: ``python benchmarks/bench_synthesis.py [--quick | --full]`` (``--full`` adds 14 links).
+With the environment variable ``GENSPARSEG`` pointing at a gensparseg binary (built by
+``/work/shared/tools/gensparseg/build.sh``; never a dependency), every 1-DOF simple-joint
+case also times ``gensparseg N -K3/2L2 -u`` on 2 processes (geng's res/mod split 0/2 and
+1/2 at once) *alternately* with mechsynth in the same loop, checks its count, and gives the
+ratio mechsynth / gensparseg of the two minima.
+
+Writes ``benchmarks/out/synthesis.csv`` and ``benchmarks/out/synthesis.png``.
+Run: ``python benchmarks/bench_synthesis.py [--quick | --full] [--reps N]`` (``--full`` adds
+14 links and multiple joints at 12 links, v = 0…10).
 """
 
 from __future__ import annotations
@@ -14,6 +22,8 @@ import argparse
 import csv
 import json
 import os
+import re
+import resource
 import subprocess
 import sys
 import time
@@ -23,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 OUT = ROOT / "benchmarks" / "out"
 
-# (series, W, links, v range, fractionated, reference count or None)
+# (series, W, links) -> published count (OEIS A233288 for W = 1; THEORY.md's tables otherwise)
 REFERENCE = {
     ("W=1", 1, 4): 1, ("W=1", 1, 6): 2, ("W=1", 1, 8): 16, ("W=1", 1, 10): 230, ("W=1", 1, 12): 6856,
     ("W=1", 1, 14): 318162,
@@ -39,49 +49,110 @@ def cases(quick: bool, full: bool):
         out.append(("W=1", 1, 14, "0"))
     out += [("W=2", 2, n, "0") for n in (5, 7, 9, 11)]
     out += [("W=3", 3, n, "0") for n in (6, 8, 10, 12)]
-    out += [("W=1 multiple joints", 1, n, f"0..{2 * ((n - 2) // 2 - 1)}") for n in (6, 8, 10)]
+    out += [("W=1 multiple joints", 1, n, f"0..{2 * ((n - 2) // 2 - 1)}") for n in (6, 8, 10) + ((12,) if full else ())]
     if quick:
         out = [c for c in out if c[2] <= 10]
     return out
 
 
-def measure(series: str, dof: int, links: int, v: str, workers: int = 2) -> dict:
+def _timed(cmd: list[str]) -> tuple[float, float, subprocess.CompletedProcess]:
+    """Wall and CPU (this child and its own children) seconds of one command."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, check=True)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, proc
+
+
+def _gensparseg(binary: str, links: int) -> tuple[float, int]:
+    """Wall seconds of gensparseg on 2 processes (res/mod 0/2 and 1/2 at once) and the chains it counts."""
+    t0 = time.perf_counter()
+    procs = [subprocess.Popen([binary, str(links), "-K3/2L2", "-u", f"{r}/2"], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True) for r in (0, 1)]
+    errs = [p.communicate()[1] for p in procs]
+    wall = time.perf_counter() - t0
+    count = sum(int(m.group(1)) for e in errs for m in [re.search(r">Z (\d+) graphs", e)] if m)
+    return wall, count
+
+
+def measure(series: str, dof: int, links: int, v: str, workers: int = 2, reps: int = 3) -> dict:
     import synth
 
+    synth.plan_units, synth.run_unit  # imported before the clock starts: start-up is the CLI column's
     t0 = time.perf_counter()
-    units = synth.plan_units(dof, links, v=v)
+    units = synth.plan_units(dof, links, v=v, workers=1)
     stage_a = time.perf_counter() - t0
     stats: dict = {}
-    count = sum(len(synth.run_unit(u, stats)) for u in units)
+    by_v: dict[int, list[int]] = {}
+    count = 0
+    for u in units:
+        unit_stats: dict = {}
+        found = len(synth.run_unit(u, unit_stats))
+        count += found
+        for key, value in unit_stats.items():
+            stats[key] = stats.get(key, 0) + value
+        row = by_v.setdefault(u.code.v, [0, 0, 0])
+        row[0] += 1
+        row[1] += found
+        row[2] += unit_stats.get("candidates", 0)
     inline = time.perf_counter() - t0
     cmd = [sys.executable, "-m", "mechsynth", "chains", "--dof", str(dof), "--links", str(links), "--v", v,
            "--count", "--workers", str(workers)]
-    t1 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, check=True)
-    wall = time.perf_counter() - t1
+    binary = os.environ.get("GENSPARSEG") if series == "W=1" else None
+    walls, g_walls, g_count = [], [], None
+    for _ in range(reps):  # alternately, so both see the same load drift
+        walls.append(_timed(cmd))
+        if binary:
+            g_wall, g_count = _gensparseg(binary, links)
+            g_walls.append(g_wall)
+    wall, cpu, proc = min(walls, key=lambda w: w[0])
     cli_count = json.loads(proc.stdout)["count"]
     reference = REFERENCE.get((series, dof, links))
-    return {
+    row = {
         "series": series, "dof": dof, "links": links, "v": v, "chains": count, "reference": reference,
         "error": None if reference is None else count - reference, "cli_agrees": cli_count == count,
         "units": len(units), "stage_a_s": round(stage_a, 4), "cpsat_s": round(stats.get("cpsat_s", 0), 4),
         "subchain_s": round(stats.get("subchain_s", 0), 4), "nauty_s": round(stats.get("nauty_s", 0), 4),
-        "one_core_s": round(inline, 4), "wall_2_workers_s": round(wall, 3),
-        "candidates_per_chain": round(stats.get("candidates", 0) / count, 3) if count else None,
+        "one_core_s": round(inline, 4), "wall_2_workers_s": round(wall, 3), "cpu_2_workers_s": round(cpu, 3),
+        "reps": reps, "candidates_per_chain": round(stats.get("candidates", 0) / count, 3) if count else None,
         "chains_per_s": round(count / wall, 1),
+        "by_v": {k: {"units": a, "chains": b, "candidates": c} for k, (a, b, c) in sorted(by_v.items())},
     }
+    if binary:
+        row.update(gensparseg_s=round(min(g_walls), 3), gensparseg_chains=g_count,
+                   gensparseg_agrees=g_count == count, ratio=round(wall / min(g_walls), 2))
+    return row
 
 
-def run(quick: bool = False, full: bool = False) -> list[dict]:
-    """Measure every case; return the rows (also written to CSV and plotted)."""
+def by_v_rows(rows: list[dict]) -> list[dict]:
+    """Candidates (CP-SAT solutions) per chain by multiple-joint count v, for the multiple-joint cases."""
+    out = []
+    for r in rows:
+        if r["v"] == "0":
+            continue
+        for v, d in r["by_v"].items():
+            out.append({"links": r["links"], "v": v, "units": d["units"], "chains": d["chains"],
+                        "candidates": d["candidates"],
+                        "candidates_per_chain": round(d["candidates"] / d["chains"], 3) if d["chains"] else None})
+    return out
+
+
+def run(quick: bool = False, full: bool = False, reps: int = 3) -> list[dict]:
+    """Measure every case; return the rows (also written to CSV and plotted).
+
+    Cases over a minute on one core run once (``reps`` = 1): 14 links and multiple joints at 12.
+    """
     rows = []
     for series, dof, links, v in cases(quick, full):
-        row = measure(series, dof, links, v)
+        heavy = links >= 14 or (links >= 12 and v != "0")
+        row = measure(series, dof, links, v, reps=1 if heavy else reps)
         rows.append(row)
         print(json.dumps(row), file=sys.stderr)
     OUT.mkdir(parents=True, exist_ok=True)
+    columns = list(dict.fromkeys(k for r in rows for k in r if k != "by_v"))  # every row's keys, in order
     with open(OUT / "synthesis.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer = csv.DictWriter(fh, fieldnames=columns, extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)
     plot(rows, OUT / "synthesis.png")
@@ -114,8 +185,10 @@ def plot(rows: list[dict], path: Path) -> None:
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only up to 10 links")
-    parser.add_argument("--full", action="store_true", help="add 1-DOF 14 links (about 2 minutes)")
+    parser.add_argument("--full", action="store_true",
+                        help="add 1-DOF 14 links and multiple joints at 12 links (about 10 minutes)")
+    parser.add_argument("--reps", type=int, default=3, help="timed runs of each small case (the minimum is kept)")
     args = parser.parse_args()
     os.environ.setdefault("MPLBACKEND", "Agg")
-    for row in run(args.quick, args.full):
+    for row in run(args.quick, args.full, args.reps):
         print(row)

@@ -1,7 +1,13 @@
 """Run every benchmark on this machine and write ``benchmarks/REPORT.md`` with tables and plots.
 
-Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick]``).  CSVs go to
-``benchmarks/out/`` (not committed); the plots the report shows go to ``benchmarks/figures/``.
+Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N]``).
+CSVs go to ``benchmarks/out/`` (not committed); the plots the report shows go to
+``benchmarks/figures/``.  Set ``GENSPARSEG`` to a gensparseg binary to add the side-by-side
+column (build it with ``/work/shared/tools/gensparseg/build.sh /tmp/gensparseg``).
+
+The report's header names the machine (CPU, cores, memory), the commit measured, the run
+(start time) and the load average before and after: every figure in it comes from that one
+run.  Timings are minima of repeated runs; run it on a quiet machine.
 """
 
 from __future__ import annotations
@@ -12,6 +18,7 @@ import importlib.util
 import os
 import platform
 import shutil
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -53,32 +60,97 @@ def _load(name: str):
     return module
 
 
+def _machine() -> str:
+    """CPU model, cores, memory, Python and OR-Tools versions, the commit measured."""
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    try:
+        memory = f"{os.sysconf('SC_PAGE_SIZE') * os.sysconf('SC_PHYS_PAGES') / 2**30:.0f} GiB"
+    except (ValueError, OSError, AttributeError):
+        memory = "memory unknown"
+    try:
+        commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
+                                text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit = "unknown commit"
+    from importlib.metadata import version
+
+    return (f"{cpu}, {os.cpu_count()} cores, {memory}; Python {platform.python_version()}, "
+            f"OR-Tools {version('ortools')}; commit `{commit}`")
+
+
+def _load_average() -> str:
+    try:
+        return " / ".join(f"{x:.2f}" for x in os.getloadavg())
+    except OSError:
+        return "unknown"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small cases only (a minute)")
+    parser.add_argument("--reps", type=int, default=3, help="timed runs of each small synthesis case (minimum kept)")
+    parser.add_argument("--projection", type=int, metavar="LINKS",
+                        help="also project the 1-DOF count at LINKS links from a sample of units (e.g. 18)")
     args = parser.parse_args(argv)
     os.environ.setdefault("MPLBACKEND", "Agg")
     started = time.perf_counter()
+    run_id = dt.datetime.now().strftime("%Y-%m-%d %H:%M")
+    load_before = _load_average()
+    gensparseg = os.environ.get("GENSPARSEG")
     parts = [
         "# Benchmark report",
         "",
-        f"Written by `benchmarks/run` on {dt.date.today()} — {platform.processor() or platform.machine()}, "
-        f"{os.cpu_count()} cores, Python {platform.python_version()}. Every number below was measured by "
-        "that run; counts carry an `error` column (engine − published reference, 0 expected).",
+        f"Run {run_id} of `benchmarks/run{' --quick' if args.quick else ''}` on {_machine()}. "
+        "Every number below was measured by this one run; timings are the minimum of repeated runs "
+        "where a `reps` column says so; counts carry an `error` column (engine − published reference, 0 expected).",
+        "",
+        f"Load average (1/5/15 min) at the start: {load_before}; at the end: LOAD_AT_END. "
+        + (f"gensparseg: `{gensparseg}` (the `gensparseg_s` column: 2 processes, same run, alternating)."
+           if gensparseg else "gensparseg: not measured (set GENSPARSEG to a binary to add it)."),
     ]
 
     codes = _load("bench_codes").run(args.quick)
     parts += ["", "## Number synthesis (CP-SAT, one model per K)", "",
               _table(codes, ["query", "codes", "reference", "error", "seconds"])]
 
-    synthesis = _load("bench_synthesis").run(quick=args.quick, full=not args.quick)
+    bench = _load("bench_synthesis")
+    synthesis = bench.run(quick=args.quick, full=not args.quick, reps=args.reps)
     parts += ["", "## Type synthesis: time against link count", "",
               "One process: stage A (branch multigraphs), stage B CP-SAT, exact sub-chain test and nauty; "
-              "then the real command `mechsynth chains --count --workers 2` with start-up included.", "",
+              "then the real command `mechsynth chains --count --workers 2` with start-up included "
+              "(`wall_2_workers_s`: minimum of `reps` runs; `cpu_2_workers_s`: its CPU time, all processes).", "",
               _table(synthesis, ["series", "links", "v", "chains", "reference", "error", "units", "stage_a_s",
                                  "cpsat_s", "subchain_s", "nauty_s", "one_core_s", "wall_2_workers_s",
-                                 "candidates_per_chain", "chains_per_s"]),
+                                 "cpu_2_workers_s", "reps", "candidates_per_chain", "chains_per_s"]),
               _figure("synthesis.png")]
+    if gensparseg:
+        side = [r for r in synthesis if "gensparseg_s" in r]
+        parts += ["", "## Side by side with gensparseg (1-DOF chains, 2 processes each)", "",
+                  "Same run, alternating mechsynth and gensparseg for each size; minimum wall times; "
+                  "`ratio` = mechsynth / gensparseg (below 1: mechsynth is faster).", "",
+                  _table(side, ["links", "chains", "gensparseg_chains", "gensparseg_agrees", "wall_2_workers_s",
+                                "gensparseg_s", "ratio", "reps"])]
+    by_v = bench.by_v_rows(synthesis)
+    if by_v:
+        parts += ["", "## Multiple joints: candidates per chain by v", "",
+                  "CP-SAT solutions of stage B (candidates) that the exact sub-chain test and nauty reduce to "
+                  "the chains; one process.", "", _table(by_v, list(by_v[0]))]
+    if args.projection:
+        projection = _load("bench_projection")
+        rows = [projection.project(1, args.projection, codes=10**6, units=30, seed=1)]
+        parts += ["", f"## Projection of the 1-DOF count at {args.projection} links from a sample of units", "",
+                  "Two-stage random sample (codes, then units of each; method in `benchmarks/bench_projection.py` "
+                  "and PROFILE.md): every code's stage A, 30 units of each; CPU seconds of one process; `_se`: one standard error.", "",
+                  _table(rows, ["links", "codes", "codes_sampled", "units_sampled", "seed", "units_projected",
+                                "chains_projected", "chains_se", "published", "cpu_s_projected", "cpu_s_se",
+                                "sampling_s"])]
 
     atlas = _load("bench_atlas")
     if atlas is not None:
@@ -106,7 +178,8 @@ def main(argv=None) -> int:
             parts += ["", "## Stability on the hard cases", "", _table(rows, list(rows[0]))]
 
     parts += ["", f"Total time of this run: {time.perf_counter() - started:.0f} s.", ""]
-    (HERE / "REPORT.md").write_text("\n".join(parts))
+    text = "\n".join(parts).replace("LOAD_AT_END", _load_average())
+    (HERE / "REPORT.md").write_text(text)
     print(f"wrote {HERE / 'REPORT.md'} in {time.perf_counter() - started:.0f} s")
     return 0
 

@@ -21,9 +21,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from ortools.sat.python import cp_model
-
-from ._cpsat import all_solutions
+from ._cpsat import Model, all_solutions
 from ._params import check_dof, check_extra_mobility, check_motion_space
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
@@ -236,7 +234,7 @@ def _bound_name(max_link_degree) -> str:
 def _solve(problem: Problem) -> list[Code]:
     """Build and enumerate the CP-SAT model of one validated problem."""
     n, K, imax = problem.links, problem.loops, problem.max_link_degree
-    model = cp_model.CpModel()
+    model = Model()
     counts = {i: model.NewIntVar(0, n, f"n{i}") for i in range(1, imax + 1)}
     model.Add(counts[1] >= problem.n1[0])
     model.Add(counts[1] <= problem.n1[1])

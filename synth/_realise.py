@@ -27,9 +27,7 @@ from itertools import combinations
 from time import perf_counter
 
 import pynauty
-from ortools.sat.python import cp_model
-
-from ._cpsat import all_solutions
+from ._cpsat import Model, all_solutions
 from .chain import Chain
 from .code import Code
 from .mobility import check_subchains
@@ -125,7 +123,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     if m == 0:
         return []
     deg = [k[1] for k in kinds]
-    model = cp_model.CpModel()
+    model = Model()
     pairs = list(combinations(range(m), 2))
     x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
     y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated else 0, f"y{u}") for u in range(m)]
@@ -188,6 +186,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
 
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     """Fractionation and planarity of the chain, decided on H."""
+    if conv.fractionated and not conv.planar_only:
+        return True  # without importing networkx (0.1 s of a small query's start-up)
     import networkx as nx
 
     if not conv.fractionated:
@@ -206,7 +206,7 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
-    model = cp_model.CpModel()
+    model = Model()
     w = []
     for k, (u, v) in enumerate(edges):
         if u == v:

@@ -15,20 +15,33 @@ Example
 
 from __future__ import annotations
 
-import multiprocessing
 import os
-import signal
 import sys
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
+from ._executor import process_pool, run_plan
 from ._number_synthesis import number_synthesis, parse_range, parse_requirements
 from ._realise import Contracted, Conventions, contracted_graphs, realise
 from .chain import Chain, Mechanism
 from .code import Code
-from .errors import ImpossibleParameters, InvalidOption
+from .errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 
 __all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
+
+
+# Stage A writes one connectivity constraint per set of branch vertices holding vertex 0:
+# 2^(m-1) of them; m = 18 gives 131 071, the most a model is allowed to hold.
+_MAX_BRANCH = 18
+# A query runs inline for this long before it starts a pool, if no code has more branch
+# vertices than _INLINE_BRANCH (stage A of such a code takes milliseconds: 8 at 12 links).
+_INLINE_SECONDS = 0.25
+_INLINE_BRANCH = 8
+
+
+def _branch_vertices(code: Code) -> int:
+    """Links with 3+ joints and multiple joints: the vertices of the branch multigraph H."""
+    return code.links - code.count(2) + sum(code.composition or ())
 
 
 @dataclass(frozen=True)
@@ -174,16 +187,6 @@ def _validate(dof, links, workers):
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
 
 
-def _ignore_sigint() -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
-
-
-def process_pool(workers: int):
-    """A process pool whose workers leave Ctrl-C to the parent (fork on Linux)."""
-    ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    return ctx.Pool(workers, initializer=_ignore_sigint)
-
-
 def plan_units(
     dof: int,
     links: int | None = None,
@@ -235,20 +238,7 @@ def plan_many(queries: Iterable[Mapping], *, pool=None, skip_impossible: bool = 
     queries = list(queries)
     jobs, owners = [], []
     for index, query in enumerate(queries):
-        q = dict(query)
-        dof, links = q.pop("dof"), q.pop("links", None)
-        conv = _conventions(dof, q.pop("rigid_subchains", None), q.get("fractionated", True),
-                            q.pop("planar_only", False), q.pop("cranks", None))
-        try:
-            codes = plan_codes(dof, links, v=q.pop("v", None), code=q.pop("code", None),
-                               fractionated=q.pop("fractionated", True), rigid_subchains=conv.rigid_subchains,
-                               require=_with_crank_links(q.pop("require", None), conv))
-        except ImpossibleParameters:
-            if not skip_impossible:
-                raise
-            codes = []
-        if q:
-            raise InvalidOption(f"unknown option(s) for a chain query: {', '.join(sorted(q))}")
+        codes, conv = _codes_of(query, skip_impossible)
         jobs += [(c, conv) for c in codes]
         owners += [index] * len(codes)
     plans: list[list[Unit]] = [[] for _ in queries]
@@ -256,6 +246,32 @@ def plan_many(queries: Iterable[Mapping], *, pool=None, skip_impossible: bool = 
     for owner, batch in zip(owners, batches):
         plans[owner].extend(batch)
     return plans
+
+
+def _codes_of(query: Mapping, skip_impossible: bool = False) -> tuple[list[Code], Conventions]:
+    """Number synthesis of one chain query: its codes (in output order) and conventions."""
+    q = dict(query)
+    dof, links = q.pop("dof"), q.pop("links", None)
+    conv = _conventions(dof, q.pop("rigid_subchains", None), q.get("fractionated", True),
+                        q.pop("planar_only", False), q.pop("cranks", None))
+    try:
+        codes = plan_codes(dof, links, v=q.pop("v", None), code=q.pop("code", None),
+                           fractionated=q.pop("fractionated", True), rigid_subchains=conv.rigid_subchains,
+                           require=_with_crank_links(q.pop("require", None), conv))
+    except ImpossibleParameters:
+        if not skip_impossible:
+            raise
+        codes = []
+    if q:
+        raise InvalidOption(f"unknown option(s) for a chain query: {', '.join(sorted(q))}")
+    for code in codes:
+        branch = _branch_vertices(code)
+        if branch > _MAX_BRANCH:
+            raise QueryTooLarge(f"code {code} has {branch} branch vertices (links with 3+ joints and multiple "
+                                f"joints); its branch-multigraph model would need 2^{branch - 1} connectivity "
+                                f"constraints, more than this engine builds (at most {_MAX_BRANCH} branch vertices)")
+    return codes, conv
+
 
 def type_synthesis(
     dof: int,
@@ -312,39 +328,42 @@ def type_synthesis(
     _validate(dof, links, workers)
     query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
                  planar_only=planar_only, require=require, cranks=cranks)
-    for chains in _map_units(run_unit, query, workers, progress):
-        yield from chains
+    codes, conv = _codes_of(query)
+    for _, unit, chains in _map_units(run_unit, codes, conv, workers, progress):
+        if unit is not None:
+            yield from chains
 
 
-def _map_units(work, query: dict, workers: int | None, progress: bool) -> Iterator:
-    """``work(unit)`` for every unit of ``query``, in unit order, inline or on a process pool.
+def _map_units(work, codes: list[Code], conv: Conventions, workers: int | None, progress: bool, *,
+               client=None, skip_code=None, skip_unit=None, ordered: bool = True) -> Iterator[tuple]:
+    """``(code index, unit, work(unit))`` for every unit of ``codes``, then ``(index, None, units)``
+    when a code is complete: inline for a small query, else streamed to a process pool (or a
+    Dask ``client``) with a bounded number of tasks in flight (see :mod:`synth._executor`);
+    in plan order, or as units finish with ``ordered=False``.
 
-    ``work`` returns the unit's chains or a count; the progress bar adds up either.
+    ``work`` returns the unit's chains or a (code, count) pair; the progress bar adds up either.
     """
     workers = workers or os.cpu_count() or 1
     bar = None
-    if progress:
+    if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
         from tqdm import tqdm
 
-        bar = tqdm(total=0, unit=" units", file=sys.stderr, disable=None, leave=False)
-    pool = process_pool(workers) if workers > 1 else None
+        bar = tqdm(total=len(codes), unit=" codes", file=sys.stderr, leave=False)
     try:
-        units = plan_many([query], pool=pool)[0]
-        if bar is not None:
-            bar.reset(total=len(units))
-        chunk = max(1, len(units) // (workers * 16))
-        results = pool.imap(work, units, chunksize=chunk) if pool else map(work, units)
         found = 0
-        for result in results:
+        # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
+        # a plan with such codes goes to the pool at once, a smaller one starts inline
+        inline = _INLINE_SECONDS if max(map(_branch_vertices, codes), default=0) <= _INLINE_BRANCH else 0.0
+        for event in run_plan([(c, conv) for c in codes], _stage_a, work, workers=workers, client=client,
+                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
             if bar is not None:
-                found += result[1] if isinstance(result, tuple) else len(result)
-                bar.set_postfix(chains=found, refresh=False)
-                bar.update(1)
-            yield result
+                if event[1] is None:
+                    bar.update(1)
+                else:
+                    found += event[2][1] if isinstance(event[2], tuple) else len(event[2])
+                    bar.set_postfix(chains=found, refresh=False)
+            yield event
     finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
         if bar is not None:
             bar.close()
 
@@ -362,37 +381,90 @@ def _count_unit_mechanisms_with_input(unit: Unit) -> tuple[str, int]:
     return _count_unit_mechanisms(unit, input_link=True)
 
 
-def _tally(pairs) -> dict:
-    by_code: dict[str, int] = {}
-    for code, n in pairs:
-        if n:
-            by_code[code] = by_code.get(code, 0) + n
+def _identity(what: str, codes: list[Code], conv: Conventions) -> str:
+    """What a count computes, as a digest: the same codes and conventions give the same units."""
+    import hashlib
+
+    text = repr((what, [str(c) for c in codes], conv))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _describe(what: str, query: Mapping) -> str:
+    words = [what] + [f"{k}={v}" for k, v in query.items() if v not in (None, (), [], {}, False)]
+    return " ".join(words).replace("'", "")
+
+
+def _count(work, what: str, query: dict, workers, progress, checkpoint, scheduler, timeout, log) -> dict:
+    """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked."""
+    from contextlib import ExitStack
+
+    _validate(query["dof"], query.get("links"), workers)
+    codes, conv = _codes_of(query)
+    names = [str(c) for c in codes]
+    totals = dict.fromkeys(names, 0)
+    with ExitStack() as stack:
+        ck = None
+        if checkpoint is not None:
+            from .checkpoint import Checkpoint
+
+            ck = stack.enter_context(Checkpoint(checkpoint, _identity(what, codes, conv), _describe(what, query),
+                                                log=log))
+            for name, n in ck.codes.items():
+                totals[name] += n
+            for name, n in ck.units.values():
+                totals[name] += n
+        client = None
+        if scheduler is not None:
+            from ._scheduler import connect
+
+            client = connect(scheduler, timeout)
+            stack.callback(client.close)
+        events = _map_units(work, codes, conv, workers, progress, client=client,
+                            skip_code=(lambda i: names[i] in ck.codes) if ck else None,
+                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
+        for index, unit, result in events:
+            if unit is None:
+                if ck is not None:
+                    ck.finish_code(names[index], totals[names[index]], units=result)
+                continue
+            name, n = result
+            totals[name] += n
+            if ck is not None:
+                ck.add_unit(unit.key, name, n)
+    by_code = {name: n for name, n in totals.items() if n}
     return {"count": sum(by_code.values()), "by_code": by_code}
 
 
 def count_chains(dof: int, links: int | None = None, *, workers: int | None = None, progress: bool = False,
+                 checkpoint=None, scheduler: str | None = None, timeout: float = 5.0, log=None,
                  **selection) -> dict:
     """``{"count": N, "by_code": {code: count}}`` for the chains of :func:`type_synthesis`.
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
+    With ``checkpoint`` (a file path) finished units are committed as they finish and a rerun
+    with the same file resumes (see :mod:`synth.checkpoint`); with ``scheduler`` (a Dask
+    address such as ``tcp://host:8786``) the units run on that cluster.
 
     >>> count_chains(1, 8, workers=1)
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
     """
-    _validate(dof, links, workers)
-    return _tally(_map_units(_count_unit, dict(dof=dof, links=links, **selection), workers, progress))
+    return _count(_count_unit, "chains", dict(dof=dof, links=links, **selection), workers, progress, checkpoint,
+                  scheduler, timeout, log)
 
 
 def count_mechanisms(dof: int, links: int | None = None, *, input_link: bool = False, workers: int | None = None,
-                     progress: bool = False, **selection) -> dict:
-    """``{"count": N, "by_code": {code: count}}`` for the mechanisms of :func:`mechanisms`.
+                     progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
+                     log=None, **selection) -> dict:
+    """``{"count": N, "by_code": {code: count}}`` for the mechanisms of :func:`mechanisms` (options as
+    :func:`count_chains`).
 
     >>> count_mechanisms(1, 8, workers=1)["count"]
     71
     """
-    _validate(dof, links, workers)
     work = _count_unit_mechanisms_with_input if input_link else _count_unit_mechanisms
-    return _tally(_map_units(work, dict(dof=dof, links=links, **selection), workers, progress))
+    what = "mechanisms with input link" if input_link else "mechanisms"
+    return _count(work, what, dict(dof=dof, links=links, **selection), workers, progress, checkpoint, scheduler,
+                  timeout, log)
 
 
 def mechanisms_of(chain: Chain, *, input_link: bool = False) -> list[Mechanism]:

@@ -59,6 +59,7 @@ from pathlib import Path
 
 import pynauty
 
+from ._scheduler import SchedulerUnreachable, connect as _connect
 from ._type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from .chain import Chain, Mechanism
 from .code import Code
@@ -79,10 +80,6 @@ class AtlasError(SynthesisError):
 
 class AtlasLocked(AtlasError):
     """Another run is writing the same atlas."""
-
-
-class SchedulerUnreachable(AtlasError):
-    """The Dask scheduler named by ``--scheduler`` did not answer."""
 
 
 _SCHEMA = """
@@ -397,21 +394,6 @@ def _local(tasks: list[_Task], pool) -> Iterator[_Result]:
             yield compute_unit(task)
         return
     yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
-
-
-def _connect(address: str, timeout: float):
-    """A Dask client for ``address``, or one sentence saying why there is none."""
-    try:
-        from distributed import Client
-    except ImportError:  # pragma: no cover - dask is a dependency
-        raise SchedulerUnreachable("--scheduler needs the 'distributed' package (pip install dask[distributed])") from None
-    try:
-        return Client(address, timeout=f"{timeout}s", set_as_default=False)
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        detail = str(exc).splitlines()[0] if str(exc) else "no answer"
-        raise SchedulerUnreachable(
-            f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({type(exc).__name__}: {detail})"
-        ) from None
 
 
 def _dask(tasks: list[_Task], client) -> Iterator[_Result]:

@@ -16,6 +16,7 @@ __all__ = [
     "MalformedCode",
     "MalformedChain",
     "InvalidOption",
+    "QueryTooLarge",
 ]
 
 
@@ -37,3 +38,7 @@ class MalformedChain(SynthesisError):
 
 class InvalidOption(SynthesisError):
     """An option has a value outside the allowed ones."""
+
+
+class QueryTooLarge(SynthesisError):
+    """The query's plan or output cannot fit in this machine's memory or time (says which, with an estimate)."""

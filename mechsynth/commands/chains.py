@@ -11,9 +11,15 @@ Example
 from __future__ import annotations
 
 import argparse
+import sys
 
-from .._argtypes import whole, workers
+from .._argtypes import seconds, whole, workers
 from .._output import FORMATS, nothing_found, write_count, write_rows
+
+# Queries at least this large (loops K; multiple joints grow faster) are sized before they run.
+_SIZED_LOOPS, _SIZED_LOOPS_MULTIPLE = 7, 6
+_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (wall, on the workers)
+_TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 
 
 def _add_selection(p) -> None:
@@ -32,6 +38,13 @@ def _add_selection(p) -> None:
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
     p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default: all cores)")
+    p.add_argument("--checkpoint", metavar="FILE",
+                   help="with --count: commit unit counts to this SQLite file as they finish; rerun to resume")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="with --count: run the units on a Dask scheduler, "
+                   "e.g. tcp://host:8786")
+    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--force", action="store_true",
+                   help="run a query estimated to take more than a day (see README, 'Large queries')")
     p.add_argument("--format", choices=FORMATS,
                    help="table (default), jsonl, csv or json; with --count json (default), table, jsonl or csv")
 
@@ -64,15 +77,66 @@ def _selection(args) -> tuple[int, dict]:
     )
 
 
+def _check_options(args) -> None:
+    from synth.errors import InvalidOption
+
+    for option in ("checkpoint", "scheduler"):
+        if getattr(args, option) is not None and not args.count:
+            raise InvalidOption(f"--{option} goes with --count (listings are not resumed or distributed)")
+    if args.scheduler is not None and args.workers is not None:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
+
+
+def _size_guard(dof: int, args, kwargs: dict) -> None:
+    """Refuse, within seconds and with an estimate, a query too large to run unasked."""
+    import os
+
+    from synth._number_synthesis import parse_range
+    from synth.errors import InvalidOption
+
+    if args.code is not None or args.links is None or (args.force and args.count):
+        return
+    loops = (args.links - dof - 1) // 2
+    v = parse_range(args.v or 0, "v")
+    if loops < (_SIZED_LOOPS_MULTIPLE if v != (0, 0) else _SIZED_LOOPS):
+        return
+    from synth.estimate import describe_seconds, estimate, magnitude
+
+    query = {k: val for k, val in kwargs.items() if k not in ("workers", "progress")}
+    found = estimate(dict(query, dof=dof, links=args.links))
+    if found is None:
+        if not args.force:
+            raise InvalidOption(f"this query ({args.links} links) is large and its size cannot be estimated "
+                                "(fewer than three smaller sizes have chains); give --force to run it anyway")
+        return
+    processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
+    where = ("on the scheduler's workers (one core shown)" if args.scheduler
+             else f"on {processes} worker{'s' * (processes > 1)}")
+    size = (f"about {magnitude(found.chains)} chains in {magnitude(found.units)} units, "
+            f"{describe_seconds(found.seconds / processes)} {where}, extrapolated from the {found.basis}")
+    if not args.count and (args.format or "table") == "table" and found.chains > _TABLE_ROWS:
+        raise InvalidOption(f"a table is held in memory to align it and this listing is too large for one ({size}); "
+                            "use --format jsonl or csv (streamed), or --count")
+    if not args.force and found.seconds / processes > _LIMIT_SECONDS:
+        hint = " (with --checkpoint FILE it can be stopped and resumed)" if args.count else ""
+        raise InvalidOption(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
+
+
 def _run(args) -> int:
     from synth._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
+    _check_options(args)
     dof, kwargs = _selection(args)
+    _size_guard(dof, args, kwargs)
     if args.count:  # counted in the worker processes: flat memory at any size
+        log = None
+        if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit
+            log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
+        extra = dict(checkpoint=args.checkpoint, scheduler=args.scheduler, timeout=args.timeout, log=log)
         if args.what == "chains":
-            result = count_chains(dof, args.links, **kwargs)
+            result = count_chains(dof, args.links, **kwargs, **extra)
         else:
-            result = count_mechanisms(dof, args.links, input_link=args.input_link, **kwargs)
+            result = count_mechanisms(dof, args.links, input_link=args.input_link, **kwargs, **extra)
         if write_count(result, args.format or "json") == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0

@@ -1,0 +1,177 @@
+"""Where the time of a chain query goes: per stage, per unit size, per multiple-joint count v.
+
+One process, inline (no pool), with light timers wrapped around the engine's functions
+from outside (this script only; the engine is not changed).  Times are CPU seconds of this
+process (``time.process_time``), so other work on a shared machine hardly changes them.
+Stages:
+
+* ``number synthesis``  the CP-SAT model of the counting equations (codes);
+* ``stage A``           branch multigraphs of every code (CP-SAT + nauty);
+* ``stage B model``     building the CP-SAT model of one multigraph (``realise`` minus the rest),
+  of which ``CpModel()`` is the construction of the empty model object itself (``_cpsat.Model``);
+* ``stage B CP-SAT``    enumerating its solutions (``all_solutions``);
+* ``automorphisms``     nauty's group of H (lex-leader constraints);
+* ``sub-chain test``    ``_exact_on_h`` (simple joints) or ``check_subchains`` (multiple joints);
+* ``Chain``             building the ``Chain`` objects (``_expand``);
+* ``nauty``             certificates of the chains (duplicates removed).
+
+Run: ``python benchmarks/profile_stages.py 12 [--v 0..10] [--json FILE]``.  Timers cost
+about 1 µs per call; the total is printed next to the sum of the stages.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from collections import defaultdict
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+T: dict[str, float] = defaultdict(float)
+N: dict[str, int] = defaultdict(int)
+
+
+def _timed(name, fn):
+    def wrapper(*args, **kwargs):
+        t0 = time.process_time()
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            T[name] += time.process_time() - t0
+            N[name] += 1
+
+    return wrapper
+
+
+def instrument() -> None:
+    """Wrap the engine's stage functions with timers (this process only)."""
+    from synth._cpsat import cp_model
+
+    from synth import _realise, _type_synthesis as ts
+    from synth.chain import Chain
+
+    ts.number_synthesis = _timed("number synthesis", ts.number_synthesis)
+    ts.contracted_graphs = _timed("stage A", ts.contracted_graphs)
+    ts.realise = _timed("stage B (all)", ts.realise)
+    _realise.all_solutions = _timed("stage B CP-SAT", _realise.all_solutions)
+    _realise._exact_on_h = _timed("sub-chain test", _realise._exact_on_h)
+    _realise.check_subchains = _timed("sub-chain test", _realise.check_subchains)
+    _realise._expand = _timed("Chain", _realise._expand)
+    _realise.Contracted.edge_group = _timed("automorphisms", _realise.Contracted.edge_group)
+    cert = Chain.certificate.fget
+    Chain.certificate = property(_timed("nauty", cert))
+    base = getattr(_realise, "Model", None) or cp_model.CpModel  # the class stages A and B build
+
+    class TimedModel(base):
+        def __init__(self, *args, **kwargs):
+            t0 = time.process_time()
+            super().__init__(*args, **kwargs)
+            T["CpModel()"] += time.process_time() - t0
+            N["CpModel()"] += 1
+
+    if hasattr(_realise, "Model"):
+        _realise.Model = TimedModel
+    else:
+        cp_model.CpModel = TimedModel
+
+
+def profile(dof: int, links: int, v: str) -> dict:
+    """Stage times, per-unit records and candidates by v of one inline query."""
+    from synth import _type_synthesis as ts
+
+    T.clear()
+    N.clear()
+    t0 = time.process_time()
+    units = ts.plan_units(dof, links, v=v, workers=1)
+    t_plan = time.process_time() - t0
+    records = []
+    for unit in units:
+        stats: dict = {}
+        t1 = time.process_time()
+        chains = ts.run_unit(unit, stats)
+        records.append({"code": str(unit.code), "v": unit.code.v,
+                        "edges": len(unit.contracted.edges) if unit.contracted else 0,
+                        "candidates": stats.get("candidates", 0), "chains": len(chains),
+                        "seconds": time.process_time() - t1})
+    total = time.process_time() - t0
+    stage_b = T["stage B (all)"]
+    inner = sum(T[k] for k in ("stage B CP-SAT", "sub-chain test", "Chain", "nauty", "automorphisms"))
+    stages = {
+        "number synthesis": T["number synthesis"],
+        "stage A": T["stage A"],
+        "stage B model (CpModel() included)": stage_b - inner,
+        "  of which CpModel()": T["CpModel()"],
+        "stage B CP-SAT": T["stage B CP-SAT"],
+        "automorphisms of H": T["automorphisms"],
+        "sub-chain test": T["sub-chain test"],
+        "Chain": T["Chain"],
+        "nauty": T["nauty"],
+        "plan, outside stages": t_plan - T["number synthesis"] - T["stage A"],
+        "units, outside realise": total - t_plan - stage_b,
+    }
+    return {"dof": dof, "links": links, "v": v, "units": len(units), "total": total,
+            "chains": sum(r["chains"] for r in records), "stages": stages, "calls": dict(N), "records": records}
+
+
+def by_size(records: list[dict]) -> list[dict]:
+    """Units grouped by the number of chains they produce."""
+    bins = [(0, 0), (1, 9), (10, 99), (100, 999), (1000, 9999), (10000, 10**9)]
+    total = sum(r["seconds"] for r in records) or 1.0
+    out = []
+    for lo, hi in bins:
+        rs = [r for r in records if lo <= r["chains"] <= hi]
+        if not rs:
+            continue
+        secs = sum(r["seconds"] for r in rs)
+        chains = sum(r["chains"] for r in rs)
+        out.append({"chains per unit": f"{lo}–{hi}" if hi < 10**9 else f"{lo}+", "units": len(rs),
+                    "seconds": round(secs, 3), "share": f"{100 * secs / total:.0f} %",
+                    "ms per unit": round(1000 * secs / len(rs), 2),
+                    "µs per chain": round(1e6 * secs / chains, 1) if chains else None})
+    return out
+
+
+def by_v(records: list[dict]) -> list[dict]:
+    """Candidates (CP-SAT solutions) per chain and time, by multiple-joint count v."""
+    out = []
+    for v in sorted({r["v"] for r in records}):
+        rs = [r for r in records if r["v"] == v]
+        chains = sum(r["chains"] for r in rs)
+        cands = sum(r["candidates"] for r in rs)
+        out.append({"v": v, "units": len(rs), "chains": chains, "candidates": cands,
+                    "candidates per chain": round(cands / chains, 3) if chains else None,
+                    "seconds": round(sum(r["seconds"] for r in rs), 3)})
+    return out
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("links", type=int)
+    parser.add_argument("--dof", type=int, default=1)
+    parser.add_argument("--v", default="0")
+    parser.add_argument("--json", help="write the full result (per-unit records included) here")
+    args = parser.parse_args(argv)
+    instrument()
+    result = profile(args.dof, args.links, args.v)
+    print(f"W={args.dof} n={args.links} v={args.v}: {result['chains']} chains, {result['units']} units, "
+          f"{result['total']:.3f} CPU s inline")
+    for name, secs in result["stages"].items():
+        print(f"  {name:38s} {secs:8.3f} s  {100 * secs / result['total']:5.1f} %")
+    for row in by_size(result["records"]):
+        print("  ", row)
+    if args.v != "0":
+        for row in by_v(result["records"]):
+            print("  ", row)
+    slow = sorted(result["records"], key=lambda r: -r["seconds"])[:5]
+    print("  slowest units:", [(r["code"], r["edges"], r["chains"], round(r["seconds"], 3)) for r in slow])
+    if args.json:
+        Path(args.json).write_text(json.dumps(result))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
