@@ -6,7 +6,7 @@ joints), and the wall time of the real command ``mechsynth chains --count`` on 2
 (start-up included; the minimum of ``reps`` runs, with the CPU time of the fastest).
 
 With the environment variable ``GENSPARSEG`` pointing at a gensparseg binary (built by
-``/work/shared/tools/gensparseg/build.sh``; never a dependency), every 1-DOF simple-joint
+nauty's ``geng`` with M. Larsson's nauty-laman-plugin; never a dependency), every 1-DOF simple-joint
 case also times ``gensparseg N -K3/2L2 -u`` on 2 processes (geng's res/mod split 0/2 and
 1/2 at once) *alternately* with mechsynth in the same loop, checks its count, and gives the
 ratio mechsynth / gensparseg of the two minima.
@@ -33,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 OUT = ROOT / "benchmarks" / "out"
 
-# (series, W, links) -> published count (OEIS A233288 for W = 1; THEORY.md's tables otherwise)
+# (series, W, links) -> published count (OEIS A233288 for W = 1; docs/theory.md's reference counts otherwise)
 REFERENCE = {
     ("W=1", 1, 4): 1, ("W=1", 1, 6): 2, ("W=1", 1, 8): 16, ("W=1", 1, 10): 230, ("W=1", 1, 12): 6856,
     ("W=1", 1, 14): 318162,

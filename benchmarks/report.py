@@ -3,7 +3,8 @@
 Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N]``).
 CSVs go to ``benchmarks/out/`` (not committed); the plots the report shows go to
 ``benchmarks/figures/``.  Set ``GENSPARSEG`` to a gensparseg binary to add the side-by-side
-column (build it with ``/work/shared/tools/gensparseg/build.sh /tmp/gensparseg``).
+column (nauty's ``geng`` built with M. Larsson's nauty-laman-plugin ``prunesparse.h``, MIT licence;
+never a dependency).
 
 The report's header names the machine (CPU, cores, memory), the commit measured, the run
 (start time) and the load average before and after: every figure in it comes from that one
