@@ -22,7 +22,6 @@ links — with W = 0 … 3 where the family allows it, so that both verdicts occ
 
 from __future__ import annotations
 
-import itertools
 import random
 
 __all__ = ["SubsetVerdict", "subset_mobility", "exhaustive_subchains", "random_chain", "FAMILIES", "connected"]
@@ -45,16 +44,25 @@ class SubsetVerdict:
     def __init__(self, links: int, joints):
         self.links = links
         self.joints = [tuple(j) for j in joints]
-        best, sets = None, []
-        for size in range(2, links):
-            for s in itertools.combinations(range(links), size):
-                w = subset_mobility(self.joints, s)
-                if best is None or w < best:
-                    best, sets = w, [s]
-                elif w == best and len(s) == len(sets[0]):
-                    sets.append(s)
+        masks = [sum(1 << x for x in set(j)) for j in self.joints]
+        best, sets, full = None, [], (1 << links) - 1
+        for s in range(1, full):  # every proper subset, as a bit mask of links
+            size = s.bit_count()
+            if size < 2:
+                continue
+            p = 0
+            for m in masks:
+                on = (s & m).bit_count()
+                if on > 1:
+                    p += on - 1
+            w = 3 * (size - 1) - 2 * p
+            if best is None or w < best or (w == best and size < sets[0].bit_count()):
+                best, sets = w, [s]
+            elif w == best and size == sets[0].bit_count():
+                sets.append(s)
         self.least = best            # None when the chain has no proper sub-chain (n ≤ 2)
-        self.smallest_worst = sets   # the smallest sets of least mobility
+        # the smallest sets of least mobility, as sorted tuples of links
+        self.smallest_worst = [tuple(x for x in range(links) if s >> x & 1) for s in sets]
 
     def ok(self, rigid_subchains: bool) -> bool:
         need = 0 if rigid_subchains else 1
@@ -206,7 +214,22 @@ def _overconstrained_family(rng):
     return links, joints
 
 
+def _two_defects_family(rng):
+    # a rigid triangle and a rigid five-link truss (two links joined by three one-link strings)
+    # in one chain: equal W(S) = 0, sizes 3 and 5, so only the smallest may be named
+    tri = [(0, 1), (1, 2), (0, 2)]
+    truss = [(3, 5), (5, 4), (3, 6), (6, 4), (3, 7), (7, 4)]
+    joints, nxt = tri + truss, 8
+    for a, b in ((0, 3), (1, 4), (2, rng.choice([3, 4]))):
+        body = list(range(nxt, nxt + rng.randint(1, 2)))
+        nxt += len(body)
+        seq = [a, *body, b]
+        joints += list(zip(seq, seq[1:]))
+    return nxt, joints
+
+
 FAMILIES = {
+    "two-defects": _two_defects_family,
     "triangle": _triangle_family,
     "closed-string": _closed_string_family,
     "parallel-joints": _parallel_family,

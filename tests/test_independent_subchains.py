@@ -128,13 +128,54 @@ def test_check_subchains_equals_every_subset_many(seed):
     ("0-1 1-2 2-3 3-0 0-4 4-1", False, 0),          # triangle 0-1-4 in a four-bar
     ("0-1 0-1 1-2 2-0", False, -1),                  # two joints between links 0 and 1
     ("0-1-2 1-2 2-3 3-0", False, -1),                # a double joint and a joint on the same pair
+    ("0-1-2", True, 1),                              # one double joint: its pairs have W = 1
+    ("0-1-2 0-3 3-4 3-5 1-4 2-5", True, 1),          # 51/1: its double joint is listed first
+    ("0-1 0-2 0-3 1-2 1-3 2-3", False, 0),          # K4: the whole chain (W = −3) is not a sub-chain
+    ("0-2 2-1 0-3 3-1 0-4 4-1 0-5 5-1", False, 0),  # four strings between two links: W = −1, parts 0
 ])
+
 def test_named_chains(text, sound, least):
     chain = Chain.parse(text)
     report = check_subchains(chain)
     assert (report.ok, report.worst_mobility) == (sound, least)
     truth = exhaustive_subchains(chain.links, chain.joints)
     assert (truth.ok(False), truth.least) == (sound, least)
+    for rigid in (False, True):
+        got, _ = _check(chain.links, chain.joints, rigid)
+        assert got.threshold == (0 if rigid else 1)
+
+
+def test_no_proper_subchain():
+    """Two links on one joint have no proper sub-chain of two or more links: sound, none named."""
+    for text in ("0-1", "0-1-2 0-1", "0-1 0-1"):
+        chain = Chain.parse(text)
+        if chain.links == 2:
+            report = check_subchains(chain)
+            assert report.ok and report.worst == () and report.threshold == 1
+
+
+def test_popcount_of_wide_masks():
+    """The core scan counts bits of masks up to 24 core links (two 16-bit table look-ups)."""
+    import numpy as np
+
+    from synth.mobility import _popcount
+
+    rng = np.random.default_rng(24)
+    x = np.concatenate([rng.integers(0, 1 << 24, 2000), [0, (1 << 24) - 1, 1 << 16, (1 << 17) - 1]])
+    assert list(_popcount(x)) == [bin(int(v)).count("1") for v in x]
+
+
+def test_core_limit():
+    """24 non-binary links are scanned, 25 refused with a sentence naming the limit."""
+    from synth.errors import MalformedChain
+
+    def ring_on_one_joint(n):  # a loop of n links that all share one more (multiple) joint: n core links
+        return Chain(n, [(i, (i + 1) % n) for i in range(n)] + [tuple(range(n))])
+
+    report = check_subchains(ring_on_one_joint(24))
+    assert not report.ok and subset_mobility(ring_on_one_joint(24).joints, report.worst) == report.worst_mobility
+    with pytest.raises(MalformedChain, match="up to 24 non-binary links, not 25"):
+        check_subchains(ring_on_one_joint(25))
 
 
 def test_subchain_mobility_is_the_definition():
