@@ -1,0 +1,155 @@
+"""Verdicts of ``synth.Chain`` and the planar filter against methods that share no code with them.
+
+* planarity: Boyer–Myrvold (the ``planarity`` package) with checked Kuratowski / Euler
+  certificates (``tests/brute_planarity.py``), against ``Chain.is_planar`` (networkx)
+  and the engine's ``planar_only`` filter (decided on the branch multigraph);
+* fractionation: a link or joint whose removal disconnects the chain, by search;
+* symmetry: automorphism group order and link orbits by trying every permutation of
+  the links; certificates with joint kinds against VF2 with kind colours.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+import os
+import random
+import sys
+from collections import defaultdict
+
+import networkx as nx
+import pytest
+
+import synth
+from synth import Chain
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brute_planarity import planar_verdict  # noqa: E402
+
+SAMPLE_12 = 150  # 12-link chains checked by default (fixed seed); all 6856 under -m slow
+
+
+@functools.lru_cache(maxsize=None)
+def chains(W, n, v=0, planar_only=False):
+    return tuple(synth.type_synthesis(W, n, v=v, planar_only=planar_only, workers=1))
+
+
+def _planarity_case(W, n, v, sample=None):
+    every = chains(W, n, v)
+    kept = {c.certificate for c in chains(W, n, v, planar_only=True)}
+    picked = every if sample is None else random.Random(n).sample(every, sample)
+    for c in picked:
+        truth = planar_verdict(c.links, c.joints)
+        assert c.is_planar() == truth, c.compact()
+        assert (c.certificate in kept) == truth, c.compact()
+    return sum(not planar_verdict(c.links, c.joints) for c in picked)
+
+
+@pytest.mark.parametrize("W, n, v", [(1, 8, (0, 4)), (2, 9, 0), (3, 8, (0, 2)), (0, 7, (0, 2))], ids=str)
+def test_planarity_by_a_second_method(W, n, v):
+    _planarity_case(W, n, v)
+
+
+def test_ten_link_non_planar_chains():
+    """1-DOF, 10 links: 11 of the 230 chains have non-planar graphs (published)."""
+    assert _planarity_case(1, 10, 0) == 11
+
+
+def test_twelve_link_sample():
+    _planarity_case(1, 12, 0, sample=SAMPLE_12)
+
+
+@pytest.mark.slow
+def test_twelve_link_non_planar_chains():
+    """1-DOF, 12 links: 938 of the 6856 chains have non-planar graphs (published)."""
+    assert _planarity_case(1, 12, 0) == 938
+
+
+def _fractionated(c: Chain) -> bool:
+    nodes = [("L", i) for i in range(c.links)] + [("J", k) for k in range(len(c.joints))]
+    for cut in nodes:
+        g = nx.Graph()
+        g.add_nodes_from(x for x in nodes if x != cut)
+        g.add_edges_from((("J", k), ("L", x)) for k, j in enumerate(c.joints) for x in j
+                         if cut not in (("J", k), ("L", x)))
+        if not nx.is_connected(g):
+            return True
+    return False
+
+
+@pytest.mark.parametrize("W, n, v", [(2, 7, (0, 1)), (2, 9, 0), (3, 8, (0, 2)), (0, 7, (0, 2)), (1, 8, (0, 4))], ids=str)
+def test_fractionated_by_removing_each_link_and_joint(W, n, v):
+    every = chains(W, n, v)
+    kept = {c.certificate for c in synth.type_synthesis(W, n, v=v, fractionated=False, workers=1)}
+    for c in every:
+        truth = _fractionated(c)
+        assert c.is_fractionated() == truth, c.compact()
+        assert (c.certificate in kept) == (not truth), c.compact()
+
+
+def _automorphisms(c: Chain) -> list[tuple[int, ...]]:
+    """Link permutations that map the multiset of joints onto itself (tried one by one)."""
+    joints = sorted(c.joints)
+    return [p for p in itertools.permutations(range(c.links))
+            if sorted(tuple(sorted(p[x] for x in j)) for j in c.joints) == joints]
+
+
+@pytest.mark.parametrize("W, n, v", [(1, 4, 0), (1, 6, (0, 2)), (2, 5, 0), (2, 7, 0), (3, 6, (0, 3)), (0, 5, 0)], ids=str)
+def test_group_order_and_orbits_by_every_permutation(W, n, v):
+    for c in chains(W, n, v):
+        group = _automorphisms(c)
+        _, order, orbits = c.automorphisms()
+        assert order == len(group), c.compact()
+        brute = [sorted({p[x] for p in group}) for x in range(c.links)]
+        assert [sorted(x for x in range(c.links) if orbits[x] == orbits[y]) for y in range(c.links)] == brute
+        for frame in range(c.links):  # the stabiliser of a frame
+            stab = [p for p in group if p[frame] == frame]
+            _, order, orbits = c.automorphisms([frame])
+            assert order == len(stab), (c.compact(), frame)
+            assert [sorted(x for x in range(c.links) if orbits[x] == orbits[y]) for y in range(c.links)] == [
+                sorted({p[x] for p in stab}) for x in range(c.links)], (c.compact(), frame)
+
+
+_KIND = nx.algorithms.isomorphism.categorical_node_match("colour", None)
+
+
+def _coloured(c: Chain) -> nx.Graph:
+    g = nx.Graph()
+    g.add_nodes_from((("L", i), {"colour": "link"}) for i in range(c.links))
+    for k, j in enumerate(c.joints):
+        g.add_node(("J", k), colour=c.kinds[k] if c.kinds else "revolute")
+        g.add_edges_from((("J", k), ("L", x)) for x in j)
+    return g
+
+
+@pytest.mark.parametrize("text", ["0-1 1-2 2-3 3-0", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "0-1 1-2 2-3 3-4 4-5 5-0 0-3"])
+def test_certificates_with_joint_kinds_equal_isomorphism(text):
+    """Every revolute/prismatic assignment of a chain: equal certificates exactly for isomorphic ones."""
+    base = Chain.parse(text)
+    kinds = ("revolute", "prismatic")
+    variants = [Chain(base.links, base.joints, list(k)) for k in itertools.product(kinds, repeat=len(base.joints))]
+    by_cert = defaultdict(list)
+    for c in variants:
+        by_cert[c.certificate].append(c)
+    reps = [group[0] for group in by_cert.values()]
+    for group in by_cert.values():
+        assert all(nx.is_isomorphic(_coloured(group[0]), _coloured(c), node_match=_KIND) for c in group), text
+    for a, b in itertools.combinations(reps, 2):
+        assert not nx.is_isomorphic(_coloured(a), _coloured(b), node_match=_KIND), text
+    rng = random.Random(7)
+    for c in variants:  # and a relabelled copy keeps its certificate
+        perm = list(range(c.links))
+        rng.shuffle(perm)
+        assert c.relabel(perm).certificate == c.certificate
+
+
+def test_chain_numbers_by_definition():
+    """dof, loops, v, p and degrees of every chain of a mixed query, from its joint list."""
+    for c in chains(1, 8, (0, 4)) + chains(3, 8, 0) + chains(0, 7, (0, 2)):
+        p = sum(len(j) - 1 for j in c.joints)
+        assert c.simple_joint_equivalents == p
+        assert c.dof == 3 * (c.links - 1) - 2 * p
+        assert c.loops == p - c.links + 1
+        assert c.v == sum(len(j) - 2 for j in c.joints)
+        assert list(c.degrees) == [sum(x in j for j in c.joints) for x in range(c.links)]
+        assert c.is_connected() and Chain.parse(c.compact()) == c
