@@ -22,6 +22,7 @@ links — with W = 0 … 3 where the family allows it, so that both verdicts occ
 
 from __future__ import annotations
 
+import functools
 import random
 
 __all__ = ["SubsetVerdict", "subset_mobility", "exhaustive_subchains", "random_chain", "FAMILIES", "connected"]
@@ -74,8 +75,14 @@ class SubsetVerdict:
         return "rigid sub-chain" if self.least == 0 else "over-constrained sub-chain"
 
 
-def exhaustive_subchains(links: int, joints) -> SubsetVerdict:
+@functools.lru_cache(maxsize=4096)
+def _verdict(links: int, joints: tuple) -> SubsetVerdict:
     return SubsetVerdict(links, joints)
+
+
+def exhaustive_subchains(links: int, joints) -> SubsetVerdict:
+    """The verdict of every subset (cached: the same chain is judged under both conventions)."""
+    return _verdict(links, tuple(tuple(j) for j in joints))
 
 
 def connected(links: int, joints) -> bool:
@@ -221,7 +228,7 @@ def _two_defects_family(rng):
     truss = [(3, 5), (5, 4), (3, 6), (6, 4), (3, 7), (7, 4)]
     joints, nxt = tri + truss, 8
     for a, b in ((0, 3), (1, 4), (2, rng.choice([3, 4]))):
-        body = list(range(nxt, nxt + rng.randint(1, 2)))
+        body = [nxt]
         nxt += len(body)
         seq = [a, *body, b]
         joints += list(zip(seq, seq[1:]))
