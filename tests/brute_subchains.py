@@ -175,14 +175,17 @@ def _parallel_family(rng):
     return links, joints
 
 
+def _counted(rng, lo: int, hi: int, multiple: bool):
+    """Random links in lo..hi and W in 0..3 by Grübler's count (an odd count rounded to a whole p)."""
+    links = rng.randint(lo, hi)
+    twice_p = 3 * (links - 1) - rng.randint(0, 3)
+    twice_p += (-1 if multiple else 1) * (twice_p % 2)
+    return links, _random_graph(rng, links, twice_p // 2, multiple=multiple)
+
+
 def _multiple_family(rng):
     # multiple joints (m = 3 or 4) on a random connected base
-    links = rng.randint(5, 9)
-    W = rng.randint(0, 3)
-    twice_p = 3 * (links - 1) - W
-    if twice_p % 2:
-        twice_p -= 1
-    joints = _random_graph(rng, links, twice_p // 2, multiple=True)
+    links, joints = _counted(rng, 5, 9, multiple=True)
     if rng.random() < 0.3:
         quad = tuple(sorted(rng.sample(range(links), min(4, links))))
         joints[rng.randrange(len(joints))] = quad
@@ -191,12 +194,7 @@ def _multiple_family(rng):
 
 def _counted_family(rng):
     # random chains with W = 0 … 3 by Grübler's count, simple joints
-    links = rng.randint(4, 10)
-    W = rng.randint(0, 3)
-    twice_p = 3 * (links - 1) - W
-    if twice_p % 2:
-        twice_p += 1
-    return links, _random_graph(rng, links, twice_p // 2, multiple=False)
+    return _counted(rng, 4, 10, multiple=False)
 
 
 def _free_links_family(rng):
