@@ -233,7 +233,22 @@ def _two_defects_family(rng):
     return nxt, joints
 
 
+def _dense_family(rng):
+    # links of three or more joints only, then a few strings of one binary link between them:
+    # the worst sub-chain is often all of the chain but one binary link
+    links = rng.randint(4, 8)
+    pairs = [(a, b) for a in range(links) for b in range(a + 1, links)]
+    joints = rng.sample(pairs, rng.randint(links, min(len(pairs), 2 * links)))
+    nxt = links
+    for _ in range(rng.randint(0, 4)):
+        a, b = rng.sample(range(links), 2)
+        joints += [(a, nxt), (nxt, b)]
+        nxt += 1
+    return nxt, joints
+
+
 FAMILIES = {
+    "dense": _dense_family,
     "two-defects": _two_defects_family,
     "triangle": _triangle_family,
     "closed-string": _closed_string_family,

@@ -132,6 +132,9 @@ def test_check_subchains_equals_every_subset_many(seed):
     ("0-1-2 0-3 3-4 3-5 1-4 2-5", True, 1),          # 51/1: its double joint is listed first
     ("0-1 0-2 0-3 1-2 1-3 2-3", False, 0),          # K4: the whole chain (W = −3) is not a sub-chain
     ("0-2 2-1 0-3 3-1 0-4 4-1 0-5 5-1", False, 0),  # four strings between two links: W = −1, parts 0
+    # all but one binary link ties with a smaller sub-chain (found by a search over dense chains)
+    ("0-5 0-6 1-2 1-3 1-4 1-6 1-7 2-4 2-5 3-5 3-8 3-9 5-7 5-8 6-9", False, -2),
+    ("0-1 0-4 0-5 0-8 1-2 1-3 1-6 1-9 2-4 3-4 3-9 4-7 4-8 5-6 5-7", False, -2),
 ])
 
 def test_named_chains(text, sound, least):
