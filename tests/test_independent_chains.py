@@ -153,3 +153,71 @@ def test_chain_numbers_by_definition():
         assert c.v == sum(len(j) - 2 for j in c.joints)
         assert list(c.degrees) == [sum(x in j for j in c.joints) for x in range(c.links)]
         assert c.is_connected() and Chain.parse(c.compact()) == c
+
+
+# ------------------------------------------------------------------ reading and refusing chains
+@pytest.mark.parametrize("make, words", [
+    (lambda: Chain(0, []), "whole number of links ≥ 1, not 0"),
+    (lambda: Chain(True, [(0, 1)]), "whole number of links ≥ 1, not True"),
+    (lambda: Chain(2.0, [(0, 1)]), "whole number of links ≥ 1, not 2.0"),
+    (lambda: Chain(3, [(0, "a")]), "each joint must be a list of link numbers"),
+    (lambda: Chain(3, [5]), "each joint must be a list of link numbers"),
+    (lambda: Chain(3, [(0, 1), (1, 2)], ["revolute"]), "1 joint kinds given for 2 joints"),
+    (lambda: Chain(3, [(0, 1), (1, 2)], ["revolute", "screw"]), "joint kind 'screw' is not one of revolute, prismatic"),
+    (lambda: Chain(3, [(0, 1), (1,)]), "joint [1] joins fewer than two links"),
+    (lambda: Chain(3, [(0, 1), (1, 1)]), "joint [1, 1] names a link twice"),
+    (lambda: Chain(3, [(0, 1), (1, 3)]), "joint [1, 3] names a link outside 0…2"),
+    (lambda: Chain(3, [(-1, 1), (1, 2)]), "joint [-1, 1] names a link outside 0…2"),
+    (lambda: Chain(4, [(0, 1, 4)]), "joint [0, 1, 4] names a link outside 0…3"),
+    (lambda: Chain.parse("0-1 1-x"), "cannot read joint '1-x'"),
+    (lambda: Chain.parse("  "), "an empty joint list is not a chain"),
+    (lambda: Chain.from_json('{"joints": [[0, 1], [1'), "not valid JSON"),
+    (lambda: Chain.from_json('{"links": 3}'), "needs 'joints'"),
+    (lambda: Chain.from_json('[1, 2]'), "'joints' must be a list of lists"),
+    (lambda: Chain.from_json('{"joints": [[0, 1.5]]}'), "by whole numbers"),
+    (lambda: Chain.from_json('{"joints": [[0, true]]}'), "by whole numbers"),
+    (lambda: Chain.from_dict("0-1"), "needs 'joints'"),
+    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1, 1]), "permutation of the links"),
+    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1]), "permutation of the links"),
+])
+def test_malformed_chains_refused_with_a_sentence(make, words):
+    from synth.errors import MalformedChain
+
+    with pytest.raises(MalformedChain) as info:
+        make()
+    assert words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_chain_reading_and_writing():
+    c = Chain(1, [])
+    assert (c.links, c.joints, c.degrees, c.loops, c.is_connected()) == (1, (), (0,), 0, True)
+    joints = [(3, 2), (0, 1, 2), (0, 3)]
+    c = Chain(4, joints, ["revolute", "prismatic", "revolute"])
+    assert c.joints == ((0, 1, 2), (0, 3), (2, 3)) and c.kinds == ("prismatic", "revolute", "revolute")
+    assert Chain(4, joints, ["revolute"] * 3).kinds is None and Chain(4, joints, ["revolute"] * 3) == Chain(4, joints)
+    d = c.to_dict()
+    assert d["joints"] == [[0, 1, 2], [0, 3], [2, 3]] and d["kinds"] == ["prismatic", "revolute", "revolute"]
+    assert (d["links"], d["dof"], d["loops"], d["v"], d["code"]) == (4, c.dof, c.loops, 1, str(c.code))
+    assert d["certificate"] == c.certificate and "kinds" not in Chain(4, joints).to_dict()
+    assert Chain.from_dict(d) == c and Chain.from_json(c.to_json()) == c
+    assert Chain.from_json("[[0, 1], [1, 2], [2, 0]]") == Chain(3, [(0, 1), (1, 2), (0, 2)])
+    assert Chain.from_dict({"joints": [[0, 1], [1, 3]]}).links == 4  # links from the largest number
+    assert Chain.parse(" 0-1, 1-2-3  3-0 ") == Chain(4, [(0, 1), (1, 2, 3), (0, 3)])
+    assert Chain.parse('{"joints": [[0, 1], [1, 2], [2, 0]]}').links == 3
+    assert Chain.parse(c.compact()).joints == c.joints and c.compact() == "0-1-2 0-3 2-3"
+    assert Chain.trusted(3, [(1, 0), (2, 1), (0, 2)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
+
+
+def test_graph_views():
+    c = Chain.parse("0-1-2 2-3 3-0 0-4 4-5 5-1")
+    g = c.to_networkx()
+    assert g.number_of_nodes() == c.links + len(c.joints)
+    assert g.number_of_edges() == sum(len(j) for j in c.joints)
+    assert {d["kind"] for _, d in g.nodes(data=True)} == {"link", "joint"}
+    assert sorted(d["multiplicity"] for n, d in g.nodes(data=True) if d["kind"] == "joint") == sorted(len(j) for j in c.joints)
+    lg = c.link_graph()
+    assert sorted(lg.edges()) == [(0, 1), (0, 2), (0, 3), (0, 4), (1, 2), (1, 5), (2, 3), (4, 5)]
+    assert not Chain.parse("0-1 1-2 3-4").is_connected() and Chain.parse("0-1 1-2 2-0").is_connected()
+    assert Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()   # two triangles on link 0
+    assert not Chain.parse("0-1 1-2 2-3 3-0").is_fractionated()
+    assert Chain(1, []).is_fractionated() is False and Chain.parse("0-1").is_fractionated()  # the joint splits it
