@@ -201,6 +201,13 @@ def _read_until(fd: int, marker: bytes, limit_s: float = 600.0) -> bytes:
     return data
 
 
+def _default_sigint() -> None:
+    """In the child: SIGINT deliverable and handled by Python, whatever the test process inherited
+    (Python leaves SIGINT alone when it starts ignored, and a blocked SIGINT is never delivered)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_SETMASK, [])
+
+
 def test_ctrl_c_stops_cleanly():
     """SIGINT once the run says it is working (its progress bar on a terminal): exit 130, one line."""
     import fcntl
@@ -211,7 +218,7 @@ def test_ctrl_c_stops_cleanly():
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # a 0-column terminal hides the bar
     proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "chains", "--dof", "1", "--links", "14", "--count"],
-                            stdout=subprocess.PIPE, stderr=slave, text=True)
+                            stdout=subprocess.PIPE, stderr=slave, text=True, preexec_fn=_default_sigint)
     os.close(slave)
     try:
         # the bar shows done/total units once the plan is made and the pool runs them; a Ctrl-C while
@@ -226,7 +233,7 @@ def test_ctrl_c_stops_cleanly():
             proc.kill()
             proc.wait()
         os.close(master)
-    assert proc.returncode == 130 and out == ""
+    assert proc.returncode == 130 and out == "", err
     lines = [x.strip() for x in err.replace("\r", "\n").splitlines() if x.strip()]
     assert "Traceback" not in err and "mechsynth: interrupted" in lines[-1], err
     assert all("units" in x for x in lines[:-1]), err  # nothing but the progress bar before it
