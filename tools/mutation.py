@@ -88,13 +88,29 @@ def _prepare(key: str, work: Path) -> Path:
     return where
 
 
-def _diff(where: Path, name: str) -> tuple[str, str, str]:
-    """(function, original line, mutated line) of one mutant, from ``mutmut show``."""
-    out = subprocess.run(["mutmut", "show", name], cwd=where, capture_output=True, text=True).stdout
-    before = [x[1:].strip() for x in out.splitlines() if x.startswith("-") and not x.startswith("---")]
-    after = [x[1:].strip() for x in out.splitlines() if x.startswith("+") and not x.startswith("+++")]
-    function = re.sub(r"__mutmut_\d+$", "", name.rsplit(".", 1)[-1]).removeprefix("x_").removeprefix("ǁ")
-    return function, " / ".join(before), " / ".join(after)
+_DIFFS = """
+import json, sys
+from mutmut.mutation.diff_apply import get_diff_for_mutant
+path, names = sys.argv[1], sys.argv[2:]
+print(json.dumps({n: get_diff_for_mutant(n, path=path) for n in names}))
+"""
+
+
+def _diffs(where: Path, path: str, names: list[str]) -> dict[str, tuple[str, str, str]]:
+    """(function, original line, mutated line) of each mutant, from mutmut's own diff (one process)."""
+    if not names:
+        return {}
+    out = subprocess.run([sys.executable, "-c", _DIFFS, path, *names], cwd=where, capture_output=True, text=True,
+                         check=True).stdout
+    result = {}
+    for name, diff in json.loads(out).items():
+        lines = diff.splitlines()
+        before = [x[1:].strip() for x in lines if x.startswith("-") and not x.startswith("---")]
+        after = [x[1:].strip() for x in lines if x.startswith("+") and not x.startswith("+++")]
+        function = re.sub(r"__mutmut_\d+$", "", name.rsplit(".", 1)[-1])  # x_func or xǁClassǁmethod
+        function = function[2:] if function.startswith("x_") else function.removeprefix("xǁ").replace("ǁ", ".")
+        result[name] = (function, " / ".join(before), " / ".join(after))
+    return result
 
 
 def _equivalents(key: str) -> list[dict]:
@@ -121,8 +137,9 @@ def run_module(key: str, work: Path, children: int) -> dict:
              if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "timeout", "suspicious")]
     known = _equivalents(key)
     survivors, equivalent = [], []
+    diffs = _diffs(where, MODULES[key][0], [name for name, _ in alive])
     for name, status in alive:
-        function, before, after = _diff(where, name)
+        function, before, after = diffs[name]
         match = next((e for e in known if e["function"] == function and e["before"] == before
                       and e["after"] == after), None)
         row = {"name": name, "status": status, "function": function, "before": before, "after": after}
