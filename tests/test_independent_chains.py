@@ -136,11 +136,33 @@ def test_certificates_with_joint_kinds_equal_isomorphism(text):
         assert all(nx.is_isomorphic(_coloured(group[0]), _coloured(c), node_match=_KIND) for c in group), text
     for a, b in itertools.combinations(reps, 2):
         assert not nx.is_isomorphic(_coloured(a), _coloured(b), node_match=_KIND), text
+    for c in variants[:: max(1, len(variants) // 12)]:  # mechanisms on chains with kinds: frames apart
+        by_cert = defaultdict(set)
+        for members in _frame_classes(c):
+            for f in members:
+                by_cert[synth.Mechanism(c, f).certificate].add(tuple(members))
+        assert all(len(v) == 1 for v in by_cert.values()), (text, c.kinds)
+        assert len(by_cert) == len(_frame_classes(c)), (text, c.kinds)
     rng = random.Random(7)
     for c in variants:  # and a relabelled copy keeps its certificate
         perm = list(range(c.links))
         rng.shuffle(perm)
         assert c.relabel(perm).certificate == c.certificate
+
+
+def _frame_classes(c: Chain) -> list[list[int]]:
+    """Frames grouped by isomorphism of the chain with that frame marked (VF2 with kind colours)."""
+    classes: list[tuple[nx.Graph, list[int]]] = []
+    for f in range(c.links):
+        g = _coloured(c)
+        g.nodes["L", f]["colour"] = "frame"
+        for rep, members in classes:
+            if nx.is_isomorphic(g, rep, node_match=_KIND):
+                members.append(f)
+                break
+        else:
+            classes.append((g, [f]))
+    return [m for _, m in classes]
 
 
 def test_chain_numbers_by_definition():
@@ -156,14 +178,15 @@ def test_chain_numbers_by_definition():
 
 
 # ------------------------------------------------------------------ reading and refusing chains
-@pytest.mark.parametrize("make, words", [
-    (lambda: Chain(0, []), "whole number of links ≥ 1, not 0"),
-    (lambda: Chain(True, [(0, 1)]), "whole number of links ≥ 1, not True"),
-    (lambda: Chain(2.0, [(0, 1)]), "whole number of links ≥ 1, not 2.0"),
+@pytest.mark.parametrize("make, sentence", [
+    (lambda: Chain(0, []), "a chain needs a whole number of links ≥ 1, not 0"),
+    (lambda: Chain(True, [(0, 1)]), "a chain needs a whole number of links ≥ 1, not True"),
+    (lambda: Chain(2.0, [(0, 1)]), "a chain needs a whole number of links ≥ 1, not 2.0"),
     (lambda: Chain(3, [(0, "a")]), "each joint must be a list of link numbers"),
     (lambda: Chain(3, [5]), "each joint must be a list of link numbers"),
     (lambda: Chain(3, [(0, 1), (1, 2)], ["revolute"]), "1 joint kinds given for 2 joints"),
     (lambda: Chain(3, [(0, 1), (1, 2)], ["revolute", "screw"]), "joint kind 'screw' is not one of revolute, prismatic"),
+    (lambda: Chain(3, [(0, 1), (1, 2)], ["screw", "revolute"]), "joint kind 'screw' is not one of revolute, prismatic"),
     (lambda: Chain(3, [(0, 1), (1,)]), "joint [1] joins fewer than two links"),
     (lambda: Chain(3, [(0, 1), (1, 1)]), "joint [1, 1] names a link twice"),
     (lambda: Chain(3, [(0, 1), (1, 3)]), "joint [1, 3] names a link outside 0…2"),
@@ -171,21 +194,27 @@ def test_chain_numbers_by_definition():
     (lambda: Chain(4, [(0, 1, 4)]), "joint [0, 1, 4] names a link outside 0…3"),
     (lambda: Chain.parse("0-1 1-x"), "cannot read joint '1-x'"),
     (lambda: Chain.parse("  "), "an empty joint list is not a chain"),
-    (lambda: Chain.from_json('{"joints": [[0, 1], [1'), "not valid JSON"),
-    (lambda: Chain.from_json('{"links": 3}'), "needs 'joints'"),
-    (lambda: Chain.from_json('[1, 2]'), "'joints' must be a list of lists"),
-    (lambda: Chain.from_json('{"joints": [[0, 1.5]]}'), "by whole numbers"),
-    (lambda: Chain.from_json('{"joints": [[0, true]]}'), "by whole numbers"),
-    (lambda: Chain.from_dict("0-1"), "needs 'joints'"),
-    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1, 1]), "permutation of the links"),
-    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1]), "permutation of the links"),
+    (lambda: Chain.from_json('{"joints": [[0, 1], [1'), "chain JSON is not valid JSON"),
+    (lambda: Chain.from_json('{"links": 3}'), "a chain object needs 'joints' (a list of lists of link numbers)"),
+    (lambda: Chain.from_json('[1, 2]'), "'joints' must be a list of lists of link numbers"),
+    (lambda: Chain.from_json('{"joints": [[0, 1.5]]}'), "joints must list links by whole numbers"),
+    (lambda: Chain.from_json('{"joints": [[0, true]]}'), "joints must list links by whole numbers"),
+    (lambda: Chain.from_dict("0-1"), "a chain object needs 'joints'"),
+    (lambda: Chain.from_dict({"joints": []}), "a chain needs a whole number of links ≥ 1, not 0"),
+    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1, 1]), "a relabelling must be a permutation of the links"),
+    (lambda: Chain.parse("0-1 1-2 2-0").relabel([0, 1]), "a relabelling must be a permutation of the links"),
+    (lambda: synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 4), "fixed link 4 is not a link of the chain"),
+    (lambda: synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), -1), "fixed link -1 is not a link of the chain"),
+    (lambda: synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 0), "input link 0 is not jointed to the fixed link 0"),
+    (lambda: synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 2), "input link 2 is not jointed to the fixed link 0"),
+    (lambda: synth.Mechanism(Chain.parse("0-1 1-2-3 3-0"), 0, 2), "input link 2 is not jointed to the fixed link 0"),
 ])
-def test_malformed_chains_refused_with_a_sentence(make, words):
+def test_malformed_chains_refused_with_a_sentence(make, sentence):
     from synth.errors import MalformedChain
 
     with pytest.raises(MalformedChain) as info:
         make()
-    assert words in str(info.value) and "\n" not in str(info.value)
+    assert str(info.value).startswith(sentence) and "\n" not in str(info.value)
 
 
 def test_chain_reading_and_writing():
@@ -206,6 +235,19 @@ def test_chain_reading_and_writing():
     assert Chain.parse('{"joints": [[0, 1], [1, 2], [2, 0]]}').links == 3
     assert Chain.parse(c.compact()).joints == c.joints and c.compact() == "0-1-2 0-3 2-3"
     assert Chain.trusted(3, [(1, 0), (2, 1), (0, 2)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
+    assert Chain.parse("[[0, 1], [1, 2], [2, 0]]") == Chain(3, [(0, 1), (1, 2), (0, 2)])
+    assert Chain.from_dict({"links": 5, "joints": [[0, 1], [1, 2], [2, 0]]}).links == 5  # two loose links
+    # parallel joints of different kinds are ordered by kind too: the input order does not matter
+    a = Chain(3, [(0, 1), (0, 1), (1, 2), (0, 2)], ["prismatic", "revolute", "revolute", "revolute"])
+    b = Chain(3, [(0, 1), (0, 1), (1, 2), (0, 2)], ["revolute", "prismatic", "revolute", "revolute"])
+    assert a == b and a.kinds == ("prismatic", "revolute", "revolute", "revolute")
+    for m in (synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1), synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 2),
+              synth.Mechanism(Chain.parse("0-1 1-2-3 3-0"), 3, 2)):
+        d = m.to_dict()
+        assert (d["frame"], d.get("input_link")) == (m.frame, m.input_link)
+        assert d["certificate"] == m.certificate and d["chain_certificate"] == m.chain.certificate
+        assert ("input_link" in d) == (m.input_link is not None)
+        assert (d["joints"], d["code"], d["dof"]) == ([list(j) for j in m.chain.joints], str(m.chain.code), m.chain.dof)
 
 
 def test_graph_views():
@@ -221,3 +263,8 @@ def test_graph_views():
     assert Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()   # two triangles on link 0
     assert not Chain.parse("0-1 1-2 2-3 3-0").is_fractionated()
     assert Chain(1, []).is_fractionated() is False and Chain.parse("0-1").is_fractionated()  # the joint splits it
+    assert Chain(2, []).is_fractionated() is False  # two loose links: nothing to remove that splits them
+    kinds = Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)], ["prismatic", "revolute", "revolute", "revolute"])
+    assert sorted(d["joint_kind"] for _, d in kinds.to_networkx().nodes(data=True) if d["kind"] == "joint") == [
+        "prismatic", "revolute", "revolute", "revolute"]
+    assert {d["joint_kind"] for _, d in g.nodes(data=True) if d["kind"] == "joint"} == {"revolute"}
