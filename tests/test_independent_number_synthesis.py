@@ -120,3 +120,48 @@ def test_output_order(dof, K):
     for k in range(1, K + 1):
         want |= brute(dof, k, n1_max=1, split=True)
     assert set(codes) == want
+
+
+@pytest.mark.parametrize("dof, n, h, f", [(1, 10, 3, 0), (1, 8, 4, 0), (1, 9, 5, 1), (2, 9, 2, 0), (0, 6, 6, 0),
+                                          (1, 7, 6, 0), (3, 11, 3, 1), (1, 5, 2, 0)])
+def test_links_give_the_loops(dof, n, h, f):
+    """Given n, K = (n − W − 1 + f)/(h − 1) loops: the same codes as the brute force for that K."""
+    K = (n - dof - 1 + f) // (h - 1)
+    assert (n - dof - 1 + f) % (h - 1) == 0
+    assert set(number_synthesis(dof, links=n, h=h, f=f)) == brute(dof, K, h=h, f=f, n=n)
+
+
+@pytest.mark.parametrize("kwargs, sentence", [
+    (dict(dof=1, links=9), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = 7 to be a "
+                           "non-negative multiple of h − 1 = 2 (W=1, n=9, h=3, f=0)"),
+    (dict(dof=1, links=9, h=4, f=1), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = 8 "
+                                     "to be a non-negative multiple of h − 1 = 3 (W=1, n=9, h=4, f=1)"),
+    (dict(dof=5, links=3), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = -3 "),
+    (dict(dof=1, links=8, h=1), "with h = 1 the number of links does not fix the loops: give --loops"),
+    (dict(dof=1, loops=2, require=["0=1"]), "a link carries at least one joint; requirement on n0 is impossible"),
+])
+def test_impossible_parameters_say_why(kwargs, sentence):
+    from synth import ImpossibleParameters
+
+    with pytest.raises(ImpossibleParameters) as info:
+        number_synthesis(**kwargs)
+    assert str(info.value).startswith(sentence)
+
+
+@pytest.mark.parametrize("require, sentence", [
+    (["x=1"], "a requirement names the number of joints on a link, not 'x'"),
+    (["5"], "a requirement is written I=N, I=A..B or I=A.. (e.g. 5=1..), not '5'"),
+    (["5=1=2"], "n5 must be a whole number or a range A..B, not '1=2'"),
+])
+def test_bad_requirements_say_why(require, sentence):
+    from synth import InvalidOption
+
+    with pytest.raises(InvalidOption) as info:
+        number_synthesis(1, loops=3, require=require)
+    assert str(info.value).startswith(sentence)
+
+
+def test_links_zero_loops_and_single_loop():
+    """h = 1 with loops given; a single loop is K = 1 with n = W + h."""
+    assert set(number_synthesis(1, loops=1, h=1, n1="0..2")) == brute(1, 1, h=1, n1_max=2)
+    assert [str(c) for c in number_synthesis(1, links=4)] == ["4/0"]
