@@ -165,3 +165,12 @@ def test_links_zero_loops_and_single_loop():
     """h = 1 with loops given; a single loop is K = 1 with n = W + h."""
     assert set(number_synthesis(1, loops=1, h=1, n1="0..2")) == brute(1, 1, h=1, n1_max=2)
     assert [str(c) for c in number_synthesis(1, links=4)] == ["4/0"]
+
+
+def test_make_problem_defaults():
+    """Planar (h = 3), no extra pair mobility, closed chains, no compositions unless asked."""
+    from synth._number_synthesis import make_problem
+
+    p = make_problem(1, loops=4)
+    assert (p.links, p.loops, p.n1, p.v, p.compositions, p.max_link_degree) == (10, 4, (0, 0), (0, 6), False, 5)
+    assert make_problem(2, links=9).loops == 3
