@@ -159,7 +159,8 @@ def run_module(key: str, work: Path, children: int) -> dict:
 
 def _markdown(results: list[dict]) -> str:
     today = _dt.date.today().isoformat()
-    out = [f"Run of {today} (mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`).", "",
+    out = [f"Run of {today} (mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, "
+           "2 cores shared with other work).", "",
            "| module | mutants | killed | equivalent | survived | score | minutes |",
            "|---|---|---|---|---|---|---|"]
     for r in results:
@@ -192,12 +193,14 @@ def main(argv=None) -> int:
     parser.add_argument("--write-docs", action="store_true", help="put the scores into docs/mutation.md")
     parser.add_argument("--json", type=Path, help="also write the results as JSON")
     parser.add_argument("--list", action="store_true", help="list the modules and their tests")
+    parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
+                        help="no run: report the results saved by earlier --json runs (the last one per module)")
     args = parser.parse_args(argv)
     if args.list:
         for key, (path, tests) in MODULES.items():
             print(f"{key:18} {path:30} {' '.join(tests)}")
         return 0
-    if shutil.which("mutmut") is None:
+    if shutil.which("mutmut") is None and not args.from_json:
         print("mutation.py: mutmut is not installed (pip install '.[mutation]')", file=sys.stderr)
         return 2
     unknown = [m for m in args.modules if m not in MODULES]
@@ -205,7 +208,10 @@ def main(argv=None) -> int:
         print(f"mutation.py: unknown module(s) {', '.join(unknown)}; known: {', '.join(MODULES)}", file=sys.stderr)
         return 2
     results = []
-    for key in args.modules or list(MODULES):
+    if args.from_json:
+        saved = {r["module"]: r for f in args.from_json for r in json.loads(f.read_text())}
+        results = [saved[k] for k in MODULES if k in saved]
+    for key in [] if args.from_json else (args.modules or list(MODULES)):
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
         r = run_module(key, args.work, args.children)
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
