@@ -121,18 +121,19 @@ def _equivalents(key: str) -> list[dict]:
     return [e for e in data.get("equivalent", []) if e["module"] == key]
 
 
-def run_module(key: str, work: Path, children: int) -> dict:
-    where = _prepare(key, work)
+def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
+    """Mutate one module in a fresh copy (or, with ``run=False``, read the copy a run left)."""
+    where = _prepare(key, work) if run else work / key
     start = time.monotonic()
-    env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
-    proc = subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=where, env=env,
-                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if run:
+        env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
+        proc = subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=where, env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
+            raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
     minutes = (time.monotonic() - start) / 60
     subprocess.run(["mutmut", "export-cicd-stats"], cwd=where, capture_output=True)
-    stats_file = where / "mutants" / "mutmut-cicd-stats.json"
-    if proc.returncode != 0 and not stats_file.exists():
-        raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
-    stats = json.loads(stats_file.read_text())
+    stats = json.loads((where / "mutants" / "mutmut-cicd-stats.json").read_text())
     listing = subprocess.run(["mutmut", "results", "--all", "true"], cwd=where, capture_output=True, text=True).stdout
     # a mutant that makes a test hang (timeout) is detected: the suite would never pass with it
     alive = [(m.split(":")[0].strip(), m.split(":")[1].strip()) for m in listing.splitlines()
@@ -150,10 +151,11 @@ def run_module(key: str, work: Path, children: int) -> dict:
         else:
             survivors.append(row)
     total = stats["total"] - stats.get("skipped", 0)
-    judged = total - len(equivalent)
-    killed = stats["killed"] + stats.get("timeout", 0)
-    return {"module": key, "file": MODULES[key][0], "total": total, "killed": killed,
-            "equivalent": equivalent, "survivors": survivors, "minutes": round(minutes, 1),
+    killed = stats["killed"] + stats.get("timeout", 0) + stats.get("segfault", 0)
+    checked = killed + stats["survived"] + stats.get("no_tests", 0) + stats.get("suspicious", 0)
+    judged = checked - len(equivalent)
+    return {"module": key, "file": MODULES[key][0], "total": total, "not_checked": total - checked,
+            "killed": killed, "equivalent": equivalent, "survivors": survivors, "minutes": round(minutes, 1),
             "score": killed / judged if judged else 1.0}
 
 
@@ -161,11 +163,11 @@ def _markdown(results: list[dict]) -> str:
     today = _dt.date.today().isoformat()
     out = [f"Run of {today} (mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, "
            "2 cores shared with other work).", "",
-           "| module | mutants | killed | equivalent | survived | score | minutes |",
-           "|---|---|---|---|---|---|---|"]
+           "| module | mutants | killed | equivalent | survived | not run | score | minutes |",
+           "|---|---|---|---|---|---|---|---|"]
     for r in results:
         out.append(f"| `{r['file']}` | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
-                   f"{len(r['survivors'])} | {100 * r['score']:.1f} % | {r['minutes']} |")
+                   f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes']} |")
     for r in results:
         if r["survivors"]:
             out += ["", f"Surviving in `{r['file']}`:", ""]
@@ -193,6 +195,8 @@ def main(argv=None) -> int:
     parser.add_argument("--write-docs", action="store_true", help="put the scores into docs/mutation.md")
     parser.add_argument("--json", type=Path, help="also write the results as JSON")
     parser.add_argument("--list", action="store_true", help="list the modules and their tests")
+    parser.add_argument("--collect", action="store_true",
+                        help="no run: read the results a finished (or stopped) run left under --work")
     parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
                         help="no run: report the results saved by earlier --json runs (the last one per module)")
     args = parser.parse_args(argv)
@@ -200,7 +204,7 @@ def main(argv=None) -> int:
         for key, (path, tests) in MODULES.items():
             print(f"{key:18} {path:30} {' '.join(tests)}")
         return 0
-    if shutil.which("mutmut") is None and not args.from_json:
+    if shutil.which("mutmut") is None and not args.from_json:  # --collect needs it too (results, diffs)
         print("mutation.py: mutmut is not installed (pip install '.[mutation]')", file=sys.stderr)
         return 2
     unknown = [m for m in args.modules if m not in MODULES]
@@ -213,10 +217,12 @@ def main(argv=None) -> int:
         results = [saved[k] for k in MODULES if k in saved]
     for key in [] if args.from_json else (args.modules or list(MODULES)):
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
-        r = run_module(key, args.work, args.children)
+        r = run_module(key, args.work, args.children, run=not args.collect)
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
               f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({r['minutes']} min)", file=sys.stderr)
         results.append(r)
+        if args.json:  # after every module, so a stopped run keeps what it finished
+            args.json.write_text(json.dumps(results, indent=1))
     text = _markdown(results)
     print(text)
     if args.json:
