@@ -131,7 +131,7 @@ def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
             raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
-    minutes = (time.monotonic() - start) / 60
+    minutes = (time.monotonic() - start) / 60 if run else None
     subprocess.run(["mutmut", "export-cicd-stats"], cwd=where, capture_output=True)
     stats = json.loads((where / "mutants" / "mutmut-cicd-stats.json").read_text())
     listing = subprocess.run(["mutmut", "results", "--all", "true"], cwd=where, capture_output=True, text=True).stdout
@@ -155,7 +155,8 @@ def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
     checked = killed + stats["survived"] + stats.get("no_tests", 0) + stats.get("suspicious", 0)
     judged = checked - len(equivalent)
     return {"module": key, "file": MODULES[key][0], "total": total, "not_checked": total - checked,
-            "killed": killed, "equivalent": equivalent, "survivors": survivors, "minutes": round(minutes, 1),
+            "killed": killed, "equivalent": equivalent, "survivors": survivors,
+            "minutes": None if minutes is None else round(minutes, 1),
             "score": killed / judged if judged else 1.0}
 
 
@@ -167,7 +168,7 @@ def _markdown(results: list[dict]) -> str:
            "|---|---|---|---|---|---|---|---|"]
     for r in results:
         out.append(f"| `{r['file']}` | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
-                   f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes']} |")
+                   f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes'] if r['minutes'] is not None else '—'} |")
     for r in results:
         if r["survivors"]:
             out += ["", f"Surviving in `{r['file']}`:", ""]
@@ -219,7 +220,7 @@ def main(argv=None) -> int:
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
         r = run_module(key, args.work, args.children, run=not args.collect)
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
-              f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({r['minutes']} min)", file=sys.stderr)
+              f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({'collected' if r['minutes'] is None else str(r['minutes']) + ' min'})", file=sys.stderr)
         results.append(r)
         if args.json:  # after every module, so a stopped run keeps what it finished
             args.json.write_text(json.dumps(results, indent=1))
