@@ -83,3 +83,46 @@ def test_laws_solve_the_balance_conditions(m, inertia, M, q_max, stroke, extra):
     np.testing.assert_allclose(m * q + M * (z1 + z2), 0.0, atol=1e-13 * max(1.0, m * q_max))
     np.testing.assert_allclose(inertia + m * q * q + M * (z1 * z1 + z2 * z2), C, rtol=1e-12)
     assert np.all(disc >= -1e-12 * C)
+
+
+@pytest.mark.parametrize("args, kwargs, sentence", [
+    ((-1, 0.1, 1, 0.5), {}, "the link mass m must be a finite number > 0, not -1.0."),
+    ((0, 0.1, 1, 0.5), {}, "the link mass m must be a finite number > 0, not 0.0."),
+    ((1, -0.1, 1, 0.5), {}, "the moment of inertia I must be a finite number ≥ 0, not -0.1."),
+    ((1, 0.1, 0, 0.5), {}, "the counter-mass M must be a finite number > 0, not 0.0."),
+    ((1, 0.1, 1, math.inf), {}, "the stroke q_max must be a finite number > 0, not inf."),
+    ((1, 0.1, 1, 0.5), {"stroke": -0.2}, "the stroke must be a finite number > 0, not -0.2."),
+    ((1, 0.1, 1, 0.5), {"C": 0.05}, "the inertia constant C must be finite and at least I = 0.1, not 0.05."),
+    ((1, 0.1, 1, 0.5), {"C": math.nan}, "the inertia constant C must be finite and at least I = 0.1, not nan."),
+    ((1, 0.1, 1, 0.5), {"samples": 2}, "the verification needs at least 3 samples, not 2."),
+])
+def test_refusals_say_why(args, kwargs, sentence):
+    from balance import InvalidInput
+
+    with pytest.raises(InvalidInput) as info:
+        verify_counter_mass(*args, **kwargs)
+    assert str(info.value) == sentence
+
+
+def test_inertia_may_be_zero_and_reported_dictionary():
+    res = verify_counter_mass(1.0, 0.0, 1.0, 0.5, samples=3)
+    assert res.C_min == pytest.approx(0.375) and res.samples == 3
+    d = res.to_dict()
+    assert (d["m"], d["I"], d["M"], d["q_max"], d["stroke"], d["C"], d["C_min"]) == (
+        1.0, 0.0, 1.0, 0.5, 0.5, res.C, res.C_min)
+    assert d["crank"]["exact"] is True and d["crank"]["max_com_error"] == res.crank_max_com_error
+    assert d["crank"]["max_inertia_error"] == res.crank_max_inertia_error and "120°" in d["crank"]["laws"]
+    assert (d["law_valid_stroke"], d["max_com_error"], d["max_inertia_error"], d["samples"], d["messages"]) == (
+        res.law_valid_stroke, res.max_com_error, res.max_inertia_error, 3, [])
+
+
+def test_crank_construction_stroke():
+    from balance import crank_construction
+
+    eta = np.linspace(0, 2 * math.pi, 7)
+    q, z1, z2 = crank_construction(eta, 0.4)
+    np.testing.assert_allclose(q, 0.4 * np.cos(eta), atol=1e-15)
+    q, z1, z2 = crank_construction(eta, 0.4, stroke=0.3)
+    np.testing.assert_allclose(q, 0.3 * np.cos(eta), atol=1e-15)
+    np.testing.assert_allclose(z1, 0.4 * np.cos(eta + 2 * math.pi / 3), atol=1e-15)
+    np.testing.assert_allclose(z2, 0.4 * np.cos(eta - 2 * math.pi / 3), atol=1e-15)

@@ -173,3 +173,44 @@ def test_exact_tension_device_is_exact():
     m, _ = moment_from_positions("tension", res.c, res.r, res.r0, res.a, phi)
     np.testing.assert_allclose(m, -100.0 * np.sin(phi), atol=1e-9 * 100.0)
     assert res.max_rel_error < 1e-12 and res.method == "exact"
+
+
+# ------------------------------------------------------------------ the devices themselves
+@pytest.mark.parametrize("kind, c, r, r0, a", [("tension", 800.0, 0.1, 0.25, 0.05), ("tension", 500.0, 0.2, 0.3, 0.3),
+                                               ("compression", 1200.0, 0.15, 0.4, 0.02)])
+def test_device_moment_length_force_from_positions(kind, c, r, r0, a):
+    from balance import CrankRockerDevice, crank_moment, spring_length
+
+    dev = CrankRockerDevice(kind, c, r, r0, a)
+    phi = np.linspace(-2 * math.pi, 2 * math.pi, 2001)
+    m, L = moment_from_positions(kind, c, r, r0, a, phi)
+    np.testing.assert_allclose(dev.moment(phi), m, atol=1e-9 * c * r * (r + r0))
+    np.testing.assert_allclose(crank_moment(phi, kind, c, r, r0, a), m, atol=1e-9 * c * r * (r + r0))
+    np.testing.assert_allclose(dev.length(phi), L, rtol=1e-12)
+    np.testing.assert_allclose(spring_length(phi, r, r0), L, rtol=1e-12)
+    np.testing.assert_allclose(dev.force(phi), c * np.abs(L - free_length(kind, r, r0, a)), rtol=1e-9, atol=1e-9 * c)
+    d = dev.to_dict()
+    assert (d["kind"], d["c"], d["r"], d["r0"], d["a"]) == (kind, c, r, r0, a)
+    assert d["d"] == pytest.approx(r + r0) and d["free_length"] == pytest.approx(free_length(kind, r, r0, a))
+    assert (dev.d, dev.amplitude, dev.sense) == (pytest.approx(r + r0), pytest.approx(c * r * (r + r0)),
+                                                 -1 if kind == "tension" else 1)
+
+
+def test_spring_kind_refused_with_a_sentence():
+    from balance import InvalidInput, crank_moment
+    from balance.springs import free_length as engine_free_length
+
+    with pytest.raises(InvalidInput) as info:
+        engine_free_length("torsion", 0.1, 0.2, 0.0)
+    assert str(info.value) == "spring kind must be 'tension' or 'compression', not 'torsion'."
+    with pytest.raises(InvalidInput):
+        crank_moment(0.3, "torsion", 1.0, 0.1, 0.2, 0.0)
+
+
+def test_sine_device_from_its_definition():
+    from balance import SineDevice
+
+    dev = SineDevice(0.04, 250.0)
+    phi = np.linspace(-math.pi, math.pi, 101)
+    np.testing.assert_allclose(dev.moment(phi), -0.04 * 250.0 * np.sin(phi), atol=1e-12)
+    assert dev.amplitude == pytest.approx(10.0)
