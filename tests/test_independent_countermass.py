@@ -23,6 +23,7 @@ CASES = [
     (5.0, 1.3, 0.7, 1.1, None, 2.0),
     (2.0, 0.1, 1.5, 0.5, 0.6, 0.0),     # stroke beyond what C allows
     (3.0, 0.2, 3.0, 0.4, 0.3, 0.0),     # equal masses, short stroke: the cranks are not exact
+    (2.0, 0.1, 1.5, 0.5, 0.505, 0.0),   # one per cent beyond: a small negative discriminant is reported
     (0.5, 0.05, 4.0, 0.8, None, 0.0),
 ]
 
@@ -111,7 +112,11 @@ def test_inertia_may_be_zero_and_reported_dictionary():
     assert (d["m"], d["I"], d["M"], d["q_max"], d["stroke"], d["C"], d["C_min"]) == (
         1.0, 0.0, 1.0, 0.5, 0.5, res.C, res.C_min)
     assert d["crank"]["exact"] is True and d["crank"]["max_com_error"] == res.crank_max_com_error
-    assert d["crank"]["max_inertia_error"] == res.crank_max_inertia_error and "120°" in d["crank"]["laws"]
+    assert d["crank"]["max_inertia_error"] == res.crank_max_inertia_error
+    assert d["crank"]["laws"] == "q = s·cos η, z1 = q_max·cos(η + 120°), z2 = q_max·cos(η − 120°)"
+    assert verify_counter_mass(1.0, 0.0, 1.0, 0.5).samples == 2001  # the documented default
+    # C = I is allowed: no stroke at all keeps the inertia, and the message says so
+    assert any("exceeds ±0 m" in msg for msg in verify_counter_mass(1.0, 0.1, 1.0, 0.5, C=0.1).messages)
     assert (d["law_valid_stroke"], d["max_com_error"], d["max_inertia_error"], d["samples"], d["messages"]) == (
         res.law_valid_stroke, res.max_com_error, res.max_inertia_error, 3, [])
 
