@@ -177,7 +177,8 @@ def test_exact_tension_device_is_exact():
 
 # ------------------------------------------------------------------ the devices themselves
 @pytest.mark.parametrize("kind, c, r, r0, a", [("tension", 800.0, 0.1, 0.25, 0.05), ("tension", 500.0, 0.2, 0.3, 0.3),
-                                               ("compression", 1200.0, 0.15, 0.4, 0.02)])
+                                               ("compression", 1200.0, 0.15, 0.4, 0.02),
+                                               ("compression", 900.0, 0.25, 0.5, 0.0)])  # free length exactly 1
 def test_device_moment_length_force_from_positions(kind, c, r, r0, a):
     from balance import CrankRockerDevice, crank_moment, spring_length
 
@@ -214,3 +215,23 @@ def test_sine_device_from_its_definition():
     phi = np.linspace(-math.pi, math.pi, 101)
     np.testing.assert_allclose(dev.moment(phi), -0.04 * 250.0 * np.sin(phi), atol=1e-12)
     assert dev.amplitude == pytest.approx(10.0)
+
+
+def test_textbook_length_is_the_law_of_cosines():
+    from balance.springs import spring_length_textbook
+
+    phi = np.linspace(-math.pi, math.pi, 721)
+    for r, r0 in ((0.1, 0.25), (0.3, 0.05), (0.02, 1.0)):
+        _, L = moment_from_positions("tension", 1.0, r, r0, 0.0, phi)
+        np.testing.assert_allclose(spring_length_textbook(phi, r, r0), L, rtol=1e-9)
+
+
+def test_crank_pin_on_the_base_point():
+    """r0 = 0: at φ = 0 the pin sits on C, the spring has no direction and the moment is 0 (finite)."""
+    from balance import crank_moment
+
+    phi = np.array([0.0, 1e-3, 0.5, -0.5])
+    got = crank_moment(phi, "compression", 1000.0, 0.2, 0.0, 0.05)
+    assert np.all(np.isfinite(got)) and got[0] == 0.0
+    m, _ = moment_from_positions("compression", 1000.0, 0.2, 0.0, 0.05, phi[1:])
+    np.testing.assert_allclose(got[1:], m, rtol=1e-9)
