@@ -174,3 +174,47 @@ def test_make_problem_defaults():
     p = make_problem(1, loops=4)
     assert (p.links, p.loops, p.n1, p.v, p.compositions, p.max_link_degree) == (10, 4, (0, 0), (0, 6), False, 5)
     assert make_problem(2, links=9).loops == 3
+
+
+@pytest.mark.parametrize("kwargs, error, sentence", [
+    (dict(dof=1.5, loops=2), "InvalidOption", "dof (W) must be a whole number, not 1.5"),
+    (dict(dof=True, loops=2), "InvalidOption", "dof (W) must be a whole number, not True"),
+    (dict(dof=1, loops=2, h=2.0), "InvalidOption", "h must be a whole number, not 2.0"),
+    (dict(dof=1, loops=2, f="1"), "InvalidOption", "f must be a whole number, not '1'"),
+    (dict(dof=-1, loops=2), "ImpossibleParameters", "the degree of freedom W must be 0 or more, not -1"),
+    (dict(dof=1, loops=2, h=0), "ImpossibleParameters", "the motion space h of a loop is at least 1 (got h = 0)"),
+    (dict(dof=1, loops=2, f=-1), "ImpossibleParameters", "the extra pair mobility f must be 0 or more, not -1"),
+    (dict(dof=1), "InvalidOption", "give exactly one of loops (K), links (n) or loop classes (K_h)"),
+    (dict(dof=1, loops=2, links=6), "InvalidOption", "give exactly one of loops (K), links (n) or loop classes (K_h)"),
+    (dict(dof=1, loop_classes={}), "ImpossibleParameters", "loop classes are pairs h=K_h with h ≥ 1 and K_h ≥ 0"),
+    (dict(dof=1, loop_classes={0: 1}), "ImpossibleParameters", "loop classes are pairs h=K_h with h ≥ 1 and K_h ≥ 0"),
+    (dict(dof=1, loop_classes={3: -1, 5: 1}), "ImpossibleParameters", "loop classes are pairs h=K_h"),
+    (dict(dof=1, loops=-1), "ImpossibleParameters", "the number of loops K must be 0 or more, not -1"),
+    (dict(dof=1, loops=True), "ImpossibleParameters", "the number of loops K must be 0 or more, not True"),
+    (dict(dof=1, links=0), "ImpossibleParameters", "the number of links n must be 1 or more, not 0"),
+    (dict(dof=1, links=2.0), "ImpossibleParameters", "the number of links n must be 1 or more, not 2.0"),
+    (dict(dof=1, links=2), "ImpossibleParameters", "a closed chain has at least one loop"),
+    (dict(dof=0, links=1), "ImpossibleParameters", "a closed chain has at least one loop"),
+    (dict(dof=1, loops=2, require={"3": "1", 3: "2"}), "ImpossibleParameters", "conflicting requirements on n3: (1, 1) and (2, 2)"),
+])
+def test_make_problem_refusals(kwargs, error, sentence):
+    import synth
+    from synth._number_synthesis import make_problem
+
+    with pytest.raises(getattr(synth, error)) as info:
+        make_problem(**kwargs)
+    assert str(info.value).startswith(sentence)
+
+
+@pytest.mark.parametrize("kwargs, links, loops", [
+    (dict(dof=1, loop_classes={1: 1, 3: 1}), 4, 2),       # a class with h = 1 (an elastic coupling)
+    (dict(dof=1, loop_classes={3: 0, 5: 1}), 6, 1),       # an empty class is allowed
+    (dict(dof=2, loops=0, n1=2), 3, 0),                   # an open chain has no loop
+    (dict(dof=1, links=2, n1="0..2"), 2, 0),              # nor here: n = W + 1
+    (dict(dof=1, loops=2, require=["3=1", "3=1"]), 6, 2),  # the same requirement twice is one
+])
+def test_make_problem_accepts(kwargs, links, loops):
+    from synth._number_synthesis import make_problem
+
+    p = make_problem(**kwargs)
+    assert (p.links, p.loops) == (links, loops)
