@@ -45,7 +45,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/mobility.py", ["tests/test_independent_subchains.py"]),
     "chain": ("synth/chain.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_chains.py",
                                  "tests/test_doctests.py::test_docstring_examples[synth.chain]"]),
-    "type_synthesis": ("synth/_type_synthesis.py", ["tests/test_independent_mechanisms.py",
+    "type_synthesis": ("synth/_type_synthesis.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_units.py",
                                                     "tests/test_engine_vs_bruteforce.py", "tests/test_type_synthesis.py",
                                                     "-k", _HEAVY]),
     "realise": ("synth/_realise.py", ["tests/test_engine_vs_bruteforce.py", "tests/test_independent_chains.py",
