@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import balance
@@ -19,8 +19,8 @@ from balance.potential import terms_potential
 from synth import Chain, Code
 from synth.chain_analysis import analyze_chain
 
-SETTINGS = settings(derandomize=True, max_examples=40, deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow])
+# derandomised, no deadline: the profile in conftest.py (HYPOTHESIS_PROFILE=explore randomises)
+SETTINGS = settings(max_examples=40)
 
 
 # ---------------------------------------------------------------------------- counting equations

@@ -1,0 +1,237 @@
+"""Every number a spring fit reports, recomputed from the returned device alone.
+
+``balance.fit.fit_spring`` reports its errors, force, deflection, normalised
+parameters and active bounds.  Here they are recomputed from ``(kind, c, r, r0, a)``
+only, with the device's mechanics written out from positions (crank pin B, base point
+C, spring force along BC, moment = B × F) — no code of ``balance`` is used for the
+check — on dense grids of the working range.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from balance import SpringBounds, fit_spring
+
+ISSUE = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
+FORCED = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0,
+                      max_free_length=1.5, max_deflection=0.4)
+TENSION = SpringBounds(r=(0.05, 0.2), r0=(0.3, 0.5), a=(0.0, 0.1))
+STEEP = SpringBounds(r=(0.05, 0.5), r0=(1e-4, 1e-2), a=(0.0, 1.0))
+
+
+def deg(lo, hi):
+    return math.radians(lo), math.radians(hi)
+
+
+# (kind, moment, range, bounds, method, norm)
+CASES = {
+    "compression-20..160-max": ("compression", 100.0, deg(20, 160), ISSUE, None, "max"),
+    "compression-20..160-rms": ("compression", 100.0, deg(20, 160), ISSUE, None, "rms"),
+    "compression-0..180-max": ("compression", 100.0, deg(0, 180), ISSUE, None, "max"),
+    "compression--90..90-rms": ("compression", 250.0, deg(-90, 90), ISSUE, None, "rms"),
+    "compression-forced-max": ("compression", 100.0, deg(20, 160), FORCED, None, "max"),
+    "compression-forced-rms-trf": ("compression", 100.0, deg(0, 180), FORCED, "trf", "rms"),
+    "compression-nelder-mead": ("compression", 3.0, deg(30, 150), ISSUE, "nelder-mead", "max"),
+    "compression-steep-near-0": ("compression", 100.0, deg(-30, 120), STEEP, None, "max"),
+    "tension-exact": ("tension", -100.0, deg(0, 180), ISSUE, None, "max"),
+    "tension-fitted-max": ("tension", -100.0, deg(20, 160), TENSION, None, "max"),
+    "tension-fitted-rms": ("tension", -40.0, deg(-60, 100), TENSION, None, "rms"),
+}
+_FITS: dict = {}
+
+
+def fitted(name):
+    if name not in _FITS:
+        kind, moment, rng, bounds, method, norm = CASES[name]
+        _FITS[name] = fit_spring(kind, moment, rng, bounds, method=method, norm=norm)
+    return _FITS[name]
+
+
+def free_length(kind, r, r0, a):
+    """The device's free length: tension r0 − a (pre-extension a), compression 2r + r0 + a."""
+    return r0 - a if kind == "tension" else 2 * r + r0 + a
+
+
+def moment_from_positions(kind, c, r, r0, a, phi):
+    """Crank AB (A at the origin) of length r at angle φ from A→C, |AC| = r + r0; spring B–C."""
+    phi = np.asarray(phi, dtype=float)
+    bx, by = r * np.cos(phi), r * np.sin(phi)
+    ux, uy = (r + r0) - bx, -by                       # B → C
+    L = np.hypot(ux, uy)
+    pull = c * (L - free_length(kind, r, r0, a))       # > 0 pulls B towards C
+    fx, fy = pull * ux / L, pull * uy / L
+    return bx * fy - by * fx, L
+
+
+def dense_phi(lo, hi, r, r0):
+    """Uniform points, plus points clustered on the multiples of 2π (where L → r0)."""
+    phi = [np.linspace(lo, hi, 200001)]
+    for k in range(math.ceil(lo / (2 * math.pi)), math.floor(hi / (2 * math.pi)) + 1):
+        offs = np.geomspace(1e-4 * r0 / r, 1.0, 4000)
+        phi += [2 * math.pi * k + offs, 2 * math.pi * k - offs, [2 * math.pi * k]]
+    phi = np.concatenate(phi)
+    return np.unique(phi[(phi >= lo) & (phi <= hi)])
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_reported_errors_recomputed(name):
+    kind, moment, (lo, hi), bounds, method, norm = CASES[name]
+    res = fitted(name)
+    m, _ = moment_from_positions(kind, res.c, res.r, res.r0, res.a, dense_phi(lo, hi, res.r, res.r0))
+    phi = dense_phi(lo, hi, res.r, res.r0)
+    e = (m - moment * np.sin(phi)) / abs(moment)
+    assert res.max_rel_error == pytest.approx(np.max(np.abs(e)), rel=2e-3, abs=1e-12)
+    # the RMS over the range: a uniform sample, as documented (4001 points) and in the continuum limit
+    u = np.linspace(lo, hi, 4001)
+    mu, _ = moment_from_positions(kind, res.c, res.r, res.r0, res.a, u)
+    eu = (mu - moment * np.sin(u)) / abs(moment)
+    assert res.rms_rel_error == pytest.approx(np.sqrt(np.mean(eu ** 2)), rel=1e-9, abs=1e-14)
+    u = np.linspace(lo, hi, 200001)
+    mu, _ = moment_from_positions(kind, res.c, res.r, res.r0, res.a, u)
+    assert res.rms_rel_error == pytest.approx(np.sqrt(np.mean(((mu - moment * np.sin(u)) / abs(moment)) ** 2)),
+                                              rel=2e-3, abs=1e-12)
+    assert res.rms_rel_error <= res.max_rel_error * (1 + 1e-12)
+
+
+def _plain_grid(case) -> bool:
+    """Whether the fit grid is just equally spaced (the max norm adds points near φ = 0 when
+    0 is in range and r0 may be short against r; those cases are judged on the fine grid)."""
+    kind, moment, (lo, hi), bounds, method, norm = case
+    near_zero = math.floor(hi / (2 * math.pi)) >= math.ceil(lo / (2 * math.pi))
+    return not (norm == "max" and near_zero and bounds.r0[0] / bounds.r[1] <= 0.05)
+
+
+@pytest.mark.parametrize("name", [k for k, case in CASES.items() if _plain_grid(case)])
+def test_reported_fit_grid_errors_recomputed(name):
+    """The errors on the fit's own grid of equally spaced points."""
+    kind, moment, (lo, hi), bounds, method, norm = CASES[name]
+    res = fitted(name)
+    phi = np.linspace(lo, hi, res.grid)
+    m, _ = moment_from_positions(kind, res.c, res.r, res.r0, res.a, phi)
+    e = (m - moment * np.sin(phi)) / abs(moment)
+    assert res.grid_max_rel_error == pytest.approx(np.max(np.abs(e)), rel=1e-7, abs=1e-13)
+    assert res.grid_rms_rel_error == pytest.approx(np.sqrt(np.mean(e ** 2)), rel=1e-7, abs=1e-13)
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_reported_device_numbers_recomputed(name):
+    kind, moment, (lo, hi), bounds, method, norm = CASES[name]
+    res = fitted(name)
+    r, r0, a, c = res.r, res.r0, res.a, res.c
+    assert c > 0 and r > 0 and r0 > 0 and a >= 0
+    assert res.d == pytest.approx(r + r0, rel=1e-15)
+    assert res.free_length == pytest.approx(free_length(kind, r, r0, a), rel=1e-12, abs=1e-15)
+    # the largest spring force over the range, c·|L − l0|, from a dense sample and the range's ends
+    phi = np.concatenate([dense_phi(lo, hi, r, r0), [lo, hi]])
+    _, L = moment_from_positions(kind, c, r, r0, a, phi)
+    force = c * np.max(np.abs(L - free_length(kind, r, r0, a)))
+    assert res.max_force == pytest.approx(force, rel=1e-6)
+    if kind == "compression":
+        l0 = free_length(kind, r, r0, a)
+        assert res.deflection == pytest.approx((l0 - np.min(L)) / l0, rel=1e-6, abs=1e-12)
+    else:
+        assert res.deflection is None
+    # non-dimensional parameters: lengths over the longest crank allowed, κ = c·r·d / |Φ0|
+    ell = bounds.r[1]
+    assert res.reference_length == ell
+    assert res.x == pytest.approx((r / ell, r0 / ell, a / ell, c * r * (r + r0) / abs(moment)), rel=1e-12)
+    assert (res.sense, res.kind, res.norm, res.moment) == ((1 if kind == "compression" else -1), kind, norm, moment)
+    assert res.phi_range == (lo, hi)
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_bounds_kept_and_active_bounds_true(name):
+    kind, moment, (lo, hi), b, method, norm = CASES[name]
+    res = fitted(name)
+    tol = 1e-9
+    for value, (low, high), label in ((res.r, b.r, "r"), (res.r0, b.r0, "r0"), (res.a, b.a, "a")):
+        assert low * (1 - tol) - tol <= value <= high * (1 + tol) + tol, label
+        at_low = abs(value - low) <= 1e-6 * max(1.0, abs(low))
+        at_high = abs(value - high) <= 1e-6 * max(1.0, abs(high))
+        assert (f"{label}=min" in res.active_bounds) == at_low, (label, value, res.active_bounds)
+        assert (f"{label}=max" in res.active_bounds) == at_high, (label, value, res.active_bounds)
+    if b.max_force is not None:
+        assert res.max_force <= b.max_force * (1 + 1e-6)
+    if b.max_free_length is not None:
+        assert res.free_length <= b.max_free_length * (1 + 1e-9)
+        assert ("max_free_length" in res.active_bounds) == (
+            abs(res.free_length - b.max_free_length) <= 1e-6 * max(1.0, b.max_free_length))
+    if b.max_deflection is not None:
+        assert res.deflection <= b.max_deflection * (1 + 1e-6)
+    if kind == "tension":
+        assert ("a=r0 (zero free length)" in res.active_bounds) == (abs(res.a - res.r0) <= 1e-6 * max(1.0, res.r0))
+
+
+def test_exact_tension_device_is_exact():
+    """The zero-free-length tension device reproduces −c·r·d·sin φ = Φ0·sin φ at every angle."""
+    res = fitted("tension-exact")
+    phi = np.linspace(-math.pi, math.pi, 10001)
+    m, _ = moment_from_positions("tension", res.c, res.r, res.r0, res.a, phi)
+    np.testing.assert_allclose(m, -100.0 * np.sin(phi), atol=1e-9 * 100.0)
+    assert res.max_rel_error < 1e-12 and res.method == "exact"
+
+
+# ------------------------------------------------------------------ the devices themselves
+@pytest.mark.parametrize("kind, c, r, r0, a", [("tension", 800.0, 0.1, 0.25, 0.05), ("tension", 500.0, 0.2, 0.3, 0.3),
+                                               ("compression", 1200.0, 0.15, 0.4, 0.02),
+                                               ("compression", 900.0, 0.25, 0.5, 0.0)])  # free length exactly 1
+def test_device_moment_length_force_from_positions(kind, c, r, r0, a):
+    from balance import CrankRockerDevice, crank_moment, spring_length
+
+    dev = CrankRockerDevice(kind, c, r, r0, a)
+    phi = np.linspace(-2 * math.pi, 2 * math.pi, 2001)
+    m, L = moment_from_positions(kind, c, r, r0, a, phi)
+    np.testing.assert_allclose(dev.moment(phi), m, atol=1e-9 * c * r * (r + r0))
+    np.testing.assert_allclose(crank_moment(phi, kind, c, r, r0, a), m, atol=1e-9 * c * r * (r + r0))
+    np.testing.assert_allclose(dev.length(phi), L, rtol=1e-12)
+    np.testing.assert_allclose(spring_length(phi, r, r0), L, rtol=1e-12)
+    np.testing.assert_allclose(dev.force(phi), c * np.abs(L - free_length(kind, r, r0, a)), rtol=1e-9, atol=1e-9 * c)
+    d = dev.to_dict()
+    assert (d["kind"], d["c"], d["r"], d["r0"], d["a"]) == (kind, c, r, r0, a)
+    assert d["d"] == pytest.approx(r + r0) and d["free_length"] == pytest.approx(free_length(kind, r, r0, a))
+    assert (dev.d, dev.amplitude, dev.sense) == (pytest.approx(r + r0), pytest.approx(c * r * (r + r0)),
+                                                 -1 if kind == "tension" else 1)
+
+
+def test_spring_kind_refused_with_a_sentence():
+    from balance import InvalidInput, crank_moment
+    from balance.springs import free_length as engine_free_length
+
+    with pytest.raises(InvalidInput) as info:
+        engine_free_length("torsion", 0.1, 0.2, 0.0)
+    assert str(info.value) == "spring kind must be 'tension' or 'compression', not 'torsion'."
+    with pytest.raises(InvalidInput):
+        crank_moment(0.3, "torsion", 1.0, 0.1, 0.2, 0.0)
+
+
+def test_sine_device_from_its_definition():
+    from balance import SineDevice
+
+    dev = SineDevice(0.04, 250.0)
+    phi = np.linspace(-math.pi, math.pi, 101)
+    np.testing.assert_allclose(dev.moment(phi), -0.04 * 250.0 * np.sin(phi), atol=1e-12)
+    assert dev.amplitude == pytest.approx(10.0)
+
+
+def test_textbook_length_is_the_law_of_cosines():
+    from balance.springs import spring_length_textbook
+
+    phi = np.linspace(-math.pi, math.pi, 721)
+    for r, r0 in ((0.1, 0.25), (0.3, 0.05), (0.02, 1.0)):
+        _, L = moment_from_positions("tension", 1.0, r, r0, 0.0, phi)
+        np.testing.assert_allclose(spring_length_textbook(phi, r, r0), L, rtol=1e-9)
+
+
+def test_crank_pin_on_the_base_point():
+    """r0 = 0: at φ = 0 the pin sits on C, the spring has no direction and the moment is 0 (finite)."""
+    from balance import crank_moment
+
+    phi = np.array([0.0, 1e-3, 0.5, -0.5])
+    got = crank_moment(phi, "compression", 1000.0, 0.2, 0.0, 0.05)
+    assert np.all(np.isfinite(got)) and got[0] == 0.0
+    m, _ = moment_from_positions("compression", 1000.0, 0.2, 0.0, 0.05, phi[1:])
+    np.testing.assert_allclose(got[1:], m, rtol=1e-9)

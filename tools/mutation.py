@@ -1,0 +1,248 @@
+#!/usr/bin/env python3
+"""Mutation testing of the core with mutmut: one module at a time, each with its fast tests.
+
+Usage (from the repository root; needs ``pip install '.[mutation]'`` or ``pip install mutmut``)::
+
+    nice -n 19 python tools/mutation.py                 # every module below
+    nice -n 19 python tools/mutation.py mobility chain  # some of them
+    python tools/mutation.py --list                     # the modules and their tests
+    nice -n 19 python tools/mutation.py --write-docs    # and put the scores in docs/mutation.md
+
+Each module is mutated in its own copy of the working tree under ``--work``
+(default ``/tmp/mechsynth-mutation``), never in the checkout; the copy gets a
+``[tool.mutmut]`` table that mutates only that module and runs only its test
+subset, so a run stays within reach of 2 cores.  A mutant is *killed* when a
+test fails; *survived* and *no tests* count against the module.  Survivors that
+cannot change any result (equivalent mutants) are listed, with the reason, in
+``tools/mutation_equivalent.toml`` and matched by the changed source line, not by
+mutmut's numbering, so the list survives edits elsewhere in the file.
+
+Score per module = killed / (total − equivalent); a mutant that makes a test hang (mutmut's
+timeout) counts as killed.  Goal: at least 90 %.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: the slowest cases of the synthesis tests, left out of the mutation runs (minutes per surviving mutant)
+_HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-938 and not 3-10-98 "
+          "and not ctrl_c and not twelve")
+#: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
+MODULES: dict[str, tuple[str, list[str]]] = {
+    "mobility": ("synth/mobility.py", ["tests/test_independent_subchains.py"]),
+    "chain": ("synth/chain.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_chains.py",
+                                 "tests/test_doctests.py::test_docstring_examples[synth.chain]"]),
+    "type_synthesis": ("synth/_type_synthesis.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_units.py",
+                                                    "tests/test_engine_vs_bruteforce.py", "tests/test_type_synthesis.py",
+                                                    "-k", _HEAVY]),
+    "realise": ("synth/_realise.py", ["tests/test_engine_vs_bruteforce.py", "tests/test_independent_chains.py",
+                                      "tests/test_type_synthesis.py", "-k", _HEAVY]),
+    "number_synthesis": ("synth/_number_synthesis.py", ["tests/test_independent_number_synthesis.py",
+                                                        "tests/test_number_synthesis.py",
+                                                        "-k", "not test_agrees_with_brute_force["]),
+    "springs": ("balance/springs.py", ["tests/balance/test_springs.py", "tests/test_independent_fit_metrics.py"]),
+    "fit": ("balance/fit.py", ["tests/test_independent_fit_metrics.py", "tests/balance/test_fit.py",
+                               "-k", "not under_100_ms and not model_matches"]),
+    "countermass": ("balance/countermass.py", ["tests/balance/test_countermass.py",
+                                               "tests/test_independent_countermass.py"]),
+}
+
+COPY = ["synth", "balance", "mechsynth", "models", "tests", "pyproject.toml"]
+EQUIVALENT = ROOT / "tools" / "mutation_equivalent.toml"
+DOC = ROOT / "docs" / "mutation.md"
+BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
+
+
+def _prepare(key: str, work: Path) -> Path:
+    path, tests = MODULES[key]
+    tests = [t for t in tests if not t.startswith("tests/") or (ROOT / t.split("::")[0]).exists() or t.startswith("-")]
+    where = work / key
+    shutil.rmtree(where, ignore_errors=True)
+    where.mkdir(parents=True)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis", "mutants")
+    for name in COPY:
+        src = ROOT / name
+        if src.is_dir():
+            shutil.copytree(src, where / name, ignore=ignore)
+        else:
+            shutil.copy2(src, where / name)
+    package = path.split("/")[0]
+    config = {
+        "source_paths": [f"{package}/"],
+        "only_mutate": [path],
+        "also_copy": [d for d in ("synth/", "balance/", "mechsynth/", "models/") if d != f"{package}/"],
+        "pytest_add_cli_args_test_selection": tests,
+        "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
+    }
+    lines = ["", "[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in config.items()]
+    # synthesis with the default worker count runs its units in pool processes, where mutmut does not
+    # see which test reaches which function: in the copy, one core means inline runs
+    with open(where / "tests" / "conftest.py", "a") as fh:
+        fh.write("\n\nos.cpu_count = lambda: 1  # added by tools/mutation.py (see there)\n")
+    with open(where / "pyproject.toml", "a") as fh:
+        fh.write("\n".join(lines) + "\n")
+    return where
+
+
+_DIFFS = """
+import json, sys
+from mutmut.mutation.diff_apply import get_diff_for_mutant
+path, names = sys.argv[1], sys.argv[2:]
+print(json.dumps({n: get_diff_for_mutant(n, path=path) for n in names}))
+"""
+
+
+def _diffs(where: Path, path: str, names: list[str]) -> dict[str, tuple[str, str, str]]:
+    """(function, original line, mutated line) of each mutant, from mutmut's own diff (one process)."""
+    if not names:
+        return {}
+    out = subprocess.run([sys.executable, "-c", _DIFFS, path, *names], cwd=where, capture_output=True, text=True,
+                         check=True).stdout
+    result = {}
+    for name, diff in json.loads(out).items():
+        lines = diff.splitlines()
+        before = [x[1:].strip() for x in lines if x.startswith("-") and not x.startswith("---")]
+        after = [x[1:].strip() for x in lines if x.startswith("+") and not x.startswith("+++")]
+        function = re.sub(r"__mutmut_\d+$", "", name.rsplit(".", 1)[-1])  # x_func or xǁClassǁmethod
+        function = function[2:] if function.startswith("x_") else function.removeprefix("xǁ").replace("ǁ", ".")
+        result[name] = (function, " / ".join(before), " / ".join(after))
+    return result
+
+
+def _equivalents(key: str) -> list[dict]:
+    if not EQUIVALENT.exists():
+        return []
+    data = tomllib.loads(EQUIVALENT.read_text())
+    return [e for e in data.get("equivalent", []) if e["module"] == key]
+
+
+def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
+    """Mutate one module in a fresh copy (or, with ``run=False``, read the copy a run left)."""
+    where = _prepare(key, work) if run else work / key
+    start = time.monotonic()
+    if run:
+        env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
+        proc = subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=where, env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
+            raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
+    minutes = (time.monotonic() - start) / 60 if run else None
+    subprocess.run(["mutmut", "export-cicd-stats"], cwd=where, capture_output=True)
+    stats = json.loads((where / "mutants" / "mutmut-cicd-stats.json").read_text())
+    listing = subprocess.run(["mutmut", "results", "--all", "true"], cwd=where, capture_output=True, text=True).stdout
+    # a mutant that makes a test hang (timeout) is detected: the suite would never pass with it
+    alive = [(m.split(":")[0].strip(), m.split(":")[1].strip()) for m in listing.splitlines()
+             if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]
+    known = _equivalents(key)
+    survivors, equivalent = [], []
+    diffs = _diffs(where, MODULES[key][0], [name for name, _ in alive])
+    for name, status in alive:
+        function, before, after = diffs[name]
+        match = next((e for e in known if e["function"] == function and e["before"] == before
+                      and e["after"] == after), None)
+        row = {"name": name, "status": status, "function": function, "before": before, "after": after}
+        if match and status == "survived":
+            equivalent.append({**row, "reason": match["reason"]})
+        else:
+            survivors.append(row)
+    total = stats["total"] - stats.get("skipped", 0)
+    killed = stats["killed"] + stats.get("timeout", 0) + stats.get("segfault", 0)
+    checked = killed + stats["survived"] + stats.get("no_tests", 0) + stats.get("suspicious", 0)
+    judged = checked - len(equivalent)
+    return {"module": key, "file": MODULES[key][0], "total": total, "not_checked": total - checked,
+            "killed": killed, "equivalent": equivalent, "survivors": survivors,
+            "minutes": None if minutes is None else round(minutes, 1),
+            "score": killed / judged if judged else 1.0}
+
+
+def _markdown(results: list[dict]) -> str:
+    today = _dt.date.today().isoformat()
+    out = [f"Run of {today} (mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, "
+           "2 cores shared with other work).", "",
+           "| module | mutants | killed | equivalent | survived | not run | score | minutes |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in results:
+        out.append(f"| `{r['file']}` | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
+                   f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes'] if r['minutes'] is not None else '—'} |")
+    for r in results:
+        if r["survivors"]:
+            out += ["", f"Surviving in `{r['file']}`:", ""]
+            out += [f"- `{s['function']}`: `{s['before']}` → `{s['after']}` ({s['status']})" for s in r["survivors"]]
+        if r["equivalent"]:
+            out += ["", f"Equivalent in `{r['file']}`:", ""]
+            out += [f"- `{s['function']}`: `{s['before']}` → `{s['after']}` — {s['reason']}" for s in r["equivalent"]]
+    return "\n".join(out) + "\n"
+
+
+def _mutmut_version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("mutmut")
+    except Exception:  # noqa: BLE001 - only for the report line
+        return "?"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("modules", nargs="*", help=f"module keys (default all): {', '.join(MODULES)}")
+    parser.add_argument("--work", type=Path, default=Path("/tmp/mechsynth-mutation"), help="where the copies go")
+    parser.add_argument("--children", type=int, default=2, help="parallel mutants (default 2)")
+    parser.add_argument("--write-docs", action="store_true", help="put the scores into docs/mutation.md")
+    parser.add_argument("--json", type=Path, help="also write the results as JSON")
+    parser.add_argument("--list", action="store_true", help="list the modules and their tests")
+    parser.add_argument("--collect", action="store_true",
+                        help="no run: read the results a finished (or stopped) run left under --work")
+    parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
+                        help="no run: report the results saved by earlier --json runs (the last one per module)")
+    args = parser.parse_args(argv)
+    if args.list:
+        for key, (path, tests) in MODULES.items():
+            print(f"{key:18} {path:30} {' '.join(tests)}")
+        return 0
+    if shutil.which("mutmut") is None and not args.from_json:  # --collect needs it too (results, diffs)
+        print("mutation.py: mutmut is not installed (pip install '.[mutation]')", file=sys.stderr)
+        return 2
+    unknown = [m for m in args.modules if m not in MODULES]
+    if unknown:
+        print(f"mutation.py: unknown module(s) {', '.join(unknown)}; known: {', '.join(MODULES)}", file=sys.stderr)
+        return 2
+    results = []
+    if args.from_json:
+        saved = {r["module"]: r for f in args.from_json for r in json.loads(f.read_text())}
+        results = [saved[k] for k in MODULES if k in saved]
+    for key in [] if args.from_json else (args.modules or list(MODULES)):
+        print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
+        r = run_module(key, args.work, args.children, run=not args.collect)
+        print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
+              f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({'collected' if r['minutes'] is None else str(r['minutes']) + ' min'})", file=sys.stderr)
+        results.append(r)
+        if args.json:  # after every module, so a stopped run keeps what it finished
+            args.json.write_text(json.dumps(results, indent=1))
+    text = _markdown(results)
+    print(text)
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=1))
+    if args.write_docs:
+        doc = DOC.read_text()
+        head, rest = doc.split(BEGIN, 1)
+        _, tail = rest.split(END, 1)
+        DOC.write_text(f"{head}{BEGIN}\n{text}{END}{tail}")
+    return 0 if all(r["score"] >= 0.9 for r in results) else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
