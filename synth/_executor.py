@@ -28,6 +28,7 @@ import os
 import queue
 import signal
 import sys
+import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
@@ -50,9 +51,20 @@ def _worker_start(parent: int) -> None:
 
 
 def process_pool(workers: int):
-    """A process pool whose workers leave Ctrl-C to the parent and die with it (fork on Linux)."""
+    """A process pool whose workers leave Ctrl-C to the parent and die with it (fork on Linux).
+
+    Ctrl-C is held back while the workers are forked: a KeyboardInterrupt raised inside a fork
+    handler is printed and dropped by Python ("Exception ignored …"), so the run would go on.
+    Released afterwards, the held signal interrupts the caller as usual.
+    """
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
+    hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
+    try:
+        return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
+    finally:
+        if hold:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _apply(args):

@@ -181,7 +181,8 @@ def test_unreachable_scheduler(tmp_path, capsys, monkeypatch):
     asked = []
     real_client = distributed.Client
 
-    def spy(*args, **kwargs):  # the --timeout given is the one the connection waits for
+    def spy(*args, **kwargs):  # the --timeout given is the one the connection waits for (if a Client is built:
+        # an address where nothing listens is refused by a plain TCP probe first)
         asked.append(kwargs.get("timeout"))
         return real_client(*args, **kwargs)
 
@@ -189,7 +190,7 @@ def test_unreachable_scheduler(tmp_path, capsys, monkeypatch):
     db = tmp_path / "a.sqlite"
     code = main(["grid", str(SMALL), "--db", str(db), "--scheduler", "tcp://127.0.0.1:1", "--timeout", "1"])
     err = capsys.readouterr().err.strip()
-    assert code == 2 and asked and all(float(str(t).rstrip("s")) == 1.0 for t in asked)
+    assert code == 2 and all(float(str(t).rstrip("s")) == 1.0 for t in asked)
     assert err.startswith("mechsynth: cannot reach the Dask scheduler at tcp://127.0.0.1:1") and "\n" not in err
     assert "within 1 s" in err
     assert not db.exists()

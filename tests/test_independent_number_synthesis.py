@@ -177,12 +177,13 @@ def test_make_problem_defaults():
 
 
 @pytest.mark.parametrize("kwargs, error, sentence", [
-    (dict(dof=1.5, loops=2), "InvalidOption", "dof (W) must be a whole number, not 1.5"),
-    (dict(dof=True, loops=2), "InvalidOption", "dof (W) must be a whole number, not True"),
-    (dict(dof=1, loops=2, h=2.0), "InvalidOption", "h must be a whole number, not 2.0"),
-    (dict(dof=1, loops=2, f="1"), "InvalidOption", "f must be a whole number, not '1'"),
+    (dict(dof=1.5, loops=2), "InvalidOption", "the degree of freedom W must be a whole number, not 1.5"),
+    (dict(dof=True, loops=2), "InvalidOption", "the degree of freedom W must be a whole number, not True"),
+    (dict(dof=1, loops=2, h=2.0), "InvalidOption", "the motion space h must be a whole number, not 2.0"),
+    (dict(dof=1, loops=2, f="1"), "InvalidOption", "the extra pair mobility f must be a whole number, not '1'"),
     (dict(dof=-1, loops=2), "ImpossibleParameters", "the degree of freedom W must be 0 or more, not -1"),
-    (dict(dof=1, loops=2, h=0), "ImpossibleParameters", "the motion space h of a loop is at least 1 (got h = 0)"),
+    (dict(dof=1, loops=2, h=0), "ImpossibleParameters", "the motion space h of a loop is 1 … 6 (6: general spatial loop), not 0"),
+    (dict(dof=1, loops=2, h=7), "ImpossibleParameters", "the motion space h of a loop is 1 … 6 (6: general spatial loop), not 7"),
     (dict(dof=1, loops=2, f=-1), "ImpossibleParameters", "the extra pair mobility f must be 0 or more, not -1"),
     (dict(dof=1), "InvalidOption", "give exactly one of loops (K), links (n) or loop classes (K_h)"),
     (dict(dof=1, loops=2, links=6), "InvalidOption", "give exactly one of loops (K), links (n) or loop classes (K_h)"),
