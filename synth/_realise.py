@@ -150,7 +150,9 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         else:
             model.AddMaxEquality(lb, [0, var - 1])
         lbs.append(lb)
-    model.Add(sum(lbs) + sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m)) <= n2)
+    loops_lb = sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m))
+    model.Add(sum(lbs) + loops_lb <= n2)
+    _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(), conv)
     # connectivity: every cut around a set holding vertex 0 is crossed by an edge
     for size in range(1, m):
         for T in combinations(range(1, m), size - 1):
@@ -189,6 +191,24 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         if cert not in seen:
             seen[cert] = Contracted(kinds, h.edges, cert)
     return [seen[c] for c in sorted(seen)]
+
+
+def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv: Conventions) -> None:
+    """Stage B's sub-chain condition on a set T of 3+ branch links, written on H: drops the H
+    whose binary links are too few for every distribution (most of them, and the costliest).
+
+    With E_T strings inside T, at most 3(|T| − 1) − threshold of them may be short (0 binary
+    links count twice, 1 once), so they hold at least 2·E_T − 3(|T| − 1) + threshold binary
+    links; the other strings hold at least their pairwise bounds ``lbs``.
+    """
+    links = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+    for size in range(3, len(links) + 1):
+        if size == len(links) and dof < conv.threshold:
+            break  # T would be every link: the whole chain, which is exempt
+        for T in combinations(links, size):
+            inside = {p for p in x if p[0] in T and p[1] in T}
+            need = 2 * sum(x[p] for p in inside) - 3 * (size - 1) + conv.threshold
+            model.Add(need + sum(lb for p, lb in lbs.items() if p not in inside) + loops_lb <= n2)
 
 
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
