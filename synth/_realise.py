@@ -27,10 +27,8 @@ from itertools import combinations
 from time import perf_counter
 
 import pynauty
-from ._cpsat import Model, all_solutions
 from .chain import Chain
 from .code import Code
-from .mobility import check_subchains
 
 __all__ = ["Conventions", "Contracted", "contracted_graphs", "count_realised", "realise"]
 
@@ -124,6 +122,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
     [((0, 1), (0, 1), (0, 1))]
     """
+    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+
     kinds = _branch_kinds(code)
     n2 = code.count(2)
     m = len(kinds)
@@ -232,6 +232,7 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
 def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool]:
     """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string), and
     whether they are one per orbit of Aut(H) (lex-leader on the whole group and every edge)."""
+    from ._cpsat import Model, all_solutions
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
     model = Model()
@@ -319,6 +320,8 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
         passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(), conv)
         kept, chains = [s for s, ok in zip(solutions, passed) if ok], []
     else:
+        from .mobility import check_subchains  # numpy and a popcount table: only multiple joints need it here
+
         chains = [_expand(code, h.kinds, h.edges, s) for s in solutions]
         ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok for c in chains]
         kept = [s for s, good in zip(solutions, ok) if good]
