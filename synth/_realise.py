@@ -194,21 +194,40 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
 
 
 def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv: Conventions) -> None:
-    """Stage B's sub-chain condition on a set T of 3+ branch links, written on H: drops the H
-    whose binary links are too few for every distribution (most of them, and the costliest).
+    """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
+    vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
+    distribution (most of them, and the costliest: they are whole units of stage B).
 
-    With E_T strings inside T, at most 3(|T| − 1) − threshold of them may be short (0 binary
-    links count twice, 1 once), so they hold at least 2·E_T − 3(|T| − 1) + threshold binary
-    links; the other strings hold at least their pairwise bounds ``lbs``.
+    A string inside T with 0 binary links costs its condition 2, with 1 binary link 1, so the E_T
+    strings inside T hold at least 2·E_T − bound(T) binary links; the other strings at least
+    their pairwise bounds ``lbs``. The condition holds where stage B writes it: every joint of T
+    on a string from a link of T (a bool per joint and set of links, ``touched``).
     """
     links = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
-    for size in range(3, len(links) + 1):
+    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    touched: dict = {}
+
+    def touches(J, TL):
+        if (J, TL) not in touched:
+            ends = [x[min(J, L), max(J, L)] for L in TL]
+            t = touched[J, TL] = model.NewBoolVar("")
+            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
+            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+        return touched[J, TL]
+
+    for size in range(1, len(links) + 1):
         if size == len(links) and dof < conv.threshold:
-            break  # T would be every link: the whole chain, which is exempt
-        for T in combinations(links, size):
-            inside = {p for p in x if p[0] in T and p[1] in T}
-            need = 2 * sum(x[p] for p in inside) - 3 * (size - 1) + conv.threshold
-            model.Add(need + sum(lb for p, lb in lbs.items() if p not in inside) + loops_lb <= n2)
+            break  # T would hold every link: maybe the whole chain, which is exempt
+        for TL in combinations(links, size):
+            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
+                for TJ in combinations(joints, jsize):
+                    T = set(TL + TJ)
+                    inside = {p for p in x if p[0] in T and p[1] in T}
+                    # one link: S has two links or more only with a one-link string (weaker bound)
+                    bound = 3 * (size - 1) + 2 * jsize - (conv.threshold if size >= 2 else 0)
+                    need = 2 * sum(x[p] for p in inside) - bound
+                    rest = sum(lb for p, lb in lbs.items() if p not in inside)
+                    model.Add(need + rest + loops_lb <= n2).OnlyEnforceIf([touches(J, TL) for J in TJ])
 
 
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:

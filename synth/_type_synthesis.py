@@ -206,7 +206,7 @@ def plan_units(
     ``run_unit(u)`` for every unit, concatenated, equals ``list(type_synthesis(...))``.
 
     >>> units = plan_units(1, 8); [u.key.split("|")[0] for u in units]
-    ['440/0', '440/0', '521/0', '521/0', '602/0']
+    ['440/0', '440/0', '521/0', '602/0']
     >>> sum(len(run_unit(u)) for u in units)
     16
     """
@@ -233,7 +233,7 @@ def plan_many(queries: Iterable[Mapping], *, pool=None, skip_impossible: bool = 
     raising :class:`ImpossibleParameters`.
 
     >>> [len(units) for units in plan_many([dict(dof=1, links=8), dict(dof=1, links=9)], skip_impossible=True)]
-    [5, 0]
+    [4, 0]
     """
     queries = list(queries)
     jobs, owners = [], []
