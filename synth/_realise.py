@@ -124,7 +124,9 @@ def _inner_links(kinds) -> list[int]:
 def _loop_lb(kind: str, conv: Conventions) -> int:
     """Fewest binary links on a closed string through one branch vertex."""
     # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h
-    return (conv.h - 1 if kind == "L" else conv.h) + (0 if conv.rigid_subchains else 1)
+    # and at least 2 through a link: one binary link would be two joints between the same two links
+    return max(2, conv.h - 1 + (0 if conv.rigid_subchains else 1)) if kind == "L" else conv.h + (
+        0 if conv.rigid_subchains else 1)
 
 
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
@@ -382,7 +384,11 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
         from .mobility import check_subchains  # numpy and a popcount table: only multiple joints need it here
 
         chains = [_expand(code, h.kinds, h.edges, s, conv.h) for s in solutions]
-        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok for c in chains]
+        # two joints on the same links are one joint; the rule itself refuses them (W = 2 − h per
+        # pair) except for h = 2 with rigid sub-chains allowed
+        distinct = 2 - conv.h >= conv.threshold
+        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok
+              and not (distinct and len(set(c.joints)) < len(c.joints)) for c in chains]
         kept = [s for s, good in zip(solutions, ok) if good]
         chains = [c for c, good in zip(chains, ok) if good]
     _add(stats, subchain_s=perf_counter() - t0)
@@ -445,10 +451,10 @@ def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: in
     if len(TL) >= 2:
         model.Add(expr <= bound)
     else:  # one link: S has two links or more only when a string with binary links is taken
-        some = model.NewBoolVar("")
         takes = [flag for k in inside for t, flag in short[k].items() if t >= 1]
         if not takes:
-            return
+            return  # (no variable is made: a free one would repeat every solution)
+        some = model.NewBoolVar("")
         model.AddMaxEquality(some, takes)
         model.Add(expr <= bound + conv.threshold - conv.threshold * some)
 
