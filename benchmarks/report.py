@@ -1,6 +1,6 @@
 """Run every benchmark on this machine and write ``benchmarks/REPORT.md`` with tables and plots.
 
-Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N] [--sixteen]``).
+Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N] [--no-sixteen]``).
 CSVs go to ``benchmarks/out/`` (not committed); the plots the report shows go to
 ``benchmarks/figures/``.  Set ``GENSPARSEG`` to a gensparseg binary to add the side-by-side
 column (nauty's ``geng`` built with M. Larsson's nauty-laman-plugin ``prunesparse.h``, MIT licence;
@@ -99,8 +99,8 @@ def main(argv=None) -> int:
     parser.add_argument("--reps", type=int, default=3, help="timed runs of each small synthesis case (minimum kept)")
     parser.add_argument("--projection", type=int, metavar="LINKS",
                         help="also project the 1-DOF count at LINKS links from a sample of units (e.g. 18)")
-    parser.add_argument("--sixteen", action="store_true",
-                        help="also time the whole 1-DOF count at 16 links on 2 workers (about 10 minutes)")
+    parser.add_argument("--no-sixteen", dest="sixteen", action="store_false",
+                        help="skip the whole 1-DOF count at 16 links on 2 workers (about 10 minutes; never with --quick)")
     args = parser.parse_args(argv)
     os.environ.setdefault("MPLBACKEND", "Agg")
     started = time.perf_counter()
@@ -142,7 +142,7 @@ def main(argv=None) -> int:
                   "`ratio` = mechsynth / gensparseg (below 1: mechsynth is faster).", "",
                   _table(side, ["links", "chains", "gensparseg_chains", "gensparseg_agrees", "wall_2_workers_s",
                                 "gensparseg_s", "ratio", "reps"])]
-    if args.sixteen:
+    if args.sixteen and not args.quick:
         row = bench.large(16)
         parts += ["", "## 16 links, whole count", "",
                   "`mechsynth chains --dof 1 --links 16 --count --force --workers 2`, start-up included; CPU of all "
