@@ -127,8 +127,8 @@ def plan_codes(
 
     >>> [str(c) for c in plan_codes(1, 8)]
     ['440/0', '521/0', '602/0']
-    >>> [str(c) for c in plan_codes(4, 7, n1=2, v=2, h=3)][:3]
-    ['2|410/2', '2|500/2', '2|500/2-0']
+    >>> [str(c) for c in plan_codes(4, 7, n1=2, v=2)]  # the robot arm of two grippers: 2|5/2 as two joint compositions
+    ['2|5/0-1', '2|5/2']
     """
     if code is not None:
         code = Code.parse(code) if isinstance(code, str) else code
@@ -147,7 +147,7 @@ def plan_codes(
     if links is None:
         raise InvalidOption("give the number of links (or a code)")
     rng = parse_range(0 if v is None else v, "v")
-    n1_lo, n1_hi = parse_range(n1, "n1")
+    n1_lo, n1_hi = parse_range(0 if n1 is None else n1, "n1")
     n1_hi = links if n1_hi is None else n1_hi
     K = max(0, (links - dof - 1) // (h - 1))
     imax = (2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1) + n1_hi

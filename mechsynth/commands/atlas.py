@@ -121,15 +121,14 @@ def _print_summary(info: dict) -> None:
           f"{info['mechanisms']} mechanisms (fixed link), units {units['done']}/{units['total']} done")
     if info["locked_by"]:
         print(f"being written by pid {info['locked_by']['pid']} on {info['locked_by']['host']}")
-    rows = [{"code": c, "chains": n, "mechanisms": info["mechanisms_by_code"].get(c, 0)}
-            for c, n in info["by_code"].items()]
-    if rows:
+    if info["codes"]:
         print()
-        write_rows(rows, ["code", "chains", "mechanisms"], "table")
+        write_rows([dict(c, W=c["dof"], n=c["links"], code=c["code"].split(" ")[0]) for c in info["codes"]],
+                   ["code", "W", "h", "n", "chains", "mechanisms"], "table")
     if info["cells"]:
         print()
-        write_rows([dict(c, units=f"{c['units_done']}/{c['units_total']}") for c in info["cells"]],
-                   ["cell", "units", "chains"], "table")
+        write_rows([dict(c, W=c["dof"], n=c["links"], units=f"{c['units_done']}/{c['units_total']}")
+                    for c in info["cells"]], ["cell", "W", "h", "n", "units", "chains"], "table")
 
 
 def _conditions(groups: list[list[str]]) -> list[str]:
