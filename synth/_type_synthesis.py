@@ -130,6 +130,11 @@ def plan_codes(
     >>> [str(c) for c in plan_codes(4, 7, n1=2, v=2)]  # the robot arm of two grippers: 2|5/2 as two joint compositions
     ['2|5/0-1', '2|5/2']
     """
+    if max_multiplicity is None and (rigid_subchains or fractionated and not (dof == 1 and n1 in (0, None))):
+        # the limit theorem (a joint of order ≤ K closed, ≤ K + W open) holds for chains that are neither
+        # fractionated nor degenerate (a non-degenerate closed 1-DOF chain is never fractionated);
+        # other conventions have chains beyond it (a 4-link joint carrying two 4-link loops: W = 3, K = 2)
+        max_multiplicity = (links if code is None else Code.parse(code).links if isinstance(code, str) else code.links)
     if code is not None:
         code = Code.parse(code) if isinstance(code, str) else code
         _check_code_against(code, v, require)
@@ -338,7 +343,8 @@ def type_synthesis(
     n1 : int or range
         Single-joint links (open chains: robot arms, grippers); default 0 (closed chains).
     max_multiplicity : int, optional
-        Most links on one joint; default the limit theorem's K + 1 (closed) or K + W + 1 (open).
+        Most links on one joint; default the limit theorem's K + 1 (closed) or K + W + 1 (open) for
+        chains that are neither fractionated nor degenerate (where it holds), else no limit.
     workers : int, optional
         Processes; default all cores; 1 runs inline.
     progress : bool

@@ -351,10 +351,12 @@ def brute_force_chains(
     fractionated: bool = True,
     h: int = 3,
     n1: tuple[int, int] = (0, 0),
+    max_multiplicity: int | None = None,
     stats: dict | None = None,
 ) -> list[BruteChain]:
     """All connected chains with ``links`` links and mobility ``dof`` in motion space ``h``,
-    closed (default) or with ``n1[0] … n1[1]`` single-joint links.
+    closed (default) or with ``n1[0] … n1[1]`` single-joint links, and joints of at most
+    ``max_multiplicity`` links (default: no limit but v_max + 2).
 
     One representative per isomorphism class, for every v in ``0..v_max``,
     satisfying the sub-chain convention chosen by ``rigid_subchains`` (checked
@@ -383,7 +385,7 @@ def brute_force_chains(
     # rule 5: Σ deg = p + J ≤ 2p, every other link has 2 joints (n1 of them may have 1); n − 1 needs linearity
     maxdeg = min(n - 1, 2 * K + n1[1]) if linear else 2 * K + n1[1]
 
-    cands = [c for m in range(2, v_max + 3) if m <= n
+    cands = [c for m in range(2, v_max + 3) if m <= n and (max_multiplicity is None or m <= max_multiplicity)
              for c in itertools.combinations(range(n), m)]
     cands.sort()
     cmask = [sum(1 << i for i in c) for c in cands]
