@@ -163,6 +163,15 @@ def main(argv=None) -> int:
                                 "chains_projected", "chains_se", "published", "cpu_s_projected", "cpu_s_se",
                                 "sampling_s"])]
 
+    universal = _load("bench_universal")
+    if universal is not None:
+        rows = universal.run(args.quick)
+        parts += ["", "## Type synthesis in every motion space h and for open chains", "",
+                  "One process; `per_chain_vs_h3`: time per chain over that of the planar row with the nearest "
+                  "number of chains (goal: at most 3).", "",
+                  _table(rows, ["series", "h", "links", "chains", "units", "seconds", "chains_per_s",
+                                "candidates_per_chain", "us_per_chain", "per_chain_vs_h3"])]
+
     atlas = _load("bench_atlas")
     if atlas is not None:
         rows = atlas.run(args.quick)

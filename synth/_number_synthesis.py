@@ -221,8 +221,12 @@ def make_problem(
         raise ImpossibleParameters(
             f"the requirements ask for {sum(lo for lo, _ in reqs.values())} links, more than n = {n}"
         )
-    if max_multiplicity is not None and max_multiplicity < 2:
-        raise ImpossibleParameters("a joint joins at least 2 links: max multiplicity must be 2 or more")
+    if max_multiplicity is not None and (isinstance(max_multiplicity, bool) or not isinstance(max_multiplicity, int)
+                                         or max_multiplicity < 2):
+        raise ImpossibleParameters(
+            f"a joint joins at least 2 links: the largest multiplicity must be 2 or more, not {max_multiplicity!r}")
+    if max_multiplicity is None:  # limit theorem: a joint of order ≤ K (closed), ≤ K + W (open) joins ≤ order + 1 links
+        max_multiplicity = K + 1 if closed else K + dof + 1
     return Problem(dof, n, K, v_range, n1_range, imax, tuple(reqs.items()), max_multiplicity, compositions)
 
 
@@ -273,15 +277,14 @@ def _model_codes(problem: Problem) -> list[Code]:
     model.Add(sum(counts.values()) == n)
     model.Add(sum(i * c for i, c in counts.items()) + v == 2 * (K + n - 1))
     variables = [counts[i] for i in range(1, imax + 1)] + [v]
+    # v must split into joints of at most max_multiplicity links, each taking m ≥ 3 distinct
+    # link incidences; without compositions the split is only required to exist
+    mmax = problem.max_multiplicity or n
+    comp = [model.NewIntVar(0, problem.v[1], f"v{k}") for k in range(2, mmax)]
+    model.Add(sum((k + 1) * x for k, x in enumerate(comp)) == v)
+    model.Add(sum((k + 3) * x for k, x in enumerate(comp)) <= sum(i * c for i, c in counts.items()))
     if problem.compositions:
-        mmax = problem.max_multiplicity or n
-        comp = [model.NewIntVar(0, problem.v[1], f"v{k}") for k in range(2, mmax)]
-        model.Add(sum((k + 1) * x for k, x in enumerate(comp)) == v)
-        # every multiple joint takes m ≥ 3 distinct link incidences
-        model.Add(sum((k + 3) * x for k, x in enumerate(comp)) <= sum(i * c for i, c in counts.items()))
         variables += comp
-    elif problem.max_multiplicity == 2:
-        model.Add(v == 0)
     codes = []
     for sol in all_solutions(model, variables):
         n1, assortment, vv = sol[0], sol[1:imax], sol[imax]
@@ -334,7 +337,9 @@ def number_synthesis(
     require : mapping or strings ``"I=N"``, ``"I=A..B"``, ``"I=A.."``
         Design constraints on n_I, constraints of the CP-SAT model.
     max_multiplicity : int, optional
-        Largest number of links on one joint (2 = simple joints only).
+        Largest number of links on one joint (2 = simple joints only); default the limit
+        theorem's: a joint of order at most K (closed chains) or K + W (open chains), i.e.
+        K + 1 or K + W + 1 links (docs/theory.md, "Limit theorems").
     compositions : bool
         Split each code by its joint composition (v2, v3, …).
 

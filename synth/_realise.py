@@ -38,15 +38,17 @@ _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constrai
 
 @dataclass(frozen=True)
 class Conventions:
-    """Which chains count: sub-chain rule, fractionated chains, planar graphs only, and
+    """Which chains count: sub-chain rule, fractionated chains, planar graphs only,
     required sub-structures ``cranks``: pairs (I, C) asking for a link with I joints that
-    carries at least C cranks (binary links jointed to it).
+    carries at least C cranks (binary links jointed to it), and the motion space ``h`` of
+    the loops (W(S) = h(|S| − 1) − (h − 1)·p(S)).
     """
 
     rigid_subchains: bool = False
     fractionated: bool = True
     planar_only: bool = False
     cranks: tuple[tuple[int, int], ...] = ()
+    h: int = 3
 
     @property
     def threshold(self) -> int:
@@ -104,16 +106,27 @@ class Contracted:
 
 
 def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
+    """Links with 3+ joints (most first), the single-joint links of an open chain (leaves of H),
+    then the multiple joints."""
     links = [("L", i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
+    links += [("L", 1)] * code.n1
     comp = code.composition or ()
     joints = [("J", k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
     return tuple(links + joints)
 
 
+def _inner_links(kinds) -> list[int]:
+    """Branch links that can lower a sub-chain's W: a single-joint link (a leaf of H) with its
+    string adds w + 1 ≥ 1, so the sets T of the sub-chain conditions leave leaves out."""
+    return [u for u, kind in enumerate(kinds) if kind[0] == "L" and kind[1] > 1]
+
+
 def _loop_lb(kind: str, conv: Conventions) -> int:
     """Fewest binary links on a closed string through one branch vertex."""
-    # through a link: w links, w+1 joints, W = w − 2; through a joint: W = w − 3
-    return (2 if kind == "L" else 3) + (0 if conv.rigid_subchains else 1)
+    # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h
+    # and at least 2 through a link: one binary link would be two joints between the same two links
+    return max(2, conv.h - 1 + (0 if conv.rigid_subchains else 1)) if kind == "L" else conv.h + (
+        0 if conv.rigid_subchains else 1)
 
 
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
@@ -139,20 +152,22 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
     lbs = []
     # with W below the threshold the whole chain is exempt, so only the weaker truss bound is necessary
-    rigid_bound = conv.rigid_subchains or code.dof() < conv.threshold
+    # k strings between u and v, all taken: W = h + Σ w − k(h − 1) (L–L), Σ w − h − (h − 1)(k − 2) (J–J)
+    rigid_bound = conv.rigid_subchains or code.dof(conv.h) < conv.threshold
+    h = conv.h
     for (u, v), var in x.items():
         ku, kv = kinds[u][0], kinds[v][0]
-        lb = model.NewIntVar(0, 2 * min(deg[u], deg[v]), f"lb{u}_{v}")
+        lb = model.NewIntVar(0, (h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
         if ku == kv == "L":
-            model.AddMaxEquality(lb, [0, 2 * var - (3 if rigid_bound else 2)])
+            model.AddMaxEquality(lb, [0, (h - 1) * var - h + (0 if rigid_bound else 1)])
         elif ku == kv == "J":
-            model.AddMaxEquality(lb, [0, 2 * var - 1])
+            model.AddMaxEquality(lb, [0, (h - 1) * var - h + 2])
         else:
             model.AddMaxEquality(lb, [0, var - 1])
         lbs.append(lb)
     loops_lb = sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m))
     model.Add(sum(lbs) + loops_lb <= n2)
-    _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(), conv)
+    _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(conv.h), conv)
     # connectivity: every cut around a set holding vertex 0 is crossed by an edge
     for size in range(1, m):
         for T in combinations(range(1, m), size - 1):
@@ -198,12 +213,15 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
     vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
     distribution (most of them, and the costliest: they are whole units of stage B).
 
-    A string inside T with 0 binary links costs its condition 2, with 1 binary link 1, so the E_T
-    strings inside T hold at least 2·E_T − bound(T) binary links; the other strings at least
-    their pairwise bounds ``lbs``. The condition holds where stage B writes it: every joint of T
-    on a string from a link of T (a bool per joint and set of links, ``touched``).
+    A string inside T with w < h − 1 binary links costs its condition h − 1 − w (planar: 2 for
+    none, 1 for one), so the E_T strings inside T hold at least (h − 1)·E_T − bound(T) binary
+    links; the other strings at least their pairwise bounds ``lbs``. The condition holds where
+    stage B writes it: every joint of T on a string from a link of T (a bool per joint and set
+    of links, ``touched``).
     """
-    links = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+    h = conv.h
+    all_links = sum(1 for kind in kinds if kind[0] == "L")
+    links = _inner_links(kinds)
     joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
     touched: dict = {}
 
@@ -216,7 +234,7 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
         return touched[J, TL]
 
     for size in range(1, len(links) + 1):
-        if size == len(links) and dof < conv.threshold:
+        if size == all_links and dof < conv.threshold:
             break  # T would hold every link: maybe the whole chain, which is exempt
         for TL in combinations(links, size):
             for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
@@ -224,24 +242,44 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
                     T = set(TL + TJ)
                     inside = {p for p in x if p[0] in T and p[1] in T}
                     # one link: S has two links or more only with a one-link string (weaker bound)
-                    bound = 3 * (size - 1) + 2 * jsize - (conv.threshold if size >= 2 else 0)
-                    need = 2 * sum(x[p] for p in inside) - bound
+                    bound = h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)
+                    need = (h - 1) * sum(x[p] for p in inside) - bound
                     rest = sum(lb for p, lb in lbs.items() if p not in inside)
                     model.Add(need + rest + loops_lb <= n2).OnlyEnforceIf([touches(J, TL) for J in TJ])
 
 
+def _closed_core(edges) -> list[tuple[int, int]]:
+    """The edges of H's closed part: vertices of degree 1 (single-joint links and what only
+    they hold) pruned again and again; all of H for a closed chain.
+
+    >>> _closed_core([(0, 1), (0, 1), (0, 1), (1, 2), (2, 3)])
+    [(0, 1), (0, 1), (0, 1)]
+    """
+    edges = list(edges)
+    while True:
+        degree: dict[int, int] = {}
+        for u, v in edges:
+            degree[u] = degree.get(u, 0) + 1
+            degree[v] = degree.get(v, 0) + 1
+        kept = [(u, v) for u, v in edges if degree[u] > 1 and degree[v] > 1]
+        if len(kept) == len(edges):
+            return kept
+        edges = kept
+
+
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
-    """Fractionation and planarity of the chain, decided on H."""
+    """Fractionation (of the closed part) and planarity of the chain, decided on H."""
     if conv.fractionated and not conv.planar_only:
         return True  # without importing networkx (0.1 s of a small query's start-up)
     import networkx as nx
 
     if not conv.fractionated:
-        if any(u == v for u, v in edges):
-            return False
-        if m == 2 and len(edges) < 2:
-            return False
-        if m > 2 and not nx.is_biconnected(nx.Graph(edges)):
+        # H with a vertex on every edge (two on a loop) is a subdivision of the incidence graph
+        core = nx.Graph()
+        for k, (u, v) in enumerate(_closed_core(edges)):
+            core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
+                                else [(u, ("e", k)), (("e", k), v)])
+        if core.number_of_nodes() > 2 and not nx.is_biconnected(core):
             return False
     if conv.planar_only:
         return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
@@ -254,6 +292,7 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     from ._cpsat import Model, all_solutions
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
+    space = conv.h
     model = Model()
     w = []
     for k, (u, v) in enumerate(edges):
@@ -265,39 +304,42 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
             lb = 0
         w.append(model.NewIntVar(lb, n2, f"w{k}"))
     model.Add(sum(w) == n2)
-    # parallel strings: non-decreasing (a symmetry of H) and at most one direct joint/incidence
+    # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
+    # (a direct joint or incidence at most once), and two one-link strings between two multiple
+    # joints (W = 2 − h) only where the convention allows it
     for k in range(1, len(edges)):
         if edges[k] == edges[k - 1]:
             model.Add(w[k] >= w[k - 1])
             u, v = edges[k]
             if u != v:
-                model.Add(w[k] >= (2 if kinds[u][0] == kinds[v][0] == "J" else 1))
+                model.Add(w[k] >= (2 if kinds[u][0] == kinds[v][0] == "J" and 2 - space < conv.threshold else 1))
     # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
-    # S = T_L + the binary link of every one-link string inside T has
-    # W(S) ≤ 3(|T_L| − 1) − 2·#(empty L–L strings) − #(one-link strings) − 2·Σ_{J∈T_J} (#T_L on J − 1),
-    # with equality when every J of T_J is touched: exact for simple joints, necessary otherwise.
-    z, o = {}, {}
+    # S = T_L + the binary links of every string inside T with w < h − 1 binary links has
+    # W(S) ≤ h(|T_L| − 1) + (h − 1)·|T_J| − Σ_{strings inside T} (h − 1 − w)⁺  (an empty string
+    # is a joint of two links of T or a link of T on a joint of T), with equality when every J
+    # of T_J is touched: exact for simple joints, necessary otherwise.  short[k][t] ⇔ w_k = t.
+    short: dict[int, dict[int, object]] = {}
     for k, (u, v) in enumerate(edges):
         if u == v:
             continue
-        o[k] = model.NewBoolVar(f"o{k}")
-        model.Add(w[k] == 1).OnlyEnforceIf(o[k])
-        if kinds[u][0] == "J" and kinds[v][0] == "J":
-            model.Add(w[k] >= 2).OnlyEnforceIf(o[k].Not())
-            continue
-        z[k] = model.NewBoolVar(f"z{k}")
-        model.Add(w[k] == 0).OnlyEnforceIf(z[k])
-        model.Add(w[k] >= 2).OnlyEnforceIf([z[k].Not(), o[k].Not()])
-        model.AddBoolOr([z[k].Not(), o[k].Not()])
-    link_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+        first = 1 if kinds[u][0] == kinds[v][0] == "J" else 0
+        short[k] = {t: model.NewBoolVar(f"s{k}_{t}") for t in range(first, space - 1)}
+        for t, flag in short[k].items():
+            model.Add(w[k] == t).OnlyEnforceIf(flag)
+        model.Add(w[k] >= space - 1).OnlyEnforceIf([flag.Not() for flag in short[k].values()])
+        if len(short[k]) > 1:
+            model.AddAtMostOne(short[k].values())
+    link_vertices = _inner_links(kinds)
+    n_links = sum(1 for kind in kinds if kind[0] == "L")
     joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
-    dof = code.dof()
+    dof = code.dof(space)
     for size in range(1, len(link_vertices) + 1):
         for TL in combinations(link_vertices, size):
             for jsize in range(len(joint_vertices) + 1):
                 for TJ in combinations(joint_vertices, jsize):
-                    _subset_constraint(model, kinds, edges, z, o, set(TL), set(TJ), len(link_vertices), dof, conv)
+                    _subset_constraint(model, kinds, edges, short, set(TL), set(TJ), n_links, dof, conv)
     # required sub-structure: a link with I joints carrying C cranks (invariant under Aut(H))
+    z = {k: flags[0] for k, flags in short.items() if 0 in flags}  # z[k] ⇔ string k is empty
     for joints_on_link, count in conv.cranks:
         chosen = []
         for u in link_vertices:
@@ -336,13 +378,17 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
     """The candidates that pass the exact sub-chain test, and their chains if the test built them."""
     t0 = perf_counter()
     if all(kind[0] == "L" for kind in h.kinds):  # simple joints: exact test on H for all candidates at once
-        passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(), conv)
+        passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(conv.h), conv)
         kept, chains = [s for s, ok in zip(solutions, passed) if ok], []
     else:
         from .mobility import check_subchains  # numpy and a popcount table: only multiple joints need it here
 
-        chains = [_expand(code, h.kinds, h.edges, s) for s in solutions]
-        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok for c in chains]
+        chains = [_expand(code, h.kinds, h.edges, s, conv.h) for s in solutions]
+        # two joints on the same links are one joint; the rule itself refuses them (W = 2 − h per
+        # pair) except for h = 2 with rigid sub-chains allowed
+        distinct = 2 - conv.h >= conv.threshold
+        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok
+              and not (distinct and len(set(c.joints)) < len(c.joints)) for c in chains]
         kept = [s for s, good in zip(solutions, ok) if good]
         chains = [c for c, good in zip(chains, ok) if good]
     _add(stats, subchain_s=perf_counter() - t0)
@@ -352,13 +398,14 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
 def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
     solutions, _ = _distributions(code, h, conv, stats)
-    return _distinct(code, h, *_passing(code, h, conv, solutions, stats), stats)
+    return _distinct(code, h, conv, *_passing(code, h, conv, solutions, stats), stats)
 
 
-def _distinct(code: Code, h: Contracted, kept: list, chains: list, stats: dict | None) -> list[Chain]:
+def _distinct(code: Code, h: Contracted, conv: Conventions, kept: list, chains: list,
+              stats: dict | None) -> list[Chain]:
     """The chains of the passing vectors ``kept`` (``chains`` if built already), once each by certificate."""
     t0 = perf_counter()
-    chains = chains or [_expand(code, h.kinds, h.edges, s) for s in kept]
+    chains = chains or [_expand(code, h.kinds, h.edges, s, conv.h) for s in kept]
     found: dict[str, Chain] = {}
     for chain in chains:
         found.setdefault(chain.certificate, chain)
@@ -380,35 +427,35 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     """
     solutions, one_per_orbit = _distributions(code, h, conv, stats)
     kept, chains = _passing(code, h, conv, solutions, stats)
-    return len(kept) if one_per_orbit else len(_distinct(code, h, kept, chains, stats))
+    return len(kept) if one_per_orbit else len(_distinct(code, h, conv, kept, chains, stats))
 
 
-def _subset_constraint(model, kinds, edges, z, o, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
+def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
     """Add W(S_T) ≥ threshold for the set T = TL ∪ TJ of branch vertices (see realise)."""
+    h = conv.h
     T = TL | TJ
     inside = [k for k, (u, v) in enumerate(edges) if u != v and u in T and v in T]
-    empty_ll = [k for k in inside if k in z and kinds[edges[k][0]][0] == kinds[edges[k][1]][0] == "L"]
-    on_joint = {J: [k for k in inside if k in z and J in edges[k]] for J in TJ}
+    on_joint = {J: [k for k in inside if J in edges[k] and "L" in (kinds[edges[k][0]][0], kinds[edges[k][1]][0])]
+                for J in TJ}
     if any(not ks for ks in on_joint.values()):
         return  # a joint no link of T touches directly: a smaller T gives a stronger condition
     if len(TL) == n_links and dof < conv.threshold:
         return  # S may be the whole chain, which is exempt
-    if not empty_ll and not [k for k in inside if k in o] and not TJ:
+    if not any(short[k] for k in inside) and not TJ:
         return
-    bound = 3 * (len(TL) - 1) + 2 * len(TJ) - conv.threshold
-    most = sum(2 if k in z else 1 for k in inside) + 2 * sum(len(ks) for ks in on_joint.values())
+    bound = h * (len(TL) - 1) + (h - 1) * len(TJ) - conv.threshold
+    most = sum(h - 1 - min(short[k], default=h - 1) for k in inside)
     if most <= bound:
         return  # cannot be violated
-    expr = sum(2 * z[k] for k in empty_ll) + sum(o[k] for k in inside) + sum(
-        2 * z[k] for ks in on_joint.values() for k in ks)
+    expr = sum((h - 1 - t) * flag for k in inside for t, flag in short[k].items())
     if len(TL) >= 2:
         model.Add(expr <= bound)
-    else:  # one link: S has two links or more only when a one-link string is inside T
+    else:  # one link: S has two links or more only when a string with binary links is taken
+        takes = [flag for k in inside for t, flag in short[k].items() if t >= 1]
+        if not takes:
+            return  # (no variable is made: a free one would repeat every solution)
         some = model.NewBoolVar("")
-        ones = [o[k] for k in inside]
-        if not ones:
-            return
-        model.AddMaxEquality(some, ones)
+        model.AddMaxEquality(some, takes)
         model.Add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
@@ -416,35 +463,43 @@ def _exact_on_h(kinds, edges, solutions, dof: int, conv: Conventions) -> list[bo
     """Exact sub-chain test of every candidate whose branch vertices are all links.
 
     For a set T of branch links the least W(S) over sub-chains S with branch part T is
-    3(|T| − 1) − 2·#(strings of 0 binary links in T) − #(strings of 1 binary link in T):
-    adding a string of w ≥ 2 binary links changes W by w − 2 ≥ 0 and part of a string by
-    more; a closed string through one link has W = w − 2 (its lower bound in the model).
-    S is the whole chain only when T is all of H and every string has at most one link;
-    then the best proper S leaves out one single-link string (W + 1).
+    h(|T| − 1) − Σ (h − 1 − w)⁺ over the strings inside T (planar: 2 for an empty string,
+    1 for a one-link string): adding a string of w binary links changes W by w − (h − 1)
+    and part of a string by more; a closed string through one link has W = w − (h − 1)
+    (its lower bound in the model).  Single-joint links (with their string: w + 1 ≥ 1)
+    never lower W and are left out of T.  S is the whole chain only when T is all of H
+    and every string has w < h − 1; then the best proper S leaves out the longest such
+    string with binary links (W + h − 1 − w).
     """
     import numpy as np
 
     if not solutions:
         return []
+    h = conv.h
     m = len(kinds)
+    inner = _inner_links(kinds)
     sol = np.asarray(solutions, dtype=np.int64)
     ends = np.asarray(edges, dtype=np.int64)
-    subsets = np.arange(1 << m, dtype=np.int64)
+    choice = np.arange(1 << len(inner), dtype=np.int64)
+    bits = np.array([1 << u for u in inner], dtype=np.int64)
+    subsets = ((choice[:, None] >> np.arange(len(inner))) & 1) @ bits if inner else np.zeros(1, dtype=np.int64)
     inside = ((subsets[:, None] >> ends[None, :, 0]) & (subsets[:, None] >> ends[None, :, 1]) & 1).astype(np.int64)
     inside[:, ends[:, 0] == ends[:, 1]] = 0  # closed strings are checked by their lower bound
-    size = np.array([bin(t).count("1") for t in range(1 << m)], dtype=np.int64)
-    short = (sol == 0) * 2 + (sol == 1)
-    W = 3 * (size[None, :] - 1) - short @ inside.T  # candidates × subsets
-    extra = (sol == 1) @ inside.T
+    size = np.array([bin(t).count("1") for t in range(1 << len(inner))], dtype=np.int64)
+    taken = sol < h - 1
+    W = h * (size[None, :] - 1) - np.maximum(h - 1 - sol, 0) @ inside.T  # candidates × subsets
+    extra = (sol * taken) @ inside.T
     valid = (size[None, :] + extra) >= 2
-    full = (1 << m) - 1
-    all_short = (sol <= 1).all(axis=1) & (ends[:, 0] != ends[:, 1]).all()
-    W[:, full] = np.where(all_short, np.where((sol == 1).any(axis=1), dof + 1, 10**6), W[:, full])
+    if len(inner) == m:  # T = all of H: S_T is the whole chain where every string is taken
+        full = (1 << m) - 1
+        all_short = taken.all(axis=1) & (ends[:, 0] != ends[:, 1]).all()
+        longest = np.where(taken & (sol >= 1), sol, -1).max(axis=1)
+        W[:, full] = np.where(all_short, np.where(longest >= 1, dof + h - 1 - longest, 10**6), W[:, full])
     W[~valid] = 10**6
     return list(W.min(axis=1) >= conv.threshold)
 
 
-def _expand(code: Code, kinds, edges, weights) -> Chain:
+def _expand(code: Code, kinds, edges, weights, space: int = 3) -> Chain:
     """The chain of H with ``weights`` binary links on its strings (branch links numbered first)."""
     n_branch_links = sum(1 for k in kinds if k[0] == "L")
     link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
@@ -465,4 +520,4 @@ def _expand(code: Code, kinds, edges, weights) -> Chain:
         seq = ([ends[0]] if ends[0] is not None else []) + body + ([ends[1]] if ends[1] is not None else [])
         joints.extend(zip(seq, seq[1:]))
     joints.extend(tuple(links) for links in multiple.values())
-    return Chain.trusted(nxt, joints)
+    return Chain.trusted(nxt, joints, space)

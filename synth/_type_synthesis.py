@@ -25,6 +25,7 @@ from ._number_synthesis import number_synthesis, parse_range, parse_requirements
 from ._realise import Contracted, Conventions, contracted_graphs, count_realised, realise
 from .chain import Chain, Mechanism
 from .code import Code
+from ._params import check_motion_space
 from .errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 
 __all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
@@ -57,15 +58,17 @@ class Unit:
 
     @property
     def key(self) -> str:
-        """Stable name of the unit (code and multigraph certificate), used by atlases to resume."""
-        return f"{self.code}|{self.contracted.certificate if self.contracted else 'loop'}"
+        """Stable name of the unit (code, multigraph certificate and, where h ≠ 3, the motion
+        space), used by atlases and checkpoints to resume."""
+        space = "" if self.conventions.h == 3 else f"|h{self.conventions.h}"
+        return f"{self.code}|{self.contracted.certificate if self.contracted else 'loop'}{space}"
 
 
 def _conventions(dof: int, rigid_subchains: bool | None, fractionated: bool, planar_only: bool,
-                 cranks: Mapping | Iterable[str] | None) -> Conventions:
+                 cranks: Mapping | Iterable[str] | None, h: int = 3) -> Conventions:
     if rigid_subchains is None:
         rigid_subchains = dof == 0
-    return Conventions(bool(rigid_subchains), bool(fractionated), bool(planar_only), _parse_cranks(cranks))
+    return Conventions(bool(rigid_subchains), bool(fractionated), bool(planar_only), _parse_cranks(cranks), h)
 
 
 def _parse_cranks(cranks: Mapping | Iterable[str] | None) -> tuple[tuple[int, int], ...]:
@@ -111,41 +114,56 @@ def plan_codes(
     fractionated: bool = True,
     rigid_subchains: bool = False,
     require: Mapping | Iterable[str] | None = None,
+    h: int = 3,
+    n1: int | tuple | str = 0,
+    max_multiplicity: int | None = None,
 ) -> list[Code]:
     """The codes (with joint composition) a chain query covers, in output order.
 
-    A link of a non-fractionated chain carries at most K+1 joints, of a fractionated one
-    at most 2K; a non-degenerate chain with W = 1 is never fractionated (its parts would
-    each need W ≥ 1).
+    A link of a non-fractionated closed part carries at most K+1 joints, of a fractionated
+    one at most 2K, and an open chain's link at most n1 more (each further joint leads to a
+    branch with a single-joint link of its own); a non-degenerate closed chain with W = 1 is
+    never fractionated (its parts would each need W ≥ 1).
 
     >>> [str(c) for c in plan_codes(1, 8)]
     ['440/0', '521/0', '602/0']
+    >>> [str(c) for c in plan_codes(4, 7, n1=2, v=2)]  # the robot arm of two grippers: 2|5/2 as two joint compositions
+    ['2|5/0-1', '2|5/2']
     """
+    if max_multiplicity is None and (rigid_subchains or fractionated and not (dof == 1 and n1 in (0, None))):
+        # the limit theorem (a joint of order ≤ K closed, ≤ K + W open) holds for chains that are neither
+        # fractionated nor degenerate (a non-degenerate closed 1-DOF chain is never fractionated);
+        # other conventions have chains beyond it (a 4-link joint carrying two 4-link loops: W = 3, K = 2)
+        max_multiplicity = (links if code is None else Code.parse(code).links if isinstance(code, str) else code.links)
     if code is not None:
         code = Code.parse(code) if isinstance(code, str) else code
         _check_code_against(code, v, require)
-        if code.n1:
-            raise ImpossibleParameters(f"code {code} has single-joint links: type synthesis builds closed chains")
-        if code.dof() != dof:
-            raise ImpossibleParameters(f"code {code} gives W = {code.dof()}, not the requested W = {dof}")
+        if n1 not in (0, None) and parse_range(n1, "n1") != (code.n1, code.n1):
+            raise ImpossibleParameters(f"code {code} has n1 = {code.n1}, not the requested n1 = {n1}")
+        if code.dof(h) != dof:
+            raise ImpossibleParameters(f"code {code} gives W = {code.dof(h)} with h = {h}, not the requested W = {dof}")
         if links is not None and code.links != links:
             raise ImpossibleParameters(f"code {code} has {code.links} links, not {links}")
         exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}
-        codes = number_synthesis(dof, links=code.links, v=code.v, compositions=True,
-                                 max_link_degree=max(code.max_degree, 2), require=exact)
+        codes = number_synthesis(dof, links=code.links, v=code.v, compositions=True, h=h, n1=code.n1,
+                                 max_link_degree=max(code.max_degree, 2), require=exact,
+                                 max_multiplicity=max_multiplicity)
         return [c for c in codes if code.composition is None or c.composition == code.composition]
     if links is None:
         raise InvalidOption("give the number of links (or a code)")
     rng = parse_range(0 if v is None else v, "v")
-    K = (links - dof - 1) // 2
-    imax = 2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1
+    n1_lo, n1_hi = parse_range(0 if n1 is None else n1, "n1")
+    n1_hi = links if n1_hi is None else n1_hi
+    K = max(0, (links - dof - 1) // (h - 1))
+    imax = (2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1) + n1_hi
     for i, (lo, _) in parse_requirements(require).items():
         if i > imax and lo > 0 and K >= 1:
+            why = "2K, fractionated chains included" if imax == 2 * K else "K+1" if imax == K + 1 else "K+1 + n1"
             raise ImpossibleParameters(
                 f"no chain with W = {dof} and {links} links has a link with {i} joints: with K = {K} loops a link "
-                f"carries at most {imax} ({'2K, fractionated chains included' if imax == 2 * K else 'K+1'})")
+                f"carries at most {imax} ({why})")
     return number_synthesis(dof, links=links, v=rng, compositions=True, max_link_degree=max(imax, K + 1),
-                            require=require)
+                            require=require, h=h, n1=(n1_lo, n1_hi), max_multiplicity=max_multiplicity)
 
 
 def _check_code_against(code: Code, v, require) -> None:
@@ -165,7 +183,7 @@ def _check_code_against(code: Code, v, require) -> None:
 
 def _stage_a(args) -> list[Unit]:
     code, conv = args
-    if code.count(2) == code.links and code.v == 0:
+    if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
         return [Unit(code, None, conv)]
     return [Unit(code, h, conv) for h in contracted_graphs(code, conv)]
 
@@ -174,7 +192,7 @@ def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:
     """The chains of one unit, sorted by certificate (deterministic)."""
     if unit.contracted is None:
         n = unit.code.links
-        return [Chain(n, tuple((i, (i + 1) % n) for i in range(n)))] if n >= 3 else []
+        return [Chain(n, tuple((i, (i + 1) % n) for i in range(n)), h=unit.conventions.h)] if n >= 3 else []
     return realise(unit.code, unit.contracted, unit.conventions, stats)
 
 
@@ -198,6 +216,9 @@ def plan_units(
     planar_only: bool = False,
     require: Mapping | Iterable[str] | None = None,
     cranks: Mapping | Iterable[str] | None = None,
+    h: int = 3,
+    n1: int | tuple | str = 0,
+    max_multiplicity: int | None = None,
     workers: int | None = 1,
 ) -> list[Unit]:
     """The independent work units of a chain query, in output order.
@@ -212,7 +233,8 @@ def plan_units(
     """
     _validate(dof, links, workers)
     query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
-                 planar_only=planar_only, require=require, cranks=cranks)
+                 planar_only=planar_only, require=require, cranks=cranks, h=h, n1=n1,
+                 max_multiplicity=max_multiplicity)
     workers = workers or os.cpu_count() or 1
     if workers == 1:
         return plan_many([query])[0]
@@ -252,12 +274,15 @@ def _codes_of(query: Mapping, skip_impossible: bool = False) -> tuple[list[Code]
     """Number synthesis of one chain query: its codes (in output order) and conventions."""
     q = dict(query)
     dof, links = q.pop("dof"), q.pop("links", None)
+    h = q.pop("h", 3)
+    check_motion_space(h, lowest=2)  # h = 1 (elastic couplings) has no chains to build
     conv = _conventions(dof, q.pop("rigid_subchains", None), q.get("fractionated", True),
-                        q.pop("planar_only", False), q.pop("cranks", None))
+                        q.pop("planar_only", False), q.pop("cranks", None), h)
     try:
         codes = plan_codes(dof, links, v=q.pop("v", None), code=q.pop("code", None),
                            fractionated=q.pop("fractionated", True), rigid_subchains=conv.rigid_subchains,
-                           require=_with_crank_links(q.pop("require", None), conv))
+                           require=_with_crank_links(q.pop("require", None), conv), h=h, n1=q.pop("n1", 0),
+                           max_multiplicity=q.pop("max_multiplicity", None))
     except ImpossibleParameters:
         if not skip_impossible:
             raise
@@ -284,10 +309,13 @@ def type_synthesis(
     planar_only: bool = False,
     require: Mapping | Iterable[str] | None = None,
     cranks: Mapping | Iterable[str] | None = None,
+    h: int = 3,
+    n1: int | tuple | str = 0,
+    max_multiplicity: int | None = None,
     workers: int | None = None,
     progress: bool = False,
 ) -> Iterator[Chain]:
-    """Every non-isomorphic planar chain with mobility ``dof`` and ``links`` links.
+    """Every non-isomorphic chain with mobility ``dof`` and ``links`` links, in motion space ``h``.
 
     Parameters
     ----------
@@ -310,6 +338,13 @@ def type_synthesis(
         Required sub-structure: a link with I joints carrying at least C cranks (binary links
         jointed to it), a constraint of the CP-SAT model (e.g. ``{5: 5}``: five parallel cranks
         on a 5-joint frame).
+    h : int
+        Motion space of the loops, 2 … 6 (default 3: planar and spherical; 6 general spatial).
+    n1 : int or range
+        Single-joint links (open chains: robot arms, grippers); default 0 (closed chains).
+    max_multiplicity : int, optional
+        Most links on one joint; default the limit theorem's K + 1 (closed) or K + W + 1 (open) for
+        chains that are neither fractionated nor degenerate (where it holds), else no limit.
     workers : int, optional
         Processes; default all cores; 1 runs inline.
     progress : bool
@@ -327,7 +362,8 @@ def type_synthesis(
     """
     _validate(dof, links, workers)
     query = dict(dof=dof, links=links, v=v, code=code, rigid_subchains=rigid_subchains, fractionated=fractionated,
-                 planar_only=planar_only, require=require, cranks=cranks)
+                 planar_only=planar_only, require=require, cranks=cranks, h=h, n1=n1,
+                 max_multiplicity=max_multiplicity)
     codes, conv = _codes_of(query)
     for _, unit, chains in _map_units(run_unit, codes, conv, workers, progress):
         if unit is not None:

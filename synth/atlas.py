@@ -71,7 +71,7 @@ __all__ = [
     "run_grid", "summary", "export", "parse_where", "open_atlas",
 ]
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2  # 2: motion space h of chains and cells
 
 
 class AtlasError(SynthesisError):
@@ -87,17 +87,17 @@ CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE chains (
     id INTEGER PRIMARY KEY, certificate TEXT NOT NULL UNIQUE,
     code TEXT NOT NULL, base_code TEXT NOT NULL,
-    dof INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
+    dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
     max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
     chain TEXT NOT NULL
 );
-CREATE INDEX chains_select ON chains (dof, links, v, code);
+CREATE INDEX chains_select ON chains (dof, h, links, v, code);
 CREATE TABLE link_counts (
     chain INTEGER NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
     PRIMARY KEY (chain, degree)
 ) WITHOUT ROWID;
 CREATE TABLE cells (
-    cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, links INTEGER NOT NULL,
+    cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL,
     v_min INTEGER NOT NULL, v_max INTEGER, rigid_subchains INTEGER NOT NULL,
     fractionated INTEGER NOT NULL, planar_only INTEGER NOT NULL, require TEXT NOT NULL,
     units INTEGER NOT NULL
@@ -289,7 +289,8 @@ def compute_unit(task: _Task) -> _Result:
     start = time.perf_counter()
     chains, counts, mechs = [], [], []
     # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
-    fractionable = task.unit.conventions.rigid_subchains or task.unit.code.dof() != 1
+    h = task.unit.conventions.h
+    fractionable = task.unit.conventions.rigid_subchains or task.unit.code.dof(h) != 1 or task.unit.code.n1
     for found in run_unit(task.unit):
         cert = found.certificate
         chain = _canonical(found)
@@ -299,7 +300,10 @@ def compute_unit(task: _Task) -> _Result:
                "certificate": cert, "dof": chain.dof, "loops": chain.loops, "v": chain.v}
         if chain.kinds is not None:
             row["kinds"] = list(chain.kinds)
-        chains.append((cert, str(code), str(Code(code.assortment, code.v)), chain.dof, chain.links, chain.loops,
+        if h != 3:
+            row["h"] = h
+        chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), chain.dof, h,
+                       chain.links, chain.loops,
                        chain.v, max(degrees), " ".join(map(str, sorted(degrees, reverse=True))),
                        int(fractionable and chain.is_fractionated()), json.dumps(row, separators=(",", ":"))))
         counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
@@ -315,8 +319,8 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
     conn.execute("BEGIN IMMEDIATE")
     try:
         before = conn.total_changes
-        conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, links, loops, v, "
-                         "max_degree, degrees, fractionated, chain) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+        conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, h, links, loops, v, "
+                         "max_degree, degrees, fractionated, chain) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          result.chains)
         new = conn.total_changes - before
         ids: dict[str, int] = {}
@@ -372,8 +376,8 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]
     conn.execute("BEGIN IMMEDIATE")
     try:
         for cell, units in plans:
-            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                         (cell.key, cell.dof, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
+            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         (cell.key, cell.dof, cell.h, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
                           int(cell.fractionated), int(cell.planar_only), json.dumps(cell.require), len(units)))
             conn.executemany("INSERT OR IGNORE INTO units (cell, unit, code) VALUES (?, ?, ?)",
                              [(cell.key, u.key, str(u.code)) for u in units])
@@ -532,7 +536,7 @@ def run_grid(
 
 # ------------------------------------------------------------------ queries
 _FIELDS = {
-    "code": "code", "dof": "dof", "w": "dof", "links": "links", "n": "links", "loops": "loops", "k": "loops",
+    "code": "code", "dof": "dof", "w": "dof", "h": "h", "links": "links", "n": "links", "loops": "loops", "k": "loops",
     "v": "v", "max_degree": "max_degree", "maxdeg": "max_degree", "fractionated": "fractionated", "cell": "cell",
 }
 _WHERE_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(<=|>=|!=|==|=|<|>)\s*(\S.*?)\s*$")
@@ -544,7 +548,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
 
     A condition is ``FIELD OP VALUE``; OP is one of ``= != < <= > >=``; conditions are
     joined by AND.  Fields: ``code`` (= or !=, the code as the atlas shows it, e.g.
-    ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
+    ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``h`` (motion space), ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
     ``fractionated`` (0/1), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
     (= only, a cell key as shown by ``mechsynth atlas``).  With ``=`` a number may be a
     range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
@@ -586,7 +590,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
         elif key in _FIELDS:
             column, col_params = f"c.{_FIELDS[key]}", []
         else:
-            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, n, K, v, maxdeg, "
+            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, h, n, K, v, maxdeg, "
                                 "fractionated, nI such as n3, basecode, cell)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
@@ -611,7 +615,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
     return (" AND ".join(clauses) or "1"), params
 
 
-_ORDER = "ORDER BY c.dof, c.links, c.v, c.code, c.certificate"
+_ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.certificate"
 
 
 def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -> Iterator[dict]:
@@ -656,26 +660,33 @@ def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -
 def summary(db: str | Path) -> dict:
     """What an atlas holds: chains and mechanisms by code, cells and units done / total, runs.
 
-    Returns a JSON-able dict with ``chains``, ``mechanisms``, ``by_code`` (chains),
-    ``mechanisms_by_code`` (fixed-link mechanisms), ``units`` {done, total}, ``cells``
-    (key, units done/total, chains, by_code), ``runs`` and ``locked_by``.
+    Returns a JSON-able dict with ``chains``, ``mechanisms``, ``by_code`` (chains; a code of
+    motion space h ≠ 3 is shown as ``"6/0 h=5"``), ``mechanisms_by_code`` (fixed-link
+    mechanisms), ``codes`` (code, W, h, links, chains, mechanisms), ``units`` {done, total},
+    ``cells`` (key, W, h, links, units done/total, chains, by_code), ``runs`` and ``locked_by``.
     """
     conn = open_atlas(db)
     try:
-        order = "ORDER BY MIN(links), MIN(dof), MIN(v), code"
-        by_code = {code: n for code, n in conn.execute(
-            f"SELECT code, COUNT(*) FROM chains GROUP BY code {order}")}
+        order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code"
+        shown = "code || CASE WHEN h = 3 THEN '' ELSE ' h=' || h END"
+        codes = [dict(zip(("code", "dof", "h", "links", "chains"), r)) for r in conn.execute(
+            f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code {order}")]
+        by_code = {c["code"]: c["chains"] for c in codes}
         mech_by_code = {code: n for code, n in conn.execute(
-            f"SELECT c.code, COUNT(*) FROM mechanisms k JOIN chains c ON c.id = k.chain "
-            f"WHERE k.input_link < 0 GROUP BY c.code {order}")}
+            f"SELECT {shown}, COUNT(*) FROM (SELECT c.code AS code, c.h AS h, c.links AS links, c.dof AS dof, "
+            f"c.v AS v FROM mechanisms k JOIN chains c ON c.id = k.chain WHERE k.input_link < 0) "
+            f"GROUP BY h, code {order}")}
+        for c in codes:
+            c["mechanisms"] = mech_by_code.get(c["code"], 0)
         cells = []
-        for key, dof, links, total in conn.execute("SELECT cell, dof, links, units FROM cells ORDER BY dof, links, cell"):
+        for key, dof, h, links, total in conn.execute(
+                "SELECT cell, dof, h, links, units FROM cells ORDER BY dof, h, links, cell"):
             done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
-            codes = {code: n for code, n in conn.execute(
+            cell_codes = {code: n for code, n in conn.execute(
                 "SELECT c.code, COUNT(*) FROM members m JOIN chains c ON c.id = m.chain "
                 f"WHERE m.cell = ? GROUP BY c.code {order}", (key,))}
-            cells.append({"cell": key, "dof": dof, "links": links, "units_done": done, "units_total": total,
-                          "chains": sum(codes.values()), "by_code": codes})
+            cells.append({"cell": key, "dof": dof, "h": h, "links": links, "units_done": done, "units_total": total,
+                          "chains": sum(cell_codes.values()), "by_code": cell_codes})
         units_done, units_total = conn.execute(
             "SELECT COALESCE(SUM(status = 'done'), 0), COUNT(*) FROM units").fetchone()
         lock = conn.execute("SELECT pid, host, started FROM run_lock").fetchone()
@@ -691,6 +702,7 @@ def summary(db: str | Path) -> dict:
             "units": {"done": units_done, "total": units_total},
             "by_code": by_code,
             "mechanisms_by_code": mech_by_code,
+            "codes": codes,
             "cells": cells,
             "runs": runs,
             "locked_by": None if lock is None else {"pid": lock[0], "host": lock[1]},

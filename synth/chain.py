@@ -44,6 +44,9 @@ class Chain:
         Each joint as the links it joins (at least two, all different).
     kinds : sequence of str, optional
         ``"revolute"`` or ``"prismatic"`` per joint; None means all revolute.
+    h : int
+        Motion space of its loops (2 … 6; 3 planar and spherical, 6 general spatial): the same
+        graph is a different design in another space, with W = h(n − 1) − (h − 1)·p.
 
     Examples
     --------
@@ -55,10 +58,13 @@ class Chain:
     links: int
     joints: tuple[tuple[int, ...], ...]
     kinds: tuple[str, ...] | None = None
+    h: int = 3
 
     def __post_init__(self):
         if isinstance(self.links, bool) or not isinstance(self.links, int) or self.links < 1:
             raise MalformedChain(f"a chain needs a whole number of links ≥ 1, not {self.links!r}")
+        if isinstance(self.h, bool) or not isinstance(self.h, int) or not 2 <= self.h <= 6:
+            raise MalformedChain(f"the motion space h of a chain's loops is 2 … 6, not {self.h!r}")
         try:
             raw = [tuple(sorted(int(x) for x in j)) for j in self.joints]
         except (TypeError, ValueError):
@@ -84,7 +90,7 @@ class Chain:
         object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
 
     @classmethod
-    def trusted(cls, links: int, joints) -> "Chain":
+    def trusted(cls, links: int, joints, h: int = 3) -> "Chain":
         """Build a chain the engine constructed itself (valid by construction): skips the checks.
 
         >>> Chain.trusted(3, [(1, 0), (1, 2), (2, 0)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
@@ -94,6 +100,7 @@ class Chain:
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "joints", tuple(sorted(tuple(sorted(j)) for j in joints)))
         object.__setattr__(self, "kinds", None)
+        object.__setattr__(self, "h", h)
         return self
 
     # ---------------------------------------------------------------- numbers
@@ -123,8 +130,12 @@ class Chain:
 
     @property
     def dof(self) -> int:
-        """Planar mobility W = 3(n − 1) − 2p."""
-        return 3 * (self.links - 1) - 2 * self.simple_joint_equivalents
+        """Mobility W = h(n − 1) − (h − 1)·p (planar: 3(n − 1) − 2p).
+
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").dof, Chain(6, Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").joints, h=5).dof
+        (3, 1)
+        """
+        return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
 
     @property
     def code(self) -> Code:
@@ -174,11 +185,12 @@ class Chain:
     def certificate(self) -> str:
         """Canonical certificate (hex): equal exactly for isomorphic chains.
 
-        The sizes (n, J, joint kinds) are part of it, so chains of different size never collide.
+        The sizes (n, J, joint kinds) and the motion space (where h ≠ 3) are part of it, so
+        chains of different size or space never collide.
         """
         cert = self.__dict__.get("_certificate")
         if cert is None:
-            sizes = f"{self.links:02x}{len(self.joints):02x}"
+            sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
             if self.kinds is not None:
                 sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
             cert = sizes + pynauty.certificate(self._nauty_graph()).hex()
@@ -207,7 +219,7 @@ class Chain:
         """The same chain with link ``i`` renamed ``permutation[i]``."""
         if sorted(permutation) != list(range(self.links)):
             raise MalformedChain("a relabelling must be a permutation of the links")
-        return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds)
+        return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h)
 
     def to_networkx(self):
         """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``.
@@ -242,11 +254,41 @@ class Chain:
 
         return nx.check_planarity(self.to_networkx())[0]
 
+    def closed_part(self) -> "Chain":
+        """The chain without its open branches: links with a single joint are removed, again and
+        again (with joints left holding one link), until every link carries 2 joints or more.
+        Link numbers are kept; removed links are left without joints.  Empty for a serial or
+        tree-shaped arm.
+
+        >>> Chain.parse("0-1 1-2 2-0 2-3 3-4").closed_part().compact()
+        '0-1 0-2 1-2'
+        """
+        joints = [list(j) for j in self.joints]
+        while True:
+            degree = [0] * self.links
+            for j in joints:
+                for x in j:
+                    degree[x] += 1
+            if all(degree[x] >= 2 for j in joints for x in j):
+                break
+            joints = [[x for x in j if degree[x] >= 2] for j in joints]
+            joints = [j for j in joints if len(j) >= 2]
+        return Chain(self.links, tuple(map(tuple, joints)), h=self.h)
+
     def is_fractionated(self) -> bool:
-        """Whether removing one link or one joint disconnects the chain (a cut vertex of the incidence graph)."""
+        """Whether removing one link or one joint of the closed part disconnects it (a cut vertex
+        of its incidence graph).  Open branches (links with a single joint and the links that
+        carry them out to the closed part) do not count: an arm's gripper does not split its
+        mobility.
+
+        >>> Chain.parse("0-1 1-2 2-3 3-0 3-4").is_fractionated(), Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()
+        (False, True)
+        """
         import networkx as nx
 
-        g = self.to_networkx()
+        core = self.closed_part() if 1 in self.degrees else self
+        g = core.to_networkx()
+        g.remove_nodes_from([node for node in list(g) if g.degree(node) == 0])
         return g.number_of_nodes() > 2 and not nx.is_biconnected(g)
 
     # ------------------------------------------------------------------- I/O
@@ -263,6 +305,8 @@ class Chain:
         }
         if self.kinds is not None:
             d["kinds"] = list(self.kinds)
+        if self.h != 3:
+            d["h"] = self.h
         return d
 
     @classmethod
@@ -277,7 +321,10 @@ class Chain:
             links = 1 + max((x for j in joints for x in j if isinstance(x, int)), default=-1)
         if any(not isinstance(x, int) or isinstance(x, bool) for j in joints for x in j):
             raise MalformedChain("joints must list links by whole numbers")
-        return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"))
+        h = d.get("h", 3)
+        if isinstance(h, bool) or not isinstance(h, int):
+            raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
+        return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict())

@@ -9,7 +9,7 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 from ._number_synthesis import number_synthesis
 from .chain import Chain
@@ -24,6 +24,7 @@ class ChainAnalysis:
     """What the theory says about one chain; ``advice`` tells how to remove a defect."""
 
     code: str
+    h: int
     links: int
     joints: int
     dof: int
@@ -43,13 +44,22 @@ class ChainAnalysis:
         return asdict(self)
 
 
-def analyze_chain(chain: Chain | str, *, dof: int | None = None) -> ChainAnalysis:
+def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None = None) -> ChainAnalysis:
     """Analyse a chain given as :class:`Chain`, JSON or compact joint list ``"0-1 1-2 …"``.
 
     ``dof`` sets the convention: W = 0 allows rigid sub-chains, otherwise none is allowed.
+    ``h`` is the motion space of the loops (default the chain's own, 3 for a joint list).
+
+    >>> a = analyze_chain("0-1 1-2 2-3 3-4 4-5 5-0", h=5)  # the Bricard six-bar
+    >>> a.dof, a.subchain_defect
+    (1, 'none')
+    >>> analyze_chain("0-1 1-2 2-3 3-0 0-4 4-5").code  # a four-bar carrying a two-link arm: one free end
+    '1|41/0'
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
+    if h is not None and h != chain.h:
+        chain = replace(chain, h=h)
     if not chain.is_connected():
         raise MalformedChain("the chain is not connected: every link must be reachable through joints")
     W = chain.dof
@@ -59,7 +69,7 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None) -> ChainAnalysi
     try:
         standard = code in number_synthesis(
             W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
-            compositions=True,
+            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2),
         ) if W >= 0 and code.loops >= 0 else False
     except ImpossibleParameters:
         standard = False
@@ -74,9 +84,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None) -> ChainAnalysi
             f"one link; add {report.threshold - report.worst_mobility} binary link(s) inside it or open one of its joints"
         )
     if chain.is_fractionated():
-        advice.append("a link or joint splits the chain: its mobility divides between the parts")
+        advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
     return ChainAnalysis(
-        code=str(code), links=chain.links, joints=len(chain.joints), dof=W, loops=chain.loops,
+        code=str(code), h=chain.h, links=chain.links, joints=len(chain.joints), dof=W, loops=chain.loops,
         complexity=chain.loops - 1, v=chain.v, standard_code=standard, connected=True,
         fractionated=chain.is_fractionated(), planar=chain.is_planar(), subchain_defect=report.kind,
         worst_subchain=list(report.worst), worst_subchain_mobility=report.worst_mobility,

@@ -305,10 +305,17 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                    default=1.0)
     r = min(0.07, 0.28 * min_dist)
     lw = 2.2
+    free_ends = _free_ends(pos, lay.polygons, length=max(0.3, 6 * r))
     for link, poly in enumerate(lay.polygons):
         pts = pos[poly]
         frame = mech is not None and link == mech.frame
-        if len(poly) == 2:
+        if len(poly) == 1:  # a single-joint link (an arm's base or gripper): a bar with a free end
+            end = free_ends[link]
+            pts = np.array([pos[poly[0]], end])
+            ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="butt", zorder=2)
+            ax.add_patch(Polygon([end + (-r, -r), end + (r, -r), end + (r, r), end + (-r, r)], closed=True,
+                                 facecolor=_EDGE, edgecolor=_EDGE, hatch="////" if frame else None, zorder=3))
+        elif len(poly) == 2:
             if frame:
                 a, b = pts
                 d = b - a
@@ -338,11 +345,30 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
         ax.add_patch(FancyArrowPatch((x + 2.6 * r, y), (x, y + 2.6 * r), connectionstyle="arc3,rad=0.5",
                                      arrowstyle="-|>", mutation_scale=9, color=_MULTI, lw=1.2, zorder=6))
     ax.set_aspect("equal")
-    ax.set_xlim(-1.25, 1.25)
-    ax.set_ylim(-1.25, 1.25)
+    reach = max([1.25] + [float(np.abs(end).max()) + 2 * r for end in free_ends.values()])
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
     ax.axis("off")
     if caption:
         ax.set_title(caption, fontsize=8, pad=2, y=-0.02)
+
+
+def _free_ends(pos: np.ndarray, polygons: list[list[int]], length: float) -> dict[int, np.ndarray]:
+    """Where each single-joint link ends: away from the drawing's centre, fanned out where several
+    hang on one joint."""
+    centre = pos.mean(axis=0) if len(pos) else np.zeros(2)
+    hanging: dict[int, list[int]] = {}
+    for link, poly in enumerate(polygons):
+        if len(poly) == 1:
+            hanging.setdefault(poly[0], []).append(link)
+    ends = {}
+    for joint, links in hanging.items():
+        away = pos[joint] - centre
+        base = math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2
+        for i, link in enumerate(links):
+            angle = base + (i - (len(links) - 1) / 2) * 0.6
+            ends[link] = pos[joint] + length * np.array([math.cos(angle), math.sin(angle)])
+    return ends
 
 
 def expand(chains: Sequence[Chain], *, mechanisms: bool = False, input_link: bool = False) -> list:
@@ -382,7 +408,7 @@ def _save(fig, path: Path, dpi: int = 110) -> None:
 
 def _caption(item, index: int | None) -> str:
     chain = item.chain if isinstance(item, Mechanism) else item
-    text = str(chain.code)
+    text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}")
     if index is not None:
         text += f"  #{index}"
     if isinstance(item, Mechanism):

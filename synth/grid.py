@@ -3,9 +3,9 @@
 A grid file names ranges of W, n (or K) and v, the conventions (sub-chain rule,
 fractionated chains, planar graphs only) and design constraints.  Top-level keys are
 defaults; each ``[[block]]`` table overrides them for one block of cells.  Without
-blocks the top level is the only block.  A block expands to one *cell* per (W, n)
-pair whose n gives a whole number of loops (planar chains: n = W + 1 + 2K); other
-pairs are skipped.  A cell keeps its v range whole.  Each cell is split into the
+blocks the top level is the only block.  A block expands to one *cell* per (W, n, h)
+triple whose n gives a whole number of loops (n = W + 1 + (h − 1)·K; planar chains:
+n = W + 1 + 2K); other triples are skipped.  A cell keeps its v range whole.  Each cell is split into the
 independent work units of :func:`synth.plan_units`.
 
 Keys (all optional except ``dof`` and one of ``links`` / ``loops``):
@@ -20,6 +20,8 @@ key                  value                                                  defa
 ``links``            n: integer, ``"A..B"`` or list of integers             one of the two
 ``loops``            K: integer, ``"A..B"`` or list of integers             one of the two
 ``v``                multiple-joint count: integer, ``"A..B"``, ``"A.."``   0
+``h``                motion space of the loops: 2 … 6, ``"A..B"`` or list   3
+``n1``               single-joint links (open chains): integer or ``"A..B"`` 0
 ``rigid_subchains``  allow rigid sub-chains W(S) ≥ 0                        true only at W = 0
 ``fractionated``     keep fractionated chains                               true
 ``planar_only``      keep only planar chains                                false
@@ -78,18 +80,24 @@ class Cell:
     fractionated: bool = True
     planar_only: bool = False
     require: tuple[tuple[int, Range], ...] = ()
+    h: int = 3
+    n1: Range = (0, 0)
 
     @property
     def loops(self) -> int:
-        """K = (n − W − 1) / 2 for planar chains."""
-        return (self.links - self.dof - 1) // 2
+        """K = (n − W − 1) / (h − 1) (planar chains: (n − W − 1) / 2)."""
+        return (self.links - self.dof - 1) // (self.h - 1)
 
     @property
     def key(self) -> str:
-        """Stable text naming the cell (the atlas's cell key)."""
+        """Stable text naming the cell (the atlas's cell key; h and n1 appear where they are not 3 and 0)."""
         hi = "" if self.v[1] is None else str(self.v[1])
         text = (f"W={self.dof} n={self.links} v={self.v[0]}..{hi} rigid={int(self.rigid_subchains)} "
                 f"frac={int(self.fractionated)} planar={int(self.planar_only)}")
+        if self.h != 3:
+            text += f" h={self.h}"
+        if self.n1 != (0, 0):
+            text += f" n1={self.n1[0]}..{'' if self.n1[1] is None else self.n1[1]}"
         if self.require:
             reqs = ",".join(f"{i}={lo}..{'' if hi is None else hi}" for i, (lo, hi) in self.require)
             text += f" require={reqs}"
@@ -102,7 +110,7 @@ class Cell:
         (0, 1)
         """
         return dict(v=self.v, rigid_subchains=self.rigid_subchains, fractionated=self.fractionated,
-                    planar_only=self.planar_only, require=dict(self.require) or None)
+                    planar_only=self.planar_only, require=dict(self.require) or None, h=self.h, n1=self.n1)
 
     def query(self) -> dict:
         """This cell as keyword arguments of :func:`synth.plan_units` / :func:`synth.plan_many`."""
@@ -173,6 +181,8 @@ class _Block(Table):
     links: _values(1) | None = None
     loops: _values(1) | None = None
     v: RangeText | None = None
+    h: _values(2) | None = None
+    n1: RangeText | None = None
     rigid_subchains: Flag | None = None
     fractionated: Flag | None = None
     planar_only: Flag | None = None
@@ -223,22 +233,28 @@ def _expand(spec: dict, where: str) -> list[Cell]:
         reqs = tuple(parse_requirements(spec.get("require")).items())
     except SynthesisError as exc:
         raise GridFileError(f"{where}key 'require': {str(exc).rstrip('.')}.") from None
+    spaces = spec.get("h") or [3]
+    if max(spaces) > 6:
+        raise GridFileError(f"{where}key 'h': the motion space of a loop is 2 … 6, not {max(spaces)}.")
+    n1 = parse_range_text(spec.get("n1", 0))
+    least = 0 if n1[1] is None or n1[1] > 0 else 1  # open chains may have no loop (serial and tree arms)
     if "links" in spec:
-        pairs = [(w, n) for n in spec["links"] for w in spec["dof"] if n - w - 1 >= 2 and (n - w - 1) % 2 == 0]
+        triples = [(w, n, h) for h in spaces for n in spec["links"] for w in spec["dof"]
+                   if n - w - 1 >= least * (h - 1) and (n - w - 1) % (h - 1) == 0]
         top = max(spec["links"])
     else:
-        pairs = [(w, w + 1 + 2 * k) for w in spec["dof"] for k in spec["loops"]]
-        top = max(n for _, n in pairs)
+        triples = [(w, w + 1 + (h - 1) * k, h) for h in spaces for w in spec["dof"] for k in spec["loops"]]
+        top = max(n for _, n, _ in triples)
     if top > _MAX_LINKS:
         raise GridFileError(f"{where}{top} links is beyond what a grid run can finish (at most {_MAX_LINKS}).")
-    if not pairs:
-        raise GridFileError(f"{where}no (W, n) pair of the ranges gives a whole number of loops K ≥ 1 "
-                            "(n = W + 1 + 2K).")
+    if not triples:
+        raise GridFileError(f"{where}no (W, n, h) of the ranges gives a whole number of loops K ≥ {least} "
+                            "(n = W + 1 + (h − 1)·K).")
     rigid, fractionated = spec.get("rigid_subchains"), spec.get("fractionated")
     return [
         Cell(w, n, parse_range_text(spec.get("v", 0)),
              rigid_subchains=(w == 0) if rigid is None else rigid,
              fractionated=True if fractionated is None else fractionated,
-             planar_only=bool(spec.get("planar_only")), require=reqs)
-        for w, n in sorted(pairs)
+             planar_only=bool(spec.get("planar_only")), require=reqs, h=h, n1=n1)
+        for h, w, n in sorted((h, w, n) for w, n, h in triples)
     ]

@@ -1,16 +1,19 @@
 """Exact sub-chain mobility test: no rigid or over-constrained sub-chain anywhere.
 
-For a set S of links, W(S) = 3(|S| − 1) − 2·Σ_j max(m_j(S) − 1, 0).  The test is
-exact over *every* subset of links, computed without enumerating all 2^n sets:
+For a set S of links in motion space h (3 planar, see :class:`~synth.chain.Chain`),
+W(S) = h(|S| − 1) − (h − 1)·Σ_j max(m_j(S) − 1, 0).  The test is exact over *every*
+subset of links, computed without enumerating all 2^n sets:
 
-* a *core* link carries 3+ joints or lies on a multiple joint; the other links are
-  binary links on two simple joints and form paths between core links;
+* a *core* link carries 1 or 3+ joints or lies on a multiple joint; the other links
+  are binary links on two simple joints and form paths between core links (a path may
+  close on one core link);
 * for a fixed set T of core links, adding a path of w binary links whose ends are
-  both in T changes W by w − 2, adding part of a path by +1 or more; so the
-  smallest W(S) with core part T takes exactly the single-link paths (w = 1);
+  both in T changes W by w − (h − 1), adding part of a path by +1 or more; so the
+  smallest W(S) with core part T takes exactly the paths with w < h − 1 (planar: the
+  single-link paths);
 * so min over S is a vectorised scan over the 2^c subsets T of the c core links,
-  with a separate look at closed paths through one core link (w = 2 is a rigid
-  triangle).  Complexity O(2^c · J) with c ≤ n − n2.
+  with a separate look at one closed path alone on its core link (planar: w = 2 is a
+  rigid triangle).  Complexity O(2^c · J) with c ≤ n − n2.
 
 Example
 -------
@@ -79,14 +82,14 @@ def _members(T: np.ndarray, c: int, groups: list[list[int]]) -> np.ndarray:
 
 
 def subchain_mobility(chain: Chain, links) -> int:
-    """W(S) of the sub-chain made of ``links``.
+    """W(S) of the sub-chain made of ``links``, in the chain's motion space.
 
     >>> subchain_mobility(Chain.parse("0-1 1-2 2-0 2-3"), [0, 1, 2])
     0
     """
     s = set(links)
     p = sum(max(sum(1 for x in j if x in s) - 1, 0) for j in chain.joints)
-    return 3 * (len(s) - 1) - 2 * p
+    return chain.h * (len(s) - 1) - (chain.h - 1) * p
 
 
 @dataclass(frozen=True)
@@ -165,11 +168,12 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
         If the chain has more than 24 core links (the scan is exponential in them).
     """
     threshold = 0 if rigid_subchains else 1
+    h = chain.h
     degrees = chain.degrees
     core = sorted({x for j in chain.joints if len(j) > 2 for x in j} | {i for i, d in enumerate(degrees) if d != 2})
     if len(core) > _MAX_CORE:
         raise MalformedChain(f"the exact sub-chain test handles up to {_MAX_CORE} non-binary links, not {len(core)}")
-    # two links on one joint always give W = 1: the least value any larger S must beat
+    # two links on one joint always give W = h − (h − 1) = 1: the least value any larger S must beat
     best = (1, chain.joints[0][:2]) if chain.joints and chain.links > 2 else (10**9, ())
     paths = _paths(chain, core)
     if not core:  # a single loop of binary links: its proper sub-chains are open paths, W ≥ 1
@@ -177,20 +181,28 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     index = {x: i for i, x in enumerate(core)}
     c = len(core)
     T, size = _subsets(c) if c <= _MATRIX_CORE else _subsets.__wrapped__(c)
-    W = 3 * (size - 1)
+    W = h * (size - 1)
     core_set = set(core)
     on_core = [[index[x] for x in j] for j in chain.joints if all(x in core_set for x in j)]
-    W -= 2 * np.maximum(_members(T, c, on_core) - 1, 0).sum(axis=1)
-    short = [(a, b, body) for a, b, body in paths if len(body) == 1 and a is not None and a != b]
-    extra = (_members(T, c, [[index[a], index[b]] for a, b, _ in short]) == 2).sum(axis=1)
-    W -= extra
+    W -= (h - 1) * np.maximum(_members(T, c, on_core) - 1, 0).sum(axis=1)
+    # paths that lower W when both ends are in T (w < h − 1), closed ones (a == b) included
+    short = [(a, b, body) for a, b, body in paths if len(body) < h - 1 and a is not None]
+    if short:
+        inside = _members(T, c, [sorted({index[a], index[b]}) for a, b, _ in short]) == np.array(
+            [1 if a == b else 2 for a, b, _ in short])
+        W -= inside.astype(np.int64) @ np.array([h - 1 - len(body) for _, _, body in short])
+        extra = inside.astype(np.int64) @ np.array([len(body) for _, _, body in short])
+    else:
+        extra = np.zeros(len(T), dtype=np.int64)
     full = (1 << c) - 1
     proper = np.ones(1 << c, dtype=bool)
-    proper_all = not all(len(body) <= 1 for _, _, body in paths)
+    proper_all = len(short) < len(paths)
+    left_out = None
     if not proper_all:  # S_T would be the whole chain
-        if short:  # the best proper one leaves out one single-link path: W + 1
-            W[full] += 1
-            extra[full] -= 1
+        if short:  # the best proper one leaves out the longest short path: W + (h − 1 − w)
+            left_out = max(short, key=lambda path: len(path[2]))
+            W[full] += h - 1 - len(left_out[2])
+            extra[full] -= len(left_out[2])
         else:
             proper[full] = False
     valid = proper & (size + extra >= 2)
@@ -200,11 +212,11 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
         candidates = np.flatnonzero(Wv == low)
         pick = candidates[np.argmin(size[candidates] + extra[candidates])]
         links = [core[i] for i in range(c) if pick >> i & 1]
-        links += [body[0] for a, b, body in short if (pick >> index[a] & 1) and (pick >> index[b] & 1)]
-        if pick == full and not proper_all:
-            links.remove(short[0][2][0])
+        for a, b, body in short:
+            if (pick >> index[a] & 1) and (pick >> index[b] & 1) and (pick != full or (a, b, body) != left_out):
+                links += body
         best = (int(low), tuple(sorted(links)))
-    for a, b, body in paths:  # a closed path through one core link: W = w − 2
-        if a is not None and a == b and len(body) - 2 < best[0]:
-            best = (len(body) - 2, tuple(sorted((a, *body))))
+    for a, b, body in paths:  # one closed path alone on its core link: W = w − (h − 1)
+        if a is not None and a == b and (len(body) - (h - 1), len(body) + 1) < (best[0], len(best[1])):
+            best = (len(body) - (h - 1), tuple(sorted((a, *body))))
     return SubchainReport(best[0] >= threshold, best[1], best[0], threshold)

@@ -105,19 +105,19 @@ def _norm(joints) -> tuple[tuple[int, ...], ...]:
     return tuple(sorted(tuple(sorted(j)) for j in joints))
 
 
-def mobility(joints, links: int) -> int:
-    """Planar mobility W = 3(n - 1) - 2p."""
-    return 3 * (links - 1) - 2 * sum(len(j) - 1 for j in joints)
+def mobility(joints, links: int, h: int = 3) -> int:
+    """Mobility in motion space h: W = h(n - 1) - (h - 1)p (planar 3(n - 1) - 2p)."""
+    return h * (links - 1) - (h - 1) * sum(len(j) - 1 for j in joints)
 
 
-def subchain_mobility(joints, subset) -> int:
-    """W(S) = 3(|S| - 1) - 2 * sum_j max(m_j(S) - 1, 0)."""
+def subchain_mobility(joints, subset, h: int = 3) -> int:
+    """W(S) = h(|S| - 1) - (h - 1) * sum_j max(m_j(S) - 1, 0)."""
     s = set(subset)
     load = sum(max(len(s.intersection(j)) - 1, 0) for j in joints)
-    return 3 * (len(s) - 1) - 2 * load
+    return h * (len(s) - 1) - (h - 1) * load
 
 
-def subchain_ok(joints, links: int, rigid_subchains: bool) -> bool:
+def subchain_ok(joints, links: int, rigid_subchains: bool, h: int = 3) -> bool:
     """Exhaustive check over ALL link subsets with |S| >= 2 (plain version).
 
     rigid_subchains=False: proper subsets need W(S) >= 1;
@@ -128,7 +128,7 @@ def subchain_ok(joints, links: int, rigid_subchains: bool) -> bool:
             continue
         need = 0 if rigid_subchains else 1
         for s in itertools.combinations(range(links), k):
-            if subchain_mobility(joints, s) < need:
+            if subchain_mobility(joints, s, h) < need:
                 return False
     return True
 
@@ -150,9 +150,16 @@ def is_connected(joints, links: int) -> bool:
 
 
 def is_fractionated(joints, links: int) -> bool:
-    """True when removing one link or one joint disconnects the chain."""
+    """True when removing one link or one joint disconnects the chain's closed part: the
+    incidence graph after pruning nodes with one neighbour again and again (an open branch
+    ending in a single-joint link does not split the chain's mobility)."""
     g = incidence_graph(joints, links)
-    return next(nx.articulation_points(g), None) is not None
+    while True:
+        ends = [x for x in g if g.degree(x) <= 1]
+        if not ends:
+            break
+        g.remove_nodes_from(ends)
+    return g.number_of_nodes() > 2 and next(nx.articulation_points(g), None) is not None
 
 
 def is_planar(joints, links: int) -> bool:
@@ -221,6 +228,7 @@ class BruteChain:
     planar: bool
     fixed_link_orbits: int
     fractionated: bool = False
+    h: int = 3
 
     @property
     def p(self) -> int:
@@ -228,7 +236,7 @@ class BruteChain:
 
     @property
     def dof(self) -> int:
-        return mobility(self.joints, self.links)
+        return mobility(self.joints, self.links, self.h)
 
 
 class ChainIndex:
@@ -295,8 +303,8 @@ class _SubsetChecker:
     a field's top bit is set iff ``load(S) <= limit(S)``.
     """
 
-    def __init__(self, links: int, p: int, rigid_subchains: bool):
-        if p >= _OFF:
+    def __init__(self, links: int, p: int, rigid_subchains: bool, h: int = 3):
+        if p >= _OFF or h * links >= _OFF:
             raise ValueError("too many joints for the packed checker")
         self.n = links
         full = (1 << links) - 1
@@ -306,7 +314,7 @@ class _SubsetChecker:
         for s in range(1 << links):
             k = s.bit_count()
             constrained = k >= 2 and (rigid_subchains or s != full)
-            val = (3 * (k - 1) - need) // 2 + _OFF if constrained else 2 * _OFF - 1
+            val = (h * (k - 1) - need) // (h - 1) + _OFF if constrained else 2 * _OFF - 1
             cap |= val << (_FW * s)
             high |= _OFF << (_FW * s)
         self.cap = cap
@@ -341,36 +349,47 @@ def brute_force_chains(
     v_max: int = 0,
     rigid_subchains: bool = False,
     fractionated: bool = True,
+    h: int = 3,
+    n1: tuple[int, int] = (0, 0),
+    max_multiplicity: int | None = None,
     stats: dict | None = None,
 ) -> list[BruteChain]:
-    """All closed connected planar chains with ``links`` links and mobility ``dof``.
+    """All connected chains with ``links`` links and mobility ``dof`` in motion space ``h``,
+    closed (default) or with ``n1[0] … n1[1]`` single-joint links, and joints of at most
+    ``max_multiplicity`` links (default: no limit but v_max + 2).
 
     One representative per isomorphism class, for every v in ``0..v_max``,
     satisfying the sub-chain convention chosen by ``rigid_subchains`` (checked
     exhaustively over all link subsets) and keeping (``fractionated=True``) or
     dropping fractionated chains.  See the module docstring for the method
-    and why each pruning rule is safe.  If ``stats`` is a dict it receives
-    counters (search nodes, leaves).
+    and why each pruning rule is safe (with h for 3 and h - 1 for 2, and 1 for
+    the least degree of an open chain's links).  If ``stats`` is a dict it
+    receives counters (search nodes, leaves).
 
     Returns a list sorted by (v, code key, joints).
     """
     n = links
     if n < 2 or dof < 0:
         return []
-    twice_p = 3 * (n - 1) - dof
-    if twice_p % 2:
+    times_p = h * (n - 1) - dof
+    if times_p % (h - 1):
         return []
-    p = twice_p // 2
+    p = times_p // (h - 1)
     K = p - n + 1
-    if K < 1:
+    if K < 1 and n1[1] == 0 or K < 0:
         return []
-    maxdeg = min(n - 1, 2 * K)
+    least = 1 if n1[1] > 0 else 2  # fewest joints on a link
+    # two joints sharing two links: W = 2 - h for that pair, below the convention unless h = 2 with rigid
+    # sub-chains allowed; only then may a new joint hold two links that already share one
+    linear = 2 - h < (0 if rigid_subchains else 1)
+    # rule 5: Σ deg = p + J ≤ 2p, every other link has 2 joints (n1 of them may have 1); n − 1 needs linearity
+    maxdeg = min(n - 1, 2 * K + n1[1]) if linear else 2 * K + n1[1]
 
-    cands = [c for m in range(2, v_max + 3) if m <= n
+    cands = [c for m in range(2, v_max + 3) if m <= n and (max_multiplicity is None or m <= max_multiplicity)
              for c in itertools.combinations(range(n), m)]
     cands.sort()
     cmask = [sum(1 << i for i in c) for c in cands]
-    checker = _SubsetChecker(n, p, rigid_subchains)
+    checker = _SubsetChecker(n, p, rigid_subchains, h)
     cvec = [checker.vector(mk) for mk in cmask]
     cindex = {mk: k for k, mk in enumerate(cmask)}
 
@@ -386,7 +405,7 @@ def brute_force_chains(
         # links < a are closed: degree >= 2 and non-increasing;
         # open links may not already exceed deg(a - 1).
         for x in range(a):
-            if deg[x] < 2 or (x and deg[x] > deg[x - 1]):
+            if deg[x] < least or (x and deg[x] > deg[x - 1]):
                 return False
         if a:
             lim = deg[a - 1]
@@ -419,7 +438,7 @@ def brute_force_chains(
 
     def leaf():
         counters["leaves"] += 1
-        if not prefix_valid(n):
+        if not prefix_valid(n) or not n1[0] <= deg.count(1) <= n1[1]:
             return
         code = 0
         for k in chosen:
@@ -439,7 +458,7 @@ def brute_force_chains(
         frac = is_fractionated(joints, n)
         if frac and not fractionated:
             return
-        if not subchain_ok(joints, n, rigid_subchains):  # plain re-check
+        if not subchain_ok(joints, n, rigid_subchains, h):  # plain re-check
             raise AssertionError(f"packed sub-chain check let {joints} through")
         results.append(BruteChain(
             joints=_norm(joints),
@@ -449,6 +468,7 @@ def brute_force_chains(
             planar=is_planar(joints, n),
             fixed_link_orbits=fixed_link_orbits(joints, n),
             fractionated=frac,
+            h=h,
         ))
 
     # candidate index ranges by first element
@@ -472,7 +492,7 @@ def brute_force_chains(
                 if not prefix_valid(a):
                     break                   # invalid for every larger a too
                 cap = deg[a - 1] if a else maxdeg
-                deficit = sum(2 - deg[y] for y in range(a, n) if deg[y] < 2)
+                deficit = sum(least - deg[y] for y in range(a, n) if deg[y] < least)
                 skip_group = deficit > 2 * budget
             if skip_group:
                 continue
@@ -480,7 +500,7 @@ def brute_force_chains(
             if m - 1 > budget or v_used + m - 2 > v_max:
                 continue
             mk = cmask[k]
-            if any(adj[x] & mk or deg[x] >= cap for x in c):
+            if any((linear and adj[x] & mk) or deg[x] >= cap for x in c):
                 continue
             new_load = load + cvec[k]
             if not checker.ok(new_load):

@@ -262,7 +262,10 @@ def test_graph_views():
     assert not Chain.parse("0-1 1-2 3-4").is_connected() and Chain.parse("0-1 1-2 2-0").is_connected()
     assert Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()   # two triangles on link 0
     assert not Chain.parse("0-1 1-2 2-3 3-0").is_fractionated()
-    assert Chain(1, []).is_fractionated() is False and Chain.parse("0-1").is_fractionated()  # the joint splits it
+    assert Chain(1, []).is_fractionated() is False
+    assert not Chain.parse("0-1").is_fractionated()  # an open chain: no closed part to split
+    assert not Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5").is_fractionated()  # a loop with an open branch
+    assert Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0 4-5").is_fractionated()  # two loops on link 0, and a branch
     assert Chain(2, []).is_fractionated() is False  # two loose links: nothing to remove that splits them
     kinds = Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)], ["prismatic", "revolute", "revolute", "revolute"])
     assert sorted(d["joint_kind"] for _, d in kinds.to_networkx().nodes(data=True) if d["kind"] == "joint") == [

@@ -61,11 +61,15 @@ def brute(dof, K, *, h=3, f=0, n=None, n1_max=0, imax=None, v_range=None, max_mu
             continue
         if max_multiplicity == 2 and v:
             continue
-        if not split:
-            found.add(Code(counts[1:], v, None, counts[0]))
-            continue
+        # the limit theorem's default: joints of order ≤ K (closed) or ≤ K + W (open)
+        most = max_multiplicity or (K + 1 if n1_max == 0 else K + dof + 1)
         incidences = sum(i * c for i, c in enumerate(counts, start=1))
-        for comp in compositions(v, incidences, max_multiplicity or n):
+        splits = compositions(v, incidences, most)
+        if not split:
+            if splits:
+                found.add(Code(counts[1:], v, None, counts[0]))
+            continue
+        for comp in splits:
             found.add(Code(counts[1:], v, comp, counts[0]))
     return found
 

@@ -25,14 +25,19 @@ SETTINGS = settings(max_examples=40)
 
 # ---------------------------------------------------------------------------- counting equations
 def _brute_codes(W: int, K: int, h: int, f: int, n1: int, vmax: int) -> set:
-    """Every (n2…n_{K+1}, v) with Σ n_i = n − n1, v = 2p − Σ i·n_i in 0..vmax (p = K + n − 1)."""
+    """Every (n2…n_{K+1}, v) with Σ n_i = n − n1, v = 2p − Σ i·n_i in 0..vmax (p = K + n − 1) that
+    splits into joints of at most m = K + 1 links (closed) or K + W + 1 (open), the limit theorem:
+    the fewest such joints, ⌈v / (m − 2)⌉, take v + 2·⌈v / (m − 2)⌉ link incidences."""
     n = W + 1 + (h - 1) * K - f
+    most = K + 1 if n1 == 0 else K + W + 1
     out = set()
     for a in itertools.product(range(max(n - n1, 0) + 1), repeat=K):
         if sum(a) != n - n1:
             continue
-        v = 2 * (K + n - 1) - (n1 + sum((i + 2) * x for i, x in enumerate(a)))
-        if 0 <= v <= vmax:
+        incidences = n1 + sum((i + 2) * x for i, x in enumerate(a))
+        v = 2 * (K + n - 1) - incidences
+        fewest = 0 if v == 0 else None if most < 3 else -(-v // (most - 2))
+        if 0 <= v <= vmax and fewest is not None and v + 2 * fewest <= incidences:
             out.add((a, v))
     return out
 

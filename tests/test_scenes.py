@@ -222,8 +222,10 @@ MALFORMED = {
                               ["[slider]", "'balance prismatic'"]),
     "expect without its computation": (GOOD.replace("[expect]", "[expect]\ncount = 2"), ["'count'", "compute"]),
     "unused structure key": (GOOD.replace("loops = 2", "loops = 2\nplanar_only = true"), ["'planar_only'", "not used"]),
-    "chains in h=5": (GOOD.replace('["codes"]', '["count"]').replace("loops = 2", "loops = 2\nh = 5")
-                      .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["'h'", "planar"]),
+    "chains in h=1": (GOOD.replace('["codes"]', '["count"]').replace("loops = 2", "loops = 2\nh = 1")
+                      .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["'h'", "2 … 6"]),
+    "chains with f": (GOOD.replace('["codes"]', '["count"]').replace("loops = 2", "loops = 2\nf = 1")
+                      .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["'f'", "one-DOF pairs"]),
     "impossible parameters": (GOOD.replace("loops = 2", "loops = 2\nrequire = [\"2=x\"]"), ["[structure]"]),
     "balance error": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                       "[slider]\nmass = -2.0\ncounter_mass = 2.0\nq_max = 0.5\n", ["mass"]),

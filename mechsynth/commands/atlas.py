@@ -53,7 +53,8 @@ def add_commands(sub) -> None:
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where")
-    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own, planar)")
+    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h)")
+    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
@@ -121,15 +122,14 @@ def _print_summary(info: dict) -> None:
           f"{info['mechanisms']} mechanisms (fixed link), units {units['done']}/{units['total']} done")
     if info["locked_by"]:
         print(f"being written by pid {info['locked_by']['pid']} on {info['locked_by']['host']}")
-    rows = [{"code": c, "chains": n, "mechanisms": info["mechanisms_by_code"].get(c, 0)}
-            for c, n in info["by_code"].items()]
-    if rows:
+    if info["codes"]:
         print()
-        write_rows(rows, ["code", "chains", "mechanisms"], "table")
+        write_rows([dict(c, W=c["dof"], n=c["links"], code=c["code"].split(" ")[0]) for c in info["codes"]],
+                   ["code", "W", "h", "n", "chains", "mechanisms"], "table")
     if info["cells"]:
         print()
-        write_rows([dict(c, units=f"{c['units_done']}/{c['units_total']}") for c in info["cells"]],
-                   ["cell", "units", "chains"], "table")
+        write_rows([dict(c, W=c["dof"], n=c["links"], units=f"{c['units_done']}/{c['units_total']}")
+                    for c in info["cells"]], ["cell", "W", "h", "n", "units", "chains"], "table")
 
 
 def _conditions(groups: list[list[str]]) -> list[str]:
@@ -148,8 +148,17 @@ def _run_draw(args) -> int:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
+    if args.h is not None:
+        from synth._params import check_motion_space
+
+        if args.db:
+            raise InvalidOption("--h goes with --code or --chain (an atlas's chains carry their own h)")
+        check_motion_space(args.h, lowest=2)
+    h = args.h or 3
     if args.chain:
-        chain = Chain.parse(args.chain)
+        from dataclasses import replace
+
+        chain = replace(Chain.parse(args.chain), h=h)
         if args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:
@@ -160,13 +169,13 @@ def _run_draw(args) -> int:
         from synth.code import Code
 
         code = Code.parse(args.code)
-        dof = code.dof() if args.dof is None else args.dof
-        chains = list(synth.type_synthesis(dof, code=code, v=code.v, workers=1))
+        dof = code.dof(h) if args.dof is None else args.dof
+        chains = list(synth.type_synthesis(dof, code=code, v=code.v, h=h, workers=1))
         if not chains:
             print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
             return 1
         items = draw.expand(chains, mechanisms=args.mechanisms)
-        title = args.title or f"{code} (W = {dof}): {len(chains)} chains"
+        title = args.title or f"{code} (W = {dof}{'' if h == 3 else f', h = {h}'}): {len(chains)} chains"
     else:
         from synth.atlas import export
 

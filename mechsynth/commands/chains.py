@@ -26,7 +26,13 @@ def _add_selection(p) -> None:
     p.add_argument("--dof", type=whole, help="mobility W (0 = trusses); default: the code's W")
     p.add_argument("--links", type=whole, help="number of links n (frame included)")
     p.add_argument("--v", help="multiple-joint count or range A..B (default 0: simple joints; with --code its own)")
-    p.add_argument("--code", help="only this code, e.g. 6301/0 or 620/0-1")
+    p.add_argument("--code", help="only this code, e.g. 6301/0, 620/0-1 or the open 2|5/2")
+    p.add_argument("--h", type=whole, default=3,
+                   help="motion space of the loops, 2 … 6 (default 3: planar and spherical; 5 Bricard; 6 spatial)")
+    p.add_argument("--n1", help="single-joint links (open chains: arms, grippers), N or A..B (default 0; "
+                   "with --code its own)")
+    p.add_argument("--max-multiplicity", type=whole,
+                   help="most links on one joint (default: the limit theorem's K + 1 closed, K + W + 1 open)")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
                    help="design constraint on n_I, the links with I joints (repeatable)")
     p.add_argument("--cranks", action="append", default=[], metavar="I=C",
@@ -64,16 +70,20 @@ def _selection(args) -> tuple[int, dict]:
     from synth.code import Code
     from synth.errors import InvalidOption
 
+    from synth._params import check_motion_space
+
+    check_motion_space(args.h, lowest=2)
     if args.dof is None:
         if args.code is None:
             raise InvalidOption("give --dof (and --links), or --code")
-        args.dof = Code.parse(args.code).dof()
+        args.dof = Code.parse(args.code).dof(args.h)
     if args.links is None and args.code is None:
         raise InvalidOption("give --links N (or --code C)")
     return args.dof, dict(
         v=args.v, code=args.code, rigid_subchains=args.rigid_subchains, fractionated=args.fractionated,
         planar_only=args.planar_only, require=args.require, cranks=args.cranks, workers=args.workers,
-        progress=True,
+        progress=True, h=args.h, n1=args.n1 if args.n1 is not None else (None if args.code else 0),
+        max_multiplicity=args.max_multiplicity,
     )
 
 
@@ -96,7 +106,7 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
 
     if args.code is not None or args.links is None or (args.force and args.count):
         return
-    loops = (args.links - dof - 1) // 2
+    loops = (args.links - dof - 1) // (args.h - 1)
     v = parse_range(args.v or 0, "v")
     if loops < (_SIZED_LOOPS_MULTIPLE if v != (0, 0) else _SIZED_LOOPS):
         return

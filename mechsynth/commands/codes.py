@@ -96,8 +96,8 @@ def _add_analyze(sub):
 
 def _refuse_for_chain(args) -> None:
     """A chain carries its own links, joints and v: options that describe counts do not apply."""
-    given = [name for name, value in (("--v", args.v), ("--f", args.f or None), ("--loop-classes", args.loop_classes),
-                                      ("--h", None if args.h == 3 else args.h)) if value is not None]
+    given = [name for name, value in (("--v", args.v), ("--f", args.f or None), ("--loop-classes", args.loop_classes))
+             if value is not None]
     if given:
         raise InvalidOption(f"{given[0]} does not apply to a chain (it describes codes and counts)")
 
@@ -116,7 +116,9 @@ def _run_analyze(args) -> int:
         from synth.chain_analysis import analyze_chain
 
         _refuse_for_chain(args)
-        result = analyze_chain(subject, dof=args.dof).to_dict()
+        from synth._params import check_motion_space
+
+        result = analyze_chain(subject, dof=args.dof, h=check_motion_space(args.h, lowest=2)).to_dict()
     elif "=" in subject and "/" not in subject:
         counts = _parse_classes(subject)
         result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=args.h, f=args.f,

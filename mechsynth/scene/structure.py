@@ -86,9 +86,9 @@ class Structure(Table):
     h: Positive = key("motion space of a loop", *CODES, *ANALYSIS, *CHAINS, default=3)
     f: Whole = key("extra mobility of multi-DOF pairs", *CODES, *ANALYSIS, *CHAINS, default=0)
     v: VRange | None = key("multiple-joint count", *CODES, *CHAINS, *ANALYSIS)
-    n1: RangeText = key("single-joint links", *CODES, default=0)
+    n1: RangeText | None = key("single-joint links (open chains)", *CODES, *CHAINS)
     max_link_degree: Degree | None = key("largest joints on one link", *CODES)
-    max_multiplicity: Positive | None = key("largest links on one joint", *CODES)
+    max_multiplicity: Positive | None = key("largest links on one joint", *CODES, *CHAINS)
     compositions: Flag = key("split v into v2-v3-…", *CODES, default=False)
     require: Require | None = key("design constraints on n_I", *CODES, *CHAINS)
     cranks: IndexTable("a table { I = C, … }: a link with I joints carrying at least C cranks", 1) | None = key(
@@ -151,10 +151,11 @@ def _check_codes(scene: Scene) -> None:
 def _check_chains(scene: Scene) -> None:
     s = scene.tables["structure"]
     _needs_dof(scene, s, "chains, mechanisms and drawings")
-    for name, allowed in (("h", 3), ("f", 0)):
-        if getattr(s, name) != allowed:
-            raise scene.error(f"[structure] key '{name}' must be {allowed} for chains, mechanisms and drawings "
-                              "(type synthesis builds planar chains with one-DOF pairs)")
+    if s.f != 0:
+        raise scene.error("[structure] key 'f' must be 0 for chains, mechanisms and drawings "
+                          "(type synthesis builds chains with one-DOF pairs)")
+    if not 2 <= s.h <= 6:
+        raise scene.error(f"[structure] key 'h' must be 2 … 6 for chains, mechanisms and drawings, not {s.h}")
     for name in ("loops", "links"):
         value = getattr(s, name)
         if isinstance(value, str) and ".." in value:
@@ -225,7 +226,7 @@ def _codes(run: Run) -> dict:
 
     s = run.scene.tables["structure"]
     codes = number_synthesis(
-        s.dof, loops=s.loops, links=s.links, loop_classes=s.loop_classes, h=s.h, f=s.f, v=s.v, n1=s.n1,
+        s.dof, loops=s.loops, links=s.links, loop_classes=s.loop_classes, h=s.h, f=s.f, v=s.v, n1=0 if s.n1 is None else s.n1,
         max_link_degree=s.max_link_degree, require=s.require, max_multiplicity=s.max_multiplicity,
         compositions=s.compositions)
     by_loops: dict[str, int] = {}
@@ -243,11 +244,12 @@ def _chain_list(run: Run) -> list:
 
         s = run.scene.tables["structure"]
         links = int(s.links) if s.links is not None else (
-            s.dof + 1 + 2 * int(s.loops) if s.loops is not None else None)
+            s.dof + 1 + (s.h - 1) * int(s.loops) if s.loops is not None else None)
         return list(type_synthesis(
-            s.dof, links, workers=run.workers, v=0 if s.v is None else s.v, code=s.code,
+            s.dof, links, workers=run.workers, v=s.v if s.v is not None or s.code else 0, code=s.code,
             rigid_subchains=s.rigid_subchains, fractionated=s.fractionated, planar_only=s.planar_only,
-            require=s.require, cranks=s.cranks))
+            require=s.require, cranks=s.cranks, h=s.h, n1=s.n1 if s.n1 is not None or s.code else 0,
+            max_multiplicity=s.max_multiplicity))
 
     return run.shared("chains", make)
 
@@ -292,7 +294,7 @@ def _analysis(run: Run) -> dict:
     if s.chain is not None:
         from synth.chain_analysis import analyze_chain
 
-        return analyze_chain(s.chain, dof=s.dof).to_dict()
+        return analyze_chain(s.chain, dof=s.dof, h=s.h).to_dict()
     from synth.analysis import analyze  # pure counting: no solver
 
     common = dict(dof=s.dof, h=s.h, f=s.f, loop_classes=s.loop_classes)

@@ -1,0 +1,75 @@
+"""Type synthesis in every motion space h and for open chains: time, chains/s and candidates per chain.
+
+1-DOF chains for h = 2 … 6 at growing link counts (up to about a minute each with ``--full``),
+and open chains (W = 3, n1 = 0 … 3).  One process; the time per chain of each h is compared with
+h = 3 at a similar number of chains (``per_chain_vs_h3``: the goal is at most 3).  Writes
+``benchmarks/out/universal.csv``.  Run: ``python benchmarks/bench_universal.py [--quick]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+OUT = ROOT / "benchmarks" / "out"
+
+#: (h, links) at 1 DOF, smallest first; --quick stops at the first two of each h
+CASES_1DOF = {2: [5, 6, 7, 8, 9], 3: [6, 8, 10, 12], 4: [5, 8, 11, 14], 5: [6, 10, 14], 6: [7, 12, 17]}
+CASES_OPEN = [(3, 6, "0..3"), (3, 8, "0..3"), (3, 10, "0..3")]
+
+
+def _one(dof: int, links: int, **query) -> dict:
+    from synth._type_synthesis import plan_units
+    from synth._realise import realise
+
+    stats: dict = {}
+    t0 = time.perf_counter()
+    units = plan_units(dof, links, workers=1, **query)
+    chains = 0
+    for unit in units:
+        if unit.contracted is None:
+            chains += 1
+        else:
+            chains += len(realise(unit.code, unit.contracted, unit.conventions, stats))
+    seconds = time.perf_counter() - t0
+    return {"links": links, "chains": chains, "units": len(units), "seconds": round(seconds, 3),
+            "chains_per_s": round(chains / seconds, 1) if seconds else None,
+            "candidates_per_chain": round(stats.get("candidates", chains) / chains, 2) if chains else None,
+            "us_per_chain": round(1e6 * seconds / chains, 1) if chains else None}
+
+
+def run(quick: bool = False, budget: float = 60.0) -> list[dict]:
+    rows = []
+    for h, sizes in CASES_1DOF.items():
+        for links in sizes[:2] if quick else sizes:
+            row = {"series": f"1-DOF, h = {h}", "h": h, **_one(1, links, h=h)}
+            rows.append(row)
+            if row["seconds"] > budget / 4:
+                break  # the next size would take well over the budget
+    for h, links, n1 in CASES_OPEN[:2] if quick else CASES_OPEN:
+        rows.append({"series": f"W = 3, n1 = {n1}", "h": h, **_one(3, links, h=h, n1=n1)})
+    planar = [r for r in rows if r["series"] == "1-DOF, h = 3" and r["chains"] >= 10]
+    for row in rows:
+        near = min(planar, key=lambda r: abs(r["chains"] - row["chains"]), default=None)
+        if near and row["us_per_chain"]:
+            row["per_chain_vs_h3"] = round(row["us_per_chain"] / near["us_per_chain"], 2)
+    OUT.mkdir(parents=True, exist_ok=True)
+    columns = ["series", "h", "links", "chains", "units", "seconds", "chains_per_s", "candidates_per_chain",
+               "us_per_chain", "per_chain_vs_h3"]
+    with open(OUT / "universal.csv", "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=columns)
+        writer.writeheader()
+        writer.writerows(rows)
+    return rows
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    for row in run(parser.parse_args().quick):
+        print(row)
