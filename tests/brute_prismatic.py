@@ -1,0 +1,86 @@
+"""Independent answers for prismatic pairs (test helpers, nothing imported from ``synth``).
+
+* ``generic_mobility``: the planar constraint Jacobian at a random configuration, its rank
+  giving the generic mobility (what the wedge rule must equal);
+* ``brute_variant_count``: assignments of k prismatic pairs up to the chain's symmetry, by
+  trying every permutation of the links (itertools, not nauty), without idle joints.
+"""
+
+from __future__ import annotations
+
+from itertools import combinations, permutations
+
+import numpy as np
+
+__all__ = ["generic_mobility", "brute_variant_count", "has_idle_joint"]
+
+
+def generic_mobility(links: int, joints, kinds, rng: np.random.Generator, *, trials: int = 2) -> int:
+    """3(n − 1) − rank of the velocity constraints at random joint points and slide directions.
+
+    A link's velocity state is (ω, vx, vy) of the point at the origin.  A revolute pair at r
+    equates the two links' velocities of r (2 rows); a prismatic pair of direction u equates
+    their ω and their velocities across u (2 rows).  The largest rank over a few random
+    configurations is the generic rank.
+    """
+    best = 0
+    for _ in range(trials):
+        rows = []
+        for j, kind in zip(joints, kinds):
+            a, b = j
+            if kind == "revolute":
+                rx, ry = rng.normal(size=2)
+                for coeffs in ((-ry, 1.0, 0.0), (rx, 0.0, 1.0)):
+                    row = np.zeros(3 * links)
+                    row[3 * a: 3 * a + 3] = coeffs
+                    row[3 * b: 3 * b + 3] = [-c for c in coeffs]
+                    rows.append(row)
+            else:
+                t = rng.uniform(0, np.pi)
+                nx, ny = -np.sin(t), np.cos(t)
+                for coeffs in ((1.0, 0.0, 0.0), (0.0, nx, ny)):
+                    row = np.zeros(3 * links)
+                    row[3 * a: 3 * a + 3] = coeffs
+                    row[3 * b: 3 * b + 3] = [-c for c in coeffs]
+                    rows.append(row)
+        frame = np.zeros((3, 3 * links))
+        frame[:, :3] = np.eye(3)
+        best = max(best, np.linalg.matrix_rank(np.vstack(rows + [frame])) if rows else 3)
+    return 3 * links - best
+
+
+def has_idle_joint(links: int, joints, kinds) -> bool:
+    """A revolute pair whose links are also joined through prismatic pairs (breadth-first search)."""
+    adj = {x: set() for x in range(links)}
+    for (a, b), k in zip(joints, kinds):
+        if k == "prismatic":
+            adj[a].add(b)
+            adj[b].add(a)
+    for (a, b), k in zip(joints, kinds):
+        if k != "revolute":
+            continue
+        seen, todo = {a}, [a]
+        while todo:
+            x = todo.pop()
+            for y in adj[x] - seen:
+                seen.add(y)
+                todo.append(y)
+        if b in seen:
+            return True
+    return False
+
+
+def brute_variant_count(links: int, joints, count: int, *, idle: bool = False) -> int:
+    """Classes of ``count``-subsets of the (simple) joints under every link permutation keeping the joints."""
+    edges = [tuple(sorted(j)) for j in joints]
+    edge_set = sorted(edges)
+    autos = [p for p in permutations(range(links))
+             if sorted(tuple(sorted((p[a], p[b]))) for a, b in edges) == edge_set]
+    classes = set()
+    for chosen in combinations(range(len(edges)), count):
+        kinds = ["prismatic" if k in chosen else "revolute" for k in range(len(edges))]
+        if not idle and has_idle_joint(links, edges, kinds):
+            continue
+        picked = [edges[k] for k in chosen]
+        classes.add(min(tuple(sorted(tuple(sorted((p[a], p[b]))) for a, b in picked)) for p in autos))
+    return len(classes)
