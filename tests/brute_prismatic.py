@@ -2,8 +2,10 @@
 
 * ``generic_mobility``: the planar constraint Jacobian at a random configuration, its rank
   giving the generic mobility (what the wedge rule must equal);
+* ``count_rule``: the wedge count 3(n − 1) − 2p + c_P, c_P by breadth-first search;
 * ``brute_variant_count``: assignments of k prismatic pairs up to the chain's symmetry, by
-  trying every permutation of the links (itertools, not nauty), without idle joints.
+  trying every permutation of the links (itertools, not nauty), without idle joints and
+  without a hidden redundancy (count ≠ Jacobian rank).
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ from itertools import combinations, permutations
 
 import numpy as np
 
-__all__ = ["generic_mobility", "brute_variant_count", "has_idle_joint"]
+__all__ = ["generic_mobility", "brute_variant_count", "has_idle_joint", "count_rule"]
 
 
 def generic_mobility(links: int, joints, kinds, rng: np.random.Generator, *, trials: int = 2) -> int:
@@ -70,16 +72,42 @@ def has_idle_joint(links: int, joints, kinds) -> bool:
     return False
 
 
+def count_rule(links: int, joints, kinds) -> int:
+    """3(n − 1) − 2p + c_P for simple joints, c_P = |P| − n + (components of the P pairs' graph)."""
+    adj = {x: set() for x in range(links)}
+    for (a, b), k in zip(joints, kinds):
+        if k == "prismatic":
+            adj[a].add(b)
+            adj[b].add(a)
+    seen, components = set(), 0
+    for start in range(links):
+        if start in seen:
+            continue
+        components += 1
+        seen.add(start)
+        todo = [start]
+        while todo:
+            x = todo.pop()
+            for y in adj[x] - seen:
+                seen.add(y)
+                todo.append(y)
+    c_p = sum(1 for k in kinds if k == "prismatic") - links + components
+    return 3 * (links - 1) - 2 * len(joints) + c_p
+
+
 def brute_variant_count(links: int, joints, count: int, *, idle: bool = False) -> int:
     """Classes of ``count``-subsets of the (simple) joints under every link permutation keeping the joints."""
     edges = [tuple(sorted(j)) for j in joints]
     edge_set = sorted(edges)
     autos = [p for p in permutations(range(links))
              if sorted(tuple(sorted((p[a], p[b]))) for a, b in edges) == edge_set]
+    rng = np.random.default_rng(0)
     classes = set()
     for chosen in combinations(range(len(edges)), count):
         kinds = ["prismatic" if k in chosen else "revolute" for k in range(len(edges))]
         if not idle and has_idle_joint(links, edges, kinds):
+            continue
+        if count_rule(links, edges, kinds) != generic_mobility(links, edges, kinds, rng):
             continue
         picked = [edges[k] for k in chosen]
         classes.add(min(tuple(sorted(tuple(sorted((p[a], p[b]))) for a, b in picked)) for p in autos))

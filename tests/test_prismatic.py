@@ -8,11 +8,12 @@ import networkx as nx
 import numpy as np
 import pytest
 
-from brute_prismatic import brute_variant_count, generic_mobility, has_idle_joint
+from brute_prismatic import brute_variant_count, count_rule, generic_mobility, has_idle_joint
 from synth._type_synthesis import type_synthesis
 from synth.chain import Chain
 from synth.errors import InvalidOption
-from synth.prismatic import (idle_joints, prismatic_variants, wedge_loops, wedge_mobility,
+from synth.prismatic import generic_mobility as exact_generic_mobility
+from synth.prismatic import (idle_joints, prismatic_count, prismatic_variants, wedge_loops, wedge_mobility,
                              wedge_subchain_minimum)
 
 FOUR_BAR = Chain.parse("0-1 1-2 2-3 3-0")
@@ -25,23 +26,39 @@ def _assignments(chain: Chain):
         yield Chain(chain.links, chain.joints, bits)
 
 
-def _agree(chain: Chain, rng) -> None:
+def _disagreements(chain: Chain, rng) -> list[Chain]:
+    """Assignments without idle joints where the count and the Jacobian rank differ."""
+    out = []
     for variant in _assignments(chain):
         kinds = variant.kinds or ("revolute",) * len(chain.joints)
         assert bool(idle_joints(variant)) == has_idle_joint(chain.links, variant.joints, kinds)
+        assert wedge_mobility(variant) == count_rule(chain.links, variant.joints, kinds)
         if idle_joints(variant):
             continue
-        assert wedge_mobility(variant) == generic_mobility(chain.links, variant.joints, kinds, rng), variant
+        jacobian = generic_mobility(chain.links, variant.joints, kinds, rng)
+        assert exact_generic_mobility(variant) == jacobian, variant
+        if wedge_mobility(variant) != jacobian:
+            assert jacobian > wedge_mobility(variant)  # a hidden redundant constraint, never a lost one
+            out.append(variant)
+    return out
 
 
-@pytest.mark.parametrize("dof,links", [(1, 4), (1, 6), (1, 8), (2, 5), (2, 7), (3, 6), (0, 3), (0, 5), (0, 7)])
-def test_wedge_rule_equals_jacobian_rank_on_every_assignment(dof, links):
-    """Chains of the atlas (no rigid or over-constrained sub-chain): P pairs only raise each W(S)."""
+@pytest.mark.parametrize("dof,links,hidden", [(1, 4, 0), (1, 6, 0), (1, 8, 1), (2, 5, 0), (2, 7, 0), (3, 6, 0),
+                                              (0, 3, 0), (0, 5, 0),
+                                              pytest.param(0, 7, 33, marks=pytest.mark.slow)])
+def test_wedge_rule_against_jacobian_rank_on_every_assignment(dof, links, hidden):
+    """Every chain of the atlas and every R/P assignment without idle joints: the count equals the
+    generic mobility except on a few assignments with a hidden redundancy (at 8 links: a revolute
+    four-bar loop whose opposite links are held parallel by two chains of P pairs), which the engine
+    recognises by the exact rank and leaves out."""
     rng = np.random.default_rng(dof * 100 + links)
     chains = list(type_synthesis(dof, links, workers=1))
     assert chains
-    for chain in chains:
-        _agree(chain, rng)
+    found = [v for chain in chains for v in _disagreements(chain, rng)]
+    assert len(found) == hidden
+    for v in found:
+        kept = {c.certificate for c in prismatic_variants(Chain(v.links, v.joints), prismatic_count(v), idle=True)}
+        assert v.certificate not in kept
 
 
 def test_wedge_rule_equals_jacobian_rank_on_every_small_graph():
@@ -61,16 +78,16 @@ def test_wedge_rule_equals_jacobian_rank_on_every_small_graph():
             assert wedge_mobility(variant) == generic_mobility(base.links, variant.joints, kinds, rng), variant
             checked += 1
             rescued += base.dof < 0
-    assert checked > 1000 and rescued > 0
+    assert checked > 300 and rescued > 0
 
 
-def test_idle_joint_breaks_the_count():
-    """Why idle joints are set apart: a triangle of two P pairs and an R pair is rigid by the count
-    (W = 0) and rigid in fact, but a four-bar with three P pairs counts W = 1 and cannot move."""
+def test_idle_joint_never_turns():
+    """A four-bar with three P pairs moves (W = 1: three slides close a triangle of displacements)
+    but its revolute pair never turns: it is an idle joint, left out unless asked for."""
     c = Chain(4, FOUR_BAR.joints, ["prismatic", "prismatic", "prismatic", "revolute"])
-    kinds = c.kinds
-    assert idle_joints(c) and wedge_mobility(c) == 1
-    assert generic_mobility(4, c.joints, kinds, np.random.default_rng(1)) == 0
+    assert len(idle_joints(c)) == 1 and wedge_mobility(c) == 1
+    assert generic_mobility(4, c.joints, c.kinds, np.random.default_rng(1)) == 1
+    assert prismatic_variants(FOUR_BAR, 3) == [] and len(prismatic_variants(FOUR_BAR, 3, idle=True)) == 1
 
 
 @pytest.mark.parametrize("chain,counts", [(FOUR_BAR, range(5)), (WATT, (1, 2)), (STEPHENSON, (1, 2))])
@@ -82,21 +99,24 @@ def test_variant_counts_match_brute_force(chain, counts):
 
 
 def test_four_bar_counts():
-    """R-R-R-R; slider-crank; two P pairs adjacent or opposite (Scotch yoke family); three P pairs
-    always make an idle joint; four P pairs: the wedge loop of W = 2."""
-    assert [len(prismatic_variants(FOUR_BAR, k)) for k in range(5)] == [1, 1, 2, 0, 1]
-    assert [len(prismatic_variants(FOUR_BAR, k, idle=True)) for k in range(5)] == [1, 1, 2, 1, 1]
+    """R-R-R-R; slider-crank; two P pairs adjacent (Scotch yoke) or opposite; three P pairs always
+    make an idle joint; four P pairs: the wedge loop of W = 2."""
     (wedge,) = prismatic_variants(FOUR_BAR, 4)
     assert (wedge_mobility(wedge), wedge_loops(wedge)) == (2, 1)
 
 
 def test_wedge_lever_system():
-    """Task 3: 5 links, n2 = 3, n3 = 2, one wedge loop and one lever loop, W = 1."""
+    """Task 3: 5 links, n2 = 3, n3 = 2, one wedge loop and one lever loop, W = 1.  The code 32/0 is a
+    truss as a revolute chain; P pairs that close a wedge loop give it one freedom.  The fewest P
+    pairs: a wedge triangle (three P pairs) and a lever four-bar sharing one of its links' pairs."""
     found = [c for base in type_synthesis(0, 5, code="32/0", workers=1)
              for k in range(7) for c in prismatic_variants(base, k) if wedge_mobility(c) == 1]
-    assert len(found) == 1
-    (c,) = found
-    assert str(c.code) == "32/0" and wedge_loops(c) == 1 and c.loops - wedge_loops(c) == 1
+    assert found and all(str(c.code) == "32/0" and wedge_loops(c) == 1 and c.loops == 2 for c in found)
+    fewest = min(prismatic_count(c) for c in found)
+    (lever,) = [c for c in found if prismatic_count(c) == fewest]
+    assert fewest == 3 and sorted(lever.degrees) == [2, 2, 2, 3, 3]
+    prismatic = [j for j, k in zip(lever.joints, lever.kinds) if k == "prismatic"]
+    assert len({x for j in prismatic for x in j}) == 3  # the three P pairs close one triangle
 
 
 @pytest.mark.parametrize("call,message", [
