@@ -31,7 +31,7 @@ from .errors import InvalidOption
 from .mobility import check_subchains
 
 __all__ = ["prismatic_count", "wedge_loops", "wedge_mobility", "idle_joints", "wedge_subchain_minimum",
-           "generic_mobility", "prismatic_variants", "variant_summary"]
+           "generic_mobility", "prismatic_variants", "variants_of", "variant_summary"]
 
 _MAX_BRUTE_LINKS = 16
 _PRIME = 2_147_483_647  # 2^31 − 1: products of two residues fit in 64-bit integers
@@ -206,6 +206,22 @@ def prismatic_variants(chain: Chain, count: int, *, idle: bool = False,
                 and generic_mobility(variant) == wedge_mobility(variant))
         seen[variant.certificate] = variant if keep else None
     return [seen[c] for c in sorted(seen) if seen[c] is not None]
+
+
+def variants_of(chains, counts: tuple[int, int], *, idle: bool = False,
+                rigid_subchains: bool | None = None):
+    """Every prismatic variant, with A ≤ P pairs ≤ B for ``counts`` = (A, B), of each chain in turn.
+
+    A chain with fewer simple joints than a count has no variant with that many P pairs.
+
+    >>> [prismatic_count(c) for c in variants_of([Chain.parse("0-1 1-2 2-3 3-0")], (0, 9))]
+    [0, 1, 2, 2, 4]
+    """
+    lo, hi = counts
+    for chain in chains:
+        simple = sum(1 for j in chain.joints if len(j) == 2)
+        for k in range(lo, min(hi, simple) + 1):
+            yield from prismatic_variants(chain, k, idle=idle, rigid_subchains=rigid_subchains)
 
 
 def variant_summary(chain: Chain) -> dict:

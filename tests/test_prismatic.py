@@ -127,3 +127,44 @@ def test_wedge_lever_system():
 def test_refusals(call, message):
     with pytest.raises(InvalidOption, match=message):
         call()
+
+
+def _cli(capsys, argv):
+    from mechsynth.cli import main
+
+    code = main(argv)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_four_bar_variants_match_brute_force(capsys):
+    import json
+
+    code, out, _ = _cli(capsys, ["chains", "--dof", "1", "--links", "4", "--prismatic", "0..4", "--count",
+                                 "--workers", "1"])
+    by_code = json.loads(out)["by_code"]
+    expected = {k: brute_variant_count(4, FOUR_BAR.joints, k) for k in range(5)}
+    assert code == 0 and {k: by_code.get(f"4/0 P{k}" if k else "4/0", 0) for k in range(5)} == expected
+
+
+def test_cli_wedge_lever_query(capsys):
+    """Task 3 found by a query: the truss code 32/0 with three P pairs, the row with W = 1."""
+    import json
+
+    code, out, _ = _cli(capsys, ["chains", "--code", "32/0", "--prismatic", "3", "--format", "jsonl", "--workers", "1"])
+    rows = [json.loads(line) for line in out.splitlines()]
+    lever = [r for r in rows if r["dof"] == 1]
+    assert code == 0 and len(lever) == 1
+    assert (lever[0]["code"], lever[0]["loops_2"], lever[0]["loops_3"]) == ("32/0 P3", 1, 1)
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["chains", "--dof", "1", "--links", "4", "--prismatic", "5"], "more prismatic pairs than the 4 simple joints"),
+    (["chains", "--code", "12.0/8-0", "--prismatic", "1"], "multiple joints only"),
+    (["chains", "--dof", "1", "--links", "4", "--idle-joints"], "--idle-joints goes with --prismatic"),
+    (["chains", "--dof", "1", "--links", "4", "--prismatic", "-1"], "--prismatic"),
+    (["chains", "--dof", "1", "--links", "4", "--prismatic", "1", "--count", "--checkpoint", "x.db"], "--checkpoint"),
+])
+def test_cli_refusals(capsys, argv, message):
+    code, out, err = _cli(capsys, argv + ["--workers", "1"])
+    assert code == 2 and err.startswith("mechsynth: ") and message in err and err.count("\n") == 1
