@@ -235,6 +235,4 @@ def variant_summary(chain: Chain) -> dict:
     k2 = wedge_loops(chain)
     row.update(prismatic=p, dof=wedge_mobility(chain), loops_2=k2, loops_3=chain.loops - k2,
                idle_joints=[list(j) for j in idle_joints(chain)])
-    if p:
-        row["code"] = f"{chain.code} P{p}"
     return row
