@@ -95,8 +95,9 @@ def count_rule(links: int, joints, kinds) -> int:
     return 3 * (links - 1) - 2 * len(joints) + c_p
 
 
-def brute_variant_count(links: int, joints, count: int, *, idle: bool = False) -> int:
-    """Classes of ``count``-subsets of the (simple) joints under every link permutation keeping the joints."""
+def brute_variant_count(links: int, joints, count: int, *, idle: bool = False, frames: bool = False) -> int:
+    """Classes of ``count``-subsets of the (simple) joints under every link permutation keeping the joints
+    (with ``frames``: of the subsets together with a fixed link, i.e. the mechanisms)."""
     edges = [tuple(sorted(j)) for j in joints]
     edge_set = sorted(edges)
     autos = [p for p in permutations(range(links))
@@ -110,5 +111,7 @@ def brute_variant_count(links: int, joints, count: int, *, idle: bool = False) -
         if count_rule(links, edges, kinds) != generic_mobility(links, edges, kinds, rng):
             continue
         picked = [edges[k] for k in chosen]
-        classes.add(min(tuple(sorted(tuple(sorted((p[a], p[b]))) for a, b in picked)) for p in autos))
+        for frame in range(links) if frames else (None,):
+            classes.add(min((tuple(sorted(tuple(sorted((p[a], p[b]))) for a, b in picked)),
+                             None if frame is None else p[frame]) for p in autos))
     return len(classes)

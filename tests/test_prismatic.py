@@ -98,6 +98,16 @@ def test_variant_counts_match_brute_force(chain, counts):
             assert got == brute_variant_count(chain.links, chain.joints, k, idle=idle), (k, idle)
 
 
+@pytest.mark.parametrize("chain", [FOUR_BAR, WATT, STEPHENSON])
+def test_mechanism_counts_match_brute_force(chain):
+    """Each variant with a fixed link: the inversions (slider-crank: guide or slider fixed, …)."""
+    from synth._type_synthesis import mechanisms_of
+
+    for k in (1, 2):
+        got = sum(len(mechanisms_of(v)) for v in prismatic_variants(chain, k))
+        assert got == brute_variant_count(chain.links, chain.joints, k, frames=True), k
+
+
 def test_four_bar_counts():
     """R-R-R-R; slider-crank; two P pairs adjacent (Scotch yoke) or opposite; three P pairs always
     make an idle joint; four P pairs: the wedge loop of W = 2."""
