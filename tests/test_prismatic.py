@@ -18,7 +18,7 @@ from synth.prismatic import (idle_joints, prismatic_count, prismatic_variants, w
 
 FOUR_BAR = Chain.parse("0-1 1-2 2-3 3-0")
 WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
-STEPHENSON = Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 1-4")
+STEPHENSON = Chain.parse("0-2 2-1 0-3 3-1 0-4 4-5 5-1")  # ternaries 0, 1 not adjacent
 
 
 def _assignments(chain: Chain):
