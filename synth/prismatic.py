@@ -31,7 +31,7 @@ from .errors import InvalidOption
 from .mobility import check_subchains
 
 __all__ = ["prismatic_count", "wedge_loops", "wedge_mobility", "idle_joints", "wedge_subchain_minimum",
-           "generic_mobility", "prismatic_variants", "variants_of", "variant_summary"]
+           "generic_mobility", "cylinders", "prismatic_variants", "variants_of", "variant_summary"]
 
 _MAX_BRUTE_LINKS = 16
 _PRIME = 2_147_483_647  # 2^31 − 1: products of two residues fit in 64-bit integers
@@ -224,8 +224,19 @@ def variants_of(chains, counts: tuple[int, int], *, idle: bool = False,
             yield from prismatic_variants(chain, k, idle=idle, rigid_subchains=rigid_subchains)
 
 
+def cylinders(chain: Chain) -> int:
+    """Prismatic pairs that join two binary links: each such pair with its two links is a linear
+    actuator (cylinder and piston rod, a hydraulic cylinder) pinned at both ends.
+
+    >>> cylinders(Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)], ["revolute", "prismatic", "revolute", "revolute"]))
+    1
+    """
+    deg = chain.degrees
+    return sum(1 for j in _prismatic_pairs(chain) if deg[j[0]] == 2 and deg[j[1]] == 2)
+
+
 def variant_summary(chain: Chain) -> dict:
-    """Row of a chain with joint kinds: code with its P count, W, K_2, K_3 and the idle joints.
+    """Row of a chain with joint kinds: code with its P count, W, K_2, K_3, cylinders and the idle joints.
 
     >>> variant_summary(Chain(3, [(0, 1), (1, 2), (2, 0)], ["prismatic"] * 3))["code"]
     '3/0 P3'
@@ -234,5 +245,5 @@ def variant_summary(chain: Chain) -> dict:
     p = prismatic_count(chain)
     k2 = wedge_loops(chain)
     row.update(prismatic=p, dof=wedge_mobility(chain), loops_2=k2, loops_3=chain.loops - k2,
-               idle_joints=[list(j) for j in idle_joints(chain)])
+               cylinders=cylinders(chain), idle_joints=[list(j) for j in idle_joints(chain)])
     return row

@@ -171,7 +171,7 @@ def _run_prismatic(args, dof: int, kwargs: dict) -> int:
             return nothing_found("prismatic variants satisfy these parameters and conventions")
         return 0
     fmt = args.format or "table"
-    columns = ["index", "code", "dof", "loops_2", "loops_3", "links", "joints", "kinds", "certificate"]
+    columns = ["index", "code", "dof", "loops_2", "loops_3", "cylinders", "links", "joints", "kinds", "certificate"]
     if args.what == "mechanisms":
         columns[6:6] = ["frame", "input_link"]
     n = write_rows(_indexed(_prismatic_cells(r, fmt) for r in rows), columns, fmt)
@@ -182,7 +182,7 @@ def _run_prismatic(args, dof: int, kwargs: dict) -> int:
 
 def _mechanism_row(mechanism, summary: dict) -> dict:
     row = mechanism.to_dict()
-    row.update((k, summary[k]) for k in ("code", "dof", "prismatic", "loops_2", "loops_3", "idle_joints"))
+    row.update((k, summary[k]) for k in ("code", "dof", "prismatic", "loops_2", "loops_3", "cylinders", "idle_joints"))
     return row
 
 

@@ -52,7 +52,8 @@ def _prismatic(run: Run) -> dict:
     by_dof: dict[str, int] = {}
     for r in rows:
         by_dof[str(r["dof"])] = by_dof.get(str(r["dof"]), 0) + 1
-    return {"count": len(rows), "by_dof": by_dof, "variants": rows}
+    actuated = sum(1 for r in rows if r["cylinders"] == r["prismatic"] > 0)
+    return {"count": len(rows), "by_dof": by_dof, "all_cylinders": actuated, "variants": rows}
 
 
 def _planetary(run: Run) -> dict:
@@ -66,8 +67,9 @@ def _planetary(run: Run) -> dict:
 
 add_kind(ComputeKind(
     "prismatic", "R/P variants of a chain up to symmetry (wedge rule, idle joints left out)", "prismatic",
-    _prismatic, expect={"variants": Expectation(Whole, ("count",)), "variants_by_dof": Expectation(WholeTable, ("by_dof",))},
-    report=lambda r: [f"{r['count']} variants, by W: {r['by_dof']}"]))
+    _prismatic, expect={"variants": Expectation(Whole, ("count",)), "variants_by_dof": Expectation(WholeTable, ("by_dof",)),
+                              "variants_all_cylinders": Expectation(Whole, ("all_cylinders",))},
+    report=lambda r: [f"{r['count']} variants, by W: {r['by_dof']}; every P pair a cylinder: {r['all_cylinders']}"]))
 add_kind(ComputeKind(
     "planetary", "a planetary train's lever analogue: code, W, K, D, verdict, Assur groups", "planetary",
     _planetary, expect={"train_code": Expectation(Text, ("code",)), "train_dof": Expectation(Int, ("dof",)),
