@@ -1,6 +1,6 @@
 """Run every benchmark on this machine and write ``benchmarks/REPORT.md`` with tables and plots.
 
-Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N]``).
+Run: ``benchmarks/run`` (or ``python benchmarks/report.py [--quick] [--reps N] [--projection N] [--no-sixteen]``).
 CSVs go to ``benchmarks/out/`` (not committed); the plots the report shows go to
 ``benchmarks/figures/``.  Set ``GENSPARSEG`` to a gensparseg binary to add the side-by-side
 column (nauty's ``geng`` built with M. Larsson's nauty-laman-plugin ``prunesparse.h``, MIT licence;
@@ -99,6 +99,8 @@ def main(argv=None) -> int:
     parser.add_argument("--reps", type=int, default=3, help="timed runs of each small synthesis case (minimum kept)")
     parser.add_argument("--projection", type=int, metavar="LINKS",
                         help="also project the 1-DOF count at LINKS links from a sample of units (e.g. 18)")
+    parser.add_argument("--no-sixteen", dest="sixteen", action="store_false",
+                        help="skip the whole 1-DOF count at 16 links on 2 workers (about 10 minutes; never with --quick)")
     args = parser.parse_args(argv)
     os.environ.setdefault("MPLBACKEND", "Agg")
     started = time.perf_counter()
@@ -124,11 +126,13 @@ def main(argv=None) -> int:
     bench = _load("bench_synthesis")
     synthesis = bench.run(quick=args.quick, full=not args.quick, reps=args.reps)
     parts += ["", "## Type synthesis: time against link count", "",
-              "One process: stage A (branch multigraphs), stage B CP-SAT, exact sub-chain test and nauty; "
+              "One process: stage A (branch multigraphs), stage B CP-SAT, exact sub-chain test and nauty "
+              "(`one_core_s`: the listing; `count_one_core_s`: the count, which builds no chain where stage B "
+              "already gives one vector per chain); "
               "then the real command `mechsynth chains --count --workers 2` with start-up included "
               "(`wall_2_workers_s`: minimum of `reps` runs; `cpu_2_workers_s`: its CPU time, all processes).", "",
               _table(synthesis, ["series", "links", "v", "chains", "reference", "error", "units", "stage_a_s",
-                                 "cpsat_s", "subchain_s", "nauty_s", "one_core_s", "wall_2_workers_s",
+                                 "cpsat_s", "subchain_s", "nauty_s", "one_core_s", "count_one_core_s", "wall_2_workers_s",
                                  "cpu_2_workers_s", "reps", "candidates_per_chain", "chains_per_s"]),
               _figure("synthesis.png")]
     if gensparseg:
@@ -138,6 +142,12 @@ def main(argv=None) -> int:
                   "`ratio` = mechsynth / gensparseg (below 1: mechsynth is faster).", "",
                   _table(side, ["links", "chains", "gensparseg_chains", "gensparseg_agrees", "wall_2_workers_s",
                                 "gensparseg_s", "ratio", "reps"])]
+    if args.sixteen and not args.quick:
+        row = bench.large(16)
+        parts += ["", "## 16 links, whole count", "",
+                  "`mechsynth chains --dof 1 --links 16 --count --force --workers 2`, start-up included; CPU of all "
+                  "processes; `peak_rss_mib`: the largest single process (parent or worker).", "",
+                  _table([row], list(row))]
     by_v = bench.by_v_rows(synthesis)
     if by_v:
         parts += ["", "## Multiple joints: candidates per chain by v", "",

@@ -20,8 +20,6 @@ import sys
 
 from synth.errors import InvalidOption, SynthesisError
 
-from . import __version__
-
 __all__ = ["main"]
 
 
@@ -30,6 +28,16 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message):  # noqa: D401 - argparse API
         raise InvalidOption(f"{message} (see '{self.prog} --help')")
+
+
+class _Version(argparse.Action):
+    """``--version``: the installed version, looked up only when asked."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from . import __version__
+
+        print(f"mechsynth {__version__}")
+        parser.exit()
 
 
 # ----------------------------------------------------------------- balance
@@ -41,7 +49,7 @@ def _run_balance(argv: list[str]) -> int:
 
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
-    parser.add_argument("--version", action="version", version=f"mechsynth {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     from .commands import atlas, chains, codes, planetary, scene
 

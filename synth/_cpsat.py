@@ -98,14 +98,17 @@ _alias_pre_pep8_names()
 
 
 class _Collector(cp_model.CpSolverSolutionCallback):
+    """Keeps each solution's values of ``variables``, read by index (``Value`` per variable
+    costs about a tenth of stage B's time at 12–14 links)."""
+
     def __init__(self, variables: Sequence[cp_model.IntVar], limit: int | None):
         super().__init__()
-        self._variables = list(variables)
+        self._index = [x.index for x in variables]
         self._limit = limit
         self.solutions: list[tuple[int, ...]] = []
 
     def on_solution_callback(self) -> None:
-        self.solutions.append(tuple(self.Value(x) for x in self._variables))
+        self.solutions.append(tuple(map(self.SolutionIntegerValue, self._index)))
         if self._limit is not None and len(self.solutions) >= self._limit:
             self.StopSearch()
 

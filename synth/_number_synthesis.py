@@ -21,7 +21,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from ._cpsat import Model, all_solutions
 from ._params import check_dof, check_extra_mobility, check_motion_space
 from .code import Code
 from .errors import ImpossibleParameters, InvalidOption
@@ -232,7 +231,33 @@ def _bound_name(max_link_degree) -> str:
 
 
 def _solve(problem: Problem) -> list[Code]:
+    """The codes of one validated problem: the single loop in closed form, else the CP-SAT model."""
+    if problem.loops == 1 and problem.n1[1] == 0:
+        return _single_loop(problem)
+    return _model_codes(problem)
+
+
+def _single_loop(problem: Problem) -> list[Code]:
+    """A closed chain with one loop: Σ n_i = n and Σ i·n_i + v = 2n with every i ≥ 2 force every
+    link binary and v = 0, so the code is n binary links if the requirements allow it (a query for
+    it loads no solver: start-up is most of its time).
+
+    >>> [str(c) for c in _single_loop(make_problem(1, links=4))]
+    ['4/0']
+    """
+    n, imax = problem.links, problem.max_link_degree
+    counts = {i: (n if i == 2 else 0) for i in range(1, imax + 1)}
+    if problem.v[0] > 0 or any(i <= imax and not lo <= counts[i] <= (n if hi is None else hi)
+                               for i, (lo, hi) in problem.requirements):
+        return []
+    composition = (0,) * len(range(2, problem.max_multiplicity or n)) if problem.compositions else None
+    return [Code(tuple(counts[i] for i in range(2, imax + 1)), 0, composition, 0)]
+
+
+def _model_codes(problem: Problem) -> list[Code]:
     """Build and enumerate the CP-SAT model of one validated problem."""
+    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+
     n, K, imax = problem.links, problem.loops, problem.max_link_degree
     model = Model()
     counts = {i: model.NewIntVar(0, n, f"n{i}") for i in range(1, imax + 1)}

@@ -27,12 +27,10 @@ from itertools import combinations
 from time import perf_counter
 
 import pynauty
-from ._cpsat import Model, all_solutions
 from .chain import Chain
 from .code import Code
-from .mobility import check_subchains
 
-__all__ = ["Conventions", "Contracted", "contracted_graphs", "realise"]
+__all__ = ["Conventions", "Contracted", "contracted_graphs", "count_realised", "realise"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
@@ -73,16 +71,23 @@ class Contracted:
         coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
         return pynauty.Graph(m + len(self.edges), adjacency_dict=adjacency, vertex_coloring=coloring)
 
-    def edge_group(self) -> list[tuple[int, ...]]:
-        """Automorphisms of H acting on its edge list (the whole group if small, else generators)."""
+    def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
+        """Automorphisms of H acting on its edge list, and whether that is the whole group.
+
+        The whole group (identity left out) if its order is at most 4096, else generators and
+        their inverses.
+
+        >>> Contracted((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), "").edge_group()[1]
+        True
+        """
         m, e = len(self.kinds), len(self.edges)
         if e == 0:
-            return []
+            return [], True
         gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
         gens = [tuple(g[m + k] - m for k in range(e)) for g in gens]
         gens = [g for g in gens if any(g[k] != k for k in range(e))]
         if size1 * 10.0**size2 > _GROUP_LIMIT:
-            return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens]  # and inverses
+            return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
         identity = tuple(range(e))
         group, frontier = {identity}, [identity]
         while frontier:
@@ -95,7 +100,7 @@ class Contracted:
                         nxt.append(b)
             frontier = nxt
         group.discard(identity)
-        return sorted(group)
+        return sorted(group), True
 
 
 def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
@@ -117,6 +122,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
     [((0, 1), (0, 1), (0, 1))]
     """
+    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+
     kinds = _branch_kinds(code)
     n2 = code.count(2)
     m = len(kinds)
@@ -143,7 +150,9 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         else:
             model.AddMaxEquality(lb, [0, var - 1])
         lbs.append(lb)
-    model.Add(sum(lbs) + sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m)) <= n2)
+    loops_lb = sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m))
+    model.Add(sum(lbs) + loops_lb <= n2)
+    _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(), conv)
     # connectivity: every cut around a set holding vertex 0 is crossed by an edge
     for size in range(1, m):
         for T in combinations(range(1, m), size - 1):
@@ -184,6 +193,43 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     return [seen[c] for c in sorted(seen)]
 
 
+def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv: Conventions) -> None:
+    """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
+    vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
+    distribution (most of them, and the costliest: they are whole units of stage B).
+
+    A string inside T with 0 binary links costs its condition 2, with 1 binary link 1, so the E_T
+    strings inside T hold at least 2·E_T − bound(T) binary links; the other strings at least
+    their pairwise bounds ``lbs``. The condition holds where stage B writes it: every joint of T
+    on a string from a link of T (a bool per joint and set of links, ``touched``).
+    """
+    links = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
+    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    touched: dict = {}
+
+    def touches(J, TL):
+        if (J, TL) not in touched:
+            ends = [x[min(J, L), max(J, L)] for L in TL]
+            t = touched[J, TL] = model.NewBoolVar("")
+            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
+            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+        return touched[J, TL]
+
+    for size in range(1, len(links) + 1):
+        if size == len(links) and dof < conv.threshold:
+            break  # T would hold every link: maybe the whole chain, which is exempt
+        for TL in combinations(links, size):
+            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
+                for TJ in combinations(joints, jsize):
+                    T = set(TL + TJ)
+                    inside = {p for p in x if p[0] in T and p[1] in T}
+                    # one link: S has two links or more only with a one-link string (weaker bound)
+                    bound = 3 * (size - 1) + 2 * jsize - (conv.threshold if size >= 2 else 0)
+                    need = 2 * sum(x[p] for p in inside) - bound
+                    rest = sum(lb for p, lb in lbs.items() if p not in inside)
+                    model.Add(need + rest + loops_lb <= n2).OnlyEnforceIf([touches(J, TL) for J in TJ])
+
+
 def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     """Fractionation and planarity of the chain, decided on H."""
     if conv.fractionated and not conv.planar_only:
@@ -202,8 +248,10 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     return True
 
 
-def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
-    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
+def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool]:
+    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string), and
+    whether they are one per orbit of Aut(H) (lex-leader on the whole group and every edge)."""
+    from ._cpsat import Model, all_solutions
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
     model = Model()
@@ -243,7 +291,6 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
         model.AddBoolOr([z[k].Not(), o[k].Not()])
     link_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "L"]
     joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
-    whole = not joint_vertices
     dof = code.dof()
     for size in range(1, len(link_vertices) + 1):
         for TL in combinations(link_vertices, size):
@@ -263,33 +310,77 @@ def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = N
             model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
             chosen.append(sel)
         if not chosen:
-            return []
+            return [], True
         model.AddBoolOr(chosen)
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
-    for g in h.edge_group():
+    group, whole_group = h.edge_group()
+    for g in group:
         lhs = sum(base ** (prefix - 1 - i) * w[i] for i in range(prefix))
         rhs = sum(base ** (prefix - 1 - i) * w[g[i]] for i in range(prefix))
         model.Add(lhs <= rhs)
     t0 = perf_counter()
     solutions = all_solutions(model, w)
-    t1 = perf_counter()
-    if whole:  # simple joints: exact test on H for all candidates at once
-        passed = _exact_on_h(kinds, edges, solutions, dof, conv)
-        chains = [_expand(code, kinds, edges, s) for s, ok in zip(solutions, passed) if ok]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group and prefix == len(edges)
+
+
+def _add(stats: dict | None, **values) -> None:
+    if stats is not None:
+        for key, value in values.items():
+            stats[key] = stats.get(key, 0) + value
+
+
+def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dict | None) -> tuple[list, list]:
+    """The candidates that pass the exact sub-chain test, and their chains if the test built them."""
+    t0 = perf_counter()
+    if all(kind[0] == "L" for kind in h.kinds):  # simple joints: exact test on H for all candidates at once
+        passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(), conv)
+        kept, chains = [s for s, ok in zip(solutions, passed) if ok], []
     else:
-        chains = [_expand(code, kinds, edges, s) for s in solutions]
-        chains = [c for c in chains if check_subchains(c, rigid_subchains=conv.rigid_subchains).ok]
-    t2 = perf_counter()
+        from .mobility import check_subchains  # numpy and a popcount table: only multiple joints need it here
+
+        chains = [_expand(code, h.kinds, h.edges, s) for s in solutions]
+        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok for c in chains]
+        kept = [s for s, good in zip(solutions, ok) if good]
+        chains = [c for c, good in zip(chains, ok) if good]
+    _add(stats, subchain_s=perf_counter() - t0)
+    return kept, chains
+
+
+def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
+    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
+    solutions, _ = _distributions(code, h, conv, stats)
+    return _distinct(code, h, *_passing(code, h, conv, solutions, stats), stats)
+
+
+def _distinct(code: Code, h: Contracted, kept: list, chains: list, stats: dict | None) -> list[Chain]:
+    """The chains of the passing vectors ``kept`` (``chains`` if built already), once each by certificate."""
+    t0 = perf_counter()
+    chains = chains or [_expand(code, h.kinds, h.edges, s) for s in kept]
     found: dict[str, Chain] = {}
     for chain in chains:
         found.setdefault(chain.certificate, chain)
-    if stats is not None:
-        for key, value in (("candidates", len(solutions)), ("cpsat_s", t1 - t0), ("subchain_s", t2 - t1),
-                           ("nauty_s", perf_counter() - t2)):
-            stats[key] = stats.get(key, 0) + value
+    _add(stats, nauty_s=perf_counter() - t0)
     return [found[c] for c in sorted(found)]
+
+
+def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``len(realise(code, h, conv))``, without chains or certificates where they are not needed.
+
+    Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
+    one weight vector onto the other; when the lex-leader constraints cover the whole group of
+    H and every edge, stage B yields one vector per orbit, so the chains are the vectors that
+    pass the sub-chain test (docs/theory.md). Otherwise the chains are built and compared.
+
+    >>> h = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
+    >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
+    (2, 2)
+    """
+    solutions, one_per_orbit = _distributions(code, h, conv, stats)
+    kept, chains = _passing(code, h, conv, solutions, stats)
+    return len(kept) if one_per_orbit else len(_distinct(code, h, kept, chains, stats))
 
 
 def _subset_constraint(model, kinds, edges, z, o, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:

@@ -25,6 +25,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -39,6 +40,42 @@ _POPCOUNT16 = np.array([bin(i).count("1") for i in range(1 << 16)], dtype=np.int
 
 def _popcount(x: np.ndarray) -> np.ndarray:
     return _POPCOUNT16[x & 0xFFFF] + _POPCOUNT16[(x >> 16) & 0xFFFF]
+
+
+_MATRIX_CORE = 16  # up to this many core links, memberships come from one matrix product (≤ 4 MiB)
+
+
+@lru_cache(maxsize=None)
+def _subsets(c: int) -> tuple[np.ndarray, np.ndarray]:
+    """The 2^c subsets of c core links as bit masks, and their sizes (read-only, shared; cached
+    up to _MATRIX_CORE links, so a 24-link core does not stay in memory)."""
+    T = np.arange(1 << c, dtype=np.int64)
+    size = _popcount(T).astype(np.int64)
+    T.flags.writeable = size.flags.writeable = False
+    return T, size
+
+
+@lru_cache(maxsize=None)
+def _subset_bits(c: int) -> np.ndarray:
+    """Row T, column i: 1 if subset T of the c core links holds link i (float32: exact, and BLAS)."""
+    T = np.arange(1 << c, dtype=np.int64)
+    return ((T[:, None] >> np.arange(c)) & 1).astype(np.float32)
+
+
+def _members(T: np.ndarray, c: int, groups: list[list[int]]) -> np.ndarray:
+    """Row T, column k: how many core links of ``groups[k]`` (indices) the subset T holds.
+
+    >>> _members(np.arange(4), 2, [[0, 1], [1]]).tolist()
+    [[0, 0], [1, 0], [1, 1], [2, 1]]
+    """
+    if not groups:
+        return np.zeros((len(T), 0), dtype=np.int64)
+    if c <= _MATRIX_CORE:
+        M = np.zeros((c, len(groups)), dtype=np.float32)
+        for k, group in enumerate(groups):
+            M[group, k] = 1
+        return (_subset_bits(c) @ M).astype(np.int64)
+    return np.stack([_popcount(T & sum(1 << i for i in group)) for group in groups], axis=1)
 
 
 def subchain_mobility(chain: Chain, links) -> int:
@@ -139,21 +176,14 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
         return SubchainReport(True, best[1], best[0], threshold)
     index = {x: i for i, x in enumerate(core)}
     c = len(core)
-    T = np.arange(1 << c, dtype=np.int64)
-    size = _popcount(T).astype(np.int64)
+    T, size = _subsets(c) if c <= _MATRIX_CORE else _subsets.__wrapped__(c)
     W = 3 * (size - 1)
     core_set = set(core)
-    for j in chain.joints:
-        if all(x in core_set for x in j):
-            mask = sum(1 << index[x] for x in j)
-            W -= 2 * np.maximum(_popcount(T & mask) - 1, 0)
+    on_core = [[index[x] for x in j] for j in chain.joints if all(x in core_set for x in j)]
+    W -= 2 * np.maximum(_members(T, c, on_core) - 1, 0).sum(axis=1)
     short = [(a, b, body) for a, b, body in paths if len(body) == 1 and a is not None and a != b]
-    extra = np.zeros_like(T)
-    for a, b, _ in short:
-        mask = (1 << index[a]) | (1 << index[b])
-        hit = (T & mask) == mask
-        W -= hit
-        extra += hit
+    extra = (_members(T, c, [[index[a], index[b]] for a, b, _ in short]) == 2).sum(axis=1)
+    W -= extra
     full = (1 << c) - 1
     proper = np.ones(1 << c, dtype=bool)
     proper_all = not all(len(body) <= 1 for _, _, body in paths)

@@ -219,3 +219,25 @@ def test_make_problem_accepts(kwargs, links, loops):
 
     p = make_problem(**kwargs)
     assert (p.links, p.loops) == (links, loops)
+
+
+@pytest.mark.parametrize("kwargs, brute_kwargs", [
+    (dict(), dict()),
+    (dict(compositions=True), dict(split=True)),
+    (dict(compositions=True, max_multiplicity=3), dict(split=True, max_multiplicity=3)),
+    (dict(require=["2=3..5"]), dict(require={2: (3, 5)})),
+    (dict(require=["2=..3"]), dict(require={2: (0, 3)})),
+    (dict(require=["3=1.."], max_link_degree=4), dict(require={3: (1, None)}, imax=4)),
+    (dict(max_link_degree="K+W"), dict(imax="K+W")),
+], ids=["plain", "compositions", "multiplicity", "n2-low", "n2-high", "n3", "K+W"])
+@pytest.mark.parametrize("dof", [0, 1, 3])
+def test_single_loop_equals_brute_force_and_the_model(dof, kwargs, brute_kwargs):
+    """One loop is solved without CP-SAT (every link binary): the same codes as the model."""
+    from synth._number_synthesis import _model_codes, _single_loop, make_problem
+
+    bk = dict(brute_kwargs)
+    if bk.get("imax") == "K+W":
+        bk["imax"] = max(2, 1 + dof)  # a closed chain allows binary links whatever the bound
+    problem = make_problem(dof, loops=1, **kwargs)
+    assert set(_single_loop(problem)) == set(_model_codes(problem)) == brute(dof, 1, **bk)
+    assert set(number_synthesis(dof, loops=1, **kwargs)) == brute(dof, 1, **bk)

@@ -90,7 +90,13 @@ def test_the_families_give_both_verdicts():
 
 @pytest.mark.parametrize("family", FAMILIES)
 @pytest.mark.parametrize("rigid", [False, True], ids=["nondegenerate", "rigid-allowed"])
-def test_check_subchains_equals_every_subset(family, rigid):
+@pytest.mark.parametrize("matrix_core", [16, 0], ids=["matrix product", "bit counts"])
+def test_check_subchains_equals_every_subset(family, rigid, matrix_core, monkeypatch):
+    """Both ways of counting a subset's links on each joint (a matrix product up to 16 core
+    links, bit counts beyond) agree with every subset."""
+    import synth.mobility as mobility
+
+    monkeypatch.setattr(mobility, "_MATRIX_CORE", matrix_core)
     for fam, links, joints in CASES:
         if fam == family:
             _check(links, joints, rigid, exact_least=not _parallel(joints))

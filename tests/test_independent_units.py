@@ -43,3 +43,18 @@ def test_run_unit_statistics_and_the_single_loop():
     assert loop.contracted is None and [c.compact() for c in synth.run_unit(loop)] == ["0-1 0-2 1-2"]
     (four,) = synth.plan_units(1, 4)
     assert [c.compact() for c in synth.run_unit(four)] == ["0-1 0-3 1-2 2-3"]
+
+
+@pytest.mark.parametrize("query", [dict(dof=1, links=10, v=(0, 3)), dict(dof=0, links=9), dict(dof=2, links=9),
+                                   dict(dof=1, links=10, cranks={4: 2})], ids=str)
+@pytest.mark.parametrize("group_limit", [4096, 1], ids=["whole group", "generators only"])
+def test_counting_a_unit_equals_its_distinct_chains(query, group_limit, monkeypatch):
+    """count_realised counts stage B's vectors when they are one per orbit of Aut(H), else it
+    compares certificates (forced here by a group limit of 1): either way it equals realise."""
+    from synth import _realise
+
+    monkeypatch.setattr(_realise, "_GROUP_LIMIT", group_limit)
+    units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
+    args = [(u.code, u.contracted, u.conventions) for u in units]
+    assert [_realise.count_realised(*a) for a in args] == [len(_realise.realise(*a)) for a in args]
+    assert sum(len(_realise.realise(*a)) for a in args) > 0

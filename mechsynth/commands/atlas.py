@@ -8,7 +8,7 @@ Example
 >>> grid, db = str(folder / "g.toml"), str(folder / "a.sqlite")
 >>> _ = pathlib.Path(grid).write_text('dof = 1\\nlinks = "4..8"\\n')
 >>> main(["grid", grid, "--db", db, "--workers", "1", "--format", "json"])  # doctest: +ELLIPSIS
-{"status": "done", "units_total": 7, ...}
+{"status": "done", "units_total": 6, ...}
 0
 >>> main(["atlas", "--db", db, "--export", "mechanisms", "--where", "n=8", "--count"])
 {"count": 71, "by_code": {"440/0": 35, "521/0": 31, "602/0": 5}}
