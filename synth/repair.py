@@ -80,10 +80,13 @@ def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth
     """The nearest valid chains (intended W: ``dof`` or the chain's own), fewest edits first.
 
     Each item: ``edits`` (words), ``code``, ``chain`` (the compact joint list ``analyze`` reads).
+    A chain that is valid already needs no repair: the list is empty.
     """
     if limit < 1:
         raise InvalidOption(f"the number of repairs must be ≥ 1, not {limit}")
     target = chain.dof if dof is None else dof
+    if _valid(chain, target):
+        return []
     found: list[dict] = []
     seen = {chain.certificate}
     level = [(chain, [])]
@@ -147,8 +150,14 @@ def _code_edits(code: Code):
 
 
 def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -> list[dict]:
-    """The nearest standard codes with W = ``dof``, fewest edits first, each verified by one chain."""
+    """The nearest standard codes with W = ``dof``, fewest edits first, each verified by one chain
+    (empty when ``code`` itself has W = ``dof`` and a valid chain)."""
     from ._type_synthesis import type_synthesis
+
+    if limit < 1:
+        raise InvalidOption(f"the number of repairs must be ≥ 1, not {limit}")
+    if code.dof() == dof and next(iter(type_synthesis(dof, code=str(code), workers=1)), None) is not None:
+        return []
 
     found, seen, level = [], {str(code)}, [(code, [])]
     for _ in range(depth):

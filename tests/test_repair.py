@@ -44,6 +44,11 @@ def test_over_constrained_code_gets_verified_repairs():
         _check(r["chain"], 2)
 
 
+def test_valid_structures_need_no_repair():
+    assert chain_repairs(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")) == []
+    assert code_repairs(Code.parse("6301/0"), 1) == []
+
+
 def test_cli_json_repairs(capsys):
     from mechsynth.cli import main
 

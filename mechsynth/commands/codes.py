@@ -167,7 +167,7 @@ def _print_repairs(repairs) -> None:
     if repairs is None:
         return
     if not repairs:
-        print("repairs   none within three edits (or nothing to repair)")
+        print("repairs   none: the structure is valid already, or no valid one lies within three edits")
     for i, r in enumerate(repairs, start=1):
         print(f"repair {i}  {r['code']}  {r.get('chain', '')}".rstrip())
         for edit in r["edits"]:
