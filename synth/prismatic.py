@@ -31,7 +31,7 @@ from .errors import InvalidOption
 from .mobility import check_subchains
 
 __all__ = ["prismatic_count", "wedge_loops", "wedge_mobility", "idle_joints", "wedge_subchain_minimum",
-           "generic_mobility", "cylinders", "prismatic_variants", "variants_of", "variant_summary"]
+           "generic_mobility", "cylinders", "prismatic_variants", "variants_of", "variant_summary", "variant_rows"]
 
 _MAX_BRUTE_LINKS = 16
 _PRIME = 2_147_483_647  # 2^31 − 1: products of two residues fit in 64-bit integers
@@ -247,3 +247,24 @@ def variant_summary(chain: Chain) -> dict:
     row.update(prismatic=p, dof=wedge_mobility(chain), loops_2=k2, loops_3=chain.loops - k2,
                cylinders=cylinders(chain), idle_joints=[list(j) for j in idle_joints(chain)])
     return row
+
+
+def variant_rows(chains, counts: tuple[int, int], *, idle: bool = False, mechanisms: bool = False,
+                 input_link: bool = False):
+    """Rows (dicts) of the variants of ``chains`` (:func:`variant_summary`), or of their mechanisms.
+
+    >>> [r["frame"] for r in variant_rows([Chain.parse("0-1 1-2 2-3 3-0")], (1, 1), mechanisms=True)]
+    [0, 2]
+    """
+    from ._type_synthesis import mechanisms_of
+
+    for chain in variants_of(chains, counts, idle=idle):
+        summary = variant_summary(chain)
+        if not mechanisms:
+            yield summary
+            continue
+        for m in mechanisms_of(chain, input_link=input_link):
+            row = m.to_dict()
+            row.update((k, summary[k]) for k in ("code", "dof", "prismatic", "loops_2", "loops_3", "cylinders",
+                                                 "idle_joints"))
+            yield row

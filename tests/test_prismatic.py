@@ -178,3 +178,22 @@ def test_cli_wedge_lever_query(capsys):
 def test_cli_refusals(capsys, argv, message):
     code, out, err = _cli(capsys, argv + ["--workers", "1"])
     assert code == 2 and err.startswith("mechsynth: ") and message in err and err.count("\n") == 1
+
+
+def test_atlas_export_of_variants_matches_chains_query(capsys, tmp_path):
+    """The atlas's chains, exported with --prismatic, give the same counts as the chains query."""
+    import json
+
+    grid = tmp_path / "g.toml"
+    grid.write_text('dof = 1\nlinks = "4..6"\n')
+    db = str(tmp_path / "a.sqlite")
+    assert _cli(capsys, ["grid", str(grid), "--db", db, "--workers", "1"])[0] == 0
+    code, out, _ = _cli(capsys, ["atlas", "--db", db, "--prismatic", "1..2", "--count"])
+    by_code = json.loads(out)["by_code"]
+    expected = {}
+    for links in (4, 6):
+        _, out, _ = _cli(capsys, ["chains", "--dof", "1", "--links", str(links), "--prismatic", "1..2", "--count",
+                                  "--workers", "1"])
+        expected.update(json.loads(out)["by_code"])
+    assert code == 0 and by_code == expected
+    assert _cli(capsys, ["atlas", "--db", db, "--idle-joints"])[0] == 2

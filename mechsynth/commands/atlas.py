@@ -44,6 +44,9 @@ def add_commands(sub) -> None:
                    help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
                         "fractionated=0, cell=KEY")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
+    p.add_argument("--prismatic", metavar="A..B",
+                   help="export the selected chains' variants with A…B prismatic pairs, up to symmetry")
+    p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
                    help="summary: table or json; export: jsonl, csv or table")
     p.set_defaults(run=_run_atlas)
@@ -93,7 +96,9 @@ def _run_atlas(args) -> int:
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
-    what = args.export or ("chains" if args.where or args.count else None)
+    if args.idle_joints and args.prismatic is None:
+        raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
     if what is None:
         fmt = args.format or "table"
         if fmt not in ("table", "json"):
@@ -104,6 +109,8 @@ def _run_atlas(args) -> int:
         else:
             _print_summary(info)
         return 0
+    if args.prismatic is not None:
+        return _export_variants(args, what)
     rows = export(args.db, what, where=args.where)
     if args.count:
         by_code: dict[str, int] = {}
@@ -113,6 +120,22 @@ def _run_atlas(args) -> int:
     else:
         found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _export_variants(args, what: str) -> int:
+    """``--prismatic``: the R/P variants of the selected chains (mechanisms: of each variant)."""
+    from synth._number_synthesis import parse_range
+    from synth.atlas import export
+    from synth.chain import Chain
+    from synth.prismatic import variant_rows
+
+    from .chains import write_variants
+
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=args.where))
+    rows = variant_rows(chains, (lo, 10**6 if hi is None else hi), idle=args.idle_joints,
+                        mechanisms=what == "mechanisms")
+    return write_variants(rows, what, args.count, args.format or ("jsonl" if not args.count else None))
 
 
 def _print_summary(info: dict) -> None:

@@ -152,38 +152,33 @@ def _prismatic_range(args, dof: int) -> tuple[int, int]:
 
 def _run_prismatic(args, dof: int, kwargs: dict) -> int:
     """``--prismatic``: the R/P variants of every chain (or their mechanisms), counted or listed."""
-    from synth._type_synthesis import mechanisms_of, type_synthesis
-    from synth.prismatic import variant_summary, variants_of
+    from synth._type_synthesis import type_synthesis
+    from synth.prismatic import variant_rows
 
-    counts = _prismatic_range(args, dof)
-    variants = variants_of(type_synthesis(dof, args.links, **kwargs), counts, idle=args.idle_joints)
-    if args.what == "chains":
-        rows = (variant_summary(c) for c in variants)
-    else:
-        rows = (_mechanism_row(m, variant_summary(c)) for c in variants
-                for m in mechanisms_of(c, input_link=args.input_link))
-    if args.count:
+    rows = variant_rows(type_synthesis(dof, args.links, **kwargs), _prismatic_range(args, dof),
+                        idle=args.idle_joints, mechanisms=args.what == "mechanisms",
+                        input_link=getattr(args, "input_link", False))
+    return write_variants(rows, args.what, args.count, args.format)
+
+
+def write_variants(rows, what: str, count: bool, fmt: str | None) -> int:
+    """Write R/P variant rows counted by code, or listed (P pairs marked in tables); the exit status."""
+    if count:
         by_code: dict[str, int] = {}
         for row in rows:
             by_code[row["code"]] = by_code.get(row["code"], 0) + 1
-        result = {"count": sum(by_code.values()), "by_code": dict(sorted(by_code.items()))}
-        if write_count(result, args.format or "json") == 0:
-            return nothing_found("prismatic variants satisfy these parameters and conventions")
-        return 0
-    fmt = args.format or "table"
-    columns = ["index", "code", "dof", "loops_2", "loops_3", "cylinders", "links", "joints", "kinds", "certificate"]
-    if args.what == "mechanisms":
-        columns[6:6] = ["frame", "input_link"]
-    n = write_rows(_indexed(_prismatic_cells(r, fmt) for r in rows), columns, fmt)
-    if fmt == "table":
-        print(f"{n} prismatic variants ({args.what})")
-    return 0 if n else nothing_found("prismatic variants satisfy these parameters and conventions")
-
-
-def _mechanism_row(mechanism, summary: dict) -> dict:
-    row = mechanism.to_dict()
-    row.update((k, summary[k]) for k in ("code", "dof", "prismatic", "loops_2", "loops_3", "cylinders", "idle_joints"))
-    return row
+        found = write_count({"count": sum(by_code.values()), "by_code": dict(sorted(by_code.items()))},
+                            fmt or "json")
+    else:
+        fmt = fmt or "table"
+        columns = ["index", "code", "dof", "loops_2", "loops_3", "cylinders", "links", "joints", "kinds",
+                   "certificate"]
+        if what == "mechanisms":
+            columns[6:6] = ["frame", "input_link"]
+        found = write_rows(_indexed(_prismatic_cells(r, fmt) for r in rows), columns, fmt)
+        if fmt == "table":
+            print(f"{found} prismatic variants ({what})")
+    return 0 if found else nothing_found("prismatic variants satisfy these parameters and conventions")
 
 
 def _prismatic_cells(row: dict, fmt: str) -> dict:
