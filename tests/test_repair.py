@@ -69,3 +69,12 @@ def test_cli_refusals(capsys, argv, message):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechsynth: ") and message in err and err.count("\n") == 1
+
+
+def test_draw_repairs(capsys, tmp_path):
+    from mechsynth.cli import main
+
+    out = tmp_path / "repairs.svg"
+    assert main(["draw", "--chain", "0-1 1-2 2-0 0-3 3-4 4-5 5-1", "--repairs", "--out", str(out)]) == 0
+    assert out.exists() and "3 drawings" in capsys.readouterr().err  # the chain and its two repairs
+    assert main(["draw", "--code", "42/0", "--repairs", "--out", str(out)]) == 2

@@ -56,10 +56,12 @@ def add_commands(sub) -> None:
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where")
-    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own, planar)")
+    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own, planar); with --repairs: the intended W")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
+                   help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
     p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
@@ -171,7 +173,20 @@ def _run_draw(args) -> int:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
-    if args.chain:
+    if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
+        raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
+    if args.chain and args.repairs:
+        from synth.repair import chain_repairs
+
+        chain = Chain.parse(args.chain)
+        repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
+        if not repaired:
+            print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
+                  file=sys.stderr)
+            return 1
+        items = draw.expand([chain, *repaired], mechanisms=False)
+        title = args.title or f"{chain.compact()} and {len(repaired)} repairs"
+    elif args.chain:
         chain = Chain.parse(args.chain)
         if args.frame is not None:
             items = [Mechanism(chain, args.frame)]
