@@ -45,7 +45,8 @@ def _disagreements(chain: Chain, rng) -> list[Chain]:
 
 @pytest.mark.parametrize("dof,links,hidden", [(1, 4, 0), (1, 6, 0), (1, 8, 1), (2, 5, 0), (2, 7, 0), (3, 6, 0),
                                               (0, 3, 0), (0, 5, 0),
-                                              pytest.param(0, 7, 33, marks=pytest.mark.slow)])
+                                              pytest.param(0, 7, 33, marks=pytest.mark.slow),
+                                              pytest.param(3, 8, 0, marks=pytest.mark.slow)])
 def test_wedge_rule_against_jacobian_rank_on_every_assignment(dof, links, hidden):
     """Every chain of the atlas and every R/P assignment without idle joints: the count equals the
     generic mobility except on a few assignments with a hidden redundancy (at 8 links: a revolute
