@@ -87,7 +87,9 @@ def wedge_mobility(chain: Chain, links=None) -> int:
 
 
 def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
-    """Revolute pairs whose two links are also joined by a path of prismatic pairs (they cannot turn).
+    """Revolute joints two of whose links are also joined by a path of prismatic pairs (they cannot turn).
+
+    A multiple joint is idle when any two of its links are so joined.
 
     >>> idle_joints(Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)], ["prismatic", "prismatic", "prismatic", "revolute"]))
     [(0, 3)]
@@ -95,7 +97,7 @@ def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
     roots = _components(range(chain.links), _prismatic_pairs(chain))
     kinds = chain.kinds or ("revolute",) * len(chain.joints)
     return [j for j, k in zip(chain.joints, kinds)
-            if k == "revolute" and len(j) == 2 and roots[j[0]] == roots[j[1]]]
+            if k == "revolute" and len({roots[x] for x in j}) < len(j)]
 
 
 def _rank_mod_prime(rows: list[list[int]]) -> int:

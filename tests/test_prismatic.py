@@ -198,3 +198,23 @@ def test_atlas_export_of_variants_matches_chains_query(capsys, tmp_path):
         expected.update(json.loads(out)["by_code"])
     assert code == 0 and by_code == expected
     assert _cli(capsys, ["atlas", "--db", db, "--idle-joints"])[0] == 2
+
+
+def test_multiple_joint_locked_by_prismatic_string_is_idle():
+    """The double joint 0-1-4 turns links 1 and 4 about one pin; P pairs along 1-2-3-4 lock them."""
+    c = Chain(5, [(0, 1, 4), (1, 2), (2, 3), (3, 4), (0, 2)],
+              ["revolute", "prismatic", "prismatic", "prismatic", "revolute"])
+    assert idle_joints(c) == [(0, 1, 4)]
+    assert idle_joints(Chain(5, c.joints, ["revolute", "revolute", "prismatic", "prismatic", "revolute"])) == []
+
+
+def test_cli_one_chain(capsys):
+    """Fig. 6 from the command line: the variants of one given chain; its refusals."""
+    import json
+
+    code, out, _ = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", "--prismatic", "0..4", "--count"])
+    assert code == 0 and json.loads(out)["count"] == sum(brute_variant_count(4, FOUR_BAR.joints, k) for k in range(5))
+    for argv, message in ((["--prismatic", "5"], "only 4 simple joints"), (["--prismatic", "1", "--dof", "1"], "--dof"),
+                          ([], "--chain goes with --prismatic")):
+        code, _, err = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", *argv])
+        assert code == 2 and message in err and err.count("\n") == 1

@@ -38,6 +38,7 @@ def _add_selection(p) -> None:
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
     p.add_argument("--prismatic", metavar="A..B",
                    help="also list every assignment of A…B prismatic pairs to the simple joints, up to symmetry")
+    p.add_argument("--chain", help="with --prismatic: one given chain (joint list '0-1 1-2 …' or JSON) instead of a query")
     p.add_argument("--idle-joints", action="store_true",
                    help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
@@ -191,10 +192,33 @@ def _prismatic_cells(row: dict, fmt: str) -> dict:
     return row
 
 
+def _run_one_chain(args) -> int:
+    """``--chain C --prismatic A..B``: the variants of one chain (Fig. 6: a drive's cylinders)."""
+    from synth._number_synthesis import parse_range
+    from synth.chain import Chain
+    from synth.errors import InvalidOption
+    from synth.prismatic import prismatic_variants, variant_rows
+
+    if args.prismatic is None:
+        raise InvalidOption("--chain goes with --prismatic (it lists the variants of that chain)")
+    given = [f"--{k.replace('_', '-')}" for k in ("dof", "links", "code", "v", "rigid_subchains", "planar_only")
+             if getattr(args, k) not in (None, False)] + (["--require"] if args.require else [])
+    if given:
+        raise InvalidOption(f"{given[0]} selects chains of a query and contradicts --chain")
+    chain = Chain.parse(args.chain)
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
+    rows = variant_rows([chain], (lo, len(chain.joints) if hi is None else hi), idle=args.idle_joints,
+                        mechanisms=args.what == "mechanisms", input_link=getattr(args, "input_link", False))
+    return write_variants(rows, args.what, args.count, args.format)
+
+
 def _run(args) -> int:
     from synth._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
     _check_options(args)
+    if args.chain is not None:
+        return _run_one_chain(args)
     dof, kwargs = _selection(args)
     _size_guard(dof, args, kwargs)
     if args.prismatic is not None:
