@@ -24,6 +24,9 @@ _WHERE = {
     "number_synthesis": "._number_synthesis",
     "Conventions": "._type_synthesis", "Unit": "._type_synthesis", "type_synthesis": "._type_synthesis",
     "count_chains": "._type_synthesis", "count_mechanisms": "._type_synthesis", "mechanisms": "._type_synthesis", "mechanisms_of": "._type_synthesis",
+    "prismatic_variants": ".prismatic", "wedge_mobility": ".prismatic", "generic_mobility": ".prismatic",
+    "idle_joints": ".prismatic", "lever_analogue": ".planetary", "planetary_table": ".planetary",
+    "chain_repairs": ".repair", "code_repairs": ".repair",
     "plan_codes": "._type_synthesis", "plan_units": "._type_synthesis", "plan_many": "._type_synthesis", "run_unit": "._type_synthesis",
 }
 

@@ -303,8 +303,9 @@ class Chain:
             "loops": self.loops,
             "v": self.v,
         }
-        if self.kinds is not None:
+        if self.kinds is not None:  # the code says how many pairs are prismatic, e.g. '42/0 P2'
             d["kinds"] = list(self.kinds)
+            d["code"] += f" P{self.kinds.count('prismatic')}"
         if self.h != 3:
             d["h"] = self.h
         return d

@@ -11,7 +11,8 @@ MODULES = ["synth.code", "synth.chain", "synth.mobility", "synth.analysis", "syn
            "mechsynth.scene.registry", "mechsynth.scene.results", "mechsynth.scene.compare", "mechsynth.scene.types",
            "mechsynth.scene.structure", "mechsynth.scene.balancing", "mechsynth.scene.runner", "synth.schema",
            "mechsynth.commands.codes", "mechsynth.commands.chains", "mechsynth.commands.scene",
-           "mechsynth.commands.balance"]
+           "mechsynth.commands.balance", "synth.prismatic", "synth.planetary", "synth.repair",
+           "mechsynth.commands.planetary"]
 
 
 @pytest.mark.parametrize("name", MODULES)

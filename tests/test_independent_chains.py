@@ -226,7 +226,7 @@ def test_chain_reading_and_writing():
     assert Chain(4, joints, ["revolute"] * 3).kinds is None and Chain(4, joints, ["revolute"] * 3) == Chain(4, joints)
     d = c.to_dict()
     assert d["joints"] == [[0, 1, 2], [0, 3], [2, 3]] and d["kinds"] == ["prismatic", "revolute", "revolute"]
-    assert (d["links"], d["dof"], d["loops"], d["v"], d["code"]) == (4, c.dof, c.loops, 1, str(c.code))
+    assert (d["links"], d["dof"], d["loops"], d["v"], d["code"]) == (4, c.dof, c.loops, 1, f"{c.code} P1")  # the code says P
     assert d["certificate"] == c.certificate and "kinds" not in Chain(4, joints).to_dict()
     assert Chain.from_dict(d) == c and Chain.from_json(c.to_json()) == c
     assert Chain.from_json("[[0, 1], [1, 2], [2, 0]]") == Chain(3, [(0, 1), (1, 2), (0, 2)])

@@ -375,7 +375,7 @@ def test_through_the_mechsynth_command(tmp_path, capsys):
     from mechsynth import cli
 
     assert cli.main(["scene", str(MODELS / "wedge_lever.toml")]) == 0
-    assert "6 of 6 expectations met" in capsys.readouterr().out
+    assert "8 of 8 expectations met" in capsys.readouterr().out
     bad = tmp_path / "bad.toml"
     bad.write_text(GOOD.replace("dof = 1", "dof = true"))
     assert cli.main(["scene", str(bad)]) == 2

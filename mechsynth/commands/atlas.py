@@ -44,6 +44,9 @@ def add_commands(sub) -> None:
                    help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
                         "fractionated=0, cell=KEY")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
+    p.add_argument("--prismatic", metavar="A..B",
+                   help="export the selected chains' variants with A…B prismatic pairs, up to symmetry")
+    p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
                    help="summary: table or json; export: jsonl, csv or table")
     p.set_defaults(run=_run_atlas)
@@ -53,11 +56,14 @@ def add_commands(sub) -> None:
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where")
-    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h)")
+    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
+                   "with --repairs: the intended W")
     p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
+                   help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
     p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
@@ -94,7 +100,9 @@ def _run_atlas(args) -> int:
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
-    what = args.export or ("chains" if args.where or args.count else None)
+    if args.idle_joints and args.prismatic is None:
+        raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
     if what is None:
         fmt = args.format or "table"
         if fmt not in ("table", "json"):
@@ -105,6 +113,8 @@ def _run_atlas(args) -> int:
         else:
             _print_summary(info)
         return 0
+    if args.prismatic is not None:
+        return _export_variants(args, what)
     rows = export(args.db, what, where=args.where)
     if args.count:
         by_code: dict[str, int] = {}
@@ -114,6 +124,22 @@ def _run_atlas(args) -> int:
     else:
         found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _export_variants(args, what: str) -> int:
+    """``--prismatic``: the R/P variants of the selected chains (mechanisms: of each variant)."""
+    from synth._number_synthesis import parse_range
+    from synth.atlas import export
+    from synth.chain import Chain
+    from synth.prismatic import variant_rows
+
+    from .chains import write_variants
+
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=args.where))
+    rows = variant_rows(chains, (lo, 10**6 if hi is None else hi), idle=args.idle_joints,
+                        mechanisms=what == "mechanisms")
+    return write_variants(rows, what, args.count, args.format or ("jsonl" if not args.count else None))
 
 
 def _print_summary(info: dict) -> None:
@@ -154,8 +180,24 @@ def _run_draw(args) -> int:
         if args.db:
             raise InvalidOption("--h goes with --code or --chain (an atlas's chains carry their own h)")
         check_motion_space(args.h, lowest=2)
+        if args.repairs and args.h != 3:
+            raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
+                                f"{args.h}")
     h = args.h or 3
-    if args.chain:
+    if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
+        raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
+    if args.chain and args.repairs:
+        from synth.repair import chain_repairs
+
+        chain = Chain.parse(args.chain)
+        repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
+        if not repaired:
+            print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
+                  file=sys.stderr)
+            return 1
+        items = draw.expand([chain, *repaired], mechanisms=False)
+        title = args.title or f"{chain.compact()} and {len(repaired)} repairs"
+    elif args.chain:
         from dataclasses import replace
 
         chain = replace(Chain.parse(args.chain), h=h)

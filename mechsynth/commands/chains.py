@@ -42,6 +42,11 @@ def _add_selection(p) -> None:
     p.add_argument("--fractionated", action=argparse.BooleanOptionalAction, default=True,
                    help="keep chains split by one link or joint (default: keep)")
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
+    p.add_argument("--prismatic", metavar="A..B",
+                   help="also list every assignment of A…B prismatic pairs to the simple joints, up to symmetry")
+    p.add_argument("--chain", help="with --prismatic: one given chain (joint list '0-1 1-2 …' or JSON) instead of a query")
+    p.add_argument("--idle-joints", action="store_true",
+                   help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
     p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default: all cores)")
     p.add_argument("--checkpoint", metavar="FILE",
@@ -93,6 +98,12 @@ def _check_options(args) -> None:
     for option in ("checkpoint", "scheduler"):
         if getattr(args, option) is not None and not args.count:
             raise InvalidOption(f"--{option} goes with --count (listings are not resumed or distributed)")
+    if args.idle_joints and args.prismatic is None:
+        raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.prismatic is not None and (args.checkpoint is not None or args.scheduler is not None):
+        raise InvalidOption("--prismatic variants are counted on this machine: drop --checkpoint and --scheduler")
+    if args.prismatic is not None and args.h != 3:
+        raise InvalidOption(f"prismatic pairs are assigned in planar chains (h = 3), not in motion space h = {args.h}")
     if args.scheduler is not None and args.workers is not None:
         raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
 
@@ -132,12 +143,98 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
         raise InvalidOption(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
 
 
+def _prismatic_range(args, dof: int) -> tuple[int, int]:
+    """The A..B of --prismatic, refused when it asks for more P pairs than the chains have simple joints."""
+    from synth._number_synthesis import parse_range
+    from synth.code import Code
+    from synth.errors import InvalidOption
+
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    if args.code is not None:
+        code = Code.parse(args.code)
+        simple = code.joints - sum(code.composition or ())
+    else:
+        simple = (3 * (args.links - 1) - dof) // 2  # p: every joint simple at best
+    if lo > 0 and simple == 0:
+        raise InvalidOption("prismatic pairs go on simple joints and these chains have multiple joints only")
+    if lo > simple:
+        raise InvalidOption(f"--prismatic {args.prismatic} asks for more prismatic pairs than the {simple} "
+                            "simple joints of these chains")
+    return lo, simple if hi is None else min(hi, simple)
+
+
+def _run_prismatic(args, dof: int, kwargs: dict) -> int:
+    """``--prismatic``: the R/P variants of every chain (or their mechanisms), counted or listed."""
+    from synth._type_synthesis import type_synthesis
+    from synth.prismatic import variant_rows
+
+    rows = variant_rows(type_synthesis(dof, args.links, **kwargs), _prismatic_range(args, dof),
+                        idle=args.idle_joints, mechanisms=args.what == "mechanisms",
+                        input_link=getattr(args, "input_link", False))
+    return write_variants(rows, args.what, args.count, args.format)
+
+
+def write_variants(rows, what: str, count: bool, fmt: str | None) -> int:
+    """Write R/P variant rows counted by code, or listed (P pairs marked in tables); the exit status."""
+    if count:
+        by_code: dict[str, int] = {}
+        for row in rows:
+            by_code[row["code"]] = by_code.get(row["code"], 0) + 1
+        found = write_count({"count": sum(by_code.values()), "by_code": dict(sorted(by_code.items()))},
+                            fmt or "json")
+    else:
+        fmt = fmt or "table"
+        columns = ["index", "code", "dof", "loops_2", "loops_3", "cylinders", "links", "joints", "kinds",
+                   "certificate"]
+        if what == "mechanisms":
+            columns[6:6] = ["frame", "input_link"]
+        found = write_rows(_indexed(_prismatic_cells(r, fmt) for r in rows), columns, fmt)
+        if fmt == "table":
+            print(f"{found} prismatic variants ({what})")
+    return 0 if found else nothing_found("prismatic variants satisfy these parameters and conventions")
+
+
+def _prismatic_cells(row: dict, fmt: str) -> dict:
+    if fmt == "table":  # P pairs marked in the joint list, e.g. '0-1 1=2' (1=2 prismatic)
+        kinds = row.get("kinds") or ["revolute"] * len(row["joints"])
+        row["joints"] = " ".join(("=" if k == "prismatic" else "-").join(map(str, j))
+                                 for j, k in zip(row["joints"], kinds))
+        row["kinds"] = "".join("P" if k == "prismatic" else "R" for k in kinds)
+        row["certificate"] = "…" + row["certificate"][-16:]
+    return row
+
+
+def _run_one_chain(args) -> int:
+    """``--chain C --prismatic A..B``: the variants of one chain (Fig. 6: a drive's cylinders)."""
+    from synth._number_synthesis import parse_range
+    from synth.chain import Chain
+    from synth.errors import InvalidOption
+    from synth.prismatic import prismatic_variants, variant_rows
+
+    if args.prismatic is None:
+        raise InvalidOption("--chain goes with --prismatic (it lists the variants of that chain)")
+    given = [f"--{k.replace('_', '-')}" for k in ("dof", "links", "code", "v", "rigid_subchains", "planar_only")
+             if getattr(args, k) not in (None, False)] + (["--require"] if args.require else [])
+    if given:
+        raise InvalidOption(f"{given[0]} selects chains of a query and contradicts --chain")
+    chain = Chain.parse(args.chain)
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
+    rows = variant_rows([chain], (lo, len(chain.joints) if hi is None else hi), idle=args.idle_joints,
+                        mechanisms=args.what == "mechanisms", input_link=getattr(args, "input_link", False))
+    return write_variants(rows, args.what, args.count, args.format)
+
+
 def _run(args) -> int:
     from synth._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
     _check_options(args)
+    if args.chain is not None:
+        return _run_one_chain(args)
     dof, kwargs = _selection(args)
     _size_guard(dof, args, kwargs)
+    if args.prismatic is not None:
+        return _run_prismatic(args, dof, kwargs)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None
         if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit

@@ -19,7 +19,7 @@ from collections import Counter
 
 from synth.errors import InvalidOption
 
-from .._argtypes import whole
+from .._argtypes import positive, whole
 from .._output import FORMATS, nothing_found, write_rows
 
 __all__ = ["add_commands"]
@@ -90,6 +90,8 @@ def _add_analyze(sub):
     p.add_argument("--h", type=whole, default=3, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
+    p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
+                   help="the N (default 5) nearest valid codes or chains, fewest elementary edits first")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_analyze)
 
@@ -118,8 +120,18 @@ def _run_analyze(args) -> int:
         _refuse_for_chain(args)
         from synth._params import check_motion_space
 
-        result = analyze_chain(subject, dof=args.dof, h=check_motion_space(args.h, lowest=2)).to_dict()
+        h = check_motion_space(args.h, lowest=2)
+        if args.repairs and h != 3:
+            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
+        result = analyze_chain(subject, dof=args.dof, h=h).to_dict()
+        if args.repairs:
+            from synth.chain import Chain
+            from synth.repair import chain_repairs
+
+            result["repairs"] = chain_repairs(Chain.parse(subject), dof=args.dof, limit=args.repairs)
     elif "=" in subject and "/" not in subject:
+        if args.repairs:
+            raise InvalidOption("--repairs works on a code or a chain, not on bare counts")
         counts = _parse_classes(subject)
         result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=args.h, f=args.f,
                          loop_classes=classes).to_dict()
@@ -127,6 +139,17 @@ def _run_analyze(args) -> int:
         if args.v is not None:
             raise InvalidOption("--v goes with explicit counts: a code carries its own v")
         result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
+        if args.repairs:
+            from synth.code import Code
+            from synth.repair import code_repairs
+
+            if args.h != 3 or args.f or classes:
+                raise InvalidOption("--repairs rebuilds planar codes: drop --h, --f and --loop-classes")
+            result["repairs"] = code_repairs(Code.parse(subject), result["dof"] if args.dof is None else args.dof,
+                                             limit=args.repairs)
+    repairs = result.pop("repairs", None)
+    if repairs is not None:
+        result["repairs"] = repairs
     if args.format == "json":
         print(json.dumps(result, ensure_ascii=False))
     else:
@@ -135,7 +158,22 @@ def _run_analyze(args) -> int:
         for key, value in result.items():
             if isinstance(value, dict):
                 value = "; ".join(f"{k} = {v}" for k, v in value.items())
+            elif key == "repairs":
+                continue
             elif isinstance(value, list):
                 value = json.dumps(value, ensure_ascii=False)
             print(f"{key.ljust(width)}  {value}")
+        _print_repairs(repairs)
     return 0
+
+
+def _print_repairs(repairs) -> None:
+    """One block per repair: its code and chain, then its edits."""
+    if repairs is None:
+        return
+    if not repairs:
+        print("repairs   none: the structure is valid already, or no valid one lies within three edits")
+    for i, r in enumerate(repairs, start=1):
+        print(f"repair {i}  {r['code']}  {r.get('chain', '')}".rstrip())
+        for edit in r["edits"]:
+            print(f"          - {edit}")
