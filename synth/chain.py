@@ -366,6 +366,12 @@ class Chain:
         """The compact joint-list notation read by :meth:`parse`."""
         return " ".join("-".join(map(str, j)) for j in self.joints)
 
+    def _repr_svg_(self) -> str:
+        """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
+        from .draw import svg
+
+        return svg(self)
+
 
 @dataclass(frozen=True)
 class Mechanism:
@@ -398,6 +404,12 @@ class Mechanism:
         """Canonical certificate of the chain with the frame (and input) as their own colours."""
         g = self.chain._nauty_graph(self.marked)
         return f"m{len(self.marked)}" + self.chain.certificate[:4] + pynauty.certificate(g).hex()
+
+    def _repr_svg_(self) -> str:
+        """The drawing Jupyter shows: the fixed link hatched, the input link marked."""
+        from .draw import svg
+
+        return svg(self)
 
     def to_dict(self) -> dict:
         d = self.chain.to_dict()

@@ -436,6 +436,31 @@ def draw_one(item: Chain | Mechanism, out: str | Path, *, title: str | None = No
         plt.close(fig)
 
 
+def svg(item: Chain | Mechanism, *, labels: bool = True) -> str:
+    """One chain or mechanism as SVG text (what Jupyter shows for a Chain or Mechanism).
+
+    >>> svg(Chain.parse("0-1 1-2 2-3 3-0")).lstrip().startswith("<?xml")
+    True
+    """
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(3.6, 3.8))
+    try:
+        _draw(ax, item, labels=labels, caption=None)
+        ax.set_title(_caption(item, None), fontsize=9)
+        out = io.StringIO()
+        with matplotlib.rc_context({"svg.hashsalt": "mechsynth"}):
+            fig.savefig(out, format="svg", bbox_inches="tight", metadata={"Date": None})
+        return out.getvalue()
+    finally:
+        plt.close(fig)
+
+
 def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: int | None = None,
                title: str | None = None, labels: bool = False) -> None:
     """An atlas sheet: every item on a grid, captioned with its code and index (1, 2, …).

@@ -87,3 +87,16 @@ def _grid(tmp_path):
     path = tmp_path / "g.toml"
     path.write_text('dof = 1\nlinks = "4..6"\n')
     return path
+
+
+def test_chains_and_mechanisms_show_themselves_in_jupyter():
+    """_repr_svg_: an SVG with one circle per joint and a hatched frame for a mechanism."""
+    from synth.chain import Chain, Mechanism
+
+    watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    text = watt._repr_svg_()
+    assert text.lstrip().startswith("<?xml") and "</svg>" in text and "42/0" in text
+    mech = Mechanism(watt, 0)._repr_svg_()
+    assert "fixed 0" in mech and mech != text
+    arm = Chain(4, ((0, 2), (1, 3), (2, 3)), h=4)  # a serial arm in h = 4: free ends and the space named
+    assert "h=4" in arm._repr_svg_()
