@@ -146,7 +146,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     model = Model()
     pairs = list(combinations(range(m), 2))
     x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
-    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated else 0, f"y{u}") for u in range(m)]
+    # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
+    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
     for u in range(m):
         model.Add(sum(x[min(u, v), max(u, v)] for v in range(m) if v != u) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)

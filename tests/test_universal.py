@@ -87,6 +87,15 @@ def test_open_chains(h, dof, links, n1, v):
     _compare(h, dof, links, v=v, n1=n1)
 
 
+@pytest.mark.parametrize("h, dof, links, n1, v", [
+    (3, 3, 6, 2, 2), (2, 3, 5, 2, 0), (4, 2, 6, 1, 0), (2, 2, 5, 1, 2),
+    pytest.param(3, 3, 8, 2, 0, marks=pytest.mark.slow), pytest.param(3, 4, 7, 2, 2, marks=pytest.mark.slow),
+])
+def test_open_chains_without_fractionated_closed_parts(h, dof, links, n1, v):
+    """--no-fractionated judges the closed part: a loop with an arm on it is kept."""
+    _compare(h, dof, links, v=v, n1=n1, fractionated=False)
+
+
 def test_serial_and_tree_arms_have_no_loop():
     serial = _compare(3, 3, 4, n1=2)
     assert [(c.loops, str(c.code)) for c in serial] == [(0, "2|2/0")]  # four links in a row
