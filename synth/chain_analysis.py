@@ -37,7 +37,7 @@ class ChainAnalysis:
     planar: bool
     subchain_defect: str
     worst_subchain: list
-    worst_subchain_mobility: int
+    worst_subchain_mobility: int | None  # None: no proper sub-chain of two links or more
     advice: str
 
     def to_dict(self) -> dict:
@@ -89,6 +89,6 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         code=str(code), h=chain.h, links=chain.links, joints=len(chain.joints), dof=W, loops=chain.loops,
         complexity=chain.loops - 1, v=chain.v, standard_code=standard, connected=True,
         fractionated=chain.is_fractionated(), planar=chain.is_planar(), subchain_defect=report.kind,
-        worst_subchain=list(report.worst), worst_subchain_mobility=report.worst_mobility,
+        worst_subchain=list(report.worst), worst_subchain_mobility=report.worst_mobility if report.worst else None,
         advice="; ".join(advice) or "no defect: no rigid or over-constrained sub-chain",
     )
