@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import os
 
-__all__ = ["whole", "positive", "seconds", "workers"]
+__all__ = ["whole", "positive", "seconds", "inches", "workers"]
 
 
 def whole(text: str) -> int:
@@ -36,6 +36,17 @@ def seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
     if not value > 0:
         raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {text!r}")
+    return value
+
+
+def inches(text: str) -> float:
+    """A drawing's edge in inches, 0.5 … 30 (larger pictures would only fill memory)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a size in inches, not {text!r}") from None
+    if not 0.5 <= value <= 30:
+        raise argparse.ArgumentTypeError(f"expected a size of 0.5 to 30 inches, not {text}")
     return value
 
 

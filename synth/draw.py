@@ -3,11 +3,11 @@
 Each link is a polygon through its joints (binary links as bars, ternary as
 triangles, …), joints are small circles, a multiple joint carries a ring and its
 multiplicity, the fixed link of a mechanism is hatched and an input link gets an
-arrow.  Layout: when the link–joint incidence graph is planar and 2-connected, a
-Tutte (barycentric) embedding with the longest face outside, which has no crossings
-and convex faces; then a force relaxation that only accepts steps keeping the drawing
-free of crossings.  Fractionated planar chains start from ``nx.planar_layout``;
-non-planar chains use Kamada–Kawai.  Everything is deterministic.
+arrow.  Layout: when the link–joint incidence graph is planar and 2-connected (single-joint
+links aside), a Tutte (barycentric) embedding of the joint graph with the longest loop
+outside, in which every link polygon is a convex face and nothing crosses; then joints move
+one at a time to open up corners under 30° and crowded joints, never adding a crossing.
+Other chains start from networkx's planar or Kamada–Kawai layout.  Everything is deterministic.
 
 Example
 -------
@@ -63,7 +63,7 @@ class Layout:
         for link, poly in enumerate(self.polygons):
             if len(poly) == 2:
                 out.append((link, poly[0], poly[1]))
-            else:
+            elif len(poly) > 2:  # a single-joint link's free end is not a side between joints
                 out += [(link, poly[i], poly[(i + 1) % len(poly)]) for i in range(len(poly))]
         return out
 
@@ -89,51 +89,54 @@ def _faces(embedding) -> list[list]:
     return faces
 
 
-def _tutte(g, faces: list[list], outer: list) -> dict:
-    """Barycentric embedding with ``outer`` on a circle and a virtual centre vertex in every
-    inner face (so that paths meeting only at two vertices do not collapse onto one line)."""
-    # outer joints: a regular polygon; an outer link with 3+ joints sits on the circle between
-    # its two outer joints (a strictly convex corner); binary outer links are sides (their
-    # node position influences nothing else)
-    outer_joints = [x for x in outer if x[0] == "J"]
-    m = len(outer_joints)
-    angle = {x: math.pi / 2 + 2 * math.pi * i / m + (math.pi / m if m % 4 == 0 else 0.0)
-             for i, x in enumerate(outer_joints)}
-    pos = {x: np.array([math.cos(a), math.sin(a)]) for x, a in angle.items()}
-    for i, node in enumerate(outer):
-        if node not in pos:
-            before, after = angle[outer[i - 1]], angle[outer[(i + 1) % len(outer)]]
-            if g.degree[node] > 2:
-                mid = before + ((after - before) % (2 * math.pi)) / 2
-                pos[node] = np.array([math.cos(mid), math.sin(mid)])
-            else:
-                pos[node] = (pos[outer[i - 1]] + pos[outer[(i + 1) % len(outer)]]) / 2
-    weights: dict = {x: {y: 1.0 for y in g[x]} for x in g.nodes}
-    for f, face in enumerate(faces):
-        if face is outer:
-            continue
-        centre = ("F", f)
-        weights[centre] = {}
-        for x in set(face):
-            weights[centre][x] = 0.5
-            weights[x][centre] = 0.5
-    inner = [x for x in sorted(weights) if x not in pos]
-    if inner:
-        index = {x: i for i, x in enumerate(inner)}
-        a = np.zeros((len(inner), len(inner)))
-        b = np.zeros((len(inner), 2))
-        for x in inner:
-            i = index[x]
-            for y, w in weights[x].items():
-                a[i, i] += w
-                if y in index:
-                    a[i, index[y]] -= w
-                else:
-                    b[i] += w * pos[y]
-        sol = np.linalg.solve(a, b)
-        for x in inner:
-            pos[x] = sol[index[x]]
+def _tutte(polygons: list[list[int]], loops: list[list[int]], outer: list[int], joints: int) -> np.ndarray:
+    """Barycentric embedding of the *joint graph* (joints as vertices, link sides as edges).
+
+    The outer loop's joints sit on a regular polygon; every other joint is the mean of its
+    neighbours along link sides, and a virtual centre in every inner loop pulls on that loop's
+    joints (so that strings meeting at two joints only do not collapse onto one line).  Every
+    link polygon is a face of this graph, so it comes out convex (Tutte's theorem) and the drawing
+    has no crossings.
+    """
+    pos = np.zeros((joints, 2))
+    for i, k in enumerate(outer):
+        angle = math.pi / 2 + 2 * math.pi * i / len(outer)
+        pos[k] = (math.cos(angle), math.sin(angle))
+    free = [k for k in range(joints) if k not in set(outer)]
+    centres = [sorted(set(loop)) for loop in loops if loop is not outer and len(set(loop)) >= 3]
+    index = {k: i for i, k in enumerate(free)}
+    size = len(free) + len(centres)
+    if not free:
+        return pos
+    a = np.zeros((size, size))
+    b = np.zeros((size, 2))
+
+    def pull(i: int, k: int, weight: float) -> None:  # row i of the system is drawn towards joint k
+        a[i, i] += weight
+        if k in index:
+            a[i, index[k]] -= weight
+        else:
+            b[i] += weight * pos[k]
+
+    for x, y in _sides(polygons):
+        for u, w in ((x, y), (y, x)):
+            if u in index:
+                pull(index[u], w, 1.0)
+    for c, loop in enumerate(centres):
+        row = len(free) + c
+        for k in loop:
+            pull(row, k, 0.5)
+            if k in index:
+                a[index[k], index[k]] += 0.5
+                a[index[k], row] -= 0.5
+    sol = np.linalg.solve(a, b)
+    pos[free] = sol[: len(free)]
     return pos
+
+
+def _sides(polygons: list[list[int]]) -> list[tuple[int, int]]:
+    """Drawn sides as joint pairs (a binary link is one side)."""
+    return [(a, b) for _, a, b in Layout(np.zeros((0, 2)), polygons, True).segments()]
 
 
 def _segment_arrays(polygons: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
@@ -178,60 +181,119 @@ def _defects(pos: np.ndarray, polygons: list[list[int]], tol: float, cache=None)
     return bad
 
 
-def _relax(pos: np.ndarray, polygons: list[list[int]], fixed: set[int], iterations: int = 60) -> np.ndarray:
-    """Spread the joints (springs inside links, repulsion between all), one joint at a time,
-    accepting a move only when it adds no crossing, touching or enclosed joint."""
+#: a link polygon's corners are kept between these angles (degrees): convex, no slivers
+_LOW_ANGLE, _HIGH_ANGLE = 30.0, 160.0
+
+
+def _corner_angles(pts: np.ndarray) -> np.ndarray:
+    """Interior angles (degrees) of a polygon given in order; a reflex corner has more than 180.
+
+    >>> [round(a) for a in _corner_angles(np.array([[0, 0], [1, 0], [0, 1.0]]))]
+    [90, 45, 45]
+    """
+    before, after = np.roll(pts, 1, axis=0), np.roll(pts, -1, axis=0)
+    u, w = before - pts, after - pts
+    cross = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    angle = np.degrees(np.arctan2(np.abs(cross), (u * w).sum(1)))
+    x, y = pts[:, 0], pts[:, 1]
+    area = float((x * np.roll(y, -1) - np.roll(x, -1) * y).sum())
+    reflex = cross * (1 if area >= 0 else -1) > 0  # turning against the polygon's orientation
+    return np.where(reflex, 360 - angle, angle)
+
+
+class _Shape:
+    """What a good drawing keeps (the terms that depend on one joint): link corners between
+    ``_LOW_ANGLE`` and ``_HIGH_ANGLE``, joints clear of foreign sides and of each other."""
+
+    def __init__(self, pos: np.ndarray, polygons: list[list[int]]):
+        n = len(pos)
+        self.pos, self.ends = pos, np.array(_sides(polygons), dtype=int).reshape(-1, 2)
+        self.corners = [[p for p in polygons if len(p) >= 3 and k in p] for k in range(n)]
+        self.at = np.zeros((n, len(self.ends)), dtype=bool)  # joint k is an end of side s
+        self.at[self.ends[:, 0], np.arange(len(self.ends))] = True
+        self.at[self.ends[:, 1], np.arange(len(self.ends))] = True
+        spacing = 2.0 / math.sqrt(n)  # of joints spread evenly over the [-1, 1]² frame
+        self.side_gap, self.joint_gap = 0.36 * spacing, 0.72 * spacing
+
+    def cost(self, k: int) -> float:
+        pos, ends = self.pos, self.ends
+        total = 0.0
+        for poly in self.corners[k]:
+            angles = _corner_angles(pos[poly])
+            total += float((np.maximum(0, _LOW_ANGLE - angles) ** 2).sum()
+                           + (np.maximum(0, angles - _HIGH_ANGLE) ** 2).sum())
+        a, ab = pos[ends[:, 0]], pos[ends[:, 1]] - pos[ends[:, 0]]
+        length2 = np.maximum((ab * ab).sum(1), 1e-12)
+        others = np.arange(len(pos)) != k
+        # joint k against sides not at k, every other joint against the sides at k
+        far = ~self.at[k]
+        t = np.clip(((pos[k] - a[far]) * ab[far]).sum(1) / length2[far], 0, 1)
+        gaps = [np.linalg.norm(a[far] + t[:, None] * ab[far] - pos[k], axis=1)]
+        near = np.flatnonzero(self.at[k])
+        if len(near):
+            p = pos[others][:, None]
+            t = np.clip(((p - a[near][None]) * ab[near][None]).sum(-1) / length2[near][None], 0, 1)
+            gap = np.linalg.norm(a[near][None] + t[..., None] * ab[near][None] - p, axis=-1)
+            gaps.append(gap[~self.at[others][:, near]])
+        side = np.concatenate(gaps)
+        joint = np.linalg.norm(pos[others] - pos[k], axis=1)
+        return total + float(((40 * np.maximum(0, 1 - side / self.side_gap)) ** 2).sum()
+                             + ((40 * np.maximum(0, 1 - joint / self.joint_gap)) ** 2).sum())
+
+
+def _shape(pos: np.ndarray, polygons: list[list[int]], iterations: int = 80) -> np.ndarray:
+    """Move one joint at a time to the best of 24 trial positions that lowers its cost
+    (:class:`_Shape`), accepting a move only when it adds no crossing, touching or enclosed joint."""
     n = len(pos)
     if n < 3:
         return pos
     pos = pos.copy()
-    rng = np.random.default_rng(0)  # separates joints that the barycentric layout put together
-    pos += rng.normal(scale=1e-4, size=pos.shape)
-    pairs = {tuple(sorted((a, b))) for poly in polygons for a in poly for b in poly if a != b}
-    springs = np.array(sorted(pairs)) if pairs else np.zeros((0, 2), int)
-    length = 2.0 / math.sqrt(n)
-    tol = 0.12 * length
+    shape = _Shape(pos, polygons)
     cache = _segment_arrays(polygons)
+    tol = 0.12 * 2.0 / math.sqrt(n)
     current = _defects(pos, polygons, tol, cache)
-    movable = [k for k in range(n) if k not in fixed]
-    step = 0.15 * length
+    turns = np.linspace(0, 2 * math.pi, 12, endpoint=False)
+    directions = np.stack([np.cos(turns), np.sin(turns)], axis=1)
+    step = 0.1
     for _ in range(iterations):
         moved = False
-        for k in movable:
-            delta = pos[k] - pos
-            dist = np.maximum(np.linalg.norm(delta, axis=1), 1e-6)
-            dist[k] = np.inf
-            force = ((length**2 / dist**2)[:, None] * delta / dist[:, None]).sum(axis=0)
-            for a, b in springs[(springs[:, 0] == k) | (springs[:, 1] == k)]:
-                other = b if a == k else a
-                d = pos[other] - pos[k]
-                force += d * np.linalg.norm(d) / length
-            norm = float(np.linalg.norm(force))
-            if norm < 1e-9:
+        for k in range(n):
+            base = shape.cost(k)
+            if base == 0:
                 continue
-            move = force / norm * min(norm * 0.1, step)
-            for scale in (1.0, 0.4):
-                old = pos[k].copy()
-                pos[k] = old + scale * move
+            old = pos[k].copy()
+            trials = []
+            for size in (step, step / 3):
+                for d in directions:
+                    pos[k] = old + size * d
+                    trials.append((shape.cost(k), size, d))
+            pos[k] = old
+            trials.sort(key=lambda trial: trial[0])
+            for cost, size, d in trials[:4]:
+                if cost >= base:
+                    break
+                pos[k] = old + size * d
                 defects = _defects(pos, polygons, tol, cache)
                 if defects <= current:
                     current, moved = defects, True
                     break
                 pos[k] = old
-        step *= 0.93
+        step *= 0.95
         if not moved:
             break
     return pos
 
 
-def _polygons(chain: Chain, g, embedding, pos: dict) -> list[list[int]]:
-    """Each link's joints in polygon order: the embedding's rotation, else by angle."""
+def _polygons(chain: Chain, g, embedding, pos: dict | None) -> list[list[int]]:
+    """Each link's joints in polygon order: the embedding's rotation, else by angle about their centre."""
     polygons = []
     for i in range(chain.links):
         node = ("L", i)
         joints = [y[1] for y in g[node]]
         if embedding is not None and len(joints) >= 3:
             order = [y[1] for y in embedding.neighbors_cw_order(node)]
+        elif pos is None:
+            order = joints
         else:
             centre = np.mean([pos[("J", k)] for k in joints], axis=0)
             order = sorted(joints, key=lambda k: math.atan2(*(pos[("J", k)] - centre)[::-1]))
@@ -248,6 +310,12 @@ def _normalise(pos: np.ndarray) -> np.ndarray:
 def layout(chain: Chain) -> Layout:
     """Positions of the joints and the polygon order of each link's joints.
 
+    A chain whose links and joints form a planar, 2-connected incidence graph (single-joint
+    links aside) is drawn from a Tutte embedding of its joint graph with the longest loop
+    outside: convex link polygons, no crossings.  Other chains start from networkx's planar or
+    Kamada–Kawai layout.  Then :func:`_shape` opens up slivers and crowded joints without adding
+    a crossing.
+
     >>> lay = layout(Chain.parse("0-1 1-2 2-3 3-0"))
     >>> lay.joints.shape, lay.planar, [len(p) for p in lay.polygons]
     ((4, 2), True, [2, 2, 2, 2])
@@ -256,33 +324,32 @@ def layout(chain: Chain) -> Layout:
 
     g = _incidence(chain)
     planar, embedding = nx.check_planarity(g)
-    fixed: set[int] = set()
-    if planar and nx.is_biconnected(g) and g.number_of_nodes() > 2:
-        faces = _faces(embedding)
-        # prefer the longest loop outside (as designers draw), but not one that degenerates
-        candidates = sorted(faces, key=lambda f: (-sum(1 for x in f if x[0] == "J"), -len(f), sorted(f)))
-        best = None
-        for outer in candidates[:6]:
-            trial = _tutte(g, faces, outer)
-            polys = _polygons(chain, g, embedding, trial)
-            joints_xy = np.array([trial[("J", k)] for k in range(len(chain.joints))])
-            score = _defects(_normalise(joints_xy), polys, 0.02)
+    core = g.subgraph(x for x in g if not (x[0] == "L" and g.degree[x] == 1))  # without single-joint links
+    best = None
+    if planar and core.number_of_nodes() > 2 and nx.is_connected(core):
+        _, embedding = nx.check_planarity(core)
+        polygons = _polygons(chain, g, embedding, None)
+        loops = [list(dict.fromkeys(x[1] for x in face if x[0] == "J")) for face in _faces(embedding)]
+        # outside: the loop that carries most single-joint links (free ends point out), then the
+        # longest (as designers draw); the next one where that degenerates
+        hanging = {k for k, j in enumerate(chain.joints) if any(g.degree[("L", x)] == 1 for x in j)}
+        order = sorted(loops, key=lambda loop: (-len(hanging.intersection(loop)), -len(loop), sorted(loop)))
+        for outer in order[:6]:
+            trial = _normalise(_tutte(polygons, loops, outer, len(chain.joints)))
+            score = _defects(trial, polygons, 0.02)
             if best is None or score < best[0]:
-                best = (score, trial, outer)
+                best = (score, trial, polygons)
             if score == 0:
                 break
-        _, pos, outer = best
-        fixed = {x[1] for x in outer if x[0] == "J"}
-    elif planar:
-        pos = nx.planar_layout(g)
-        pos = nx.kamada_kawai_layout(g, pos=pos)
-    else:
-        pos = nx.kamada_kawai_layout(g)
-    polygons = _polygons(chain, g, embedding if planar else None, pos)
-    joints = np.array([pos[("J", k)] for k in range(len(chain.joints))], dtype=float)
-    joints = _normalise(joints)
-    if planar:
-        joints = _normalise(_relax(joints, polygons, fixed))
+    if best is None or best[0] > 0:  # not 2-connected (fractionated, open): try a force layout too
+        pos = nx.kamada_kawai_layout(g, pos=nx.planar_layout(g) if planar else None)
+        polys = _polygons(chain, g, embedding if planar else None, pos)
+        trial = _normalise(np.array([pos[("J", k)] for k in range(len(chain.joints))], dtype=float))
+        score = _defects(trial, polys, 0.02)
+        if best is None or score < best[0]:
+            best = (score, trial, polys)
+    _, joints, polygons = best
+    joints = _normalise(_shape(joints, polygons))
     return Layout(joints, polygons, planar and _defects(joints, polygons, 1e-3) == 0)
 
 
@@ -306,6 +373,7 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     r = min(0.07, 0.28 * min_dist)
     lw = 2.2
     free_ends = _free_ends(pos, lay.polygons, length=max(0.3, 6 * r))
+    sides = _sides(lay.polygons)
     for link, poly in enumerate(lay.polygons):
         pts = pos[poly]
         frame = mech is not None and link == mech.frame
@@ -330,14 +398,14 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
         if labels:
             centre = pts.mean(axis=0)
             ax.text(centre[0], centre[1], str(link), fontsize=7, color="#555555", ha="center", va="center",
-                    zorder=5, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.7)
-                    if len(poly) == 2 else None)
+                    zorder=5, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     for k, joint in enumerate(chain.joints):
         x, y = pos[k]
-        if len(joint) > 2:
+        if len(joint) > 2:  # a ring, and the multiplicity in the widest free angle at the joint
             ax.add_patch(Circle((x, y), r * 1.75, facecolor="white", edgecolor=_MULTI, lw=1.6, zorder=3))
-            ax.text(x + r * 1.5, y + r * 1.5, str(len(joint)), color=_MULTI, fontsize=7, fontweight="bold",
-                    ha="left", va="bottom", zorder=6)
+            turn, _ = _widest_gap(pos, sides, k)
+            ax.text(x + r * 3 * math.cos(turn), y + r * 3 * math.sin(turn), str(len(joint)), color=_MULTI,
+                    fontsize=7, fontweight="bold", ha="center", va="center", zorder=6)
         ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
@@ -350,23 +418,36 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     ax.set_ylim(-reach, reach)
     ax.axis("off")
     if caption:
-        ax.set_title(caption, fontsize=8, pad=2, y=-0.02)
+        ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
+
+
+def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int) -> tuple[float, float]:
+    """Direction (radians) of the middle of the widest free angle at a joint between the sides
+    drawn there, and that angle; away from the drawing's centre where no side meets the joint."""
+    turns = sorted(math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
+                   for a, b in sides if joint in (a, b))
+    if not turns:
+        away = pos[joint] - pos.mean(axis=0)
+        return (math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2), math.pi
+    gaps = [((turns[(i + 1) % len(turns)] - t) % (2 * math.pi)) or 2 * math.pi for i, t in enumerate(turns)]
+    i = int(np.argmax(gaps))
+    return turns[i] + gaps[i] / 2, gaps[i]
 
 
 def _free_ends(pos: np.ndarray, polygons: list[list[int]], length: float) -> dict[int, np.ndarray]:
-    """Where each single-joint link ends: away from the drawing's centre, fanned out where several
-    hang on one joint."""
-    centre = pos.mean(axis=0) if len(pos) else np.zeros(2)
+    """Where each single-joint link ends: into the widest free angle at its joint, fanned out
+    where several hang on one joint."""
     hanging: dict[int, list[int]] = {}
     for link, poly in enumerate(polygons):
         if len(poly) == 1:
             hanging.setdefault(poly[0], []).append(link)
+    sides = _sides(polygons)
     ends = {}
     for joint, links in hanging.items():
-        away = pos[joint] - centre
-        base = math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2
+        base, width = _widest_gap(pos, sides, joint)
+        spread = min(0.6, 0.8 * width / len(links))
         for i, link in enumerate(links):
-            angle = base + (i - (len(links) - 1) / 2) * 0.6
+            angle = base + (i - (len(links) - 1) / 2) * spread
             ends[link] = pos[joint] + length * np.array([math.cos(angle), math.sin(angle)])
     return ends
 
@@ -389,7 +470,7 @@ def _check_out(out: str | Path) -> Path:
     return path
 
 
-def _save(fig, path: Path, dpi: int = 110) -> None:
+def _save(fig, path: Path, dpi: int) -> None:
     kwargs = {"metadata": {"Date": None}} if path.suffix.lower() == ".svg" else {}
     import matplotlib
 
@@ -416,27 +497,50 @@ def _caption(item, index: int | None) -> str:
     return text
 
 
-def draw_one(item: Chain | Mechanism, out: str | Path, *, title: str | None = None, labels: bool = True) -> None:
-    """Draw one chain or mechanism to ``out`` (.svg, .png or .pdf), links numbered.
+#: the edge of one drawing in inches, and the PNG resolution: a single drawing, a sheet's cell
+SINGLE, CELL = (3.6, 150), (1.9, 100)
 
-    >>> # draw_one(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0), "fourbar.png")
-    """
+
+def _check_size(size: float, dpi: int) -> None:
+    if not 0.5 <= size <= 30:
+        raise InvalidOption(f"a drawing's size is 0.5 to 30 inches, not {size:g}")
+    if not 30 <= dpi <= 1200:
+        raise InvalidOption(f"the resolution is 30 to 1200 dpi, not {dpi}")
+
+
+def _figure(item: Chain | Mechanism, labels: bool, size: float):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    fig, ax = plt.subplots(figsize=(size, size * 19 / 18))
+    _draw(ax, item, labels=labels, caption=None)
+    ax.set_title(_caption(item, None), fontsize=9)
+    return fig
+
+
+def draw_one(item: Chain | Mechanism, out: str | Path, *, title: str | None = None, labels: bool = True,
+             size: float = SINGLE[0], dpi: int = SINGLE[1]) -> None:
+    """Draw one chain or mechanism to ``out`` (.svg, .png or .pdf), links numbered unless
+    ``labels=False``; ``size`` is the drawing's edge in inches, ``dpi`` the PNG resolution.
+
+    >>> # draw_one(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0), "fourbar.png", size=5)
+    """
+    import matplotlib.pyplot as plt
+
     path = _check_out(out)
-    fig, ax = plt.subplots(figsize=(3.6, 3.8))
+    _check_size(size, dpi)
+    fig = _figure(item, labels, size)
     try:
-        _draw(ax, item, labels=labels, caption=None)
-        ax.set_title(title or _caption(item, None), fontsize=9)
-        _save(fig, path)
+        if title:
+            fig.axes[0].set_title(title, fontsize=9)
+        _save(fig, path, dpi=dpi)
     finally:
         plt.close(fig)
 
 
-def svg(item: Chain | Mechanism, *, labels: bool = True) -> str:
+def svg(item: Chain | Mechanism, *, labels: bool = True, size: float = SINGLE[0]) -> str:
     """One chain or mechanism as SVG text (what Jupyter shows for a Chain or Mechanism).
 
     >>> svg(Chain.parse("0-1 1-2 2-3 3-0")).lstrip().startswith("<?xml")
@@ -445,14 +549,11 @@ def svg(item: Chain | Mechanism, *, labels: bool = True) -> str:
     import io
 
     import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(3.6, 3.8))
+    _check_size(size, SINGLE[1])
+    fig = _figure(item, labels, size)
     try:
-        _draw(ax, item, labels=labels, caption=None)
-        ax.set_title(_caption(item, None), fontsize=9)
         out = io.StringIO()
         with matplotlib.rc_context({"svg.hashsalt": "mechsynth"}):
             fig.savefig(out, format="svg", bbox_inches="tight", metadata={"Date": None})
@@ -462,8 +563,12 @@ def svg(item: Chain | Mechanism, *, labels: bool = True) -> str:
 
 
 def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: int | None = None,
-               title: str | None = None, labels: bool = False) -> None:
+               title: str | None = None, labels: bool | None = None, size: float = CELL[0],
+               dpi: int = CELL[1]) -> None:
     """An atlas sheet: every item on a grid, captioned with its code and index (1, 2, …).
+
+    Links are numbered when ``labels`` is true, and by default on sheets of mechanisms (whose
+    captions name the fixed and input links); ``size`` is each drawing's edge in inches.
 
     >>> # draw_sheet(list(synth.type_synthesis(1, 8)), "atlas_8.png", title="1-DOF, 8 links")
     """
@@ -473,12 +578,14 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
     import matplotlib.pyplot as plt
 
     path = _check_out(out)
+    _check_size(size, dpi)
     if not items:
         raise InvalidOption("nothing to draw: the selection is empty")
+    if labels is None:
+        labels = any(isinstance(item, Mechanism) for item in items)
     n = len(items)
     columns = columns or min(n, max(1, math.ceil(math.sqrt(n * 1.3))))
     rows = math.ceil(n / columns)
-    size = 1.9
     fig, axes = plt.subplots(rows, columns, figsize=(size * columns, size * rows + (0.45 if title else 0)),
                              squeeze=False)
     try:
@@ -490,6 +597,6 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
         if title:
             fig.suptitle(title, fontsize=11)
         fig.tight_layout(pad=0.4)
-        _save(fig, path, dpi=80)
+        _save(fig, path, dpi=dpi)
     finally:
         plt.close(fig)

@@ -100,3 +100,137 @@ def test_chains_and_mechanisms_show_themselves_in_jupyter():
     assert "fixed 0" in mech and mech != text
     arm = Chain(4, ((0, 2), (1, 3), (2, 3)), h=4)  # a serial arm in h = 4: free ends and the space named
     assert "h=4" in arm._repr_svg_()
+
+
+# ------------------------------------------------------------ drawing quality, checked independently
+def _sides_of(polygons):
+    out = []
+    for poly in polygons:
+        if len(poly) == 2:
+            out.append(tuple(poly))
+        elif len(poly) > 2:
+            out += [(poly[i], poly[(i + 1) % len(poly)]) for i in range(len(poly))]
+    return out
+
+
+def _cross(o, a, b):
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def _segments_meet(p, q, r, s, eps=1e-9):
+    """Closed segments pq and rs share a point (touching counts)."""
+    d1, d2, d3, d4 = _cross(r, s, p), _cross(r, s, q), _cross(p, q, r), _cross(p, q, s)
+    if ((d1 > eps and d2 < -eps) or (d1 < -eps and d2 > eps)) and ((d3 > eps and d4 < -eps) or (d3 < -eps and d4 > eps)):
+        return True
+
+    def on(a, b, c):  # c on segment ab
+        return abs(_cross(a, b, c)) <= eps and min(a[0], b[0]) - eps <= c[0] <= max(a[0], b[0]) + eps \
+            and min(a[1], b[1]) - eps <= c[1] <= max(a[1], b[1]) + eps
+    return on(r, s, p) or on(r, s, q) or on(p, q, r) or on(p, q, s)
+
+
+def _inside(point, polygon):
+    """Ray casting: point strictly inside the polygon."""
+    x, y = point
+    hit = False
+    for (x0, y0), (x1, y1) in zip(polygon, np.roll(polygon, -1, axis=0)):
+        if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
+            hit = not hit
+    return hit
+
+
+def _drawing_faults(chain: Chain) -> list[str]:
+    """What a designer would reject in a drawing: crossings, joints on foreign sides or inside foreign
+    links, concave link polygons, corners under 15°."""
+    lay = draw.layout(chain)
+    pos, faults = lay.joints, []
+    sides = _sides_of(lay.polygons)
+    for i, (a, b) in enumerate(sides):
+        for c, d in sides[i + 1:]:
+            if len({a, b, c, d}) == 4 and _segments_meet(pos[a], pos[b], pos[c], pos[d]):
+                faults.append(f"sides {a}-{b} and {c}-{d} cross")
+        for k in range(len(pos)):
+            if k not in (a, b) and _segments_meet(pos[a], pos[b], pos[k], pos[k], eps=1e-6):
+                faults.append(f"joint {k} lies on side {a}-{b}")
+    for link, poly in enumerate(lay.polygons):
+        if len(poly) < 3:
+            continue
+        pts = pos[poly]
+        turns = [_cross(pts[i - 1], pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))]
+        if not (all(t > 0 for t in turns) or all(t < 0 for t in turns)):
+            faults.append(f"link {link} is concave")
+        for i in range(len(pts)):
+            u, w = pts[i - 1] - pts[i], pts[(i + 1) % len(pts)] - pts[i]
+            angle = np.degrees(np.arccos(np.clip(u @ w / np.linalg.norm(u) / np.linalg.norm(w), -1, 1)))
+            if angle < 15:
+                faults.append(f"link {link} has a {angle:.0f}° corner")
+        for k in range(len(pos)):
+            if k not in poly and _inside(pos[k], pts):
+                faults.append(f"joint {k} lies inside link {link}")
+    return faults
+
+
+@pytest.mark.parametrize("dof, links, query", [
+    (1, 4, {}), (1, 6, {}), (1, 8, {}), (1, 10, {}),
+    (2, 5, {}), (2, 7, {}), (2, 9, {}),
+    (3, 6, {}), (3, 8, {}), (3, 10, {}),
+    (1, 6, {"v": (1, 2)}), (1, 8, {"v": (1, 4)}),
+    (3, 6, {"n1": (1, 3)}), (3, 8, {"n1": (1, 3)}),
+])
+def test_every_planar_chain_is_drawn_convex_without_crossings(dof, links, query):
+    """Every planar chain up to 10 links (fractionated, multiple joints and open chains included):
+    convex link polygons, corners of 15° or more, no crossing, no joint on a foreign side or link."""
+    chains = [c for c in synth.type_synthesis(dof, links, workers=1, **query) if c.is_planar()]
+    assert chains
+    faults = {c.compact(): f for c in chains if (f := _drawing_faults(c))}
+    assert not faults, faults
+
+
+def test_the_quality_check_sees_a_bad_drawing(monkeypatch):
+    """The checker itself: a sliver triangle and swapped joints are found."""
+    chain = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    good = draw.layout(chain)
+    bent = good.joints.copy()
+    triangle = next(p for p in good.polygons if len(p) == 3)
+    bent[triangle[0]] = bent[triangle[1:]].mean(axis=0) * 0.999 + 0.001 * bent[triangle[0]]  # a sliver
+    monkeypatch.setattr(draw, "layout", lambda c: draw.Layout(bent, good.polygons, True))
+    assert any("corner" in f for f in _drawing_faults(chain))
+    crossed = good.joints.copy()
+    crossed[[0, 1]] = crossed[[1, 0]]
+    monkeypatch.setattr(draw, "layout", lambda c: draw.Layout(crossed, good.polygons, True))
+    assert _drawing_faults(chain)
+
+
+def test_cli_size_dpi_and_labels(tmp_path, capsys):
+    from PIL import Image
+
+    chain = ["draw", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1"]
+    assert main([*chain, "--out", str(tmp_path / "small.png")]) == 0
+    assert main([*chain, "--size", "6", "--dpi", "200", "--out", str(tmp_path / "big.png")]) == 0
+    with Image.open(tmp_path / "small.png") as small, Image.open(tmp_path / "big.png") as big:
+        assert small.width >= 400 and big.width > 2 * small.width  # print size on request
+    assert main([*chain, "--no-labels", "--out", str(tmp_path / "bare.svg")]) == 0
+    assert main([*chain, "--out", str(tmp_path / "numbered.svg")]) == 0
+    assert len((tmp_path / "numbered.svg").read_text()) > len((tmp_path / "bare.svg").read_text())
+    capsys.readouterr()
+    for bad in (["--dpi", "100", "--out", str(tmp_path / "x.svg")], ["--size", "0.1", "--out", str(tmp_path / "x.png")],
+                ["--dpi", "5000", "--out", str(tmp_path / "x.png")]):
+        assert main([*chain, *bad]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("mechsynth:") and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
+    """Captions of mechanisms name the fixed link, so the sheet numbers the links."""
+    labels, real = [], draw._draw
+
+    def spy(ax, item, **kw):
+        labels.append(kw["labels"])
+        return real(ax, item, **kw)
+
+    monkeypatch.setattr(draw, "_draw", spy)
+    mechanisms = draw.expand([Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")], mechanisms=True)
+    draw.draw_sheet(mechanisms, tmp_path / "m.png")
+    draw.draw_sheet([Chain.parse("0-1 1-2 2-3 3-0")], tmp_path / "c.png")
+    draw.draw_sheet([Chain.parse("0-1 1-2 2-3 3-0")], tmp_path / "l.png", labels=True)
+    assert labels == [True] * len(mechanisms) + [False, True]

@@ -17,10 +17,11 @@ Example
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 
-from .._argtypes import positive, seconds, whole, workers
+from .._argtypes import inches, positive, seconds, whole, workers
 from .._output import nothing_found, write_count, write_rows
 
 __all__ = ["add_commands"]
@@ -66,6 +67,10 @@ def add_commands(sub) -> None:
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
+    p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
+    p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
+    p.add_argument("--labels", action=argparse.BooleanOptionalAction, default=None,
+                   help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
     p.add_argument("--title", help="sheet title (default: the selection)")
     p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
@@ -170,6 +175,8 @@ def _run_draw(args) -> int:
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
+    if args.dpi is not None and not args.out.lower().endswith(".png"):
+        raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:
@@ -231,8 +238,12 @@ def _run_draw(args) -> int:
         raise InvalidOption(f"the selection has {len(items)} drawings, more than --limit {args.limit}; "
                             "narrow it with --where or raise --limit")
     if len(items) == 1 and not (args.code or args.db):
-        draw.draw_one(items[0], args.out, title=title)
+        size, dpi = draw.SINGLE
+        draw.draw_one(items[0], args.out, title=title, labels=args.labels is not False,
+                      size=args.size or size, dpi=args.dpi or dpi)
     else:
-        draw.draw_sheet(items, args.out, columns=args.columns, title=title)
+        size, dpi = draw.CELL
+        draw.draw_sheet(items, args.out, columns=args.columns, title=title, labels=args.labels,
+                        size=args.size or size, dpi=args.dpi or dpi)
     print(f"{len(items)} drawing{'s' if len(items) != 1 else ''} -> {args.out}", file=sys.stderr)
     return 0

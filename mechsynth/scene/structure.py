@@ -122,7 +122,7 @@ class Drawing(Table):
     mechanisms: Flag = False
     columns: Positive | None = None
     title: Text | None = None
-    labels: Flag = False
+    labels: Flag | None = None  # default: numbered on sheets of mechanisms (their captions name links)
     limit: Positive = 200
 
 
