@@ -2,9 +2,9 @@
 
 Each link is a polygon through its joints (binary links as bars, ternary as
 triangles, …), joints are small circles, a multiple joint carries a ring and its
-multiplicity, the fixed link of a mechanism is hatched and an input link gets an
-arrow.  Layout: when the link–joint incidence graph is planar and 2-connected (single-joint
-links aside), a Tutte (barycentric) embedding of the joint graph with the longest loop
+multiplicity, the fixed link of a mechanism is hatched, an input link gets an
+arrow and a prismatic pair is a block on a bar (a cylinder: a dark barrel).  Layout: when the
+link–joint incidence graph is planar and 2-connected (single-joint links aside), a Tutte (barycentric) embedding of the joint graph with the longest loop
 outside, in which every link polygon is a convex face and nothing crosses; then joints move
 one at a time to open up corners under 30° and crowded joints, never adding a crossing.
 Other chains start from networkx's planar or Kamada–Kawai layout.  Everything is deterministic.
@@ -406,7 +406,10 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             turn, _ = _widest_gap(pos, sides, k)
             ax.text(x + r * 3 * math.cos(turn), y + r * 3 * math.sin(turn), str(len(joint)), color=_MULTI,
                     fontsize=7, fontweight="bold", ha="center", va="center", zorder=6)
-        ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
+        if chain.kinds is not None and chain.kinds[k] == "prismatic":
+            ax.add_patch(_slider(chain, lay, k, r))
+        else:
+            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -419,6 +422,28 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     ax.axis("off")
     if caption:
         ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
+
+
+def _slider(chain: Chain, lay: Layout, k: int, r: float):
+    """A prismatic pair: a block sliding along a side of its first link at the joint; where both
+    links are binary (a cylinder and its rod), a longer, darker barrel along the cylinder's bar."""
+    from matplotlib.patches import Polygon
+
+    pos, guide = lay.joints, lay.polygons[chain.joints[k][0]]
+    other = next((j for j in guide if j != k), None)
+    direction = pos[other] - pos[k] if other is not None else np.array([1.0, 0.0])
+    length = float(np.linalg.norm(direction))
+    along = direction / max(length, 1e-12)
+    across = np.array([-along[1], along[0]])
+    cylinder = all(len(lay.polygons[x]) == 2 for x in chain.joints[k])
+    if cylinder:  # from the joint towards the cylinder's far end, leaving room for a block there
+        reach = 0.4 if other is not None and chain.kinds[other] == "prismatic" else 0.55
+        start, end, half = pos[k], pos[k] + along * reach * length, 1.3 * r
+    else:
+        start, end, half = pos[k] - along * 1.6 * r, pos[k] + along * 1.6 * r, 1.0 * r
+    corners = [start + across * half, end + across * half, end - across * half, start - across * half]
+    return Polygon(corners, closed=True, facecolor=_EDGE if cylinder else "white", edgecolor=_EDGE,
+                   lw=1.2, zorder=4)
 
 
 def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int) -> tuple[float, float]:
@@ -490,6 +515,8 @@ def _save(fig, path: Path, dpi: int) -> None:
 def _caption(item, index: int | None) -> str:
     chain = item.chain if isinstance(item, Mechanism) else item
     text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}")
+    if chain.kinds is not None:
+        text += f" P{chain.kinds.count('prismatic')}"
     if index is not None:
         text += f"  #{index}"
     if isinstance(item, Mechanism):

@@ -234,3 +234,20 @@ def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
     draw.draw_sheet([Chain.parse("0-1 1-2 2-3 3-0")], tmp_path / "c.png")
     draw.draw_sheet([Chain.parse("0-1 1-2 2-3 3-0")], tmp_path / "l.png", labels=True)
     assert labels == [True] * len(mechanisms) + [False, True]
+
+
+def test_draw_prismatic_variants(tmp_path, capsys):
+    """Sliders drawn as blocks, cylinders as barrels: one drawing per R/P variant, as many as
+    ``chains --chain … --prismatic`` lists; the caption carries the P count."""
+    from synth.prismatic import variants_of
+
+    watt = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
+    variants = list(variants_of([Chain.parse(watt)], (1, 2)))
+    assert main(["draw", "--chain", watt, "--prismatic", "1..2", "--out", str(tmp_path / "w.svg")]) == 0
+    assert f"{len(variants)} drawings" in capsys.readouterr().err
+    assert draw._caption(variants[-1], None).startswith("42/0 P2")
+    for bad in (["--idle-joints"], ["--prismatic", "1", "--frame", "0"], ["--prismatic", "9"],
+                ["--prismatic", "1", "--h", "4"]):
+        assert main(["draw", "--chain", watt, *bad, "--out", str(tmp_path / "x.png")]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("mechsynth:") and err.count("\n") == 1

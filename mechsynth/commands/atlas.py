@@ -66,6 +66,11 @@ def add_commands(sub) -> None:
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
+    p.add_argument("--prismatic", metavar="A..B",
+                   help="draw every assignment of A…B prismatic pairs to the simple joints, up to symmetry "
+                        "(a slider is a block on a bar, a cylinder a dark barrel)")
+    p.add_argument("--idle-joints", action="store_true",
+                   help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
     p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
     p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
@@ -169,6 +174,22 @@ def _conditions(groups: list[list[str]]) -> list[str]:
 
 
 # --------------------------------------------------------------------- draw
+def _variants(args, chains: list) -> list:
+    """The chains themselves, or with ``--prismatic A..B`` every R/P variant of each."""
+    if args.prismatic is None:
+        return chains
+    from synth._number_synthesis import parse_range
+    from synth.errors import InvalidOption
+    from synth.prismatic import variants_of
+
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    simple = max(sum(1 for j in c.joints if len(j) == 2) for c in chains)
+    if lo > simple:
+        raise InvalidOption(f"--prismatic {args.prismatic} asks for more prismatic pairs than the {simple} "
+                            "simple joints of these chains")
+    return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
+
+
 def _run_draw(args) -> int:
     from synth import draw
     from synth.chain import Chain, Mechanism
@@ -191,6 +212,11 @@ def _run_draw(args) -> int:
             raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
                                 f"{args.h}")
     h = args.h or 3
+    if args.idle_joints and args.prismatic is None:
+        raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.prismatic is not None and (args.repairs or args.frame is not None or h != 3):
+        raise InvalidOption("--prismatic draws the variants of planar chains (h = 3); it does not go with "
+                            "--repairs or --frame (use --mechanisms for every fixed link)")
     if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
         raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
     if args.chain and args.repairs:
@@ -211,7 +237,7 @@ def _run_draw(args) -> int:
         if args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:
-            items = draw.expand([chain], mechanisms=args.mechanisms)
+            items = draw.expand(_variants(args, [chain]), mechanisms=args.mechanisms)
         title = args.title
     elif args.code:
         import synth
@@ -223,7 +249,7 @@ def _run_draw(args) -> int:
         if not chains:
             print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
             return 1
-        items = draw.expand(chains, mechanisms=args.mechanisms)
+        items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
         title = args.title or f"{code} (W = {dof}{'' if h == 3 else f', h = {h}'}): {len(chains)} chains"
     else:
         from synth.atlas import export
@@ -232,8 +258,11 @@ def _run_draw(args) -> int:
         if not chains:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
-        items = draw.expand(chains, mechanisms=args.mechanisms)
+        items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
         title = args.title or f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains"
+    if not items:  # only --prismatic can empty a selection here
+        print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
+        return 1
     if len(items) > args.limit:
         raise InvalidOption(f"the selection has {len(items)} drawings, more than --limit {args.limit}; "
                             "narrow it with --where or raise --limit")
