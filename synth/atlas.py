@@ -1,9 +1,10 @@
 """The SQLite atlas: chains and mechanisms of grid runs, resumable unit by unit.
 
-Schema (version 1, ``meta.schema_version``)
+Schema (version 3, ``meta.schema_version``)
 -------------------------------------------
 ``chains``      one row per chain: integer ``id``, ``certificate`` (nauty, canonical) UNIQUE; code
-                (with joint composition), base code (without), W, n, K, v, largest link degree,
+                (with joint composition), base code (without), W, h, n, K, v, number of prismatic
+                pairs (grid key ``prismatic``; W then follows the wedge rule), largest link degree,
                 sorted degrees, fractionated flag, and the chain JSON (``Chain.to_dict``) in its
                 *canonical labelling* (nauty's), so the same chain reads the same from any cell.
 ``link_counts`` (chain, degree, count): n_I of each chain, for ``--where n5>=1``.
@@ -65,13 +66,14 @@ from .chain import Chain, Mechanism
 from .code import Code
 from .errors import InvalidOption, MalformedCode, SynthesisError
 from .grid import Cell, Grid
+from .prismatic import variants_of, wedge_mobility
 
 __all__ = [
     "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
     "run_grid", "summary", "export", "parse_where", "open_atlas",
 ]
 
-SCHEMA_VERSION = 2  # 2: motion space h of chains and cells
+SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
 
 
 class AtlasError(SynthesisError):
@@ -88,7 +90,7 @@ CREATE TABLE chains (
     id INTEGER PRIMARY KEY, certificate TEXT NOT NULL UNIQUE,
     code TEXT NOT NULL, base_code TEXT NOT NULL,
     dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
-    max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
+    prismatic INTEGER NOT NULL, max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
     chain TEXT NOT NULL
 );
 CREATE INDEX chains_select ON chains (dof, h, links, v, code);
@@ -263,6 +265,8 @@ class _Task:
     cell: str
     unit: Unit
     input_link: bool
+    prismatic: tuple = (0, 0)  # the cell's range of prismatic pairs per variant
+    idle_joints: bool = False
 
 
 @dataclass
@@ -291,20 +295,23 @@ def compute_unit(task: _Task) -> _Result:
     # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
     h = task.unit.conventions.h
     fractionable = task.unit.conventions.rigid_subchains or task.unit.code.dof(h) != 1 or task.unit.code.n1
-    for found in run_unit(task.unit):
+    found_chains = run_unit(task.unit)
+    if task.prismatic != (0, 0):
+        lo, hi = task.prismatic
+        found_chains = variants_of(found_chains, (lo, task.unit.code.joints if hi is None else hi),
+                                   idle=task.idle_joints)
+    for found in found_chains:
         cert = found.certificate
         chain = _canonical(found)
         code = chain.code
         degrees = chain.degrees
-        row = {"code": str(code), "links": chain.links, "joints": [list(j) for j in chain.joints],
-               "certificate": cert, "dof": chain.dof, "loops": chain.loops, "v": chain.v}
-        if chain.kinds is not None:
-            row["kinds"] = list(chain.kinds)
-        if h != 3:
-            row["h"] = h
-        chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), chain.dof, h,
-                       chain.links, chain.loops,
-                       chain.v, max(degrees), " ".join(map(str, sorted(degrees, reverse=True))),
+        row = chain.to_dict()
+        prismatic = 0 if chain.kinds is None else chain.kinds.count("prismatic")
+        dof = wedge_mobility(chain) if prismatic else chain.dof  # a loop of prismatic pairs adds one
+        row["dof"] = dof
+        chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), dof, h,
+                       chain.links, chain.loops, chain.v, prismatic, max(degrees),
+                       " ".join(map(str, sorted(degrees, reverse=True))),
                        int(fractionable and chain.is_fractionated()), json.dumps(row, separators=(",", ":"))))
         counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
         mechanisms = mechanisms_of(chain)
@@ -320,7 +327,8 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
     try:
         before = conn.total_changes
         conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, h, links, loops, v, "
-                         "max_degree, degrees, fractionated, chain) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         "prismatic, max_degree, degrees, fractionated, chain) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          result.chains)
         new = conn.total_changes - before
         ids: dict[str, int] = {}
@@ -482,7 +490,8 @@ def run_grid(
                                                    skip_impossible=True)))
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
-            tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans for u in units
+            tasks = [_Task(cell.key, u, grid.input_link, cell.prismatic, cell.idle_joints) for cell, units in plans
+                     for u in units
                      if (cell.key, u.key) not in done]
             result.units_total = sum(len(units) for _, units in plans)
             result.units_skipped = result.units_total - len(tasks)
@@ -538,6 +547,7 @@ def run_grid(
 _FIELDS = {
     "code": "code", "dof": "dof", "w": "dof", "h": "h", "links": "links", "n": "links", "loops": "loops", "k": "loops",
     "v": "v", "max_degree": "max_degree", "maxdeg": "max_degree", "fractionated": "fractionated", "cell": "cell",
+    "p": "prismatic", "prismatic": "prismatic",
 }
 _WHERE_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(<=|>=|!=|==|=|<|>)\s*(\S.*?)\s*$")
 _OPS = {"=": "=", "==": "=", "!=": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
@@ -549,7 +559,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
     A condition is ``FIELD OP VALUE``; OP is one of ``= != < <= > >=``; conditions are
     joined by AND.  Fields: ``code`` (= or !=, the code as the atlas shows it, e.g.
     ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``h`` (motion space), ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
-    ``fractionated`` (0/1), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
+    ``fractionated`` (0/1), ``P``/``prismatic`` (number of prismatic pairs), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
     (= only, a cell key as shown by ``mechsynth atlas``).  With ``=`` a number may be a
     range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
 
@@ -590,7 +600,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
         elif key in _FIELDS:
             column, col_params = f"c.{_FIELDS[key]}", []
         else:
-            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, h, n, K, v, maxdeg, "
+            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
                                 "fractionated, nI such as n3, basecode, cell)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
@@ -667,15 +677,16 @@ def summary(db: str | Path) -> dict:
     """
     conn = open_atlas(db)
     try:
-        order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code"
-        shown = "code || CASE WHEN h = 3 THEN '' ELSE ' h=' || h END"
+        order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code, prismatic"
+        shown = ("code || CASE WHEN prismatic = 0 THEN '' ELSE ' P' || prismatic END "
+                 "|| CASE WHEN h = 3 THEN '' ELSE ' h=' || h END")
         codes = [dict(zip(("code", "dof", "h", "links", "chains"), r)) for r in conn.execute(
-            f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code {order}")]
+            f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code, prismatic {order}")]
         by_code = {c["code"]: c["chains"] for c in codes}
         mech_by_code = {code: n for code, n in conn.execute(
             f"SELECT {shown}, COUNT(*) FROM (SELECT c.code AS code, c.h AS h, c.links AS links, c.dof AS dof, "
-            f"c.v AS v FROM mechanisms k JOIN chains c ON c.id = k.chain WHERE k.input_link < 0) "
-            f"GROUP BY h, code {order}")}
+            f"c.v AS v, c.prismatic AS prismatic FROM mechanisms k JOIN chains c ON c.id = k.chain "
+            f"WHERE k.input_link < 0) GROUP BY h, code, prismatic {order}")}
         for c in codes:
             c["mechanisms"] = mech_by_code.get(c["code"], 0)
         cells = []
@@ -683,8 +694,8 @@ def summary(db: str | Path) -> dict:
                 "SELECT cell, dof, h, links, units FROM cells ORDER BY dof, h, links, cell"):
             done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
             cell_codes = {code: n for code, n in conn.execute(
-                "SELECT c.code, COUNT(*) FROM members m JOIN chains c ON c.id = m.chain "
-                f"WHERE m.cell = ? GROUP BY c.code {order}", (key,))}
+                f"SELECT {shown}, COUNT(*) FROM (SELECT c.* FROM members m JOIN chains c ON c.id = m.chain "
+                f"WHERE m.cell = ?) GROUP BY code, prismatic {order}", (key,))}
             cells.append({"cell": key, "dof": dof, "h": h, "links": links, "units_done": done, "units_total": total,
                           "chains": sum(cell_codes.values()), "by_code": cell_codes})
         units_done, units_total = conn.execute(

@@ -22,6 +22,8 @@ key                  value                                                  defa
 ``v``                multiple-joint count: integer, ``"A..B"``, ``"A.."``   0
 ``h``                motion space of the loops: 2 … 6, ``"A..B"`` or list   3
 ``n1``               single-joint links (open chains): integer or ``"A..B"`` 0
+``prismatic``        store every R/P variant with A…B prismatic pairs       0
+``idle_joints``      with ``prismatic``: keep variants with idle joints     false
 ``rigid_subchains``  allow rigid sub-chains W(S) ≥ 0                        true only at W = 0
 ``fractionated``     keep fractionated chains                               true
 ``planar_only``      keep only planar chains                                false
@@ -82,6 +84,8 @@ class Cell:
     require: tuple[tuple[int, Range], ...] = ()
     h: int = 3
     n1: Range = (0, 0)
+    prismatic: Range = (0, 0)
+    idle_joints: bool = False
 
     @property
     def loops(self) -> int:
@@ -90,7 +94,7 @@ class Cell:
 
     @property
     def key(self) -> str:
-        """Stable text naming the cell (the atlas's cell key; h and n1 appear where they are not 3 and 0)."""
+        """Stable text naming the cell (the atlas's cell key; h, n1 and prismatic appear where they are not 3, 0, 0)."""
         hi = "" if self.v[1] is None else str(self.v[1])
         text = (f"W={self.dof} n={self.links} v={self.v[0]}..{hi} rigid={int(self.rigid_subchains)} "
                 f"frac={int(self.fractionated)} planar={int(self.planar_only)}")
@@ -98,6 +102,9 @@ class Cell:
             text += f" h={self.h}"
         if self.n1 != (0, 0):
             text += f" n1={self.n1[0]}..{'' if self.n1[1] is None else self.n1[1]}"
+        if self.prismatic != (0, 0):
+            text += f" p={self.prismatic[0]}..{'' if self.prismatic[1] is None else self.prismatic[1]}"
+            text += " idle=1" if self.idle_joints else ""
         if self.require:
             reqs = ",".join(f"{i}={lo}..{'' if hi is None else hi}" for i, (lo, hi) in self.require)
             text += f" require={reqs}"
@@ -183,6 +190,8 @@ class _Block(Table):
     v: RangeText | None = None
     h: _values(2) | None = None
     n1: RangeText | None = None
+    prismatic: RangeText | None = None
+    idle_joints: Flag | None = None
     rigid_subchains: Flag | None = None
     fractionated: Flag | None = None
     planar_only: Flag | None = None
@@ -250,11 +259,17 @@ def _expand(spec: dict, where: str) -> list[Cell]:
     if not triples:
         raise GridFileError(f"{where}no (W, n, h) of the ranges gives a whole number of loops K ≥ {least} "
                             "(n = W + 1 + (h − 1)·K).")
+    prismatic = parse_range_text(spec.get("prismatic", 0))
+    if prismatic != (0, 0) and any(h != 3 for _, _, h in triples):
+        raise GridFileError(f"{where}key 'prismatic': prismatic pairs are assigned in planar chains (h = 3) only.")
+    if spec.get("idle_joints") and prismatic == (0, 0):
+        raise GridFileError(f"{where}key 'idle_joints' goes with 'prismatic' (an all-revolute chain has no idle joint).")
     rigid, fractionated = spec.get("rigid_subchains"), spec.get("fractionated")
     return [
         Cell(w, n, parse_range_text(spec.get("v", 0)),
              rigid_subchains=(w == 0) if rigid is None else rigid,
              fractionated=True if fractionated is None else fractionated,
-             planar_only=bool(spec.get("planar_only")), require=reqs, h=h, n1=n1)
+             planar_only=bool(spec.get("planar_only")), require=reqs, h=h, n1=n1, prismatic=prismatic,
+             idle_joints=bool(spec.get("idle_joints")))
         for h, w, n in sorted((h, w, n) for w, n, h in triples)
     ]

@@ -111,3 +111,9 @@ def test_docstring_examples(name, tmp_path, monkeypatch):
     monkeypatch.chdir(ROOT)
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.failed == 0 and result.attempted > 0
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "models").glob("grid_*.toml")), ids=lambda p: p.name)
+def test_every_shipped_grid_file_reads(path):
+    grid = load_grid(path)
+    assert grid.cells and all(cell.plan() for cell in grid.cells if cell.links <= 8)

@@ -218,3 +218,46 @@ def test_cli_one_chain(capsys):
                           ([], "--chain goes with --prismatic")):
         code, _, err = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", *argv])
         assert code == 2 and message in err and err.count("\n") == 1
+
+
+def test_grid_stores_variants_checked_by_brute_force(capsys, tmp_path):
+    """A grid with the key 'prismatic' stores every variant once: per code and P count as many as the
+    brute force over assignments finds, each with the W of the Jacobian rank; --where P= selects them,
+    and atlas --prismatic still builds variants of the revolute chains only."""
+    import json
+
+    grid = tmp_path / "g.toml"
+    grid.write_text('dof = 1\nlinks = "4..6"\nprismatic = "0..2"\n')
+    db = str(tmp_path / "a.sqlite")
+    assert _cli(capsys, ["grid", str(grid), "--db", db, "--workers", "1"])[0] == 0
+    _, out, _ = _cli(capsys, ["atlas", "--db", db, "--format", "json"])
+    stored = json.loads(out)["by_code"]
+    expected = {}
+    for links in (4, 6):
+        for chain in type_synthesis(1, links, workers=1):
+            for k in range(3):
+                name = str(chain.code) + (f" P{k}" if k else "")
+                expected[name] = expected.get(name, 0) + brute_variant_count(chain.links, chain.joints, k)
+    assert stored == {c: n for c, n in expected.items() if n}
+    _, out, _ = _cli(capsys, ["atlas", "--db", db, "--where", "P=2", "--export", "chains", "--format", "jsonl"])
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert len(rows) == stored["4/0 P2"] + stored["42/0 P2"]
+    rng = np.random.default_rng(7)
+    for row in rows:
+        chain = Chain.from_dict(row)
+        assert chain.kinds.count("prismatic") == 2
+        assert row["dof"] == generic_mobility(chain.links, chain.joints, chain.kinds, rng)
+    _, out, _ = _cli(capsys, ["atlas", "--db", db, "--where", "n=6", "--prismatic", "1", "--count"])
+    assert json.loads(out)["count"] == stored["42/0 P1"]
+
+
+@pytest.mark.parametrize("text, message", [
+    ('dof = 1\nlinks = 5\nh = 4\nprismatic = 1\n', "planar chains"),
+    ('dof = 1\nlinks = 4\nidle_joints = true\n', "goes with 'prismatic'"),
+    ('dof = 1\nlinks = 4\nprismatic = "x"\n', "prismatic"),
+])
+def test_grid_prismatic_refusals(tmp_path, capsys, text, message):
+    grid = tmp_path / "g.toml"
+    grid.write_text(text)
+    code, _, err = _cli(capsys, ["grid", str(grid), "--db", str(tmp_path / "a.sqlite"), "--workers", "1"])
+    assert code == 2 and message in err and err.count("\n") == 1 and "Traceback" not in err

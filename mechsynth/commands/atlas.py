@@ -46,7 +46,7 @@ def add_commands(sub) -> None:
                         "fractionated=0, cell=KEY")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--prismatic", metavar="A..B",
-                   help="export the selected chains' variants with A…B prismatic pairs, up to symmetry")
+                   help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry")
     p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
                    help="summary: table or json; export: jsonl, csv or table")
@@ -146,7 +146,8 @@ def _export_variants(args, what: str) -> int:
     from .chains import write_variants
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
-    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=args.where))
+    # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already
+    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0"]))
     rows = variant_rows(chains, (lo, 10**6 if hi is None else hi), idle=args.idle_joints,
                         mechanisms=what == "mechanisms")
     return write_variants(rows, what, args.count, args.format or ("jsonl" if not args.count else None))
@@ -160,7 +161,7 @@ def _print_summary(info: dict) -> None:
         print(f"being written by pid {info['locked_by']['pid']} on {info['locked_by']['host']}")
     if info["codes"]:
         print()
-        write_rows([dict(c, W=c["dof"], n=c["links"], code=c["code"].split(" ")[0]) for c in info["codes"]],
+        write_rows([dict(c, W=c["dof"], n=c["links"], code=c["code"].split(" h=")[0]) for c in info["codes"]],
                    ["code", "W", "h", "n", "chains", "mechanisms"], "table")
     if info["cells"]:
         print()
@@ -183,6 +184,9 @@ def _variants(args, chains: list) -> list:
     from synth.prismatic import variants_of
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
+    chains = [c for c in chains if c.kinds is None]  # an atlas may hold variants already
+    if not chains:
+        return []
     simple = max(sum(1 for j in c.joints if len(j) == 2) for c in chains)
     if lo > simple:
         raise InvalidOption(f"--prismatic {args.prismatic} asks for more prismatic pairs than the {simple} "
