@@ -14,7 +14,9 @@ H is a subdivision-equivalent of the incidence graph, so
 * stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
   exact sub-chain conditions of docs/theory.md written on the edges, and lex-leader
   constraints for the automorphisms of H, from nauty), so few labelled copies of
-  a chain come out; the exact test and nauty's certificate run on each.
+  a chain come out; the exact test and nauty's certificate run on each.  Where H has
+  simple joints only and the placements are few, they are listed directly (numpy) with
+  the same symmetry constraints, and the exact test does the rest.
 
 Planarity and fractionation are properties of H (a subdivision keeps both), so
 they are decided once per H.
@@ -24,6 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from math import comb
 from time import perf_counter
 
 import pynauty
@@ -34,6 +37,7 @@ __all__ = ["Conventions", "Contracted", "contracted_graphs", "count_realised", "
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
+_FEW_VECTORS = 4096  # stage B enumerates weight vectors directly up to this many (no model to build)
 
 
 @dataclass(frozen=True)
@@ -96,7 +100,7 @@ class Contracted:
             nxt = []
             for a in frontier:
                 for g in gens:
-                    b = tuple(g[a[k]] for k in range(e))
+                    b = tuple(map(g.__getitem__, a))  # g after a
                     if b not in group:
                         group.add(b)
                         nxt.append(b)
@@ -290,30 +294,29 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
 def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool]:
     """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string), and
     whether they are one per orbit of Aut(H) (lex-leader on the whole group and every edge)."""
-    from ._cpsat import Model, all_solutions
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
     space = conv.h
-    model = Model()
-    w = []
-    for k, (u, v) in enumerate(edges):
-        if u == v:
-            lb = _loop_lb(kinds[u][0], conv)
-        elif kinds[u][0] == kinds[v][0] == "J":
-            lb = 1
-        else:
-            lb = 0
-        w.append(model.NewIntVar(lb, n2, f"w{k}"))
-    model.Add(sum(w) == n2)
+    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
     # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
     # (a direct joint or incidence at most once), and two one-link strings between two multiple
     # joints (W = 2 − h) only where the convention allows it
-    for k in range(1, len(edges)):
-        if edges[k] == edges[k - 1]:
-            model.Add(w[k] >= w[k - 1])
-            u, v = edges[k]
-            if u != v:
-                model.Add(w[k] >= (2 if kinds[u][0] == kinds[v][0] == "J" and 2 - space < conv.threshold else 1))
+    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - space < conv.threshold else 1)
+                for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
+    spare = n2 - sum(lows)
+    if spare < 0:
+        return [], True
+    simple = all(kind[0] == "L" for kind in kinds)  # then the exact test on H is cheap (see _passing)
+    if simple and not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
+        return _few_distributions(lows, spare, parallel, h, stats)
+    from ._cpsat import Model, all_solutions, cp_model
+
+    model = Model()
+    w = [model.NewIntVar(lb, n2, f"w{k}") for k, lb in enumerate(lows)]
+    model.Add(sum(w) == n2)
+    for k, least in parallel:
+        model.Add(w[k] >= w[k - 1])
+        model.Add(w[k] >= least)
     # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
     # S = T_L + the binary links of every string inside T with w < h − 1 binary links has
     # W(S) ≤ h(|T_L| − 1) + (h − 1)·|T_J| − Σ_{strings inside T} (h − 1 − w)⁺  (an empty string
@@ -359,14 +362,44 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
     group, whole_group = h.edge_group()
+    weights = [base ** (prefix - 1 - i) for i in range(prefix)]
+    lhs = cp_model.LinearExpr.WeightedSum(w[:prefix], weights)
     for g in group:
-        lhs = sum(base ** (prefix - 1 - i) * w[i] for i in range(prefix))
-        rhs = sum(base ** (prefix - 1 - i) * w[g[i]] for i in range(prefix))
-        model.Add(lhs <= rhs)
+        model.Add(lhs <= cp_model.LinearExpr.WeightedSum([w[g[i]] for i in range(prefix)], weights))
     t0 = perf_counter()
     solutions = all_solutions(model, w)
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group and prefix == len(edges)
+
+
+def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
+                       stats: dict | None) -> tuple[list, bool]:
+    """Stage B without a model, where the weight vectors are few: every way to put ``spare``
+    binary links on the edges above their least weights, kept where the parallel strings are
+    ordered and the vector is the lex-least of its images under Aut(H) (as the model's
+    constraints; the sub-chain conditions are left to the exact test)."""
+    import numpy as np
+
+    t0 = perf_counter()
+    group, whole_group = h.edge_group()
+    edges = len(lows)
+    if edges == 0:  # H is one branch vertex
+        return ([()] if spare == 0 else []), True
+    bars = np.array(list(combinations(range(spare + edges - 1), edges - 1)), dtype=np.int64)  # (N, edges − 1)
+    ends = np.full((len(bars), 1), -1), np.full((len(bars), 1), spare + edges - 1)
+    w = np.diff(np.hstack([ends[0], bars, ends[1]]), axis=1) - 1 + np.array(lows)  # stars and bars
+    keep = np.ones(len(w), dtype=bool)
+    for k, least in parallel:
+        keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
+    w = w[keep]
+    rows = np.arange(len(w))
+    for g in group:  # lex-least: at the first edge where w and its image differ, w is smaller
+        differ = w[:, g] - w
+        first = (differ != 0).argmax(axis=1)
+        w = w[differ[rows[: len(w)], first] >= 0]
+    solutions = [tuple(map(int, row)) for row in w]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group
 
 
 def _add(stats: dict | None, **values) -> None:
