@@ -30,7 +30,7 @@ import numpy as np
 from .chain import Chain, Mechanism
 from .errors import InvalidOption, SynthesisError
 
-__all__ = ["Layout", "layout", "expand", "draw_one", "draw_sheet", "DrawError"]
+__all__ = ["Layout", "layout", "expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError"]
 
 _FORMATS = (".svg", ".png", ".pdf")
 
@@ -407,7 +407,9 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.text(x + r * 3 * math.cos(turn), y + r * 3 * math.sin(turn), str(len(joint)), color=_MULTI,
                     fontsize=7, fontweight="bold", ha="center", va="center", zorder=6)
         if chain.kinds is not None and chain.kinds[k] == "prismatic":
-            ax.add_patch(_slider(chain, lay, k, r))
+            corners, cylinder = _slider(chain, lay, k, r)
+            ax.add_patch(Polygon(corners, closed=True, facecolor=_EDGE if cylinder else "white", edgecolor=_EDGE,
+                                 lw=1.2, zorder=4))
         else:
             ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
     if mech is not None and mech.input_link is not None:
@@ -424,11 +426,10 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
         ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
 
 
-def _slider(chain: Chain, lay: Layout, k: int, r: float):
-    """A prismatic pair: a block sliding along a side of its first link at the joint; where both
-    links are binary (a cylinder and its rod), a longer, darker barrel along the cylinder's bar."""
-    from matplotlib.patches import Polygon
-
+def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarray], bool]:
+    """A prismatic pair: the corners of a block sliding along a side of its first link at the
+    joint, and whether it is a cylinder (both links binary: a cylinder and its rod), drawn as a
+    longer, darker barrel along the cylinder's bar."""
     pos, guide = lay.joints, lay.polygons[chain.joints[k][0]]
     other = next((j for j in guide if j != k), None)
     direction = pos[other] - pos[k] if other is not None else np.array([1.0, 0.0])
@@ -441,9 +442,7 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float):
         start, end, half = pos[k], pos[k] + along * reach * length, 1.3 * r
     else:
         start, end, half = pos[k] - along * 1.6 * r, pos[k] + along * 1.6 * r, 1.0 * r
-    corners = [start + across * half, end + across * half, end - across * half, start - across * half]
-    return Polygon(corners, closed=True, facecolor=_EDGE if cylinder else "white", edgecolor=_EDGE,
-                   lw=1.2, zorder=4)
+    return [start + across * half, end + across * half, end - across * half, start - across * half], cylinder
 
 
 def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int) -> tuple[float, float]:
@@ -627,3 +626,77 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
         _save(fig, path, dpi=dpi)
     finally:
         plt.close(fig)
+
+
+def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False) -> str:
+    """A small ``<svg>`` element of a chain or mechanism written directly, without matplotlib
+    (about a tenth of the time): the same drawing for web pages of many chains.
+
+    >>> svg_inline(Chain.parse("0-1 1-2 2-3 3-0")).startswith("<svg")
+    True
+    """
+    mech = item if isinstance(item, Mechanism) else None
+    chain = item.chain if mech else item
+    lay = layout(chain)
+    pos = lay.joints
+    nj = len(pos)
+    gaps = [float(np.linalg.norm(pos[a] - pos[b])) for a in range(nj) for b in range(a + 1, nj)]
+    r = min(0.07, 0.28 * min(gaps, default=1.0))
+    free_ends = _free_ends(pos, lay.polygons, length=max(0.3, 6 * r))
+    sides = _sides(lay.polygons)
+    reach = max([1.2] + [float(np.abs(end).max()) + 2 * r for end in free_ends.values()])
+    scale = size / (2 * reach)
+
+    def xy(p) -> str:
+        return f"{(p[0] + reach) * scale:.1f},{(reach - p[1]) * scale:.1f}"
+
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">']
+    for link, poly in enumerate(lay.polygons):  # polygons first, bars over them, joints on top
+        frame = mech is not None and link == mech.frame
+        if len(poly) >= 3:
+            fill = "url(#hatch)" if frame else _FILL
+            out.append(f'<polygon points="{" ".join(xy(pos[k]) for k in poly)}" fill="{fill}" stroke="{_EDGE}" '
+                       'stroke-width="1.2" stroke-linejoin="round"/>')
+    dash = ' stroke-dasharray="3 2"'  # a fixed binary link: a wide dashed bar
+    for link, poly in enumerate(lay.polygons):
+        frame = mech is not None and link == mech.frame
+        if len(poly) == 2:
+            a, b = xy(pos[poly[0]]), xy(pos[poly[1]])
+            out.append(f'<line x1="{a.split(",")[0]}" y1="{a.split(",")[1]}" x2="{b.split(",")[0]}" '
+                       f'y2="{b.split(",")[1]}" stroke="{_BAR}" stroke-width="{4.5 if frame else 2.2}" '
+                       f'stroke-linecap="round"{dash if frame else ""}/>')
+        elif len(poly) == 1:
+            end = free_ends[link]
+            out.append(f'<polyline points="{xy(pos[poly[0]])} {xy(end)}" stroke="{_BAR}" stroke-width="2.2" fill="none"/>')
+            x, y = xy(end).split(",")
+            half = r * scale
+            out.append(f'<rect x="{float(x) - half:.1f}" y="{float(y) - half:.1f}" width="{2 * half:.1f}" '
+                       f'height="{2 * half:.1f}" fill="{_EDGE}"/>')
+    for k, joint in enumerate(chain.joints):
+        x, y = (float(v) for v in xy(pos[k]).split(","))
+        if len(joint) > 2:
+            turn, _ = _widest_gap(pos, sides, k)
+            tx, ty = (float(v) for v in xy(pos[k] + 3.2 * r * np.array([math.cos(turn), math.sin(turn)])).split(","))
+            out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{1.75 * r * scale:.1f}" fill="white" stroke="{_MULTI}" '
+                       'stroke-width="1.4"/>')
+            out.append(f'<text x="{tx:.1f}" y="{ty:.1f}" fill="{_MULTI}" font-size="9" font-weight="bold" '
+                       f'text-anchor="middle" dominant-baseline="central">{len(joint)}</text>')
+        if chain.kinds is not None and chain.kinds[k] == "prismatic":
+            corners, cylinder = _slider(chain, lay, k, r)
+            out.append(f'<polygon points="{" ".join(xy(c) for c in corners)}" fill="{_EDGE if cylinder else "white"}" '
+                       f'stroke="{_EDGE}" stroke-width="1.1"/>')
+        else:
+            out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * scale:.1f}" fill="white" stroke="black" '
+                       'stroke-width="1.1"/>')
+    if labels:
+        for link, poly in enumerate(lay.polygons):
+            points = [pos[k] for k in poly] + ([free_ends[link]] if len(poly) == 1 else [])
+            x, y = xy(np.mean(points, axis=0)).split(",")
+            out.append(f'<text x="{x}" y="{y}" font-size="8" fill="#444" text-anchor="middle" '
+                       f'dominant-baseline="central" paint-order="stroke" stroke="white" stroke-width="2">{link}</text>')
+    if mech is not None:
+        out.insert(1, f'<defs><pattern id="hatch" width="5" height="5" patternUnits="userSpaceOnUse" '
+                      f'patternTransform="rotate(45)"><rect width="5" height="5" fill="white"/>'
+                      f'<line x1="0" y1="0" x2="0" y2="5" stroke="{_EDGE}" stroke-width="1.2"/></pattern></defs>')
+    out.append("</svg>")
+    return "".join(out)

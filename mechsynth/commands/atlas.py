@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 from .._argtypes import inches, positive, seconds, whole, workers
 from .._output import nothing_found, write_count, write_rows
@@ -50,6 +51,11 @@ def add_commands(sub) -> None:
     p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
                    help="summary: table or json; export: jsonl, csv or table")
+    p.add_argument("--html", metavar="DIR", help="write the atlas as a static web site into DIR (open DIR/index.html)")
+    p.add_argument("--page-size", type=positive, default=60, help="with --html: chains per page (default 60)")
+    p.add_argument("--draw-limit", type=whole, default=20000,
+                   help="with --html: draw at most this many chains, in code order (default 20000; 10-100 ms each)")
+    p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
     p.set_defaults(run=_run_atlas)
 
     p = sub.add_parser("draw", help="draw chains or mechanisms as a designer does (SVG/PNG)")
@@ -110,6 +116,10 @@ def _run_atlas(args) -> int:
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
+    if args.html is not None:
+        return _write_site(args)
+    if args.force or args.page_size != 60 or args.draw_limit != 20000:
+        raise InvalidOption("--force, --page-size and --draw-limit go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
@@ -134,6 +144,28 @@ def _run_atlas(args) -> int:
     else:
         found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _write_site(args) -> int:
+    """``--html DIR``: the whole atlas as a static web site."""
+    from synth.atlas_site import write_site
+    from synth.errors import InvalidOption
+
+    other = [name for name, given in (("--export", args.export), ("--where", args.where), ("--count", args.count),
+                                      ("--prismatic", args.prismatic), ("--format", args.format)) if given]
+    if other:
+        raise InvalidOption(f"--html writes the whole atlas; it does not go with {', '.join(other)} "
+                            "(the site filters in the browser)")
+    if args.draw_limit < 0:
+        raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
+    import time
+
+    start = time.perf_counter()
+    result = write_site(args.db, args.html, page_size=args.page_size, draw_limit=args.draw_limit, force=args.force,
+                        progress=True)
+    print(f"{result.chains} chains in {result.codes} codes on {result.pages} pages ({result.drawn} drawn) -> "
+          f"{Path(result.folder) / 'index.html'} in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+    return 0
 
 
 def _export_variants(args, what: str) -> int:
