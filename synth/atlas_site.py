@@ -26,6 +26,7 @@ from __future__ import annotations
 import hashlib
 import html
 import json
+import os
 import re
 import sys
 from dataclasses import dataclass
@@ -34,6 +35,7 @@ from pathlib import Path
 from .atlas import open_atlas
 from .chain import Chain
 from .code import Code
+from .draw import svg_inline
 from .errors import InvalidOption
 
 __all__ = ["chain_id", "write_site", "SiteResult"]
@@ -85,11 +87,10 @@ def _page(title: str, body: str, depth: int = 0) -> str:
             f'<link rel="stylesheet" href="{up}style.css"></head><body>{body}</body></html>')
 
 
-def _card(index: int, chain: Chain, mechanisms: list[tuple[int, int]], fractionated: bool, draw: bool) -> str:
-    from .draw import svg_inline
-
+def _card(index: int, chain: Chain, mechanisms: list[tuple[int, int]], fractionated: bool,
+          picture: str | None) -> str:
     cid = chain_id(chain.certificate)
-    picture = svg_inline(chain) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
+    picture = picture or "<p><i>not drawn</i> (see the site's note)</p>"
     frames = sorted({f for f, i in mechanisms if i < 0})
     inputs = sorted((f, i) for f, i in mechanisms if i >= 0)
     order = chain.automorphisms()[1]
@@ -99,8 +100,8 @@ def _card(index: int, chain: Chain, mechanisms: list[tuple[int, int]], fractiona
     if inputs:
         mech += "; with an input link: " + ", ".join(f"{f}→{i}" for f, i in inputs)
     return (f'<figure id="{cid}">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
-            f'{"planar" if chain.is_planar() else "non-planar"}, {"fractionated" if fractionated else "not fractionated"},'
-            f' |Aut| = {order:g}</figcaption><details><summary>chain, certificate, mechanisms</summary>'
+            f'{"planar" if chain.is_planar() else "non-planar"} · |Aut| = {order:g}<br>'
+            f'{"fractionated" if fractionated else "not fractionated"}</figcaption><details><summary>chain, certificate, mechanisms</summary>'
             f'joints: <code>{html.escape(chain.compact())}</code><br>certificate: <code>{html.escape(chain.certificate)}'
             f'</code><br>mechanisms: {mech}<br><code>mechsynth draw --chain "{html.escape(chain.compact())}" '
             f'--mechanisms --out m.svg</code></details></figure>')
@@ -113,15 +114,15 @@ def _degrees(code: str) -> list[int]:
 
 
 def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_limit: int = 20000,
-               force: bool = False, progress: bool = False) -> SiteResult:
+               force: bool = False, progress: bool = False, workers: int | None = None) -> SiteResult:
     """Write the atlas ``db`` as a static site into ``folder`` (see the module docstring).
 
     ``draw_limit`` bounds the drawings (the layout takes 10–100 ms a chain): chains beyond it
-    are listed with their data but not drawn.  An existing non-empty folder is refused unless
-    ``force``.
+    are listed with their data but not drawn; ``workers`` processes draw a page's chains in
+    parallel (default: every core when more than 200 chains are drawn, else one).  An existing non-empty folder is refused unless ``force``.
     """
-    if page_size < 1 or draw_limit < 0:
-        raise InvalidOption("the page size must be at least 1 and the drawing limit at least 0")
+    if page_size < 1 or draw_limit < 0 or (workers is not None and workers < 1):
+        raise InvalidOption("the page size and workers must be at least 1 and the drawing limit at least 0")
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: it is a file")
@@ -130,8 +131,15 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     if not out.parent.exists():
         raise InvalidOption(f"cannot write the site into {out}: the directory {out.parent} does not exist")
     conn = open_atlas(db)
+    pool = None
     try:
         total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
+        if workers is None:
+            workers = (os.cpu_count() or 1) if min(total, draw_limit) > 200 else 1
+        if workers > 1:
+            from concurrent.futures import ProcessPoolExecutor
+
+            pool = ProcessPoolExecutor(workers)
         (out / "codes").mkdir(parents=True, exist_ok=True)
         (out / "lookup").mkdir(exist_ok=True)
         (out / "style.css").write_text(_STYLE)
@@ -154,10 +162,12 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
             info = groups[-1]
             number = info["pages"] + 1
             slug = _slug(current)
+            todo = [chain for _, chain, _, _ in buffer[: max(0, draw_limit - drawn)]]
+            pictures = list(pool.map(svg_inline, todo, chunksize=4) if pool else map(svg_inline, todo))
+            drawn += len(todo)
             cards = []
-            for index, chain, mechs, frac in buffer:
-                cards.append(_card(index, chain, mechs, frac, drawn < draw_limit))
-                drawn += drawn < draw_limit
+            for (index, chain, mechs, frac), picture in zip(buffer, pictures + [None] * (len(buffer) - len(todo))):
+                cards.append(_card(index, chain, mechs, frac, picture))
                 lookup.setdefault(chain_id(chain.certificate)[:2], {})[chain_id(chain.certificate)] = \
                     f"codes/{slug}-{number}.html"
             name = f"{slug}-{number}.html"
@@ -200,6 +210,8 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
             bar.close()
     finally:
         conn.close()
+        if pool is not None:
+            pool.shutdown()
     _fill_totals(out, groups)
     for prefix, entries in lookup.items():
         (out / "lookup" / f"{prefix}.js").write_text(f"found({json.dumps(entries, separators=(',', ':'))});")

@@ -186,19 +186,26 @@ _LOW_ANGLE, _HIGH_ANGLE = 30.0, 160.0
 
 
 def _corner_angles(pts: np.ndarray) -> np.ndarray:
-    """Interior angles (degrees) of a polygon given in order; a reflex corner has more than 180.
+    """Interior angles (degrees) of polygons given in order (``pts``: ``(..., corners, 2)``);
+    a reflex corner has more than 180.
 
     >>> [round(a) for a in _corner_angles(np.array([[0, 0], [1, 0], [0, 1.0]]))]
     [90, 45, 45]
     """
-    before, after = np.roll(pts, 1, axis=0), np.roll(pts, -1, axis=0)
+    before, after = np.roll(pts, 1, axis=-2), np.roll(pts, -1, axis=-2)
     u, w = before - pts, after - pts
-    cross = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
-    angle = np.degrees(np.arctan2(np.abs(cross), (u * w).sum(1)))
-    x, y = pts[:, 0], pts[:, 1]
-    area = float((x * np.roll(y, -1) - np.roll(x, -1) * y).sum())
-    reflex = cross * (1 if area >= 0 else -1) > 0  # turning against the polygon's orientation
+    cross = u[..., 0] * w[..., 1] - u[..., 1] * w[..., 0]
+    angle = np.degrees(np.arctan2(np.abs(cross), (u * w).sum(-1)))
+    x, y = pts[..., 0], pts[..., 1]
+    area = (x * np.roll(y, -1, axis=-1) - np.roll(x, -1, axis=-1) * y).sum(-1, keepdims=True)
+    reflex = cross * np.where(area >= 0, 1, -1) > 0  # turning against the polygon's orientation
     return np.where(reflex, 360 - angle, angle)
+
+
+def _gaps(points: np.ndarray, a: np.ndarray, ab: np.ndarray) -> np.ndarray:
+    """Distances from ``points`` to the sides ``a + t·ab`` (0 ≤ t ≤ 1), broadcast over leading axes."""
+    t = np.clip(((points - a) * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-12), 0, 1)
+    return np.linalg.norm(a + t[..., None] * ab - points, axis=-1)
 
 
 class _Shape:
@@ -208,37 +215,40 @@ class _Shape:
     def __init__(self, pos: np.ndarray, polygons: list[list[int]]):
         n = len(pos)
         self.pos, self.ends = pos, np.array(_sides(polygons), dtype=int).reshape(-1, 2)
-        self.corners = [[p for p in polygons if len(p) >= 3 and k in p] for k in range(n)]
+        self.corners = [[(np.array(p), p.index(k)) for p in polygons if len(p) >= 3 and k in p] for k in range(n)]
         self.at = np.zeros((n, len(self.ends)), dtype=bool)  # joint k is an end of side s
         self.at[self.ends[:, 0], np.arange(len(self.ends))] = True
         self.at[self.ends[:, 1], np.arange(len(self.ends))] = True
         spacing = 2.0 / math.sqrt(n)  # of joints spread evenly over the [-1, 1]² frame
         self.side_gap, self.joint_gap = 0.36 * spacing, 0.72 * spacing
 
-    def cost(self, k: int) -> float:
+    def cost(self, k: int, trials: np.ndarray) -> np.ndarray:
+        """The cost of joint ``k`` at each of the positions ``trials`` (``(m, 2)``), the others fixed."""
         pos, ends = self.pos, self.ends
-        total = 0.0
-        for poly in self.corners[k]:
-            angles = _corner_angles(pos[poly])
-            total += float((np.maximum(0, _LOW_ANGLE - angles) ** 2).sum()
-                           + (np.maximum(0, angles - _HIGH_ANGLE) ** 2).sum())
-        a, ab = pos[ends[:, 0]], pos[ends[:, 1]] - pos[ends[:, 0]]
-        length2 = np.maximum((ab * ab).sum(1), 1e-12)
+        m = len(trials)
+        total = np.zeros(m)
+        for poly, at in self.corners[k]:
+            pts = np.repeat(pos[poly][None], m, axis=0)
+            pts[:, at] = trials
+            angles = _corner_angles(pts)
+            total += ((np.maximum(0, _LOW_ANGLE - angles) ** 2).sum(1)
+                      + (np.maximum(0, angles - _HIGH_ANGLE) ** 2).sum(1))
         others = np.arange(len(pos)) != k
-        # joint k against sides not at k, every other joint against the sides at k
-        far = ~self.at[k]
-        t = np.clip(((pos[k] - a[far]) * ab[far]).sum(1) / length2[far], 0, 1)
-        gaps = [np.linalg.norm(a[far] + t[:, None] * ab[far] - pos[k], axis=1)]
-        near = np.flatnonzero(self.at[k])
-        if len(near):
-            p = pos[others][:, None]
-            t = np.clip(((p - a[near][None]) * ab[near][None]).sum(-1) / length2[near][None], 0, 1)
-            gap = np.linalg.norm(a[near][None] + t[..., None] * ab[near][None] - p, axis=-1)
-            gaps.append(gap[~self.at[others][:, near]])
-        side = np.concatenate(gaps)
-        joint = np.linalg.norm(pos[others] - pos[k], axis=1)
-        return total + float(((40 * np.maximum(0, 1 - side / self.side_gap)) ** 2).sum()
-                             + ((40 * np.maximum(0, 1 - joint / self.joint_gap)) ** 2).sum())
+        far, near = ~self.at[k], np.flatnonzero(self.at[k])
+        a, b = pos[ends[:, 0]], pos[ends[:, 1]]
+        # joint k against the sides not at k ...
+        side = [_gaps(trials[:, None], a[far][None], (b - a)[far][None]).reshape(m, -1)]
+        if len(near):  # ... and every other joint against the sides at k, which move with it
+            a_near = np.repeat(a[near][None], m, axis=0)
+            b_near = np.repeat(b[near][None], m, axis=0)
+            a_near[:, ends[near, 0] == k] = trials[:, None]
+            b_near[:, ends[near, 1] == k] = trials[:, None]
+            gap = _gaps(pos[others][None, :, None], a_near[:, None], (b_near - a_near)[:, None])
+            side.append(gap[:, ~self.at[others][:, near]])
+        side = np.concatenate(side, axis=1)
+        joint = np.linalg.norm(pos[others][None] - trials[:, None], axis=-1)
+        return total + ((40 * np.maximum(0, 1 - side / self.side_gap)) ** 2).sum(1) \
+            + ((40 * np.maximum(0, 1 - joint / self.joint_gap)) ** 2).sum(1)
 
 
 def _shape(pos: np.ndarray, polygons: list[list[int]], iterations: int = 80) -> np.ndarray:
@@ -257,22 +267,17 @@ def _shape(pos: np.ndarray, polygons: list[list[int]], iterations: int = 80) -> 
     step = 0.1
     for _ in range(iterations):
         moved = False
+        moves = np.concatenate([np.zeros((1, 2)), step * directions, step / 3 * directions])  # 0: stay
         for k in range(n):
-            base = shape.cost(k)
+            old = pos[k].copy()
+            costs = shape.cost(k, old + moves)
+            base = costs[0]
             if base == 0:
                 continue
-            old = pos[k].copy()
-            trials = []
-            for size in (step, step / 3):
-                for d in directions:
-                    pos[k] = old + size * d
-                    trials.append((shape.cost(k), size, d))
-            pos[k] = old
-            trials.sort(key=lambda trial: trial[0])
-            for cost, size, d in trials[:4]:
-                if cost >= base:
+            for trial in 1 + np.argsort(costs[1:], kind="stable")[:4]:
+                if costs[trial] >= base:
                     break
-                pos[k] = old + size * d
+                pos[k] = old + moves[trial]
                 defects = _defects(pos, polygons, tol, cache)
                 if defects <= current:
                     current, moved = defects, True

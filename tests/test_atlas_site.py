@@ -60,10 +60,11 @@ def _rows(atlas, c):
 
 
 def test_chain_ids_are_stable_and_looked_up(atlas, tmp_path):
-    write_site(atlas, tmp_path / "a", page_size=5, draw_limit=3)
-    write_site(atlas, tmp_path / "b", page_size=5, draw_limit=3)
+    write_site(atlas, tmp_path / "a", page_size=5, draw_limit=3, workers=1)
+    write_site(atlas, tmp_path / "b", page_size=5, draw_limit=3, workers=2)  # drawn in two processes: same site
+    files = {p.relative_to(tmp_path / "a"): p.read_text() for p in (tmp_path / "a").rglob("*.*")}
+    assert files == {p.relative_to(tmp_path / "b"): p.read_text() for p in (tmp_path / "b").rglob("*.*")}
     lookups = {p.name: p.read_text() for p in (tmp_path / "a" / "lookup").iterdir()}
-    assert lookups == {p.name: p.read_text() for p in (tmp_path / "b" / "lookup").iterdir()}
     from synth.atlas import export
 
     row = next(export(atlas, "chains", where=["n=8"]))
@@ -96,6 +97,8 @@ def test_cli_folder_rules(atlas, tmp_path, capsys):
     assert main(["atlas", "--db", str(atlas), "--html", str(tmp_path / "s"), "--draw-limit", "0", "--force"]) == 0
     assert main(["atlas", "--db", str(tmp_path / "none.sqlite"), "--html", str(tmp_path / "t")]) == 2
     assert main(["atlas", "--db", str(atlas), "--page-size", "9"]) == 2
+    assert main(["atlas", "--db", str(atlas), "--workers", "1"]) == 2
+    assert "go with --html" in capsys.readouterr().err
 
 
 def _chromium() -> str:

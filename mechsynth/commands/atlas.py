@@ -56,6 +56,8 @@ def add_commands(sub) -> None:
     p.add_argument("--draw-limit", type=whole, default=20000,
                    help="with --html: draw at most this many chains, in code order (default 20000; 10-100 ms each)")
     p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
+    p.add_argument("--workers", type=workers,
+                   help="with --html: processes drawing the chains (default: all cores beyond 200 drawings)")
     p.set_defaults(run=_run_atlas)
 
     p = sub.add_parser("draw", help="draw chains or mechanisms as a designer does (SVG/PNG)")
@@ -118,8 +120,8 @@ def _run_atlas(args) -> int:
     args.where = _conditions(args.where)
     if args.html is not None:
         return _write_site(args)
-    if args.force or args.page_size != 60 or args.draw_limit != 20000:
-        raise InvalidOption("--force, --page-size and --draw-limit go with --html")
+    if args.force or args.page_size != 60 or args.draw_limit != 20000 or args.workers is not None:
+        raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
@@ -162,7 +164,7 @@ def _write_site(args) -> int:
 
     start = time.perf_counter()
     result = write_site(args.db, args.html, page_size=args.page_size, draw_limit=args.draw_limit, force=args.force,
-                        progress=True)
+                        progress=True, workers=args.workers)
     print(f"{result.chains} chains in {result.codes} codes on {result.pages} pages ({result.drawn} drawn) -> "
           f"{Path(result.folder) / 'index.html'} in {time.perf_counter() - start:.1f} s", file=sys.stderr)
     return 0
