@@ -87,10 +87,14 @@ def _page(title: str, body: str, depth: int = 0) -> str:
             f'<link rel="stylesheet" href="{up}style.css"></head><body>{body}</body></html>')
 
 
-def _card(index: int, chain: Chain, mechanisms: list[tuple[int, int]], fractionated: bool,
-          picture: str | None) -> str:
+def _card(job: tuple) -> tuple[str, bool]:
+    """One chain's figure (HTML) and whether it is planar; ``job`` is (index, chain as JSON text,
+    stored mechanisms, fractionated, draw?) so that worker processes can build it."""
+    index, data, mechanisms, fractionated, draw = job
+    chain = Chain.from_dict(json.loads(data))
     cid = chain_id(chain.certificate)
-    picture = picture or "<p><i>not drawn</i> (see the site's note)</p>"
+    planar = chain.is_planar()
+    picture = svg_inline(chain) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
     frames = sorted({f for f, i in mechanisms if i < 0})
     inputs = sorted((f, i) for f, i in mechanisms if i >= 0)
     order = chain.automorphisms()[1]
@@ -99,12 +103,14 @@ def _card(index: int, chain: Chain, mechanisms: list[tuple[int, int]], fractiona
     mech = f"{len(frames)} with a fixed link (up to symmetry): link " + ", ".join(map(str, frames))
     if inputs:
         mech += "; with an input link: " + ", ".join(f"{f}→{i}" for f, i in inputs)
-    return (f'<figure id="{cid}">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
-            f'{"planar" if chain.is_planar() else "non-planar"} · |Aut| = {order:g}<br>'
-            f'{"fractionated" if fractionated else "not fractionated"}</figcaption><details><summary>chain, certificate, mechanisms</summary>'
+    card = (f'<figure id="{cid}">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
+            f'{"planar" if planar else "non-planar"} · |Aut| = {order:g}<br>'
+            f'{"fractionated" if fractionated else "not fractionated"}</figcaption><details>'
+            f'<summary>chain, certificate, mechanisms</summary>'
             f'joints: <code>{html.escape(chain.compact())}</code><br>certificate: <code>{html.escape(chain.certificate)}'
             f'</code><br>mechanisms: {mech}<br><code>mechsynth draw --chain "{html.escape(chain.compact())}" '
             f'--mechanisms --out m.svg</code></details></figure>')
+    return card, planar
 
 
 def _degrees(code: str) -> list[int]:
@@ -117,9 +123,11 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                force: bool = False, progress: bool = False, workers: int | None = None) -> SiteResult:
     """Write the atlas ``db`` as a static site into ``folder`` (see the module docstring).
 
-    ``draw_limit`` bounds the drawings (the layout takes 10–100 ms a chain): chains beyond it
-    are listed with their data but not drawn; ``workers`` processes draw a page's chains in
-    parallel (default: every core when more than 200 chains are drawn, else one).  An existing non-empty folder is refused unless ``force``.
+    ``draw_limit`` bounds the drawings (a layout takes about 50 ms at 12 links): chains beyond
+    it are listed with their data but not drawn; ``workers`` processes build a page's figures in
+    parallel (default: every core for more than 200 chains, else one; from Python, set
+    ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
+    take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
     """
     if page_size < 1 or draw_limit < 0 or (workers is not None and workers < 1):
         raise InvalidOption("the page size and workers must be at least 1 and the drawing limit at least 0")
@@ -135,7 +143,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     try:
         total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
         if workers is None:
-            workers = (os.cpu_count() or 1) if min(total, draw_limit) > 200 else 1
+            workers = (os.cpu_count() or 1) if total > 200 else 1
         if workers > 1:
             from concurrent.futures import ProcessPoolExecutor
 
@@ -151,8 +159,8 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
             from tqdm import tqdm
 
             bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
-        rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain "
-                            f"FROM chains c {_ORDER}")
+        rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain, "
+                            f"c.certificate FROM chains c {_ORDER}")
         current, buffer = None, []
 
         def flush(final: bool) -> None:
@@ -162,14 +170,13 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
             info = groups[-1]
             number = info["pages"] + 1
             slug = _slug(current)
-            todo = [chain for _, chain, _, _ in buffer[: max(0, draw_limit - drawn)]]
-            pictures = list(pool.map(svg_inline, todo, chunksize=4) if pool else map(svg_inline, todo))
-            drawn += len(todo)
-            cards = []
-            for (index, chain, mechs, frac), picture in zip(buffer, pictures + [None] * (len(buffer) - len(todo))):
-                cards.append(_card(index, chain, mechs, frac, picture))
-                lookup.setdefault(chain_id(chain.certificate)[:2], {})[chain_id(chain.certificate)] = \
-                    f"codes/{slug}-{number}.html"
+            jobs = []
+            for index, data, mechs, frac, cid in buffer:
+                jobs.append((index, data, mechs, frac, drawn < draw_limit))
+                drawn += drawn < draw_limit
+                lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
+            cards = list(pool.map(_card, jobs, chunksize=4) if pool else map(_card, jobs))
+            info["planar"] += sum(planar for _, planar in cards)
             name = f"{slug}-{number}.html"
             nav = [f'<a href="../index.html">index</a>']
             if number > 1:
@@ -181,13 +188,13 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                      + (f", {info['P']} prismatic pair{'s' if info['P'] > 1 else ''}" if info["P"] else ""))
             body = (f"<h1>{html.escape(title)}</h1><p class='nav'>{' · '.join(nav)}</p>"
                     f"<p>chains {first}–{last} of <span class='total' id='count'>{{TOTAL}}</span></p>"
-                    f"<div class='grid'>{''.join(cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
+                    f"<div class='grid'>{''.join(card for card, _ in cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
             (out / "codes" / name).write_text(_page(title, body, 1))
             info["pages"] = number
             pages += 1
             buffer.clear()
 
-        for cid, dof, h, links, v, code, prismatic, fractionated, data in rows:
+        for key, dof, h, links, v, code, prismatic, fractionated, data, certificate in rows:
             group = (dof, h, code, prismatic)
             if group != current:
                 flush(True)
@@ -195,14 +202,12 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                 groups.append({"code": code + (f" P{prismatic}" if prismatic else ""), "W": dof, "h": h, "n": links,
                                "v": v, "P": prismatic, "chains": 0, "planar": 0, "pages": 0,
                                "degrees": _degrees(code), "href": f"codes/{_slug(group)}-1.html"})
-            chain = Chain.from_dict(json.loads(data))
-            mechs = conn.execute("SELECT frame, input_link FROM mechanisms WHERE chain = ?", (cid,)).fetchall()
+            mechs = conn.execute("SELECT frame, input_link FROM mechanisms WHERE chain = ?", (key,)).fetchall()
             info = groups[-1]
             info["chains"] += 1
-            info["planar"] += chain.is_planar()
             if len(buffer) == page_size:  # a full page with more to come: it links to the next one
                 flush(False)
-            buffer.append((info["chains"], chain, mechs, bool(fractionated)))
+            buffer.append((info["chains"], data, mechs, bool(fractionated), chain_id(certificate)))
             if bar is not None:
                 bar.update()
         flush(True)
