@@ -99,6 +99,8 @@ def test_cli_folder_rules(atlas, tmp_path, capsys):
     assert main(["atlas", "--db", str(atlas), "--page-size", "9"]) == 2
     assert main(["atlas", "--db", str(atlas), "--workers", "1"]) == 2
     assert "go with --html" in capsys.readouterr().err
+    assert main(["atlas", "--db", str(atlas), "--draw-limit", "20000"]) == 2  # the default value, still refused
+    assert "go with --html" in capsys.readouterr().err
 
 
 def _chromium() -> str:

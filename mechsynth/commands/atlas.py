@@ -52,8 +52,8 @@ def add_commands(sub) -> None:
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
                    help="summary: table or json; export: jsonl, csv or table")
     p.add_argument("--html", metavar="DIR", help="write the atlas as a static web site into DIR (open DIR/index.html)")
-    p.add_argument("--page-size", type=positive, default=60, help="with --html: chains per page (default 60)")
-    p.add_argument("--draw-limit", type=whole, default=20000,
+    p.add_argument("--page-size", type=positive, help="with --html: chains per page (default 60)")
+    p.add_argument("--draw-limit", type=whole,
                    help="with --html: draw at most this many chains, in code order (default 20000; ~50 ms each at 12 links)")
     p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
     p.add_argument("--workers", type=workers,
@@ -120,7 +120,7 @@ def _run_atlas(args) -> int:
     args.where = _conditions(args.where)
     if args.html is not None:
         return _write_site(args)
-    if args.force or args.page_size != 60 or args.draw_limit != 20000 or args.workers is not None:
+    if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.workers)):
         raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
@@ -158,12 +158,13 @@ def _write_site(args) -> int:
     if other:
         raise InvalidOption(f"--html writes the whole atlas; it does not go with {', '.join(other)} "
                             "(the site filters in the browser)")
-    if args.draw_limit < 0:
+    if args.draw_limit is not None and args.draw_limit < 0:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
     import time
 
     start = time.perf_counter()
-    result = write_site(args.db, args.html, page_size=args.page_size, draw_limit=args.draw_limit, force=args.force,
+    result = write_site(args.db, args.html, page_size=args.page_size or 60,
+                        draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
                         progress=True, workers=args.workers)
     print(f"{result.chains} chains in {result.codes} codes on {result.pages} pages ({result.drawn} drawn) -> "
           f"{Path(result.folder) / 'index.html'} in {time.perf_counter() - start:.1f} s", file=sys.stderr)
