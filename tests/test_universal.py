@@ -126,6 +126,17 @@ def test_h3_is_unchanged():
     assert [synth.count_chains(1, n, v=(0, 2 * n), workers=1)["count"] for n in (6, 8)] == [4, 60]
 
 
+#: OEIS A227117, minimally rigid (Laman) graphs on 3 … 10 vertices (docs/theory.md, [A227117])
+LAMAN = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132}
+
+
+@pytest.mark.parametrize("links", [3, 4, 5, 6, 7, 8, 9, pytest.param(10, marks=pytest.mark.slow)])
+def test_wedge_systems_are_laman_graphs(links):
+    """h = 2, 1-DOF, simple joints: every k links hold at most 2k − 3 joints and all n hold 2n − 3,
+    the (2,3)-tight graphs, which are Laman's minimally rigid graphs: the published counts."""
+    assert synth.count_chains(1, links, h=2, workers=1)["count"] == LAMAN[links]
+
+
 def test_counts_equal_listings_in_other_spaces():
     for h, dof, links, v in [(2, 1, 6, 2), (4, 2, 6, 2), (2, 0, 5, 2)]:
         listed = Counter(str(c.code) for c in synth.type_synthesis(dof, links, h=h, v=(0, v), workers=1))
