@@ -3,9 +3,11 @@ pagination, refusals, and the pages rendered by headless Chromium."""
 
 from __future__ import annotations
 
+import functools
 import html
 import json
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -103,11 +105,28 @@ def test_cli_folder_rules(atlas, tmp_path, capsys):
     assert "go with --html" in capsys.readouterr().err
 
 
+_BROWSERS = ("chromium", "chromium-browser", "google-chrome")
+
+
+@functools.cache
+def _installed_chromium() -> str | None:
+    """A headless browser on PATH; on a Debian machine where the tests run as root (a CI clone),
+    Debian's ``chromium`` is installed first (about a minute, once a session)."""
+    if not any(shutil.which(name) for name in _BROWSERS) and shutil.which("apt-get") and os.geteuid() == 0:
+        env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
+        for step in (["install"], ["update"], ["install"]):  # stale package lists: update, then again
+            done = subprocess.run(["apt-get", *step, "-y", "-q", *(["chromium"] if step == ["install"] else [])],
+                                  capture_output=True, timeout=600, env=env)
+            if step == ["install"] and done.returncode == 0:
+                break
+    return next((name for name in _BROWSERS if shutil.which(name)), None)
+
+
 def _chromium() -> str:
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        if shutil.which(name):
-            return name
-    pytest.skip("chromium not installed (Debian: apt-get install chromium)")
+    name = _installed_chromium()
+    if name is None:
+        pytest.skip("no chromium, and it could not be installed here (Debian: apt-get install chromium)")
+    return name
 
 
 def _browse(*args: str) -> subprocess.CompletedProcess:
