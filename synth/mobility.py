@@ -75,8 +75,7 @@ def _members(T: np.ndarray, c: int, groups: list[list[int]]) -> np.ndarray:
         return np.zeros((len(T), 0), dtype=np.int64)
     if c <= _MATRIX_CORE:
         M = np.zeros((c, len(groups)), dtype=np.float32)
-        for k, group in enumerate(groups):
-            M[group, k] = 1
+        M[[i for group in groups for i in group], [k for k, group in enumerate(groups) for _ in group]] = 1
         return (_subset_bits(c) @ M).astype(np.int64)
     return np.stack([_popcount(T & sum(1 << i for i in group)) for group in groups], axis=1)
 
@@ -181,19 +180,21 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     index = {x: i for i, x in enumerate(core)}
     c = len(core)
     T, size = _subsets(c) if c <= _MATRIX_CORE else _subsets.__wrapped__(c)
-    W = h * (size - 1)
     core_set = set(core)
-    on_core = [[index[x] for x in j] for j in chain.joints if all(x in core_set for x in j)]
-    W -= (h - 1) * np.maximum(_members(T, c, on_core) - 1, 0).sum(axis=1)
+    on_core = [[index[x] for x in j] for j in chain.joints if core_set.issuperset(j)]
     # paths that lower W when both ends are in T (w < h − 1), closed ones (a == b) included
     short = [(a, b, body) for a, b, body in paths if len(body) < h - 1 and a is not None]
-    if short:
-        inside = _members(T, c, [sorted({index[a], index[b]}) for a, b, _ in short]) == np.array(
-            [1 if a == b else 2 for a, b, _ in short])
-        W -= inside.astype(np.int64) @ np.array([h - 1 - len(body) for _, _, body in short])
-        extra = inside.astype(np.int64) @ np.array([len(body) for _, _, body in short])
-    else:
-        extra = np.zeros(len(T), dtype=np.int64)
+    # one membership count per joint and per short path, then (lost freedoms, path links) per T
+    counts = _members(T, c, on_core + [sorted({index[a], index[b]}) for a, b, _ in short])
+    J = len(on_core)
+    np.maximum(counts[:, :J] - 1, 0, out=counts[:, :J])  # a joint with m links of T removes m − 1
+    counts[:, J:] = counts[:, J:] == np.array([1 if a == b else 2 for a, b, _ in short], dtype=np.int64)
+    weights = np.zeros((len(on_core) + len(short), 2), dtype=np.int64)
+    weights[:J, 0] = h - 1
+    weights[J:, 0] = [h - 1 - len(body) for _, _, body in short]
+    weights[J:, 1] = [len(body) for _, _, body in short]
+    lost, extra = (counts @ weights).T
+    W = h * (size - 1) - lost
     full = (1 << c) - 1
     proper = np.ones(1 << c, dtype=bool)
     proper_all = len(short) < len(paths)
