@@ -236,3 +236,64 @@ def test_crank_pin_on_the_base_point():
     assert np.all(np.isfinite(got)) and got[0] == 0.0
     m, _ = moment_from_positions("compression", 1000.0, 0.2, 0.0, 0.05, phi[1:])
     np.testing.assert_allclose(got[1:], m, rtol=1e-9)
+
+
+# ------------------------------------------------------------------ the solver's inner pieces
+@pytest.mark.parametrize("seed", range(6))
+def test_minimax_scale_against_a_dense_search(seed):
+    """``_minimax_scale`` minimises max|κ·h − s| over 0 ≤ κ ≤ κmax: no κ of a dense grid does better,
+    also where the optimum lies far above 1 (small h) or on κmax."""
+    from balance.fit import _minimax_scale
+
+    rng = np.random.default_rng(seed)
+    h = rng.uniform(0.0, 1.0, 40) * 10.0 ** rng.uniform(-3, 1)
+    s = rng.uniform(0.0, 1.0, 40)
+    crossing_scale = float(np.max(s) / np.max(h))
+    for kmax in (0.3 * crossing_scale, 50.0 * crossing_scale + 1.0):
+        k = _minimax_scale(h, s, kmax)
+        assert 0.0 <= k <= kmax
+        grid = np.linspace(0.0, kmax, 20001)
+        best = np.min(np.max(np.abs(grid[:, None] * h[None, :] - s[None, :]), axis=1))
+        assert np.max(np.abs(k * h - s)) <= best + 1e-9 * max(1.0, float(np.max(s)))
+
+
+def test_minimax_scale_without_any_lever():
+    """h = 0 everywhere (or no points): every κ is as good, and the answer is κ = 0, inside the bounds."""
+    from balance.fit import _minimax_scale
+
+    assert _minimax_scale(np.zeros(5), np.ones(5), 0.5) == 0.0
+    assert _minimax_scale(np.zeros(0), np.zeros(0), 0.5) == 0.0
+
+
+def test_exact_tension_device_has_the_least_force_of_the_corner_devices():
+    """Among zero-free-length tension devices (a = r0) the fit reports the least peak force: no device
+    at a corner of the bounds needs less (each corner fitted alone, its force from positions)."""
+    rng = deg(10, 170)
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0))
+    best = fit_spring("tension", -50.0, rng, b)
+    assert best.method == "exact"
+    phi = np.linspace(*rng, 4001)
+
+    def peak_force(res):
+        _, L = moment_from_positions("tension", res.c, res.r, res.r0, res.a, phi)
+        return float(np.max(np.abs(res.c * (L - free_length("tension", res.r, res.r0, res.a)))))
+
+    assert best.max_force == pytest.approx(peak_force(best), rel=1e-6)
+    corners = []
+    for r in b.r:
+        for r0 in b.r0:
+            one = fit_spring("tension", -50.0, rng, SpringBounds(r=(r, r), r0=(r0, r0), a=(r0, r0)))
+            assert one.method == "exact"
+            corners.append(peak_force(one))
+    assert peak_force(best) <= min(corners) * (1 + 1e-9)
+
+
+def test_fit_result_as_a_dictionary():
+    """``FitResult.to_dict`` (the JSON of ``balance spring``): every field, the range also in degrees."""
+    res = fitted("tension-exact")
+    d = res.to_dict()
+    assert d["phi_range_deg"] == pytest.approx([0.0, 180.0])
+    assert d["phi_range"] == list(res.phi_range) and d["x"] == list(res.x)
+    assert isinstance(d["x"], list) and isinstance(d["phi_range"], list)
+    assert {"c", "r", "r0", "a", "max_force", "max_rel_error", "method"} <= d.keys()
+    assert d["c"] == res.c and d["max_force"] == res.max_force
