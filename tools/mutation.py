@@ -62,7 +62,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                "tests/test_independent_countermass.py"]),
 }
 
-COPY = ["synth", "balance", "mechsynth", "models", "tests", "pyproject.toml"]
+COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]
 EQUIVALENT = ROOT / "tools" / "mutation_equivalent.toml"
 DOC = ROOT / "docs" / "mutation.md"
 BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
@@ -85,7 +85,7 @@ def _prepare(key: str, work: Path) -> Path:
     config = {
         "source_paths": [f"{package}/"],
         "only_mutate": [path],
-        "also_copy": [d for d in ("synth/", "balance/", "mechsynth/", "models/") if d != f"{package}/"],
+        "also_copy": [d for d in ("synth/", "balance/", "mechsynth/", "models/", "benchmarks/") if d != f"{package}/"],
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
