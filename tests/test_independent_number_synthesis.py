@@ -85,8 +85,8 @@ def test_compositions_equal_brute_force(dof, K):
 def test_multiplicity_limit_equals_brute_force(dof, K, mm):
     assert set(number_synthesis(dof, loops=K, compositions=True, max_multiplicity=mm)) == brute(
         dof, K, split=True, max_multiplicity=mm)
-    if mm == 2:
-        assert set(number_synthesis(dof, loops=K, max_multiplicity=2)) == brute(dof, K, max_multiplicity=2)
+    # without compositions a code needs only some split of v (the fewest joints decide it)
+    assert set(number_synthesis(dof, loops=K, max_multiplicity=mm)) == brute(dof, K, max_multiplicity=mm)
 
 
 @pytest.mark.parametrize("classes, dof, f", [({3: 2, 5: 1}, 1, 0), ({2: 1, 3: 1}, 1, 0), ({3: 3}, 2, 1),
