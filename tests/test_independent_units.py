@@ -18,6 +18,11 @@ QUERIES = [
     dict(dof=1, links=10, v=(0, 3), cranks={5: 5}),
     dict(dof=1, code="6301/0"),
     dict(dof=0, links=7, rigid_subchains=False),
+    dict(dof=2, links=7),  # the default keeps fractionated chains (4 chains, 3 without)
+    dict(dof=2, links=7, fractionated=True),
+    dict(dof=3, links=6, n1=(0, 2)),
+    dict(dof=1, links=6, h=2),
+    dict(dof=1, links=8, v=(0, 4), max_multiplicity=3),
 ]
 
 
@@ -58,3 +63,90 @@ def test_counting_a_unit_equals_its_distinct_chains(query, group_limit, monkeypa
     args = [(u.code, u.contracted, u.conventions) for u in units]
     assert [_realise.count_realised(*a) for a in args] == [len(_realise.realise(*a)) for a in args]
     assert sum(len(_realise.realise(*a)) for a in args) > 0
+
+
+class _PoolSpy:
+    """A process pool that says which stage it ran (``imap``) and that it was shut down."""
+
+    made: list = []
+
+    def __init__(self, workers):
+        import multiprocessing
+
+        self.workers, self.mapped, self._pool = workers, 0, multiprocessing.get_context("fork").Pool(workers)
+        _PoolSpy.made.append(self)
+
+    def imap(self, func, jobs):
+        self.mapped += 1
+        return self._pool.imap(func, jobs)
+
+    def terminate(self):
+        self._pool.terminate()
+
+    def join(self):
+        self._pool.join()
+
+
+def test_plan_units_is_inline_on_one_worker_and_on_a_pool_otherwise(monkeypatch):
+    import os
+
+    import synth._type_synthesis as ts
+
+    monkeypatch.setattr(ts, "process_pool", _PoolSpy)
+    _PoolSpy.made = []
+    inline = ts.plan_units(1, 8, workers=1)
+    assert _PoolSpy.made == []
+    pooled = ts.plan_units(1, 8, workers=2)
+    assert [(p.workers, p.mapped) for p in _PoolSpy.made] == [(2, 1)]
+    assert [u.key for u in pooled] == [u.key for u in inline]
+    _PoolSpy.made = []
+    ts.plan_units(1, 8, workers=None)  # every core
+    cores = os.cpu_count() or 1
+    assert [(p.workers, p.mapped) for p in _PoolSpy.made] == ([] if cores == 1 else [(cores, 1)])
+
+
+@pytest.mark.parametrize("links, workers, message", [
+    (0, 1, "the number of links must be 1 or more, not 0"),
+    (True, 1, "the number of links must be 1 or more, not True"),
+    (8, 0, "workers must be a whole number ≥ 1, not 0"),
+    (8, 2.0, "workers must be a whole number ≥ 1, not 2.0"),
+])
+def test_plan_units_refuses_bad_sizes_in_one_sentence(links, workers, message):
+    with pytest.raises(synth.SynthesisError) as refused:
+        synth.plan_units(1, links, workers=workers)
+    assert str(refused.value) == message
+
+
+def test_plan_many_keeps_each_query_its_own_units():
+    """Several queries in one batch: each gets exactly its own plan; impossible ones none when asked."""
+    from synth._type_synthesis import plan_many
+
+    queries = [dict(dof=1, links=8), dict(dof=2, links=7), dict(dof=1, links=9), dict(dof=1, links=6)]
+    plans = plan_many(queries, skip_impossible=True)
+    assert [len(p) for p in plans] == [4, len(synth.plan_units(2, 7)), 0, len(synth.plan_units(1, 6))]
+    assert [[u.key for u in p] for p in plans[:2]] == [[u.key for u in synth.plan_units(1, 8)],
+                                                      [u.key for u in synth.plan_units(2, 7)]]
+    with pytest.raises(synth.ImpossibleParameters):
+        plan_many(queries)
+
+
+def test_count_descriptions_and_identities():
+    """What a checkpoint file records: a readable query and a digest that tells plans apart."""
+    from synth._type_synthesis import _describe, _identity, _codes_of
+
+    query = dict(dof=1, links=8, v=None, require=["3=2"], planar_only=True, fractionated=False, cranks=())
+    assert _describe("chains", query) == "chains dof=1 links=8 require=[3=2] planar_only=True"
+    codes, conv = _codes_of(dict(dof=1, links=8))
+    assert _identity("chains", codes, conv) != _identity("chains", codes[:1], conv)
+    assert _identity("chains", codes, conv) != _identity("mechanisms", codes, conv)
+    assert _identity("chains", codes, conv) == _identity("chains", list(codes), conv)
+
+
+def test_mechanism_counts_with_and_without_input_link_keep_apart(tmp_path):
+    """A checkpoint of the mechanisms count is refused for the count with input links (another plan)."""
+    path = tmp_path / "m.sqlite"
+    assert synth.count_mechanisms(1, 6, workers=1, checkpoint=path)["count"] == 5
+    with pytest.raises(synth.SynthesisError) as refused:
+        synth.count_mechanisms(1, 6, input_link=True, workers=1, checkpoint=path)
+    assert "another query (mechanisms dof=1 links=6), not to mechanisms with input link dof=1 links=6" in str(
+        refused.value)

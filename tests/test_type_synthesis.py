@@ -272,3 +272,29 @@ def test_counts_made_in_workers_equal_the_streamed_results(dof, links, v, input_
     assert synth.count_chains(dof, links, v=v, workers=2) == {"count": len(chains), "by_code": tally}
     mechs = list(synth.mechanisms(dof, links, v=v, input_link=input_link, workers=1))
     assert synth.count_mechanisms(dof, links, v=v, input_link=input_link, workers=2)["count"] == len(mechs)
+
+
+@pytest.mark.parametrize("v, require, message", [
+    ("0", None, "code 7201/1 has v = 1, outside the requested v = 0"),
+    ("2..", None, "code 7201/1 has v = 1, outside the requested v = 2.."),
+    ("2..3", None, "code 7201/1 has v = 1, outside the requested v = 2..3"),
+    (None, ["4=1"], "code 7201/1 has 0 link(s) with 4 joints, but the requirement asks for n4 = 1"),
+    (None, ["2=8.."], "code 7201/1 has 7 link(s) with 2 joints, but the requirement asks for n2 = 8.."),
+    (None, ["2=0..6"], "code 7201/1 has 7 link(s) with 2 joints, but the requirement asks for n2 = 0..6"),
+    ("x", None, "v must be a whole number or a range A..B, not 'x'"),
+])
+def test_a_code_contradicting_its_query_is_refused_with_the_numbers(v, require, message):
+    from synth._type_synthesis import plan_units
+
+    with pytest.raises((ImpossibleParameters, InvalidOption)) as refused:
+        plan_units(1, code="7201/1", v=v, require=require, workers=1)
+    assert str(refused.value) == message
+
+
+@pytest.mark.parametrize("v, require", [("1", None), ("0..1", None), ("1..", None), (None, ["2=7"]), (None, ["2=7.."]),
+                                        (None, ["2=0..7"]), ("0..", ["3=2", "4=0"])])
+def test_a_code_on_the_edge_of_its_query_is_accepted(v, require):
+    """v and n_i exactly at a range's ends, and open ranges, admit the code 7201/1 (n2 = 7, n3 = 2, v = 1)."""
+    from synth._type_synthesis import plan_units
+
+    assert {str(u.code) for u in plan_units(1, code="7201/1", v=v, require=require, workers=1)} == {"7201/1"}
