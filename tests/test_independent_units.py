@@ -150,3 +150,31 @@ def test_mechanism_counts_with_and_without_input_link_keep_apart(tmp_path):
         synth.count_mechanisms(1, 6, input_link=True, workers=1, checkpoint=path)
     assert "another query (mechanisms dof=1 links=6), not to mechanisms with input link dof=1 links=6" in str(
         refused.value)
+
+
+def test_count_resumes_in_process_without_losing_or_repeating_a_unit(tmp_path, monkeypatch):
+    """Ctrl-C in the middle of a count (in this process, so the checkpoint code itself is judged):
+    the rerun adds the stored codes and units to what it computes, and computes only the rest."""
+    import synth._type_synthesis as ts
+
+    full = synth.count_chains(1, 10, workers=1)
+    total_units = len(synth.plan_units(1, 10))
+    real, calls = ts._count_unit, []
+
+    def interrupted(unit):
+        if len(calls) == 10:  # 4600/0 and 5410/0 complete, two of the four units of 6220/0 done
+            raise KeyboardInterrupt
+        calls.append(unit.key)
+        return real(unit)
+
+    path = tmp_path / "c.sqlite"
+    monkeypatch.setattr(ts, "_count_unit", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        synth.count_chains(1, 10, workers=1, checkpoint=path)
+    done = list(calls)
+    calls.clear()
+    monkeypatch.setattr(ts, "_count_unit", lambda unit: (calls.append(unit.key), real(unit))[1])
+    assert synth.count_chains(1, 10, workers=1, checkpoint=path) == full
+    assert len(done) == 10 and not set(done) & set(calls) and len(done) + len(calls) == total_units
+    calls.clear()
+    assert synth.count_chains(1, 10, workers=1, checkpoint=path) == full and calls == []  # all stored
