@@ -298,3 +298,34 @@ def test_a_code_on_the_edge_of_its_query_is_accepted(v, require):
     from synth._type_synthesis import plan_units
 
     assert {str(u.code) for u in plan_units(1, code="7201/1", v=v, require=require, workers=1)} == {"7201/1"}
+
+
+def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
+    """On a terminal the bar counts codes (of the total) and shows the chains found so far; it is
+    cleared at the end. Elsewhere (a pipe, a file) nothing is written."""
+    import io
+
+    import tqdm
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    class Eager(tqdm.tqdm):  # every update drawn, so the test sees each state
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, mininterval=0, **kwargs)
+
+    monkeypatch.setattr(tqdm, "tqdm", Eager)
+    for run, total, found in [(lambda: list(synth.type_synthesis(1, 8, workers=1, progress=True)), "3/3", "chains=16"),
+                              (lambda: synth.count_chains(1, 10, workers=1, progress=True), "7/7", "chains=230")]:
+        err = Terminal()
+        monkeypatch.setattr(sys, "stderr", err)
+        run()
+        frames = err.getvalue().split("\r")
+        shown = [f for f in frames if "codes/s" in f]
+        assert shown and total in shown[-1] and found in shown[-1], shown[-1:]
+        assert frames[-1] == "" and frames[-2] and frames[-2].strip() == ""  # cleared at the end, not left
+    pipe = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", pipe)
+    synth.count_chains(1, 8, workers=1, progress=True)
+    assert pipe.getvalue() == ""
