@@ -95,6 +95,7 @@ def test_plan_units_is_inline_on_one_worker_and_on_a_pool_otherwise(monkeypatch)
     monkeypatch.setattr(ts, "process_pool", _PoolSpy)
     _PoolSpy.made = []
     inline = ts.plan_units(1, 8, workers=1)
+    ts.plan_units(1, 8)  # the default: inline (a plan is small next to its units)
     assert _PoolSpy.made == []
     pooled = ts.plan_units(1, 8, workers=2)
     assert [(p.workers, p.mapped) for p in _PoolSpy.made] == [(2, 1)]

@@ -329,3 +329,17 @@ def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
     monkeypatch.setattr(sys, "stderr", pipe)
     synth.count_chains(1, 8, workers=1, progress=True)
     assert pipe.getvalue() == ""
+
+
+@pytest.mark.parametrize("h", [2, 3, 4, 5, 6])
+def test_single_loops_are_chains_of_their_motion_space(h):
+    """The single loop of h + 1 links, built without a solver, is a chain of space h (W = 1)."""
+    chains = list(synth.type_synthesis(1, h + 1, h=h, workers=1))
+    assert [(c.links, c.h, c.dof) for c in chains] == [(h + 1, h, 1)]
+
+
+def test_a_two_link_loop_is_no_chain():
+    """h = 2, W = 0 gives the code 2/0: two joints on the same two links, which is one joint, so no chain."""
+    assert [str(u.code) for u in synth.plan_units(0, 2, h=2)] == ["2/0"]
+    assert list(synth.type_synthesis(0, 2, h=2, workers=1)) == []
+    assert synth.count_chains(0, 2, h=2, workers=1)["count"] == 0
