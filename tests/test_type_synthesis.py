@@ -312,6 +312,8 @@ def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
             return True
 
     class Eager(tqdm.tqdm):  # every update drawn, so the test sees each state
+        monitor_interval = 0  # no monitor thread: a process forked later (mutmut) must not inherit its lock
+
         def __init__(self, *args, **kwargs):
             super().__init__(*args, mininterval=0, **kwargs)
 
