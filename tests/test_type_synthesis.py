@@ -304,6 +304,7 @@ def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
     """On a terminal the bar counts codes (of the total) and shows the chains found so far; it is
     cleared at the end. Elsewhere (a pipe, a file) nothing is written."""
     import io
+    import threading
 
     import tqdm
 
@@ -317,6 +318,9 @@ def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
         def __init__(self, *args, **kwargs):
             super().__init__(*args, mininterval=0, **kwargs)
 
+    # a plain thread lock: tqdm's default also makes a multiprocessing lock, which hangs in a
+    # process forked from a threaded one (mutmut runs each mutant so)
+    monkeypatch.setattr(Eager, "_lock", threading.RLock(), raising=False)
     monkeypatch.setattr(tqdm, "tqdm", Eager)
     for run, total, found in [(lambda: list(synth.type_synthesis(1, 8, workers=1, progress=True)), "3/3", "chains=16"),
                               (lambda: synth.count_chains(1, 10, workers=1, progress=True), "7/7", "chains=230")]:
