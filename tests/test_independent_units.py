@@ -111,6 +111,8 @@ def test_plan_units_is_inline_on_one_worker_and_on_a_pool_otherwise(monkeypatch)
     (True, 1, "the number of links must be 1 or more, not True"),
     (8, 0, "workers must be a whole number ≥ 1, not 0"),
     (8, 2.0, "workers must be a whole number ≥ 1, not 2.0"),
+    (1, 1, "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = -1 to be a non-negative "
+           "multiple of h − 1 = 2 (W=1, n=1, h=3, f=0)"),  # one link is a size, just not a chain's
 ])
 def test_plan_units_refuses_bad_sizes_in_one_sentence(links, workers, message):
     with pytest.raises(synth.SynthesisError) as refused:
@@ -141,6 +143,39 @@ def test_count_descriptions_and_identities():
     assert _identity("chains", codes, conv) != _identity("chains", codes[:1], conv)
     assert _identity("chains", codes, conv) != _identity("mechanisms", codes, conv)
     assert _identity("chains", codes, conv) == _identity("chains", list(codes), conv)
+    assert _identity("chains", codes[:1], conv) != _identity("chains", codes[1:2], conv)  # which codes, not how many
+
+
+@pytest.mark.parametrize("dof, message", [(-1, "the degree of freedom W must be 0 or more, not -1"),
+                                          ("1", "the degree of freedom W must be 0 or more, not '1'"),
+                                          (True, "the degree of freedom W must be 0 or more, not True")])
+def test_every_entry_point_refuses_a_bad_mobility(dof, message):
+    for call in (lambda: synth.plan_units(dof, 8), lambda: list(synth.type_synthesis(dof, 8)),
+                 lambda: synth.count_chains(dof, 8), lambda: synth.count_mechanisms(dof, 8)):
+        with pytest.raises(synth.SynthesisError) as refused:
+            call()
+        assert str(refused.value) == message
+    for call in (lambda: list(synth.type_synthesis(1, 0)), lambda: synth.count_chains(1, 0),
+                 lambda: synth.count_mechanisms(1, 0)):
+        with pytest.raises(synth.SynthesisError, match="^the number of links must be 1 or more, not 0$"):
+            call()
+    for call in (lambda: list(synth.type_synthesis(1, 8, workers=0)), lambda: synth.count_chains(1, 8, workers=0),
+                 lambda: synth.count_mechanisms(1, 8, workers=0)):
+        with pytest.raises(synth.SynthesisError, match="^workers must be a whole number ≥ 1, not 0$"):
+            call()
+
+
+def test_one_worker_never_starts_a_pool(monkeypatch):
+    """A query longer than the inline start (0.25 s) still runs in this process with one worker."""
+    import synth._executor as ex
+
+    def refuse(workers):
+        raise AssertionError(f"a pool of {workers} was started")
+
+    monkeypatch.setattr(ex, "process_pool", refuse)
+    assert synth.count_chains(1, 12, workers=1)["count"] == 6856
+    assert sum(1 for _ in synth.type_synthesis(1, 12, workers=1)) == 6856
+    assert synth.count_mechanisms(1, 10, workers=1)["count"] == 1834
 
 
 def test_mechanism_counts_with_and_without_input_link_keep_apart(tmp_path):

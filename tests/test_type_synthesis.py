@@ -335,6 +335,21 @@ def test_progress_bar_on_a_terminal_counts_codes_and_chains(monkeypatch):
     monkeypatch.setattr(sys, "stderr", pipe)
     synth.count_chains(1, 8, workers=1, progress=True)
     assert pipe.getvalue() == ""
+    quiet = Terminal()  # no bar unless asked
+    monkeypatch.setattr(sys, "stderr", quiet)
+    synth.count_chains(1, 8, workers=1), list(synth.type_synthesis(1, 8, workers=1)), synth.count_mechanisms(1, 8, workers=1)
+    assert quiet.getvalue() == ""
+
+
+def test_the_limit_theorem_is_a_default_only_where_it_holds():
+    """W = 3, 8 links: fractionated chains may have a joint of 4 links (K + 1 = 3 would drop 80/0-1),
+    so there the default has no limit; an explicit --max-multiplicity is obeyed; a code keeps its own."""
+    full = synth.count_chains(3, 8, v=(0, 16), workers=1)
+    assert full["count"] == 16 and full["by_code"]["80/0-1"] == 1
+    assert synth.count_chains(3, 8, v=(0, 16), max_multiplicity=3, workers=1)["count"] == 15
+    assert synth.count_chains(3, 8, v=(0, 16), max_multiplicity=8, workers=1)["count"] == 16
+    for code in ("80/0-1", Code.parse("80/0-1")):
+        assert synth.count_chains(3, code=code, workers=1)["count"] == 1
 
 
 @pytest.mark.parametrize("h", [2, 3, 4, 5, 6])
