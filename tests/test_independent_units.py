@@ -214,3 +214,12 @@ def test_count_resumes_in_process_without_losing_or_repeating_a_unit(tmp_path, m
     assert len(done) == 10 and not set(done) & set(calls) and len(done) + len(calls) == total_units
     calls.clear()
     assert synth.count_chains(1, 10, workers=1, checkpoint=path) == full and calls == []  # all stored
+
+
+def test_a_checkpoint_knows_its_conventions_and_reports_its_commits(tmp_path):
+    """The same codes under other conventions are another plan; every commit is reported to ``log``."""
+    path, lines = tmp_path / "f.sqlite", []
+    assert synth.count_chains(1, 10, planar_only=True, workers=1, checkpoint=path, log=lines.append)["count"] == 219
+    assert lines and all(line.startswith(f"checkpoint {path}: ") for line in lines)
+    with pytest.raises(synth.SynthesisError, match="belongs to another query"):
+        synth.count_chains(1, 10, workers=1, checkpoint=path)  # the same codes, non-planar chains included: 230

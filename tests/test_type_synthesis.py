@@ -364,3 +364,24 @@ def test_a_two_link_loop_is_no_chain():
     assert [str(u.code) for u in synth.plan_units(0, 2, h=2)] == ["2/0"]
     assert list(synth.type_synthesis(0, 2, h=2, workers=1)) == []
     assert synth.count_chains(0, 2, h=2, workers=1)["count"] == 0
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(dof=4, code="2|5/2", n1=1), "code 2|5/2 has n1 = 2, not the requested n1 = 1"),
+    (dict(dof=4, code="2|5/2", n1="3..4"), "code 2|5/2 has n1 = 2, not the requested n1 = 3..4"),
+    (dict(dof=1, code="2|5/2"), "code 2|5/2 gives W = 4 with h = 3, not the requested W = 1"),
+    (dict(dof=4, links=8, code="2|5/2"), "code 2|5/2 has 7 links, not 8"),
+])
+def test_a_code_and_its_query_disagree(kwargs, message):
+    with pytest.raises(ImpossibleParameters) as refused:
+        synth.plan_units(**kwargs)
+    assert str(refused.value) == message
+
+
+def test_a_code_and_its_query_agree():
+    """The same numbers given twice (n1, links) are no contradiction; a code keeps exactly its own
+    assortment (6220/0 and 6301/0 share n2 = 6 and their loops and v)."""
+    for kwargs in (dict(n1=2), dict(n1="2..2"), dict(links=7), dict(n1=2, links=7)):
+        assert {str(u.code) for u in synth.plan_units(4, code="2|5/2", **kwargs)} == {"2|5/0-1", "2|5/2"}
+    assert synth.count_chains(1, code="6220/0", workers=1)["by_code"] == {"6220/0": 57}
+    assert synth.count_chains(1, code="7201/1", workers=1)["by_code"].keys() == {"7201/1"}
