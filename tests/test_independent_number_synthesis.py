@@ -245,3 +245,45 @@ def test_single_loop_equals_brute_force_and_the_model(dof, kwargs, brute_kwargs)
     problem = make_problem(dof, loops=1, **kwargs)
     assert set(_single_loop(problem)) == set(_model_codes(problem)) == brute(dof, 1, **bk)
     assert set(number_synthesis(dof, loops=1, **kwargs)) == brute(dof, 1, **bk)
+
+
+@pytest.mark.parametrize("text, minimum, result", [
+    ("x", 0, "InvalidOption: v must be a whole number or a range A..B, not 'x'"),
+    ("1..2..3", 0, "InvalidOption: v must be a whole number or a range A..B, not '1..2..3'"),
+    (True, 0, "InvalidOption: v must be a whole number or a range A..B, not True"),
+    ([1], 0, "InvalidOption: v must be a whole number or a range A..B, not [1]"),
+    ((1, 2, 3), 0, "InvalidOption: v must be a whole number or a range A..B, not (1, 2, 3)"),
+    ("-1", 0, "ImpossibleParameters: v must not be below 0 (got '-1')"),
+    ((None, 2), 0, "ImpossibleParameters: v must not be below 0 (got (None, 2))"),
+    ("2..", 3, "ImpossibleParameters: v must not be below 3 (got '2..')"),
+    ("3..1", 0, "InvalidOption: the range for v is empty: 3..1"),
+    ("..3", 1, (1, 3)), ("3..", 3, (3, None)), (" 2 .. 4 ", 0, (2, 4)), ((1, 2), 0, (1, 2)), (5, 0, (5, 5)),
+])
+def test_parse_range_readings_and_sentences(text, minimum, result):
+    from synth._number_synthesis import parse_range
+
+    try:
+        got = parse_range(text, "v", minimum=minimum)
+    except Exception as exc:  # noqa: BLE001 - the sentence is the result
+        got = f"{type(exc).__name__}: {exc}"
+    assert got == result
+
+
+@pytest.mark.parametrize("bound, name", [(None, "K+1"), ("K+W", "K+W"), ("K+1", "K+1"), (4, "4"), (" 4 ", "4")])
+def test_a_required_link_beyond_the_bound_names_the_bound(bound, name):
+    from synth import ImpossibleParameters
+
+    with pytest.raises(ImpossibleParameters) as refused:
+        number_synthesis(1, loops=3, require=["6=1"], max_link_degree=bound)
+    assert str(refused.value).endswith(f"(the bound {name} with K = 3 loops)")
+
+
+def test_the_single_loop_without_a_solver():
+    """K = 1, closed: n binary links and v = 0, whatever else is asked; with compositions an empty one."""
+    assert [str(c) for c in number_synthesis(1, loops=1)] == ["4/0"]
+    assert [str(c) for c in number_synthesis(1, loops=1, v="0..2")] == ["4/0"]
+    assert number_synthesis(1, loops=1, require=["2=0..3"]) == [] and number_synthesis(1, loops=1, require=["3=0"])
+    assert [str(c) for c in number_synthesis(1, loops=1, require=["2=4.."])] == ["4/0"]
+    (code,) = number_synthesis(2, loops=1, compositions=True)
+    assert (code.assortment[0], code.v, code.n1, code.composition) == (5, 0, 0, ())  # no multiple joint
+    assert number_synthesis(2, loops=1)[0].composition is None
