@@ -286,4 +286,3 @@ def test_the_single_loop_without_a_solver():
     assert [str(c) for c in number_synthesis(1, loops=1, require=["2=4.."])] == ["4/0"]
     (code,) = number_synthesis(2, loops=1, compositions=True)
     assert (code.assortment[0], code.v, code.n1, code.composition) == (5, 0, 0, ())  # no multiple joint
-    assert number_synthesis(2, loops=1)[0].composition is None
