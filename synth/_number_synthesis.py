@@ -203,7 +203,7 @@ def make_problem(
         least = 2 if closed else 1
         if imax < least:
             raise ImpossibleParameters(
-                f"the largest link degree must be {least} or more (a link of a {'closed' if closed else 'open'} "
+                f"the largest link degree must be {least} or more (a link of {'a closed' if closed else 'an open'} "
                 f"chain carries at least {least} joint{'s' if least > 1 else ''}), not {imax}")
     imax = max(imax, 1 if not closed else 2)
     reqs = parse_requirements(require)

@@ -286,3 +286,42 @@ def test_the_single_loop_without_a_solver():
     assert [str(c) for c in number_synthesis(1, loops=1, require=["2=4.."])] == ["4/0"]
     (code,) = number_synthesis(2, loops=1, compositions=True)
     assert (code.assortment[0], code.v, code.n1, code.composition) == (5, 0, 0, ())  # no multiple joint
+
+
+@pytest.mark.parametrize("kwargs, sentence", [
+    (dict(links=3), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = 1 to be a "
+                    "non-negative multiple of h − 1 = 2 (W=1, n=3, h=3, f=0)"),
+    (dict(dof=3, links=4, n1=5), "n1 = 5 single-joint links do not fit in 4 links"),
+    (dict(dof=3, links=6, n1="7.."), "n1 = 7 single-joint links do not fit in 6 links"),
+    (dict(dof=3, links=6, n1="6.."), None),  # every link a free end is still a size
+    (dict(loops=0), "a closed chain has at least one loop (K ≥ 1); for open chains give n1"),
+    (dict(loops=3, v=9), "v = 9 is too large: a chain with K = 3 loops and 8 links has v ≤ 2(K − 1) + n1 = 4"),
+    (dict(loops=3, v="5..9"), "v = 5 is too large: a chain with K = 3 loops and 8 links has v ≤ 2(K − 1) + n1 = 4"),
+    (dict(loops=3, max_link_degree="x"), "the largest link degree is a whole number, 'K+1' or 'K+W', not 'x'"),
+    (dict(loops=3, max_link_degree=1),
+     "the largest link degree must be 2 or more (a link of a closed chain carries at least 2 joints), not 1"),
+    (dict(loops=3, max_link_degree=2), None),
+    (dict(dof=3, links=6, n1=2, max_link_degree=0),
+     "the largest link degree must be 1 or more (a link of an open chain carries at least 1 joint), not 0"),
+    (dict(dof=3, links=6, n1=2, max_link_degree=1), None),
+    (dict(loops=3, require=["1=1"]), "a closed chain has no single-joint links; give n1 for an open chain"),
+    (dict(loops=3, require=["1=0"]), None),
+    (dict(loops=3, require=["3=9"]), "n3 ≥ 9 links is more than the 8 links of the chain"),
+    (dict(loops=3, require=["2=5", "3=5"]), "the requirements ask for 10 links, more than n = 8"),
+    (dict(loops=3, max_multiplicity=1), "a joint joins at least 2 links: the largest multiplicity must be 2 or more, not 1"),
+    (dict(loops=3, max_multiplicity="3"),
+     "a joint joins at least 2 links: the largest multiplicity must be 2 or more, not '3'"),
+    (dict(loops=3, n1=-1), "n1 must not be below 0 (got -1)"),
+])
+def test_make_problem_sentences(kwargs, sentence):
+    """Each refusal of the counting problem, word for word; the cases beside them are accepted."""
+    from synth._number_synthesis import make_problem
+
+    kwargs = {"dof": 1, **kwargs}
+    if sentence is None:
+        problem = make_problem(**kwargs)
+        assert problem.dof == kwargs["dof"]
+        return
+    with pytest.raises(Exception) as refused:
+        make_problem(**kwargs)
+    assert str(refused.value) == sentence
