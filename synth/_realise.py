@@ -542,7 +542,7 @@ def _exact_on_h(kinds, edges, solutions, dof: int, conv: Conventions) -> list[bo
     ends = np.asarray(edges, dtype=np.int64)
     choice = np.arange(1 << len(inner), dtype=np.int64)
     members = (choice[:, None] >> np.arange(len(inner))) & 1  # subsets × inner links
-    subsets = members @ np.array([1 << u for u in inner], dtype=np.int64) if inner else np.zeros(1, dtype=np.int64)
+    subsets = members @ np.array([1 << u for u in inner], dtype=np.int64)  # (one empty subset without inner links)
     inside = ((subsets[:, None] >> ends[None, :, 0]) & (subsets[:, None] >> ends[None, :, 1]) & 1).astype(np.int64)
     inside[:, ends[:, 0] == ends[:, 1]] = 0  # closed strings are checked by their lower bound
     size = members.sum(axis=1)

@@ -88,7 +88,7 @@ def _prepare(key: str, work: Path) -> Path:
     config = {
         "source_paths": [f"{package}/"],
         "only_mutate": [path],
-        "also_copy": [d for d in ("synth/", "balance/", "mechsynth/", "models/", "benchmarks/") if d != f"{package}/"],
+        "also_copy": [f"{d}/" for d in COPY if (ROOT / d).is_dir() and d not in (package, "tests")],
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
