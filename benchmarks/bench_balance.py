@@ -202,7 +202,7 @@ def plot_pareto(rows: list[dict], path: Path) -> None:
             ax.set_ylabel(f"{norm} relative error reached (%)")
             ax.set_title(f"{case}, {norm} norm (labels: grid points)", fontsize=10)
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7, loc="upper right")
+            ax.legend(fontsize=7, loc="best", framealpha=0.85)  # where it hides the fewest points
     fig.suptitle("Compression-spring fit of 100·sin φ N·m: speed against error", fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -186,12 +186,17 @@ def plot(rows: list[dict], path: Path) -> None:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for series in dict.fromkeys(r["series"] for r in rows):
+    # each series labels its points on its own side, so labels of series that meet do not overlap
+    sides = [((4, 5), "left"), ((4, -11), "left"), ((-4, -11), "right"), ((-4, 5), "right")]
+    for k, series in enumerate(dict.fromkeys(r["series"] for r in rows)):
         pts = [(r["links"], r["wall_2_workers_s"], r["chains"]) for r in rows if r["series"] == series]
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=series)
+        line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=series)
+        offset, align = sides[k % len(sides)]
         for x, y, n in pts:
-            ax.annotate(str(n), (x, y), textcoords="offset points", xytext=(3, 4), fontsize=7)
+            ax.annotate(f"{int(n):,}".replace(",", " "), (x, y), textcoords="offset points", xytext=offset,
+                        ha=align, fontsize=7, color=line.get_color())
     ax.set_yscale("log")
+    ax.margins(y=0.12)  # room for the labels of the highest points
     ax.set_xlabel("links n")
     ax.set_ylabel("wall time, 2 workers, start-up included [s]")
     ax.set_title("Type synthesis: time against link count (labels: chains found)")
