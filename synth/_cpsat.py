@@ -119,8 +119,12 @@ def all_solutions(
     *,
     limit: int | None = None,
     time_limit: float | None = None,
+    fixed_search: bool = False,
 ) -> list[tuple[int, ...]]:
     """Every solution of ``model`` projected on ``variables`` (single worker, exhaustive).
+
+    With ``fixed_search`` the solver branches on ``variables`` in their order, least value
+    first, instead of its own choice (adds a decision strategy to ``model``).
 
     Raises ``RuntimeError`` if the search could not be completed (time limit, model
     invalid), so that a partial enumeration is never returned silently.
@@ -143,6 +147,9 @@ def all_solutions(
     solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
     if time_limit is not None:
         solver.parameters.max_time_in_seconds = time_limit
+    if fixed_search:
+        model.AddDecisionStrategy(variables, cp_model.CHOOSE_FIRST, cp_model.SELECT_MIN_VALUE)
+        solver.parameters.search_branching = cp_model.FIXED_SEARCH
     collector = _Collector(variables, limit)
     status = solver.Solve(model, collector)
     complete = status in (cp_model.OPTIMAL, cp_model.INFEASIBLE)

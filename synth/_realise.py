@@ -8,9 +8,10 @@ H is a subdivision-equivalent of the incidence graph, so
 * chains are isomorphic exactly when their H's are isomorphic by a map that keeps
   the weights;  hence
 * stage A enumerates the multigraphs H of a code once each (CP-SAT with the
-  degree equations, connectivity by a flow, weight lower bounds and the sb*ℓ
+  degree equations, weight lower bounds, the sub-chain conditions and the sb*ℓ
   lexicographic row constraints of Codish et al. between branch vertices of one
-  kind; nauty removes the remaining labelled copies), and
+  kind; connectivity is checked on each solution and nauty removes the remaining
+  labelled copies), and
 * stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
   exact sub-chain conditions of docs/theory.md written on the edges, and lex-leader
   constraints for the automorphisms of H, from nauty), so few labelled copies of
@@ -180,11 +181,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     loops_lb = sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m))
     model.Add(sum(lbs) + loops_lb <= n2)
     _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(conv.h), conv)
-    # connectivity: every cut around a set holding vertex 0 is crossed by an edge
-    for size in range(1, m):
-        for T in combinations(range(1, m), size - 1):
-            inside = {0, *T}
-            model.Add(sum(x[u, v] for u, v in pairs if (u in inside) != (v in inside)) >= 1)
+    # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
+    # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
     # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
     base = max(deg) + 1
     for u, v in pairs:
@@ -205,13 +203,14 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         model.Add(sum(base ** (L - 1 - i) * ru[i] for i in range(L)) <= sum(base ** (L - 1 - i) * rv[i] for i in range(L)))
     variables = [x[p] for p in pairs] + y
     seen: dict[str, Contracted] = {}
-    for sol in all_solutions(model, variables):
+    # branching on the rows in order, least value first, follows the lexicographic row constraints
+    for sol in all_solutions(model, variables, fixed_search=True):
         edges = []
         for (u, v), k in zip(pairs, sol):
             edges += [(u, v)] * k
         for u, k in enumerate(sol[len(pairs):]):
             edges += [(u, u)] * k
-        if not _keep_multigraph(m, edges, conv):
+        if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
             continue
         h = Contracted(kinds, tuple(sorted(edges)), "")
         cert = pynauty.certificate(h._subdivided()).hex()
@@ -245,6 +244,14 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
             model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
         return touched[J, TL]
 
+    # need + rest = Σ_inside ((h − 1)·x − lb) − bound + Σ_all lb: with a cost variable per pair and
+    # the slack n2 − Σ_all lb − loops_lb, each condition holds only the pairs inside T
+    slack = model.NewIntVar(0, n2, "slack")
+    model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
+    cost = {}
+    for p, lb in lbs.items():
+        cost[p] = model.NewIntVar(0, (h - 1) * min(kinds[p[0]][1], kinds[p[1]][1]), f"c{p}")
+        model.Add(cost[p] == (h - 1) * x[p] - lb)
     for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
         if size == all_links and dof < conv.threshold:
             break  # T would hold every link: maybe the whole chain, which is exempt
@@ -255,9 +262,30 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
                     inside = {p for p in x if p[0] in T and p[1] in T}
                     # one link: S has two links or more only with a one-link string (weaker bound)
                     bound = h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)
-                    need = (h - 1) * sum(x[p] for p in inside) - bound
-                    rest = sum(lb for p, lb in lbs.items() if p not in inside)
-                    model.Add(need + rest + loops_lb <= n2).OnlyEnforceIf([touches(J, TL) for J in TJ])
+                    model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf(
+                        [touches(J, TL) for J in TJ])
+
+
+def _connected(m: int, edges) -> bool:
+    """Whether the multigraph on vertices 0 … m − 1 with ``edges`` is connected.
+
+    >>> _connected(3, [(0, 1), (1, 1), (1, 2)]), _connected(3, [(0, 1), (2, 2)])
+    (True, False)
+    """
+    root = list(range(m))
+
+    def find(u: int) -> int:
+        while root[u] != u:
+            root[u] = u = root[root[u]]
+        return u
+
+    parts = m
+    for u, v in edges:
+        a, b = find(u), find(v)
+        if a != b:
+            root[a] = b
+            parts -= 1
+    return parts == 1
 
 
 def _closed_core(edges) -> list[tuple[int, int]]:

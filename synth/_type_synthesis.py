@@ -31,8 +31,8 @@ from .errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 __all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
 
 
-# Stage A writes one connectivity constraint per set of branch vertices holding vertex 0:
-# 2^(m-1) of them; m = 18 gives 131 071, the most a model is allowed to hold.
+# Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
+# m = 18 gives 262 144, the most a model is allowed to hold.
 _MAX_BRANCH = 18
 # A query runs inline for this long before it starts a pool, if no code has more branch
 # vertices than _INLINE_BRANCH (stage A of such a code takes milliseconds: 8 at 12 links).
@@ -293,8 +293,8 @@ def _codes_of(query: Mapping, skip_impossible: bool = False) -> tuple[list[Code]
         branch = _branch_vertices(code)
         if branch > _MAX_BRANCH:
             raise QueryTooLarge(f"code {code} has {branch} branch vertices (links with 3+ joints and multiple "
-                                f"joints); its branch-multigraph model would need 2^{branch - 1} connectivity "
-                                f"constraints, more than this engine builds (at most {_MAX_BRANCH} branch vertices)")
+                                f"joints); its branch-multigraph model would need 2^{branch} sub-chain conditions, "
+                                f"more than this engine builds (at most {_MAX_BRANCH} branch vertices)")
     return codes, conv
 
 
