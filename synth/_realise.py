@@ -15,9 +15,11 @@ H is a subdivision-equivalent of the incidence graph, so
 * stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
   exact sub-chain conditions of docs/theory.md written on the edges, and lex-leader
   constraints for the automorphisms of H, from nauty), so few labelled copies of
-  a chain come out; the exact test and nauty's certificate run on each.  Where H has
-  simple joints only and the placements are few, they are listed directly (numpy) with
-  the same symmetry constraints, and the exact test does the rest.
+  a chain come out: none where the whole group of H is listed.  With simple joints the
+  model's conditions are the exact test; with multiple joints they are necessary, and
+  the exact test runs on each candidate.  Where H has simple joints only and the
+  placements are few, they are listed directly (numpy) with the same symmetry
+  constraints, and the exact test does the rest.
 
 Planarity and fractionation are properties of H (a subdivision keeps both), so
 they are decided once per H.
@@ -326,9 +328,10 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     return True
 
 
-def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool]:
-    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string), and
-    whether they are one per orbit of Aut(H) (lex-leader on the whole group and every edge)."""
+def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string),
+    whether they are one per orbit of Aut(H) (lex-least under the whole group), and whether
+    they meet the sub-chain rule already (the model's conditions, exact for simple joints)."""
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
     space = conv.h
@@ -340,8 +343,8 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
                 for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
     spare = n2 - sum(lows)
     if spare < 0:
-        return [], True
-    simple = all(kind[0] == "L" for kind in kinds)  # then the exact test on H is cheap (see _passing)
+        return [], True, True
+    simple = all(kind[0] == "L" for kind in kinds)  # then the model's conditions are the exact test
     if simple and not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, h, stats)
     from ._cpsat import Model, all_solutions, cp_model
@@ -391,7 +394,7 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
             model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
             chosen.append(sel)
         if not chosen:
-            return [], True
+            return [], True, True
         model.AddBoolOr(chosen)
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
@@ -403,12 +406,17 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
         model.Add(lhs <= cp_model.LinearExpr.WeightedSum([w[g[i]] for i in range(prefix)], weights))
     t0 = perf_counter()
     solutions = all_solutions(model, w)
+    if whole_group and prefix < len(edges) and group and solutions:
+        # the model's lex-leader covers a prefix of the edges only: keep the lex-least of each orbit
+        import numpy as np
+
+        solutions = [tuple(map(int, row)) for row in _lex_least(np.asarray(solutions, dtype=np.int64), group)]
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
-    return solutions, whole_group and prefix == len(edges)
+    return solutions, whole_group, simple
 
 
 def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
-                       stats: dict | None) -> tuple[list, bool]:
+                       stats: dict | None) -> tuple[list, bool, bool]:
     """Stage B without a model, where the weight vectors are few: every way to put ``spare``
     binary links on the edges above their least weights, kept where the parallel strings are
     ordered and the vector is the lex-least of its images under Aut(H) (as the model's
@@ -419,23 +427,37 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracte
     group, whole_group = h.edge_group()
     edges = len(lows)
     if edges == 0:  # H is one branch vertex
-        return ([()] if spare == 0 else []), True
+        return ([()] if spare == 0 else []), True, False
     w = _compositions(spare, edges) + np.array(lows)
     keep = np.ones(len(w), dtype=bool)
     for k, least in parallel:
         keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
-    w = w[keep]
-    images = np.asarray(group, dtype=np.int64).reshape(len(group), edges)
-    step = max(1, _LEX_BLOCK // max(1, len(w) * edges))
-    for start in range(0, len(images), step):  # lex-least: where w and an image first differ, w is smaller
+    solutions = [tuple(map(int, row)) for row in _lex_least(w[keep], group)]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group, False
+
+
+def _lex_least(w, group):
+    """The rows of ``w`` (weight vectors) that are lexicographically least among their images
+    under the edge permutations ``group`` (the image of w under g is w[g]).
+
+    >>> import numpy as np
+    >>> _lex_least(np.array([[0, 1], [1, 0], [1, 1]]), [(1, 0)]).tolist()
+    [[0, 1], [1, 1]]
+    """
+    import numpy as np
+
+    if not len(group):
+        return w
+    images = np.asarray(group, dtype=np.int64)
+    step = max(1, _LEX_BLOCK // max(1, len(w) * w.shape[1]))
+    for start in range(0, len(images), step):  # where w and an image first differ, w is smaller
         if not len(w):
             break
         differ = w[:, images[start:start + step]] - w[:, None, :]  # vectors × automorphisms × edges
         first = (differ != 0).argmax(axis=2)
         w = w[(np.take_along_axis(differ, first[..., None], axis=2)[..., 0] >= 0).all(axis=1)]
-    solutions = [tuple(map(int, row)) for row in w]
-    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
-    return solutions, whole_group
+    return w
 
 
 @lru_cache(maxsize=256)
@@ -462,10 +484,14 @@ def _add(stats: dict | None, **values) -> None:
             stats[key] = stats.get(key, 0) + value
 
 
-def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dict | None) -> tuple[list, list]:
-    """The candidates that pass the exact sub-chain test, and their chains if the test built them."""
+def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dict | None,
+             checked: bool = False) -> tuple[list, list]:
+    """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
+    model wrote the exact conditions), and their chains if the test built them."""
     t0 = perf_counter()
-    if all(kind[0] == "L" for kind in h.kinds):  # simple joints: exact test on H for all candidates at once
+    if checked:
+        kept, chains = list(solutions), []
+    elif all(kind[0] == "L" for kind in h.kinds):  # simple joints: exact test on H for all candidates at once
         passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(conv.h), conv)
         kept, chains = [s for s, ok in zip(solutions, passed) if ok], []
     else:
@@ -485,8 +511,8 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
 
 def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
-    solutions, _ = _distributions(code, h, conv, stats)
-    return _distinct(code, h, conv, *_passing(code, h, conv, solutions, stats), stats)
+    solutions, _, checked = _distributions(code, h, conv, stats)
+    return _distinct(code, h, conv, *_passing(code, h, conv, solutions, stats, checked), stats)
 
 
 def _distinct(code: Code, h: Contracted, conv: Conventions, kept: list, chains: list,
@@ -505,16 +531,16 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     """``len(realise(code, h, conv))``, without chains or certificates where they are not needed.
 
     Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
-    one weight vector onto the other; when the lex-leader constraints cover the whole group of
-    H and every edge, stage B yields one vector per orbit, so the chains are the vectors that
-    pass the sub-chain test (docs/theory.md). Otherwise the chains are built and compared.
+    one weight vector onto the other; when the whole group of H is listed, stage B keeps the
+    lex-least vector of each orbit, so the chains are the vectors that pass the sub-chain test
+    (docs/theory.md). Otherwise the chains are built and compared.
 
     >>> h = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
     >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
     (2, 2)
     """
-    solutions, one_per_orbit = _distributions(code, h, conv, stats)
-    kept, chains = _passing(code, h, conv, solutions, stats)
+    solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
+    kept, chains = _passing(code, h, conv, solutions, stats, checked)
     return len(kept) if one_per_orbit else len(_distinct(code, h, conv, kept, chains, stats))
 
 

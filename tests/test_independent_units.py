@@ -52,17 +52,56 @@ def test_run_unit_statistics_and_the_single_loop():
 
 @pytest.mark.parametrize("query", [dict(dof=1, links=10, v=(0, 3)), dict(dof=0, links=9), dict(dof=2, links=9),
                                    dict(dof=1, links=10, cranks={4: 2})], ids=str)
-@pytest.mark.parametrize("group_limit", [4096, 1], ids=["whole group", "generators only"])
-def test_counting_a_unit_equals_its_distinct_chains(query, group_limit, monkeypatch):
+@pytest.mark.parametrize("group_limit,lex_bits", [(4096, 52), (1, 52), (4096, 3)],
+                         ids=["whole group", "generators only", "lex-leader on one edge in the model"])
+def test_counting_a_unit_equals_its_distinct_chains(query, group_limit, lex_bits, monkeypatch):
     """count_realised counts stage B's vectors when they are one per orbit of Aut(H), else it
-    compares certificates (forced here by a group limit of 1): either way it equals realise."""
+    compares certificates (forced here by a group limit of 1): either way it equals realise.  With
+    the model's lex-leader cut to one edge the lex-least filter over the solutions keeps one per orbit."""
     from synth import _realise
 
     monkeypatch.setattr(_realise, "_GROUP_LIMIT", group_limit)
+    monkeypatch.setattr(_realise, "_LEX_BITS", lex_bits)
+    monkeypatch.setattr(_realise, "_FEW_VECTORS", 0)  # every unit through the model
     units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
     args = [(u.code, u.contracted, u.conventions) for u in units]
     assert [_realise.count_realised(*a) for a in args] == [len(_realise.realise(*a)) for a in args]
     assert sum(len(_realise.realise(*a)) for a in args) > 0
+
+
+SIMPLE_JOINT_QUERIES = [dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11, fractionated=False),
+                        dict(dof=3, links=10, n1=(0, 3)), dict(dof=1, links=8, h=2), dict(dof=1, links=11, h=4),
+                        dict(dof=1, links=14, h=5), dict(dof=2, links=9, rigid_subchains=True),
+                        dict(dof=1, links=10, cranks={4: 2})]
+
+
+@pytest.mark.parametrize("query", SIMPLE_JOINT_QUERIES, ids=str)
+def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
+    """With simple joints stage B's model writes the exact sub-chain test on the strings, so its
+    solutions skip the test: each of them is a valid chain (the independent test on the chain), and
+    they are exactly the valid ones of the direct listing, which writes no conditions."""
+    from synth import _realise
+    from synth.mobility import check_subchains
+
+    units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
+    assert units
+    checked_any = 0
+    for u in units:
+        args = (u.code, u.contracted, u.conventions)
+        monkeypatch.setattr(_realise, "_FEW_VECTORS", 0)
+        solutions, one_per_orbit, checked = _realise._distributions(*args, None)
+        assert checked
+        for s in solutions:
+            chain = _realise._expand(u.code, u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
+            assert check_subchains(chain, rigid_subchains=u.conventions.rigid_subchains).ok, (u.key, s)
+        if one_per_orbit and not u.conventions.cranks:
+            monkeypatch.setattr(_realise, "_FEW_VECTORS", 10**9)
+            listed, _, listed_checked = _realise._distributions(*args, None)
+            assert not listed_checked
+            kept, _ = _realise._passing(u.code, u.contracted, u.conventions, listed, None)
+            assert sorted(kept) == sorted(solutions), u.key
+            checked_any += 1
+    assert checked_any or query.get("cranks")  # a crank requirement has no direct listing
 
 
 class _PoolSpy:
