@@ -11,7 +11,8 @@ Stages:
   of which ``CpModel()`` is the construction of the empty model object itself (``_cpsat.Model``);
 * ``stage B CP-SAT``    enumerating its solutions (``all_solutions``);
 * ``automorphisms``     nauty's group of H (lex-leader constraints);
-* ``sub-chain test``    ``_exact_on_h`` (simple joints) or ``check_subchains`` (multiple joints);
+* ``sub-chain test``    ``_exact_test``: the exact test of a unit's candidates in one batch (none
+  where stage B's model wrote the exact conditions: simple joints);
 * ``Chain``             building the ``Chain`` objects (``_expand``);
 * ``nauty``             certificates of the chains (duplicates removed).
 
@@ -57,12 +58,8 @@ def _timed(name, fn, stage: str | None = None):
 
 def instrument() -> None:
     """Wrap the engine's stage functions with timers (this process only)."""
-    import importlib
-
     from synth import _cpsat, _realise, _type_synthesis as ts
     from synth.chain import Chain
-
-    mobility = importlib.import_module("synth.mobility")
 
     ts.number_synthesis = _timed("number synthesis", ts.number_synthesis, "number synthesis")
     ts.contracted_graphs = _timed("stage A", ts.contracted_graphs, "stage A")
@@ -71,8 +68,7 @@ def instrument() -> None:
     # stages A and B import the solver when they run: the timer wraps it where they find it
     # (number synthesis too, whose time is taken out of stage B's below)
     _cpsat.all_solutions = _timed("CP-SAT", _cpsat.all_solutions)
-    _realise._exact_on_h = _timed("sub-chain test", _realise._exact_on_h)
-    mobility.check_subchains = _timed("sub-chain test", mobility.check_subchains)
+    _realise._exact_test = _timed("sub-chain test", _realise._exact_test)
     _realise._expand = _timed("Chain", _realise._expand)
     _realise.Contracted.edge_group = _timed("automorphisms", _realise.Contracted.edge_group)
     cert = Chain.certificate.fget

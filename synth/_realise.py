@@ -485,43 +485,34 @@ def _add(stats: dict | None, **values) -> None:
 
 
 def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dict | None,
-             checked: bool = False) -> tuple[list, list]:
+             checked: bool = False) -> list:
     """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
-    model wrote the exact conditions), and their chains if the test built them."""
+    model wrote the exact conditions)."""
     t0 = perf_counter()
-    if checked:
-        kept, chains = list(solutions), []
-    elif all(kind[0] == "L" for kind in h.kinds):  # simple joints: exact test on H for all candidates at once
-        passed = _exact_on_h(h.kinds, h.edges, solutions, code.dof(conv.h), conv)
-        kept, chains = [s for s, ok in zip(solutions, passed) if ok], []
+    if checked or not solutions:
+        kept = list(solutions)
     else:
-        from .mobility import check_subchains  # numpy and a popcount table: only multiple joints need it here
-
-        chains = [_expand(code, h.kinds, h.edges, s, conv.h) for s in solutions]
-        # two joints on the same links are one joint; the rule itself refuses them (W = 2 − h per
-        # pair) except for h = 2 with rigid sub-chains allowed
-        distinct = 2 - conv.h >= conv.threshold
-        ok = [check_subchains(c, rigid_subchains=conv.rigid_subchains).ok
-              and not (distinct and len(set(c.joints)) < len(c.joints)) for c in chains]
-        kept = [s for s, good in zip(solutions, ok) if good]
-        chains = [c for c, good in zip(chains, ok) if good]
+        kept = [s for s, ok in zip(solutions, _exact_test(h.kinds, h.edges, solutions, conv)) if ok]
+        if 2 - conv.h >= conv.threshold and any(kind[0] == "J" for kind in h.kinds):
+            # two joints on the same links are one joint; the rule refuses them (W = 2 − h per pair)
+            # except for h = 2 with rigid sub-chains allowed
+            kept = [s for s in kept for c in [_expand(code, h.kinds, h.edges, s, conv.h)]
+                    if len(set(c.joints)) == len(c.joints)]
     _add(stats, subchain_s=perf_counter() - t0)
-    return kept, chains
+    return kept
 
 
 def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
     solutions, _, checked = _distributions(code, h, conv, stats)
-    return _distinct(code, h, conv, *_passing(code, h, conv, solutions, stats, checked), stats)
+    return _distinct(code, h, conv, _passing(code, h, conv, solutions, stats, checked), stats)
 
 
-def _distinct(code: Code, h: Contracted, conv: Conventions, kept: list, chains: list,
-              stats: dict | None) -> list[Chain]:
-    """The chains of the passing vectors ``kept`` (``chains`` if built already), once each by certificate."""
+def _distinct(code: Code, h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
+    """The chains of the passing vectors ``kept``, once each by certificate."""
     t0 = perf_counter()
-    chains = chains or [_expand(code, h.kinds, h.edges, s, conv.h) for s in kept]
     found: dict[str, Chain] = {}
-    for chain in chains:
+    for chain in (_expand(code, h.kinds, h.edges, s, conv.h) for s in kept):
         found.setdefault(chain.certificate, chain)
     _add(stats, nauty_s=perf_counter() - t0)
     return [found[c] for c in sorted(found)]
@@ -540,8 +531,8 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     (2, 2)
     """
     solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
-    kept, chains = _passing(code, h, conv, solutions, stats, checked)
-    return len(kept) if one_per_orbit else len(_distinct(code, h, conv, kept, chains, stats))
+    kept = _passing(code, h, conv, solutions, stats, checked)
+    return len(kept) if one_per_orbit else len(_distinct(code, h, conv, kept, stats))
 
 
 def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
@@ -573,44 +564,30 @@ def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: in
         model.Add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
-def _exact_on_h(kinds, edges, solutions, dof: int, conv: Conventions) -> list[bool]:
-    """Exact sub-chain test of every candidate whose branch vertices are all links.
+def _exact_test(kinds, edges, solutions, conv: Conventions):
+    """Exact sub-chain test of the chains of H with the weight vectors ``solutions``, all at once:
+    a bool per vector (:func:`synth.mobility.least_mobilities` over the sets of H's vertices).
 
-    For a set T of branch links the least W(S) over sub-chains S with branch part T is
-    h(|T| − 1) − Σ (h − 1 − w)⁺ over the strings inside T (planar: 2 for an empty string,
-    1 for a one-link string): adding a string of w binary links changes W by w − (h − 1)
-    and part of a string by more; a closed string through one link has W = w − (h − 1)
-    (its lower bound in the model).  Single-joint links (with their string: w + 1 ≥ 1)
-    never lower W and are left out of T.  S is the whole chain only when T is all of H
-    and every string has w < h − 1; then the best proper S leaves out the longest such
-    string with binary links (W + h − 1 − w).
+    A multiple joint J counts as a vertex of its own with h − 1 freedoms, joined to each of its
+    links by a simple joint: W(S) is then the same for every S that takes J with its links, and
+    larger where J is taken without them, so the least W over the vertex sets is the least
+    over the sub-chains (docs/theory.md).  Every string is then a path of w binary links between
+    two vertices, as with simple joints.  Single-joint links never lower W (a string to one adds
+    w + 1 links and w + 1 joints): they are left out, their strings are paths with a free end.
     """
     import numpy as np
 
-    if not solutions:
-        return []
-    h = conv.h
-    m = len(kinds)
-    inner = _inner_links(kinds)
-    sol = np.asarray(solutions, dtype=np.int64)
-    ends = np.asarray(edges, dtype=np.int64)
-    choice = np.arange(1 << len(inner), dtype=np.int64)
-    members = (choice[:, None] >> np.arange(len(inner))) & 1  # subsets × inner links
-    subsets = members @ np.array([1 << u for u in inner], dtype=np.int64)  # (one empty subset without inner links)
-    inside = ((subsets[:, None] >> ends[None, :, 0]) & (subsets[:, None] >> ends[None, :, 1]) & 1).astype(np.int64)
-    inside[:, ends[:, 0] == ends[:, 1]] = 0  # closed strings are checked by their lower bound
-    size = members.sum(axis=1)
-    taken = sol < h - 1
-    W = h * (size[None, :] - 1) - np.maximum(h - 1 - sol, 0) @ inside.T  # candidates × subsets
-    extra = (sol * taken) @ inside.T
-    valid = (size[None, :] + extra) >= 2
-    if len(inner) == m:  # T = all of H: S_T is the whole chain where every string is taken
-        full = (1 << m) - 1
-        all_short = taken.all(axis=1) & (ends[:, 0] != ends[:, 1]).all()
-        longest = np.where(taken & (sol >= 1), sol, -1).max(axis=1)
-        W[:, full] = np.where(all_short, np.where(longest >= 1, dof + h - 1 - longest, 10**6), W[:, full])
-    W[~valid] = 10**6
-    return list(W.min(axis=1) >= conv.threshold)
+    from .mobility import least_mobilities
+
+    inner = set(_inner_links(kinds))
+    vertices = [u for u, kind in enumerate(kinds) if u in inner or kind[0] == "J"]
+    index = {u: i for i, u in enumerate(vertices)}
+    sol = np.asarray(solutions, dtype=np.int64).reshape(len(solutions), len(edges))
+    ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
+                    dtype=np.int64).reshape(-1, 2)
+    lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
+    is_link = [kinds[u][0] == "L" for u in vertices]
+    return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
 
 
 def _expand(code: Code, kinds, edges, weights, space: int = 3) -> Chain:

@@ -32,52 +32,129 @@ from functools import lru_cache
 
 import numpy as np
 
+from ._blas import single_threaded
 from .chain import Chain
 from .errors import MalformedChain
 
 __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
 
 _MAX_CORE = 24
-_POPCOUNT16 = np.array([bin(i).count("1") for i in range(1 << 16)], dtype=np.int16)
+_BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
+_BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
 
 
-def _popcount(x: np.ndarray) -> np.ndarray:
-    return _POPCOUNT16[x & 0xFFFF] + _POPCOUNT16[(x >> 16) & 0xFFFF]
+def _subset_bits(c: int, start: int) -> tuple[np.ndarray, np.ndarray]:
+    """Subsets start … start + _BLOCK − 1 of c core links (bit masks): row t, column i is 1 if
+    subset start + t holds core link i (float32: exact, and a BLAS product), and the sizes.
 
-
-_MATRIX_CORE = 16  # up to this many core links, memberships come from one matrix product (≤ 4 MiB)
-
-
-@lru_cache(maxsize=None)
-def _subsets(c: int) -> tuple[np.ndarray, np.ndarray]:
-    """The 2^c subsets of c core links as bit masks, and their sizes (read-only, shared; cached
-    up to _MATRIX_CORE links, so a 24-link core does not stay in memory)."""
-    T = np.arange(1 << c, dtype=np.int64)
-    size = _popcount(T).astype(np.int64)
-    T.flags.writeable = size.flags.writeable = False
-    return T, size
-
-
-@lru_cache(maxsize=None)
-def _subset_bits(c: int) -> np.ndarray:
-    """Row T, column i: 1 if subset T of the c core links holds link i (float32: exact, and BLAS)."""
-    T = np.arange(1 << c, dtype=np.int64)
-    return ((T[:, None] >> np.arange(c)) & 1).astype(np.float32)
-
-
-def _members(T: np.ndarray, c: int, groups: list[list[int]]) -> np.ndarray:
-    """Row T, column k: how many core links of ``groups[k]`` (indices) the subset T holds.
-
-    >>> _members(np.arange(4), 2, [[0, 1], [1]]).tolist()
-    [[0, 0], [1, 0], [1, 1], [2, 1]]
+    >>> bits, size = _subset_bits(2, 0); bits.tolist(), size.tolist()
+    ([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]], [0, 1, 1, 2])
     """
-    if not groups:
-        return np.zeros((len(T), 0), dtype=np.int64)
-    if c <= _MATRIX_CORE:
-        M = np.zeros((c, len(groups)), dtype=np.float32)
-        M[[i for group in groups for i in group], [k for k, group in enumerate(groups) for _ in group]] = 1
-        return (_subset_bits(c) @ M).astype(np.int64)
-    return np.stack([_popcount(T & sum(1 << i for i in group)) for group in groups], axis=1)
+    T = np.arange(start, min(1 << c, start + _BLOCK), dtype=np.int64)
+    bits = ((T[:, None] >> np.arange(c)) & 1).astype(np.float32)
+    return bits, bits.sum(axis=1).astype(np.int64)
+
+
+@lru_cache(maxsize=None)
+def _first_block(c: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_subset_bits` from subset 0, shared and read-only: every scan of up to 16 core links
+    is this one block (at most 4 MiB)."""
+    bits, size = _subset_bits(c, 0)
+    bits.flags.writeable = size.flags.writeable = False
+    return bits, size
+
+
+def _block(c: int, start: int) -> tuple[np.ndarray, np.ndarray]:
+    return _first_block(c) if start == 0 and c <= 16 else _subset_bits(c, start)
+
+
+def _scan(h: int, is_link, groups: list[list[int]], ends: np.ndarray, lengths: np.ndarray, neutral: bool = False):
+    """Least mobilities over the sub-chains of many chains that share their core and paths,
+    block by block of the subsets T of the core.
+
+    The core is a list of vertices, each a link (``is_link``: h freedoms) or a multiple joint
+    standing as a vertex of its own (h − 1 freedoms: a joint J of S with m of its links removes
+    (h − 1)(m − 1), as a vertex joined to each of them by a simple joint; taking J without its
+    links only raises W, so the least W over S and T is the same); ``groups``: the joints whose
+    links are all core links (core indices), each removing (h − 1)·(m − 1) freedoms from a set
+    holding m of its links; ``ends`` (P × 2): the core ends of the paths of binary links (equal
+    for a path closed on one vertex, −1 for a path with a free end, never inside T);
+    ``lengths`` (N × P): each chain's binary links on each path (0: a simple joint between the
+    ends).  For a set T the least W(S) over the sub-chains with core part T takes the paths
+    inside T with w < h − 1 (each lowers W by h − 1 − w and brings w links) and no other; with
+    ``neutral`` also those with w = h − 1, which bring links and leave W as it is (a set of joint
+    vertices may need them to hold two links).  When T holds every link and every path with
+    links is inside and taken, S_T is the whole chain and the best proper sub-chain leaves out
+    the longest of them.
+
+    Yields ``(start, W, X)``: W[i, t] that least mobility for chain i and subset start + t,
+    X[i, t] its number of links (below 2 where T gives no proper sub-chain of two links or more).
+    """
+    c = len(is_link)
+    closed = ends[:, 0] == ends[:, 1]
+    short = ((lengths < h - 1) | (neutral & (lengths == h - 1))) & (ends[:, 0] >= 0)
+    cost = np.where(short, h - 1 - lengths, 0).astype(np.float32)  # N × P
+    taken = np.where(short, lengths, 0).astype(np.float32)
+    binary = lengths >= 1
+    binary_short = (binary & short).astype(np.float32)
+    n_binary = binary.sum(axis=1)
+    longest = np.where(binary & short, lengths, 0).max(axis=1, initial=0)
+    M = np.zeros((c, len(groups) + len(ends)), dtype=np.float32)
+    for k, group in enumerate(groups):
+        M[group, k] = 1
+    for p, (a, b) in enumerate(ends):
+        if a >= 0:
+            M[a, len(groups) + p] = 1
+            M[b, len(groups) + p] = 1
+    need = np.where(closed, 1, 2).astype(np.float32)
+    links = np.asarray(is_link, dtype=np.float32)
+    weight = np.where(links > 0, h, h - 1).astype(np.float32)
+    for start in range(0, 1 << c, _BLOCK):
+        bits, _ = _block(c, start)
+        size = bits @ links
+        counts = bits @ M  # links of T on each joint and at the ends of each path
+        lost = (h - 1) * np.maximum(counts[:, :len(groups)] - 1, 0).sum(axis=1)
+        inside = (counts[:, len(groups):] == need).astype(np.float32)
+        W = (bits @ weight - h - lost)[None, :] - cost @ inside.T
+        X = size[None, :] + taken @ inside.T
+        every = np.flatnonzero(size == links.sum())  # T holds every link
+        if len(every):
+            whole = (binary_short @ inside[every].T) == n_binary[:, None]  # S_T is the whole chain
+            cut = whole & (longest >= 1)[:, None]  # leave the longest short path out
+            W[:, every] += np.where(cut, (h - 1 - longest)[:, None], 0)
+            X[:, every] = np.where(whole, np.where(cut, X[:, every] - longest[:, None], 0), X[:, every])
+        yield start, W, X
+
+
+def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) -> np.ndarray:
+    """The least W(S) over the proper sub-chains (|S| ≥ 2) of each of many chains that share
+    their core (see :func:`_scan` for the arguments), a path closed on one core vertex alone
+    included (W = w − (h − 1) on a link, w − h on a joint); ``_BIG`` where a chain has no such
+    sub-chain.  The exact sub-chain test of a whole batch of candidates in one pass, as
+    :func:`check_subchains` is of one chain.
+
+    >>> least_mobilities(3, [True] * 2, [], [[0, 1], [0, 1], [0, 1]], [[1, 1, 1], [0, 1, 2]]).tolist()  # Watt / a triangle
+    [1, 0]
+    >>> least_mobilities(3, [True] * 3, [[0, 1, 2]], [], [[]]).tolist()  # three links on one joint: W(pair) = 1
+    [1]
+    >>> joint = [[0, 3], [1, 3], [2, 3], [0, 1]]  # links 0, 1, 2 on a multiple joint (vertex 3), a path 0–1
+    >>> least_mobilities(3, [True, True, True, False], [], joint, [[0, 0, 0, 2], [0, 0, 0, 1]]).tolist()
+    [1, 0]
+    >>> least_mobilities(3, [False, False], [], [[0, 1], [0, 1], [0, 1]], [[1, 2, 3]]).tolist()  # 60/2: links 0+1+2 rigid
+    [0]
+    """
+    is_link = np.asarray(is_link, dtype=bool)
+    ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+    lengths = np.asarray(lengths, dtype=np.int64)  # candidates × paths
+    low = np.full(len(lengths), _BIG, dtype=np.int64)
+    with single_threaded():
+        for _, W, X in _scan(h, is_link, groups, ends, lengths, neutral=not is_link.all()):
+            low = np.minimum(low, np.where(X >= 2, W, _BIG).min(axis=1).astype(np.int64))
+    loops = (ends[:, 0] == ends[:, 1]) & (ends[:, 0] >= 0)
+    on_link = np.zeros(len(ends), dtype=bool)
+    on_link[loops] = is_link[ends[loops, 0]]
+    alone = np.where(loops & (lengths + on_link >= 2), lengths - (h - 1) - (~on_link), _BIG)
+    return np.minimum(low, alone.min(axis=1, initial=_BIG))
 
 
 def subchain_mobility(chain: Chain, links) -> int:
@@ -179,44 +256,34 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
         return SubchainReport(True, best[1], best[0], threshold)
     index = {x: i for i, x in enumerate(core)}
     c = len(core)
-    T, size = _subsets(c) if c <= _MATRIX_CORE else _subsets.__wrapped__(c)
     core_set = set(core)
     on_core = [[index[x] for x in j] for j in chain.joints if core_set.issuperset(j)]
-    # paths that lower W when both ends are in T (w < h − 1), closed ones (a == b) included
-    short = [(a, b, body) for a, b, body in paths if len(body) < h - 1 and a is not None]
-    # one membership count per joint and per short path, then (lost freedoms, path links) per T
-    counts = _members(T, c, on_core + [sorted({index[a], index[b]}) for a, b, _ in short])
-    J = len(on_core)
-    np.maximum(counts[:, :J] - 1, 0, out=counts[:, :J])  # a joint with m links of T removes m − 1
-    counts[:, J:] = counts[:, J:] == np.array([1 if a == b else 2 for a, b, _ in short], dtype=np.int64)
-    weights = np.zeros((len(on_core) + len(short), 2), dtype=np.int64)
-    weights[:J, 0] = h - 1
-    weights[J:, 0] = [h - 1 - len(body) for _, _, body in short]
-    weights[J:, 1] = [len(body) for _, _, body in short]
-    lost, extra = (counts @ weights).T
-    W = h * (size - 1) - lost
-    full = (1 << c) - 1
-    proper = np.ones(1 << c, dtype=bool)
-    proper_all = len(short) < len(paths)
-    left_out = None
-    if not proper_all:  # S_T would be the whole chain
-        if short:  # the best proper one leaves out the longest short path: W + (h − 1 − w)
-            left_out = max(short, key=lambda path: len(path[2]))
-            W[full] += h - 1 - len(left_out[2])
-            extra[full] -= len(left_out[2])
-        else:
-            proper[full] = False
-    valid = proper & (size + extra >= 2)
-    if valid.any() and W[valid].min() < best[0]:
-        Wv = np.where(valid, W, 10**9)
-        low = Wv.min()
-        candidates = np.flatnonzero(Wv == low)
-        pick = candidates[np.argmin(size[candidates] + extra[candidates])]
+    ends = np.array([(-1, -1) if a is None else (index[a], index[b]) for a, b, _ in paths],
+                    dtype=np.int64).reshape(-1, 2)
+    lengths = np.array([[len(body) for _, _, body in paths]], dtype=np.int64)
+    pick, low, least_links = None, best[0], None
+    with single_threaded():
+        for start, W, X in _scan(h, np.ones(c, dtype=bool), on_core, ends, lengths):
+            Wv = np.where(X[0] >= 2, W[0], _BIG)
+            t = int(Wv.argmin())
+            if Wv[t] < low:  # the first subset of least W, then of fewest links
+                ties = np.flatnonzero(Wv == Wv[t])
+                t = int(ties[np.argmin(X[0][ties])])
+                pick, low, least_links = start + t, int(Wv[t]), X[0][t]
+            elif pick is not None and Wv[t] == low:
+                ties = np.flatnonzero(Wv == low)
+                t = int(ties[np.argmin(X[0][ties])])
+                if X[0][t] < least_links:
+                    pick, least_links = start + t, X[0][t]
+    if pick is not None:
+        full = (1 << c) - 1
+        short = [(a, b, body) for a, b, body in paths if a is not None and len(body) < h - 1]
+        left_out = max(short, key=lambda path: len(path[2])) if len(short) == len(paths) and short else None
         links = [core[i] for i in range(c) if pick >> i & 1]
         for a, b, body in short:
             if (pick >> index[a] & 1) and (pick >> index[b] & 1) and (pick != full or (a, b, body) != left_out):
                 links += body
-        best = (int(low), tuple(sorted(links)))
+        best = (low, tuple(sorted(links)))
     for a, b, body in paths:  # one closed path alone on its core link: W = w − (h − 1)
         if a is not None and a == b and (len(body) - (h - 1), len(body) + 1) < (best[0], len(best[1])):
             best = (len(body) - (h - 1), tuple(sorted((a, *body))))

@@ -87,13 +87,13 @@ def test_the_families_give_both_verdicts():
 
 @pytest.mark.parametrize("family", FAMILIES)
 @pytest.mark.parametrize("rigid", [False, True], ids=["nondegenerate", "rigid-allowed"])
-@pytest.mark.parametrize("matrix_core", [16, 0], ids=["matrix product", "bit counts"])
-def test_check_subchains_equals_every_subset(family, rigid, matrix_core, monkeypatch):
-    """Both ways of counting a subset's links on each joint (a matrix product up to 16 core
-    links, bit counts beyond) agree with every subset."""
+@pytest.mark.parametrize("block", [1 << 16, 3], ids=["one block", "blocks of 3 subsets"])
+def test_check_subchains_equals_every_subset(family, rigid, block, monkeypatch):
+    """The scan agrees with every subset, whether the subsets of the core links come in one block
+    or in many (then the least sub-chain and the whole chain fall in later blocks)."""
     import synth.mobility as mobility
 
-    monkeypatch.setattr(mobility, "_MATRIX_CORE", matrix_core)
+    monkeypatch.setattr(mobility, "_BLOCK", block)
     for fam, links, joints in CASES:
         if fam == family:
             _check(links, joints, rigid)
@@ -156,15 +156,17 @@ def test_no_proper_subchain():
             assert report.ok and report.worst == () and report.threshold == 1
 
 
-def test_popcount_of_wide_masks():
-    """The core scan counts bits of masks up to 24 core links (two 16-bit table look-ups)."""
-    import numpy as np
+def test_subset_bits_of_wide_cores():
+    """The scan reads the subsets of up to 24 core links in blocks: every block's bits and sizes
+    are those of the subsets it stands for, the last block cut at 2^c."""
+    from synth.mobility import _BLOCK, _block
 
-    from synth.mobility import _popcount
-
-    rng = np.random.default_rng(24)
-    x = np.concatenate([rng.integers(0, 1 << 24, 2000), [0, (1 << 24) - 1, 1 << 16, (1 << 17) - 1]])
-    assert list(_popcount(x)) == [bin(int(v)).count("1") for v in x]
+    for c, start in [(3, 0), (17, _BLOCK), (24, (1 << 24) - _BLOCK), (20, 5 * _BLOCK)]:
+        bits, size = _block(c, start)
+        assert len(bits) == min(_BLOCK, (1 << c) - start)
+        for t in (0, 1, len(bits) // 2, len(bits) - 1):
+            T = start + t
+            assert bits[t].tolist() == [float(T >> i & 1) for i in range(c)] and size[t] == bin(T).count("1")
 
 
 def test_core_limit(monkeypatch):

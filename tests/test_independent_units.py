@@ -98,7 +98,7 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
             monkeypatch.setattr(_realise, "_FEW_VECTORS", 10**9)
             listed, _, listed_checked = _realise._distributions(*args, None)
             assert not listed_checked
-            kept, _ = _realise._passing(u.code, u.contracted, u.conventions, listed, None)
+            kept = _realise._passing(u.code, u.contracted, u.conventions, listed, None)
             assert sorted(kept) == sorted(solutions), u.key
             checked_any += 1
     assert checked_any or query.get("cranks")  # a crank requirement has no direct listing
