@@ -98,7 +98,7 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
     units' sizes are uneven, bias of order 1/k).  ``cache`` keeps stage A's results in a file so
     that another seed does not redo it (its CPU time is kept with it).
     """
-    from synth._type_synthesis import _codes_of, run_unit
+    from synth._type_synthesis import _codes_of, _count_unit
 
     rng = random.Random(seed)
     start = time.perf_counter()
@@ -113,8 +113,8 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
         picked = rng.sample(range(len(plan)), min(units, len(plan)))
         sample = []
         for k in picked:
-            chains, t_u = _cpu(run_unit, plan[k])
-            sample.append((hints[k], t_u, len(chains)))
+            (_, chains), t_u = _cpu(_count_unit, plan[k])  # what `chains --count` runs
+            sample.append((hints[k], t_u, chains))
         per_code.append((a_c, len(plan), sum(hints), sample))
         if progress:
             progress(f"code {all_codes[i]}: {len(plan)} units, stage A {a_c:.2f} s, {len(sample)} sampled")

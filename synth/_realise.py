@@ -48,6 +48,11 @@ _LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms 
 # on its 9-10 branch links cost CP-SAT more than the units they save.  1-DOF, 10 links, one
 # process: stage A 16.9 s -> 11.1 s, the whole query 27.6 s -> 23.6 s (33 765 units, not 25 384).
 _STAGE_A_SET_LINKS = {2: 2}
+# From _SPLIT_LINKS inner links on, stage A's model writes the sub-chain conditions of sets of at most
+# _MODEL_SET_LINKS links and of the largest sets only, and the others are checked on its solutions.
+_SPLIT_LINKS = 9
+_MODEL_SET_LINKS = 3
+_CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
 
 
 @dataclass(frozen=True)
@@ -149,7 +154,9 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
     [((0, 1), (0, 1), (0, 1))]
     """
-    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+    import numpy as np
+
+    from ._cpsat import Model, each_solution  # loaded by the first query that needs a solver
 
     kinds = _branch_kinds(code)
     n2 = code.count(2)
@@ -165,24 +172,18 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     for u in range(m):
         model.Add(sum(x[min(u, v), max(u, v)] for v in range(m) if v != u) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
+    bounds = _StringBounds(kinds, pairs, code, conv)
     lbs = []
-    # with W below the threshold the whole chain is exempt, so only the weaker truss bound is necessary
-    # k strings between u and v, all taken: W = h + Σ w − k(h − 1) (L–L), Σ w − h − (h − 1)(k − 2) (J–J)
-    rigid_bound = conv.rigid_subchains or code.dof(conv.h) < conv.threshold
-    h = conv.h
-    for (u, v), var in x.items():
-        ku, kv = kinds[u][0], kinds[v][0]
-        lb = model.NewIntVar(0, (h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
-        if ku == kv == "L":
-            model.AddMaxEquality(lb, [0, (h - 1) * var - h + (0 if rigid_bound else 1)])
-        elif ku == kv == "J":
-            model.AddMaxEquality(lb, [0, (h - 1) * var - h + 2])
-        else:
-            model.AddMaxEquality(lb, [0, var - 1])
+    for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
+        lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
+        model.AddMaxEquality(lb, [0, int(a) * var + int(b)])
         lbs.append(lb)
-    loops_lb = sum(_loop_lb(kinds[u][0], conv) * y[u] for u in range(m))
+    loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
     model.Add(sum(lbs) + loops_lb <= n2)
-    _subset_lower_bounds(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, code.dof(conv.h), conv)
+    conditions = _subset_conditions(kinds, code.dof(conv.h), conv)
+    strong = [c for c in conditions if _in_model(c, kinds)]
+    _write_conditions(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
+    later = [c for c in conditions if not _in_model(c, kinds)]
     # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
     # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
     # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
@@ -203,25 +204,114 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
         ru, rv = row(u)[:L], row(v)[:L]
         model.Add(sum(base ** (L - 1 - i) * ru[i] for i in range(L)) <= sum(base ** (L - 1 - i) * rv[i] for i in range(L)))
-    variables = [x[p] for p in pairs] + y
     seen: dict[str, Contracted] = {}
+
+    def keep(batch: list[tuple[int, ...]]) -> None:
+        sol = np.asarray(batch, dtype=np.int64)
+        for row in sol[bounds.meet(sol[:, :len(pairs)], sol[:, len(pairs):], later)]:
+            edges = []
+            for (u, v), k in zip(pairs, row[:len(pairs)]):
+                edges += [(u, v)] * int(k)
+            for u, k in enumerate(row[len(pairs):]):
+                edges += [(u, u)] * int(k)
+            if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
+                continue
+            h = Contracted(kinds, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(h._subdivided()).hex()
+            if cert not in seen:
+                seen[cert] = Contracted(kinds, h.edges, cert)
+
     # branching on the rows in order, least value first, follows the lexicographic row constraints
-    for sol in all_solutions(model, variables, fixed_search=True):
-        edges = []
-        for (u, v), k in zip(pairs, sol):
-            edges += [(u, v)] * k
-        for u, k in enumerate(sol[len(pairs):]):
-            edges += [(u, u)] * k
-        if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
-            continue
-        h = Contracted(kinds, tuple(sorted(edges)), "")
-        cert = pynauty.certificate(h._subdivided()).hex()
-        if cert not in seen:
-            seen[cert] = Contracted(kinds, h.edges, cert)
+    each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
     return [seen[c] for c in sorted(seen)]
 
 
-def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv: Conventions) -> None:
+class _StringBounds:
+    """Least binary links on the strings of H, as numbers (for solutions) and coefficients (for the
+    model): k parallel strings between u and v need max(0, slope·k + offset), a loop at u needs
+    ``loop[u]`` per loop.
+
+    All strings between two links, all taken: W = h + Σ w − k(h − 1), so Σ w ≥ (h − 1)k − h + threshold
+    (without the threshold where the whole chain is exempt: W below it); between two joints
+    W = Σ w − h − (h − 1)(k − 2); from a link to a joint one binary link per string after the first
+    (two joints never join the same links).
+    """
+
+    def __init__(self, kinds, pairs, code: Code, conv: Conventions):
+        import numpy as np
+
+        h = conv.h
+        rigid = conv.rigid_subchains or code.dof(h) < conv.threshold
+        slope, offset = [], []
+        for u, v in pairs:
+            same = kinds[u][0] == kinds[v][0]
+            slope.append(h - 1 if same else 1)
+            offset.append((-h + (0 if rigid else 1) if kinds[u][0] == "L" else -h + 2) if same else -1)
+        self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
+        self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
+        self.kinds, self.pairs, self.n2, self.h = kinds, pairs, code.count(2), h
+
+    def meet(self, X, Y, conditions) -> "np.ndarray":
+        """Which solutions (pair multiplicities X, loops Y) meet every sub-chain condition of
+        ``conditions`` (:func:`_subset_conditions`), as the model would have written them."""
+        import numpy as np
+
+        ok = np.ones(len(X), dtype=bool)
+        if not conditions or not len(X):
+            return ok
+        lb = np.maximum(0, X * self.slope + self.offset)
+        cost = ((self.h - 1) * X - lb).astype(np.float32)
+        slack = self.n2 - lb.sum(axis=1) - Y @ self.loop
+        index = {p: k for k, p in enumerate(self.pairs)}
+        u, v = np.array(self.pairs, dtype=np.int64).reshape(-1, 2).T
+        for start in range(0, len(conditions), _CONDITION_BLOCK):
+            block = conditions[start:start + _CONDITION_BLOCK]
+            masks = np.array([sum(1 << w for w in TL + TJ) for TL, TJ, _ in block], dtype=np.int64)
+            inside = ((masks[:, None] >> u) & (masks[:, None] >> v) & 1).astype(np.float32)
+            limit = np.array([bound for *_, bound in block], dtype=np.float32)
+            violated = cost @ inside.T > slack[:, None] + limit[None, :]
+            for c, (TL, TJ, _) in enumerate(block):
+                for J in TJ:  # the condition holds where every joint of T is on a string from a link of T
+                    violated[:, c] &= X[:, [index[min(J, L), max(J, L)] for L in TL]].sum(axis=1) >= 1
+            ok &= ~violated.any(axis=1)
+        return ok
+
+
+def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, tuple, int]]:
+    """Stage B's sub-chain conditions as stage A writes them on H: ``(T_L, T_J, bound)`` for sets of
+    inner links T_L with multiple joints T_J: the strings inside T may cost the rule at most
+    bound + slack (see :func:`_write_conditions`).
+
+    One link or two need a multiple joint to have a condition (simple joints: the pairwise
+    bounds); a set of every link is left out where the whole chain is exempt (W below the threshold).
+    """
+    h = conv.h
+    all_links = sum(1 for kind in kinds if kind[0] == "L")
+    links = _inner_links(kinds)
+    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    out = []
+    for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
+        if size == all_links and dof < conv.threshold:
+            break  # T would hold every link: maybe the whole chain, which is exempt
+        for TL in combinations(links, size):
+            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
+                for TJ in combinations(joints, jsize):
+                    # one link: S has two links or more only with a one-link string (weaker bound)
+                    out.append((TL, TJ, h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)))
+    return out
+
+
+def _in_model(condition, kinds) -> bool:
+    """Whether stage A's model writes a condition (the others are checked on its solutions): every
+    condition of a code with fewer than _SPLIT_LINKS inner links, else sets of at most
+    _MODEL_SET_LINKS links and of every inner link but one or none (the strongest). The 2^m
+    conditions of a code with 12–14 branch links slowed each CP-SAT step more than the labelled
+    solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: 24.8 s against 4.6 s)."""
+    size, inner = len(condition[0]), len(_inner_links(kinds))
+    return inner < _SPLIT_LINKS or size <= _MODEL_SET_LINKS or size >= inner - 1
+
+
+def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
     """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
     vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
     distribution (most of them, and the costliest: they are whole units of stage B).
@@ -232,10 +322,6 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
     stage B writes it: every joint of T on a string from a link of T (a bool per joint and set
     of links, ``touched``).
     """
-    h = conv.h
-    all_links = sum(1 for kind in kinds if kind[0] == "L")
-    links = _inner_links(kinds)
-    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
     touched: dict = {}
 
     def touches(J, TL):
@@ -254,18 +340,10 @@ def _subset_lower_bounds(model, kinds, x, lbs, loops_lb, n2: int, dof: int, conv
     for p, lb in lbs.items():
         cost[p] = model.NewIntVar(0, (h - 1) * min(kinds[p[0]][1], kinds[p[1]][1]), f"c{p}")
         model.Add(cost[p] == (h - 1) * x[p] - lb)
-    for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
-        if size == all_links and dof < conv.threshold:
-            break  # T would hold every link: maybe the whole chain, which is exempt
-        for TL in combinations(links, size):
-            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
-                for TJ in combinations(joints, jsize):
-                    T = set(TL + TJ)
-                    inside = {p for p in x if p[0] in T and p[1] in T}
-                    # one link: S has two links or more only with a one-link string (weaker bound)
-                    bound = h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)
-                    model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf(
-                        [touches(J, TL) for J in TJ])
+    for TL, TJ, bound in conditions:
+        T = set(TL + TJ)
+        inside = [p for p in x if p[0] in T and p[1] in T]
+        model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf([touches(J, TL) for J in TJ])
 
 
 def _connected(m: int, edges) -> bool:
