@@ -155,10 +155,13 @@ def plan_codes(
     n1_lo, n1_hi = parse_range(0 if n1 is None else n1, "n1")
     n1_hi = links if n1_hi is None else n1_hi
     K = max(0, (links - dof - 1) // (h - 1))
-    imax = (2 * K if fractionated and (dof >= 2 or rigid_subchains) else K + 1) + n1_hi
+    closed, why = (2 * K, "2K, fractionated chains included") if fractionated and (dof >= 2 or rigid_subchains) \
+        else (K + 1, "K+1")
+    imax = closed + n1_hi
+    if n1_hi:
+        why += f", and {n1_hi} more for single-joint links"
     for i, (lo, _) in parse_requirements(require).items():
         if i > imax and lo > 0 and K >= 1:
-            why = "2K, fractionated chains included" if imax == 2 * K else "K+1" if imax == K + 1 else "K+1 + n1"
             raise ImpossibleParameters(
                 f"no chain with W = {dof} and {links} links has a link with {i} joints: with K = {K} loops a link "
                 f"carries at most {imax} ({why})")
