@@ -30,6 +30,9 @@ The standard error comes from few, heavy-tailed values: at 12 links (8 of 15 cod
 ±2 SE covered the truth in 63 % of 30 seeds, not 95 %; read it as an order of magnitude.  At 16
 links (every code, 30 units each, 1415 of 58 559 units) the chains came out +83 % (1.5 SE): see
 PROFILE.md, section 7, for every check and the ratio estimator (``*_mean`` keys: the plain mean).
+With the engine of 25 Nov 2026 (PROFILE.md, section 12; 30 units of every code): 14 links 11.8 ± 0.8
+CPU s against 11.1 real, 16 links 720 ± 80 against 742 real, 18 links 80 025 ± 10 431 CPU s, i.e.
+13.1 ± 3.4 h on 2 workers.
 
 Run: ``python benchmarks/bench_projection.py 18 [--codes M] [--units 40] [--seed 1] [--json FILE]``.
 """

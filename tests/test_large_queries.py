@@ -216,6 +216,23 @@ def test_giant_query_is_refused_with_an_estimate():
     assert "chains" in line and "units" in line and "years" in line and "--force" in line
 
 
+@pytest.mark.parametrize("checkpoint", [None, "c.sqlite"])
+def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
+    # a query under the day's limit runs unasked, but one of more than _NOTE_SECONDS says how long
+    # it will take (here: 16 links against a limit of one second, so the run itself is not started)
+    import argparse
+
+    from mechsynth.commands import chains
+
+    monkeypatch.setattr(chains, "_NOTE_SECONDS", 1.0)
+    args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,
+                              workers=2, format=None, checkpoint=checkpoint)
+    chains._size_guard(1, args, dict(workers=2))
+    note = capsys.readouterr().err.strip()
+    assert note.startswith("mechsynth: a long query: about ") and "on 2 workers" in note and "\n" not in note
+    assert ("give --checkpoint FILE" in note) == (checkpoint is None)
+
+
 def test_large_listing_as_a_table_is_refused():
     out = _run("chains", "--dof", "1", "--links", "18", "--force")
     assert out.returncode == 2 and "--format jsonl or csv" in out.stderr and "\n" not in out.stderr.strip()

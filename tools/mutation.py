@@ -51,6 +51,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                     # (not the Dask cluster tests: a mutant there waits for
                                                     # mutmut's timeout with both cores idle)
                                                     "tests/test_large_queries.py", "tests/test_cli_contract.py",
+                                                    "tests/test_query_refusals.py",
                                                     "tests/test_doctests.py::test_docstring_examples[synth._type_synthesis]",
                                                     "-k", _HEAVY + " and not dask"]),
     "realise": ("synth/_realise.py", ["tests/test_engine_vs_bruteforce.py", "tests/test_independent_chains.py",

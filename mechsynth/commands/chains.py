@@ -20,6 +20,7 @@ from .._output import FORMATS, nothing_found, write_count, write_rows
 _SIZED_LOOPS, _SIZED_LOOPS_MULTIPLE = 7, 6
 _LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (wall, on the workers)
 _TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
+_NOTE_SECONDS = 600.0  # a query estimated to take longer says so on stderr before it starts
 
 
 def _add_selection(p) -> None:
@@ -141,6 +142,9 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     if not args.force and found.seconds / processes > _LIMIT_SECONDS:
         hint = " (with --checkpoint FILE it can be stopped and resumed)" if args.count else ""
         raise InvalidOption(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
+    if found.seconds / processes > _NOTE_SECONDS:
+        resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
+        print(f"mechsynth: a long query: {size}{resumable}", file=sys.stderr)
 
 
 def _prismatic_range(args, dof: int) -> tuple[int, int]:
