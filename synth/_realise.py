@@ -180,10 +180,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         lbs.append(lb)
     loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
     model.Add(sum(lbs) + loops_lb <= n2)
-    conditions = _subset_conditions(kinds, code.dof(conv.h), conv)
-    strong = [c for c in conditions if _in_model(c, kinds)]
+    strong, later = _split_conditions(_subset_conditions(kinds, code.dof(conv.h), conv), kinds)
     _write_conditions(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
-    later = [c for c in conditions if not _in_model(c, kinds)]
     # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
     # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
     # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
@@ -249,7 +247,7 @@ class _StringBounds:
             offset.append((-h + (0 if rigid else 1) if kinds[u][0] == "L" else -h + 2) if same else -1)
         self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
         self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
-        self.kinds, self.pairs, self.n2, self.h = kinds, pairs, code.count(2), h
+        self.pairs, self.n2, self.h = pairs, code.count(2), h
 
     def meet(self, X, Y, conditions) -> "np.ndarray":
         """Which solutions (pair multiplicities X, loops Y) meet every sub-chain condition of
@@ -301,14 +299,19 @@ def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, 
     return out
 
 
-def _in_model(condition, kinds) -> bool:
-    """Whether stage A's model writes a condition (the others are checked on its solutions): every
-    condition of a code with fewer than _SPLIT_LINKS inner links, else sets of at most
+def _split_conditions(conditions, kinds) -> tuple[list, list]:
+    """The conditions stage A's model writes, and those checked on its solutions: the model has
+    every condition of a code with fewer than _SPLIT_LINKS inner links, else the sets of at most
     _MODEL_SET_LINKS links and of every inner link but one or none (the strongest). The 2^m
     conditions of a code with 12–14 branch links slowed each CP-SAT step more than the labelled
-    solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: 24.8 s against 4.6 s)."""
-    size, inner = len(condition[0]), len(_inner_links(kinds))
-    return inner < _SPLIT_LINKS or size <= _MODEL_SET_LINKS or size >= inner - 1
+    solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: stage A 25 s against 7.7 s)."""
+    inner = len(_inner_links(kinds))
+    strong, later = [], []
+    for condition in conditions:
+        size = len(condition[0])
+        in_model = inner < _SPLIT_LINKS or size <= _MODEL_SET_LINKS or size >= inner - 1
+        (strong if in_model else later).append(condition)
+    return strong, later
 
 
 def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
