@@ -187,7 +187,8 @@ def plot(rows: list[dict], path: Path) -> None:
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     # each series labels its points on its own side, so labels of series that meet do not overlap
-    sides = [((4, 5), "left"), ((4, -11), "left"), ((-4, -11), "right"), ((-4, 5), "right")]
+    # (upper left first: the first series rises most steeply, its lines come from the lower left)
+    sides = [((-4, 5), "right"), ((4, -11), "left"), ((-4, -11), "right"), ((4, 5), "left")]
     for k, series in enumerate(dict.fromkeys(r["series"] for r in rows)):
         pts = [(r["links"], r["wall_2_workers_s"], r["chains"]) for r in rows if r["series"] == series]
         line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=series)
