@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from itertools import combinations
 from math import comb
+from operator import itemgetter
 from time import perf_counter
 
 import pynauty
@@ -110,12 +111,17 @@ class Contracted:
         if size1 * 10.0**size2 > _GROUP_LIMIT:
             return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
         identity = tuple(range(e))
+        if not gens:
+            return [], True
+        # closure under a -> a after g (b[k] = a[g[k]]); an itemgetter builds the tuple in C
+        # (e >= 2 here: a permutation of one edge is the identity)
+        apply = [itemgetter(*g) for g in gens]
         group, frontier = {identity}, [identity]
         while frontier:
             nxt = []
             for a in frontier:
-                for g in gens:
-                    b = tuple(map(g.__getitem__, a))  # g after a
+                for after in apply:
+                    b = after(a)
                     if b not in group:
                         group.add(b)
                         nxt.append(b)
@@ -156,7 +162,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     """
     import numpy as np
 
-    from ._cpsat import Model, each_solution  # loaded by the first query that needs a solver
+    from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
 
     kinds = _branch_kinds(code)
     n2 = code.count(2)
@@ -170,7 +176,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
     y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
     for u in range(m):
-        model.Add(sum(x[min(u, v), max(u, v)] for v in range(m) if v != u) + 2 * y[u] == deg[u])
+        model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
     bounds = _StringBounds(kinds, pairs, code, conv)
     lbs = []
@@ -201,7 +207,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         # a prefix of the rows (exact coefficients); a lexicographic order implies it on any prefix
         L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
         ru, rv = row(u)[:L], row(v)[:L]
-        model.Add(sum(base ** (L - 1 - i) * ru[i] for i in range(L)) <= sum(base ** (L - 1 - i) * rv[i] for i in range(L)))
+        weights = [base ** (L - 1 - i) for i in range(L)]
+        model.Add(cp_model.LinearExpr.WeightedSum(ru, weights) <= cp_model.LinearExpr.WeightedSum(rv, weights))
     seen: dict[str, Contracted] = {}
 
     def keep(batch: list[tuple[int, ...]]) -> None:
@@ -325,6 +332,8 @@ def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, condition
     stage B writes it: every joint of T on a string from a link of T (a bool per joint and set
     of links, ``touched``).
     """
+    if not conditions:
+        return  # (no slack or cost variables: free ones would only slow the search)
     touched: dict = {}
 
     def touches(J, TL):

@@ -27,6 +27,7 @@ True
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -41,6 +42,9 @@ __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
 _MAX_CORE = 24
 _BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
 _BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
+# OpenBLAS threads a matrix-vector product from 2304·4 = 9216 multiply-adds on (a matrix product
+# from 65536·4): the exact test's products below that run on the calling thread, with no limit to set
+_THREADED_WORK = 9216
 
 
 def _subset_bits(c: int, start: int) -> tuple[np.ndarray, np.ndarray]:
@@ -102,10 +106,9 @@ def _scan(h: int, is_link, groups: list[list[int]], ends: np.ndarray, lengths: n
     M = np.zeros((c, len(groups) + len(ends)), dtype=np.float32)
     for k, group in enumerate(groups):
         M[group, k] = 1
-    for p, (a, b) in enumerate(ends):
-        if a >= 0:
-            M[a, len(groups) + p] = 1
-            M[b, len(groups) + p] = 1
+    on_core = np.flatnonzero(ends[:, 0] >= 0)
+    M[ends[on_core, 0], len(groups) + on_core] = 1
+    M[ends[on_core, 1], len(groups) + on_core] = 1
     need = np.where(closed, 1, 2).astype(np.float32)
     links = np.asarray(is_link, dtype=np.float32)
     weight = np.where(links > 0, h, h - 1).astype(np.float32)
@@ -147,7 +150,9 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     lengths = np.asarray(lengths, dtype=np.int64)  # candidates × paths
     low = np.full(len(lengths), _BIG, dtype=np.int64)
-    with single_threaded():
+    c, paths = len(is_link), len(groups) + len(ends)
+    work = min(1 << c, _BLOCK) * max(c * paths, len(lengths) * len(ends))
+    with single_threaded() if work >= _THREADED_WORK else nullcontext():
         for _, W, X in _scan(h, is_link, groups, ends, lengths, neutral=not is_link.all()):
             low = np.minimum(low, np.where(X >= 2, W, _BIG).min(axis=1).astype(np.int64))
     loops = (ends[:, 0] == ends[:, 1]) & (ends[:, 0] >= 0)
