@@ -17,9 +17,9 @@ H is a subdivision-equivalent of the incidence graph, so
   constraints for the automorphisms of H, from nauty), so few labelled copies of
   a chain come out: none where the whole group of H is listed.  With simple joints the
   model's conditions are the exact test; with multiple joints they are necessary, and
-  the exact test runs on each candidate.  Where H has simple joints only and the
-  placements are few, they are listed directly (numpy) with the same symmetry
-  constraints, and the exact test does the rest.
+  the exact test runs on each candidate.  Where the placements are few, they are
+  listed directly (numpy) with the same symmetry constraints, and the exact test
+  (batched on H, exact for every joint kind) does the rest.
 
 Planarity and fractionation are properties of H (a subdivision keeps both), so
 they are decided once per H.
@@ -435,7 +435,7 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     if spare < 0:
         return [], True, True
     simple = all(kind[0] == "L" for kind in kinds)  # then the model's conditions are the exact test
-    if simple and not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
+    if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, h, stats)
     from ._cpsat import Model, all_solutions, cp_model
 
