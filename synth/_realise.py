@@ -35,6 +35,8 @@ from operator import itemgetter
 from time import perf_counter
 
 import pynauty
+
+from ._nauty import TrustedGraph
 from .chain import Chain
 from .code import Code
 
@@ -93,7 +95,7 @@ class Contracted:
         for u, kind in enumerate(self.kinds):
             cells.setdefault(kind, set()).add(u)
         coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
-        return pynauty.Graph(m + len(self.edges), adjacency_dict=adjacency, vertex_coloring=coloring)
+        return TrustedGraph(m + len(self.edges), adjacency, coloring)
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -683,25 +685,41 @@ def _exact_test(kinds, edges, solutions, conv: Conventions):
     return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
 
 
-def _expand(code: Code, kinds, edges, weights, space: int = 3) -> Chain:
-    """The chain of H with ``weights`` binary links on its strings (branch links numbered first)."""
-    n_branch_links = sum(1 for k in kinds if k[0] == "L")
+@lru_cache(maxsize=256)
+def _string_ends(kinds, edges) -> tuple[int, tuple]:
+    """The number of branch links of H, and for each string the chain link at each end (its
+    number) or None where the end is a multiple joint; the same for every vector of a unit."""
     link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
-    multiple = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
+    return len(link_id), tuple((link_id.get(u), link_id.get(v)) for u, v in edges)
+
+
+def _expand(code: Code, kinds, edges, weights, space: int = 3) -> Chain:
+    """The chain of H with ``weights`` binary links on its strings (branch links numbered first).
+
+    >>> _expand(Code((4, 2), 0, ()), (("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
+    ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (4, 5))
+    """
+    nxt, ends = _string_ends(kinds, edges)
+    multiple: dict[int, list[int]] = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
     joints: list[tuple[int, ...]] = []
-    nxt = n_branch_links
-    for (u, v), wk in zip(edges, weights):
-        body = list(range(nxt, nxt + wk))
-        nxt += wk
-        ends = []
-        for end, first in ((u, True), (v, False)):
-            tip = (body[0] if first else body[-1]) if body else None
-            if kinds[end][0] == "L":
-                ends.append(link_id[end])
+    for (u, v), (a, b), wk in zip(edges, ends, weights):
+        if wk:  # a string of binary links nxt … nxt + wk − 1
+            first, last = nxt, nxt + wk - 1
+            joints.extend(zip(range(first, last), range(first + 1, last + 1)))
+            if a is None:
+                multiple[u].append(first)
             else:
-                ends.append(None)
-                multiple[end].append(tip if tip is not None else link_id[v if first else u])
-        seq = ([ends[0]] if ends[0] is not None else []) + body + ([ends[1]] if ends[1] is not None else [])
-        joints.extend(zip(seq, seq[1:]))
+                joints.append((a, first))
+            if b is None:
+                multiple[v].append(last)
+            else:
+                joints.append((last, b))
+            nxt += wk
+        elif a is None:  # a link of H on a multiple joint of H
+            multiple[u].append(b)
+        elif b is None:
+            multiple[v].append(a)
+        else:
+            joints.append((a, b))
     joints.extend(tuple(links) for links in multiple.values())
     return Chain.trusted(nxt, joints, space)

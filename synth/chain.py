@@ -24,6 +24,7 @@ from functools import cached_property
 
 import pynauty
 
+from ._nauty import TrustedGraph
 from .code import Code
 from .errors import MalformedChain
 
@@ -179,7 +180,7 @@ class Chain:
             coloring.append(set(range(n, n + len(self.joints))))
         else:
             coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in JOINT_KINDS]
-        return pynauty.Graph(n + len(self.joints), adjacency_dict=adjacency, vertex_coloring=coloring)
+        return TrustedGraph(n + len(self.joints), adjacency, coloring)
 
     @property
     def certificate(self) -> str:

@@ -6,7 +6,7 @@ import importlib
 import pytest
 
 MODULES = ["synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
-           "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._cpsat", "synth._executor", "synth._scheduler", "synth.checkpoint", "synth",
+           "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._nauty", "synth._cpsat", "synth._executor", "synth._scheduler", "synth.checkpoint", "synth",
            "mechsynth", "mechsynth._argtypes", "mechsynth._output", "mechsynth.scene", "mechsynth.cli",
            "mechsynth.scene.registry", "mechsynth.scene.results", "mechsynth.scene.compare", "mechsynth.scene.types",
            "mechsynth.scene.structure", "mechsynth.scene.balancing", "mechsynth.scene.runner", "synth.schema",

@@ -16,6 +16,9 @@ import pytest
 
 from balance import SpringBounds, fit_spring
 
+# a solver option misspelt or unknown is ignored by scipy with only a warning: here it fails
+pytestmark = pytest.mark.filterwarnings("error::scipy.optimize.OptimizeWarning")
+
 ISSUE = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
 FORCED = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0,
                       max_free_length=1.5, max_deflection=0.4)
@@ -297,3 +300,63 @@ def test_fit_result_as_a_dictionary():
     assert isinstance(d["x"], list) and isinstance(d["phi_range"], list)
     assert {"c", "r", "r0", "a", "max_force", "max_rel_error", "method"} <= d.keys()
     assert d["c"] == res.c and d["max_force"] == res.max_force
+
+
+# -------------------------------------------------------------- the search's own helpers
+def test_exact_tension_device_under_a_force_limit():
+    """With r ≤ 0.5, r0 ≤ 1 and a free up to 1, the least-force zero-free-length device over 0…180°
+    is the corner r = 0.5, r0 = 1 (force |M|·(2r + r0)/(r(r + r0)) falls as either grows): 266.7 N
+    for 100 N·m.  A 300 N limit keeps it, and it is reported exact; a 250 N limit leaves no exact
+    device at all, so the spring is fitted."""
+    rng = deg(0, 180)
+    corner = 100.0 * (2 * 0.5 + 1.0) / (0.5 * 1.5)
+    kept = fit_spring("tension", -100.0, rng, SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0),
+                                                              max_force=300.0))
+    assert kept.method == "exact" and (kept.r, kept.r0, kept.a) == pytest.approx((0.5, 1.0, 1.0))
+    phi = np.linspace(*rng, 4001)
+    _, L = moment_from_positions("tension", kept.c, kept.r, kept.r0, kept.a, phi)
+    assert float(np.max(kept.c * L)) == pytest.approx(corner, rel=1e-9) and corner < 300.0
+    refused = fit_spring("tension", -100.0, rng, SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0),
+                                                                 max_force=250.0))
+    assert refused.method != "exact" and refused.max_force <= 250.0 * (1 + 1e-6)
+
+
+def test_differential_evolution_is_repeatable():
+    """The global method is seeded: the same call gives the same device, digit for digit."""
+    one, two = (fit_spring("compression", 3.0, deg(30, 150), ISSUE, method="de", norm="rms") for _ in range(2))
+    assert (one.c, one.r, one.r0, one.a) == (two.c, two.r, two.r0, two.a)
+
+
+@pytest.mark.parametrize("lo, hi", [(-0.5, 0.5), (-7.0, -5.0), (10.0, 14.0), (-1.0, 2 * math.pi + 1.0)])
+def test_cluster_points_hug_every_multiple_of_two_pi_in_range(lo, hi):
+    """Where φ = 0 (mod 2π) lies in the range, the max-norm fit adds points on both sides of it,
+    geometrically spaced from a tenth of the width to 0.5 rad, 24 on a side, never outside the range."""
+    from balance.fit import _cluster
+
+    width = 0.01
+    pts = _cluster(lo, hi, width, 24)
+    assert len(pts) and np.all((pts >= lo) & (pts <= hi))
+    centres = [2 * math.pi * k for k in range(-5, 5) if lo <= 2 * math.pi * k <= hi]
+    assert centres
+    near = [pts[np.abs(pts - c) <= 0.5 + 1e-12] - c for c in centres]
+    assert sum(len(d) for d in near) == len(pts)  # every point belongs to a multiple of 2π in range
+    for c, d in zip(centres, near):
+        for side, room in ((d[d > 0], hi - c), (-d[d < 0], c - lo)):
+            offsets = np.sort(side)
+            assert offsets[0] == pytest.approx(width / 10)
+            if room >= 0.5:
+                assert len(offsets) == 24 and offsets[-1] == pytest.approx(0.5)
+                assert np.allclose(offsets[1:] / offsets[:-1], (0.5 / (width / 10)) ** (1 / 23))
+
+
+def test_cluster_ends_width_and_empty_cases():
+    """The range ends are kept when points fall on them; a width of 0.05 still clusters, a wider
+    one does not (the grid resolves it); no multiple of 2π in range, no points."""
+    from balance.fit import _cluster
+
+    pts = _cluster(-0.5, 0.5, 0.01, 24)
+    assert -0.5 in pts and 0.5 in pts
+    assert len(_cluster(-0.5, 0.5, 0.05, 24)) == 48
+    assert len(_cluster(-0.5, 0.5, 0.06, 24)) == 0 and len(_cluster(-0.5, 0.5, 0.5, 24)) == 0
+    assert len(_cluster(0.1, 2 * math.pi - 0.2, 0.01, 24)) == 0
+

@@ -14,6 +14,9 @@ from balance import (
 )
 from balance.fit import relative_errors
 
+# a solver option misspelt or unknown is ignored by scipy with only a warning: here it fails
+pytestmark = pytest.mark.filterwarnings("error::scipy.optimize.OptimizeWarning")
+
 ISSUE = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
 FORCED = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0,
                       max_free_length=1.5, max_deflection=0.4)
