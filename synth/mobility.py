@@ -42,9 +42,10 @@ __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
 _MAX_CORE = 24
 _BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
 _BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
-# OpenBLAS threads a matrix-vector product from 2304·4 = 9216 multiply-adds on (a matrix product
-# from 65536·4): the exact test's products below that run on the calling thread, with no limit to set
-_THREADED_WORK = 9216
+# OpenBLAS threads a matrix-vector product from 2304·4 = 9216 multiply-adds on and a matrix product
+# from 65536·4 = 262144: the exact test's products below those run on the calling thread, with no
+# limit to set
+_THREADED_GEMV, _THREADED_GEMM = 9216, 262144
 
 
 def _subset_bits(c: int, start: int) -> tuple[np.ndarray, np.ndarray]:
@@ -151,8 +152,11 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
     lengths = np.asarray(lengths, dtype=np.int64)  # candidates × paths
     low = np.full(len(lengths), _BIG, dtype=np.int64)
     c, paths = len(is_link), len(groups) + len(ends)
-    work = min(1 << c, _BLOCK) * max(c * paths, len(lengths) * len(ends))
-    with single_threaded() if work >= _THREADED_WORK else nullcontext():
+    rows = min(1 << c, _BLOCK)
+    # subsets × core links (@ a vector), × paths; candidates × paths × subsets (a vector if one)
+    vector = rows * max(c, len(ends) if len(lengths) == 1 else 0)
+    matrix = rows * max(c * paths, len(lengths) * len(ends) if len(lengths) > 1 else 0)
+    with single_threaded() if vector >= _THREADED_GEMV or matrix >= _THREADED_GEMM else nullcontext():
         for _, W, X in _scan(h, is_link, groups, ends, lengths, neutral=not is_link.all()):
             low = np.minimum(low, np.where(X >= 2, W, _BIG).min(axis=1).astype(np.int64))
     loops = (ends[:, 0] == ends[:, 1]) & (ends[:, 0] >= 0)
