@@ -518,7 +518,6 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracte
     import numpy as np
 
     t0 = perf_counter()
-    group, whole_group = h.edge_group()
     edges = len(lows)
     if edges == 0:  # H is one branch vertex
         return ([()] if spare == 0 else []), True, False
@@ -526,7 +525,11 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracte
     keep = np.ones(len(w), dtype=bool)
     for k, least in parallel:
         keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
-    solutions = [tuple(map(int, row)) for row in _lex_least(w[keep], group)]
+    w, whole_group = w[keep], True
+    if len(w) > 1:  # (the lex-least vector of an orbit has ordered parallel strings: one alone is its orbit's)
+        group, whole_group = h.edge_group()
+        w = _lex_least(w, group)
+    solutions = [tuple(map(int, row)) for row in w]
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, False
 
