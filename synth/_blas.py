@@ -5,6 +5,8 @@ OpenBLAS runs each product on every core and leaves its threads spinning between
 third more CPU time in one process, and cores taken from the other workers of a pool.  The
 command line sets ``OPENBLAS_NUM_THREADS=1`` before numpy loads; for the Python API the same
 holds while the engine's products run (threadpoolctl), and the caller's settings come back after.
+The exact test sets the limit only around products large enough for OpenBLAS to thread them
+(entering and leaving costs about 8 µs, a tenth of the test of a small unit).
 
 >>> import numpy as np
 >>> with single_threaded():
