@@ -42,6 +42,7 @@ __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
 _MAX_CORE = 24
 _BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
 _BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
+_CANDIDATE_SUBSETS = 1 << 22  # candidates × subsets in one block of the batched test (16 MiB an array)
 # OpenBLAS threads a matrix-vector product from 2304·4 = 9216 multiply-adds on and a matrix product
 # from 65536·4 = 262144: the exact test's products below those run on the calling thread, with no
 # limit to set
@@ -150,9 +151,13 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
     is_link = np.asarray(is_link, dtype=bool)
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     lengths = np.asarray(lengths, dtype=np.int64)  # candidates × paths
-    low = np.full(len(lengths), _BIG, dtype=np.int64)
     c, paths = len(is_link), len(groups) + len(ends)
     rows = min(1 << c, _BLOCK)
+    chunk = max(1, _CANDIDATE_SUBSETS // rows)
+    if len(lengths) > chunk:  # a block of W and X is candidates × subsets: bounded memory
+        return np.concatenate([least_mobilities(h, is_link, groups, ends, lengths[i:i + chunk])
+                               for i in range(0, len(lengths), chunk)])
+    low = np.full(len(lengths), _BIG, dtype=np.int64)
     # subsets × core links (@ a vector), × paths; candidates × paths × subsets (a vector if one)
     vector = rows * max(c, len(ends) if len(lengths) == 1 else 0)
     matrix = rows * max(c * paths, len(lengths) * len(ends) if len(lengths) > 1 else 0)
