@@ -186,16 +186,18 @@ def plot(rows: list[dict], path: Path) -> None:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    # each series labels its points on its own side, so labels of series that meet do not overlap
-    # (upper left first: the first series rises most steeply, its lines come from the lower left)
+    # each series labels its points on its own side first (upper left for the first: it rises most
+    # steeply, its lines come from the lower left); a label that would cover one already placed
+    # takes the next side that is free
     sides = [((-4, 5), "right"), ((4, -11), "left"), ((-4, -11), "right"), ((4, 5), "left")]
+    labels = []
     for k, series in enumerate(dict.fromkeys(r["series"] for r in rows)):
         pts = [(r["links"], r["wall_2_workers_s"], r["chains"]) for r in rows if r["series"] == series]
         line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=series)
-        offset, align = sides[k % len(sides)]
         for x, y, n in pts:
-            ax.annotate(f"{int(n):,}".replace(",", " "), (x, y), textcoords="offset points", xytext=offset,
-                        ha=align, fontsize=7, color=line.get_color())
+            text = f"{int(n):,}".replace(",", " ")
+            labels.append((k, ax.annotate(text, (x, y), xytext=(0, 0), textcoords="offset points", fontsize=7,
+                                          color=line.get_color())))
     ax.set_yscale("log")
     ax.margins(y=0.12)  # room for the labels of the highest points
     ax.set_xlabel("links n")
@@ -204,6 +206,20 @@ def plot(rows: list[dict], path: Path) -> None:
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
+    renderer = fig.canvas.get_renderer()
+    placed = []
+    for k, label in labels:
+        for offset, align in sides[k % len(sides):] + sides[:k % len(sides)]:
+            label.set_position(offset)
+            label.set_horizontalalignment(align)
+            box = label.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in placed):
+                break
+        else:  # every side is taken: keep the series' own
+            label.set_position(sides[k % len(sides)][0])
+            label.set_horizontalalignment(sides[k % len(sides)][1])
+            box = label.get_window_extent(renderer)
+        placed.append(box)
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
