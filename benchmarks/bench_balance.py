@@ -169,9 +169,12 @@ def plot_pareto(rows: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from benchmarks._labels import place_labels
+
     cases = sorted({r["case"] for r in rows}, key=lambda c: (not c.startswith("constrained"), c))[:2]
     fig, axes = plt.subplots(len(cases), 2, figsize=(12, 4.6 * len(cases)), squeeze=False, constrained_layout=True)
     marks = {"trf": "o", "slsqp": "s", "nelder-mead": "^", "de": "D"}
+    labels = []  # grid labels, upper right of their point where that is free (_labels)
     for i, case in enumerate(cases):
         for j, norm in enumerate(("max", "rms")):
             ax = axes[i][j]
@@ -182,8 +185,8 @@ def plot_pareto(rows: list[dict], path: Path) -> None:
                 ax.plot([1e3 * r["seconds"] for r in pts], [100 * r[key] for r in pts], marker=marks[m],
                         color=f"C{k}", lw=1, ms=6, label=m, alpha=0.85)
                 for r in pts:
-                    ax.annotate(str(r["grid"]), (1e3 * r["seconds"], 100 * r[key]), textcoords="offset points",
-                                xytext=(4, 3), fontsize=6, color=f"C{k}")
+                    labels.append((3, ax.annotate(str(r["grid"]), (1e3 * r["seconds"], 100 * r[key]), xytext=(0, 0),
+                                                  textcoords="offset points", fontsize=6, color=f"C{k}")))
             front = sorted((r for r in grp if r["pareto"]), key=lambda r: r["seconds"])
             ax.step([1e3 * r["seconds"] for r in front], [100 * r[key] for r in front], where="post",
                     color="0.4", lw=3, alpha=0.35, label="Pareto front", zorder=0)
@@ -204,6 +207,8 @@ def plot_pareto(rows: list[dict], path: Path) -> None:
             ax.grid(alpha=0.3, which="both")
             ax.legend(fontsize=7, loc="best", framealpha=0.85)  # where it hides the fewest points
     fig.suptitle("Compression-spring fit of 100·sin φ N·m: speed against error", fontsize=11)
+    fig.canvas.draw()  # constrained layout places the axes before the labels are measured
+    place_labels(fig, labels)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 

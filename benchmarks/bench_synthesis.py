@@ -185,11 +185,11 @@ def plot(rows: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from benchmarks._labels import place_labels
+
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     # each series labels its points on its own side first (upper left for the first: it rises most
-    # steeply, its lines come from the lower left); a label that would cover one already placed
-    # takes the next side that is free
-    sides = [((-4, 5), "right"), ((4, -11), "left"), ((-4, -11), "right"), ((4, 5), "left")]
+    # steeply, its lines come from the lower left); a label that would cover another moves (_labels)
     labels = []
     for k, series in enumerate(dict.fromkeys(r["series"] for r in rows)):
         pts = [(r["links"], r["wall_2_workers_s"], r["chains"]) for r in rows if r["series"] == series]
@@ -206,20 +206,7 @@ def plot(rows: list[dict], path: Path) -> None:
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    renderer = fig.canvas.get_renderer()
-    placed = []
-    for k, label in labels:
-        for offset, align in sides[k % len(sides):] + sides[:k % len(sides)]:
-            label.set_position(offset)
-            label.set_horizontalalignment(align)
-            box = label.get_window_extent(renderer)
-            if not any(box.overlaps(other) for other in placed):
-                break
-        else:  # every side is taken: keep the series' own
-            label.set_position(sides[k % len(sides)][0])
-            label.set_horizontalalignment(sides[k % len(sides)][1])
-            box = label.get_window_extent(renderer)
-        placed.append(box)
+    place_labels(fig, labels)
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
