@@ -300,3 +300,55 @@ def test_trusted_nauty_graphs_are_pynautys_checked_graphs(query):
     for code in plan_codes(query["dof"], query["links"], v=query["v"], n1=query.get("n1"), h=conv.h)[:20]:
         for h in contracted_graphs(code, conv):
             same(h._subdivided())
+
+
+@pytest.mark.parametrize("h", [2, 3, 4, 5, 6])
+def test_the_motion_space_stays_with_the_chain(h):
+    """A chain keeps its h through relabelling, its closed part, a trusted build and its JSON row
+    (where h = 3 is the default and is not written)."""
+    import json
+
+    chain = Chain(4, ((0, 1), (1, 2), (2, 0), (2, 3)), h=h)  # a loop of three and a single-joint link
+    assert chain.relabel([3, 2, 1, 0]).h == h and chain.closed_part().h == h
+    row = chain.to_dict()
+    assert ("h" in row) == (h != 3) and row.get("h", 3) == h
+    assert Chain.from_dict(json.loads(json.dumps(row))) == chain
+    trusted = Chain.trusted(3, [(1, 0), (2, 1), (0, 2)], h)
+    assert trusted.h == h and trusted == Chain(3, ((0, 1), (1, 2), (0, 2)), h=h)
+
+
+@pytest.mark.parametrize("h", [1, 7, 0, True, 3.0, "3"])
+def test_a_motion_space_outside_two_to_six_is_refused(h):
+    import re
+
+    from synth.errors import MalformedChain
+
+    with pytest.raises(MalformedChain, match=re.escape(f"the motion space h of a chain's loops is 2 … 6, not {h!r}")):
+        Chain(3, ((0, 1), (1, 2), (0, 2)), h=h)
+    if isinstance(h, bool) or not isinstance(h, int):
+        with pytest.raises(MalformedChain, match=re.escape(f"'h' must be a whole number 2 … 6, not {h!r}")):
+            Chain.from_dict({"joints": [[0, 1], [1, 2], [0, 2]], "h": h})
+    else:
+        with pytest.raises(MalformedChain, match=re.escape(f"is 2 … 6, not {h!r}")):
+            Chain.from_dict({"joints": [[0, 1], [1, 2], [0, 2]], "h": h})
+
+
+@pytest.mark.parametrize("h", [2, 4])
+def test_synthesised_chains_carry_their_motion_space(h):
+    """Stage B builds its chains without checks (Chain.trusted): each still says its h, and its
+    certificate tells it from the same graph in another space."""
+    chains = list(synth.type_synthesis(dof=1, links=h + 4, h=h, workers=1))
+    assert chains
+    for chain in chains:
+        assert chain.h == h and chain.to_dict()["h"] == h
+        assert chain.certificate.startswith(f"h{h}")
+        assert chain.certificate != Chain(chain.links, chain.joints, h=3).certificate
+
+
+def test_group_order_beyond_ten_to_the_ten():
+    """nauty reports a group order as grpsize1 · 10^grpsize2 once it passes 10^10: fourteen links on
+    one joint are permuted in every way, 14! ≈ 8.7·10^10."""
+    import math
+
+    _, order, orbits = Chain(14, (tuple(range(14)),)).automorphisms()
+    assert order == pytest.approx(math.factorial(14), rel=1e-9) and len(set(orbits)) == 1
