@@ -168,20 +168,20 @@ def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
     killed = stats["killed"] + stats.get("timeout", 0) + stats.get("segfault", 0)
     checked = killed + stats["survived"] + stats.get("no_tests", 0) + stats.get("suspicious", 0)
     judged = checked - len(equivalent)
-    return {"module": key, "file": MODULES[key][0], "total": total, "not_checked": total - checked,
+    return {"module": key, "file": MODULES[key][0], "date": _dt.date.today().isoformat(),
+            "total": total, "not_checked": total - checked,
             "killed": killed, "equivalent": equivalent, "survivors": survivors,
             "minutes": None if minutes is None else round(minutes, 1),
             "score": killed / judged if judged else 1.0}
 
 
 def _markdown(results: list[dict]) -> str:
-    today = _dt.date.today().isoformat()
-    out = [f"Run of {today} (mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, "
-           "2 cores shared with other work).", "",
-           "| module | mutants | killed | equivalent | survived | not run | score | minutes |",
-           "|---|---|---|---|---|---|---|---|"]
+    out = [f"mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, 2 cores shared with other "
+           "work; each row from the run of its date (a run with mutants left unchecked was stopped).", "",
+           "| module | run | mutants | killed | equivalent | survived | not run | score | minutes |",
+           "|---|---|---|---|---|---|---|---|---|"]
     for r in results:
-        out.append(f"| `{r['file']}` | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
+        out.append(f"| `{r['file']}` | {r.get('date', '—')} | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
                    f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes'] if r['minutes'] is not None else '—'} |")
     for r in results:
         if r["survivors"]:
