@@ -292,3 +292,37 @@ def test_cli_analyze_chain_json(capsys):
         assert code in (0, 1)
         assert (out["dof"], out["subchain_defect"]) == (want["dof"], want["subchain_defect"])
         assert out["worst_subchain_mobility"] == want["least"]
+
+
+BATCH_QUERIES = [dict(dof=1, links=8, v="0..4"), dict(dof=0, links=7, v="0..3"), dict(dof=1, links=7, h=2, v="0..3"),
+                 dict(dof=2, links=9, h=4, v="0..2"), dict(dof=3, links=8, n1=(0, 3), v="0..2"),
+                 dict(dof=1, links=8, v="0..3", rigid_subchains=True), dict(dof=1, links=10, h=5, v="0..2"),
+                 dict(dof=2, links=7, h=2, n1=(0, 2), v="0..2")]
+
+
+@pytest.mark.parametrize("query", BATCH_QUERIES, ids=str)
+def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
+    """Stage B judges all candidate vectors of a unit at once on its branch multigraph (a multiple
+    joint is a vertex of h − 1 freedoms, a single-joint link ends a free path).  Every verdict, on
+    valid and invalid candidates alike, is that of every subset of links of the chain it stands for
+    (tests/bruteforce.py, any h)."""
+    import synth
+    from synth import _realise
+
+    from bruteforce import subchain_ok  # noqa: E402
+
+    monkeypatch.setattr(_realise, "_FEW_VECTORS", 10**9)  # every placement listed, none pruned by a model
+    judged = {True: 0, False: 0}
+    for u in synth.plan_units(**query, workers=1):
+        if u.contracted is None:
+            continue
+        kinds, edges, conv = u.contracted.kinds, u.contracted.edges, u.conventions
+        candidates = _realise._distributions(u.code, u.contracted, conv, None)[0]
+        if not candidates:
+            continue
+        for s, ok in zip(candidates, _realise._exact_test(kinds, edges, candidates, conv)):
+            chain = _realise._expand(u.code, kinds, edges, s, conv.h)
+            truth = subchain_ok(chain.joints, chain.links, conv.rigid_subchains, conv.h)
+            assert bool(ok) == truth, (u.key, s, chain.compact())
+            judged[truth] += 1
+    assert judged[True] and judged[False]  # both verdicts occur
