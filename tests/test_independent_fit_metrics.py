@@ -248,16 +248,23 @@ def test_minimax_scale_against_a_dense_search(seed):
     also where the optimum lies far above 1 (small h) or on κmax."""
     from balance.fit import _minimax_scale
 
+    from scipy.optimize import linprog
+
     rng = np.random.default_rng(seed)
     h = rng.uniform(0.0, 1.0, 40) * 10.0 ** rng.uniform(-3, 1)
-    s = rng.uniform(0.0, 1.0, 40)
+    s = rng.uniform(0.0, 1.0, 40) * 10.0 ** rng.uniform(-2, 3)
     crossing_scale = float(np.max(s) / np.max(h))
     for kmax in (0.3 * crossing_scale, 50.0 * crossing_scale + 1.0):
         k = _minimax_scale(h, s, kmax)
         assert 0.0 <= k <= kmax
+        err = float(np.max(np.abs(k * h - s)))
         grid = np.linspace(0.0, kmax, 20001)
         best = np.min(np.max(np.abs(grid[:, None] * h[None, :] - s[None, :]), axis=1))
-        assert np.max(np.abs(k * h - s)) <= best + 1e-9 * max(1.0, float(np.max(s)))
+        assert err <= best + 1e-9 * max(1.0, float(np.max(s)))
+        # the exact optimum, as a linear programme in (κ, t): min t, −t ≤ κ·h_i − s_i ≤ t, 0 ≤ κ ≤ κmax
+        lp = linprog([0.0, 1.0], A_ub=np.block([[h[:, None], -np.ones((40, 1))], [-h[:, None], -np.ones((40, 1))]]),
+                     b_ub=np.concatenate([s, -s]), bounds=[(0.0, kmax), (0.0, None)], method="highs")
+        assert lp.status == 0 and err <= lp.fun * (1 + 1e-9) + 1e-12 * float(np.max(s))
 
 
 def test_minimax_scale_without_any_lever():
