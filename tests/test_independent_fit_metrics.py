@@ -367,3 +367,10 @@ def test_cluster_ends_width_and_empty_cases():
     assert len(_cluster(-0.5, 0.5, 0.06, 24)) == 0 and len(_cluster(-0.5, 0.5, 0.5, 24)) == 0
     assert len(_cluster(0.1, 2 * math.pi - 0.2, 0.01, 24)) == 0
 
+
+
+def test_exact_tension_device_when_short_springs_are_out_of_bounds():
+    """A pre-extension of at least 0.2 m rules out every zero-free-length device with r0 < 0.2 m (a = r0):
+    the search passes over them to the longer ones, and the device is still exact."""
+    res = fit_spring("tension", -100.0, deg(0, 180), SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.2, 1.0)))
+    assert res.method == "exact" and res.a == res.r0 and res.r0 >= 0.2 and res.max_rel_error < 1e-12
