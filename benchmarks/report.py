@@ -182,6 +182,7 @@ def main(argv=None) -> int:
         fit_rows = balance.run_fit(args.quick)
         arm_rows = balance.run_arm(args.quick)
         (HERE / "out").mkdir(exist_ok=True)
+        balance._write_csv(HERE / "out" / "balance_fit.csv", fit_rows)  # the figure can be redrawn from the run
         balance.plot_pareto(fit_rows, HERE / "out" / "balance_pareto.png")
         shown = [r for r in fit_rows if r.get("default") or r.get("grid") == getattr(balance, "DEFAULT_GRID", None)]
         parts += ["", "## Spring fits: time against error reached", "",
