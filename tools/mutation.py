@@ -56,6 +56,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                     "-k", _HEAVY + " and not dask"]),
     "realise": ("synth/_realise.py", ["tests/test_engine_vs_bruteforce.py", "tests/test_independent_chains.py",
                                       "tests/test_type_synthesis.py", "tests/test_independent_subchains.py",
+                                      "tests/test_independent_units.py",
+                                      "tests/test_doctests.py::test_docstring_examples[synth._realise]",
                                       "-k", _HEAVY]),
     "number_synthesis": ("synth/_number_synthesis.py", ["tests/test_independent_number_synthesis.py",
                                                         "tests/test_number_synthesis.py",
