@@ -204,7 +204,8 @@ class SubchainReport:
 
 
 def _paths(chain: Chain, core: list[int]):
-    """Binary-link paths between core links: (end a, end b, links on the path)."""
+    """Binary-link paths between core links: (end a, end b, links on the path), for a connected
+    chain with at least one core link (every walk along binary links then ends on one)."""
     is_core = set(core)
     by_link = [[] for _ in range(chain.links)]
     for k, j in enumerate(chain.joints):
@@ -223,11 +224,8 @@ def _paths(chain: Chain, core: list[int]):
             prev, cur_joint = start, k
             while True:
                 other = next(x for x in chain.joints[cur_joint] if x != prev)
-                if other in is_core or other == start:
+                if other in is_core:
                     ends.append(other)
-                    break
-                if other in seen:  # closed cycle of binary links only
-                    ends.append(None)
                     break
                 seen.add(other)
                 body.append(other)
@@ -255,8 +253,11 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     Raises
     ------
     MalformedChain
-        If the chain has more than 24 core links (the scan is exponential in them).
+        If the chain is not connected, or has more than 24 core links (the scan is exponential
+        in them).
     """
+    if not chain.is_connected():
+        raise MalformedChain("the chain is not connected: every link must be reachable through joints")
     threshold = 0 if rigid_subchains else 1
     h = chain.h
     degrees = chain.degrees
@@ -265,14 +266,14 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
         raise MalformedChain(f"the exact sub-chain test handles up to {_MAX_CORE} non-binary links, not {len(core)}")
     # two links on one joint always give W = h − (h − 1) = 1: the least value any larger S must beat
     best = (1, chain.joints[0][:2]) if chain.joints and chain.links > 2 else (10**9, ())
-    paths = _paths(chain, core)
     if not core:  # a single loop of binary links: its proper sub-chains are open paths, W ≥ 1
         return SubchainReport(True, best[1], best[0], threshold)
+    paths = _paths(chain, core)
     index = {x: i for i, x in enumerate(core)}
     c = len(core)
     core_set = set(core)
     on_core = [[index[x] for x in j] for j in chain.joints if core_set.issuperset(j)]
-    ends = np.array([(-1, -1) if a is None else (index[a], index[b]) for a, b, _ in paths],
+    ends = np.array([(index[a], index[b]) for a, b, _ in paths],
                     dtype=np.int64).reshape(-1, 2)
     lengths = np.array([[len(body) for _, _, body in paths]], dtype=np.int64)
     pick, low, least_links = None, best[0], None
@@ -291,7 +292,7 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
                     pick, least_links = start + t, X[0][t]
     if pick is not None:
         full = (1 << c) - 1
-        short = [(a, b, body) for a, b, body in paths if a is not None and len(body) < h - 1]
+        short = [(a, b, body) for a, b, body in paths if len(body) < h - 1]
         left_out = max(short, key=lambda path: len(path[2])) if len(short) == len(paths) and short else None
         links = [core[i] for i in range(c) if pick >> i & 1]
         for a, b, body in short:
@@ -299,6 +300,6 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
                 links += body
         best = (low, tuple(sorted(links)))
     for a, b, body in paths:  # one closed path alone on its core link: W = w − (h − 1)
-        if a is not None and a == b and (len(body) - (h - 1), len(body) + 1) < (best[0], len(best[1])):
+        if a == b and (len(body) - (h - 1), len(body) + 1) < (best[0], len(best[1])):
             best = (len(body) - (h - 1), tuple(sorted((a, *body))))
     return SubchainReport(best[0] >= threshold, best[1], best[0], threshold)

@@ -331,9 +331,10 @@ def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
 @pytest.mark.parametrize("query", [dict(dof=1, links=12), dict(dof=1, links=8, v="0..4"),
                                    dict(dof=1, links=8, h=2, v="0..2"), dict(dof=3, links=10, n1=(0, 3), v="0..2")],
                          ids=str)
-def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, monkeypatch):
+@pytest.mark.parametrize("pairs", [1, 100], ids=["one candidate a chunk", "a few"])
+def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypatch):
     """The batched exact test splits a unit's candidates so that its arrays (candidates × subsets)
-    stay bounded; one candidate at a time gives every verdict of the whole batch."""
+    stay bounded; one candidate at a time, or a few, gives every verdict of the whole batch."""
     import importlib
 
     import numpy as np
@@ -349,6 +350,34 @@ def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, monkeypatch):
     assert batches
     whole = [_realise._exact_test(u.contracted.kinds, u.contracted.edges, s, u.conventions) for u, s in batches]
     assert any(not v.all() for v in whole) and any(v.any() for v in whole)
-    monkeypatch.setattr(mobility, "_CANDIDATE_SUBSETS", 1)
+    monkeypatch.setattr(mobility, "_CANDIDATE_SUBSETS", pairs)
     for (u, s), verdicts in zip(batches, whole):
         assert np.array_equal(_realise._exact_test(u.contracted.kinds, u.contracted.edges, s, u.conventions), verdicts)
+
+
+@pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-1 3-4 4-5 5-6 6-3", "0-1 1-2 2-3 3-0 4-5 5-6 6-4", "0-1 2-3"])
+def test_a_chain_in_pieces_is_refused_in_one_sentence(text):
+    """The exact test is defined on a connected chain; pieces get the command line's sentence."""
+    import re
+
+    from synth.errors import MalformedChain
+
+    with pytest.raises(MalformedChain, match=re.escape("the chain is not connected: every link must be reachable through joints")):
+        check_subchains(Chain.parse(text))
+
+
+def test_a_long_chain_with_few_branch_links():
+    """The test scans the subsets of the branch (core) links only: a Watt chain whose strings hold 26
+    binary links in all (30 links) is judged exactly, and a triangle closed on one of its links found."""
+    def string(a, b, first, n):  # a path of n binary links first … first + n − 1 from link a to link b
+        body = list(range(first, first + n))
+        return [(a, body[0])] + list(zip(body, body[1:])) + [(body[-1], b)]
+
+    joints = [(0, 1), (2, 3)] + string(0, 2, 4, 8) + string(1, 3, 12, 8) + string(0, 1, 20, 5) + string(2, 3, 25, 5)
+    chain = Chain(30, joints)
+    report = check_subchains(chain)
+    assert report.ok and report.worst_mobility == 1
+    loop = Chain(32, joints + [(4, 30), (30, 31), (31, 4)])  # links 4, 30, 31: a rigid triangle
+    report = check_subchains(loop)
+    assert not report.ok and report.worst_mobility == 0 and report.worst == (4, 30, 31)
+
