@@ -42,7 +42,8 @@ _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-9
           "and not ctrl_c and not twelve")
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
-    "mobility": ("synth/mobility.py", ["tests/test_independent_subchains.py"]),
+    "mobility": ("synth/mobility.py", ["tests/test_independent_subchains.py",
+                                       "tests/test_doctests.py::test_docstring_examples[synth.mobility]"]),
     "chain": ("synth/chain.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_chains.py",
                                  "tests/test_doctests.py::test_docstring_examples[synth.chain]"]),
     "type_synthesis": ("synth/_type_synthesis.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_units.py",
