@@ -260,5 +260,6 @@ def test_a_checkpoint_knows_its_conventions_and_reports_its_commits(tmp_path):
     path, lines = tmp_path / "f.sqlite", []
     assert synth.count_chains(1, 10, planar_only=True, workers=1, checkpoint=path, log=lines.append)["count"] == 219
     assert lines and all(line.startswith(f"checkpoint {path}: ") for line in lines)
-    with pytest.raises(synth.SynthesisError, match="belongs to another query"):
+    with pytest.raises(synth.SynthesisError, match="belongs to another query") as refused:
         synth.count_chains(1, 10, workers=1, checkpoint=path)  # the same codes, non-planar chains included: 230
+    assert "another query (chains dof=1 links=10 planar_only=True), not to chains dof=1 links=10;" in str(refused.value)
