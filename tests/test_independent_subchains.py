@@ -328,8 +328,8 @@ def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
     assert judged[True] and judged[False]  # both verdicts occur
 
 
-@pytest.mark.parametrize("query", [dict(dof=1, links=12), dict(dof=1, links=8, v="0..4"),
-                                   dict(dof=1, links=8, h=2, v="0..2"), dict(dof=3, links=10, n1=(0, 3), v="0..2")],
+@pytest.mark.parametrize("query", [dict(dof=1, links=10), dict(dof=1, links=8, v="0..4"),
+                                   dict(dof=1, links=7, h=2, v="0..2"), dict(dof=3, links=8, n1=(0, 3), v="0..2")],
                          ids=str)
 @pytest.mark.parametrize("pairs", [1, 100], ids=["one candidate a chunk", "a few"])
 def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypatch):
@@ -346,7 +346,7 @@ def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypa
 
     units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
     batches = [(u, _realise._distributions(u.code, u.contracted, u.conventions, None)[0]) for u in units]
-    batches = sorted(((u, s) for u, s in batches if len(s) > 1), key=lambda b: -len(b[1]))[:30]  # the largest
+    batches = sorted(((u, s) for u, s in batches if len(s) > 1), key=lambda b: -len(b[1]))[:10]  # the largest
     assert batches
     whole = [_realise._exact_test(u.contracted.kinds, u.contracted.edges, s, u.conventions) for u, s in batches]
     assert any(not v.all() for v in whole) and any(v.any() for v in whole)
