@@ -263,3 +263,6 @@ def test_a_checkpoint_knows_its_conventions_and_reports_its_commits(tmp_path):
     with pytest.raises(synth.SynthesisError, match="belongs to another query") as refused:
         synth.count_chains(1, 10, workers=1, checkpoint=path)  # the same codes, non-planar chains included: 230
     assert "another query (chains dof=1 links=10 planar_only=True), not to chains dof=1 links=10;" in str(refused.value)
+    mechanisms = []
+    assert synth.count_mechanisms(1, 8, workers=1, checkpoint=tmp_path / "m.sqlite", log=mechanisms.append)["count"] == 71
+    assert mechanisms and all(line.startswith(f"checkpoint {tmp_path / 'm.sqlite'}: ") for line in mechanisms)
