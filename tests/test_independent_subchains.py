@@ -358,12 +358,11 @@ def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypa
 @pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-1 3-4 4-5 5-6 6-3", "0-1 1-2 2-3 3-0 4-5 5-6 6-4", "0-1 2-3"])
 def test_a_chain_in_pieces_is_refused_in_one_sentence(text):
     """The exact test is defined on a connected chain; pieces get the command line's sentence."""
-    import re
-
     from synth.errors import MalformedChain
 
-    with pytest.raises(MalformedChain, match=re.escape("the chain is not connected: every link must be reachable through joints")):
+    with pytest.raises(MalformedChain) as refused:
         check_subchains(Chain.parse(text))
+    assert str(refused.value) == "the chain is not connected: every link must be reachable through joints"
 
 
 def test_a_long_chain_with_few_branch_links():
@@ -380,4 +379,37 @@ def test_a_long_chain_with_few_branch_links():
     loop = Chain(32, joints + [(4, 30), (30, 31), (31, 4)])  # links 4, 30, 31: a rigid triangle
     report = check_subchains(loop)
     assert not report.ok and report.worst_mobility == 0 and report.worst == (4, 30, 31)
+
+
+def _least_by_every_subset(links, joints, h):
+    """The least W(S) over the proper sub-chains (2 ≤ |S| < n), from the definition, any h."""
+    masks = [sum(1 << x for x in set(j)) for j in joints]
+    least = None
+    for s in range(1, (1 << links) - 1):
+        size = s.bit_count()
+        if size >= 2:
+            p = sum(max((s & m).bit_count() - 1, 0) for m in masks)
+            w = h * (size - 1) - (h - 1) * p
+            least = w if least is None else min(least, w)
+    return least
+
+
+@pytest.mark.parametrize("h", [2, 4, 6])
+def test_check_subchains_in_other_motion_spaces_equals_every_subset(h):
+    """The random families again, each chain in motion space h: the least W(S) of the scan (longer
+    strings of binary links are 'short' when h > 3) is that of every subset."""
+    for _, links, joints in CASES[::3]:
+        chain = Chain(links, joints, h=h)
+        if not chain.is_connected() or links > 14:
+            continue
+        report = check_subchains(chain)
+        least = _least_by_every_subset(links, joints, h)
+        if least is not None:
+            assert report.worst_mobility == least, (chain.compact(), h)
+            assert subset_mobility_h(joints, report.worst, h) == least
+
+
+def subset_mobility_h(joints, subset, h):
+    s = set(subset)
+    return h * (len(s) - 1) - (h - 1) * sum(max(len(s.intersection(j)) - 1, 0) for j in joints)
 
