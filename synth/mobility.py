@@ -168,7 +168,10 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
     on_link = np.zeros(len(ends), dtype=bool)
     on_link[loops] = is_link[ends[loops, 0]]
     alone = np.where(loops & (lengths + on_link >= 2), lengths - (h - 1) - (~on_link), _BIG)
-    return np.minimum(low, alone.min(axis=1, initial=_BIG))
+    # two links on one joint: W = h − (h − 1) = 1, a proper sub-chain of every chain of 3 links or more
+    # (the scan takes whole strings only, so it does not see a link with one of its neighbours)
+    pair = np.where(is_link.sum() + lengths.sum(axis=1) >= 3, 1, _BIG)
+    return np.minimum(np.minimum(low, alone.min(axis=1, initial=_BIG)), pair)
 
 
 def subchain_mobility(chain: Chain, links) -> int:

@@ -413,3 +413,23 @@ def subset_mobility_h(joints, subset, h):
     s = set(subset)
     return h * (len(s) - 1) - (h - 1) * sum(max(len(s.intersection(j)) - 1, 0) for j in joints)
 
+
+
+@pytest.mark.parametrize("h", [2, 3, 4])
+@pytest.mark.parametrize("where", [0, 1])
+def test_a_closed_string_alone_in_the_batched_test(h, where):
+    """Two branch links joined by three strings of one binary link, and a closed string of w binary
+    links on one of them (on the first vertex or the second): the batched test's least W(S) over the
+    proper sub-chains is that of every subset of the chain, for w = 1 … h + 1."""
+    from synth.mobility import least_mobilities
+
+    ends = [[0, 1], [0, 1], [0, 1], [where, where]]
+    for w in range(1, h + 2):
+        lengths = [1, 1, 1, w]
+        joints, nxt = [], 2
+        for (a, b), n in zip(ends, lengths):  # the chain itself: each string a path of n binary links
+            path = [a] + list(range(nxt, nxt + n)) + [b]
+            joints += list(zip(path, path[1:]))
+            nxt += n
+        got = least_mobilities(h, [True, True], [], ends, [lengths])[0]
+        assert got == _least_by_every_subset(nxt, joints, h), (h, where, w)
