@@ -115,10 +115,8 @@ class Contracted:
         if size1 * 10.0**size2 > _GROUP_LIMIT:
             return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
         identity = tuple(range(e))
-        if not gens:
-            return [], True
         # closure under a -> a after g (b[k] = a[g[k]]); an itemgetter builds the tuple in C
-        # (e >= 2 here: a permutation of one edge is the identity)
+        # (every g moves an edge, so e >= 2 and itemgetter returns a tuple)
         apply = [itemgetter(*g) for g in gens]
         group, frontier = {identity}, [identity]
         while frontier:

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass, replace
 
 from ._number_synthesis import number_synthesis
 from .chain import Chain
-from .errors import ImpossibleParameters, MalformedChain
+from .errors import ImpossibleParameters
 from .mobility import check_subchains
 
 __all__ = ["ChainAnalysis", "analyze_chain"]
@@ -60,11 +60,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         chain = Chain.parse(chain)
     if h is not None and h != chain.h:
         chain = replace(chain, h=h)
-    if not chain.is_connected():
-        raise MalformedChain("the chain is not connected: every link must be reachable through joints")
     W = chain.dof
     rigid_ok = (dof if dof is not None else W) == 0
-    report = check_subchains(chain, rigid_subchains=rigid_ok)
+    report = check_subchains(chain, rigid_subchains=rigid_ok)  # refuses a chain in pieces
     code = chain.code
     try:
         standard = code in number_synthesis(

@@ -398,6 +398,8 @@ def _least_by_every_subset(links, joints, h):
 def test_check_subchains_in_other_motion_spaces_equals_every_subset(h):
     """The random families again, each chain in motion space h: the least W(S) of the scan (longer
     strings of binary links are 'short' when h > 3) is that of every subset."""
+    from bruteforce import subchain_mobility as by_definition  # noqa: E402
+
     for _, links, joints in CASES[::3]:
         chain = Chain(links, joints, h=h)
         if not chain.is_connected() or links > 14:
@@ -406,12 +408,7 @@ def test_check_subchains_in_other_motion_spaces_equals_every_subset(h):
         least = _least_by_every_subset(links, joints, h)
         if least is not None:
             assert report.worst_mobility == least, (chain.compact(), h)
-            assert subset_mobility_h(joints, report.worst, h) == least
-
-
-def subset_mobility_h(joints, subset, h):
-    s = set(subset)
-    return h * (len(s) - 1) - (h - 1) * sum(max(len(s.intersection(j)) - 1, 0) for j in joints)
+            assert by_definition(joints, report.worst, h) == least
 
 
 
