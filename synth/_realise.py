@@ -436,7 +436,9 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     spare = n2 - sum(lows)
     if spare < 0:
         return [], True, True
-    simple = all(kind[0] == "L" for kind in kinds)  # then the model's conditions are the exact test
+    # simple joints: the model's conditions are the exact test, unless the whole chain is exempt
+    # (W below the threshold), where the model skips every set of all branch links
+    simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, h, stats)
     from ._cpsat import Model, all_solutions, cp_model
