@@ -20,7 +20,7 @@ reweighted least squares); ``"slsqp"`` — :func:`scipy.optimize.minimize` SLSQP
 full variables with explicit constraints (epigraph form for the max norm);
 ``"nelder-mead"`` — bounded Nelder–Mead on the projected norm; ``"de"`` —
 :func:`scipy.optimize.differential_evolution` (fixed seed) on the projected norm,
-polished locally.
+polished by SLSQP.
 """
 
 from __future__ import annotations
@@ -338,7 +338,7 @@ def _fit_trf(p: _Problem, norm: str):
 
         return optimize.least_squares(
             fun, z_start, bounds=(lb, ub), method="trf", x_scale="jac",
-            ftol=1e-12, xtol=1e-12, gtol=1e-12, max_nfev=400,
+            ftol=1e-12, xtol=1e-12, gtol=1e-12,
         )
 
     sol = run(z0, None)
@@ -364,19 +364,12 @@ def _fit_trf(p: _Problem, norm: str):
 
 
 def _fit_nelder_mead(p: _Problem, norm: str):
-    z = p.start(norm)
     lb, ub = p.z_bounds
-    msg = ""
-    for _ in range(3):  # restarts refresh a collapsed simplex
-        sol = optimize.minimize(
-            p.objective, z, args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
-            options={"xatol": 1e-10, "fatol": 1e-14, "maxfev": 3000, "adaptive": True},
-        )
-        moved = np.max(np.abs(sol.x - z))
-        z, msg = sol.x, sol.message
-        if moved < 1e-9:
-            break
-    return z, msg
+    sol = optimize.minimize(
+        p.objective, p.start(norm), args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
+        options={"xatol": 1e-10, "fatol": 1e-14, "maxfev": 3000, "adaptive": True},
+    )
+    return sol.x, sol.message
 
 
 def _fit_slsqp(p: _Problem, norm: str, z0=None):
@@ -438,24 +431,11 @@ def _fit_de(p: _Problem, norm: str):
         p.objective, list(zip(lb, ub)), args=(norm,), seed=12345, tol=1e-6, atol=0,
         maxiter=80, popsize=8, polish=False, init="sobol",
     )
-    z = sol.x
     # polish locally from the global candidate
-    if norm == "rms":
-        lb_, ub_ = p.z_bounds
-        sq = math.sqrt(len(p.phi))
-
-        def fun(zz):
-            e, _, viol = p.projected(zz, "rms")
-            return np.append(e / sq, 10.0 * viol)
-
-        pol = optimize.least_squares(fun, z, bounds=(lb_, ub_), method="trf", x_scale="jac",
-                                     ftol=1e-12, xtol=1e-12, gtol=1e-12)
-        z2 = pol.x
-    else:
-        z2, _, _ = _fit_slsqp(p, norm, z0=z)
+    z, z2 = sol.x, _fit_slsqp(p, norm, z0=sol.x)[0]
     if p.objective(z2, norm) <= p.objective(z, norm):
         z = z2
-    return z, "differential_evolution (seed 12345) polished locally"
+    return z, "differential_evolution (seed 12345) polished by SLSQP"
 
 
 METHODS: dict[str, Callable] = {

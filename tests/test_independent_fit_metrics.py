@@ -334,7 +334,7 @@ def test_differential_evolution_is_repeatable():
     assert (one.c, one.r, one.r0, one.a) == (two.c, two.r, two.r0, two.a)
 
 
-@pytest.mark.parametrize("lo, hi", [(-0.5, 0.5), (-7.0, -5.0), (10.0, 14.0), (-1.0, 2 * math.pi + 1.0)])
+@pytest.mark.parametrize("lo, hi", [(-0.5, 0.5), (-7.0, -5.0), (10.0, 14.0), (-1.0, 2 * math.pi + 1.0), (-0.2, 1.0)])
 def test_cluster_points_hug_every_multiple_of_two_pi_in_range(lo, hi):
     """Where φ = 0 (mod 2π) lies in the range, the max-norm fit adds points on both sides of it,
     geometrically spaced from a tenth of the width to 0.5 rad, 24 on a side, never outside the range."""
@@ -374,3 +374,44 @@ def test_exact_tension_device_when_short_springs_are_out_of_bounds():
     the search passes over them to the longer ones, and the device is still exact."""
     res = fit_spring("tension", -100.0, deg(0, 180), SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.2, 1.0)))
     assert res.method == "exact" and res.a == res.r0 and res.r0 >= 0.2 and res.max_rel_error < 1e-12
+
+
+@pytest.mark.parametrize("method", ["trf", "slsqp", "nelder-mead", "de"])
+def test_a_fixed_preload_is_kept_by_every_method(method):
+    """A range of one value fixes a: every method keeps it to the last digit and reaches the
+    same optimum over r and r0."""
+    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.25, 0.25))
+    res = fit_spring("compression", 100.0, deg(20, 160), b, method=method, norm="rms")
+    ref = fit_spring("compression", 100.0, deg(20, 160), b, method="slsqp", norm="rms")
+    assert res.a == 0.25 and res.success
+    assert res.grid_rms_rel_error == pytest.approx(ref.grid_rms_rel_error, rel=1e-7)
+
+
+def test_the_normalised_variables_round_trip():
+    """α is carried as t ∈ [0, 1] between its limits given (ρ, ρ0): decode(encode(ρ, ρ0, α)) gives
+    α back inside its limits, clips it outside them, and a range of one value maps to its value."""
+    from balance.fit import _Problem
+
+    p = _Problem("compression", 100.0, *deg(20, 160), FORCED, 61)
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        rho, rho0 = rng.uniform(*p.rho_b), rng.uniform(*p.rho0_b)
+        lo, hi = p.alpha_limits(rho, rho0)
+        if hi <= lo:
+            continue
+        al = rng.uniform(lo, hi)
+        assert p.decode(p.encode(rho, rho0, al)) == pytest.approx((rho, rho0, al, 0.0), rel=1e-12)
+        assert p.encode(rho, rho0, hi + 1.0)[2] == 1.0 and p.encode(rho, rho0, lo - 1.0)[2] == 0.0
+    fixed = _Problem("compression", 100.0, *deg(20, 160), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.25, 0.25)), 61)
+    z = fixed.encode(0.1, 0.5, 0.5)
+    assert z[2] == 0.0 and fixed.decode(z) == (0.1, 0.5, 0.5, 0.0)
+
+
+@pytest.mark.parametrize("method, norm, words", [
+    ("trf", "rms", "termination condition"), ("trf", "max", "least_squares (trf) with Lawson reweighting"),
+    ("slsqp", "max", "SLSQP: Optimization terminated successfully"), ("nelder-mead", "max", "Optimization terminated"),
+    ("de", "max", "differential_evolution (seed 12345) polished by SLSQP"),
+])
+def test_each_method_says_how_it_ended(method, norm, words):
+    res = fit_spring("compression", 100.0, deg(20, 160), ISSUE, method=method, norm=norm)
+    assert words in res.message and res.method == method
