@@ -582,7 +582,7 @@ def _add(stats: dict | None, **values) -> None:
             stats[key] = stats.get(key, 0) + value
 
 
-def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dict | None,
+def _passing(h: Contracted, conv: Conventions, solutions, stats: dict | None,
              checked: bool = False) -> list:
     """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
     model wrote the exact conditions)."""
@@ -594,7 +594,7 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
         if 2 - conv.h >= conv.threshold and any(kind[0] == "J" for kind in h.kinds):
             # two joints on the same links are one joint; the rule refuses them (W = 2 − h per pair)
             # except for h = 2 with rigid sub-chains allowed
-            kept = [s for s in kept for c in [_expand(code, h.kinds, h.edges, s, conv.h)]
+            kept = [s for s in kept for c in [_expand(h.kinds, h.edges, s, conv.h)]
                     if len(set(c.joints)) == len(c.joints)]
     _add(stats, subchain_s=perf_counter() - t0)
     return kept
@@ -603,14 +603,14 @@ def _passing(code: Code, h: Contracted, conv: Conventions, solutions, stats: dic
 def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
     """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
     solutions, _, checked = _distributions(code, h, conv, stats)
-    return _distinct(code, h, conv, _passing(code, h, conv, solutions, stats, checked), stats)
+    return _distinct(h, conv, _passing(h, conv, solutions, stats, checked), stats)
 
 
-def _distinct(code: Code, h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
+def _distinct(h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
     """The chains of the passing vectors ``kept``, once each by certificate."""
     t0 = perf_counter()
     found: dict[str, Chain] = {}
-    for chain in (_expand(code, h.kinds, h.edges, s, conv.h) for s in kept):
+    for chain in (_expand(h.kinds, h.edges, s, conv.h) for s in kept):
         found.setdefault(chain.certificate, chain)
     _add(stats, nauty_s=perf_counter() - t0)
     return [found[c] for c in sorted(found)]
@@ -629,8 +629,8 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     (2, 2)
     """
     solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
-    kept = _passing(code, h, conv, solutions, stats, checked)
-    return len(kept) if one_per_orbit else len(_distinct(code, h, conv, kept, stats))
+    kept = _passing(h, conv, solutions, stats, checked)
+    return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))
 
 
 def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
@@ -696,10 +696,10 @@ def _string_ends(kinds, edges) -> tuple[int, tuple]:
     return len(link_id), tuple((link_id.get(u), link_id.get(v)) for u, v in edges)
 
 
-def _expand(code: Code, kinds, edges, weights, space: int = 3) -> Chain:
+def _expand(kinds, edges, weights, space: int = 3) -> Chain:
     """The chain of H with ``weights`` binary links on its strings (branch links numbered first).
 
-    >>> _expand(Code((4, 2), 0, ()), (("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
+    >>> _expand((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
     ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (4, 5))
     """
     nxt, ends = _string_ends(kinds, edges)

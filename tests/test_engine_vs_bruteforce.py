@@ -174,3 +174,15 @@ def test_engine_chains_satisfy_definitions(dof, links, v_max, rigid, frac):
         assert engine_key(c) == code_key(joints, links), joints
         if hasattr(c.code, "v"):
             assert c.code.v == v, joints
+
+
+@pytest.mark.parametrize("dof, links, n1, v_max", [(2, 7, (0, 2), 0), (3, 8, (0, 3), 0), (2, 7, (0, 3), 1)],
+                         ids=lambda x: str(x))
+@pytest.mark.parametrize("frac", [True, False], ids=["frac", "nofrac"])
+def test_open_chains_agree_with_bruteforce(dof, links, n1, v_max, frac):
+    """Chains with single-joint links (robot arms, grippers): without fractionated chains the rule is
+    decided on the closed part left when single-joint links are pruned again and again."""
+    expected = brute_force_chains(links, dof, n1=n1, v_max=v_max, fractionated=frac)
+    got = list(synth.type_synthesis(dof=dof, links=links, n1=n1, v=(0, v_max), fractionated=frac))
+    index = ChainIndex(expected)
+    assert sorted(index.find(_joints(c), c.links) for c in got) == list(range(len(expected)))

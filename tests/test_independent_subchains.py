@@ -321,7 +321,7 @@ def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
         if not candidates:
             continue
         for s, ok in zip(candidates, _realise._exact_test(kinds, edges, candidates, conv)):
-            chain = _realise._expand(u.code, kinds, edges, s, conv.h)
+            chain = _realise._expand(kinds, edges, s, conv.h)
             truth = subchain_ok(chain.joints, chain.links, conv.rigid_subchains, conv.h)
             assert bool(ok) == truth, (u.key, s, chain.compact())
             judged[truth] += 1

@@ -92,13 +92,13 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
         solutions, one_per_orbit, checked = _realise._distributions(*args, None)
         assert checked
         for s in solutions:
-            chain = _realise._expand(u.code, u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
+            chain = _realise._expand(u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
             assert check_subchains(chain, rigid_subchains=u.conventions.rigid_subchains).ok, (u.key, s)
         if one_per_orbit and not u.conventions.cranks:
             monkeypatch.setattr(_realise, "_FEW_VECTORS", 10**9)
             listed, _, listed_checked = _realise._distributions(*args, None)
             assert not listed_checked
-            kept = _realise._passing(u.code, u.contracted, u.conventions, listed, None)
+            kept = _realise._passing(u.contracted, u.conventions, listed, None)
             assert sorted(kept) == sorted(solutions), u.key
             checked_any += 1
     assert checked_any or query.get("cranks")  # a crank requirement has no direct listing
@@ -281,6 +281,7 @@ MODEL_QUERIES = [
     dict(dof=1, links=6, h=2),
     dict(dof=2, links=7, h=2),
     dict(dof=1, links=6, h=2, v=(0, 2)),
+    dict(dof=1, links=6, h=2, v=(0, 2), rigid_subchains=True),  # two joints on the same links refused
     dict(dof=1, links=8, h=4),
     dict(dof=1, links=10, h=5, v=(0, 2)),
     dict(dof=1, links=12, h=6),
