@@ -99,13 +99,36 @@ def _prepare(key: str, work: Path) -> Path:
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
     lines = ["", "[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in config.items()]
-    # synthesis with the default worker count runs its units in pool processes, where mutmut does not
-    # see which test reaches which function: in the copy, one core means inline runs
-    with open(where / "tests" / "conftest.py", "a") as fh:
-        fh.write("\n\nos.cpu_count = lambda: 1  # added by tools/mutation.py (see there)\n")
+    _one_core(where)
     with open(where / "pyproject.toml", "a") as fh:
         fh.write("\n".join(lines) + "\n")
     return where
+
+
+def _one_core(where: Path) -> None:
+    """Synthesis with the default worker count runs its units in pool processes, where mutmut does
+    not see which test reaches which function: in the copy, one core means inline runs."""
+    with open(where / "tests" / "conftest.py", "a") as fh:
+        fh.write("\n\nos.cpu_count = lambda: 1  # added by tools/mutation.py (see there)\n")
+
+
+def _retest(key: str, work: Path, children: int, env: dict) -> None:
+    """Run the survivors of the last run of ``key`` again, against the checkout's present tests
+    (mutmut finds the new tests and which functions they reach); the module must be unchanged."""
+    where, path = work / key, MODULES[key][0]
+    if not (where / "mutants").exists():
+        raise SystemExit(f"mutation.py: no earlier run of {key} under {work}; run it in full first")
+    if (ROOT / path).read_bytes() != (where / path).read_bytes():
+        raise SystemExit(f"mutation.py: {path} changed since its run under {work}; run {key} in full")
+    shutil.rmtree(where / "tests")
+    shutil.copytree(ROOT / "tests", where / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis"))
+    _one_core(where)
+    listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
+    names = [m.split(":")[0].strip() for m in listing.splitlines()
+             if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]
+    if names:
+        subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
 
 
 _DIFFS = """
@@ -140,17 +163,20 @@ def _equivalents(key: str) -> list[dict]:
     return [e for e in data.get("equivalent", []) if e["module"] == key]
 
 
-def run_module(key: str, work: Path, children: int, run: bool = True) -> dict:
-    """Mutate one module in a fresh copy (or, with ``run=False``, read the copy a run left)."""
-    where = _prepare(key, work) if run else work / key
+def run_module(key: str, work: Path, children: int, mode: str = "run") -> dict:
+    """Mutate one module in a fresh copy (``"run"``), run the survivors of the copy a run left
+    again with the present tests (``"again"``), or only read that copy (``"collect"``)."""
+    where = _prepare(key, work) if mode == "run" else work / key
     start = time.monotonic()
-    if run:
-        env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
+    env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
+    if mode == "run":
         proc = subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=where, env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
             raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
-    minutes = (time.monotonic() - start) / 60 if run else None
+    elif mode == "again":
+        _retest(key, work, children, env)
+    minutes = (time.monotonic() - start) / 60 if mode == "run" else None  # (a full run's time only)
     subprocess.run(["mutmut", "export-cicd-stats"], cwd=where, capture_output=True)
     stats = json.loads((where / "mutants" / "mutmut-cicd-stats.json").read_text())
     listing = subprocess.run(["mutmut", "results", "--all", "true"], cwd=where, capture_output=True, text=True).stdout
@@ -217,6 +243,9 @@ def main(argv=None) -> int:
     parser.add_argument("--list", action="store_true", help="list the modules and their tests")
     parser.add_argument("--collect", action="store_true",
                         help="no run: read the results a finished (or stopped) run left under --work")
+    parser.add_argument("--again", action="store_true",
+                        help="run only the survivors of the last run under --work again, with the present tests "
+                             "(the module itself unchanged)")
     parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
                         help="no run: report the results saved by earlier --json runs (the last one per module)")
     args = parser.parse_args(argv)
@@ -226,6 +255,9 @@ def main(argv=None) -> int:
         return 0
     if shutil.which("mutmut") is None and not args.from_json:  # --collect needs it too (results, diffs)
         print("mutation.py: mutmut is not installed (pip install '.[mutation]')", file=sys.stderr)
+        return 2
+    if args.collect and args.again:
+        print("mutation.py: --collect reads a run and --again runs its survivors: give one of them", file=sys.stderr)
         return 2
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
@@ -237,9 +269,9 @@ def main(argv=None) -> int:
         results = [saved[k] for k in MODULES if k in saved]
     for key in [] if args.from_json else (args.modules or list(MODULES)):
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
-        r = run_module(key, args.work, args.children, run=not args.collect)
+        r = run_module(key, args.work, args.children, "collect" if args.collect else "again" if args.again else "run")
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
-              f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({'collected' if r['minutes'] is None else str(r['minutes']) + ' min'})", file=sys.stderr)
+              f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({str(r['minutes']) + ' min' if r['minutes'] is not None else 'survivors run again' if args.again else 'collected'})", file=sys.stderr)
         results.append(r)
         if args.json:  # after every module, so a stopped run keeps what it finished
             args.json.write_text(json.dumps(results, indent=1))
