@@ -650,24 +650,37 @@ def _check_feasible(p: _Problem) -> None:
 
 
 def _tension_exact(p: _Problem, max_lmax: float = math.inf):
-    """A zero-free-length tension device within the bounds, least spring force first
-    (only devices whose longest spring length is at most ``max_lmax``, in units of ℓ)."""
-    best = None
-    for rho in _span(*p.rho_b, 9):
-        for rho0 in _span(*p.rho0_b, 17):
-            lo, hi = p.alpha_limits(rho, rho0)
-            if not lo <= rho0 <= hi + 1e-15:
-                continue
-            kmax = p.kappa_max(rho, rho0, rho0)
-            if kmax < 1.0:
-                continue
-            lmax = math.sqrt(rho0 * rho0 + 4 * rho * (rho + rho0) * p.s2max)
-            if lmax > max_lmax:
-                continue
-            force = lmax / (rho * (rho + rho0))  # c·L_max in units of |Φ0|/ℓ
-            if best is None or force < best[0]:
-                best = (force, (rho, rho0, rho0, 1.0))
-    return None if best is None else best[1]
+    """The zero-free-length device (``a = r0``, exact) with the least peak spring force within the
+    bounds, its longest spring length at most ``max_lmax`` (units of ℓ); None if there is none.
+
+    Exact means κ = 1, so the peak force is ``|Φ0|/ℓ · L_max/(ρ(ρ + ρ0))`` with
+    ``L_max² = ρ0² + 4ρ(ρ + ρ0)·S``, S the largest ``sin²(φ/2)``. It falls as ρ grows; at fixed ρ
+    it is least at ``ρ0 = 2Sρ/(1 − 2S)`` (it falls all the way where S ≥ 1/2). Where the length
+    limit binds, ``ρ(ρ + ρ0) = (Λ² − ρ0²)/(4S)`` and the force grows with ρ0. So ρ is the largest
+    crank for every ρ0 up to ``cap`` (where the limit starts to bind at that crank), ρ0 the point of
+    that interval nearest the unconstrained best; else the least ρ0 with the crank the limit allows.
+    """
+    lo0, hi0 = max(p.rho0_b[0], p.al_b[0]), min(p.rho0_b[1], p.al_b[1])  # a = r0 within both ranges
+    if lo0 > hi0:
+        return None
+    S, rho = p.s2max, p.rho_b[1]
+    max_lmax *= 1 - 1e-12  # (a device on the limit stays within it after round-off)
+    cap = math.inf
+    if math.isfinite(max_lmax):
+        disc = max_lmax * max_lmax - 4 * S * (1 - S) * rho * rho
+        cap = -2 * S * rho + math.sqrt(disc) if disc >= 0 else -math.inf
+    if cap >= lo0:
+        rho0 = min(max(2 * S * rho / (1 - 2 * S) if S < 0.5 else math.inf, lo0), hi0, cap)
+    else:
+        rho0 = lo0
+        if rho0 >= max_lmax:
+            return None  # L_max > r0 for every crank
+        rho = (math.sqrt(rho0 * rho0 + (max_lmax * max_lmax - rho0 * rho0) / S) - rho0) / 2
+        if rho < p.rho_b[0]:
+            return None
+    if p.kappa_max(rho, rho0, rho0) < 1.0:
+        return None  # the least force is above the limit: so is every other
+    return rho, rho0, rho0, 1.0
 
 
 #: deflection ratio (compression over free length) of the lever device's spring when none is given

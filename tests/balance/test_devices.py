@@ -44,6 +44,30 @@ def test_compression_lever_is_exact_and_reports_its_length(rng):
     assert lv["extra_length"] == pytest.approx(s - np.max(L), rel=1e-6) and lv["extra_length"] > 0
     assert lv["spring_length_min"] == pytest.approx(s - np.max(L), rel=1e-6)
     assert any("beyond the farthest crank-pin" in n for n in res.notes)
+    # the spring takes compressions |CB| from min to max; its free length s = max|CB|/δ (δ = 0.5)
+    assert (lv["compression_min"], lv["compression_max"]) == pytest.approx((np.min(L), np.max(L)), rel=1e-6)
+    assert s == lv["spring_free_length"] == lv["reach_from_C"] == pytest.approx(np.max(L) / 0.5, rel=1e-6)
+    assert lv["spring_length_max"] == pytest.approx(s - np.min(L), rel=1e-6)
+    assert lv["deflection_ratio"] == res.deflection == 0.5 and lv["size_ratio"] == pytest.approx(2.0)
+    (note,) = [n for n in res.notes if "lever reaches" in n]
+    assert f"{s:.4g} m from C, {s - np.max(L):.4g} m beyond" in note and f"(2× the {np.max(L):.4g} m" in note
+
+
+def test_compression_lever_with_a_deflection_and_length_limit():
+    """δ = 0.25 makes the spring 4× its longest compression; a free-length limit then bounds the
+    longest compression, and with it the crank: the device stays exact, or is refused by name."""
+    b = SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0), max_deflection=0.25, max_free_length=1.2)
+    res = fit_spring("compression-lever", -100.0, RAD, b)
+    lv = res.lever
+    assert res.max_rel_error <= 1e-12 and lv["deflection_ratio"] == 0.25
+    assert lv["spring_free_length"] == pytest.approx(4 * lv["compression_max"]) and lv["spring_free_length"] <= 1.2
+    free = fit_spring("compression-lever", -100.0, RAD, SpringBounds(b.r, b.r0, b.a, max_deflection=0.25))
+    assert free.lever["spring_free_length"] > 1.2  # the limit binds
+    tight = SpringBounds(b.r, b.r0, b.a, max_force=2000.0, max_deflection=0.25, max_free_length=0.2)
+    with pytest.raises(InfeasibleBounds) as ei:
+        fit_spring("compression-lever", -100.0, RAD, tight)
+    assert ("keeps the spring force below 2000 N and fits a spring of at most 0.2 m at a deflection ratio of 0.25"
+            in str(ei.value))
 
 
 def test_compression_lever_refusals():
