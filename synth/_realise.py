@@ -518,10 +518,7 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracte
     import numpy as np
 
     t0 = perf_counter()
-    edges = len(lows)
-    if edges == 0:  # H is one branch vertex
-        return ([()] if spare == 0 else []), True, False
-    w = _compositions(spare, edges) + np.array(lows)
+    w = _compositions(spare, len(lows)) + np.array(lows)
     keep = np.ones(len(w), dtype=bool)
     for k, least in parallel:
         keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
