@@ -309,10 +309,13 @@ def test_stage_b_model_and_direct_listing_agree(query, monkeypatch):
 def _chains_and_stats(query):
     """The query's chains unit by unit, and stage B's statistics, which counting a unit reports
     the same (its candidates) as listing it."""
+    from time import perf_counter
+
     from synth._realise import count_realised
 
     stats: dict = {}
     chains = []
+    start = perf_counter()
     for u in synth.plan_units(**query, workers=1):
         before = stats.get("candidates", 0)
         found = synth.run_unit(u, stats)
@@ -322,4 +325,6 @@ def _chains_and_stats(query):
             assert count_realised(u.code, u.contracted, u.conventions, counted) == len(found)
             assert counted["candidates"] == stats["candidates"] - before
             assert {"cpsat_s", "subchain_s"} <= set(counted)
+    spent = perf_counter() - start  # (each stage's time is a part of it: an invariant, not a speed goal)
+    assert all(0 <= stats[k] <= spent for k in ("cpsat_s", "subchain_s", "nauty_s") if k in stats)
     return sorted(chains), stats
