@@ -421,6 +421,8 @@ LEAST_FORCE = {  # kind, range, bounds: the zero-free-length device with the lea
     "tension-S<1/2": ("tension", deg(10, 70), SpringBounds(r=(0.05, 0.2), r0=(0.01, 0.6), a=(0.0, 1.0))),
     "tension-S>1/2": ("tension", deg(10, 170), SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0))),
     "tension-a-range": ("tension", deg(-40, 60), SpringBounds(r=(0.02, 0.3), r0=(0.01, 0.5), a=(0.05, 0.3))),
+    "lever-S<1/2-capped": ("compression-lever", deg(0, 40),  # S = 0.12: the limit binds at the longest crank
+                           SpringBounds(r=(0.05, 0.3), r0=(0.01, 0.6), a=(0.0, 1.0), max_free_length=0.5)),
     "lever-capped": ("compression-lever", deg(20, 160),  # the limit shortens the crank
                      SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0), max_deflection=0.25, max_free_length=1.2)),
     "lever-cap-within": ("compression-lever", deg(20, 160),  # the limit binds at the longest crank
@@ -451,3 +453,5 @@ def test_exact_device_has_the_least_force_of_a_dense_search(name):
     assert res.c * L.max() >= best * (1 - 5e-3)  # (the grid is within that of the optimum)
     if kind == "compression-lever" and b.max_free_length is not None:
         assert res.lever["spring_free_length"] <= b.max_free_length
+        # the limit binds wherever a longer spring would have less force (every case here)
+        assert res.lever["spring_free_length"] == pytest.approx(b.max_free_length, rel=1e-9)

@@ -32,7 +32,8 @@ def lever_moment(phi, c, r, r0, s, l_s):
 def test_compression_lever_is_exact_and_reports_its_length(rng):
     phi_rng = tuple(math.radians(v) for v in rng)
     res = fit_spring("compression-lever", -100.0, phi_rng, BOUNDS)
-    assert res.method == "exact" and res.a == res.r0 and res.sense == -1
+    assert res.method == "exact" and res.a == res.r0 and res.sense == -1 and res.norm == "max"
+    assert res.message == "compression spring on the lever beyond B, a = r0: exact"
     phi = np.linspace(*phi_rng, 20001)
     s = res.lever["stop_distance_from_C"]
     m = lever_moment(phi, res.c, res.r, res.r0, s, s)  # a = r0: the spring's free length equals s
@@ -71,8 +72,17 @@ def test_compression_lever_with_a_deflection_and_length_limit():
 
 
 def test_compression_lever_refusals():
-    with pytest.raises(InfeasibleBounds, match="a = r0"):
+    with pytest.raises(InfeasibleBounds, match=r"a ∈ \[0.5, 1\] m and r0 ∈ \[0.05, 0.4\] m never meet"):
         fit_spring("compression-lever", -100.0, RAD, SpringBounds((0.01, 0.2), (0.05, 0.4), (0.5, 1.0)))
+    # ranges that meet in one value still give the device there
+    for a, r0 in (((0.4, 1.0), 0.4), ((0.0, 0.05), 0.05)):
+        res = fit_spring("compression-lever", -100.0, RAD, SpringBounds((0.01, 0.2), (0.05, 0.4), a))
+        assert res.a == res.r0 == pytest.approx(r0) and res.max_rel_error < 1e-12
+    # the least force a = r0 device needs, less 1 %: no lever device keeps below it
+    least = fit_spring("compression-lever", -100.0, RAD, BOUNDS).max_force
+    with pytest.raises(InfeasibleBounds, match=r"keeps the spring force below .* N; raise --max-force, "
+                                               r"--max-free-length or --max-deflection\.$"):
+        fit_spring("compression-lever", -100.0, RAD, SpringBounds(BOUNDS.r, BOUNDS.r0, BOUNDS.a, max_force=0.99 * least))
     with pytest.raises(Exception, match="compression"):
         fit_spring("compression-lever", 100.0, RAD, BOUNDS)
 
