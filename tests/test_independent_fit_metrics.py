@@ -392,7 +392,8 @@ def test_the_normalised_variables_round_trip():
     α back inside its limits, clips it outside them, and a range of one value maps to its value."""
     from balance.fit import _Problem
 
-    p = _Problem("compression", 100.0, *deg(20, 160), FORCED, 61)
+    b = SpringBounds(FORCED.r, FORCED.r0, (0.1, 1.0), FORCED.max_force, FORCED.max_free_length, FORCED.max_deflection)
+    p = _Problem("compression", 100.0, *deg(20, 160), b, 61)  # (α's lower limit above 0)
     rng = np.random.default_rng(7)
     for _ in range(50):
         rho, rho0 = rng.uniform(*p.rho_b), rng.uniform(*p.rho0_b)
@@ -455,3 +456,50 @@ def test_exact_device_has_the_least_force_of_a_dense_search(name):
         assert res.lever["spring_free_length"] <= b.max_free_length
         # the limit binds wherever a longer spring would have less force (every case here)
         assert res.lever["spring_free_length"] == pytest.approx(b.max_free_length, rel=1e-9)
+
+
+@pytest.mark.parametrize("method", ["trf", "slsqp", "nelder-mead"])
+def test_every_method_finds_an_exact_tension_device_within_a_force_limit(method):
+    """With 400 N allowed exact zero-free-length devices exist (the exact search shows the least-force
+    one): every method finds one within the limit (they stop at shorter cranks than the longest)."""
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0), max_force=400.0)
+    exact = fit_spring("tension", -50.0, deg(20, 160), b)
+    assert exact.method == "exact" and exact.max_force <= 400.0
+    res = fit_spring("tension", -50.0, deg(20, 160), b, method=method)
+    assert res.max_rel_error < 1e-9 and res.max_force <= 400.0 * (1 + 1e-9)
+
+
+def test_reported_evaluations_and_time(monkeypatch):
+    """``nfev`` counts every evaluation of the errors (the projected ones and SLSQP's own) and
+    ``seconds`` is the fit's own time, within the time the call took."""
+    import time
+
+    from balance import fit
+
+    calls = {"n": 0}
+    for name in ("projected", "shape"):
+        original = getattr(fit._Problem, name)
+
+        def counted(self, *args, _original=original, _name=name, **kw):
+            # a projected evaluation, or SLSQP's own (the only caller that hands the shape its grid)
+            calls["n"] += _name == "projected" or len(args) == 4
+            return _original(self, *args, **kw)
+
+        monkeypatch.setattr(fit._Problem, name, counted)
+    for method in ("trf", "slsqp", "nelder-mead"):
+        calls["n"] = 0
+        start = time.perf_counter()
+        res = fit_spring("compression", 100.0, deg(20, 160), FORCED, method=method)
+        took = time.perf_counter() - start
+        assert 0 < res.seconds <= took
+        assert res.nfev > 10 and res.nfev == calls["n"], method
+
+
+def test_the_steep_note_only_where_r0_is_short_and_zero_is_in_range():
+    plain = fit_spring("compression", 100.0, deg(0, 180), ISSUE)  # r0/r = 100 at the optimum
+    assert not any("steeply" in n for n in plain.notes)
+    tiny = SpringBounds(r=(0.05, 0.5), r0=(1e-9, 1e-6), a=(0.0, 1.0))
+    short = fit_spring("compression", 100.0, deg(-30, 120), tiny)
+    assert any("steeply" in n and "φ = 0" in n for n in short.notes)
+    away = fit_spring("compression", 100.0, deg(20, 120), tiny)  # r0 short, but 0 is out of range
+    assert not any("steeply" in n for n in away.notes)

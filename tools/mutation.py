@@ -97,6 +97,13 @@ def _prepare(key: str, work: Path) -> Path:
         "also_copy": [f"{d}/" for d in COPY if (ROOT / d).is_dir() and d not in (package, "tests")],
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
+        # a mutant is stopped (and counted as caught) past 2 × 3 × the CPU time of its tests on the
+        # clean code: mutmut's default 15 gave a looping mutant of stage B 25 CPU minutes
+        "timeout_multiplier": 3.0,
+        # every mutant from a clean fork server: mutmut's default forks them from the process that ran
+        # the clean tests, whose module-level caches (lru_cache'd oracles, cached fits) the mutant's
+        # tests then read instead of computing anew
+        "process_isolation": "forkserver",
     }
     lines = ["", "[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in config.items()]
     _one_core(where)
@@ -123,6 +130,9 @@ def _retest(key: str, work: Path, children: int, env: dict) -> None:
     shutil.rmtree(where / "tests")
     shutil.copytree(ROOT / "tests", where / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis"))
     _one_core(where)
+    config = (where / "pyproject.toml").read_text()
+    if "process_isolation" not in config:  # a run made before the fork server was chosen (the table is last)
+        (where / "pyproject.toml").write_text(config + 'process_isolation = "forkserver"\n')
     listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
     names = [m.split(":")[0].strip() for m in listing.splitlines()
              if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]

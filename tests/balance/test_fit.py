@@ -63,6 +63,10 @@ INTERIOR = {  # (kind, moment, range in degrees, bounds, the limits that bind at
     "compression-0..180": ("compression", 100.0, (0.0, 180.0), FORCED,
                            ["max_free_length", "max_deflection", "max_force"]),
     "tension-20..160": ("tension", -100.0, (20.0, 160.0), TENSION_FORCED, ["r=max", "a=max", "max_force"]),
+    # a force limit below every exact device, a range over r0: the optimum has zero free length
+    "tension-a=r0": ("tension", -50.0, (20.0, 160.0),
+                     SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0), max_force=300.0),
+                     ["r=max", "r0=max", "a=r0 (zero free length)", "max_force"]),
 }
 
 
@@ -80,7 +84,8 @@ def test_all_methods_agree_interior_optimum(case, norm):
         assert getattr(r, key) <= best * (1 + tol(m, norm)), m
         assert r.active_bounds == binding or tol(m, norm) == TOL_MAX_TRF, m
         assert r.max_force <= bounds.max_force * (1 + 1e-6)
-        assert r.free_length <= bounds.max_free_length * (1 + 1e-9)
+        assert bounds.max_free_length is None or r.free_length <= bounds.max_free_length * (1 + 1e-9)
+        assert kind == "compression" or r.a <= r.r0 * (1 + 1e-12)
         assert kind == "tension" or r.deflection <= bounds.max_deflection * (1 + 1e-6)
         point = POINT_TOL[m] if tol(m, norm) < 1e-2 else 1e-2
         assert (r.c, r.r, r.r0, r.a) == pytest.approx((ref.c, ref.r, ref.r0, ref.a), rel=point), m
