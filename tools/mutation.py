@@ -27,6 +27,7 @@ import argparse
 import datetime as _dt
 import json
 import os
+import random
 import re
 import shutil
 import subprocess
@@ -173,14 +174,29 @@ def _equivalents(key: str) -> list[dict]:
     return [e for e in data.get("equivalent", []) if e["module"] == key]
 
 
-def run_module(key: str, work: Path, children: int, mode: str = "run") -> dict:
-    """Mutate one module in a fresh copy (``"run"``), run the survivors of the copy a run left
-    again with the present tests (``"again"``), or only read that copy (``"collect"``)."""
+def _sampled(where: Path, key: str, size: int, seed: int, env: dict) -> list[str]:
+    """Names of a random sample of ``size`` of the module's mutants: mutmut makes them (and its
+    test statistics) on a first call with a name that matches none, which it then refuses."""
+    subprocess.run(["mutmut", "run", "no-mutant-has-this-name"], cwd=where, env=env,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    meta = where / "mutants" / (MODULES[key][0] + ".meta")
+    if not meta.exists():
+        raise SystemExit(f"mutmut made no mutants of {key}")
+    names = sorted(json.loads(meta.read_text())["exit_code_by_key"])
+    return sorted(random.Random(seed).sample(names, min(size, len(names))))
+
+
+def run_module(key: str, work: Path, children: int, mode: str = "run", sample: int | None = None,
+               seed: int = 16) -> dict:
+    """Mutate one module in a fresh copy (``"run"``; all its mutants, or a random ``sample`` of
+    them), run the survivors of the copy a run left again with the present tests (``"again"``),
+    or only read that copy (``"collect"``)."""
     where = _prepare(key, work) if mode == "run" else work / key
     start = time.monotonic()
     env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
     if mode == "run":
-        proc = subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=where, env=env,
+        names = _sampled(where, key, sample, seed, env) if sample else []
+        proc = subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
             raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
@@ -212,7 +228,7 @@ def run_module(key: str, work: Path, children: int, mode: str = "run") -> dict:
     return {"module": key, "file": MODULES[key][0], "date": _dt.date.today().isoformat(),
             "total": total, "not_checked": total - checked,
             "killed": killed, "equivalent": equivalent, "survivors": survivors,
-            "minutes": None if minutes is None else round(minutes, 1),
+            "minutes": None if minutes is None else round(minutes, 1), "sample": sample,
             "score": killed / judged if judged else 1.0}
 
 
@@ -253,6 +269,9 @@ def main(argv=None) -> int:
     parser.add_argument("--list", action="store_true", help="list the modules and their tests")
     parser.add_argument("--collect", action="store_true",
                         help="no run: read the results a finished (or stopped) run left under --work")
+    parser.add_argument("--sample", type=int, metavar="N",
+                        help="test a random sample of N mutants of each module (the others count as not run)")
+    parser.add_argument("--seed", type=int, default=16, help="seed of --sample (default 16)")
     parser.add_argument("--again", action="store_true",
                         help="run only the survivors of the last run under --work again, with the present tests "
                              "(the module itself unchanged)")
@@ -265,6 +284,10 @@ def main(argv=None) -> int:
         return 0
     if shutil.which("mutmut") is None and not args.from_json:  # --collect needs it too (results, diffs)
         print("mutation.py: mutmut is not installed (pip install '.[mutation]')", file=sys.stderr)
+        return 2
+    if args.sample is not None and (args.sample < 1 or args.collect or args.again or args.from_json):
+        print("mutation.py: --sample N (N ≥ 1) makes a new run: not with --collect, --again or --from-json",
+              file=sys.stderr)
         return 2
     if args.collect and args.again:
         print("mutation.py: --collect reads a run and --again runs its survivors: give one of them", file=sys.stderr)
@@ -279,7 +302,8 @@ def main(argv=None) -> int:
         results = [saved[k] for k in MODULES if k in saved]
     for key in [] if args.from_json else (args.modules or list(MODULES)):
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
-        r = run_module(key, args.work, args.children, "collect" if args.collect else "again" if args.again else "run")
+        r = run_module(key, args.work, args.children, "collect" if args.collect else "again" if args.again else "run",
+                       args.sample, args.seed)
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
               f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({str(r['minutes']) + ' min' if r['minutes'] is not None else 'survivors run again' if args.again else 'collected'})", file=sys.stderr)
         results.append(r)
