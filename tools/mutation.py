@@ -196,6 +196,7 @@ def run_module(key: str, work: Path, children: int, mode: str = "run", sample: i
     env = dict(os.environ, PYTHONPATH="")  # the copy, not the checkout, is what the tests import
     if mode == "run":
         names = _sampled(where, key, sample, seed, env) if sample else []
+        (where / "sample.json").write_text(json.dumps({"sample": sample, "seed": seed}))
         proc = subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
@@ -228,17 +229,20 @@ def run_module(key: str, work: Path, children: int, mode: str = "run", sample: i
     return {"module": key, "file": MODULES[key][0], "date": _dt.date.today().isoformat(),
             "total": total, "not_checked": total - checked,
             "killed": killed, "equivalent": equivalent, "survivors": survivors,
-            "minutes": None if minutes is None else round(minutes, 1), "sample": sample,
+            "minutes": None if minutes is None else round(minutes, 1),
+            **json.loads((where / "sample.json").read_text() if (where / "sample.json").exists() else "{}"),
             "score": killed / judged if judged else 1.0}
 
 
 def _markdown(results: list[dict]) -> str:
     out = [f"mutmut {_mutmut_version()}, `nice -n 19 python tools/mutation.py`, 2 cores shared with other "
-           "work; each row from the run of its date (a run with mutants left unchecked was stopped).", "",
+           "work; each row from the run of its date (mutants not run: the run was stopped, or tested a seeded "
+           "random sample of them, named in the row).", "",
            "| module | run | mutants | killed | equivalent | survived | not run | score | minutes |",
            "|---|---|---|---|---|---|---|---|---|"]
     for r in results:
-        out.append(f"| `{r['file']}` | {r.get('date', '—')} | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
+        run = r.get("date", "—") + (f", random {r['sample']} (seed {r['seed']})" if r.get("sample") else "")
+        out.append(f"| `{r['file']}` | {run} | {r['total']} | {r['killed']} | {len(r['equivalent'])} | "
                    f"{len(r['survivors'])} | {r.get('not_checked', 0)} | {100 * r['score']:.1f} % | {r['minutes'] if r['minutes'] is not None else '—'} |")
     for r in results:
         if r["survivors"]:
