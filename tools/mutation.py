@@ -137,6 +137,8 @@ def _retest(key: str, work: Path, children: int, env: dict) -> None:
     listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
     names = [m.split(":")[0].strip() for m in listing.splitlines()
              if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]
+    known = {(e["function"], e["before"], e["after"]) for e in _equivalents(key)}
+    names = [n for n, diff in _diffs(where, path, names).items() if diff not in known]  # (those stay equivalent)
     if names:
         subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -201,6 +203,11 @@ def run_module(key: str, work: Path, children: int, mode: str = "run", sample: i
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0 and not (where / "mutants" / "mutmut-stats.json").exists():
             raise SystemExit(f"mutmut failed on {key}: {proc.stderr.strip().splitlines()[-1:]}")
+        meta = json.loads((where / "mutants" / (MODULES[key][0] + ".meta")).read_text())["exit_code_by_key"]
+        if names and all(meta.get(n) is None for n in names):
+            raise SystemExit(f"mutmut ran none of the sampled mutants of {key} (exit {proc.returncode}: "
+                             f"{proc.stderr.strip().splitlines()[-1:]}); run them by name in {where}: "
+                             f"mutmut run NAME …")
     elif mode == "again":
         _retest(key, work, children, env)
     minutes = (time.monotonic() - start) / 60 if mode == "run" else None  # (a full run's time only)
