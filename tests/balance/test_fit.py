@@ -292,3 +292,91 @@ def test_spring_compression_model_matches_expect(model):
     assert out["active_bounds"] == exp["active_bounds"]
     assert out["sense"] == exp["sense"]
     assert out["max_rel_error"] < exp["max_rel_error_below"]
+
+
+# -------------------------------------------------------------- every refusal, word for word
+B = SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0))
+
+
+@pytest.mark.parametrize("kw, exc, message", [
+    (dict(kind="coil"), InvalidInput, "--kind must be one of tension, compression, compression-lever, not 'coil'."),
+    (dict(method="bfgs"), InvalidInput, "--method must be one of trf, slsqp, nelder-mead, de, not 'bfgs'."),
+    (dict(grid=4), InvalidInput, "the fit grid needs at least 5 points, not 4."),
+    (dict(grid=61.0), InvalidInput, "the fit grid needs at least 5 points, not 61.0."),
+    (dict(kind="tension"), WrongSense,
+     "a tension device turns the crank towards the base point C (decreasing φ), so it cannot give Φ0 = 100 N·m; "
+     "use a compression device, or turn the device by 180° and fit Φ0 = -100 N·m."),
+    (dict(moment=-100.0), WrongSense,
+     "a compression device turns the crank away from the base point C (increasing φ), so it cannot give "
+     "Φ0 = -100 N·m; use a tension or compression-lever device, or turn the device by 180° and fit Φ0 = 100 N·m."),
+    (dict(bounds=SpringBounds((-0.1, 0.5), B.r0, B.a)), InvalidRange, "the crank length r must be positive; its lower bound is -0.1."),
+    (dict(bounds=SpringBounds(B.r, (0.0, 1.0), B.a)), InvalidRange, "r0 (spring length at φ = 0) must be positive; its lower bound is 0.0."),
+    (dict(bounds=SpringBounds(B.r, B.r0, (-1.0, 1.0))), InvalidRange, "the pre-extension a cannot be negative; its lower bound is -1.0."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_force=0.0)), InvalidInput, "the maximum force must be a positive number, not 0.0."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_force=math.inf)), InvalidInput, "the maximum force must be a positive number, not inf."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_free_length=-1.0)), InvalidInput,
+     "the maximum free length must be a positive number, not -1.0."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_deflection=0.0)), InvalidInput,
+     "the maximum deflection ratio must lie in (0, 1), not 0.0."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_deflection=1.0)), InvalidInput,
+     "the maximum deflection ratio must lie in (0, 1), not 1.0."),
+    (dict(rng="0..180"), InvalidRange, "the range of φ must be low..high, not '0..180'."),
+    (dict(rng=(0.0, math.inf)), InvalidRange, "the range of φ must be finite."),
+    (dict(rng=(math.nan, 1.0)), InvalidRange, "the range of φ must be finite."),
+    (dict(rng=(0.0, 2 * math.pi + 1e-9)), InvalidRange, "the range of φ spans 360°, more than one turn (360°)."),
+    (dict(rng=(1.0, 1.0 + 5e-10)), InvalidRange, "the range of φ is narrower than 1e-9 rad; the fit is meaningless there."),
+    (dict(bounds=SpringBounds(B.r, (0.01, math.inf), B.a)), InvalidRange, "r0 (spring length at φ = 0) range 0.01..inf must be finite."),
+    (dict(bounds=SpringBounds(B.r, B.r0, B.a, max_force=150.0)), InfeasibleBounds,
+     "the force limit 150 N on a crank of at most 0.5 m gives at most 75 N·m, less than the 100 N·m the target needs "
+     "in this range; raise --max-force or the longest crank."),
+    (dict(bounds=SpringBounds(B.r, B.r0, (0.0, math.inf))), InfeasibleBounds,
+     "with a compression spring and no upper bound on the pre-load a (nor a maximum free length or deflection), the "
+     "error keeps falling as a grows without limit; give a finite bound on a, --max-free-length or --max-deflection."),
+    (dict(bounds=SpringBounds((0.1, 0.5), (0.1, 1.0), (0.2, 1.0), max_free_length=0.3)), InfeasibleBounds,
+     "the shortest compression device within the bounds has free length 2r+r0+a = 0.5 m, more than the maximum free "
+     "length 0.3 m."),
+    (dict(kind="tension", moment=-100.0, bounds=SpringBounds(B.r, (0.1, 0.4), (0.5, 1.0))), InfeasibleBounds,
+     "a tension spring needs a pre-extension a ≤ r0, but a ≥ 0.5 m and r0 ≤ 0.4 m."),
+    (dict(kind="tension", moment=-100.0, bounds=SpringBounds(B.r, (0.5, 1.0), (0.0, 0.1), max_free_length=0.2)),
+     InfeasibleBounds, "no device within the stated bounds satisfies the free-length limit."),
+])
+def test_every_refusal_word_for_word(kw, exc, message):
+    args = dict(kind="compression", moment=100.0, rng=(0.0, math.pi), bounds=B)
+    args.update(kw)
+    with pytest.raises(exc) as ei:
+        fit_spring(args.pop("kind"), args.pop("moment"), args.pop("rng"), args.pop("bounds"), **args)
+    assert str(ei.value) == message
+
+
+def test_the_edges_of_the_accepted_inputs():
+    """A grid of 5 points, a deflection ratio just below 1, one full turn: all accepted."""
+    assert fit((20.0, 160.0), grid=5).grid == 5
+    assert fit((20.0, 160.0), SpringBounds(B.r, B.r0, B.a, max_deflection=0.99)).deflection <= 0.99
+    assert np.isfinite(fit((0.0, 360.0)).max_rel_error)
+
+
+@pytest.mark.parametrize("rng, centres, ends", [
+    ((-30.0, 200.0), "the dead centres φ = 0° and 180°", ["at 0° the spring is shortest", "at 180° longest"]),
+    ((-30.0, 60.0), "the dead centre φ = 0°", ["at 0° the spring is shortest"]),
+    ((100.0, 270.0), "the dead centre φ = 180°", ["at 180° longest"]),
+    ((170.0, 370.0), "the dead centres φ = 180° and 360°", ["at 0° the spring is shortest", "at 180° longest"]),
+    ((0.0, 180.0), None, []),
+    ((-200.0, -100.0), "the dead centre φ = -180°", ["at 180° longest"]),
+])
+def test_dead_centre_notes(rng, centres, ends):
+    """The note names each dead centre strictly inside the range (0° and 180° mod 360°) and what the
+    spring does there, with the device's own lengths."""
+    res = fit(rng)
+    notes = [n for n in res.notes if "dead centre" in n]
+    if centres is None:
+        assert not notes
+        return
+    (note,) = notes
+    assert f"the range crosses {centres}, where crank AB and spring BC are in line" in note
+    tail = note.split("in both directions; ")[1]
+    want = []
+    if "at 0° the spring is shortest" in ends:
+        want.append(f"at 0° the spring is shortest ({res.r0:.4g} m)")
+    if "at 180° longest" in ends:
+        want.append(f"at 180° longest (2r + r0 = {2 * res.r + res.r0:.4g} m)")
+    assert tail == " and ".join(want)
