@@ -120,7 +120,7 @@ def _one_core(where: Path) -> None:
         fh.write("\n\nos.cpu_count = lambda: 1  # added by tools/mutation.py (see there)\n")
 
 
-def _retest(key: str, work: Path, children: int, env: dict) -> None:
+def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | None = None) -> None:
     """Run the survivors of the last run of ``key`` again, against the checkout's present tests
     (mutmut finds the new tests and which functions they reach); the module must be unchanged."""
     where, path = work / key, MODULES[key][0]
@@ -138,7 +138,8 @@ def _retest(key: str, work: Path, children: int, env: dict) -> None:
     names = [m.split(":")[0].strip() for m in listing.splitlines()
              if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]
     known = {(e["function"], e["before"], e["after"]) for e in _equivalents(key)}
-    names = [n for n, diff in _diffs(where, path, names).items() if diff not in known]  # (those stay equivalent)
+    names = [n for n, diff in _diffs(where, path, names).items()
+             if diff not in known and (not only or diff[0] in only)]  # (equivalents stay so)
     if names:
         subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -189,7 +190,7 @@ def _sampled(where: Path, key: str, size: int, seed: int, env: dict) -> list[str
 
 
 def run_module(key: str, work: Path, children: int, mode: str = "run", sample: int | None = None,
-               seed: int = 16) -> dict:
+               seed: int = 16, only: list[str] | None = None) -> dict:
     """Mutate one module in a fresh copy (``"run"``; all its mutants, or a random ``sample`` of
     them), run the survivors of the copy a run left again with the present tests (``"again"``),
     or only read that copy (``"collect"``)."""
@@ -209,7 +210,7 @@ def run_module(key: str, work: Path, children: int, mode: str = "run", sample: i
                              f"{proc.stderr.strip().splitlines()[-1:]}); run them by name in {where}: "
                              f"mutmut run NAME …")
     elif mode == "again":
-        _retest(key, work, children, env)
+        _retest(key, work, children, env, only)
     minutes = (time.monotonic() - start) / 60 if mode == "run" else None  # (a full run's time only)
     subprocess.run(["mutmut", "export-cicd-stats"], cwd=where, capture_output=True)
     stats = json.loads((where / "mutants" / "mutmut-cicd-stats.json").read_text())
@@ -286,6 +287,7 @@ def main(argv=None) -> int:
     parser.add_argument("--again", action="store_true",
                         help="run only the survivors of the last run under --work again, with the present tests "
                              "(the module itself unchanged)")
+    parser.add_argument("--only", metavar="FUNC,…", help="with --again: only the survivors in these functions")
     parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
                         help="no run: report the results saved by earlier --json runs (the last one per module)")
     args = parser.parse_args(argv)
@@ -299,6 +301,9 @@ def main(argv=None) -> int:
     if args.sample is not None and (args.sample < 1 or args.collect or args.again or args.from_json):
         print("mutation.py: --sample N (N ≥ 1) makes a new run: not with --collect, --again or --from-json",
               file=sys.stderr)
+        return 2
+    if args.only and not args.again:
+        print("mutation.py: --only chooses among the survivors that --again runs: give --again too", file=sys.stderr)
         return 2
     if args.collect and args.again:
         print("mutation.py: --collect reads a run and --again runs its survivors: give one of them", file=sys.stderr)
@@ -314,7 +319,7 @@ def main(argv=None) -> int:
     for key in [] if args.from_json else (args.modules or list(MODULES)):
         print(f"mutating {MODULES[key][0]} …", file=sys.stderr, flush=True)
         r = run_module(key, args.work, args.children, "collect" if args.collect else "again" if args.again else "run",
-                       args.sample, args.seed)
+                       args.sample, args.seed, args.only.split(",") if args.only else None)
         print(f"  {r['killed']}/{r['total']} killed, {len(r['equivalent'])} equivalent, "
               f"{len(r['survivors'])} surviving: {100 * r['score']:.1f} % ({str(r['minutes']) + ' min' if r['minutes'] is not None else 'survivors run again' if args.again else 'collected'})", file=sys.stderr)
         results.append(r)
