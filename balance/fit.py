@@ -35,7 +35,7 @@ import numpy as np
 from scipy import optimize
 
 from .errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
-from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice, spring_length
+from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice
 
 __all__ = [
     "SpringBounds",
@@ -140,8 +140,7 @@ def relative_errors(device: CrankRockerDevice, moment: float, phi: np.ndarray) -
 class _Problem:
     """The non-dimensional fitting problem on a grid."""
 
-    def __init__(self, kind: str, moment: float, lo: float, hi: float, b: SpringBounds, grid: int,
-                 norm: str = "max"):
+    def __init__(self, kind: str, moment: float, lo: float, hi: float, b: SpringBounds, grid: int, norm: str):
         self.kind, self.moment, self.lo, self.hi, self.bounds = kind, moment, lo, hi, b
         self.ell = b.r[1]
         e = self.ell
@@ -163,9 +162,6 @@ class _Problem:
         self.nfev = 0
 
     # -- geometry ---------------------------------------------------------------
-    def L(self, rho, rho0, S):
-        return np.sqrt(rho0 * rho0 + 4.0 * rho * (rho + rho0) * S)
-
     def l0(self, rho, rho0, al):
         return 2 * rho + rho0 + al if self.kind == "compression" else rho0 - al
 
@@ -179,6 +175,8 @@ class _Problem:
         else:
             hi = min(hi, rho0)  # free length r0 − a ≥ 0
             lo = max(lo, rho0 - self.Lf)
+        if hi < lo <= hi + 1e-12 * max(1.0, abs(hi)):
+            hi = lo  # a device exactly on a limit, not to be lost to the round-off of normalising
         return lo, hi
 
     def kappa_max(self, rho, rho0, al) -> float:
@@ -193,9 +191,8 @@ class _Problem:
             return math.inf
         return self.Fhat * rho * (rho + rho0) / stretch
 
-    def shape(self, rho, rho0, al, S=None):
-        S = self.S if S is None else S
-        L = self.L(rho, rho0, S)
+    def shape(self, rho, rho0, al):
+        L = np.sqrt(rho0 * rho0 + 4.0 * rho * (rho + rho0) * self.S)
         l0 = self.l0(rho, rho0, al)
         with np.errstate(divide="ignore", invalid="ignore"):
             q = np.where(L > 0, l0 / L, 0.0)
@@ -219,9 +216,10 @@ class _Problem:
         return ([self.rho_b[0], self.rho0_b[0], 0.0], [self.rho_b[1], self.rho0_b[1], 1.0])
 
     # -- projected residuals ----------------------------------------------------------
-    def errors(self, rho, rho0, al, kappa, phi_w=None):
-        g = self.shape(rho, rho0, al)
-        return self.w * (kappa * g - 1.0)
+    def errors(self, rho, rho0, al, kappa):
+        """Weighted errors ``|sin φ|·(κ·g − 1)`` on the grid: one evaluation (counted in ``nfev``)."""
+        self.nfev += 1
+        return self.w * (kappa * self.shape(rho, rho0, al) - 1.0)
 
     def best_kappa(self, rho, rho0, al, norm: str, weights=None) -> float:
         g = self.shape(rho, rho0, al)
@@ -235,7 +233,6 @@ class _Problem:
         return _minimax_scale(h, s, kmax)
 
     def projected(self, z, norm: str, weights=None):
-        self.nfev += 1
         rho, rho0, al, viol = self.decode(z)
         k = self.best_kappa(rho, rho0, al, norm, weights)
         return self.errors(rho, rho0, al, k), k, viol
@@ -294,34 +291,24 @@ def _sin2_half_extremes(lo: float, hi: float) -> tuple[float, float]:
 def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
     """``argmin_{0≤κ≤κmax} max_i |κ·h_i − s_i|`` for ``h, s ≥ 0`` (exact to round-off).
 
-    ``F_up(κ) = max(κh − s)`` rises and ``F_dn(κ) = max(s − κh)`` falls; the optimum is
-    where they cross. Newton steps on the piecewise-linear difference converge in a few
-    iterations; bisection keeps them inside the bracket.
+    ``F_up(κ) = max(κh − s)`` rises and ``F_dn(κ) = max(s − κh)`` falls; the optimum is where
+    they cross, the root of ``F_up − F_dn`` (Brent's method: exact steps on its linear pieces),
+    or κmax when they cross beyond it.
     """
     hmax = float(np.max(h)) if h.size else 0.0
-    if hmax <= 0:
-        return 0.0
-    lo, hi = 0.0, min(kmax, 2.0 * float(np.max(s)) / hmax + 1.0)
-    # the crossing is below 2·max(s)/max(h)+1: there F_up ≥ max(s) + ... ≥ F_dn
-    k = 0.5 * (lo + hi)
-    for _ in range(100):
+    smax = float(np.max(s)) if s.size else 0.0
+    if hmax <= 0 or smax <= 0:
+        return 0.0  # κ has nothing to lift, or nothing to lift towards
+
+    def rise(k):  # F_up − F_dn
         up = k * h - s
-        iu = int(np.argmax(up))
-        idn = int(np.argmax(-up))
-        diff = up[iu] + up[idn]  # F_up − F_dn
-        if diff > 0:
-            hi = k
-        else:
-            lo = k
-        slope = h[iu] + h[idn]
-        nk = k - diff / slope if slope > 0 else 0.5 * (lo + hi)
-        if not lo < nk < hi:
-            nk = 0.5 * (lo + hi)
-        if abs(nk - k) <= 1e-15 * max(1.0, abs(k)) or hi - lo <= 1e-15 * max(1.0, hi):
-            k = nk
-            break
-        k = nk
-    return min(max(k, 0.0), kmax)
+        return float(np.max(up) + np.min(up))
+
+    # at 2·smax/hmax, F_up ≥ smax ≥ F_dn: the crossing is in [0, top]
+    top = min(kmax, 2.0 * smax / hmax)
+    if rise(top) <= 0:
+        return top
+    return optimize.brentq(rise, 0.0, top, xtol=1e-15, rtol=4 * np.finfo(float).eps)
 
 
 # --------------------------------------------------------------------------- methods
@@ -380,7 +367,6 @@ def _fit_slsqp(p: _Problem, norm: str, z0=None):
     y0 = [rho, rho0, al, k]
     al_hi = p.al_b[1] if math.isfinite(p.al_b[1]) else None
     bounds = [p.rho_b, p.rho0_b, (p.al_b[0], al_hi), (0.0, None)]
-    S, w = p.S, p.w
     cons: list[dict] = []
 
     def l_at(y, s2):
@@ -401,9 +387,7 @@ def _fit_slsqp(p: _Problem, norm: str, z0=None):
             cons.append({"type": "ineq", "fun": lambda y: p.Fhat * y[0] * (y[0] + y[1]) - y[3] * (l_at(y, p.s2max) - (y[1] - y[2]))})
 
     def err(y):
-        p.nfev += 1
-        g = p.shape(y[0], y[1], y[2], S)
-        return w * (y[3] * g - 1.0)
+        return p.errors(y[0], y[1], y[2], y[3])
 
     if norm == "rms":
         fun = lambda y: float(np.mean(err(y) ** 2))  # noqa: E731
@@ -422,7 +406,7 @@ def _fit_slsqp(p: _Problem, norm: str, z0=None):
             options={"ftol": 1e-15, "maxiter": 500},
         )
     y = sol.x
-    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}", float(y[3])
+    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}"
 
 
 def _fit_de(p: _Problem, norm: str):
@@ -432,7 +416,7 @@ def _fit_de(p: _Problem, norm: str):
         maxiter=80, popsize=8, polish=False, init="sobol",
     )
     # polish locally from the global candidate
-    z, z2 = sol.x, _fit_slsqp(p, norm, z0=sol.x)[0]
+    z, (z2, _) = sol.x, _fit_slsqp(p, norm, z0=sol.x)
     if p.objective(z2, norm) <= p.objective(z, norm):
         z = z2
     return z, "differential_evolution (seed 12345) polished by SLSQP"
@@ -557,26 +541,16 @@ def fit_spring(
     meth = method or DEFAULT_METHOD[norm]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        out = METHODS[meth](p, norm)
-    z, msg = out[0], out[1]
+        z, msg = METHODS[meth](p, norm)
     if not np.all(np.isfinite(z)):
         raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
     rho, rho0, al, viol = p.decode(z)
     if viol > 1e-9:
         raise FitFailed(f"the {meth} method ended outside the bounds ({msg}).")
-    if meth == "slsqp":
-        kappa = min(max(out[2], 0.0), p.kappa_max(rho, rho0, al))
-        # keep SLSQP's own κ unless the projection is better (it never is by more than round-off)
-        kp = p.best_kappa(rho, rho0, al, norm)
-        if _norm(p.errors(rho, rho0, al, kp), norm) < _norm(p.errors(rho, rho0, al, kappa), norm):
-            kappa = kp
-    else:
-        kappa = p.best_kappa(rho, rho0, al, norm)
+    # κ enters the error linearly: for the final shape it is solved exactly (SLSQP's own κ agrees
+    # to round-off, the other methods never see it)
+    kappa = p.best_kappa(rho, rho0, al, norm)
     return _finish(p, (rho, rho0, al, kappa), meth, norm, t_start, str(msg), notes)
-
-
-def _norm(e: np.ndarray, norm: str) -> float:
-    return float(np.max(np.abs(e))) if norm == "max" else float(np.sqrt(np.mean(e * e)))
 
 
 def _phi_range(phi_range) -> tuple[float, float]:
@@ -748,13 +722,12 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
     d = r + r0
     c = kappa * abs(M) / (r * d)
     dev = CrankRockerDevice(p.kind, c, r, r0, a)
-    phi = _verify_grid(p.lo, p.hi, r, r0)
-    e = relative_errors(dev, M, phi)
-    L = spring_length(phi, r, r0)
+    e = relative_errors(dev, M, _verify_grid(p.lo, p.hi, r, r0))
     l0 = dev.free_length
+    # the spring length over the range runs from lmin to lmax: the force is largest at one of them
     lmin = math.sqrt(r0 * r0 + 4 * r * d * p.s2min)
     lmax = math.sqrt(r0 * r0 + 4 * r * d * p.s2max)
-    fmax = c * max(abs(lmin - l0), abs(lmax - l0), float(np.max(np.abs(L - l0))))
+    fmax = c * max(abs(lmin - l0), abs(lmax - l0))
     # deflection ratio (l0 − L_min)/l0 is a compression-spring notion; None for tension
     defl = (l0 - lmin) / l0 if p.kind == "compression" else None
     active = _active(p, rho, rho0, al, kappa)

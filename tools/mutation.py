@@ -101,23 +101,40 @@ def _prepare(key: str, work: Path) -> Path:
         # a mutant is stopped (and counted as caught) past 2 × 3 × the CPU time of its tests on the
         # clean code: mutmut's default 15 gave a looping mutant of stage B 25 CPU minutes
         "timeout_multiplier": 3.0,
-        # every mutant from a clean fork server: mutmut's default forks them from the process that ran
-        # the clean tests, whose module-level caches (lru_cache'd oracles, cached fits) the mutant's
-        # tests then read instead of computing anew
-        "process_isolation": "forkserver",
     }
     lines = ["", "[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in config.items()]
-    _one_core(where)
+    _conftest_for_mutants(where)
     with open(where / "pyproject.toml", "a") as fh:
         fh.write("\n".join(lines) + "\n")
     return where
 
 
-def _one_core(where: Path) -> None:
-    """Synthesis with the default worker count runs its units in pool processes, where mutmut does
-    not see which test reaches which function: in the copy, one core means inline runs."""
+#: appended to the copy's tests/conftest.py
+_CONFTEST = """
+
+# --- added by tools/mutation.py ---
+# Synthesis with the default worker count runs its units in pool processes, where mutmut does not see
+# which test reaches which function: in the copy, one core means inline runs.
+os.cpu_count = lambda: 1
+
+
+def pytest_sessionstart(session):
+    # mutmut runs each mutant's tests in a fork of the process that ran them on the unmutated code:
+    # every lru_cache there (brute-force oracles of the tests, fits, the engine's own memos) would
+    # hand the mutant's tests the unmutated results.  Each session starts with all of them empty.
+    import functools
+    import gc
+
+    for cached in gc.get_objects():
+        if isinstance(cached, functools._lru_cache_wrapper):
+            cached.cache_clear()
+"""
+
+
+def _conftest_for_mutants(where: Path) -> None:
+    """Append ``_CONFTEST`` to the copy's tests/conftest.py (inline synthesis, empty caches per session)."""
     with open(where / "tests" / "conftest.py", "a") as fh:
-        fh.write("\n\nos.cpu_count = lambda: 1  # added by tools/mutation.py (see there)\n")
+        fh.write(_CONFTEST)
 
 
 def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | None = None) -> None:
@@ -130,10 +147,10 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
         raise SystemExit(f"mutation.py: {path} changed since its run under {work}; run {key} in full")
     shutil.rmtree(where / "tests")
     shutil.copytree(ROOT / "tests", where / "tests", ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis"))
-    _one_core(where)
+    _conftest_for_mutants(where)
     config = (where / "pyproject.toml").read_text()
-    if "process_isolation" not in config:  # a run made before the fork server was chosen (the table is last)
-        (where / "pyproject.toml").write_text(config + 'process_isolation = "forkserver"\n')
+    if "process_isolation" in config:  # a run made with the fork server (see _CONFTEST): fork again
+        (where / "pyproject.toml").write_text(re.sub(r"\nprocess_isolation = .*\n", "\n", config))
     listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
     names = [m.split(":")[0].strip() for m in listing.splitlines()
              if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]

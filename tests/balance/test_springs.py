@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -48,6 +49,18 @@ def test_zero_free_length_tension_is_exactly_harmonic():
     phi = np.linspace(-2 * math.pi, 2 * math.pi, 1001)
     np.testing.assert_allclose(dev.moment(phi), -dev.amplitude * np.sin(phi), rtol=0, atol=1e-13 * dev.amplitude)
     assert dev.free_length == 0.0 and dev.sense == -1
+
+
+@pytest.mark.parametrize("kind", ["tension", "compression"])
+def test_moment_is_zero_where_the_crank_tip_meets_the_pivot(kind):
+    """r = r0 puts the crank tip on the spring's far pivot at φ = 0: length 0, direction undefined,
+    moment 0 (and no division warning) whatever the free length."""
+    phi = np.tile([0.0, math.pi / 2, 2 * math.pi], 200)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m = crank_moment(phi, kind, 500.0, 0.1, 0.1, 0.05)
+    assert np.all(m[0::3] == 0.0) and np.all(m[2::3] == pytest.approx(0.0, abs=1e-12))
+    np.testing.assert_allclose(m[1::3], vector_moment(np.array([math.pi / 2]), kind, 500.0, 0.1, 0.1, 0.05)[0])
 
 
 def test_sine_device():
