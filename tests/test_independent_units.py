@@ -6,6 +6,8 @@ give the same chains as ``type_synthesis`` for every option, not only the defaul
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 import synth
@@ -328,3 +330,120 @@ def _chains_and_stats(query):
     spent = perf_counter() - start  # (each stage's time is a part of it: an invariant, not a speed goal)
     assert all(0 <= stats[k] <= spent for k in ("cpsat_s", "subchain_s", "nauty_s") if k in stats)
     return sorted(chains), stats
+
+
+STAGE_A_QUERIES = [dict(dof=1, links=8, v=(0, 4)), dict(dof=1, links=6, h=2, v=(0, 2)), dict(dof=0, links=9, v=(0, 3)),
+                   dict(dof=1, links=11, h=4, v=(0, 3)), dict(dof=2, links=9, v=(0, 3), rigid_subchains=True),
+                   dict(dof=1, links=10, v=(0, 5)), dict(dof=1, links=8, h=3, v=(0, 3))]
+
+
+@pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+def test_stage_a_conditions_in_the_model_or_on_its_solutions_agree(query, monkeypatch):
+    """Stage A writes the sub-chain conditions of small codes into its CP-SAT model and checks those of
+    large codes on the model's solutions (``_StringBounds.meet``, in blocks).  With every condition
+    checked on the solutions, in blocks of 5, each query gets the same branch graphs H; and the
+    check is no formality: without it (and without the model's conditions) there are more."""
+    import numpy as np
+
+    from synth import _realise
+
+    def graphs():
+        return sorted((str(u.code), u.contracted.certificate) for u in synth.plan_units(**query, workers=1)
+                      if u.contracted is not None)
+
+    in_model = graphs()
+    monkeypatch.setattr(_realise, "_split_conditions", lambda conditions, kinds: ([], list(conditions)))
+    monkeypatch.setattr(_realise, "_CONDITION_BLOCK", 5)
+    assert graphs() == in_model and in_model
+    monkeypatch.setattr(_realise._StringBounds, "meet", lambda self, X, Y, conditions: np.ones(len(X), dtype=bool))
+    assert len(graphs()) > len(in_model)
+
+
+@pytest.mark.parametrize("edges", [2, 3, 6, 15])
+def test_edge_group_of_parallel_strings(edges):
+    """Two links joined by k parallel strings: the strings permute in every way (k! edge maps; the
+    swap of the two links maps each string to itself).  Up to 4096 the whole group is listed; beyond
+    (15! ≈ 1.3e12, which nauty reports as 1.3·10^12 with a mantissa and an exponent) only generators
+    and their inverses, each a permutation of the strings."""
+    from synth._realise import Contracted
+
+    group, whole = Contracted((("L", edges), ("L", edges)), ((0, 1),) * edges, "").edge_group()
+    assert all(sorted(g) == list(range(edges)) and g != tuple(range(edges)) for g in group)
+    if math.factorial(edges) <= 4096:
+        assert whole and len(set(group)) == math.factorial(edges) - 1
+    else:
+        assert not whole and 0 < len(group) <= 4 * edges
+
+
+def _stage_a_by_enumeration(code, conv):
+    """Stage A without CP-SAT and without its symmetry breaking: every labelled multigraph on the
+    branch vertices with their degrees (loops count 2), with as many binary links as the strings
+    need, meeting every sub-chain condition, connected and kept — one certificate per class."""
+    import itertools
+
+    import numpy as np
+    import pynauty
+
+    from synth import _realise
+
+    kinds = _realise._branch_kinds(code)
+    m, deg = len(kinds), [k[1] for k in kinds]
+    pairs = list(itertools.combinations(range(m), 2))
+    bounds = _realise._StringBounds(kinds, pairs, code, conv)
+    loops_max = [d // 2 if conv.fractionated or code.n1 else 0 for d in deg]
+    rows = []
+
+    def fill(k, left, x):
+        if k == len(pairs):
+            if all(r % 2 == 0 and r // 2 <= loops_max[u] for u, r in enumerate(left)):
+                rows.append(x + [r // 2 for r in left])
+            return
+        u, v = pairs[k]
+        for mult in range(min(left[u], left[v]) + 1):
+            left[u] -= mult
+            left[v] -= mult
+            fill(k + 1, left, x + [mult])
+            left[u] += mult
+            left[v] += mult
+
+    if m:
+        fill(0, list(deg), [])
+    if not rows:
+        return []
+    sol = np.array(rows, dtype=np.int64)
+    X, Y = sol[:, :len(pairs)], sol[:, len(pairs):]
+    binary = np.maximum(0, X * bounds.slope + bounds.offset).sum(axis=1) + Y @ bounds.loop
+    ok = (binary <= code.count(2)) & bounds.meet(X, Y, _realise._subset_conditions(kinds, code.dof(conv.h), conv))
+    found = set()
+    for row in sol[ok]:
+        edges = [p for p, k in zip(pairs, row) for _ in range(int(k))]
+        edges += [(u, u) for u, k in enumerate(row[len(pairs):]) for _ in range(int(k))]
+        if _realise._connected(m, edges) and _realise._keep_multigraph(m, edges, conv):
+            graph = _realise.Contracted(kinds, tuple(sorted(edges)), "")._subdivided()
+            found.add(pynauty.certificate(graph).hex())
+    return sorted(found)
+
+
+BRUTE_STAGE_A_QUERIES = STAGE_A_QUERIES + [
+    dict(dof=1, links=10), dict(dof=1, links=10, fractionated=False), dict(dof=1, links=10, planar_only=True),
+    dict(dof=1, links=12), dict(dof=2, links=11, v=(0, 2)), dict(dof=0, links=10, h=4, v=(0, 2)),
+    dict(dof=3, links=8, n1=(0, 3)), dict(dof=1, links=10, h=5, v=(0, 2)), dict(dof=1, links=12, h=6)]
+
+
+@pytest.mark.parametrize("query", BRUTE_STAGE_A_QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+def test_stage_a_against_an_enumeration_of_labelled_multigraphs(query):
+    """Stage A's branch graphs H, code by code, are the classes of an exhaustive enumeration of
+    labelled multigraphs (codes of up to 7 branch vertices): CP-SAT's search and the lexicographic
+    row constraints that cut its symmetric solutions lose no class and keep each once."""
+    from synth import _realise
+    from synth._type_synthesis import _codes_of
+
+    codes, conv = _codes_of(query)
+    compared = 0
+    for code in codes:
+        if len(_realise._branch_kinds(code)) > 7:
+            continue
+        engine = [h.certificate for h in _realise.contracted_graphs(code, conv)]
+        assert engine == _stage_a_by_enumeration(code, conv), code
+        compared += len(engine)
+    assert compared > 0

@@ -98,9 +98,12 @@ def _prepare(key: str, work: Path) -> Path:
         "also_copy": [f"{d}/" for d in COPY if (ROOT / d).is_dir() and d not in (package, "tests")],
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
-        # a mutant is stopped (and counted as caught) past 2 × 3 × the CPU time of its tests on the
-        # clean code: mutmut's default 15 gave a looping mutant of stage B 25 CPU minutes
+        # a mutant is stopped (and counted as caught) past 2 × 3 × (60 s + the CPU time of its tests on
+        # the clean code): mutmut's default multiplier 15 gave a looping mutant of stage B 25 CPU minutes;
+        # the 60 s because the clean run's times are those of a warm cache (a test reading an oracle an
+        # earlier test computed) and a mutant's tests start with empty caches (_CONFTEST)
         "timeout_multiplier": 3.0,
+        "timeout_constant": 60.0,
     }
     lines = ["", "[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in config.items()]
     _conftest_for_mutants(where)
@@ -150,10 +153,14 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
     _conftest_for_mutants(where)
     config = (where / "pyproject.toml").read_text()
     if "process_isolation" in config:  # a run made with the fork server (see _CONFTEST): fork again
-        (where / "pyproject.toml").write_text(re.sub(r"\nprocess_isolation = .*\n", "\n", config))
+        config = re.sub(r"\nprocess_isolation = .*\n", "\n", config)
+    if "timeout_constant" not in config:  # a run made before the caches were emptied (see _prepare)
+        config += "timeout_constant = 60.0\n"
+    (where / "pyproject.toml").write_text(config)
     listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
+    # (and the timeouts: with a time limit set before it allowed for empty caches, one may be false)
     names = [m.split(":")[0].strip() for m in listing.splitlines()
-             if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious")]
+             if ":" in m and m.split(":")[1].strip() in ("survived", "no tests", "suspicious", "timeout")]
     known = {(e["function"], e["before"], e["after"]) for e in _equivalents(key)}
     names = [n for n, diff in _diffs(where, path, names).items()
              if diff not in known and (not only or diff[0] in only)]  # (equivalents stay so)
