@@ -213,7 +213,12 @@ class _Problem:
 
     @property
     def z_bounds(self):
-        return ([self.rho_b[0], self.rho0_b[0], 0.0], [self.rho_b[1], self.rho0_b[1], 1.0])
+        """Box of ``z``.  A tension spring's free length r0 − a ≤ limit with a ≤ a_max needs
+        r0 ≤ a_max + limit: in the box, not left to the penalty (whose optimum would lie past it)."""
+        top = self.rho0_b[1]
+        if self.kind == "tension":
+            top = max(min(top, self.al_b[1] + self.Lf), self.rho0_b[0])
+        return ([self.rho_b[0], self.rho0_b[0], 0.0], [self.rho_b[1], top, 1.0])
 
     # -- projected residuals ----------------------------------------------------------
     def errors(self, rho, rho0, al, kappa):
@@ -245,8 +250,9 @@ class _Problem:
     def start(self, norm: str) -> np.ndarray:
         """Best point of a small deterministic scan of the box (log-spaced lengths)."""
         best, bz = math.inf, None
+        (_, rho0_lo, _), (_, rho0_hi, _) = self.z_bounds
         for rho in _span(*self.rho_b, 4):
-            for rho0 in _span(*self.rho0_b, 4):
+            for rho0 in _span(rho0_lo, rho0_hi, 4):
                 for t in (0.0, 0.5, 1.0):
                     z = np.array([rho, rho0, t])
                     v = self.objective(z, norm)
@@ -295,8 +301,9 @@ def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
     they cross, the root of ``F_up − F_dn`` (Brent's method: exact steps on its linear pieces),
     or κmax when they cross beyond it.
     """
-    hmax = float(np.max(h)) if h.size else 0.0
-    smax = float(np.max(s)) if s.size else 0.0
+    if not h.size:
+        return 0.0
+    hmax, smax = float(np.max(h)), float(np.max(s))
     if hmax <= 0 or smax <= 0:
         return 0.0  # κ has nothing to lift, or nothing to lift towards
 
@@ -308,7 +315,7 @@ def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
     top = min(kmax, 2.0 * smax / hmax)
     if rise(top) <= 0:
         return top
-    return optimize.brentq(rise, 0.0, top, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+    return optimize.brentq(rise, 0.0, top)
 
 
 # --------------------------------------------------------------------------- methods
@@ -546,7 +553,8 @@ def fit_spring(
         raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
     rho, rho0, al, viol = p.decode(z)
     if viol > 1e-9:
-        raise FitFailed(f"the {meth} method ended outside the bounds ({msg}).")
+        raise FitFailed(f"the {meth} method ended outside the bounds ({msg}): where a limit leaves no room for "
+                        f"a, it stops just past it; the default method, slsqp, keeps such limits exactly.")
     # κ enters the error linearly: for the final shape it is solved exactly (SLSQP's own κ agrees
     # to round-off, the other methods never see it)
     kappa = p.best_kappa(rho, rho0, al, norm)

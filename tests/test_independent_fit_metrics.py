@@ -25,6 +25,9 @@ ISSUE = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
 FORCED = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0,
                       max_free_length=1.5, max_deflection=0.4)
 TENSION = SpringBounds(r=(0.05, 0.2), r0=(0.3, 0.5), a=(0.0, 0.1))
+TENSION_FORCED = SpringBounds(r=(0.05, 0.5), r0=(0.1, 1.0), a=(0.0, 0.05), max_force=300.0, max_free_length=0.95)
+#: r0 − a ≤ 0.06 with a ≤ 0.05: r0 ≤ 0.11, where the force limit binds as well
+TENSION_SHORT = SpringBounds(r=(0.05, 0.5), r0=(0.1, 1.0), a=(0.0, 0.05), max_force=300.0, max_free_length=0.06)
 STEEP = SpringBounds(r=(0.05, 0.5), r0=(1e-4, 1e-2), a=(0.0, 1.0))
 #: one device, κ the only freedom: its error peaks within 0.1° of φ = 0, where the moment turns over
 #: on the scale r0/r = 2e-4 rad — a uniform grid of the range misses the peak by 1e-5 of its height
@@ -49,6 +52,9 @@ CASES = {
     "tension-exact": ("tension", -100.0, deg(0, 180), ISSUE, None, "max"),
     "tension-fitted-max": ("tension", -100.0, deg(20, 160), TENSION, None, "max"),
     "tension-fitted-rms": ("tension", -40.0, deg(-60, 100), TENSION, None, "rms"),
+    "tension-forced-max": ("tension", -100.0, deg(20, 160), TENSION_FORCED, None, "max"),
+    "tension-forced-rms-nelder-mead": ("tension", -100.0, deg(20, 160), TENSION_FORCED, "nelder-mead", "rms"),
+    "tension-short-rms-trf": ("tension", -100.0, deg(20, 160), TENSION_SHORT, "trf", "rms"),
 }
 
 
@@ -164,6 +170,7 @@ def test_bounds_kept_and_active_bounds_true(name):
         assert (f"{label}=max" in res.active_bounds) == at_high, (label, value, res.active_bounds)
     if b.max_force is not None:
         assert res.max_force <= b.max_force * (1 + 1e-6)
+        assert ("max_force" in res.active_bounds) == (abs(res.max_force - b.max_force) <= 1e-6 * b.max_force)
     if b.max_free_length is not None:
         assert res.free_length <= b.max_free_length * (1 + 1e-9)
         assert ("max_free_length" in res.active_bounds) == (
@@ -270,6 +277,10 @@ def test_minimax_scale_against_a_dense_search(seed):
         lp = linprog([0.0, 1.0], A_ub=np.block([[h[:, None], -np.ones((40, 1))], [-h[:, None], -np.ones((40, 1))]]),
                      b_ub=np.concatenate([s, -s]), bounds=[(0.0, kmax), (0.0, None)], method="highs")
         assert lp.status == 0 and err <= lp.fun * (1 + 1e-9) + 1e-12 * float(np.max(s))
+        if k < kmax:  # inside: where the largest overshoot meets the largest undershoot, to round-off
+            up = k * h - s
+            i, j = int(np.argmax(up)), int(np.argmin(up))
+            assert k == pytest.approx((s[i] + s[j]) / (h[i] + h[j]), rel=1e-14)
 
 
 def test_minimax_scale_without_any_lever():
@@ -538,3 +549,39 @@ def test_free_length_limit_at_the_shortest_compression_device(a_min):
     assert res.free_length == pytest.approx(shortest, rel=1e-12)
     with pytest.raises(InfeasibleBounds, match=f"free length 2r\\+r0\\+a = {shortest:g} m, more than"):
         fit_spring("compression", 100.0, deg(20, 160), SpringBounds(**b, max_free_length=0.99 * shortest))
+
+
+def _uniform_fit_grid(name):
+    """The cases whose fit grid is the uniform one (RMS, or a range without a multiple of 2π, where the
+    max-norm grid gets no extra points)."""
+    _, _, (lo, hi), _, _, norm = CASES[name]
+    return norm == "rms" or math.floor(hi / (2 * math.pi)) < math.ceil(lo / (2 * math.pi))
+
+
+@pytest.mark.parametrize("name", [n for n in CASES if _uniform_fit_grid(n)])
+def test_spring_rate_is_the_best_for_the_returned_geometry(name):
+    """The rate c enters the moment linearly: for the returned r, r0, a the best c on the fit grid is a
+    least-squares quotient (RMS) or a linear programme (max), capped where the force limit allows no
+    more (c·max|L − l0| ≤ F).  The fit's c is that one."""
+    from scipy.optimize import linprog
+
+    kind, moment, (lo, hi), bounds, method, norm = CASES[name]
+    res = fitted(name)
+    phi = np.linspace(lo, hi, res.grid)
+    unit, _ = moment_from_positions(kind, 1.0, res.r, res.r0, res.a, phi)  # moment per unit rate
+    target = moment * np.sin(phi)
+    limit = np.inf
+    if bounds.max_force is not None:
+        dense = np.concatenate([dense_phi(lo, hi, res.r, res.r0), [lo, hi]])
+        lengths = moment_from_positions(kind, 1.0, res.r, res.r0, res.a, dense)[1]
+        limit = bounds.max_force / np.max(np.abs(lengths - free_length(kind, res.r, res.r0, res.a)))
+    if norm == "rms":
+        best = min(float(np.sum(unit * target) / np.sum(unit * unit)), limit)
+    else:
+        rows = len(phi)
+        lp = linprog([0.0, 1.0], A_ub=np.block([[unit[:, None], -np.ones((rows, 1))], [-unit[:, None], -np.ones((rows, 1))]]),
+                     b_ub=np.concatenate([target, -target]), bounds=[(0.0, limit), (0.0, None)], method="highs")
+        assert lp.status == 0
+        best = lp.x[0]
+    assert res.c == pytest.approx(best, rel=1e-7)
+

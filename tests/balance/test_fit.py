@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import linprog
 
 from balance import (
-    DEFAULT_METHOD, METHODS, InfeasibleBounds, InvalidInput, InvalidRange,
+    DEFAULT_METHOD, METHODS, FitFailed, InfeasibleBounds, InvalidInput, InvalidRange,
     SpringBounds, WrongSense, fit_spring, solve_spring,
 )
 from balance.fit import relative_errors
@@ -67,6 +67,14 @@ INTERIOR = {  # (kind, moment, range in degrees, bounds, the limits that bind at
     "tension-a=r0": ("tension", -50.0, (20.0, 160.0),
                      SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0), max_force=300.0),
                      ["r=max", "r0=max", "a=r0 (zero free length)", "max_force"]),
+    # two limits binding, two directions left to the optimiser (r and the split of l0 into r0 and a)
+    "compression-interior": ("compression", 100.0, (8.0, 188.0),
+                             SpringBounds(r=(0.03, 0.32), r0=(0.03, 0.88), a=(0.0, 0.58), max_force=2400.0,
+                                          max_free_length=0.97), ["max_free_length", "max_force"]),
+    # the crank at its shortest and the free length at its limit: r0 against a along l0, and c
+    "compression-r0-against-a": ("compression", 100.0, (-36.0, 160.0),
+                                 SpringBounds(r=(0.03, 0.21), r0=(0.15, 1.2), a=(0.0, 0.6), max_free_length=0.65),
+                                 ["r=min", "max_free_length"]),
 }
 
 
@@ -83,10 +91,10 @@ def test_all_methods_agree_interior_optimum(case, norm):
     for m, r in res.items():
         assert getattr(r, key) <= best * (1 + tol(m, norm)), m
         assert r.active_bounds == binding or tol(m, norm) == TOL_MAX_TRF, m
-        assert r.max_force <= bounds.max_force * (1 + 1e-6)
+        assert bounds.max_force is None or r.max_force <= bounds.max_force * (1 + 1e-6)
         assert bounds.max_free_length is None or r.free_length <= bounds.max_free_length * (1 + 1e-9)
         assert kind == "compression" or r.a <= r.r0 * (1 + 1e-12)
-        assert kind == "tension" or r.deflection <= bounds.max_deflection * (1 + 1e-6)
+        assert bounds.max_deflection is None or r.deflection <= bounds.max_deflection * (1 + 1e-6)
         point = POINT_TOL[m] if tol(m, norm) < 1e-2 else 1e-2
         assert (r.c, r.r, r.r0, r.a) == pytest.approx((ref.c, ref.r, ref.r0, ref.a), rel=point), m
 
@@ -380,3 +388,21 @@ def test_dead_centre_notes(rng, centres, ends):
     if "at 180° longest" in ends:
         want.append(f"at 180° longest (2r + r0 = {2 * res.r + res.r0:.4g} m)")
     assert tail == " and ".join(want)
+
+
+def test_trf_keeps_a_tension_free_length_limit_and_says_where_it_cannot():
+    """A tension spring's free length r0 − a ≤ 0.06 m with a ≤ 0.05 m leaves r0 ≤ 0.11 m: in trf's box
+    (a quadratic penalty stopped 4e-4 past it).  Where such a limit couples r and r0 (a compression
+    spring's free length and deflection with a lower bound on a), trf still stops just past it: refused
+    with the reason and the method that keeps it."""
+    b = SpringBounds(r=(0.05, 0.5), r0=(0.1, 1.0), a=(0.0, 0.05), max_force=300.0, max_free_length=0.06)
+    for norm in ("max", "rms"):
+        res = {m: fit_spring("tension", -100.0, rad((20, 160)), b, method=m, norm=norm) for m in ("trf", "slsqp")}
+        assert (res["trf"].r, res["trf"].r0, res["trf"].a) == pytest.approx((0.5, 0.11, 0.05), rel=1e-9)
+        assert res["trf"].active_bounds == res["slsqp"].active_bounds == ["r=max", "a=max", "max_free_length", "max_force"]
+    coupled = SpringBounds(r=(0.0956, 0.2378), r0=(0.1631, 1.1118), a=(0.0717, 0.6667), max_force=2920.0,
+                           max_free_length=0.7321, max_deflection=0.3991)
+    with pytest.raises(FitFailed, match=r"^the trf method ended outside the bounds \(.*\): where a limit leaves no room "
+                                        r"for a, it stops just past it; the default method, slsqp, keeps such limits exactly\.$"):
+        fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled, method="trf")
+    assert "max_deflection" in fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled).active_bounds
