@@ -121,16 +121,24 @@ _CONFTEST = """
 os.cpu_count = lambda: 1
 
 
-def pytest_sessionstart(session):
+_LRU_CACHES = []
+
+
+def pytest_collection_finish(session):
     # mutmut runs each mutant's tests in a fork of the process that ran them on the unmutated code:
     # every lru_cache there (brute-force oracles of the tests, fits, the engine's own memos) would
-    # hand the mutant's tests the unmutated results.  Each session starts with all of them empty.
+    # hand the mutant's tests the unmutated results.  And within one session a test that reads what
+    # an earlier test cached never calls the code that made it, so mutmut's map of which tests reach
+    # which function would miss it.  So every test starts with all of them empty.
     import functools
     import gc
 
-    for cached in gc.get_objects():
-        if isinstance(cached, functools._lru_cache_wrapper):
-            cached.cache_clear()
+    _LRU_CACHES[:] = [c for c in gc.get_objects() if isinstance(c, functools._lru_cache_wrapper)]
+
+
+def pytest_runtest_setup(item):
+    for cached in _LRU_CACHES:
+        cached.cache_clear()
 """
 
 
@@ -157,6 +165,8 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
     if "timeout_constant" not in config:  # a run made before the caches were emptied (see _prepare)
         config += "timeout_constant = 60.0\n"
     (where / "pyproject.toml").write_text(config)
+    # which tests reach which function, from the present tests (mutmut would map only the new ones)
+    (where / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     listing = subprocess.run(["mutmut", "results"], cwd=where, env=env, capture_output=True, text=True).stdout
     # (and the timeouts: with a time limit set before it allowed for empty caches, one may be false)
     names = [m.split(":")[0].strip() for m in listing.splitlines()

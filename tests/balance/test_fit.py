@@ -370,6 +370,10 @@ def test_the_edges_of_the_accepted_inputs():
     ((170.0, 370.0), "the dead centres φ = 180° and 360°", ["at 0° the spring is shortest", "at 180° longest"]),
     ((0.0, 180.0), None, []),
     ((-200.0, -100.0), "the dead centre φ = -180°", ["at 180° longest"]),
+    # half a degree past a dead centre, where a division by 181 instead of 180 would miss it
+    ((100.0, 180.5), "the dead centre φ = 180°", ["at 180° longest"]),
+    ((-180.5, -100.0), "the dead centre φ = -180°", ["at 180° longest"]),
+    ((-390.0, -300.0), "the dead centre φ = -360°", ["at 0° the spring is shortest"]),
 ])
 def test_dead_centre_notes(rng, centres, ends):
     """The note names each dead centre strictly inside the range (0° and 180° mod 360°) and what the
