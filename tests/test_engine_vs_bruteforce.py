@@ -181,6 +181,8 @@ OPEN = [(dof, links, n1, v, frac) for dof, links, n1, v in [(2, 7, (0, 2), 0), (
 # a ternary link that keeps two strings once its single-joint link is pruned and holds the closed part
 # together (without it one link would cut the rest in two): ~8 s
 OPEN.append((2, 9, (1, 1), 0, False))
+# one loop with arms: the closed part is a single loop through one branch link, not fractionated
+OPEN += [(2, 5, (1, 1), 0, False), (3, 6, (1, 2), 0, False)]
 
 
 @pytest.mark.parametrize("dof, links, n1, v_max, frac", OPEN, ids=str)

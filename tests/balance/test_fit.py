@@ -347,6 +347,19 @@ B = SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0))
      "a tension spring needs a pre-extension a ≤ r0, but a ≥ 0.5 m and r0 ≤ 0.4 m."),
     (dict(kind="tension", moment=-100.0, bounds=SpringBounds(B.r, (0.5, 1.0), (0.0, 0.1), max_free_length=0.2)),
      InfeasibleBounds, "no device within the stated bounds satisfies the free-length limit."),
+    # (a deflection limit means nothing to a tension spring: the free length is what refuses it)
+    (dict(kind="tension", moment=-100.0,
+          bounds=SpringBounds(B.r, (0.5, 1.0), (0.0, 0.1), max_free_length=0.2, max_deflection=0.3)),
+     InfeasibleBounds, "no device within the stated bounds satisfies the free-length limit."),
+    (dict(rng=(1.0, 1.0)), InvalidRange, "the range of φ 57.2958°..57.2958° is empty; give low < high."),
+    (dict(rng=(2.0, 1.0)), InvalidRange, "the range of φ 114.592°..57.2958° is inverted; give low < high."),
+    (dict(rng=(1.0, 2.0 + 2 * math.pi)), InvalidRange, "the range of φ spans 417.296°, more than one turn (360°)."),
+    (dict(rng=(math.radians(20), math.radians(60)), bounds=SpringBounds(B.r, B.r0, B.a, max_force=150.0)),
+     InfeasibleBounds, "the force limit 150 N on a crank of at most 0.5 m gives at most 75 N·m, less than the "
+     "86.6025 N·m the target needs in this range; raise --max-force or the longest crank."),
+    (dict(bounds=SpringBounds(5, B.r0, B.a)), InvalidRange, "the crank length r must be a range low..high, not 5."),
+    (dict(bounds=SpringBounds((math.nan, 0.5), B.r0, B.a)), InvalidRange, "the crank length r range nan..0.5 must be finite."),
+    (dict(bounds=SpringBounds((0.01, math.nan), B.r0, B.a)), InvalidRange, "the crank length r range 0.01..nan must be finite."),
 ])
 def test_every_refusal_word_for_word(kw, exc, message):
     args = dict(kind="compression", moment=100.0, rng=(0.0, math.pi), bounds=B)
