@@ -51,7 +51,7 @@ CASES = {
     "compression-steep-near-0": ("compression", 100.0, deg(-30, 120), STEEP, None, "max"),
     "compression-steep-fixed": ("compression", 100.0, deg(-30, 30), STEEP_FIXED, None, "max"),
     "compression-steep-fixed-at-360": ("compression", 100.0, deg(330, 390), STEEP_FIXED, None, "max"),
-    "compression-steep-fixed-at--360": ("compression", 100.0, deg(-390, -330), STEEP_FIXED, None, "rms"),
+    "compression-steep-fixed-at--360": ("compression", 100.0, deg(-390, -330), STEEP_FIXED, None, "max"),
     "tension-exact": ("tension", -100.0, deg(0, 180), ISSUE, None, "max"),
     "tension-fitted-max": ("tension", -100.0, deg(20, 160), TENSION, None, "max"),
     "tension-fitted-rms": ("tension", -40.0, deg(-60, 100), TENSION, None, "rms"),
@@ -157,6 +157,14 @@ def test_reported_device_numbers_recomputed(name):
     assert res.reference_length == ell
     assert res.x == pytest.approx((r / ell, r0 / ell, a / ell, c * r * (r + r0) / abs(moment)), rel=1e-12)
     assert (res.sense, res.kind, res.norm, res.moment) == ((1 if kind == "compression" else -1), kind, norm, moment)
+    # the sense in words, from the device's geometry: a compression spring pushes the crank away from C
+    assert res.sense_text == ("away from the base point C (increasing φ)" if kind == "compression"
+                              else "towards the base point C (decreasing φ)")
+    # how the fit ended: exactly, or by a method, with the reason for not being exact
+    if res.method == "exact":
+        assert res.message == "zero free length (a = r0): exact" and res.max_rel_error < 1e-12
+    elif kind == "tension" and method is None:
+        assert "a zero free length (a = r0) is outside the bounds; fitted instead" in res.notes
     assert res.phi_range == (lo, hi)
 
 
