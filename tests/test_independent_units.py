@@ -12,6 +12,12 @@ import pytest
 
 import synth
 
+
+def _query_id(query):
+    """A test id that names a query's options: dof=1,links=8,v=(0, 2)."""
+    return ",".join(f"{k}={v}" for k, v in query.items())
+
+
 QUERIES = [
     dict(dof=1, links=8, v=(0, 2)),
     dict(dof=2, links=7, fractionated=False),
@@ -28,7 +34,7 @@ QUERIES = [
 ]
 
 
-@pytest.mark.parametrize("query", QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+@pytest.mark.parametrize("query", QUERIES, ids=_query_id)
 @pytest.mark.parametrize("workers", [1, 2])
 def test_units_give_the_query_chains(query, workers):
     units = synth.plan_units(**query, workers=workers)
@@ -292,7 +298,7 @@ MODEL_QUERIES = [
 ]
 
 
-@pytest.mark.parametrize("query", MODEL_QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+@pytest.mark.parametrize("query", MODEL_QUERIES, ids=_query_id)
 def test_stage_b_model_and_direct_listing_agree(query, monkeypatch):
     """Stage B lists a small unit's weight vectors directly and leaves the sub-chain rule to the
     exact test; a large unit gets a CP-SAT model whose conditions *are* the rule for simple joints
@@ -337,7 +343,7 @@ STAGE_A_QUERIES = [dict(dof=1, links=8, v=(0, 4)), dict(dof=1, links=6, h=2, v=(
                    dict(dof=1, links=10, v=(0, 5)), dict(dof=1, links=8, h=3, v=(0, 3))]
 
 
-@pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+@pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=_query_id)
 def test_stage_a_conditions_in_the_model_or_on_its_solutions_agree(query, monkeypatch):
     """Stage A writes the sub-chain conditions of small codes into its CP-SAT model and checks those of
     large codes on the model's solutions (``_StringBounds.meet``, in blocks).  With every condition
@@ -430,7 +436,7 @@ BRUTE_STAGE_A_QUERIES = STAGE_A_QUERIES + [
     dict(dof=3, links=8, n1=(0, 3)), dict(dof=1, links=10, h=5, v=(0, 2)), dict(dof=1, links=12, h=6)]
 
 
-@pytest.mark.parametrize("query", BRUTE_STAGE_A_QUERIES, ids=lambda q: ",".join(f"{k}={v}" for k, v in q.items()))
+@pytest.mark.parametrize("query", BRUTE_STAGE_A_QUERIES, ids=_query_id)
 def test_stage_a_against_an_enumeration_of_labelled_multigraphs(query):
     """Stage A's branch graphs H, code by code, are the classes of an exhaustive enumeration of
     labelled multigraphs (codes of up to 7 branch vertices): CP-SAT's search and the lexicographic
