@@ -76,7 +76,7 @@ def _plans(all_codes, conv, drawn, cache: str | None):
     """Stage A of the drawn codes: {index: (units, CPU s)}, read from / written to ``cache``."""
     import pickle
 
-    from synth._type_synthesis import _stage_a
+    from synth.synthesis.type_synthesis import _stage_a
 
     stored = {}
     if cache and Path(cache).exists():
@@ -101,7 +101,7 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
     units' sizes are uneven, bias of order 1/k).  ``cache`` keeps stage A's results in a file so
     that another seed does not redo it (its CPU time is kept with it).
     """
-    from synth._type_synthesis import _codes_of, _count_unit
+    from synth.synthesis.type_synthesis import _codes_of, _count_unit
 
     rng = random.Random(seed)
     start = time.perf_counter()

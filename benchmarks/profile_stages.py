@@ -58,8 +58,8 @@ def _timed(name, fn, stage: str | None = None):
 
 def instrument() -> None:
     """Wrap the engine's stage functions with timers (this process only)."""
-    from synth import _cpsat, _realise, _type_synthesis as ts
-    from synth.chain import Chain
+    from synth.synthesis import _cpsat, _realise, type_synthesis as ts
+    from synth.structure.chain import Chain
 
     ts.number_synthesis = _timed("number synthesis", ts.number_synthesis, "number synthesis")
     ts.contracted_graphs = _timed("stage A", ts.contracted_graphs, "stage A")
@@ -87,7 +87,7 @@ def instrument() -> None:
 def profile(dof: int, links: int, v: str, count: bool = False) -> dict:
     """Stage times, per-unit records and candidates by v of one inline query (its listing, or
     with ``count`` its ``--count``, which builds chains only where it must)."""
-    from synth import _type_synthesis as ts
+    from synth.synthesis import type_synthesis as ts
 
     T.clear()
     N.clear()

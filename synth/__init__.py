@@ -18,16 +18,16 @@ from .errors import *  # noqa: F401,F403
 from .errors import __all__ as _errors_all
 
 _WHERE = {
-    "Code": ".code", "Chain": ".chain", "Mechanism": ".chain",
-    "Analysis": ".analysis", "analyze": ".analysis", "mobility": ".analysis",
-    "SubchainReport": ".mobility", "check_subchains": ".mobility", "subchain_mobility": ".mobility",
-    "number_synthesis": "._number_synthesis",
-    "Conventions": "._type_synthesis", "Unit": "._type_synthesis", "type_synthesis": "._type_synthesis",
-    "count_chains": "._type_synthesis", "count_mechanisms": "._type_synthesis", "mechanisms": "._type_synthesis", "mechanisms_of": "._type_synthesis",
-    "prismatic_variants": ".prismatic", "wedge_mobility": ".prismatic", "generic_mobility": ".prismatic",
-    "idle_joints": ".prismatic", "lever_analogue": ".planetary", "planetary_table": ".planetary",
-    "chain_repairs": ".repair", "code_repairs": ".repair",
-    "plan_codes": "._type_synthesis", "plan_units": "._type_synthesis", "plan_many": "._type_synthesis", "run_unit": "._type_synthesis",
+    "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
+    "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
+    "SubchainReport": ".structure.subchains", "check_subchains": ".structure.subchains", "subchain_mobility": ".structure.subchains",
+    "number_synthesis": ".synthesis.number_synthesis",
+    "Conventions": ".synthesis.type_synthesis", "Unit": ".synthesis.type_synthesis", "type_synthesis": ".synthesis.type_synthesis",
+    "count_chains": ".synthesis.type_synthesis", "count_mechanisms": ".synthesis.type_synthesis", "mechanisms": ".synthesis.type_synthesis", "mechanisms_of": ".synthesis.type_synthesis",
+    "prismatic_variants": ".synthesis.variants", "wedge_mobility": ".synthesis.variants", "generic_mobility": ".synthesis.variants",
+    "idle_joints": ".synthesis.variants", "lever_analogue": ".gears.planetary", "planetary_table": ".gears.planetary",
+    "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
+    "plan_codes": ".synthesis.type_synthesis", "plan_units": ".synthesis.type_synthesis", "plan_many": ".synthesis.type_synthesis", "run_unit": ".synthesis.type_synthesis",
 }
 
 __all__ = [*_WHERE, *_errors_all]

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .chain import Chain, Mechanism
+from .structure.chain import Chain, Mechanism
 from .errors import InvalidOption, SynthesisError
 
 __all__ = ["Layout", "layout", "expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError"]
@@ -485,7 +485,7 @@ def expand(chains: Sequence[Chain], *, mechanisms: bool = False, input_link: boo
     """The items of a sheet: the chains themselves, or every mechanism of each."""
     if not mechanisms:
         return list(chains)
-    from ._type_synthesis import mechanisms_of
+    from .synthesis.type_synthesis import mechanisms_of
 
     return [m for c in chains for m in mechanisms_of(c, input_link=input_link)]
 

@@ -5,13 +5,13 @@ import importlib
 
 import pytest
 
-MODULES = ["synth.code", "synth.chain", "synth.mobility", "synth.analysis", "synth.chain_analysis",
-           "synth._number_synthesis", "synth._type_synthesis", "synth._realise", "synth._nauty", "synth._cpsat", "synth._executor", "synth._scheduler", "synth.checkpoint", "synth",
+MODULES = ["synth.structure.code", "synth.structure.chain", "synth.structure.subchains", "synth.analysis.codes", "synth.analysis.chains",
+           "synth.synthesis.number_synthesis", "synth.synthesis.type_synthesis", "synth.synthesis._realise", "synth.structure._nauty", "synth.synthesis._cpsat", "synth.execution.executor", "synth.execution.scheduler", "synth.execution.checkpoint", "synth",
            "mechsynth", "mechsynth._argtypes", "mechsynth._output", "mechsynth.scene", "mechsynth.cli",
            "mechsynth.scene.registry", "mechsynth.scene.results", "mechsynth.scene.compare", "mechsynth.scene.types",
            "mechsynth.scene.structure", "mechsynth.scene.balancing", "mechsynth.scene.runner", "synth.schema",
            "mechsynth.commands.codes", "mechsynth.commands.chains", "mechsynth.commands.scene",
-           "mechsynth.commands.balance", "synth.prismatic", "synth.planetary", "synth.repair",
+           "mechsynth.commands.balance", "synth.synthesis.variants", "synth.gears.planetary", "synth.analysis.repair",
            "mechsynth.commands.planetary"]
 
 

@@ -7,7 +7,7 @@ import pytest
 
 import synth
 from synth import draw
-from synth.chain import Chain, Mechanism
+from synth.structure.chain import Chain, Mechanism
 from mechsynth.cli import main
 
 
@@ -91,7 +91,7 @@ def _grid(tmp_path):
 
 def test_chains_and_mechanisms_show_themselves_in_jupyter():
     """_repr_svg_: an SVG with one circle per joint and a hatched frame for a mechanism."""
-    from synth.chain import Chain, Mechanism
+    from synth.structure.chain import Chain, Mechanism
 
     watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
     text = watt._repr_svg_()
@@ -239,7 +239,7 @@ def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
 def test_draw_prismatic_variants(tmp_path, capsys):
     """Sliders drawn as blocks, cylinders as barrels: one drawing per R/P variant, as many as
     ``chains --chain … --prismatic`` lists; the caption carries the P count."""
-    from synth.prismatic import variants_of
+    from synth.synthesis.variants import variants_of
 
     watt = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
     variants = list(variants_of([Chain.parse(watt)], (1, 2)))

@@ -17,7 +17,7 @@ import balance
 import synth
 from balance.potential import terms_potential
 from synth import Chain, Code
-from synth.chain_analysis import analyze_chain
+from synth.analysis.chains import analyze_chain
 
 # derandomised, no deadline: the profile in conftest.py (HYPOTHESIS_PROFILE=explore randomises)
 SETTINGS = settings(max_examples=40)

@@ -43,33 +43,33 @@ _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-9
           "and not ctrl_c and not twelve")
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
-    "mobility": ("synth/mobility.py", ["tests/test_independent_subchains.py",
-                                       "tests/test_doctests.py::test_docstring_examples[synth.mobility]"]),
-    "chain": ("synth/chain.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_chains.py",
-                                 "tests/test_doctests.py::test_docstring_examples[synth.chain]"]),
-    "type_synthesis": ("synth/_type_synthesis.py", ["tests/test_independent_mechanisms.py", "tests/test_independent_units.py",
-                                                    "tests/test_engine_vs_bruteforce.py", "tests/test_type_synthesis.py",
+    "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
+                                       "tests/test_doctests.py::test_docstring_examples[synth.structure.subchains]"]),
+    "chain": ("synth/structure/chain.py", ["tests/synthesis/test_mechanisms_vs_oracle.py", "tests/structure/test_chain_vs_oracle.py",
+                                 "tests/test_doctests.py::test_docstring_examples[synth.structure.chain]"]),
+    "type_synthesis": ("synth/synthesis/type_synthesis.py", ["tests/synthesis/test_mechanisms_vs_oracle.py", "tests/synthesis/test_units.py",
+                                                    "tests/synthesis/test_chains_vs_oracle.py", "tests/synthesis/test_type_synthesis.py",
                                                     # counts with checkpoints and progress; the query refusals
                                                     # (not the Dask cluster tests: a mutant there waits for
                                                     # mutmut's timeout with both cores idle)
-                                                    "tests/test_large_queries.py", "tests/test_cli_contract.py",
-                                                    "tests/test_query_refusals.py",
-                                                    "tests/test_doctests.py::test_docstring_examples[synth._type_synthesis]",
+                                                    "tests/execution/test_large_queries.py", "tests/cli/test_contract.py",
+                                                    "tests/cli/test_query_refusals.py",
+                                                    "tests/test_doctests.py::test_docstring_examples[synth.synthesis.type_synthesis]",
                                                     "-k", _HEAVY + " and not dask"]),
-    "realise": ("synth/_realise.py", ["tests/test_engine_vs_bruteforce.py", "tests/test_independent_chains.py",
-                                      "tests/test_type_synthesis.py", "tests/test_independent_subchains.py",
-                                      "tests/test_independent_units.py",
-                                      "tests/test_doctests.py::test_docstring_examples[synth._realise]",
+    "realise": ("synth/synthesis/_realise.py", ["tests/synthesis/test_chains_vs_oracle.py", "tests/structure/test_chain_vs_oracle.py",
+                                      "tests/synthesis/test_type_synthesis.py", "tests/structure/test_subchains_vs_oracle.py",
+                                      "tests/synthesis/test_units.py",
+                                      "tests/test_doctests.py::test_docstring_examples[synth.synthesis._realise]",
                                       "-k", _HEAVY]),
-    "number_synthesis": ("synth/_number_synthesis.py", ["tests/test_independent_number_synthesis.py",
-                                                        "tests/test_number_synthesis.py",
+    "number_synthesis": ("synth/synthesis/number_synthesis.py", ["tests/synthesis/test_number_synthesis_vs_oracle.py",
+                                                        "tests/synthesis/test_number_synthesis.py",
                                                         "-k", "not test_agrees_with_brute_force["]),
-    "springs": ("balance/springs.py", ["tests/balance/test_springs.py", "tests/test_independent_fit_metrics.py"]),
-    "fit": ("balance/fit.py", ["tests/test_independent_fit_metrics.py", "tests/balance/test_fit.py",
+    "springs": ("balance/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
+    "fit": ("balance/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device
                                "-k", "not under_100_ms and not model_matches"]),
     "countermass": ("balance/countermass.py", ["tests/balance/test_countermass.py",
-                                               "tests/test_independent_countermass.py"]),
+                                               "tests/balance/test_countermass_vs_oracle.py"]),
 }
 
 COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]

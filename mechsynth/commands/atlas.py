@@ -92,8 +92,8 @@ def add_commands(sub) -> None:
 
 # --------------------------------------------------------------------- grid
 def _run_grid(args) -> int:
-    from synth.atlas import run_grid
-    from synth.grid import load_grid
+    from synth.atlas.store import run_grid
+    from synth.atlas.grid import load_grid
 
     grid = load_grid(args.grid)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
@@ -114,7 +114,7 @@ _MECH_COLUMNS = ["code", "links", "dof", "v", "frame", "input_link", "joints", "
 
 
 def _run_atlas(args) -> int:
-    from synth.atlas import export, summary
+    from synth.atlas.store import export, summary
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
@@ -150,7 +150,7 @@ def _run_atlas(args) -> int:
 
 def _write_site(args) -> int:
     """``--html DIR``: the whole atlas as a static web site."""
-    from synth.atlas_site import write_site
+    from synth.atlas.site import write_site
     from synth.errors import InvalidOption
 
     other = [name for name, given in (("--export", args.export), ("--where", args.where), ("--count", args.count),
@@ -173,10 +173,10 @@ def _write_site(args) -> int:
 
 def _export_variants(args, what: str) -> int:
     """``--prismatic``: the R/P variants of the selected chains (mechanisms: of each variant)."""
-    from synth._number_synthesis import parse_range
-    from synth.atlas import export
-    from synth.chain import Chain
-    from synth.prismatic import variant_rows
+    from synth.synthesis.number_synthesis import parse_range
+    from synth.atlas.store import export
+    from synth.structure.chain import Chain
+    from synth.synthesis.variants import variant_rows
 
     from .chains import write_variants
 
@@ -214,9 +214,9 @@ def _variants(args, chains: list) -> list:
     """The chains themselves, or with ``--prismatic A..B`` every R/P variant of each."""
     if args.prismatic is None:
         return chains
-    from synth._number_synthesis import parse_range
+    from synth.synthesis.number_synthesis import parse_range
     from synth.errors import InvalidOption
-    from synth.prismatic import variants_of
+    from synth.synthesis.variants import variants_of
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
     chains = [c for c in chains if c.kinds is None]  # an atlas may hold variants already
@@ -231,7 +231,7 @@ def _variants(args, chains: list) -> list:
 
 def _run_draw(args) -> int:
     from synth import draw
-    from synth.chain import Chain, Mechanism
+    from synth.structure.chain import Chain, Mechanism
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
@@ -242,7 +242,7 @@ def _run_draw(args) -> int:
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
     if args.h is not None:
-        from synth._params import check_motion_space
+        from synth.structure._params import check_motion_space
 
         if args.db:
             raise InvalidOption("--h goes with --code or --chain (an atlas's chains carry their own h)")
@@ -259,7 +259,7 @@ def _run_draw(args) -> int:
     if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
         raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
     if args.chain and args.repairs:
-        from synth.repair import chain_repairs
+        from synth.analysis.repair import chain_repairs
 
         chain = Chain.parse(args.chain)
         repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
@@ -280,7 +280,7 @@ def _run_draw(args) -> int:
         title = args.title
     elif args.code:
         import synth
-        from synth.code import Code
+        from synth.structure.code import Code
 
         code = Code.parse(args.code)
         dof = code.dof(h) if args.dof is None else args.dof
@@ -291,7 +291,7 @@ def _run_draw(args) -> int:
         items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
         title = args.title or f"{code} (W = {dof}{'' if h == 3 else f', h = {h}'}): {len(chains)} chains"
     else:
-        from synth.atlas import export
+        from synth.atlas.store import export
 
         chains = [Chain.from_dict(row) for row in export(args.db, "chains", where=args.where)]
         if not chains:

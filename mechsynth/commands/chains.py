@@ -73,10 +73,10 @@ def add_commands(sub) -> None:
 
 
 def _selection(args) -> tuple[int, dict]:
-    from synth.code import Code
+    from synth.structure.code import Code
     from synth.errors import InvalidOption
 
-    from synth._params import check_motion_space
+    from synth.structure._params import check_motion_space
 
     check_motion_space(args.h, lowest=2)
     if args.dof is None:
@@ -113,7 +113,7 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked."""
     import os
 
-    from synth._number_synthesis import parse_range
+    from synth.synthesis.number_synthesis import parse_range
     from synth.errors import InvalidOption
 
     if args.code is not None or args.links is None or (args.force and args.count):
@@ -122,7 +122,7 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     v = parse_range(args.v or 0, "v")
     if loops < (_SIZED_LOOPS_MULTIPLE if v != (0, 0) else _SIZED_LOOPS):
         return
-    from synth.estimate import describe_seconds, estimate, magnitude
+    from synth.execution.estimate import describe_seconds, estimate, magnitude
 
     query = {k: val for k, val in kwargs.items() if k not in ("workers", "progress")}
     found = estimate(dict(query, dof=dof, links=args.links))
@@ -149,8 +149,8 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
 
 def _prismatic_range(args, dof: int) -> tuple[int, int]:
     """The A..B of --prismatic, refused when it asks for more P pairs than the chains have simple joints."""
-    from synth._number_synthesis import parse_range
-    from synth.code import Code
+    from synth.synthesis.number_synthesis import parse_range
+    from synth.structure.code import Code
     from synth.errors import InvalidOption
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
@@ -169,8 +169,8 @@ def _prismatic_range(args, dof: int) -> tuple[int, int]:
 
 def _run_prismatic(args, dof: int, kwargs: dict) -> int:
     """``--prismatic``: the R/P variants of every chain (or their mechanisms), counted or listed."""
-    from synth._type_synthesis import type_synthesis
-    from synth.prismatic import variant_rows
+    from synth.synthesis.type_synthesis import type_synthesis
+    from synth.synthesis.variants import variant_rows
 
     rows = variant_rows(type_synthesis(dof, args.links, **kwargs), _prismatic_range(args, dof),
                         idle=args.idle_joints, mechanisms=args.what == "mechanisms",
@@ -210,10 +210,10 @@ def _prismatic_cells(row: dict, fmt: str) -> dict:
 
 def _run_one_chain(args) -> int:
     """``--chain C --prismatic A..B``: the variants of one chain (Fig. 6: a drive's cylinders)."""
-    from synth._number_synthesis import parse_range
-    from synth.chain import Chain
+    from synth.synthesis.number_synthesis import parse_range
+    from synth.structure.chain import Chain
     from synth.errors import InvalidOption
-    from synth.prismatic import prismatic_variants, variant_rows
+    from synth.synthesis.variants import prismatic_variants, variant_rows
 
     if args.prismatic is None:
         raise InvalidOption("--chain goes with --prismatic (it lists the variants of that chain)")
@@ -230,7 +230,7 @@ def _run_one_chain(args) -> int:
 
 
 def _run(args) -> int:
-    from synth._type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
+    from synth.synthesis.type_synthesis import count_chains, count_mechanisms, mechanisms, type_synthesis
 
     _check_options(args)
     if args.chain is not None:

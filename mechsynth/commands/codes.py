@@ -61,7 +61,7 @@ def _add_codes(sub):
 
 
 def _run_codes(args) -> int:
-    from synth._number_synthesis import number_synthesis
+    from synth.synthesis.number_synthesis import number_synthesis
 
     codes = number_synthesis(
         args.dof, loops=args.loops, links=args.links,
@@ -110,23 +110,23 @@ def _looks_like_chain(text: str) -> bool:
 
 
 def _run_analyze(args) -> int:
-    from synth.analysis import analyze
+    from synth.analysis.codes import analyze
 
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     if _looks_like_chain(subject):
-        from synth.chain_analysis import analyze_chain
+        from synth.analysis.chains import analyze_chain
 
         _refuse_for_chain(args)
-        from synth._params import check_motion_space
+        from synth.structure._params import check_motion_space
 
         h = check_motion_space(args.h, lowest=2)
         if args.repairs and h != 3:
             raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
         result = analyze_chain(subject, dof=args.dof, h=h).to_dict()
         if args.repairs:
-            from synth.chain import Chain
-            from synth.repair import chain_repairs
+            from synth.structure.chain import Chain
+            from synth.analysis.repair import chain_repairs
 
             result["repairs"] = chain_repairs(Chain.parse(subject), dof=args.dof, limit=args.repairs)
     elif "=" in subject and "/" not in subject:
@@ -140,8 +140,8 @@ def _run_analyze(args) -> int:
             raise InvalidOption("--v goes with explicit counts: a code carries its own v")
         result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
         if args.repairs:
-            from synth.code import Code
-            from synth.repair import code_repairs
+            from synth.structure.code import Code
+            from synth.analysis.repair import code_repairs
 
             if args.h != 3 or args.f or classes:
                 raise InvalidOption("--repairs rebuilds planar codes: drop --h, --f and --loop-classes")

@@ -29,9 +29,9 @@ def add_commands(sub) -> None:
 
 
 def _run(args) -> int:
-    from synth._number_synthesis import parse_range
+    from synth.synthesis.number_synthesis import parse_range
     from synth.errors import InvalidOption
-    from synth.planetary import planetary_table
+    from synth.gears.planetary import planetary_table
 
     if args.satellites.lstrip().startswith("-"):
         raise InvalidOption(f"--satellites must be a whole number ≥ 1 or a range A..B, not {args.satellites!r}")

@@ -40,9 +40,9 @@ add_table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
 
 
 def _prismatic(run: Run) -> dict:
-    from synth._number_synthesis import parse_range
-    from synth.chain import Chain
-    from synth.prismatic import variant_summary, variants_of
+    from synth.synthesis.number_synthesis import parse_range
+    from synth.structure.chain import Chain
+    from synth.synthesis.variants import variant_summary, variants_of
 
     t = run.scene.tables["prismatic"]
     lo, hi = parse_range(t.pairs, "pairs")
@@ -57,7 +57,7 @@ def _prismatic(run: Run) -> dict:
 
 
 def _planetary(run: Run) -> dict:
-    from synth.planetary import planetary_row
+    from synth.gears.planetary import planetary_row
 
     t = run.scene.tables["planetary"]
     row = planetary_row(t.satellites, t.sun)

@@ -35,7 +35,7 @@ ANALYSIS = ("analysis",)
 
 # --------------------------------------------------------------------------- value types
 def _standard_code(text: str) -> str:
-    from synth.code import Code
+    from synth.structure.code import Code
     from synth.errors import MalformedCode
 
     try:
@@ -46,7 +46,7 @@ def _standard_code(text: str) -> str:
 
 
 def _canonical(texts) -> list[str]:
-    from synth.code import Code
+    from synth.structure.code import Code
 
     return [str(Code.parse(t)) for t in texts]
 
@@ -222,7 +222,7 @@ def _codes_table(expected: dict, actual: dict, rel_tol: float) -> tuple[bool, st
 
 # --------------------------------------------------------------------------- computations
 def _codes(run: Run) -> dict:
-    from synth._number_synthesis import number_synthesis  # CP-SAT counting model only
+    from synth.synthesis.number_synthesis import number_synthesis  # CP-SAT counting model only
 
     s = run.scene.tables["structure"]
     codes = number_synthesis(
@@ -240,7 +240,7 @@ def _chain_list(run: Run) -> list:
     """The chains of the structure, found once per run (count, chains, mechanisms and drawing share them)."""
 
     def make() -> list:
-        from synth._type_synthesis import type_synthesis  # graph models: only for chain queries
+        from synth.synthesis.type_synthesis import type_synthesis  # graph models: only for chain queries
 
         s = run.scene.tables["structure"]
         links = int(s.links) if s.links is not None else (
@@ -256,7 +256,7 @@ def _chain_list(run: Run) -> list:
 
 def _mechanism_list(run: Run) -> list:
     def make() -> list:
-        from synth._type_synthesis import mechanisms_of
+        from synth.synthesis.type_synthesis import mechanisms_of
 
         input_link = run.scene.tables["structure"].input_link
         return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=input_link)]
@@ -292,10 +292,10 @@ def _mechanisms(run: Run) -> dict:
 def _analysis(run: Run) -> dict:
     s = run.scene.tables["structure"]
     if s.chain is not None:
-        from synth.chain_analysis import analyze_chain
+        from synth.analysis.chains import analyze_chain
 
         return analyze_chain(s.chain, dof=s.dof, h=s.h).to_dict()
-    from synth.analysis import analyze  # pure counting: no solver
+    from synth.analysis.codes import analyze  # pure counting: no solver
 
     common = dict(dof=s.dof, h=s.h, f=s.f, loop_classes=s.loop_classes)
     if s.code is not None:

@@ -1,0 +1,1 @@
+"""Structural analysis of codes and chains, and the directed repair of defective ones."""

@@ -1,0 +1,288 @@
+"""An atlas as a static web site: an index of codes with filters, a page per code with every chain drawn.
+
+The site needs no server (open ``index.html`` from disk or put the folder on any web host):
+``index.html`` lists the codes by W, h, links, v and code with their counts and filters them in the
+browser (W, h, links, v, planar only, a link with I joints); ``codes/<code>-<page>.html`` shows
+``page_size`` chains a page, each drawn (SVG) with its code, certificate, planarity,
+fractionation, symmetry and its mechanisms (fixed links up to symmetry) on request; a chain's
+stable address is ``chain.html#<id>`` with ``id`` the first 12 hex digits of the SHA-1 of its
+certificate, which the pages and the lookup files (``lookup/<2 hex>.js``) resolve.  Chains stream
+from SQLite in code order, so memory stays bounded by one page and the lookup table.
+
+Example
+-------
+>>> import os, tempfile
+>>> from synth.atlas.store import run_grid
+>>> from synth.atlas.grid import parse_grid
+>>> folder = tempfile.mkdtemp()
+>>> db = os.path.join(folder, "a.sqlite")
+>>> _ = run_grid(parse_grid('dof = 1\\nlinks = "4..8"'), db, workers=1)
+>>> write_site(db, os.path.join(folder, "site")).chains
+19
+"""
+
+from __future__ import annotations
+
+import hashlib
+import html
+import json
+import os
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from .store import open_atlas
+from ..structure.chain import Chain
+from ..structure.code import Code
+from ..draw import svg_inline
+from ..errors import InvalidOption
+
+__all__ = ["chain_id", "write_site", "SiteResult"]
+
+_ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.certificate"
+_STYLE = """
+body{font:14px/1.4 system-ui,sans-serif;margin:1.5em;color:#1b2733}
+a{color:#1f3a5f}h1{font-size:1.4em}table{border-collapse:collapse}
+td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #e3e8ee}th{background:#f3f6f9}
+td.c,th.c{text-align:left}.filters label{margin-right:1em}.grid{display:flex;flex-wrap:wrap;gap:10px}
+figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180px;background:#fff}
+figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
+code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
+"""
+
+
+def chain_id(certificate: str) -> str:
+    """A chain's stable address in the site: the first 12 hex digits of the SHA-1 of its certificate.
+
+    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
+    12
+    """
+    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
+
+
+@dataclass
+class SiteResult:
+    """What :func:`write_site` wrote: codes, pages, chains and how many of them are drawn."""
+
+    folder: str
+    codes: int
+    pages: int
+    chains: int
+    drawn: int
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+def _slug(group: tuple) -> str:
+    dof, h, code, prismatic = group
+    text = f"W{dof}-h{h}-{code}" + (f"-P{prismatic}" if prismatic else "")
+    return re.sub(r"[^A-Za-z0-9.=-]+", "_", text)
+
+
+def _page(title: str, body: str, depth: int = 0) -> str:
+    up = "../" * depth
+    return (f'<!doctype html><html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
+            f'<link rel="stylesheet" href="{up}style.css"></head><body>{body}</body></html>')
+
+
+def _card(job: tuple) -> tuple[str, bool]:
+    """One chain's figure (HTML) and whether it is planar; ``job`` is (index, chain as JSON text,
+    stored mechanisms, fractionated, draw?) so that worker processes can build it."""
+    index, data, mechanisms, fractionated, draw = job
+    chain = Chain.from_dict(json.loads(data))
+    cid = chain_id(chain.certificate)
+    planar = chain.is_planar()
+    picture = svg_inline(chain) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
+    frames = sorted({f for f, i in mechanisms if i < 0})
+    inputs = sorted((f, i) for f, i in mechanisms if i >= 0)
+    order = chain.automorphisms()[1]
+    if not frames:  # the atlas stores no mechanisms: the frame choices are the link orbits
+        frames = [orbit[0] for orbit in chain.link_orbits]
+    mech = f"{len(frames)} with a fixed link (up to symmetry): link " + ", ".join(map(str, frames))
+    if inputs:
+        mech += "; with an input link: " + ", ".join(f"{f}→{i}" for f, i in inputs)
+    card = (f'<figure id="{cid}">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
+            f'{"planar" if planar else "non-planar"} · |Aut| = {order:g}<br>'
+            f'{"fractionated" if fractionated else "not fractionated"}</figcaption><details>'
+            f'<summary>chain, certificate, mechanisms</summary>'
+            f'joints: <code>{html.escape(chain.compact())}</code><br>certificate: <code>{html.escape(chain.certificate)}'
+            f'</code><br>mechanisms: {mech}<br><code>mechsynth draw --chain "{html.escape(chain.compact())}" '
+            f'--mechanisms --out m.svg</code></details></figure>')
+    return card, planar
+
+
+def _degrees(code: str) -> list[int]:
+    """Link degrees present in a code (all chains of a code share its link assortment)."""
+    parsed = Code.parse(code)
+    return ([1] if parsed.n1 else []) + [i + 2 for i, n in enumerate(parsed.assortment) if n]
+
+
+def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_limit: int = 20000,
+               force: bool = False, progress: bool = False, workers: int | None = None) -> SiteResult:
+    """Write the atlas ``db`` as a static site into ``folder`` (see the module docstring).
+
+    ``draw_limit`` bounds the drawings (a layout takes about 50 ms at 12 links): chains beyond
+    it are listed with their data but not drawn; ``workers`` processes build a page's figures in
+    parallel (default: every core for more than 200 chains, else one; from Python, set
+    ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
+    take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
+    """
+    if page_size < 1 or draw_limit < 0 or (workers is not None and workers < 1):
+        raise InvalidOption("the page size and workers must be at least 1 and the drawing limit at least 0")
+    out = Path(folder)
+    if out.exists() and not out.is_dir():
+        raise InvalidOption(f"cannot write the site into {out}: it is a file")
+    if out.exists() and any(out.iterdir()) and not force:
+        raise InvalidOption(f"{out} is not empty; give --force to write the site over it")
+    if not out.parent.exists():
+        raise InvalidOption(f"cannot write the site into {out}: the directory {out.parent} does not exist")
+    conn = open_atlas(db)
+    pool = None
+    try:
+        total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
+        if workers is None:
+            workers = (os.cpu_count() or 1) if total > 200 else 1
+        if workers > 1:
+            from concurrent.futures import ProcessPoolExecutor
+
+            pool = ProcessPoolExecutor(workers)
+        (out / "codes").mkdir(parents=True, exist_ok=True)
+        (out / "lookup").mkdir(exist_ok=True)
+        (out / "style.css").write_text(_STYLE)
+        groups: list[dict] = []
+        lookup: dict[str, dict[str, str]] = {}
+        pages = drawn = 0
+        bar = None
+        if progress:
+            from tqdm import tqdm
+
+            bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
+        rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain, "
+                            f"c.certificate FROM chains c {_ORDER}")
+        current, buffer = None, []
+
+        def flush(final: bool) -> None:
+            nonlocal pages, drawn
+            if not buffer:
+                return
+            info = groups[-1]
+            number = info["pages"] + 1
+            slug = _slug(current)
+            jobs = []
+            for index, data, mechs, frac, cid in buffer:
+                jobs.append((index, data, mechs, frac, drawn < draw_limit))
+                drawn += drawn < draw_limit
+                lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
+            cards = list(pool.map(_card, jobs, chunksize=4) if pool else map(_card, jobs))
+            info["planar"] += sum(planar for _, planar in cards)
+            name = f"{slug}-{number}.html"
+            nav = [f'<a href="../index.html">index</a>']
+            if number > 1:
+                nav.append(f'<a href="{slug}-{number - 1}.html">previous page</a>')
+            if not final:
+                nav.append(f'<a href="{slug}-{number + 1}.html">next page</a>')
+            first, last = buffer[0][0], buffer[-1][0]
+            title = (f"{info['code']} — W = {info['W']}, h = {info['h']}, n = {info['n']}, v = {info['v']}"
+                     + (f", {info['P']} prismatic pair{'s' if info['P'] > 1 else ''}" if info["P"] else ""))
+            body = (f"<h1>{html.escape(title)}</h1><p class='nav'>{' · '.join(nav)}</p>"
+                    f"<p>chains {first}–{last} of <span class='total' id='count'>{{TOTAL}}</span></p>"
+                    f"<div class='grid'>{''.join(card for card, _ in cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
+            (out / "codes" / name).write_text(_page(title, body, 1))
+            info["pages"] = number
+            pages += 1
+            buffer.clear()
+
+        for key, dof, h, links, v, code, prismatic, fractionated, data, certificate in rows:
+            group = (dof, h, code, prismatic)
+            if group != current:
+                flush(True)
+                current = group
+                groups.append({"code": code + (f" P{prismatic}" if prismatic else ""), "W": dof, "h": h, "n": links,
+                               "v": v, "P": prismatic, "chains": 0, "planar": 0, "pages": 0,
+                               "degrees": _degrees(code), "href": f"codes/{_slug(group)}-1.html"})
+            mechs = conn.execute("SELECT frame, input_link FROM mechanisms WHERE chain = ?", (key,)).fetchall()
+            info = groups[-1]
+            info["chains"] += 1
+            if len(buffer) == page_size:  # a full page with more to come: it links to the next one
+                flush(False)
+            buffer.append((info["chains"], data, mechs, bool(fractionated), chain_id(certificate)))
+            if bar is not None:
+                bar.update()
+        flush(True)
+        if bar is not None:
+            bar.close()
+    finally:
+        conn.close()
+        if pool is not None:
+            pool.shutdown()
+    _fill_totals(out, groups)
+    for prefix, entries in lookup.items():
+        (out / "lookup" / f"{prefix}.js").write_text(f"found({json.dumps(entries, separators=(',', ':'))});")
+    (out / "index.html").write_text(_index(groups, total, drawn))
+    (out / "chain.html").write_text(_LOOKUP_PAGE)
+    return SiteResult(str(out), len(groups), pages, total, min(drawn, total))
+
+
+def _fill_totals(out: Path, groups: list[dict]) -> None:
+    """Each code's pages say 'chains a–b of N': N is known once the code has streamed by."""
+    for info in groups:
+        stem = info["href"][len("codes/"):-len("-1.html")]
+        for number in range(1, info["pages"] + 1):
+            path = out / "codes" / f"{stem}-{number}.html"
+            path.write_text(path.read_text().replace("{TOTAL}", str(info["chains"]), 1))
+
+
+def _index(groups: list[dict], total: int, drawn: int) -> str:
+    options = {key: sorted({g[key] for g in groups}) for key in ("W", "h", "n", "v")}
+    selects = "".join(
+        f'<label>{key} <select id="f{key}"><option value="">all</option>'
+        + "".join(f'<option>{value}</option>' for value in values) + "</select></label>"
+        for key, values in options.items())
+    note = "" if drawn >= total else (f"<p>The first {drawn} chains (in code order) are drawn; the others are listed "
+                                      "with their data (raise --draw-limit to draw them).</p>")
+    body = (f"<h1>Atlas: {total} chains in {len(groups)} codes</h1>{note}"
+            f"<div class='filters'>{selects}<label><input type='checkbox' id='fplanar'> planar only</label>"
+            f"<label>a link with <input type='number' id='fdeg' min='1' max='99' style='width:4em'> joints</label>"
+            f"<label>chain id <input id='fid' size='14' placeholder='12 hex digits'></label></div>"
+            f"<p>shown: <span class='total' id='shown'>{total}</span> chains in <span id='codes'>{len(groups)}</span> "
+            f"codes</p><table><thead><tr><th class='c'>code</th><th>W</th><th>h</th><th>n</th><th>v</th>"
+            f"<th>chains</th><th>planar</th></tr></thead><tbody id='rows'></tbody></table>"
+            f"<script>const CODES={json.dumps(groups, separators=(',', ':'))};{_INDEX_JS}</script>")
+    return _page("mechsynth atlas", body)
+
+
+_INDEX_JS = """
+const $=id=>document.getElementById(id);
+function show(){
+  const f={W:$('fW').value,h:$('fh').value,n:$('fn').value,v:$('fv').value};
+  const planar=$('fplanar').checked, deg=parseInt($('fdeg').value);
+  let rows='',chains=0,codes=0;
+  for(const c of CODES){
+    if(Object.keys(f).some(k=>f[k]!==''&&String(c[k])!==f[k]))continue;
+    if(!isNaN(deg)&&!c.degrees.includes(deg))continue;
+    const n=planar?c.planar:c.chains; if(n===0)continue;
+    chains+=n;codes+=1;
+    rows+=`<tr><td class="c"><a href="${c.href}">${c.code}</a></td><td>${c.W}</td><td>${c.h}</td><td>${c.n}</td>`+
+          `<td>${c.v}</td><td>${c.chains}</td><td>${c.planar}</td></tr>`;
+  }
+  $('rows').innerHTML=rows;$('shown').textContent=chains;$('codes').textContent=codes;
+}
+for(const id of ['fW','fh','fn','fv','fplanar','fdeg'])$(id).addEventListener('input',show);
+$('fid').addEventListener('change',()=>{location.href='chain.html#'+$('fid').value.trim().toLowerCase();});
+show();
+"""
+
+_LOOKUP_PAGE = _page("chain lookup", """<p id="msg">Looking up the chain…</p>
+<script>
+const id=location.hash.slice(1).toLowerCase();
+function found(table){
+  if(table[id]){location.replace(table[id]+'#'+id);}
+  else{document.getElementById('msg').textContent='No chain '+id+' in this atlas.';}
+}
+if(!/^[0-9a-f]{12}$/.test(id)){document.getElementById('msg').textContent='Give a chain id: chain.html#<12 hex digits>.';}
+else{const s=document.createElement('script');s.src='lookup/'+id.slice(0,2)+'.js';
+  s.onerror=()=>{document.getElementById('msg').textContent='No chain '+id+' in this atlas.';};
+  document.head.appendChild(s);}
+</script><p><a href="index.html">index</a></p>""")

@@ -1,0 +1,1 @@
+"""Running work units: inline, a process pool or Dask; checkpoints and size estimates."""

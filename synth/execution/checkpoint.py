@@ -1,0 +1,155 @@
+"""Resumable counts: a count's finished codes and units, committed to SQLite as they finish.
+
+A checkpoint file belongs to one query (its *fingerprint*: what is counted, W, n, v, code,
+conventions, requirements, the plan format).  While a count runs, every finished unit's
+count is committed at least once a second and whenever a code is complete; a complete
+code replaces its units by one row.  A run killed at any instant (``kill -9``, power
+loss) leaves committed rows that are all exact, so the next run with the same file skips
+them and the total is identical to an uninterrupted run.
+
+Example
+-------
+>>> import os, tempfile
+>>> path = os.path.join(tempfile.mkdtemp(), "c.sqlite")
+>>> with Checkpoint(path, "plan-a", "chains W=1 n=8") as ck:
+...     ck.add_unit("440/0|ab", "440/0", 9)
+...     ck.finish_code("440/0", 9, units=1)
+>>> Checkpoint(path, "plan-a", "chains W=1 n=8").codes
+{'440/0': 9}
+>>> Checkpoint(path, "plan-b", "chains W=1 n=10")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+synth.execution.checkpoint.CheckpointMismatch: the checkpoint ... belongs to another query (chains W=1 n=8), not to chains W=1 n=10; ...
+"""
+
+from __future__ import annotations
+
+import sqlite3
+import time
+from pathlib import Path
+
+from ..errors import SynthesisError
+
+__all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "PLAN_FORMAT"]
+
+# Bump when unit keys or the split of a query into units change: an old checkpoint is refused.
+PLAN_FORMAT = 1
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS codes (code TEXT PRIMARY KEY, count INTEGER NOT NULL, units INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS units (unit TEXT PRIMARY KEY, code TEXT NOT NULL, count INTEGER NOT NULL);
+"""
+
+
+class CheckpointError(SynthesisError):
+    """The checkpoint file cannot be read or written."""
+
+
+class CheckpointMismatch(CheckpointError):
+    """The checkpoint file belongs to another query."""
+
+
+class Checkpoint:
+    """The finished codes (``codes``: code → count) and units (``units``: unit key → (code, count)) of one query.
+
+    Parameters
+    ----------
+    path : path
+        SQLite file, created when missing.
+    identity : str
+        What the query computes (a digest of its plan); a file written for another identity is refused.
+    description : str
+        The query in words, quoted when the file is refused.
+    every : float
+        Seconds between commits of finished units (a finished code commits at once).
+    log : callable, optional
+        Called with one line after every commit (the CLI prints it when stderr is not a terminal).
+    """
+
+    def __init__(self, path, identity: str, description: str, *, every: float = 1.0, log=None):
+        self.path = Path(path)
+        self._every = every
+        self._log = log
+        self._pending: list[tuple] = []
+        self._last = time.monotonic()
+        self.committed_units = self.committed_codes = 0
+        wanted = f"{PLAN_FORMAT}:{identity}"
+        if self.path.is_dir():
+            raise CheckpointError(f"the checkpoint {self.path} is a directory, not a file")
+        directory = self.path.parent if str(self.path.parent) else Path(".")
+        if not directory.is_dir():
+            raise CheckpointError(f"cannot create the checkpoint {self.path}: the directory {directory} does not exist")
+        try:
+            self._conn = sqlite3.connect(self.path, timeout=30, isolation_level=None)
+            self._conn.execute("PRAGMA journal_mode = WAL")  # a commit survives kill -9 without an fsync each
+            self._conn.execute("PRAGMA synchronous = NORMAL")
+            self._conn.execute("BEGIN IMMEDIATE")
+            for statement in _SCHEMA.split(";"):
+                if statement.strip():
+                    self._conn.execute(statement)
+            row = self._conn.execute("SELECT value FROM meta WHERE key = 'identity'").fetchone()
+            if row is None:
+                self._conn.execute("INSERT INTO meta VALUES ('identity', ?), ('query', ?), ('created', ?)",
+                                   (wanted, description, time.strftime("%Y-%m-%dT%H:%M:%S")))
+            stored = self._conn.execute("SELECT value FROM meta WHERE key = 'query'").fetchone()
+            self._conn.execute("COMMIT")
+        except sqlite3.DatabaseError as exc:
+            raise CheckpointError(f"{self.path} is not a usable checkpoint ({exc})") from None
+        if row is not None and row[0] != wanted:
+            self._conn.close()
+            raise CheckpointMismatch(f"the checkpoint {self.path} belongs to another query ({stored[0]}), not to "
+                                     f"{description}; give a new --checkpoint file or repeat that query")
+        self.codes = dict(self._conn.execute("SELECT code, count FROM codes"))
+        self.units = {unit: (code, n) for unit, code, n in self._conn.execute("SELECT unit, code, count FROM units")}
+        self.resumed_units = len(self.units) + sum(n for (n,) in self._conn.execute("SELECT units FROM codes"))
+
+    def add_unit(self, unit: str, code: str, count: int) -> None:
+        """Record a finished unit (committed within ``every`` seconds)."""
+        self._pending.append(("unit", unit, code, count))
+        if time.monotonic() - self._last >= self._every:
+            self.commit()
+
+    def finish_code(self, code: str, count: int, *, units: int) -> None:
+        """Record a complete code (all its ``units``, ``count`` in total) and commit now."""
+        self._pending.append(("code", code, count, units))
+        self.commit()
+
+    def commit(self) -> None:
+        """Write everything recorded so far in one transaction."""
+        if not self._pending:
+            return
+        pending, self._pending = self._pending, []
+        try:
+            self._conn.execute("BEGIN IMMEDIATE")
+            for kind, *row in pending:
+                if kind == "unit":
+                    self._conn.execute("INSERT OR REPLACE INTO units VALUES (?, ?, ?)", row)
+                else:
+                    self._conn.execute("INSERT OR REPLACE INTO codes VALUES (?, ?, ?)", row)
+                    self._conn.execute("DELETE FROM units WHERE code = ?", (row[0],))
+            self._conn.execute("COMMIT")
+        except sqlite3.DatabaseError as exc:
+            raise CheckpointError(f"cannot write the checkpoint {self.path}: {exc}") from None
+        self.committed_units += sum(1 for kind, *_ in pending if kind == "unit")
+        self.committed_codes += sum(1 for kind, *_ in pending if kind == "code")
+        self._last = time.monotonic()
+        if self._log is not None:
+            codes = f"{self.committed_codes} code{'s' * (self.committed_codes != 1)}"
+            self._log(f"checkpoint {self.path}: {self.committed_units} units ({codes} complete) "
+                      f"committed in this run, {self.resumed_units} units done before")
+
+    def close(self) -> None:
+        self.commit()
+        self._conn.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if exc[0] is None or exc[0] is KeyboardInterrupt:
+            self.close()  # what finished before Ctrl-C is kept
+        else:
+            self._conn.close()
+        return False
+

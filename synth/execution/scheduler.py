@@ -1,0 +1,60 @@
+"""Connecting to a Dask scheduler (``--scheduler ADDRESS``): one sentence when it cannot be done.
+
+The address is checked before Dask is even imported, and a TCP scheduler must accept a
+connection within the timeout before a ``distributed.Client`` is built, so a wrong address
+fails fast and quietly (a half-built Client would otherwise spend ten seconds closing
+itself at exit and print "Exception ignored …").
+
+Example
+-------
+>>> connect("nonsense", 1.0)
+Traceback (most recent call last):
+...
+synth.execution.scheduler.SchedulerUnreachable: 'nonsense' is not a Dask scheduler address: write tcp://HOST:PORT (e.g. tcp://127.0.0.1:8786)
+"""
+
+from __future__ import annotations
+
+import re
+import socket
+
+from ..errors import SynthesisError
+
+__all__ = ["SchedulerUnreachable", "connect"]
+
+_ADDRESS = re.compile(r"^(?:(tcp|tls|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):(\d{1,5})/?$")
+
+
+class SchedulerUnreachable(SynthesisError):
+    """The Dask scheduler named by ``--scheduler`` did not answer."""
+
+
+def connect(address: str, timeout: float = 5.0):
+    """A ``distributed.Client`` for the scheduler at ``address``.
+
+    Raises
+    ------
+    SchedulerUnreachable
+        The address is malformed, nothing answers there within ``timeout`` seconds, or
+        the answer is not a Dask scheduler.
+    """
+    match = _ADDRESS.match(address.strip()) if isinstance(address, str) else None
+    if not match or not 0 < int(match.group(3)) < 65536:
+        raise SchedulerUnreachable(f"{address!r} is not a Dask scheduler address: write tcp://HOST:PORT "
+                                   "(e.g. tcp://127.0.0.1:8786)")
+    scheme, host, port = match.group(1) or "tcp", match.group(2).strip("[]"), int(match.group(3))
+    try:
+        socket.create_connection((host, port), timeout=timeout).close()
+    except OSError as exc:
+        reason = "no answer" if isinstance(exc, TimeoutError) else (exc.strerror or type(exc).__name__).lower()
+        raise SchedulerUnreachable(f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({reason})") from None
+    try:
+        from distributed import Client
+    except ImportError:  # pragma: no cover - dask is a dependency
+        raise SchedulerUnreachable("--scheduler needs the 'distributed' package (pip install dask[distributed])") from None
+    try:
+        return Client(f"{scheme}://{match.group(2)}:{port}", timeout=f"{timeout}s", set_as_default=False)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        detail = str(exc).splitlines()[0] if str(exc) else "no answer"
+        raise SchedulerUnreachable(f"{address} answered, but not as a Dask scheduler within {timeout:g} s "
+                                   f"({type(exc).__name__}: {detail})") from None

@@ -1,0 +1,1 @@
+"""Gear trains: lever analogues and planetary trains."""

@@ -1,0 +1,1 @@
+"""Core types of a structure and the exact sub-chain test: codes, chains, mechanisms."""

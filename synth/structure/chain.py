@@ -1,0 +1,422 @@
+"""Kinematic chains: links and joints, canonical certificates and symmetry from nauty.
+
+A chain has links ``0 … n−1`` and joints; each joint is the tuple of links it joins
+(multiplicity = its length: 2 for a simple joint, 3 for a double joint, …).  Its
+link–joint incidence graph (links and joints as the two vertex colours) is what
+nauty canonises, so two chains share a certificate exactly when they are the same
+chain up to renumbering of links and joints.
+
+Example
+-------
+>>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+>>> str(watt.code), watt.dof, watt.loops
+('42/0', 1, 2)
+>>> watt.certificate == watt.relabel([5, 4, 3, 2, 1, 0]).certificate
+True
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import pynauty
+
+from ._nauty import TrustedGraph
+from .code import Code
+from ..errors import MalformedChain
+
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS"]
+
+JOINT_KINDS = ("revolute", "prismatic")
+
+
+@dataclass(frozen=True)
+class Chain:
+    """Immutable link–joint structure.
+
+    Parameters
+    ----------
+    links : int
+        Number of links n, numbered 0 … n−1 (the frame is one of them).
+    joints : sequence of sequences of int
+        Each joint as the links it joins (at least two, all different).
+    kinds : sequence of str, optional
+        ``"revolute"`` or ``"prismatic"`` per joint; None means all revolute.
+    h : int
+        Motion space of its loops (2 … 6; 3 planar and spherical, 6 general spatial): the same
+        graph is a different design in another space, with W = h(n − 1) − (h − 1)·p.
+
+    Examples
+    --------
+    >>> c = Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)])
+    >>> c.joints, str(c.code)
+    (((0, 1), (0, 3), (1, 2), (2, 3)), '4/0')
+    """
+
+    links: int
+    joints: tuple[tuple[int, ...], ...]
+    kinds: tuple[str, ...] | None = None
+    h: int = 3
+
+    def __post_init__(self):
+        if isinstance(self.links, bool) or not isinstance(self.links, int) or self.links < 1:
+            raise MalformedChain(f"a chain needs a whole number of links ≥ 1, not {self.links!r}")
+        if isinstance(self.h, bool) or not isinstance(self.h, int) or not 2 <= self.h <= 6:
+            raise MalformedChain(f"the motion space h of a chain's loops is 2 … 6, not {self.h!r}")
+        try:
+            raw = [tuple(sorted(int(x) for x in j)) for j in self.joints]
+        except (TypeError, ValueError):
+            raise MalformedChain("each joint must be a list of link numbers") from None
+        kinds = None if self.kinds is None else tuple(self.kinds)
+        if kinds is not None:
+            if len(kinds) != len(raw):
+                raise MalformedChain(f"{len(kinds)} joint kinds given for {len(raw)} joints")
+            bad = [k for k in kinds if k not in JOINT_KINDS]
+            if bad:
+                raise MalformedChain(f"joint kind {bad[0]!r} is not one of {', '.join(JOINT_KINDS)}")
+            if all(k == "revolute" for k in kinds):
+                kinds = None
+        for j in raw:
+            if len(j) < 2:
+                raise MalformedChain(f"joint {list(j)} joins fewer than two links")
+            if len(set(j)) != len(j):
+                raise MalformedChain(f"joint {list(j)} names a link twice")
+            if j[0] < 0 or j[-1] >= self.links:
+                raise MalformedChain(f"joint {list(j)} names a link outside 0…{self.links - 1}")
+        order = sorted(range(len(raw)), key=lambda k: (raw[k], kinds[k] if kinds else ""))
+        object.__setattr__(self, "joints", tuple(raw[k] for k in order))
+        object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
+
+    @classmethod
+    def trusted(cls, links: int, joints, h: int = 3) -> "Chain":
+        """Build a chain the engine constructed itself (valid by construction): skips the checks.
+
+        >>> Chain.trusted(3, [(1, 0), (1, 2), (2, 0)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
+        True
+        """
+        self = object.__new__(cls)
+        object.__setattr__(self, "links", links)
+        object.__setattr__(self, "joints", tuple(sorted(tuple(sorted(j)) for j in joints)))
+        object.__setattr__(self, "kinds", None)
+        object.__setattr__(self, "h", h)
+        return self
+
+    # ---------------------------------------------------------------- numbers
+    @property
+    def degrees(self) -> tuple[int, ...]:
+        """Number of joints on each link."""
+        deg = [0] * self.links
+        for j in self.joints:
+            for x in j:
+                deg[x] += 1
+        return tuple(deg)
+
+    @property
+    def simple_joint_equivalents(self) -> int:
+        """p = Σ (m_j − 1)."""
+        return sum(len(j) - 1 for j in self.joints)
+
+    @property
+    def v(self) -> int:
+        """Multiple-joint count Σ (m_j − 2)."""
+        return sum(len(j) - 2 for j in self.joints)
+
+    @property
+    def loops(self) -> int:
+        """K = p − n + 1 (for a connected chain)."""
+        return self.simple_joint_equivalents - self.links + 1
+
+    @property
+    def dof(self) -> int:
+        """Mobility W = h(n − 1) − (h − 1)·p (planar: 3(n − 1) − 2p).
+
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").dof, Chain(6, Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").joints, h=5).dof
+        (3, 1)
+        """
+        return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
+
+    @property
+    def code(self) -> Code:
+        """Standard code with its joint composition."""
+        deg = self.degrees
+        top = max(deg, default=0)
+        n1 = deg.count(1)
+        assortment = tuple(deg.count(i) for i in range(2, top + 1))
+        mult = [len(j) for j in self.joints]
+        composition = tuple(mult.count(m) for m in range(3, max(mult, default=2) + 1))
+        return Code(assortment, self.v, composition, n1)
+
+    def is_connected(self) -> bool:
+        """Whether every link is reachable from link 0 through joints."""
+        seen, stack = {0}, [0]
+        by_link = self._joints_by_link
+        while stack:
+            x = stack.pop()
+            for j in by_link[x]:
+                for y in self.joints[j]:
+                    if y not in seen:
+                        seen.add(y)
+                        stack.append(y)
+        return len(seen) == self.links
+
+    @cached_property
+    def _joints_by_link(self) -> tuple[tuple[int, ...], ...]:
+        out = [[] for _ in range(self.links)]
+        for k, j in enumerate(self.joints):
+            for x in j:
+                out[x].append(k)
+        return tuple(tuple(x) for x in out)
+
+    # ------------------------------------------------------------ nauty views
+    def _nauty_graph(self, marked: Sequence[int] = ()) -> pynauty.Graph:
+        """Incidence graph for nauty: links 0…n−1, joints n…; colour cells marked links, links, joints by kind."""
+        n = self.links
+        adjacency = {n + k: list(j) for k, j in enumerate(self.joints)}
+        coloring = [{m} for m in marked] + [set(range(n)) - set(marked)]
+        if self.kinds is None:
+            coloring.append(set(range(n, n + len(self.joints))))
+        else:
+            coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in JOINT_KINDS]
+        return TrustedGraph(n + len(self.joints), adjacency, coloring)
+
+    @property
+    def certificate(self) -> str:
+        """Canonical certificate (hex): equal exactly for isomorphic chains.
+
+        The sizes (n, J, joint kinds) and the motion space (where h ≠ 3) are part of it, so
+        chains of different size or space never collide.
+        """
+        cert = self.__dict__.get("_certificate")
+        if cert is None:
+            sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
+            if self.kinds is not None:
+                sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
+            cert = sizes + pynauty.certificate(self._nauty_graph()).hex()
+            object.__setattr__(self, "_certificate", cert)
+        return cert
+
+    def automorphisms(self, marked: Sequence[int] = ()) -> tuple[list[list[int]], float, list[int]]:
+        """Generators (on links), group order and link orbits, fixing the ``marked`` links.
+
+        >>> Chain.parse("0-1 1-2 2-3 3-0").automorphisms()[1:]
+        (8.0, [0, 0, 0, 0])
+        """
+        gens, size1, size2, orbits, _ = pynauty.autgrp(self._nauty_graph(marked))
+        return [g[: self.links] for g in gens], size1 * 10.0**size2, list(orbits[: self.links])
+
+    @property
+    def link_orbits(self) -> list[list[int]]:
+        """Links grouped by the automorphism group (fixing any one of them gives the same mechanism)."""
+        orbits = self.automorphisms()[2]
+        groups: dict[int, list[int]] = {}
+        for link, o in enumerate(orbits):
+            groups.setdefault(o, []).append(link)
+        return sorted(groups.values())
+
+    def relabel(self, permutation: Sequence[int]) -> "Chain":
+        """The same chain with link ``i`` renamed ``permutation[i]``."""
+        if sorted(permutation) != list(range(self.links)):
+            raise MalformedChain("a relabelling must be a permutation of the links")
+        return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h)
+
+    def to_networkx(self):
+        """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``.
+
+        >>> g = Chain.parse("0-1 1-2 2-0").to_networkx(); g.number_of_nodes(), g.number_of_edges()
+        (6, 6)
+        """
+        import networkx as nx
+
+        g = nx.Graph()
+        for i in range(self.links):
+            g.add_node(("link", i), kind="link")
+        for k, j in enumerate(self.joints):
+            g.add_node(("joint", k), kind="joint", multiplicity=len(j),
+                       joint_kind=self.kinds[k] if self.kinds else "revolute")
+            g.add_edges_from((("joint", k), ("link", x)) for x in j)
+        return g
+
+    def link_graph(self):
+        """Graph of links, an edge where two links share a joint (a multiple joint gives a clique)."""
+        import networkx as nx
+
+        g = nx.Graph()
+        g.add_nodes_from(range(self.links))
+        for j in self.joints:
+            g.add_edges_from((a, b) for i, a in enumerate(j) for b in j[i + 1 :])
+        return g
+
+    def is_planar(self) -> bool:
+        """Whether the link–joint incidence graph is planar."""
+        import networkx as nx
+
+        return nx.check_planarity(self.to_networkx())[0]
+
+    def closed_part(self) -> "Chain":
+        """The chain without its open branches: links with a single joint are removed, again and
+        again (with joints left holding one link), until every link carries 2 joints or more.
+        Link numbers are kept; removed links are left without joints.  Empty for a serial or
+        tree-shaped arm.
+
+        >>> Chain.parse("0-1 1-2 2-0 2-3 3-4").closed_part().compact()
+        '0-1 0-2 1-2'
+        """
+        joints = [list(j) for j in self.joints]
+        while True:
+            degree = [0] * self.links
+            for j in joints:
+                for x in j:
+                    degree[x] += 1
+            if all(degree[x] >= 2 for j in joints for x in j):
+                break
+            joints = [[x for x in j if degree[x] >= 2] for j in joints]
+            joints = [j for j in joints if len(j) >= 2]
+        return Chain(self.links, tuple(map(tuple, joints)), h=self.h)
+
+    def is_fractionated(self) -> bool:
+        """Whether removing one link or one joint of the closed part disconnects it (a cut vertex
+        of its incidence graph).  Open branches (links with a single joint and the links that
+        carry them out to the closed part) do not count: an arm's gripper does not split its
+        mobility.
+
+        >>> Chain.parse("0-1 1-2 2-3 3-0 3-4").is_fractionated(), Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()
+        (False, True)
+        """
+        import networkx as nx
+
+        core = self.closed_part() if 1 in self.degrees else self
+        g = core.to_networkx()
+        g.remove_nodes_from([node for node in list(g) if g.degree(node) == 0])
+        return g.number_of_nodes() > 2 and not nx.is_biconnected(g)
+
+    # ------------------------------------------------------------------- I/O
+    def to_dict(self) -> dict:
+        """JSON-able object (the `jsonl` row of `mechsynth chains`)."""
+        d = {
+            "code": str(self.code),
+            "links": self.links,
+            "joints": [list(j) for j in self.joints],
+            "certificate": self.certificate,
+            "dof": self.dof,
+            "loops": self.loops,
+            "v": self.v,
+        }
+        if self.kinds is not None:  # the code says how many pairs are prismatic, e.g. '42/0 P2'
+            d["kinds"] = list(self.kinds)
+            d["code"] += f" P{self.kinds.count('prismatic')}"
+        if self.h != 3:
+            d["h"] = self.h
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "Chain":
+        if not isinstance(d, dict) or "joints" not in d:
+            raise MalformedChain("a chain object needs 'joints' (a list of lists of link numbers)")
+        joints = d["joints"]
+        if not isinstance(joints, list) or not all(isinstance(j, list) for j in joints):
+            raise MalformedChain("'joints' must be a list of lists of link numbers")
+        links = d.get("links")
+        if links is None:
+            links = 1 + max((x for j in joints for x in j if isinstance(x, int)), default=-1)
+        if any(not isinstance(x, int) or isinstance(x, bool) for j in joints for x in j):
+            raise MalformedChain("joints must list links by whole numbers")
+        h = d.get("h", 3)
+        if isinstance(h, bool) or not isinstance(h, int):
+            raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
+        return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict())
+
+    @classmethod
+    def from_json(cls, text: str) -> "Chain":
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise MalformedChain(f"chain JSON is not valid JSON: {exc.msg} at position {exc.pos}") from None
+        if isinstance(data, list):
+            data = {"joints": data}
+        return cls.from_dict(data)
+
+    @classmethod
+    def parse(cls, text: str) -> "Chain":
+        """Read JSON, or a compact joint list ``"0-1 1-2 2-3 3-0"`` (``"0-1-2"`` is a double joint).
+
+        >>> Chain.parse("0-1-2 2-3 3-0 0-4 4-5 5-1").v
+        1
+        """
+        s = text.strip()
+        if s.startswith("{") or s.startswith("["):
+            return cls.from_json(s)
+        joints = []
+        for token in s.replace(",", " ").split():
+            try:
+                joints.append(tuple(int(x) for x in token.split("-")))
+            except ValueError:
+                raise MalformedChain(
+                    f"cannot read joint {token!r}: write joints as link numbers joined by '-', e.g. '0-1 1-2-3'"
+                ) from None
+        if not joints:
+            raise MalformedChain("an empty joint list is not a chain")
+        return cls(1 + max(max(j) for j in joints), tuple(joints))
+
+    def compact(self) -> str:
+        """The compact joint-list notation read by :meth:`parse`."""
+        return " ".join("-".join(map(str, j)) for j in self.joints)
+
+    def _repr_svg_(self) -> str:
+        """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
+        from ..draw import svg
+
+        return svg(self)
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A chain with a fixed link (the frame) and optionally an input link jointed to it.
+
+    >>> m = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0, input_link=1)
+    >>> m.certificate == Mechanism(m.chain.relabel([1, 2, 3, 0]), frame=1, input_link=2).certificate
+    True
+    """
+
+    chain: Chain
+    frame: int
+    input_link: int | None = None
+
+    def __post_init__(self):
+        if not 0 <= self.frame < self.chain.links:
+            raise MalformedChain(f"fixed link {self.frame} is not a link of the chain")
+        if self.input_link is not None:
+            if self.input_link == self.frame or not any(
+                self.frame in j and self.input_link in j for j in self.chain.joints
+            ):
+                raise MalformedChain(f"input link {self.input_link} is not jointed to the fixed link {self.frame}")
+
+    @property
+    def marked(self) -> tuple[int, ...]:
+        return (self.frame,) if self.input_link is None else (self.frame, self.input_link)
+
+    @property
+    def certificate(self) -> str:
+        """Canonical certificate of the chain with the frame (and input) as their own colours."""
+        g = self.chain._nauty_graph(self.marked)
+        return f"m{len(self.marked)}" + self.chain.certificate[:4] + pynauty.certificate(g).hex()
+
+    def _repr_svg_(self) -> str:
+        """The drawing Jupyter shows: the fixed link hatched, the input link marked."""
+        from ..draw import svg
+
+        return svg(self)
+
+    def to_dict(self) -> dict:
+        d = self.chain.to_dict()
+        d["frame"] = self.frame
+        d["chain_certificate"] = d.pop("certificate")
+        d["certificate"] = self.certificate
+        if self.input_link is not None:
+            d["input_link"] = self.input_link
+        return d

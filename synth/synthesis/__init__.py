@@ -1,0 +1,1 @@
+"""Number synthesis (codes), type synthesis (stage A: branch multigraphs, stage B: binary links), mechanisms."""

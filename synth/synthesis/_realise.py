@@ -1,0 +1,725 @@
+"""Realisation of a code as chains: two CP-SAT models and nauty.
+
+Every chain contracts to a multigraph H on its *branch vertices* — links with 3+
+joints and joints with 3+ links — whose edges are the strings of binary links and
+simple joints between them; the weight of an edge is its number of binary links.
+H is a subdivision-equivalent of the incidence graph, so
+
+* chains are isomorphic exactly when their H's are isomorphic by a map that keeps
+  the weights;  hence
+* stage A enumerates the multigraphs H of a code once each (CP-SAT with the
+  degree equations, weight lower bounds, the sub-chain conditions and the sb*ℓ
+  lexicographic row constraints of Codish et al. between branch vertices of one
+  kind; connectivity is checked on each solution and nauty removes the remaining
+  labelled copies), and
+* stage B distributes the n2 binary links on the edges of one H (CP-SAT with the
+  exact sub-chain conditions of docs/theory.md written on the edges, and lex-leader
+  constraints for the automorphisms of H, from nauty), so few labelled copies of
+  a chain come out: none where the whole group of H is listed.  With simple joints the
+  model's conditions are the exact test; with multiple joints they are necessary, and
+  the exact test runs on each candidate.  Where the placements are few, they are
+  listed directly (numpy) with the same symmetry constraints, and the exact test
+  (batched on H, exact for every joint kind) does the rest.
+
+Planarity and fractionation are properties of H (a subdivision keeps both), so
+they are decided once per H.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from itertools import combinations
+from math import comb
+from operator import itemgetter
+from time import perf_counter
+
+import pynauty
+
+from ..structure._nauty import TrustedGraph
+from ..structure.chain import Chain
+from ..structure.code import Code
+
+__all__ = ["Conventions", "Contracted", "contracted_graphs", "count_realised", "realise"]
+
+_GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
+_LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
+# stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
+# planar 12 links count 0.44 -> 0.27 CPU s, 14 links 12.3 -> 11.4 s (PROFILE.md section 13)
+_FEW_VECTORS = 16384
+_LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms × edges) in that enumeration
+# Stage A writes the sub-chain conditions for sets T of at most this many links (default: all).
+# h = 2 (wedge systems): H is nearly the chain itself (few binary links), and the 2^m conditions
+# on its 9-10 branch links cost CP-SAT more than the units they save.  1-DOF, 10 links, one
+# process: stage A 16.9 s -> 11.1 s, the whole query 27.6 s -> 23.6 s (33 765 units, not 25 384).
+_STAGE_A_SET_LINKS = {2: 2}
+# From _SPLIT_LINKS inner links on, stage A's model writes the sub-chain conditions of sets of at most
+# _MODEL_SET_LINKS links and of the largest sets only, and the others are checked on its solutions.
+_SPLIT_LINKS = 9
+_MODEL_SET_LINKS = 3
+_CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
+
+
+@dataclass(frozen=True)
+class Conventions:
+    """Which chains count: sub-chain rule, fractionated chains, planar graphs only,
+    required sub-structures ``cranks``: pairs (I, C) asking for a link with I joints that
+    carries at least C cranks (binary links jointed to it), and the motion space ``h`` of
+    the loops (W(S) = h(|S| − 1) − (h − 1)·p(S)).
+    """
+
+    rigid_subchains: bool = False
+    fractionated: bool = True
+    planar_only: bool = False
+    cranks: tuple[tuple[int, int], ...] = ()
+    h: int = 3
+
+    @property
+    def threshold(self) -> int:
+        """Least W(S) allowed for a proper sub-chain S."""
+        return 0 if self.rigid_subchains else 1
+
+
+@dataclass(frozen=True)
+class Contracted:
+    """Branch-vertex multigraph H of a chain: ``kinds[u]`` is ('L', joints) or ('J', links)."""
+
+    kinds: tuple[tuple[str, int], ...]
+    edges: tuple[tuple[int, int], ...]
+    certificate: str
+
+    def _subdivided(self) -> pynauty.Graph:
+        m = len(self.kinds)
+        adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
+        cells: dict[tuple[str, int], set[int]] = {}
+        for u, kind in enumerate(self.kinds):
+            cells.setdefault(kind, set()).add(u)
+        coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
+        return TrustedGraph(m + len(self.edges), adjacency, coloring)
+
+    def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
+        """Automorphisms of H acting on its edge list, and whether that is the whole group.
+
+        The whole group (identity left out) if its order is at most 4096, else generators and
+        their inverses.
+
+        >>> Contracted((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), "").edge_group()[1]
+        True
+        """
+        m, e = len(self.kinds), len(self.edges)
+        if e == 0:
+            return [], True
+        gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
+        gens = [tuple(g[m + k] - m for k in range(e)) for g in gens]
+        gens = [g for g in gens if any(g[k] != k for k in range(e))]
+        if size1 * 10.0**size2 > _GROUP_LIMIT:
+            return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
+        identity = tuple(range(e))
+        # closure under a -> a after g (b[k] = a[g[k]]); an itemgetter builds the tuple in C
+        # (every g moves an edge, so e >= 2 and itemgetter returns a tuple)
+        apply = [itemgetter(*g) for g in gens]
+        group, frontier = {identity}, [identity]
+        while frontier:
+            nxt = []
+            for a in frontier:
+                for after in apply:
+                    b = after(a)
+                    if b not in group:
+                        group.add(b)
+                        nxt.append(b)
+            frontier = nxt
+        group.discard(identity)
+        return sorted(group), True
+
+
+def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
+    """Links with 3+ joints (most first), the single-joint links of an open chain (leaves of H),
+    then the multiple joints."""
+    links = [("L", i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
+    links += [("L", 1)] * code.n1
+    comp = code.composition or ()
+    joints = [("J", k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
+    return tuple(links + joints)
+
+
+def _inner_links(kinds) -> list[int]:
+    """Branch links that can lower a sub-chain's W: a single-joint link (a leaf of H) with its
+    string adds w + 1 ≥ 1, so the sets T of the sub-chain conditions leave leaves out."""
+    return [u for u, kind in enumerate(kinds) if kind[0] == "L" and kind[1] > 1]
+
+
+def _loop_lb(kind: str, conv: Conventions) -> int:
+    """Fewest binary links on a closed string through one branch vertex."""
+    # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h
+    # and at least 2 through a link: one binary link would be two joints between the same two links
+    return max(2, conv.h - 1 + (0 if conv.rigid_subchains else 1)) if kind == "L" else conv.h + (
+        0 if conv.rigid_subchains else 1)
+
+
+def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A: every branch multigraph H of ``code`` (with composition), once each.
+
+    >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
+    [((0, 1), (0, 1), (0, 1))]
+    """
+    import numpy as np
+
+    from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
+
+    kinds = _branch_kinds(code)
+    n2 = code.count(2)
+    m = len(kinds)
+    if m == 0:
+        return []
+    deg = [k[1] for k in kinds]
+    model = Model()
+    pairs = list(combinations(range(m), 2))
+    x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
+    # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
+    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
+    for u in range(m):
+        model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
+    # weight lower bounds: parallel strings need binary links (the same rules as stage B)
+    bounds = _StringBounds(kinds, pairs, code, conv)
+    lbs = []
+    for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
+        lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
+        model.AddMaxEquality(lb, [0, int(a) * var + int(b)])
+        lbs.append(lb)
+    loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
+    model.Add(sum(lbs) + loops_lb <= n2)
+    strong, later = _split_conditions(_subset_conditions(kinds, code.dof(conv.h), conv), kinds)
+    _write_conditions(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
+    # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
+    # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
+    # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
+    base = max(deg) + 1
+    for u, v in pairs:
+        if kinds[u] != kinds[v]:
+            continue
+
+        def row(a):
+            out = []
+            for k in range(m):
+                if k == v:
+                    continue
+                out.append(y[a] if k == u else x[min(a, k), max(a, k)])
+            return out
+
+        # a prefix of the rows (exact coefficients); a lexicographic order implies it on any prefix
+        L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
+        ru, rv = row(u)[:L], row(v)[:L]
+        weights = [base ** (L - 1 - i) for i in range(L)]
+        model.Add(cp_model.LinearExpr.WeightedSum(ru, weights) <= cp_model.LinearExpr.WeightedSum(rv, weights))
+    seen: dict[str, Contracted] = {}
+
+    def keep(batch: list[tuple[int, ...]]) -> None:
+        sol = np.asarray(batch, dtype=np.int64)
+        for row in sol[bounds.meet(sol[:, :len(pairs)], sol[:, len(pairs):], later)]:
+            edges = []
+            for (u, v), k in zip(pairs, row[:len(pairs)]):
+                edges += [(u, v)] * int(k)
+            for u, k in enumerate(row[len(pairs):]):
+                edges += [(u, u)] * int(k)
+            if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
+                continue
+            h = Contracted(kinds, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(h._subdivided()).hex()
+            if cert not in seen:
+                seen[cert] = Contracted(kinds, h.edges, cert)
+
+    # branching on the rows in order, least value first, follows the lexicographic row constraints
+    each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
+    return [seen[c] for c in sorted(seen)]
+
+
+class _StringBounds:
+    """Least binary links on the strings of H, as numbers (for solutions) and coefficients (for the
+    model): k parallel strings between u and v need max(0, slope·k + offset), a loop at u needs
+    ``loop[u]`` per loop.
+
+    All strings between two links, all taken: W = h + Σ w − k(h − 1), so Σ w ≥ (h − 1)k − h + threshold
+    (without the threshold where the whole chain is exempt: W below it); between two joints
+    W = Σ w − h − (h − 1)(k − 2); from a link to a joint one binary link per string after the first
+    (two joints never join the same links).
+    """
+
+    def __init__(self, kinds, pairs, code: Code, conv: Conventions):
+        import numpy as np
+
+        h = conv.h
+        rigid = conv.rigid_subchains or code.dof(h) < conv.threshold
+        slope, offset = [], []
+        for u, v in pairs:
+            same = kinds[u][0] == kinds[v][0]
+            slope.append(h - 1 if same else 1)
+            offset.append((-h + (0 if rigid else 1) if kinds[u][0] == "L" else -h + 2) if same else -1)
+        self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
+        self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
+        self.pairs, self.n2, self.h = pairs, code.count(2), h
+
+    def meet(self, X, Y, conditions) -> "np.ndarray":
+        """Which solutions (pair multiplicities X, loops Y) meet every sub-chain condition of
+        ``conditions`` (:func:`_subset_conditions`), as the model would have written them."""
+        import numpy as np
+
+        ok = np.ones(len(X), dtype=bool)
+        if not conditions or not len(X):
+            return ok
+        lb = np.maximum(0, X * self.slope + self.offset)
+        cost = ((self.h - 1) * X - lb).astype(np.float32)
+        slack = self.n2 - lb.sum(axis=1) - Y @ self.loop
+        index = {p: k for k, p in enumerate(self.pairs)}
+        u, v = np.array(self.pairs, dtype=np.int64).reshape(-1, 2).T
+        for start in range(0, len(conditions), _CONDITION_BLOCK):
+            block = conditions[start:start + _CONDITION_BLOCK]
+            masks = np.array([sum(1 << w for w in TL + TJ) for TL, TJ, _ in block], dtype=np.int64)
+            inside = ((masks[:, None] >> u) & (masks[:, None] >> v) & 1).astype(np.float32)
+            limit = np.array([bound for *_, bound in block], dtype=np.float32)
+            violated = cost @ inside.T > slack[:, None] + limit[None, :]
+            for c, (TL, TJ, _) in enumerate(block):
+                for J in TJ:  # the condition holds where every joint of T is on a string from a link of T
+                    violated[:, c] &= X[:, [index[min(J, L), max(J, L)] for L in TL]].sum(axis=1) >= 1
+            ok &= ~violated.any(axis=1)
+        return ok
+
+
+def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, tuple, int]]:
+    """Stage B's sub-chain conditions as stage A writes them on H: ``(T_L, T_J, bound)`` for sets of
+    inner links T_L with multiple joints T_J: the strings inside T may cost the rule at most
+    bound + slack (see :func:`_write_conditions`).
+
+    One link or two need a multiple joint to have a condition (simple joints: the pairwise
+    bounds); a set of every link is left out where the whole chain is exempt (W below the threshold).
+    """
+    h = conv.h
+    all_links = sum(1 for kind in kinds if kind[0] == "L")
+    links = _inner_links(kinds)
+    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    out = []
+    for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
+        if size == all_links and dof < conv.threshold:
+            break  # T would hold every link: maybe the whole chain, which is exempt
+        for TL in combinations(links, size):
+            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
+                for TJ in combinations(joints, jsize):
+                    # one link: S has two links or more only with a one-link string (weaker bound)
+                    out.append((TL, TJ, h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)))
+    return out
+
+
+def _split_conditions(conditions, kinds) -> tuple[list, list]:
+    """The conditions stage A's model writes, and those checked on its solutions: the model has
+    every condition of a code with fewer than _SPLIT_LINKS inner links, else the sets of at most
+    _MODEL_SET_LINKS links and of every inner link but one or none (the strongest). The 2^m
+    conditions of a code with 12–14 branch links slowed each CP-SAT step more than the labelled
+    solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: stage A 25 s against 7.7 s)."""
+    inner = len(_inner_links(kinds))
+    strong, later = [], []
+    for condition in conditions:
+        size = len(condition[0])
+        in_model = inner < _SPLIT_LINKS or size <= _MODEL_SET_LINKS or size >= inner - 1
+        (strong if in_model else later).append(condition)
+    return strong, later
+
+
+def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
+    """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
+    vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
+    distribution (most of them, and the costliest: they are whole units of stage B).
+
+    A string inside T with w < h − 1 binary links costs its condition h − 1 − w (planar: 2 for
+    none, 1 for one), so the E_T strings inside T hold at least (h − 1)·E_T − bound(T) binary
+    links; the other strings at least their pairwise bounds ``lbs``. The condition holds where
+    stage B writes it: every joint of T on a string from a link of T (a bool per joint and set
+    of links, ``touched``).
+    """
+    if not conditions:
+        return  # (no slack or cost variables: free ones would only slow the search)
+    touched: dict = {}
+
+    def touches(J, TL):
+        if (J, TL) not in touched:
+            ends = [x[min(J, L), max(J, L)] for L in TL]
+            t = touched[J, TL] = model.NewBoolVar("")
+            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
+            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+        return touched[J, TL]
+
+    # need + rest = Σ_inside ((h − 1)·x − lb) − bound + Σ_all lb: with a cost variable per pair and
+    # the slack n2 − Σ_all lb − loops_lb, each condition holds only the pairs inside T
+    slack = model.NewIntVar(0, n2, "slack")
+    model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
+    cost = {}
+    for p, lb in lbs.items():
+        cost[p] = model.NewIntVar(0, (h - 1) * min(kinds[p[0]][1], kinds[p[1]][1]), f"c{p}")
+        model.Add(cost[p] == (h - 1) * x[p] - lb)
+    for TL, TJ, bound in conditions:
+        T = set(TL + TJ)
+        inside = [p for p in x if p[0] in T and p[1] in T]
+        model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf([touches(J, TL) for J in TJ])
+
+
+def _connected(m: int, edges) -> bool:
+    """Whether the multigraph on vertices 0 … m − 1 with ``edges`` is connected.
+
+    >>> _connected(3, [(0, 1), (1, 1), (1, 2)]), _connected(3, [(0, 1), (2, 2)])
+    (True, False)
+    """
+    root = list(range(m))
+
+    def find(u: int) -> int:
+        while root[u] != u:
+            root[u] = u = root[root[u]]
+        return u
+
+    parts = m
+    for u, v in edges:
+        a, b = find(u), find(v)
+        if a != b:
+            root[a] = b
+            parts -= 1
+    return parts == 1
+
+
+def _closed_core(edges) -> list[tuple[int, int]]:
+    """The edges of H's closed part: vertices of degree 1 (single-joint links and what only
+    they hold) pruned again and again; all of H for a closed chain.
+
+    >>> _closed_core([(0, 1), (0, 1), (0, 1), (1, 2), (2, 3)])
+    [(0, 1), (0, 1), (0, 1)]
+    """
+    edges = list(edges)
+    while True:
+        degree: dict[int, int] = {}
+        for u, v in edges:
+            degree[u] = degree.get(u, 0) + 1
+            degree[v] = degree.get(v, 0) + 1
+        kept = [(u, v) for u, v in edges if degree[u] > 1 and degree[v] > 1]
+        if len(kept) == len(edges):
+            return kept
+        edges = kept
+
+
+def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
+    """Fractionation (of the closed part) and planarity of the chain, decided on H."""
+    if conv.fractionated and not conv.planar_only:
+        return True  # without importing networkx (0.1 s of a small query's start-up)
+    import networkx as nx
+
+    if not conv.fractionated:
+        # H with a vertex on every edge (two on a loop) is a subdivision of the incidence graph
+        core = nx.Graph()
+        for k, (u, v) in enumerate(_closed_core(edges)):
+            core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
+                                else [(u, ("e", k)), (("e", k), v)])
+        if core.number_of_nodes() > 2 and not nx.is_biconnected(core):
+            return False
+    if conv.planar_only:
+        return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
+    return True
+
+
+def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string),
+    whether they are one per orbit of Aut(H) (lex-least under the whole group), and whether
+    they meet the sub-chain rule already (the model's conditions, exact for simple joints)."""
+    kinds, edges = h.kinds, h.edges
+    n2 = code.count(2)
+    space = conv.h
+    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
+    # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
+    # (a direct joint or incidence at most once), and two one-link strings between two multiple
+    # joints (W = 2 − h) only where the convention allows it
+    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - space < conv.threshold else 1)
+                for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
+    spare = n2 - sum(lows)
+    if spare < 0:
+        return [], True, True
+    # simple joints: the model's conditions are the exact test, unless the whole chain is exempt
+    # (W below the threshold), where the model skips every set of all branch links
+    simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
+    if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
+        return _few_distributions(lows, spare, parallel, h, stats)
+    from ._cpsat import Model, all_solutions, cp_model
+
+    model = Model()
+    w = [model.NewIntVar(lb, n2, f"w{k}") for k, lb in enumerate(lows)]
+    model.Add(sum(w) == n2)
+    for k, least in parallel:
+        model.Add(w[k] >= w[k - 1])
+        model.Add(w[k] >= least)
+    # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
+    # S = T_L + the binary links of every string inside T with w < h − 1 binary links has
+    # W(S) ≤ h(|T_L| − 1) + (h − 1)·|T_J| − Σ_{strings inside T} (h − 1 − w)⁺  (an empty string
+    # is a joint of two links of T or a link of T on a joint of T), with equality when every J
+    # of T_J is touched: exact for simple joints, necessary otherwise.  short[k][t] ⇔ w_k = t.
+    short: dict[int, dict[int, object]] = {}
+    for k, (u, v) in enumerate(edges):
+        if u == v:
+            continue
+        first = 1 if kinds[u][0] == kinds[v][0] == "J" else 0
+        short[k] = {t: model.NewBoolVar(f"s{k}_{t}") for t in range(first, space - 1)}
+        for t, flag in short[k].items():
+            model.Add(w[k] == t).OnlyEnforceIf(flag)
+        model.Add(w[k] >= space - 1).OnlyEnforceIf([flag.Not() for flag in short[k].values()])
+        if len(short[k]) > 1:
+            model.AddAtMostOne(short[k].values())
+    link_vertices = _inner_links(kinds)
+    n_links = sum(1 for kind in kinds if kind[0] == "L")
+    joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    dof = code.dof(space)
+    for size in range(1, len(link_vertices) + 1):
+        for TL in combinations(link_vertices, size):
+            for jsize in range(len(joint_vertices) + 1):
+                for TJ in combinations(joint_vertices, jsize):
+                    _subset_constraint(model, kinds, edges, short, set(TL), set(TJ), n_links, dof, conv)
+    # required sub-structure: a link with I joints carrying C cranks (invariant under Aut(H))
+    z = {k: flags[0] for k, flags in short.items() if 0 in flags}  # z[k] ⇔ string k is empty
+    for joints_on_link, count in conv.cranks:
+        chosen = []
+        for u in link_vertices:
+            if kinds[u][1] != joints_on_link:
+                continue
+            ends = [1 - z[k] if k in z else 1 for k, e in enumerate(edges) if u in e and e[0] != e[1]]
+            ends += [2 for e in edges if e == (u, u)]
+            sel = model.NewBoolVar(f"cranks{u}")
+            model.Add(sum(ends) >= count).OnlyEnforceIf(sel)
+            model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
+            chosen.append(sel)
+        if not chosen:
+            return [], True, True
+        model.AddBoolOr(chosen)
+    # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
+    base = n2 + 1
+    prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
+    group, whole_group = h.edge_group()
+    weights = [base ** (prefix - 1 - i) for i in range(prefix)]
+    lhs = cp_model.LinearExpr.WeightedSum(w[:prefix], weights)
+    for g in group:
+        model.Add(lhs <= cp_model.LinearExpr.WeightedSum([w[g[i]] for i in range(prefix)], weights))
+    t0 = perf_counter()
+    solutions = all_solutions(model, w)
+    if whole_group and prefix < len(edges) and group and solutions:
+        # the model's lex-leader covers a prefix of the edges only: keep the lex-least of each orbit
+        import numpy as np
+
+        solutions = [tuple(map(int, row)) for row in _lex_least(np.asarray(solutions, dtype=np.int64), group)]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group, simple
+
+
+def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
+                       stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B without a model, where the weight vectors are few: every way to put ``spare``
+    binary links on the edges above their least weights, kept where the parallel strings are
+    ordered and the vector is the lex-least of its images under Aut(H) (as the model's
+    constraints; the sub-chain conditions are left to the exact test)."""
+    import numpy as np
+
+    t0 = perf_counter()
+    w = _compositions(spare, len(lows)) + np.array(lows)
+    keep = np.ones(len(w), dtype=bool)
+    for k, least in parallel:
+        keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
+    w, whole_group = w[keep], True
+    if len(w) > 1:  # (the lex-least vector of an orbit has ordered parallel strings: one alone is its orbit's)
+        group, whole_group = h.edge_group()
+        w = _lex_least(w, group)
+    solutions = [tuple(map(int, row)) for row in w]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group, False
+
+
+def _lex_least(w, group):
+    """The rows of ``w`` (weight vectors) that are lexicographically least among their images
+    under the edge permutations ``group`` (the image of w under g is w[g]).
+
+    >>> import numpy as np
+    >>> _lex_least(np.array([[0, 1], [1, 0], [1, 1]]), [(1, 0)]).tolist()
+    [[0, 1], [1, 1]]
+    """
+    import numpy as np
+
+    if not len(group):
+        return w
+    images = np.asarray(group, dtype=np.int64)
+    step = max(1, _LEX_BLOCK // max(1, len(w) * w.shape[1]))
+    for start in range(0, len(images), step):  # where w and an image first differ, w is smaller
+        if not len(w):
+            break
+        differ = w[:, images[start:start + step]] - w[:, None, :]  # vectors × automorphisms × edges
+        first = (differ != 0).argmax(axis=2)
+        w = w[(np.take_along_axis(differ, first[..., None], axis=2)[..., 0] >= 0).all(axis=1)]
+    return w
+
+
+@lru_cache(maxsize=64)
+def _compositions(total: int, parts: int):
+    """Every way to write ``total`` as an ordered sum of ``parts`` numbers ≥ 0 (stars and bars),
+    one per row, read-only: stage B asks for the same few shapes again and again (int16 and at
+    most 64 shapes kept: a shape has up to ``_FEW_VECTORS`` rows).
+
+    >>> _compositions(2, 2).tolist()
+    [[0, 2], [1, 1], [2, 0]]
+    """
+    import numpy as np
+
+    bars = list(combinations(range(total + parts - 1), parts - 1))
+    bars = np.array(bars, dtype=np.int64).reshape(len(bars), parts - 1)
+    ends = np.full((len(bars), 1), -1), np.full((len(bars), 1), total + parts - 1)
+    out = (np.diff(np.hstack([ends[0], bars, ends[1]]), axis=1) - 1).astype(np.int16)
+    out.flags.writeable = False
+    return out
+
+
+def _add(stats: dict | None, **values) -> None:
+    if stats is not None:
+        for key, value in values.items():
+            stats[key] = stats.get(key, 0) + value
+
+
+def _passing(h: Contracted, conv: Conventions, solutions, stats: dict | None,
+             checked: bool = False) -> list:
+    """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
+    model wrote the exact conditions)."""
+    t0 = perf_counter()
+    if checked or not solutions:
+        kept = list(solutions)
+    else:
+        kept = [s for s, ok in zip(solutions, _exact_test(h.kinds, h.edges, solutions, conv)) if ok]
+        if 2 - conv.h >= conv.threshold and any(kind[0] == "J" for kind in h.kinds):
+            # two joints on the same links are one joint; the rule refuses them (W = 2 − h per pair)
+            # except for h = 2 with rigid sub-chains allowed
+            kept = [s for s in kept for c in [_expand(h.kinds, h.edges, s, conv.h)]
+                    if len(set(c.joints)) == len(c.joints)]
+    _add(stats, subchain_s=perf_counter() - t0)
+    return kept
+
+
+def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
+    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
+    solutions, _, checked = _distributions(code, h, conv, stats)
+    return _distinct(h, conv, _passing(h, conv, solutions, stats, checked), stats)
+
+
+def _distinct(h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
+    """The chains of the passing vectors ``kept``, once each by certificate."""
+    t0 = perf_counter()
+    found: dict[str, Chain] = {}
+    for chain in (_expand(h.kinds, h.edges, s, conv.h) for s in kept):
+        found.setdefault(chain.certificate, chain)
+    _add(stats, nauty_s=perf_counter() - t0)
+    return [found[c] for c in sorted(found)]
+
+
+def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``len(realise(code, h, conv))``, without chains or certificates where they are not needed.
+
+    Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
+    one weight vector onto the other; when the whole group of H is listed, stage B keeps the
+    lex-least vector of each orbit, so the chains are the vectors that pass the sub-chain test
+    (docs/theory.md). Otherwise the chains are built and compared.
+
+    >>> h = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
+    >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
+    (2, 2)
+    """
+    solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
+    kept = _passing(h, conv, solutions, stats, checked)
+    return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))
+
+
+def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
+    """Add W(S_T) ≥ threshold for the set T = TL ∪ TJ of branch vertices (see realise)."""
+    h = conv.h
+    T = TL | TJ
+    inside = [k for k, (u, v) in enumerate(edges) if u != v and u in T and v in T]
+    on_joint = {J: [k for k in inside if J in edges[k] and "L" in (kinds[edges[k][0]][0], kinds[edges[k][1]][0])]
+                for J in TJ}
+    if any(not ks for ks in on_joint.values()):
+        return  # a joint no link of T touches directly: a smaller T gives a stronger condition
+    if len(TL) == n_links and dof < conv.threshold:
+        return  # S may be the whole chain, which is exempt
+    if not any(short[k] for k in inside) and not TJ:
+        return
+    bound = h * (len(TL) - 1) + (h - 1) * len(TJ) - conv.threshold
+    most = sum(h - 1 - min(short[k], default=h - 1) for k in inside)
+    if most <= bound:
+        return  # cannot be violated
+    expr = sum((h - 1 - t) * flag for k in inside for t, flag in short[k].items())
+    if len(TL) >= 2:
+        model.Add(expr <= bound)
+    else:  # one link: S has two links or more only when a string with binary links is taken
+        takes = [flag for k in inside for t, flag in short[k].items() if t >= 1]
+        if not takes:
+            return  # (no variable is made: a free one would repeat every solution)
+        some = model.NewBoolVar("")
+        model.AddMaxEquality(some, takes)
+        model.Add(expr <= bound + conv.threshold - conv.threshold * some)
+
+
+def _exact_test(kinds, edges, solutions, conv: Conventions):
+    """Exact sub-chain test of the chains of H with the weight vectors ``solutions``, all at once:
+    a bool per vector (:func:`synth.structure.subchains.least_mobilities` over the sets of H's vertices).
+
+    A multiple joint J counts as a vertex of its own with h − 1 freedoms, joined to each of its
+    links by a simple joint: W(S) is then the same for every S that takes J with its links, and
+    larger where J is taken without them, so the least W over the vertex sets is the least
+    over the sub-chains (docs/theory.md).  Every string is then a path of w binary links between
+    two vertices, as with simple joints.  Single-joint links never lower W (a string to one adds
+    w + 1 links and w + 1 joints): they are left out, their strings are paths with a free end.
+    """
+    import numpy as np
+
+    from ..structure.subchains import least_mobilities
+
+    inner = set(_inner_links(kinds))
+    vertices = [u for u, kind in enumerate(kinds) if u in inner or kind[0] == "J"]
+    index = {u: i for i, u in enumerate(vertices)}
+    sol = np.asarray(solutions, dtype=np.int64).reshape(len(solutions), len(edges))
+    ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
+                    dtype=np.int64).reshape(-1, 2)
+    lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
+    is_link = [kinds[u][0] == "L" for u in vertices]
+    return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
+
+
+@lru_cache(maxsize=256)
+def _string_ends(kinds, edges) -> tuple[int, tuple]:
+    """The number of branch links of H, and for each string the chain link at each end (its
+    number) or None where the end is a multiple joint; the same for every vector of a unit."""
+    link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
+    return len(link_id), tuple((link_id.get(u), link_id.get(v)) for u, v in edges)
+
+
+def _expand(kinds, edges, weights, space: int = 3) -> Chain:
+    """The chain of H with ``weights`` binary links on its strings (branch links numbered first).
+
+    >>> _expand((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
+    ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (4, 5))
+    """
+    nxt, ends = _string_ends(kinds, edges)
+    multiple: dict[int, list[int]] = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
+    joints: list[tuple[int, ...]] = []
+    for (u, v), (a, b), wk in zip(edges, ends, weights):
+        if wk:  # a string of binary links nxt … nxt + wk − 1
+            first, last = nxt, nxt + wk - 1
+            joints.extend(zip(range(first, last), range(first + 1, last + 1)))
+            if a is None:
+                multiple[u].append(first)
+            else:
+                joints.append((a, first))
+            if b is None:
+                multiple[v].append(last)
+            else:
+                joints.append((last, b))
+            nxt += wk
+        elif a is None:  # a link of H on a multiple joint of H
+            multiple[u].append(b)
+        elif b is None:
+            multiple[v].append(a)
+        else:
+            joints.append((a, b))
+    joints.extend(tuple(links) for links in multiple.values())
+    return Chain.trusted(nxt, joints, space)

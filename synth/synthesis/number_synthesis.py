@@ -1,0 +1,396 @@
+"""Number synthesis: every standard code of the counting equations, by CP-SAT.
+
+The counting system (docs/theory.md, counting equations) for a chain with n links, K loops and
+multiple-joint count v, in a motion space h (or loop classes K_h) with extra
+pair mobility f, is
+
+    Σ_i n_i = n = W + 1 + Σ_h (h − 1)·K_h − f
+    Σ_i i·n_i + v = 2·(K + n − 1)                (p = K + n − 1 simple-joint equivalents)
+
+over non-negative integers n_1 … n_imax and v.  For planar closed chains this is
+Pozhbelko's system W = n2 − Σ_{i≥4}(i − 3)·n_i − v − 3 with Σ n_i = W + 1 + 2K.
+
+Example
+-------
+>>> [str(c) for c in number_synthesis(1, loops=2)]
+['42/0', '51/1', '60/2']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+
+from ..structure._params import check_dof, check_extra_mobility, check_motion_space
+from ..structure.code import Code
+from ..errors import ImpossibleParameters, InvalidOption
+
+__all__ = ["Problem", "number_synthesis", "make_problem", "parse_range", "parse_requirements"]
+
+Range = tuple[int, int | None]
+
+
+def parse_range(text: str | int | tuple | None, what: str, *, minimum: int = 0) -> Range | None:
+    """Read ``N``, ``A..B`` or ``A..`` (open upper end) into ``(A, B)``; B is None when open.
+
+    >>> parse_range("0..4", "v"), parse_range("2..", "n5"), parse_range(3, "K")
+    ((0, 4), (2, None), (3, 3))
+    """
+    if text is None:
+        return None
+    if isinstance(text, bool):
+        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
+    if isinstance(text, int):
+        lo, hi = text, text
+    elif isinstance(text, tuple) and len(text) == 2:
+        lo, hi = text
+    elif isinstance(text, str):
+        s = text.strip()
+        try:
+            if ".." in s:
+                a, b = s.split("..", 1)
+                lo = int(a) if a.strip() else minimum
+                hi = int(b) if b.strip() else None
+            else:
+                lo = hi = int(s)
+        except ValueError:
+            raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}") from None
+    else:
+        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
+    if lo is None or lo < minimum or (hi is not None and hi < minimum):
+        raise ImpossibleParameters(f"{what} must not be below {minimum} (got {text!r})")
+    if hi is not None and hi < lo:
+        raise InvalidOption(f"the range for {what} is empty: {lo}..{hi}")
+    return (lo, hi)
+
+
+def parse_requirements(items: Iterable[str] | Mapping | None) -> dict[int, Range]:
+    """Read design requirements ``I=N``, ``I=A..B``, ``I=A..`` on n_I (links with I joints).
+
+    >>> parse_requirements(["5=1..", "3=0..2"])
+    {3: (0, 2), 5: (1, None)}
+    """
+    if not items:
+        return {}
+    pairs = items.items() if isinstance(items, Mapping) else (_split_requirement(s) for s in items)
+    out: dict[int, Range] = {}
+    for key, value in pairs:
+        try:
+            i = int(key)
+        except (TypeError, ValueError):
+            raise InvalidOption(f"a requirement names the number of joints on a link, not {key!r}") from None
+        if i < 1:
+            raise ImpossibleParameters(f"a link carries at least one joint; requirement on n{i} is impossible")
+        rng = parse_range(value, f"n{i}")
+        if i in out and out[i] != rng:
+            raise ImpossibleParameters(f"conflicting requirements on n{i}: {out[i]} and {rng}")
+        out[i] = rng
+    return dict(sorted(out.items()))
+
+
+def _split_requirement(text: str) -> tuple[str, str]:
+    if not isinstance(text, str) or "=" not in text:
+        raise InvalidOption(f"a requirement is written I=N, I=A..B or I=A.. (e.g. 5=1..), not {text!r}")
+    key, value = text.split("=", 1)
+    return key.strip(), value.strip()
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One validated counting problem: fixed W, n, K, and the ranges of everything else."""
+
+    dof: int
+    links: int
+    loops: int
+    v: Range
+    n1: Range
+    max_link_degree: int
+    requirements: tuple[tuple[int, Range], ...]
+    max_multiplicity: int | None
+    compositions: bool
+
+
+def _loops_for_links(dof: int, links: int, h: int, f: int) -> int:
+    if h == 1:
+        raise ImpossibleParameters("with h = 1 the number of links does not fix the loops: give --loops")
+    extra = links - dof - 1 + f
+    if extra < 0 or extra % (h - 1):
+        raise ImpossibleParameters(
+            f"no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = {extra} "
+            f"to be a non-negative multiple of h − 1 = {h - 1} (W={dof}, n={links}, h={h}, f={f})"
+        )
+    return extra // (h - 1)
+
+
+def make_problem(
+    dof: int,
+    *,
+    loops: int | None = None,
+    links: int | None = None,
+    loop_classes: Mapping[int, int] | None = None,
+    h: int = 3,
+    f: int = 0,
+    v: int | tuple | str | None = None,
+    n1: int | tuple | str = 0,
+    max_link_degree: int | str | None = None,
+    require: Mapping | Iterable[str] | None = None,
+    max_multiplicity: int | None = None,
+    compositions: bool = False,
+) -> Problem:
+    """Validate a counting problem before any model is built.
+
+    Raises
+    ------
+    ImpossibleParameters
+        With a sentence naming the parameter and the relation that fails.
+
+    Example
+    -------
+    >>> make_problem(1, loops=4).links
+    10
+    """
+    check_dof(dof), check_motion_space(h), check_extra_mobility(f)
+    given = [x is not None for x in (loops, links, loop_classes)]
+    if sum(given) != 1:
+        raise InvalidOption("give exactly one of loops (K), links (n) or loop classes (K_h)")
+    if loop_classes is not None:
+        if not loop_classes or any(int(hh) < 1 or int(k) < 0 for hh, k in loop_classes.items()):
+            raise ImpossibleParameters("loop classes are pairs h=K_h with h ≥ 1 and K_h ≥ 0")
+        K = sum(int(k) for k in loop_classes.values())
+        n = dof + 1 + sum((int(hh) - 1) * int(k) for hh, k in loop_classes.items()) - f
+    elif loops is not None:
+        if isinstance(loops, bool) or not isinstance(loops, int) or loops < 0:
+            raise ImpossibleParameters(f"the number of loops K must be 0 or more, not {loops!r}")
+        K = loops
+        n = dof + 1 + (h - 1) * K - f
+    else:
+        if isinstance(links, bool) or not isinstance(links, int) or links < 1:
+            raise ImpossibleParameters(f"the number of links n must be 1 or more, not {links!r}")
+        n, K = links, _loops_for_links(dof, links, h, f)
+    if n < 1:
+        raise ImpossibleParameters(f"W = {dof}, K = {K}, h = {h}, f = {f} leave n = {n} links: impossible")
+    n1_range = parse_range(n1, "n1")
+    if n1_range[1] is None:
+        n1_range = (n1_range[0], n)
+    if n1_range[0] > n:
+        raise ImpossibleParameters(f"n1 = {n1_range[0]} single-joint links do not fit in {n} links")
+    closed = n1_range[1] == 0
+    if closed and K == 0:
+        raise ImpossibleParameters("a closed chain has at least one loop (K ≥ 1); for open chains give n1")
+    p = K + n - 1
+    # Σ i·n_i ≥ n1 + 2(n − n1) bounds v from above.
+    v_cap = 2 * p - 2 * n + n1_range[1]
+    v_range = parse_range(v, "v") if v is not None else (0, v_cap)
+    if v_range[1] is None:
+        v_range = (v_range[0], v_cap)
+    if v_range[0] > v_cap:
+        raise ImpossibleParameters(
+            f"v = {v_range[0]} is too large: a chain with K = {K} loops and {n} links has v ≤ "
+            f"2(K − 1) + n1 = {v_cap}"
+        )
+    v_range = (v_range[0], min(v_range[1], v_cap))
+    if max_link_degree is None or max_link_degree == "K+1":
+        imax = K + 1
+    elif max_link_degree == "K+W":
+        imax = K + dof
+    else:
+        try:
+            imax = int(max_link_degree)
+        except (TypeError, ValueError):
+            raise InvalidOption(
+                f"the largest link degree is a whole number, 'K+1' or 'K+W', not {max_link_degree!r}"
+            ) from None
+        least = 2 if closed else 1
+        if imax < least:
+            raise ImpossibleParameters(
+                f"the largest link degree must be {least} or more (a link of {'a closed' if closed else 'an open'} "
+                f"chain carries at least {least} joint{'s' if least > 1 else ''}), not {imax}")
+    imax = max(imax, 1 if not closed else 2)
+    reqs = parse_requirements(require)
+    for i, (lo, hi) in reqs.items():
+        if i > imax and lo > 0:
+            raise ImpossibleParameters(
+                f"a link with {i} joints is required but the largest link allowed here carries {imax} joints "
+                f"(the bound {_bound_name(max_link_degree)} with K = {K} loops)"
+            )
+        if i == 1 and closed and lo > 0:
+            raise ImpossibleParameters("a closed chain has no single-joint links; give n1 for an open chain")
+        if lo > n:
+            raise ImpossibleParameters(f"n{i} ≥ {lo} links is more than the {n} links of the chain")
+    if sum(lo for lo, _ in reqs.values()) > n:
+        raise ImpossibleParameters(
+            f"the requirements ask for {sum(lo for lo, _ in reqs.values())} links, more than n = {n}"
+        )
+    if max_multiplicity is not None and (isinstance(max_multiplicity, bool) or not isinstance(max_multiplicity, int)
+                                         or max_multiplicity < 2):
+        raise ImpossibleParameters(
+            f"a joint joins at least 2 links: the largest multiplicity must be 2 or more, not {max_multiplicity!r}")
+    if max_multiplicity is None:  # limit theorem: a joint of order ≤ K (closed), ≤ K + W (open) joins ≤ order + 1 links
+        max_multiplicity = K + 1 if closed else K + dof + 1
+    return Problem(dof, n, K, v_range, n1_range, imax, tuple(reqs.items()), max_multiplicity, compositions)
+
+
+def _bound_name(max_link_degree) -> str:
+    return "K+1" if max_link_degree is None else str(max_link_degree).replace(" ", "").upper()
+
+
+def _solve(problem: Problem) -> list[Code]:
+    """The codes of one validated problem: the single loop in closed form, else the CP-SAT model."""
+    if problem.loops == 1 and problem.n1[1] == 0:
+        return _single_loop(problem)
+    return _model_codes(problem)
+
+
+def _single_loop(problem: Problem) -> list[Code]:
+    """A closed chain with one loop: Σ n_i = n and Σ i·n_i + v = 2n with every i ≥ 2 force every
+    link binary and v = 0, so the code is n binary links if the requirements allow it (a query for
+    it loads no solver: start-up is most of its time).
+
+    >>> [str(c) for c in _single_loop(make_problem(1, links=4))]
+    ['4/0']
+    """
+    n, imax = problem.links, problem.max_link_degree
+    counts = {i: (n if i == 2 else 0) for i in range(1, imax + 1)}
+    if problem.v[0] > 0 or any(i <= imax and not lo <= counts[i] <= (n if hi is None else hi)
+                               for i, (lo, hi) in problem.requirements):
+        return []
+    composition = (0,) * len(range(2, problem.max_multiplicity or n)) if problem.compositions else None
+    return [Code(tuple(counts[i] for i in range(2, imax + 1)), 0, composition, 0)]
+
+
+def _model_codes(problem: Problem) -> list[Code]:
+    """Build and enumerate the CP-SAT model of one validated problem."""
+    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+
+    n, K, imax = problem.links, problem.loops, problem.max_link_degree
+    model = Model()
+    counts = {i: model.NewIntVar(0, n, f"n{i}") for i in range(1, imax + 1)}
+    model.Add(counts[1] >= problem.n1[0])
+    model.Add(counts[1] <= problem.n1[1])
+    for i, (lo, hi) in problem.requirements:
+        if i > imax:
+            continue  # only upper bounds remain on links that cannot exist
+        model.Add(counts[i] >= lo)
+        if hi is not None:
+            model.Add(counts[i] <= hi)
+    v = model.NewIntVar(problem.v[0], problem.v[1], "v")
+    model.Add(sum(counts.values()) == n)
+    model.Add(sum(i * c for i, c in counts.items()) + v == 2 * (K + n - 1))
+    variables = [counts[i] for i in range(1, imax + 1)] + [v]
+    # v must split into joints of at most max_multiplicity links, each taking m ≥ 3 distinct
+    # link incidences; without compositions the split is only required to exist
+    mmax = problem.max_multiplicity or n
+    incidences = sum(i * c for i, c in counts.items())
+    if problem.compositions:
+        comp = [model.NewIntVar(0, problem.v[1], f"v{k}") for k in range(2, mmax)]
+        model.Add(sum((k + 1) * x for k, x in enumerate(comp)) == v)
+        model.Add(sum((k + 3) * x for k, x in enumerate(comp)) <= incidences)
+        variables += comp
+    elif mmax <= 2:
+        model.Add(v == 0)
+    else:
+        # a split exists iff the fewest joints, J = ⌈v/(mmax − 2)⌉ (each takes m − 2 ≤ mmax − 2 of v),
+        # find their v + 2J link incidences; J is fixed by v, so no solution repeats (enumerating
+        # the splits themselves repeated each code once per split: 11 344 solutions for 1 410 codes)
+        J = model.NewIntVar(0, problem.v[1], "joints")
+        model.Add(J * (mmax - 2) >= v)
+        model.Add((J - 1) * (mmax - 2) <= v - 1)
+        model.Add(v + 2 * J <= incidences)
+    codes = []
+    for sol in all_solutions(model, variables):
+        n1, assortment, vv = sol[0], sol[1:imax], sol[imax]
+        composition = tuple(sol[imax + 1 :]) if problem.compositions else None
+        codes.append(Code(assortment, vv, composition, n1))
+    return codes
+
+
+def sort_key(code: Code):
+    """Deterministic order: loops, open links, v, assortment, composition."""
+    return (code.loops, code.n1, code.v, code.assortment, code.composition or ())
+
+
+def number_synthesis(
+    dof: int,
+    *,
+    loops: int | tuple | str | None = None,
+    links: int | tuple | str | None = None,
+    loop_classes: Mapping[int, int] | None = None,
+    h: int = 3,
+    f: int = 0,
+    v: int | tuple | str | None = None,
+    n1: int | tuple | str = 0,
+    max_link_degree: int | str | None = None,
+    require: Mapping | Iterable[str] | None = None,
+    max_multiplicity: int | None = None,
+    compositions: bool = False,
+) -> list[Code]:
+    """Every standard code for W = ``dof`` and the given loops or links.
+
+    Parameters
+    ----------
+    dof : int
+        Required mobility W (0 for statically determinate trusses).
+    loops, links : int or range, optional
+        K or n (one of them, or ``loop_classes``); a range ``"1..5"`` or ``(1, 5)``
+        solves each value in turn.
+    loop_classes : mapping h -> K_h, optional
+        Heterogeneous systems whose loops live in different motion spaces.
+    h : int
+        Motion space of a loop (3 planar and spherical, 6 general spatial, …).
+    f : int
+        Extra mobility of multi-DOF pairs.
+    v : int or range, optional
+        Multiple-joint count; default every possible value 0 … 2(K−1) + n1.
+    n1 : int or range
+        Single-joint links (open chains); default 0 (closed chains).
+    max_link_degree : int, 'K+1' or 'K+W', optional
+        Largest number of joints on one link; default K+1 (non-fractionated closed chains).
+    require : mapping or strings ``"I=N"``, ``"I=A..B"``, ``"I=A.."``
+        Design constraints on n_I, constraints of the CP-SAT model.
+    max_multiplicity : int, optional
+        Largest number of links on one joint (2 = simple joints only); default the limit
+        theorem's: a joint of order at most K (closed chains) or K + W (open chains), i.e.
+        K + 1 or K + W + 1 links (docs/theory.md, "Limit theorems").
+    compositions : bool
+        Split each code by its joint composition (v2, v3, …).
+
+    Returns
+    -------
+    list of Code
+        In deterministic order (K, n1, v, assortment).
+
+    Raises
+    ------
+    ImpossibleParameters, InvalidOption
+
+    Examples
+    --------
+    >>> [str(c) for c in number_synthesis(1, loops=4, require=["5=1.."])]
+    ['6301/0', '7111/0', '8002/0', '7201/1', '8011/1', '8101/2', '9001/3']
+    >>> len(number_synthesis(1, loops="1..5"))
+    89
+    """
+    common = dict(h=h, f=f, v=v, n1=n1, max_link_degree=max_link_degree, require=require,
+                  max_multiplicity=max_multiplicity, compositions=compositions)
+    if loop_classes is not None:
+        problems = [make_problem(dof, loop_classes=loop_classes, **common)]
+    else:
+        which = "loops" if loops is not None else "links"
+        rng = parse_range(loops if loops is not None else links, "K" if loops is not None else "n")
+        if rng is None:
+            raise InvalidOption("give exactly one of loops (K), links (n) or loop classes (K_h)")
+        if rng[1] is None:
+            raise InvalidOption(f"the range of {which} needs an upper end")
+        if loops is not None and links is not None:
+            raise InvalidOption("give exactly one of loops (K), links (n) or loop classes (K_h)")
+        problems = []
+        for value in range(rng[0], rng[1] + 1):
+            try:
+                problems.append(make_problem(dof, **{which: value}, **common))
+            except ImpossibleParameters:
+                if rng[0] == rng[1]:
+                    raise  # a single value that is impossible is an error, in a range it is skipped
+        if not problems:
+            raise ImpossibleParameters(f"no value of {which} in {rng[0]}..{rng[1]} is possible for W = {dof}")
+    codes = [c for p in problems for c in _solve(p)]
+    return sorted(set(codes), key=sort_key)

@@ -1,0 +1,1 @@
+"""Tests of the analysis of codes and chains and of repairs."""

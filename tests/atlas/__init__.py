@@ -1,0 +1,1 @@
+"""Tests of grid files, atlases and the static site."""

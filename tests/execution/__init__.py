@@ -1,0 +1,1 @@
+"""Tests of large queries: streaming, checkpoints, Dask, estimates."""

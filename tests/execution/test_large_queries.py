@@ -1,0 +1,259 @@
+"""Large queries: streamed execution, resumable counts (real SIGKILL), Dask, size estimates and refusals.
+
+No test here measures time: processes are killed when they *say* they have committed, and
+every assertion is about results, exit statuses and messages.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+
+import psutil
+import pytest
+
+import synth
+from synth.execution import executor as _executor
+from synth.synthesis.type_synthesis import count_chains, count_mechanisms
+from synth.execution.checkpoint import CheckpointMismatch
+from synth.errors import QueryTooLarge
+from synth.execution.estimate import estimate
+
+CLI = [sys.executable, "-m", "mechsynth"]
+
+
+def _run(*args, **kwargs):
+    return subprocess.run([*CLI, *args], capture_output=True, text=True, **kwargs)
+
+
+# ---------------------------------------------------------------- executor
+def _units(item):
+    return list(range(item))
+
+
+def _square(x):
+    return x * x
+
+
+@pytest.mark.parametrize("window", [1, 2, 64])
+def test_pool_pipeline_keeps_plan_order(window):
+    items = [3, 0, 5, 1, 4]
+    inline = list(_executor.run_plan(items, _units, _square))
+    pooled = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0, window=window))
+    assert pooled == inline
+    assert [e for e in inline if e[1] is None] == [(0, None, 3), (1, None, 0), (2, None, 5), (3, None, 1), (4, None, 4)]
+
+
+def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
+    import itertools
+
+    ticks = itertools.count()
+    monkeypatch.setattr(_executor.time, "perf_counter", lambda: float(next(ticks)))  # a clock that counts calls
+    items = [5, 3]
+    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=3))
+    assert events == list(_executor.run_plan(items, _units, _square))
+
+
+@pytest.mark.parametrize("window", [1, 3, 64])
+def test_unordered_pipeline_yields_every_unit_before_its_item(window):
+    items = [3, 0, 5, 1, 4, 7, 2]
+    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0, window=window,
+                                     ordered=False))
+    assert sorted(events, key=repr) == sorted(_executor.run_plan(items, _units, _square), key=repr)
+    closed = {index: k for k, (index, unit, _) in enumerate(events) if unit is None}
+    assert all(k < closed[index] for k, (index, unit, _) in enumerate(events) if unit is not None)
+
+
+def test_skipped_items_and_units_are_not_run():
+    items = [3, 2]
+    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0,
+                                     skip_item=lambda i: i == 1, skip_unit=lambda u: u == 0))
+    assert events == [(0, 1, 1), (0, 2, 4), (0, None, 3)]
+
+
+def test_small_query_starts_no_pool(monkeypatch):
+    def no_pool(workers):
+        raise AssertionError("a pool was started for a small query")
+
+    monkeypatch.setattr(_executor, "process_pool", no_pool)
+    assert count_chains(1, 8, workers=2)["count"] == 16
+
+
+def test_pool_and_inline_counts_agree():
+    inline = count_chains(1, 10, workers=1)
+    # inline_seconds=0 through run_plan: every code goes to the pool
+    events = list(_executor.run_plan([1], _units, _square, workers=2, inline_seconds=0))
+    assert events == [(0, 0, 0), (0, None, 1)]
+    assert count_chains(1, 10, workers=2) == inline
+    assert count_mechanisms(1, 8, workers=2) == count_mechanisms(1, 8, workers=1)
+
+
+def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
+    from synth.synthesis import type_synthesis as _type_synthesis
+
+    inline = [c.certificate for c in synth.type_synthesis(1, 10, v="0..2", workers=1)]
+    monkeypatch.setattr(_type_synthesis, "_INLINE_SECONDS", 0.0)  # every unit goes to the pool
+    assert [c.certificate for c in synth.type_synthesis(1, 10, v="0..2", workers=2)] == inline
+    assert count_chains(1, 10, v="0..2", workers=2)["count"] == len(inline)
+
+
+def test_cp_sat_without_pandas():
+    code = ("import sys, synth; synth.count_chains(1, 8, workers=1); "
+            "assert 'pandas' not in sys.modules, 'pandas loaded'; "
+            "from synth.synthesis._cpsat import cp_model; import pandas as pd; "
+            "s = cp_model.CpModel().new_int_var_series(name='x', index=pd.Index(range(3)), lower_bounds=0, upper_bounds=1); "
+            "assert isinstance(s, pd.Series) and isinstance(s, cp_model.pd.Series) and len(s) == 3")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+# --------------------------------------------------------------- checkpoint
+def _kill_after_first_commit(args):
+    """Start a counting run, SIGKILL it as soon as it reports a commit; return its pool workers."""
+    proc = subprocess.Popen([*CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        for line in proc.stderr:
+            if "committed in this run" in line:
+                break
+        else:
+            pytest.fail("the run ended without reporting a commit")
+        workers = psutil.Process(proc.pid).children()
+        os.kill(proc.pid, signal.SIGKILL)  # if it finished first, the resumed run simply finds every unit done
+        proc.wait()
+    finally:
+        proc.kill()
+        proc.stdout.close()
+        proc.stderr.close()
+    return workers
+
+
+@pytest.mark.parametrize("workers", ["1", "2"])
+def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
+    query = ["chains", "--dof", "1", "--links", "12", "--count", "--workers", workers]
+    reference = _run(*query)
+    assert reference.returncode == 0
+    ck = str(tmp_path / "count.sqlite")
+    children = _kill_after_first_commit([*query, "--checkpoint", ck])
+    _, alive = psutil.wait_procs(children, timeout=60)
+    assert not alive, "pool workers outlived their killed parent"
+    resumed = _run(*query, "--checkpoint", ck)
+    assert resumed.returncode == 0, resumed.stderr
+    assert resumed.stdout == reference.stdout
+    first = resumed.stderr.splitlines()[0]
+    done_before = int(first.split(", ")[-1].split()[0])
+    assert done_before > 0, first
+    again = _run(*query, "--checkpoint", ck)  # everything done: nothing runs, same answer
+    assert again.stdout == reference.stdout
+
+
+def test_checkpoint_belongs_to_one_query(tmp_path):
+    ck = tmp_path / "count.sqlite"
+    assert count_chains(1, 8, workers=1, checkpoint=ck) == count_chains(1, 8, workers=1)
+    with pytest.raises(CheckpointMismatch):
+        count_chains(1, 10, workers=1, checkpoint=ck)
+    with pytest.raises(CheckpointMismatch):
+        count_mechanisms(1, 8, workers=1, checkpoint=ck)
+    out = _run("chains", "--dof", "1", "--links", "8", "--v", "0..2", "--count", "--checkpoint", str(ck))
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.startswith("mechsynth: the checkpoint") and "belongs to another query" in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    bad = tmp_path / "not.sqlite"
+    bad.write_text("not a database")
+    out = _run("chains", "--dof", "1", "--links", "8", "--count", "--checkpoint", str(bad))
+    assert out.returncode == 2 and "not a usable checkpoint" in out.stderr and "Traceback" not in out.stderr
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--checkpoint", "x.sqlite"], "--checkpoint goes with --count"),
+    (["--scheduler", "tcp://127.0.0.1:1"], "--scheduler goes with --count"),
+    (["--count", "--scheduler", "tcp://127.0.0.1:1", "--workers", "2"], "contradict"),
+])
+def test_contradictory_options(args, words, tmp_path):
+    out = _run("chains", "--dof", "1", "--links", "8", *args, cwd=tmp_path)
+    assert out.returncode == 2 and words in out.stderr and len(out.stderr.strip().splitlines()) == 1
+
+
+# -------------------------------------------------------------------- Dask
+@pytest.mark.parametrize("command", [["chains", "--dof", "1", "--links", "8", "--count"], ["grid", "GRID", "--db", "DB"]])
+@pytest.mark.parametrize("address", ["nonsense", "tcp://127.0.0.1:1", "tcp://host:99999"])
+def test_bad_scheduler_is_one_sentence(command, address, tmp_path):
+    grid = tmp_path / "g.toml"
+    grid.write_text('dof = 1\nlinks = "4..6"\n')
+    command = [str(grid) if a == "GRID" else str(tmp_path / "a.sqlite") if a == "DB" else a for a in command]
+    out = _run(*command, "--scheduler", address, "--timeout", "1")
+    assert out.returncode == 2 and out.stdout == ""
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("mechsynth: ") and "Exception" not in out.stderr, out.stderr
+
+
+def test_count_on_a_dask_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        assert count_chains(1, 10, scheduler=address) == count_chains(1, 10, workers=1)
+        ck = tmp_path / "dask.sqlite"
+        out = _run("chains", "--dof", "1", "--links", "10", "--v", "0..2", "--count", "--scheduler", address,
+                   "--checkpoint", str(ck))
+        assert out.returncode == 0, out.stderr
+        assert json.loads(out.stdout) == count_chains(1, 10, v="0..2", workers=1)
+
+
+# ----------------------------------------------------------- size and refusal
+def test_estimate_of_14_links_from_smaller_counts():
+    found = estimate(dict(dof=1, links=14), budget=600)  # the basis is then 8, 10, 12 links on any machine
+    assert found.basis == "exact counts at 8, 10, 12 links"
+    assert abs(found.chains - 318162) / 318162 < 0.05
+    assert found.units > 271 and found.seconds > 0
+
+
+def test_giant_query_is_refused_with_an_estimate():
+    out = _run("chains", "--dof", "1", "--links", "40", "--count")
+    assert out.returncode == 2 and out.stdout == ""
+    line = out.stderr.strip()
+    assert "\n" not in line and line.startswith("mechsynth: this query is too large")
+    assert "chains" in line and "units" in line and "years" in line and "--force" in line
+
+
+@pytest.mark.parametrize("checkpoint", [None, "c.sqlite"])
+def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
+    # a query under the day's limit runs unasked, but one of more than _NOTE_SECONDS says how long
+    # it will take (here: 16 links against a limit of one second, so the run itself is not started)
+    import argparse
+
+    from mechsynth.commands import chains
+
+    monkeypatch.setattr(chains, "_NOTE_SECONDS", 1.0)
+    args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,
+                              workers=2, format=None, checkpoint=checkpoint)
+    chains._size_guard(1, args, dict(workers=2))
+    note = capsys.readouterr().err.strip()
+    assert note.startswith("mechsynth: a long query: about ") and "on 2 workers" in note and "\n" not in note
+    assert ("give --checkpoint FILE" in note) == (checkpoint is None)
+
+
+def test_large_listing_as_a_table_is_refused():
+    out = _run("chains", "--dof", "1", "--links", "18", "--force")
+    assert out.returncode == 2 and "--format jsonl or csv" in out.stderr and "\n" not in out.stderr.strip()
+
+
+def test_model_too_large_is_refused_even_when_forced():
+    with pytest.raises(QueryTooLarge):
+        synth.count_chains(1, 24, workers=1)
+    out = _run("chains", "--dof", "1", "--links", "24", "--count", "--force")
+    assert out.returncode == 2 and "branch vertices" in out.stderr and "\n" not in out.stderr.strip()
+
+
+def test_projection_is_exact_when_every_unit_is_sampled():
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_projection.py"
+    spec = importlib.util.spec_from_file_location("bench_projection", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    full = module.project(1, 10, codes=10**3, units=10**6, seed=0)
+    assert (full["chains_projected"], full["chains_se"], full["units_projected"], full["units_se"]) == (230, 0, 16, 0)
+    part = module.project(1, 10, codes=4, units=2, seed=0)  # a real sample: an estimate with an error bar
+    assert part["codes_sampled"] == 4 and part["chains_se"] > 0

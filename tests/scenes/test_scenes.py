@@ -1,0 +1,385 @@
+"""Scenes: every model under models/ runs and meets its [expect] table; malformed scenes fail cleanly.
+
+The whole directory is run once through the ``mechsynth scene --all`` command (JSON
+output) and each scene is then checked as its own test case.
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import os
+import re
+import subprocess
+import sys
+import textwrap
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from mechsynth.commands import scene as cli_scene
+from synth.errors import InvalidOption, SynthesisError
+from mechsynth.scene import KINDS, SceneError, load_scene, run_directory, run_scene
+
+ROOT = Path(__file__).resolve().parents[2]
+MODELS = ROOT / "models"
+SCENE_FILES = sorted(p for p in MODELS.glob("*.toml") if "scene" in tomllib.loads(p.read_text()))
+
+# the worked examples of docs/theory.md (structure and balancing) and the scene that runs each
+WORKED_EXAMPLES = {
+    "universal table 1": "table1_universal",
+    "locomotive drive": "locomotive_drive",
+    "64200/0 planetary lever analogue": "planetary_lever_64200",
+    "NaCl lattice 12,000/6": "nacl_lattice",
+    "3-DOF drive 8310/1": "drive_3dof_8310",
+    "trusses": "trusses",
+    "limit mechanisms": "limit_mechanism",
+    "open robot chain": "open_robot_chain",
+    "Bricard / toroidal h=5": "bricard_toroidal",
+    "Bricard with h=6": "bricard_classical_h6",
+    "Bennett and spherical 4-bars": "bennett_spherical",
+    "simplest 6-space loop": "spatial_loop_h6",
+    "linear translator": "linear_translator",
+    "wedge-lever system": "wedge_lever",
+    "24-link planar system": "task1_24_links",
+    "single loop with prismatic pairs": "task2_prismatic_loop",
+    "two links with an elastic coupling": "task4_elastic_coupling",
+    "2-DOF pair loop": "two_dof_pair_loop",
+    "8-link chain count": "chains_1dof_8links",
+    "8-link multiple joints": "multiple_joints_1dof_8links",
+    "Example 1 arm": "arm_base_drives",
+    "Example 2 arm": "arm_prismatic",
+    "compression spring": "spring_compression",
+    "pantograph": "pantograph",
+    "sliding link counter-masses": "slider_countermass",
+}
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="mechsynth")
+    cli_scene.add_commands(parser.add_subparsers(dest="command", required=True))
+    return parser
+
+
+def run_cli(*argv: str) -> tuple[int, str, str]:
+    """Run ``mechsynth scene …`` as cli.py will (SynthesisError -> one line, exit 2)."""
+    out, err = io.StringIO(), io.StringIO()
+    args = _parser().parse_args(["scene", *argv])
+    try:
+        code = cli_scene.run_scene_command(args, out=out, err=err)
+    except SynthesisError as exc:
+        err.write(f"mechsynth: {exc}\n")
+        code = 2
+    return code, out.getvalue(), err.getvalue()
+
+
+TIMING_EXPECTATION = re.compile(r"^\s*seconds(_below)?\s*=.*$", re.MULTILINE)
+
+
+@pytest.fixture(scope="module")
+def all_models(tmp_path_factory) -> dict:
+    """Every model, run from a copy without its timing expectations: speed is measured in
+    benchmarks/, never asserted by a test (a loaded machine would fail it)."""
+    out_dir = tmp_path_factory.mktemp("drawings")
+    models = tmp_path_factory.mktemp("models")
+    for path in MODELS.iterdir():
+        if path.is_file():
+            (models / path.name).write_text(TIMING_EXPECTATION.sub("", path.read_text()))
+    code, out, err = run_cli("--all", str(models), "--format", "json", "--out", str(out_dir))
+    report = json.loads(out)
+    report["exit"] = code
+    report["stderr"] = err
+    return report
+
+
+# ---------------------------------------------------------------------------- every model
+def test_all_models_pass_with_zero_exit(all_models):
+    assert all_models["errors"] == [], all_models["stderr"]
+    assert all_models["ok"] is True
+    assert all_models["exit"] == 0
+    assert len(all_models["scenes"]) == len(SCENE_FILES)
+
+
+def test_non_scene_files_are_skipped_with_a_note(all_models):
+    skipped = {Path(s["path"]).name: s["reason"] for s in all_models["skipped"]}
+    assert "grid_small.toml" in skipped
+    assert "[scene]" in skipped["grid_small.toml"]
+
+
+@pytest.mark.parametrize("path", SCENE_FILES, ids=lambda p: p.stem)
+def test_scene_meets_every_expectation(path, all_models):
+    (scene,) = [s for s in all_models["scenes"] if Path(s["path"]).name == path.name]
+    not_met = [c["message"] for c in scene["checks"] if c["status"] != "met"]
+    assert not not_met and scene["checks"]
+
+
+@pytest.mark.parametrize("path", SCENE_FILES, ids=lambda p: p.stem)
+def test_every_scene_has_expectations_and_a_description(path):
+    scene = load_scene(path)
+    assert scene.expect, f"{path.name} has no [expect] table"
+    assert scene.name == path.stem
+    assert scene.description and set(scene.compute) <= set(KINDS)
+
+
+def test_every_worked_example_has_a_scene():
+    names = {p.stem for p in SCENE_FILES}
+    missing = {example: name for example, name in WORKED_EXAMPLES.items() if name not in names}
+    assert not missing
+
+
+def test_locomotive_drawing_written(tmp_path):
+    result = run_scene(MODELS / "locomotive_drive.toml", out_dir=tmp_path)
+    assert result.ok
+    svg = tmp_path / "locomotive_drive.svg"
+    assert [str(svg)] == list(result.files)
+    assert svg.stat().st_size > 1000
+    assert result.results["drawing"]["items"] == 25
+
+
+def test_spring_plot_written(all_models):
+    (scene,) = [s for s in all_models["scenes"] if s["name"] == "spring_compression"]
+    (png,) = scene["files"]
+    assert png.endswith("spring_compression.png") and Path(png).stat().st_size > 10_000
+
+
+def test_without_out_no_picture_is_written(tmp_path, monkeypatch):
+    """``scene --all`` writes nothing into the current directory unless --out says where."""
+    monkeypatch.chdir(tmp_path)
+    for name in ("locomotive_drive", "spring_compression"):
+        result = run_scene(MODELS / f"{name}.toml")
+        assert result.ok and result.files == ()
+        assert [c.key for c in result.checks if c.status == "skipped"] == (["drawn"] if name == "locomotive_drive" else [])
+        (note,) = result.notes
+        assert note.endswith(f"skipped: no --out DIR given to write {name}.{'svg' if 'drive' in name else 'png'}")
+    code, out, err = run_cli(str(MODELS / "locomotive_drive.toml"))
+    assert code == 0 and "not drawn: no --out DIR given to write locomotive_drive.svg" in out
+    assert not list(tmp_path.iterdir())
+
+
+def test_table_output_and_json_of_one_scene():
+    code, out, err = run_cli(str(MODELS / "chains_1dof_8links.toml"))
+    assert code == 0 and err == ""
+    assert "16 chains" in out and "3 of 3 expectations met" in out
+    code, out, _ = run_cli(str(MODELS / "nacl_lattice.toml"), "--format", "json")
+    doc = json.loads(out)
+    assert code == 0 and doc["ok"] and doc["results"]["analysis"]["dof"] == 3
+
+
+def test_output_is_deterministic():
+    a = run_scene(MODELS / "multiple_joints_1dof_8links.toml").to_dict()
+    b = run_scene(MODELS / "multiple_joints_1dof_8links.toml").to_dict()
+    a.pop("seconds"), b.pop("seconds")
+    assert json.dumps(a) == json.dumps(b)
+
+
+def test_copy_change_a_number_and_rerun(tmp_path):
+    """A designer copies a scene, changes the links, and gets the new answer."""
+    text = (MODELS / "chains_1dof_8links.toml").read_text()
+    text = text.replace("links = 8", "links = 6").replace("count = 16", "count = 2")
+    text = text.replace('by_code = { "440/0" = 9, "521/0" = 5, "602/0" = 2 }', 'by_code = { "42/0" = 2 }')
+    path = tmp_path / "six.toml"
+    path.write_text(text)
+    assert run_scene(path).ok
+
+
+# ---------------------------------------------------------------------------- malformed scenes
+GOOD = """\
+[scene]
+name = "t"
+description = "test scene"
+compute = ["codes"]
+
+[structure]
+dof = 1
+loops = 2
+
+[expect]
+codes = ["42/0", "51/1", "60/2"]
+"""
+
+MALFORMED = {
+    # case: (text, words the sentence must contain)
+    "syntax error": (GOOD.replace('name = "t"', "name = t t"), ["not valid TOML", "line 2"]),
+    "unknown top-level key": (GOOD + "\n[solver]\nx = 1\n", ["'solver'"]),
+    "unknown scene key": (GOOD.replace('name = "t"', 'name = "t"\ncolour = "red"'), ["[scene]", "'colour'"]),
+    "unknown structure key": (GOOD.replace("loops = 2", "loops = 2\nloopz = 3"), ["[structure]", "'loopz'"]),
+    "unknown expect key": (GOOD.replace("[expect]", "[expect]\ncunt = 3"), ["[expect]", "'cunt'"]),
+    "unknown compute": (GOOD.replace('["codes"]', '["codez"]'), ["'compute'", "'codez'"]),
+    "wrong type dof": (GOOD.replace("dof = 1", 'dof = "one"'), ["[structure]", "'dof'", "whole number", "'one'"]),
+    "wrong type loops": (GOOD.replace("loops = 2", "loops = 2.5"), ["'loops'", "2.5"]),
+    "wrong type compute": (GOOD.replace('["codes"]', '"codes"'), ["'compute'", "list of strings"]),
+    "wrong type expect": (GOOD.replace('codes = ["42/0", "51/1", "60/2"]', "codes = 3"), ["[expect]", "'codes'"]),
+    "wrong type table": ("structure = 3\n" + GOOD.replace("[structure]\ndof = 1\nloops = 2\n", ""),
+                         ["'structure'", "table"]),
+    "bad code in expect": (GOOD.replace('"60/2"', '"61/2"'), ["[expect]", "'codes'", "61/2"]),
+    "missing scene": (GOOD.split("[structure]")[1].join(["[structure]", ""]), ["missing section [scene]"]),
+    "missing scene name": (GOOD.replace('name = "t"\n', ""), ["[scene]", "'name'"]),
+    "missing structure": (GOOD.replace("[structure]\ndof = 1\nloops = 2\n", ""), ["missing section [structure]"]),
+    "missing dof": (GOOD.replace("dof = 1\n", ""), ["[structure]", "'dof'"]),
+    "missing balance table": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n",
+                              ["[slider]", "'balance prismatic'"]),
+    "expect without its computation": (GOOD.replace("[expect]", "[expect]\ncount = 2"), ["'count'", "compute"]),
+    "unused structure key": (GOOD.replace("loops = 2", "loops = 2\nplanar_only = true"), ["'planar_only'", "not used"]),
+    "chains in h=1": (GOOD.replace('["codes"]', '["count"]').replace("loops = 2", "loops = 2\nh = 1")
+                      .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["'h'", "2 … 6"]),
+    "chains with f": (GOOD.replace('["codes"]', '["count"]').replace("loops = 2", "loops = 2\nf = 1")
+                      .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["'f'", "one-DOF pairs"]),
+    "impossible parameters": (GOOD.replace("loops = 2", "loops = 2\nrequire = [\"2=x\"]"), ["[structure]"]),
+    "balance error": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
+                      "[slider]\nmass = -2.0\ncounter_mass = 2.0\nq_max = 0.5\n", ["mass"]),
+    "plot without balance": (GOOD.replace('["codes"]', '["codes", "plot"]'), ["'plot'", "balance"]),
+    "bad drawing file name": (GOOD.replace('["codes"]', '["count", "drawing"]').replace("[expect]", "[drawing]\nout = \"a/b.gif\"\n[expect]")
+                              .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["[drawing]", "'out'", "a/b.gif"]),
+    "dof is true": (GOOD.replace("dof = 1", "dof = true"), ["[structure] key 'dof' must be a whole number ≥ 0, not true."]),
+    "empty range": (GOOD.replace("loops = 2", 'loops = "5..2"'), ["'loops'", "empty range '5..2'"]),
+    "empty compute": (GOOD.replace('["codes"]', "[]"), ["'compute'", "empty"]),
+    "compute twice": (GOOD.replace('["codes"]', '["codes", "codes"]'), ["'compute'", "twice"]),
+    "rel_tol out of range": (GOOD.replace('name = "t"', 'name = "t"\nrel_tol = 2'), ["'rel_tol'", "between 0 and 1"]),
+    "v triple": (GOOD.replace("loops = 2", "loops = 2\nv = [1, 2, 3]"), ["'v'", "pair [A, B]", "[1, 2, 3]"]),
+    "bad code in structure": (GOOD.replace('["codes"]', '["analysis"]').replace("dof = 1\nloops = 2", 'code = "63x1/0"')
+                              .replace('codes = ["42/0", "51/1", "60/2"]', "dof = 1"), ["[structure]", "'code'", "63x1/0"]),
+    "negative link count": (GOOD.replace('["codes"]', '["analysis"]').replace("dof = 1\nloops = 2", "counts = { 2 = -1 }")
+                            .replace('codes = ["42/0", "51/1", "60/2"]', "dof = 1"), ["'counts'", "whole numbers"]),
+    "below form of an exact key": (GOOD.replace("[expect]", "[expect]\ncode_count_below = 4"), ["no upper-bound form"]),
+    "below bound not a number": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
+                                 "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\n[expect]\nC_min_below = \"x\"\n",
+                                 ["[expect] key 'C_min_below' must be a finite number, not 'x'"]),
+    "drawing table without drawing": (GOOD.replace("[expect]", "[drawing]\nlimit = 3\n[expect]"), ["[drawing]", "'drawing'"]),
+    "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
+                            "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MALFORMED))
+def test_malformed_scene_gives_one_sentence(case, tmp_path):
+    text, words = MALFORMED[case]
+    path = tmp_path / "bad_scene.toml"
+    path.write_text(text)
+    with pytest.raises(SceneError) as info:
+        run_scene(path)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(str(path)), message
+    assert message.endswith(".") or message.endswith(")"), message
+    for word in words:
+        assert word in message, (word, message)
+    # the command prints the same sentence on stderr, nothing on stdout, exit 2, no traceback
+    code, out, err = run_cli(str(path))
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "Traceback" not in err and str(path) in err
+
+
+def test_impossible_expectation_is_a_failed_check_with_both_values(tmp_path):
+    path = tmp_path / "wrong.toml"
+    path.write_text(GOOD.replace('codes = ["42/0", "51/1", "60/2"]', 'codes = ["42/0", "60/2"]\ncode_count = 4'))
+    result = run_scene(path)
+    assert not result.ok
+    (codes, count) = result.checks
+    assert codes.status == "failed" and "unexpected 51/1" in codes.message and str(path) in codes.message
+    assert count.status == "failed" and "4" in count.message and "3" in count.message
+    assert "\n" not in count.message
+    code, out, _ = run_cli(str(path))
+    assert code == 1 and "FAIL" in out and "0 of 2 expectations met" in out
+
+
+def test_chain_count_contradicted(tmp_path):
+    path = tmp_path / "count.toml"
+    path.write_text((MODELS / "chains_1dof_8links.toml").read_text().replace("count = 16", "count = 17"))
+    (check,) = [c for c in run_scene(path).checks if c.key == "count"]
+    assert check.status == "failed" and check.expected == 17 and check.actual == 16
+    assert "count = 17" in check.message and "16" in check.message
+
+
+def test_directory_with_malformed_and_failing_scenes(tmp_path):
+    (tmp_path / "a_good.toml").write_text(GOOD)
+    (tmp_path / "b_bad.toml").write_text(GOOD.replace("dof = 1", "dof = -1"))
+    (tmp_path / "c_grid.toml").write_text('name = "grid"\ndof = "1..3"\n')
+    code, out, err = run_cli("--all", str(tmp_path))
+    assert code == 2
+    assert "PASS  t" in out and "ERROR" in out and "b_bad.toml" in out and "'dof'" in out
+    assert "skip" in out and "c_grid.toml" in out
+    (tmp_path / "b_bad.toml").write_text(GOOD.replace('"60/2"]', '"60/2", "52/0"]'))
+    code, out, _ = run_cli("--all", str(tmp_path))
+    assert code == 1 and "FAIL" in out and "missing" in out
+    result = run_directory(tmp_path)
+    assert [Path(p).name for p, _ in result.skipped] == ["c_grid.toml"]
+
+
+def test_command_line_mistakes():
+    with pytest.raises(InvalidOption):
+        run_cli_args = _parser().parse_args(["scene"])
+        cli_scene.run_scene_command(run_cli_args)
+    code, _, err = run_cli(str(MODELS / "no_such_scene.toml"))
+    assert code == 2 and "no such scene file" in err
+    code, _, err = run_cli("--all", str(MODELS / "no_such_dir"))
+    assert code == 2 and "not a directory" in err
+
+
+def test_grid_file_alone_is_not_a_scene():
+    with pytest.raises(SceneError, match=r"grid_small\.toml: missing section \[scene\]"):
+        run_scene(MODELS / "grid_small.toml")
+
+
+# ---------------------------------------------------------------------------- lazy imports
+_PROBE = textwrap.dedent("""
+    import json, sys
+    root = sys.argv[1]
+    sys.path.insert(0, root)
+    from mechsynth.scene import run_scene
+    assert run_scene(root + "/models/" + sys.argv[2]).ok
+    mods = sorted(m for m in sys.modules if m.startswith(("synth", "ortools", "pynauty", "networkx", "balance")))
+    print(json.dumps(mods))
+""")
+
+
+def _modules_after(scene: str) -> set[str]:
+    env = dict(os.environ, MPLBACKEND="Agg")
+    out = subprocess.run([sys.executable, "-c", _PROBE, str(ROOT), scene], capture_output=True, text=True,
+                         check=True, env=env, cwd=ROOT)
+    return set(json.loads(out.stdout))
+
+
+def test_balancing_scene_imports_no_synth_solver():
+    mods = _modules_after("slider_countermass.toml")
+    assert "balance.problems" in mods
+    heavy = {m for m in mods if m.startswith(("ortools", "pynauty", "networkx", "synth._"))}
+    assert not heavy, heavy
+    assert {m for m in mods if m.startswith("synth")} <= {"synth", "synth.errors", "synth.schema"}
+
+
+def test_codes_only_scene_builds_no_graph_model():
+    mods = _modules_after("table1_universal.toml")
+    assert "synth.synthesis.number_synthesis" in mods
+    assert not {"synth.synthesis._realise", "synth.synthesis.type_synthesis", "synth.structure.chain", "pynauty", "balance"} & mods
+
+
+def test_analysis_scene_needs_no_solver():
+    mods = _modules_after("task1_24_links.toml")
+    assert "synth.analysis.codes" in mods
+    solvers = ("ortools", "pynauty", "synth.synthesis._cpsat", "synth.synthesis.number_synthesis", "synth.synthesis._realise", "synth.synthesis.type_synthesis")
+    assert not {m for m in mods if m.startswith((*solvers, "balance"))}
+
+
+def test_import_synth_loads_no_solver():
+    """``import synth`` loads its names lazily: no CP-SAT, nauty or graph model until one is used."""
+    loaded = subprocess.run([sys.executable, "-c", "import sys, synth; print(sorted(m for m in sys.modules "
+                             "if m.startswith(('synth.', 'ortools', 'pynauty'))))"],
+                            capture_output=True, text=True, check=True, cwd=ROOT).stdout.strip()
+    assert loaded == "['synth.errors']"
+
+
+# ---------------------------------------------------------------------------- through mechsynth
+def test_through_the_mechsynth_command(tmp_path, capsys):
+    from mechsynth import cli
+
+    assert cli.main(["scene", str(MODELS / "wedge_lever.toml")]) == 0
+    assert "8 of 8 expectations met" in capsys.readouterr().out
+    bad = tmp_path / "bad.toml"
+    bad.write_text(GOOD.replace("dof = 1", "dof = true"))
+    assert cli.main(["scene", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechsynth: ") and "'dof'" in err and err.count("\n") == 1
+    assert cli.main(["scene", str(bad), "--all", str(tmp_path)]) == 2
+    assert "not both" in capsys.readouterr().err

@@ -1,0 +1,1 @@
+"""Tests of codes, chains and the exact sub-chain test."""

@@ -1,0 +1,1 @@
+"""Tests of number and type synthesis, units, mechanisms and R/P variants."""
