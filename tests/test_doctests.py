@@ -1,21 +1,24 @@
-"""Every docstring example of the synth and mechsynth packages runs."""
+"""Every docstring example of the synth, balance and mechsynth packages runs (every module is
+found by walking the packages: a new module cannot be left out)."""
 
 import doctest
 import importlib
+import pkgutil
 
 import pytest
 
-MODULES = ["synth.structure.code", "synth.structure.chain", "synth.structure.subchains", "synth.analysis.codes", "synth.analysis.chains",
-           "synth.synthesis.number_synthesis", "synth.synthesis.type_synthesis", "synth.synthesis._realise", "synth.structure._nauty", "synth.synthesis._cpsat", "synth.execution.executor", "synth.execution.scheduler", "synth.execution.checkpoint", "synth",
-           "mechsynth", "mechsynth._argtypes", "mechsynth._output", "mechsynth.scene", "mechsynth.cli",
-           "mechsynth.scene.registry", "mechsynth.scene.results", "mechsynth.scene.compare", "mechsynth.scene.types",
-           "mechsynth.scene.structure", "mechsynth.scene.balancing", "mechsynth.scene.runner", "synth.schema",
-           "mechsynth.commands.codes", "mechsynth.commands.chains", "mechsynth.commands.scene",
-           "mechsynth.commands.balance", "synth.synthesis.variants", "synth.gears.planetary", "synth.analysis.repair",
-           "mechsynth.commands.planetary"]
+import balance
+import mechsynth
+import synth
+
+MODULES = sorted(
+    [pkg.__name__ for pkg in (synth, balance, mechsynth)]
+    + [m.name for pkg in (synth, balance, mechsynth) for m in pkgutil.walk_packages(pkg.__path__, pkg.__name__ + ".")
+       if not m.name.endswith(".__main__")]  # runs the command when imported
+)
 
 
 @pytest.mark.parametrize("name", MODULES)
 def test_docstring_examples(name):
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
-    assert result.failed == 0 and result.attempted > 0
+    assert result.failed == 0

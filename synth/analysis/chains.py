@@ -1,36 +1,59 @@
 """Structural analysis of a given chain: W, K, code, whether the code is standard, defects.
 
+Joint kinds count (docs/theory.md, "Joint kinds"): a prismatic pair removes two freedoms and
+a loop of prismatic pairs only gives one back (K_2 wedge loops), a gear mesh removes one (its
+lever analogue is a binary link).  ``dof`` is the generic mobility of a planar chain — the rank
+of its velocity constraints at a random configuration — and ``dof_count`` the count; they differ
+by the ``redundant`` constraints the count cannot see.
+
 Example
 -------
 >>> a = analyze_chain("0-1 1-2 2-0 0-3 3-4 4-5 5-1")  # triangle 0-1-2 in a six-bar
 >>> a.dof, a.code, a.subchain_defect, a.worst_subchain
 (1, '42/0', 'rigid sub-chain', [0, 1, 2])
+>>> a = analyze_chain("0=1 1=2 2=0 2-3 3-4 4-0")     # Task 3: a wedge and a lever
+>>> a.dof, a.loops_2, a.loops_3, a.subchain_defect
+(1, 1, 1, 'none')
 """
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 
-from ..synthesis.number_synthesis import number_synthesis
-from ..structure.chain import Chain
 from ..errors import ImpossibleParameters
+from ..structure.chain import Chain
+from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
 from ..structure.subchains import check_subchains
+from ..synthesis.number_synthesis import number_synthesis
 
-__all__ = ["ChainAnalysis", "analyze_chain"]
+__all__ = ["ChainAnalysis", "analyze_chain", "mobility_of"]
 
 
 @dataclass(frozen=True)
 class ChainAnalysis:
-    """What the theory says about one chain; ``advice`` tells how to remove a defect."""
+    """What the theory says about one chain; ``advice`` tells how to remove a defect.
+
+    ``dof`` is the true mobility (generic, for planar chains), ``dof_count`` the count and
+    ``redundant`` their difference; ``loops_2``/``loops_3`` the wedge loops (prismatic pairs
+    only) and the others; ``idle_joints`` the joints whose links never move relative to each
+    other; ``lever_analogue`` the code of the chain with each gear mesh a binary link.
+    """
 
     code: str
     h: int
     links: int
     joints: int
     dof: int
+    dof_count: int
+    redundant: int
     loops: int
+    loops_2: int
+    loops_3: int
     complexity: int
     v: int
+    prismatic: int
+    meshes: int
+    lever_analogue: str | None
     standard_code: bool
     connected: bool
     fractionated: bool
@@ -38,55 +61,93 @@ class ChainAnalysis:
     subchain_defect: str
     worst_subchain: list
     worst_subchain_mobility: int | None  # None: no proper sub-chain of two links or more
+    idle_joints: list
     advice: str
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None = None) -> ChainAnalysis:
-    """Analyse a chain given as :class:`Chain`, JSON or compact joint list ``"0-1 1-2 …"``.
+def mobility_of(chain: Chain) -> int:
+    """The chain's true mobility: generic for a planar chain, the count in other motion spaces.
 
-    ``dof`` sets the convention: W = 0 allows rigid sub-chains, otherwise none is allowed.
-    ``h`` is the motion space of the loops (default the chain's own, 3 for a joint list).
+    >>> mobility_of(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced four-bar: rigid
+    0
+    """
+    return generic_mobility(chain) if chain.h == 3 else chain.dof
+
+
+def _standard(chain: Chain) -> bool:
+    """Whether the code of the chain's revolute reading (meshes as binary links, prismatic pairs
+    as pins, W without the wedge loops) is one of the standard codes."""
+    base = lever_analogue(chain) if chain.kinds is not None and "mesh" in chain.kinds else chain
+    W = base.dof - (wedge_loops(base) if base.kinds is not None else 0)
+    code = base.code
+    try:
+        return W >= 0 and code.loops >= 0 and code in number_synthesis(
+            W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
+            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2))
+    except ImpossibleParameters:
+        return False
+
+
+def _joint_text(chain: Chain, joints) -> str:
+    index = {j: k for k, j in enumerate(chain.joints)}
+    return ", ".join(Chain(chain.links, [j], [chain.kinds[index[j]]] if chain.kinds else None).compact()
+                     for j in joints)
+
+
+def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None = None) -> ChainAnalysis:
+    """Analyse a chain given as :class:`Chain`, JSON or compact joint list ``"0-1 1=2 2~3 …"``.
+
+    ``dof`` is the intended W and sets the convention: W = 0 allows rigid sub-chains, otherwise
+    none is allowed.  ``h`` is the motion space of the loops (default the chain's own, 3 for a
+    joint list).
 
     >>> a = analyze_chain("0-1 1-2 2-3 3-4 4-5 5-0", h=5)  # the Bricard six-bar
     >>> a.dof, a.subchain_defect
     (1, 'none')
     >>> analyze_chain("0-1 1-2 2-3 3-0 0-4 4-5").code  # a four-bar carrying a two-link arm: one free end
     '1|41/0'
+    >>> analyze_chain("0=1 1=2 2=3 3=0").dof              # the wedge loop of four sliders
+    2
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
     if h is not None and h != chain.h:
         chain = replace(chain, h=h)
-    W = chain.dof
-    rigid_ok = (dof if dof is not None else W) == 0
-    report = check_subchains(chain, rigid_subchains=rigid_ok)  # refuses a chain in pieces
-    code = chain.code
-    try:
-        standard = code in number_synthesis(
-            W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
-            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2),
-        ) if W >= 0 and code.loops >= 0 else False
-    except ImpossibleParameters:
-        standard = False
+    report = check_subchains(chain, rigid_subchains=(dof if dof is not None else chain.dof) == 0)  # refuses pieces
+    W = mobility_of(chain)
+    idle = idle_joints(chain)
+    k2 = wedge_loops(chain) if chain.kinds is not None else 0
     advice = []
     if dof is not None and dof != W:
         d = W - dof
         advice.append(f"the chain has W = {W}, not {dof}: " + (
             f"remove {d} binary link(s) or merge joints (v + {d})" if d > 0 else f"add {-d} binary link(s)"))
-    if not report.ok:
+    if report.kind == "redundant constraints":
+        advice.append(f"its pairs carry {report.redundant} redundant constraint(s) the count does not see "
+                      f"(W = {W}, the count {chain.dof}): turn a prismatic pair into a revolute one or add a link")
+    elif not report.ok:
         advice.append(
             f"links {list(report.worst)} form a {report.kind} with W(S) = {report.worst_mobility}: it acts as "
             f"one link; add {report.threshold - report.worst_mobility} binary link(s) inside it or open one of its joints"
         )
+    if idle and report.ok:  # (inside a rigid sub-chain every joint is idle: the sub-chain says why)
+        why = ("prismatic pairs lock the rotation of their links; make one of those pairs revolute"
+               if kind_count(chain, "prismatic") else "the rest of the chain holds their links together")
+        advice.append(f"joint(s) {_joint_text(chain, idle)} never move: {why}")
     if chain.is_fractionated():
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
+    has_mesh = chain.kinds is not None and "mesh" in chain.kinds
     return ChainAnalysis(
-        code=str(code), h=chain.h, links=chain.links, joints=len(chain.joints), dof=W, loops=chain.loops,
-        complexity=chain.loops - 1, v=chain.v, standard_code=standard, connected=True,
-        fractionated=chain.is_fractionated(), planar=chain.is_planar(), subchain_defect=report.kind,
-        worst_subchain=list(report.worst), worst_subchain_mobility=report.worst_mobility if report.worst else None,
-        advice="; ".join(advice) or "no defect: no rigid or over-constrained sub-chain",
+        code=str(chain.code) + chain.kind_suffix, h=chain.h, links=chain.links, joints=len(chain.joints), dof=W,
+        dof_count=chain.dof, redundant=W - chain.dof, loops=chain.loops, loops_2=k2, loops_3=chain.loops - k2,
+        complexity=chain.loops - 1, v=chain.v, prismatic=kind_count(chain, "prismatic"),
+        meshes=kind_count(chain, "mesh"), lever_analogue=str(lever_analogue(chain).code) if has_mesh else None,
+        standard_code=_standard(chain), connected=True, fractionated=chain.is_fractionated(),
+        planar=chain.is_planar(), subchain_defect=report.kind, worst_subchain=list(report.worst),
+        worst_subchain_mobility=report.worst_mobility if report.worst else None,
+        idle_joints=[list(j) for j in idle],
+        advice="; ".join(advice) or "no defect: no rigid or over-constrained sub-chain, no idle joint",
     )

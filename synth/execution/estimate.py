@@ -93,7 +93,7 @@ def describe_seconds(seconds: float) -> str:
     """A duration in the largest sensible unit.
 
     >>> describe_seconds(42), describe_seconds(5400), describe_seconds(3e5), describe_seconds(1e12)
-    ('42 s', '1.5 h', '3.5 days', '3.2e+04 years')
+    ('42 s', '90 min', '3.5 days', '3.2e+04 years')
     """
     if seconds < 120:
         return f"{seconds:.0f} s"

@@ -28,9 +28,10 @@ from ._nauty import TrustedGraph
 from .code import Code
 from ..errors import MalformedChain
 
-__all__ = ["Chain", "Mechanism", "JOINT_KINDS"]
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS"]
 
-JOINT_KINDS = ("revolute", "prismatic")
+JOINT_KINDS = ("revolute", "prismatic", "mesh")  # see synth.structure.kinds
+SYMBOLS = {"revolute": "-", "prismatic": "=", "mesh": "~"}  # their signs in a joint list: 0-1, 0=1, 0~1
 
 
 @dataclass(frozen=True)
@@ -44,16 +45,23 @@ class Chain:
     joints : sequence of sequences of int
         Each joint as the links it joins (at least two, all different).
     kinds : sequence of str, optional
-        ``"revolute"`` or ``"prismatic"`` per joint; None means all revolute.
+        ``"revolute"``, ``"prismatic"`` or ``"mesh"`` (a gear mesh) per joint; None means all
+        revolute.  Prismatic pairs and meshes join two links, in planar chains (see
+        :mod:`synth.structure.kinds`).
     h : int
         Motion space of its loops (2 … 6; 3 planar and spherical, 6 general spatial): the same
         graph is a different design in another space, with W = h(n − 1) − (h − 1)·p.
+
+    Two joints on the same two links hold them together as one link: synthesis never builds
+    such a chain, and the analysis reports it as an over-constrained sub-chain.
 
     Examples
     --------
     >>> c = Chain(4, [(0, 1), (1, 2), (2, 3), (3, 0)])
     >>> c.joints, str(c.code)
     (((0, 1), (0, 3), (1, 2), (2, 3)), '4/0')
+    >>> Chain.parse("0-1 1=2 2-3 3-0").compact()      # a slider-crank: '=' is a prismatic pair
+    '0-1 0-3 1=2 2-3'
     """
 
     links: int
@@ -79,13 +87,23 @@ class Chain:
                 raise MalformedChain(f"joint kind {bad[0]!r} is not one of {', '.join(JOINT_KINDS)}")
             if all(k == "revolute" for k in kinds):
                 kinds = None
-        for j in raw:
+        for k, j in enumerate(raw):
             if len(j) < 2:
                 raise MalformedChain(f"joint {list(j)} joins fewer than two links")
             if len(set(j)) != len(j):
                 raise MalformedChain(f"joint {list(j)} names a link twice")
             if j[0] < 0 or j[-1] >= self.links:
                 raise MalformedChain(f"joint {list(j)} names a link outside 0…{self.links - 1}")
+            if kinds is not None and kinds[k] != "revolute" and len(j) > 2:
+                raise MalformedChain(f"joint {list(j)} joins {len(j)} links: a multiple joint is a pin (revolute), "
+                                     f"a {kinds[k]} pair joins two links")
+        if kinds is not None and "mesh" in kinds:
+            for k, j in enumerate(raw):
+                if kinds[k] == "mesh" and raw.count(j) > 1:
+                    raise MalformedChain(f"links {j[0]} and {j[1]} are joined twice, once by a gear mesh: two gears "
+                                         "mesh once, and gears on one axis cannot mesh")
+        if kinds is not None and self.h != 3:
+            raise MalformedChain(f"prismatic pairs and gear meshes are planar (h = 3), not in motion space h = {self.h}")
         order = sorted(range(len(raw)), key=lambda k: (raw[k], kinds[k] if kinds else ""))
         object.__setattr__(self, "joints", tuple(raw[k] for k in order))
         object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
@@ -131,12 +149,23 @@ class Chain:
 
     @property
     def dof(self) -> int:
-        """Mobility W = h(n − 1) − (h − 1)·p (planar: 3(n − 1) − 2p).
+        """Mobility W by the count: h(n − 1) − (h − 1)·p, planar with joint kinds
+        3(n − 1) − 2·p − g + K_2 (g gear meshes, K_2 wedge loops of prismatic pairs).
+
+        It is the chain's true (generic) mobility wherever no sub-chain is over-constrained
+        and no joint is idle — every chain synthesis lists; :func:`~synth.structure.kinds.generic_mobility`
+        gives it for any chain.
 
         >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").dof, Chain(6, Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0").joints, h=5).dof
         (3, 1)
+        >>> Chain.parse("0=1 1=2 2=3 3=0").dof          # a wedge loop
+        2
         """
-        return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
+        if self.kinds is None:
+            return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
+        from .kinds import structural_mobility
+
+        return structural_mobility(self)
 
     @property
     def code(self) -> Code:
@@ -178,8 +207,9 @@ class Chain:
         coloring = [{m} for m in marked] + [set(range(n)) - set(marked)]
         if self.kinds is None:
             coloring.append(set(range(n, n + len(self.joints))))
-        else:
-            coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in JOINT_KINDS]
+        else:  # a cell per kind (meshes only where there are some: older certificates stay valid)
+            shown = JOINT_KINDS if "mesh" in self.kinds else JOINT_KINDS[:2]
+            coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in shown]
         return TrustedGraph(n + len(self.joints), adjacency, coloring)
 
     @property
@@ -194,6 +224,8 @@ class Chain:
             sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
             if self.kinds is not None:
                 sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
+                if "mesh" in self.kinds:
+                    sizes += "g" + f"{self.kinds.count('mesh'):02x}"
             cert = sizes + pynauty.certificate(self._nauty_graph()).hex()
             object.__setattr__(self, "_certificate", cert)
         return cert
@@ -264,17 +296,17 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-0 2-3 3-4").closed_part().compact()
         '0-1 0-2 1-2'
         """
-        joints = [list(j) for j in self.joints]
+        joints = [(list(j), k) for j, k in zip(self.joints, self.kinds or ("revolute",) * len(self.joints))]
         while True:
             degree = [0] * self.links
-            for j in joints:
+            for j, _ in joints:
                 for x in j:
                     degree[x] += 1
-            if all(degree[x] >= 2 for j in joints for x in j):
+            if all(degree[x] >= 2 for j, _ in joints for x in j):
                 break
-            joints = [[x for x in j if degree[x] >= 2] for j in joints]
-            joints = [j for j in joints if len(j) >= 2]
-        return Chain(self.links, tuple(map(tuple, joints)), h=self.h)
+            joints = [([x for x in j if degree[x] >= 2], k) for j, k in joints]
+            joints = [(j, k) for j, k in joints if len(j) >= 2]
+        return Chain(self.links, [j for j, _ in joints], [k for _, k in joints], self.h)
 
     def is_fractionated(self) -> bool:
         """Whether removing one link or one joint of the closed part disconnects it (a cut vertex
@@ -304,9 +336,9 @@ class Chain:
             "loops": self.loops,
             "v": self.v,
         }
-        if self.kinds is not None:  # the code says how many pairs are prismatic, e.g. '42/0 P2'
+        if self.kinds is not None:  # the code says how many pairs are prismatic and meshes, e.g. '42/0 P2'
             d["kinds"] = list(self.kinds)
-            d["code"] += f" P{self.kinds.count('prismatic')}"
+            d["code"] += self.kind_suffix
         if self.h != 3:
             d["h"] = self.h
         return d
@@ -328,6 +360,19 @@ class Chain:
             raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
         return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
 
+    @property
+    def kind_suffix(self) -> str:
+        """What the code leaves out: ``" P2"`` for two prismatic pairs, ``" G3"`` for three gear
+        meshes (empty for an all-revolute chain).
+
+        >>> Chain.parse("0-1 1=2 2~3 3-0").kind_suffix
+        ' P1 G1'
+        """
+        if self.kinds is None:
+            return ""
+        text = f" P{self.kinds.count('prismatic')}" if "prismatic" in self.kinds or "mesh" not in self.kinds else ""
+        return text + (f" G{self.kinds.count('mesh')}" if "mesh" in self.kinds else "")
+
     def to_json(self) -> str:
         return json.dumps(self.to_dict())
 
@@ -343,29 +388,50 @@ class Chain:
 
     @classmethod
     def parse(cls, text: str) -> "Chain":
-        """Read JSON, or a compact joint list ``"0-1 1-2 2-3 3-0"`` (``"0-1-2"`` is a double joint).
+        """Read JSON, or a compact joint list: ``-`` a revolute joint (``"0-1-2"`` a double
+        joint), ``=`` a prismatic pair, ``~`` a gear mesh.
 
         >>> Chain.parse("0-1-2 2-3 3-0 0-4 4-5 5-1").v
         1
+        >>> Chain.parse("0=1 1-2 2~0").kinds       # joints sorted: (0, 1), (0, 2), (1, 2)
+        ('prismatic', 'mesh', 'revolute')
         """
         s = text.strip()
         if s.startswith("{") or s.startswith("["):
             return cls.from_json(s)
-        joints = []
+        joints, kinds = [], []
+        by_symbol = {v: k for k, v in SYMBOLS.items()}
         for token in s.replace(",", " ").split():
+            symbols = {c for c in token if c in by_symbol}
+            parts = token.replace("=", "-").replace("~", "-").split("-")
             try:
-                joints.append(tuple(int(x) for x in token.split("-")))
+                joint = tuple(int(x) for x in parts)
             except ValueError:
+                joint = None
+            if joint is None or len(symbols) != 1 or any(x < 0 for x in joint):
                 raise MalformedChain(
-                    f"cannot read joint {token!r}: write joints as link numbers joined by '-', e.g. '0-1 1-2-3'"
+                    f"cannot read joint {token!r}: write joints as link numbers joined by '-' (revolute, "
+                    "'0-1-2' joins three links), '=' (prismatic) or '~' (gear mesh), e.g. '0-1 1=2 2~3'"
                 ) from None
+            joints.append(joint)
+            kinds.append(by_symbol[symbols.pop()])
         if not joints:
             raise MalformedChain("an empty joint list is not a chain")
-        return cls(1 + max(max(j) for j in joints), tuple(joints))
+        links = 1 + max(max(j) for j in joints)
+        unused = sorted(set(range(links)) - {x for j in joints for x in j})
+        if unused:
+            shown = ", ".join(map(str, unused[:5])) + (" …" if len(unused) > 5 else "")
+            raise MalformedChain(f"links are numbered 0 … {links - 1} without gaps, and no joint names link(s) {shown}")
+        return cls(links, tuple(joints), kinds)
 
     def compact(self) -> str:
-        """The compact joint-list notation read by :meth:`parse`."""
-        return " ".join("-".join(map(str, j)) for j in self.joints)
+        """The compact joint-list notation read by :meth:`parse`, joint kinds included.
+
+        >>> Chain.parse("2~1 0=1 0-2").compact()
+        '0=1 0-2 1~2'
+        """
+        kinds = self.kinds or ("revolute",) * len(self.joints)
+        return " ".join(SYMBOLS[k].join(map(str, j)) for j, k in zip(self.joints, kinds))
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""

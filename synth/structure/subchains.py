@@ -35,11 +35,13 @@ import numpy as np
 
 from ..execution._blas import single_threaded
 from .chain import Chain
+from .kinds import lever_analogue, redundant_constraints, structural_mobility
 from ..errors import MalformedChain
 
 __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
 
 _MAX_CORE = 24
+_MAX_SCANNED = 22  # links of a chain with prismatic pairs: every subset is scanned (4 M sets)
 _BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
 _BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
 _CANDIDATE_SUBSETS = 1 << 22  # candidates × subsets in one block of the batched test (16 MiB an array)
@@ -175,14 +177,15 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
 
 
 def subchain_mobility(chain: Chain, links) -> int:
-    """W(S) of the sub-chain made of ``links``, in the chain's motion space.
+    """W(S) of the sub-chain made of ``links`` by the count, in the chain's motion space (with
+    joint kinds: its own wedge loops and meshes, :func:`~synth.structure.kinds.structural_mobility`).
 
     >>> subchain_mobility(Chain.parse("0-1 1-2 2-0 2-3"), [0, 1, 2])
     0
+    >>> subchain_mobility(Chain.parse("0=1 1=2 2=0 2-3 3-4 4-0"), [0, 1, 2])   # Task 3's wedge
+    1
     """
-    s = set(links)
-    p = sum(max(sum(1 for x in j if x in s) - 1, 0) for j in chain.joints)
-    return chain.h * (len(s) - 1) - (chain.h - 1) * p
+    return structural_mobility(chain, links)
 
 
 @dataclass(frozen=True)
@@ -190,19 +193,25 @@ class SubchainReport:
     """Result of the sub-chain test.
 
     ``worst`` is a smallest proper sub-chain (|S| ≥ 2) of least mobility ``worst_mobility``;
-    ``ok`` says whether it meets the convention (≥ 1 non-degenerate, ≥ 0 rigid allowed).
+    ``ok`` says whether it meets the convention (≥ 1 non-degenerate, ≥ 0 rigid allowed) and the
+    chain has no ``redundant`` constraint the count cannot see (with prismatic pairs: its
+    generic mobility above the count, :func:`~synth.structure.kinds.redundant_constraints`).
     """
 
     ok: bool
     worst: tuple[int, ...]
     worst_mobility: int
     threshold: int
+    redundant: int = 0
 
     @property
     def kind(self) -> str:
-        """'none', 'rigid sub-chain' (W(S) = 0) or 'over-constrained sub-chain' (W(S) < 0)."""
+        """'none', 'rigid sub-chain' (W(S) = 0), 'over-constrained sub-chain' (W(S) < 0) or
+        'redundant constraints' (every count holds, yet the pairs constrain each other)."""
         if self.ok:
             return "none"
+        if self.worst_mobility >= self.threshold:
+            return "redundant constraints"
         return "rigid sub-chain" if self.worst_mobility == 0 else "over-constrained sub-chain"
 
 
@@ -238,6 +247,69 @@ def _paths(chain: Chain, core: list[int]):
     return paths
 
 
+def _minimum_with_kinds(chain: Chain) -> tuple[int, tuple[int, ...]]:
+    """Least count W(S) (prismatic pairs and meshes included) over the proper sub-chains of at
+    least two links, and a smallest such S: every subset of links, block by block.
+
+    >>> _minimum_with_kinds(Chain.parse("0=1 1=2 2=0 2-3 3-4 4-0"))
+    (1, (0, 1))
+    """
+    n = chain.links
+    kinds = chain.kinds or ("revolute",) * len(chain.joints)
+    lower = [list(j) for j, k in zip(chain.joints, kinds) if k != "mesh"]
+    meshes = [j for j, k in zip(chain.joints, kinds) if k == "mesh"]
+    sliders = [j for j, k in zip(chain.joints, kinds) if k == "prismatic"]
+    ends = sorted({x for j in sliders for x in j})
+    best, best_set = _BIG, ()
+    for start in range(0, 1 << n, _BLOCK):
+        T = np.arange(start, min(1 << n, start + _BLOCK), dtype=np.int64)
+        bits = ((T[:, None] >> np.arange(n)) & 1).astype(np.int64)
+        size = bits.sum(axis=1)
+        W = 3 * (size - 1)
+        for j in lower:
+            W -= 2 * np.maximum(bits[:, j].sum(axis=1) - 1, 0)
+        for a, b in meshes:
+            W -= bits[:, a] & bits[:, b]
+        if sliders:  # + the cycle rank of the sliders inside S: |E| − |V| + components
+            label = np.where(bits[:, ends] > 0, np.arange(len(ends)), -1)
+            where = {x: i for i, x in enumerate(ends)}
+            inside = [(where[a], where[b], (bits[:, a] & bits[:, b]) > 0) for a, b in sliders]
+            for _ in range(len(ends)):
+                for a, b, on in inside:
+                    low = np.where(on, np.minimum(label[:, a], label[:, b]), label[:, a])
+                    label[:, a] = low
+                    label[:, b] = np.where(on, low, label[:, b])
+            edges = sum(on.astype(np.int64) for _, _, on in inside)
+            vertices = (label >= 0).sum(axis=1)
+            components = (label == np.arange(len(ends))).sum(axis=1)
+            W += edges - vertices + components
+        W = np.where((size >= 2) & (size < n), W, _BIG)
+        low = int(W.min())
+        if low < best or (low == best and low < _BIG):
+            ties = np.flatnonzero(W == low)
+            t = int(ties[np.argmin(size[ties])])
+            if low < best or size[t] < len(best_set):
+                best, best_set = low, tuple(int(x) for x in np.flatnonzero(bits[t]))
+    return best, best_set
+
+
+def _check_with_kinds(chain: Chain, threshold: int) -> SubchainReport:
+    """The exact test of a planar chain with prismatic pairs or gear meshes: the count over
+    every subset, and the rank of the whole chain's velocity constraints for redundancy."""
+    if chain.links > _MAX_SCANNED:
+        if "prismatic" not in chain.kinds:  # meshes only: the lever analogue has the same sub-chains
+            analogue = check_subchains(lever_analogue(chain), rigid_subchains=threshold == 0)
+            worst = tuple(x for x in analogue.worst if x < chain.links)
+            return SubchainReport(analogue.ok, worst, analogue.worst_mobility, threshold)
+        raise MalformedChain(f"the exact sub-chain test of a chain with prismatic pairs scans every set of links, "
+                             f"up to {_MAX_SCANNED} links, not {chain.links}")
+    low, worst = _minimum_with_kinds(chain)
+    if low == _BIG:  # two links: no proper sub-chain of two links or more
+        low, worst = 10**9, ()
+    redundant = redundant_constraints(chain) if "prismatic" in chain.kinds else 0
+    return SubchainReport(low >= threshold and redundant == 0, worst, low, threshold, redundant)
+
+
 def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainReport:
     """Exact test of every proper sub-chain against the convention.
 
@@ -262,6 +334,8 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     if not chain.is_connected():
         raise MalformedChain("the chain is not connected: every link must be reachable through joints")
     threshold = 0 if rigid_subchains else 1
+    if chain.kinds is not None:
+        return _check_with_kinds(chain, threshold)
     h = chain.h
     degrees = chain.degrees
     core = sorted({x for j in chain.joints if len(j) > 2 for x in j} | {i for i, d in enumerate(degrees) if d != 2})

@@ -220,11 +220,11 @@ def test_chain_reading_and_writing():
     c = Chain(1, [])
     assert (c.links, c.joints, c.degrees, c.loops, c.is_connected()) == (1, (), (0,), 0, True)
     joints = [(3, 2), (0, 1, 2), (0, 3)]
-    c = Chain(4, joints, ["revolute", "prismatic", "revolute"])
-    assert c.joints == ((0, 1, 2), (0, 3), (2, 3)) and c.kinds == ("prismatic", "revolute", "revolute")
+    c = Chain(4, joints, ["prismatic", "revolute", "revolute"])
+    assert c.joints == ((0, 1, 2), (0, 3), (2, 3)) and c.kinds == ("revolute", "revolute", "prismatic")
     assert Chain(4, joints, ["revolute"] * 3).kinds is None and Chain(4, joints, ["revolute"] * 3) == Chain(4, joints)
     d = c.to_dict()
-    assert d["joints"] == [[0, 1, 2], [0, 3], [2, 3]] and d["kinds"] == ["prismatic", "revolute", "revolute"]
+    assert d["joints"] == [[0, 1, 2], [0, 3], [2, 3]] and d["kinds"] == ["revolute", "revolute", "prismatic"]
     assert (d["links"], d["dof"], d["loops"], d["v"], d["code"]) == (4, c.dof, c.loops, 1, f"{c.code} P1")  # the code says P
     assert d["certificate"] == c.certificate and "kinds" not in Chain(4, joints).to_dict()
     assert Chain.from_dict(d) == c and Chain.from_json(c.to_json()) == c
@@ -232,7 +232,7 @@ def test_chain_reading_and_writing():
     assert Chain.from_dict({"joints": [[0, 1], [1, 3]]}).links == 4  # links from the largest number
     assert Chain.parse(" 0-1, 1-2-3  3-0 ") == Chain(4, [(0, 1), (1, 2, 3), (0, 3)])
     assert Chain.parse('{"joints": [[0, 1], [1, 2], [2, 0]]}').links == 3
-    assert Chain.parse(c.compact()).joints == c.joints and c.compact() == "0-1-2 0-3 2-3"
+    assert Chain.parse(c.compact()) == c and c.compact() == "0-1-2 0-3 2=3"
     assert Chain.trusted(3, [(1, 0), (2, 1), (0, 2)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
     assert Chain.parse("[[0, 1], [1, 2], [2, 0]]") == Chain(3, [(0, 1), (1, 2), (0, 2)])
     assert Chain.from_dict({"links": 5, "joints": [[0, 1], [1, 2], [2, 0]]}).links == 5  # two loose links
@@ -240,6 +240,10 @@ def test_chain_reading_and_writing():
     a = Chain(3, [(0, 1), (0, 1), (1, 2), (0, 2)], ["prismatic", "revolute", "revolute", "revolute"])
     b = Chain(3, [(0, 1), (0, 1), (1, 2), (0, 2)], ["revolute", "prismatic", "revolute", "revolute"])
     assert a == b and a.kinds == ("prismatic", "revolute", "revolute", "revolute")
+    # but two gears mesh once, and never on a common axis
+    for kinds in (["mesh", "mesh", "revolute", "revolute"], ["mesh", "revolute", "revolute", "revolute"]):
+        with pytest.raises(synth.MalformedChain, match="links 0 and 1 are joined twice, once by a gear mesh"):
+            Chain(3, [(0, 1), (0, 1), (1, 2), (0, 2)], kinds)
     for m in (synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1), synth.Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 2),
               synth.Mechanism(Chain.parse("0-1 1-2-3 3-0"), 3, 2)):
         d = m.to_dict()

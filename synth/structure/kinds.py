@@ -1,0 +1,283 @@
+"""Joint kinds of a planar chain — revolute, prismatic, gear mesh — and the mobility they give.
+
+=========  ======  ==========================================================================
+kind       text    what it does in the plane
+=========  ======  ==========================================================================
+revolute   ``-``   a pin: one relative rotation; removes 2 freedoms.  A multiple joint
+                   (``0-1-2``) is a pin shared by all its links.
+prismatic  ``=``   a slider: one relative translation; removes 2 freedoms and fixes the
+                   relative rotation, so a loop of prismatic pairs only is a *wedge loop*
+                   (motion space 2) that gives one freedom back.
+mesh       ``~``   a gear mesh: a higher pair with two freedoms (f = 1); removes 1.  Its
+                   *lever analogue* is a binary link with a revolute joint on each gear.
+=========  ======  ==========================================================================
+
+The structural count of a set S of links (docs/theory.md, "Joint kinds")::
+
+    W(S) = 3(|S| − 1) − 2·p(S) − g(S) + c_P(S)
+
+p(S): simple-joint equivalents of the revolute and prismatic joints inside S, g(S): meshes
+inside S, c_P(S): the cycle rank of the prismatic pairs inside S (K_2, its wedge loops).  The
+ground truth is the *generic mobility*: 3(|S| − 1) minus the rank of the velocity constraints
+of S's own pairs at a random configuration, computed exactly in modular arithmetic.  It is
+never below the count (the wedge loops' rotation constraints are the only dependencies the
+count knows); where it is above, the pairs carry redundant constraints.  A joint is *idle*
+when the relative motion of its links is zero on the whole generic motion space.
+
+Example
+-------
+>>> from synth.structure.chain import Chain
+>>> wedge = Chain.parse("0=1 1=2 2=3 3=0")            # four prismatic pairs: a wedge loop
+>>> structural_mobility(wedge), generic_mobility(wedge), wedge_loops(wedge)
+(2, 2, 1)
+>>> locked = Chain.parse("0-2 0-3 0=4 1-2 1-3 1=5 4=5")  # 0=4=5=1 locks the four-bar 0-2-1-3
+>>> generic_mobility(locked), idle_joints(locked)
+(1, [(0, 2), (0, 3), (1, 2), (1, 3)])
+"""
+
+from __future__ import annotations
+
+import random
+
+import numpy as np
+
+from .chain import JOINT_KINDS, SYMBOLS, Chain
+
+__all__ = ["KINDS", "SYMBOLS", "kind_count", "wedge_loops", "structural_mobility", "generic_mobility",
+           "redundant_constraints", "idle_joints", "lever_analogue"]
+
+KINDS = JOINT_KINDS
+_PRIME = 2_147_483_647  # 2^31 − 1: a product of two residues fits in a 64-bit integer
+_DRAWS = 2  # random configurations; the largest rank is kept (a draw can only lose rank by chance)
+
+
+def kind_count(chain: Chain, kind: str) -> int:
+    """Number of joints of ``kind``.
+
+    >>> kind_count(Chain.parse("0-1 1=2 2~3 3-0"), "mesh")
+    1
+    """
+    if chain.kinds is None:
+        return len(chain.joints) if kind == "revolute" else 0
+    return chain.kinds.count(kind)
+
+
+def _kinds(chain: Chain) -> tuple[str, ...]:
+    return chain.kinds or ("revolute",) * len(chain.joints)
+
+
+def _members(chain: Chain, links) -> set[int]:
+    return set(range(chain.links)) if links is None else set(links)
+
+
+def wedge_loops(chain: Chain, links=None) -> int:
+    """c_P(S): independent loops made only of prismatic pairs among ``links`` (all by default).
+
+    >>> wedge_loops(Chain.parse("0=1 1=2 2=0 2-3 3-0"))
+    1
+    """
+    s = _members(chain, links)
+    edges = [j for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic" and j[0] in s and j[1] in s]
+    root = {x: x for x in s}
+
+    def find(x):
+        while root[x] != x:
+            root[x] = root[root[x]]
+            x = root[x]
+        return x
+
+    merged = 0
+    for a, b in edges:
+        ra, rb = find(a), find(b)
+        if ra != rb:
+            root[ra] = rb
+            merged += 1
+    return len(edges) - merged
+
+
+def structural_mobility(chain: Chain, links=None) -> int:
+    """The count W(S) of the links ``links`` (the whole chain by default), in the chain's motion space.
+
+    >>> structural_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), [0, 1, 2, 3])
+    1
+    >>> structural_mobility(Chain.parse("0~1 1-2 2-0"))   # a mesh and two pins: W = 6 − 4 − 1
+    1
+    """
+    s = _members(chain, links)
+    h = chain.h
+    lower = mesh = 0
+    for j, k in zip(chain.joints, _kinds(chain)):
+        inside = sum(1 for x in j if x in s)
+        if k == "mesh":
+            mesh += inside == 2
+        else:
+            lower += max(inside - 1, 0)
+    extra = wedge_loops(chain, s) if chain.kinds is not None else 0
+    return h * (len(s) - 1) - (h - 1) * lower - mesh + extra
+
+
+def _rows(chain: Chain, s: list[int], rng: random.Random) -> np.ndarray:
+    """Velocity constraints of the pairs inside ``s`` (columns ω, vx, vy of each link of s, mod p).
+
+    A link's velocity field is (ω, vx, vy) at the origin: a point (x, y) moves at
+    (vx − ω·y, vy + ω·x).  A pin at a random point: its links' velocities there agree (two rows
+    per link after the first: a multiple joint is one pin).  A slider with a random normal:
+    equal ω, and no relative velocity along the normal.  A mesh: no relative velocity along a
+    random normal at a random contact point.
+    """
+    col = {x: 3 * i for i, x in enumerate(s)}
+    rows = []
+
+    def point_row(a, b, x, y, nx, ny):
+        row = [0] * (3 * len(s))
+        for link, sign in ((a, 1), (b, -1)):
+            c = col[link]
+            row[c], row[c + 1], row[c + 2] = sign * (x * ny - y * nx), sign * nx, sign * ny
+        rows.append(row)
+
+    for j, kind in zip(chain.joints, _kinds(chain)):
+        inside = [x for x in j if x in col]
+        if len(inside) < 2:
+            continue
+        x, y = rng.randrange(_PRIME), rng.randrange(_PRIME)
+        if kind == "revolute":
+            for b in inside[1:]:
+                point_row(inside[0], b, x, y, 1, 0)
+                point_row(inside[0], b, x, y, 0, 1)
+        elif kind == "prismatic":
+            a, b = inside
+            row = [0] * (3 * len(s))
+            row[col[a]], row[col[b]] = 1, -1
+            rows.append(row)
+            point_row(a, b, 0, 0, x, y)
+        else:
+            point_row(inside[0], inside[1], x, y, rng.randrange(_PRIME), rng.randrange(_PRIME))
+    if not rows:
+        return np.zeros((0, 3 * len(s)), dtype=np.int64)
+    return np.array([[v % _PRIME for v in r] for r in rows], dtype=np.int64)
+
+
+def _echelon(m: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """Reduced row echelon form mod p and its pivot columns.
+
+    >>> _echelon(np.array([[2, 4], [1, 2]], dtype=np.int64))[1]
+    [0]
+    """
+    m = m.copy()
+    pivots: list[int] = []
+    r = 0
+    for c in range(m.shape[1]):
+        if r == m.shape[0]:
+            break
+        nz = np.flatnonzero(m[r:, c])
+        if not len(nz):
+            continue
+        p = r + int(nz[0])
+        if p != r:
+            m[[r, p]] = m[[p, r]]
+        m[r] = m[r] * pow(int(m[r, c]), _PRIME - 2, _PRIME) % _PRIME
+        factor = m[:, c].copy()
+        factor[r] = 0
+        m = (m - np.outer(factor, m[r]) % _PRIME) % _PRIME
+        pivots.append(c)
+        r += 1
+    return m[:r], pivots
+
+
+def _best_draw(chain: Chain, s: list[int], seed: int) -> tuple[np.ndarray, list[int]]:
+    """The echelon form of the largest rank over a few random configurations."""
+    best = None
+    for draw in range(_DRAWS):
+        reduced = _echelon(_rows(chain, s, random.Random(seed * 7919 + draw)))
+        if best is None or len(reduced[1]) > len(best[1]):
+            best = reduced
+    return best
+
+
+def generic_mobility(chain: Chain, links=None, *, seed: int = 0) -> int:
+    """Mobility of the links ``links`` with their own pairs at a generic configuration (exact).
+
+    3(|S| − 1) minus the rank of the velocity constraints, the rank taken modulo a prime of
+    31 bits at random configurations (a wrong answer needs a random draw to hit a root of a
+    polynomial: chance below 10⁻⁸).  Defined for planar chains (h = 3).
+
+    >>> generic_mobility(Chain.parse("0-1 1-2 2-3 3-0"))
+    1
+    >>> generic_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced: rigid, not −3
+    0
+    """
+    if chain.h != 3:
+        raise ValueError("generic mobility is computed for planar chains (h = 3)")
+    s = sorted(_members(chain, links))
+    if len(s) <= 1:
+        return 0
+    return 3 * (len(s) - 1) - len(_best_draw(chain, s, seed)[1])
+
+
+def redundant_constraints(chain: Chain, links=None) -> int:
+    """Constraints of the pairs among ``links`` that the others already impose: generic
+    mobility minus the count (0 for a chain without over-constrained parts).
+
+    >>> redundant_constraints(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))
+    3
+    """
+    return generic_mobility(chain, links) - structural_mobility(chain, links)
+
+
+def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
+    """Joints whose links never move relative to each other at a generic configuration.
+
+    A pin is idle when its links never turn about it (a multiple joint: when any two of its
+    links never do), a slider when it never slides, a mesh when its gears never turn
+    relative to each other.  Found on the null space of the velocity constraints, so every
+    cause is seen, not only a revolute pair whose links a path of sliders also joins.
+
+    >>> idle_joints(Chain.parse("0=1 1=2 2=3 3-0"))   # 0 and 3 cannot turn: the pin is idle
+    [(0, 3)]
+    >>> idle_joints(Chain.parse("0-1 1-2 2-3 3-0"))
+    []
+    """
+    if chain.h != 3:
+        return []
+    s = list(range(chain.links))
+    reduced, pivots = _best_draw(chain, s, 0)
+    ncols = 3 * chain.links
+    free = [c for c in range(ncols) if c not in set(pivots)]
+    if not free:
+        return list(chain.joints)
+    # null-space basis: one vector per free column (x_free = 1, pivots from the reduced rows)
+    basis = np.zeros((len(free), ncols), dtype=np.int64)
+    for i, f in enumerate(free):
+        basis[i, f] = 1
+        basis[i, pivots] = (-reduced[:, f]) % _PRIME
+    idle = []
+    for j, kind in zip(chain.joints, _kinds(chain)):
+        pairs = [(a, b) for i, a in enumerate(j) for b in j[i + 1:]]
+        if kind == "prismatic":  # never slides: no relative translation
+            moves = any(np.any((basis[:, 3 * a + c] - basis[:, 3 * b + c]) % _PRIME) for a, b in pairs for c in (1, 2))
+            if not moves:
+                idle.append(j)
+        elif any(not np.any((basis[:, 3 * a] - basis[:, 3 * b]) % _PRIME) for a, b in pairs):
+            idle.append(j)
+    return idle
+
+
+def lever_analogue(chain: Chain) -> Chain:
+    """The chain with every gear mesh replaced by a binary link carrying a revolute joint on
+    each gear (links n, n + 1, … in the order of the meshes): the same mobility, loops and
+    sub-chain mobilities, so the exact sub-chain test of the analogue is the test of the train.
+
+    >>> lever_analogue(Chain.parse("0-1 1~2 2-0")).compact()
+    '0-1 0-2 1-3 2-3'
+    """
+    kinds = _kinds(chain)
+    joints, out_kinds, n = [], [], chain.links
+    for j, k in zip(chain.joints, kinds):
+        if k == "mesh":
+            joints += [(j[0], n), (n, j[1])]
+            out_kinds += ["revolute", "revolute"]
+            n += 1
+        else:
+            joints.append(j)
+            out_kinds.append(k)
+    return Chain(n, joints, out_kinds, chain.h)
