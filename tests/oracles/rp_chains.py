@@ -34,8 +34,9 @@ Definitions (the ground truth this module implements)
   induced sub-chains are tested, and only those with count(S) <= 0 need a rank (W(S) >= count(S)).
   For W = 0 (trusses) "W(S) >= 0" holds for every S, so taken literally every chain with W = 0
   would be admissible, over-braced ones included (every R/P assignment of K7, for one: none of
-  them statically determinate, and no count-based engine lists them).  The oracle keeps the trusses of the truss convention: W = 0 and no
-  redundant constraint beyond the wedge relations, D = 0, i.e. W = count = 0; by the monotonicity
+  them statically determinate, and no count-based engine lists them).  The oracle keeps the
+  trusses of the truss convention: W = 0 and no redundant constraint beyond the wedge relations,
+  D = 0, i.e. W = count = 0; by the monotonicity
   of D this implies count(S) >= 0 for every sub-chain (the count convention "rigid sub-chains
   allowed"), and for all-revolute chains it is exactly that convention (Tay's theorem).
 * **Idle joint** (W >= 1): the relative motion of its two links is zero on the whole null space:
