@@ -101,11 +101,13 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
     units' sizes are uneven, bias of order 1/k).  ``cache`` keeps stage A's results in a file so
     that another seed does not redo it (its CPU time is kept with it).
     """
-    from synth.synthesis.type_synthesis import _codes_of, _count_unit
+    from synth import ChainQuery
+    from synth.synthesis.type_synthesis import _count_unit, plan_jobs
 
     rng = random.Random(seed)
     start = time.perf_counter()
-    all_codes, conv = _codes_of(dict(dof=dof, links=links, v=v))
+    jobs = plan_jobs(ChainQuery(dof, links, v=v))
+    all_codes, conv = [c for c, _ in jobs], jobs[0][1]
     C = len(all_codes)
     drawn = sorted(rng.sample(range(C), min(codes, C)))
     plans = _plans(all_codes, conv, drawn, cache)
@@ -116,7 +118,8 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
         picked = rng.sample(range(len(plan)), min(units, len(plan)))
         sample = []
         for k in picked:
-            (_, chains), t_u = _cpu(_count_unit, plan[k])  # what `chains --count` runs
+            counts, t_u = _cpu(_count_unit, plan[k])  # what `chains --count` runs
+            chains = sum(counts.values())
             sample.append((hints[k], t_u, chains))
         per_code.append((a_c, len(plan), sum(hints), sample))
         if progress:

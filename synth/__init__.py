@@ -24,8 +24,10 @@ _WHERE = {
     "number_synthesis": ".synthesis.number_synthesis",
     "Conventions": ".synthesis.type_synthesis", "Unit": ".synthesis.type_synthesis", "type_synthesis": ".synthesis.type_synthesis",
     "count_chains": ".synthesis.type_synthesis", "count_mechanisms": ".synthesis.type_synthesis", "mechanisms": ".synthesis.type_synthesis", "mechanisms_of": ".synthesis.type_synthesis",
-    "prismatic_variants": ".synthesis.variants", "wedge_mobility": ".synthesis.variants", "generic_mobility": ".synthesis.variants",
-    "idle_joints": ".synthesis.variants", "lever_analogue": ".gears.planetary", "planetary_table": ".gears.planetary",
+    "ChainQuery": ".structure.query", "variants_of": ".synthesis.variants",
+    "prismatic_variants": ".synthesis.variants", "structural_mobility": ".structure.kinds",
+    "generic_mobility": ".structure.kinds", "idle_joints": ".structure.kinds", "wedge_loops": ".structure.kinds",
+    "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds", "planetary_table": ".gears.planetary",
     "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
     "plan_codes": ".synthesis.type_synthesis", "plan_units": ".synthesis.type_synthesis", "plan_many": ".synthesis.type_synthesis", "run_unit": ".synthesis.type_synthesis",
 }

@@ -173,19 +173,22 @@ def _write_site(args) -> int:
 
 def _export_variants(args, what: str) -> int:
     """``--prismatic``: the R/P variants of the selected chains (mechanisms: of each variant)."""
-    from synth.synthesis.number_synthesis import parse_range
     from synth.atlas.store import export
     from synth.structure.chain import Chain
-    from synth.synthesis.variants import variant_rows
+    from synth.structure.query import parse_range
+    from synth.synthesis.type_synthesis import mechanisms_of
+    from synth.synthesis.variants import variants_of
 
-    from .chains import write_variants
+    from .chains import write_items
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
     # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already
     chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0"]))
-    rows = variant_rows(chains, (lo, 10**6 if hi is None else hi), idle=args.idle_joints,
-                        mechanisms=what == "mechanisms")
-    return write_variants(rows, what, args.count, args.format or ("jsonl" if not args.count else None))
+    items = variants_of(chains, (lo, hi), idle=args.idle_joints)
+    if what == "mechanisms":
+        items = (m for c in items for m in mechanisms_of(c))
+    return write_items(items, what, fmt=args.format or ("jsonl" if not args.count else None), count=args.count,
+                       kinds=True, idle=args.idle_joints)
 
 
 def _print_summary(info: dict) -> None:
@@ -214,8 +217,8 @@ def _variants(args, chains: list) -> list:
     """The chains themselves, or with ``--prismatic A..B`` every R/P variant of each."""
     if args.prismatic is None:
         return chains
-    from synth.synthesis.number_synthesis import parse_range
     from synth.errors import InvalidOption
+    from synth.structure.query import parse_range
     from synth.synthesis.variants import variants_of
 
     lo, hi = parse_range(args.prismatic, "--prismatic")

@@ -40,19 +40,19 @@ add_table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
 
 
 def _prismatic(run: Run) -> dict:
-    from synth.synthesis.number_synthesis import parse_range
-    from synth.structure.chain import Chain
-    from synth.synthesis.variants import variant_summary, variants_of
+    from synth import Chain, variants_of
+    from synth.structure.query import parse_range
 
     t = run.scene.tables["prismatic"]
-    lo, hi = parse_range(t.pairs, "pairs")
     chain = Chain.parse(t.chain)
-    rows = [variant_summary(c) for c in variants_of([chain], (lo, chain.links * 3 if hi is None else hi),
-                                                     idle=t.idle_joints)]
+    variants = list(variants_of([chain], parse_range(t.pairs, "pairs"), idle=t.idle_joints))
+    rows = [c.to_dict() for c in variants]
     by_dof: dict[str, int] = {}
     for r in rows:
         by_dof[str(r["dof"])] = by_dof.get(str(r["dof"]), 0) + 1
-    actuated = sum(1 for r in rows if r["cylinders"] == r["prismatic"] > 0)
+    # a cylinder: a prismatic pair between two binary links (the barrel and its rod)
+    actuated = sum(1 for c in variants if c.kinds and all(
+        c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == "prismatic"))
     return {"count": len(rows), "by_dof": by_dof, "all_cylinders": actuated, "variants": rows}
 
 

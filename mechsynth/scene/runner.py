@@ -90,7 +90,7 @@ def load_scene(path: str | Path) -> Scene:
     ...     load_scene(p)
     ... except SceneError as exc:
     ...     print(str(exc).split(": ", 1)[1])
-    [structure] has an unknown key 'loopz' (allowed: chain, code, compositions, counts, cranks, dof, f, fractionated, h, input_link, links, loop_classes, loops, max_link_degree, max_multiplicity, n1, planar_only, require, rigid_subchains, v).
+    [structure] has an unknown key 'loopz' (allowed: chain, code, compositions, counts, cranks, cylinders, dof, f, fractionated, h, idle_joints, input_link, links, loop_classes, loops, max_link_degree, max_multiplicity, n1, planar_only, prismatic, require, rigid_subchains, v).
     """
     path = Path(path)
     p = str(path)

@@ -96,6 +96,10 @@ class Structure(Table):
     rigid_subchains: Flag | None = key("allow rigid sub-chains", *CHAINS)
     fractionated: Flag = key("keep fractionated chains", *CHAINS, default=True)
     planar_only: Flag = key("keep planar graphs only", *CHAINS, default=False)
+    prismatic: RangeText | None = key("chains with A…B prismatic pairs (W counts their wedge loops)", *CHAINS)
+    idle_joints: Flag = key("with prismatic: keep chains with joints that never move", *CHAINS, default=False)
+    cylinders: Text | None = key("with prismatic: the mechanisms' prismatic pairs by kind, e.g. "
+                                 "'floating=1,swinging=2'", "mechanisms", "drawing")
     input_link: Flag = key("mark an input link too", "mechanisms", "drawing", default=False)
     code: CodeText | None = key("one standard code", *ANALYSIS, *CHAINS)
     counts: IndexTable("a table of link counts { I = n_I, … } with whole numbers") | None = key(
@@ -240,26 +244,32 @@ def _chain_list(run: Run) -> list:
     """The chains of the structure, found once per run (count, chains, mechanisms and drawing share them)."""
 
     def make() -> list:
-        from synth.synthesis.type_synthesis import type_synthesis  # graph models: only for chain queries
+        from synth import type_synthesis  # graph models: only for chain queries
 
-        s = run.scene.tables["structure"]
-        links = int(s.links) if s.links is not None else (
-            s.dof + 1 + (s.h - 1) * int(s.loops) if s.loops is not None else None)
-        return list(type_synthesis(
-            s.dof, links, workers=run.workers, v=s.v if s.v is not None or s.code else 0, code=s.code,
-            rigid_subchains=s.rigid_subchains, fractionated=s.fractionated, planar_only=s.planar_only,
-            require=s.require, cranks=s.cranks, h=s.h, n1=s.n1 if s.n1 is not None or s.code else 0,
-            max_multiplicity=s.max_multiplicity))
+        return list(type_synthesis(_query(run.scene.tables["structure"]), workers=run.workers))
 
     return run.shared("chains", make)
 
 
+def _query(s: Structure):
+    """The chain query of a ``[structure]`` table."""
+    from synth import ChainQuery
+
+    return ChainQuery.of(s.dof, int(s.links) if s.links is not None else None,
+                         loops=int(s.loops) if s.loops is not None and s.links is None and s.code is None else None,
+                         v=s.v, code=s.code, rigid_subchains=s.rigid_subchains, fractionated=s.fractionated,
+                         planar_only=s.planar_only, require=s.require, cranks=s.cranks, h=s.h, n1=s.n1,
+                         max_multiplicity=s.max_multiplicity, prismatic=s.prismatic, idle_joints=s.idle_joints,
+                         cylinders=s.cylinders)
+
+
 def _mechanism_list(run: Run) -> list:
     def make() -> list:
-        from synth.synthesis.type_synthesis import mechanisms_of
+        from synth import mechanisms_of
 
-        input_link = run.scene.tables["structure"].input_link
-        return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=input_link)]
+        s = run.scene.tables["structure"]
+        return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=s.input_link,
+                                                                        cylinders=_query(s).cylinders)]
 
     return run.shared("mechanisms", make)
 
@@ -269,7 +279,8 @@ def _count(run: Run) -> dict:
     by_code: dict[str, int] = {}
     by_v: dict[str, int] = {}
     for ch in chains:
-        by_code[str(ch.code)] = by_code.get(str(ch.code), 0) + 1
+        name = str(ch.code) + ch.kind_suffix
+        by_code[name] = by_code.get(name, 0) + 1
         by_v[str(ch.v)] = by_v.get(str(ch.v), 0) + 1
     return {"count": len(chains), "by_code": by_code, "by_v": dict(sorted(by_v.items(), key=lambda kv: int(kv[0]))),
             "nonplanar": sum(1 for ch in chains if not ch.is_planar()),

@@ -49,6 +49,7 @@ from typing import Annotated, Any
 from pydantic import Field, StrictInt, StrictStr
 
 from ..synthesis.number_synthesis import parse_requirements
+from ..structure.query import ChainQuery
 from ..synthesis.type_synthesis import Unit, plan_many
 from ..errors import SynthesisError
 from ..schema import Flag, RangeText, Require, Table, Text, expect, parse_range_text, refine, show
@@ -119,9 +120,16 @@ class Cell:
         return dict(v=self.v, rigid_subchains=self.rigid_subchains, fractionated=self.fractionated,
                     planar_only=self.planar_only, require=dict(self.require) or None, h=self.h, n1=self.n1)
 
-    def query(self) -> dict:
-        """This cell as keyword arguments of :func:`synth.plan_units` / :func:`synth.plan_many`."""
-        return dict(dof=self.dof, links=self.links, **self.selection())
+    def query(self) -> ChainQuery:
+        """This cell as a chain query (with prismatic pairs: chains of W = ``dof`` whose wedge loops
+        count, as ``chains --prismatic`` lists them).
+
+        >>> Cell(1, 6, (0, 0), prismatic=(0, 2)).query().prismatic
+        (0, 2)
+        """
+        return ChainQuery(self.dof, self.links, **self.selection(),
+                          prismatic=None if self.prismatic == (0, 0) else self.prismatic,
+                          idle_joints=self.idle_joints)
 
     def plan(self) -> list[Unit]:
         """The cell's work units (an empty list when the engine finds the cell impossible)."""

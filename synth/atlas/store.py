@@ -66,7 +66,6 @@ from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..errors import InvalidOption, MalformedCode, SynthesisError
 from .grid import Cell, Grid
-from ..synthesis.variants import variants_of, wedge_mobility
 
 __all__ = [
     "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
@@ -265,8 +264,6 @@ class _Task:
     cell: str
     unit: Unit
     input_link: bool
-    prismatic: tuple = (0, 0)  # the cell's range of prismatic pairs per variant
-    idle_joints: bool = False
 
 
 @dataclass
@@ -294,21 +291,16 @@ def compute_unit(task: _Task) -> _Result:
     chains, counts, mechs = [], [], []
     # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
     h = task.unit.conventions.h
-    fractionable = task.unit.conventions.rigid_subchains or task.unit.code.dof(h) != 1 or task.unit.code.n1
-    found_chains = run_unit(task.unit)
-    if task.prismatic != (0, 0):
-        lo, hi = task.prismatic
-        found_chains = variants_of(found_chains, (lo, task.unit.code.joints if hi is None else hi),
-                                   idle=task.idle_joints)
-    for found in found_chains:
+    conv = task.unit.conventions
+    fractionable = conv.rigid_subchains or task.unit.code.dof(h) + conv.slack != 1 or task.unit.code.n1
+    for found in run_unit(task.unit):  # (with prismatic pairs: the chains of the cell's W, wedge loops counted)
         cert = found.certificate
         chain = _canonical(found)
         code = chain.code
         degrees = chain.degrees
         row = chain.to_dict()
         prismatic = 0 if chain.kinds is None else chain.kinds.count("prismatic")
-        dof = wedge_mobility(chain) if prismatic else chain.dof  # a loop of prismatic pairs adds one
-        row["dof"] = dof
+        dof = chain.dof
         chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), dof, h,
                        chain.links, chain.loops, chain.v, prismatic, max(degrees),
                        " ".join(map(str, sorted(degrees, reverse=True))),
@@ -490,7 +482,7 @@ def run_grid(
                                                    skip_impossible=True)))
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
-            tasks = [_Task(cell.key, u, grid.input_link, cell.prismatic, cell.idle_joints) for cell, units in plans
+            tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans
                      for u in units
                      if (cell.key, u.key) not in done]
             result.units_total = sum(len(units) for _, units in plans)

@@ -33,7 +33,7 @@ from ..errors import SynthesisError
 __all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "PLAN_FORMAT"]
 
 # Bump when unit keys or the split of a query into units change: an old checkpoint is refused.
-PLAN_FORMAT = 1
+PLAN_FORMAT = 2  # 2: units carry slack and prismatic pairs (joint kinds in the chain)
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);

@@ -19,7 +19,8 @@ not a prediction: it assumes the workers scale perfectly and no faster per-chain
 
 Example
 -------
->>> e = estimate(dict(dof=1, links=16))
+>>> from synth.structure.query import ChainQuery
+>>> e = estimate(ChainQuery(1, 16))
 >>> 1.5e7 < e.chains < 2.5e7, e.basis
 (True, 'exact counts at 8, 10, 12 links')
 """
@@ -30,9 +31,16 @@ import math
 import time
 from dataclasses import dataclass
 
-from ..errors import ImpossibleParameters
+from ..errors import ImpossibleParameters, QueryTooLarge
 
-__all__ = ["Estimate", "estimate", "describe_seconds"]
+__all__ = ["Estimate", "estimate", "size_check", "describe_seconds", "magnitude"]
+
+# Queries at least this large (loops K of their largest skeleton; multiple joints grow faster)
+# are sized before they run.
+SIZED_LOOPS, SIZED_LOOPS_MULTIPLE = 7, 6
+LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
+TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
+NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
 
 
 @dataclass(frozen=True)
@@ -45,15 +53,15 @@ class Estimate:
     basis: str
 
 
-def estimate(query: dict, *, budget: float = 2.0) -> Estimate | None:
-    """Estimate ``query`` (keywords of :func:`synth.count_chains` with ``dof`` and ``links``).
+def estimate(query, *, budget: float = 2.0) -> Estimate | None:
+    """Estimate a :class:`~synth.structure.query.ChainQuery` (with ``links``; not its code).
 
     Only sizes below ``links`` are counted (the query itself never is), for about ``budget``
     seconds.  Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
-    from ..synthesis.type_synthesis import _codes_of, _count_unit, _map_units
+    from ..synthesis.type_synthesis import _count_unit, _map_units, plan_jobs
 
-    dof, links = query["dof"], query["links"]
+    links = query.links
     start = time.perf_counter()
     points = []  # (links, chains, units, seconds)
     for n in range(2 + links % 2, links, 2):  # n = W + 1 + 2K: the same parity as the query's n
@@ -63,13 +71,13 @@ def estimate(query: dict, *, budget: float = 2.0) -> Estimate | None:
             break  # the next size would cost far more than the budget
         t0 = time.perf_counter()
         try:
-            codes, conv = _codes_of(dict(query, links=n))
+            jobs = plan_jobs(query.with_options(links=n))
         except ImpossibleParameters:
             continue
         chains = units = 0
-        for _, unit, result in _map_units(_count_unit, codes, conv, 1, False):
+        for _, unit, result in _map_units(_count_unit, jobs, 1, False):
             if unit is not None:
-                chains += result[1]
+                chains += sum(result.values())
                 units += 1
         if chains:
             points.append((n, chains, units, time.perf_counter() - t0))
@@ -87,6 +95,46 @@ def estimate(query: dict, *, budget: float = 2.0) -> Estimate | None:
         units *= max(r_u, 1.0)
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
     return Estimate(chains, units, chains * rate, basis)
+
+
+def size_check(query, *, processes: int, count: bool, table: bool, force: bool = False,
+               where: str | None = None) -> str | None:
+    """Refuse, within seconds and with an estimate, a query too large to run unasked.
+
+    A query with fewer loops than :data:`SIZED_LOOPS` (6 with multiple joints) passes at once.
+    Others are estimated (:func:`estimate`) and refused with :class:`QueryTooLarge` when they
+    would take more than a day on ``processes`` workers (unless ``force``), or when a ``table``
+    listing would hold more than a million rows (whatever ``force`` says); a query of more
+    than ten minutes passes with a sentence to show before it starts (returned).
+
+    >>> from synth.structure.query import ChainQuery
+    >>> size_check(ChainQuery(1, 10), processes=2, count=True, table=False) is None
+    True
+    """
+    if query.code is not None:
+        return None
+    K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
+    multiple = (query.v or (0, 0)) != (0, 0)
+    if K < (SIZED_LOOPS_MULTIPLE if multiple else SIZED_LOOPS) or (force and count):
+        return None
+    found = estimate(query)
+    if found is None:
+        if not force:
+            raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
+                                "(fewer than three smaller sizes have chains); give --force to run it anyway")
+        return None
+    where = where or f"on {processes} worker{'s' * (processes > 1)}"
+    size = (f"about {magnitude(found.chains)} chains in {magnitude(found.units)} units, "
+            f"{describe_seconds(found.seconds / processes)} {where}, extrapolated from the {found.basis}")
+    if not count and table and found.chains > TABLE_ROWS:
+        raise QueryTooLarge(f"a table is held in memory to align it and this listing is too large for one ({size}); "
+                            "use --format jsonl or csv (streamed), or --count")
+    if not force and found.seconds / processes > LIMIT_SECONDS:
+        hint = " (with --checkpoint FILE it can be stopped and resumed)" if count else ""
+        raise QueryTooLarge(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
+    if found.seconds / processes > NOTE_SECONDS:
+        return f"a long query: {size}"
+    return None
 
 
 def describe_seconds(seconds: float) -> str:

@@ -337,8 +337,13 @@ class Chain:
             "v": self.v,
         }
         if self.kinds is not None:  # the code says how many pairs are prismatic and meshes, e.g. '42/0 P2'
+            from .kinds import wedge_loops
+
             d["kinds"] = list(self.kinds)
             d["code"] += self.kind_suffix
+            k2 = wedge_loops(self)
+            d.update(prismatic=self.kinds.count("prismatic"), meshes=self.kinds.count("mesh"), loops_2=k2,
+                     loops_3=self.loops - k2)
         if self.h != 3:
             d["h"] = self.h
         return d
@@ -479,8 +484,14 @@ class Mechanism:
         return svg(self)
 
     def to_dict(self) -> dict:
+        """The chain's row with its frame (and input link), and its prismatic pairs by kind
+        (guide, swinging or floating cylinder, slider) where it has some."""
         d = self.chain.to_dict()
         d["frame"] = self.frame
+        if self.chain.kinds is not None and "prismatic" in self.chain.kinds:
+            from .kinds import prismatic_roles
+
+            d.update(prismatic_roles(self.chain, self.frame))
         d["chain_certificate"] = d.pop("certificate")
         d["certificate"] = self.certificate
         if self.input_link is not None:

@@ -44,7 +44,7 @@ import numpy as np
 from .chain import JOINT_KINDS, SYMBOLS, Chain
 
 __all__ = ["KINDS", "SYMBOLS", "kind_count", "wedge_loops", "structural_mobility", "generic_mobility",
-           "redundant_constraints", "idle_joints", "lever_analogue"]
+           "redundant_constraints", "idle_joints", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
 _PRIME = 2_147_483_647  # 2^31 − 1: a product of two residues fits in a 64-bit integer
@@ -281,3 +281,29 @@ def lever_analogue(chain: Chain) -> Chain:
             joints.append(j)
             out_kinds.append(k)
     return Chain(n, joints, out_kinds, chain.h)
+
+
+def prismatic_roles(chain: Chain, frame: int) -> dict[str, int]:
+    """The prismatic pairs of a mechanism (``chain`` with ``frame`` fixed) by what they are:
+
+    * ``guide``: a slider on the frame;
+    * ``swinging``: a cylinder (a pair between two binary links: the barrel and its rod) one of
+      whose links is pinned to the frame;
+    * ``floating``: a cylinder both of whose links move, pinned to moving links only;
+    * ``slider``: any other pair (a block on a moving link that carries more joints).
+
+    >>> slider_crank = Chain.parse("0-1 1-2 2=3 3-0")
+    >>> prismatic_roles(slider_crank, 0), prismatic_roles(slider_crank, 3)
+    ({'guide': 0, 'swinging': 1, 'floating': 0, 'slider': 0}, {'guide': 1, 'swinging': 0, 'floating': 0, 'slider': 0})
+    """
+    roles = dict.fromkeys(("guide", "swinging", "floating", "slider"), 0)
+    degree = chain.degrees
+    pinned = {x for j, k in zip(chain.joints, _kinds(chain)) if k == "revolute" and frame in j for x in j}
+    for (a, b), k in ((j, k) for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic"):
+        if frame in (a, b):
+            roles["guide"] += 1
+        elif degree[a] == degree[b] == 2:
+            roles["swinging" if a in pinned or b in pinned else "floating"] += 1
+        else:
+            roles["slider"] += 1
+    return roles

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..execution._blas import single_threaded
 from .chain import Chain
-from .kinds import lever_analogue, redundant_constraints, structural_mobility
+from .kinds import generic_mobility, lever_analogue, structural_mobility
 from ..errors import MalformedChain
 
 __all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
@@ -195,7 +195,8 @@ class SubchainReport:
     ``worst`` is a smallest proper sub-chain (|S| ≥ 2) of least mobility ``worst_mobility``;
     ``ok`` says whether it meets the convention (≥ 1 non-degenerate, ≥ 0 rigid allowed) and the
     chain has no ``redundant`` constraint the count cannot see (with prismatic pairs: its
-    generic mobility above the count, :func:`~synth.structure.kinds.redundant_constraints`).
+    generic mobility above the count, or above 0 where the count is negative).  The whole chain
+    is not a sub-chain: its W, over-constrained or not, is the count's to say.
     """
 
     ok: bool
@@ -306,8 +307,25 @@ def _check_with_kinds(chain: Chain, threshold: int) -> SubchainReport:
     low, worst = _minimum_with_kinds(chain)
     if low == _BIG:  # two links: no proper sub-chain of two links or more
         low, worst = 10**9, ()
-    redundant = redundant_constraints(chain) if "prismatic" in chain.kinds else 0
+    redundant = _hidden_redundancy(chain) if "prismatic" in chain.kinds else 0
     return SubchainReport(low >= threshold and redundant == 0, worst, low, threshold, redundant)
+
+
+def _hidden_redundancy(chain: Chain) -> int:
+    """Redundant constraints the count does not show, in the chain or any proper sub-chain (whose
+    counts are all ≥ 0 here): the generic mobility above the count, or above 0 where the whole
+    chain's count is negative (that over-constraint the count shows itself).  A sub-chain's
+    redundancy is one of every larger set's, so where the whole's count hides nothing the sets
+    of all links but one are looked at.
+
+    >>> _hidden_redundancy(Chain.parse("0-1 0-2 1-2 1=3 2=4 3=4"))   # the P path holds a rigid triangle parallel
+    1
+    """
+    whole = generic_mobility(chain) - max(chain.dof, 0)
+    if whole or chain.dof >= 0:
+        return whole
+    return max(generic_mobility(chain, s) - structural_mobility(chain, s)
+               for s in (tuple(x for x in range(chain.links) if x != left) for left in range(chain.links)))
 
 
 def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainReport:

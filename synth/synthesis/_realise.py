@@ -66,6 +66,11 @@ class Conventions:
     required sub-structures ``cranks``: pairs (I, C) asking for a link with I joints that
     carries at least C cranks (binary links jointed to it), and the motion space ``h`` of
     the loops (W(S) = h(|S| − 1) − (h − 1)·p(S)).
+
+    With ``prismatic`` (a range of prismatic pairs per chain) the revolute chains built are
+    skeletons that ``slack`` wedge loops will raise: each sub-chain may lack up to ``slack``
+    freedoms (its own wedge loops give them back), and ``idle_joints`` keeps the assignments
+    with joints that never move.
     """
 
     rigid_subchains: bool = False
@@ -73,11 +78,14 @@ class Conventions:
     planar_only: bool = False
     cranks: tuple[tuple[int, int], ...] = ()
     h: int = 3
+    slack: int = 0
+    prismatic: tuple[int, int | None] | None = None
+    idle_joints: bool = False
 
     @property
     def threshold(self) -> int:
-        """Least W(S) allowed for a proper sub-chain S."""
-        return 0 if self.rigid_subchains else 1
+        """Least W(S) allowed for a proper sub-chain S of a skeleton (every chain without slack)."""
+        return (0 if self.rigid_subchains else 1) - self.slack
 
 
 @dataclass(frozen=True)
@@ -150,10 +158,9 @@ def _inner_links(kinds) -> list[int]:
 
 def _loop_lb(kind: str, conv: Conventions) -> int:
     """Fewest binary links on a closed string through one branch vertex."""
-    # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h
-    # and at least 2 through a link: one binary link would be two joints between the same two links
-    return max(2, conv.h - 1 + (0 if conv.rigid_subchains else 1)) if kind == "L" else conv.h + (
-        0 if conv.rigid_subchains else 1)
+    # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h; and at least
+    # 2: one binary link would be two joints between the same two links (or a link twice on a joint)
+    return max(2, conv.h - 1 + conv.threshold) if kind == "L" else max(2, conv.h + conv.threshold)
 
 
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
@@ -239,21 +246,21 @@ class _StringBounds:
     ``loop[u]`` per loop.
 
     All strings between two links, all taken: W = h + Σ w − k(h − 1), so Σ w ≥ (h − 1)k − h + threshold
-    (without the threshold where the whole chain is exempt: W below it); between two joints
-    W = Σ w − h − (h − 1)(k − 2); from a link to a joint one binary link per string after the first
-    (two joints never join the same links).
+    (the whole chain's W instead where it is below the threshold: the whole chain is exempt); between
+    two joints W = Σ w − h − (h − 1)(k − 2) ≥ min(threshold, 0, W); from a link to a joint one binary
+    link per string after the first (two joints never join the same links).
     """
 
     def __init__(self, kinds, pairs, code: Code, conv: Conventions):
         import numpy as np
 
         h = conv.h
-        rigid = conv.rigid_subchains or code.dof(h) < conv.threshold
+        least = min(conv.threshold, code.dof(h))  # what the strings between two links keep, whole chain or not
         slope, offset = [], []
         for u, v in pairs:
             same = kinds[u][0] == kinds[v][0]
             slope.append(h - 1 if same else 1)
-            offset.append((-h + (0 if rigid else 1) if kinds[u][0] == "L" else -h + 2) if same else -1)
+            offset.append((-h + least if kinds[u][0] == "L" else -h + 2 + min(least, 0)) if same else -1)
         self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
         self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
         self.pairs, self.n2, self.h = pairs, code.count(2), h
@@ -303,8 +310,9 @@ def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, 
         for TL in combinations(links, size):
             for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
                 for TJ in combinations(joints, jsize):
-                    # one link: S has two links or more only with a one-link string (weaker bound)
-                    out.append((TL, TJ, h * (size - 1) + (h - 1) * jsize - (conv.threshold if size >= 2 else 0)))
+                    # one link: S has two links or more only with a one-link string (W = 0 otherwise)
+                    least = conv.threshold if size >= 2 else min(conv.threshold, 0)
+                    out.append((TL, TJ, h * (size - 1) + (h - 1) * jsize - least))
     return out
 
 

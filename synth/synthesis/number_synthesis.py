@@ -21,79 +21,12 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from ..errors import ImpossibleParameters, InvalidOption
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import Code
-from ..errors import ImpossibleParameters, InvalidOption
+from ..structure.query import Range, parse_range, parse_requirements
 
 __all__ = ["Problem", "number_synthesis", "make_problem", "parse_range", "parse_requirements"]
-
-Range = tuple[int, int | None]
-
-
-def parse_range(text: str | int | tuple | None, what: str, *, minimum: int = 0) -> Range | None:
-    """Read ``N``, ``A..B`` or ``A..`` (open upper end) into ``(A, B)``; B is None when open.
-
-    >>> parse_range("0..4", "v"), parse_range("2..", "n5"), parse_range(3, "K")
-    ((0, 4), (2, None), (3, 3))
-    """
-    if text is None:
-        return None
-    if isinstance(text, bool):
-        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
-    if isinstance(text, int):
-        lo, hi = text, text
-    elif isinstance(text, tuple) and len(text) == 2:
-        lo, hi = text
-    elif isinstance(text, str):
-        s = text.strip()
-        try:
-            if ".." in s:
-                a, b = s.split("..", 1)
-                lo = int(a) if a.strip() else minimum
-                hi = int(b) if b.strip() else None
-            else:
-                lo = hi = int(s)
-        except ValueError:
-            raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}") from None
-    else:
-        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
-    if lo is None or lo < minimum or (hi is not None and hi < minimum):
-        raise ImpossibleParameters(f"{what} must not be below {minimum} (got {text!r})")
-    if hi is not None and hi < lo:
-        raise InvalidOption(f"the range for {what} is empty: {lo}..{hi}")
-    return (lo, hi)
-
-
-def parse_requirements(items: Iterable[str] | Mapping | None) -> dict[int, Range]:
-    """Read design requirements ``I=N``, ``I=A..B``, ``I=A..`` on n_I (links with I joints).
-
-    >>> parse_requirements(["5=1..", "3=0..2"])
-    {3: (0, 2), 5: (1, None)}
-    """
-    if not items:
-        return {}
-    pairs = items.items() if isinstance(items, Mapping) else (_split_requirement(s) for s in items)
-    out: dict[int, Range] = {}
-    for key, value in pairs:
-        try:
-            i = int(key)
-        except (TypeError, ValueError):
-            raise InvalidOption(f"a requirement names the number of joints on a link, not {key!r}") from None
-        if i < 1:
-            raise ImpossibleParameters(f"a link carries at least one joint; requirement on n{i} is impossible")
-        rng = parse_range(value, f"n{i}")
-        if i in out and out[i] != rng:
-            raise ImpossibleParameters(f"conflicting requirements on n{i}: {out[i]} and {rng}")
-        out[i] = rng
-    return dict(sorted(out.items()))
-
-
-def _split_requirement(text: str) -> tuple[str, str]:
-    if not isinstance(text, str) or "=" not in text:
-        raise InvalidOption(f"a requirement is written I=N, I=A..B or I=A.. (e.g. 5=1..), not {text!r}")
-    key, value = text.split("=", 1)
-    return key.strip(), value.strip()
-
 
 @dataclass(frozen=True)
 class Problem:

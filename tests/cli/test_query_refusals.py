@@ -8,7 +8,13 @@ contract: a message that lost its numbers or its reason is a bug a user meets.
 import pytest
 
 import synth
-from synth.synthesis.type_synthesis import _MAX_BRANCH, _codes_of, _parse_cranks, plan_codes
+from synth.structure.query import ChainQuery, parse_cranks as _parse_cranks
+from synth.synthesis.type_synthesis import _MAX_BRANCH, plan_codes, plan_jobs
+
+
+def _codes_of(query: dict):
+    """The codes of a query (as the engine plans them), its stage-A jobs' codes."""
+    return [code for code, _ in plan_jobs(ChainQuery.of(**query))], None
 from synth.execution.scheduler import SchedulerUnreachable
 from synth.errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 
@@ -80,6 +86,9 @@ def test_a_query_without_links_or_code():
     with pytest.raises(InvalidOption) as err:
         plan_codes(1)
     assert str(err.value) == "give the number of links (or a code)"
+    with pytest.raises(InvalidOption) as err:
+        plan_codes()
+    assert str(err.value) == "give the degree of freedom W (and the links), or a code"
 
 
 @pytest.mark.parametrize("option, value", [("v", "x"), ("n1", "2..x")])

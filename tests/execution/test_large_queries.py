@@ -202,7 +202,7 @@ def test_count_on_a_dask_cluster(tmp_path):
 
 # ----------------------------------------------------------- size and refusal
 def test_estimate_of_14_links_from_smaller_counts():
-    found = estimate(dict(dof=1, links=14), budget=600)  # the basis is then 8, 10, 12 links on any machine
+    found = estimate(synth.ChainQuery(1, 14), budget=600)  # the basis is then 8, 10, 12 links on any machine
     assert found.basis == "exact counts at 8, 10, 12 links"
     assert abs(found.chains - 318162) / 318162 < 0.05
     assert found.units > 271 and found.seconds > 0
@@ -218,16 +218,17 @@ def test_giant_query_is_refused_with_an_estimate():
 
 @pytest.mark.parametrize("checkpoint", [None, "c.sqlite"])
 def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
-    # a query under the day's limit runs unasked, but one of more than _NOTE_SECONDS says how long
+    # a query under the day's limit runs unasked, but one of more than NOTE_SECONDS says how long
     # it will take (here: 16 links against a limit of one second, so the run itself is not started)
     import argparse
 
     from mechsynth.commands import chains
+    from synth.execution import estimate
 
-    monkeypatch.setattr(chains, "_NOTE_SECONDS", 1.0)
+    monkeypatch.setattr(estimate, "NOTE_SECONDS", 1.0)
     args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,
                               workers=2, format=None, checkpoint=checkpoint)
-    chains._size_guard(1, args, dict(workers=2))
+    chains._size_note(synth.ChainQuery(1, 16), args)
     note = capsys.readouterr().err.strip()
     assert note.startswith("mechsynth: a long query: about ") and "on 2 workers" in note and "\n" not in note
     assert ("give --checkpoint FILE" in note) == (checkpoint is None)

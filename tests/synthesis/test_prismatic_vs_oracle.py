@@ -1,20 +1,22 @@
-"""Prismatic pairs: the wedge rule against the Jacobian rank, variant counts against a brute force."""
+"""Prismatic pairs: the count, the generic mobility and idle joints against an independent
+Jacobian (floating point, tests/oracles/prismatic.py), variant counts against a brute force over
+permutations, and what ``--dof`` means with wedge loops (the h = 2 chains are the all-P ones)."""
 
 from __future__ import annotations
 
+import json
 from itertools import product
 
 import networkx as nx
 import numpy as np
 import pytest
 
-from tests.oracles.prismatic import brute_variant_count, count_rule, generic_mobility, has_idle_joint
-from synth.synthesis.type_synthesis import type_synthesis
-from synth.structure.chain import Chain
-from synth.errors import InvalidOption
-from synth.synthesis.variants import generic_mobility as exact_generic_mobility
-from synth.synthesis.variants import (idle_joints, prismatic_count, prismatic_variants, wedge_loops, wedge_mobility,
-                             wedge_subchain_minimum)
+from synth import Chain, ChainQuery, InvalidOption, count_chains, type_synthesis
+from synth.structure.kinds import generic_mobility, idle_joints, kind_count, structural_mobility, wedge_loops
+from synth.structure.subchains import check_subchains
+from synth.synthesis.type_synthesis import mechanisms_of
+from synth.synthesis.variants import prismatic_variants
+from tests.oracles import prismatic as oracle
 
 FOUR_BAR = Chain.parse("0-1 1-2 2-3 3-0")
 WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
@@ -26,46 +28,55 @@ def _assignments(chain: Chain):
         yield Chain(chain.links, chain.joints, bits)
 
 
-def _disagreements(chain: Chain, rng) -> list[Chain]:
-    """Assignments without idle joints where the count and the Jacobian rank differ."""
+def _kinds(chain: Chain):
+    return chain.kinds or ("revolute",) * len(chain.joints)
+
+
+def _hidden(chain: Chain, rng) -> list[Chain]:
+    """Every R/P assignment: the engine's generic mobility and idle joints equal the oracle's;
+    the count is never above the generic mobility; the assignments without idle joints where
+    they differ (a hidden redundant constraint) are returned."""
     out = []
     for variant in _assignments(chain):
-        kinds = variant.kinds or ("revolute",) * len(chain.joints)
-        assert bool(idle_joints(variant)) == has_idle_joint(chain.links, variant.joints, kinds)
-        assert wedge_mobility(variant) == count_rule(chain.links, variant.joints, kinds)
-        if idle_joints(variant):
-            continue
-        jacobian = generic_mobility(chain.links, variant.joints, kinds, rng)
-        assert exact_generic_mobility(variant) == jacobian, variant
-        if wedge_mobility(variant) != jacobian:
-            assert jacobian > wedge_mobility(variant)  # a hidden redundant constraint, never a lost one
+        kinds = _kinds(variant)
+        assert structural_mobility(variant) == oracle.count_rule(chain.links, variant.joints, kinds)
+        truth = oracle.generic_mobility(chain.links, variant.joints, kinds, rng)
+        assert generic_mobility(variant) == truth, variant
+        assert set(idle_joints(variant)) == set(oracle.idle_joints(chain.links, variant.joints, kinds, rng)), variant
+        assert structural_mobility(variant) <= truth
+        if (truth == 0 or not idle_joints(variant)) and structural_mobility(variant) != truth:
             out.append(variant)
     return out
 
 
-@pytest.mark.parametrize("dof,links,hidden", [(1, 4, 0), (1, 6, 0), (1, 8, 1), (2, 5, 0), (2, 7, 0), (3, 6, 0),
+@pytest.mark.parametrize("dof,links,hidden", [(1, 4, 0), (1, 6, 0), (1, 8, 0), (2, 5, 0), (2, 7, 0), (3, 6, 0),
                                               (0, 3, 0), (0, 5, 0),
                                               pytest.param(0, 7, 33, marks=pytest.mark.slow),
                                               pytest.param(3, 8, 0, marks=pytest.mark.slow)])
-def test_wedge_rule_against_jacobian_rank_on_every_assignment(dof, links, hidden):
-    """Every chain of the atlas and every R/P assignment without idle joints: the count equals the
-    generic mobility except on a few assignments with a hidden redundancy (at 8 links: a revolute
-    four-bar loop whose opposite links are held parallel by two chains of P pairs), which the engine
-    recognises by the exact rank and leaves out."""
+def test_count_and_generic_mobility_on_every_assignment(dof, links, hidden):
+    """Every chain of the atlas and every R/P assignment: generic mobility and idle joints as the
+    oracle finds them; the count equals the generic mobility except on assignments with a hidden
+    redundancy, which the exact test refuses: in mobile chains they always come with idle joints
+    (at 8 links a revolute four-bar whose opposite links two chains of P pairs hold parallel cannot
+    move), in trusses they make a structure move that the count calls rigid."""
     rng = np.random.default_rng(dof * 100 + links)
     chains = list(type_synthesis(dof, links, workers=1))
     assert chains
-    found = [v for chain in chains for v in _disagreements(chain, rng)]
+    found = [v for chain in chains for v in _hidden(chain, rng)]
     assert len(found) == hidden
     for v in found:
-        kept = {c.certificate for c in prismatic_variants(Chain(v.links, v.joints), prismatic_count(v), idle=True)}
+        assert check_subchains(v, rigid_subchains=True).kind == "redundant constraints"
+        kept = {c.certificate for c in prismatic_variants(Chain(v.links, v.joints), kind_count(v, "prismatic"),
+                                                          idle=True)}
         assert v.certificate not in kept
 
 
-def test_wedge_rule_equals_jacobian_rank_on_every_small_graph():
-    """Every connected simple graph of 3…5 links, every R/P assignment without idle joints and
-    without an over-constrained sub-chain: here all-P loops rescue chains that are over-constrained
-    as revolute chains (two wedge triangles on a common pair: W = 1)."""
+def test_count_equals_jacobian_rank_on_every_small_graph():
+    """Every connected simple graph of 3…5 links, every R/P assignment that moves (W ≥ 1 by the
+    count) without idle joints and without an over-constrained sub-chain: the count is the generic
+    mobility; all-P loops rescue chains that are over-constrained as revolute chains (two wedge
+    triangles on a common pair).  (A truss by the count may hide a redundancy that lets it move:
+    the exact test's rank finds those.)"""
     rng = np.random.default_rng(5)
     checked = rescued = 0
     for g in nx.graph_atlas_g():
@@ -73,22 +84,30 @@ def test_wedge_rule_equals_jacobian_rank_on_every_small_graph():
             continue
         base = Chain(g.number_of_nodes(), list(g.edges()))
         for variant in _assignments(base):
-            if idle_joints(variant) or wedge_subchain_minimum(variant)[0] < 0 or wedge_mobility(variant) < 0:
+            if (structural_mobility(variant) < 1 or idle_joints(variant)
+                    or check_subchains(variant, rigid_subchains=True).worst_mobility < 0):
                 continue
-            kinds = variant.kinds or ("revolute",) * len(base.joints)
-            assert wedge_mobility(variant) == generic_mobility(base.links, variant.joints, kinds, rng), variant
+            kinds = _kinds(variant)
+            assert structural_mobility(variant) == oracle.generic_mobility(base.links, variant.joints, kinds, rng)
             checked += 1
             rescued += base.dof < 0
-    assert checked > 300 and rescued > 0
+    assert checked > 150 and rescued > 0
 
 
-def test_idle_joint_never_turns():
-    """A four-bar with three P pairs moves (W = 1: three slides close a triangle of displacements)
-    but its revolute pair never turns: it is an idle joint, left out unless asked for."""
+def test_idle_joints_beyond_the_prismatic_path_rule():
+    """The four-bar 0-2-1-3 cannot move when 0=4=5=1 locks the rotation of 1 against 0, though no
+    revolute joint has its own links on a P path: its four pins are idle, only the wedge slides."""
+    locked = Chain.parse("0-2 0-3 0=4 1-2 1-3 1=5 4=5")
+    assert idle_joints(locked) == [(0, 2), (0, 3), (1, 2), (1, 3)] and generic_mobility(locked) == 1
+    assert set(oracle.idle_joints(6, locked.joints, locked.kinds, np.random.default_rng(3))) == set(idle_joints(locked))
     c = Chain(4, FOUR_BAR.joints, ["prismatic", "prismatic", "prismatic", "revolute"])
-    assert len(idle_joints(c)) == 1 and wedge_mobility(c) == 1
-    assert generic_mobility(4, c.joints, c.kinds, np.random.default_rng(1)) == 1
+    assert len(idle_joints(c)) == 1 and structural_mobility(c) == generic_mobility(c) == 1
     assert prismatic_variants(FOUR_BAR, 3) == [] and len(prismatic_variants(FOUR_BAR, 3, idle=True)) == 1
+    # the query lists no chain with idle joints unless asked
+    rows = list(type_synthesis(1, 6, prismatic=3, workers=1))
+    assert locked.certificate not in {c.certificate for c in rows}
+    assert locked.certificate in {c.certificate for c in type_synthesis(1, 6, prismatic=3, idle_joints=True,
+                                                                         workers=1)}
 
 
 @pytest.mark.parametrize("chain,counts", [(FOUR_BAR, range(5)), (WATT, (1, 2)), (STEPHENSON, (1, 2))])
@@ -96,35 +115,49 @@ def test_variant_counts_match_brute_force(chain, counts):
     for k in counts:
         for idle in (False, True):
             got = len(prismatic_variants(chain, k, idle=idle))
-            assert got == brute_variant_count(chain.links, chain.joints, k, idle=idle), (k, idle)
+            assert got == oracle.brute_variant_count(chain.links, chain.joints, k, idle=idle), (k, idle)
 
 
 @pytest.mark.parametrize("chain", [FOUR_BAR, WATT, STEPHENSON])
 def test_mechanism_counts_match_brute_force(chain):
     """Each variant with a fixed link: the inversions (slider-crank: guide or slider fixed, …)."""
-    from synth.synthesis.type_synthesis import mechanisms_of
-
     for k in (1, 2):
         got = sum(len(mechanisms_of(v)) for v in prismatic_variants(chain, k))
-        assert got == brute_variant_count(chain.links, chain.joints, k, frames=True), k
+        assert got == oracle.brute_variant_count(chain.links, chain.joints, k, frames=True), k
 
 
-def test_four_bar_counts():
-    """R-R-R-R; slider-crank; two P pairs adjacent (Scotch yoke) or opposite; three P pairs always
-    make an idle joint; four P pairs: the wedge loop of W = 2."""
+def test_dof_is_the_mobility_of_every_chain_returned():
+    """--dof 1 with prismatic pairs: the all-P four-bar (a wedge loop, W = 2) is not a 1-DOF chain;
+    every chain listed has W = 1 by the count and by the generic mobility."""
+    chains = list(type_synthesis(1, 4, prismatic="0..4", workers=1))
+    assert [kind_count(c, "prismatic") for c in chains] == [0, 1, 2, 2]
+    for links in (4, 5, 6):
+        for c in type_synthesis(1, links, prismatic="0..", workers=1):
+            assert c.dof == generic_mobility(c) == 1 and not idle_joints(c), c.compact()
     (wedge,) = prismatic_variants(FOUR_BAR, 4)
-    assert (wedge_mobility(wedge), wedge_loops(wedge)) == (2, 1)
+    assert (structural_mobility(wedge), wedge_loops(wedge)) == (2, 1)
+    assert [c.certificate for c in type_synthesis(2, 4, prismatic=4, workers=1)] == [wedge.certificate]
+
+
+@pytest.mark.parametrize("links", [5, 6, 7])
+def test_all_prismatic_chains_are_the_wedge_systems(links):
+    """A chain of prismatic pairs only is a wedge system (motion space h = 2): the 1-DOF chains with
+    2(n − 1) − 1 P pairs, found on revolute skeletons of W = 1 − K_2, are exactly the h = 2 chains,
+    code by code."""
+    p = 2 * (links - 1) - 1
+    with_p = count_chains(1, links, prismatic=p, workers=1)["by_code"]
+    wedge = count_chains(1, links, h=2, workers=1)["by_code"]
+    assert {code.split(" P")[0]: n for code, n in with_p.items()} == wedge
 
 
 def test_wedge_lever_system():
-    """Task 3: 5 links, n2 = 3, n3 = 2, one wedge loop and one lever loop, W = 1.  The code 32/0 is a
-    truss as a revolute chain; P pairs that close a wedge loop give it one freedom.  The fewest P
-    pairs: a wedge triangle (three P pairs) and a lever four-bar sharing one of its links' pairs."""
-    found = [c for base in type_synthesis(0, 5, code="32/0", workers=1)
-             for k in range(7) for c in prismatic_variants(base, k) if wedge_mobility(c) == 1]
+    """Task 3: 5 links, n2 = 3, n3 = 2, one wedge loop and one lever loop, W = 1, found by the query
+    `chains --dof 1 --links 5 --prismatic 1..6`: its revolute skeletons are the 5-link trusses."""
+    found = list(type_synthesis(1, 5, prismatic="1..6", workers=1))
     assert found and all(str(c.code) == "32/0" and wedge_loops(c) == 1 and c.loops == 2 for c in found)
-    fewest = min(prismatic_count(c) for c in found)
-    (lever,) = [c for c in found if prismatic_count(c) == fewest]
+    assert "32/0" in {str(c.code) for c in type_synthesis(0, 5, workers=1)}  # a truss as a revolute chain
+    fewest = min(kind_count(c, "prismatic") for c in found)
+    (lever,) = [c for c in found if kind_count(c, "prismatic") == fewest]
     assert fewest == 3 and sorted(lever.degrees) == [2, 2, 2, 3, 3]
     prismatic = [j for j, k in zip(lever.joints, lever.kinds) if k == "prismatic"]
     assert len({x for j in prismatic for x in j}) == 3  # the three P pairs close one triangle
@@ -134,6 +167,9 @@ def test_wedge_lever_system():
     (lambda: prismatic_variants(FOUR_BAR, 5), "only 4 simple joints"),
     (lambda: prismatic_variants(Chain.parse("0-1-2 0-1-2"), 1), "multiple joints only"),
     (lambda: prismatic_variants(FOUR_BAR, -1), "≥ 0"),
+    (lambda: ChainQuery(1, 4, h=4, prismatic=1), "planar chains"),
+    (lambda: ChainQuery(1, 4, cylinders="floating=1"), "cylinders go with prismatic pairs"),
+    (lambda: ChainQuery(1, 4, prismatic=1, cylinders="rolling=1"), "guide, swinging, floating or slider"),
 ])
 def test_refusals(call, message):
     with pytest.raises(InvalidOption, match=message):
@@ -149,32 +185,32 @@ def _cli(capsys, argv):
 
 
 def test_cli_four_bar_variants_match_brute_force(capsys):
-    import json
-
     code, out, _ = _cli(capsys, ["chains", "--dof", "1", "--links", "4", "--prismatic", "0..4", "--count",
                                  "--workers", "1"])
     by_code = json.loads(out)["by_code"]
-    expected = {k: brute_variant_count(4, FOUR_BAR.joints, k) for k in range(5)}
-    assert code == 0 and {k: by_code.get(f"4/0 P{k}" if k else "4/0", 0) for k in range(5)} == expected
+    expected = {k: oracle.brute_variant_count(4, FOUR_BAR.joints, k) for k in range(4)}  # (P4: W = 2)
+    assert code == 0 and {k: by_code.get(f"4/0 P{k}" if k else "4/0", 0) for k in range(4)} == expected
 
 
 def test_cli_wedge_lever_query(capsys):
-    """Task 3 found by a query: the truss code 32/0 with three P pairs, the row with W = 1."""
-    import json
-
-    code, out, _ = _cli(capsys, ["chains", "--code", "32/0", "--prismatic", "3", "--format", "jsonl", "--workers", "1"])
+    """Task 3 found by a query over the truss code 32/0 with three P pairs and W = 1."""
+    code, out, _ = _cli(capsys, ["chains", "--dof", "1", "--code", "32/0", "--prismatic", "3", "--format", "jsonl",
+                                 "--workers", "1"])
     rows = [json.loads(line) for line in out.splitlines()]
-    lever = [r for r in rows if r["dof"] == 1]
-    assert code == 0 and len(lever) == 1
-    assert (lever[0]["code"], lever[0]["loops_2"], lever[0]["loops_3"]) == ("32/0 P3", 1, 1)
+    assert code == 0 and len(rows) == 1
+    assert (rows[0]["code"], rows[0]["dof"], rows[0]["loops_2"], rows[0]["loops_3"]) == ("32/0 P3", 1, 1, 1)
+    code, out, _ = _cli(capsys, ["chains", "--dof", "1", "--links", "5", "--prismatic", "1..6", "--count",
+                                 "--workers", "1"])
+    assert code == 0 and json.loads(out) == {"count": 4, "by_code": {"32/0 P3": 1, "32/0 P4": 3}}
 
 
 @pytest.mark.parametrize("argv,message", [
-    (["chains", "--dof", "1", "--links", "4", "--prismatic", "5"], "more prismatic pairs than the 4 simple joints"),
-    (["chains", "--code", "12.0/8-0", "--prismatic", "1"], "multiple joints only"),
+    (["chains", "--dof", "1", "--links", "4", "--prismatic", "7"], "7 prismatic pairs do not fit"),
+    (["chains", "--code", "12.0/8-0", "--prismatic", "1"], "no simple joint"),
     (["chains", "--dof", "1", "--links", "4", "--idle-joints"], "--idle-joints goes with --prismatic"),
-    (["chains", "--dof", "1", "--links", "4", "--prismatic", "-1"], "--prismatic"),
+    (["chains", "--dof", "1", "--links", "4", "--prismatic", "-1"], "prismatic pairs"),
     (["chains", "--dof", "1", "--links", "4", "--prismatic", "1", "--count", "--checkpoint", "x.db"], "--checkpoint"),
+    (["mechanisms", "--dof", "1", "--links", "4", "--cylinders", "floating=1"], "--cylinders goes with --prismatic"),
 ])
 def test_cli_refusals(capsys, argv, message):
     code, out, err = _cli(capsys, argv + ["--workers", "1"])
@@ -182,9 +218,8 @@ def test_cli_refusals(capsys, argv, message):
 
 
 def test_atlas_export_of_variants_matches_chains_query(capsys, tmp_path):
-    """The atlas's chains, exported with --prismatic, give the same counts as the chains query."""
-    import json
-
+    """The atlas's chains, exported with --prismatic, give the same counts as the chains query
+    (one or two P pairs close no wedge loop: W stays the chains')."""
     grid = tmp_path / "g.toml"
     grid.write_text('dof = 1\nlinks = "4..6"\n')
     db = str(tmp_path / "a.sqlite")
@@ -201,19 +236,21 @@ def test_atlas_export_of_variants_matches_chains_query(capsys, tmp_path):
 
 
 def test_multiple_joint_locked_by_prismatic_string_is_idle():
-    """The double joint 0-1-4 turns links 1 and 4 about one pin; P pairs along 1-2-3-4 lock them."""
-    c = Chain(5, [(0, 1, 4), (1, 2), (2, 3), (3, 4), (0, 2)],
-              ["revolute", "prismatic", "prismatic", "prismatic", "revolute"])
-    assert idle_joints(c) == [(0, 1, 4)]
-    assert idle_joints(Chain(5, c.joints, ["revolute", "revolute", "prismatic", "prismatic", "revolute"])) == []
+    """The double joint 0-1-4 turns links 1 and 4 about one pin; P pairs along 1-2-3-4 lock them,
+    while the wedge slides (W = 1).  Pin 1-2 instead of a slider and the double joint turns."""
+    c = Chain(6, [(0, 1, 4), (1, 2), (2, 3), (3, 4), (0, 5), (2, 5)],
+              ["revolute", "prismatic", "prismatic", "prismatic", "revolute", "revolute"])
+    assert idle_joints(c) == [(0, 1, 4)] and generic_mobility(c) == 1
+    assert set(oracle.idle_joints(6, c.joints, c.kinds, np.random.default_rng(2))) == {(0, 1, 4)}
+    free = Chain(6, c.joints, ["revolute", "revolute", "prismatic", "prismatic", "revolute", "revolute"])
+    assert idle_joints(free) == [] == oracle.idle_joints(6, free.joints, _kinds(free), np.random.default_rng(2))
 
 
 def test_cli_one_chain(capsys):
-    """Fig. 6 from the command line: the variants of one given chain; its refusals."""
-    import json
-
+    """Fig. 6 from the command line: the variants of one given chain, each with its own W; refusals."""
     code, out, _ = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", "--prismatic", "0..4", "--count"])
-    assert code == 0 and json.loads(out)["count"] == sum(brute_variant_count(4, FOUR_BAR.joints, k) for k in range(5))
+    assert code == 0 and json.loads(out)["count"] == sum(oracle.brute_variant_count(4, FOUR_BAR.joints, k)
+                                                         for k in range(5))
     for argv, message in ((["--prismatic", "5"], "only 4 simple joints"), (["--prismatic", "1", "--dof", "1"], "--dof"),
                           ([], "--chain goes with --prismatic")):
         code, _, err = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", *argv])
@@ -221,11 +258,9 @@ def test_cli_one_chain(capsys):
 
 
 def test_grid_stores_variants_checked_by_brute_force(capsys, tmp_path):
-    """A grid with the key 'prismatic' stores every variant once: per code and P count as many as the
-    brute force over assignments finds, each with the W of the Jacobian rank; --where P= selects them,
-    and atlas --prismatic still builds variants of the revolute chains only."""
-    import json
-
+    """A grid with the key 'prismatic' stores every chain of the cell's W once: per code and P count
+    as many as the brute force over assignments finds, each with the W of the Jacobian rank; --where
+    P= selects them, and atlas --prismatic still builds variants of the revolute chains only."""
     grid = tmp_path / "g.toml"
     grid.write_text('dof = 1\nlinks = "4..6"\nprismatic = "0..2"\n')
     db = str(tmp_path / "a.sqlite")
@@ -237,7 +272,7 @@ def test_grid_stores_variants_checked_by_brute_force(capsys, tmp_path):
         for chain in type_synthesis(1, links, workers=1):
             for k in range(3):
                 name = str(chain.code) + (f" P{k}" if k else "")
-                expected[name] = expected.get(name, 0) + brute_variant_count(chain.links, chain.joints, k)
+                expected[name] = expected.get(name, 0) + oracle.brute_variant_count(chain.links, chain.joints, k)
     assert stored == {c: n for c, n in expected.items() if n}
     _, out, _ = _cli(capsys, ["atlas", "--db", db, "--where", "P=2", "--export", "chains", "--format", "jsonl"])
     rows = [json.loads(line) for line in out.splitlines()]
@@ -246,7 +281,7 @@ def test_grid_stores_variants_checked_by_brute_force(capsys, tmp_path):
     for row in rows:
         chain = Chain.from_dict(row)
         assert chain.kinds.count("prismatic") == 2
-        assert row["dof"] == generic_mobility(chain.links, chain.joints, chain.kinds, rng)
+        assert row["dof"] == oracle.generic_mobility(chain.links, chain.joints, chain.kinds, rng)
     _, out, _ = _cli(capsys, ["atlas", "--db", db, "--where", "n=6", "--prismatic", "1", "--count"])
     assert json.loads(out)["count"] == stored["42/0 P1"]
 

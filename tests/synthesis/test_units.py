@@ -155,11 +155,11 @@ def test_plan_units_is_inline_on_one_worker_and_on_a_pool_otherwise(monkeypatch)
 
 @pytest.mark.parametrize("links, workers, message", [
     (0, 1, "the number of links must be 1 or more, not 0"),
-    (True, 1, "the number of links must be 1 or more, not True"),
+    (True, 1, "the number of links must be a whole number, not True"),
     (8, 0, "workers must be a whole number ≥ 1, not 0"),
     (8, 2.0, "workers must be a whole number ≥ 1, not 2.0"),
-    (1, 1, "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = -1 to be a non-negative "
-           "multiple of h − 1 = 2 (W=1, n=1, h=3, f=0)"),  # one link is a size, just not a chain's
+    (1, 1, "no whole number of loops fits: n = W + 1 + (h − 1)·K needs n − W − 1 = -1 to be a non-negative "
+           "multiple of h − 1 = 2 (W=1, n=1, h=3)"),  # one link is a size, just not a chain's
 ])
 def test_plan_units_refuses_bad_sizes_in_one_sentence(links, workers, message):
     with pytest.raises(synth.SynthesisError) as refused:
@@ -182,20 +182,20 @@ def test_plan_many_keeps_each_query_its_own_units():
 
 def test_count_descriptions_and_identities():
     """What a checkpoint file records: a readable query and a digest that tells plans apart."""
-    from synth.synthesis.type_synthesis import _describe, _identity, _codes_of
+    from synth.synthesis.type_synthesis import _describe, _identity, plan_jobs
 
-    query = dict(dof=1, links=8, v=None, require=["3=2"], planar_only=True, fractionated=False, cranks=())
+    query = synth.ChainQuery(1, 8, v=None, require=["3=2"], planar_only=True, fractionated=False, cranks=())
     assert _describe("chains", query) == "chains dof=1 links=8 require=[3=2] planar_only=True"
-    codes, conv = _codes_of(dict(dof=1, links=8))
-    assert _identity("chains", codes, conv) != _identity("chains", codes[:1], conv)
-    assert _identity("chains", codes, conv) != _identity("mechanisms", codes, conv)
-    assert _identity("chains", codes, conv) == _identity("chains", list(codes), conv)
-    assert _identity("chains", codes[:1], conv) != _identity("chains", codes[1:2], conv)  # which codes, not how many
+    jobs = plan_jobs(synth.ChainQuery(1, 8))
+    assert _identity("chains", jobs) != _identity("chains", jobs[:1])
+    assert _identity("chains", jobs) != _identity("mechanisms", jobs)
+    assert _identity("chains", jobs) == _identity("chains", list(jobs))
+    assert _identity("chains", jobs[:1]) != _identity("chains", jobs[1:2])  # which codes, not how many
 
 
 @pytest.mark.parametrize("dof, message", [(-1, "the degree of freedom W must be 0 or more, not -1"),
-                                          ("1", "the degree of freedom W must be 0 or more, not '1'"),
-                                          (True, "the degree of freedom W must be 0 or more, not True")])
+                                          ("1", "the degree of freedom W must be a whole number, not '1'"),
+                                          (True, "the degree of freedom W must be a whole number, not True")])
 def test_every_entry_point_refuses_a_bad_mobility(dof, message):
     for call in (lambda: synth.plan_units(dof, 8), lambda: list(synth.type_synthesis(dof, 8)),
                  lambda: synth.count_chains(dof, 8), lambda: synth.count_mechanisms(dof, 8)):
@@ -442,11 +442,10 @@ def test_stage_a_against_an_enumeration_of_labelled_multigraphs(query):
     labelled multigraphs (codes of up to 7 branch vertices): CP-SAT's search and the lexicographic
     row constraints that cut its symmetric solutions lose no class and keep each once."""
     from synth.synthesis import _realise
-    from synth.synthesis.type_synthesis import _codes_of
+    from synth.synthesis.type_synthesis import plan_jobs
 
-    codes, conv = _codes_of(query)
     compared = 0
-    for code in codes:
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
         if len(_realise._branch_kinds(code)) > 7:
             continue
         engine = [h.certificate for h in _realise.contracted_graphs(code, conv)]
