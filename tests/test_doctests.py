@@ -12,7 +12,7 @@ MODULES = ["synth.structure.code", "synth.structure.chain", "synth.structure.sub
            "mechsynth.scene.structure", "mechsynth.scene.balancing", "mechsynth.scene.runner", "synth.schema",
            "mechsynth.commands.codes", "mechsynth.commands.chains", "mechsynth.commands.scene",
            "mechsynth.commands.balance", "synth.synthesis.variants", "synth.gears.planetary", "synth.analysis.repair",
-           "mechsynth.commands.planetary"]
+           "mechsynth.commands.planetary", "synth.execution.estimate", "synth.synthesis._sizing"]
 
 
 @pytest.mark.parametrize("name", MODULES)

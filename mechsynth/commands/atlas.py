@@ -280,10 +280,10 @@ def _run_draw(args) -> int:
         title = args.title
     elif args.code:
         import synth
-        from synth.structure.code import Code
 
-        code = Code.parse(args.code)
-        dof = code.dof(h) if args.dof is None else args.dof
+        from .chains import checked_code
+
+        code, dof = checked_code(args.code, h, args.dof)
         chains = list(synth.type_synthesis(dof, code=code, v=code.v, h=h, workers=1))
         if not chains:
             print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)

@@ -21,6 +21,7 @@ _SIZED_LOOPS, _SIZED_LOOPS_MULTIPLE = 7, 6
 _LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (wall, on the workers)
 _TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 _NOTE_SECONDS = 600.0  # a query estimated to take longer says so on stderr before it starts
+_MAX_CODE_LINKS = 1000  # --code: larger chains are beyond what certificates and drawings are used for
 
 
 def _add_selection(p) -> None:
@@ -72,17 +73,34 @@ def add_commands(sub) -> None:
     p.set_defaults(run=_run, what="mechanisms")
 
 
-def _selection(args) -> tuple[int, dict]:
+def checked_code(text: str, h: int, dof: int | None = None):
+    """The code of ``--code`` and its W (``dof`` or the code's own in motion space ``h``), refused
+    when its chains would be too large to build or it has no chain with W ≥ 0."""
+    from synth.errors import ImpossibleParameters, QueryTooLarge
     from synth.structure.code import Code
+
+    code = Code.parse(text)
+    if code.links > _MAX_CODE_LINKS:
+        raise QueryTooLarge(f"the code given has {code.links} links; chains are built here up to "
+                            f"{_MAX_CODE_LINKS} links")
+    if dof is None:
+        dof = code.dof(h)
+        if dof < 0:
+            raise ImpossibleParameters(f"code {text.strip()} gives W = {dof} in motion space h = {h}: its links are "
+                                       "over-constrained, and a chain has W ≥ 0")
+    return code, dof
+
+
+def _selection(args) -> tuple[int, dict]:
     from synth.errors import InvalidOption
 
     from synth.structure._params import check_motion_space
 
     check_motion_space(args.h, lowest=2)
+    if args.code is not None:
+        _, args.dof = checked_code(args.code, args.h, args.dof)
     if args.dof is None:
-        if args.code is None:
-            raise InvalidOption("give --dof (and --links), or --code")
-        args.dof = Code.parse(args.code).dof(args.h)
+        raise InvalidOption("give --dof (and --links), or --code")
     if args.links is None and args.code is None:
         raise InvalidOption("give --links N (or --code C)")
     return args.dof, dict(
@@ -111,6 +129,7 @@ def _check_options(args) -> None:
 
 def _size_guard(dof: int, args, kwargs: dict) -> None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked."""
+    import math
     import os
 
     from synth.synthesis.number_synthesis import parse_range
@@ -118,6 +137,8 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
 
     if args.code is not None or args.links is None or (args.force and args.count):
         return
+    if args.links - dof - 1 < 0 or (args.links - dof - 1) % (args.h - 1):
+        return  # no whole number of loops: the query itself says so
     loops = (args.links - dof - 1) // (args.h - 1)
     v = parse_range(args.v or 0, "v")
     if loops < (_SIZED_LOOPS_MULTIPLE if v != (0, 0) else _SIZED_LOOPS):
@@ -125,7 +146,11 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     from synth.execution.estimate import describe_seconds, estimate, magnitude
 
     query = {k: val for k, val in kwargs.items() if k not in ("workers", "progress")}
-    found = estimate(dict(query, dof=dof, links=args.links))
+    if getattr(args, "what", "chains") == "mechanisms":
+        work, items = ("mechanisms with input" if args.input_link else "mechanisms"), "mechanisms"
+    else:
+        work, items = ("count" if args.count else "list"), "chains"
+    found = estimate(dict(query, dof=dof, links=args.links), work=work)
     if found is None:
         if not args.force:
             raise InvalidOption(f"this query ({args.links} links) is large and its size cannot be estimated "
@@ -134,8 +159,9 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     where = ("on the scheduler's workers (one core shown)" if args.scheduler
              else f"on {processes} worker{'s' * (processes > 1)}")
-    size = (f"about {magnitude(found.chains)} chains in {magnitude(found.units)} units, "
-            f"{describe_seconds(found.seconds / processes)} {where}, extrapolated from the {found.basis}")
+    log_wall = found.log10_seconds - math.log10(processes)
+    size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in {magnitude(found.units, found.log10_units)} "
+            f"units, {describe_seconds(found.seconds / processes, log_wall)} {where}, extrapolated from the {found.basis}")
     if not args.count and (args.format or "table") == "table" and found.chains > _TABLE_ROWS:
         raise InvalidOption(f"a table is held in memory to align it and this listing is too large for one ({size}); "
                             "use --format jsonl or csv (streamed), or --count")

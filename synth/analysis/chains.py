@@ -65,9 +65,11 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     report = check_subchains(chain, rigid_subchains=rigid_ok)  # refuses a chain in pieces
     code = chain.code
     try:
+        exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}  # one code to find
         standard = code in number_synthesis(
             W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
             compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2),
+            require=exact,
         ) if W >= 0 and code.loops >= 0 else False
     except ImpossibleParameters:
         standard = False

@@ -37,27 +37,61 @@ __all__ = ["Estimate", "estimate", "describe_seconds"]
 
 @dataclass(frozen=True)
 class Estimate:
-    """Extrapolated size of a query: chains, units, one-core seconds, and the sizes it rests on."""
+    """Extrapolated size of a query: chains, units, one-core seconds, and the sizes it rests on.
+
+    ``chains``, ``units`` and ``seconds`` are ``math.inf`` beyond floating point; their
+    base-10 logarithms (``log10_*``) are always finite.
+    """
 
     chains: float
     units: float
     seconds: float
     basis: str
+    log10_chains: float = 0.0
+    log10_units: float = 0.0
+    log10_seconds: float = 0.0
 
 
-def estimate(query: dict, *, budget: float = 2.0) -> Estimate | None:
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else math.inf
+
+
+def _log10_growth(ratio: float, step: float, steps: int) -> float:
+    """log10 of Π_{k=1}^{steps} (ratio + k·step): the factor the linear ratio extrapolation applies.
+
+    >>> round(10 ** _log10_growth(2.0, 1.0, 3))  # 3 · 4 · 5
+    60
+    """
+    if steps <= 0:
+        return 0.0
+    if step <= 0:
+        return steps * math.log10(ratio)
+    start = ratio / step  # Π (ratio + k·step) = step^steps · Γ(start + steps + 1) / Γ(start + 1)
+    return steps * math.log10(step) + (math.lgamma(start + steps + 1) - math.lgamma(start + 1)) / math.log(10)
+
+
+def estimate(query: dict, *, budget: float = 2.0, work: str = "count") -> Estimate | None:
     """Estimate ``query`` (keywords of :func:`synth.count_chains` with ``dof`` and ``links``).
 
-    Only sizes below ``links`` are counted (the query itself never is), for about ``budget``
-    seconds.  Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
+    Only sizes below ``links`` with the same number of loops modulo one (n − (h − 1)·k) are
+    counted (the query itself never is), for about ``budget`` seconds; the time taken does not
+    grow with ``links``.  ``work`` is what the query does with each unit, timed the same way:
+    ``"count"`` its chains, ``"list"`` them (each chain built), ``"mechanisms"`` or
+    ``"mechanisms with input"`` count its mechanisms (then ``chains`` counts mechanisms).
+    Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
-    from ..synthesis.type_synthesis import _codes_of, _count_unit, _map_units
+    from ..synthesis import type_synthesis as ts
+    from ..synthesis.type_synthesis import _codes_of, _map_units
+
+    unit_work = {"count": ts._count_unit, "list": ts.run_unit, "mechanisms": ts._count_unit_mechanisms,
+                 "mechanisms with input": ts._count_unit_mechanisms_with_input}[work]
 
     dof, links = query["dof"], query["links"]
+    step = query.get("h", 3) - 1
     start = time.perf_counter()
     points = []  # (links, chains, units, seconds)
-    for n in range(2 + links % 2, links, 2):  # n = W + 1 + 2K: the same parity as the query's n
-        if points and time.perf_counter() - start > budget:
+    for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
+        if time.perf_counter() - start > budget and (points or n > 64):
             break
         if len(points) >= 2 and points[-1][3] * points[-1][1] / points[-2][1] > 3 * budget:
             break  # the next size would cost far more than the budget
@@ -67,34 +101,37 @@ def estimate(query: dict, *, budget: float = 2.0) -> Estimate | None:
         except ImpossibleParameters:
             continue
         chains = units = 0
-        for _, unit, result in _map_units(_count_unit, codes, conv, 1, False):
+        for _, unit, result in _map_units(unit_work, codes, conv, 1, False):
             if unit is not None:
-                chains += result[1]
+                chains += len(result) if isinstance(result, list) else result[1]
                 units += 1
         if chains:
             points.append((n, chains, units, time.perf_counter() - t0))
     if len(points) < 3:
         return None
     (_, c0, u0, _), (_, c1, u1, _), (n2, c2, u2, s2) = points[-3:]
-    rate = s2 / c2
-    chains, units = float(c2), float(u2)
+    steps = (links - n2) // step
     r_c, d_c = c2 / c1, max(c2 / c1 - c1 / c0, 0.0)
-    r_u, d_u = u2 / max(u1, 1), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
-    for _ in range((links - n2) // 2):
-        r_c += d_c
-        r_u += d_u
-        chains *= r_c
-        units *= max(r_u, 1.0)
+    r_u, d_u = max(u2 / max(u1, 1), 1.0), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
+    log_chains = math.log10(c2) + _log10_growth(r_c, d_c, steps)
+    log_units = math.log10(max(u2, 1)) + _log10_growth(r_u, d_u, steps)
+    log_seconds = log_chains + math.log10(max(s2, 1e-9) / c2)  # the largest calibration's time per chain
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
-    return Estimate(chains, units, chains * rate, basis)
+    return Estimate(_power(log_chains), _power(log_units), _power(log_seconds), basis,
+                    log_chains, log_units, log_seconds)
 
 
-def describe_seconds(seconds: float) -> str:
-    """A duration in the largest sensible unit.
+def describe_seconds(seconds: float, log10: float | None = None) -> str:
+    """A duration in the largest sensible unit (``log10``: its base-10 logarithm, for durations
+    beyond floating point).
 
     >>> describe_seconds(42), describe_seconds(5400), describe_seconds(3e5), describe_seconds(1e12)
-    ('42 s', '1.5 h', '3.5 days', '3.2e+04 years')
+    ('42 s', '90 min', '3.5 days', '3.2e+04 years')
+    >>> describe_seconds(math.inf, 2000.0)
+    '3.2e+1992 years'
     """
+    if not math.isfinite(seconds):
+        return f"{_scientific((log10 or math.inf) - math.log10(365.25 * 86400))} years"
     if seconds < 120:
         return f"{seconds:.0f} s"
     if seconds < 7200:
@@ -107,12 +144,26 @@ def describe_seconds(seconds: float) -> str:
     return f"{years:.0f} years" if years < 1e4 else f"{years:.2g} years"
 
 
-def magnitude(x: float) -> str:
-    """A count in words a reader takes in at once.
+def magnitude(x: float, log10: float | None = None) -> str:
+    """A count in words a reader takes in at once (``log10``: its base-10 logarithm, for counts
+    beyond floating point).
 
-    >>> magnitude(6856), magnitude(1.43e9), magnitude(3e40)
-    ('6 856', '1.4e+09', '3e+40')
+    >>> magnitude(6856), magnitude(1.43e9), magnitude(3e40), magnitude(math.inf, 2400.3)
+    ('6 856', '1.4e+09', '3e+40', '2e+2400')
     """
-    if not math.isfinite(x) or x >= 1e7:
+    if not math.isfinite(x):
+        return _scientific(math.inf if log10 is None else log10)
+    if x >= 1e7:
         return f"{x:.2g}"
     return f"{round(x):,}".replace(",", " ")
+
+
+def _scientific(log10: float) -> str:
+    """10^log10 written as 1.2e+345 (any size); 'more than 1e+308' when unknown."""
+    if not math.isfinite(log10):
+        return "more than 1e+308"
+    exponent = math.floor(log10)
+    mantissa = 10 ** (log10 - exponent)
+    if round(mantissa, 1) >= 10:
+        mantissa, exponent = mantissa / 10, exponent + 1
+    return f"{mantissa:.2g}e+{exponent}"

@@ -27,6 +27,7 @@ from ..errors import MalformedCode
 
 __all__ = ["Code"]
 
+_MAX_LOOPS = 10_000  # a code is written with one count per loop (n2 … n_{K+1})
 _CODE_RE = re.compile(r"^\s*(?:(\d+)\|)?([0-9.,]+)\s*/\s*([0-9]+(?:-[0-9]+)*)\s*$")
 
 
@@ -182,7 +183,12 @@ class Code:
         else:
             composition = tuple(numbers)
             v = sum((k + 1) * vk for k, vk in enumerate(composition))
-        return cls(tuple(counts), v, composition, int(n1_text) if n1_text else 0)
+        code = cls(tuple(counts), v, composition, int(n1_text) if n1_text else 0)
+        if code.loops > _MAX_LOOPS:  # its written form alone (one count per loop) would fill memory
+            shown = text.strip() if len(text.strip()) <= 40 else f"{text.strip()[:20]}… ({len(text.strip())} characters)"
+            raise MalformedCode(f"code {shown} describes a chain of {code.loops} loops, more than the {_MAX_LOOPS} "
+                                "a code is read with")
+        return code
 
     # --------------------------------------------------------------------- JSON
     def to_dict(self) -> dict:
