@@ -162,10 +162,16 @@ def _write_site(args) -> int:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
     import time
 
+    from synth.atlas.site import EmptyAtlas
+
     start = time.perf_counter()
-    result = write_site(args.db, args.html, page_size=args.page_size or 60,
-                        draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
-                        progress=True, workers=args.workers)
+    try:
+        result = write_site(args.db, args.html, page_size=args.page_size or 60,
+                            draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
+                            progress=True, workers=args.workers)
+    except EmptyAtlas as exc:
+        print(f"mechsynth: {exc}", file=sys.stderr)
+        return 1
     print(f"{result.chains} chains in {result.codes} codes on {result.pages} pages ({result.drawn} drawn) -> "
           f"{Path(result.folder) / 'index.html'} in {time.perf_counter() - start:.1f} s", file=sys.stderr)
     return 0

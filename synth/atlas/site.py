@@ -32,13 +32,21 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .store import open_atlas
+from .store import AtlasError, _reading, open_atlas
+from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..draw import svg_inline
 from ..errors import InvalidOption
 
-__all__ = ["chain_id", "write_site", "SiteResult"]
+__all__ = ["chain_id", "write_site", "SiteResult", "EmptyAtlas", "MAX_PAGE_SIZE"]
+
+MAX_PAGE_SIZE = 2000  # chains on one page: drawn and held in memory together
+_SECONDS_PER_DRAWING = 0.05  # a 12-link chain's layout on one core (docs/atlas.md)
+
+
+class EmptyAtlas(AtlasError):
+    """The atlas holds no chain (a valid atlas, nothing to show)."""
 
 _ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.certificate"
 _STYLE = """
@@ -129,25 +137,47 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
     take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
     """
-    if page_size < 1 or draw_limit < 0 or (workers is not None and workers < 1):
-        raise InvalidOption("the page size and workers must be at least 1 and the drawing limit at least 0")
+    if not 1 <= page_size <= MAX_PAGE_SIZE or draw_limit < 0 or (workers is not None and workers < 1):
+        raise InvalidOption(f"the page size is 1 … {MAX_PAGE_SIZE} chains (a page is drawn and held in memory "
+                            "at once), workers at least 1 and the drawing limit at least 0")
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: it is a file")
     if out.exists() and any(out.iterdir()) and not force:
         raise InvalidOption(f"{out} is not empty; give --force to write the site over it")
-    if not out.parent.exists():
+    if not out.parent.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: the directory {out.parent} does not exist")
     conn = open_atlas(db)
+    try:
+        with _reading(db):
+            total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
+    except BaseException:
+        conn.close()
+        raise
+    if total == 0:
+        conn.close()
+        raise EmptyAtlas(f"the atlas {db} holds no chain: there is no site to write (run 'mechsynth grid' into it "
+                         "first)")
+    try:
+        with _reading(db):
+            return _write(conn, out, total, page_size=page_size, draw_limit=draw_limit, progress=progress,
+                          workers=workers)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write the site into {out}: {exc.strerror or exc}"
+                            + (f" ({exc.filename})" if exc.filename and str(exc.filename) != str(out) else ""))
+    finally:
+        conn.close()
+
+
+def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, progress: bool,
+           workers: int | None) -> SiteResult:
+    """The body of :func:`write_site` on an open atlas with ``total`` chains."""
     pool = None
     try:
-        total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
         if workers is None:
             workers = (os.cpu_count() or 1) if total > 200 else 1
         if workers > 1:
-            from concurrent.futures import ProcessPoolExecutor
-
-            pool = ProcessPoolExecutor(workers)
+            pool = process_pool(workers)  # workers leave Ctrl-C to this process, which terminates them
         (out / "codes").mkdir(parents=True, exist_ok=True)
         (out / "lookup").mkdir(exist_ok=True)
         (out / "style.css").write_text(_STYLE)
@@ -158,6 +188,13 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
         if progress:
             from tqdm import tqdm
 
+            from ..execution.estimate import describe_seconds
+
+            seconds = min(draw_limit, total) * _SECONDS_PER_DRAWING / workers
+            if seconds > 60:
+                print(f"mechsynth: {min(draw_limit, total)} of the {total} chains are drawn: about "
+                      f"{describe_seconds(seconds)} on {workers} worker{'s' * (workers > 1)} (--draw-limit draws "
+                      "fewer)", file=sys.stderr)
             bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
         rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain, "
                             f"c.certificate FROM chains c {_ORDER}")
@@ -175,7 +212,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                 jobs.append((index, data, mechs, frac, drawn < draw_limit))
                 drawn += drawn < draw_limit
                 lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
-            cards = list(pool.map(_card, jobs, chunksize=4) if pool else map(_card, jobs))
+            cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
             info["planar"] += sum(planar for _, planar in cards)
             name = f"{slug}-{number}.html"
             nav = [f'<a href="../index.html">index</a>']
@@ -214,9 +251,9 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
         if bar is not None:
             bar.close()
     finally:
-        conn.close()
         if pool is not None:
-            pool.shutdown()
+            pool.terminate()  # Ctrl-C or an error: no worker goes on drawing
+            pool.join()
     _fill_totals(out, groups)
     for prefix, entries in lookup.items():
         (out / "lookup" / f"{prefix}.js").write_text(f"found({json.dumps(entries, separators=(',', ':'))});")
