@@ -36,6 +36,7 @@ def add_commands(sub) -> None:
     p.add_argument("--workers", type=workers, help="local processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
     p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--force", action="store_true", help="run a grid estimated to take more than a day")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_grid)
 
@@ -96,6 +97,7 @@ def _run_grid(args) -> int:
     from synth.atlas.grid import load_grid
 
     grid = load_grid(args.grid)
+    _size_grid(grid, args)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
                       progress=True, connect_timeout=args.timeout)
     if args.format == "json":
@@ -106,6 +108,67 @@ def _run_grid(args) -> int:
               f"{result.chains_found} chains found ({result.chains_new} new), {result.mechanisms_found} mechanisms; "
               f"{result.seconds:.1f} s, {result.chains_per_second:.0f} chains/s -> {args.db}")
     return 0
+
+
+_GRID_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (on the workers)
+_GRID_NOTE_SECONDS = 600.0  # said on stderr before the run starts
+_BYTES_PER_MECHANISM = 210  # atlas bytes per stored mechanism, its chain's row included (W = 1, n ≤ 12: 204 and 210)
+
+
+def _size_grid(grid, args) -> None:
+    """Estimate the large cells of a grid (as ``chains`` does a query: from exact runs at smaller sizes,
+    timing chains and their mechanisms) and refuse a grid of more than a day unless ``--force``."""
+    import math
+    import os
+    import shutil
+
+    from synth.errors import QueryTooLarge
+    from synth.execution.estimate import describe_seconds, estimate, magnitude
+
+    from .chains import _SIZED_LOOPS, _SIZED_LOOPS_MULTIPLE
+
+    large = [c for c in grid.cells if c.loops >= (_SIZED_LOOPS if c.v == (0, 0) else _SIZED_LOOPS_MULTIPLE)]
+    if not large or args.force:
+        return
+    processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
+    log_seconds, log_chains, worst = -math.inf, -math.inf, None
+    for cell in sorted(large, key=lambda c: -c.links):
+        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
+        if found is None:
+            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
+                                "to run it anyway")
+        log_seconds = _log_sum(log_seconds, found.log10_seconds)
+        log_chains = _log_sum(log_chains, found.log10_chains)
+        worst = worst or (cell, found)
+    wall = log_seconds - math.log10(processes)
+    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
+    where = "on the scheduler's workers (one core shown)" if args.scheduler else f"on {processes} workers"
+    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
+    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
+            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
+            "in the atlas (extrapolated from exact runs at smaller sizes)")
+    if wall > math.log10(_GRID_LIMIT_SECONDS):
+        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
+                            "(it can be stopped and resumed)")
+    folder = os.path.dirname(os.path.abspath(args.db))
+    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
+    if log_bytes > math.log10(max(free, 1)):
+        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
+                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
+    if wall > math.log10(_GRID_NOTE_SECONDS):
+        print(f"mechsynth: a long grid: {size}", file=sys.stderr)
+
+
+def _log_sum(a: float, b: float) -> float:
+    """log10(10^a + 10^b) without overflow."""
+    import math
+
+    top = max(a, b)
+    return top if math.isinf(top) else top + math.log10(10 ** (a - top) + 10 ** (b - top))
+
+
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else float("inf")
 
 
 # -------------------------------------------------------------------- atlas

@@ -172,7 +172,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
 def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, progress: bool,
            workers: int | None) -> SiteResult:
     """The body of :func:`write_site` on an open atlas with ``total`` chains."""
-    pool = None
+    pool = bar = None
     try:
         if workers is None:
             workers = (os.cpu_count() or 1) if total > 200 else 1
@@ -184,7 +184,6 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
         groups: list[dict] = []
         lookup: dict[str, dict[str, str]] = {}
         pages = drawn = 0
-        bar = None
         if progress:
             from tqdm import tqdm
 
@@ -248,12 +247,12 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             if bar is not None:
                 bar.update()
         flush(True)
-        if bar is not None:
-            bar.close()
     finally:
         if pool is not None:
             pool.terminate()  # Ctrl-C or an error: no worker goes on drawing
             pool.join()
+        if bar is not None:
+            bar.close()
     _fill_totals(out, groups)
     for prefix, entries in lookup.items():
         (out / "lookup" / f"{prefix}.js").write_text(f"found({json.dumps(entries, separators=(',', ':'))});")

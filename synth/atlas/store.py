@@ -294,7 +294,8 @@ def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) ->
         conn.execute("INSERT INTO run_lock VALUES (1, ?, ?, ?, ?)", (run, os.getpid(), host, now))
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
     return run
 
@@ -396,7 +397,8 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
             (len(result.chains), len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
     return new
 
@@ -439,7 +441,8 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]
                              [(cell.key, u.key, str(u.code)) for u in units])
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
 
 

@@ -4,8 +4,8 @@ Method
 ------
 The same query (same W, v, conventions and requirements) is counted exactly at the
 smaller link counts n − 2k, smallest first, in this process, until about ``budget``
-seconds have been spent (never at n itself, and never a size predicted to cost more than
-three budgets).  From the last three sizes with chains,
+seconds have been spent (never at n itself, and never a size predicted to end later than
+one and a half budgets).  From the last three sizes with chains,
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is the largest calibration size's measured seconds per chain times the chains.
@@ -52,6 +52,9 @@ class Estimate:
     log10_seconds: float = 0.0
 
 
+_COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
+
+
 def _power(log10: float) -> float:
     return 10.0 ** log10 if log10 < 308 else math.inf
 
@@ -88,25 +91,29 @@ def estimate(query: dict, *, budget: float = 2.0, work: str = "count") -> Estima
 
     dof, links = query["dof"], query["links"]
     step = query.get("h", 3) - 1
+    same = repr(sorted((k, v) for k, v in query.items() if k != "links")), work
     start = time.perf_counter()
     points = []  # (links, chains, units, seconds)
     for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
         if time.perf_counter() - start > budget and (points or n > 64):
             break
-        if len(points) >= 2 and points[-1][3] * points[-1][1] / points[-2][1] > 3 * budget:
-            break  # the next size would cost far more than the budget
-        t0 = time.perf_counter()
-        try:
-            codes, conv = _codes_of(dict(query, links=n))
-        except ImpossibleParameters:
-            continue
-        chains = units = 0
-        for _, unit, result in _map_units(unit_work, codes, conv, 1, False):
-            if unit is not None:
-                chains += len(result) if isinstance(result, list) else result[1]
-                units += 1
-        if chains:
-            points.append((n, chains, units, time.perf_counter() - t0))
+        elapsed = time.perf_counter() - start
+        if len(points) >= 2 and elapsed + points[-1][3] * points[-1][1] / points[-2][1] > 1.5 * budget:
+            break  # the next size would overrun the budget by half
+        if (same, n) not in _COUNTED:
+            t0 = time.perf_counter()
+            try:
+                codes, conv = _codes_of(dict(query, links=n))
+            except ImpossibleParameters:
+                continue
+            chains = units = 0
+            for _, unit, result in _map_units(unit_work, codes, conv, 1, False):
+                if unit is not None:
+                    chains += len(result) if isinstance(result, list) else result[1]
+                    units += 1
+            _COUNTED[same, n] = (n, chains, units, time.perf_counter() - t0)
+        if _COUNTED[same, n][1]:
+            points.append(_COUNTED[same, n])
     if len(points) < 3:
         return None
     (_, c0, u0, _), (_, c1, u1, _), (n2, c2, u2, s2) = points[-3:]
