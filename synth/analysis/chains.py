@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass, replace
 
 from ..synthesis.number_synthesis import number_synthesis
 from ..structure.chain import Chain
-from ..errors import ImpossibleParameters
+from ..errors import ImpossibleParameters, MalformedChain
 from ..structure.subchains import check_subchains
 
 __all__ = ["ChainAnalysis", "analyze_chain"]
@@ -58,6 +58,11 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
+    loose = [link for link, degree in enumerate(chain.degrees) if degree == 0]
+    if loose and chain.links > 1:
+        shown = ", ".join(map(str, loose[:10])) + (", …" if len(loose) > 10 else "")
+        raise MalformedChain(f"link{'s' * (len(loose) > 1)} {shown} of the {chain.links} {'are' if len(loose) > 1 else 'is'} "
+                             "in no joint: a chain's links are all jointed")
     if h is not None and h != chain.h:
         chain = replace(chain, h=h)
     W = chain.dof

@@ -326,6 +326,7 @@ class Chain:
         h = d.get("h", 3)
         if isinstance(h, bool) or not isinstance(h, int):
             raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
+        _check_as_written(None, joints)
         return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
 
     def to_json(self) -> str:
@@ -361,7 +362,9 @@ class Chain:
                 ) from None
         if not joints:
             raise MalformedChain("an empty joint list is not a chain")
-        return cls(1 + max(max(j) for j in joints), tuple(joints))
+        links = 1 + max(max(j) for j in joints)
+        _check_as_written(links, joints)
+        return cls(links, tuple(joints))
 
     def compact(self) -> str:
         """The compact joint-list notation read by :meth:`parse`."""
@@ -372,6 +375,43 @@ class Chain:
         from ..draw import svg
 
         return svg(self)
+
+
+def _check_as_written(links: int | None, joints) -> None:
+    """A chain as a user writes it: no two joints join the same links, and (with ``links``, for a
+    joint list) every link number 0 … links − 1 is in some joint (a gap is a typo, not a separate link).
+
+    >>> _check_as_written(3, [(0, 1), (1, 2), (2, 0), (1, 0)])
+    Traceback (most recent call last):
+    ...
+    synth.errors.MalformedChain: joints 0-1 and 1-0 join the same links: two joints never join the same set of links
+    >>> _check_as_written(100, [(0, 1), (1, 2), (2, 99)])
+    Traceback (most recent call last):
+    ...
+    synth.errors.MalformedChain: links 3…98 are in no joint: number the links 0 … n − 1 without gaps (here 0 … 3)
+    """
+    seen: dict = {}
+    for j in joints:
+        key = frozenset(j) if len(set(j)) == len(j) else None  # a link named twice is refused by Chain itself
+        if key is not None and key in seen:
+            raise MalformedChain(f"joints {'-'.join(map(str, seen[key]))} and {'-'.join(map(str, j))} join the same "
+                                 "links: two joints never join the same set of links")
+        seen.setdefault(key, j)
+    if links is None:
+        return
+    used = sorted({x for j in joints for x in j if isinstance(x, int) and 0 <= x < links})
+    if len(used) == links or any(not isinstance(x, int) or not 0 <= x < links for j in joints for x in j):
+        return  # complete, or a link outside 0 … links − 1, which Chain names
+    gaps, before = [], -1
+    for x in used + [links]:
+        if x > before + 1:
+            gaps.append(f"{before + 1}" if x == before + 2 else f"{before + 1}, {x - 1}" if x == before + 3
+                        else f"{before + 1}…{x - 1}")
+        before = x
+    missing = links - len(used)
+    names = ", ".join(gaps[:5]) + (", …" if len(gaps) > 5 else "")
+    raise MalformedChain(f"link{'s' * (missing > 1)} {names} {'are' if missing > 1 else 'is'} in no joint: number "
+                         f"the links 0 … n − 1 without gaps (here 0 … {len(used) - 1})")
 
 
 @dataclass(frozen=True)

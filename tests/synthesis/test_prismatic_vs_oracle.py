@@ -132,7 +132,7 @@ def test_wedge_lever_system():
 
 @pytest.mark.parametrize("call,message", [
     (lambda: prismatic_variants(FOUR_BAR, 5), "only 4 simple joints"),
-    (lambda: prismatic_variants(Chain.parse("0-1-2 0-1-2"), 1), "multiple joints only"),
+    (lambda: prismatic_variants(Chain(3, [(0, 1, 2), (0, 1, 2)]), 1), "multiple joints only"),  # parse refuses twins
     (lambda: prismatic_variants(FOUR_BAR, -1), "≥ 0"),
 ])
 def test_refusals(call, message):
