@@ -298,6 +298,14 @@ def _variants(args, chains: list) -> list:
     return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
 
 
+def _at_most(chains, args):
+    """The selected chains, stopped once they are more than ``--limit`` drawings (each chain is
+    at least one; R/P variants may be none): a large selection is refused without being built."""
+    import itertools
+
+    return chains if args.prismatic is not None else itertools.islice(chains, args.limit + 1)
+
+
 def _run_draw(args) -> int:
     from synth import draw
     from synth.structure.chain import Chain, Mechanism
@@ -353,7 +361,7 @@ def _run_draw(args) -> int:
         from .chains import checked_code
 
         code, dof = checked_code(args.code, h, args.dof)
-        chains = list(synth.type_synthesis(dof, code=code, v=code.v, h=h, workers=1))
+        chains = list(_at_most(synth.type_synthesis(dof, code=code, v=code.v, h=h, workers=1), args))
         if not chains:
             print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
             return 1
@@ -362,7 +370,7 @@ def _run_draw(args) -> int:
     else:
         from synth.atlas.store import export
 
-        chains = [Chain.from_dict(row) for row in export(args.db, "chains", where=args.where)]
+        chains = [Chain.from_dict(row) for row in _at_most(export(args.db, "chains", where=args.where), args)]
         if not chains:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
@@ -372,8 +380,10 @@ def _run_draw(args) -> int:
         print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
         return 1
     if len(items) > args.limit:
-        raise InvalidOption(f"the selection has {len(items)} drawings, more than --limit {args.limit}; "
-                            "narrow it with --where or raise --limit")
+        cut = args.prismatic is None and bool(args.code or args.db) and len(chains) > args.limit  # not all built
+        size = (f"more than {args.limit} drawings (--limit)" if cut
+                else f"{len(items)} drawings, more than --limit {args.limit}")
+        raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
     if len(items) == 1 and not (args.code or args.db):
         size, dpi = draw.SINGLE
         draw.draw_one(items[0], args.out, title=title, labels=args.labels is not False,

@@ -671,6 +671,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                     raise InvalidOption(f"a range A..B goes with '=' only, not {m.group(2)!r} (in {item!r})")
                 lo, hi = value.split("..", 1)
                 bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
+                if None not in bounds and bounds[0] > bounds[1]:
+                    raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end first)")
                 if bounds[0] is not None:
                     clauses.append(f"{column} >= ?")
                     params += col_params + [bounds[0]]
