@@ -15,6 +15,7 @@ from ..synthesis.number_synthesis import number_synthesis
 from ..structure.chain import Chain
 from ..errors import ImpossibleParameters, MalformedChain
 from ..structure.subchains import check_subchains
+from .codes import LOWER_W, RAISE_W
 
 __all__ = ["ChainAnalysis", "analyze_chain"]
 
@@ -81,13 +82,14 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     advice = []
     if dof is not None and dof != W:
         d = W - dof
-        advice.append(f"the chain has W = {W}, not {dof}: " + (
-            f"remove {d} binary link(s) or merge joints (v + {d})" if d > 0 else f"add {-d} binary link(s)"))
+        advice.append(f"the chain has W = {W}, not {dof}: "
+                      + (LOWER_W.format(k=d) if d > 0 else RAISE_W.format(k=-d)))
     if not report.ok:
+        k = report.threshold - report.worst_mobility
         advice.append(
             f"links {list(report.worst)} form a {report.kind} with W(S) = {report.worst_mobility}: it acts as "
-            f"one link; add {report.threshold - report.worst_mobility} binary link(s) inside it or open one of its joints"
-        )
+            f"one link; insert {k} binary link(s) into its joints (a–b becomes a–x–b) or move one of its joints "
+            "to a link outside it")
     if chain.is_fractionated():
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
     return ChainAnalysis(
