@@ -163,11 +163,13 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in {magnitude(found.units, found.log10_units)} "
             f"units, {describe_seconds(found.seconds / processes, log_wall)} {where}, extrapolated from the {found.basis}")
     if not args.count and (args.format or "table") == "table" and found.chains > _TABLE_ROWS:
-        raise InvalidOption(f"a table is held in memory to align it and this listing is too large for one ({size}); "
+        raise InvalidOption(f"a table is held in memory to align it and this listing ({args.links} links) is too large "
+                            f"for one ({size}); "
                             "use --format jsonl or csv (streamed), or --count")
     if not args.force and found.seconds / processes > _LIMIT_SECONDS:
         hint = " (with --checkpoint FILE it can be stopped and resumed)" if args.count else ""
-        raise InvalidOption(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
+        raise InvalidOption(f"this query ({args.links} links) is too large to run unasked: {size}; give --force to run "
+                            f"it anyway{hint}")
     if found.seconds / processes > _NOTE_SECONDS:
         resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
         print(f"mechsynth: a long query: {size}{resumable}", file=sys.stderr)

@@ -139,7 +139,8 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     """
     if not 1 <= page_size <= MAX_PAGE_SIZE or draw_limit < 0 or (workers is not None and workers < 1):
         raise InvalidOption(f"the page size is 1 … {MAX_PAGE_SIZE} chains (a page is drawn and held in memory "
-                            "at once), workers at least 1 and the drawing limit at least 0")
+                            f"at once), workers at least 1 and the drawing limit at least 0, not {page_size}, "
+                            f"{workers} and {draw_limit}")
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: it is a file")

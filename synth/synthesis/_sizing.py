@@ -87,8 +87,8 @@ def code_bound(problem, *, stop: float = math.inf) -> Bound:
     if top > MAX_EXCESS:
         open_links = f" and up to {n1_hi} single-joint links" if n1_hi else ""
         raise QueryTooLarge(
-            f"K = {K} loops{open_links} are far beyond what number synthesis can list or even size "
-            f"(the excess 2K − 2 + n1 = {top} is above {MAX_EXCESS:_})".replace("_", " "))
+            f"n = {problem.links} links, K = {K} loops{open_links} are far beyond what number synthesis can list "
+            f"or even size (the excess 2K − 2 + n1 = {top} is above {MAX_EXCESS:_})".replace("_", " "))
     if top < 0:
         return Bound(0.0)
     start = time.perf_counter()

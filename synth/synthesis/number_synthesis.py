@@ -447,6 +447,9 @@ def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
             else:
                 size = (f"{'more than' if not exact else 'up to'} {magnitude(total)} codes "
                         f"({'more than ' if not exact else 'about '}{describe_seconds(total * _SECONDS_PER_CODE)})")
-            raise QueryTooLarge(f"this query may have {size}, more than the {magnitude(max_codes)} codes number "
+            where = f"K = {problems[0].loops}" if len(problems) == 1 else \
+                f"K = {min(p.loops for p in problems)} … {max(p.loops for p in problems)}"
+            raise QueryTooLarge(f"this query ({where} loops, n = {max(p.links for p in problems)} links) may have "
+                                f"{size}, more than the {magnitude(max_codes)} codes number "
                                 "synthesis lists unasked; narrow it (fewer loops, a range of v, requirements "
                                 "or a lower link-degree bound)")

@@ -212,7 +212,7 @@ def test_giant_query_is_refused_with_an_estimate():
     out = _run("chains", "--dof", "1", "--links", "40", "--count")
     assert out.returncode == 2 and out.stdout == ""
     line = out.stderr.strip()
-    assert "\n" not in line and line.startswith("mechsynth: this query is too large")
+    assert "\n" not in line and line.startswith("mechsynth: this query (40 links) is too large")
     assert "chains" in line and "units" in line and "years" in line and "--force" in line
 
 
