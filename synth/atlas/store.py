@@ -198,6 +198,17 @@ def _reading(path):
         raise AtlasError(f"the atlas {path} is damaged ({exc}); it was only read, not changed") from None
 
 
+def read_only_uri(path: Path) -> str:
+    """An SQLite URI that reads ``path`` and creates nothing beside it.
+
+    A file in WAL mode read with ``mode=ro`` gets ``-wal`` and ``-shm`` files next to it; when
+    no ``-wal`` file exists (no writer is at work, everything is in the file itself) it is read
+    as immutable instead, which creates none.
+    """
+    uri = f"{path.resolve().as_uri()}?mode=ro"
+    return uri if Path(f"{path}-wal").exists() else uri + "&immutable=1"
+
+
 def _check_pages(conn: sqlite3.Connection, path: Path) -> None:
     """SQLite's own check of every page (about 3 ms a megabyte), so that damage is found before any output."""
     with _reading(path):
@@ -246,7 +257,7 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         if not path.is_file():
             raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
         try:
-            conn = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30, isolation_level=None)
+            conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30, isolation_level=None)
         except sqlite3.DatabaseError as exc:
             raise AtlasError(f"cannot open the atlas {path}: {exc}") from None
     try:
