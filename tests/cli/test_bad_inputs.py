@@ -1,12 +1,13 @@
 """Bad input, table-driven, across every subcommand and every kind of input file.
 
-Each case runs the real command in its own process (forked from one that imported it once), in a folder holding one file of each kind
-(an atlas, a checkpoint, a damaged and a foreign SQLite file, a binary file, grid and scene files,
-URDFs), and must end with exit status 2 and one line on stderr, ``mechsynth: `` and a sentence that
-names the bad value, without a traceback; no file of the folder may be created, changed or removed;
-the process must stay under 500 MB (its peak resident memory, from wait4).  A process still running after 30 s
-fails the case as a hang (a guard, not a timing: the refusals take about a second),
-and its address space is capped at 3 GB so that a case which ignores its sizes cannot take the machine.
+Each case runs the real command in its own process (forked from one that imported it once), in a
+folder holding one file of each kind (an atlas, a checkpoint, a damaged and a foreign SQLite file,
+a binary file, grid and scene files, URDFs), and must end with exit status 2 and one line on
+stderr, ``mechsynth: `` and a sentence that names the bad value, without a traceback; no file of
+the folder may be created, changed or removed; the process must stay under 500 MB (its peak
+resident memory, from wait4).  A process still running after 30 s fails the case as a hang (a
+guard, not a timing: the refusals take about a second), and its address space is capped at 3 GB
+so that a case which ignores its sizes cannot take the machine.
 """
 
 from __future__ import annotations
