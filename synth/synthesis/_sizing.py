@@ -29,7 +29,7 @@ import numpy as np
 
 from ..errors import QueryTooLarge
 
-__all__ = ["Bound", "code_bound", "MAX_EXCESS"]
+__all__ = ["Bound", "code_bound", "check_excess", "MAX_EXCESS"]
 
 # The table of partitions has one entry per unit of excess 2K − 2 + n1: beyond this the
 # problem is refused unsized (K = 500 000 loops; the largest published tables stop at K = 10).
@@ -60,6 +60,26 @@ def _partitions_bounded(table: np.ndarray, part: int, most: int | None) -> np.nd
     return out
 
 
+def _open_links(problem) -> tuple[int, int]:
+    """The range of n1 the problem and its requirement on n1 allow."""
+    n1_lo, n1_hi = problem.n1
+    lo, hi = dict(problem.requirements).get(1, (0, None))
+    return max(n1_lo, lo), n1_hi if hi is None else min(n1_hi, hi)
+
+
+def check_excess(problem) -> int:
+    """The largest excess 2K − 2 + n1 of a problem, refused above :data:`MAX_EXCESS` (such a problem
+    cannot even be sized: its model alone would not fit, whatever is asked)."""
+    n1_hi = _open_links(problem)[1]
+    top = 2 * problem.loops - 2 + n1_hi
+    if top > MAX_EXCESS:
+        open_links = f" and up to {n1_hi} single-joint links" if n1_hi else ""
+        raise QueryTooLarge(
+            f"n = {problem.links} links, K = {problem.loops} loops{open_links} are far beyond what number synthesis "
+            f"can list or even size (the excess 2K − 2 + n1 = {top} is above {MAX_EXCESS:_})".replace("_", " "))
+    return top
+
+
 def code_bound(problem, *, stop: float = math.inf) -> Bound:
     """An upper bound of the codes of a validated :class:`~synth.synthesis.number_synthesis.Problem`.
 
@@ -76,19 +96,11 @@ def code_bound(problem, *, stop: float = math.inf) -> Bound:
     7.0
     """
     K = problem.loops
-    n1_lo, n1_hi = problem.n1
     requirements = dict(problem.requirements)
-    if 1 in requirements:
-        lo, hi = requirements[1]
-        n1_lo, n1_hi = max(n1_lo, lo), n1_hi if hi is None else min(n1_hi, hi)
+    n1_lo, n1_hi = _open_links(problem)
     if n1_hi < n1_lo:
         return Bound(0.0)
-    top = 2 * K - 2 + n1_hi
-    if top > MAX_EXCESS:
-        open_links = f" and up to {n1_hi} single-joint links" if n1_hi else ""
-        raise QueryTooLarge(
-            f"n = {problem.links} links, K = {K} loops{open_links} are far beyond what number synthesis can list "
-            f"or even size (the excess 2K − 2 + n1 = {top} is above {MAX_EXCESS:_})".replace("_", " "))
+    top = check_excess(problem)
     if top < 0:
         return Bound(0.0)
     start = time.perf_counter()

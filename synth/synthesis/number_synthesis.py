@@ -23,7 +23,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
-from ..structure.code import Code
+from ..structure.code import _MAX_LOOPS, Code
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 
 __all__ = ["Problem", "number_synthesis", "iter_codes", "make_problem", "parse_range", "parse_requirements",
@@ -178,6 +178,9 @@ def make_problem(
         n, K = links, _loops_for_links(dof, links, h, f)
     if n < 1:
         raise ImpossibleParameters(f"W = {dof}, K = {K}, h = {h}, f = {f} leave n = {n} links: impossible")
+    if K > _MAX_LOOPS:
+        raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
+                            f"are written and read up to {_MAX_LOOPS} loops")
     n1_range = parse_range(n1, "n1")
     if n1_range[1] is None:
         n1_range = (n1_range[0], n)
@@ -432,16 +435,19 @@ def iter_codes(dof: int, *, loops=None, links=None, loop_classes=None, max_codes
 
 def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
     """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
-    from ._sizing import code_bound
+    from ._sizing import check_excess, code_bound
     from ..execution.estimate import describe_seconds, magnitude
 
+    if max_codes is None:  # asked for any number: only a model that cannot exist is refused
+        for problem in problems:
+            check_excess(problem)
+        return
     total, exact = 0.0, True
     for problem in sorted(problems, key=lambda p: -p.loops):
-        left = math.inf if max_codes is None else max_codes - total
-        bound = code_bound(problem, stop=left)
+        bound = code_bound(problem, stop=max_codes - total)
         total += bound.value
         exact &= bound.exact
-        if max_codes is not None and total > max_codes:
+        if total > max_codes:
             if not math.isfinite(total):
                 size = "more than 1e+308 codes"
             else:
