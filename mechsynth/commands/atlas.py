@@ -35,7 +35,7 @@ def add_commands(sub) -> None:
     p.add_argument("--db", required=True, help="SQLite atlas to create or resume")
     p.add_argument("--workers", type=workers, help="local processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true", help="run a grid estimated to take more than a day")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_grid)
@@ -96,10 +96,16 @@ def _run_grid(args) -> int:
     from synth.atlas.store import run_grid
     from synth.atlas.grid import load_grid
 
+    from synth.errors import InvalidOption
+
+    if args.timeout is not None and args.scheduler is None:
+        raise InvalidOption("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
+    if args.workers is not None and args.scheduler is not None:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
     grid = load_grid(args.grid)
     _size_grid(grid, args)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
-                      progress=True, connect_timeout=args.timeout)
+                      progress=True, connect_timeout=5.0 if args.timeout is None else args.timeout)
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:
@@ -318,6 +324,11 @@ def _run_draw(args) -> int:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
+    if args.frame is not None and args.mechanisms:
+        raise InvalidOption("--frame and --mechanisms contradict each other: one fixed link, or every one up to symmetry")
+    if args.dof is not None and not (args.code or args.repairs):
+        raise InvalidOption("--dof goes with --code (the W of its chains) or --repairs (the intended W); a chain "
+                            "and an atlas's chains carry their own")
     if args.h is not None:
         from synth.structure._params import check_motion_space
 

@@ -55,7 +55,7 @@ def _add_selection(p) -> None:
                    help="with --count: commit unit counts to this SQLite file as they finish; rerun to resume")
     p.add_argument("--scheduler", metavar="ADDRESS", help="with --count: run the units on a Dask scheduler, "
                    "e.g. tcp://host:8786")
-    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true",
                    help="run a query estimated to take more than a day (see README, 'Large queries')")
     p.add_argument("--format", choices=FORMATS,
@@ -125,6 +125,8 @@ def _check_options(args) -> None:
         raise InvalidOption(f"prismatic pairs are assigned in planar chains (h = 3), not in motion space h = {args.h}")
     if args.scheduler is not None and args.workers is not None:
         raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
+    if args.timeout is not None and args.scheduler is None:
+        raise InvalidOption("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
 
 
 def _size_guard(dof: int, args, kwargs: dict) -> None:
@@ -271,7 +273,7 @@ def _run(args) -> int:
         log = None
         if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit
             log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
-        extra = dict(checkpoint=args.checkpoint, scheduler=args.scheduler, timeout=args.timeout, log=log)
+        extra = dict(checkpoint=args.checkpoint, scheduler=args.scheduler, timeout=args.timeout or 5.0, log=log)
         if args.what == "chains":
             result = count_chains(dof, args.links, **kwargs, **extra)
         else:

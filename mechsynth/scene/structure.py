@@ -245,13 +245,42 @@ def _chain_list(run: Run) -> list:
         s = run.scene.tables["structure"]
         links = int(s.links) if s.links is not None else (
             s.dof + 1 + (s.h - 1) * int(s.loops) if s.loops is not None else None)
-        return list(type_synthesis(
-            s.dof, links, workers=run.workers, v=s.v if s.v is not None or s.code else 0, code=s.code,
-            rigid_subchains=s.rigid_subchains, fractionated=s.fractionated, planar_only=s.planar_only,
-            require=s.require, cranks=s.cranks, h=s.h, n1=s.n1 if s.n1 is not None or s.code else 0,
-            max_multiplicity=s.max_multiplicity))
+        query = dict(v=s.v if s.v is not None or s.code else 0, code=s.code, rigid_subchains=s.rigid_subchains,
+                     fractionated=s.fractionated, planar_only=s.planar_only, require=s.require, cranks=s.cranks,
+                     h=s.h, n1=s.n1 if s.n1 is not None or s.code else 0, max_multiplicity=s.max_multiplicity)
+        _refuse_large(dict(query, dof=s.dof, links=links), run.workers)
+        return list(type_synthesis(s.dof, links, workers=run.workers, **query))
 
     return run.shared("chains", make)
+
+
+_SCENE_CHAINS = 200_000  # a scene holds its chains in memory to check and report them
+_SCENE_SECONDS = 3600.0
+
+
+def _refuse_large(query: dict, workers: int) -> None:
+    """A scene's chains are listed and held in memory: a structure estimated beyond 200 000 chains or an
+    hour is refused before any work (``mechsynth chains --count`` counts such queries in flat memory)."""
+    import math
+
+    from synth.errors import QueryTooLarge
+    from synth.execution.estimate import describe_seconds, estimate, magnitude
+
+    links, dof, h = query["links"], query["dof"], query["h"]
+    if query["code"] is not None or links is None or links - dof - 1 < 0 or (links - dof - 1) % (h - 1):
+        return
+    if (links - dof - 1) // (h - 1) < (6 if query["v"] not in (0, None, "0") else 7):
+        return
+    found = estimate(query, work="list")
+    if found is None:
+        return
+    wall = found.log10_seconds - math.log10(max(workers, 1))
+    if found.chains > _SCENE_CHAINS or wall > math.log10(_SCENE_SECONDS):
+        raise QueryTooLarge(
+            f"{links} links: about {magnitude(found.chains, found.log10_chains)} chains, "
+            f"{describe_seconds(10 ** wall if wall < 300 else math.inf, wall)} on {workers} worker"
+            f"{'s' * (workers > 1)} (extrapolated from the {found.basis}), more than a scene lists "
+            f"({magnitude(_SCENE_CHAINS)} chains, an hour); count them with 'mechsynth chains --count'")
 
 
 def _mechanism_list(run: Run) -> list:

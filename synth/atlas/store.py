@@ -682,6 +682,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                     raise InvalidOption(f"a range A..B goes with '=' only, not {m.group(2)!r} (in {item!r})")
                 lo, hi = value.split("..", 1)
                 bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
+                if any(b is not None and abs(b) >= 2**63 for b in bounds):
+                    raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
                 if None not in bounds and bounds[0] > bounds[1]:
                     raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end first)")
                 if bounds[0] is not None:
@@ -694,6 +696,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             number = int(value)
         except ValueError:
             raise InvalidOption(f"in --where {item!r}: {value!r} is not a whole number or a range A..B") from None
+        if abs(number) >= 2**63:
+            raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
         clauses.append(f"{column} {op} ?")
         params += col_params + [number]
     return (" AND ".join(clauses) or "1"), params
