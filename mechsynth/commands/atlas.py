@@ -178,8 +178,8 @@ def _power(log10: float) -> float:
 
 
 # -------------------------------------------------------------------- atlas
-_CHAIN_COLUMNS = ["code", "links", "dof", "v", "degrees", "joints", "certificate"]
-_MECH_COLUMNS = ["code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
+_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "joints", "certificate"]
+_MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
 
 
 def _run_atlas(args) -> int:

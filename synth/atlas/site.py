@@ -23,7 +23,6 @@ Example
 
 from __future__ import annotations
 
-import hashlib
 import html
 import json
 import os
@@ -32,7 +31,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .store import AtlasError, _reading, open_atlas
+from .store import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
@@ -58,15 +57,6 @@ figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180
 figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
 code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
 """
-
-
-def chain_id(certificate: str) -> str:
-    """A chain's stable address in the site: the first 12 hex digits of the SHA-1 of its certificate.
-
-    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
-    12
-    """
-    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
 
 
 @dataclass

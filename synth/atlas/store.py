@@ -47,6 +47,7 @@ Example
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import re
@@ -71,7 +72,7 @@ from ..synthesis.variants import variants_of, wedge_mobility
 
 __all__ = [
     "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
-    "run_grid", "summary", "export", "parse_where", "open_atlas",
+    "run_grid", "summary", "export", "parse_where", "open_atlas", "chain_id",
 ]
 
 SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
@@ -131,6 +132,16 @@ CREATE TABLE run_lock (
     host TEXT NOT NULL, started REAL NOT NULL
 );
 """
+
+
+def chain_id(certificate: str) -> str:
+    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
+    the site, ``chain.html#<id>``, and the ``id`` of every atlas export row).
+
+    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
+    12
+    """
+    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
 
 
 # ------------------------------------------------------------------ opening
@@ -709,8 +720,8 @@ _ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.certificate"
 def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -> Iterator[dict]:
     """Rows of the atlas (chains or mechanisms) matching ``where``, in a fixed order.
 
-    Chain rows are ``Chain.to_dict()`` plus ``degrees``, ``fractionated`` and ``cells``;
-    mechanism rows add ``frame``, ``input_link`` and ``chain_certificate``.
+    Chain rows are ``Chain.to_dict()`` plus ``id`` (:func:`chain_id`), ``degrees``, ``fractionated`` and
+    ``cells``; mechanism rows add ``frame``, ``input_link``, ``chain_id`` and ``chain_certificate``.
 
     >>> # export("atlas.sqlite", "chains", where=["code=6301/0", "v<=1"])
     """
@@ -736,6 +747,7 @@ def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> 
                f"FROM chains c WHERE {condition} {_ORDER}")
         for chain, degrees, fractionated, cells in conn.execute(sql, params):
             row = json.loads(chain)
+            row["id"] = chain_id(row["certificate"])
             row["degrees"] = [int(x) for x in degrees.split()]
             row["fractionated"] = bool(fractionated)
             row["cells"] = sorted(cells.split(";")) if cells else []
@@ -747,6 +759,7 @@ def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> 
         for chain, frame, input_link in conn.execute(sql, params):
             row = json.loads(chain)
             mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
+            row["chain_id"] = chain_id(row["certificate"])
             row["chain_certificate"] = row.pop("certificate")
             row.update(certificate=mechanism.certificate, frame=frame)
             if input_link >= 0:
