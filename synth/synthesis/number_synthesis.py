@@ -34,6 +34,7 @@ Range = tuple[int, int | None]
 # A query is refused unasked above this many codes (an upper bound, counted before any model is
 # built): about 40 s and 300 MB of codes (W = 1 lists 140 606 codes at K = 20, 302 085 at K = 22).
 MAX_CODES = 200_000
+_MAX_LINKS = 1_000_000  # a model's counts are 64-bit: far below that, no chain is ever drawn or stored
 _SECONDS_PER_CODE = 2e-4  # measured on the development machine, loaded: 94 551 codes (K = 19) in 19 s
 
 
@@ -178,6 +179,9 @@ def make_problem(
         n, K = links, _loops_for_links(dof, links, h, f)
     if n < 1:
         raise ImpossibleParameters(f"W = {dof}, K = {K}, h = {h}, f = {f} leave n = {n} links: impossible")
+    if n > _MAX_LINKS:
+        raise QueryTooLarge(f"n = {n} links (W = {dof}, K = {K}): number synthesis lists codes of chains of up to "
+                            f"{_MAX_LINKS:_} links".replace("_", " "))
     if K > _MAX_LOOPS:
         raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
                             f"are written and read up to {_MAX_LOOPS} loops")

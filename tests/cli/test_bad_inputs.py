@@ -46,6 +46,8 @@ CASES = [
     ("codes --dof 1 --loops 3 --max-link-degree 1", "not 1"),
     ("codes --dof 1 --loops 3 --require 9=x", "'x'"),
     ("codes --dof 1 --loops 3 --format xml", "xml"),
+    ("codes --dof 99999999999999999999 --loops 2", "n = 100000000000000000004"),
+    ("codes --dof 1 --loops 499999 --max-link-degree 3 --v 0 --force", "K = 499999"),
     # ---- analyze: codes, counts, chains as written
     (f"analyze {BIG_CODE}", "5002 characters"),
     ("analyze '0-1 1-2 2-99'", "3…98"),
@@ -79,6 +81,7 @@ CASES = [
     ("chains --dof 1 --links 8 --checkpoint {d}/new.sqlite", "--checkpoint"),
     ("chains --dof 1 --links 8 --count --scheduler tcp://127.0.0.1:9 --timeout 0.5", "127.0.0.1:9"),
     ("chains --dof 1 --links 8 --count --timeout -1", "'-1'"),
+    ("chains --dof 1 --links 8 --count --timeout 3", "--timeout"),
     ("mechanisms --dof 1 --links 20 --count", "20 links"),
     ("mechanisms --dof 1 --links 8 --n1 x", "'x'"),
     # ---- grid: grid files and atlases
@@ -91,6 +94,8 @@ CASES = [
     ("grid {d}/grid_small.toml --db {d}/corrupt.sqlite", "corrupt.sqlite"),
     ("grid {d}/grid_small.toml --db /proc/atlas.sqlite", "/proc"),
     ("grid {d}/grid_small.toml --db {d}/new.sqlite --workers 0", "0"),
+    ("grid {d}/grid_small.toml --db {d}/new.sqlite --timeout 3", "--timeout"),
+    ("grid {d}/grid_small.toml --db {d}", "is a directory"),
     # ---- atlas: files, --where, --html
     ("atlas --db {d}/corrupt.sqlite", "corrupt.sqlite"),
     ("atlas --db {d}/damaged.sqlite", "damaged.sqlite"),
@@ -102,6 +107,7 @@ CASES = [
     ("atlas --db {d}/atlas.sqlite --where n=10..8", "10..8"),
     ("atlas --db {d}/atlas.sqlite --where colour=red", "colour"),
     ("atlas --db {d}/atlas.sqlite --where n=x", "'x'"),
+    ("atlas --db {d}/atlas.sqlite --where n5=99999999999999999999999 --count", "99999999999999999999999"),
     ("atlas --db {d}/atlas.sqlite --html /proc/site", "/proc/site"),
     ("atlas --db {d}/atlas.sqlite --html {d}/site --page-size 100000", "100000"),
     ("atlas --db {d}/atlas.sqlite --html {d}/site --where n=8", "--where"),
@@ -117,6 +123,8 @@ CASES = [
     ("draw --code 99999999/0 --out {d}/x.png", "99999999/0"),
     ("draw --chain '0-1 1-2 2-3 3-0' --frame 9 --out {d}/x.svg", "9"),
     ("draw --db {d}/corrupt.sqlite --out {d}/x.svg", "corrupt.sqlite"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --dof 2 --out {d}/x.svg", "--dof"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --mechanisms --frame 0 --out {d}/x.svg", "--frame"),
     # ---- scene and planetary
     ("scene {d}/binary.toml", "binary.toml"),
     ("scene {d}/missing.toml", "missing.toml"),
