@@ -325,7 +325,8 @@ def _run_draw(args) -> int:
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
     if args.frame is not None and args.mechanisms:
-        raise InvalidOption("--frame and --mechanisms contradict each other: one fixed link, or every one up to symmetry")
+        raise InvalidOption("--frame and --mechanisms contradict each other: one fixed link, or every one up to "
+                            "symmetry")
     if args.dof is not None and not (args.code or args.repairs):
         raise InvalidOption("--dof goes with --code (the W of its chains) or --repairs (the intended W); a chain "
                             "and an atlas's chains carry their own")

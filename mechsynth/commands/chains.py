@@ -162,8 +162,9 @@ def _size_guard(dof: int, args, kwargs: dict) -> None:
     where = ("on the scheduler's workers (one core shown)" if args.scheduler
              else f"on {processes} worker{'s' * (processes > 1)}")
     log_wall = found.log10_seconds - math.log10(processes)
-    size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in {magnitude(found.units, found.log10_units)} "
-            f"units, {describe_seconds(found.seconds / processes, log_wall)} {where}, extrapolated from the {found.basis}")
+    size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in "
+            f"{magnitude(found.units, found.log10_units)} units, {describe_seconds(found.seconds / processes, log_wall)} "
+            f"{where}, extrapolated from the {found.basis}")
     if not args.count and (args.format or "table") == "table" and found.chains > _TABLE_ROWS:
         raise InvalidOption(f"a table is held in memory to align it and this listing ({args.links} links) is too large "
                             f"for one ({size}); "

@@ -62,8 +62,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     loose = [link for link, degree in enumerate(chain.degrees) if degree == 0]
     if loose and chain.links > 1:
         shown = ", ".join(map(str, loose[:10])) + (", …" if len(loose) > 10 else "")
-        raise MalformedChain(f"link{'s' * (len(loose) > 1)} {shown} of the {chain.links} {'are' if len(loose) > 1 else 'is'} "
-                             "in no joint: a chain's links are all jointed")
+        verb = "are" if len(loose) > 1 else "is"
+        raise MalformedChain(f"link{'s' * (len(loose) > 1)} {shown} of the {chain.links} {verb} in no joint: a chain's "
+                             "links are all jointed")
     if h is not None and h != chain.h:
         chain = replace(chain, h=h)
     W = chain.dof

@@ -78,7 +78,8 @@ def _advice(defect: int, code: Code) -> str:
     if defect == 0:
         return "D = 0: the counts have no redundant constraints for the required W."
     if defect > 0:
-        return f"D = {defect} > 0: the counts give {defect} degree(s) of freedom too many; " + LOWER_W.format(k=defect) + "."
+        return (f"D = {defect} > 0: the counts give {defect} degree(s) of freedom too many; "
+                + LOWER_W.format(k=defect) + ".")
     return (f"D = {defect} < 0: the counts carry {-defect} redundant constraint(s); " + RAISE_W.format(k=-defect)
             + ".")
 

@@ -696,7 +696,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                 if any(b is not None and abs(b) >= 2**63 for b in bounds):
                     raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
                 if None not in bounds and bounds[0] > bounds[1]:
-                    raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end first)")
+                    raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end "
+                                        "first)")
                 if bounds[0] is not None:
                     clauses.append(f"{column} >= ?")
                     params += col_params + [bounds[0]]

@@ -63,7 +63,8 @@ def _check_file(path: Path) -> tuple[str, str]:
         tables = {name: {r[1] for r in conn.execute(f"PRAGMA table_info({name})")}
                   for (name,) in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'").fetchall()}
         wanted = {"meta": {"key", "value"}, "codes": {"code", "count", "units"}, "units": {"unit", "code", "count"}}
-        identity = conn.execute("SELECT value FROM meta WHERE key = 'identity'").fetchone() if "meta" in tables else None
+        identity = (conn.execute("SELECT value FROM meta WHERE key = 'identity'").fetchone()
+                    if "meta" in tables else None)
         if set(tables) != set(wanted) or any(not wanted[t] <= tables[t] for t in wanted) or identity is None:
             what = "a mechsynth atlas" if "chains" in tables else "an SQLite file of something else"
             raise CheckpointError(f"{path} is not a checkpoint of mechsynth but {what}; it was not changed "

@@ -185,7 +185,8 @@ class Code:
             v = sum((k + 1) * vk for k, vk in enumerate(composition))
         code = cls(tuple(counts), v, composition, int(n1_text) if n1_text else 0)
         if code.loops > _MAX_LOOPS:  # its written form alone (one count per loop) would fill memory
-            shown = text.strip() if len(text.strip()) <= 40 else f"{text.strip()[:20]}… ({len(text.strip())} characters)"
+            written = text.strip()
+            shown = written if len(written) <= 40 else f"{written[:20]}… ({len(written)} characters)"
             raise MalformedCode(f"code {shown} describes a chain of {code.loops} loops, more than the {_MAX_LOOPS} "
                                 "a code is read with")
         return code

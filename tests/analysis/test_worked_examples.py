@@ -83,7 +83,8 @@ def _grubler(links: int, joints) -> int:
 def _edited(links: int, joints: list, edit: str):
     """The four edits the advice names, written out here on a chain's joint list (no engine code)."""
     joints = [tuple(j) for j in joints]
-    binary = next(x for x in range(links) if sum(x in j for j in joints) == 2 and all(len(j) == 2 for j in joints if x in j))
+    binary = next(x for x in range(links)
+                  if sum(x in j for j in joints) == 2 and all(len(j) == 2 for j in joints if x in j))
     if edit == "remove a binary link with both its joints":
         return links - 1, [j for j in joints if binary not in j]
     if edit == "insert a binary link into a joint":  # a–b becomes a–x–b
