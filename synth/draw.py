@@ -532,6 +532,20 @@ def _caption(item, index: int | None) -> str:
 SINGLE, CELL = (3.6, 150), (1.9, 100)
 
 
+_MAX_PIXELS = 100_000_000  # a PNG is drawn in memory at 4 bytes a pixel: 400 MB
+
+
+def _check_pixels(path: Path, width: float, height: float, dpi: int) -> None:
+    """Refuse a PNG too large to draw in memory (a vector file has no pixels)."""
+    if path.suffix.lower() != ".png":
+        return
+    pixels = width * dpi * height * dpi
+    if pixels > _MAX_PIXELS or max(width, height) * dpi >= 2**16:
+        raise InvalidOption(f"this picture would be {width * dpi:.0f} × {height * dpi:.0f} pixels, more than "
+                            f"{_MAX_PIXELS / 1e6:.0f} megapixels (or 65 536 on a side); lower --dpi or --size, narrow "
+                            "the selection, or write .svg")
+
+
 def _check_size(size: float, dpi: int) -> None:
     if not 0.5 <= size <= 30:
         raise InvalidOption(f"a drawing's size is 0.5 to 30 inches, not {size:g}")
@@ -562,6 +576,7 @@ def draw_one(item: Chain | Mechanism, out: str | Path, *, title: str | None = No
 
     path = _check_out(out)
     _check_size(size, dpi)
+    _check_pixels(path, size, size * 19 / 18, dpi)
     fig = _figure(item, labels, size)
     try:
         if title:
@@ -615,8 +630,9 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
     if labels is None:
         labels = any(isinstance(item, Mechanism) for item in items)
     n = len(items)
-    columns = columns or min(n, max(1, math.ceil(math.sqrt(n * 1.3))))
+    columns = min(columns or max(1, math.ceil(math.sqrt(n * 1.3))), n)
     rows = math.ceil(n / columns)
+    _check_pixels(path, size * columns, size * rows, dpi)
     fig, axes = plt.subplots(rows, columns, figsize=(size * columns, size * rows + (0.45 if title else 0)),
                              squeeze=False)
     try:

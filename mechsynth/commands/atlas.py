@@ -35,7 +35,8 @@ def add_commands(sub) -> None:
     p.add_argument("--db", required=True, help="SQLite atlas to create or resume")
     p.add_argument("--workers", type=workers, help="local processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
+    p.add_argument("--force", action="store_true", help="run a grid estimated to take more than a day")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.set_defaults(run=_run_grid)
 
@@ -95,9 +96,16 @@ def _run_grid(args) -> int:
     from synth.atlas.store import run_grid
     from synth.atlas.grid import load_grid
 
+    from synth.errors import InvalidOption
+
+    if args.timeout is not None and args.scheduler is None:
+        raise InvalidOption("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
+    if args.workers is not None and args.scheduler is not None:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
     grid = load_grid(args.grid)
+    _size_grid(grid, args)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
-                      progress=True, connect_timeout=args.timeout)
+                      progress=True, connect_timeout=5.0 if args.timeout is None else args.timeout)
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:
@@ -108,9 +116,68 @@ def _run_grid(args) -> int:
     return 0
 
 
+_GRID_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (on the workers)
+_GRID_NOTE_SECONDS = 600.0  # said on stderr before the run starts
+_BYTES_PER_MECHANISM = 210  # atlas bytes per stored mechanism, its chain's row included (W = 1, n ≤ 12: 204 and 210)
+
+
+def _size_grid(grid, args) -> None:
+    """Estimate the large cells of a grid (as ``chains`` does a query: from exact runs at smaller sizes,
+    timing chains and their mechanisms) and refuse a grid of more than a day unless ``--force``."""
+    import math
+    import os
+    import shutil
+
+    from synth.errors import QueryTooLarge
+    from synth.execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+
+    large = [c for c in grid.cells if c.loops >= (SIZED_LOOPS if c.v == (0, 0) else SIZED_LOOPS_MULTIPLE)]
+    if not large or args.force:
+        return
+    processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
+    log_seconds, log_chains, worst = -math.inf, -math.inf, None
+    for cell in sorted(large, key=lambda c: -c.links):
+        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
+        if found is None:
+            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
+                                "to run it anyway")
+        log_seconds = _log_sum(log_seconds, found.log10_seconds)
+        log_chains = _log_sum(log_chains, found.log10_chains)
+        worst = worst or (cell, found)
+    wall = log_seconds - math.log10(processes)
+    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
+    where = "on the scheduler's workers (one core shown)" if args.scheduler else f"on {processes} workers"
+    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
+    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
+            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
+            "in the atlas (extrapolated from exact runs at smaller sizes)")
+    if wall > math.log10(_GRID_LIMIT_SECONDS):
+        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
+                            "(it can be stopped and resumed)")
+    folder = os.path.dirname(os.path.abspath(args.db))
+    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
+    if log_bytes > math.log10(max(free, 1)):
+        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
+                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
+    if wall > math.log10(_GRID_NOTE_SECONDS):
+        print(f"mechsynth: a long grid: {size}", file=sys.stderr)
+
+
+def _log_sum(a: float, b: float) -> float:
+    """log10(10^a + 10^b) without overflow."""
+    import math
+
+    top = max(a, b)
+    return top if math.isinf(top) else top + math.log10(10 ** (a - top) + 10 ** (b - top))
+
+
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else float("inf")
+
+
 # -------------------------------------------------------------------- atlas
-_CHAIN_COLUMNS = ["code", "links", "dof", "v", "degrees", "joints", "certificate"]
-_MECH_COLUMNS = ["code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
+_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "joints", "certificate"]
+_MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
 
 
 def _run_atlas(args) -> int:
@@ -162,10 +229,16 @@ def _write_site(args) -> int:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
     import time
 
+    from synth.atlas.site import EmptyAtlas
+
     start = time.perf_counter()
-    result = write_site(args.db, args.html, page_size=args.page_size or 60,
-                        draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
-                        progress=True, workers=args.workers)
+    try:
+        result = write_site(args.db, args.html, page_size=args.page_size or 60,
+                            draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
+                            progress=True, workers=args.workers)
+    except EmptyAtlas as exc:
+        print(f"mechsynth: {exc}", file=sys.stderr)
+        return 1
     print(f"{result.chains} chains in {result.codes} codes on {result.pages} pages ({result.drawn} drawn) -> "
           f"{Path(result.folder) / 'index.html'} in {time.perf_counter() - start:.1f} s", file=sys.stderr)
     return 0
@@ -232,6 +305,14 @@ def _variants(args, chains: list) -> list:
     return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
 
 
+def _at_most(chains, args):
+    """The selected chains, stopped once they are more than ``--limit`` drawings (each chain is
+    at least one; R/P variants may be none): a large selection is refused without being built."""
+    import itertools
+
+    return chains if args.prismatic is not None else itertools.islice(chains, args.limit + 1)
+
+
 def _run_draw(args) -> int:
     from synth import draw
     from synth.structure.chain import Chain, Mechanism
@@ -244,6 +325,12 @@ def _run_draw(args) -> int:
         raise InvalidOption("--where filters an atlas: give --db too")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
+    if args.frame is not None and args.mechanisms:
+        raise InvalidOption("--frame and --mechanisms contradict each other: one fixed link, or every one up to "
+                            "symmetry")
+    if args.dof is not None and not (args.code or args.repairs):
+        raise InvalidOption("--dof goes with --code (the W of its chains) or --repairs (the intended W); a chain "
+                            "and an atlas's chains carry their own")
     if args.h is not None:
         from synth.structure._params import check_motion_space
 
@@ -283,11 +370,10 @@ def _run_draw(args) -> int:
         title = args.title
     elif args.code:
         import synth
-        from synth.structure.code import Code
 
-        code = Code.parse(args.code)
-        dof = code.dof(h) if args.dof is None else args.dof
-        chains = list(synth.type_synthesis(dof, code=code, v=code.v, h=h, workers=1))
+        query = synth.ChainQuery.of(args.dof, code=args.code, h=h)
+        code, dof = query.code, query.dof
+        chains = list(_at_most(synth.type_synthesis(query, workers=1), args))
         if not chains:
             print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
             return 1
@@ -296,7 +382,7 @@ def _run_draw(args) -> int:
     else:
         from synth.atlas.store import export
 
-        chains = [Chain.from_dict(row) for row in export(args.db, "chains", where=args.where)]
+        chains = [Chain.from_dict(row) for row in _at_most(export(args.db, "chains", where=args.where), args)]
         if not chains:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
@@ -306,8 +392,10 @@ def _run_draw(args) -> int:
         print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
         return 1
     if len(items) > args.limit:
-        raise InvalidOption(f"the selection has {len(items)} drawings, more than --limit {args.limit}; "
-                            "narrow it with --where or raise --limit")
+        cut = args.prismatic is None and bool(args.code or args.db) and len(chains) > args.limit  # not all built
+        size = (f"more than {args.limit} drawings (--limit)" if cut
+                else f"{len(items)} drawings, more than --limit {args.limit}")
+        raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
     if len(items) == 1 and not (args.code or args.db):
         size, dpi = draw.SINGLE
         draw.draw_one(items[0], args.out, title=title, labels=args.labels is not False,

@@ -51,7 +51,7 @@ def _add_selection(p) -> None:
                    help="with --count: commit unit counts to this SQLite file as they finish; rerun to resume")
     p.add_argument("--scheduler", metavar="ADDRESS", help="with --count: run the units on a Dask scheduler, "
                    "e.g. tcp://host:8786")
-    p.add_argument("--timeout", type=seconds, default=5.0, help="seconds to wait for the scheduler (default 5)")
+    p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true",
                    help="run a query estimated to take more than a day (see README, 'Large queries')")
     p.add_argument("--format", choices=FORMATS,
@@ -100,6 +100,8 @@ def _check_options(args) -> None:
         raise _invalid("chains with prismatic pairs are counted on this machine: drop --checkpoint and --scheduler")
     if args.scheduler is not None and args.workers is not None:
         raise _invalid("--workers and --scheduler contradict each other: the scheduler's workers run the units")
+    if args.timeout is not None and args.scheduler is None:
+        raise _invalid("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
 
 
 def _size_note(query, args) -> None:
@@ -109,9 +111,9 @@ def _size_note(query, args) -> None:
     from synth.execution.estimate import size_check
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
-    where = "on the scheduler's workers (one core shown)" if args.scheduler else None
+    mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
     note = size_check(query, processes=processes, count=args.count, table=(args.format or "table") == "table",
-                      force=args.force, where=where)
+                      force=args.force, mechanisms=mechanisms, scheduler=args.scheduler is not None)
     if note:
         resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
         print(f"mechsynth: {note}{resumable}", file=sys.stderr)
@@ -158,7 +160,7 @@ def _run(args) -> int:
         if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit
             log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
-                     timeout=args.timeout, log=log)
+                     timeout=args.timeout or 5.0, log=log)
         if args.what == "chains":
             result = count_chains(query, **extra)
         else:

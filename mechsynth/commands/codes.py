@@ -13,11 +13,13 @@ code,links,loops,v,assortment
 
 from __future__ import annotations
 
+import itertools
 import json
 import sys
 from collections import Counter
 
 from synth.errors import InvalidOption
+from synth.synthesis.number_synthesis import MAX_CODES
 
 from .._argtypes import positive, whole
 from .._output import FORMATS, nothing_found, write_rows
@@ -31,12 +33,18 @@ def add_commands(sub) -> None:
     _add_analyze(sub)
 
 
-def _parse_classes(text: str) -> dict[int, int]:
+def _parse_classes(text: str, what: str = "loop classes are written H=K,H=K (e.g. 3=4,5=1)") -> dict[int, int]:
     try:
-        pairs = [item.split("=") for item in text.split(",") if item.strip()]
-        return {int(h): int(k) for h, k in pairs}
+        pairs = [[int(x) for x in item.split("=")] for item in text.split(",") if item.strip()]
+        classes = {h: k for h, k in pairs}
     except ValueError:
-        raise InvalidOption(f"loop classes are written H=K,H=K (e.g. 3=4,5=1), not {text!r}") from None
+        raise InvalidOption(f"{what}, not {text!r}") from None
+    if len(classes) != len(pairs):
+        twice = next(h for h in classes if sum(p[0] == h for p in pairs) > 1)
+        raise InvalidOption(f"{what}: {twice}= is given twice in {text!r}")
+    if not classes:
+        raise InvalidOption(f"{what}, not {text!r}")
+    return classes
 
 
 # ------------------------------------------------------------------- codes
@@ -48,7 +56,7 @@ def _add_codes(sub):
     g.add_argument("--links", help="n, or a range A..B")
     g.add_argument("--loop-classes", help="heterogeneous systems: H=K_H,… (e.g. 3=4,5=1)")
     p.add_argument("--v", help="multiple-joint count or range A..B (default: every possible)")
-    p.add_argument("--h", type=whole, default=3, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
     p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
@@ -56,28 +64,54 @@ def _add_codes(sub):
     p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
                    help="design constraint on n_I, the links with I joints (repeatable)")
+    p.add_argument("--force", action="store_true",
+                   help=f"list a query that may have more than {MAX_CODES:_} codes (refused unasked)".replace("_", " "))
     p.add_argument("--format", choices=FORMATS, default="table")
     p.set_defaults(run=_run_codes)
 
 
 def _run_codes(args) -> int:
-    from synth.synthesis.number_synthesis import number_synthesis
+    from synth.errors import QueryTooLarge
+    from synth.synthesis.number_synthesis import iter_codes
 
-    codes = number_synthesis(
+    args.h = _motion_space(args)
+
+    bar = None
+    if sys.stderr.isatty():  # codes stream out; the bar counts them on a terminal
+        from tqdm import tqdm
+
+        bar = tqdm(unit=" codes", file=sys.stderr, leave=False, delay=2.0)
+    codes = iter_codes(
         args.dof, loops=args.loops, links=args.links,
         loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
         h=args.h, f=args.f, v=args.v, n1=args.n1, max_link_degree=args.max_link_degree,
         require=args.require, max_multiplicity=args.max_multiplicity, compositions=args.compositions,
+        max_codes=None if args.force else MAX_CODES, progress=bar.update if bar is not None else None,
     )
-    rows = [dict(c.to_dict(), dof=args.dof) for c in codes]
+    per_k: Counter = Counter()
+    try:
+        first = next(codes, None)  # validated and sized before anything is written
+    except QueryTooLarge as exc:
+        if "unasked" in str(exc):
+            raise QueryTooLarge(f"{exc}, or give --force to list them anyway") from None
+        raise
+
+    def rows():
+        for code in ([] if first is None else itertools.chain([first], codes)):
+            per_k[code.loops] += 1
+            yield dict(code.to_dict(), dof=args.dof)
+
     columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
-    write_rows(rows, columns, args.format)
-    if not codes:
+    try:
+        write_rows(rows(), columns, args.format)
+    finally:
+        if bar is not None:
+            bar.close()
+    if first is None:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
-        per_k = Counter(c.loops for c in codes)
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
-        print(f"{len(codes)} codes ({summary})")
+        print(f"{sum(per_k.values())} codes ({summary})")
     return 0
 
 
@@ -87,7 +121,7 @@ def _add_analyze(sub):
     p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
     p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")
     p.add_argument("--v", type=whole, help="v, with explicit counts (a code carries its own)")
-    p.add_argument("--h", type=whole, default=3, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
@@ -109,9 +143,17 @@ def _looks_like_chain(text: str) -> bool:
     return s.startswith("{") or s.startswith("[") or "-" in s.split("/")[0] and "/" not in s
 
 
+def _motion_space(args) -> int:
+    """``--h`` (default 3); loop classes name the motion space of each loop themselves."""
+    if args.h is not None and args.loop_classes:
+        raise InvalidOption("--h and --loop-classes contradict each other: the classes give each loop's motion space")
+    return 3 if args.h is None else args.h
+
+
 def _run_analyze(args) -> int:
     from synth.analysis.codes import analyze
 
+    args.h = _motion_space(args)
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     if _looks_like_chain(subject):
@@ -132,7 +174,7 @@ def _run_analyze(args) -> int:
     elif "=" in subject and "/" not in subject:
         if args.repairs:
             raise InvalidOption("--repairs works on a code or a chain, not on bare counts")
-        counts = _parse_classes(subject)
+        counts = _parse_classes(subject, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
         result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=args.h, f=args.f,
                          loop_classes=classes).to_dict()
     else:

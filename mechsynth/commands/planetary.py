@@ -13,6 +13,8 @@ satellites,sun,code,links,dof,loops,defect,subchains,determinate,assur_groups
 
 from __future__ import annotations
 
+import itertools
+
 from .._output import write_rows
 
 COLUMNS = ["satellites", "sun", "code", "links", "dof", "loops", "defect", "subchains", "determinate", "assur_groups"]
@@ -31,19 +33,23 @@ def add_commands(sub) -> None:
 def _run(args) -> int:
     from synth.synthesis.number_synthesis import parse_range
     from synth.errors import InvalidOption
-    from synth.gears.planetary import planetary_table
+    from synth.gears.planetary import planetary_rows
 
     if args.satellites.lstrip().startswith("-"):
         raise InvalidOption(f"--satellites must be a whole number ≥ 1 or a range A..B, not {args.satellites!r}")
     lo, hi = parse_range(args.satellites, "--satellites")
     if hi is None:
         raise InvalidOption("--satellites needs an upper end: give A..B")
-    rows = planetary_table((lo, hi), args.sun)
-    if args.format in ("table", "csv"):
-        for r in rows:
-            r["determinate"] = "yes" if r["determinate"] else ""
-            r["assur_groups"] = " ".join(g["name"] for g in r["assur_groups"])
-    write_rows(rows, COLUMNS, args.format)
+    rows = planetary_rows((lo, hi), args.sun)  # streamed: a row is written when its exact test is done
+    first = next(rows)  # the range is checked before anything is written
+    write_rows((_cells(r, args.format) for r in itertools.chain([first], rows)), COLUMNS, args.format)
     if args.format == "table":
         print("determinate: W = 1, D = 0 and no rigid or over-constrained sub-chain (ring fixed, carrier driving)")
     return 0
+
+
+def _cells(row: dict, fmt: str) -> dict:
+    if fmt in ("table", "csv"):
+        row["determinate"] = "yes" if row["determinate"] else ""
+        row["assur_groups"] = " ".join(g["name"] for g in row["assur_groups"])
+    return row

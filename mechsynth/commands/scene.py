@@ -50,6 +50,14 @@ def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None
     err = err or sys.stderr
     if (args.file is None) == (args.all is None):
         raise InvalidOption("give a scene file or --all DIR, not both or neither")
+    if args.out is not None:  # checked before any scene runs
+        from pathlib import Path
+
+        folder = Path(args.out)
+        if folder.exists() and not folder.is_dir():
+            raise InvalidOption(f"--out {args.out} is a file; give a directory for the drawings and plots")
+        if not folder.exists() and not folder.parent.is_dir():
+            raise InvalidOption(f"--out {args.out}: the directory {folder.parent} does not exist")
     if args.all is not None:
         result = run_directory(args.all, out_dir=args.out, workers=args.workers)
         if args.format == "json":

@@ -59,6 +59,8 @@ def _read_toml(path: Path) -> dict:
         raise SceneError(f"{path}: is a directory; give a scene file, or use --all for a directory.") from None
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{path}: not valid TOML ({exc}).") from None
+    except UnicodeDecodeError as exc:
+        raise SceneError(f"{path}: not a text file (byte {exc.start} is not UTF-8); a scene is a TOML file.") from None
     except OSError as exc:
         raise SceneError(f"{path}: cannot be read ({exc.strerror or exc}).") from None
 

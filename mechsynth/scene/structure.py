@@ -246,7 +246,9 @@ def _chain_list(run: Run) -> list:
     def make() -> list:
         from synth import type_synthesis  # graph models: only for chain queries
 
-        return list(type_synthesis(_query(run.scene.tables["structure"]), workers=run.workers))
+        query = _query(run.scene.tables["structure"])
+        _refuse_large(query, run.workers)
+        return list(type_synthesis(query, workers=run.workers))
 
     return run.shared("chains", make)
 
@@ -261,6 +263,34 @@ def _query(s: Structure):
                          planar_only=s.planar_only, require=s.require, cranks=s.cranks, h=s.h, n1=s.n1,
                          max_multiplicity=s.max_multiplicity, prismatic=s.prismatic, idle_joints=s.idle_joints,
                          cylinders=s.cylinders)
+
+
+_SCENE_CHAINS = 200_000  # a scene holds its chains in memory to check and report them
+_SCENE_SECONDS = 3600.0
+
+
+def _refuse_large(query, workers: int) -> None:
+    """A scene's chains are listed and held in memory: a structure estimated beyond 200 000 chains or an
+    hour is refused before any work (``mechsynth chains --count`` counts such queries in flat memory)."""
+    import math
+
+    from synth.errors import QueryTooLarge
+    from synth.execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+
+    if query.code is not None or query.prismatic is not None:
+        return
+    if query.loops < (SIZED_LOOPS_MULTIPLE if (query.v or (0, 0)) != (0, 0) else SIZED_LOOPS):
+        return
+    found = estimate(query, work="list")
+    if found is None:
+        return
+    wall = found.log10_seconds - math.log10(max(workers, 1))
+    if found.chains > _SCENE_CHAINS or wall > math.log10(_SCENE_SECONDS):
+        raise QueryTooLarge(
+            f"{query.links} links: about {magnitude(found.chains, found.log10_chains)} chains, "
+            f"{describe_seconds(10 ** wall if wall < 300 else math.inf, wall)} on {workers} worker"
+            f"{'s' * (workers > 1)} (extrapolated from the {found.basis}), more than a scene lists "
+            f"({magnitude(_SCENE_CHAINS)} chains, an hour); count them with 'mechsynth chains --count'")
 
 
 def _mechanism_list(run: Run) -> list:

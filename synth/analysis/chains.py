@@ -20,11 +20,12 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 
-from ..errors import ImpossibleParameters
+from ..errors import ImpossibleParameters, MalformedChain
 from ..structure.chain import Chain
 from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
 from ..structure.subchains import check_subchains
 from ..synthesis.number_synthesis import number_synthesis
+from .codes import LOWER_W, RAISE_W
 
 __all__ = ["ChainAnalysis", "analyze_chain", "mobility_of"]
 
@@ -83,10 +84,12 @@ def _standard(chain: Chain) -> bool:
     base = lever_analogue(chain) if chain.kinds is not None and "mesh" in chain.kinds else chain
     W = base.dof - (wedge_loops(base) if base.kinds is not None else 0)
     code = base.code
+    exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}  # one code to find
     try:
         return W >= 0 and code.loops >= 0 and code in number_synthesis(
             W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
-            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2))
+            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2),
+            require=exact)
     except ImpossibleParameters:
         return False
 
@@ -114,6 +117,12 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
+    loose = [link for link, degree in enumerate(chain.degrees) if degree == 0]
+    if loose and chain.links > 1:
+        shown = ", ".join(map(str, loose[:10])) + (", …" if len(loose) > 10 else "")
+        verb = "are" if len(loose) > 1 else "is"
+        raise MalformedChain(f"link{'s' * (len(loose) > 1)} {shown} of the {chain.links} {verb} in no joint: a chain's "
+                             "links are all jointed")
     if h is not None and h != chain.h:
         chain = replace(chain, h=h)
     report = check_subchains(chain, rigid_subchains=(dof if dof is not None else chain.dof) == 0)  # refuses pieces
@@ -123,16 +132,17 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     advice = []
     if dof is not None and dof != W:
         d = W - dof
-        advice.append(f"the chain has W = {W}, not {dof}: " + (
-            f"remove {d} binary link(s) or merge joints (v + {d})" if d > 0 else f"add {-d} binary link(s)"))
+        advice.append(f"the chain has W = {W}, not {dof}: "
+                      + (LOWER_W.format(k=d) if d > 0 else RAISE_W.format(k=-d)))
     if report.kind == "redundant constraints":
         advice.append(f"its pairs carry {report.redundant} redundant constraint(s) the count does not see "
                       f"(W = {W}, the count {chain.dof}): turn a prismatic pair into a revolute one or add a link")
     elif not report.ok:
+        k = report.threshold - report.worst_mobility
         advice.append(
             f"links {list(report.worst)} form a {report.kind} with W(S) = {report.worst_mobility}: it acts as "
-            f"one link; add {report.threshold - report.worst_mobility} binary link(s) inside it or open one of its joints"
-        )
+            f"one link; insert {k} binary link(s) into its joints (a–b becomes a–x–b) or move one of its joints "
+            "to a link outside it")
     if idle and report.ok:  # (inside a rigid sub-chain every joint is idle: the sub-chain says why)
         why = ("prismatic pairs lock the rotation of their links; make one of those pairs revolute"
                if kind_count(chain, "prismatic") else "the rest of the chain holds their links together")

@@ -61,21 +61,27 @@ class Analysis:
         return asdict(self)
 
 
+#: elementary edits of a chain and what each does to W = 3(n − 1) − 2p (planar): the advice names only these
+RAISE_W = ("remove {k} binary link(s) with both their joints, or insert {k} binary link(s) into joints "
+           "(a joint a–b becomes a–x–b); each raises W by 1")
+LOWER_W = ("add {k} binary link(s), each jointed to two links already there, or take {k} binary link(s) out of "
+           "their strings (a–x–b becomes a–b); each lowers W by 1")
+
+
 def _advice(defect: int, code: Code) -> str:
+    """What to change for D = 0, in the edits of :mod:`synth.analysis.repair` (the repairs list such edits,
+    each checked on a chain).
+
+    >>> _advice(-1, Code.parse("6301/0")).split("; ")[1]
+    'remove 1 binary link(s) with both their joints, or insert 1 binary link(s) into joints (a joint a–b becomes a–x–b)'
+    """
     if defect == 0:
         return "D = 0: the counts have no redundant constraints for the required W."
     if defect > 0:
-        return (
-            f"D = {defect} > 0: the counts give {defect} degree(s) of freedom too many; remove {defect} binary "
-            f"link(s), or merge joints so that v grows by {defect}, or move {defect} joint(s) onto "
-            "links that already carry 3 or more joints."
-        )
-    k = -defect
-    extra = f", or split multiple joints so that v drops by {min(k, code.v)}" if code.v else ""
-    return (
-        f"D = {defect} < 0: the counts carry {k} redundant constraint(s); add {k} binary link(s){extra}, "
-        f"or replace links carrying 4 or more joints by ternary ones."
-    )
+        return (f"D = {defect} > 0: the counts give {defect} degree(s) of freedom too many; "
+                + LOWER_W.format(k=defect) + ".")
+    return (f"D = {defect} < 0: the counts carry {-defect} redundant constraint(s); " + RAISE_W.format(k=-defect)
+            + ".")
 
 
 def analyze(

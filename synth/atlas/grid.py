@@ -165,8 +165,11 @@ def load_grid(path: str | Path) -> Grid:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise GridFileError(f"grid file {path} does not exist.") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise GridFileError(f"cannot read grid file {path}: {getattr(exc, 'strerror', None) or exc}.") from None
+    except UnicodeDecodeError as exc:
+        raise GridFileError(f"grid file {path} is not a text file (byte {exc.start} is not UTF-8); a grid is a "
+                            "TOML file.") from None
+    except OSError as exc:
+        raise GridFileError(f"cannot read grid file {path}: {exc.strerror or exc}.") from None
     return parse_grid(text, source=str(path), default_name=path.stem.removeprefix("grid_"))
 
 

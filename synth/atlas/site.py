@@ -23,7 +23,6 @@ Example
 
 from __future__ import annotations
 
-import hashlib
 import html
 import json
 import os
@@ -32,13 +31,21 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .store import open_atlas
+from .store import AtlasError, _reading, chain_id, open_atlas
+from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..draw import svg_inline
 from ..errors import InvalidOption
 
-__all__ = ["chain_id", "write_site", "SiteResult"]
+__all__ = ["chain_id", "write_site", "SiteResult", "EmptyAtlas", "MAX_PAGE_SIZE"]
+
+MAX_PAGE_SIZE = 2000  # chains on one page: drawn and held in memory together
+_SECONDS_PER_DRAWING = 0.05  # a 12-link chain's layout on one core (docs/atlas.md)
+
+
+class EmptyAtlas(AtlasError):
+    """The atlas holds no chain (a valid atlas, nothing to show)."""
 
 _ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.certificate"
 _STYLE = """
@@ -50,15 +57,6 @@ figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180
 figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
 code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
 """
-
-
-def chain_id(certificate: str) -> str:
-    """A chain's stable address in the site: the first 12 hex digits of the SHA-1 of its certificate.
-
-    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
-    12
-    """
-    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
 
 
 @dataclass
@@ -129,35 +127,64 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
     take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
     """
-    if page_size < 1 or draw_limit < 0 or (workers is not None and workers < 1):
-        raise InvalidOption("the page size and workers must be at least 1 and the drawing limit at least 0")
+    if not 1 <= page_size <= MAX_PAGE_SIZE or draw_limit < 0 or (workers is not None and workers < 1):
+        raise InvalidOption(f"the page size is 1 … {MAX_PAGE_SIZE} chains (a page is drawn and held in memory "
+                            f"at once), workers at least 1 and the drawing limit at least 0, not {page_size}, "
+                            f"{workers} and {draw_limit}")
     out = Path(folder)
     if out.exists() and not out.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: it is a file")
     if out.exists() and any(out.iterdir()) and not force:
         raise InvalidOption(f"{out} is not empty; give --force to write the site over it")
-    if not out.parent.exists():
+    if not out.parent.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: the directory {out.parent} does not exist")
     conn = open_atlas(db)
-    pool = None
     try:
-        total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
+        with _reading(db):
+            total = conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0]
+    except BaseException:
+        conn.close()
+        raise
+    if total == 0:
+        conn.close()
+        raise EmptyAtlas(f"the atlas {db} holds no chain: there is no site to write (run 'mechsynth grid' into it "
+                         "first)")
+    try:
+        with _reading(db):
+            return _write(conn, out, total, page_size=page_size, draw_limit=draw_limit, progress=progress,
+                          workers=workers)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write the site into {out}: {exc.strerror or exc}"
+                            + (f" ({exc.filename})" if exc.filename and str(exc.filename) != str(out) else ""))
+    finally:
+        conn.close()
+
+
+def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, progress: bool,
+           workers: int | None) -> SiteResult:
+    """The body of :func:`write_site` on an open atlas with ``total`` chains."""
+    pool = bar = None
+    try:
         if workers is None:
             workers = (os.cpu_count() or 1) if total > 200 else 1
         if workers > 1:
-            from concurrent.futures import ProcessPoolExecutor
-
-            pool = ProcessPoolExecutor(workers)
+            pool = process_pool(workers)  # workers leave Ctrl-C to this process, which terminates them
         (out / "codes").mkdir(parents=True, exist_ok=True)
         (out / "lookup").mkdir(exist_ok=True)
         (out / "style.css").write_text(_STYLE)
         groups: list[dict] = []
         lookup: dict[str, dict[str, str]] = {}
         pages = drawn = 0
-        bar = None
         if progress:
             from tqdm import tqdm
 
+            from ..execution.estimate import describe_seconds
+
+            seconds = min(draw_limit, total) * _SECONDS_PER_DRAWING / workers
+            if seconds > 60:
+                print(f"mechsynth: {min(draw_limit, total)} of the {total} chains are drawn: about "
+                      f"{describe_seconds(seconds)} on {workers} worker{'s' * (workers > 1)} (--draw-limit draws "
+                      "fewer)", file=sys.stderr)
             bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
         rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain, "
                             f"c.certificate FROM chains c {_ORDER}")
@@ -175,7 +202,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                 jobs.append((index, data, mechs, frac, drawn < draw_limit))
                 drawn += drawn < draw_limit
                 lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
-            cards = list(pool.map(_card, jobs, chunksize=4) if pool else map(_card, jobs))
+            cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
             info["planar"] += sum(planar for _, planar in cards)
             name = f"{slug}-{number}.html"
             nav = [f'<a href="../index.html">index</a>']
@@ -211,12 +238,12 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
             if bar is not None:
                 bar.update()
         flush(True)
+    finally:
+        if pool is not None:
+            pool.terminate()  # Ctrl-C or an error: no worker goes on drawing
+            pool.join()
         if bar is not None:
             bar.close()
-    finally:
-        conn.close()
-        if pool is not None:
-            pool.shutdown()
     _fill_totals(out, groups)
     for prefix, entries in lookup.items():
         (out / "lookup" / f"{prefix}.js").write_text(f"found({json.dumps(entries, separators=(',', ':'))});")

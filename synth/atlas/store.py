@@ -47,6 +47,7 @@ Example
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import re
@@ -55,6 +56,7 @@ import sqlite3
 import sys
 import time
 from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -64,12 +66,12 @@ from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
-from ..errors import InvalidOption, MalformedCode, SynthesisError
+from ..errors import InvalidOption, MalformedChain, MalformedCode, SynthesisError
 from .grid import Cell, Grid
 
 __all__ = [
     "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
-    "run_grid", "summary", "export", "parse_where", "open_atlas",
+    "run_grid", "summary", "export", "parse_where", "open_atlas", "chain_id",
 ]
 
 SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
@@ -131,6 +133,16 @@ CREATE TABLE run_lock (
 """
 
 
+def chain_id(certificate: str) -> str:
+    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
+    the site, ``chain.html#<id>``, and the ``id`` of every atlas export row).
+
+    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
+    12
+    """
+    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
+
+
 # ------------------------------------------------------------------ opening
 def _writable(path: Path) -> None:
     """Refuse before touching anything when the file or its directory is read-only.
@@ -151,27 +163,81 @@ def _writable(path: Path) -> None:
                          "(SQLite needs to write its journal next to the file)")
 
 
+def _columns(schema: str) -> dict[str, set[str]]:
+    """The tables of a schema and their columns (read back from SQLite itself)."""
+    with sqlite3.connect(":memory:") as conn:
+        conn.executescript(schema)
+        names = [r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+        return {name: {r[1] for r in conn.execute(f"PRAGMA table_info({name})")} for name in names}
+
+
+_TABLES = _columns(_SCHEMA)
+
+
 def _check_version(conn: sqlite3.Connection, path: Path) -> None:
+    """Refuse a file that is not an atlas of this schema: its tables and columns, and its version."""
     try:
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if "meta" not in tables:
+            raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
+        row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
+        version = row[0] if row else None
+        if version is None:
+            raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (its meta table names no schema "
+                             "version)")
+        if version != str(SCHEMA_VERSION):
+            raise AtlasError(
+                f"{path} is an atlas of schema version {version}, but this mechsynth reads only version "
+                f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)")
+        for table, wanted in _TABLES.items():
+            have = {r[1] for r in conn.execute(f"PRAGMA table_info({table})")}
+            if not wanted <= have:
+                missing = sorted(wanted - have)
+                raise AtlasError(f"{path} is not a complete mechsynth atlas: table '{table}' lacks "
+                                 f"{', '.join(missing) if have else 'everything (it does not exist)'}")
     except sqlite3.DatabaseError as exc:
-        raise AtlasError(f"{path} is not an SQLite atlas ({exc})") from None
-    if "meta" not in tables:
-        raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
-    row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
-    version = row[0] if row else None
-    if version != str(SCHEMA_VERSION):
-        raise AtlasError(
-            f"{path} is an atlas of schema version {version}, but this mechsynth reads only version "
-            f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)"
-        )
+        raise AtlasError(f"{path} is not an SQLite atlas or is damaged ({exc})") from None
 
 
-def open_atlas(path: str | Path, *, write: bool = False) -> sqlite3.Connection:
-    """Open an atlas (read-only by default), checking its schema version.
+@contextmanager
+def _reading(path):
+    """Turn an error of a damaged file, met while reading it, into one sentence."""
+    try:
+        yield
+    except (sqlite3.DatabaseError, ValueError, KeyError, MalformedChain) as exc:  # a row that no run wrote
+        raise AtlasError(f"the atlas {path} is damaged ({exc}); it was only read, not changed") from None
 
-    With ``write=True`` a missing file is created with the current schema; a read-only
-    file or directory is refused before anything is written.
+
+def read_only_uri(path: Path) -> str:
+    """An SQLite URI that reads ``path`` and creates nothing beside it.
+
+    A file in WAL mode read with ``mode=ro`` gets ``-wal`` and ``-shm`` files next to it; when
+    no ``-wal`` file exists (no writer is at work, everything is in the file itself) it is read
+    as immutable instead, which creates none.
+    """
+    uri = f"{path.resolve().as_uri()}?mode=ro"
+    return uri if Path(f"{path}-wal").exists() else uri + "&immutable=1"
+
+
+def _check_pages(conn: sqlite3.Connection, path: Path) -> None:
+    """SQLite's own check of every page (about 3 ms a megabyte), so that damage is found before any output."""
+    with _reading(path):
+        verdict = conn.execute("PRAGMA quick_check(1)").fetchone()[0]
+    if verdict != "ok":
+        detail = " ".join(verdict.replace("*** in database main ***", "").split())
+        raise AtlasError(f"the atlas {path} is damaged ({detail}); it was only read, not changed")
+
+
+_CHECKED_READ_BYTES = 512 * 2**20  # larger atlases are checked page by page only before a write
+
+
+def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | None = None) -> sqlite3.Connection:
+    """Open an atlas (read-only by default), checking its schema version and its pages.
+
+    With ``write=True`` an existing file is first opened read-only and checked, a missing
+    file is created with the current schema; a read-only file or directory is refused before
+    anything is written.  ``check_pages`` runs SQLite's page check (default: for files up to
+    512 MiB; damage in a larger one is reported when a query meets it).
 
     Raises
     ------
@@ -182,6 +248,8 @@ def open_atlas(path: str | Path, *, write: bool = False) -> sqlite3.Connection:
     if write:
         _writable(path)
         fresh = not path.exists() or path.stat().st_size == 0
+        if not fresh:  # read-only first: a file that is not an atlas, or a damaged one, is never written to
+            open_atlas(path, check_pages=True).close()
         try:
             conn = sqlite3.connect(path, timeout=30, isolation_level=None)
             if fresh:
@@ -199,11 +267,13 @@ def open_atlas(path: str | Path, *, write: bool = False) -> sqlite3.Connection:
         if not path.is_file():
             raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
         try:
-            conn = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30, isolation_level=None)
+            conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30, isolation_level=None)
         except sqlite3.DatabaseError as exc:
             raise AtlasError(f"cannot open the atlas {path}: {exc}") from None
     try:
         _check_version(conn, path)
+        if check_pages or (check_pages is None and not write and path.stat().st_size <= _CHECKED_READ_BYTES):
+            _check_pages(conn, path)
     except AtlasError:
         conn.close()
         raise
@@ -245,7 +315,8 @@ def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) ->
         conn.execute("INSERT INTO run_lock VALUES (1, ?, ?, ?, ?)", (run, os.getpid(), host, now))
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
     return run
 
@@ -340,7 +411,8 @@ def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
             (len(result.chains), len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
     return new
 
@@ -383,7 +455,8 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]
                              [(cell.key, u.key, str(u.code)) for u in units])
         conn.execute("COMMIT")
     except BaseException:
-        conn.execute("ROLLBACK")
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
         raise
 
 
@@ -458,13 +531,23 @@ def run_grid(
     executor = f"dask {scheduler}" if scheduler else f"local {workers}"
     path = Path(db)
     _writable(path)  # refuse a read-only atlas before connecting anywhere
+    if path.exists() and path.stat().st_size:
+        open_atlas(path).close()  # not an atlas, or another version: refused before any planning
     client = _connect(scheduler, connect_timeout) if scheduler else None
     start = time.perf_counter()
+    pool = None
     try:
+        pool = _local_pool(workers) if client is None else None
+        # planned before the atlas is created: a grid the engine refuses leaves no file behind
+        plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
+                                               skip_impossible=True)))
         conn = open_atlas(path, write=True)
     except BaseException:
         if client is not None:
             client.close()
+        if pool is not None:
+            pool.terminate()
+            pool.join()
         raise
     try:
         run = _acquire(conn, path, grid, executor)
@@ -474,12 +557,9 @@ def run_grid(
         conn.execute("PRAGMA synchronous = NORMAL")
         conn.execute("PRAGMA cache_size = -65536")  # 64 MiB of pages: the certificate index stays in memory
         conn.execute("PRAGMA wal_autocheckpoint = 10000")  # checkpoint rarely during a run (and at its end)
-        status, done_now, pool = "failed", 0, None
+        status, done_now = "failed", 0
         result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
         try:
-            pool = _local_pool(workers) if client is None else None
-            plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
-                                                   skip_impossible=True)))
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
             tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans
@@ -517,7 +597,7 @@ def run_grid(
             raise
         finally:
             if pool is not None:
-                pool.terminate()
+                pool.terminate()  # before the atlas is released: no worker outlives the run
                 pool.join()
             result.units_run = done_now
             result.status = status
@@ -532,6 +612,9 @@ def run_grid(
         conn.close()
         if client is not None:
             client.close()
+        if pool is not None:
+            pool.terminate()  # no-op after the run; the atlas was locked by another run
+            pool.join()
     return result
 
 
@@ -602,6 +685,11 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                     raise InvalidOption(f"a range A..B goes with '=' only, not {m.group(2)!r} (in {item!r})")
                 lo, hi = value.split("..", 1)
                 bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
+                if any(b is not None and abs(b) >= 2**63 for b in bounds):
+                    raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
+                if None not in bounds and bounds[0] > bounds[1]:
+                    raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end "
+                                        "first)")
                 if bounds[0] is not None:
                     clauses.append(f"{column} >= ?")
                     params += col_params + [bounds[0]]
@@ -612,6 +700,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             number = int(value)
         except ValueError:
             raise InvalidOption(f"in --where {item!r}: {value!r} is not a whole number or a range A..B") from None
+        if abs(number) >= 2**63:
+            raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
         clauses.append(f"{column} {op} ?")
         params += col_params + [number]
     return (" AND ".join(clauses) or "1"), params
@@ -623,40 +713,51 @@ _ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.certificate"
 def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -> Iterator[dict]:
     """Rows of the atlas (chains or mechanisms) matching ``where``, in a fixed order.
 
-    Chain rows are ``Chain.to_dict()`` plus ``degrees``, ``fractionated`` and ``cells``;
-    mechanism rows add ``frame``, ``input_link`` and ``chain_certificate``.
+    Chain rows are ``Chain.to_dict()`` plus ``id`` (:func:`chain_id`), ``degrees``, ``fractionated`` and
+    ``cells``; mechanism rows add ``frame``, ``input_link``, ``chain_id`` and ``chain_certificate``.
 
     >>> # export("atlas.sqlite", "chains", where=["code=6301/0", "v<=1"])
     """
     if what not in ("chains", "mechanisms"):
         raise InvalidOption(f"export 'chains' or 'mechanisms', not {what!r}")
     condition, params = parse_where(where)
-    conn = open_atlas(db)
+    conn = open_atlas(db)  # now: a file that is not an atlas is refused before the caller writes anything
+    return _export_rows(conn, db, what, condition, params)
+
+
+def _export_rows(conn: sqlite3.Connection, db, what: str, condition: str, params: list) -> Iterator[dict]:
     try:
-        if what == "chains":
-            sql = (f"SELECT c.chain, c.degrees, c.fractionated, "
-                   f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.chain = c.id) "
-                   f"FROM chains c WHERE {condition} {_ORDER}")
-            for chain, degrees, fractionated, cells in conn.execute(sql, params):
-                row = json.loads(chain)
-                row["degrees"] = [int(x) for x in degrees.split()]
-                row["fractionated"] = bool(fractionated)
-                row["cells"] = sorted(cells.split(";")) if cells else []
-                yield row
-        else:
-            sql = (f"SELECT c.chain, k.frame, k.input_link FROM mechanisms k "
-                   f"JOIN chains c ON c.id = k.chain WHERE {condition} "
-                   f"{_ORDER}, k.input_link >= 0, k.frame, k.input_link")
-            for chain, frame, input_link in conn.execute(sql, params):
-                row = json.loads(chain)
-                mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
-                row["chain_certificate"] = row.pop("certificate")
-                row.update(certificate=mechanism.certificate, frame=frame)
-                if input_link >= 0:
-                    row["input_link"] = input_link
-                yield row
+        with _reading(db):
+            yield from _rows(conn, what, condition, params)
     finally:
         conn.close()
+
+
+def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> Iterator[dict]:
+    if what == "chains":
+        sql = (f"SELECT c.chain, c.degrees, c.fractionated, "
+               f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.chain = c.id) "
+               f"FROM chains c WHERE {condition} {_ORDER}")
+        for chain, degrees, fractionated, cells in conn.execute(sql, params):
+            row = json.loads(chain)
+            row["id"] = chain_id(row["certificate"])
+            row["degrees"] = [int(x) for x in degrees.split()]
+            row["fractionated"] = bool(fractionated)
+            row["cells"] = sorted(cells.split(";")) if cells else []
+            yield row
+    else:
+        sql = (f"SELECT c.chain, k.frame, k.input_link FROM mechanisms k "
+               f"JOIN chains c ON c.id = k.chain WHERE {condition} "
+               f"{_ORDER}, k.input_link >= 0, k.frame, k.input_link")
+        for chain, frame, input_link in conn.execute(sql, params):
+            row = json.loads(chain)
+            mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
+            row["chain_id"] = chain_id(row["certificate"])
+            row["chain_certificate"] = row.pop("certificate")
+            row.update(certificate=mechanism.certificate, frame=frame)
+            if input_link >= 0:
+                row["input_link"] = input_link
+            yield row
 
 
 def summary(db: str | Path) -> dict:
@@ -669,46 +770,53 @@ def summary(db: str | Path) -> dict:
     """
     conn = open_atlas(db)
     try:
-        order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code, prismatic"
-        shown = ("code || CASE WHEN prismatic = 0 THEN '' ELSE ' P' || prismatic END "
-                 "|| CASE WHEN h = 3 THEN '' ELSE ' h=' || h END")
-        codes = [dict(zip(("code", "dof", "h", "links", "chains"), r)) for r in conn.execute(
-            f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code, prismatic {order}")]
-        by_code = {c["code"]: c["chains"] for c in codes}
-        mech_by_code = {code: n for code, n in conn.execute(
-            f"SELECT {shown}, COUNT(*) FROM (SELECT c.code AS code, c.h AS h, c.links AS links, c.dof AS dof, "
-            f"c.v AS v, c.prismatic AS prismatic FROM mechanisms k JOIN chains c ON c.id = k.chain "
-            f"WHERE k.input_link < 0) GROUP BY h, code, prismatic {order}")}
-        for c in codes:
-            c["mechanisms"] = mech_by_code.get(c["code"], 0)
-        cells = []
-        for key, dof, h, links, total in conn.execute(
-                "SELECT cell, dof, h, links, units FROM cells ORDER BY dof, h, links, cell"):
-            done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
-            cell_codes = {code: n for code, n in conn.execute(
-                f"SELECT {shown}, COUNT(*) FROM (SELECT c.* FROM members m JOIN chains c ON c.id = m.chain "
-                f"WHERE m.cell = ?) GROUP BY code, prismatic {order}", (key,))}
-            cells.append({"cell": key, "dof": dof, "h": h, "links": links, "units_done": done, "units_total": total,
-                          "chains": sum(cell_codes.values()), "by_code": cell_codes})
-        units_done, units_total = conn.execute(
-            "SELECT COALESCE(SUM(status = 'done'), 0), COUNT(*) FROM units").fetchone()
-        lock = conn.execute("SELECT pid, host, started FROM run_lock").fetchone()
-        runs = [dict(zip(("id", "status", "executor", "units_run", "started", "finished"), r)) for r in conn.execute(
-            "SELECT id, status, executor, units_run, started, finished FROM runs ORDER BY id")]
-        return {
-            "db": str(db),
-            "schema_version": SCHEMA_VERSION,
-            "chains": conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0],
-            "mechanisms": conn.execute("SELECT COUNT(*) FROM mechanisms WHERE input_link < 0").fetchone()[0],
-            "mechanisms_with_input": conn.execute(
-                "SELECT COUNT(*) FROM mechanisms WHERE input_link >= 0").fetchone()[0],
-            "units": {"done": units_done, "total": units_total},
-            "by_code": by_code,
-            "mechanisms_by_code": mech_by_code,
-            "codes": codes,
-            "cells": cells,
-            "runs": runs,
-            "locked_by": None if lock is None else {"pid": lock[0], "host": lock[1]},
-        }
+        with _reading(db):
+            return _summary(conn, db)
     finally:
         conn.close()
+
+
+def _summary(conn: sqlite3.Connection, db) -> dict:
+    order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code, prismatic"
+    shown = ("code || CASE WHEN prismatic = 0 THEN '' ELSE ' P' || prismatic END "
+             "|| CASE WHEN h = 3 THEN '' ELSE ' h=' || h END")
+    codes = [dict(zip(("code", "dof", "h", "links", "chains"), r)) for r in conn.execute(
+        f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code, prismatic {order}")]
+    by_code = {c["code"]: c["chains"] for c in codes}
+    mech_by_code = {code: n for code, n in conn.execute(
+        f"SELECT {shown}, COUNT(*) FROM (SELECT c.code AS code, c.h AS h, c.links AS links, c.dof AS dof, "
+        f"c.v AS v, c.prismatic AS prismatic FROM mechanisms k JOIN chains c ON c.id = k.chain "
+        f"WHERE k.input_link < 0) GROUP BY h, code, prismatic {order}")}
+    for c in codes:
+        c["mechanisms"] = mech_by_code.get(c["code"], 0)
+    cells = []
+    for key, dof, h, links, total in conn.execute(
+            "SELECT cell, dof, h, links, units FROM cells ORDER BY dof, h, links, cell"):
+        done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
+        cell_codes = {code: n for code, n in conn.execute(
+            f"SELECT {shown}, COUNT(*) FROM (SELECT c.* FROM members m JOIN chains c ON c.id = m.chain "
+            f"WHERE m.cell = ?) GROUP BY code, prismatic {order}", (key,))}
+        cells.append({"cell": key, "dof": dof, "h": h, "links": links, "units_done": done, "units_total": total,
+                      "chains": sum(cell_codes.values()), "by_code": cell_codes})
+    units_done, units_total = conn.execute(
+        "SELECT COALESCE(SUM(status = 'done'), 0), COUNT(*) FROM units").fetchone()
+    lock = conn.execute("SELECT pid, host, started FROM run_lock").fetchone()
+    runs = [dict(zip(("id", "status", "executor", "units_run", "started", "finished"), r)) for r in conn.execute(
+        "SELECT id, status, executor, units_run, started, finished FROM runs ORDER BY id")]
+    return {
+        "db": str(db),
+        "schema_version": SCHEMA_VERSION,
+        "chains": conn.execute("SELECT COUNT(*) FROM chains").fetchone()[0],
+        "mechanisms": conn.execute("SELECT COUNT(*) FROM mechanisms WHERE input_link < 0").fetchone()[0],
+        "mechanisms_with_input": conn.execute(
+            "SELECT COUNT(*) FROM mechanisms WHERE input_link >= 0").fetchone()[0],
+        "units": {"done": units_done, "total": units_total},
+        "by_code": by_code,
+        "mechanisms_by_code": mech_by_code,
+        "codes": codes,
+        "cells": cells,
+        "runs": runs,
+        "locked_by": None if lock is None else {"pid": lock[0], "host": lock[1]},
+    }
+
+

@@ -50,6 +50,37 @@ class CheckpointMismatch(CheckpointError):
     """The checkpoint file belongs to another query."""
 
 
+def _check_file(path: Path) -> tuple[str, str]:
+    """Refuse, after reading it only, a file that is not a checkpoint (an atlas, a damaged or foreign file);
+    return the identity and the query in words it was written for."""
+    try:
+        from ..atlas.store import read_only_uri
+
+        conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30)
+    except sqlite3.DatabaseError as exc:
+        raise CheckpointError(f"cannot read the checkpoint {path} ({exc}); it was not changed") from None
+    try:
+        tables = {name: {r[1] for r in conn.execute(f"PRAGMA table_info({name})")}
+                  for (name,) in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'").fetchall()}
+        wanted = {"meta": {"key", "value"}, "codes": {"code", "count", "units"}, "units": {"unit", "code", "count"}}
+        identity = (conn.execute("SELECT value FROM meta WHERE key = 'identity'").fetchone()
+                    if "meta" in tables else None)
+        if set(tables) != set(wanted) or any(not wanted[t] <= tables[t] for t in wanted) or identity is None:
+            what = "a mechsynth atlas" if "chains" in tables else "an SQLite file of something else"
+            raise CheckpointError(f"{path} is not a checkpoint of mechsynth but {what}; it was not changed "
+                                  "(give a new --checkpoint file)")
+        verdict = conn.execute("PRAGMA quick_check(1)").fetchone()[0]
+        if verdict != "ok":
+            raise CheckpointError(f"the checkpoint {path} is damaged ({' '.join(verdict.split())}); it was not "
+                                  "changed (give a new --checkpoint file)")
+        query = conn.execute("SELECT value FROM meta WHERE key = 'query'").fetchone()
+        return identity[0], query[0] if query else "unknown"
+    except sqlite3.DatabaseError as exc:
+        raise CheckpointError(f"{path} is not a usable checkpoint ({exc}); it was not changed") from None
+    finally:
+        conn.close()
+
+
 class Checkpoint:
     """The finished codes (``codes``: code → count) and units (``units``: unit key → (code, count)) of one query.
 
@@ -80,6 +111,11 @@ class Checkpoint:
         directory = self.path.parent if str(self.path.parent) else Path(".")
         if not directory.is_dir():
             raise CheckpointError(f"cannot create the checkpoint {self.path}: the directory {directory} does not exist")
+        if self.path.exists() and self.path.stat().st_size:
+            identity, query = _check_file(self.path)  # read-only first: any other file is refused untouched
+            if identity != wanted:
+                raise CheckpointMismatch(f"the checkpoint {self.path} belongs to another query ({query}), not to "
+                                         f"{description}; give a new --checkpoint file or repeat that query")
         try:
             self._conn = sqlite3.connect(self.path, timeout=30, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode = WAL")  # a commit survives kill -9 without an fsync each
@@ -141,6 +177,10 @@ class Checkpoint:
 
     def close(self) -> None:
         self.commit()
+        try:
+            self._conn.execute("PRAGMA journal_mode = DELETE")  # one file again, as an atlas after its run
+        except sqlite3.DatabaseError:
+            pass  # another reader keeps the WAL open: the file stays in WAL mode, still consistent
         self._conn.close()
 
     def __enter__(self):

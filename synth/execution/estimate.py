@@ -4,8 +4,8 @@ Method
 ------
 The same query (same W, v, conventions and requirements) is counted exactly at the
 smaller link counts n − 2k, smallest first, in this process, until about ``budget``
-seconds have been spent (never at n itself, and never a size predicted to cost more than
-three budgets).  From the last three sizes with chains,
+seconds have been spent (never at n itself, and never a size predicted to end later than
+one and a half budgets).  From the last three sizes with chains,
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is the largest calibration size's measured seconds per chain times the chains.
@@ -45,104 +45,154 @@ NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it start
 
 @dataclass(frozen=True)
 class Estimate:
-    """Extrapolated size of a query: chains, units, one-core seconds, and the sizes it rests on."""
+    """Extrapolated size of a query: chains, units, one-core seconds, and the sizes it rests on.
+
+    ``chains``, ``units`` and ``seconds`` are ``math.inf`` beyond floating point; their
+    base-10 logarithms (``log10_*``) are always finite.
+    """
 
     chains: float
     units: float
     seconds: float
     basis: str
+    log10_chains: float = 0.0
+    log10_units: float = 0.0
+    log10_seconds: float = 0.0
 
 
-def estimate(query, *, budget: float = 2.0) -> Estimate | None:
+_COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
+
+
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else math.inf
+
+
+def _log10_growth(ratio: float, step: float, steps: int) -> float:
+    """log10 of Π_{k=1}^{steps} (ratio + k·step): the factor the linear ratio extrapolation applies.
+
+    >>> round(10 ** _log10_growth(2.0, 1.0, 3))  # 3 · 4 · 5
+    60
+    """
+    if steps <= 0:
+        return 0.0
+    if step <= 0:
+        return steps * math.log10(ratio)
+    start = ratio / step  # Π (ratio + k·step) = step^steps · Γ(start + steps + 1) / Γ(start + 1)
+    return steps * math.log10(step) + (math.lgamma(start + steps + 1) - math.lgamma(start + 1)) / math.log(10)
+
+
+def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | None:
     """Estimate a :class:`~synth.structure.query.ChainQuery` (with ``links``; not its code).
 
-    Only sizes below ``links`` are counted (the query itself never is), for about ``budget``
-    seconds.  Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
+    Only sizes below ``links`` with the same number of loops modulo one (n − (h − 1)·k) are
+    counted (the query itself never is), for about ``budget`` seconds; the time taken does not
+    grow with ``links``.  ``work`` is what the query does with each unit, timed the same way:
+    ``"count"`` its chains, ``"list"`` them (each chain built), ``"mechanisms"`` or
+    ``"mechanisms with input"`` count its mechanisms (then ``chains`` counts mechanisms).
+    Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
-    from ..synthesis.type_synthesis import _count_unit, _map_units, plan_jobs
+    from ..synthesis import type_synthesis as ts
 
+    unit_work = {"count": ts._count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
+                 "mechanisms with input": ts._MechanismCount(True)}[work]
     links = query.links
+    step = query.h - 1
+    same = repr(query.to_dict() | {"links": None}), work  # the calibrations several grid cells share
     start = time.perf_counter()
     points = []  # (links, chains, units, seconds)
-    for n in range(2 + links % 2, links, 2):  # n = W + 1 + 2K: the same parity as the query's n
-        if points and time.perf_counter() - start > budget:
+    for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
+        if time.perf_counter() - start > budget and (points or n > 64):
             break
-        if len(points) >= 2 and points[-1][3] * points[-1][1] / points[-2][1] > 3 * budget:
-            break  # the next size would cost far more than the budget
-        t0 = time.perf_counter()
-        try:
-            jobs = plan_jobs(query.with_options(links=n))
-        except ImpossibleParameters:
-            continue
-        chains = units = 0
-        for _, unit, result in _map_units(_count_unit, jobs, 1, False):
-            if unit is not None:
-                chains += sum(result.values())
-                units += 1
-        if chains:
-            points.append((n, chains, units, time.perf_counter() - t0))
+        elapsed = time.perf_counter() - start
+        if len(points) >= 2 and elapsed + points[-1][3] * points[-1][1] / points[-2][1] > 1.5 * budget:
+            break  # the next size would overrun the budget by half
+        if (same, n) not in _COUNTED:
+            t0 = time.perf_counter()
+            try:
+                jobs = ts.plan_jobs(query.with_options(links=n))
+            except ImpossibleParameters:
+                continue
+            chains = units = 0
+            for _, unit, result in ts._map_units(unit_work, jobs, 1, False):
+                if unit is not None:
+                    chains += len(result) if isinstance(result, list) else sum(result.values())
+                    units += 1
+            _COUNTED[same, n] = (n, chains, units, time.perf_counter() - t0)
+        if _COUNTED[same, n][1]:
+            points.append(_COUNTED[same, n])
     if len(points) < 3:
         return None
     (_, c0, u0, _), (_, c1, u1, _), (n2, c2, u2, s2) = points[-3:]
-    rate = s2 / c2
-    chains, units = float(c2), float(u2)
+    steps = (links - n2) // step
     r_c, d_c = c2 / c1, max(c2 / c1 - c1 / c0, 0.0)
-    r_u, d_u = u2 / max(u1, 1), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
-    for _ in range((links - n2) // 2):
-        r_c += d_c
-        r_u += d_u
-        chains *= r_c
-        units *= max(r_u, 1.0)
+    r_u, d_u = max(u2 / max(u1, 1), 1.0), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
+    log_chains = math.log10(c2) + _log10_growth(r_c, d_c, steps)
+    log_units = math.log10(max(u2, 1)) + _log10_growth(r_u, d_u, steps)
+    log_seconds = log_chains + math.log10(max(s2, 1e-9) / c2)  # the largest calibration's time per chain
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
-    return Estimate(chains, units, chains * rate, basis)
+    return Estimate(_power(log_chains), _power(log_units), _power(log_seconds), basis,
+                    log_chains, log_units, log_seconds)
 
 
 def size_check(query, *, processes: int, count: bool, table: bool, force: bool = False,
-               where: str | None = None) -> str | None:
+               mechanisms: str | None = None, scheduler: bool = False) -> str | None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked.
 
     A query with fewer loops than :data:`SIZED_LOOPS` (6 with multiple joints) passes at once.
-    Others are estimated (:func:`estimate`) and refused with :class:`QueryTooLarge` when they
-    would take more than a day on ``processes`` workers (unless ``force``), or when a ``table``
-    listing would hold more than a million rows (whatever ``force`` says); a query of more
-    than ten minutes passes with a sentence to show before it starts (returned).
+    Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
+    ``mechanisms`` ``"mechanisms"`` / ``"mechanisms with input"``) and refused with
+    :class:`QueryTooLarge` when they would take more than a day on ``processes`` workers (unless
+    ``force``), or when a ``table`` listing would hold more than a million rows (whatever
+    ``force`` says); a query of more than ten minutes passes with a sentence to show before it
+    starts (returned).
 
     >>> from synth.structure.query import ChainQuery
     >>> size_check(ChainQuery(1, 10), processes=2, count=True, table=False) is None
     True
     """
-    if query.code is not None:
+    if query.code is not None or (force and count):
         return None
     K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
     multiple = (query.v or (0, 0)) != (0, 0)
-    if K < (SIZED_LOOPS_MULTIPLE if multiple else SIZED_LOOPS) or (force and count):
+    if K < (SIZED_LOOPS_MULTIPLE if multiple else SIZED_LOOPS):
         return None
-    found = estimate(query)
+    work = mechanisms or ("count" if count else "list")
+    items = "mechanisms" if mechanisms else "chains"
+    found = estimate(query, work=work)
     if found is None:
         if not force:
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
                                 "(fewer than three smaller sizes have chains); give --force to run it anyway")
         return None
-    where = where or f"on {processes} worker{'s' * (processes > 1)}"
-    size = (f"about {magnitude(found.chains)} chains in {magnitude(found.units)} units, "
-            f"{describe_seconds(found.seconds / processes)} {where}, extrapolated from the {found.basis}")
+    where = "on the scheduler's workers (one core shown)" if scheduler else \
+        f"on {processes} worker{'s' * (processes > 1)}"
+    log_wall = found.log10_seconds - math.log10(processes)
+    size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in "
+            f"{magnitude(found.units, found.log10_units)} units, {describe_seconds(found.seconds / processes, log_wall)} "
+            f"{where}, extrapolated from the {found.basis}")
     if not count and table and found.chains > TABLE_ROWS:
-        raise QueryTooLarge(f"a table is held in memory to align it and this listing is too large for one ({size}); "
-                            "use --format jsonl or csv (streamed), or --count")
+        raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
+                            f"large for one ({size}); use --format jsonl or csv (streamed), or --count")
     if not force and found.seconds / processes > LIMIT_SECONDS:
         hint = " (with --checkpoint FILE it can be stopped and resumed)" if count else ""
-        raise QueryTooLarge(f"this query is too large to run unasked: {size}; give --force to run it anyway{hint}")
+        raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give --force to "
+                            f"run it anyway{hint}")
     if found.seconds / processes > NOTE_SECONDS:
         return f"a long query: {size}"
     return None
 
 
-def describe_seconds(seconds: float) -> str:
-    """A duration in the largest sensible unit.
+def describe_seconds(seconds: float, log10: float | None = None) -> str:
+    """A duration in the largest sensible unit (``log10``: its base-10 logarithm, for durations
+    beyond floating point).
 
     >>> describe_seconds(42), describe_seconds(5400), describe_seconds(3e5), describe_seconds(1e12)
     ('42 s', '90 min', '3.5 days', '3.2e+04 years')
+    >>> describe_seconds(math.inf, 2000.0)
+    '3.2e+1992 years'
     """
+    if not math.isfinite(seconds):
+        return f"{_scientific((log10 or math.inf) - math.log10(365.25 * 86400))} years"
     if seconds < 120:
         return f"{seconds:.0f} s"
     if seconds < 7200:
@@ -155,12 +205,26 @@ def describe_seconds(seconds: float) -> str:
     return f"{years:.0f} years" if years < 1e4 else f"{years:.2g} years"
 
 
-def magnitude(x: float) -> str:
-    """A count in words a reader takes in at once.
+def magnitude(x: float, log10: float | None = None) -> str:
+    """A count in words a reader takes in at once (``log10``: its base-10 logarithm, for counts
+    beyond floating point).
 
-    >>> magnitude(6856), magnitude(1.43e9), magnitude(3e40)
-    ('6 856', '1.4e+09', '3e+40')
+    >>> magnitude(6856), magnitude(1.43e9), magnitude(3e40), magnitude(math.inf, 2400.3)
+    ('6 856', '1.4e+09', '3e+40', '2e+2400')
     """
-    if not math.isfinite(x) or x >= 1e7:
+    if not math.isfinite(x):
+        return _scientific(math.inf if log10 is None else log10)
+    if x >= 1e7:
         return f"{x:.2g}"
     return f"{round(x):,}".replace(",", " ")
+
+
+def _scientific(log10: float) -> str:
+    """10^log10 written as 1.2e+345 (any size); 'more than 1e+308' when unknown."""
+    if not math.isfinite(log10):
+        return "more than 1e+308"
+    exponent = math.floor(log10)
+    mantissa = 10 ** (log10 - exponent)
+    if round(mantissa, 1) >= 10:
+        mantissa, exponent = mantissa / 10, exponent + 1
+    return f"{mantissa:.2g}e+{exponent}"

@@ -20,9 +20,10 @@ from itertools import combinations
 
 from ..structure.chain import Chain
 from ..errors import InvalidOption
-from ..structure.subchains import check_subchains
+from ..structure.subchains import _MAX_CORE, check_subchains
 
-__all__ = ["RING", "CARRIER", "SUN", "lever_analogue", "assur_groups", "planetary_row", "planetary_table"]
+__all__ = ["RING", "CARRIER", "SUN", "lever_analogue", "assur_groups", "planetary_row", "planetary_table",
+           "planetary_rows"]
 
 RING, CARRIER, SUN = 0, 1, 2
 SUNS = ("floating", "fixed")
@@ -102,7 +103,32 @@ def planetary_table(satellites: tuple[int, int], sun: str = "floating") -> list[
     >>> [r["satellites"] for r in planetary_table((1, 6)) if r["determinate"]]
     [3]
     """
+    return list(planetary_rows(satellites, sun))
+
+
+def planetary_rows(satellites: tuple[int, int], sun: str = "floating"):
+    """:func:`planetary_table` one row at a time, the range checked before the first row.
+
+    The exact sub-chain test is exponential in the non-binary links (k0 + 3 of them): a range
+    it cannot finish is refused at once rather than after the rows before it.
+
+    >>> next(planetary_rows((30, 31)))
+    Traceback (most recent call last):
+    ...
+    synth.errors.InvalidOption: --satellites 30..31: at most 21 satellites, whose lever analogue has 24 non-binary links (the exact sub-chain test handles up to 24)
+    """
     lo, hi = satellites
     if lo < 1:
         raise InvalidOption(f"a planetary train needs at least one satellite, not {lo}")
-    return [planetary_row(k, sun) for k in range(lo, hi + 1)]
+    most = next(k for k in range(1, _MAX_CORE + 1) if _core_links(k + 1, sun) > _MAX_CORE)
+    if hi > most:
+        raise InvalidOption(f"--satellites {lo}..{hi}: at most {most} satellites, whose lever analogue has "
+                            f"{_core_links(most, sun)} non-binary links (the exact sub-chain test handles up to "
+                            f"{_MAX_CORE})")
+    for k in range(lo, hi + 1):
+        yield planetary_row(k, sun)
+
+
+def _core_links(satellites: int, sun: str) -> int:
+    """Links of the lever analogue that do not carry exactly two joints (the exact test's core)."""
+    return sum(1 for d in lever_analogue(satellites, sun).degrees if d != 2)

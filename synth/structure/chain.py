@@ -109,16 +109,20 @@ class Chain:
         object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
 
     @classmethod
-    def trusted(cls, links: int, joints, h: int = 3) -> "Chain":
+    def trusted(cls, links: int, joints, h: int = 3, kinds=None) -> "Chain":
         """Build a chain the engine constructed itself (valid by construction): skips the checks.
+        With ``kinds``, the joints must be given sorted (as a chain's own), the kinds in their order.
 
         >>> Chain.trusted(3, [(1, 0), (1, 2), (2, 0)]) == Chain(3, [(0, 1), (1, 2), (0, 2)])
         True
+        >>> c = Chain.parse("0-1 1-2 2-3 3-0"); Chain.trusted(4, c.joints, 3, ("prismatic",) + ("revolute",) * 3).compact()
+        '0=1 0-3 1-2 2-3'
         """
         self = object.__new__(cls)
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "joints", tuple(sorted(tuple(sorted(j)) for j in joints)))
-        object.__setattr__(self, "kinds", None)
+        object.__setattr__(self, "kinds", None if kinds is None or all(k == "revolute" for k in kinds)
+                           else tuple(kinds))
         object.__setattr__(self, "h", h)
         return self
 
@@ -363,6 +367,7 @@ class Chain:
         h = d.get("h", 3)
         if isinstance(h, bool) or not isinstance(h, int):
             raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
+        _check_as_written(None, joints)
         return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
 
     @property
@@ -423,10 +428,7 @@ class Chain:
         if not joints:
             raise MalformedChain("an empty joint list is not a chain")
         links = 1 + max(max(j) for j in joints)
-        unused = sorted(set(range(links)) - {x for j in joints for x in j})
-        if unused:
-            shown = ", ".join(map(str, unused[:5])) + (" …" if len(unused) > 5 else "")
-            raise MalformedChain(f"links are numbered 0 … {links - 1} without gaps, and no joint names link(s) {shown}")
+        _check_as_written(links, joints)
         return cls(links, tuple(joints), kinds)
 
     def compact(self) -> str:
@@ -443,6 +445,43 @@ class Chain:
         from ..draw import svg
 
         return svg(self)
+
+
+def _check_as_written(links: int | None, joints) -> None:
+    """A chain as a user writes it: no two joints join the same links, and (with ``links``, for a
+    joint list) every link number 0 … links − 1 is in some joint (a gap is a typo, not a separate link).
+
+    >>> _check_as_written(3, [(0, 1), (1, 2), (2, 0), (1, 0)])
+    Traceback (most recent call last):
+    ...
+    synth.errors.MalformedChain: joints 0-1 and 1-0 join the same links: two joints never join the same set of links
+    >>> _check_as_written(100, [(0, 1), (1, 2), (2, 99)])
+    Traceback (most recent call last):
+    ...
+    synth.errors.MalformedChain: links 3…98 are in no joint: number the links 0 … n − 1 without gaps (here 0 … 3)
+    """
+    seen: dict = {}
+    for j in joints:
+        key = frozenset(j) if len(set(j)) == len(j) else None  # a link named twice is refused by Chain itself
+        if key is not None and key in seen:
+            raise MalformedChain(f"joints {'-'.join(map(str, seen[key]))} and {'-'.join(map(str, j))} join the same "
+                                 "links: two joints never join the same set of links")
+        seen.setdefault(key, j)
+    if links is None:
+        return
+    used = sorted({x for j in joints for x in j if isinstance(x, int) and 0 <= x < links})
+    if len(used) == links or any(not isinstance(x, int) or not 0 <= x < links for j in joints for x in j):
+        return  # complete, or a link outside 0 … links − 1, which Chain names
+    gaps, before = [], -1
+    for x in used + [links]:
+        if x > before + 1:
+            gaps.append(f"{before + 1}" if x == before + 2 else f"{before + 1}, {x - 1}" if x == before + 3
+                        else f"{before + 1}…{x - 1}")
+        before = x
+    missing = links - len(used)
+    names = ", ".join(gaps[:5]) + (", …" if len(gaps) > 5 else "")
+    raise MalformedChain(f"link{'s' * (missing > 1)} {names} {'are' if missing > 1 else 'is'} in no joint: number "
+                         f"the links 0 … n − 1 without gaps (here 0 … {len(used) - 1})")
 
 
 @dataclass(frozen=True)

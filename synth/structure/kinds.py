@@ -44,7 +44,7 @@ import numpy as np
 from .chain import JOINT_KINDS, SYMBOLS, Chain
 
 __all__ = ["KINDS", "SYMBOLS", "kind_count", "wedge_loops", "structural_mobility", "generic_mobility",
-           "redundant_constraints", "idle_joints", "lever_analogue", "prismatic_roles"]
+           "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
 _PRIME = 2_147_483_647  # 2^31 − 1: a product of two residues fits in a 64-bit integer
@@ -211,6 +211,8 @@ def generic_mobility(chain: Chain, links=None, *, seed: int = 0) -> int:
     s = sorted(_members(chain, links))
     if len(s) <= 1:
         return 0
+    if links is None and seed == 0:
+        return motion(chain)[0]
     return 3 * (len(s) - 1) - len(_best_draw(chain, s, seed)[1])
 
 
@@ -237,14 +239,23 @@ def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
     >>> idle_joints(Chain.parse("0-1 1-2 2-3 3-0"))
     []
     """
-    if chain.h != 3:
-        return []
+    return list(motion(chain)[1]) if chain.h == 3 else []
+
+
+def motion(chain: Chain) -> tuple[int, tuple[tuple[int, ...], ...]]:
+    """The generic mobility of a planar chain and its idle joints, from one elimination (kept
+    with the chain: the exact test of prismatic variants asks for both).
+
+    >>> motion(Chain.parse("0-2 0-3 0=4 1-2 1-3 1=5 4=5"))
+    (1, ((0, 2), (0, 3), (1, 2), (1, 3)))
+    """
+    found = chain.__dict__.get("_motion")
+    if found is not None:
+        return found
     s = list(range(chain.links))
     reduced, pivots = _best_draw(chain, s, 0)
     ncols = 3 * chain.links
     free = [c for c in range(ncols) if c not in set(pivots)]
-    if not free:
-        return list(chain.joints)
     # null-space basis: one vector per free column (x_free = 1, pivots from the reduced rows)
     basis = np.zeros((len(free), ncols), dtype=np.int64)
     for i, f in enumerate(free):
@@ -259,7 +270,9 @@ def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
                 idle.append(j)
         elif any(not np.any((basis[:, 3 * a] - basis[:, 3 * b]) % _PRIME) for a, b in pairs):
             idle.append(j)
-    return idle
+    found = (3 * (chain.links - 1) - len(pivots), tuple(idle))
+    object.__setattr__(chain, "_motion", found)
+    return found
 
 
 def lever_analogue(chain: Chain) -> Chain:

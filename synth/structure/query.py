@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields, replace
 
-from ..errors import ImpossibleParameters, InvalidOption
+from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ._params import H_MAX
 from .code import Code
 
@@ -27,6 +27,7 @@ __all__ = ["ChainQuery", "Range", "parse_range", "parse_requirements", "parse_cr
            "CYLINDER_KINDS"]
 
 Range = tuple[int, int | None]
+MAX_CODE_LINKS = 1000  # a code's chains beyond this are beyond what certificates and drawings are used for
 CYLINDER_KINDS = ("guide", "swinging", "floating", "slider")  # prismatic pairs of a mechanism, by where they sit
 
 
@@ -226,6 +227,9 @@ class ChainQuery:
         code = Code.parse(self.code) if isinstance(self.code, str) else self.code
         if code is not None and not isinstance(code, Code):
             raise InvalidOption(f"a code is a Code or its text, e.g. '6301/0', not {code!r}")
+        if code is not None and code.links > MAX_CODE_LINKS:
+            raise QueryTooLarge(f"the code given has {code.links} links; chains are built here up to "
+                                f"{MAX_CODE_LINKS} links")
         put("code", code)
         if self.links is None and code is None:
             raise InvalidOption("give the number of links (or a code)")
@@ -322,8 +326,15 @@ class ChainQuery:
             code = options.get("code")
             if code is None:
                 raise InvalidOption("give the degree of freedom W (and the links), or a code")
+            text = code.strip() if isinstance(code, str) else str(code)
             code = Code.parse(code) if isinstance(code, str) else code
+            if code.links > MAX_CODE_LINKS:
+                raise QueryTooLarge(f"code {text} has {code.links} links; chains are built here up to "
+                                    f"{MAX_CODE_LINKS} links")
             dof = code.dof(options.get("h", 3))
+            if dof < 0:
+                raise ImpossibleParameters(f"code {text} gives W = {dof} in motion space h = {options.get('h', 3)}: its "
+                                           "links are over-constrained, and a chain has W ≥ 0")
         if loops is not None:  # n = W + 1 + (h − 1)·K
             if links is not None:
                 raise InvalidOption("give the links or the loops, not both")
@@ -370,6 +381,17 @@ class ChainQuery:
                 continue
             out.append(k)
         return out
+
+    @property
+    def cylinders_only(self) -> bool:
+        """Whether the cylinders asked for are every prismatic pair a chain can have (then each
+        joins two binary links: the engine need not try the others).
+
+        >>> ChainQuery(3, code="8310/1", prismatic=3, cylinders="floating=1,swinging=2").cylinders_only
+        True
+        """
+        wanted = sum(lo for kind, (lo, _) in self.cylinders if kind in ("swinging", "floating"))
+        return self.prismatic is not None and self.prismatic[1] is not None and wanted >= self.prismatic[1] > 0
 
     def to_dict(self) -> dict:
         """The query as plain values (ranges as ``"A..B"``), for logs and checkpoints.

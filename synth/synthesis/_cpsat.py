@@ -10,7 +10,11 @@ the first time one of those helpers really uses it, and never otherwise.
 from __future__ import annotations
 
 import importlib
+import os
+import signal
 import sys
+import threading
+import time
 import types
 from collections.abc import Sequence
 
@@ -117,16 +121,19 @@ class _Collector(cp_model.CpSolverSolutionCallback):
     """Keeps each solution's values of ``variables``, read by index (``Value`` per variable
     costs about a tenth of stage B's time at 12–14 links)."""
 
-    def __init__(self, variables: Sequence[cp_model.IntVar], limit: int | None):
+    def __init__(self, variables: Sequence[cp_model.IntVar], limit: int | None, tick=None):
         super().__init__()
         self._index = [x.index for x in variables]
         self._limit = limit
+        self._tick = tick
         self.solutions: list[tuple[int, ...]] = []
 
     def on_solution_callback(self) -> None:
         self.solutions.append(tuple(map(self.SolutionIntegerValue, self._index)))
         if self._limit is not None and len(self.solutions) >= self._limit:
             self.StopSearch()
+        if self._tick is not None and len(self.solutions) % 1024 == 0:
+            self._tick(1024)
 
 
 def all_solutions(
@@ -136,11 +143,14 @@ def all_solutions(
     limit: int | None = None,
     time_limit: float | None = None,
     fixed_search: bool = False,
+    tick=None,
 ) -> list[tuple[int, ...]]:
     """Every solution of ``model`` projected on ``variables`` (single worker, exhaustive).
 
     With ``fixed_search`` the solver branches on ``variables`` in their order, least value
-    first, instead of its own choice (adds a decision strategy to ``model``).
+    first, instead of its own choice (adds a decision strategy to ``model``).  ``tick(k)`` is
+    called each time k more solutions are found (a progress bar).  Ctrl-C stops the search
+    within milliseconds (KeyboardInterrupt), however long it runs without a solution.
 
     Raises ``RuntimeError`` if the search could not be completed (time limit, model
     invalid), so that a partial enumeration is never returned silently.
@@ -152,8 +162,8 @@ def all_solutions(
     [(0,), (1,), (2,)]
     """
     solver = _solver(model, variables, time_limit, fixed_search)
-    collector = _Collector(variables, limit)
-    status = solver.Solve(model, collector)
+    collector = _Collector(variables, limit, tick)
+    status = _solve(solver, model, collector)
     complete = status in (cp_model.OPTIMAL, cp_model.INFEASIBLE)
     if not complete and not (limit is not None and len(collector.solutions) >= limit):
         raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.StatusName(status)})")
@@ -172,7 +182,7 @@ def each_solution(model: cp_model.CpModel, variables: Sequence[cp_model.IntVar],
     """
     solver = _solver(model, variables, None, fixed_search)
     collector = _Batches(variables, fn, batch)
-    status = solver.Solve(model, collector)
+    status = _solve(solver, model, collector)
     if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE):
         raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.StatusName(status)})")
     if collector.batch:
@@ -196,3 +206,58 @@ def _solver(model, variables, time_limit: float | None, fixed_search: bool):
         model.AddDecisionStrategy(variables, cp_model.CHOOSE_FIRST, cp_model.SELECT_MIN_VALUE)
         solver.parameters.search_branching = cp_model.FIXED_SEARCH
     return solver
+
+
+# ------------------------------------------------------------------- Ctrl-C
+# CP-SAT searches without the GIL, and Python runs its SIGINT handler only between bytecodes
+# of the main thread: a search that finds no solution for minutes would hold Ctrl-C back for
+# minutes.  Python also writes the number of every caught signal to its wakeup file descriptor;
+# a daemon thread reading it stops the searches running now, and the pending handler raises
+# KeyboardInterrupt as soon as ``Solve`` returns.  (Pool workers ignore SIGINT: their parent
+# terminates them.)
+_RUNNING: set = set()
+_watching = False
+
+
+def _watch_interrupts() -> None:
+    """Start the thread that stops searches on Ctrl-C (once, from the main thread only).
+
+    A wakeup descriptor set by someone else (an asyncio loop) is left alone.
+    """
+    global _watching
+    if _watching or threading.current_thread() is not threading.main_thread():
+        return
+    _watching = True
+    read, write = os.pipe()
+    os.set_blocking(write, False)
+    try:
+        previous = signal.set_wakeup_fd(write, warn_on_full_buffer=False)
+    except ValueError:  # pragma: no cover - not the main thread of the main interpreter
+        previous = None
+    if previous != -1:
+        if previous is not None:
+            signal.set_wakeup_fd(previous)
+        os.close(read)
+        os.close(write)
+        return
+    threading.Thread(target=_stop_on_interrupt, args=(read,), daemon=True, name="cp-sat-ctrl-c").start()
+
+
+def _stop_on_interrupt(fd: int) -> None:
+    while True:
+        if signal.SIGINT not in os.read(fd, 64):
+            continue
+        for _ in range(20):  # a search started in the instant after the signal is caught too
+            for solver in list(_RUNNING):
+                solver.StopSearch()
+            time.sleep(0.05)
+
+
+def _solve(solver, model, callback):
+    """``solver.Solve(model, callback)``, stopped within milliseconds by Ctrl-C (KeyboardInterrupt)."""
+    _watch_interrupts()
+    _RUNNING.add(solver)
+    try:
+        return solver.Solve(model, callback)
+    finally:
+        _RUNNING.discard(solver)

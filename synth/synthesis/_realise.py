@@ -69,8 +69,9 @@ class Conventions:
 
     With ``prismatic`` (a range of prismatic pairs per chain) the revolute chains built are
     skeletons that ``slack`` wedge loops will raise: each sub-chain may lack up to ``slack``
-    freedoms (its own wedge loops give them back), and ``idle_joints`` keeps the assignments
-    with joints that never move.
+    freedoms (its own wedge loops give them back), ``idle_joints`` keeps the assignments
+    with joints that never move, and ``cylinders_only`` puts prismatic pairs between two binary
+    links only (where every one of them must be a cylinder).
     """
 
     rigid_subchains: bool = False
@@ -81,6 +82,7 @@ class Conventions:
     slack: int = 0
     prismatic: tuple[int, int | None] | None = None
     idle_joints: bool = False
+    cylinders_only: bool = False
 
     @property
     def threshold(self) -> int:

@@ -18,15 +18,24 @@ Example
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+import math
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
-from ..errors import ImpossibleParameters, InvalidOption
+from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
-from ..structure.code import Code
+from ..structure.code import _MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
 
-__all__ = ["Problem", "number_synthesis", "make_problem", "parse_range", "parse_requirements"]
+__all__ = ["Problem", "number_synthesis", "iter_codes", "make_problem", "parse_range", "parse_requirements",
+           "MAX_CODES"]
+
+# A query is refused unasked above this many codes (an upper bound, counted before any model is
+# built): about 40 s and 300 MB of codes (W = 1 lists 140 606 codes at K = 20, 302 085 at K = 22).
+MAX_CODES = 200_000
+_MAX_LINKS = 1_000_000  # a model's counts are 64-bit: far below that, no chain is ever drawn or stored
+_SECONDS_PER_CODE = 2e-4  # measured on the development machine, loaded: 94 551 codes (K = 19) in 19 s
+
 
 @dataclass(frozen=True)
 class Problem:
@@ -89,6 +98,8 @@ def make_problem(
     if loop_classes is not None:
         if not loop_classes or any(int(hh) < 1 or int(k) < 0 for hh, k in loop_classes.items()):
             raise ImpossibleParameters("loop classes are pairs h=K_h with h ≥ 1 and K_h ≥ 0")
+        for hh in loop_classes:
+            check_motion_space(int(hh))  # as --h: 1 … 6
         K = sum(int(k) for k in loop_classes.values())
         n = dof + 1 + sum((int(hh) - 1) * int(k) for hh, k in loop_classes.items()) - f
     elif loops is not None:
@@ -102,6 +113,12 @@ def make_problem(
         n, K = links, _loops_for_links(dof, links, h, f)
     if n < 1:
         raise ImpossibleParameters(f"W = {dof}, K = {K}, h = {h}, f = {f} leave n = {n} links: impossible")
+    if n > _MAX_LINKS:
+        raise QueryTooLarge(f"n = {n} links (W = {dof}, K = {K}): number synthesis lists codes of chains of up to "
+                            f"{_MAX_LINKS:_} links".replace("_", " "))
+    if K > _MAX_LOOPS:
+        raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
+                            f"are written and read up to {_MAX_LOOPS} loops")
     n1_range = parse_range(n1, "n1")
     if n1_range[1] is None:
         n1_range = (n1_range[0], n)
@@ -167,11 +184,11 @@ def _bound_name(max_link_degree) -> str:
     return "K+1" if max_link_degree is None else str(max_link_degree).replace(" ", "").upper()
 
 
-def _solve(problem: Problem) -> list[Code]:
+def _solve(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
     """The codes of one validated problem: the single loop in closed form, else the CP-SAT model."""
     if problem.loops == 1 and problem.n1[1] == 0:
         return _single_loop(problem)
-    return _model_codes(problem)
+    return _model_codes(problem, tick)
 
 
 def _single_loop(problem: Problem) -> list[Code]:
@@ -191,7 +208,7 @@ def _single_loop(problem: Problem) -> list[Code]:
     return [Code(tuple(counts[i] for i in range(2, imax + 1)), 0, composition, 0)]
 
 
-def _model_codes(problem: Problem) -> list[Code]:
+def _model_codes(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
     """Build and enumerate the CP-SAT model of one validated problem."""
     from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
 
@@ -230,7 +247,7 @@ def _model_codes(problem: Problem) -> list[Code]:
         model.Add((J - 1) * (mmax - 2) <= v - 1)
         model.Add(v + 2 * J <= incidences)
     codes = []
-    for sol in all_solutions(model, variables):
+    for sol in all_solutions(model, variables, tick=tick):
         n1, assortment, vv = sol[0], sol[1:imax], sol[imax]
         composition = tuple(sol[imax + 1 :]) if problem.compositions else None
         codes.append(Code(assortment, vv, composition, n1))
@@ -256,6 +273,7 @@ def number_synthesis(
     require: Mapping | Iterable[str] | None = None,
     max_multiplicity: int | None = None,
     compositions: bool = False,
+    max_codes: int | None = MAX_CODES,
 ) -> list[Code]:
     """Every standard code for W = ``dof`` and the given loops or links.
 
@@ -286,6 +304,9 @@ def number_synthesis(
         K + 1 or K + W + 1 links (docs/theory.md, "Limit theorems").
     compositions : bool
         Split each code by its joint composition (v2, v3, …).
+    max_codes : int or None
+        Refuse (``QueryTooLarge``) a query that may have more codes than this, sized before any
+        model is built (see :mod:`synth.synthesis._sizing`); None lists any number.
 
     Returns
     -------
@@ -294,7 +315,7 @@ def number_synthesis(
 
     Raises
     ------
-    ImpossibleParameters, InvalidOption
+    ImpossibleParameters, InvalidOption, QueryTooLarge
 
     Examples
     --------
@@ -303,8 +324,25 @@ def number_synthesis(
     >>> len(number_synthesis(1, loops="1..5"))
     89
     """
-    common = dict(h=h, f=f, v=v, n1=n1, max_link_degree=max_link_degree, require=require,
-                  max_multiplicity=max_multiplicity, compositions=compositions)
+    return sorted(set(iter_codes(
+        dof, loops=loops, links=links, loop_classes=loop_classes, h=h, f=f, v=v, n1=n1,
+        max_link_degree=max_link_degree, require=require, max_multiplicity=max_multiplicity,
+        compositions=compositions, max_codes=max_codes)), key=sort_key)
+
+
+_MAX_VALUES = 1000  # a range of loops or links solves one model per value
+
+
+def iter_codes(dof: int, *, loops=None, links=None, loop_classes=None, max_codes: int | None = MAX_CODES,
+               progress: Callable[[int], None] | None = None, **common) -> Iterator[Code]:
+    """:func:`number_synthesis` one value of K (or n) at a time, in the same order: memory holds the
+    codes of one value.  Every value is validated and the whole query sized before the first code.
+
+    ``progress`` is called with the number of codes found since its last call (about every thousand).
+
+    >>> [str(c) for c in iter_codes(1, loops="1..2")]
+    ['4/0', '42/0', '51/1', '60/2']
+    """
     if loop_classes is not None:
         problems = [make_problem(dof, loop_classes=loop_classes, **common)]
     else:
@@ -316,6 +354,9 @@ def number_synthesis(
             raise InvalidOption(f"the range of {which} needs an upper end")
         if loops is not None and links is not None:
             raise InvalidOption("give exactly one of loops (K), links (n) or loop classes (K_h)")
+        if rng[1] - rng[0] >= _MAX_VALUES:
+            raise QueryTooLarge(f"the range {rng[0]}..{rng[1]} of {which} has {rng[1] - rng[0] + 1} values; "
+                                f"number synthesis solves one model per value and takes at most {_MAX_VALUES}")
         problems = []
         for value in range(rng[0], rng[1] + 1):
             try:
@@ -325,5 +366,34 @@ def number_synthesis(
                     raise  # a single value that is impossible is an error, in a range it is skipped
         if not problems:
             raise ImpossibleParameters(f"no value of {which} in {rng[0]}..{rng[1]} is possible for W = {dof}")
-    codes = [c for p in problems for c in _solve(p)]
-    return sorted(set(codes), key=sort_key)
+    _refuse_too_many(problems, max_codes)
+    for problem in problems:
+        yield from sorted(set(_solve(problem, progress)), key=sort_key)
+
+
+def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
+    """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
+    from ._sizing import check_excess, code_bound
+    from ..execution.estimate import describe_seconds, magnitude
+
+    if max_codes is None:  # asked for any number: only a model that cannot exist is refused
+        for problem in problems:
+            check_excess(problem)
+        return
+    total, exact = 0.0, True
+    for problem in sorted(problems, key=lambda p: -p.loops):
+        bound = code_bound(problem, stop=max_codes - total)
+        total += bound.value
+        exact &= bound.exact
+        if total > max_codes:
+            if not math.isfinite(total):
+                size = "more than 1e+308 codes"
+            else:
+                size = (f"{'more than' if not exact else 'up to'} {magnitude(total)} codes "
+                        f"({'more than ' if not exact else 'about '}{describe_seconds(total * _SECONDS_PER_CODE)})")
+            where = f"K = {problems[0].loops}" if len(problems) == 1 else \
+                f"K = {min(p.loops for p in problems)} … {max(p.loops for p in problems)}"
+            raise QueryTooLarge(f"this query ({where} loops, n = {max(p.links for p in problems)} links) may have "
+                                f"{size}, more than the {magnitude(max_codes)} codes number "
+                                "synthesis lists unasked; narrow it (fewer loops, a range of v, requirements "
+                                "or a lower link-degree bound)")

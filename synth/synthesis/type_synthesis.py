@@ -84,7 +84,7 @@ class Unit:
 
 def _conventions(query: ChainQuery, slack: int = 0) -> Conventions:
     return Conventions(query.rigid, query.fractionated, query.planar_only, query.cranks, query.h, slack=slack,
-                       prismatic=query.prismatic, idle_joints=query.idle_joints)
+                       prismatic=query.prismatic, idle_joints=query.idle_joints, cylinders_only=query.cylinders_only)
 
 
 def _with_crank_links(query: ChainQuery):

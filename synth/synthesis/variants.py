@@ -23,7 +23,7 @@ from itertools import combinations
 
 from ..errors import InvalidOption
 from ..structure.chain import Chain
-from ..structure.kinds import idle_joints
+from ..structure.kinds import motion
 from ..structure.subchains import check_subchains
 from ._realise import Conventions
 
@@ -50,31 +50,38 @@ def _cycle_rank(links: int, pairs) -> int:
     return loops
 
 
-def _admissible(variant: Chain, rigid: bool, idle: bool) -> bool:
+def _admissible(variant: Chain, rigid: bool, idle: bool, counted: bool = False) -> bool:
     """The exact sub-chain test with joint kinds (no rigid or over-constrained sub-chain, no
     redundant constraint hidden from the count), and no idle joint unless ``idle`` (a truss, W = 0,
-    moves nowhere: idleness means nothing there)."""
-    return check_subchains(variant, rigid_subchains=rigid).ok and (
-        idle or variant.dof == 0 or not idle_joints(variant))
+    moves nowhere: idleness means nothing there).  ``counted``: the sub-chains' counts are known
+    to pass (prismatic pairs without a wedge loop add nothing to a revolute chain that passes),
+    so only the hidden redundancy is left to look at: the generic mobility against the count."""
+    if counted:
+        if motion(variant)[0] != variant.dof:
+            return False
+    elif not check_subchains(variant, rigid_subchains=rigid).ok:
+        return False
+    return idle or variant.dof == 0 or not motion(variant)[1]
 
 
-def _assign(chain: Chain, counts, keep) -> list[Chain]:
-    """Every assignment of P pairs (a count in ``counts``) to the simple joints of ``chain`` that
-    ``keep(pairs, variant)`` accepts, once per symmetry class (certificates with the joint kinds
-    as colours), sorted by certificate.  ``keep`` sees the P pairs first, so cheap tests on them
-    run before the certificate."""
-    simple = [k for k, j in enumerate(chain.joints) if len(j) == 2]
+def _assign(chain: Chain, counts, keep, first=None, *, candidates=None) -> list[Chain]:
+    """Every assignment of P pairs (a count in ``counts``) to the simple joints of ``chain`` (or to
+    the joints ``candidates``) that ``keep(variant)`` accepts, once per symmetry class
+    (certificates with the joint kinds as colours), sorted by certificate.  ``first(pairs)``, a
+    cheap test of the P pairs alone, runs before the certificate."""
+    simple = [k for k, j in enumerate(chain.joints) if len(j) == 2] if candidates is None else candidates
     seen: dict[str, Chain | None] = {}
     for count in counts:
         for chosen in combinations(simple, count):
+            if first is not None and not first([chain.joints[k] for k in chosen]):
+                continue
             kinds = ["revolute"] * len(chain.joints)
             for k in chosen:
                 kinds[k] = "prismatic"
-            pairs = [chain.joints[k] for k in chosen]
-            variant = Chain(chain.links, chain.joints, kinds, chain.h)
+            variant = Chain.trusted(chain.links, chain.joints, chain.h, kinds)
             certificate = variant.certificate
             if certificate not in seen:
-                seen[certificate] = variant if keep(pairs, variant) else None
+                seen[certificate] = variant if keep(variant) else None
     return [seen[c] for c in sorted(seen) if seen[c] is not None]
 
 
@@ -88,12 +95,15 @@ def assignments(skeleton: Chain, conv: Conventions) -> list[Chain]:
     ['0=1 0=2 0-4 1=2 2-3 3-4', '0=1 0=2 0-4 1=2 2-3 3=4', '0=1 0=2 0=4 1=2 2-3 3-4']
     """
     lo, hi = conv.prismatic
-    simple = sum(1 for j in skeleton.joints if len(j) == 2)
+    candidates = [k for k, j in enumerate(skeleton.joints) if len(j) == 2]
+    if conv.cylinders_only:  # every prismatic pair a cylinder: between two binary links
+        degree = skeleton.degrees
+        candidates = [k for k in candidates if degree[skeleton.joints[k][0]] == degree[skeleton.joints[k][1]] == 2]
     least = max(lo, conv.slack + 2 if conv.slack else 0)
-    rigid = conv.rigid_subchains
-    return _assign(skeleton, range(least, min(simple, simple if hi is None else hi) + 1),
-                   lambda pairs, v: _cycle_rank(skeleton.links, pairs) == conv.slack
-                   and _admissible(v, rigid, conv.idle_joints))
+    most = len(candidates) if hi is None else min(hi, len(candidates))
+    return _assign(skeleton, range(least, most + 1),
+                   lambda v: _admissible(v, conv.rigid_subchains, conv.idle_joints, counted=conv.slack == 0),
+                   lambda pairs: _cycle_rank(skeleton.links, pairs) == conv.slack, candidates=candidates)
 
 
 def prismatic_variants(chain: Chain, count: int, *, idle: bool = False,
@@ -116,7 +126,7 @@ def prismatic_variants(chain: Chain, count: int, *, idle: bool = False,
         raise InvalidOption(f"{count} prismatic pairs asked for, but the chain has only {len(simple)} simple joints")
     if chain.kinds is not None:
         raise InvalidOption(f"the chain has joint kinds already ({chain.compact()}): give its revolute form")
-    return _assign(chain, [count], lambda pairs, v: _admissible(
+    return _assign(chain, [count], lambda v: _admissible(
         v, v.dof == 0 if rigid_subchains is None else rigid_subchains, idle))
 
 

@@ -1,7 +1,10 @@
 """Every worked example of structure in docs/theory.md, through the public API."""
 
+import pytest
+
 from synth import Code, number_synthesis
 from synth.analysis.codes import analyze, mobility
+from synth.synthesis.type_synthesis import type_synthesis
 
 
 def test_task1_24_link_system():
@@ -73,13 +76,56 @@ def test_linear_translator():
     assert Code((12, 2), 6) in number_synthesis(1, loop_classes=classes)
 
 
+def _grubler(links: int, joints) -> int:
+    return 3 * (links - 1) - 2 * sum(len(j) - 1 for j in joints)
+
+
+def _edited(links: int, joints: list, edit: str):
+    """The four edits the advice names, written out here on a chain's joint list (no engine code)."""
+    joints = [tuple(j) for j in joints]
+    binary = next(x for x in range(links)
+                  if sum(x in j for j in joints) == 2 and all(len(j) == 2 for j in joints if x in j))
+    if edit == "remove a binary link with both its joints":
+        return links - 1, [j for j in joints if binary not in j]
+    if edit == "insert a binary link into a joint":  # a–b becomes a–x–b
+        a, b = joints[0]
+        return links + 1, joints[1:] + [(a, links), (links, b)]
+    if edit == "add a binary link jointed to two links":
+        return links + 1, joints + [(0, links), (1, links)]
+    if edit == "take a binary link out of its string":  # a–x–b becomes a–b
+        a, b = [y for j in joints if binary in j for y in j if y != binary]
+        return links - 1, [j for j in joints if binary not in j] + [(a, b)]
+    raise AssertionError(edit)
+
+
+@pytest.mark.parametrize("code, dof", [("6301/0", 2), ("6301/0", 0), ("440/0", 3), ("4/0", 0)])
+def test_defect_advice_names_edits_that_move_w_its_way(code, dof):
+    """D < 0 asks for edits that raise W, D > 0 for edits that lower it; each named edit, done by hand
+    on a chain of the code, moves W by one in that direction, and the repairs go the same way."""
+    from synth.analysis.repair import code_repairs
+
+    a = analyze(code, dof=dof)
+    chain = next(iter(type_synthesis(a.dof, code=code, workers=1)))
+    raise_w = a.defect < 0
+    named = (["remove a binary link with both its joints", "insert a binary link into a joint"] if raise_w
+             else ["add a binary link jointed to two links", "take a binary link out of its string"])
+    assert ("raises W" if raise_w else "lowers W") in a.advice
+    for edit in named:
+        links, joints = _edited(chain.links, list(chain.joints), edit)
+        assert _grubler(links, joints) == a.dof + (1 if raise_w else -1), edit
+    repair = code_repairs(Code.parse(code), dof, limit=1)[0]
+    assert Code.parse(repair["code"]).dof() == dof and analyze(repair["code"], dof=dof).defect == 0
+
+
 def test_defect_and_advice():
-    a = analyze("7201/1", dof=1)
-    assert a.defect == 0
-    too_mobile = analyze("6301/0", dof=0)
-    assert too_mobile.defect == 1 and "remove 1 binary" in too_mobile.advice
-    stiff = analyze("6301/0", dof=2)
-    assert stiff.defect == -1 and "redundant" in stiff.advice
+    assert analyze("7201/1", dof=1).defect == 0
+    assert analyze("6301/0", dof=0).defect == 1 and analyze("6301/0", dof=2).defect == -1
+    assert analyze("6301/0", dof=2).advice.startswith("D = -1 < 0: the counts carry 1 redundant constraint(s); remove")
+    from synth.analysis.chains import analyze_chain
+
+    four_bar = "0-1 1-2 2-3 3-0"  # W = 1: to 2 by a removed or inserted link, to 0 by an added one
+    assert "each raises W by 1" in analyze_chain(four_bar, dof=2).advice
+    assert "each lowers W by 1" in analyze_chain(four_bar, dof=0).advice
 
 
 def test_limit_mechanism_type_one():

@@ -333,7 +333,10 @@ def test_where_filters(small_atlas, capsys):
     capsys.readouterr()
     assert main(["atlas", "--db", str(small_atlas), "--where", "code=6301/0", "--format", "csv"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0].startswith("code,links") and len(lines) == 16
+    assert lines[0].startswith("id,code,links") and len(lines) == 16
+    from synth.atlas.store import chain_id  # the id column is the chain's site address, from its certificate
+
+    assert all(row.split(",")[0] == chain_id(row.rsplit(",", 1)[1]) for row in lines[1:])
     assert main(["atlas", "--db", str(small_atlas), "--export", "mechanisms", "--where", "n=6", "--where", "W=1",
                  "--where", "v=0", "--count"]) == 0
     assert json.loads(capsys.readouterr().out) == {"count": 5, "by_code": {"42/0": 5}}

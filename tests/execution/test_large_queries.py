@@ -212,7 +212,7 @@ def test_giant_query_is_refused_with_an_estimate():
     out = _run("chains", "--dof", "1", "--links", "40", "--count")
     assert out.returncode == 2 and out.stdout == ""
     line = out.stderr.strip()
-    assert "\n" not in line and line.startswith("mechsynth: this query is too large")
+    assert "\n" not in line and line.startswith("mechsynth: this query (40 links) is too large")
     assert "chains" in line and "units" in line and "years" in line and "--force" in line
 
 
@@ -227,7 +227,7 @@ def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
 
     monkeypatch.setattr(estimate, "NOTE_SECONDS", 1.0)
     args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,
-                              workers=2, format=None, checkpoint=checkpoint)
+                              workers=2, format=None, checkpoint=checkpoint, what="chains")
     chains._size_note(synth.ChainQuery(1, 16), args)
     note = capsys.readouterr().err.strip()
     assert note.startswith("mechsynth: a long query: about ") and "on 2 workers" in note and "\n" not in note

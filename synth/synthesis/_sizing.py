@@ -1,0 +1,150 @@
+"""How many codes a counting problem can have, before any model is built.
+
+Subtracting twice the link equation from the joint equation of the counting system leaves
+one equation in the *excess* of each link over two joints:
+
+    Σ_{i≥3} (i − 2)·n_i + v = 2K − 2 + n1
+
+so, for each n1, the codes are the partitions of 2K − 2 + n1 − v into parts i − 2 (a link with
+i joints), each part used n_i times within its requirement, times the ways of splitting v into
+joints (with compositions: the partitions of v into parts m − 2, a joint of m links).  Counted
+by dynamic programming over the parts, this is an upper bound of the codes: the binary links
+n2 (≥ 0, and their requirement) and, without compositions, the existence of a split of v are
+left to the model.  The bound is exact for the planar closed chains of the universal table.
+
+Example
+-------
+>>> from synth.synthesis.number_synthesis import make_problem
+>>> [code_bound(make_problem(1, loops=k)).value for k in (2, 3, 4, 5)]  # table 1: 3, 9, 23, 53
+[3.0, 9.0, 23.0, 53.0]
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import QueryTooLarge
+
+__all__ = ["Bound", "code_bound", "check_excess", "MAX_EXCESS"]
+
+# The table of partitions has one entry per unit of excess 2K − 2 + n1: beyond this the
+# problem is refused unsized (K = 500 000 loops; the largest published tables stop at K = 10).
+MAX_EXCESS = 1_000_000
+_SECONDS = 1.0  # time allowed for sizing (a problem whose bound is already above ``stop`` ends then)
+
+
+@dataclass(frozen=True)
+class Bound:
+    """An upper bound of the codes (``value``; ``math.inf`` beyond floating point); ``exact`` is
+    False when sizing stopped early because ``value`` already exceeded the limit it was given."""
+
+    value: float
+    exact: bool = True
+
+
+def _partitions_bounded(table: np.ndarray, part: int, most: int | None) -> np.ndarray:
+    """Convolve ``table`` with 0 … ``most`` copies of ``part`` (None: any number)."""
+    size = len(table)
+    if most is None or most * part >= size:
+        rows = -(-size // part)
+        padded = np.zeros(rows * part)
+        padded[:size] = table
+        return np.cumsum(padded.reshape(rows, part), axis=0).reshape(-1)[:size]
+    out = table.copy()
+    for k in range(1, most + 1):
+        out[k * part:] += table[: size - k * part]
+    return out
+
+
+def _open_links(problem) -> tuple[int, int]:
+    """The range of n1 the problem and its requirement on n1 allow."""
+    n1_lo, n1_hi = problem.n1
+    lo, hi = dict(problem.requirements).get(1, (0, None))
+    return max(n1_lo, lo), n1_hi if hi is None else min(n1_hi, hi)
+
+
+def check_excess(problem) -> int:
+    """The largest excess 2K − 2 + n1 of a problem, refused above :data:`MAX_EXCESS` (such a problem
+    cannot even be sized: its model alone would not fit, whatever is asked)."""
+    n1_hi = _open_links(problem)[1]
+    top = 2 * problem.loops - 2 + n1_hi
+    if top > MAX_EXCESS:
+        open_links = f" and up to {n1_hi} single-joint links" if n1_hi else ""
+        raise QueryTooLarge(
+            f"n = {problem.links} links, K = {problem.loops} loops{open_links} are far beyond what number synthesis "
+            f"can list or even size (the excess 2K − 2 + n1 = {top} is above {MAX_EXCESS:_})".replace("_", " "))
+    return top
+
+
+def code_bound(problem, *, stop: float = math.inf) -> Bound:
+    """An upper bound of the codes of a validated :class:`~synth.synthesis.number_synthesis.Problem`.
+
+    Sizing takes milliseconds up to thousands of loops; when it runs out of time (K of tens of
+    thousands), the bound found so far is returned if it already exceeds ``stop``.
+
+    Raises
+    ------
+    QueryTooLarge
+        When the excess 2K − 2 + n1 exceeds :data:`MAX_EXCESS` (the table alone would not fit).
+
+    >>> from synth.synthesis.number_synthesis import make_problem
+    >>> code_bound(make_problem(1, loops=4, require=["5=1.."])).value  # the seven codes of the locomotive drive
+    7.0
+    """
+    K = problem.loops
+    requirements = dict(problem.requirements)
+    n1_lo, n1_hi = _open_links(problem)
+    if n1_hi < n1_lo:
+        return Bound(0.0)
+    top = check_excess(problem)
+    if top < 0:
+        return Bound(0.0)
+    start = time.perf_counter()
+    shift = 0
+    parts = []  # (excess of the link kind, most copies beyond the required ones)
+    for i in range(3, problem.max_link_degree + 1):
+        lo, hi = requirements.get(i, (0, None))
+        if hi is not None and hi < lo:
+            return Bound(0.0)
+        shift += (i - 2) * lo
+        if i - 2 <= top and hi != lo:
+            parts.append((i - 2, None if hi is None else hi - lo))
+    # ways to write v as a sum of joint sizes (m − 2, m ≤ the largest multiplicity)
+    v_lo, v_hi = problem.v
+    v_hi = min(v_hi, max(top - shift, 0))
+    biggest = (problem.max_multiplicity or problem.links) - 2
+    with np.errstate(over="ignore", invalid="ignore"):
+        splits = np.zeros(v_hi + 1)
+        splits[0] = 1.0
+        if problem.compositions:
+            for part in range(1, min(biggest, v_hi) + 1):
+                splits = _partitions_bounded(splits, part, None)
+        elif biggest >= 1:
+            splits[:] = 1.0
+        table = np.zeros(top + 1)
+        table[0] = 1.0
+
+        def total() -> float:
+            found = 0.0
+            for n1 in range(n1_lo, n1_hi + 1):
+                rest = 2 * K - 2 + n1 - shift  # excess left for the links with 3+ joints and v
+                if rest < 0:
+                    continue
+                vs = np.arange(v_lo, min(v_hi, rest) + 1)
+                found += float(np.dot(splits[vs], table[rest - vs])) if len(vs) else 0.0
+            return found
+
+        for number, (part, most) in enumerate(parts, 1):
+            table = _partitions_bounded(table, part, most)
+            if number % 16 == 0 and time.perf_counter() - start > _SECONDS / 2:
+                partial = total()  # the parts not yet added at their least: a lower bound of the bound
+                if partial > stop or not math.isfinite(partial):
+                    return Bound(partial if math.isfinite(partial) else math.inf, exact=False)
+                if time.perf_counter() - start > _SECONDS:
+                    raise QueryTooLarge(f"the codes of K = {K} loops cannot be sized within {_SECONDS:g} s")
+        value = total()
+    return Bound(value if math.isfinite(value) else math.inf)

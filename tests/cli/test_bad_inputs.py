@@ -1,0 +1,293 @@
+"""Bad input, table-driven, across every subcommand and every kind of input file.
+
+Each case runs the real command in its own process (forked from one that imported it once), in a
+folder holding one file of each kind (an atlas, a checkpoint, a damaged and a foreign SQLite file,
+a binary file, grid and scene files, URDFs), and must end with exit status 2 and one line on
+stderr, ``mechsynth: `` and a sentence that names the bad value, without a traceback; no file of
+the folder may be created, changed or removed; the process must stay under 500 MB (its peak
+resident memory, from wait4).  A process still running after 30 s fails the case as a hang (a
+guard, not a timing: the refusals take about a second), and its address space is capped at 3 GB
+so that a case which ignores its sizes cannot take the machine.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+MODELS = ROOT / "models"
+MEMORY = 500 * 2**20
+BIG_CODE = "1" * 5000 + "/0"
+BALANCE = "balance input (the balance helper's part of issue 27)"
+
+# (command with {d} for the folder and {m} for models/, words the one-line message must hold)
+CASES = [
+    # ---- codes: sizes, ranges, motion spaces, contradictions
+    ("codes --dof 1 --loops 30", "K = 30"),
+    ("codes --dof 1 --loops 1000", "K = 1000"),
+    ("codes --dof 1 --links 100000000", "n = 100000000"),
+    ("codes --dof 1 --links 1..100000000", "1..100000000"),
+    ("codes --dof 1 --loops 3 --n1 0..2000000", "2000000"),
+    ("codes --dof 1 --loop-classes 9=1", "not 9"),
+    ("codes --dof 1 --loop-classes 3=4,3=2", "3="),
+    ("codes --dof 1 --loop-classes 3=4 --h 5", "--h"),
+    ("codes --dof 1 --loops 2 --h 7", "not 7"),
+    ("codes --dof -1 --loops 2", "-1"),
+    ("codes --dof 1 --loops 2 --v 5..2", "5..2"),
+    ("codes --dof 1 --loops x", "'x'"),
+    ("codes --dof 1 --loops 3 --max-link-degree 1", "not 1"),
+    ("codes --dof 1 --loops 3 --require 9=x", "'x'"),
+    ("codes --dof 1 --loops 3 --format xml", "xml"),
+    ("codes --dof 99999999999999999999 --loops 2", "n = 100000000000000000004"),
+    ("codes --dof 1 --loops 499999 --max-link-degree 3 --v 0 --force", "K = 499999"),
+    # ---- analyze: codes, counts, chains as written
+    (f"analyze {BIG_CODE}", "5002 characters"),
+    ("analyze '0-1 1-2 2-99'", "3…98"),
+    ("analyze '0-1 1-2 2-0 0-1'", "0-1 and 0-1"),
+    ("analyze '[[0,1],[1,2],[2,0],[1,0]]'", "0-1 and 1-0"),
+    ("analyze '{\"links\": 5, \"joints\": [[0,1],[1,2],[2,0]]}'", "3, 4"),
+    ("analyze '0-1 1-'", "'1-'"),
+    ("analyze 63a1/0", "63a1/0"),
+    ("analyze 6301/0 --h 7", "not 7"),
+    ("analyze 2=4,2=3", "2="),
+    ("analyze 6301/0 --repairs 0", "0"),
+    ("analyze '0-1 1-2 2-3 3-0' --v 2", "--v"),
+    # ---- chains and mechanisms: sizes, files, contradictions
+    ("chains --dof 1 --links 99999999999 --count", "99999999999"),
+    ("chains --dof 1 --links 100000000 --count", "100000000 links"),
+    ("chains --dof 1 --links 1000 --count", "1000 links"),
+    ("chains --dof 1 --links 1000 --count --force", "n = 1000"),
+    ("chains --dof 1 --links 20", "20 links"),
+    (f"chains --code {BIG_CODE}", "5002 characters"),
+    ("chains --code 99999999/0", "99999999/0"),
+    ("chains --code 7201/1 --v 0 --count", "v = 0"),
+    ("chains --dof 1 --links 8 --workers 100000", "100000"),
+    ("chains --dof 1 --links 8 --h 9", "not 9"),
+    ("chains --dof 1 --links 8 --prismatic 99", "99"),
+    ("chains --chain '0-1 1-2 2-0 0-1' --prismatic 1", "0-1 and 0-1"),
+    ("chains --dof 1 --links 8 --count --checkpoint {d}/atlas.sqlite", "atlas.sqlite"),
+    ("chains --dof 1 --links 8 --count --checkpoint {d}/corrupt.sqlite", "corrupt.sqlite"),
+    ("chains --dof 1 --links 8 --count --checkpoint {d}/binary.toml", "binary.toml"),
+    ("chains --dof 1 --links 8 --count --checkpoint {d}/foreign.sqlite", "foreign.sqlite"),
+    ("chains --dof 1 --links 10 --count --checkpoint {d}/checkpoint.sqlite", "another query"),
+    ("chains --dof 1 --links 8 --checkpoint {d}/new.sqlite", "--checkpoint"),
+    ("chains --dof 1 --links 8 --count --scheduler tcp://127.0.0.1:9 --timeout 0.5", "127.0.0.1:9"),
+    ("chains --dof 1 --links 8 --count --timeout -1", "'-1'"),
+    ("chains --dof 1 --links 8 --count --timeout 3", "--timeout"),
+    ("mechanisms --dof 1 --links 20 --count", "20 links"),
+    ("mechanisms --dof 1 --links 8 --n1 x", "'x'"),
+    # ---- grid: grid files and atlases
+    ("grid {d}/binary.toml --db {d}/new.sqlite", "binary.toml"),
+    ("grid {d}/missing.toml --db {d}/new.sqlite", "missing.toml"),
+    ("grid {d}/grid_30.toml --db {d}/new.sqlite", "n=30"),
+    ("grid {d}/grid_100.toml --db {d}/new.sqlite", "100 links"),
+    ("grid {d}/grid_small.toml --db {d}/damaged.sqlite", "damaged.sqlite"),
+    ("grid {d}/grid_small.toml --db {d}/checkpoint.sqlite", "checkpoint.sqlite"),
+    ("grid {d}/grid_small.toml --db {d}/corrupt.sqlite", "corrupt.sqlite"),
+    ("grid {d}/grid_small.toml --db /proc/atlas.sqlite", "/proc"),
+    ("grid {d}/grid_small.toml --db {d}/new.sqlite --workers 0", "0"),
+    ("grid {d}/grid_small.toml --db {d}/new.sqlite --timeout 3", "--timeout"),
+    ("grid {d}/grid_small.toml --db {d}", "is a directory"),
+    # ---- atlas: files, --where, --html
+    ("atlas --db {d}/corrupt.sqlite", "corrupt.sqlite"),
+    ("atlas --db {d}/damaged.sqlite", "damaged.sqlite"),
+    ("atlas --db {d}/damaged.sqlite --export chains --format csv", "damaged.sqlite"),
+    ("atlas --db {d}/checkpoint.sqlite", "checkpoint.sqlite"),
+    ("atlas --db {d}/foreign.sqlite", "foreign.sqlite"),
+    ("atlas --db {d}/binary.toml", "binary.toml"),
+    ("atlas --db {d}/missing.sqlite", "missing.sqlite"),
+    ("atlas --db {d}/atlas.sqlite --where n=10..8", "10..8"),
+    ("atlas --db {d}/atlas.sqlite --where colour=red", "colour"),
+    ("atlas --db {d}/atlas.sqlite --where n=x", "'x'"),
+    ("atlas --db {d}/atlas.sqlite --where n5=99999999999999999999999 --count", "99999999999999999999999"),
+    ("atlas --db {d}/atlas.sqlite --html /proc/site", "/proc/site"),
+    ("atlas --db {d}/atlas.sqlite --html {d}/site --page-size 100000", "100000"),
+    ("atlas --db {d}/atlas.sqlite --html {d}/site --where n=8", "--where"),
+    ("atlas --db {d}/atlas.sqlite --html {d}/binary.toml", "binary.toml"),
+    ("atlas --db {d}/damaged.sqlite --html {d}/site", "damaged.sqlite"),
+    ("atlas --db {d}/atlas.sqlite --draw-limit 5", "--draw-limit"),
+    # ---- draw: chains as written, outputs, sizes
+    ("draw --chain '0-1 1-2 2-0 0-1' --out {d}/twin.png", "0-1 and 0-1"),
+    ("draw --code 6301/0 --out {d}/big.png --size 30 --dpi 1200", "pixels"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --out {d}/x.txt", ".txt"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --out /nonexistent/x.png", "/nonexistent"),
+    ("draw --db {d}/atlas.sqlite --limit 5 --out {d}/all.svg", "--limit"),
+    ("draw --code 99999999/0 --out {d}/x.png", "99999999/0"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --frame 9 --out {d}/x.svg", "9"),
+    ("draw --db {d}/corrupt.sqlite --out {d}/x.svg", "corrupt.sqlite"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --dof 2 --out {d}/x.svg", "--dof"),
+    ("draw --chain '0-1 1-2 2-3 3-0' --mechanisms --frame 0 --out {d}/x.svg", "--frame"),
+    # ---- scene and planetary
+    ("scene {d}/binary.toml", "binary.toml"),
+    ("scene {d}/missing.toml", "missing.toml"),
+    ("scene {d}/scene_bad.toml", "loopz"),
+    ("scene {m}/locomotive_drive.toml --out {d}/binary.toml", "binary.toml"),
+    ("planetary --satellites 1..40", "1..40"),
+    ("planetary --satellites x", "'x'"),
+    ("planetary --satellites -3", "'-3'"),
+    # ---- balance (its own package; failures are the balance helper's, marked below)
+    ("balance arm {d}/binary.toml", "binary.toml"),
+    ("balance arm {d}/checkpoint.sqlite", "checkpoint.sqlite"),
+    ("balance pantograph {d}/missing.toml", "missing.toml"),
+    ("balance prismatic --mass -2 --inertia 0.1 --counter-mass 2 --stroke 0.5", "-2"),
+    ("balance spring --kind compression --moment nan --range 20..160 --r 0.05..0.2 --r0 0.1..0.4 --a 0..0.3", "nan"),
+    ("balance spring --kind compression --moment 100 --range 160..20 --r 0.05..0.2 --r0 0.1..0.4 --a 0..0.3",
+     "160"),
+    ("balance nonsense", "nonsense"),
+    ("balance arm {m}/arm_base_drives.toml --plot /proc/arm.png", "/proc/arm.png"),
+    ("balance arm {m}/arm_base_drives.toml --samples 100000000", "100000000"),
+    ("balance arm {d}/arm_nan.urdf", "nan"),
+    ("balance arm {d}/arm_negative.urdf", "-3"),
+    ("balance arm {d}/arm_prismatic.urdf", "prismatic"),
+]
+
+# cases that fail today because of the balance package (reported to the balance helper, not fixed here)
+BALANCE_OPEN = {
+    "balance arm {m}/arm_base_drives.toml --samples 100000000": "--samples is not sized: numpy MemoryError traceback",
+    "balance arm {d}/arm_nan.urdf": "a link mass of nan is accepted (exit 0)",
+    "balance arm {d}/arm_negative.urdf": "a negative link mass is accepted (exit 0)",
+    "balance arm {d}/arm_prismatic.urdf": "a prismatic URDF joint ends in KeyError: 'rel_error_bound'",
+}
+
+# Each case runs in a child forked from one server process that has imported the command once: the
+# child is the real command (its own process, its own peak memory by wait4), without paying Python's
+# start-up and the imports again for each of the hundred cases.
+_SERVER = r"""
+import json, os, resource, signal, sys, time, traceback
+import mechsynth.cli, mechsynth.commands.balance, synth.synthesis.type_synthesis, synth.atlas.store, synth.draw
+for line in sys.stdin:
+    job = json.loads(line)
+    pid = os.fork()
+    if pid == 0:
+        status = 1
+        try:
+            # a safety net for the shared machine: a case that ignores its sizes dies at 3 GB of address space
+            resource.setrlimit(resource.RLIMIT_AS, (3 * 2**30, resource.getrlimit(resource.RLIMIT_AS)[1]))
+            os.chdir(job["cwd"])
+            for fd, name in ((1, "out"), (2, "err")):
+                os.dup2(os.open(job[name], os.O_WRONLY | os.O_CREAT | os.O_TRUNC), fd)
+            status = mechsynth.cli.main(job["argv"])
+        except SystemExit as stop:
+            status = stop.code if isinstance(stop.code, int) else 1
+        except BaseException:
+            traceback.print_exc()
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(status)
+    start, result = time.monotonic(), None
+    while result is None:
+        done, status, usage = os.wait4(pid, os.WNOHANG)
+        if done:
+            result = dict(status=os.waitstatus_to_exitcode(status), peak=usage.ru_maxrss * 1024)
+        elif time.monotonic() - start > job["timeout"]:
+            os.kill(pid, signal.SIGKILL)
+            os.wait4(pid, 0)
+            result = dict(status=None, peak=None)
+        else:
+            time.sleep(0.005)
+    result["seconds"] = time.monotonic() - start
+    print(json.dumps(result), flush=True)
+"""
+
+
+@pytest.fixture(scope="module")
+def server():
+    proc = subprocess.Popen([sys.executable, "-c", _SERVER], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    yield proc
+    proc.stdin.close()
+    proc.wait(timeout=60)
+
+
+def _run(server, argv: list[str], cwd: Path, timeout: float = 30) -> tuple[dict, str, str]:
+    out, err = cwd / "stdout.txt", cwd / "stderr.txt"
+    server.stdin.write(json.dumps(dict(argv=argv, cwd=str(cwd), out=str(out), err=str(err), timeout=timeout)) + "\n")
+    server.stdin.flush()
+    result = json.loads(server.stdout.readline())
+    text = out.read_text(), err.read_text()
+    out.unlink()
+    err.unlink()
+    return result, *text
+
+
+def _snapshot(folder: Path) -> dict:
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else "dir"
+            for p in sorted(folder.rglob("*"))}
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """One file of every kind a command reads, made by the engine itself where it can."""
+    from mechsynth.cli import main
+
+    d = tmp_path_factory.mktemp("bad-inputs")
+    (d / "grid_small.toml").write_text('dof = 1\nlinks = "4..8"\n')
+    (d / "grid_30.toml").write_text("dof = 1\nlinks = 30\n")
+    (d / "grid_100.toml").write_text("dof = 1\nlinks = 100\n")
+    (d / "binary.toml").write_bytes(bytes(range(256)) * 8)
+    (d / "scene_bad.toml").write_text('[scene]\nname = "x"\ndescription = "y"\ncompute = ["codes"]\n'
+                                      "[structure]\ndof = 1\nloops = 2\nloopz = 3\n")
+    assert main(["grid", str(d / "grid_small.toml"), "--db", str(d / "atlas.sqlite"), "--workers", "1",
+                 "--format", "json"]) == 0
+    assert main(["chains", "--dof", "1", "--links", "8", "--count", "--workers", "1",
+                 "--checkpoint", str(d / "checkpoint.sqlite")]) == 0
+    data = (d / "atlas.sqlite").read_bytes()
+    (d / "corrupt.sqlite").write_bytes(data[:100] + bytes(len(data) - 100))  # a header, then nothing
+    damaged = bytearray(data)
+    for page in range(2 * 4096, len(damaged), 4096):
+        damaged[page + 100:page + 400] = b"\xff" * 300
+    (d / "damaged.sqlite").write_bytes(bytes(damaged))
+    import sqlite3
+
+    with sqlite3.connect(d / "foreign.sqlite") as conn:
+        conn.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
+        conn.execute("CREATE TABLE notes (text TEXT)")
+    conn.close()
+    urdf = (MODELS / "arm_base_drives.urdf").read_text()
+    masses = list(re.finditer(r'<mass value="([^"]*)"', urdf))
+    second = masses[1]
+    for name, value in (("arm_nan.urdf", "nan"), ("arm_negative.urdf", "-3")):
+        (d / name).write_text(urdf[:second.start(1)] + value + urdf[second.end(1):])
+    (d / "arm_prismatic.urdf").write_text(urdf.replace('type="revolute"', 'type="prismatic"', 1))
+    for junk in d.glob("*-wal"):
+        junk.unlink()
+    return d
+
+
+def _param(command: str, words: str):
+    marks = []
+    if command in BALANCE_OPEN:
+        marks.append(pytest.mark.xfail(reason=f"{BALANCE}: {BALANCE_OPEN[command]}", strict=False))
+    return pytest.param(command, words, marks=marks, id=command[:60])
+
+
+@pytest.mark.parametrize("command, words", [_param(c, w) for c, w in CASES])
+def test_bad_input_is_one_sentence_and_exit_2(command, words, folder, server, tmp_path):
+    before = _snapshot(folder)
+    argv = [a.replace("{d}", str(folder)).replace("{m}", str(MODELS)) for a in shlex.split(command)]
+    result, out, err = _run(server, argv, tmp_path)
+    assert result["status"] is not None, f"still running after 30 s: {command}"
+    assert result["status"] == 2, (result, err[-1500:], out[-500:])
+    assert err.startswith("mechsynth: ") and err.endswith("\n") and err.count("\n") == 1, err[-1500:]
+    assert "Traceback" not in err and words in err, (words, err)
+    assert out == "", out[:500]
+    assert result["peak"] < MEMORY, result
+    assert _snapshot(folder) == before, "a file of the folder was created, changed or removed"
+    assert not list(tmp_path.iterdir()), "the command wrote into its working folder"
+
+
+def test_the_table_is_large_and_covers_every_subcommand():
+    from mechsynth.cli import _build_parser
+
+    parser = _build_parser()
+    commands = set(next(a for a in parser._actions if a.dest == "command").choices)
+    assert len(CASES) >= 60 and {c.split()[0] for c, _ in CASES} == commands
+    assert set(BALANCE_OPEN) <= {c for c, _ in CASES}

@@ -1,0 +1,126 @@
+"""Ctrl-C stops every long command within two seconds, with exit status 130 and no process left.
+
+Each command is started in a session of its own, as a terminal runs it, left working until it is
+inside its long part (a CP-SAT search, pool workers counting or drawing), and interrupted as a
+terminal does: SIGINT to the whole process group, workers included.  The command and every process
+it started must be gone within two seconds (on this shared machine they take 0.03–0.3 s).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import psutil
+import pytest
+
+CLI = [sys.executable, "-m", "mechsynth"]
+STOP_SECONDS = 2.0
+
+
+def _interrupt(args: list[str], cwd, ready, *, wait_at_most: float = 60.0) -> tuple[int, float, str, list]:
+    """Run ``mechsynth args``, wait until ``ready(process)`` holds, send Ctrl-C to its process group;
+    return the exit status, the seconds it took to end, its stderr and the processes it had started."""
+    err_path = cwd / "stderr.txt"
+    with open(err_path, "w") as err:
+        proc = subprocess.Popen([*CLI, *args], stdout=subprocess.DEVNULL, stderr=err, cwd=cwd,
+                                start_new_session=True)
+    started: list = []
+    try:
+        start = time.monotonic()
+        while not ready(proc, err_path):
+            assert proc.poll() is None, f"ended before it was interrupted: {err_path.read_text()[-800:]}"
+            assert time.monotonic() - start < wait_at_most, "never became busy"
+            time.sleep(0.1)
+        started = psutil.Process(proc.pid).children(recursive=True)
+        sent = time.monotonic()
+        os.killpg(proc.pid, signal.SIGINT)
+        try:
+            status = proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            status = None
+        took = time.monotonic() - sent
+        _, alive = psutil.wait_procs(started, timeout=max(0.0, STOP_SECONDS - took))
+        return status, took, err_path.read_text(), alive
+    finally:  # whatever the verdict, nothing of this test outlives it
+        for p in started:
+            try:
+                p.kill()
+            except psutil.NoSuchProcess:
+                pass
+        if proc.poll() is None:
+            proc.kill()
+        proc.wait()
+
+
+def _after(seconds: float):
+    """Ready once ``seconds`` have passed since the first call (the command is then inside its work)."""
+    begin = []
+
+    def ready(proc, _):
+        begin.append(time.monotonic()) if not begin else None
+        return time.monotonic() - begin[0] >= seconds
+
+    return ready
+
+
+def _with_workers(extra: float = 1.0):
+    """Ready once the command has pool workers (plus ``extra`` seconds for them to be busy)."""
+    seen = []
+
+    def ready(proc, _):
+        if not seen and psutil.Process(proc.pid).children():
+            seen.append(time.monotonic())
+        return bool(seen) and time.monotonic() - seen[0] >= extra
+
+    return ready
+
+
+def _check(status, took, err, alive):
+    assert status == 130, (status, err[-800:])
+    assert err.rstrip().endswith("mechsynth: interrupted"), err[-800:]
+    assert "Traceback" not in err, err[-2000:]
+    assert took <= STOP_SECONDS, f"took {took:.2f} s to stop"
+    assert not alive, f"left behind: {[p.pid for p in alive]}"
+
+
+def test_ctrl_c_inside_a_cp_sat_search(tmp_path):
+    # K = 1000: CP-SAT searches for minutes before its first solution, so no Python code runs meanwhile
+    # (without the interrupt thread of synth.synthesis._cpsat this ignored Ctrl-C for ten minutes)
+    _check(*_interrupt(["codes", "--dof", "1", "--loops", "1000", "--force", "--format", "csv"], tmp_path,
+                       _after(3.0)))
+
+
+def test_ctrl_c_while_codes_stream(tmp_path):
+    _check(*_interrupt(["codes", "--dof", "1", "--loops", "15..22", "--force", "--format", "csv"], tmp_path,
+                       _after(3.0)))
+
+
+def test_ctrl_c_stops_a_count_and_its_pool(tmp_path):
+    _check(*_interrupt(["chains", "--dof", "1", "--links", "16", "--count", "--workers", "2"], tmp_path,
+                       _with_workers(1.5)))
+
+
+def test_ctrl_c_stops_a_grid_run_and_its_pool(tmp_path):
+    (tmp_path / "grid.toml").write_text("dof = 1\nlinks = 14\n")
+    status, took, err, alive = _interrupt(["grid", "grid.toml", "--db", "atlas.sqlite", "--workers", "2"], tmp_path,
+                                          _with_workers(2.0))
+    _check(status, took, err, alive)
+    out = subprocess.run([*CLI, "atlas", "--db", "atlas.sqlite", "--format", "json"], capture_output=True, text=True,
+                         cwd=tmp_path)
+    assert out.returncode == 0, out.stderr  # the interrupted run left a consistent, readable atlas
+
+
+def test_ctrl_c_stops_a_site_and_its_drawing_workers(tmp_path):
+    (tmp_path / "grid.toml").write_text('dof = 1\nlinks = "4..12"\n')
+    made = subprocess.run([*CLI, "grid", "grid.toml", "--db", "atlas.sqlite", "--workers", "2"], capture_output=True,
+                          text=True, cwd=tmp_path)
+    assert made.returncode == 0, made.stderr
+
+    def drawing(proc, err_path):  # workers exist and the progress bar has moved
+        return bool(psutil.Process(proc.pid).children()) and "site:" in err_path.read_text()
+
+    _check(*_interrupt(["atlas", "--db", "atlas.sqlite", "--html", "site", "--workers", "2"], tmp_path, drawing))

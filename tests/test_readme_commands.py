@@ -1,0 +1,145 @@
+"""Every command of README.md works as written.
+
+Each ``mechsynth …`` command of the README's ```bash blocks runs, in the README's order, in one
+folder where ``models/`` is this checkout's (the tour writes ``atlas.sqlite`` before it reads it),
+and must exit 0; the ``$ mechsynth …`` examples of its output blocks must print what the README
+shows (a line ``…`` stands for lines left out).  Commands too long for the default suite are
+marked slow, and those that need a running Dask scheduler are skipped: each with its reason.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from mechsynth.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+
+# why a command is not run in the default suite (matched against the command's text)
+SLOW = {
+    "--links 16 --count --checkpoint": "counts 19 819 281 chains: about 6 minutes on 2 cores",
+    "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
+}
+SKIP = {
+    "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "
+                                        "(tests/execution runs the same units on a real Dask cluster)",
+}
+NOT_RUN = {"mechsynth chains --dof 1 --links 18 --count": "runs for hours by design (the README shows its first line)"}
+
+
+def blocks(text: str) -> list[tuple[str, str]]:
+    """``(language, body)`` of every fenced block, in order."""
+    found, language, body = [], None, []
+    for line in text.splitlines():
+        if line.startswith("```"):
+            if language is None:
+                language, body = line[3:].strip(), []
+            else:
+                found.append((language, "\n".join(body) + "\n"))
+                language = None
+        elif language is not None:
+            body.append(line)
+    return found
+
+
+def bash_commands(text: str) -> list[list[str]]:
+    """The ``mechsynth`` commands of the ```bash blocks, as argument lists, in order.
+
+    >>> bash_commands("```bash\\npip install . && mechsynth codes --dof 1 \\\\\\n  --loops 2   # table\\n```\\n")
+    [['mechsynth', 'codes', '--dof', '1', '--loops', '2']]
+    """
+    found = []
+    for language, body in blocks(text):
+        if language != "bash":
+            continue
+        for line in body.replace("\\\n", " ").splitlines():
+            command: list[str] = []
+            for word in [*shlex.split(line, comments=True), "&&"]:
+                if word in ("&&", "&", ";"):
+                    if command[:1] == ["mechsynth"]:
+                        found.append(command)
+                    command = []
+                else:
+                    command.append(word)
+    return found
+
+
+def shown_outputs(text: str) -> list[tuple[str, list[str]]]:
+    """``(command, lines shown)`` for every ``$ mechsynth …`` example of a plain ``` block."""
+    found = []
+    for language, body in blocks(text):
+        lines = body.rstrip("\n").splitlines()
+        if not language and lines and lines[0].startswith("$ mechsynth "):
+            found.append((lines[0][2:], lines[1:]))
+    return found
+
+
+COMMANDS = bash_commands(README.read_text(encoding="utf-8"))
+
+
+def _marks(text: str):
+    for key, reason in SKIP.items():
+        if key in text:
+            return [pytest.mark.skip(reason=reason)]
+    return [pytest.mark.slow] if any(key in text for key in SLOW) else []
+
+
+@pytest.fixture(scope="module")
+def tour(tmp_path_factory):
+    """The folder the tour runs in: models/ is the checkout's, files the commands write stay here."""
+    folder = tmp_path_factory.mktemp("tour")
+    (folder / "models").symlink_to(ROOT / "models")
+    return folder
+
+
+@pytest.mark.parametrize("argv", [pytest.param(c, marks=_marks(shlex.join(c)), id=shlex.join(c[1:4]))
+                                  for c in COMMANDS])
+def test_readme_command_runs_as_written(argv, tour, monkeypatch, capsys):
+    monkeypatch.chdir(tour)
+    status = main(argv[1:])
+    out, err = capsys.readouterr()
+    assert status == 0, (shlex.join(argv), err[-1500:])
+    assert "Traceback" not in err
+    assert out.strip() or any(a in argv for a in ("--out", "--html", "--plot", "grid")), shlex.join(argv)
+
+
+@pytest.mark.parametrize("command, shown", shown_outputs(README.read_text(encoding="utf-8")), ids=lambda x: str(x)[:40])
+def test_readme_output_examples_are_what_the_command_prints(command, shown, capsys):
+    if command in NOT_RUN:
+        pytest.skip(NOT_RUN[command])
+    status = main(shlex.split(command)[1:])
+    out, err = capsys.readouterr()
+    if shown and shown[0].startswith("mechsynth: "):  # a refusal: the sentence up to its first number
+        assert status == 2
+        text = " ".join(" ".join(shown).split())
+        start = re.split(r"\d", text, maxsplit=1)[0]
+        assert err.startswith(start), (start, err)
+        return
+    assert status == 0, err
+    printed = out.rstrip("\n").splitlines()
+    position = 0
+    for line in shown:  # in order; '…' alone stands for left-out lines
+        if line == "…":
+            continue
+        assert line in printed[position:], (line, out)
+        position = printed.index(line, position) + 1
+
+
+def test_the_readme_has_commands_to_run():
+    """The tests above would pass on a README without commands: make sure they see them."""
+    assert len(COMMANDS) > 40 and len(shown_outputs(README.read_text(encoding="utf-8"))) >= 4
+    assert any(c[1] == "balance" for c in COMMANDS) and any(c[1] == "grid" for c in COMMANDS)
+
+
+def test_ci_runs_exactly_the_readme_test_command():
+    """.ci/run runs the command the README gives for the tests (install with the test extras, then pytest)."""
+    text = README.read_text(encoding="utf-8")
+    block = re.search(r"one command installs and runs the tests.*?```bash\n(.*?)\n```", text, re.S).group(1)
+    script = [line for line in (ROOT / ".ci" / "run").read_text().splitlines()
+              if line.strip() and not line.startswith(("#", "set ", "cd "))]
+    assert script == [block.strip()]
