@@ -59,7 +59,8 @@ def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
             if b is not None:
                 arms[i] = b
         out["counterweights"] = counterweights(res.arm, arms, samples=t.check.samples, seed=t.check.seed)
-        out["pinocchio"] = pinocchio_check(res.arm, res.terms, t.check.samples, t.check.seed, t.g)
+        out["pinocchio"] = pinocchio_check(res.arm, res.terms, t.check.samples, t.check.seed, t.g,
+                                           worst=res.check.worst, scale=res.check.max_gravity_force)
     if t.transmission:
         out["transmission"] = transmissions([term["drive_form"] for term in out["terms"]],
                                             [f"ψ{i + 1}" for i in range(len(out["joints"]))])
@@ -70,7 +71,7 @@ def solve_arm(doc: Mapping[str, Any], source: str = "<arm>") -> dict:
 def _solve_urdf_arm(t, source: str) -> dict:
     """Balance an arm read from URDF (path relative to the scene file); Pinocchio is the check."""
     from .arm import _drive_matrix
-    from .static import ArmBalance, check_terms, device_table
+    from .static import ArmBalance, check_terms, device_table, prismatic_rows
     from .urdf import load_urdf, pinocchio_check
 
     if t.links or t.loads:
@@ -90,12 +91,10 @@ def _solve_urdf_arm(t, source: str) -> dict:
     check = check_terms(arm, terms, q=q, seed=t.check.seed)
     d = t.devices
     devices = device_table(arm, terms, {"eccentricity": d.eccentricity, "r": d.r, "r0": d.r0})
-    prismatic = [{"link": ln.name, "coordinate": f"q{i + 1}", "stroke": ln.stroke, "gear_ratio": ln.gear_ratio,
-                  "gamma_max": (ln.stroke / 2) / ln.gear_ratio}
-                 for i, ln in enumerate(arm.links) if ln.joint == "prismatic"]
-    out = ArmBalance(arm, terms, devices, check, prismatic, None).to_dict()
+    out = ArmBalance(arm, terms, devices, check, prismatic_rows(arm), None).to_dict()
     out["urdf"] = path
-    out["pinocchio"] = pinocchio_check(arm, terms, t.check.samples, t.check.seed, t.g)
+    out["pinocchio"] = pinocchio_check(arm, terms, t.check.samples, t.check.seed, t.g, worst=check.worst,
+                                       scale=check.max_gravity_force)
     out["counterweights"] = {"available": False, "reason": "not computed for URDF arms"}
     return out
 

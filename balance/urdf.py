@@ -68,8 +68,152 @@ def _quiet_stderr():
         os.close(saved)
 
 
+#: URDF joint types an arm may have (fixed joints are merged into their parent link)
+URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed")
+
+
+def _numbers(element, attribute: str, count: int, default: str, what: str) -> np.ndarray:
+    text = default if element is None else element.get(attribute, default)
+    words = "a finite number" if count == 1 else f"{count} finite numbers"
+    try:
+        values = np.array([float(v) for v in text.split()])
+    except ValueError:
+        raise InvalidArm(f"{what} must be {words}, not {text!r}.") from None
+    if values.size != count or not np.all(np.isfinite(values)):
+        raise InvalidArm(f"{what} must be {words}, not {text!r}.")
+    return values
+
+
+def _check_inertial(link) -> None:
+    name = link.get("name")
+    inertial = link.find("inertial")
+    if inertial is None:
+        return  # a massless link (a frame)
+    _numbers(inertial.find("origin"), "xyz", 3, "0 0 0", f"the centre of mass of link '{name}'")
+    _numbers(inertial.find("origin"), "rpy", 3, "0 0 0", f"the inertia frame of link '{name}'")
+    mass_el = inertial.find("mass")
+    mass = _numbers(mass_el, "value", 1, "0", f"the mass of link '{name}'")[0]
+    if mass < 0:
+        raise InvalidArm(f"link '{name}' has the negative mass {mass:g} kg.")
+    el = inertial.find("inertia")
+    keys = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    vals = {}
+    for k in keys:
+        vals[k] = _numbers(el, k, 1, "0", f"the inertia {k} of link '{name}'")[0]
+    inertia = np.array([[vals["ixx"], vals["ixy"], vals["ixz"]],
+                        [vals["ixy"], vals["iyy"], vals["iyz"]],
+                        [vals["ixz"], vals["iyz"], vals["izz"]]])
+    eig = np.linalg.eigvalsh(inertia)
+    tol = 1e-9 * max(float(np.max(np.abs(eig))), 1e-300)
+    if eig[0] < -tol:  # a body's principal moments are ≥ 0 (all 0 for a point mass)
+        raise InvalidArm(
+            f"link '{name}' has an inertia with a negative principal moment ({', '.join(f'{v:.4g}' for v in eig)} "
+            "kg·m²): it must be positive semi-definite.")
+
+
+def validate_urdf(text: str) -> None:
+    """Refuse a URDF no arm can be read from, in one sentence naming the link or joint.
+
+    Checked before Pinocchio sees the file (it accepts several of these silently): every
+    number finite; masses ≥ 0 (0, or no ``<inertial>``, is a massless frame); inertia matrices
+    positive semi-definite (a point mass has zero inertia); joint types among :data:`URDF_JOINT_TYPES`; parents and children that exist,
+    no joint whose parent is its own child, no link that is the child of two joints, one root
+    link and no loop; finite non-zero axes; limits ``lower < upper`` on revolute and prismatic
+    joints.
+
+    Examples
+    --------
+    >>> validate_urdf('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="continuous">'
+    ...               '<parent link="a"/><child link="b"/></joint></robot>')
+    >>> validate_urdf('<robot name="r"><link name="a"/><joint name="j" type="continuous">'
+    ...               '<parent link="a"/><child link="a"/></joint></robot>')
+    Traceback (most recent call last):
+    ...
+    balance.errors.InvalidArm: joint 'j' has the link 'a' as both its parent and its child.
+    """
+    import xml.etree.ElementTree as ET
+
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as exc:
+        raise SchemaError(f"not a URDF file: the XML does not parse ({exc}).") from None
+    if root.tag != "robot":
+        raise SchemaError(f"not a URDF file: its root element is <{root.tag}>, not <robot>.")
+    links = root.findall("link")
+    names = [ln.get("name") for ln in links]
+    if not links:
+        raise InvalidArm("the URDF has no link.")
+    for n in names:
+        if not n:
+            raise InvalidArm("a URDF link has no name.")
+        if names.count(n) > 1:
+            raise InvalidArm(f"two URDF links are named '{n}'.")
+    for ln in links:
+        _check_inertial(ln)
+    parent_of: dict[str, str] = {}
+    joint_names: set[str] = set()
+    for j in root.findall("joint"):
+        name, kind = j.get("name"), j.get("type")
+        if not name:
+            raise InvalidArm("a URDF joint has no name.")
+        if name in joint_names:
+            raise InvalidArm(f"two URDF joints are named '{name}'.")
+        joint_names.add(name)
+        if kind not in URDF_JOINT_TYPES:
+            raise InvalidArm(f"joint '{name}' is of type {kind!r}, which an arm cannot have here; "
+                             "use revolute, continuous, prismatic or fixed joints.")
+        parent = (j.find("parent").get("link") if j.find("parent") is not None else None)
+        child = (j.find("child").get("link") if j.find("child") is not None else None)
+        for role, link in (("parent", parent), ("child", child)):
+            if link is None:
+                raise InvalidArm(f"joint '{name}' names no {role} link.")
+            if link not in names:
+                raise InvalidArm(f"joint '{name}' has the {role} link '{link}', which the URDF does not define.")
+        if parent == child:
+            raise InvalidArm(f"joint '{name}' has the link '{parent}' as both its parent and its child.")
+        if child in parent_of:
+            raise InvalidArm(f"link '{child}' is the child of two joints ('{parent_of[child]}' and '{name}'): "
+                             "an arm is a tree.")
+        parent_of[child] = name
+        _numbers(j.find("origin"), "xyz", 3, "0 0 0", f"the origin of joint '{name}'")
+        _numbers(j.find("origin"), "rpy", 3, "0 0 0", f"the orientation of joint '{name}'")
+        if kind != "fixed":
+            axis = _numbers(j.find("axis"), "xyz", 3, "1 0 0", f"the axis of joint '{name}'")
+            if not np.linalg.norm(axis) > 0:
+                raise InvalidArm(f"joint '{name}' has the zero axis; give its direction.")
+        if kind in ("revolute", "prismatic"):
+            lim = j.find("limit")
+            if lim is None:
+                raise InvalidArm(f"joint '{name}' is {kind} and needs a <limit lower=… upper=…>.")
+            lo = _numbers(lim, "lower", 1, "0", f"the lower limit of joint '{name}'")[0]
+            hi = _numbers(lim, "upper", 1, "0", f"the upper limit of joint '{name}'")[0]
+            if not lo < hi:
+                raise InvalidArm(f"joint '{name}' has the limits lower {lo:g} ≥ upper {hi:g}; give lower < upper.")
+    joints_by_child = {c: j for c, j in parent_of.items()}
+    roots = [n for n in names if n not in joints_by_child]
+    if len(roots) != 1:
+        if not roots:
+            raise InvalidArm("every URDF link is the child of a joint: the joints close a loop, and an arm is a tree.")
+        raise InvalidArm(f"the URDF has {len(roots)} root links ({', '.join(roots[:4])}): an arm is one tree "
+                         "rooted at its base.")
+    child_links: dict[str, list[str]] = {}
+    for j in root.findall("joint"):
+        child_links.setdefault(j.find("parent").get("link"), []).append(j.find("child").get("link"))
+    seen, todo = {roots[0]}, [roots[0]]
+    while todo:
+        for c in child_links.get(todo.pop(), []):
+            if c not in seen:
+                seen.add(c)
+                todo.append(c)
+    if len(seen) != len(names):
+        lost = sorted(set(names) - seen)
+        raise InvalidArm(f"the links {', '.join(lost[:4])} hang in a loop of joints, not from the base "
+                         f"'{roots[0]}': an arm is a tree.")
+
+
 def pinocchio_model(urdf_text: str, g: float = _G):
-    """A fixed-base Pinocchio model from URDF text, gravity ``−g·z``."""
+    """A fixed-base Pinocchio model from URDF text (checked by :func:`validate_urdf`), gravity ``−g·z``."""
+    validate_urdf(urdf_text)
     pin = _pin()
     try:
         with _quiet_stderr():  # the URDF parser writes its own diagnostics to stderr
@@ -178,6 +322,33 @@ class UrdfArm:
         qq = np.atleast_2d(q)
         g = np.array([pin.computeGeneralizedGravity(self.model, self._data, self.config(row)) for row in qq])
         return -(g[0] if np.ndim(q) == 1 else g)
+
+    def approx_potential_error_bounds(self) -> np.ndarray:
+        """Upper bounds of ``|Q_exact − Q_terms|`` per joint from the ``γ = q/k`` substitution.
+
+        The potential is ``U0(θ) + Σ_slides q_j·B_j(θ)`` with ``B_j`` the weight carried by slide
+        ``j`` times the vertical component of its axis (a function of the rotations before it):
+        replacing ``q_j`` by ``k·sin(q_j/k)`` changes the slide's force by at most
+        ``W_j·(1 − cos γ_max)`` and each revolute joint before it by ``W_j·(s/2)·(1 − sin γ_max/γ_max)``.
+        """
+        pin = _pin()
+        data = self.model.createData()
+        pin.computeSubtreeMasses(self.model, data)
+        g = float(np.linalg.norm(self.model.gravity.linear))
+        bounds = np.zeros(self.n)
+        for j, ln in enumerate(self.links):
+            if ln.joint != "prismatic":
+                continue
+            weight = g * float(data.mass[j + 1])
+            half = ln.stroke / 2
+            gm = half / ln.gear_ratio
+            bounds[j] += weight * (1 - math.cos(gm))
+            i = self.model.parents[j + 1]
+            while i > 0:
+                if self.kinds[i - 1] == "revolute":
+                    bounds[i - 1] += weight * half * (1 - math.sin(gm) / gm)
+                i = self.model.parents[i]
+        return bounds
 
     # ------------------------------------------------------- harmonic terms
     def harmonic_terms(self) -> list[HarmonicTerm]:
@@ -296,12 +467,14 @@ def arm_to_urdf(arm: Arm, g: float = _G) -> str:
     return "\n".join(out)
 
 
-def pinocchio_check(arm, terms, samples: int = 1000, seed: int = 0, g: float = _G) -> dict:
-    """Residuals against Pinocchio's generalised gravity at ``samples`` random configurations.
+def pinocchio_check(arm, terms, samples: int = 1000, seed: int = 0, g: float = _G, worst=(), scale: float = 0.0) -> dict:
+    """Residuals against Pinocchio's generalised gravity at ``samples`` random configurations
+    and at the configurations ``worst`` (the worst ones the arm's own check found).
 
     ``gravity_agreement``: the arm model's own gravity forces against Pinocchio's (relative
     to the largest); ``max_residual``: Pinocchio's gravity against the devices' forces
-    (N·m or N), ``relative_residual`` the same over the largest gravity force.
+    (N·m or N), ``relative_residual`` the same over the largest gravity force (``scale``, or
+    the largest Pinocchio finds at these configurations).
     """
     if isinstance(arm, UrdfArm):
         pa = arm
@@ -310,15 +483,20 @@ def pinocchio_check(arm, terms, samples: int = 1000, seed: int = 0, g: float = _
         pa = UrdfArm(pinocchio_model(arm_to_urdf(arm, g), g), arm.name)
         own = arm
     q = arm.sample(samples, seed)
+    if len(worst):
+        q = np.concatenate([q, np.asarray(worst, dtype=float).reshape(-1, arm.n)])
     qg = pa.gravity_forces(q)
-    scale = float(np.max(np.abs(qg))) or 1.0
+    scale = max(float(np.max(np.abs(qg))), scale) or 1.0
     res = qg - terms_forces(terms, q)
     out = {
         "samples": samples, "seed": seed, "pinocchio": _pin().__version__,
+        "worst_configurations": len(worst),
         "max_gravity_force": scale,
         "max_residual": float(np.max(np.abs(res))),
         "relative_residual": float(np.max(np.abs(res))) / scale,
     }
+    if len(worst):
+        out["max_residual_at_worst"] = float(np.max(np.abs(res[samples:])))
     if own is not None:
         out["gravity_agreement"] = float(np.max(np.abs(own.gravity_forces(q) - qg))) / scale
     return out

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -407,11 +408,11 @@ def test_dead_centre_notes(rng, centres, ends):
     assert tail == " and ".join(want)
 
 
-def test_trf_keeps_a_tension_free_length_limit_and_says_where_it_cannot():
+def test_trf_keeps_a_tension_free_length_limit_and_is_restarted_where_it_cannot():
     """A tension spring's free length r0 − a ≤ 0.06 m with a ≤ 0.05 m leaves r0 ≤ 0.11 m: in trf's box
     (a quadratic penalty stopped 4e-4 past it).  Where such a limit couples r and r0 (a compression
-    spring's free length and deflection with a lower bound on a), trf still stops just past it: refused
-    with the reason and the method that keeps it."""
+    spring's free length and deflection with a lower bound on a), trf stops just past it: the restart
+    from its point (Nelder–Mead, then SLSQP) brings it back inside, to slsqp's optimum, and says so."""
     b = SpringBounds(r=(0.05, 0.5), r0=(0.1, 1.0), a=(0.0, 0.05), max_force=300.0, max_free_length=0.06)
     for norm in ("max", "rms"):
         res = {m: fit_spring("tension", -100.0, rad((20, 160)), b, method=m, norm=norm) for m in ("trf", "slsqp")}
@@ -419,7 +420,10 @@ def test_trf_keeps_a_tension_free_length_limit_and_says_where_it_cannot():
         assert res["trf"].active_bounds == res["slsqp"].active_bounds == ["r=max", "a=max", "max_free_length", "max_force"]
     coupled = SpringBounds(r=(0.0956, 0.2378), r0=(0.1631, 1.1118), a=(0.0717, 0.6667), max_force=2920.0,
                            max_free_length=0.7321, max_deflection=0.3991)
-    with pytest.raises(FitFailed, match=r"^the trf method ended outside the bounds \(.*\): where a limit leaves no room "
-                                        r"for a, it stops just past it; the default method, slsqp, keeps such limits exactly\.$"):
-        fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled, method="trf")
+    trf = fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled, method="trf")
+    ref = fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled)
+    assert trf.restarts >= 1 and re.search(r"; restarted \d× from its point \(Nelder–Mead, then SLSQP\): a local "
+                                           r"optimum to 1e-09 of the error$", trf.message)
+    assert trf.max_rel_error == pytest.approx(ref.max_rel_error, rel=1e-8)
+    assert trf.free_length <= 0.7321 * (1 + 1e-9) and trf.deflection <= 0.3991 * (1 + 1e-6)
     assert "max_deflection" in fit_spring("compression", 100.0, rad((-25.2, 145.07)), coupled).active_bounds
