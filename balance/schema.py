@@ -14,7 +14,7 @@ Examples
 >>> parse({"slider": {"mass": "2"}}, "slider", "s.toml")
 Traceback (most recent call last):
 ...
-balance.errors.SchemaError: s.toml: 'mass' in [slider] must be a number, not '2'.
+balance.errors.SchemaError: s.toml: [slider] key 'mass' must be a number, not '2'.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationEr
 from .errors import SchemaError
 
 __all__ = [
-    "parse", "load_toml", "OWNED_BY_RUNNER",
+    "parse", "load_toml", "show", "OWNED_BY_RUNNER",
     "ArmTable", "LinkTable", "LoadTable", "SpringTable", "SpringDesignTable", "SliderTable",
     "PantographTable",
 ]
@@ -216,14 +216,29 @@ TABLES: dict[str, type[_Table]] = {
 
 # ------------------------------------------------------------------------- parsing
 _TYPE_WORDS = {
-    "float_type": "must be a number", "int_type": "must be a whole number",
-    "bool_type": "must be true or false", "string_type": "must be a string",
-    "finite_number": "must be finite", "list_type": "must be an array",
-    "model_type": "must be a table", "dict_type": "must be a table",
+    "float_type": "a number", "int_type": "a whole number", "bool_type": "true or false",
+    "string_type": "a string", "finite_number": "a finite number", "list_type": "an array",
+    "model_type": "a table", "dict_type": "a table",
 }
 
-
 _PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base"}
+
+
+def show(value: Any, width: int = 60) -> str:
+    """A value as a TOML file writes it (``true``, ``'one'``, ``[1, 2]``), shortened to ``width``.
+
+    >>> show(True), show("one"), show([1, 2.5]), show({"a": 4})
+    ('true', "'one'", '[1, 2.5]', '{ a = 4 }')
+    """
+    if isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, (list, tuple)):
+        text = "[" + ", ".join(show(v, width) for v in value) + "]"
+    elif isinstance(value, Mapping):
+        text = "{ " + ", ".join(f"{k} = {show(v, width)}" for k, v in value.items()) + " }" if value else "{}"
+    else:
+        text = repr(value)
+    return text if len(text) <= width else text[: width - 1] + "…"
 
 
 def _where(loc: tuple) -> tuple[str, str | None]:
@@ -257,8 +272,7 @@ def _allowed(model: type[BaseModel], loc: tuple) -> list[str]:
         field = getattr(cur, "model_fields", {}).get(e)
         if field is None:
             return []
-        ann = field.annotation
-        cur = _model_in(ann)
+        cur = _model_in(field.annotation)
         if cur is None:
             return []
     return sorted(getattr(cur, "model_fields", {}))
@@ -275,31 +289,31 @@ def _model_in(ann: Any) -> type[BaseModel] | None:
 
 
 def _sentence(err: dict, model: type[BaseModel], table_name: str, source: str) -> str:
+    """One sentence in the words every project file uses: ``SOURCE: [TABLE] key 'K' must be …, not V.``"""
     rel = tuple(err["loc"])
     loc = (table_name,) + rel
     table, key = _where(loc)
     kind = err["type"]
     value = err.get("input")
     if kind == "extra_forbidden":
-        allowed = _allowed(model, rel)
-        return f"{source}: unknown key '{loc[-1]}' in {table} (allowed: {', '.join(allowed)})."
+        return f"{source}: {table} has an unknown key '{loc[-1]}' (allowed: {', '.join(_allowed(model, rel))})."
     if kind == "missing":
-        return f"{source}: {table} needs '{key}'."
-    what = f"'{key}' in {table}" if key else table
+        return f"{source}: {table} needs the key '{key}'."
+    what = f"{table} key '{key}'" if key else table
     if kind in {"too_short", "too_long"} or (kind == "list_type" and key in _PAIRS):
-        return f"{source}: {what} must be a pair [low, high], not {value!r}."
+        return f"{source}: {what} must be a pair [low, high], not {show(value)}."
     if kind == "literal_error":
         expected = err.get("ctx", {}).get("expected", "")
-        return f"{source}: {what} must be {expected}, not {value!r}."
+        return f"{source}: {what} must be {expected}, not {show(value)}."
     if kind in {"greater_than", "greater_than_equal"}:
         ctx = err.get("ctx", {})
         bound = ctx.get("gt", ctx.get("ge"))
         sign = ">" if kind == "greater_than" else "≥"
-        return f"{source}: {what} must be {sign} {bound:g}, not {value!r}."
+        return f"{source}: {what} must be {sign} {bound:g}, not {show(value)}."
     if kind == "value_error":
         return f"{source}: {what} {err['ctx']['error']}"
     words = _TYPE_WORDS.get(kind, err["msg"][0].lower() + err["msg"][1:])
-    return f"{source}: {what} {words}, not {value!r}."
+    return f"{source}: {what} must be {words}, not {show(value)}."
 
 
 def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
@@ -314,11 +328,12 @@ def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
         raise SchemaError(f"{source}: the document must be a TOML table.")
     for key in doc:
         if key != table and key not in OWNED_BY_RUNNER:
-            raise SchemaError(
-                f"{source}: unknown top-level key '{key}' (expected [{table}], [scene] or [expect])."
-            )
-    if table not in doc or not isinstance(doc[table], Mapping):
-        raise SchemaError(f"{source}: missing table [{table}].")
+            raise SchemaError(f"{source}: the file has an unknown table [{key}] (allowed here: [{table}], "
+                              f"{', '.join(f'[{k}]' for k in sorted(OWNED_BY_RUNNER))}).")
+    if table not in doc:
+        raise SchemaError(f"{source}: the file needs the table [{table}].")
+    if not isinstance(doc[table], Mapping):
+        raise SchemaError(f"{source}: [{table}] must be a table, not {show(doc[table])}.")
     model = TABLES[table]
     try:
         return model.model_validate(dict(doc[table]))
@@ -340,5 +355,7 @@ def load_toml(path: str) -> dict:
         raise SchemaError(f"{path}: is a directory, not a TOML file.") from None
     except UnicodeDecodeError:
         raise SchemaError(f"{path}: not a text file.") from None
+    except OSError as exc:
+        raise SchemaError(f"{path}: cannot be read ({exc.strerror}).") from None
     except tomllib.TOMLDecodeError as exc:
         raise SchemaError(f"{path}: not valid TOML ({exc}).") from None

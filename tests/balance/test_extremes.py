@@ -9,9 +9,9 @@ import pytest
 
 from balance import SpringBounds, arm_from_dict, balance_arm, fit_spring, solve_pantograph, verify_counter_mass
 from balance.extremes import box_extremes
-from balance.fit import relative_errors
-from balance.pantograph import pantograph_from_dict
-from balance.potential import terms_forces
+from balance.devices.fit import relative_errors
+from balance.problems.pantograph import pantograph_problem
+from balance.model.potential import terms_forces
 
 
 def grid(lo, hi, n):
@@ -42,8 +42,8 @@ def test_pantograph_force_extremes_are_those_of_a_dense_search(model):
     """Issue 27: the cylinder force range was the best of 1000 samples (399.9 … 457.4 N at half
     payload) while the plot showed 396.7 … 471 N. Now within 0.1 % (here 1e-9) of a dense search."""
     doc = model("pantograph")
-    p, _ = pantograph_from_dict(doc)
-    out = solve_pantograph(doc)
+    p = pantograph_problem(doc).pantograph
+    out = solve_pantograph(doc).to_dict()
     th = grid([p.range2[0], p.range3[0]], [p.range2[1], p.range3[1]], 1201)
     half = p.cylinder_force(th, 0.5)
     cf = out["cylinder_force"]
@@ -88,7 +88,7 @@ def test_spring_fit_error_is_the_largest_over_the_range():
 def test_counter_mass_errors_are_the_largest_over_the_stroke():
     r = verify_counter_mass(2.0, 0.1, 1.5, 0.5, stroke=0.6, samples=7)  # few samples: the search finds the rest
     q = np.linspace(-0.6, 0.6, 200_001)
-    from balance.countermass import counter_mass_laws
+    from balance.devices.countermass import counter_mass_laws
 
     z1, z2, _ = counter_mass_laws(q, 2.0, 0.1, 1.5, r.C)
     err = np.abs(0.1 + 2.0 * q * q + 1.5 * (z1 * z1 + z2 * z2) - r.C).max()

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from balance import BalanceError, arm_from_dict, solve_arm
-from balance.potential import terms_forces, terms_potential
-from balance.urdf import UrdfArm, arm_to_urdf, load_urdf, pinocchio_check, pinocchio_model
+from balance.model.potential import terms_forces, terms_potential
+from balance.model.urdf import UrdfArm, arm_to_urdf, load_urdf, pinocchio_check, pinocchio_model
 
 
 def random_urdf(rng: np.random.Generator, n: int, prismatic: int | None = None) -> str:
@@ -58,16 +58,16 @@ def test_spatial_arm_with_a_slide_follows_the_gamma_bound():
         arm = UrdfArm(pinocchio_model(random_urdf(rng, 4, prismatic=3)), "slide", accuracy=eps)
         chk = pinocchio_check(arm, arm.harmonic_terms(), 500, 1)
         # error of q ≈ k·sin(q/k) over the stroke: relative γ²/6 ≤ ε of the slide's terms
-        assert chk["relative_residual"] < 50 * eps
-    assert chk["relative_residual"] > 1e-12  # an approximation, honestly not exact
+        assert chk.relative_residual < 50 * eps
+    assert chk.relative_residual > 1e-12  # an approximation, honestly not exact
 
 
 @pytest.mark.parametrize("name", ["arm_base_drives", "arm_prismatic"])
 def test_toml_arms_agree_with_pinocchio(model, name):
     arm = arm_from_dict(model(name))
     chk = pinocchio_check(arm, arm.harmonic_terms(), 1000, 3)
-    assert chk["gravity_agreement"] < 1e-9  # the project's gravity forces = Pinocchio's, relative
-    out = solve_arm(model(name))
+    assert chk.gravity_agreement < 1e-9  # the project's gravity forces = Pinocchio's, relative
+    out = solve_arm(model(name)).to_dict()
     assert out["pinocchio"]["relative_residual"] == pytest.approx(out["relative_residual"], rel=1e-6, abs=1e-13)
 
 
@@ -75,7 +75,7 @@ def test_example1_as_urdf_gives_the_textbook_amplitudes(model):
     from pathlib import Path
 
     doc = model("arm_urdf_example1")
-    out = solve_arm(doc, str(Path(__file__).resolve().parents[2] / "models" / "arm_urdf_example1.toml"))
+    out = solve_arm(doc, str(Path(__file__).resolve().parents[2] / "models" / "arm_urdf_example1.toml")).to_dict()
     exp = doc["expect"]
     got = sorted(out["terms"], key=lambda t: -t["amplitude"])
     assert [t["amplitude"] for t in got] == pytest.approx(exp["amplitudes"], rel=1e-12)
@@ -144,7 +144,7 @@ def test_urdf_arm_with_a_slide_is_balanced_within_its_bound(tmp_path):
     joint holds for the true largest residual, and Pinocchio's gravity agrees at the worst configurations."""
     f = tmp_path / "slide.urdf"
     f.write_text(random_urdf(np.random.default_rng(5), 4, prismatic=2))
-    out = solve_arm({"arm": {"urdf": str(f), "accuracy": 1e-4}})
+    out = solve_arm({"arm": {"urdf": str(f), "accuracy": 1e-4}}).to_dict()
     (pr,) = out["prismatic"]
     assert pr["coordinate"] == "q2" and pr["rel_error_bound"] <= 1e-4
     bound = np.array(pr["residual_bound_per_joint"])

@@ -39,12 +39,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InvalidArm
-from .extremes import EXTREMES_NOTE, box_extremes
+from ..errors import InvalidArm
 from .potential import HarmonicTerm
-from .schema import PantographTable, parse
 
-__all__ = ["Pantograph", "pantograph_from_dict", "balance_pantograph", "virtual_work_forces"]
+__all__ = ["Pantograph", "virtual_work_forces", "stroke_gradients", "PAYLOADS"]
 
 PAYLOADS = (0.0, 0.5, 1.0)
 
@@ -230,7 +228,7 @@ class Pantograph:
         return (self.vertical_load(payload_fraction) * bhat[:, 1] - F * np.sum(u * bhat, axis=1)) / self.k
 
 
-def _gradients(p: Pantograph, th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def stroke_gradients(p: Pantograph, th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``∂s/∂θ`` of the cylinder length and ``∂ρ_C/∂θ`` of the reach ``|C − A|``, each (m, 2)."""
     pts = p.points(th)
     c2, s2, c3, s3 = np.cos(th[:, 0]), np.sin(th[:, 0]), np.cos(th[:, 1]), np.sin(th[:, 1])
@@ -249,139 +247,8 @@ def virtual_work_forces(p: Pantograph, th: np.ndarray, payload_fraction: float =
     substitution weights and of the moment formula. Shape (m, 2).
     """
     th = np.atleast_2d(th)
-    ds, drho = _gradients(p, th)
+    ds, drho = stroke_gradients(p, th)
     q = p.gravity_forces(th, payload_fraction)
     q[:, 0] += p.term().moment(th[:, 0])  # the spring's force on θ2: +W_D·l2·cos θ2
     mat = np.stack([ds, drho], axis=2)  # (m, 2 equations, 2 unknowns)
     return np.linalg.solve(mat, -q[..., None])[..., 0]
-
-
-def _force_columns(p: Pantograph, th: np.ndarray) -> np.ndarray:
-    """Per configuration: F and R at payloads 0, ½, 1 (m, 6)."""
-    return np.stack([p.cylinder_force(th, f) for f in PAYLOADS] + [p.hand_force(th, f) for f in PAYLOADS], axis=1)
-
-
-def _cylinder_columns(p: Pantograph, th: np.ndarray) -> np.ndarray:
-    """Per configuration: the cylinder's length and lever arm about A (m, 2)."""
-    length, _, lever = p.cylinder(th)
-    return np.stack([length, lever], axis=1)
-
-
-def _residual_columns(p: Pantograph, th: np.ndarray) -> np.ndarray:
-    """Virtual-work residual on (θ2, θ3) and the gravity forces, at payloads 0, ½, 1 (m, 12)."""
-    ds, drho = _gradients(p, th)
-    t = p.term()
-    cols = []
-    for frac in PAYLOADS:
-        q = p.gravity_forces(th, frac)
-        cols.append(q.copy())
-        q[:, 0] += t.moment(th[:, 0])
-        cols.append(q + p.cylinder_force(th, frac)[:, None] * ds + p.hand_force(th, frac)[:, None] * drho)
-    return np.concatenate(cols[1::2] + cols[0::2], axis=1)
-
-
-def balance_pantograph(p: Pantograph, samples: int = 1000, seed: int = 0, r: float | None = None,
-                       r0: float | None = None) -> dict:
-    """Spring device, cylinder force over the workspace and the virtual-work check.
-
-    Every range reported (cylinder and hand forces, cylinder length and lever arm, the residual)
-    is a true extreme over the workspace: the ``samples`` random ``(θ2, θ3)`` (seeded) are the
-    starts of a bounded local search (:func:`balance.extremes.box_extremes`). The force is linear
-    in the payload, so its extremes over payloads 0 … max are those at 0 and at the maximum.
-    The check: at the samples and at the worst configurations, with payloads 0, ½, 1, the
-    generalised forces of the links' own weights, of the spring, of the cylinder force ``F`` and
-    of the operator's force ``R`` along ``A→C`` must cancel.
-
-    Examples
-    --------
-    >>> out = balance_pantograph(Pantograph(l2=0.8, l3=1.0, k=4.0, w2=60.0, w3=40.0, tool=20.0), samples=50)
-    >>> out["relative_residual"] < 1e-12
-    True
-    """
-    th = p.sample(samples, seed)
-    t = p.term()
-    lo = [p.range2[0], p.range3[0]]
-    hi = [p.range2[1], p.range3[1]]
-    (len_lo, len_hi), (lev_lo, lev_hi) = box_extremes(lambda x: _cylinder_columns(p, x), lo, hi, th)
-    if lev_lo.value <= 1e-9 * p.l2 and lev_hi.value >= -1e-9 * p.l2:
-        raise InvalidArm("the cylinder's line of action passes through A in the workspace, so it cannot hold "
-                         "the pantograph there; move its base (cylinder.base).")
-    ext = box_extremes(lambda x: _force_columns(p, x), lo, hi, th)
-    f_ext, h_ext = ext[0:3], ext[3:6]
-    res_ext = box_extremes(lambda x: _residual_columns(p, x), lo, hi, th, floor=math.inf)
-    worst = max(max(-a.value, b.value) for a, b in res_ext[:6])
-    mg = max(max(-a.value, b.value) for a, b in res_ext[6:])
-    by_payload = {str(f): max(max(-a.value, b.value) for a, b in res_ext[2 * i:2 * i + 2])
-                  for i, f in enumerate(PAYLOADS)}
-    dev = {"sine": {"eT": t.amplitude}, "tension": {"crd": t.amplitude, "zero_at_deg": 90.0}}
-    if r is not None and r0 is not None:
-        dev["tension"].update({"r": r, "r0": r0, "a": r0, "c": t.amplitude / (r * (r + r0))})
-    f_min = min(f_ext[0][0], f_ext[2][0], key=lambda e: e.value)
-    f_max = max(f_ext[0][1], f_ext[2][1], key=lambda e: e.value)
-    h_min = min(h_ext[0][0], h_ext[2][0], key=lambda e: e.value)
-    h_max = max(h_ext[0][1], h_ext[2][1], key=lambda e: e.value)
-    hand_peak = max(-h_min.value, h_max.value)
-    load = p.vertical_load(1.0)
-    notes = []
-    if f_min.value < 0:
-        notes.append("the cylinder pulls somewhere in the workspace (negative force): it must be double-acting")
-    if hand_peak > 0.05 * load:
-        notes.append(f"the operator holds up to {hand_peak:.3g} N along A→C "
-                     f"({100 * hand_peak / load:.3g} % of the full load {load:.4g} N reduced to B): "
-                     "a base P further below B keeps the cylinder nearer vertical")
-
-    def where(e):
-        return [math.degrees(v) for v in e.at]
-
-    return {
-        "point_weights": p.point_weights(0.5),
-        "point_weights_without_payload": p.point_weights(0.0),
-        "term": t.to_dict() | {"form_text": "θ2"},
-        "device": dev,
-        "spring_moment": f"{t.amplitude:.6g}·cos θ2 on the upper arm (base point C above A)",
-        "drive_force": p.vertical_load(0.5),
-        "drive_force_range": [p.vertical_load(0.0), p.vertical_load(1.0)],
-        "cylinder_force": {
-            "min": f_min.value, "max": f_max.value, "at_min_deg": where(f_min), "at_max_deg": where(f_max),
-            "half_payload": {"min": f_ext[1][0].value, "max": f_ext[1][1].value,
-                             "at_min_deg": where(f_ext[1][0]), "at_max_deg": where(f_ext[1][1])},
-            "by_payload": {str(f): {"min": lo_.value, "max": hi_.value} for f, (lo_, hi_) in zip(PAYLOADS, f_ext)},
-            "sampled": {"min": min(f_ext[0][0].sampled, f_ext[2][0].sampled),
-                        "max": max(f_ext[0][1].sampled, f_ext[2][1].sampled)},
-        },
-        "hand_force": {"min": h_min.value, "max": h_max.value},
-        "cylinder": {
-            "base": [float(v) for v in p.cylinder_base],
-            "length_min": len_lo.value, "length_max": len_hi.value,
-            "lever_min": min(abs(lev_lo.value), abs(lev_hi.value)),
-            "lever_max": max(abs(lev_lo.value), abs(lev_hi.value)),
-        },
-        "max_residual": worst,
-        "residual_by_payload": by_payload,
-        "max_gravity_force": mg,
-        "relative_residual": worst / mg if mg > 0 else 0.0,
-        "samples": samples,
-        "seed": seed,
-        "extremes": EXTREMES_NOTE,
-        "notes": notes,
-        "note": "the payload sits at C: it changes the cylinder and hand forces, never the spring",
-    }
-
-
-def pantograph_from_dict(doc, source: str = "<pantograph>") -> tuple[Pantograph, dict]:
-    """Parse a ``[pantograph]`` document; returns the model and options (spring, check)."""
-    t: PantographTable = parse(doc, "pantograph", source)
-    try:
-        p = Pantograph(
-            l2=t.l2, l3=t.l3, k=t.ratio,
-            w2=t.upper.weight, w3=t.forearm.weight, w9=t.bar_eb.weight, w8=t.bar_fb.weight,
-            w14=t.parallelogram_bars.weight, w15=t.parallelogram_bars.weight,
-            w16=t.elbow_plate.weight, w4=t.wrist_plate.weight,
-            s2=t.upper.com, s3=t.forearm.com, tool=t.tool, payload=t.payload, offset=t.parallelogram_offset,
-            base=None if t.cylinder.base is None else tuple(t.cylinder.base),
-            range2=tuple(math.radians(v) for v in t.range_upper_deg),
-            range3=tuple(math.radians(v) for v in t.range_forearm_deg),
-        )
-    except InvalidArm as exc:
-        raise InvalidArm(f"{source}: {exc}") from None
-    return p, {"r": t.spring.r, "r0": t.spring.r0, "samples": t.check.samples, "seed": t.check.seed}

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidInput
-from .extremes import box_extremes
+from ..errors import InvalidInput
+from ..extremes import box_extremes
 
 __all__ = ["CounterMass", "c_min", "counter_mass_laws", "crank_construction", "verify_counter_mass"]
 

@@ -25,19 +25,19 @@ import itertools
 import math
 import os
 import sys
-from dataclasses import dataclass, field
-from types import SimpleNamespace
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .arm import Arm, gear_ratio_for_accuracy
-from .errors import InvalidArm, SchemaError
+from ..errors import InvalidArm, SchemaError
+from .arm import Arm, ArmModel, Coordinate, gear_ratio_for_accuracy
 from .potential import HarmonicTerm, merge_terms, terms_forces
 
-__all__ = ["UrdfArm", "load_urdf", "arm_to_urdf", "pinocchio_model", "pinocchio_check", "MAX_REVOLUTE"]
+__all__ = ["UrdfArm", "load_urdf", "validate_urdf", "arm_to_urdf", "pinocchio_model", "pinocchio_gravity",
+           "pinocchio_check", "PinocchioCheck", "URDF_JOINT_TYPES", "MAX_REVOLUTE"]
 
-#: 3ⁿ potential evaluations: beyond 12 revolute joints the sampling grid is refused
-MAX_REVOLUTE = 12
+#: the decomposition's grid holds 3ⁿ complex numbers: beyond 16 revolute joints (0.7 GB) it is refused
+MAX_REVOLUTE = 16
 _G = 9.80665
 
 
@@ -224,78 +224,75 @@ def pinocchio_model(urdf_text: str, g: float = _G):
     return model
 
 
-@dataclass
-class UrdfArm:
-    """A serial arm read from URDF: one coordinate per joint (continuous joints as an angle).
+#: Pinocchio's joint models a URDF's revolute, continuous and prismatic joints become
+_REVOLUTE = {"JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned"}
+_UNBOUNDED = {"JointModelRUBX", "JointModelRUBY", "JointModelRUBZ", "JointModelRevoluteUnboundedUnaligned"}
+_PRISMATIC = {"JointModelPX", "JointModelPY", "JointModelPZ", "JointModelPrismaticUnaligned"}
 
-    Quacks like :class:`~balance.arm.Arm` for :func:`~balance.static.check_terms` and the
-    device tables: ``n``, ``links``, ``sample``, ``potential``, ``gravity_forces``,
-    ``drives``, ``joint_names``, ``shaft_names``.
+
+class UrdfArm(ArmModel):
+    """A serial (or tree) arm read from URDF: one coordinate per joint (continuous joints as an angle).
+
+    Gravity comes from Pinocchio (``potential``, ``gravity_forces``); the harmonic terms from
+    sampling its potential (see the module docstring).
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+        A fixed-base model (:func:`pinocchio_model`).
+    name : str
+    accuracy : float
+        ``ε`` of every slide's ``γ = q/k`` substitution (:func:`~balance.model.arm.gear_ratio_for_accuracy`).
+    drive_matrix : array, optional
+        ``D`` with ``q = D·ψ`` (default: a drive at each joint).
     """
 
-    model: object
-    name: str = "urdf arm"
-    accuracy: float = 1e-3
-    drive_matrix: np.ndarray | None = None
-    kinds: list[str] = field(default_factory=list)
-    limits: list[tuple[float, float]] = field(default_factory=list)
-    joint_labels: list[str] = field(default_factory=list)
-    gear_ratios: list[float] = field(default_factory=list)
-
-    def __post_init__(self) -> None:
-        m = self.model
-        for j in range(1, m.njoints):
-            jm = m.joints[j]
-            short = jm.shortname()
-            label = m.names[j]
-            if "Unbounded" in short or short.startswith("JointModelRUB"):
-                kind, lim = "revolute", (-math.pi, math.pi)
-            elif "Revolute" in short or short.startswith("JointModelR"):
-                kind = "revolute"
-                lo, hi = float(m.lowerPositionLimit[jm.idx_q]), float(m.upperPositionLimit[jm.idx_q])
+    def __init__(self, model, name: str = "urdf arm", accuracy: float = 1e-3, drive_matrix=None):
+        self.model, self.name, self.accuracy = model, name, accuracy
+        self.drive_matrix = None if drive_matrix is None else np.asarray(drive_matrix, dtype=float)
+        coords = []
+        for j in range(1, model.njoints):
+            jm = model.joints[j]
+            short, label = jm.shortname(), model.names[j]
+            lo, hi = float(model.lowerPositionLimit[jm.idx_q]), float(model.upperPositionLimit[jm.idx_q])
+            if short in _UNBOUNDED:
+                coords.append(Coordinate(label, "revolute", (-math.pi, math.pi)))
+            elif short in _REVOLUTE:
                 lim = (max(lo, -math.pi), min(hi, math.pi)) if lo < hi else (-math.pi, math.pi)
-            elif "Prismatic" in short or short.startswith("JointModelP"):
-                kind = "prismatic"
-                lo, hi = float(m.lowerPositionLimit[jm.idx_q]), float(m.upperPositionLimit[jm.idx_q])
+                coords.append(Coordinate(label, "revolute", lim))
+            elif short in _PRISMATIC:
                 if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
                     raise InvalidArm(f"URDF joint '{label}' is prismatic and needs finite limits lower < upper.")
-                lim = (lo, hi)
+                coords.append(Coordinate(label, "prismatic", (lo, hi), hi - lo,
+                                         gear_ratio_for_accuracy(hi - lo, accuracy)))
             else:
                 raise InvalidArm(f"URDF joint '{label}' is of a kind balance cannot take ({short}); "
                                  "use revolute, continuous or prismatic joints.")
-            self.kinds.append(kind)
-            self.limits.append(lim)
-            self.joint_labels.append(label)
-            stroke = lim[1] - lim[0]
-            self.gear_ratios.append(gear_ratio_for_accuracy(stroke, self.accuracy) if kind == "prismatic" else 0.0)
-        if not self.kinds:
+        if not coords:
             raise InvalidArm("the URDF has no movable joint.")
-        self.links = [SimpleNamespace(name=label, joint=kind, limits=lim, stroke=lim[1] - lim[0], gear_ratio=k)
-                      for label, kind, lim, k in zip(self.joint_labels, self.kinds, self.limits, self.gear_ratios)]
-        self._data = self.model.createData()
-
-    # ----------------------------------------------------------------- basics
-    @property
-    def n(self) -> int:
-        return len(self.kinds)
+        self.coordinates = tuple(coords)
+        if self.drive_matrix is not None and (self.drive_matrix.shape != (self.n, self.n)
+                                              or abs(np.linalg.det(self.drive_matrix)) < 1e-12):
+            raise InvalidArm(f"the drive matrix must be a non-singular {self.n}×{self.n} matrix for this URDF arm.")
+        self._data = model.createData()
 
     @property
-    def joint_names(self) -> list[str]:
-        return [f"q{i + 1}" for i in range(self.n)]
+    def kinds(self) -> list[str]:
+        return [c.joint for c in self.coordinates]
+
+    def link_name(self, j: int) -> str:
+        """The name of the link joint ``j`` (0-based) moves: the first URDF link it carries."""
+        pin = _pin()
+        for f in self.model.frames:
+            parent = f.parentJoint if hasattr(f, "parentJoint") else f.parent
+            if f.type == pin.FrameType.BODY and parent == j + 1:
+                return f.name
+        return self.coordinates[j].name
 
     @property
-    def drives(self) -> np.ndarray:
-        return np.eye(self.n) if self.drive_matrix is None else np.asarray(self.drive_matrix, dtype=float)
-
-    @property
-    def shaft_names(self) -> list[str]:
-        return [f"ψ{i + 1}" for i in range(self.n)]
-
-    def sample(self, count: int, seed: int = 0) -> np.ndarray:
-        rng = np.random.default_rng(seed)
-        lo = np.array([lim[0] for lim in self.limits])
-        hi = np.array([lim[1] for lim in self.limits])
-        return lo + (hi - lo) * rng.random((count, self.n))
+    def g(self) -> float:
+        """The magnitude of the model's gravity (m/s²)."""
+        return float(np.linalg.norm(self.model.gravity.linear))
 
     def config(self, q: np.ndarray) -> np.ndarray:
         """Pinocchio's configuration vector for joint coordinates ``q`` (n,)."""
@@ -336,7 +333,7 @@ class UrdfArm:
         pin.computeSubtreeMasses(self.model, data)
         g = float(np.linalg.norm(self.model.gravity.linear))
         bounds = np.zeros(self.n)
-        for j, ln in enumerate(self.links):
+        for j, ln in enumerate(self.coordinates):
             if ln.joint != "prismatic":
                 continue
             weight = g * float(data.mass[j + 1])
@@ -351,14 +348,29 @@ class UrdfArm:
         return bounds
 
     # ------------------------------------------------------- harmonic terms
+    def ensure_decomposable(self, limit: float | None) -> float:
+        """Refuse a decomposition whose grid would not fit in memory, or (``limit`` s) take too long.
+
+        Returns the estimated seconds (``3ʳ·2ᵖ`` potential evaluations, r revolute joints, p slides).
+        """
+        from ..budget import ensure_affordable
+
+        rev = sum(c.joint == "revolute" for c in self.coordinates)
+        pri = self.n - rev
+        if rev > MAX_REVOLUTE:
+            raise InvalidArm(f"the URDF arm has {rev} revolute joints; the exact decomposition samples 3ⁿ "
+                             f"configurations and stops at {MAX_REVOLUTE} (its grid would fill memory).")
+        q = self.sample(4)
+        return ensure_affordable(f"decomposing the potential of {rev} revolute joints and {pri} slides "
+                                 f"({3 ** rev * 2 ** pri} evaluations)", 3 ** rev * 2 ** pri,
+                                 lambda: self.potential(q), limit, per=len(q))
+
     def harmonic_terms(self) -> list[HarmonicTerm]:
         """Exact harmonic terms for revolute joints (DFT on the 3-point grid), ``γ = q/k`` for slides."""
-        rev = [i for i, k in enumerate(self.kinds) if k == "revolute"]
-        pri = [i for i, k in enumerate(self.kinds) if k == "prismatic"]
-        if len(rev) > MAX_REVOLUTE:
-            raise InvalidArm(f"the URDF arm has {len(rev)} revolute joints; the exact decomposition samples 3ⁿ "
-                             f"configurations and stops at {MAX_REVOLUTE}.")
-        mids = {i: 0.5 * (self.limits[i][0] + self.limits[i][1]) for i in pri}
+        rev = [i for i, c in enumerate(self.coordinates) if c.joint == "revolute"]
+        pri = [i for i, c in enumerate(self.coordinates) if c.joint == "prismatic"]
+        self.ensure_decomposable(None)
+        mids = {i: 0.5 * sum(self.coordinates[i].limits) for i in pri}
         nodes = 2 * math.pi * np.arange(3) / 3
         phasors: list[tuple[complex, np.ndarray]] = []
         # U at slide offsets 0/1 from mid-stroke → affine coefficients by inclusion-exclusion
@@ -390,15 +402,22 @@ class UrdfArm:
                 for signs in itertools.product((1, -1), repeat=len(slides)):
                     z, f = c, form.copy()
                     for j, s in zip(slides, signs):
-                        k = self.gear_ratios[j]
+                        k = self.coordinates[j].gear_ratio
                         z *= s * k / 2j * np.exp(-1j * s * mids[j] / k)
                         f[j] += s / k
                     phasors.append((z, f))
         return merge_terms(phasors)
 
 
-def load_urdf(path: str, accuracy: float = 1e-3, g: float = _G, drives=None, name: str | None = None) -> UrdfArm:
-    """Read a URDF file into a :class:`UrdfArm` (one sentence naming the file on any failure)."""
+def load_urdf(path: str, accuracy: float = 1e-3, g: float = _G, drive_matrix=None, name: str | None = None) -> UrdfArm:
+    """Read a URDF file into a :class:`UrdfArm` (one sentence naming the file on any failure).
+
+    Examples
+    --------
+    >>> arm = load_urdf("models/arm_base_drives.urdf")
+    >>> arm.n, [c.joint for c in arm.coordinates]
+    (4, ['revolute', 'revolute', 'revolute', 'revolute'])
+    """
     try:
         with open(path, encoding="utf-8") as fh:
             text = fh.read()
@@ -406,9 +425,11 @@ def load_urdf(path: str, accuracy: float = 1e-3, g: float = _G, drives=None, nam
         raise SchemaError(f"{path}: no such URDF file.") from None
     except (IsADirectoryError, UnicodeDecodeError):
         raise SchemaError(f"{path}: not a URDF text file.") from None
+    except OSError as exc:
+        raise SchemaError(f"{path}: cannot be read ({exc.strerror}).") from None
     try:
         model = pinocchio_model(text, g)
-        return UrdfArm(model, name or os.path.basename(path), accuracy, drives)
+        return UrdfArm(model, name or os.path.basename(path), accuracy, drive_matrix)
     except (SchemaError, InvalidArm) as exc:
         raise type(exc)(f"{path}: {exc}") from None
 
@@ -467,36 +488,72 @@ def arm_to_urdf(arm: Arm, g: float = _G) -> str:
     return "\n".join(out)
 
 
-def pinocchio_check(arm, terms, samples: int = 1000, seed: int = 0, g: float = _G, worst=(), scale: float = 0.0) -> dict:
-    """Residuals against Pinocchio's generalised gravity at ``samples`` random configurations
-    and at the configurations ``worst`` (the worst ones the arm's own check found).
+@dataclass(frozen=True)
+class PinocchioCheck:
+    """An arm's balance recomputed with Pinocchio's generalised gravity (the independent check).
 
-    ``gravity_agreement``: the arm model's own gravity forces against Pinocchio's (relative
-    to the largest); ``max_residual``: Pinocchio's gravity against the devices' forces
-    (N·m or N), ``relative_residual`` the same over the largest gravity force (``scale``, or
-    the largest Pinocchio finds at these configurations).
+    Attributes
+    ----------
+    samples, seed : int
+        The random configurations (seeded) …
+    worst_configurations : int
+        … and the worst configurations of the arm's own check, evaluated too.
+    pinocchio : str
+        Pinocchio's version.
+    max_gravity_force : float
+        The scale of the relative residual (N·m or N).
+    max_residual, relative_residual : float
+        ``|Q_Pinocchio + Q_devices|`` at those configurations, and over the scale.
+    max_residual_at_worst : float or None
+        The same at the worst configurations only.
+    gravity_agreement : float or None
+        A TOML arm's own gravity forces against Pinocchio's, relative to the scale.
     """
-    if isinstance(arm, UrdfArm):
-        pa = arm
-        own = None
-    else:
-        pa = UrdfArm(pinocchio_model(arm_to_urdf(arm, g), g), arm.name)
-        own = arm
+
+    samples: int
+    seed: int
+    worst_configurations: int
+    pinocchio: str
+    max_gravity_force: float
+    max_residual: float
+    relative_residual: float
+    max_residual_at_worst: float | None = None
+    gravity_agreement: float | None = None
+
+    def to_dict(self) -> dict:
+        return {k: v for k, v in asdict(self).items() if v is not None}
+
+
+def pinocchio_gravity(arm: ArmModel, g: float = _G) -> "UrdfArm":
+    """The arm as Pinocchio sees it: itself for a URDF arm, its URDF (:func:`arm_to_urdf`) otherwise."""
+    return arm if isinstance(arm, UrdfArm) else UrdfArm(pinocchio_model(arm_to_urdf(arm, g), g), arm.name)
+
+
+def pinocchio_check(arm: ArmModel, terms, samples: int = 1000, seed: int = 0, g: float = _G, worst=(),
+                    scale: float = 0.0) -> PinocchioCheck:
+    """Residuals of the devices ``terms`` against Pinocchio's generalised gravity at ``samples`` random
+    configurations and at the configurations ``worst`` (the worst ones the arm's own check found).
+
+    The relative residual divides by ``scale`` (the largest gravity force over the workspace), or
+    by the largest Pinocchio finds at these configurations when that is larger.
+
+    Examples
+    --------
+    >>> from balance.model.arm import Link
+    >>> arm = Arm((Link("l", "revolute", 1.0, 10.0, 0.5),))
+    >>> pinocchio_check(arm, arm.harmonic_terms(), samples=20).relative_residual < 1e-14
+    True
+    """
+    pa = pinocchio_gravity(arm, g)
     q = arm.sample(samples, seed)
     if len(worst):
         q = np.concatenate([q, np.asarray(worst, dtype=float).reshape(-1, arm.n)])
     qg = pa.gravity_forces(q)
     scale = max(float(np.max(np.abs(qg))), scale) or 1.0
-    res = qg - terms_forces(terms, q)
-    out = {
-        "samples": samples, "seed": seed, "pinocchio": _pin().__version__,
-        "worst_configurations": len(worst),
-        "max_gravity_force": scale,
-        "max_residual": float(np.max(np.abs(res))),
-        "relative_residual": float(np.max(np.abs(res))) / scale,
-    }
-    if len(worst):
-        out["max_residual_at_worst"] = float(np.max(np.abs(res[samples:])))
-    if own is not None:
-        out["gravity_agreement"] = float(np.max(np.abs(own.gravity_forces(q) - qg))) / scale
-    return out
+    res = np.abs(qg - terms_forces(terms, q))
+    return PinocchioCheck(
+        samples=samples, seed=seed, worst_configurations=len(worst), pinocchio=_pin().__version__,
+        max_gravity_force=scale, max_residual=float(np.max(res)), relative_residual=float(np.max(res)) / scale,
+        max_residual_at_worst=float(np.max(res[samples:])) if len(worst) else None,
+        gravity_agreement=None if pa is arm else float(np.max(np.abs(arm.gravity_forces(q) - qg))) / scale,
+    )

@@ -28,14 +28,14 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, replace
 from typing import Callable
 
 import numpy as np
 from scipy import optimize
 
-from .errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
-from .extremes import box_extremes
+from ..errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
+from ..extremes import box_extremes
 from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice
 
 __all__ = [
@@ -46,11 +46,15 @@ __all__ = [
     "NORMS",
     "DEFAULT_METHOD",
     "DEFAULT_GRID",
+    "MAX_GRID",
+    "LeverGeometry",
     "relative_errors",
 ]
 
 NORMS = ("max", "rms")
 DEFAULT_GRID = 61
+#: the finest fit grid: finer ones only cost memory and time (one evaluation holds a few arrays of it)
+MAX_GRID = 100_001
 VERIFY_GRID = 4001
 _SENSE_TEXT = {
     +1: "away from the base point C (increasing φ)",
@@ -83,7 +87,60 @@ class SpringBounds:
     max_deflection: float | None = None
 
 
-@dataclass
+@dataclass(frozen=True)
+class LeverGeometry:
+    """The slotted lever of a compression-lever device (lengths in m, from the base point ``C``).
+
+    The spring is compressed by ``L`` (``compression_min`` … ``compression_max``); its free length
+    ``spring_free_length`` is the stop's distance from ``C``, so the lever reaches that far
+    (``reach_from_C``), ``extra_length`` beyond the farthest crank-pin position, which a spring
+    between ``C`` and ``B`` (``reach_from_C_fig_a``) would not need.
+    """
+
+    stop_distance_from_C: float
+    spring_free_length: float
+    spring_length_min: float
+    spring_length_max: float
+    compression_min: float
+    compression_max: float
+    deflection_ratio: float
+    designed_from_spring: bool = False
+
+    @property
+    def reach_from_C(self) -> float:
+        return self.stop_distance_from_C
+
+    @property
+    def reach_from_C_fig_a(self) -> float:
+        return self.compression_max
+
+    @property
+    def extra_length(self) -> float:
+        return self.stop_distance_from_C - self.compression_max
+
+    @property
+    def size_ratio(self) -> float:
+        return self.stop_distance_from_C / self.compression_max
+
+    @classmethod
+    def for_spring(cls, free_length: float, lmin: float, lmax: float, designed: bool = False) -> "LeverGeometry":
+        """The lever that carries a spring of ``free_length`` compressed by ``lmin`` … ``lmax``."""
+        s = free_length
+        return cls(s, s, s - lmax, s - lmin, lmin, lmax, lmax / s, designed)
+
+    def note(self) -> str:
+        """The device's size against a spring between C and B, in one sentence."""
+        s, lmax = self.reach_from_C, self.reach_from_C_fig_a
+        return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
+                f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression "
+                "spring")
+
+    def to_dict(self) -> dict:
+        return asdict(self) | {"reach_from_C": self.reach_from_C, "reach_from_C_fig_a": self.reach_from_C_fig_a,
+                               "extra_length": self.extra_length, "size_ratio": self.size_ratio}
+
+
+@dataclass(frozen=True)
 class FitResult:
     """Outcome of :func:`fit_spring` (SI units; errors relative to ``|Φ0|``).
 
@@ -111,14 +168,14 @@ class FitResult:
     grid: int
     seconds: float
     nfev: int
-    active_bounds: list[str]
+    active_bounds: tuple[str, ...]
     sense: int
     sense_text: str
     message: str
     reference_length: float = 0.0
-    notes: list[str] = field(default_factory=list)
+    notes: tuple[str, ...] = ()
     restarts: int = 0
-    lever: dict | None = None
+    lever: LeverGeometry | None = None
 
     @property
     def device(self) -> CrankRockerDevice:
@@ -129,6 +186,9 @@ class FitResult:
         d["phi_range_deg"] = [math.degrees(v) for v in self.phi_range]
         d["x"] = list(self.x)
         d["phi_range"] = list(self.phi_range)
+        d["active_bounds"] = list(self.active_bounds)
+        d["notes"] = list(self.notes)
+        d["lever"] = None if self.lever is None else self.lever.to_dict()
         return d
 
 
@@ -338,7 +398,7 @@ def _fit_trf(p: _Problem, norm: str):
 
     sol = run(z0, None)
     z = sol.x
-    msg = sol.message
+    msg, ok = sol.message, sol.status > 0
     if norm == "max":
         # Lawson's algorithm: reweight by the error magnitude, refit, keep the best max-norm point
         v = np.full(len(p.phi), 1.0 / len(p.phi))
@@ -355,7 +415,7 @@ def _fit_trf(p: _Problem, norm: str):
             if val < best:
                 best, bz = val, z
         z, msg = bz, "least_squares (trf) with Lawson reweighting for the max norm"
-    return z, msg
+    return z, msg, ok
 
 
 def _fit_nelder_mead(p: _Problem, norm: str):
@@ -364,7 +424,7 @@ def _fit_nelder_mead(p: _Problem, norm: str):
         p.objective, p.start(norm), args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
         options={"xatol": 1e-10, "fatol": 1e-14, "maxfev": 3000, "adaptive": True},
     )
-    return sol.x, sol.message
+    return sol.x, sol.message, bool(sol.success)
 
 
 def _fit_slsqp(p: _Problem, norm: str, z0=None):
@@ -414,7 +474,7 @@ def _fit_slsqp(p: _Problem, norm: str, z0=None):
             options={"ftol": 1e-15, "maxiter": 500},
         )
     y = sol.x
-    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}"
+    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}", bool(sol.success)
 
 
 def _fit_de(p: _Problem, norm: str):
@@ -424,10 +484,10 @@ def _fit_de(p: _Problem, norm: str):
         maxiter=80, popsize=8, polish=False, init="sobol",
     )
     # polish locally from the global candidate
-    z, (z2, _) = sol.x, _fit_slsqp(p, norm, z0=sol.x)
+    z, (z2, _, ok) = sol.x, _fit_slsqp(p, norm, z0=sol.x)
     if p.objective(z2, norm) <= p.objective(z, norm):
         z = z2
-    return z, "differential_evolution (seed 12345) polished by SLSQP"
+    return z, "differential_evolution (seed 12345) polished by SLSQP", ok
 
 
 #: a fit is a local optimum when a restart from it lowers the error by at most this (relative)
@@ -449,7 +509,7 @@ def _confirm_optimum(p: _Problem, z, norm: str) -> tuple[np.ndarray, float, int]
         nm = optimize.minimize(p.objective, z, args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
                                options={"xatol": 1e-10, "fatol": 1e-15, "maxfev": 600, "adaptive": True})
         z_nm = nm.x if nm.fun < best else z
-        z_sq, _ = _fit_slsqp(p, norm, z0=z_nm)
+        z_sq, _, _ = _fit_slsqp(p, norm, z0=z_nm)
         cand = min(((nm.fun, nm.x), (p.objective(z_sq, norm), z_sq)), key=lambda c: c[0])
         gain = (best - cand[0]) / best if best > 0 else 0.0
         if gain <= CONFIRM_TOL or rounds == CONFIRM_ROUNDS:
@@ -511,8 +571,8 @@ def fit_spring(
     norm : {"max", "rms"}
         Minimise the largest or the root-mean-square deviation over the range.
     grid : int
-        Number of equally spaced points of ``φ`` the fit uses (≥ 5). Reported errors are
-        measured afterwards on a fine grid, so they are not flattered by a coarse one.
+        Number of equally spaced points of ``φ`` the fit uses (5 … :data:`MAX_GRID`). Reported
+        errors are measured afterwards on a fine grid, so they are not flattered by a coarse one.
 
     Returns
     -------
@@ -535,13 +595,14 @@ def fit_spring(
     """
     t_start = time.perf_counter()
     if kind not in SPRING_KINDS:
-        raise InvalidInput(f"--kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
+        raise InvalidInput(f"the spring kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
     if norm not in NORMS:
-        raise InvalidInput(f"--norm must be 'max' or 'rms', not {norm!r}.")
+        raise InvalidInput(f"the norm must be 'max' or 'rms', not {norm!r}.")
     if method is not None and method not in METHODS:
-        raise InvalidInput(f"--method must be one of {', '.join(METHODS)}, not {method!r}.")
-    if not isinstance(grid, int) or grid < 5:
-        raise InvalidInput(f"the fit grid needs at least 5 points, not {grid!r}.")
+        raise InvalidInput(f"the fit method must be one of {', '.join(METHODS)}, not {method!r}.")
+    if not isinstance(grid, int) or not 5 <= grid <= MAX_GRID:
+        raise InvalidInput(f"the fit grid takes 5 to {MAX_GRID} points, not {grid!r} (the reported errors are "
+                           "measured afterwards on a fine grid of their own).")
     moment = float(moment)
     if not math.isfinite(moment) or moment == 0:
         raise InvalidInput(f"the moment amplitude Φ0 must be a finite non-zero number, not {moment}.")
@@ -577,7 +638,7 @@ def fit_spring(
     meth = method or DEFAULT_METHOD[norm]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        z, msg = METHODS[meth](p, norm)
+        z, msg, ok = METHODS[meth](p, norm)
         if not np.all(np.isfinite(z)):
             raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
         z, gain, rounds = _confirm_optimum(p, z, norm)
@@ -588,6 +649,9 @@ def fit_spring(
     if rounds:
         msg = (f"{msg}; restarted {rounds}× from its point (Nelder–Mead, then SLSQP): a local optimum to "
                f"{CONFIRM_TOL:g} of the error")
+    elif not ok:
+        msg = (f"{msg} — yet a restart from its point (Nelder–Mead, then SLSQP) lowers the error by less than "
+               f"{CONFIRM_TOL:g}: a local optimum")
     rho, rho0, al, viol = p.decode(z)
     if viol > 1e-9:
         raise FitFailed(f"the {meth} method ended outside the bounds ({msg}): where a limit leaves no room for "
@@ -634,14 +698,14 @@ def _check_feasible(p: _Problem) -> None:
         raise InfeasibleBounds(
             f"the force limit {b.max_force:g} N on a crank of at most {b.r[1]:g} m gives at most "
             f"{b.max_force * b.r[1]:g} N·m, less than the {abs(p.moment) * peak:g} N·m the target needs in this "
-            f"range; raise --max-force or the longest crank."
+            f"range; raise the force limit or the longest crank."
         )
     if p.kind == "compression":
         if not math.isfinite(p.al_b[1]) and not math.isfinite(p.Lf) and p.delta is None:
             raise InfeasibleBounds(
                 "with a compression spring and no upper bound on the pre-load a (nor a maximum free "
                 "length or deflection), the error keeps falling as a grows without limit; give a "
-                "finite bound on a, --max-free-length or --max-deflection."
+                "finite upper bound on a, a maximum free length or a maximum deflection."
             )
         smallest = 2 * b.r[0] + b.r0[0] + b.a[0]
         if b.max_free_length is not None and smallest > b.max_free_length:
@@ -663,7 +727,7 @@ def _check_feasible(p: _Problem) -> None:
     if p.kind == "compression" and p.delta is not None:
         raise InfeasibleBounds(
             f"no crank and spring within the bounds keeps the deflection ratio (l0 − L_min)/l0 below "
-            f"{p.delta:g}: raise --max-deflection, allow a longer r0 or a smaller pre-load a."
+            f"{p.delta:g}: raise the maximum deflection, allow a longer r0 or a smaller pre-load a."
         )
     raise InfeasibleBounds("no device within the stated bounds satisfies the free-length limit.")
 
@@ -720,7 +784,7 @@ def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: in
     if not (b.a[0] <= b.r0[1] and b.a[1] >= b.r0[0]):
         raise InfeasibleBounds(
             f"the compression-lever device is exact only at a = r0, but a ∈ [{b.a[0]:g}, {b.a[1]:g}] m and "
-            f"r0 ∈ [{b.r0[0]:g}, {b.r0[1]:g}] m never meet; widen --a or --r0."
+            f"r0 ∈ [{b.r0[0]:g}, {b.r0[1]:g}] m never meet; widen the range of a or of r0."
         )
     _check_feasible(p)
     longest = math.inf if b.max_free_length is None else delta * b.max_free_length / p.ell
@@ -732,30 +796,14 @@ def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: in
         if b.max_free_length is not None:
             limits.append(f"fits a spring of at most {b.max_free_length:g} m at a deflection ratio of {delta:g}")
         raise InfeasibleBounds(
-            f"no compression-lever device with a = r0 {' and '.join(limits)}; raise --max-force, "
-            "--max-free-length or --max-deflection."
+            f"no compression-lever device with a = r0 {' and '.join(limits)}; raise the force limit, "
+            "the maximum free length or the maximum deflection."
         )
     res = _finish(p, exact, "exact", norm, t_start, "compression spring on the lever beyond B, a = r0: exact", [])
     lmax = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2max)
     lmin = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2min)
-    s = lmax / delta
-    res.deflection = delta
-    res.lever = {
-        "stop_distance_from_C": s, "spring_free_length": s,
-        "spring_length_min": s - lmax, "spring_length_max": s - lmin,
-        "compression_min": lmin, "compression_max": lmax, "deflection_ratio": delta,
-        "reach_from_C": s, "reach_from_C_fig_a": lmax, "extra_length": s - lmax,
-        "size_ratio": s / lmax,
-    }
-    res.notes.append(lever_note(res.lever))
-    return res
-
-
-def lever_note(lever: dict) -> str:
-    """The compression-lever device's size against a spring between C and B, in one sentence."""
-    s, lmax = lever["reach_from_C"], lever["reach_from_C_fig_a"]
-    return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
-            f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression spring")
+    lever = LeverGeometry.for_spring(lmax / delta, lmin, lmax)
+    return replace(res, deflection=delta, lever=lever, notes=res.notes + (lever.note(),))
 
 
 def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, notes, restarts: int = 0) -> FitResult:
@@ -793,9 +841,9 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
         rms_rel_error=float(np.sqrt(np.mean(e[: VERIFY_GRID] ** 2))),
         grid_max_rel_error=float(np.max(np.abs(e_grid))),
         grid_rms_rel_error=float(np.sqrt(np.mean(e_grid ** 2))),
-        grid=p.grid, seconds=seconds, nfev=p.nfev, active_bounds=active,
+        grid=p.grid, seconds=seconds, nfev=p.nfev, active_bounds=tuple(active),
         sense=KIND_SENSE[p.kind], sense_text=_SENSE_TEXT[KIND_SENSE[p.kind]],
-        message=msg, reference_length=ell, notes=list(notes), restarts=restarts,
+        message=msg, reference_length=ell, notes=tuple(notes), restarts=restarts,
     )
 
 
