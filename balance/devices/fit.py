@@ -501,6 +501,8 @@ def _confirm_optimum(p: _Problem, z, norm: str) -> tuple[np.ndarray, float, int]
     A method may stop early (SLSQP's "Positive directional derivative for linesearch" or its
     iteration limit, Lawson's reweighting short of the minimax point): while a restart lowers
     the error by more than :data:`CONFIRM_TOL`, its point is taken and the restart repeated.
+    A method that reports convergence (SLSQP's KKT test, Nelder–Mead's simplex size) is not
+    restarted.
     Returns the point, the relative gain of the last restart and the restarts taken.
     """
     lb, ub = p.z_bounds
@@ -641,7 +643,11 @@ def fit_spring(
         z, msg, ok = METHODS[meth](p, norm)
         if not np.all(np.isfinite(z)):
             raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
-        z, gain, rounds = _confirm_optimum(p, z, norm)
+        # a method that did not converge (or Lawson's reweighting, which only nears the minimax point)
+        # is restarted from its point until a restart gains nothing
+        gain, rounds = 0.0, 0
+        if not ok or (meth == "trf" and norm == "max"):
+            z, gain, rounds = _confirm_optimum(p, z, norm)
     if gain > CONFIRM_TOL:
         raise FitFailed(
             f"the {meth} fit did not settle: {rounds} restarts from its point (Nelder–Mead, then SLSQP) still "
@@ -652,6 +658,8 @@ def fit_spring(
     elif not ok:
         msg = (f"{msg} — yet a restart from its point (Nelder–Mead, then SLSQP) lowers the error by less than "
                f"{CONFIRM_TOL:g}: a local optimum")
+    elif meth == "trf" and norm == "max":
+        msg = f"{msg}; a restart from its point (Nelder–Mead, then SLSQP) gains less than {CONFIRM_TOL:g}"
     rho, rho0, al, viol = p.decode(z)
     if viol > 1e-9:
         raise FitFailed(f"the {meth} method ended outside the bounds ({msg}): where a limit leaves no room for "

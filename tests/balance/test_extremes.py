@@ -94,3 +94,30 @@ def test_counter_mass_errors_are_the_largest_over_the_stroke():
     err = np.abs(0.1 + 2.0 * q * q + 1.5 * (z1 * z1 + z2 * z2) - r.C).max()
     assert r.max_inertia_error == pytest.approx(err, rel=1e-9)
     assert r.crank_max_com_error == pytest.approx(0.09, rel=1e-9)  # the crank's COM: a sinusoid, found exactly
+
+
+def test_the_pantograph_plot_shows_the_reported_extremes(model, tmp_path, monkeypatch):
+    """The figure's titles give the result's extremes, and its own grid never goes beyond them."""
+    import re
+
+    from matplotlib.figure import Figure
+
+    from balance.plots import plot_pantograph
+
+    res = solve_pantograph(model("pantograph"))
+    titles = []
+    original = Figure.savefig
+
+    def keep_titles(self, *args, **kwargs):
+        titles.extend(ax.get_title() for ax in self.axes)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", keep_titles)
+    plot_pantograph(res, str(tmp_path / "p.png"))
+    (title,) = [t for t in titles if t.startswith("cylinder 10 force, half payload")]
+    lo, hi = (float(v) for v in re.search(r": (\S+) … (\S+) N", title).groups())
+    (f_lo, f_hi) = res.force[0.5]
+    assert (lo, hi) == pytest.approx((f_lo.value, f_hi.value), rel=1e-3)  # printed to four digits
+    p = res.pantograph
+    shown = p.cylinder_force(grid([p.range2[0], p.range3[0]], [p.range2[1], p.range3[1]], 61), 0.5)
+    assert f_lo.value <= shown.min() <= f_lo.value * 1.001 and f_hi.value * 0.999 <= shown.max() <= f_hi.value

@@ -128,7 +128,7 @@ def test_a_urdf_with_a_slide_is_balanced_through_the_cli(capsys, tmp_path):
 # ------------------------------------------------------------------ Ctrl-C
 LONG = {  # each runs for minutes unless interrupted
     "spring --pareto": ["balance", *SPRING, "--max-force", "2000", "--max-free-length", "1.5", "--pareto",
-                        "--method", "de"],
+                        "--method", "de", "--grid", "50001"],
     "arm": ["balance", "arm", str(MODELS / "arm_base_drives.urdf"), "--samples", "3000000", "--force"],
     "pantograph": ["balance", "pantograph", "PANTOGRAPH", "--force"],
     "solve": ["balance", "solve", "SLIDER", "--force"],
