@@ -10,7 +10,8 @@ The pipeline, in the package's layout:
   gear trains (``transmission``), counterweights, counter-masses and the mass-matrix check of
   a sliding link (``countermass``, ``dynamics``);
 - :mod:`balance.problems` — a TOML table (or the caller) states a problem; ``solve()``
-  returns a typed result whose ``to_dict()`` is the JSON the CLI writes;
+  returns a typed result whose ``to_dict()`` is the JSON the CLI writes; ``compare`` sets the
+  balancing strategies side by side for one arm;
 - :mod:`balance.extremes` (true extremes over a workspace), :mod:`balance.budget` (the work a
   problem may take), :mod:`balance.schema` (the TOML tables), :mod:`balance.plots`,
   :mod:`balance.errors`.
@@ -41,11 +42,13 @@ _WHERE = {
     "SpringProblem": "problems.spring", "SpringDesign": "problems.spring", "SpringOptions": "problems.spring",
     "SliderProblem": "problems.slider", "SliderBalance": "problems.slider", "DynamicsCheck": "problems.slider",
     "PantographProblem": "problems.pantograph", "PantographBalance": "problems.pantograph",
+    "solve_compare": "problems", "CompareProblem": "problems.compare", "Comparison": "problems.compare",
     # model
     "Arm": "model.arm", "Link": "model.arm", "Load": "model.arm", "Coordinate": "model.arm",
     "ArmModel": "model.arm", "gear_ratio_for_accuracy": "model.arm",
     "HarmonicTerm": "model.potential", "merge_terms": "model.potential",
     "UrdfArm": "model.urdf", "load_urdf": "model.urdf", "Pantograph": "model.pantograph",
+    "DHLink": "model.urdf", "urdf_from_dh": "model.urdf",
     # devices
     "SpringBounds": "devices.fit", "FitResult": "devices.fit", "fit_spring": "devices.fit",
     "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit",

@@ -12,7 +12,7 @@ import numpy as np
 from .devices.fit import relative_errors
 from .model.potential import terms_forces
 
-__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph"]
+__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph", "plot_compare"]
 
 
 def _plt():
@@ -299,6 +299,73 @@ def plot_pantograph(result, path: str, n: int = 61) -> str:
                  fontsize=9)
     fig.suptitle(f"Pantograph manipulator, k = {p.k:g}: cylinder base P = ({base[0]:.3g}, {base[1]:.3g}) m",
                  fontsize=11)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_compare(result, path: str, n: int = 241) -> str:
+    """A :class:`~balance.problems.compare.Comparison`: per loaded joint, its torque before and after each
+    strategy along a sweep of the joint (the others at 80 % of their workspace ranges, the largest payload),
+    and bars of the largest (a true extreme over the workspace and payloads) and RMS residual."""
+    plt = _plt()
+    arm, strategies = result.arm, [s for s in result.strategies if s.available]
+    base = strategies[0]
+    joints = [i for i, j in enumerate(base.joints) if j.baseline_max > 0]
+    lo = np.array([w[0] for w in result.workspace])
+    hi = np.array([w[1] for w in result.workspace])
+    pose = lo + 0.8 * (hi - lo)
+    payload = result.payload[1]
+    colors = {"none": "k", "counterweights": "C0", "springs per joint": "C1", "harmonic, pruned": "C2",
+              "exact springs": "C3"}
+    dashes = {"counterweights": (0, (1, 1.5)), "springs per joint": "--", "harmonic, pruned": (0, (6, 2)),
+              "exact springs": (0, (3, 1, 1, 1))}
+    cols = max(len(joints), 1)
+    fig, axes = plt.subplots(2, cols, figsize=(max(4.2 * cols, 9.0), 7.4), constrained_layout=True, squeeze=False)
+    for c, i in enumerate(joints):
+        rev = arm.coordinates[i].joint != "prismatic"
+        x = np.linspace(lo[i], hi[i], n)
+        q = np.tile(pose, (n, 1))
+        q[:, i] = x
+        grav = result.gravity(q, payload)
+        xs = np.degrees(x) if rev else x
+        unit = "N·m" if rev else "N"
+        top, bot = axes[0][c], axes[1][c]
+        for s in strategies:
+            r = grav[:, i] + s.forces(q)[:, i]
+            top.plot(xs, r, color=colors[s.name], lw=2.2 if s.name in ("none", "counterweights") else 1.4,
+                     ls=dashes.get(s.name, "-"), label="gravity (no balancing)" if s.name == "none" else s.name)
+        top.axhline(0, color="0.5", lw=0.6)
+        top.set_title(f"q{i + 1} ({arm.coordinates[i].name}) swept\nothers at 80 % of their ranges, payload "
+                      f"{payload:g} kg", fontsize=9)
+        top.set_xlabel(f"q{i + 1} ({'deg' if rev else 'm'})")
+        top.set_ylabel(f"torque the drive carries ({unit})")
+        top.grid(alpha=0.3)
+        if c == 0:
+            top.legend(fontsize=7, loc="best")
+        names = [s.name for s in strategies]
+        y = np.arange(len(strategies))[::-1]
+        bot.barh(y, [s.joints[i].max for s in strategies], color=[colors[m] for m in names], alpha=0.35,
+                 label="largest (true extreme)")
+        bot.barh(y, [s.joints[i].rms for s in strategies], height=0.4, color=[colors[m] for m in names],
+                 label="RMS")
+        for yy, s in zip(y, strategies):
+            j = s.joints[i]
+            bot.text(j.max, yy, f" {j.max:.3g} ({round(100 * j.removed_max) + 0:.0f} %)", va="center", fontsize=7)
+        bot.set_yticks(y, names, fontsize=8)
+        bot.set_xlabel(f"residual torque over the workspace and payloads ({unit})")
+        bot.set_xlim(0, 1.3 * max(s.joints[i].max for s in strategies))
+        bot.grid(alpha=0.3, axis="x")
+        if c == 0:
+            bot.legend(fontsize=7, loc="lower right")
+    unavailable = [f"{s.name}: {s.reason}" for s in result.strategies if not s.available]
+    title = (f"{arm.name}: gravity torque before and after each strategy (payload {result.payload[0]:g} … "
+             f"{result.payload[1]:g} kg)")
+    if unavailable:
+        import textwrap
+
+        title += "\n" + "\n".join(textwrap.fill(u, 24 * max(cols, 4)) for u in unavailable)
+    fig.suptitle(title, fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

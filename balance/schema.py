@@ -29,7 +29,7 @@ from .errors import SchemaError
 __all__ = [
     "parse", "load_toml", "show", "OWNED_BY_RUNNER",
     "ArmTable", "LinkTable", "LoadTable", "SpringTable", "SpringDesignTable", "SliderTable",
-    "PantographTable",
+    "PantographTable", "PayloadTable", "CompareTable",
 ]
 
 #: top-level tables the scene runner owns; balance ignores them
@@ -100,6 +100,13 @@ class CounterweightsTable(_Table):
     arm: float | None = None
 
 
+class PayloadTable(_Table):
+    mass: Pair | None = None
+    weight: Pair | None = None
+    link: str | None = None
+    at: float | Annotated[list[float], Field(min_length=3, max_length=3)] | None = None
+
+
 class ArmTable(_Table):
     name: str = "arm"
     zero: Literal["vertical", "horizontal"] = "vertical"
@@ -113,6 +120,7 @@ class ArmTable(_Table):
     devices: DevicesTable = DevicesTable()
     check: CheckTable = CheckTable()
     counterweights: CounterweightsTable = CounterweightsTable()
+    payload: PayloadTable | None = None
 
     @field_validator("drives")
     @classmethod
@@ -210,8 +218,20 @@ class PantographTable(_Table):
     check: CheckTable = CheckTable()
 
 
+# ------------------------------------------------------------------------- compare
+class CompareTable(_Table):
+    arm: str
+    payload: Pair | None = None
+    workspace: dict[str, Pair] = {}
+    target: Annotated[float, Field(gt=0, lt=1)] = 0.05
+    acceleration: Annotated[float, Field(ge=0)] = 1.0
+    samples: Count = 1000
+    seed: int = 0
+
+
 TABLES: dict[str, type[_Table]] = {
     "arm": ArmTable, "spring": SpringTable, "slider": SliderTable, "pantograph": PantographTable,
+    "compare": CompareTable,
 }
 
 # ------------------------------------------------------------------------- parsing
@@ -221,7 +241,8 @@ _TYPE_WORDS = {
     "model_type": "a table", "dict_type": "a table",
 }
 
-_PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base"}
+_PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base", "mass", "weight",
+          "payload"}
 
 
 def show(value: Any, width: int = 60) -> str:
@@ -305,10 +326,10 @@ def _sentence(err: dict, model: type[BaseModel], table_name: str, source: str) -
     if kind == "literal_error":
         expected = err.get("ctx", {}).get("expected", "")
         return f"{source}: {what} must be {expected}, not {show(value)}."
-    if kind in {"greater_than", "greater_than_equal"}:
+    if kind in {"greater_than", "greater_than_equal", "less_than", "less_than_equal"}:
         ctx = err.get("ctx", {})
-        bound = ctx.get("gt", ctx.get("ge"))
-        sign = ">" if kind == "greater_than" else "≥"
+        bound = next(ctx[k] for k in ("gt", "ge", "lt", "le") if k in ctx)
+        sign = {"greater_than": ">", "greater_than_equal": "≥", "less_than": "<", "less_than_equal": "≤"}[kind]
         return f"{source}: {what} must be {sign} {bound:g}, not {show(value)}."
     if kind == "value_error":
         return f"{source}: {what} {err['ctx']['error']}"

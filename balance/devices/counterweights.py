@@ -52,6 +52,8 @@ class Counterweight:
     position : tuple of float
         Where it sits: for a planar TOML arm ``(along the link, to its left)`` from the joint
         (m); for a URDF arm ``(x, y, z)`` in the joint's frame.
+    point : tuple of float
+        ``(x, y, z)`` in the frame of the joint of the arm's Pinocchio model (``coordinate``'s).
     """
 
     link: str
@@ -60,6 +62,7 @@ class Counterweight:
     weight: float
     arm: float
     position: tuple[float, ...]
+    point: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     def to_dict(self) -> dict:
         return {"link": self.link, "coordinate": self.coordinate, "weight": self.weight, "mass": self.mass,
@@ -191,7 +194,7 @@ def counterweights(arm: ArmModel, arms: dict[int, float] | None = None, samples:
         p = -b * off / np.linalg.norm(off) + (c @ axis) * axis
         model.inertias[j] = model.inertias[j] + pin.Inertia(m_cw, p, np.zeros((3, 3)))
         rows.append((j - 1, m_cw, b, p))
-    balanced = UrdfArm(model, arm.name, base.accuracy, arm.drive_matrix)
+    balanced = base.copy(model)
     lo, hi = arm.box
     pts = arm.sample(samples, seed)
     scale = max(float(np.max(np.abs(base.gravity_forces(pts[:50])))), 1e-300)
@@ -217,4 +220,5 @@ def _row(arm: ArmModel, j: int, m: float, b: float, p: np.ndarray, g: float) -> 
     else:
         position = tuple(float(v) + 0.0 for v in p)
         link = arm.link_name(j)
-    return Counterweight(link, f"q{j + 1}", float(m), float(m * g), float(b), position)
+    return Counterweight(link, f"q{j + 1}", float(m), float(m * g), float(b), position,
+                         tuple(float(v) + 0.0 for v in p))

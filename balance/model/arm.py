@@ -281,6 +281,19 @@ class Arm(ArmModel):
         )
         return replace(self, loads=loads)
 
+    @property
+    def payload_weight(self) -> float:
+        """The weight of the payload loads as given (N): the largest payload."""
+        return sum(ld.weight for ld in self.loads if ld.payload)
+
+    def with_payload(self, mass: float, g: float = 9.80665) -> "Arm":
+        """The same arm carrying ``mass`` kg of payload (its payload loads scaled to weigh ``mass·g``)."""
+        if self.payload_weight == 0:
+            if mass != 0:
+                raise InvalidArm("the arm has no payload load to carry a payload; mark one with payload = true.")
+            return self
+        return self.with_payload_fraction(mass * g / self.payload_weight)
+
     def masses(self) -> list[tuple[int, float, float, float]]:
         """Point weights ``(link, weight, s, t)`` in link frames: link centres then loads."""
         out = [(i, ln.weight, ln.com, ln.com_lateral) for i, ln in enumerate(self.links)]

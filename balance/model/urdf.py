@@ -34,7 +34,7 @@ from .arm import Arm, ArmModel, Coordinate, gear_ratio_for_accuracy
 from .potential import HarmonicTerm, merge_terms, terms_forces
 
 __all__ = ["UrdfArm", "load_urdf", "validate_urdf", "arm_to_urdf", "pinocchio_model", "pinocchio_gravity",
-           "pinocchio_check", "PinocchioCheck", "URDF_JOINT_TYPES", "MAX_REVOLUTE"]
+           "pinocchio_check", "PinocchioCheck", "URDF_JOINT_TYPES", "MAX_REVOLUTE", "DHLink", "urdf_from_dh"]
 
 #: the decomposition's grid holds 3ⁿ complex numbers: beyond 16 revolute joints (0.7 GB) it is refused
 MAX_REVOLUTE = 16
@@ -230,6 +230,15 @@ _UNBOUNDED = {"JointModelRUBX", "JointModelRUBY", "JointModelRUBZ", "JointModelR
 _PRISMATIC = {"JointModelPX", "JointModelPY", "JointModelPZ", "JointModelPrismaticUnaligned"}
 
 
+def _tool0(model):
+    for f in model.frames:
+        if f.name == "tool0":
+            joint = f.parentJoint if hasattr(f, "parentJoint") else f.parent
+            if joint > 0:
+                return int(joint), tuple(float(v) for v in f.placement.translation)
+    return None
+
+
 class UrdfArm(ArmModel):
     """A serial (or tree) arm read from URDF: one coordinate per joint (continuous joints as an angle).
 
@@ -247,8 +256,12 @@ class UrdfArm(ArmModel):
         ``D`` with ``q = D·ψ`` (default: a drive at each joint).
     """
 
-    def __init__(self, model, name: str = "urdf arm", accuracy: float = 1e-3, drive_matrix=None):
+    def __init__(self, model, name: str = "urdf arm", accuracy: float = 1e-3, drive_matrix=None,
+                 payload_point: tuple[int, tuple[float, float, float]] | None = None):
         self.model, self.name, self.accuracy = model, name, accuracy
+        #: where a payload sits: (Pinocchio joint index, position in that joint's frame); default the frame
+        #: "tool0" when the URDF has one (the flange, by ROS convention), else the last joint's origin
+        self.payload_point = payload_point or _tool0(model) or (model.njoints - 1, (0.0, 0.0, 0.0))
         self.drive_matrix = None if drive_matrix is None else np.asarray(drive_matrix, dtype=float)
         coords = []
         for j in range(1, model.njoints):
@@ -280,6 +293,50 @@ class UrdfArm(ArmModel):
     def kinds(self) -> list[str]:
         return [c.joint for c in self.coordinates]
 
+    def copy(self, model=None) -> "UrdfArm":
+        """The same arm (a copy of its model, or ``model``)."""
+        return UrdfArm(self.model.copy() if model is None else model, self.name, self.accuracy, self.drive_matrix,
+                       self.payload_point)
+
+    def with_payload_at(self, link: str | None = None, at=(0.0, 0.0, 0.0)) -> "UrdfArm":
+        """The same arm with its payload point on ``link`` (a URDF link name; default the last) at ``at`` (m,
+        in that link's frame)."""
+        pin = _pin()
+        if link is None:
+            return UrdfArm(self.model, self.name, self.accuracy, self.drive_matrix, (self.model.njoints - 1, tuple(at)))
+        for f in self.model.frames:
+            if f.name == link and f.type in (pin.FrameType.BODY, pin.FrameType.FIXED_JOINT, pin.FrameType.OP_FRAME):
+                joint = f.parentJoint if hasattr(f, "parentJoint") else f.parent
+                if joint == 0:
+                    raise InvalidArm(f"the payload's link '{link}' is the base: it does not move.")
+                point = f.placement.act(np.asarray(at, dtype=float))
+                return UrdfArm(self.model, self.name, self.accuracy, self.drive_matrix,
+                               (int(joint), tuple(float(v) for v in point)))
+        names = sorted({f.name for f in self.model.frames if f.type == pin.FrameType.BODY})
+        raise InvalidArm(f"the URDF has no link '{link}' to carry the payload (links: {', '.join(names)}).")
+
+    def with_payload(self, mass: float, g: float | None = None) -> "UrdfArm":
+        """The same arm carrying a point mass of ``mass`` kg at its payload point."""
+        if mass == 0:
+            return self
+        pin = _pin()
+        model = self.model.copy()
+        joint, at = self.payload_point
+        model.inertias[joint] = model.inertias[joint] + pin.Inertia(float(mass), np.asarray(at, dtype=float),
+                                                                     np.zeros((3, 3)))
+        return self.copy(model)
+
+    def mass_matrix(self, q: np.ndarray) -> np.ndarray:
+        """The joint-space mass matrix ``M(q)`` (composite rigid-body algorithm), (n, n) or (m, n, n)."""
+        pin = _pin()
+        qq = np.atleast_2d(q)
+        out = []
+        for c in self.configs(qq):
+            m = pin.crba(self.model, self._data, c)
+            out.append(np.triu(m) + np.triu(m, 1).T)
+        out = np.array(out)
+        return out[0] if np.ndim(q) == 1 else out
+
     def link_name(self, j: int) -> str:
         """The name of the link joint ``j`` (0-based) moves: the first URDF link it carries."""
         pin = _pin()
@@ -296,28 +353,37 @@ class UrdfArm(ArmModel):
 
     def config(self, q: np.ndarray) -> np.ndarray:
         """Pinocchio's configuration vector for joint coordinates ``q`` (n,)."""
-        pin = _pin()
-        out = pin.neutral(self.model)
-        for j in range(1, self.model.njoints):
-            jm = self.model.joints[j]
-            v = float(q[j - 1])
-            if jm.nq == 2:
-                out[jm.idx_q], out[jm.idx_q + 1] = math.cos(v), math.sin(v)
-            else:
-                out[jm.idx_q] = v
+        return self.configs(np.atleast_2d(q))[0]
+
+    def configs(self, q: np.ndarray) -> np.ndarray:
+        """Pinocchio's configuration vectors for joint coordinates ``q`` (m, n), shape (m, nq)."""
+        if not hasattr(self, "_layout"):
+            pin = _pin()
+            one = [(j - 1, self.model.joints[j].idx_q) for j in range(1, self.model.njoints)
+                   if self.model.joints[j].nq == 1]
+            two = [(j - 1, self.model.joints[j].idx_q) for j in range(1, self.model.njoints)
+                   if self.model.joints[j].nq == 2]
+            self._layout = (np.asarray(pin.neutral(self.model)), one, two)
+        neutral, one, two = self._layout
+        q = np.asarray(q, dtype=float)
+        out = np.tile(neutral, (len(q), 1))
+        for j, i in one:
+            out[:, i] = q[:, j]
+        for j, i in two:
+            out[:, i], out[:, i + 1] = np.cos(q[:, j]), np.sin(q[:, j])
         return out
 
     def potential(self, q: np.ndarray) -> np.ndarray:
         pin = _pin()
         qq = np.atleast_2d(q)
-        u = np.array([pin.computePotentialEnergy(self.model, self._data, self.config(row)) for row in qq])
+        u = np.array([pin.computePotentialEnergy(self.model, self._data, c) for c in self.configs(qq)])
         return u[0] if np.ndim(q) == 1 else u
 
     def gravity_forces(self, q: np.ndarray) -> np.ndarray:
         """``−∂U/∂q`` from Pinocchio's generalised gravity."""
         pin = _pin()
         qq = np.atleast_2d(q)
-        g = np.array([pin.computeGeneralizedGravity(self.model, self._data, self.config(row)) for row in qq])
+        g = np.array([pin.computeGeneralizedGravity(self.model, self._data, c) for c in self.configs(qq)])
         return -(g[0] if np.ndim(q) == 1 else g)
 
     def approx_potential_error_bounds(self) -> np.ndarray:
@@ -527,6 +593,62 @@ class PinocchioCheck:
 def pinocchio_gravity(arm: ArmModel, g: float = _G) -> "UrdfArm":
     """The arm as Pinocchio sees it: itself for a URDF arm, its URDF (:func:`arm_to_urdf`) otherwise."""
     return arm if isinstance(arm, UrdfArm) else UrdfArm(pinocchio_model(arm_to_urdf(arm, g), g), arm.name)
+
+
+@dataclass(frozen=True)
+class DHLink:
+    """One row of standard Denavit–Hartenberg parameters and the link it moves.
+
+    The joint turns by ``θ`` about ``z`` of the previous frame; the link's frame follows by
+    ``Rz(θ)·Tz(d)·Tx(a)·Rx(α)``. ``mass`` (kg) sits at ``com`` (m, in the link's DH frame).
+    """
+
+    name: str
+    a: float
+    d: float
+    alpha: float
+    mass: float
+    com: tuple[float, float, float]
+    limits: tuple[float, float] = (-2 * math.pi, 2 * math.pi)
+
+
+def urdf_from_dh(name: str, links: list[DHLink], source: str = "") -> str:
+    """URDF of a revolute serial arm given by standard DH parameters, point masses at the centres.
+
+    Each URDF link's frame is the joint's (``z`` its axis, turned by ``θ``); the next joint sits at
+    ``(a, 0, d)`` with ``rpy = (α, 0, 0)`` from it, and a fixed ``tool0`` frame closes the chain at the
+    last DH frame (the flange). ``source`` goes into a comment.
+
+    Examples
+    --------
+    >>> text = urdf_from_dh("two", [DHLink("l1", 0.5, 0.0, 0.0, 2.0, (-0.25, 0.0, 0.0)),
+    ...                             DHLink("l2", 0.4, 0.0, 0.0, 1.0, (-0.2, 0.0, 0.0))])
+    >>> validate_urdf(text); text.count("<joint ")
+    3
+    """
+    out = ['<?xml version="1.0"?>']
+    if source:
+        out.append(f"<!-- {source} -->")
+    out += [f'<robot name="{name}">', '  <link name="base_link"/>']
+    parent, a, d, alpha = "base_link", 0.0, 0.0, 0.0
+    for i, ln in enumerate(links, start=1):
+        c = np.array([ln.a, 0.0, ln.d]) + _rot_x(ln.alpha) @ np.asarray(ln.com, dtype=float)
+        out.append(f'  <joint name="joint{i}" type="revolute"><parent link="{parent}"/><child link="{ln.name}"/>'
+                   f'<origin xyz="{_f(a)} 0 {_f(d)}" rpy="{_f(alpha)} 0 0"/><axis xyz="0 0 1"/>'
+                   f'<limit lower="{_f(ln.limits[0])}" upper="{_f(ln.limits[1])}" effort="150" velocity="3.14"/></joint>')
+        out.append(f'  <link name="{ln.name}"><inertial><origin xyz="{_f(c[0])} {_f(c[1])} {_f(c[2])}"/>'
+                   f'<mass value="{_f(ln.mass)}"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+                   '</inertial></link>')
+        parent, a, d, alpha = ln.name, ln.a, ln.d, ln.alpha
+    out.append(f'  <joint name="flange" type="fixed"><parent link="{parent}"/><child link="tool0"/>'
+               f'<origin xyz="{_f(a)} 0 {_f(d)}" rpy="{_f(alpha)} 0 0"/></joint>')
+    out += ['  <link name="tool0"/>', "</robot>"]
+    return "\n".join(out) + "\n"
+
+
+def _rot_x(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def pinocchio_check(arm: ArmModel, terms, samples: int = 1000, seed: int = 0, g: float = _G, worst=(),

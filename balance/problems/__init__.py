@@ -7,6 +7,7 @@ table              problem (``read_problem``)                 result (``problem.
 ``[spring]``       :class:`~.spring.SpringProblem`            :class:`~.spring.SpringDesign`
 ``[slider]``       :class:`~.slider.SliderProblem`            :class:`~.slider.SliderBalance`
 ``[pantograph]``   :class:`~.pantograph.PantographProblem`    :class:`~.pantograph.PantographBalance`
+``[compare]``      :class:`~.compare.CompareProblem`          :class:`~.compare.Comparison`
 =================  =========================================  ===================================
 
 Every result has ``to_dict()``: the JSON-ready form the CLI and the scene runner write.
@@ -28,15 +29,18 @@ from typing import Any, Mapping
 from ..errors import SchemaError
 from ..schema import OWNED_BY_RUNNER, load_toml
 from .arm import ArmBalance, ArmProblem, arm_problem
+from .compare import CompareProblem, Comparison, compare_problem
 from .pantograph import PantographBalance, PantographProblem, pantograph_problem
 from .slider import SliderBalance, SliderProblem, slider_problem
 from .spring import SpringDesign, SpringProblem, spring_problem
 
 __all__ = ["read_problem", "load_toml", "READERS", "solve_arm", "solve_spring", "solve_prismatic",
-           "solve_pantograph", "ArmProblem", "SpringProblem", "SliderProblem", "PantographProblem"]
+           "solve_pantograph", "solve_compare", "ArmProblem", "SpringProblem", "SliderProblem", "PantographProblem",
+           "CompareProblem"]
 
 #: table → the function reading its problem
-READERS = {"arm": arm_problem, "spring": spring_problem, "slider": slider_problem, "pantograph": pantograph_problem}
+READERS = {"arm": arm_problem, "spring": spring_problem, "slider": slider_problem, "pantograph": pantograph_problem,
+           "compare": compare_problem}
 
 
 def read_problem(doc: Mapping[str, Any], source: str = "<input>"):
@@ -44,8 +48,8 @@ def read_problem(doc: Mapping[str, Any], source: str = "<input>"):
     kinds = [k for k in READERS if k in doc]
     if len(kinds) != 1:
         others = [f"[{k}]" for k in doc if k not in OWNED_BY_RUNNER]
-        raise SchemaError(f"{source}: a balance problem needs exactly one of the tables [arm], [spring], [slider] or "
-                          f"[pantograph], not {', '.join(others) or 'none'}.")
+        raise SchemaError(f"{source}: a balance problem needs exactly one of the tables [arm], [spring], [slider], "
+                          f"[pantograph] or [compare], not {', '.join(others) or 'none'}.")
     return READERS[kinds[0]](doc, source)
 
 
@@ -67,3 +71,8 @@ def solve_prismatic(doc: Mapping[str, Any], source: str = "<slider>") -> SliderB
 def solve_pantograph(doc: Mapping[str, Any], source: str = "<pantograph>") -> PantographBalance:
     """Spring and cylinder force of a ``[pantograph]`` document (:class:`PantographProblem`)."""
     return pantograph_problem(doc, source).solve()
+
+
+def solve_compare(doc: Mapping[str, Any], source: str = "<compare>") -> Comparison:
+    """The strategies side by side for a ``[compare]`` document (:class:`CompareProblem`)."""
+    return compare_problem(doc, source).solve()

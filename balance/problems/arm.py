@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import os
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -193,9 +193,10 @@ def slide_approximations(arm: ArmModel) -> tuple[SlideApproximation, ...]:
 
 @dataclass(frozen=True)
 class PayloadEffect:
-    """The payload as a range: the devices are tuned for ``tuned_for`` (the middle of the range,
-    which minimises the worst residual since the residual is linear in the payload); the worst
-    residual over the range and the effect of the payload's half-range, per joint (true extremes)."""
+    """The payload as a range (weights in N): the devices are tuned for ``tuned_for``, the middle of the
+    range, which minimises the worst residual (it is the payload's deviation alone, linear in it) — the
+    source's "half the maximum payload" when the range starts at 0; the worst residual over the range
+    and the effect of the payload's half-range, per joint (true extremes)."""
 
     max_payload: float
     min_payload: float
@@ -203,6 +204,7 @@ class PayloadEffect:
     per_joint: tuple[float, ...]
     half_payload_effect_per_joint: tuple[float, ...]
     approximation_bound_per_joint: tuple[float, ...]
+    g: float = G
 
     @property
     def max_residual(self) -> float:
@@ -214,21 +216,21 @@ class PayloadEffect:
 
     def to_dict(self) -> dict:
         return {"max_payload": self.max_payload, "min_payload": self.min_payload, "tuned_for": self.tuned_for,
+                "mass_range_kg": [self.min_payload / self.g, self.max_payload / self.g],
                 "max_residual": self.max_residual, "per_joint": list(self.per_joint),
                 "half_payload_effect": self.half_payload_effect,
                 "half_payload_effect_per_joint": list(self.half_payload_effect_per_joint),
                 "approximation_bound_per_joint": list(self.approximation_bound_per_joint)}
 
 
-def payload_effect(arm: Arm, terms: Sequence[HarmonicTerm], q: np.ndarray, scale: float,
-                   payload_range: tuple[float, float] = (0.0, 1.0)) -> PayloadEffect:
-    """The worst residual over the payload range with devices tuned for ``terms``, and the effect of
+def payload_effect(arm: ArmModel, terms: Sequence[HarmonicTerm], q: np.ndarray, scale: float,
+                   payload: tuple[float, float], g: float = G) -> PayloadEffect:
+    """The worst residual over the payload range (kg) with devices tuned for ``terms``, and the effect of
     half the range alone. Both are linear in the payload, so their extremes over the range are those
     at its ends; each is a true extreme over the workspace."""
     lo, hi = arm.box
-    f_lo, f_hi = payload_range
-    low, high = arm.with_payload_fraction(f_lo), arm.with_payload_fraction(f_hi)
-    mid = arm.with_payload_fraction(0.5 * (f_lo + f_hi))
+    low, high = arm.with_payload(payload[0], g), arm.with_payload(payload[1], g)
+    mid = arm.with_payload(0.5 * (payload[0] + payload[1]), g)
 
     def f(x):
         t = terms_forces(terms, x)
@@ -237,10 +239,9 @@ def payload_effect(arm: Arm, terms: Sequence[HarmonicTerm], q: np.ndarray, scale
 
     ext = box_extremes(f, lo, hi, q, floor=1e-11 * scale)
     mags = np.array([max(-a.value, b.value) for a, b in ext]).reshape(3, arm.n)
-    total = sum(ld.weight for ld in arm.loads if ld.payload)
-    return PayloadEffect(total * f_hi, total * f_lo, 0.5 * total * (f_lo + f_hi),
+    return PayloadEffect(payload[1] * g, payload[0] * g, 0.5 * (payload[0] + payload[1]) * g,
                          tuple(float(v) for v in np.maximum(mags[0], mags[1])), tuple(float(v) for v in mags[2]),
-                         tuple(float(v) for v in mid.approx_potential_error_bounds()))
+                         tuple(float(v) for v in mid.approx_potential_error_bounds()), g)
 
 
 # ---------------------------------------------------------------------------- the problem
@@ -262,8 +263,8 @@ class ArmBalance:
     pinocchio: PinocchioCheck
     transmission: tuple[GearTrain, ...] | None = None
     urdf: str | None = None
-    full_payload: Arm | None = field(default=None, repr=False)  # the arm at its largest payload (plots)
-    empty: Arm | None = field(default=None, repr=False)  # and at its smallest
+    full_payload: ArmModel | None = field(default=None, repr=False)  # the arm at its largest payload (plots)
+    empty: ArmModel | None = field(default=None, repr=False)  # and at its smallest
 
     def to_dict(self) -> dict:
         terms = [t.to_dict() | describe_form(self.arm, t.form) for t in self.terms]
@@ -310,6 +311,9 @@ class ArmProblem:
         Gravity (m/s²) of the Pinocchio model written for a TOML arm.
     urdf : str or None
         The URDF file the arm was read from.
+    payload : (float, float) or None
+        The payload range (kg); the devices are tuned for its middle. None: a TOML arm's payload loads
+        (``payload=True``) carry the largest, from 0; no payload otherwise.
     work_limit : float or None
         Seconds of estimated work allowed (:mod:`balance.budget`); None lifts the limit.
     """
@@ -322,6 +326,7 @@ class ArmProblem:
     transmission: bool = False
     g: float = G
     urdf: str | None = None
+    payload: tuple[float, float] | None = None
     work_limit: float | None = WORK_LIMIT
 
     def solve(self) -> ArmBalance:
@@ -329,10 +334,17 @@ class ArmProblem:
         if self.samples < 1:
             raise InvalidInput(f"the check needs at least one sample, not {self.samples}.")
         arm = self.arm
-        tuned = arm.with_payload_fraction(0.5) if isinstance(arm, Arm) else arm
+        payload = self.payload
+        if payload is None and isinstance(arm, Arm) and arm.payload_weight > 0:
+            payload = (0.0, arm.payload_weight / self.g)  # payload loads carry the largest payload
+        if payload is not None and not (math.isfinite(payload[0]) and math.isfinite(payload[1])
+                                        and 0 <= payload[0] <= payload[1]):
+            raise InvalidInput(f"the payload range must be finite with 0 ≤ low ≤ high, not {payload[0]:g} .. "
+                               f"{payload[1]:g} kg.")
+        tuned = arm.with_payload(0.5 * (payload[0] + payload[1]), self.g) if payload else arm
         own = tuned.sample(16, self.seed)
         pin_arm = pinocchio_gravity(tuned, self.g)
-        passes = 8 if isinstance(arm, Arm) and any(ld.payload for ld in arm.loads) else 5
+        passes = 8 if payload else 5
 
         def unit():  # one configuration through every pass: the arm's own model, then Pinocchio's
             for _ in range(passes):
@@ -346,9 +358,9 @@ class ArmProblem:
         terms = tuple(tuned.harmonic_terms())
         q = tuned.sample(self.samples, self.seed)
         check = check_terms(tuned, terms, q=q, seed=self.seed)
-        payload = None
-        if isinstance(arm, Arm) and any(ld.payload for ld in arm.loads):
-            payload = payload_effect(arm, terms, q, check.max_gravity_force)
+        effect = None
+        if payload:
+            effect = payload_effect(arm, terms, q, check.max_gravity_force, payload, self.g)
         cw = counterweights(tuned, dict(self.counterweight_arms), self.samples, self.seed, self.g)
         pc = pinocchio_check(tuned, terms, self.samples, self.seed, self.g, worst=check.worst,
                              scale=check.max_gravity_force)
@@ -358,9 +370,9 @@ class ArmProblem:
             trains = tuple(transmissions(forms, tuned.shaft_names))
         devices = tuple(TermDevices(k, describe_form(tuned, t.form)["drive_form_text"], t.amplitude, t.phase,
                                     self.devices) for k, t in enumerate(terms))
-        return ArmBalance(tuned, terms, devices, check, slide_approximations(tuned), payload, cw, pc, trains,
-                          self.urdf, arm.with_payload_fraction(1.0) if isinstance(arm, Arm) else None,
-                          arm.with_payload_fraction(0.0) if isinstance(arm, Arm) else None)
+        return ArmBalance(tuned, terms, devices, check, slide_approximations(tuned), effect, cw, pc, trains,
+                          self.urdf, arm.with_payload(payload[1], self.g) if payload else None,
+                          arm.with_payload(payload[0], self.g) if payload else None)
 
 
 def balance_arm(arm: ArmModel, samples: int = 1000, seed: int = 0, **options) -> ArmBalance:
@@ -402,14 +414,53 @@ def arm_problem(doc: Mapping[str, Any], source: str = "<arm>") -> ArmProblem:
                 raise SchemaError(f"{source}: [arm] key 'drives' must be a non-singular {arm.n}×{arm.n} matrix "
                                   "for this URDF arm.") from None
         cw = {} if t.counterweights.arm is None else {j: t.counterweights.arm for j in range(arm.n)}
-        return ArmProblem(arm, counterweight_arms=cw, urdf=path, **common)
+        payload = None
+        if t.payload is not None:
+            pl = t.payload
+            if isinstance(pl.at, float):
+                raise SchemaError(f"{source}: [arm.payload] key 'at' must be [x, y, z] (m, in the link's frame) for "
+                                  "a URDF arm.")
+            try:
+                arm = arm.with_payload_at(pl.link, pl.at or (0.0, 0.0, 0.0))
+            except InvalidArm as exc:
+                raise InvalidArm(f"{source}: [arm.payload] {exc}") from None
+            payload = _payload_range(pl, t.g, source)
+        return ArmProblem(arm, counterweight_arms=cw, urdf=path, payload=payload, **common)
     arm = arm_from_table(t, source)
     cw = {}
     for i, ln in enumerate(t.links):
         b = ln.counterweight_arm if ln.counterweight_arm is not None else t.counterweights.arm
         if b is not None:
             cw[i] = b
-    return ArmProblem(arm, counterweight_arms=cw, **common)
+    payload = (0.0, arm.payload_weight / t.g) if arm.payload_weight > 0 else None
+    if t.payload is not None:
+        if arm.payload_weight > 0:
+            raise SchemaError(f"{source}: give the payload either as [arm.payload] or as [[arm.loads]] with payload = "
+                              "true, not both.")
+        pl = t.payload
+        payload = _payload_range(pl, t.g, source)
+        if isinstance(pl.at, list):
+            raise SchemaError(f"{source}: [arm.payload] key 'at' must be a number (m along the link) for a TOML arm.")
+        names = [ln.name for ln in arm.links]
+        link = names.index(pl.link) if pl.link in names else len(names) - 1
+        if pl.link is not None and pl.link not in names:
+            raise SchemaError(f"{source}: [arm.payload] key 'link' names no link: {pl.link!r} (links: "
+                              f"{', '.join(names)}).")
+        at = arm.links[link].length if pl.at is None else pl.at
+        if payload[1] > 0:
+            arm = replace(arm, loads=arm.loads + (Load(link, payload[1] * t.g, at, 0.0, True, "payload"),))
+    return ArmProblem(arm, counterweight_arms=cw, payload=payload, **common)
+
+
+def _payload_range(pl, g: float, source: str) -> tuple[float, float]:
+    """``[arm.payload]``'s mass (kg) or weight (N) range, in kg."""
+    if (pl.mass is None) == (pl.weight is None):
+        raise SchemaError(f"{source}: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' "
+                          "(N), not both or neither.")
+    lo, hi = pl.mass if pl.mass is not None else (w / g for w in pl.weight)
+    if not 0 <= lo <= hi:
+        raise SchemaError(f"{source}: [arm.payload] range {lo:g} .. {hi:g} kg must have 0 ≤ low ≤ high.")
+    return float(lo), float(hi)
 
 
 def arm_from_dict(doc: Mapping[str, Any], source: str = "<arm>") -> Arm:

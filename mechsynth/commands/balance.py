@@ -107,8 +107,24 @@ def add_commands(sub) -> None:
     pa.add_argument("file")
     common(pa)
 
-    so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider] or [pantograph]",
-                 _file_problem, None, None)
+    c = command("compare", "balancing hardware side by side: counterweights, a spring per joint, the harmonic "
+                           "decomposition pruned, exact springs — residual torque, devices, added mass",
+                _compare_problem, _table_compare, "plot_compare")
+    c.add_argument("file", help="a TOML file with a [compare] table (its arm = FILE), an [arm] table, or a .urdf file")
+    c.add_argument("--payload", type=number_range, metavar="A..B", help="payload range (kg); default the file's")
+    c.add_argument("--range", action="append", type=_joint_range, metavar="qJ=A..B", dest="ranges",
+                   help="the workspace of joint J (degrees, or m on a slide); repeat for each joint to narrow "
+                        "(default: the joint limits)")
+    c.add_argument("--target", type=_share, metavar="E",
+                   help="the pruned decomposition keeps the residual under E × the baseline torque (default 0.05)")
+    c.add_argument("--acceleration", type=float, metavar="A",
+                   help="joint acceleration (rad/s²) at which the counterweights' motor torque is given (default 1)")
+    c.add_argument("--samples", type=positive, help="random configurations (default 1000)")
+    c.add_argument("--seed", type=int)
+    common(c)
+
+    so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph] or "
+                          "[compare]", _file_problem, None, None)
     so.add_argument("file")
     common(so, plot=False)
 
@@ -192,6 +208,59 @@ def _spring_problem(args):
     bounds = SpringBounds(args.r, args.r0, args.a, args.max_force, args.max_free_length, args.max_deflection)
     return SpringProblem(args.kind, args.moment, (math.radians(lo), math.radians(hi)), bounds, args.method, args.norm,
                          DEFAULT_GRID if args.grid is None else args.grid, args.target_error, args.pareto, design)
+
+
+def _share(text: str) -> float:
+    """A share strictly between 0 and 1."""
+    import argparse
+
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value < 1:
+        raise argparse.ArgumentTypeError(f"expected a share between 0 and 1 (e.g. 0.05), not {text!r}")
+    return value
+
+
+def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
+    """``q2=-90..90`` → ``("q2", (-90.0, 90.0))``."""
+    import argparse
+
+    name, sep, rng = text.partition("=")
+    if not sep or not re.fullmatch(r"q[1-9]\d*", name.strip()):
+        raise argparse.ArgumentTypeError(f"expected qJ=low..high (e.g. q2=-90..90), not {text!r}")
+    return name.strip(), number_range(rng)
+
+
+def _compare_problem(args):
+    from balance.problems import load_toml
+    from balance.problems.arm import arm_problem
+    from balance.problems.compare import compare_from_arm
+    from balance.schema import parse
+
+    options = {k: v for k, v in (("target", args.target), ("acceleration", args.acceleration),
+                                 ("samples", args.samples), ("seed", args.seed)) if v is not None}
+    if args.payload is not None:
+        options["payload"] = list(args.payload)
+    if args.ranges:
+        options["workspace"] = {name: list(rng) for name, rng in args.ranges}
+    if args.file.lower().endswith(".urdf"):
+        path, doc = args.file, {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
+    else:
+        doc = load_toml(args.file)
+        path = args.file
+        if "compare" in doc:
+            table = dict(doc["compare"])
+            base = os.path.dirname(args.file)
+            path = table["arm"] if os.path.isabs(str(table.get("arm", ""))) else os.path.join(base, str(table.get("arm")))
+            options = {**{k: v for k, v in table.items() if k != "arm"}, **options}
+            parse({"compare": dict(table)}, "compare", args.file)  # the file's own table, checked as written
+            doc = load_toml(path) if not path.lower().endswith(".urdf") else \
+                {"arm": {"urdf": os.path.abspath(path), "name": os.path.basename(path)}}
+    doc = {k: v for k, v in doc.items() if k in ("arm", "scene", "expect", "plot")}
+    table = parse({"compare": {"arm": path, **options}}, "compare", args.file)
+    return compare_from_arm(arm_problem(doc, path), table, args.file)
 
 
 def _prismatic_problem(args):
@@ -372,6 +441,65 @@ def _table_pantograph(out: dict) -> str:
     return s
 
 
+def _table_compare(out: dict) -> str:
+    joints = out["joints"]
+    loaded = [i for i, _ in enumerate(joints) if out["strategies"][0]["joints"][i]["baseline_max"] > 0]
+    unit = lambda i: "N" if joints[i]["kind"] == "prismatic" else "N·m"  # noqa: E731
+    ws = []
+    for i, (a, b) in enumerate(out["workspace"]):
+        k, u = (1.0, " m") if joints[i]["kind"] == "prismatic" else (180 / math.pi, "°")
+        ws.append(f"q{i + 1} {a * k:.4g}..{b * k:.4g}{u}")
+    lo, hi = out["payload"]
+    lines = [f"arm: {out['name']}; payload {number(lo)} .. {number(hi)} kg", f"workspace: {', '.join(ws)}", ""]
+    head = f"{'strategy':<18}  {'devices':>7}  {'added kg':>9}  {'tuned kg':>8}  {'worst residual':>20}  " \
+           f"{'removed':>7}  {'RMS removed':>11}"
+    lines += [head, "-" * len(head)]
+    for st in out["strategies"]:
+        if not st["available"]:
+            lines.append(f"{st['name']:<18}  not available: {st['reason']}")
+            continue
+        worst = max(st["joints"], key=lambda j: j["max"])
+        base_rms = sum(j["baseline_rms"] ** 2 for j in st["joints"]) ** 0.5
+        rms = sum(j["rms"] ** 2 for j in st["joints"]) ** 0.5
+        tuned = "—" if st["tuned_for"] is None else f"{st['tuned_for']:.3g}"
+        wj = int(worst["coordinate"][1:]) - 1
+        lines.append(f"{st['name']:<18}  {st['devices']:>7}  {st['added_mass']:>9.4g}  {tuned:>8}  "
+                     f"{worst['max']:>11.4g} {unit(wj):<3} at {worst['coordinate']:<3}  {100 * st['removed']:>6.1f}%  "
+                     f"{100 * (1 - rms / base_rms if base_rms else 0):>10.1f}%")
+    lines += ["", "largest |torque| per joint over the workspace and payloads, and the share removed:"]
+    head = f"{'':<18}" + "".join(f"  {joints[i]['coordinate'] + ' (' + unit(i) + ')':>16}" for i in loaded)
+    lines.append(head)
+    for st in out["strategies"]:
+        if st["available"]:
+            cells = "".join(f"  {st['joints'][i]['max']:>9.4g} ({round(100 * st['joints'][i]['removed_max']) + 0:>3.0f}%)"
+                            for i in loaded)
+            lines.append(f"{st['name']:<18}{cells}")
+    for st in out["strategies"][1:]:
+        if not st["available"]:
+            continue
+        lines += ["", f"{st['name']} (tuned for {st['tuned_for']:.4g} kg):"]
+        lines += [f"  {h}" for h in st["hardware"]]
+        d = st["details"]
+        if st["name"] == "counterweights":
+            lines.append("  added inertia per joint (kg·m²): "
+                         + ", ".join(f"q{i + 1} {number(v)}" for i, v in enumerate(d["added_inertia"]) if v > 0)
+                         + f"; motor torque at {number(out['acceleration'])} rad/s²: "
+                         + ", ".join(f"q{i + 1} {number(v)} N·m" for i, v in enumerate(d["motor_torque_at_acceleration"])
+                                     if v > 0))
+        if st["name"] == "harmonic, pruned":
+            lines.append(f"  kept {d['kept']} of {d['terms']} terms (target {number(d['target_torque'])} N·m); dropped: "
+                         + (", ".join(f"{t['form_text']} ({number(max(t['largest_torque_per_joint']))} N·m alone)"
+                                      for t in d["dropped"]) or "none"))
+            if "note" in d:
+                lines.append(f"  note: {d['note']}")
+        pc = st["pinocchio"]
+        lines.append(f"  Pinocchio recheck ({pc['method']}): largest difference {pc['max_difference']:.2g} at "
+                     f"{pc['configurations']} configurations × {len(pc['payloads'])} payloads and the worst ones")
+    lines.append(f"\nnote: every largest value is a true extreme (the best of {out['samples']} random configurations, "
+                 "polished); RMS over the same configurations and the payload range")
+    return "\n".join(lines)
+
+
 #: the table of each result of ``balance solve``
 _TABLES = {"ArmBalance": _table_arm, "SpringDesign": _table_spring, "SliderBalance": _table_prismatic,
-           "PantographBalance": _table_pantograph}
+           "PantographBalance": _table_pantograph, "Comparison": _table_compare}

@@ -13,7 +13,7 @@ To add a balance problem, call :func:`balance_kind` once: its table, the
 summary lines and, optionally, its figure.
 
 >>> sorted(k for k in KINDS if k.startswith("balance"))
-['balance arm', 'balance pantograph', 'balance prismatic', 'balance spring']
+['balance arm', 'balance compare', 'balance pantograph', 'balance prismatic', 'balance spring']
 """
 
 from __future__ import annotations
@@ -140,6 +140,37 @@ balance_kind(
                       f"spring amplitude {r['term']['amplitude']:.6g} N·m, drive force {r['drive_force']:.6g} N, "
                       f"relative residual {r['relative_residual']:.3g}"],
     plot="plot_pantograph")
+
+
+def _compare_summary(out: dict) -> dict:
+    ok = [s for s in out["strategies"] if s["available"]]
+    out["available"] = [s["name"] for s in ok]
+    out["removed"] = {s["name"]: s["removed"] for s in ok}
+    out["devices"] = {s["name"]: s["devices"] for s in ok}
+    out["baseline"] = out["strategies"][0]["max_residual"]
+    pruned = next(s for s in ok if s["name"] == "harmonic, pruned")
+    out["pruned_residual"] = pruned["max_residual"]
+    out["pruned_target"] = pruned["details"]["target_torque"]
+    out["recheck"] = max(s["pinocchio"]["max_difference"] for s in ok)
+    return out
+
+
+balance_kind(
+    "balance compare", "compare", "solve_compare",
+    "balancing strategies side by side for one arm ([compare]): residual torque, devices, added mass",
+    "the arm's file, its payload range and workspace",
+    expect={
+        "available": Expectation(Texts),
+        "removed": Expectation(NumberTable, compare=compare.table),
+        "devices": Expectation(NumberTable, compare=compare.table),
+        "baseline": Expectation(Number),
+        "pruned_residual": _below(),
+        "recheck": _below(),
+    },
+    report=lambda r: [f"{s['name']}: {100 * s['removed']:.1f} % of the largest torque removed, {s['devices']} "
+                      f"devices, {s['added_mass']:.3g} kg" if s["available"] else f"{s['name']}: not available"
+                      for s in r["strategies"]],
+    after=_compare_summary, plot="plot_compare")
 
 
 # --------------------------------------------------------------------------- plot

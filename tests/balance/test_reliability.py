@@ -91,8 +91,8 @@ def test_a_urdf_whose_decomposition_would_fill_memory_is_refused(capsys, tmp_pat
     ("t.toml", "[spring]\nkind = \"coil\"\n",
      "t.toml: [spring] key 'kind' must be 'tension', 'compression' or 'compression-lever', not 'coil'."),
     ("t.toml", "[arm]\n[arm.check]\nsamples = 0\n", "t.toml: [arm.check] key 'samples' must be ≥ 1, not 0."),
-    ("t.toml", "[robot]\n", "t.toml: a balance problem needs exactly one of the tables [arm], [spring], [slider] "
-                            "or [pantograph], not [robot]."),
+    ("t.toml", "[robot]\n", "t.toml: a balance problem needs exactly one of the tables [arm], [spring], [slider], "
+                            "[pantograph] or [compare], not [robot]."),
     ("nan.urdf", '<robot name="r"><link name="a"/><link name="b"><inertial><mass value="nan"/></inertial></link>'
                  '<joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>',
      "nan.urdf: the mass of link 'b' must be a finite number, not 'nan'."),
