@@ -229,3 +229,24 @@ def test_an_arm_without_gravity_torque_has_nothing_to_balance(capsys, tmp_path):
                                  "and payload (the largest is 0 N·m): there is nothing to balance.\n")
     with pytest.raises(InvalidInput, match="nothing to balance"):
         CompareProblem(arm_from_dict(load_toml(str(f)))).solve()
+
+
+def test_arm_payload_table_for_toml_and_urdf_arms(tmp_path):
+    """``[arm.payload]``: a range of masses on a link (TOML: at a distance along it; URDF: at a point of a
+    link's frame); `balance arm` tunes for the middle and reports the half-range's effect (a true extreme)."""
+    from balance import BalanceError, solve_arm
+
+    doc = {"arm": {"zero": "horizontal", "links": [{"name": "a", "length": 1.0, "weight": 10.0}],
+                   "payload": {"mass": [1.0, 3.0], "at": 0.8}}}
+    res = solve_arm(doc)
+    assert res.payload.tuned_for == pytest.approx(2 * G) and res.payload.min_payload == pytest.approx(G)
+    assert res.payload.half_payload_effect == pytest.approx(1.0 * G * 0.8, rel=1e-12)
+    assert res.terms[0].amplitude == pytest.approx(10 * 0.5 + 2 * G * 0.8)
+    both = dict(doc["arm"], loads=[{"weight": 5.0, "payload": True}])
+    with pytest.raises(BalanceError, match=r"either as \[arm.payload\] or as \[\[arm.loads\]\] with payload = true"):
+        solve_arm({"arm": both})
+    urdf = str(MODELS / "arm_ur5e.urdf")
+    res = solve_arm({"arm": {"urdf": urdf, "payload": {"mass": [0.0, 5.0], "link": "tool0"}}})
+    assert res.payload.tuned_for == pytest.approx(2.5 * G) and res.check.relative_residual < 1e-12
+    with pytest.raises(BalanceError, match=r"\[arm.payload\] the URDF has no link 'gripper' to carry the payload"):
+        solve_arm({"arm": {"urdf": urdf, "payload": {"mass": [0.0, 5.0], "link": "gripper"}}}, "x.toml")
