@@ -91,13 +91,6 @@ def plot_spring(design, path: str) -> str:
     return path
 
 
-def _log_norm(values):
-    from matplotlib.colors import LogNorm
-
-    v = np.asarray(values)
-    return LogNorm(vmin=max(float(np.min(v)), 1e-12), vmax=max(float(np.max(v)), float(np.min(v)) * 1.01, 1e-12))
-
-
 def plot_arm(result, path: str, n: int = 241) -> str:
     """An :class:`~balance.problems.arm.ArmBalance`: per joint, swept over its range with the others at
     80 % of theirs, the gravity moment the devices must carry, the devices' moment, and the residual

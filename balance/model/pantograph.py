@@ -35,7 +35,7 @@ the same equilibrium from the links' own centres of mass as the independent chec
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
