@@ -132,6 +132,7 @@ LONG = {  # each runs for minutes unless interrupted
     "arm": ["balance", "arm", str(MODELS / "arm_base_drives.urdf"), "--samples", "3000000", "--force"],
     "pantograph": ["balance", "pantograph", "PANTOGRAPH", "--force"],
     "solve": ["balance", "solve", "SLIDER", "--force"],
+    "compare": ["balance", "compare", str(MODELS / "arm_ur5e.urdf"), "--samples", "2000000", "--force"],
 }
 
 
