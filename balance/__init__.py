@@ -1,47 +1,79 @@
 """Static and dynamic balancing of robot arms.
 
-Gravity potentials as harmonic terms of linear forms of the joint coordinates, the
-spring devices that cancel them (sine mechanisms, crank-and-rocker devices with
-tension or fitted compression springs), counterweights, the pantograph balanced
-manipulator and counter-masses for a sliding last link. See ``docs/balance.md``.
+The pipeline, in the package's layout:
+
+- :mod:`balance.model` — what is balanced: the gravity potential as harmonic terms
+  (``potential``), planar arms from TOML (``arm``), arms from URDF with Pinocchio as the
+  independent check (``urdf``), the pantograph manipulator (``pantograph``);
+- :mod:`balance.devices` — what balances: spring devices (``springs``), their fit
+  (``fit``) and trade-offs (``tradeoff``), helical springs a maker can wind (``helical``),
+  gear trains (``transmission``), counterweights, counter-masses and the mass-matrix check of
+  a sliding link (``countermass``, ``dynamics``);
+- :mod:`balance.problems` — a TOML table (or the caller) states a problem; ``solve()``
+  returns a typed result whose ``to_dict()`` is the JSON the CLI writes; ``compare`` sets the
+  balancing strategies side by side for one arm;
+- :mod:`balance.extremes` (true extremes over a workspace), :mod:`balance.budget` (the work a
+  problem may take), :mod:`balance.schema` (the TOML tables), :mod:`balance.plots`,
+  :mod:`balance.errors`.
+
+``balance`` never imports ``synth``; names below load their module when first used.
+See ``docs/balance.md``.
 
 Examples
 --------
 >>> import balance
 >>> doc = {"arm": {"links": [{"joint": "revolute", "length": 1.0, "weight": 10.0}]}}
->>> balance.solve_arm(doc)["terms"][0]["amplitude"]
+>>> balance.solve_arm(doc).terms[0].amplitude
 5.0
 """
 
-from .arm import Arm, Link, Load, arm_from_dict, gear_ratio_for_accuracy
-from .countermass import CounterMass, c_min, counter_mass_laws, crank_construction, verify_counter_mass
-from .counterweights import counterweights
-from .errors import (
-    BalanceError,
-    FitFailed,
-    InfeasibleBounds,
-    InvalidArm,
-    InvalidInput,
-    InvalidRange,
-    SchemaError,
-    WrongSense,
-)
-from .fit import DEFAULT_METHOD, METHODS, NORMS, FitResult, SpringBounds, fit_spring
-from .pantograph import Pantograph, balance_pantograph, pantograph_from_dict
-from .potential import HarmonicTerm, merge_terms
-from .problems import load_toml, solve_arm, solve_pantograph, solve_prismatic, solve_spring, spring_problem
-from .springs import CrankRockerDevice, SineDevice, crank_moment, spring_length
-from .static import ArmBalance, CheckResult, balance_arm, check_terms
+from __future__ import annotations
 
-__all__ = [
-    "Arm", "Link", "Load", "arm_from_dict", "gear_ratio_for_accuracy",
-    "HarmonicTerm", "merge_terms",
-    "ArmBalance", "CheckResult", "balance_arm", "check_terms", "counterweights",
-    "CrankRockerDevice", "SineDevice", "crank_moment", "spring_length",
-    "SpringBounds", "FitResult", "fit_spring", "METHODS", "NORMS", "DEFAULT_METHOD",
-    "CounterMass", "c_min", "counter_mass_laws", "crank_construction", "verify_counter_mass",
-    "Pantograph", "balance_pantograph", "pantograph_from_dict",
-    "solve_arm", "solve_spring", "spring_problem", "solve_prismatic", "solve_pantograph", "load_toml",
-    "BalanceError", "InvalidInput", "InvalidArm", "InvalidRange", "InfeasibleBounds",
-    "WrongSense", "FitFailed", "SchemaError",
-]
+import importlib
+
+#: public name → the module that defines it
+_WHERE = {
+    # problems and results
+    "read_problem": "problems", "load_toml": "schema", "solve_arm": "problems", "solve_spring": "problems",
+    "solve_prismatic": "problems", "solve_pantograph": "problems",
+    "ArmProblem": "problems.arm", "ArmBalance": "problems.arm", "CheckResult": "problems.arm",
+    "DeviceSizes": "problems.arm", "balance_arm": "problems.arm", "check_terms": "problems.arm",
+    "arm_from_dict": "problems.arm",
+    "SpringProblem": "problems.spring", "SpringDesign": "problems.spring", "SpringOptions": "problems.spring",
+    "SliderProblem": "problems.slider", "SliderBalance": "problems.slider", "DynamicsCheck": "problems.slider",
+    "PantographProblem": "problems.pantograph", "PantographBalance": "problems.pantograph",
+    "solve_compare": "problems", "CompareProblem": "problems.compare", "Comparison": "problems.compare",
+    # model
+    "Arm": "model.arm", "Link": "model.arm", "Load": "model.arm", "Coordinate": "model.arm",
+    "ArmModel": "model.arm", "gear_ratio_for_accuracy": "model.arm",
+    "HarmonicTerm": "model.potential", "merge_terms": "model.potential",
+    "UrdfArm": "model.urdf", "load_urdf": "model.urdf", "Pantograph": "model.pantograph",
+    "DHLink": "model.urdf", "urdf_from_dh": "model.urdf",
+    # devices
+    "SpringBounds": "devices.fit", "FitResult": "devices.fit", "fit_spring": "devices.fit",
+    "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit",
+    "CrankRockerDevice": "devices.springs", "SineDevice": "devices.springs", "crank_moment": "devices.springs",
+    "spring_length": "devices.springs", "HelicalSpring": "devices.helical", "design_spring": "devices.helical",
+    "CounterMass": "devices.countermass", "c_min": "devices.countermass",
+    "counter_mass_laws": "devices.countermass", "crank_construction": "devices.countermass",
+    "verify_counter_mass": "devices.countermass",
+    "Counterweights": "devices.counterweights", "counterweights": "devices.counterweights",
+    # the rest
+    "Extreme": "extremes", "box_extremes": "extremes", "TooMuchWork": "budget",
+    "BalanceError": "errors", "InvalidInput": "errors", "InvalidArm": "errors", "InvalidRange": "errors",
+    "InfeasibleBounds": "errors", "WrongSense": "errors", "FitFailed": "errors", "SchemaError": "errors",
+}
+
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'balance' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -1,17 +1,18 @@
-"""Matplotlib figures (Agg backend, imported only when a plot is asked for)."""
+"""Figures of the balance results (matplotlib, Agg backend, imported only when a plot is asked for).
+
+Each function draws a result as solved (:mod:`balance.problems`): it reads the result's numbers
+(extremes, fits, terms) and never solves again; curves over a range are the result's own model
+evaluated for the picture.
+"""
 
 from __future__ import annotations
 
-import math
-from typing import Sequence
-
 import numpy as np
 
-from .arm import Arm
-from .fit import FitResult, relative_errors
-from .potential import HarmonicTerm, terms_forces
+from .devices.fit import relative_errors
+from .model.potential import terms_forces
 
-__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph"]
+__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph", "plot_compare"]
 
 
 def _plt():
@@ -23,10 +24,11 @@ def _plt():
     return plt
 
 
-def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spring: dict | None = None) -> str:
-    """Target ``Φ0·sin φ`` against the device moment, the relative residual, and (given) the
-    Pareto front of error against free length and peak force."""
+def plot_spring(design, path: str) -> str:
+    """A :class:`~balance.problems.spring.SpringDesign`: target ``Φ0·sin φ`` against the device moment,
+    the relative residual, and (when solved) the Pareto front of error against free length and peak force."""
     plt = _plt()
+    res, front, spring = design.fit, design.pareto, design.spring
     lo, hi = res.phi_range
     phi = np.linspace(lo, hi, 1001)
     dev = res.device
@@ -41,8 +43,8 @@ def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spri
     title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
              f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
     if spring:
-        title += (f"\nspring: d = {1e3 * spring['wire_diameter_m']:.3g} mm, D = {1e3 * spring['mean_diameter_m']:.4g} mm, "
-                  f"n = {spring['active_coils']:g}, {spring['material']}")
+        title += (f"\nspring: d = {1e3 * spring.wire_diameter_m:.3g} mm, D = {1e3 * spring.mean_diameter_m:.4g} mm, "
+                  f"n = {spring.active_coils:g}, {spring.material}")
     ax1.set_title(title, fontsize=9)
     ax1.legend(loc="best", fontsize=8)
     ax1.grid(alpha=0.3)
@@ -62,12 +64,12 @@ def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spri
         ax3 = axes[2]
         groups: dict[float, list[dict]] = {}
         for pt in front:
-            groups.setdefault(float(f"{pt['force']:.3g}"), []).append(pt)
+            groups.setdefault(float(f"{pt.force:.3g}"), []).append(pt)
         cmap = plt.get_cmap("viridis")
         levels = sorted(groups)
         for i, f in enumerate(levels):
-            pts = sorted(groups[f], key=lambda q: q["size"])
-            ax3.plot([q["size"] for q in pts], [100 * q["error"] for q in pts], "o-", ms=4, lw=1.2,
+            pts = sorted(groups[f], key=lambda q: q.size)
+            ax3.plot([q.size for q in pts], [100 * q.error for q in pts], "o-", ms=4, lw=1.2,
                      color=cmap(i / max(len(levels) - 1, 1)), label=f"peak force {f:.3g} N")
         ax3.plot(res.free_length, 100 * (res.max_rel_error if res.norm == "max" else res.rms_rel_error), "o",
                  ms=13, mfc="none", mec="red", mew=2, label="this fit")
@@ -89,23 +91,17 @@ def plot_spring(res: FitResult, path: str, front: list[dict] | None = None, spri
     return path
 
 
-def _log_norm(values):
-    from matplotlib.colors import LogNorm
-
-    v = np.asarray(values)
-    return LogNorm(vmin=max(float(np.min(v)), 1e-12), vmax=max(float(np.max(v)), float(np.min(v)) * 1.01, 1e-12))
-
-
-def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -> str:
-    """Per joint, swept over its range with the others at 80 % of theirs: the gravity moment the
-    devices must carry, the devices' moment, and the residual relative to the gravity moment
-    (at half, zero and full payload when the arm has one)."""
+def plot_arm(result, path: str, n: int = 241) -> str:
+    """An :class:`~balance.problems.arm.ArmBalance`: per joint, swept over its range with the others at
+    80 % of theirs, the gravity moment the devices must carry, the devices' moment, and the residual
+    relative to the gravity moment (at the tuned, smallest and largest payload when the arm has one).
+    The titles give the result's residual over the whole workspace (a true extreme)."""
     plt = _plt()
-    lim = [ln.limits for ln in arm.links]
+    tuned, terms = result.arm, result.terms
+    lim = [c.limits for c in tuned.coordinates]
     mid = np.array([a + 0.8 * (b - a) for a, b in lim])  # a generic pose: symmetric ones hide terms
-    joints = [i for i, ln in enumerate(arm.links) if ln.joint != "vertical"]
-    has_payload = any(ld.payload for ld in arm.loads)
-    tuned = arm.with_payload_fraction(0.5)
+    joints = [i for i, c in enumerate(tuned.coordinates) if c.joint != "vertical"]
+    has_payload = result.payload is not None
     sweeps = {}
     for i in joints:
         x = np.linspace(*lim[i], n)
@@ -118,7 +114,7 @@ def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -
     fig, axes = plt.subplots(2, cols, figsize=(max(4.3 * cols + 0.6, 9.0), 6.6), constrained_layout=True,
                              squeeze=False)
     for c, (i, (x, q, g)) in enumerate(sweeps.items()):
-        ln = arm.links[i]
+        ln = tuned.coordinates[i]
         rev = ln.joint == "revolute"
         xs = np.degrees(x) if rev else x
         unit, xunit = ("N·m", "deg") if rev else ("N", "m")
@@ -134,8 +130,7 @@ def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -
         scale = float(np.max(np.abs(g)))
         cases = [("half payload (tuned)" if has_payload else "balanced", tuned, "C3")]
         if has_payload:
-            cases += [("no payload", arm.with_payload_fraction(0.0), "C0"),
-                      ("full payload", arm.with_payload_fraction(1.0), "C2")]
+            cases += [("no payload", result.empty, "C0"), ("full payload", result.full_payload, "C2")]
         worst = 0.0
         for label, a, color in cases:
             res = (-a.gravity_forces(q)[:, i] - dev) / scale
@@ -144,31 +139,35 @@ def plot_arm(arm: Arm, terms: Sequence[HarmonicTerm], path: str, n: int = 241) -
         bot.axhline(0, color="k", lw=0.5)
         bot.set_xlabel(f"q{i + 1} ({xunit})")
         bot.set_ylabel(f"residual / max |gravity moment| (%)")
+        whole = result.check.per_joint[i] if not has_payload else result.payload.per_joint[i]
         if worst < 1e-12:
             bot.set_ylim(-1, 1)
             bot.set_title(f"exact to rounding: |residual| ≤ {worst:.1e} of {scale:.4g} {unit}", fontsize=9)
         else:
-            bot.set_title(f"largest residual {100 * worst:.3g} % of {scale:.4g} {unit}", fontsize=9)
+            bot.set_title(f"largest residual {100 * worst:.3g} % of {scale:.4g} {unit} on this sweep;\n"
+                          f"{whole:.4g} {unit} over the whole workspace", fontsize=9)
         if has_payload:
             bot.legend(fontsize=7, loc="best")
         bot.grid(alpha=0.3)
-    title = f"{arm.name}: gravity against the spring devices"
+    title = f"{tuned.name}: gravity against the spring devices"
     if has_payload:
-        total = sum(ld.weight for ld in arm.loads if ld.payload)
-        title += f" (tuned for half the payload, {total / 2:.4g} of {total:.4g} N)"
+        pl = result.payload
+        title += f" (tuned for {pl.tuned_for:.4g} N, payload {pl.min_payload:.4g} … {pl.max_payload:.4g} N)"
     fig.suptitle(title, fontsize=11)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
-def plot_prismatic(m: float, inertia: float, M: float, q_max: float, stroke: float, C: float, path: str) -> str:
-    """Counter-mass laws ``z1(q)``, ``z2(q)`` and the inertia they keep, with ``C`` against ``C_min``."""
-    from .countermass import c_min, counter_mass_laws
+def plot_prismatic(result, path: str) -> str:
+    """A :class:`~balance.problems.slider.SliderBalance`: the counter-mass laws ``z1(q)``, ``z2(q)`` and
+    the inertia they keep, with ``C`` against ``C_min``."""
+    from .devices.countermass import counter_mass_laws
 
     plt = _plt()
-    cmin = c_min(m, inertia, M, q_max)
-    valid = math.sqrt(2 * M * (C - inertia) / (m * m + 2 * m * M))
+    r = result.counter_mass
+    m, inertia, M, q_max, stroke, C = r.m, r.inertia, r.M, r.q_max, r.stroke, r.C
+    cmin, valid = r.C_min, r.law_valid_stroke
     q = np.linspace(-stroke, stroke, 801)
     z1, z2, disc = counter_mass_laws(q, m, inertia, M, C)
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, constrained_layout=True)
@@ -206,12 +205,14 @@ def plot_prismatic(m: float, inertia: float, M: float, q_max: float, stroke: flo
     return path
 
 
-def plot_pantograph(p, path: str, n: int = 61) -> str:
-    """The mechanism at mid-range with its links numbered, the cylinder force and the
-    operator's force over the workspace, and the spring moment against ``W_D``'s."""
-    from .pantograph import PAYLOADS
+def plot_pantograph(result, path: str, n: int = 61) -> str:
+    """A :class:`~balance.problems.pantograph.PantographBalance`: the mechanism at mid-range with its links
+    numbered, the cylinder force and the operator's force over the workspace (the result's extremes in
+    the titles and marked where they are reached), and the spring moment against ``W_D``'s."""
+    from .model.pantograph import PAYLOADS
 
     plt = _plt()
+    p = result.pantograph
     t2 = 0.5 * (p.range2[0] + p.range2[1])
     t3 = 0.5 * (p.range3[0] + p.range3[1])
     P = {k: v[0] for k, v in p.points(np.array([[t2, t3]])).items()}
@@ -262,9 +263,10 @@ def plot_pantograph(p, path: str, n: int = 61) -> str:
     a3 = np.linspace(*p.range3, n)
     X, Y = np.meshgrid(a2, a3)
     th = np.stack([X.ravel(), Y.ravel()], axis=1)
-    for ax, fn, label, title in (
-        (axes[0, 1], p.cylinder_force, "cylinder force F (N)", "cylinder 10 force, half payload"),
-        (axes[1, 0], p.hand_force, "operator's force along A→C (N)", "what the operator holds, half payload"),
+    for ax, fn, label, title, (lo_e, hi_e) in (
+        (axes[0, 1], p.cylinder_force, "cylinder force F (N)", "cylinder 10 force, half payload", result.force[0.5]),
+        (axes[1, 0], p.hand_force, "operator's force along A→C (N)", "what the operator holds, half payload",
+         result.hand[0.5]),
     ):
         Z = fn(th, 0.5).reshape(X.shape)
         im = ax.contourf(np.degrees(X), np.degrees(Y), Z, levels=14, cmap="viridis")
@@ -273,8 +275,9 @@ def plot_pantograph(p, path: str, n: int = 61) -> str:
         fig.colorbar(im, ax=ax, label=label)
         ax.set_xlabel("upper arm angle θ2 (deg from horizontal)")
         ax.set_ylabel("forearm angle θ3 (deg from horizontal)")
-        lo, hi = float(np.min(Z)), float(np.max(Z))
-        ax.set_title(f"{title}: {lo:.4g} … {hi:.4g} N", fontsize=9)
+        for e, mark in ((lo_e, "v"), (hi_e, "^")):
+            ax.plot(*np.degrees(e.at), mark, ms=9, mfc="w", mec="k", clip_on=False)
+        ax.set_title(f"{title}: {lo_e.value:.4g} … {hi_e.value:.4g} N (▽ least, △ largest)", fontsize=9)
     ax = axes[1, 1]
     th2 = np.linspace(*p.range2, 200)
     t = p.term()
@@ -289,6 +292,73 @@ def plot_pantograph(p, path: str, n: int = 61) -> str:
                  fontsize=9)
     fig.suptitle(f"Pantograph manipulator, k = {p.k:g}: cylinder base P = ({base[0]:.3g}, {base[1]:.3g}) m",
                  fontsize=11)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_compare(result, path: str, n: int = 241) -> str:
+    """A :class:`~balance.problems.compare.Comparison`: per loaded joint, its torque before and after each
+    strategy along a sweep of the joint (the others at 80 % of their workspace ranges, the largest payload),
+    and bars of the largest (a true extreme over the workspace and payloads) and RMS residual."""
+    plt = _plt()
+    arm, strategies = result.arm, [s for s in result.strategies if s.available]
+    base = strategies[0]
+    joints = [i for i, j in enumerate(base.joints) if j.baseline_max > 0]
+    lo = np.array([w[0] for w in result.workspace])
+    hi = np.array([w[1] for w in result.workspace])
+    pose = lo + 0.8 * (hi - lo)
+    payload = result.payload[1]
+    colors = {"none": "k", "counterweights": "C0", "springs per joint": "C1", "harmonic, pruned": "C2",
+              "exact springs": "C3"}
+    dashes = {"counterweights": (0, (1, 1.5)), "springs per joint": "--", "harmonic, pruned": (0, (6, 2)),
+              "exact springs": (0, (3, 1, 1, 1))}
+    cols = max(len(joints), 1)
+    fig, axes = plt.subplots(2, cols, figsize=(max(4.2 * cols, 9.0), 7.4), constrained_layout=True, squeeze=False)
+    for c, i in enumerate(joints):
+        rev = arm.coordinates[i].joint != "prismatic"
+        x = np.linspace(lo[i], hi[i], n)
+        q = np.tile(pose, (n, 1))
+        q[:, i] = x
+        grav = result.gravity(q, payload)
+        xs = np.degrees(x) if rev else x
+        unit = "N·m" if rev else "N"
+        top, bot = axes[0][c], axes[1][c]
+        for s in strategies:
+            r = grav[:, i] + s.forces(q)[:, i]
+            top.plot(xs, r, color=colors[s.name], lw=2.2 if s.name in ("none", "counterweights") else 1.4,
+                     ls=dashes.get(s.name, "-"), label="gravity (no balancing)" if s.name == "none" else s.name)
+        top.axhline(0, color="0.5", lw=0.6)
+        top.set_title(f"q{i + 1} ({arm.coordinates[i].name}) swept\nothers at 80 % of their ranges, payload "
+                      f"{payload:g} kg", fontsize=9)
+        top.set_xlabel(f"q{i + 1} ({'deg' if rev else 'm'})")
+        top.set_ylabel(f"torque the drive carries ({unit})")
+        top.grid(alpha=0.3)
+        if c == 0:
+            top.legend(fontsize=7, loc="best")
+        names = [s.name for s in strategies]
+        y = np.arange(len(strategies))[::-1]
+        bot.barh(y, [s.joints[i].max for s in strategies], color=[colors[m] for m in names], alpha=0.35,
+                 label="largest (true extreme)")
+        bot.barh(y, [s.joints[i].rms for s in strategies], height=0.4, color=[colors[m] for m in names],
+                 label="RMS")
+        for yy, s in zip(y, strategies):
+            j = s.joints[i]
+            bot.text(j.max, yy, f" {j.max:.3g} ({round(100 * j.removed_max) + 0:.0f} %)", va="center", fontsize=7)
+        bot.set_yticks(y, names, fontsize=8)
+        bot.set_xlabel(f"residual torque over the workspace and payloads ({unit})")
+        bot.set_xlim(0, 1.3 * max(s.joints[i].max for s in strategies))
+        bot.grid(alpha=0.3, axis="x")
+        if c == 0:
+            bot.legend(fontsize=7, loc="lower right")
+    unavailable = [f"{s.name}: {s.reason}" for s in result.strategies if not s.available]
+    title = (f"{arm.name}: gravity torque before and after each strategy (payload {result.payload[0]:g} … "
+             f"{result.payload[1]:g} kg)")
+    if unavailable:
+        import textwrap
+
+        title += "\n" + "\n".join(textwrap.fill(u, 24 * max(cols, 4)) for u in unavailable)
+    fig.suptitle(title, fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

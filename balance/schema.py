@@ -3,8 +3,8 @@
 Each TOML table a balance problem reads (``[arm]``, ``[spring]``, ``[slider]``,
 ``[pantograph]``) is a pydantic model: types, required keys, unknown keys and
 finiteness are checked by the library; physical domains (a negative weight, an
-inverted range) are checked by the model objects themselves (:mod:`balance.arm`,
-:mod:`balance.fit` …) so the Python API refuses them too. A failed check becomes one
+inverted range) are checked by the model objects themselves (:mod:`balance.model.arm`,
+:mod:`balance.devices.fit` …) so the Python API refuses them too. A failed check becomes one
 :class:`~balance.errors.SchemaError` sentence naming the file, the table and the key.
 
 Examples
@@ -14,7 +14,7 @@ Examples
 >>> parse({"slider": {"mass": "2"}}, "slider", "s.toml")
 Traceback (most recent call last):
 ...
-balance.errors.SchemaError: s.toml: 'mass' in [slider] must be a number, not '2'.
+balance.errors.SchemaError: s.toml: [slider] key 'mass' must be a number, not '2'.
 """
 
 from __future__ import annotations
@@ -27,9 +27,9 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationEr
 from .errors import SchemaError
 
 __all__ = [
-    "parse", "load_toml", "OWNED_BY_RUNNER",
+    "parse", "load_toml", "show", "OWNED_BY_RUNNER",
     "ArmTable", "LinkTable", "LoadTable", "SpringTable", "SpringDesignTable", "SliderTable",
-    "PantographTable",
+    "PantographTable", "PayloadTable", "CompareTable",
 ]
 
 #: top-level tables the scene runner owns; balance ignores them
@@ -100,6 +100,13 @@ class CounterweightsTable(_Table):
     arm: float | None = None
 
 
+class PayloadTable(_Table):
+    mass: Pair | None = None
+    weight: Pair | None = None
+    link: str | None = None
+    at: float | Annotated[list[float], Field(min_length=3, max_length=3)] | None = None
+
+
 class ArmTable(_Table):
     name: str = "arm"
     zero: Literal["vertical", "horizontal"] = "vertical"
@@ -113,6 +120,7 @@ class ArmTable(_Table):
     devices: DevicesTable = DevicesTable()
     check: CheckTable = CheckTable()
     counterweights: CounterweightsTable = CounterweightsTable()
+    payload: PayloadTable | None = None
 
     @field_validator("drives")
     @classmethod
@@ -210,20 +218,48 @@ class PantographTable(_Table):
     check: CheckTable = CheckTable()
 
 
+# ------------------------------------------------------------------------- compare
+class CompareTable(_Table):
+    arm: str
+    payload: Pair | None = None
+    workspace: dict[str, Pair] = {}
+    target: Annotated[float, Field(gt=0, lt=1)] = 0.05
+    acceleration: Annotated[float, Field(ge=0)] = 1.0
+    samples: Count = 1000
+    seed: int = 0
+
+
 TABLES: dict[str, type[_Table]] = {
     "arm": ArmTable, "spring": SpringTable, "slider": SliderTable, "pantograph": PantographTable,
+    "compare": CompareTable,
 }
 
 # ------------------------------------------------------------------------- parsing
 _TYPE_WORDS = {
-    "float_type": "must be a number", "int_type": "must be a whole number",
-    "bool_type": "must be true or false", "string_type": "must be a string",
-    "finite_number": "must be finite", "list_type": "must be an array",
-    "model_type": "must be a table", "dict_type": "must be a table",
+    "float_type": "a number", "int_type": "a whole number", "bool_type": "true or false",
+    "string_type": "a string", "finite_number": "a finite number", "list_type": "an array",
+    "model_type": "a table", "dict_type": "a table",
 }
 
+_PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base", "mass", "weight",
+          "payload"}
 
-_PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base"}
+
+def show(value: Any, width: int = 60) -> str:
+    """A value as a TOML file writes it (``true``, ``'one'``, ``[1, 2]``), shortened to ``width``.
+
+    >>> show(True), show("one"), show([1, 2.5]), show({"a": 4})
+    ('true', "'one'", '[1, 2.5]', '{ a = 4 }')
+    """
+    if isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, (list, tuple)):
+        text = "[" + ", ".join(show(v, width) for v in value) + "]"
+    elif isinstance(value, Mapping):
+        text = "{ " + ", ".join(f"{k} = {show(v, width)}" for k, v in value.items()) + " }" if value else "{}"
+    else:
+        text = repr(value)
+    return text if len(text) <= width else text[: width - 1] + "…"
 
 
 def _where(loc: tuple) -> tuple[str, str | None]:
@@ -257,8 +293,7 @@ def _allowed(model: type[BaseModel], loc: tuple) -> list[str]:
         field = getattr(cur, "model_fields", {}).get(e)
         if field is None:
             return []
-        ann = field.annotation
-        cur = _model_in(ann)
+        cur = _model_in(field.annotation)
         if cur is None:
             return []
     return sorted(getattr(cur, "model_fields", {}))
@@ -275,31 +310,31 @@ def _model_in(ann: Any) -> type[BaseModel] | None:
 
 
 def _sentence(err: dict, model: type[BaseModel], table_name: str, source: str) -> str:
+    """One sentence in the words every project file uses: ``SOURCE: [TABLE] key 'K' must be …, not V.``"""
     rel = tuple(err["loc"])
     loc = (table_name,) + rel
     table, key = _where(loc)
     kind = err["type"]
     value = err.get("input")
     if kind == "extra_forbidden":
-        allowed = _allowed(model, rel)
-        return f"{source}: unknown key '{loc[-1]}' in {table} (allowed: {', '.join(allowed)})."
+        return f"{source}: {table} has an unknown key '{loc[-1]}' (allowed: {', '.join(_allowed(model, rel))})."
     if kind == "missing":
-        return f"{source}: {table} needs '{key}'."
-    what = f"'{key}' in {table}" if key else table
+        return f"{source}: {table} needs the key '{key}'."
+    what = f"{table} key '{key}'" if key else table
     if kind in {"too_short", "too_long"} or (kind == "list_type" and key in _PAIRS):
-        return f"{source}: {what} must be a pair [low, high], not {value!r}."
+        return f"{source}: {what} must be a pair [low, high], not {show(value)}."
     if kind == "literal_error":
         expected = err.get("ctx", {}).get("expected", "")
-        return f"{source}: {what} must be {expected}, not {value!r}."
-    if kind in {"greater_than", "greater_than_equal"}:
+        return f"{source}: {what} must be {expected}, not {show(value)}."
+    if kind in {"greater_than", "greater_than_equal", "less_than", "less_than_equal"}:
         ctx = err.get("ctx", {})
-        bound = ctx.get("gt", ctx.get("ge"))
-        sign = ">" if kind == "greater_than" else "≥"
-        return f"{source}: {what} must be {sign} {bound:g}, not {value!r}."
+        bound = next(ctx[k] for k in ("gt", "ge", "lt", "le") if k in ctx)
+        sign = {"greater_than": ">", "greater_than_equal": "≥", "less_than": "<", "less_than_equal": "≤"}[kind]
+        return f"{source}: {what} must be {sign} {bound:g}, not {show(value)}."
     if kind == "value_error":
         return f"{source}: {what} {err['ctx']['error']}"
     words = _TYPE_WORDS.get(kind, err["msg"][0].lower() + err["msg"][1:])
-    return f"{source}: {what} {words}, not {value!r}."
+    return f"{source}: {what} must be {words}, not {show(value)}."
 
 
 def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
@@ -314,11 +349,12 @@ def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
         raise SchemaError(f"{source}: the document must be a TOML table.")
     for key in doc:
         if key != table and key not in OWNED_BY_RUNNER:
-            raise SchemaError(
-                f"{source}: unknown top-level key '{key}' (expected [{table}], [scene] or [expect])."
-            )
-    if table not in doc or not isinstance(doc[table], Mapping):
-        raise SchemaError(f"{source}: missing table [{table}].")
+            raise SchemaError(f"{source}: the file has an unknown table [{key}] (allowed here: [{table}], "
+                              f"{', '.join(f'[{k}]' for k in sorted(OWNED_BY_RUNNER))}).")
+    if table not in doc:
+        raise SchemaError(f"{source}: the file needs the table [{table}].")
+    if not isinstance(doc[table], Mapping):
+        raise SchemaError(f"{source}: [{table}] must be a table, not {show(doc[table])}.")
     model = TABLES[table]
     try:
         return model.model_validate(dict(doc[table]))
@@ -340,5 +376,7 @@ def load_toml(path: str) -> dict:
         raise SchemaError(f"{path}: is a directory, not a TOML file.") from None
     except UnicodeDecodeError:
         raise SchemaError(f"{path}: not a text file.") from None
+    except OSError as exc:
+        raise SchemaError(f"{path}: cannot be read ({exc.strerror}).") from None
     except tomllib.TOMLDecodeError as exc:
         raise SchemaError(f"{path}: not valid TOML ({exc}).") from None

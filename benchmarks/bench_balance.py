@@ -24,7 +24,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from balance import DEFAULT_METHOD, METHODS, SpringBounds, arm_from_dict, check_terms, fit_spring  # noqa: E402
-from balance.fit import DEFAULT_GRID  # noqa: E402
+from balance.devices.fit import DEFAULT_GRID  # noqa: E402
 from balance.problems import load_toml  # noqa: E402
 
 OUT = ROOT / "benchmarks" / "out"

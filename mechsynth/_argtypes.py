@@ -1,15 +1,19 @@
 """Value parsers shared by the CLI commands (argparse ``type=`` callables).
 
->>> whole("3"), positive("2"), seconds("0.5"), workers("1")
-(3, 2, 0.5, 1)
+>>> whole("3"), positive("2"), seconds("0.5"), workers("1"), number_range("-90..90")
+(3, 2, 0.5, 1, (-90.0, 90.0))
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
 
-__all__ = ["whole", "positive", "seconds", "inches", "workers"]
+__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "PICTURE_FORMATS"]
+
+#: what a picture may be written as
+PICTURE_FORMATS = (".png", ".pdf", ".svg")
 
 
 def whole(text: str) -> int:
@@ -58,3 +62,40 @@ def workers(text: str) -> int:
         raise argparse.ArgumentTypeError(
             f"{value} workers is more than the {cores} cores of this machine (extra processes only wait for a core)")
     return value
+
+
+def number_range(text: str) -> tuple[float, float]:
+    """``"A..B"`` of real numbers (negative ones and ``inf`` allowed; whether low < high is the command's check).
+
+    >>> number_range("0..inf")
+    (0.0, inf)
+    """
+    lo, sep, hi = text.partition("..")
+    try:
+        pair = float(lo), float(hi)
+    except ValueError:
+        pair = None
+    if not sep or pair is None or any(math.isnan(v) for v in pair):
+        raise argparse.ArgumentTypeError(f"expected a range low..high of numbers (e.g. 20..160), not {text!r}")
+    return pair
+
+
+def picture_file(text: str) -> str:
+    """A figure's file name ending in .png, .pdf or .svg that can be written (checked before any work
+    is done: a probe file is made and removed where none exists)."""
+    if os.path.splitext(text)[1].lower() not in PICTURE_FORMATS:
+        raise argparse.ArgumentTypeError(
+            f"a plot is written as PNG, PDF or SVG: end the file name in {', '.join(PICTURE_FORMATS)}, not {text!r}")
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file to write the plot to")
+    if os.path.exists(text):
+        if not os.access(text, os.W_OK):
+            raise argparse.ArgumentTypeError(f"cannot write the plot to {text}: permission denied")
+        return text
+    try:
+        with open(text, "x"):
+            pass
+        os.remove(text)
+    except OSError as exc:
+        raise argparse.ArgumentTypeError(f"cannot write the plot to {text}: {exc.strerror or exc}") from None
+    return text

@@ -8,10 +8,13 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import sys
 from collections.abc import Iterable, Sequence
+from typing import Any
 
-__all__ = ["FORMATS", "COUNT_FORMATS", "write_rows", "write_count", "nothing_found"]
+__all__ = ["FORMATS", "COUNT_FORMATS", "write_rows", "write_count", "nothing_found", "write_document", "pairs",
+           "number"]
 
 FORMATS = ("table", "jsonl", "csv", "json")
 COUNT_FORMATS = ("json", "table", "jsonl", "csv")  # --count: one JSON object by default (DESIGN contract)
@@ -97,3 +100,51 @@ def nothing_found(what: str, err=None) -> int:
     """
     (err or sys.stderr).write(f"mechsynth: no {what}\n")
     return 1
+
+
+def _finite(obj: Any) -> Any:
+    """JSON-safe: non-finite numbers become null, tuples lists, keys strings."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {str(k): _finite(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite(v) for v in obj]
+    return obj
+
+
+def write_document(document: dict, fmt: str, table: str, out=None) -> None:
+    """One result: ``json`` writes the document (indented, non-finite numbers as null), ``table`` the
+    text ``table`` already laid out for people.
+
+    >>> write_document({"c": 1.5, "e": float("inf")}, "json", "")
+    {
+      "c": 1.5,
+      "e": null
+    }
+    """
+    out = out or sys.stdout
+    if fmt == "json":
+        out.write(json.dumps(_finite(document), indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+    else:
+        out.write(table.rstrip("\n") + "\n")
+
+
+def number(value: Any) -> str:
+    """A value for a table: floats to six significant digits.
+
+    >>> number(1 / 3), number(7), number("x")
+    ('0.333333', '7', 'x')
+    """
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+def pairs(rows: Sequence[tuple[str, Any]]) -> str:
+    """A two-column table of names and values (:func:`number`), the names padded to one width.
+
+    >>> print(pairs([("c (N/m)", 9900.54321), ("r (m)", 0.01)]))
+    c (N/m)  9900.54
+    r (m)    0.01
+    """
+    width = max(len(k) for k, _ in rows)
+    return "\n".join(f"{k:<{width}}  {number(v)}" for k, v in rows)

@@ -46,22 +46,14 @@ class _Version(argparse.Action):
         parser.exit()
 
 
-# ----------------------------------------------------------------- balance
-def _run_balance(argv: list[str]) -> int:
-    from .commands.balance import main as balance_main  # lazy: a synthesis query never loads balance
-
-    return balance_main(argv)
-
-
 def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
     parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    from .commands import atlas, chains, codes, planetary, scene
+    from .commands import atlas, balance, chains, codes, planetary, scene
 
-    for module in (codes, chains, atlas, scene, planetary):
+    for module in (codes, chains, atlas, scene, planetary, balance):
         module.add_commands(sub)
-    sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
     return parser
 
 
@@ -69,8 +61,6 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        if argv and argv[0] == "balance":
-            return _run_balance(argv[1:])
         args = _build_parser().parse_args(argv)
         return args.run(args)
     except SynthesisError as exc:

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import balance
 import synth
-from balance.potential import terms_potential
+from balance.model.potential import terms_potential
 from synth import Chain, Code
 from synth.analysis.chains import analyze_chain
 
@@ -184,7 +184,7 @@ def revolute_arms(draw) -> dict:
 @SETTINGS
 @given(doc=revolute_arms(), seed=st.integers(0, 2**31 - 1))
 def test_random_revolute_arm_balanced_exactly(doc, seed):
-    out = balance.solve_arm(doc)
+    out = balance.solve_arm(doc).to_dict()
     scale = max(1.0, out["max_gravity_force"])
     assert out["max_residual"] <= 1e-9 * scale
     arm = balance.arm_from_dict(doc)

@@ -64,11 +64,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "number_synthesis": ("synth/synthesis/number_synthesis.py", ["tests/synthesis/test_number_synthesis_vs_oracle.py",
                                                         "tests/synthesis/test_number_synthesis.py",
                                                         "-k", "not test_agrees_with_brute_force["]),
-    "springs": ("balance/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
-    "fit": ("balance/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
+    "springs": ("balance/devices/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
+    "fit": ("balance/devices/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device
                                "-k", "not under_100_ms and not model_matches"]),
-    "countermass": ("balance/countermass.py", ["tests/balance/test_countermass.py",
+    "countermass": ("balance/devices/countermass.py", ["tests/balance/test_countermass.py",
                                                "tests/balance/test_countermass_vs_oracle.py"]),
 }
 

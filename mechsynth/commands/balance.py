@@ -1,115 +1,87 @@
-"""``mechsynth balance …`` commands (also ``python -m mechsynth balance …``).
+"""CLI commands ``mechsynth balance arm|spring|prismatic|pantograph|solve``: balancing of arms.
 
-Results go to stdout (a readable table, or ``--format json``); a mistake prints one
-sentence to stderr and returns 2, never a traceback.
+Each command builds the problem of :mod:`balance.problems` from its file or options, solves it
+and writes the result (a readable table, or ``--format json``) and, with ``--plot FILE``, its
+figure. A problem whose estimated work exceeds the limit is refused with the estimate
+(``--force`` runs it anyway). Nothing here imports ``balance`` until a balance command runs.
+
+Example
+-------
+>>> from mechsynth.cli import main
+>>> main(["balance", "prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2",
+...       "--stroke", "0.5"])  # doctest: +ELLIPSIS
+C_min (kg·m²)                 0.85
+...
+0
 """
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
-import sys
-from typing import Any, Sequence
+import os
+import re
 
-from balance.errors import BalanceError, InvalidRange
+from .._argtypes import number_range, picture_file, positive
+from .._output import number, pairs, write_document
 
-from .._argtypes import positive
-
-__all__ = ["main", "build_parser"]
-
-PROG = "mechsynth balance"
-_RANGE_OPTS = {"--range", "--r", "--r0", "--a"}
+#: ``--range -90..90``: a negative range is a value, not an option
+_NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-[\d.]+\.\.")
 
 
-class _UsageError(Exception):
-    pass
+def add_commands(sub) -> None:
+    """Mount ``balance`` and its subcommands on the ``mechsynth`` parser."""
+    top = sub.add_parser("balance", help="balancing of arms: arm, spring, prismatic, pantograph, solve",
+                         description="Static and dynamic balancing of robot arms (docs/balance.md).")
+    bsub = top.add_subparsers(dest="balance_command", metavar="COMMAND", required=True)
 
+    def command(name: str, help: str, problem, table, plot: str | None):
+        p = bsub.add_parser(name, help=help, description=help)
+        p._negative_number_matcher = _NEGATIVE_VALUE  # argparse's own test for "is this a value?"
+        p.set_defaults(run=_run, problem=problem, table=table, plot_with=plot)
+        return p
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str):  # noqa: D401 - argparse hook
-        raise _UsageError(message)
+    def common(p, plot: bool = True):
+        p.add_argument("--format", choices=("table", "json"), default="table")
+        if plot:
+            p.add_argument("--plot", metavar="FILE", type=picture_file, help="write a figure (.png, .pdf or .svg)")
+        p.add_argument("--force", action="store_true",
+                       help="run a problem whose estimated work exceeds the limit (30 s) instead of refusing it")
 
-
-def parse_range(text: str, name: str = "range") -> tuple[float, float]:
-    """``"A..B"`` → ``(A, B)``; ``inf`` allowed as B.
-
-    Examples
-    --------
-    >>> parse_range("-90..90")
-    (-90.0, 90.0)
-    """
-    if ".." not in text:
-        raise InvalidRange(f"{name} must be written low..high (e.g. 20..160), not {text!r}.")
-    a, b = text.split("..", 1)
-    try:
-        lo, hi = float(a), float(b)
-    except ValueError:
-        raise InvalidRange(f"{name} must be written low..high with numbers, not {text!r}.") from None
-    if math.isnan(lo) or math.isnan(hi):
-        raise InvalidRange(f"{name} {text!r} is not a range of numbers.")
-    return lo, hi
-
-
-PLOT_FORMATS = (".png", ".pdf", ".svg")
-
-
-def plot_file(text: str) -> str:
-    """A figure path ending in .png, .pdf or .svg (checked before any work is done)."""
-    import os
-
-    ext = os.path.splitext(text)[1].lower()
-    if ext not in PLOT_FORMATS:
-        raise argparse.ArgumentTypeError(
-            f"a plot is written as PNG, PDF or SVG: end the file name in {', '.join(PLOT_FORMATS)}, not {text!r}")
-    return text
-
-
-def _materials():
-    from balance.helical import MATERIALS
-
-    return MATERIALS
-
-
-def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog=PROG, description="Static and dynamic balancing of robot arms.")
-    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    sub.required = True
-
-    def common(sp):
-        sp.add_argument("--format", choices=("table", "json"), default="table")
-        sp.add_argument("--plot", metavar="FILE", type=plot_file, help="write a figure (.png, .pdf or .svg)")
-
-    a = sub.add_parser("arm", help="balance an arm ([arm] TOML, or a URDF file)")
+    a = command("arm", "balance an arm ([arm] TOML, or a URDF file)", _arm_problem, _table_arm, "plot_arm")
     a.add_argument("file", help="a TOML file with an [arm] table, or a .urdf file")
-    a.add_argument("--samples", type=positive, help="random configurations of the check (default from file or 1000)")
+    a.add_argument("--samples", type=positive,
+                   help="random configurations that start the searches for the largest residuals (default 1000)")
     a.add_argument("--seed", type=int)
     a.add_argument("--transmission", action="store_true",
                    help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
     common(a)
 
-    s = sub.add_parser("spring", help="fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)")
+    s = command("spring", "fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)",
+                _spring_problem, _table_spring, "plot_spring")
     s.add_argument("--kind", required=True, choices=("tension", "compression", "compression-lever"),
                    help="compression-lever: compression spring on the lever beyond the pin, exact at a = r0")
     s.add_argument("--moment", required=True, type=float, metavar="PHI0",
                    help="Φ0 in N·m; + turns the crank away from the base point (compression), − towards it (tension)")
-    s.add_argument("--range", required=True, metavar="A..B", help="working range of φ in degrees")
-    s.add_argument("--r", required=True, metavar="A..B", help="crank length range (m)")
-    s.add_argument("--r0", required=True, metavar="A..B", help="spring length at φ = 0 (m); d = r + r0")
-    s.add_argument("--a", required=True, metavar="A..B", help="pre-extension/pre-load range (m), 'inf' allowed")
+    s.add_argument("--range", required=True, type=number_range, metavar="A..B", help="working range of φ in degrees")
+    s.add_argument("--r", required=True, type=number_range, metavar="A..B", help="crank length range (m)")
+    s.add_argument("--r0", required=True, type=number_range, metavar="A..B",
+                   help="spring length at φ = 0 (m); d = r + r0")
+    s.add_argument("--a", required=True, type=number_range, metavar="A..B",
+                   help="pre-extension/pre-load range (m), 'inf' allowed")
     s.add_argument("--max-force", type=float, metavar="F")
     s.add_argument("--max-free-length", type=float, metavar="L")
     s.add_argument("--max-deflection", type=float, metavar="X", help="compression: largest (l0 − L_min)/l0")
     s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"))
     s.add_argument("--norm", choices=("max", "rms"), default="max")
-    s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61)")
+    s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61, at most 100001)")
     s.add_argument("--target-error", type=float, metavar="E",
                    help="requested relative error (e.g. 0.01); missed: a warning and exit status 1")
     s.add_argument("--pareto", action="store_true",
                    help="compression: the front of error against free length and peak force (a few seconds)")
     g = s.add_argument_group("helical spring design (EN 13906-1 formulas)")
     g.add_argument("--design-spring", action="store_true", help="design a helical spring a maker can wind")
-    g.add_argument("--material", choices=tuple(_materials()), help="spring wire (default music-wire)")
+    g.add_argument("--material", help="spring wire: music-wire (default), oil-tempered, chrome-vanadium, "
+                                      "chrome-silicon, stainless")
     g.add_argument("--max-outer-diameter", type=float, metavar="D", help="bore the coils must fit in (m)")
     g.add_argument("--min-inner-diameter", type=float, metavar="D", help="rod the coils must fit over (m)")
     g.add_argument("--spring-ends", choices=("pinned", "fixed-free", "fixed-pinned", "fixed"),
@@ -117,7 +89,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--guided", action="store_true", help="the compression spring runs on a rod or in a sleeve")
     common(s)
 
-    pr = sub.add_parser("prismatic", help="counter-masses for a sliding last link")
+    pr = command("prismatic", "counter-masses for a sliding last link", _prismatic_problem, _table_prismatic,
+                 "plot_prismatic")
     pr.add_argument("--mass", required=True, type=float, metavar="m")
     pr.add_argument("--inertia", required=True, type=float, metavar="I")
     pr.add_argument("--counter-mass", required=True, type=float, metavar="M")
@@ -129,95 +102,213 @@ def build_parser() -> argparse.ArgumentParser:
                          "without the counter-masses")
     common(pr)
 
-    pa = sub.add_parser("pantograph", help="pantograph balanced manipulator ([pantograph] TOML)")
+    pa = command("pantograph", "pantograph balanced manipulator ([pantograph] TOML)", _file_problem,
+                 _table_pantograph, "plot_pantograph")
     pa.add_argument("file")
     common(pa)
 
-    so = sub.add_parser("solve", help="any balance scene: [arm], [spring], [slider] or [pantograph]")
+    c = command("compare", "balancing hardware side by side: counterweights, a spring per joint, the harmonic "
+                           "decomposition pruned, exact springs — residual torque, devices, added mass",
+                _compare_problem, _table_compare, "plot_compare")
+    c.add_argument("file", help="a TOML file with a [compare] table (its arm = FILE), an [arm] table, or a .urdf file")
+    c.add_argument("--payload", type=number_range, metavar="A..B", help="payload range (kg); default the file's")
+    c.add_argument("--range", action="append", type=_joint_range, metavar="qJ=A..B", dest="ranges",
+                   help="the workspace of joint J (degrees, or m on a slide); repeat for each joint to narrow "
+                        "(default: the joint limits)")
+    c.add_argument("--target", type=_share, metavar="E",
+                   help="the pruned decomposition keeps the residual under E × the baseline torque (default 0.05)")
+    c.add_argument("--acceleration", type=float, metavar="A",
+                   help="joint acceleration (rad/s²) at which the counterweights' motor torque is given (default 1)")
+    c.add_argument("--samples", type=positive, help="random configurations (default 1000)")
+    c.add_argument("--seed", type=int)
+    common(c)
+
+    so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph] or "
+                          "[compare]", _file_problem, None, None)
     so.add_argument("file")
-    so.add_argument("--format", choices=("table", "json"), default="table")
-    return p
+    common(so, plot=False)
 
 
-def _fix_negative_ranges(argv: Sequence[str]) -> list[str]:
-    """Let ``--range -90..90`` through argparse (it would take ``-90..90`` for an option)."""
-    out: list[str] = []
-    argv = list(argv)
-    i = 0
-    while i < len(argv):
-        tok = argv[i]
-        if tok in _RANGE_OPTS and i + 1 < len(argv) and argv[i + 1].startswith("-") and ".." in argv[i + 1]:
-            out.append(f"{tok}={argv[i + 1]}")
-            i += 2
-            continue
-        out.append(tok)
-        i += 1
-    return out
+# ----------------------------------------------------------------- running
+def _run(args) -> int:
+    from balance.budget import TooMuchWork
+    from balance.errors import BalanceError
+    from synth.errors import InvalidOption
+
+    try:
+        problem = args.problem(args)
+        if args.force:
+            from dataclasses import replace
+
+            problem = replace(problem, work_limit=None)
+        result = problem.solve()
+        out = result.to_dict()
+        table = args.table or _TABLES[type(result).__name__]
+        write_document(out, args.format, "" if args.format == "json" else table(out))
+        if getattr(args, "plot", None):
+            from balance import plots
+
+            getattr(plots, args.plot_with)(result, args.plot)
+    except TooMuchWork as exc:
+        raise InvalidOption(f"{str(exc).rstrip('.')}; give --force to run it anyway.") from None
+    except BalanceError as exc:
+        raise InvalidOption(str(exc)) from None
+    except OSError as exc:  # e.g. the plot file cannot be written
+        raise InvalidOption(f"cannot write or read a file ({exc.strerror}: {exc.filename}).") from None
+    return 1 if out.get("target_met") is False else 0  # a valid query whose requested error is not reached
 
 
-def _clean(obj: Any) -> Any:
-    """JSON-safe: non-finite floats become null, tuples lists."""
-    if isinstance(obj, float):
-        return obj if math.isfinite(obj) else None
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    return obj
+def _file_problem(args):
+    from balance.problems import load_toml, read_problem
+
+    doc = load_toml(args.file)
+    if args.balance_command == "pantograph":
+        from balance.problems.pantograph import pantograph_problem
+
+        return pantograph_problem(doc, args.file)
+    return read_problem(doc, args.file)
 
 
-def _num(v: Any) -> str:
-    if isinstance(v, float):
-        return f"{v:.6g}"
-    return str(v)
+def _arm_problem(args):
+    from dataclasses import replace
+
+    from balance.problems.arm import arm_problem
+    from balance.problems import load_toml
+
+    if args.file.lower().endswith(".urdf"):
+        doc = {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
+    else:
+        doc = load_toml(args.file)
+    problem = arm_problem(doc, args.file)
+    changes = {k: v for k, v in (("samples", args.samples), ("seed", args.seed)) if v is not None}
+    if args.transmission:
+        changes["transmission"] = True
+    return replace(problem, **changes)
 
 
-def _kv(rows: list[tuple[str, Any]]) -> str:
-    w = max(len(k) for k, _ in rows)
-    return "\n".join(f"{k:<{w}}  {_num(v)}" for k, v in rows)
+def _spring_problem(args):
+    from balance.devices.fit import DEFAULT_GRID, SpringBounds
+    from balance.errors import InvalidInput
+    from balance.problems.spring import SpringOptions, SpringProblem
+
+    given = {"--material": args.material, "--max-outer-diameter": args.max_outer_diameter,
+             "--min-inner-diameter": args.min_inner_diameter, "--spring-ends": args.spring_ends,
+             "--guided": args.guided or None}
+    named = [k for k, v in given.items() if v is not None]
+    if named and not args.design_spring:
+        raise InvalidInput(f"{', '.join(named)} only apply with --design-spring.")
+    if args.kind == "tension" and (args.spring_ends is not None or args.guided):
+        raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
+                           "extension spring.")
+    design = None
+    if args.design_spring:
+        design = SpringOptions(args.material or "music-wire", args.max_outer_diameter, args.min_inner_diameter or 0.0,
+                               args.spring_ends or "pinned", True if args.guided else None)
+    lo, hi = args.range
+    bounds = SpringBounds(args.r, args.r0, args.a, args.max_force, args.max_free_length, args.max_deflection)
+    return SpringProblem(args.kind, args.moment, (math.radians(lo), math.radians(hi)), bounds, args.method, args.norm,
+                         DEFAULT_GRID if args.grid is None else args.grid, args.target_error, args.pareto, design)
+
+
+def _share(text: str) -> float:
+    """A share strictly between 0 and 1."""
+    import argparse
+
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value < 1:
+        raise argparse.ArgumentTypeError(f"expected a share between 0 and 1 (e.g. 0.05), not {text!r}")
+    return value
+
+
+def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
+    """``q2=-90..90`` → ``("q2", (-90.0, 90.0))``."""
+    import argparse
+
+    name, sep, rng = text.partition("=")
+    if not sep or not re.fullmatch(r"q[1-9]\d*", name.strip()):
+        raise argparse.ArgumentTypeError(f"expected qJ=low..high (e.g. q2=-90..90), not {text!r}")
+    return name.strip(), number_range(rng)
+
+
+def _compare_problem(args):
+    from balance.problems import load_toml
+    from balance.problems.arm import arm_problem
+    from balance.problems.compare import compare_from_arm
+    from balance.schema import parse
+
+    options = {k: v for k, v in (("target", args.target), ("acceleration", args.acceleration),
+                                 ("samples", args.samples), ("seed", args.seed)) if v is not None}
+    if args.payload is not None:
+        options["payload"] = list(args.payload)
+    if args.ranges:
+        options["workspace"] = {name: list(rng) for name, rng in args.ranges}
+    if args.file.lower().endswith(".urdf"):
+        path, doc = args.file, {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
+    else:
+        doc = load_toml(args.file)
+        path = args.file
+        if "compare" in doc:
+            table = dict(doc["compare"])
+            base = os.path.dirname(args.file)
+            path = table["arm"] if os.path.isabs(str(table.get("arm", ""))) else os.path.join(base, str(table.get("arm")))
+            options = {**{k: v for k, v in table.items() if k != "arm"}, **options}
+            parse({"compare": dict(table)}, "compare", args.file)  # the file's own table, checked as written
+            doc = load_toml(path) if not path.lower().endswith(".urdf") else \
+                {"arm": {"urdf": os.path.abspath(path), "name": os.path.basename(path)}}
+    doc = {k: v for k, v in doc.items() if k in ("arm", "scene", "expect", "plot")}
+    table = parse({"compare": {"arm": path, **options}}, "compare", args.file)
+    return compare_from_arm(arm_problem(doc, path), table, args.file)
+
+
+def _prismatic_problem(args):
+    from balance.problems.slider import DynamicsCheck, SliderProblem
+
+    return SliderProblem(args.mass, args.inertia, args.counter_mass, args.stroke, args.travel, args.C,
+                         dynamics=None if args.dynamics is None else DynamicsCheck(args.dynamics))
 
 
 # ----------------------------------------------------------------- tables
 def _table_arm(out: dict) -> str:
     lines = [f"arm: {out['name']}", ""]
-    head = f"{'#':>2}  {'amplitude':>11}  {'phase°':>8}  {'form (joints)':<24}  {'shafts (differential)':<24}  {'sine e·T':>10}"
+    head = (f"{'#':>2}  {'amplitude':>11}  {'phase°':>8}  {'form (joints)':<24}  {'shafts (differential)':<24}  "
+            f"{'sine e·T':>10}")
     lines += [head, "-" * len(head)]
     for k, (t, d) in enumerate(zip(out["terms"], out["devices"])):
-        lines.append(
-            f"{k + 1:>2}  {t['amplitude']:>11.6g}  {t['phase_deg']:>8.4g}  {t['form_text']:<24}  "
-            f"{t['drive_form_text']:<24}  {d['sine']['eT']:>10.6g}"
-        )
+        lines.append(f"{k + 1:>2}  {t['amplitude']:>11.6g}  {t['phase_deg']:>8.4g}  {t['form_text']:<24}  "
+                     f"{t['drive_form_text']:<24}  {d['sine']['eT']:>10.6g}")
     ck = out["check"]
-    lines += ["", _kv([
+    lines += ["", pairs([
         ("check samples", ck["samples"]),
         ("max residual (N·m or N)", out["max_residual"]),
         ("largest gravity force", out["max_gravity_force"]),
         ("relative residual", out["relative_residual"]),
         ("potential spread (J)", out["potential_spread"]),
     ])]
-    pc = out.get("pinocchio")
-    if pc:
-        rows = [(f"Pinocchio {pc['pinocchio']} check: max residual", pc["max_residual"]),
-                ("  relative to the largest gravity force", pc["relative_residual"])]
-        if "gravity_agreement" in pc:
-            rows.append(("  arm model's gravity against Pinocchio's", pc["gravity_agreement"]))
-        lines += ["", _kv(rows)]
+    pc = out["pinocchio"]
+    rows = [(f"Pinocchio {pc['pinocchio']} check: max residual", pc["max_residual"]),
+            ("  relative to the largest gravity force", pc["relative_residual"])]
+    if "gravity_agreement" in pc:
+        rows.append(("  arm model's gravity against Pinocchio's", pc["gravity_agreement"]))
+    lines += ["", pairs(rows)]
     for p in out["prismatic"]:
-        lines += ["", _kv([
+        lines += ["", pairs([
             (f"prismatic {p['coordinate']} gear ratio k (m/rad)", p["gear_ratio"]),
             ("γ_max (rad)", p["gamma_max"]),
             ("relative error bound 1 − sinγ/γ", p["rel_error_bound"]),
-            ("residual bound per joint", ", ".join(_num(v) for v in p["residual_bound_per_joint"])),
+            ("residual bound per joint", ", ".join(number(v) for v in p["residual_bound_per_joint"])),
         ])]
     if out["payload"]:
         pl = out["payload"]
-        lines += ["", _kv([
-            ("payload max / tuned for (N)", f"{_num(pl['max_payload'])} / {_num(pl['tuned_for'])}"),
+        lines += ["", pairs([
+            ("payload max / tuned for (N)", f"{number(pl['max_payload'])} / {number(pl['tuned_for'])}"),
             ("worst residual, payload 0..max", pl["max_residual"]),
             ("effect of half the payload", pl["half_payload_effect"]),
         ])]
     for tr in out.get("transmission", []):
-        lines += ["", f"gear train for {tr['shaft']} = {_form_text(tr['form'], out)} "
+        lines += ["", f"gear train for {tr['shaft']} = {_form_text(tr['form'])} "
                       f"(composed back: error {tr['error']:.2g}):"]
         for el in tr["train"]:
             if el["element"] == "differential":
@@ -228,20 +319,19 @@ def _table_arm(out: dict) -> str:
             else:
                 rev = ", reversing" if el["reverses"] else ""
                 lines.append(f"  {el['element']} {el['input']} → {el['output']}, ratio {el['ratio']:.6g}{rev}")
-    cw = out.get("counterweights")
-    if cw:
-        if cw["available"]:
-            lines += ["", "counterweight alternative:"]
-            for r in cw["weights"]:
-                lines.append(f"  {r['link']:<14} {r['weight']:>10.5g} N at {r['arm']:.4g} m behind its joint")
-            lines.append(f"  added {cw['added_weight']:.5g} N ({cw['ratio']:.3g}× the arm), residual {cw['max_residual']:.3g}")
-        else:
-            lines += ["", f"counterweights: not available — {cw['reason']}"]
+    cw = out["counterweights"]
+    if cw["available"]:
+        lines += ["", "counterweight alternative:"]
+        for r in cw["weights"]:
+            lines.append(f"  {r['link']:<14} {r['weight']:>10.5g} N at {r['arm']:.4g} m behind its joint")
+        lines.append(f"  added {cw['added_weight']:.5g} N ({cw['ratio']:.3g}× the arm), residual {cw['max_residual']:.3g}")
+    else:
+        lines += ["", f"counterweights: not available — {cw['reason']}"]
     return "\n".join(lines)
 
 
-def _form_text(form, out: dict) -> str:
-    from balance.potential import format_form
+def _form_text(form) -> str:
+    from balance.model.potential import format_form
 
     return format_form(form, [f"ψ{i + 1}" for i in range(len(form))])
 
@@ -266,7 +356,7 @@ def _table_spring(out: dict) -> str:
         rows.insert(9, ("lever reach from C (m)", lv["reach_from_C"]))
         rows.insert(10, ("  beyond the farthest pin (m)", lv["extra_length"]))
         rows.insert(11, ("  a spring between C and B reaches (m)", lv["reach_from_C_fig_a"]))
-    s = _kv(rows)
+    s = pairs(rows)
     sp = out.get("spring")
     if sp:
         srows = [
@@ -286,10 +376,10 @@ def _table_spring(out: dict) -> str:
             srows.insert(7, ("solid length (m)", sp["solid_length_m"]))
             srows.append(("buckling", "guided: none" if b["guided"] else
                           f"{'safe' if b['safe'] else 'BUCKLES'} ({b['end_condition']} ends, critical deflection "
-                          f"{_num(b['critical_deflection_m'])} m, working {_num(b['max_deflection_m'])} m)"))
+                          f"{number(b['critical_deflection_m'])} m, working {number(b['max_deflection_m'])} m)"))
         else:
             srows.append(("anchor offset beyond C (m)", sp["anchor_offset_m"]))
-        s += "\n\n" + _kv(srows)
+        s += "\n\n" + pairs(srows)
     if out.get("pareto"):
         s += "\n\nPareto front (error, free length, peak force):"
         for p in out["pareto"]:
@@ -311,7 +401,7 @@ def _table_prismatic(out: dict) -> str:
         ("two-crank COM error (m)", out["crank"]["max_com_error"]),
         ("two-crank inertia variation", out["crank"]["max_inertia_error"]),
     ]
-    s = _kv(rows) + "\nlaws: z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M)"
+    s = pairs(rows) + "\nlaws: z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M)"
     for m in out["messages"]:
         s += f"\nwarning: {m}"
     dyn = out.get("dynamics")
@@ -334,187 +424,82 @@ def _table_pantograph(out: dict) -> str:
         ("spring amplitude c·r·d = e·T (N·m)", out["term"]["amplitude"]),
         ("spring", out["spring_moment"]),
         ("vertical load at B, W_B + k·W_C (N)", out["drive_force"]),
-        ("  payload 0 .. max (N)", " .. ".join(_num(v) for v in out["drive_force_range"])),
-        ("cylinder force, half payload (N)", f"{_num(cf['half_payload']['min'])} .. {_num(cf['half_payload']['max'])}"),
-        ("cylinder force, payload 0..max (N)", f"{_num(cf['min'])} .. {_num(cf['max'])}"),
-        ("cylinder length (m)", f"{_num(cy['length_min'])} .. {_num(cy['length_max'])}"),
-        ("operator's force along A→C (N)", f"{_num(hf['min'])} .. {_num(hf['max'])}"),
+        ("  payload 0 .. max (N)", " .. ".join(number(v) for v in out["drive_force_range"])),
+        ("cylinder force, half payload (N)",
+         f"{number(cf['half_payload']['min'])} .. {number(cf['half_payload']['max'])}"),
+        ("cylinder force, payload 0..max (N)", f"{number(cf['min'])} .. {number(cf['max'])}"),
+        ("cylinder length (m)", f"{number(cy['length_min'])} .. {number(cy['length_max'])}"),
+        ("operator's force along A→C (N)", f"{number(hf['min'])} .. {number(hf['max'])}"),
         ("max residual (virtual work)", out["max_residual"]),
         ("relative residual", out["relative_residual"]),
     ]
     if "c" in out["device"]["tension"]:
         rows.insert(3, ("tension spring c (N/m)", out["device"]["tension"]["c"]))
-    s = _kv(rows) + f"\nnote: {out['note']}"
+    s = pairs(rows) + f"\nnote: {out['note']}"
     for n in out.get("notes", []):
         s += f"\nnote: {n}"
     return s
 
 
-# ----------------------------------------------------------------- commands
-def _emit(out: dict, fmt: str, table) -> None:
-    if fmt == "json":
-        print(json.dumps(_clean(out), indent=2, ensure_ascii=False, allow_nan=False))
-    else:
-        print(table(out))
+def _table_compare(out: dict) -> str:
+    joints = out["joints"]
+    loaded = [i for i, _ in enumerate(joints) if out["strategies"][0]["joints"][i]["baseline_max"] > 0]
+    unit = lambda i: "N" if joints[i]["kind"] == "prismatic" else "N·m"  # noqa: E731
+    ws = []
+    for i, (a, b) in enumerate(out["workspace"]):
+        k, u = (1.0, " m") if joints[i]["kind"] == "prismatic" else (180 / math.pi, "°")
+        ws.append(f"q{i + 1} {a * k:.4g}..{b * k:.4g}{u}")
+    lo, hi = out["payload"]
+    lines = [f"arm: {out['name']}; payload {number(lo)} .. {number(hi)} kg", f"workspace: {', '.join(ws)}", ""]
+    head = f"{'strategy':<18}  {'devices':>7}  {'added kg':>9}  {'tuned kg':>8}  {'worst residual':>20}  " \
+           f"{'removed':>7}  {'RMS removed':>11}"
+    lines += [head, "-" * len(head)]
+    for st in out["strategies"]:
+        if not st["available"]:
+            lines.append(f"{st['name']:<18}  not available: {st['reason']}")
+            continue
+        worst = max(st["joints"], key=lambda j: j["max"])
+        base_rms = sum(j["baseline_rms"] ** 2 for j in st["joints"]) ** 0.5
+        rms = sum(j["rms"] ** 2 for j in st["joints"]) ** 0.5
+        tuned = "—" if st["tuned_for"] is None else f"{st['tuned_for']:.3g}"
+        wj = int(worst["coordinate"][1:]) - 1
+        lines.append(f"{st['name']:<18}  {st['devices']:>7}  {st['added_mass']:>9.4g}  {tuned:>8}  "
+                     f"{worst['max']:>11.4g} {unit(wj):<3} at {worst['coordinate']:<3}  {100 * st['removed']:>6.1f}%  "
+                     f"{100 * (1 - rms / base_rms if base_rms else 0):>10.1f}%")
+    lines += ["", "largest |torque| per joint over the workspace and payloads, and the share removed:"]
+    head = f"{'':<18}" + "".join(f"  {joints[i]['coordinate'] + ' (' + unit(i) + ')':>16}" for i in loaded)
+    lines.append(head)
+    for st in out["strategies"]:
+        if st["available"]:
+            cells = "".join(f"  {st['joints'][i]['max']:>9.4g} ({round(100 * st['joints'][i]['removed_max']) + 0:>3.0f}%)"
+                            for i in loaded)
+            lines.append(f"{st['name']:<18}{cells}")
+    for st in out["strategies"][1:]:
+        if not st["available"]:
+            continue
+        lines += ["", f"{st['name']} (tuned for {st['tuned_for']:.4g} kg):"]
+        lines += [f"  {h}" for h in st["hardware"]]
+        d = st["details"]
+        if st["name"] == "counterweights":
+            lines.append("  added inertia per joint (kg·m²): "
+                         + ", ".join(f"q{i + 1} {number(v)}" for i, v in enumerate(d["added_inertia"]) if v > 0)
+                         + f"; motor torque at {number(out['acceleration'])} rad/s²: "
+                         + ", ".join(f"q{i + 1} {number(v)} N·m" for i, v in enumerate(d["motor_torque_at_acceleration"])
+                                     if v > 0))
+        if st["name"] == "harmonic, pruned":
+            lines.append(f"  kept {d['kept']} of {d['terms']} terms (target {number(d['target_torque'])} N·m); dropped: "
+                         + (", ".join(f"{t['form_text']} ({number(max(t['largest_torque_per_joint']))} N·m alone)"
+                                      for t in d["dropped"]) or "none"))
+            if "note" in d:
+                lines.append(f"  note: {d['note']}")
+        pc = st["pinocchio"]
+        lines.append(f"  Pinocchio recheck ({pc['method']}): largest difference {pc['max_difference']:.2g} at "
+                     f"{pc['configurations']} configurations × {len(pc['payloads'])} payloads and the worst ones")
+    lines.append(f"\nnote: every largest value is a true extreme (the best of {out['samples']} random configurations, "
+                 "polished); RMS over the same configurations and the payload range")
+    return "\n".join(lines)
 
 
-def _cmd_arm(ns) -> dict:
-    from balance.arm import arm_from_dict
-    from balance.problems import load_toml, solve_arm
-
-    import os
-
-    if ns.file.lower().endswith(".urdf"):
-        doc = {"arm": {"urdf": os.path.abspath(ns.file), "name": os.path.basename(ns.file)}}
-        if ns.plot:
-            from balance.errors import InvalidInput
-
-            raise InvalidInput("--plot draws TOML arms; for a URDF arm write a TOML file with [arm] urdf = \"…\".")
-    else:
-        doc = load_toml(ns.file)
-    if ns.samples is not None or ns.seed is not None or ns.transmission:
-        doc = dict(doc)
-        arm_t = dict(doc.get("arm", {}))
-        if ns.transmission:
-            arm_t["transmission"] = True
-        ck = dict(arm_t.get("check", {}))
-        if ns.samples is not None:
-            ck["samples"] = ns.samples
-        if ns.seed is not None:
-            ck["seed"] = ns.seed
-        arm_t["check"] = ck
-        doc["arm"] = arm_t
-    out = solve_arm(doc, ns.file)
-    if ns.plot:
-        from balance.plots import plot_arm
-
-        arm = arm_from_dict(doc, ns.file)
-        plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), ns.plot)
-    return out
-
-
-def _cmd_spring(ns) -> dict:
-    from balance.errors import InvalidInput
-    from balance.fit import DEFAULT_GRID, SpringBounds
-    from balance.problems import spring_problem
-
-    design_opts = {"material": ns.material, "max_outer_diameter": ns.max_outer_diameter,
-                   "min_inner_diameter": ns.min_inner_diameter, "ends": ns.spring_ends}
-    given = [f"--{k.replace('_', '-')}" for k, v in design_opts.items() if v is not None] + (["--guided"] if ns.guided else [])
-    if given and not ns.design_spring:
-        raise InvalidInput(f"{', '.join(given)} only apply with --design-spring.")
-    if ns.kind == "tension" and (ns.spring_ends is not None or ns.guided):
-        raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
-                           "extension spring.")
-    design = None
-    if ns.design_spring:
-        design = {k: v for k, v in design_opts.items() if v is not None}
-        if ns.guided:
-            design["guided"] = True
-    lo, hi = parse_range(ns.range, "--range")
-    bounds = SpringBounds(parse_range(ns.r, "--r"), parse_range(ns.r0, "--r0"), parse_range(ns.a, "--a"),
-                          ns.max_force, ns.max_free_length, ns.max_deflection)
-    out, res = spring_problem(ns.kind, ns.moment, (math.radians(lo), math.radians(hi)), bounds, method=ns.method,
-                              norm=ns.norm, grid=ns.grid if ns.grid is not None else DEFAULT_GRID,
-                              target_error=ns.target_error, pareto=ns.pareto, design=design)
-    if ns.plot:
-        from balance.plots import plot_spring
-
-        plot_spring(res, ns.plot, out.get("pareto"), out.get("spring"))
-    return out
-
-
-def _cmd_prismatic(ns) -> dict:
-    from balance.countermass import verify_counter_mass
-
-    res = verify_counter_mass(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, stroke=ns.travel, C=ns.C)
-    out = res.to_dict()
-    if ns.dynamics:
-        from balance.dynamics import slide_dynamics
-
-        out["dynamics"] = slide_dynamics(ns.mass, ns.inertia, ns.counter_mass, ns.stroke, ns.dynamics)
-    if ns.plot:
-        from balance.plots import plot_prismatic
-
-        plot_prismatic(res.m, res.inertia, res.M, res.q_max, res.stroke, res.C, ns.plot)
-    return out
-
-
-def _cmd_pantograph(ns) -> dict:
-    from balance.pantograph import pantograph_from_dict
-    from balance.problems import load_toml, solve_pantograph
-
-    doc = load_toml(ns.file)
-    out = solve_pantograph(doc, ns.file)
-    if ns.plot:
-        from balance.plots import plot_pantograph
-
-        plot_pantograph(pantograph_from_dict(doc, ns.file)[0], ns.plot)
-    return out
-
-
-def _cmd_solve(ns) -> tuple[dict, Any]:
-    from balance import problems
-    from balance.errors import SchemaError
-
-    doc = problems.load_toml(ns.file)
-    table = {"arm": (problems.solve_arm, _table_arm), "spring": (problems.solve_spring, _table_spring),
-             "slider": (problems.solve_prismatic, _table_prismatic),
-             "pantograph": (problems.solve_pantograph, _table_pantograph)}
-    kinds = [k for k in table if k in doc]
-    if len(kinds) != 1:
-        raise SchemaError(f"{ns.file}: a balance scene needs exactly one of [arm], [spring], [slider] or [pantograph].")
-    solve, tab = table[kinds[0]]
-    return solve(doc, ns.file), tab
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """Run ``mechsynth balance`` with ``argv`` (the arguments after ``balance``); return the exit code.
-
-    Examples
-    --------
-    >>> main(["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2",
-    ...       "--stroke", "0.5", "--format", "json"])  # doctest: +ELLIPSIS
-    {...
-    0
-    """
-    argv = list(sys.argv[1:] if argv is None else argv)
-    try:
-        ns = build_parser().parse_args(_fix_negative_ranges(argv))
-    except _UsageError as exc:
-        msg = str(exc).rstrip(".")
-        print(f"mechsynth: {msg} (see '{PROG} --help').", file=sys.stderr)
-        return 2
-    except SystemExit as exc:  # --help
-        return int(exc.code or 0)
-    try:
-        if ns.command == "arm":
-            _emit(_cmd_arm(ns), ns.format, _table_arm)
-        elif ns.command == "spring":
-            out = _cmd_spring(ns)
-            _emit(out, ns.format, _table_spring)
-            if out.get("target_met") is False:
-                return 1  # a valid query whose requested error is not reached
-        elif ns.command == "prismatic":
-            _emit(_cmd_prismatic(ns), ns.format, _table_prismatic)
-        elif ns.command == "pantograph":
-            _emit(_cmd_pantograph(ns), ns.format, _table_pantograph)
-        elif ns.command == "solve":
-            out, tab = _cmd_solve(ns)
-            _emit(out, ns.format, tab)
-    except BalanceError as exc:
-        print(f"mechsynth: {exc}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # output piped into `head`: not an error of ours
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 0
-    except OSError as exc:  # e.g. the plot file cannot be written
-        print(f"mechsynth: cannot write or read a file ({exc.strerror}: {exc.filename}).", file=sys.stderr)
-        return 2
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main(sys.argv[1:]))
+#: the table of each result of ``balance solve``
+_TABLES = {"ArmBalance": _table_arm, "SpringDesign": _table_spring, "SliderBalance": _table_prismatic,
+           "PantographBalance": _table_pantograph, "Comparison": _table_compare}

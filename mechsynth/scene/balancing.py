@@ -3,15 +3,17 @@
 
 The balance package owns its tables (``[arm]``, ``[spring]``, ``[slider]``,
 ``[pantograph]``): the runner hands each table to ``balance.problems`` unchanged and
-turns a :class:`balance.errors.BalanceError` into the scene's one sentence.  Nothing here
-imports balance until a balancing scene runs, and nothing imports synth's solvers.
+turns a :class:`balance.errors.BalanceError` into the scene's one sentence.  The typed
+result is kept for the figure (which draws it, never solving again); its ``to_dict()`` is
+what ``[expect]`` compares.  Nothing here imports balance until a balancing scene runs,
+and nothing imports synth's solvers.
 
 To add a balance problem, call :func:`balance_kind` once: its table, the
 ``balance.problems`` function that solves it, the ``[expect]`` keys of its result, its
 summary lines and, optionally, its figure.
 
 >>> sorted(k for k in KINDS if k.startswith("balance"))
-['balance arm', 'balance pantograph', 'balance prismatic', 'balance spring']
+['balance arm', 'balance compare', 'balance pantograph', 'balance prismatic', 'balance spring']
 """
 
 from __future__ import annotations
@@ -28,8 +30,8 @@ from .types import Flag, Int, Number, NumberRows, Numbers, NumberTable, Texts
 
 __all__ = ["balance_kind", "Plot"]
 
-#: balance kind -> its figure: ``plot(scene, result, out)``.
-_PLOTTERS: dict[str, Callable[[Scene, dict, Path], None]] = {}
+#: balance kind -> the name of its figure in ``balance.plots``: ``plot(result, out)``.
+_PLOTTERS: dict[str, str] = {}
 
 
 def _read_balance_table(raw, path: str, compute: frozenset):
@@ -38,11 +40,10 @@ def _read_balance_table(raw, path: str, compute: frozenset):
 
 def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
                  expect: Mapping[str, Expectation], report: Callable[[dict], list[str]],
-                 after: Callable[[dict], dict] | None = None,
-                 plot: Callable[[Scene, dict, Path], None] | None = None) -> ComputeKind:
+                 after: Callable[[dict], dict] | None = None, plot: str | None = None) -> ComputeKind:
     """Register the compute word ``name`` solving the table ``[table]`` with ``balance.problems.<solver>``.
 
-    ``after(result)`` adds derived values to the solver's result; ``plot`` draws its figure.
+    ``after(result)`` adds derived values to the result's dict; ``plot`` names its figure in ``balance.plots``.
     """
 
     def run(r: Run) -> dict:
@@ -50,47 +51,19 @@ def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
         from balance.errors import BalanceError
 
         try:
-            out = getattr(problems, solver)({table: r.scene.tables[table]}, r.scene.path)
+            result = getattr(problems, solver)({table: r.scene.tables[table]}, r.scene.path)
         except BalanceError as exc:
             msg = str(exc).rstrip(".")
             prefix = f"{r.scene.path}: "
             raise SceneError((msg if msg.startswith(prefix) else f"{prefix}[{table}] {msg}") + ".") from None
+        r.shared(f"{name} result", dict)["result"] = result  # the typed result, for the figure
+        out = result.to_dict()
         return after(out) if after else out
 
     add_table(SceneTable(table, _read_balance_table, hint))
     if plot is not None:
         _PLOTTERS[name] = plot
     return add_kind(ComputeKind(name, summary, table, run, expect=expect, report=report))
-
-
-# --------------------------------------------------------------------------- figures
-def _plot_arm(scene: Scene, result: dict, out: Path) -> None:
-    from balance.arm import arm_from_dict
-    from balance.plots import plot_arm
-
-    arm = arm_from_dict({"arm": scene.tables["arm"]}, scene.path)
-    plot_arm(arm, arm.with_payload_fraction(0.5).harmonic_terms(), str(out))
-
-
-def _plot_spring(scene: Scene, result: dict, out: Path) -> None:
-    from balance.fit import fit_spring
-    from balance.plots import plot_spring
-    from balance.problems import spring_from_dict
-
-    plot_spring(fit_spring(**spring_from_dict({"spring": scene.tables["spring"]}, scene.path)), str(out))
-
-
-def _plot_prismatic(scene: Scene, r: dict, out: Path) -> None:
-    from balance.plots import plot_prismatic
-
-    plot_prismatic(r["m"], r["I"], r["M"], r["q_max"], r["stroke"], r["C"], str(out))
-
-
-def _plot_pantograph(scene: Scene, result: dict, out: Path) -> None:
-    from balance.pantograph import pantograph_from_dict
-    from balance.plots import plot_pantograph
-
-    plot_pantograph(pantograph_from_dict({"pantograph": scene.tables["pantograph"]}, scene.path)[0], str(out))
 
 
 # --------------------------------------------------------------------------- the kinds
@@ -127,7 +100,7 @@ balance_kind(
     },
     report=lambda r: [f"terms: {' '.join(str(round(a, 6)) for a in r['amplitudes'])} (amplitudes)",
                       f"max residual {r['max_residual']:.3g}, relative {r['relative_residual']:.3g}"],
-    after=_arm_terms, plot=_plot_arm)
+    after=_arm_terms, plot="plot_arm")
 
 balance_kind(
     "balance spring", "spring", "solve_spring", "fit of a crank-and-rocker spring device ([spring])",
@@ -142,7 +115,7 @@ balance_kind(
     report=lambda r: [f"c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, r0 = {r['r0']:.6g} m, a = {r['a']:.6g} m",
                       f"max relative error {r['max_rel_error']:.4g}; "
                       f"active bounds {', '.join(r['active_bounds']) or 'none'}"],
-    plot=_plot_spring)
+    plot="plot_spring")
 
 balance_kind(
     "balance prismatic", "slider", "solve_prismatic", "counter-masses of a sliding link ([slider])",
@@ -151,7 +124,7 @@ balance_kind(
             "crank_exact": Expectation(Flag, ("crank", "exact"))},
     report=lambda r: [f"C_min = {r['C_min']:.6g}, C = {r['C']:.6g}; max com error {r['max_com_error']:.3g}, "
                       f"inertia error {r['max_inertia_error']:.3g}"],
-    plot=_plot_prismatic)
+    plot="plot_prismatic")
 
 balance_kind(
     "balance pantograph", "pantograph", "solve_pantograph", "pantograph balanced manipulator ([pantograph])",
@@ -166,7 +139,38 @@ balance_kind(
     report=lambda r: [f"point weights {', '.join(f'{k}: {v}' for k, v in r['point_weights'].items())}",
                       f"spring amplitude {r['term']['amplitude']:.6g} N·m, drive force {r['drive_force']:.6g} N, "
                       f"relative residual {r['relative_residual']:.3g}"],
-    plot=_plot_pantograph)
+    plot="plot_pantograph")
+
+
+def _compare_summary(out: dict) -> dict:
+    ok = [s for s in out["strategies"] if s["available"]]
+    out["available"] = [s["name"] for s in ok]
+    out["removed"] = {s["name"]: s["removed"] for s in ok}
+    out["devices"] = {s["name"]: s["devices"] for s in ok}
+    out["baseline"] = out["strategies"][0]["max_residual"]
+    pruned = next(s for s in ok if s["name"] == "harmonic, pruned")
+    out["pruned_residual"] = pruned["max_residual"]
+    out["pruned_target"] = pruned["details"]["target_torque"]
+    out["recheck"] = max(s["pinocchio"]["max_difference"] for s in ok)
+    return out
+
+
+balance_kind(
+    "balance compare", "compare", "solve_compare",
+    "balancing strategies side by side for one arm ([compare]): residual torque, devices, added mass",
+    "the arm's file, its payload range and workspace",
+    expect={
+        "available": Expectation(Texts),
+        "removed": Expectation(NumberTable, compare=compare.table),
+        "devices": Expectation(NumberTable, compare=compare.table),
+        "baseline": Expectation(Number),
+        "pruned_residual": _below(),
+        "recheck": _below(),
+    },
+    report=lambda r: [f"{s['name']}: {100 * s['removed']:.1f} % of the largest torque removed, {s['devices']} "
+                      f"devices, {s['added_mass']:.3g} kg" if s["available"] else f"{s['name']}: not available"
+                      for s in r["strategies"]],
+    after=_compare_summary, plot="plot_compare")
 
 
 # --------------------------------------------------------------------------- plot
@@ -188,10 +192,12 @@ def _plot(run: Run) -> dict:
     names = [name.stem + ("" if len(kinds) == 1 else "_" + KINDS[k].table) + name.suffix for k in kinds]
     if run.out_dir is None:
         return {"files": [], "written": False, "skipped": f"no --out DIR given to write {', '.join(names)}"}
+    from balance import plots
+
     files = []
     for kind, file_name in zip(kinds, names):
         out = run.picture(file_name)
-        _PLOTTERS[kind](scene, run.results[kind], out)
+        getattr(plots, _PLOTTERS[kind])(run.shared(f"{kind} result", dict)["result"], str(out))
         files.append(str(out))
     return {"files": files, "written": True}
 

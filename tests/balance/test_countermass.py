@@ -78,7 +78,7 @@ def test_bad_input(args):
 def test_slider_model_matches_expect(model):
     doc = model("slider_countermass")
     exp = doc["expect"]
-    out = solve_prismatic(doc, "slider_countermass.toml")
+    out = solve_prismatic(doc, "slider_countermass.toml").to_dict()
     s = doc["slider"]
     derived = s["inertia"] + (s["mass"] ** 2 + 2 * s["mass"] * s["counter_mass"]) * s["q_max"] ** 2 / (2 * s["counter_mass"])
     assert derived == pytest.approx(exp["C_min"], rel=1e-15)

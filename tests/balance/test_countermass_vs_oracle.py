@@ -1,6 +1,6 @@
 """Counter-mass balancing of a sliding link: every reported number recomputed from its definition.
 
-``balance.countermass.verify_counter_mass`` designs the two counter-mass laws and reports
+``balance.devices.countermass.verify_counter_mass`` designs the two counter-mass laws and reports
 how far the centre of mass and the moment of inertia drift, for the laws and for the
 two-crank ±120° construction.  Here the same numbers come from the balance conditions
 themselves (m·q + M·z1 + M·z2 = 0 and I + m·q² + M·(z1² + z2²) = C, solved as a sum

@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from balance import InfeasibleBounds, InvalidInput, SpringBounds, fit_spring, spring_problem
-from balance.helical import (
+from balance import InfeasibleBounds, InvalidInput, SpringBounds, SpringOptions, SpringProblem, fit_spring
+from balance.devices.helical import (
     MATERIALS, NoSpringFits, WIRE_SERIES_MM, bergstraesser, buckling_deflection, design_for_device, design_spring,
 )
-from balance.tradeoff import bound_sensitivity
+from balance.devices.tradeoff import bound_sensitivity
 
 RAD = (math.radians(20), math.radians(160))
 BOUNDS = SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0))
@@ -35,12 +35,12 @@ def test_compression_lever_is_exact_and_reports_its_length(rng):
     assert res.method == "exact" and res.a == res.r0 and res.sense == -1 and res.norm == "max"
     assert res.message == "compression spring on the lever beyond B, a = r0: exact"
     phi = np.linspace(*phi_rng, 20001)
-    s = res.lever["stop_distance_from_C"]
+    s = res.lever.stop_distance_from_C
     m = lever_moment(phi, res.c, res.r, res.r0, s, s)  # a = r0: the spring's free length equals s
     assert np.max(np.abs(m + 100.0 * np.sin(phi))) / 100.0 <= 1e-12
     assert res.max_rel_error <= 1e-12
     L = np.hypot(res.r + res.r0 - res.r * np.cos(phi), res.r * np.sin(phi))
-    lv = res.lever
+    lv = res.lever.to_dict()
     assert lv["reach_from_C_fig_a"] == pytest.approx(np.max(L), rel=1e-6)
     assert lv["extra_length"] == pytest.approx(s - np.max(L), rel=1e-6) and lv["extra_length"] > 0
     assert lv["spring_length_min"] == pytest.approx(s - np.max(L), rel=1e-6)
@@ -59,11 +59,11 @@ def test_compression_lever_with_a_deflection_and_length_limit():
     longest compression, and with it the crank: the device stays exact, or is refused by name."""
     b = SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0), max_deflection=0.25, max_free_length=1.2)
     res = fit_spring("compression-lever", -100.0, RAD, b)
-    lv = res.lever
+    lv = res.lever.to_dict()
     assert res.max_rel_error <= 1e-12 and lv["deflection_ratio"] == 0.25
     assert lv["spring_free_length"] == pytest.approx(4 * lv["compression_max"]) and lv["spring_free_length"] <= 1.2
     free = fit_spring("compression-lever", -100.0, RAD, SpringBounds(b.r, b.r0, b.a, max_deflection=0.25))
-    assert free.lever["spring_free_length"] > 1.2  # the limit binds
+    assert free.lever.spring_free_length > 1.2  # the limit binds
     tight = SpringBounds(b.r, b.r0, b.a, max_force=2000.0, max_deflection=0.25, max_free_length=0.2)
     with pytest.raises(InfeasibleBounds) as ei:
         fit_spring("compression-lever", -100.0, RAD, tight)
@@ -80,8 +80,8 @@ def test_compression_lever_refusals():
         assert res.a == res.r0 == pytest.approx(r0) and res.max_rel_error < 1e-12
     # the least force a = r0 device needs, less 1 %: no lever device keeps below it
     least = fit_spring("compression-lever", -100.0, RAD, BOUNDS).max_force
-    with pytest.raises(InfeasibleBounds, match=r"keeps the spring force below .* N; raise --max-force, "
-                                               r"--max-free-length or --max-deflection\.$"):
+    with pytest.raises(InfeasibleBounds, match=r"keeps the spring force below .* N; raise the force limit, "
+                                               r"the maximum free length or the maximum deflection\.$"):
         fit_spring("compression-lever", -100.0, RAD, SpringBounds(BOUNDS.r, BOUNDS.r0, BOUNDS.a, max_force=0.99 * least))
     with pytest.raises(Exception, match="compression"):
         fit_spring("compression-lever", 100.0, RAD, BOUNDS)
@@ -100,7 +100,7 @@ def test_wire_series_is_r20():
 def test_designed_spring_realises_the_device(kind, moment, material):
     b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.4), a=(0.0, 0.3), max_force=1500.0)
     res = fit_spring(kind, moment, RAD, b)
-    sp = design_for_device(res, material=material)
+    sp = design_for_device(res, material=material).to_dict()
     G, d, D, n = sp["shear_modulus_Pa"], sp["wire_diameter_m"], sp["mean_diameter_m"], sp["active_coils"]
     # rate from the textbook formula, independently of the design code
     assert G * d ** 4 / (8 * D ** 3 * n) == pytest.approx(res.c, rel=0.01)
@@ -147,6 +147,12 @@ def test_refusal_names_the_reason():
         design_spring("compression", 1.0, 1.0, free_length=1, min_length=0.5, max_length=1, material="unobtainium")
 
 
+def spring_problem(kind, moment, rng, bounds, design=None, **kw):
+    """The JSON of a solved :class:`SpringProblem` and its fit."""
+    d = SpringProblem(kind, moment, rng, bounds, design=None if design is None else SpringOptions(**design), **kw).solve()
+    return d.to_dict(), d.fit
+
+
 def test_unguided_long_spring_warns_about_buckling():
     out, _ = spring_problem("compression", 100.0, RAD, SpringBounds((0.05, 0.2), (0.1, 0.4), (0, 0.3), 1500.0),
                             design={"material": "oil-tempered"})
@@ -161,7 +167,7 @@ def test_unguided_long_spring_warns_about_buckling():
 def test_bound_warnings_say_which_bound_to_move():
     b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
     out, res = spring_problem("compression", 100.0, RAD, b, target_error=0.001)
-    assert res.active_bounds[:3] == ["r=min", "r0=max", "a=max"]
+    assert list(res.active_bounds[:3]) == ["r=min", "r0=max", "a=max"]
     sens = out["sensitivity"]
     assert {s["bound"] for s in sens} == {"r=min", "r0=max", "a=max"}
     assert all(s["error"] < res.max_rel_error for s in sens)  # each move helps ...
@@ -181,9 +187,9 @@ def test_pareto_front_is_nondominated_and_contains_better_devices():
             assert not (all(q[k] <= p[k] for k in keys) and any(q[k] < p[k] * (1 - 1e-6) for k in keys))
     # smaller devices cost error, stronger springs buy it back
     assert min(p["error"] for p in front) < res.max_rel_error < max(p["error"] for p in front)
-    assert any("raise --max-free-length or --max-force" in w for w in out["warnings"])
+    assert any("raise the maximum free length or the force limit" in w for w in out["warnings"])
     # every front point is a real device: its error recomputed from (c, r, r0, a)
-    from balance.springs import CrankRockerDevice
+    from balance.devices.springs import CrankRockerDevice
 
     phi = np.linspace(*RAD, 4001)
     for p in front[::5]:

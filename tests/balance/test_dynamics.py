@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from balance import solve_prismatic
-from balance.dynamics import _Arm, _crank_laws, slide_dynamics
+from balance.devices.dynamics import _Arm, _crank_laws, slide_dynamics
 from balance.errors import InvalidInput
 
 
 def test_scene_counter_masses_make_the_crank_angle_cyclic(model):
-    out = solve_prismatic(model("slider_dynamics"))
+    out = solve_prismatic(model("slider_dynamics")).to_dict()
     cases = out["dynamics"]["cases"]
     bare = cases["without counter-masses"]
     both = cases["two counter-masses, crank angle η"]
@@ -37,12 +37,12 @@ def test_crank_laws_are_the_c_min_laws_for_any_counter_mass(M):
     if M == m:  # the ±120° cranks of the textbook
         np.testing.assert_allclose(np.sort([z1, z2], 0), np.sort([q_max * np.cos(eta + 2 * math.pi / 3),
                                                                 q_max * np.cos(eta - 2 * math.pi / 3)], 0), atol=1e-14)
-    out = slide_dynamics(m, inertia, M, q_max, samples=20, seed=3)
+    out = slide_dynamics(m, inertia, M, q_max, samples=20, seed=3).to_dict()
     assert out["cases"]["two counter-masses, crank angle η"]["max_change_relative"] < 1e-14
 
 
 def test_planar_frame_needs_no_counter_mass():
-    out = slide_dynamics(2.0, 0.1, 2.0, 0.5, kind="planar", samples=50, seed=1)
+    out = slide_dynamics(2.0, 0.1, 2.0, 0.5, kind="planar", samples=50, seed=1).to_dict()
     assert out["cases"]["without counter-masses"]["max_change_relative"] == 0.0
 
 
@@ -69,7 +69,7 @@ def test_point_jacobian_by_finite_differences():
 
 
 def test_one_mass_keeping_inertia_is_bounded():
-    out = slide_dynamics(2.0, 0.1, 2.0, 0.5, samples=5)
+    out = slide_dynamics(2.0, 0.1, 2.0, 0.5, samples=5).to_dict()
     C = out["C_min"]
     assert out["one_mass"]["valid_interval"] == pytest.approx(math.sqrt((C - 0.1) / 2.0))
 

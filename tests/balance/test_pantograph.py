@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from balance import InvalidArm, Pantograph, SchemaError, solve_pantograph
-from balance.pantograph import pantograph_from_dict, virtual_work_forces
+from balance.model.pantograph import virtual_work_forces
+from balance.problems.pantograph import pantograph_problem
 
 
 def cross(a, b):
@@ -30,7 +31,7 @@ def test_geometry_collinear_similar_and_parallelograms():
 
 
 def test_substitution_weights_reproduce_potential(model):
-    p, _ = pantograph_from_dict(model("pantograph"))
+    p = pantograph_problem(model("pantograph")).pantograph
     w = p.point_weights()
     th = np.random.default_rng(1).uniform(-2, 2, (200, 2))
     P = p.points(th)
@@ -44,7 +45,7 @@ def test_substitution_weights_reproduce_potential(model):
 def test_model_matches_expect(model):
     doc = model("pantograph")
     exp = doc["expect"]
-    out = solve_pantograph(doc, "pantograph.toml")
+    out = solve_pantograph(doc, "pantograph.toml").to_dict()
     for k, v in exp["point_weights"].items():
         assert out["point_weights"][k] == pytest.approx(v, rel=1e-12)
     assert out["term"]["amplitude"] == pytest.approx(exp["spring_amplitude"], rel=1e-12)
@@ -57,7 +58,7 @@ def test_model_matches_expect(model):
 def test_cylinder_force_equals_virtual_work_and_varies(model):
     """The moment formula (substitution weights, lever arm about A) against an independent
     virtual-work solve on the links' own centres of mass, at 1000 random configurations."""
-    p, _ = pantograph_from_dict(model("pantograph"))
+    p = pantograph_problem(model("pantograph")).pantograph
     th = p.sample(1000, seed=7)
     for frac in (0.0, 0.5, 1.0):
         vw = virtual_work_forces(p, th, frac)
@@ -66,14 +67,14 @@ def test_cylinder_force_equals_virtual_work_and_varies(model):
         np.testing.assert_allclose(p.hand_force(th, frac), vw[:, 1], atol=1e-10 * np.max(np.abs(F)))
     F = p.cylinder_force(th)
     assert np.ptp(F) > 0.1 * np.mean(F)  # configuration-dependent, not a constant
-    out = solve_pantograph(model("pantograph"))
+    out = solve_pantograph(model("pantograph")).to_dict()
     assert out["cylinder_force"]["min"] < out["drive_force_range"][0] < out["cylinder_force"]["max"]
 
 
 def test_virtual_work_by_finite_differences(model):
     """Generalised gravity forces by central differences of the potential, the cylinder's
     by differences of its length: the residual of F, R stays at the differencing error."""
-    p, _ = pantograph_from_dict(model("pantograph"))
+    p = pantograph_problem(model("pantograph")).pantograph
     th = p.sample(50, seed=3)
     h = 1e-6
     F, R = p.cylinder_force(th), p.hand_force(th)
@@ -102,11 +103,11 @@ def test_vertical_cylinder_carries_the_constant_vertical_load():
 
 
 def test_without_spring_the_cylinder_alone_does_not_balance(model):
-    p, _ = pantograph_from_dict(model("pantograph"))
+    p = pantograph_problem(model("pantograph")).pantograph
     th = p.sample(50, 2)
     vw = virtual_work_forces(p, th)
     q = p.gravity_forces(th)  # no spring term: the cylinder and hand cannot hold W_D
-    from balance.pantograph import _gradients
+    from balance.model.pantograph import stroke_gradients as _gradients
 
     ds, drho = _gradients(p, th)
     res = q + vw[:, :1] * ds + vw[:, 1:] * drho

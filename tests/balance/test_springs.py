@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from balance import CrankRockerDevice, SineDevice, crank_moment, spring_length
-from balance.springs import free_length, spring_length_textbook
+from balance.devices.springs import free_length, spring_length_textbook
 
 
 def vector_moment(phi, kind, c, r, r0, a):

@@ -6,25 +6,25 @@ import numpy as np
 import pytest
 
 from balance import solve_arm
-from balance.transmission import compose, design_train
+from balance.devices.transmission import compose, design_train
 
 
 def run_train(train, shafts, psi):
     """Turn the drive shafts by ``psi`` and read the angle of the train's output (independent walk)."""
     angle = dict(zip(shafts, psi))
     for el in train:
-        if el["element"] == "differential":
+        if el.element == "differential":
             # side gears of a bevel differential: (side1 − carrier) = −(side2 − carrier)
-            angle[el["output"]] = angle[el["carrier"]] - (angle[el["side"]] - angle[el["carrier"]])
+            angle[el.output] = angle[el.carrier] - (angle[el.side] - angle[el.carrier])
         else:
-            angle[el["output"]] = angle[el["input"]] / el["ratio"]
-    return angle[train[-1]["output"]]
+            angle[el.output] = angle[el.input] / el.ratio
+    return angle[train[-1].output]
 
 
 def test_example1_trains_are_the_textbook_ones(model):
     doc = model("arm_base_drives")
     doc["arm"]["transmission"] = True
-    out = solve_arm(doc)
+    out = solve_arm(doc).to_dict()
     assert len(out["transmission"]) == 3
     for tr in out["transmission"]:
         assert tr["differentials"] == 1 and tr["error"] == 0.0
@@ -48,13 +48,13 @@ def test_random_forms_compose_back(seed):
         np.testing.assert_allclose(compose(train, shafts), form, atol=1e-12)
         psi = rng.uniform(-3, 3, n)
         assert run_train(train, shafts, psi) == pytest.approx(float(form @ psi), abs=1e-12)
-        assert sum(el["element"] == "differential" for el in train) == max(np.count_nonzero(form) - 1, 0)
+        assert sum(el.element == "differential" for el in train) == max(np.count_nonzero(form) - 1, 0)
 
 
 def test_prismatic_example_uses_opposite_reducers(model):
     doc = model("arm_prismatic")
     doc["arm"]["transmission"] = True
-    out = solve_arm(doc)
+    out = solve_arm(doc).to_dict()
     k = out["prismatic"][0]["gear_ratio"]
     ratios = sorted(el["ratio"] for tr in out["transmission"] for el in tr["train"]
                     if el["element"] == "reducer" and el["input"] == "ψ2")

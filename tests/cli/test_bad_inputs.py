@@ -26,7 +26,6 @@ ROOT = Path(__file__).resolve().parents[2]
 MODELS = ROOT / "models"
 MEMORY = 500 * 2**20
 BIG_CODE = "1" * 5000 + "/0"
-BALANCE = "balance input (the balance helper's part of issue 27)"
 
 # (command with {d} for the folder and {m} for models/, words the one-line message must hold)
 CASES = [
@@ -146,17 +145,10 @@ CASES = [
     ("balance arm {m}/arm_base_drives.toml --samples 100000000", "100000000"),
     ("balance arm {d}/arm_nan.urdf", "nan"),
     ("balance arm {d}/arm_negative.urdf", "-3"),
-    ("balance arm {d}/arm_prismatic.urdf", "prismatic"),
+    ("balance arm {d}/arm_planar.urdf", "planar"),
 ]
 
 # cases that fail today because of the balance package (reported to the balance helper, not fixed here)
-BALANCE_OPEN = {
-    "balance arm {m}/arm_base_drives.toml --samples 100000000": "--samples is not sized: numpy MemoryError traceback",
-    "balance arm {d}/arm_nan.urdf": "a link mass of nan is accepted (exit 0)",
-    "balance arm {d}/arm_negative.urdf": "a negative link mass is accepted (exit 0)",
-    "balance arm {d}/arm_prismatic.urdf": "a prismatic URDF joint ends in KeyError: 'rel_error_bound'",
-}
-
 # Each case runs in a child forked from one server process that has imported the command once: the
 # child is the real command (its own process, its own peak memory by wait4), without paying Python's
 # start-up and the imports again for each of the hundred cases.
@@ -256,20 +248,13 @@ def folder(tmp_path_factory):
     second = masses[1]
     for name, value in (("arm_nan.urdf", "nan"), ("arm_negative.urdf", "-3")):
         (d / name).write_text(urdf[:second.start(1)] + value + urdf[second.end(1):])
-    (d / "arm_prismatic.urdf").write_text(urdf.replace('type="revolute"', 'type="prismatic"', 1))
+    (d / "arm_planar.urdf").write_text(urdf.replace('type="revolute"', 'type="planar"', 1))
     for junk in d.glob("*-wal"):
         junk.unlink()
     return d
 
 
-def _param(command: str, words: str):
-    marks = []
-    if command in BALANCE_OPEN:
-        marks.append(pytest.mark.xfail(reason=f"{BALANCE}: {BALANCE_OPEN[command]}", strict=False))
-    return pytest.param(command, words, marks=marks, id=command[:60])
-
-
-@pytest.mark.parametrize("command, words", [_param(c, w) for c, w in CASES])
+@pytest.mark.parametrize("command, words", [pytest.param(c, w, id=c[:60]) for c, w in CASES])
 def test_bad_input_is_one_sentence_and_exit_2(command, words, folder, server, tmp_path):
     before = _snapshot(folder)
     argv = [a.replace("{d}", str(folder)).replace("{m}", str(MODELS)) for a in shlex.split(command)]
@@ -290,4 +275,3 @@ def test_the_table_is_large_and_covers_every_subcommand():
     parser = _build_parser()
     commands = set(next(a for a in parser._actions if a.dest == "command").choices)
     assert len(CASES) >= 60 and {c.split()[0] for c, _ in CASES} == commands
-    assert set(BALANCE_OPEN) <= {c for c, _ in CASES}

@@ -18,24 +18,16 @@ counter-clockwise when seen with the forward direction to the right.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
-from typing import Any, Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import Any, Sequence
 
 import numpy as np
 
-from .schema import ArmTable, parse
-from .errors import InvalidArm, SchemaError
+from ..errors import InvalidArm
 from .potential import HarmonicTerm, format_form, merge_terms
 
-__all__ = [
-    "Link",
-    "Load",
-    "Arm",
-    "arm_from_dict",
-    "JOINT_KINDS",
-    "ZERO_DIRECTIONS",
-    "gear_ratio_for_accuracy",
-]
+__all__ = ["Coordinate", "ArmModel", "Link", "Load", "Arm", "JOINT_KINDS", "ZERO_DIRECTIONS",
+           "gear_ratio_for_accuracy", "describe_form", "base_drives"]
 
 JOINT_KINDS = ("vertical", "revolute", "prismatic")
 ZERO_DIRECTIONS = {"vertical": math.pi / 2, "horizontal": 0.0}
@@ -57,6 +49,76 @@ def gear_ratio_for_accuracy(stroke: float, accuracy: float) -> float:
     if not 0 < accuracy < 1:
         raise InvalidArm(f"the required accuracy ε must lie in (0, 1), not {accuracy}.")
     return (stroke / 2) / math.sqrt(6 * accuracy)
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """One joint coordinate of an arm, whatever the arm was read from.
+
+    Attributes
+    ----------
+    name : str
+        The joint's (or its link's) name.
+    joint : {"vertical", "revolute", "prismatic"}
+        ``vertical``: a turntable (gravity never loads it); ``revolute`` (rad); ``prismatic`` (m).
+    limits : (float, float)
+        The range the checks and searches cover.
+    stroke : float
+        Full stroke of a slide (m); 0 otherwise.
+    gear_ratio : float
+        ``k`` (m/rad) of a slide's ``γ = q/k`` substitution; 0 otherwise.
+    """
+
+    name: str
+    joint: str
+    limits: tuple[float, float]
+    stroke: float = 0.0
+    gear_ratio: float = 0.0
+
+
+class ArmModel:
+    """What every arm offers the balancing problems (a TOML :class:`Arm`, a URDF arm).
+
+    Subclasses provide ``coordinates``, ``drive_matrix``, ``name``, ``potential(q)``,
+    ``gravity_forces(q)``, ``harmonic_terms()`` and ``approx_potential_error_bounds()``.
+    """
+
+    coordinates: tuple[Coordinate, ...]
+    drive_matrix: Any = None
+    name: str = "arm"
+
+    @property
+    def n(self) -> int:
+        """Number of joint coordinates."""
+        return len(self.coordinates)
+
+    @property
+    def joint_names(self) -> list[str]:
+        """``q1 … qn`` labels (1-based, as in the balancing textbook)."""
+        return [f"q{i + 1}" for i in range(self.n)]
+
+    @property
+    def drives(self) -> np.ndarray:
+        """``D`` with ``q = D·ψ`` (identity when each joint has its own local drive)."""
+        if self.drive_matrix is None:
+            return np.eye(self.n)
+        return np.asarray(self.drive_matrix, dtype=float)
+
+    @property
+    def shaft_names(self) -> list[str]:
+        """``ψ1 … ψn`` labels of the drive shafts."""
+        return [f"ψ{i + 1}" for i in range(self.n)]
+
+    @property
+    def box(self) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper joint limits: the workspace the checks search."""
+        lim = np.array([c.limits for c in self.coordinates], dtype=float)
+        return lim[:, 0], lim[:, 1]
+
+    def sample(self, count: int, seed: int = 0) -> np.ndarray:
+        """``count`` configurations drawn uniformly from the joint ranges, fixed seed."""
+        lo, hi = self.box
+        return lo + (hi - lo) * np.random.default_rng(seed).random((count, self.n))
 
 
 @dataclass(frozen=True)
@@ -124,8 +186,8 @@ class Load:
 
 
 @dataclass(frozen=True)
-class Arm:
-    """A serial arm; see the module docstring for conventions.
+class Arm(ArmModel):
+    """A serial arm in a vertical plane; see the module docstring for conventions.
 
     Examples
     --------
@@ -140,7 +202,6 @@ class Arm:
     loads: tuple[Load, ...] = ()
     zero: str = "vertical"
     drive_matrix: tuple[tuple[float, ...], ...] | None = None
-    drive_names: tuple[str, ...] = field(default=())
     name: str = "arm"
 
     def __post_init__(self) -> None:
@@ -205,26 +266,9 @@ class Arm:
 
     # ------------------------------------------------------------------ basics
     @property
-    def n(self) -> int:
-        """Number of joint coordinates."""
-        return len(self.links)
-
-    @property
-    def joint_names(self) -> list[str]:
-        """``q1 … qn`` labels (1-based, as in the balancing textbook)."""
-        return [f"q{i + 1}" for i in range(self.n)]
-
-    @property
-    def drives(self) -> np.ndarray:
-        """``D`` with ``q = D·ψ`` (identity when each joint has its own local drive)."""
-        if self.drive_matrix is None:
-            return np.eye(self.n)
-        return np.asarray(self.drive_matrix, dtype=float)
-
-    @property
-    def shaft_names(self) -> list[str]:
-        """``ψ1 … ψn`` labels of the drive shafts."""
-        return list(self.drive_names) if self.drive_names else [f"ψ{i + 1}" for i in range(self.n)]
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        """The joint coordinates (:class:`Coordinate`), one per link."""
+        return tuple(Coordinate(ln.name, ln.joint, ln.limits, ln.stroke, ln.gear_ratio) for ln in self.links)
 
     @property
     def theta0(self) -> float:
@@ -237,18 +281,24 @@ class Arm:
         )
         return replace(self, loads=loads)
 
+    @property
+    def payload_weight(self) -> float:
+        """The weight of the payload loads as given (N): the largest payload."""
+        return sum(ld.weight for ld in self.loads if ld.payload)
+
+    def with_payload(self, mass: float, g: float = 9.80665) -> "Arm":
+        """The same arm carrying ``mass`` kg of payload (its payload loads scaled to weigh ``mass·g``)."""
+        if self.payload_weight == 0:
+            if mass != 0:
+                raise InvalidArm("the arm has no payload load to carry a payload; mark one with payload = true.")
+            return self
+        return self.with_payload_fraction(mass * g / self.payload_weight)
+
     def masses(self) -> list[tuple[int, float, float, float]]:
         """Point weights ``(link, weight, s, t)`` in link frames: link centres then loads."""
         out = [(i, ln.weight, ln.com, ln.com_lateral) for i, ln in enumerate(self.links)]
         out += [(ld.link, ld.weight, ld.at, ld.lateral) for ld in self.loads]
         return out
-
-    def sample(self, count: int, seed: int = 0) -> np.ndarray:
-        """``count`` configurations drawn uniformly from the joint ranges, fixed seed."""
-        rng = np.random.default_rng(seed)
-        lo = np.array([ln.limits[0] for ln in self.links])
-        hi = np.array([ln.limits[1] for ln in self.links])
-        return lo + (hi - lo) * rng.random((count, self.n))
 
     # ------------------------------------------------------------ kinematics
     def _angle_forms(self) -> list[np.ndarray]:
@@ -399,91 +449,17 @@ class Arm:
         return bounds
 
 
-def _drive_matrix(drives: Any, n: int) -> tuple[tuple[float, ...], ...] | None:
-    """``"joint"`` → None (q = ψ); ``"base"`` → D with ψ_k = q_1 + … + q_k; a matrix as given."""
-    if drives == "joint":
-        return None
-    if drives == "base":
-        # ψ_k = q_1 + … + q_k  ⇒  q = D·ψ with D bidiagonal (1 on, −1 below the diagonal)
-        d = np.eye(n) - np.eye(n, k=-1)
-        return tuple(tuple(float(v) for v in row) for row in d)
-    return tuple(tuple(float(v) for v in row) for row in drives)
+def base_drives(n: int) -> tuple[tuple[float, ...], ...]:
+    """``D`` with ``q = D·ψ`` when every drive sits on the base: ``ψ_k = q_1 + … + q_k``.
 
-
-def arm_from_dict(doc: Mapping[str, Any], source: str = "<arm>") -> Arm:
-    """Build an :class:`Arm` from a parsed TOML document with an ``[arm]`` table.
-
-    See ``docs/balance.md`` for the schema (:class:`balance.schema.ArmTable`);
-    ``[scene]`` and ``[expect]`` are ignored.
-
-    Examples
-    --------
-    >>> doc = {"arm": {"zero": "vertical", "links": [{"joint": "revolute", "length": 1, "weight": 2}]}}
-    >>> arm_from_dict(doc).links[0].com
-    0.5
+    >>> base_drives(2)
+    ((1.0, 0.0), (-1.0, 1.0))
     """
-    a = parse(doc, "arm", source)
-    if a.urdf is not None:
-        raise SchemaError(f"{source}: [arm] reads its links from 'urdf'; use balance.urdf to load it.")
-    return arm_from_table(a, source)
+    d = np.eye(n) - np.eye(n, k=-1)  # bidiagonal: 1 on, −1 below the diagonal
+    return tuple(tuple(float(v) for v in row) for row in d)
 
 
-def arm_from_table(a: ArmTable, source: str = "<arm>") -> Arm:
-    """An :class:`Arm` from a validated ``[arm]`` table (see :func:`arm_from_dict`)."""
-    if not a.links:
-        raise SchemaError(f"{source}: [arm] needs at least one [[arm.links]] table (or 'urdf').")
-    links: list[Link] = []
-    names: dict[str, int] = {}
-    for i, t in enumerate(a.links):
-        name = t.name if t.name is not None else f"link{i + 1}"
-        where = f"link '{name}'"
-        if name in names:
-            raise SchemaError(f"{source}: two links are named '{name}'.")
-        names[name] = i
-        weight = _weight(t, where, source, a.g)
-        com = t.length / 2 if t.com is None else t.com
-        off = math.radians(t.offset_deg)
-        k = 0.0
-        if t.joint == "prismatic":
-            if not t.stroke > 0:
-                raise InvalidArm(f"{source}: {where} is prismatic and needs a positive 'stroke' (m).")
-            rng = tuple(t.range) if t.range is not None else (-t.stroke / 2, t.stroke / 2)
-            if t.gear_ratio is not None:
-                k = t.gear_ratio
-            else:
-                k = gear_ratio_for_accuracy(t.stroke, a.accuracy if t.accuracy is None else t.accuracy)
-        else:
-            if t.range is not None:
-                raise SchemaError(f"{source}: {where}: give a revolute range as 'range_deg'.")
-            rd = t.range_deg if t.range_deg is not None else (-180.0, 180.0)
-            rng = (math.radians(rd[0]), math.radians(rd[1]))
-        links.append(Link(name, t.joint, t.length, weight, com, t.com_lateral, off, rng, t.stroke, k))
-    loads: list[Load] = []
-    for i, t in enumerate(a.loads):
-        where = f"[[arm.loads]] #{i + 1}"
-        link = t.link if t.link is not None else links[-1].name
-        if link not in names:
-            raise SchemaError(f"{source}: {where} refers to unknown link {link!r}.")
-        li = names[link]
-        at = links[li].length if t.at is None else t.at
-        name = t.name if t.name is not None else f"load{i + 1}"
-        loads.append(Load(li, _weight(t, where, source, a.g), at, t.lateral, t.payload, name))
-    try:
-        drives = _drive_matrix(a.drives, len(links))
-        return Arm(tuple(links), tuple(loads), a.zero, drives, (), a.name)
-    except InvalidArm as exc:
-        raise InvalidArm(f"{source}: {exc}") from None
-
-
-def _weight(t: Any, where: str, source: str, g: float) -> float:
-    if t.weight is not None and t.mass is not None:
-        raise SchemaError(f"{source}: {where} gives both 'weight' (N) and 'mass' (kg); keep one.")
-    if t.mass is not None:
-        return t.mass * g
-    return 0.0 if t.weight is None else t.weight
-
-
-def describe_form(arm: Arm, form: Sequence[float]) -> dict:
+def describe_form(arm: ArmModel, form: Sequence[float]) -> dict:
     """The form over joints and over drive shafts, as numbers and text."""
     drive = np.asarray(form) @ arm.drives
     drive = np.where(np.abs(drive) < 1e-14, 0.0, drive)

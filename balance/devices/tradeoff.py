@@ -10,27 +10,57 @@ peak spring force (:func:`pareto_front`), and turns both into warnings (:func:`a
 Examples
 --------
 >>> import math
->>> from balance.fit import SpringBounds, fit_spring
+>>> from balance.devices.fit import SpringBounds, fit_spring
 >>> b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
 >>> res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)), b)
->>> [s["bound"] for s in bound_sensitivity(res, b)]
+>>> [s.bound for s in bound_sensitivity(res, b)]
 ['r=min', 'r0=max', 'a=max']
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from .errors import BalanceError
+from ..errors import BalanceError
 from .fit import FitResult, SpringBounds, fit_spring
 
-__all__ = ["bound_sensitivity", "pareto_front", "advice", "RELAX"]
+__all__ = ["Sensitivity", "ParetoPoint", "bound_sensitivity", "pareto_front", "advice", "RELAX"]
 
 #: how far each active bound is moved to measure what it costs
 RELAX = 0.25
+
+
+@dataclass(frozen=True)
+class Sensitivity:
+    """What moving one active bound by :data:`RELAX` buys: the fit's norm after the move."""
+
+    bound: str
+    move: str
+    error: float
+    gain: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class ParetoPoint:
+    """A device on the front: its error (the fit's norm), size (free length, m) and peak force (N)."""
+
+    error: float
+    size: float
+    force: float
+    c: float
+    r: float
+    r0: float
+    a: float
+    active_bounds: tuple[str, ...]
+
+    def to_dict(self) -> dict:
+        return asdict(self) | {"active_bounds": list(self.active_bounds)}
 
 
 def _refit(res: FitResult, bounds: SpringBounds) -> FitResult | None:
@@ -49,39 +79,38 @@ def _relaxed(name: str, b: SpringBounds, res: FitResult) -> tuple[SpringBounds, 
     up, down = 1 + RELAX, 1 - RELAX
     if name == "r=min" and b.r[0] > 0:
         v = b.r[0] * down
-        return replace(b, r=(v, b.r[1])), f"--r lower bound to {v:.4g} m"
+        return replace(b, r=(v, b.r[1])), f"lower bound on r to {v:.4g} m"
     if name == "r=max":
         v = b.r[1] * up
-        return replace(b, r=(b.r[0], v)), f"--r upper bound to {v:.4g} m"
+        return replace(b, r=(b.r[0], v)), f"upper bound on r to {v:.4g} m"
     if name == "r0=max":
         v = b.r0[1] * up
-        return replace(b, r0=(b.r0[0], v)), f"--r0 upper bound to {v:.4g} m"
+        return replace(b, r0=(b.r0[0], v)), f"upper bound on r0 to {v:.4g} m"
     if name == "r0=min" and b.r0[0] > 0:
         v = b.r0[0] * down
-        return replace(b, r0=(v, b.r0[1])), f"--r0 lower bound to {v:.4g} m"
+        return replace(b, r0=(v, b.r0[1])), f"lower bound on r0 to {v:.4g} m"
     if name == "a=max" and math.isfinite(b.a[1]):
         v = b.a[1] * up if b.a[1] > 0 else RELAX * res.reference_length
-        return replace(b, a=(b.a[0], v)), f"--a upper bound to {v:.4g} m"
+        return replace(b, a=(b.a[0], v)), f"upper bound on a to {v:.4g} m"
     if name == "a=min" and b.a[0] > 0:
         v = b.a[0] * down
-        return replace(b, a=(v, b.a[1])), f"--a lower bound to {v:.4g} m"
+        return replace(b, a=(v, b.a[1])), f"lower bound on a to {v:.4g} m"
     if name == "max_free_length" and b.max_free_length is not None:
         v = b.max_free_length * up
-        return replace(b, max_free_length=v), f"--max-free-length to {v:.4g} m"
+        return replace(b, max_free_length=v), f"maximum free length to {v:.4g} m"
     if name == "max_force" and b.max_force is not None:
         v = b.max_force * up
-        return replace(b, max_force=v), f"--max-force to {v:.4g} N"
+        return replace(b, max_force=v), f"force limit to {v:.4g} N"
     if name == "max_deflection" and b.max_deflection is not None and b.max_deflection < 0.95:
         v = min(0.95, b.max_deflection * up)
-        return replace(b, max_deflection=v), f"--max-deflection to {v:.3g}"
+        return replace(b, max_deflection=v), f"maximum deflection to {v:.3g}"
     return None
 
 
-def bound_sensitivity(res: FitResult, bounds: SpringBounds) -> list[dict]:
+def bound_sensitivity(res: FitResult, bounds: SpringBounds) -> list[Sensitivity]:
     """For each bound the optimum sits on: the error when that bound alone moves by 25 %.
 
-    Returns dicts ``bound``, ``move`` (the option and its new value), ``error`` (the
-    fit's norm after the move) and ``gain`` (relative error reduction), best gain first.
+    Returns :class:`Sensitivity` rows (``move`` says which bound moves where), best gain first.
     """
     out = []
     for name in res.active_bounds:
@@ -92,34 +121,34 @@ def bound_sensitivity(res: FitResult, bounds: SpringBounds) -> list[dict]:
         if new is None:
             continue
         before, after = _error(res), _error(new)
-        out.append({"bound": name, "move": moved[1], "error": after,
-                    "gain": (before - after) / before if before > 0 else 0.0})
-    return sorted(out, key=lambda s: -s["gain"])
+        out.append(Sensitivity(name, moved[1], after, (before - after) / before if before > 0 else 0.0))
+    return sorted(out, key=lambda s: -s.gain)
 
 
-def _nondominated(points: list[dict]) -> list[dict]:
-    keys = ("error", "size", "force")
-    unique = {tuple(round(p[k], 9) for k in keys): p for p in points}
+def _nondominated(points: list[ParetoPoint]) -> list[ParetoPoint]:
+    def key(p):
+        return (p.error, p.size, p.force)
+
+    unique = {tuple(round(v, 9) for v in key(p)): p for p in points}
     points = list(unique.values())
     front = []
     for p in points:
-        dominated = any(all(q[k] <= p[k] * (1 + 1e-9) for k in keys) and any(q[k] < p[k] * (1 - 1e-6) for k in keys)
-                        for q in points if q is not p)
+        dominated = any(all(a <= b * (1 + 1e-9) for a, b in zip(key(q), key(p)))
+                        and any(a < b * (1 - 1e-6) for a, b in zip(key(q), key(p))) for q in points if q is not p)
         if not dominated:
             front.append(p)
-    return sorted(front, key=lambda p: (round(p["size"], 4), p["force"]))
+    return sorted(front, key=lambda p: (round(p.size, 4), p.force))
 
 
-def pareto_front(res: FitResult, bounds: SpringBounds, steps: int = 7) -> list[dict]:
+def pareto_front(res: FitResult, bounds: SpringBounds, steps: int = 7) -> list[ParetoPoint]:
     """Non-dominated devices in (error, size, peak force) within the box bounds on r, r0, a.
 
     The force and free-length limits are what is traded, so they are swept: fits with every
     combination of ``steps`` free-length limits (from the shortest device the box allows to
     the free length of the best device without those limits) and ``steps`` force limits
     (from the least a crank of at most ``r_max`` can work with to that device's peak force).
-    The devices no other beats in all three are kept. Each row holds ``error``, ``size``
-    (free length 2r + r0 + a, m), ``force`` (peak spring force, N), ``c``, ``r``, ``r0``,
-    ``a`` and ``active_bounds``; the fit itself is among the candidates.
+    The devices no other beats in all three are kept (:class:`ParetoPoint`: ``size`` is the
+    free length 2r + r0 + a); the fit itself is among the candidates.
     """
     if res.kind != "compression":
         return []
@@ -137,9 +166,8 @@ def pareto_front(res: FitResult, bounds: SpringBounds, steps: int = 7) -> list[d
     return _nondominated(rows)
 
 
-def _row(r: FitResult) -> dict:
-    return {"error": _error(r), "size": r.free_length, "force": r.max_force, "c": r.c, "r": r.r, "r0": r.r0,
-            "a": r.a, "active_bounds": list(r.active_bounds)}
+def _row(r: FitResult) -> ParetoPoint:
+    return ParetoPoint(_error(r), r.free_length, r.max_force, r.c, r.r, r.r0, r.a, tuple(r.active_bounds))
 
 
 def _peak_sin(rng) -> float:
@@ -148,30 +176,30 @@ def _peak_sin(rng) -> float:
     return 1.0 if math.pi / 2 + k * math.pi <= hi else max(abs(math.sin(lo)), abs(math.sin(hi)))
 
 
-def advice(res: FitResult, sensitivity: list[dict], target_error: float | None = None,
-           front: list[dict] | None = None) -> list[str]:
+def advice(res: FitResult, sensitivity: list[Sensitivity], target_error: float | None = None,
+           front: list[ParetoPoint] | None = None) -> list[str]:
     """Warnings for a fit: on a bound (and which one to move), or short of the requested error."""
     out = []
     what = "max" if res.norm == "max" else "RMS"
     if sensitivity:
         best = sensitivity[0]
-        on = ", ".join(s["bound"] for s in sensitivity)
+        on = ", ".join(s.bound for s in sensitivity)
         out.append(
             f"the optimum sits on the bound(s) {on}: it is a trade-off, not a free optimum; moving the "
-            f"{best['move']} lowers the {what} error from {100 * _error(res):.3g} % to {100 * best['error']:.3g} %"
+            f"{best.move} lowers the {what} error from {100 * _error(res):.3g} % to {100 * best.error:.3g} %"
         )
     if target_error is not None and _error(res) > target_error:
         msg = f"the {what} error {100 * _error(res):.3g} % misses the requested {100 * target_error:.3g} %"
-        ok = [p for p in (front or []) if p["error"] <= target_error]
+        ok = [p for p in (front or []) if p.error <= target_error]
         if ok:
-            small = min(ok, key=lambda p: p["size"])
-            weak = min(ok, key=lambda p: p["force"])
-            msg += (f"; the Pareto front reaches it with a free length of {small['size']:.4g} m "
-                    f"(peak force {small['force']:.4g} N) or a peak force of {weak['force']:.4g} N "
-                    f"(free length {weak['size']:.4g} m): raise --max-free-length or --max-force to there")
+            small = min(ok, key=lambda p: p.size)
+            weak = min(ok, key=lambda p: p.force)
+            msg += (f"; the Pareto front reaches it with a free length of {small.size:.4g} m "
+                    f"(peak force {small.force:.4g} N) or a peak force of {weak.force:.4g} N "
+                    f"(free length {weak.size:.4g} m): raise the maximum free length or the force limit to there")
         elif front:
             msg += "; no device within the bounds on r, r0 and a reaches it: widen them"
         elif sensitivity:
-            msg += f"; move the {sensitivity[0]['move']} first (the largest gain)"
+            msg += f"; move the {sensitivity[0].move} first (the largest gain)"
         out.append(msg)
     return out

@@ -23,13 +23,72 @@ are added from the Jacobians of their points. Four cases:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .countermass import c_min
-from .errors import InvalidInput
+from ..errors import InvalidInput
 
-__all__ = ["sliding_arm_urdf", "slide_dynamics"]
+__all__ = ["sliding_arm_urdf", "slide_dynamics", "SlideDynamics", "MassMatrixCase"]
+
+
+@dataclass(frozen=True)
+class MassMatrixCase:
+    """How the mass matrix depends on the last coordinate in one case (relative to its largest entry).
+
+    ``max_dM`` is the largest ``|∂M/∂x_n|`` at the sampled configurations (central differences),
+    ``max_change_relative`` the largest change of ``M`` along the coordinate's whole range there:
+    a check at random configurations (``samples`` of them), not an extreme over the workspace.
+    """
+
+    coordinate: str
+    max_dM: float
+    largest_entry: float
+    max_change_relative: float
+
+    @property
+    def max_dM_relative(self) -> float:
+        return self.max_dM / self.largest_entry
+
+    def to_dict(self) -> dict:
+        return {"coordinate": self.coordinate, "max_dM": self.max_dM, "max_dM_relative": self.max_dM_relative,
+                "max_change_relative": self.max_change_relative, "largest_entry": self.largest_entry}
+
+
+@dataclass(frozen=True)
+class SlideDynamics:
+    """What :func:`slide_dynamics` finds: each case's dependence of ``M`` on the last coordinate."""
+
+    arm: str
+    samples: int
+    seed: int
+    m: float
+    inertia: float
+    M: float
+    q_max: float
+    C_min: float
+    cases: dict[str, MassMatrixCase]
+
+    @property
+    def one_mass_interval(self) -> float:
+        """One counter-mass keeping the inertia C_min: real only for ``|q| ≤ √((C − I)/m)``."""
+        return math.sqrt(max(self.C_min - self.inertia, 0.0) / self.m)
+
+    def to_dict(self) -> dict:
+        m, inertia, M, q_max = self.m, self.inertia, self.M, self.q_max
+        return {
+            "arm": self.arm, "samples": self.samples, "seed": self.seed, "C_min": self.C_min,
+            "cases": {k: c.to_dict() for k, c in self.cases.items()},
+            "one_mass": {
+                "keeps_centre_of_mass": f"inertia I + m(1 + m/M)·q² grows from {inertia:.4g} to "
+                                        f"{inertia + m * (1 + m / M) * q_max ** 2:.4g} kg·m² over the stroke",
+                "keeps_inertia_C": self.C_min, "valid_interval": self.one_mass_interval,
+                "valid_interval_text": f"|q| ≤ √((C − I)/m) = {self.one_mass_interval:.4g} m, and its centre of "
+                                       "mass moves",
+            },
+            "crank_laws": "z1,2 = q_max·(−m·cos η ± √(m² + 2mM)·sin η)/(2M), q = q_max·cos η",
+        }
 
 
 def _inertial(m: float, com, diag) -> str:
@@ -68,7 +127,7 @@ def sliding_arm_urdf(kind: str, m: float, inertia: float, q_max: float, length: 
 
 class _Arm:
     def __init__(self, kind, m, inertia, q_max, length, parent_mass):
-        from .urdf import pinocchio_model
+        from ..model.urdf import pinocchio_model
 
         self.model = pinocchio_model(sliding_arm_urdf(kind, m, inertia, q_max, length, parent_mass))
         self.data = self.model.createData()
@@ -113,7 +172,7 @@ def _crank_laws(m: float, M: float, q_max: float):
 
 
 def slide_dynamics(m: float, inertia: float, M: float, q_max: float, kind: str = "spatial", length: float = 0.5,
-                   parent_mass: float = 10.0, samples: int = 200, seed: int = 0) -> dict:
+                   parent_mass: float = 10.0, samples: int = 200, seed: int = 0) -> SlideDynamics:
     """How the mass matrix depends on the last coordinate, without and with counter-masses.
 
     For each case: ``max |∂M/∂x_n|`` by central differences and the largest change of ``M``
@@ -170,20 +229,8 @@ def slide_dynamics(m: float, inertia: float, M: float, q_max: float, kind: str =
             worst_d = max(worst_d, float(np.max(np.abs(dM))))
             along = [fn(np.array([x[0], x[1], t])) for t in np.linspace(lo, hi, 9)]
             worst_spread = max(worst_spread, float(max(np.max(np.abs(a - along[0])) for a in along)))
-        out_cases[label] = {"coordinate": coord, "max_dM": worst_d, "max_dM_relative": worst_d / scale,
-                            "max_change_relative": worst_spread / scale, "largest_entry": scale}
-    interval = math.sqrt(max(C - inertia, 0.0) / m)
-    return {
-        "arm": kind, "samples": samples, "seed": seed, "C_min": C,
-        "cases": out_cases,
-        "one_mass": {
-            "keeps_centre_of_mass": f"inertia I + m(1 + m/M)·q² grows from {inertia:.4g} to "
-                                    f"{inertia + m * (1 + m / M) * q_max ** 2:.4g} kg·m² over the stroke",
-            "keeps_inertia_C": C, "valid_interval": interval,
-            "valid_interval_text": f"|q| ≤ √((C − I)/m) = {interval:.4g} m, and its centre of mass moves",
-        },
-        "crank_laws": f"z1,2 = q_max·(−m·cos η ± √(m² + 2mM)·sin η)/(2M), q = q_max·cos η",
-    }
+        out_cases[label] = MassMatrixCase(coord, worst_d, scale, worst_spread / scale)
+    return SlideDynamics(kind, samples, seed, m, inertia, M, q_max, C, out_cases)
 
 
 def _axis_world(arm: _Arm, q) -> np.ndarray:

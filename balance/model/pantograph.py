@@ -35,15 +35,14 @@ the same equilibrium from the links' own centres of mass as the independent chec
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidArm
+from ..errors import InvalidArm
 from .potential import HarmonicTerm
-from .schema import PantographTable, parse
 
-__all__ = ["Pantograph", "pantograph_from_dict", "balance_pantograph", "virtual_work_forces"]
+__all__ = ["Pantograph", "virtual_work_forces", "stroke_gradients", "PAYLOADS"]
 
 PAYLOADS = (0.0, 0.5, 1.0)
 
@@ -229,7 +228,7 @@ class Pantograph:
         return (self.vertical_load(payload_fraction) * bhat[:, 1] - F * np.sum(u * bhat, axis=1)) / self.k
 
 
-def _gradients(p: Pantograph, th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def stroke_gradients(p: Pantograph, th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``∂s/∂θ`` of the cylinder length and ``∂ρ_C/∂θ`` of the reach ``|C − A|``, each (m, 2)."""
     pts = p.points(th)
     c2, s2, c3, s3 = np.cos(th[:, 0]), np.sin(th[:, 0]), np.cos(th[:, 1]), np.sin(th[:, 1])
@@ -248,102 +247,8 @@ def virtual_work_forces(p: Pantograph, th: np.ndarray, payload_fraction: float =
     substitution weights and of the moment formula. Shape (m, 2).
     """
     th = np.atleast_2d(th)
-    ds, drho = _gradients(p, th)
+    ds, drho = stroke_gradients(p, th)
     q = p.gravity_forces(th, payload_fraction)
     q[:, 0] += p.term().moment(th[:, 0])  # the spring's force on θ2: +W_D·l2·cos θ2
     mat = np.stack([ds, drho], axis=2)  # (m, 2 equations, 2 unknowns)
     return np.linalg.solve(mat, -q[..., None])[..., 0]
-
-
-def balance_pantograph(p: Pantograph, samples: int = 1000, seed: int = 0, r: float | None = None,
-                       r0: float | None = None) -> dict:
-    """Spring device, cylinder force over the workspace and the virtual-work check.
-
-    The check: at ``samples`` random ``(θ2, θ3)`` and payloads 0, ½, 1 the generalised
-    forces of the links' own weights, of the spring, of the cylinder force ``F`` and of
-    the operator's force ``R`` along ``A→C`` must cancel.
-
-    Examples
-    --------
-    >>> out = balance_pantograph(Pantograph(l2=0.8, l3=1.0, k=4.0, w2=60.0, w3=40.0, tool=20.0), samples=50)
-    >>> out["relative_residual"] < 1e-12
-    True
-    """
-    th = p.sample(samples, seed)
-    t = p.term()
-    length, u, lever = p.cylinder(th)
-    if np.min(np.abs(lever)) < 1e-9 * p.l2:
-        raise InvalidArm("the cylinder's line of action passes through A in the workspace, so it cannot hold "
-                         "the pantograph there; move its base (cylinder.base).")
-    ds, drho = _gradients(p, th)
-    worst, mg, forces, hands, by_payload = 0.0, 0.0, {}, {}, {}
-    for frac in PAYLOADS:
-        F = p.cylinder_force(th, frac)
-        R = p.hand_force(th, frac)
-        q = p.gravity_forces(th, frac)
-        q[:, 0] += t.moment(th[:, 0])
-        res = q + F[:, None] * ds + R[:, None] * drho
-        by_payload[str(frac)] = float(np.max(np.abs(res)))
-        worst = max(worst, by_payload[str(frac)])
-        mg = max(mg, float(np.max(np.abs(p.gravity_forces(th, frac)))))
-        forces[frac], hands[frac] = F, R
-    dev = {"sine": {"eT": t.amplitude}, "tension": {"crd": t.amplitude, "zero_at_deg": 90.0}}
-    if r is not None and r0 is not None:
-        dev["tension"].update({"r": r, "r0": r0, "a": r0, "c": t.amplitude / (r * (r + r0))})
-    all_f = np.concatenate(list(forces.values()))
-    all_r = np.concatenate(list(hands.values()))
-    load = p.vertical_load(1.0)
-    notes = []
-    if np.min(all_f) < 0:
-        notes.append("the cylinder pulls somewhere in the workspace (negative force): it must be double-acting")
-    if np.max(np.abs(all_r)) > 0.05 * load:
-        notes.append(f"the operator holds up to {np.max(np.abs(all_r)):.3g} N along A→C "
-                     f"({100 * np.max(np.abs(all_r)) / load:.3g} % of the full load {load:.4g} N reduced to B): "
-                     "a base P further below B keeps the cylinder nearer vertical")
-    return {
-        "point_weights": p.point_weights(0.5),
-        "point_weights_without_payload": p.point_weights(0.0),
-        "term": t.to_dict() | {"form_text": "θ2"},
-        "device": dev,
-        "spring_moment": f"{t.amplitude:.6g}·cos θ2 on the upper arm (base point C above A)",
-        "drive_force": p.vertical_load(0.5),
-        "drive_force_range": [p.vertical_load(0.0), p.vertical_load(1.0)],
-        "cylinder_force": {
-            "min": float(np.min(all_f)), "max": float(np.max(all_f)),
-            "half_payload": {"min": float(np.min(forces[0.5])), "max": float(np.max(forces[0.5]))},
-            "by_payload": {str(f): {"min": float(np.min(v)), "max": float(np.max(v))} for f, v in forces.items()},
-        },
-        "hand_force": {"min": float(np.min(all_r)), "max": float(np.max(all_r))},
-        "cylinder": {
-            "base": [float(v) for v in p.cylinder_base],
-            "length_min": float(np.min(length)), "length_max": float(np.max(length)),
-            "lever_min": float(np.min(np.abs(lever))), "lever_max": float(np.max(np.abs(lever))),
-        },
-        "max_residual": worst,
-        "residual_by_payload": by_payload,
-        "max_gravity_force": mg,
-        "relative_residual": worst / mg if mg > 0 else 0.0,
-        "samples": samples,
-        "seed": seed,
-        "notes": notes,
-        "note": "the payload sits at C: it changes the cylinder and hand forces, never the spring",
-    }
-
-
-def pantograph_from_dict(doc, source: str = "<pantograph>") -> tuple[Pantograph, dict]:
-    """Parse a ``[pantograph]`` document; returns the model and options (spring, check)."""
-    t: PantographTable = parse(doc, "pantograph", source)
-    try:
-        p = Pantograph(
-            l2=t.l2, l3=t.l3, k=t.ratio,
-            w2=t.upper.weight, w3=t.forearm.weight, w9=t.bar_eb.weight, w8=t.bar_fb.weight,
-            w14=t.parallelogram_bars.weight, w15=t.parallelogram_bars.weight,
-            w16=t.elbow_plate.weight, w4=t.wrist_plate.weight,
-            s2=t.upper.com, s3=t.forearm.com, tool=t.tool, payload=t.payload, offset=t.parallelogram_offset,
-            base=None if t.cylinder.base is None else tuple(t.cylinder.base),
-            range2=tuple(math.radians(v) for v in t.range_upper_deg),
-            range3=tuple(math.radians(v) for v in t.range_forearm_deg),
-        )
-    except InvalidArm as exc:
-        raise InvalidArm(f"{source}: {exc}") from None
-    return p, {"r": t.spring.r, "r0": t.spring.r0, "samples": t.check.samples, "seed": t.check.seed}

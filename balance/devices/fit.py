@@ -28,13 +28,14 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, replace
 from typing import Callable
 
 import numpy as np
 from scipy import optimize
 
-from .errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
+from ..errors import FitFailed, InfeasibleBounds, InvalidInput, InvalidRange, WrongSense
+from ..extremes import box_extremes
 from .springs import KIND_SENSE, SPRING_KINDS, CrankRockerDevice
 
 __all__ = [
@@ -45,11 +46,15 @@ __all__ = [
     "NORMS",
     "DEFAULT_METHOD",
     "DEFAULT_GRID",
+    "MAX_GRID",
+    "LeverGeometry",
     "relative_errors",
 ]
 
 NORMS = ("max", "rms")
 DEFAULT_GRID = 61
+#: the finest fit grid: finer ones only cost memory and time (one evaluation holds a few arrays of it)
+MAX_GRID = 100_001
 VERIFY_GRID = 4001
 _SENSE_TEXT = {
     +1: "away from the base point C (increasing φ)",
@@ -82,7 +87,60 @@ class SpringBounds:
     max_deflection: float | None = None
 
 
-@dataclass
+@dataclass(frozen=True)
+class LeverGeometry:
+    """The slotted lever of a compression-lever device (lengths in m, from the base point ``C``).
+
+    The spring is compressed by ``L`` (``compression_min`` … ``compression_max``); its free length
+    ``spring_free_length`` is the stop's distance from ``C``, so the lever reaches that far
+    (``reach_from_C``), ``extra_length`` beyond the farthest crank-pin position, which a spring
+    between ``C`` and ``B`` (``reach_from_C_fig_a``) would not need.
+    """
+
+    stop_distance_from_C: float
+    spring_free_length: float
+    spring_length_min: float
+    spring_length_max: float
+    compression_min: float
+    compression_max: float
+    deflection_ratio: float
+    designed_from_spring: bool = False
+
+    @property
+    def reach_from_C(self) -> float:
+        return self.stop_distance_from_C
+
+    @property
+    def reach_from_C_fig_a(self) -> float:
+        return self.compression_max
+
+    @property
+    def extra_length(self) -> float:
+        return self.stop_distance_from_C - self.compression_max
+
+    @property
+    def size_ratio(self) -> float:
+        return self.stop_distance_from_C / self.compression_max
+
+    @classmethod
+    def for_spring(cls, free_length: float, lmin: float, lmax: float, designed: bool = False) -> "LeverGeometry":
+        """The lever that carries a spring of ``free_length`` compressed by ``lmin`` … ``lmax``."""
+        s = free_length
+        return cls(s, s, s - lmax, s - lmin, lmin, lmax, lmax / s, designed)
+
+    def note(self) -> str:
+        """The device's size against a spring between C and B, in one sentence."""
+        s, lmax = self.reach_from_C, self.reach_from_C_fig_a
+        return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
+                f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression "
+                "spring")
+
+    def to_dict(self) -> dict:
+        return asdict(self) | {"reach_from_C": self.reach_from_C, "reach_from_C_fig_a": self.reach_from_C_fig_a,
+                               "extra_length": self.extra_length, "size_ratio": self.size_ratio}
+
+
+@dataclass(frozen=True)
 class FitResult:
     """Outcome of :func:`fit_spring` (SI units; errors relative to ``|Φ0|``).
 
@@ -110,14 +168,14 @@ class FitResult:
     grid: int
     seconds: float
     nfev: int
-    active_bounds: list[str]
+    active_bounds: tuple[str, ...]
     sense: int
     sense_text: str
-    success: bool
     message: str
     reference_length: float = 0.0
-    notes: list[str] = field(default_factory=list)
-    lever: dict | None = None
+    notes: tuple[str, ...] = ()
+    restarts: int = 0
+    lever: LeverGeometry | None = None
 
     @property
     def device(self) -> CrankRockerDevice:
@@ -128,6 +186,9 @@ class FitResult:
         d["phi_range_deg"] = [math.degrees(v) for v in self.phi_range]
         d["x"] = list(self.x)
         d["phi_range"] = list(self.phi_range)
+        d["active_bounds"] = list(self.active_bounds)
+        d["notes"] = list(self.notes)
+        d["lever"] = None if self.lever is None else self.lever.to_dict()
         return d
 
 
@@ -337,7 +398,7 @@ def _fit_trf(p: _Problem, norm: str):
 
     sol = run(z0, None)
     z = sol.x
-    msg = sol.message
+    msg, ok = sol.message, sol.status > 0
     if norm == "max":
         # Lawson's algorithm: reweight by the error magnitude, refit, keep the best max-norm point
         v = np.full(len(p.phi), 1.0 / len(p.phi))
@@ -354,7 +415,7 @@ def _fit_trf(p: _Problem, norm: str):
             if val < best:
                 best, bz = val, z
         z, msg = bz, "least_squares (trf) with Lawson reweighting for the max norm"
-    return z, msg
+    return z, msg, ok
 
 
 def _fit_nelder_mead(p: _Problem, norm: str):
@@ -363,7 +424,7 @@ def _fit_nelder_mead(p: _Problem, norm: str):
         p.objective, p.start(norm), args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
         options={"xatol": 1e-10, "fatol": 1e-14, "maxfev": 3000, "adaptive": True},
     )
-    return sol.x, sol.message
+    return sol.x, sol.message, bool(sol.success)
 
 
 def _fit_slsqp(p: _Problem, norm: str, z0=None):
@@ -413,7 +474,7 @@ def _fit_slsqp(p: _Problem, norm: str, z0=None):
             options={"ftol": 1e-15, "maxiter": 500},
         )
     y = sol.x
-    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}"
+    return p.encode(y[0], y[1], y[2]), f"SLSQP: {sol.message}", bool(sol.success)
 
 
 def _fit_de(p: _Problem, norm: str):
@@ -423,10 +484,40 @@ def _fit_de(p: _Problem, norm: str):
         maxiter=80, popsize=8, polish=False, init="sobol",
     )
     # polish locally from the global candidate
-    z, (z2, _) = sol.x, _fit_slsqp(p, norm, z0=sol.x)
+    z, (z2, _, ok) = sol.x, _fit_slsqp(p, norm, z0=sol.x)
     if p.objective(z2, norm) <= p.objective(z, norm):
         z = z2
-    return z, "differential_evolution (seed 12345) polished by SLSQP"
+    return z, "differential_evolution (seed 12345) polished by SLSQP", ok
+
+
+#: a fit is a local optimum when a restart from it lowers the error by at most this (relative)
+CONFIRM_TOL = 1e-9
+CONFIRM_ROUNDS = 4
+
+
+def _confirm_optimum(p: _Problem, z, norm: str) -> tuple[np.ndarray, float, int]:
+    """Restart from ``z``: Nelder–Mead on the projected norm, then SLSQP from the better point.
+
+    A method may stop early (SLSQP's "Positive directional derivative for linesearch" or its
+    iteration limit, Lawson's reweighting short of the minimax point): while a restart lowers
+    the error by more than :data:`CONFIRM_TOL`, its point is taken and the restart repeated.
+    A method that reports convergence (SLSQP's KKT test, Nelder–Mead's simplex size) is not
+    restarted.
+    Returns the point, the relative gain of the last restart and the restarts taken.
+    """
+    lb, ub = p.z_bounds
+    best = p.objective(z, norm)
+    for rounds in range(CONFIRM_ROUNDS + 1):
+        nm = optimize.minimize(p.objective, z, args=(norm,), method="Nelder-Mead", bounds=list(zip(lb, ub)),
+                               options={"xatol": 1e-10, "fatol": 1e-15, "maxfev": 600, "adaptive": True})
+        z_nm = nm.x if nm.fun < best else z
+        z_sq, _, _ = _fit_slsqp(p, norm, z0=z_nm)
+        cand = min(((nm.fun, nm.x), (p.objective(z_sq, norm), z_sq)), key=lambda c: c[0])
+        gain = (best - cand[0]) / best if best > 0 else 0.0
+        if gain <= CONFIRM_TOL or rounds == CONFIRM_ROUNDS:
+            return z, max(gain, 0.0), rounds
+        best, z = cand
+    raise AssertionError("unreachable")  # pragma: no cover
 
 
 METHODS: dict[str, Callable] = {
@@ -482,8 +573,8 @@ def fit_spring(
     norm : {"max", "rms"}
         Minimise the largest or the root-mean-square deviation over the range.
     grid : int
-        Number of equally spaced points of ``φ`` the fit uses (≥ 5). Reported errors are
-        measured afterwards on a fine grid, so they are not flattered by a coarse one.
+        Number of equally spaced points of ``φ`` the fit uses (5 … :data:`MAX_GRID`). Reported
+        errors are measured afterwards on a fine grid, so they are not flattered by a coarse one.
 
     Returns
     -------
@@ -506,13 +597,14 @@ def fit_spring(
     """
     t_start = time.perf_counter()
     if kind not in SPRING_KINDS:
-        raise InvalidInput(f"--kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
+        raise InvalidInput(f"the spring kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
     if norm not in NORMS:
-        raise InvalidInput(f"--norm must be 'max' or 'rms', not {norm!r}.")
+        raise InvalidInput(f"the norm must be 'max' or 'rms', not {norm!r}.")
     if method is not None and method not in METHODS:
-        raise InvalidInput(f"--method must be one of {', '.join(METHODS)}, not {method!r}.")
-    if not isinstance(grid, int) or grid < 5:
-        raise InvalidInput(f"the fit grid needs at least 5 points, not {grid!r}.")
+        raise InvalidInput(f"the fit method must be one of {', '.join(METHODS)}, not {method!r}.")
+    if not isinstance(grid, int) or not 5 <= grid <= MAX_GRID:
+        raise InvalidInput(f"the fit grid takes 5 to {MAX_GRID} points, not {grid!r} (the reported errors are "
+                           "measured afterwards on a fine grid of their own).")
     moment = float(moment)
     if not math.isfinite(moment) or moment == 0:
         raise InvalidInput(f"the moment amplitude Φ0 must be a finite non-zero number, not {moment}.")
@@ -548,9 +640,26 @@ def fit_spring(
     meth = method or DEFAULT_METHOD[norm]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        z, msg = METHODS[meth](p, norm)
-    if not np.all(np.isfinite(z)):
-        raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
+        z, msg, ok = METHODS[meth](p, norm)
+        if not np.all(np.isfinite(z)):
+            raise FitFailed(f"the {meth} method returned a non-finite point ({msg}).")
+        # a method that did not converge (or Lawson's reweighting, which only nears the minimax point)
+        # is restarted from its point until a restart gains nothing
+        gain, rounds = 0.0, 0
+        if not ok or (meth == "trf" and norm == "max"):
+            z, gain, rounds = _confirm_optimum(p, z, norm)
+    if gain > CONFIRM_TOL:
+        raise FitFailed(
+            f"the {meth} fit did not settle: {rounds} restarts from its point (Nelder–Mead, then SLSQP) still "
+            f"lowered the {norm} error by {100 * gain:.3g} % in the last ({msg}).")
+    if rounds:
+        msg = (f"{msg}; restarted {rounds}× from its point (Nelder–Mead, then SLSQP): a local optimum to "
+               f"{CONFIRM_TOL:g} of the error")
+    elif not ok:
+        msg = (f"{msg} — yet a restart from its point (Nelder–Mead, then SLSQP) lowers the error by less than "
+               f"{CONFIRM_TOL:g}: a local optimum")
+    elif meth == "trf" and norm == "max":
+        msg = f"{msg}; a restart from its point (Nelder–Mead, then SLSQP) gains less than {CONFIRM_TOL:g}"
     rho, rho0, al, viol = p.decode(z)
     if viol > 1e-9:
         raise FitFailed(f"the {meth} method ended outside the bounds ({msg}): where a limit leaves no room for "
@@ -558,7 +667,7 @@ def fit_spring(
     # κ enters the error linearly: for the final shape it is solved exactly (SLSQP's own κ agrees
     # to round-off, the other methods never see it)
     kappa = p.best_kappa(rho, rho0, al, norm)
-    return _finish(p, (rho, rho0, al, kappa), meth, norm, t_start, str(msg), notes)
+    return _finish(p, (rho, rho0, al, kappa), meth, norm, t_start, str(msg), notes, rounds)
 
 
 def _phi_range(phi_range) -> tuple[float, float]:
@@ -597,14 +706,14 @@ def _check_feasible(p: _Problem) -> None:
         raise InfeasibleBounds(
             f"the force limit {b.max_force:g} N on a crank of at most {b.r[1]:g} m gives at most "
             f"{b.max_force * b.r[1]:g} N·m, less than the {abs(p.moment) * peak:g} N·m the target needs in this "
-            f"range; raise --max-force or the longest crank."
+            f"range; raise the force limit or the longest crank."
         )
     if p.kind == "compression":
         if not math.isfinite(p.al_b[1]) and not math.isfinite(p.Lf) and p.delta is None:
             raise InfeasibleBounds(
                 "with a compression spring and no upper bound on the pre-load a (nor a maximum free "
                 "length or deflection), the error keeps falling as a grows without limit; give a "
-                "finite bound on a, --max-free-length or --max-deflection."
+                "finite upper bound on a, a maximum free length or a maximum deflection."
             )
         smallest = 2 * b.r[0] + b.r0[0] + b.a[0]
         if b.max_free_length is not None and smallest > b.max_free_length:
@@ -626,7 +735,7 @@ def _check_feasible(p: _Problem) -> None:
     if p.kind == "compression" and p.delta is not None:
         raise InfeasibleBounds(
             f"no crank and spring within the bounds keeps the deflection ratio (l0 − L_min)/l0 below "
-            f"{p.delta:g}: raise --max-deflection, allow a longer r0 or a smaller pre-load a."
+            f"{p.delta:g}: raise the maximum deflection, allow a longer r0 or a smaller pre-load a."
         )
     raise InfeasibleBounds("no device within the stated bounds satisfies the free-length limit.")
 
@@ -683,7 +792,7 @@ def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: in
     if not (b.a[0] <= b.r0[1] and b.a[1] >= b.r0[0]):
         raise InfeasibleBounds(
             f"the compression-lever device is exact only at a = r0, but a ∈ [{b.a[0]:g}, {b.a[1]:g}] m and "
-            f"r0 ∈ [{b.r0[0]:g}, {b.r0[1]:g}] m never meet; widen --a or --r0."
+            f"r0 ∈ [{b.r0[0]:g}, {b.r0[1]:g}] m never meet; widen the range of a or of r0."
         )
     _check_feasible(p)
     longest = math.inf if b.max_free_length is None else delta * b.max_free_length / p.ell
@@ -695,33 +804,17 @@ def _lever_device(moment: float, lo: float, hi: float, b: SpringBounds, grid: in
         if b.max_free_length is not None:
             limits.append(f"fits a spring of at most {b.max_free_length:g} m at a deflection ratio of {delta:g}")
         raise InfeasibleBounds(
-            f"no compression-lever device with a = r0 {' and '.join(limits)}; raise --max-force, "
-            "--max-free-length or --max-deflection."
+            f"no compression-lever device with a = r0 {' and '.join(limits)}; raise the force limit, "
+            "the maximum free length or the maximum deflection."
         )
     res = _finish(p, exact, "exact", norm, t_start, "compression spring on the lever beyond B, a = r0: exact", [])
     lmax = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2max)
     lmin = math.sqrt(res.r0 ** 2 + 4 * res.r * res.d * p.s2min)
-    s = lmax / delta
-    res.deflection = delta
-    res.lever = {
-        "stop_distance_from_C": s, "spring_free_length": s,
-        "spring_length_min": s - lmax, "spring_length_max": s - lmin,
-        "compression_min": lmin, "compression_max": lmax, "deflection_ratio": delta,
-        "reach_from_C": s, "reach_from_C_fig_a": lmax, "extra_length": s - lmax,
-        "size_ratio": s / lmax,
-    }
-    res.notes.append(lever_note(res.lever))
-    return res
+    lever = LeverGeometry.for_spring(lmax / delta, lmin, lmax)
+    return replace(res, deflection=delta, lever=lever, notes=res.notes + (lever.note(),))
 
 
-def lever_note(lever: dict) -> str:
-    """The compression-lever device's size against a spring between C and B, in one sentence."""
-    s, lmax = lever["reach_from_C"], lever["reach_from_C_fig_a"]
-    return (f"the lever reaches {s:.4g} m from C, {s - lmax:.4g} m beyond the farthest crank-pin position "
-            f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression spring")
-
-
-def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, notes) -> FitResult:
+def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, notes, restarts: int = 0) -> FitResult:
     rho, rho0, al, kappa = (float(v) for v in y)
     seconds = time.perf_counter() - t_start
     e_grid = p.errors(rho, rho0, al, kappa)
@@ -730,7 +823,10 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
     d = r + r0
     c = kappa * abs(M) / (r * d)
     dev = CrankRockerDevice(p.kind, c, r, r0, a)
-    e = relative_errors(dev, M, _verify_grid(p.lo, p.hi, r, r0))
+    phi = _verify_grid(p.lo, p.hi, r, r0)
+    e = relative_errors(dev, M, phi)
+    (e_lo, e_hi), = box_extremes(lambda x: relative_errors(dev, M, x[:, 0])[:, None], [p.lo], [p.hi], phi[:, None],
+                                 floor=1e-13)
     l0 = dev.free_length
     # the spring length over the range runs from lmin to lmax: the force is largest at one of them
     lmin = math.sqrt(r0 * r0 + 4 * r * d * p.s2min)
@@ -749,13 +845,13 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
         kind=p.kind, method=method, norm=norm, moment=M, phi_range=(p.lo, p.hi),
         x=(rho, rho0, al, kappa), c=c, r=r, r0=r0, a=a, d=d, free_length=l0,
         max_force=fmax, deflection=defl,
-        max_rel_error=float(np.max(np.abs(e))),
+        max_rel_error=max(-e_lo.value, e_hi.value),
         rms_rel_error=float(np.sqrt(np.mean(e[: VERIFY_GRID] ** 2))),
         grid_max_rel_error=float(np.max(np.abs(e_grid))),
         grid_rms_rel_error=float(np.sqrt(np.mean(e_grid ** 2))),
-        grid=p.grid, seconds=seconds, nfev=p.nfev, active_bounds=active,
+        grid=p.grid, seconds=seconds, nfev=p.nfev, active_bounds=tuple(active),
         sense=KIND_SENSE[p.kind], sense_text=_SENSE_TEXT[KIND_SENSE[p.kind]],
-        success=True, message=msg, reference_length=ell, notes=list(notes),
+        message=msg, reference_length=ell, notes=tuple(notes), restarts=restarts,
     )
 
 

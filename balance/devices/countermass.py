@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidInput
+from ..errors import InvalidInput
+from ..extremes import box_extremes
 
 __all__ = ["CounterMass", "c_min", "counter_mass_laws", "crank_construction", "verify_counter_mass"]
 
@@ -141,24 +142,31 @@ def verify_counter_mass(m: float, inertia: float, M: float, q_max: float, stroke
         raise InvalidInput(f"the verification needs at least 3 samples, not {samples}.")
     msgs: list[str] = []
     valid = math.sqrt(2 * M * (C - inertia) / (m * m + 2 * m * M))
-    q = np.linspace(-s, s, samples)
-    z1, z2, disc = counter_mass_laws(q, m, inertia, M, C)
     total = m + 2 * M
-    com = (m * q + M * z1 + M * z2) / total
-    inert = inertia + m * q * q + M * (z1 * z1 + z2 * z2)
-    com_err = float(np.max(np.abs(com)))
-    in_err = float(np.max(np.abs(inert - C)))
-    if np.any(disc < -1e-12 * max(C, 1.0)):
+
+    def law_errors(x):  # centre-of-mass displacement and inertia deviation of the laws along the stroke
+        q = x[:, 0]
+        z1, z2, _ = counter_mass_laws(q, m, inertia, M, C)
+        return np.column_stack([(m * q + M * z1 + M * z2) / total, inertia + m * q * q + M * (z1 * z1 + z2 * z2) - C])
+
+    def crank_errors(x):  # the same for the two-crank construction over a turn of the crank
+        qc, c1, c2 = crank_construction(x[:, 0], q_max, s)
+        return np.column_stack([(m * qc + M * c1 + M * c2) / total, m * qc * qc + M * (c1 * c1 + c2 * c2)])
+
+    q = np.linspace(-s, s, samples)[:, None]
+    (com_lo, com_hi), (in_lo, in_hi) = box_extremes(law_errors, [-s], [s], q, floor=1e-12 * max(C, q_max))
+    com_err, in_err = max(-com_lo.value, com_hi.value), max(-in_lo.value, in_hi.value)
+    disc = counter_mass_laws(np.array([s]), m, inertia, M, C)[2]  # the discriminant is least at the stroke's ends
+    if disc[0] < -1e-12 * max(C, 1.0):
         msgs.append(
             f"the stroke ±{s:g} m exceeds ±{valid:g} m, the largest the constant C = {C:g} kg·m² allows: "
             f"beyond it the counter-masses cannot keep the inertia constant (error {in_err:.3g} kg·m²)."
         )
-    eta = np.linspace(0, 2 * math.pi, samples)
-    qc, c1, c2 = crank_construction(eta, q_max, s)
-    ccom = (m * qc + M * c1 + M * c2) / total
-    cin = m * qc * qc + M * (c1 * c1 + c2 * c2)
-    c_com_err = float(np.max(np.abs(ccom)))
-    c_in_err = float(np.max(cin) - np.min(cin))
+    eta = np.linspace(0, 2 * math.pi, samples)[:, None]
+    (ccom_lo, ccom_hi), (cin_lo, cin_hi) = box_extremes(crank_errors, [0.0], [2 * math.pi], eta,
+                                                        floor=1e-12 * max(C, q_max))
+    c_com_err = max(-ccom_lo.value, ccom_hi.value)
+    c_in_err = cin_hi.value - cin_lo.value
     exact = M == m and s == q_max
     if not exact:
         msgs.append(

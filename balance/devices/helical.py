@@ -31,21 +31,21 @@ Examples
 --------
 >>> s = design_spring("compression", stiffness=2000.0, max_force=400.0, free_length=0.5,
 ...                   min_length=0.3, max_length=0.45)
->>> abs(s["stiffness_N_per_m"] / 2000.0 - 1) < 1e-9, s["max_shear_stress_Pa"] <= s["allowed_shear_stress_Pa"]
+>>> abs(s.stiffness_N_per_m / 2000.0 - 1) < 1e-9, s.max_shear_stress_Pa <= s.allowed_shear_stress_Pa
 (True, True)
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from .errors import InfeasibleBounds, InvalidInput
+from ..errors import InfeasibleBounds, InvalidInput
 
 __all__ = ["Material", "MATERIALS", "WIRE_SERIES_MM", "END_CONDITIONS", "design_spring", "design_for_device",
-           "NoSpringFits",
+           "NoSpringFits", "HelicalSpring", "Buckling",
            "stiffness", "bergstraesser", "buckling_deflection"]
 
 
@@ -151,7 +151,7 @@ def design_spring(
     min_inner_diameter: float = 0.0,
     ends: str = "pinned",
     guided: bool = False,
-) -> dict:
+) -> HelicalSpring:
     """The lightest helical spring that realises a device's spring.
 
     Parameters
@@ -233,7 +233,7 @@ def design_spring(
             if tau > tau_allowed:
                 why.append((tau / tau_allowed - 1, f"its shear stress {tau / 1e6:.4g} MPa exceeds the allowed "
                                                    f"{tau_allowed / 1e6:.4g} MPa",
-                            "a lower peak force (--max-force) or a material drawn thicker (oil-tempered, up to "
+                            "a lower peak force (a force limit on the device) or a material drawn thicker (oil-tempered, up to "
                             "12.7 mm)"))
             row = {"d": d, "D": D, "n": n, "w": w, "k": k, "tau": tau, "tau_allowed": tau_allowed, "mass": mass}
             if kind == "compression":
@@ -285,48 +285,127 @@ def design_spring(
     return _report(best[1], kind, mat, c, max_force, ends, nu, guided)
 
 
-def _report(b: dict, kind: str, mat: Material, c: float, F: float, ends: str, nu: float, guided: bool) -> dict:
+@dataclass(frozen=True)
+class Buckling:
+    """A compression spring's buckling check (EN 13906-1): the critical against the working deflection."""
+
+    end_condition: str
+    seating_coefficient: float
+    guided: bool
+    critical_deflection_m: float
+    max_deflection_m: float
+
+    @property
+    def safe(self) -> bool:
+        return self.max_deflection_m < self.critical_deflection_m
+
+    def to_dict(self) -> dict:
+        return asdict(self) | {"safe": self.safe}
+
+
+@dataclass(frozen=True)
+class HelicalSpring:
+    """A helical spring a maker can wind, with the checks it passed (SI units).
+
+    Compression springs fill ``solid_length_m`` … ``buckling``; extension springs
+    ``body_length_m``, ``loop_length_m`` and, for a crank device, ``anchor_offset_m`` (where the
+    near loop sits relative to ``C``) and ``max_extension_m``.
+    """
+
+    kind: str
+    material: str
+    material_description: str
+    wire_diameter_m: float
+    mean_diameter_m: float
+    active_coils: float
+    shear_modulus_Pa: float
+    elastic_modulus_Pa: float
+    stiffness_N_per_m: float
+    required_stiffness_N_per_m: float
+    max_force_N: float
+    stress_correction_factor: float
+    max_shear_stress_Pa: float
+    allowed_shear_stress_Pa: float
+    tensile_strength_Pa: float
+    mass_kg: float
+    free_length_m: float
+    solid_length_m: float | None = None
+    min_gap_sum_m: float | None = None
+    min_working_length_m: float | None = None
+    max_working_length_m: float | None = None
+    solid_shear_stress_Pa: float | None = None
+    buckling: Buckling | None = None
+    body_length_m: float | None = None
+    loop_length_m: float | None = None
+    anchor_offset_m: float | None = None
+    max_extension_m: float | None = None
+
+    standard = "EN 13906-1 (compression) / EN 13906-2 (extension) formulas"
+
+    @property
+    def outer_diameter_m(self) -> float:
+        return self.mean_diameter_m + self.wire_diameter_m
+
+    @property
+    def inner_diameter_m(self) -> float:
+        return self.mean_diameter_m - self.wire_diameter_m
+
+    @property
+    def spring_index(self) -> float:
+        return self.mean_diameter_m / self.wire_diameter_m
+
+    @property
+    def total_coils(self) -> float:
+        return self.active_coils + (2 if self.kind == "compression" else 1)
+
+    @property
+    def stiffness_error(self) -> float:
+        return self.stiffness_N_per_m / self.required_stiffness_N_per_m - 1
+
+    @property
+    def stress_ratio(self) -> float:
+        return self.max_shear_stress_Pa / self.allowed_shear_stress_Pa
+
+    def to_dict(self) -> dict:
+        out = {k: v for k, v in asdict(self).items() if v is not None}
+        out.update(standard=self.standard, outer_diameter_m=self.outer_diameter_m,
+                   inner_diameter_m=self.inner_diameter_m, spring_index=self.spring_index,
+                   total_coils=self.total_coils, stiffness_error=self.stiffness_error, stress_ratio=self.stress_ratio)
+        if self.kind == "compression":
+            out["safe_when_solid"] = self.solid_shear_stress_Pa <= self.allowed_shear_stress_Pa
+            out["buckling"] = self.buckling.to_dict()
+        else:
+            out["initial_tension_N"] = 0.0
+        return out
+
+
+def _report(b: dict, kind: str, mat: Material, c: float, F: float, ends: str, nu: float,
+            guided: bool) -> HelicalSpring:
     d, D, n = b["d"], b["D"], b["n"]
     rate = stiffness(mat.shear_modulus, d, D, n)
-    out = {
-        "kind": kind, "material": mat.name, "material_description": mat.description,
-        "standard": "EN 13906-1 (compression) / EN 13906-2 (extension) formulas",
-        "wire_diameter_m": d, "mean_diameter_m": D, "outer_diameter_m": D + d, "inner_diameter_m": D - d,
-        "spring_index": b["w"], "active_coils": n,
-        "total_coils": n + 2 if kind == "compression" else n + 1,
-        "shear_modulus_Pa": mat.shear_modulus, "elastic_modulus_Pa": mat.elastic_modulus,
-        "stiffness_N_per_m": rate, "required_stiffness_N_per_m": c, "stiffness_error": rate / c - 1,
-        "max_force_N": F, "stress_correction_factor": b["k"],
-        "max_shear_stress_Pa": b["tau"], "allowed_shear_stress_Pa": b["tau_allowed"],
-        "tensile_strength_Pa": mat.tensile_strength(d), "stress_ratio": b["tau"] / b["tau_allowed"],
-        "mass_kg": b["mass"], "free_length_m": b["L0"],
-    }
+    common = dict(kind=kind, material=mat.name, material_description=mat.description, wire_diameter_m=d,
+                  mean_diameter_m=D, active_coils=n, shear_modulus_Pa=mat.shear_modulus,
+                  elastic_modulus_Pa=mat.elastic_modulus, stiffness_N_per_m=rate, required_stiffness_N_per_m=c,
+                  max_force_N=F, stress_correction_factor=b["k"], max_shear_stress_Pa=b["tau"],
+                  allowed_shear_stress_Pa=b["tau_allowed"], tensile_strength_Pa=mat.tensile_strength(d),
+                  mass_kg=b["mass"], free_length_m=b["L0"])
     if kind == "compression":
         F_solid = rate * (b["L0"] - b["solid"])
-        tau_solid = 8 * D * F_solid / (math.pi * d ** 3)
-        out.update({
-            "solid_length_m": b["solid"], "min_gap_sum_m": b["gaps"],
-            "min_working_length_m": b["Lmin"], "max_working_length_m": b["Lmax"],
-            "solid_shear_stress_Pa": tau_solid, "safe_when_solid": tau_solid <= b["tau_allowed"],
-            "buckling": {
-                "end_condition": ends, "seating_coefficient": nu, "guided": guided,
-                "critical_deflection_m": b["s_k"], "max_deflection_m": b["s_max"],
-                "safe": b["s_max"] < b["s_k"],
-            },
-        })
-    else:
-        out.update({"body_length_m": b["body"], "loop_length_m": b["loop"], "initial_tension_N": 0.0})
-    return out
+        return HelicalSpring(**common, solid_length_m=b["solid"], min_gap_sum_m=b["gaps"],
+                             min_working_length_m=b["Lmin"], max_working_length_m=b["Lmax"],
+                             solid_shear_stress_Pa=8 * D * F_solid / (math.pi * d ** 3),
+                             buckling=Buckling(ends, nu, guided, b["s_k"], b["s_max"]))
+    return HelicalSpring(**common, body_length_m=b["body"], loop_length_m=b["loop"])
 
 
-def design_for_device(res, **options) -> dict:
-    """A helical spring for a fitted or exact crank-and-rocker device (:class:`~balance.fit.FitResult`).
+def design_for_device(res, **options) -> HelicalSpring:
+    """A helical spring for a fitted or exact crank-and-rocker device (:class:`~balance.devices.fit.FitResult`).
 
     - ``compression``: the spring between ``C`` and ``B`` has the device's free length
       ``2r + r0 + a`` and works between its shortest and longest lengths ``L``;
     - ``compression-lever``: the spring on the lever is compressed by ``L`` (``r0`` … ``L_max``);
       it is made as short as the checks allow, which fixes the lever (the stop at its free
-      length from ``C``) and is reported in ``lever``;
+      length from ``C``: :meth:`~balance.devices.fit.LeverGeometry.for_spring`);
     - ``tension``: an extension spring with the device's rate; ``anchor_offset_m`` is how far
       beyond ``C`` its near loop must sit (negative: behind ``C``, e.g. a cable over a pulley at
       ``C``) so that its force is ``c·(L − (r0 − a))``.
@@ -341,16 +420,10 @@ def design_for_device(res, **options) -> dict:
                              max_length=lmax, **options)
     if res.kind == "compression-lever":
         options.setdefault("guided", True)  # it rides on the slotted lever
-        out = design_spring("compression", res.c, res.max_force, max_deflection=lmax, **options)
-        s = out["free_length_m"]
-        out["lever"] = {"stop_distance_from_C": s, "reach_from_C": s, "reach_from_C_fig_a": lmax,
-                        "extra_length": s - lmax, "size_ratio": s / lmax}
-        return out
+        return design_spring("compression", res.c, res.max_force, max_deflection=lmax, **options)
     out = design_spring("extension", res.c, res.max_force, **options)
     l0_dev = res.free_length  # r0 − a: the device's effective free length
-    out["anchor_offset_m"] = l0_dev - out["free_length_m"]
-    out["max_extension_m"] = lmax - l0_dev
-    return out
+    return replace(out, anchor_offset_m=l0_dev - out.free_length_m, max_extension_m=lmax - l0_dev)
 
 
 def _phi_extremes(phi_range) -> np.ndarray:

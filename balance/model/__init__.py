@@ -1,0 +1,1 @@
+"""What is balanced: gravity potentials, planar and URDF arms, the pantograph manipulator."""

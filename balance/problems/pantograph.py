@@ -1,0 +1,217 @@
+"""The pantograph balanced manipulator: its spring, and its cylinder's force over the workspace.
+
+:class:`PantographProblem` (the mechanism of :mod:`balance.model.pantograph`, the spring's
+size, the check's samples) is solved into a :class:`PantographBalance`. Every range it reports
+(cylinder and hand forces, cylinder length and lever arm, the residual) is a true extreme over
+the workspace: the random ``(θ2, θ3)`` start a bounded local search
+(:func:`balance.extremes.box_extremes`). The force is linear in the payload, so its extremes
+over payloads 0 … max are those at 0 and at the maximum.
+
+Examples
+--------
+>>> from balance.model.pantograph import Pantograph
+>>> res = PantographProblem(Pantograph(l2=0.8, l3=1.0, k=4.0, w2=60.0, w3=40.0, tool=20.0), samples=50).solve()
+>>> res.relative_residual < 1e-12, res.force[0.5][0].value < res.force[0.5][1].value
+(True, True)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..budget import WORK_LIMIT, ensure_affordable
+from ..errors import InvalidArm
+from ..extremes import EXTREMES_NOTE, Extreme, box_extremes
+from ..model.pantograph import PAYLOADS, Pantograph, stroke_gradients
+from ..schema import PantographTable, parse
+
+__all__ = ["PantographProblem", "PantographBalance", "pantograph_problem"]
+
+
+def _forces(p: Pantograph, th: np.ndarray) -> np.ndarray:
+    """Per configuration: F and R at payloads 0, ½, 1 (m, 6)."""
+    return np.stack([p.cylinder_force(th, f) for f in PAYLOADS] + [p.hand_force(th, f) for f in PAYLOADS], axis=1)
+
+
+def _cylinder(p: Pantograph, th: np.ndarray) -> np.ndarray:
+    """Per configuration: the cylinder's length and lever arm about A (m, 2)."""
+    length, _, lever = p.cylinder(th)
+    return np.stack([length, lever], axis=1)
+
+
+def _residuals(p: Pantograph, th: np.ndarray) -> np.ndarray:
+    """Virtual-work residual on (θ2, θ3) at payloads 0, ½, 1, then the gravity forces (m, 12)."""
+    ds, drho = stroke_gradients(p, th)
+    t = p.term()
+    res, grav = [], []
+    for frac in PAYLOADS:
+        q = p.gravity_forces(th, frac)
+        grav.append(q.copy())
+        q[:, 0] += t.moment(th[:, 0])
+        res.append(q + p.cylinder_force(th, frac)[:, None] * ds + p.hand_force(th, frac)[:, None] * drho)
+    return np.concatenate(res + grav, axis=1)
+
+
+def _magnitude(pair: tuple[Extreme, Extreme]) -> float:
+    return max(-pair[0].value, pair[1].value)
+
+
+@dataclass(frozen=True)
+class PantographBalance:
+    """What :class:`PantographProblem` finds (see :meth:`to_dict` for the JSON).
+
+    ``force`` and ``hand`` map each payload fraction (0, ½, 1) to the (min, max)
+    :class:`~balance.extremes.Extreme` of the cylinder's force and of the operator's force along
+    ``A→C`` over the workspace; ``length`` and ``lever`` those of the cylinder's length and of its
+    lever arm about ``A``; ``residual`` the largest virtual-work residual per payload.
+    """
+
+    pantograph: Pantograph
+    force: dict[float, tuple[Extreme, Extreme]]
+    hand: dict[float, tuple[Extreme, Extreme]]
+    length: tuple[Extreme, Extreme]
+    lever: tuple[Extreme, Extreme]
+    residual: dict[float, float]
+    max_gravity_force: float
+    samples: int
+    seed: int
+    r: float | None = None
+    r0: float | None = None
+
+    @property
+    def force_range(self) -> tuple[Extreme, Extreme]:
+        """The cylinder force's extremes over the workspace and payloads 0 … max."""
+        ends = (self.force[0.0], self.force[1.0])
+        return min((e[0] for e in ends), key=lambda e: e.value), max((e[1] for e in ends), key=lambda e: e.value)
+
+    @property
+    def hand_range(self) -> tuple[Extreme, Extreme]:
+        ends = (self.hand[0.0], self.hand[1.0])
+        return min((e[0] for e in ends), key=lambda e: e.value), max((e[1] for e in ends), key=lambda e: e.value)
+
+    @property
+    def max_residual(self) -> float:
+        return max(self.residual.values())
+
+    @property
+    def relative_residual(self) -> float:
+        return self.max_residual / self.max_gravity_force if self.max_gravity_force > 0 else 0.0
+
+    def notes(self) -> list[str]:
+        p = self.pantograph
+        lo, hi = self.hand_range
+        hand_peak = max(-lo.value, hi.value)
+        load = p.vertical_load(1.0)
+        out = []
+        if self.force_range[0].value < 0:
+            out.append("the cylinder pulls somewhere in the workspace (negative force): it must be double-acting")
+        if hand_peak > 0.05 * load:
+            out.append(f"the operator holds up to {hand_peak:.3g} N along A→C ({100 * hand_peak / load:.3g} % of the "
+                       f"full load {load:.4g} N reduced to B): a base P further below B keeps the cylinder nearer "
+                       "vertical")
+        return out
+
+    def to_dict(self) -> dict:
+        p, t = self.pantograph, self.pantograph.term()
+        dev: dict[str, Any] = {"sine": {"eT": t.amplitude}, "tension": {"crd": t.amplitude, "zero_at_deg": 90.0}}
+        if self.r is not None and self.r0 is not None:
+            dev["tension"].update({"r": self.r, "r0": self.r0, "a": self.r0,
+                                   "c": t.amplitude / (self.r * (self.r + self.r0))})
+
+        def deg(e: Extreme) -> list[float]:
+            return [math.degrees(v) for v in e.at]
+
+        f_lo, f_hi = self.force_range
+        h_lo, h_hi = self.hand_range
+        half = self.force[0.5]
+        return {
+            "point_weights": p.point_weights(0.5),
+            "point_weights_without_payload": p.point_weights(0.0),
+            "term": t.to_dict() | {"form_text": "θ2"},
+            "device": dev,
+            "spring_moment": f"{t.amplitude:.6g}·cos θ2 on the upper arm (base point C above A)",
+            "drive_force": p.vertical_load(0.5),
+            "drive_force_range": [p.vertical_load(0.0), p.vertical_load(1.0)],
+            "cylinder_force": {
+                "min": f_lo.value, "max": f_hi.value, "at_min_deg": deg(f_lo), "at_max_deg": deg(f_hi),
+                "half_payload": {"min": half[0].value, "max": half[1].value, "at_min_deg": deg(half[0]),
+                                 "at_max_deg": deg(half[1])},
+                "by_payload": {str(f): {"min": lo.value, "max": hi.value} for f, (lo, hi) in self.force.items()},
+                "sampled": {"min": f_lo.sampled, "max": f_hi.sampled},
+            },
+            "hand_force": {"min": h_lo.value, "max": h_hi.value},
+            "cylinder": {
+                "base": [float(v) for v in p.cylinder_base],
+                "length_min": self.length[0].value, "length_max": self.length[1].value,
+                "lever_min": min(abs(self.lever[0].value), abs(self.lever[1].value)),
+                "lever_max": max(abs(self.lever[0].value), abs(self.lever[1].value)),
+            },
+            "max_residual": self.max_residual,
+            "residual_by_payload": {str(f): v for f, v in self.residual.items()},
+            "max_gravity_force": self.max_gravity_force,
+            "relative_residual": self.relative_residual,
+            "samples": self.samples,
+            "seed": self.seed,
+            "extremes": EXTREMES_NOTE,
+            "notes": self.notes(),
+            "note": "the payload sits at C: it changes the cylinder and hand forces, never the spring",
+        }
+
+
+@dataclass(frozen=True)
+class PantographProblem:
+    """A pantograph manipulator to balance: the mechanism, the spring's crank ``r`` and ``r0`` (m,
+    optional: then its rate is given too) and the random configurations (seeded) of the checks."""
+
+    pantograph: Pantograph
+    r: float | None = None
+    r0: float | None = None
+    samples: int = 1000
+    seed: int = 0
+    work_limit: float | None = WORK_LIMIT
+
+    def solve(self) -> PantographBalance:
+        p = self.pantograph
+        probe = p.sample(64, self.seed)
+
+        def unit():
+            with np.errstate(all="ignore"):  # a cylinder through A is refused below, not here
+                return _forces(p, probe), _cylinder(p, probe), _residuals(p, probe)
+
+        ensure_affordable(f"checking {self.samples} configurations", self.samples, unit, self.work_limit,
+                          per=len(probe))
+        th = p.sample(self.samples, self.seed)
+        lo, hi = [p.range2[0], p.range3[0]], [p.range2[1], p.range3[1]]
+        length, lever = box_extremes(lambda x: _cylinder(p, x), lo, hi, th)
+        if lever[0].value <= 1e-9 * p.l2 and lever[1].value >= -1e-9 * p.l2:
+            raise InvalidArm("the cylinder's line of action passes through A in the workspace, so it cannot hold "
+                             "the pantograph there; move its base (cylinder.base).")
+        ext = box_extremes(lambda x: _forces(p, x), lo, hi, th)
+        res = box_extremes(lambda x: _residuals(p, x), lo, hi, th, floor=math.inf)
+        residual = {f: max(_magnitude(res[2 * i]), _magnitude(res[2 * i + 1])) for i, f in enumerate(PAYLOADS)}
+        mg = max(_magnitude(e) for e in res[6:])
+        return PantographBalance(p, dict(zip(PAYLOADS, ext[:3])), dict(zip(PAYLOADS, ext[3:6])), length, lever,
+                                 residual, mg, self.samples, self.seed, self.r, self.r0)
+
+
+def pantograph_problem(doc: Mapping[str, Any], source: str = "<pantograph>") -> PantographProblem:
+    """The :class:`PantographProblem` of a parsed TOML document with a ``[pantograph]`` table."""
+    t: PantographTable = parse(doc, "pantograph", source)
+    try:
+        p = Pantograph(
+            l2=t.l2, l3=t.l3, k=t.ratio,
+            w2=t.upper.weight, w3=t.forearm.weight, w9=t.bar_eb.weight, w8=t.bar_fb.weight,
+            w14=t.parallelogram_bars.weight, w15=t.parallelogram_bars.weight,
+            w16=t.elbow_plate.weight, w4=t.wrist_plate.weight,
+            s2=t.upper.com, s3=t.forearm.com, tool=t.tool, payload=t.payload, offset=t.parallelogram_offset,
+            base=None if t.cylinder.base is None else tuple(t.cylinder.base),
+            range2=tuple(math.radians(v) for v in t.range_upper_deg),
+            range3=tuple(math.radians(v) for v in t.range_forearm_deg),
+        )
+    except InvalidArm as exc:
+        raise InvalidArm(f"{source}: {exc}") from None
+    return PantographProblem(p, t.spring.r, t.spring.r0, t.check.samples, t.check.seed)
