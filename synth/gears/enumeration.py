@@ -1,0 +1,294 @@
+"""Every planetary gear train of n links and F degrees of freedom, up to isomorphism.
+
+The trains are those of the atlases (docs/gears.md): the axes join the links as a tree, each of
+the g = n − 1 − F meshes joins two links at distance 4 in it (a – X – t – Y – b, t the carrier),
+no set of two links or more is rigid, and for F ≥ 2 no link splits the Willis equations
+(non-fractionated).  Two classes are counted: *displacement graphs* (trains up to renumbering)
+and *rotation graphs* (their mesh–carrier triples up to renumbering).
+
+Method
+------
+1. Link–axis trees with n links, grown link by link from those with n − 1 (a new link on a new
+   axis with one old link, or on an old axis) and told apart by nauty certificates (links and
+   axes in two colours).
+2. On each tree, the mesh sets by *orderly generation*: the candidate meshes (link pairs at
+   tree distance 4) are numbered, a set grows by meshes of higher number only, and a set is kept
+   only when it is the lexicographically least image of itself under the tree's automorphisms.
+   That property passes to every prefix, so each class is reached exactly once, with memory
+   bounded by the depth.  A set that has a rigid sub-chain is cut with all its supersets
+   (adding a mesh only lowers sub-chain mobilities): a table of 3(|S| − 1) − 2p(S) − g(S) − 1 over
+   every link set S, lowered by one on the sets holding both gears of each mesh added.
+3. Each complete set is decided by the engine's exact sub-chain test on its lever analogue
+   (:meth:`GearTrain.is_rigid_free`), which must agree with the table.
+4. Rotation graphs: the nauty certificate of the triples, first train of each kept.
+
+Trees are independent units: ``workers`` processes share them (results merged in tree order).
+
+Example
+-------
+>>> [count_trains(1, n)["count"] for n in (3, 4, 5, 6)]
+[1, 3, 13, 81]
+>>> count_trains(2, 6, graphs="rotation")["count"]
+2
+"""
+
+from __future__ import annotations
+
+import os
+from collections import Counter
+from collections.abc import Iterator
+from concurrent.futures import ProcessPoolExecutor
+from functools import lru_cache
+
+import numpy as np
+import pynauty
+
+from .._nauty import TrustedGraph
+from ..errors import InvalidOption
+from .train import GearTrain
+
+__all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "check_query"]
+
+GRAPHS = ("displacement", "rotation")
+_MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
+_MAX_GROUP = 200_000  # automorphisms listed for the orderly test; above it the tree is refused
+
+
+def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
+    """Refuse a query the enumerator cannot answer, in one sentence."""
+    for name, value in (("dof", dof), ("links", links)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise InvalidOption(f"--{name} must be a whole number, not {value!r}")
+    if dof < 1:
+        raise InvalidOption(f"a gear train that moves has F ≥ 1 degrees of freedom, not {dof}")
+    if links < 2:
+        raise InvalidOption(f"a gear train has at least 2 links (a frame and a gear), not {links}")
+    if links > _MAX_LINKS:
+        raise InvalidOption(f"gear trains are enumerated up to {_MAX_LINKS} links, not {links}")
+    if graphs not in GRAPHS:
+        raise InvalidOption(f"--graphs is displacement or rotation, not {graphs!r}")
+
+
+# ------------------------------------------------------------------------------ trees
+def _tree_graph(links: int, axes) -> TrustedGraph:
+    adjacency = {links + k: list(axis) for k, axis in enumerate(axes)}
+    return TrustedGraph(links + len(axes), adjacency, [set(range(links)), set(range(links, links + len(axes)))])
+
+
+@lru_cache(maxsize=None)
+def link_axis_trees(links: int) -> tuple[tuple[tuple[int, ...], ...], ...]:
+    """One representative (its axes) of every tree of ``links`` links and their axes, in the
+    order of their certificates.
+
+    >>> [len(link_axis_trees(n)) for n in range(2, 9)]
+    [1, 2, 4, 9, 22, 59, 165]
+    """
+    if links < 2:
+        return ((),) if links == 1 else ()
+    if links == 2:
+        return (((0, 1),),)
+    found: dict[bytes, tuple] = {}
+    for axes in link_axis_trees(links - 1):
+        new = links - 1
+        options = [axes + ((x, new),) for x in range(new)]
+        options += [axes[:k] + (axis + (new,),) + axes[k + 1:] for k, axis in enumerate(axes)]
+        for option in options:
+            option = tuple(sorted(tuple(sorted(a)) for a in option))
+            found.setdefault(pynauty.certificate(_tree_graph(links, option)), option)
+    return tuple(found[c] for c in sorted(found))
+
+
+class _Tree:
+    """A tree with what the orderly generation needs: candidate meshes, their carriers, the
+    pruning table's index sets and the automorphisms acting on the candidates."""
+
+    def __init__(self, links: int, axes):
+        self.links, self.axes = links, axes
+        paths = _paths(links, axes)
+        self.pairs = [(a, b) for a in range(links) for b in range(a + 1, links) if len(paths[a][b]) == 5]
+        self.carriers = [paths[a][b][2] for a, b in self.pairs]
+        index = {p: i for i, p in enumerate(self.pairs)}
+        gens, _, _, _, _ = pynauty.autgrp(_tree_graph(links, axes))
+        moves = [tuple(index[tuple(sorted((g[a], g[b])))] for a, b in self.pairs) for g in gens]
+        self.group = _closure(moves, len(self.pairs))
+
+    def table(self) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Slack 3(|S| − 1) − 2p(S) − 1 of every link set S (|S| ≥ 2; large below), and per
+        candidate mesh the sets that hold both its gears."""
+        sets = np.arange(1 << self.links, dtype=np.int64)
+        size = np.zeros(len(sets), dtype=np.int64)
+        for x in range(self.links):
+            size += (sets >> x) & 1
+        p = np.zeros(len(sets), dtype=np.int64)
+        for axis in self.axes:
+            on = np.zeros(len(sets), dtype=np.int64)
+            for x in axis:
+                on += (sets >> x) & 1
+            p += np.maximum(on - 1, 0)
+        slack = np.where(size >= 2, 3 * (size - 1) - 2 * p - 1, 1 << 20).astype(np.int32)
+        holds = [np.flatnonzero(((sets >> a) & 1) & ((sets >> b) & 1)) for a, b in self.pairs]
+        return slack, holds
+
+
+def _paths(links: int, axes) -> list[list[list]]:
+    """Tree paths between links (link, axis, link, …) by breadth-first search."""
+    by_link = [[] for _ in range(links)]
+    for k, axis in enumerate(axes):
+        for x in axis:
+            by_link[x].append(k)
+    out = []
+    for start in range(links):
+        path = [None] * links
+        path[start] = [start]
+        frontier = [start]
+        while frontier:
+            nxt = []
+            for x in frontier:
+                for k in by_link[x]:
+                    for y in axes[k]:
+                        if path[y] is None:
+                            path[y] = path[x] + [("axis", k), y]
+                            nxt.append(y)
+            frontier = nxt
+        out.append(path)
+    return out
+
+
+def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ...]]:
+    """Every element of the permutation group the generators make (on ``size`` points), identity
+    first; refused above ``_MAX_GROUP`` elements."""
+    identity = tuple(range(size))
+    group, frontier = {identity}, [identity]
+    gens = [g for g in set(generators) if g != identity]
+    while frontier:
+        nxt = []
+        for h in frontier:
+            for g in gens:
+                gh = tuple(g[i] for i in h)
+                if gh not in group:
+                    group.add(gh)
+                    nxt.append(gh)
+        if len(group) > _MAX_GROUP:
+            raise InvalidOption(f"a tree has more than {_MAX_GROUP} symmetries of its meshes: too many to list")
+        frontier = nxt
+    group.discard(identity)
+    return [identity] + sorted(group)
+
+
+def _least(chosen: tuple[int, ...], group) -> bool:
+    """Whether ``chosen`` (increasing) is the lexicographically least of its images."""
+    for g in group[1:]:
+        if tuple(sorted(g[i] for i in chosen)) < chosen:
+            return False
+    return True
+
+
+def _mesh_sets(tree: _Tree, meshes: int) -> Iterator[tuple[int, ...]]:
+    """Orderly generation of the candidate sets of ``meshes`` meshes without a rigid sub-chain."""
+    slack, holds = tree.table()
+    count = len(tree.pairs)
+    group = tree.group
+
+    def grow(chosen: tuple[int, ...], slack: np.ndarray):
+        if len(chosen) == meshes:
+            yield chosen
+            return
+        start = chosen[-1] + 1 if chosen else 0
+        for i in range(start, count - (meshes - len(chosen)) + 1):
+            if slack[holds[i]].min() < 1:
+                continue
+            new = chosen + (i,)
+            if len(group) > 1 and not _least(new, group):
+                continue
+            lowered = slack.copy()
+            lowered[holds[i]] -= 1
+            yield from grow(new, lowered)
+
+    yield from grow((), slack)
+
+
+def _tree_trains(dof: int, links: int, axes) -> list[GearTrain]:
+    """The trains on one tree, in generation order."""
+    tree = _Tree(links, axes)
+    meshes = links - 1 - dof
+    out = []
+    if meshes > len(tree.pairs):
+        return out
+    for chosen in _mesh_sets(tree, meshes):
+        train = GearTrain(links, axes, tuple(tree.pairs[i] for i in chosen),
+                          tuple(tree.carriers[i] for i in chosen))
+        if dof >= 2 and train.is_fractionated():
+            continue
+        if not train.is_rigid_free():  # the table and the exact test must agree
+            raise AssertionError(f"the pruning table passed {train.compact()}, which has a rigid sub-chain")
+        out.append(train)
+    return out
+
+
+def _tree_summary(args) -> tuple[int, dict, set]:
+    dof, links, axes, want_rotation = args
+    found = _tree_trains(dof, links, axes)
+    codes = Counter(str(t.lever_analogue().code) for t in found)
+    rotations = {t.rotation_certificate for t in found} if want_rotation else set()
+    return len(found), dict(codes), rotations
+
+
+def _units(dof: int, links: int, workers: int | None, work, args_of):
+    """Run ``work`` on every tree, in tree order, inline or on a process pool."""
+    trees = link_axis_trees(links)
+    jobs = [args_of(axes) for axes in trees]
+    workers = workers or 1
+    if workers == 1 or len(trees) < 8:
+        for job in jobs:
+            yield work(job)
+        return
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        try:
+            yield from pool.map(work, jobs, chunksize=1)
+        except KeyboardInterrupt:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+
+
+def trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> Iterator[GearTrain]:
+    """Every train, one per displacement graph, or one (the first) per rotation graph.
+
+    >>> [t.compact() for t in trains(1, 4)]
+    ['0-1 0-2 0-3 1~2 1~3', '0-1 0-2 1-3 0~3 1~2', '0-1-3 0-2 1~2 2~3']
+    """
+    check_query(dof, links, graphs)
+    seen: set[str] = set()
+    for found in _units(dof, links, workers, _tree_list, lambda axes: (dof, links, axes)):
+        for train in found:
+            if graphs == "rotation":
+                if train.rotation_certificate in seen:
+                    continue
+                seen.add(train.rotation_certificate)
+            yield train
+
+
+def _tree_list(args) -> list[GearTrain]:
+    return _tree_trains(*args)
+
+
+def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> dict:
+    """``{"count": N, "by_code": {lever-analogue code: N}}``; for rotation graphs, ``by_code`` counts
+    the displacement graphs of each code (a rotation graph has several).
+
+    >>> count_trains(1, 5)
+    {'count': 13, 'by_code': {'521/0': 3, '530/1': 4, '602/0': 2, '611/1': 2, '620/2': 1, '701/0-1': 1}}
+    """
+    check_query(dof, links, graphs)
+    total, codes, rotations = 0, Counter(), set()
+    for n, by_code, rot in _units(dof, links, workers, _tree_summary,
+                                  lambda axes: (dof, links, axes, graphs == "rotation")):
+        total += n
+        codes.update(by_code)
+        rotations |= rot
+    count = len(rotations) if graphs == "rotation" else total
+    return {"count": count, "by_code": dict(sorted(codes.items()))}
+
+
+def default_workers() -> int:
+    """All cores."""
+    return os.cpu_count() or 1
