@@ -47,7 +47,7 @@ from .._nauty import TrustedGraph
 from ..errors import InvalidOption
 from .train import GearTrain
 
-__all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "check_query"]
+__all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "census", "check_query"]
 
 GRAPHS = ("displacement", "rotation")
 _MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
@@ -271,6 +271,21 @@ def _tree_list(args) -> list[GearTrain]:
     return _tree_trains(*args)
 
 
+def census(dof: int, links: int, workers: int | None = 1) -> dict:
+    """Both counts in one pass: ``{"displacement": D, "rotation": R, "by_code": {code: D}}``.
+
+    >>> census(1, 6)["displacement"], census(1, 6)["rotation"]
+    (81, 27)
+    """
+    check_query(dof, links)
+    total, codes, rotations = 0, Counter(), set()
+    for n, by_code, rot in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, True)):
+        total += n
+        codes.update(by_code)
+        rotations |= rot
+    return {"displacement": total, "rotation": len(rotations), "by_code": dict(sorted(codes.items()))}
+
+
 def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> dict:
     """``{"count": N, "by_code": {lever-analogue code: N}}``; for rotation graphs, ``by_code`` counts
     the displacement graphs of each code (a rotation graph has several).
@@ -279,14 +294,14 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
     {'count': 13, 'by_code': {'521/0': 3, '530/1': 4, '602/0': 2, '611/1': 2, '620/2': 1, '701/0-1': 1}}
     """
     check_query(dof, links, graphs)
-    total, codes, rotations = 0, Counter(), set()
-    for n, by_code, rot in _units(dof, links, workers, _tree_summary,
-                                  lambda axes: (dof, links, axes, graphs == "rotation")):
+    if graphs == "rotation":
+        found = census(dof, links, workers)
+        return {"count": found["rotation"], "by_code": found["by_code"]}
+    total, codes = 0, Counter()
+    for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False)):
         total += n
         codes.update(by_code)
-        rotations |= rot
-    count = len(rotations) if graphs == "rotation" else total
-    return {"count": count, "by_code": dict(sorted(codes.items()))}
+    return {"count": total, "by_code": dict(sorted(codes.items()))}
 
 
 def default_workers() -> int:
