@@ -60,9 +60,12 @@ def main(argv=None) -> int:
     with open(ROOT / "benchmarks" / "gears.jsonl", "a") as log:
         for links in range(int(lo), int(hi or lo) + 1):
             for method in methods:
-                out = subprocess.run([sys.executable, __file__, "--one", method, str(args.dof), str(links),
-                                      "--workers", str(args.workers)], env=env, capture_output=True, text=True,
-                                     check=True).stdout.strip().splitlines()[-1]
+                run = subprocess.run([sys.executable, __file__, "--one", method, str(args.dof), str(links),
+                                      "--workers", str(args.workers)], env=env, capture_output=True, text=True)
+                if run.returncode != 0:
+                    print(run.stderr, file=sys.stderr)
+                    return run.returncode
+                out = run.stdout.strip().splitlines()[-1]
                 print(out, flush=True)
                 log.write(out + "\n")
     return 0

@@ -57,9 +57,9 @@ def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
     parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    from .commands import atlas, chains, codes, planetary, scene
+    from .commands import atlas, chains, codes, gears, planetary, scene
 
-    for module in (codes, chains, atlas, scene, planetary):
+    for module in (codes, chains, atlas, scene, planetary, gears):
         module.add_commands(sub)
     sub.add_parser("balance", help="balancing commands (arm, spring, prismatic, pantograph)", add_help=False)
     return parser

@@ -8,6 +8,10 @@ Example
 (81, 27)
 """
 
+from .design import Design, design
+from .enumeration import census, count_trains, trains
+from .mechanisms import GearMechanism, RatioFormula, mechanisms, speed_ratio
 from .train import GearTrain
 
-__all__ = ["GearTrain"]
+__all__ = ["GearTrain", "trains", "count_trains", "census", "GearMechanism", "RatioFormula", "mechanisms",
+           "speed_ratio", "Design", "design"]

@@ -148,7 +148,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     d_expr, d_bound = linear(den)
     p, q = target.numerator, target.denominator
     a, b = tol.numerator, tol.denominator
-    span = max(b * (q * n_bound + abs(p) * d_bound), a * q * d_bound)
+    span = max(b * (q * n_bound + abs(p) * d_bound), a * abs(p) * d_bound)
     if span >= _BOUND:
         raise InvalidOption("the ratio and tolerance need integers too large for an exact model: give the "
                             "ratio with fewer digits or narrow --teeth")
@@ -160,7 +160,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     model.Add(d_var == d_expr)
     abs_d = model.NewIntVar(1, d_bound, "abs_D")
     model.AddAbsEquality(abs_d, d_var)
-    model.Add(b * abs_error <= a * q * abs_d)
+    model.Add(b * abs_error <= a * abs(p) * abs_d)  # |N/D − R| ≤ tol·|R|
     for (za, zb), inner in zip(names, train.internal):
         if inner:
             model.Add(z[za] >= z[zb] + RING_MARGIN)

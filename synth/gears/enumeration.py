@@ -15,7 +15,8 @@ Method
    tree distance 4) are numbered, a set grows by meshes of higher number only, and a set is kept
    only when it is the lexicographically least image of itself under the tree's automorphisms.
    That property passes to every prefix, so each class is reached exactly once, with memory
-   bounded by the depth.  A set that has a rigid sub-chain is cut with all its supersets
+   bounded by the depth.  A tree with more than 5 000 symmetries (a frame carrying many gears
+   alike) is grown by McKay's canonical augmentation instead, which needs no list of them.  A set that has a rigid sub-chain is cut with all its supersets
    (adding a mesh only lowers sub-chain mobilities): a table of 3(|S| − 1) − 2p(S) − g(S) − 1 over
    every link set S, lowered by one on the sets holding both gears of each mesh added.
 3. Each complete set is decided by the engine's exact sub-chain test on its lever analogue
@@ -51,7 +52,7 @@ __all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "census", "che
 
 GRAPHS = ("displacement", "rotation")
 _MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
-_MAX_GROUP = 200_000  # automorphisms listed for the orderly test; above it the tree is refused
+_ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augmentation instead
 
 
 def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
@@ -108,9 +109,10 @@ class _Tree:
         self.pairs = [(a, b) for a in range(links) for b in range(a + 1, links) if len(paths[a][b]) == 5]
         self.carriers = [paths[a][b][2] for a, b in self.pairs]
         index = {p: i for i, p in enumerate(self.pairs)}
-        gens, _, _, _, _ = pynauty.autgrp(_tree_graph(links, axes))
-        moves = [tuple(index[tuple(sorted((g[a], g[b])))] for a, b in self.pairs) for g in gens]
-        self.group = _closure(moves, len(self.pairs))
+        gens, size1, size2, _, _ = pynauty.autgrp(_tree_graph(links, axes))
+        self.order = size1 * 10.0**size2  # on links: at least the order of the group on the pairs
+        self.moves = [tuple(index[tuple(sorted((g[a], g[b])))] for a, b in self.pairs) for g in gens]
+        self.group = _closure(self.moves, len(self.pairs)) if self.order <= _ORDERLY_GROUP else None
 
     def table(self) -> tuple[np.ndarray, list[np.ndarray]]:
         """Slack 3(|S| − 1) − 2p(S) − 1 of every link set S (|S| ≥ 2; large below), and per
@@ -155,8 +157,7 @@ def _paths(links: int, axes) -> list[list[list]]:
 
 
 def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ...]]:
-    """Every element of the permutation group the generators make (on ``size`` points), identity
-    first; refused above ``_MAX_GROUP`` elements."""
+    """Every element of the permutation group the generators make (on ``size`` points), identity first."""
     identity = tuple(range(size))
     group, frontier = {identity}, [identity]
     gens = [g for g in set(generators) if g != identity]
@@ -168,8 +169,6 @@ def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ..
                 if gh not in group:
                     group.add(gh)
                     nxt.append(gh)
-        if len(group) > _MAX_GROUP:
-            raise InvalidOption(f"a tree has more than {_MAX_GROUP} symmetries of its meshes: too many to list")
         frontier = nxt
     group.discard(identity)
     return [identity] + sorted(group)
@@ -183,9 +182,13 @@ def _least(chosen: tuple[int, ...], group) -> bool:
     return True
 
 
-def _mesh_sets(tree: _Tree, meshes: int) -> Iterator[tuple[int, ...]]:
-    """Orderly generation of the candidate sets of ``meshes`` meshes without a rigid sub-chain."""
+def _mesh_sets(tree: _Tree, meshes: int, augment: bool | None = None) -> Iterator[tuple[int, ...]]:
+    """One candidate set of ``meshes`` meshes without a rigid sub-chain per class: by orderly
+    generation, or by canonical augmentation where the tree has many symmetries (or ``augment``)."""
     slack, holds = tree.table()
+    if augment or (augment is None and tree.group is None):
+        yield from _augmented(tree, meshes, slack, holds)
+        return
     count = len(tree.pairs)
     group = tree.group
 
@@ -207,14 +210,73 @@ def _mesh_sets(tree: _Tree, meshes: int) -> Iterator[tuple[int, ...]]:
     yield from grow((), slack)
 
 
-def _tree_trains(dof: int, links: int, axes) -> list[GearTrain]:
+def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[tuple[int, ...]]:
+    """McKay's canonical augmentation: a set grows by one mesh per orbit of its symmetries, and a
+    child is kept when the mesh added is in the orbit of the mesh its canonical labelling names
+    last (the mesh vertex of least canonical position)."""
+    n, axes, pairs = tree.links, tree.axes, tree.pairs
+    index = {p: i for i, p in enumerate(pairs)}
+    base = n + len(axes)
+
+    def graph(chosen):
+        adjacency = {n + k: list(axis) for k, axis in enumerate(axes)}
+        for j, i in enumerate(chosen):
+            adjacency[base + j] = list(pairs[i])
+        cells = [set(range(n)), set(range(n, base)), set(range(base, base + len(chosen)))]
+        return TrustedGraph(base + len(chosen), adjacency, [c for c in cells if c])
+
+    def pair_orbits(chosen, free):
+        gens = pynauty.autgrp(graph(chosen))[0]
+        parent = {i: i for i in free}
+
+        def root(i):
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+
+        for g in gens:
+            for i in free:
+                a, b = pairs[i]
+                j = index[tuple(sorted((g[a], g[b])))]
+                ri, rj = root(i), root(j)
+                if ri != rj:
+                    parent[max(ri, rj)] = min(ri, rj)
+        return sorted({root(i) for i in free})
+
+    def grow(chosen: tuple[int, ...], slack: np.ndarray):
+        if len(chosen) == meshes:
+            yield tuple(sorted(chosen))
+            return
+        free = [i for i in range(len(pairs)) if i not in chosen and slack[holds[i]].min() >= 1]
+        for i in pair_orbits(chosen, free):
+            child = chosen + (i,)
+            g = graph(child)
+            lab = pynauty.canon_label(g)
+            orbits = pynauty.autgrp(g)[3]
+            last = min((pos, v) for pos, v in enumerate(lab) if v >= base)[1]
+            if orbits[last] != orbits[base + len(chosen)]:
+                continue
+            lowered = slack.copy()
+            lowered[holds[i]] -= 1
+            yield from grow(child, lowered)
+
+    yield from grow((), slack)
+
+
+_METHODS = {"auto": None, "orderly": False, "augmentation": True}
+
+
+def _tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTrain]:
     """The trains on one tree, in generation order."""
     tree = _Tree(links, axes)
     meshes = links - 1 - dof
     out = []
     if meshes > len(tree.pairs):
         return out
-    for chosen in _mesh_sets(tree, meshes):
+    if method == "orderly" and tree.group is None:
+        tree.group = _closure(tree.moves, len(tree.pairs))
+    for chosen in _mesh_sets(tree, meshes, _METHODS[method]):
         train = GearTrain(links, axes, tuple(tree.pairs[i] for i in chosen),
                           tuple(tree.carriers[i] for i in chosen))
         if dof >= 2 and train.is_fractionated():
@@ -226,8 +288,8 @@ def _tree_trains(dof: int, links: int, axes) -> list[GearTrain]:
 
 
 def _tree_summary(args) -> tuple[int, dict, set]:
-    dof, links, axes, want_rotation = args
-    found = _tree_trains(dof, links, axes)
+    dof, links, axes, want_rotation, method = args
+    found = _tree_trains(dof, links, axes, method)
     codes = Counter(str(t.lever_analogue().code) for t in found)
     rotations = {t.rotation_certificate for t in found} if want_rotation else set()
     return len(found), dict(codes), rotations
@@ -271,15 +333,19 @@ def _tree_list(args) -> list[GearTrain]:
     return _tree_trains(*args)
 
 
-def census(dof: int, links: int, workers: int | None = 1) -> dict:
+def census(dof: int, links: int, workers: int | None = 1, method: str = "auto") -> dict:
     """Both counts in one pass: ``{"displacement": D, "rotation": R, "by_code": {code: D}}``.
+    ``method``: "auto" (orderly generation, canonical augmentation on very symmetric trees),
+    "orderly" or "augmentation" everywhere (the two must agree).
 
     >>> census(1, 6)["displacement"], census(1, 6)["rotation"]
     (81, 27)
     """
     check_query(dof, links)
     total, codes, rotations = 0, Counter(), set()
-    for n, by_code, rot in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, True)):
+    if method not in _METHODS:
+        raise InvalidOption(f"the method is auto, orderly or augmentation, not {method!r}")
+    for n, by_code, rot in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, True, method)):
         total += n
         codes.update(by_code)
         rotations |= rot
@@ -298,7 +364,7 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
         found = census(dof, links, workers)
         return {"count": found["rotation"], "by_code": found["by_code"]}
     total, codes = 0, Counter()
-    for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False)):
+    for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False, "auto")):
         total += n
         codes.update(by_code)
     return {"count": total, "by_code": dict(sorted(codes.items()))}

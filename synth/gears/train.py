@@ -185,9 +185,14 @@ class GearTrain:
         return self._lever
 
     def is_rigid_free(self) -> bool:
-        """No set S of two links or more with 3(|S| − 1) − 2p(S) − g(S) ≤ 0 other than the whole train
-        when it is a structure: the engine's exact test on the lever analogue."""
-        return check_subchains(self.lever_analogue()).ok
+        """Whether every set S of two links or more, the whole train included, keeps a freedom:
+        3(|S| − 1) − 2p(S) − g(S) ≥ 1 — F ≥ 1 and the engine's exact test on the lever analogue
+        (which judges the proper sub-chains).
+
+        >>> GearTrain.parse("0-1-4-5 0-2 1-3 0~3 2~4 2~5 3~4 3~5").is_rigid_free()  # F = 0: a structure
+        False
+        """
+        return self.dof >= 1 and check_subchains(self.lever_analogue()).ok
 
     def is_fractionated(self) -> bool:
         """Whether a link splits the train's Willis equations into two independent groups: the
