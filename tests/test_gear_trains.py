@@ -69,6 +69,12 @@ def test_second_method_equals_brute_force(dof, links):
     assert gear_trains_fast.census(dof, links) == brute.count_trains(dof, links)
 
 
+def test_second_method_with_few_listed_symmetries(monkeypatch):
+    """Where a tree's symmetries are not all listed, the second method tells the sets apart by VF2."""
+    monkeypatch.setattr(gear_trains_fast, "_CAP", 2)
+    assert gear_trains_fast.census(1, 7) == {"displacement": 647, "rotation": 152}
+
+
 @pytest.mark.slow
 def test_nine_links_by_two_methods():
     # Yang & Ding publish 71 837 / 8 654; both methods here find 4 displacement graphs and

@@ -1,12 +1,15 @@
 """A second, independent count of planetary gear trains, fast enough for 10 links (test oracle).
 
 It shares no code with ``synth`` (nor with nauty): trees come from :mod:`gear_trains` (the brute
-force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher;
-mesh sets are grown in *another order* than the engine's (candidates sorted by carrier first, then
-by their gears, from the last to the first) and kept when they are the least of their images
-under those symmetries; rigid sub-chains are found by counting, for every link set S, the meshes
-inside it against 3(|S| − 1) − 2·p(S) − 1; rotation graphs are told apart by a canonical form of
-its own (colour refinement and individualisation over the links, least relabelled triple list).
+force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher
+(the first ``_CAP`` of them); mesh sets are grown in *another order* than the engine's (candidates
+sorted by carrier first, then by their gears, from the last to the first) and kept when no listed
+symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
+of each class passes, for any list of symmetries); where the list is not the whole group the
+sets kept on a tree are told apart by VF2 within classes of a Weisfeiler–Lehman hash.  Rigid
+sub-chains are found by counting, for every link set S, the meshes inside it against
+3(|S| − 1) − 2·p(S) − 1.  Rotation graphs are told apart by VF2 within classes of a
+Weisfeiler–Lehman hash (the canonical form :func:`rotation_form` serves small checks).
 
 Example
 -------
@@ -30,15 +33,55 @@ __all__ = ["census", "rotation_form"]
 
 
 # ------------------------------------------------------------------------ one tree
-def _symmetries(links: int, axes) -> list[tuple[int, ...]]:
-    """Every permutation of the links that maps the tree onto itself (VF2 on the typed tree)."""
+_CAP = 3000  # symmetries of a tree listed for the pruning test
+
+
+def _symmetries(links: int, axes) -> tuple[list[tuple[int, ...]], bool]:
+    """Permutations of the links that map the tree onto itself (VF2 on the typed tree), at most
+    ``_CAP``, and whether that is all of them."""
     g = nx.Graph()
     g.add_nodes_from(((("L", x), {"t": "L"}) for x in range(links)))
     for k, axis in enumerate(axes):
         g.add_node(("A", k), t="A")
         g.add_edges_from((("A", k), ("L", x)) for x in axis)
     matcher = GraphMatcher(g, g, node_match=lambda u, v: u["t"] == v["t"])
-    return [tuple(m[("L", x)][1] for x in range(links)) for m in matcher.isomorphisms_iter()]
+    out = []
+    for m in matcher.isomorphisms_iter():
+        if len(out) == _CAP:
+            return out, False
+        out.append(tuple(m[("L", x)][1] for x in range(links)))
+    return out, True
+
+
+def _typed(graph: nx.Graph) -> tuple[str, nx.Graph]:
+    """(Weisfeiler–Lehman hash, graph) of a graph whose nodes carry a type ``t`` and edges a kind ``k``."""
+    return nx.weisfeiler_lehman_graph_hash(graph, node_attr="t", edge_attr="k", iterations=4), graph
+
+
+def _same(g: nx.Graph, h: nx.Graph) -> bool:
+    return nx.is_isomorphic(g, h, node_match=lambda u, v: u["t"] == v["t"], edge_match=lambda u, v: u["k"] == v["k"])
+
+
+def _train_graph(links: int, axes, meshes) -> nx.Graph:
+    g = nx.Graph()
+    g.add_nodes_from(((("L", x), {"t": "L"}) for x in range(links)))
+    for k, axis in enumerate(axes):
+        g.add_node(("A", k), t="A")
+        g.add_edges_from(((("A", k), ("L", x)) for x in axis), k="r")
+    for k, (a, b) in enumerate(meshes):
+        g.add_node(("M", k), t="M")
+        g.add_edges_from(((("M", k), ("L", x)) for x in (a, b)), k="g")
+    return g
+
+
+def _rotation_graph(links: int, triples) -> nx.Graph:
+    g = nx.Graph()
+    g.add_nodes_from(((("L", x), {"t": "L"}) for x in range(links)))
+    for k, (a, b, t) in enumerate(triples):
+        g.add_node(("M", k), t="M")
+        g.add_edges_from(((("M", k), ("L", x)) for x in (a, b)), k="g")
+        g.add_edge(("M", k), ("L", t), k="c")
+    return g
 
 
 def _tree_counts(job):
@@ -50,8 +93,8 @@ def _tree_counts(job):
     if len(order) < need:
         return 0, []
     where = {ab: i for i, ab in enumerate(order)}
-    images = [tuple(where[tuple(sorted((perm[a], perm[b])))] for a, b in order)
-              for perm in _symmetries(links, axes)]
+    perms, complete = _symmetries(links, axes)
+    images = [tuple(where[tuple(sorted((perm[a], perm[b])))] for a, b in order) for perm in perms]
     images = [img for img in images if img != tuple(range(len(order)))]
     full = 1 << links
     # slack(S) = 3(|S| − 1) − 2 p(S) − 1 for |S| ≥ 2
@@ -65,7 +108,7 @@ def _tree_counts(job):
         slack[s] = 3 * (size - 1) - 2 * p - 1
     masks = [(1 << a) | (1 << b) for a, b in order]
     holding = [[s for s in range(full) if s & m == m] for m in masks]
-    found, forms = 0, []
+    found, forms, kept = 0, [], {}
 
     def least(chosen):
         for img in images:
@@ -79,8 +122,13 @@ def _tree_counts(job):
             meshes = [order[i] for i in chosen]
             if dof >= 2 and not brute.non_fractionated(links, axes, meshes):
                 return
+            if not complete:  # some symmetries were not listed: tell the kept sets apart
+                key, g = _typed(_train_graph(links, axes, meshes))
+                if any(_same(g, h) for h in kept.get(key, ())):
+                    return
+                kept.setdefault(key, []).append(g)
             found += 1
-            forms.append(rotation_form(links, [(a, b, pairs[(a, b)]) for a, b in meshes]))
+            forms.append(tuple((a, b, pairs[(a, b)]) for a, b in meshes))
             return
         for i in range((chosen[-1] + 1) if chosen else 0, len(order) - (need - len(chosen)) + 1):
             if min(slack[s] for s in holding[i]) < 1:
@@ -154,7 +202,19 @@ def census(dof: int, links: int, workers: int = 1) -> dict:
     if workers > 1:
         with Pool(workers) as pool:
             results = pool.map(_tree_counts, jobs, chunksize=1)
+            hashed = pool.map(_hash_rotations, [(links, triples) for _, triples in results], chunksize=4)
     else:
         results = [_tree_counts(job) for job in jobs]
-    return {"displacement": sum(n for n, _ in results),
-            "rotation": len({form for _, forms in results for form in forms})}
+        hashed = [_hash_rotations((links, triples)) for _, triples in results]
+    classes: dict = {}
+    for tree_hashes, (_, triples) in zip(hashed, results):
+        for key, found in zip(tree_hashes, triples):
+            g = _rotation_graph(links, found)
+            if not any(_same(g, h) for h in classes.get(key, ())):
+                classes.setdefault(key, []).append(g)
+    return {"displacement": sum(n for n, _ in results), "rotation": sum(len(v) for v in classes.values())}
+
+
+def _hash_rotations(job) -> list[str]:
+    links, triples = job
+    return [_typed(_rotation_graph(links, t))[0] for t in triples]
