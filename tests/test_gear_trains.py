@@ -108,12 +108,12 @@ def test_listing_is_unique_deterministic_and_valid():
 
 
 def test_exact_test_on_the_lever_analogue_equals_every_subset():
-    """Every mesh set on every 6-link tree, valid or not: the engine's exact sub-chain test on the
-    lever analogue against the brute force over all link subsets."""
+    """Every set of 3, 4 or 5 meshes (F = 2, 1, 0) on every 6-link tree, valid or not: the engine's
+    exact sub-chain test on the lever analogue against the brute force over all link subsets."""
     checked = 0
     for axes in brute.link_axis_trees(6):
         pairs = sorted(brute.mesh_pairs(6, axes))
-        for k in range(1, min(len(pairs), 6) + 1):
+        for k in range(3, min(len(pairs), 5) + 1):
             for meshes in itertools.combinations(pairs, k):
                 train = GearTrain(6, axes, meshes)
                 assert train.is_rigid_free() == brute.rigid_free(6, axes, meshes), train.compact()
