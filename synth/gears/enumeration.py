@@ -36,7 +36,7 @@ Example
 from __future__ import annotations
 
 import os
-from collections import Counter
+from collections import Counter, deque
 from collections.abc import Iterator
 from concurrent.futures import ProcessPoolExecutor
 from functools import lru_cache
@@ -305,9 +305,15 @@ def _units(dof: int, links: int, workers: int | None, work, args_of):
             yield work(job)
         return
     with ProcessPoolExecutor(max_workers=workers) as pool:
+        window: deque = deque()  # at most 4 trees a worker in flight: results never pile up
         try:
-            yield from pool.map(work, jobs, chunksize=1)
-        except KeyboardInterrupt:
+            for job in jobs:
+                window.append(pool.submit(work, job))
+                if len(window) >= 4 * workers:
+                    yield window.popleft().result()
+            while window:
+                yield window.popleft().result()
+        except BaseException:
             pool.shutdown(wait=False, cancel_futures=True)
             raise
 
