@@ -176,6 +176,17 @@ def _target(path) -> Path:
     return path
 
 
+def _save(fig, path: Path, dpi: int) -> None:
+    import matplotlib.pyplot as plt
+
+    try:
+        fig.savefig(path, bbox_inches="tight", dpi=dpi)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)
+
+
 def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=(), title: str | None = None,
                size: float = 6.0) -> None:
     """Write the functional schematic of one train to ``path`` (.svg, .png or .pdf)."""
@@ -187,12 +198,7 @@ def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=()
     path = _target(path)
     fig, ax = plt.subplots(figsize=(size, size * 0.75))
     _draw_on(ax, train, teeth, compound, title or _caption(train))
-    try:
-        fig.savefig(path, bbox_inches="tight", dpi=110)
-    except OSError as exc:
-        raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
-    finally:
-        plt.close(fig)
+    _save(fig, path, 110)
 
 
 def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
@@ -214,10 +220,5 @@ def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) 
             _draw_on(ax, trains[k], None, (), (titles[k] if titles else f"{k + 1}: {_caption(trains[k])}"))
         else:
             ax.axis("off")
-    try:
-        fig.savefig(path, bbox_inches="tight", dpi=90)
-    except OSError as exc:
-        raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
-    finally:
-        plt.close(fig)
+    _save(fig, path, 90)
     return len(trains)

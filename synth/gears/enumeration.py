@@ -46,7 +46,7 @@ import pynauty
 
 from .._nauty import TrustedGraph
 from ..errors import InvalidOption
-from .train import GearTrain
+from .train import GearTrain, axis_paths
 
 __all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "census", "check_query"]
 
@@ -105,8 +105,8 @@ class _Tree:
 
     def __init__(self, links: int, axes):
         self.links, self.axes = links, axes
-        paths = _paths(links, axes)
-        self.pairs = [(a, b) for a in range(links) for b in range(a + 1, links) if len(paths[a][b]) == 5]
+        paths = axis_paths(links, axes)
+        self.pairs = [(a, b) for a in range(links) for b in range(a + 1, links) if len(paths[a].get(b, ())) == 5]
         self.carriers = [paths[a][b][2] for a, b in self.pairs]
         index = {p: i for i, p in enumerate(self.pairs)}
         gens, size1, size2, _, _ = pynauty.autgrp(_tree_graph(links, axes))
@@ -130,30 +130,6 @@ class _Tree:
         slack = np.where(size >= 2, 3 * (size - 1) - 2 * p - 1, 1 << 20).astype(np.int32)
         holds = [np.flatnonzero(((sets >> a) & 1) & ((sets >> b) & 1)) for a, b in self.pairs]
         return slack, holds
-
-
-def _paths(links: int, axes) -> list[list[list]]:
-    """Tree paths between links (link, axis, link, …) by breadth-first search."""
-    by_link = [[] for _ in range(links)]
-    for k, axis in enumerate(axes):
-        for x in axis:
-            by_link[x].append(k)
-    out = []
-    for start in range(links):
-        path = [None] * links
-        path[start] = [start]
-        frontier = [start]
-        while frontier:
-            nxt = []
-            for x in frontier:
-                for k in by_link[x]:
-                    for y in axes[k]:
-                        if path[y] is None:
-                            path[y] = path[x] + [("axis", k), y]
-                            nxt.append(y)
-            frontier = nxt
-        out.append(path)
-    return out
 
 
 def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ...]]:

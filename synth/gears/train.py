@@ -35,11 +35,16 @@ from ..chain import Chain
 from ..errors import MalformedChain
 from ..mobility import check_subchains
 
-__all__ = ["GearTrain"]
+__all__ = ["GearTrain", "axis_paths"]
 
 
-def _axis_paths(links: int, axes) -> dict[int, list]:
-    """Breadth-first paths from each link through the link–axis graph: {start: {link: path}}."""
+def axis_paths(links: int, axes) -> dict[int, dict[int, list]]:
+    """Breadth-first paths from each link through the link–axis graph: ``{start: {link: path}}``,
+    a path alternating links and axis indexes (a mesh's path a, X, t, Y, b has its carrier third).
+
+    >>> axis_paths(4, [(0, 1, 2), (2, 3)])[0][3]
+    [0, 0, 2, 1, 3]
+    """
     by_link = [[] for _ in range(links)]
     for k, axis in enumerate(axes):
         for x in axis:
@@ -123,15 +128,12 @@ class GearTrain:
             if len(carriers) != len(raw):
                 raise MalformedChain(f"{len(carriers)} carriers given for {len(raw)} meshes")
         else:
-            paths = _axis_paths(n, sorted(axes))
-            carriers = []
-            for a, b in raw:
-                path = paths[a].get(b)
-                if path is None or len(path) != 5:
+            carriers = GearTrain._carriers_or_none(n, axes, raw)
+            for (a, b), t in zip(raw, carriers):
+                if t is None:
                     raise MalformedChain(
                         f"mesh {a}~{b} has no carrier: its gears must turn on one link about two different axes "
                         f"(a – axis – carrier – axis – b); give the carrier as {a}~{b}@t")
-                carriers.append(path[2])
         for (a, b), t in zip(raw, carriers):
             if not 0 <= t < n or t in (a, b):
                 raise MalformedChain(f"the carrier of mesh {a}~{b} must be a third link of 0…{n - 1}, not {t}")
@@ -161,7 +163,7 @@ class GearTrain:
     @property
     def is_tree(self) -> bool:
         """Whether the axes alone join every link as a tree (the planetary-train atlases' kind)."""
-        return self.revolute_equivalents == self.links - 1 and len(_axis_paths(self.links, self.axes)[0]) == self.links
+        return self.revolute_equivalents == self.links - 1 and len(axis_paths(self.links, self.axes)[0]) == self.links
 
     @property
     def triples(self) -> tuple[tuple[int, int, int], ...]:
@@ -279,18 +281,10 @@ class GearTrain:
         '0-1 1-3 0~3i 2~3@1'
         """
         parts = ["-".join(map(str, a)) for a in self.axes]
-        found = self._found_carriers()
+        found = GearTrain._carriers_or_none(self.links, self.axes, self.meshes)
         for (a, b), t, inner, auto in zip(self.meshes, self.carriers, self.internal, found):
             parts.append(f"{a}~{b}" + ("i" if inner else "") + ("" if auto == t else f"@{t}"))
         return " ".join(parts)
-
-    def _found_carriers(self) -> list[int | None]:
-        paths = _axis_paths(self.links, self.axes)
-        out = []
-        for a, b in self.meshes:
-            path = paths[a].get(b)
-            out.append(path[2] if path is not None and len(path) == 5 else None)
-        return out
 
     @classmethod
     def parse(cls, text: str, frame: int | None = None) -> "GearTrain":
@@ -329,8 +323,9 @@ class GearTrain:
         return cls(n, tuple(axes), tuple(meshes), tuple(carriers) if given else None, tuple(internal), frame)
 
     @staticmethod
-    def _carriers_or_none(n, axes, meshes):
-        paths = _axis_paths(n, sorted(tuple(sorted(a)) for a in axes))
+    def _carriers_or_none(n, axes, meshes) -> list[int | None]:
+        """The carrier of each mesh from the axes (the middle link of a path a – X – t – Y – b), or None."""
+        paths = axis_paths(n, sorted(tuple(sorted(a)) for a in axes))
         out = []
         for a, b in meshes:
             path = paths.get(a, {}).get(b)
