@@ -337,3 +337,18 @@ def test_cli_bad_input_is_one_sentence_exit_2(args, words):
     out = _cli(*args)
     assert out.returncode == 2, out.stdout + out.stderr
     assert words in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+
+
+def test_ctrl_c_stops_a_count_within_two_seconds():
+    import os
+    import signal
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "9", "--count", "--workers", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(3)
+    os.killpg(proc.pid, signal.SIGINT)
+    start = time.monotonic()
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130 and time.monotonic() - start < 2 and b"interrupted" in err

@@ -38,7 +38,6 @@ from __future__ import annotations
 import os
 from collections import Counter, deque
 from collections.abc import Iterator
-from concurrent.futures import ProcessPoolExecutor
 from functools import lru_cache
 
 import numpy as np
@@ -280,18 +279,20 @@ def _units(dof: int, links: int, workers: int | None, work, args_of):
         for job in jobs:
             yield work(job)
         return
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        window: deque = deque()  # at most 4 trees a worker in flight: results never pile up
-        try:
-            for job in jobs:
-                window.append(pool.submit(work, job))
-                if len(window) >= 4 * workers:
-                    yield window.popleft().result()
-            while window:
-                yield window.popleft().result()
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+    from .._executor import process_pool  # workers leave Ctrl-C to this process and die with it
+
+    pool = process_pool(workers)
+    window: deque = deque()  # at most 4 trees a worker in flight: results never pile up
+    try:
+        for job in jobs:
+            window.append(pool.apply_async(work, (job,)))
+            if len(window) >= 4 * workers:
+                yield window.popleft().get()
+        while window:
+            yield window.popleft().get()
+    finally:  # Ctrl-C, an error or a reader that stops early: no worker goes on
+        pool.terminate()
+        pool.join()
 
 
 def trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> Iterator[GearTrain]:
