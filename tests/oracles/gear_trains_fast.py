@@ -2,7 +2,8 @@
 
 It shares no code with ``synth`` (nor with nauty): trees come from :mod:`gear_trains` (the brute
 force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher
-(the first ``_CAP`` of them); mesh sets are grown in *another order* than the engine's (candidates
+(the first ``_CAP`` of them; the star, whose symmetries are all permutations of its n − 1 gears,
+has its 1-DOF trains counted as the unlabelled trees on those gears, see :func:`_star_trains`); mesh sets are grown in *another order* than the engine's (candidates
 sorted by carrier first, then by their gears, from the last to the first) and kept when no listed
 symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
 of each class passes, for any list of symmetries); where the list is not the whole group the
@@ -33,7 +34,7 @@ __all__ = ["census", "rotation_form"]
 
 
 # ------------------------------------------------------------------------ one tree
-_CAP = 3000  # symmetries of a tree listed for the pruning test
+_CAP = 50_000  # symmetries of a tree listed for the pruning test
 
 
 def _symmetries(links: int, axes) -> tuple[list[tuple[int, ...]], bool]:
@@ -48,9 +49,22 @@ def _symmetries(links: int, axes) -> tuple[list[tuple[int, ...]], bool]:
     out = []
     for m in matcher.isomorphisms_iter():
         if len(out) == _CAP:
-            return out, False
+            return out + _twin_swaps(links, axes), False
         out.append(tuple(m[("L", x)][1] for x in range(links)))
     return out, True
+
+
+def _twin_swaps(links: int, axes) -> list[tuple[int, ...]]:
+    """The exchanges of two links that each turn about the same single axis and nothing else."""
+    axes_of = [[k for k, axis in enumerate(axes) if x in axis] for x in range(links)]
+    out = []
+    for x in range(links):
+        for y in range(x + 1, links):
+            if len(axes_of[x]) == 1 and axes_of[x] == axes_of[y]:
+                perm = list(range(links))
+                perm[x], perm[y] = y, x
+                out.append(tuple(perm))
+    return out
 
 
 def _typed(graph: nx.Graph) -> tuple[str, nx.Graph]:
@@ -84,9 +98,22 @@ def _rotation_graph(links: int, triples) -> nx.Graph:
     return g
 
 
+def _star_trains(links: int, hub: int = 0) -> list[tuple]:
+    """F = 1 trains on the star (every other link on an axis of its own with link 0): every mesh has
+    carrier 0, a cycle of meshes C locks (S = C + link 0 has W = 3|C| − 2|C| − |C| = 0) and a forest
+    leaves every S a freedom, so the trains are the spanning trees of links 1 … n−1, one per
+    unlabelled tree (networkx's list of non-isomorphic trees)."""
+    gears = [x for x in range(links) if x != hub]
+    return [tuple((gears[a], gears[b], hub) for a, b in tree.edges()) for tree in nx.nonisomorphic_trees(links - 1)]
+
+
 def _tree_counts(job):
     """(displacement graphs, their rotation forms) of one tree."""
     dof, links, axes = job
+    hubs = set.intersection(*(set(a) for a in axes)) if axes else set()
+    if dof == 1 and links >= 4 and hubs and all(len(a) == 2 for a in axes):
+        found = _star_trains(links, hubs.pop())
+        return len(found), found
     pairs = brute.mesh_pairs(links, axes)  # {(a, b): carrier}
     order = sorted(pairs, key=lambda ab: (pairs[ab], ab), reverse=True)
     need = links - 1 - dof
