@@ -59,6 +59,7 @@ def test_published_counts(dof, links, displacement, rotation):
     assert (found["displacement"], found["rotation"]) == (displacement, rotation)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("dof,links", [(1, 8), (2, 8)])
 def test_second_method_agrees_at_eight_links(dof, links):
     assert gear_trains_fast.census(dof, links) == {k: v for k, v in census(dof, links).items() if k != "by_code"}
