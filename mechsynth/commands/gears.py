@@ -180,7 +180,7 @@ def _run_mechanisms(args, items, compound) -> int:
 def _run_ratio(args, items, compound) -> int:
     from synth._number_synthesis import parse_range
     from synth.errors import InvalidOption
-    from synth.gears.design import MIN_TEETH, design
+    from synth.gears.ratio_design import MIN_TEETH, NoDesign, design
 
     items = list(items)
     if args.train is None and args.links > _RATIO_LINKS:
@@ -194,12 +194,10 @@ def _run_ratio(args, items, compound) -> int:
             found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
                            teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
                            planets=args.planets, compound=compound, best=args.best)
-        except InvalidOption as exc:
+        except NoDesign:
             if args.train is not None and args.input is not None:
                 raise
-            if "no tooth numbers" in str(exc) or "--planets needs" in str(exc):
-                continue
-            raise
+            continue  # another mechanism may reach the ratio
         designs += [(d, m) for d in found]
     if not designs:
         raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "

@@ -8,7 +8,7 @@ Example
 (81, 27)
 """
 
-from .design import Design, design
+from .ratio_design import Design, design
 from .enumeration import census, count_trains, trains
 from .mechanisms import GearMechanism, RatioFormula, mechanisms, speed_ratio
 from .train import GearTrain

@@ -35,7 +35,6 @@ Example
 
 from __future__ import annotations
 
-import os
 from collections import Counter, deque
 from collections.abc import Iterator
 from functools import lru_cache
@@ -351,8 +350,3 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
         total += n
         codes.update(by_code)
     return {"count": total, "by_code": dict(sorted(codes.items()))}
-
-
-def default_workers() -> int:
-    """All cores."""
-    return os.cpu_count() or 1

@@ -35,12 +35,16 @@ from ..errors import InvalidOption
 from .mechanisms import speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "design", "parse_fraction", "MIN_TEETH", "RING_MARGIN"]
+__all__ = ["Design", "NoDesign", "design", "parse_fraction", "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
 RING_MARGIN = 10  # an internal pair needs the ring this many teeth above its pinion (tip interference)
 _LIMIT = 20_000  # designs within tolerance listed before the query is refused
 _BOUND = 1 << 61  # CP-SAT integers
+
+
+class NoDesign(InvalidOption):
+    """No tooth numbers meet the ratio and the conditions (or no planet fits ``--planets``)."""
 
 
 @dataclass(frozen=True)
@@ -187,7 +191,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
         raise InvalidOption(f"more than {limit} designs are within the tolerance: tighten --tolerance or narrow "
                             "--teeth to get the best ones")
     if status == cp_model.INFEASIBLE or not found:
-        raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
+        raise NoDesign(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
                             "coaxial, assembly and undercut conditions")
     designs = []
     for teeth_of in found:
@@ -213,4 +217,4 @@ def _assembly(model, train: GearTrain, names, z, planets: int, hi: int) -> None:
                     model.Add(z[sun] + z[ring] == planets * turns)
                     found = True
     if not found:
-        raise InvalidOption("--planets needs a planet wheel that meshes a sun and a ring on one carrier")
+        raise NoDesign("--planets needs a planet wheel that meshes a sun and a ring on one carrier")
