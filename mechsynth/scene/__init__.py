@@ -41,6 +41,7 @@ Example
 from . import structure  # noqa: F401  (registers the structural computations first: they run first)
 from . import balancing  # noqa: F401, I001  (then the balance computations and plot)
 from . import gears  # noqa: F401, I001  (joint kinds and gear trains)
+from . import gear_trains  # noqa: F401, I001  (gear trains: one train, the atlas)
 from .registry import KINDS, TABLES, ComputeKind, Expectation, Run, SceneTable
 from .results import Check, DirectoryResult, Scene, SceneError, SceneResult
 from .runner import is_scene, iter_scene_paths, load_scene, run_directory, run_scene

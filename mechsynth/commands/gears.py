@@ -1,0 +1,231 @@
+"""CLI command ``gears``: planetary gear trains — the atlas, mechanisms with speed ratios, tooth design.
+
+Example
+-------
+>>> from mechsynth.cli import main
+>>> main(["gears", "--dof", "1", "--links", "5", "--count"])
+{"count": 13, "by_code": {"521/0": 3, "530/1": 4, "602/0": 2, "611/1": 2, "620/2": 1, "701/0-1": 1}}
+0
+"""
+
+from __future__ import annotations
+
+from .._argtypes import whole, workers
+from .._output import COUNT_FORMATS, FORMATS, nothing_found, write_count, write_rows
+
+_RATIO_LINKS = 6  # --ratio over every train of a size: up to this many links
+
+
+def add_commands(sub) -> None:
+    """Mount ``gears`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("gears", help="planetary gear trains: atlas, mechanisms and speed ratios, tooth design")
+    p.add_argument("--dof", type=whole, help="degrees of freedom F (default 1)")
+    p.add_argument("--links", type=whole, help="number of links n, frame included")
+    p.add_argument("--train", help="one given train instead of the atlas: axes '0-1-2', meshes '1~3', "
+                   "'0~3i' (internal, ring first), '2~3@1' (carrier 1)")
+    p.add_argument("--graphs", choices=("displacement", "rotation"), default="displacement",
+                   help="one row per displacement graph (default) or per rotation graph")
+    p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
+    p.add_argument("--input-output", action="store_true",
+                   help="list mechanisms: frame, input and output shafts up to symmetry, with the speed ratio")
+    p.add_argument("--frame", type=whole, help="with --train: the fixed link")
+    p.add_argument("--input", type=whole, help="with --train and --frame: the input link")
+    p.add_argument("--output", type=whole, help="with --train and --frame: the output link")
+    p.add_argument("--compound", default="", metavar="L,L", help="links that carry a wheel per mesh (stepped planets)")
+    p.add_argument("--ratio", help="design tooth numbers for this speed ratio ω_in/ω_out, e.g. 4.25 or 17/4")
+    p.add_argument("--tolerance", help="with --ratio: relative error allowed, e.g. 1%% (default) or 0.002")
+    p.add_argument("--teeth", metavar="A..B", help="with --ratio: tooth numbers allowed (default 17..150)")
+    p.add_argument("--min-teeth", type=whole, help="with --ratio: fewest teeth without undercut (default 17)")
+    p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets, (z_sun + z_ring)/k whole")
+    p.add_argument("--best", type=whole, default=5, help="with --ratio: designs listed (default 5)")
+    p.add_argument("--out", metavar="FILE", help="draw the functional schematics (.svg, .png, .pdf; up to 48 a sheet)")
+    p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default 1)")
+    p.add_argument("--format", choices=FORMATS,
+                   help="table (default), jsonl, csv or json; with --count json (default), table, jsonl or csv")
+    p.set_defaults(run=_run)
+
+
+def _check(args) -> None:
+    from synth.errors import InvalidOption
+
+    ratio_only = [name for name in ("tolerance", "teeth", "min_teeth", "planets") if getattr(args, name) is not None]
+    if ratio_only and args.ratio is None:
+        raise InvalidOption(f"--{ratio_only[0].replace('_', '-')} goes with --ratio")
+    if args.count and (args.ratio is not None or args.input_output or args.out):
+        what = "--ratio" if args.ratio is not None else ("--input-output" if args.input_output else "--out")
+        raise InvalidOption(f"--count and {what} contradict each other: --count prints one number per code")
+    if args.count and args.format not in (None, *COUNT_FORMATS):
+        raise InvalidOption(f"--count prints json, table, jsonl or csv, not {args.format}")
+    if args.ratio is not None and args.graphs == "rotation":
+        raise InvalidOption("--ratio designs displacement graphs (their mesh kinds and axes): drop --graphs rotation")
+    if args.train is not None:
+        for name in ("links", "dof"):
+            if getattr(args, name) is not None:
+                raise InvalidOption(f"--{name} selects trains of the atlas and contradicts --train")
+        if args.graphs == "rotation" or args.count:
+            raise InvalidOption("--train is one train: --count and --graphs rotation select from the atlas")
+    else:
+        for name in ("frame", "input", "output"):
+            if getattr(args, name) is not None:
+                raise InvalidOption(f"--{name} goes with --train (the atlas lists every choice with --input-output)")
+        if args.links is None:
+            raise InvalidOption("give --links N (and --dof F), or --train")
+    if (args.input is None) != (args.output is None) or (args.input is not None and args.frame is None):
+        raise InvalidOption("--input and --output go together, with --frame")
+    if args.out and not args.out.lower().endswith((".svg", ".png", ".pdf")):
+        raise InvalidOption(f"a drawing is written as .svg, .png or .pdf, not {args.out!r}")
+    if args.best < 1:
+        raise InvalidOption(f"--best must be a whole number ≥ 1, not {args.best}")
+
+
+def _compound(text: str) -> tuple[int, ...]:
+    from synth.errors import InvalidOption
+
+    try:
+        return tuple(int(x) for x in text.replace(",", " ").split())
+    except ValueError:
+        raise InvalidOption(f"--compound lists link numbers, e.g. 3,4, not {text!r}") from None
+
+
+def _train_row(train, fmt: str) -> dict:
+    row = train.to_dict()
+    if fmt == "table":
+        row["certificate"] = "…" + row["certificate"][-12:]
+    return row
+
+
+def _run(args) -> int:
+    from synth.errors import InvalidOption
+    from synth.gears.enumeration import check_query, count_trains, trains
+
+    _check(args)
+    dof = 1 if args.dof is None else args.dof
+    compound = _compound(args.compound)
+    if args.train is None:
+        check_query(dof, args.links, args.graphs)
+        if args.links < dof + 2:
+            raise InvalidOption(f"a gear train with F = {dof} needs at least {dof + 2} links (one mesh), not {args.links}")
+    if args.count:
+        result = count_trains(dof, args.links, args.graphs, workers=args.workers)
+        if write_count(result, args.format or "json") == 0:
+            return nothing_found("gear trains satisfy these parameters")
+        return 0
+    if args.train is not None:
+        from synth.gears import GearTrain
+
+        items = [GearTrain.parse(args.train, args.frame)]
+        for x in (args.frame, args.input, args.output):
+            if x is not None and not 0 <= x < items[0].links:
+                raise InvalidOption(f"link {x} is not a link of the train (0…{items[0].links - 1})")
+    else:
+        items = trains(dof, args.links, args.graphs, workers=args.workers)
+    if args.ratio is not None:
+        return _run_ratio(args, items, compound)
+    if args.input_output or args.input is not None:
+        return _run_mechanisms(args, items, compound)
+    fmt = args.format or "table"
+    items = list(items) if args.out else items
+    columns = ["index", "train", "code", "dof", "carriers", "certificate"]
+    n = write_rows(_indexed(_train_row(t, fmt) for t in items), columns, fmt)
+    if fmt == "table":
+        print(f"{n} gear trains ({args.graphs} graphs)" if args.train is None else f"{n} gear train")
+    if args.out and n:
+        _draw(items, args.out, compound)
+    return 0 if n else nothing_found("gear trains satisfy these parameters")
+
+
+def _draw(items, out: str, compound, teeth=None) -> None:
+    from synth.gears.draw import draw_sheet, draw_train
+
+    if len(items) == 1:
+        draw_train(items[0], out, teeth=teeth, compound=compound)
+    else:
+        draw_sheet(items, out)
+
+
+def _mechanisms_of(args, items, compound):
+    from synth.gears.mechanisms import GearMechanism, mechanisms, speed_ratio
+
+    for train in items:
+        if args.input is not None:
+            yield GearMechanism(train, args.frame, args.input, args.output,
+                                speed_ratio(train, args.frame, args.input, args.output, compound))
+        else:
+            yield from mechanisms(train, input_output=True, compound=compound)
+
+
+def _run_mechanisms(args, items, compound) -> int:
+    fmt = args.format or "table"
+    drawn = []
+
+    def rows():
+        for m in _mechanisms_of(args, items, compound):
+            drawn.append(m)
+            row = m.to_dict()
+            if fmt == "table":
+                row["certificate"] = "…" + row["certificate"][-12:]
+            yield row
+
+    columns = ["index", "train", "frame", "input_link", "output_link", "ratio"]
+    n = write_rows(_indexed(rows()), columns, fmt)
+    if fmt == "table":
+        print(f"{n} mechanisms (ratio i = ω_input/ω_output, frame at rest; z<link> teeth of its wheel)")
+    if args.out and drawn:
+        from dataclasses import replace
+
+        _draw([replace(m.train, frame=m.frame) for m in drawn[:48]], args.out, compound)
+    return 0 if n else nothing_found("mechanisms with an input and an output on the frame")
+
+
+def _run_ratio(args, items, compound) -> int:
+    from synth.structure.query import parse_range
+    from synth.errors import InvalidOption
+    from synth.gears.ratio_design import MIN_TEETH, NoDesign, design
+
+    items = list(items)
+    if args.train is None and args.links > _RATIO_LINKS:
+        raise InvalidOption(f"--ratio over every train of a size goes up to {_RATIO_LINKS} links: choose one with --train")
+    lo, hi = parse_range(args.teeth or "17..150", "--teeth", minimum=1)
+    if hi is None:
+        raise InvalidOption("--teeth needs an upper end: give A..B")
+    designs = []
+    for m in _mechanisms_of(args, items, compound):
+        try:
+            found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
+                           teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
+                           planets=args.planets, compound=compound, best=args.best)
+        except NoDesign:
+            if args.train is not None and args.input is not None:
+                raise
+            continue  # another mechanism may reach the ratio
+        designs += [(d, m) for d in found]
+    if not designs:
+        raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "
+                            f"{args.tolerance or '1%'} in these trains (coaxial, assembly and undercut conditions)")
+    designs.sort(key=lambda dm: (dm[0].error, sum(dm[0].teeth.values())))
+    designs = designs[:args.best]
+    fmt = args.format or "table"
+    rows = []
+    for d, m in designs:
+        row = {"train": m.train.compact(), "frame": m.frame, "input_link": m.input_link,
+               "output_link": m.output_link, "formula": m.ratio.text, **d.to_dict()}
+        if fmt in ("table", "csv"):
+            row["teeth"] = " ".join(f"{k}={v}" for k, v in d.teeth.items())
+            row["error"] = f"{float(d.error):.3%}"
+        rows.append(row)
+    columns = ["index", "train", "frame", "input_link", "output_link", "teeth", "ratio", "error", "formula"]
+    n = write_rows(_indexed(rows), columns, fmt)
+    if fmt == "table":
+        print(f"{n} best designs for i = {args.ratio} (error relative to it)")
+    if args.out:
+        from dataclasses import replace
+
+        best, m = designs[0]
+        _draw([replace(m.train, frame=m.frame)], args.out, compound, teeth=best.teeth)
+    return 0
+
+
+def _indexed(rows):
+    for i, row in enumerate(rows, start=1):
+        row["index"] = i
+        yield row

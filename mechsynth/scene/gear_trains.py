@@ -1,0 +1,119 @@
+"""Scene computations for gear trains: ``gear train`` (one train: its lever analogue, verdict,
+speed ratios, tooth design, schematic) and ``gear atlas`` (the counts of a size).
+
+``[gear_train]`` names a train in the text form of ``mechsynth gears --train`` and, optionally,
+mechanisms as ``[frame, input, output]`` triples, tooth numbers, and a ratio to design teeth for.
+``[gear_atlas]`` names F and n, and optionally a train that must be found among them.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import Field, StrictInt, StrictStr
+
+from synth.schema import Table
+
+from .registry import ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .results import SceneError
+from .types import Flag, Int, Number, Numbers, Positive, Text, Texts, Whole, WholeTable
+
+__all__ = ["GearTrainTable", "GearAtlasTable"]
+
+Triples = Annotated[list[Annotated[list[Annotated[StrictInt, Field(ge=0)]], Field(min_length=3, max_length=3)]],
+                    Field(min_length=1)]
+
+
+class GearTrainTable(Table):
+    """The ``[gear_train]`` table."""
+
+    train: StrictStr
+    mechanisms: Triples | None = None  # [frame, input, output] each
+    compound: list[Whole] = []
+    teeth: WholeTable | None = None
+    ratio: Text | None = None  # design tooth numbers for the first mechanism
+    tolerance: Text = "1%"
+    teeth_range: Text = "17..150"
+    planets: Positive | None = None
+    best: Positive = 3
+    drawing: Flag = False
+
+
+class GearAtlasTable(Table):
+    """The ``[gear_atlas]`` table."""
+
+    dof: Positive = 1
+    links: Positive
+    contains: StrictStr | None = None  # a train (text form) that must be in the atlas
+
+
+add_table(SceneTable("gear_train", lambda raw, path, compute: GearTrainTable.read(
+    raw, source=path, where="[gear_train]", error=SceneError), "the train (and its mechanisms, teeth, ratio)"))
+add_table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.read(
+    raw, source=path, where="[gear_atlas]", error=SceneError), "the DOF and the number of links"))
+
+
+def _gear_train(run: Run) -> dict:
+    from synth.structure.query import parse_range
+    from synth.gears import GearTrain, design, speed_ratio
+
+    t = run.scene.tables["gear_train"]
+    first = t.mechanisms[0] if t.mechanisms else None
+    train = GearTrain.parse(t.train, first[0] if first else None)
+    chain = train.lever_analogue()
+    out = {"train": train.compact(), "dof": train.dof, "lever_code": str(chain.code), "lever_dof": chain.dof,
+           "loops": chain.loops, "rigid_free": train.is_rigid_free(), "fractionated": train.is_fractionated(),
+           "certificate": train.certificate}
+    formulas, values = [], []
+    for frame, i, o in t.mechanisms or ():
+        formula = speed_ratio(train, frame, i, o, t.compound)
+        formulas.append(formula.text)
+        if t.teeth:
+            values.append(float(formula.evaluate(t.teeth)))
+    out.update(ratio_formulas=formulas, ratio_values=values)
+    if t.ratio is not None:
+        if first is None:
+            raise SceneError(f"{run.scene.path}: [gear_train] ratio needs mechanisms = [[frame, input, output]].")
+        lo, hi = parse_range(t.teeth_range, "teeth_range")
+        found = design(train, *first, t.ratio, tolerance=t.tolerance, teeth=(lo, hi), planets=t.planets,
+                       compound=t.compound, best=t.best)
+        out["designs"] = [d.to_dict() for d in found]
+        out["best_error"] = float(found[0].error)
+        out["best_ratio"] = float(found[0].ratio)
+    if t.drawing:
+        picture = run.picture(f"{run.scene.name}.svg")
+        if picture is not None:
+            from synth.gears.draw import draw_train
+
+            best = out.get("designs", [{}])[0].get("teeth") or t.teeth
+            draw_train(train, picture, teeth=best, compound=t.compound)
+            out["files"] = [str(picture)]
+    return out
+
+
+def _gear_atlas(run: Run) -> dict:
+    from synth.gears import GearTrain, census, trains
+
+    t = run.scene.tables["gear_atlas"]
+    found = census(t.dof, t.links)
+    out = {"displacement": found["displacement"], "rotation": found["rotation"]}
+    if t.contains is not None:
+        wanted = GearTrain.parse(t.contains)
+        plain = GearTrain(wanted.links, wanted.axes, wanted.meshes, wanted.carriers)  # mesh kinds aside
+        out["contains"] = any(x.certificate == plain.certificate for x in trains(t.dof, t.links))
+    return out
+
+
+add_kind(ComputeKind(
+    "gear train", "one gear train: lever analogue, verdict, speed ratios, tooth design", "gear_train", _gear_train,
+    expect={"train_dof": Expectation(Int, ("dof",)), "lever_code": Expectation(Text),
+            "lever_dof": Expectation(Int), "rigid_free": Expectation(Flag), "fractionated": Expectation(Flag),
+            "ratio_formulas": Expectation(Texts), "ratio_values": Expectation(Numbers),
+            "best_ratio": Expectation(Number), "best_error": Expectation(Number, below=True)},
+    report=lambda r: [f"{r['train']}: F = {r['dof']}, lever analogue {r['lever_code']}, "
+                      f"rigid-free {r['rigid_free']}; ratios {', '.join(r['ratio_formulas']) or '-'}"]))
+add_kind(ComputeKind(
+    "gear atlas", "every planetary gear train of F DOF and n links: displacement and rotation graphs", "gear_atlas",
+    _gear_atlas, expect={"displacement_graphs": Expectation(Whole, ("displacement",)),
+                         "rotation_graphs": Expectation(Whole, ("rotation",)), "contains": Expectation(Flag)},
+    report=lambda r: [f"{r['displacement']} displacement graphs, {r['rotation']} rotation graphs"]))

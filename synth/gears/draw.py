@@ -1,0 +1,224 @@
+"""Functional schematics of gear trains, as transmission designers draw them (matplotlib, Agg).
+
+Shafts are horizontal lines: the main axis (the frame's, or the one with most links) at the
+bottom, each other axis above the axis of the carrier that holds it.  Links on one axis are
+concentric shafts, drawn a little apart.  A gear is a vertical bar on its shaft reaching to the
+pitch point of its mesh; an internal gear (a ring) reaches past its pinion and turns back, a
+bracket open towards the axis; a carrier is an arm from its own shaft up to the axis it holds;
+the frame is hatched.  Each link has its own colour and its number at its shaft's left end.
+With tooth numbers, bar heights follow the pitch radii.
+
+Example
+-------
+>>> import tempfile, os
+>>> from synth.gears import GearTrain
+>>> out = os.path.join(tempfile.mkdtemp(), "simple.svg")
+>>> draw_train(GearTrain.parse("0-1-2 2-3 0~3i 1~3", frame=0), out)
+>>> os.path.getsize(out) > 0
+True
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import InvalidOption
+from .train import GearTrain
+
+__all__ = ["draw_train", "draw_sheet", "schematic"]
+
+_FORMATS = (".svg", ".png", ".pdf")
+_GAP = 0.16  # between concentric shafts
+
+
+def _axis_heights(train: GearTrain) -> dict[int, float]:
+    """Height of each axis: the main axis at 0, an axis held by a carrier one step above it."""
+    axes = train.axes
+    if not axes:
+        return {}
+    main = max(range(len(axes)), key=lambda k: (train.frame is not None and train.frame in axes[k], len(axes[k]), -k))
+    height = {main: 0.0}
+    frontier = [main]
+    while frontier:
+        nxt = []
+        for k in frontier:
+            siblings = 0
+            for x in axes[k]:
+                for j, other in enumerate(axes):
+                    if j not in height and x in other:  # axes held side by side: staggered
+                        height[j] = height[k] + 2.0 + 0.9 * siblings
+                        siblings += 1
+                        nxt.append(j)
+        frontier = nxt
+    for k in range(len(axes)):  # axes of another tree component (a floating part)
+        height.setdefault(k, 2.0 * (k + 1))
+    return height
+
+
+def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
+    """Geometry of the schematic: shafts, gear bars, carrier arms (plain data, for drawing and tests).
+
+    The meshes of one wheel on one carrier share a column: the wheel is drawn once, centred on its
+    shaft, with the gears it meshes below it (external) or a ring over it (internal).
+
+    >>> s = schematic(GearTrain.parse("0-1-2 2-3 0~3i 1~3"))
+    >>> sorted(s["shafts"]), len(s["gears"]), len(s["arms"])
+    ([0, 1, 2, 3], 3, 1)
+    """
+    heights = _axis_heights(train)
+    own_axis: dict[int, int] = {}
+    level: dict[int, float] = {}
+    for k, axis in enumerate(train.axes):
+        for x in axis:
+            if x not in own_axis or heights[k] < heights[own_axis[x]]:
+                own_axis[x] = k
+    for k, axis in enumerate(train.axes):  # concentric shafts; the frame outermost (lowest)
+        members = sorted((x for x in axis if own_axis[x] == k), key=lambda x: (x == train.frame, x))
+        for rank, x in enumerate(members):
+            level[x] = heights[k] - _GAP * rank
+    for x in range(train.links):  # a floating gear turns about its carrier's lowest axis
+        if x not in level:
+            carrier = next((t for (a, b), t in zip(train.meshes, train.carriers) if x in (a, b)), None)
+            level[x] = (level.get(carrier, 0.0) + _GAP) if carrier is not None else 0.0
+    compound = set(compound)
+
+    def tooth(x, mate):
+        if not teeth:
+            return None
+        return teeth.get(f"z{x}_{mate}", teeth.get(f"z{x}"))
+
+    columns: dict = {}  # (upper wheel, carrier) -> meshes
+    for k, ((a, b), t) in enumerate(zip(train.meshes, train.carriers)):
+        high = b if level[b] >= level[a] else a
+        key = (high, t) if high not in compound else (high, t, k)
+        columns.setdefault(key, []).append(k)
+    gears, arms, span = [], [], {x: [] for x in range(train.links)}
+    for c, (key, members) in enumerate(columns.items()):
+        x = 1.0 + sum(1.0 + 0.3 * len(m) for m in list(columns.values())[:c])
+        high, t = key[0], key[1]
+        radius = None
+        for k in members:
+            a, b = train.meshes[k]
+            low = a if high == b else b
+            d = abs(level[high] - level[low]) or 1.0
+            zh, zl = tooth(high, low), tooth(low, high)
+            if zh and zl:
+                r = d * zh / (zl - zh if train.internal[k] else zl + zh)
+            else:
+                r = 0.4 * d
+            radius = r if radius is None else min(radius, r)
+        width = 0.18 + 0.3 * (len(members) - 1)  # a wheel meshing several gears side by side
+        gears.append({"link": high, "x": x + (width - 0.18) / 2, "from": level[high] - radius,
+                      "to": level[high] + radius, "ring": False, "width": width})
+        span[high].append(x)
+        for j, k in enumerate(members):
+            a, b = train.meshes[k]
+            low = a if high == b else b
+            at = x + 0.3 * j
+            if train.internal[k]:  # a ring over the wheel
+                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] + radius, "ring": True})
+            else:
+                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] - radius, "ring": False})
+            span[low].append(at)
+        if level[high] > level[t] + 1e-9:
+            arm_x = x - 0.5
+            arms.append({"link": t, "x": arm_x, "from": level[t], "to": level[high]})
+            span[t].append(arm_x)
+            span[high].append(arm_x)
+    shafts = {}
+    for x in range(train.links):
+        xs = span[x] or [0.5]
+        shafts[x] = {"y": level[x], "from": min(xs) - 0.3, "to": max(xs) + 0.3}
+    return {"shafts": shafts, "gears": gears, "arms": arms}
+
+
+def _draw_on(ax, train: GearTrain, teeth, compound, title: str) -> None:
+    import matplotlib.pyplot as plt
+
+    geometry = schematic(train, teeth, compound)
+    colours = plt.get_cmap("tab10").colors
+    colour_of = lambda x: "black" if x == train.frame else colours[x % 10]  # noqa: E731
+    for x, shaft in geometry["shafts"].items():
+        ax.plot([shaft["from"], shaft["to"]], [shaft["y"]] * 2, color=colour_of(x), lw=2.2, solid_capstyle="butt")
+        ax.text(shaft["from"] - 0.08, shaft["y"], str(x), ha="right", va="center", fontsize=10, color=colour_of(x),
+                fontweight="bold")
+        if x == train.frame:  # hatched ground under the frame's shaft
+            x0, x1 = shaft["from"], shaft["to"]
+            ax.plot([x0, x1], [shaft["y"] - 0.12] * 2, color="black", lw=1)
+            for i in range(int((x1 - x0) / 0.15) + 1):
+                t = x0 + i * 0.15
+                ax.plot([t, t - 0.1], [shaft["y"] - 0.12, shaft["y"] - 0.24], color="black", lw=0.8)
+    for arm in geometry["arms"]:
+        ax.plot([arm["x"]] * 2, [arm["from"], arm["to"]], color=colour_of(arm["link"]), lw=2.2)
+    for gear in geometry["gears"]:
+        colour, x, y0, y1 = colour_of(gear["link"]), gear["x"], gear["from"], gear["to"]
+        if gear["ring"]:  # a bracket over the wheel it meshes: internal teeth
+            ax.plot([x + 0.3, x + 0.3, x - 0.12], [y0, y1 + 0.06, y1 + 0.06], color=colour, lw=2.2)
+            ax.add_patch(plt.Rectangle((x - 0.12, y1 + 0.06), 0.42, 0.14, facecolor=colour, edgecolor=colour))
+        else:
+            w = gear.get("width", 0.18)
+            ax.add_patch(plt.Rectangle((x - w / 2, min(y0, y1)), w, abs(y1 - y0), facecolor=colour,
+                                       edgecolor=colour, alpha=0.85))
+    ax.set_aspect("equal")
+    ax.axis("off")
+    ax.set_title(title, fontsize=9)
+    ax.margins(0.08)
+
+
+def _caption(train: GearTrain) -> str:
+    return train.compact() + (f"  (frame {train.frame})" if train.frame is not None else "")
+
+
+def _target(path) -> Path:
+    path = Path(path)
+    if path.suffix.lower() not in _FORMATS:
+        raise InvalidOption(f"a drawing is written as {', '.join(_FORMATS)}, not {path.suffix or 'no extension'}")
+    return path
+
+
+def _save(fig, path: Path, dpi: int) -> None:
+    import matplotlib.pyplot as plt
+
+    try:
+        fig.savefig(path, bbox_inches="tight", dpi=dpi)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)
+
+
+def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=(), title: str | None = None,
+               size: float = 6.0) -> None:
+    """Write the functional schematic of one train to ``path`` (.svg, .png or .pdf)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = _target(path)
+    fig, ax = plt.subplots(figsize=(size, size * 0.75))
+    _draw_on(ax, train, teeth, compound, title or _caption(train))
+    _save(fig, path, 110)
+
+
+def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
+    """Several schematics on one sheet (at most ``limit``); returns how many were drawn."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = _target(path)
+    trains = list(trains)[:limit]
+    if not trains:
+        return 0
+    columns = min(columns, len(trains))
+    rows = -(-len(trains) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.2 * rows), squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        if k < len(trains):
+            _draw_on(ax, trains[k], None, (), (titles[k] if titles else f"{k + 1}: {_caption(trains[k])}"))
+        else:
+            ax.axis("off")
+    _save(fig, path, 90)
+    return len(trains)

@@ -1,0 +1,373 @@
+"""Planetary gear trains: the engine's atlas against an independent brute force, a second
+independent counter and the published counts; the train type; mechanisms and speed ratios
+against an exact rational solve of the Willis equations; tooth design; the CLI contract.
+
+Published counts (docs/gears.md): 1-DOF displacement / rotation graphs 6 links 81 / 27,
+7 links 647 / 152, 8 links 6360 / 1070 (Yang & Ding, J. Mech. Des. 141(4) 043301, 2019);
+2-DOF non-fractionated rotation graphs 6 links 2, 7 links 20, none below 6 (Tsai & Lin,
+J. Mech. Transm. Autom. Des. 111(4) 524, 1989).
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import itertools
+import json
+import random
+import subprocess
+import sys
+from fractions import Fraction
+
+import networkx as nx
+import pytest
+
+from synth.errors import InvalidOption, MalformedChain
+from synth.gears import GearTrain
+from synth.gears.ratio_design import design
+from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
+from synth.gears.mechanisms import mechanisms, speed_ratio
+from tests.oracles import gear_ratios, gear_trains_fast
+from tests.oracles import gear_trains as brute
+
+MODULES = ["synth.gears", "synth.gears.train", "synth.gears.enumeration", "synth.gears.mechanisms",
+           "synth.gears.ratio_design", "synth.gears.draw", "mechsynth.commands.gears",
+           "tests.oracles.gear_trains", "tests.oracles.gear_trains_fast", "tests.oracles.gear_ratios"]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_docstring_examples(name):
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0 and result.attempted > 0
+
+
+# ----------------------------------------------------------------------------- counts
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(3, 8)] + [(2, n) for n in range(4, 8)])
+def test_engine_equals_brute_force(dof, links):
+    expected = brute.count_trains(dof, links)
+    found = census(dof, links)
+    assert (found["displacement"], found["rotation"]) == (expected["displacement"], expected["rotation"])
+    assert sum(found["by_code"].values()) == found["displacement"]
+
+
+@pytest.mark.parametrize("dof,links,displacement,rotation", [
+    (1, 6, 81, 27), (1, 7, 647, 152), (1, 8, 6360, 1070),  # Yang & Ding 2019
+    (2, 5, 0, 0), (2, 6, 3, 2), (2, 7, 50, 20),  # rotation graphs: Tsai & Lin 1989
+])
+def test_published_counts(dof, links, displacement, rotation):
+    found = census(dof, links, workers=2)
+    assert (found["displacement"], found["rotation"]) == (displacement, rotation)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("dof,links", [(1, 8), (2, 8)])
+def test_second_method_agrees_at_eight_links(dof, links):
+    assert gear_trains_fast.census(dof, links) == {k: v for k, v in census(dof, links).items() if k != "by_code"}
+
+
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(3, 8)] + [(2, 6), (2, 7)])
+def test_second_method_equals_brute_force(dof, links):
+    assert gear_trains_fast.census(dof, links) == brute.count_trains(dof, links)
+
+
+def test_second_method_with_few_listed_symmetries(monkeypatch):
+    """Where a tree's symmetries are not all listed, the second method tells the sets apart by VF2."""
+    monkeypatch.setattr(gear_trains_fast, "_CAP", 2)
+    assert gear_trains_fast.census(1, 7) == {"displacement": 647, "rotation": 152}
+
+
+@pytest.mark.slow
+def test_nine_links_by_two_methods():
+    # Yang & Ding publish 71 837 / 8 654; both methods here find 4 displacement graphs and
+    # 2 rotation graphs fewer under the definitions of docs/gears.md (see "Counts").
+    found = census(1, 9, workers=2)
+    assert (found["displacement"], found["rotation"]) == (71833, 8652)
+    assert gear_trains_fast.census(1, 9, workers=2) == {"displacement": 71833, "rotation": 8652}
+
+
+@pytest.mark.parametrize("dof,links", [(1, 7), (2, 7)])
+def test_orderly_generation_and_canonical_augmentation_agree(dof, links):
+    counts = [census(dof, links, method=m) for m in ("orderly", "augmentation")]
+    assert counts[0] == counts[1] == census(dof, links)
+
+
+@pytest.mark.slow
+def test_ten_links_new_count():
+    """No published count: the engine and the second method (no shared code) agree (benchmarks/GEARS.md)."""
+    found = census(1, 10, workers=2)
+    assert (found["displacement"], found["rotation"]) == (904156, 78480)
+
+
+def test_trees_match_the_brute_force():
+    assert [len(link_axis_trees(n)) for n in range(2, 9)] == [len(brute.link_axis_trees(n)) for n in range(2, 9)]
+
+
+def test_listing_is_unique_deterministic_and_valid():
+    first = [t.certificate for t in trains(1, 7)]
+    assert first == [t.certificate for t in trains(1, 7, workers=2)]
+    assert len(set(first)) == len(first) == 647
+    for t in trains(1, 6):
+        assert t.is_tree and t.dof == 1 and t.lever_analogue().dof == 1
+        pairs = brute.mesh_pairs(t.links, t.axes)
+        assert all(pairs[m] == c for m, c in zip(t.meshes, t.carriers))
+        assert brute.rigid_free(t.links, t.axes, t.meshes)
+    rotations = [t.rotation_certificate for t in trains(1, 7, graphs="rotation")]
+    assert len(set(rotations)) == len(rotations) == 152
+
+
+def test_exact_test_on_the_lever_analogue_equals_every_subset():
+    """Every set of 3, 4 or 5 meshes (F = 2, 1, 0) on every 6-link tree, valid or not: the engine's
+    exact sub-chain test on the lever analogue against the brute force over all link subsets."""
+    checked = 0
+    for axes in brute.link_axis_trees(6):
+        pairs = sorted(brute.mesh_pairs(6, axes))
+        for k in range(3, min(len(pairs), 5) + 1):
+            for meshes in itertools.combinations(pairs, k):
+                train = GearTrain(6, axes, meshes)
+                assert train.is_rigid_free() == brute.rigid_free(6, axes, meshes), train.compact()
+                checked += 1
+    assert checked > 1000
+
+
+def test_rotation_form_is_an_isomorphism_invariant():
+    rng = random.Random(3)
+    found = list(trains(1, 7))
+    for t in rng.sample(found, 40):
+        perm = list(range(7))
+        rng.shuffle(perm)
+        moved = [(perm[a], perm[b], perm[c]) for a, b, c in t.triples]
+        assert gear_trains_fast.rotation_form(7, t.triples) == gear_trains_fast.rotation_form(7, moved)
+    # and it separates what networkx's isomorphism test separates
+    sample = rng.sample(found, 60)
+    for s, t in itertools.combinations(sample[:25], 2):
+        same = gear_trains_fast.rotation_form(7, s.triples) == gear_trains_fast.rotation_form(7, t.triples)
+        assert same == (s.rotation_certificate == t.rotation_certificate)
+
+
+# ------------------------------------------------------------------------ the train type
+def test_round_trips_and_certificates():
+    for k, t in enumerate(list(trains(1, 6))[:30]):
+        assert GearTrain.parse(t.compact()) == t
+        assert GearTrain.from_dict(json.loads(t.to_json())) == t
+        perm = list(range(6))
+        random.Random(k).shuffle(perm)
+        moved = GearTrain(6, [[perm[x] for x in a] for a in t.axes], [[perm[a], perm[b]] for a, b in t.meshes])
+        assert moved.certificate == t.certificate and moved.rotation_certificate == t.rotation_certificate
+    ring = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    assert ring.certificate != GearTrain.parse("0-1-2 2-3 0~3 1~3").certificate  # internal mesh told apart
+    assert GearTrain.parse(ring.compact()).internal == ring.internal
+
+
+def test_displacement_graphs_differ_where_rotation_graphs_agree():
+    by_rotation: dict = {}
+    for t in trains(1, 6):
+        by_rotation.setdefault(t.rotation_certificate, []).append(t)
+    assert len(by_rotation) == 27 and max(len(v) for v in by_rotation.values()) >= 2
+    for group in by_rotation.values():  # the same triples up to renumbering, different axes
+        assert len({t.certificate for t in group}) == len(group)
+        assert len({gear_trains_fast.rotation_form(6, t.triples) for t in group}) == 1
+
+
+@pytest.mark.parametrize("text,words", [
+    ("0-1-2 2-3 1~3 1~3", "meshes once"),
+    ("0-1 1-2 0~2@0", "third link"),
+    ("0-1-2 1~2", "no carrier"),
+    ("0-1 1~x", "cannot read"),
+    ("0-0 0~1", "different links"),
+    ("", "empty"),
+])
+def test_malformed_trains_are_refused(text, words):
+    with pytest.raises(MalformedChain, match=words):
+        GearTrain.parse(text)
+
+
+def test_three_satellite_planetary_through_the_general_path():
+    """The source's 3-satellite train (floating sun): lever analogue 64200/0, W = 1, no rigid sub-chain."""
+    train = GearTrain.parse("0-1 1-3 1-4 1-5 0~3i 0~4i 0~5i 2~3@1 2~4@1 2~5@1", frame=0)
+    chain = train.lever_analogue()
+    assert str(chain.code) == "64200/0" and chain.dof == 1 and train.dof == 1 and train.is_rigid_free()
+    for k in range(1, 7):  # one to six satellites: only three gives W = 1 (THEORY C4: W = 4 − k)
+        text = " ".join(["0-1"] + [f"1-{3 + i}" for i in range(k)] + [f"0~{3 + i}i" for i in range(k)]
+                        + [f"2~{3 + i}@1" for i in range(k)])
+        assert GearTrain.parse(text).dof == 4 - k
+    fixed_sun = GearTrain.parse("0-1-2 1-3 1-4 1-5 0~3i 0~4i 0~5i 2~3 2~4 2~5")
+    assert fixed_sun.dof == -1 and not fixed_sun.is_rigid_free()  # redundant constraints
+
+
+# ------------------------------------------------------------------ mechanisms and ratios
+def _oracle_ratio(train, frame, i, o, teeth_by_name, compound=()):
+    teeth = {}
+    for name, z in teeth_by_name.items():
+        body = name[1:]
+        if "_" in body:
+            x, mate = body.split("_")
+            teeth[(int(x), int(mate))] = z
+        else:
+            teeth[int(body)] = z
+    meshes = [(a, b, t, inner) for (a, b, t), inner in zip(train.triples, train.internal)]
+    return gear_ratios.ratio(meshes, train.links, teeth, frame, i, o)
+
+
+def test_every_ratio_formula_equals_the_rational_willis_solve():
+    rng = random.Random(7)
+    checked = 0
+    for t in trains(1, 6):
+        internal = tuple(rng.random() < 0.4 for _ in t.meshes)
+        train = GearTrain(t.links, t.axes, t.meshes, t.carriers, internal)
+        compound = tuple(x for x in range(6) if rng.random() < 0.3)
+        for m in mechanisms(train, input_output=True, compound=compound):
+            teeth = {w: rng.randint(17, 120) for w in m.ratio.wheels}
+            try:
+                expected = _oracle_ratio(train, m.frame, m.input_link, m.output_link, teeth)
+            except (ValueError, ZeroDivisionError):
+                continue
+            assert m.ratio.evaluate(teeth) == expected, (train.compact(), m.frame, m.input_link, m.output_link)
+            checked += 1
+    assert checked > 300
+
+
+def test_simple_planetary_formulas():
+    simple = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, planet 3
+    assert speed_ratio(simple, 0, 1, 2).text == "(z0 + z1)/z1"  # ring fixed: 1 + z_r/z_s
+    assert speed_ratio(simple, 1, 0, 2).text == "(z0 + z1)/z0"  # sun fixed: 1 + z_s/z_r
+    assert speed_ratio(simple, 2, 1, 0).text == "-z0/z1"  # carrier fixed: reverse
+
+
+def test_simpson_set_ratios():
+    """Simpson gear set: common sun 0 (a wheel per set), front ring 1, front carrier + rear ring 2,
+    rear carrier 3, planets 4 (front) and 5 (rear).  Hand derivation (Willis): first gear, rear
+    carrier held, front ring in, front carrier out: i1 = 1 + (zs1/zr1)(1 + zr2/zs2); second gear,
+    sun held: i2 = 1 + zs1/zr1; reverse, rear carrier held, sun in, rear ring out: iR = −zr2/zs2."""
+    simpson = GearTrain.parse("0-1-2-3 2-4 3-5 0~4 1~4i 0~5 2~5i")
+    assert simpson.dof == 1 and simpson.is_rigid_free()
+    teeth = {"z0_4": 30, "z0_5": 30, "z1": 72, "z2": 72, "z4": 21, "z5": 21}
+    i1 = speed_ratio(simpson, 3, 1, 2, compound=[0]).evaluate(teeth)
+    i2 = speed_ratio(simpson, 0, 1, 2, compound=[0]).evaluate(teeth)
+    ir = speed_ratio(simpson, 3, 0, 2, compound=[0]).evaluate(teeth)
+    zs, zr = Fraction(30), Fraction(72)
+    assert (i1, i2, ir) == (1 + zs / zr * (1 + zr / zs), 1 + zs / zr, -zr / zs)
+    assert (float(i1), float(i2), float(ir)) == pytest.approx((2.4167, 1.4167, -2.4), abs=1e-4)
+    # the set is one of the 6-link 1-DOF trains of the atlas (its structure, mesh kinds aside)
+    plain = GearTrain(6, simpson.axes, simpson.meshes)
+    assert plain.certificate in {t.certificate for t in trains(1, 6)}
+
+
+# ------------------------------------------------------------------------------- design
+def _coaxial_and_assembly_hold(teeth, k=None):
+    zr, zs, zp = teeth["z0"], teeth["z1"], teeth["z3"]
+    return zr == zs + 2 * zp and (k is None or (zs + zr) % k == 0)
+
+
+def test_design_simple_planetary_is_exact_and_the_true_best():
+    simple = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    found = design(simple, 0, 1, 2, "4.63", tolerance="0.5%", teeth=(17, 100), planets=3, best=4)
+    assert found
+    for d in found:
+        assert _coaxial_and_assembly_hold(d.teeth, 3)
+        exact = _oracle_ratio(simple, 0, 1, 2, d.teeth)
+        assert d.ratio == exact and abs(exact - Fraction(463, 100)) / Fraction(463, 100) == d.error <= Fraction(1, 200)
+    # brute force over every tooth pair (the ring follows): the four best errors are the ones reported
+    errors = sorted(abs(Fraction(2 * zs + 2 * zp, zs) - Fraction(463, 100)) / Fraction(463, 100)
+                    for zs in range(17, 101) for zp in range(17, 101)
+                    if zs + 2 * zp <= 100 and (2 * zs + 2 * zp) % 3 == 0)
+    assert [d.error for d in found] == [e for e in errors if e <= Fraction(1, 200)][:4]
+
+
+def test_design_two_stage_train():
+    two = GearTrain.parse("0-1-2-3 2-4 3-5 1~4 0~4i 2~5 0~5i")  # ring 0 (two wheels), stages in series
+    found = design(two, 0, 1, 3, "20", tolerance="0.5%", teeth=(17, 90), planets=3, compound=[0])
+    assert len(found) == 5
+    for d in found:
+        t = d.teeth
+        assert t["z0_4"] == t["z1"] + 2 * t["z4"] and t["z0_5"] == t["z2"] + 2 * t["z5"]
+        assert (t["z1"] + t["z0_4"]) % 3 == 0 and (t["z2"] + t["z0_5"]) % 3 == 0
+        assert d.ratio == _oracle_ratio(two, 0, 1, 3, t) == Fraction(t["z1"] + t["z0_4"], t["z1"]) * Fraction(
+            t["z2"] + t["z0_5"], t["z2"])
+        assert d.error <= Fraction(1, 200)
+
+
+def test_design_refusals():
+    simple = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    with pytest.raises(InvalidOption, match="no tooth numbers"):
+        design(simple, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60))
+    with pytest.raises(InvalidOption, match="undercut"):
+        design(simple, 0, 1, 2, "4", teeth=(5, 12))
+    with pytest.raises(InvalidOption, match="--ratio must be"):
+        design(simple, 0, 1, 2, "four")
+
+
+# ----------------------------------------------------------------------------------- CLI
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "mechsynth", "gears", *args], capture_output=True, text=True)
+
+
+def test_cli_count_and_listing(tmp_path):
+    out = _cli("--dof", "1", "--links", "6", "--count")
+    assert out.returncode == 0 and json.loads(out.stdout)["count"] == 81
+    out = _cli("--dof", "2", "--links", "5", "--count")
+    assert out.returncode == 1 and json.loads(out.stdout)["count"] == 0
+    out = _cli("--links", "5", "--format", "jsonl", "--out", str(tmp_path / "five.png"))
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    assert out.returncode == 0 and len(rows) == 13 and (tmp_path / "five.png").stat().st_size > 10_000
+    assert GearTrain.from_dict(rows[0]).certificate == rows[0]["certificate"]
+
+
+def test_cli_mechanisms_and_ratio(tmp_path):
+    out = _cli("--train", "0-1-2 2-3 0~3i 1~3", "--input-output", "--format", "jsonl")
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    assert out.returncode == 0 and {"frame": 0, "input_link": 1, "output_link": 2} in [
+        {k: r[k] for k in ("frame", "input_link", "output_link")} for r in rows]
+    out = _cli("--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.2",
+               "--planets", "3", "--teeth", "17..100", "--format", "json", "--out", str(tmp_path / "d.svg"))
+    rows = json.loads(out.stdout)
+    assert out.returncode == 0 and rows[0]["ratio"] == "21/5" and (tmp_path / "d.svg").exists()
+
+
+@pytest.mark.parametrize("args,words", [
+    (["--links", "1"], "at least 2 links"),
+    (["--links", "2"], "at least 3 links"),
+    (["--links", "-3"], "at least 2 links"),
+    (["--dof", "-1", "--links", "5"], "F ≥ 1"),
+    (["--links", "5", "--graphs", "orbits"], "invalid choice"),
+    (["--links", "5", "--count", "--ratio", "3"], "contradict"),
+    (["--links", "5", "--tolerance", "1%"], "goes with --ratio"),
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--links", "4"], "contradicts --train"),
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "1.01",
+      "--tolerance", "0.1%"], "no tooth numbers"),
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4",
+      "--teeth", "5..12"], "undercut"),
+    (["--links", "5", "--graphs", "rotation", "--ratio", "3"], "drop --graphs rotation"),
+    (["--links", "5", "--frame", "0"], "goes with --train"),
+    (["--links", "5", "--out", "x.txt"], "drawing is written as"),
+    ([], "give --links"),
+])
+def test_cli_bad_input_is_one_sentence_exit_2(args, words):
+    out = _cli(*args)
+    assert out.returncode == 2, out.stdout + out.stderr
+    assert words in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+
+
+def _default_sigint():
+    """In the child: SIGINT delivered and handled by Python, whatever the test process inherited."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_SETMASK, [])
+
+
+def test_ctrl_c_stops_a_count_on_the_pool():
+    """Ctrl-C to the whole process group during a 9-link count on two workers (a minute of work):
+    exit 130, one line, no count printed, no worker left."""
+    import os
+    import signal
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "9", "--count", "--workers", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=_default_sigint)
+    time.sleep(3)
+    os.killpg(proc.pid, signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
+    with pytest.raises(ProcessLookupError):  # the group is gone: no worker outlived the parent
+        os.killpg(proc.pid, 0)
