@@ -41,8 +41,8 @@ def _add_selection(p) -> None:
     p.add_argument("--prismatic", metavar="A..B",
                    help="chains with A…B prismatic pairs on their simple joints, up to symmetry; wedge loops of "
                    "prismatic pairs add to W, so --dof stays the mobility of every chain listed")
-    p.add_argument("--chain", help="with --prismatic: the variants of one given chain (joint list '0-1 1-2 …' or "
-                   "JSON) instead of a query")
+    p.add_argument("--chain", help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
+                   "a command printed): its row, its mechanisms, or with --prismatic its variants")
     p.add_argument("--idle-joints", action="store_true",
                    help="with --prismatic: keep chains with joints that never move, and list them")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
@@ -120,27 +120,32 @@ def _size_note(query, args) -> None:
 
 
 def _run_one_chain(args) -> int:
-    """``--chain C --prismatic A..B``: the variants of one chain (Fig. 6: a drive's cylinders)."""
-    from synth import Chain
+    """``--chain C``: that one chain (any joint list or JSON row a command printed), normalised —
+    its row, or its mechanisms; with ``--prismatic A..B`` the variants of that chain (Fig. 6: a
+    drive's cylinders)."""
+    from synth import Chain, mechanisms_of
     from synth.structure.query import parse_range
     from synth.synthesis.variants import prismatic_variants, variants_of
 
-    if args.prismatic is None:
-        raise _invalid("--chain goes with --prismatic (it lists the variants of that chain)")
     given = [f"--{k.replace('_', '-')}" for k in ("dof", "links", "code", "v", "rigid_subchains", "planar_only", "n1")
              if getattr(args, k) not in (None, False)] + (["--require"] if args.require else []) + (
              ["--cranks"] if args.cranks else [])
     if given:
         raise _invalid(f"{given[0]} selects chains of a query and contradicts --chain")
     chain = Chain.parse(args.chain)
-    lo, hi = parse_range(args.prismatic, "--prismatic")
-    prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
-    items = variants_of([chain], (lo, hi), idle=args.idle_joints)
+    if args.prismatic is None:
+        if args.idle_joints or getattr(args, "cylinders", None):
+            raise _invalid("--idle-joints and --cylinders go with --prismatic")
+        items = [chain]
+    else:
+        lo, hi = parse_range(args.prismatic, "--prismatic")
+        prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
+        items = variants_of([chain], (lo, hi), idle=args.idle_joints)
     if args.what == "mechanisms":
-        from synth.synthesis.type_synthesis import mechanisms_of
-
-        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link, cylinders=args.cylinders))
-    return _write(items, args)
+        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
+                                                         cylinders=getattr(args, "cylinders", None)))
+    return write_items(items, args.what, fmt=args.format, count=args.count,
+                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints)
 
 
 def _run(args) -> int:

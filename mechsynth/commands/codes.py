@@ -204,6 +204,8 @@ def _run_analyze(args) -> int:
                 continue
             elif isinstance(value, list):
                 value = json.dumps(value, ensure_ascii=False)
+            elif key == "certificate":  # for people: its end, as chain tables show it
+                value = "…" + value[-16:]
             print(f"{key.ljust(width)}  {value}")
         _print_repairs(repairs)
     return 0

@@ -41,6 +41,7 @@ class ChainAnalysis:
     """
 
     code: str
+    certificate: str
     h: int
     links: int
     joints: int
@@ -151,7 +152,8 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
     has_mesh = chain.kinds is not None and "mesh" in chain.kinds
     return ChainAnalysis(
-        code=str(chain.code) + chain.kind_suffix, h=chain.h, links=chain.links, joints=len(chain.joints), dof=W,
+        code=str(chain.code) + chain.kind_suffix, certificate=chain.certificate, h=chain.h, links=chain.links,
+        joints=len(chain.joints), dof=W,
         dof_count=chain.dof, redundant=W - chain.dof, loops=chain.loops, loops_2=k2, loops_3=chain.loops - k2,
         complexity=chain.loops - 1, v=chain.v, prismatic=kind_count(chain, "prismatic"),
         meshes=kind_count(chain, "mesh"), lever_analogue=str(lever_analogue(chain).code) if has_mesh else None,

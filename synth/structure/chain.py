@@ -225,14 +225,19 @@ class Chain:
         """
         cert = self.__dict__.get("_certificate")
         if cert is None:
-            sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
-            if self.kinds is not None:
-                sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
-                if "mesh" in self.kinds:
-                    sizes += "g" + f"{self.kinds.count('mesh'):02x}"
-            cert = sizes + pynauty.certificate(self._nauty_graph()).hex()
+            cert = self._sizes() + pynauty.certificate(self._nauty_graph()).hex()
             object.__setattr__(self, "_certificate", cert)
         return cert
+
+    def _sizes(self) -> str:
+        """The certificate's prefix: motion space (where h ≠ 3), links, joints, and the number of
+        prismatic pairs and meshes (where there are any)."""
+        sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
+        if self.kinds is not None:
+            sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
+            if "mesh" in self.kinds:
+                sizes += "g" + f"{self.kinds.count('mesh'):02x}"
+        return sizes
 
     def automorphisms(self, marked: Sequence[int] = ()) -> tuple[list[list[int]], float, list[int]]:
         """Generators (on links), group order and link orbits, fixing the ``marked`` links.
@@ -514,7 +519,7 @@ class Mechanism:
     def certificate(self) -> str:
         """Canonical certificate of the chain with the frame (and input) as their own colours."""
         g = self.chain._nauty_graph(self.marked)
-        return f"m{len(self.marked)}" + self.chain.certificate[:4] + pynauty.certificate(g).hex()
+        return f"m{len(self.marked)}" + self.chain._sizes() + pynauty.certificate(g).hex()
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows: the fixed link hatched, the input link marked."""
