@@ -102,7 +102,7 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
     that another seed does not redo it (its CPU time is kept with it).
     """
     from synth import ChainQuery
-    from synth.synthesis.type_synthesis import _count_unit, plan_jobs
+    from synth.synthesis.type_synthesis import count_unit, plan_jobs
 
     rng = random.Random(seed)
     start = time.perf_counter()
@@ -118,7 +118,7 @@ def project(dof: int, links: int, *, codes: int, units: int, seed: int, v="0", p
         picked = rng.sample(range(len(plan)), min(units, len(plan)))
         sample = []
         for k in picked:
-            counts, t_u = _cpu(_count_unit, plan[k])  # what `chains --count` runs
+            counts, t_u = _cpu(count_unit, plan[k])  # what `chains --count` runs
             chains = sum(counts.values())
             sample.append((hints[k], t_u, chains))
         per_code.append((a_c, len(plan), sum(hints), sample))

@@ -99,10 +99,10 @@ def measure(series: str, dof: int, links: int, v: str, workers: int = 2, reps: i
         row[1] += found
         row[2] += unit_stats.get("candidates", 0)
     inline = time.perf_counter() - t0
-    from synth.synthesis.type_synthesis import _count_unit  # what `chains --count` runs on each unit
+    from synth.synthesis.type_synthesis import count_unit  # what `chains --count` runs on each unit
 
     t1 = time.perf_counter()
-    counted = sum(_count_unit(u)[1] for u in units)
+    counted = sum(count_unit(u)[1] for u in units)
     count_inline = stage_a + time.perf_counter() - t1
     cmd = [sys.executable, "-m", "mechsynth", "chains", "--dof", str(dof), "--links", str(links), "--v", v,
            "--count", "--workers", str(workers)]

@@ -24,7 +24,7 @@ import sys
 # cores from the other workers (a site drawn on 2 workers: 40 s with them, 16 s without).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from synth.errors import InvalidOption, SynthesisError  # noqa: E402 - after the thread setting
+from synth import InvalidOption, SynthesisError  # noqa: E402 - after the thread setting
 
 __all__ = ["main"]
 

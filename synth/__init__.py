@@ -1,7 +1,25 @@
-"""synth: structural synthesis of planar mechanisms after Pozhbelko's counting theory.
+"""synth: structural synthesis of mechanisms after Pozhbelko's universal theory of structure.
 
-The names below are loaded on first use, so ``import synth`` (and a balancing scene run
-through ``mechsynth``) does not load OR-Tools, nauty or networkx.
+Chains of links and joints — revolute, prismatic and gear-mesh joints, multiple joints, loops in
+any motion space h = 2 … 6, open chains — are counted (number synthesis: standard codes from the
+counting equations, CP-SAT), built (type synthesis: every non-isomorphic chain that passes the
+exact sub-chain test, nauty certificates), turned into mechanisms, analysed and repaired, stored in
+SQLite atlases and drawn.  The package is laid out by pipeline stage:
+
+=============  ==========================================================================
+``structure``  the core types (:class:`Code`, :class:`Chain`, :class:`Mechanism`,
+               :class:`ChainQuery`), joint kinds and the exact sub-chain test
+``synthesis``  number synthesis and type synthesis (stages A and B), prismatic assignments
+``execution``  running units inline, on a pool or on Dask; checkpoints; size estimates
+``atlas``      grid files, SQLite atlases, the ``--where`` language, the static web site
+``analysis``   analysis of codes and chains, directed repair
+``gears``      gear trains: the planetary-train atlas, speed ratios, tooth design
+``draw``       drawings of chains and mechanisms
+=============  ==========================================================================
+
+The names below are the public interface (the command line uses nothing else); they are loaded
+on first use, so ``import synth`` (and a balancing scene run through ``mechsynth``) loads neither
+OR-Tools, nauty nor networkx.
 
 Example
 -------
@@ -10,6 +28,8 @@ Example
 ['42/0', '51/1', '60/2']
 >>> synth.count_chains(1, 8, workers=1)["count"]
 16
+>>> synth.analyze_chain("0=1 1=2 2=0 2-3 3-4 4-0").dof   # Task 3: a wedge loop and a lever loop
+1
 """
 
 from importlib import import_module
@@ -17,19 +37,40 @@ from importlib import import_module
 from .errors import *  # noqa: F401,F403
 from .errors import __all__ as _errors_all
 
+#: public name -> module (relative to synth) that defines it
 _WHERE = {
+    # core types, joint kinds, the exact sub-chain test
     "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
+    "JOINT_KINDS": ".structure.chain",
+    "ChainQuery": ".structure.query", "parse_range": ".structure.query", "parse_requirements": ".structure.query",
+    "check_motion_space": ".structure._params",
+    "structural_mobility": ".structure.kinds", "generic_mobility": ".structure.kinds",
+    "redundant_constraints": ".structure.kinds", "idle_joints": ".structure.kinds", "wedge_loops": ".structure.kinds",
+    "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds",
+    "SubchainReport": ".structure.subchains", "check_subchains": ".structure.subchains",
+    "subchain_mobility": ".structure.subchains",
+    # number and type synthesis, mechanisms
+    "number_synthesis": ".synthesis.number_synthesis", "iter_codes": ".synthesis.number_synthesis",
+    "MAX_CODES": ".synthesis.number_synthesis",
+    "Conventions": ".synthesis.type_synthesis", "Unit": ".synthesis.type_synthesis", "Counts": ".synthesis.type_synthesis",
+    "type_synthesis": ".synthesis.type_synthesis", "count_chains": ".synthesis.type_synthesis",
+    "count_mechanisms": ".synthesis.type_synthesis", "mechanisms": ".synthesis.type_synthesis",
+    "mechanisms_of": ".synthesis.type_synthesis", "plan_codes": ".synthesis.type_synthesis",
+    "plan_units": ".synthesis.type_synthesis", "plan_many": ".synthesis.type_synthesis",
+    "run_unit": ".synthesis.type_synthesis", "count_unit": ".synthesis.type_synthesis",
+    "count_by_code": ".synthesis.type_synthesis",
+    "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
+    # how large a query is
+    "Estimate": ".execution.estimate", "estimate": ".execution.estimate", "size_check": ".execution.estimate",
+    "worth_sizing": ".execution.estimate",
+    "describe_seconds": ".execution.estimate", "magnitude": ".execution.estimate",
+    # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
-    "SubchainReport": ".structure.subchains", "check_subchains": ".structure.subchains", "subchain_mobility": ".structure.subchains",
-    "number_synthesis": ".synthesis.number_synthesis",
-    "Conventions": ".synthesis.type_synthesis", "Unit": ".synthesis.type_synthesis", "type_synthesis": ".synthesis.type_synthesis",
-    "count_chains": ".synthesis.type_synthesis", "count_mechanisms": ".synthesis.type_synthesis", "mechanisms": ".synthesis.type_synthesis", "mechanisms_of": ".synthesis.type_synthesis",
-    "ChainQuery": ".structure.query", "variants_of": ".synthesis.variants",
-    "prismatic_variants": ".synthesis.variants", "structural_mobility": ".structure.kinds",
-    "generic_mobility": ".structure.kinds", "idle_joints": ".structure.kinds", "wedge_loops": ".structure.kinds",
-    "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds", "planetary_table": ".gears.planetary",
+    "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",
     "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
-    "plan_codes": ".synthesis.type_synthesis", "plan_units": ".synthesis.type_synthesis", "plan_many": ".synthesis.type_synthesis", "run_unit": ".synthesis.type_synthesis",
+    # the source's planetary layout through its lever analogue
+    "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
+    "planetary_table": ".gears.planetary",
 }
 
 __all__ = [*_WHERE, *_errors_all]

@@ -26,11 +26,11 @@ from synth.errors import InvalidOption, MalformedChain
 from synth.gears import GearTrain
 from synth.gears.ratio_design import design
 from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
-from synth.gears.mechanisms import mechanisms, speed_ratio
+from synth.gears.ratios import mechanisms, speed_ratio
 from tests.oracles import gear_ratios, gear_trains_fast
 from tests.oracles import gear_trains as brute
 
-MODULES = ["synth.gears", "synth.gears.train", "synth.gears.enumeration", "synth.gears.mechanisms",
+MODULES = ["synth.gears", "synth.gears.train", "synth.gears.enumeration", "synth.gears.ratios",
            "synth.gears.ratio_design", "synth.gears.draw", "mechsynth.commands.gears",
            "tests.oracles.gear_trains", "tests.oracles.gear_trains_fast", "tests.oracles.gear_ratios"]
 

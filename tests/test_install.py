@@ -36,6 +36,7 @@ SMOKE = [
     ["draw", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--out", "{tmp}/watt.svg"],
     ["scene", str(MODELS / "locomotive_drive.toml")],
     ["planetary", "--satellites", "2..3"],
+    ["gears", "--dof", "1", "--links", "5", "--count"],
     ["balance", "prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5"],
     ["balance", "arm", str(MODELS / "arm_base_drives.toml")],
 ]

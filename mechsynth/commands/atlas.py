@@ -93,17 +93,21 @@ def add_commands(sub) -> None:
 
 # --------------------------------------------------------------------- grid
 def _run_grid(args) -> int:
-    from synth.atlas.store import run_grid
-    from synth.atlas.grid import load_grid
+    import os
 
-    from synth.errors import InvalidOption
+    from synth import InvalidOption
+    from synth.atlas import load_grid, run_grid, size_grid
 
     if args.timeout is not None and args.scheduler is None:
         raise InvalidOption("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
     if args.workers is not None and args.scheduler is not None:
         raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers run the units")
     grid = load_grid(args.grid)
-    _size_grid(grid, args)
+    if not args.force:
+        processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
+        note = size_grid(grid, processes=processes, db=args.db, scheduler=args.scheduler is not None)
+        if note:
+            print(f"mechsynth: {note}", file=sys.stderr)
     result = run_grid(grid, args.db, workers=args.workers, scheduler=args.scheduler,
                       progress=True, connect_timeout=5.0 if args.timeout is None else args.timeout)
     if args.format == "json":
@@ -116,73 +120,14 @@ def _run_grid(args) -> int:
     return 0
 
 
-_GRID_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (on the workers)
-_GRID_NOTE_SECONDS = 600.0  # said on stderr before the run starts
-_BYTES_PER_MECHANISM = 210  # atlas bytes per stored mechanism, its chain's row included (W = 1, n ≤ 12: 204 and 210)
-
-
-def _size_grid(grid, args) -> None:
-    """Estimate the large cells of a grid (as ``chains`` does a query: from exact runs at smaller sizes,
-    timing chains and their mechanisms) and refuse a grid of more than a day unless ``--force``."""
-    import math
-    import os
-    import shutil
-
-    from synth.errors import QueryTooLarge
-    from synth.execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
-
-    large = [c for c in grid.cells if c.loops >= (SIZED_LOOPS if c.v == (0, 0) else SIZED_LOOPS_MULTIPLE)]
-    if not large or args.force:
-        return
-    processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
-    log_seconds, log_chains, worst = -math.inf, -math.inf, None
-    for cell in sorted(large, key=lambda c: -c.links):
-        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
-        if found is None:
-            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
-                                "to run it anyway")
-        log_seconds = _log_sum(log_seconds, found.log10_seconds)
-        log_chains = _log_sum(log_chains, found.log10_chains)
-        worst = worst or (cell, found)
-    wall = log_seconds - math.log10(processes)
-    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
-    where = "on the scheduler's workers (one core shown)" if args.scheduler else f"on {processes} workers"
-    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
-    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
-            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
-            "in the atlas (extrapolated from exact runs at smaller sizes)")
-    if wall > math.log10(_GRID_LIMIT_SECONDS):
-        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
-                            "(it can be stopped and resumed)")
-    folder = os.path.dirname(os.path.abspath(args.db))
-    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
-    if log_bytes > math.log10(max(free, 1)):
-        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
-                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
-    if wall > math.log10(_GRID_NOTE_SECONDS):
-        print(f"mechsynth: a long grid: {size}", file=sys.stderr)
-
-
-def _log_sum(a: float, b: float) -> float:
-    """log10(10^a + 10^b) without overflow."""
-    import math
-
-    top = max(a, b)
-    return top if math.isinf(top) else top + math.log10(10 ** (a - top) + 10 ** (b - top))
-
-
-def _power(log10: float) -> float:
-    return 10.0 ** log10 if log10 < 308 else float("inf")
-
-
 # -------------------------------------------------------------------- atlas
 _CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "joints", "certificate"]
 _MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
 
 
 def _run_atlas(args) -> int:
-    from synth.atlas.store import export, summary
-    from synth.errors import InvalidOption
+    from synth.atlas import export, summary
+    from synth import InvalidOption
 
     args.where = _conditions(args.where)
     if args.html is not None:
@@ -217,8 +162,8 @@ def _run_atlas(args) -> int:
 
 def _write_site(args) -> int:
     """``--html DIR``: the whole atlas as a static web site."""
-    from synth.atlas.site import write_site
-    from synth.errors import InvalidOption
+    from synth.atlas import write_site
+    from synth import InvalidOption
 
     other = [name for name, given in (("--export", args.export), ("--where", args.where), ("--count", args.count),
                                       ("--prismatic", args.prismatic), ("--format", args.format)) if given]
@@ -229,7 +174,7 @@ def _write_site(args) -> int:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
     import time
 
-    from synth.atlas.site import EmptyAtlas
+    from synth.atlas import EmptyAtlas
 
     start = time.perf_counter()
     try:
@@ -246,11 +191,11 @@ def _write_site(args) -> int:
 
 def _export_variants(args, what: str) -> int:
     """``--prismatic``: the R/P variants of the selected chains (mechanisms: of each variant)."""
-    from synth.atlas.store import export
-    from synth.structure.chain import Chain
-    from synth.structure.query import parse_range
-    from synth.synthesis.type_synthesis import mechanisms_of
-    from synth.synthesis.variants import variants_of
+    from synth.atlas import export
+    from synth import Chain
+    from synth import parse_range
+    from synth import mechanisms_of
+    from synth import variants_of
 
     from .chains import write_items
 
@@ -290,9 +235,9 @@ def _variants(args, chains: list) -> list:
     """The chains themselves, or with ``--prismatic A..B`` every R/P variant of each."""
     if args.prismatic is None:
         return chains
-    from synth.errors import InvalidOption
-    from synth.structure.query import parse_range
-    from synth.synthesis.variants import variants_of
+    from synth import InvalidOption
+    from synth import parse_range
+    from synth import variants_of
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
     chains = [c for c in chains if c.kinds is None]  # an atlas may hold variants already
@@ -315,8 +260,8 @@ def _at_most(chains, args):
 
 def _run_draw(args) -> int:
     from synth import draw
-    from synth.structure.chain import Chain, Mechanism
-    from synth.errors import InvalidOption
+    from synth import Chain, Mechanism
+    from synth import InvalidOption
 
     args.where = _conditions(args.where)
     if args.dpi is not None and not args.out.lower().endswith(".png"):
@@ -332,7 +277,7 @@ def _run_draw(args) -> int:
         raise InvalidOption("--dof goes with --code (the W of its chains) or --repairs (the intended W); a chain "
                             "and an atlas's chains carry their own")
     if args.h is not None:
-        from synth.structure._params import check_motion_space
+        from synth import check_motion_space
 
         if args.db:
             raise InvalidOption("--h goes with --code or --chain (an atlas's chains carry their own h)")
@@ -349,7 +294,7 @@ def _run_draw(args) -> int:
     if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
         raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
     if args.chain and args.repairs:
-        from synth.analysis.repair import chain_repairs
+        from synth import chain_repairs
 
         chain = Chain.parse(args.chain)
         repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
@@ -380,7 +325,7 @@ def _run_draw(args) -> int:
         items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
         title = args.title or f"{code} (W = {dof}{'' if h == 3 else f', h = {h}'}): {len(chains)} chains"
     else:
-        from synth.atlas.store import export
+        from synth.atlas import export
 
         chains = [Chain.from_dict(row) for row in _at_most(export(args.db, "chains", where=args.where), args)]
         if not chains:

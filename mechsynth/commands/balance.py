@@ -133,7 +133,7 @@ def add_commands(sub) -> None:
 def _run(args) -> int:
     from balance.budget import TooMuchWork
     from balance.errors import BalanceError
-    from synth.errors import InvalidOption
+    from synth import InvalidOption
 
     try:
         problem = args.problem(args)

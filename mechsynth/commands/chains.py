@@ -108,7 +108,7 @@ def _size_note(query, args) -> None:
     """Refuse a query too large to run unasked, and say how long a long one takes (stderr)."""
     import os
 
-    from synth.execution.estimate import size_check
+    from synth import size_check
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
@@ -124,8 +124,8 @@ def _run_one_chain(args) -> int:
     its row, or its mechanisms; with ``--prismatic A..B`` the variants of that chain (Fig. 6: a
     drive's cylinders)."""
     from synth import Chain, mechanisms_of
-    from synth.structure.query import parse_range
-    from synth.synthesis.variants import prismatic_variants, variants_of
+    from synth import parse_range
+    from synth import prismatic_variants, variants_of
 
     given = [f"--{k.replace('_', '-')}" for k in ("dof", "links", "code", "v", "rigid_subchains", "planar_only", "n1")
              if getattr(args, k) not in (None, False)] + (["--require"] if args.require else []) + (
@@ -170,7 +170,7 @@ def _run(args) -> int:
             result = count_chains(query, **extra)
         else:
             result = count_mechanisms(query, input_link=args.input_link, **extra)
-        if write_count(result, args.format or "json") == 0:
+        if write_count(result.to_dict(), args.format or "json") == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0
     if args.what == "chains":
@@ -191,9 +191,9 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
     with ``idle`` the joints that never move.  Returns the exit status (1 when none)."""
     if count:
-        from synth.synthesis.type_synthesis import _by_code
+        from synth import count_by_code
 
-        by_code = _by_code(items)
+        by_code = count_by_code(items)
         if write_count({"count": sum(by_code.values()), "by_code": by_code}, fmt or "json") == 0:
             return nothing_found(f"{what} satisfy these parameters and conventions")
         return 0

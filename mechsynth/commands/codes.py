@@ -18,8 +18,8 @@ import json
 import sys
 from collections import Counter
 
-from synth.errors import InvalidOption
-from synth.synthesis.number_synthesis import MAX_CODES
+from synth import InvalidOption
+from synth import MAX_CODES
 
 from .._argtypes import positive, whole
 from .._output import FORMATS, nothing_found, write_rows
@@ -71,8 +71,8 @@ def _add_codes(sub):
 
 
 def _run_codes(args) -> int:
-    from synth.errors import QueryTooLarge
-    from synth.synthesis.number_synthesis import iter_codes
+    from synth import QueryTooLarge
+    from synth import iter_codes
 
     args.h = _motion_space(args)
 
@@ -151,24 +151,24 @@ def _motion_space(args) -> int:
 
 
 def _run_analyze(args) -> int:
-    from synth.analysis.codes import analyze
+    from synth import analyze
 
     args.h = _motion_space(args)
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     if _looks_like_chain(subject):
-        from synth.analysis.chains import analyze_chain
+        from synth import analyze_chain
 
         _refuse_for_chain(args)
-        from synth.structure._params import check_motion_space
+        from synth import check_motion_space
 
         h = check_motion_space(args.h, lowest=2)
         if args.repairs and h != 3:
             raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
         result = analyze_chain(subject, dof=args.dof, h=h).to_dict()
         if args.repairs:
-            from synth.structure.chain import Chain
-            from synth.analysis.repair import chain_repairs
+            from synth import Chain
+            from synth import chain_repairs
 
             result["repairs"] = chain_repairs(Chain.parse(subject), dof=args.dof, limit=args.repairs)
     elif "=" in subject and "/" not in subject:
@@ -182,8 +182,8 @@ def _run_analyze(args) -> int:
             raise InvalidOption("--v goes with explicit counts: a code carries its own v")
         result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
         if args.repairs:
-            from synth.structure.code import Code
-            from synth.analysis.repair import code_repairs
+            from synth import Code
+            from synth import code_repairs
 
             if args.h != 3 or args.f or classes:
                 raise InvalidOption("--repairs rebuilds planar codes: drop --h, --f and --loop-classes")

@@ -46,7 +46,7 @@ def add_commands(sub) -> None:
 
 
 def _check(args) -> None:
-    from synth.errors import InvalidOption
+    from synth import InvalidOption
 
     ratio_only = [name for name in ("tolerance", "teeth", "min_teeth", "planets") if getattr(args, name) is not None]
     if ratio_only and args.ratio is None:
@@ -79,7 +79,7 @@ def _check(args) -> None:
 
 
 def _compound(text: str) -> tuple[int, ...]:
-    from synth.errors import InvalidOption
+    from synth import InvalidOption
 
     try:
         return tuple(int(x) for x in text.replace(",", " ").split())
@@ -95,8 +95,8 @@ def _train_row(train, fmt: str) -> dict:
 
 
 def _run(args) -> int:
-    from synth.errors import InvalidOption
-    from synth.gears.enumeration import check_query, count_trains, trains
+    from synth import InvalidOption
+    from synth.gears import check_query, count_trains, trains
 
     _check(args)
     dof = 1 if args.dof is None else args.dof
@@ -135,7 +135,7 @@ def _run(args) -> int:
 
 
 def _draw(items, out: str, compound, teeth=None) -> None:
-    from synth.gears.draw import draw_sheet, draw_train
+    from synth.gears import draw_sheet, draw_train
 
     if len(items) == 1:
         draw_train(items[0], out, teeth=teeth, compound=compound)
@@ -144,7 +144,7 @@ def _draw(items, out: str, compound, teeth=None) -> None:
 
 
 def _mechanisms_of(args, items, compound):
-    from synth.gears.mechanisms import GearMechanism, mechanisms, speed_ratio
+    from synth.gears import GearMechanism, mechanisms, speed_ratio
 
     for train in items:
         if args.input is not None:
@@ -178,9 +178,9 @@ def _run_mechanisms(args, items, compound) -> int:
 
 
 def _run_ratio(args, items, compound) -> int:
-    from synth.structure.query import parse_range
-    from synth.errors import InvalidOption
-    from synth.gears.ratio_design import MIN_TEETH, NoDesign, design
+    from synth import parse_range
+    from synth import InvalidOption
+    from synth.gears import MIN_TEETH, NoDesign, design
 
     items = list(items)
     if args.train is None and args.links > _RATIO_LINKS:

@@ -31,9 +31,9 @@ def add_commands(sub) -> None:
 
 
 def _run(args) -> int:
-    from synth.synthesis.number_synthesis import parse_range
-    from synth.errors import InvalidOption
-    from synth.gears.planetary import planetary_rows
+    from synth import parse_range
+    from synth import InvalidOption
+    from synth import planetary_rows
 
     if args.satellites.lstrip().startswith("-"):
         raise InvalidOption(f"--satellites must be a whole number ≥ 1 or a range A..B, not {args.satellites!r}")

@@ -43,7 +43,7 @@ def add_commands(sub) -> None:
 
 def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None) -> int:
     """Run the command parsed into ``args``; return the exit status."""
-    from synth.errors import InvalidOption
+    from synth import InvalidOption
     from ..scene import run_directory, run_scene
 
     out = out or sys.stdout

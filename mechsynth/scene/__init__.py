@@ -38,11 +38,12 @@ Example
 (True, ['met'])
 """
 
-from . import structure  # noqa: F401  (registers the structural computations first: they run first)
-from . import balancing  # noqa: F401, I001  (then the balance computations and plot)
-from . import gears  # noqa: F401, I001  (joint kinds and gear trains)
-from . import gear_trains  # noqa: F401, I001  (gear trains: one train, the atlas)
-from .registry import KINDS, TABLES, ComputeKind, Expectation, Run, SceneTable
+from . import balancing, gear_trains, gears, structure
+from .registry import KINDS, TABLES, ComputeKind, Expectation, Run, SceneTable, register
+
+# The run order of a scene's computations: structure first (others may read its results), then
+# balancing, joint kinds and the planetary layout, gear trains.
+register(structure.FAMILY, balancing.FAMILY, gears.FAMILY, gear_trains.FAMILY)
 from .results import Check, DirectoryResult, Scene, SceneError, SceneResult
 from .runner import is_scene, iter_scene_paths, load_scene, run_directory, run_scene
 

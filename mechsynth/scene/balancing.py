@@ -24,7 +24,7 @@ from pathlib import Path
 from synth.schema import FileName, Table
 
 from . import compare
-from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, Family
 from .results import Scene, SceneError
 from .types import Flag, Int, Number, NumberRows, Numbers, NumberTable, Texts
 
@@ -36,6 +36,9 @@ _PLOTTERS: dict[str, str] = {}
 
 def _read_balance_table(raw, path: str, compute: frozenset):
     return dict(raw)  # validated by balance.problems when the scene runs
+
+
+FAMILY = Family("balancing")  # its tables and computations, registered by mechsynth.scene
 
 
 def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
@@ -60,10 +63,10 @@ def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
         out = result.to_dict()
         return after(out) if after else out
 
-    add_table(SceneTable(table, _read_balance_table, hint))
+    FAMILY.table(SceneTable(table, _read_balance_table, hint))
     if plot is not None:
         _PLOTTERS[name] = plot
-    return add_kind(ComputeKind(name, summary, table, run, expect=expect, report=report))
+    return FAMILY.kind(ComputeKind(name, summary, table, run, expect=expect, report=report))
 
 
 # --------------------------------------------------------------------------- the kinds
@@ -202,9 +205,9 @@ def _plot(run: Run) -> dict:
     return {"files": files, "written": True}
 
 
-add_table(SceneTable("plot", lambda raw, path, compute: Plot.read(raw, source=path, where="[plot]", error=SceneError),
+FAMILY.table(SceneTable("plot", lambda raw, path, compute: Plot.read(raw, source=path, where="[plot]", error=SceneError),
                      "the figure's file name"))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "plot", "a figure of the balance result (balance.plots): device moment, laws or residuals, written to --out",
     None, _plot, expect={"plotted": Expectation(Flag, ("written",))}, check=_check_plot,
     report=lambda r: [f"not plotted: {r['skipped']}"] if r.get("skipped") else [f"wrote {', '.join(r['files'])}"],

@@ -14,7 +14,7 @@ from pydantic import Field, StrictInt, StrictStr
 
 from synth.schema import Table
 
-from .registry import ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
 from .types import Flag, Int, Number, Numbers, Positive, Text, Texts, Whole, WholeTable
 
@@ -47,14 +47,17 @@ class GearAtlasTable(Table):
     contains: StrictStr | None = None  # a train (text form) that must be in the atlas
 
 
-add_table(SceneTable("gear_train", lambda raw, path, compute: GearTrainTable.read(
+FAMILY = Family("gear_trains")  # its tables and computations, registered by mechsynth.scene
+
+
+FAMILY.table(SceneTable("gear_train", lambda raw, path, compute: GearTrainTable.read(
     raw, source=path, where="[gear_train]", error=SceneError), "the train (and its mechanisms, teeth, ratio)"))
-add_table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.read(
+FAMILY.table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.read(
     raw, source=path, where="[gear_atlas]", error=SceneError), "the DOF and the number of links"))
 
 
 def _gear_train(run: Run) -> dict:
-    from synth.structure.query import parse_range
+    from synth import parse_range
     from synth.gears import GearTrain, design, speed_ratio
 
     t = run.scene.tables["gear_train"]
@@ -83,7 +86,7 @@ def _gear_train(run: Run) -> dict:
     if t.drawing:
         picture = run.picture(f"{run.scene.name}.svg")
         if picture is not None:
-            from synth.gears.draw import draw_train
+            from synth.gears import draw_train
 
             best = out.get("designs", [{}])[0].get("teeth") or t.teeth
             draw_train(train, picture, teeth=best, compound=t.compound)
@@ -104,7 +107,7 @@ def _gear_atlas(run: Run) -> dict:
     return out
 
 
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "gear train", "one gear train: lever analogue, verdict, speed ratios, tooth design", "gear_train", _gear_train,
     expect={"train_dof": Expectation(Int, ("dof",)), "lever_code": Expectation(Text),
             "lever_dof": Expectation(Int), "rigid_free": Expectation(Flag), "fractionated": Expectation(Flag),
@@ -112,7 +115,7 @@ add_kind(ComputeKind(
             "best_ratio": Expectation(Number), "best_error": Expectation(Number, below=True)},
     report=lambda r: [f"{r['train']}: F = {r['dof']}, lever analogue {r['lever_code']}, "
                       f"rigid-free {r['rigid_free']}; ratios {', '.join(r['ratio_formulas']) or '-'}"]))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "gear atlas", "every planetary gear train of F DOF and n links: displacement and rotation graphs", "gear_atlas",
     _gear_atlas, expect={"displacement_graphs": Expectation(Whole, ("displacement",)),
                          "rotation_graphs": Expectation(Whole, ("rotation",)), "contains": Expectation(Flag)},

@@ -11,7 +11,7 @@ from pydantic import StrictStr
 
 from synth.schema import Table
 
-from .registry import ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
 from .types import Flag, Int, Positive, RangeText, Text, Texts, Whole, WholeTable
 
@@ -33,15 +33,18 @@ class Planetary(Table):
     sun: Text = "floating"
 
 
-add_table(SceneTable("prismatic", lambda raw, path, compute: Prismatic.read(
+FAMILY = Family("gears")  # its tables and computations, registered by mechsynth.scene
+
+
+FAMILY.table(SceneTable("prismatic", lambda raw, path, compute: Prismatic.read(
     raw, source=path, where="[prismatic]", error=SceneError), "the chain and the number of P pairs"))
-add_table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
+FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
     raw, source=path, where="[planetary]", error=SceneError), "the satellites and the sun"))
 
 
 def _prismatic(run: Run) -> dict:
     from synth import Chain, variants_of
-    from synth.structure.query import parse_range
+    from synth import parse_range
 
     t = run.scene.tables["prismatic"]
     chain = Chain.parse(t.chain)
@@ -57,7 +60,7 @@ def _prismatic(run: Run) -> dict:
 
 
 def _planetary(run: Run) -> dict:
-    from synth.gears.planetary import planetary_row
+    from synth import planetary_row
 
     t = run.scene.tables["planetary"]
     row = planetary_row(t.satellites, t.sun)
@@ -65,12 +68,12 @@ def _planetary(run: Run) -> dict:
     return row
 
 
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "prismatic", "R/P variants of a chain up to symmetry (wedge rule, idle joints left out)", "prismatic",
     _prismatic, expect={"variants": Expectation(Whole, ("count",)), "variants_by_dof": Expectation(WholeTable, ("by_dof",)),
                               "variants_all_cylinders": Expectation(Whole, ("all_cylinders",))},
     report=lambda r: [f"{r['count']} variants, by W: {r['by_dof']}; every P pair a cylinder: {r['all_cylinders']}"]))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "planetary", "a planetary train's lever analogue: code, W, K, D, verdict, Assur groups", "planetary",
     _planetary, expect={"train_code": Expectation(Text, ("code",)), "train_dof": Expectation(Int, ("dof",)),
                         "train_loops": Expectation(Whole, ("loops",)), "train_defect": Expectation(Int, ("defect",)),

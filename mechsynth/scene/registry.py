@@ -13,7 +13,8 @@ a computation, write its function in the module of its family and register it th
 >>> kind.provides("demo_links"), "links demo" in KINDS
 (True, False)
 
-(``add_kind(kind)`` would make it a word of ``compute``; ``docs/scenes.md`` lists them.)
+(Listed in its module's :class:`Family` and registered by ``mechsynth.scene`` it becomes a word of
+``compute``; ``docs/scenes.md`` lists them.)
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from typing import Any
 from .compare import equal
 from .results import Scene
 
-__all__ = ["Expectation", "ComputeKind", "SceneTable", "Run", "KINDS", "TABLES", "add_kind", "add_table"]
+__all__ = ["Expectation", "ComputeKind", "SceneTable", "Run", "KINDS", "TABLES", "Family", "register"]
 
 
 @dataclass(frozen=True)
@@ -140,16 +141,38 @@ KINDS: dict[str, ComputeKind] = {}
 TABLES: dict[str, SceneTable] = {}
 
 
-def add_kind(kind: ComputeKind) -> ComputeKind:
-    """Register ``kind`` as a word of ``[scene] compute``; its table must be registered first."""
-    for name in (kind.table, *kind.reads):
-        if name is not None and name not in TABLES:
-            raise KeyError(f"compute {kind.name!r} reads the unregistered table [{name}]")
-    KINDS[kind.name] = kind
-    return kind
+class Family:
+    """The tables and computations of one family of problems (structure, balancing, …), in the
+    order its module lists them; :func:`register` makes them words of ``compute``.
+
+    >>> demo = Family("demo"); t = demo.table(SceneTable("demo", lambda raw, path, compute: raw, "a demo"))
+    >>> [x.name for x in demo.tables]
+    ['demo']
+    """
+
+    def __init__(self, name: str):
+        self.name = name
+        self.tables: list[SceneTable] = []
+        self.kinds: list[ComputeKind] = []
+
+    def table(self, table: SceneTable) -> SceneTable:
+        self.tables.append(table)
+        return table
+
+    def kind(self, kind: ComputeKind) -> ComputeKind:
+        self.kinds.append(kind)
+        return kind
 
 
-def add_table(table: SceneTable) -> SceneTable:
-    """Register a scene table."""
-    TABLES[table.name] = table
-    return table
+def register(*families: Family) -> None:
+    """Make the families' tables and computations known, in the order given: that is the order a
+    scene runs its computations in (``mechsynth.scene`` states it once, whatever order its modules
+    were imported in).  A computation's tables must be registered with it or before."""
+    for family in families:
+        for table in family.tables:
+            TABLES[table.name] = table
+        for kind in family.kinds:
+            for name in (kind.table, *kind.reads):
+                if name is not None and name not in TABLES:
+                    raise KeyError(f"compute {kind.name!r} reads the unregistered table [{name}]")
+            KINDS[kind.name] = kind

@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from synth.errors import SynthesisError
+from synth import SynthesisError
 
 __all__ = ["SceneError", "Scene", "Check", "SceneResult", "DirectoryResult"]
 

@@ -14,7 +14,7 @@ from typing import Annotated, Any
 
 from pydantic import StrictStr, create_model
 
-from synth.errors import SynthesisError
+from synth import SynthesisError
 from synth.schema import Table, expect, refine, show
 
 from .registry import KINDS, TABLES, ComputeKind, Run

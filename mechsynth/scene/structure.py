@@ -22,7 +22,7 @@ from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validato
 from synth.schema import FileName, Table, expect, refine
 
 from . import compare
-from .registry import ComputeKind, Expectation, Run, SceneTable, add_kind, add_table
+from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import Scene, SceneError
 from .types import (Flag, Int, IndexTable, Positive, RangeText, Require, Text, Whole, WholeTable, Wholes)
 
@@ -35,8 +35,8 @@ ANALYSIS = ("analysis",)
 
 # --------------------------------------------------------------------------- value types
 def _standard_code(text: str) -> str:
-    from synth.structure.code import Code
-    from synth.errors import MalformedCode
+    from synth import Code
+    from synth import MalformedCode
 
     try:
         Code.parse(text)
@@ -46,7 +46,7 @@ def _standard_code(text: str) -> str:
 
 
 def _canonical(texts) -> list[str]:
-    from synth.structure.code import Code
+    from synth import Code
 
     return [str(Code.parse(t)) for t in texts]
 
@@ -130,11 +130,14 @@ class Drawing(Table):
     limit: Positive = 200
 
 
-add_table(SceneTable(
+FAMILY = Family("structure")  # its tables and computations, registered by mechsynth.scene
+
+
+FAMILY.table(SceneTable(
     "structure", lambda raw, path, compute: Structure.read(raw, source=path, where="[structure]", error=SceneError,
                                                            context={"compute": compute}),
     "dof and loops, links, a code, counts or a chain"))
-add_table(SceneTable(
+FAMILY.table(SceneTable(
     "drawing", lambda raw, path, compute: Drawing.read(raw, source=path, where="[drawing]", error=SceneError),
     "the sheet's options"))
 
@@ -226,7 +229,7 @@ def _codes_table(expected: dict, actual: dict, rel_tol: float) -> tuple[bool, st
 
 # --------------------------------------------------------------------------- computations
 def _codes(run: Run) -> dict:
-    from synth.synthesis.number_synthesis import number_synthesis  # CP-SAT counting model only
+    from synth import number_synthesis  # CP-SAT counting model only
 
     s = run.scene.tables["structure"]
     codes = number_synthesis(
@@ -274,12 +277,9 @@ def _refuse_large(query, workers: int) -> None:
     hour is refused before any work (``mechsynth chains --count`` counts such queries in flat memory)."""
     import math
 
-    from synth.errors import QueryTooLarge
-    from synth.execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+    from synth import QueryTooLarge, describe_seconds, estimate, magnitude, worth_sizing
 
-    if query.code is not None or query.prismatic is not None:
-        return
-    if query.loops < (SIZED_LOOPS_MULTIPLE if (query.v or (0, 0)) != (0, 0) else SIZED_LOOPS):
+    if query.prismatic is not None or not worth_sizing(query):
         return
     found = estimate(query, work="list")
     if found is None:
@@ -333,10 +333,10 @@ def _mechanisms(run: Run) -> dict:
 def _analysis(run: Run) -> dict:
     s = run.scene.tables["structure"]
     if s.chain is not None:
-        from synth.analysis.chains import analyze_chain
+        from synth import analyze_chain
 
         return analyze_chain(s.chain, dof=s.dof, h=s.h).to_dict()
-    from synth.analysis.codes import analyze  # pure counting: no solver
+    from synth import analyze  # pure counting: no solver
 
     common = dict(dof=s.dof, h=s.h, f=s.f, loop_classes=s.loop_classes)
     if s.code is not None:
@@ -413,7 +413,7 @@ _CHAIN_COUNTS = {
     "count_fractionated": Expectation(Whole, ("fractionated",)),
 }
 
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "codes", "number synthesis: every standard code n2n3…/v for the structure", "structure", _codes,
     expect={
         "codes": Expectation(Codes, compare=_same_codes),
@@ -425,18 +425,18 @@ add_kind(ComputeKind(
         "i_max": Expectation(Whole),
     },
     check=_check_codes, report=_report_codes))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "count", "type synthesis: the number of chains, by code, by v, non-planar and fractionated", "structure",
     _count, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "chains", "type synthesis: the chains themselves (joint lists and certificates) and their counts", "structure",
     _chains, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "mechanisms", "chains with a fixed link (and input link) up to symmetry", "structure", _mechanisms,
     expect={"mechanisms": Expectation(Whole, ("count",)),
             "mechanisms_by_code": Expectation(CodeTable, ("by_code",), _codes_table)},
     check=_check_chains, report=lambda r: [f"{r['count']} mechanisms: {table_text(r['by_code'])}"]))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "analysis", "W, K, Y, D of a code, of explicit counts or of a chain", "structure", _analysis,
     expect={
         **{k: Expectation(Int) for k in ("dof", "loops", "complexity", "defect", "worst_subchain_mobility")},
@@ -447,7 +447,7 @@ add_kind(ComputeKind(
         "subchain_defect": Expectation(Text),
     },
     check=_check_analysis, report=_report_analysis))
-add_kind(ComputeKind(
+FAMILY.kind(ComputeKind(
     "drawing", "an atlas sheet of the chains or mechanisms, written to --out", "structure", _drawing,
     expect={"drawn": Expectation(Whole, ("items",))}, check=_check_chains, report=_report_drawing,
     reads=("drawing",)))

@@ -66,12 +66,12 @@ from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
-from ..errors import InvalidOption, MalformedChain, MalformedCode, SynthesisError
+from ..errors import InvalidOption, MalformedChain, MalformedCode, QueryTooLarge, SynthesisError
 from .grid import Cell, Grid
 
 __all__ = [
     "SCHEMA_VERSION", "AtlasError", "AtlasLocked", "SchedulerUnreachable", "GridRunResult",
-    "run_grid", "summary", "export", "parse_where", "open_atlas", "chain_id",
+    "run_grid", "summary", "export", "parse_where", "open_atlas", "chain_id", "size_grid", "compute_unit",
 ]
 
 SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
@@ -820,3 +820,66 @@ def _summary(conn: sqlite3.Connection, db) -> dict:
     }
 
 
+# -------------------------------------------------------------------- sizing
+_GRID_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (on the workers)
+_GRID_NOTE_SECONDS = 600.0  # said on stderr before the run starts
+_BYTES_PER_MECHANISM = 210  # atlas bytes per stored mechanism, its chain's row included (W = 1, n ≤ 12: 204 and 210)
+
+
+def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str | None:
+    """Estimate the large cells of a grid (as a chain query is: from exact runs at smaller sizes,
+    timing chains and their mechanisms) and refuse a grid of more than a day, or one whose atlas
+    would not fit on the disk of ``db``'s folder, with :class:`QueryTooLarge`; a grid of more than
+    ten minutes passes with a sentence to show before it starts (returned).
+
+    >>> from synth.atlas import parse_grid
+    >>> size_grid(parse_grid('dof = 1\\nlinks = 8'), processes=2, db="a.sqlite") is None
+    True
+    """
+    import math
+    import shutil
+
+    from ..execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+
+    large = [c for c in grid.cells if c.loops >= (SIZED_LOOPS if c.v == (0, 0) else SIZED_LOOPS_MULTIPLE)]
+    if not large:
+        return None
+    log_seconds, log_chains, worst = -math.inf, -math.inf, None
+    for cell in sorted(large, key=lambda c: -c.links):
+        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
+        if found is None:
+            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
+                                "to run it anyway")
+        log_seconds = _log_sum(log_seconds, found.log10_seconds)
+        log_chains = _log_sum(log_chains, found.log10_chains)
+        worst = worst or (cell, found)
+    wall = log_seconds - math.log10(processes)
+    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
+    where = "on the scheduler's workers (one core shown)" if scheduler else f"on {processes} workers"
+    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
+    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
+            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
+            "in the atlas (extrapolated from exact runs at smaller sizes)")
+    if wall > math.log10(_GRID_LIMIT_SECONDS):
+        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
+                            "(it can be stopped and resumed)")
+    folder = os.path.dirname(os.path.abspath(db))
+    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
+    if log_bytes > math.log10(max(free, 1)):
+        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
+                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
+    if wall > math.log10(_GRID_NOTE_SECONDS):
+        return f"a long grid: {size}"
+    return None
+
+
+def _log_sum(a: float, b: float) -> float:
+    """log10(10^a + 10^b) without overflow."""
+    import math
+
+    top = max(a, b)
+    return top if math.isinf(top) else top + math.log10(10 ** (a - top) + 10 ** (b - top))
+
+
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else float("inf")

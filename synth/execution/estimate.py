@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 from ..errors import ImpossibleParameters, QueryTooLarge
 
-__all__ = ["Estimate", "estimate", "size_check", "describe_seconds", "magnitude"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "size_check", "describe_seconds", "magnitude"]
 
 # Queries at least this large (loops K of their largest skeleton; multiple joints grow faster)
 # are sized before they run.
@@ -93,7 +93,7 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
     """
     from ..synthesis import type_synthesis as ts
 
-    unit_work = {"count": ts._count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
+    unit_work = {"count": ts.count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
                  "mechanisms with input": ts._MechanismCount(True)}[work]
     links = query.links
     step = query.h - 1
@@ -134,6 +134,20 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
                     log_chains, log_units, log_seconds)
 
 
+def worth_sizing(query) -> bool:
+    """Whether a query is large enough to be estimated before it runs: its largest revolute
+    skeleton has :data:`SIZED_LOOPS` loops or more (:data:`SIZED_LOOPS_MULTIPLE` with multiple joints).
+
+    >>> from synth.structure.query import ChainQuery
+    >>> worth_sizing(ChainQuery(1, 14)), worth_sizing(ChainQuery(1, 16))
+    (False, True)
+    """
+    if query.code is not None:
+        return False
+    K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
+    return K >= (SIZED_LOOPS_MULTIPLE if (query.v or (0, 0)) != (0, 0) else SIZED_LOOPS)
+
+
 def size_check(query, *, processes: int, count: bool, table: bool, force: bool = False,
                mechanisms: str | None = None, scheduler: bool = False) -> str | None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked.
@@ -150,11 +164,7 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     >>> size_check(ChainQuery(1, 10), processes=2, count=True, table=False) is None
     True
     """
-    if query.code is not None or (force and count):
-        return None
-    K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
-    multiple = (query.v or (0, 0)) != (0, 0)
-    if K < (SIZED_LOOPS_MULTIPLE if multiple else SIZED_LOOPS):
+    if (force and count) or not worth_sizing(query):
         return None
     work = mechanisms or ("count" if count else "list")
     items = "mechanisms" if mechanisms else "chains"

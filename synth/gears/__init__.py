@@ -14,10 +14,14 @@ Example
 from importlib import import_module
 
 _WHERE = {
-    "GearTrain": ".train", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration",
-    "GearMechanism": ".mechanisms", "RatioFormula": ".mechanisms", "mechanisms": ".mechanisms",
-    "speed_ratio": ".mechanisms", "Design": ".ratio_design", "design": ".ratio_design",
-    "planetary_row": ".planetary", "planetary_table": ".planetary",
+    "GearTrain": ".train",
+    "GRAPHS": ".enumeration", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration",
+    "check_query": ".enumeration",
+    "GearMechanism": ".ratios", "RatioFormula": ".ratios", "mechanisms": ".ratios",
+    "speed_ratio": ".ratios",
+    "Design": ".ratio_design", "NoDesign": ".ratio_design", "design": ".ratio_design", "MIN_TEETH": ".ratio_design",
+    "draw_train": ".draw", "draw_sheet": ".draw",
+    "planetary_row": ".planetary", "planetary_rows": ".planetary", "planetary_table": ".planetary",
 }
 
 __all__ = list(_WHERE)

@@ -1,7 +1,7 @@
 """Tooth numbers for a wanted speed ratio, in integers, with CP-SAT.
 
 For a mechanism of a 1-DOF train (frame, input, output) the ratio i = ω_in/ω_out is N(z)/D(z),
-two polynomials in the tooth numbers (:func:`~synth.gears.mechanisms.speed_ratio`).  The model:
+two polynomials in the tooth numbers (:func:`~synth.gears.ratios.speed_ratio`).  The model:
 
 * every wheel: ``min_teeth`` (no undercut; 17 for 20° full-depth teeth) ≤ z, and A ≤ z ≤ B;
 * ratio: |N − R·D| ≤ tolerance·|D| with R and the tolerance read as exact fractions;
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from ..errors import InvalidOption
-from .mechanisms import speed_ratio, wheel_names
+from .ratios import speed_ratio, wheel_names
 from .train import GearTrain
 
 __all__ = ["Design", "NoDesign", "design", "parse_fraction", "MIN_TEETH", "RING_MARGIN"]

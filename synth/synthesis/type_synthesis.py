@@ -40,8 +40,8 @@ from ..structure.query import ChainQuery, parse_requirements
 from ._realise import Contracted, Conventions, contracted_graphs, count_realised, realise
 from .number_synthesis import number_synthesis
 
-__all__ = ["Conventions", "Unit", "plan_codes", "plan_units", "plan_many", "type_synthesis", "count_chains",
-           "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit"]
+__all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
+           "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code"]
 
 
 # Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
@@ -329,8 +329,12 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
             bar.close()
 
 
-def _by_code(items) -> dict[str, int]:
-    """Counts of chains (or mechanisms) by code, joint kinds included (``'42/0 P2'``)."""
+def count_by_code(items) -> dict[str, int]:
+    """Counts of chains (or mechanisms) by code, joint kinds included, in the order met.
+
+    >>> count_by_code([Chain.parse("0-1 1-2 2-3 3-0"), Chain.parse("0=1 1-2 2-3 3-0")])
+    {'4/0': 1, '4/0 P1': 1}
+    """
     out: dict[str, int] = {}
     for item in items:
         chain = item.chain if isinstance(item, Mechanism) else item
@@ -339,11 +343,16 @@ def _by_code(items) -> dict[str, int]:
     return out
 
 
-def _count_unit(unit: Unit) -> dict[str, int]:
-    """Counts by code of one unit's chains: counted where they are computed, without building the
-    chains where stage B's solutions are already one per chain."""
+def count_unit(unit: Unit) -> dict[str, int]:
+    """Counts by code of one unit's chains (``'42/0 P2'`` with prismatic pairs): counted where they
+    are computed, without building the chains where stage B's solutions are already one per chain;
+    what ``count_chains`` runs on each unit, on any scheduler.
+
+    >>> [count_unit(u) for u in plan_units(1, 6)]
+    [{'42/0': 2}]
+    """
     if unit.contracted is None or unit.conventions.prismatic is not None:
-        return _by_code(run_unit(unit))
+        return count_by_code(run_unit(unit))
     n = count_realised(unit.code, unit.contracted, unit.conventions)
     return {str(unit.code): n} if n else {}
 
@@ -356,8 +365,28 @@ class _MechanismCount:
     cylinders: tuple = ()
 
     def __call__(self, unit: Unit) -> dict[str, int]:
-        return _by_code(m for c in run_unit(unit) for m in mechanisms_of(c, input_link=self.input_link,
+        return count_by_code(m for c in run_unit(unit) for m in mechanisms_of(c, input_link=self.input_link,
                                                                             cylinders=self.cylinders))
+
+
+@dataclass(frozen=True)
+class Counts:
+    """How many chains (or mechanisms) a query has: in all and by code (``'42/0 P2'`` with
+    prismatic pairs), in the order of the plan.  ``counts["count"]`` reads its JSON form.
+
+    >>> c = count_chains(1, 8, workers=1); c.count, c.by_code["440/0"], c["count"]
+    (16, 9, 16)
+    """
+
+    count: int
+    by_code: dict
+
+    def to_dict(self) -> dict:
+        """``{"count": N, "by_code": {...}}``, as ``--count`` prints it."""
+        return {"count": self.count, "by_code": dict(self.by_code)}
+
+    def __getitem__(self, key: str):
+        return self.to_dict()[key]
 
 
 def _identity(what: str, jobs: list[tuple[Code, Conventions]]) -> str:
@@ -372,7 +401,7 @@ def _describe(what: str, query: ChainQuery) -> str:
     return " ".join([what] + [f"{k}={v}" for k, v in query.to_dict().items()]).replace("'", "")
 
 
-def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log) -> dict:
+def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log) -> Counts:
     """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked."""
     from contextlib import ExitStack
 
@@ -412,33 +441,32 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
     order = {name: i for i, name in enumerate(dict.fromkeys(names))}
     by_code = {name: totals[name] for name in sorted(totals, key=lambda x: (order.get(x.split(" ")[0], 0), x))
                if totals[name]}
-    return {"count": sum(by_code.values()), "by_code": by_code}
+    return Counts(sum(by_code.values()), by_code)
 
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, **options) -> dict:
-    """``{"count": N, "by_code": {code: count}}`` for the chains of :func:`type_synthesis`.
+                 log=None, **options) -> Counts:
+    """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
     With ``checkpoint`` (a file path) finished units are committed as they finish and a rerun
     with the same file resumes (see :mod:`synth.execution.checkpoint`); with ``scheduler`` (a Dask
     address such as ``tcp://host:8786``) the units run on that cluster.
 
-    >>> count_chains(1, 8, workers=1)
+    >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
     >>> count_chains(1, 4, prismatic="0..4", workers=1)["by_code"]   # the all-prismatic loop has W = 2
     {'4/0': 1, '4/0 P1': 1, '4/0 P2': 2}
     """
     query = ChainQuery.of(query, links, **options)
-    return _count(_count_unit, "chains", query, workers, progress, checkpoint, scheduler, timeout, log)
+    return _count(count_unit, "chains", query, workers, progress, checkpoint, scheduler, timeout, log)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,
                      workers: int | None = None, progress: bool = False, checkpoint=None,
-                     scheduler: str | None = None, timeout: float = 5.0, log=None, **options) -> dict:
-    """``{"count": N, "by_code": {code: count}}`` for the mechanisms of :func:`mechanisms` (options as
-    :func:`count_chains`).
+                     scheduler: str | None = None, timeout: float = 5.0, log=None, **options) -> Counts:
+    """How many mechanisms :func:`mechanisms` gives, in all and by code (options as :func:`count_chains`).
 
     >>> count_mechanisms(1, 8, workers=1)["count"]
     71

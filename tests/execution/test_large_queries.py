@@ -197,7 +197,7 @@ def test_count_on_a_dask_cluster(tmp_path):
         out = _run("chains", "--dof", "1", "--links", "10", "--v", "0..2", "--count", "--scheduler", address,
                    "--checkpoint", str(ck))
         assert out.returncode == 0, out.stderr
-        assert json.loads(out.stdout) == count_chains(1, 10, v="0..2", workers=1)
+        assert json.loads(out.stdout) == count_chains(1, 10, v="0..2", workers=1).to_dict()
 
 
 # ----------------------------------------------------------- size and refusal

@@ -252,7 +252,7 @@ def test_cli_one_chain(capsys):
     assert code == 0 and json.loads(out)["count"] == sum(oracle.brute_variant_count(4, FOUR_BAR.joints, k)
                                                          for k in range(5))
     for argv, message in ((["--prismatic", "5"], "only 4 simple joints"), (["--prismatic", "1", "--dof", "1"], "--dof"),
-                          ([], "--chain goes with --prismatic")):
+                          (["--idle-joints"], "--idle-joints and --cylinders go with --prismatic")):
         code, _, err = _cli(capsys, ["chains", "--chain", "0-1 1-2 2-3 3-0", *argv])
         assert code == 2 and message in err and err.count("\n") == 1
 

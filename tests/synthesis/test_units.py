@@ -242,7 +242,7 @@ def test_count_resumes_in_process_without_losing_or_repeating_a_unit(tmp_path, m
 
     full = synth.count_chains(1, 10, workers=1)
     total_units = len(synth.plan_units(1, 10))
-    real, calls = ts._count_unit, []
+    real, calls = ts.count_unit, []
 
     def interrupted(unit):
         if len(calls) == 10:  # 4600/0 and 5410/0 complete, two of the four units of 6220/0 done
@@ -251,12 +251,12 @@ def test_count_resumes_in_process_without_losing_or_repeating_a_unit(tmp_path, m
         return real(unit)
 
     path = tmp_path / "c.sqlite"
-    monkeypatch.setattr(ts, "_count_unit", interrupted)
+    monkeypatch.setattr(ts, "count_unit", interrupted)
     with pytest.raises(KeyboardInterrupt):
         synth.count_chains(1, 10, workers=1, checkpoint=path)
     done = list(calls)
     calls.clear()
-    monkeypatch.setattr(ts, "_count_unit", lambda unit: (calls.append(unit.key), real(unit))[1])
+    monkeypatch.setattr(ts, "count_unit", lambda unit: (calls.append(unit.key), real(unit))[1])
     assert synth.count_chains(1, 10, workers=1, checkpoint=path) == full
     assert len(done) == 10 and not set(done) & set(calls) and len(done) + len(calls) == total_units
     calls.clear()

@@ -1,0 +1,110 @@
+"""The layers of the house: the engines (synth, balance) never import each other nor the
+application (mechsynth); the application imports only the engines' public names (no module or
+name that starts with an underscore); inside synth no two modules import each other at load time
+(a cycle would make the order of imports matter); and ``import synth`` loads nothing but its errors.
+
+(tests/balance/test_bench_and_layout.py holds the same rules for balance.)"""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _imports(path: Path, *, top_level_only: bool = False):
+    """(module, name) of every import of a file (relative imports resolved), every one or only
+    those made when the module loads (not inside a function)."""
+    tree = ast.parse(path.read_text())
+    package = ".".join(path.relative_to(ROOT).with_suffix("").parts)
+    if path.name != "__init__.py":
+        package = package.rsplit(".", 1)[0]
+    nodes = tree.body if top_level_only else ast.walk(tree)
+    out = []
+    for node in nodes:
+        if isinstance(node, ast.Import):
+            out += [(a.name, "") for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - (node.level - 1)]
+                module = ".".join(base + ([module] if module else []))
+            out += [(module, a.name) for a in node.names]
+    return out
+
+
+def _files(*folders):
+    return [f for folder in folders for f in (ROOT / folder).rglob("*.py")]
+
+
+def test_engines_never_import_each_other_nor_the_application():
+    for f in _files("synth"):
+        for module, _ in _imports(f):
+            assert module.split(".")[0] not in ("balance", "mechsynth"), (f, module)
+    for f in _files("balance"):
+        for module, _ in _imports(f):
+            assert module.split(".")[0] not in ("synth", "mechsynth"), (f, module)
+
+
+def test_the_application_uses_public_names_only():
+    for f in _files("mechsynth"):
+        for module, name in _imports(f):
+            if module.split(".")[0] in ("synth", "balance"):
+                private = [p for p in module.split(".") + [name] if p.startswith("_")]
+                assert not private, f"{f.relative_to(ROOT)} imports {module}:{name}"
+
+
+def test_no_import_cycle_at_load_time_inside_synth():
+    graph: dict[str, set[str]] = {}
+    modules = {".".join(f.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__"): f for f in _files("synth")}
+    for name, f in modules.items():
+        graph[name] = set()
+        for module, imported in _imports(f, top_level_only=True):
+            for target in (f"{module}.{imported}", module):
+                if target in modules and target != name:
+                    graph[name].add(target)
+                    break
+    state: dict[str, int] = {}
+
+    def visit(node, path):
+        state[node] = 1
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == 1:
+                raise AssertionError("import cycle: " + " -> ".join(path + [node, nxt]))
+            if nxt not in state:
+                visit(nxt, path + [node])
+        state[node] = 2
+
+    for node in sorted(graph):
+        if node not in state:
+            visit(node, [])
+
+
+def test_import_synth_loads_only_its_errors():
+    code = ("import sys, synth; print(sorted(m for m in sys.modules if m.startswith('synth.')))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and out.stdout.strip() == "['synth.errors']", out
+
+
+def test_every_public_name_of_synth_resolves():
+    import synth
+
+    for name in synth.__all__:
+        assert getattr(synth, name) is not None, name
+
+
+def test_no_public_name_is_also_a_module_of_its_package():
+    """A lazily exported function named like a submodule of its package is replaced by that
+    module once anything imports it (``synth.gears.mechanisms`` was both): every public name of
+    the engines' packages differs from their modules' names."""
+    import importlib
+    import pkgutil
+
+    for name in ("synth", "synth.atlas", "synth.gears", "balance"):
+        package = importlib.import_module(name)
+        modules = {m.name for m in pkgutil.iter_modules(package.__path__)}
+        assert not modules & set(package.__all__), (name, modules & set(package.__all__))
