@@ -27,7 +27,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(ROOT))
 
 import synth  # noqa: E402
-from synth.atlas.store import run_grid  # noqa: E402
+from synth.atlas import run_grid  # noqa: E402
 from synth.atlas.grid import load_grid  # noqa: E402
 
 COLUMNS = ["case", "workers", "items", "unit", "seconds", "per_second", "speedup", "note"]
@@ -68,7 +68,7 @@ def _compute_only(path: Path, repeat: int = 3) -> tuple[dict, dict]:
     (the reference for the grid's speed-up; the pool and the atlas cannot do better than this)."""
     import multiprocessing
 
-    from synth.atlas.store import _Task, compute_unit
+    from synth.atlas.runs import _Task, compute_unit
 
     grid = load_grid(path)
     tasks = [_Task(cell.key, u, grid.input_link) for cell in grid.cells for u in cell.plan()]

@@ -2,8 +2,9 @@
 
 =============  ======================================================================
 ``grid``       grid files (TOML): cells of W, n, v, conventions
-``store``      the atlas file: its schema and checks, grid runs (resumable, pool or Dask),
-               the ``--where`` language, exports and the summary
+``database``   the atlas file: its schema and version, opening it checked, the run lock
+``runs``       grid runs, resumable unit by unit on a pool or Dask, and their sizing
+``queries``    the ``--where`` language, exports and the summary
 ``site``       the atlas as a static web site
 =============  ======================================================================
 
@@ -20,20 +21,20 @@ from importlib import import_module
 
 _WHERE = {
     "GridFileError": ".grid", "Cell": ".grid", "Grid": ".grid", "load_grid": ".grid", "parse_grid": ".grid",
-    "chain_id": ".site", "write_site": ".site", "SiteResult": ".site", "EmptyAtlas": ".site",
-    "MAX_PAGE_SIZE": ".site",
+    "SCHEMA_VERSION": ".database", "AtlasError": ".database", "AtlasLocked": ".database", "open_atlas": ".database",
+    "chain_id": ".database",
+    "GridRunResult": ".runs", "compute_unit": ".runs", "run_grid": ".runs", "size_grid": ".runs",
+    "parse_where": ".queries", "export": ".queries", "summary": ".queries",
+    "write_site": ".site", "SiteResult": ".site", "EmptyAtlas": ".site", "MAX_PAGE_SIZE": ".site",
 }
 
-
-__all__ = [*_WHERE, "AtlasError", "AtlasLocked", "GridRunResult", "compute_unit", "open_atlas", "run_grid",
-           "parse_where", "export", "summary", "size_grid"]
+__all__ = list(_WHERE)
 
 
 def __getattr__(name: str):
-    where = _WHERE.get(name, ".store" if name in __all__ else None)
-    if where is None:
+    if name not in _WHERE:
         raise AttributeError(f"module 'synth.atlas' has no attribute {name!r}")
-    value = getattr(import_module(where, __name__), name)
+    value = getattr(import_module(_WHERE[name], __name__), name)
     globals()[name] = value
     return value
 

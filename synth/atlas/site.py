@@ -12,7 +12,7 @@ from SQLite in code order, so memory stays bounded by one page and the lookup ta
 Example
 -------
 >>> import os, tempfile
->>> from synth.atlas.store import run_grid
+>>> from synth.atlas import run_grid
 >>> from synth.atlas.grid import parse_grid
 >>> folder = tempfile.mkdtemp()
 >>> db = os.path.join(folder, "a.sqlite")
@@ -31,7 +31,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .store import AtlasError, _reading, chain_id, open_atlas
+from .database import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
@@ -205,7 +205,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
             info["planar"] += sum(planar for _, planar in cards)
             name = f"{slug}-{number}.html"
-            nav = [f'<a href="../index.html">index</a>']
+            nav = ['<a href="../index.html">index</a>']
             if number > 1:
                 nav.append(f'<a href="{slug}-{number - 1}.html">previous page</a>')
             if not final:

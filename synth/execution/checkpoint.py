@@ -54,7 +54,7 @@ def _check_file(path: Path) -> tuple[str, str]:
     """Refuse, after reading it only, a file that is not a checkpoint (an atlas, a damaged or foreign file);
     return the identity and the query in words it was written for."""
     try:
-        from ..atlas.store import read_only_uri
+        from ..atlas.database import read_only_uri
 
         conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30)
     except sqlite3.DatabaseError as exc:

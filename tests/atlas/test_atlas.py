@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 
 import synth
-from synth.atlas.store import AtlasLocked, SchedulerUnreachable, export, parse_where, run_grid, summary
+from synth.atlas import AtlasLocked, export, parse_where, run_grid, summary
+from synth.atlas.runs import SchedulerUnreachable
 from mechsynth.cli import main
 from synth.errors import InvalidOption
 from synth.atlas.grid import load_grid, parse_grid
@@ -334,7 +335,7 @@ def test_where_filters(small_atlas, capsys):
     assert main(["atlas", "--db", str(small_atlas), "--where", "code=6301/0", "--format", "csv"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("id,code,links") and len(lines) == 16
-    from synth.atlas.store import chain_id  # the id column is the chain's site address, from its certificate
+    from synth.atlas import chain_id  # the id column is the chain's site address, from its certificate
 
     assert all(row.split(",")[0] == chain_id(row.rsplit(",", 1)[1]) for row in lines[1:])
     assert main(["atlas", "--db", str(small_atlas), "--export", "mechanisms", "--where", "n=6", "--where", "W=1",

@@ -103,7 +103,7 @@ def test_missing_grid_file(tmp_path, capsys):
     assert "does not exist" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("name", ["synth.atlas.grid", "synth.atlas.store", "synth.draw", "mechsynth.commands.atlas"])
+@pytest.mark.parametrize("name", ["synth.atlas.grid", "synth.atlas.database", "synth.atlas.runs", "synth.atlas.queries", "synth.draw", "mechsynth.commands.atlas"])
 def test_docstring_examples(name, tmp_path, monkeypatch):
     import doctest
     import importlib

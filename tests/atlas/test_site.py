@@ -15,7 +15,7 @@ import subprocess
 import pytest
 
 from mechsynth.cli import main
-from synth.atlas.store import run_grid, summary
+from synth.atlas import run_grid, summary
 from synth.atlas.site import chain_id, write_site
 from synth.structure.chain import Chain
 from synth.atlas.grid import parse_grid
@@ -55,7 +55,7 @@ def test_pages_show_every_chain_of_the_atlas_once(atlas, tmp_path):
 
 
 def _rows(atlas, c):
-    from synth.atlas.store import export
+    from synth.atlas import export
 
     return [r for r in export(atlas, "chains", where=[f"W={c['W']}", f"n={c['n']}"])
             if r["code"] == c["code"]]
@@ -67,7 +67,7 @@ def test_chain_ids_are_stable_and_looked_up(atlas, tmp_path):
     files = {p.relative_to(tmp_path / "a"): p.read_text() for p in (tmp_path / "a").rglob("*.*")}
     assert files == {p.relative_to(tmp_path / "b"): p.read_text() for p in (tmp_path / "b").rglob("*.*")}
     lookups = {p.name: p.read_text() for p in (tmp_path / "a" / "lookup").iterdir()}
-    from synth.atlas.store import export
+    from synth.atlas import export
 
     row = next(export(atlas, "chains", where=["n=8"]))
     cid = chain_id(row["certificate"])

@@ -189,7 +189,7 @@ def test_cli_lists_open_chains_and_other_spaces(capsys):
 
 
 def test_grid_cells_in_other_spaces(tmp_path):
-    from synth.atlas.store import export, run_grid, summary
+    from synth.atlas import export, run_grid, summary
     from synth.atlas.grid import parse_grid
 
     grid = parse_grid('dof = 1\nlinks = "4..8"\nh = [3, 4]\n[[block]]\n[[block]]\ndof = 4\nlinks = 7\nn1 = 2\nv = 2')

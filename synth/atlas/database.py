@@ -1,0 +1,309 @@
+"""The SQLite atlas file: its schema and version, opening it (checked, read-only first) and the lock of a run.
+
+Schema (version 3, ``meta.schema_version``)
+-------------------------------------------
+``chains``      one row per chain: integer ``id``, ``certificate`` (nauty, canonical) UNIQUE; code
+                (with joint composition), base code (without), W, h, n, K, v, number of prismatic
+                pairs (grid key ``prismatic``; W then follows the wedge rule), largest link degree,
+                sorted degrees, fractionated flag, and the chain JSON (``Chain.to_dict``) in its
+                *canonical labelling* (nauty's), so the same chain reads the same from any cell.
+``link_counts`` (chain, degree, count): n_I of each chain, for ``--where n5>=1``.
+``members``     (cell, chain) PRIMARY KEY: which grid cells produced the chain.  A chain is
+                stored once however many cells contain it (the same chain is in the cell with
+                and the cell without fractionated chains); a cell's own convention set is read
+                through this table.
+``mechanisms``  (chain, frame, input_link) PRIMARY KEY, links numbered as in the stored canonical
+                chain; the frame is the smallest link of its automorphism orbit, ``input_link``
+                is -1 for fixed-link-only mechanisms.  Exports add ``Mechanism.certificate``.
+``cells``       the grid cells (key, W, n, v range, conventions, constraints, unit count).
+``units``       (cell, unit key) PRIMARY KEY, status pending/done, chains, mechanisms,
+                attempts (runs that scheduled it), seconds, finished time, run id.
+``runs``        every grid run: pid, host, start/end, status, workers or scheduler.
+``run_lock``    at most one row: the run writing the atlas now (pid, host).
+
+Guarantees
+----------
+* One transaction per finished unit: its chains, memberships, mechanisms and its
+  ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
+  power loss) leaves every unit either fully stored or still pending.
+* A rerun of the same grid skips ``done`` units; ``INSERT OR IGNORE`` on certificates
+  means no chain or mechanism is ever stored twice.
+* A second run on the same atlas while the first is alive is refused (``run_lock``
+  row checked inside ``BEGIN IMMEDIATE``; a lock left by a killed run is taken over).
+
+Example
+-------
+>>> import tempfile, os
+>>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+>>> conn = open_atlas(db, write=True)
+>>> conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()[0]
+'3'
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import socket
+import sqlite3
+import time
+from contextlib import contextmanager
+from pathlib import Path
+
+from ..errors import MalformedChain, SynthesisError
+from .grid import Grid
+
+__all__ = ["SCHEMA_VERSION", "AtlasError", "AtlasLocked", "open_atlas", "chain_id", "read_only_uri"]
+
+SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
+
+
+class AtlasError(SynthesisError):
+    """The atlas file cannot be opened, written, or is not an atlas of this version."""
+
+
+class AtlasLocked(AtlasError):
+    """Another run is writing the same atlas."""
+
+
+_SCHEMA = """
+CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE chains (
+    id INTEGER PRIMARY KEY, certificate TEXT NOT NULL UNIQUE,
+    code TEXT NOT NULL, base_code TEXT NOT NULL,
+    dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
+    prismatic INTEGER NOT NULL, max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
+    chain TEXT NOT NULL
+);
+CREATE INDEX chains_select ON chains (dof, h, links, v, code);
+CREATE TABLE link_counts (
+    chain INTEGER NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
+    PRIMARY KEY (chain, degree)
+) WITHOUT ROWID;
+CREATE TABLE cells (
+    cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL,
+    v_min INTEGER NOT NULL, v_max INTEGER, rigid_subchains INTEGER NOT NULL,
+    fractionated INTEGER NOT NULL, planar_only INTEGER NOT NULL, require TEXT NOT NULL,
+    units INTEGER NOT NULL
+);
+CREATE TABLE members (
+    cell TEXT NOT NULL REFERENCES cells, chain INTEGER NOT NULL REFERENCES chains,
+    PRIMARY KEY (cell, chain)
+) WITHOUT ROWID;
+CREATE INDEX members_chain ON members (chain);
+CREATE TABLE mechanisms (
+    chain INTEGER NOT NULL REFERENCES chains, frame INTEGER NOT NULL, input_link INTEGER NOT NULL,
+    PRIMARY KEY (chain, frame, input_link)
+) WITHOUT ROWID;
+CREATE TABLE units (
+    cell TEXT NOT NULL REFERENCES cells, unit TEXT NOT NULL, code TEXT NOT NULL,
+    status TEXT NOT NULL DEFAULT 'pending' CHECK (status IN ('pending', 'done')),
+    chains INTEGER, mechanisms INTEGER, attempts INTEGER NOT NULL DEFAULT 0,
+    seconds REAL, finished REAL, run INTEGER,
+    PRIMARY KEY (cell, unit)
+);
+CREATE TABLE runs (
+    id INTEGER PRIMARY KEY, pid INTEGER NOT NULL, host TEXT NOT NULL, grid TEXT NOT NULL,
+    started REAL NOT NULL, finished REAL, status TEXT NOT NULL, executor TEXT NOT NULL,
+    units_run INTEGER NOT NULL DEFAULT 0
+);
+CREATE TABLE run_lock (
+    id INTEGER PRIMARY KEY CHECK (id = 1), run INTEGER NOT NULL, pid INTEGER NOT NULL,
+    host TEXT NOT NULL, started REAL NOT NULL
+);
+"""
+
+
+def chain_id(certificate: str) -> str:
+    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
+    the site, ``chain.html#<id>``, and the ``id`` of every atlas export row).
+
+    >>> chain_id("0404" + "00" * 8)
+    'b14916a1d986'
+    """
+    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
+
+
+# ------------------------------------------------------------------ opening
+def _writable(path: Path) -> None:
+    """Refuse before touching anything when the file or its directory is read-only.
+
+    Permission bits are checked as well as ``os.access`` so that a file made read-only
+    (``chmod a-w``) is respected even by the superuser.
+    """
+    if path.exists():
+        if path.is_dir():
+            raise AtlasError(f"the atlas path {path} is a directory, not a file")
+        if not os.access(path, os.W_OK) or not path.stat().st_mode & 0o222:
+            raise AtlasError(f"cannot write the atlas {path}: the file is read-only")
+    directory = path.parent if str(path.parent) else Path(".")
+    if not directory.is_dir():
+        raise AtlasError(f"cannot create the atlas {path}: the directory {directory} does not exist")
+    if not os.access(directory, os.W_OK) or not directory.stat().st_mode & 0o222:
+        raise AtlasError(f"cannot write the atlas {path}: the directory {directory} is read-only "
+                         "(SQLite needs to write its journal next to the file)")
+
+
+def _columns(schema: str) -> dict[str, set[str]]:
+    """The tables of a schema and their columns (read back from SQLite itself)."""
+    with sqlite3.connect(":memory:") as conn:
+        conn.executescript(schema)
+        names = [r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+        return {name: {r[1] for r in conn.execute(f"PRAGMA table_info({name})")} for name in names}
+
+
+_TABLES = _columns(_SCHEMA)
+
+
+def _check_version(conn: sqlite3.Connection, path: Path) -> None:
+    """Refuse a file that is not an atlas of this schema: its tables and columns, and its version."""
+    try:
+        tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if "meta" not in tables:
+            raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
+        row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
+        version = row[0] if row else None
+        if version is None:
+            raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (its meta table names no schema "
+                             "version)")
+        if version != str(SCHEMA_VERSION):
+            raise AtlasError(
+                f"{path} is an atlas of schema version {version}, but this mechsynth reads only version "
+                f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)")
+        for table, wanted in _TABLES.items():
+            have = {r[1] for r in conn.execute(f"PRAGMA table_info({table})")}
+            if not wanted <= have:
+                missing = sorted(wanted - have)
+                raise AtlasError(f"{path} is not a complete mechsynth atlas: table '{table}' lacks "
+                                 f"{', '.join(missing) if have else 'everything (it does not exist)'}")
+    except sqlite3.DatabaseError as exc:
+        raise AtlasError(f"{path} is not an SQLite atlas or is damaged ({exc})") from None
+
+
+@contextmanager
+def _reading(path):
+    """Turn an error of a damaged file, met while reading it, into one sentence."""
+    try:
+        yield
+    except (sqlite3.DatabaseError, ValueError, KeyError, MalformedChain) as exc:  # a row that no run wrote
+        raise AtlasError(f"the atlas {path} is damaged ({exc}); it was only read, not changed") from None
+
+
+def read_only_uri(path: Path) -> str:
+    """An SQLite URI that reads ``path`` and creates nothing beside it.
+
+    A file in WAL mode read with ``mode=ro`` gets ``-wal`` and ``-shm`` files next to it; when
+    no ``-wal`` file exists (no writer is at work, everything is in the file itself) it is read
+    as immutable instead, which creates none.
+    """
+    uri = f"{path.resolve().as_uri()}?mode=ro"
+    return uri if Path(f"{path}-wal").exists() else uri + "&immutable=1"
+
+
+def _check_pages(conn: sqlite3.Connection, path: Path) -> None:
+    """SQLite's own check of every page (about 3 ms a megabyte), so that damage is found before any output."""
+    with _reading(path):
+        verdict = conn.execute("PRAGMA quick_check(1)").fetchone()[0]
+    if verdict != "ok":
+        detail = " ".join(verdict.replace("*** in database main ***", "").split())
+        raise AtlasError(f"the atlas {path} is damaged ({detail}); it was only read, not changed")
+
+
+_CHECKED_READ_BYTES = 512 * 2**20  # larger atlases are checked page by page only before a write
+
+
+def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | None = None) -> sqlite3.Connection:
+    """Open an atlas (read-only by default), checking its schema version and its pages.
+
+    With ``write=True`` an existing file is first opened read-only and checked, a missing
+    file is created with the current schema; a read-only file or directory is refused before
+    anything is written.  ``check_pages`` runs SQLite's page check (default: for files up to
+    512 MiB; damage in a larger one is reported when a query meets it).
+
+    Raises
+    ------
+    AtlasError
+        One sentence: missing file, read-only path, not an atlas, other schema version.
+    """
+    path = Path(path)
+    if write:
+        _writable(path)
+        fresh = not path.exists() or path.stat().st_size == 0
+        if not fresh:  # read-only first: a file that is not an atlas, or a damaged one, is never written to
+            open_atlas(path, check_pages=True).close()
+        try:
+            conn = sqlite3.connect(path, timeout=30, isolation_level=None)
+            if fresh:
+                conn.execute("BEGIN IMMEDIATE")
+                if not conn.execute("SELECT 1 FROM sqlite_master WHERE name = 'meta'").fetchone():
+                    for statement in _SCHEMA.split(";"):
+                        if statement.strip():
+                            conn.execute(statement)
+                    conn.execute("INSERT INTO meta VALUES ('schema_version', ?), ('created', ?)",
+                                 (str(SCHEMA_VERSION), time.strftime("%Y-%m-%dT%H:%M:%S")))
+                conn.execute("COMMIT")
+        except sqlite3.DatabaseError as exc:
+            raise AtlasError(f"cannot write the atlas {path}: {exc}") from None
+    else:
+        if not path.is_file():
+            raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
+        try:
+            conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30, isolation_level=None)
+        except sqlite3.DatabaseError as exc:
+            raise AtlasError(f"cannot open the atlas {path}: {exc}") from None
+    try:
+        _check_version(conn, path)
+        if check_pages or (check_pages is None and not write and path.stat().st_size <= _CHECKED_READ_BYTES):
+            _check_pages(conn, path)
+    except AtlasError:
+        conn.close()
+        raise
+    conn.execute("PRAGMA foreign_keys = OFF")
+    return conn
+
+
+# -------------------------------------------------------------------- locks
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) -> int:
+    host = socket.gethostname()
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        row = conn.execute("SELECT run, pid, host, started FROM run_lock WHERE id = 1").fetchone()
+        if row is not None:
+            run, pid, other_host, started = row
+            if other_host != host or (_alive(pid) and pid != os.getpid()):
+                when = time.strftime("%H:%M:%S", time.localtime(started))
+                raise AtlasLocked(
+                    f"the atlas {path} is being written by another grid run (pid {pid} on {other_host}, "
+                    f"started {when}); wait for it to finish or use another --db"
+                )
+            conn.execute("UPDATE runs SET status = 'killed', finished = ? WHERE id = ? AND status = 'running'",
+                         (time.time(), run))
+            conn.execute("DELETE FROM run_lock")
+        now = time.time()
+        run = conn.execute(
+            "INSERT INTO runs (pid, host, grid, started, status, executor) VALUES (?, ?, ?, ?, 'running', ?)",
+            (os.getpid(), host, grid.source, now, executor)).lastrowid
+        conn.execute("INSERT INTO run_lock VALUES (1, ?, ?, ?, ?)", (run, os.getpid(), host, now))
+        conn.execute("COMMIT")
+    except BaseException:
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
+        raise
+    return run
+
+
+def _release(conn: sqlite3.Connection, run: int, status: str, units_run: int) -> None:
+    conn.execute("BEGIN IMMEDIATE")
+    conn.execute("UPDATE runs SET status = ?, finished = ?, units_run = ? WHERE id = ?",
+                 (status, time.time(), units_run, run))
+    conn.execute("DELETE FROM run_lock WHERE run = ?", (run,))
+    conn.execute("COMMIT")

@@ -1,0 +1,402 @@
+"""Grid runs into an atlas: every unit of every cell computed once (a process pool or Dask) and
+committed in one transaction, so a run killed at any instant resumes where it stopped; and the
+sizing of a grid before it runs.
+
+Guarantees
+----------
+* One transaction per finished unit: its chains, memberships, mechanisms and its
+  ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
+  power loss) leaves every unit either fully stored or still pending.
+* A rerun of the same grid skips ``done`` units; ``INSERT OR IGNORE`` on certificates
+  means no chain or mechanism is ever stored twice.
+* A second run on the same atlas while the first is alive is refused (``run_lock``
+  row checked inside ``BEGIN IMMEDIATE``; a lock left by a killed run is taken over).
+
+Example
+-------
+>>> import tempfile, os
+>>> from synth.atlas import parse_grid, summary
+>>> grid = parse_grid('dof = 1\\nlinks = "4..8"')
+>>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+>>> run_grid(grid, db, workers=1).chains_new
+19
+>>> summary(db)["by_code"]["440/0"]
+9
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sqlite3
+import sys
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import pynauty
+
+from ..errors import InvalidOption, QueryTooLarge
+from ..execution.scheduler import SchedulerUnreachable, connect as _connect
+from ..structure.chain import Chain
+from ..structure.code import Code
+from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
+from .database import _acquire, _release, _writable, open_atlas
+from .grid import Cell, Grid
+
+__all__ = ["GridRunResult", "SchedulerUnreachable", "compute_unit", "run_grid", "size_grid"]
+
+
+# ------------------------------------------------------------------- worker
+@dataclass(frozen=True)
+class _Task:
+    cell: str
+    unit: Unit
+    input_link: bool
+
+
+@dataclass
+class _Result:
+    cell: str
+    unit: str
+    chains: list[tuple]
+    link_counts: list[tuple]
+    mechanisms: list[tuple]
+    seconds: float
+
+
+def _canonical(chain: Chain) -> Chain:
+    """The chain relabelled by nauty's canonical labelling (same joints for isomorphic chains)."""
+    labels = pynauty.canon_label(chain._nauty_graph())
+    permutation = [0] * chain.links
+    for position, link in enumerate(labels[: chain.links]):
+        permutation[link] = position
+    return chain.relabel(permutation)
+
+
+def compute_unit(task: _Task) -> _Result:
+    """Run one unit and turn its chains and mechanisms into atlas rows (runs on a worker)."""
+    start = time.perf_counter()
+    chains, counts, mechs = [], [], []
+    # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
+    h = task.unit.conventions.h
+    conv = task.unit.conventions
+    fractionable = conv.rigid_subchains or task.unit.code.dof(h) + conv.slack != 1 or task.unit.code.n1
+    for found in run_unit(task.unit):  # (with prismatic pairs: the chains of the cell's W, wedge loops counted)
+        cert = found.certificate
+        chain = _canonical(found)
+        code = chain.code
+        degrees = chain.degrees
+        row = chain.to_dict()
+        prismatic = 0 if chain.kinds is None else chain.kinds.count("prismatic")
+        dof = chain.dof
+        chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), dof, h,
+                       chain.links, chain.loops, chain.v, prismatic, max(degrees),
+                       " ".join(map(str, sorted(degrees, reverse=True))),
+                       int(fractionable and chain.is_fractionated()), json.dumps(row, separators=(",", ":"))))
+        counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
+        mechanisms = mechanisms_of(chain)
+        if task.input_link:
+            mechanisms += mechanisms_of(chain, input_link=True)
+        mechs += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
+    return _Result(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
+
+
+def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
+    """Store one finished unit in one transaction; returns the number of new chains."""
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        before = conn.total_changes
+        conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, h, links, loops, v, "
+                         "prismatic, max_degree, degrees, fractionated, chain) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         result.chains)
+        new = conn.total_changes - before
+        ids: dict[str, int] = {}
+        certs = [c[0] for c in result.chains]
+        for start in range(0, len(certs), 500):  # one lookup per batch, under SQLite's variable limit
+            batch = certs[start:start + 500]
+            ids.update(conn.execute(f"SELECT certificate, id FROM chains WHERE certificate IN "
+                                    f"({','.join('?' * len(batch))})", batch).fetchall())
+        conn.executemany("INSERT OR IGNORE INTO link_counts VALUES (?, ?, ?)",
+                         [(ids[c], d, n) for c, d, n in result.link_counts])
+        conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, i) for i in ids.values()])
+        conn.executemany("INSERT OR IGNORE INTO mechanisms VALUES (?, ?, ?)",
+                         [(ids[c], f, i) for c, f, i in result.mechanisms])
+        conn.execute(
+            "UPDATE units SET status = 'done', chains = ?, mechanisms = ?, seconds = ?, finished = ?, run = ? "
+            "WHERE cell = ? AND unit = ?",
+            (len(result.chains), len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
+        conn.execute("COMMIT")
+    except BaseException:
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
+        raise
+    return new
+
+
+# ------------------------------------------------------------------ running
+@dataclass
+class GridRunResult:
+    """What a grid run did: units (total, already done, run now), chains and mechanisms, time."""
+
+    status: str
+    units_total: int
+    units_skipped: int
+    units_run: int
+    chains_found: int = 0
+    chains_new: int = 0
+    mechanisms_found: int = 0
+    seconds: float = 0.0
+    executor: str = ""
+    cells: int = 0
+
+    @property
+    def chains_per_second(self) -> float:
+        return self.chains_found / self.seconds if self.seconds > 0 else 0.0
+
+    def to_dict(self) -> dict:
+        d = dict(self.__dict__)
+        d["chains_per_second"] = round(self.chains_per_second, 1)
+        d["seconds"] = round(self.seconds, 3)
+        return d
+
+
+def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]) -> None:
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        for cell, units in plans:
+            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         (cell.key, cell.dof, cell.h, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
+                          int(cell.fractionated), int(cell.planar_only), json.dumps(cell.require), len(units)))
+            conn.executemany("INSERT OR IGNORE INTO units (cell, unit, code) VALUES (?, ?, ?)",
+                             [(cell.key, u.key, str(u.code)) for u in units])
+        conn.execute("COMMIT")
+    except BaseException:
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
+        raise
+
+
+def _local_pool(workers: int):
+    """The process pool of a local run (planning and units share it), or None for one worker."""
+    return process_pool(workers) if workers > 1 else None
+
+
+def _local(tasks: list[_Task], pool) -> Iterator[_Result]:
+    if pool is None or len(tasks) <= 1:
+        for task in tasks:
+            yield compute_unit(task)
+        return
+    yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
+
+
+def _dask(tasks: list[_Task], client) -> Iterator[_Result]:
+    from distributed import as_completed
+
+    futures = client.map(compute_unit, tasks, pure=False) if tasks else []
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            yield future.result()
+    finally:
+        if futures:
+            client.cancel(futures)
+
+
+def run_grid(
+    grid: Grid,
+    db: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+    connect_timeout: float = 5.0,
+) -> GridRunResult:
+    """Run every pending unit of ``grid`` and store the results in the atlas ``db``.
+
+    Parameters
+    ----------
+    grid : Grid
+        From :func:`synth.atlas.grid.load_grid`.
+    db : path
+        The SQLite atlas; created when missing.  Units already ``done`` are skipped.
+    workers : int, optional
+        Local processes (default: all cores; 1 runs inline).  Ignored with ``scheduler``.
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (``tcp://host:8786``): units run there.
+    progress : bool
+        A tqdm bar on stderr (units, chains found, rate, ETA).
+    connect_timeout : float
+        Seconds to wait for the scheduler.
+
+    Returns
+    -------
+    GridRunResult
+
+    Raises
+    ------
+    AtlasError, AtlasLocked, SchedulerUnreachable
+        With one sentence; the atlas is not modified by a refused run.
+
+    Notes
+    -----
+    Results are committed in completion order, one transaction per unit; the atlas's
+    content does not depend on that order, and every query orders its output.
+    """
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
+    workers = workers or os.cpu_count() or 1
+    executor = f"dask {scheduler}" if scheduler else f"local {workers}"
+    path = Path(db)
+    _writable(path)  # refuse a read-only atlas before connecting anywhere
+    if path.exists() and path.stat().st_size:
+        open_atlas(path).close()  # not an atlas, or another version: refused before any planning
+    client = _connect(scheduler, connect_timeout) if scheduler else None
+    start = time.perf_counter()
+    pool = None
+    try:
+        pool = _local_pool(workers) if client is None else None
+        # planned before the atlas is created: a grid the engine refuses leaves no file behind
+        plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
+                                               skip_impossible=True)))
+        conn = open_atlas(path, write=True)
+    except BaseException:
+        if client is not None:
+            client.close()
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+        raise
+    try:
+        run = _acquire(conn, path, grid, executor)
+        # WAL + synchronous=NORMAL: a commit survives kill -9 without an fsync per unit (a power
+        # cut may lose the last units, never consistency); back to a plain journal at the end
+        conn.execute("PRAGMA journal_mode = WAL")
+        conn.execute("PRAGMA synchronous = NORMAL")
+        conn.execute("PRAGMA cache_size = -65536")  # 64 MiB of pages: the certificate index stays in memory
+        conn.execute("PRAGMA wal_autocheckpoint = 10000")  # checkpoint rarely during a run (and at its end)
+        status, done_now = "failed", 0
+        result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
+        try:
+            _register(conn, plans)
+            done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
+            tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans
+                     for u in units
+                     if (cell.key, u.key) not in done]
+            result.units_total = sum(len(units) for _, units in plans)
+            result.units_skipped = result.units_total - len(tasks)
+            if tasks:
+                conn.execute("BEGIN IMMEDIATE")
+                conn.executemany("UPDATE units SET attempts = attempts + 1 WHERE cell = ? AND unit = ?",
+                                 [(t.cell, t.unit.key) for t in tasks])
+                conn.execute("COMMIT")
+            bar = None
+            if progress:
+                from tqdm import tqdm
+
+                bar = tqdm(total=len(tasks), unit="unit", file=sys.stderr, disable=None, desc=grid.name,
+                           dynamic_ncols=True)
+            try:
+                results = _dask(tasks, client) if client is not None else _local(tasks, pool)
+                for res in results:
+                    result.chains_new += _commit(conn, res, run)
+                    result.chains_found += len(res.chains)
+                    result.mechanisms_found += len(res.mechanisms)
+                    done_now += 1
+                    if bar is not None:
+                        bar.set_postfix(chains=result.chains_found, refresh=False)
+                        bar.update(1)
+            finally:
+                if bar is not None:
+                    bar.close()
+            status = "done"
+        except KeyboardInterrupt:
+            status = "interrupted"
+            raise
+        finally:
+            if pool is not None:
+                pool.terminate()  # before the atlas is released: no worker outlives the run
+                pool.join()
+            result.units_run = done_now
+            result.status = status
+            result.seconds = time.perf_counter() - start
+            _release(conn, run, status, done_now)
+    finally:
+        if conn.execute("PRAGMA journal_mode").fetchone()[0] == "wal":
+            try:
+                conn.execute("PRAGMA journal_mode = DELETE")
+            except sqlite3.DatabaseError:
+                pass  # a reader keeps the WAL open: the file stays in WAL mode, still consistent
+        conn.close()
+        if client is not None:
+            client.close()
+        if pool is not None:
+            pool.terminate()  # no-op after the run; the atlas was locked by another run
+            pool.join()
+    return result
+
+
+# -------------------------------------------------------------------- sizing
+_GRID_LIMIT_SECONDS = 86400.0  # refused without --force when estimated to take longer (on the workers)
+_GRID_NOTE_SECONDS = 600.0  # said on stderr before the run starts
+_BYTES_PER_MECHANISM = 210  # atlas bytes per stored mechanism, its chain's row included (W = 1, n ≤ 12: 204 and 210)
+
+
+def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str | None:
+    """Estimate the large cells of a grid (as a chain query is: from exact runs at smaller sizes,
+    timing chains and their mechanisms) and refuse a grid of more than a day, or one whose atlas
+    would not fit on the disk of ``db``'s folder, with :class:`QueryTooLarge`; a grid of more than
+    ten minutes passes with a sentence to show before it starts (returned).
+
+    >>> from synth.atlas import parse_grid
+    >>> size_grid(parse_grid('dof = 1\\nlinks = 8'), processes=2, db="a.sqlite") is None
+    True
+    """
+    import math
+    import shutil
+
+    from ..execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+
+    large = [c for c in grid.cells if c.loops >= (SIZED_LOOPS if c.v == (0, 0) else SIZED_LOOPS_MULTIPLE)]
+    if not large:
+        return None
+    log_seconds, log_chains, worst = -math.inf, -math.inf, None
+    for cell in sorted(large, key=lambda c: -c.links):
+        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
+        if found is None:
+            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
+                                "to run it anyway")
+        log_seconds = _log_sum(log_seconds, found.log10_seconds)
+        log_chains = _log_sum(log_chains, found.log10_chains)
+        worst = worst or (cell, found)
+    wall = log_seconds - math.log10(processes)
+    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
+    where = "on the scheduler's workers (one core shown)" if scheduler else f"on {processes} workers"
+    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
+    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
+            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
+            "in the atlas (extrapolated from exact runs at smaller sizes)")
+    if wall > math.log10(_GRID_LIMIT_SECONDS):
+        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
+                            "(it can be stopped and resumed)")
+    folder = os.path.dirname(os.path.abspath(db))
+    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
+    if log_bytes > math.log10(max(free, 1)):
+        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
+                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
+    if wall > math.log10(_GRID_NOTE_SECONDS):
+        return f"a long grid: {size}"
+    return None
+
+
+def _log_sum(a: float, b: float) -> float:
+    """log10(10^a + 10^b) without overflow."""
+    import math
+
+    top = max(a, b)
+    return top if math.isinf(top) else top + math.log10(10 ** (a - top) + 10 ** (b - top))
+
+
+def _power(log10: float) -> float:
+    return 10.0 ** log10 if log10 < 308 else float("inf")
