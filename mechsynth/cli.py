@@ -64,7 +64,9 @@ def main(argv: list[str] | None = None) -> int:
         args = _build_parser().parse_args(argv)
         return args.run(args)
     except SynthesisError as exc:
-        print(f"mechsynth: {exc}", file=sys.stderr)
+        from synth import flag
+
+        print(f"mechsynth: {exc.text(flag)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("mechsynth: interrupted", file=sys.stderr)

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from .structure.chain import Chain, Mechanism
-from .errors import InvalidOption, SynthesisError
+from .errors import InvalidOption, SynthesisError, option
 
 __all__ = ["Layout", "layout", "expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError"]
 
@@ -542,7 +542,8 @@ def _check_pixels(path: Path, width: float, height: float, dpi: int) -> None:
     pixels = width * dpi * height * dpi
     if pixels > _MAX_PIXELS or max(width, height) * dpi >= 2**16:
         raise InvalidOption(f"this picture would be {width * dpi:.0f} × {height * dpi:.0f} pixels, more than "
-                            f"{_MAX_PIXELS / 1e6:.0f} megapixels (or 65 536 on a side); lower --dpi or --size, narrow "
+                            f"{_MAX_PIXELS / 1e6:.0f} megapixels (or 65 536 on a side); lower {option('dpi', 'DPI')} or "
+                            f"{option('size', 'INCHES')}, narrow "
                             "the selection, or write .svg")
 
 

@@ -1,16 +1,26 @@
 """Exceptions of the synth package.
 
 Every error a designer can cause carries one sentence that says what is wrong
-and, where possible, what to change.  The CLI prints ``str(exc)`` and exits 2.
+and, where possible, what to change.  An option the remedy names is written with
+:func:`option`: a Python caller reads its keyword (``force=True``), the command line its flag
+(``--force``, through :meth:`SynthesisError.text`), so the engine speaks of the problem, not of
+one interface's flags.  The CLI prints the flag form and exits 2.
 
 Example
 -------
 >>> from synth.errors import ImpossibleParameters, SynthesisError
 >>> issubclass(ImpossibleParameters, SynthesisError)
 True
+>>> exc = SynthesisError(f"too large; give {option('force')} to run it anyway")
+>>> str(exc), exc.text(flag)
+('too large; give force=True to run it anyway', 'too large; give --force to run it anyway')
 """
 
+import re
+
 __all__ = [
+    "option",
+    "flag",
     "SynthesisError",
     "ImpossibleParameters",
     "MalformedCode",
@@ -20,8 +30,35 @@ __all__ = [
 ]
 
 
+_OPTION = re.compile("\x00([a-z_]+)\x01([^\x00]*)\x00")
+
+
+def option(name: str, value: str = "True") -> str:
+    """An option named in a message: ``name=value`` for a Python caller, ``--name [value]`` on the
+    command line (see :meth:`SynthesisError.text`)."""
+    return f"\x00{name}\x01{value}\x00"
+
+
+def flag(name: str, value: str) -> str:
+    """The command line's form of an option: ``--name``, and its value unless it is a switch.
+
+    >>> flag("checkpoint", "FILE"), flag("force", "True")
+    ('--checkpoint FILE', '--force')
+    """
+    written = "--" + name.replace("_", "-")
+    return written if value == "True" else f"{written} {value}"
+
+
 class SynthesisError(Exception):
     """Base class of every error raised by :mod:`synth`."""
+
+    def text(self, name_of=lambda name, value: f"{name}={value}") -> str:
+        """The message with each :func:`option` written by ``name_of(name, value)`` (default: as
+        a keyword argument)."""
+        return _OPTION.sub(lambda m: name_of(m.group(1), m.group(2)), super().__str__())
+
+    def __str__(self) -> str:
+        return self.text()
 
 
 class ImpossibleParameters(SynthesisError):

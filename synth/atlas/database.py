@@ -283,7 +283,7 @@ def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) ->
                 when = time.strftime("%H:%M:%S", time.localtime(started))
                 raise AtlasLocked(
                     f"the atlas {path} is being written by another grid run (pid {pid} on {other_host}, "
-                    f"started {when}); wait for it to finish or use another --db"
+                    f"started {when}); wait for it to finish or use another atlas file"
                 )
             conn.execute("UPDATE runs SET status = 'killed', finished = ? WHERE id = ? AND status = 'running'",
                          (time.time(), run))

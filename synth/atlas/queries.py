@@ -63,7 +63,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             try:
                 code = Code.parse(value)
             except MalformedCode as exc:
-                raise InvalidOption(f"in --where {item!r}: {exc}") from None
+                raise InvalidOption(f"in the condition {item!r}: {exc}") from None
             if key == "code":
                 clauses.append(f"c.code {op} ?")
                 params.append(str(code))
@@ -83,7 +83,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
         elif key in _FIELDS:
             column, col_params = f"c.{_FIELDS[key]}", []
         else:
-            raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
+            raise InvalidOption(f"unknown field {name!r} in the condition {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
                                 "fractionated, nI such as n3, basecode, cell)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
@@ -94,9 +94,9 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                 lo, hi = value.split("..", 1)
                 bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
                 if any(b is not None and abs(b) >= 2**63 for b in bounds):
-                    raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
+                    raise InvalidOption(f"in the condition {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
                 if None not in bounds and bounds[0] > bounds[1]:
-                    raise InvalidOption(f"in --where {item!r}: the range {value} is empty (write the smaller end "
+                    raise InvalidOption(f"in the condition {item!r}: the range {value} is empty (write the smaller end "
                                         "first)")
                 if bounds[0] is not None:
                     clauses.append(f"{column} >= ?")
@@ -107,9 +107,9 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                 continue
             number = int(value)
         except ValueError:
-            raise InvalidOption(f"in --where {item!r}: {value!r} is not a whole number or a range A..B") from None
+            raise InvalidOption(f"in the condition {item!r}: {value!r} is not a whole number or a range A..B") from None
         if abs(number) >= 2**63:
-            raise InvalidOption(f"in --where {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
+            raise InvalidOption(f"in the condition {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
         clauses.append(f"{column} {op} ?")
         params += col_params + [number]
     return (" AND ".join(clauses) or "1"), params

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import pynauty
 
-from ..errors import InvalidOption, QueryTooLarge
+from ..errors import InvalidOption, QueryTooLarge, option
 from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
@@ -365,7 +365,7 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
     for cell in sorted(large, key=lambda c: -c.links):
         found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
         if found is None:
-            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give --force "
+            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give {option('force')} "
                                 "to run it anyway")
         log_seconds = _log_sum(log_seconds, found.log10_seconds)
         log_chains = _log_sum(log_chains, found.log10_chains)
@@ -378,13 +378,13 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
             f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
             "in the atlas (extrapolated from exact runs at smaller sizes)")
     if wall > math.log10(_GRID_LIMIT_SECONDS):
-        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give --force to run it anyway "
+        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give {option('force')} to run it anyway "
                             "(it can be stopped and resumed)")
     folder = os.path.dirname(os.path.abspath(db))
     free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
     if log_bytes > math.log10(max(free, 1)):
         raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
-                            f"{free / 1e9:.1f} GB free; give --force to run it anyway")
+                            f"{free / 1e9:.1f} GB free; give {option('force')} to run it anyway")
     if wall > math.log10(_GRID_NOTE_SECONDS):
         return f"a long grid: {size}"
     return None

@@ -36,7 +36,7 @@ from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..draw import svg_inline
-from ..errors import InvalidOption
+from ..errors import InvalidOption, option
 
 __all__ = ["chain_id", "write_site", "SiteResult", "EmptyAtlas", "MAX_PAGE_SIZE"]
 
@@ -135,7 +135,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     if out.exists() and not out.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: it is a file")
     if out.exists() and any(out.iterdir()) and not force:
-        raise InvalidOption(f"{out} is not empty; give --force to write the site over it")
+        raise InvalidOption(f"{out} is not empty; give {option('force')} to write the site over it")
     if not out.parent.is_dir():
         raise InvalidOption(f"cannot write the site into {out}: the directory {out.parent} does not exist")
     conn = open_atlas(db)

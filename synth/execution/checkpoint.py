@@ -28,7 +28,7 @@ import sqlite3
 import time
 from pathlib import Path
 
-from ..errors import SynthesisError
+from ..errors import SynthesisError, option
 
 __all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "PLAN_FORMAT"]
 
@@ -68,11 +68,11 @@ def _check_file(path: Path) -> tuple[str, str]:
         if set(tables) != set(wanted) or any(not wanted[t] <= tables[t] for t in wanted) or identity is None:
             what = "a mechsynth atlas" if "chains" in tables else "an SQLite file of something else"
             raise CheckpointError(f"{path} is not a checkpoint of mechsynth but {what}; it was not changed "
-                                  "(give a new --checkpoint file)")
+                                  f"(give a new {option('checkpoint', 'FILE')})")
         verdict = conn.execute("PRAGMA quick_check(1)").fetchone()[0]
         if verdict != "ok":
             raise CheckpointError(f"the checkpoint {path} is damaged ({' '.join(verdict.split())}); it was not "
-                                  "changed (give a new --checkpoint file)")
+                                  f"changed (give a new {option('checkpoint', 'FILE')})")
         query = conn.execute("SELECT value FROM meta WHERE key = 'query'").fetchone()
         return identity[0], query[0] if query else "unknown"
     except sqlite3.DatabaseError as exc:
@@ -115,7 +115,7 @@ class Checkpoint:
             identity, query = _check_file(self.path)  # read-only first: any other file is refused untouched
             if identity != wanted:
                 raise CheckpointMismatch(f"the checkpoint {self.path} belongs to another query ({query}), not to "
-                                         f"{description}; give a new --checkpoint file or repeat that query")
+                                         f"{description}; give a new {option('checkpoint', 'FILE')} or repeat that query")
         try:
             self._conn = sqlite3.connect(self.path, timeout=30, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode = WAL")  # a commit survives kill -9 without an fsync each
@@ -135,7 +135,7 @@ class Checkpoint:
         if row is not None and row[0] != wanted:
             self._conn.close()
             raise CheckpointMismatch(f"the checkpoint {self.path} belongs to another query ({stored[0]}), not to "
-                                     f"{description}; give a new --checkpoint file or repeat that query")
+                                     f"{description}; give a new {option('checkpoint', 'FILE')} or repeat that query")
         self.codes = dict(self._conn.execute("SELECT code, count FROM codes"))
         self.units = {unit: (code, n) for unit, code, n in self._conn.execute("SELECT unit, code, count FROM units")}
         self.resumed_units = len(self.units) + sum(n for (n,) in self._conn.execute("SELECT units FROM codes"))

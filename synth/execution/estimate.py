@@ -31,7 +31,7 @@ import math
 import time
 from dataclasses import dataclass
 
-from ..errors import ImpossibleParameters, QueryTooLarge
+from ..errors import ImpossibleParameters, QueryTooLarge, option
 
 __all__ = ["Estimate", "estimate", "worth_sizing", "size_check", "describe_seconds", "magnitude"]
 
@@ -172,7 +172,7 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     if found is None:
         if not force:
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
-                                "(fewer than three smaller sizes have chains); give --force to run it anyway")
+                                f"(fewer than three smaller sizes have chains); give {option('force')} to run it anyway")
         return None
     where = "on the scheduler's workers (one core shown)" if scheduler else \
         f"on {processes} worker{'s' * (processes > 1)}"
@@ -182,10 +182,10 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
             f"{where}, extrapolated from the {found.basis}")
     if not count and table and found.chains > TABLE_ROWS:
         raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
-                            f"large for one ({size}); use --format jsonl or csv (streamed), or --count")
+                            f"large for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
     if not force and found.seconds / processes > LIMIT_SECONDS:
-        hint = " (with --checkpoint FILE it can be stopped and resumed)" if count else ""
-        raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give --force to "
+        hint = f" (with {option('checkpoint', 'FILE')} it can be stopped and resumed)" if count else ""
+        raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give {option('force')} to "
                             f"run it anyway{hint}")
     if found.seconds / processes > NOTE_SECONDS:
         return f"a long query: {size}"

@@ -51,7 +51,7 @@ def connect(address: str, timeout: float = 5.0):
     try:
         from distributed import Client
     except ImportError:  # pragma: no cover - dask is a dependency
-        raise SchedulerUnreachable("--scheduler needs the 'distributed' package (pip install dask[distributed])") from None
+        raise SchedulerUnreachable("a Dask scheduler needs the 'distributed' package (pip install dask[distributed])") from None
     try:
         return Client(f"{scheme}://{match.group(2)}:{port}", timeout=f"{timeout}s", set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as exc:

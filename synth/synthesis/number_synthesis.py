@@ -22,7 +22,7 @@ import math
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
-from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
+from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import _MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
@@ -54,7 +54,7 @@ class Problem:
 
 def _loops_for_links(dof: int, links: int, h: int, f: int) -> int:
     if h == 1:
-        raise ImpossibleParameters("with h = 1 the number of links does not fix the loops: give --loops")
+        raise ImpossibleParameters(f"with h = 1 the number of links does not fix the loops: give {option('loops', 'K')}")
     extra = links - dof - 1 + f
     if extra < 0 or extra % (h - 1):
         raise ImpossibleParameters(
