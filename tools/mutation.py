@@ -64,6 +64,15 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "number_synthesis": ("synth/synthesis/number_synthesis.py", ["tests/synthesis/test_number_synthesis_vs_oracle.py",
                                                         "tests/synthesis/test_number_synthesis.py",
                                                         "-k", "not test_agrees_with_brute_force["]),
+    # joint kinds: counts, generic mobility, idle joints against the R/P oracle (its fast cases)
+    "kinds": ("synth/structure/kinds.py", ["tests/structure/test_kinds_vs_oracle.py",
+                                           "tests/synthesis/test_joint_kinds_round_trip.py",
+                                           "tests/test_doctests.py::test_docstring_examples[synth.structure.kinds]"]),
+    "variants": ("synth/synthesis/variants.py", ["tests/synthesis/test_rp_chains_vs_oracle.py",
+                                                 "tests/synthesis/test_prismatic_vs_oracle.py",
+                                                 "tests/test_doctests.py::test_docstring_examples[synth.synthesis.variants]",
+                                                 "-k", "(counts_by_prismatic_pairs and not 7) or the_same_chains or "
+                                                       "variant_counts or wedge_lever or all_prismatic"]),
     "springs": ("balance/devices/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
     "fit": ("balance/devices/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device

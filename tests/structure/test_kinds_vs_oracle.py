@@ -1,0 +1,102 @@
+"""Joint kinds (synth/structure/kinds.py) against the independent R/P oracle, fast enough to judge
+every mutant of the module: every R/P assignment of every graph of four links and of a sample of
+five-link graphs, every set of links — the count with its own wedge loops, the generic mobility,
+the redundancy, the idle joints — and the lever analogue and prismatic roles by their definitions."""
+
+from __future__ import annotations
+
+import itertools
+import random
+
+import networkx as nx
+import pytest
+
+from synth import Chain
+from synth.structure.kinds import (generic_mobility, idle_joints, kind_count, lever_analogue, motion,
+                                   prismatic_roles, redundant_constraints, structural_mobility, wedge_loops)
+from tests.oracles import rp_chains as oracle
+
+
+def _graphs(n):
+    return [Chain(n, list(g.edges())) for g in nx.graph_atlas_g()
+            if g.number_of_nodes() == n and nx.is_connected(g) and min(d for _, d in g.degree()) >= 2]
+
+
+def _cases():
+    rng = random.Random(2811)
+    out = []
+    for base in _graphs(4) + rng.sample([g for g in _graphs(5) if len(g.joints) <= 7], 3):
+        for kinds in itertools.product("RP", repeat=len(base.joints)):
+            out.append((base, "".join(kinds)))
+    return out
+
+
+CASES = _cases()
+
+
+def _chain(base: Chain, kinds: str) -> Chain:
+    return Chain(base.links, base.joints, ["prismatic" if k == "P" else "revolute" for k in kinds])
+
+
+@pytest.mark.parametrize("start", range(0, len(CASES), 128))
+def test_every_set_of_links(start):
+    for base, kinds in CASES[start:start + 128]:
+        chain = _chain(base, kinds)
+        n = chain.links
+        assert wedge_loops(chain) == oracle.count_rule(n, chain.joints, kinds) - 3 * (n - 1) + 2 * len(chain.joints)
+        assert kind_count(chain, "prismatic") == kinds.count("P") and kind_count(chain, "revolute") == kinds.count("R")
+        for size in range(1, n + 1):
+            for s in itertools.combinations(range(n), size):
+                truth = oracle.generic_mobility(n, chain.joints, kinds, links=s)
+                count = oracle.count_rule(n, chain.joints, kinds, links=s)
+                assert generic_mobility(chain, s) == truth, (chain.compact(), s)
+                assert structural_mobility(chain, s) == count, (chain.compact(), s)
+                assert redundant_constraints(chain, s) == truth - count, (chain.compact(), s)
+        whole = oracle.generic_mobility(n, chain.joints, kinds)
+        assert motion(chain)[0] == whole == generic_mobility(chain)
+        if whole > 0:
+            assert set(idle_joints(chain)) == set(oracle.idle_joints(n, chain.joints, kinds)), chain.compact()
+
+
+def test_idle_joints_of_every_kind():
+    """A pin that never turns, a slider that never slides, a multiple joint two of whose links
+    never turn relative to each other; a moving chain has none."""
+    assert idle_joints(Chain.parse("0=1 1=2 2=3 3-0")) == [(0, 3)]
+    slider = Chain.parse("0-1 1-2 2-0 0=3 3-1")   # 0, 1, 2 a rigid triangle: 3 cannot slide on 0 and pin on 1
+    assert (0, 3) in idle_joints(slider)
+    assert idle_joints(Chain.parse("0-1 1-2 2-3 3-0")) == [] and idle_joints(Chain.parse("0-1-2 2-3 3-4 4-0")) == []
+    locked = Chain(6, [(0, 1, 4), (1, 2), (2, 3), (3, 4), (0, 5), (2, 5)],
+                   ["revolute", "prismatic", "prismatic", "prismatic", "revolute", "revolute"])
+    assert idle_joints(locked) == [(0, 1, 4)]
+    gears = Chain.parse("0-1 0-2 1~2")  # a gear pair on the frame: both turn, the mesh moves
+    assert idle_joints(gears) == [] and generic_mobility(gears) == 1
+    jammed = Chain.parse("0-1 0-2 1~2 1-3 3-2")  # the gears' centres also held by a link 3: W = 9 − 8 − 1 = 0
+    assert generic_mobility(jammed) == structural_mobility(jammed) == 0
+
+
+def test_meshes_count_one_constraint_and_have_a_lever_analogue():
+    """A mesh is a higher pair (two freedoms): W = 3(n − 1) − 2p − g; its lever analogue is a
+    binary link with a pin on each gear — the same mobility, every sub-chain's too."""
+    train = Chain.parse("0-1-2 2-3 0~3 1~3")   # simple planetary: frame/ring 0, sun 1, carrier 2, planet 3
+    analogue = lever_analogue(train)
+    assert structural_mobility(train) == 3 * 3 - 2 * 3 - 2 == 1 == generic_mobility(train)
+    assert analogue.kinds is None and analogue.links == 6 and analogue.compact() == "0-1-2 0-4 1-5 2-3 3-4 3-5"
+    assert generic_mobility(analogue) == 1 == analogue.dof
+    for size in range(2, 5):
+        for s in itertools.combinations(range(4), size):
+            inside = [train.links + k for k, (a, b) in enumerate(j for j, k in zip(train.joints, train.kinds)
+                                                                  if k == "mesh") if a in s and b in s]
+            assert structural_mobility(train, s) == structural_mobility(analogue, list(s) + inside)
+    assert lever_analogue(Chain.parse("0-1 1-2 2-0")) == Chain.parse("0-1 1-2 2-0")
+
+
+@pytest.mark.parametrize("text, frame, roles", [
+    ("0=1 0-3 1-2 2-3", 0, {"guide": 1, "swinging": 0, "floating": 0, "slider": 0}),
+    ("0=1 0-3 1-2 2-3", 2, {"guide": 0, "swinging": 1, "floating": 0, "slider": 0}),
+    ("0-2 2-1 0-3 3-1 0-4 4=5 5-1", 2, {"guide": 0, "swinging": 0, "floating": 1, "slider": 0}),
+    ("0=1 1-2 2-3 3-0 0-4 4-5 5-1", 2, {"guide": 0, "swinging": 0, "floating": 0, "slider": 1}),
+    ("0-1 1-2 2=3 3-0 0-4 4=5 5-1", 0, {"guide": 0, "swinging": 2, "floating": 0, "slider": 0}),
+    ("0-1 1-2 2-3 3-0", 0, {"guide": 0, "swinging": 0, "floating": 0, "slider": 0}),
+])
+def test_prismatic_roles(text, frame, roles):
+    assert prismatic_roles(Chain.parse(text), frame) == roles
