@@ -32,7 +32,7 @@ Example
 1
 """
 
-from importlib import import_module
+from ._lazy import lazy_exports
 
 from .errors import *  # noqa: F401,F403
 from .errors import __all__ as _errors_all
@@ -76,13 +76,4 @@ _WHERE = {
 __all__ = [*_WHERE, *_errors_all]
 
 
-def __getattr__(name: str):
-    if name in _WHERE:
-        value = getattr(import_module(_WHERE[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'synth' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

@@ -17,7 +17,7 @@ Example
 ['W=1 n=4 v=0..0 rigid=0 frac=1 planar=0', 'W=1 n=6 v=0..0 rigid=0 frac=1 planar=0']
 """
 
-from importlib import import_module
+from .._lazy import lazy_exports
 
 _WHERE = {
     "GridFileError": ".grid", "Cell": ".grid", "Grid": ".grid", "load_grid": ".grid", "parse_grid": ".grid",
@@ -31,13 +31,4 @@ _WHERE = {
 __all__ = list(_WHERE)
 
 
-def __getattr__(name: str):
-    if name not in _WHERE:
-        raise AttributeError(f"module 'synth.atlas' has no attribute {name!r}")
-    value = getattr(import_module(_WHERE[name], __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

@@ -4,7 +4,7 @@ Schema (version 3, ``meta.schema_version``)
 -------------------------------------------
 ``chains``      one row per chain: integer ``id``, ``certificate`` (nauty, canonical) UNIQUE; code
                 (with joint composition), base code (without), W, h, n, K, v, number of prismatic
-                pairs (grid key ``prismatic``; W then follows the wedge rule), largest link degree,
+                pairs (grid key ``prismatic``; W counts their wedge loops), largest link degree,
                 sorted degrees, fractionated flag, and the chain JSON (``Chain.to_dict``) in its
                 *canonical labelling* (nauty's), so the same chain reads the same from any cell.
 ``link_counts`` (chain, degree, count): n_I of each chain, for ``--where n5>=1``.
@@ -21,15 +21,8 @@ Schema (version 3, ``meta.schema_version``)
 ``runs``        every grid run: pid, host, start/end, status, workers or scheduler.
 ``run_lock``    at most one row: the run writing the atlas now (pid, host).
 
-Guarantees
-----------
-* One transaction per finished unit: its chains, memberships, mechanisms and its
-  ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
-  power loss) leaves every unit either fully stored or still pending.
-* A rerun of the same grid skips ``done`` units; ``INSERT OR IGNORE`` on certificates
-  means no chain or mechanism is ever stored twice.
-* A second run on the same atlas while the first is alive is refused (``run_lock``
-  row checked inside ``BEGIN IMMEDIATE``; a lock left by a killed run is taken over).
+The guarantees of a run (one transaction per finished unit, no chain stored twice, one run at a
+time) are kept by :mod:`synth.atlas.runs` with this file's lock.
 
 Example
 -------
@@ -39,6 +32,7 @@ Example
 >>> conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()[0]
 '3'
 """
+
 from __future__ import annotations
 
 import hashlib

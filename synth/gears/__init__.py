@@ -11,7 +11,7 @@ Example
 (81, 27)
 """
 
-from importlib import import_module
+from .._lazy import lazy_exports
 
 _WHERE = {
     "GearTrain": ".train",
@@ -27,13 +27,4 @@ _WHERE = {
 __all__ = list(_WHERE)
 
 
-def __getattr__(name: str):
-    if name in _WHERE:
-        value = getattr(import_module(_WHERE[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'synth.gears' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

@@ -43,7 +43,7 @@ import numpy as np
 
 from .chain import JOINT_KINDS, SYMBOLS, Chain
 
-__all__ = ["KINDS", "SYMBOLS", "kind_count", "wedge_loops", "structural_mobility", "generic_mobility",
+__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "structural_mobility", "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
@@ -70,15 +70,13 @@ def _members(chain: Chain, links) -> set[int]:
     return set(range(chain.links)) if links is None else set(links)
 
 
-def wedge_loops(chain: Chain, links=None) -> int:
-    """c_P(S): independent loops made only of prismatic pairs among ``links`` (all by default).
+def cycle_rank(nodes, edges) -> int:
+    """Independent loops of a graph: its edges minus the edges of a spanning forest (union–find).
 
-    >>> wedge_loops(Chain.parse("0=1 1=2 2=0 2-3 3-0"))
-    1
+    >>> cycle_rank(range(3), [(0, 1), (1, 2), (2, 0)]), cycle_rank(range(4), [(0, 1), (2, 3)])
+    (1, 0)
     """
-    s = _members(chain, links)
-    edges = [j for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic" and j[0] in s and j[1] in s]
-    root = {x: x for x in s}
+    root = {x: x for x in nodes}
 
     def find(x):
         while root[x] != x:
@@ -86,13 +84,25 @@ def wedge_loops(chain: Chain, links=None) -> int:
             x = root[x]
         return x
 
-    merged = 0
+    loops = 0
     for a, b in edges:
         ra, rb = find(a), find(b)
-        if ra != rb:
+        if ra == rb:
+            loops += 1
+        else:
             root[ra] = rb
-            merged += 1
-    return len(edges) - merged
+    return loops
+
+
+def wedge_loops(chain: Chain, links=None) -> int:
+    """c_P(S): independent loops made only of prismatic pairs among ``links`` (all by default).
+
+    >>> wedge_loops(Chain.parse("0=1 1=2 2=0 2-3 3-0"))
+    1
+    """
+    s = _members(chain, links)
+    sliders = [j for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic" and j[0] in s and j[1] in s]
+    return cycle_rank(s, sliders)
 
 
 def structural_mobility(chain: Chain, links=None) -> int:

@@ -23,31 +23,11 @@ from itertools import combinations
 
 from ..errors import InvalidOption
 from ..structure.chain import Chain
-from ..structure.kinds import motion
+from ..structure.kinds import cycle_rank, motion
 from ..structure.subchains import check_subchains
 from ._realise import Conventions
 
 __all__ = ["assignments", "prismatic_variants", "variants_of"]
-
-
-def _cycle_rank(links: int, pairs) -> int:
-    """Independent loops of the pairs ``pairs`` (edges between links) — union–find."""
-    root = list(range(links))
-
-    def find(x):
-        while root[x] != x:
-            root[x] = root[root[x]]
-            x = root[x]
-        return x
-
-    loops = 0
-    for a, b in pairs:
-        ra, rb = find(a), find(b)
-        if ra == rb:
-            loops += 1
-        else:
-            root[ra] = rb
-    return loops
 
 
 def _admissible(variant: Chain, rigid: bool, idle: bool, counted: bool = False) -> bool:
@@ -103,7 +83,7 @@ def assignments(skeleton: Chain, conv: Conventions) -> list[Chain]:
     most = len(candidates) if hi is None else min(hi, len(candidates))
     return _assign(skeleton, range(least, most + 1),
                    lambda v: _admissible(v, conv.rigid_subchains, conv.idle_joints, counted=conv.slack == 0),
-                   lambda pairs: _cycle_rank(skeleton.links, pairs) == conv.slack, candidates=candidates)
+                   lambda pairs: cycle_rank(range(skeleton.links), pairs) == conv.slack, candidates=candidates)
 
 
 def prismatic_variants(chain: Chain, count: int, *, idle: bool = False,
