@@ -439,8 +439,11 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             if ck is not None:
                 ck.add_unit(unit.key, names[index], result.get(names[index], 0))
     order = {name: i for i, name in enumerate(dict.fromkeys(names))}
-    by_code = {name: totals[name] for name in sorted(totals, key=lambda x: (order.get(x.split(" ")[0], 0), x))
-               if totals[name]}
+    def place(name: str):  # plan order of the code, then its numbers of prismatic pairs and meshes
+        code, *kinds = name.split(" ")
+        return order.get(code, 0), [(k[0], int(k[1:])) for k in kinds]
+
+    by_code = {name: totals[name] for name in sorted(totals, key=place) if totals[name]}
     return Counts(sum(by_code.values()), by_code)
 
 
