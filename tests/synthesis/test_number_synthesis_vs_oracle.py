@@ -141,7 +141,7 @@ def test_links_give_the_loops(dof, n, h, f):
     (dict(dof=1, links=9, h=4, f=1), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = 8 "
                                      "to be a non-negative multiple of h − 1 = 3 (W=1, n=9, h=4, f=1)"),
     (dict(dof=5, links=3), "no whole number of loops fits: n = W + 1 + (h − 1)·K − f needs n − W − 1 + f = -3 "),
-    (dict(dof=1, links=8, h=1), "with h = 1 the number of links does not fix the loops: give --loops"),
+    (dict(dof=1, links=8, h=1), "with h = 1 the number of links does not fix the loops: give loops=K"),
     (dict(dof=1, loops=2, require=["0=1"]), "a link carries at least one joint; requirement on n0 is impossible"),
 ])
 def test_impossible_parameters_say_why(kwargs, sentence):
