@@ -29,6 +29,7 @@ _WHERE = {
     "generic_mobility": ".structure.kinds", "idle_joints": ".structure.kinds", "wedge_loops": ".structure.kinds",
     "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds", "planetary_table": ".gears.planetary",
     "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
+    "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
     "plan_codes": ".synthesis.type_synthesis", "plan_units": ".synthesis.type_synthesis", "plan_many": ".synthesis.type_synthesis", "run_unit": ".synthesis.type_synthesis",
 }
 

@@ -24,6 +24,7 @@ from pathlib import Path
 
 from .._argtypes import inches, positive, seconds, whole, workers
 from .._output import nothing_found, write_count, write_rows
+from .chains import WRITTEN
 
 __all__ = ["add_commands"]
 
@@ -45,13 +46,14 @@ def add_commands(sub) -> None:
     p.add_argument("--export", choices=("chains", "mechanisms"), help="print rows instead of the summary")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
-                        "fractionated=0, cell=KEY")
+                        "fractionated=0, cell=KEY, id=ID (12 hex digits), certificate=CERT")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--prismatic", metavar="A..B",
                    help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry")
     p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
-    p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
-                   help="summary: table or json; export: jsonl, csv or table")
+    p.add_argument("--format", choices=("table", "json", "jsonl", "csv", *WRITTEN), default=None,
+                   help="summary: table or json; export: jsonl, csv, table, or graphml, gml, dot, edgelist, adjacency, "
+                        "incidence (docs/exchange.md)")
     p.add_argument("--html", metavar="DIR", help="write the atlas as a static web site into DIR (open DIR/index.html)")
     p.add_argument("--page-size", type=positive, help="with --html: chains per page (default 60)")
     p.add_argument("--draw-limit", type=whole,
@@ -65,12 +67,13 @@ def add_commands(sub) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
-    g.add_argument("--db", help="chains of an atlas selected with --where")
+    g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
     p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
+    p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
@@ -176,7 +179,7 @@ def _power(log10: float) -> float:
 
 
 # -------------------------------------------------------------------- atlas
-_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "joints", "certificate"]
+_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "fractionated", "joints", "certificate"]
 _MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
 
 
@@ -191,6 +194,9 @@ def _run_atlas(args) -> int:
         raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.count and args.format in WRITTEN:
+        raise InvalidOption(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of "
+                            "chains)")
     what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
     if what is None:
         fmt = args.format or "table"
@@ -205,7 +211,11 @@ def _run_atlas(args) -> int:
     if args.prismatic is not None:
         return _export_variants(args, what)
     rows = export(args.db, what, where=args.where)
-    if args.count:
+    if args.format in WRITTEN:
+        from synth.exchange import write
+
+        found = write(_items(rows, what), args.format)
+    elif args.count:
         by_code: dict[str, int] = {}
         for row in rows:
             by_code[row["code"]] = by_code.get(row["code"], 0) + 1
@@ -213,6 +223,15 @@ def _run_atlas(args) -> int:
     else:
         found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _items(rows, what: str):
+    """Chains (or mechanisms) of exported atlas rows."""
+    from synth.structure.chain import Chain, Mechanism
+
+    for row in rows:
+        chain = Chain.from_dict(row)
+        yield chain if what == "chains" else Mechanism(chain, row["frame"], row.get("input_link"))
 
 
 def _write_site(args) -> int:
@@ -319,6 +338,11 @@ def _run_draw(args) -> int:
     from synth.errors import InvalidOption
 
     args.where = _conditions(args.where)
+    if args.id is not None:
+        if not args.db:
+            raise InvalidOption("--id names a chain of an atlas: give --db too (for a chain of your own, "
+                                "'mechsynth identify' finds its id)")
+        args.where.append(f"id={args.id}")
     if args.dpi is not None and not args.out.lower().endswith(".png"):
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
@@ -396,7 +420,7 @@ def _run_draw(args) -> int:
         size = (f"more than {args.limit} drawings (--limit)" if cut
                 else f"{len(items)} drawings, more than --limit {args.limit}")
         raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
-    if len(items) == 1 and not (args.code or args.db):
+    if len(items) == 1 and not (args.code or (args.db and args.id is None)):
         size, dpi = draw.SINGLE
         draw.draw_one(items[0], args.out, title=title, labels=args.labels is not False,
                       size=args.size or size, dpi=args.dpi or dpi)

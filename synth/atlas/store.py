@@ -47,7 +47,6 @@ Example
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
@@ -66,6 +65,7 @@ from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
+from ..analysis.identify import chain_id  # a chain's id: the site's address and every listing's 'id'
 from ..errors import InvalidOption, MalformedChain, MalformedCode, SynthesisError
 from .grid import Cell, Grid
 
@@ -131,16 +131,6 @@ CREATE TABLE run_lock (
     host TEXT NOT NULL, started REAL NOT NULL
 );
 """
-
-
-def chain_id(certificate: str) -> str:
-    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
-    the site, ``chain.html#<id>``, and the ``id`` of every atlas export row).
-
-    >>> len(chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate))
-    12
-    """
-    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
 
 
 # ------------------------------------------------------------------ opening
@@ -278,6 +268,7 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         conn.close()
         raise
     conn.execute("PRAGMA foreign_keys = OFF")
+    conn.create_function("chain_id", 1, chain_id, deterministic=True)  # for --where id=…
     return conn
 
 
@@ -635,7 +626,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
     joined by AND.  Fields: ``code`` (= or !=, the code as the atlas shows it, e.g.
     ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``h`` (motion space), ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
     ``fractionated`` (0/1), ``P``/``prismatic`` (number of prismatic pairs), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
-    (= only, a cell key as shown by ``mechsynth atlas``).  With ``=`` a number may be a
+    (= only, a cell key as shown by ``mechsynth atlas``), ``id`` and ``certificate`` (= or !=: the chain's
+    id, 12 hex digits as listings print it, or its nauty certificate).  With ``=`` a number may be a
     range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
 
     >>> parse_where(["code=6301/0", "n=8..10", "n3>=2"])[1]
@@ -663,6 +655,16 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                 clauses.append(f"c.base_code {op} ?")
                 params.append(str(Code(code.assortment, code.v)))
             continue
+        if key in ("id", "certificate"):
+            if op not in ("=", "!="):
+                raise InvalidOption(f"a chain's {key} is compared with = or != only, not {m.group(2)!r}")
+            value = value.strip().lower()
+            if key == "id" and not re.fullmatch(r"[0-9a-f]{12}", value):
+                raise InvalidOption(f"in --where {item!r}: a chain id is 12 hex digits (the 'id' column of a listing), "
+                                    f"not {m.group(3)!r}")
+            clauses.append("chain_id(c.certificate) " + op + " ?" if key == "id" else f"c.certificate {op} ?")
+            params.append(value)
+            continue
         if key == "cell":
             if op != "=":
                 raise InvalidOption("a cell is selected with = only")
@@ -676,7 +678,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             column, col_params = f"c.{_FIELDS[key]}", []
         else:
             raise InvalidOption(f"unknown field {name!r} in --where {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
-                                "fractionated, nI such as n3, basecode, cell)")
+                                "fractionated, nI such as n3, basecode, cell, id, certificate)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
         try:
