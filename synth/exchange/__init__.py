@@ -33,6 +33,7 @@ True
 from __future__ import annotations
 
 import io
+import re
 from pathlib import Path
 
 from ..errors import InvalidOption, MalformedChain
@@ -40,14 +41,14 @@ from ..structure.chain import Chain, Mechanism
 from ._dot import read_dot, write_dot
 from ._entry import Entry
 from ._graphs import describe, from_graph, read_gml, read_graphml, to_graph, write_gml, write_graphml
-from ._lists import looks_like_joint_list, read_edgelist, read_json, read_text_lists, write_edgelist
+from ._lists import edge_words, looks_like_joint_list, read_edgelist, read_json, read_text_lists, write_edgelist, write_lines
 from ._matrices import read_matrices, write_adjacency, write_incidence
 
 __all__ = ["FORMATS", "WRITTEN", "Entry", "read", "read_file", "read_text", "detect", "write", "to_graph",
            "from_graph", "describe"]
 
 FORMATS = ("text", "json", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
-WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # text and json: the listings' own
+WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # the listings write text and json themselves
 _SUFFIXES = {".graphml": "graphml", ".xml": "graphml", ".gml": "gml", ".dot": "dot", ".gv": "dot",
              ".json": "json", ".jsonl": "json", ".ndjson": "json", ".csv": "matrix", ".tsv": "matrix",
              ".edgelist": "edgelist", ".edges": "edgelist"}
@@ -66,7 +67,8 @@ def detect(text: str, suffix: str = "") -> str:
     found = _SUFFIXES.get(suffix.lower())
     if found:
         return found
-    start = text.lstrip()[:200].lower()
+    start = re.sub(r"/\*.*?\*/|//[^\n]*|^\s*#[^\n]*", "", text[:4000], flags=re.DOTALL | re.MULTILINE)
+    start = start.lstrip()[:200].lower()
     if start.startswith("<"):
         return "graphml"
     if start.startswith(("{", "[")):
@@ -82,7 +84,7 @@ def detect(text: str, suffix: str = "") -> str:
         return "text"
     if lines and all(("," in ln or ";" in ln or "\t" in ln) for ln in lines):
         return "matrix"
-    if lines and all(len(ln.split("{", 1)[0].replace(",", " ").split()) >= 2 for ln in lines):
+    if lines and all(edge_words(ln.split("{", 1)[0]) is not None for ln in lines):
         return "edgelist"
     return "unknown"
 
@@ -187,13 +189,15 @@ _WRITERS = {"graphml": write_graphml, "gml": write_gml, "dot": write_dot, "edgel
 
 
 def write(items, fmt: str, out=None) -> int:
-    """Write chains or mechanisms to ``out`` (default stdout) in one of :data:`WRITTEN`, as they
+    """Write chains or mechanisms to ``out`` (default stdout) in one of :data:`FORMATS`, as they
     come (nothing is held back); returns how many were written."""
     import sys
 
-    if fmt not in WRITTEN:
-        raise InvalidOption(f"chains are written as {', '.join(WRITTEN)}, not {fmt!r}")
+    if fmt not in FORMATS:
+        raise InvalidOption(f"chains are written as {', '.join(FORMATS)}, not {fmt!r}")
     out = out or sys.stdout
+    if fmt in ("text", "json"):
+        return write_lines(items, fmt, out)
     if fmt == "edgelist":
         count = 0
         for item in items:

@@ -11,7 +11,7 @@ networkx multigraph read by :func:`~synth.exchange._graphs.from_graph`.
 
 Example
 -------
->>> [e.chain.compact() for e in read_dot('graph { a -- b -- c -- a [kind=prismatic] }', "d")]
+>>> [e.chain.compact() for e in read_dot('graph { a -- b -- c; c -- a [kind=prismatic] }', "d")]
 ['0-1 0=2 1-2']
 """
 

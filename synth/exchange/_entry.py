@@ -47,9 +47,9 @@ class Entry:
         """The chain, or the mechanism when the source fixed a frame."""
         return self.chain if self.frame is None else Mechanism(self.chain, self.frame)
 
-    def name(self, link: int) -> str:
-        """The source's name of a link."""
-        return str(link) if self.names is None else self.names[link]
+    def name(self, link: int) -> int | str:
+        """The source's name of a link (its number where the source numbered the links 0 … n − 1)."""
+        return link if self.names is None else self.names[link]
 
 
 def kind_of(value, where: str) -> str:

@@ -250,7 +250,8 @@ def _gml_blocks(text: str) -> list[str]:
 
 
 def read_gml(text: str, source: str) -> list[Entry]:
-    """Every ``graph [ … ]`` block of a GML text, read with networkx (nodes keyed by their ``id``)."""
+    """Every ``graph [ … ]`` block of a GML text, read with networkx (nodes named by their
+    ``label`` where each has its own, else by their ``id``)."""
     import networkx as nx
 
     blocks = _gml_blocks(text)
@@ -260,7 +261,10 @@ def read_gml(text: str, source: str) -> list[Entry]:
     for i, block in enumerate(blocks, start=1):
         where = f"{source} graph {i}" if len(blocks) > 1 else source
         try:
-            g = nx.parse_gml(block, label=None)
+            try:
+                g = nx.parse_gml(block)  # nodes by their labels, where every node has its own
+            except nx.NetworkXError:
+                g = nx.parse_gml(block, label=None)
         except (nx.NetworkXError, ValueError, KeyError, TypeError) as exc:
             raise MalformedChain(f"{where}: not GML networkx can read ({_first_line(exc)})") from None
         out.append(from_graph(g, where))

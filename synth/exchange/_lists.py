@@ -28,7 +28,8 @@ from ..errors import MalformedChain
 from ..structure.chain import Chain
 from ._entry import Entry, check_distinct, entry_of, kind_of
 
-__all__ = ["read_text_lists", "read_json", "read_edgelist", "write_edgelist", "looks_like_joint_list"]
+__all__ = ["read_text_lists", "read_json", "read_edgelist", "write_edgelist", "write_lines", "looks_like_joint_list",
+           "edge_words"]
 
 _JOINT_TOKEN = re.compile(r"^\d+(?:[-=~]\d+)+$")
 _FRAME_LINE = re.compile(r"^#\s*frame\s*[:=]?\s*(\S+)\s*$", re.IGNORECASE)
@@ -45,22 +46,52 @@ def looks_like_joint_list(line: str) -> bool:
 
 
 def read_text_lists(text: str, source: str) -> list[Entry]:
-    """One chain per non-empty line, in the joint-list notation."""
+    """One chain per non-empty line, in the joint-list notation; a comment ``# frame F`` on the
+    line fixes link F (a mechanism)."""
     out = []
     lines = text.splitlines()
     single = sum(1 for line in lines if line.split("#", 1)[0].strip()) == 1
     for number, line in enumerate(lines, start=1):
-        body = line.split("#", 1)[0].strip()
+        body, _, comment = line.partition("#")
+        body = body.strip()
         if not body:
             continue
+        frame = _FRAME_LINE.match("#" + comment.strip()) if comment else None
         where = source if single else f"{source} line {number}"
         check_distinct([re.split(r"[-=~]", w) for w in body.replace(",", " ").split()], where)
         try:
             chain = Chain.parse(body)
         except MalformedChain as exc:
             raise MalformedChain(f"{where}: {exc}") from None
-        out.append(Entry(chain, None, None, where))
+        out.append(_with_frame(Entry(chain, None, None, where), frame.group(1) if frame else None))
     return out
+
+
+def _with_frame(entry: Entry, frame) -> Entry:
+    if frame is None:
+        return entry
+    if not re.fullmatch(r"\d+", str(frame)) or int(frame) >= entry.chain.links:
+        raise MalformedChain(f"{entry.source}: the frame {frame} is not a link of the chain (0 … {entry.chain.links - 1})")
+    return Entry(entry.chain, int(frame), entry.names, entry.source)
+
+
+def write_lines(items, fmt: str, out) -> int:
+    """One chain a line: its joint list (``text``; a mechanism adds ``# frame F``) or its JSON row
+    (``json``, with its ``id``)."""
+    from ._graphs import describe
+
+    count = 0
+    for item in items:
+        chain = getattr(item, "chain", item)
+        if fmt == "text":
+            frame = getattr(item, "frame", None)
+            out.write(chain.compact() + ("" if frame is None else f"  # frame {frame}") + "\n")
+        else:
+            row = item.to_dict()
+            row["id" if chain is item else "chain_id"] = describe(item)["id"]
+            out.write(json.dumps(row) + "\n")
+        count += 1
+    return count
 
 
 def _entry_of_row(row, where: str) -> Entry:
@@ -102,13 +133,21 @@ def read_json(text: str, source: str) -> list[Entry]:
     return out
 
 
-def _joint_of_line(words: list[str], where: str) -> tuple[list[str], str]:
-    """Links and kind of one edge-list line (its words, data dictionary already split off)."""
-    kind = "revolute"
-    if len(words) >= 3 and words[-1].lower() in ("revolute", "prismatic", "mesh", "gear", "-", "=", "~"):
-        kind = kind_of(words.pop(), where)
-    if len(words) < 2:
-        raise MalformedChain(f"{where}: an edge-list line names the two (or more) links of a joint, e.g. '0 1'")
+_KIND_WORDS = ("revolute", "prismatic", "mesh", "gear", "-", "=", "~")
+_NAME = re.compile(r"^[A-Za-z0-9_.:]+$")
+
+
+def edge_words(body: str) -> tuple[list[str], str | None] | None:
+    """The link names and kind word of an edge-list line (data dictionary split off), or None
+    when the line is not one: two or more names (letters, digits, ``_ . :``), then a kind.
+
+    >>> edge_words("0 1 prismatic"), edge_words("crank, rod"), edge_words('dof = 1')
+    ((['0', '1'], 'prismatic'), (['crank', 'rod'], None), None)
+    """
+    words = body.replace(",", " ").split()
+    kind = words.pop() if len(words) >= 3 and words[-1].lower() in _KIND_WORDS else None
+    if len(words) < 2 or not all(_NAME.match(w) for w in words):
+        return None
     return words, kind
 
 
@@ -148,7 +187,12 @@ def read_edgelist(text: str, source: str) -> list[Entry]:
                                      "{'kind': 'prismatic'})") from None
             if not isinstance(data, dict):
                 raise MalformedChain(f"{where}: the joint's data must be a dictionary, not {data!r}")
-        words, kind = _joint_of_line(body.replace(",", " ").split(), where)
+        found = edge_words(body)
+        if found is None:
+            raise MalformedChain(f"{where}: cannot read {body!r} as a joint: an edge-list line names the two (or more) "
+                                 "links of a joint, then optionally its kind, e.g. '0 1' or '1 2 prismatic'")
+        words, word = found
+        kind = "revolute" if word is None else kind_of(word, where)
         if data:
             value = data.get("kind", data.get("joint_kind", data.get("type")))
             if value is not None:
