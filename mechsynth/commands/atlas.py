@@ -324,6 +324,18 @@ def _variants(args, chains: list) -> list:
     return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
 
 
+def _defect(chain, dof) -> str:
+    """What is wrong with a chain to repair, in a few words (the caption of its drawing)."""
+    from synth.structure.subchains import check_subchains
+
+    report = check_subchains(chain, rigid_subchains=(chain.dof if dof is None else dof) == 0)
+    wrong = f"W = {chain.dof}, not {dof}; " if dof is not None and dof != chain.dof else ""
+    if report.ok:
+        return f"given: {wrong or 'no defect'}".rstrip("; ")
+    return (f"given: {wrong}{report.kind} of links {', '.join(map(str, report.worst))} (W(S) = "
+            f"{report.worst_mobility})")
+
+
 def _at_most(chains, args):
     """The selected chains, stopped once they are more than ``--limit`` drawings (each chain is
     at least one; R/P variants may be none): a large selection is refused without being built."""
@@ -365,6 +377,7 @@ def _run_draw(args) -> int:
             raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
                                 f"{args.h}")
     h = args.h or 3
+    notes = None  # the words under each drawing of a sheet: the edits of the repairs
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     if args.prismatic is not None and (args.repairs or args.frame is not None or h != 3):
@@ -376,13 +389,14 @@ def _run_draw(args) -> int:
         from synth.analysis.repair import chain_repairs
 
         chain = Chain.parse(args.chain)
-        repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
-        if not repaired:
+        repairs = chain_repairs(chain, dof=args.dof, limit=args.repairs)
+        if not repairs:
             print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
                   file=sys.stderr)
             return 1
-        items = draw.expand([chain, *repaired], mechanisms=False)
-        title = args.title or f"{chain.compact()} and {len(repaired)} repairs"
+        items = [chain, *(Chain.parse(r["chain"]) for r in repairs)]
+        notes = [_defect(chain, args.dof)] + ["; ".join(r["edits"]) for r in repairs]
+        title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
         from dataclasses import replace
 
@@ -427,6 +441,6 @@ def _run_draw(args) -> int:
     else:
         size, dpi = draw.CELL
         draw.draw_sheet(items, args.out, columns=args.columns, title=title, labels=args.labels,
-                        size=args.size or size, dpi=args.dpi or dpi)
+                        size=args.size or size, dpi=args.dpi or dpi, notes=notes)
     print(f"{len(items)} drawing{'s' if len(items) != 1 else ''} -> {args.out}", file=sys.stderr)
     return 0
