@@ -425,7 +425,7 @@ def _run_draw(args) -> int:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
         items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
-        title = args.title or f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains"
+        title = args.title or (None if args.id else f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains")
     if not items:  # only --prismatic can empty a selection here
         print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
         return 1

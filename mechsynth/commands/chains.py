@@ -159,6 +159,10 @@ def _run(args) -> int:
     if args.idle_joints and args.prismatic is None:
         raise _invalid("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     query = query_of(args)
+    most_v = query.code.v if query.code is not None else (query.v or (0, 0))[1]
+    if args.format == "adjacency" and most_v != 0:
+        raise _invalid("an adjacency matrix holds simple joints only, and this query lists multiple joints (--v): "
+                       "use --format incidence")
     _size_note(query, args)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None

@@ -178,10 +178,15 @@ def read(source, fmt: str | None = None) -> list[Entry]:
         import sys
 
         return read_text(sys.stdin.read(), fmt, source="standard input")
-    one_word = text and len(text.split()) == 1 and not text.startswith(("{", "[")) and not looks_like_joint_list(text)
-    if one_word or (len(text) < 4096 and "\n" not in text and text and Path(text).exists()):
+    if text.startswith(("{", "[")) or "\n" in text or not text:
+        return read_text(source, fmt, source="the chain given")
+    if len(text.split()) == 1 and not looks_like_joint_list(text):
         return read_file(text, fmt)  # a path (a missing one is said so)
-    return read_text(source, fmt, source="the chain given")
+    try:
+        exists = Path(text).exists()
+    except OSError:  # a name too long for a file: text
+        exists = False
+    return read_file(text, fmt) if exists else read_text(source, fmt, source="the chain given")
 
 
 _WRITERS = {"graphml": write_graphml, "gml": write_gml, "dot": write_dot, "edgelist": None,
