@@ -76,6 +76,8 @@ def add_commands(sub) -> None:
     p.add_argument("--force", action="store_true", help="run an enumeration estimated to take more than a day")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table",
                    help="table (default), json (one document) or jsonl (a row per finding)")
+    p.add_argument("--exit-code", action="store_true",
+                   help="exit with status 1 when the atlases differ (as diff and git diff --exit-code do)")
     p.set_defaults(run=_run_compare)
 
 
@@ -170,7 +172,7 @@ def _run_compare(args) -> int:
         write_rows(({k: v for k, v in f.__dict__.items()} for f in result.findings), [], "jsonl")
     else:
         _print_comparison(result)
-    return 0 if result.agree else 1
+    return 1 if args.exit_code and not result.agree else 0
 
 
 def _print_comparison(result) -> None:
@@ -180,6 +182,30 @@ def _print_comparison(result) -> None:
           f"extra {result.count('extra')}" + (": the atlases agree" if result.agree else ""))
     if result.findings:
         print()
-        rows = [{"finding": f.kind, "id": f.id, "where": ", ".join(f.given) or f"engine row {f.row}",
+        rows = [{"finding": f.kind, "id": f.id, "where": _where(f.given) or f"engine row {f.row}",
                  "joints": f.joints, "reason": f.reason} for f in result.findings]
         write_rows(rows, ["finding", "id", "where", "joints", "reason"], "table")
+
+
+def _where(sources: list[str]) -> str:
+    """Where a chain was given, a file named once: ``a.txt lines 6, 7``.
+
+    >>> _where(["a.txt line 6", "a.txt line 7", "b.graphml"])
+    'a.txt lines 6, 7; b.graphml'
+    """
+    import re
+
+    groups: dict[str, list[str]] = {}
+    for source in sources:
+        m = re.fullmatch(r"(.*) (line|graph|row) (\d+)", source)
+        file, part = (m.group(1), (m.group(2), m.group(3))) if m else (source, None)
+        groups.setdefault(file, []).append(part)
+    shown = []
+    for file, parts in groups.items():
+        numbered = [p for p in parts if p is not None]
+        if not numbered:
+            shown.append(file)
+        else:
+            word = numbered[0][0] + ("s" if len(numbered) > 1 else "")
+            shown.append(f"{file} {word} {', '.join(n for _, n in numbered)}")
+    return "; ".join(shown)

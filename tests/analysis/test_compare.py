@@ -75,14 +75,17 @@ def test_the_command_on_files_of_several_formats(atlas, tmp_path, capsys):
     (tmp_path / "a.graphml").write_text(text_of(atlas[:half], "graphml"))
     (tmp_path / "b.txt").write_text(text_of(atlas[half:], "text"))
     assert main(["compare", str(tmp_path / "a.graphml"), str(tmp_path / "b.txt"), "--dof", "1", "--links", "8",
-                 "--workers", "1"]) == 0
+                 "--workers", "1", "--exit-code"]) == 0
     out = capsys.readouterr().out
     assert "16 chains given, 16 distinct; the engine lists 16" in out and "the atlases agree" in out
     damaged = _damaged(atlas, tmp_path)
-    assert main(["compare", str(damaged), "--dof", "1", "--links", "8", "--workers", "1", "--format", "json"]) == 1
+    assert main(["compare", str(damaged), "--dof", "1", "--links", "8", "--workers", "1", "--format", "json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert main(["compare", str(damaged), "--dof", "1", "--links", "8", "--workers", "1", "--format", "json",
+                 "--exit-code"]) == 1
     report = json.loads(capsys.readouterr().out)
     assert (report["duplicates"], report["missing"], report["extra"], report["agree"]) == (1, 1, 1, False)
-    assert main(["compare", str(damaged), "--dof", "1", "--links", "8", "--workers", "1"]) == 1
+    assert main(["compare", str(damaged), "--dof", "1", "--links", "8", "--workers", "1"]) == 0
     table = capsys.readouterr().out
     assert "matched 15, duplicates 1, missing 1, extra 1" in table and "rigid sub-chain: links 0, 1, 2" in table
 
