@@ -59,6 +59,7 @@ class Comparison:
     engine: int
     matched: int
     findings: list
+    missing: int = 0
 
     @property
     def agree(self) -> bool:
@@ -66,12 +67,12 @@ class Comparison:
         return not self.findings
 
     def count(self, kind: str) -> int:
-        return sum(1 for f in self.findings if f.kind == kind)
+        """How many findings of a kind (missing chains: all of them, listed or not)."""
+        return self.missing if kind == "missing" else sum(1 for f in self.findings if f.kind == kind)
 
     def to_dict(self) -> dict:
         d = asdict(self)
-        d.update(agree=self.agree, duplicates=self.count("duplicate"), missing=self.count("missing"),
-                 extra=self.count("extra"))
+        d.update(agree=self.agree, duplicates=self.count("duplicate"), extra=self.count("extra"))
         return d
 
 
@@ -161,16 +162,17 @@ def why_extra(entry, query) -> tuple[str, list]:
             "(please report it)"), []
 
 
-def compare(entries, query, *, workers: int | None = 1, progress: bool = False) -> Comparison:
+def compare(entries, query, *, workers: int | None = 1, progress: bool = False,
+            max_missing: int = 1000) -> Comparison:
     """Compare the given chains (:class:`~synth.exchange.Entry` objects) with the engine's listing
     of ``query`` (a :class:`~synth.structure.query.ChainQuery`), see the module docstring.
 
     Findings come in the order duplicates, missing (by engine row), extra (in the order given).
+    The engine's listing streams by (memory holds the given chains); the first ``max_missing``
+    missing chains are listed one by one, the others counted in one last finding.
     """
     from ..synthesis.type_synthesis import type_synthesis
 
-    engine = {c.certificate: (row, c) for row, c in enumerate(type_synthesis(query, workers=workers,
-                                                                              progress=progress), start=1)}
     groups: dict[str, list] = {}
     for entry in entries:
         groups.setdefault(entry.chain.certificate, []).append(entry)
@@ -179,19 +181,27 @@ def compare(entries, query, *, workers: int | None = 1, progress: bool = False) 
         if len(group) > 1:
             findings.append(Finding("duplicate", chain_id(cert), group[0].chain.compact(), [e.source for e in group],
                                     f"the same chain (isomorphic) given {len(group)} times"))
-    for cert, (row, chain) in engine.items():
-        if cert not in groups:
-            findings.append(Finding("missing", chain_id(cert), chain.compact(), [],
-                                    f"row {row} of the engine, not in the atlas", row=row))
+    # the engine's chains stream by: memory holds the given chains, not the listing
+    matched, rows, missing = set(), 0, 0
+    for rows, chain in enumerate(type_synthesis(query, workers=workers, progress=progress), start=1):
+        if chain.certificate in groups:
+            matched.add(chain.certificate)
+            continue
+        missing += 1
+        if missing <= max_missing:
+            findings.append(Finding("missing", chain_id(chain.certificate), chain.compact(), [],
+                                    f"row {rows} of the engine, not in the atlas", row=rows))
+    if missing > max_missing:
+        findings.append(Finding("missing", "", "", [], f"and {missing - max_missing} more chains of the engine, "
+                                                       "not in the atlas (not listed one by one)"))
     for cert, group in groups.items():
-        if cert not in engine:
+        if cert not in matched:
             reason, links = why_extra(group[0], query)
             findings.append(Finding("extra", chain_id(cert), group[0].chain.compact(), [e.source for e in group],
                                     reason, links=links))
-    matched = sum(1 for cert in groups if cert in engine)
     shown = {**query.to_dict(), **({} if query.fractionated else {"fractionated": False})}
     return Comparison(shown, listing_command(query), sum(len(g) for g in groups.values()), len(groups),
-                      len(engine), matched, findings)
+                      rows, len(matched), findings, missing)
 
 
 def listing_command(query) -> str:

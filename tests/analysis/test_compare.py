@@ -108,3 +108,10 @@ def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, argv, words):
     assert main([a.replace("{d}", str(tmp_path)) for a in argv]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechsynth: ") and err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+def test_missing_chains_beyond_the_limit_are_counted_not_listed():
+    result = compare(read_text("0-1 1-2 2-3 3-0"), ChainQuery(1, 8), max_missing=3)
+    listed = [f for f in result.findings if f.kind == "missing"]
+    assert result.count("missing") == 16 and len(listed) == 4 and listed[-1].reason.startswith("and 13 more")
+    assert [f.row for f in listed[:3]] == [1, 2, 3]
