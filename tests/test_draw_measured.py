@@ -13,12 +13,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-import pytest  # noqa: E402
 from matplotlib.path import Path as MplPath  # noqa: E402
 
 import synth  # noqa: E402
 from synth import draw  # noqa: E402
-from synth.structure.chain import Chain, Mechanism  # noqa: E402
+from synth.structure.chain import Chain  # noqa: E402
 from mechsynth.cli import main  # noqa: E402
 
 

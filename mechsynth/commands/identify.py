@@ -21,7 +21,6 @@ Example
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 from .._argtypes import whole, workers

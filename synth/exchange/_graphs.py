@@ -24,7 +24,6 @@ True
 
 from __future__ import annotations
 
-import io
 import re
 
 from ..errors import MalformedChain
@@ -90,7 +89,7 @@ def _incidence(g, source: str, role: dict) -> Entry:
         if role[a] == role[b]:
             raise MalformedChain(f"{source}: nodes {a} and {b} are both {role[a]}s: in an incidence graph a "
                                  "joint holds links")
-    joint_nodes.sort(key=lambda n: (str(type(_link_name(g, n))), str(_link_name(g, n))))
+    joint_nodes.sort(key=lambda n: str(_link_name(g, n)))  # (a chain sorts its joints: any fixed order)
     joints, kinds = [], []
     for node in joint_nodes:
         held = [names[x] for x in g.neighbors(node)]
@@ -231,7 +230,7 @@ def write_gml(items, out) -> int:
 
 def _gml_blocks(text: str) -> list[str]:
     """The top-level ``graph [ … ]`` blocks of a GML text (strings and nesting respected)."""
-    blocks, depth, start, i = [], 0, None, 0
+    blocks, depth, start = [], 0, None
     for m in re.finditer(r'"[^"]*"|\[|\]|\bgraph\b', text):
         token = m.group()
         if token == "[":
@@ -245,7 +244,6 @@ def _gml_blocks(text: str) -> list[str]:
                 return []
         elif token == "graph" and depth == 0:
             start = m.start()
-        i = m.end()
     return blocks
 
 
@@ -274,10 +272,3 @@ def read_gml(text: str, source: str) -> list[Entry]:
 def _first_line(exc: Exception) -> str:
     text = str(exc).strip().splitlines()
     return text[0] if text else type(exc).__name__
-
-
-def graph_text(items, writer) -> str:
-    """What ``writer`` writes for ``items``, as text (for tests and the API)."""
-    out = io.StringIO()
-    writer(items, out)
-    return out.getvalue()

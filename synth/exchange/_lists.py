@@ -133,7 +133,7 @@ def read_json(text: str, source: str) -> list[Entry]:
     return out
 
 
-_KIND_WORDS = ("revolute", "prismatic", "mesh", "gear", "-", "=", "~")
+_KIND_TAILS = ("revolute", "prismatic", "mesh", "gear", "-", "=", "~")  # a kind written after the links
 _NAME = re.compile(r"^[A-Za-z0-9_.:]+$")
 
 
@@ -145,7 +145,7 @@ def edge_words(body: str) -> tuple[list[str], str | None] | None:
     ((['0', '1'], 'prismatic'), (['crank', 'rod'], None), None)
     """
     words = body.replace(",", " ").split()
-    kind = words.pop() if len(words) >= 3 and words[-1].lower() in _KIND_WORDS else None
+    kind = words.pop() if len(words) >= 3 and words[-1].lower() in _KIND_TAILS else None
     if len(words) < 2 or not all(_NAME.match(w) for w in words):
         return None
     return words, kind
