@@ -50,9 +50,9 @@ def _build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="mechsynth", description="Structural synthesis of mechanisms and balancing of arms.")
     parser.add_argument("--version", action=_Version, nargs=0, help="show the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    from .commands import atlas, balance, chains, codes, gears, planetary, scene
+    from .commands import atlas, balance, chains, codes, gears, identify, planetary, scene
 
-    for module in (codes, chains, atlas, scene, planetary, gears, balance):
+    for module in (codes, chains, identify, atlas, scene, planetary, gears, balance):
         module.add_commands(sub)
     return parser
 

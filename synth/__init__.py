@@ -12,7 +12,8 @@ SQLite atlases and drawn.  The package is laid out by pipeline stage:
 ``synthesis``  number synthesis and type synthesis (stages A and B), prismatic assignments
 ``execution``  running units inline, on a pool or on Dask; checkpoints; size estimates
 ``atlas``      grid files, SQLite atlases, the ``--where`` language, the static web site
-``analysis``   analysis of codes and chains, directed repair
+``analysis``   analysis of codes and chains, directed repair, identification, atlas comparison
+``exchange``   chains read and written in other tools' formats (GraphML, GML, DOT, edge lists, matrices)
 ``gears``      gear trains: the planetary-train atlas, speed ratios, tooth design
 ``draw``       drawings of chains and mechanisms
 =============  ==========================================================================
@@ -41,7 +42,7 @@ from .errors import __all__ as _errors_all
 _WHERE = {
     # core types, joint kinds, the exact sub-chain test
     "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
-    "JOINT_KINDS": ".structure.chain",
+    "JOINT_KINDS": ".structure.chain", "chain_id": ".structure.chain",
     "ChainQuery": ".structure.query", "parse_range": ".structure.query", "parse_requirements": ".structure.query",
     "check_motion_space": ".structure._params",
     "structural_mobility": ".structure.kinds", "generic_mobility": ".structure.kinds",
@@ -71,6 +72,8 @@ _WHERE = {
     # the source's planetary layout through its lever analogue
     "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
     "planetary_table": ".gears.planetary",
+    # identifying any chain, comparing atlases
+    "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
 }
 
 __all__ = [*_WHERE, *_errors_all]

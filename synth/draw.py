@@ -102,7 +102,8 @@ def _tutte(polygons: list[list[int]], loops: list[list[int]], outer: list[int], 
     for i, k in enumerate(outer):
         angle = math.pi / 2 + 2 * math.pi * i / len(outer)
         pos[k] = (math.cos(angle), math.sin(angle))
-    free = [k for k in range(joints) if k not in set(outer)]
+    placed = {k for poly in polygons for k in poly}  # a joint of crossing bars only is placed after
+    free = [k for k in range(joints) if k not in set(outer) and k in placed]
     centres = [sorted(set(loop)) for loop in loops if loop is not outer and len(set(loop)) >= 3]
     index = {k: i for i, k in enumerate(free)}
     size = len(free) + len(centres)
@@ -306,6 +307,117 @@ def _polygons(chain: Chain, g, embedding, pos: dict | None) -> list[list[int]]:
     return polygons
 
 
+def _strings(chain: Chain, g) -> list[list[int]]:
+    """The strings of binary links: maximal paths of binary links on simple joints, in order."""
+    binary = {x for x in range(chain.links) if g.degree[("L", x)] == 2}
+    seen, out = set(), []
+    for start in sorted(binary):
+        if start in seen:
+            continue
+        path, ends = [start], []
+        seen.add(start)
+        for joint in [j for _, j in g.edges(("L", start))]:
+            current, at = start, joint
+            while True:
+                others = [y for _, y in g.edges(at) if y != ("L", current)]
+                if len(others) != 1 or others[0][1] not in binary or others[0][1] in seen:
+                    break
+                current = others[0][1]
+                seen.add(current)
+                path.append(current) if ends else path.insert(0, current)
+                at = next(j for _, j in g.edges(("L", current)) if j != at)
+            ends.append(at)
+        out.append(path)
+    return out
+
+
+def _crossing_strings(chain: Chain, g) -> list[list[list[int]]]:
+    """Every way to set aside the fewest strings of binary links (one, else two) so that the rest
+    of the incidence graph is planar and 2-connected: what a designer lets cross the drawing.
+    Empty where there is none (every link has three joints or more, as in K3,3)."""
+    import itertools
+
+    import networkx as nx
+
+    strings = _strings(chain, g)
+    for size in (1, 2):
+        found = []
+        for chosen in itertools.combinations(strings, size):
+            links = {("L", x) for string in chosen for x in string}
+            rest = g.copy()
+            rest.remove_nodes_from(links)
+            rest.remove_nodes_from([n for n in list(rest) if rest.degree[n] == 0])
+            core = rest.subgraph(n for n in rest if rest.degree[n] >= 2)
+            if (nx.check_planarity(rest)[0] and core.number_of_nodes() > 2 and nx.is_biconnected(core)
+                    and all(("L", x) in core for x in range(chain.links) if ("L", x) not in links
+                            and g.degree[("L", x)] >= 2)):
+                found.append(list(chosen))
+        if found:
+            return found
+    return []
+
+
+def _place_strings(pos: np.ndarray, chain: Chain, strings: list[list[int]]) -> np.ndarray:
+    """Joints inside crossing strings evenly on the straight line between the string's ends."""
+    pos = pos.copy()
+    for string in strings:
+        joints = [k for k, j in enumerate(chain.joints) if any(x in j for x in string)]
+        inner = [k for k in joints if all(x in string for x in chain.joints[k])]
+        ends = [k for k in joints if k not in inner]
+        if not inner or len(ends) != 2:
+            continue
+        # the joints in the order of the string's links
+        order, at = [ends[0]], ends[0]
+        for link in (string if ends[0] in [k for k, j in enumerate(chain.joints) if string[0] in j] else string[::-1]):
+            at = next(k for k, j in enumerate(chain.joints) if link in j and k != at)
+            order.append(at)
+        a, b = pos[order[0]], pos[order[-1]]
+        for i, k in enumerate(order[1:-1], start=1):
+            pos[k] = a + (b - a) * i / (len(order) - 1)
+    return pos
+
+
+def _tutte_drawing(chain: Chain, g, strings: list[list[int]]):
+    """The Tutte drawing of the chain without the links of ``strings`` (placed after, straight
+    across), over the candidate outer loops: ``(score, joints, polygons, polygons drawn by Tutte,
+    strings)`` of the best.  Without strings the first loop drawn without a defect wins; with
+    them (crossings are then unavoidable) the fewest crossings, then the largest least spacing
+    of joints."""
+    import networkx as nx
+
+    crossing = {x for string in strings for x in string}
+    drawn = g.copy()
+    drawn.remove_nodes_from(("L", x) for x in crossing)
+    drawn.remove_nodes_from([x for x in list(drawn) if drawn.degree[x] == 0])  # joints inside those strings
+    core = drawn.subgraph(x for x in drawn if not (x[0] == "L" and drawn.degree[x] == 1))  # without free ends
+    _, embedding = nx.check_planarity(core)
+    polygons = _polygons(chain, g, embedding, None)
+    inner = [[] if link in crossing else poly for link, poly in enumerate(polygons)]  # the planar part
+    loops = [list(dict.fromkeys(x[1] for x in face if x[0] == "J")) for face in _faces(embedding)]
+    # outside: the loop that carries most single-joint links (free ends point out), then the
+    # longest (as designers draw); the next one where that degenerates
+    hanging = {k for k, j in enumerate(chain.joints) if any(g.degree[("L", x)] == 1 for x in j)}
+    order = sorted(loops, key=lambda loop: (-len(hanging.intersection(loop)), -len(loop), sorted(loop)))
+    best = None
+    for outer in order[:10 if strings else 6]:
+        trial = _normalise(_place_strings(_tutte(inner, loops, outer, len(chain.joints)), chain, strings))
+        score = _defects(trial, polygons, 0.02)
+        if strings:
+            score = _roominess(trial, polygons)
+        if best is None or score < best[0]:
+            best = (score, trial, polygons, inner, strings)
+        if score == 0:
+            break
+    return best
+
+
+def _roominess(joints: np.ndarray, polygons: list[list[int]]) -> tuple[int, float]:
+    """How a drawing with crossings is ranked (lower is better): its crossings, then minus the
+    least distance between two joints."""
+    gaps = np.linalg.norm(joints[:, None] - joints[None], axis=-1) + 9 * np.eye(len(joints))
+    return _defects(joints, polygons, 0.02) // 1000, -float(gaps.min())
+
+
 def _normalise(pos: np.ndarray) -> np.ndarray:
     lo, hi = pos.min(axis=0), pos.max(axis=0)
     centre, span = (lo + hi) / 2, max(float((hi - lo).max()), 1e-9)
@@ -317,9 +429,12 @@ def layout(chain: Chain) -> Layout:
 
     A chain whose links and joints form a planar, 2-connected incidence graph (single-joint
     links aside) is drawn from a Tutte embedding of its joint graph with the longest loop
-    outside: convex link polygons, no crossings.  Other chains start from networkx's planar or
-    Kamada–Kawai layout.  Then :func:`_shape` opens up slivers and crowded joints without adding
-    a crossing.
+    outside: convex link polygons, no crossings.  A non-planar chain is drawn the way designers
+    draw one: the fewest strings of binary links are set aside until the rest is planar, the rest
+    is drawn so, and the strings set aside cross it as straight bars (so link polygons never
+    overlap).  Other chains
+    start from networkx's planar or Kamada–Kawai layout.  Then :func:`_shape` opens up slivers and
+    crowded joints without adding a crossing.
 
     >>> lay = layout(Chain.parse("0-1 1-2 2-3 3-0"))
     >>> lay.joints.shape, lay.planar, [len(p) for p in lay.polygons]
@@ -329,23 +444,21 @@ def layout(chain: Chain) -> Layout:
 
     g = _incidence(chain)
     planar, embedding = nx.check_planarity(g)
-    core = g.subgraph(x for x in g if not (x[0] == "L" and g.degree[x] == 1))  # without single-joint links
+    if not planar:
+        choices = _crossing_strings(chain, g)
+        if choices:  # the crossing strings are drawn over a planar drawing of the rest: the roomiest
+            shaped = []
+            for _, joints, polygons, inner, strings in sorted((_tutte_drawing(chain, g, strings) for strings in choices),
+                                                              key=lambda found: found[0])[:3]:
+                joints = _normalise(_place_strings(_shape(joints, inner), chain, strings))  # no move trades crossings
+                shaped.append((_roominess(joints, polygons), joints, polygons))
+            _, joints, polygons = min(shaped, key=lambda found: found[0])
+            return Layout(joints, polygons, False)
     best = None
+    core = g.subgraph(x for x in g if not (x[0] == "L" and g.degree[x] == 1))  # without single-joint links
     if planar and core.number_of_nodes() > 2 and nx.is_connected(core):
-        _, embedding = nx.check_planarity(core)
-        polygons = _polygons(chain, g, embedding, None)
-        loops = [list(dict.fromkeys(x[1] for x in face if x[0] == "J")) for face in _faces(embedding)]
-        # outside: the loop that carries most single-joint links (free ends point out), then the
-        # longest (as designers draw); the next one where that degenerates
-        hanging = {k for k, j in enumerate(chain.joints) if any(g.degree[("L", x)] == 1 for x in j)}
-        order = sorted(loops, key=lambda loop: (-len(hanging.intersection(loop)), -len(loop), sorted(loop)))
-        for outer in order[:6]:
-            trial = _normalise(_tutte(polygons, loops, outer, len(chain.joints)))
-            score = _defects(trial, polygons, 0.02)
-            if best is None or score < best[0]:
-                best = (score, trial, polygons)
-            if score == 0:
-                break
+        _, embedding = nx.check_planarity(core)  # (the force layout below orders polygons by it too)
+        best = _tutte_drawing(chain, g, [])[:3]
     if best is None or best[0] > 0:  # not 2-connected (fractionated, open): try a force layout too
         pos = nx.kamada_kawai_layout(g, pos=nx.planar_layout(g) if planar else None)
         polys = _polygons(chain, g, embedding if planar else None, pos)
@@ -365,29 +478,71 @@ _BAR = "#1f3a5f"
 _MULTI = "#c0392b"
 
 
+class _Marks:
+    """Where everything of a drawing goes, shared by the matplotlib and the inline SVG drawings:
+    the layout, the joint radius ``r``, the free end of each single-joint link, the place of
+    each multiple joint's multiplicity number and of each link's number, the two pitch circles
+    of each gear mesh, and the half-width ``reach`` of the square the drawing fills."""
+
+    def __init__(self, chain: Chain):
+        lay = layout(chain)
+        pos = lay.joints
+        nj = len(pos)
+        gaps = [float(np.linalg.norm(pos[a] - pos[b])) for a in range(nj) for b in range(a + 1, nj)]
+        self.chain, self.lay, self.pos = chain, lay, pos
+        self.r = r = min(0.07, 0.28 * min(gaps, default=1.0))
+        self.free_ends = _free_ends(pos, lay.polygons, length=max(0.35, 6 * r))
+        sides = _sides(lay.polygons)
+        self.numbers = {}
+        for k, joint in enumerate(chain.joints):
+            if len(joint) > 2:  # in the widest free angle at the joint, free-end bars counted
+                bars = [math.atan2(*(end - pos[k])[::-1]) for link, end in self.free_ends.items()
+                        if lay.polygons[link] == [k]]
+                turn, _ = _widest_gap(pos, sides, k, bars)
+                self.numbers[k] = pos[k] + 3.2 * r * np.array([math.cos(turn), math.sin(turn)])
+        self.labels = {}
+        for link, poly in enumerate(lay.polygons):
+            points = [pos[j] for j in poly] + ([self.free_ends[link]] if len(poly) == 1 else [])
+            self.labels[link] = np.mean(points, axis=0)
+        self.meshes = {k: _pitch_circles(chain, lay, k, r) for k, kind in enumerate(chain.kinds or ()) if kind == "mesh"}
+        self.reach = max([1.25] + [float(np.abs(end).max()) + 2 * r for end in self.free_ends.values()]
+                         + [float(np.abs(n).max()) + 2 * r for n in self.numbers.values()])
+
+
+def _pitch_circles(chain: Chain, lay: Layout, k: int, r: float) -> list[tuple[np.ndarray, float]]:
+    """A gear mesh: two pitch circles touching at the joint, each on the side of its gear (the
+    centre of its link's joints), as a designer sketches two gears in mesh."""
+    pos = lay.joints
+    a, b = chain.joints[k]
+    toward = np.mean([pos[j] for j in lay.polygons[b]], axis=0) - np.mean([pos[j] for j in lay.polygons[a]], axis=0)
+    if np.linalg.norm(toward) < 1e-9:
+        toward = np.array([1.0, 0.0])
+    u = toward / np.linalg.norm(toward)
+    radius = 1.25 * r
+    return [(pos[k] - u * radius, radius), (pos[k] + u * radius, radius)]
+
+
+_MESH = "#1e7a46"
+
+
 def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | None = None) -> None:
     from matplotlib.patches import Circle, FancyArrowPatch, Polygon
 
     mech = item if isinstance(item, Mechanism) else None
     chain = item.chain if mech else item
-    lay = layout(chain)
-    pos = lay.joints
-    nj = len(pos)
-    min_dist = min((float(np.linalg.norm(pos[a] - pos[b])) for a in range(nj) for b in range(a + 1, nj)),
-                   default=1.0)
-    r = min(0.07, 0.28 * min_dist)
+    marks = _Marks(chain)
+    lay, pos, r = marks.lay, marks.pos, marks.r
     lw = 2.2
-    free_ends = _free_ends(pos, lay.polygons, length=max(0.3, 6 * r))
-    sides = _sides(lay.polygons)
     for link, poly in enumerate(lay.polygons):
         pts = pos[poly]
         frame = mech is not None and link == mech.frame
         if len(poly) == 1:  # a single-joint link (an arm's base or gripper): a bar with a free end
-            end = free_ends[link]
+            end = marks.free_ends[link]
             pts = np.array([pos[poly[0]], end])
-            ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="butt", zorder=2)
+            ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="butt", zorder=2, gid=f"bar{link}")
             ax.add_patch(Polygon([end + (-r, -r), end + (r, -r), end + (r, r), end + (-r, r)], closed=True,
-                                 facecolor=_EDGE, edgecolor=_EDGE, hatch="////" if frame else None, zorder=3))
+                                 facecolor=_EDGE, edgecolor=_EDGE, hatch="////" if frame else None, zorder=3,
+                                 gid=f"end{link}"))
         elif len(poly) == 2:
             if frame:
                 a, b = pts
@@ -396,39 +551,46 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                 ax.add_patch(Polygon([a + nrm, b + nrm, b - nrm, a - nrm], closed=True, facecolor="white",
                                      edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2))
             else:
-                ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="round", zorder=2)
+                ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="round", zorder=2, gid=f"bar{link}")
         else:
             ax.add_patch(Polygon(pts, closed=True, facecolor="white" if frame else _FILL, edgecolor=_EDGE,
                                  hatch="////" if frame else None, lw=1.4, joinstyle="round", zorder=1))
         if labels:
-            centre = pts.mean(axis=0)
-            ax.text(centre[0], centre[1], str(link), fontsize=7, color="#555555", ha="center", va="center",
-                    zorder=5, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+            x, y = marks.labels[link]
+            ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
+                    gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     for k, joint in enumerate(chain.joints):
         x, y = pos[k]
+        kind = chain.kinds[k] if chain.kinds is not None else "revolute"
         if len(joint) > 2:  # a ring, and the multiplicity in the widest free angle at the joint
             ax.add_patch(Circle((x, y), r * 1.75, facecolor="white", edgecolor=_MULTI, lw=1.6, zorder=3))
-            turn, _ = _widest_gap(pos, sides, k)
-            ax.text(x + r * 3 * math.cos(turn), y + r * 3 * math.sin(turn), str(len(joint)), color=_MULTI,
-                    fontsize=7, fontweight="bold", ha="center", va="center", zorder=6)
-        if chain.kinds is not None and chain.kinds[k] == "prismatic":
+            nx_, ny_ = marks.numbers[k]
+            ax.text(nx_, ny_, str(len(joint)), color=_MULTI, fontsize=7, fontweight="bold", ha="center",
+                    va="center", zorder=6, gid=f"multiplicity{k}")
+        if kind == "prismatic":
             corners, cylinder = _slider(chain, lay, k, r)
             ax.add_patch(Polygon(corners, closed=True, facecolor=_EDGE if cylinder else "white", edgecolor=_EDGE,
-                                 lw=1.2, zorder=4))
+                                 lw=1.2, zorder=4, gid=f"{'cylinder' if cylinder else 'slider'}{k}"))
+        elif kind == "mesh":
+            for centre, radius in marks.meshes[k]:
+                ax.add_patch(Circle(centre, radius, facecolor="white", edgecolor=_MESH, lw=1.4, zorder=4,
+                                    gid=f"mesh{k}"))
         else:
-            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
+            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4, gid=f"pin{k}"))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
         ax.add_patch(FancyArrowPatch((x + 2.6 * r, y), (x, y + 2.6 * r), connectionstyle="arc3,rad=0.5",
                                      arrowstyle="-|>", mutation_scale=9, color=_MULTI, lw=1.2, zorder=6))
     ax.set_aspect("equal")
-    reach = max([1.25] + [float(np.abs(end).max()) + 2 * r for end in free_ends.values()])
-    ax.set_xlim(-reach, reach)
-    ax.set_ylim(-reach, reach)
+    ax.set_xlim(-marks.reach, marks.reach)
+    ax.set_ylim(-marks.reach, marks.reach)
     ax.axis("off")
     if caption:
-        ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
+        if "\n" in caption:  # lines of notes grow downwards, into the room the sheet keeps for them
+            ax.set_title(caption, fontsize=8, pad=0, y=-0.02, va="top")
+        else:
+            ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
 
 
 def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarray], bool]:
@@ -450,11 +612,12 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarra
     return [start + across * half, end + across * half, end - across * half, start - across * half], cylinder
 
 
-def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int) -> tuple[float, float]:
+def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=()) -> tuple[float, float]:
     """Direction (radians) of the middle of the widest free angle at a joint between the sides
-    drawn there, and that angle; away from the drawing's centre where no side meets the joint."""
-    turns = sorted(math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
-                   for a, b in sides if joint in (a, b))
+    drawn there (and the directions ``also``), and that angle; away from the drawing's centre
+    where nothing meets the joint."""
+    turns = sorted([math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
+                    for a, b in sides if joint in (a, b)] + list(also))
     if not turns:
         away = pos[joint] - pos.mean(axis=0)
         return (math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2), math.pi
@@ -474,7 +637,7 @@ def _free_ends(pos: np.ndarray, polygons: list[list[int]], length: float) -> dic
     ends = {}
     for joint, links in hanging.items():
         base, width = _widest_gap(pos, sides, joint)
-        spread = min(0.6, 0.8 * width / len(links))
+        spread = min(1.0, 0.7 * width / len(links))  # two grippers on one joint open like a pair of jaws
         for i, link in enumerate(links):
             angle = base + (i - (len(links) - 1) / 2) * spread
             ends[link] = pos[joint] + length * np.array([math.cos(angle), math.sin(angle)])
@@ -504,7 +667,8 @@ def _save(fig, path: Path, dpi: int) -> None:
     import matplotlib
 
     try:
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth"}):  # stable SVG ids: same input, same file
+        # stable SVG ids (same input, same file) and text kept as text (searchable, selectable)
+        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
             fig.savefig(path, dpi=dpi, bbox_inches="tight", **kwargs)
         if path.suffix.lower() == ".png":  # a 64-colour palette: line art, a third of the size
             from PIL import Image
@@ -518,9 +682,9 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 def _caption(item, index: int | None) -> str:
     chain = item.chain if isinstance(item, Mechanism) else item
-    text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}")
-    if chain.kinds is not None:
-        text += f" P{chain.kinds.count('prismatic')}"
+    text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix
+    if not chain.is_planar():
+        text += "  non-planar"
     if index is not None:
         text += f"  #{index}"
     if isinstance(item, Mechanism):
@@ -529,7 +693,7 @@ def _caption(item, index: int | None) -> str:
 
 
 #: the edge of one drawing in inches, and the PNG resolution: a single drawing, a sheet's cell
-SINGLE, CELL = (3.6, 150), (1.9, 100)
+SINGLE, CELL = (3.6, 150), (1.9, 150)
 
 
 _MAX_PIXELS = 100_000_000  # a PNG is drawn in memory at 4 bytes a pixel: 400 MB
@@ -602,7 +766,7 @@ def svg(item: Chain | Mechanism, *, labels: bool = True, size: float = SINGLE[0]
     fig = _figure(item, labels, size)
     try:
         out = io.StringIO()
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth"}):
+        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
             fig.savefig(out, format="svg", bbox_inches="tight", metadata={"Date": None})
         return out.getvalue()
     finally:
@@ -611,11 +775,13 @@ def svg(item: Chain | Mechanism, *, labels: bool = True, size: float = SINGLE[0]
 
 def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: int | None = None,
                title: str | None = None, labels: bool | None = None, size: float = CELL[0],
-               dpi: int = CELL[1]) -> None:
+               dpi: int = CELL[1], notes: Sequence[str] | None = None) -> None:
     """An atlas sheet: every item on a grid, captioned with its code and index (1, 2, …).
 
     Links are numbered when ``labels`` is true, and by default on sheets of mechanisms (whose
-    captions name the fixed and input links); ``size`` is each drawing's edge in inches.
+    captions name the fixed and input links) and on sheets with ``notes`` (a text under each
+    caption, wrapped to the drawing's width: the edits of a repair); ``size`` is each drawing's
+    edge in inches.
 
     >>> # draw_sheet(list(synth.type_synthesis(1, 8)), "atlas_8.png", title="1-DOF, 8 links")
     """
@@ -628,18 +794,28 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
     _check_size(size, dpi)
     if not items:
         raise InvalidOption("nothing to draw: the selection is empty")
+    if notes is not None and len(notes) != len(items):
+        raise InvalidOption(f"{len(notes)} notes for {len(items)} drawings")
     if labels is None:
-        labels = any(isinstance(item, Mechanism) for item in items)
+        labels = notes is not None or any(isinstance(item, Mechanism) for item in items)
     n = len(items)
     columns = min(columns or max(1, math.ceil(math.sqrt(n * 1.3))), n)
     rows = math.ceil(n / columns)
-    _check_pixels(path, size * columns, size * rows, dpi)
-    fig, axes = plt.subplots(rows, columns, figsize=(size * columns, size * rows + (0.45 if title else 0)),
+    captions = [_caption(item, i + 1) for i, item in enumerate(items)]
+    if notes is not None:  # about 16 characters a line per inch at 8 points
+        import textwrap
+
+        width = max(20, int(size * 16.5))
+        captions = [caption + "".join("\n" + line for line in textwrap.wrap(note, width))
+                    for caption, note in zip(captions, notes)]
+    extra = 0.14 * max(c.count("\n") for c in captions)  # inches under each row for the caption lines
+    _check_pixels(path, size * columns, (size + extra) * rows, dpi)
+    fig, axes = plt.subplots(rows, columns, figsize=(size * columns, (size + extra) * rows + (0.45 if title else 0)),
                              squeeze=False)
     try:
         for i, ax in enumerate(axes.flat):
             if i < n:
-                _draw(ax, items[i], labels=labels, caption=_caption(items[i], i + 1))
+                _draw(ax, items[i], labels=labels, caption=captions[i])
             else:
                 ax.axis("off")
         if title:
@@ -659,14 +835,8 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
     """
     mech = item if isinstance(item, Mechanism) else None
     chain = item.chain if mech else item
-    lay = layout(chain)
-    pos = lay.joints
-    nj = len(pos)
-    gaps = [float(np.linalg.norm(pos[a] - pos[b])) for a in range(nj) for b in range(a + 1, nj)]
-    r = min(0.07, 0.28 * min(gaps, default=1.0))
-    free_ends = _free_ends(pos, lay.polygons, length=max(0.3, 6 * r))
-    sides = _sides(lay.polygons)
-    reach = max([1.2] + [float(np.abs(end).max()) + 2 * r for end in free_ends.values()])
+    marks = _Marks(chain)
+    lay, pos, r, free_ends, reach = marks.lay, marks.pos, marks.r, marks.free_ends, marks.reach
     scale = size / (2 * reach)
 
     def xy(p) -> str:
@@ -697,8 +867,7 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
     for k, joint in enumerate(chain.joints):
         x, y = (float(v) for v in xy(pos[k]).split(","))
         if len(joint) > 2:
-            turn, _ = _widest_gap(pos, sides, k)
-            tx, ty = (float(v) for v in xy(pos[k] + 3.2 * r * np.array([math.cos(turn), math.sin(turn)])).split(","))
+            tx, ty = (float(v) for v in xy(marks.numbers[k]).split(","))
             out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{1.75 * r * scale:.1f}" fill="white" stroke="{_MULTI}" '
                        'stroke-width="1.4"/>')
             out.append(f'<text x="{tx:.1f}" y="{ty:.1f}" fill="{_MULTI}" font-size="9" font-weight="bold" '
@@ -707,13 +876,17 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
             corners, cylinder = _slider(chain, lay, k, r)
             out.append(f'<polygon points="{" ".join(xy(c) for c in corners)}" fill="{_EDGE if cylinder else "white"}" '
                        f'stroke="{_EDGE}" stroke-width="1.1"/>')
+        elif chain.kinds is not None and chain.kinds[k] == "mesh":  # two pitch circles in mesh
+            for centre, radius in marks.meshes[k]:
+                cx, cy = xy(centre).split(",")
+                out.append(f'<circle class="mesh" cx="{cx}" cy="{cy}" r="{radius * scale:.1f}" fill="white" '
+                           f'stroke="{_MESH}" stroke-width="1.2"/>')
         else:
             out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * scale:.1f}" fill="white" stroke="black" '
                        'stroke-width="1.1"/>')
     if labels:
-        for link, poly in enumerate(lay.polygons):
-            points = [pos[k] for k in poly] + ([free_ends[link]] if len(poly) == 1 else [])
-            x, y = xy(np.mean(points, axis=0)).split(",")
+        for link in range(chain.links):
+            x, y = xy(marks.labels[link]).split(",")
             out.append(f'<text x="{x}" y="{y}" font-size="8" fill="#444" text-anchor="middle" '
                        f'dominant-baseline="central" paint-order="stroke" stroke="white" stroke-width="2">{link}</text>')
     if mech is not None:

@@ -34,6 +34,8 @@ SMOKE = [
     ["atlas", "--db", "{tmp}/atlas.sqlite"],
     ["atlas", "--db", "{tmp}/atlas.sqlite", "--html", "{tmp}/site", "--workers", "1"],
     ["draw", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--out", "{tmp}/watt.svg"],
+    ["identify", "0-1 1-2 2-3 3-0 0-4 4-5 5-1"],
+    ["compare", str(MODELS / "atlas_8_links_damaged.txt"), "--dof", "1", "--links", "8", "--workers", "1"],
     ["scene", str(MODELS / "locomotive_drive.toml")],
     ["planetary", "--satellites", "2..3"],
     ["gears", "--dof", "1", "--links", "5", "--count"],

@@ -24,6 +24,7 @@ from pathlib import Path
 
 from .._argtypes import inches, positive, seconds, whole, workers
 from .._output import nothing_found, write_count, write_rows
+from .chains import WRITTEN
 
 __all__ = ["add_commands"]
 
@@ -45,13 +46,14 @@ def add_commands(sub) -> None:
     p.add_argument("--export", choices=("chains", "mechanisms"), help="print rows instead of the summary")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
-                        "fractionated=0, cell=KEY")
+                        "fractionated=0, cell=KEY, id=ID (12 hex digits), certificate=CERT")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--prismatic", metavar="A..B",
                    help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry")
     p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
-    p.add_argument("--format", choices=("table", "json", "jsonl", "csv"), default=None,
-                   help="summary: table or json; export: jsonl, csv or table")
+    p.add_argument("--format", choices=("table", "json", "jsonl", "csv", *WRITTEN), default=None,
+                   help="summary: table or json; export: jsonl, csv, table, or graphml, gml, dot, edgelist, adjacency, "
+                        "incidence (docs/exchange.md)")
     p.add_argument("--html", metavar="DIR", help="write the atlas as a static web site into DIR (open DIR/index.html)")
     p.add_argument("--page-size", type=positive, help="with --html: chains per page (default 60)")
     p.add_argument("--draw-limit", type=whole,
@@ -65,12 +67,13 @@ def add_commands(sub) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
-    g.add_argument("--db", help="chains of an atlas selected with --where")
+    g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
     p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
+    p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
@@ -121,7 +124,7 @@ def _run_grid(args) -> int:
 
 
 # -------------------------------------------------------------------- atlas
-_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "joints", "certificate"]
+_CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "fractionated", "joints", "certificate"]
 _MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
 
 
@@ -136,6 +139,9 @@ def _run_atlas(args) -> int:
         raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.count and args.format in WRITTEN:
+        raise InvalidOption(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of "
+                            "chains)")
     what = args.export or ("chains" if args.where or args.count or args.prismatic is not None else None)
     if what is None:
         fmt = args.format or "table"
@@ -150,7 +156,11 @@ def _run_atlas(args) -> int:
     if args.prismatic is not None:
         return _export_variants(args, what)
     rows = export(args.db, what, where=args.where)
-    if args.count:
+    if args.format in WRITTEN:
+        from synth.exchange import write
+
+        found = write(_items(rows, what), args.format)
+    elif args.count:
         by_code: dict[str, int] = {}
         for row in rows:
             by_code[row["code"]] = by_code.get(row["code"], 0) + 1
@@ -158,6 +168,15 @@ def _run_atlas(args) -> int:
     else:
         found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _items(rows, what: str):
+    """Chains (or mechanisms) of exported atlas rows."""
+    from synth import Chain, Mechanism
+
+    for row in rows:
+        chain = Chain.from_dict(row)
+        yield chain if what == "chains" else Mechanism(chain, row["frame"], row.get("input_link"))
 
 
 def _write_site(args) -> int:
@@ -250,6 +269,18 @@ def _variants(args, chains: list) -> list:
     return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
 
 
+def _defect(chain, dof) -> str:
+    """What is wrong with a chain to repair, in a few words (the caption of its drawing)."""
+    from synth import check_subchains
+
+    report = check_subchains(chain, rigid_subchains=(chain.dof if dof is None else dof) == 0)
+    wrong = f"W = {chain.dof}, not {dof}; " if dof is not None and dof != chain.dof else ""
+    if report.ok:
+        return f"given: {wrong or 'no defect'}".rstrip("; ")
+    return (f"given: {wrong}{report.kind} of links {', '.join(map(str, report.worst))} (W(S) = "
+            f"{report.worst_mobility})")
+
+
 def _at_most(chains, args):
     """The selected chains, stopped once they are more than ``--limit`` drawings (each chain is
     at least one; R/P variants may be none): a large selection is refused without being built."""
@@ -264,6 +295,11 @@ def _run_draw(args) -> int:
     from synth import InvalidOption
 
     args.where = _conditions(args.where)
+    if args.id is not None:
+        if not args.db:
+            raise InvalidOption("--id names a chain of an atlas: give --db too (for a chain of your own, "
+                                "'mechsynth identify' finds its id)")
+        args.where.append(f"id={args.id}")
     if args.dpi is not None and not args.out.lower().endswith(".png"):
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
@@ -286,6 +322,7 @@ def _run_draw(args) -> int:
             raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
                                 f"{args.h}")
     h = args.h or 3
+    notes = None  # the words under each drawing of a sheet: the edits of the repairs
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     if args.prismatic is not None and (args.repairs or args.frame is not None or h != 3):
@@ -297,13 +334,14 @@ def _run_draw(args) -> int:
         from synth import chain_repairs
 
         chain = Chain.parse(args.chain)
-        repaired = [Chain.parse(r["chain"]) for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
-        if not repaired:
+        repairs = chain_repairs(chain, dof=args.dof, limit=args.repairs)
+        if not repairs:
             print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
                   file=sys.stderr)
             return 1
-        items = draw.expand([chain, *repaired], mechanisms=False)
-        title = args.title or f"{chain.compact()} and {len(repaired)} repairs"
+        items = [chain, *(Chain.parse(r["chain"]) for r in repairs)]
+        notes = [_defect(chain, args.dof)] + ["; ".join(r["edits"]) for r in repairs]
+        title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
         from dataclasses import replace
 
@@ -332,7 +370,7 @@ def _run_draw(args) -> int:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
         items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
-        title = args.title or f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains"
+        title = args.title or (None if args.id else f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains")
     if not items:  # only --prismatic can empty a selection here
         print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
         return 1
@@ -341,13 +379,13 @@ def _run_draw(args) -> int:
         size = (f"more than {args.limit} drawings (--limit)" if cut
                 else f"{len(items)} drawings, more than --limit {args.limit}")
         raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
-    if len(items) == 1 and not (args.code or args.db):
+    if len(items) == 1 and not (args.code or (args.db and args.id is None)):
         size, dpi = draw.SINGLE
         draw.draw_one(items[0], args.out, title=title, labels=args.labels is not False,
                       size=args.size or size, dpi=args.dpi or dpi)
     else:
         size, dpi = draw.CELL
         draw.draw_sheet(items, args.out, columns=args.columns, title=title, labels=args.labels,
-                        size=args.size or size, dpi=args.dpi or dpi)
+                        size=args.size or size, dpi=args.dpi or dpi, notes=notes)
     print(f"{len(items)} drawing{'s' if len(items) != 1 else ''} -> {args.out}", file=sys.stderr)
     return 0

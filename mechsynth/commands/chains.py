@@ -16,6 +16,8 @@ import sys
 from .._argtypes import seconds, whole, workers
 from .._output import FORMATS, nothing_found, write_count, write_rows
 
+WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # synth.exchange.WRITTEN, unloaded
+
 
 def _add_selection(p) -> None:
     p.add_argument("--dof", type=whole, help="mobility W of every chain listed (0 = trusses); default: the code's W")
@@ -54,8 +56,9 @@ def _add_selection(p) -> None:
     p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true",
                    help="run a query estimated to take more than a day (see README, 'Large queries')")
-    p.add_argument("--format", choices=FORMATS,
-                   help="table (default), jsonl, csv or json; with --count json (default), table, jsonl or csv")
+    p.add_argument("--format", choices=FORMATS + WRITTEN,
+                   help="table (default), jsonl, csv or json; graphml, gml, dot, edgelist, adjacency or incidence "
+                   "(docs/exchange.md); with --count json (default), table, jsonl or csv")
 
 
 def add_commands(sub) -> None:
@@ -102,6 +105,8 @@ def _check_options(args) -> None:
         raise _invalid("--workers and --scheduler contradict each other: the scheduler's workers run the units")
     if args.timeout is not None and args.scheduler is None:
         raise _invalid("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
+    if args.count and args.format in WRITTEN:
+        raise _invalid(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of chains)")
 
 
 def _size_note(query, args) -> None:
@@ -159,6 +164,10 @@ def _run(args) -> int:
     if args.idle_joints and args.prismatic is None:
         raise _invalid("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     query = query_of(args)
+    most_v = query.code.v if query.code is not None else (query.v or (0, 0))[1]
+    if args.format == "adjacency" and most_v != 0:
+        raise _invalid("an adjacency matrix holds simple joints only, and this query lists multiple joints (--v): "
+                       "use --format incidence")
     _size_note(query, args)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None
@@ -198,13 +207,21 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
             return nothing_found(f"{what} satisfy these parameters and conventions")
         return 0
     fmt = fmt or "table"
+    if fmt in WRITTEN:
+        from synth.exchange import write
+
+        n = write(items, fmt)
+        return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
     rows = (_row(item, fmt, idle) for item in items)
-    columns = ["index", "code", "links", "joints", "certificate"]
+    columns = ["index", "id", "code", "links", "joints", "certificate"]
+    if fmt in ("table", "csv") and what == "chains":  # the atlas site's columns, for people
+        columns[-1:-1] = ["planar", "symmetry", "fractionated"]
     if kinds:
-        columns[2:2] = ["dof", "loops_2", "loops_3"]
+        columns[3:3] = ["dof", "loops_2", "loops_3"]
         if idle:
             columns.insert(-1, "idle_joints")
     if what == "mechanisms":
+        columns[1] = "chain_id"
         columns[-2:-2] = ["frame", "input_link"]
         if kinds:
             columns[-2:-2] = ["guide", "swinging", "floating", "slider"]
@@ -225,8 +242,14 @@ def _indexed(rows):
 def _row(item, fmt: str, idle: bool) -> dict:
     """The JSON row of a chain or mechanism; in a table the joint list as ``analyze`` reads it
     (``0=1`` a prismatic pair) and a short certificate."""
+    from synth import chain_id
+
     row = item.to_dict()
     chain = getattr(item, "chain", item)
+    row["chain_id" if chain is not item else "id"] = chain_id(chain.certificate)
+    if fmt in ("table", "csv") and chain is item:
+        row.update(planar="yes" if chain.is_planar() else "no", symmetry=round(chain.automorphisms()[1]),
+                   fractionated="yes" if chain.is_fractionated() else "no")
     if chain.kinds is None:  # a revolute chain among prismatic variants: no wedge loop, nothing slides
         row.update(prismatic=0, loops_2=0, loops_3=chain.loops)
         if "frame" in row:

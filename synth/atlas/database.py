@@ -35,7 +35,6 @@ Example
 
 from __future__ import annotations
 
-import hashlib
 import os
 import socket
 import sqlite3
@@ -44,6 +43,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MalformedChain, SynthesisError
+from ..structure.chain import chain_id
 from .grid import Grid
 
 __all__ = ["SCHEMA_VERSION", "AtlasError", "AtlasLocked", "open_atlas", "chain_id", "read_only_uri"]
@@ -105,16 +105,6 @@ CREATE TABLE run_lock (
     host TEXT NOT NULL, started REAL NOT NULL
 );
 """
-
-
-def chain_id(certificate: str) -> str:
-    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
-    the site, ``chain.html#<id>``, and the ``id`` of every atlas export row).
-
-    >>> chain_id("0404" + "00" * 8)
-    'b14916a1d986'
-    """
-    return hashlib.sha1(certificate.encode()).hexdigest()[:12]
 
 
 # ------------------------------------------------------------------ opening
@@ -252,6 +242,7 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         conn.close()
         raise
     conn.execute("PRAGMA foreign_keys = OFF")
+    conn.create_function("chain_id", 1, chain_id, deterministic=True)  # for --where id=…
     return conn
 
 

@@ -43,7 +43,8 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
     joined by AND.  Fields: ``code`` (= or !=, the code as the atlas shows it, e.g.
     ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``h`` (motion space), ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
     ``fractionated`` (0/1), ``P``/``prismatic`` (number of prismatic pairs), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
-    (= only, a cell key as shown by ``mechsynth atlas``).  With ``=`` a number may be a
+    (= only, a cell key as shown by ``mechsynth atlas``), ``id`` and ``certificate`` (= or !=: the chain's
+    id, 12 hex digits as listings print it, or its nauty certificate).  With ``=`` a number may be a
     range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
 
     >>> parse_where(["code=6301/0", "n=8..10", "n3>=2"])[1]
@@ -71,6 +72,16 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
                 clauses.append(f"c.base_code {op} ?")
                 params.append(str(Code(code.assortment, code.v)))
             continue
+        if key in ("id", "certificate"):
+            if op not in ("=", "!="):
+                raise InvalidOption(f"a chain's {key} is compared with = or != only, not {m.group(2)!r}")
+            value = value.strip().lower()
+            if key == "id" and not re.fullmatch(r"[0-9a-f]{12}", value):
+                raise InvalidOption(f"in the condition {item!r}: a chain id is 12 hex digits (the 'id' column of a "
+                                    f"listing), not {m.group(3)!r}")
+            clauses.append("chain_id(c.certificate) " + op + " ?" if key == "id" else f"c.certificate {op} ?")
+            params.append(value)
+            continue
         if key == "cell":
             if op != "=":
                 raise InvalidOption("a cell is selected with = only")
@@ -84,7 +95,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             column, col_params = f"c.{_FIELDS[key]}", []
         else:
             raise InvalidOption(f"unknown field {name!r} in the condition {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
-                                "fractionated, nI such as n3, basecode, cell)")
+                                "fractionated, nI such as n3, basecode, cell, id, certificate)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
         try:

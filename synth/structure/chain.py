@@ -17,6 +17,7 @@ True
 
 from __future__ import annotations
 
+import hashlib
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -28,7 +29,7 @@ from ._nauty import TrustedGraph
 from .code import Code
 from ..errors import MalformedChain
 
-__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS"]
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]
 
 JOINT_KINDS = ("revolute", "prismatic", "mesh")  # see synth.structure.kinds
 SYMBOLS = {"revolute": "-", "prismatic": "=", "mesh": "~"}  # their signs in a joint list: 0-1, 0=1, 0~1
@@ -541,3 +542,13 @@ class Mechanism:
         if self.input_link is not None:
             d["input_link"] = self.input_link
         return d
+
+
+def chain_id(certificate: str) -> str:
+    """A chain's stable id: the first 12 hex digits of the SHA-1 of its certificate (its address in
+    an atlas web site, ``chain.html#<id>``, and the ``id`` of every listing and atlas export).
+
+    >>> chain_id(Chain.parse("0-1 1-2 2-3 3-0").certificate) == chain_id(Chain.parse("3-2 2-1 1-0 0-3").certificate)
+    True
+    """
+    return hashlib.sha1(certificate.encode()).hexdigest()[:12]

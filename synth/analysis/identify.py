@@ -1,0 +1,311 @@
+"""Which chain is this?  Identify a chain or mechanism from anywhere against the engine's atlas.
+
+A chain read from any format (:mod:`synth.exchange`) is checked — connected, its true mobility,
+the exact sub-chain verdict, the conventions it passes, fractionation, planarity, idle joints —
+and identified:
+
+* its **id** (the first 12 hex digits of the SHA-1 of its nauty certificate: the address of its
+  page in an atlas web site, ``chain.html#<id>``, and the ``id`` column of every listing) and
+  its certificate;
+* its **code** and its **place in the listing** of that code: the row number ``index`` in
+  ``mechsynth chains --code C`` with the options its conventions need (``--rigid-subchains``
+  for a chain with a rigid sub-chain, ``--dof W --prismatic P`` for prismatic pairs, …);
+* its **symmetry**: the order of its automorphism group and its link orbits;
+* its **classical name** where it has one (:mod:`synth.analysis.classical`);
+* for a mechanism (a chain with a frame), the **frame's orbit** (the links whose fixing gives the
+  same mechanism), the mechanism's certificate, its row in ``mechanisms --code C`` and its
+  classical inversion name.
+
+The listing order is deterministic: codes in the order of number synthesis, then the branch
+multigraphs of each code by nauty certificate, then the chains of each multigraph by
+certificate (with prismatic pairs: the revolute skeletons in that order, then their
+assignments in order) — all canonical, so the index does not depend on the numbering of the
+links, the number of workers or the run (docs/exchange.md, "The listing order").
+
+Example
+-------
+>>> r = identify("0-3 3-5 5-1 1-0 0-2 2-4 4-1")        # a Watt chain, numbered at random
+>>> r.code, r.index, r.listed, r.listing, r.classical
+('42/0', 2, 2, 'mechsynth chains --code 42/0', ['Watt chain'])
+>>> r.id == identify("0-1 1-2 2-3 3-0 0-4 4-5 5-1").id
+True
+>>> m = identify("0-1 1-2 2-3 3-0 0-4 4-5 5-1", frame=3)
+>>> m.frame_orbit, m.inversion
+([2, 3, 4, 5], ['Watt I'])
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from functools import lru_cache
+
+from ..errors import InvalidOption, MalformedChain
+from ..structure.chain import Chain, chain_id
+
+__all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", "MAX_INDEXED_LOOPS"]
+
+MAX_INDEXED_LOOPS = 6  # the place in a code's listing is found by listing the code: up to 14 links at W = 1
+
+
+@dataclass(frozen=True)
+class Identity:
+    """What a chain (or mechanism) is: see the module docstring.  Links are named as the source
+    named them (``names``; numbers 0 … n − 1 where the source used those).
+
+    ``index`` is the 1-based row of the chain in ``listing`` (``listed`` rows), None with the
+    reason in ``note`` when no listing holds it or it was not computed.  The mechanism fields
+    (``frame`` … ``inversion``) are None for a chain without a frame.
+    """
+
+    source: str
+    links: int
+    joints: list
+    kinds: list | None
+    h: int
+    names: list | None
+    id: str
+    certificate: str
+    code: str
+    dof: int
+    dof_count: int
+    loops: int
+    v: int
+    connected: bool
+    subchains: str
+    worst_subchain: list
+    worst_mobility: int | None
+    fractionated: bool | None
+    planar: bool
+    idle_joints: list
+    conventions: dict
+    symmetry: int
+    link_orbits: list
+    classical: list
+    listing: str | None
+    index: int | None
+    listed: int | None
+    note: str = ""
+    frame: object = None
+    frame_orbit: list | None = None
+    mechanism_certificate: str | None = None
+    mechanism_listing: str | None = None
+    mechanism_index: int | None = None
+    mechanisms_listed: int | None = None
+    inversion: list | None = None
+    chain: Chain | None = field(default=None, repr=False, compare=False)
+
+    def to_dict(self) -> dict:
+        """JSON-able, and a chain row again: ``identify`` reads its own output back."""
+        d = asdict(self)
+        d.pop("chain")
+        if d["kinds"] is None:
+            d.pop("kinds")
+        if d["frame"] is None:
+            for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
+                        "mechanisms_listed", "inversion"):
+                d.pop(key)
+        return d
+
+
+def _named(names, links):
+    return [x if names is None else names[x] for x in links]
+
+
+def listing_query(chain: Chain, dof: int, verdict, idle: bool):
+    """The :class:`~synth.structure.query.ChainQuery` whose listing holds ``chain`` (mobility
+    ``dof``, sub-chain ``verdict`` of the non-degenerate test, ``idle`` joints or not), and the
+    command that prints it; or None and the reason no listing holds it.
+
+    >>> q, command = listing_query(Chain.parse("0-1 1-2 2-0 0-3 3-4 4-5 5-1"), 1, None, False)
+    >>> command
+    'mechsynth chains --code 42/0'
+    """
+    from ..structure.query import ChainQuery
+
+    if chain.kinds is not None and "mesh" in chain.kinds:
+        return None, ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
+                      "listed by 'mechsynth gears')")
+    rigid = None
+    if verdict is not None and verdict.worst_mobility < 1:
+        if verdict.worst_mobility < 0 or verdict.redundant:
+            return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
+        rigid = True if dof >= 1 else None
+    code = str(chain.code)
+    prismatic = chain.kinds.count("prismatic") if chain.kinds is not None else None
+    query = ChainQuery(dof, code=code, h=chain.h, rigid_subchains=rigid, prismatic=prismatic,
+                       idle_joints=bool(idle and prismatic))
+    words = ["mechsynth chains --code", code]
+    if prismatic is not None:
+        words += ["--dof", str(dof)]
+    if chain.h != 3:
+        words += ["--h", str(chain.h)]
+    if rigid:
+        words.append("--rigid-subchains")
+    if prismatic is not None:
+        words += ["--prismatic", str(prismatic)]
+        if idle:
+            words.append("--idle-joints")
+    return query, " ".join(words)
+
+
+@lru_cache(maxsize=32)
+def _chain_rows(query) -> dict[str, int]:
+    """Row (1-based) of every chain of a listing, by certificate."""
+    from ..synthesis.type_synthesis import type_synthesis
+
+    return {c.certificate: i for i, c in enumerate(type_synthesis(query, workers=1), start=1)}
+
+
+@lru_cache(maxsize=32)
+def _mechanism_rows(query) -> dict[str, int]:
+    """Row (1-based) of every mechanism of ``mechanisms`` with the same query, by certificate."""
+    from ..synthesis.type_synthesis import mechanisms
+
+    return {m.certificate: i for i, m in enumerate(mechanisms(query, workers=1), start=1)}
+
+
+def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | None) -> dict:
+    """The listing, row and row count of a chain (and of its mechanism), or the reason there is none."""
+    out = dict(listing=None, index=None, listed=None, note="")
+    query, said = listing_query(chain, dof, verdict, idle)
+    if query is None:
+        out["note"] = said
+        return out
+    out["listing"] = said
+    if index is False:
+        out["note"] = "its place in the listing was not asked for"
+        return out
+    large = MAX_INDEXED_LOOPS - (1 if chain.v else 0)
+    if index is None and chain.loops > large:
+        out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and is listed "
+                       "whole to find it (ask for it with --index)")
+        return out
+    rows = _chain_rows(query)
+    out.update(index=rows.get(chain.certificate), listed=len(rows))
+    if out["index"] is None:  # the conventions say it is there: a chain the engine misses
+        out["note"] = "not found in its listing: the engine misses this chain (please report it)"
+    if frame is not None:
+        from ..structure.chain import Mechanism
+
+        mechs = _mechanism_rows(query)
+        out.update(mechanism_listing=said.replace("mechsynth chains", "mechsynth mechanisms", 1),
+                   mechanism_index=mechs.get(Mechanism(chain, frame).certificate), mechanisms_listed=len(mechs))
+    return out
+
+
+def _identify_entry(entry, *, index: bool | None = None) -> Identity:
+    from ..structure.chain import Mechanism
+    from ..structure.kinds import idle_joints
+    from ..structure.subchains import check_subchains
+    from .chains import mobility_of
+    from .classical import chain_names, inversion_names
+
+    chain, names = entry.chain, entry.names
+    loose = [x for x, d in enumerate(chain.degrees) if d == 0]
+    if loose and chain.links > 1:
+        raise MalformedChain(f"{entry.source}: link {_named(names, loose)[0]} is in no joint: a chain's links are all "
+                             "jointed")
+    connected = chain.is_connected()
+    dof = mobility_of(chain) if connected else chain.dof
+    verdict = own = None
+    if connected:
+        verdict = check_subchains(chain, rigid_subchains=False)
+        own = verdict if dof >= 1 else check_subchains(chain, rigid_subchains=True)
+    idle = [list(j) for j in idle_joints(chain)] if connected else []
+    gens, order, orbits = chain.automorphisms()
+    groups: dict[int, list[int]] = {}
+    for link, o in enumerate(orbits):
+        groups.setdefault(o, []).append(link)
+    fractionated = chain.is_fractionated() if connected else None
+    planar = chain.is_planar()
+    conventions = {
+        "non_degenerate": bool(verdict and verdict.ok),
+        "rigid_subchains": bool(verdict and verdict.worst_mobility >= 0 and not verdict.redundant),
+        "not_fractionated": fractionated is False,
+        "planar": planar,
+        "no_idle_joint": connected and not idle,
+    }
+    if not connected:
+        place = dict(listing=None, index=None, listed=None, note="a chain in pieces is in no listing")
+    else:
+        place = _place(chain, entry.frame, dof, verdict, bool(idle), index)
+    worst = list(own.worst) if own is not None else []
+    mechanism = {}
+    if entry.frame is not None:
+        frame = entry.frame
+        orbit = [x for x in range(chain.links) if orbits[x] == orbits[frame]]
+        mechanism = dict(frame=_named(names, [frame])[0], frame_orbit=_named(names, orbit),
+                         mechanism_certificate=Mechanism(chain, frame).certificate,
+                         inversion=inversion_names(chain, frame))
+        mechanism.update({k: place.pop(k) for k in ("mechanism_listing", "mechanism_index", "mechanisms_listed")
+                          if k in place})
+    return Identity(
+        source=entry.source, links=chain.links, joints=[list(j) for j in chain.joints],
+        kinds=list(chain.kinds) if chain.kinds else None, h=chain.h, names=list(names) if names else None,
+        id=chain_id(chain.certificate), certificate=chain.certificate, code=str(chain.code) + chain.kind_suffix,
+        dof=dof, dof_count=chain.dof, loops=chain.loops, v=chain.v, connected=connected,
+        subchains=own.kind if own is not None else "not connected", worst_subchain=_named(names, worst),
+        worst_mobility=own.worst_mobility if own is not None and own.worst else None,
+        fractionated=fractionated, planar=planar,
+        idle_joints=[_named(names, j) for j in idle], conventions=conventions, symmetry=round(order),
+        link_orbits=[_named(names, g) for g in sorted(groups.values())], classical=chain_names(chain),
+        **place, **mechanism, chain=chain)
+
+
+def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = None,
+                 index: bool | None = None) -> list[Identity]:
+    """:func:`identify` every chain of a source (a file or text may hold several)."""
+    from dataclasses import replace
+
+    from ..exchange import read
+
+    entries = read(source, fmt)
+    if frame is not None and len(entries) > 1:
+        raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
+    out = []
+    for entry in entries:
+        if h is not None and h != entry.chain.h:
+            entry = replace(entry, chain=replace(entry.chain, h=h))
+        if frame is not None:
+            names = entry.names or [str(i) for i in range(entry.chain.links)]
+            if str(frame) not in names:
+                raise InvalidOption(f"the frame {frame} is not a link of the chain ({names[0]} … {names[-1]})")
+            entry = replace(entry, frame=names.index(str(frame)))
+        out.append(_identify_entry(entry, index=index))
+    return out
+
+
+def identify(source, *, fmt: str | None = None, frame=None, h: int | None = None,
+             index: bool | None = None) -> Identity:
+    """Identify one chain or mechanism.
+
+    Parameters
+    ----------
+    source : Chain, Mechanism, networkx graph, path or text
+        Anything :func:`synth.exchange.read` reads: a joint list (``"0-1 1=2 2-3 3-0"``), a JSON
+        row, a file in any of :data:`synth.exchange.FORMATS`, ``Chain.to_networkx()``.
+    fmt : str, optional
+        The input format, when it is not to be detected.
+    frame : link, optional
+        Fix this link (as the source names it): identify the mechanism.
+    h : int, optional
+        Motion space of the loops (default the chain's own: 3 for a joint list).
+    index : bool, optional
+        Find the chain's row in its code's listing: None (default) for codes of up to
+        :data:`MAX_INDEXED_LOOPS` loops, True always, False never.
+
+    Returns
+    -------
+    Identity
+
+    Raises
+    ------
+    MalformedChain
+        The source cannot be read as a chain (one sentence: what, and where).
+    InvalidOption
+        The source holds several chains (use :func:`identify_all`), or the frame is no link.
+    """
+    found = identify_all(source, fmt=fmt, frame=frame, h=h, index=index)
+    if len(found) != 1:
+        raise InvalidOption(f"the source holds {len(found)} chains: identify_all identifies each")
+    return found[0]

@@ -1,0 +1,160 @@
+"""The drawing fixes of the review (issue 32), each measured on the drawing itself: multiplicity
+numbers clear of the bars and free ends apart on open chains, label size in pixels at the
+default sizes, non-planar chains without overlapping link polygons and captioned so, repair
+sheets with link numbers and the edits, gear meshes unlike pins, the site keeping joint kinds."""
+
+from __future__ import annotations
+
+import itertools
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.path import Path as MplPath  # noqa: E402
+
+import synth  # noqa: E402
+from synth import draw  # noqa: E402
+from synth.structure.chain import Chain  # noqa: E402
+from mechsynth.cli import main  # noqa: E402
+
+
+def _drawn(item, labels=True):
+    """Draw one item on an axes and return the axes (closed by the caller through plt.close)."""
+    fig, ax = plt.subplots(figsize=(3, 3))
+    draw._draw(ax, item, labels=labels, caption="x")
+    return fig, ax
+
+
+def _segment_distance(p, a, b) -> float:
+    ab = b - a
+    t = np.clip(np.dot(p - a, ab) / max(np.dot(ab, ab), 1e-12), 0, 1)
+    return float(np.linalg.norm(a + t * ab - p))
+
+
+def _open_chains():
+    found = list(synth.type_synthesis(4, code="2|5/2", workers=1))
+    found += [c for c in synth.type_synthesis(3, 8, n1=(1, 3), v=(0, 2), workers=1)]
+    return found
+
+
+def test_open_chains_numbers_clear_of_every_bar_and_free_ends_apart():
+    """Every multiplicity number is at least 1.5 joint radii from every bar (the bars to free
+    ends included) and 2 radii from every free end's block; two free ends on one joint keep a
+    gap of at least two radii between their blocks."""
+    chains = [c for c in _open_chains() if 1 in c.degrees]
+    assert len(chains) > 20
+    numbers = 0
+    for chain in chains:
+        fig, ax = _drawn(chain)
+        try:
+            r = draw._Marks(chain).r
+            bars = [np.asarray(line.get_xydata()) for line in ax.lines if (line.get_gid() or "").startswith("bar")]
+            ends = [np.asarray(p.get_xy())[:4].mean(axis=0) for p in ax.patches if (p.get_gid() or "").startswith("end")]
+            assert len(ends) == chain.degrees.count(1)
+            for text in ax.texts:
+                if (text.get_gid() or "").startswith("multiplicity"):
+                    numbers += 1
+                    at = np.asarray(text.get_position())
+                    clear = min(_segment_distance(at, bar[0], bar[1]) for bar in bars)
+                    assert clear >= 1.5 * r, (chain.compact(), text.get_text(), clear / r)
+                    assert all(np.linalg.norm(at - e) >= 2 * r for e in ends), chain.compact()
+            for a, b in itertools.combinations(ends, 2):
+                assert np.abs(a - b).max() >= 4 * r, (chain.compact(), np.abs(a - b).max() / r)  # blocks 2r wide
+        finally:
+            plt.close(fig)
+    assert numbers > 20
+
+
+def _label_heights(monkeypatch, run) -> list[float]:
+    """Heights in pixels of the link numbers of the picture ``run`` writes, at its own resolution."""
+    seen = []
+
+    def keep(fig, path, dpi):
+        fig.set_dpi(dpi)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        seen.extend(t.get_window_extent(renderer).height for ax in fig.axes for t in ax.texts
+                    if (t.get_gid() or "").startswith("label"))
+
+    monkeypatch.setattr(draw, "_save", keep)
+    run()
+    return seen
+
+
+def test_labels_are_at_least_14_px_at_the_default_sizes(monkeypatch, tmp_path):
+    """The README's watt.png (a sheet of mechanisms) and a single drawing, at their defaults: link
+    numbers of 14 px or more (their digits about 10 px; they were 9.7 and 7)."""
+    watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    sheet = _label_heights(monkeypatch, lambda: draw.draw_sheet(draw.expand([watt], mechanisms=True),
+                                                                 tmp_path / "watt.png"))
+    one = _label_heights(monkeypatch, lambda: draw.draw_one(watt, tmp_path / "one.png"))
+    assert len(sheet) == 12 and len(one) == 6
+    assert min(sheet) >= 14 and min(one) >= 14, (min(sheet), min(one))
+
+
+def _overlap_points(polygons) -> int:
+    """Points of a fine grid strictly inside two link polygons at once."""
+    xs = np.linspace(-1.05, 1.05, 351)
+    grid = np.array([(x, y) for x in xs for y in xs])
+    inside = np.zeros(len(grid), dtype=int)
+    for poly in polygons:  # shrunk by 1 % towards its centre: polygons sharing a joint or a side do not overlap
+        centre = poly.mean(axis=0)
+        inside += MplPath(centre + 0.99 * (poly - centre)).contains_points(grid)
+    return int((inside >= 2).sum())
+
+
+def test_non_planar_chains_have_no_overlapping_link_polygons_and_say_so():
+    chains = [c for c in synth.type_synthesis(1, 10, workers=1) if not c.is_planar()]
+    assert len(chains) == 11
+    for chain in chains:
+        lay = draw.layout(chain)
+        polygons = [lay.joints[p] for p in lay.polygons if len(p) >= 3]
+        assert _overlap_points(polygons) == 0, chain.compact()
+        assert "non-planar" in draw._caption(chain, 1)
+    assert "non-planar" not in draw._caption(synth.Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 1)
+
+
+def test_the_overlap_measure_sees_overlapping_polygons():
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float) * 0.5
+    assert _overlap_points([square, square + 0.25]) > 0 and _overlap_points([square, square + [0.5, 0]]) == 0
+
+
+def test_repair_sheet_numbers_links_and_says_each_edit(tmp_path, capsys):
+    out = tmp_path / "repairs.svg"
+    assert main(["draw", "--chain", "0-1 1-2 2-0 0-3 3-4 4-5 5-1", "--repairs", "--out", str(out)]) == 0
+    text = out.read_text()
+    words = " ".join(re.findall(r">([^<>]+)</text>", text))
+    for link in range(6):
+        assert f'id="label{link}"' in text
+    assert "move joint 0-1 from link 0" in words and "rigid sub-chain of links 0, 1, 2" in words
+
+
+def test_gear_meshes_are_drawn_as_pitch_circles_not_pins(tmp_path):
+    train = Chain.parse("0-1 0-3 0-4 2-4 1~2 2~3")  # sun 1, planet 2 on carrier 4, ring 3
+    out = tmp_path / "train.svg"
+    draw.draw_one(train, out)
+    text = out.read_text()
+    assert len(re.findall(r'id="mesh\d+"', text)) == 4  # two pitch circles for each of the two meshes
+    assert len(re.findall(r'id="pin\d+"', text)) == 4  # the four bearings
+    inline = draw.svg_inline(train)
+    assert inline.count('class="mesh"') == 4
+    slider = draw.svg(Chain.parse("0-1 1-2 2=3 3-0"))
+    assert re.search(r'id="cylinder\d+"|id="slider\d+"', slider) and "mesh" not in slider
+
+
+def test_the_site_keeps_joint_kinds_in_its_lists_and_draw_commands(tmp_path):
+    from synth.atlas.grid import parse_grid
+    from synth.atlas.site import write_site
+    from synth.atlas import run_grid
+
+    db = tmp_path / "rp.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"\nprismatic = "0..1"'), db, workers=1)
+    write_site(db, tmp_path / "site", workers=1)
+    pages = " ".join(p.read_text() for p in (tmp_path / "site" / "codes").glob("*.html"))
+    commands = re.findall(r'mechsynth draw --chain "([^"]+)"', pages)
+    assert commands and any("=" in c for c in commands)
+    for command in commands:
+        assert Chain.parse(command).compact() == command  # a joint list the draw command reads back as written
