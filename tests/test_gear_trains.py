@@ -371,3 +371,51 @@ def test_ctrl_c_stops_a_count_on_the_pool():
     assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
     with pytest.raises(ProcessLookupError):  # the group is gone: no worker outlived the parent
         os.killpg(proc.pid, 0)
+
+
+# ------------------------------------------------------------------ assembly of stepped planets
+def _assembles(sun: int, ring: int, on_sun: int, on_ring: int, k: int) -> bool:
+    """Whether k planets, each with a wheel of ``on_sun`` teeth meshing the sun and one of
+    ``on_ring`` meshing the ring, fit at equal spacing: tooth phases matched one planet at a time
+    (no formula).  A mesh keeps z_sun·(θ − σ) + z_p·(θ − β) (external) or z_ring·(θ − ρ) − z_p·(θ − β)
+    (internal) constant in tooth pitches, θ the planet's place, β its turn; planet 0 at θ = β = 0
+    sets both constants to 0, sun and ring stay put (σ = ρ = 0)."""
+    for j in range(1, k):
+        theta = Fraction(j, k)
+        # the ring mesh: on_ring·u ≡ ring·θ (u = θ − β), so u = (ring·θ + m)/on_ring for a whole m
+        if not any(((ring * theta + m) / on_ring * on_sun + sun * theta).denominator == 1 for m in range(on_ring)):
+            return False
+    return True
+
+
+def test_assembly_phase_oracle_on_simple_planets():
+    for zs, zp, k in [(20, 22, 3), (21, 22, 3), (18, 27, 4), (19, 27, 4), (17, 17, 2)]:
+        zr = zs + 2 * zp
+        assert _assembles(zs, zr, zp, zp, k) == ((zs + zr) % k == 0)
+
+
+def test_design_stepped_planets_assemble_and_none_is_missed():
+    """Ring 0 fixed, sun 1 in, carrier 2 out, stepped planet 3 (z3_1 on the sun, z3_0 on the ring):
+    i = 1 + z0·z3_1/(z1·z3_0) = 5.5 within 0.5 %, 17 to 80 teeth.  Every design assembles with three planets by the phase oracle, and
+    a brute force over every tooth triple (the ring follows from the coaxial condition) finds the
+    same designs."""
+    stepped = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    found = design(stepped, 0, 1, 2, "5.5", tolerance="0.5%", teeth=(17, 80), planets=3, compound=[3], best=10**5)
+    got = {(d.teeth["z1"], d.teeth["z3_1"], d.teeth["z3_0"], d.teeth["z0"]) for d in found}
+    expected = set()
+    for z1 in range(17, 81):
+        for on_sun in range(17, 81):
+            for on_ring in range(17, 81):
+                z0 = z1 + on_sun + on_ring  # one centre distance: z1 + z3_1 = z0 − z3_0
+                if z0 > 80 or z0 < on_ring + 10:
+                    continue
+                ratio = 1 + Fraction(z0 * on_sun, z1 * on_ring)
+                if abs(ratio - Fraction(11, 2)) <= Fraction(11, 400) and _assembles(z1, z0, on_sun, on_ring, 3):
+                    expected.add((z1, on_sun, on_ring, z0))
+    assert got == expected and len(got) > 3
+    simple_only = {t for t in expected if (t[0] + t[3]) % 3 == 0}
+    assert simple_only != expected  # the sum rule of simple planets would reject some of them
+    for d in found:
+        t = d.teeth
+        teeth = {0: t["z0"], 1: t["z1"], (3, 0): t["z3_0"], (3, 1): t["z3_1"]}
+        assert d.ratio == gear_ratios.ratio([(0, 3, 2, True), (1, 3, 2, False)], 4, teeth, 0, 1, 2)

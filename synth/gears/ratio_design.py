@@ -10,8 +10,10 @@ two polynomials in the tooth numbers (:func:`~synth.gears.mechanisms.speed_ratio
   have one centre distance (one module): z_a + z_b for an external pair, z_ring − z_pinion for
   an internal one — z_ring = z_sun + 2·z_planet for a simple planetary (a gear on no axis of its
   own, a floating sun, counts as turning about the carrier's axis on the frame, or its first);
-* with ``planets = k`` equally spaced planets: for every planet wheel meshing a sun (external) and
-  a ring (internal) on one carrier, (z_sun + z_ring)/k is a whole number.
+* with ``planets = k`` equally spaced planets: for every planet meshing a sun (external) and a
+  ring (internal) on one carrier, (z_sun + z_ring)/k is a whole number — for a stepped planet
+  (wheels z_p1 on the sun, z_p2 on the ring) (z_sun·z_p2 + z_ring·z_p1)/(k·gcd(z_p1, z_p2)); two
+  suns or two rings: the difference instead of the sum.
 
 Every design within the tolerance is listed (CP-SAT enumerates them) and the best few are
 returned by ratio error, then fewest teeth; if there are more than ``limit`` the query is refused
@@ -35,7 +37,7 @@ from ..errors import InvalidOption
 from .mechanisms import speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "NoDesign", "design", "parse_fraction", "MIN_TEETH", "RING_MARGIN"]
+__all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
 RING_MARGIN = 10  # an internal pair needs the ring this many teeth above its pinion (tip interference)
@@ -173,7 +175,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
         for other in sizes[1:]:
             model.Add(other == sizes[0])
     if planets is not None:
-        _assembly(model, train, names, z, planets, hi)
+        _assembly(model, train, names, z, planets, lo, hi)
 
     found: list[dict] = []
 
@@ -201,20 +203,56 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     return designs[:best]
 
 
-def _assembly(model, train: GearTrain, names, z, planets: int, hi: int) -> None:
-    """(z_sun + z_ring)/k whole for every planet wheel meshing a sun and a ring on one carrier."""
-    found = False
+def planet_pairs(train: GearTrain, names) -> list[tuple[str, str, str, str, int]]:
+    """The pairs of meshes that fix where equally spaced planets can go: a planet p turning on
+    carrier t about one axis meshes two central gears c1, c2 that turn on t about one other axis.
+    Each as (z_c1, z_p1, z_c2, z_p2, ε1·ε2): the wheels, ε = +1 for a sun (external mesh), −1 for a
+    ring (internal, the central gear first).
+
+    >>> planet_pairs(GearTrain.parse("0-1-2 2-3 0~3i 1~3"), [("z0", "z3_0"), ("z1", "z3_1")])
+    [('z0', 'z3_0', 'z1', 'z3_1', -1)]
+    """
+    central: dict = {}
     for k, (a, b, t) in enumerate(train.triples):
-        if train.internal[k]:
-            continue
-        for j, (c, d, u) in enumerate(train.triples):
-            if not train.internal[j] or u != t:
+        for planet, centre, side in ((b, a, 1), (a, b, 0)):
+            if train.internal[k] and side == 0:  # the planet would be a ring around its central gear
                 continue
-            for sun_side, planet_wheel in ((0, names[k][1]), (1, names[k][0])):
-                if names[j][1] == planet_wheel:  # the same planet wheel meshes the sun and the ring
-                    sun, ring = names[k][sun_side], names[j][0]
-                    turns = model.NewIntVar(0, 2 * hi, f"assembly_{sun}_{ring}")
-                    model.Add(z[sun] + z[ring] == planets * turns)
-                    found = True
-    if not found:
+            own = next((x for x in train.axes if planet in x and t in x), None)
+            if own is None:  # a floating gear is no planet
+                continue
+            axis = _axis_of(train, centre, t, own)
+            sign = -1 if train.internal[k] else 1
+            central.setdefault((t, planet, own, axis), []).append((names[k][1 - side], names[k][side], sign))
+    out = []
+    for meshes in central.values():
+        for (c1, p1, e1), (c2, p2, e2) in zip(meshes, meshes[1:]):
+            out.append((c1, p1, c2, p2, e1 * e2))
+    return out
+
+
+def _assembly(model, train: GearTrain, names, z, planets: int, lo: int, hi: int) -> None:
+    """k equally spaced planets assemble: for every planet meshing two central gears on one carrier,
+    (z_c1·z_p2 − ε1ε2·z_c2·z_p1) / (k·gcd(z_p1, z_p2)) is a whole number — (z_sun + z_ring)/k for a
+    simple planet, (z_sun·z_p2 + z_ring·z_p1)/(k·gcd(z_p1, z_p2)) for a stepped one (z_p1 meshing the
+    sun, z_p2 the ring).  A stepped planet's condition is written with Bézout's identity: the
+    quotient by k is j1·z_p1 + j2·z_p2 for some whole j1, j2 (0 ≤ j1 < z_p2 is enough)."""
+    pairs = planet_pairs(train, names)
+    if not pairs:
         raise NoDesign("--planets needs a planet wheel that meshes a sun and a ring on one carrier")
+    for c1, p1, c2, p2, sign in pairs:
+        tag = f"{c1}_{c2}"
+        if p1 == p2:  # one planet wheel: (z_c1 − ε1ε2·z_c2)/k whole
+            turns = model.NewIntVar(-2 * hi, 2 * hi, f"assembly_{tag}")
+            model.Add(z[c1] - sign * z[c2] == planets * turns)
+            continue
+        span = 2 * hi * hi
+        top = span // lo + hi
+        first, second = model.NewIntVar(0, span, f"{c1}·{p2}"), model.NewIntVar(0, span, f"{c2}·{p1}")
+        model.AddMultiplicationEquality(first, [z[c1], z[p2]])
+        model.AddMultiplicationEquality(second, [z[c2], z[p1]])
+        j1, j2 = model.NewIntVar(0, hi, f"j1_{tag}"), model.NewIntVar(-top, top, f"j2_{tag}")
+        u1, u2 = model.NewIntVar(0, hi * hi, f"u1_{tag}"), model.NewIntVar(-top * hi, top * hi, f"u2_{tag}")
+        model.AddMultiplicationEquality(u1, [j1, z[p1]])
+        model.AddMultiplicationEquality(u2, [j2, z[p2]])
+        model.Add(first - sign * second == planets * (u1 + u2))
+        model.Add(j1 < z[p2])
