@@ -419,3 +419,51 @@ def test_design_stepped_planets_assemble_and_none_is_missed():
         t = d.teeth
         teeth = {0: t["z0"], 1: t["z1"], (3, 0): t["z3_0"], (3, 1): t["z3_1"]}
         assert d.ratio == gear_ratios.ratio([(0, 3, 2, True), (1, 3, 2, False)], 4, teeth, 0, 1, 2)
+
+
+# ------------------------------------------------------------------ mesh kinds chosen by the solver
+def test_free_mesh_kinds_are_the_true_best_over_every_kind():
+    """The simple planetary's layout with each mesh external, or internal with either gear the ring
+    (9 trains), sun and planet 17..70 (the gear 0 follows from one centre distance): the brute
+    force's best (error, tooth sum) are the designs returned, each rechecked by the rational Willis
+    solve of the train it names."""
+    layout = GearTrain.parse("0-1-2 2-3 0~3 1~3")
+    target, tol = Fraction(21, 5), Fraction(1, 200)
+    found = design(layout, 0, 1, 2, "4.2", tolerance="0.5%", teeth=(17, 70), kinds="free", best=6)
+    brute = []
+    for kinds in itertools.product(("ext", "first", "second"), repeat=2):  # meshes 0~3, 1~3
+        meshes = [(b, a) if k == "second" else (a, b) for (a, b), k in zip(layout.meshes, kinds)]
+        variant = GearTrain(4, layout.axes, meshes, internal=[k != "ext" for k in kinds])
+        for z1, z3 in itertools.product(range(17, 71), repeat=2):
+            centre = {"ext": z1 + z3, "first": z1 - z3, "second": z3 - z1}[kinds[1]]
+            z0 = {"ext": centre - z3, "first": centre + z3, "second": z3 - centre}[kinds[0]]
+            ring_ok = all(k == "ext" or (z[0] if k == "first" else z[1]) >= (z[1] if k == "first" else z[0]) + 10
+                          for k, z in ((kinds[0], (z0, z3)), (kinds[1], (z1, z3))))
+            if not 17 <= z0 <= 70 or not ring_ok:
+                continue
+            try:
+                r = _oracle_ratio(variant, 0, 1, 2, {"z0": z0, "z1": z1, "z3": z3})
+            except (ValueError, ZeroDivisionError):
+                continue
+            if r and abs(r - target) / target <= tol:
+                brute.append((abs(r - target) / target, z0 + z1 + z3))
+    brute.sort()
+    assert [(d.error, sum(d.teeth.values())) for d in found] == brute[:6]
+    for d in found:
+        assert d.train is not None and d.ratio == _oracle_ratio(d.train, 0, 1, 2, d.teeth)
+    assert any(any(d.train.internal) for d in found)
+
+
+def test_cli_ratio_over_a_size_chooses_internal_meshes(tmp_path):
+    out = _cli("--links", "5", "--ratio", "-2.75", "--tolerance", "0.5%", "--teeth", "17..60",
+               "--best", "4", "--format", "jsonl")
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    assert len(rows) == 4 and [r["error"] for r in rows] == sorted(r["error"] for r in rows)
+    for r in rows:
+        train = GearTrain.parse(r["train"])
+        assert _oracle_ratio(train, r["frame"], r["input_link"], r["output_link"], r["teeth"]) == Fraction(r["ratio"])
+    kept = _cli("--links", "5", "--ratio", "-2.75", "--tolerance", "0.5%", "--teeth", "17..60",
+                "--best", "4", "--mesh-kinds", "given", "--format", "jsonl")
+    given = [json.loads(line) for line in kept.stdout.splitlines()]
+    assert not any(x for r in given for x in GearTrain.parse(r["train"]).internal)  # the atlas's meshes
+    assert all(a["error"] <= b["error"] for a, b in zip(rows, given))  # free kinds include the given ones
