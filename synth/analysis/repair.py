@@ -17,6 +17,7 @@ Example
 from __future__ import annotations
 
 from itertools import combinations
+from math import comb
 
 from ..structure.chain import SYMBOLS, Chain
 from ..structure.code import Code
@@ -26,6 +27,7 @@ from ..structure.subchains import check_subchains
 __all__ = ["chain_edits", "chain_repairs", "code_repairs", "redundant_joints"]
 
 _DEPTH = 3
+_WORK = 1 << 28  # sets of links the search for redundant joints may scan
 
 
 def _valid(chain: Chain, dof: int) -> bool:
@@ -148,7 +150,8 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
     """The joints that carry the chain's redundant constraints: those in some set of joints whose
     removal leaves a connected chain with W = ``dof`` by the count and no rigid or over-constrained
     sub-chain.  Sets of up to D joints are tried (D = ``dof`` − W, at most ``most``); None when the
-    chain has no redundant constraint by the count (W ≥ ``dof``) or D is larger.
+    chain has no redundant constraint by the count (W ≥ ``dof``), D is larger, or the tries would
+    scan more than 2^28 sets of links.
 
     A planetary train with four planets and a floating sun has W = 0: each planet beyond the
     third is redundant, and any one of its meshes can go.
@@ -161,6 +164,9 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
     if missing <= 0 or missing > most:
         return None
     pairs = list(zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)))
+    tries = sum(comb(len(pairs), size) for size in range(1, missing + 1))
+    if tries << min(chain.links, 22) > _WORK:  # each try scans every set of links
+        return None
     found: set[int] = set()
     for size in range(1, missing + 1):
         for removed in combinations(range(len(pairs)), size):
