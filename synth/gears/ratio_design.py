@@ -160,7 +160,7 @@ class _DesignModel:
         wheels = [w for w in self.formula.wheels if w.startswith("z")]
         z = self.z = {w: model.NewIntVar(lo, hi, w) for w in wheels}
         names = wheel_names(train, compound)
-        self.kind = self._kinds(names, hi) if free else None
+        self.kind = self._kinds(len(names)) if free else None
         sign = {f"s{k}": v for k, v in enumerate(self.kind["sign"])} if free else {}
         products: dict = {}
 
@@ -210,10 +210,9 @@ class _DesignModel:
         model.Add(b * self.E <= a * abs(p) * self.A)  # |N/D − R| ≤ tol·|R|
         self.S = sum(z.values())
         if beat is not None:  # a smaller error, or the same and no more teeth
-            self._below(beat[0], strict=False)
+            self._error_is(model, "<=", beat[0])
             better = model.NewBoolVar("better")
-            u, v = beat[0].numerator, beat[0].denominator
-            model.Add(v * self.E < u * abs(p) * self.A).OnlyEnforceIf(better)
+            self._error_is(model, "<", beat[0]).OnlyEnforceIf(better)
             model.Add(self.S <= beat[1]).OnlyEnforceIf(better.Not())
         if free:
             self._free_kinds(names)
@@ -229,10 +228,10 @@ class _DesignModel:
             _assembly(model, train, names, z, planets, lo, hi, self.kind)
 
     # ---------------------------------------------------------------- mesh kinds chosen
-    def _kinds(self, names, hi) -> dict:
+    def _kinds(self, meshes: int) -> dict:
         """Per mesh three literals — external, first gear the ring, second gear the ring — and its sign."""
         model, out = self.model, {"external": [], "ring_first": [], "ring_second": [], "sign": []}
-        for k in range(len(names)):
+        for k in range(meshes):
             lits = [model.NewBoolVar(f"{what}{k}") for what in ("ext", "ring_a", "ring_b")]
             model.AddExactlyOne(lits)
             s = model.NewIntVarFromDomain(self.cp.Domain.FromValues([-1, 1]), f"s{k}")
@@ -261,14 +260,11 @@ class _DesignModel:
                 model.Add(centre[k] == centre[members[0]])
 
     # ---------------------------------------------------------------- the search
-    def _below(self, error: Fraction, strict: bool, model=None) -> None:
-        """Designs whose error is below ``error`` (or at most it): E·v < u·|p|·A for error = u/v."""
-        model = model or self.model
+    def _error_is(self, model, relation: str, error: Fraction):
+        """Constrain a design's error E/(|p|·A) against ``error`` = u/v: E·v ``relation`` u·|p|·A."""
         u, v, p = error.numerator, error.denominator, abs(self.target.numerator)
-        if strict:
-            model.Add(v * self.E < u * p * self.A)
-        else:
-            model.Add(v * self.E <= u * p * self.A)
+        left, right = v * self.E, u * p * self.A
+        return model.Add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
 
     def _solve(self, model, minimise=None):
         solver = self.cp.CpSolver()
@@ -289,21 +285,13 @@ class _DesignModel:
         while True:
             model = self.model.Clone()
             if above is not None:
-                self._above(model, above)
+                self._error_is(model, ">", above)
             if least is not None:
-                self._below(least, strict=True, model=model)
+                self._error_is(model, "<", least)
             solver = self._solve(model, minimise=self.E)
             if solver is None:
                 return least
             least = self._error(solver)
-
-    def _above(self, model, error: Fraction) -> None:
-        u, v, p = error.numerator, error.denominator, abs(self.target.numerator)
-        model.Add(v * self.E > u * p * self.A)
-
-    def _exactly(self, model, error: Fraction) -> None:
-        u, v, p = error.numerator, error.denominator, abs(self.target.numerator)
-        model.Add(v * self.E == u * p * self.A)
 
     def _least_design(self, model):
         """The design of ``model`` with the least tooth numbers in order (wheel by wheel), then the
@@ -347,7 +335,7 @@ class _DesignModel:
             if error is None:
                 break
             level = self.model.Clone()
-            self._exactly(level, error)
+            self._error_is(level, "==", error)
             total = None
             while len(out) < count:
                 model = level.Clone()
