@@ -45,7 +45,7 @@ def _random_chain(rng: random.Random):
             for j, q in enumerate(pins[i + 1:], start=i + 1):
                 common = set(p) & set(q)
                 other = (set(p) | set(q)) - common
-                if len(common) == 1 and all(free(*sorted(other)) for _ in [0]):
+                if len(common) == 1 and free(*other):
                     merged = tuple(sorted(set(p) | set(q)))
                     pins = [x for k, x in enumerate(pins) if k not in (i, j)] + [merged]
                     used.add(frozenset(other))
@@ -54,7 +54,7 @@ def _random_chain(rng: random.Random):
 
 
 def _random_train(rng: random.Random) -> GearTrain:
-    """A train of the atlas kind with 3 … 7 links: a random link–axis tree and random meshes at
+    """A train of the atlas kind with 4 … 7 links: a random link–axis tree and random meshes at
     distance 4 in it (one or more: rigid and over-constrained trains included)."""
     n = rng.randint(4, 7)
     axes = [[0, 1]]
