@@ -331,6 +331,9 @@ def test_cli_mechanisms_and_ratio(tmp_path):
     (["--links", "5", "--graphs", "orbits"], "invalid choice"),
     (["--links", "5", "--count", "--ratio", "3"], "contradict"),
     (["--links", "5", "--tolerance", "1%"], "goes with --ratio"),
+    (["--links", "5", "--mesh-kinds", "free"], "--mesh-kinds goes with --ratio"),
+    (["--links", "8", "--ratio", "3"], "up to 7 links"),
+    (["--links", "5", "--ratio", "3", "--mesh-kinds", "any"], "invalid choice"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--links", "4"], "contradicts --train"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "1.01",
       "--tolerance", "0.1%"], "no tooth numbers"),
@@ -371,3 +374,99 @@ def test_ctrl_c_stops_a_count_on_the_pool():
     assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
     with pytest.raises(ProcessLookupError):  # the group is gone: no worker outlived the parent
         os.killpg(proc.pid, 0)
+
+
+# ------------------------------------------------------------------ assembly of stepped planets
+def _assembles(sun: int, ring: int, on_sun: int, on_ring: int, k: int) -> bool:
+    """Whether k planets, each with a wheel of ``on_sun`` teeth meshing the sun and one of
+    ``on_ring`` meshing the ring, fit at equal spacing: tooth phases matched one planet at a time
+    (no formula).  A mesh keeps z_sun·(θ − σ) + z_p·(θ − β) (external) or z_ring·(θ − ρ) − z_p·(θ − β)
+    (internal) constant in tooth pitches, θ the planet's place, β its turn; planet 0 at θ = β = 0
+    sets both constants to 0, sun and ring stay put (σ = ρ = 0)."""
+    for j in range(1, k):
+        theta = Fraction(j, k)
+        # the ring mesh: on_ring·u ≡ ring·θ (u = θ − β), so u = (ring·θ + m)/on_ring for a whole m
+        if not any(((ring * theta + m) / on_ring * on_sun + sun * theta).denominator == 1 for m in range(on_ring)):
+            return False
+    return True
+
+
+def test_assembly_phase_oracle_on_simple_planets():
+    for zs, zp, k in [(20, 22, 3), (21, 22, 3), (18, 27, 4), (19, 27, 4), (17, 17, 2)]:
+        zr = zs + 2 * zp
+        assert _assembles(zs, zr, zp, zp, k) == ((zs + zr) % k == 0)
+
+
+def test_design_stepped_planets_assemble_and_none_is_missed():
+    """Ring 0 fixed, sun 1 in, carrier 2 out, stepped planet 3 (z3_1 on the sun, z3_0 on the ring):
+    i = 1 + z0·z3_1/(z1·z3_0) = 5.5 within 0.5 %, 17 to 80 teeth.  Every design assembles with three planets by the phase oracle, and
+    a brute force over every tooth triple (the ring follows from the coaxial condition) finds the
+    same designs."""
+    stepped = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    found = design(stepped, 0, 1, 2, "5.5", tolerance="0.5%", teeth=(17, 80), planets=3, compound=[3], best=10**5)
+    got = {(d.teeth["z1"], d.teeth["z3_1"], d.teeth["z3_0"], d.teeth["z0"]) for d in found}
+    expected = set()
+    for z1 in range(17, 81):
+        for on_sun in range(17, 81):
+            for on_ring in range(17, 81):
+                z0 = z1 + on_sun + on_ring  # one centre distance: z1 + z3_1 = z0 − z3_0
+                if z0 > 80 or z0 < on_ring + 10:
+                    continue
+                ratio = 1 + Fraction(z0 * on_sun, z1 * on_ring)
+                if abs(ratio - Fraction(11, 2)) <= Fraction(11, 400) and _assembles(z1, z0, on_sun, on_ring, 3):
+                    expected.add((z1, on_sun, on_ring, z0))
+    assert got == expected and len(got) > 3
+    simple_only = {t for t in expected if (t[0] + t[3]) % 3 == 0}
+    assert simple_only != expected  # the sum rule of simple planets would reject some of them
+    for d in found:
+        t = d.teeth
+        teeth = {0: t["z0"], 1: t["z1"], (3, 0): t["z3_0"], (3, 1): t["z3_1"]}
+        assert d.ratio == gear_ratios.ratio([(0, 3, 2, True), (1, 3, 2, False)], 4, teeth, 0, 1, 2)
+
+
+# ------------------------------------------------------------------ mesh kinds chosen by the solver
+def test_free_mesh_kinds_are_the_true_best_over_every_kind():
+    """The simple planetary's layout with each mesh external, or internal with either gear the ring
+    (9 trains), sun and planet 17..70 (the gear 0 follows from one centre distance): the brute
+    force's best (error, tooth sum) are the designs returned, each rechecked by the rational Willis
+    solve of the train it names."""
+    layout = GearTrain.parse("0-1-2 2-3 0~3 1~3")
+    target, tol = Fraction(21, 5), Fraction(1, 200)
+    found = design(layout, 0, 1, 2, "4.2", tolerance="0.5%", teeth=(17, 70), kinds="free", best=6)
+    brute = []
+    for kinds in itertools.product(("ext", "first", "second"), repeat=2):  # meshes 0~3, 1~3
+        meshes = [(b, a) if k == "second" else (a, b) for (a, b), k in zip(layout.meshes, kinds)]
+        variant = GearTrain(4, layout.axes, meshes, internal=[k != "ext" for k in kinds])
+        for z1, z3 in itertools.product(range(17, 71), repeat=2):
+            centre = {"ext": z1 + z3, "first": z1 - z3, "second": z3 - z1}[kinds[1]]
+            z0 = {"ext": centre - z3, "first": centre + z3, "second": z3 - centre}[kinds[0]]
+            ring_ok = all(k == "ext" or (z[0] if k == "first" else z[1]) >= (z[1] if k == "first" else z[0]) + 10
+                          for k, z in ((kinds[0], (z0, z3)), (kinds[1], (z1, z3))))
+            if not 17 <= z0 <= 70 or not ring_ok:
+                continue
+            try:
+                r = _oracle_ratio(variant, 0, 1, 2, {"z0": z0, "z1": z1, "z3": z3})
+            except (ValueError, ZeroDivisionError):
+                continue
+            if r and abs(r - target) / target <= tol:
+                brute.append((abs(r - target) / target, z0 + z1 + z3))
+    brute.sort()
+    assert [(d.error, sum(d.teeth.values())) for d in found] == brute[:6]
+    for d in found:
+        assert d.train is not None and d.ratio == _oracle_ratio(d.train, 0, 1, 2, d.teeth)
+    assert any(any(d.train.internal) for d in found)
+
+
+def test_cli_ratio_over_a_size_chooses_internal_meshes(tmp_path):
+    out = _cli("--links", "5", "--ratio", "-2.75", "--tolerance", "0.5%", "--teeth", "17..60",
+               "--best", "4", "--format", "jsonl")
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    assert len(rows) == 4 and [r["error"] for r in rows] == sorted(r["error"] for r in rows)
+    for r in rows:
+        train = GearTrain.parse(r["train"])
+        assert _oracle_ratio(train, r["frame"], r["input_link"], r["output_link"], r["teeth"]) == Fraction(r["ratio"])
+    kept = _cli("--links", "5", "--ratio", "-2.75", "--tolerance", "0.5%", "--teeth", "17..60",
+                "--best", "4", "--mesh-kinds", "given", "--format", "jsonl")
+    given = [json.loads(line) for line in kept.stdout.splitlines()]
+    assert not any(x for r in given for x in GearTrain.parse(r["train"]).internal)  # the atlas's meshes
+    assert all(a["error"] <= b["error"] for a, b in zip(rows, given))  # free kinds include the given ones

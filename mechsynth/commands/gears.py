@@ -13,7 +13,7 @@ from __future__ import annotations
 from .._argtypes import whole, workers
 from .._output import COUNT_FORMATS, FORMATS, nothing_found, write_count, write_rows
 
-_RATIO_LINKS = 6  # --ratio over every train of a size: up to this many links
+_RATIO_LINKS = 7  # --ratio over every train of a size: up to this many links
 
 
 def add_commands(sub) -> None:
@@ -38,6 +38,9 @@ def add_commands(sub) -> None:
     p.add_argument("--min-teeth", type=whole, help="with --ratio: fewest teeth without undercut (default 17)")
     p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets, (z_sun + z_ring)/k whole")
     p.add_argument("--best", type=whole, default=5, help="with --ratio: designs listed (default 5)")
+    p.add_argument("--mesh-kinds", choices=("given", "free"),
+                   help="with --ratio: 'free' lets each mesh be external or internal (either gear the ring), "
+                        "'given' keeps the train's (default: free for the atlas, given for --train)")
     p.add_argument("--out", metavar="FILE", help="draw the functional schematics (.svg, .png, .pdf; up to 48 a sheet)")
     p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default 1)")
     p.add_argument("--format", choices=FORMATS,
@@ -48,7 +51,8 @@ def add_commands(sub) -> None:
 def _check(args) -> None:
     from synth import InvalidOption
 
-    ratio_only = [name for name in ("tolerance", "teeth", "min_teeth", "planets") if getattr(args, name) is not None]
+    ratio_only = [name for name in ("tolerance", "teeth", "min_teeth", "planets", "mesh_kinds")
+                  if getattr(args, name) is not None]
     if ratio_only and args.ratio is None:
         raise InvalidOption(f"--{ratio_only[0].replace('_', '-')} goes with --ratio")
     if args.count and (args.ratio is not None or args.input_output or args.out):
@@ -178,37 +182,42 @@ def _run_mechanisms(args, items, compound) -> int:
 
 
 def _run_ratio(args, items, compound) -> int:
+    from fractions import Fraction
+
     from synth import parse_range
     from synth import InvalidOption
     from synth.gears import MIN_TEETH, NoDesign, design
 
-    items = list(items)
     if args.train is None and args.links > _RATIO_LINKS:
         raise InvalidOption(f"--ratio over every train of a size goes up to {_RATIO_LINKS} links: choose one with --train")
     lo, hi = parse_range(args.teeth or "17..150", "--teeth", minimum=1)
     if hi is None:
         raise InvalidOption("--teeth needs an upper end: give A..B")
-    designs = []
-    for m in _mechanisms_of(args, items, compound):
+    kinds = args.mesh_kinds or ("given" if args.train is not None else "free")
+    kept: list = []  # the best so far over every mechanism: (error, teeth sum, order, design, mechanism)
+    for order, m in enumerate(_mechanisms_of(args, items, compound)):
+        beat = kept[-1][:2] if len(kept) >= args.best else None  # nothing worse can enter
         try:
             found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
                            teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
-                           planets=args.planets, compound=compound, best=args.best)
+                           planets=args.planets, compound=compound, best=args.best, kinds=kinds, beat=beat)
         except NoDesign:
             if args.train is not None and args.input is not None:
                 raise
             continue  # another mechanism may reach the ratio
-        designs += [(d, m) for d in found]
-    if not designs:
+        kept += [(d.error, sum(d.teeth.values()), order, d, m) for d in found]
+        kept = sorted(kept, key=lambda x: x[:3])[:args.best]
+    if not kept:
         raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "
                             f"{args.tolerance or '1%'} in these trains (coaxial, assembly and undercut conditions)")
-    designs.sort(key=lambda dm: (dm[0].error, sum(dm[0].teeth.values())))
-    designs = designs[:args.best]
+    designs = [(d, m) for *_, d, m in kept]
     fmt = args.format or "table"
     rows = []
     for d, m in designs:
-        row = {"train": m.train.compact(), "frame": m.frame, "input_link": m.input_link,
-               "output_link": m.output_link, "formula": m.ratio.text, **d.to_dict()}
+        train = d.train or m.train
+        formula = m.ratio if d.train is None else _formula(train, m, compound)
+        row = {"train": train.compact(), "frame": m.frame, "input_link": m.input_link,
+               "output_link": m.output_link, "formula": formula.text, **d.to_dict()}
         if fmt in ("table", "csv"):
             row["teeth"] = " ".join(f"{k}={v}" for k, v in d.teeth.items())
             row["error"] = f"{float(d.error):.3%}"
@@ -221,8 +230,14 @@ def _run_ratio(args, items, compound) -> int:
         from dataclasses import replace
 
         best, m = designs[0]
-        _draw([replace(m.train, frame=m.frame)], args.out, compound, teeth=best.teeth)
+        _draw([replace(best.train or m.train, frame=m.frame)], args.out, compound, teeth=best.teeth)
     return 0
+
+
+def _formula(train, m, compound):
+    from synth.gears import speed_ratio
+
+    return speed_ratio(train, m.frame, m.input_link, m.output_link, compound)
 
 
 def _indexed(rows):

@@ -1,4 +1,5 @@
-"""Scene computations for gear trains: ``gear train`` (one train: its lever analogue, verdict,
+"""Scene computations for gear trains: ``gear train`` (one train: W, K, D, the sub-chain verdict and
+the lever analogue's code from the general analysis of the train as a chain with gear meshes,
 speed ratios, tooth design, schematic) and ``gear atlas`` (the counts of a size).
 
 ``[gear_train]`` names a train in the text form of ``mechsynth gears --train`` and, optionally,
@@ -28,6 +29,7 @@ class GearTrainTable(Table):
     """The ``[gear_train]`` table."""
 
     train: StrictStr
+    required_dof: Positive = 1  # the W that D is measured against
     mechanisms: Triples | None = None  # [frame, input, output] each
     compound: list[Whole] = []
     teeth: WholeTable | None = None
@@ -57,15 +59,17 @@ FAMILY.table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.
 
 
 def _gear_train(run: Run) -> dict:
-    from synth import parse_range
+    from synth import analyze_chain, parse_range
     from synth.gears import GearTrain, design, speed_ratio
 
     t = run.scene.tables["gear_train"]
     first = t.mechanisms[0] if t.mechanisms else None
     train = GearTrain.parse(t.train, first[0] if first else None)
-    chain = train.lever_analogue()
-    out = {"train": train.compact(), "dof": train.dof, "lever_code": str(chain.code), "lever_dof": chain.dof,
-           "loops": chain.loops, "rigid_free": train.is_rigid_free(), "fractionated": train.is_fractionated(),
+    a = analyze_chain(train.to_chain(), dof=t.required_dof)  # the general path: the train as a chain
+    out = {"train": train.compact(), "dof": a.dof_count, "generic_dof": a.dof, "loops": a.loops,
+           "defect": a.defect, "subchains": a.subchain_defect, "redundant_joints": a.redundant_joints or [],
+           "lever_code": a.lever_analogue, "lever_dof": train.lever_analogue().dof,
+           "rigid_free": train.is_rigid_free(), "fractionated": train.is_fractionated(),
            "certificate": train.certificate}
     formulas, values = [], []
     for frame, i, o in t.mechanisms or ():
@@ -108,13 +112,16 @@ def _gear_atlas(run: Run) -> dict:
 
 
 FAMILY.kind(ComputeKind(
-    "gear train", "one gear train: lever analogue, verdict, speed ratios, tooth design", "gear_train", _gear_train,
-    expect={"train_dof": Expectation(Int, ("dof",)), "lever_code": Expectation(Text),
+    "gear train", "one gear train: W, K, D and verdict of its lever analogue, speed ratios, tooth design",
+    "gear_train", _gear_train,
+    expect={"train_dof": Expectation(Int, ("dof",)), "train_loops": Expectation(Whole, ("loops",)),
+            "train_defect": Expectation(Int, ("defect",)), "subchains": Expectation(Text),
+            "lever_code": Expectation(Text),
             "lever_dof": Expectation(Int), "rigid_free": Expectation(Flag), "fractionated": Expectation(Flag),
             "ratio_formulas": Expectation(Texts), "ratio_values": Expectation(Numbers),
             "best_ratio": Expectation(Number), "best_error": Expectation(Number, below=True)},
-    report=lambda r: [f"{r['train']}: F = {r['dof']}, lever analogue {r['lever_code']}, "
-                      f"rigid-free {r['rigid_free']}; ratios {', '.join(r['ratio_formulas']) or '-'}"]))
+    report=lambda r: [f"{r['train']}: W = {r['dof']}, K = {r['loops']}, D = {r['defect']}, lever analogue "
+                      f"{r['lever_code']}, sub-chains {r['subchains']}; ratios {', '.join(r['ratio_formulas']) or '-'}"]))
 FAMILY.kind(ComputeKind(
     "gear atlas", "every planetary gear train of F DOF and n links: displacement and rotation graphs", "gear_atlas",
     _gear_atlas, expect={"displacement_graphs": Expectation(Whole, ("displacement",)),

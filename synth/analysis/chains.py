@@ -26,6 +26,7 @@ from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_a
 from ..structure.subchains import check_subchains
 from ..synthesis.number_synthesis import number_synthesis
 from .codes import LOWER_W, RAISE_W
+from .repair import redundant_joints
 
 __all__ = ["ChainAnalysis", "analyze_chain", "mobility_of"]
 
@@ -37,7 +38,9 @@ class ChainAnalysis:
     ``dof`` is the true mobility (generic, for planar chains), ``dof_count`` the count and
     ``redundant`` their difference; ``loops_2``/``loops_3`` the wedge loops (prismatic pairs
     only) and the others; ``idle_joints`` the joints whose links never move relative to each
-    other; ``lever_analogue`` the code of the chain with each gear mesh a binary link.
+    other; ``lever_analogue`` the code of the chain with each gear mesh a binary link.  With a
+    required W, ``defect`` is D = W by the count − the required W and, for a chain with gear
+    meshes and D < 0, ``redundant_joints`` the joints whose removal mends it.
     """
 
     code: str
@@ -65,6 +68,9 @@ class ChainAnalysis:
     worst_subchain_mobility: int | None  # None: no proper sub-chain of two links or more
     idle_joints: list
     advice: str
+    required_dof: int | None = None
+    defect: int | None = None
+    redundant_joints: list | None = None
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -144,13 +150,17 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
             f"links {list(report.worst)} form a {report.kind} with W(S) = {report.worst_mobility}: it acts as "
             f"one link; insert {k} binary link(s) into its joints (a–b becomes a–x–b) or move one of its joints "
             "to a link outside it")
-    if idle and report.ok:  # (inside a rigid sub-chain every joint is idle: the sub-chain says why)
+    has_mesh = chain.kinds is not None and "mesh" in chain.kinds
+    redundant = redundant_joints(chain, dof) if has_mesh and dof is not None and report.ok else None
+    if redundant:
+        advice.append(f"D = {chain.dof - dof}: joint(s) {_joint_text(chain, redundant)} carry the redundant "
+                      f"constraint(s); removing {dof - chain.dof} of them leaves W = {dof} with no rigid sub-chain")
+    if idle and report.ok and W > 0:  # (inside a rigid sub-chain every joint is idle: the sub-chain says why)
         why = ("prismatic pairs lock the rotation of their links; make one of those pairs revolute"
                if kind_count(chain, "prismatic") else "the rest of the chain holds their links together")
         advice.append(f"joint(s) {_joint_text(chain, idle)} never move: {why}")
     if chain.is_fractionated():
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
-    has_mesh = chain.kinds is not None and "mesh" in chain.kinds
     return ChainAnalysis(
         code=str(chain.code) + chain.kind_suffix, certificate=chain.certificate, h=chain.h, links=chain.links,
         joints=len(chain.joints), dof=W,
@@ -162,4 +172,6 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         worst_subchain_mobility=report.worst_mobility if report.worst else None,
         idle_joints=[list(j) for j in idle],
         advice="; ".join(advice) or "no defect: no rigid or over-constrained sub-chain, no idle joint",
+        required_dof=dof, defect=None if dof is None else chain.dof - dof,
+        redundant_joints=None if redundant is None else [list(j) for j in redundant],
     )

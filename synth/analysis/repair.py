@@ -17,15 +17,17 @@ Example
 from __future__ import annotations
 
 from itertools import combinations
+from math import comb
 
-from ..structure.chain import Chain
+from ..structure.chain import SYMBOLS, Chain
 from ..structure.code import Code
-from ..errors import InvalidOption
+from ..errors import InvalidOption, MalformedChain
 from ..structure.subchains import check_subchains
 
-__all__ = ["chain_edits", "chain_repairs", "code_repairs"]
+__all__ = ["chain_edits", "chain_repairs", "code_repairs", "redundant_joints"]
 
 _DEPTH = 3
+_WORK = 1 << 28  # sets of links the search for redundant joints may scan
 
 
 def _valid(chain: Chain, dof: int) -> bool:
@@ -33,47 +35,81 @@ def _valid(chain: Chain, dof: int) -> bool:
             and check_subchains(chain, rigid_subchains=dof == 0).ok)
 
 
+def _text(joint, kind: str = "revolute") -> str:
+    return SYMBOLS[kind].join(map(str, joint))
+
+
 def chain_edits(chain: Chain):
     """Every chain one elementary edit away, with the edit said in words.
 
+    Joints keep their kinds (a gear mesh or a prismatic pair moved is still one); the joints an
+    edit adds are revolute, and only revolute joints merge into a multiple joint.  A chain with
+    gear meshes has two more edits: remove a mesh (W + 1) and mesh two links (W − 1).
+
     >>> sum(1 for _ in chain_edits(Chain.parse("0-1 1-2 2-0")))
     6
+    >>> [w for w, c in chain_edits(Chain.parse("0-1 1-2 2-0 0~3 1-3")) if "mesh" in w][:2]
+    ['move mesh 0~3 from link 0 to link 2', 'remove the gear mesh 0~3']
     """
-    n, joints = chain.links, list(chain.joints)
+    for words, edited in _edits(chain):
+        if edited is not None:
+            yield words, edited
+
+
+def _edits(chain: Chain):
+    """:func:`chain_edits`, with None for an edit whose result is no chain."""
+    n = chain.links
+    pairs = list(zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)))
+
+    def build(links, items):
+        try:
+            return Chain(links, [j for j, _ in items], [k for _, k in items])
+        except MalformedChain:  # a mesh would join two links a joint already joins
+            return None
+
     for a, b in combinations(range(n), 2):
-        yield f"add a binary link {n} jointed to links {a} and {b}", Chain(n + 1, joints + [(a, n), (b, n)])
+        yield (f"add a binary link {n} jointed to links {a} and {b}",
+               build(n + 1, pairs + [((a, n), "revolute"), ((b, n), "revolute")]))
     for x in range(n):
-        on = [j for j in joints if x in j]
-        if len(on) == 2 and all(len(j) == 2 for j in on) and n > 3:
-            rest = [j for j in joints if x not in j]
+        on = [(j, k) for j, k in pairs if x in j]
+        if len(on) == 2 and all(len(j) == 2 for j, _ in on) and n > 3:
             keep = [y for y in range(n) if y != x]
             rename = {y: i for i, y in enumerate(keep)}
-            yield (f"remove the binary link {x} with its joints {'-'.join(map(str, on[0]))} and "
-                   f"{'-'.join(map(str, on[1]))}", Chain(n - 1, [tuple(rename[y] for y in j) for j in rest]))
-    present = set(joints)
-    for k, j in enumerate(joints):
+            rest = [(tuple(rename[y] for y in j), k) for j, k in pairs if x not in j]
+            yield (f"remove the binary link {x} with its joints {_text(*on[0])} and {_text(*on[1])}",
+                   build(n - 1, rest))
+    present = {frozenset(j) for j, _ in pairs}
+    for i, (j, kind) in enumerate(pairs):
         for end in j:
             for c in range(n):
                 if c in j:
                     continue
                 moved = tuple(sorted([y for y in j if y != end] + [c]))
-                if moved in present:
+                if frozenset(moved) in present:
                     continue
-                yield (f"move joint {'-'.join(map(str, j))} from link {end} to link {c}",
-                       Chain(n, joints[:k] + [moved] + joints[k + 1:]))
-    for (k, p), (m, q) in combinations(enumerate(joints), 2):
-        if len(p) == 2 and len(q) == 2 and len(set(p) & set(q)) == 1:
+                what = "joint" if kind == "revolute" else ("mesh" if kind == "mesh" else "prismatic pair")
+                yield (f"move {what} {_text(j, kind)} from link {end} to link {c}",
+                       build(n, pairs[:i] + [(moved, kind)] + pairs[i + 1:]))
+        if kind == "mesh":
+            yield f"remove the gear mesh {_text(j, kind)}", build(n, pairs[:i] + pairs[i + 1:])
+    if any(k == "mesh" for _, k in pairs):
+        joined = {frozenset(q) for j, _ in pairs for q in combinations(j, 2)}
+        for a, b in combinations(range(n), 2):
+            if frozenset((a, b)) not in joined:
+                yield f"mesh links {a} and {b} (gear mesh {a}~{b})", build(n, pairs + [((a, b), "mesh")])
+    for (i, (p, kp)), (m, (q, kq)) in combinations(enumerate(pairs), 2):
+        if kp == kq == "revolute" and len(p) == 2 and len(q) == 2 and len(set(p) & set(q)) == 1:
             merged = tuple(sorted(set(p) | set(q)))
-            rest = [j for i, j in enumerate(joints) if i not in (k, m)]
-            yield (f"merge joints {'-'.join(map(str, p))} and {'-'.join(map(str, q))} into the double joint "
-                   f"{'-'.join(map(str, merged))}", Chain(n, rest + [merged]))
-    for k, j in enumerate(joints):
+            rest = [jk for k, jk in enumerate(pairs) if k not in (i, m)]
+            yield (f"merge joints {_text(p)} and {_text(q)} into the double joint {_text(merged)}",
+                   build(n, rest + [(merged, "revolute")]))
+    for i, (j, kind) in enumerate(pairs):
         if len(j) > 2:
             for x in j:
                 rest = [y for y in j if y != x]
-                split = [tuple(rest), (x, rest[0])]
-                yield (f"split joint {'-'.join(map(str, j))} into {'-'.join(map(str, split[0]))} and "
-                       f"{'-'.join(map(str, split[1]))}", Chain(n, joints[:k] + split + joints[k + 1:]))
+                split = [(tuple(rest), "revolute"), ((x, rest[0]), "revolute")]
+                yield (f"split joint {_text(j)} into {_text(split[0][0])} and {_text(split[1][0])}",
+                       build(n, pairs[:i] + split + pairs[i + 1:]))
 
 
 def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth: int = _DEPTH) -> list[dict]:
@@ -99,7 +135,8 @@ def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth
                 seen.add(candidate.certificate)
                 path = edits + [words]
                 if _valid(candidate, target):
-                    found.append({"edits": path, "code": str(candidate.code), "chain": candidate.compact(),
+                    found.append({"edits": path, "code": str(candidate.code) + candidate.kind_suffix,
+                                  "chain": candidate.compact(),
                                   "dof": candidate.dof})
                 else:
                     nxt.append((candidate, path))
@@ -107,6 +144,39 @@ def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth
             return found[:limit]
         level = nxt
     return found[:limit]
+
+
+def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int, ...]] | None:
+    """The joints that carry the chain's redundant constraints: those in some set of joints whose
+    removal leaves a connected chain with W = ``dof`` by the count and no rigid or over-constrained
+    sub-chain.  Sets of up to D joints are tried (D = ``dof`` − W, at most ``most``); None when the
+    chain has no redundant constraint by the count (W ≥ ``dof``), D is larger, or the tries would
+    scan more than 2^28 sets of links.
+
+    A planetary train with four planets and a floating sun has W = 0: each planet beyond the
+    third is redundant, and any one of its meshes can go.
+
+    >>> four = Chain.parse("0-1 1-3 1-4 1-5 1-6 0~3 0~4 0~5 0~6 2~3 2~4 2~5 2~6")
+    >>> [Chain(7, [j], ["mesh"]).compact() for j in redundant_joints(four, 1)][:4]
+    ['0~3', '0~4', '0~5', '0~6']
+    """
+    missing = dof - chain.dof
+    if missing <= 0 or missing > most:
+        return None
+    pairs = list(zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)))
+    tries = sum(comb(len(pairs), size) for size in range(1, missing + 1))
+    if tries << min(chain.links, 22) > _WORK:  # each try scans every set of links
+        return None
+    found: set[int] = set()
+    for size in range(1, missing + 1):
+        for removed in combinations(range(len(pairs)), size):
+            kept = [jk for k, jk in enumerate(pairs) if k not in removed]
+            candidate = Chain(chain.links, [j for j, _ in kept], [k for _, k in kept])
+            if candidate.dof == dof and _valid(candidate, dof):
+                found.update(removed)
+        if found:
+            break
+    return [pairs[k][0] for k in sorted(found)]
 
 
 def _code_edits(code: Code):

@@ -1,9 +1,13 @@
-"""Planetary gear trains through their lever analogues (docs/theory.md, "Gear trains through lever analogues").
+"""The source's planetary layout — k satellites on one carrier, a fixed ring, a floating or fixed
+sun — as a gear train, judged by the general analysis of a chain with gear meshes
+(docs/gears.md, "Any gear train by its lever analogue").
 
-Each gear mesh becomes a binary link between the two gears' pitch points.  A train with k0
-satellites has the fixed ring (the frame, link 0), the carrier (1), the sun (2), the satellites
-and, per satellite, a mesh link to the ring and one to the sun.  The sun floats (held only by
-its meshes) or turns on a fixed axis (a pivot on the ring).
+The train: ring 0 (the frame), carrier 1 on the ring's axis, sun 2, satellites 3 … k + 2 each on
+an axis of its own on the carrier, meshing the ring inside (``0~3i``) and the sun (``2~3@1``: the
+carrier holds that mesh too).  The sun floats (held by its meshes only) or turns on a fixed axis
+of the ring.  W, K, D, the sub-chain verdict and the lever analogue's code are those of
+:func:`~synth.analysis.chains.analyze_chain` on :meth:`GearTrain.to_chain`; the Assur groups
+split the lever analogue (ring fixed, carrier driving).
 
 Example
 -------
@@ -20,31 +24,43 @@ from itertools import combinations
 
 from ..structure.chain import Chain
 from ..errors import InvalidOption
-from ..structure.subchains import _MAX_CORE, check_subchains
+from ..structure.kinds import lever_analogue as lever_of
+from ..structure.subchains import _MAX_CORE
+from .train import GearTrain
 
-__all__ = ["RING", "CARRIER", "SUN", "lever_analogue", "assur_groups", "planetary_row", "planetary_table",
-           "planetary_rows"]
+__all__ = ["RING", "CARRIER", "SUN", "planetary_train", "lever_analogue", "assur_groups", "planetary_row",
+           "planetary_table", "planetary_rows"]
 
 RING, CARRIER, SUN = 0, 1, 2
 SUNS = ("floating", "fixed")
 
 
-def lever_analogue(satellites: int, sun: str = "floating") -> Chain:
-    """Lever analogue of a planetary train: ring 0 (frame), carrier 1, sun 2, then per satellite
-    the satellite, its ring mesh link and its sun mesh link.
+def planetary_train(satellites: int, sun: str = "floating") -> GearTrain:
+    """The planetary train with ``satellites`` planets: ring 0 fixed, carrier 1, sun 2, planets 3, 4, ….
 
-    >>> c = lever_analogue(3); c.links, len(c.joints), c.dof
-    (12, 16, 1)
+    >>> planetary_train(3).compact()
+    '0-1 1-3 1-4 1-5 0~3i 0~4i 0~5i 2~3@1 2~4@1 2~5@1'
+    >>> planetary_train(1, "fixed").compact()
+    '0-1 0-2 1-3 0~3i 2~3@1'
     """
     if isinstance(satellites, bool) or not isinstance(satellites, int) or satellites < 1:
         raise InvalidOption(f"a planetary train needs a whole number of satellites ≥ 1, not {satellites!r}")
     if sun not in SUNS:
         raise InvalidOption(f"the sun is {' or '.join(SUNS)}, not {sun!r}")
-    joints = [(RING, CARRIER)] + ([(RING, SUN)] if sun == "fixed" else [])
-    for i in range(satellites):
-        planet, to_ring, to_sun = 3 + 3 * i, 4 + 3 * i, 5 + 3 * i
-        joints += [(CARRIER, planet), (planet, to_ring), (to_ring, RING), (planet, to_sun), (to_sun, SUN)]
-    return Chain(3 + 3 * satellites, joints)
+    planets = range(3, 3 + satellites)
+    axes = [(RING, CARRIER)] + ([(RING, SUN)] if sun == "fixed" else []) + [(CARRIER, p) for p in planets]
+    meshes = [(RING, p) for p in planets] + [(SUN, p) for p in planets]
+    return GearTrain(3 + satellites, axes, meshes, [CARRIER] * len(meshes),
+                     [True] * satellites + [False] * satellites, RING)
+
+
+def lever_analogue(satellites: int, sun: str = "floating") -> Chain:
+    """Lever analogue of the planetary train: its links, then a binary link per mesh.
+
+    >>> c = lever_analogue(3); c.links, len(c.joints), c.dof
+    (12, 16, 1)
+    """
+    return planetary_train(satellites, sun).lever_analogue()
 
 
 _GROUP_NAMES = {(2, 2): "dyad", (4, 3): "triad"}  # (links, outer joints)
@@ -84,16 +100,20 @@ def assur_groups(chain: Chain, frame: int, driving: int, *, largest: int = 6) ->
 
 
 def planetary_row(satellites: int, sun: str = "floating") -> dict:
-    """Code, W, K, D (against W = 1), exact sub-chain verdict and Assur groups of one train."""
-    chain = lever_analogue(satellites, sun)
-    report = check_subchains(chain)
-    defect = chain.dof - 1
-    determinate = chain.dof == 1 and defect == 0 and report.ok
+    """Code, W, K, D (against W = 1), exact sub-chain verdict and Assur groups of one train, from
+    the general analysis of the train as a chain with gear meshes."""
+    from ..analysis.chains import analyze_chain
+
+    chain = planetary_train(satellites, sun).to_chain()
+    report = analyze_chain(chain, dof=1)
+    lever = lever_of(chain)
+    determinate = report.dof_count == 1 and report.defect == 0 and report.subchain_defect == "none"
     return {
-        "satellites": satellites, "sun": sun, "code": str(chain.code), "links": chain.links,
-        "joints": [list(j) for j in chain.joints], "dof": chain.dof, "loops": chain.loops, "defect": defect,
-        "subchains": report.kind, "worst_subchain": list(report.worst), "determinate": determinate,
-        "assur_groups": assur_groups(chain, RING, CARRIER) if determinate else [],
+        "satellites": satellites, "sun": sun, "code": report.lever_analogue, "links": lever.links,
+        "joints": [list(j) for j in lever.joints], "train": chain.compact(), "dof": report.dof_count,
+        "loops": report.loops, "defect": report.defect, "subchains": report.subchain_defect,
+        "worst_subchain": report.worst_subchain, "redundant_joints": report.redundant_joints,
+        "determinate": determinate, "assur_groups": assur_groups(lever, RING, CARRIER) if determinate else [],
     }
 
 

@@ -10,12 +10,20 @@ two polynomials in the tooth numbers (:func:`~synth.gears.ratios.speed_ratio`). 
   have one centre distance (one module): z_a + z_b for an external pair, z_ring − z_pinion for
   an internal one — z_ring = z_sun + 2·z_planet for a simple planetary (a gear on no axis of its
   own, a floating sun, counts as turning about the carrier's axis on the frame, or its first);
-* with ``planets = k`` equally spaced planets: for every planet wheel meshing a sun (external) and
-  a ring (internal) on one carrier, (z_sun + z_ring)/k is a whole number.
+* with ``planets = k`` equally spaced planets: for every planet meshing a sun (external) and a
+  ring (internal) on one carrier, (z_sun + z_ring)/k is a whole number — for a stepped planet
+  (wheels z_p1 on the sun, z_p2 on the ring) (z_sun·z_p2 + z_ring·z_p1)/(k·gcd(z_p1, z_p2)); two
+  suns or two rings: the difference instead of the sum.
 
-Every design within the tolerance is listed (CP-SAT enumerates them) and the best few are
-returned by ratio error, then fewest teeth; if there are more than ``limit`` the query is refused
-rather than sampled, so the designs returned are the true best.
+With ``kinds="free"`` each mesh is external or internal (either gear the ring) as the solver
+chooses: the Willis equations carry a sign per mesh, one formula for every choice.
+
+The designs returned are the true best by ratio error, then fewest teeth, then tooth numbers in
+order — found level by level, not sampled: the least error is reached by solving again and again
+with "error below the last one found" (each solve minimising the error's numerator); the designs
+of that error are taken by increasing tooth sum (CP-SAT minimises it) and, within a sum, by their
+tooth numbers in order (each wheel minimised in turn, the design found then excluded); the
+search goes on above that error until ``best`` are found.
 
 Example
 -------
@@ -32,14 +40,13 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from ..errors import InvalidOption
-from .ratios import speed_ratio, wheel_names
+from .ratios import RatioFormula, speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "NoDesign", "design", "parse_fraction", "MIN_TEETH", "RING_MARGIN"]
+__all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
 RING_MARGIN = 10  # an internal pair needs the ring this many teeth above its pinion (tip interference)
-_LIMIT = 20_000  # designs within tolerance listed before the query is refused
 _BOUND = 1 << 61  # CP-SAT integers
 
 
@@ -54,10 +61,14 @@ class Design:
     teeth: dict
     ratio: Fraction
     error: Fraction
+    train: GearTrain | None = None  # with kinds="free": the train with the mesh kinds chosen
 
     def to_dict(self) -> dict:
-        return {"teeth": dict(self.teeth), "ratio": str(self.ratio), "ratio_value": float(self.ratio),
-                "error": float(self.error)}
+        d = {"teeth": dict(self.teeth), "ratio": str(self.ratio), "ratio_value": float(self.ratio),
+             "error": float(self.error)}
+        if self.train is not None:
+            d["train"] = self.train.compact()
+        return d
 
 
 def parse_fraction(text, what: str) -> Fraction:
@@ -100,10 +111,15 @@ def _centre_groups(train: GearTrain) -> dict:
 
 def design(train: GearTrain, frame: int, input_link: int, output_link: int, ratio, *, tolerance="1%",
            teeth: tuple[int, int] = (17, 150), min_teeth: int = MIN_TEETH, planets: int | None = None,
-           compound=(), best: int = 5, limit: int = _LIMIT) -> list[Design]:
-    """The ``best`` designs (tooth numbers) of the mechanism for the speed ratio ``ratio``."""
-    from ortools.sat.python import cp_model
+           compound=(), best: int = 5, kinds: str = "given",
+           beat: tuple[Fraction, int] | None = None) -> list[Design]:
+    """The ``best`` designs (tooth numbers) of the mechanism for the speed ratio ``ratio``.
 
+    ``kinds``: "given" (the train's own internal and external meshes) or "free" (each mesh as the
+    solver chooses).  ``beat``: (error, tooth sum) — only designs of a smaller error, or of that
+    error and at most that sum (a search over many mechanisms passes the worst design it keeps).
+    Raises :class:`NoDesign` when none qualifies.
+    """
     target = parse_fraction(ratio, "--ratio")
     tol = parse_fraction(tolerance, "--tolerance")
     if target == 0:
@@ -116,105 +132,313 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
                             "(fewer are undercut)")
     if planets is not None and planets < 1:
         raise InvalidOption(f"--planets must be a whole number ≥ 1, not {planets}")
+    if kinds not in ("given", "free"):
+        raise InvalidOption(f"mesh kinds are given or free, not {kinds!r}")
     train = GearTrain(train.links, train.axes, train.meshes, train.carriers, train.internal, frame)
-    formula = speed_ratio(train, frame, input_link, output_link, compound)
-    num, den = dict(formula.numerator), dict(formula.denominator)
-    model = cp_model.CpModel()
-    z = {w: model.NewIntVar(lo, hi, w) for w in formula.wheels}
-    names = wheel_names(train, compound)
-    products: dict = {}
-
-    def term(mono):
-        if not mono:
-            return 1, 1
-        if len(mono) == 1 and mono[0][1] == 1:
-            return z[mono[0][0]], hi
-        if mono not in products:
-            factors = [z[x] for x, e in mono for _ in range(e)]
-            top = hi ** len(factors)
-            if top >= _BOUND:
-                raise InvalidOption("these tooth ranges make the ratio's polynomials too large for exact "
-                                    "integers: narrow --teeth")
-            var = model.NewIntVar(0, top, "·".join(x for x, _ in mono))
-            model.AddMultiplicationEquality(var, factors)
-            products[mono] = (var, top)
-        return products[mono]
-
-    def linear(poly):
-        expr, bound = 0, 0
-        for mono, c in poly.items():
-            var, top = term(mono)
-            expr += c * var
-            bound += abs(c) * top
-        return expr, bound
-
-    n_expr, n_bound = linear(num)
-    d_expr, d_bound = linear(den)
-    p, q = target.numerator, target.denominator
-    a, b = tol.numerator, tol.denominator
-    span = max(b * (q * n_bound + abs(p) * d_bound), a * abs(p) * d_bound)
-    if span >= _BOUND:
-        raise InvalidOption("the ratio and tolerance need integers too large for an exact model: give the "
-                            "ratio with fewer digits or narrow --teeth")
-    error = model.NewIntVar(-span, span, "error")
-    model.Add(error == q * n_expr - p * d_expr)
-    abs_error = model.NewIntVar(0, span, "abs_error")
-    model.AddAbsEquality(abs_error, error)
-    d_var = model.NewIntVar(-d_bound, d_bound, "D")
-    model.Add(d_var == d_expr)
-    abs_d = model.NewIntVar(1, d_bound, "abs_D")
-    model.AddAbsEquality(abs_d, d_var)
-    model.Add(b * abs_error <= a * abs(p) * abs_d)  # |N/D − R| ≤ tol·|R|
-    for (za, zb), inner in zip(names, train.internal):
-        if inner:
-            model.Add(z[za] >= z[zb] + RING_MARGIN)
-    for members in _centre_groups(train).values():
-        sizes = [z[names[k][0]] + (-1 if train.internal[k] else 1) * z[names[k][1]] for k in members]
-        for other in sizes[1:]:
-            model.Add(other == sizes[0])
-    if planets is not None:
-        _assembly(model, train, names, z, planets, hi)
-
-    found: list[dict] = []
-
-    class Collect(cp_model.CpSolverSolutionCallback):
-        def on_solution_callback(self):
-            found.append({w: self.Value(v) for w, v in z.items()})
-            if len(found) > limit:
-                self.StopSearch()
-
-    solver = cp_model.CpSolver()
-    solver.parameters.enumerate_all_solutions = True
-    solver.parameters.num_workers = 1
-    status = solver.Solve(model, Collect())
-    if len(found) > limit:
-        raise InvalidOption(f"more than {limit} designs are within the tolerance: tighten --tolerance or narrow "
-                            "--teeth to get the best ones")
-    if status == cp_model.INFEASIBLE or not found:
-        raise NoDesign(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
-                            "coaxial, assembly and undercut conditions")
-    designs = []
-    for teeth_of in found:
-        exact = formula.evaluate(teeth_of)
-        designs.append(Design(dict(sorted(teeth_of.items())), exact, abs(exact - target) / abs(target)))
-    designs.sort(key=lambda d: (d.error, sum(d.teeth.values()), tuple(d.teeth.values())))
-    return designs[:best]
-
-
-def _assembly(model, train: GearTrain, names, z, planets: int, hi: int) -> None:
-    """(z_sun + z_ring)/k whole for every planet wheel meshing a sun and a ring on one carrier."""
-    found = False
-    for k, (a, b, t) in enumerate(train.triples):
-        if train.internal[k]:
-            continue
-        for j, (c, d, u) in enumerate(train.triples):
-            if not train.internal[j] or u != t:
-                continue
-            for sun_side, planet_wheel in ((0, names[k][1]), (1, names[k][0])):
-                if names[j][1] == planet_wheel:  # the same planet wheel meshes the sun and the ring
-                    sun, ring = names[k][sun_side], names[j][0]
-                    turns = model.NewIntVar(0, 2 * hi, f"assembly_{sun}_{ring}")
-                    model.Add(z[sun] + z[ring] == planets * turns)
-                    found = True
+    model = _DesignModel(train, frame, input_link, output_link, target, tol, (lo, hi), planets, compound,
+                         kinds == "free", beat)
+    found = model.best(best)
     if not found:
+        raise NoDesign(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
+                       "coaxial, assembly and undercut conditions")
+    return found
+
+
+class _DesignModel:
+    """The CP-SAT model of one mechanism and the level-by-level search of its best designs."""
+
+    def __init__(self, train, frame, input_link, output_link, target, tol, teeth, planets, compound, free, beat):
+        from ortools.sat.python import cp_model
+
+        self.cp = cp_model
+        self.train, self.target, self.compound, self.free = train, target, tuple(compound), free
+        self.mechanism = (frame, input_link, output_link)
+        lo, hi = self.teeth = teeth
+        self.formula = speed_ratio(train, frame, input_link, output_link, compound, signs=free)
+        num, den = dict(self.formula.numerator), dict(self.formula.denominator)
+        model = self.model = cp_model.CpModel()
+        wheels = [w for w in self.formula.wheels if w.startswith("z")]
+        z = self.z = {w: model.NewIntVar(lo, hi, w) for w in wheels}
+        names = wheel_names(train, compound)
+        self.kind = self._kinds(len(names)) if free else None
+        sign = {f"s{k}": v for k, v in enumerate(self.kind["sign"])} if free else {}
+        products: dict = {}
+
+        def term(mono):
+            if not mono:
+                return 1, 1
+            if len(mono) == 1 and mono[0][1] == 1:
+                return (z | sign)[mono[0][0]], (hi if mono[0][0] in z else 1)
+            if mono not in products:
+                factors = [(z | sign)[x] for x, e in mono for _ in range(e)]
+                top = hi ** sum(e for x, e in mono if x in z)
+                if top >= _BOUND:
+                    raise InvalidOption("these tooth ranges make the ratio's polynomials too large for exact "
+                                        "integers: narrow --teeth")
+                var = model.NewIntVar(-top if any(x in sign for x, _ in mono) else 0, top, "·".join(x for x, _ in mono))
+                model.AddMultiplicationEquality(var, factors)
+                products[mono] = (var, top)
+            return products[mono]
+
+        def linear(poly):
+            expr, bound = 0, 0
+            for mono, c in poly.items():
+                var, top = term(mono)
+                expr += c * var
+                bound += abs(c) * top
+            return expr, bound
+
+        n_expr, n_bound = linear(num)
+        d_expr, d_bound = linear(den)
+        p, q = target.numerator, target.denominator
+        a, b = tol.numerator, tol.denominator
+        span = max(b * (q * n_bound + abs(p) * d_bound), a * abs(p) * d_bound)
+        if span >= _BOUND or span * d_bound >= _BOUND:
+            raise InvalidOption("the ratio and tolerance need integers too large for an exact model: give the "
+                                "ratio with fewer digits or narrow --teeth")
+        error = model.NewIntVar(-span, span, "error")
+        model.Add(error == q * n_expr - p * d_expr)
+        self.E = model.NewIntVar(0, span, "abs_error")  # error of a design: E / (|p|·A)
+        model.AddAbsEquality(self.E, error)
+        d_var = model.NewIntVar(-d_bound, d_bound, "D")
+        model.Add(d_var == d_expr)
+        self.A = model.NewIntVar(1, d_bound, "abs_D")
+        model.AddAbsEquality(self.A, d_var)
+        n_var = model.NewIntVar(-n_bound, n_bound, "N")
+        model.Add(n_var == n_expr)
+        model.Add(n_var != 0)  # the input turns the output: a finite, non-zero ratio
+        model.Add(b * self.E <= a * abs(p) * self.A)  # |N/D − R| ≤ tol·|R|
+        self.S = sum(z.values())
+        if beat is not None:  # a smaller error, or the same and no more teeth
+            self._error_is(model, "<=", beat[0])
+            better = model.NewBoolVar("better")
+            self._error_is(model, "<", beat[0]).OnlyEnforceIf(better)
+            model.Add(self.S <= beat[1]).OnlyEnforceIf(better.Not())
+        if free:
+            self._free_kinds(names)
+        else:
+            for (za, zb), inner in zip(names, train.internal):
+                if inner:
+                    model.Add(z[za] >= z[zb] + RING_MARGIN)
+            for members in _centre_groups(train).values():
+                sizes = [z[names[k][0]] + (-1 if train.internal[k] else 1) * z[names[k][1]] for k in members]
+                for other in sizes[1:]:
+                    model.Add(other == sizes[0])
+        if planets is not None:
+            _assembly(model, train, names, z, planets, lo, hi, self.kind)
+
+    # ---------------------------------------------------------------- mesh kinds chosen
+    def _kinds(self, meshes: int) -> dict:
+        """Per mesh three literals — external, first gear the ring, second gear the ring — and its sign."""
+        model, out = self.model, {"external": [], "ring_first": [], "ring_second": [], "sign": []}
+        for k in range(meshes):
+            lits = [model.NewBoolVar(f"{what}{k}") for what in ("ext", "ring_a", "ring_b")]
+            model.AddExactlyOne(lits)
+            s = model.NewIntVarFromDomain(self.cp.Domain.FromValues([-1, 1]), f"s{k}")
+            model.Add(s == 1).OnlyEnforceIf(lits[0])
+            model.Add(s == -1).OnlyEnforceIf(lits[0].Not())
+            for key, lit in zip(("external", "ring_first", "ring_second"), lits):
+                out[key].append(lit)
+            out["sign"].append(s)
+        return out
+
+    def _free_kinds(self, names) -> None:
+        """Ring margin and one centre distance per carrier's pair of axes, for whichever kinds are chosen."""
+        model, z, kind = self.model, self.z, self.kind
+        hi = self.teeth[1]
+        centre = []
+        for k, (za, zb) in enumerate(names):
+            c = model.NewIntVar(-2 * hi, 2 * hi, f"centre{k}")
+            model.Add(c == z[za] + z[zb]).OnlyEnforceIf(kind["external"][k])
+            model.Add(c == z[za] - z[zb]).OnlyEnforceIf(kind["ring_first"][k])
+            model.Add(c == z[zb] - z[za]).OnlyEnforceIf(kind["ring_second"][k])
+            model.Add(z[za] >= z[zb] + RING_MARGIN).OnlyEnforceIf(kind["ring_first"][k])
+            model.Add(z[zb] >= z[za] + RING_MARGIN).OnlyEnforceIf(kind["ring_second"][k])
+            centre.append(c)
+        for members in _centre_groups(self.train).values():
+            for k in members[1:]:
+                model.Add(centre[k] == centre[members[0]])
+
+    # ---------------------------------------------------------------- the search
+    def _error_is(self, model, relation: str, error: Fraction):
+        """Constrain a design's error E/(|p|·A) against ``error`` = u/v: E·v ``relation`` u·|p|·A."""
+        u, v, p = error.numerator, error.denominator, abs(self.target.numerator)
+        left, right = v * self.E, u * p * self.A
+        return model.Add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
+
+    def _solve(self, model, minimise=None):
+        solver = self.cp.CpSolver()
+        solver.parameters.num_workers = 1
+        if minimise is not None:
+            model.Minimize(minimise)
+        status = solver.Solve(model)
+        if status not in (self.cp.OPTIMAL, self.cp.FEASIBLE):
+            return None
+        return solver
+
+    def _error(self, solver) -> Fraction:
+        return Fraction(solver.Value(self.E), abs(self.target.numerator) * solver.Value(self.A))
+
+    def _least_error(self, above: Fraction | None) -> Fraction | None:
+        """The least error of the designs whose error is above ``above`` (None: any), or None."""
+        least = None
+        while True:
+            model = self.model.Clone()
+            if above is not None:
+                self._error_is(model, ">", above)
+            if least is not None:
+                self._error_is(model, "<", least)
+            solver = self._solve(model, minimise=self.E)
+            if solver is None:
+                return least
+            least = self._error(solver)
+
+    def _least_design(self, model):
+        """The design of ``model`` with the least tooth numbers in order (wheel by wheel), then the
+        least mesh kinds; None if there is none."""
+        model = model.Clone()
+        order = [self.z[w] for w in sorted(self.z)]
+        if self.kind:
+            order += [lit for pair in zip(self.kind["ring_first"], self.kind["ring_second"]) for lit in pair]
+        solver = None
+        for var in order:
+            solver = self._solve(model, minimise=var)
+            if solver is None:
+                return None
+            value = int(solver.Value(var))
+            model.ClearObjective()
+            model.Add(var == value)
+        solver = solver or self._solve(model)
+        teeth = {w: int(solver.Value(v)) for w, v in self.z.items()}
+        rings = (tuple((solver.Value(a), solver.Value(b)) for a, b in zip(self.kind["ring_first"],
+                                                                          self.kind["ring_second"]))
+                 if self.kind else None)
+        return teeth, rings
+
+    def _exclude(self, model, teeth: dict, rings) -> None:
+        """No design equal to this one (some tooth number or mesh kind differs)."""
+        differs = []
+        for w, value in teeth.items():
+            b = model.NewBoolVar("")
+            model.Add(self.z[w] != value).OnlyEnforceIf(b)
+            differs.append(b)
+        for k, (first, second) in enumerate(rings or ()):
+            for lit, value in ((self.kind["ring_first"][k], first), (self.kind["ring_second"][k], second)):
+                differs.append(lit.Not() if value else lit)
+        model.AddBoolOr(differs)
+
+    def best(self, count: int) -> list[Design]:
+        out: list[Design] = []
+        above = None
+        while len(out) < count:
+            error = self._least_error(above)
+            if error is None:
+                break
+            level = self.model.Clone()
+            self._error_is(level, "==", error)
+            total = None
+            while len(out) < count:
+                model = level.Clone()
+                if total is not None:
+                    model.Add(self.S > total)
+                solver = self._solve(model, minimise=self.S)
+                if solver is None:
+                    break
+                total = int(solver.ObjectiveValue())
+                model = level.Clone()
+                model.Add(self.S == total)
+                while len(out) < count:
+                    found = self._least_design(model)
+                    if found is None:
+                        break
+                    out.append(self._design(*found))
+                    self._exclude(model, *found)
+            above = error
+        return out
+
+    def _design(self, teeth: dict, rings) -> Design:
+        if rings is None:
+            return Design(dict(sorted(teeth.items())), self.formula.evaluate(teeth),
+                          abs(self.formula.evaluate(teeth) - self.target) / abs(self.target))
+        t = self.train
+        meshes = [(b, a) if second else (a, b) for (a, b), (first, second) in zip(t.meshes, rings)]
+        variant = GearTrain(t.links, t.axes, meshes, t.carriers, [bool(f or s) for f, s in rings], t.frame)
+        exact = speed_ratio(variant, *self.mechanism, self.compound).evaluate(teeth)
+        return Design(dict(sorted(teeth.items())), exact, abs(exact - self.target) / abs(self.target), variant)
+
+
+def _planet_meshes(train: GearTrain, names) -> list[tuple]:
+    """Pairs of meshes (k1, k2) in which one planet p, turning on carrier t about one axis, meshes
+    two central gears c1, c2 that turn on t about one other axis: (c1, p1, k1, side1, c2, p2, k2,
+    side2) with the wheels' names and the planet's side in each mesh (0: its first gear)."""
+    central: dict = {}
+    for k, (a, b, t) in enumerate(train.triples):
+        for planet, centre, side in ((b, a, 1), (a, b, 0)):
+            own = next((x for x in train.axes if planet in x and t in x), None)
+            if own is None:  # a floating gear is no planet
+                continue
+            axis = _axis_of(train, centre, t, own)
+            central.setdefault((t, planet, own, axis), []).append((names[k][1 - side], names[k][side], k, side))
+    return [first + second for meshes in central.values() for first, second in zip(meshes, meshes[1:])]
+
+
+def planet_pairs(train: GearTrain, names) -> list[tuple[str, str, str, str, int]]:
+    """The pairs of meshes that fix where equally spaced planets can go: a planet p turning on
+    carrier t about one axis meshes two central gears c1, c2 that turn on t about one other axis
+    (a planet that would be a ring around its central gear does not count).  Each as (z_c1, z_p1,
+    z_c2, z_p2, ε1·ε2): the wheels, ε = +1 for a sun (external mesh), −1 for a ring (internal).
+
+    >>> planet_pairs(GearTrain.parse("0-1-2 2-3 0~3i 1~3"), [("z0", "z3_0"), ("z1", "z3_1")])
+    [('z0', 'z3_0', 'z1', 'z3_1', -1)]
+    """
+    inner = train.internal
+    return [(c1, p1, c2, p2, (-1 if inner[k1] else 1) * (-1 if inner[k2] else 1))
+            for c1, p1, k1, s1, c2, p2, k2, s2 in _planet_meshes(train, names)
+            if not (inner[k1] and s1 == 0) and not (inner[k2] and s2 == 0)]
+
+
+def _assembly(model, train: GearTrain, names, z, planets: int, lo: int, hi: int, kind=None) -> None:
+    """k equally spaced planets assemble: for every planet meshing two central gears on one carrier,
+    (z_c1·z_p2 − ε1ε2·z_c2·z_p1) / (k·gcd(z_p1, z_p2)) is a whole number — (z_sun + z_ring)/k for a
+    simple planet, (z_sun·z_p2 + z_ring·z_p1)/(k·gcd(z_p1, z_p2)) for a stepped one (z_p1 meshing the
+    sun, z_p2 the ring).  A stepped planet's condition is written with Bézout's identity: the
+    quotient by k is j1·z_p1 + j2·z_p2 for some whole j1, j2 (0 ≤ j1 < z_p2 is enough).  With mesh
+    kinds chosen by the solver (``kind``), ε is each mesh's sign and a pair counts unless its
+    planet is the ring."""
+    if kind is None:
+        pairs = [(c1, p1, c2, p2, sign, []) for c1, p1, c2, p2, sign in planet_pairs(train, names)]
+    else:
+        pairs = []
+        for c1, p1, k1, s1, c2, p2, k2, s2 in _planet_meshes(train, names):
+            sign = model.NewIntVar(-1, 1, f"sign_{c1}_{c2}")
+            model.AddMultiplicationEquality(sign, [kind["sign"][k1], kind["sign"][k2]])
+            not_ring = [kind["ring_first" if s == 0 else "ring_second"][k].Not() for k, s in ((k1, s1), (k2, s2))]
+            pairs.append((c1, p1, c2, p2, sign, not_ring))
+    if not pairs:
         raise NoDesign("--planets needs a planet wheel that meshes a sun and a ring on one carrier")
+    span = 2 * hi * hi
+    for c1, p1, c2, p2, sign, when in pairs:
+        tag = f"{c1}_{c2}"
+        if isinstance(sign, int):
+            second = z[c2] if p1 == p2 else None
+            signed = sign
+        else:  # ε1ε2·z_c2 (·z_p1) as a product
+            second = model.NewIntVar(-span, span, f"signed_{tag}")
+            model.AddMultiplicationEquality(second, [sign, z[c2]] + ([] if p1 == p2 else [z[p1]]))
+            signed = 1
+        if p1 == p2:  # one planet wheel: (z_c1 − ε1ε2·z_c2)/k whole
+            turns = model.NewIntVar(-2 * hi, 2 * hi, f"assembly_{tag}")
+            model.Add(z[c1] - signed * second == planets * turns).OnlyEnforceIf(when)
+            continue
+        top = span // lo + hi
+        first = model.NewIntVar(0, span, f"{c1}·{p2}")
+        model.AddMultiplicationEquality(first, [z[c1], z[p2]])
+        if second is None:
+            second = model.NewIntVar(0, span, f"{c2}·{p1}")
+            model.AddMultiplicationEquality(second, [z[c2], z[p1]])
+        j1, j2 = model.NewIntVar(0, hi, f"j1_{tag}"), model.NewIntVar(-top, top, f"j2_{tag}")
+        u1, u2 = model.NewIntVar(0, hi * hi, f"u1_{tag}"), model.NewIntVar(-top * hi, top * hi, f"u2_{tag}")
+        model.AddMultiplicationEquality(u1, [j1, z[p1]])
+        model.AddMultiplicationEquality(u2, [j2, z[p2]])
+        model.Add(first - signed * second == planets * (u1 + u2)).OnlyEnforceIf(when)
+        model.Add(j1 < z[p2])

@@ -120,15 +120,33 @@ def wheel_names(train: GearTrain, compound=()) -> list[tuple[str, str]]:
     return out
 
 
-def willis_rows(train: GearTrain, compound=()) -> list[dict[int, Poly]]:
-    """Per mesh, the coefficients of the speeds in its Willis equation (each a polynomial)."""
+def willis_rows(train: GearTrain, compound=(), signs: bool = False) -> list[dict[int, Poly]]:
+    """Per mesh, the coefficients of the speeds in its Willis equation (each a polynomial).  With
+    ``signs`` the kind of mesh k is left open as a symbol ``s<k>`` (+1 external, −1 internal).
+
+    >>> willis_rows(GearTrain.parse("0-1 1-2 0~2"), signs=True)[0][2]
+    {(('s0', 1), ('z2', 1)): 1}
+    """
     rows = []
-    for (a, b, t), inner, (za, zb) in zip(train.triples, train.internal, wheel_names(train, compound)):
-        s = -1 if inner else 1  # z_a(ω_a − ω_t) + s·z_b(ω_b − ω_t) = 0
-        row = {a: {_mono(za): 1}, b: {_mono(zb): s}}
-        row[t] = _add({_mono(za): -1}, {_mono(zb): -s})
+    for k, ((a, b, t), inner, (za, zb)) in enumerate(zip(train.triples, train.internal, wheel_names(train, compound))):
+        # z_a(ω_a − ω_t) + s·z_b(ω_b − ω_t) = 0
+        zs = {_mono(zb, f"s{k}"): 1} if signs else {_mono(zb): -1 if inner else 1}
+        row = {a: {_mono(za): 1}, b: zs}
+        row[t] = _add({_mono(za): -1}, {m: -c for m, c in zs.items()})
         rows.append(row)
     return rows
+
+
+def _fold_signs(p: Poly) -> Poly:
+    """s² = 1 for every sign symbol ``s<k>``."""
+    out: Poly = {}
+    for m, c in p.items():
+        mono = tuple((x, e % 2 if x.startswith("s") else e) for x, e in m)
+        mono = tuple((x, e) for x, e in mono if e)
+        out[mono] = out.get(mono, 0) + c
+        if out[mono] == 0:
+            del out[mono]
+    return out
 
 
 @dataclass(frozen=True)
@@ -206,8 +224,11 @@ def _independent_rows(rows, columns, wheels) -> list[int]:
     return chosen
 
 
-def speed_ratio(train: GearTrain, frame: int, input_link: int, output_link: int, compound=()) -> RatioFormula:
-    """i = ω_input/ω_output with the frame at rest, as a formula in the tooth numbers.
+def speed_ratio(train: GearTrain, frame: int, input_link: int, output_link: int, compound=(),
+                signs: bool = False) -> RatioFormula:
+    """i = ω_input/ω_output with the frame at rest, as a formula in the tooth numbers (and with
+    ``signs`` in the kinds of the meshes, ``s<k>`` = +1 external, −1 internal: one formula for
+    every choice of internal meshes).
 
     Raises InvalidOption when the input does not drive the train to one motion (its speed leaves
     other speeds free) or the output stands still for every choice of tooth numbers.
@@ -215,8 +236,9 @@ def speed_ratio(train: GearTrain, frame: int, input_link: int, output_link: int,
     links = {frame, input_link, output_link}
     if len(links) != 3 or not all(0 <= x < train.links for x in links):
         raise InvalidOption("the frame, the input and the output must be three different links of the train")
-    rows = willis_rows(train, compound)
+    rows = willis_rows(train, compound, signs)
     wheels = sorted({w for pair in wheel_names(train, compound) for w in pair})
+    wheels += [f"s{k}" for k in range(len(train.meshes))] if signs else []
     unknown = [x for x in range(train.links) if x not in (frame, input_link)]
     chosen = _independent_rows(rows, unknown, wheels)
     if len(chosen) < len(unknown):
@@ -230,6 +252,8 @@ def speed_ratio(train: GearTrain, frame: int, input_link: int, output_link: int,
     column = unknown.index(output_link)
     replaced = [row[:column] + [r] + row[column + 1:] for row, r in zip(matrix, rhs)]
     den, num = _det(replaced), _det(matrix)  # ω_out = det(replaced)/det(matrix), ω_in = 1
+    if signs:
+        den, num = _fold_signs(den), _fold_signs(num)
     if not den:
         raise InvalidOption(f"output link {output_link} stands still whatever the tooth numbers")
     num, den = _simplify(num, den)

@@ -161,6 +161,11 @@ CASES = [
     ("planetary --satellites 1..40", "1..40"),
     ("planetary --satellites x", "'x'"),
     ("planetary --satellites -3", "'-3'"),
+    # ---- gears
+    ("gears --dof 1 --links 40", "40"),
+    ("gears --train '0-1-2 2-3 0~3i 1~x'", "'1~x'"),
+    ("gears --train '0-1-2 2-3 0~3i 1~3' --frame 0 --input 1 --output 2 --ratio 4 --teeth 17..20", "17..20"),
+    ("gears --links 5 --tolerance 1%", "--tolerance"),
     # ---- balance (its own package; failures are the balance helper's, marked below)
     ("balance arm {d}/binary.toml", "binary.toml"),
     ("balance arm {d}/checkpoint.sqlite", "checkpoint.sqlite"),
