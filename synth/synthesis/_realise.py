@@ -58,6 +58,9 @@ _STAGE_A_SET_LINKS = {2: 2}
 _SPLIT_LINKS = 9
 _MODEL_SET_LINKS = 3
 _CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
+# Stage B uses the compiled kernel for codes of at least this many loops K (by motion space h; None: others)
+_KERNEL_LOOPS = {2: 8, 3: 6, None: 5}
+_KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
 
 
 @dataclass(frozen=True)
@@ -430,6 +433,19 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     return True
 
 
+def _string_limits(h: Contracted, conv: Conventions) -> tuple[list[int], list[tuple[int, int]]]:
+    """Least binary links of each string of H, and the strings parallel to the one before them
+    with their own least weight: (string, least) pairs."""
+    kinds, edges = h.kinds, h.edges
+    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
+    # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
+    # (a direct joint or incidence at most once), and two one-link strings between two multiple
+    # joints (W = 2 − h) only where the convention allows it
+    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - conv.h < conv.threshold else 1)
+                for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
+    return lows, parallel
+
+
 def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
     """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string),
     whether they are one per orbit of Aut(H) (lex-least under the whole group), and whether
@@ -437,18 +453,16 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     kinds, edges = h.kinds, h.edges
     n2 = code.count(2)
     space = conv.h
-    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
-    # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
-    # (a direct joint or incidence at most once), and two one-link strings between two multiple
-    # joints (W = 2 − h) only where the convention allows it
-    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - space < conv.threshold else 1)
-                for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
+    lows, parallel = _string_limits(h, conv)
     spare = n2 - sum(lows)
     if spare < 0:
         return [], True, True
     # simple joints: the model's conditions are the exact test, unless the whole chain is exempt
     # (W below the threshold), where the model skips every set of all branch links
     simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
+    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
+        _, solutions, whole_group = _kernel_placements(code, h, conv, stats, listing=True)
+        return solutions, whole_group, True
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, h, stats)
     from ._cpsat import Model, all_solutions, cp_model
@@ -517,6 +531,76 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
         solutions = [tuple(map(int, row)) for row in _lex_least(np.asarray(solutions, dtype=np.int64), group)]
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, simple
+
+
+def uses_kernel(code: Code, conv: Conventions) -> bool:
+    """Whether stage B places the binary links of ``code``'s units with the compiled kernel
+    (:mod:`synth.synthesis._placements`, where it applies): loading it costs about a second per
+    process, which the queries of at least ``_KERNEL_LOOPS`` loops (by motion space) earn back many
+    times (planar 14 links: stage B 10.5 → 1.5 CPU s), and smaller ones do not.
+
+    >>> uses_kernel(Code.parse("4.10.0/0"), Conventions()), uses_kernel(Code.parse("48/0"), Conventions())
+    (True, False)
+    """
+    return code.loops >= _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])
+
+
+def load_kernel() -> None:
+    """Load (or compile, the first time) the kernel in this process, before workers are forked."""
+    import numpy as np
+
+    from ._placements import place
+
+    empty = np.zeros(0, dtype=np.int64)
+    place(0, empty, empty, empty, empty, 0, 3, 4, 0, 0, np.zeros((0, 0), dtype=np.int64),
+          np.zeros((0, 0), dtype=np.int64))
+
+
+def _kernel_applies(code: Code, h: Contracted, conv: Conventions) -> bool:
+    """Whether the kernel's conditions are stage B's for this unit: simple joints, no crank
+    requirement, a (k, l) pebble game (0 ≤ l = h + threshold), the set of all branch links not exempt,
+    and loops never short (their least weight at least h − 1)."""
+    kinds = h.kinds
+    return (all(kind[0] == "L" for kind in kinds) and not conv.cranks and conv.h + conv.threshold >= 0
+            and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
+            and (not any(u == v for u, v in h.edges) or _loop_lb("L", conv) >= conv.h - 1))
+
+
+def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict | None,
+                       listing: bool) -> tuple[int, list, bool]:
+    """Stage B by the compiled kernel: how many placements pass the sub-chain rule and are lex-least
+    under Aut(H) (one per orbit where the whole group is listed), those placements if ``listing``,
+    and whether the group was whole."""
+    import numpy as np
+
+    from ._placements import place
+
+    t0 = perf_counter()
+    lows, parallel = _string_limits(h, conv)
+    inner = {u: i for i, u in enumerate(_inner_links(h.kinds))}
+    M, E = len(inner), len(h.edges)
+    ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in h.edges],
+                    dtype=np.int64).reshape(E, 2)
+    least = np.array(lows, dtype=np.int64)
+    after = np.full(E, -1, dtype=np.int64)
+    for k, least_k in parallel:
+        after[k] = least_k
+    k, l, n2 = conv.h, conv.h + conv.threshold, code.count(2)
+    short = ends[:, 0] >= 0
+    b0 = n2 - (k - 1) * int(short.sum()) - int(least[~short].sum())
+    x_most = b0 + k * M - l if M >= 2 else n2
+    vertex_need = -b0 - (k * (M - 1) - l) if M >= 3 else -n2 * k
+    group, whole_group = h.edge_group() if E > 1 else ([], True)
+    group = np.array(group, dtype=np.int64).reshape(len(group), E)
+    a_end, b_end = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+    out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
+    found = place(M, a_end, b_end, least, after, n2, k, l, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
+    if listing and found > len(out):
+        out = np.zeros((found, E), dtype=np.int64)
+        place(M, a_end, b_end, least, after, n2, k, l, x_most, vertex_need, group, out)
+    solutions = [tuple(map(int, row)) for row in out[:found]] if listing else []
+    _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
+    return found, solutions, whole_group
 
 
 def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
@@ -635,6 +719,10 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
     (2, 2)
     """
+    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
+        found, _, whole_group = _kernel_placements(code, h, conv, stats, listing=False)
+        if whole_group:
+            return found
     solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
     kept = _passing(h, conv, solutions, stats, checked)
     return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))

@@ -1,0 +1,105 @@
+"""Stage B's compiled kernel (a pebble game over the placements of the binary links) against the
+two other ways stage B finds them: the CP-SAT model's exact conditions and the direct listing
+checked by the exact sub-chain test on every subset.  Small queries do not load the kernel (it
+costs a second per process), so these tests force it on every code."""
+
+from __future__ import annotations
+
+import pytest
+
+import synth
+
+# every kind of unit the kernel takes: h = 2…6, W = 0…3, both conventions, open chains (leaves),
+# loops, fractionated and non-fractionated, planar only, prismatic skeletons (slack: lower thresholds)
+QUERIES = [
+    dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11, fractionated=False), dict(dof=2, links=11),
+    dict(dof=3, links=10, n1=(0, 3)), dict(dof=1, links=9, h=2), dict(dof=2, links=8, h=2), dict(dof=1, links=11, h=4),
+    dict(dof=1, links=14, h=5), dict(dof=1, links=12, h=6), dict(dof=2, links=9, rigid_subchains=True),
+    dict(dof=3, links=10), dict(dof=4, links=9, n1=(1, 4)),
+    dict(dof=1, links=10, planar_only=True), dict(dof=2, links=9, h=4, rigid_subchains=True),
+]
+
+
+def _ids(query):
+    return ",".join(f"{k}={v}" for k, v in query.items())
+
+
+@pytest.fixture
+def kernel_everywhere(monkeypatch):
+    from synth.synthesis import _realise
+
+    monkeypatch.setattr(_realise, "_KERNEL_LOOPS", {None: 0})
+    return _realise
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeypatch):
+    """Unit by unit, the kernel's placements are the CP-SAT model's (whose conditions are the exact
+    test for simple joints), one per orbit of Aut(H) the same way; and the listing's read of more
+    rows than its first pass holds (``_KERNEL_ROWS``) loses none."""
+    _realise = kernel_everywhere
+    compared = 0
+    for u in synth.plan_units(**query, workers=1):
+        h = u.contracted
+        if h is None or not _realise._kernel_applies(u.code, h, u.conventions):
+            continue
+        args = (u.code, h, u.conventions)
+        monkeypatch.setattr(_realise, "_KERNEL_ROWS", 1)
+        kernel, whole, checked = _realise._distributions(*args, None)
+        assert checked
+        with monkeypatch.context() as model_only:
+            model_only.setattr(_realise, "_KERNEL_LOOPS", {None: 10**6})
+            model_only.setattr(_realise, "_FEW_VECTORS", 0)
+            model, model_whole, _ = _realise._distributions(*args, None)
+        assert whole == model_whole
+        if whole:  # the model's lex-leader and its filter keep the lex-least vector of each orbit, as the kernel
+            assert sorted(kernel) == sorted(model), u.key
+        assert _realise.count_realised(*args) == len(_realise.realise(*args)), u.key
+        compared += 1
+    assert compared
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel_everywhere):
+    """Every placement the kernel keeps is a chain that the independent test (every subset of links)
+    passes, and no valid placement of the direct listing is missing."""
+    from synth.structure.subchains import check_subchains
+
+    _realise = kernel_everywhere
+    compared = 0
+    for u in synth.plan_units(**query, workers=1):
+        h = u.contracted
+        if h is None or not _realise._kernel_applies(u.code, h, u.conventions):
+            continue
+        conv = u.conventions
+        kernel, whole, _ = _realise._distributions(u.code, h, conv, None)
+        for s in kernel:
+            chain = _realise._expand(h.kinds, h.edges, s, conv.h)
+            report = check_subchains(chain, rigid_subchains=conv.rigid_subchains)
+            assert report.worst_mobility >= conv.threshold, (u.key, s)
+        lows, parallel = _realise._string_limits(h, conv)
+        spare = u.code.count(2) - sum(lows)
+        if whole and spare >= 0 and len(h.edges) <= 14:
+            listed = _realise._few_distributions(lows, spare, parallel, h, None)[0]
+            valid = _realise._passing(h, conv, listed, None)
+            assert sorted(valid) == sorted(kernel), u.key
+            compared += 1
+    assert compared
+
+
+# (W = 0 with the non-degenerate rule: the whole chain is exempt, a unit the kernel does not take)
+@pytest.mark.parametrize("query", QUERIES + [dict(dof=1, links=6, prismatic="0.."), dict(dof=1, links=8, prismatic="0..2", cylinders="swinging=2"),
+                                             dict(dof=0, links=9, rigid_subchains=False), dict(dof=1, links=8, v=(0, 3))],
+                         ids=_ids)
+def test_counts_and_listings_by_code_are_the_same_with_the_kernel(query, monkeypatch):
+    """Counts by code with and without the kernel, and the listing with it, agree."""
+    from synth.synthesis import _realise
+
+    without = synth.count_chains(**query, workers=1)["by_code"]
+    monkeypatch.setattr(_realise, "_KERNEL_LOOPS", {None: 0})
+    assert synth.count_chains(**query, workers=1)["by_code"] == without and without
+    listed: dict = {}
+    for chain in synth.type_synthesis(**query, workers=1):
+        key = str(chain.code) + chain.kind_suffix
+        listed[key] = listed.get(key, 0) + 1
+    assert listed == without
