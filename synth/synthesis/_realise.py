@@ -58,6 +58,7 @@ _STAGE_A_SET_LINKS = {2: 2}
 _SPLIT_LINKS = 9
 _MODEL_SET_LINKS = 3
 _CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
+_CONDITION_BATCH = 4096  # labelled multigraphs stage A's kernel returns at once
 # Stage B uses the compiled kernel for codes of at least this many loops K (by motion space h; None: others)
 _KERNEL_LOOPS = {2: 8, 3: 6, None: 5}
 _KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
@@ -183,6 +184,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     m = len(kinds)
     if m == 0:
         return []
+    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
+        return _contracted_by_kernel(code, conv)
     deg = [k[1] for k in kinds]
     model = Model()
     pairs = list(combinations(range(m), 2))
@@ -243,6 +246,62 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     # branching on the rows in order, least value first, follows the lexicographic row constraints
     each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
     return [seen[c] for c in sorted(seen)]
+
+
+def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:
+    """Whether stage A's compiled kernel writes this code's conditions: simple joints, two branch
+    vertices or more, and no exemption of the whole chain (then the sub-chain conditions of stage A
+    are the sparsity that its pebble game checks)."""
+    return not code.v and len(_branch_kinds(code)) >= 2 and code.dof(conv.h) >= conv.threshold
+
+
+def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A by the compiled kernel (:mod:`synth.synthesis._stage_a_kernel`): the same branch
+    multigraphs as the CP-SAT model, from labelled ones found batch by batch and told apart by nauty."""
+    import numpy as np
+
+    from ._stage_a_kernel import multigraphs, new_state
+
+    kinds = _branch_kinds(code)
+    m, n2, h = len(kinds), code.count(2), conv.h
+    deg = np.array([k[1] for k in kinds], dtype=np.int64)
+    pairs = list(combinations(range(m), 2))
+    bounds = _StringBounds(kinds, pairs, code, conv)
+    most = int(deg.max())
+    strings = np.arange(most + 1, dtype=np.int64)
+    lb_of = np.maximum(0, bounds.slope[:, None] * strings[None, :] + bounds.offset[:, None])
+    cost_of = (h - 1) * strings[None, :] - lb_of
+    inner = np.full(m, -1, dtype=np.int64)
+    for i, u in enumerate(_inner_links(kinds)):
+        inner[u] = i
+    loops_most = deg // 2 if conv.fractionated or code.n1 else np.zeros(m, dtype=np.int64)
+    same = np.array([(u, v) for u, v in pairs if kinds[u] == kinds[v]], dtype=np.int64).reshape(-1, 2)
+    conditions = _subset_conditions(kinds, code.dof(h), conv)
+    pu, pv = np.array(pairs, dtype=np.int64).reshape(-1, 2).T.copy()
+    state = new_state(len(pairs), m)
+    out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
+    out_y = np.zeros((_CONDITION_BATCH, m), dtype=np.int64)
+    flags = np.zeros(_CONDITION_BATCH, dtype=np.int64)
+    seen: dict[str, Contracted] = {}
+    while True:
+        found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
+                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
+        X, Y = out_x[:found], out_y[:found]
+        keep = np.ones(found, dtype=bool)
+        marked = np.flatnonzero(flags[:found])
+        if len(marked):  # the slack is too large for a pebble game: every condition by the numbers
+            keep[marked] = bounds.meet(X[marked], Y[marked], conditions)
+        for row_x, row_y in zip(X[keep], Y[keep]):
+            edges = [p for p, k in zip(pairs, row_x.tolist()) for _ in range(k)]
+            edges += [(u, u) for u, k in enumerate(row_y.tolist()) for _ in range(k)]
+            if not _keep_multigraph(m, edges, conv):
+                continue
+            graph = Contracted(kinds, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(graph._subdivided()).hex()
+            if cert not in seen:
+                seen[cert] = Contracted(kinds, graph.edges, cert)
+        if found < _CONDITION_BATCH:
+            return [seen[c] for c in sorted(seen)]
 
 
 class _StringBounds:
@@ -535,7 +594,7 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
 
 def uses_kernel(code: Code, conv: Conventions) -> bool:
     """Whether stage B places the binary links of ``code``'s units with the compiled kernel
-    (:mod:`synth.synthesis._placements`, where it applies): loading it costs about a second per
+    (:mod:`synth.synthesis._stage_b_kernel`, where it applies): loading it costs about a second per
     process, which the queries of at least ``_KERNEL_LOOPS`` loops (by motion space) earn back many
     times (planar 14 links: stage B 10.5 → 1.5 CPU s), and smaller ones do not.
 
@@ -549,7 +608,7 @@ def load_kernel() -> None:
     """Load (or compile, the first time) the kernel in this process, before workers are forked."""
     import numpy as np
 
-    from ._placements import place
+    from ._stage_b_kernel import place
 
     empty = np.zeros(0, dtype=np.int64)
     place(0, empty, empty, empty, empty, 0, 3, 4, 0, 0, np.zeros((0, 0), dtype=np.int64),
@@ -573,7 +632,7 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     and whether the group was whole."""
     import numpy as np
 
-    from ._placements import place
+    from ._stage_b_kernel import place
 
     t0 = perf_counter()
     lows, parallel = _string_limits(h, conv)

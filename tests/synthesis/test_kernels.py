@@ -1,7 +1,7 @@
-"""Stage B's compiled kernel (a pebble game over the placements of the binary links) against the
-two other ways stage B finds them: the CP-SAT model's exact conditions and the direct listing
-checked by the exact sub-chain test on every subset.  Small queries do not load the kernel (it
-costs a second per process), so these tests force it on every code."""
+"""The compiled kernels of stages A and B against the CP-SAT models they stand in for: stage A's
+branch multigraphs code by code, stage B's placements of the binary links unit by unit (and the
+direct listing checked by the exact sub-chain test on every subset).  Small queries do not load
+the kernels (a second per process), so these tests force them on every code."""
 
 from __future__ import annotations
 
@@ -103,3 +103,29 @@ def test_counts_and_listings_by_code_are_the_same_with_the_kernel(query, monkeyp
         key = str(chain.code) + chain.kind_suffix
         listed[key] = listed.get(key, 0) + 1
     assert listed == without
+
+
+STAGE_A_QUERIES = QUERIES + [dict(dof=1, links=14), dict(dof=1, links=10, h=2), dict(dof=0, links=11),
+                             dict(dof=1, links=12, planar_only=True), dict(dof=1, links=8, prismatic="0.."),
+                             dict(dof=2, links=9, fractionated=False, n1=(0, 2))]
+
+
+@pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=_ids)
+def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywhere, monkeypatch):
+    """Code by code, the kernel's branch multigraphs (pebble games for the sub-chain conditions,
+    batches of 3 to exercise the resumed search) are the CP-SAT model's, in the same order and with the same labelling (chains drawn from them are numbered alike)."""
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    _realise = kernel_everywhere
+    monkeypatch.setattr(_realise, "_CONDITION_BATCH", 3)
+    compared = 0
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
+        if not _realise._stage_a_kernel_applies(code, conv):
+            continue
+        kernel = [(h.certificate, h.edges) for h in _realise.contracted_graphs(code, conv)]
+        with monkeypatch.context() as model_only:
+            model_only.setattr(_realise, "_KERNEL_LOOPS", {None: 10**6})
+            model = [(h.certificate, h.edges) for h in _realise.contracted_graphs(code, conv)]
+        assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
+        compared += len(model)
+    assert compared
