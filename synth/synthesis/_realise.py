@@ -520,8 +520,8 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     # (W below the threshold), where the model skips every set of all branch links
     simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
     if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
-        _, solutions, whole_group = _kernel_placements(code, h, conv, stats, listing=True)
-        return solutions, whole_group, True
+        _, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=True)
+        return [tuple(map(int, row)) for row in placements], whole_group, all(kind[0] == "L" for kind in kinds)
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, h, stats)
     from ._cpsat import Model, all_solutions, cp_model
@@ -595,13 +595,15 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
 def uses_kernel(code: Code, conv: Conventions) -> bool:
     """Whether stage B places the binary links of ``code``'s units with the compiled kernel
     (:mod:`synth.synthesis._stage_b_kernel`, where it applies): loading it costs about a second per
-    process, which the queries of at least ``_KERNEL_LOOPS`` loops (by motion space) earn back many
-    times (planar 14 links: stage B 10.5 → 1.5 CPU s), and smaller ones do not.
+    process, which the queries of at least ``_KERNEL_LOOPS`` loops (by motion space; one fewer with
+    multiple joints) earn back many times (planar 14 links: stage B 10.5 → 1.5 CPU s), and smaller
+    ones do not.
 
     >>> uses_kernel(Code.parse("4.10.0/0"), Conventions()), uses_kernel(Code.parse("48/0"), Conventions())
     (True, False)
     """
-    return code.loops >= _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])
+    least = _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])
+    return code.loops >= least - (1 if code.v else 0)  # (multiple joints: more placements per chain)
 
 
 def load_kernel() -> None:
@@ -611,24 +613,25 @@ def load_kernel() -> None:
     from ._stage_b_kernel import place
 
     empty = np.zeros(0, dtype=np.int64)
-    place(0, empty, empty, empty, empty, 0, 3, 4, 0, 0, np.zeros((0, 0), dtype=np.int64),
+    place(0, empty, empty, empty, empty, 0, empty, 2, 4, empty, -1, 0, empty, np.zeros((0, 0), dtype=np.int64),
           np.zeros((0, 0), dtype=np.int64))
 
 
 def _kernel_applies(code: Code, h: Contracted, conv: Conventions) -> bool:
-    """Whether the kernel's conditions are stage B's for this unit: simple joints, no crank
-    requirement, a (k, l) pebble game (0 ≤ l = h + threshold), the set of all branch links not exempt,
-    and loops never short (their least weight at least h − 1)."""
-    kinds = h.kinds
-    return (all(kind[0] == "L" for kind in kinds) and not conv.cranks and conv.h + conv.threshold >= 0
-            and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
-            and (not any(u == v for u, v in h.edges) or _loop_lb("L", conv) >= conv.h - 1))
+    """Whether the kernel can find this unit's placements: no crank requirement, a (k, l) pebble
+    game (0 ≤ l = h + threshold), the set of all branch vertices not exempt, and loops never short
+    (their least weight at least h − 1).  With simple joints its conditions are stage B's; with
+    multiple joints they are weaker by one freedom (:mod:`synth.synthesis._stage_b_kernel`), so
+    there the exact test keeps the valid placements among the kernel's."""
+    loops = {h.kinds[u][0] for u, v in h.edges if u == v}
+    return (not conv.cranks and conv.h + conv.threshold >= 0 and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
+            and all(_loop_lb(kind, conv) >= conv.h - 1 for kind in loops))
 
 
 def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict | None,
-                       listing: bool) -> tuple[int, list, bool]:
-    """Stage B by the compiled kernel: how many placements pass the sub-chain rule and are lex-least
-    under Aut(H) (one per orbit where the whole group is listed), those placements if ``listing``,
+                       listing: bool) -> tuple[int, "np.ndarray", bool]:
+    """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
+    Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
     and whether the group was whole."""
     import numpy as np
 
@@ -636,7 +639,8 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
 
     t0 = perf_counter()
     lows, parallel = _string_limits(h, conv)
-    inner = {u: i for i, u in enumerate(_inner_links(h.kinds))}
+    links = set(_inner_links(h.kinds))
+    inner = {u: i for i, u in enumerate(u for u, kind in enumerate(h.kinds) if u in links or kind[0] == "J")}
     M, E = len(inner), len(h.edges)
     ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in h.edges],
                     dtype=np.int64).reshape(E, 2)
@@ -644,22 +648,28 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     after = np.full(E, -1, dtype=np.int64)
     for k, least_k in parallel:
         after[k] = least_k
-    k, l, n2 = conv.h, conv.h + conv.threshold, code.count(2)
+    # with multiple joints a second game (J with h − 1 pebbles, l = h + min(threshold, 0)): the kernel's module
+    k = np.full(M, conv.h, dtype=np.int64)
+    C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
+    k2 = np.array([conv.h if h.kinds[u][0] == "L" else conv.h - 1 for u in inner], dtype=np.int64)
+    l2 = -1 if len(inner) == len(links) else conv.h + min(conv.threshold, 0)
     short = ends[:, 0] >= 0
-    b0 = n2 - (k - 1) * int(short.sum()) - int(least[~short].sum())
-    x_most = b0 + k * M - l if M >= 2 else n2
-    vertex_need = -b0 - (k * (M - 1) - l) if M >= 3 else -n2 * k
+    b0 = n2 - C * int(short.sum()) - int(least[~short].sum())
+    x_most = b0 + int(k.sum()) - l if M >= 2 else n2
+    vertex_need = -b0 - (int(k.sum()) - k - l) if M >= 3 else np.full(M, -n2 * conv.h, dtype=np.int64)
+    if l2 >= 0:  # the tighter of the two games' bounds
+        x_most = min(x_most, b0 + int(k2.sum()) - l2) if M >= 2 else x_most
+        vertex_need = np.maximum(vertex_need, -b0 - (int(k2.sum()) - k2 - l2)) if M >= 3 else vertex_need
     group, whole_group = h.edge_group() if E > 1 else ([], True)
     group = np.array(group, dtype=np.int64).reshape(len(group), E)
     a_end, b_end = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
     out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    found = place(M, a_end, b_end, least, after, n2, k, l, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
+    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
     if listing and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
-        place(M, a_end, b_end, least, after, n2, k, l, x_most, vertex_need, group, out)
-    solutions = [tuple(map(int, row)) for row in out[:found]] if listing else []
+        place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
-    return found, solutions, whole_group
+    return found, out[:found], whole_group
 
 
 def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
@@ -779,9 +789,16 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     (2, 2)
     """
     if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
-        found, _, whole_group = _kernel_placements(code, h, conv, stats, listing=False)
-        if whole_group:
-            return found
+        simple = all(kind[0] == "L" for kind in h.kinds)
+        if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
+            found, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=not simple)
+            if whole_group and simple:
+                return found
+            if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
+                t0 = perf_counter()
+                valid = int(_exact_test(h.kinds, h.edges, placements, conv).sum()) if found else 0
+                _add(stats, subchain_s=perf_counter() - t0)
+                return valid
     solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
     kept = _passing(h, conv, solutions, stats, checked)
     return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))

@@ -18,12 +18,20 @@ given edge permutations (the automorphisms of H: one placement per orbit when th
 is given).  Prunes that cut no solution:
 
 * the set of all inner links is sparse too, so the excess X above h − 1 on long strings (and
-  above the least weight on strings that are never short) is at most B0 + kM − l, where
+  above the least weight on strings that are never short) is at most B0 + Σ k − l, where
   B0 = n2 − (h − 1)·(short-able strings) − (least weights of the others);
 * X − D = B0 at the end, so the strings still to come must be able to carry the deficit D
   still missing (at most h − 1 each);
-* the set of every inner link but one, x, is sparse: the strings at x carry at least
-  −B0 − (k(M − 1) − l) of the deficit (``vertex_need``).
+* the set of every vertex but one, x, is sparse: the strings at x carry at least
+  −B0 − (Σ k − k_x − l) of the deficit (``vertex_need``).
+
+With multiple joints two games run side by side, each a weaker rule that no valid placement
+breaks, and the exact test decides among what both keep: in one a multiple joint J is a vertex of
+h − 1 pebbles (its freedoms, as in the exact test: each of its links then costs h − 1) and l is
+h + min(threshold, 0) — exact for the sets of two links or more up to the threshold, and never
+wrong for the sets of fewer, which the rule leaves out (a link with joints on it alone, two joints
+with one binary link between them); in the other J has h pebbles and l = h + threshold — exact
+for the sets without multiple joints, one freedom weaker for each joint in a set.
 
 Numba compiles the kernel once (cached beside this file, or in numba's user cache); loading it
 takes about a second per process, so type synthesis uses it for large queries only
@@ -113,22 +121,24 @@ def _lex_least(w, group):
 
 
 @njit(cache=True)
-def place(M, a_end, b_end, least, parallel, n2, k, l, x_most, vertex_need, group, out):
+def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_need, group, out):
     """Count the placements (and write the first ``len(out)`` into ``out``); see the module.
 
-    M: inner branch links (pebble-game vertices); ``a_end[e]``, ``b_end[e]``: the ends of string
-    e among them, −1 for a string that is never short (a loop, a string to a single-joint link);
-    ``least[e]``: its least weight; ``parallel[e]``: −1, or the least weight of a string parallel
-    to string e − 1 (then w_e ≥ w_{e−1} too); n2 binary links; (k, l) the sparsity, k − 1 the
-    weight from which a string is long; ``x_most``, ``vertex_need``: the bounds of the module's
-    prunes; ``group``: edge permutations (rows).
+    M: pebble-game vertices (inner branch links, multiple joints); ``a_end[e]``, ``b_end[e]``: the
+    ends of string e among them, −1 for a string that is never short (a loop, a string to a
+    single-joint link); ``least[e]``: its least weight; ``parallel[e]``: −1, or the least weight of a
+    string parallel to string e − 1 (then w_e ≥ w_{e−1} too); n2 binary links; ``k[v]`` the pebbles
+    of vertex v and l the sparsity (and a second game ``k2``, ``l2`` where l2 ≥ 0); C the weight
+    from which a string is long; ``x_most``,
+    ``vertex_need[v]``: the bounds of the module's prunes; ``group``: edge permutations (rows).
     """
     E = len(a_end)
     if E == 0:
         return 0
-    C = k - 1
-    pebbles = np.full(M, k, dtype=np.int64)
+    pebbles = k.copy()
     arcs = np.zeros((M, M), dtype=np.int64)
+    pebbles2 = k2.copy()
+    arcs2 = np.zeros((M, M), dtype=np.int64)
     seen = np.zeros(M, dtype=np.bool_)
     parent = np.zeros(M, dtype=np.int64)
     stack = np.zeros(M, dtype=np.int64)
@@ -148,6 +158,7 @@ def place(M, a_end, b_end, least, parallel, n2, k, l, x_most, vertex_need, group
     w = np.zeros(E, dtype=np.int64)
     top = np.zeros(E, dtype=np.int64)  # largest weight left to try
     units = np.zeros(E, dtype=np.int64)  # deficit units of string e in the pebble game
+    units2 = np.zeros(E, dtype=np.int64)  # … in the second game
     placed = np.zeros(E, dtype=np.bool_)
     left = np.zeros(E + 1, dtype=np.int64)  # binary links not yet placed, before string e
     excess = np.zeros(E + 1, dtype=np.int64)
@@ -166,12 +177,15 @@ def place(M, a_end, b_end, least, parallel, n2, k, l, x_most, vertex_need, group
             placed[e] = False
             for _ in range(units[e]):
                 _take_back(a, b, pebbles, arcs)
+            for _ in range(units2[e]):
+                _take_back(a, b, pebbles2, arcs2)
             if a >= 0:
                 at[a] -= units[e]
                 at[b] -= units[e]
                 open_[a] += 1
                 open_[b] += 1
         units[e] = 0
+        units2[e] = 0
         w[e] += 1
         if w[e] > top[e]:
             e -= 1
@@ -185,8 +199,8 @@ def place(M, a_end, b_end, least, parallel, n2, k, l, x_most, vertex_need, group
         if x > x_most or x - B0 - d > C * short_after[e + 1]:
             top[e] = we  # a larger weight only raises both
             continue
-        if a >= 0 and (at[a] + dd + C * (open_[a] - 1) < vertex_need
-                       or at[b] + dd + C * (open_[b] - 1) < vertex_need):
+        if a >= 0 and (at[a] + dd + C * (open_[a] - 1) < vertex_need[a]
+                       or at[b] + dd + C * (open_[b] - 1) < vertex_need[b]):
             continue
         ok = True
         for _ in range(dd):
@@ -194,6 +208,12 @@ def place(M, a_end, b_end, least, parallel, n2, k, l, x_most, vertex_need, group
                 ok = False
                 break
             units[e] += 1
+        if ok and l2 >= 0:
+            for _ in range(dd):
+                if not _accept(a, b, l2, pebbles2, arcs2, seen, parent, stack):
+                    ok = False
+                    break
+                units2[e] += 1
         placed[e] = True
         if a >= 0:
             at[a] += units[e]
