@@ -1,7 +1,7 @@
 """Stage A's compiled kernel: the labelled branch multigraphs H of one code with simple joints,
 enumerated depth first pair by pair (numba), in batches.
 
-The variables are those of stage A's CP-SAT model (synth/synthesis/_realise.py): the number
+The variables are those of stage A's CP-SAT model (synth/synthesis/stage_a.py): the number
 x_uv of strings between each pair of branch vertices, row by row, and the loops y_u, which the
 degree equation fixes once row u is complete.  The search keeps the model's conditions:
 

@@ -35,7 +35,7 @@ for the sets without multiple joints, one freedom weaker for each joint in a set
 
 Numba compiles the kernel once (cached beside this file, or in numba's user cache); loading it
 takes about a second per process, so type synthesis uses it for large queries only
-(:func:`synth.synthesis._realise.uses_kernel`).
+(:func:`synth.synthesis.stage_a.uses_kernel`).
 """
 
 from __future__ import annotations

@@ -8,6 +8,7 @@ from __future__ import annotations
 import pytest
 
 import synth
+from synth.synthesis import stage_a, stage_b
 
 # every kind of unit the kernel takes: h = 2…6, W = 0…3, both conventions, open chains (leaves),
 # loops, fractionated and non-fractionated, planar only, prismatic skeletons (slack: lower thresholds)
@@ -30,10 +31,7 @@ def _ids(query):
 
 @pytest.fixture
 def kernel_everywhere(monkeypatch):
-    from synth.synthesis import _realise
-
-    monkeypatch.setattr(_realise, "_KERNEL_LOOPS", {None: 0})
-    return _realise
+    monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
 
 
 @pytest.mark.parametrize("query", QUERIES, ids=_ids)
@@ -41,28 +39,27 @@ def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeyp
     """Unit by unit, the kernel's placements are the CP-SAT model's (whose conditions are the exact
     test for simple joints), one per orbit of Aut(H) the same way; and the listing's read of more
     rows than its first pass holds (``_KERNEL_ROWS``) loses none."""
-    _realise = kernel_everywhere
     compared = 0
     for u in synth.plan_units(**query, workers=1):
         h = u.contracted
-        if h is None or not _realise._kernel_applies(u.code, h, u.conventions):
+        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
             continue
         args = (u.code, h, u.conventions)
-        monkeypatch.setattr(_realise, "_KERNEL_ROWS", 1)
-        kernel, whole, checked = _realise._distributions(*args, None)
+        monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
+        kernel, whole, checked = stage_b._distributions(*args, None)
         simple = all(kind[0] == "L" for kind in h.kinds)
         assert checked == simple  # multiple joints: a weaker rule, then the exact test
         with monkeypatch.context() as model_only:
-            model_only.setattr(_realise, "_KERNEL_LOOPS", {None: 10**6})
-            model_only.setattr(_realise, "_FEW_VECTORS", 0)
-            model, model_whole, model_checked = _realise._distributions(*args, None)
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model_only.setattr(stage_b, "_FEW_VECTORS", 0)
+            model, model_whole, model_checked = stage_b._distributions(*args, None)
         assert whole == model_whole
         if whole:  # the model's lex-leader and its filter keep the lex-least vector of each orbit, as the kernel
             if simple:
                 assert sorted(kernel) == sorted(model), u.key
-            valid = _realise._passing(h, u.conventions, kernel, None, checked)
-            assert sorted(valid) == sorted(_realise._passing(h, u.conventions, model, None, model_checked)), u.key
-        assert _realise.count_realised(*args) == len(_realise.realise(*args)), u.key
+            valid = stage_b._passing(h, u.conventions, kernel, None, checked)
+            assert sorted(valid) == sorted(stage_b._passing(h, u.conventions, model, None, model_checked)), u.key
+        assert stage_b.count_realised(*args) == len(stage_b.realise(*args)), u.key
         compared += 1
     assert compared
 
@@ -73,24 +70,23 @@ def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel
     passes, and no valid placement of the direct listing is missing."""
     from synth.structure.subchains import check_subchains
 
-    _realise = kernel_everywhere
     compared = 0
     for u in synth.plan_units(**query, workers=1):
         h = u.contracted
-        if h is None or not _realise._kernel_applies(u.code, h, u.conventions):
+        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
             continue
         conv = u.conventions
-        kernel, whole, checked = _realise._distributions(u.code, h, conv, None)
-        kernel = _realise._passing(h, conv, kernel, None, checked)
+        kernel, whole, checked = stage_b._distributions(u.code, h, conv, None)
+        kernel = stage_b._passing(h, conv, kernel, None, checked)
         for s in kernel:
-            chain = _realise._expand(h.kinds, h.edges, s, conv.h)
+            chain = stage_b._expand(h.kinds, h.edges, s, conv.h)
             report = check_subchains(chain, rigid_subchains=conv.rigid_subchains)
             assert report.worst_mobility >= conv.threshold, (u.key, s)
-        lows, parallel = _realise._string_limits(h, conv)
+        lows, parallel = stage_b._string_limits(h, conv)
         spare = u.code.count(2) - sum(lows)
         if whole and spare >= 0 and len(h.edges) <= 14:
-            listed = _realise._few_distributions(lows, spare, parallel, h, None)[0]
-            valid = _realise._passing(h, conv, listed, None)
+            listed = stage_b._few_distributions(lows, spare, parallel, h, None)[0]
+            valid = stage_b._passing(h, conv, listed, None)
             assert sorted(valid) == sorted(kernel), u.key
             compared += 1
     assert compared
@@ -102,10 +98,8 @@ def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel
                          ids=_ids)
 def test_counts_and_listings_by_code_are_the_same_with_the_kernel(query, monkeypatch):
     """Counts by code with and without the kernel, and the listing with it, agree."""
-    from synth.synthesis import _realise
-
     without = synth.count_chains(**query, workers=1)["by_code"]
-    monkeypatch.setattr(_realise, "_KERNEL_LOOPS", {None: 0})
+    monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
     assert synth.count_chains(**query, workers=1)["by_code"] == without and without
     listed: dict = {}
     for chain in synth.type_synthesis(**query, workers=1):
@@ -125,16 +119,15 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
     batches of 3 to exercise the resumed search) are the CP-SAT model's, in the same order and with the same labelling (chains drawn from them are numbered alike)."""
     from synth.synthesis.type_synthesis import plan_jobs
 
-    _realise = kernel_everywhere
-    monkeypatch.setattr(_realise, "_CONDITION_BATCH", 3)
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 3)
     compared = 0
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
-        if not _realise._stage_a_kernel_applies(code, conv):
+        if not stage_a._stage_a_kernel_applies(code, conv):
             continue
-        kernel = [(h.certificate, h.edges) for h in _realise.contracted_graphs(code, conv)]
+        kernel = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
         with monkeypatch.context() as model_only:
-            model_only.setattr(_realise, "_KERNEL_LOOPS", {None: 10**6})
-            model = [(h.certificate, h.edges) for h in _realise.contracted_graphs(code, conv)]
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
         assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
         compared += len(model)
     assert compared

@@ -1,0 +1,499 @@
+"""Stage A of type synthesis: the branch multigraphs H of a code, once each.
+
+Every chain contracts to a multigraph H on its *branch vertices* — links with 3+ joints and
+joints with 3+ links — whose edges are the strings of binary links and simple joints between
+them; the weight of an edge is its number of binary links.  H is a subdivision-equivalent of
+the incidence graph, so chains are isomorphic exactly when their H's are isomorphic by a map
+that keeps the weights: stage A lists the H of a code, stage B (:mod:`synth.synthesis.stage_b`)
+the weights on each.
+
+Stage A enumerates labelled multigraphs with the degree equations, the least weights of
+parallel strings and loops, stage B's sub-chain conditions written on H and the sb*ℓ
+lexicographic row constraints of Codish et al. between branch vertices of one kind;
+connectivity is checked on each solution and nauty removes the labelled copies that are left.
+A large query (:func:`uses_kernel`) with simple joints runs the compiled search of
+:mod:`synth.synthesis._stage_a_kernel`, where the sub-chain conditions are a pebble game; the
+others one CP-SAT model per code.  Planarity and fractionation are properties of H (a
+subdivision keeps both), so they are decided once per H.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+from operator import itemgetter
+
+import pynauty
+
+from ..structure._nauty import TrustedGraph
+from ..structure.code import Code
+
+__all__ = ["Conventions", "Contracted", "contracted_graphs", "load_kernel", "uses_kernel"]
+
+_GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
+_LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
+# Stage A writes the sub-chain conditions for sets T of at most this many links (default: all).
+# h = 2 (wedge systems): H is nearly the chain itself (few binary links), and the 2^m conditions
+# on its 9-10 branch links cost CP-SAT more than the units they save.  1-DOF, 10 links, one
+# process: stage A 16.9 s -> 11.1 s, the whole query 27.6 s -> 23.6 s (33 765 units, not 25 384).
+_STAGE_A_SET_LINKS = {2: 2}
+# From _SPLIT_LINKS inner links on, stage A's model writes the sub-chain conditions of sets of at most
+# _MODEL_SET_LINKS links and of the largest sets only, and the others are checked on its solutions.
+_SPLIT_LINKS = 9
+_MODEL_SET_LINKS = 3
+_CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
+_CONDITION_BATCH = 4096  # labelled multigraphs stage A's kernel returns at once
+# Stages A and B use the compiled kernels for codes of at least this many loops K (by motion space h; None: others)
+_KERNEL_LOOPS = {2: 8, 3: 6, None: 5}
+
+
+@dataclass(frozen=True)
+class Conventions:
+    """Which chains count: sub-chain rule, fractionated chains, planar graphs only,
+    required sub-structures ``cranks``: pairs (I, C) asking for a link with I joints that
+    carries at least C cranks (binary links jointed to it), and the motion space ``h`` of
+    the loops (W(S) = h(|S| − 1) − (h − 1)·p(S)).
+
+    With ``prismatic`` (a range of prismatic pairs per chain) the revolute chains built are
+    skeletons that ``slack`` wedge loops will raise: each sub-chain may lack up to ``slack``
+    freedoms (its own wedge loops give them back), ``idle_joints`` keeps the assignments
+    with joints that never move, and ``cylinders_only`` puts prismatic pairs between two binary
+    links only (where every one of them must be a cylinder).
+    """
+
+    rigid_subchains: bool = False
+    fractionated: bool = True
+    planar_only: bool = False
+    cranks: tuple[tuple[int, int], ...] = ()
+    h: int = 3
+    slack: int = 0
+    prismatic: tuple[int, int | None] | None = None
+    idle_joints: bool = False
+    cylinders_only: bool = False
+
+    @property
+    def threshold(self) -> int:
+        """Least W(S) allowed for a proper sub-chain S of a skeleton (every chain without slack)."""
+        return (0 if self.rigid_subchains else 1) - self.slack
+
+
+@dataclass(frozen=True)
+class Contracted:
+    """Branch-vertex multigraph H of a chain: ``kinds[u]`` is ('L', joints) or ('J', links)."""
+
+    kinds: tuple[tuple[str, int], ...]
+    edges: tuple[tuple[int, int], ...]
+    certificate: str
+
+    def _subdivided(self) -> pynauty.Graph:
+        m = len(self.kinds)
+        adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
+        cells: dict[tuple[str, int], set[int]] = {}
+        for u, kind in enumerate(self.kinds):
+            cells.setdefault(kind, set()).add(u)
+        coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
+        return TrustedGraph(m + len(self.edges), adjacency, coloring)
+
+    def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
+        """Automorphisms of H acting on its edge list, and whether that is the whole group.
+
+        The whole group (identity left out) if its order is at most 4096, else generators and
+        their inverses.
+
+        >>> Contracted((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), "").edge_group()[1]
+        True
+        """
+        m, e = len(self.kinds), len(self.edges)
+        if e == 0:
+            return [], True
+        gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
+        gens = [tuple(g[m + k] - m for k in range(e)) for g in gens]
+        gens = [g for g in gens if any(g[k] != k for k in range(e))]
+        if size1 * 10.0**size2 > _GROUP_LIMIT:
+            return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
+        identity = tuple(range(e))
+        # closure under a -> a after g (b[k] = a[g[k]]); an itemgetter builds the tuple in C
+        # (every g moves an edge, so e >= 2 and itemgetter returns a tuple)
+        apply = [itemgetter(*g) for g in gens]
+        group, frontier = {identity}, [identity]
+        while frontier:
+            nxt = []
+            for a in frontier:
+                for after in apply:
+                    b = after(a)
+                    if b not in group:
+                        group.add(b)
+                        nxt.append(b)
+            frontier = nxt
+        group.discard(identity)
+        return sorted(group), True
+
+
+def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
+    """Links with 3+ joints (most first), the single-joint links of an open chain (leaves of H),
+    then the multiple joints."""
+    links = [("L", i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
+    links += [("L", 1)] * code.n1
+    comp = code.composition or ()
+    joints = [("J", k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
+    return tuple(links + joints)
+
+
+def _inner_links(kinds) -> list[int]:
+    """Branch links that can lower a sub-chain's W: a single-joint link (a leaf of H) with its
+    string adds w + 1 ≥ 1, so the sets T of the sub-chain conditions leave leaves out."""
+    return [u for u, kind in enumerate(kinds) if kind[0] == "L" and kind[1] > 1]
+
+
+def _loop_lb(kind: str, conv: Conventions) -> int:
+    """Fewest binary links on a closed string through one branch vertex."""
+    # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h; and at least
+    # 2: one binary link would be two joints between the same two links (or a link twice on a joint)
+    return max(2, conv.h - 1 + conv.threshold) if kind == "L" else max(2, conv.h + conv.threshold)
+
+
+def uses_kernel(code: Code, conv: Conventions) -> bool:
+    """Whether stage B places the binary links of ``code``'s units with the compiled kernel
+    (:mod:`synth.synthesis._stage_b_kernel`, where it applies): loading it costs about a second per
+    process, which the queries of at least ``_KERNEL_LOOPS`` loops (by motion space; one fewer with
+    multiple joints) earn back many times (planar 14 links: stage B 10.5 → 1.5 CPU s), and smaller
+    ones do not.
+
+    >>> uses_kernel(Code.parse("4.10.0/0"), Conventions()), uses_kernel(Code.parse("48/0"), Conventions())
+    (True, False)
+    """
+    least = _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])
+    return code.loops >= least - (1 if code.v else 0)  # (multiple joints: more placements per chain)
+
+
+def load_kernel() -> None:
+    """Load (or compile, the first time) the kernels of stages A and B in this process, before
+    workers are forked: a small code through both."""
+    from .stage_b import _kernel_placements
+
+    code, conv = Code.parse("440/0"), Conventions()
+    for h in _contracted_by_kernel(code, conv):
+        _kernel_placements(code, h, conv, None, listing=False)
+
+
+def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A: every branch multigraph H of ``code`` (with composition), once each.
+
+    >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
+    [((0, 1), (0, 1), (0, 1))]
+    """
+    import numpy as np
+
+    from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
+
+    kinds = _branch_kinds(code)
+    n2 = code.count(2)
+    m = len(kinds)
+    if m == 0:
+        return []
+    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
+        return _contracted_by_kernel(code, conv)
+    deg = [k[1] for k in kinds]
+    model = Model()
+    pairs = list(combinations(range(m), 2))
+    x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
+    # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
+    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
+    for u in range(m):
+        model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
+    # weight lower bounds: parallel strings need binary links (the same rules as stage B)
+    bounds = _StringBounds(kinds, pairs, code, conv)
+    lbs = []
+    for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
+        lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
+        model.AddMaxEquality(lb, [0, int(a) * var + int(b)])
+        lbs.append(lb)
+    loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
+    model.Add(sum(lbs) + loops_lb <= n2)
+    strong, later = _split_conditions(_subset_conditions(kinds, code.dof(conv.h), conv), kinds)
+    _write_conditions(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
+    # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
+    # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
+    # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
+    base = max(deg) + 1
+    for u, v in pairs:
+        if kinds[u] != kinds[v]:
+            continue
+
+        def row(a):
+            out = []
+            for k in range(m):
+                if k == v:
+                    continue
+                out.append(y[a] if k == u else x[min(a, k), max(a, k)])
+            return out
+
+        # a prefix of the rows (exact coefficients); a lexicographic order implies it on any prefix
+        L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
+        ru, rv = row(u)[:L], row(v)[:L]
+        weights = [base ** (L - 1 - i) for i in range(L)]
+        model.Add(cp_model.LinearExpr.WeightedSum(ru, weights) <= cp_model.LinearExpr.WeightedSum(rv, weights))
+    seen: dict[str, Contracted] = {}
+
+    def keep(batch: list[tuple[int, ...]]) -> None:
+        sol = np.asarray(batch, dtype=np.int64)
+        for row in sol[bounds.meet(sol[:, :len(pairs)], sol[:, len(pairs):], later)]:
+            edges = []
+            for (u, v), k in zip(pairs, row[:len(pairs)]):
+                edges += [(u, v)] * int(k)
+            for u, k in enumerate(row[len(pairs):]):
+                edges += [(u, u)] * int(k)
+            if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
+                continue
+            h = Contracted(kinds, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(h._subdivided()).hex()
+            if cert not in seen:
+                seen[cert] = Contracted(kinds, h.edges, cert)
+
+    # branching on the rows in order, least value first, follows the lexicographic row constraints
+    each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
+    return [seen[c] for c in sorted(seen)]
+
+
+def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:
+    """Whether stage A's compiled kernel writes this code's conditions: simple joints, two branch
+    vertices or more, and no exemption of the whole chain (then the sub-chain conditions of stage A
+    are the sparsity that its pebble game checks)."""
+    return not code.v and len(_branch_kinds(code)) >= 2 and code.dof(conv.h) >= conv.threshold
+
+
+def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A by the compiled kernel (:mod:`synth.synthesis._stage_a_kernel`): the same branch
+    multigraphs as the CP-SAT model, from labelled ones found batch by batch and told apart by nauty."""
+    import numpy as np
+
+    from ._stage_a_kernel import multigraphs, new_state
+
+    kinds = _branch_kinds(code)
+    m, n2, h = len(kinds), code.count(2), conv.h
+    deg = np.array([k[1] for k in kinds], dtype=np.int64)
+    pairs = list(combinations(range(m), 2))
+    bounds = _StringBounds(kinds, pairs, code, conv)
+    most = int(deg.max())
+    strings = np.arange(most + 1, dtype=np.int64)
+    lb_of = np.maximum(0, bounds.slope[:, None] * strings[None, :] + bounds.offset[:, None])
+    cost_of = (h - 1) * strings[None, :] - lb_of
+    inner = np.full(m, -1, dtype=np.int64)
+    for i, u in enumerate(_inner_links(kinds)):
+        inner[u] = i
+    loops_most = deg // 2 if conv.fractionated or code.n1 else np.zeros(m, dtype=np.int64)
+    same = np.array([(u, v) for u, v in pairs if kinds[u] == kinds[v]], dtype=np.int64).reshape(-1, 2)
+    conditions = _subset_conditions(kinds, code.dof(h), conv)
+    pu, pv = np.array(pairs, dtype=np.int64).reshape(-1, 2).T.copy()
+    state = new_state(len(pairs), m)
+    out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
+    out_y = np.zeros((_CONDITION_BATCH, m), dtype=np.int64)
+    flags = np.zeros(_CONDITION_BATCH, dtype=np.int64)
+    seen: dict[str, Contracted] = {}
+    while True:
+        found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
+                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
+        X, Y = out_x[:found], out_y[:found]
+        keep = np.ones(found, dtype=bool)
+        marked = np.flatnonzero(flags[:found])
+        if len(marked):  # the slack is too large for a pebble game: every condition by the numbers
+            keep[marked] = bounds.meet(X[marked], Y[marked], conditions)
+        for row_x, row_y in zip(X[keep], Y[keep]):
+            edges = [p for p, k in zip(pairs, row_x.tolist()) for _ in range(k)]
+            edges += [(u, u) for u, k in enumerate(row_y.tolist()) for _ in range(k)]
+            if not _keep_multigraph(m, edges, conv):
+                continue
+            graph = Contracted(kinds, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(graph._subdivided()).hex()
+            if cert not in seen:
+                seen[cert] = Contracted(kinds, graph.edges, cert)
+        if found < _CONDITION_BATCH:
+            return [seen[c] for c in sorted(seen)]
+
+
+class _StringBounds:
+    """Least binary links on the strings of H, as numbers (for solutions) and coefficients (for the
+    model): k parallel strings between u and v need max(0, slope·k + offset), a loop at u needs
+    ``loop[u]`` per loop.
+
+    All strings between two links, all taken: W = h + Σ w − k(h − 1), so Σ w ≥ (h − 1)k − h + threshold
+    (the whole chain's W instead where it is below the threshold: the whole chain is exempt); between
+    two joints W = Σ w − h − (h − 1)(k − 2) ≥ min(threshold, 0, W); from a link to a joint one binary
+    link per string after the first (two joints never join the same links).
+    """
+
+    def __init__(self, kinds, pairs, code: Code, conv: Conventions):
+        import numpy as np
+
+        h = conv.h
+        least = min(conv.threshold, code.dof(h))  # what the strings between two links keep, whole chain or not
+        slope, offset = [], []
+        for u, v in pairs:
+            same = kinds[u][0] == kinds[v][0]
+            slope.append(h - 1 if same else 1)
+            offset.append((-h + least if kinds[u][0] == "L" else -h + 2 + min(least, 0)) if same else -1)
+        self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
+        self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
+        self.pairs, self.n2, self.h = pairs, code.count(2), h
+
+    def meet(self, X, Y, conditions) -> "np.ndarray":
+        """Which solutions (pair multiplicities X, loops Y) meet every sub-chain condition of
+        ``conditions`` (:func:`_subset_conditions`), as the model would have written them."""
+        import numpy as np
+
+        ok = np.ones(len(X), dtype=bool)
+        if not conditions or not len(X):
+            return ok
+        lb = np.maximum(0, X * self.slope + self.offset)
+        cost = ((self.h - 1) * X - lb).astype(np.float32)
+        slack = self.n2 - lb.sum(axis=1) - Y @ self.loop
+        index = {p: k for k, p in enumerate(self.pairs)}
+        u, v = np.array(self.pairs, dtype=np.int64).reshape(-1, 2).T
+        for start in range(0, len(conditions), _CONDITION_BLOCK):
+            block = conditions[start:start + _CONDITION_BLOCK]
+            masks = np.array([sum(1 << w for w in TL + TJ) for TL, TJ, _ in block], dtype=np.int64)
+            inside = ((masks[:, None] >> u) & (masks[:, None] >> v) & 1).astype(np.float32)
+            limit = np.array([bound for *_, bound in block], dtype=np.float32)
+            violated = cost @ inside.T > slack[:, None] + limit[None, :]
+            for c, (TL, TJ, _) in enumerate(block):
+                for J in TJ:  # the condition holds where every joint of T is on a string from a link of T
+                    violated[:, c] &= X[:, [index[min(J, L), max(J, L)] for L in TL]].sum(axis=1) >= 1
+            ok &= ~violated.any(axis=1)
+        return ok
+
+
+def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, tuple, int]]:
+    """Stage B's sub-chain conditions as stage A writes them on H: ``(T_L, T_J, bound)`` for sets of
+    inner links T_L with multiple joints T_J: the strings inside T may cost the rule at most
+    bound + slack (see :func:`_write_conditions`).
+
+    One link or two need a multiple joint to have a condition (simple joints: the pairwise
+    bounds); a set of every link is left out where the whole chain is exempt (W below the threshold).
+    """
+    h = conv.h
+    all_links = sum(1 for kind in kinds if kind[0] == "L")
+    links = _inner_links(kinds)
+    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    out = []
+    for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
+        if size == all_links and dof < conv.threshold:
+            break  # T would hold every link: maybe the whole chain, which is exempt
+        for TL in combinations(links, size):
+            for jsize in range(0 if size >= 3 else 1, len(joints) + 1):
+                for TJ in combinations(joints, jsize):
+                    # one link: S has two links or more only with a one-link string (W = 0 otherwise)
+                    least = conv.threshold if size >= 2 else min(conv.threshold, 0)
+                    out.append((TL, TJ, h * (size - 1) + (h - 1) * jsize - least))
+    return out
+
+
+def _split_conditions(conditions, kinds) -> tuple[list, list]:
+    """The conditions stage A's model writes, and those checked on its solutions: the model has
+    every condition of a code with fewer than _SPLIT_LINKS inner links, else the sets of at most
+    _MODEL_SET_LINKS links and of every inner link but one or none (the strongest). The 2^m
+    conditions of a code with 12–14 branch links slowed each CP-SAT step more than the labelled
+    solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: stage A 25 s against 7.7 s)."""
+    inner = len(_inner_links(kinds))
+    strong, later = [], []
+    for condition in conditions:
+        size = len(condition[0])
+        in_model = inner < _SPLIT_LINKS or size <= _MODEL_SET_LINKS or size >= inner - 1
+        (strong if in_model else later).append(condition)
+    return strong, later
+
+
+def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
+    """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
+    vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
+    distribution (most of them, and the costliest: they are whole units of stage B).
+
+    A string inside T with w < h − 1 binary links costs its condition h − 1 − w (planar: 2 for
+    none, 1 for one), so the E_T strings inside T hold at least (h − 1)·E_T − bound(T) binary
+    links; the other strings at least their pairwise bounds ``lbs``. The condition holds where
+    stage B writes it: every joint of T on a string from a link of T (a bool per joint and set
+    of links, ``touched``).
+    """
+    if not conditions:
+        return  # (no slack or cost variables: free ones would only slow the search)
+    touched: dict = {}
+
+    def touches(J, TL):
+        if (J, TL) not in touched:
+            ends = [x[min(J, L), max(J, L)] for L in TL]
+            t = touched[J, TL] = model.NewBoolVar("")
+            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
+            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+        return touched[J, TL]
+
+    # need + rest = Σ_inside ((h − 1)·x − lb) − bound + Σ_all lb: with a cost variable per pair and
+    # the slack n2 − Σ_all lb − loops_lb, each condition holds only the pairs inside T
+    slack = model.NewIntVar(0, n2, "slack")
+    model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
+    cost = {}
+    for p, lb in lbs.items():
+        cost[p] = model.NewIntVar(0, (h - 1) * min(kinds[p[0]][1], kinds[p[1]][1]), f"c{p}")
+        model.Add(cost[p] == (h - 1) * x[p] - lb)
+    for TL, TJ, bound in conditions:
+        T = set(TL + TJ)
+        inside = [p for p in x if p[0] in T and p[1] in T]
+        model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf([touches(J, TL) for J in TJ])
+
+
+def _connected(m: int, edges) -> bool:
+    """Whether the multigraph on vertices 0 … m − 1 with ``edges`` is connected.
+
+    >>> _connected(3, [(0, 1), (1, 1), (1, 2)]), _connected(3, [(0, 1), (2, 2)])
+    (True, False)
+    """
+    root = list(range(m))
+
+    def find(u: int) -> int:
+        while root[u] != u:
+            root[u] = u = root[root[u]]
+        return u
+
+    parts = m
+    for u, v in edges:
+        a, b = find(u), find(v)
+        if a != b:
+            root[a] = b
+            parts -= 1
+    return parts == 1
+
+
+def _closed_core(edges) -> list[tuple[int, int]]:
+    """The edges of H's closed part: vertices of degree 1 (single-joint links and what only
+    they hold) pruned again and again; all of H for a closed chain.
+
+    >>> _closed_core([(0, 1), (0, 1), (0, 1), (1, 2), (2, 3)])
+    [(0, 1), (0, 1), (0, 1)]
+    """
+    edges = list(edges)
+    while True:
+        degree: dict[int, int] = {}
+        for u, v in edges:
+            degree[u] = degree.get(u, 0) + 1
+            degree[v] = degree.get(v, 0) + 1
+        kept = [(u, v) for u, v in edges if degree[u] > 1 and degree[v] > 1]
+        if len(kept) == len(edges):
+            return kept
+        edges = kept
+
+
+def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
+    """Fractionation (of the closed part) and planarity of the chain, decided on H."""
+    if conv.fractionated and not conv.planar_only:
+        return True  # without importing networkx (0.1 s of a small query's start-up)
+    import networkx as nx
+
+    if not conv.fractionated:
+        # H with a vertex on every edge (two on a loop) is a subdivision of the incidence graph
+        core = nx.Graph()
+        for k, (u, v) in enumerate(_closed_core(edges)):
+            core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
+                                else [(u, ("e", k)), (("e", k), v)])
+        if core.number_of_nodes() > 2 and not nx.is_biconnected(core):
+            return False
+    if conv.planar_only:
+        return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
+    return True
