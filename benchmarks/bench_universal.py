@@ -29,7 +29,7 @@ CASES_OPEN = [(3, 6, "0..3"), (3, 8, "0..3"), (3, 10, "0..3")]
 
 def _timed(dof: int, links: int, stats: dict, **query) -> tuple[float, int, int]:
     """One run of the query: seconds, chains, units."""
-    from synth.synthesis._realise import realise
+    from synth.synthesis.stage_b import realise
     from synth.synthesis.type_synthesis import plan_units
 
     t0 = time.perf_counter()

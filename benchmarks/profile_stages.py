@@ -58,7 +58,7 @@ def _timed(name, fn, stage: str | None = None):
 
 def instrument() -> None:
     """Wrap the engine's stage functions with timers (this process only)."""
-    from synth.synthesis import _cpsat, _realise, type_synthesis as ts
+    from synth.synthesis import _cpsat, stage_a, stage_b, type_synthesis as ts
     from synth.structure.chain import Chain
 
     ts.number_synthesis = _timed("number synthesis", ts.number_synthesis, "number synthesis")
@@ -68,9 +68,9 @@ def instrument() -> None:
     # stages A and B import the solver when they run: the timer wraps it where they find it
     # (number synthesis too, whose time is taken out of stage B's below)
     _cpsat.all_solutions = _timed("CP-SAT", _cpsat.all_solutions)
-    _realise._exact_test = _timed("sub-chain test", _realise._exact_test)
-    _realise._expand = _timed("Chain", _realise._expand)
-    _realise.Contracted.edge_group = _timed("automorphisms", _realise.Contracted.edge_group)
+    stage_b._exact_test = _timed("sub-chain test", stage_b._exact_test)
+    stage_b._expand = _timed("Chain", stage_b._expand)
+    stage_a.Contracted.edge_group = _timed("automorphisms", stage_a.Contracted.edge_group)
     cert = Chain.certificate.fget
     Chain.certificate = property(_timed("nauty", cert))
 

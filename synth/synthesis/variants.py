@@ -25,7 +25,7 @@ from ..errors import InvalidOption
 from ..structure.chain import Chain
 from ..structure.kinds import cycle_rank, motion
 from ..structure.subchains import check_subchains
-from ._realise import Conventions
+from .stage_a import Conventions
 
 __all__ = ["assignments", "prismatic_variants", "variants_of"]
 

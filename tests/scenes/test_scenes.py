@@ -352,13 +352,13 @@ def test_balancing_scene_imports_no_synth_solver():
 def test_codes_only_scene_builds_no_graph_model():
     mods = _modules_after("table1_universal.toml")
     assert "synth.synthesis.number_synthesis" in mods
-    assert not {"synth.synthesis._realise", "synth.synthesis.type_synthesis", "synth.structure.chain", "pynauty", "balance"} & mods
+    assert not {"synth.synthesis.stage_a", "synth.synthesis.stage_b", "synth.synthesis.type_synthesis", "synth.structure.chain", "pynauty", "balance"} & mods
 
 
 def test_analysis_scene_needs_no_solver():
     mods = _modules_after("task1_24_links.toml")
     assert "synth.analysis.codes" in mods
-    solvers = ("ortools", "pynauty", "synth.synthesis._cpsat", "synth.synthesis.number_synthesis", "synth.synthesis._realise", "synth.synthesis.type_synthesis")
+    solvers = ("ortools", "pynauty", "synth.synthesis._cpsat", "synth.synthesis.number_synthesis", "synth.synthesis.stage_a", "synth.synthesis.stage_b", "synth.synthesis.type_synthesis")
     assert not {m for m in mods if m.startswith((*solvers, "balance"))}
 
 

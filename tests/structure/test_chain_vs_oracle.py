@@ -284,7 +284,7 @@ def test_trusted_nauty_graphs_are_pynautys_checked_graphs(query):
     group, for chains (with marked links) and for their branch multigraphs."""
     import pynauty
 
-    from synth.synthesis._realise import Conventions, contracted_graphs
+    from synth.synthesis.stage_a import Conventions, contracted_graphs
     from synth.synthesis.type_synthesis import plan_codes
 
     def checked(g):

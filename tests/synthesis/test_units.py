@@ -66,15 +66,15 @@ def test_counting_a_unit_equals_its_distinct_chains(query, group_limit, lex_bits
     """count_realised counts stage B's vectors when they are one per orbit of Aut(H), else it
     compares certificates (forced here by a group limit of 1): either way it equals realise.  With
     the model's lex-leader cut to one edge the lex-least filter over the solutions keeps one per orbit."""
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_a, stage_b
 
-    monkeypatch.setattr(_realise, "_GROUP_LIMIT", group_limit)
-    monkeypatch.setattr(_realise, "_LEX_BITS", lex_bits)
-    monkeypatch.setattr(_realise, "_FEW_VECTORS", 0)  # every unit through the model
+    monkeypatch.setattr(stage_a, "_GROUP_LIMIT", group_limit)
+    monkeypatch.setattr(stage_b, "_LEX_BITS", lex_bits)
+    monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)  # every unit through the model
     units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
     args = [(u.code, u.contracted, u.conventions) for u in units]
-    assert [_realise.count_realised(*a) for a in args] == [len(_realise.realise(*a)) for a in args]
-    assert sum(len(_realise.realise(*a)) for a in args) > 0
+    assert [stage_b.count_realised(*a) for a in args] == [len(stage_b.realise(*a)) for a in args]
+    assert sum(len(stage_b.realise(*a)) for a in args) > 0
 
 
 SIMPLE_JOINT_QUERIES = [dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11, fractionated=False),
@@ -88,7 +88,7 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
     """With simple joints stage B's model writes the exact sub-chain test on the strings, so its
     solutions skip the test: each of them is a valid chain (the independent test on the chain), and
     they are exactly the valid ones of the direct listing, which writes no conditions."""
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_b
     from synth.structure.subchains import check_subchains
 
     units = [u for u in synth.plan_units(**query, workers=1) if u.contracted is not None]
@@ -96,17 +96,17 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
     checked_any = 0
     for u in units:
         args = (u.code, u.contracted, u.conventions)
-        monkeypatch.setattr(_realise, "_FEW_VECTORS", 0)
-        solutions, one_per_orbit, checked = _realise._distributions(*args, None)
+        monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)
+        solutions, one_per_orbit, checked = stage_b._distributions(*args, None)
         assert checked
         for s in solutions:
-            chain = _realise._expand(u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
+            chain = stage_b._expand(u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
             assert check_subchains(chain, rigid_subchains=u.conventions.rigid_subchains).ok, (u.key, s)
         if one_per_orbit and not u.conventions.cranks:
-            monkeypatch.setattr(_realise, "_FEW_VECTORS", 10**9)
-            listed, _, listed_checked = _realise._distributions(*args, None)
+            monkeypatch.setattr(stage_b, "_FEW_VECTORS", 10**9)
+            listed, _, listed_checked = stage_b._distributions(*args, None)
             assert not listed_checked
-            kept = _realise._passing(u.contracted, u.conventions, listed, None)
+            kept = stage_b._passing(u.contracted, u.conventions, listed, None)
             assert sorted(kept) == sorted(solutions), u.key
             checked_any += 1
     assert checked_any or query.get("cranks")  # a crank requirement has no direct listing
@@ -304,10 +304,10 @@ def test_stage_b_model_and_direct_listing_agree(query, monkeypatch):
     exact test; a large unit gets a CP-SAT model whose conditions *are* the rule for simple joints
     (no exact test after it).  Forced through the model, every unit gives the same chains, and
     the same count; the model's candidates are never more than the listing's."""
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_b
 
     listed, listed_stats = _chains_and_stats(query)
-    monkeypatch.setattr(_realise, "_FEW_VECTORS", 0)
+    monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)
     modelled, modelled_stats = _chains_and_stats(query)
     assert modelled == listed and listed
     assert synth.count_chains(**query, workers=1)["count"] == len(listed)
@@ -319,7 +319,7 @@ def _chains_and_stats(query):
     the same (its candidates) as listing it."""
     from time import perf_counter
 
-    from synth.synthesis._realise import count_realised
+    from synth.synthesis.stage_b import count_realised
 
     stats: dict = {}
     chains = []
@@ -351,17 +351,17 @@ def test_stage_a_conditions_in_the_model_or_on_its_solutions_agree(query, monkey
     check is no formality: without it (and without the model's conditions) there are more."""
     import numpy as np
 
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_a
 
     def graphs():
         return sorted((str(u.code), u.contracted.certificate) for u in synth.plan_units(**query, workers=1)
                       if u.contracted is not None)
 
     in_model = graphs()
-    monkeypatch.setattr(_realise, "_split_conditions", lambda conditions, kinds: ([], list(conditions)))
-    monkeypatch.setattr(_realise, "_CONDITION_BLOCK", 5)
+    monkeypatch.setattr(stage_a, "_split_conditions", lambda conditions, kinds: ([], list(conditions)))
+    monkeypatch.setattr(stage_a, "_CONDITION_BLOCK", 5)
     assert graphs() == in_model and in_model
-    monkeypatch.setattr(_realise._StringBounds, "meet", lambda self, X, Y, conditions: np.ones(len(X), dtype=bool))
+    monkeypatch.setattr(stage_a._StringBounds, "meet", lambda self, X, Y, conditions: np.ones(len(X), dtype=bool))
     assert len(graphs()) > len(in_model)
 
 
@@ -371,7 +371,7 @@ def test_edge_group_of_parallel_strings(edges):
     swap of the two links maps each string to itself).  Up to 4096 the whole group is listed; beyond
     (15! ≈ 1.3e12, which nauty reports as 1.3·10^12 with a mantissa and an exponent) only generators
     and their inverses, each a permutation of the strings."""
-    from synth.synthesis._realise import Contracted
+    from synth.synthesis.stage_a import Contracted
 
     group, whole = Contracted((("L", edges), ("L", edges)), ((0, 1),) * edges, "").edge_group()
     assert all(sorted(g) == list(range(edges)) and g != tuple(range(edges)) for g in group)
@@ -390,12 +390,12 @@ def _stage_a_by_enumeration(code, conv):
     import numpy as np
     import pynauty
 
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_a
 
-    kinds = _realise._branch_kinds(code)
+    kinds = stage_a._branch_kinds(code)
     m, deg = len(kinds), [k[1] for k in kinds]
     pairs = list(itertools.combinations(range(m), 2))
-    bounds = _realise._StringBounds(kinds, pairs, code, conv)
+    bounds = stage_a._StringBounds(kinds, pairs, code, conv)
     loops_max = [d // 2 if conv.fractionated or code.n1 else 0 for d in deg]
     rows = []
 
@@ -419,13 +419,13 @@ def _stage_a_by_enumeration(code, conv):
     sol = np.array(rows, dtype=np.int64)
     X, Y = sol[:, :len(pairs)], sol[:, len(pairs):]
     binary = np.maximum(0, X * bounds.slope + bounds.offset).sum(axis=1) + Y @ bounds.loop
-    ok = (binary <= code.count(2)) & bounds.meet(X, Y, _realise._subset_conditions(kinds, code.dof(conv.h), conv))
+    ok = (binary <= code.count(2)) & bounds.meet(X, Y, stage_a._subset_conditions(kinds, code.dof(conv.h), conv))
     found = set()
     for row in sol[ok]:
         edges = [p for p, k in zip(pairs, row) for _ in range(int(k))]
         edges += [(u, u) for u, k in enumerate(row[len(pairs):]) for _ in range(int(k))]
-        if _realise._connected(m, edges) and _realise._keep_multigraph(m, edges, conv):
-            graph = _realise.Contracted(kinds, tuple(sorted(edges)), "")._subdivided()
+        if stage_a._connected(m, edges) and stage_a._keep_multigraph(m, edges, conv):
+            graph = stage_a.Contracted(kinds, tuple(sorted(edges)), "")._subdivided()
             found.add(pynauty.certificate(graph).hex())
     return sorted(found)
 
@@ -441,14 +441,14 @@ def test_stage_a_against_an_enumeration_of_labelled_multigraphs(query):
     """Stage A's branch graphs H, code by code, are the classes of an exhaustive enumeration of
     labelled multigraphs (codes of up to 7 branch vertices): CP-SAT's search and the lexicographic
     row constraints that cut its symmetric solutions lose no class and keep each once."""
-    from synth.synthesis import _realise
+    from synth.synthesis import stage_a
     from synth.synthesis.type_synthesis import plan_jobs
 
     compared = 0
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
-        if len(_realise._branch_kinds(code)) > 7:
+        if len(stage_a._branch_kinds(code)) > 7:
             continue
-        engine = [h.certificate for h in _realise.contracted_graphs(code, conv)]
+        engine = [h.certificate for h in stage_a.contracted_graphs(code, conv)]
         assert engine == _stage_a_by_enumeration(code, conv), code
         compared += len(engine)
     assert compared > 0

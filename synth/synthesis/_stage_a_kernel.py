@@ -1,0 +1,249 @@
+"""Stage A's compiled kernel: the labelled branch multigraphs H of one code with simple joints,
+enumerated depth first pair by pair (numba), in batches.
+
+The variables are those of stage A's CP-SAT model (synth/synthesis/stage_a.py): the number
+x_uv of strings between each pair of branch vertices, row by row, and the loops y_u, which the
+degree equation fixes once row u is complete.  The search keeps the model's conditions:
+
+* degrees, the loops a vertex may carry, and the binary links the strings need (pairwise least
+  weights and loops: at most n2);
+* the sb*ℓ rows of same-kind vertices in lexicographic order (Codish et al.), checked on every
+  prefix of columns known for both rows, and whole when the later row is complete;
+* the sub-chain conditions of stage B written on H: for simple joints they say that the
+  multigraph holding ``cost_p`` units on each pair p of inner links is (h, h + threshold − slack)-
+  sparse, where cost_p = (h − 1)·x_p − lb_p and slack = n2 − Σ lb (docs/theory.md).  While the
+  search runs the slack can only shrink, so a (k, l)-pebble game with the current upper bound of
+  the slack rejects only what the final rule rejects (a pebble-game rejection exhibits a set T
+  over its bound); a complete multigraph is then checked exactly by a fresh game.  Where the final
+  l is negative the game does not apply, and the row is marked for the caller's exact check;
+* connectivity (union–find) on each complete multigraph.
+
+What is left to the caller: the isomorphism classes (nauty), fractionation and planarity.
+:func:`multigraphs` returns after each batch of ``len(out)`` multigraphs with its state in
+``state``, so a long enumeration is resumed batch by batch (bounded memory, Ctrl-C between
+batches).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._stage_b_kernel import _accept, _take_back
+
+__all__ = ["multigraphs", "new_state"]
+
+# state slots (int64): depth, started, then per-depth arrays laid out by new_state
+_DEPTH, _STARTED, _FIXED = 0, 1, 2
+
+
+def new_state(pairs: int, vertices: int) -> np.ndarray:
+    """A fresh search state for :func:`multigraphs`."""
+    return np.zeros(_FIXED + 5 * pairs + 3 * vertices + vertices * vertices + 1, dtype=np.int64)
+
+
+@njit(cache=True)
+def _sparse(M, inner, pu, pv, x, cost_of, k, l, pebbles, arcs, seen, parent, stack):
+    """Whether the cost units of x on the pairs of inner vertices are (k, l)-sparse (a fresh game)."""
+    for i in range(M):
+        pebbles[i] = k
+        for j in range(M):
+            arcs[i, j] = 0
+    for p in range(len(pu)):
+        a, b = inner[pu[p]], inner[pv[p]]
+        if a < 0 or b < 0:
+            continue
+        for _ in range(cost_of[p, x[p]]):
+            if not _accept(a, b, l, pebbles, arcs, seen, parent, stack):
+                return False
+    return True
+
+
+@njit(cache=True)
+def _connected(m, pu, pv, x, root):
+    for i in range(m):
+        root[i] = i
+    parts = m
+    for p in range(len(pu)):
+        if x[p] > 0:
+            a = pu[p]
+            while root[a] != a:
+                a = root[a]
+            b = pv[p]
+            while root[b] != b:
+                b = root[b]
+            if a != b:
+                root[a] = b
+                parts -= 1
+    return parts == 1
+
+
+@njit(cache=True)
+def _rows_ordered(A, u, w, last):
+    """sb*ℓ: row u ≤ row w lexicographically (column w left out, the loops at column u), on the
+    columns 0 … last; False only where row u is already greater."""
+    for k in range(last + 1):
+        if k == w:
+            continue
+        a = A[u, u] if k == u else A[u, k]
+        b = A[w, w] if k == u else A[w, k]
+        if a != b:
+            return a < b
+    return True
+
+
+@njit(cache=True)
+def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, state,
+                out_x, out_y, out_flag):
+    """Fill ``out_x``/``out_y`` with the next labelled multigraphs (pair multiplicities, loops) and
+    ``out_flag`` with 1 where the caller must check the sub-chain conditions itself; returns how
+    many were written (fewer than ``len(out_x)``: the enumeration is complete).
+
+    ``lb_of[p, x]``/``cost_of[p, x]``: least binary links and sub-chain cost of x strings on pair p;
+    ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of same-kind
+    vertices (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
+    ``check``: whether the sub-chain conditions apply (as pebble games).
+    """
+    P = len(pu)
+    M = 0
+    for u in range(m):
+        if inner[u] >= 0:
+            M += 1
+    # the state: depth, started, x[P], top[P], added lb[P], units[P], loops lb[P] (added at depth), rem[m],
+    # y[m], arcs (M × M, inner vertices), pebbles
+    o = _FIXED
+    x = state[o:o + P]
+    top = state[o + P:o + 2 * P]
+    added = state[o + 2 * P:o + 3 * P]
+    units = state[o + 3 * P:o + 4 * P]
+    loops_added = state[o + 4 * P:o + 5 * P]
+    rem = state[o + 5 * P:o + 5 * P + m]
+    y = state[o + 5 * P + m:o + 5 * P + 2 * m]
+    arcs = state[o + 5 * P + 2 * m:o + 5 * P + 2 * m + m * m].reshape(m, m)
+    pebbles = state[o + 5 * P + 2 * m + m * m:o + 5 * P + 2 * m + m * m + m]
+    used = state[o + 5 * P + 2 * m + m * m + m:o + 5 * P + 2 * m + m * m + m + 1]  # binary links so far
+    A = np.zeros((m, m), dtype=np.int64)
+    seen = np.zeros(m, dtype=np.bool_)
+    parent = np.zeros(m, dtype=np.int64)
+    stack = np.zeros(m, dtype=np.int64)
+    root = np.zeros(m, dtype=np.int64)
+    fresh_pebbles = np.zeros(m, dtype=np.int64)
+    fresh_arcs = np.zeros((m, m), dtype=np.int64)
+    written = 0
+    if state[_STARTED] == 0:
+        state[_STARTED] = 1
+        for u in range(m):
+            rem[u] = deg[u]
+            pebbles[u] = k
+        used[0] = 0
+        state[_DEPTH] = 0
+        if P == 0:
+            return 0
+        x[0] = -1
+        top[0] = min(rem[pu[0]], rem[pv[0]])
+    depth = state[_DEPTH]
+    # rebuild the adjacency of the current prefix
+    for p in range(P):
+        if p < depth or (p == depth and x[p] >= 0):
+            A[pu[p], pv[p]] = x[p]
+            A[pv[p], pu[p]] = x[p]
+    for u in range(m):
+        A[u, u] = y[u]
+    while depth >= 0:
+        p = depth
+        u, v = pu[p], pv[p]
+        a, b = inner[u], inner[v]
+        if x[p] >= 0:  # take pair p back (and the rows it completed)
+            for _ in range(units[p]):
+                _take_back(a, b, pebbles, arcs)
+            units[p] = 0
+            rem[u] += x[p]
+            rem[v] += x[p]
+            used[0] -= added[p] + loops_added[p]
+            added[p] = 0
+            loops_added[p] = 0
+            A[u, v] = 0
+            A[v, u] = 0
+        x[p] += 1
+        if x[p] > top[p]:
+            x[p] = -1
+            depth -= 1
+            continue
+        xp = x[p]
+        lb = lb_of[p, xp]
+        rem[u] -= xp
+        rem[v] -= xp
+        used[0] += lb
+        added[p] = lb
+        A[u, v] = xp
+        A[v, u] = xp
+        if used[0] > n2:
+            top[p] = xp  # more strings need more binary links
+            continue
+        ok = True
+        # row u must still be completable: its last pairs and its loops take what is left
+        if v < m - 1:
+            room = 2 * loops_most[u]
+            for w in range(v + 1, m):
+                room += rem[w]
+            if rem[u] > room:
+                ok = False
+        if ok and check and a >= 0 and b >= 0:
+            l = l0 - (n2 - used[0])
+            if l >= 0:
+                for _ in range(cost_of[p, xp]):
+                    if not _accept(a, b, l, pebbles, arcs, seen, parent, stack):
+                        ok = False
+                        break
+                    units[p] += 1
+        if ok and v == m - 1:  # row u is complete (and row m − 1 with the last pair)
+            looped = 0
+            for r in range(u, m if u == m - 2 else u + 1):
+                if rem[r] % 2 != 0 or rem[r] // 2 > loops_most[r]:
+                    ok = False
+                    break
+                y[r] = rem[r] // 2
+                A[r, r] = y[r]
+                looped += y[r] * loop_lb[r]
+            if ok:
+                used[0] += looped
+                loops_added[p] = looped
+                if used[0] > n2:
+                    ok = False
+            if ok:
+                done = m - 1 if u == m - 2 else u  # rows 0 … done are complete
+                for s in range(len(same)):
+                    r1, r2 = same[s, 0], same[s, 1]
+                    if r2 <= done:
+                        if (r2 == u or r2 == done) and not _rows_ordered(A, r1, r2, m - 1):
+                            ok = False
+                            break
+                    elif not _rows_ordered(A, r1, r2, min(done, r1 - 1)):
+                        ok = False
+                        break
+        if not ok:
+            continue
+        if p == P - 1:  # a complete multigraph
+            if not _connected(m, pu, pv, x, root):
+                continue
+            flag = 0
+            if check:
+                l = l0 - (n2 - used[0])
+                if l < 0:
+                    flag = 1
+                elif not _sparse(m, inner, pu, pv, x, cost_of, k, l, fresh_pebbles, fresh_arcs, seen, parent,
+                                 stack):
+                    continue
+            out_x[written, :] = x
+            out_y[written, :] = y
+            out_flag[written] = flag
+            written += 1
+            if written == len(out_x):
+                state[_DEPTH] = depth
+                return written
+            continue
+        depth += 1
+        x[depth] = -1
+        top[depth] = min(rem[pu[depth]], rem[pv[depth]])
+    state[_DEPTH] = -1
+    return written

@@ -1,0 +1,416 @@
+"""Stage B of type synthesis: the chains of one branch multigraph H, placing the binary links.
+
+The n2 binary links are distributed on the strings (edges) of H, keeping the lex-least weight
+vector of each orbit of the automorphisms of H (from nauty), so no chain comes out twice where
+the whole group of H is listed.  Three ways find the placements, all under the same conditions:
+
+* the compiled kernel of :mod:`synth.synthesis._stage_b_kernel` for large queries (a pebble game:
+  exact for simple joints, a weaker rule with multiple joints, where the exact test decides);
+* where the placements are few, a direct listing (numpy) that the exact sub-chain test, batched
+  on H for every joint kind, filters;
+* otherwise a CP-SAT model with the exact sub-chain conditions of docs/theory.md written on the
+  strings (necessary conditions with multiple joints) and lex-leader constraints.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from itertools import combinations
+from math import comb
+from time import perf_counter
+
+from ..structure.chain import Chain
+from ..structure.code import Code
+from .stage_a import Contracted, Conventions, _inner_links, _loop_lb, uses_kernel
+
+__all__ = ["count_realised", "realise"]
+
+_LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
+# stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
+# planar 12 links count 0.44 -> 0.27 CPU s, 14 links 12.3 -> 11.4 s (PROFILE.md section 13)
+_FEW_VECTORS = 16384
+_LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms × edges) in that enumeration
+_KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
+
+
+def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
+    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
+    solutions, _, checked = _distributions(code, h, conv, stats)
+    return _distinct(h, conv, _passing(h, conv, solutions, stats, checked), stats)
+
+
+def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``len(realise(code, h, conv))``, without chains or certificates where they are not needed.
+
+    Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
+    one weight vector onto the other; when the whole group of H is listed, stage B keeps the
+    lex-least vector of each orbit, so the chains are the vectors that pass the sub-chain test
+    (docs/theory.md). Otherwise the chains are built and compared.
+
+    >>> from synth.synthesis.stage_a import contracted_graphs
+    >>> h = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
+    >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
+    (2, 2)
+    """
+    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
+        simple = all(kind[0] == "L" for kind in h.kinds)
+        if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
+            found, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=not simple)
+            if whole_group and simple:
+                return found
+            if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
+                t0 = perf_counter()
+                valid = int(_exact_test(h.kinds, h.edges, placements, conv).sum()) if found else 0
+                _add(stats, subchain_s=perf_counter() - t0)
+                return valid
+    solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
+    kept = _passing(h, conv, solutions, stats, checked)
+    return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))
+
+
+def _distinct(h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
+    """The chains of the passing vectors ``kept``, once each by certificate."""
+    t0 = perf_counter()
+    found: dict[str, Chain] = {}
+    for chain in (_expand(h.kinds, h.edges, s, conv.h) for s in kept):
+        found.setdefault(chain.certificate, chain)
+    _add(stats, nauty_s=perf_counter() - t0)
+    return [found[c] for c in sorted(found)]
+
+
+def _string_limits(h: Contracted, conv: Conventions) -> tuple[list[int], list[tuple[int, int]]]:
+    """Least binary links of each string of H, and the strings parallel to the one before them
+    with their own least weight: (string, least) pairs."""
+    kinds, edges = h.kinds, h.edges
+    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
+    # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
+    # (a direct joint or incidence at most once), and two one-link strings between two multiple
+    # joints (W = 2 − h) only where the convention allows it
+    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - conv.h < conv.threshold else 1)
+                for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
+    return lows, parallel
+
+
+def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string),
+    whether they are one per orbit of Aut(H) (lex-least under the whole group), and whether
+    they meet the sub-chain rule already (the model's conditions, exact for simple joints)."""
+    kinds, edges = h.kinds, h.edges
+    n2 = code.count(2)
+    space = conv.h
+    lows, parallel = _string_limits(h, conv)
+    spare = n2 - sum(lows)
+    if spare < 0:
+        return [], True, True
+    # simple joints: the model's conditions are the exact test, unless the whole chain is exempt
+    # (W below the threshold), where the model skips every set of all branch links
+    simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
+    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
+        _, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=True)
+        return [tuple(map(int, row)) for row in placements], whole_group, all(kind[0] == "L" for kind in kinds)
+    if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
+        return _few_distributions(lows, spare, parallel, h, stats)
+    from ._cpsat import Model, all_solutions, cp_model
+
+    model = Model()
+    w = [model.NewIntVar(lb, n2, f"w{k}") for k, lb in enumerate(lows)]
+    model.Add(sum(w) == n2)
+    for k, least in parallel:
+        model.Add(w[k] >= w[k - 1])
+        model.Add(w[k] >= least)
+    # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
+    # S = T_L + the binary links of every string inside T with w < h − 1 binary links has
+    # W(S) ≤ h(|T_L| − 1) + (h − 1)·|T_J| − Σ_{strings inside T} (h − 1 − w)⁺  (an empty string
+    # is a joint of two links of T or a link of T on a joint of T), with equality when every J
+    # of T_J is touched: exact for simple joints, necessary otherwise.  short[k][t] ⇔ w_k = t.
+    short: dict[int, dict[int, object]] = {}
+    for k, (u, v) in enumerate(edges):
+        if u == v:
+            continue
+        first = 1 if kinds[u][0] == kinds[v][0] == "J" else 0
+        short[k] = {t: model.NewBoolVar(f"s{k}_{t}") for t in range(first, space - 1)}
+        for t, flag in short[k].items():
+            model.Add(w[k] == t).OnlyEnforceIf(flag)
+        model.Add(w[k] >= space - 1).OnlyEnforceIf([flag.Not() for flag in short[k].values()])
+        if len(short[k]) > 1:
+            model.AddAtMostOne(short[k].values())
+    link_vertices = _inner_links(kinds)
+    n_links = sum(1 for kind in kinds if kind[0] == "L")
+    joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    dof = code.dof(space)
+    for size in range(1, len(link_vertices) + 1):
+        for TL in combinations(link_vertices, size):
+            for jsize in range(len(joint_vertices) + 1):
+                for TJ in combinations(joint_vertices, jsize):
+                    _subset_constraint(model, kinds, edges, short, set(TL), set(TJ), n_links, dof, conv)
+    # required sub-structure: a link with I joints carrying C cranks (invariant under Aut(H))
+    z = {k: flags[0] for k, flags in short.items() if 0 in flags}  # z[k] ⇔ string k is empty
+    for joints_on_link, count in conv.cranks:
+        chosen = []
+        for u in link_vertices:
+            if kinds[u][1] != joints_on_link:
+                continue
+            ends = [1 - z[k] if k in z else 1 for k, e in enumerate(edges) if u in e and e[0] != e[1]]
+            ends += [2 for e in edges if e == (u, u)]
+            sel = model.NewBoolVar(f"cranks{u}")
+            model.Add(sum(ends) >= count).OnlyEnforceIf(sel)
+            model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
+            chosen.append(sel)
+        if not chosen:
+            return [], True, True
+        model.AddBoolOr(chosen)
+    # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
+    base = n2 + 1
+    prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
+    group, whole_group = h.edge_group()
+    weights = [base ** (prefix - 1 - i) for i in range(prefix)]
+    lhs = cp_model.LinearExpr.WeightedSum(w[:prefix], weights)
+    for g in group:
+        model.Add(lhs <= cp_model.LinearExpr.WeightedSum([w[g[i]] for i in range(prefix)], weights))
+    t0 = perf_counter()
+    solutions = all_solutions(model, w)
+    if whole_group and prefix < len(edges) and group and solutions:
+        # the model's lex-leader covers a prefix of the edges only: keep the lex-least of each orbit
+        import numpy as np
+
+        solutions = [tuple(map(int, row)) for row in _lex_least(np.asarray(solutions, dtype=np.int64), group)]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group, simple
+
+
+def _kernel_applies(code: Code, h: Contracted, conv: Conventions) -> bool:
+    """Whether the kernel can find this unit's placements: no crank requirement, a (k, l) pebble
+    game (0 ≤ l = h + threshold), the set of all branch vertices not exempt, and loops never short
+    (their least weight at least h − 1).  With simple joints its conditions are stage B's; with
+    multiple joints they are weaker by one freedom (:mod:`synth.synthesis._stage_b_kernel`), so
+    there the exact test keeps the valid placements among the kernel's."""
+    loops = {h.kinds[u][0] for u, v in h.edges if u == v}
+    return (not conv.cranks and conv.h + conv.threshold >= 0 and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
+            and all(_loop_lb(kind, conv) >= conv.h - 1 for kind in loops))
+
+
+def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict | None,
+                       listing: bool) -> tuple[int, "np.ndarray", bool]:
+    """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
+    Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
+    and whether the group was whole."""
+    import numpy as np
+
+    from ._stage_b_kernel import place
+
+    t0 = perf_counter()
+    lows, parallel = _string_limits(h, conv)
+    links = set(_inner_links(h.kinds))
+    inner = {u: i for i, u in enumerate(u for u, kind in enumerate(h.kinds) if u in links or kind[0] == "J")}
+    M, E = len(inner), len(h.edges)
+    ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in h.edges],
+                    dtype=np.int64).reshape(E, 2)
+    least = np.array(lows, dtype=np.int64)
+    after = np.full(E, -1, dtype=np.int64)
+    for k, least_k in parallel:
+        after[k] = least_k
+    # with multiple joints a second game (J with h − 1 pebbles, l = h + min(threshold, 0)): the kernel's module
+    k = np.full(M, conv.h, dtype=np.int64)
+    C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
+    k2 = np.array([conv.h if h.kinds[u][0] == "L" else conv.h - 1 for u in inner], dtype=np.int64)
+    l2 = -1 if len(inner) == len(links) else conv.h + min(conv.threshold, 0)
+    short = ends[:, 0] >= 0
+    b0 = n2 - C * int(short.sum()) - int(least[~short].sum())
+    x_most = b0 + int(k.sum()) - l if M >= 2 else n2
+    vertex_need = -b0 - (int(k.sum()) - k - l) if M >= 3 else np.full(M, -n2 * conv.h, dtype=np.int64)
+    if l2 >= 0:  # the tighter of the two games' bounds
+        x_most = min(x_most, b0 + int(k2.sum()) - l2) if M >= 2 else x_most
+        vertex_need = np.maximum(vertex_need, -b0 - (int(k2.sum()) - k2 - l2)) if M >= 3 else vertex_need
+    group, whole_group = h.edge_group() if E > 1 else ([], True)
+    group = np.array(group, dtype=np.int64).reshape(len(group), E)
+    a_end, b_end = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+    out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
+    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
+    if listing and found > len(out):
+        out = np.zeros((found, E), dtype=np.int64)
+        place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
+    _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
+    return found, out[:found], whole_group
+
+
+def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
+                       stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B without a model, where the weight vectors are few: every way to put ``spare``
+    binary links on the edges above their least weights, kept where the parallel strings are
+    ordered and the vector is the lex-least of its images under Aut(H) (as the model's
+    constraints; the sub-chain conditions are left to the exact test)."""
+    import numpy as np
+
+    t0 = perf_counter()
+    w = _compositions(spare, len(lows)) + np.array(lows)
+    keep = np.ones(len(w), dtype=bool)
+    for k, least in parallel:
+        keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
+    w, whole_group = w[keep], True
+    if len(w) > 1:  # (the lex-least vector of an orbit has ordered parallel strings: one alone is its orbit's)
+        group, whole_group = h.edge_group()
+        w = _lex_least(w, group)
+    solutions = [tuple(map(int, row)) for row in w]
+    _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
+    return solutions, whole_group, False
+
+
+def _lex_least(w, group):
+    """The rows of ``w`` (weight vectors) that are lexicographically least among their images
+    under the edge permutations ``group`` (the image of w under g is w[g]).
+
+    >>> import numpy as np
+    >>> _lex_least(np.array([[0, 1], [1, 0], [1, 1]]), [(1, 0)]).tolist()
+    [[0, 1], [1, 1]]
+    """
+    import numpy as np
+
+    if not len(group):
+        return w
+    images = np.asarray(group, dtype=np.int64)
+    step = max(1, _LEX_BLOCK // max(1, len(w) * w.shape[1]))
+    for start in range(0, len(images), step):  # where w and an image first differ, w is smaller
+        if not len(w):
+            break
+        differ = w[:, images[start:start + step]] - w[:, None, :]  # vectors × automorphisms × edges
+        first = (differ != 0).argmax(axis=2)
+        w = w[(np.take_along_axis(differ, first[..., None], axis=2)[..., 0] >= 0).all(axis=1)]
+    return w
+
+
+@lru_cache(maxsize=64)
+def _compositions(total: int, parts: int):
+    """Every way to write ``total`` as an ordered sum of ``parts`` numbers ≥ 0 (stars and bars),
+    one per row, read-only: stage B asks for the same few shapes again and again (int16 and at
+    most 64 shapes kept: a shape has up to ``_FEW_VECTORS`` rows).
+
+    >>> _compositions(2, 2).tolist()
+    [[0, 2], [1, 1], [2, 0]]
+    """
+    import numpy as np
+
+    bars = list(combinations(range(total + parts - 1), parts - 1))
+    bars = np.array(bars, dtype=np.int64).reshape(len(bars), parts - 1)
+    ends = np.full((len(bars), 1), -1), np.full((len(bars), 1), total + parts - 1)
+    out = (np.diff(np.hstack([ends[0], bars, ends[1]]), axis=1) - 1).astype(np.int16)
+    out.flags.writeable = False
+    return out
+
+
+def _add(stats: dict | None, **values) -> None:
+    if stats is not None:
+        for key, value in values.items():
+            stats[key] = stats.get(key, 0) + value
+
+
+def _passing(h: Contracted, conv: Conventions, solutions, stats: dict | None,
+             checked: bool = False) -> list:
+    """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
+    model wrote the exact conditions)."""
+    t0 = perf_counter()
+    if checked or not solutions:
+        kept = list(solutions)
+    else:
+        kept = [s for s, ok in zip(solutions, _exact_test(h.kinds, h.edges, solutions, conv)) if ok]
+        if 2 - conv.h >= conv.threshold and any(kind[0] == "J" for kind in h.kinds):
+            # two joints on the same links are one joint; the rule refuses them (W = 2 − h per pair)
+            # except for h = 2 with rigid sub-chains allowed
+            kept = [s for s in kept for c in [_expand(h.kinds, h.edges, s, conv.h)]
+                    if len(set(c.joints)) == len(c.joints)]
+    _add(stats, subchain_s=perf_counter() - t0)
+    return kept
+
+
+def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
+    """Add W(S_T) ≥ threshold for the set T = TL ∪ TJ of branch vertices (see realise)."""
+    h = conv.h
+    T = TL | TJ
+    inside = [k for k, (u, v) in enumerate(edges) if u != v and u in T and v in T]
+    on_joint = {J: [k for k in inside if J in edges[k] and "L" in (kinds[edges[k][0]][0], kinds[edges[k][1]][0])]
+                for J in TJ}
+    if any(not ks for ks in on_joint.values()):
+        return  # a joint no link of T touches directly: a smaller T gives a stronger condition
+    if len(TL) == n_links and dof < conv.threshold:
+        return  # S may be the whole chain, which is exempt
+    if not any(short[k] for k in inside) and not TJ:
+        return
+    bound = h * (len(TL) - 1) + (h - 1) * len(TJ) - conv.threshold
+    most = sum(h - 1 - min(short[k], default=h - 1) for k in inside)
+    if most <= bound:
+        return  # cannot be violated
+    expr = sum((h - 1 - t) * flag for k in inside for t, flag in short[k].items())
+    if len(TL) >= 2:
+        model.Add(expr <= bound)
+    else:  # one link: S has two links or more only when a string with binary links is taken
+        takes = [flag for k in inside for t, flag in short[k].items() if t >= 1]
+        if not takes:
+            return  # (no variable is made: a free one would repeat every solution)
+        some = model.NewBoolVar("")
+        model.AddMaxEquality(some, takes)
+        model.Add(expr <= bound + conv.threshold - conv.threshold * some)
+
+
+def _exact_test(kinds, edges, solutions, conv: Conventions):
+    """Exact sub-chain test of the chains of H with the weight vectors ``solutions``, all at once:
+    a bool per vector (:func:`synth.structure.subchains.least_mobilities` over the sets of H's vertices).
+
+    A multiple joint J counts as a vertex of its own with h − 1 freedoms, joined to each of its
+    links by a simple joint: W(S) is then the same for every S that takes J with its links, and
+    larger where J is taken without them, so the least W over the vertex sets is the least
+    over the sub-chains (docs/theory.md).  Every string is then a path of w binary links between
+    two vertices, as with simple joints.  Single-joint links never lower W (a string to one adds
+    w + 1 links and w + 1 joints): they are left out, their strings are paths with a free end.
+    """
+    import numpy as np
+
+    from ..structure.subchains import least_mobilities
+
+    inner = set(_inner_links(kinds))
+    vertices = [u for u, kind in enumerate(kinds) if u in inner or kind[0] == "J"]
+    index = {u: i for i, u in enumerate(vertices)}
+    sol = np.asarray(solutions, dtype=np.int64).reshape(len(solutions), len(edges))
+    ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
+                    dtype=np.int64).reshape(-1, 2)
+    lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
+    is_link = [kinds[u][0] == "L" for u in vertices]
+    return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
+
+
+@lru_cache(maxsize=256)
+def _string_ends(kinds, edges) -> tuple[int, tuple]:
+    """The number of branch links of H, and for each string the chain link at each end (its
+    number) or None where the end is a multiple joint; the same for every vector of a unit."""
+    link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
+    return len(link_id), tuple((link_id.get(u), link_id.get(v)) for u, v in edges)
+
+
+def _expand(kinds, edges, weights, space: int = 3) -> Chain:
+    """The chain of H with ``weights`` binary links on its strings (branch links numbered first).
+
+    >>> _expand((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
+    ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (4, 5))
+    """
+    nxt, ends = _string_ends(kinds, edges)
+    multiple: dict[int, list[int]] = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
+    joints: list[tuple[int, ...]] = []
+    for (u, v), (a, b), wk in zip(edges, ends, weights):
+        if wk:  # a string of binary links nxt … nxt + wk − 1
+            first, last = nxt, nxt + wk - 1
+            joints.extend(zip(range(first, last), range(first + 1, last + 1)))
+            if a is None:
+                multiple[u].append(first)
+            else:
+                joints.append((a, first))
+            if b is None:
+                multiple[v].append(last)
+            else:
+                joints.append((last, b))
+            nxt += wk
+        elif a is None:  # a link of H on a multiple joint of H
+            multiple[u].append(b)
+        elif b is None:
+            multiple[v].append(a)
+        else:
+            joints.append((a, b))
+    joints.extend(tuple(links) for links in multiple.values())
+    return Chain.trusted(nxt, joints, space)

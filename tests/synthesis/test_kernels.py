@@ -1,0 +1,133 @@
+"""The compiled kernels of stages A and B against the CP-SAT models they stand in for: stage A's
+branch multigraphs code by code, stage B's placements of the binary links unit by unit (and the
+direct listing checked by the exact sub-chain test on every subset).  Small queries do not load
+the kernels (a second per process), so these tests force them on every code."""
+
+from __future__ import annotations
+
+import pytest
+
+import synth
+from synth.synthesis import stage_a, stage_b
+
+# every kind of unit the kernel takes: h = 2…6, W = 0…3, both conventions, open chains (leaves),
+# loops, fractionated and non-fractionated, planar only, prismatic skeletons (slack: lower thresholds)
+QUERIES = [
+    dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11, fractionated=False), dict(dof=2, links=11),
+    dict(dof=3, links=10, n1=(0, 3)), dict(dof=1, links=9, h=2), dict(dof=2, links=8, h=2), dict(dof=1, links=11, h=4),
+    dict(dof=1, links=14, h=5), dict(dof=1, links=12, h=6), dict(dof=2, links=9, rigid_subchains=True),
+    dict(dof=3, links=10), dict(dof=4, links=9, n1=(1, 4)),
+    dict(dof=1, links=10, planar_only=True), dict(dof=2, links=9, h=4, rigid_subchains=True),
+    # multiple joints: the kernel's weaker rule, then the exact test
+    dict(dof=1, links=10, v=(1, 8)), dict(dof=0, links=9, v=(1, 4)), dict(dof=1, links=7, h=2, v=(1, 3)),
+    dict(dof=1, links=6, h=2, v=(1, 2), rigid_subchains=True), dict(dof=1, links=11, h=4, v=(1, 4)),
+    dict(dof=2, links=9, v=(1, 7)), dict(dof=3, links=8, v=(1, 4), n1=(0, 2)),
+]
+
+
+def _ids(query):
+    return ",".join(f"{k}={v}" for k, v in query.items())
+
+
+@pytest.fixture
+def kernel_everywhere(monkeypatch):
+    monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeypatch):
+    """Unit by unit, the kernel's placements are the CP-SAT model's (whose conditions are the exact
+    test for simple joints), one per orbit of Aut(H) the same way; and the listing's read of more
+    rows than its first pass holds (``_KERNEL_ROWS``) loses none."""
+    compared = 0
+    for u in synth.plan_units(**query, workers=1):
+        h = u.contracted
+        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
+            continue
+        args = (u.code, h, u.conventions)
+        monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
+        kernel, whole, checked = stage_b._distributions(*args, None)
+        simple = all(kind[0] == "L" for kind in h.kinds)
+        assert checked == simple  # multiple joints: a weaker rule, then the exact test
+        with monkeypatch.context() as model_only:
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model_only.setattr(stage_b, "_FEW_VECTORS", 0)
+            model, model_whole, model_checked = stage_b._distributions(*args, None)
+        assert whole == model_whole
+        if whole:  # the model's lex-leader and its filter keep the lex-least vector of each orbit, as the kernel
+            if simple:
+                assert sorted(kernel) == sorted(model), u.key
+            valid = stage_b._passing(h, u.conventions, kernel, None, checked)
+            assert sorted(valid) == sorted(stage_b._passing(h, u.conventions, model, None, model_checked)), u.key
+        assert stage_b.count_realised(*args) == len(stage_b.realise(*args)), u.key
+        compared += 1
+    assert compared
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel_everywhere):
+    """Every placement the kernel keeps is a chain that the independent test (every subset of links)
+    passes, and no valid placement of the direct listing is missing."""
+    from synth.structure.subchains import check_subchains
+
+    compared = 0
+    for u in synth.plan_units(**query, workers=1):
+        h = u.contracted
+        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
+            continue
+        conv = u.conventions
+        kernel, whole, checked = stage_b._distributions(u.code, h, conv, None)
+        kernel = stage_b._passing(h, conv, kernel, None, checked)
+        for s in kernel:
+            chain = stage_b._expand(h.kinds, h.edges, s, conv.h)
+            report = check_subchains(chain, rigid_subchains=conv.rigid_subchains)
+            assert report.worst_mobility >= conv.threshold, (u.key, s)
+        lows, parallel = stage_b._string_limits(h, conv)
+        spare = u.code.count(2) - sum(lows)
+        if whole and spare >= 0 and len(h.edges) <= 14:
+            listed = stage_b._few_distributions(lows, spare, parallel, h, None)[0]
+            valid = stage_b._passing(h, conv, listed, None)
+            assert sorted(valid) == sorted(kernel), u.key
+            compared += 1
+    assert compared
+
+
+# (W = 0 with the non-degenerate rule: the whole chain is exempt, a unit the kernel does not take)
+@pytest.mark.parametrize("query", QUERIES + [dict(dof=1, links=6, prismatic="0.."), dict(dof=1, links=8, prismatic="0..2", cylinders="swinging=2"),
+                                             dict(dof=0, links=9, rigid_subchains=False), dict(dof=1, links=8, v=(0, 3))],
+                         ids=_ids)
+def test_counts_and_listings_by_code_are_the_same_with_the_kernel(query, monkeypatch):
+    """Counts by code with and without the kernel, and the listing with it, agree."""
+    without = synth.count_chains(**query, workers=1)["by_code"]
+    monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
+    assert synth.count_chains(**query, workers=1)["by_code"] == without and without
+    listed: dict = {}
+    for chain in synth.type_synthesis(**query, workers=1):
+        key = str(chain.code) + chain.kind_suffix
+        listed[key] = listed.get(key, 0) + 1
+    assert listed == without
+
+
+STAGE_A_QUERIES = [q for q in QUERIES if not q.get("v")] + [dict(dof=1, links=14), dict(dof=1, links=10, h=2), dict(dof=0, links=11),
+                             dict(dof=1, links=12, planar_only=True), dict(dof=1, links=8, prismatic="0.."),
+                             dict(dof=2, links=9, fractionated=False, n1=(0, 2))]
+
+
+@pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=_ids)
+def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywhere, monkeypatch):
+    """Code by code (simple joints: multiple joints keep the model), the kernel's branch multigraphs (pebble games for the sub-chain conditions,
+    batches of 3 to exercise the resumed search) are the CP-SAT model's, in the same order and with the same labelling (chains drawn from them are numbered alike)."""
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 3)
+    compared = 0
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
+        if not stage_a._stage_a_kernel_applies(code, conv):
+            continue
+        kernel = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
+        with monkeypatch.context() as model_only:
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
+        assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
+        compared += len(model)
+    assert compared
