@@ -68,10 +68,10 @@ def _compute_only(path: Path, repeat: int = 3) -> tuple[dict, dict]:
     (the reference for the grid's speed-up; the pool and the atlas cannot do better than this)."""
     import multiprocessing
 
-    from synth.atlas.runs import _Task, compute_unit
+    from synth.atlas.runs import UnitTask, compute_unit
 
     grid = load_grid(path)
-    tasks = [_Task(cell.key, u, grid.input_link) for cell in grid.cells for u in cell.plan()]
+    tasks = [UnitTask(cell.key, u, grid.input_link) for cell in grid.cells for u in cell.plan()]
     best = {1: float("inf"), 2: float("inf")}
     for _ in range(repeat):
         start = time.perf_counter()

@@ -76,7 +76,7 @@ def _plans(all_codes, conv, drawn, cache: str | None):
     """Stage A of the drawn codes: {index: (units, CPU s)}, read from / written to ``cache``."""
     import pickle
 
-    from synth.synthesis.type_synthesis import _stage_a
+    from synth.synthesis.type_synthesis import job_units
 
     stored = {}
     if cache and Path(cache).exists():
@@ -85,7 +85,7 @@ def _plans(all_codes, conv, drawn, cache: str | None):
     for i in drawn:
         key = str(all_codes[i])
         if key not in stored:
-            stored[key] = _cpu(_stage_a, (all_codes[i], conv))
+            stored[key] = _cpu(job_units, (all_codes[i], conv))
             if cache:
                 Path(cache).write_bytes(pickle.dumps(stored))
         out[i] = stored[key]

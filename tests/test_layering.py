@@ -1,6 +1,6 @@
 """The layers of the house: the engines (synth, balance) never import each other nor the
-application (mechsynth); the application imports only the engines' public names (no module or
-name that starts with an underscore); inside synth no two modules import each other at load time
+application (mechsynth); the application and the benchmarks import only the engines' public
+names (no module or name that starts with an underscore; the stage profiler excepted); inside synth no two modules import each other at load time
 (a cycle would make the order of imports matter); and ``import synth`` loads nothing but its errors
 (and the lazy loader).
 
@@ -51,8 +51,14 @@ def test_engines_never_import_each_other_nor_the_application():
             assert module.split(".")[0] not in ("synth", "mechsynth"), (f, module)
 
 
-def test_the_application_uses_public_names_only():
-    for f in _files("mechsynth"):
+#: the stage profiler wraps the engine's internal stages with timers: reaching inside is its job
+_PROFILERS = {"profile_stages.py"}
+
+
+def test_the_application_and_the_benchmarks_use_public_names_only():
+    """A benchmark measures what a user can call; only the stage profiler reaches inside."""
+    files = _files("mechsynth") + [f for f in _files("benchmarks") if f.name not in _PROFILERS]
+    for f in files:
         for module, name in _imports(f):
             if module.split(".")[0] in ("synth", "balance"):
                 private = [p for p in module.split(".") + [name] if p.startswith("_")]

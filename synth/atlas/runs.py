@@ -45,19 +45,23 @@ from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_p
 from .database import _acquire, _release, _writable, open_atlas
 from .grid import Cell, Grid
 
-__all__ = ["GridRunResult", "SchedulerUnreachable", "compute_unit", "run_grid", "size_grid"]
+__all__ = ["GridRunResult", "SchedulerUnreachable", "UnitTask", "UnitRows", "compute_unit", "run_grid", "size_grid"]
 
 
 # ------------------------------------------------------------------- worker
 @dataclass(frozen=True)
-class _Task:
+class UnitTask:
+    """One unit of a grid cell as a worker receives it (``input_link``: store input-link mechanisms too)."""
+
     cell: str
     unit: Unit
     input_link: bool
 
 
 @dataclass
-class _Result:
+class UnitRows:
+    """The atlas rows one unit produced: chains, link counts and mechanisms, and its seconds."""
+
     cell: str
     unit: str
     chains: list[tuple]
@@ -75,7 +79,7 @@ def _canonical(chain: Chain) -> Chain:
     return chain.relabel(permutation)
 
 
-def compute_unit(task: _Task) -> _Result:
+def compute_unit(task: UnitTask) -> UnitRows:
     """Run one unit and turn its chains and mechanisms into atlas rows (runs on a worker)."""
     start = time.perf_counter()
     chains, counts, mechs = [], [], []
@@ -100,10 +104,10 @@ def compute_unit(task: _Task) -> _Result:
         if task.input_link:
             mechanisms += mechanisms_of(chain, input_link=True)
         mechs += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
-    return _Result(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
+    return UnitRows(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
 
 
-def _commit(conn: sqlite3.Connection, result: _Result, run: int) -> int:
+def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
     """Store one finished unit in one transaction; returns the number of new chains."""
     conn.execute("BEGIN IMMEDIATE")
     try:
@@ -184,7 +188,7 @@ def _local_pool(workers: int):
     return process_pool(workers) if workers > 1 else None
 
 
-def _local(tasks: list[_Task], pool) -> Iterator[_Result]:
+def _local(tasks: list[UnitTask], pool) -> Iterator[UnitRows]:
     if pool is None or len(tasks) <= 1:
         for task in tasks:
             yield compute_unit(task)
@@ -192,7 +196,7 @@ def _local(tasks: list[_Task], pool) -> Iterator[_Result]:
     yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
 
 
-def _dask(tasks: list[_Task], client) -> Iterator[_Result]:
+def _dask(tasks: list[UnitTask], client) -> Iterator[UnitRows]:
     from distributed import as_completed
 
     futures = client.map(compute_unit, tasks, pure=False) if tasks else []
@@ -281,7 +285,7 @@ def run_grid(
         try:
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
-            tasks = [_Task(cell.key, u, grid.input_link) for cell, units in plans
+            tasks = [UnitTask(cell.key, u, grid.input_link) for cell, units in plans
                      for u in units
                      if (cell.key, u.key) not in done]
             result.units_total = sum(len(units) for _, units in plans)

@@ -42,7 +42,7 @@ from .stage_b import count_realised, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
-           "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code"]
+           "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units"]
 
 
 # Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
@@ -150,8 +150,13 @@ def plan_codes(query: ChainQuery | int | None = None, links: int | None = None, 
                             require=require, h=h, n1=(n1[0], n1_hi), max_multiplicity=max_multiplicity)
 
 
-def _stage_a(args) -> list[Unit]:
-    code, conv = args
+def job_units(job: tuple[Code, Conventions]) -> list[Unit]:
+    """Stage A of one job of :func:`plan_jobs`: its units, one per branch multigraph.
+
+    >>> [len(job_units(job)) for job in plan_jobs(ChainQuery(1, 8))]
+    [2, 1, 1]
+    """
+    code, conv = job
     if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
         return [Unit(code, None, conv)]
     return [Unit(code, h, conv) for h in contracted_graphs(code, conv)]
@@ -225,7 +230,7 @@ def plan_many(queries, *, pool=None, skip_impossible: bool = False) -> list[list
         jobs += found
         owners += [index] * len(found)
     plans: list[list[Unit]] = [[] for _ in queries]
-    batches = pool.imap(_stage_a, jobs) if pool is not None else map(_stage_a, jobs)
+    batches = pool.imap(job_units, jobs) if pool is not None else map(job_units, jobs)
     for owner, batch in zip(owners, batches):
         plans[owner].extend(batch)
     return plans
@@ -318,7 +323,7 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in jobs), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in jobs):
             load_kernel()  # once, here: the workers forked later inherit it
-        for event in run_plan(jobs, _stage_a, work, workers=workers, client=client,
+        for event in run_plan(jobs, job_units, work, workers=workers, client=client,
                               skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
             if bar is not None:
                 if event[1] is None:
