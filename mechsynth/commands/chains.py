@@ -240,8 +240,8 @@ def _indexed(rows):
 
 
 def _row(item, fmt: str, idle: bool) -> dict:
-    """The JSON row of a chain or mechanism; in a table the joint list as ``analyze`` reads it
-    (``0=1`` a prismatic pair) and a short certificate."""
+    """The JSON row of a chain or mechanism; in a table or CSV the joint list as ``analyze`` reads it
+    (``0=1`` a prismatic pair), in a table a short certificate."""
     from synth import chain_id
 
     row = item.to_dict()
@@ -258,8 +258,9 @@ def _row(item, fmt: str, idle: bool) -> dict:
         from synth import idle_joints
 
         row["idle_joints"] = [list(j) for j in idle_joints(chain)]
-    if fmt == "table":
+    if fmt in ("table", "csv"):  # the joint list as analyze and chains --chain read it back, kinds included
         row["joints"] = chain.compact()
+    if fmt == "table":
         row["certificate"] = "…" + row["certificate"][-16:]
         if "idle_joints" in row:
             row["idle_joints"] = " ".join("-".join(map(str, j)) for j in row["idle_joints"]) or "none"
