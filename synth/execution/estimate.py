@@ -8,14 +8,16 @@ seconds have been spent (never at n itself, and never a size predicted to end la
 one and a half budgets).  From the last three sizes with chains,
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
-Time is the largest calibration size's measured seconds per chain times the chains.
+Time is the largest calibration size's measured seconds per chain times the chains; the
+calibrations run on the path the query will take (the compiled searches of stages A and B when
+the query is large enough for them, however small the calibration sizes are).
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
 −2.5 % at 14 links, −5.0 % at 16 and −6.7 % at 18 against the published counts (318 162,
-19 819 281, 1 535 380 884).  The time per chain falls as n grows (on one core: ≈ 120 µs at
-12 links, ≈ 110 µs at 14 and 16), so the time estimate is an upper bound of the right order,
-not a prediction: it assumes the workers scale perfectly and no faster per-chain rate.
+19 819 281, 1 535 380 884).  The time per chain falls as n grows (a unit's fixed costs spread
+over more chains: on the compiled path ≈ 26 µs at 12 links, 7 at 14, 2.6 at 16), so the time
+estimate is an upper bound, not a prediction (benchmarks/PROFILE.md measures its error).
 
 Example
 -------
@@ -29,7 +31,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 
@@ -92,12 +94,19 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
     Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
     from ..synthesis import type_synthesis as ts
+    from ..synthesis.stage_a import kernel_loops, load_kernel
 
+    conv = ts._conventions(query)
+    multiple = query.v is not None and (query.v[1] is None or query.v[1] > 0)
+    # the calibrations run on the path the query will take: compiled searches for a large query
+    compiled = query.loops >= kernel_loops(conv, multiple)
+    if compiled:
+        load_kernel()  # before the clock, as the query loads it before its workers start
     unit_work = {"count": ts.count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
                  "mechanisms with input": ts._MechanismCount(True)}[work]
     links = query.links
     step = query.h - 1
-    same = repr(query.to_dict() | {"links": None}), work  # the calibrations several grid cells share
+    same = repr(query.to_dict() | {"links": None}), work, compiled  # the calibrations several grid cells share
     start = time.perf_counter()
     points = []  # (links, chains, units, seconds)
     for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
@@ -112,6 +121,8 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
                 jobs = ts.plan_jobs(query.with_options(links=n))
             except ImpossibleParameters:
                 continue
+            if compiled:
+                jobs = [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
             chains = units = 0
             for _, unit, result in ts._map_units(unit_work, jobs, 1, False):
                 if unit is not None:

@@ -28,7 +28,7 @@ import pynauty
 from ..structure._nauty import TrustedGraph
 from ..structure.code import Code
 
-__all__ = ["Conventions", "Contracted", "contracted_graphs", "load_kernel", "uses_kernel"]
+__all__ = ["Conventions", "Contracted", "contracted_graphs", "load_kernel", "uses_kernel", "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
@@ -58,7 +58,9 @@ class Conventions:
     skeletons that ``slack`` wedge loops will raise: each sub-chain may lack up to ``slack``
     freedoms (its own wedge loops give them back), ``idle_joints`` keeps the assignments
     with joints that never move, and ``cylinders_only`` puts prismatic pairs between two binary
-    links only (where every one of them must be a cylinder).
+    links only (where every one of them must be a cylinder).  ``kernel_loops`` moves the size from
+    which the compiled searches run (None: the engine's own, by motion space; the size estimator
+    times small queries on the path the large one will take).
     """
 
     rigid_subchains: bool = False
@@ -70,6 +72,7 @@ class Conventions:
     prismatic: tuple[int, int | None] | None = None
     idle_joints: bool = False
     cylinders_only: bool = False
+    kernel_loops: int | None = None
 
     @property
     def threshold(self) -> int:
@@ -162,8 +165,17 @@ def uses_kernel(code: Code, conv: Conventions) -> bool:
     >>> uses_kernel(Code.parse("4.10.0/0"), Conventions()), uses_kernel(Code.parse("48/0"), Conventions())
     (True, False)
     """
-    least = _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])
-    return code.loops >= least - (1 if code.v else 0)  # (multiple joints: more placements per chain)
+    return code.loops >= kernel_loops(conv, multiple=bool(code.v))
+
+
+def kernel_loops(conv: Conventions, multiple: bool = False) -> int:
+    """The least number of loops K from which :func:`uses_kernel` says yes (one fewer with
+    multiple joints: more placements per chain).
+
+    >>> kernel_loops(Conventions()), kernel_loops(Conventions(h=2)), kernel_loops(Conventions(), multiple=True)
+    (6, 8, 5)
+    """
+    return (conv.kernel_loops or _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])) - (1 if multiple else 0)
 
 
 def load_kernel() -> None:
