@@ -93,11 +93,37 @@ class _PoolTask:
         return self._result.get()
 
 
+#: how often a wait on a Dask cluster asks whether it still has workers (a cluster without any
+#: never finishes a task: Dask waits for workers that may never come)
+LIVENESS_SECONDS = 30.0
+
+
+class _Liveness:
+    """Raises :class:`SchedulerUnreachable` when a cluster has had no worker at two checks in a row
+    (a nanny restarting a worker leaves it empty for a moment, not for a minute)."""
+
+    def __init__(self, client):
+        self.client, self.empty = client, 0
+
+    def __call__(self) -> None:
+        from .scheduler import SchedulerUnreachable
+
+        try:
+            workers = self.client.scheduler_info().get("workers", {})
+        except Exception as exc:  # the scheduler itself is gone
+            raise SchedulerUnreachable(f"the Dask scheduler stopped answering ({type(exc).__name__})") from None
+        self.empty = 0 if workers else self.empty + 1
+        if self.empty >= 2:
+            raise SchedulerUnreachable(f"the Dask cluster has had no workers for {2 * LIVENESS_SECONDS:.0f} s: "
+                                       "its units cannot run (start workers, or run without a scheduler)")
+
+
 class _DaskTask:
     """A task on a Dask cluster; puts itself on ``done`` when it finishes."""
 
-    def __init__(self, client, fn, arg, done: queue.SimpleQueue | None):
+    def __init__(self, client, fn, arg, done: queue.SimpleQueue | None, alive: _Liveness):
         self._future = client.submit(fn, arg, pure=False)
+        self._alive = alive
         if done is not None:
             self._future.add_done_callback(lambda _: done.put(self))
 
@@ -105,7 +131,21 @@ class _DaskTask:
         return self._future.done()
 
     def get(self):
-        return self._future.result()
+        while True:
+            try:
+                return self._future.result(timeout=LIVENESS_SECONDS)
+            except TimeoutError:  # (Dask's is the built-in one)
+                self._alive()
+
+
+def _next_done(done: queue.SimpleQueue, alive: Callable[[], None] | None):
+    """The next finished task; while none finishes, ``alive`` (if any) checks the workers exist."""
+    while True:
+        try:
+            return done.get(timeout=LIVENESS_SECONDS)
+        except queue.Empty:
+            if alive is not None:
+                alive()
 
 
 class _Item:
@@ -184,15 +224,16 @@ def run_plan(
     done = None if ordered else queue.SimpleQueue()
     if client is not None:
         slots = max(1, sum(client.nthreads().values()))
-        submit = lambda fn, arg: _DaskTask(client, fn, arg, done)  # noqa: E731
+        alive = _Liveness(client)
+        submit = lambda fn, arg: _DaskTask(client, fn, arg, done, alive)  # noqa: E731
         pool = None
     else:
-        slots = workers
+        slots, alive = workers, None
         pool = process_pool(workers)
         submit = lambda fn, arg: _PoolTask(pool, fn, arg, done)  # noqa: E731
     try:
         yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * slots,
-                             task_seconds or (0.5 if client is not None else 0.05), first, done)
+                             task_seconds or (0.5 if client is not None else 0.05), first, done, alive)
     finally:
         if pool is not None:
             pool.terminate()
@@ -200,7 +241,8 @@ def run_plan(
 
 
 def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float,
-              first: _Item | None = None, done: queue.SimpleQueue | None = None) -> Iterator[tuple]:
+              first: _Item | None = None, done: queue.SimpleQueue | None = None,
+              alive: Callable[[], None] | None = None) -> Iterator[tuple]:
     """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight.
 
     ``first`` is an item the inline phase expanded but did not finish (its remaining units).
@@ -264,7 +306,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
                 yield entry.index, None, entry.total
             if not entries:
                 return
-            task = done.get()
+            task = _next_done(done, alive)
             entry = owner[id(task)]
             if task is entry.expansion:
                 expanded(entry)

@@ -11,6 +11,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 
 import psutil
 import pytest
@@ -186,6 +187,23 @@ def test_bad_scheduler_is_one_sentence(command, address, tmp_path):
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("mechsynth: ") and "Exception" not in out.stderr, out.stderr
+
+
+def test_a_cluster_without_workers_is_one_sentence_not_a_hang(monkeypatch):
+    """Dask waits for ever for workers that never come; the count says so instead (two checks)."""
+    distributed = pytest.importorskip("distributed")
+    from synth.execution.scheduler import SchedulerUnreachable
+    from synth.execution import executor
+
+    monkeypatch.setattr(executor, "LIVENESS_SECONDS", 0.5)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        cluster.scale(0)
+        with distributed.Client(cluster) as client:
+            deadline = time.monotonic() + 30
+            while client.scheduler_info()["workers"] and time.monotonic() < deadline:
+                time.sleep(0.1)
+        with pytest.raises(SchedulerUnreachable, match="no workers"):
+            count_chains(1, 10, scheduler=cluster.scheduler_address)
 
 
 def test_count_on_a_dask_cluster(tmp_path):
