@@ -116,7 +116,7 @@ def _run_grid(args) -> int:
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:
-        print(f"grid {grid.name}: {len(grid.cells)} cells, {result.units_total} units "
+        print(f"grid {grid.name}: {result.cells} cells, {result.units_total} units "
               f"({result.units_skipped} already done, {result.units_run} run) on {result.executor}; "
               f"{result.chains_found} chains found ({result.chains_new} new), {result.mechanisms_found} mechanisms; "
               f"{result.seconds:.1f} s, {result.chains_per_second:.0f} chains/s -> {args.db}")
