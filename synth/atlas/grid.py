@@ -43,7 +43,7 @@ Example
 ['W=1 n=4 v=0..1 rigid=0 frac=1 planar=0', 'W=1 n=6 v=0..1 rigid=0 frac=1 planar=0']
 >>> len(grid.cells)  # W=1: n=4,6,8; W=2: n=5,7; W=3: n=6,8
 7
->>> [c.key for c in parse_grid('[[gears]]\nlinks = "5..6"').gear_cells]
+>>> [c.key for c in parse_grid('[[gears]]\\nlinks = "5..6"').gear_cells]
 ['gears F=1 n=5 graphs=displacement', 'gears F=1 n=6 graphs=displacement']
 """
 
