@@ -250,8 +250,9 @@ def _export_variants(args, what: str) -> int:
     from .chains import write_items
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
-    # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already
-    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0"]))
+    # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already,
+    # and a gear train's meshes are not pairs to make prismatic
+    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0", "kind=chains"]))
     items = variants_of(chains, (lo, hi), idle=args.idle_joints)
     if what == "mechanisms":
         items = (m for c in items for m in mechanisms_of(c))
