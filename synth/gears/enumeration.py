@@ -55,9 +55,9 @@ _ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augm
 
 def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
     """Refuse a query the enumerator cannot answer, in one sentence."""
-    for name, value in (("dof", dof), ("links", links)):
+    for what, value in (("the degrees of freedom F", dof), ("the number of links", links)):
         if isinstance(value, bool) or not isinstance(value, int):
-            raise InvalidOption(f"--{name} must be a whole number, not {value!r}")
+            raise InvalidOption(f"{what} must be a whole number, not {value!r}")
     if dof < 1:
         raise InvalidOption(f"a gear train that moves has F ≥ 1 degrees of freedom, not {dof}")
     if links < 2:
@@ -65,7 +65,7 @@ def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
     if links > MAX_LINKS:
         raise InvalidOption(f"gear trains are enumerated up to {MAX_LINKS} links, not {links}")
     if graphs not in GRAPHS:
-        raise InvalidOption(f"--graphs is displacement or rotation, not {graphs!r}")
+        raise InvalidOption(f"a gear train is listed by its displacement or its rotation graph, not {graphs!r}")
 
 
 # ------------------------------------------------------------------------------ trees
