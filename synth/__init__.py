@@ -52,7 +52,7 @@ _WHERE = {
     "subchain_mobility": ".structure.subchains",
     # number and type synthesis, mechanisms
     "number_synthesis": ".synthesis.number_synthesis", "iter_codes": ".synthesis.number_synthesis",
-    "MAX_CODES": ".synthesis.number_synthesis",
+    "MAX_CODES": ".synthesis.number_synthesis", "CodeQuery": ".synthesis.number_synthesis",
     "Conventions": ".synthesis.type_synthesis", "Unit": ".synthesis.type_synthesis", "Counts": ".synthesis.type_synthesis",
     "type_synthesis": ".synthesis.type_synthesis", "count_chains": ".synthesis.type_synthesis",
     "count_mechanisms": ".synthesis.type_synthesis", "mechanisms": ".synthesis.type_synthesis",

@@ -22,7 +22,7 @@ from fractions import Fraction
 import networkx as nx
 import pytest
 
-from synth.errors import InvalidOption, MalformedChain
+from synth.errors import InvalidOption, MalformedChain, flag
 from synth.gears import GearTrain
 from synth.gears.ratio_design import design
 from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
@@ -292,8 +292,11 @@ def test_design_refusals():
         design(simple, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60))
     with pytest.raises(InvalidOption, match="undercut"):
         design(simple, 0, 1, 2, "4", teeth=(5, 12))
-    with pytest.raises(InvalidOption, match="--ratio must be"):
+    with pytest.raises(InvalidOption, match="the speed ratio must be"):
         design(simple, 0, 1, 2, "four")
+    with pytest.raises(InvalidOption) as refused:  # the remedy names the argument, in the caller's words
+        design(simple, 0, 1, 2, "4.123456789123456789", teeth=(17, 10**12))
+    assert str(refused.value).endswith("narrow teeth=A..B") and refused.value.text(flag).endswith("narrow --teeth A..B")
 
 
 # ----------------------------------------------------------------------------------- CLI
@@ -339,6 +342,8 @@ def test_cli_mechanisms_and_ratio(tmp_path):
       "--tolerance", "0.1%"], "no tooth numbers"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4",
       "--teeth", "5..12"], "undercut"),
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.123456789123456789",
+      "--teeth", "17..1000000000000"], "narrow --teeth A..B"),
     (["--links", "5", "--graphs", "rotation", "--ratio", "3"], "drop --graphs rotation"),
     (["--links", "5", "--frame", "0"], "goes with --train"),
     (["--links", "5", "--out", "x.txt"], "drawing is written as"),

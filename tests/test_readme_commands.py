@@ -24,6 +24,7 @@ README = ROOT / "README.md"
 SLOW = {
     "--links 16 --count --checkpoint": "counts 19 819 281 chains: about 6 minutes on 2 cores",
     "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
+    "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
 }
 SKIP = {
     "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "

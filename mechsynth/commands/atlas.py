@@ -46,7 +46,8 @@ def add_commands(sub) -> None:
     p.add_argument("--export", choices=("chains", "mechanisms"), help="print rows instead of the summary")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="filter, repeatable (AND): code=6301/0, W=1, 'n = 8..10', v<=1, K=3, n3>=2, maxdeg<=4, "
-                        "fractionated=0, cell=KEY, id=ID (12 hex digits), certificate=CERT")
+                        "fractionated=0, cell=KEY, id=ID (12 hex digits), certificate=CERT; gear trains: kind=gears, "
+                        "meshes=4, carriers=2, lever=530/1, rotation=ID")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--prismatic", metavar="A..B",
                    help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry")
@@ -116,7 +117,7 @@ def _run_grid(args) -> int:
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:
-        print(f"grid {grid.name}: {len(grid.cells)} cells, {result.units_total} units "
+        print(f"grid {grid.name}: {result.cells} cells, {result.units_total} units "
               f"({result.units_skipped} already done, {result.units_run} run) on {result.executor}; "
               f"{result.chains_found} chains found ({result.chains_new} new), {result.mechanisms_found} mechanisms; "
               f"{result.seconds:.1f} s, {result.chains_per_second:.0f} chains/s -> {args.db}")
@@ -126,6 +127,8 @@ def _run_grid(args) -> int:
 # -------------------------------------------------------------------- atlas
 _CHAIN_COLUMNS = ["id", "code", "links", "dof", "v", "degrees", "fractionated", "joints", "certificate"]
 _MECH_COLUMNS = ["chain_id", "code", "links", "dof", "v", "frame", "input_link", "joints", "certificate"]
+_TRAIN_COLUMNS = ["id", "code", "lever_code", "links", "dof", "meshes", "carriers", "rotation_id", "train", "certificate"]
+_TRAIN_MECH_COLUMNS = ["chain_id", "code", "lever_code", "links", "dof", "frame", "train", "certificate"]
 
 
 def _run_atlas(args) -> int:
@@ -166,8 +169,36 @@ def _run_atlas(args) -> int:
             by_code[row["code"]] = by_code.get(row["code"], 0) + 1
         found = write_count({"count": sum(by_code.values()), "by_code": by_code}, args.format or "json")
     else:
-        found = write_rows(rows, _CHAIN_COLUMNS if what == "chains" else _MECH_COLUMNS, args.format or "jsonl")
+        fmt = args.format or "jsonl"
+        rows, columns = _columns(rows, what)
+        found = write_rows(_written(rows, fmt), columns, fmt)
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _columns(rows, what: str):
+    """The rows and the columns of a CSV or table: the first row's kind decides (a selection of gear
+    trains, e.g. ``--where kind=gears``, shows each train's text form, lever code and rotation graph)."""
+    import itertools
+
+    first = next(rows, None)
+    rows = itertools.chain([] if first is None else [first], rows)
+    train = first is not None and first.get("kind") == "gears"
+    if what == "chains":
+        return rows, _TRAIN_COLUMNS if train else _CHAIN_COLUMNS
+    return rows, _TRAIN_MECH_COLUMNS if train else _MECH_COLUMNS
+
+
+def _written(rows, fmt: str):
+    """In a table or CSV the joint list as ``analyze`` reads it back (``0~3`` a gear mesh, ``0=1`` a
+    prismatic pair) and, for gear trains, the number of carrier links."""
+    from synth import Chain
+
+    for row in rows:
+        if fmt in ("table", "csv"):
+            row["joints"] = Chain.from_dict(row).compact()
+            if "train" in row:
+                row["carriers"] = len(set(row["carriers"]))
+        yield row
 
 
 def _items(rows, what: str):
@@ -219,8 +250,9 @@ def _export_variants(args, what: str) -> int:
     from .chains import write_items
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
-    # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already
-    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0"]))
+    # variants of the revolute chains only: an atlas grown with the grid key 'prismatic' holds variants already,
+    # and a gear train's meshes are not pairs to make prismatic
+    chains = (Chain.from_dict(row) for row in export(args.db, "chains", where=[*args.where, "prismatic=0", "kind=chains"]))
     items = variants_of(chains, (lo, hi), idle=args.idle_joints)
     if what == "mechanisms":
         items = (m for c in items for m in mechanisms_of(c))

@@ -129,7 +129,7 @@ def why_extra(entry, query) -> tuple[str, list]:
         return f"{kind}: links {', '.join(map(str, links))} with W(S) = {report.worst_mobility}", links
     prismatic = chain.kinds.count("prismatic") if chain.kinds is not None else 0
     if query.prismatic is None and prismatic:
-        return f"{prismatic} prismatic pair(s): the query lists revolute chains (give --prismatic)", []
+        return f"{prismatic} prismatic pair(s): the query lists revolute chains (it asks for no prismatic pair)", []
     if query.prismatic is not None and _outside(prismatic, query.prismatic):
         return f"{prismatic} prismatic pair(s), outside the query's {_range_text(query.prismatic)}", []
     code = chain.code
@@ -148,7 +148,8 @@ def why_extra(entry, query) -> tuple[str, list]:
         if _outside(code.count(i), rng):
             return f"{code.count(i)} link(s) with {i} joints, outside the requirement n{i} = {_range_text(rng)}", []
     if query.max_multiplicity is not None and max(len(j) for j in chain.joints) > query.max_multiplicity:
-        return f"a joint of {max(len(j) for j in chain.joints)} links, beyond --max-multiplicity", []
+        return (f"a joint of {max(len(j) for j in chain.joints)} links, beyond the query's largest multiplicity "
+                f"{query.max_multiplicity}", [])
     if not query.fractionated and chain.is_fractionated():
         return "fractionated: one link or joint splits it (the query drops fractionated chains)", []
     if query.planar_only and not chain.is_planar():

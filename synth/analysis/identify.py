@@ -178,7 +178,7 @@ def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | Non
     large = MAX_INDEXED_LOOPS - (1 if chain.v else 0)
     if index is None and chain.loops > large:
         out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and is listed "
-                       "whole to find it (ask for it with --index)")
+                       "whole to find it (ask for its index to have it computed)")
         return out
     rows = _chain_rows(query)
     out.update(index=rows.get(chain.certificate), listed=len(rows))

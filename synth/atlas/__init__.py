@@ -4,6 +4,7 @@
 ``grid``       grid files (TOML): cells of W, n, v, conventions
 ``database``   the atlas file: its schema and version, opening it checked, the run lock
 ``runs``       grid runs, resumable unit by unit on a pool or Dask, and their sizing
+``trains``     gear-train cells: their units (link–axis trees) and rows, one train per rotation graph
 ``queries``    the ``--where`` language, exports and the summary
 ``site``       the atlas as a static web site
 =============  ======================================================================
@@ -20,7 +21,7 @@ Example
 from .._lazy import lazy_exports
 
 _WHERE = {
-    "GridFileError": ".grid", "Cell": ".grid", "Grid": ".grid", "load_grid": ".grid", "parse_grid": ".grid",
+    "GridFileError": ".grid", "Cell": ".grid", "GearCell": ".grid", "Grid": ".grid", "load_grid": ".grid", "parse_grid": ".grid",
     "SCHEMA_VERSION": ".database", "AtlasError": ".database", "AtlasLocked": ".database", "open_atlas": ".database",
     "chain_id": ".database",
     "GridRunResult": ".runs", "compute_unit": ".runs", "run_grid": ".runs", "size_grid": ".runs",

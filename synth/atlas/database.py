@@ -1,10 +1,10 @@
 """The SQLite atlas file: its schema and version, opening it (checked, read-only first) and the lock of a run.
 
-Schema (version 3, ``meta.schema_version``)
+Schema (version 4, ``meta.schema_version``)
 -------------------------------------------
 ``chains``      one row per chain: integer ``id``, ``certificate`` (nauty, canonical) UNIQUE; code
                 (with joint composition), base code (without), W, h, n, K, v, number of prismatic
-                pairs (grid key ``prismatic``; W counts their wedge loops), largest link degree,
+                pairs (grid key ``prismatic``; W counts their wedge loops), number of gear meshes, largest link degree,
                 sorted degrees, fractionated flag, and the chain JSON (``Chain.to_dict``) in its
                 *canonical labelling* (nauty's), so the same chain reads the same from any cell.
 ``link_counts`` (chain, degree, count): n_I of each chain, for ``--where n5>=1``.
@@ -15,6 +15,12 @@ Schema (version 3, ``meta.schema_version``)
 ``mechanisms``  (chain, frame, input_link) PRIMARY KEY, links numbered as in the stored canonical
                 chain; the frame is the smallest link of its automorphism orbit, ``input_link``
                 is -1 for fixed-link-only mechanisms.  Exports add ``Mechanism.certificate``.
+``trains``      one row per chain that is a planetary gear train (its axes the revolute joints,
+                its meshes the ``mesh`` joints): the train's text form in the chain's labelling,
+                the lever analogue's code, the number of carrier links, the rotation graph's
+                certificate and the train's rank in :func:`synth.gears.trains`' order.
+``rotations``   (cell, rotation) PRIMARY KEY: in a cell of rotation graphs, the train that stands
+                for each rotation graph (the first in :func:`synth.gears.trains`' order) and its rank.
 ``cells``       the grid cells (key, W, n, v range, conventions, constraints, unit count).
 ``units``       (cell, unit key) PRIMARY KEY, status pending/done, chains, mechanisms,
                 attempts (runs that scheduled it), seconds, finished time, run id.
@@ -30,12 +36,13 @@ Example
 >>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
 >>> conn = open_atlas(db, write=True)
 >>> conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()[0]
-'3'
+'4'
 """
 
 from __future__ import annotations
 
 import os
+import re
 import socket
 import sqlite3
 import time
@@ -48,7 +55,7 @@ from .grid import Grid
 
 __all__ = ["SCHEMA_VERSION", "AtlasError", "AtlasLocked", "open_atlas", "chain_id", "read_only_uri"]
 
-SCHEMA_VERSION = 3  # 2: motion space h of chains and cells; 3: prismatic pairs of chains
+SCHEMA_VERSION = 4  # 2: motion space h of chains and cells; 3: prismatic pairs of chains; 4: gear trains
 
 
 class AtlasError(SynthesisError):
@@ -66,12 +73,21 @@ CREATE TABLE chains (
     code TEXT NOT NULL, base_code TEXT NOT NULL,
     dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL, loops INTEGER NOT NULL, v INTEGER NOT NULL,
     prismatic INTEGER NOT NULL, max_degree INTEGER NOT NULL, degrees TEXT NOT NULL, fractionated INTEGER NOT NULL,
-    chain TEXT NOT NULL
+    chain TEXT NOT NULL, meshes INTEGER NOT NULL DEFAULT 0
 );
 CREATE INDEX chains_select ON chains (dof, h, links, v, code);
 CREATE TABLE link_counts (
     chain INTEGER NOT NULL REFERENCES chains, degree INTEGER NOT NULL, count INTEGER NOT NULL,
     PRIMARY KEY (chain, degree)
+) WITHOUT ROWID;
+CREATE TABLE trains (
+    chain INTEGER PRIMARY KEY REFERENCES chains, train TEXT NOT NULL, lever_code TEXT NOT NULL,
+    carriers INTEGER NOT NULL, rotation TEXT NOT NULL, rank INTEGER NOT NULL
+);
+CREATE INDEX trains_rotation ON trains (rotation);
+CREATE TABLE rotations (
+    cell TEXT NOT NULL REFERENCES cells, rotation TEXT NOT NULL, chain INTEGER NOT NULL REFERENCES chains,
+    rank INTEGER NOT NULL, PRIMARY KEY (cell, rotation)
 ) WITHOUT ROWID;
 CREATE TABLE cells (
     cell TEXT PRIMARY KEY, dof INTEGER NOT NULL, h INTEGER NOT NULL, links INTEGER NOT NULL,
@@ -137,9 +153,24 @@ def _columns(schema: str) -> dict[str, set[str]]:
 
 _TABLES = _columns(_SCHEMA)
 
+# Version 3 lacks only what gear trains added: it is read as it is (through the temporary views
+# below) and upgraded in place by the next run that writes it.
+_UPGRADE_3 = [
+    "ALTER TABLE chains ADD COLUMN meshes INTEGER NOT NULL DEFAULT 0",
+    *(statement for statement in _SCHEMA.split(";") if re.search(r"\b(trains|rotations)\b", statement)),
+    "UPDATE meta SET value = '4' WHERE key = 'schema_version'",
+]
+_READ_3 = [  # temporary objects shadow the main database's of the same name
+    "CREATE TEMP VIEW chains AS SELECT *, 0 AS meshes FROM main.chains",
+    *(statement.replace("CREATE TABLE ", "CREATE TEMP TABLE ") for statement in _SCHEMA.split(";")
+      if re.search(r"CREATE TABLE (trains|rotations)\b", statement)),
+]
+_TABLES_3 = {table: columns - {"meshes"} for table, columns in _TABLES.items() if table not in ("trains", "rotations")}
 
-def _check_version(conn: sqlite3.Connection, path: Path) -> None:
-    """Refuse a file that is not an atlas of this schema: its tables and columns, and its version."""
+
+def _check_version(conn: sqlite3.Connection, path: Path) -> int:
+    """Refuse a file that is not an atlas of this schema (or of version 3, which it reads and
+    upgrades): its tables and columns, and its version, which it returns."""
     try:
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
         if "meta" not in tables:
@@ -149,16 +180,17 @@ def _check_version(conn: sqlite3.Connection, path: Path) -> None:
         if version is None:
             raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (its meta table names no schema "
                              "version)")
-        if version != str(SCHEMA_VERSION):
+        if version not in (str(SCHEMA_VERSION), "3"):
             raise AtlasError(
-                f"{path} is an atlas of schema version {version}, but this mechsynth reads only version "
+                f"{path} is an atlas of schema version {version}, but this mechsynth reads only versions 3 and "
                 f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)")
-        for table, wanted in _TABLES.items():
+        for table, wanted in (_TABLES if version == str(SCHEMA_VERSION) else _TABLES_3).items():
             have = {r[1] for r in conn.execute(f"PRAGMA table_info({table})")}
             if not wanted <= have:
                 missing = sorted(wanted - have)
                 raise AtlasError(f"{path} is not a complete mechsynth atlas: table '{table}' lacks "
                                  f"{', '.join(missing) if have else 'everything (it does not exist)'}")
+        return int(version)
     except sqlite3.DatabaseError as exc:
         raise AtlasError(f"{path} is not an SQLite atlas or is damaged ({exc})") from None
 
@@ -235,15 +267,33 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         except sqlite3.DatabaseError as exc:
             raise AtlasError(f"cannot open the atlas {path}: {exc}") from None
     try:
-        _check_version(conn, path)
+        version = _check_version(conn, path)
         if check_pages or (check_pages is None and not write and path.stat().st_size <= _CHECKED_READ_BYTES):
             _check_pages(conn, path)
+        if version == 3 and write:
+            _upgrade(conn, path)
+        elif version == 3:
+            for statement in _READ_3:
+                conn.execute(statement)
     except AtlasError:
         conn.close()
         raise
     conn.execute("PRAGMA foreign_keys = OFF")
     conn.create_function("chain_id", 1, chain_id, deterministic=True)  # for --where id=…
     return conn
+
+
+def _upgrade(conn: sqlite3.Connection, path: Path) -> None:
+    """Version 3 to 4 in one transaction: the chains' mesh counts (0) and the gear-train tables."""
+    try:
+        conn.execute("BEGIN IMMEDIATE")
+        for statement in _UPGRADE_3:
+            conn.execute(statement)
+        conn.execute("COMMIT")
+    except sqlite3.DatabaseError as exc:
+        if conn.in_transaction:
+            conn.execute("ROLLBACK")
+        raise AtlasError(f"cannot upgrade the atlas {path} from schema version 3 to {SCHEMA_VERSION}: {exc}") from None
 
 
 # -------------------------------------------------------------------- locks

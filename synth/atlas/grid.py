@@ -30,6 +30,12 @@ key                  value                                                  defa
 ``require``          design constraints ``["5=0", "3=0..2"]``               none
 ===================  =====================================================  ==============
 
+Planetary gear trains are cells of their own, one ``[[gears]]`` table each (top-level keys do
+not apply to them): ``dof`` (F, default 1), ``links`` (n, required) — whole numbers, ranges or
+lists, a cell per (F, n) — and ``graphs`` ("displacement", the default: every train; "rotation":
+one train per rotation graph, the first :func:`synth.gears.trains` lists).  A file of
+``[[gears]]`` tables alone has no chain cells.
+
 Example
 -------
 >>> grid = parse_grid('dof = "1..3"\\nlinks = "4..8"\\nv = "0..1"')
@@ -37,6 +43,8 @@ Example
 ['W=1 n=4 v=0..1 rigid=0 frac=1 planar=0', 'W=1 n=6 v=0..1 rigid=0 frac=1 planar=0']
 >>> len(grid.cells)  # W=1: n=4,6,8; W=2: n=5,7; W=3: n=6,8
 7
+>>> [c.key for c in parse_grid('[[gears]]\\nlinks = "5..6"').gear_cells]
+['gears F=1 n=5 graphs=displacement', 'gears F=1 n=6 graphs=displacement']
 """
 
 from __future__ import annotations
@@ -54,7 +62,7 @@ from ..synthesis.type_synthesis import Unit, plan_many
 from ..errors import SynthesisError
 from ..schema import Flag, RangeText, Require, Table, Text, expect, parse_range_text, refine, show
 
-__all__ = ["GridFileError", "Cell", "Grid", "load_grid", "parse_grid"]
+__all__ = ["GridFileError", "Cell", "GearCell", "Grid", "load_grid", "parse_grid"]
 
 Range = tuple[int, int | None]
 
@@ -137,14 +145,35 @@ class Cell:
 
 
 @dataclass(frozen=True)
+class GearCell:
+    """The planetary gear trains of F degrees of freedom and n links: every displacement graph, or
+    one train per rotation graph (``graphs``).
+
+    >>> GearCell(1, 7, "rotation").key
+    'gears F=1 n=7 graphs=rotation'
+    """
+
+    dof: int
+    links: int
+    graphs: str = "displacement"
+
+    @property
+    def key(self) -> str:
+        """Stable text naming the cell (the atlas's cell key)."""
+        return f"gears F={self.dof} n={self.links} graphs={self.graphs}"
+
+
+@dataclass(frozen=True)
 class Grid:
-    """A validated grid: its cells in file order (duplicates removed) and run options."""
+    """A validated grid: its chain cells and gear-train cells in file order (duplicates removed)
+    and run options."""
 
     name: str
     cells: tuple[Cell, ...]
     description: str = ""
     input_link: bool = False
     source: str = "<string>"
+    gear_cells: tuple[GearCell, ...] = ()
 
 
 def load_grid(path: str | Path) -> Grid:
@@ -209,13 +238,30 @@ class _Block(Table):
     require: Require | None = None
 
 
+class _Gears(Table):
+    """The keys of one ``[[gears]]`` table: planetary gear trains of F = ``dof`` and n = ``links``."""
+
+    dof: _values(1) = [1]
+    links: _values(2)
+    graphs: Annotated[StrictStr, refine(lambda g: _graphs(g)), expect('"displacement" or "rotation"')] = "displacement"
+
+
+def _graphs(value: str) -> str:
+    from ..gears.enumeration import GRAPHS
+
+    if value not in GRAPHS:
+        raise ValueError(f'must be "displacement" or "rotation", not {value!r}')
+    return value
+
+
 class _GridFile(_Block):
-    """The top level of a grid file: run options, defaults of the blocks, and the blocks."""
+    """The top level of a grid file: run options, defaults of the blocks, the blocks and the gear cells."""
 
     name: Text | None = None
     description: StrictStr = ""
     input_link: Flag = False
     block: Annotated[list[dict[str, Any]], Field(min_length=1), expect("[[block]] tables")] | None = None
+    gears: Annotated[list[dict[str, Any]], Field(min_length=1), expect("[[gears]] tables")] | None = None
 
 
 def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid") -> Grid:
@@ -228,7 +274,8 @@ def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid
     top = _GridFile.read(data, source=where, where="", error=GridFileError)
     defaults = top.model_dump(include=set(_Block.model_fields) & top.given())
     cells: dict[str, Cell] = {}
-    for number, raw in enumerate(data.get("block", [{}]), 1):
+    chain_keys = (set(_Block.model_fields) & top.given()) or top.block is not None
+    for number, raw in enumerate(data.get("block", [{}]) if chain_keys or top.gears is None else [], 1):
         block = "" if top.block is None else f"[[block]] {number}"
         spec = _Block.read(raw, source=where, where=block, error=GridFileError)
         given = spec.given()
@@ -239,8 +286,27 @@ def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid
             merged.pop("links", None)
         for cell in _expand(merged, f"{where}: {block + ' ' if block else ''}"):
             cells.setdefault(cell.key, cell)
+    gear_cells: dict[str, GearCell] = {}
+    for number, raw in enumerate(top.gears or [], 1):
+        for cell in _gear_cells(_Gears.read(raw, source=where, where=f"[[gears]] {number}", error=GridFileError),
+                                f"{where}: [[gears]] {number} "):
+            gear_cells.setdefault(cell.key, cell)
     return Grid(name=top.name or default_name, cells=tuple(cells.values()), description=top.description,
-                input_link=top.input_link, source=source)
+                input_link=top.input_link, source=source, gear_cells=tuple(gear_cells.values()))
+
+
+def _gear_cells(spec: _Gears, where: str) -> list[GearCell]:
+    """The cells of one ``[[gears]]`` table; ``where`` starts each error sentence."""
+    from ..gears.enumeration import MAX_LINKS
+
+    for f in spec.dof:
+        for n in spec.links:
+            if n < f + 2:
+                raise GridFileError(f"{where}key 'links': a gear train with F = {f} needs at least {f + 2} links "
+                                    f"(one mesh), not {n}.")
+            if n > MAX_LINKS:
+                raise GridFileError(f"{where}key 'links': gear trains are enumerated up to {MAX_LINKS} links, not {n}.")
+    return [GearCell(f, n, spec.graphs) for f in spec.dof for n in spec.links]
 
 
 def _expand(spec: dict, where: str) -> list[Cell]:

@@ -21,6 +21,7 @@ from pathlib import Path
 from ..errors import InvalidOption, MalformedCode
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
+from ..gears.train import GearTrain
 from .database import SCHEMA_VERSION, _reading, chain_id, open_atlas
 
 __all__ = ["parse_where", "export", "summary"]
@@ -30,8 +31,10 @@ __all__ = ["parse_where", "export", "summary"]
 _FIELDS = {
     "code": "code", "dof": "dof", "w": "dof", "h": "h", "links": "links", "n": "links", "loops": "loops", "k": "loops",
     "v": "v", "max_degree": "max_degree", "maxdeg": "max_degree", "fractionated": "fractionated", "cell": "cell",
-    "p": "prismatic", "prismatic": "prismatic",
+    "p": "prismatic", "prismatic": "prismatic", "meshes": "meshes", "g": "meshes",
 }
+_TRAIN = "(SELECT t.{} FROM trains t WHERE t.chain = c.id)"  # NULL for a chain that is no gear train
+_KINDS = {"gears": "EXISTS", "chains": "NOT EXISTS"}
 _WHERE_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(<=|>=|!=|==|=|<|>)\s*(\S.*?)\s*$")
 _OPS = {"=": "=", "==": "=", "!=": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 
@@ -44,11 +47,15 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
     ``620/2`` or ``620/0-1``), ``basecode`` (= or !=, any joint composition), ``W``/``dof``, ``h`` (motion space), ``n``/``links``, ``K``/``loops``, ``v``, ``maxdeg``,
     ``fractionated`` (0/1), ``P``/``prismatic`` (number of prismatic pairs), ``nI`` (number of links with I joints, e.g. ``n3>=2``), ``cell``
     (= only, a cell key as shown by ``mechsynth atlas``), ``id`` and ``certificate`` (= or !=: the chain's
-    id, 12 hex digits as listings print it, or its nauty certificate).  With ``=`` a number may be a
+    id, 12 hex digits as listings print it, or its nauty certificate).  Gear trains: ``kind`` (= or
+    !=: ``gears`` or ``chains``), ``meshes``/``G`` (gear meshes), ``carriers`` (carrier links),
+    ``lever`` (= or !=: the lever analogue's code), ``rotation`` (= or !=: the rotation graph's id).  With ``=`` a number may be a
     range ``A..B``.  Values always travel as SQL parameters, never as SQL text.
 
     >>> parse_where(["code=6301/0", "n=8..10", "n3>=2"])[1]
     ['6301/0', 8, 10, 3, 2]
+    >>> parse_where(["kind=gears", "meshes=3"])
+    ('EXISTS (SELECT 1 FROM trains t WHERE t.chain = c.id) AND c.meshes = ?', [3])
     """
     clauses, params = [], []
     for item in items:
@@ -58,28 +65,34 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
         name, op, value = m.group(1), _OPS[m.group(2)], m.group(3)
         key = name.lower()
         degree = re.fullmatch(r"n(\d+)", key)
-        if key in ("code", "basecode"):
+        if key in ("code", "basecode", "lever"):
             if op not in ("=", "!="):
                 raise InvalidOption(f"a code is compared with = or != only, not {m.group(2)!r}")
             try:
                 code = Code.parse(value)
             except MalformedCode as exc:
                 raise InvalidOption(f"in the condition {item!r}: {exc}") from None
-            if key == "code":
-                clauses.append(f"c.code {op} ?")
-                params.append(str(code))
-            else:
-                clauses.append(f"c.base_code {op} ?")
-                params.append(str(Code(code.assortment, code.v)))
+            column = {"code": "c.code", "basecode": "c.base_code", "lever": _TRAIN.format("lever_code")}[key]
+            clauses.append(f"{column} {op} ?")
+            params.append(str(Code(code.assortment, code.v)) if key == "basecode" else str(code))
             continue
-        if key in ("id", "certificate"):
+        if key == "kind":
+            if op not in ("=", "!=") or value.lower() not in _KINDS:
+                raise InvalidOption(f"in the condition {item!r}: kind is gears or chains (with = or !=)")
+            chosen = value.lower() if op == "=" else next(k for k in _KINDS if k != value.lower())
+            clauses.append(f"{_KINDS[chosen]} (SELECT 1 FROM trains t WHERE t.chain = c.id)")
+            continue
+        if key in ("id", "certificate", "rotation"):
             if op not in ("=", "!="):
                 raise InvalidOption(f"a chain's {key} is compared with = or != only, not {m.group(2)!r}")
             value = value.strip().lower()
-            if key == "id" and not re.fullmatch(r"[0-9a-f]{12}", value):
-                raise InvalidOption(f"in the condition {item!r}: a chain id is 12 hex digits (the 'id' column of a "
+            if key in ("id", "rotation") and not re.fullmatch(r"[0-9a-f]{12}", value):
+                raise InvalidOption(f"in the condition {item!r}: {'a chain' if key == 'id' else 'a rotation graph'} id "
+                                    f"is 12 hex digits (the '{key if key == 'id' else 'rotation_id'}' column of a "
                                     f"listing), not {m.group(3)!r}")
-            clauses.append("chain_id(c.certificate) " + op + " ?" if key == "id" else f"c.certificate {op} ?")
+            column = {"id": "chain_id(c.certificate)", "certificate": "c.certificate",
+                      "rotation": f"chain_id({_TRAIN.format('rotation')})"}[key]
+            clauses.append(f"{column} {op} ?")
             params.append(value)
             continue
         if key == "cell":
@@ -93,9 +106,12 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             col_params = [int(degree.group(1))]
         elif key in _FIELDS:
             column, col_params = f"c.{_FIELDS[key]}", []
+        elif key == "carriers":
+            column, col_params = _TRAIN.format("carriers"), []
         else:
             raise InvalidOption(f"unknown field {name!r} in the condition {item!r} (fields: code, W, h, n, K, v, P, maxdeg, "
-                                "fractionated, nI such as n3, basecode, cell, id, certificate)")
+                                "fractionated, nI such as n3, basecode, cell, id, certificate; gear trains: kind, "
+                                "meshes, carriers, lever, rotation)")
         if key == "fractionated" and value.lower() in ("true", "false"):
             value = "1" if value.lower() == "true" else "0"
         try:
@@ -134,6 +150,9 @@ def export(db: str | Path, what: str = "chains", *, where: Iterable[str] = ()) -
 
     Chain rows are ``Chain.to_dict()`` plus ``id`` (:func:`chain_id`), ``degrees``, ``fractionated`` and
     ``cells``; mechanism rows add ``frame``, ``input_link``, ``chain_id`` and ``chain_certificate``.
+    Rows of gear trains add ``kind`` ("gears"), ``train`` (the text form ``mechsynth gears --train``
+    and ``GearTrain.parse`` read), ``carriers`` (per mesh), ``lever_code``, ``rotation_id`` and
+    ``rotation_certificate``.
 
     >>> # export("atlas.sqlite", "chains", where=["code=6301/0", "v<=1"])
     """
@@ -153,23 +172,24 @@ def _export_rows(conn: sqlite3.Connection, db, what: str, condition: str, params
 
 
 def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> Iterator[dict]:
+    train = "t.train, t.lever_code, t.rotation"
     if what == "chains":
         sql = (f"SELECT c.chain, c.degrees, c.fractionated, "
-               f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.chain = c.id) "
-               f"FROM chains c WHERE {condition} {_ORDER}")
-        for chain, degrees, fractionated, cells in conn.execute(sql, params):
+               f"(SELECT group_concat(m.cell, ';') FROM members m WHERE m.chain = c.id), {train} "
+               f"FROM chains c LEFT JOIN trains t ON t.chain = c.id WHERE {condition} {_ORDER}")
+        for chain, degrees, fractionated, cells, *gears in conn.execute(sql, params):
             row = json.loads(chain)
             row["id"] = chain_id(row["certificate"])
             row["degrees"] = [int(x) for x in degrees.split()]
             row["fractionated"] = bool(fractionated)
             row["cells"] = sorted(cells.split(";")) if cells else []
-            yield row
+            yield _with_train(row, *gears)
     else:
-        sql = (f"SELECT c.chain, k.frame, k.input_link FROM mechanisms k "
-               f"JOIN chains c ON c.id = k.chain WHERE {condition} "
+        sql = (f"SELECT c.chain, k.frame, k.input_link, {train} FROM mechanisms k "
+               f"JOIN chains c ON c.id = k.chain LEFT JOIN trains t ON t.chain = c.id WHERE {condition} "
                f"{_ORDER}, k.input_link >= 0, k.frame, k.input_link")
-        for chain, frame, input_link in conn.execute(sql, params):
-            row = json.loads(chain)
+        for chain, frame, input_link, *gears in conn.execute(sql, params):
+            row = _with_train(json.loads(chain), *gears)
             mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
             row["chain_id"] = chain_id(row["certificate"])
             row["chain_certificate"] = row.pop("certificate")
@@ -177,6 +197,14 @@ def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> 
             if input_link >= 0:
                 row["input_link"] = input_link
             yield row
+
+
+def _with_train(row: dict, train: str | None, lever_code: str | None, rotation: str | None) -> dict:
+    """A chain's row, with what its gear train adds when it is one."""
+    if train is not None:
+        row.update(kind="gears", train=train, carriers=list(GearTrain.parse(train).carriers), lever_code=lever_code,
+                   rotation_id=chain_id(rotation), rotation_certificate=rotation)
+    return row
 
 
 def summary(db: str | Path) -> dict:
@@ -196,16 +224,17 @@ def summary(db: str | Path) -> dict:
 
 
 def _summary(conn: sqlite3.Connection, db) -> dict:
-    order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code, prismatic"
+    order = "ORDER BY MIN(h), MIN(links), MIN(dof), MIN(v), code, prismatic, meshes"
     shown = ("code || CASE WHEN prismatic = 0 THEN '' ELSE ' P' || prismatic END "
+             "|| CASE WHEN meshes = 0 THEN '' ELSE ' G' || meshes END "
              "|| CASE WHEN h = 3 THEN '' ELSE ' h=' || h END")
     codes = [dict(zip(("code", "dof", "h", "links", "chains"), r)) for r in conn.execute(
-        f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code, prismatic {order}")]
+        f"SELECT {shown}, MIN(dof), h, MIN(links), COUNT(*) FROM chains GROUP BY h, code, prismatic, meshes {order}")]
     by_code = {c["code"]: c["chains"] for c in codes}
     mech_by_code = {code: n for code, n in conn.execute(
         f"SELECT {shown}, COUNT(*) FROM (SELECT c.code AS code, c.h AS h, c.links AS links, c.dof AS dof, "
-        f"c.v AS v, c.prismatic AS prismatic FROM mechanisms k JOIN chains c ON c.id = k.chain "
-        f"WHERE k.input_link < 0) GROUP BY h, code, prismatic {order}")}
+        f"c.v AS v, c.prismatic AS prismatic, c.meshes AS meshes FROM mechanisms k JOIN chains c ON c.id = k.chain "
+        f"WHERE k.input_link < 0) GROUP BY h, code, prismatic, meshes {order}")}
     for c in codes:
         c["mechanisms"] = mech_by_code.get(c["code"], 0)
     cells = []
@@ -214,7 +243,7 @@ def _summary(conn: sqlite3.Connection, db) -> dict:
         done = conn.execute("SELECT COUNT(*) FROM units WHERE cell = ? AND status = 'done'", (key,)).fetchone()[0]
         cell_codes = {code: n for code, n in conn.execute(
             f"SELECT {shown}, COUNT(*) FROM (SELECT c.* FROM members m JOIN chains c ON c.id = m.chain "
-            f"WHERE m.cell = ?) GROUP BY code, prismatic {order}", (key,))}
+            f"WHERE m.cell = ?) GROUP BY code, prismatic, meshes {order}", (key,))}
         cells.append({"cell": key, "dof": dof, "h": h, "links": links, "units_done": done, "units_total": total,
                       "chains": sum(cell_codes.values()), "by_code": cell_codes})
     units_done, units_total = conn.execute(

@@ -4,11 +4,13 @@ sizing of a grid before it runs.
 
 Guarantees
 ----------
-* One transaction per finished unit: its chains, memberships, mechanisms and its
-  ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
+* One transaction per finished unit: its chains (gear trains with their ``trains`` rows),
+  memberships, mechanisms and its ``done`` status commit together, so a run killed at any instant (Ctrl-C, ``kill -9``,
   power loss) leaves every unit either fully stored or still pending.
 * A rerun of the same grid skips ``done`` units; ``INSERT OR IGNORE`` on certificates
   means no chain or mechanism is ever stored twice.
+* A gear cell's units are its link–axis trees (:mod:`synth.atlas.trains`), run and committed
+  the same way.
 * A second run on the same atlas while the first is alive is refused (``run_lock``
   row checked inside ``BEGIN IMMEDIATE``; a lock left by a killed run is taken over).
 
@@ -32,7 +34,7 @@ import sqlite3
 import sys
 import time
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import pynauty
@@ -42,8 +44,10 @@ from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
+from ..gears.train import GearTrain
 from .database import _acquire, _release, _writable, open_atlas
-from .grid import Cell, Grid
+from .grid import Cell, GearCell, Grid
+from .trains import TrainUnit, keep_representatives, plan_gear_cell, store_trains, train_row, unit_trains
 
 __all__ = ["GridRunResult", "SchedulerUnreachable", "UnitTask", "UnitRows", "compute_unit", "run_grid", "size_grid"]
 
@@ -51,16 +55,18 @@ __all__ = ["GridRunResult", "SchedulerUnreachable", "UnitTask", "UnitRows", "com
 # ------------------------------------------------------------------- worker
 @dataclass(frozen=True)
 class UnitTask:
-    """One unit of a grid cell as a worker receives it (``input_link``: store input-link mechanisms too)."""
+    """One unit of a grid cell as a worker receives it: chains of a unit of the engine, or gear
+    trains of a link–axis tree (``input_link``: store input-link mechanisms of chains too)."""
 
     cell: str
-    unit: Unit
+    unit: Unit | TrainUnit
     input_link: bool
 
 
 @dataclass
 class UnitRows:
-    """The atlas rows one unit produced: chains, link counts and mechanisms, and its seconds."""
+    """The atlas rows one unit produced: chains, link counts, mechanisms and gear trains, and its
+    seconds (``rotation``: a cell of rotation graphs, one train each)."""
 
     cell: str
     unit: str
@@ -68,6 +74,8 @@ class UnitRows:
     link_counts: list[tuple]
     mechanisms: list[tuple]
     seconds: float
+    trains: list[tuple] = field(default_factory=list)
+    rotation: bool = False
 
 
 def _canonical(chain: Chain) -> Chain:
@@ -79,42 +87,53 @@ def _canonical(chain: Chain) -> Chain:
     return chain.relabel(permutation)
 
 
+def _chain_rows(chain: Chain, fractionated: bool, input_link: bool, out: UnitRows) -> None:
+    """Add a chain (in its canonical labelling) to a unit's rows: its chain row, link counts and mechanisms."""
+    cert, code, degrees = chain.certificate, chain.code, chain.degrees
+    kinds = chain.kinds or ()
+    out.chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), chain.dof, chain.h,
+                       chain.links, chain.loops, chain.v, kinds.count("prismatic"), max(degrees),
+                       " ".join(map(str, sorted(degrees, reverse=True))), int(fractionated),
+                       json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count("mesh")))
+    out.link_counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
+    mechanisms = mechanisms_of(chain)
+    if input_link:
+        mechanisms += mechanisms_of(chain, input_link=True)
+    out.mechanisms += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
+
+
 def compute_unit(task: UnitTask) -> UnitRows:
-    """Run one unit and turn its chains and mechanisms into atlas rows (runs on a worker)."""
+    """Run one unit and turn its chains (or gear trains) and mechanisms into atlas rows (runs on a worker)."""
     start = time.perf_counter()
-    chains, counts, mechs = [], [], []
-    # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
-    h = task.unit.conventions.h
-    conv = task.unit.conventions
-    fractionable = conv.rigid_subchains or task.unit.code.dof(h) + conv.slack != 1 or task.unit.code.n1
-    for found in run_unit(task.unit):  # (with prismatic pairs: the chains of the cell's W, wedge loops counted)
-        cert = found.certificate
-        chain = _canonical(found)
-        code = chain.code
-        degrees = chain.degrees
-        row = chain.to_dict()
-        prismatic = 0 if chain.kinds is None else chain.kinds.count("prismatic")
-        dof = chain.dof
-        chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), dof, h,
-                       chain.links, chain.loops, chain.v, prismatic, max(degrees),
-                       " ".join(map(str, sorted(degrees, reverse=True))),
-                       int(fractionable and chain.is_fractionated()), json.dumps(row, separators=(",", ":"))))
-        counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
-        mechanisms = mechanisms_of(chain)
-        if task.input_link:
-            mechanisms += mechanisms_of(chain, input_link=True)
-        mechs += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
-    return UnitRows(task.cell, task.unit.key, chains, counts, mechs, time.perf_counter() - start)
+    out = UnitRows(task.cell, task.unit.key, [], [], [], 0.0)
+    if isinstance(task.unit, TrainUnit):
+        out.rotation = task.unit.graphs == "rotation"
+        for train, rank in unit_trains(task.unit):
+            chain = _canonical(train.to_chain())
+            _chain_rows(chain, train.is_fractionated(), False, out)
+            out.trains.append(train_row(GearTrain.from_chain(chain), chain.certificate, rank))
+    else:
+        # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
+        conv = task.unit.conventions
+        fractionable = conv.rigid_subchains or task.unit.code.dof(conv.h) + conv.slack != 1 or task.unit.code.n1
+        for found in run_unit(task.unit):  # (with prismatic pairs: the chains of the cell's W, wedge loops counted)
+            chain = _canonical(found)
+            _chain_rows(chain, bool(fractionable and chain.is_fractionated()), task.input_link, out)
+    out.seconds = time.perf_counter() - start
+    return out
 
 
 def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
     """Store one finished unit in one transaction; returns the number of new chains."""
     conn.execute("BEGIN IMMEDIATE")
     try:
+        found, displaced = len(result.chains), []
+        if result.rotation:
+            result, displaced = keep_representatives(conn, result.cell, result)
         before = conn.total_changes
         conn.executemany("INSERT OR IGNORE INTO chains (certificate, code, base_code, dof, h, links, loops, v, "
-                         "prismatic, max_degree, degrees, fractionated, chain) "
-                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                         "prismatic, max_degree, degrees, fractionated, chain, meshes) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                          result.chains)
         new = conn.total_changes - before
         ids: dict[str, int] = {}
@@ -128,10 +147,11 @@ def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
         conn.executemany("INSERT OR IGNORE INTO members VALUES (?, ?)", [(result.cell, i) for i in ids.values()])
         conn.executemany("INSERT OR IGNORE INTO mechanisms VALUES (?, ?, ?)",
                          [(ids[c], f, i) for c, f, i in result.mechanisms])
+        store_trains(conn, result, ids, displaced)
         conn.execute(
             "UPDATE units SET status = 'done', chains = ?, mechanisms = ?, seconds = ?, finished = ?, run = ? "
             "WHERE cell = ? AND unit = ?",
-            (len(result.chains), len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
+            (found, len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
         conn.execute("COMMIT")
     except BaseException:
         if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
@@ -167,13 +187,19 @@ class GridRunResult:
         return d
 
 
-def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell, list[Unit]]]) -> None:
+def _cell_row(cell: Cell | GearCell, units: int) -> tuple:
+    """The ``cells`` row of a cell (a gear cell: h = 3, any v, non-fractionated trains only for F ≥ 2)."""
+    if isinstance(cell, GearCell):
+        return cell.key, cell.dof, 3, cell.links, 0, None, 0, int(cell.dof == 1), 0, "[]", units
+    return (cell.key, cell.dof, cell.h, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
+            int(cell.fractionated), int(cell.planar_only), json.dumps(cell.require), units)
+
+
+def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell | GearCell, list[Unit | TrainUnit]]]) -> None:
     conn.execute("BEGIN IMMEDIATE")
     try:
         for cell, units in plans:
-            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                         (cell.key, cell.dof, cell.h, cell.links, cell.v[0], cell.v[1], int(cell.rigid_subchains),
-                          int(cell.fractionated), int(cell.planar_only), json.dumps(cell.require), len(units)))
+            conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", _cell_row(cell, len(units)))
             conn.executemany("INSERT OR IGNORE INTO units (cell, unit, code) VALUES (?, ?, ?)",
                              [(cell.key, u.key, str(u.code)) for u in units])
         conn.execute("COMMIT")
@@ -264,6 +290,7 @@ def run_grid(
         # planned before the atlas is created: a grid the engine refuses leaves no file behind
         plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
                                                skip_impossible=True)))
+        plans += [(cell, plan_gear_cell(cell)) for cell in grid.gear_cells]
         conn = open_atlas(path, write=True)
     except BaseException:
         if client is not None:
@@ -281,7 +308,7 @@ def run_grid(
         conn.execute("PRAGMA cache_size = -65536")  # 64 MiB of pages: the certificate index stays in memory
         conn.execute("PRAGMA wal_autocheckpoint = 10000")  # checkpoint rarely during a run (and at its end)
         status, done_now = "failed", 0
-        result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(grid.cells))
+        result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(plans))
         try:
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}

@@ -7,7 +7,10 @@ browser (W, h, links, v, planar only, a link with I joints); ``codes/<code>-<pag
 fractionation, symmetry and its mechanisms (fixed links up to symmetry) on request; a chain's
 stable address is ``chain.html#<id>`` with ``id`` the first 12 hex digits of the SHA-1 of its
 certificate, which the pages and the lookup files (``lookup/<2 hex>.js``) resolve.  Chains stream
-from SQLite in code order, so memory stays bounded by one page and the lookup table.
+from SQLite in code order, so memory stays bounded by one page and the lookup table.  A planetary
+gear train is drawn as its functional schematic (:func:`synth.gears.draw.svg_text`) with its text
+form, lever analogue, carriers, rotation graph and the ``mechsynth gears`` commands that list its
+mechanisms and draw it.
 
 Example
 -------
@@ -36,6 +39,8 @@ from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..draw import svg_inline
+from ..gears.draw import svg_text
+from ..gears.train import GearTrain
 from ..errors import InvalidOption, option
 
 __all__ = ["chain_id", "write_site", "SiteResult", "EmptyAtlas", "MAX_PAGE_SIZE"]
@@ -47,13 +52,14 @@ _SECONDS_PER_DRAWING = 0.05  # a 12-link chain's layout on one core (docs/atlas.
 class EmptyAtlas(AtlasError):
     """The atlas holds no chain (a valid atlas, nothing to show)."""
 
-_ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.certificate"
+_ORDER = "ORDER BY c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.meshes, c.certificate"
 _STYLE = """
 body{font:14px/1.4 system-ui,sans-serif;margin:1.5em;color:#1b2733}
 a{color:#1f3a5f}h1{font-size:1.4em}table{border-collapse:collapse}
 td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #e3e8ee}th{background:#f3f6f9}
 td.c,th.c{text-align:left}.filters label{margin-right:1em}.grid{display:flex;flex-wrap:wrap;gap:10px}
 figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180px;background:#fff}
+figure.train{width:240px}figure.train svg{max-width:100%;height:auto}
 figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
 code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
 """
@@ -74,8 +80,8 @@ class SiteResult:
 
 
 def _slug(group: tuple) -> str:
-    dof, h, code, prismatic = group
-    text = f"W{dof}-h{h}-{code}" + (f"-P{prismatic}" if prismatic else "")
+    dof, h, code, prismatic, meshes = group
+    text = f"W{dof}-h{h}-{code}" + (f"-P{prismatic}" if prismatic else "") + (f"-G{meshes}" if meshes else "")
     return re.sub(r"[^A-Za-z0-9.=-]+", "_", text)
 
 
@@ -85,11 +91,33 @@ def _page(title: str, body: str, depth: int = 0) -> str:
             f'<link rel="stylesheet" href="{up}style.css"></head><body>{body}</body></html>')
 
 
+def _train_card(index: int, chain: Chain, train: tuple, mechanisms, fractionated: bool, draw: bool) -> str:
+    """One gear train's figure (HTML): its schematic, numbers and the commands that reproduce it."""
+    text, lever, rotation = train
+    gears = GearTrain.parse(text)
+    cid = chain_id(chain.certificate)
+    picture = svg_text(gears) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
+    frames = sorted({f for f, i in mechanisms if i < 0})
+    quoted = html.escape(text)
+    return (f'<figure id="{cid}" class="train">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
+            f'lever analogue {html.escape(lever)} · {len(set(gears.carriers))} carrier'
+            f'{"s" * (len(set(gears.carriers)) > 1)}<br>rotation graph {chain_id(rotation)}'
+            f'{" · fractionated" if fractionated else ""}</figcaption><details>'
+            f'<summary>train, certificate, mechanisms</summary>'
+            f'train: <code>{quoted}</code><br>carriers per mesh: {", ".join(map(str, gears.carriers))}<br>'
+            f'certificate: <code>{html.escape(chain.certificate)}</code><br>'
+            f'fixed link up to symmetry: {", ".join(map(str, frames)) or "none stored"}<br>'
+            f'<code>mechsynth gears --train "{quoted}" --input-output</code><br>'
+            f'<code>mechsynth gears --train "{quoted}" --out train.svg</code></details></figure>')
+
+
 def _card(job: tuple) -> tuple[str, bool]:
     """One chain's figure (HTML) and whether it is planar; ``job`` is (index, chain as JSON text,
-    stored mechanisms, fractionated, draw?) so that worker processes can build it."""
-    index, data, mechanisms, fractionated, draw = job
+    stored mechanisms, fractionated, draw?, gear train or None) so that worker processes can build it."""
+    index, data, mechanisms, fractionated, draw, train = job
     chain = Chain.from_dict(json.loads(data))
+    if train is not None:
+        return _train_card(index, chain, train, mechanisms, fractionated, draw), chain.is_planar()
     cid = chain_id(chain.certificate)
     planar = chain.is_planar()
     picture = svg_inline(chain) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
@@ -186,8 +214,9 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
                       f"{describe_seconds(seconds)} on {workers} worker{'s' * (workers > 1)} (--draw-limit draws "
                       "fewer)", file=sys.stderr)
             bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
-        rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.fractionated, c.chain, "
-                            f"c.certificate FROM chains c {_ORDER}")
+        rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.meshes, c.fractionated, "
+                            f"c.chain, c.certificate, t.train, t.lever_code, t.rotation "
+                            f"FROM chains c LEFT JOIN trains t ON t.chain = c.id {_ORDER}")
         current, buffer = None, []
 
         def flush(final: bool) -> None:
@@ -198,8 +227,8 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             number = info["pages"] + 1
             slug = _slug(current)
             jobs = []
-            for index, data, mechs, frac, cid in buffer:
-                jobs.append((index, data, mechs, frac, drawn < draw_limit))
+            for index, data, mechs, frac, cid, train in buffer:
+                jobs.append((index, data, mechs, frac, drawn < draw_limit, train))
                 drawn += drawn < draw_limit
                 lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
             cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
@@ -212,7 +241,8 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
                 nav.append(f'<a href="{slug}-{number + 1}.html">next page</a>')
             first, last = buffer[0][0], buffer[-1][0]
             title = (f"{info['code']} — W = {info['W']}, h = {info['h']}, n = {info['n']}, v = {info['v']}"
-                     + (f", {info['P']} prismatic pair{'s' if info['P'] > 1 else ''}" if info["P"] else ""))
+                     + (f", {info['P']} prismatic pair{'s' if info['P'] > 1 else ''}" if info["P"] else "")
+                     + (f", {info['G']} gear meshes" if info["G"] else ""))
             body = (f"<h1>{html.escape(title)}</h1><p class='nav'>{' · '.join(nav)}</p>"
                     f"<p>chains {first}–{last} of <span class='total' id='count'>{{TOTAL}}</span></p>"
                     f"<div class='grid'>{''.join(card for card, _ in cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
@@ -221,20 +251,22 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             pages += 1
             buffer.clear()
 
-        for key, dof, h, links, v, code, prismatic, fractionated, data, certificate in rows:
-            group = (dof, h, code, prismatic)
+        for key, dof, h, links, v, code, prismatic, meshes, fractionated, data, certificate, *train in rows:
+            group = (dof, h, code, prismatic, meshes)
             if group != current:
                 flush(True)
                 current = group
-                groups.append({"code": code + (f" P{prismatic}" if prismatic else ""), "W": dof, "h": h, "n": links,
-                               "v": v, "P": prismatic, "chains": 0, "planar": 0, "pages": 0,
-                               "degrees": _degrees(code), "href": f"codes/{_slug(group)}-1.html"})
+                groups.append({"code": code + (f" P{prismatic}" if prismatic else "") + (f" G{meshes}" if meshes else ""),
+                               "W": dof, "h": h, "n": links, "v": v, "P": prismatic, "G": meshes,
+                               "kind": "gears" if train[0] is not None else "chains", "chains": 0, "planar": 0,
+                               "pages": 0, "degrees": _degrees(code), "href": f"codes/{_slug(group)}-1.html"})
             mechs = conn.execute("SELECT frame, input_link FROM mechanisms WHERE chain = ?", (key,)).fetchall()
             info = groups[-1]
             info["chains"] += 1
             if len(buffer) == page_size:  # a full page with more to come: it links to the next one
                 flush(False)
-            buffer.append((info["chains"], data, mechs, bool(fractionated), chain_id(certificate)))
+            buffer.append((info["chains"], data, mechs, bool(fractionated), chain_id(certificate),
+                           None if train[0] is None else tuple(train)))
             if bar is not None:
                 bar.update()
         flush(True)
@@ -262,7 +294,7 @@ def _fill_totals(out: Path, groups: list[dict]) -> None:
 
 
 def _index(groups: list[dict], total: int, drawn: int) -> str:
-    options = {key: sorted({g[key] for g in groups}) for key in ("W", "h", "n", "v")}
+    options = {key: sorted({g[key] for g in groups}) for key in ("kind", "W", "h", "n", "v")}
     selects = "".join(
         f'<label>{key} <select id="f{key}"><option value="">all</option>'
         + "".join(f'<option>{value}</option>' for value in values) + "</select></label>"
@@ -283,7 +315,7 @@ def _index(groups: list[dict], total: int, drawn: int) -> str:
 _INDEX_JS = """
 const $=id=>document.getElementById(id);
 function show(){
-  const f={W:$('fW').value,h:$('fh').value,n:$('fn').value,v:$('fv').value};
+  const f={kind:$('fkind').value,W:$('fW').value,h:$('fh').value,n:$('fn').value,v:$('fv').value};
   const planar=$('fplanar').checked, deg=parseInt($('fdeg').value);
   let rows='',chains=0,codes=0;
   for(const c of CODES){
@@ -296,7 +328,7 @@ function show(){
   }
   $('rows').innerHTML=rows;$('shown').textContent=chains;$('codes').textContent=codes;
 }
-for(const id of ['fW','fh','fn','fv','fplanar','fdeg'])$(id).addEventListener('input',show);
+for(const id of ['fkind','fW','fh','fn','fv','fplanar','fdeg'])$(id).addEventListener('input',show);
 $('fid').addEventListener('change',()=>{location.href='chain.html#'+$('fid').value.trim().toLowerCase();});
 show();
 """

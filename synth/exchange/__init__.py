@@ -106,7 +106,7 @@ def read_text(text: str, fmt: str | None = None, source: str = "the input", suff
     kind = fmt or detect(text, suffix)
     if kind == "unknown":
         raise MalformedChain(f"cannot tell what {source} holds: it is not a joint list, JSON, GraphML, GML, DOT, an "
-                             "edge list or a CSV matrix (name the format with --input-format)")
+                             "edge list or a CSV matrix (name its format)")
     if kind == "text":
         return read_text_lists(text, source)
     if kind == "json":

@@ -176,7 +176,7 @@ def write_adjacency(items, out) -> int:
         chain = item.chain if isinstance(item, Mechanism) else item
         if any(len(j) > 2 for j in chain.joints):
             raise InvalidOption(f"an adjacency matrix holds simple joints only, and {chain.compact()} has a joint of "
-                                f"{max(len(j) for j in chain.joints)} links: use --format incidence")
+                                f"{max(len(j) for j in chain.joints)} links: an incidence matrix holds it")
         if count:
             out.write("\n")
         _head(item, out)

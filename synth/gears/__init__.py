@@ -15,7 +15,7 @@ from .._lazy import lazy_exports
 
 _WHERE = {
     "GearTrain": ".train",
-    "GRAPHS": ".enumeration", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration",
+    "GRAPHS": ".enumeration", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration", "link_axis_trees": ".enumeration", "tree_trains": ".enumeration",
     "check_query": ".enumeration",
     "GearMechanism": ".ratios", "RatioFormula": ".ratios", "mechanisms": ".ratios",
     "speed_ratio": ".ratios",

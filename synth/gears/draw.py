@@ -25,7 +25,7 @@ from pathlib import Path
 from ..errors import InvalidOption
 from .train import GearTrain
 
-__all__ = ["draw_train", "draw_sheet", "schematic"]
+__all__ = ["draw_train", "draw_sheet", "schematic", "svg_text"]
 
 _FORMATS = (".svg", ".png", ".pdf")
 _GAP = 0.16  # between concentric shafts
@@ -222,3 +222,29 @@ def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) 
             ax.axis("off")
     _save(fig, path, 90)
     return len(trains)
+
+
+def svg_text(train: GearTrain, *, size: float = 2.6) -> str:
+    """The schematic of one train as an ``<svg>`` element (no title; ``size`` inches wide), for
+    web pages that show many trains inline; the same drawing as :func:`draw_train`, deterministic.
+
+    >>> svg_text(GearTrain.parse("0-1-2 2-3 0~3i 1~3", frame=0)).startswith("<svg")
+    True
+    """
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(size, size * 0.75))
+    _draw_on(ax, train, None, (), "")
+    buffer = io.StringIO()
+    try:
+        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
+            fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
+    finally:
+        plt.close(fig)
+    text = buffer.getvalue()
+    return text[text.index("<svg"):]

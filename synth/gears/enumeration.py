@@ -46,26 +46,26 @@ from ..structure._nauty import TrustedGraph
 from ..errors import InvalidOption
 from .train import GearTrain, axis_paths
 
-__all__ = ["GRAPHS", "link_axis_trees", "trains", "count_trains", "census", "check_query"]
+__all__ = ["GRAPHS", "MAX_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census", "check_query"]
 
 GRAPHS = ("displacement", "rotation")
-_MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
+MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
 _ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augmentation instead
 
 
 def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
     """Refuse a query the enumerator cannot answer, in one sentence."""
-    for name, value in (("dof", dof), ("links", links)):
+    for what, value in (("the degrees of freedom F", dof), ("the number of links", links)):
         if isinstance(value, bool) or not isinstance(value, int):
-            raise InvalidOption(f"--{name} must be a whole number, not {value!r}")
+            raise InvalidOption(f"{what} must be a whole number, not {value!r}")
     if dof < 1:
         raise InvalidOption(f"a gear train that moves has F ≥ 1 degrees of freedom, not {dof}")
     if links < 2:
         raise InvalidOption(f"a gear train has at least 2 links (a frame and a gear), not {links}")
-    if links > _MAX_LINKS:
-        raise InvalidOption(f"gear trains are enumerated up to {_MAX_LINKS} links, not {links}")
+    if links > MAX_LINKS:
+        raise InvalidOption(f"gear trains are enumerated up to {MAX_LINKS} links, not {links}")
     if graphs not in GRAPHS:
-        raise InvalidOption(f"--graphs is displacement or rotation, not {graphs!r}")
+        raise InvalidOption(f"a gear train is listed by its displacement or its rotation graph, not {graphs!r}")
 
 
 # ------------------------------------------------------------------------------ trees
@@ -241,8 +241,13 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
 _METHODS = {"auto": None, "orderly": False, "augmentation": True}
 
 
-def _tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTrain]:
-    """The trains on one tree, in generation order."""
+def tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTrain]:
+    """The trains on one link–axis tree (one of :func:`link_axis_trees`), in generation order: the
+    independent unit of the enumeration (an atlas's grid runs a tree a unit).
+
+    >>> [len(tree_trains(1, 4, axes)) for axes in link_axis_trees(4)]
+    [1, 1, 0, 1]
+    """
     tree = _Tree(links, axes)
     meshes = links - 1 - dof
     out = []
@@ -263,7 +268,7 @@ def _tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearT
 
 def _tree_summary(args) -> tuple[int, dict, set]:
     dof, links, axes, want_rotation, method = args
-    found = _tree_trains(dof, links, axes, method)
+    found = tree_trains(dof, links, axes, method)
     codes = Counter(str(t.lever_analogue().code) for t in found)
     rotations = {t.rotation_certificate for t in found} if want_rotation else set()
     return len(found), dict(codes), rotations
@@ -312,7 +317,7 @@ def trains(dof: int, links: int, graphs: str = "displacement", workers: int | No
 
 
 def _tree_list(args) -> list[GearTrain]:
-    return _tree_trains(*args)
+    return tree_trains(*args)
 
 
 def census(dof: int, links: int, workers: int | None = 1, method: str = "auto") -> dict:

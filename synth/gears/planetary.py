@@ -135,14 +135,14 @@ def planetary_rows(satellites: tuple[int, int], sun: str = "floating"):
     >>> next(planetary_rows((30, 31)))
     Traceback (most recent call last):
     ...
-    synth.errors.InvalidOption: --satellites 30..31: at most 21 satellites, whose lever analogue has 24 non-binary links (the exact sub-chain test handles up to 24)
+    synth.errors.InvalidOption: 30..31 satellites: at most 21, whose lever analogue has 24 non-binary links (the exact sub-chain test handles up to 24)
     """
     lo, hi = satellites
     if lo < 1:
         raise InvalidOption(f"a planetary train needs at least one satellite, not {lo}")
     most = next(k for k in range(1, _MAX_CORE + 1) if _core_links(k + 1, sun) > _MAX_CORE)
     if hi > most:
-        raise InvalidOption(f"--satellites {lo}..{hi}: at most {most} satellites, whose lever analogue has "
+        raise InvalidOption(f"{lo}..{hi} satellites: at most {most}, whose lever analogue has "
                             f"{_core_links(most, sun)} non-binary links (the exact sub-chain test handles up to "
                             f"{_MAX_CORE})")
     for k in range(lo, hi + 1):

@@ -39,7 +39,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..errors import InvalidOption
+from ..errors import InvalidOption, option
 from .ratios import RatioFormula, speed_ratio, wheel_names
 from .train import GearTrain
 
@@ -51,7 +51,7 @@ _BOUND = 1 << 61  # CP-SAT integers
 
 
 class NoDesign(InvalidOption):
-    """No tooth numbers meet the ratio and the conditions (or no planet fits ``--planets``)."""
+    """No tooth numbers meet the ratio and the conditions (or the train has no planet for ``planets``)."""
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ class Design:
 def parse_fraction(text, what: str) -> Fraction:
     """An exact fraction from ``"4.25"``, ``"17/4"`` or ``"1%"``.
 
-    >>> parse_fraction("4.25", "--ratio"), parse_fraction("0.5%", "--tolerance")
+    >>> parse_fraction("4.25", "the speed ratio"), parse_fraction("0.5%", "the tolerance")
     (Fraction(17, 4), Fraction(1, 200))
     """
     s = str(text).strip()
@@ -120,18 +120,18 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     error and at most that sum (a search over many mechanisms passes the worst design it keeps).
     Raises :class:`NoDesign` when none qualifies.
     """
-    target = parse_fraction(ratio, "--ratio")
-    tol = parse_fraction(tolerance, "--tolerance")
+    target = parse_fraction(ratio, "the speed ratio")
+    tol = parse_fraction(tolerance, "the tolerance")
     if target == 0:
         raise InvalidOption("a speed ratio of 0 would need an output that never turns")
     if tol < 0:
-        raise InvalidOption(f"--tolerance must be ≥ 0, not {tolerance}")
+        raise InvalidOption(f"the tolerance must be ≥ 0, not {tolerance}")
     lo, hi = max(teeth[0], min_teeth), teeth[1]
     if lo > hi:
         raise InvalidOption(f"no tooth number fits {teeth[0]}..{teeth[1]} with at least {min_teeth} teeth "
                             "(fewer are undercut)")
     if planets is not None and planets < 1:
-        raise InvalidOption(f"--planets must be a whole number ≥ 1, not {planets}")
+        raise InvalidOption(f"the number of planets must be a whole number ≥ 1, not {planets}")
     if kinds not in ("given", "free"):
         raise InvalidOption(f"mesh kinds are given or free, not {kinds!r}")
     train = GearTrain(train.links, train.axes, train.meshes, train.carriers, train.internal, frame)
@@ -174,7 +174,7 @@ class _DesignModel:
                 top = hi ** sum(e for x, e in mono if x in z)
                 if top >= _BOUND:
                     raise InvalidOption("these tooth ranges make the ratio's polynomials too large for exact "
-                                        "integers: narrow --teeth")
+                                        f"integers: narrow {option('teeth', 'A..B')}")
                 var = model.NewIntVar(-top if any(x in sign for x, _ in mono) else 0, top, "·".join(x for x, _ in mono))
                 model.AddMultiplicationEquality(var, factors)
                 products[mono] = (var, top)
@@ -195,7 +195,7 @@ class _DesignModel:
         span = max(b * (q * n_bound + abs(p) * d_bound), a * abs(p) * d_bound)
         if span >= _BOUND or span * d_bound >= _BOUND:
             raise InvalidOption("the ratio and tolerance need integers too large for an exact model: give the "
-                                "ratio with fewer digits or narrow --teeth")
+                                f"ratio with fewer digits or narrow {option('teeth', 'A..B')}")
         error = model.NewIntVar(-span, span, "error")
         model.Add(error == q * n_expr - p * d_expr)
         self.E = model.NewIntVar(0, span, "abs_error")  # error of a design: E / (|p|·A)
@@ -415,7 +415,8 @@ def _assembly(model, train: GearTrain, names, z, planets: int, lo: int, hi: int,
             not_ring = [kind["ring_first" if s == 0 else "ring_second"][k].Not() for k, s in ((k1, s1), (k2, s2))]
             pairs.append((c1, p1, c2, p2, sign, not_ring))
     if not pairs:
-        raise NoDesign("--planets needs a planet wheel that meshes a sun and a ring on one carrier")
+        raise NoDesign("equally spaced planets need a planet wheel that meshes a sun and a ring on one carrier, "
+                       "and this train has none")
     span = 2 * hi * hi
     for c1, p1, c2, p2, sign, when in pairs:
         tag = f"{c1}_{c2}"

@@ -7,7 +7,7 @@ degree equation fixes once row u is complete.  The search keeps the model's cond
 
 * degrees, the loops a vertex may carry, and the binary links the strings need (pairwise least
   weights and loops: at most n2);
-* the sb*ℓ rows of same-kind vertices in lexicographic order (Codish et al.), checked on every
+* the sb*ℓ rows of vertices of one kind and degree in lexicographic order (Codish et al.), checked on every
   prefix of columns known for both rows, and whole when the later row is complete;
 * the sub-chain conditions of stage B written on H: for simple joints they say that the
   multigraph holding ``cost_p`` units on each pair p of inner links is (h, h + threshold − slack)-
@@ -100,8 +100,8 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     many were written (fewer than ``len(out_x)``: the enumeration is complete).
 
     ``lb_of[p, x]``/``cost_of[p, x]``: least binary links and sub-chain cost of x strings on pair p;
-    ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of same-kind
-    vertices (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
+    ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of
+    vertices of one kind and degree (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
     ``check``: whether the sub-chain conditions apply (as pebble games).
     """
     P = len(pu)

@@ -20,21 +20,99 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import _MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
 
-__all__ = ["Problem", "number_synthesis", "iter_codes", "make_problem", "parse_range", "parse_requirements",
-           "MAX_CODES"]
+__all__ = ["CodeQuery", "Problem", "number_synthesis", "iter_codes", "make_problem", "parse_range",
+           "parse_requirements", "MAX_CODES"]
 
 # A query is refused unasked above this many codes (an upper bound, counted before any model is
 # built): about 40 s and 300 MB of codes (W = 1 lists 140 606 codes at K = 20, 302 085 at K = 22).
 MAX_CODES = 200_000
 _MAX_LINKS = 1_000_000  # a model's counts are 64-bit: far below that, no chain is ever drawn or stored
 _SECONDS_PER_CODE = 2e-4  # measured on the development machine, loaded: 94 551 codes (K = 19) in 19 s
+
+
+@dataclass(frozen=True)
+class CodeQuery:
+    """What number synthesis is asked, as given: W, the size, and the options every size shares.
+
+    :func:`make_problem` validates it (one size at a time: a range of loops or links is a
+    problem per value, see :func:`iter_codes`).
+
+    Parameters
+    ----------
+    dof : int
+        Required mobility W (0 for statically determinate trusses).
+    loops, links : int or range, optional
+        K or n (one of them, or ``loop_classes``); a range ``"1..5"`` or ``(1, 5)``
+        solves each value in turn.
+    loop_classes : mapping h -> K_h, optional
+        Heterogeneous systems whose loops live in different motion spaces.
+    h : int
+        Motion space of a loop (3 planar and spherical, 6 general spatial, …).
+    f : int
+        Extra mobility of multi-DOF pairs.
+    v : int or range, optional
+        Multiple-joint count; default every possible value 0 … 2(K−1) + n1.
+    n1 : int or range
+        Single-joint links (open chains); default 0 (closed chains).
+    max_link_degree : int, 'K+1' or 'K+W', optional
+        Largest number of joints on one link; default K+1 (non-fractionated closed chains).
+    require : mapping or strings ``"I=N"``, ``"I=A..B"``, ``"I=A.."``
+        Design constraints on n_I, constraints of the CP-SAT model.
+    max_multiplicity : int, optional
+        Largest number of links on one joint (2 = simple joints only); default the limit
+        theorem's: a joint of order at most K (closed chains) or K + W (open chains), i.e.
+        K + 1 or K + W + 1 links (docs/theory.md, "Limit theorems").
+    compositions : bool
+        Split each code by its joint composition (v2, v3, …).
+
+    Example
+    -------
+    >>> CodeQuery.of(1, loops="1..5", require=["5=1.."]).loops
+    '1..5'
+    """
+
+    dof: int
+    loops: int | tuple | str | None = None
+    links: int | tuple | str | None = None
+    loop_classes: Mapping[int, int] | None = None
+    h: int = 3
+    f: int = 0
+    v: int | tuple | str | None = None
+    n1: int | tuple | str = 0
+    max_link_degree: int | str | None = None
+    require: Mapping | Iterable[str] | None = None
+    max_multiplicity: int | None = None
+    compositions: bool = False
+
+    @classmethod
+    def of(cls, query: "CodeQuery | int | None" = None, **options) -> "CodeQuery":
+        """The query itself, or one from W and the keywords of :func:`number_synthesis`
+        (``dof`` may be a keyword too).
+
+        >>> CodeQuery.of(1, loops=2) == CodeQuery.of(dof=1, loops=2) == CodeQuery(1, loops=2)
+        True
+        """
+        if isinstance(query, CodeQuery):
+            if options:
+                raise InvalidOption("give a query or its options, not both")
+            return query
+        if query is not None:
+            if "dof" in options:
+                raise InvalidOption("W is given twice (as the first argument and as dof)")
+            options["dof"] = query
+        unknown = sorted(set(options) - {f.name for f in fields(cls)})
+        if unknown:
+            raise InvalidOption(f"unknown option(s) for number synthesis: {', '.join(unknown)}")
+        if "dof" not in options:
+            raise InvalidOption("give the degree of freedom W")
+        return cls(**options)
 
 
 @dataclass(frozen=True)
@@ -64,22 +142,9 @@ def _loops_for_links(dof: int, links: int, h: int, f: int) -> int:
     return extra // (h - 1)
 
 
-def make_problem(
-    dof: int,
-    *,
-    loops: int | None = None,
-    links: int | None = None,
-    loop_classes: Mapping[int, int] | None = None,
-    h: int = 3,
-    f: int = 0,
-    v: int | tuple | str | None = None,
-    n1: int | tuple | str = 0,
-    max_link_degree: int | str | None = None,
-    require: Mapping | Iterable[str] | None = None,
-    max_multiplicity: int | None = None,
-    compositions: bool = False,
-) -> Problem:
-    """Validate a counting problem before any model is built.
+def make_problem(query: CodeQuery | int | None = None, /, **options) -> Problem:
+    """Validate a counting problem of one size (a value of loops or links, or loop classes)
+    before any model is built: a :class:`CodeQuery`, or W and its keywords.
 
     Raises
     ------
@@ -91,6 +156,9 @@ def make_problem(
     >>> make_problem(1, loops=4).links
     10
     """
+    query = CodeQuery.of(query, **options)
+    dof, loops, links, loop_classes, h, f = query.dof, query.loops, query.links, query.loop_classes, query.h, query.f
+    max_link_degree, max_multiplicity = query.max_link_degree, query.max_multiplicity
     check_dof(dof), check_motion_space(h), check_extra_mobility(f)
     given = [x is not None for x in (loops, links, loop_classes)]
     if sum(given) != 1:
@@ -119,7 +187,7 @@ def make_problem(
     if K > _MAX_LOOPS:
         raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
                             f"are written and read up to {_MAX_LOOPS} loops")
-    n1_range = parse_range(n1, "n1")
+    n1_range = parse_range(query.n1, "n1")
     if n1_range[1] is None:
         n1_range = (n1_range[0], n)
     if n1_range[0] > n:
@@ -130,7 +198,7 @@ def make_problem(
     p = K + n - 1
     # Σ i·n_i ≥ n1 + 2(n − n1) bounds v from above.
     v_cap = 2 * p - 2 * n + n1_range[1]
-    v_range = parse_range(v, "v") if v is not None else (0, v_cap)
+    v_range = parse_range(query.v, "v") if query.v is not None else (0, v_cap)
     if v_range[1] is None:
         v_range = (v_range[0], v_cap)
     if v_range[0] > v_cap:
@@ -156,7 +224,7 @@ def make_problem(
                 f"the largest link degree must be {least} or more (a link of {'a closed' if closed else 'an open'} "
                 f"chain carries at least {least} joint{'s' if least > 1 else ''}), not {imax}")
     imax = max(imax, 1 if not closed else 2)
-    reqs = parse_requirements(require)
+    reqs = parse_requirements(query.require)
     for i, (lo, hi) in reqs.items():
         if i > imax and lo > 0:
             raise ImpossibleParameters(
@@ -177,7 +245,7 @@ def make_problem(
             f"a joint joins at least 2 links: the largest multiplicity must be 2 or more, not {max_multiplicity!r}")
     if max_multiplicity is None:  # limit theorem: a joint of order ≤ K (closed), ≤ K + W (open) joins ≤ order + 1 links
         max_multiplicity = K + 1 if closed else K + dof + 1
-    return Problem(dof, n, K, v_range, n1_range, imax, tuple(reqs.items()), max_multiplicity, compositions)
+    return Problem(dof, n, K, v_range, n1_range, imax, tuple(reqs.items()), max_multiplicity, query.compositions)
 
 
 def _bound_name(max_link_degree) -> str:
@@ -259,51 +327,17 @@ def sort_key(code: Code):
     return (code.loops, code.n1, code.v, code.assortment, code.composition or ())
 
 
-def number_synthesis(
-    dof: int,
-    *,
-    loops: int | tuple | str | None = None,
-    links: int | tuple | str | None = None,
-    loop_classes: Mapping[int, int] | None = None,
-    h: int = 3,
-    f: int = 0,
-    v: int | tuple | str | None = None,
-    n1: int | tuple | str = 0,
-    max_link_degree: int | str | None = None,
-    require: Mapping | Iterable[str] | None = None,
-    max_multiplicity: int | None = None,
-    compositions: bool = False,
-    max_codes: int | None = MAX_CODES,
-) -> list[Code]:
+def number_synthesis(query: CodeQuery | int | None = None, /, *, max_codes: int | None = MAX_CODES,
+                     **options) -> list[Code]:
     """Every standard code for W = ``dof`` and the given loops or links.
 
     Parameters
     ----------
-    dof : int
-        Required mobility W (0 for statically determinate trusses).
-    loops, links : int or range, optional
-        K or n (one of them, or ``loop_classes``); a range ``"1..5"`` or ``(1, 5)``
-        solves each value in turn.
-    loop_classes : mapping h -> K_h, optional
-        Heterogeneous systems whose loops live in different motion spaces.
-    h : int
-        Motion space of a loop (3 planar and spherical, 6 general spatial, …).
-    f : int
-        Extra mobility of multi-DOF pairs.
-    v : int or range, optional
-        Multiple-joint count; default every possible value 0 … 2(K−1) + n1.
-    n1 : int or range
-        Single-joint links (open chains); default 0 (closed chains).
-    max_link_degree : int, 'K+1' or 'K+W', optional
-        Largest number of joints on one link; default K+1 (non-fractionated closed chains).
-    require : mapping or strings ``"I=N"``, ``"I=A..B"``, ``"I=A.."``
-        Design constraints on n_I, constraints of the CP-SAT model.
-    max_multiplicity : int, optional
-        Largest number of links on one joint (2 = simple joints only); default the limit
-        theorem's: a joint of order at most K (closed chains) or K + W (open chains), i.e.
-        K + 1 or K + W + 1 links (docs/theory.md, "Limit theorems").
-    compositions : bool
-        Split each code by its joint composition (v2, v3, …).
+    query : CodeQuery or int
+        The query, or W (0 for trusses) with the options of :class:`CodeQuery` as keywords:
+        ``loops``, ``links`` or ``loop_classes`` (the size; a range of loops or links solves each
+        value in turn), ``h``, ``f``, ``v``, ``n1``, ``max_link_degree``, ``require``,
+        ``max_multiplicity``, ``compositions``.
     max_codes : int or None
         Refuse (``QueryTooLarge``) a query that may have more codes than this, sized before any
         model is built (see :mod:`synth.synthesis._sizing`); None lists any number.
@@ -324,17 +358,14 @@ def number_synthesis(
     >>> len(number_synthesis(1, loops="1..5"))
     89
     """
-    return sorted(set(iter_codes(
-        dof, loops=loops, links=links, loop_classes=loop_classes, h=h, f=f, v=v, n1=n1,
-        max_link_degree=max_link_degree, require=require, max_multiplicity=max_multiplicity,
-        compositions=compositions, max_codes=max_codes)), key=sort_key)
+    return sorted(set(iter_codes(query, max_codes=max_codes, **options)), key=sort_key)
 
 
 _MAX_VALUES = 1000  # a range of loops or links solves one model per value
 
 
-def iter_codes(dof: int, *, loops=None, links=None, loop_classes=None, max_codes: int | None = MAX_CODES,
-               progress: Callable[[int], None] | None = None, **common) -> Iterator[Code]:
+def iter_codes(query: CodeQuery | int | None = None, /, *, max_codes: int | None = MAX_CODES,
+               progress: Callable[[int], None] | None = None, **options) -> Iterator[Code]:
     """:func:`number_synthesis` one value of K (or n) at a time, in the same order: memory holds the
     codes of one value.  Every value is validated and the whole query sized before the first code.
 
@@ -343,8 +374,10 @@ def iter_codes(dof: int, *, loops=None, links=None, loop_classes=None, max_codes
     >>> [str(c) for c in iter_codes(1, loops="1..2")]
     ['4/0', '42/0', '51/1', '60/2']
     """
-    if loop_classes is not None:
-        problems = [make_problem(dof, loop_classes=loop_classes, **common)]
+    query = CodeQuery.of(query, **options)
+    dof, loops, links = query.dof, query.loops, query.links
+    if query.loop_classes is not None:
+        problems = [make_problem(query)]
     else:
         which = "loops" if loops is not None else "links"
         rng = parse_range(loops if loops is not None else links, "K" if loops is not None else "n")
@@ -360,7 +393,7 @@ def iter_codes(dof: int, *, loops=None, links=None, loop_classes=None, max_codes
         problems = []
         for value in range(rng[0], rng[1] + 1):
             try:
-                problems.append(make_problem(dof, **{which: value}, **common))
+                problems.append(make_problem(replace(query, **{which: value})))
             except ImpossibleParameters:
                 if rng[0] == rng[1]:
                     raise  # a single value that is impossible is an error, in a range it is skipped

@@ -9,7 +9,7 @@ the weights on each.
 
 Stage A enumerates labelled multigraphs with the degree equations, the least weights of
 parallel strings and loops, stage B's sub-chain conditions written on H and the sb*ℓ
-lexicographic row constraints of Codish et al. between branch vertices of one kind;
+lexicographic row constraints of Codish et al. between branch vertices of one kind and degree;
 connectivity is checked on each solution and nauty removes the labelled copies that are left.
 A large query (:func:`uses_kernel`) with simple joints runs the compiled search of
 :mod:`synth.synthesis._stage_a_kernel`, where the sub-chain conditions are a pebble game; the
@@ -22,13 +22,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from itertools import combinations
 from operator import itemgetter
+from typing import NamedTuple
 
 import pynauty
 
 from ..structure._nauty import TrustedGraph
 from ..structure.code import Code
 
-__all__ = ["Conventions", "Contracted", "contracted_graphs", "load_kernel", "uses_kernel", "kernel_loops"]
+__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "load_kernel", "uses_kernel",
+           "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
@@ -80,20 +82,47 @@ class Conventions:
         return (0 if self.rigid_subchains else 1) - self.slack
 
 
+LINK, JOINT = "link", "joint"  # the two kinds of branch vertex
+
+
+class Vertex(NamedTuple):
+    """A branch vertex of H: a ``LINK`` with ``degree`` joints (3 or more; 1 for a single-joint
+    link of an open chain), or a multiple ``JOINT`` of ``degree`` links (3 or more).
+
+    Vertices sort joints first, then links, each by degree: the colour classes of H for nauty
+    in that order, on which the certificates of H (and the unit keys of checkpoints) depend.
+
+    >>> sorted([Vertex(LINK, 3), Vertex(JOINT, 4), Vertex(LINK, 1)])
+    [Vertex(kind='joint', degree=4), Vertex(kind='link', degree=1), Vertex(kind='link', degree=3)]
+    """
+
+    kind: str
+    degree: int
+
+    @property
+    def is_link(self) -> bool:
+        return self.kind == LINK
+
+    @property
+    def is_joint(self) -> bool:
+        return self.kind == JOINT
+
+
 @dataclass(frozen=True)
 class Contracted:
-    """Branch-vertex multigraph H of a chain: ``kinds[u]`` is ('L', joints) or ('J', links)."""
+    """Branch-vertex multigraph H of a chain: ``vertices[u]`` is a :class:`Vertex` (a link and
+    its joints, or a multiple joint and its links), ``edges`` its strings as vertex pairs."""
 
-    kinds: tuple[tuple[str, int], ...]
+    vertices: tuple[Vertex, ...]
     edges: tuple[tuple[int, int], ...]
     certificate: str
 
     def _subdivided(self) -> pynauty.Graph:
-        m = len(self.kinds)
+        m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        cells: dict[tuple[str, int], set[int]] = {}
-        for u, kind in enumerate(self.kinds):
-            cells.setdefault(kind, set()).add(u)
+        cells: dict[Vertex, set[int]] = {}
+        for u, vertex in enumerate(self.vertices):
+            cells.setdefault(vertex, set()).add(u)
         coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
         return TrustedGraph(m + len(self.edges), adjacency, coloring)
 
@@ -103,10 +132,10 @@ class Contracted:
         The whole group (identity left out) if its order is at most 4096, else generators and
         their inverses.
 
-        >>> Contracted((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), "").edge_group()[1]
+        >>> Contracted((Vertex(LINK, 3), Vertex(LINK, 3)), ((0, 1), (0, 1), (0, 1)), "").edge_group()[1]
         True
         """
-        m, e = len(self.kinds), len(self.edges)
+        m, e = len(self.vertices), len(self.edges)
         if e == 0:
             return [], True
         gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
@@ -132,27 +161,27 @@ class Contracted:
         return sorted(group), True
 
 
-def _branch_kinds(code: Code) -> tuple[tuple[str, int], ...]:
+def _branch_vertices(code: Code) -> tuple[Vertex, ...]:
     """Links with 3+ joints (most first), the single-joint links of an open chain (leaves of H),
-    then the multiple joints."""
-    links = [("L", i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
-    links += [("L", 1)] * code.n1
+    then the multiple joints (most links first)."""
+    links = [Vertex(LINK, i) for i in range(len(code.assortment) + 1, 2, -1) for _ in range(code.count(i))]
+    links += [Vertex(LINK, 1)] * code.n1
     comp = code.composition or ()
-    joints = [("J", k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
+    joints = [Vertex(JOINT, k + 3) for k in range(len(comp) - 1, -1, -1) for _ in range(comp[k])]
     return tuple(links + joints)
 
 
-def _inner_links(kinds) -> list[int]:
+def _inner_links(vertices) -> list[int]:
     """Branch links that can lower a sub-chain's W: a single-joint link (a leaf of H) with its
     string adds w + 1 ≥ 1, so the sets T of the sub-chain conditions leave leaves out."""
-    return [u for u, kind in enumerate(kinds) if kind[0] == "L" and kind[1] > 1]
+    return [u for u, vertex in enumerate(vertices) if vertex.is_link and vertex.degree > 1]
 
 
-def _loop_lb(kind: str, conv: Conventions) -> int:
+def _loop_lb(vertex: Vertex, conv: Conventions) -> int:
     """Fewest binary links on a closed string through one branch vertex."""
     # through a link: w links, w+1 joints, W = w − (h − 1); through a joint: W = w − h; and at least
     # 2: one binary link would be two joints between the same two links (or a link twice on a joint)
-    return max(2, conv.h - 1 + conv.threshold) if kind == "L" else max(2, conv.h + conv.threshold)
+    return max(2, conv.h - 1 + conv.threshold) if vertex.is_link else max(2, conv.h + conv.threshold)
 
 
 def uses_kernel(code: Code, conv: Conventions) -> bool:
@@ -184,8 +213,8 @@ def load_kernel() -> None:
     from .stage_b import _kernel_placements
 
     code, conv = Code.parse("440/0"), Conventions()
-    for h in _contracted_by_kernel(code, conv):
-        _kernel_placements(code, h, conv, None, listing=False)
+    for graph in _contracted_by_kernel(code, conv):
+        _kernel_placements(code, graph, conv, None, listing=False)
 
 
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
@@ -198,14 +227,14 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
 
     from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
 
-    kinds = _branch_kinds(code)
+    vertices = _branch_vertices(code)
     n2 = code.count(2)
-    m = len(kinds)
+    m = len(vertices)
     if m == 0:
         return []
     if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
         return _contracted_by_kernel(code, conv)
-    deg = [k[1] for k in kinds]
+    deg = [vertex.degree for vertex in vertices]
     model = Model()
     pairs = list(combinations(range(m), 2))
     x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
@@ -214,7 +243,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     for u in range(m):
         model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
-    bounds = _StringBounds(kinds, pairs, code, conv)
+    bounds = _StringBounds(vertices, pairs, code, conv)
     lbs = []
     for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
         lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
@@ -222,14 +251,14 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         lbs.append(lb)
     loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
     model.Add(sum(lbs) + loops_lb <= n2)
-    strong, later = _split_conditions(_subset_conditions(kinds, code.dof(conv.h), conv), kinds)
-    _write_conditions(model, kinds, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
+    strong, later = _split_conditions(_subset_conditions(vertices, code.dof(conv.h), conv), vertices)
+    _write_conditions(model, vertices, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
     # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
     # vertex 0 made every search step of CP-SAT slower than the few disconnected solutions it removed
-    # sb*ℓ: rows of same-kind vertices in lexicographic order (loops at their diagonal place)
+    # sb*ℓ: rows of vertices of one colour (kind and degree) in lexicographic order (loops at their diagonal place)
     base = max(deg) + 1
     for u, v in pairs:
-        if kinds[u] != kinds[v]:
+        if vertices[u] != vertices[v]:
             continue
 
         def row(a):
@@ -257,10 +286,10 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
                 edges += [(u, u)] * int(k)
             if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
                 continue
-            h = Contracted(kinds, tuple(sorted(edges)), "")
-            cert = pynauty.certificate(h._subdivided()).hex()
+            graph = Contracted(vertices, tuple(sorted(edges)), "")
+            cert = pynauty.certificate(graph._subdivided()).hex()
             if cert not in seen:
-                seen[cert] = Contracted(kinds, h.edges, cert)
+                seen[cert] = Contracted(vertices, graph.edges, cert)
 
     # branching on the rows in order, least value first, follows the lexicographic row constraints
     each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
@@ -271,7 +300,7 @@ def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:
     """Whether stage A's compiled kernel writes this code's conditions: simple joints, two branch
     vertices or more, and no exemption of the whole chain (then the sub-chain conditions of stage A
     are the sparsity that its pebble game checks)."""
-    return not code.v and len(_branch_kinds(code)) >= 2 and code.dof(conv.h) >= conv.threshold
+    return not code.v and len(_branch_vertices(code)) >= 2 and code.dof(conv.h) >= conv.threshold
 
 
 def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
@@ -281,21 +310,21 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
 
     from ._stage_a_kernel import multigraphs, new_state
 
-    kinds = _branch_kinds(code)
-    m, n2, h = len(kinds), code.count(2), conv.h
-    deg = np.array([k[1] for k in kinds], dtype=np.int64)
+    vertices = _branch_vertices(code)
+    m, n2, h = len(vertices), code.count(2), conv.h
+    deg = np.array([vertex.degree for vertex in vertices], dtype=np.int64)
     pairs = list(combinations(range(m), 2))
-    bounds = _StringBounds(kinds, pairs, code, conv)
+    bounds = _StringBounds(vertices, pairs, code, conv)
     most = int(deg.max())
     strings = np.arange(most + 1, dtype=np.int64)
     lb_of = np.maximum(0, bounds.slope[:, None] * strings[None, :] + bounds.offset[:, None])
     cost_of = (h - 1) * strings[None, :] - lb_of
     inner = np.full(m, -1, dtype=np.int64)
-    for i, u in enumerate(_inner_links(kinds)):
+    for i, u in enumerate(_inner_links(vertices)):
         inner[u] = i
     loops_most = deg // 2 if conv.fractionated or code.n1 else np.zeros(m, dtype=np.int64)
-    same = np.array([(u, v) for u, v in pairs if kinds[u] == kinds[v]], dtype=np.int64).reshape(-1, 2)
-    conditions = _subset_conditions(kinds, code.dof(h), conv)
+    same = np.array([(u, v) for u, v in pairs if vertices[u] == vertices[v]], dtype=np.int64).reshape(-1, 2)
+    conditions = _subset_conditions(vertices, code.dof(h), conv)
     pu, pv = np.array(pairs, dtype=np.int64).reshape(-1, 2).T.copy()
     state = new_state(len(pairs), m)
     out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
@@ -315,10 +344,10 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
             edges += [(u, u) for u, k in enumerate(row_y.tolist()) for _ in range(k)]
             if not _keep_multigraph(m, edges, conv):
                 continue
-            graph = Contracted(kinds, tuple(sorted(edges)), "")
+            graph = Contracted(vertices, tuple(sorted(edges)), "")
             cert = pynauty.certificate(graph._subdivided()).hex()
             if cert not in seen:
-                seen[cert] = Contracted(kinds, graph.edges, cert)
+                seen[cert] = Contracted(vertices, graph.edges, cert)
         if found < _CONDITION_BATCH:
             return [seen[c] for c in sorted(seen)]
 
@@ -334,18 +363,18 @@ class _StringBounds:
     link per string after the first (two joints never join the same links).
     """
 
-    def __init__(self, kinds, pairs, code: Code, conv: Conventions):
+    def __init__(self, vertices, pairs, code: Code, conv: Conventions):
         import numpy as np
 
         h = conv.h
         least = min(conv.threshold, code.dof(h))  # what the strings between two links keep, whole chain or not
         slope, offset = [], []
         for u, v in pairs:
-            same = kinds[u][0] == kinds[v][0]
+            same = vertices[u].kind == vertices[v].kind
             slope.append(h - 1 if same else 1)
-            offset.append((-h + least if kinds[u][0] == "L" else -h + 2 + min(least, 0)) if same else -1)
+            offset.append((-h + least if vertices[u].is_link else -h + 2 + min(least, 0)) if same else -1)
         self.slope, self.offset = np.array(slope, dtype=np.int64), np.array(offset, dtype=np.int64)
-        self.loop = np.array([_loop_lb(kind[0], conv) for kind in kinds], dtype=np.int64)
+        self.loop = np.array([_loop_lb(vertex, conv) for vertex in vertices], dtype=np.int64)
         self.pairs, self.n2, self.h = pairs, code.count(2), h
 
     def meet(self, X, Y, conditions) -> "np.ndarray":
@@ -374,7 +403,7 @@ class _StringBounds:
         return ok
 
 
-def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, tuple, int]]:
+def _subset_conditions(vertices, dof: int, conv: Conventions) -> list[tuple[tuple, tuple, int]]:
     """Stage B's sub-chain conditions as stage A writes them on H: ``(T_L, T_J, bound)`` for sets of
     inner links T_L with multiple joints T_J: the strings inside T may cost the rule at most
     bound + slack (see :func:`_write_conditions`).
@@ -383,9 +412,9 @@ def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, 
     bounds); a set of every link is left out where the whole chain is exempt (W below the threshold).
     """
     h = conv.h
-    all_links = sum(1 for kind in kinds if kind[0] == "L")
-    links = _inner_links(kinds)
-    joints = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    all_links = sum(1 for vertex in vertices if vertex.is_link)
+    links = _inner_links(vertices)
+    joints = [u for u, vertex in enumerate(vertices) if vertex.is_joint]
     out = []
     for size in range(1, min(len(links), _STAGE_A_SET_LINKS.get(h, len(links))) + 1):
         if size == all_links and dof < conv.threshold:
@@ -399,13 +428,13 @@ def _subset_conditions(kinds, dof: int, conv: Conventions) -> list[tuple[tuple, 
     return out
 
 
-def _split_conditions(conditions, kinds) -> tuple[list, list]:
+def _split_conditions(conditions, vertices) -> tuple[list, list]:
     """The conditions stage A's model writes, and those checked on its solutions: the model has
     every condition of a code with fewer than _SPLIT_LINKS inner links, else the sets of at most
     _MODEL_SET_LINKS links and of every inner link but one or none (the strongest). The 2^m
     conditions of a code with 12–14 branch links slowed each CP-SAT step more than the labelled
     solutions the middle ones remove (16 links, 4.12.0.0.0.0.0/0: stage A 25 s against 7.7 s)."""
-    inner = len(_inner_links(kinds))
+    inner = len(_inner_links(vertices))
     strong, later = [], []
     for condition in conditions:
         size = len(condition[0])
@@ -414,7 +443,7 @@ def _split_conditions(conditions, kinds) -> tuple[list, list]:
     return strong, later
 
 
-def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
+def _write_conditions(model, vertices, x, lbs, loops_lb, n2: int, h: int, conditions) -> None:
     """Stage B's sub-chain conditions (``_subset_constraint``) written on H, for sets T of branch
     vertices with 3+ links or a multiple joint: drops the H whose binary links are too few for every
     distribution (most of them, and the costliest: they are whole units of stage B).
@@ -443,7 +472,7 @@ def _write_conditions(model, kinds, x, lbs, loops_lb, n2: int, h: int, condition
     model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
     cost = {}
     for p, lb in lbs.items():
-        cost[p] = model.NewIntVar(0, (h - 1) * min(kinds[p[0]][1], kinds[p[1]][1]), f"c{p}")
+        cost[p] = model.NewIntVar(0, (h - 1) * min(vertices[p[0]].degree, vertices[p[1]].degree), f"c{p}")
         model.Add(cost[p] == (h - 1) * x[p] - lb)
     for TL, TJ, bound in conditions:
         T = set(TL + TJ)

@@ -33,14 +33,14 @@ _LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms 
 _KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
 
 
-def realise(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
-    """Stage B: all chains of ``code`` whose branch multigraph is ``h``, once each, by certificate."""
-    solutions, _, checked = _distributions(code, h, conv, stats)
-    return _distinct(h, conv, _passing(h, conv, solutions, stats, checked), stats)
+def realise(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
+    """Stage B: all chains of ``code`` whose branch multigraph is ``graph``, once each, by certificate."""
+    solutions, _, checked = _distributions(code, graph, conv, stats)
+    return _distinct(graph, conv, _passing(graph, conv, solutions, stats, checked), stats)
 
 
-def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | None = None) -> int:
-    """``len(realise(code, h, conv))``, without chains or certificates where they are not needed.
+def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``len(realise(code, graph, conv))``, without chains or certificates where they are not needed.
 
     Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
     one weight vector onto the other; when the whole group of H is listed, stage B keeps the
@@ -48,68 +48,71 @@ def count_realised(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     (docs/theory.md). Otherwise the chains are built and compared.
 
     >>> from synth.synthesis.stage_a import contracted_graphs
-    >>> h = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
-    >>> count_realised(Code((4, 2), 0, ()), h, Conventions()), len(realise(Code((4, 2), 0, ()), h, Conventions()))
+    >>> graph = contracted_graphs(Code((4, 2), 0, ()), Conventions())[0]
+    >>> code = Code((4, 2), 0, ())
+    >>> count_realised(code, graph, Conventions()), len(realise(code, graph, Conventions()))
     (2, 2)
     """
-    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
-        simple = all(kind[0] == "L" for kind in h.kinds)
+    if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
+        simple = all(vertex.is_link for vertex in graph.vertices)
         if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
-            found, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=not simple)
+            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=not simple)
             if whole_group and simple:
                 return found
             if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
                 t0 = perf_counter()
-                valid = int(_exact_test(h.kinds, h.edges, placements, conv).sum()) if found else 0
+                valid = int(_exact_test(graph.vertices, graph.edges, placements, conv).sum()) if found else 0
                 _add(stats, subchain_s=perf_counter() - t0)
                 return valid
-    solutions, one_per_orbit, checked = _distributions(code, h, conv, stats)
-    kept = _passing(h, conv, solutions, stats, checked)
-    return len(kept) if one_per_orbit else len(_distinct(h, conv, kept, stats))
+    solutions, one_per_orbit, checked = _distributions(code, graph, conv, stats)
+    kept = _passing(graph, conv, solutions, stats, checked)
+    return len(kept) if one_per_orbit else len(_distinct(graph, conv, kept, stats))
 
 
-def _distinct(h: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
+def _distinct(graph: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
     """The chains of the passing vectors ``kept``, once each by certificate."""
     t0 = perf_counter()
     found: dict[str, Chain] = {}
-    for chain in (_expand(h.kinds, h.edges, s, conv.h) for s in kept):
+    for chain in (_expand(graph.vertices, graph.edges, s, conv.h) for s in kept):
         found.setdefault(chain.certificate, chain)
     _add(stats, nauty_s=perf_counter() - t0)
     return [found[c] for c in sorted(found)]
 
 
-def _string_limits(h: Contracted, conv: Conventions) -> tuple[list[int], list[tuple[int, int]]]:
+def _string_limits(graph: Contracted, conv: Conventions) -> tuple[list[int], list[tuple[int, int]]]:
     """Least binary links of each string of H, and the strings parallel to the one before them
     with their own least weight: (string, least) pairs."""
-    kinds, edges = h.kinds, h.edges
-    lows = [_loop_lb(kinds[u][0], conv) if u == v else int(kinds[u][0] == kinds[v][0] == "J") for u, v in edges]
+    vertices, edges = graph.vertices, graph.edges
+    lows = [_loop_lb(vertices[u], conv) if u == v else int(vertices[u].is_joint and vertices[v].is_joint)
+            for u, v in edges]
     # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
     # (a direct joint or incidence at most once), and two one-link strings between two multiple
     # joints (W = 2 − h) only where the convention allows it
-    parallel = [(k, 0 if u == v else 2 if kinds[u][0] == kinds[v][0] == "J" and 2 - conv.h < conv.threshold else 1)
+    parallel = [(k, 0 if u == v else 2 if vertices[u].is_joint and vertices[v].is_joint and 2 - conv.h < conv.threshold
+                 else 1)
                 for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
     return lows, parallel
 
 
-def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
-    """Stage B's CP-SAT model: candidate weight vectors of ``h`` (binary links per string),
+def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
+    """Stage B's CP-SAT model: candidate weight vectors of ``graph`` (binary links per string),
     whether they are one per orbit of Aut(H) (lex-least under the whole group), and whether
     they meet the sub-chain rule already (the model's conditions, exact for simple joints)."""
-    kinds, edges = h.kinds, h.edges
+    vertices, edges = graph.vertices, graph.edges
     n2 = code.count(2)
     space = conv.h
-    lows, parallel = _string_limits(h, conv)
+    lows, parallel = _string_limits(graph, conv)
     spare = n2 - sum(lows)
     if spare < 0:
         return [], True, True
     # simple joints: the model's conditions are the exact test, unless the whole chain is exempt
     # (W below the threshold), where the model skips every set of all branch links
-    simple = all(kind[0] == "L" for kind in kinds) and code.dof(space) >= conv.threshold
-    if uses_kernel(code, conv) and _kernel_applies(code, h, conv):
-        _, placements, whole_group = _kernel_placements(code, h, conv, stats, listing=True)
-        return [tuple(map(int, row)) for row in placements], whole_group, all(kind[0] == "L" for kind in kinds)
+    simple = all(vertex.is_link for vertex in vertices) and code.dof(space) >= conv.threshold
+    if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
+        _, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=True)
+        return [tuple(map(int, row)) for row in placements], whole_group, all(vertex.is_link for vertex in vertices)
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
-        return _few_distributions(lows, spare, parallel, h, stats)
+        return _few_distributions(lows, spare, parallel, graph, stats)
     from ._cpsat import Model, all_solutions, cp_model
 
     model = Model()
@@ -127,28 +130,28 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     for k, (u, v) in enumerate(edges):
         if u == v:
             continue
-        first = 1 if kinds[u][0] == kinds[v][0] == "J" else 0
+        first = 1 if vertices[u].is_joint and vertices[v].is_joint else 0
         short[k] = {t: model.NewBoolVar(f"s{k}_{t}") for t in range(first, space - 1)}
         for t, flag in short[k].items():
             model.Add(w[k] == t).OnlyEnforceIf(flag)
         model.Add(w[k] >= space - 1).OnlyEnforceIf([flag.Not() for flag in short[k].values()])
         if len(short[k]) > 1:
             model.AddAtMostOne(short[k].values())
-    link_vertices = _inner_links(kinds)
-    n_links = sum(1 for kind in kinds if kind[0] == "L")
-    joint_vertices = [u for u, kind in enumerate(kinds) if kind[0] == "J"]
+    link_vertices = _inner_links(vertices)
+    n_links = sum(1 for vertex in vertices if vertex.is_link)
+    joint_vertices = [u for u, vertex in enumerate(vertices) if vertex.is_joint]
     dof = code.dof(space)
     for size in range(1, len(link_vertices) + 1):
         for TL in combinations(link_vertices, size):
             for jsize in range(len(joint_vertices) + 1):
                 for TJ in combinations(joint_vertices, jsize):
-                    _subset_constraint(model, kinds, edges, short, set(TL), set(TJ), n_links, dof, conv)
+                    _subset_constraint(model, vertices, edges, short, set(TL), set(TJ), n_links, dof, conv)
     # required sub-structure: a link with I joints carrying C cranks (invariant under Aut(H))
     z = {k: flags[0] for k, flags in short.items() if 0 in flags}  # z[k] ⇔ string k is empty
     for joints_on_link, count in conv.cranks:
         chosen = []
         for u in link_vertices:
-            if kinds[u][1] != joints_on_link:
+            if vertices[u].degree != joints_on_link:
                 continue
             ends = [1 - z[k] if k in z else 1 for k, e in enumerate(edges) if u in e and e[0] != e[1]]
             ends += [2 for e in edges if e == (u, u)]
@@ -162,7 +165,7 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
-    group, whole_group = h.edge_group()
+    group, whole_group = graph.edge_group()
     weights = [base ** (prefix - 1 - i) for i in range(prefix)]
     lhs = cp_model.LinearExpr.WeightedSum(w[:prefix], weights)
     for g in group:
@@ -178,18 +181,18 @@ def _distributions(code: Code, h: Contracted, conv: Conventions, stats: dict | N
     return solutions, whole_group, simple
 
 
-def _kernel_applies(code: Code, h: Contracted, conv: Conventions) -> bool:
+def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
     """Whether the kernel can find this unit's placements: no crank requirement, a (k, l) pebble
     game (0 ≤ l = h + threshold), the set of all branch vertices not exempt, and loops never short
     (their least weight at least h − 1).  With simple joints its conditions are stage B's; with
     multiple joints they are weaker by one freedom (:mod:`synth.synthesis._stage_b_kernel`), so
     there the exact test keeps the valid placements among the kernel's."""
-    loops = {h.kinds[u][0] for u, v in h.edges if u == v}
+    looped = {graph.vertices[u] for u, v in graph.edges if u == v}
     return (not conv.cranks and conv.h + conv.threshold >= 0 and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
-            and all(_loop_lb(kind, conv) >= conv.h - 1 for kind in loops))
+            and all(_loop_lb(vertex, conv) >= conv.h - 1 for vertex in looped))
 
 
-def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict | None,
+def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
                        listing: bool) -> tuple[int, "np.ndarray", bool]:
     """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
     Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
@@ -199,11 +202,12 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     from ._stage_b_kernel import place
 
     t0 = perf_counter()
-    lows, parallel = _string_limits(h, conv)
-    links = set(_inner_links(h.kinds))
-    inner = {u: i for i, u in enumerate(u for u, kind in enumerate(h.kinds) if u in links or kind[0] == "J")}
-    M, E = len(inner), len(h.edges)
-    ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in h.edges],
+    lows, parallel = _string_limits(graph, conv)
+    links = set(_inner_links(graph.vertices))
+    inner = {u: i for i, u in enumerate(u for u, vertex in enumerate(graph.vertices)
+                                        if u in links or vertex.is_joint)}
+    M, E = len(inner), len(graph.edges)
+    ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in graph.edges],
                     dtype=np.int64).reshape(E, 2)
     least = np.array(lows, dtype=np.int64)
     after = np.full(E, -1, dtype=np.int64)
@@ -212,7 +216,7 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     # with multiple joints a second game (J with h − 1 pebbles, l = h + min(threshold, 0)): the kernel's module
     k = np.full(M, conv.h, dtype=np.int64)
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
-    k2 = np.array([conv.h if h.kinds[u][0] == "L" else conv.h - 1 for u in inner], dtype=np.int64)
+    k2 = np.array([conv.h if graph.vertices[u].is_link else conv.h - 1 for u in inner], dtype=np.int64)
     l2 = -1 if len(inner) == len(links) else conv.h + min(conv.threshold, 0)
     short = ends[:, 0] >= 0
     b0 = n2 - C * int(short.sum()) - int(least[~short].sum())
@@ -221,7 +225,7 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     if l2 >= 0:  # the tighter of the two games' bounds
         x_most = min(x_most, b0 + int(k2.sum()) - l2) if M >= 2 else x_most
         vertex_need = np.maximum(vertex_need, -b0 - (int(k2.sum()) - k2 - l2)) if M >= 3 else vertex_need
-    group, whole_group = h.edge_group() if E > 1 else ([], True)
+    group, whole_group = graph.edge_group() if E > 1 else ([], True)
     group = np.array(group, dtype=np.int64).reshape(len(group), E)
     a_end, b_end = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
     out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
@@ -233,7 +237,7 @@ def _kernel_placements(code: Code, h: Contracted, conv: Conventions, stats: dict
     return found, out[:found], whole_group
 
 
-def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracted,
+def _few_distributions(lows: list[int], spare: int, parallel: list, graph: Contracted,
                        stats: dict | None) -> tuple[list, bool, bool]:
     """Stage B without a model, where the weight vectors are few: every way to put ``spare``
     binary links on the edges above their least weights, kept where the parallel strings are
@@ -248,7 +252,7 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, h: Contracte
         keep &= (w[:, k] >= w[:, k - 1]) & (w[:, k] >= least)
     w, whole_group = w[keep], True
     if len(w) > 1:  # (the lex-least vector of an orbit has ordered parallel strings: one alone is its orbit's)
-        group, whole_group = h.edge_group()
+        group, whole_group = graph.edge_group()
         w = _lex_least(w, group)
     solutions = [tuple(map(int, row)) for row in w]
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
@@ -303,7 +307,7 @@ def _add(stats: dict | None, **values) -> None:
             stats[key] = stats.get(key, 0) + value
 
 
-def _passing(h: Contracted, conv: Conventions, solutions, stats: dict | None,
+def _passing(graph: Contracted, conv: Conventions, solutions, stats: dict | None,
              checked: bool = False) -> list:
     """The candidates that pass the exact sub-chain test (all of them if ``checked``: stage B's
     model wrote the exact conditions)."""
@@ -311,23 +315,22 @@ def _passing(h: Contracted, conv: Conventions, solutions, stats: dict | None,
     if checked or not solutions:
         kept = list(solutions)
     else:
-        kept = [s for s, ok in zip(solutions, _exact_test(h.kinds, h.edges, solutions, conv)) if ok]
-        if 2 - conv.h >= conv.threshold and any(kind[0] == "J" for kind in h.kinds):
+        kept = [s for s, ok in zip(solutions, _exact_test(graph.vertices, graph.edges, solutions, conv)) if ok]
+        if 2 - conv.h >= conv.threshold and any(vertex.is_joint for vertex in graph.vertices):
             # two joints on the same links are one joint; the rule refuses them (W = 2 − h per pair)
             # except for h = 2 with rigid sub-chains allowed
-            kept = [s for s in kept for c in [_expand(h.kinds, h.edges, s, conv.h)]
+            kept = [s for s in kept for c in [_expand(graph.vertices, graph.edges, s, conv.h)]
                     if len(set(c.joints)) == len(c.joints)]
     _add(stats, subchain_s=perf_counter() - t0)
     return kept
 
 
-def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
+def _subset_constraint(model, vertices, edges, short, TL: set, TJ: set, n_links: int, dof: int, conv) -> None:
     """Add W(S_T) ≥ threshold for the set T = TL ∪ TJ of branch vertices (see realise)."""
     h = conv.h
     T = TL | TJ
     inside = [k for k, (u, v) in enumerate(edges) if u != v and u in T and v in T]
-    on_joint = {J: [k for k in inside if J in edges[k] and "L" in (kinds[edges[k][0]][0], kinds[edges[k][1]][0])]
-                for J in TJ}
+    on_joint = {J: [k for k in inside if J in edges[k] and any(vertices[x].is_link for x in edges[k])] for J in TJ}
     if any(not ks for ks in on_joint.values()):
         return  # a joint no link of T touches directly: a smaller T gives a stronger condition
     if len(TL) == n_links and dof < conv.threshold:
@@ -350,7 +353,7 @@ def _subset_constraint(model, kinds, edges, short, TL: set, TJ: set, n_links: in
         model.Add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
-def _exact_test(kinds, edges, solutions, conv: Conventions):
+def _exact_test(vertices, edges, solutions, conv: Conventions):
     """Exact sub-chain test of the chains of H with the weight vectors ``solutions``, all at once:
     a bool per vector (:func:`synth.structure.subchains.least_mobilities` over the sets of H's vertices).
 
@@ -365,33 +368,34 @@ def _exact_test(kinds, edges, solutions, conv: Conventions):
 
     from ..structure.subchains import least_mobilities
 
-    inner = set(_inner_links(kinds))
-    vertices = [u for u, kind in enumerate(kinds) if u in inner or kind[0] == "J"]
-    index = {u: i for i, u in enumerate(vertices)}
+    inner = set(_inner_links(vertices))
+    kept = [u for u, vertex in enumerate(vertices) if u in inner or vertex.is_joint]
+    index = {u: i for i, u in enumerate(kept)}
     sol = np.asarray(solutions, dtype=np.int64).reshape(len(solutions), len(edges))
     ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
                     dtype=np.int64).reshape(-1, 2)
     lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
-    is_link = [kinds[u][0] == "L" for u in vertices]
+    is_link = [vertices[u].is_link for u in kept]
     return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
 
 
 @lru_cache(maxsize=256)
-def _string_ends(kinds, edges) -> tuple[int, tuple]:
+def _string_ends(vertices, edges) -> tuple[int, tuple]:
     """The number of branch links of H, and for each string the chain link at each end (its
     number) or None where the end is a multiple joint; the same for every vector of a unit."""
-    link_id = {u: i for i, u in enumerate(u for u, k in enumerate(kinds) if k[0] == "L")}
+    link_id = {u: i for i, u in enumerate(u for u, vertex in enumerate(vertices) if vertex.is_link)}
     return len(link_id), tuple((link_id.get(u), link_id.get(v)) for u, v in edges)
 
 
-def _expand(kinds, edges, weights, space: int = 3) -> Chain:
+def _expand(vertices, edges, weights, space: int = 3) -> Chain:
     """The chain of H with ``weights`` binary links on its strings (branch links numbered first).
 
-    >>> _expand((("L", 3), ("L", 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
+    >>> from synth.synthesis.stage_a import LINK, Vertex
+    >>> _expand((Vertex(LINK, 3), Vertex(LINK, 3)), ((0, 1), (0, 1), (0, 1)), (0, 2, 2)).joints
     ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (4, 5))
     """
-    nxt, ends = _string_ends(kinds, edges)
-    multiple: dict[int, list[int]] = {u: [] for u, k in enumerate(kinds) if k[0] == "J"}
+    nxt, ends = _string_ends(vertices, edges)
+    multiple: dict[int, list[int]] = {u: [] for u, vertex in enumerate(vertices) if vertex.is_joint}
     joints: list[tuple[int, ...]] = []
     for (u, v), (a, b), wk in zip(edges, ends, weights):
         if wk:  # a string of binary links nxt … nxt + wk − 1

@@ -159,7 +159,7 @@ def job_units(job: tuple[Code, Conventions]) -> list[Unit]:
     code, conv = job
     if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
         return [Unit(code, None, conv)]
-    return [Unit(code, h, conv) for h in contracted_graphs(code, conv)]
+    return [Unit(code, graph, conv) for graph in contracted_graphs(code, conv)]
 
 
 def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:

@@ -103,7 +103,7 @@ def test_missing_grid_file(tmp_path, capsys):
     assert "does not exist" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("name", ["synth.atlas.grid", "synth.atlas.database", "synth.atlas.runs", "synth.atlas.queries", "synth.draw", "mechsynth.commands.atlas"])
+@pytest.mark.parametrize("name", ["synth.atlas.grid", "synth.atlas.database", "synth.atlas.runs", "synth.atlas.queries", "synth.atlas.trains", "synth.draw", "mechsynth.commands.atlas"])
 def test_docstring_examples(name, tmp_path, monkeypatch):
     import doctest
     import importlib
@@ -116,4 +116,5 @@ def test_docstring_examples(name, tmp_path, monkeypatch):
 @pytest.mark.parametrize("path", sorted((ROOT / "models").glob("grid_*.toml")), ids=lambda p: p.name)
 def test_every_shipped_grid_file_reads(path):
     grid = load_grid(path)
-    assert grid.cells and all(cell.plan() for cell in grid.cells if cell.links <= 8)
+    assert grid.cells or grid.gear_cells
+    assert all(cell.plan() for cell in grid.cells if cell.links <= 8)

@@ -301,8 +301,8 @@ def test_trusted_nauty_graphs_are_pynautys_checked_graphs(query):
         same(chain._nauty_graph(marked=(0, chain.links - 1)))
     conv = Conventions(h=query.get("h", 3))
     for code in plan_codes(query["dof"], query["links"], v=query["v"], n1=query.get("n1"), h=conv.h)[:20]:
-        for h in contracted_graphs(code, conv):
-            same(h._subdivided())
+        for graph in contracted_graphs(code, conv):
+            same(graph._subdivided())
 
 
 @pytest.mark.parametrize("h", [2, 3, 4, 5, 6])

@@ -325,12 +325,12 @@ def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
     for u in synth.plan_units(**query, workers=1):
         if u.contracted is None:
             continue
-        kinds, edges, conv = u.contracted.kinds, u.contracted.edges, u.conventions
+        vertices, edges, conv = u.contracted.vertices, u.contracted.edges, u.conventions
         candidates = stage_b._distributions(u.code, u.contracted, conv, None)[0]
         if not candidates:
             continue
-        for s, ok in zip(candidates, stage_b._exact_test(kinds, edges, candidates, conv)):
-            chain = stage_b._expand(kinds, edges, s, conv.h)
+        for s, ok in zip(candidates, stage_b._exact_test(vertices, edges, candidates, conv)):
+            chain = stage_b._expand(vertices, edges, s, conv.h)
             truth = subchain_ok(chain.joints, chain.links, conv.rigid_subchains, conv.h)
             assert bool(ok) == truth, (u.key, s, chain.compact())
             judged[truth] += 1
@@ -357,11 +357,11 @@ def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypa
     batches = [(u, stage_b._distributions(u.code, u.contracted, u.conventions, None)[0]) for u in units]
     batches = sorted(((u, s) for u, s in batches if len(s) > 1), key=lambda b: -len(b[1]))[:10]  # the largest
     assert batches
-    whole = [stage_b._exact_test(u.contracted.kinds, u.contracted.edges, s, u.conventions) for u, s in batches]
+    whole = [stage_b._exact_test(u.contracted.vertices, u.contracted.edges, s, u.conventions) for u, s in batches]
     assert any(not v.all() for v in whole) and any(v.any() for v in whole)
     monkeypatch.setattr(mobility, "_CANDIDATE_SUBSETS", pairs)
     for (u, s), verdicts in zip(batches, whole):
-        assert np.array_equal(stage_b._exact_test(u.contracted.kinds, u.contracted.edges, s, u.conventions), verdicts)
+        assert np.array_equal(stage_b._exact_test(u.contracted.vertices, u.contracted.edges, s, u.conventions), verdicts)
 
 
 @pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-3 4-5 5-6 6-7 7-4", "0-1 1-2 2-3 3-0 4-5 5-6 6-4", "0-1 2-3"])

@@ -41,13 +41,13 @@ def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeyp
     rows than its first pass holds (``_KERNEL_ROWS``) loses none."""
     compared = 0
     for u in synth.plan_units(**query, workers=1):
-        h = u.contracted
-        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
+        graph = u.contracted
+        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
             continue
-        args = (u.code, h, u.conventions)
+        args = (u.code, graph, u.conventions)
         monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
         kernel, whole, checked = stage_b._distributions(*args, None)
-        simple = all(kind[0] == "L" for kind in h.kinds)
+        simple = all(vertex.is_link for vertex in graph.vertices)
         assert checked == simple  # multiple joints: a weaker rule, then the exact test
         with monkeypatch.context() as model_only:
             model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
@@ -57,8 +57,8 @@ def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeyp
         if whole:  # the model's lex-leader and its filter keep the lex-least vector of each orbit, as the kernel
             if simple:
                 assert sorted(kernel) == sorted(model), u.key
-            valid = stage_b._passing(h, u.conventions, kernel, None, checked)
-            assert sorted(valid) == sorted(stage_b._passing(h, u.conventions, model, None, model_checked)), u.key
+            valid = stage_b._passing(graph, u.conventions, kernel, None, checked)
+            assert sorted(valid) == sorted(stage_b._passing(graph, u.conventions, model, None, model_checked)), u.key
         assert stage_b.count_realised(*args) == len(stage_b.realise(*args)), u.key
         compared += 1
     assert compared
@@ -72,21 +72,21 @@ def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel
 
     compared = 0
     for u in synth.plan_units(**query, workers=1):
-        h = u.contracted
-        if h is None or not stage_b._kernel_applies(u.code, h, u.conventions):
+        graph = u.contracted
+        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
             continue
         conv = u.conventions
-        kernel, whole, checked = stage_b._distributions(u.code, h, conv, None)
-        kernel = stage_b._passing(h, conv, kernel, None, checked)
+        kernel, whole, checked = stage_b._distributions(u.code, graph, conv, None)
+        kernel = stage_b._passing(graph, conv, kernel, None, checked)
         for s in kernel:
-            chain = stage_b._expand(h.kinds, h.edges, s, conv.h)
+            chain = stage_b._expand(graph.vertices, graph.edges, s, conv.h)
             report = check_subchains(chain, rigid_subchains=conv.rigid_subchains)
             assert report.worst_mobility >= conv.threshold, (u.key, s)
-        lows, parallel = stage_b._string_limits(h, conv)
+        lows, parallel = stage_b._string_limits(graph, conv)
         spare = u.code.count(2) - sum(lows)
-        if whole and spare >= 0 and len(h.edges) <= 14:
-            listed = stage_b._few_distributions(lows, spare, parallel, h, None)[0]
-            valid = stage_b._passing(h, conv, listed, None)
+        if whole and spare >= 0 and len(graph.edges) <= 14:
+            listed = stage_b._few_distributions(lows, spare, parallel, graph, None)[0]
+            valid = stage_b._passing(graph, conv, listed, None)
             assert sorted(valid) == sorted(kernel), u.key
             compared += 1
     assert compared
@@ -124,10 +124,10 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
         if not stage_a._stage_a_kernel_applies(code, conv):
             continue
-        kernel = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
+        kernel = [(graph.certificate, graph.edges) for graph in stage_a.contracted_graphs(code, conv)]
         with monkeypatch.context() as model_only:
             model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
-            model = [(h.certificate, h.edges) for h in stage_a.contracted_graphs(code, conv)]
+            model = [(graph.certificate, graph.edges) for graph in stage_a.contracted_graphs(code, conv)]
         assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
         compared += len(model)
     assert compared

@@ -171,6 +171,25 @@ def test_links_zero_loops_and_single_loop():
     assert [str(c) for c in number_synthesis(1, links=4)] == ["4/0"]
 
 
+def test_a_query_object_and_its_keywords_ask_the_same():
+    """``CodeQuery`` carries the keywords whole: the query and its keywords give the same codes,
+    and the keywords that do not belong to it, or contradict each other, are refused."""
+    from synth import CodeQuery, InvalidOption
+
+    assert number_synthesis(CodeQuery(1, loops="1..3", require=["4=1.."])) == \
+        number_synthesis(1, loops="1..3", require=["4=1.."]) == number_synthesis(dof=1, loops="1..3", require=["4=1.."])
+    for kwargs, sentence in [
+        (dict(loops=2, loop_classes={3: 1}), "give exactly one of loops (K), links (n) or loop classes (K_h)"),
+        (dict(loops=2, colour="red"), "unknown option(s) for number synthesis: colour"),
+        (dict(loops=2, dof=1), "W is given twice (as the first argument and as dof)"),
+    ]:
+        with pytest.raises(InvalidOption) as info:
+            number_synthesis(1, **kwargs)
+        assert str(info.value) == sentence
+    with pytest.raises(InvalidOption, match="give a query or its options, not both"):
+        number_synthesis(CodeQuery(1, loops=2), h=5)
+
+
 def test_make_problem_defaults():
     """Planar (h = 3), no extra pair mobility, closed chains, no compositions unless asked."""
     from synth.synthesis.number_synthesis import make_problem

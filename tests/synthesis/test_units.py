@@ -100,7 +100,7 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
         solutions, one_per_orbit, checked = stage_b._distributions(*args, None)
         assert checked
         for s in solutions:
-            chain = stage_b._expand(u.contracted.kinds, u.contracted.edges, s, u.conventions.h)
+            chain = stage_b._expand(u.contracted.vertices, u.contracted.edges, s, u.conventions.h)
             assert check_subchains(chain, rigid_subchains=u.conventions.rigid_subchains).ok, (u.key, s)
         if one_per_orbit and not u.conventions.cranks:
             monkeypatch.setattr(stage_b, "_FEW_VECTORS", 10**9)
@@ -371,9 +371,9 @@ def test_edge_group_of_parallel_strings(edges):
     swap of the two links maps each string to itself).  Up to 4096 the whole group is listed; beyond
     (15! ≈ 1.3e12, which nauty reports as 1.3·10^12 with a mantissa and an exponent) only generators
     and their inverses, each a permutation of the strings."""
-    from synth.synthesis.stage_a import Contracted
+    from synth.synthesis.stage_a import LINK, Contracted, Vertex
 
-    group, whole = Contracted((("L", edges), ("L", edges)), ((0, 1),) * edges, "").edge_group()
+    group, whole = Contracted((Vertex(LINK, edges),) * 2, ((0, 1),) * edges, "").edge_group()
     assert all(sorted(g) == list(range(edges)) and g != tuple(range(edges)) for g in group)
     if math.factorial(edges) <= 4096:
         assert whole and len(set(group)) == math.factorial(edges) - 1
@@ -392,10 +392,10 @@ def _stage_a_by_enumeration(code, conv):
 
     from synth.synthesis import stage_a
 
-    kinds = stage_a._branch_kinds(code)
-    m, deg = len(kinds), [k[1] for k in kinds]
+    vertices = stage_a._branch_vertices(code)
+    m, deg = len(vertices), [vertex.degree for vertex in vertices]
     pairs = list(itertools.combinations(range(m), 2))
-    bounds = stage_a._StringBounds(kinds, pairs, code, conv)
+    bounds = stage_a._StringBounds(vertices, pairs, code, conv)
     loops_max = [d // 2 if conv.fractionated or code.n1 else 0 for d in deg]
     rows = []
 
@@ -419,13 +419,13 @@ def _stage_a_by_enumeration(code, conv):
     sol = np.array(rows, dtype=np.int64)
     X, Y = sol[:, :len(pairs)], sol[:, len(pairs):]
     binary = np.maximum(0, X * bounds.slope + bounds.offset).sum(axis=1) + Y @ bounds.loop
-    ok = (binary <= code.count(2)) & bounds.meet(X, Y, stage_a._subset_conditions(kinds, code.dof(conv.h), conv))
+    ok = (binary <= code.count(2)) & bounds.meet(X, Y, stage_a._subset_conditions(vertices, code.dof(conv.h), conv))
     found = set()
     for row in sol[ok]:
         edges = [p for p, k in zip(pairs, row) for _ in range(int(k))]
         edges += [(u, u) for u, k in enumerate(row[len(pairs):]) for _ in range(int(k))]
         if stage_a._connected(m, edges) and stage_a._keep_multigraph(m, edges, conv):
-            graph = stage_a.Contracted(kinds, tuple(sorted(edges)), "")._subdivided()
+            graph = stage_a.Contracted(vertices, tuple(sorted(edges)), "")._subdivided()
             found.add(pynauty.certificate(graph).hex())
     return sorted(found)
 
@@ -446,9 +446,9 @@ def test_stage_a_against_an_enumeration_of_labelled_multigraphs(query):
 
     compared = 0
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
-        if len(stage_a._branch_kinds(code)) > 7:
+        if len(stage_a._branch_vertices(code)) > 7:
             continue
-        engine = [h.certificate for h in stage_a.contracted_graphs(code, conv)]
+        engine = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
         assert engine == _stage_a_by_enumeration(code, conv), code
         compared += len(engine)
     assert compared > 0
