@@ -69,7 +69,7 @@ def test_trusses_and_multi_dof_chains_of_other_spaces(h, dof, links, v):
     _compare(h, dof, links, v=v)
 
 
-@pytest.mark.parametrize("h, dof, links", [(2, 2, 5), (2, 3, 6), (4, 2, 9), (3, 3, 8)])
+@pytest.mark.parametrize("h, dof, links", [(2, 2, 5), (2, 3, 6), pytest.param(4, 2, 9, marks=pytest.mark.slow), (3, 3, 8)])
 def test_not_fractionated_and_the_limit_theorem(h, dof, links):
     """Without fractionated chains the limit theorem holds: the default limit drops nothing."""
     kept = _compare(h, dof, links, v=2, fractionated=False)
