@@ -43,8 +43,7 @@ FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
 
 
 def _prismatic(run: Run) -> dict:
-    from synth import Chain, variants_of
-    from synth import parse_range
+    from synth import Chain, parse_range, variants_of
 
     t = run.scene.tables["prismatic"]
     chain = Chain.parse(t.chain)

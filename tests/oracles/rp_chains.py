@@ -112,23 +112,11 @@ def _pairs(joints, kinds) -> tuple[tuple[int, int, bool], ...]:
 
 
 def _cycle_rank(links, pairs) -> int:
-    """Cycle rank of the graph of the given pairs on the given links (union-find)."""
-    parent = {x: x for x in links}
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    cycles = 0
-    for a, b in pairs:
-        ra, rb = root(a), root(b)
-        if ra == rb:
-            cycles += 1
-        else:
-            parent[ra] = rb
-    return cycles
+    """Cycle rank of the multigraph of the given pairs on the given links: E − V + components."""
+    graph = nx.MultiGraph()
+    graph.add_nodes_from(links)
+    graph.add_edges_from(pairs)
+    return graph.number_of_edges() - graph.number_of_nodes() + nx.number_connected_components(graph)
 
 
 def count_rule(n: int, joints, kinds, links=None) -> int:
