@@ -321,6 +321,25 @@ def _at_most(chains, args):
     return chains if args.prismatic is not None else itertools.islice(chains, args.limit + 1)
 
 
+def _draw_trains(rows, args) -> int:
+    """Gear trains of an atlas as functional schematics (shafts, gears on their axes, carriers), as
+    ``gears --out`` and the site draw them."""
+    from synth import InvalidOption
+    from synth.gears import GearTrain, draw_sheet, draw_train
+
+    if len(rows) > args.limit:
+        raise InvalidOption(f"the selection has more than {args.limit} drawings (--limit); narrow it with --where "
+                            "or raise --limit")
+    trains = [GearTrain.parse(row["train"]) for row in rows]
+    if len(trains) == 1:
+        draw_train(trains[0], args.out, title=args.title)
+    else:
+        draw_sheet(trains, args.out, columns=args.columns or 4, limit=args.limit,
+                   titles=[f"{k + 1}: {row['code']}  id {row['id']}" for k, row in enumerate(rows)])
+    print(f"{len(trains)} schematic{'s' if len(trains) != 1 else ''} -> {args.out}", file=sys.stderr)
+    return 0
+
+
 def _run_draw(args) -> int:
     from synth import draw
     from synth import Chain, Mechanism
@@ -397,10 +416,13 @@ def _run_draw(args) -> int:
     else:
         from synth.atlas import export
 
-        chains = [Chain.from_dict(row) for row in _at_most(export(args.db, "chains", where=args.where), args)]
-        if not chains:
+        rows = list(_at_most(export(args.db, "chains", where=args.where), args))
+        if not rows:
             print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
             return 1
+        if all(row.get("kind") == "gears" for row in rows) and args.prismatic is None and not args.mechanisms:
+            return _draw_trains(rows, args)
+        chains = [Chain.from_dict(row) for row in rows]
         items = draw.expand(_variants(args, chains), mechanisms=args.mechanisms)
         title = args.title or (None if args.id else f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains")
     if not items:  # only --prismatic can empty a selection here

@@ -180,7 +180,8 @@ def _save(fig, path: Path, dpi: int) -> None:
     import matplotlib.pyplot as plt
 
     try:
-        fig.savefig(path, bbox_inches="tight", dpi=dpi)
+        with plt.rc_context({"svg.fonttype": "none"}):  # SVG text stays text: searchable, selectable
+            fig.savefig(path, bbox_inches="tight", dpi=dpi)
     except OSError as exc:
         raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
     finally:

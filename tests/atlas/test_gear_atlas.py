@@ -195,6 +195,20 @@ def test_exports_read_back(atlas, capsys):
         assert {f for c, f in frames if c == row["id"]} == set(orbits)  # a fixed link per orbit
 
 
+def test_draw_from_the_atlas_gives_schematics(atlas, tmp_path, capsys):
+    """draw --db draws gear trains as functional schematics (one per train, titled by code and id),
+    as gears --out and the site do; a single --id is one schematic titled by its text form."""
+    rows = list(export(atlas, "chains", where=["kind=gears", "n=5"]))
+    sheet = tmp_path / "five.svg"
+    assert main(["draw", "--db", str(atlas), "--where", "kind=gears", "--where", "n=5", "--out", str(sheet)]) == 0
+    assert capsys.readouterr().err.startswith(f"{len(rows)} schematics -> ")
+    text = sheet.read_text()
+    assert all(f"id {row['id']}" in text for row in rows)
+    one = tmp_path / "one.svg"
+    assert main(["draw", "--db", str(atlas), "--id", rows[0]["id"], "--out", str(one)]) == 0
+    assert GearTrain.parse(rows[0]["train"]).compact() in one.read_text()
+
+
 def test_site_pages_draw_every_train(atlas, tmp_path):
     db = tmp_path / "five.sqlite"
     run_grid(parse_grid("[[gears]]\nlinks = 5\n"), db, workers=1)
