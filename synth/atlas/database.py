@@ -249,14 +249,13 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         try:
             conn = sqlite3.connect(path, timeout=30, isolation_level=None)
             if fresh:
-                conn.execute("BEGIN IMMEDIATE")
-                if not conn.execute("SELECT 1 FROM sqlite_master WHERE name = 'meta'").fetchone():
-                    for statement in _SCHEMA.split(";"):
-                        if statement.strip():
-                            conn.execute(statement)
-                    conn.execute("INSERT INTO meta VALUES ('schema_version', ?), ('created', ?)",
-                                 (str(SCHEMA_VERSION), time.strftime("%Y-%m-%dT%H:%M:%S")))
-                conn.execute("COMMIT")
+                with transaction(conn):
+                    if not conn.execute("SELECT 1 FROM sqlite_master WHERE name = 'meta'").fetchone():
+                        for statement in _SCHEMA.split(";"):
+                            if statement.strip():
+                                conn.execute(statement)
+                        conn.execute("INSERT INTO meta VALUES ('schema_version', ?), ('created', ?)",
+                                     (str(SCHEMA_VERSION), time.strftime("%Y-%m-%dT%H:%M:%S")))
         except sqlite3.DatabaseError as exc:
             raise AtlasError(f"cannot write the atlas {path}: {exc}") from None
     else:
@@ -283,16 +282,27 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
     return conn
 
 
+@contextmanager
+def transaction(conn: sqlite3.Connection):
+    """``BEGIN IMMEDIATE`` … ``COMMIT``, rolled back on any exception (a Ctrl-C included): a write
+    lands whole or not at all."""
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        yield conn
+        conn.execute("COMMIT")
+    except BaseException:
+        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
+            conn.execute("ROLLBACK")
+        raise
+
+
 def _upgrade(conn: sqlite3.Connection, path: Path) -> None:
     """Version 3 to 4 in one transaction: the chains' mesh counts (0) and the gear-train tables."""
     try:
-        conn.execute("BEGIN IMMEDIATE")
-        for statement in _UPGRADE_3:
-            conn.execute(statement)
-        conn.execute("COMMIT")
+        with transaction(conn):
+            for statement in _UPGRADE_3:
+                conn.execute(statement)
     except sqlite3.DatabaseError as exc:
-        if conn.in_transaction:
-            conn.execute("ROLLBACK")
         raise AtlasError(f"cannot upgrade the atlas {path} from schema version 3 to {SCHEMA_VERSION}: {exc}") from None
 
 
@@ -309,8 +319,7 @@ def _alive(pid: int) -> bool:
 
 def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) -> int:
     host = socket.gethostname()
-    conn.execute("BEGIN IMMEDIATE")
-    try:
+    with transaction(conn):
         row = conn.execute("SELECT run, pid, host, started FROM run_lock WHERE id = 1").fetchone()
         if row is not None:
             run, pid, other_host, started = row
@@ -328,17 +337,11 @@ def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) ->
             "INSERT INTO runs (pid, host, grid, started, status, executor) VALUES (?, ?, ?, ?, 'running', ?)",
             (os.getpid(), host, grid.source, now, executor)).lastrowid
         conn.execute("INSERT INTO run_lock VALUES (1, ?, ?, ?, ?)", (run, os.getpid(), host, now))
-        conn.execute("COMMIT")
-    except BaseException:
-        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
-            conn.execute("ROLLBACK")
-        raise
     return run
 
 
 def _release(conn: sqlite3.Connection, run: int, status: str, units_run: int) -> None:
-    conn.execute("BEGIN IMMEDIATE")
-    conn.execute("UPDATE runs SET status = ?, finished = ?, units_run = ? WHERE id = ?",
-                 (status, time.time(), units_run, run))
-    conn.execute("DELETE FROM run_lock WHERE run = ?", (run,))
-    conn.execute("COMMIT")
+    with transaction(conn):
+        conn.execute("UPDATE runs SET status = ?, finished = ?, units_run = ? WHERE id = ?",
+                     (status, time.time(), units_run, run))
+        conn.execute("DELETE FROM run_lock WHERE run = ?", (run,))

@@ -45,7 +45,7 @@ from ..structure.chain import Chain
 from ..structure.code import Code
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from ..gears.train import GearTrain
-from .database import _acquire, _release, _writable, open_atlas
+from .database import _acquire, _release, _writable, open_atlas, transaction
 from .grid import Cell, GearCell, Grid
 from .trains import TrainUnit, keep_representatives, plan_gear_cell, store_trains, train_row, unit_trains
 
@@ -125,8 +125,7 @@ def compute_unit(task: UnitTask) -> UnitRows:
 
 def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
     """Store one finished unit in one transaction; returns the number of new chains."""
-    conn.execute("BEGIN IMMEDIATE")
-    try:
+    with transaction(conn):
         found, displaced = len(result.chains), []
         if result.rotation:
             result, displaced = keep_representatives(conn, result.cell, result)
@@ -152,11 +151,6 @@ def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
             "UPDATE units SET status = 'done', chains = ?, mechanisms = ?, seconds = ?, finished = ?, run = ? "
             "WHERE cell = ? AND unit = ?",
             (found, len(result.mechanisms), result.seconds, time.time(), run, result.cell, result.unit))
-        conn.execute("COMMIT")
-    except BaseException:
-        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
-            conn.execute("ROLLBACK")
-        raise
     return new
 
 
@@ -196,17 +190,11 @@ def _cell_row(cell: Cell | GearCell, units: int) -> tuple:
 
 
 def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell | GearCell, list[Unit | TrainUnit]]]) -> None:
-    conn.execute("BEGIN IMMEDIATE")
-    try:
+    with transaction(conn):
         for cell, units in plans:
             conn.execute("INSERT OR IGNORE INTO cells VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", _cell_row(cell, len(units)))
             conn.executemany("INSERT OR IGNORE INTO units (cell, unit, code) VALUES (?, ?, ?)",
                              [(cell.key, u.key, str(u.code)) for u in units])
-        conn.execute("COMMIT")
-    except BaseException:
-        if conn.in_transaction:  # a Ctrl-C right after COMMIT finds none
-            conn.execute("ROLLBACK")
-        raise
 
 
 def _local_pool(workers: int):
@@ -318,10 +306,9 @@ def run_grid(
             result.units_total = sum(len(units) for _, units in plans)
             result.units_skipped = result.units_total - len(tasks)
             if tasks:
-                conn.execute("BEGIN IMMEDIATE")
-                conn.executemany("UPDATE units SET attempts = attempts + 1 WHERE cell = ? AND unit = ?",
-                                 [(t.cell, t.unit.key) for t in tasks])
-                conn.execute("COMMIT")
+                with transaction(conn):
+                    conn.executemany("UPDATE units SET attempts = attempts + 1 WHERE cell = ? AND unit = ?",
+                                     [(t.cell, t.unit.key) for t in tasks])
             bar = None
             if progress:
                 from tqdm import tqdm
