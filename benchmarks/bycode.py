@@ -85,10 +85,15 @@ def _cpu() -> float:
 
 
 def count(query: dict, workers: int) -> tuple[dict, float]:
+    """Counts by code and CPU seconds; a query the engine refuses counts as ``{"refused": sentence}``
+    (a refusal must stay a refusal, with the same words)."""
     import synth
 
     t0 = _cpu()
-    by_code = synth.count_chains(**query, workers=workers)["by_code"]
+    try:
+        by_code = synth.count_chains(**query, workers=workers)["by_code"]
+    except synth.SynthesisError as exc:
+        by_code = {"refused": str(exc)}
     return by_code, _cpu() - t0
 
 
@@ -122,10 +127,11 @@ def main() -> int:
             if name(q) in record["queries"]:
                 continue
             by_code, cpu = count(q, args.workers)
-            record["queries"][name(q)] = {"by_code": by_code, "count": sum(by_code.values()), "cpu_s": round(cpu, 2)}
+            total = sum(n for n in by_code.values() if isinstance(n, int))
+            record["queries"][name(q)] = {"by_code": by_code, "count": total, "cpu_s": round(cpu, 2)}
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(json.dumps(record, indent=1))
-            print(f"{name(q)}: {sum(by_code.values())} chains, {cpu:.1f} CPU s", flush=True)
+            print(f"{name(q)}: {total} chains, {cpu:.1f} CPU s", flush=True)
         return 0
     record = json.loads(path.read_text())["queries"]
     bad = 0
@@ -148,7 +154,7 @@ def main() -> int:
                 status += ", LISTING DIFFERS"
             else:
                 status += ", listing same"
-        print(f"{name(q)}: {status} ({sum(got.values())} chains; CPU {want['cpu_s']} -> {cpu:.2f} s, "
+        print(f"{name(q)}: {status} ({sum(n for n in got.values() if isinstance(n, int))} chains; CPU {want['cpu_s']} -> {cpu:.2f} s, "
               f"wall {time.perf_counter() - t0:.2f} s)", flush=True)
     print(f"{len(queries)} queries, {bad} different")
     return 1 if bad else 0
