@@ -5,6 +5,8 @@ the variants of its counts one after the other."""
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 
 from synth import Chain
@@ -43,6 +45,25 @@ def test_variants_of_one_chain_are_the_oracles(text):
         for k in range(len(chain.joints) + 1):
             found = prismatic_variants(chain, k, idle=True) if idle else prismatic_variants(chain, k)
             assert sorted(map(_canonical, found)) == sorted(x for x in expected if x[1].count("prismatic") == k), (k, idle)
+
+
+def test_rigid_subchains_as_asked():
+    """The truss with a rigid triangle, rigid sub-chains refused although its W is 0: only the
+    oracle's chains of that graph in which every proper set of links moves are left (the triangle
+    a wedge loop)."""
+    truss = Chain.parse("0-1 1-2 2-0 1-3 3-4 4-2")
+    n = truss.links
+
+    def every_part_moves(joints, kinds):
+        letters = "".join("P" if k == "prismatic" else "R" for k in kinds)
+        return all(oracle.generic_mobility(n, joints, letters, links=s) >= 1
+                   for size in range(2, n) for s in itertools.combinations(range(n), size))
+
+    expected = [x for x in _oracle_variants(truss, False) if every_part_moves(*x)]
+    assert expected
+    for k in range(len(truss.joints) + 1):
+        found = prismatic_variants(truss, k, rigid_subchains=False)
+        assert sorted(map(_canonical, found)) == sorted(x for x in expected if x[1].count("prismatic") == k), k
 
 
 def test_cylinders_only_between_binary_links():
