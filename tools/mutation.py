@@ -73,11 +73,14 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "kinds": ("synth/structure/kinds.py", ["tests/structure/test_kinds_vs_oracle.py",
                                            "tests/synthesis/test_joint_kinds_round_trip.py",
                                            "tests/test_doctests.py::test_docstring_examples[synth.structure.kinds]"]),
+    # (the -k keeps the fast cases of the first two files; the doctests and variants_vs_oracle are all in)
     "variants": ("synth/synthesis/variants.py", ["tests/synthesis/test_rp_chains_vs_oracle.py",
                                                  "tests/synthesis/test_prismatic_vs_oracle.py",
+                                                 "tests/synthesis/test_variants_vs_oracle.py",
                                                  "tests/test_doctests.py::test_docstring_examples[synth.synthesis.variants]",
                                                  "-k", "(counts_by_prismatic_pairs and not 7) or the_same_chains or "
-                                                       "variant_counts or wedge_lever or all_prismatic"]),
+                                                       "variant_counts or wedge_lever or all_prismatic or refusal or "
+                                                       "docstring_examples or variants_vs_oracle"]),
     "springs": ("balance/devices/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
     "fit": ("balance/devices/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device

@@ -14,6 +14,7 @@ import pytest
 from synth import Chain
 from synth.structure.kinds import (generic_mobility, idle_joints, kind_count, lever_analogue, motion,
                                    prismatic_roles, redundant_constraints, structural_mobility, wedge_loops)
+from tests.oracles import gear_mobility
 from tests.oracles import rp_chains as oracle
 
 
@@ -88,6 +89,42 @@ def test_meshes_count_one_constraint_and_have_a_lever_analogue():
                                                                   if k == "mesh") if a in s and b in s]
             assert structural_mobility(train, s) == structural_mobility(analogue, list(s) + inside)
     assert lever_analogue(Chain.parse("0-1 1-2 2-0")) == Chain.parse("0-1 1-2 2-0")
+    # a rack (a slider on the frame) and a pinion: the rack keeps its prismatic pair in the analogue
+    rack = lever_analogue(Chain.parse("0=1 1~2 2-0"))
+    assert [j for j, k in zip(rack.joints, rack.kinds) if k == "prismatic"] == [(0, 1)] and rack.links == 4
+    # a chain without meshes comes back as it is, in its own motion space (a wedge triangle, h = 2)
+    wedge = Chain(3, [(0, 1), (1, 2), (0, 2)], h=2)
+    assert lever_analogue(wedge) == wedge and lever_analogue(wedge).h == 2
+
+
+def test_a_mesh_inside_a_truss_is_redundant():
+    """Gears on two links of a rigid truss (32/0: three dyads between links 0 and 1) cannot turn
+    relative to each other: their mesh repeats the truss's constraints.  Every set of links against
+    the independent gear oracle (rational rank, its own random geometry): W = 0, the count −1."""
+    chain = Chain.parse("0-2 2-1 0-3 3-1 0-4 4-1 2~3")
+    pins = [j for j, k in zip(chain.joints, chain.kinds) if k == "revolute"]
+    meshes = [j for j, k in zip(chain.joints, chain.kinds) if k == "mesh"]
+    placed, contacts = gear_mobility.generic_geometry(5, pins, meshes, random.Random(23))
+    for size in range(2, 6):
+        for s in itertools.combinations(range(5), size):
+            assert generic_mobility(chain, s) == gear_mobility.mobility(5, placed, contacts, s), s
+    assert generic_mobility(chain) == 0 and structural_mobility(chain) == -1 and redundant_constraints(chain) == 1
+
+
+def test_motion_is_kept_with_the_chain():
+    """The elimination runs once per chain: a second call hands back the same result."""
+    chain = Chain.parse("0-2 0-3 0=4 1-2 1-3 1=5 4=5")
+    assert motion(chain) is motion(chain)
+
+
+def test_generic_mobility_and_idle_joints_are_planar():
+    """Outside the plane (a wedge triangle, motion space h = 2: three blocks that slide on each
+    other, W = 1) there is no velocity model: generic mobility refuses, and no joint is called idle
+    (a planar model would find the pinned triangle rigid and every joint idle)."""
+    wedge = Chain(3, [(0, 1), (1, 2), (0, 2)], h=2)
+    with pytest.raises(ValueError, match=r"^generic mobility is computed for planar chains \(h = 3\)$"):
+        generic_mobility(wedge)
+    assert wedge.dof == 1 and idle_joints(wedge) == []
 
 
 @pytest.mark.parametrize("text, frame, roles", [
@@ -97,6 +134,10 @@ def test_meshes_count_one_constraint_and_have_a_lever_analogue():
     ("0=1 1-2 2-3 3-0 0-4 4-5 5-1", 2, {"guide": 0, "swinging": 0, "floating": 0, "slider": 1}),
     ("0-1 1-2 2=3 3-0 0-4 4=5 5-1", 0, {"guide": 0, "swinging": 2, "floating": 0, "slider": 0}),
     ("0-1 1-2 2-3 3-0", 0, {"guide": 0, "swinging": 0, "floating": 0, "slider": 0}),
+    # the trammel of Archimedes: two blocks in the frame's guides and the bar between them
+    ("0=1 1-2 2-3 3=0", 0, {"guide": 2, "swinging": 0, "floating": 0, "slider": 0}),
+    # Watt's chain with blocks on the ternary link 0: on a moving link that carries more joints
+    ("0=1 1-2 2-3 3-0 0=4 4-5 5-1", 2, {"guide": 0, "swinging": 0, "floating": 0, "slider": 2}),
 ])
 def test_prismatic_roles(text, frame, roles):
     assert prismatic_roles(Chain.parse(text), frame) == roles

@@ -165,8 +165,12 @@ def test_wedge_lever_system():
 
 @pytest.mark.parametrize("call,message", [
     (lambda: prismatic_variants(FOUR_BAR, 5), "only 4 simple joints"),
-    (lambda: prismatic_variants(Chain(3, [(0, 1, 2), (0, 1, 2)]), 1), "multiple joints only"),  # parse refuses twins
+    (lambda: prismatic_variants(Chain(3, [(0, 1, 2), (0, 1, 2)]), 1),
+     "^prismatic pairs go on simple joints and this chain has multiple joints only$"),  # parse refuses twins
     (lambda: prismatic_variants(FOUR_BAR, -1), "≥ 0"),
+    (lambda: prismatic_variants(FOUR_BAR, True), "whole number ≥ 0, not True"),
+    (lambda: prismatic_variants(FOUR_BAR, 1.0), "whole number ≥ 0, not 1.0"),
+    (lambda: prismatic_variants(Chain.parse("0=1 1-2 2-3 3-0"), 1), r"joint kinds already \(0=1 0-3 1-2 2-3\)"),
     (lambda: ChainQuery(1, 4, h=4, prismatic=1), "planar chains"),
     (lambda: ChainQuery(1, 4, cylinders="floating=1"), "cylinders go with prismatic pairs"),
     (lambda: ChainQuery(1, 4, prismatic=1, cylinders="rolling=1"), "guide, swinging, floating or slider"),
@@ -174,6 +178,13 @@ def test_wedge_lever_system():
 def test_refusals(call, message):
     with pytest.raises(InvalidOption, match=message):
         call()
+
+
+def test_no_prismatic_pair_asked_for_is_no_refusal():
+    """Zero prismatic pairs on a chain without simple joints is the chain itself, kept if it passes:
+    two pins on the same three links (W = 6 − 8 < 0) do not."""
+    assert prismatic_variants(Chain(3, [(0, 1, 2), (0, 1, 2)]), 0) == []
+    assert prismatic_variants(FOUR_BAR, 0) == [FOUR_BAR]
 
 
 def _cli(capsys, argv):
