@@ -110,7 +110,7 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
     simple = all(vertex.is_link for vertex in vertices) and code.dof(space) >= conv.threshold
     if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
         _, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=True)
-        return [tuple(map(int, row)) for row in placements], whole_group, all(vertex.is_link for vertex in vertices)
+        return list(map(tuple, placements.tolist())), whole_group, all(vertex.is_link for vertex in vertices)
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, graph, stats)
     from ._cpsat import Model, all_solutions, cp_model
@@ -176,7 +176,7 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
         # the model's lex-leader covers a prefix of the edges only: keep the lex-least of each orbit
         import numpy as np
 
-        solutions = [tuple(map(int, row)) for row in _lex_least(np.asarray(solutions, dtype=np.int64), group)]
+        solutions = list(map(tuple, _lex_least(np.asarray(solutions, dtype=np.int64), group).tolist()))
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, simple
 
@@ -254,7 +254,7 @@ def _few_distributions(lows: list[int], spare: int, parallel: list, graph: Contr
     if len(w) > 1:  # (the lex-least vector of an orbit has ordered parallel strings: one alone is its orbit's)
         group, whole_group = graph.edge_group()
         w = _lex_least(w, group)
-    solutions = [tuple(map(int, row)) for row in w]
+    solutions = list(map(tuple, w.tolist()))  # (tolist gives Python ints in one C call)
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, False
 
