@@ -22,7 +22,8 @@ README = ROOT / "README.md"
 
 # why a command is not run in the default suite (matched against the command's text)
 SLOW = {
-    "--links 16 --count --checkpoint": "counts 19 819 281 chains: about 6 minutes on 2 cores",
+    "--links 16 --count --checkpoint": "counts 19 819 281 chains: about 30 seconds on 2 cores",
+    "scene --all models/": "every scene, about 20 seconds: tests/scenes/test_scenes.py runs each of them in the default suite",
     "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
 }
@@ -30,7 +31,8 @@ SKIP = {
     "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "
                                         "(tests/execution runs the same units on a real Dask cluster)",
 }
-NOT_RUN = {"mechsynth chains --dof 1 --links 18 --count": "runs for hours by design (the README shows its first line)"}
+NOT_RUN = {"mechsynth chains --dof 1 --links 18 --count": "runs for half an hour or more by design (the README shows "
+                                                          "its first line)"}
 
 
 def blocks(text: str) -> list[tuple[str, str]]:
