@@ -230,7 +230,8 @@ def _write_site(args) -> int:
     try:
         result = write_site(args.db, args.html, page_size=args.page_size or 60,
                             draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
-                            progress=True, workers=args.workers)
+                            progress=True, workers=args.workers,
+                            note=lambda text: print(f"mechsynth: {text}", file=sys.stderr))
     except EmptyAtlas as exc:
         print(f"mechsynth: {exc}", file=sys.stderr)
         return 1

@@ -183,7 +183,7 @@ def _check_version(conn: sqlite3.Connection, path: Path) -> int:
         if version not in (str(SCHEMA_VERSION), "3"):
             raise AtlasError(
                 f"{path} is an atlas of schema version {version}, but this mechsynth reads only versions 3 and "
-                f"{SCHEMA_VERSION}; use a new --db file (or the mechsynth release that wrote it)")
+                f"{SCHEMA_VERSION}; use a new atlas file (or the mechsynth release that wrote it)")
         for table, wanted in (_TABLES if version == str(SCHEMA_VERSION) else _TABLES_3).items():
             have = {r[1] for r in conn.execute(f"PRAGMA table_info({table})")}
             if not wanted <= have:

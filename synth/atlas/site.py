@@ -31,6 +31,7 @@ import json
 import os
 import re
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -146,7 +147,8 @@ def _degrees(code: str) -> list[int]:
 
 
 def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_limit: int = 20000,
-               force: bool = False, progress: bool = False, workers: int | None = None) -> SiteResult:
+               force: bool = False, progress: bool = False, workers: int | None = None,
+               note: Callable[[str], None] | None = None) -> SiteResult:
     """Write the atlas ``db`` as a static site into ``folder`` (see the module docstring).
 
     ``draw_limit`` bounds the drawings (a layout takes about 50 ms at 12 links): chains beyond
@@ -154,6 +156,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     parallel (default: every core for more than 200 chains, else one; from Python, set
     ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
     take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
+    ``note`` receives a sentence before a long drawing run (how many are drawn, how long it takes).
     """
     if not 1 <= page_size <= MAX_PAGE_SIZE or draw_limit < 0 or (workers is not None and workers < 1):
         raise InvalidOption(f"the page size is 1 … {MAX_PAGE_SIZE} chains (a page is drawn and held in memory "
@@ -209,10 +212,9 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             from ..execution.estimate import describe_seconds
 
             seconds = min(draw_limit, total) * _SECONDS_PER_DRAWING / workers
-            if seconds > 60:
-                print(f"mechsynth: {min(draw_limit, total)} of the {total} chains are drawn: about "
-                      f"{describe_seconds(seconds)} on {workers} worker{'s' * (workers > 1)} (--draw-limit draws "
-                      "fewer)", file=sys.stderr)
+            if seconds > 60 and note is not None:
+                note(f"{min(draw_limit, total)} of the {total} chains are drawn: about {describe_seconds(seconds)} "
+                     f"on {workers} worker{'s' * (workers > 1)} (a lower drawing limit draws fewer)")
             bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
         rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.meshes, c.fractionated, "
                             f"c.chain, c.certificate, t.train, t.lever_code, t.rotation "
