@@ -34,6 +34,23 @@ def test_rigid_triangle_chains_get_verified_repairs(text):
         assert r["code"] == str(Chain.parse(r["chain"]).code)
 
 
+@pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-3 3-4 4-5 5-1", "0-1 1-2 2-0 0-3 3-4 4-5 5-0",
+                                  "0=1 1-2 2-0 0-3 3-4 4-5 5-1"])
+def test_repairs_are_distinct_chains_and_keep_joint_kinds(text):
+    """No two proposed chains are the same chain (certificates compared directly, kinds included),
+    and a prismatic pair stays prismatic: the slider-crank's triangle 0=1-2 mended keeps its slider."""
+    from synth import analyze_chain
+
+    chain = Chain.parse(text)
+    repairs = chain_repairs(chain)
+    proposed = [Chain.parse(r["chain"]) for r in repairs]
+    assert len({c.certificate for c in proposed}) == len(proposed) > 0
+    for c in proposed:
+        assert sorted(c.kinds or ["revolute"] * len(c.joints)) == sorted(chain.kinds or ["revolute"] * len(chain.joints))
+        report = analyze_chain(c)
+        assert report.dof == 1 and report.subchain_defect == "none"
+
+
 def test_over_constrained_code_gets_verified_repairs():
     """6301/0 has W = 1: with W = 2 required, D = −1.  One binary link fewer mends the counts."""
     repairs = code_repairs(Code.parse("6301/0"), 2)
