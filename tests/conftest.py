@@ -1,4 +1,5 @@
 import os
+import signal
 import sys
 
 from hypothesis import HealthCheck, settings
@@ -8,6 +9,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (ROOT, os.environ.get("PYTHONPATH")) if p)
 os.environ.setdefault("MPLBACKEND", "Agg")
+
+# The Ctrl-C tests send SIGINT to the commands they start.  A suite started in the background
+# (`cmd &` in a script, nohup) inherits SIGINT *ignored*, and so would every command it starts
+# (Python installs no KeyboardInterrupt handler then).  Handled here, the children start with the
+# default disposition, as under a terminal; a blocked SIGINT is unblocked for the same reason.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
 
 # Hypothesis: the same examples on every run and no wall-clock limits (CI and default).
 # Randomised search locally: HYPOTHESIS_PROFILE=explore python -m pytest tests/test_properties.py

@@ -355,14 +355,6 @@ def test_cli_bad_input_is_one_sentence_exit_2(args, words):
     assert words in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
 
 
-def _default_sigint():
-    """In the child: SIGINT delivered and handled by Python, whatever the test process inherited."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-    signal.pthread_sigmask(signal.SIG_SETMASK, [])
-
-
 def test_ctrl_c_stops_a_count_on_the_pool():
     """Ctrl-C to the whole process group during a 9-link count on two workers (a minute of work):
     exit 130, one line, no count printed, no worker left."""
@@ -371,8 +363,7 @@ def test_ctrl_c_stops_a_count_on_the_pool():
     import time
 
     proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "9", "--count", "--workers", "2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
-                            preexec_fn=_default_sigint)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     time.sleep(3)
     os.killpg(proc.pid, signal.SIGINT)
     out, err = proc.communicate(timeout=60)

@@ -183,7 +183,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     try:
         with _reading(db):
             return _write(conn, out, total, page_size=page_size, draw_limit=draw_limit, progress=progress,
-                          workers=workers)
+                          workers=workers, note=note)
     except OSError as exc:
         raise InvalidOption(f"cannot write the site into {out}: {exc.strerror or exc}"
                             + (f" ({exc.filename})" if exc.filename and str(exc.filename) != str(out) else ""))
@@ -192,7 +192,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
 
 
 def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, progress: bool,
-           workers: int | None) -> SiteResult:
+           workers: int | None, note: Callable[[str], None] | None) -> SiteResult:
     """The body of :func:`write_site` on an open atlas with ``total`` chains."""
     pool = bar = None
     try:
