@@ -331,9 +331,14 @@ def _draw_trains(rows, args) -> int:
     if len(rows) > args.limit:
         raise InvalidOption(f"the selection has more than {args.limit} drawings (--limit); narrow it with --where "
                             "or raise --limit")
+    unused = [name for name, given in (("--dpi", args.dpi), ("--labels", args.labels is not None),
+                                       ("--size", args.size is not None and len(rows) > 1)) if given]
+    if unused:
+        raise InvalidOption(f"gear trains are drawn as schematics, which take no {', '.join(unused)}"
+                            + (" on a sheet" if unused == ["--size"] else ""))
     trains = [GearTrain.parse(row["train"]) for row in rows]
     if len(trains) == 1:
-        draw_train(trains[0], args.out, title=args.title)
+        draw_train(trains[0], args.out, title=args.title, size=args.size or 6.0)
     else:
         draw_sheet(trains, args.out, columns=args.columns or 4, limit=args.limit,
                    titles=[f"{k + 1}: {row['code']}  id {row['id']}" for k, row in enumerate(rows)])

@@ -207,6 +207,9 @@ def test_draw_from_the_atlas_gives_schematics(atlas, tmp_path, capsys):
     one = tmp_path / "one.svg"
     assert main(["draw", "--db", str(atlas), "--id", rows[0]["id"], "--out", str(one)]) == 0
     assert GearTrain.parse(rows[0]["train"]).compact() in one.read_text()
+    capsys.readouterr()
+    assert main(["draw", "--db", str(atlas), "--where", "n=5", "--dpi", "200", "--out", str(tmp_path / "t.png")]) == 2
+    assert "take no --dpi" in capsys.readouterr().err
 
 
 def test_site_pages_draw_every_train(atlas, tmp_path):
