@@ -20,6 +20,7 @@ subdivision keeps both), so they are decided once per H.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from itertools import combinations
 from operator import itemgetter
 from typing import NamedTuple
@@ -120,11 +121,7 @@ class Contracted:
     def _subdivided(self) -> pynauty.Graph:
         m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        cells: dict[Vertex, set[int]] = {}
-        for u, vertex in enumerate(self.vertices):
-            cells.setdefault(vertex, set()).add(u)
-        coloring = [cells[k] for k in sorted(cells)] + [set(range(m, m + len(self.edges)))]
-        return TrustedGraph(m + len(self.edges), adjacency, coloring)
+        return TrustedGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -139,11 +136,10 @@ class Contracted:
         if e == 0:
             return [], True
         gens, size1, size2, _, _ = pynauty.autgrp(self._subdivided())
-        gens = [tuple(g[m + k] - m for k in range(e)) for g in gens]
-        gens = [g for g in gens if any(g[k] != k for k in range(e))]
+        identity, to_edge = tuple(range(e)), (-m).__add__  # subdivision vertex m + k is edge k
+        gens = [g for g in (tuple(map(to_edge, g[m:])) for g in gens) if g != identity]
         if size1 * 10.0**size2 > _GROUP_LIMIT:
             return gens + [tuple(sorted(range(e), key=g.__getitem__)) for g in gens], False  # and inverses
-        identity = tuple(range(e))
         # closure under a -> a after g (b[k] = a[g[k]]); an itemgetter builds the tuple in C
         # (every g moves an edge, so e >= 2 and itemgetter returns a tuple)
         apply = [itemgetter(*g) for g in gens]
@@ -159,6 +155,17 @@ class Contracted:
             frontier = nxt
         group.discard(identity)
         return sorted(group), True
+
+
+@lru_cache(maxsize=256)
+def _colour_cells(vertices: tuple[Vertex, ...], strings: int) -> list[set[int]]:
+    """nauty's colour cells of the subdivided H: its vertices by kind and degree (:class:`Vertex`
+    order), then the ``strings`` subdivision vertices; shared by every H of a code (read only)."""
+    m = len(vertices)
+    cells: dict[Vertex, set[int]] = {}
+    for u, vertex in enumerate(vertices):
+        cells.setdefault(vertex, set()).add(u)
+    return [cells[k] for k in sorted(cells)] + [set(range(m, m + strings))]
 
 
 def _branch_vertices(code: Code) -> tuple[Vertex, ...]:
@@ -339,12 +346,13 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
         marked = np.flatnonzero(flags[:found])
         if len(marked):  # the slack is too large for a pebble game: every condition by the numbers
             keep[marked] = bounds.meet(X[marked], Y[marked], conditions)
-        for row_x, row_y in zip(X[keep], Y[keep]):
-            edges = [p for p, k in zip(pairs, row_x.tolist()) for _ in range(k)]
-            edges += [(u, u) for u, k in enumerate(row_y.tolist()) for _ in range(k)]
+        for row_x, row_y in zip(X[keep].tolist(), Y[keep].tolist()):
+            edges = [p for p, k in zip(pairs, row_x) if k for _ in range(k)]
+            edges += [(u, u) for u, k in enumerate(row_y) if k for _ in range(k)]
             if not _keep_multigraph(m, edges, conv):
                 continue
-            graph = Contracted(vertices, tuple(sorted(edges)), "")
+            edges.sort()
+            graph = Contracted(vertices, tuple(edges), "")
             cert = pynauty.certificate(graph._subdivided()).hex()
             if cert not in seen:
                 seen[cert] = Contracted(vertices, graph.edges, cert)

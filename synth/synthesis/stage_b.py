@@ -54,7 +54,7 @@ def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict
     (2, 2)
     """
     if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
-        simple = all(vertex.is_link for vertex in graph.vertices)
+        simple = not any(_vertex_terms(graph.vertices, conv)[1])
         if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
             found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=not simple)
             if whole_group and simple:
@@ -82,16 +82,22 @@ def _distinct(graph: Contracted, conv: Conventions, kept: list, stats: dict | No
 def _string_limits(graph: Contracted, conv: Conventions) -> tuple[list[int], list[tuple[int, int]]]:
     """Least binary links of each string of H, and the strings parallel to the one before them
     with their own least weight: (string, least) pairs."""
-    vertices, edges = graph.vertices, graph.edges
-    lows = [_loop_lb(vertices[u], conv) if u == v else int(vertices[u].is_joint and vertices[v].is_joint)
-            for u, v in edges]
+    edges = graph.edges
+    loop_least, joint = _vertex_terms(graph.vertices, conv)
+    lows = [loop_least[u] if u == v else int(joint[u] and joint[v]) for u, v in edges]
     # parallel strings: non-decreasing (a symmetry of H); two joints never join the same links
     # (a direct joint or incidence at most once), and two one-link strings between two multiple
     # joints (W = 2 − h) only where the convention allows it
-    parallel = [(k, 0 if u == v else 2 if vertices[u].is_joint and vertices[v].is_joint and 2 - conv.h < conv.threshold
-                 else 1)
+    parallel = [(k, 0 if u == v else 2 if joint[u] and joint[v] and 2 - conv.h < conv.threshold else 1)
                 for k, (u, v) in enumerate(edges) if k and edges[k] == edges[k - 1]]
     return lows, parallel
+
+
+@lru_cache(maxsize=256)
+def _vertex_terms(vertices: tuple, conv: Conventions) -> tuple[tuple[int, ...], tuple[bool, ...]]:
+    """Per branch vertex of H: the least binary links of a loop through it, and whether it is a
+    multiple joint (shared by every H of a code)."""
+    return tuple(_loop_lb(vertex, conv) for vertex in vertices), tuple(vertex.is_joint for vertex in vertices)
 
 
 def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict | None) -> tuple[list, bool, bool]:
@@ -187,9 +193,9 @@ def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
     (their least weight at least h − 1).  With simple joints its conditions are stage B's; with
     multiple joints they are weaker by one freedom (:mod:`synth.synthesis._stage_b_kernel`), so
     there the exact test keeps the valid placements among the kernel's."""
-    looped = {graph.vertices[u] for u, v in graph.edges if u == v}
+    loop_least, _ = _vertex_terms(graph.vertices, conv)
     return (not conv.cranks and conv.h + conv.threshold >= 0 and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
-            and all(_loop_lb(vertex, conv) >= conv.h - 1 for vertex in looped))
+            and all(loop_least[u] >= conv.h - 1 for u, v in graph.edges if u == v))
 
 
 def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
@@ -203,31 +209,25 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
 
     t0 = perf_counter()
     lows, parallel = _string_limits(graph, conv)
-    links = set(_inner_links(graph.vertices))
-    inner = {u: i for i, u in enumerate(u for u, vertex in enumerate(graph.vertices)
-                                        if u in links or vertex.is_joint)}
+    inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     M, E = len(inner), len(graph.edges)
-    ends = np.array([(inner[u], inner[v]) if u != v and u in inner and v in inner else (-1, -1) for u, v in graph.edges],
-                    dtype=np.int64).reshape(E, 2)
+    # the ends of each string among the game's vertices; −1 for a string that is never short
+    a_list = [inner.get(u, -1) if u != v and v in inner else -1 for u, v in graph.edges]
+    b_list = [inner[v] if a >= 0 else -1 for a, (_, v) in zip(a_list, graph.edges)]
     least = np.array(lows, dtype=np.int64)
     after = np.full(E, -1, dtype=np.int64)
-    for k, least_k in parallel:
-        after[k] = least_k
-    # with multiple joints a second game (J with h − 1 pebbles, l = h + min(threshold, 0)): the kernel's module
-    k = np.full(M, conv.h, dtype=np.int64)
+    for e, least_e in parallel:
+        after[e] = least_e
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
-    k2 = np.array([conv.h if graph.vertices[u].is_link else conv.h - 1 for u in inner], dtype=np.int64)
-    l2 = -1 if len(inner) == len(links) else conv.h + min(conv.threshold, 0)
-    short = ends[:, 0] >= 0
-    b0 = n2 - C * int(short.sum()) - int(least[~short].sum())
+    b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
     x_most = b0 + int(k.sum()) - l if M >= 2 else n2
-    vertex_need = -b0 - (int(k.sum()) - k - l) if M >= 3 else np.full(M, -n2 * conv.h, dtype=np.int64)
+    vertex_need = k - (b0 + int(k.sum()) - l) if M >= 3 else np.full(M, -n2 * conv.h, dtype=np.int64)
     if l2 >= 0:  # the tighter of the two games' bounds
         x_most = min(x_most, b0 + int(k2.sum()) - l2) if M >= 2 else x_most
-        vertex_need = np.maximum(vertex_need, -b0 - (int(k2.sum()) - k2 - l2)) if M >= 3 else vertex_need
+        vertex_need = np.maximum(vertex_need, k2 - (b0 + int(k2.sum()) - l2)) if M >= 3 else vertex_need
     group, whole_group = graph.edge_group() if E > 1 else ([], True)
     group = np.array(group, dtype=np.int64).reshape(len(group), E)
-    a_end, b_end = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+    a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
     found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
     if listing and found > len(out):
@@ -235,6 +235,22 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found], whole_group
+
+
+@lru_cache(maxsize=256)
+def _pebble_vertices(vertices: tuple, h: int, threshold: int) -> tuple[dict[int, int], "np.ndarray", "np.ndarray", int]:
+    """The pebble games' vertices among H's branch vertices (inner links, multiple joints), as
+    {vertex of H: vertex of the game}; the pebbles of each in the first game (h) and the second
+    (h − 1 on a multiple joint), and the second game's l (−1: no second game, simple joints).
+    Shared by every H of a code: the kernel copies the pebbles, never writes these."""
+    import numpy as np
+
+    links = set(_inner_links(vertices))
+    inner = {u: i for i, u in enumerate(u for u, vertex in enumerate(vertices) if u in links or vertex.is_joint)}
+    k = np.full(len(inner), h, dtype=np.int64)
+    k2 = np.array([h if vertices[u].is_link else h - 1 for u in inner], dtype=np.int64)
+    l2 = -1 if len(inner) == len(links) else h + min(threshold, 0)
+    return inner, k, k2, l2
 
 
 def _few_distributions(lows: list[int], spare: int, parallel: list, graph: Contracted,
