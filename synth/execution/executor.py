@@ -12,7 +12,9 @@ whatever the backend:
 * the pool (or Dask) keeps at most ``window`` tasks in flight: stage A of the next items
   runs ahead of stage B only that far, so memory stays flat however large the plan is;
 * units travel in batches sized from the measured time per unit (about ``task_seconds``
-  per task), so inter-process traffic stays small next to the work.
+  per task), so inter-process traffic stays small next to the work; the worker that runs
+  stage A of an item also works on its first units for that long, so an item of small units
+  (h = 2: a few hundred of 70 µs) sends none of them out again.
 
 Example
 -------
@@ -67,9 +69,31 @@ def process_pool(workers: int):
             signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
-def _apply(args):
-    fn, arg = args
-    return fn(arg)
+def _expand_and_work(args):
+    """Stage A of an item, then ``work`` on its first units for up to ``budget`` seconds, in the
+    same worker (those units never travel back out): the units, the results of the first ones
+    and the seconds they took."""
+    expand, work, item, budget = args
+    units = expand(item)
+    start, results = time.perf_counter(), []
+    for unit in units:
+        if time.perf_counter() - start >= budget:
+            break
+        results.append(work(unit))
+    return units, results, time.perf_counter() - start
+
+
+class _Finished:
+    """The results of units a stage-A task already worked on, standing where a batch's task would."""
+
+    def __init__(self, results: list, seconds: float):
+        self._value = results, seconds
+
+    def ready(self) -> bool:
+        return True
+
+    def get(self):
+        return self._value
 
 
 def _apply_batch(args):
@@ -250,6 +274,9 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
     tasks put themselves on) is given.
     """
     pending = iter(todo)
+    # stage A's worker works on the item's first units too, unless units are skipped (a checkpoint
+    # the workers cannot read: every unit then goes through the parent's filter)
+    fused = 0.0 if skip_unit else task_seconds
     entries: deque[_Item] = deque([first] if first is not None else [])
     owner: dict[int, _Item] = {}  # id(task) -> its item, for the tasks in flight
     per_unit: float | None = None  # measured seconds per unit
@@ -259,22 +286,29 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
         owner[id(task)] = entry
         return task
 
-    def expanded(entry: _Item) -> None:
-        """Stage A of ``entry`` is done (or about to be): its units wait for submission."""
-        units = entry.expansion.get()
+    def expanded(entry: _Item) -> tuple[list, _Finished] | None:
+        """Stage A of ``entry`` is done (or about to be): its units wait for submission, but for
+        the first ones its task already worked on, returned as a finished batch (or None)."""
+        units, results, seconds = entry.expansion.get()
         del owner[id(entry.expansion)]
         entry.expansion = None
         entry.total = len(units)
-        entry.units = deque(u for u in units if not (skip_unit and skip_unit(u)))
+        entry.units = deque(u for u in units[len(results):] if not (skip_unit and skip_unit(u)))
+        return (units[:len(results)], _Finished(results, seconds)) if results else None
 
     def collected(entry: _Item, batch: list, task) -> Iterator[tuple]:
         nonlocal per_unit
         results, seconds = task.get()
-        del owner[id(task)]
+        owner.pop(id(task), None)  # (a finished batch was never in flight)
         rate = seconds / len(batch)
         per_unit = rate if per_unit is None else 0.8 * per_unit + 0.2 * rate
         for unit, result in zip(batch, results):
             yield entry.index, unit, result
+
+    def expand_in_order(entry: _Item) -> None:
+        finished = expanded(entry)
+        if finished is not None:
+            entry.batches.appendleft(finished)  # (no batch of the item was submitted before)
 
     def submit_batch(entry: _Item) -> None:
         size = 1 if per_unit is None else max(1, min(512, int(task_seconds / max(per_unit, 1e-6))))
@@ -286,7 +320,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             if done is None:  # in order: take the units of later items as soon as they are known
                 for entry in entries:
                     if entry.expansion is not None and entry.expansion.ready():
-                        expanded(entry)
+                        expand_in_order(entry)
             target = next((e for e in entries if e.expansion is None and e.units), None)
             if target is not None:
                 submit_batch(target)
@@ -295,7 +329,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             if nxt is None:
                 return
             entry = _Item(nxt[0], None)
-            entry.expansion = launch(entry, _apply, (expand, nxt[1]))
+            entry.expansion = launch(entry, _expand_and_work, (expand, work, nxt[1], fused))
             entries.append(entry)
 
     if done is not None:  # as they finish
@@ -309,7 +343,9 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             task = _next_done(done, alive)
             entry = owner[id(task)]
             if task is entry.expansion:
-                expanded(entry)
+                finished = expanded(entry)
+                if finished is not None:
+                    yield from collected(entry, *finished)
                 continue
             position = next(i for i, (_, t) in enumerate(entry.batches) if t is task)
             batch, _ = entry.batches[position]
@@ -322,7 +358,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             return
         head = entries[0]
         if head.expansion is not None:
-            expanded(head)  # waits for stage A of the head item
+            expand_in_order(head)  # waits for stage A of the head item
             continue
         if head.units and not head.batches:
             submit_batch(head)  # the head goes first even with a full window

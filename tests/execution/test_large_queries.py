@@ -39,11 +39,23 @@ def _square(x):
     return x * x
 
 
+def _slow_square(x):
+    time.sleep(0.004)
+    return x * x
+
+
+# task_seconds: None (stage A's worker works on every unit of these small items), 1e-9 (on none:
+# every unit goes out in a batch), and a slow work of which the worker does a few, the rest batched
+_FUSION = [(None, _square), (1e-9, _square), (0.01, _slow_square)]
+
+
+@pytest.mark.parametrize("task_seconds, work", _FUSION)
 @pytest.mark.parametrize("window", [1, 2, 64])
-def test_pool_pipeline_keeps_plan_order(window):
+def test_pool_pipeline_keeps_plan_order(window, task_seconds, work):
     items = [3, 0, 5, 1, 4]
     inline = list(_executor.run_plan(items, _units, _square))
-    pooled = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0, window=window))
+    pooled = list(_executor.run_plan(items, _units, work, workers=2, inline_seconds=0, window=window,
+                                     task_seconds=task_seconds))
     assert pooled == inline
     assert [e for e in inline if e[1] is None] == [(0, None, 3), (1, None, 0), (2, None, 5), (3, None, 1), (4, None, 4)]
 
@@ -58,19 +70,34 @@ def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
     assert events == list(_executor.run_plan(items, _units, _square))
 
 
+@pytest.mark.parametrize("task_seconds, work", _FUSION)
 @pytest.mark.parametrize("window", [1, 3, 64])
-def test_unordered_pipeline_yields_every_unit_before_its_item(window):
+def test_unordered_pipeline_yields_every_unit_before_its_item(window, task_seconds, work):
     items = [3, 0, 5, 1, 4, 7, 2]
-    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0, window=window,
-                                     ordered=False))
+    events = list(_executor.run_plan(items, _units, work, workers=2, inline_seconds=0, window=window,
+                                     ordered=False, task_seconds=task_seconds))
     assert sorted(events, key=repr) == sorted(_executor.run_plan(items, _units, _square), key=repr)
     closed = {index: k for k, (index, unit, _) in enumerate(events) if unit is None}
     assert all(k < closed[index] for k, (index, unit, _) in enumerate(events) if unit is not None)
 
 
+def test_stage_a_task_works_on_the_first_units_for_its_budget():
+    expand_and_work = _executor._expand_and_work
+    assert expand_and_work((_units, _square, 4, 10.0))[:2] == ([0, 1, 2, 3], [0, 1, 4, 9])
+    assert expand_and_work((_units, _square, 4, 0.0))[:2] == ([0, 1, 2, 3], [])
+    units, results, seconds = expand_and_work((_units, _slow_square, 50, 0.01))
+    assert units == list(range(50)) and 1 <= len(results) < 50 and results == [u * u for u in units[:len(results)]]
+    assert seconds >= 0.01
+
+
+def _square_but_zero(x):
+    assert x != 0, "a skipped unit was run"
+    return x * x
+
+
 def test_skipped_items_and_units_are_not_run():
     items = [3, 2]
-    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=0,
+    events = list(_executor.run_plan(items, _units, _square_but_zero, workers=2, inline_seconds=0,
                                      skip_item=lambda i: i == 1, skip_unit=lambda u: u == 0))
     assert events == [(0, 1, 1), (0, 2, 4), (0, None, 3)]
 
