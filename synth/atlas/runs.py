@@ -374,9 +374,9 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
     import math
     import shutil
 
-    from ..execution.estimate import SIZED_LOOPS, SIZED_LOOPS_MULTIPLE, describe_seconds, estimate, magnitude
+    from ..execution.estimate import describe_seconds, estimate, magnitude, sized_loops
 
-    large = [c for c in grid.cells if c.loops >= (SIZED_LOOPS if c.v == (0, 0) else SIZED_LOOPS_MULTIPLE)]
+    large = [c for c in grid.cells if c.loops >= sized_loops(c.h, multiple=c.v != (0, 0))]
     if not large:
         return None
     log_seconds, log_chains, worst = -math.inf, -math.inf, None
@@ -391,7 +391,7 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
     wall = log_seconds - math.log10(processes)
     log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
     where = "on the scheduler's workers (one core shown)" if scheduler else f"on {processes} workers"
-    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} cells of 7 loops or more hold"
+    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} large cells hold"
     size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
             f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
             "in the atlas (extrapolated from exact runs at smaller sizes)")

@@ -35,11 +35,14 @@ from dataclasses import dataclass, replace
 
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "size_check", "describe_seconds", "magnitude"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_seconds", "magnitude"]
 
-# Queries at least this large (loops K of their largest skeleton; multiple joints grow faster)
-# are sized before they run.
-SIZED_LOOPS, SIZED_LOOPS_MULTIPLE = 7, 6
+# Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
+# they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
+# in which the two-second sizing is small.  A loop of the plane adds two links, one of h = 2 a
+# single link, so in loops h = 2 grows far more slowly (K = 8: 110 132 chains, 5 CPU s, where
+# sizing took 0.5 s; K = 9 about 30 s, as the plane's K = 7, 16 links, takes 51 s).
+SIZED_LOOPS = {2: 9, None: 7}
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
@@ -147,23 +150,33 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
 
 def worth_sizing(query) -> bool:
     """Whether a query is large enough to be estimated before it runs: its largest revolute
-    skeleton has :data:`SIZED_LOOPS` loops or more (:data:`SIZED_LOOPS_MULTIPLE` with multiple joints).
+    skeleton has :func:`sized_loops` loops or more.
 
     >>> from synth.structure.query import ChainQuery
-    >>> worth_sizing(ChainQuery(1, 14)), worth_sizing(ChainQuery(1, 16))
-    (False, True)
+    >>> worth_sizing(ChainQuery(1, 14)), worth_sizing(ChainQuery(1, 16)), worth_sizing(ChainQuery(1, 10, h=2))
+    (False, True, False)
     """
     if query.code is not None:
         return False
     K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
-    return K >= (SIZED_LOOPS_MULTIPLE if (query.v or (0, 0)) != (0, 0) else SIZED_LOOPS)
+    return K >= sized_loops(query.h, multiple=(query.v or (0, 0)) != (0, 0))
+
+
+def sized_loops(h: int, multiple: bool = False) -> int:
+    """The least number of loops K of a query (or a grid's cell) that is sized before it runs, in
+    motion space ``h`` (one fewer with multiple joints).
+
+    >>> sized_loops(3), sized_loops(3, multiple=True), sized_loops(2)
+    (7, 6, 9)
+    """
+    return SIZED_LOOPS.get(h, SIZED_LOOPS[None]) - (1 if multiple else 0)
 
 
 def size_check(query, *, processes: int, count: bool, table: bool, force: bool = False,
                mechanisms: str | None = None, scheduler: bool = False) -> str | None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked.
 
-    A query with fewer loops than :data:`SIZED_LOOPS` (6 with multiple joints) passes at once.
+    A query with fewer loops than :func:`sized_loops` passes at once.
     Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
     ``mechanisms`` ``"mechanisms"`` / ``"mechanisms with input"``) and refused with
     :class:`QueryTooLarge` when they would take more than a day on ``processes`` workers (unless
