@@ -119,3 +119,30 @@ def test_no_traceback_through_the_real_command():
     p = subprocess.run([sys.executable, "-m", "mechsynth", "analyze", "6301/0", "--dof", "-2"],
                        capture_output=True, text=True, env=env, timeout=60)
     assert p.returncode == 2 and p.stderr.count("\n") == 1 and "Traceback" not in p.stderr
+
+
+def test_a_command_mounts_only_its_module_and_the_table_names_every_command():
+    """The root parser builds one module's commands when argv names one (start-up); the table it
+    reads names each command by the module that mounts it, and every command is mounted by one."""
+    import argparse
+    import importlib
+
+    from mechsynth.cli import COMMANDS, _build_parser
+
+    def choices(parser):
+        return list(next(a for a in parser._actions if a.dest == "command").choices)
+
+    everything = choices(_build_parser())
+    assert everything == list(COMMANDS)
+    for module in dict.fromkeys(COMMANDS.values()):
+        sub = argparse.ArgumentParser().add_subparsers()
+        importlib.import_module(f"mechsynth.commands.{module}").add_commands(sub)
+        assert list(sub.choices) == [name for name, m in COMMANDS.items() if m == module]
+    assert choices(_build_parser(["draw", "--code", "42/0"])) == ["grid", "atlas", "draw"]
+    assert choices(_build_parser(["--help"])) == everything and choices(_build_parser(["nonsense"])) == everything
+
+
+def test_a_command_that_is_not_one_lists_every_command(capsys):
+    assert main(["chain", "--dof", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "invalid choice: 'chain'" in err and "'balance'" in err and err.count("\n") == 1
