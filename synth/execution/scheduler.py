@@ -1,8 +1,8 @@
 """Connecting to a Dask scheduler (``--scheduler ADDRESS``): one sentence when it cannot be done.
 
 The address is checked before Dask is even imported, and a TCP scheduler must accept a
-connection within the timeout before a ``distributed.Client`` is built, so a wrong address
-fails fast and quietly (a half-built Client would otherwise spend ten seconds closing
+connection within the timeout, and then answer Dask's handshake, before a ``distributed.Client``
+is built, so a wrong address fails fast and quietly (a half-built Client would otherwise spend ten seconds closing
 itself at exit and print "Exception ignored …").
 
 Example
@@ -53,8 +53,30 @@ def connect(address: str, timeout: float = 5.0):
     except ImportError:  # pragma: no cover - dask is a dependency
         raise SchedulerUnreachable("a Dask scheduler needs the 'distributed' package (pip install dask[distributed])") from None
     try:
+        _handshake(f"{scheme}://{match.group(2)}:{port}", timeout)
+    except Exception as exc:  # a garbled answer can raise anything in Dask's reader (a 3 EiB frame: MemoryError)
+        raise SchedulerUnreachable(f"{address} answered, but not as a Dask scheduler ({type(exc).__name__})") from None
+    try:
         return Client(f"{scheme}://{match.group(2)}:{port}", timeout=f"{timeout}s", set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as exc:
         detail = str(exc).splitlines()[0] if str(exc) else "no answer"
         raise SchedulerUnreachable(f"{address} answered, but not as a Dask scheduler within {timeout:g} s "
                                    f"({type(exc).__name__}: {detail})") from None
+
+
+def _handshake(address: str, timeout: float) -> None:
+    """Dask's handshake on a connection of its own, closed at once: whatever answers there but is not
+    a scheduler fails here (a proxy's HTTP reply read as a frame length), before a ``Client`` exists,
+    which once half built cannot be closed quietly.  In a thread of its own, so that a caller with a
+    running event loop (a notebook) can call it too."""
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect as dask_connect
+
+    async def shake():
+        comm = await dask_connect(address, timeout=timeout)
+        await comm.close()
+
+    with ThreadPoolExecutor(1) as thread:
+        thread.submit(asyncio.run, shake()).result()

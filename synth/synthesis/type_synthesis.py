@@ -423,6 +423,12 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
     names = [str(c) for c, _ in jobs]
     totals: dict[str, int] = {}
     with ExitStack() as stack:
+        client = None
+        if scheduler is not None:  # (before the checkpoint: an unreachable scheduler leaves no file behind)
+            from ..execution.scheduler import connect
+
+            client = connect(scheduler, timeout)
+            stack.callback(client.close)
         ck = None
         if checkpoint is not None:
             from ..execution.checkpoint import Checkpoint
@@ -430,12 +436,6 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             ck = stack.enter_context(Checkpoint(checkpoint, _identity(what, jobs), _describe(what, query), log=log))
             for name, n in list(ck.codes.items()) + list(ck.units.values()):
                 totals[name] = totals.get(name, 0) + n
-        client = None
-        if scheduler is not None:
-            from ..execution.scheduler import connect
-
-            client = connect(scheduler, timeout)
-            stack.callback(client.close)
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else None,
                             skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
