@@ -22,6 +22,7 @@ from __future__ import annotations
 import json
 import re
 from dataclasses import dataclass
+from functools import cached_property
 
 from ..errors import MalformedCode
 
@@ -127,6 +128,11 @@ class Code:
 
     # ---------------------------------------------------------------- notation
     def __str__(self) -> str:
+        return self._text
+
+    @cached_property
+    def _text(self) -> str:
+        """The code as written, computed once (a count names each of its units by its code)."""
         width = max(self.loops, len(self.assortment), 1)
         counts = list(self.assortment) + [0] * (width - len(self.assortment))
         if any(c >= 10 for c in counts):

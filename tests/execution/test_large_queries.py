@@ -176,6 +176,22 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     assert again.stdout == reference.stdout
 
 
+def test_checkpoint_commit_keeps_the_order_of_units_and_codes(tmp_path):
+    """Unit rows are written in runs between complete codes: a code's units recorded before it
+    completes are gone with it, those of a code still running stay."""
+    from synth.execution.checkpoint import Checkpoint
+
+    path = tmp_path / "c.sqlite"
+    with Checkpoint(path, "plan", "q", every=1e9) as ck:  # one commit, at the code's completion
+        ck.add_unit("a|1", "a", 2)
+        ck.add_unit("b|1", "b", 3)
+        ck.add_unit("a|2", "a", 4)
+        ck.finish_code("a", 6, units=2)
+        ck.add_unit("b|2", "b", 5)
+    again = Checkpoint(path, "plan", "q")
+    assert again.codes == {"a": 6} and again.units == {"b|1": ("b", 3), "b|2": ("b", 5)}
+
+
 def test_checkpoint_belongs_to_one_query(tmp_path):
     ck = tmp_path / "count.sqlite"
     assert count_chains(1, 8, workers=1, checkpoint=ck) == count_chains(1, 8, workers=1)
