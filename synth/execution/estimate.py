@@ -40,8 +40,8 @@ __all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
 # in which the two-second sizing is small.  A loop of the plane adds two links, one of h = 2 a
-# single link, so in loops h = 2 grows far more slowly (K = 8: 110 132 chains, 5 CPU s, where
-# sizing took 0.5 s; K = 9 about 30 s, as the plane's K = 7, 16 links, takes 51 s).
+# single link, so in loops h = 2 grows far more slowly (K = 8, 10 links: 110 132 chains, 5 CPU s,
+# where sizing took 0.5 s; K = 9, 11 links: 61 CPU s, as the plane's K = 7, 16 links, takes 51).
 SIZED_LOOPS = {2: 9, None: 7}
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this

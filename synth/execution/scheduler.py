@@ -2,8 +2,8 @@
 
 The address is checked before Dask is even imported, and a TCP scheduler must accept a
 connection within the timeout, and then answer Dask's handshake, before a ``distributed.Client``
-is built, so a wrong address fails fast and quietly (a half-built Client would otherwise spend ten seconds closing
-itself at exit and print "Exception ignored …").
+is built, so a wrong address fails fast and quietly (a half-built Client would otherwise spend
+ten seconds closing itself at exit and print "Exception ignored …").
 
 Example
 -------
