@@ -127,6 +127,45 @@ class _Problem:
         val = float(np.max(np.abs(e))) if norm == "max" else float(np.sqrt(np.mean(e * e)))
         return val + 10.0 * viol
 
+    def full_problem(self, z0, norm: str):
+        """SLSQP's view: the start ``y0 = (ρ, ρ0, α, κ)`` from ``z0``, the bounds of ``y``, the
+        constraints (dicts for :func:`scipy.optimize.minimize`) and the errors as a function of ``y``."""
+        rho, rho0, al, _ = self.decode(z0)
+        k = self.best_kappa(rho, rho0, al, norm)
+        y0 = [rho, rho0, al, k]
+        al_hi = self.al_b[1] if math.isfinite(self.al_b[1]) else None
+        bounds = [self.rho_b, self.rho0_b, (self.al_b[0], al_hi), (0.0, None)]
+        cons: list[dict] = []
+
+        def l_at(y, s2):
+            return math.sqrt(y[1] ** 2 + 4 * y[0] * (y[0] + y[1]) * s2)
+
+        if self.kind == "compression":
+            if math.isfinite(self.Lf):
+                cons.append({"type": "ineq", "fun": lambda y: self.Lf - (2 * y[0] + y[1] + y[2])})
+            if self.delta is not None:
+                cons.append({"type": "ineq",
+                             "fun": lambda y: l_at(y, self.s2min) - (1 - self.delta) * (2 * y[0] + y[1] + y[2])})
+            if math.isfinite(self.Fhat):
+                cons.append({"type": "ineq", "fun": lambda y: self.Fhat * y[0] * (y[0] + y[1])
+                             - y[3] * (2 * y[0] + y[1] + y[2] - l_at(y, self.s2min))})
+        else:
+            cons.append({"type": "ineq", "fun": lambda y: y[1] - y[2]})
+            if math.isfinite(self.Lf):
+                cons.append({"type": "ineq", "fun": lambda y: self.Lf - (y[1] - y[2])})
+            if math.isfinite(self.Fhat):
+                cons.append({"type": "ineq", "fun": lambda y: self.Fhat * y[0] * (y[0] + y[1])
+                             - y[3] * (l_at(y, self.s2max) - (y[1] - y[2]))})
+
+        def err(y):
+            return self.errors(y[0], y[1], y[2], y[3])
+
+        return y0, bounds, cons, err
+
+    def encode_full(self, y) -> np.ndarray:
+        """``z`` of SLSQP's full variables ``y``."""
+        return self.encode(y[0], y[1], y[2])
+
     def start(self, norm: str) -> np.ndarray:
         """Best point of a small deterministic scan of the box (log-spaced lengths)."""
         best, bz = math.inf, None
