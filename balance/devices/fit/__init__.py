@@ -24,12 +24,19 @@ polished by SLSQP.
 
 The package follows the seams of the problem: :mod:`.result` (the shared :class:`FitResult`),
 :mod:`.problem` (the non-dimensional problem), one module per method (:mod:`.trf`,
-:mod:`.slsqp`, :mod:`.nelder_mead`, :mod:`.de`), :mod:`.exact` (the exact devices) and
-:mod:`.driver` (:func:`fit_spring`).
+:mod:`.slsqp`, :mod:`.nelder_mead`, :mod:`.de`), :mod:`.exact` (the exact devices) the slider
+devices' problem (:mod:`.slider_problem`), the table of devices (:mod:`.kinds`) and :mod:`.driver`
+(:func:`fit_spring`).
+
+Besides the slotted lever (``device="slotted-lever"``, the crank with an oscillating slotted lever
+above), :data:`DEVICES` holds the offset slider-crank and the sine (Scotch-yoke) device with a real
+spring on the slider (:mod:`balance.devices.sliders`), fitted by the same methods into the same
+:class:`FitResult`.
 """
 
 from __future__ import annotations
 
+from .kinds import DEFAULT_DEVICE, DEVICES, DeviceKind
 from .driver import CONFIRM_ROUNDS, CONFIRM_TOL, DEFAULT_METHOD, METHODS, _confirm_optimum, _phi_range, fit_spring
 from .exact import LEVER_DEFLECTION, _lever_device, _tension_exact
 from .problem import _check_feasible, _cluster, _max_abs_sin, _minimax_scale, _Problem, _sin2_half_extremes, _span
@@ -49,4 +56,7 @@ __all__ = [
     "MAX_GRID",
     "LeverGeometry",
     "relative_errors",
+    "DEVICES",
+    "DEFAULT_DEVICE",
+    "DeviceKind",
 ]

@@ -12,11 +12,13 @@ import numpy as np
 from scipy import optimize
 
 from ...errors import FitFailed, InvalidInput, InvalidRange, WrongSense
-from ..springs import KIND_SENSE, SPRING_KINDS
+from ..springs import KIND_SENSE
 from .de import _fit_de
 from .exact import _lever_device, _tension_exact
+from .kinds import DEFAULT_DEVICE, DEVICES
 from .nelder_mead import _fit_nelder_mead
 from .problem import _check_feasible, _Problem
+from .slider_problem import _SliderProblem
 from .result import _SENSE_TEXT, DEFAULT_GRID, MAX_GRID, NORMS, FitResult, SpringBounds, _finish
 from .slsqp import _fit_slsqp
 from .trf import _fit_trf
@@ -63,7 +65,8 @@ METHODS: dict[str, Callable] = {
 DEFAULT_METHOD = {"rms": "slsqp", "max": "slsqp"}
 
 # --------------------------------------------------------------------------- driver
-def _check_range(name: str, rng, positive: bool = False, allow_inf: bool = False) -> tuple[float, float]:
+def _check_range(name: str, rng, positive: bool = False, allow_inf: bool = False,
+                 signed: bool = False) -> tuple[float, float]:
     try:
         lo, hi = float(rng[0]), float(rng[1])
     except (TypeError, ValueError, IndexError):
@@ -74,7 +77,7 @@ def _check_range(name: str, rng, positive: bool = False, allow_inf: bool = False
         raise InvalidRange(f"{name} range {lo}..{hi} is inverted (low > high).")
     if positive and lo <= 0:
         raise InvalidRange(f"{name} must be positive; its lower bound is {lo}.")
-    if lo < 0:
+    if lo < 0 and not signed:
         raise InvalidRange(f"{name} cannot be negative; its lower bound is {lo}.")
     return lo, hi
 
@@ -87,6 +90,7 @@ def fit_spring(
     method: str | None = None,
     norm: str = "max",
     grid: int = DEFAULT_GRID,
+    device: str = DEFAULT_DEVICE,
 ) -> FitResult:
     """Fit a crank-and-rocker spring device to the moment ``Φ0·sin φ`` over a range of ``φ``.
 
@@ -128,8 +132,12 @@ def fit_spring(
     (True, 1)
     """
     t_start = time.perf_counter()
-    if kind not in SPRING_KINDS:
-        raise InvalidInput(f"the spring kind must be one of {', '.join(SPRING_KINDS)}, not {kind!r}.")
+    if device not in DEVICES:
+        raise InvalidInput(f"the device must be one of {', '.join(DEVICES)}, not {device!r}.")
+    family = DEVICES[device]
+    if kind not in family.spring_kinds:
+        raise InvalidInput(f"the spring kind of the {device} device must be {' or '.join(family.spring_kinds)}, "
+                           f"not {kind!r}.")
     if norm not in NORMS:
         raise InvalidInput(f"the norm must be 'max' or 'rms', not {norm!r}.")
     if method is not None and method not in METHODS:
@@ -140,28 +148,18 @@ def fit_spring(
     moment = float(moment)
     if not math.isfinite(moment) or moment == 0:
         raise InvalidInput(f"the moment amplitude Φ0 must be a finite non-zero number, not {moment}.")
-    sense = KIND_SENSE[kind]
-    if (moment > 0) != (sense > 0):
-        other = "compression" if sense < 0 else "tension or compression-lever"
-        raise WrongSense(
-            f"a {kind} device turns the crank {_SENSE_TEXT[sense]}, so it cannot give "
-            f"Φ0 = {moment:g} N·m; use a {other} device, or turn the device by 180° and fit "
-            f"Φ0 = {-moment:g} N·m."
-        )
+    if device == "slotted-lever":
+        _check_sense(kind, moment)
     lo, hi = _phi_range(phi_range)
-    r = _check_range("the crank length r", bounds.r, positive=True)
-    r0 = _check_range("r0 (spring length at φ = 0)", bounds.r0, positive=True)
-    a = _check_range("the pre-extension a", bounds.a, allow_inf=True)
-    for name, v in (("maximum force", bounds.max_force), ("maximum free length", bounds.max_free_length)):
-        if v is not None and not (math.isfinite(v) and v > 0):
-            raise InvalidInput(f"the {name} must be a positive number, not {v}.")
-    if bounds.max_deflection is not None and not 0 < bounds.max_deflection < 1:
-        raise InvalidInput(f"the maximum deflection ratio must lie in (0, 1), not {bounds.max_deflection}.")
-    b = SpringBounds(r, r0, a, bounds.max_force, bounds.max_free_length, bounds.max_deflection)
+    b = _checked_bounds(bounds, family)
     if kind == "compression-lever":
         return _lever_device(moment, lo, hi, b, grid, norm, t_start)
-    p = _Problem(kind, moment, lo, hi, b, grid, norm)
-    _check_feasible(p)
+    if device == "slotted-lever":
+        p = _Problem(kind, moment, lo, hi, b, grid, norm)
+        _check_feasible(p)
+    else:
+        p = _SliderProblem(device, moment, lo, hi, b, grid, norm)
+        p.check_feasible()
 
     notes: list[str] = []
     if method is None and kind == "tension":
@@ -192,15 +190,54 @@ def fit_spring(
                f"{CONFIRM_TOL:g}: a local optimum")
     elif meth == "trf" and norm == "max":
         msg = f"{msg}; a restart from its point (Nelder–Mead, then SLSQP) gains less than {CONFIRM_TOL:g}"
-    rho, rho0, al, viol = p.decode(z)
+    *geometry, viol = p.decode(z)
     if viol > 1e-9:
         raise FitFailed(f"the {meth} method ended outside the bounds ({msg}): where a limit leaves no room for "
                         f"a, it stops just past it; the default method, slsqp, keeps such limits exactly.")
     # κ enters the error linearly: for the final shape it is solved exactly (SLSQP's own κ agrees
     # to round-off, the other methods never see it)
-    kappa = p.best_kappa(rho, rho0, al, norm)
-    return _finish(p, (rho, rho0, al, kappa), meth, norm, t_start, str(msg), notes, rounds)
+    kappa = p.best_kappa(*geometry, norm)
+    return family.finish(p, (*geometry, kappa), meth, norm, t_start, str(msg), notes, rounds)
 
+
+def _check_sense(kind: str, moment: float) -> None:
+    """A slotted-lever spring turns the crank one way only: refuse a target of the other sign."""
+    sense = KIND_SENSE[kind]
+    if (moment > 0) != (sense > 0):
+        other = "compression" if sense < 0 else "tension or compression-lever"
+        raise WrongSense(
+            f"a {kind} device turns the crank {_SENSE_TEXT[sense]}, so it cannot give "
+            f"Φ0 = {moment:g} N·m; use a {other} device, or turn the device by 180° and fit "
+            f"Φ0 = {-moment:g} N·m."
+        )
+
+
+_BOUND_TEXT = {"r0": "r0 (spring length at φ = 0)", "l": "the rod length l", "e": "the guide offset e"}
+
+
+def _checked_bounds(bounds: SpringBounds, family) -> SpringBounds:
+    """The bounds checked against what the device takes: its own ranges valid, the others left out."""
+    extra = [name for name in ("r0", "l", "e") if getattr(bounds, name) is not None and name not in family.bounds]
+    if extra:
+        raise InvalidInput(f"the {family.name} device has no {' nor '.join(_BOUND_TEXT[n] for n in extra)}; "
+                           "leave that bound out.")
+    missing = [name for name in ("r0", "l") if name in family.bounds and getattr(bounds, name) is None]
+    if missing:
+        raise InvalidInput(f"the {family.name} device needs a range of {' and '.join(_BOUND_TEXT[n] for n in missing)}.")
+    r = _check_range("the crank length r", bounds.r, positive=True)
+    r0 = _check_range(_BOUND_TEXT["r0"], bounds.r0, positive=True) if bounds.r0 is not None else None
+    a = _check_range("the pre-extension a" if family.name == "slotted-lever" else "the pre-load a", bounds.a,
+                     allow_inf=True)
+    rod = _check_range(_BOUND_TEXT["l"], bounds.l, positive=True) if bounds.l is not None else None
+    offset = None
+    if "e" in family.bounds:
+        offset = (0.0, 0.0) if bounds.e is None else _check_range(_BOUND_TEXT["e"], bounds.e, signed=True)
+    for name, v in (("maximum force", bounds.max_force), ("maximum free length", bounds.max_free_length)):
+        if v is not None and not (math.isfinite(v) and v > 0):
+            raise InvalidInput(f"the {name} must be a positive number, not {v}.")
+    if bounds.max_deflection is not None and not 0 < bounds.max_deflection < 1:
+        raise InvalidInput(f"the maximum deflection ratio must lie in (0, 1), not {bounds.max_deflection}.")
+    return SpringBounds(r, r0, a, bounds.max_force, bounds.max_free_length, bounds.max_deflection, rod, offset)
 
 
 def _phi_range(phi_range) -> tuple[float, float]:

@@ -214,14 +214,17 @@ def _sin2_half_extremes(lo: float, hi: float) -> tuple[float, float]:
 
 
 def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
-    """``argmin_{0≤κ≤κmax} max_i |κ·h_i − s_i|`` for ``h, s ≥ 0`` (exact to round-off).
+    """``argmin_{0≤κ≤κmax} max_i |κ·h_i − s_i|`` (exact to round-off).
 
+    Each term is first written with ``h_i ≥ 0`` (``|κh − s| = |κ(−h) − (−s)|``). Then
     ``F_up(κ) = max(κh − s)`` rises and ``F_dn(κ) = max(s − κh)`` falls; the optimum is where
     they cross, the root of ``F_up − F_dn`` (Brent's method: exact steps on its linear pieces),
-    or κmax when they cross beyond it.
+    0 when ``F_up`` is already the larger at 0, or κmax when they cross beyond it.
     """
     if not h.size:
         return 0.0
+    flip = np.where(h < 0, -1.0, 1.0)
+    h, s = h * flip, s * flip
     hmax, smax = float(np.max(h)), float(np.max(s))
     if hmax <= 0 or smax <= 0:
         return 0.0  # κ has nothing to lift, or nothing to lift towards
@@ -230,8 +233,10 @@ def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
         up = k * h - s
         return float(np.max(up) + np.min(up))
 
-    # at 2·smax/hmax, F_up ≥ smax ≥ F_dn: the crossing is in [0, top]
-    top = min(kmax, 2.0 * smax / hmax)
+    if rise(0.0) >= 0:
+        return 0.0
+    # at 2·max|s|/hmax, F_up ≥ max|s| ≥ F_dn: the crossing is in [0, top]
+    top = min(kmax, 2.0 * float(np.max(np.abs(s))) / hmax)
     if rise(top) <= 0:
         return top
     return optimize.brentq(rise, 0.0, top)

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...extremes import box_extremes
+from ..sliders import SliderSpringDevice
 from ..springs import KIND_SENSE, CrankRockerDevice
 
 if TYPE_CHECKING:
@@ -39,22 +40,27 @@ class SpringBounds:
     Attributes
     ----------
     r, r0, a : (float, float)
-        Ranges of the crank length, the spring length at ``φ = 0`` (``d = r + r0``)
-        and the pre-extension (tension) / pre-load (compression).
+        Ranges of the crank length, the spring length at ``φ = 0`` (``d = r + r0``; the slotted
+        lever only, ``None`` for the slider devices) and the pre-extension (tension) / pre-load
+        (compression; on a slider: the least deflection over the working range).
     max_force : float or None
         Largest spring force over the working range (N).
     max_free_length : float or None
         Largest free length ``l0`` of the spring (m).
     max_deflection : float or None
         Compression only: largest ``(l0 − L_min)/l0`` (fraction of the free length).
+    l, e : (float, float) or None
+        Slider-crank only: ranges of the rod length and of the guide's offset (``e`` may be negative).
     """
 
     r: tuple[float, float]
-    r0: tuple[float, float]
+    r0: tuple[float, float] | None
     a: tuple[float, float]
     max_force: float | None = None
     max_free_length: float | None = None
     max_deflection: float | None = None
+    l: tuple[float, float] | None = None  # noqa: E741 (the rod length, as engineers write it)
+    e: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -114,7 +120,10 @@ class LeverGeometry:
 class FitResult:
     """Outcome of :func:`fit_spring` (SI units; errors relative to ``|Φ0|``).
 
-    ``x`` holds the non-dimensional optimum ``(ρ, ρ0, α, κ)``.
+    ``x`` holds the non-dimensional optimum: ``(ρ, ρ0, α, κ)`` for the slotted lever, ``(ρ, ε, λ, α, κ)``
+    for the slider-crank and ``(ρ, α, κ)`` for the sine device. ``family`` is the device
+    (:data:`~balance.devices.fit.DEVICES`); the slider devices leave ``r0`` and ``d`` None and give the
+    rod, the offset and the slider position ``neutral`` at which the spring is unloaded.
     """
 
     kind: str
@@ -122,12 +131,12 @@ class FitResult:
     norm: str
     moment: float
     phi_range: tuple[float, float]
-    x: tuple[float, float, float, float]
+    x: tuple[float, ...]
     c: float
     r: float
-    r0: float
+    r0: float | None
     a: float
-    d: float
+    d: float | None
     free_length: float
     max_force: float
     deflection: float | None
@@ -146,10 +155,16 @@ class FitResult:
     notes: tuple[str, ...] = ()
     restarts: int = 0
     lever: LeverGeometry | None = None
+    family: str = "slotted-lever"
+    rod: float | None = None
+    offset: float | None = None
+    neutral: float | None = None
 
     @property
-    def device(self) -> CrankRockerDevice:
-        return CrankRockerDevice(self.kind, self.c, self.r, self.r0, self.a)
+    def device(self) -> CrankRockerDevice | SliderSpringDevice:
+        if self.family == "slotted-lever":
+            return CrankRockerDevice(self.kind, self.c, self.r, self.r0, self.a)
+        return SliderSpringDevice(self.c, self.r, self.neutral, self.rod, self.offset or 0.0)
 
     def to_dict(self) -> dict:
         d = asdict(self)
@@ -162,7 +177,7 @@ class FitResult:
         return d
 
 
-def relative_errors(device: CrankRockerDevice, moment: float, phi: np.ndarray) -> np.ndarray:
+def relative_errors(device: CrankRockerDevice | SliderSpringDevice, moment: float, phi: np.ndarray) -> np.ndarray:
     """``(M(φ) − Φ0·sin φ)/|Φ0|`` computed from the physical device."""
     return (device.moment(phi) - moment * np.sin(phi)) / abs(moment)
 
@@ -177,9 +192,7 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
     c = kappa * abs(M) / (r * d)
     dev = CrankRockerDevice(p.kind, c, r, r0, a)
     phi = _verify_grid(p.lo, p.hi, r, r0)
-    e = relative_errors(dev, M, phi)
-    (e_lo, e_hi), = box_extremes(lambda x: relative_errors(dev, M, x[:, 0])[:, None], [p.lo], [p.hi], phi[:, None],
-                                 floor=1e-13)
+    max_err, rms_err = measured_errors(dev, M, p.lo, p.hi, phi)
     l0 = dev.free_length
     # the spring length over the range runs from lmin to lmax: the force is largest at one of them
     lmin = math.sqrt(r0 * r0 + 4 * r * d * p.s2min)
@@ -198,14 +211,22 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
         kind=p.kind, method=method, norm=norm, moment=M, phi_range=(p.lo, p.hi),
         x=(rho, rho0, al, kappa), c=c, r=r, r0=r0, a=a, d=d, free_length=l0,
         max_force=fmax, deflection=defl,
-        max_rel_error=max(-e_lo.value, e_hi.value),
-        rms_rel_error=float(np.sqrt(np.mean(e[: VERIFY_GRID] ** 2))),
+        max_rel_error=max_err, rms_rel_error=rms_err,
         grid_max_rel_error=float(np.max(np.abs(e_grid))),
         grid_rms_rel_error=float(np.sqrt(np.mean(e_grid ** 2))),
         grid=p.grid, seconds=seconds, nfev=p.nfev, active_bounds=tuple(active),
         sense=KIND_SENSE[p.kind], sense_text=_SENSE_TEXT[KIND_SENSE[p.kind]],
         message=msg, reference_length=ell, notes=tuple(notes), restarts=restarts,
     )
+
+
+def measured_errors(dev, moment: float, lo: float, hi: float, phi: np.ndarray) -> tuple[float, float]:
+    """The largest relative error over ``[lo, hi]`` (a bracketed maximiser started from the grid ``phi``,
+    to 1e-9) and the RMS over the uniform part of ``phi`` (its first :data:`VERIFY_GRID` points)."""
+    e = relative_errors(dev, moment, phi)
+    (e_lo, e_hi), = box_extremes(lambda x: relative_errors(dev, moment, x[:, 0])[:, None], [lo], [hi],
+                                 phi[:, None], floor=1e-13)
+    return max(-e_lo.value, e_hi.value), float(np.sqrt(np.mean(e[: VERIFY_GRID] ** 2)))
 
 
 def dead_centre_notes(lo: float, hi: float, r: float, r0: float) -> list[str]:
