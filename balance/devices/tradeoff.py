@@ -65,7 +65,8 @@ class ParetoPoint:
 
 def _refit(res: FitResult, bounds: SpringBounds) -> FitResult | None:
     try:
-        return fit_spring(res.kind, res.moment, res.phi_range, bounds, norm=res.norm, grid=res.grid)
+        return fit_spring(res.kind, res.moment, res.phi_range, bounds, norm=res.norm, grid=res.grid,
+                          device=res.family)
     except BalanceError:
         return None
 

@@ -212,26 +212,27 @@ def _check_sense(kind: str, moment: float) -> None:
         )
 
 
-_BOUND_TEXT = {"r0": "r0 (spring length at φ = 0)", "l": "the rod length l", "e": "the guide offset e"}
+_BOUND_TEXT = {"r0": "r0 (spring length at φ = 0)", "rod": "the rod length l", "offset": "the guide offset e"}
 
 
 def _checked_bounds(bounds: SpringBounds, family) -> SpringBounds:
     """The bounds checked against what the device takes: its own ranges valid, the others left out."""
-    extra = [name for name in ("r0", "l", "e") if getattr(bounds, name) is not None and name not in family.bounds]
+    extra = [name for name in ("r0", "rod", "offset") if getattr(bounds, name) is not None and name not in family.bounds]
     if extra:
         raise InvalidInput(f"the {family.name} device has no {' nor '.join(_BOUND_TEXT[n] for n in extra)}; "
                            "leave that bound out.")
-    missing = [name for name in ("r0", "l") if name in family.bounds and getattr(bounds, name) is None]
+    missing = [name for name in ("r0", "rod") if name in family.bounds and getattr(bounds, name) is None]
     if missing:
         raise InvalidInput(f"the {family.name} device needs a range of {' and '.join(_BOUND_TEXT[n] for n in missing)}.")
     r = _check_range("the crank length r", bounds.r, positive=True)
     r0 = _check_range(_BOUND_TEXT["r0"], bounds.r0, positive=True) if bounds.r0 is not None else None
     a = _check_range("the pre-extension a" if family.name == "slotted-lever" else "the pre-load a", bounds.a,
                      allow_inf=True)
-    rod = _check_range(_BOUND_TEXT["l"], bounds.l, positive=True) if bounds.l is not None else None
+    rod = _check_range(_BOUND_TEXT["rod"], bounds.rod, positive=True) if bounds.rod is not None else None
     offset = None
-    if "e" in family.bounds:
-        offset = (0.0, 0.0) if bounds.e is None else _check_range(_BOUND_TEXT["e"], bounds.e, signed=True)
+    if "offset" in family.bounds:
+        offset = (0.0, 0.0) if bounds.offset is None else _check_range(_BOUND_TEXT["offset"], bounds.offset,
+                                                                      signed=True)
     for name, v in (("maximum force", bounds.max_force), ("maximum free length", bounds.max_free_length)):
         if v is not None and not (math.isfinite(v) and v > 0):
             raise InvalidInput(f"the {name} must be a positive number, not {v}.")

@@ -48,7 +48,7 @@ DEVICES = {
         "a tension spring of zero free length (a = r0), and the compression spring on the lever beyond B at a = r0"),
     "slider-crank": DeviceKind(
         "slider-crank", "offset slider-crank, the spring on the slider in a fixed guide",
-        ("compression",), ("r", "a", "l", "e"), SliderSpringDevice, _SliderProblem, _finish_slider, None),
+        ("compression",), ("r", "a", "rod", "offset"), SliderSpringDevice, _SliderProblem, _finish_slider, None),
     "sine": DeviceKind(
         "sine", "sine (Scotch-yoke) device with a real spring on the yoke",
         ("compression",), ("r", "a"), SliderSpringDevice, _SliderProblem, _finish_slider, None),

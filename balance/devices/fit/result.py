@@ -49,8 +49,8 @@ class SpringBounds:
         Largest free length ``l0`` of the spring (m).
     max_deflection : float or None
         Compression only: largest ``(l0 − L_min)/l0`` (fraction of the free length).
-    l, e : (float, float) or None
-        Slider-crank only: ranges of the rod length and of the guide's offset (``e`` may be negative).
+    rod, offset : (float, float) or None
+        Slider-crank only: ranges of the rod length ``l`` and of the guide's offset ``e`` (it may be negative).
     """
 
     r: tuple[float, float]
@@ -59,8 +59,8 @@ class SpringBounds:
     max_force: float | None = None
     max_free_length: float | None = None
     max_deflection: float | None = None
-    l: tuple[float, float] | None = None  # noqa: E741 (the rod length, as engineers write it)
-    e: tuple[float, float] | None = None
+    rod: tuple[float, float] | None = None
+    offset: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)

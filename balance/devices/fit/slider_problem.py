@@ -43,8 +43,8 @@ class _SliderProblem:
         self.target = self.sign * np.sin(self.phi)
         self.rho_b = (b.r[0] / e, 1.0)
         self.al_b = (b.a[0] / e, b.a[1] / e)
-        self.lam_b = (b.l[0] / e, b.l[1] / e) if self.rod else (math.inf, math.inf)
-        self.eps_b = (b.e[0] / e, b.e[1] / e) if self.rod else (0.0, 0.0)
+        self.lam_b = (b.rod[0] / e, b.rod[1] / e) if self.rod else (math.inf, math.inf)
+        self.eps_b = (b.offset[0] / e, b.offset[1] / e) if self.rod else (0.0, 0.0)
         self.Fhat = math.inf if b.max_force is None else b.max_force * e / abs(moment)
         self.Lf = math.inf if b.max_free_length is None else b.max_free_length / e
         self.delta = DEFAULT_DEFLECTION if b.max_deflection is None else b.max_deflection
@@ -203,7 +203,7 @@ class _SliderProblem:
         least_eps = 0.0 if self.eps_b[0] <= 0 <= self.eps_b[1] else min(abs(v) for v in self.eps_b)
         if self.rod and self.lam_b[1] * math.sin(MAX_ROD_ANGLE) < self.rho_b[0] + least_eps:
             raise InfeasibleBounds(
-                f"a rod of at most {b.l[1]:g} m is too short for a crank of at least {b.r[0]:g} m and an offset of "
+                f"a rod of at most {b.rod[1]:g} m is too short for a crank of at least {b.r[0]:g} m and an offset of "
                 f"at least {least_eps * self.ell:g} m: the rod must be (r + |e|)/sin {math.degrees(MAX_ROD_ANGLE):g}° "
                 "long or more so that its angle to the guide stays within that; allow a longer rod or a shorter crank.")
         lb, ub = self.z_bounds
@@ -264,7 +264,7 @@ def _active_slider(p: _SliderProblem, rho, eps, lam, al, kappa) -> list[str]:
     out = []
     named = [("r", rho, p.rho_b), ("a", al, p.al_b)]
     if p.rod:
-        named[1:1] = [("e", eps, p.eps_b), ("l", lam, p.lam_b)]
+        named[1:1] = [("offset", eps, p.eps_b), ("rod", lam, p.lam_b)]
     for name, v, (lo, hi) in named:
         if near(v, lo):
             out.append(f"{name}=min")
