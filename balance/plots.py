@@ -40,7 +40,9 @@ def plot_spring(design, path: str) -> str:
     label = f"{res.kind} device" if res.family == "slotted-lever" else f"{res.family} device"
     ax1.plot(deg, dev.moment(phi), "C1--", lw=1.5, label=label)
     ax1.set_ylabel("moment on the crank (N·m)")
-    ax1.set_xlabel("crank angle φ (deg, from the base point C)")
+    angle = "crank angle φ (deg, from the base point C)" if res.family == "slotted-lever" else \
+        "crank angle φ (deg, from the direction of the guide)"
+    ax1.set_xlabel(angle)
     if res.family == "slotted-lever":
         title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
                  f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
@@ -57,7 +59,7 @@ def plot_spring(design, path: str) -> str:
     ax2.plot(deg, 100 * e, "C3-")
     ax2.axhline(0, color="k", lw=0.5)
     ax2.set_ylabel("(M − Φ0·sin φ)/|Φ0|  (%)")
-    ax2.set_xlabel("crank angle φ (deg, from the base point C)")
+    ax2.set_xlabel(angle)
     if res.max_rel_error < 1e-12:
         ax2.set_ylim(-1, 1)
         ax2.set_title(f"exact to rounding: max |error| {res.max_rel_error:.2g}", fontsize=9)
