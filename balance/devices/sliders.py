@@ -118,8 +118,8 @@ class SliderSpringDevice:
     --------
     >>> dev = SliderSpringDevice(c=2000.0, r=0.1, neutral=0.2, rod=0.4, offset=0.02)
     >>> phi = 1.0
-    >>> num = -(dev.potential(phi + 1e-6) - dev.potential(phi - 1e-6)) / 2e-6
-    >>> abs(num - float(dev.moment(phi))) < 1e-6
+    >>> num = -float(dev.potential(phi + 1e-6) - dev.potential(phi - 1e-6)) / 2e-6
+    >>> bool(abs(num - float(dev.moment(phi))) < 1e-6)
     True
     """
 

@@ -136,8 +136,10 @@ def fit_spring(
         raise InvalidInput(f"the device must be one of {', '.join(DEVICES)}, not {device!r}.")
     family = DEVICES[device]
     if kind not in family.spring_kinds:
-        raise InvalidInput(f"the spring kind of the {device} device must be {' or '.join(family.spring_kinds)}, "
-                           f"not {kind!r}.")
+        if device == "slotted-lever":
+            raise InvalidInput(f"the spring kind must be one of {', '.join(family.spring_kinds)}, not {kind!r}.")
+        raise InvalidInput(f"the {device} device carries a {' or '.join(family.spring_kinds)} spring on the slider "
+                           f"(on the side the sign of Φ0 asks for), not a {kind!r} one.")
     if norm not in NORMS:
         raise InvalidInput(f"the norm must be 'max' or 'rms', not {norm!r}.")
     if method is not None and method not in METHODS:
