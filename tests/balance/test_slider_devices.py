@@ -184,6 +184,8 @@ def test_table_of_devices():
     (SpringBounds((0.02, 0.2), None, (0.0, math.inf)), "sine", "no upper bound on the pre-load"),
     (SpringBounds((0.02, 0.2), None, (0.0, 0.3), rod=(0.01, 0.02)), "slider-crank", "too short"),
     (SpringBounds((0.1, 0.2), None, (0.0, 0.3), max_free_length=0.1), "sine", "maximum free length"),
+    (SpringBounds((0.02, 0.1), None, (0.0, 0.3), max_force=99.0), "sine", "gives at most 9.9 N·m"),
+    (SpringBounds((0.02, 0.1), None, (0.0, 0.3), max_force=30.0, rod=(0.2, 0.4)), "slider-crank", "force limit 30 N"),
 ])
 def test_infeasible_bounds_one_sentence(bounds, device, text):
     with pytest.raises(InfeasibleBounds, match=text):

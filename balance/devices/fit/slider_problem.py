@@ -21,7 +21,7 @@ import numpy as np
 
 from ...errors import InfeasibleBounds
 from ..sliders import SliderSpringDevice, slider_extremes, slider_position, slider_rate
-from .problem import _minimax_scale, _span
+from .problem import _max_abs_sin, _minimax_scale, _span
 from .result import VERIFY_GRID, FitResult, SpringBounds, measured_errors
 
 #: the largest angle between the rod and the guide over a turn (a common limit of the pressure angle)
@@ -206,6 +206,14 @@ class _SliderProblem:
                 f"a rod of at most {b.rod[1]:g} m is too short for a crank of at least {b.r[0]:g} m and an offset of "
                 f"at least {least_eps * self.ell:g} m: the rod must be (r + |e|)/sin {math.degrees(MAX_ROD_ANGLE):g}° "
                 "long or more so that its angle to the guide stays within that; allow a longer rod or a shorter crank.")
+        # a force F on the slider gives at most F·max|dx/dφ| ≤ F·r·(1 + tan θ) (θ the rod's largest angle)
+        rate = b.r[1] * (1 + math.tan(MAX_ROD_ANGLE) if self.rod else 1.0)
+        peak = _max_abs_sin(self.lo, self.hi)
+        if b.max_force is not None and b.max_force * rate < abs(self.moment) * peak:
+            raise InfeasibleBounds(
+                f"the force limit {b.max_force:g} N on a slider driven by a crank of at most {b.r[1]:g} m gives at "
+                f"most {b.max_force * rate:g} N·m, less than the {abs(self.moment) * peak:g} N·m the target needs in "
+                "this range; raise the force limit or the longest crank.")
         lb, ub = self.z_bounds
         for z in np.stack([g.ravel() for g in np.meshgrid(*[_span(a, c, 7) for a, c in zip(lb, ub)],
                                                           indexing="ij")], axis=1):
