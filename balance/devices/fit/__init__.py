@@ -1,6 +1,7 @@
-"""Fitting crank-and-rocker spring devices to a target moment ``Φ0·sin φ``.
+"""Fitting spring devices to a target moment ``Φ0·sin φ``: the slotted lever, the slider-crank, the sine device.
 
-The device moment is ``M(φ) = ±c·r·d·sin φ·g(φ)`` with a *shape* ``g`` that depends
+The slotted lever (crank-and-rocker, the spring along the lever from the crank pin ``B`` to the base
+point ``C``) is described here; the slider devices in :mod:`.slider_problem`. Its moment is ``M(φ) = ±c·r·d·sin φ·g(φ)`` with a *shape* ``g`` that depends
 on length ratios only (``g = l0/L − 1`` for compression, ``1 − l0/L`` for tension).
 Everything is therefore solved in non-dimensional variables
 
@@ -36,13 +37,12 @@ spring on the slider (:mod:`balance.devices.sliders`), fitted by the same method
 
 from __future__ import annotations
 
+from .driver import DEFAULT_METHOD, METHODS, fit_spring
 from .kinds import DEFAULT_DEVICE, DEVICES, DeviceKind
-from .driver import CONFIRM_ROUNDS, CONFIRM_TOL, DEFAULT_METHOD, METHODS, _confirm_optimum, _phi_range, fit_spring
-from .exact import LEVER_DEFLECTION, _lever_device, _tension_exact
-from .problem import _check_feasible, _cluster, _max_abs_sin, _minimax_scale, _Problem, _sin2_half_extremes, _span
+# the helpers the tests check directly
+from .problem import _cluster, _max_abs_sin, _minimax_scale, _Problem, _sin2_half_extremes
 from .result import (
-    DEFAULT_GRID, MAX_GRID, NORMS, VERIFY_GRID, FitResult, LeverGeometry, SpringBounds, dead_centre_notes,
-    relative_errors,
+    DEFAULT_GRID, MAX_GRID, NORMS, FitResult, LeverGeometry, SpringBounds, dead_centre_notes, relative_errors,
 )
 
 __all__ = [

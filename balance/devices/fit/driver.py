@@ -92,14 +92,16 @@ def fit_spring(
     grid: int = DEFAULT_GRID,
     device: str = DEFAULT_DEVICE,
 ) -> FitResult:
-    """Fit a crank-and-rocker spring device to the moment ``Φ0·sin φ`` over a range of ``φ``.
+    """Fit a spring device to the moment ``Φ0·sin φ`` over a range of ``φ``.
 
     Parameters
     ----------
     kind : {"tension", "compression", "compression-lever"}
+        The spring; the slider devices take ``"compression"`` only.
     moment : float
-        ``Φ0`` (N·m), signed: positive turns the crank away from the base point ``C``
-        (what a compression spring does), negative towards it (a tension spring).
+        ``Φ0`` (N·m), signed: on the slotted lever positive turns the crank away from the base point
+        ``C`` (what a compression spring does), negative towards it (a tension spring); on a slider
+        device its sign picks the side of the slider the spring sits on.
     phi_range : (float, float)
         Working range of ``φ`` in radians, ``low < high``, width at most ``2π``.
     bounds : SpringBounds
@@ -108,6 +110,8 @@ def fit_spring(
         allow a zero free length (``a = r0``) is then solved exactly (method ``"exact"``).
     norm : {"max", "rms"}
         Minimise the largest or the root-mean-square deviation over the range.
+    device : {"slotted-lever", "slider-crank", "sine"}
+        The device (:data:`~balance.devices.fit.DEVICES`); the bounds it does not take must be None.
     grid : int
         Number of equally spaced points of ``φ`` the fit uses (5 … :data:`MAX_GRID`). Reported
         errors are measured afterwards on a fine grid, so they are not flattered by a coarse one.
@@ -130,6 +134,10 @@ def fit_spring(
     >>> res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)), b)
     >>> res.max_rel_error < 0.05, res.sense
     (True, 1)
+    >>> sine = SpringBounds(r=(0.02, 0.12), r0=None, a=(0.0, 0.3), max_force=1500.0, max_free_length=0.5)
+    >>> res = fit_spring("compression", -30.0, (math.radians(-80), math.radians(250)), sine, device="sine")
+    >>> round(res.max_rel_error, 4), res.active_bounds
+    (0.0481, ('max_free_length', 'max_force'))
     """
     t_start = time.perf_counter()
     if device not in DEVICES:
