@@ -177,6 +177,20 @@ def test_sine_error_is_two_harmonics():
     assert np.allclose((res.device.moment(phi) - M * np.sin(phi)) / abs(M), two, atol=1e-12)
 
 
+def test_sensitivity_moves_the_rod_and_refits_the_same_device():
+    from balance.problems.spring import SpringProblem
+
+    b = SpringBounds((0.03, 0.15), None, (0.0, 0.4), max_free_length=0.5, rod=(0.15, 0.3), offset=(-0.08, 0.08))
+    design = SpringProblem("compression", 40.0, (math.radians(-10), math.radians(150)), b,
+                           device="slider-crank").solve()
+    assert "rod=max" in design.fit.active_bounds
+    (rod,) = [s for s in design.sensitivity if s.bound == "rod=max"]
+    longer = fit_spring("compression", 40.0, (math.radians(-10), math.radians(150)),
+                        SpringBounds((0.03, 0.15), None, (0.0, 0.4), max_free_length=0.5, rod=(0.15, 0.375),
+                                     offset=(-0.08, 0.08)), device="slider-crank")
+    assert rod.error == pytest.approx(longer.max_rel_error, rel=1e-9) and rod.error < design.fit.max_rel_error
+
+
 @pytest.mark.parametrize("method", sorted(METHODS))
 def test_every_method_fits_every_slider_device(method):
     lo, hi = math.radians(10), math.radians(170)
