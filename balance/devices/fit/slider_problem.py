@@ -21,17 +21,16 @@ import numpy as np
 
 from ...errors import InfeasibleBounds
 from ..sliders import SliderSpringDevice, slider_extremes, slider_position, slider_rate
+from .exact import LEVER_DEFLECTION
 from .problem import _max_abs_sin, _minimax_scale, _span
 from .result import VERIFY_GRID, FitResult, SpringBounds, measured_errors
 
 #: the largest angle between the rod and the guide over a turn (a common limit of the pressure angle)
 MAX_ROD_ANGLE = math.radians(60.0)
-#: the spring's largest deflection as a share of its free length when no limit is given
-DEFAULT_DEFLECTION = 0.5
 
 
 class _SliderProblem:
-    """The non-dimensional slider problem on a grid; ``rod=False`` for the sine device."""
+    """The non-dimensional slider problem on a grid (``family`` "slider-crank" or "sine")."""
 
     def __init__(self, family: str, moment: float, lo: float, hi: float, b: SpringBounds, grid: int, norm: str):
         self.family, self.kind, self.moment, self.lo, self.hi, self.bounds = family, "compression", moment, lo, hi, b
@@ -47,15 +46,16 @@ class _SliderProblem:
         self.eps_b = (b.offset[0] / e, b.offset[1] / e) if self.rod else (0.0, 0.0)
         self.Fhat = math.inf if b.max_force is None else b.max_force * e / abs(moment)
         self.Lf = math.inf if b.max_free_length is None else b.max_free_length / e
-        self.delta = DEFAULT_DEFLECTION if b.max_deflection is None else b.max_deflection
+        self.delta = LEVER_DEFLECTION if b.max_deflection is None else b.max_deflection  # as the lever's spring
         self.nfev = 0
 
     # -- geometry ---------------------------------------------------------------------
-    def lam(self, lam):
-        return None if not self.rod else lam
+    def rod_length(self, lam):
+        """The rod as :mod:`balance.devices.sliders` takes it: None for the sine device."""
+        return lam if self.rod else None
 
     def extremes(self, rho, eps, lam) -> tuple[float, float]:
-        return slider_extremes(self.lo, self.hi, rho, self.lam(lam), eps)
+        return slider_extremes(self.lo, self.hi, rho, self.rod_length(lam), eps)
 
     def neutral(self, rho, eps, lam, al) -> float:
         xmin, xmax = self.extremes(rho, eps, lam)
@@ -79,8 +79,8 @@ class _SliderProblem:
 
     def shape(self, rho, eps, lam, al) -> np.ndarray:
         """``m(φ)`` on the grid: the moment per unit ``κ`` (relative to ``|Φ0|``)."""
-        x = slider_position(self.phi, rho, self.lam(lam), eps)
-        return -(x - self.neutral(rho, eps, lam, al)) * slider_rate(self.phi, rho, self.lam(lam), eps)
+        x = slider_position(self.phi, rho, self.rod_length(lam), eps)
+        return -(x - self.neutral(rho, eps, lam, al)) * slider_rate(self.phi, rho, self.rod_length(lam), eps)
 
     # -- variables ---------------------------------------------------------------------
     def decode(self, z) -> tuple[float, float, float, float, float]:
