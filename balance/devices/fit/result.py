@@ -1,7 +1,7 @@
 """The result type every spring fit returns, and how it is measured and reported.
 
 :class:`FitResult` holds the device found by any method of :mod:`balance.devices.fit` with its
-errors measured afresh on a fine grid (the largest one by a bracketed maximiser), the bounds it
+errors measured afresh on a fine grid (the largest polished by a bounded local search from the grid), the bounds it
 sits on and notes on the dead centres; :class:`SpringBounds` the limits a designer states;
 :class:`LeverGeometry` the lever of the compression-lever device.
 """
@@ -221,8 +221,9 @@ def _finish(p: _Problem, y, method: str, norm: str, t_start: float, msg: str, no
 
 
 def measured_errors(dev, moment: float, lo: float, hi: float, phi: np.ndarray) -> tuple[float, float]:
-    """The largest relative error over ``[lo, hi]`` (a bracketed maximiser started from the grid ``phi``,
-    to 1e-9) and the RMS over the uniform part of ``phi`` (its first :data:`VERIFY_GRID` points)."""
+    """The largest relative error over ``[lo, hi]`` (polished by a bounded local search from the best
+    points of the grid ``phi``) and the RMS over the uniform part of ``phi`` (its first
+    :data:`VERIFY_GRID` points)."""
     e = relative_errors(dev, moment, phi)
     (e_lo, e_hi), = box_extremes(lambda x: relative_errors(dev, moment, x[:, 0])[:, None], [lo], [hi],
                                  phi[:, None], floor=1e-13)
