@@ -5,7 +5,7 @@ with a real spring), each with bounds that bind inside the box (force, free leng
 is no corner of it. Each device is fitted by least squares (trf, RMS norm), by three minimax methods
 (SLSQP, trf with Lawson's reweighting, Nelder–Mead) and by a global search polished locally (DE then
 SLSQP). Times are the best of three runs; errors are measured on the physical device (the largest by
-a bounded local search from a fine grid). Writes benchmarks/DEVICES.md (tables) and two figures in benchmarks/figures/.
+a bracketed maximiser from a fine grid). Writes benchmarks/DEVICES.md (tables) and two figures in benchmarks/figures/.
 
     python benchmarks/bench_devices.py            # about a minute on a quiet 2-core machine
 
@@ -140,7 +140,7 @@ def write(rows, residuals) -> None:
              f"`python benchmarks/bench_devices.py` on {platform.processor() or platform.machine()}, "
              f"Python {platform.python_version()}, commit `{commit}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}. "
              "Times are the best of three runs on a shared 2-core machine (noise ~10 %); errors are measured on the "
-             "fitted device (the largest polished by a bounded local search from a 4001-point grid, the RMS on that grid).", "",
+             "fitted device (the largest by a bracketed maximiser: every local maximum of a 4001-point grid refined by bounded Brent between its neighbours; the RMS on that grid).", "",
              "Cases (each optimum has a bound binding inside the box: no corner of it):", ""]
     for device, (kind, moment, rng, b) in CASES.items():
         given = ", ".join(f"{k} {v[0]:g}..{v[1]:g} m" for k, v in (("r", b.r), ("r0", b.r0), ("a", b.a), ("rod", b.rod),
