@@ -330,3 +330,16 @@ def test_cli_slotted_lever_needs_kind_and_r0_and_takes_no_rod(capsys):
     code, _, err = _run(capsys, ["spring", "--device", "sine", "--moment", "10", "--range", "20..160", "--r",
                                  "0.01..0.5", "--a", "0..1", "--offset", "0..0.1"])
     assert code == 2 and "takes no --offset" in err
+
+
+def test_largest_on_range_finds_a_peak_between_grid_points():
+    """The higher of two peaks sits between grid points (sampled at 21 % of its height): still found."""
+    from balance.devices.fit.result import largest_on_range
+
+    def f(x):
+        return np.exp(-((x - 0.3) / 0.04) ** 2) + 1.01 * np.exp(-((x - 0.75) / 0.04) ** 2)
+
+    grid = np.linspace(0.0, 1.0, 11)
+    assert float(np.max(f(grid))) == pytest.approx(1.0, abs=1e-6)
+    assert largest_on_range(f, 0.0, 1.0, grid) == pytest.approx(1.01, rel=1e-12)
+    assert largest_on_range(lambda x: 2 * x, 0.0, 1.0, grid) == 2.0  # an end is the largest
