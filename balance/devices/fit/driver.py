@@ -54,7 +54,6 @@ def _confirm_optimum(p: _Problem, z, norm: str) -> tuple[np.ndarray, float, int]
     raise AssertionError("unreachable")  # pragma: no cover
 
 
-
 METHODS: dict[str, Callable] = {
     "trf": _fit_trf,
     "slsqp": _fit_slsqp,
@@ -63,6 +62,7 @@ METHODS: dict[str, Callable] = {
 }
 #: fastest method that reaches the optimum on every case of the test-suite (see the benchmark)
 DEFAULT_METHOD = {"rms": "slsqp", "max": "slsqp"}
+
 
 # --------------------------------------------------------------------------- driver
 def _check_range(name: str, rng, positive: bool = False, allow_inf: bool = False,
@@ -110,11 +110,11 @@ def fit_spring(
         allow a zero free length (``a = r0``) is then solved exactly (method ``"exact"``).
     norm : {"max", "rms"}
         Minimise the largest or the root-mean-square deviation over the range.
-    device : {"slotted-lever", "slider-crank", "sine"}
-        The device (:data:`~balance.devices.fit.DEVICES`); the bounds it does not take must be None.
     grid : int
         Number of equally spaced points of ``φ`` the fit uses (5 … :data:`MAX_GRID`). Reported
         errors are measured afterwards on a fine grid, so they are not flattered by a coarse one.
+    device : {"slotted-lever", "slider-crank", "sine"}
+        The device (:data:`~balance.devices.fit.DEVICES`); the bounds it does not take must be None.
 
     Returns
     -------

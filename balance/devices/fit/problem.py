@@ -242,7 +242,6 @@ def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:
     return optimize.brentq(rise, 0.0, top)
 
 
-
 def _max_abs_sin(lo: float, hi: float) -> float:
     """Largest |sin φ| over [lo, hi] (1 when a multiple of π/2 + kπ lies inside)."""
     k = math.ceil((lo - math.pi / 2) / math.pi)
