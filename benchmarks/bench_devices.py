@@ -138,9 +138,11 @@ def write(rows, residuals) -> None:
                             text=True).stdout.strip()
     lines = ["# Spring devices: error against time, and the residual point by point", "",
              f"`python benchmarks/bench_devices.py` on {platform.processor() or platform.machine()}, "
-             f"Python {platform.python_version()}, commit `{commit}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}. "
+             f"Python {platform.python_version()}, commit `{commit}`, "
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}. "
              "Times are the best of three runs on a shared 2-core machine (noise ~10 %); errors are measured on the "
-             "fitted device (the largest by a bracketed maximiser: every local maximum of a 4001-point grid refined by bounded Brent between its neighbours; the RMS on that grid).", "",
+             "fitted device (the largest by a bracketed maximiser: every local maximum of a 4001-point grid "
+             "refined by bounded Brent between its neighbours; the RMS on that grid).", "",
              "Cases (each optimum has a bound binding inside the box: no corner of it):", ""]
     for device, (kind, moment, rng, b) in CASES.items():
         given = ", ".join(f"{k} {v[0]:g}..{v[1]:g} m" for k, v in (("r", b.r), ("r0", b.r0), ("a", b.a), ("rod", b.rod),

@@ -116,8 +116,8 @@ balance_kind(
         "sense": Expectation(Int),
     },
     report=lambda r: [f"{r['family']}: c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, "
-                      + "".join(f"{k} = {r[key]:.6g} m, " for k, key in (("r0", "r0"), ("rod", "rod"), ("offset", "offset"))
-                                if r[key] is not None) + f"a = {r['a']:.6g} m",
+                      + "".join(f"{key} = {r[key]:.6g} m, " for key in ("r0", "rod", "offset") if r[key] is not None)
+                      + f"a = {r['a']:.6g} m",
                       f"max relative error {r['max_rel_error']:.4g}; "
                       f"active bounds {', '.join(r['active_bounds']) or 'none'}"],
     plot="plot_spring")

@@ -47,10 +47,12 @@ def test_position_rate_and_moment_against_finite_differences(scale):
         assert float(dev.position(phi)) == pytest.approx(float(_slider_x_from_positions(phi, r, rod, e)), rel=1e-12,
                                                          abs=1e-12 * scale)
         h = H
-        fd_rate = float(_slider_x_from_positions(phi + h, r, rod, e) - _slider_x_from_positions(phi - h, r, rod, e)) / (2 * h)
+        fd_rate = float(_slider_x_from_positions(phi + h, r, rod, e)
+                        - _slider_x_from_positions(phi - h, r, rod, e)) / (2 * h)
         assert float(dev.rate(phi)) == pytest.approx(fd_rate, rel=1e-6, abs=1e-8 * scale)
         fd_moment = -(float(dev.potential(phi + h)) - float(dev.potential(phi - h))) / (2 * h)
-        assert float(dev.moment(phi)) == pytest.approx(fd_moment, rel=1e-6, abs=1e-8 * abs(float(dev.moment(phi))) + 1e-9)
+        assert float(dev.moment(phi)) == pytest.approx(fd_moment, rel=1e-6,
+                                                       abs=1e-8 * abs(float(dev.moment(phi))) + 1e-9)
 
 
 def test_sine_device_is_the_long_rod_limit_and_its_own_closed_form():
@@ -102,7 +104,8 @@ def test_fitted_residual_is_minus_derivative_of_total_potential(device, sign):
     # the spring stays loaded: its deflection over the range is at least a, at most a + stroke
     x = dev.position(dense)
     deflection = sign * (x - res.neutral)
-    assert deflection.min() == pytest.approx(res.a, abs=1e-12) and deflection.max() * res.c == pytest.approx(res.max_force)
+    assert deflection.min() == pytest.approx(res.a, abs=1e-12)
+    assert deflection.max() * res.c == pytest.approx(res.max_force)
     assert res.max_force / res.c <= 0.5 * 0.6 + 1e-12  # deflection within half the longest free length
 
 

@@ -1,8 +1,9 @@
 """Fitting spring devices to a target moment ``Φ0·sin φ``: the slotted lever, the slider-crank, the sine device.
 
 The slotted lever (crank-and-rocker, the spring along the lever from the crank pin ``B`` to the base
-point ``C``) is described here; the slider devices in :mod:`.slider_problem`. Its moment is ``M(φ) = ±c·r·d·sin φ·g(φ)`` with a *shape* ``g`` that depends
-on length ratios only (``g = l0/L − 1`` for compression, ``1 − l0/L`` for tension).
+point ``C``) is described here; the slider devices in :mod:`.slider_problem`. Its moment is
+``M(φ) = ±c·r·d·sin φ·g(φ)`` with a *shape* ``g`` that depends on length ratios only
+(``g = l0/L − 1`` for compression, ``1 − l0/L`` for tension).
 Everything is therefore solved in non-dimensional variables
 
     ρ = r/ℓ,  ρ0 = r0/ℓ,  α = a/ℓ   (ℓ = upper bound of r),   κ = c·r·d/|Φ0|,

@@ -227,13 +227,15 @@ _BOUND_TEXT = {"r0": "r0 (spring length at φ = 0)", "rod": "the rod length l", 
 
 def _checked_bounds(bounds: SpringBounds, family) -> SpringBounds:
     """The bounds checked against what the device takes: its own ranges valid, the others left out."""
-    extra = [name for name in ("r0", "rod", "offset") if getattr(bounds, name) is not None and name not in family.bounds]
+    extra = [name for name in ("r0", "rod", "offset")
+             if getattr(bounds, name) is not None and name not in family.bounds]
     if extra:
         raise InvalidInput(f"the {family.name} device has no {' nor '.join(_BOUND_TEXT[n] for n in extra)}; "
                            "leave that bound out.")
     missing = [name for name in ("r0", "rod") if name in family.bounds and getattr(bounds, name) is None]
     if missing:
-        raise InvalidInput(f"the {family.name} device needs a range of {' and '.join(_BOUND_TEXT[n] for n in missing)}.")
+        raise InvalidInput(f"the {family.name} device needs a range of "
+                           f"{' and '.join(_BOUND_TEXT[n] for n in missing)}.")
     r = _check_range("the crank length r", bounds.r, positive=True)
     r0 = _check_range(_BOUND_TEXT["r0"], bounds.r0, positive=True) if bounds.r0 is not None else None
     a = _check_range("the pre-extension a" if family.name == "slotted-lever" else "the pre-load a", bounds.a,
