@@ -346,3 +346,20 @@ def test_largest_on_range_finds_a_peak_between_grid_points():
     assert float(np.max(f(grid))) == pytest.approx(1.0, abs=1e-6)
     assert largest_on_range(f, 0.0, 1.0, grid) == pytest.approx(1.01, rel=1e-12)
     assert largest_on_range(lambda x: 2 * x, 0.0, 1.0, grid) == 2.0  # an end is the largest
+
+
+def test_helical_spring_for_a_slider_device_works_between_its_lengths():
+    """The designed spring has the device's rate and free length and works from l0 − a − stroke to l0 − a."""
+    from balance.problems.spring import SpringOptions, SpringProblem
+
+    design = SpringProblem("compression", 5.0, (math.radians(20), math.radians(160)),
+                           SpringBounds((0.02, 0.1), None, (0.0, 0.2), max_free_length=0.4),
+                           design=SpringOptions(), device="sine").solve()
+    fit, spring = design.fit, design.spring
+    stroke = fit.max_force / fit.c - fit.a
+    assert spring.stiffness_N_per_m == pytest.approx(fit.c, rel=1e-9)
+    assert spring.free_length_m == pytest.approx(fit.free_length)
+    assert spring.max_working_length_m == pytest.approx(fit.free_length - fit.a)
+    assert spring.min_working_length_m == pytest.approx(fit.free_length - fit.a - stroke)
+    assert stroke == pytest.approx(fit.r * (math.cos(math.radians(20)) - math.cos(math.radians(160))))
+    assert not spring.buckling.safe and any("buckles" in w for w in design.warnings)
