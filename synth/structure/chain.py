@@ -25,7 +25,6 @@ from functools import cached_property
 
 import pynauty
 
-from ._nauty import TrustedGraph
 from .code import Code
 from ..errors import MalformedChain
 
@@ -215,7 +214,7 @@ class Chain:
         else:  # a cell per kind (meshes only where there are some: older certificates stay valid)
             shown = JOINT_KINDS if "mesh" in self.kinds else JOINT_KINDS[:2]
             coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in shown]
-        return TrustedGraph(n + len(self.joints), adjacency, coloring)
+        return pynauty.Graph(n + len(self.joints), adjacency_dict=adjacency, vertex_coloring=coloring)
 
     @property
     def certificate(self) -> str:

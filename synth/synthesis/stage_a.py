@@ -27,7 +27,6 @@ from typing import NamedTuple
 
 import pynauty
 
-from ..structure._nauty import TrustedGraph
 from ..structure.code import Code
 
 __all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "load_kernel", "uses_kernel",
@@ -121,7 +120,7 @@ class Contracted:
     def _subdivided(self) -> pynauty.Graph:
         m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        return TrustedGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
+        return pynauty.Graph(m + len(self.edges), adjacency_dict=adjacency, vertex_coloring=_colour_cells(self.vertices, len(self.edges)))
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -232,7 +231,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     """
     import numpy as np
 
-    from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
+    from ._cpsat import cp_model, each_solution  # loaded by the first query that needs a solver
 
     vertices = _branch_vertices(code)
     n2 = code.count(2)
@@ -242,22 +241,22 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
         return _contracted_by_kernel(code, conv)
     deg = [vertex.degree for vertex in vertices]
-    model = Model()
+    model = cp_model.CpModel()
     pairs = list(combinations(range(m), 2))
-    x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
+    x = {(u, v): model.new_int_var(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
     # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
-    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
+    y = [model.new_int_var(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
     for u in range(m):
-        model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
+        model.add(cp_model.LinearExpr.sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
     bounds = _StringBounds(vertices, pairs, code, conv)
     lbs = []
     for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
-        lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
-        model.AddMaxEquality(lb, [0, int(a) * var + int(b)])
+        lb = model.new_int_var(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
+        model.add_max_equality(lb, [0, int(a) * var + int(b)])
         lbs.append(lb)
     loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
-    model.Add(sum(lbs) + loops_lb <= n2)
+    model.add(sum(lbs) + loops_lb <= n2)
     strong, later = _split_conditions(_subset_conditions(vertices, code.dof(conv.h), conv), vertices)
     _write_conditions(model, vertices, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
     # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
@@ -280,7 +279,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
         ru, rv = row(u)[:L], row(v)[:L]
         weights = [base ** (L - 1 - i) for i in range(L)]
-        model.Add(cp_model.LinearExpr.WeightedSum(ru, weights) <= cp_model.LinearExpr.WeightedSum(rv, weights))
+        model.add(cp_model.LinearExpr.weighted_sum(ru, weights) <= cp_model.LinearExpr.weighted_sum(rv, weights))
     seen: dict[str, Contracted] = {}
 
     def keep(batch: list[tuple[int, ...]]) -> None:
@@ -469,23 +468,23 @@ def _write_conditions(model, vertices, x, lbs, loops_lb, n2: int, h: int, condit
     def touches(J, TL):
         if (J, TL) not in touched:
             ends = [x[min(J, L), max(J, L)] for L in TL]
-            t = touched[J, TL] = model.NewBoolVar("")
-            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
-            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+            t = touched[J, TL] = model.new_bool_var("")
+            model.add(sum(ends) >= 1).only_enforce_if(t)
+            model.add(sum(ends) == 0).only_enforce_if(t.negated())
         return touched[J, TL]
 
     # need + rest = Σ_inside ((h − 1)·x − lb) − bound + Σ_all lb: with a cost variable per pair and
     # the slack n2 − Σ_all lb − loops_lb, each condition holds only the pairs inside T
-    slack = model.NewIntVar(0, n2, "slack")
-    model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
+    slack = model.new_int_var(0, n2, "slack")
+    model.add(slack == n2 - sum(lbs.values()) - loops_lb)
     cost = {}
     for p, lb in lbs.items():
-        cost[p] = model.NewIntVar(0, (h - 1) * min(vertices[p[0]].degree, vertices[p[1]].degree), f"c{p}")
-        model.Add(cost[p] == (h - 1) * x[p] - lb)
+        cost[p] = model.new_int_var(0, (h - 1) * min(vertices[p[0]].degree, vertices[p[1]].degree), f"c{p}")
+        model.add(cost[p] == (h - 1) * x[p] - lb)
     for TL, TJ, bound in conditions:
         T = set(TL + TJ)
         inside = [p for p in x if p[0] in T and p[1] in T]
-        model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf([touches(J, TL) for J in TJ])
+        model.add(sum(cost[p] for p in inside) <= slack + bound).only_enforce_if([touches(J, TL) for J in TJ])
 
 
 def _connected(m: int, edges) -> bool:

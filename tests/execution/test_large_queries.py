@@ -128,15 +128,6 @@ def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
     assert count_chains(1, 10, v="0..2", workers=2)["count"] == len(inline)
 
 
-def test_cp_sat_without_pandas():
-    code = ("import sys, synth; synth.count_chains(1, 8, workers=1); "
-            "assert 'pandas' not in sys.modules, 'pandas loaded'; "
-            "from synth.synthesis._cpsat import cp_model; import pandas as pd; "
-            "s = cp_model.CpModel().new_int_var_series(name='x', index=pd.Index(range(3)), lower_bounds=0, upper_bounds=1); "
-            "assert isinstance(s, pd.Series) and isinstance(s, cp_model.pd.Series) and len(s) == 3")
-    subprocess.run([sys.executable, "-c", code], check=True)
-
-
 # --------------------------------------------------------------- checkpoint
 def _kill_after_first_commit(args):
     """Start a counting run, SIGKILL it as soon as it reports a commit; return its pool workers."""
