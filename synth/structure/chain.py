@@ -25,13 +25,12 @@ from functools import cached_property
 
 import pynauty
 
-from .code import Code
 from ..errors import MalformedChain
+from .code import Code
+from .display import svg_of
+from .joints import JOINT_KINDS, SYMBOLS
 
 __all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]
-
-JOINT_KINDS = ("revolute", "prismatic", "mesh")  # see synth.structure.kinds
-SYMBOLS = {"revolute": "-", "prismatic": "=", "mesh": "~"}  # their signs in a joint list: 0-1, 0=1, 0~1
 
 
 @dataclass(frozen=True)
@@ -447,9 +446,7 @@ class Chain:
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
-        from ..draw import svg
-
-        return svg(self)
+        return svg_of(self)
 
 
 def _check_as_written(links: int | None, joints) -> None:
@@ -523,9 +520,7 @@ class Mechanism:
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows: the fixed link hatched, the input link marked."""
-        from ..draw import svg
-
-        return svg(self)
+        return svg_of(self)
 
     def to_dict(self) -> dict:
         """The chain's row with its frame (and input link), and its prismatic pairs by kind

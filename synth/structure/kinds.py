@@ -38,10 +38,14 @@ Example
 from __future__ import annotations
 
 import random
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .chain import JOINT_KINDS, SYMBOLS, Chain
+from .joints import JOINT_KINDS, SYMBOLS
+
+if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and never import its type
+    from .chain import Chain
 
 __all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "structural_mobility", "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
@@ -303,7 +307,7 @@ def lever_analogue(chain: Chain) -> Chain:
         else:
             joints.append(j)
             out_kinds.append(k)
-    return Chain(n, joints, out_kinds, chain.h)
+    return type(chain)(n, joints, out_kinds, chain.h)
 
 
 def prismatic_roles(chain: Chain, frame: int) -> dict[str, int]:

@@ -407,7 +407,7 @@ def iter_codes(query: CodeQuery | int | None = None, /, *, max_codes: int | None
 def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
     """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
     from ._sizing import check_excess, code_bound
-    from ..execution.estimate import describe_seconds, magnitude
+    from ..execution.sizes import describe_seconds, magnitude
 
     if max_codes is None:  # asked for any number: only a model that cannot exist is refused
         for problem in problems:

@@ -29,7 +29,7 @@ import pynauty
 
 from ..structure.code import Code
 
-__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "load_kernel", "uses_kernel",
+__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "uses_kernel",
            "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
@@ -211,16 +211,6 @@ def kernel_loops(conv: Conventions, multiple: bool = False) -> int:
     (6, 8, 5)
     """
     return (conv.kernel_loops or _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])) - (1 if multiple else 0)
-
-
-def load_kernel() -> None:
-    """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: a small code through both."""
-    from .stage_b import _kernel_placements
-
-    code, conv = Code.parse("440/0"), Conventions()
-    for graph in _contracted_by_kernel(code, conv):
-        _kernel_placements(code, graph, conv, None, listing=False)
 
 
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:

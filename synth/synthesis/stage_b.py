@@ -21,9 +21,9 @@ from time import perf_counter
 
 from ..structure.chain import Chain
 from ..structure.code import Code
-from .stage_a import Contracted, Conventions, _inner_links, _loop_lb, uses_kernel
+from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_realised", "realise"]
+__all__ = ["count_realised", "load_kernel", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -185,6 +185,14 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
         solutions = list(map(tuple, _lex_least(np.asarray(solutions, dtype=np.int64), group).tolist()))
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, simple
+
+
+def load_kernel() -> None:
+    """Load (or compile, the first time) the kernels of stages A and B in this process, before
+    workers are forked: a small code through both."""
+    code, conv = Code.parse("440/0"), Conventions()
+    for graph in _contracted_by_kernel(code, conv):
+        _kernel_placements(code, graph, conv, None, listing=False)
 
 
 def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:

@@ -37,8 +37,8 @@ from ..execution.executor import process_pool, run_plan
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, contracted_graphs, load_kernel, uses_kernel
-from .stage_b import count_realised, realise
+from .stage_a import Contracted, Conventions, contracted_graphs, uses_kernel
+from .stage_b import count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",

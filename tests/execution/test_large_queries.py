@@ -21,7 +21,7 @@ from synth.execution import executor as _executor
 from synth.synthesis.type_synthesis import count_chains, count_mechanisms
 from synth.execution.checkpoint import CheckpointMismatch
 from synth.errors import QueryTooLarge
-from synth.execution.estimate import estimate
+from synth.synthesis.estimate import estimate
 
 CLI = [sys.executable, "-m", "mechsynth"]
 
@@ -306,7 +306,7 @@ def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
     import argparse
 
     from mechsynth.commands import chains
-    from synth.execution import estimate
+    from synth.synthesis import estimate
 
     monkeypatch.setattr(estimate, "NOTE_SECONDS", 1.0)
     args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,
