@@ -22,7 +22,7 @@ def _imports(path: Path, *, top_level_only: bool = False):
     """(module, name) of every import of a file (relative imports resolved), every one or only
     those made when the module loads (not inside a function)."""
     tree = ast.parse(path.read_text())
-    package = ".".join(path.relative_to(ROOT).with_suffix("").parts)
+    package = ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
     if path.name != "__init__.py":
         package = package.rsplit(".", 1)[0]
     for node in ast.walk(tree):  # names imported for type checkers only are no dependency at run time
