@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, fields, replace
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
+from ..execution.memo import remembered
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import _MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
@@ -277,6 +278,16 @@ def _single_loop(problem: Problem) -> list[Code]:
 
 
 def _model_codes(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
+    """The codes of the CP-SAT model of one validated problem, solved once per engine (a later run
+    reads them: :mod:`synth.execution.memo`)."""
+    return remembered("codes", repr(problem), lambda: _solve_model(problem, tick),
+                      encode=lambda codes: [[list(c.assortment), c.v, c.composition and list(c.composition), c.n1]
+                                            for c in codes],
+                      decode=lambda rows: [Code(tuple(a), v, comp if comp is None else tuple(comp), n1)
+                                           for a, v, comp, n1 in rows])
+
+
+def _solve_model(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
     """Build and enumerate the CP-SAT model of one validated problem."""
     from ._cpsat import all_solutions, cp_model  # loaded by the first query that needs a solver
 

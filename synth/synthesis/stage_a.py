@@ -27,6 +27,7 @@ from typing import NamedTuple
 
 import pynauty
 
+from ..execution.memo import remembered
 from ..structure.code import Code
 
 __all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "uses_kernel",
@@ -219,6 +220,20 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
     [((0, 1), (0, 1), (0, 1))]
     """
+    if not _branch_vertices(code):
+        return []
+    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
+        return _contracted_by_kernel(code, conv)
+    key = repr((code.assortment, code.v, code.composition, code.n1, conv))
+    return remembered("stage-a", key, lambda: _contracted_by_model(code, conv),
+                      encode=lambda graphs: [[[list(u) for u in g.vertices], [list(e) for e in g.edges], g.certificate]
+                                             for g in graphs],
+                      decode=lambda rows: [Contracted(tuple(Vertex(*u) for u in vs), tuple(map(tuple, es)), cert)
+                                           for vs, es, cert in rows])
+
+
+def _contracted_by_model(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A's CP-SAT model of a code (the kernel's searches take the large ones)."""
     import numpy as np
 
     from ._cpsat import cp_model, each_solution  # loaded by the first query that needs a solver
@@ -226,10 +241,6 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     vertices = _branch_vertices(code)
     n2 = code.count(2)
     m = len(vertices)
-    if m == 0:
-        return []
-    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
-        return _contracted_by_kernel(code, conv)
     deg = [vertex.degree for vertex in vertices]
     model = cp_model.CpModel()
     pairs = list(combinations(range(m), 2))

@@ -21,7 +21,13 @@ DEPRECATED = r".* is a deprecated function\. Use .* instead\."
 
 @pytest.fixture
 def solver_calls(monkeypatch):
-    """Every model solved, by the module that built it (the helpers are imported where a model is built)."""
+    """Every model solved, by the module that built it (the helpers are imported where a model is
+    built); results kept by earlier runs are not read (synth.execution.memo off)."""
+    from synth.execution import memo
+
+    monkeypatch.setenv("MECHSYNTH_CACHE", "off")
+    memo._store.cache_clear()
+    monkeypatch.setattr(memo, "_store", memo._store)  # cleared again on the way out (below)
     seen: list[str] = []
 
     def counted(name):
@@ -38,6 +44,7 @@ def solver_calls(monkeypatch):
     with warnings.catch_warnings():
         warnings.filterwarnings("error", message=DEPRECATED, category=DeprecationWarning)
         yield seen
+    memo._store.cache_clear()
 
 
 def test_every_synthesis_model_uses_the_pep8_api(solver_calls):
@@ -49,7 +56,7 @@ def test_every_synthesis_model_uses_the_pep8_api(solver_calls):
     assert {"synth.synthesis.number_synthesis", "synth.synthesis.stage_a", "synth.synthesis.stage_b"} <= set(solver_calls)
 
 
-def test_gear_design_uses_the_pep8_api():
+def test_gear_design_uses_the_pep8_api(solver_calls):
     with warnings.catch_warnings():
         warnings.filterwarnings("error", message=DEPRECATED, category=DeprecationWarning)
         found = design(GearTrain.parse("0-1-2 2-3 0~3i 1~3"), 0, 1, 2, "4.63", tolerance="0.5%",
