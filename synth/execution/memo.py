@@ -36,7 +36,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import TypeVar
 
-__all__ = ["remembered", "cache_folder"]
+__all__ = ["remembered", "is_remembered", "cache_folder"]
 
 T = TypeVar("T")
 _ENGINE = Path(__file__).resolve().parents[1]  # the synth package
@@ -73,6 +73,17 @@ def _fingerprint() -> str:
     return digest.hexdigest()[:16]
 
 
+def _entry(folder: Path, kind: str, key: str) -> Path:
+    return folder / kind / f"{hashlib.sha1(key.encode()).hexdigest()}.json"
+
+
+def is_remembered(kind: str, key: str) -> bool:
+    """Whether an earlier run stored a value under (``kind``, ``key``) (a hint: it is read, and
+    checked, only by :func:`remembered`)."""
+    folder = _store()
+    return folder is not None and _entry(folder, kind, key).is_file()
+
+
 def remembered(kind: str, key: str, compute: Callable[[], T], *, encode: Callable[[T], object] = lambda x: x,
                decode: Callable[[object], T] = lambda x: x) -> T:
     """``compute()``, or the value an earlier run of this engine stored under (``kind``, ``key``).
@@ -83,7 +94,7 @@ def remembered(kind: str, key: str, compute: Callable[[], T], *, encode: Callabl
     folder = _store()
     if folder is None:
         return compute()
-    path = folder / kind / f"{hashlib.sha1(key.encode()).hexdigest()}.json"
+    path = _entry(folder, kind, key)
     try:
         entry = json.loads(path.read_text())
         if entry["key"] == key:

@@ -27,10 +27,10 @@ from typing import NamedTuple
 
 import pynauty
 
-from ..execution.memo import remembered
+from ..execution.memo import is_remembered, remembered
 from ..structure.code import Code
 
-__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "uses_kernel",
+__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "needs_solver", "uses_kernel",
            "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
@@ -224,12 +224,26 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         return []
     if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
         return _contracted_by_kernel(code, conv)
-    key = repr((code.assortment, code.v, code.composition, code.n1, conv))
-    return remembered("stage-a", key, lambda: _contracted_by_model(code, conv),
+    return remembered("stage-a", _stored_as(code, conv), lambda: _contracted_by_model(code, conv),
                       encode=lambda graphs: [[[list(u) for u in g.vertices], [list(e) for e in g.edges], g.certificate]
                                              for g in graphs],
                       decode=lambda rows: [Contracted(tuple(Vertex(*u) for u in vs), tuple(map(tuple, es)), cert)
                                            for vs, es, cert in rows])
+
+
+def _stored_as(code: Code, conv: Conventions) -> str:
+    return repr((code.assortment, code.v, code.composition, code.n1, conv))
+
+
+def needs_solver(code: Code, conv: Conventions) -> bool:
+    """Whether stage A of ``code`` will build its CP-SAT model in this run (neither the kernel's
+    search nor a result stored by an earlier run).
+
+    >>> needs_solver(Code.parse("4/0"), Conventions())   # a single loop has no branch multigraph
+    False
+    """
+    return (bool(_branch_vertices(code)) and not (uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv))
+            and not is_remembered("stage-a", _stored_as(code, conv)))
 
 
 def _contracted_by_model(code: Code, conv: Conventions) -> list[Contracted]:
