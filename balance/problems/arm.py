@@ -33,7 +33,7 @@ from ..extremes import EXTREMES_NOTE, box_extremes
 from ..model.arm import Arm, ArmModel, Link, Load, base_drives, describe_form, gear_ratio_for_accuracy
 from ..model.potential import HarmonicTerm, terms_forces, terms_potential
 from ..model.urdf import PinocchioCheck, UrdfArm, load_urdf, pinocchio_check, pinocchio_gravity
-from ..schema import ArmTable, parse
+from ..schema import ArmTable, check_seed, parse
 
 __all__ = ["ArmProblem", "ArmBalance", "CheckResult", "DeviceSizes", "TermDevices", "SlideApproximation",
            "PayloadEffect", "balance_arm", "check_terms", "arm_from_dict", "arm_problem"]
@@ -333,6 +333,7 @@ class ArmProblem:
         """Terms, devices, residual over the workspace, payload, counterweights, Pinocchio's check."""
         if self.samples < 1:
             raise InvalidInput(f"the check needs at least one sample, not {self.samples}.")
+        check_seed(self.seed)
         arm = self.arm
         payload = self.payload
         if payload is None and isinstance(arm, Arm) and arm.payload_weight > 0:
