@@ -104,3 +104,27 @@ def test_the_forbidden_patterns_catch_what_they_should():
     for (what, pattern), sample in zip(_FORBIDDEN, samples):
         assert pattern.search(sample), what
     assert not any(p.search("random seed 0 and seed = 12345") for _, p in _FORBIDDEN)
+
+
+def test_every_subcommand_is_named_in_the_help_of_its_parent():
+    """``mechsynth --help`` names every command, and a command group's line names each of its
+    subcommands (``balance compare`` was once missing from it)."""
+    import argparse
+
+    from mechsynth.cli import _build_parser
+
+    def groups(parser):
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                yield parser, action
+
+    root = _build_parser()
+    text = root.format_help()
+    (_, commands), = groups(root)
+    for name, command in commands.choices.items():
+        assert re.search(rf"^\s+{re.escape(name)}\s", text, re.M), name
+        line = next(a.help for a in commands._choices_actions if a.dest == name)
+        for _, inner in groups(command):
+            for sub in inner.choices:
+                assert re.search(rf"\b{re.escape(sub)}\b", line), f"'{name} {sub}' is missing from '{name}: {line}'"
+                assert sub in command.format_help()
