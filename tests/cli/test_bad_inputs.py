@@ -55,6 +55,7 @@ CASES = [
     ("analyze '{\"links\": 5, \"joints\": [[0,1],[1,2],[2,0]]}'", "3, 4"),
     ("analyze '0-1 1-'", "'1-'"),
     ("analyze 63a1/0", "63a1/0"),
+    ("analyze '" + " ".join(f"{i}-{(i + 1) % 3001}" for i in range(3001)) + "'", "3001 links"),  # sized first
     ("analyze 6301/0 --h 7", "not 7"),
     ("analyze 2=4,2=3", "2="),
     ("analyze 6301/0 --repairs 0", "0"),
