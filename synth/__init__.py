@@ -63,7 +63,7 @@ _WHERE = {
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
     # how large a query is
     "Estimate": ".execution.estimate", "estimate": ".execution.estimate", "size_check": ".execution.estimate",
-    "worth_sizing": ".execution.estimate",
+    "worth_sizing": ".execution.estimate", "TABLE_ROWS": ".execution.estimate",
     "describe_seconds": ".execution.estimate", "magnitude": ".execution.estimate",
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",

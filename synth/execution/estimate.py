@@ -35,7 +35,8 @@ from dataclasses import dataclass, replace
 
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_seconds", "magnitude"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_seconds", "magnitude",
+           "TABLE_ROWS"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -148,18 +149,21 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
                     log_chains, log_units, log_seconds)
 
 
-def worth_sizing(query) -> bool:
+def worth_sizing(query, *, table: bool = False) -> bool:
     """Whether a query is large enough to be estimated before it runs: its largest revolute
-    skeleton has :func:`sized_loops` loops or more.
+    skeleton has :func:`sized_loops` loops or more — one fewer for a listing as a ``table``, which
+    holds its rows (the mechanisms of 14 links are 4.3 million).
 
     >>> from synth.structure.query import ChainQuery
     >>> worth_sizing(ChainQuery(1, 14)), worth_sizing(ChainQuery(1, 16)), worth_sizing(ChainQuery(1, 10, h=2))
     (False, True, False)
+    >>> worth_sizing(ChainQuery(1, 14), table=True), worth_sizing(ChainQuery(1, 12), table=True)
+    (True, False)
     """
     if query.code is not None:
         return False
     K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
-    return K >= sized_loops(query.h, multiple=(query.v or (0, 0)) != (0, 0))
+    return K >= sized_loops(query.h, multiple=(query.v or (0, 0)) != (0, 0)) - (1 if table else 0)
 
 
 def sized_loops(h: int, multiple: bool = False) -> int:
@@ -176,8 +180,8 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
                mechanisms: str | None = None, scheduler: bool = False) -> str | None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked.
 
-    A query with fewer loops than :func:`sized_loops` passes at once.
-    Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
+    A query with fewer loops than :func:`sized_loops` passes at once (a listing as a ``table``:
+    one loop fewer, for its rows).  Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
     ``mechanisms`` ``"mechanisms"`` / ``"mechanisms with input"``) and refused with
     :class:`QueryTooLarge` when they would take more than a day on ``processes`` workers (unless
     ``force``), or when a ``table`` listing would hold more than a million rows (whatever
@@ -188,13 +192,14 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     >>> size_check(ChainQuery(1, 10), processes=2, count=True, table=False) is None
     True
     """
-    if (force and count) or not worth_sizing(query):
+    rows_held = table and not count
+    if (force and count) or not worth_sizing(query, table=rows_held):
         return None
     work = mechanisms or ("count" if count else "list")
     items = "mechanisms" if mechanisms else "chains"
     found = estimate(query, work=work)
     if found is None:
-        if not force:
+        if not force and worth_sizing(query):  # (a table only: its rows are counted as it is written)
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
                                 f"(fewer than three smaller sizes have chains); give {option('force')} to run it anyway")
         return None
@@ -204,7 +209,7 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in "
             f"{magnitude(found.units, found.log10_units)} units, {describe_seconds(found.seconds / processes, log_wall)} "
             f"{where}, extrapolated from the {found.basis}")
-    if not count and table and found.chains > TABLE_ROWS:
+    if rows_held and found.chains > TABLE_ROWS:
         raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
                             f"large for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
     if not force and found.seconds / processes > LIMIT_SECONDS:

@@ -155,6 +155,7 @@ CASES = [
     ("chains --dof 1 --links 8 --count --format dot", "--count"),
     ("chains --dof 1 --links 8 --v 1 --format adjacency", "adjacency matrix"),
     # ---- scene and planetary
+    ("mechanisms --dof 1 --links 14", "--format jsonl"),  # 4.27 million rows: no table, sized first
     ("scene {d}/binary.toml", "binary.toml"),
     ("scene {d}/missing.toml", "missing.toml"),
     ("scene {d}/scene_bad.toml", "loopz"),
