@@ -23,7 +23,7 @@ README = ROOT / "README.md"
 # why a command is not run in the default suite (matched against the command's text)
 SLOW = {
     "--links 16 --count --checkpoint": "counts 19 819 281 chains: about 30 seconds on 2 cores",
-    "scene --all models/": "every scene, about 20 seconds: tests/scenes/test_scenes.py runs each of them in the default suite",
+    "scene --all models/": "every scene, about 30 CPU seconds: tests/scenes/test_scenes.py runs each of them in the default suite",
     "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
 }
