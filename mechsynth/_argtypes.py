@@ -112,6 +112,8 @@ def output_folder(text: str) -> str:
     """
     import tempfile
 
+    if not text.strip():
+        raise argparse.ArgumentTypeError("expected the name of a folder, not ''")
     if os.path.exists(text) and not os.path.isdir(text):
         raise argparse.ArgumentTypeError(f"{text} is a file; give a directory for the files to write")
     made = not os.path.exists(text)
