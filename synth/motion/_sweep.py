@@ -336,13 +336,16 @@ class _Solver:
     def _branch_newton(self):
         ends = []
         span = self._span()
-        turns = 4 if self.revolute[0] else 1
         for step in (-1, 1):
-            targets = span * np.arange(1, turns + 1)
-            found, stop = self.trace(np.zeros(self.system.size), np.zeros(1), np.array([step * targets[-1]]), targets,
+            found, stop = self.trace(np.zeros(self.system.size), np.zeros(1), np.array([step * span]), [span],
                                      self.pose_sign)
-            if self.revolute[0] and len(found) and _same_pose(self.system, found[0]):
-                return -math.inf, math.inf, "", ""  # back to the pose after one turn: a crank
+            if self.revolute[0] and len(found):
+                if _same_pose(self.system, found[0]):
+                    return -math.inf, math.inf, "", ""  # back to the pose after one turn: a crank
+                # a branch that returns to the input's angle in another pose: follow it up to three turns more
+                more, stop = self.trace(found[0], np.array([step * span]), np.array([4 * step * span]), [3 * span],
+                                        self.pose_sign)
+                stop = None if stop is None else span + stop
             if stop is None:  # (a slide that runs on, or a revolute input that turns on for four turns)
                 ends.append((step * math.inf, ""))
             else:
