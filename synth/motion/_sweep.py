@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections import deque
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -37,10 +37,9 @@ class Motion:
     stopped : str or None
         One sentence when the sweep ended at a dead or singular position (with the input there).
     transmission : dict
-        Per closed-form dyad (key ``"links i, j"``): ``min`` and ``max`` transmission angle (rad,
-        π/2 best, 0 or π locked) and the inputs ``at_min``, ``at_max`` where they occur.
+        Per closed-form dyad: least and greatest transmission angle and where (computed when read).
     angles : ndarray (S, n)
-        Each link's rotation from the pose (rad).
+        Each link's rotation from the pose (rad, modulo a turn).
     """
 
     linkage: Linkage
@@ -51,7 +50,18 @@ class Motion:
     velocities: np.ndarray | None = None
     accelerations: np.ndarray | None = None
     stopped: str | None = None
-    transmission: dict = field(default_factory=dict)
+
+    @cached_property
+    def transmission(self) -> dict:
+        """Per closed-form dyad (key ``"links i, j"``): its ``kind``, ``min`` and ``max`` transmission
+        angle over the sweep (rad; π/2 best, 0 or π a dead position) and the inputs ``at_min``,
+        ``at_max`` where they occur, refined between steps by a bounded search.  Empty for a
+        linkage moved by Newton's method, or a grid."""
+        solver = _solver(self.linkage)
+        if solver.plan is None or self.inputs.shape[1] != 1 or self.steps < 2:
+            return {}
+        offsets = self.inputs[:, 0] - self.linkage.pose_inputs[0]
+        return _transmission(solver, offsets, solver.closed(offsets[:, None])[3], float(self.linkage.pose_inputs[0]))
 
     @property
     def steps(self) -> int:
@@ -144,7 +154,7 @@ class _Solver:
 
     # ------------------------------------------------------------ positions
     def closed(self, offsets: np.ndarray):
-        """θ, t, g, μ at input offsets (S, W) by the dyads' closed forms."""
+        """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
         return close(self.linkage, self.plan, offsets)
 
     def gmin(self, x: float) -> float:
@@ -355,10 +365,10 @@ class _Solver:
 
     # ------------------------------------------------------------- sweeps
     def poses_along(self, offsets: np.ndarray):
-        """θ, t (and the dyads' μ, or None) at 1-DOF offsets, all on the branch of the pose."""
+        """θ, t (and the joints, or None) at 1-DOF offsets, all on the branch of the pose."""
         if self.plan is not None:
-            theta, t, _, mu = self.closed(offsets[:, None])
-            return theta, t, mu
+            theta, t, _, _, joints = self.closed(offsets[:, None])
+            return theta, t, joints
         out = np.empty((len(offsets), self.system.size))
         for side in (-1, 1):
             chosen = np.flatnonzero(offsets * side > 0) if side > 0 else np.flatnonzero(offsets * side >= 0)
@@ -422,12 +432,13 @@ def _describe(linkage: Linkage, value: float) -> str:
     return f"{value:.9g}"
 
 
-def _points(linkage: Linkage, theta, t):
-    """Every joint's position (S, J, 2) and every tracer's (S, 2) from link poses."""
-    p = linkage.points
-    first = np.array([j[0] for j in linkage.chain.joints])
-    c, s = np.cos(theta[:, first]), np.sin(theta[:, first])
-    joints = np.stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]), axis=-1) + t[:, first]
+def _points(linkage: Linkage, theta, t, joints=None):
+    """Every joint's position (S, J, 2) (unless given) and every tracer's (S, 2) from link poses."""
+    if joints is None:
+        p = linkage.points
+        first = np.array([j[0] for j in linkage.chain.joints])
+        c, s = np.cos(theta[:, first]), np.sin(theta[:, first])
+        joints = np.stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]), axis=-1) + t[:, first]
     tracers = {}
     for name, (link, (x, y)) in linkage.tracers.items():
         c, s = np.cos(theta[:, link]), np.sin(theta[:, link])
@@ -545,8 +556,11 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
-    theta, t, mu = solver.poses_along(offsets)
-    joints, tracers = _points(linkage, theta, t)
+    theta, t, joints = solver.poses_along(offsets)
+    if joints is None or linkage.tracers:
+        joints, tracers = _points(linkage, theta, t, joints)
+    else:
+        tracers = {}
     inputs = (offsets - x0 + start)[:, None]
     vel = acc = None
     if velocities or accelerations:
@@ -559,9 +573,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
             acc[at_limit] = np.nan
         if not velocities:
             vel = None
-    transmission = _transmission(solver, offsets, mu, phi0) if mu is not None else {}
-    angles = np.unwrap(theta, axis=0) if len(theta) > 1 else theta
-    return Motion(linkage, inputs, joints, tracers, angles, vel, acc, stopped, transmission)
+    return Motion(linkage, inputs, joints, tracers, theta, vel, acc, stopped)
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
@@ -639,7 +651,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     theta = np.full((total, n), np.nan)
     t = np.full((total, n, 2), np.nan)
     if solver.plan is not None:
-        th, tt, g, _ = solver.closed(offsets)
+        th, tt, g, _, _ = solver.closed(offsets)
         closes = (g >= 0).all(axis=1)
         reached = _flood(closes.reshape(shape), start)
         theta[reached], t[reached] = th[reached], tt[reached]
@@ -681,7 +693,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
         vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, theta, vel, None, None, {})
+    return Motion(linkage, values, joints, tracers, theta, vel, None, None)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
