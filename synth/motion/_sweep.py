@@ -556,6 +556,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
+    offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
     theta, t, joints = solver.poses_along(offsets)
     if joints is None or linkage.tracers:
         joints, tracers = _points(linkage, theta, t, joints)
@@ -592,7 +593,7 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
             if b > a:
                 found = minimize_scalar(lambda x: sign * float(solver.closed(np.array([[x]]))[3][0, m]),
                                         bounds=(a, b), method="bounded", options={"xatol": 1e-10})
-                if found.success and sign * found.fun < sign * best:
+                if found.success and found.fun < sign * best:
                     best_x, best = float(found.x), sign * float(found.fun)
             entry[label], entry[f"at_{label}"] = best, float(phi0 + best_x)
         out[f"links {d.links[0]}, {d.links[1]}"] = entry

@@ -101,3 +101,14 @@ def test_inverted_slider_crank_guide_points_at_the_crank_pin():
     turned = motion.angles[:, 3] + math.atan2(*lk.slides[3][::-1])
     assert np.abs(np.sin(turned - guide)).max() < 1e-12
     assert motion_range(lk).full_rotation  # r < d: the crank turns fully
+
+
+def test_transmission_angle_extremes_of_a_crank_rocker():
+    # μ between coupler and rocker: cos μ = (b² + c² − e²)/(2bc), e = |A O4| = d ∓ a at φ = 0, π
+    a, b, c, d = 1.0, 3.5, 3.0, 4.0
+    m = sweep(four_bar(a, b, c, d), steps=360)  # neither 0 nor π is a step
+    t = m.transmission["links 2, 3"]
+    assert abs(t["min"] - math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))) < 1e-9
+    assert abs(t["max"] - math.acos((b * b + c * c - (d + a) ** 2) / (2 * b * c))) < 1e-9
+    assert abs(math.remainder(t["at_min"], 2 * math.pi)) < 1e-4
+    assert abs(math.remainder(t["at_max"] - math.pi, 2 * math.pi)) < 1e-4
