@@ -76,7 +76,7 @@ _WHERE = {
     # identifying any chain, comparing atlases
     "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
     # motion of dimensioned mechanisms
-    "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._linkage",
+    "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
     "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
 }

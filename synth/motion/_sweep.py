@@ -404,7 +404,11 @@ def _det_sign(system: System, theta, t) -> int:
 
 
 def _solver(linkage: Linkage) -> _Solver:
-    return linkage._solver
+    """The linkage's solver, built on first use and kept on the (immutable) linkage."""
+    solver = linkage.__dict__.get("_motion_solver")
+    if solver is None:
+        solver = linkage.__dict__["_motion_solver"] = _Solver(linkage)
+    return solver
 
 
 def _check_steps(steps, name: str = "steps") -> int:
@@ -810,7 +814,10 @@ def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
     phi0 = float(linkage.pose_inputs[0])
     for m, (link, _, _) in enumerate(outputs):
         for k in np.flatnonzero(np.sign(r[:-1, m]) * np.sign(r[1:, m]) < 0):
-            root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
+            try:
+                root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
+            except ValueError:  # the rate is not finite between the samples (a singular place): the sample
+                root = xs[k] if abs(r[k, m]) <= abs(r[k + 1, m]) else xs[k + 1]
             found.append((phi0 + root, link))
     return tuple(sorted(found))
 

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from synth.motion._sweep import _solver
 from synth.motion import assemble, motion_range, sweep
 
 from .helpers import four_bar, slider_crank
@@ -67,5 +68,5 @@ def test_newton_branch_ends_are_true_limits():
     from synth.motion._system import System
 
     system = System(lk)
-    theta, t, _ = lk._solver.poses_along(np.array([hi - lk.pose_inputs[0]]))
+    theta, t, _ = _solver(lk).poses_along(np.array([hi - lk.pose_inputs[0]]))
     assert system.conditioning(theta, t)[0] < 1e-4

@@ -112,3 +112,25 @@ def test_transmission_angle_extremes_of_a_crank_rocker():
     assert abs(t["max"] - math.acos((b * b + c * c - (d + a) ** 2) / (2 * b * c))) < 1e-9
     assert abs(math.remainder(t["at_min"], 2 * math.pi)) < 1e-4
     assert abs(math.remainder(t["at_max"] - math.pi, 2 * math.pi)) < 1e-4
+
+
+def test_planetary_train_shaft_speeds_follow_willis():
+    """Sun 1, carrier 2 and ring 3 on the frame's central axis (the multiple joint 0-1-2-3), planet
+    4 on the carrier meshing with both; the sun and the carrier drive (W = 2) and the ring turns as
+    Willis's formula says: (θ3 − θ2)/(θ1 − θ2) = −z1/z3 = −r1/r3."""
+    from synth.motion import Linkage, sweep_grid
+    from synth.structure.chain import Chain, Mechanism
+
+    r_sun, r_planet = 1.0, 0.5
+    r_ring = r_sun + 2 * r_planet
+    chain = Chain.parse("0-1-2-3 2-4 1~4 3~4")  # joints: 0-1-2-3, 1~4, 2-4, 3~4
+    points = {(0, 1, 2, 3): (0, 0), (1, 4): (r_sun, 0), (2, 4): (r_sun + r_planet, 0), (3, 4): (r_ring, 0)}
+    lk = Linkage(Mechanism(chain, 0), (0, 0), np.array([points[j] for j in chain.joints], dtype=float),
+                 driven=(1, 2))
+    assert math.isclose(lk.meshes[1], -r_planet / r_sun) and math.isclose(lk.meshes[3], r_planet / r_ring)
+    m = sweep_grid(lk, [(0.0, 1.0), (0.0, 0.5)], steps=3, velocities=True)
+    ring = m.angles[:, 3]
+    sun, carrier = m.inputs[:, 0], m.inputs[:, 1]
+    assert np.allclose(ring - carrier, -(r_sun / r_ring) * (sun - carrier), atol=1e-12, rtol=0)
+    again = Linkage.from_dict(lk.to_dict())
+    assert again.driven == (1, 2) and again.to_dict()["inputs"] == ["0-1", "0-2"]

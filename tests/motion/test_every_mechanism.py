@@ -7,13 +7,14 @@ import pytest
 
 import synth
 from synth.draw import layout
+from synth.motion._sweep import _solver
 from synth.motion import linkage_from_pose, sweep
 from synth.motion._system import System
 
 
 def _closure(lk, motion):
     """The largest closure residual over the sweep, from the link poses the sweep reached."""
-    theta, t, _ = lk._solver.poses_along(motion.inputs[:, 0] - lk.pose_inputs[0])
+    theta, t, _ = _solver(lk).poses_along(motion.inputs[:, 0] - lk.pose_inputs[0])
     return float(np.abs(System(lk).residual(theta, t, motion.inputs)).max())
 
 
@@ -27,7 +28,7 @@ def _check(links):
         # joints shared by links are where each link puts them
         count += 1
         nudged += lk.note is not None
-        newton += lk._solver.plan is None
+        newton += _solver(lk).plan is None
     return count, nudged, newton
 
 
