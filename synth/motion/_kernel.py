@@ -15,6 +15,8 @@ from numba import njit
 __all__ = ["RRR", "PRR", "RPR", "PRP", "GEAR", "close_kernel"]
 
 RRR, PRR, RPR, PRP, GEAR = 0, 1, 2, 3, 4
+#: a dyad's normalised discriminant this far below 0 is a dead position reached up to rounding
+ROUNDING = 1e-12
 
 
 @njit(cache=True)
@@ -92,7 +94,7 @@ def close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, int
                 else:
                     along, h2_ = np.nan, -1.0
                     g[s, m] = -1.0
-                root = math.sqrt(h2_) if h2_ >= 0.0 else np.nan
+                root = math.sqrt(max(h2_, 0.0)) if g[s, m] >= -ROUNDING else np.nan
                 bx = ax + along * dx - sign * root * dy
                 by = ay + along * dy + sign * root * dx
                 _place(theta, tx, ty, cos, sin, s, i, math.atan2(by - ay, bx - ax) - math.atan2(b0y - a0y, b0x - a0x),
@@ -114,7 +116,7 @@ def close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, int
                 lj2 = (b0x - c0x) ** 2 + (b0y - c0y) ** 2
                 disc = bb * bb - (wx * wx + wy * wy) + lj2
                 g[s, m] = disc / lj2
-                slide = -bb + sign * math.sqrt(disc) if disc >= 0.0 else np.nan
+                slide = -bb + sign * math.sqrt(max(disc, 0.0)) if g[s, m] >= -ROUNDING else np.nan
                 bx, by = basex + slide * ux, basey + slide * uy
                 theta[s, i] = theta[s, h1]
                 cos[i], sin[i] = c1, s1
@@ -135,7 +137,7 @@ def close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, int
                 h = u0x * (c0y - a0y) - u0y * (c0x - a0x)
                 disc = dx * dx + dy * dy - h * h
                 g[s, m] = disc / scale2
-                psi = math.atan2(h, sign * math.sqrt(disc)) if disc >= 0.0 else np.nan
+                psi = math.atan2(h, sign * math.sqrt(max(disc, 0.0))) if g[s, m] >= -ROUNDING else np.nan
                 angle = math.atan2(dy, dx) - math.atan2(u0y, u0x) - psi
                 _place(theta, tx, ty, cos, sin, s, i, angle, ax, ay, a0x, a0y)
                 _place(theta, tx, ty, cos, sin, s, j, angle, cx, cy, c0x, c0y)
