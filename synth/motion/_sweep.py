@@ -14,7 +14,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ..errors import BadSweep, CannotAssemble, MotionError
 from ._dyads import close, decompose
 from ._linkage import Linkage, joint_name
-from ._system import LOCKED, System
+from ._system import System
 
 __all__ = ["Motion", "MotionRange", "sweep", "sweep_grid", "motion_range", "assemble"]
 
