@@ -134,3 +134,19 @@ def test_planetary_train_shaft_speeds_follow_willis():
     assert np.allclose(ring - carrier, -(r_sun / r_ring) * (sun - carrier), atol=1e-12, rtol=0)
     again = Linkage.from_dict(lk.to_dict())
     assert again.driven == (1, 2) and again.to_dict()["inputs"] == ["0-1", "0-2"]
+
+
+def test_a_piston_driving_a_slider_crank_moves_through_its_stroke():
+    """The slider as a prismatic input: its branch ends where crank and rod are in line, one
+    stroke apart (√((l + r)² − e²) − √((l − r)² − e²))."""
+    from synth.motion import Linkage
+
+    r, l, e = 1.0, 3.0, 0.5
+    lk = slider_crank(r, l, e)
+    piston = Linkage(lk.mechanism, (1,), lk.points, lk.slides)
+    lo, hi = motion_range(piston).limits
+    assert abs((hi - lo) - (math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e))) < 1e-9
+    m = sweep(piston, steps=101)
+    phi = np.arctan2(m.joints[:, 2, 1], m.joints[:, 2, 0])
+    x = m.joints[:, 3, 0]
+    assert np.abs(x - (r * np.cos(phi) + np.sqrt(l * l - (e - r * np.sin(phi)) ** 2))).max() < 1e-12
