@@ -11,13 +11,15 @@ from __future__ import annotations
 import json
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
+from mechbase.toml import read_toml_text
+
+from ..display import svg_of
 from ..errors import BadPose, LockedMechanism, MalformedChain, MotionError, WrongInputs
 from ..structure.chain import SYMBOLS, Chain, Mechanism
 
@@ -473,8 +475,6 @@ class Linkage:
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows: the linkage in its pose (the drawing registered for it)."""
-        from ..structure.display import svg_of
-
         return svg_of(self)
 
     def to_json(self) -> str:
@@ -508,12 +508,13 @@ def read_linkage(path: str | Path) -> Linkage:
         raise MotionError(f"no linkage file {str(path)!r}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise MotionError(f"cannot read {str(path)!r}: {getattr(exc, 'strerror', None) or exc}") from None
-    try:
-        data = tomllib.loads(text) if suffix == ".toml" else json.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise MotionError(f"{path.name} is not valid TOML: {exc}") from None
-    except json.JSONDecodeError as exc:
-        raise MotionError(f"{path.name} is not valid JSON: {exc.msg} at line {exc.lineno}") from None
+    if suffix == ".toml":
+        data = read_toml_text(text, error=MotionError, source=path.name)
+    else:
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno}).") from None
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
     return Linkage.from_dict(data)
