@@ -307,40 +307,68 @@ class _Solver:
     def _span(self) -> float:
         return 2 * math.pi if self.revolute[0] else 4.0 * self.linkage.scale
 
+    def _measure(self, xs: np.ndarray) -> np.ndarray:
+        """(S, G): each dyad's distance from a singular place at 1-DOF offsets xs — its discriminant g
+        (negative where it cannot close) and, for an RRR dyad, also the gap between its outer pins
+        over the size (0 at a change point, where its two links could turn together)."""
+        _, _, g, _, joints = self.closed(xs[:, None])
+        out = np.where(np.isfinite(g), g, -1.0)
+        for m, d in enumerate(self.plan):
+            if d.kind == "RRR":
+                gap = np.hypot(*(joints[:, d.outer[1]] - joints[:, d.outer[0]]).T) / self.linkage.scale
+                out[:, m] = np.where(out[:, m] >= 0, np.minimum(out[:, m], gap), out[:, m])
+        return out
+
+    def _touches(self, xs: np.ndarray, measure: np.ndarray) -> list[tuple[float, int]]:
+        """(offset, dyad) where a dyad touches a singular place between samples without going
+        negative (a change point), found by a bounded search around each small local minimum."""
+        found = []
+        for m in range(measure.shape[1]):
+            col = measure[:, m]
+            mid = col[1:-1]
+            for i in np.flatnonzero((mid <= col[:-2]) & (mid <= col[2:]) & (mid >= 0) & (mid < 1e-3)) + 1:
+                res = minimize_scalar(lambda x: float(self._measure(np.array([x]))[0, m]),
+                                      bounds=(xs[i - 1], xs[i + 1]), method="bounded", options={"xatol": 1e-12})
+                if res.fun <= 1e-9:
+                    found.append((float(res.x), m))
+        return found
+
     def _branch_closed(self):
         span = self._span()
         while True:
-            xs = np.linspace(-span / 2 if self.revolute[0] else -span, span / 2 if self.revolute[0] else span,
-                             SAMPLES + 1)
-            g = self.closed(xs[:, None])[2]
-            bad = (g < 0).any(axis=1) | ~np.isfinite(g).all(axis=1)
+            xs = (np.linspace(-2 * math.pi, 2 * math.pi, 2 * SAMPLES + 1) if self.revolute[0]
+                  else np.linspace(-span, span, SAMPLES + 1))
+            measure = self._measure(xs)
+            bad = (measure < 0).any(axis=1)
             if self.revolute[0] or bad[0] and bad[-1] or span > 1e4 * self.linkage.scale:
                 break
             span *= 4
-        if not bad.any():
-            return -math.inf, math.inf, "", ""
-        if self.revolute[0]:  # the circle, from the pose (offset 0) both ways
-            xs = np.linspace(-2 * math.pi, 2 * math.pi, 2 * SAMPLES + 1)
-            g = self.closed(xs[:, None])[2]
-            bad = (g < 0).any(axis=1) | ~np.isfinite(g).all(axis=1)
+        touches = self._touches(xs, measure)
         centre = len(xs) // 2
         ends = []
         for step in (-1, 1):
             k = centre
             while 0 <= k + step < len(xs) and not bad[k + step]:
                 k += step
-            if not 0 <= k + step < len(xs):
-                ends.append((step * math.inf, ""))
-                continue
-            good_x, bad_x = xs[k], xs[k + step]
-            m = int(np.argmin(g[k + step]))
-            lo, hi = sorted((good_x, bad_x))
-            root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL, rtol=1e-15)
-            # keep the side where the dyad closes
-            while self.gmin(root) < 0:
-                root -= step * LIMIT_TOL
-            ends.append((root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)"))
+            end = (step * math.inf, "")
+            if 0 <= k + step < len(xs):
+                good_x, bad_x = xs[k], xs[k + step]
+                m = int(np.argmin(measure[k + step]))
+                lo, hi = sorted((good_x, bad_x))
+                root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL,
+                              rtol=1e-15)
+                while self.gmin(root) < 0:  # keep the side where the dyad closes
+                    root -= step * LIMIT_TOL
+                end = (root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)")
+            for x, m in sorted(touches, key=lambda found: abs(found[0])):
+                if x * step > 0 and abs(x) < abs(end[0]):
+                    end = (x, f"{_dyad_name(self.linkage, self.plan[m])} passes a change point (its links could "
+                              "turn together there: a singular position)")
+                    break
+            ends.append(end)
         (lo, why_lo), (hi, why_hi) = ends
+        if self.revolute[0] and hi - lo >= 2 * math.pi:
+            return -math.inf, math.inf, "", ""
         return lo, hi, why_lo, why_hi
 
     def _branch_newton(self):

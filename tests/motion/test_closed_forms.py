@@ -150,3 +150,15 @@ def test_a_piston_driving_a_slider_crank_moves_through_its_stroke():
     phi = np.arctan2(m.joints[:, 2, 1], m.joints[:, 2, 0])
     x = m.joints[:, 3, 0]
     assert np.abs(x - (r * np.cos(phi) + np.sqrt(l * l - (e - r * np.sin(phi)) ** 2))).max() < 1e-12
+
+
+def test_a_parallelogram_stops_at_its_change_points():
+    """A parallelogram four-bar (a = c, b = d) meets the crossed branch where all four links are in
+    line (φ = 0 and π): the branch of its pose ends there, though no dyad fails to close."""
+    lk = four_bar(1.0, 2.0, 1.0, 2.0, phi=1.0, mode=1)
+    r = motion_range(lk)
+    assert not r.full_rotation
+    lo, hi = r.limits
+    assert abs(lo) < 1e-6 and abs(hi - math.pi) < 1e-6
+    assert all("change point" in why for _, why in r.dead_positions)
+    assert motion_range(four_bar(1.0, 3.5, 3.0, 4.0)).full_rotation  # a crank-rocker has none
