@@ -148,7 +148,7 @@ class _DesignModel:
     """The CP-SAT model of one mechanism and the level-by-level search of its best designs."""
 
     def __init__(self, train, frame, input_link, output_link, target, tol, teeth, planets, compound, free, beat):
-        from ortools.sat.python import cp_model
+        from ..synthesis._cpsat import cp_model
 
         self.cp = cp_model
         self.train, self.target, self.compound, self.free = train, target, tuple(compound), free
@@ -267,11 +267,15 @@ class _DesignModel:
         return model.Add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
 
     def _solve(self, model, minimise=None):
+        """Solve ``model`` (minimising ``minimise``); Ctrl-C stops the search within milliseconds."""
+        from ..synthesis._cpsat import _solve as solve_stoppable
+
         solver = self.cp.CpSolver()
         solver.parameters.num_workers = 1
+        solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
         if minimise is not None:
             model.Minimize(minimise)
-        status = solver.Solve(model)
+        status = solve_stoppable(solver, model, None)
         if status not in (self.cp.OPTIMAL, self.cp.FEASIBLE):
             return None
         return solver
