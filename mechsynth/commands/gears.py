@@ -167,8 +167,9 @@ def _check_sheet(args, n: int, what: str) -> None:
 
     limit = args.limit or _SHEET
     if n > limit:
-        raise InvalidOption(f"{n:,} {what} to draw, more than --limit {limit} on one sheet: narrow the selection "
-                            "(--train, --frame/--input/--output, fewer --links) or raise --limit".replace(",", " "))
+        count = f"{n:,}".replace(",", " ")
+        raise InvalidOption(f"{count} {what} to draw, more than --limit {limit} on one sheet: draw fewer (one --train, "
+                            "fewer --links, --graphs rotation) or raise --limit")
 
 
 def _draw(items, out: str, compound, teeth=None, title=None) -> None:
@@ -255,7 +256,11 @@ def _run_ratio(args, items, compound) -> int:
         from dataclasses import replace
 
         best, m = designs[0]
-        _draw([replace(best.train or m.train, frame=m.frame)], args.out, compound, teeth=best.teeth)
+        train = replace(best.train or m.train, frame=m.frame)
+        title = (f"{train.compact()}: frame {m.frame}, input {m.input_link}, output {m.output_link}\n"
+                 f"i = ω{m.input_link}/ω{m.output_link} = {best.ratio} ≈ {float(best.ratio):.5g} "
+                 f"(wanted {args.ratio}, error {float(best.error):.3%})")
+        _draw([train], args.out, compound, teeth=best.teeth, title=title)
     return 0
 
 
