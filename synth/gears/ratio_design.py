@@ -399,12 +399,15 @@ def carrier_cycles(train: GearTrain) -> list[tuple[int, list[list[int]]]]:
 
     A carrier holds its axes at fixed places; the centre distances of the meshes between them
     must close every such cycle in the plane: each at most the sum of the others (for three
-    axes, the triangle inequality).
+    axes, the triangle inequality).  Those inequalities place the axes exactly when their graph
+    is series–parallel (no four axes joined pairwise through other axes); a carrier whose axes
+    are not is refused (:class:`NoDesign`) — the first such trains have 8 links.
 
     >>> carrier_cycles(GearTrain.parse("0-1-4 0-2 0-3 1~2 2~3 4~3i", frame=1))
     [(0, [[0], [1], [2]])]
     """
     import networkx as nx
+    from networkx.algorithms.approximation import treewidth_min_degree
 
     graphs: dict = {}
     for (t, ends), members in _centre_groups(train).items():
@@ -412,6 +415,9 @@ def carrier_cycles(train: GearTrain) -> list[tuple[int, list[list[int]]]]:
             graphs.setdefault(t, nx.Graph()).add_edge(*sorted(ends, key=repr), meshes=members)
     out = []
     for t, graph in graphs.items():
+        if treewidth_min_degree(graph)[0] > 2:  # exact up to 2: a vertex of degree ≤ 2 is always there to remove
+            raise NoDesign(f"carrier {t} holds four axes at mutually fixed distances (a complete quadrilateral of "
+                           "meshes): whether they lie in one plane is not modelled; carry fewer meshes on it")
         for cycle in sorted(nx.simple_cycles(graph), key=lambda c: (len(c), sorted(map(repr, c)))):
             sides = zip(cycle, cycle[1:] + cycle[:1])
             out.append((t, [graph.edges[u, v]["meshes"] for u, v in sides]))
