@@ -112,15 +112,16 @@ def problems(meshes, axes, teeth: dict, *, frame: int, planets: int | None = Non
             found.append(f"carrier {t} cannot hold its axes at the distances {', '.join(map(str, sorted(distances.values())))}")
     if planets and planets >= 2:
         for t, items in per_carrier.items():
-            by_planet: dict = {}
+            by_planet: dict = {}  # a planet: a gear on an axis of the carrier meshing two gears on one other axis
             for pair, d, (a, b, _, internal) in items:
                 for planet, central in ((a, b), (b, a)):
                     if internal and planet == a:
                         continue  # a ring is no planet
                     shared = [frozenset(x) for x in axes if planet in x and t in x]
-                    if shared:
-                        by_planet.setdefault((planet, shared[0]), []).append((central, d, (a, b, t, internal)))
-            for (planet, _), mates in by_planet.items():
+                    if shared and len(pair) == 2:
+                        (other,) = pair - {shared[0]}
+                        by_planet.setdefault((planet, shared[0], other), []).append((central, d, (a, b, t, internal)))
+            for (planet, _, _), mates in by_planet.items():
                 if len(mates) < 2:
                     continue
                 for central, d, mesh in mates:  # neighbours 2a·sin(π/k) apart, tips m(z + 2) across
