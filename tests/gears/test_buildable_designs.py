@@ -113,17 +113,43 @@ def test_carrier_cycles_name_the_triangle():
 
 def test_triangle_inequality_is_kept_and_needed():
     """Carrier fixed (frame 0), input 1, output 3: i = z3/z1 whatever the idlers 2 and 4.  The ring 4
-    closes the triangle A–B–C only when 2·z3 ≤ z1 + z4, so the least tooth sums (z4 = z3 + 10) break it."""
-    target, tol, teeth = Fraction(8, 5), Fraction(1, 100), (17, 44)
+    closes the triangle A–B–C only when 2·z3 ≤ z1 + z4: for i = 28/17 the least tooth sums
+    (z4 = z3 + 10 = 38) break it, z4 = 39 closes it."""
+    target, tol, teeth = Fraction(28, 17), Fraction(0), (17, 40)
     loose = brute_force(THREE_AXES, 0, 1, 3, target, tol, teeth, ignore="cannot hold its axes")
     assert any(p for *_, p in loose[:6])  # without the rule the best designs break it
-    found = design(THREE_AXES, 0, 1, 3, "8/5", tolerance="1%", teeth=teeth, best=6)
+    found = design(THREE_AXES, 0, 1, 3, "28/17", tolerance="0", teeth=teeth, best=6)
     kept = brute_force(THREE_AXES, 0, 1, 3, target, tol, teeth)
     assert [(d.error, sum(d.teeth.values())) for d in found] == [k[:2] for k in kept[:6]]
     for d in found:
         _assert_buildable(d, THREE_AXES, 0, 1, 3, target, tol)
         z = _teeth_by_link(d)
         assert 2 * z[3] <= z[1] + z[4]
+
+
+def test_four_axes_on_a_carrier_close_as_a_quadrilateral():
+    """Frame 0 carries axes A (1, 4), B (2), C (3), D (5), meshed around A–B–C–D–A: i = z4/z1 through
+    the idlers 2, 3, 5.  For i = 6 with z1 = 17, z4 = 102: the side D–A (z4 + z5) is at most the
+    other three (z1 + 2·z2 + 2·z3 + z5) only when z2 + z3 ≥ 43, so the least idlers (17, 17) do
+    not close and the best design is 17, 17, 26, 102, 17 (tooth sum 179)."""
+    train = GearTrain.parse("0-1-4 0-2 0-3 0-5 1~2 2~3 3~5 4~5")
+    assert carrier_cycles(train) == [(0, [[0], [1], [2], [3]])]
+    found = design(train, 0, 1, 4, "6", tolerance="0", teeth=(17, 110), best=3)
+    assert found[0].teeth == {"z1": 17, "z2": 17, "z3": 26, "z4": 102, "z5": 17}
+    for d in found:
+        z = _teeth_by_link(d)
+        sides = [z[1] + z[2], z[2] + z[3], z[3] + z[5], z[4] + z[5]]
+        assert all(2 * side <= sum(sides) for side in sides) and sum(d.teeth.values()) == 179
+
+
+def test_a_carrier_with_four_axes_at_mutually_fixed_distances_is_refused():
+    """Eight links: carrier 0 holds axes whose meshes join four of them pairwise (a K4 minor): the
+    polygon inequalities no longer place them, and the design says so instead of guessing."""
+    train = GearTrain.parse("0-1-4-6 0-2-7 0-3 0-5 1~2 2~3 3~4 3~5 5~6 5~7")
+    with pytest.raises(NoDesign, match="four axes at mutually fixed distances"):
+        carrier_cycles(train)
+    with pytest.raises(NoDesign, match="four axes"):
+        design(train, 0, 1, 2, "2", tolerance="1%", teeth=(17, 40))
 
 
 def test_issue_37_free_kinds_five_links_are_buildable():
