@@ -39,7 +39,8 @@ def add_commands(sub) -> None:
     p.add_argument("--tolerance", help="with --ratio: relative error allowed, e.g. 1%% (default) or 0.002")
     p.add_argument("--teeth", metavar="A..B", help="with --ratio: tooth numbers allowed (default 17..150)")
     p.add_argument("--min-teeth", type=whole, help="with --ratio: fewest teeth without undercut (default 17)")
-    p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets, (z_sun + z_ring)/k whole")
+    p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets that assemble "
+                   "((z_sun + z_ring)/k whole) and clear each other")
     p.add_argument("--best", type=whole, default=5, help="with --ratio: designs listed (default 5)")
     p.add_argument("--mesh-kinds", choices=("given", "free"),
                    help="with --ratio: 'free' lets each mesh be external or internal (either gear the ring), "
