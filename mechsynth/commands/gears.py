@@ -173,13 +173,13 @@ def _check_sheet(args, n: int, what: str) -> None:
                             "fewer --links, --graphs rotation) or raise --limit")
 
 
-def _draw(items, out: str, compound, teeth=None, title=None) -> None:
+def _draw(items, out: str, compound, teeth=None, titles=None) -> None:
     from synth.gears import draw_sheet, draw_train
 
     if len(items) == 1:
-        draw_train(items[0], out, teeth=teeth, compound=compound, title=title)
+        draw_train(items[0], out, teeth=teeth, compound=compound, title=titles[0] if titles else None)
     else:
-        draw_sheet(items, out, limit=len(items))
+        draw_sheet(items, out, limit=len(items), titles=titles)
 
 
 def _mechanisms_of(args, items, compound):
@@ -212,11 +212,13 @@ def _run_mechanisms(args, items, compound) -> int:
     columns = ["index", "train", "frame", "input_link", "output_link", "ratio"]
     n = write_rows(_indexed(rows()), columns, fmt)
     if fmt == "table":
-        print(f"{n} mechanisms (ratio i = ω_input/ω_output, frame at rest; z<link> teeth of its wheel)")
+        print(f"{n} mechanism{'s' * (n != 1)} (ratio i = ω_input/ω_output, frame at rest; z<link> teeth of its wheel)")
     if args.out and drawn:
         from dataclasses import replace
 
-        _draw([replace(m.train, frame=m.frame) for m in drawn], args.out, compound)
+        titles = [f"{k}: {m.train.compact()}: frame {m.frame}, input {m.input_link}, output {m.output_link}, "
+                  f"i = {m.ratio.text}" for k, m in enumerate(drawn, start=1)]
+        _draw([replace(m.train, frame=m.frame) for m in drawn], args.out, compound, titles=titles)
     return 0 if n else nothing_found("mechanisms with an input and an output on the frame")
 
 
@@ -261,7 +263,7 @@ def _run_ratio(args, items, compound) -> int:
         title = (f"{train.compact()}: frame {m.frame}, input {m.input_link}, output {m.output_link}\n"
                  f"i = ω{m.input_link}/ω{m.output_link} = {best.ratio} ≈ {float(best.ratio):.5g} "
                  f"(wanted {args.ratio}, error {float(best.error):.3%})")
-        _draw([train], args.out, compound, teeth=best.teeth, title=title)
+        _draw([train], args.out, compound, teeth=best.teeth, titles=[title])
     return 0
 
 
