@@ -388,13 +388,18 @@ def test_ctrl_c_stops_the_ratio_search_within_two_seconds():
     proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "7", "--ratio", "7.3", "--tolerance",
                              "0.5%", "--teeth", "17..80", "--planets", "3"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
-    time.sleep(4)  # imports and the atlas done: the solver is searching
-    assert proc.poll() is None
-    sent = time.monotonic()
-    os.killpg(proc.pid, signal.SIGINT)
-    out, err = proc.communicate(timeout=30)
-    assert time.monotonic() - sent < 2.0
-    assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
+    try:
+        time.sleep(4)  # imports and the atlas done: the solver is searching
+        assert proc.poll() is None
+        sent = time.monotonic()
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=30)
+        assert time.monotonic() - sent < 2.0
+        assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
+    finally:  # a search that ignored Ctrl-C must not outlive the test
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
 
 
 # ------------------------------------------------------------------ assembly of stepped planets
