@@ -43,7 +43,6 @@ from functools import lru_cache
 import numpy as np
 import pynauty
 
-from ..structure._nauty import TrustedGraph
 from ..errors import InvalidOption
 from .train import GearTrain, axis_paths
 
@@ -72,9 +71,9 @@ def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
 
 
 # ------------------------------------------------------------------------------ trees
-def _tree_graph(links: int, axes) -> TrustedGraph:
+def _tree_graph(links: int, axes) -> pynauty.Graph:
     adjacency = {links + k: list(axis) for k, axis in enumerate(axes)}
-    return TrustedGraph(links + len(axes), adjacency, [set(range(links)), set(range(links, links + len(axes)))])
+    return pynauty.Graph(links + len(axes), adjacency_dict=adjacency, vertex_coloring=[set(range(links)), set(range(links, links + len(axes)))])
 
 
 @lru_cache(maxsize=None)
@@ -200,7 +199,7 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
         for j, i in enumerate(chosen):
             adjacency[base + j] = list(pairs[i])
         cells = [set(range(n)), set(range(n, base)), set(range(base, base + len(chosen)))]
-        return TrustedGraph(base + len(chosen), adjacency, [c for c in cells if c])
+        return pynauty.Graph(base + len(chosen), adjacency_dict=adjacency, vertex_coloring=[c for c in cells if c])
 
     def pair_orbits(chosen, free):
         gens = pynauty.autgrp(graph(chosen))[0]
@@ -410,7 +409,8 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     The time is the count times the largest CPU time per train met on the way, raised by a fifth
     for each link beyond the last size counted: that time grows slowly with the size (1-DOF on the
     development machine: 0.42 ms a train at 7 links, 0.44 at 8, 0.56 at 9), so the estimate errs
-    long (9 links: 1.44 × 0.42 ms against 0.56 measured).  Returns an :class:`~synth.execution.estimate.Estimate` (``chains``: trains,
+    long (9 links: 1.44 × 0.42 ms against 0.56 measured).  Returns an
+    :class:`~synth.synthesis.estimate.Estimate` (``chains``: trains,
     ``units``: link–axis trees, exact), or None when fewer than three smaller sizes have trains.
 
     Example
@@ -422,7 +422,7 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     import math
     import time
 
-    from ..execution.estimate import Estimate
+    from ..synthesis.estimate import Estimate
 
     check_query(dof, links, graphs)
     which = 1 if graphs == "rotation" else 0
@@ -473,7 +473,8 @@ def size_check_trains(dof: int, links: int, graphs: str = "displacement", *, pro
     True
     """
     from ..errors import QueryTooLarge, option
-    from ..execution.estimate import LIMIT_SECONDS, NOTE_SECONDS, TABLE_ROWS, describe_seconds, magnitude
+    from ..execution.sizes import describe_seconds, magnitude
+    from ..synthesis.estimate import LIMIT_SECONDS, NOTE_SECONDS, TABLE_ROWS
 
     check_query(dof, links, graphs)
     if links < SIZED_LINKS:
