@@ -16,7 +16,6 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from synth.errors import InvalidOption
 from synth.gears import GearTrain
 from synth.gears.ratio_design import NoDesign, carrier_cycles, design, planet_clearance
 from tests.oracles import gear_build, gear_ratios
@@ -221,8 +220,3 @@ def test_simple_planetary_planets_clear_and_equal_the_brute_force(planets, ratio
     assert [(d.error, sum(d.teeth.values())) for d in found] == [k[:2] for k in kept[:5]]
     for d in found:
         _assert_buildable(d, simple, 0, 1, 2, target, tol, planets)
-
-
-def test_refusals_are_one_sentence():
-    with pytest.raises(InvalidOption):
-        design(THREE_AXES, 0, 1, 3, "8/5", tolerance="0%", teeth=(17, 18))
