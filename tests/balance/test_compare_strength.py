@@ -1,0 +1,171 @@
+"""Issue 37 (item 8): numbers of the counterweights and the hardware comparison that a user reads and no
+other test asked for — the counterweights' weight against the arm's own, the added kilograms, and the RMS
+of the residual (per joint, and the table's "RMS removed" column) — each against a hand computation."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from balance import CompareProblem, load_toml, load_urdf, solve_arm
+from balance.devices.counterweights import counterweights
+from balance.model.arm import Arm, Link, Load
+from balance.problems.compare import compare_problem
+from mechsynth.cli import main
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+G = 9.80665
+
+# a planar arm of two links, stretched horizontally in a workspace of one configuration (q = 0), so every
+# torque is a lever-arm sum: link 1 0.5 m, 40 N at 0.2 m; link 2 0.4 m, 20 N at 0.2 m; payload at the tip
+TWO_LINKS = ('[arm]\nname = "two links"\nzero = "horizontal"\n'
+             '[[arm.links]]\nname = "upper"\nlength = 0.5\nweight = 40.0\ncom = 0.2\n'
+             '[[arm.links]]\nname = "fore"\nlength = 0.4\nweight = 20.0\ncom = 0.2\n')
+
+
+def two_links(payload_n: float = 0.0) -> Arm:
+    loads = (Load(1, payload_n, 0.4, payload=True),) if payload_n else ()
+    return Arm((Link("upper", "revolute", 0.5, 40.0, 0.2), Link("fore", "revolute", 0.4, 20.0, 0.2)), loads,
+               zero="horizontal")
+
+
+def hand_counterweights(lengths, items, arms):
+    """Counterweights (N) of a planar chain of parallel joints, by moments about each joint from the tip:
+    ``items`` are (link, weight N, distance along the link), ``arms`` each joint's counterweight distance
+    behind it. Joint k's counterweight balances everything beyond it, counterweights beyond included."""
+    x = np.concatenate([[0.0], np.cumsum(lengths)])  # joint positions along the stretched arm
+    out = {}
+    for k in reversed(range(len(lengths))):
+        moment = sum(w * (x[i] + at - x[k]) for i, w, at in items if i >= k)
+        moment += sum(w * (x[j] - arms[j] - x[k]) for j, w in out.items())  # those of the joints beyond
+        out[k] = moment / arms[k]
+    return out
+
+
+# --------------------------------------------------------------------- the counterweights' ratio
+def test_the_counterweights_weigh_ratio_times_the_arm():
+    """``ratio`` is the added weight over the arm's own weight: the two-link arm weighs 60 N, its
+    counterweights 20 N (0.2 m behind q2) and 112 N (0.25 m, half the link, behind q1): 132/60 = 2.2."""
+    by_hand = hand_counterweights([0.5, 0.4], [(0, 40.0, 0.2), (1, 20.0, 0.2)], {0: 0.25, 1: 0.2})
+    assert by_hand == pytest.approx({0: 112.0, 1: 20.0})
+    cw = counterweights(two_links(), samples=20)
+    assert [w.weight for w in cw.weights] == pytest.approx([112.0, 20.0], rel=1e-12)
+    assert [w.mass for w in cw.weights] == pytest.approx([112.0 / G, 20.0 / G], rel=1e-12)
+    assert cw.arm_weight == pytest.approx(60.0, rel=1e-12) and cw.added_weight == pytest.approx(132.0, rel=1e-12)
+    assert cw.ratio == pytest.approx(2.2, rel=1e-12) and cw.to_dict()["ratio"] == cw.ratio
+
+
+def test_the_ratio_of_a_urdf_arm_counts_its_published_mass_and_the_tuned_payload():
+    """UR5e: 17.7 kg of links (Universal Robots' table), 20.2 kg with the 2.5 kg payload tuned for."""
+    arm = load_urdf(str(MODELS / "arm_ur5e.urdf"))
+    for payload, kg in ((0.0, 17.7), (2.5, 20.2)):
+        cw = counterweights(arm.with_payload(payload) if payload else arm, samples=50)
+        assert cw.arm_weight == pytest.approx(kg * G, rel=1e-12)
+        assert cw.ratio == pytest.approx(sum(w.mass for w in cw.weights) / kg, rel=1e-12)
+
+
+def test_balance_arm_prints_the_counterweights_ratio(tmp_path, capsys):
+    """`balance arm` on Example 1 (0.2 m arms): 2242.5 + 462.5 + 75 = 2780 N on an arm of
+    120 + 80 + 40 + 30 = 270 N, "10.3× the arm"; the same in its JSON."""
+    items = [(1, 120.0, 0.3), (2, 80.0, 0.25), (3, 40.0, 0.15), (3, 30.0, 0.3)]
+    by_hand = hand_counterweights([0.4, 0.6, 0.5, 0.3], items, {0: 0.2, 1: 0.2, 2: 0.2, 3: 0.2})
+    assert [by_hand[k] for k in (1, 2, 3)] == pytest.approx([2242.5, 462.5, 75.0])
+    path = str(MODELS / "arm_base_drives.toml")
+    assert main(["balance", "arm", path]) == 0
+    out = capsys.readouterr().out
+    assert "  added 2780 N (10.3× the arm), residual " in out
+    assert main(["balance", "arm", path, "--format", "json"]) == 0
+    cw = json.loads(capsys.readouterr().out)["counterweights"]
+    assert cw["arm_weight"] == pytest.approx(270.0, rel=1e-12)
+    assert cw["ratio"] == pytest.approx(2780.0 / 270.0, rel=1e-12)
+    assert solve_arm(load_toml(path)).counterweights.ratio == pytest.approx(2780.0 / 270.0, rel=1e-12)
+
+
+# --------------------------------------------------------------------- the comparison's added mass
+def test_the_comparisons_counterweights_weigh_what_the_moments_say():
+    """Example 1 with 0..3 kg at the hand's tip, tuned for 1.5 kg: the counterweights by moments, and the
+    strategy's added mass (kg, not N) and hardware lines from them."""
+    c = compare_problem(load_toml(str(MODELS / "compare_example1.toml")), str(MODELS / "compare_example1.toml"))
+    cw = c.solve().strategy("counterweights")
+    items = [(1, 120.0, 0.3), (2, 80.0, 0.25), (3, 40.0, 0.15), (3, 30.0, 0.3), (3, 1.5 * G, 0.3)]
+    by_hand = hand_counterweights([0.4, 0.6, 0.5, 0.3], items, {0: 0.2, 1: 0.2, 2: 0.2, 3: 0.2})
+    masses = [by_hand[k] / G for k in (1, 2, 3)]
+    assert [w["mass"] for w in cw.details["weights"]] == pytest.approx(masses, rel=1e-12)
+    assert cw.added_mass == pytest.approx(sum(masses), rel=1e-12)
+    assert 300 < cw.added_mass < 400  # 334.5 kg: Example 1's arm weighs 27.5 kg
+    assert cw.hardware == tuple(f"{m:.4g} kg on {link}, 0.2 m from the axis of q{k}"
+                                for m, link, k in zip(masses, ("upper arm", "forearm", "hand"), (2, 3, 4)))
+
+
+# --------------------------------------------------------------------- the RMS of the residual
+def rms_over_payload(a: float, b: float, lo: float, hi: float) -> float:
+    """The RMS of a + b·p over p uniform in [lo, hi]: the mean of the square, integrated exactly."""
+    if hi == lo:
+        return abs(a + b * lo)
+    return math.sqrt(((a + b * hi) ** 3 - (a + b * lo) ** 3) / (3 * b * (hi - lo)))
+
+
+def test_rms_per_joint_is_that_of_the_payload_range():
+    """At q = 0 the two-link arm's torques are 22 + 0.9·g·p and 4 + 0.4·g·p (p the payload, kg, uniform in
+    1..4): the baseline's RMS is the exact mean of their squares over p; a strategy tuned for the middle
+    leaves 0.9·g·(p − 2.5) and 0.4·g·(p − 2.5), whose RMS is 0.9·g·3/√12 and 0.4·g·3/√12."""
+    c = CompareProblem(two_links(4 * G), payload=(1.0, 4.0), workspace=((0.0, 0.0), (0.0, 0.0)),
+                       samples=40).solve()
+    base = [rms_over_payload(22.0, 0.9 * G, 1.0, 4.0), rms_over_payload(4.0, 0.4 * G, 1.0, 4.0)]
+    left = [0.9 * G * 3 / math.sqrt(12), 0.4 * G * 3 / math.sqrt(12)]
+    none = c.strategy("none")
+    assert [j.rms for j in none.joints] == pytest.approx(base, rel=1e-12)
+    assert [j.baseline_rms for j in none.joints] == pytest.approx(base, rel=1e-12)
+    assert [j.max for j in none.joints] == pytest.approx([22 + 3.6 * G, 4 + 1.6 * G], rel=1e-12)
+    for name in ("counterweights", "exact springs"):
+        s = c.strategy(name)
+        assert s.tuned_for == pytest.approx(2.5)
+        assert [j.rms for j in s.joints] == pytest.approx(left, rel=1e-9), name
+        assert [j.removed_rms for j in s.joints] == pytest.approx([1 - r / b for r, b in zip(left, base)], rel=1e-9)
+        assert [j.to_dict()["rms"] for j in s.joints] == [j.rms for j in s.joints]
+
+
+def test_rms_over_the_workspace_is_that_of_uniform_configurations():
+    """One link turning a full turn (10 N at 0.5 m, no payload): the torque is 5·cos q, whose RMS over a
+    uniform angle is 5/√2; 4000 random configurations reach it within 2 %, and a fixed payload adds its
+    moment to the amplitude."""
+    arm = Arm((Link("l", "revolute", 1.0, 10.0, 0.5),), (Load(0, 2 * G, 1.0, payload=True),), zero="horizontal")
+    for payload, amplitude in ((0.0, 5.0), (2.0, 5.0 + 2 * G)):
+        c = CompareProblem(arm, payload=(payload, payload), samples=4000).solve()
+        none = c.strategy("none").joints[0]
+        assert none.max == pytest.approx(amplitude, rel=1e-9)
+        assert none.rms == pytest.approx(amplitude / math.sqrt(2), rel=0.02)
+
+
+def test_the_tables_rms_column_is_the_share_of_the_rms_removed(tmp_path, capsys):
+    """`balance compare` on the two-link arm at q = 0: "RMS removed" is 1 − √(Σ rms²)/√(Σ baseline rms²)
+    over the joints, with the hand values above; "added kg" the counterweights' mass."""
+    f = tmp_path / "two.toml"
+    f.write_text(TWO_LINKS)
+    argv = ["balance", "compare", str(f), "--payload", "1..4", "--range", "q1=0..0", "--range", "q2=0..0",
+            "--samples", "40"]
+    assert main(argv) == 0
+    lines = capsys.readouterr().out.splitlines()
+    head = next(i for i, ln in enumerate(lines) if ln.startswith("strategy"))
+    assert lines[head].split()[-2:] == ["RMS", "removed"]
+    rows = {}
+    for ln in lines[head + 2:head + 7]:
+        name = next(n for n in ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
+                    if ln.startswith(n))
+        cells = ln[len(name):].split()
+        rows[name] = {"added": float(cells[1]), "removed": cells[-2], "rms_removed": cells[-1]}
+    base = [rms_over_payload(22.0, 0.9 * G, 1.0, 4.0), rms_over_payload(4.0, 0.4 * G, 1.0, 4.0)]
+    left = [0.9 * G * 3 / math.sqrt(12), 0.4 * G * 3 / math.sqrt(12)]
+    share = 1 - math.hypot(*left) / math.hypot(*base)
+    assert f"{100 * share:.1f}%" == "82.2%"
+    assert rows["none"]["rms_removed"] == "0.0%"
+    for name in ("counterweights", "exact springs"):
+        assert rows[name]["rms_removed"] == f"{100 * share:.1f}%", name
+        assert rows[name]["removed"] == f"{100 * (1 - 0.9 * G * 1.5 / (22 + 3.6 * G)):.1f}%", name
+    fore = (20 * 0.2 + 2.5 * G * 0.4) / 0.2  # N, 0.2 m behind q2 (half the link)
+    upper = (40 * 0.2 + 20 * 0.7 + 2.5 * G * 0.9 + fore * 0.3) / 0.25
+    assert rows["counterweights"]["added"] == pytest.approx((fore + upper) / G, rel=1e-3)
