@@ -87,6 +87,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                "-k", "not under_100_ms and not model_matches"]),
     "countermass": ("balance/devices/countermass.py", ["tests/balance/test_countermass.py",
                                                "tests/balance/test_countermass_vs_oracle.py"]),
+    # the counterweights alone and in `balance arm` (not test_compare.py: its fixtures solve two arms,
+    # half a minute per mutant; its counterweight test has a lighter twin in test_compare_strength.py)
+    "counterweights": ("balance/devices/counterweights.py", [
+        "tests/balance/test_compare_strength.py", "tests/balance/test_arm.py::test_counterweights_balance_example1",
+        "tests/balance/test_arm.py::test_counterweights_refused_for_prismatic",
+        "tests/balance/test_docstrings.py::test_docstring_examples[balance.devices.counterweights]"]),
 }
 
 COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]

@@ -169,3 +169,36 @@ def test_the_tables_rms_column_is_the_share_of_the_rms_removed(tmp_path, capsys)
     fore = (20 * 0.2 + 2.5 * G * 0.4) / 0.2  # N, 0.2 m behind q2 (half the link)
     upper = (40 * 0.2 + 20 * 0.7 + 2.5 * G * 0.9 + fore * 0.3) / 0.25
     assert rows["counterweights"]["added"] == pytest.approx((fore + upper) / G, rel=1e-3)
+
+
+def test_counterweights_of_a_urdf_arm_put_each_sub_arm_on_its_axis():
+    """UR5e with 2.5 kg (the counterweights alone, without the comparison): q1 stays vertical and q6's
+    sub-arm is on its axis already, so q2–q5 get one each; at random configurations the centre of mass of
+    everything each of them carries (computed here from the balanced model's placements) lies on its axis,
+    and no gravity torque is left. The counterweights of q2 and q3 sit half the next joint's offset from
+    their axes (a = 0.425 and 0.3922 m); the wrist's next joints lie on their axes, so 0.1 m."""
+    import pinocchio as pin
+
+    cw = counterweights(load_urdf(str(MODELS / "arm_ur5e.urdf")).with_payload(2.5), samples=50)
+    assert [w.coordinate for w in cw.weights] == ["q2", "q3", "q4", "q5"]
+    assert [w.arm for w in cw.weights] == pytest.approx([0.425 / 2, 0.3922 / 2, 0.1, 0.1], rel=1e-12)
+    for w in cw.weights:  # a URDF counterweight's position is its point in the joint's frame
+        assert w.position == w.point and w.weight == pytest.approx(w.mass * G, rel=1e-12)
+    assert cw.max_residual <= 1e-12 * 100 and cw.potential_spread <= 1e-12 * 100
+    model, data = cw.balanced.model, cw.balanced.model.createData()
+    for q in np.random.default_rng(4).uniform(-math.pi, math.pi, (10, 6)):
+        pin.forwardKinematics(model, data, cw.balanced.config(q))
+        pin.computeJointJacobians(model, data, cw.balanced.config(q))
+        for j in (2, 3, 4, 5):
+            below = [k for k in range(j, model.njoints) if _carried(model, j, k)]
+            mass = sum(model.inertias[k].mass for k in below)
+            com = sum(model.inertias[k].mass * data.oMi[k].act(model.inertias[k].lever) for k in below) / mass
+            axis = np.asarray(pin.getJointJacobian(model, data, j, pin.ReferenceFrame.WORLD))[3:, j - 1]
+            assert np.linalg.norm(np.cross(com - data.oMi[j].translation, axis)) <= 1e-12, j
+        assert np.max(np.abs(cw.balanced.gravity_forces(q))) <= 1e-12 * 100
+
+
+def _carried(model, j: int, k: int) -> bool:
+    while k > j:
+        k = model.parents[k]
+    return k == j
