@@ -321,6 +321,37 @@ def _markdown(results: list[dict]) -> str:
     return "\n".join(out) + "\n"
 
 
+def _merged(old: str, new: str) -> str:
+    """The score block ``new`` (from :func:`_markdown`) with the rows and mutant lists of the modules it does
+    not cover kept from the block ``old``: a run of some modules leaves the other modules' scores as they were."""
+    def parts(text: str) -> tuple[list[str], dict[str, str], dict[tuple[str, str], list[str]]]:
+        lines = text.rstrip("\n").split("\n")
+        rows = {line.split("`")[1]: line for line in lines if line.startswith("| `")}
+        lists: dict[tuple[str, str], list[str]] = {}
+        key = None
+        for line in lines:
+            head = re.fullmatch(r"(Surviving|Equivalent) in `([^`]+)`:", line)
+            if head:
+                key = (head[2], head[1])
+                lists[key] = []
+            elif key and line.startswith("- "):
+                lists[key].append(line)
+            elif line:
+                key = None
+        return lines[:4], rows, lists
+
+    intro, new_rows, new_lists = parts(new)
+    _, old_rows, old_lists = parts(old)
+    files = list(old_rows) + [f for f in new_rows if f not in old_rows]
+    out = intro + [new_rows.get(f, old_rows.get(f)) for f in files]
+    for f in files:
+        lists = new_lists if f in new_rows else old_lists
+        for kind in ("Surviving", "Equivalent"):
+            if lists.get((f, kind)):
+                out += ["", f"{kind} in `{f}`:", ""] + lists[(f, kind)]
+    return "\n".join(out) + "\n"
+
+
 def _mutmut_version() -> str:
     try:
         from importlib.metadata import version
@@ -391,8 +422,8 @@ def main(argv=None) -> int:
     if args.write_docs:
         doc = DOC.read_text()
         head, rest = doc.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        DOC.write_text(f"{head}{BEGIN}\n{text}{END}{tail}")
+        before, tail = rest.split(END, 1)
+        DOC.write_text(f"{head}{BEGIN}\n{_merged(before, text)}{END}{tail}")
     return 0 if all(r["score"] >= 0.9 for r in results) else 1
 
 
