@@ -93,6 +93,18 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/balance/test_compare_strength.py", "tests/balance/test_arm.py::test_counterweights_balance_example1",
         "tests/balance/test_arm.py::test_counterweights_refused_for_prismatic",
         "tests/balance/test_docstrings.py::test_docstring_examples[balance.devices.counterweights]"]),
+    "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py", "tests/balance/test_arm.py",
+                                                 "tests/balance/test_docstrings.py::test_docstring_examples[balance.model.potential]"]),
+    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py", "tests/balance/test_compare.py",
+                                                "tests/balance/test_docstrings.py::test_docstring_examples[balance.problems.compare]"]),
+    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.devices.dynamics]"]),
+    "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                   "tests/balance/test_docstrings.py::test_docstring_examples[balance.model.pantograph]"]),
+    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.extremes]"]),
+    "budget": ("balance/budget.py", ["tests/balance/test_reliability.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.budget]"]),
+    "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.code]"]),
+    "query": ("synth/structure/query.py", ["tests/cli/test_query_refusals.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.query]"]),
+    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", "tests/test_doctests.py::test_docstring_examples[synth.atlas.queries]"]),
 }
 
 COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]
