@@ -101,7 +101,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
                                                    "tests/balance/test_docstrings.py::test_docstring_examples[balance.model.pantograph]"]),
     "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.extremes]"]),
-    "budget": ("balance/budget.py", ["tests/balance/test_reliability.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.budget]"]),
+    "budget": ("balance/budget.py", ["tests/balance/test_budget.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.budget]"]),
     "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.code]"]),
     "query": ("synth/structure/query.py", ["tests/cli/test_query_refusals.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.query]"]),
     "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", "tests/test_doctests.py::test_docstring_examples[synth.atlas.queries]"]),
