@@ -14,7 +14,6 @@ import pytest
 from balance import CompareProblem, load_toml, load_urdf, solve_arm
 from balance.devices.counterweights import counterweights
 from balance.model.arm import Arm, Link, Load
-from balance.problems.compare import compare_problem
 from mechsynth.cli import main
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
@@ -86,19 +85,24 @@ def test_balance_arm_prints_the_counterweights_ratio(tmp_path, capsys):
 
 
 # --------------------------------------------------------------------- the comparison's added mass
-def test_the_comparisons_counterweights_weigh_what_the_moments_say():
-    """Example 1 with 0..3 kg at the hand's tip, tuned for 1.5 kg: the counterweights by moments, and the
-    strategy's added mass (kg, not N) and hardware lines from them."""
-    c = compare_problem(load_toml(str(MODELS / "compare_example1.toml")), str(MODELS / "compare_example1.toml"))
-    cw = c.solve().strategy("counterweights")
-    items = [(1, 120.0, 0.3), (2, 80.0, 0.25), (3, 40.0, 0.15), (3, 30.0, 0.3), (3, 1.5 * G, 0.3)]
-    by_hand = hand_counterweights([0.4, 0.6, 0.5, 0.3], items, {0: 0.2, 1: 0.2, 2: 0.2, 3: 0.2})
-    masses = [by_hand[k] / G for k in (1, 2, 3)]
+@pytest.fixture(scope="module")
+def two_link_comparison():
+    """The two-link arm at q = 0 with 1..4 kg at its tip: every strategy tuned for 2.5 kg."""
+    return CompareProblem(two_links(4 * G), payload=(1.0, 4.0), workspace=((0.0, 0.0), (0.0, 0.0)),
+                          samples=40).solve()
+
+
+def test_the_comparisons_counterweights_weigh_what_the_moments_say(two_link_comparison):
+    """Tuned for 2.5 kg at the tip: the counterweights by moments (q2's 0.2 m behind its joint, q1's
+    0.25 m, half their links), and the strategy's added mass (kg, not N) and hardware lines from them."""
+    cw = two_link_comparison.strategy("counterweights")
+    items = [(0, 40.0, 0.2), (1, 20.0, 0.2), (1, 2.5 * G, 0.4)]
+    by_hand = hand_counterweights([0.5, 0.4], items, {0: 0.25, 1: 0.2})
+    masses = [by_hand[k] / G for k in (0, 1)]
     assert [w["mass"] for w in cw.details["weights"]] == pytest.approx(masses, rel=1e-12)
-    assert cw.added_mass == pytest.approx(sum(masses), rel=1e-12)
-    assert 300 < cw.added_mass < 400  # 334.5 kg: Example 1's arm weighs 27.5 kg
-    assert cw.hardware == tuple(f"{m:.4g} kg on {link}, 0.2 m from the axis of q{k}"
-                                for m, link, k in zip(masses, ("upper arm", "forearm", "hand"), (2, 3, 4)))
+    assert cw.devices == 2 and cw.added_mass == pytest.approx(sum(masses), rel=1e-12)
+    assert cw.hardware == (f"{masses[0]:.4g} kg on upper, 0.25 m from the axis of q1",
+                           f"{masses[1]:.4g} kg on fore, 0.2 m from the axis of q2")
 
 
 # --------------------------------------------------------------------- the RMS of the residual
@@ -109,12 +113,11 @@ def rms_over_payload(a: float, b: float, lo: float, hi: float) -> float:
     return math.sqrt(((a + b * hi) ** 3 - (a + b * lo) ** 3) / (3 * b * (hi - lo)))
 
 
-def test_rms_per_joint_is_that_of_the_payload_range():
+def test_rms_per_joint_is_that_of_the_payload_range(two_link_comparison):
     """At q = 0 the two-link arm's torques are 22 + 0.9·g·p and 4 + 0.4·g·p (p the payload, kg, uniform in
     1..4): the baseline's RMS is the exact mean of their squares over p; a strategy tuned for the middle
     leaves 0.9·g·(p − 2.5) and 0.4·g·(p − 2.5), whose RMS is 0.9·g·3/√12 and 0.4·g·3/√12."""
-    c = CompareProblem(two_links(4 * G), payload=(1.0, 4.0), workspace=((0.0, 0.0), (0.0, 0.0)),
-                       samples=40).solve()
+    c = two_link_comparison
     base = [rms_over_payload(22.0, 0.9 * G, 1.0, 4.0), rms_over_payload(4.0, 0.4 * G, 1.0, 4.0)]
     left = [0.9 * G * 3 / math.sqrt(12), 0.4 * G * 3 / math.sqrt(12)]
     none = c.strategy("none")
@@ -202,3 +205,31 @@ def _carried(model, j: int, k: int) -> bool:
     while k > j:
         k = model.parents[k]
     return k == j
+
+
+def test_counterweights_of_a_toml_arm_in_the_links_words():
+    """A hub of no length whose centre of mass lies 0.1 m to its left, then a 0.5 m link: q2's
+    counterweight sits on the link's line 0.25 m behind the joint (half the link), q1's on the hub 0.1 m
+    from the axis (the default for a link of no length), opposite its centre of mass; the JSON row says so.
+    Example 1 (angles from the vertical): every counterweight on its link's line, 0.2 m behind."""
+    arm = Arm((Link("hub", "revolute", 0.0, 10.0, 0.0, com_lateral=0.1), Link("l", "revolute", 0.5, 20.0, 0.25)),
+              zero="horizontal")
+    cw = counterweights(arm, samples=20)
+    d = cw.to_dict()
+    assert d.keys() == {"available", "weights", "added_weight", "arm_weight", "ratio", "max_residual",
+                        "potential_spread", "worst"}
+    assert d["weights"] == [
+        {"link": "hub", "coordinate": "q1", "weight": pytest.approx(10.0, rel=1e-12),
+         "mass": pytest.approx(10.0 / G, rel=1e-12), "arm": 0.1, "position": pytest.approx([0.0, -0.1], abs=1e-15)},
+        {"link": "l", "coordinate": "q2", "weight": pytest.approx(20.0, rel=1e-12),
+         "mass": pytest.approx(20.0 / G, rel=1e-12), "arm": 0.25, "position": pytest.approx([-0.25, 0.0], abs=1e-15)}]
+    assert d["added_weight"] == pytest.approx(30.0) and d["arm_weight"] == pytest.approx(30.0)
+    assert d["max_residual"] == cw.max_residual <= 1e-12 * 10 and d["potential_spread"] == cw.potential_spread
+    assert d["worst"] == list(cw.worst) and len(d["worst"]) == 2
+    assert counterweights(Arm((Link("s", "prismatic", 0.5, 10.0, 0.25, stroke=0.2, gear_ratio=0.1),)),
+                          samples=5).to_dict() == {"available": False, "reason": (
+        "a prismatic link moves its centre of mass along the stroke; no fixed counterweight can follow it (use "
+        "springs or the counter-mass mechanism).")}
+    example1 = counterweights(solve_arm(load_toml(str(MODELS / "arm_base_drives.toml"))).arm, {1: 0.2, 2: 0.2, 3: 0.2},
+                              samples=20)
+    assert [w.position for w in example1.weights] == [pytest.approx((-0.2, 0.0), abs=1e-15)] * 3
