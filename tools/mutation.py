@@ -41,6 +41,9 @@ ROOT = Path(__file__).resolve().parent.parent
 #: the slowest cases of the synthesis tests, left out of the mutation runs (minutes per surviving mutant)
 _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-938 and not 3-10-98 "
           "and not ctrl_c and not twelve")
+#: a module's docstring examples in the balance and synth suites (the module's name and "]" follow)
+_BALANCE_DOC = "tests/balance/test_docstrings.py::test_docstring_examples["
+_SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -92,19 +95,24 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "counterweights": ("balance/devices/counterweights.py", [
         "tests/balance/test_compare_strength.py", "tests/balance/test_arm.py::test_counterweights_balance_example1",
         "tests/balance/test_arm.py::test_counterweights_refused_for_prismatic",
-        "tests/balance/test_docstrings.py::test_docstring_examples[balance.devices.counterweights]"]),
-    "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py", "tests/balance/test_arm.py",
-                                                 "tests/balance/test_docstrings.py::test_docstring_examples[balance.model.potential]"]),
-    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py", "tests/balance/test_compare.py",
-                                                "tests/balance/test_docstrings.py::test_docstring_examples[balance.problems.compare]"]),
-    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.devices.dynamics]"]),
+        _BALANCE_DOC + "balance.devices.counterweights]"]),
+    "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py",
+                                                 "tests/balance/test_arm.py",
+                                                 _BALANCE_DOC + "balance.model.potential]"]),
+    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
+                                                "tests/balance/test_compare.py",
+                                                _BALANCE_DOC + "balance.problems.compare]"]),
+    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py",
+                                                 _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
-                                                   "tests/balance/test_docstrings.py::test_docstring_examples[balance.model.pantograph]"]),
-    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.extremes]"]),
-    "budget": ("balance/budget.py", ["tests/balance/test_budget.py", "tests/balance/test_docstrings.py::test_docstring_examples[balance.budget]"]),
-    "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.code]"]),
-    "query": ("synth/structure/query.py", ["tests/cli/test_query_refusals.py", "tests/test_doctests.py::test_docstring_examples[synth.structure.query]"]),
-    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", "tests/test_doctests.py::test_docstring_examples[synth.atlas.queries]"]),
+                                                   _BALANCE_DOC + "balance.model.pantograph]"]),
+    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", _BALANCE_DOC + "balance.extremes]"]),
+    "budget": ("balance/budget.py", ["tests/balance/test_budget.py", _BALANCE_DOC + "balance.budget]"]),
+    "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/structure/test_code_strength.py",
+                                         _SYNTH_DOC + "synth.structure.code]"]),
+    "query": ("synth/structure/query.py", ["tests/structure/test_query_strength.py",
+                                           "tests/cli/test_query_refusals.py", _SYNTH_DOC + "synth.structure.query]"]),
+    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
 }
 
 COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]
