@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -233,3 +234,27 @@ def test_counterweights_of_a_toml_arm_in_the_links_words():
     example1 = counterweights(solve_arm(load_toml(str(MODELS / "arm_base_drives.toml"))).arm, {1: 0.2, 2: 0.2, 3: 0.2},
                               samples=20)
     assert [w.position for w in example1.weights] == [pytest.approx((-0.2, 0.0), abs=1e-15)] * 3
+
+
+def test_a_light_arm_with_a_massless_tip_and_an_offset_centre_of_mass():
+    """Angles from the vertical; link a: 4 N (0.41 kg) at 0.25 m along and 0.1 m to the left; link b weighs
+    nothing. b gets no counterweight (its sub-arm has no mass: no 0/0, no warning); a's sits 0.25 m from
+    the axis (half its link) opposite its centre of mass, √(0.25² + 0.1²)·4/0.25 N."""
+    arm = Arm((Link("a", "revolute", 0.5, 4.0, 0.25, com_lateral=0.1), Link("b", "revolute", 0.3, 0.0, 0.15)),
+              zero="vertical")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        cw = counterweights(arm, samples=20)
+    r = math.hypot(0.25, 0.1)
+    (w,) = cw.weights
+    assert (w.link, w.coordinate, w.arm) == ("a", "q1", 0.25)
+    assert w.weight == pytest.approx(4 * r / 0.25, rel=1e-12)
+    assert w.position == pytest.approx((-0.25 * 0.25 / r, -0.25 * 0.1 / r), rel=1e-12)
+    assert cw.max_residual <= 1e-12 * 4 and cw.arm_weight == pytest.approx(4.0, rel=1e-12)
+    refused = counterweights(Arm((Link("s", "prismatic", 0.5, 10.0, 0.25, stroke=0.2, gear_ratio=0.1),)), samples=5)
+    assert refused.available is False and refused.weights == () and refused.ratio == math.inf
+
+
+def test_the_counterweights_of_a_urdf_arm_name_its_links():
+    cw = counterweights(load_urdf(str(MODELS / "arm_ur5e.urdf")), samples=20)
+    assert [w.link for w in cw.weights] == ["upper_arm_link", "forearm_link", "wrist_1_link", "wrist_2_link"]
