@@ -258,3 +258,44 @@ def test_a_light_arm_with_a_massless_tip_and_an_offset_centre_of_mass():
 def test_the_counterweights_of_a_urdf_arm_name_its_links():
     cw = counterweights(load_urdf(str(MODELS / "arm_ur5e.urdf")), samples=20)
     assert [w.link for w in cw.weights] == ["upper_arm_link", "forearm_link", "wrist_1_link", "wrist_2_link"]
+
+
+def test_two_turntables_get_no_counterweight_and_gravity_sets_the_masses():
+    """Two vertical axes in a row (turntables, the second with its centre of mass off its axis) carry no
+    gravity torque in any configuration: only the revolute joint after them gets a counterweight. With g = 10 m/s² the weights (N) are those of the
+    moments and the masses weight/10."""
+    arm = Arm((Link("t1", "vertical", 0.3, 5.0, 0.15), Link("t2", "vertical", 0.4, 5.0, 0.2, com_lateral=0.05),
+               Link("r", "revolute", 0.5, 10.0, 0.25)), zero="horizontal")
+    cw = counterweights(arm, samples=10)
+    assert [(w.coordinate, w.arm) for w in cw.weights] == [("q3", 0.25)]
+    assert cw.weights[0].weight == pytest.approx(10.0, rel=1e-12)
+    cw = counterweights(two_links(), samples=10, g=10.0)
+    assert [w.weight for w in cw.weights] == pytest.approx([112.0, 20.0], rel=1e-12)
+    assert [w.mass for w in cw.weights] == pytest.approx([11.2, 2.0], rel=1e-12)
+    assert cw.arm_weight == pytest.approx(60.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("b", [0.0, -0.1, math.nan, math.inf])
+def test_a_counterweight_distance_must_be_positive(b):
+    from balance.errors import InvalidArm
+
+    with pytest.raises(InvalidArm) as caught:
+        counterweights(two_links(), {1: b}, samples=5)
+    assert str(caught.value) == f"joint q2: the counterweight's distance from the axis must be positive, not {b}."
+
+
+def test_a_urdf_counterweight_sits_level_with_its_sub_arms_centre_of_mass():
+    """Along its joint's axis (z of the joint frame in this URDF) a counterweight sits at the height of the
+    centre of mass it balances, so the balanced sub-arm's centre of mass is level with it."""
+    import pinocchio as pin
+
+    cw = counterweights(load_urdf(str(MODELS / "arm_ur5e.urdf")), samples=20)
+    model, data = cw.balanced.model, cw.balanced.model.createData()
+    pin.forwardKinematics(model, data, pin.neutral(model))
+    for w in cw.weights:
+        j = int(w.coordinate[1:])
+        below = [k for k in range(j, model.njoints) if _carried(model, j, k)]
+        mass = sum(model.inertias[k].mass for k in below)
+        com = sum(model.inertias[k].mass * data.oMi[k].act(model.inertias[k].lever) for k in below) / mass
+        assert data.oMi[j].actInv(com)[2] == pytest.approx(w.point[2], abs=1e-12), w.coordinate
+    assert any(abs(w.point[2]) > 0.05 for w in cw.weights)  # (not all level with the joint's origin)
