@@ -44,6 +44,8 @@ def test_a_phase_of_pi_is_written_pi_and_a_zero_phase_is_positive_zero():
     (t,) = merge_terms([(complex(3.0, -0.0), (-1.0, 0, 0))])  # conjugated: +0.0j, phase +0.0
     assert t.phase == 0.0 and math.copysign(1.0, t.phase) == 1.0 and t.form == (1.0, -0.0 + 0.0, 0.0)
     assert str(t.phase) == "0.0"
+    (t,) = merge_terms([(complex(3.0, -0.0), (1.0, 0, 0))])  # phase(3 − 0j) is −0.0: written 0.0
+    assert str(t.phase) == "0.0" and str(t.to_dict()["phase_deg"]) == "0.0"
 
 
 def test_small_terms_are_dropped_relative_to_the_largest():
@@ -55,6 +57,16 @@ def test_small_terms_are_dropped_relative_to_the_largest():
     assert [t.form for t in merge_terms([(1 + 0j, (1, 0)), (0.5 + 0j, (0, 1))], rel_tol=0.5)] == [(1.0, 0.0)]
     assert merge_terms([(1 + 0j, (1, 0)), (-1 + 0j, (1, 0))]) == []
     assert merge_terms([]) == [] and merge_terms([(5 + 0j, (0, 0))]) == []
+    # a dropped term or a constant before the others leaves the others
+    assert [t.form for t in merge_terms([(1e-13 + 0j, (0, 1)), (1 + 0j, (1, 0))])] == [(1.0, 0.0)]
+    assert [t.form for t in merge_terms([(5 + 0j, (0, 0)), (1 + 0j, (0, 1))])] == [(0.0, 1.0)]
+
+
+def test_a_form_starting_below_one_keeps_its_sign():
+    (t,) = merge_terms([(2j, (0.0, 0.25, -1.0))])
+    assert t.form == (0.0, 0.25, -1.0) and t.phase == pytest.approx(math.pi / 2)
+    (t,) = merge_terms([(2j, (0.0, -0.25, 1.0))])  # flipped: the phasor conjugated
+    assert t.form == (0.0, 0.25, -1.0) and t.phase == pytest.approx(-math.pi / 2)
 
 
 def test_forms_equal_to_twelve_digits_are_merged():
@@ -75,6 +87,10 @@ def test_forces_are_minus_the_gradient_of_the_potential():
     np.testing.assert_allclose(terms_forces(terms, Q[0]), fd[0], atol=1e-8)  # one configuration (n,)
     assert terms_potential(terms, Q[0]).shape == () and terms_forces([], Q).shape == Q.shape
     assert not terms_forces([], Q).any() and not terms_potential([], Q).any()
+    assert terms_potential([], Q).shape == (50,) and terms_forces([], Q).shape == (50, 3)
+    # whole-number configurations give float forces and potentials
+    assert terms_forces([], np.array([[0, 1, 2]])).dtype == float
+    np.testing.assert_allclose(terms_forces(terms, np.array([[0, 1, 2]])), terms_forces(terms, np.array([[0.0, 1.0, 2.0]])))
 
 
 def test_a_terms_value_angle_moment_and_dict():
@@ -101,6 +117,9 @@ def test_a_terms_value_angle_moment_and_dict():
     ([1e-9, 0, 1], "c"),                      # below the digits: left out
     ([1.0000001, 0, 0], "a"),                  # rounded to 6 digits: 1
     ([0.123456789, 0, 0], "0.123457·a"),
+    ([-0.4, 0, 0], "−0.4·a"),
+    ([1, -0.25, 0], "a − 0.25·b"),
+    ([0, -0.4, 0.3], "0.3·c − 0.4·b"),
 ])
 def test_forms_as_text(coeffs, text):
     assert format_form(coeffs, ["a", "b", "c"]) == text
