@@ -20,7 +20,7 @@ def test_durations_in_words(seconds, text):
 
 @pytest.mark.parametrize("seconds, text", [
     (1e-4, "100 µs"), (9.99e-4, "999 µs"), (1e-3, "1 ms"), (2.5e-3, "2.5 ms"), (0.3, "300 ms"), (1.0, "1 s"),
-    (12.34, "12.3 s"),
+    (12.34, "12.3 s"), (9.994995e-4, "999 µs"), (9.996e-4, "1 ms"), (0.9994995, "999 ms"), (0.9996, "1 s"),
 ])
 def test_short_times(seconds, text):
     assert budget._short(seconds) == text
