@@ -63,6 +63,14 @@ def test_written_forms_read_back(code, text):
     assert Code.parse(written) == code and str(Code.parse(written)) == written
 
 
+def test_compositions_are_kept_without_trailing_zeros():
+    c = Code((12,), 6, (4, 1, 0))
+    assert c.composition == (4, 1) and str(c) == "12.0.0.0/4-1"
+    assert Code.parse("620/0-1").composition == (0, 1) and Code((6, 2), 2, (0, 1)).joints == 8
+    assert Code.parse("12.20/0") == Code((12, 2), 0)  # Pozhbelko's form: 12, then one digit per count
+    assert Code.parse("10.1/1") == Code((10, 1), 1)
+
+
 def test_a_composition_of_double_joints_only_is_written_as_v():
     """Six double joints: the composition (6,) is written as v = 6, which reads back as v alone."""
     c = Code((12,), 6, (6,))
@@ -112,6 +120,10 @@ def test_a_code_of_more_loops_than_can_be_written_is_refused_briefly():
     with pytest.raises(MalformedCode) as caught:
         Code.parse(" 2/20000 ")
     assert str(caught.value) == "code 2/20000 describes a chain of 10001 loops, more than the 10000 a code is read with"
+    for width, shown in ((40, "2" + "0" * 33 + "/20000"), (41, "2" + "0" * 19 + "… (41 characters)")):
+        with pytest.raises(MalformedCode) as caught:
+            Code.parse("2" + "0" * (width - 7) + "/20000")
+        assert str(caught.value).startswith(f"code {shown} describes"), width
     wide = "2" + "0" * 40 + "/20000"
     with pytest.raises(MalformedCode) as caught:
         Code.parse(wide)
