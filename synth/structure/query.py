@@ -404,7 +404,7 @@ class ChainQuery:
             value = getattr(self, f.name)
             if f.name == "code" and value is not None:
                 value = str(value)
-            if value in (None, ()) or value is f.default or (f.name == "h" and value == 3):
+            if value in (None, ()) or value == f.default:
                 continue  # (a default; but fractionated=False and rigid_subchains=False are choices)
             if f.name in ("v", "n1", "prismatic"):
                 value = _shown(value)
