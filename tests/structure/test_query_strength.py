@@ -53,6 +53,7 @@ def test_requirements():
         (["5"], InvalidOption, "a requirement is written I=N, I=A..B or I=A.. (e.g. 5=1..), not '5'"),
         ([5], InvalidOption, "a requirement is written I=N, I=A..B or I=A.. (e.g. 5=1..), not 5"),
         (["5=-1"], ImpossibleParameters, "n5 must not be below 0 (got '-1')"),
+        (["5=1=2"], InvalidOption, "n5 must be a whole number or a range A..B, not '1=2'"),
     ]:
         with pytest.raises(error) as caught:
             parse_requirements(items)
@@ -71,6 +72,12 @@ def test_cylinders_and_cranks():
         parse_cylinders(["guide"])
     assert str(caught.value) == ("a cylinder requirement is written KIND=N or KIND=A..B with KIND guide, swinging or "
                                  "floating, not 'guide'")
+    for items, words in [("guide=1=2", "guide cylinders must be a whole number or a range A..B, not '1=2'"),
+                         (["ab"], "a cylinder requirement is written KIND=N or KIND=A..B with KIND guide, swinging "
+                                  "or floating, not 'ab'")]:
+        with pytest.raises(InvalidOption) as caught:
+            parse_cylinders(items)
+        assert str(caught.value) == words
     with pytest.raises(ImpossibleParameters, match="^guide cylinders must not be below 0"):
         parse_cylinders("guide=-1")
     assert parse_cranks([(5, 5)]) == ((5, 5),) and parse_cranks(None) == ()
@@ -120,6 +127,14 @@ def test_cylinders_and_cranks():
     # 620/0-1: one triple joint of 8 joints
     (lambda: ChainQuery(1, code="620/0-1", prismatic=8), ImpossibleParameters,
      "code 620/0-1 has 7 simple joint(s) and prismatic pairs go on simple joints: 8 do not fit"),
+    # two double joints given: 8 joints, 6 simple
+    (lambda: ChainQuery(1, code=Code((6, 2), 2, (2,)), prismatic=7), ImpossibleParameters,
+     "code 620/2 has 6 simple joint(s) and prismatic pairs go on simple joints: 7 do not fit"),
+    # three binary links on two triple joints
+    (lambda: ChainQuery(0, code=Code((3,), 2, (2,)), prismatic=1), ImpossibleParameters,
+     "code 30/2 has no simple joint: prismatic pairs go on simple joints (a multiple joint is a pin)"),
+    (lambda: ChainQuery(1, 8, prismatic="x"), InvalidOption,
+     "the number of prismatic pairs must be a whole number or a range A..B, not 'x'"),
     (lambda: ChainQuery(2, code="7201/1"), ImpossibleParameters,
      "code 7201/1 gives W = 1 with h = 3, not the requested W = 2"),
     (lambda: ChainQuery(6, code="7201/1", prismatic=0), ImpossibleParameters,
@@ -157,6 +172,7 @@ def test_accepted_at_the_limits():
     assert ChainQuery(1, code="7201/1", prismatic=11).prismatic == (11, 11)
     assert ChainQuery(1, code="620/2", prismatic=7).prismatic == (7, 7)
     assert ChainQuery(1, code="620/0-1", prismatic=7).prismatic == (7, 7)
+    assert ChainQuery(1, code=Code((6, 2), 2, (2,)), prismatic=6).prismatic == (6, 6)
     assert ChainQuery(1, 8, prismatic=13).prismatic == (13, 13)
     assert ChainQuery(5, code="7201/1", prismatic=0).dof == 5 and ChainQuery(1, code="7201/1", prismatic=0).dof == 1
     assert ChainQuery(1, code="7201/1", v="1..").v == (1, None) and ChainQuery(1, code="7201/1", v=1).v == (1, 1)
@@ -213,6 +229,9 @@ def test_derived_values():
     assert ChainQuery(1, code="4000/0", prismatic="0..").skeleton_slacks() == [0]
     assert ChainQuery(2, code="4000/0", prismatic="0..").skeleton_slacks() == [1]
     assert ChainQuery(1, 8).skeleton_slacks() == [0]
+    assert ChainQuery(0, 3, prismatic="0..").skeleton_slacks() == [0, 2]  # k up to n − 1 − W
+    assert ChainQuery(1, 2, prismatic="0..").skeleton_slacks() == [0]     # no loop: K = 0
+    assert ChainQuery(3, code="4600/0", prismatic="0..").skeleton_slacks() == [2]  # not k = 0: K = 3, not 4
 
 
 def test_cylinders_only_when_they_are_every_prismatic_pair():
