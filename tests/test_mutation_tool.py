@@ -36,3 +36,9 @@ def test_a_run_replaces_its_modules_rows_and_keeps_the_others():
     assert "Surviving in `b.py`" not in merged and "Equivalent in `b.py`:\n\n- `gb`: `c` → `d` — why" in merged
     assert merged.index("`a.py`:") < merged.index("`b.py`:") < merged.index("`c.py`:")
     assert merged.startswith(new.split("\n| `")[0])  # the new header (mutmut's version) heads the block
+
+
+def test_the_copies_hold_every_package_of_the_checkout():
+    """A mutant's copy of the tree must import like the checkout: every top-level package is copied."""
+    packages = {d.name for d in ROOT.iterdir() if (d / "__init__.py").exists()}
+    assert packages and packages <= set(_tool().COPY)

@@ -115,7 +115,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
 }
 
-COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]
+#: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
+_PACKAGES = [name.rstrip("*") for name in
+             tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]["find"]["include"]]
+COPY = _PACKAGES + ["models", "benchmarks", "tests", "pyproject.toml"]
 EQUIVALENT = ROOT / "tools" / "mutation_equivalent.toml"
 DOC = ROOT / "docs" / "mutation.md"
 BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
