@@ -50,14 +50,17 @@ _MESH = "#1e7a46"
 
 
 # ------------------------------------------------------------------ linkages from the atlas's drawings
-def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0) -> Linkage:
+def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int = 24) -> Linkage:
     """A dimensioned linkage for any planar mechanism of the atlas: its drawing's layout as the pose.
 
     The joints stand where :func:`synth.draw.layout` draws them, scaled so that the drawing is
-    ``size`` across.  The input is the mechanism's input link when it has one, else the joint of
-    the frame whose link turns fully if one does (a crank), else the one that moves furthest.  A
-    drawing's pose is often symmetric and locked; then the joints are moved a little to a nearby
-    pose that moves, and :attr:`Linkage.note` says so.
+    ``size`` across.  A drawing is made to be read, not to move: its symmetric poses are often
+    locked, or parallelograms that fold at a change point.  So each input joint of the frame (the
+    mechanism's input link's, if it has one) is tried on the drawing's pose and then on poses whose
+    joints are moved at random (fixed seed) by 5 … 30 % of the size, and the first that moves well
+    is kept: its input turns fully (a crank) and no transmission angle falls under 20°; failing that,
+    the best found (a crank first, then the widest transmission angle, then the largest swing).
+    :attr:`Linkage.note` says when the joints were moved, by how much, and why.
 
     Parameters
     ----------
@@ -65,6 +68,8 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0) -> Linkage
         A chain (revolute, prismatic and gear joints, h = 3) with its frame.
     size : float
         The drawing's width and height in the linkage's length unit.
+    tries : int
+        Moved poses tried after the drawing's own.
 
     Returns
     -------
@@ -73,14 +78,14 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0) -> Linkage
     Raises
     ------
     MotionError
-        The chain is not planar (h ≠ 3), rigid, or no nearby pose moves.
+        The chain is not planar (h ≠ 3), rigid, or no pose tried moves.
 
     Examples
     --------
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0))
-    >>> lk.dof, lk.inputs in ((0,), (1,))
-    (1, True)
+    >>> lk.dof
+    1
     """
     from .draw import layout
     from .errors import MotionError
@@ -88,25 +93,65 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0) -> Linkage
     chain = mechanism.chain
     if chain.h != 3:
         raise MotionError(f"a linkage moves in the plane (h = 3); this chain's loops are in motion space h = {chain.h}")
-    points = layout(chain).joints * (size / 2.0)
+    drawn = layout(chain).joints * (size / 2.0)
+    if chain.dof != 1:
+        return linkage_from_pose(mechanism, drawn, nudge=True)
     kinds = chain.kinds or ("revolute",) * len(chain.joints)
-    on_frame = [k for k, j in enumerate(chain.joints)
-                if len(j) == 2 and mechanism.frame in j and kinds[k] != "mesh"]
-    if mechanism.input_link is not None or chain.dof != 1 or len(on_frame) < 2:
-        return linkage_from_pose(mechanism, points, nudge=True)
-    best, best_span = None, -1.0
-    for k in sorted(on_frame, key=lambda k: (kinds[k] != "revolute", k)):
-        try:
-            candidate = linkage_from_pose(mechanism, points, inputs=(k,), nudge=True)
-            reach = motion_range(candidate)
-        except MotionError:
-            continue
-        if reach.full_rotation:
-            return candidate
-        span = reach.limits[1] - reach.limits[0] if reach.limits else 0.0
-        if span > best_span:
-            best, best_span = candidate, span
-    return best if best is not None else linkage_from_pose(mechanism, points, nudge=True)
+    inputs = [k for k, j in enumerate(chain.joints) if len(j) == 2 and mechanism.frame in j and kinds[k] != "mesh"
+              and (mechanism.input_link is None or mechanism.input_link in j)]
+    rng = np.random.default_rng(0)
+    best = None
+    first_why = None
+    for attempt in range(tries + 1):
+        pose = drawn if attempt == 0 else drawn + rng.uniform(-1, 1, drawn.shape) * size * 0.05 * (1 + 5 * attempt / tries)
+        for k in sorted(inputs, key=lambda k: (kinds[k] != "revolute", k)):
+            try:
+                candidate = linkage_from_pose(mechanism, pose, inputs=(k,), nudge=attempt == 0)
+                score, why = _how_well(candidate)
+            except MotionError as exc:
+                score, why = None, str(exc)
+            if attempt == 0 and first_why is None:
+                first_why = why
+            if score is not None and (best is None or score > best[0]):
+                best = (score, candidate, attempt)
+        if best is not None and best[0][0]:
+            break
+    if best is None:
+        raise MotionError(f"no pose near the drawing of {chain.compact()} with frame {mechanism.frame} moves "
+                          f"({first_why})")
+    score, linkage, attempt = best
+    if attempt == 0:
+        return linkage
+    shift = float(np.hypot(*(linkage.points - drawn).T).max())
+    swing = "turns fully" if score[1] else f"swings {math.degrees(score[3]):.0f}°"
+    note = (f"the drawing's pose does not move well ({first_why}); its joints were moved by up to {shift:.3g} "
+            f"({shift / size:.0%} of its size) to a pose whose input {swing} with transmission angles of at least "
+            f"{math.degrees(score[2]):.0f}°")
+    return Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, linkage.tracers,
+                   note)
+
+
+#: the worst transmission angle a pose from a drawing may have and count as moving well
+_GOOD_TRANSMISSION = math.radians(20)
+
+
+def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
+    """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
+    angle, swing), and what is wrong with it in words (None when nothing is)."""
+    from .motion import sweep
+
+    motion = sweep(linkage, steps=73)
+    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
+    full = motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute" and span >= 2 * math.pi - 1e-9
+    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2])
+    good = full and worst >= _GOOD_TRANSMISSION
+    if good:
+        why = None
+    elif worst < _GOOD_TRANSMISSION:
+        why = f"a transmission angle falls to {math.degrees(worst):.2g}°"
+    else:
+        why = f"its input swings only {math.degrees(span):.0f}°" if not full else None
+    return (good, full, round(worst, 3), span), why
 
 
 # ------------------------------------------------------------------ the geometry of each frame
@@ -218,6 +263,12 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
                    p + half * u + 0.6 * half * n, p - half * u + 0.6 * half * n]
         out.append({"tag": "polygon", "frames": place.place(block, corners),
                     "style": {"fill": "white", "stroke": _INPUT if block in driven else _EDGE, "stroke-width": 1.4}})
+    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) != "mesh"]
+    if len(base) >= 2:  # the fixed link: a dashed line through its joints
+        pose = linkage.points[base]
+        out.append({"tag": "polygon" if len(base) > 2 else "polyline", "static": True,
+                    "frames": pose[_order(pose)][None],
+                    "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 1.0, "stroke-dasharray": "6 4"}})
     for k, joint in enumerate(chain.joints):  # ground pivots under the frame's pins
         if linkage.frame in joint and linkage.kind(k) == "revolute":
             x, y = linkage.points[k]
@@ -436,8 +487,9 @@ def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> N
             ax.text(at[0, 0], at[0, 1], e["text"], color=st["fill"], fontsize=9, fontweight="bold", zorder=6,
                     va="bottom")
         elif e["tag"] == "polygon":
-            ax.add_patch(Polygon(at, closed=True, facecolor=st.get("fill", "none"), edgecolor=st["stroke"], lw=width,
-                                 joinstyle="round", zorder=3 if st.get("fill") == "white" else 2))
+            fill = st.get("fill", "none")
+            ax.add_patch(Polygon(at, closed=True, facecolor="none" if fill == "none" else fill, edgecolor=st["stroke"],
+                                 lw=width, linestyle=dash, joinstyle="round", zorder=3 if fill == "white" else 2))
         else:
             ax.plot(at[:, 0], at[:, 1], color=st["stroke"], lw=width, linestyle=dash,
                     solid_capstyle="round", zorder=(3.5 if st["stroke"] != _PATH else 1) if e.get("curve") else 3)
