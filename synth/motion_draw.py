@@ -104,9 +104,12 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     first_why = None
     for attempt in range(tries + 1):
         pose = drawn if attempt == 0 else drawn + rng.uniform(-1, 1, drawn.shape) * size * 0.05 * (1 + 5 * attempt / tries)
+        turns = rng.uniform(0, 2 * math.pi, len(kinds))  # a slider's line is a choice too: tried at random
+        slides = None if attempt == 0 else {k: (math.cos(turns[k]), math.sin(turns[k]))
+                                            for k, kind in enumerate(kinds) if kind == "prismatic"}
         for k in sorted(inputs, key=lambda k: (kinds[k] != "revolute", k)):
             try:
-                candidate = linkage_from_pose(mechanism, pose, inputs=(k,), nudge=attempt == 0)
+                candidate = linkage_from_pose(mechanism, pose, inputs=(k,), slides=slides, nudge=attempt == 0)
                 score, why = _how_well(candidate)
             except MotionError as exc:
                 score, why = None, str(exc)
@@ -123,10 +126,15 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     if attempt == 0:
         return linkage
     shift = float(np.hypot(*(linkage.points - drawn).T).max())
-    swing = "turns fully" if score[1] else f"swings {math.degrees(score[3]):.0f}°"
+    if score[1]:
+        swing = "turns fully"
+    elif linkage.kind(linkage.inputs[0]) == "revolute":
+        swing = f"swings {math.degrees(score[3]):.0f}°"
+    else:
+        swing = f"slides {score[3] * linkage.scale / (2 * math.pi):.3g}"
     note = (f"the drawing's pose does not move well ({first_why}); its joints were moved by up to {shift:.3g} "
-            f"({shift / size:.0%} of its size) to a pose whose input {swing} with transmission angles of at least "
-            f"{math.degrees(score[2]):.0f}°")
+            f"({shift / size:.0%} of its size) to a pose whose input {swing}"
+            + (f" with transmission angles of at least {math.degrees(score[2]):.0f}°" if score[1] else ""))
     return Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, linkage.tracers,
                    note)
 
@@ -141,16 +149,20 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     from .motion import sweep
 
     motion = sweep(linkage, steps=73)
+    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
     span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
-    full = motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute" and span >= 2 * math.pi - 1e-9
-    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2])
+    if not revolute:  # a stroke as long as the mechanism is worth a turn
+        span *= 2 * math.pi / linkage.scale
+    full = motion.stopped is None and revolute and span >= 2 * math.pi - 1e-9
+    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
+    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2]) if full else 0.0
     good = full and worst >= _GOOD_TRANSMISSION
     if good:
         why = None
-    elif worst < _GOOD_TRANSMISSION:
+    elif full:
         why = f"a transmission angle falls to {math.degrees(worst):.2g}°"
     else:
-        why = f"its input swings only {math.degrees(span):.0f}°" if not full else None
+        why = "its input does not turn fully"
     return (good, full, round(worst, 3), span), why
 
 
