@@ -148,12 +148,12 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     angle, swing), and what is wrong with it in words (None when nothing is)."""
     from .motion import sweep
 
+    reach = motion_range(linkage)
+    full = reach.full_rotation
     motion = sweep(linkage, steps=73)
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
-    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
-    if not revolute:  # a stroke as long as the mechanism is worth a turn
+    span = 2 * math.pi if full else float(reach.limits[1] - reach.limits[0]) if reach.limits else 0.0
+    if linkage.kind(linkage.inputs[0]) != "revolute":  # a stroke as long as the mechanism is worth a turn
         span *= 2 * math.pi / linkage.scale
-    full = motion.stopped is None and revolute and span >= 2 * math.pi - 1e-9
     # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
     worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2]) if full else 0.0
     good = full and worst >= _GOOD_TRANSMISSION

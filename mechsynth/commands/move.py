@@ -118,12 +118,12 @@ def _check(args) -> None:
                             + (f" (not {' and '.join(sources)})" if sources else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --chain or --db; a linkage file names its frame and inputs")
-    if (args.chain or args.db) and args.frame is None:
-        raise InvalidOption("--chain and --db need --frame F: the fixed link of the mechanism to move")
     if args.id is not None and not args.db:
         raise InvalidOption("--id names a chain of an atlas: give --db too")
     if args.db and args.id is None:
         raise InvalidOption("--db needs --id ID: the chain of the atlas to move")
+    if (args.chain or args.db) and args.frame is None:
+        raise InvalidOption("--chain and --db need --frame F: the fixed link of the mechanism to move")
     if not 2 <= args.steps <= MAX_STEPS:
         raise InvalidOption(f"--steps must be 2 … {MAX_STEPS:,}, not {args.steps}")
     if args.frames is not None and not args.animate:

@@ -62,7 +62,7 @@ td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #e3e8ee}th{backg
 td.c,th.c{text-align:left}.filters label{margin-right:1em}.grid{display:flex;flex-wrap:wrap;gap:10px}
 figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180px;background:#fff}
 figure.train{width:240px}figure.train svg{max-width:100%;height:auto}
-figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
+figure.moving{width:auto;display:inline-block}figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
 code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
 """
 
