@@ -26,6 +26,8 @@ SLOW = {
     "scene --all models/": "every scene, about 20 seconds: tests/scenes/test_scenes.py runs each of them in the default suite",
     "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
+    "--html moving_site": "moves the mechanisms of three chains, triads among them: about a minute "
+                          "(tests/atlas/test_site_motion.py plays a site's moving page in Chromium)",
 }
 SKIP = {
     "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "
