@@ -10,8 +10,15 @@ the coupler curves over the mechanism, ``--animate`` writes a GIF or an animated
 
 Example
 -------
+>>> import os, tempfile
 >>> from mechsynth.cli import main
->>> main(["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--steps", "3", "--format", "csv"])  # doctest: +SKIP
+>>> saved = os.path.join(tempfile.mkdtemp(), "four_bar.json")
+>>> main(["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--save", saved])
+0
+>>> main(["move", saved, "--steps", "3", "--format", "jsonl"]) == 0 and len(open(saved).read()) > 0  # doctest: +ELLIPSIS
+{"step": 0, ...}
+...
+True
 """
 
 from __future__ import annotations
