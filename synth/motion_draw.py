@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InvalidOption
-from .motion import Linkage, Motion, linkage_from_pose, motion_range
+from .motion import Linkage, Motion, joint_name, linkage_from_pose, motion_range
 from .structure.chain import Mechanism
 
 __all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_motion", "animate_motion", "player_svg",
@@ -398,21 +398,23 @@ def _svg(elements: list[dict], canvas: _Canvas, frame: int | None, *, seconds: f
     return svg
 
 
+def _paths(motion: Motion, most: int = 2000) -> dict[str, np.ndarray]:
+    """The curves a picture shows, thinned to ``most`` points each: the paths of the pins that
+    move (not on the frame) under every tracer's coupler curve."""
+    linkage = motion.linkage
+    keep = np.unique(np.linspace(0, motion.steps - 1, min(most, motion.steps)).round().astype(int))
+    paths = {joint_name(linkage.chain, k): motion.joints[keep, k] for k in range(len(linkage.chain.joints))
+             if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]}
+    return paths | {name: xy[keep] for name, xy in motion.tracers.items()}
+
+
 def _motion_elements(motion: Motion, frames: int) -> tuple[list[dict], np.ndarray]:
+    """The elements of up to ``frames`` frames spread over the sweep, and the steps they show."""
     steps = _frames(motion, frames)
     if len(steps) == 0:
         raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
-    linkage = motion.linkage
-    paths = {name: xy for name, xy in motion.tracers.items()}
-    moving = [k for k in range(len(linkage.chain.joints))
-              if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]]
-    for k in moving:
-        from .motion import joint_name
-
-        paths[joint_name(linkage.chain, k)] = motion.joints[:, k]
-    ordered = {n: paths[n] for n in paths if n not in motion.tracers} | {n: paths[n] for n in motion.tracers}
     tracers = {name: xy[steps] for name, xy in motion.tracers.items()}
-    return _elements(linkage, motion.joints[steps], motion.angles[steps], tracers, ordered), steps
+    return _elements(motion.linkage, motion.joints[steps], motion.angles[steps], tracers, _paths(motion)), steps
 
 
 # ------------------------------------------------------------------ public writers
@@ -435,7 +437,11 @@ def motion_svg(motion: Motion, *, size: int = 480, frames: int = 90, seconds: fl
     """An animated SVG (SMIL, plays in any browser) of a sweep: the mechanism moving over its
     joints' paths and coupler curves, ``frames`` frames in ``seconds`` a cycle.
 
-    >>> # open(\"fourbar.svg\", \"w\").write(motion_svg(sweep(four_bar)))
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> motion_svg(sweep(four_bar, steps=19), frames=10).count('repeatCount="indefinite"') > 4
+    True
     """
     elements, _ = _motion_elements(motion, frames)
     return _svg(elements, _Canvas(elements, size), None, seconds=seconds, title=_title(motion.linkage))
@@ -444,7 +450,14 @@ def motion_svg(motion: Motion, *, size: int = 480, frames: int = 90, seconds: fl
 def player_svg(motion: Motion, *, size: int = 300, frames: int = 36, seconds: float = 3.0) -> str:
     """The SVG of a sweep for a web page's script: its moving elements carry ``data-k`` and the
     frames (pixels, one decimal) are in ``data-motion`` as JSON ``{"n": frames, "e": [...]}``; the
-    script :data:`PLAYER_SCRIPT` plays them, ``seconds`` a cycle."""
+    script :data:`PLAYER_SCRIPT` plays them, ``seconds`` a cycle.
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> 'data-motion="{&quot;n&quot;:12' in player_svg(sweep(four_bar, steps=37), frames=12)
+    True
+    """
     elements, _ = _motion_elements(motion, frames)
     svg = _svg(elements, _Canvas(elements, size), 0, player=True, title=_title(motion.linkage))
     return svg.replace('class="moving"', f'class="moving" data-ms="{1000 * seconds / max(frames, 1):.0f}"', 1)
@@ -468,8 +481,6 @@ document.querySelectorAll('svg.moving').forEach(function (svg) {
 
 
 def _title(linkage: Linkage) -> str:
-    from .motion import joint_name
-
     names = ", ".join(joint_name(linkage.chain, k) for k in linkage.inputs)
     return f"{linkage.chain.compact()}, frame {linkage.frame}, input {names}"
 
@@ -526,19 +537,22 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
     paths of its moving pins (grey), to a PNG or SVG file.
 
-    >>> # draw_motion(sweep(four_bar), "coupler.png")
+    >>> import os, tempfile
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
+    ...                    tracers={"P": (2, (2, 4))})
+    >>> out = os.path.join(tempfile.mkdtemp(), "coupler.svg")
+    >>> draw_motion(sweep(four_bar, steps=37), out)
+    >>> ">P</text>" in open(out).read()
+    True
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
     linkage = motion.linkage
-    _, paths_steps = _motion_elements(motion, 2)  # checks that some step is assembled
-    del paths_steps
+    if len(_frames(motion, 2)) == 0:
+        raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
     joints, angles, tracers = _still(linkage)
-    moving = _motion_elements(motion, motion.steps)[0]
-    still = _elements(linkage, joints, angles, tracers, {})
-    grey = [e for e in moving if e.get("curve") and e["style"]["stroke"] == _PATH]
-    coloured = [e for e in moving if e.get("curve") and e["style"]["stroke"] != _PATH]
-    marks = [e for e in still if e["tag"] in ("circle", "text")]  # pins and tracer points over the curves
-    elements = grey + [e for e in still if e["tag"] not in ("circle", "text")] + coloured + marks
+    elements = _elements(linkage, joints, angles, tracers, _paths(motion))  # the pose, over its paths
     canvas = _Canvas(elements, size)
     text = title or _title(linkage)
     try:
@@ -563,7 +577,12 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
     """An animation of the sweep: a GIF (``frames`` frames drawn by matplotlib, looping) or an
     animated SVG (SMIL).  Returns the number of frames written.
 
-    >>> # animate_motion(sweep(four_bar), "fourbar.gif")
+    >>> import os, tempfile
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> animate_motion(sweep(four_bar, steps=37), os.path.join(tempfile.mkdtemp(), "four_bar.gif"), frames=6)
+    6
     """
     path = _check_suffix(out, ANIMATION_SUFFIXES, "an animation")
     if not 2 <= frames <= 1000:
