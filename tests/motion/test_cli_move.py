@@ -210,3 +210,19 @@ def test_ctrl_c_stops_a_long_sweep_within_two_seconds(tmp_path):
     start = time.monotonic()
     proc.wait(timeout=30)
     assert time.monotonic() - start < 2.0 and proc.returncode == 130
+
+
+def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
+    """The Watt chain of an atlas (id 814ad964fad2), its ternary link 4 fixed: Watt II."""
+    from synth.atlas import run_grid
+    from synth.atlas.grid import parse_grid
+
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), str(db), workers=1)
+    before = db.read_bytes()
+    code, out, err = _run(capsys, "move", "--db", db, "--id", "814ad964fad2", "--frame", "4", "--range",
+                          "--format", "json")
+    assert code == 0 and "4" in json.loads(out)["input"].split("-")  # a joint of the frame drives
+    assert db.read_bytes() == before  # the atlas is only read
+    code, _, err = _run(capsys, "move", "--db", db, "--id", "000000000000", "--frame", "0")
+    assert code == 2 and "000000000000" in err
