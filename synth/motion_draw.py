@@ -209,10 +209,12 @@ def _order(points: np.ndarray) -> list[int]:
 
 
 def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers: dict[str, np.ndarray],
-              paths: dict[str, np.ndarray]) -> list[dict]:
+              paths: dict[str, np.ndarray], reach: tuple[np.ndarray, np.ndarray] | None = None) -> list[dict]:
     """The drawing's elements at every frame (world coordinates): ``tag`` (polygon, polyline,
     circle, text), ``style`` (SVG attributes), ``frames`` (F, m, 2) and for circles ``r``, for
-    texts ``text``.  ``paths`` are drawn as still curves under everything."""
+    texts ``text``.  ``paths`` are drawn as still curves (pins' paths under the links, coupler
+    curves over them); ``reach`` (joints and angles of more steps than the frames) sets how long
+    a slider's guide is drawn: over the block's whole travel."""
     chain, scale = linkage.chain, linkage.scale
     place = _Placement(linkage, joints, angles)
     pin = 0.018 * scale
@@ -231,7 +233,7 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
     driven = {linkage.input_link(i) for i in range(linkage.dof)}
     slides = {k: np.array(v) for k, v in linkage.slides.items()}
     for link in range(chain.links):
-        on = [k for k in linkage.joints_of(link) if linkage.kind(k) != "mesh"]
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]  # sliders: a block and a guide
         if link == linkage.frame or not on:
             continue
         marks = [at for _, (carrier, at) in linkage.tracers.items() if carrier == link]  # a coupler's plate
@@ -255,27 +257,34 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
                         "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.4}})
             out.append({"tag": "polyline", "frames": place.place(gear, [axis, linkage.points[k]]),
                         "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.2}})
-    for k, d in slides.items():  # a prismatic pair: a guide on its first link, a block on its second
-        guide, block = chain.joints[k]
+    span = _Placement(linkage, *reach) if reach is not None else place
+    for k, d in slides.items():  # a prismatic pair: a slot or guide on one link, a block on the other
+        guide, block = _guide_and_block(linkage, k)
         p = linkage.points[k]
-        on_block = place.place(block, p)[:, 0]
-        local = on_block - place.place(guide, p)[:, 0]  # the block's travel along the guide, in world axes
-        theta = angles[:, guide] if guide != linkage.frame else np.zeros(len(angles))
         u = d / np.hypot(*d)
-        travel = _along(local, theta, u)
-        travel = travel[np.isfinite(travel)]
+        theta = span.angles[:, guide] if guide != linkage.frame else np.zeros(len(span.angles))
+        travel = _along(span.place(block, p)[:, 0] - span.place(guide, p)[:, 0], theta, u)
+        pins = [float((linkage.points[m] - p) @ u) for m in linkage.joints_of(guide)
+                if m != k and linkage.kind(m) == "revolute"]  # the guide reaches its own pins (a lever's pivot)
         half = 0.06 * scale
-        ends = [p + u * (min(travel.min(initial=0.0), 0.0) - 2 * half),
-                p + u * (max(travel.max(initial=0.0), 0.0) + 2 * half)]
+        reach_along = [0.0, *travel[np.isfinite(travel)], *pins]
+        ends = [p + u * (min(reach_along) - 2 * half), p + u * (max(reach_along) + 2 * half)]
         out.append({"tag": "polyline", "frames": place.place(guide, ends),
                     "style": {"fill": "none", "stroke": _FRAME if guide == linkage.frame else _EDGE,
                               "stroke-width": 2.0, "stroke-dasharray": "5 3" if guide == linkage.frame else None}})
+        for m in linkage.joints_of(guide):  # a pin of the guide off its line (an offset slot): an arm to the line
+            if m != k and linkage.kind(m) == "revolute" and guide != linkage.frame:
+                foot = p + float((linkage.points[m] - p) @ u) * u
+                if math.dist(foot, linkage.points[m]) > 1e-9 * scale:
+                    out.append({"tag": "polyline", "frames": place.place(guide, [linkage.points[m], foot]),
+                                "style": {"fill": "none", "stroke": _EDGE, "stroke-width": 3.2,
+                                          "stroke-linecap": "round"}})
         n = np.array([-u[1], u[0]])
         corners = [p - half * u - 0.6 * half * n, p + half * u - 0.6 * half * n,
                    p + half * u + 0.6 * half * n, p - half * u + 0.6 * half * n]
         out.append({"tag": "polygon", "frames": place.place(block, corners),
                     "style": {"fill": "white", "stroke": _INPUT if block in driven else _EDGE, "stroke-width": 1.4}})
-    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) != "mesh"]
+    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) == "revolute"]
     if len(base) >= 2:  # the fixed link: a dashed line through its joints
         pose = linkage.points[base]
         out.append({"tag": "polygon" if len(base) > 2 else "polyline", "static": True,
@@ -303,6 +312,19 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         out.append({"tag": "text", "text": name, "frames": xy[:, None] + np.array([1.6 * pin, 1.6 * pin]),
                     "style": {"fill": colour, "font-size": 12, "font-family": "sans-serif", "font-weight": "bold"}})
     return out
+
+
+def _guide_and_block(linkage: Linkage, k: int) -> tuple[int, int]:
+    """The two links of prismatic joint ``k`` as a designer draws them: the block is the link pinned
+    nearest the sliding point (a slider's pin, a block on a crank pin), the guide the other."""
+    a, b = linkage.chain.joints[k]
+
+    def gap(link: int) -> float:
+        pins = [math.dist(linkage.points[m], linkage.points[k]) for m in linkage.joints_of(link)
+                if linkage.kind(m) == "revolute"]
+        return min(pins, default=math.inf)
+
+    return (b, a) if gap(a) < gap(b) else (a, b)
 
 
 def _along(local: np.ndarray, theta: np.ndarray, u: np.ndarray) -> np.ndarray:
@@ -552,7 +574,9 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     if len(_frames(motion, 2)) == 0:
         raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
     joints, angles, tracers = _still(linkage)
-    elements = _elements(linkage, joints, angles, tracers, _paths(motion))  # the pose, over its paths
+    keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
+    elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
+                         reach=(motion.joints[keep], motion.angles[keep]))
     canvas = _Canvas(elements, size)
     text = title or _title(linkage)
     try:
