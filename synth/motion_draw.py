@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InvalidOption
-from .motion import Linkage, Motion, joint_name, linkage_from_pose, motion_range
+from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
 
 __all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_motion", "animate_motion", "player_svg",
@@ -56,8 +56,8 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     The joints stand where :func:`synth.draw.layout` draws them, scaled so that the drawing is
     ``size`` across.  A drawing is made to be read, not to move: its symmetric poses are often
     locked, or parallelograms that fold at a change point.  So each input joint of the frame (the
-    mechanism's input link's, if it has one) is tried on the drawing's pose and then on poses whose
-    joints are moved at random (fixed seed) by 5 … 30 % of the size, and the first that moves well
+    mechanism's input link's, if it has one) is tried on the drawing's pose and then on ``tries`` poses
+    whose joints are moved at random (fixed seed) by 5 … 30 % of the size, and the first that moves well
     is kept: its input turns fully (a crank) and no transmission angle falls under 20°; failing that,
     the best found (a crank first, then the widest transmission angle, then the largest swing).
     :attr:`Linkage.note` says when the joints were moved, by how much, and why.
@@ -148,10 +148,12 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     angle, swing), and what is wrong with it in words (None when nothing is)."""
     from .motion import sweep
 
-    reach = motion_range(linkage)
-    full = reach.full_rotation
     motion = sweep(linkage, steps=73)
-    span = 2 * math.pi if full else float(reach.limits[1] - reach.limits[0]) if reach.limits else 0.0
+    # a crank's sweep turns once from the pose; a rocker's goes from limit to limit (which may span
+    # more than a turn, but does not start at the pose's input)
+    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
+    full = (motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute"
+            and abs(motion.inputs[0, 0] - linkage.pose_inputs[0]) < 1e-12 and abs(span - 2 * math.pi) < 1e-9)
     if linkage.kind(linkage.inputs[0]) != "revolute":  # a stroke as long as the mechanism is worth a turn
         span *= 2 * math.pi / linkage.scale
     # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
