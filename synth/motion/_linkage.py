@@ -417,6 +417,13 @@ class Linkage:
         return cls(mechanism, inputs, np.array([table[k] for k in range(len(chain.joints))]), keyed("slides"),
                    keyed("meshes"), {name: (v["link"], v["at"]) for name, v in tracers.items()}, d.get("note"))
 
+    @cached_property
+    def _solver(self):
+        """How this linkage is moved (its dyads or Newton's method, its branch), built once."""
+        from ._sweep import _Solver
+
+        return _Solver(self)
+
     def to_json(self) -> str:
         return json.dumps(self.to_dict())
 
