@@ -110,7 +110,7 @@ def test_readme_command_runs_as_written(argv, tour, monkeypatch, capsys):
     out, err = capsys.readouterr()
     assert status == 0, (shlex.join(argv), err[-1500:])
     assert "Traceback" not in err
-    assert out.strip() or any(a in argv for a in ("--out", "--html", "--plot", "grid")), shlex.join(argv)
+    assert out.strip() or any(a in argv for a in ("--out", "--animate", "--save", "--html", "--plot", "grid")), shlex.join(argv)
 
 
 @pytest.mark.parametrize("command, shown", shown_outputs(README.read_text(encoding="utf-8")), ids=lambda x: str(x)[:40])
