@@ -92,3 +92,10 @@ def test_a_mechanism_of_the_atlas_moves_from_its_drawing(text, frame):
 def test_the_same_mechanism_gets_the_same_linkage():
     m = Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 0)
     assert linkage_from_layout(m).to_dict() == linkage_from_layout(m).to_dict()
+
+
+def test_a_linkage_shows_itself_in_a_notebook(four_bar):
+    """The facade names linkage_svg as a Linkage's drawing (synth.structure.display.svg_of)."""
+    from synth.structure.display import svg_of
+
+    assert svg_of(four_bar) == linkage_svg(four_bar)
