@@ -76,7 +76,7 @@ _WHERE = {
     # identifying any chain, comparing atlases
     "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
     # motion of dimensioned mechanisms
-    "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._linkage",
+    "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
     "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
 }
@@ -87,7 +87,7 @@ __all__ = [*_WHERE, *_errors_all]
 __getattr__, __dir__ = lazy_exports(__name__, _WHERE)
 
 # the facade stands above every floor: it names the drawings the values at the ground show in a notebook
-from .structure.display import register_drawing as _register_drawing  # noqa: E402
+from .display import register_drawing as _register_drawing  # noqa: E402
 
 for _kind in ("Chain", "Mechanism"):
     _register_drawing(_kind, "synth.draw:svg")

@@ -22,7 +22,7 @@ Example
 from .._lazy import lazy_exports
 
 _WHERE = {
-    "Linkage": "._linkage", "read_linkage": "._linkage", "linkage_from_pose": "._linkage", "joint_name": "._linkage",
+    "Linkage": "._linkage", "read_linkage": "._linkage", "linkage_from_pose": "._pose", "joint_name": "._linkage",
     "Motion": "._sweep", "MotionRange": "._sweep", "sweep": "._sweep", "sweep_grid": "._sweep",
     "motion_range": "._sweep", "assemble": "._sweep",
 }

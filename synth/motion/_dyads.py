@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
 __all__ = ["Dyad", "decompose", "close", "locked_groups"]
@@ -148,124 +149,44 @@ def _cross2(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def _rot(theta, p):
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack((c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]), axis=-1)
-
-
-def _angle(v):
-    return np.arctan2(v[..., 1], v[..., 0])
-
-
-def _between(v, w):
-    """The angle between vectors v and w, in [0, π]."""
-    return np.arctan2(np.abs(_cross2(v, w)), (v * w).sum(axis=-1))
+_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "gear": GEAR}
 
 
 def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):
-    """Every link's pose at S input offsets (S, W) from the pose's inputs.
+    """Every link's pose at S input offsets (S, W) from the pose's inputs, by the compiled kernel.
 
     Returns θ (S, n), t (S, n, 2), g (S, G) the dyads' normalised discriminants (the dyad closes
-    where g ≥ 0) and μ (S, G) their transmission angles (rad in [0, π]; NaN for a gear).  Where a
-    dyad does not close, its links' poses are NaN.
+    where g ≥ 0), μ (S, G) their transmission angles (rad in [0, π]; NaN for a gear) and every
+    joint's position (S, J, 2).  Where a dyad does not close, its links' poses are NaN.
     """
     lk = linkage
-    p = lk.points
-    s = offsets.shape[0]
-    n = lk.chain.links
-    theta = np.zeros((s, n))
-    t = np.zeros((s, n, 2))
-    for i, k in enumerate(lk.inputs):
-        link = lk.input_link(i)
-        if lk.kind(k) == "revolute":
-            theta[:, link] = offsets[:, i]
-            t[:, link] = p[k] - _rot(offsets[:, i], p[k])
-        else:
-            t[:, link] = offsets[:, i, None] * np.array(lk.slides[k])
-    g = np.empty((s, len(plan)))
-    mu = np.full((s, len(plan)), np.nan)
-    scale2 = lk.scale ** 2
-
-    def at(k, link):  # joint k's reference point carried by known link
-        return _rot(theta[:, link], p[k]) + t[:, link]
-
-    def place(link, angle, point, ref):  # a link turned by ``angle`` with its point ``ref`` at ``point``
-        theta[:, link] = angle
-        t[:, link] = point - _rot(angle, ref)
-
+    chain = lk.chain
+    offsets = np.ascontiguousarray(offsets, dtype=float)
+    steps, n, count = offsets.shape[0], chain.links, len(chain.joints)
+    slides = np.zeros((count, 2))
+    for k, u in lk.slides.items():
+        slides[k] = u
+    in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
+    in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
+    in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+    in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+    groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)
+    ints = np.zeros((len(plan), 9), dtype=np.int64)
+    floats = np.zeros((len(plan), 2))
     for m, d in enumerate(plan):
-        i, j = d.links
-        k1, k2 = d.outer
-        if d.kind == "RRR":
-            a0, b0, c0 = p[k1], p[d.middle], p[k2]
-            a, c = at(k1, d.known[0]), at(k2, d.known[1])
-            li2, lj2 = ((b0 - a0) ** 2).sum(), ((b0 - c0) ** 2).sum()
-            dv = c - a
-            dd = (dv ** 2).sum(axis=1)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                along = (li2 - lj2 + dd) / (2 * dd)
-                h2 = li2 / dd - along ** 2
-                g[:, m] = np.where(dd > 0, h2 * dd / li2, -1.0)
-                b = a + along[:, None] * dv + (d.sign * np.sqrt(h2))[:, None] * np.stack((-dv[:, 1], dv[:, 0]), 1)
-            place(i, _angle(b - a) - _angle(b0 - a0), a, a0)
-            place(j, _angle(b - c) - _angle(b0 - c0), c, c0)
-            mu[:, m] = _between(a - b, c - b)
-        elif d.kind == "PRR":
-            k_1, k_2 = d.known
-            u = _rot(theta[:, k_1], np.array(lk.slides[k1]))
-            base = at(d.middle, k_1)
-            c0, b0 = p[k2], p[d.middle]
-            c = at(k2, k_2)
-            w = base - c
-            bb = (u * w).sum(axis=1)
-            disc = bb ** 2 - (w ** 2).sum(axis=1) + ((b0 - c0) ** 2).sum()
-            g[:, m] = disc / ((b0 - c0) ** 2).sum()
-            with np.errstate(invalid="ignore"):
-                slide = -bb + d.sign * np.sqrt(disc)
-            b = base + slide[:, None] * u
-            theta[:, i] = theta[:, k_1]
-            t[:, i] = t[:, k_1] + slide[:, None] * u
-            place(j, _angle(b - c) - _angle(b0 - c0), c, c0)
-            mu[:, m] = _between(b - c, np.stack((-u[:, 1], u[:, 0]), 1))
-        elif d.kind == "RPR":
-            a0, c0 = p[k1], p[k2]
-            u0 = np.array(lk.slides[d.middle])
-            a, c = at(k1, d.known[0]), at(k2, d.known[1])
-            dv = c - a
-            h = _cross2(u0, c0 - a0)
-            disc = (dv ** 2).sum(axis=1) - h ** 2
-            g[:, m] = disc / scale2
-            with np.errstate(invalid="ignore"):
-                psi = np.arctan2(np.full(s, h), d.sign * np.sqrt(disc))
-            angle = _angle(dv) - _angle(u0) - psi
-            place(i, angle, a, a0)
-            place(j, angle, c, c0)
-            uw = _rot(angle, u0)
-            mu[:, m] = _between(dv, np.stack((-uw[:, 1], uw[:, 0]), 1))
-        elif d.kind == "PRP":
-            k_1, k_2 = d.known
-            u1 = _rot(theta[:, k_1], np.array(lk.slides[k1]))
-            u2 = _rot(theta[:, k_2], np.array(lk.slides[k2]))
-            delta = at(d.middle, k_2) - at(d.middle, k_1)
-            det = _cross2(u2, u1)  # of the columns [u1, −u2]
-            g[:, m] = det ** 2
-            with np.errstate(divide="ignore", invalid="ignore"):
-                s1 = _cross2(delta, -u2) / det
-                s2 = _cross2(u1, delta) / det
-            theta[:, i], theta[:, j] = theta[:, k_1], theta[:, k_2]
-            t[:, i] = t[:, k_1] + s1[:, None] * u1
-            t[:, j] = t[:, k_2] + s2[:, None] * u2
-            mu[:, m] = _between(u1, u2)
-        else:  # a gear on a known axis
-            axis, mesh = k1, k2
-            a, b = lk.chain.joints[mesh]
-            c = d.known[1]
-            ratio = lk.meshes[mesh]
-            angle = (theta[:, c] + (theta[:, a] - theta[:, c]) / ratio if i == b
-                     else theta[:, c] + ratio * (theta[:, b] - theta[:, c]))
-            place(i, angle, at(axis, d.known[0]), p[axis])
-            g[:, m] = 1.0
-    return theta, t, g, mu
+        mesh = chain.joints[d.outer[1]] if d.kind == "gear" else (0, 0)
+        ints[m] = (*d.links, *d.outer, max(d.middle, 0), *d.known, *mesh)
+        floats[m] = (d.sign, lk.meshes.get(d.outer[1], 1.0) if d.kind == "gear" else 0.0)
+    theta = np.zeros((steps, n))
+    t = np.zeros((steps, n, 2))
+    g = np.empty((steps, len(plan)))
+    mu = np.empty((steps, len(plan)))
+    joints = np.empty((steps, count, 2))
+    first = np.array([j[0] for j in chain.joints], dtype=np.int64)
+    close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, ints, floats,
+                 np.ascontiguousarray(lk.points), slides, first, lk.scale ** 2, theta, t[:, :, 0], t[:, :, 1], g, mu,
+                 joints)
+    return theta, t, g, mu, joints
 
 
 def locked_groups(linkage: Linkage) -> list[tuple[int, int]]:
@@ -274,5 +195,5 @@ def locked_groups(linkage: Linkage) -> list[tuple[int, int]]:
     plan = decompose(linkage)
     if plan is None:
         return []
-    _, _, g, _ = close(linkage, plan, np.zeros((1, linkage.dof)))
+    g = close(linkage, plan, np.zeros((1, linkage.dof)))[2]
     return [d.links for m, d in enumerate(plan) if d.kind != "gear" and g[0, m] < 1e-12]

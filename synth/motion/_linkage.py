@@ -11,17 +11,19 @@ from __future__ import annotations
 import json
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
+from mechbase.toml import read_toml_text
+
+from ..display import svg_of
 from ..errors import BadPose, LockedMechanism, MalformedChain, MotionError, WrongInputs
 from ..structure.chain import SYMBOLS, Chain, Mechanism
 
-__all__ = ["Linkage", "read_linkage", "linkage_from_pose", "joint_name"]
+__all__ = ["Linkage", "read_linkage", "joint_name"]
 
 #: two joints of one link closer than this (relative to the mechanism's size) are one point
 COINCIDENT = 1e-9
@@ -51,6 +53,24 @@ def _joint_index(chain: Chain, key, what: str) -> int:
         if j == links:
             return k
     raise MotionError(f"{what} names joint {key!r}, which is not a joint of the chain {chain.compact()}")
+
+
+def _input_joint(chain: Chain, frame: int, key) -> tuple[int, int | None]:
+    """An input named by its joint, or by the frame and the link it drives inside a multiple joint
+    (``"0-3"`` in the joint ``0-1-3``): (joint, driven link or None for the joint's other link)."""
+    try:
+        return _joint_index(chain, key, "'inputs'"), None
+    except MotionError:
+        if not isinstance(key, str):
+            raise
+        try:
+            links = {int(x) for x in re.split(r"[-=~]", key)}
+        except ValueError:
+            raise MotionError(f"'inputs' names joint {key!r}: write a joint by its links, e.g. '0-1'") from None
+        holding = [k for k, j in enumerate(chain.joints) if links <= set(j)]
+        if len(links) != 2 or frame not in links or len(holding) != 1:
+            raise
+        return holding[0], (links - {frame}).pop()
 
 
 def _pair(value, what: str) -> tuple[float, float]:
@@ -89,6 +109,9 @@ class Linkage:
     note : str or None
         What was changed to make the pose move (set by :func:`linkage_from_pose` with
         ``nudge=True``), else None.
+    driven : tuple of int, optional
+        The link each input drives relative to the frame; needed only where an input is a multiple
+        joint of the frame (a planetary train's central axis ``0-1-2-3``), else the joint's other link.
 
     Raises
     ------
@@ -101,7 +124,7 @@ class Linkage:
     >>> m = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0)
     >>> four_bar = Linkage(m, (0,), np.array([[0, 0], [4, 0], [1, 0], [3, 2]]))  # joints 0-1 0-3 1-2 2-3
     >>> four_bar.dof, round(four_bar.lengths()[2], 6)
-    (1, 3.605551)
+    (1, 2.828427)
     """
 
     mechanism: Mechanism
@@ -111,6 +134,7 @@ class Linkage:
     meshes: dict = field(default_factory=dict)
     tracers: dict = field(default_factory=dict)
     note: str | None = None
+    driven: tuple[int, ...] | None = None
 
     def __post_init__(self):
         chain = self.chain
@@ -128,6 +152,7 @@ class Linkage:
         points.flags.writeable = False
         object.__setattr__(self, "points", points)
         object.__setattr__(self, "inputs", tuple(int(k) for k in self.inputs))
+        self._set_driven()
         self._check_inputs()
         self._check_links()
         object.__setattr__(self, "slides", self._checked_slides())
@@ -135,6 +160,32 @@ class Linkage:
         object.__setattr__(self, "tracers", self._checked_tracers())
 
     # ------------------------------------------------------------------ checks
+    def _set_driven(self) -> None:
+        chain, frame = self.chain, self.frame
+        if len(self.inputs) != max(chain.dof, 0) and chain.dof > 0:
+            return  # (_check_inputs says so)
+        for k in self.inputs:
+            if not 0 <= k < len(chain.joints):
+                raise WrongInputs(f"input joint {k} is not a joint of the chain (0 … {len(chain.joints) - 1})")
+        if self.driven is None:
+            driven = []
+            for k in self.inputs:
+                j = chain.joints[k]
+                if len(j) != 2 or frame not in j:
+                    raise WrongInputs(f"input joint {joint_name(chain, k)} must join the frame (link {frame}) to one "
+                                      "moving link, or name the link it drives")
+                driven.append(j[1] if j[0] == frame else j[0])
+            object.__setattr__(self, "driven", tuple(driven))
+        else:
+            driven = tuple(int(x) for x in self.driven)
+            if len(driven) != len(self.inputs):
+                raise WrongInputs(f"{len(driven)} driven links given for {len(self.inputs)} inputs")
+            for k, x in zip(self.inputs, driven):
+                if frame not in chain.joints[k] or x not in chain.joints[k] or x == frame:
+                    raise WrongInputs(f"input joint {joint_name(chain, k)} does not join the frame (link {frame}) "
+                                      f"to link {x}")
+            object.__setattr__(self, "driven", driven)
+
     def _check_inputs(self) -> None:
         chain, frame = self.chain, self.frame
         w = chain.dof
@@ -143,14 +194,12 @@ class Linkage:
         if len(self.inputs) != w:
             raise WrongInputs(f"this mechanism has W = {w} and needs {w} input joint{'s' * (w > 1)} on the frame, "
                               f"not {len(self.inputs)}")
-        if len(set(self.inputs)) != len(self.inputs):
+        if len(set(zip(self.inputs, self.driven))) != len(self.inputs):
             raise WrongInputs("an input joint is named twice")
         for k in self.inputs:
             if not 0 <= k < len(chain.joints):
                 raise WrongInputs(f"input joint {k} is not a joint of the chain (0 … {len(chain.joints) - 1})")
             name = joint_name(chain, k)
-            if len(chain.joints[k]) != 2 or frame not in chain.joints[k]:
-                raise WrongInputs(f"input joint {name} must join the frame (link {frame}) to one moving link")
             if self.kind(k) == "mesh":
                 raise WrongInputs(f"input joint {name} is a gear mesh: drive a revolute or prismatic joint of the frame")
         driven = [self.input_link(i) for i in range(w)]
@@ -158,14 +207,15 @@ class Linkage:
             raise WrongInputs(f"two inputs drive link {driven[0]}: each input must drive its own link")
 
     def _check_links(self) -> None:
+        """A link whose pins are all at one point has no length (pins of different links on one
+        axis, as a planetary train's shafts on its frame, are allowed where the link has others)."""
         scale = self.scale
         for link in range(self.chain.links):
             pins = [k for k in self.joints_of(link) if self.kind(k) == "revolute"]
-            for a, k in enumerate(pins):
-                for m in pins[a + 1:]:
-                    if np.hypot(*(self.points[k] - self.points[m])) <= COINCIDENT * scale:
-                        raise BadPose(f"joints {joint_name(self.chain, k)} and {joint_name(self.chain, m)} of link {link} "
-                                      "are at the same point: a link's pins must be apart (a zero-length link)")
+            if len(pins) >= 2 and all(np.hypot(*(self.points[k] - self.points[pins[0]])) <= COINCIDENT * scale
+                                      for k in pins[1:]):
+                raise BadPose(f"joints {joint_name(self.chain, pins[0])} and {joint_name(self.chain, pins[1])} of link "
+                              f"{link} are at the same point: a link's pins must be apart (a zero-length link)")
 
     def _checked_slides(self) -> dict:
         chain, out = self.chain, {}
@@ -287,8 +337,7 @@ class Linkage:
 
     def input_link(self, i: int) -> int:
         """The moving link driven by input ``i``."""
-        a, b = self.chain.joints[self.inputs[i]]
-        return b if a == self.frame else a
+        return self.driven[i]
 
     def input_reference(self, i: int) -> int | None:
         """For a revolute input, the joint of the driven link whose direction from the input joint is
@@ -337,7 +386,8 @@ class Linkage:
         d = {
             "chain": chain.compact(),
             "frame": self.frame,
-            "inputs": [joint_name(chain, k) for k in self.inputs],
+            "inputs": [joint_name(chain, k) if len(chain.joints[k]) == 2 else f"{self.frame}-{x}"
+                       for k, x in zip(self.inputs, self.driven)],
             "points": {joint_name(chain, k): [float(x), float(y)] for k, (x, y) in enumerate(self.points)},
         }
         if self.slides:
@@ -388,7 +438,12 @@ class Linkage:
             inputs = [inputs]
         if not isinstance(inputs, list):
             raise MotionError("'inputs' must be a list of joints, e.g. ['0-1']")
-        inputs = tuple(_joint_index(chain, key, "'inputs'") for key in inputs)
+        picked, driven = [], []
+        for key in inputs:
+            k, link = _input_joint(chain, frame, key)
+            picked.append(k)
+            driven.append(link)
+        inputs = tuple(picked)
         points = d["points"]
         if not isinstance(points, dict):
             raise MotionError("'points' must map each joint to its position, e.g. {'0-1': [0, 0]}")
@@ -415,14 +470,12 @@ class Linkage:
             raise MotionError("'tracers' must map each name to {link = L, at = [x, y]}")
         mechanism = Mechanism(chain, frame)
         return cls(mechanism, inputs, np.array([table[k] for k in range(len(chain.joints))]), keyed("slides"),
-                   keyed("meshes"), {name: (v["link"], v["at"]) for name, v in tracers.items()}, d.get("note"))
+                   keyed("meshes"), {name: (v["link"], v["at"]) for name, v in tracers.items()}, d.get("note"),
+                   None if None in driven else tuple(driven))
 
-    @cached_property
-    def _solver(self):
-        """How this linkage is moved (its dyads or Newton's method, its branch), built once."""
-        from ._sweep import _Solver
-
-        return _Solver(self)
+    def _repr_svg_(self) -> str:
+        """The drawing Jupyter shows: the linkage in its pose (the drawing registered for it)."""
+        return svg_of(self)
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict())
@@ -455,93 +508,13 @@ def read_linkage(path: str | Path) -> Linkage:
         raise MotionError(f"no linkage file {str(path)!r}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise MotionError(f"cannot read {str(path)!r}: {getattr(exc, 'strerror', None) or exc}") from None
-    try:
-        data = tomllib.loads(text) if suffix == ".toml" else json.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise MotionError(f"{path.name} is not valid TOML: {exc}") from None
-    except json.JSONDecodeError as exc:
-        raise MotionError(f"{path.name} is not valid JSON: {exc.msg} at line {exc.lineno}") from None
+    if suffix == ".toml":
+        data = read_toml_text(text, error=MotionError, source=path.name)
+    else:
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno}).") from None
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
     return Linkage.from_dict(data)
-
-
-def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=None, meshes=None, tracers=None,
-                      nudge: bool = False) -> Linkage:
-    """A linkage from any joint positions (for instance a drawing's layout).
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-        Chain and frame; its ``input_link``, if set, chooses the input joint.
-    positions : array (J, 2)
-        A position per joint, in ``chain.joints`` order.
-    inputs : sequence of int, optional
-        Input joints; by default the joint of the frame and ``mechanism.input_link``, else the
-        frame's first W joints that join it to one moving link each (revolute before prismatic).
-    slides : dict, optional
-        Sliding directions; by default each prismatic joint slides along the line from its point
-        to the nearest other joint of its links (perpendicular to nothing in particular: a guess).
-    meshes, tracers : dict, optional
-        As in :class:`Linkage`.
-    nudge : bool
-        If the pose is locked (the inputs cannot move it: a singular pose, as drawings of
-        symmetric chains often are), move the joints a little at random (fixed seed) until it
-        moves, and say so in :attr:`Linkage.note`; otherwise such a pose raises LockedMechanism.
-
-    >>> from synth.structure.chain import Chain, Mechanism
-    >>> lk = linkage_from_pose(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), [[0, 0], [4, 0], [1, 0], [3, 2]])
-    >>> lk.inputs, lk.note
-    ((0,), None)
-    """
-    from ._system import check_movable  # the solver's test of a pose (a module of this floor)
-
-    chain, frame = mechanism.chain, mechanism.frame
-    try:
-        points = np.array(positions, dtype=float)
-    except (TypeError, ValueError):
-        raise BadPose("the joint positions must be numbers, one [x, y] per joint") from None
-    if points.shape != (len(chain.joints), 2):
-        raise BadPose(f"the pose needs one [x, y] per joint ({len(chain.joints)}), not an array of shape {points.shape}")
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
-    if inputs is None:
-        on_frame = [k for k, j in enumerate(chain.joints) if len(j) == 2 and frame in j and kinds[k] != "mesh"]
-        if mechanism.input_link is not None:
-            on_frame.sort(key=lambda k: mechanism.input_link not in chain.joints[k])
-        else:
-            on_frame.sort(key=lambda k: (kinds[k] != "revolute", k))
-        picked, driven = [], set()
-        for k in on_frame:
-            other = sum(chain.joints[k]) - frame
-            if other not in driven:
-                picked.append(k)
-                driven.add(other)
-        inputs = picked[: max(chain.dof, 0)]
-    if slides is None:
-        slides = {}
-        for k, kind in enumerate(kinds):
-            if kind == "prismatic":
-                others = [m for x in chain.joints[k] for m in range(len(chain.joints)) if m != k and x in chain.joints[m]]
-                d = points[others] - points[k]
-                far = d[np.hypot(d[:, 0], d[:, 1]) > 1e-6 * max(float(np.ptp(points, axis=0).max()), 1e-12)]
-                slides[k] = tuple(far[0]) if len(far) else (1.0, 0.0)
-    linkage = Linkage(mechanism, tuple(inputs), points, slides, meshes or {}, tracers or {})
-    if check_movable(linkage) is None:
-        return linkage
-    if not nudge:
-        raise LockedMechanism(check_movable(linkage))
-    rng = np.random.default_rng(0)
-    why = check_movable(linkage)
-    for attempt in range(1, 41):
-        size = 0.02 * linkage.scale * (1 + attempt // 10)
-        moved = points + rng.uniform(-size, size, points.shape)
-        try:
-            trial = Linkage(mechanism, tuple(inputs), moved, slides, meshes or {}, tracers or {})
-        except MotionError:
-            continue
-        if check_movable(trial) is None:
-            shift = float(np.hypot(*(moved - points).T).max())
-            note = (f"the given pose is locked ({why}); the joints were moved by up to {shift:.3g} "
-                    f"({shift / linkage.scale:.1%} of the mechanism's size) to a nearby pose that moves")
-            return Linkage(mechanism, tuple(inputs), moved, slides, meshes or {}, tracers or {}, note)
-    raise LockedMechanism(f"the pose is locked ({why}) and no nearby pose moves")

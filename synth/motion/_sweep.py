@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections import deque
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -14,7 +14,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ..errors import BadSweep, CannotAssemble, MotionError
 from ._dyads import close, decompose
 from ._linkage import Linkage, joint_name
-from ._system import LOCKED, System
+from ._system import System
 
 __all__ = ["Motion", "MotionRange", "sweep", "sweep_grid", "motion_range", "assemble"]
 
@@ -37,10 +37,9 @@ class Motion:
     stopped : str or None
         One sentence when the sweep ended at a dead or singular position (with the input there).
     transmission : dict
-        Per closed-form dyad (key ``"links i, j"``): ``min`` and ``max`` transmission angle (rad,
-        π/2 best, 0 or π locked) and the inputs ``at_min``, ``at_max`` where they occur.
+        Per closed-form dyad: least and greatest transmission angle and where (computed when read).
     angles : ndarray (S, n)
-        Each link's rotation from the pose (rad).
+        Each link's rotation from the pose (rad, modulo a turn).
     """
 
     linkage: Linkage
@@ -51,7 +50,18 @@ class Motion:
     velocities: np.ndarray | None = None
     accelerations: np.ndarray | None = None
     stopped: str | None = None
-    transmission: dict = field(default_factory=dict)
+
+    @cached_property
+    def transmission(self) -> dict:
+        """Per closed-form dyad (key ``"links i, j"``): its ``kind``, ``min`` and ``max`` transmission
+        angle over the sweep (rad; π/2 best, 0 or π a dead position) and the inputs ``at_min``,
+        ``at_max`` where they occur, refined between steps by a bounded search.  Empty for a
+        linkage moved by Newton's method, or a grid."""
+        solver = _solver(self.linkage)
+        if solver.plan is None or self.inputs.shape[1] != 1 or self.steps < 2:
+            return {}
+        offsets = self.inputs[:, 0] - self.linkage.pose_inputs[0]
+        return _transmission(solver, offsets, solver.closed(offsets[:, None])[3], float(self.linkage.pose_inputs[0]))
 
     @property
     def steps(self) -> int:
@@ -144,7 +154,7 @@ class _Solver:
 
     # ------------------------------------------------------------ positions
     def closed(self, offsets: np.ndarray):
-        """θ, t, g, μ at input offsets (S, W) by the dyads' closed forms."""
+        """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
         return close(self.linkage, self.plan, offsets)
 
     def gmin(self, x: float) -> float:
@@ -297,40 +307,68 @@ class _Solver:
     def _span(self) -> float:
         return 2 * math.pi if self.revolute[0] else 4.0 * self.linkage.scale
 
+    def _measure(self, xs: np.ndarray) -> np.ndarray:
+        """(S, G): each dyad's distance from a singular place at 1-DOF offsets xs — its discriminant g
+        (negative where it cannot close) and, for an RRR dyad, also the gap between its outer pins
+        over the size (0 at a change point, where its two links could turn together)."""
+        _, _, g, _, joints = self.closed(xs[:, None])
+        out = np.where(np.isfinite(g), g, -1.0)
+        for m, d in enumerate(self.plan):
+            if d.kind == "RRR":
+                gap = np.hypot(*(joints[:, d.outer[1]] - joints[:, d.outer[0]]).T) / self.linkage.scale
+                out[:, m] = np.where(out[:, m] >= 0, np.minimum(out[:, m], gap), out[:, m])
+        return out
+
+    def _touches(self, xs: np.ndarray, measure: np.ndarray) -> list[tuple[float, int]]:
+        """(offset, dyad) where a dyad touches a singular place between samples without going
+        negative (a change point), found by a bounded search around each small local minimum."""
+        found = []
+        for m in range(measure.shape[1]):
+            col = measure[:, m]
+            mid = col[1:-1]
+            for i in np.flatnonzero((mid <= col[:-2]) & (mid <= col[2:]) & (mid >= 0) & (mid < 1e-3)) + 1:
+                res = minimize_scalar(lambda x: float(self._measure(np.array([x]))[0, m]),
+                                      bounds=(xs[i - 1], xs[i + 1]), method="bounded", options={"xatol": 1e-12})
+                if res.fun <= 1e-9:
+                    found.append((float(res.x), m))
+        return found
+
     def _branch_closed(self):
         span = self._span()
         while True:
-            xs = np.linspace(-span / 2 if self.revolute[0] else -span, span / 2 if self.revolute[0] else span,
-                             SAMPLES + 1)
-            g = self.closed(xs[:, None])[2]
-            bad = (g < 0).any(axis=1) | ~np.isfinite(g).all(axis=1)
+            xs = (np.linspace(-2 * math.pi, 2 * math.pi, 2 * SAMPLES + 1) if self.revolute[0]
+                  else np.linspace(-span, span, SAMPLES + 1))
+            measure = self._measure(xs)
+            bad = (measure < 0).any(axis=1)
             if self.revolute[0] or bad[0] and bad[-1] or span > 1e4 * self.linkage.scale:
                 break
             span *= 4
-        if not bad.any():
-            return -math.inf, math.inf, "", ""
-        if self.revolute[0]:  # the circle, from the pose (offset 0) both ways
-            xs = np.linspace(-2 * math.pi, 2 * math.pi, 2 * SAMPLES + 1)
-            g = self.closed(xs[:, None])[2]
-            bad = (g < 0).any(axis=1) | ~np.isfinite(g).all(axis=1)
+        touches = self._touches(xs, measure)
         centre = len(xs) // 2
         ends = []
         for step in (-1, 1):
             k = centre
             while 0 <= k + step < len(xs) and not bad[k + step]:
                 k += step
-            if not 0 <= k + step < len(xs):
-                ends.append((step * math.inf, ""))
-                continue
-            good_x, bad_x = xs[k], xs[k + step]
-            m = int(np.argmin(g[k + step]))
-            lo, hi = sorted((good_x, bad_x))
-            root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL, rtol=1e-15)
-            # keep the side where the dyad closes
-            while self.gmin(root) < 0:
-                root -= step * LIMIT_TOL
-            ends.append((root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)"))
+            end = (step * math.inf, "")
+            if 0 <= k + step < len(xs):
+                good_x, bad_x = xs[k], xs[k + step]
+                m = int(np.argmin(measure[k + step]))
+                lo, hi = sorted((good_x, bad_x))
+                root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL,
+                              rtol=1e-15)
+                while self.gmin(root) < 0:  # keep the side where the dyad closes
+                    root -= step * LIMIT_TOL
+                end = (root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)")
+            for x, m in sorted(touches, key=lambda found: abs(found[0])):
+                if x * step > 0 and abs(x) < abs(end[0]):
+                    end = (x, f"{_dyad_name(self.linkage, self.plan[m])} passes a change point (its links could "
+                              "turn together there: a singular position)")
+                    break
+            ends.append(end)
         (lo, why_lo), (hi, why_hi) = ends
+        if self.revolute[0] and hi - lo >= 2 * math.pi:
+            return -math.inf, math.inf, "", ""
         return lo, hi, why_lo, why_hi
 
     def _branch_newton(self):
@@ -355,10 +393,10 @@ class _Solver:
 
     # ------------------------------------------------------------- sweeps
     def poses_along(self, offsets: np.ndarray):
-        """θ, t (and the dyads' μ, or None) at 1-DOF offsets, all on the branch of the pose."""
+        """θ, t (and the joints, or None) at 1-DOF offsets, all on the branch of the pose."""
         if self.plan is not None:
-            theta, t, _, mu = self.closed(offsets[:, None])
-            return theta, t, mu
+            theta, t, _, _, joints = self.closed(offsets[:, None])
+            return theta, t, joints
         out = np.empty((len(offsets), self.system.size))
         for side in (-1, 1):
             chosen = np.flatnonzero(offsets * side > 0) if side > 0 else np.flatnonzero(offsets * side >= 0)
@@ -394,7 +432,11 @@ def _det_sign(system: System, theta, t) -> int:
 
 
 def _solver(linkage: Linkage) -> _Solver:
-    return linkage._solver
+    """The linkage's solver, built on first use and kept on the (immutable) linkage."""
+    solver = linkage.__dict__.get("_motion_solver")
+    if solver is None:
+        solver = linkage.__dict__["_motion_solver"] = _Solver(linkage)
+    return solver
 
 
 def _check_steps(steps, name: str = "steps") -> int:
@@ -422,12 +464,13 @@ def _describe(linkage: Linkage, value: float) -> str:
     return f"{value:.9g}"
 
 
-def _points(linkage: Linkage, theta, t):
-    """Every joint's position (S, J, 2) and every tracer's (S, 2) from link poses."""
-    p = linkage.points
-    first = np.array([j[0] for j in linkage.chain.joints])
-    c, s = np.cos(theta[:, first]), np.sin(theta[:, first])
-    joints = np.stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]), axis=-1) + t[:, first]
+def _points(linkage: Linkage, theta, t, joints=None):
+    """Every joint's position (S, J, 2) (unless given) and every tracer's (S, 2) from link poses."""
+    if joints is None:
+        p = linkage.points
+        first = np.array([j[0] for j in linkage.chain.joints])
+        c, s = np.cos(theta[:, first]), np.sin(theta[:, first])
+        joints = np.stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]), axis=-1) + t[:, first]
     tracers = {}
     for name, (link, (x, y)) in linkage.tracers.items():
         c, s = np.cos(theta[:, link]), np.sin(theta[:, link])
@@ -545,8 +588,12 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
-    theta, t, mu = solver.poses_along(offsets)
-    joints, tracers = _points(linkage, theta, t)
+    offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
+    theta, t, joints = solver.poses_along(offsets)
+    if joints is None or linkage.tracers:
+        joints, tracers = _points(linkage, theta, t, joints)
+    else:
+        tracers = {}
     inputs = (offsets - x0 + start)[:, None]
     vel = acc = None
     if velocities or accelerations:
@@ -559,9 +606,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
             acc[at_limit] = np.nan
         if not velocities:
             vel = None
-    transmission = _transmission(solver, offsets, mu, phi0) if mu is not None else {}
-    angles = np.unwrap(theta, axis=0) if len(theta) > 1 else theta
-    return Motion(linkage, inputs, joints, tracers, angles, vel, acc, stopped, transmission)
+    return Motion(linkage, inputs, joints, tracers, theta, vel, acc, stopped)
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
@@ -580,7 +625,7 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
             if b > a:
                 found = minimize_scalar(lambda x: sign * float(solver.closed(np.array([[x]]))[3][0, m]),
                                         bounds=(a, b), method="bounded", options={"xatol": 1e-10})
-                if found.success and sign * found.fun < sign * best:
+                if found.success and found.fun < sign * best:
                     best_x, best = float(found.x), sign * float(found.fun)
             entry[label], entry[f"at_{label}"] = best, float(phi0 + best_x)
         out[f"links {d.links[0]}, {d.links[1]}"] = entry
@@ -639,7 +684,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     theta = np.full((total, n), np.nan)
     t = np.full((total, n, 2), np.nan)
     if solver.plan is not None:
-        th, tt, g, _ = solver.closed(offsets)
+        th, tt, g, _, _ = solver.closed(offsets)
         closes = (g >= 0).all(axis=1)
         reached = _flood(closes.reshape(shape), start)
         theta[reached], t[reached] = th[reached], tt[reached]
@@ -681,7 +726,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
         vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, theta, vel, None, None, {})
+    return Motion(linkage, values, joints, tracers, theta, vel, None, None)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
@@ -797,7 +842,10 @@ def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
     phi0 = float(linkage.pose_inputs[0])
     for m, (link, _, _) in enumerate(outputs):
         for k in np.flatnonzero(np.sign(r[:-1, m]) * np.sign(r[1:, m]) < 0):
-            root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
+            try:
+                root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
+            except ValueError:  # the rate is not finite between the samples (a singular place): the sample
+                root = xs[k] if abs(r[k, m]) <= abs(r[k + 1, m]) else xs[k + 1]
             found.append((phi0 + root, link))
     return tuple(sorted(found))
 

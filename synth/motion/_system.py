@@ -87,13 +87,6 @@ class System:
         t[:, cols, 1] = q[:, 1::3]
         return theta, t
 
-    def unknowns(self, theta: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """The inverse of :meth:`poses`."""
-        cols = np.array(self.moving, dtype=int)
-        q = np.empty((theta.shape[0], self.size))
-        q[:, 0::3], q[:, 1::3], q[:, 2::3] = t[:, cols, 0], t[:, cols, 1], theta[:, cols]
-        return q
-
     def input_offsets(self, values: np.ndarray) -> np.ndarray:
         """The inputs as the drives' coordinates: rotation from the pose, or displacement (S, W)."""
         return np.asarray(values, dtype=float) - self.linkage.pose_inputs[None, :]

@@ -101,3 +101,64 @@ def test_inverted_slider_crank_guide_points_at_the_crank_pin():
     turned = motion.angles[:, 3] + math.atan2(*lk.slides[3][::-1])
     assert np.abs(np.sin(turned - guide)).max() < 1e-12
     assert motion_range(lk).full_rotation  # r < d: the crank turns fully
+
+
+def test_transmission_angle_extremes_of_a_crank_rocker():
+    # μ between coupler and rocker: cos μ = (b² + c² − e²)/(2bc), e = |A O4| = d ∓ a at φ = 0, π
+    a, b, c, d = 1.0, 3.5, 3.0, 4.0
+    m = sweep(four_bar(a, b, c, d), steps=360)  # neither 0 nor π is a step
+    t = m.transmission["links 2, 3"]
+    assert abs(t["min"] - math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))) < 1e-9
+    assert abs(t["max"] - math.acos((b * b + c * c - (d + a) ** 2) / (2 * b * c))) < 1e-9
+    assert abs(math.remainder(t["at_min"], 2 * math.pi)) < 1e-4
+    assert abs(math.remainder(t["at_max"] - math.pi, 2 * math.pi)) < 1e-4
+
+
+def test_planetary_train_shaft_speeds_follow_willis():
+    """Sun 1, carrier 2 and ring 3 on the frame's central axis (the multiple joint 0-1-2-3), planet
+    4 on the carrier meshing with both; the sun and the carrier drive (W = 2) and the ring turns as
+    Willis's formula says: (θ3 − θ2)/(θ1 − θ2) = −z1/z3 = −r1/r3."""
+    from synth.motion import Linkage, sweep_grid
+    from synth.structure.chain import Chain, Mechanism
+
+    r_sun, r_planet = 1.0, 0.5
+    r_ring = r_sun + 2 * r_planet
+    chain = Chain.parse("0-1-2-3 2-4 1~4 3~4")  # joints: 0-1-2-3, 1~4, 2-4, 3~4
+    points = {(0, 1, 2, 3): (0, 0), (1, 4): (r_sun, 0), (2, 4): (r_sun + r_planet, 0), (3, 4): (r_ring, 0)}
+    lk = Linkage(Mechanism(chain, 0), (0, 0), np.array([points[j] for j in chain.joints], dtype=float),
+                 driven=(1, 2))
+    assert math.isclose(lk.meshes[1], -r_planet / r_sun) and math.isclose(lk.meshes[3], r_planet / r_ring)
+    m = sweep_grid(lk, [(0.0, 1.0), (0.0, 0.5)], steps=3, velocities=True)
+    ring = m.angles[:, 3]
+    sun, carrier = m.inputs[:, 0], m.inputs[:, 1]
+    assert np.allclose(ring - carrier, -(r_sun / r_ring) * (sun - carrier), atol=1e-12, rtol=0)
+    again = Linkage.from_dict(lk.to_dict())
+    assert again.driven == (1, 2) and again.to_dict()["inputs"] == ["0-1", "0-2"]
+
+
+def test_a_piston_driving_a_slider_crank_moves_through_its_stroke():
+    """The slider as a prismatic input: its branch ends where crank and rod are in line, one
+    stroke apart (√((l + r)² − e²) − √((l − r)² − e²))."""
+    from synth.motion import Linkage
+
+    r, l, e = 1.0, 3.0, 0.5
+    lk = slider_crank(r, l, e)
+    piston = Linkage(lk.mechanism, (1,), lk.points, lk.slides)
+    lo, hi = motion_range(piston).limits
+    assert abs((hi - lo) - (math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e))) < 1e-9
+    m = sweep(piston, steps=101)
+    phi = np.arctan2(m.joints[:, 2, 1], m.joints[:, 2, 0])
+    x = m.joints[:, 3, 0]
+    assert np.abs(x - (r * np.cos(phi) + np.sqrt(l * l - (e - r * np.sin(phi)) ** 2))).max() < 1e-12
+
+
+def test_a_parallelogram_stops_at_its_change_points():
+    """A parallelogram four-bar (a = c, b = d) meets the crossed branch where all four links are in
+    line (φ = 0 and π): the branch of its pose ends there, though no dyad fails to close."""
+    lk = four_bar(1.0, 2.0, 1.0, 2.0, phi=1.0, mode=1)
+    r = motion_range(lk)
+    assert not r.full_rotation
+    lo, hi = r.limits
+    assert abs(lo) < 1e-6 and abs(hi - math.pi) < 1e-6
+    assert all("change point" in why for _, why in r.dead_positions)
+    assert motion_range(four_bar(1.0, 3.5, 3.0, 4.0)).full_rotation  # a crank-rocker has none
