@@ -33,7 +33,7 @@ from synth.schema import Table
 
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
-from .types import Flag, Number, Numbers, NumberTable, Positive, Text
+from .types import Count, Flag, Number, Numbers, NumberTable, Text
 
 __all__ = ["Sweep", "ClosedForm"]
 
@@ -41,7 +41,7 @@ __all__ = ["Sweep", "ClosedForm"]
 class Sweep(Table):
     """The ``[sweep]`` table: how many input values the sweep visits."""
 
-    steps: Positive = 360
+    steps: Count = 360
 
 
 class ClosedForm(Table):

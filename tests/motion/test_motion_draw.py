@@ -95,7 +95,7 @@ def test_the_same_mechanism_gets_the_same_linkage():
 
 
 def test_a_linkage_shows_itself_in_a_notebook(four_bar):
-    """The facade names linkage_svg as a Linkage's drawing (synth.structure.display.svg_of)."""
-    from synth.structure.display import svg_of
+    """The facade names linkage_svg as a Linkage's drawing (synth.display.svg_of)."""
+    from synth.display import svg_of
 
     assert svg_of(four_bar) == linkage_svg(four_bar)
