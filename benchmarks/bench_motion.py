@@ -211,7 +211,7 @@ def _write(out: Path, rows: list[dict], every: dict, args) -> None:
              f"{platform.node()} ({platform.processor() or platform.machine()}, {os.cpu_count()} cores shared with "
              f"other work; load average {os.getloadavg()[0]:.1f} at the end), {time.strftime('%d %b %Y %H:%M UTC', time.gmtime())}.",
              "pylinkage 1.3.0 ran in its own virtual environment with numba (see the script's docstring).", "",
-             "| mechanism | steps | mechsynth steps/s | pylinkage steps/s | ratio | largest difference |",
+             "| mechanism | steps | mechsynth steps/s | pylinkage steps/s | speed ratio mechsynth : pylinkage | largest difference |",
              "|---|---|---|---|---|---|"]
     for r in rows:
         theirs = (f"{r['pylinkage_steps_per_second']:,.0f} | {r['ratio']:.2f}× | {r['largest_difference']:.1e}"
