@@ -24,6 +24,7 @@ True
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import math
 import os
@@ -196,6 +197,9 @@ def _run(args) -> int:
                             "synth.motion.sweep_grid moves several over a grid)")
     revolute = linkage.kind(linkage.inputs[0]) == "revolute"
     start, stop = (None if v is None else (math.radians(v) if revolute else v) for v in (args.start, args.stop))
+    rows_only = not (args.out or args.animate or args.range or args.save)
+    if rows_only and args.steps > _CHUNK:
+        return _write_long_sweep(linkage, args, start, stop)
     motion = sweep(linkage, steps=args.steps, start=start, stop=stop, velocities=args.velocities,
                    accelerations=args.accelerations)
     if motion.stopped:
@@ -222,6 +226,74 @@ def _run(args) -> int:
 
         write_rows(itertools.chain([first], rows), list(first), args.format or "table")
     return 0
+
+
+#: a long sweep's rows are computed this many steps at a time, so Ctrl-C is seen between pieces
+_CHUNK = 20_000
+
+
+def _write_long_sweep(linkage, args, start: float | None, stop: float | None) -> int:
+    """Rows of a sweep of more than :data:`_CHUNK` steps, computed and written piece by piece with a
+    progress bar: each piece continues the branch from the pose to its first input (the same
+    inputs as one sweep: ``start + i·(stop − start)/(steps − 1)``), and the run stops at a dead
+    position as one sweep does.  A piece takes well under a second, so Ctrl-C stops it within two."""
+    from tqdm import tqdm
+
+    from synth.motion import motion_range, sweep
+
+    if start is None or stop is None:  # the default range of one sweep: a crank's turn, a rocker's limits
+        reach = motion_range(linkage)
+        if reach.full_rotation:
+            low, high = float(linkage.pose_inputs[0]), float(linkage.pose_inputs[0]) + 2 * math.pi
+        else:
+            low, high = reach.limits
+        start = low if start is None else start
+        stop = high if stop is None else stop
+    fmt = args.format or "table"
+    if fmt == "table":
+        from synth import InvalidOption
+
+        raise InvalidOption(f"a table of {args.steps:,} rows is held in memory to align it: use --format jsonl or "
+                            "csv (written as they come)")
+    step = (stop - start) / (args.steps - 1)
+    written, columns = 0, None
+    with tqdm(total=args.steps, unit="step", file=sys.stderr, desc="move", disable=not sys.stderr.isatty()) as bar:
+        while written < args.steps:
+            count = min(_CHUNK, args.steps - written)
+            first = start + written * step
+            piece = sweep(linkage, steps=max(count, 2), start=first,
+                          stop=first + (count - 1) * step if count > 1 else first + step,
+                          velocities=args.velocities, accelerations=args.accelerations)
+            rows = list(piece.rows())[:count]
+            for row in rows:
+                row["step"] += written
+            if columns is None:
+                columns = list(rows[0]) if rows else []
+                if fmt == "json":
+                    sys.stdout.write("[")
+            _write_piece(rows, columns, fmt, written)
+            written += len(rows)
+            bar.update(len(rows))
+            if piece.stopped:
+                print(f"mechsynth: the sweep stopped: {piece.stopped}", file=sys.stderr)
+                break
+    if fmt == "json":
+        sys.stdout.write("]\n")
+    return 0
+
+
+def _write_piece(rows: list[dict], columns: list[str], fmt: str, before: int) -> None:
+    """One piece of a long sweep's rows, continuing the output of the pieces before it."""
+    if fmt == "json":
+        sys.stdout.write("".join(("" if before == 0 and i == 0 else ",\n ") + json.dumps(row)
+                                 for i, row in enumerate(rows)))
+    elif fmt == "csv":
+        buffer = io.StringIO()
+        write_rows(rows, columns, "csv", buffer)
+        text = buffer.getvalue()
+        sys.stdout.write(text if before == 0 else text.split("\n", 1)[1])
+    else:
+        write_rows(rows, columns, fmt)
 
 
 def _write_range(linkage, reach, motion, fmt: str) -> None:

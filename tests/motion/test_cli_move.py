@@ -226,3 +226,17 @@ def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
     assert db.read_bytes() == before  # the atlas is only read
     code, _, err = _run(capsys, "move", "--db", db, "--id", "000000000000", "--frame", "0")
     assert code == 2 and "000000000000" in err
+
+
+def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
+    """More than 20 000 steps are computed a piece at a time (Ctrl-C is seen between pieces): the
+    rows are those of one sweep over the same inputs."""
+    from synth.motion import read_linkage, sweep
+
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "45001", "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(out)))
+    whole = sweep(read_linkage(FOUR_BAR), steps=45001)
+    assert code == 0 and len(rows) == 45001 and [int(r["step"]) for r in rows[::9000]] == list(range(0, 45001, 9000))
+    for s in (0, 19999, 20000, 20001, 45000):
+        assert float(rows[s]["input"]) == pytest.approx(whole.inputs[s, 0], abs=1e-12)
+        assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
