@@ -841,7 +841,10 @@ def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
     found = []
     phi0 = float(linkage.pose_inputs[0])
     for m, (link, _, _) in enumerate(outputs):
-        for k in np.flatnonzero(np.sign(r[:-1, m]) * np.sign(r[1:, m]) < 0):
+        col = np.where(np.isfinite(r[:, m]), r[:, m], 0.0)
+        quiet = 1e-9 * np.abs(col).max(initial=0.0)  # a link standing still: its rate's rounding is no toggle
+        moving = np.abs(col) > quiet
+        for k in np.flatnonzero((np.sign(col[:-1]) * np.sign(col[1:]) < 0) & moving[:-1] & moving[1:]):
             try:
                 root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
             except ValueError:  # the rate is not finite between the samples (a singular place): the sample
