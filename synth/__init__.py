@@ -91,3 +91,4 @@ from .display import register_drawing as _register_drawing  # noqa: E402
 
 for _kind in ("Chain", "Mechanism"):
     _register_drawing(_kind, "synth.draw:svg")
+_register_drawing("Linkage", "synth.motion_draw:linkage_svg")  # a dimensioned mechanism in its pose

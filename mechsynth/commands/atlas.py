@@ -59,6 +59,9 @@ def add_commands(sub) -> None:
     p.add_argument("--page-size", type=positive, help="with --html: chains per page (default 60)")
     p.add_argument("--draw-limit", type=whole,
                    help="with --html: draw at most this many chains, in code order (default 20000; ~50 ms each at 12 links)")
+    p.add_argument("--move-limit", type=whole,
+                   help="with --html: give the mechanisms of this many planar 1-DOF chains (the first drawn) a page "
+                        "where they move (default 0; about a second a mechanism)")
     p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
     p.add_argument("--workers", type=workers,
                    help="with --html: processes building the pages (default: all cores beyond 200 chains)")
@@ -138,8 +141,9 @@ def _run_atlas(args) -> int:
     args.where = _conditions(args.where)
     if args.html is not None:
         return _write_site(args)
-    if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.workers)):
-        raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
+    if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.move_limit,
+                                                          args.workers)):
+        raise InvalidOption("--force, --page-size, --draw-limit, --move-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     if args.count and args.format in WRITTEN:
@@ -222,6 +226,8 @@ def _write_site(args) -> int:
                             "(the site filters in the browser)")
     if args.draw_limit is not None and args.draw_limit < 0:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
+    if args.move_limit is not None and args.move_limit < 0:
+        raise InvalidOption(f"--move-limit is a number of chains, not {args.move_limit}")
     import time
 
     from synth.atlas import EmptyAtlas
@@ -229,7 +235,8 @@ def _write_site(args) -> int:
     start = time.perf_counter()
     try:
         result = write_site(args.db, args.html, page_size=args.page_size or 60,
-                            draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
+                            draw_limit=20000 if args.draw_limit is None else args.draw_limit,
+                            move_limit=args.move_limit or 0, force=args.force,
                             progress=True, workers=args.workers,
                             note=lambda text: print(f"mechsynth: {text}", file=sys.stderr))
     except EmptyAtlas as exc:

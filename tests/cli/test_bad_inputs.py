@@ -165,6 +165,17 @@ CASES = [
     ("planetary --satellites 1..40", "1..40"),
     ("planetary --satellites x", "'x'"),
     ("planetary --satellites -3", "'-3'"),
+    # ---- move
+    ("move {d}/binary.toml", "binary.toml"),
+    ("move {d}/grid_small.toml", "'dof'"),
+    ("move {m}/motion_four_bar.toml --steps 0", "not 0"),
+    ("move {m}/motion_four_bar.toml --steps 2000000", "--steps"),
+    ("move {m}/motion_four_bar.toml --start inf", "'inf'"),
+    ("move {m}/motion_four_bar.toml --out {d}/binary.toml", "binary.toml"),
+    ("move {m}/motion_four_bar.toml --animate {d}/nowhere/m.gif", "nowhere"),
+    ("move --db {d}/corrupt.sqlite --id 814ad964fad2 --frame 0", "corrupt.sqlite"),
+    ("move --db {d}/atlas.sqlite --id 000000000000 --frame 0", "000000000000"),
+    ("move --chain '0-1 1-2 2-0' --frame 0", "rigid"),
     # ---- gears
     ("gears --dof 1 --links 40", "40"),
     ("gears --train '0-1-2 2-3 0~3i 1~x'", "'1~x'"),
