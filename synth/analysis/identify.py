@@ -257,15 +257,14 @@ def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = 
     """:func:`identify` every chain of a source (a file or text may hold several)."""
     from dataclasses import replace
 
-    from ..exchange import read
+    from ..exchange import in_motion_space, read
 
     entries = read(source, fmt)
     if frame is not None and len(entries) > 1:
         raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
     out = []
     for entry in entries:
-        if h is not None and h != entry.chain.h:
-            entry = replace(entry, chain=replace(entry.chain, h=h))
+        entry = in_motion_space(entry, h)
         if frame is not None:
             names = entry.names or [str(i) for i in range(entry.chain.links)]
             if str(frame) not in names:
@@ -289,7 +288,8 @@ def identify(source, *, fmt: str | None = None, frame=None, h: int | None = None
     frame : link, optional
         Fix this link (as the source names it): identify the mechanism.
     h : int, optional
-        Motion space of the loops (default the chain's own: 3 for a joint list).
+        Motion space of the loops, for a source that states none (default the chain's own: 3 for
+        a joint list); a source that states another h is refused.
     index : bool, optional
         Find the chain's row in its code's listing: None (default) for codes of up to
         :data:`MAX_INDEXED_LOOPS` loops, True always, False never.
