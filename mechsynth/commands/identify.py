@@ -124,7 +124,8 @@ def _table(row: dict) -> str:
     if row["note"]:
         lines.append(("note", row["note"]))
     if "frame" in row:
-        lines += [("frame", str(row["frame"])), ("frame's orbit", ", ".join(map(str, row["frame_orbit"]))),
+        lines += [("frame", str(row["frame"]) + (f", input link {row['input_link']}" if "input_link" in row else "")),
+                  ("frame's orbit", ", ".join(map(str, row["frame_orbit"]))),
                   ("inversion", "; ".join(row["inversion"]) or "-"),
                   ("mechanism listing", _listed(row, "mechanism_") if row.get("mechanism_listing") else "none")]
     lines.append(("certificate", row["certificate"]))
