@@ -35,7 +35,7 @@ def add_commands(sub) -> None:
 
 def _parse_classes(text: str, what: str = "loop classes are written H=K,H=K (e.g. 3=4,5=1)") -> dict[int, int]:
     try:
-        pairs = [[int(x) for x in item.split("=")] for item in text.split(",") if item.strip()]
+        pairs = [[int(x) for x in item.split("=")] for item in text.replace(",", " ").split()]
         classes = {h: k for h, k in pairs}
     except ValueError:
         raise InvalidOption(f"{what}, not {text!r}") from None
