@@ -119,10 +119,13 @@ def _run_codes(args) -> int:
 # ----------------------------------------------------------------- analyze
 def _add_analyze(sub):
     p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
-    p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
+    p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …' "
+                   "('0=1 1=2 2=3 3=0': words a=b are a chain where they number links 0 … n − 1, counts where every "
+                   "I ≥ 1)")
     p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")
     p.add_argument("--v", type=whole, help="v, with explicit counts (a code carries its own)")
-    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar; a chain's own where it states "
+                   "one)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",

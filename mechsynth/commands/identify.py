@@ -40,8 +40,8 @@ def add_commands(sub) -> None:
     p.add_argument("--input-format", choices=FORMATS, help="the input's format (default: from the file suffix or "
                    "its first characters)")
     p.add_argument("--frame", help="fix this link (as the input names it): identify the mechanism")
-    p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6 (default the chain's own, 3 for a "
-                   "joint list)")
+    p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6, for a source that states none (default "
+                   "the chain's own, 3 for a joint list); a source that states another is refused")
     p.add_argument("--index", action=argparse.BooleanOptionalAction, default=None,
                    help="find the chain's row in its code's listing (default: for codes of up to 6 loops)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table",
@@ -57,7 +57,8 @@ def add_commands(sub) -> None:
     p.add_argument("--links", type=whole, help="number of links n")
     p.add_argument("--code", help="only this code, e.g. 6301/0")
     p.add_argument("--v", help="multiple-joint count or range A..B (default 0)")
-    p.add_argument("--h", type=whole, default=3, help="motion space of the loops, 2 … 6 (default 3)")
+    p.add_argument("--h", type=whole, default=3, help="motion space of the loops, 2 … 6 (default 3); chains whose "
+                   "file states no h are read in it")
     p.add_argument("--n1", help="single-joint links, N or A..B (default 0)")
     p.add_argument("--max-multiplicity", type=whole, help="most links on one joint")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
