@@ -135,3 +135,19 @@ def test_a_large_code_is_not_listed_unasked():
     found = identify("0-8 0-10 0-11 1-6 1-7 1-9 2-6 2-7 2-8 3-5 3-7 3-8 4-5 4-12 4-14 5-15 6-15 9-10 9-11 12-13 13-14")
     assert (found.dof, found.loops, found.index) == (3, 6, None) and time.perf_counter() - start < 30
     assert "not computed" in found.note and "16-link chain" in found.note and "ask for its index" in found.note
+
+
+def test_a_mechanism_with_an_input_link_comes_back_to_its_row_in_the_input_link_listing():
+    query = synth.ChainQuery(1, 6, prismatic=(1, 1))
+    listed = list(synth.mechanisms(query, input_link=True, workers=1))
+    rng = random.Random(6)
+    for row, mech in enumerate(listed, start=1):
+        perm = list(range(mech.chain.links))
+        rng.shuffle(perm)
+        moved = synth.Mechanism(mech.chain.relabel(perm), perm[mech.frame], perm[mech.input_link])
+        found = identify(exchange.text_of([moved], "edgelist"))
+        code = f"{mech.chain.code}"
+        assert found.mechanism_listing == f"mechsynth mechanisms --code {code} --dof 1 --prismatic 1 --input-link"
+        assert (found.input_link, found.mechanism_certificate) == (moved.input_link, moved.certificate)
+        rows_of_code = [m.certificate for m in listed if str(m.chain.code) == code]
+        assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1 and found.mechanisms_listed == len(rows_of_code)
