@@ -43,7 +43,8 @@ def add_commands(sub) -> None:
     p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6, for a source that states none (default "
                    "the chain's own, 3 for a joint list); a source that states another is refused")
     p.add_argument("--index", action=argparse.BooleanOptionalAction, default=None,
-                   help="find the chain's row in its code's listing (default: for codes of up to 6 loops)")
+                   help="find the chain's row in its code's listing (default: where listing the chains of its link "
+                        "count is estimated at a minute or less on one core)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table",
                    help="table (default), json or jsonl (one row per chain)")
     p.set_defaults(run=_run_identify)
