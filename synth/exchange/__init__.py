@@ -160,6 +160,12 @@ def read_file(path: str | Path, fmt: str | None = None) -> list[Entry]:
     return read_text(text, fmt, source=str(path), suffix=path.suffix)
 
 
+def _own_space(chain: Chain) -> int | None:
+    """The motion space a Chain object states: its h where it is not the default 3 (a chain built
+    without h is put in another space by ``h=``)."""
+    return None if chain.h == 3 else chain.h
+
+
 def read(source, fmt: str | None = None) -> list[Entry]:
     """Chains from anything :func:`synth.identify` accepts: a :class:`Chain` or :class:`Mechanism`,
     a networkx graph, a path to a file or folder, or the text itself (a joint list, JSON, …).
@@ -168,9 +174,9 @@ def read(source, fmt: str | None = None) -> list[Entry]:
     ['0-1 0-3 1-2 2-3']
     """
     if isinstance(source, Chain):
-        return [Entry(source, None, None, "the chain", source.h)]
+        return [Entry(source, None, None, "the chain", _own_space(source))]
     if isinstance(source, Mechanism):
-        return [Entry(source.chain, source.frame, None, "the mechanism", source.chain.h, source.input_link)]
+        return [Entry(source.chain, source.frame, None, "the mechanism", _own_space(source.chain), source.input_link)]
     if hasattr(source, "nodes") and hasattr(source, "edges"):
         return [from_graph(source, "the graph")]
     if isinstance(source, Path):

@@ -122,15 +122,15 @@ def in_motion_space(entry: Entry, h: int | None, given: str = "--h") -> Entry:
     return replace(entry, chain=chain, h=h)
 
 
-_SETTING = re.compile(r"(frame|input|h)\s*[:=]?\s*([^\s,;]+)", re.IGNORECASE)
+_SETTING = re.compile(r"(frame|input|h)(?![A-Za-z_])\s*[:=]?\s*([^\s,;]+)", re.IGNORECASE)
 
 
 def settings_of(comment: str) -> dict | None:
     """The settings of a comment that holds nothing else: ``frame F``, ``input I``, ``h H``
     (separated by spaces, commas or semicolons), or None for any other comment.
 
-    >>> settings_of("# frame 2, h 4"), settings_of("# h=5"), settings_of("# a slider-crank")
-    ({'frame': '2', 'h': '4'}, {'h': '5'}, None)
+    >>> settings_of("# frame 2, h 4"), settings_of("# h=5"), settings_of("# a slider-crank"), settings_of("# hello")
+    ({'frame': '2', 'h': '4'}, {'h': '5'}, None, None)
     """
     body = comment.strip().lstrip("#").strip()
     found = {}
