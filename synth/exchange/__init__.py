@@ -6,6 +6,7 @@ format         what it holds                                           read / wr
 ``text``       joint lists ``0-1 1=2 2~3``, one chain a line           both
 ``json``       the rows the commands print (jsonl, json, a row)        both
 ``csv``        the rows of a listing in CSV (``--format csv``)         read
+``table``      the rows of a listing as a table (``--format table``)   read
 ``graphml``    incidence graph, or a link graph, per ``<graph>``       both
 ``gml``        the same, one ``graph [ … ]`` block each                both
 ``dot``        the same in Graphviz DOT, one ``graph { … }`` each      both
@@ -42,14 +43,14 @@ from ..structure.chain import Chain, Mechanism
 from ._dot import read_dot, write_dot
 from ._entry import Entry, in_motion_space
 from ._graphs import describe, from_graph, read_gml, read_graphml, to_graph, write_gml, write_graphml
-from ._lists import (edge_words, looks_like_joint_list, looks_like_listing, read_edgelist, read_json, read_listing,
-                     read_text_lists, write_edgelist, write_lines)
+from ._lists import (edge_words, looks_like_joint_list, looks_like_listing, looks_like_table, read_edgelist, read_json,
+                     read_listing, read_table, read_text_lists, write_edgelist, write_lines)
 from ._matrices import read_matrices, write_adjacency, write_incidence
 
 __all__ = ["FORMATS", "WRITTEN", "Entry", "in_motion_space", "read_chain", "read", "read_file", "read_text", "detect", "write", "to_graph",
            "from_graph", "describe"]
 
-FORMATS = ("text", "json", "csv", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
+FORMATS = ("text", "json", "csv", "table", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
 WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # the listings write text, json, csv themselves
 _SUFFIXES = {".graphml": "graphml", ".xml": "graphml", ".gml": "gml", ".dot": "dot", ".gv": "dot",
              ".json": "json", ".jsonl": "json", ".ndjson": "json", ".csv": "matrix", ".tsv": "matrix",
@@ -80,6 +81,8 @@ def detect(text: str, suffix: str = "") -> str:
         return "gml"
     if words[:1] in (["graph"], ["digraph"], ["strict"]) or start.startswith("creator"):
         return "gml" if start.startswith("creator") else "dot"
+    if looks_like_table(text):
+        return "table"
     lines = [ln.split("#", 1)[0].strip() for ln in text.splitlines()]
     lines = [ln for ln in lines if ln]
     if lines and all(looks_like_joint_list(ln) for ln in lines):
@@ -123,6 +126,8 @@ def read_text(text: str, fmt: str | None = None, source: str = "the input", suff
         return read_edgelist(text, source)
     if kind == "csv" or (kind == "matrix" and looks_like_listing(text)):
         return read_listing(text, source)
+    if kind == "table":
+        return read_table(text, source)
     return read_matrices(text, source, None if kind == "matrix" else kind)
 
 

@@ -31,7 +31,8 @@ from ..structure.chain import Chain
 from ._entry import Entry, check_distinct, entry_of, is_kind_word, kind_of, settings_of
 
 __all__ = ["read_text_lists", "read_json", "read_edgelist", "write_edgelist", "write_lines", "looks_like_joint_list",
-           "edge_words", "with_settings", "settings_text", "stated_space", "read_listing", "looks_like_listing"]
+           "edge_words", "with_settings", "settings_text", "stated_space", "read_listing", "looks_like_listing",
+           "read_table", "looks_like_table"]
 
 _JOINT_TOKEN = re.compile(r"^\d+(?:[-=~]\d+)+$")
 
@@ -227,6 +228,52 @@ def read_listing(text: str, source: str) -> list[Entry]:
                                                 "input": cell.get("input_link") or None, "h": space}))
     if not out:
         raise MalformedChain(f"{source}: the listing has a header and no row")
+    return out
+
+
+_RULE = re.compile(r"^-+(?: +-+)*$")
+_FOOTER = re.compile(r"^\d+ (chains|mechanisms)$")
+
+
+def looks_like_table(text: str) -> bool:
+    """Whether a text is a listing as a table (``chains``/``mechanisms``' default output): a header
+    with a ``joints`` column over a rule of dashes.
+
+    >>> looks_like_table("index  joints\\n-----  -------\\n1      0-1 1-2 2-0\\n"), looks_like_table("0 1\\n1 2\\n")
+    (True, False)
+    """
+    lines = [ln for ln in text.splitlines() if ln.strip()][:2]
+    return len(lines) == 2 and "joints" in lines[0].split() and bool(_RULE.match(lines[1].strip()))
+
+
+def read_table(text: str, source: str) -> list[Entry]:
+    """The rows of a listing as a table: its columns lie under the rule's dashes; the ``joints``
+    column in the joint-list notation, ``h`` (absent: the plane, as the table leaves it out for
+    h = 3), a mechanism's ``frame`` and ``input_link``; the count line ends it."""
+    lines = [ln.rstrip() for ln in text.splitlines() if ln.strip()]
+    if not looks_like_table(text):
+        raise MalformedChain(f"{source}: a listing as a table has a header with a 'joints' column over a rule of "
+                             "dashes (as chains prints)")
+    starts = [m.start() for m in re.finditer(r"-+", lines[1])] + [None]
+
+    def cells(line: str) -> list[str]:
+        return [line[a:b].strip() for a, b in zip(starts, starts[1:])]
+
+    names = cells(lines[0])
+    out = []
+    for number, line in enumerate(lines[2:], start=1):
+        if _FOOTER.match(line.strip()):
+            break
+        where = f"{source} row {number}"
+        cell = dict(zip(names, cells(line)))
+        try:
+            chain = Chain.parse(cell["joints"])
+        except MalformedChain as exc:
+            raise MalformedChain(f"{where}: {exc}") from None
+        out.append(with_settings(chain, where, {"frame": cell.get("frame") or None,
+                                                "input": cell.get("input_link") or None, "h": cell.get("h") or 3}))
+    if not out:
+        raise MalformedChain(f"{source}: the table has a header and no row")
     return out
 
 

@@ -62,7 +62,7 @@ def _listing(item, fmt: str, capsys) -> str:
 
 def _written(item, fmt: str, capsys) -> str | None:
     """The item in a format, as a command writes it; None where the format refuses it."""
-    if fmt in ("jsonl", "json", "csv") + WRITTEN:
+    if fmt in ("jsonl", "json", "csv", "table") + WRITTEN:
         if fmt == "adjacency" and any(len(j) > 2 for j in _chain(item).joints):
             with pytest.raises(synth.InvalidOption, match="simple joints only"):
                 _listing(item, fmt, capsys)
@@ -71,7 +71,7 @@ def _written(item, fmt: str, capsys) -> str | None:
     return synth.exchange.text_of([item], fmt)  # text: the joint list with its settings comment
 
 
-FORMATS = ("text", "jsonl", "json", "csv") + WRITTEN
+FORMATS = ("text", "jsonl", "json", "csv", "table") + WRITTEN
 
 
 def _same(entry, item, fmt):
@@ -130,7 +130,7 @@ def _graph_text(h: int) -> str:
     return synth.exchange.text_of([_first(h)], "graphml")
 
 
-@pytest.mark.parametrize("fmt", ("jsonl", "json", "csv") + WRITTEN)
+@pytest.mark.parametrize("fmt", ("jsonl", "json", "csv", "table") + WRITTEN)
 def test_identify_and_compare_read_the_listing_of_another_motion_space_back(fmt, capsys, tmp_path):
     """The issue's case: the 1-DOF 8-link chains of h = 4 written in each format come back as
     themselves: identify gives the engine's ids, compare matches all three."""
@@ -138,7 +138,7 @@ def test_identify_and_compare_read_the_listing_of_another_motion_space_back(fmt,
     assert main(["chains", "--dof", "1", "--links", "8", "--h", "4", "--format", fmt, "--workers", "1"]) == 0
     path = tmp_path / f"h4.{ {'jsonl': 'jsonl', 'json': 'json', 'csv': 'csv'}.get(fmt, 'txt') }"
     path.write_text(capsys.readouterr().out)
-    form = [] if fmt in ("jsonl", "json", "csv") else ["--input-format", fmt]
+    form = [] if fmt in ("jsonl", "json", "csv", "table") else ["--input-format", fmt]
     assert main(["identify", str(path), "--format", "jsonl", *form]) == 0
     rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert [(r["id"], r["h"], r["dof"], r["index"]) for r in rows] == [
