@@ -188,7 +188,7 @@ def _subject(text: str) -> str:
 
 
 def _motion_space(args) -> int | None:
-    """``--h`` (default: a chain's own, 3 for codes and counts); loop classes name the motion space of each loop themselves."""
+    """``--h`` or None (a chain's own; 3 for codes and counts); loop classes name each loop's motion space themselves."""
     if args.h is not None and args.loop_classes:
         raise InvalidOption("--h and --loop-classes contradict each other: the classes give each loop's motion space")
     return args.h

@@ -48,7 +48,7 @@ __all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", 
 # The place in a code's listing is found by listing the code.  Unasked, that is done when listing
 # every chain of the chain's link count (an upper bound of its code's listing) is estimated to take
 # at most this long on one core: 14 links at W = 1 (about 26 s), not 16 links at W = 3 (4.0e+06
-# chains, about 4 min; one code of it holds 2.4 million).
+# chains, 4 to 7 min estimated; one code of it holds 2.4 million).
 INDEX_SECONDS = 60.0
 
 
@@ -224,10 +224,11 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
                            "listing cannot be sized (ask for its index to have it computed)")
             return out
         if size is not None and size.seconds > INDEX_SECONDS:
+            items = "mechanisms" if mechanism is not None else "chains"
+            took = describe_seconds(size.seconds, size.log10_seconds)
             out["note"] = (f"its place in the listing was not computed: it is found by listing the code, and listing "
                            f"every {chain.links}-link chain like it is about {magnitude(size.chains, size.log10_chains)} "
-                           f"{'mechanisms' if mechanism is not None else 'chains'}, {describe_seconds(size.seconds, size.log10_seconds)} on one core ({size.basis}); "
-                           "ask for its index to have it computed")
+                           f"{items}, {took} on one core ({size.basis}); ask for its index to have it computed")
             return out
     rows = _chain_rows(query)
     out.update(index=rows.get(_digest(chain.certificate)), listed=len(rows))
@@ -318,7 +319,7 @@ def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = 
             names = entry.names or [str(i) for i in range(entry.chain.links)]
             if str(frame) not in names:
                 raise InvalidOption(f"the frame {frame} is not a link of the chain ({names[0]} … {names[-1]})")
-            entry = replace(entry, frame=names.index(str(frame)), input_link=None)  # the source's input went with its frame
+            entry = replace(entry, frame=names.index(str(frame)), input_link=None)  # an input went with its frame
         out.append(_identify_entry(entry, index=index))
     return out
 

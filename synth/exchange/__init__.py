@@ -47,7 +47,8 @@ from ._lists import (edge_words, looks_like_joint_list, looks_like_listing, look
                      read_listing, read_table, read_text_lists, write_edgelist, write_lines)
 from ._matrices import read_matrices, write_adjacency, write_incidence
 
-__all__ = ["FORMATS", "WRITTEN", "Entry", "in_motion_space", "read_chain", "read", "read_file", "read_text", "detect", "write", "to_graph",
+__all__ = ["FORMATS", "WRITTEN", "Entry", "in_motion_space", "read_chain", "read", "read_file", "read_text", "detect",
+           "write", "to_graph",
            "from_graph", "describe"]
 
 FORMATS = ("text", "json", "csv", "table", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")

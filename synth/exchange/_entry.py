@@ -103,10 +103,10 @@ def in_motion_space(entry: Entry, h: int | None, given: str = "--h") -> Entry:
     >>> e = entry_of([(0, 1), (1, 2), (2, 0)], None, "x")
     >>> in_motion_space(e, 5).chain.h, in_motion_space(e, None).chain.h
     (5, 3)
-    >>> in_motion_space(entry_of([(0, 1), (1, 2), (2, 0)], None, "y", h=4), 5)
+    >>> in_motion_space(entry_of([(0, 1), (1, 2), (2, 0)], None, "y", h=4), 5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    synth.errors.MalformedChain: y states motion space h = 4, and --h 5 was given: leave out --h (the chain's own h is used) or give --h 4
+    synth.errors.MalformedChain: y states motion space h = 4, and --h 5 was given: ... or give --h 4
     """
     from dataclasses import replace
 

@@ -177,7 +177,8 @@ def test_settings_lines_of_edge_lists_and_matrices():
     assert (edges.frame, edges.input_link, edges.h) == (0, 1, 3)
     (matrix,) = read_text("# h 5\n0,1,0,0,0,1\n1,0,1,0,0,0\n0,1,0,1,0,0\n0,0,1,0,1,0\n0,0,0,1,0,1\n1,0,0,0,1,0\n")
     assert (matrix.chain.h, matrix.chain.dof) == (5, 1)
-    for bad, words in [("# h 7\n0 1\n1 2\n2 0\n", "not '7'"), ("# frame 0, input 2\n0 1\n1 2\n2 3\n3 0\n", "not jointed to the fixed link 0"),
+    for bad, words in [("# h 7\n0 1\n1 2\n2 0\n", "not '7'"),
+                       ("# frame 0, input 2\n0 1\n1 2\n2 3\n3 0\n", "not jointed to the fixed link 0"),
                        ("# h 4\n\n0 1\n1 2\n2 0\n", "'# h 4' is followed by no joint")]:
         with pytest.raises(MalformedChain) as info:
             read_text(bad, "edgelist")

@@ -150,4 +150,5 @@ def test_a_mechanism_with_an_input_link_comes_back_to_its_row_in_the_input_link_
         assert found.mechanism_listing == f"mechsynth mechanisms --code {code} --dof 1 --prismatic 1 --input-link"
         assert (found.input_link, found.mechanism_certificate) == (moved.input_link, moved.certificate)
         rows_of_code = [m.certificate for m in listed if str(m.chain.code) == code]
-        assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1 and found.mechanisms_listed == len(rows_of_code)
+        assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1
+        assert found.mechanisms_listed == len(rows_of_code)
