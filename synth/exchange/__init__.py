@@ -16,7 +16,10 @@ format         what it holds                                           read / wr
 =============  ======================================================  ============
 
 Joint kinds (revolute, prismatic, gear mesh) and multiple joints are kept by every format
-except the adjacency matrix (simple joints only).  A file's format is told by its suffix
+except the adjacency matrix (simple joints only, a multiple joint refused); so are the motion
+space h and a mechanism's frame and input link (graph attributes, ``# h 4`` and
+``# frame 0, input 1`` lines, a row's fields).  A source that states no h is planar unless
+:func:`in_motion_space` puts it elsewhere; one that states another h is refused there.  A file's format is told by its suffix
 (``.graphml``, ``.gml``, ``.dot``/``.gv``, ``.csv``, ``.json``/``.jsonl``) or, failing that, by
 its first characters; ``fmt`` names it outright.  The formats and their conventions are in
 docs/exchange.md.
