@@ -33,7 +33,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..execution._blas import single_threaded
+from ._blas import single_threaded
 from .chain import Chain
 from .kinds import generic_mobility, lever_analogue, structural_mobility
 from ..errors import MalformedChain
