@@ -171,7 +171,7 @@ def _digest(certificate: str) -> bytes:
 
 def index_size(chain: Chain, query, mechanisms: bool = False):
     """The size of the listing that finds a chain's row, before it runs: an
-    :class:`~synth.execution.estimate.Estimate` of listing every chain of its link count with the
+    :class:`~synth.synthesis.estimate.Estimate` of listing every chain of its link count with the
     same conventions (``query`` is its code's listing query, from :func:`listing_query`), an upper
     bound of its code's listing (with ``mechanisms``, of their mechanisms); None where no estimate
     can be made (fewer than three smaller sizes with chains: a small query, unless it has many loops).
@@ -184,7 +184,7 @@ def index_size(chain: Chain, query, mechanisms: bool = False):
     from dataclasses import replace
 
     from ..errors import SynthesisError
-    from ..execution.estimate import estimate
+    from ..synthesis.estimate import estimate
 
     n1 = chain.code.n1
     try:
@@ -216,7 +216,8 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
         out["note"] = "its place in the listing was not asked for"
         return out
     if index is None:
-        from ..execution.estimate import describe_seconds, magnitude, sized_loops
+        from ..execution.sizes import describe_seconds, magnitude
+        from ..synthesis.estimate import sized_loops
 
         size = index_size(chain, query, mechanisms=mechanism is not None)
         if size is None and chain.loops >= sized_loops(chain.h, multiple=chain.v > 0):
