@@ -74,7 +74,8 @@ def add_commands(sub) -> None:
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
-    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
+    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3, or "
+                   "the chain's own)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
@@ -385,7 +386,14 @@ def _run_draw(args) -> int:
         if args.repairs and args.h != 3:
             raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
                                 f"{args.h}")
-    h = args.h or 3
+    given = None
+    if args.chain:  # read as analyze and identify read it, in its own motion space unless --h says another
+        from synth.exchange import read_chain
+
+        given = read_chain(args.chain, args.h).chain
+    h = given.h if given is not None else args.h or 3
+    if args.repairs and h != 3:
+        raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
     notes = None  # the words under each drawing of a sheet: the edits of the repairs
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
@@ -397,7 +405,7 @@ def _run_draw(args) -> int:
     if args.chain and args.repairs:
         from synth import chain_repairs
 
-        chain = Chain.parse(args.chain)
+        chain = given
         repairs = chain_repairs(chain, dof=args.dof, limit=args.repairs)
         if not repairs:
             print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
@@ -407,9 +415,7 @@ def _run_draw(args) -> int:
         notes = [_defect(chain, args.dof)] + ["; ".join(r["edits"]) for r in repairs]
         title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
-        from dataclasses import replace
-
-        chain = replace(Chain.parse(args.chain), h=h)
+        chain = given
         if args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:

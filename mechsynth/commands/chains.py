@@ -128,7 +128,8 @@ def _run_one_chain(args) -> int:
     """``--chain C``: that one chain (any joint list or JSON row a command printed), normalised —
     its row, or its mechanisms; with ``--prismatic A..B`` the variants of that chain (Fig. 6: a
     drive's cylinders)."""
-    from synth import Chain, mechanisms_of
+    from synth import mechanisms_of
+    from synth.exchange import read_chain
     from synth import parse_range
     from synth import prismatic_variants, variants_of
 
@@ -137,7 +138,7 @@ def _run_one_chain(args) -> int:
              ["--cranks"] if args.cranks else [])
     if given:
         raise _invalid(f"{given[0]} selects chains of a query and contradicts --chain")
-    chain = Chain.parse(args.chain)
+    chain = read_chain(args.chain, None if args.h == 3 else args.h).chain  # as analyze, identify and draw read it
     if args.prismatic is None:
         if args.idle_joints or getattr(args, "cylinders", None):
             raise _invalid("--idle-joints and --cylinders go with --prismatic")
@@ -150,7 +151,7 @@ def _run_one_chain(args) -> int:
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))
     return write_items(items, args.what, fmt=args.format, count=args.count,
-                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints)
+                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints, h=chain.h)
 
 
 def _run(args) -> int:
@@ -191,14 +192,15 @@ def _run(args) -> int:
 
 def _write(items, args) -> int:
     return write_items(items, args.what, fmt=args.format, count=args.count, kinds=args.prismatic is not None,
-                       idle=args.idle_joints)
+                       idle=args.idle_joints, h=args.h)
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,
-                idle: bool = False) -> int:
+                idle: bool = False, h: int = 3) -> int:
     """List chains or mechanisms (``what``) in the chosen format, or count them by code; with
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
-    with ``idle`` the joints that never move.  Returns the exit status (1 when none)."""
+    with ``idle`` the joints that never move, in motion space ``h`` ≠ 3 its column (a table or
+    CSV row is read back in its space).  Returns the exit status (1 when none)."""
     if count:
         from synth import count_by_code
 
@@ -214,6 +216,8 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
     rows = (_row(item, fmt, idle) for item in items)
     columns = ["index", "id", "code", "links", "joints", "certificate"]
+    if h != 3:
+        columns.insert(3, "h")
     if fmt in ("table", "csv") and what == "chains":  # the atlas site's columns, for people
         columns[-1:-1] = ["planar", "symmetry", "fractionated"]
     if kinds:

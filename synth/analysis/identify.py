@@ -36,15 +36,20 @@ True
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 
 from ..errors import InvalidOption, MalformedChain
 from ..structure.chain import Chain, chain_id
 
-__all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", "MAX_INDEXED_LOOPS"]
+__all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
 
-MAX_INDEXED_LOOPS = 6  # the place in a code's listing is found by listing the code: up to 14 links at W = 1
+# The place in a code's listing is found by listing the code.  Unasked, that is done when listing
+# every chain of the chain's link count (an upper bound of its code's listing) is estimated to take
+# at most this long on one core: 14 links at W = 1 (about 26 s), not 16 links at W = 3 (4.0e+06
+# chains, 4 to 7 min estimated; one code of it holds 2.4 million).
+INDEX_SECONDS = 60.0
 
 
 @dataclass(frozen=True)
@@ -86,6 +91,7 @@ class Identity:
     listed: int | None
     note: str = ""
     frame: object = None
+    input_link: object = None
     frame_orbit: list | None = None
     mechanism_certificate: str | None = None
     mechanism_listing: str | None = None
@@ -100,6 +106,8 @@ class Identity:
         d.pop("chain")
         if d["kinds"] is None:
             d.pop("kinds")
+        if d["input_link"] is None:
+            d.pop("input_link")
         if d["frame"] is None:
             for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
                         "mechanisms_listed", "inversion"):
@@ -149,22 +157,54 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
 
 
 @lru_cache(maxsize=32)
-def _chain_rows(query) -> dict[str, int]:
-    """Row (1-based) of every chain of a listing, by certificate."""
+def _chain_rows(query) -> dict[bytes, int]:
+    """Row (1-based) of every chain of a listing, by the SHA-1 digest of its certificate (20 bytes a
+    chain, where a certificate takes hundreds)."""
     from ..synthesis.type_synthesis import type_synthesis
 
-    return {c.certificate: i for i, c in enumerate(type_synthesis(query, workers=1), start=1)}
+    return {_digest(c.certificate): i for i, c in enumerate(type_synthesis(query, workers=1), start=1)}
+
+
+def _digest(certificate: str) -> bytes:
+    return hashlib.sha1(certificate.encode()).digest()
+
+
+def index_size(chain: Chain, query, mechanisms: bool = False):
+    """The size of the listing that finds a chain's row, before it runs: an
+    :class:`~synth.synthesis.estimate.Estimate` of listing every chain of its link count with the
+    same conventions (``query`` is its code's listing query, from :func:`listing_query`), an upper
+    bound of its code's listing (with ``mechanisms``, of their mechanisms); None where no estimate
+    can be made (fewer than three smaller sizes with chains: a small query, unless it has many loops).
+
+    >>> from synth.structure.chain import Chain
+    >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    >>> index_size(watt, listing_query(watt, 1, None, False)[0]) is None   # 6 links: 2 and 4 below
+    True
+    """
+    from dataclasses import replace
+
+    from ..errors import SynthesisError
+    from ..synthesis.estimate import estimate
+
+    n1 = chain.code.n1
+    try:
+        whole = replace(query, code=None, v=(chain.v, chain.v), n1=(n1, n1))
+        return estimate(whole, work="mechanisms" if mechanisms else "list")
+    except SynthesisError:
+        return None
 
 
 @lru_cache(maxsize=32)
-def _mechanism_rows(query) -> dict[str, int]:
-    """Row (1-based) of every mechanism of ``mechanisms`` with the same query, by certificate."""
+def _mechanism_rows(query, input_link: bool) -> dict[bytes, int]:
+    """Row (1-based) of every mechanism of ``mechanisms`` with the same query (``--input-link``:
+    with every input link), by the digest of its certificate."""
     from ..synthesis.type_synthesis import mechanisms
 
-    return {m.certificate: i for i, m in enumerate(mechanisms(query, workers=1), start=1)}
+    return {_digest(m.certificate): i for i, m in enumerate(mechanisms(query, input_link=input_link, workers=1),
+                                                           start=1)}
 
 
-def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | None) -> dict:
+def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool | None) -> dict:
     """The listing, row and row count of a chain (and of its mechanism), or the reason there is none."""
     out = dict(listing=None, index=None, listed=None, note="")
     query, said = listing_query(chain, dof, verdict, idle)
@@ -175,26 +215,36 @@ def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | Non
     if index is False:
         out["note"] = "its place in the listing was not asked for"
         return out
-    large = MAX_INDEXED_LOOPS - (1 if chain.v else 0)
-    if index is None and chain.loops > large:
-        out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and is listed "
-                       "whole to find it (ask for its index to have it computed)")
-        return out
+    if index is None:
+        from ..execution.sizes import describe_seconds, magnitude
+        from ..synthesis.estimate import sized_loops
+
+        size = index_size(chain, query, mechanisms=mechanism is not None)
+        if size is None and chain.loops >= sized_loops(chain.h, multiple=chain.v > 0):
+            out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and its "
+                           "listing cannot be sized (ask for its index to have it computed)")
+            return out
+        if size is not None and size.seconds > INDEX_SECONDS:
+            items = "mechanisms" if mechanism is not None else "chains"
+            took = describe_seconds(size.seconds, size.log10_seconds)
+            out["note"] = (f"its place in the listing was not computed: it is found by listing the code, and listing "
+                           f"every {chain.links}-link chain like it is about {magnitude(size.chains, size.log10_chains)} "
+                           f"{items}, {took} on one core ({size.basis}); ask for its index to have it computed")
+            return out
     rows = _chain_rows(query)
-    out.update(index=rows.get(chain.certificate), listed=len(rows))
+    out.update(index=rows.get(_digest(chain.certificate)), listed=len(rows))
     if out["index"] is None:  # the conventions say it is there: a chain the engine misses
         out["note"] = "not found in its listing: the engine misses this chain (please report it)"
-    if frame is not None:
-        from ..structure.chain import Mechanism
-
-        mechs = _mechanism_rows(query)
-        out.update(mechanism_listing=said.replace("mechsynth chains", "mechsynth mechanisms", 1),
-                   mechanism_index=mechs.get(Mechanism(chain, frame).certificate), mechanisms_listed=len(mechs))
+    if mechanism is not None:
+        moved = mechanism.input_link is not None
+        mechs = _mechanism_rows(query, moved)
+        listing = said.replace("mechsynth chains", "mechsynth mechanisms", 1) + (" --input-link" if moved else "")
+        out.update(mechanism_listing=listing, mechanism_index=mechs.get(_digest(mechanism.certificate)),
+                   mechanisms_listed=len(mechs))
     return out
 
 
 def _identify_entry(entry, *, index: bool | None = None) -> Identity:
-    from ..structure.chain import Mechanism
     from ..structure.kinds import idle_joints
     from ..structure.subchains import check_subchains
     from .chains import mobility_of
@@ -228,15 +278,16 @@ def _identify_entry(entry, *, index: bool | None = None) -> Identity:
     if not connected:
         place = dict(listing=None, index=None, listed=None, note="a chain in pieces is in no listing")
     else:
-        place = _place(chain, entry.frame, dof, verdict, bool(idle), index)
+        place = _place(chain, entry.item if entry.frame is not None else None, dof, verdict, bool(idle), index)
     worst = list(own.worst) if own is not None else []
     mechanism = {}
     if entry.frame is not None:
         frame = entry.frame
         orbit = [x for x in range(chain.links) if orbits[x] == orbits[frame]]
+        moved = entry.input_link
         mechanism = dict(frame=_named(names, [frame])[0], frame_orbit=_named(names, orbit),
-                         mechanism_certificate=Mechanism(chain, frame).certificate,
-                         inversion=inversion_names(chain, frame))
+                         input_link=None if moved is None else _named(names, [moved])[0],
+                         mechanism_certificate=entry.item.certificate, inversion=inversion_names(chain, frame))
         mechanism.update({k: place.pop(k) for k in ("mechanism_listing", "mechanism_index", "mechanisms_listed")
                           if k in place})
     return Identity(
@@ -257,20 +308,19 @@ def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = 
     """:func:`identify` every chain of a source (a file or text may hold several)."""
     from dataclasses import replace
 
-    from ..exchange import read
+    from ..exchange import in_motion_space, read
 
     entries = read(source, fmt)
     if frame is not None and len(entries) > 1:
         raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
     out = []
     for entry in entries:
-        if h is not None and h != entry.chain.h:
-            entry = replace(entry, chain=replace(entry.chain, h=h))
+        entry = in_motion_space(entry, h)
         if frame is not None:
             names = entry.names or [str(i) for i in range(entry.chain.links)]
             if str(frame) not in names:
                 raise InvalidOption(f"the frame {frame} is not a link of the chain ({names[0]} … {names[-1]})")
-            entry = replace(entry, frame=names.index(str(frame)))
+            entry = replace(entry, frame=names.index(str(frame)), input_link=None)  # an input went with its frame
         out.append(_identify_entry(entry, index=index))
     return out
 
@@ -289,10 +339,12 @@ def identify(source, *, fmt: str | None = None, frame=None, h: int | None = None
     frame : link, optional
         Fix this link (as the source names it): identify the mechanism.
     h : int, optional
-        Motion space of the loops (default the chain's own: 3 for a joint list).
+        Motion space of the loops, for a source that states none (default the chain's own: 3 for
+        a joint list); a source that states another h is refused.
     index : bool, optional
-        Find the chain's row in its code's listing: None (default) for codes of up to
-        :data:`MAX_INDEXED_LOOPS` loops, True always, False never.
+        Find the chain's row in its code's listing: None (default) where listing every chain of
+        its link count is estimated to take at most :data:`INDEX_SECONDS` on one core
+        (:func:`index_size`), True always, False never.
 
     Returns
     -------

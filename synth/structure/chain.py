@@ -263,14 +263,15 @@ class Chain:
         return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h)
 
     def to_networkx(self):
-        """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``.
+        """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``;
+        the graph attribute ``h`` is the motion space.
 
-        >>> g = Chain.parse("0-1 1-2 2-0").to_networkx(); g.number_of_nodes(), g.number_of_edges()
-        (6, 6)
+        >>> g = Chain.parse("0-1 1-2 2-0").to_networkx(); g.number_of_nodes(), g.number_of_edges(), g.graph
+        (6, 6, {'h': 3})
         """
         import networkx as nx
 
-        g = nx.Graph()
+        g = nx.Graph(h=self.h)
         for i in range(self.links):
             g.add_node(("link", i), kind="link")
         for k, j in enumerate(self.joints):

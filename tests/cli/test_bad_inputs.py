@@ -145,6 +145,14 @@ CASES = [
     ("identify '0-1 1-2 2-0' --input-format graphml", "GraphML"),
     ("identify '0-1 1-2 2-0' --frame 5", "frame 5"),
     ("identify '0-1 1-2 2-0' --h 9", "9"),
+    ("identify '0-1 1-2 2-0 0-3 3-4 4-5 5-1  # h 4' --h 5", "h = 4, and --h 5"),
+    ("identify '0-1 1-2 2-0  # h 9'", "not '9'"),
+    ("identify '0-1 1-2 2-3 3-0  # frame 0, input 2'", "input link 2"),
+    ("identify {d}/kinds.edges", "joint kind 'X'"),
+    ("identify {d}/empty_listing.csv", "no row"),
+    ("analyze 1=0,2=1", "reads both as link counts"),
+    ("analyze '0=1 1=2 2=3 3=0' --h 4", "planar"),
+    ("draw --chain '0-1 1-2 2-3 3-4 4-5 5-0  # h 5' --h 3 --out {d}/x.svg", "h = 5, and --h 3"),
     ("compare {d}/binary.toml --dof 1 --links 8", "binary.toml"),
     ("compare {d}/grid_small.toml --dof 1 --links 8", "cannot tell"),
     ("compare {d}/missing.txt --dof 1 --links 9", "no whole number of loops"),
@@ -278,6 +286,8 @@ def folder(tmp_path_factory):
     (d / "grid_30.toml").write_text("dof = 1\nlinks = 30\n")
     (d / "grid_100.toml").write_text("dof = 1\nlinks = 100\n")
     (d / "binary.toml").write_bytes(bytes(range(256)) * 8)
+    (d / "kinds.edges").write_text("0 1 R\n1 2 X\n2 0 R\n")
+    (d / "empty_listing.csv").write_text("index,id,code,links,joints,certificate\n")
     (d / "scene_bad.toml").write_text('[scene]\nname = "x"\ndescription = "y"\ncompute = ["codes"]\n'
                                       "[structure]\ndof = 1\nloops = 2\nloopz = 3\n")
     assert main(["grid", str(d / "grid_small.toml"), "--db", str(d / "atlas.sqlite"), "--workers", "1",
