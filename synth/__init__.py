@@ -74,7 +74,7 @@ _WHERE = {
     "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
     "planetary_table": ".gears.planetary",
     # identifying any chain, comparing atlases
-    "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
+    "identify": ".exchange.identify", "identify_all": ".exchange.identify", "compare": ".analysis.compare",
     # motion of dimensioned mechanisms
     "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",

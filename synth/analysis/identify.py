@@ -24,6 +24,7 @@ links, the number of workers or the run (docs/exchange.md, "The listing order").
 
 Example
 -------
+>>> from synth import identify                            # reads any source (synth.exchange.identify)
 >>> r = identify("0-3 3-5 5-1 1-0 0-2 2-4 4-1")        # a Watt chain, numbered at random
 >>> r.code, r.index, r.listed, r.listing, r.classical
 ('42/0', 2, 2, 'mechsynth chains --code 42/0', ['Watt chain'])
@@ -40,10 +41,10 @@ import hashlib
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 
-from ..errors import InvalidOption, MalformedChain
+from ..errors import MalformedChain
 from ..structure.chain import Chain, chain_id
 
-__all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
+__all__ = ["Identity", "identify_entry", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
 
 # The place in a code's listing is found by listing the code.  Unasked, that is done when listing
 # every chain of the chain's link count (an upper bound of its code's listing) is estimated to take
@@ -244,7 +245,10 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
     return out
 
 
-def _identify_entry(entry, *, index: bool | None = None) -> Identity:
+def identify_entry(entry, *, index: bool | None = None) -> Identity:
+    """Identify one chain as read by :mod:`synth.exchange` (an entry: the chain, its frame and input
+    link, the names its source gave its links, where it came from); :func:`synth.identify` reads
+    any source and calls this for each chain."""
     from ..structure.kinds import idle_joints
     from ..structure.subchains import check_subchains
     from .chains import mobility_of
@@ -301,63 +305,3 @@ def _identify_entry(entry, *, index: bool | None = None) -> Identity:
         idle_joints=[_named(names, j) for j in idle], conventions=conventions, symmetry=round(order),
         link_orbits=[_named(names, g) for g in sorted(groups.values())], classical=chain_names(chain),
         **place, **mechanism, chain=chain)
-
-
-def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = None,
-                 index: bool | None = None) -> list[Identity]:
-    """:func:`identify` every chain of a source (a file or text may hold several)."""
-    from dataclasses import replace
-
-    from ..exchange import in_motion_space, read
-
-    entries = read(source, fmt)
-    if frame is not None and len(entries) > 1:
-        raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
-    out = []
-    for entry in entries:
-        entry = in_motion_space(entry, h)
-        if frame is not None:
-            names = entry.names or [str(i) for i in range(entry.chain.links)]
-            if str(frame) not in names:
-                raise InvalidOption(f"the frame {frame} is not a link of the chain ({names[0]} … {names[-1]})")
-            entry = replace(entry, frame=names.index(str(frame)), input_link=None)  # an input went with its frame
-        out.append(_identify_entry(entry, index=index))
-    return out
-
-
-def identify(source, *, fmt: str | None = None, frame=None, h: int | None = None,
-             index: bool | None = None) -> Identity:
-    """Identify one chain or mechanism.
-
-    Parameters
-    ----------
-    source : Chain, Mechanism, networkx graph, path or text
-        Anything :func:`synth.exchange.read` reads: a joint list (``"0-1 1=2 2-3 3-0"``), a JSON
-        row, a file in any of :data:`synth.exchange.FORMATS`, ``Chain.to_networkx()``.
-    fmt : str, optional
-        The input format, when it is not to be detected.
-    frame : link, optional
-        Fix this link (as the source names it): identify the mechanism.
-    h : int, optional
-        Motion space of the loops, for a source that states none (default the chain's own: 3 for
-        a joint list); a source that states another h is refused.
-    index : bool, optional
-        Find the chain's row in its code's listing: None (default) where listing every chain of
-        its link count is estimated to take at most :data:`INDEX_SECONDS` on one core
-        (:func:`index_size`), True always, False never.
-
-    Returns
-    -------
-    Identity
-
-    Raises
-    ------
-    MalformedChain
-        The source cannot be read as a chain (one sentence: what, and where).
-    InvalidOption
-        The source holds several chains (use :func:`identify_all`), or the frame is no link.
-    """
-    found = identify_all(source, fmt=fmt, frame=frame, h=h, index=index)
-    if len(found) != 1:
-        raise InvalidOption(f"the source holds {len(found)} chains: identify_all identifies each")
-    return found[0]

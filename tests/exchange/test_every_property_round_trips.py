@@ -18,7 +18,8 @@ import synth
 from mechsynth.cli import main
 from mechsynth.commands.chains import write_items
 from synth import Chain, Mechanism, MalformedChain
-from synth.analysis.identify import chain_id, identify
+from synth.analysis.identify import chain_id
+from synth.exchange.identify import identify
 from synth.exchange import WRITTEN, in_motion_space, read_chain, read_text
 
 

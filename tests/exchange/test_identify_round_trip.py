@@ -13,7 +13,8 @@ import pytest
 
 import synth
 from synth import exchange
-from synth.analysis.identify import chain_id, identify
+from synth.analysis.identify import chain_id
+from synth.exchange.identify import identify
 
 FORMATS = ("text", "json", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
 
