@@ -61,6 +61,8 @@ _WHERE = {
     "run_unit": ".synthesis.type_synthesis", "count_unit": ".synthesis.type_synthesis",
     "count_by_code": ".synthesis.type_synthesis",
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
+    "split_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
+    "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
     "Estimate": ".execution.estimate", "estimate": ".execution.estimate", "size_check": ".execution.estimate",
     "worth_sizing": ".execution.estimate",

@@ -153,6 +153,7 @@ def _motion_space(args) -> int:
 def _run_analyze(args) -> int:
     from synth import analyze
 
+    given_h = args.h
     args.h = _motion_space(args)
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
@@ -163,9 +164,10 @@ def _run_analyze(args) -> int:
         from synth import check_motion_space
 
         h = check_motion_space(args.h, lowest=2)
-        if args.repairs and h != 3:
-            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
-        result = analyze_chain(subject, dof=args.dof, h=h).to_dict()
+        if args.repairs and (h != 3 or "|" in subject):
+            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h} or "
+                                "with loop classes")
+        result = analyze_chain(subject, dof=args.dof, h=None if given_h is None else h).to_dict()
         if args.repairs:
             from synth import Chain
             from synth import chain_repairs

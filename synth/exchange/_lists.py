@@ -36,12 +36,13 @@ _FRAME_LINE = re.compile(r"^#\s*frame\s*[:=]?\s*(\S+)\s*$", re.IGNORECASE)
 
 
 def looks_like_joint_list(line: str) -> bool:
-    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``).
+    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``;
+    a heterogeneous chain's loop classes may follow a ``|``).
 
-    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1")
-    (True, False)
+    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1"), looks_like_joint_list("0-1 1-2 2-0 | h5: 0 1 2")
+    (True, False, True)
     """
-    words = line.split("#", 1)[0].replace(",", " ").split()
+    words = line.split("#", 1)[0].split("|", 1)[0].replace(",", " ").split()
     return bool(words) and all(_JOINT_TOKEN.match(w) for w in words)
 
 
@@ -58,7 +59,8 @@ def read_text_lists(text: str, source: str) -> list[Entry]:
             continue
         frame = _FRAME_LINE.match("#" + comment.strip()) if comment else None
         where = source if single else f"{source} line {number}"
-        check_distinct([re.split(r"[-=~]", w) for w in body.replace(",", " ").split()], where)
+        joints = body.split("|", 1)[0]  # (a heterogeneous chain's loop classes follow a '|')
+        check_distinct([re.split(r"[-=~]", w) for w in joints.replace(",", " ").split()], where)
         try:
             chain = Chain.parse(body)
         except MalformedChain as exc:

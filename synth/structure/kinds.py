@@ -43,7 +43,8 @@ import numpy as np
 
 from .chain import JOINT_KINDS, SYMBOLS, Chain
 
-__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "structural_mobility", "generic_mobility",
+__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "class_loops", "structural_mobility",
+           "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
@@ -105,8 +106,27 @@ def wedge_loops(chain: Chain, links=None) -> int:
     return cycle_rank(s, sliders)
 
 
+def class_loops(chain: Chain, h: int, links=None) -> int:
+    """c_h(S): independent loops made only of links of class ``h`` among ``links`` (all by
+    default) — the loops of a heterogeneous chain's base of that class (each joint restricted
+    to those links: a pin of m of them closes m − 1 pairs).
+
+    >>> toroid = Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5")
+    >>> class_loops(toroid, 5), class_loops(toroid, 5, [0, 1, 2, 3, 6])
+    (1, 0)
+    """
+    s = _members(chain, links) & {i for i, x in enumerate(chain.classes or ()) if x == h}
+    pairs = []
+    for j in chain.joints:
+        inside = [x for x in j if x in s]
+        pairs += zip(inside, inside[1:])
+    return cycle_rank(s, pairs)
+
+
 def structural_mobility(chain: Chain, links=None) -> int:
-    """The count W(S) of the links ``links`` (the whole chain by default), in the chain's motion space.
+    """The count W(S) of the links ``links`` (the whole chain by default), in the chain's motion space;
+    in a heterogeneous chain each base's loops inside S count in their own class x:
+    + (h − x)·c_x(S).
 
     >>> structural_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), [0, 1, 2, 3])
     1
@@ -123,6 +143,7 @@ def structural_mobility(chain: Chain, links=None) -> int:
         else:
             lower += max(inside - 1, 0)
     extra = wedge_loops(chain, s) if chain.kinds is not None else 0
+    extra += sum((h - x) * class_loops(chain, x, s) for x in set(chain.classes or ()) - {h})
     return h * (len(s) - 1) - (h - 1) * lower - mesh + extra
 
 
