@@ -142,6 +142,8 @@ def _run_one_chain(args) -> int:
     if given:
         raise _invalid(f"{given[0]} selects chains of a query and contradicts --chain")
     chain = Chain.parse(args.chain)
+    if args.loop_classes is not None or chain.classes is not None:
+        _refuse_classless_format(args)
     if args.loop_classes is not None:
         items = _class_variants_of(chain, args)
     elif args.prismatic is None:
@@ -159,6 +161,13 @@ def _run_one_chain(args) -> int:
                        kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints)
 
 
+def _refuse_classless_format(args) -> None:
+    """Other tools' formats have no place for loop classes: they would drop them silently."""
+    if args.format in WRITTEN:
+        raise _invalid(f"--format {args.format} has no place for loop classes: list heterogeneous chains as table, "
+                       "jsonl, json or csv (their joint lists and rows carry the classes)")
+
+
 def _class_variants_of(chain, args) -> list:
     """``--chain C --loop-classes H=K,X=K``: every base of K_X loops of class X on that chain, read
     in class H (the lower one)."""
@@ -173,7 +182,8 @@ def _class_variants_of(chain, args) -> list:
         raise _invalid("--loop-classes lays bases on a revolute chain without classes: give its joint list without "
                        "'=', '~' or '|'")
     if chain.loops != k_h + k_x:
-        raise _invalid(f"the chain has {chain.loops} loops and --loop-classes asks for {k_h + k_x}")
+        raise _invalid(f"the chain has {chain.loops} loop{'s' * (chain.loops != 1)} and --loop-classes asks for "
+                       f"{k_h + k_x}")
     return class_variants(replace(chain, h=h), x, k_x)
 
 
@@ -192,6 +202,7 @@ def _run_classes(args) -> int:
                        "heterogeneous chains are closed, revolute and listed on this machine)")
     if args.dof is None:
         raise _invalid("give --dof W (the heterogeneous count's W) with --loop-classes")
+    _refuse_classless_format(args)
     classes = _parse_classes(args.loop_classes)
     selection = dict(code=args.code, v=args.v, require=args.require, cranks=args.cranks,
                      max_multiplicity=args.max_multiplicity, rigid_subchains=args.rigid_subchains,

@@ -164,9 +164,10 @@ def _run_analyze(args) -> int:
         from synth import check_motion_space
 
         h = check_motion_space(args.h, lowest=2)
-        if args.repairs and (h != 3 or "|" in subject):
-            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h} or "
-                                "with loop classes")
+        if args.repairs and h != 3:
+            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
+        if args.repairs and "|" in subject:
+            raise InvalidOption("--repairs rebuilds planar chains of one class, not a chain with loop classes")
         result = analyze_chain(subject, dof=args.dof, h=None if given_h is None else h).to_dict()
         if args.repairs:
             from synth import Chain
