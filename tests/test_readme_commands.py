@@ -26,6 +26,8 @@ SLOW = {
     "scene --all models/": "every scene, about 20 seconds: tests/scenes/test_scenes.py runs each of them in the default suite",
     "--db rp.sqlite --html site": "draws 473 chains: about 10 seconds",
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
+    "--code 12.2000/6-0 --cranks 3=3": "the translator's query, 21 841 heterogeneous chains: about 13 CPU seconds "
+                                       "(tests/synthesis/test_classes_vs_oracle.py runs it in the slow set too)",
 }
 SKIP = {
     "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "

@@ -96,9 +96,12 @@ def _run_codes(args) -> int:
             raise QueryTooLarge(f"{exc}, or give --force to list them anyway") from None
         raise
 
+    listed: set[str] = set()
+
     def rows():
         for code in ([] if first is None else itertools.chain([first], codes)):
             per_k[code.loops] += 1
+            listed.add(str(code))
             yield dict(code.to_dict(), dof=args.dof)
 
     columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
@@ -107,12 +110,35 @@ def _run_codes(args) -> int:
     finally:
         if bar is not None:
             bar.close()
+    if args.max_link_degree is not None:
+        _note_left_out(args, listed)
     if first is None:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
         print(f"{sum(per_k.values())} codes ({summary})")
     return 0
+
+
+def _note_left_out(args, listed: set) -> None:
+    """Say on stderr which codes a ``--max-link-degree`` below the default K + 1 left out: the limit
+    theorem's K + W holds for chains that no sub-chain makes rigid (W ≥ 1), so with W = 0 it drops
+    trusses that exist (32/0, K = 2, has three-joint links)."""
+    from synth import iter_codes
+
+    every = iter_codes(
+        args.dof, loops=args.loops, links=args.links,
+        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        h=args.h, f=args.f, v=args.v, n1=args.n1, require=args.require, max_multiplicity=args.max_multiplicity,
+        compositions=args.compositions, max_codes=None if args.force else MAX_CODES)
+    left = [str(c) for c in every if str(c) not in listed]
+    if left:
+        why = (" (the limit K + W holds for chains with W ≥ 1 and no rigid sub-chain; a truss's links carry up to "
+               "K + 1 joints)" if args.dof == 0 else "")
+        shown = ", ".join(left[:5]) + (", …" if len(left) > 5 else "")
+        print(f"mechsynth: note: --max-link-degree {args.max_link_degree} leaves out {len(left)} code"
+              f"{'s' * (len(left) > 1)} with larger links that the default bound K + 1 lists: {shown}{why}",
+              file=sys.stderr)
 
 
 # ----------------------------------------------------------------- analyze

@@ -367,15 +367,18 @@ def least_base_mobilities(chain: Chain, base_class: int, bases) -> list[int]:
     own = check_subchains(chain, rigid_subchains=True).worst_mobility  # the least W_h(S), every proper S
     best = []
     for base, base_pairs in zip(bases, pairs):
-        if cycle_rank(base, base_pairs) == 1:  # a single loop: the proper supersets of it
+        if cycle_rank(base, base_pairs) == 1:  # a single loop: the proper supersets of it, block by block
             rest = [x for x in range(n) if x not in base]
-            R = np.arange((1 << len(rest)) - 1, dtype=np.int64)  # every part of the rest but all of it
-            bits = np.zeros((len(R), n), dtype=np.int64)
-            bits[:, base] = 1
-            bits[:, rest] = (R[:, None] >> np.arange(len(rest))) & 1
-            size = bits.sum(axis=1)
-            W = h * (size - 1) - (h - 1) * np.maximum(bits @ incidence - 1, 0).sum(axis=1) - drop
-            best.append(min(own, int(W.min())) if len(W) else own)
+            low = own
+            for start in range(0, (1 << len(rest)) - 1, _BLOCK):  # every part of the rest but all of it
+                R = np.arange(start, min((1 << len(rest)) - 1, start + _BLOCK), dtype=np.int64)
+                bits = np.zeros((len(R), n), dtype=np.int64)
+                bits[:, base] = 1
+                bits[:, rest] = (R[:, None] >> np.arange(len(rest))) & 1
+                size = bits.sum(axis=1)
+                W = h * (size - 1) - (h - 1) * np.maximum(bits @ incidence - 1, 0).sum(axis=1) - drop
+                low = min(low, int(W.min()))
+            best.append(low)
             continue
         low = _BIG
         for start in range(0, 1 << n, _BLOCK):
