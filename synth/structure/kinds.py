@@ -43,8 +43,8 @@ import numpy as np
 
 from .chain import JOINT_KINDS, SYMBOLS, Chain
 
-__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "class_loops", "structural_mobility",
-           "generic_mobility",
+__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "class_loops",
+           "structural_mobility", "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
@@ -106,6 +106,17 @@ def wedge_loops(chain: Chain, links=None) -> int:
     return cycle_rank(s, sliders)
 
 
+def restricted_pairs(joint, links) -> list[tuple[int, int]]:
+    """A joint restricted to ``links``, as the pairs of a path through those of its links (a pin that
+    holds m of them joins them as m − 1 pairs: the loops it closes are the loops of those pairs).
+
+    >>> restricted_pairs((0, 3, 5), {0, 5, 7})
+    [(0, 5)]
+    """
+    inside = [x for x in joint if x in links]
+    return list(zip(inside, inside[1:]))
+
+
 def class_loops(chain: Chain, h: int, links=None) -> int:
     """c_h(S): independent loops made only of links of class ``h`` among ``links`` (all by
     default) — the loops of a heterogeneous chain's base of that class (each joint restricted
@@ -116,11 +127,7 @@ def class_loops(chain: Chain, h: int, links=None) -> int:
     (1, 0)
     """
     s = _members(chain, links) & {i for i, x in enumerate(chain.classes or ()) if x == h}
-    pairs = []
-    for j in chain.joints:
-        inside = [x for x in j if x in s]
-        pairs += zip(inside, inside[1:])
-    return cycle_rank(s, pairs)
+    return cycle_rank(s, [pair for j in chain.joints for pair in restricted_pairs(j, s)])
 
 
 def structural_mobility(chain: Chain, links=None) -> int:

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..execution._blas import single_threaded
 from .chain import Chain
-from .kinds import cycle_rank, generic_mobility, lever_analogue, structural_mobility
+from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
 __all__ = ["SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities"]
@@ -283,7 +283,7 @@ def _loop_terms(chain: Chain) -> list[tuple[int, list[tuple[int, int]]]]:
         terms.append((1, [j for j, k in zip(chain.joints, chain.kinds) if k == "prismatic"]))
     for x in sorted(set(chain.classes or ()) - {chain.h}):
         base = {y for y in range(chain.links) if chain.classes[y] == x}
-        terms.append((chain.h - x, [pair for j in chain.joints for pair in _path_through(j, base)]))
+        terms.append((chain.h - x, [pair for j in chain.joints for pair in restricted_pairs(j, base)]))
     return terms
 
 
@@ -360,7 +360,7 @@ def least_base_mobilities(chain: Chain, base_class: int, bases) -> list[int]:
         raise MalformedChain(f"the exact sub-chain test of a chain with loop classes scans every set of links, "
                              f"up to {_MAX_SCANNED} links, not {n}")
     drop = base_class - h
-    pairs = [[pair for j in chain.joints for pair in _path_through(j, set(b))] for b in bases]
+    pairs = [[pair for j in chain.joints for pair in restricted_pairs(j, set(b))] for b in bases]
     incidence = np.zeros((n, len(chain.joints)), dtype=np.int64)
     for k, j in enumerate(chain.joints):
         incidence[list(j), k] = 1
@@ -390,12 +390,6 @@ def least_base_mobilities(chain: Chain, base_class: int, bases) -> list[int]:
             low = min(low, int(W.min()))
         best.append(low)
     return best
-
-
-def _path_through(joint: tuple[int, ...], links: set[int]) -> list[tuple[int, int]]:
-    """A joint restricted to ``links``, as the pairs of a path through them (a pin of m of them closes m − 1)."""
-    inside = [x for x in joint if x in links]
-    return list(zip(inside, inside[1:]))
 
 
 def _check_with_classes(chain: Chain, threshold: int) -> SubchainReport:

@@ -29,9 +29,9 @@ from itertools import combinations
 
 from ..errors import ImpossibleParameters, InvalidOption
 from ..structure.chain import Chain
-from ..structure.kinds import cycle_rank
+from ..structure.kinds import cycle_rank, restricted_pairs
 from ..structure.query import ChainQuery
-from ..structure.subchains import _path_through, least_base_mobilities
+from ..structure.subchains import least_base_mobilities
 
 __all__ = ["split_classes", "class_variants", "skeleton_query", "heterogeneous_synthesis"]
 
@@ -135,7 +135,7 @@ def _bases(chain: Chain, loops: int) -> Iterator[frozenset[int]]:
         if base in seen:
             continue
         seen.add(base)
-        pairs = [pair for j in chain.joints for pair in _path_through(j, base)]
+        pairs = [pair for j in chain.joints for pair in restricted_pairs(j, base)]
         if cycle_rank(base, pairs) == loops:
             yield base
 

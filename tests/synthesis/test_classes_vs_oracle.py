@@ -12,7 +12,7 @@ import random
 import networkx as nx
 import pytest
 
-from synth import Chain, InvalidOption, MalformedChain, analyze_chain, check_subchains, identify
+from synth import Chain, MalformedChain, SynthesisError, analyze_chain, check_subchains, identify
 from synth.structure.subchains import least_base_mobilities
 from synth.synthesis.classes import _bases, class_variants, heterogeneous_synthesis
 from tests.oracles.hetero_chains import hetero_chains
@@ -140,5 +140,5 @@ def test_the_translator_is_found_by_the_query():
     (dict(dof=1, loop_classes={3: 4, 5: 1}, h=5), "unknown option"),
 ])
 def test_bad_queries_are_refused(kwargs, words):
-    with pytest.raises((InvalidOption, Exception), match=words):
+    with pytest.raises(SynthesisError, match=words):
         list(heterogeneous_synthesis(workers=1, **kwargs))
