@@ -78,6 +78,23 @@ def test_the_class_assignment_is_part_of_the_chain():
     assert row["code"] == "52/0 K3=1 K5=1" and row["loop_classes"] == {"3": 1, "5": 1} and row["dof"] == 0
 
 
+def test_mechanisms_are_the_orbits_of_class_keeping_symmetries():
+    """A frame per orbit of the links under the renumberings that keep joints and classes (networkx
+    VF2 with the class as a node colour, not nauty): 22 mechanisms for K3 = 1, K5 = 1."""
+    from synth import mechanisms_of
+
+    match = nx.algorithms.isomorphism.categorical_node_match("base", False)
+    total = 0
+    for chain in heterogeneous_synthesis(1, {3: 1, 5: 1}, workers=1):
+        g = _as_graph(chain)
+        orbit = {v: {m[v] for m in nx.algorithms.isomorphism.GraphMatcher(g, g, node_match=match).isomorphisms_iter()}
+                 for v in g}
+        orbits = {frozenset(o) for o in orbit.values()}
+        assert len(mechanisms_of(chain)) == len(orbits)
+        total += len(orbits)
+    assert total == 22
+
+
 def test_lower_ambient_class_reads_back():
     """A chain whose other links are of class 2 writes that class too ('| h2; h3: …')."""
     chain = next(iter(heterogeneous_synthesis(1, {2: 1, 3: 1}, workers=1)))
