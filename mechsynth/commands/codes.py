@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import itertools
 import json
+import re
 import sys
 from collections import Counter
 
@@ -165,8 +166,16 @@ def _refuse_for_chain(args) -> None:
 
 
 def _looks_like_chain(text: str) -> bool:
+    """A chain (JSON, or a joint list: a pin ``0-1``, or several joints such as the wedge loop
+    ``0=1 1=2 2=3 3=0``, or loop classes after ``|``), not a code or counts (``2=4,3=2``).
+
+    >>> _looks_like_chain("0=1 1=2 2=3 3=0"), _looks_like_chain("2=4,3=2"), _looks_like_chain("6301/0")
+    (True, False, False)
+    """
     s = text.strip()
-    return s.startswith("{") or s.startswith("[") or "-" in s.split("/")[0] and "/" not in s
+    words = s.split("|")[0].split()
+    joint_list = len(words) > 1 and all(re.fullmatch(r"\d+(?:[-=~]\d+)+", w) for w in words)
+    return s.startswith("{") or s.startswith("[") or "|" in s or joint_list or "-" in s.split("/")[0] and "/" not in s
 
 
 def _motion_space(args) -> int:

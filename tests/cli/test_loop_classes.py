@@ -58,3 +58,16 @@ def test_draw_the_bases(capsys, tmp_path):
     code, _, _ = run(capsys, "draw", "--chain", TRANSLATOR + " | h5: 0 1 2 3 4 5", "--out", str(one))
     text = one.read_text()
     assert code == 0 and "#e66101" in text and "h = 5: 1 loop" in text  # the base's colour and its key
+
+
+def test_fig_6v_wedge_loop_from_the_command_line(capsys):
+    """Fig. 6в: the four-link loop of prismatic pairs is read as a chain (not as counts) and has
+    W = 2 in the plane; with one pin among its pairs W = 1; a one-DOF planar wedge loop is 3/0."""
+    code, out, _ = run(capsys, "analyze", "0=1 1=2 2=3 3=0", "--format", "json")
+    assert code == 0 and json.loads(out)["dof"] == 2 and json.loads(out)["loops_2"] == 1
+    code, out, _ = run(capsys, "analyze", "0=1 1=2 2=3 3-0", "--format", "json")
+    assert code == 0 and json.loads(out)["dof"] == 1
+    code, out, _ = run(capsys, "codes", "--dof", "1", "--loop-classes", "2=1", "--format", "csv")
+    assert code == 0 and out.splitlines()[1:] == ["3/0,3,1,0,3"]
+    code, out, _ = run(capsys, "analyze", "2=4,3=2", "--format", "json")
+    assert code == 0 and json.loads(out)["code"] == "42/0"  # counts stay counts
