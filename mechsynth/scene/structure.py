@@ -174,6 +174,13 @@ def _check_chains(scene: Scene) -> None:
         if s.h != 3 or s.loops is not None or s.prismatic is not None or s.n1 is not None:
             raise scene.error("[structure] key 'loop_classes' gives each loop's motion space and the links: it does "
                               "not go with 'h', 'loops', 'prismatic' or 'n1' for chains, mechanisms and drawings")
+        if s.chain is not None:
+            from synth import Chain
+
+            loops, asked = Chain.parse(s.chain).loops, sum(s.loop_classes.values())
+            if loops != asked:
+                raise scene.error(f"[structure] key 'chain' has {loops} loop{'s' * (loops != 1)} and 'loop_classes' "
+                                  f"asks for {asked}")
         return
     if s.chain is not None:
         raise scene.error("[structure] key 'chain' gives chains only with 'loop_classes' (every base on it); "
@@ -292,12 +299,9 @@ def _heterogeneous(s: Structure, workers: int) -> list:
 
     from synth import Chain, class_variants, heterogeneous_synthesis, skeleton_query, split_classes
 
-    h, k_h, x, k_x = split_classes(s.loop_classes)
-    if s.chain is not None:
-        chain = Chain.parse(s.chain)
-        if chain.loops != k_h + k_x:
-            raise SceneError(f"[structure] chain has {chain.loops} loops and loop_classes ask for {k_h + k_x}")
-        return class_variants(replace(chain, h=h, classes=None), x, k_x, rigid_subchains=s.rigid_subchains)
+    h, _, x, k_x = split_classes(s.loop_classes)
+    if s.chain is not None:  # (its loops checked against the classes before the run)
+        return class_variants(replace(Chain.parse(s.chain), h=h, classes=None), x, k_x, rigid_subchains=s.rigid_subchains)
     selection = dict(code=s.code, v=s.v, require=s.require, cranks=s.cranks, fractionated=s.fractionated,
                      planar_only=s.planar_only, max_multiplicity=s.max_multiplicity, rigid_subchains=s.rigid_subchains)
     links = int(s.links) if s.links is not None else None
