@@ -60,7 +60,8 @@ def _add_codes(sub):
     p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
-    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
+    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W (the limit theorem, for W ≥ 1); "
+                   "a bound below K + 1 names on stderr the codes it leaves out")
     p.add_argument("--max-multiplicity", type=whole, help="largest number of links on one joint")
     p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
