@@ -62,7 +62,8 @@ _WHERE = {
     "count_by_code": ".synthesis.type_synthesis",
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
     "split_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
-    "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes", "class_loops": ".structure.kinds",
+    "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes",
+    "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
     "Estimate": ".execution.estimate", "estimate": ".execution.estimate", "size_check": ".execution.estimate",
     "worth_sizing": ".execution.estimate",

@@ -190,7 +190,7 @@ def _class_variants_of(chain, args) -> list:
 def _run_classes(args) -> int:
     """``chains --dof W --loop-classes H=K,X=K``: every heterogeneous chain (a base of class X on a
     chain of class H), skeletons built by type synthesis in the process, bases laid here."""
-    from synth import heterogeneous_synthesis, mechanisms_of, skeleton_query
+    from synth import heterogeneous_synthesis, mechanisms_of, size_note, skeleton_query
 
     from .codes import _parse_classes
 
@@ -207,7 +207,12 @@ def _run_classes(args) -> int:
     selection = dict(code=args.code, v=args.v, require=args.require, cranks=args.cranks,
                      max_multiplicity=args.max_multiplicity, rigid_subchains=args.rigid_subchains,
                      fractionated=args.fractionated, planar_only=args.planar_only)
-    _size_note(skeleton_query(args.dof, classes, links=args.links, **selection), args)  # the skeletons' size
+    import os
+
+    skeletons = skeleton_query(args.dof, classes, links=args.links, **selection)
+    note = size_note(skeletons, processes=args.workers or os.cpu_count() or 1, force=args.force)
+    if note:
+        print(f"mechsynth: {note}", file=sys.stderr)
     items = heterogeneous_synthesis(args.dof, classes, links=args.links, workers=args.workers, progress=True,
                                     **selection)
     if args.what == "mechanisms":

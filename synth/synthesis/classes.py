@@ -33,7 +33,12 @@ from ..structure.kinds import cycle_rank, restricted_pairs
 from ..structure.query import ChainQuery
 from ..structure.subchains import least_base_mobilities
 
-__all__ = ["split_classes", "class_variants", "skeleton_query", "heterogeneous_synthesis"]
+__all__ = ["split_classes", "class_variants", "skeleton_query", "heterogeneous_synthesis", "size_note"]
+
+# Laying every base on one skeleton and testing them, in the parent process: 1 785 skeletons of the
+# translator's query (14 links, about 20 candidate loops each) took 9.5 CPU s of its 12 (shared machine)
+SECONDS_PER_SKELETON = 0.006
+_SIZED_LOOPS = 5  # skeleton queries of fewer loops end in seconds: they are not estimated
 
 
 def split_classes(loop_classes: Mapping[int, int]) -> tuple[int, int, int, int]:
@@ -208,6 +213,34 @@ def skeleton_query(dof: int, loop_classes: Mapping[int, int], *, links: int | No
     rigid = options.pop("rigid_subchains", None)
     rigid = dof == 0 if rigid is None else rigid
     return ChainQuery(dof + (x - h) * k_x, n, h=h, rigid_subchains=rigid, **options)
+
+
+def size_note(skeletons: ChainQuery, *, processes: int, force: bool = False) -> str | None:
+    """Size a heterogeneous query before it runs, from the estimate of its skeletons (type synthesis
+    on ``processes`` workers) and the bases laid on each in the parent: refuse with the estimate
+    one of more than a day unless ``force``, and return a sentence for one of more than ten
+    minutes (None otherwise, and for queries of fewer than five loops, which end in seconds).
+
+    >>> size_note(skeleton_query(1, {3: 1, 5: 1}), processes=2) is None
+    True
+    """
+    from ..errors import QueryTooLarge, option
+    from ..execution.estimate import LIMIT_SECONDS, NOTE_SECONDS, describe_seconds, estimate, magnitude
+
+    if skeletons.loops < _SIZED_LOOPS:
+        return None
+    found = estimate(skeletons, work="list", budget=5.0)  # (a query of five loops or more takes longer itself)
+    if found is None:  # too few smaller sizes to extrapolate from (a fixed code), or no time to count them
+        return None
+    seconds = found.seconds / processes + found.chains * SECONDS_PER_SKELETON
+    size = (f"about {magnitude(found.chains, found.log10_chains)} skeletons of W = {skeletons.dof} in class "
+            f"h = {skeletons.h}, each given its bases, {describe_seconds(seconds)} on {processes} worker"
+            f"{'s' * (processes > 1)} (extrapolated from the {found.basis})")
+    if seconds > LIMIT_SECONDS and not force:
+        raise QueryTooLarge(f"this heterogeneous query ({skeletons.links} links) is too large to run unasked: {size}; "
+                            f"give {option('force')} to run it anyway, or narrow it ({option('code', 'C')}, "
+                            f"{option('v', 'N')})")
+    return f"a long query: {size}" if seconds > NOTE_SECONDS else None
 
 
 def heterogeneous_synthesis(dof: int, loop_classes: Mapping[int, int], *, links: int | None = None,

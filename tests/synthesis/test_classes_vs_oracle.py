@@ -7,6 +7,7 @@ the linear translator of the source."""
 from __future__ import annotations
 
 import json
+import math
 import random
 
 import networkx as nx
@@ -159,3 +160,26 @@ def test_the_translator_is_found_by_the_query():
 def test_bad_queries_are_refused(kwargs, words):
     with pytest.raises(SynthesisError, match=words):
         list(heterogeneous_synthesis(workers=1, **kwargs))
+
+
+def test_size_note_adds_the_bases_to_the_skeletons(monkeypatch):
+    """The size of a heterogeneous query: the skeletons' estimate on the workers plus the bases laid
+    on each in the parent; more than a day is refused unless forced, more than ten minutes is said."""
+    from synth import QueryTooLarge
+    from synth.execution import estimate as sizing
+    from synth.synthesis.classes import SECONDS_PER_SKELETON, size_note, skeleton_query
+
+    query = skeleton_query(1, {3: 6, 5: 1})  # 18 links, seven loops
+
+    def fake(skeletons, chains, seconds):
+        return sizing.Estimate(chains=chains, units=10, seconds=seconds, basis="exact counts at 8, 10, 12 links",
+                               log10_chains=math.log10(chains), log10_units=1, log10_seconds=math.log10(seconds))
+
+    monkeypatch.setattr(sizing, "estimate", lambda q, **kw: fake(q, 2.0e8, 1.0e5))
+    with pytest.raises(QueryTooLarge, match="too large to run unasked: about 2e\\+08 skeletons"):
+        size_note(query, processes=2)
+    assert "a long query" in size_note(query, processes=2, force=True)
+    monkeypatch.setattr(sizing, "estimate", lambda q, **kw: fake(q, 1.0e5, 100.0))  # 50 s + 600 s of bases
+    assert 1.0e5 * SECONDS_PER_SKELETON > 599 and "a long query" in size_note(query, processes=2)
+    monkeypatch.setattr(sizing, "estimate", lambda q, **kw: fake(q, 1.0e3, 10.0))
+    assert size_note(query, processes=2) is None
