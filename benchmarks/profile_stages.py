@@ -8,7 +8,7 @@ Stages:
 * ``number synthesis``  the CP-SAT model of the counting equations (codes);
 * ``stage A``           branch multigraphs of every code (CP-SAT + nauty);
 * ``stage B model``     building the CP-SAT model of one multigraph (``realise`` minus the rest),
-  of which ``CpModel()`` is the construction of the empty model object itself (``_cpsat.Model``);
+  of which ``CpModel()`` is the construction of the empty model object itself (``cp_model.CpModel``);
 * ``stage B CP-SAT``    enumerating its solutions (``all_solutions``);
 * ``automorphisms``     nauty's group of H (lex-leader constraints);
 * ``sub-chain test``    ``_exact_test``: the exact test of a unit's candidates in one batch (none
@@ -74,14 +74,14 @@ def instrument() -> None:
     cert = Chain.certificate.fget
     Chain.certificate = property(_timed("nauty", cert))
 
-    class TimedModel(_cpsat.Model):
+    class TimedModel(_cpsat.cp_model.CpModel):
         def __init__(self, *args, **kwargs):
             t0 = time.process_time()
             super().__init__(*args, **kwargs)
             T["CpModel()"] += time.process_time() - t0
             N["CpModel()"] += 1
 
-    _cpsat.Model = TimedModel
+    _cpsat.cp_model.CpModel = TimedModel  # the stages build their models as cp_model.CpModel()
 
 
 def profile(dof: int, links: int, v: str, count: bool = False) -> dict:

@@ -9,8 +9,8 @@ SQLite atlases and drawn.  The package is laid out by pipeline stage:
 =============  ==========================================================================
 ``structure``  the core types (:class:`Code`, :class:`Chain`, :class:`Mechanism`,
                :class:`ChainQuery`), joint kinds and the exact sub-chain test
-``synthesis``  number synthesis and type synthesis (stages A and B), prismatic assignments
-``execution``  running units inline, on a pool or on Dask; checkpoints; size estimates
+``synthesis``  number synthesis and type synthesis (stages A and B), prismatic assignments, size estimates
+``execution``  running units inline, on a pool or on Dask; checkpoints; sizes and times in words
 ``atlas``      grid files, SQLite atlases, the ``--where`` language, the static web site
 ``analysis``   analysis of codes and chains, directed repair, identification, atlas comparison
 ``exchange``   chains read and written in other tools' formats (GraphML, GML, DOT, edge lists, matrices)
@@ -42,7 +42,7 @@ from .errors import __all__ as _errors_all
 _WHERE = {
     # core types, joint kinds, the exact sub-chain test
     "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
-    "JOINT_KINDS": ".structure.chain", "chain_id": ".structure.chain",
+    "JOINT_KINDS": ".structure.joints", "chain_id": ".structure.chain",
     "ChainQuery": ".structure.query", "parse_range": ".structure.query", "parse_requirements": ".structure.query",
     "check_motion_space": ".structure._params",
     "structural_mobility": ".structure.kinds", "generic_mobility": ".structure.kinds",
@@ -65,9 +65,9 @@ _WHERE = {
     "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes",
     "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
-    "Estimate": ".execution.estimate", "estimate": ".execution.estimate", "size_check": ".execution.estimate",
-    "worth_sizing": ".execution.estimate",
-    "describe_seconds": ".execution.estimate", "magnitude": ".execution.estimate",
+    "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
+    "worth_sizing": ".synthesis.estimate",
+    "describe_seconds": ".execution.sizes", "magnitude": ".execution.sizes",
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
     "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",
@@ -83,3 +83,9 @@ __all__ = [*_WHERE, *_errors_all]
 
 
 __getattr__, __dir__ = lazy_exports(__name__, _WHERE)
+
+# the facade stands above every floor: it names the drawings the values at the ground show in a notebook
+from .structure.display import register_drawing as _register_drawing  # noqa: E402
+
+for _kind in ("Chain", "Mechanism"):
+    _register_drawing(_kind, "synth.draw:svg")

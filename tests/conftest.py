@@ -1,6 +1,9 @@
+import atexit
 import os
+import shutil
 import signal
 import sys
+import tempfile
 
 from hypothesis import HealthCheck, settings
 
@@ -9,6 +12,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (ROOT, os.environ.get("PYTHONPATH")) if p)
 os.environ.setdefault("MPLBACKEND", "Agg")
+# The solver results the engine keeps between runs (synth.execution.memo) go to a folder of this
+# session's own: the suite starts cold, and never reads or fills the user's store.
+_MEMO = tempfile.mkdtemp(prefix="mechsynth-memo-")
+os.environ["MECHSYNTH_CACHE"] = _MEMO
+atexit.register(shutil.rmtree, _MEMO, ignore_errors=True)
 
 # The Ctrl-C tests send SIGINT to the commands they start.  A suite started in the background
 # (`cmd &` in a script, nohup) inherits SIGINT *ignored*, and so would every command it starts

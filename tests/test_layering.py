@@ -13,6 +13,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -20,9 +22,12 @@ def _imports(path: Path, *, top_level_only: bool = False):
     """(module, name) of every import of a file (relative imports resolved), every one or only
     those made when the module loads (not inside a function)."""
     tree = ast.parse(path.read_text())
-    package = ".".join(path.relative_to(ROOT).with_suffix("").parts)
+    package = ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
     if path.name != "__init__.py":
         package = package.rsplit(".", 1)[0]
+    for node in ast.walk(tree):  # names imported for type checkers only are no dependency at run time
+        if isinstance(node, ast.If) and ast.unparse(node.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING"):
+            node.body = []
     nodes = tree.body if top_level_only else ast.walk(tree)
     out = []
     for node in nodes:
@@ -65,16 +70,79 @@ def test_the_application_and_the_benchmarks_use_public_names_only():
                 assert not private, f"{f.relative_to(ROOT)} imports {module}:{name}"
 
 
-def test_no_import_cycle_at_load_time_inside_synth():
+#: the floors of each engine, lowest first: a module may import its own package, the floors below
+#: and (for execution) nothing above the chain types; the package facades stand above everything
+FLOORS = {
+    "synth": [
+        {"synth.errors", "synth._lazy", "synth.schema", "synth.structure"},  # the chain types
+        {"synth.execution"},  # running work: a service that imports no floor above the chain types
+        {"synth.synthesis"},  # number and type synthesis, and sizing them (planning)
+        {"synth.analysis", "synth.gears", "synth.motion"},
+        {"synth.atlas", "synth.exchange", "synth.draw", "synth.motion_draw"},
+    ],
+    "balance": [
+        {"balance.errors", "balance.schema", "balance.budget", "balance.extremes"},
+        {"balance.model"},
+        {"balance.devices"},
+        {"balance.problems", "balance.plots"},
+    ],
+}
+
+
+def _floor(engine: str, module: str) -> tuple[int, str] | None:
+    """(floor, package) of a module of an engine; None for the engine's facade itself."""
+    for level, packages in enumerate(FLOORS[engine]):
+        for package in packages:
+            if module == package or module.startswith(package + "."):
+                return level, package
+    return None
+
+
+def _module_graph(engine: str) -> dict[str, set[str]]:
+    """Every import between an engine's modules, at load time or inside a function."""
+    modules = {".".join(f.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__"): f for f in _files(engine)}
     graph: dict[str, set[str]] = {}
-    modules = {".".join(f.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__"): f for f in _files("synth")}
     for name, f in modules.items():
         graph[name] = set()
-        for module, imported in _imports(f, top_level_only=True):
+        for module, imported in _imports(f):
             for target in (f"{module}.{imported}", module):
                 if target in modules and target != name:
                     graph[name].add(target)
                     break
+    return graph
+
+
+@pytest.mark.parametrize("engine", sorted(FLOORS))
+def test_every_module_stands_on_a_floor_and_imports_none_above_it(engine):
+    """No import — at load time or inside a function — runs up a floor; the execution service imports
+    only the chain types; packages on one floor may use each other (without a cycle, below)."""
+    graph = _module_graph(engine)
+    unplaced = [m for m in graph if m != engine and _floor(engine, m) is None]
+    assert not unplaced, f"modules on no floor (add them to FLOORS): {unplaced}"
+    wrong = []
+    for module, targets in graph.items():
+        if module == engine:
+            continue
+        level, package = _floor(engine, module)
+        for target in targets:
+            if target == engine:
+                wrong.append(f"{module} imports the facade {engine}")
+                continue
+            to_level, to_package = _floor(engine, target)
+            if to_level > level or (package == "synth.execution" and to_level >= 1 and to_package != package):
+                wrong.append(f"{module} (floor {level}) imports {target} (floor {to_level})")
+    assert wrong == _NOT_YET.get(engine, []), "\n".join(wrong)
+
+
+#: the one import still up a floor, moved with the identification's reading of files (issue 38)
+_NOT_YET = {"synth": ["synth.analysis.identify (floor 3) imports synth.exchange (floor 4)"]}
+
+
+@pytest.mark.parametrize("engine", sorted(FLOORS))
+def test_no_import_cycle_between_modules(engine):
+    """No two modules of an engine import each other, directly or round a circle, at load time or
+    inside a function (a circle makes the order of imports matter and ties the modules into one)."""
+    graph = _module_graph(engine)
     state: dict[str, int] = {}
 
     def visit(node, path):
@@ -91,10 +159,11 @@ def test_no_import_cycle_at_load_time_inside_synth():
             visit(node, [])
 
 
-def test_import_synth_loads_only_its_errors():
+def test_import_synth_loads_only_its_errors_and_the_drawing_names():
     code = ("import sys, synth; print(sorted(m for m in sys.modules if m.startswith('synth.')))")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
-    assert out.returncode == 0 and out.stdout.strip() == "['synth._lazy', 'synth.errors']", out
+    assert out.returncode == 0 and out.stdout.strip() == (
+        "['synth._lazy', 'synth.errors', 'synth.structure', 'synth.structure.display']"), out
 
 
 def test_every_public_name_of_synth_resolves():

@@ -50,10 +50,11 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import MalformedChain, SynthesisError
+from ..execution.sqlite_files import read_only_uri
 from ..structure.chain import chain_id
 from .grid import Grid
 
-__all__ = ["SCHEMA_VERSION", "AtlasError", "AtlasLocked", "open_atlas", "chain_id", "read_only_uri"]
+__all__ = ["SCHEMA_VERSION", "AtlasError", "AtlasLocked", "open_atlas", "chain_id"]
 
 SCHEMA_VERSION = 4  # 2: motion space h of chains and cells; 3: prismatic pairs of chains; 4: gear trains
 
@@ -202,17 +203,6 @@ def _reading(path):
         yield
     except (sqlite3.DatabaseError, ValueError, KeyError, MalformedChain) as exc:  # a row that no run wrote
         raise AtlasError(f"the atlas {path} is damaged ({exc}); it was only read, not changed") from None
-
-
-def read_only_uri(path: Path) -> str:
-    """An SQLite URI that reads ``path`` and creates nothing beside it.
-
-    A file in WAL mode read with ``mode=ro`` gets ``-wal`` and ``-shm`` files next to it; when
-    no ``-wal`` file exists (no writer is at work, everything is in the file itself) it is read
-    as immutable instead, which creates none.
-    """
-    uri = f"{path.resolve().as_uri()}?mode=ro"
-    return uri if Path(f"{path}-wal").exists() else uri + "&immutable=1"
 
 
 def _check_pages(conn: sqlite3.Connection, path: Path) -> None:

@@ -374,7 +374,8 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
     import math
     import shutil
 
-    from ..execution.estimate import describe_seconds, estimate, magnitude, sized_loops
+    from ..execution.sizes import describe_seconds, magnitude
+    from ..synthesis.estimate import estimate, sized_loops
 
     large = [c for c in grid.cells if c.loops >= sized_loops(c.h, multiple=c.v != (0, 0))]
     if not large:

@@ -209,7 +209,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
         if progress:
             from tqdm import tqdm
 
-            from ..execution.estimate import describe_seconds
+            from ..execution.sizes import describe_seconds
 
             seconds = min(draw_limit, total) * _SECONDS_PER_DRAWING / workers
             if seconds > 60 and note is not None:

@@ -27,7 +27,7 @@ from __future__ import annotations
 import re
 
 from ..errors import MalformedChain
-from ..structure.chain import Chain, Mechanism
+from ..structure.chain import Chain, Mechanism, chain_id
 from ._entry import Entry, entry_of, kind_of
 
 __all__ = ["describe", "to_graph", "from_graph", "read_graphml", "write_graphml", "read_gml", "write_gml"]
@@ -36,8 +36,6 @@ __all__ = ["describe", "to_graph", "from_graph", "read_graphml", "write_graphml"
 def describe(item: Chain | Mechanism) -> dict:
     """The chain's (or mechanism's) identity as graph attributes: code, chain_id, certificate(s),
     W, K, h, and the frame (and input link) of a mechanism."""
-    from ..analysis.identify import chain_id
-
     chain = item.chain if isinstance(item, Mechanism) else item
     info = {"code": str(chain.code) + chain.kind_suffix, "id": chain_id(chain.certificate),
             "certificate": chain.certificate, "dof": chain.dof, "loops": chain.loops, "h": chain.h}

@@ -29,6 +29,7 @@ import time
 from pathlib import Path
 
 from ..errors import SynthesisError, option
+from .sqlite_files import read_only_uri
 
 __all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "PLAN_FORMAT"]
 
@@ -54,8 +55,6 @@ def _check_file(path: Path) -> tuple[str, str]:
     """Refuse, after reading it only, a file that is not a checkpoint (an atlas, a damaged or foreign file);
     return the identity and the query in words it was written for."""
     try:
-        from ..atlas.database import read_only_uri
-
         conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30)
     except sqlite3.DatabaseError as exc:
         raise CheckpointError(f"cannot read the checkpoint {path} ({exc}); it was not changed") from None

@@ -42,7 +42,6 @@ from functools import lru_cache
 import numpy as np
 import pynauty
 
-from ..structure._nauty import TrustedGraph
 from ..errors import InvalidOption
 from .train import GearTrain, axis_paths
 
@@ -69,9 +68,9 @@ def check_query(dof: int, links: int, graphs: str = "displacement") -> None:
 
 
 # ------------------------------------------------------------------------------ trees
-def _tree_graph(links: int, axes) -> TrustedGraph:
+def _tree_graph(links: int, axes) -> pynauty.Graph:
     adjacency = {links + k: list(axis) for k, axis in enumerate(axes)}
-    return TrustedGraph(links + len(axes), adjacency, [set(range(links)), set(range(links, links + len(axes)))])
+    return pynauty.Graph(links + len(axes), adjacency_dict=adjacency, vertex_coloring=[set(range(links)), set(range(links, links + len(axes)))])
 
 
 @lru_cache(maxsize=None)
@@ -197,7 +196,7 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
         for j, i in enumerate(chosen):
             adjacency[base + j] = list(pairs[i])
         cells = [set(range(n)), set(range(n, base)), set(range(base, base + len(chosen)))]
-        return TrustedGraph(base + len(chosen), adjacency, [c for c in cells if c])
+        return pynauty.Graph(base + len(chosen), adjacency_dict=adjacency, vertex_coloring=[c for c in cells if c])
 
     def pair_orbits(chosen, free):
         gens = pynauty.autgrp(graph(chosen))[0]

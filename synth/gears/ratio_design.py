@@ -158,7 +158,7 @@ class _DesignModel:
         num, den = dict(self.formula.numerator), dict(self.formula.denominator)
         model = self.model = cp_model.CpModel()
         wheels = [w for w in self.formula.wheels if w.startswith("z")]
-        z = self.z = {w: model.NewIntVar(lo, hi, w) for w in wheels}
+        z = self.z = {w: model.new_int_var(lo, hi, w) for w in wheels}
         names = wheel_names(train, compound)
         self.kind = self._kinds(len(names)) if free else None
         sign = {f"s{k}": v for k, v in enumerate(self.kind["sign"])} if free else {}
@@ -175,8 +175,8 @@ class _DesignModel:
                 if top >= _BOUND:
                     raise InvalidOption("these tooth ranges make the ratio's polynomials too large for exact "
                                         f"integers: narrow {option('teeth', 'A..B')}")
-                var = model.NewIntVar(-top if any(x in sign for x, _ in mono) else 0, top, "·".join(x for x, _ in mono))
-                model.AddMultiplicationEquality(var, factors)
+                var = model.new_int_var(-top if any(x in sign for x, _ in mono) else 0, top, "·".join(x for x, _ in mono))
+                model.add_multiplication_equality(var, factors)
                 products[mono] = (var, top)
             return products[mono]
 
@@ -196,34 +196,34 @@ class _DesignModel:
         if span >= _BOUND or span * d_bound >= _BOUND:
             raise InvalidOption("the ratio and tolerance need integers too large for an exact model: give the "
                                 f"ratio with fewer digits or narrow {option('teeth', 'A..B')}")
-        error = model.NewIntVar(-span, span, "error")
-        model.Add(error == q * n_expr - p * d_expr)
-        self.E = model.NewIntVar(0, span, "abs_error")  # error of a design: E / (|p|·A)
-        model.AddAbsEquality(self.E, error)
-        d_var = model.NewIntVar(-d_bound, d_bound, "D")
-        model.Add(d_var == d_expr)
-        self.A = model.NewIntVar(1, d_bound, "abs_D")
-        model.AddAbsEquality(self.A, d_var)
-        n_var = model.NewIntVar(-n_bound, n_bound, "N")
-        model.Add(n_var == n_expr)
-        model.Add(n_var != 0)  # the input turns the output: a finite, non-zero ratio
-        model.Add(b * self.E <= a * abs(p) * self.A)  # |N/D − R| ≤ tol·|R|
+        error = model.new_int_var(-span, span, "error")
+        model.add(error == q * n_expr - p * d_expr)
+        self.E = model.new_int_var(0, span, "abs_error")  # error of a design: E / (|p|·A)
+        model.add_abs_equality(self.E, error)
+        d_var = model.new_int_var(-d_bound, d_bound, "D")
+        model.add(d_var == d_expr)
+        self.A = model.new_int_var(1, d_bound, "abs_D")
+        model.add_abs_equality(self.A, d_var)
+        n_var = model.new_int_var(-n_bound, n_bound, "N")
+        model.add(n_var == n_expr)
+        model.add(n_var != 0)  # the input turns the output: a finite, non-zero ratio
+        model.add(b * self.E <= a * abs(p) * self.A)  # |N/D − R| ≤ tol·|R|
         self.S = sum(z.values())
         if beat is not None:  # a smaller error, or the same and no more teeth
             self._error_is(model, "<=", beat[0])
-            better = model.NewBoolVar("better")
-            self._error_is(model, "<", beat[0]).OnlyEnforceIf(better)
-            model.Add(self.S <= beat[1]).OnlyEnforceIf(better.Not())
+            better = model.new_bool_var("better")
+            self._error_is(model, "<", beat[0]).only_enforce_if(better)
+            model.add(self.S <= beat[1]).only_enforce_if(better.negated())
         if free:
             self._free_kinds(names)
         else:
             for (za, zb), inner in zip(names, train.internal):
                 if inner:
-                    model.Add(z[za] >= z[zb] + RING_MARGIN)
+                    model.add(z[za] >= z[zb] + RING_MARGIN)
             for members in _centre_groups(train).values():
                 sizes = [z[names[k][0]] + (-1 if train.internal[k] else 1) * z[names[k][1]] for k in members]
                 for other in sizes[1:]:
-                    model.Add(other == sizes[0])
+                    model.add(other == sizes[0])
         if planets is not None:
             _assembly(model, train, names, z, planets, lo, hi, self.kind)
 
@@ -232,11 +232,11 @@ class _DesignModel:
         """Per mesh three literals — external, first gear the ring, second gear the ring — and its sign."""
         model, out = self.model, {"external": [], "ring_first": [], "ring_second": [], "sign": []}
         for k in range(meshes):
-            lits = [model.NewBoolVar(f"{what}{k}") for what in ("ext", "ring_a", "ring_b")]
-            model.AddExactlyOne(lits)
-            s = model.NewIntVarFromDomain(self.cp.Domain.FromValues([-1, 1]), f"s{k}")
-            model.Add(s == 1).OnlyEnforceIf(lits[0])
-            model.Add(s == -1).OnlyEnforceIf(lits[0].Not())
+            lits = [model.new_bool_var(f"{what}{k}") for what in ("ext", "ring_a", "ring_b")]
+            model.add_exactly_one(lits)
+            s = model.new_int_var_from_domain(self.cp.Domain.from_values([-1, 1]), f"s{k}")
+            model.add(s == 1).only_enforce_if(lits[0])
+            model.add(s == -1).only_enforce_if(lits[0].negated())
             for key, lit in zip(("external", "ring_first", "ring_second"), lits):
                 out[key].append(lit)
             out["sign"].append(s)
@@ -248,42 +248,42 @@ class _DesignModel:
         hi = self.teeth[1]
         centre = []
         for k, (za, zb) in enumerate(names):
-            c = model.NewIntVar(-2 * hi, 2 * hi, f"centre{k}")
-            model.Add(c == z[za] + z[zb]).OnlyEnforceIf(kind["external"][k])
-            model.Add(c == z[za] - z[zb]).OnlyEnforceIf(kind["ring_first"][k])
-            model.Add(c == z[zb] - z[za]).OnlyEnforceIf(kind["ring_second"][k])
-            model.Add(z[za] >= z[zb] + RING_MARGIN).OnlyEnforceIf(kind["ring_first"][k])
-            model.Add(z[zb] >= z[za] + RING_MARGIN).OnlyEnforceIf(kind["ring_second"][k])
+            c = model.new_int_var(-2 * hi, 2 * hi, f"centre{k}")
+            model.add(c == z[za] + z[zb]).only_enforce_if(kind["external"][k])
+            model.add(c == z[za] - z[zb]).only_enforce_if(kind["ring_first"][k])
+            model.add(c == z[zb] - z[za]).only_enforce_if(kind["ring_second"][k])
+            model.add(z[za] >= z[zb] + RING_MARGIN).only_enforce_if(kind["ring_first"][k])
+            model.add(z[zb] >= z[za] + RING_MARGIN).only_enforce_if(kind["ring_second"][k])
             centre.append(c)
         for members in _centre_groups(self.train).values():
             for k in members[1:]:
-                model.Add(centre[k] == centre[members[0]])
+                model.add(centre[k] == centre[members[0]])
 
     # ---------------------------------------------------------------- the search
     def _error_is(self, model, relation: str, error: Fraction):
         """Constrain a design's error E/(|p|·A) against ``error`` = u/v: E·v ``relation`` u·|p|·A."""
         u, v, p = error.numerator, error.denominator, abs(self.target.numerator)
         left, right = v * self.E, u * p * self.A
-        return model.Add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
+        return model.add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
 
     def _solve(self, model, minimise=None):
         solver = self.cp.CpSolver()
         solver.parameters.num_workers = 1
         if minimise is not None:
-            model.Minimize(minimise)
-        status = solver.Solve(model)
+            model.minimize(minimise)
+        status = solver.solve(model)
         if status not in (self.cp.OPTIMAL, self.cp.FEASIBLE):
             return None
         return solver
 
     def _error(self, solver) -> Fraction:
-        return Fraction(solver.Value(self.E), abs(self.target.numerator) * solver.Value(self.A))
+        return Fraction(solver.value(self.E), abs(self.target.numerator) * solver.value(self.A))
 
     def _least_error(self, above: Fraction | None) -> Fraction | None:
         """The least error of the designs whose error is above ``above`` (None: any), or None."""
         least = None
         while True:
-            model = self.model.Clone()
+            model = self.model.clone()
             if above is not None:
                 self._error_is(model, ">", above)
             if least is not None:
@@ -296,7 +296,7 @@ class _DesignModel:
     def _least_design(self, model):
         """The design of ``model`` with the least tooth numbers in order (wheel by wheel), then the
         least mesh kinds; None if there is none."""
-        model = model.Clone()
+        model = model.clone()
         order = [self.z[w] for w in sorted(self.z)]
         if self.kind:
             order += [lit for pair in zip(self.kind["ring_first"], self.kind["ring_second"]) for lit in pair]
@@ -305,12 +305,12 @@ class _DesignModel:
             solver = self._solve(model, minimise=var)
             if solver is None:
                 return None
-            value = int(solver.Value(var))
-            model.ClearObjective()
-            model.Add(var == value)
+            value = int(solver.value(var))
+            model.clear_objective()
+            model.add(var == value)
         solver = solver or self._solve(model)
-        teeth = {w: int(solver.Value(v)) for w, v in self.z.items()}
-        rings = (tuple((solver.Value(a), solver.Value(b)) for a, b in zip(self.kind["ring_first"],
+        teeth = {w: int(solver.value(v)) for w, v in self.z.items()}
+        rings = (tuple((solver.value(a), solver.value(b)) for a, b in zip(self.kind["ring_first"],
                                                                           self.kind["ring_second"]))
                  if self.kind else None)
         return teeth, rings
@@ -319,13 +319,13 @@ class _DesignModel:
         """No design equal to this one (some tooth number or mesh kind differs)."""
         differs = []
         for w, value in teeth.items():
-            b = model.NewBoolVar("")
-            model.Add(self.z[w] != value).OnlyEnforceIf(b)
+            b = model.new_bool_var("")
+            model.add(self.z[w] != value).only_enforce_if(b)
             differs.append(b)
         for k, (first, second) in enumerate(rings or ()):
             for lit, value in ((self.kind["ring_first"][k], first), (self.kind["ring_second"][k], second)):
-                differs.append(lit.Not() if value else lit)
-        model.AddBoolOr(differs)
+                differs.append(lit.negated() if value else lit)
+        model.add_bool_or(differs)
 
     def best(self, count: int) -> list[Design]:
         out: list[Design] = []
@@ -334,19 +334,19 @@ class _DesignModel:
             error = self._least_error(above)
             if error is None:
                 break
-            level = self.model.Clone()
+            level = self.model.clone()
             self._error_is(level, "==", error)
             total = None
             while len(out) < count:
-                model = level.Clone()
+                model = level.clone()
                 if total is not None:
-                    model.Add(self.S > total)
+                    model.add(self.S > total)
                 solver = self._solve(model, minimise=self.S)
                 if solver is None:
                     break
-                total = int(solver.ObjectiveValue())
-                model = level.Clone()
-                model.Add(self.S == total)
+                total = int(solver.objective_value)
+                model = level.clone()
+                model.add(self.S == total)
                 while len(out) < count:
                     found = self._least_design(model)
                     if found is None:
@@ -410,9 +410,9 @@ def _assembly(model, train: GearTrain, names, z, planets: int, lo: int, hi: int,
     else:
         pairs = []
         for c1, p1, k1, s1, c2, p2, k2, s2 in _planet_meshes(train, names):
-            sign = model.NewIntVar(-1, 1, f"sign_{c1}_{c2}")
-            model.AddMultiplicationEquality(sign, [kind["sign"][k1], kind["sign"][k2]])
-            not_ring = [kind["ring_first" if s == 0 else "ring_second"][k].Not() for k, s in ((k1, s1), (k2, s2))]
+            sign = model.new_int_var(-1, 1, f"sign_{c1}_{c2}")
+            model.add_multiplication_equality(sign, [kind["sign"][k1], kind["sign"][k2]])
+            not_ring = [kind["ring_first" if s == 0 else "ring_second"][k].negated() for k, s in ((k1, s1), (k2, s2))]
             pairs.append((c1, p1, c2, p2, sign, not_ring))
     if not pairs:
         raise NoDesign("equally spaced planets need a planet wheel that meshes a sun and a ring on one carrier, "
@@ -424,22 +424,22 @@ def _assembly(model, train: GearTrain, names, z, planets: int, lo: int, hi: int,
             second = z[c2] if p1 == p2 else None
             signed = sign
         else:  # ε1ε2·z_c2 (·z_p1) as a product
-            second = model.NewIntVar(-span, span, f"signed_{tag}")
-            model.AddMultiplicationEquality(second, [sign, z[c2]] + ([] if p1 == p2 else [z[p1]]))
+            second = model.new_int_var(-span, span, f"signed_{tag}")
+            model.add_multiplication_equality(second, [sign, z[c2]] + ([] if p1 == p2 else [z[p1]]))
             signed = 1
         if p1 == p2:  # one planet wheel: (z_c1 − ε1ε2·z_c2)/k whole
-            turns = model.NewIntVar(-2 * hi, 2 * hi, f"assembly_{tag}")
-            model.Add(z[c1] - signed * second == planets * turns).OnlyEnforceIf(when)
+            turns = model.new_int_var(-2 * hi, 2 * hi, f"assembly_{tag}")
+            model.add(z[c1] - signed * second == planets * turns).only_enforce_if(when)
             continue
         top = span // lo + hi
-        first = model.NewIntVar(0, span, f"{c1}·{p2}")
-        model.AddMultiplicationEquality(first, [z[c1], z[p2]])
+        first = model.new_int_var(0, span, f"{c1}·{p2}")
+        model.add_multiplication_equality(first, [z[c1], z[p2]])
         if second is None:
-            second = model.NewIntVar(0, span, f"{c2}·{p1}")
-            model.AddMultiplicationEquality(second, [z[c2], z[p1]])
-        j1, j2 = model.NewIntVar(0, hi, f"j1_{tag}"), model.NewIntVar(-top, top, f"j2_{tag}")
-        u1, u2 = model.NewIntVar(0, hi * hi, f"u1_{tag}"), model.NewIntVar(-top * hi, top * hi, f"u2_{tag}")
-        model.AddMultiplicationEquality(u1, [j1, z[p1]])
-        model.AddMultiplicationEquality(u2, [j2, z[p2]])
-        model.Add(first - signed * second == planets * (u1 + u2)).OnlyEnforceIf(when)
-        model.Add(j1 < z[p2])
+            second = model.new_int_var(0, span, f"{c2}·{p1}")
+            model.add_multiplication_equality(second, [z[c2], z[p1]])
+        j1, j2 = model.new_int_var(0, hi, f"j1_{tag}"), model.new_int_var(-top, top, f"j2_{tag}")
+        u1, u2 = model.new_int_var(0, hi * hi, f"u1_{tag}"), model.new_int_var(-top * hi, top * hi, f"u2_{tag}")
+        model.add_multiplication_equality(u1, [j1, z[p1]])
+        model.add_multiplication_equality(u2, [j2, z[p2]])
+        model.add(first - signed * second == planets * (u1 + u2)).only_enforce_if(when)
+        model.add(j1 < z[p2])

@@ -30,7 +30,6 @@ from functools import cached_property
 
 import pynauty
 
-from ..structure._nauty import TrustedGraph
 from ..structure.chain import Chain
 from ..errors import MalformedChain
 from ..structure.kinds import lever_analogue
@@ -236,7 +235,7 @@ class GearTrain:
         return not nx.is_biconnected(g)
 
     # ------------------------------------------------------------ certificates
-    def _graph(self, rotation: bool = False, marked=()) -> TrustedGraph:
+    def _graph(self, rotation: bool = False, marked=()) -> pynauty.Graph:
         """nauty graph.  Displacement: links, axes (joined to their links) and meshes (joined to their
         gears), three colours.  Rotation: links, a node per mesh joined to its gears and a node per
         carrier role joined to that mesh node and to the carrier.  ``marked`` links get cells of
@@ -266,7 +265,7 @@ class GearTrain:
                 cells.append(set(range(mesh0 + len(self.meshes), total)))
         marked = list(marked)
         cells = [{m} for m in marked] + [set(range(n)) - set(marked)] + [c for c in cells]
-        return TrustedGraph(total, adjacency, cells)
+        return pynauty.Graph(total, adjacency_dict=adjacency, vertex_coloring=cells)
 
     @cached_property
     def certificate(self) -> str:

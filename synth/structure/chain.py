@@ -25,14 +25,12 @@ from functools import cached_property
 
 import pynauty
 
-from ._nauty import TrustedGraph
-from .code import Code
 from ..errors import MalformedChain
+from .code import Code
+from .display import svg_of
+from .joints import JOINT_KINDS, SYMBOLS
 
 __all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]
-
-JOINT_KINDS = ("revolute", "prismatic", "mesh")  # see synth.structure.kinds
-SYMBOLS = {"revolute": "-", "prismatic": "=", "mesh": "~"}  # their signs in a joint list: 0-1, 0=1, 0~1
 
 
 @dataclass(frozen=True)
@@ -271,7 +269,7 @@ class Chain:
         else:  # a cell per kind (meshes only where there are some: older certificates stay valid)
             shown = JOINT_KINDS if "mesh" in self.kinds else JOINT_KINDS[:2]
             coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in shown]
-        return TrustedGraph(n + len(self.joints), adjacency, coloring)
+        return pynauty.Graph(n + len(self.joints), adjacency_dict=adjacency, vertex_coloring=coloring)
 
     @property
     def certificate(self) -> str:
@@ -544,9 +542,7 @@ class Chain:
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
-        from ..draw import svg
-
-        return svg(self)
+        return svg_of(self)
 
 
 def _links_on_loops(links: set[int], joints) -> set[int]:
@@ -691,9 +687,7 @@ class Mechanism:
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows: the fixed link hatched, the input link marked."""
-        from ..draw import svg
-
-        return svg(self)
+        return svg_of(self)
 
     def to_dict(self) -> dict:
         """The chain's row with its frame (and input link), and its prismatic pairs by kind

@@ -38,10 +38,14 @@ Example
 from __future__ import annotations
 
 import random
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .chain import JOINT_KINDS, SYMBOLS, Chain
+from .joints import JOINT_KINDS, SYMBOLS
+
+if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and never import its type
+    from .chain import Chain
 
 __all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "class_loops",
            "structural_mobility", "generic_mobility",
@@ -55,6 +59,7 @@ _DRAWS = 2  # random configurations; the largest rank is kept (a draw can only l
 def kind_count(chain: Chain, kind: str) -> int:
     """Number of joints of ``kind``.
 
+    >>> from synth.structure.chain import Chain
     >>> kind_count(Chain.parse("0-1 1=2 2~3 3-0"), "mesh")
     1
     """
@@ -98,6 +103,7 @@ def cycle_rank(nodes, edges) -> int:
 def wedge_loops(chain: Chain, links=None) -> int:
     """c_P(S): independent loops made only of prismatic pairs among ``links`` (all by default).
 
+    >>> from synth.structure.chain import Chain
     >>> wedge_loops(Chain.parse("0=1 1=2 2=0 2-3 3-0"))
     1
     """
@@ -122,6 +128,7 @@ def class_loops(chain: Chain, h: int, links=None) -> int:
     default) — the loops of a heterogeneous chain's base of that class (each joint restricted
     to those links: a pin of m of them closes m − 1 pairs).
 
+    >>> from synth.structure.chain import Chain
     >>> toroid = Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5")
     >>> class_loops(toroid, 5), class_loops(toroid, 5, [0, 1, 2, 3, 6])
     (1, 0)
@@ -135,6 +142,7 @@ def structural_mobility(chain: Chain, links=None) -> int:
     in a heterogeneous chain each base's loops inside S count in their own class x:
     + (h − x)·c_x(S).
 
+    >>> from synth.structure.chain import Chain
     >>> structural_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), [0, 1, 2, 3])
     1
     >>> structural_mobility(Chain.parse("0~1 1-2 2-0"))   # a mesh and two pins: W = 6 − 4 − 1
@@ -239,6 +247,7 @@ def generic_mobility(chain: Chain, links=None, *, seed: int = 0) -> int:
     31 bits at random configurations (a wrong answer needs a random draw to hit a root of a
     polynomial: chance below 10⁻⁸).  Defined for planar chains (h = 3).
 
+    >>> from synth.structure.chain import Chain
     >>> generic_mobility(Chain.parse("0-1 1-2 2-3 3-0"))
     1
     >>> generic_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced: rigid, not −3
@@ -258,6 +267,7 @@ def redundant_constraints(chain: Chain, links=None) -> int:
     """Constraints of the pairs among ``links`` that the others already impose: generic
     mobility minus the count (0 for a chain without over-constrained parts).
 
+    >>> from synth.structure.chain import Chain
     >>> redundant_constraints(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))
     3
     """
@@ -272,6 +282,7 @@ def idle_joints(chain: Chain) -> list[tuple[int, ...]]:
     relative to each other.  Found on the null space of the velocity constraints, so every
     cause is seen, not only a revolute pair whose links a path of sliders also joins.
 
+    >>> from synth.structure.chain import Chain
     >>> idle_joints(Chain.parse("0=1 1=2 2=3 3-0"))   # 0 and 3 cannot turn: the pin is idle
     [(0, 3)]
     >>> idle_joints(Chain.parse("0-1 1-2 2-3 3-0"))
@@ -284,6 +295,7 @@ def motion(chain: Chain) -> tuple[int, tuple[tuple[int, ...], ...]]:
     """The generic mobility of a planar chain and its idle joints, from one elimination (kept
     with the chain: the exact test of prismatic variants asks for both).
 
+    >>> from synth.structure.chain import Chain
     >>> motion(Chain.parse("0-2 0-3 0=4 1-2 1-3 1=5 4=5"))
     (1, ((0, 2), (0, 3), (1, 2), (1, 3)))
     """
@@ -318,6 +330,7 @@ def lever_analogue(chain: Chain) -> Chain:
     each gear (links n, n + 1, … in the order of the meshes): the same mobility, loops and
     sub-chain mobilities, so the exact sub-chain test of the analogue is the test of the train.
 
+    >>> from synth.structure.chain import Chain
     >>> lever_analogue(Chain.parse("0-1 1~2 2-0")).compact()
     '0-1 0-2 1-3 2-3'
     """
@@ -331,7 +344,7 @@ def lever_analogue(chain: Chain) -> Chain:
         else:
             joints.append(j)
             out_kinds.append(k)
-    return Chain(n, joints, out_kinds, chain.h)
+    return type(chain)(n, joints, out_kinds, chain.h)
 
 
 def prismatic_roles(chain: Chain, frame: int) -> dict[str, int]:
@@ -343,6 +356,7 @@ def prismatic_roles(chain: Chain, frame: int) -> dict[str, int]:
     * ``floating``: a cylinder both of whose links move, pinned to moving links only;
     * ``slider``: any other pair (a block on a moving link that carries more joints).
 
+    >>> from synth.structure.chain import Chain
     >>> slider_crank = Chain.parse("0-1 1-2 2=3 3-0")
     >>> prismatic_roles(slider_crank, 0), prismatic_roles(slider_crank, 3)
     ({'guide': 0, 'swinging': 1, 'floating': 0, 'slider': 0}, {'guide': 1, 'swinging': 0, 'floating': 0, 'slider': 0})

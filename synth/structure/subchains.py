@@ -33,7 +33,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..execution._blas import single_threaded
+from ._blas import single_threaded
 from .chain import Chain
 from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain

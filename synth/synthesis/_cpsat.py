@@ -1,104 +1,24 @@
 """Small shared helpers around OR-Tools CP-SAT: the ``cp_model`` module, every solution of a model.
 
-Import CP-SAT from here (``from ._cpsat import cp_model``), not from OR-Tools directly:
-OR-Tools' ``cp_model`` imports pandas at module level (≈ 0.2 s, more than half of a small
-query's start-up) for its ``*_series`` helpers, which the engine never calls.  Here the
-module is imported with :class:`_PandasOnDemand` standing in for pandas, so pandas is loaded
-the first time one of those helpers really uses it, and never otherwise.
+Only the modules that build a CP-SAT model import this one, inside the function that builds it, so
+a command that runs no solver (``balance``, ``draw``, ``identify`` of a chain) never loads OR-Tools
+(nor the pandas it imports, ≈ 0.3 s).  The engine calls OR-Tools' PEP 8 API only (``new_int_var``,
+``add``, ``solve`` …; the solution callback reads values by index through ``SolutionIntegerValue``,
+the callback base class's own accessor); ``tests/synthesis/test_cpsat_api.py`` runs every model the
+engine builds with OR-Tools' deprecation warnings turned into errors.
 """
 
 from __future__ import annotations
 
-import importlib
 import os
 import signal
-import sys
 import threading
 import time
-import types
 from collections.abc import Sequence
 
-__all__ = ["cp_model", "Model", "all_solutions", "each_solution"]
+from ortools.sat.python import cp_model
 
-
-def _real_pandas():
-    if isinstance(sys.modules.get("pandas"), _PandasOnDemand):
-        del sys.modules["pandas"]
-    return importlib.import_module("pandas")
-
-
-class _PandasType(type):
-    """Stand-in for ``pandas.Index`` / ``pandas.Series``: exact ``isinstance`` without loading pandas.
-
-    An object is a pandas Series only if pandas is loaded, so while it is not, every
-    ``isinstance`` answer is False — exactly pandas' own answer.  Calling it builds the
-    real pandas object.
-    """
-
-    def __instancecheck__(cls, obj) -> bool:
-        pd = sys.modules.get("pandas")
-        return pd is not None and not isinstance(pd, _PandasOnDemand) and isinstance(obj, getattr(pd, cls.__name__))
-
-    def __subclasscheck__(cls, sub) -> bool:
-        pd = sys.modules.get("pandas")
-        return pd is not None and not isinstance(pd, _PandasOnDemand) and issubclass(sub, getattr(pd, cls.__name__))
-
-    def __call__(cls, *args, **kwargs):
-        return getattr(_real_pandas(), cls.__name__)(*args, **kwargs)
-
-
-class _PandasOnDemand(types.ModuleType):
-    """The ``pd`` that OR-Tools' ``cp_model`` sees: real pandas on first use of anything else."""
-
-    Index = _PandasType("Index", (), {})
-    Series = _PandasType("Series", (), {})
-
-    def __getattr__(self, name: str):
-        return getattr(_real_pandas(), name)
-
-
-def _import_cp_model():
-    name = "ortools.sat.python.cp_model"
-    if name in sys.modules or "pandas" in sys.modules:
-        return importlib.import_module(name)
-    stand_in = _PandasOnDemand("pandas")
-    sys.modules["pandas"] = stand_in
-    try:
-        return importlib.import_module(name)
-    finally:
-        if sys.modules.get("pandas") is stand_in:
-            del sys.modules["pandas"]
-
-
-cp_model = _import_cp_model()
-
-
-class Model(cp_model.CpModel):
-    """``cp_model.CpModel`` without the per-model cost of its pre-PEP8 method names.
-
-    OR-Tools' constructor copies a deprecation wrapper of every ``add_*``/``new_*`` method
-    onto each new model under its CamelCase name (``NewIntVar``…): about 0.4 ms a model,
-    5–16 % of a synthesis that builds thousands of small models, and a wrapper on every
-    CamelCase call.  Here the CamelCase names are plain class attributes, set once.
-
-    >>> m = Model(); x = m.NewIntVar(0, 2, "x"); _ = m.Add(x >= 1)
-    >>> sorted(all_solutions(m, [x]))
-    [(1,), (2,)]
-    """
-
-    def _add_pre_pep8_methods(self) -> None:  # the names are class attributes (below)
-        pass
-
-
-def _alias_pre_pep8_names() -> None:
-    """The CamelCase names a plain CpModel gets, as class attributes of :class:`Model`."""
-    camel = {cp_model.snake_case_to_camel_case(name): name for name in dir(cp_model.CpModel) if not name.startswith("_")}
-    for name in vars(cp_model.CpModel()):  # exactly the names OR-Tools adds to each instance
-        if name in camel and not hasattr(Model, name):
-            setattr(Model, name, getattr(cp_model.CpModel, camel[name]))
-
-
-_alias_pre_pep8_names()
+__all__ = ["cp_model", "all_solutions", "each_solution"]
 
 
 class _Batches(cp_model.CpSolverSolutionCallback):
@@ -131,7 +51,7 @@ class _Collector(cp_model.CpSolverSolutionCallback):
     def on_solution_callback(self) -> None:
         self.solutions.append(tuple(map(self.SolutionIntegerValue, self._index)))
         if self._limit is not None and len(self.solutions) >= self._limit:
-            self.StopSearch()
+            self.stop_search()
         if self._tick is not None and len(self.solutions) % 1024 == 0:
             self._tick(1024)
 
@@ -157,7 +77,7 @@ def all_solutions(
 
     Example
     -------
-    >>> m = cp_model.CpModel(); x = m.NewIntVar(0, 2, "x")
+    >>> m = cp_model.CpModel(); x = m.new_int_var(0, 2, "x")
     >>> sorted(all_solutions(m, [x]))
     [(0,), (1,), (2,)]
     """
@@ -166,7 +86,7 @@ def all_solutions(
     status = _solve(solver, model, collector)
     complete = status in (cp_model.OPTIMAL, cp_model.INFEASIBLE)
     if not complete and not (limit is not None and len(collector.solutions) >= limit):
-        raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.StatusName(status)})")
+        raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.status_name(status)})")
     return collector.solutions
 
 
@@ -176,7 +96,7 @@ def each_solution(model: cp_model.CpModel, variables: Sequence[cp_model.IntVar],
     ``batch`` at a time, in the order of :func:`all_solutions`: an enumeration whose solutions
     are many (stage A of the largest codes) holds one batch at a time.
 
-    >>> m = cp_model.CpModel(); x = m.NewIntVar(0, 4, "x"); seen = []
+    >>> m = cp_model.CpModel(); x = m.new_int_var(0, 4, "x"); seen = []
     >>> each_solution(m, [x], seen.append, batch=2); [len(b) for b in seen]
     [2, 2, 1]
     """
@@ -184,7 +104,7 @@ def each_solution(model: cp_model.CpModel, variables: Sequence[cp_model.IntVar],
     collector = _Batches(variables, fn, batch)
     status = _solve(solver, model, collector)
     if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE):
-        raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.StatusName(status)})")
+        raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.status_name(status)})")
     if collector.batch:
         fn(collector.batch)
 
@@ -203,7 +123,7 @@ def _solver(model, variables, time_limit: float | None, fixed_search: bool):
     if time_limit is not None:
         solver.parameters.max_time_in_seconds = time_limit
     if fixed_search:
-        model.AddDecisionStrategy(variables, cp_model.CHOOSE_FIRST, cp_model.SELECT_MIN_VALUE)
+        model.add_decision_strategy(variables, cp_model.CHOOSE_FIRST, cp_model.SELECT_MIN_VALUE)
         solver.parameters.search_branching = cp_model.FIXED_SEARCH
     return solver
 
@@ -249,15 +169,15 @@ def _stop_on_interrupt(fd: int) -> None:
             continue
         for _ in range(20):  # a search started in the instant after the signal is caught too
             for solver in list(_RUNNING):
-                solver.StopSearch()
+                solver.stop_search()
             time.sleep(0.05)
 
 
 def _solve(solver, model, callback):
-    """``solver.Solve(model, callback)``, stopped within milliseconds by Ctrl-C (KeyboardInterrupt)."""
+    """``solver.solve(model, callback)``, stopped within milliseconds by Ctrl-C (KeyboardInterrupt)."""
     _watch_interrupts()
     _RUNNING.add(solver)
     try:
-        return solver.Solve(model, callback)
+        return solver.solve(model, callback)
     finally:
         _RUNNING.discard(solver)

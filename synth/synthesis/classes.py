@@ -225,7 +225,8 @@ def size_note(skeletons: ChainQuery, *, processes: int, force: bool = False) -> 
     True
     """
     from ..errors import QueryTooLarge, option
-    from ..execution.estimate import LIMIT_SECONDS, NOTE_SECONDS, describe_seconds, estimate, magnitude
+    from ..execution.sizes import describe_seconds, magnitude
+    from .estimate import LIMIT_SECONDS, NOTE_SECONDS, estimate
 
     if skeletons.loops < _SIZED_LOOPS:
         return None

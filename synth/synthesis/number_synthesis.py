@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, fields, replace
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
+from ..execution.memo import remembered
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import _MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
@@ -277,43 +278,53 @@ def _single_loop(problem: Problem) -> list[Code]:
 
 
 def _model_codes(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
+    """The codes of the CP-SAT model of one validated problem, solved once per engine (a later run
+    reads them: :mod:`synth.execution.memo`)."""
+    return remembered("codes", repr(problem), lambda: _solve_model(problem, tick),
+                      encode=lambda codes: [[list(c.assortment), c.v, c.composition and list(c.composition), c.n1]
+                                            for c in codes],
+                      decode=lambda rows: [Code(tuple(a), v, comp if comp is None else tuple(comp), n1)
+                                           for a, v, comp, n1 in rows])
+
+
+def _solve_model(problem: Problem, tick: Callable[[int], None] | None = None) -> list[Code]:
     """Build and enumerate the CP-SAT model of one validated problem."""
-    from ._cpsat import Model, all_solutions  # loaded by the first query that needs a solver
+    from ._cpsat import all_solutions, cp_model  # loaded by the first query that needs a solver
 
     n, K, imax = problem.links, problem.loops, problem.max_link_degree
-    model = Model()
-    counts = {i: model.NewIntVar(0, n, f"n{i}") for i in range(1, imax + 1)}
-    model.Add(counts[1] >= problem.n1[0])
-    model.Add(counts[1] <= problem.n1[1])
+    model = cp_model.CpModel()
+    counts = {i: model.new_int_var(0, n, f"n{i}") for i in range(1, imax + 1)}
+    model.add(counts[1] >= problem.n1[0])
+    model.add(counts[1] <= problem.n1[1])
     for i, (lo, hi) in problem.requirements:
         if i > imax:
             continue  # only upper bounds remain on links that cannot exist
-        model.Add(counts[i] >= lo)
+        model.add(counts[i] >= lo)
         if hi is not None:
-            model.Add(counts[i] <= hi)
-    v = model.NewIntVar(problem.v[0], problem.v[1], "v")
-    model.Add(sum(counts.values()) == n)
-    model.Add(sum(i * c for i, c in counts.items()) + v == 2 * (K + n - 1))
+            model.add(counts[i] <= hi)
+    v = model.new_int_var(problem.v[0], problem.v[1], "v")
+    model.add(sum(counts.values()) == n)
+    model.add(sum(i * c for i, c in counts.items()) + v == 2 * (K + n - 1))
     variables = [counts[i] for i in range(1, imax + 1)] + [v]
     # v must split into joints of at most max_multiplicity links, each taking m ≥ 3 distinct
     # link incidences; without compositions the split is only required to exist
     mmax = problem.max_multiplicity or n
     incidences = sum(i * c for i, c in counts.items())
     if problem.compositions:
-        comp = [model.NewIntVar(0, problem.v[1], f"v{k}") for k in range(2, mmax)]
-        model.Add(sum((k + 1) * x for k, x in enumerate(comp)) == v)
-        model.Add(sum((k + 3) * x for k, x in enumerate(comp)) <= incidences)
+        comp = [model.new_int_var(0, problem.v[1], f"v{k}") for k in range(2, mmax)]
+        model.add(sum((k + 1) * x for k, x in enumerate(comp)) == v)
+        model.add(sum((k + 3) * x for k, x in enumerate(comp)) <= incidences)
         variables += comp
     elif mmax <= 2:
-        model.Add(v == 0)
+        model.add(v == 0)
     else:
         # a split exists iff the fewest joints, J = ⌈v/(mmax − 2)⌉ (each takes m − 2 ≤ mmax − 2 of v),
         # find their v + 2J link incidences; J is fixed by v, so no solution repeats (enumerating
         # the splits themselves repeated each code once per split: 11 344 solutions for 1 410 codes)
-        J = model.NewIntVar(0, problem.v[1], "joints")
-        model.Add(J * (mmax - 2) >= v)
-        model.Add((J - 1) * (mmax - 2) <= v - 1)
-        model.Add(v + 2 * J <= incidences)
+        J = model.new_int_var(0, problem.v[1], "joints")
+        model.add(J * (mmax - 2) >= v)
+        model.add((J - 1) * (mmax - 2) <= v - 1)
+        model.add(v + 2 * J <= incidences)
     codes = []
     for sol in all_solutions(model, variables, tick=tick):
         n1, assortment, vv = sol[0], sol[1:imax], sol[imax]
@@ -407,7 +418,7 @@ def iter_codes(query: CodeQuery | int | None = None, /, *, max_codes: int | None
 def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
     """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
     from ._sizing import check_excess, code_bound
-    from ..execution.estimate import describe_seconds, magnitude
+    from ..execution.sizes import describe_seconds, magnitude
 
     if max_codes is None:  # asked for any number: only a model that cannot exist is refused
         for problem in problems:

@@ -27,10 +27,10 @@ from typing import NamedTuple
 
 import pynauty
 
-from ..structure._nauty import TrustedGraph
+from ..execution.memo import is_remembered, remembered
 from ..structure.code import Code
 
-__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "load_kernel", "uses_kernel",
+__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "needs_solver", "uses_kernel",
            "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
@@ -121,7 +121,7 @@ class Contracted:
     def _subdivided(self) -> pynauty.Graph:
         m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        return TrustedGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
+        return pynauty.Graph(m + len(self.edges), adjacency_dict=adjacency, vertex_coloring=_colour_cells(self.vertices, len(self.edges)))
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -214,50 +214,64 @@ def kernel_loops(conv: Conventions, multiple: bool = False) -> int:
     return (conv.kernel_loops or _KERNEL_LOOPS.get(conv.h, _KERNEL_LOOPS[None])) - (1 if multiple else 0)
 
 
-def load_kernel() -> None:
-    """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: a small code through both."""
-    from .stage_b import _kernel_placements
-
-    code, conv = Code.parse("440/0"), Conventions()
-    for graph in _contracted_by_kernel(code, conv):
-        _kernel_placements(code, graph, conv, None, listing=False)
-
-
 def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
     """Stage A: every branch multigraph H of ``code`` (with composition), once each.
 
     >>> [c.edges for c in contracted_graphs(Code((4, 2), 0, ()), Conventions())]
     [((0, 1), (0, 1), (0, 1))]
     """
+    if not _branch_vertices(code):
+        return []
+    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
+        return _contracted_by_kernel(code, conv)
+    return remembered("stage-a", _stored_as(code, conv), lambda: _contracted_by_model(code, conv),
+                      encode=lambda graphs: [[[list(u) for u in g.vertices], [list(e) for e in g.edges], g.certificate]
+                                             for g in graphs],
+                      decode=lambda rows: [Contracted(tuple(Vertex(*u) for u in vs), tuple(map(tuple, es)), cert)
+                                           for vs, es, cert in rows])
+
+
+def _stored_as(code: Code, conv: Conventions) -> str:
+    return repr((code.assortment, code.v, code.composition, code.n1, conv))
+
+
+def needs_solver(code: Code, conv: Conventions) -> bool:
+    """Whether stage A of ``code`` will build its CP-SAT model in this run (neither the kernel's
+    search nor a result stored by an earlier run).
+
+    >>> needs_solver(Code.parse("4/0"), Conventions())   # a single loop has no branch multigraph
+    False
+    """
+    return (bool(_branch_vertices(code)) and not (uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv))
+            and not is_remembered("stage-a", _stored_as(code, conv)))
+
+
+def _contracted_by_model(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A's CP-SAT model of a code (the kernel's searches take the large ones)."""
     import numpy as np
 
-    from ._cpsat import Model, cp_model, each_solution  # loaded by the first query that needs a solver
+    from ._cpsat import cp_model, each_solution  # loaded by the first query that needs a solver
 
     vertices = _branch_vertices(code)
     n2 = code.count(2)
     m = len(vertices)
-    if m == 0:
-        return []
-    if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
-        return _contracted_by_kernel(code, conv)
     deg = [vertex.degree for vertex in vertices]
-    model = Model()
+    model = cp_model.CpModel()
     pairs = list(combinations(range(m), 2))
-    x = {(u, v): model.NewIntVar(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
+    x = {(u, v): model.new_int_var(0, min(deg[u], deg[v]), f"x{u}_{v}") for u, v in pairs}
     # a loop at a link makes it a cut link of a closed chain; with single-joint links the closed part decides
-    y = [model.NewIntVar(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
+    y = [model.new_int_var(0, deg[u] // 2 if conv.fractionated or code.n1 else 0, f"y{u}") for u in range(m)]
     for u in range(m):
-        model.Add(cp_model.LinearExpr.Sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
+        model.add(cp_model.LinearExpr.sum([x[min(u, v), max(u, v)] for v in range(m) if v != u]) + 2 * y[u] == deg[u])
     # weight lower bounds: parallel strings need binary links (the same rules as stage B)
     bounds = _StringBounds(vertices, pairs, code, conv)
     lbs = []
     for (u, v), var, a, b in zip(pairs, x.values(), bounds.slope, bounds.offset):
-        lb = model.NewIntVar(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
-        model.AddMaxEquality(lb, [0, int(a) * var + int(b)])
+        lb = model.new_int_var(0, (conv.h - 1) * min(deg[u], deg[v]), f"lb{u}_{v}")
+        model.add_max_equality(lb, [0, int(a) * var + int(b)])
         lbs.append(lb)
     loops_lb = sum(int(k) * y[u] for u, k in enumerate(bounds.loop))
-    model.Add(sum(lbs) + loops_lb <= n2)
+    model.add(sum(lbs) + loops_lb <= n2)
     strong, later = _split_conditions(_subset_conditions(vertices, code.dof(conv.h), conv), vertices)
     _write_conditions(model, vertices, x, dict(zip(x, lbs)), loops_lb, n2, conv.h, strong)
     # connectivity is checked on each solution: a cut constraint for each of the 2^(m−1) sets holding
@@ -280,7 +294,7 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         L = min(m - 1, max(1, _LEX_BITS // base.bit_length()))
         ru, rv = row(u)[:L], row(v)[:L]
         weights = [base ** (L - 1 - i) for i in range(L)]
-        model.Add(cp_model.LinearExpr.WeightedSum(ru, weights) <= cp_model.LinearExpr.WeightedSum(rv, weights))
+        model.add(cp_model.LinearExpr.weighted_sum(ru, weights) <= cp_model.LinearExpr.weighted_sum(rv, weights))
     seen: dict[str, Contracted] = {}
 
     def keep(batch: list[tuple[int, ...]]) -> None:
@@ -469,23 +483,23 @@ def _write_conditions(model, vertices, x, lbs, loops_lb, n2: int, h: int, condit
     def touches(J, TL):
         if (J, TL) not in touched:
             ends = [x[min(J, L), max(J, L)] for L in TL]
-            t = touched[J, TL] = model.NewBoolVar("")
-            model.Add(sum(ends) >= 1).OnlyEnforceIf(t)
-            model.Add(sum(ends) == 0).OnlyEnforceIf(t.Not())
+            t = touched[J, TL] = model.new_bool_var("")
+            model.add(sum(ends) >= 1).only_enforce_if(t)
+            model.add(sum(ends) == 0).only_enforce_if(t.negated())
         return touched[J, TL]
 
     # need + rest = Σ_inside ((h − 1)·x − lb) − bound + Σ_all lb: with a cost variable per pair and
     # the slack n2 − Σ_all lb − loops_lb, each condition holds only the pairs inside T
-    slack = model.NewIntVar(0, n2, "slack")
-    model.Add(slack == n2 - sum(lbs.values()) - loops_lb)
+    slack = model.new_int_var(0, n2, "slack")
+    model.add(slack == n2 - sum(lbs.values()) - loops_lb)
     cost = {}
     for p, lb in lbs.items():
-        cost[p] = model.NewIntVar(0, (h - 1) * min(vertices[p[0]].degree, vertices[p[1]].degree), f"c{p}")
-        model.Add(cost[p] == (h - 1) * x[p] - lb)
+        cost[p] = model.new_int_var(0, (h - 1) * min(vertices[p[0]].degree, vertices[p[1]].degree), f"c{p}")
+        model.add(cost[p] == (h - 1) * x[p] - lb)
     for TL, TJ, bound in conditions:
         T = set(TL + TJ)
         inside = [p for p in x if p[0] in T and p[1] in T]
-        model.Add(sum(cost[p] for p in inside) <= slack + bound).OnlyEnforceIf([touches(J, TL) for J in TJ])
+        model.add(sum(cost[p] for p in inside) <= slack + bound).only_enforce_if([touches(J, TL) for J in TJ])
 
 
 def _connected(m: int, edges) -> bool:

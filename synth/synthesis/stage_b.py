@@ -21,9 +21,9 @@ from time import perf_counter
 
 from ..structure.chain import Chain
 from ..structure.code import Code
-from .stage_a import Contracted, Conventions, _inner_links, _loop_lb, uses_kernel
+from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_realised", "realise"]
+__all__ = ["count_realised", "load_kernel", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -119,14 +119,14 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
         return list(map(tuple, placements.tolist())), whole_group, all(vertex.is_link for vertex in vertices)
     if not conv.cranks and comb(spare + len(edges) - 1, len(edges) - 1) <= _FEW_VECTORS:
         return _few_distributions(lows, spare, parallel, graph, stats)
-    from ._cpsat import Model, all_solutions, cp_model
+    from ._cpsat import all_solutions, cp_model
 
-    model = Model()
-    w = [model.NewIntVar(lb, n2, f"w{k}") for k, lb in enumerate(lows)]
-    model.Add(sum(w) == n2)
+    model = cp_model.CpModel()
+    w = [model.new_int_var(lb, n2, f"w{k}") for k, lb in enumerate(lows)]
+    model.add(sum(w) == n2)
     for k, least in parallel:
-        model.Add(w[k] >= w[k - 1])
-        model.Add(w[k] >= least)
+        model.add(w[k] >= w[k - 1])
+        model.add(w[k] >= least)
     # sub-chain conditions on sets T of branch vertices (links T_L and multiple joints T_J):
     # S = T_L + the binary links of every string inside T with w < h − 1 binary links has
     # W(S) ≤ h(|T_L| − 1) + (h − 1)·|T_J| − Σ_{strings inside T} (h − 1 − w)⁺  (an empty string
@@ -137,12 +137,12 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
         if u == v:
             continue
         first = 1 if vertices[u].is_joint and vertices[v].is_joint else 0
-        short[k] = {t: model.NewBoolVar(f"s{k}_{t}") for t in range(first, space - 1)}
+        short[k] = {t: model.new_bool_var(f"s{k}_{t}") for t in range(first, space - 1)}
         for t, flag in short[k].items():
-            model.Add(w[k] == t).OnlyEnforceIf(flag)
-        model.Add(w[k] >= space - 1).OnlyEnforceIf([flag.Not() for flag in short[k].values()])
+            model.add(w[k] == t).only_enforce_if(flag)
+        model.add(w[k] >= space - 1).only_enforce_if([flag.negated() for flag in short[k].values()])
         if len(short[k]) > 1:
-            model.AddAtMostOne(short[k].values())
+            model.add_at_most_one(short[k].values())
     link_vertices = _inner_links(vertices)
     n_links = sum(1 for vertex in vertices if vertex.is_link)
     joint_vertices = [u for u, vertex in enumerate(vertices) if vertex.is_joint]
@@ -161,21 +161,21 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
                 continue
             ends = [1 - z[k] if k in z else 1 for k, e in enumerate(edges) if u in e and e[0] != e[1]]
             ends += [2 for e in edges if e == (u, u)]
-            sel = model.NewBoolVar(f"cranks{u}")
-            model.Add(sum(ends) >= count).OnlyEnforceIf(sel)
-            model.Add(sum(ends) <= count - 1).OnlyEnforceIf(sel.Not())
+            sel = model.new_bool_var(f"cranks{u}")
+            model.add(sum(ends) >= count).only_enforce_if(sel)
+            model.add(sum(ends) <= count - 1).only_enforce_if(sel.negated())
             chosen.append(sel)
         if not chosen:
             return [], True, True
-        model.AddBoolOr(chosen)
+        model.add_bool_or(chosen)
     # lex-leader for the automorphisms of H (a prefix short enough for exact coefficients)
     base = n2 + 1
     prefix = max(1, min(len(edges), int(_LEX_BITS // max(1.0, base.bit_length()))))
     group, whole_group = graph.edge_group()
     weights = [base ** (prefix - 1 - i) for i in range(prefix)]
-    lhs = cp_model.LinearExpr.WeightedSum(w[:prefix], weights)
+    lhs = cp_model.LinearExpr.weighted_sum(w[:prefix], weights)
     for g in group:
-        model.Add(lhs <= cp_model.LinearExpr.WeightedSum([w[g[i]] for i in range(prefix)], weights))
+        model.add(lhs <= cp_model.LinearExpr.weighted_sum([w[g[i]] for i in range(prefix)], weights))
     t0 = perf_counter()
     solutions = all_solutions(model, w)
     if whole_group and prefix < len(edges) and group and solutions:
@@ -185,6 +185,14 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
         solutions = list(map(tuple, _lex_least(np.asarray(solutions, dtype=np.int64), group).tolist()))
     _add(stats, candidates=len(solutions), cpsat_s=perf_counter() - t0)
     return solutions, whole_group, simple
+
+
+def load_kernel() -> None:
+    """Load (or compile, the first time) the kernels of stages A and B in this process, before
+    workers are forked: a small code through both."""
+    code, conv = Code.parse("440/0"), Conventions()
+    for graph in _contracted_by_kernel(code, conv):
+        _kernel_placements(code, graph, conv, None, listing=False)
 
 
 def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
@@ -359,14 +367,14 @@ def _subset_constraint(model, vertices, edges, short, TL: set, TJ: set, n_links:
         return  # cannot be violated
     expr = sum((h - 1 - t) * flag for k in inside for t, flag in short[k].items())
     if len(TL) >= 2:
-        model.Add(expr <= bound)
+        model.add(expr <= bound)
     else:  # one link: S has two links or more only when a string with binary links is taken
         takes = [flag for k in inside for t, flag in short[k].items() if t >= 1]
         if not takes:
             return  # (no variable is made: a free one would repeat every solution)
-        some = model.NewBoolVar("")
-        model.AddMaxEquality(some, takes)
-        model.Add(expr <= bound + conv.threshold - conv.threshold * some)
+        some = model.new_bool_var("")
+        model.add_max_equality(some, takes)
+        model.add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
 def _exact_test(vertices, edges, solutions, conv: Conventions):

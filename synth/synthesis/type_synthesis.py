@@ -37,8 +37,8 @@ from ..execution.executor import process_pool, run_plan
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, contracted_graphs, load_kernel, uses_kernel
-from .stage_b import count_realised, realise
+from .stage_a import Contracted, Conventions, contracted_graphs, needs_solver, uses_kernel
+from .stage_b import count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
@@ -325,6 +325,8 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in jobs), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in jobs):
             load_kernel()  # once, here: the workers forked later inherit it
+        if any(needs_solver(c, conv) for c, conv in jobs):
+            from . import _cpsat  # noqa: F401 - likewise the solver (≈ 0.3 s), and outside the inline phase's clock
         for event in run_plan(jobs, job_units, work, workers=workers, client=client,
                               skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
             if bar is not None:

@@ -21,7 +21,7 @@ from synth.execution import executor as _executor
 from synth.synthesis.type_synthesis import count_chains, count_mechanisms
 from synth.execution.checkpoint import CheckpointMismatch
 from synth.errors import QueryTooLarge
-from synth.execution.estimate import estimate
+from synth.synthesis.estimate import estimate
 
 CLI = [sys.executable, "-m", "mechsynth"]
 
@@ -126,15 +126,6 @@ def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
     monkeypatch.setattr(_type_synthesis, "_INLINE_SECONDS", 0.0)  # every unit goes to the pool
     assert [c.certificate for c in synth.type_synthesis(1, 10, v="0..2", workers=2)] == inline
     assert count_chains(1, 10, v="0..2", workers=2)["count"] == len(inline)
-
-
-def test_cp_sat_without_pandas():
-    code = ("import sys, synth; synth.count_chains(1, 8, workers=1); "
-            "assert 'pandas' not in sys.modules, 'pandas loaded'; "
-            "from synth.synthesis._cpsat import cp_model; import pandas as pd; "
-            "s = cp_model.CpModel().new_int_var_series(name='x', index=pd.Index(range(3)), lower_bounds=0, upper_bounds=1); "
-            "assert isinstance(s, pd.Series) and isinstance(s, cp_model.pd.Series) and len(s) == 3")
-    subprocess.run([sys.executable, "-c", code], check=True)
 
 
 # --------------------------------------------------------------- checkpoint
@@ -315,7 +306,7 @@ def test_a_long_query_says_so_before_it_starts(monkeypatch, capsys, checkpoint):
     import argparse
 
     from mechsynth.commands import chains
-    from synth.execution import estimate
+    from synth.synthesis import estimate
 
     monkeypatch.setattr(estimate, "NOTE_SECONDS", 1.0)
     args = argparse.Namespace(code=None, links=16, force=False, count=True, h=3, v=None, scheduler=None,

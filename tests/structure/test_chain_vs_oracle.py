@@ -276,35 +276,6 @@ def test_graph_views():
     assert {d["joint_kind"] for _, d in g.nodes(data=True) if d["kind"] == "joint"} == {"revolute"}
 
 
-@pytest.mark.parametrize("query", [dict(dof=1, links=8, v="0..4"), dict(dof=1, links=7, h=2, v="0..2"),
-                                   dict(dof=3, links=8, n1="0..3", v="0..2")])
-def test_trusted_nauty_graphs_are_pynautys_checked_graphs(query):
-    """The engine hands nauty its incidence graphs without pynauty's checks (synth.structure._nauty): the
-    same graph through ``pynauty.Graph``'s checking constructor has the same certificate and
-    group, for chains (with marked links) and for their branch multigraphs."""
-    import pynauty
-
-    from synth.synthesis.stage_a import Conventions, contracted_graphs
-    from synth.synthesis.type_synthesis import plan_codes
-
-    def checked(g):
-        return pynauty.Graph(g.number_of_vertices, adjacency_dict=g.adjacency_dict, vertex_coloring=g.vertex_coloring)
-
-    def same(g):
-        assert pynauty.certificate(g) == pynauty.certificate(checked(g))
-        assert pynauty.autgrp(g)[1:] == pynauty.autgrp(checked(g))[1:]
-
-    chains = list(synth.type_synthesis(workers=1, **query))
-    assert len(chains) > 10
-    for chain in chains:
-        same(chain._nauty_graph())
-        same(chain._nauty_graph(marked=(0, chain.links - 1)))
-    conv = Conventions(h=query.get("h", 3))
-    for code in plan_codes(query["dof"], query["links"], v=query["v"], n1=query.get("n1"), h=conv.h)[:20]:
-        for graph in contracted_graphs(code, conv):
-            same(graph._subdivided())
-
-
 @pytest.mark.parametrize("h", [2, 3, 4, 5, 6])
 def test_the_motion_space_stays_with_the_chain(h):
     """A chain keeps its h through relabelling, its closed part, a trusted build and its JSON row

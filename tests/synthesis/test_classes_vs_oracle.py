@@ -166,7 +166,7 @@ def test_size_note_adds_the_bases_to_the_skeletons(monkeypatch):
     """The size of a heterogeneous query: the skeletons' estimate on the workers plus the bases laid
     on each in the parent; more than a day is refused unless forced, more than ten minutes is said."""
     from synth import QueryTooLarge
-    from synth.execution import estimate as sizing
+    from synth.synthesis import estimate as sizing
     from synth.synthesis.classes import SECONDS_PER_SKELETON, size_note, skeleton_query
 
     query = skeleton_query(1, {3: 6, 5: 1})  # 18 links, seven loops

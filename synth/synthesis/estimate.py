@@ -4,8 +4,8 @@ Method
 ------
 The same query (same W, v, conventions and requirements) is counted exactly at the
 smaller link counts n − 2k, smallest first, in this process, until about ``budget``
-seconds have been spent (never at n itself, and never a size predicted to end later than
-one and a half budgets).  From the last three sizes with chains,
+CPU seconds have been spent (CPU, not wall: a loaded machine sizes a query as a quiet one does;
+never at n itself, and never a size predicted to end later than one and a half budgets).  From the last three sizes with chains,
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is the largest calibration size's measured seconds per chain times the chains; the
@@ -34,8 +34,9 @@ import time
 from dataclasses import dataclass, replace
 
 from ..errors import ImpossibleParameters, QueryTooLarge, option
+from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_seconds", "magnitude"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -96,8 +97,9 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
     ``"mechanisms with input"`` count its mechanisms (then ``chains`` counts mechanisms).
     Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
-    from ..synthesis import type_synthesis as ts
-    from ..synthesis.stage_a import kernel_loops, load_kernel
+    from . import type_synthesis as ts
+    from .stage_a import kernel_loops
+    from .stage_b import load_kernel
 
     conv = ts._conventions(query)
     multiple = query.v is not None and (query.v[1] is None or query.v[1] > 0)
@@ -105,21 +107,22 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
     compiled = query.loops >= kernel_loops(conv, multiple)
     if compiled:
         load_kernel()  # before the clock, as the query loads it before its workers start
+    from . import _cpsat  # noqa: F401 - the solver's import (≈ 0.3 s, pandas) is the query's, not a calibration's
     unit_work = {"count": ts.count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
                  "mechanisms with input": ts._MechanismCount(True)}[work]
     links = query.links
     step = query.h - 1
     same = repr(query.to_dict() | {"links": None}), work, compiled  # the calibrations several grid cells share
-    start = time.perf_counter()
+    start = time.process_time()
     points = []  # (links, chains, units, seconds)
     for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
-        if time.perf_counter() - start > budget and (points or n > 64):
+        if time.process_time() - start > budget and (points or n > 64):
             break
-        elapsed = time.perf_counter() - start
+        elapsed = time.process_time() - start
         if len(points) >= 2 and elapsed + points[-1][3] * points[-1][1] / points[-2][1] > 1.5 * budget:
             break  # the next size would overrun the budget by half
         if (same, n) not in _COUNTED:
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             try:
                 jobs = ts.plan_jobs(query.with_options(links=n))
             except ImpossibleParameters:
@@ -131,7 +134,7 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
                 if unit is not None:
                     chains += len(result) if isinstance(result, list) else sum(result.values())
                     units += 1
-            _COUNTED[same, n] = (n, chains, units, time.perf_counter() - t0)
+            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
     if len(points) < 3:
@@ -214,51 +217,3 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     if found.seconds / processes > NOTE_SECONDS:
         return f"a long query: {size}"
     return None
-
-
-def describe_seconds(seconds: float, log10: float | None = None) -> str:
-    """A duration in the largest sensible unit (``log10``: its base-10 logarithm, for durations
-    beyond floating point).
-
-    >>> describe_seconds(42), describe_seconds(5400), describe_seconds(3e5), describe_seconds(1e12)
-    ('42 s', '90 min', '3.5 days', '3.2e+04 years')
-    >>> describe_seconds(math.inf, 2000.0)
-    '3.2e+1992 years'
-    """
-    if not math.isfinite(seconds):
-        return f"{_scientific((log10 or math.inf) - math.log10(365.25 * 86400))} years"
-    if seconds < 120:
-        return f"{seconds:.0f} s"
-    if seconds < 7200:
-        return f"{seconds / 60:.0f} min"
-    if seconds < 2 * 86400:
-        return f"{seconds / 3600:.1f} h"
-    if seconds < 365 * 86400:
-        return f"{seconds / 86400:.1f} days"
-    years = seconds / (365.25 * 86400)
-    return f"{years:.0f} years" if years < 1e4 else f"{years:.2g} years"
-
-
-def magnitude(x: float, log10: float | None = None) -> str:
-    """A count in words a reader takes in at once (``log10``: its base-10 logarithm, for counts
-    beyond floating point).
-
-    >>> magnitude(6856), magnitude(1.43e9), magnitude(3e40), magnitude(math.inf, 2400.3)
-    ('6 856', '1.4e+09', '3e+40', '2e+2400')
-    """
-    if not math.isfinite(x):
-        return _scientific(math.inf if log10 is None else log10)
-    if x >= 1e7:
-        return f"{x:.2g}"
-    return f"{round(x):,}".replace(",", " ")
-
-
-def _scientific(log10: float) -> str:
-    """10^log10 written as 1.2e+345 (any size); 'more than 1e+308' when unknown."""
-    if not math.isfinite(log10):
-        return "more than 1e+308"
-    exponent = math.floor(log10)
-    mantissa = 10 ** (log10 - exponent)
-    if round(mantissa, 1) >= 10:
-        mantissa, exponent = mantissa / 10, exponent + 1
-    return f"{mantissa:.2g}e+{exponent}"

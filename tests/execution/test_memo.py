@@ -1,0 +1,96 @@
+"""Solver results kept between runs (synth.execution.memo): a query answered from the store gives
+the same chains, by code and in the same order, as a cold run and as a run with the store off;
+a damaged store is read around; a folder that cannot be written is not used; an edit of the
+engine's source is a new store; and a query asked again loads no solver."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from synth.execution import memo
+
+QUERIES = [  # (W, links, options): number synthesis and stage A's CP-SAT path, and the kernel's
+    (1, 10, {}), (1, 10, {"v": "0..3"}), (3, 8, {"n1": "0..3", "v": "0..2"}), (1, 8, {"h": 2}),
+    (1, 8, {"h": 4}), (1, 8, {"prismatic": "0..4"}), (0, 9, {}),
+]
+
+SCRIPT = """
+import json, sys, synth
+out = []
+for dof, links, options in json.loads(sys.argv[1]):
+    out.append([c.certificate for c in synth.type_synthesis(dof, links, workers=1, **options)])
+print(json.dumps(out))
+print(json.dumps(sorted(m for m in sys.modules if m.startswith("ortools"))))
+"""
+
+
+def _run(store, queries=QUERIES):
+    env = dict(os.environ, MECHSYNTH_CACHE=str(store))
+    out = subprocess.run([sys.executable, "-c", SCRIPT, json.dumps(queries)], env=env, capture_output=True,
+                         text=True, check=True, timeout=600)
+    chains, modules = out.stdout.splitlines()
+    return json.loads(chains), json.loads(modules)
+
+
+def test_a_warm_run_lists_the_chains_of_a_cold_run_and_of_no_store(tmp_path):
+    cold, cold_modules = _run(tmp_path)
+    warm, warm_modules = _run(tmp_path)
+    off, _ = _run("off")
+    assert cold == warm == off
+    assert all(cold) and sum(map(len, cold)) > 3000
+    assert "ortools.sat.python.cp_model" in cold_modules and warm_modules == []  # no solver the second time
+    entries = list(tmp_path.rglob("*.json"))
+    assert {p.parent.name for p in entries} == {"codes", "stage-a"}
+
+
+def test_a_damaged_store_is_read_around_and_mended(tmp_path):
+    cold, _ = _run(tmp_path, QUERIES[:2])
+    entries = sorted(tmp_path.rglob("*.json"))
+    assert len(entries) > 5
+    entries[0].write_text("{not json")
+    entries[1].write_text(json.dumps({"key": "another problem", "value": [[[4], 0, None, 0]]}))
+    entries[2].write_text(json.dumps({"key": json.loads(entries[3].read_text())["key"] + "x", "value": 7}))
+    again, _ = _run(tmp_path, QUERIES[:2])
+    assert again == cold
+    assert all(json.loads(p.read_text())["key"] for p in entries)  # rewritten whole
+
+
+def test_a_folder_that_cannot_be_written_is_not_used(tmp_path):
+    blocked = tmp_path / "file"
+    blocked.write_text("")  # a file where the folder would be
+    chains, _ = _run(blocked / "store", QUERIES[:1])
+    assert chains == _run("off", QUERIES[:1])[0]
+    assert blocked.read_text() == ""
+
+
+def test_an_edit_of_the_engine_is_a_new_store(tmp_path, monkeypatch):
+    engine = tmp_path / "synth"
+    for folder in memo._SOURCES:
+        (engine / folder).mkdir(parents=True)
+        for path in (Path(memo.__file__).parents[1] / folder).glob("*.py"):
+            (engine / folder / path.name).write_bytes(path.read_bytes())
+    monkeypatch.setattr(memo, "_ENGINE", engine)
+    before = memo._fingerprint()
+    with open(engine / "synthesis" / "stage_a.py", "a") as f:
+        f.write("\n# an edit\n")
+    assert memo._fingerprint() != before
+
+
+@pytest.mark.parametrize("setting", ["off", "OFF", "0", ""])
+def test_the_store_is_turned_off(setting, monkeypatch):
+    monkeypatch.setenv("MECHSYNTH_CACHE", setting)
+    memo._store.cache_clear()
+    try:
+        assert memo.cache_folder() is None
+        calls = []
+        for _ in range(2):
+            memo.remembered("test", "off", lambda: calls.append(1) or 1)
+        assert len(calls) == 2
+    finally:
+        memo._store.cache_clear()
