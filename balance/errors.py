@@ -6,6 +6,8 @@ verbatim and exits with status 2.
 
 from __future__ import annotations
 
+from mechbase.errors import ProjectError
+
 __all__ = [
     "BalanceError",
     "InvalidArm",
@@ -18,8 +20,8 @@ __all__ = [
 ]
 
 
-class BalanceError(Exception):
-    """Base class of every error raised by :mod:`balance`."""
+class BalanceError(ProjectError):
+    """Base class of every error raised by :mod:`balance` (a :class:`mechbase.ProjectError`)."""
 
 
 class InvalidInput(BalanceError, ValueError):

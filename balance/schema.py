@@ -24,6 +24,8 @@ from typing import Annotated, Any, Literal, Mapping
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
 
+from mechbase import read_toml, show
+
 from .errors import SchemaError
 
 __all__ = [
@@ -245,23 +247,6 @@ _PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0
           "payload"}
 
 
-def show(value: Any, width: int = 60) -> str:
-    """A value as a TOML file writes it (``true``, ``'one'``, ``[1, 2]``), shortened to ``width``.
-
-    >>> show(True), show("one"), show([1, 2.5]), show({"a": 4})
-    ('true', "'one'", '[1, 2.5]', '{ a = 4 }')
-    """
-    if isinstance(value, bool):
-        text = "true" if value else "false"
-    elif isinstance(value, (list, tuple)):
-        text = "[" + ", ".join(show(v, width) for v in value) + "]"
-    elif isinstance(value, Mapping):
-        text = "{ " + ", ".join(f"{k} = {show(v, width)}" for k, v in value.items()) + " }" if value else "{}"
-    else:
-        text = repr(value)
-    return text if len(text) <= width else text[: width - 1] + "…"
-
-
 def _where(loc: tuple) -> tuple[str, str | None]:
     """``('arm', 'links', 0, 'weight')`` → (``"[[arm.links]] #1"``, ``"weight"``)."""
     parts: list[str] = []
@@ -365,18 +350,4 @@ def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
 
 def load_toml(path: str) -> dict:
     """Read a TOML file; a missing file or a syntax error becomes one :class:`SchemaError` sentence."""
-    import tomllib
-
-    try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except FileNotFoundError:
-        raise SchemaError(f"{path}: no such file.") from None
-    except IsADirectoryError:
-        raise SchemaError(f"{path}: is a directory, not a TOML file.") from None
-    except UnicodeDecodeError:
-        raise SchemaError(f"{path}: not a text file.") from None
-    except OSError as exc:
-        raise SchemaError(f"{path}: cannot be read ({exc.strerror}).") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SchemaError(f"{path}: not valid TOML ({exc}).") from None
+    return read_toml(path, error=SchemaError, what="TOML file")

@@ -10,6 +10,8 @@ import argparse
 import math
 import os
 
+from mechbase import RangeSyntax, parse_range
+
 __all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "PICTURE_FORMATS"]
 
 #: what a picture may be written as
@@ -70,12 +72,11 @@ def number_range(text: str) -> tuple[float, float]:
     >>> number_range("0..inf")
     (0.0, inf)
     """
-    lo, sep, hi = text.partition("..")
     try:
-        pair = float(lo), float(hi)
-    except ValueError:
+        pair = parse_range(text, float, open_high=False) if ".." in text else None
+    except RangeSyntax:
         pair = None
-    if not sep or pair is None or any(math.isnan(v) for v in pair):
+    if pair is None or any(math.isnan(v) for v in pair):
         raise argparse.ArgumentTypeError(f"expected a range low..high of numbers (e.g. 20..160), not {text!r}")
     return pair
 

@@ -85,7 +85,7 @@ __all__ = [*_WHERE, *_errors_all]
 __getattr__, __dir__ = lazy_exports(__name__, _WHERE)
 
 # the facade stands above every floor: it names the drawings the values at the ground show in a notebook
-from .structure.display import register_drawing as _register_drawing  # noqa: E402
+from .display import register_drawing as _register_drawing  # noqa: E402
 
 for _kind in ("Chain", "Mechanism"):
     _register_drawing(_kind, "synth.draw:svg")

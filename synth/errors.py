@@ -18,6 +18,8 @@ True
 
 import re
 
+from mechbase.errors import ProjectError
+
 __all__ = [
     "option",
     "flag",
@@ -49,8 +51,8 @@ def flag(name: str, value: str) -> str:
     return written if value == "True" else f"{written} {value}"
 
 
-class SynthesisError(Exception):
-    """Base class of every error raised by :mod:`synth`."""
+class SynthesisError(ProjectError):
+    """Base class of every error raised by :mod:`synth` (a :class:`mechbase.ProjectError`)."""
 
     def text(self, name_of=lambda name, value: f"{name}={value}") -> str:
         """The message with each :func:`option` written by ``name_of(name, value)`` (default: as

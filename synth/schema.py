@@ -34,8 +34,10 @@ from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, GetCoreSchem
                       StrictStr, ValidationError)
 from pydantic_core import PydanticCustomError, core_schema
 
+from mechbase import RangeSyntax, parse_range, show
+
 __all__ = ["Table", "expect", "refine", "show", "sentence",
-           "Text", "Flag", "Whole", "Positive", "Number", "RangeText", "Require", "FileName", "parse_range_text"]
+           "Text", "Flag", "Whole", "Count", "Number", "RangeText", "Require", "FileName", "parse_range_text"]
 
 
 class expect:
@@ -84,15 +86,12 @@ def parse_range_text(value: int | str) -> tuple[int, int | None]:
     >>> parse_range_text("2..5"), parse_range_text("3.."), parse_range_text(4)
     ((2, 5), (3, None), (4, 4))
     """
-    if isinstance(value, int):
-        return value, value
-    m = _RANGE.match(value)
-    if m is None:
+    try:
+        lo, hi = parse_range(value)
+    except RangeSyntax:
+        lo = -1
+    if lo < 0 or (hi is not None and hi < 0):
         raise ValueError(f"is not a whole number or a range \"A..B\": {value!r}")
-    lo = int(m.group(1))
-    if ".." not in value:
-        return lo, lo
-    hi = int(m.group(2)) if m.group(2) else None
     if hi is not None and hi < lo:
         raise ValueError(f"is the empty range {value!r} ({hi} < {lo})")
     return lo, hi
@@ -110,7 +109,7 @@ Flag = Annotated[StrictBool, expect("true or false")]
 #: A whole number ≥ 0.
 Whole = Annotated[StrictInt, Field(ge=0), expect("a whole number ≥ 0")]
 #: A whole number ≥ 1.
-Positive = Annotated[StrictInt, Field(ge=1), expect("a whole number ≥ 1")]
+Count = Annotated[StrictInt, Field(ge=1), expect("a whole number ≥ 1")]
 #: A finite number (a whole number is accepted).
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False), expect("a finite number")]
 #: A whole number ≥ 0 or a range ``"A..B"`` / ``"A.."`` that is not empty.
@@ -195,20 +194,3 @@ def sentence(exc: ValidationError, model: type[BaseModel], raw: Mapping[str, Any
     if kind == "expected":
         return f"{head}key '{key}' {err['msg']}, not {show(raw.get(key))}"
     return f"{head}key '{key}' is not valid ({err['msg']}), not {show(raw.get(key))}"
-
-
-def show(value: Any, width: int = 60) -> str:
-    """A value as the file writes it (``true``, ``'one'``, ``[1, 2]``), shortened to ``width``.
-
-    >>> show(True), show("one"), show([1, 2.5]), show({"3": 4})
-    ('true', "'one'", '[1, 2.5]', '{ 3 = 4 }')
-    """
-    if isinstance(value, bool):
-        text = "true" if value else "false"
-    elif isinstance(value, list):
-        text = "[" + ", ".join(show(v, width) for v in value) + "]"
-    elif isinstance(value, Mapping):
-        text = "{ " + ", ".join(f"{k} = {show(v, width)}" for k, v in value.items()) + " }" if value else "{}"
-    else:
-        text = repr(value)
-    return text if len(text) <= width else text[: width - 1] + "…"

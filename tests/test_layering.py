@@ -47,6 +47,13 @@ def _files(*folders):
     return [f for folder in folders for f in (ROOT / folder).rglob("*.py")]
 
 
+def test_the_base_imports_neither_engine_nor_the_application():
+    """mechbase is what both engines stand on: the error base, TOML reading, ranges, quoting a value."""
+    for f in _files("mechbase"):
+        for module, _ in _imports(f):
+            assert module.split(".")[0] not in ("synth", "balance", "mechsynth"), (f, module)
+
+
 def test_engines_never_import_each_other_nor_the_application():
     for f in _files("synth"):
         for module, _ in _imports(f):
@@ -74,7 +81,7 @@ def test_the_application_and_the_benchmarks_use_public_names_only():
 #: and (for execution) nothing above the chain types; the package facades stand above everything
 FLOORS = {
     "synth": [
-        {"synth.errors", "synth._lazy", "synth.schema", "synth.structure"},  # the chain types
+        {"synth.errors", "synth._lazy", "synth.schema", "synth.display", "synth.structure"},  # the chain types
         {"synth.execution"},  # running work: a service that imports no floor above the chain types
         {"synth.synthesis"},  # number and type synthesis, and sizing them (planning)
         {"synth.analysis", "synth.gears", "synth.motion"},
@@ -163,7 +170,7 @@ def test_import_synth_loads_only_its_errors_and_the_drawing_names():
     code = ("import sys, synth; print(sorted(m for m in sys.modules if m.startswith('synth.')))")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert out.returncode == 0 and out.stdout.strip() == (
-        "['synth._lazy', 'synth.errors', 'synth.structure', 'synth.structure.display']"), out
+        "['synth._lazy', 'synth.display', 'synth.errors']"), out
 
 
 def test_every_public_name_of_synth_resolves():

@@ -17,7 +17,7 @@ from synth.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
-from .types import Flag, Int, Number, Numbers, Positive, Text, Texts, Whole, WholeTable
+from .types import Count, Flag, Int, Number, Numbers, Text, Texts, Whole, WholeTable
 
 __all__ = ["GearTrainTable", "GearAtlasTable"]
 
@@ -29,23 +29,23 @@ class GearTrainTable(Table):
     """The ``[gear_train]`` table."""
 
     train: StrictStr
-    required_dof: Positive = 1  # the W that D is measured against
+    required_dof: Count = 1  # the W that D is measured against
     mechanisms: Triples | None = None  # [frame, input, output] each
     compound: list[Whole] = []
     teeth: WholeTable | None = None
     ratio: Text | None = None  # design tooth numbers for the first mechanism
     tolerance: Text = "1%"
     teeth_range: Text = "17..150"
-    planets: Positive | None = None
-    best: Positive = 3
+    planets: Count | None = None
+    best: Count = 3
     drawing: Flag = False
 
 
 class GearAtlasTable(Table):
     """The ``[gear_atlas]`` table."""
 
-    dof: Positive = 1
-    links: Positive
+    dof: Count = 1
+    links: Count
     contains: StrictStr | None = None  # a train (text form) that must be in the atlas
 
 

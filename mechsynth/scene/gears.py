@@ -13,7 +13,7 @@ from synth.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
-from .types import Flag, Int, Positive, RangeText, Text, Texts, Whole, WholeTable
+from .types import Count, Flag, Int, RangeText, Text, Texts, Whole, WholeTable
 
 __all__ = ["Prismatic", "Planetary"]
 
@@ -29,7 +29,7 @@ class Prismatic(Table):
 class Planetary(Table):
     """The ``[planetary]`` table: a planetary train's satellites and sun."""
 
-    satellites: Positive
+    satellites: Count
     sun: Text = "floating"
 
 

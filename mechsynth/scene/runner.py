@@ -14,8 +14,9 @@ from typing import Annotated, Any
 
 from pydantic import StrictStr, create_model
 
+from mechbase import read_toml, show
 from synth import SynthesisError
-from synth.schema import Table, expect, refine, show
+from synth.schema import Table, expect, refine
 
 from .registry import KINDS, TABLES, ComputeKind, Run
 from .results import Check, DirectoryResult, Scene, SceneError, SceneResult
@@ -48,21 +49,7 @@ class _SceneTable(Table):
 
 # --------------------------------------------------------------------------- loading
 def _read_toml(path: Path) -> dict:
-    import tomllib
-
-    try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except FileNotFoundError:
-        raise SceneError(f"{path}: no such scene file.") from None
-    except IsADirectoryError:
-        raise SceneError(f"{path}: is a directory; give a scene file, or use --all for a directory.") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path}: not valid TOML ({exc}).") from None
-    except UnicodeDecodeError as exc:
-        raise SceneError(f"{path}: not a text file (byte {exc.start} is not UTF-8); a scene is a TOML file.") from None
-    except OSError as exc:
-        raise SceneError(f"{path}: cannot be read ({exc.strerror or exc}).") from None
+    return read_toml(path, error=SceneError, what="scene file", directory="use --all for a directory of scenes")
 
 
 def is_scene(doc: Mapping[str, Any]) -> bool:

@@ -24,7 +24,7 @@ from synth.schema import FileName, Table, expect, refine
 from . import compare
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import Scene, SceneError
-from .types import (Flag, Int, IndexTable, Positive, RangeText, Require, Text, Whole, WholeTable, Wholes)
+from .types import (Count, Flag, Int, IndexTable, RangeText, Require, Text, Whole, WholeTable, Wholes)
 
 __all__ = ["Structure", "Drawing", "CODES", "CHAINS", "ANALYSIS"]
 
@@ -84,12 +84,12 @@ class Structure(Table):
     loop_classes: IndexTable("a table of loop classes { H = K_H, … } with whole numbers") | None = key(
         "K_h of a heterogeneous system (chains: a base of the higher class on a chain of the lower)",
         *CODES, *ANALYSIS, *CHAINS)
-    h: Positive = key("motion space of a loop", *CODES, *ANALYSIS, *CHAINS, default=3)
+    h: Count = key("motion space of a loop", *CODES, *ANALYSIS, *CHAINS, default=3)
     f: Whole = key("extra mobility of multi-DOF pairs", *CODES, *ANALYSIS, *CHAINS, default=0)
     v: VRange | None = key("multiple-joint count", *CODES, *CHAINS, *ANALYSIS)
     n1: RangeText | None = key("single-joint links (open chains)", *CODES, *CHAINS)
     max_link_degree: Degree | None = key("largest joints on one link", *CODES)
-    max_multiplicity: Positive | None = key("largest links on one joint", *CODES, *CHAINS)
+    max_multiplicity: Count | None = key("largest links on one joint", *CODES, *CHAINS)
     compositions: Flag = key("split v into v2-v3-…", *CODES, default=False)
     require: Require | None = key("design constraints on n_I", *CODES, *CHAINS)
     cranks: IndexTable("a table { I = C, … }: a link with I joints carrying at least C cranks", 1) | None = key(
@@ -126,10 +126,10 @@ class Drawing(Table):
 
     out: FileName | None = None
     mechanisms: Flag = False
-    columns: Positive | None = None
+    columns: Count | None = None
     title: Text | None = None
     labels: Flag | None = None  # default: numbered on sheets of mechanisms (their captions name links)
-    limit: Positive = 200
+    limit: Count = 200
 
 
 FAMILY = Family("structure")  # its tables and computations, registered by mechsynth.scene

@@ -13,9 +13,9 @@ from typing import Annotated
 
 from pydantic import Field, StrictInt, StrictStr
 
-from synth.schema import Flag, Number, Positive, RangeText, Require, Text, Whole, expect, refine
+from synth.schema import Count, Flag, Number, RangeText, Require, Text, Whole, expect, refine
 
-__all__ = ["Flag", "Number", "Positive", "RangeText", "Require", "Text", "Whole", "Int", "Numbers", "NumberRows",
+__all__ = ["Flag", "Number", "Count", "RangeText", "Require", "Text", "Whole", "Int", "Numbers", "NumberRows",
            "Texts", "Wholes", "WholeTable", "NumberTable", "IndexTable", "Fraction"]
 
 #: Any whole number (a mobility or a defect may be negative).

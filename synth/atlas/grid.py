@@ -49,12 +49,13 @@ Example
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr
+
+from mechbase import read_toml_text
 
 from ..synthesis.number_synthesis import parse_requirements
 from ..structure.query import ChainQuery
@@ -266,10 +267,7 @@ class _GridFile(_Block):
 
 def parse_grid(text: str, *, source: str = "<string>", default_name: str = "grid") -> Grid:
     """Validate grid TOML text (see the module docstring for the keys)."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise GridFileError(f"grid file {source} is not valid TOML: {exc}.") from None
+    data = read_toml_text(text, error=GridFileError, source=f"grid file {source}")
     where = f"grid file {source}"
     top = _GridFile.read(data, source=where, where="", error=GridFileError)
     defaults = top.model_dump(include=set(_Block.model_fields) & top.given())

@@ -18,6 +18,8 @@ import sqlite3
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
+from mechbase import parse_range
+
 from ..errors import InvalidOption, MalformedCode
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
@@ -118,8 +120,7 @@ def parse_where(items: Iterable[str]) -> tuple[str, list]:
             if ".." in value:
                 if op != "=":
                     raise InvalidOption(f"a range A..B goes with '=' only, not {m.group(2)!r} (in {item!r})")
-                lo, hi = value.split("..", 1)
-                bounds = [int(lo) if lo.strip() else None, int(hi) if hi.strip() else None]
+                bounds = list(parse_range(value, open_low=True))
                 if any(b is not None and abs(b) >= 2**63 for b in bounds):
                     raise InvalidOption(f"in the condition {item!r}: {value} is beyond any count an atlas holds (|x| < 2^63)")
                 if None not in bounds and bounds[0] > bounds[1]:

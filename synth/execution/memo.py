@@ -63,9 +63,13 @@ def _store() -> Path | None:
 
 
 def _fingerprint() -> str:
-    import pynauty
+    from importlib.metadata import PackageNotFoundError, version
 
-    digest = hashlib.sha1(f"nauty {pynauty.__version__}".encode())
+    try:  # read from the installed package's metadata: importing nauty for it would load it in every query
+        nauty = version("pynauty")
+    except PackageNotFoundError:  # pragma: no cover - pynauty is a dependency
+        nauty = "unknown"
+    digest = hashlib.sha1(f"nauty {nauty}".encode())
     for folder in _SOURCES:
         for path in sorted((_ENGINE / folder).glob("*.py")):
             digest.update(path.name.encode())

@@ -27,7 +27,7 @@ import pynauty
 
 from ..errors import MalformedChain
 from .code import Code
-from .display import svg_of
+from ..display import svg_of
 from .joints import JOINT_KINDS, SYMBOLS
 
 __all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]

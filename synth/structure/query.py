@@ -19,6 +19,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields, replace
 
+from mechbase import RangeSyntax, parse_range as split_range
+
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ._params import H_MAX
 from .code import Code
@@ -39,25 +41,14 @@ def parse_range(text: str | int | tuple | None, what: str, *, minimum: int = 0) 
     """
     if text is None:
         return None
-    if isinstance(text, bool):
-        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
-    if isinstance(text, int):
-        lo, hi = text, text
-    elif isinstance(text, (tuple, list)) and len(text) == 2:
+    if isinstance(text, (tuple, list)) and len(text) == 2:
         lo, hi = text
-    elif isinstance(text, str):
-        s = text.strip()
-        try:
-            if ".." in s:
-                a, b = s.split("..", 1)
-                lo = int(a) if a.strip() else minimum
-                hi = int(b) if b.strip() else None
-            else:
-                lo = hi = int(s)
-        except ValueError:
-            raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}") from None
     else:
-        raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
+        try:
+            lo, hi = split_range(text, open_low=True)
+        except RangeSyntax:
+            raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}") from None
+        lo = minimum if lo is None else lo
     if any(isinstance(x, bool) or not isinstance(x, (int, type(None))) for x in (lo, hi)):
         raise InvalidOption(f"{what} must be a whole number or a range A..B, not {text!r}")
     if lo is None or lo < minimum or (hi is not None and hi < minimum):

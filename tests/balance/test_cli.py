@@ -93,7 +93,7 @@ def test_pantograph_and_solve(capsys, tmp_path):
     (SPRING[:8] + ["-0.1..0.5"] + SPRING[9:], "positive"),
     (["prismatic", "--mass", "-2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5"], "mass"),
     (["prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0"], "stroke"),
-    (["arm", "/no/such/file.toml"], "no such file"),
+    (["arm", "/no/such/file.toml"], "no such TOML file"),
     (["spring", "--kind", "coil"], "invalid choice"),
     (["spring", "--kind", "compression"], "required"),
     (["frobnicate"], "invalid choice"),

@@ -77,7 +77,7 @@ def test_a_urdf_whose_decomposition_would_fill_memory_is_refused(capsys, tmp_pat
 
 # ------------------------------------------------------------------ files refused before use
 @pytest.mark.parametrize("name, text, words", [
-    ("bin.toml", b"\x00\x01\xff\xfebinary", "bin.toml: not a text file."),
+    ("bin.toml", b"\x00\x01\xff\xfebinary", "bin.toml: not a text file (byte 2 is not UTF-8)."),
     ("t.toml", "arm = 5\n", "t.toml: [arm] must be a table, not 5."),
     ("t.toml", "[arm]\nlinks = 3\n", "t.toml: [arm] key 'links' must be an array, not 3."),
     ("t.toml", "[arm]\n[[arm.links]]\nlength = 1\nweight = true\n",

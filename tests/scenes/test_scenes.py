@@ -356,7 +356,8 @@ def test_balancing_scene_imports_no_synth_solver():
     assert "balance.problems" in mods
     heavy = {m for m in mods if m.startswith(("ortools", "pynauty", "networkx", "synth._")) and m != "synth._lazy"}
     assert not heavy, heavy
-    assert {m for m in mods if m.startswith("synth")} <= {"synth", "synth._lazy", "synth.errors", "synth.schema"}
+    assert {m for m in mods if m.startswith("synth")} <= {"synth", "synth._lazy", "synth.display", "synth.errors",
+                                                          "synth.schema"}
 
 
 def test_codes_only_scene_builds_no_graph_model():
@@ -377,7 +378,7 @@ def test_import_synth_loads_no_solver():
     loaded = subprocess.run([sys.executable, "-c", "import sys, synth; print(sorted(m for m in sys.modules "
                              "if m.startswith(('synth.', 'ortools', 'pynauty'))))"],
                             capture_output=True, text=True, check=True, cwd=ROOT).stdout.strip()
-    assert loaded == "['synth._lazy', 'synth.errors']"
+    assert loaded == "['synth._lazy', 'synth.display', 'synth.errors']"
 
 
 # ---------------------------------------------------------------------------- through mechsynth

@@ -1,0 +1,16 @@
+"""The ground both engines stand on, and nothing else: one error base, one reader of TOML files, one
+grammar of ranges ``A..B`` and one way to quote a value as a file writes it.
+
+``synth`` and ``balance`` may import this package; it imports neither of them (tests/test_layering.py).
+
+>>> from mechbase import parse_range, show
+>>> parse_range("2..5"), parse_range("3.."), show([1, True])
+((2, 5), (3, None), '[1, true]')
+"""
+
+from .errors import ProjectError
+from .ranges import RangeSyntax, parse_range
+from .text import show
+from .toml import read_toml, read_toml_text
+
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "show", "read_toml", "read_toml_text"]
