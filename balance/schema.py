@@ -22,14 +22,14 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, Literal, Mapping
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
 
 from mechbase import read_toml, show
 
-from .errors import SchemaError
+from .errors import InvalidInput, SchemaError
 
 __all__ = [
-    "parse", "load_toml", "show", "OWNED_BY_RUNNER",
+    "parse", "load_toml", "show", "check_seed", "OWNED_BY_RUNNER",
     "ArmTable", "LinkTable", "LoadTable", "SpringTable", "SpringDesignTable", "SliderTable",
     "PantographTable", "PayloadTable", "CompareTable",
 ]
@@ -57,6 +57,40 @@ OpenPair = Annotated[
 ]
 Positive = Annotated[float, Field(gt=0)]
 Count = Annotated[int, Field(ge=1)]
+
+
+def _seed_fault(seed: int) -> str | None:
+    """What is wrong with a random seed (numpy's generators take 0 ≤ seed < 2**32), or None."""
+    if 0 <= seed < 2**32:
+        return None
+    return f"must be a whole number from 0 to {2**32 - 1}, not {seed}."
+
+
+def check_seed(seed: int) -> int:
+    """A random seed as numpy takes it, or :class:`InvalidInput` — the rule the TOML tables'
+    ``seed`` keys and the ``--seed`` options share.
+
+    >>> check_seed(7)
+    7
+    >>> check_seed(-1)
+    Traceback (most recent call last):
+    ...
+    balance.errors.InvalidInput: the random seed must be a whole number from 0 to 4294967295, not -1.
+    """
+    fault = _seed_fault(seed)
+    if fault:
+        raise InvalidInput(f"the random seed {fault}")
+    return seed
+
+
+def _valid_seed(seed: int) -> int:
+    fault = _seed_fault(seed)
+    if fault:
+        raise ValueError(fault)
+    return seed
+
+
+Seed = Annotated[int, AfterValidator(_valid_seed)]
 
 
 # ----------------------------------------------------------------------------- arm
@@ -89,7 +123,7 @@ class LoadTable(_Table):
 
 class CheckTable(_Table):
     samples: Count = 1000
-    seed: int = 0
+    seed: Seed = 0
 
 
 class DevicesTable(_Table):
@@ -170,7 +204,7 @@ class DynamicsTable(_Table):
     length: Positive = 0.5
     mass: Positive = 10.0
     samples: Count = 200
-    seed: int = 0
+    seed: Seed = 0
 
 
 class SliderTable(_Table):
@@ -228,7 +262,7 @@ class CompareTable(_Table):
     target: Annotated[float, Field(gt=0, lt=1)] = 0.05
     acceleration: Annotated[float, Field(ge=0)] = 1.0
     samples: Count = 1000
-    seed: int = 0
+    seed: Seed = 0
 
 
 TABLES: dict[str, type[_Table]] = {

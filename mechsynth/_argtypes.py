@@ -12,7 +12,8 @@ import os
 
 from mechbase import RangeSyntax, parse_range
 
-__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "PICTURE_FORMATS"]
+__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "output_folder",
+           "PICTURE_FORMATS"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
@@ -99,4 +100,32 @@ def picture_file(text: str) -> str:
         os.remove(text)
     except OSError as exc:
         raise argparse.ArgumentTypeError(f"cannot write the plot to {text}: {exc.strerror or exc}") from None
+    return text
+
+
+def output_folder(text: str) -> str:
+    """A folder that files can be written into: it exists or can be made, and a file can be made in it
+    (checked before any work is done: a probe file is made and removed, and a folder made for the probe
+    is removed again).
+
+    >>> import tempfile; output_folder(tempfile.gettempdir()) == tempfile.gettempdir()
+    True
+    """
+    import tempfile
+
+    if not text.strip():
+        raise argparse.ArgumentTypeError("expected the name of a folder, not ''")
+    if os.path.exists(text) and not os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text} is a file; give a directory for the files to write")
+    made = not os.path.exists(text)
+    try:
+        if made:
+            os.mkdir(text)
+        with tempfile.TemporaryFile(dir=text):
+            pass
+    except OSError as exc:
+        raise argparse.ArgumentTypeError(f"cannot write files into {text}: {exc.strerror or exc}") from None
+    finally:
+        if made and os.path.isdir(text):
+            os.rmdir(text)
     return text

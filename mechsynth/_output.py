@@ -30,6 +30,8 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
     """Write ``rows`` (dicts) in ``fmt``; tables and csv show ``columns``, jsonl and json the whole dict.
 
     ``json`` is one array, written as the rows come (no row is held back). Returns the number of rows.
+    A table holds its rows to align its columns: beyond ``synth.TABLE_ROWS`` it writes nothing and
+    raises :class:`synth.QueryTooLarge` (the listings size themselves first; this bounds any other).
 
     >>> write_rows([{"code": "44/0", "v": 0}], ["code", "v"], "csv")
     code,v
@@ -58,14 +60,21 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
             writer.writerow([_cell(row.get(c, "")) for c in columns])
             count += 1
     else:
-        rows = list(rows)
-        cells = [[_cell(r.get(c, "")) for c in columns] for r in rows]
+        from synth import TABLE_ROWS, QueryTooLarge
+
+        cells = []  # only the shown cells of each row are held, not the rows
+        for r in rows:
+            if len(cells) == TABLE_ROWS:
+                raise QueryTooLarge(f"a table is held in memory to align it and this one has more than "
+                                    f"{TABLE_ROWS:,} rows".replace(",", " ")
+                                    + "; use --format jsonl or csv (streamed), or --count")
+            cells.append(tuple(_cell(r.get(c, "")) for c in columns))
         widths = [max([len(c)] + [len(row[i]) for row in cells]) for i, c in enumerate(columns)]
         out.write("  ".join(c.ljust(w) for c, w in zip(columns, widths)).rstrip() + "\n")
         out.write("  ".join("-" * w for w in widths) + "\n")
         for row in cells:
             out.write("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip() + "\n")
-        count = len(rows)
+        count = len(cells)
     return count
 
 

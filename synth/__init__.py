@@ -66,7 +66,7 @@ _WHERE = {
     "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
     "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
-    "worth_sizing": ".synthesis.estimate",
+    "worth_sizing": ".synthesis.estimate", "TABLE_ROWS": ".synthesis.estimate",
     "describe_seconds": ".execution.sizes", "magnitude": ".execution.sizes",
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",

@@ -492,7 +492,7 @@ class _Marks:
         self.chain, self.lay, self.pos = chain, lay, pos
         self.r = r = min(0.07, 0.28 * min(gaps, default=1.0))
         self.free_ends = _free_ends(pos, lay.polygons, length=max(0.35, 6 * r))
-        sides = _sides(lay.polygons)
+        self.sides = sides = _sides(lay.polygons)
         self.numbers = {}
         for k, joint in enumerate(chain.joints):
             if len(joint) > 2:  # in the widest free angle at the joint, free-end bars counted
@@ -507,6 +507,18 @@ class _Marks:
         self.meshes = {k: _pitch_circles(chain, lay, k, r) for k, kind in enumerate(chain.kinds or ()) if kind == "mesh"}
         self.reach = max([1.25] + [float(np.abs(end).max()) + 2 * r for end in self.free_ends.values()]
                          + [float(np.abs(n).max()) + 2 * r for n in self.numbers.values()])
+
+
+    def ground(self, k: int) -> np.ndarray:
+        """The unit direction of the fixed-pivot sign at joint ``k`` of the frame: into the widest
+        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it."""
+        pos = self.pos
+        also = [math.atan2(*(end - pos[k])[::-1]) for link, end in self.free_ends.items()
+                if self.lay.polygons[link] == [k]]
+        if k in self.numbers:
+            also.append(math.atan2(*(self.numbers[k] - pos[k])[::-1]))
+        turn, _ = _widest_gap(pos, self.sides, k, also)
+        return np.array([math.cos(turn), math.sin(turn)])
 
 
 def _pitch_circles(chain: Chain, lay: Layout, k: int, r: float) -> list[tuple[np.ndarray, float]]:
@@ -599,6 +611,10 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                                     gid=f"mesh{k}"))
         else:
             ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4, gid=f"pin{k}"))
+    if mech is not None:  # the frame's pivots as a designer marks them: a support on a hatched base at each
+        for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
+            if mech.frame in joint:
+                _fixed_pivot(ax, pos[k], marks.ground(k), r, gid=f"ground{k}")
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -616,6 +632,20 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.set_title(caption, fontsize=8, pad=0, y=-0.02, va="top")
         else:
             ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
+
+
+def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, gid: str) -> None:
+    """A fixed pivot's sign at ``at``: two struts from the pin to a base line across ``direction``,
+    hatched beyond it (under the pin, over a multiple joint's ring)."""
+    from matplotlib.patches import Polygon
+
+    across = np.array([-direction[1], direction[0]])
+    base, half, depth = at + direction * 2.4 * r, 1.5 * r, 0.8 * r
+    ax.add_patch(Polygon([at, base + across * half, base - across * half], closed=True, facecolor="white",
+                         edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=gid))
+    ax.add_patch(Polygon([base + across * half * 1.4, base - across * half * 1.4,
+                          base - across * half * 1.4 + direction * depth, base + across * half * 1.4 + direction * depth],
+                         closed=True, facecolor="white", edgecolor=_EDGE, hatch="////", lw=1.2, zorder=3.5))
 
 
 def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarray], bool]:

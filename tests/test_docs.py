@@ -104,3 +104,55 @@ def test_the_forbidden_patterns_catch_what_they_should():
     for (what, pattern), sample in zip(_FORBIDDEN, samples):
         assert pattern.search(sample), what
     assert not any(p.search("random seed 0 and seed = 12345") for _, p in _FORBIDDEN)
+
+
+def test_every_subcommand_is_named_in_the_help_of_its_parent():
+    """``mechsynth --help`` names every command, and a command group's line names each of its
+    subcommands (``balance compare`` was once missing from it)."""
+    import argparse
+
+    from mechsynth.cli import _build_parser
+
+    def groups(parser):
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                yield parser, action
+
+    root = _build_parser()
+    text = root.format_help()
+    (_, commands), = groups(root)
+    for name, command in commands.choices.items():
+        assert re.search(rf"^\s+{re.escape(name)}\s", text, re.M), name
+        line = next(a.help for a in commands._choices_actions if a.dest == name)
+        for _, inner in groups(command):
+            for sub in inner.choices:
+                assert re.search(rf"\b{re.escape(sub)}\b", line), f"'{name} {sub}' is missing from '{name}: {line}'"
+                assert sub in command.format_help()
+
+
+_MODEL_BLOCK = re.compile(r"^```toml\n# (?P<path>models/[\w.]+\.toml)\b[^\n]*\n(?P<body>.*?)^```", re.S | re.M)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_a_toml_block_that_names_a_model_file_shows_what_the_file_holds(page):
+    """A ```toml block headed ``# models/NAME.toml`` quotes that file: every key and table it shows is
+    in the file with the same value (docs/atlas.md once showed grid_small.toml with a block the file lacks)."""
+    import tomllib
+
+    def within(shown, held, where):
+        assert isinstance(held, type(shown)), where
+        if isinstance(shown, dict):
+            for key, value in shown.items():
+                assert key in held, f"{where}: '{key}' is not in the file"
+                within(value, held[key], f"{where}.{key}")
+        else:
+            assert shown == held, where
+
+    for m in _MODEL_BLOCK.finditer(page.read_text(encoding="utf-8")):
+        within(tomllib.loads(m["body"]), tomllib.loads((ROOT / m["path"]).read_text(encoding="utf-8")), m["path"])
+
+
+def test_the_model_block_check_catches_a_block_the_file_lacks():
+    text = "```toml\n# models/grid_small.toml — x\ndof = \"1..3\"\n[[block]]\ndof = 2\n```\n"
+    (m,) = _MODEL_BLOCK.finditer(text)
+    assert m["path"] == "models/grid_small.toml" and "[[block]]" in m["body"]

@@ -158,3 +158,32 @@ def test_the_site_keeps_joint_kinds_in_its_lists_and_draw_commands(tmp_path):
     assert commands and any("=" in c for c in commands)
     for command in commands:
         assert Chain.parse(command).compact() == command  # a joint list the draw command reads back as written
+
+
+def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
+    """The fixed link is marked at each of its joints by a support on a hatched base (a short fixed
+    link's own hatching hid under its pins and a multiple joint's ring in Fig. 6): drawn above the
+    rings and bars, its base clear of every joint's circle and of the multiplicity numbers."""
+    from synth import Mechanism
+
+    chain = Chain.parse("0-1-2 2-3 3-0 0-4 4-5 5-1 1-6 6-3")
+    for frame in range(chain.links):
+        mech = Mechanism(chain, frame)
+        fig, ax = _drawn(mech)
+        try:
+            marks = draw._Marks(chain)
+            r = marks.r
+            signs = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("ground")}
+            assert set(signs) == {f"ground{k}" for k, j in enumerate(chain.joints) if frame in j}
+            others = [p for p in ax.patches if p not in signs.values() and not (p.get_gid() or "").startswith("pin")]
+            for gid, sign in signs.items():
+                assert all(sign.get_zorder() > p.get_zorder() for p in others if p.get_hatch() is None)
+                k = int(gid[len("ground"):])
+                base = np.asarray(sign.get_xy())[1:3].mean(axis=0)  # the middle of the base line
+                for j, at in enumerate(marks.pos):
+                    reach = 1.75 * r if len(chain.joints[j]) > 2 else r
+                    assert np.linalg.norm(base - at) > reach, (frame, gid, j)
+                for number in marks.numbers.values():
+                    assert np.linalg.norm(base - number) > 1.5 * r, (frame, gid)
+        finally:
+            plt.close(fig)

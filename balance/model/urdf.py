@@ -441,16 +441,18 @@ class UrdfArm(ArmModel):
         phasors: list[tuple[complex, np.ndarray]] = []
         # U at slide offsets 0/1 from mid-stroke → affine coefficients by inclusion-exclusion
         corner_values = {}
+        shape, size = (3,) * len(rev), 3 ** len(rev)
         for corner in itertools.product((0, 1), repeat=len(pri)):
-            grid = np.zeros((3,) * len(rev))
-            for idx in itertools.product(range(3), repeat=len(rev)):
-                q = np.zeros(self.n)
-                for j, t in zip(rev, idx):
-                    q[j] = nodes[t]
+            flat = np.empty(size)
+            for start in range(0, size, 4096):  # the grid in C order, a chunk of configurations at a time
+                ids = np.arange(start, min(start + 4096, size))
+                q = np.zeros((len(ids), self.n))
+                if rev:
+                    q[:, rev] = nodes[np.stack(np.unravel_index(ids, shape), axis=1)]
                 for j, c in zip(pri, corner):
-                    q[j] = mids[j] + c
-                grid[idx] = self.potential(q)
-            corner_values[corner] = grid
+                    q[:, j] = mids[j] + c
+                flat[start:start + len(ids)] = self.potential(q)
+            corner_values[corner] = flat.reshape(shape)
         for subset in itertools.product((0, 1), repeat=len(pri)):
             grid = sum((-1) ** (sum(subset) - sum(t)) * corner_values[t]
                        for t in itertools.product((0, 1), repeat=len(pri)) if all(a <= b for a, b in zip(t, subset)))

@@ -25,7 +25,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ..budget import WORK_LIMIT, ensure_affordable
+from ..budget import WORK_LIMIT, ensure_affordable, unit_seconds
 from ..devices.counterweights import Counterweights, counterweights
 from ..devices.transmission import GearTrain, transmissions
 from ..errors import InvalidArm, InvalidInput, SchemaError
@@ -33,7 +33,7 @@ from ..extremes import EXTREMES_NOTE, box_extremes
 from ..model.arm import Arm, ArmModel, Link, Load, base_drives, describe_form, gear_ratio_for_accuracy
 from ..model.potential import HarmonicTerm, terms_forces, terms_potential
 from ..model.urdf import PinocchioCheck, UrdfArm, load_urdf, pinocchio_check, pinocchio_gravity
-from ..schema import ArmTable, parse
+from ..schema import ArmTable, check_seed, parse
 
 __all__ = ["ArmProblem", "ArmBalance", "CheckResult", "DeviceSizes", "TermDevices", "SlideApproximation",
            "PayloadEffect", "balance_arm", "check_terms", "arm_from_dict", "arm_problem"]
@@ -333,6 +333,7 @@ class ArmProblem:
         """Terms, devices, residual over the workspace, payload, counterweights, Pinocchio's check."""
         if self.samples < 1:
             raise InvalidInput(f"the check needs at least one sample, not {self.samples}.")
+        check_seed(self.seed)
         arm = self.arm
         payload = self.payload
         if payload is None and isinstance(arm, Arm) and arm.payload_weight > 0:
@@ -355,6 +356,7 @@ class ArmProblem:
         ensure_affordable(f"checking {self.samples} configurations", self.samples, unit, self.work_limit, per=len(own))
         if isinstance(tuned, UrdfArm):
             tuned.ensure_decomposable(self.work_limit)
+            _ensure_terms_affordable(tuned, own, self.samples, self.work_limit)
         terms = tuple(tuned.harmonic_terms())
         q = tuned.sample(self.samples, self.seed)
         check = check_terms(tuned, terms, q=q, seed=self.seed)
@@ -373,6 +375,20 @@ class ArmProblem:
         return ArmBalance(tuned, terms, devices, check, slide_approximations(tuned), effect, cw, pc, trains,
                           self.urdf, arm.with_payload(payload[1], self.g) if payload else None,
                           arm.with_payload(payload[0], self.g) if payload else None)
+
+
+def _ensure_terms_affordable(arm: UrdfArm, own: np.ndarray, samples: int, limit: float | None) -> None:
+    """Refuse an arm whose harmonic terms would cost more than ``limit`` seconds downstream: a URDF arm
+    of n joints has up to (3ⁿ + 1)/2 terms (a 12-joint arm: 265 721), each evaluated at every
+    configuration the checks visit (about two per sample: the residual search, Pinocchio's check)
+    and described in the report."""
+    passes = 2
+    most = (3 ** arm.n + 1) // 2
+    probe = [HarmonicTerm(1.0, 0.5, tuple(float(x) for x in np.resize((1, -1, 0), arm.n))) for _ in range(8)]
+    per_value = unit_seconds(lambda: (terms_forces(probe, own), terms_potential(probe, own))) / (len(probe) * len(own))
+    per_text = unit_seconds(lambda: [describe_form(arm, t.form) for t in probe]) / len(probe)
+    ensure_affordable(f"checking {samples} configurations against up to {most} harmonic terms", most,
+                      passes * samples * per_value + 2 * per_text, limit)
 
 
 def balance_arm(arm: ArmModel, samples: int = 1000, seed: int = 0, **options) -> ArmBalance:

@@ -62,7 +62,7 @@ from ..model.arm import Arm, ArmModel, Load, describe_form
 from ..model.potential import HarmonicTerm, merge_terms, terms_forces
 from ..model.urdf import UrdfArm, arm_to_urdf, pinocchio_gravity, pinocchio_model
 from ..schema import parse
-from .arm import G, arm_problem
+from .arm import G, _ensure_terms_affordable, arm_problem
 
 __all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "compare_problem", "STRATEGIES"]
 
@@ -266,6 +266,9 @@ class _Solver:
         probe = self.lo + (self.hi - self.lo) * np.random.default_rng(pb.seed).random((16, arm.n))
         ensure_affordable(f"comparing the strategies at {pb.samples} configurations", pb.samples,
                           lambda: [self.arm_lo.gravity_forces(probe) for _ in range(40)], pb.work_limit, per=16)
+        if isinstance(arm, UrdfArm):  # its harmonic terms: a grid of 3ʳ·2ᵖ and up to (3ⁿ + 1)/2 terms
+            self.arm_lo.ensure_decomposable(pb.work_limit)
+            _ensure_terms_affordable(self.arm_lo, probe, pb.samples, pb.work_limit)
         self.q = self.lo + (self.hi - self.lo) * np.random.default_rng(pb.seed).random((pb.samples, arm.n))
         # the harmonic terms at the two ends of the payload range; between them they are linear
         self.terms_lo = _phasors(self.arm_lo.harmonic_terms())

@@ -1,4 +1,4 @@
-"""CLI commands ``mechsynth balance arm|spring|prismatic|pantograph|solve``: balancing of arms.
+"""CLI commands ``mechsynth balance arm|spring|prismatic|pantograph|compare|solve``: balancing of arms.
 
 Each command builds the problem of :mod:`balance.problems` from its file or options, solves it
 and writes the result (a readable table, or ``--format json``) and, with ``--plot FILE``, its
@@ -30,7 +30,7 @@ _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-[\d.]+\.\.")
 
 def add_commands(sub) -> None:
     """Mount ``balance`` and its subcommands on the ``mechsynth`` parser."""
-    top = sub.add_parser("balance", help="balancing of arms: arm, spring, prismatic, pantograph, solve",
+    top = sub.add_parser("balance", help="balancing of arms: arm, spring, prismatic, pantograph, compare, solve",
                          description="Static and dynamic balancing of robot arms (docs/balance.md).")
     bsub = top.add_subparsers(dest="balance_command", metavar="COMMAND", required=True)
 

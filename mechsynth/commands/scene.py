@@ -20,7 +20,7 @@ import json
 import sys
 from typing import TextIO
 
-from .._argtypes import workers
+from .._argtypes import output_folder, workers
 
 __all__ = ["add_commands", "run_scene_command", "format_result"]
 
@@ -35,7 +35,7 @@ def add_commands(sub) -> None:
     p.add_argument("file", nargs="?", help="the scene file (TOML)")
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table")
-    p.add_argument("--out", metavar="DIR", help="write drawings and plots to DIR (default: none is written, "
+    p.add_argument("--out", metavar="DIR", type=output_folder, help="write drawings and plots to DIR (default: none is written, "
                                                  "and their expectations are skipped)")
     p.add_argument("--workers", type=workers, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
@@ -50,22 +50,14 @@ def run_scene_command(args, out: TextIO | None = None, err: TextIO | None = None
     err = err or sys.stderr
     if (args.file is None) == (args.all is None):
         raise InvalidOption("give a scene file or --all DIR, not both or neither")
-    if args.out is not None:  # checked before any scene runs
-        from pathlib import Path
-
-        folder = Path(args.out)
-        if folder.exists() and not folder.is_dir():
-            raise InvalidOption(f"--out {args.out} is a file; give a directory for the drawings and plots")
-        if not folder.exists() and not folder.parent.is_dir():
-            raise InvalidOption(f"--out {args.out}: the directory {folder.parent} does not exist")
     if args.all is not None:
         result = run_directory(args.all, out_dir=args.out, workers=args.workers)
         if args.format == "json":
             out.write(json.dumps(result.to_dict(), ensure_ascii=False) + "\n")
-            for _, message in result.errors:
-                err.write(f"mechsynth: {message}\n")
         else:
             _print_directory(result, out)
+        for _, message in result.errors:  # a malformed scene is an error: stderr, and the others still run
+            err.write(f"mechsynth: {message}\n")
         return 2 if result.errors else (0 if result.ok else 1)
     result = run_scene(args.file, out_dir=args.out, workers=args.workers)
     if args.format == "json":
@@ -118,8 +110,6 @@ def _print_directory(result, out: TextIO) -> None:
             out.write(f"      note  {note}\n")
         for f in r.files:
             out.write(f"      file  {f}\n")
-    for _, message in result.errors:
-        out.write(f"ERROR {message}\n")
     for path, reason in result.skipped:
         out.write(f"skip  {path}: {reason}\n")
     passed = sum(r.ok for r in result.results)

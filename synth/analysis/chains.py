@@ -20,9 +20,10 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 
-from ..errors import ImpossibleParameters, InvalidOption, MalformedChain
+from ..errors import ImpossibleParameters, InvalidOption, MalformedChain, QueryTooLarge
 from ..structure.chain import Chain
 from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
+from ..structure.query import MAX_CODE_LINKS
 from ..structure.subchains import check_subchains
 from ..synthesis.number_synthesis import number_synthesis
 from .codes import LOWER_W, RAISE_W
@@ -130,6 +131,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
+    if chain.links > MAX_CODE_LINKS:  # its velocity constraints alone are a matrix of 6n² entries
+        raise QueryTooLarge(f"the chain has {chain.links} links; chains are analysed here up to {MAX_CODE_LINKS} links "
+                            "(the generic mobility's matrix grows with the square of the links)")
     loose = [link for link, degree in enumerate(chain.degrees) if degree == 0]
     if loose and chain.links > 1:
         shown = ", ".join(map(str, loose[:10])) + (", …" if len(loose) > 10 else "")

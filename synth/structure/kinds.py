@@ -172,10 +172,10 @@ def _rows(chain: Chain, s: list[int], rng: random.Random) -> np.ndarray:
     random normal at a random contact point.
     """
     col = {x: 3 * i for i, x in enumerate(s)}
-    rows = []
+    rows: list[dict[int, int]] = []  # each row's non-zero entries: the matrix is sparse (a pair touches two links)
 
     def point_row(a, b, x, y, nx, ny):
-        row = [0] * (3 * len(s))
+        row = {}
         for link, sign in ((a, 1), (b, -1)):
             c = col[link]
             row[c], row[c + 1], row[c + 2] = sign * (x * ny - y * nx), sign * nx, sign * ny
@@ -192,15 +192,15 @@ def _rows(chain: Chain, s: list[int], rng: random.Random) -> np.ndarray:
                 point_row(inside[0], b, x, y, 0, 1)
         elif kind == "prismatic":
             a, b = inside
-            row = [0] * (3 * len(s))
-            row[col[a]], row[col[b]] = 1, -1
-            rows.append(row)
+            rows.append({col[a]: 1, col[b]: -1})
             point_row(a, b, 0, 0, x, y)
         else:
             point_row(inside[0], inside[1], x, y, rng.randrange(_PRIME), rng.randrange(_PRIME))
-    if not rows:
-        return np.zeros((0, 3 * len(s)), dtype=np.int64)
-    return np.array([[v % _PRIME for v in r] for r in rows], dtype=np.int64)
+    m = np.zeros((len(rows), 3 * len(s)), dtype=np.int64)
+    for i, row in enumerate(rows):
+        for c, v in row.items():
+            m[i, c] = v % _PRIME
+    return m
 
 
 def _echelon(m: np.ndarray) -> tuple[np.ndarray, list[int]]:
@@ -222,9 +222,14 @@ def _echelon(m: np.ndarray) -> tuple[np.ndarray, list[int]]:
         if p != r:
             m[[r, p]] = m[[p, r]]
         m[r] = m[r] * pow(int(m[r, c]), _PRIME - 2, _PRIME) % _PRIME
-        factor = m[:, c].copy()
-        factor[r] = 0
-        m = (m - np.outer(factor, m[r]) % _PRIME) % _PRIME
+        # only the rows with an entry in column c change, and only in the pivot row's non-zero columns:
+        # the constraints are sparse, so a chain of n links costs about n² here, not n³
+        others = np.flatnonzero(m[:, c])
+        others = others[others != r]
+        if len(others):
+            cols = np.flatnonzero(m[r])
+            block = np.ix_(others, cols)
+            m[block] = (m[block] - np.outer(m[others, c], m[r, cols]) % _PRIME) % _PRIME
         pivots.append(c)
         r += 1
     return m[:r], pivots

@@ -36,7 +36,8 @@ from dataclasses import dataclass, replace
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "plan_bytes", "TABLE_ROWS",
+           "MEMORY_LIMIT"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -47,6 +48,14 @@ SIZED_LOOPS = {2: 9, None: 7}
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
+# Stage A of a code keeps every branch multigraph of the code until the code is done (isomorphic copies
+# are removed against all of them), and its units travel whole to the parent: about this many bytes per
+# unit of the largest code, for each worker expanding a code at the same time (h = 2, 10 links: a unit
+# is 830 B held and 480 B pickled; 11 links: 715 MiB peak for the three processes, about 150 MiB each
+# at rest, against about 38 000 units in the largest code: 3.5 kB a unit per worker).
+BYTES_PER_UNIT = 3500
+NOTE_BYTES = 2**30  # a query whose plan may hold more says so before it starts
+MEMORY_LIMIT = 3 * 2**30  # refused without force above this (the machine is shared)
 
 
 @dataclass(frozen=True)
@@ -64,6 +73,7 @@ class Estimate:
     log10_chains: float = 0.0
     log10_units: float = 0.0
     log10_seconds: float = 0.0
+    largest_code_units: float = 0.0  # units of the code with the most: its share of the units at the basis
 
 
 _COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
@@ -129,40 +139,48 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
                 continue
             if compiled:
                 jobs = [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
-            chains = units = 0
+            chains = units = largest = 0
             for _, unit, result in ts._map_units(unit_work, jobs, 1, False):
                 if unit is not None:
                     chains += len(result) if isinstance(result, list) else sum(result.values())
                     units += 1
-            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0)
+                else:  # a code is complete: result is its number of units
+                    largest = max(largest, result)
+            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
     if len(points) < 3:
         return None
-    (_, c0, u0, _), (_, c1, u1, _), (n2, c2, u2, s2) = points[-3:]
+    (_, c0, u0, _, _), (_, c1, u1, _, _), (n2, c2, u2, s2, l2) = points[-3:]
     steps = (links - n2) // step
     r_c, d_c = c2 / c1, max(c2 / c1 - c1 / c0, 0.0)
     r_u, d_u = max(u2 / max(u1, 1), 1.0), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
     log_chains = math.log10(c2) + _log10_growth(r_c, d_c, steps)
     log_units = math.log10(max(u2, 1)) + _log10_growth(r_u, d_u, steps)
+    # the largest code's share of the units changes slowly (h = 2: 0.21, 0.16, 0.13, 0.12 at 7 … 10 links),
+    # so it is kept from the largest calibration (the ratio of its own growth swings with the basis)
+    log_largest = log_units + math.log10(max(l2, 1) / max(u2, 1))
     log_seconds = log_chains + math.log10(max(s2, 1e-9) / c2)  # the largest calibration's time per chain
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
     return Estimate(_power(log_chains), _power(log_units), _power(log_seconds), basis,
-                    log_chains, log_units, log_seconds)
+                    log_chains, log_units, log_seconds, _power(log_largest))
 
 
-def worth_sizing(query) -> bool:
+def worth_sizing(query, *, table: bool = False) -> bool:
     """Whether a query is large enough to be estimated before it runs: its largest revolute
-    skeleton has :func:`sized_loops` loops or more.
+    skeleton has :func:`sized_loops` loops or more — one fewer for a listing as a ``table``, which
+    holds its rows (the mechanisms of 14 links are 4.3 million).
 
     >>> from synth.structure.query import ChainQuery
     >>> worth_sizing(ChainQuery(1, 14)), worth_sizing(ChainQuery(1, 16)), worth_sizing(ChainQuery(1, 10, h=2))
     (False, True, False)
+    >>> worth_sizing(ChainQuery(1, 14), table=True), worth_sizing(ChainQuery(1, 12), table=True)
+    (True, False)
     """
     if query.code is not None:
         return False
     K = max((query.links - 1 - query.dof + k) // (query.h - 1) for k in query.skeleton_slacks() or [0])
-    return K >= sized_loops(query.h, multiple=(query.v or (0, 0)) != (0, 0))
+    return K >= sized_loops(query.h, multiple=(query.v or (0, 0)) != (0, 0)) - (1 if table else 0)
 
 
 def sized_loops(h: int, multiple: bool = False) -> int:
@@ -179,8 +197,8 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
                mechanisms: str | None = None, scheduler: bool = False) -> str | None:
     """Refuse, within seconds and with an estimate, a query too large to run unasked.
 
-    A query with fewer loops than :func:`sized_loops` passes at once.
-    Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
+    A query with fewer loops than :func:`sized_loops` passes at once (a listing as a ``table``:
+    one loop fewer, for its rows).  Others are estimated (:func:`estimate`, timing what the query will do: count, list, or
     ``mechanisms`` ``"mechanisms"`` / ``"mechanisms with input"``) and refused with
     :class:`QueryTooLarge` when they would take more than a day on ``processes`` workers (unless
     ``force``), or when a ``table`` listing would hold more than a million rows (whatever
@@ -191,13 +209,14 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     >>> size_check(ChainQuery(1, 10), processes=2, count=True, table=False) is None
     True
     """
-    if (force and count) or not worth_sizing(query):
+    rows_held = table and not count
+    if (force and count) or not worth_sizing(query, table=rows_held):
         return None
     work = mechanisms or ("count" if count else "list")
     items = "mechanisms" if mechanisms else "chains"
     found = estimate(query, work=work)
     if found is None:
-        if not force:
+        if not force and worth_sizing(query):  # (a table only: its rows are counted as it is written)
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
                                 f"(fewer than three smaller sizes have chains); give {option('force')} to run it anyway")
         return None
@@ -207,13 +226,30 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in "
             f"{magnitude(found.units, found.log10_units)} units, {describe_seconds(found.seconds / processes, log_wall)} "
             f"{where}, extrapolated from the {found.basis}")
-    if not count and table and found.chains > TABLE_ROWS:
+    if rows_held and found.chains > TABLE_ROWS:
         raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
                             f"large for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
     if not force and found.seconds / processes > LIMIT_SECONDS:
         hint = f" (with {option('checkpoint', 'FILE')} it can be stopped and resumed)" if count else ""
         raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give {option('force')} to "
                             f"run it anyway{hint}")
-    if found.seconds / processes > NOTE_SECONDS:
-        return f"a long query: {size}"
-    return None
+    held = plan_bytes(found, processes)
+    memory = (f"its largest code has about {magnitude(found.largest_code_units)} branch multigraphs, kept whole "
+              f"until the code is done: about {held / 2**30:.1f} GiB on {processes} worker{'s' * (processes > 1)}")
+    if not force and held > MEMORY_LIMIT:
+        raise QueryTooLarge(f"this query ({query.links} links) would hold too much memory to run unasked: {memory} "
+                            f"(more than {MEMORY_LIMIT / 2**30:.0f} GiB); {size}; give {option('force')} to run it anyway")
+    notes = ([f"a long query: {size}"] if found.seconds / processes > NOTE_SECONDS else []) + (
+        [memory] if held > NOTE_BYTES else [])
+    return "; ".join(notes) or None
+
+
+def plan_bytes(found: Estimate, processes: int) -> float:
+    """Memory a query's plan may hold at once: the units of its largest code, in the worker that
+    expands it, in transit and in the parent (:data:`BYTES_PER_UNIT`), for each worker expanding one.
+
+    >>> plan_bytes(Estimate(1e6, 1e5, 10.0, "", largest_code_units=1000), processes=2)
+    7000000
+    """
+    return found.largest_code_units * BYTES_PER_UNIT * processes
+

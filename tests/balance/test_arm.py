@@ -230,3 +230,22 @@ def test_unknown_top_level_key_named_and_scene_expect_ignored():
 def test_vertical_joint_after_in_plane_joint_is_refused():
     with pytest.raises(InvalidArm, match="vertical-axis"):
         Arm((Link("a", "revolute", 1.0, 1.0, 0.5), Link("b", "vertical", 1.0, 1.0, 0.5)))
+
+
+@pytest.mark.parametrize("seed", [-1, 2**32])
+def test_a_seed_numpy_cannot_take_is_one_sentence_in_every_table_and_in_the_api(seed):
+    from balance.errors import InvalidInput
+    from balance.problems.arm import balance_arm
+    from balance.schema import parse
+
+    tables = {"arm": {"links": [{"joint": "revolute", "length": 1, "weight": 2}], "check": {"seed": seed}},
+              "slider": {"mass": 2, "counter_mass": 2, "q_max": 0.5, "dynamics": {"seed": seed}},
+              "compare": {"arm": "a.urdf", "seed": seed},
+              "pantograph": {"l2": 0.8, "l3": 1.0, "ratio": 4.0, "check": {"seed": seed}}}
+    for name, table in tables.items():
+        with pytest.raises(SchemaError, match=rf"s\.toml: \[{name}(\.\w+)?\] key 'seed' must be a whole number "
+                                              rf"from 0 to 4294967295, not {seed}\."):
+            parse({name: table}, name, "s.toml")
+    with pytest.raises(InvalidInput, match=rf"^the random seed must be a whole number from 0 to 4294967295, not {seed}\.$"):
+        balance_arm(Arm((Link("l", "revolute", 1.0, 10.0, 0.5),)), samples=10, seed=seed)
+    assert balance_arm(Arm((Link("l", "revolute", 1.0, 10.0, 0.5),)), samples=10, seed=2**32 - 1).check.samples == 10

@@ -75,6 +75,23 @@ def test_a_urdf_whose_decomposition_would_fill_memory_is_refused(capsys, tmp_pat
     assert code == 2 and "17 revolute joints" in err and "stops at 16 (its grid would fill memory)" in err
 
 
+def test_a_urdf_arm_whose_harmonic_terms_cost_too_much_is_refused_before_its_decomposition(capsys, tmp_path):
+    """Issue 37: a 12-joint URDF arm (up to 265 721 harmonic terms) ran 68 s and took 1.4 GB past its 30 s
+    limit, which priced only the decomposition's grid; the terms' check and report are priced too."""
+    import numpy as np
+
+    from tests.balance.test_urdf import random_urdf
+
+    f = write(tmp_path, "arm12.urdf", random_urdf(np.random.default_rng(1), 12))
+    start = time.perf_counter()
+    code, out, err = balance(capsys, ["arm", f])
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "against up to 265721 harmonic terms would take about" in err and "--force" in err
+    code, out, err = balance(capsys, ["compare", f])  # the same arm side by side: priced the same way
+    assert code == 2 and out == "" and "against up to 265721 harmonic terms would take about" in err
+    assert time.perf_counter() - start < 30
+
+
 # ------------------------------------------------------------------ files refused before use
 @pytest.mark.parametrize("name, text, words", [
     ("bin.toml", b"\x00\x01\xff\xfebinary", "bin.toml: not a text file (byte 2 is not UTF-8)."),

@@ -72,6 +72,7 @@ CASES = [
     ("analyze '{\"links\": 5, \"joints\": [[0,1],[1,2],[2,0]]}'", "3, 4"),
     ("analyze '0-1 1-'", "'1-'"),
     ("analyze 63a1/0", "63a1/0"),
+    ("analyze '" + " ".join(f"{i}-{(i + 1) % 3001}" for i in range(3001)) + "'", "3001 links"),  # sized first
     ("analyze 6301/0 --h 7", "not 7"),
     ("analyze 2=4,2=3", "2="),
     ("analyze 6301/0 --repairs 0", "0"),
@@ -171,10 +172,13 @@ CASES = [
     ("chains --dof 1 --links 8 --count --format dot", "--count"),
     ("chains --dof 1 --links 8 --v 1 --format adjacency", "adjacency matrix"),
     # ---- scene and planetary
+    ("mechanisms --dof 1 --links 14", "--format jsonl"),  # 4.27 million rows: no table, sized first
+    ("chains --dof 1 --links 12 --h 2 --count", "GiB"),  # its plan would hold gigabytes: sized first
     ("scene {d}/binary.toml", "binary.toml"),
     ("scene {d}/missing.toml", "missing.toml"),
     ("scene {d}/scene_bad.toml", "loopz"),
     ("scene {m}/locomotive_drive.toml --out {d}/binary.toml", "binary.toml"),
+    ("scene --all {m} --out /proc/figs", "/proc/figs"),  # refused before any scene runs
     ("planetary --satellites 1..40", "1..40"),
     ("planetary --satellites x", "'x'"),
     ("planetary --satellites -3", "'-3'"),
@@ -197,6 +201,10 @@ CASES = [
     ("balance arm {d}/arm_nan.urdf", "nan"),
     ("balance arm {d}/arm_negative.urdf", "-3"),
     ("balance arm {d}/arm_planar.urdf", "planar"),
+    ("balance arm {m}/arm_base_drives.toml --seed -1", "not -1"),
+    ("balance arm {m}/arm_base_drives.toml --seed 4294967296", "4294967296"),
+    ("balance arm {d}/arm_seed.toml", "'seed'"),
+    ("balance compare {m}/arm_ur5e.urdf --seed -1", "not -1"),
 ]
 
 # cases that fail today because of the balance package (reported to the balance helper, not fixed here)
@@ -300,6 +308,9 @@ def folder(tmp_path_factory):
     for name, value in (("arm_nan.urdf", "nan"), ("arm_negative.urdf", "-3")):
         (d / name).write_text(urdf[:second.start(1)] + value + urdf[second.end(1):])
     (d / "arm_planar.urdf").write_text(urdf.replace('type="revolute"', 'type="planar"', 1))
+    arm = (MODELS / "arm_base_drives.toml").read_text()
+    assert "\nseed = 0\n" in arm
+    (d / "arm_seed.toml").write_text(arm.replace("\nseed = 0\n", "\nseed = -1\n"))
     for junk in d.glob("*-wal"):
         junk.unlink()
     return d

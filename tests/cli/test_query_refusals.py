@@ -136,3 +136,47 @@ def test_counts_hand_the_scheduler_and_its_timeout_on(count):
     with pytest.raises(SchedulerUnreachable) as err:
         count(1, 6, scheduler="tcp://127.0.0.1:9")
     assert "within 5 s" in str(err.value)
+
+
+def test_a_table_beyond_its_row_limit_writes_nothing_and_says_how_to_stream(monkeypatch):
+    """Whatever feeds a table (a listing the sizing under-estimated, an atlas export), it holds at most
+    ``TABLE_ROWS`` rows: one more and it refuses before writing anything; jsonl streams the same rows."""
+    import io
+    import itertools
+
+    from mechsynth._output import write_rows
+
+    monkeypatch.setattr(synth, "TABLE_ROWS", 3)
+    out = io.StringIO()
+    assert write_rows([{"a": i} for i in range(3)], ["a"], "table", out) == 3
+    endless = ({"a": i} for i in itertools.count())  # bounded only by the limit
+    out = io.StringIO()
+    with pytest.raises(QueryTooLarge) as err:
+        write_rows(endless, ["a"], "table", out)
+    assert out.getvalue() == ""
+    assert str(err.value) == ("a table is held in memory to align it and this one has more than 3 rows; "
+                              "use --format jsonl or csv (streamed), or --count")
+    assert write_rows(({"a": i} for i in range(5)), ["a"], "jsonl", io.StringIO()) == 5
+
+
+def test_a_table_of_mechanisms_is_sized_one_loop_earlier_than_a_count():
+    """The mechanisms of 14 links (4.27 million, six loops) are refused as a table before any is built;
+    their count, and the table of 12 links, are not sized at all."""
+    assert synth.worth_sizing(ChainQuery(1, 14), table=True) and not synth.worth_sizing(ChainQuery(1, 14))
+    assert not synth.worth_sizing(ChainQuery(1, 12), table=True)
+    with pytest.raises(QueryTooLarge, match=r"this listing \(14 links\) is too large for one \(about .* mechanisms"):
+        synth.size_check(ChainQuery(1, 14), processes=2, count=False, table=True, mechanisms="mechanisms")
+    assert synth.size_check(ChainQuery(1, 14), processes=2, count=False, table=False, mechanisms="mechanisms") is None
+
+
+def test_a_count_whose_plan_would_hold_gigabytes_is_refused_with_its_memory_and_a_small_one_is_not():
+    """Issue 37: the h = 2 count of 12 links grew to 4.5 GiB in silence (stage A keeps a code's branch
+    multigraphs whole, about 800 000 in its largest code); it is refused with the memory it would hold,
+    and the plane's 16-link count (a few thousand units a code) is neither refused nor noted."""
+    with pytest.raises(QueryTooLarge) as err:
+        synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False)
+    text = str(err.value)
+    assert text.startswith("this query (12 links) would hold too much memory to run unasked: its largest code has about ")
+    assert "GiB on 2 workers (more than 3 GiB)" in text and text.endswith("give force=True to run it anyway")  # (the CLI says --force)
+    assert synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False, force=True) is None
+    assert synth.size_check(ChainQuery(1, 16), processes=2, count=True, table=False) is None

@@ -307,8 +307,9 @@ def test_directory_with_malformed_and_failing_scenes(tmp_path):
     (tmp_path / "b_bad.toml").write_text(GOOD.replace("dof = 1", "dof = -1"))
     (tmp_path / "c_grid.toml").write_text('name = "grid"\ndof = "1..3"\n')
     code, out, err = run_cli("--all", str(tmp_path))
-    assert code == 2
-    assert "PASS  t" in out and "ERROR" in out and "b_bad.toml" in out and "'dof'" in out
+    assert code == 2  # the malformed scene is an error, and the good one still ran
+    assert "PASS  t" in out and "1 of 1 scenes passed, 1 malformed" in out and "b_bad.toml" not in out
+    assert err.count("\n") == 1 and err.startswith("mechsynth: ") and "b_bad.toml" in err and "'dof'" in err
     assert "skip" in out and "c_grid.toml" in out
     (tmp_path / "b_bad.toml").write_text(GOOD.replace('"60/2"]', '"60/2", "52/0"]'))
     code, out, _ = run_cli("--all", str(tmp_path))
@@ -325,6 +326,26 @@ def test_command_line_mistakes():
     assert code == 2 and "no such scene file" in err
     code, _, err = run_cli("--all", str(MODELS / "no_such_dir"))
     assert code == 2 and "not a directory" in err
+
+
+@pytest.mark.parametrize("folder, words", [("/proc/figs", "cannot write files into /proc/figs"),
+                                           ("{d}/a_good.toml", "is a file")])
+def test_unwritable_out_folder_is_refused_before_any_scene_runs(tmp_path, capsys, folder, words):
+    from mechsynth.cli import main
+
+    (tmp_path / "a_good.toml").write_text(GOOD)
+    folder = folder.format(d=tmp_path)
+    assert main(["scene", "--all", str(tmp_path), "--out", folder]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+def test_out_folder_is_checked_without_being_left_behind(tmp_path):
+    from mechsynth._argtypes import output_folder
+
+    new = tmp_path / "new"
+    assert output_folder(str(new)) == str(new) and not new.exists()
+    assert output_folder(str(tmp_path)) == str(tmp_path) and list(tmp_path.iterdir()) == []
 
 
 def test_grid_file_alone_is_not_a_scene():

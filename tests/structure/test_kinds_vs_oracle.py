@@ -141,3 +141,59 @@ def test_generic_mobility_and_idle_joints_are_planar():
 ])
 def test_prismatic_roles(text, frame, roles):
     assert prismatic_roles(Chain.parse(text), frame) == roles
+
+
+def _rank_mod_p_slow(rows: list[list[int]], p: int) -> int:
+    """Rank mod p by plain Gaussian elimination on Python integers (no numpy): the oracle."""
+    rows = [[v % p for v in r] for r in rows]
+    rank, cols = 0, len(rows[0]) if rows else 0
+    for c in range(cols):
+        pivot = next((i for i in range(rank, len(rows)) if rows[i][c]), None)
+        if pivot is None:
+            continue
+        rows[rank], rows[pivot] = rows[pivot], rows[rank]
+        inv = pow(rows[rank][c], p - 2, p)
+        rows[rank] = [v * inv % p for v in rows[rank]]
+        for i in range(len(rows)):
+            if i != rank and rows[i][c]:
+                f = rows[i][c]
+                rows[i] = [(a - f * b) % p for a, b in zip(rows[i], rows[rank])]
+        rank += 1
+    return rank
+
+
+@pytest.mark.parametrize("density", [0.05, 0.3, 1.0])
+def test_sparse_elimination_is_the_reduced_echelon_form(density):
+    """The elimination that touches only non-zero rows and columns gives the reduced row echelon form:
+    rows reduced, pivots 1 with zeros above and below, the rank of an independent elimination."""
+    import numpy as np
+
+    from synth.structure.kinds import _PRIME, _echelon
+
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        r, c = rng.integers(1, 12, size=2)
+        m = np.where(rng.random((r, c)) < density, rng.integers(0, _PRIME, size=(r, c)), 0).astype(np.int64)
+        if rng.random() < 0.3 and r > 1:
+            m[-1] = (m[0] * 3 + m[1 % r]) % _PRIME  # a dependent row
+        reduced, pivots = _echelon(m)
+        assert len(pivots) == _rank_mod_p_slow(m.tolist(), _PRIME)
+        for i, col in enumerate(pivots):
+            assert reduced[i, col] == 1 and not np.any(np.delete(reduced[:, col], i))
+        # the rows of the reduced form span the rows of m: each row of m is a combination of them
+        for row in m:
+            left = row.copy()
+            for i, col in enumerate(pivots):
+                left = (left - left[col] * reduced[i]) % _PRIME
+            assert not np.any(left)
+
+
+def test_a_ring_of_1000_links_is_analysed_and_a_larger_one_refused():
+    """A ring of 1000 links (the largest analysed) has W = 997 and its constraints cost about n² (it took
+    minutes while the elimination updated the whole matrix for every pivot); 1001 links are refused."""
+    from synth import QueryTooLarge, analyze_chain
+
+    ring = lambda n: " ".join(f"{i}-{(i + 1) % n}" for i in range(n))  # noqa: E731
+    assert analyze_chain(ring(1000)).dof == 997
+    with pytest.raises(QueryTooLarge, match="the chain has 1001 links; chains are analysed here up to 1000 links"):
+        analyze_chain(ring(1001))
