@@ -15,6 +15,7 @@ SQLite atlases and drawn.  The package is laid out by pipeline stage:
 ``analysis``   analysis of codes and chains, directed repair, identification, atlas comparison
 ``exchange``   chains read and written in other tools' formats (GraphML, GML, DOT, edge lists, matrices)
 ``gears``      gear trains: the planetary-train atlas, speed ratios, tooth design
+``motion``     dimensioned mechanisms moved: positions, velocities, ranges, dead positions
 ``draw``       drawings of chains and mechanisms
 =============  ==========================================================================
 
@@ -77,6 +78,10 @@ _WHERE = {
     "planetary_table": ".gears.planetary",
     # identifying any chain, comparing atlases
     "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
+    # motion of dimensioned mechanisms
+    "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
+    "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
+    "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
 }
 
 __all__ = [*_WHERE, *_errors_all]

@@ -29,6 +29,12 @@ __all__ = [
     "MalformedChain",
     "InvalidOption",
     "QueryTooLarge",
+    "MotionError",
+    "CannotAssemble",
+    "BadPose",
+    "LockedMechanism",
+    "WrongInputs",
+    "BadSweep",
 ]
 
 
@@ -81,3 +87,28 @@ class InvalidOption(SynthesisError):
 
 class QueryTooLarge(SynthesisError):
     """The query's plan or output cannot fit in this machine's memory or time (says which, with an estimate)."""
+
+
+class MotionError(SynthesisError):
+    """A dimensioned mechanism (:class:`synth.motion.Linkage`) cannot be built or moved as asked."""
+
+
+class CannotAssemble(MotionError):
+    """The links cannot be put together at the input asked for: names the group whose loop cannot close."""
+
+
+class BadPose(MotionError):
+    """The joint positions contradict the chain: a joint off its link, coincident joints of one link, a
+    zero-length link, a NaN or infinite coordinate, a sliding direction of zero length."""
+
+
+class LockedMechanism(MotionError):
+    """The mechanism is rigid (W ≤ 0) or locked in its pose: the inputs cannot move it."""
+
+
+class WrongInputs(MotionError):
+    """Too many or too few input joints, or an input that does not join the frame to one moving link."""
+
+
+class BadSweep(MotionError):
+    """A sweep's step count or input range is absurd (not a number, too few or too many steps)."""

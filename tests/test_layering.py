@@ -191,3 +191,16 @@ def test_no_public_name_is_also_a_module_of_its_package():
         package = importlib.import_module(name)
         modules = {m.name for m in pkgutil.iter_modules(package.__path__)}
         assert not modules & set(package.__all__), (name, modules & set(package.__all__))
+
+
+def test_the_motion_floor_stands_on_the_chain_types_only():
+    """synth.motion imports the chain types, the errors, numpy and scipy (and the standard
+    library): never synthesis, execution, atlas, exchange, draw, gears or analysis."""
+    allowed_synth = ("synth.structure", "synth.errors", "synth._lazy", "synth.display", "synth.motion")
+    for f in _files("synth/motion"):
+        for module, _ in _imports(f):
+            top = module.split(".")[0]
+            if top == "synth":
+                assert module.startswith(allowed_synth), f"{f.relative_to(ROOT)} imports {module}"
+            else:
+                assert top in ("numpy", "scipy", "numba", "mechbase") or top in sys.stdlib_module_names, (f, module)

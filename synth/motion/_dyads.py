@@ -1,0 +1,199 @@
+"""A linkage decomposed into its inputs and Assur dyads, each closed in closed form, vectorised over
+every step of a sweep.
+
+A dyad is two moving links i, j joined by a middle joint, each with an outer joint to a link whose
+pose is already known.  Its kind is written by its joints outer–middle–outer (R revolute, P
+prismatic): RRR (two circles), PRR and RRP (a circle and a line), RPR (a line at a fixed distance
+from a point), PRP (two lines).  A gear on a known axis meshing with a known gear is a group of one
+link.  Each dyad has two assembly modes (PRP one); the pose's mode is its sign σ, kept for the
+whole sweep, so a sweep never jumps branch.  Each dyad also has a normalised discriminant g: the
+dyad closes where g ≥ 0, and g = 0 is a dead position (its two links aligned).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
+from ._linkage import Linkage
+
+__all__ = ["Dyad", "decompose", "close", "locked_groups"]
+
+
+@dataclass(frozen=True)
+class Dyad:
+    """One group of the decomposition, in solving order.
+
+    kind : "RRR", "PRR", "RPR", "PRP" or "gear" (one link: a gear on a known axis)
+    links : (i, j) — for a gear (g, g)
+    outer : (J1, J2) — the outer joints (of i, of j); for a gear (axis joint, mesh joint)
+    middle : J3 (−1 for a gear)
+    known : (K1, K2) — the known links at J1, J2; for a gear (axis link, carrier)
+    sign : σ, the assembly mode of the pose (+1 or −1; 0 where the pose is a dead position)
+    """
+
+    kind: str
+    links: tuple[int, int]
+    outer: tuple[int, int]
+    middle: int
+    known: tuple[int, int]
+    sign: float = 1.0
+
+
+def _letter(linkage: Linkage, k: int) -> str:
+    return {"revolute": "R", "prismatic": "P", "mesh": "G"}[linkage.kind(k)]
+
+
+def decompose(linkage: Linkage) -> list[Dyad] | None:
+    """The dyads (and gears on known axes) that close the linkage after its inputs, in solving
+    order, each with the sign of the pose's assembly mode; None if some group is not one of these
+    (a triad or higher: the linkage is then solved by Newton's method).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> [(d.kind, d.links, d.sign) for d in decompose(lk)]
+    [('RRR', (2, 3), 1.0)]
+    """
+    chain = linkage.chain
+    known = {linkage.frame} | {linkage.input_link(i) for i in range(linkage.dof)}
+    joints = chain.joints
+    plan: list[Dyad] = []
+
+    def attachments(link):
+        """(joint, known link) pairs: joints of ``link`` that hold a known link."""
+        out = []
+        for k in linkage.joints_of(link):
+            kind = linkage.kind(k)
+            if kind == "mesh":
+                continue
+            held = [x for x in joints[k] if x in known]
+            if held:
+                out.append((k, held[0]))
+        return out
+
+    while len(known) < chain.links:
+        found = None
+        unknown = [x for x in range(chain.links) if x not in known]
+        for g in unknown:  # a gear turning on a known axis, meshing with a known gear, both on a known carrier
+            for k, held in attachments(g):
+                if linkage.kind(k) != "revolute":
+                    continue
+                for m in linkage.joints_of(g):
+                    if linkage.kind(m) == "mesh":
+                        other = sum(joints[m]) - g
+                        c = linkage.carrier(m)
+                        if other in known and c in known:
+                            found = Dyad("gear", (g, g), (k, m), -1, (held, c))
+                            break
+                if found:
+                    break
+            if found:
+                break
+        if found is None:
+            for i in unknown:
+                for k3 in linkage.joints_of(i):
+                    if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
+                        continue
+                    for j in joints[k3]:
+                        if j == i or (linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2):
+                            continue
+                        for k1, h1 in attachments(i):
+                            if k1 == k3 or j in joints[k1]:
+                                continue
+                            for k2, h2 in attachments(j):
+                                if k2 in (k1, k3) or i in joints[k2]:
+                                    continue
+                                kind = _letter(linkage, k1) + _letter(linkage, k3) + _letter(linkage, k2)
+                                if kind == "RRP":  # the same group seen from its other end
+                                    found = Dyad("PRR", (j, i), (k2, k1), k3, (h2, h1))
+                                elif kind in ("RRR", "PRR", "RPR", "PRP"):
+                                    found = Dyad(kind, (i, j), (k1, k2), k3, (h1, h2))
+                                else:
+                                    continue
+                                break
+                            if found:
+                                break
+                        if found:
+                            break
+                    if found:
+                        break
+                if found:
+                    break
+        if found is None:
+            return None
+        plan.append(found)
+        known.update(found.links)
+    return _with_signs(linkage, plan)
+
+
+def _with_signs(linkage: Linkage, plan: list[Dyad]) -> list[Dyad]:
+    """Each dyad with the sign of the pose's assembly mode."""
+    p, out = linkage.points, []
+    for d in plan:
+        if d.kind == "RRR":
+            a, c, b = p[d.outer[0]], p[d.outer[1]], p[d.middle]
+            sign = np.sign(_cross2(c - a, b - a))
+        elif d.kind == "PRR":
+            sign = np.sign(np.dot(linkage.slides[d.outer[0]], p[d.middle] - p[d.outer[1]]))
+        elif d.kind == "RPR":
+            sign = np.sign(np.dot(linkage.slides[d.middle], p[d.outer[1]] - p[d.outer[0]]))
+        else:
+            sign = 1.0
+        out.append(Dyad(d.kind, d.links, d.outer, d.middle, d.known, float(sign)))
+    return out
+
+
+def _cross2(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "gear": GEAR}
+
+
+def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):
+    """Every link's pose at S input offsets (S, W) from the pose's inputs, by the compiled kernel.
+
+    Returns θ (S, n), t (S, n, 2), g (S, G) the dyads' normalised discriminants (the dyad closes
+    where g ≥ 0), μ (S, G) their transmission angles (rad in [0, π]; NaN for a gear) and every
+    joint's position (S, J, 2).  Where a dyad does not close, its links' poses are NaN.
+    """
+    lk = linkage
+    chain = lk.chain
+    offsets = np.ascontiguousarray(offsets, dtype=float)
+    steps, n, count = offsets.shape[0], chain.links, len(chain.joints)
+    slides = np.zeros((count, 2))
+    for k, u in lk.slides.items():
+        slides[k] = u
+    in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
+    in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
+    in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+    in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+    groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)
+    ints = np.zeros((len(plan), 9), dtype=np.int64)
+    floats = np.zeros((len(plan), 2))
+    for m, d in enumerate(plan):
+        mesh = chain.joints[d.outer[1]] if d.kind == "gear" else (0, 0)
+        ints[m] = (*d.links, *d.outer, max(d.middle, 0), *d.known, *mesh)
+        floats[m] = (d.sign, lk.meshes.get(d.outer[1], 1.0) if d.kind == "gear" else 0.0)
+    theta = np.zeros((steps, n))
+    t = np.zeros((steps, n, 2))
+    g = np.empty((steps, len(plan)))
+    mu = np.empty((steps, len(plan)))
+    joints = np.empty((steps, count, 2))
+    first = np.array([j[0] for j in chain.joints], dtype=np.int64)
+    close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, ints, floats,
+                 np.ascontiguousarray(lk.points), slides, first, lk.scale ** 2, theta, t[:, :, 0], t[:, :, 1], g, mu,
+                 joints)
+    return theta, t, g, mu, joints
+
+
+def locked_groups(linkage: Linkage) -> list[tuple[int, int]]:
+    """The dyads aligned in the pose (a dead position), by their links; empty if the linkage does
+    not decompose or no dyad is aligned."""
+    plan = decompose(linkage)
+    if plan is None:
+        return []
+    g = close(linkage, plan, np.zeros((1, linkage.dof)))[2]
+    return [d.links for m, d in enumerate(plan) if d.kind != "gear" and g[0, m] < 1e-12]

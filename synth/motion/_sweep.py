@@ -1,0 +1,878 @@
+"""Sweeps of a linkage's inputs, its range of motion, and the result types."""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from ..errors import BadSweep, CannotAssemble, MotionError
+from ._dyads import close, decompose
+from ._linkage import Linkage, joint_name
+from ._system import System
+
+__all__ = ["Motion", "MotionRange", "sweep", "sweep_grid", "motion_range", "assemble"]
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """The result of a sweep: where every joint and tracer point is at each step.
+
+    Attributes
+    ----------
+    linkage : Linkage
+    inputs : ndarray (S, W)
+        Input values per step: a revolute input's angle in rad, a prismatic input's displacement.
+    joints : ndarray (S, J, 2)
+        Every joint's position (a prismatic joint: its point carried by the joint's first link).
+    tracers : dict str -> ndarray (S, 2)
+    velocities, accelerations : ndarray (S, J, 2) or None
+        Per unit input rate (rad/s or length/s), input accelerating at zero; None unless asked for.
+        With W > 1, velocities are (S, W, J, 2): one per input.  NaN where the step is a dead position.
+    stopped : str or None
+        One sentence when the sweep ended at a dead or singular position (with the input there).
+    transmission : dict
+        Per closed-form dyad: least and greatest transmission angle and where (computed when read).
+    angles : ndarray (S, n)
+        Each link's rotation from the pose (rad, modulo a turn).
+    """
+
+    linkage: Linkage
+    inputs: np.ndarray
+    joints: np.ndarray
+    tracers: dict
+    angles: np.ndarray
+    velocities: np.ndarray | None = None
+    accelerations: np.ndarray | None = None
+    stopped: str | None = None
+
+    @cached_property
+    def transmission(self) -> dict:
+        """Per closed-form dyad (key ``"links i, j"``): its ``kind``, ``min`` and ``max`` transmission
+        angle over the sweep (rad; π/2 best, 0 or π a dead position) and the inputs ``at_min``,
+        ``at_max`` where they occur, refined between steps by a bounded search.  Empty for a
+        linkage moved by Newton's method, or a grid."""
+        solver = _solver(self.linkage)
+        if solver.plan is None or self.inputs.shape[1] != 1 or self.steps < 2:
+            return {}
+        offsets = self.inputs[:, 0] - self.linkage.pose_inputs[0]
+        return _transmission(solver, offsets, solver.closed(offsets[:, None])[3], float(self.linkage.pose_inputs[0]))
+
+    @property
+    def steps(self) -> int:
+        return len(self.inputs)
+
+    def extent(self) -> dict[str, tuple[float, float, float, float]]:
+        """Each tracer's curve extent ``(x_min, y_min, x_max, y_max)`` (NaN steps left out)."""
+        out = {}
+        for name, xy in self.tracers.items():
+            ok = xy[np.isfinite(xy).all(axis=1)]
+            out[name] = tuple(float(v) for v in (*ok.min(axis=0), *ok.max(axis=0))) if len(ok) else (math.nan,) * 4
+        return out
+
+    def rows(self) -> Iterator[dict]:
+        """One JSON-able dict per step: ``step``, ``input`` (a list for W > 1), each joint's ``x``/``y``
+        keyed by its name (``"1-2.x"``), each tracer's, and velocities (``"1-2.vx"``) and accelerations
+        (``"1-2.ax"``) where computed (None where undefined)."""
+        chain = self.linkage.chain
+        names = [joint_name(chain, k) for k in range(len(chain.joints))]
+
+        def num(v):
+            v = float(v)
+            return v if math.isfinite(v) else None
+
+        for s in range(self.steps):
+            row = {"step": s, "input": num(self.inputs[s, 0]) if self.inputs.shape[1] == 1
+                   else [num(v) for v in self.inputs[s]]}
+            for k, name in enumerate(names):
+                row[f"{name}.x"], row[f"{name}.y"] = num(self.joints[s, k, 0]), num(self.joints[s, k, 1])
+            for name, xy in self.tracers.items():
+                row[f"{name}.x"], row[f"{name}.y"] = num(xy[s, 0]), num(xy[s, 1])
+            for label, values in (("v", self.velocities), ("a", self.accelerations)):
+                if values is not None and values.ndim == 3:
+                    for k, name in enumerate(names):
+                        row[f"{name}.{label}x"], row[f"{name}.{label}y"] = num(values[s, k, 0]), num(values[s, k, 1])
+            yield row
+
+
+@dataclass(frozen=True)
+class MotionRange:
+    """How far the input of a 1-DOF linkage moves on the branch of its pose.
+
+    Attributes
+    ----------
+    full_rotation : bool
+        The (revolute) input turns fully: a crank.
+    limits : (float, float) or None
+        The input's lower and upper limits (rad or length) where it does not turn fully, each a
+        dead position located to 1e-9.
+    dead_positions : tuple of (float, str)
+        The inputs where the branch ends, with a sentence naming the group that locks.
+    toggles : tuple of (float, int)
+        Inputs where a link jointed to the frame (an output) stops and turns back, and that link:
+        a dead position if that link drives.
+    grashof : str or None
+        For a four-bar of revolute joints: its Grashof class, e.g. ``"crank-rocker"``.
+    """
+
+    full_rotation: bool
+    limits: tuple[float, float] | None
+    dead_positions: tuple = ()
+    toggles: tuple = ()
+    grashof: str | None = None
+
+
+#: the most steps one sweep computes (a grid: in all)
+MAX_STEPS = 10_000_000
+#: samples of the input's circle (or line) when the branch's ends are looked for
+SAMPLES = 4096
+#: the ends of a branch are located to this (rad, or this × the mechanism's size)
+LIMIT_TOL = 1e-11
+#: Newton's method stops where every closure equation holds to this × the mechanism's size
+CLOSURE_TOL = 1e-14
+
+
+def _dyad_name(linkage: Linkage, d) -> str:
+    i, j = d.links
+    return f"the {d.kind} dyad of links {i}, {j}"
+
+
+class _Solver:
+    """How one linkage is moved: its dyads in closed form, else Newton with continuation; its
+    branch's ends (computed once per linkage)."""
+
+    def __init__(self, linkage: Linkage):
+        self.linkage = linkage
+        self.system = System(linkage)
+        self.plan = decompose(linkage)
+        self.revolute = [linkage.kind(k) == "revolute" for k in linkage.inputs]
+
+    # ------------------------------------------------------------ positions
+    def closed(self, offsets: np.ndarray):
+        """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
+        return close(self.linkage, self.plan, offsets)
+
+    def gmin(self, x: float) -> float:
+        """The smallest dyad discriminant at 1-DOF offset x (≥ 0 where the linkage closes)."""
+        return float(self.closed(np.array([[x]]))[2].min())
+
+    @cached_property
+    def pose_sign(self) -> int:
+        """The sign of det J in the pose: constant along its branch, which ends where J is singular."""
+        return _det_sign(self.system, *self.system.poses(np.zeros((1, self.system.size))))
+
+    def trace(self, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray, targets: np.ndarray, sign: int):
+        """Follow the branch from (q, x_from) along the straight path to x_to in input offsets.
+
+        The path is traced by pseudo-arclength continuation in (q, u), u the distance along the
+        input path: each step is predicted along the curve's tangent and corrected by Newton's
+        method on the closure equations bordered by the step's hyperplane, so the curve is
+        followed through near-singular places and turns, never jumping to another branch (the
+        step shrinks until successive tangents differ by less than 0.1 rad).  Where u turns back
+        (a fold: det J = 0, a dead position), the trace stops and the fold's u is located as the
+        maximum of u along the curve.
+
+        Returns (solutions at ``targets`` — distances along the path, ascending — as an array
+        (T', 3m) of those reached, the distance where the trace stopped or None).
+        """
+        system, lk = self.system, self.linkage
+        span = np.asarray(x_to, dtype=float) - x_from
+        length = float(np.abs(span).max())
+        direction = span / length
+        cols = system.size
+        weight = np.ones(cols + 1)  # translations measured in sizes of the mechanism
+        weight[0:cols:3] = weight[1:cols:3] = lk.scale
+        rate = system.rate_column() @ direction
+
+        def values(u):
+            return (lk.pose_inputs + x_from + u * direction)[None, :]
+
+        def matrix(y):  # the closure Jacobian in the scaled unknowns (q/weight, u)
+            theta, t = system.poses((y[:-1] * weight[:-1])[None])
+            return np.concatenate((system.jacobian(theta, t)[0] * weight[:-1], -rate[:, None]), axis=1), theta, t
+
+        def residual(y):
+            theta, t = system.poses((y[:-1] * weight[:-1])[None])
+            return system.residual(theta, t, values(y[-1]))[0]
+
+        def tangent(y, previous):
+            a = matrix(y)[0]
+            bordered = np.vstack((a, previous))
+            try:
+                tan = np.linalg.solve(bordered, np.append(np.zeros(len(a)), 1.0))
+            except np.linalg.LinAlgError:
+                return None
+            return tan / np.linalg.norm(tan)
+
+        def correct(y_guess, normal):
+            y = y_guess.copy()
+            for _ in range(12):
+                r = residual(y)
+                if np.abs(r).max() <= CLOSURE_TOL * lk.scale and abs(normal @ (y - y_guess)) <= 1e-15:
+                    return y
+                a = matrix(y)[0]
+                g = np.append(r, normal @ (y - y_guess))
+                try:
+                    dy = np.linalg.solve(np.vstack((a, normal)), -g)
+                except np.linalg.LinAlgError:
+                    return None
+                if not np.isfinite(dy).all():
+                    return None
+                y = y + dy
+            return y if np.abs(residual(y)).max() <= CLOSURE_TOL * lk.scale * 10 else None
+
+        def natural(y_guess, u):  # the curve's point at distance u, near y_guess
+            y = y_guess.copy()
+            y[-1] = u
+            for _ in range(12):
+                theta, t = system.poses((y[:-1] * weight[:-1])[None])
+                r = system.residual(theta, t, values(u))[0]
+                jac = system.jacobian(theta, t)[0] * weight[:-1]
+                if np.abs(r).max() <= CLOSURE_TOL * lk.scale:
+                    return y if int(np.sign(np.linalg.det(jac))) == sign or system.rows != system.size else None
+                try:
+                    y[:-1] -= np.linalg.lstsq(jac, r, rcond=None)[0] if system.rows != system.size \
+                        else np.linalg.solve(jac, r)
+                except np.linalg.LinAlgError:
+                    return None
+            return None
+
+        y = np.append(q / weight[:-1], 0.0)
+        start = np.zeros(cols + 1)
+        start[-1] = 1.0
+        tan = tangent(y, start)
+        if tan is None or tan[-1] <= 0:
+            return np.empty((0, cols)), 0.0
+        targets = np.asarray(targets, dtype=float)
+        out = []
+        if len(targets) and targets[0] <= 0:
+            out = [q.copy() for _ in targets[targets <= 0]]
+        k = len(out)
+        h, hmax = 0.05, 0.05
+        while k < len(targets):
+            guess = y + h * tan
+            new = correct(guess, tan)
+            new_tan = None if new is None else tangent(new, tan)
+            if new is None or new_tan is None or new_tan @ tan < math.cos(0.1) \
+                    or np.abs(new - guess).max() > 0.1 * h + 1e-12:
+                h /= 2
+                if h < 1e-13:
+                    return np.array(out).reshape(-1, cols), float(y[-1])
+                continue
+            if new_tan[-1] <= 0:  # u turned back: a fold between y and new
+                found = minimize_scalar(lambda s: -(c[-1] if (c := correct(y + s * tan, tan)) is not None else -np.inf),
+                                        bounds=(0.0, h), method="bounded", options={"xatol": 1e-9 * h})
+                top = correct(y + float(found.x) * tan, tan) if found.success else None
+                if top is None or top[-1] < max(y[-1], new[-1]):
+                    top = y if y[-1] >= new[-1] else new
+                fold = float(top[-1])
+                while k < len(targets) and targets[k] <= fold + LIMIT_TOL:
+                    point = natural(y, targets[k]) if targets[k] < fold - 1e-9 else top
+                    if point is None:
+                        break
+                    out.append(point[:-1] * weight[:-1])
+                    k += 1
+                return np.array(out).reshape(-1, cols), fold
+            while k < len(targets) and targets[k] <= new[-1]:
+                point = natural(y + (targets[k] - y[-1]) / (new[-1] - y[-1]) * (new - y), targets[k])
+                if point is None:  # the interpolated start fell off the branch: step on, smaller
+                    break
+                out.append(point[:-1] * weight[:-1])
+                k += 1
+            else:
+                y, tan = new, new_tan
+                h = min(1.5 * h, hmax)
+                continue
+            h /= 2
+            if h < 1e-13:
+                break
+        return np.array(out).reshape(-1, cols), None if k == len(targets) else float(y[-1])
+
+    # ---------------------------------------------------------- the branch
+    @cached_property
+    def branch(self) -> tuple[float, float, str, str]:
+        """(lo, hi, why lo, why hi): the 1-DOF input offsets where the pose's branch ends (±inf for a
+        crank or an unbounded slide; why: a sentence naming the group that locks there)."""
+        if self.linkage.dof != 1:
+            raise MotionError("the range of motion is for a linkage of one input (W = 1)")
+        if self.plan is not None:
+            return self._branch_closed()
+        return self._branch_newton()
+
+    def _span(self) -> float:
+        return 2 * math.pi if self.revolute[0] else 4.0 * self.linkage.scale
+
+    def _measure(self, xs: np.ndarray) -> np.ndarray:
+        """(S, G): each dyad's distance from a singular place at 1-DOF offsets xs — its discriminant g
+        (negative where it cannot close) and, for an RRR dyad, also the gap between its outer pins
+        over the size (0 at a change point, where its two links could turn together)."""
+        _, _, g, _, joints = self.closed(xs[:, None])
+        out = np.where(np.isfinite(g), g, -1.0)
+        for m, d in enumerate(self.plan):
+            if d.kind == "RRR":
+                gap = np.hypot(*(joints[:, d.outer[1]] - joints[:, d.outer[0]]).T) / self.linkage.scale
+                out[:, m] = np.where(out[:, m] >= 0, np.minimum(out[:, m], gap), out[:, m])
+        return out
+
+    def _touches(self, xs: np.ndarray, measure: np.ndarray) -> list[tuple[float, int]]:
+        """(offset, dyad) where a dyad touches a singular place between samples without going
+        negative (a change point), found by a bounded search around each small local minimum."""
+        found = []
+        for m in range(measure.shape[1]):
+            col = measure[:, m]
+            mid = col[1:-1]
+            for i in np.flatnonzero((mid <= col[:-2]) & (mid <= col[2:]) & (mid >= 0) & (mid < 1e-3)) + 1:
+                res = minimize_scalar(lambda x: float(self._measure(np.array([x]))[0, m]),
+                                      bounds=(xs[i - 1], xs[i + 1]), method="bounded", options={"xatol": 1e-12})
+                if res.fun <= 1e-9:
+                    found.append((float(res.x), m))
+        return found
+
+    def _branch_closed(self):
+        span = self._span()
+        while True:
+            xs = (np.linspace(-2 * math.pi, 2 * math.pi, 2 * SAMPLES + 1) if self.revolute[0]
+                  else np.linspace(-span, span, SAMPLES + 1))
+            measure = self._measure(xs)
+            bad = (measure < 0).any(axis=1)
+            if self.revolute[0] or bad[0] and bad[-1] or span > 1e4 * self.linkage.scale:
+                break
+            span *= 4
+        touches = self._touches(xs, measure)
+        centre = len(xs) // 2
+        ends = []
+        for step in (-1, 1):
+            k = centre
+            while 0 <= k + step < len(xs) and not bad[k + step]:
+                k += step
+            end = (step * math.inf, "")
+            if 0 <= k + step < len(xs):
+                good_x, bad_x = xs[k], xs[k + step]
+                m = int(np.argmin(measure[k + step]))
+                lo, hi = sorted((good_x, bad_x))
+                root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL,
+                              rtol=1e-15)
+                while self.gmin(root) < 0:  # keep the side where the dyad closes
+                    root -= step * LIMIT_TOL
+                end = (root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)")
+            for x, m in sorted(touches, key=lambda found: abs(found[0])):
+                if x * step > 0 and abs(x) < abs(end[0]):
+                    end = (x, f"{_dyad_name(self.linkage, self.plan[m])} passes a change point (its links could "
+                              "turn together there: a singular position)")
+                    break
+            ends.append(end)
+        (lo, why_lo), (hi, why_hi) = ends
+        if self.revolute[0] and hi - lo >= 2 * math.pi:
+            return -math.inf, math.inf, "", ""
+        return lo, hi, why_lo, why_hi
+
+    def _branch_newton(self):
+        ends = []
+        span = self._span()
+        for step in (-1, 1):
+            found, stop = self.trace(np.zeros(self.system.size), np.zeros(1), np.array([step * span]), [span],
+                                     self.pose_sign)
+            if self.revolute[0] and len(found):
+                if _same_pose(self.system, found[0]):
+                    return -math.inf, math.inf, "", ""  # back to the pose after one turn: a crank
+                # a branch that returns to the input's angle in another pose: follow it up to three turns more
+                more, stop = self.trace(found[0], np.array([step * span]), np.array([4 * step * span]), [3 * span],
+                                        self.pose_sign)
+                stop = None if stop is None else span + stop
+            if stop is None:  # (a slide that runs on, or a revolute input that turns on for four turns)
+                ends.append((step * math.inf, ""))
+            else:
+                ends.append((step * stop, "the loop-closure equations of its links are singular (a dead position)"))
+        (lo, why_lo), (hi, why_hi) = ends
+        return lo, hi, why_lo, why_hi
+
+    # ------------------------------------------------------------- sweeps
+    def poses_along(self, offsets: np.ndarray):
+        """θ, t (and the joints, or None) at 1-DOF offsets, all on the branch of the pose."""
+        if self.plan is not None:
+            theta, t, _, _, joints = self.closed(offsets[:, None])
+            return theta, t, joints
+        out = np.empty((len(offsets), self.system.size))
+        for side in (-1, 1):
+            chosen = np.flatnonzero(offsets * side > 0) if side > 0 else np.flatnonzero(offsets * side >= 0)
+            if not len(chosen):
+                continue
+            order = chosen[np.argsort(np.abs(offsets[chosen]))]
+            far = float(np.abs(offsets[order[-1]]))
+            if far == 0:
+                out[order] = 0.0
+                continue
+            found, _ = self.trace(np.zeros(self.system.size), np.zeros(1), np.array([side * far]),
+                                  np.abs(offsets[order]), self.pose_sign)
+            if len(found) < len(order):
+                raise CannotAssemble(f"the linkage cannot reach input offset {offsets[order[len(found)]]:.9g} from its "
+                                     "pose on its branch")
+            out[order] = found
+        theta, t = self.system.poses(out)
+        return theta, t, None
+
+
+def _same_pose(system: System, q: np.ndarray) -> bool:
+    """Whether the link poses q are the pose's (angles modulo a turn)."""
+    angles = q[2::3]
+    turned = np.abs(np.remainder(angles + math.pi, 2 * math.pi) - math.pi).max(initial=0.0)
+    moved = np.abs(np.delete(q, np.s_[2::3])).max(initial=0.0)
+    return bool(turned < 1e-7 and moved < 1e-7 * system.linkage.scale)
+
+
+def _det_sign(system: System, theta, t) -> int:
+    if system.rows != system.size:
+        return 1
+    return int(np.sign(np.linalg.det(system.jacobian(theta, t)[0])))
+
+
+def _solver(linkage: Linkage) -> _Solver:
+    """The linkage's solver, built on first use and kept on the (immutable) linkage."""
+    solver = linkage.__dict__.get("_motion_solver")
+    if solver is None:
+        solver = linkage.__dict__["_motion_solver"] = _Solver(linkage)
+    return solver
+
+
+def _check_steps(steps, name: str = "steps") -> int:
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)):
+        raise BadSweep(f"{name} must be a whole number of steps, not {steps!r}")
+    if not 2 <= steps <= MAX_STEPS:
+        raise BadSweep(f"{name} must be 2 … {MAX_STEPS:,} (a sweep's steps, start and stop included), not {steps}")
+    return int(steps)
+
+
+def _check_value(value, name: str) -> float:
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise BadSweep(f"{name} must be a number, not {value!r}") from None
+    if isinstance(value, bool) or not math.isfinite(out):
+        raise BadSweep(f"{name} must be a finite number, not {value!r}")
+    return out
+
+
+def _describe(linkage: Linkage, value: float) -> str:
+    """An input value as a designer reads it: degrees for a revolute input."""
+    if linkage.kind(linkage.inputs[0]) == "revolute":
+        return f"{value:.9f} rad ({math.degrees(value):.6f}°)"
+    return f"{value:.9g}"
+
+
+def _points(linkage: Linkage, theta, t, joints=None):
+    """Every joint's position (S, J, 2) (unless given) and every tracer's (S, 2) from link poses."""
+    if joints is None:
+        p = linkage.points
+        first = np.array([j[0] for j in linkage.chain.joints])
+        c, s = np.cos(theta[:, first]), np.sin(theta[:, first])
+        joints = np.stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]), axis=-1) + t[:, first]
+    tracers = {}
+    for name, (link, (x, y)) in linkage.tracers.items():
+        c, s = np.cos(theta[:, link]), np.sin(theta[:, link])
+        tracers[name] = np.stack((c * x - s * y, s * x + c * y), axis=-1) + t[:, link]
+    return joints, tracers
+
+
+def _point_rates(linkage: Linkage, theta, dtheta, dt, ddtheta=None, ddt=None):
+    """Velocities (or accelerations, given second derivatives) of every joint and tracer."""
+    p = linkage.points
+    links = [j[0] for j in linkage.chain.joints] + [link for link, _ in linkage.tracers.values()]
+    pts = np.concatenate([p, np.array([at for _, at in linkage.tracers.values()]).reshape(-1, 2)])
+    links = np.array(links)
+    c, s = np.cos(theta[:, links]), np.sin(theta[:, links])
+    rp = np.stack((c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]), axis=-1)
+    perp = np.stack((-rp[..., 1], rp[..., 0]), axis=-1)
+    if ddtheta is None:
+        out = dt[:, links] + dtheta[:, links, None] * perp
+    else:
+        out = ddt[:, links] + ddtheta[:, links, None] * perp - dtheta[:, links, None] ** 2 * rp
+    j = len(linkage.chain.joints)
+    return out[:, :j], {name: out[:, j + i] for i, name in enumerate(linkage.tracers)}
+
+
+def _rates(linkage: Linkage, theta, t, accelerations: bool):
+    """Joint velocities and accelerations per unit rate of each input: (S, W, J, 2) each (or None)."""
+    system = _solver(linkage).system
+    qd, qdd = system.rates(theta, t, accelerations)
+    vel, acc = [], []
+    for i in range(linkage.dof):
+        dtheta, dt = system.poses(qd[:, i])
+        vel.append(_point_rates(linkage, theta, dtheta, dt)[0])
+        if accelerations:
+            ddtheta, ddt = system.poses(qdd[:, i])
+            acc.append(_point_rates(linkage, theta, dtheta, dt, ddtheta, ddt)[0])
+    return np.stack(vel, axis=1), (np.stack(acc, axis=1) if accelerations else None)
+
+
+def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, stop: float | None = None,
+          velocities: bool = False, accelerations: bool = False) -> Motion:
+    """Move a 1-DOF linkage through its input range on the assembly branch of its pose.
+
+    Parameters
+    ----------
+    linkage : Linkage
+    steps : int
+        Number of input values, start and stop included (2 … 10 000 000).
+    start, stop : float, optional
+        Input range (rad for a revolute input — the angle of the driven link's line from the input
+        joint to its reference joint — or displacement from the pose for a prismatic input).
+        Default: a crank turns once from its pose; a rocker goes from its lower to its upper limit.
+    velocities, accelerations : bool
+        Also compute them, per unit input rate (linear solves of the closure Jacobian).
+
+    Returns
+    -------
+    Motion
+        ``stopped`` says where the sweep ended early at a dead position; its last step is that
+        position (located to 1e-9).
+
+    Raises
+    ------
+    WrongInputs
+        The linkage has more than one input (use :func:`sweep_grid`).
+    BadSweep
+        ``steps``, ``start`` or ``stop`` is not a usable number.
+    CannotAssemble
+        ``start`` is outside what the pose's branch reaches.
+
+    Notes
+    -----
+    A linkage that decomposes into dyads is computed in closed form for all steps at once
+    (numpy), the assembly mode of each dyad kept from the pose; any other by Newton's method with
+    continuation from the pose.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> m = sweep(lk, steps=5)
+    >>> m.inputs[:, 0].round(4).tolist(), m.stopped
+    ([0.0, 1.5708, 3.1416, 4.7124, 6.2832], None)
+    """
+    from ..errors import WrongInputs
+
+    steps = _check_steps(steps)
+    if linkage.dof != 1:
+        raise WrongInputs(f"this linkage has {linkage.dof} inputs: sweep a grid of them with sweep_grid")
+    solver = _solver(linkage)
+    phi0 = float(linkage.pose_inputs[0])
+    lo, hi, why_lo, why_hi = solver.branch
+    revolute = solver.revolute[0]
+    start = None if start is None else _check_value(start, "start")
+    stop = None if stop is None else _check_value(stop, "stop")
+    crank = revolute and math.isinf(lo) and math.isinf(hi)
+    if start is None:
+        start = phi0 if crank or math.isinf(lo) else phi0 + lo
+    if stop is None:
+        stop = start + 2 * math.pi if crank else (phi0 + hi if math.isfinite(hi) else start + 4 * linkage.scale)
+    if start == stop:
+        raise BadSweep("start and stop are the same input: a sweep needs a range")
+    x0 = start - phi0
+    if revolute and not crank and not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:  # the same angle a turn on or back
+        x0 -= 2 * math.pi * math.floor((x0 - lo) / (2 * math.pi))
+    if not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:
+        raise CannotAssemble(f"the linkage cannot be assembled at input {_describe(linkage, start)} on the branch of "
+                             f"its pose, which moves between {_describe(linkage, phi0 + lo)} and "
+                             f"{_describe(linkage, phi0 + hi)} ({why_lo if x0 < lo else why_hi} at that end)")
+    x0 = min(max(x0, lo), hi)
+    x1 = x0 + (stop - start)
+    offsets = np.linspace(x0, x1, steps)
+    stopped = None
+    end, why = (hi, why_hi) if x1 > x0 else (lo, why_lo)
+    if (x1 - end) * (x1 - x0) > 0 and abs(x1 - end) > LIMIT_TOL:
+        inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
+        offsets = np.append(inside, end)
+        stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
+    offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
+    theta, t, joints = solver.poses_along(offsets)
+    if joints is None or linkage.tracers:
+        joints, tracers = _points(linkage, theta, t, joints)
+    else:
+        tracers = {}
+    inputs = (offsets - x0 + start)[:, None]
+    vel = acc = None
+    if velocities or accelerations:
+        vel, acc = _rates(linkage, theta, t, accelerations)
+        vel = vel[:, 0]
+        acc = acc[:, 0] if acc is not None else None
+        at_limit = np.isclose(offsets, lo, atol=1e-9, rtol=0) | np.isclose(offsets, hi, atol=1e-9, rtol=0)
+        vel[at_limit] = np.nan
+        if acc is not None:
+            acc[at_limit] = np.nan
+        if not velocities:
+            vel = None
+    return Motion(linkage, inputs, joints, tracers, theta, vel, acc, stopped)
+
+
+def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
+    """Each dyad's least and greatest transmission angle over the sweep, refined between samples."""
+    out = {}
+    lo, hi = min(offsets[0], offsets[-1]), max(offsets[0], offsets[-1])
+    for m, d in enumerate(solver.plan):
+        if d.kind == "gear":
+            continue
+        entry = {"kind": d.kind}
+        for label, sign in (("min", 1.0), ("max", -1.0)):
+            k = int(np.nanargmin(sign * mu[:, m]))
+            a, b = offsets[max(k - 1, 0)], offsets[min(k + 1, len(offsets) - 1)]
+            a, b = max(min(a, b), lo), min(max(a, b), hi)
+            best_x, best = offsets[k], float(mu[k, m])
+            if b > a:
+                found = minimize_scalar(lambda x: sign * float(solver.closed(np.array([[x]]))[3][0, m]),
+                                        bounds=(a, b), method="bounded", options={"xatol": 1e-10})
+                if found.success and found.fun < sign * best:
+                    best_x, best = float(found.x), sign * float(found.fun)
+            entry[label], entry[f"at_{label}"] = best, float(phi0 + best_x)
+        out[f"links {d.links[0]}, {d.links[1]}"] = entry
+    return out
+
+
+def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False) -> Motion:
+    """Move a linkage over a grid of its W inputs, on the assembly branch of its pose.
+
+    Parameters
+    ----------
+    ranges : sequence of (start, stop)
+        One input range per input, in the units of :func:`sweep`.
+    steps : int or sequence of int
+        Values per input (default 21 each); the grid has their product of steps (≤ 10 000 000).
+    velocities : bool
+        Velocities per unit rate of each input: ``Motion.velocities`` of shape (S, W, J, 2).
+
+    Returns
+    -------
+    Motion
+        ``inputs`` (S, W) in row-major grid order (the last input varying fastest); the cells the
+        pose's branch does not reach (beyond a dead position, or only across one) are NaN.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
+    ...                    [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])   # joints 0-1 0-4 1-2 2-3 3-4
+    >>> m = sweep_grid(five_bar, [(1.4, 1.8), (1.4, 1.8)], steps=3)
+    >>> m.inputs.shape, bool(np.isfinite(m.joints).all())
+    ((9, 2), True)
+    """
+    w = linkage.dof
+    if isinstance(steps, (int, np.integer)) and not isinstance(steps, bool) or steps is None:
+        steps = [21 if steps is None else steps] * w
+    try:
+        ranges = [(_check_value(a, "a range's start"), _check_value(b, "a range's stop")) for a, b in ranges]
+        steps = [_check_steps(s, "each input's steps") for s in steps]
+    except (TypeError, ValueError):
+        raise BadSweep("ranges must be one (start, stop) pair per input, steps one count per input") from None
+    if len(ranges) != w or len(steps) != w:
+        raise BadSweep(f"this linkage has {w} input{'s' * (w > 1)}: give {w} range{'s' * (w > 1)} and step counts, "
+                       f"not {len(ranges)} and {len(steps)}")
+    total = math.prod(steps)
+    if total > MAX_STEPS:
+        raise BadSweep(f"the grid has {total:,} steps; at most {MAX_STEPS:,}")
+    axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
+    values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
+    offsets = values - linkage.pose_inputs[None, :]
+    solver = _solver(linkage)
+    shape = tuple(steps)
+    # the cell nearest the pose, then every cell reached from a solved neighbour
+    start = tuple(int(np.argmin(np.abs(axis - v))) for axis, v in zip(axes, linkage.pose_inputs))
+    n = linkage.chain.links
+    theta = np.full((total, n), np.nan)
+    t = np.full((total, n, 2), np.nan)
+    if solver.plan is not None:
+        th, tt, g, _, _ = solver.closed(offsets)
+        closes = (g >= 0).all(axis=1)
+        reached = _flood(closes.reshape(shape), start)
+        theta[reached], t[reached] = th[reached], tt[reached]
+    else:
+        flat = np.ravel_multi_index(start, shape)
+        reached = np.zeros(total, dtype=bool)
+        qs = np.zeros((total, solver.system.size))
+        first = _step(solver, np.zeros(solver.system.size), np.zeros(w), offsets[flat])
+        if first is not None:
+            qs[flat], reached[flat] = first, True
+            queue = deque([start])
+            while queue:
+                cell = queue.popleft()
+                here = np.ravel_multi_index(cell, shape)
+                for axis in range(w):
+                    for step in (-1, 1):
+                        nxt = list(cell)
+                        nxt[axis] += step
+                        if not 0 <= nxt[axis] < shape[axis]:
+                            continue
+                        there = np.ravel_multi_index(tuple(nxt), shape)
+                        if reached[there]:
+                            continue
+                        q = _step(solver, qs[here], offsets[here], offsets[there])
+                        if q is not None:
+                            qs[there], reached[there] = q, True
+                            queue.append(tuple(nxt))
+        th, tt = solver.system.poses(qs[reached])
+        theta[reached], t[reached] = th, tt
+    if not reached.any():
+        raise CannotAssemble("the linkage cannot be assembled at the grid's input nearest to its pose on the branch "
+                             "of its pose: widen the ranges to include the pose's inputs "
+                             + ", ".join(f"{v:.6g}" for v in linkage.pose_inputs))
+    joints, tracers = _points(linkage, np.nan_to_num(theta), np.nan_to_num(t))
+    joints[~reached] = np.nan
+    for xy in tracers.values():
+        xy[~reached] = np.nan
+    vel = None
+    if velocities:
+        vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
+        vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
+    return Motion(linkage, values, joints, tracers, theta, vel, None, None)
+
+
+def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
+    """The branch's pose at offsets x_to, followed from (q, x_from); None if a dead position is between."""
+    length = float(np.abs(x_to - x_from).max())
+    if length == 0:
+        return q
+    sign = _det_sign(solver.system, *solver.system.poses(q[None]))
+    found, _ = solver.trace(q, x_from, x_to, [length], sign)
+    return found[0] if len(found) else None
+
+
+def _flood(ok: np.ndarray, start: tuple[int, ...]) -> np.ndarray:
+    """The cells of ``ok`` connected to ``start`` through neighbours along each axis (flattened)."""
+    reached = np.zeros(ok.shape, dtype=bool)
+    if not ok[start]:
+        return reached.ravel()
+    reached[start] = True
+    queue = deque([start])
+    while queue:
+        cell = queue.popleft()
+        for axis in range(ok.ndim):
+            for step in (-1, 1):
+                nxt = list(cell)
+                nxt[axis] += step
+                nxt = tuple(nxt)
+                if 0 <= nxt[axis] < ok.shape[axis] and ok[nxt] and not reached[nxt]:
+                    reached[nxt] = True
+                    queue.append(nxt)
+    return reached.ravel()
+
+
+_GRASHOF = {"frame": "double-crank", "input": "crank-rocker", "output": "rocker-crank", "coupler": "double-rocker"}
+
+
+def _grashof(linkage: Linkage) -> str | None:
+    """Grashof's class of a four-bar of revolute joints (None for any other linkage)."""
+    chain = linkage.chain
+    if chain.links != 4 or len(chain.joints) != 4 or chain.kinds is not None or chain.v:
+        return None
+    p, frame = linkage.points, linkage.frame
+    length = {x: float(np.hypot(*np.subtract(*[p[k] for k in linkage.joints_of(x)]))) for x in range(4)}
+    order = sorted(length, key=length.get)
+    s, l = length[order[0]], length[order[-1]]
+    pq = sum(length.values()) - s - l
+    crank = linkage.input_link(0)
+    if math.isclose(s + l, pq, rel_tol=1e-12, abs_tol=0):
+        return "change-point (s + l = p + q)"
+    if s + l > pq:
+        return "triple-rocker (non-Grashof)"
+    shortest = order[0]
+    role = ("frame" if shortest == frame else "input" if shortest == crank
+            else "coupler" if not any(frame in chain.joints[k] for k in linkage.joints_of(shortest)) else "output")
+    return f"{_GRASHOF[role]} (Grashof)"
+
+
+def motion_range(linkage: Linkage) -> MotionRange:
+    """Whether the input of a 1-DOF linkage turns fully, its limits, dead and toggle positions.
+
+    Returns
+    -------
+    MotionRange
+        Limits are the true ends of the pose's branch (dead positions located to 1e-9); toggles
+        are where an output link (jointed to the frame) stops and turns back, found as roots of
+        its velocity.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> r = motion_range(lk)
+    >>> r.full_rotation, r.grashof, len(r.toggles)
+    (True, 'crank-rocker (Grashof)', 2)
+    """
+    from ..errors import WrongInputs
+
+    if linkage.dof != 1:
+        raise WrongInputs(f"this linkage has {linkage.dof} inputs: its range of motion is a region, sweep a grid")
+    solver = _solver(linkage)
+    lo, hi, why_lo, why_hi = solver.branch
+    phi0 = float(linkage.pose_inputs[0])
+    revolute = solver.revolute[0]
+    full = revolute and math.isinf(lo) and math.isinf(hi)
+    dead = tuple((phi0 + x, why) for x, why in ((lo, why_lo), (hi, why_hi)) if math.isfinite(x))
+    a, b = (0.0, 2 * math.pi) if full else (max(lo, -10 * linkage.scale), min(hi, 10 * linkage.scale))
+    return MotionRange(full, None if full else (phi0 + lo, phi0 + hi), dead, _toggles(linkage, a, b), _grashof(linkage))
+
+
+def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
+    """(input, link) where an output link jointed to the frame stops: roots of its rate in (a, b)."""
+    solver = _solver(linkage)
+    frame = linkage.frame
+    outputs = []
+    for k, j in enumerate(linkage.chain.joints):
+        if frame in j and k not in linkage.inputs and linkage.kind(k) != "mesh":
+            for x in j:
+                if x != frame and x != linkage.input_link(0):
+                    outputs.append((x, linkage.kind(k), np.array(linkage.slides.get(k, (1.0, 0.0)))))
+    if not outputs:
+        return ()
+    system = solver.system
+
+    def rates(xs):
+        theta, t, _ = solver.poses_along(np.atleast_1d(xs))
+        qd, _ = system.rates(theta, t)
+        dtheta, dt = system.poses(qd[:, 0])
+        return np.stack([dtheta[:, x] if kind == "revolute" else dt[:, x] @ u for x, kind, u in outputs], axis=1)
+
+    margin = 1e-7 * (b - a)
+    xs = np.linspace(a + margin, b - margin, 721)
+    r = rates(xs)
+    found = []
+    phi0 = float(linkage.pose_inputs[0])
+    for m, (link, _, _) in enumerate(outputs):
+        col = np.where(np.isfinite(r[:, m]), r[:, m], 0.0)
+        quiet = 1e-9 * np.abs(col).max(initial=0.0)  # a link standing still: its rate's rounding is no toggle
+        moving = np.abs(col) > quiet
+        for k in np.flatnonzero((np.sign(col[:-1]) * np.sign(col[1:]) < 0) & moving[:-1] & moving[1:]):
+            try:
+                root = brentq(lambda x: float(rates(x)[0, m]), xs[k], xs[k + 1], xtol=1e-12, rtol=1e-15)
+            except ValueError:  # the rate is not finite between the samples (a singular place): the sample
+                root = xs[k] if abs(r[k, m]) <= abs(r[k + 1, m]) else xs[k + 1]
+            found.append((phi0 + root, link))
+    return tuple(sorted(found))
+
+
+def assemble(linkage: Linkage, value: float) -> Linkage:
+    """The same linkage posed at input ``value`` on the branch of its pose (1-DOF).
+
+    Raises
+    ------
+    CannotAssemble
+        The branch does not reach ``value`` (the sentence gives its range and the group that locks).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> round(float(assemble(lk, np.pi / 2).pose_inputs[0]), 12)
+    1.570796326795
+    """
+    value = _check_value(value, "the input")
+    motion = sweep(linkage, steps=2, start=value, stop=value + (1e-3 if value < 1e300 else -1e-3))
+    p = motion.joints[0]
+    tracers = {name: (link, tuple(motion.tracers[name][0])) for name, (link, _) in linkage.tracers.items()}
+    theta = motion.angles[0]
+    slides = {}
+    for k, (ux, uy) in linkage.slides.items():
+        c, s = math.cos(theta[linkage.chain.joints[k][0]]), math.sin(theta[linkage.chain.joints[k][0]])
+        slides[k] = (c * ux - s * uy, s * ux + c * uy)
+    return Linkage(linkage.mechanism, linkage.inputs, p, slides, linkage.meshes, tracers)
