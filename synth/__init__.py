@@ -62,6 +62,9 @@ _WHERE = {
     "run_unit": ".synthesis.type_synthesis", "count_unit": ".synthesis.type_synthesis",
     "count_by_code": ".synthesis.type_synthesis",
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
+    "split_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
+    "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes",
+    "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
     "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
     "worth_sizing": ".synthesis.estimate", "TABLE_ROWS": ".synthesis.estimate",

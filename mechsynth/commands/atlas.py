@@ -80,6 +80,9 @@ def add_commands(sub) -> None:
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--loop-classes", metavar="H=K,H=K",
+                   help="with --chain: every base of the higher class's loops on that chain (e.g. 3=4,5=1), "
+                        "each base's links in its class's colour")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
@@ -369,6 +372,9 @@ def _run_draw(args) -> int:
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
+    if args.loop_classes is not None and not args.chain:
+        raise InvalidOption("--loop-classes goes with --chain (for a query: mechsynth chains --loop-classes … "
+                            "--format jsonl, then draw a row with --chain)")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
     if args.frame is not None and args.mechanisms:
@@ -416,7 +422,17 @@ def _run_draw(args) -> int:
         title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
         chain = given
-        if args.frame is not None:
+        if args.loop_classes is not None:
+            from .chains import _class_variants_of
+
+            if args.frame is not None or args.prismatic is not None:
+                raise InvalidOption("--loop-classes draws every base on the chain: it does not go with --frame or "
+                                    "--prismatic (use --mechanisms for every fixed link)")
+            items = draw.expand(_class_variants_of(chain, args), mechanisms=args.mechanisms)
+            if not items:
+                print("mechsynth: no base of those loop classes passes the exact test on this chain", file=sys.stderr)
+                return 1
+        elif args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:
             items = draw.expand(_variants(args, [chain]), mechanisms=args.mechanisms)

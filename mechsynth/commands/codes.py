@@ -59,7 +59,8 @@ def _add_codes(sub):
     p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
-    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
+    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W (the limit theorem, for W ≥ 1); "
+                   "a bound below K + 1 names on stderr the codes it leaves out")
     p.add_argument("--max-multiplicity", type=whole, help="largest number of links on one joint")
     p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
@@ -97,9 +98,12 @@ def _run_codes(args) -> int:
             raise QueryTooLarge(f"{exc}, or give --force to list them anyway") from None
         raise
 
+    listed: set[str] = set()
+
     def rows():
         for code in ([] if first is None else itertools.chain([first], codes)):
             per_k[code.loops] += 1
+            listed.add(str(code))
             yield dict(code.to_dict(), dof=args.dof)
 
     columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
@@ -108,12 +112,35 @@ def _run_codes(args) -> int:
     finally:
         if bar is not None:
             bar.close()
+    if args.max_link_degree is not None:
+        _note_left_out(args, listed)
     if first is None:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
         print(f"{sum(per_k.values())} codes ({summary})")
     return 0
+
+
+def _note_left_out(args, listed: set) -> None:
+    """Say on stderr which codes a ``--max-link-degree`` below the default K + 1 left out: the limit
+    theorem's K + W holds for chains that no sub-chain makes rigid (W ≥ 1), so with W = 0 it drops
+    trusses that exist (32/0, K = 2, has three-joint links)."""
+    from synth import iter_codes
+
+    every = iter_codes(
+        args.dof, loops=args.loops, links=args.links,
+        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        h=args.h, f=args.f, v=args.v, n1=args.n1, require=args.require, max_multiplicity=args.max_multiplicity,
+        compositions=args.compositions, max_codes=None if args.force else MAX_CODES)
+    left = [str(c) for c in every if str(c) not in listed]
+    if left:
+        why = (" (the limit K + W holds for chains with W ≥ 1 and no rigid sub-chain; a truss's links carry up to "
+               "K + 1 joints)" if args.dof == 0 else "")
+        shown = ", ".join(left[:5]) + (", …" if len(left) > 5 else "")
+        print(f"mechsynth: note: --max-link-degree {args.max_link_degree} leaves out {len(left)} code"
+              f"{'s' * (len(left) > 1)} with larger links that the default bound K + 1 lists: {shown}{why}",
+              file=sys.stderr)
 
 
 # ----------------------------------------------------------------- analyze
@@ -145,7 +172,7 @@ def _refuse_for_chain(args) -> None:
 def _subject(text: str) -> str:
     """What ``analyze`` is given: ``"chain"``, ``"counts"`` or ``"code"``.
 
-    A JSON row or a text with ``-`` or ``~`` joints (``0-1 1=2``) is a chain, one with ``/`` a
+    A JSON row, a text with loop classes after ``|`` or with ``-`` or ``~`` joints (``0-1 1=2``) is a chain, one with ``/`` a
     code; words ``a=b`` only are counts ``I=N`` or a chain of prismatic pairs, whichever they
     read as (a chain numbers its links 0 … n − 1 without gaps, counts have I ≥ 1, so a text is
     both only with a zero count ``I=0``: refused, saying how to write each).
@@ -157,7 +184,7 @@ def _subject(text: str) -> str:
 
     s = text.strip()
     words = s.replace(",", " ").split()
-    if s.startswith(("{", "[")) or ("/" not in s and any("-" in w or "~" in w for w in words)):
+    if s.startswith(("{", "[")) or "|" in s or ("/" not in s and any("-" in w or "~" in w for w in words)):
         return "chain"
     if "/" in s or "=" not in s:
         return "code"
@@ -211,6 +238,8 @@ def _run_analyze(args) -> int:
         chain = read_chain(subject, h).chain
         if args.repairs and chain.h != 3:
             raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {chain.h}")
+        if args.repairs and chain.classes is not None:
+            raise InvalidOption("--repairs rebuilds planar chains of one class, not a chain with loop classes")
         result = analyze_chain(chain, dof=args.dof).to_dict()
         if args.repairs:
             from synth import chain_repairs

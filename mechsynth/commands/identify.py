@@ -103,6 +103,10 @@ def _table(row: dict) -> str:
     joints = " ".join(("=" if k == "prismatic" else "~" if k == "mesh" else "-").join(
         str(names[x]) if names else str(x) for x in j) for j, k in zip(row["joints"], row.get("kinds") or
                                                                       ["revolute"] * len(row["joints"])))
+    if row.get("classes"):  # a heterogeneous chain: its bases, class by class, as a joint list writes them
+        bases = [f"h{x}: " + " ".join(str(names[i]) if names else str(i) for i, c in enumerate(row["classes"]) if c == x)
+                 for x in sorted(set(row["classes"]) - {row["h"]})]
+        joints += " | " + "; ".join(([] if row["h"] == 3 else [f"h{row['h']}"]) + bases)
     passed = [_CONVENTIONS[name] for name, ok in row["conventions"].items() if ok]
     lines = [
         ("chain", joints),

@@ -51,6 +51,8 @@ __all__ = ["Identity", "identify_entry", "chain_id", "listing_query", "index_siz
 # at most this long on one core: 14 links at W = 1 (about 26 s), not 16 links at W = 3 (4.0e+06
 # chains, 4 to 7 min estimated; one code of it holds 2.4 million).
 INDEX_SECONDS = 60.0
+# a heterogeneous chain's listing (its bases laid on every skeleton) is not sized: found unasked up to 4 loops
+_INDEXED_CLASS_LOOPS = 4
 
 
 @dataclass(frozen=True)
@@ -99,6 +101,7 @@ class Identity:
     mechanism_index: int | None = None
     mechanisms_listed: int | None = None
     inversion: list | None = None
+    classes: list | None = None  # a heterogeneous chain's loop class of each link
     chain: Chain | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict:
@@ -109,6 +112,8 @@ class Identity:
             d.pop("kinds")
         if d["input_link"] is None:
             d.pop("input_link")
+        if d["classes"] is None:
+            d.pop("classes")
         if d["frame"] is None:
             for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
                         "mechanisms_listed", "inversion"):
@@ -134,6 +139,8 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     if chain.kinds is not None and "mesh" in chain.kinds:
         return None, ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
                       "listed by 'mechsynth gears')")
+    if chain.classes is not None:
+        return _class_listing(chain, dof, verdict)
     rigid = None
     if verdict is not None and verdict.worst_mobility < 1:
         if verdict.worst_mobility < 0 or verdict.redundant:
@@ -157,13 +164,47 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     return query, " ".join(words)
 
 
+@dataclass(frozen=True)
+class _ClassQuery:
+    """The listing of heterogeneous chains that holds a chain: ``chains --dof W --loop-classes … --code C``."""
+
+    dof: int
+    loop_classes: tuple[tuple[int, int], ...]
+    code: str
+    rigid_subchains: bool | None
+
+
+def _class_listing(chain: Chain, dof: int, verdict):
+    """:func:`listing_query` of a heterogeneous chain: two classes, the base's above the others'."""
+    classes = chain.loop_classes
+    if len(classes) != 2 or min(classes) != chain.h or min(classes.values()) < 1:
+        return None, ("heterogeneous chains are listed with two loop classes, a base of the higher class on a chain "
+                      "of the lower one")
+    rigid = None
+    if verdict is not None and verdict.worst_mobility < 1:
+        if verdict.worst_mobility < 0:
+            return None, "an over-constrained chain (a sub-chain with W(S) < 0) is in no listing"
+        rigid = True if dof >= 1 else None
+    code = str(chain.code)
+    words = ["mechsynth chains --dof", str(dof), "--loop-classes", ",".join(f"{x}={k}" for x, k in classes.items()),
+             "--code", code] + (["--rigid-subchains"] if rigid else [])
+    return _ClassQuery(dof, tuple(classes.items()), code, rigid), " ".join(words)
+
+
 @lru_cache(maxsize=32)
 def _chain_rows(query) -> dict[bytes, int]:
     """Row (1-based) of every chain of a listing, by the SHA-1 digest of its certificate (20 bytes a
     chain, where a certificate takes hundreds)."""
-    from ..synthesis.type_synthesis import type_synthesis
+    if isinstance(query, _ClassQuery):
+        from ..synthesis.classes import heterogeneous_synthesis
 
-    return {_digest(c.certificate): i for i, c in enumerate(type_synthesis(query, workers=1), start=1)}
+        chains = heterogeneous_synthesis(query.dof, dict(query.loop_classes), code=query.code,
+                                         rigid_subchains=query.rigid_subchains, workers=1)
+    else:
+        from ..synthesis.type_synthesis import type_synthesis
+
+        chains = type_synthesis(query, workers=1)
+    return {_digest(c.certificate): i for i, c in enumerate(chains, start=1)}
 
 
 def _digest(certificate: str) -> bytes:
@@ -216,7 +257,11 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
     if index is False:
         out["note"] = "its place in the listing was not asked for"
         return out
-    if index is None:
+    if index is None and isinstance(query, _ClassQuery) and chain.loops > _INDEXED_CLASS_LOOPS - (1 if chain.v else 0):
+        out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and its "
+                       "heterogeneous listing is built whole to find it (ask for its index to have it computed)")
+        return out
+    if index is None and not isinstance(query, _ClassQuery):
         from ..execution.sizes import describe_seconds, magnitude
         from ..synthesis.estimate import sized_loops
 
@@ -297,11 +342,12 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
     return Identity(
         source=entry.source, links=chain.links, joints=[list(j) for j in chain.joints],
         kinds=list(chain.kinds) if chain.kinds else None, h=chain.h, names=list(names) if names else None,
-        id=chain_id(chain.certificate), certificate=chain.certificate, code=str(chain.code) + chain.kind_suffix,
+        id=chain_id(chain.certificate), certificate=chain.certificate,
+        code=str(chain.code) + chain.kind_suffix + chain.class_suffix,
         dof=dof, dof_count=chain.dof, loops=chain.loops, v=chain.v, connected=connected,
         subchains=own.kind if own is not None else "not connected", worst_subchain=_named(names, worst),
         worst_mobility=own.worst_mobility if own is not None and own.worst else None,
         fractionated=fractionated, planar=planar,
         idle_joints=[_named(names, j) for j in idle], conventions=conventions, symmetry=round(order),
         link_orbits=[_named(names, g) for g in sorted(groups.values())], classical=chain_names(chain),
-        **place, **mechanism, chain=chain)
+        **place, **mechanism, classes=list(chain.classes) if chain.classes else None, chain=chain)

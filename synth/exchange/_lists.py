@@ -25,6 +25,7 @@ from __future__ import annotations
 import ast
 import json
 import re
+from dataclasses import replace
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain
@@ -38,12 +39,13 @@ _JOINT_TOKEN = re.compile(r"^\d+(?:[-=~]\d+)+$")
 
 
 def looks_like_joint_list(line: str) -> bool:
-    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``).
+    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``;
+    a heterogeneous chain's loop classes may follow a ``|``).
 
-    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1")
-    (True, False)
+    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1"), looks_like_joint_list("0-1 1-2 2-0 | h5: 0 1 2")
+    (True, False, True)
     """
-    words = line.split("#", 1)[0].replace(",", " ").split()
+    words = line.split("#", 1)[0].split("|", 1)[0].replace(",", " ").split()
     return bool(words) and all(_JOINT_TOKEN.match(w) for w in words)
 
 
@@ -60,7 +62,8 @@ def read_text_lists(text: str, source: str) -> list[Entry]:
         if not body:
             continue
         where = source if single else f"{source} line {number}"
-        check_distinct([re.split(r"[-=~]", w) for w in body.replace(",", " ").split()], where)
+        joints = body.split("|", 1)[0]  # (a heterogeneous chain's loop classes follow a '|')
+        check_distinct([re.split(r"[-=~]", w) for w in joints.replace(",", " ").split()], where)
         try:
             chain = Chain.parse(body)
         except MalformedChain as exc:
@@ -73,8 +76,11 @@ def with_settings(chain: Chain, where: str, settings: dict) -> Entry:
     """The entry of a chain read with its links numbered 0 … n − 1 and the settings its source
     states (``frame``, ``input``, ``h``: see :func:`~synth.exchange._entry.settings_of`)."""
     joints = [list(j) for j in chain.joints]
-    return entry_of(joints, chain.kinds, where, frame=settings.get("frame"), input_link=settings.get("input"),
-                    h=settings.get("h"), links=range(chain.links))
+    entry = entry_of(joints, chain.kinds, where, frame=settings.get("frame"), input_link=settings.get("input"),
+                     h=settings.get("h"), links=range(chain.links))
+    if chain.classes is not None:  # a heterogeneous chain keeps the loop classes it was written with
+        entry = replace(entry, chain=chain if settings.get("h") is None else replace(chain, h=entry.chain.h))
+    return entry
 
 
 def write_lines(items, fmt: str, out) -> int:
