@@ -85,7 +85,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                        "variant_counts or wedge_lever or all_prismatic or refusal or "
                                                        "docstring_examples or variants_vs_oracle"]),
     "springs": ("balance/devices/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
-    "fit": ("balance/devices/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
+    "fit": ("balance/devices/fit/problem.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device
                                "-k", "not under_100_ms and not model_matches"]),
     "countermass": ("balance/devices/countermass.py", ["tests/balance/test_countermass.py",
