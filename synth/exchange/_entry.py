@@ -115,6 +115,9 @@ def in_motion_space(entry: Entry, h: int | None, given: str = "--h") -> Entry:
     if entry.h is not None and entry.h != h:
         raise MalformedChain(f"{entry.source} states motion space h = {entry.h}, and {given} {h} was given: leave out "
                              f"{given} (the chain's own h is used) or give {given} {entry.h}")
+    if entry.chain.classes is not None:
+        raise MalformedChain(f"{entry.source} names its loop classes (its other links are of class {entry.chain.h}): "
+                             f"{given} {h} contradicts them")
     try:
         chain = Chain(entry.chain.links, entry.chain.joints, entry.chain.kinds, h)
     except MalformedChain as exc:

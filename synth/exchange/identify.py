@@ -25,9 +25,6 @@ def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = 
         raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
     out = []
     for entry in entries:
-        if h is not None and h != entry.chain.h and entry.chain.classes is not None:
-            raise InvalidOption(f"the chain names its loop classes (its other links are of class {entry.chain.h}): "
-                                f"h = {h} contradicts them")
         entry = in_motion_space(entry, h)
         if frame is not None:
             names = entry.names or [str(i) for i in range(entry.chain.links)]

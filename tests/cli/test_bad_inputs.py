@@ -51,7 +51,7 @@ CASES = [
     ("chains --chain '0-1 1-2 2-3 3-0' --loop-classes 3=1,5=1", "1 loop and"),
     ("chains --chain '0-1 1-2 2-0 2-3 3-1 | h5: 0 1 2' --format gml", "no place for loop classes"),
     ("analyze '0-1 1-2 2-0 2-3 | h5: 0 1 2 3'", "link 3 of class h = 5"),
-    ("analyze '0-1 1-2 2-0 | h5: 0 1 2' --h 5", "h = 5 contradicts"),
+    ("analyze '0-1 1-2 2-0 | h5: 0 1 2' --h 5", "--h 5 contradicts them"),
     ("identify '0-1 1-2 2-0 | h5 0 1 2'", "cannot read the loop classes"),
     ("draw --code 42/0 --loop-classes 3=1,5=1 --out {d}/x.png", "--loop-classes goes with --chain"),
     ("draw --chain '0-1 1-2 2-3 3-0 | h5: 0 1 2 3' --h 4 --out {d}/x.png", "--h 4 contradicts"),
