@@ -12,7 +12,7 @@ import os
 
 from mechbase import RangeSyntax, parse_range
 
-__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "output_folder",
+__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "output_file", "output_folder",
            "PICTURE_FORMATS"]
 
 #: what a picture may be written as
@@ -82,25 +82,38 @@ def number_range(text: str) -> tuple[float, float]:
     return pair
 
 
-def picture_file(text: str) -> str:
-    """A figure's file name ending in .png, .pdf or .svg that can be written (checked before any work
-    is done: a probe file is made and removed where none exists)."""
-    if os.path.splitext(text)[1].lower() not in PICTURE_FORMATS:
-        raise argparse.ArgumentTypeError(
-            f"a plot is written as PNG, PDF or SVG: end the file name in {', '.join(PICTURE_FORMATS)}, not {text!r}")
+def output_file(text: str, suffixes: tuple[str, ...], what: str) -> str:
+    """An output file whose name ends in one of ``suffixes`` and that can be written, checked before any
+    work is done (a probe file is made and removed where none exists); ``what`` names what goes in it.
+
+    >>> import os, tempfile; path = os.path.join(tempfile.mkdtemp(), "a.svg")
+    >>> output_file(path, (".png", ".svg"), "the picture") == path, os.path.exists(path)
+    (True, False)
+    """
+    if os.path.splitext(text)[1].lower() not in suffixes:
+        def either(words):
+            return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
+
+        raise argparse.ArgumentTypeError(f"{what} is written as {either([x[1:].upper() for x in suffixes])}: end the "
+                                         f"file name in {either(list(suffixes))}, not {text!r}")
     if os.path.isdir(text):
-        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file to write the plot to")
+        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file to write {what} to")
     if os.path.exists(text):
         if not os.access(text, os.W_OK):
-            raise argparse.ArgumentTypeError(f"cannot write the plot to {text}: permission denied")
+            raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: permission denied")
         return text
     try:
         with open(text, "x"):
             pass
         os.remove(text)
     except OSError as exc:
-        raise argparse.ArgumentTypeError(f"cannot write the plot to {text}: {exc.strerror or exc}") from None
+        raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: {exc.strerror or exc}") from None
     return text
+
+
+def picture_file(text: str) -> str:
+    """A figure's file name ending in .png, .pdf or .svg that can be written (:func:`output_file`)."""
+    return output_file(text, PICTURE_FORMATS, "the figure")
 
 
 def output_folder(text: str) -> str:

@@ -30,7 +30,7 @@ import math
 import os
 import sys
 
-from .._argtypes import positive, whole
+from .._argtypes import output_file, positive, whole
 from .._output import pairs, write_document, write_rows
 
 __all__ = ["add_commands"]
@@ -39,37 +39,16 @@ __all__ = ["add_commands"]
 MAX_STEPS = 1_000_000
 
 
-def _writable(text: str, suffixes: tuple[str, ...], what: str) -> str:
-    """An output file with one of ``suffixes`` that can be written, checked before any work (a probe
-    file is made and removed where none exists)."""
-    if os.path.splitext(text)[1].lower() not in suffixes:
-        raise argparse.ArgumentTypeError(f"{what} is written as {' or '.join(s[1:].upper() for s in suffixes)}: end "
-                                         f"the file name in {' or '.join(suffixes)}, not {text!r}")
-    if os.path.isdir(text):
-        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file to write {what} to")
-    if os.path.exists(text):
-        if not os.access(text, os.W_OK):
-            raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: permission denied")
-        return text
-    try:
-        with open(text, "x"):
-            pass
-        os.remove(text)
-    except OSError as exc:
-        raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: {exc.strerror or exc}") from None
-    return text
-
-
 def _picture(text: str) -> str:
-    return _writable(text, (".png", ".svg"), "the picture")
+    return output_file(text, (".png", ".svg"), "the picture")
 
 
 def _animation(text: str) -> str:
-    return _writable(text, (".gif", ".svg"), "the animation")
+    return output_file(text, (".gif", ".svg"), "the animation")
 
 
 def _saved(text: str) -> str:
-    return _writable(text, (".json",), "the linkage")
+    return output_file(text, (".json",), "the linkage")
 
 
 def _number(text: str) -> float:
