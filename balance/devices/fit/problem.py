@@ -107,15 +107,7 @@ class _Problem:
         return self.w * (kappa * self.shape(rho, rho0, al) - 1.0)
 
     def best_kappa(self, rho, rho0, al, norm: str, weights=None) -> float:
-        g = self.shape(rho, rho0, al)
-        h, s = self.w * g, self.w
-        kmax = self.kappa_max(rho, rho0, al)
-        if norm == "rms":
-            v = 1.0 if weights is None else weights
-            den = float(np.sum(v * h * h))
-            k = float(np.sum(v * h * s)) / den if den > 0 else 0.0
-            return min(max(k, 0.0), kmax)
-        return _minimax_scale(h, s, kmax)
+        return best_scale(self.w * self.shape(rho, rho0, al), self.w, self.kappa_max(rho, rho0, al), norm, weights)
 
     def projected(self, z, norm: str, weights=None):
         rho, rho0, al, viol = self.decode(z)
@@ -211,6 +203,21 @@ def _sin2_half_extremes(lo: float, hi: float) -> tuple[float, float]:
     if math.floor((hi - math.pi) / (2 * math.pi)) >= math.ceil((lo - math.pi) / (2 * math.pi)):
         vals.append(1.0)  # an odd multiple of π lies in the range
     return min(vals), max(vals)
+
+
+def best_scale(h: np.ndarray, s: np.ndarray, kmax: float, norm: str, weights=None) -> float:
+    """The best ``0 ≤ κ ≤ κmax`` for ``κ·h ≈ s`` in the norm ``norm``: closed form for the (weighted)
+    RMS norm, :func:`_minimax_scale` for the max norm — every device's geometry is fitted this way.
+
+    >>> best_scale(np.array([1.0, 2.0]), np.array([1.0, 2.0]), 5.0, "rms"), best_scale(np.array([1.0]), np.array([9.0]), 5.0, "max")
+    (1.0, 5.0)
+    """
+    if norm == "rms":
+        v = 1.0 if weights is None else weights
+        den = float(np.sum(v * h * h))
+        k = float(np.sum(v * h * s)) / den if den > 0 else 0.0
+        return min(max(k, 0.0), kmax)
+    return _minimax_scale(h, s, kmax)
 
 
 def _minimax_scale(h: np.ndarray, s: np.ndarray, kmax: float) -> float:

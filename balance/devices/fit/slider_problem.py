@@ -6,7 +6,7 @@ With ``ℓ`` the longest crank allowed, ``ρ = r/ℓ``, ``ε = e/ℓ``, ``λ = l
 follows ``σ``: for ``σ = +1`` it pushes the slider towards ``A`` and ``x_n = x_min − a``, for
 ``σ = −1`` away from ``A`` and ``x_n = x_max + a`` — so ``a ≥ 0`` is the spring's least deflection
 over the working range and the spring never unloads there. As for the slotted lever, ``κ`` is solved
-exactly for each geometry (the same :func:`~.problem._minimax_scale`), the rod is mapped from a unit
+exactly for each geometry (the same :func:`~.problem.best_scale`), the rod is mapped from a unit
 variable between its limits (the rod's angle to the guide at most :data:`MAX_ROD_ANGLE` over a turn:
 ``l·sin θ ≥ r + |e|``) and so is ``α`` (free length: ``a + stroke ≤ δ·l0_max``), so the projected
 problem has box bounds only.
@@ -22,7 +22,7 @@ import numpy as np
 from ...errors import InfeasibleBounds
 from ..sliders import SliderSpringDevice, slider_extremes, slider_position, slider_rate
 from .exact import LEVER_DEFLECTION
-from .problem import _max_abs_sin, _minimax_scale, _span
+from .problem import _max_abs_sin, _span, best_scale
 from .result import VERIFY_GRID, FitResult, SpringBounds, measured_errors
 
 #: the largest angle between the rod and the guide over a turn (a common limit of the pressure angle)
@@ -120,14 +120,7 @@ class _SliderProblem:
         return kappa * self.shape(rho, eps, lam, al) - self.target
 
     def best_kappa(self, rho, eps, lam, al, norm: str, weights=None) -> float:
-        h, s = self.shape(rho, eps, lam, al), self.target
-        kmax = self.kappa_max(rho, eps, lam, al)
-        if norm == "rms":
-            v = 1.0 if weights is None else weights
-            den = float(np.sum(v * h * h))
-            k = float(np.sum(v * h * s)) / den if den > 0 else 0.0
-            return min(max(k, 0.0), kmax)
-        return _minimax_scale(h, s, kmax)
+        return best_scale(self.shape(rho, eps, lam, al), self.target, self.kappa_max(rho, eps, lam, al), norm, weights)
 
     def projected(self, z, norm: str, weights=None):
         rho, eps, lam, al, viol = self.decode(z)
