@@ -281,12 +281,13 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
 
     k = linkage.inputs[0]
     revolute = linkage.kind(k) == "revolute"
-    unit = (lambda v: math.degrees(v)) if revolute else (lambda v: v)
+    turns = revolute and reach.full_rotation  # a crank's positions are angles of one turn: 0 … 360°
+    unit = (lambda v: math.degrees(v) % 360.0 if turns else math.degrees(v)) if revolute else (lambda v: v)
     word = "°" if revolute else ""
     doc = {"input": joint_name(linkage.chain, k), "kind": linkage.kind(k), "full_rotation": reach.full_rotation,
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
            "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
-           "toggles": [{"input": v, "link": link} for v, link in reach.toggles],
+           "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
            "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
            "stopped": motion.stopped}
     if fmt == "json":
