@@ -27,9 +27,10 @@ __all__ = ["System", "check_movable"]
 
 
 def _rotate(theta: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """R(θ)·p for θ of shape (S,) and p of shape (2,): shape (S, 2)."""
+    """R(θ)·p for θ of shape (S,) and p of shape (2,): shape (S, 2); or θ (S, P) and points p (P, 2):
+    shape (S, P, 2)."""
     c, s = np.cos(theta), np.sin(theta)
-    return np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=-1)
+    return np.stack((c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]), axis=-1)
 
 
 def _perp(v: np.ndarray) -> np.ndarray:
@@ -74,6 +75,19 @@ class System:
         for i, k in enumerate(lk.inputs):
             self.drives.append((lk.input_link(i), lk.kind(k), points[k], np.array(lk.slides.get(k, (1.0, 0.0)))))
         self.rows = 2 * len(self.pins) + 2 * len(self.sliders) + len(self.meshes) + len(self.drives)
+        # the pins' equations at once: each pin's links, point, rows and (θ-)columns (−1: the frame)
+        self._pin_a = np.array([a for a, _, _ in self.pins], dtype=int)
+        self._pin_b = np.array([b for _, b, _ in self.pins], dtype=int)
+        self._pin_p = np.array([p for _, _, p in self.pins], dtype=float).reshape(-1, 2)
+        pin_rows = 2 * np.arange(len(self.pins))
+        theta_col = np.array([3 * self.column[x] + 2 if x in self.column else -1 for x in range(chain.links)])
+        self._pin_jac = []  # (moving pins of a side, their x rows, their links' θ columns, sign)
+        self._constant = np.zeros((self.rows, self.size))  # the Jacobian's entries that do not depend on q
+        for links, sign in ((self._pin_a, 1.0), (self._pin_b, -1.0)):
+            moving = np.flatnonzero(theta_col[links] >= 0)
+            rows, cols = pin_rows[moving], theta_col[links[moving]]
+            self._constant[rows, cols - 2] = self._constant[rows + 1, cols - 1] = sign
+            self._pin_jac.append((moving, rows, cols, sign))
 
     # ------------------------------------------------------------- poses
     def poses(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -94,9 +108,9 @@ class System:
     # ---------------------------------------------------------- equations
     def residual(self, theta, t, values) -> np.ndarray:
         """The closure equations' values (S, rows); ``values`` the inputs (S, W)."""
-        out = []
-        for a, b, p in self.pins:
-            out += list((_rotate(theta[:, a], p) + t[:, a] - _rotate(theta[:, b], p) - t[:, b]).T)
+        a, b = self._pin_a, self._pin_b
+        pins = _rotate(theta[:, a], self._pin_p) + t[:, a] - _rotate(theta[:, b], self._pin_p) - t[:, b]
+        out = list(pins.reshape(len(theta), -1).T)
         for a, b, p, u in self.sliders:
             d = _rotate(theta[:, b], p) + t[:, b] - _rotate(theta[:, a], p) - t[:, a]
             out += [theta[:, a] - theta[:, b], _cross(_rotate(theta[:, a], u), d)]
@@ -113,9 +127,13 @@ class System:
     def jacobian(self, theta, t) -> np.ndarray:
         """∂(equations)/∂q, shape (S, rows, 3m)."""
         s = theta.shape[0]
-        jac = np.zeros((s, self.rows, self.size))
+        jac = np.repeat(self._constant[None], s, axis=0)
         col = self.column
-        row = 0
+        for (moving, rows, cols, sign), links in zip(self._pin_jac, (self._pin_a, self._pin_b)):
+            turned = _rotate(theta[:, links[moving]], self._pin_p[moving])  # ∂/∂θ: the point turned by +90°
+            jac[:, rows, cols] = -sign * turned[..., 1]
+            jac[:, rows + 1, cols] = sign * turned[..., 0]
+        row = 2 * len(self.pins)
 
         def put(r, link, dt, dtheta):  # dt (S, 2) or None, dtheta (S,)
             if link in col:
@@ -125,14 +143,6 @@ class System:
                 jac[:, r, c + 2] += dtheta
 
         one = np.ones(s)
-        for a, b, p in self.pins:
-            ra, rb = _perp(_rotate(theta[:, a], p)), _perp(_rotate(theta[:, b], p))
-            for axis in (0, 1):
-                e = np.zeros((s, 2))
-                e[:, axis] = 1
-                put(row + axis, a, e, ra[:, axis])
-                put(row + axis, b, -e, -rb[:, axis])
-            row += 2
         for a, b, p, u in self.sliders:
             put(row, a, None, one)
             put(row, b, None, -one)
