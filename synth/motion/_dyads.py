@@ -185,13 +185,13 @@ class Closure:
             mesh = chain.joints[d.outer[1]] if d.kind == "gear" else (0, 0)
             ints[m] = (*d.links, *d.outer, max(d.middle, 0), *d.known, *mesh)
             floats[m] = (d.sign, lk.meshes.get(d.outer[1], 1.0) if d.kind == "gear" else 0.0)
-        self._dyads = (in_link, in_prismatic, in_point, in_slide, groups, ints, floats,
-                       np.ascontiguousarray(lk.points, dtype=float), slides)
+        points = np.array(lk.points, dtype=float)  # a writable copy, as the tracers' below: one compiled signature
+        self._dyads = (in_link, in_prismatic, in_point, in_slide, groups, ints, floats, points, slides)
         first = np.array([j[0] for j in chain.joints], dtype=np.int64)
-        self._joints = (first, self._dyads[7])
+        self._joints = (first, points)
         traced = list(lk.tracers.values())
         self._carried = (np.concatenate((first, np.array([link for link, _ in traced], dtype=np.int64))),
-                         np.concatenate((self._dyads[7], np.array([at for _, at in traced], dtype=float).reshape(-1, 2))))
+                         np.concatenate((points, np.array([at for _, at in traced], dtype=float).reshape(-1, 2))))
         self._scale2 = float(lk.scale) ** 2
 
     def _run(self, offsets, carried, every: bool):
