@@ -81,13 +81,16 @@ class System:
         self._pin_p = np.array([p for _, _, p in self.pins], dtype=float).reshape(-1, 2)
         pin_rows = 2 * np.arange(len(self.pins))
         theta_col = np.array([3 * self.column[x] + 2 if x in self.column else -1 for x in range(chain.links)])
-        self._pin_jac = []  # (moving pins of a side, their x rows, their links' θ columns, sign)
+        self._pin_ends = np.concatenate((self._pin_a, self._pin_b))  # both ends' points turned in one call
+        self._pin_pp = np.concatenate((self._pin_p, self._pin_p))
         self._constant = np.zeros((self.rows, self.size))  # the Jacobian's entries that do not depend on q
-        for links, sign in ((self._pin_a, 1.0), (self._pin_b, -1.0)):
+        jac = []  # per pin end on a moving link: the end, its pin's x row, its link's θ column, its sign
+        for side, (links, sign) in enumerate(((self._pin_a, 1.0), (self._pin_b, -1.0))):
             moving = np.flatnonzero(theta_col[links] >= 0)
             rows, cols = pin_rows[moving], theta_col[links[moving]]
             self._constant[rows, cols - 2] = self._constant[rows + 1, cols - 1] = sign
-            self._pin_jac.append((moving, rows, cols, sign))
+            jac.append((moving + side * len(self.pins), rows, cols, np.full(len(moving), sign)))
+        self._pin_jac = tuple(np.concatenate(parts) for parts in zip(*jac))
 
     # ------------------------------------------------------------- poses
     def poses(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -108,8 +111,9 @@ class System:
     # ---------------------------------------------------------- equations
     def residual(self, theta, t, values) -> np.ndarray:
         """The closure equations' values (S, rows); ``values`` the inputs (S, W)."""
-        a, b = self._pin_a, self._pin_b
-        pins = _rotate(theta[:, a], self._pin_p) + t[:, a] - _rotate(theta[:, b], self._pin_p) - t[:, b]
+        count = len(self.pins)
+        turned = _rotate(theta[:, self._pin_ends], self._pin_pp)
+        pins = turned[:, :count] + t[:, self._pin_a] - turned[:, count:] - t[:, self._pin_b]
         out = list(pins.reshape(len(theta), -1).T)
         for a, b, p, u in self.sliders:
             d = _rotate(theta[:, b], p) + t[:, b] - _rotate(theta[:, a], p) - t[:, a]
@@ -129,10 +133,10 @@ class System:
         s = theta.shape[0]
         jac = np.repeat(self._constant[None], s, axis=0)
         col = self.column
-        for (moving, rows, cols, sign), links in zip(self._pin_jac, (self._pin_a, self._pin_b)):
-            turned = _rotate(theta[:, links[moving]], self._pin_p[moving])  # ∂/∂θ: the point turned by +90°
-            jac[:, rows, cols] = -sign * turned[..., 1]
-            jac[:, rows + 1, cols] = sign * turned[..., 0]
+        ends, rows, cols, sign = self._pin_jac
+        turned = _rotate(theta[:, self._pin_ends[ends]], self._pin_pp[ends])  # ∂/∂θ: the point turned by +90°
+        jac[:, rows, cols] = -sign * turned[..., 1]
+        jac[:, rows + 1, cols] = sign * turned[..., 0]
         row = 2 * len(self.pins)
 
         def put(r, link, dt, dtheta):  # dt (S, 2) or None, dtheta (S,)
