@@ -348,9 +348,8 @@ class _Solver:
         centre = len(xs) // 2
         ends = []
         for step in (-1, 1):
-            k = centre
-            while 0 <= k + step < len(xs) and not bad[k + step]:
-                k += step
+            beyond = np.flatnonzero(bad[centre + 1:] if step > 0 else bad[:centre][::-1])  # the first sample that fails
+            k = centre + step * (int(beyond[0]) if len(beyond) else (len(xs) - 1 - centre if step > 0 else centre))
             end = (step * math.inf, "")
             if 0 <= k + step < len(xs):
                 good_x, bad_x = xs[k], xs[k + step]
