@@ -197,12 +197,15 @@ class System:
         return np.stack(out, axis=1)
 
     # ------------------------------------------------------------ solves
-    def solve_linear(self, jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    def solve_linear(self, jac: np.ndarray, rhs: np.ndarray, regular: np.ndarray | None = None) -> np.ndarray:
         """Solve J·x = rhs per configuration (least squares where the system has more rows than
-        unknowns, as with wedge loops whose angle equations repeat); NaN where J is singular."""
+        unknowns, as with wedge loops whose angle equations repeat); NaN where J is singular.
+        ``regular``: where J is known not to be singular (det J ≠ 0), if already found."""
         if self.rows == self.size:
+            ok = np.abs(np.linalg.det(jac)) > 0 if regular is None else regular
+            if ok.all():  # (no copies of the regular configurations to make)
+                return np.linalg.solve(jac, rhs)
             out = np.full(rhs.shape, np.nan)
-            ok = np.abs(np.linalg.det(jac)) > 0
             if ok.any():
                 out[ok] = np.linalg.solve(jac[ok], rhs[ok])
             return out
@@ -214,14 +217,15 @@ class System:
         jac = self.jacobian(theta, t)
         w = len(self.drives)
         rhs = np.broadcast_to(self.rate_column(), (len(theta), self.rows, w))
-        qd = np.moveaxis(self.solve_linear(jac, np.array(rhs)), 2, 1)  # (S, W, 3m)
+        regular = np.abs(np.linalg.det(jac)) > 0 if accelerations and self.rows == self.size else None
+        qd = np.moveaxis(self.solve_linear(jac, np.array(rhs), regular), 2, 1)  # (S, W, 3m)
         if not accelerations:
             return qd, None
         qdd = np.empty_like(qd)
         for i in range(w):
             dtheta, dt = self.poses(qd[:, i])
             gamma = self.convective(theta, t, dtheta, dt)
-            qdd[:, i] = self.solve_linear(jac, -gamma[..., None])[..., 0]
+            qdd[:, i] = self.solve_linear(jac, -gamma[..., None], regular)[..., 0]
         return qd, qdd
 
     def conditioning(self, theta, t) -> np.ndarray:
