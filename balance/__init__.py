@@ -51,7 +51,8 @@ _WHERE = {
     "DHLink": "model.urdf", "urdf_from_dh": "model.urdf",
     # devices
     "SpringBounds": "devices.fit", "FitResult": "devices.fit", "fit_spring": "devices.fit",
-    "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit",
+    "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit", "DEVICES": "devices.fit",
+    "SliderSpringDevice": "devices.sliders",
     "CrankRockerDevice": "devices.springs", "SineDevice": "devices.springs", "crank_moment": "devices.springs",
     "spring_length": "devices.springs", "HelicalSpring": "devices.helical", "design_spring": "devices.helical",
     "CounterMass": "devices.countermass", "c_min": "devices.countermass",

@@ -55,10 +55,13 @@ def duration(seconds: float) -> str:
 
 
 def _short(seconds: float) -> str:
-    """A short time: ``'100 µs'``, ``'2.5 ms'``, ``'0.3 s'``."""
-    if seconds < 1e-3:
-        return f"{seconds * 1e6:.3g} µs"
-    return f"{seconds * 1e3:.3g} ms" if seconds < 1 else f"{seconds:.3g} s"
+    """A short time to three digits in the unit that keeps it below 1000: ``'100 µs'``, ``'2.5 ms'``, ``'3 s'``
+    (0.9996 s is ``'1 s'``, not ``'1e+03 ms'``)."""
+    for scale, unit in ((1e6, "µs"), (1e3, "ms")):
+        text = f"{seconds * scale:.3g}"
+        if float(text) < 1000:
+            return f"{text} {unit}"
+    return f"{seconds:.3g} s"
 
 
 def unit_seconds(unit: Callable[[], object], repeat: int = 3) -> float:

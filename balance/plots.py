@@ -37,11 +37,18 @@ def plot_spring(design, path: str) -> str:
     ax1, ax2 = axes[0], axes[1]
     deg = np.degrees(phi)
     ax1.plot(deg, res.moment * np.sin(phi), "k-", lw=2, label="target  Φ0·sin φ")
-    ax1.plot(deg, dev.moment(phi), "C1--", lw=1.5, label=f"{res.kind} device")
+    label = f"{res.kind} device" if res.family == "slotted-lever" else f"{res.family} device"
+    ax1.plot(deg, dev.moment(phi), "C1--", lw=1.5, label=label)
     ax1.set_ylabel("moment on the crank (N·m)")
-    ax1.set_xlabel("crank angle φ (deg, from the base point C)")
-    title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
-             f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
+    angle = "crank angle φ (deg, from the base point C)" if res.family == "slotted-lever" else \
+        "crank angle φ (deg, from the direction of the guide)"
+    ax1.set_xlabel(angle)
+    if res.family == "slotted-lever":
+        title = (f"{res.kind} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m, "
+                 f"r0 = {res.r0:.4g} m, a = {res.a:.4g} m")
+    else:
+        rod = "" if res.rod is None else f", l = {res.rod:.4g} m, e = {res.offset:.4g} m"
+        title = f"{res.family} device ({res.method}): c = {res.c:.4g} N/m, r = {res.r:.4g} m{rod}, a = {res.a:.4g} m"
     if spring:
         title += (f"\nspring: d = {1e3 * spring.wire_diameter_m:.3g} mm, D = {1e3 * spring.mean_diameter_m:.4g} mm, "
                   f"n = {spring.active_coils:g}, {spring.material}")
@@ -52,7 +59,7 @@ def plot_spring(design, path: str) -> str:
     ax2.plot(deg, 100 * e, "C3-")
     ax2.axhline(0, color="k", lw=0.5)
     ax2.set_ylabel("(M − Φ0·sin φ)/|Φ0|  (%)")
-    ax2.set_xlabel("crank angle φ (deg, from the base point C)")
+    ax2.set_xlabel(angle)
     if res.max_rel_error < 1e-12:
         ax2.set_ylim(-1, 1)
         ax2.set_title(f"exact to rounding: max |error| {res.max_rel_error:.2g}", fontsize=9)

@@ -181,11 +181,14 @@ class SpringDesignTable(_Table):
 
 
 class SpringTable(_Table):
+    device: Literal["slotted-lever", "slider-crank", "sine"] = "slotted-lever"
     kind: Literal["tension", "compression", "compression-lever"] = "compression"
     moment: float
     range_deg: Pair
     r: Pair
-    r0: Pair
+    r0: Pair | None = None
+    rod: Pair | None = None
+    offset: Pair | None = None
     a: OpenPair | None = None
     max_force: float | None = None
     max_free_length: float | None = None

@@ -62,6 +62,9 @@ _WHERE = {
     "run_unit": ".synthesis.type_synthesis", "count_unit": ".synthesis.type_synthesis",
     "count_by_code": ".synthesis.type_synthesis",
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
+    "split_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
+    "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes",
+    "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is
     "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
     "worth_sizing": ".synthesis.estimate", "TABLE_ROWS": ".synthesis.estimate",
@@ -74,7 +77,7 @@ _WHERE = {
     "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
     "planetary_table": ".gears.planetary",
     # identifying any chain, comparing atlases
-    "identify": ".analysis.identify", "identify_all": ".analysis.identify", "compare": ".analysis.compare",
+    "identify": ".exchange.identify", "identify_all": ".exchange.identify", "compare": ".analysis.compare",
     # motion of dimensioned mechanisms
     "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
@@ -91,3 +94,4 @@ from .display import register_drawing as _register_drawing  # noqa: E402
 
 for _kind in ("Chain", "Mechanism"):
     _register_drawing(_kind, "synth.draw:svg")
+_register_drawing("Linkage", "synth.motion_draw:linkage_svg")  # a dimensioned mechanism in its pose

@@ -535,9 +535,26 @@ def _pitch_circles(chain: Chain, lay: Layout, k: int, r: float) -> list[tuple[np
 
 
 _MESH = "#1e7a46"
+#: the links of a heterogeneous chain's base, by its loops' class (the other links keep the usual colours)
+_CLASS_COLOURS = {2: "#7b3294", 3: "#1b9e77", 4: "#b8860b", 5: "#e66101", 6: "#e7298a"}
 
 
-def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | None = None) -> None:
+def _class_keys(chain: Chain, counted: bool = True) -> list:
+    """Which colour is which loop class in a heterogeneous chain's drawing (with the number of
+    loops of each class where ``counted``: one chain; a sheet's captions give each chain's)."""
+    from matplotlib.lines import Line2D
+
+    loops = chain.loop_classes
+
+    def said(x, other=""):
+        return f"h = {x}: {loops[x]} {other}loop{'s' * (loops[x] > 1)}" if counted else f"h = {x}: {other or 'base '}loops"
+
+    return [Line2D([0], [0], color=_CLASS_COLOURS[x], lw=3, label=said(x)) for x in sorted(set(chain.classes) - {chain.h})
+            ] + [Line2D([0], [0], color=_BAR, lw=3, label=said(chain.h, "other "))]
+
+
+def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | None = None,
+          legend: bool = True) -> None:
     from matplotlib.patches import Circle, FancyArrowPatch, Polygon
 
     mech = item if isinstance(item, Mechanism) else None
@@ -548,6 +565,9 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     for link, poly in enumerate(lay.polygons):
         pts = pos[poly]
         frame = mech is not None and link == mech.frame
+        based = chain.classes is not None and chain.classes[link] != chain.h
+        bar = _CLASS_COLOURS[chain.classes[link]] if based else _BAR
+        edge = _CLASS_COLOURS[chain.classes[link]] if based else _EDGE
         if len(poly) == 1:  # a single-joint link (an arm's base or gripper): a bar with a free end
             end = marks.free_ends[link]
             pts = np.array([pos[poly[0]], end])
@@ -563,10 +583,12 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                 ax.add_patch(Polygon([a + nrm, b + nrm, b - nrm, a - nrm], closed=True, facecolor="white",
                                      edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2))
             else:
-                ax.plot(pts[:, 0], pts[:, 1], color=_BAR, lw=lw, solid_capstyle="round", zorder=2, gid=f"bar{link}")
+                ax.plot(pts[:, 0], pts[:, 1], color=bar, lw=lw * (1.4 if based else 1), solid_capstyle="round",
+                        zorder=2, gid=f"bar{link}")
         else:
-            ax.add_patch(Polygon(pts, closed=True, facecolor="white" if frame else _FILL, edgecolor=_EDGE,
-                                 hatch="////" if frame else None, lw=1.4, joinstyle="round", zorder=1))
+            ax.add_patch(Polygon(pts, closed=True, facecolor="white" if frame else _FILL, edgecolor=edge,
+                                 hatch="////" if frame else None, lw=2.4 if based else 1.4, joinstyle="round",
+                                 zorder=1))
         if labels:
             x, y = marks.labels[link]
             ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
@@ -602,6 +624,9 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     ax.set_xlim(-marks.reach, marks.reach)
     ax.set_ylim(-marks.reach, marks.reach)
     ax.axis("off")
+    if chain.classes is not None and legend:
+        ax.legend(handles=_class_keys(chain), loc="upper left", fontsize=6, frameon=False, handlelength=1.6,
+                  borderaxespad=0)
     if caption:
         if "\n" in caption:  # lines of notes grow downwards, into the room the sheet keeps for them
             ax.set_title(caption, fontsize=8, pad=0, y=-0.02, va="top")
@@ -712,7 +737,7 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 def _caption(item, index: int | None) -> str:
     chain = item.chain if isinstance(item, Mechanism) else item
-    text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix
+    text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix + chain.class_suffix
     if not chain.is_planar():
         text += "  non-planar"
     if index is not None:
@@ -839,18 +864,23 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
         captions = [caption + "".join("\n" + line for line in textwrap.wrap(note, width))
                     for caption, note in zip(captions, notes)]
     extra = 0.14 * max(c.count("\n") for c in captions)  # inches under each row for the caption lines
-    _check_pixels(path, size * columns, (size + extra) * rows, dpi)
-    fig, axes = plt.subplots(rows, columns, figsize=(size * columns, (size + extra) * rows + (0.45 if title else 0)),
-                             squeeze=False)
+    mixed = next((getattr(item, "chain", item) for item in items if getattr(item, "chain", item).classes), None)
+    key = 0.3 if mixed is not None else 0  # inches under the sheet for the key of loop classes
+    height = (size + extra) * rows + (0.45 if title else 0) + key
+    _check_pixels(path, size * columns, height, dpi)
+    fig, axes = plt.subplots(rows, columns, figsize=(size * columns, height), squeeze=False)
     try:
         for i, ax in enumerate(axes.flat):
             if i < n:
-                _draw(ax, items[i], labels=labels, caption=captions[i])
+                _draw(ax, items[i], labels=labels, caption=captions[i], legend=False)
             else:
                 ax.axis("off")
         if title:
             fig.suptitle(title, fontsize=11)
-        fig.tight_layout(pad=0.4)
+        fig.tight_layout(pad=0.4, rect=(0, key / height, 1, 1))
+        if mixed is not None:  # one key for the sheet, under it
+            keys = _class_keys(mixed, counted=False)
+            fig.legend(handles=keys, loc="lower center", ncol=len(keys), fontsize=7, frameon=False)
         _save(fig, path, dpi=dpi)
     finally:
         plt.close(fig)

@@ -346,7 +346,13 @@ def test_cli_mechanisms_and_ratio(tmp_path):
       "--teeth", "17..1000000000000"], "narrow --teeth A..B"),
     (["--links", "5", "--graphs", "rotation", "--ratio", "3"], "drop --graphs rotation"),
     (["--links", "5", "--frame", "0"], "goes with --train"),
-    (["--links", "5", "--out", "x.txt"], "drawing is written as"),
+    (["--links", "5", "--out", "x.txt"], "written as PNG, PDF or SVG"),
+    (["--links", "5", "--out", "/no/such/dir/x.png"], "cannot write"),
+    (["--links", "5", "--limit", "3"], "--limit goes with --out"),
+    (["--links", "5", "--out", "x.png", "--limit", "0"], "≥ 1"),
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--force"], "--force goes with"),
+    (["--links", "12", "--count"], "give --force"),
+    (["--links", "11", "--format", "table"], "use --format jsonl"),
     ([], "give --links"),
 ])
 def test_cli_bad_input_is_one_sentence_exit_2(args, words):
@@ -370,6 +376,30 @@ def test_ctrl_c_stops_a_count_on_the_pool():
     assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
     with pytest.raises(ProcessLookupError):  # the group is gone: no worker outlived the parent
         os.killpg(proc.pid, 0)
+
+
+def test_ctrl_c_stops_the_ratio_search_within_two_seconds():
+    """The docs' search over the 647 seven-link trains (minutes of CP-SAT): SIGINT during a solve
+    ends it with exit 130 and one line within 2 s."""
+    import os
+    import signal
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "7", "--ratio", "7.3", "--tolerance",
+                             "0.5%", "--teeth", "17..80", "--planets", "3"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        time.sleep(4)  # imports and the atlas done: the solver is searching
+        assert proc.poll() is None
+        sent = time.monotonic()
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=30)
+        assert time.monotonic() - sent < 2.0
+        assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
+    finally:  # a search that ignored Ctrl-C must not outlive the test
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
 
 
 # ------------------------------------------------------------------ assembly of stepped planets

@@ -138,11 +138,7 @@ def test_every_module_stands_on_a_floor_and_imports_none_above_it(engine):
             to_level, to_package = _floor(engine, target)
             if to_level > level or (package == "synth.execution" and to_level >= 1 and to_package != package):
                 wrong.append(f"{module} (floor {level}) imports {target} (floor {to_level})")
-    assert wrong == _NOT_YET.get(engine, []), "\n".join(wrong)
-
-
-#: the one import still up a floor, moved with the identification's reading of files (issue 38)
-_NOT_YET = {"synth": ["synth.analysis.identify (floor 3) imports synth.exchange (floor 4)"]}
+    assert not wrong, "\n".join(wrong)
 
 
 @pytest.mark.parametrize("engine", sorted(FLOORS))

@@ -41,6 +41,9 @@ ROOT = Path(__file__).resolve().parent.parent
 #: the slowest cases of the synthesis tests, left out of the mutation runs (minutes per surviving mutant)
 _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-938 and not 3-10-98 "
           "and not ctrl_c and not twelve")
+#: a module's docstring examples in the balance and synth suites (the module's name and "]" follow)
+_BALANCE_DOC = "tests/balance/test_docstrings.py::test_docstring_examples["
+_SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -82,14 +85,40 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                        "variant_counts or wedge_lever or all_prismatic or refusal or "
                                                        "docstring_examples or variants_vs_oracle"]),
     "springs": ("balance/devices/springs.py", ["tests/balance/test_springs.py", "tests/balance/test_fit_vs_oracle.py"]),
-    "fit": ("balance/devices/fit.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
+    "fit": ("balance/devices/fit/problem.py", ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py",
                                "tests/balance/test_devices.py",  # the compression-lever device
                                "-k", "not under_100_ms and not model_matches"]),
     "countermass": ("balance/devices/countermass.py", ["tests/balance/test_countermass.py",
                                                "tests/balance/test_countermass_vs_oracle.py"]),
+    # the counterweights alone and in `balance arm` (not test_compare.py: its fixtures solve two arms,
+    # half a minute per mutant; its counterweight test has a lighter twin in test_compare_strength.py)
+    "counterweights": ("balance/devices/counterweights.py", [
+        "tests/balance/test_compare_strength.py", "tests/balance/test_arm.py::test_counterweights_balance_example1",
+        "tests/balance/test_arm.py::test_counterweights_refused_for_prismatic",
+        _BALANCE_DOC + "balance.devices.counterweights]"]),
+    "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py",
+                                                 "tests/balance/test_arm.py",
+                                                 _BALANCE_DOC + "balance.model.potential]"]),
+    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
+                                                "tests/balance/test_compare.py",
+                                                _BALANCE_DOC + "balance.problems.compare]"]),
+    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py",
+                                                 _BALANCE_DOC + "balance.devices.dynamics]"]),
+    "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                   _BALANCE_DOC + "balance.model.pantograph]"]),
+    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", _BALANCE_DOC + "balance.extremes]"]),
+    "budget": ("balance/budget.py", ["tests/balance/test_budget.py", _BALANCE_DOC + "balance.budget]"]),
+    "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/structure/test_code_strength.py",
+                                         _SYNTH_DOC + "synth.structure.code]"]),
+    "query": ("synth/structure/query.py", ["tests/structure/test_query_strength.py",
+                                           "tests/cli/test_query_refusals.py", _SYNTH_DOC + "synth.structure.query]"]),
+    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
 }
 
-COPY = ["synth", "balance", "mechsynth", "models", "benchmarks", "tests", "pyproject.toml"]
+#: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
+_PACKAGES = [name.rstrip("*") for name in
+             tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]["find"]["include"]]
+COPY = _PACKAGES + ["models", "benchmarks", "tests", "pyproject.toml"]
 EQUIVALENT = ROOT / "tools" / "mutation_equivalent.toml"
 DOC = ROOT / "docs" / "mutation.md"
 BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
@@ -315,6 +344,37 @@ def _markdown(results: list[dict]) -> str:
     return "\n".join(out) + "\n"
 
 
+def _merged(old: str, new: str) -> str:
+    """The score block ``new`` (from :func:`_markdown`) with the rows and mutant lists of the modules it does
+    not cover kept from the block ``old``: a run of some modules leaves the other modules' scores as they were."""
+    def parts(text: str) -> tuple[list[str], dict[str, str], dict[tuple[str, str], list[str]]]:
+        lines = text.rstrip("\n").split("\n")
+        rows = {line.split("`")[1]: line for line in lines if line.startswith("| `")}
+        lists: dict[tuple[str, str], list[str]] = {}
+        key = None
+        for line in lines:
+            head = re.fullmatch(r"(Surviving|Equivalent) in `([^`]+)`:", line)
+            if head:
+                key = (head[2], head[1])
+                lists[key] = []
+            elif key and line.startswith("- "):
+                lists[key].append(line)
+            elif line:
+                key = None
+        return lines[:4], rows, lists
+
+    intro, new_rows, new_lists = parts(new)
+    _, old_rows, old_lists = parts(old)
+    files = list(old_rows) + [f for f in new_rows if f not in old_rows]
+    out = intro + [new_rows.get(f, old_rows.get(f)) for f in files]
+    for f in files:
+        lists = new_lists if f in new_rows else old_lists
+        for kind in ("Surviving", "Equivalent"):
+            if lists.get((f, kind)):
+                out += ["", f"{kind} in `{f}`:", ""] + lists[(f, kind)]
+    return "\n".join(out) + "\n"
+
+
 def _mutmut_version() -> str:
     try:
         from importlib.metadata import version
@@ -385,8 +445,8 @@ def main(argv=None) -> int:
     if args.write_docs:
         doc = DOC.read_text()
         head, rest = doc.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        DOC.write_text(f"{head}{BEGIN}\n{text}{END}{tail}")
+        before, tail = rest.split(END, 1)
+        DOC.write_text(f"{head}{BEGIN}\n{_merged(before, text)}{END}{tail}")
     return 0 if all(r["score"] >= 0.9 for r in results) else 1
 
 

@@ -410,8 +410,16 @@ def design_for_device(res, **options) -> HelicalSpring:
       beyond ``C`` its near loop must sit (negative: behind ``C``, e.g. a cable over a pulley at
       ``C``) so that its force is ``c·(L − (r0 − a))``.
 
+    The slider devices (:mod:`balance.devices.sliders`) carry a compression spring whose deflection runs
+    from ``a`` to ``a + stroke``, of the free length the fit reports.
+
     ``options`` are passed to :func:`design_spring` (material, space, ends, guided).
     """
+    if res.family != "slotted-lever":
+        longest_deflection = res.max_force / res.c
+        return design_spring("compression", res.c, res.max_force, free_length=res.free_length,
+                             min_length=res.free_length - longest_deflection, max_length=res.free_length - res.a,
+                             **options)
     dev = res.device
     L = dev.length(_phi_extremes(res.phi_range))
     lmin, lmax = float(np.min(L)), float(np.max(L))

@@ -142,6 +142,10 @@ class CrankRockerDevice:
     def moment(self, phi) -> np.ndarray:
         return crank_moment(phi, self.kind, self.c, self.r, self.r0, self.a)
 
+    def potential(self, phi) -> np.ndarray:
+        """``E = ½·c·(L − l0)²`` (J): its ``−dE/dφ = −c·(L − l0)·r·d·sin φ/L`` is :meth:`moment`."""
+        return 0.5 * self.c * (self.length(phi) - self.free_length) ** 2
+
     def force(self, phi) -> np.ndarray:
         """Spring force magnitude ``c·|L − l0|`` (N)."""
         return self.c * np.abs(self.length(phi) - self.free_length)

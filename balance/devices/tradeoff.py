@@ -65,7 +65,8 @@ class ParetoPoint:
 
 def _refit(res: FitResult, bounds: SpringBounds) -> FitResult | None:
     try:
-        return fit_spring(res.kind, res.moment, res.phi_range, bounds, norm=res.norm, grid=res.grid)
+        return fit_spring(res.kind, res.moment, res.phi_range, bounds, norm=res.norm, grid=res.grid,
+                          device=res.family)
     except BalanceError:
         return None
 
@@ -89,6 +90,12 @@ def _relaxed(name: str, b: SpringBounds, res: FitResult) -> tuple[SpringBounds, 
     if name == "r0=min" and b.r0[0] > 0:
         v = b.r0[0] * down
         return replace(b, r0=(v, b.r0[1])), f"lower bound on r0 to {v:.4g} m"
+    if name == "rod=max":
+        v = b.rod[1] * up
+        return replace(b, rod=(b.rod[0], v)), f"upper bound on the rod to {v:.4g} m"
+    if name == "rod=min":
+        v = b.rod[0] * down
+        return replace(b, rod=(v, b.rod[1])), f"lower bound on the rod to {v:.4g} m"
     if name == "a=max" and math.isfinite(b.a[1]):
         v = b.a[1] * up if b.a[1] > 0 else RELAX * res.reference_length
         return replace(b, a=(b.a[0], v)), f"upper bound on a to {v:.4g} m"

@@ -1,4 +1,7 @@
-"""A crank-and-rocker spring device for ``Φ0·sin φ``: the fit, its trade-offs and a spring to order.
+"""A spring device for ``Φ0·sin φ``: the fit, its trade-offs and a spring to order.
+
+The device is the crank with a slotted lever (crank-and-rocker, the default), the offset slider-crank
+or the sine device (:data:`~balance.devices.fit.DEVICES`).
 
 :class:`SpringProblem` (read from a ``[spring]`` table or built by the caller) is solved into a
 :class:`SpringDesign`: the fit (:class:`~balance.devices.fit.FitResult`), for a fitted
@@ -115,14 +118,18 @@ class SpringProblem:
     target_error: float | None = None
     pareto: bool = False
     design: SpringOptions | None = None
+    device: str = "slotted-lever"
 
     def solve(self) -> SpringDesign:
         if self.target_error is not None and not (math.isfinite(self.target_error) and 0 < self.target_error < 1):
             raise InvalidInput(f"the requested error must lie in (0, 1), not {self.target_error}.")
+        if self.pareto and self.device != "slotted-lever":
+            raise InvalidInput(f"the Pareto front is drawn for the slotted lever's compression spring, not for the "
+                               f"{self.device} device.")
         if self.pareto and self.kind != "compression":
             raise InvalidInput(f"the Pareto front is for the fitted compression device; a {self.kind} device is exact.")
         res = fit_spring(self.kind, self.moment, self.phi_range, self.bounds, method=self.method, norm=self.norm,
-                         grid=self.grid)
+                         grid=self.grid, device=self.device)
         sens = tuple(bound_sensitivity(res, self.bounds)) if res.method != "exact" else ()
         front = tuple(pareto_front(res, self.bounds)) if self.pareto else None
         warnings = advice(res, list(sens), self.target_error, list(front) if front is not None else None)
@@ -149,11 +156,17 @@ def spring_problem(doc: Mapping[str, Any], source: str = "<spring>") -> SpringPr
     t = parse(doc, "spring", source)
     if t.a is None:
         raise SchemaError(f"{source}: [spring] needs the key 'a' = [low, high] (m).")
+    if t.device == "slotted-lever" and t.r0 is None:
+        raise SchemaError(f"{source}: [spring] needs the key 'r0' = [low, high] (m) for the slotted-lever device.")
+    if "kind" in doc["spring"] and t.device != "slotted-lever" and t.kind != "compression":
+        raise SchemaError(f"{source}: [spring] the {t.device} device carries a compression spring; "
+                          f"leave out kind = {t.kind!r}.")
     design = None
     if t.design is not None:
         d = t.design
         design = SpringOptions(d.material, d.max_outer_diameter, d.min_inner_diameter, d.ends, d.guided)
+    pair = lambda v: None if v is None else tuple(v)  # noqa: E731
     return SpringProblem(t.kind, t.moment, (math.radians(t.range_deg[0]), math.radians(t.range_deg[1])),
-                         SpringBounds(tuple(t.r), tuple(t.r0), tuple(t.a), t.max_force, t.max_free_length,
-                                      t.max_deflection),
-                         t.method, t.norm, t.grid, t.target_error, t.pareto, design)
+                         SpringBounds(tuple(t.r), pair(t.r0), tuple(t.a), t.max_force, t.max_free_length,
+                                      t.max_deflection, pair(t.rod), pair(t.offset)),
+                         t.method, t.norm, t.grid, t.target_error, t.pareto, design, t.device)

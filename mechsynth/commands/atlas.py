@@ -59,6 +59,9 @@ def add_commands(sub) -> None:
     p.add_argument("--page-size", type=positive, help="with --html: chains per page (default 60)")
     p.add_argument("--draw-limit", type=whole,
                    help="with --html: draw at most this many chains, in code order (default 20000; ~50 ms each at 12 links)")
+    p.add_argument("--move-limit", type=whole,
+                   help="with --html: give the mechanisms of this many planar 1-DOF chains (the first drawn) a page "
+                        "where they move (default 0; about a second a mechanism)")
     p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
     p.add_argument("--workers", type=workers,
                    help="with --html: processes building the pages (default: all cores beyond 200 chains)")
@@ -71,11 +74,15 @@ def add_commands(sub) -> None:
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
-    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3)")
+    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3, or "
+                   "the chain's own)")
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--loop-classes", metavar="H=K,H=K",
+                   help="with --chain: every base of the higher class's loops on that chain (e.g. 3=4,5=1), "
+                        "each base's links in its class's colour")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
     p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
@@ -138,8 +145,9 @@ def _run_atlas(args) -> int:
     args.where = _conditions(args.where)
     if args.html is not None:
         return _write_site(args)
-    if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.workers)):
-        raise InvalidOption("--force, --page-size, --draw-limit and --workers go with --html")
+    if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.move_limit,
+                                                          args.workers)):
+        raise InvalidOption("--force, --page-size, --draw-limit, --move-limit and --workers go with --html")
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
     if args.count and args.format in WRITTEN:
@@ -222,6 +230,8 @@ def _write_site(args) -> int:
                             "(the site filters in the browser)")
     if args.draw_limit is not None and args.draw_limit < 0:
         raise InvalidOption(f"--draw-limit is a number of chains, not {args.draw_limit}")
+    if args.move_limit is not None and args.move_limit < 0:
+        raise InvalidOption(f"--move-limit is a number of chains, not {args.move_limit}")
     import time
 
     from synth.atlas import EmptyAtlas
@@ -229,7 +239,8 @@ def _write_site(args) -> int:
     start = time.perf_counter()
     try:
         result = write_site(args.db, args.html, page_size=args.page_size or 60,
-                            draw_limit=20000 if args.draw_limit is None else args.draw_limit, force=args.force,
+                            draw_limit=20000 if args.draw_limit is None else args.draw_limit,
+                            move_limit=args.move_limit or 0, force=args.force,
                             progress=True, workers=args.workers,
                             note=lambda text: print(f"mechsynth: {text}", file=sys.stderr))
     except EmptyAtlas as exc:
@@ -361,6 +372,9 @@ def _run_draw(args) -> int:
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
+    if args.loop_classes is not None and not args.chain:
+        raise InvalidOption("--loop-classes goes with --chain (for a query: mechsynth chains --loop-classes … "
+                            "--format jsonl, then draw a row with --chain)")
     if args.frame is not None and not args.chain:
         raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
     if args.frame is not None and args.mechanisms:
@@ -378,7 +392,14 @@ def _run_draw(args) -> int:
         if args.repairs and args.h != 3:
             raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
                                 f"{args.h}")
-    h = args.h or 3
+    given = None
+    if args.chain:  # read as analyze and identify read it, in its own motion space unless --h says another
+        from synth.exchange import read_chain
+
+        given = read_chain(args.chain, args.h).chain
+    h = given.h if given is not None else args.h or 3
+    if args.repairs and h != 3:
+        raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
     notes = None  # the words under each drawing of a sheet: the edits of the repairs
     if args.idle_joints and args.prismatic is None:
         raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
@@ -390,7 +411,7 @@ def _run_draw(args) -> int:
     if args.chain and args.repairs:
         from synth import chain_repairs
 
-        chain = Chain.parse(args.chain)
+        chain = given
         repairs = chain_repairs(chain, dof=args.dof, limit=args.repairs)
         if not repairs:
             print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
@@ -400,10 +421,18 @@ def _run_draw(args) -> int:
         notes = [_defect(chain, args.dof)] + ["; ".join(r["edits"]) for r in repairs]
         title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
-        from dataclasses import replace
+        chain = given
+        if args.loop_classes is not None:
+            from .chains import _class_variants_of
 
-        chain = replace(Chain.parse(args.chain), h=h)
-        if args.frame is not None:
+            if args.frame is not None or args.prismatic is not None:
+                raise InvalidOption("--loop-classes draws every base on the chain: it does not go with --frame or "
+                                    "--prismatic (use --mechanisms for every fixed link)")
+            items = draw.expand(_class_variants_of(chain, args), mechanisms=args.mechanisms)
+            if not items:
+                print("mechsynth: no base of those loop classes passes the exact test on this chain", file=sys.stderr)
+                return 1
+        elif args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:
             items = draw.expand(_variants(args, [chain]), mechanisms=args.mechanisms)

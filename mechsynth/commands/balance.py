@@ -56,18 +56,28 @@ def add_commands(sub) -> None:
                    help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
     common(a)
 
-    s = command("spring", "fit a crank-and-rocker spring device to Φ0·sin φ (and design its spring)",
+    s = command("spring", "fit a spring device to Φ0·sin φ: the crank with a slotted lever, the offset slider-crank "
+                          "or the sine device (and design its spring)",
                 _spring_problem, _table_spring, "plot_spring")
-    s.add_argument("--kind", required=True, choices=("tension", "compression", "compression-lever"),
-                   help="compression-lever: compression spring on the lever beyond the pin, exact at a = r0")
+    s.add_argument("--device", choices=("slotted-lever", "slider-crank", "sine"), default="slotted-lever",
+                   help="slotted-lever (default): the spring along the lever from the crank pin to the base point; "
+                        "slider-crank / sine: a compression spring on the slider in a fixed guide, on the side the "
+                        "sign of Φ0 asks for")
+    s.add_argument("--kind", choices=("tension", "compression", "compression-lever"),
+                   help="the slotted lever's spring (required there); compression-lever: compression spring on the "
+                        "lever beyond the pin, exact at a = r0")
     s.add_argument("--moment", required=True, type=float, metavar="PHI0",
                    help="Φ0 in N·m; + turns the crank away from the base point (compression), − towards it (tension)")
     s.add_argument("--range", required=True, type=number_range, metavar="A..B", help="working range of φ in degrees")
     s.add_argument("--r", required=True, type=number_range, metavar="A..B", help="crank length range (m)")
-    s.add_argument("--r0", required=True, type=number_range, metavar="A..B",
-                   help="spring length at φ = 0 (m); d = r + r0")
+    s.add_argument("--r0", type=number_range, metavar="A..B",
+                   help="slotted lever: spring length at φ = 0 (m); d = r + r0")
     s.add_argument("--a", required=True, type=number_range, metavar="A..B",
-                   help="pre-extension/pre-load range (m), 'inf' allowed")
+                   help="pre-extension/pre-load range (m), 'inf' allowed; on a slider the spring's least "
+                        "deflection over the range")
+    s.add_argument("--rod", type=number_range, metavar="A..B", help="slider-crank: rod length range (m)")
+    s.add_argument("--offset", type=number_range, metavar="A..B",
+                   help="slider-crank: offset of the guide from the crank pivot (m, signed; default 0..0)")
     s.add_argument("--max-force", type=float, metavar="F")
     s.add_argument("--max-free-length", type=float, metavar="L")
     s.add_argument("--max-deflection", type=float, metavar="X", help="compression: largest (l0 − L_min)/l0")
@@ -197,7 +207,8 @@ def _spring_problem(args):
     named = [k for k, v in given.items() if v is not None]
     if named and not args.design_spring:
         raise InvalidInput(f"{', '.join(named)} only apply with --design-spring.")
-    if args.kind == "tension" and (args.spring_ends is not None or args.guided):
+    kind = _device_options(args)
+    if kind == "tension" and (args.spring_ends is not None or args.guided):
         raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
                            "extension spring.")
     design = None
@@ -205,9 +216,36 @@ def _spring_problem(args):
         design = SpringOptions(args.material or "music-wire", args.max_outer_diameter, args.min_inner_diameter or 0.0,
                                args.spring_ends or "pinned", True if args.guided else None)
     lo, hi = args.range
-    bounds = SpringBounds(args.r, args.r0, args.a, args.max_force, args.max_free_length, args.max_deflection)
-    return SpringProblem(args.kind, args.moment, (math.radians(lo), math.radians(hi)), bounds, args.method, args.norm,
-                         DEFAULT_GRID if args.grid is None else args.grid, args.target_error, args.pareto, design)
+    bounds = SpringBounds(args.r, args.r0, args.a, args.max_force, args.max_free_length, args.max_deflection,
+                          args.rod, args.offset)
+    return SpringProblem(kind, args.moment, (math.radians(lo), math.radians(hi)), bounds, args.method, args.norm,
+                         DEFAULT_GRID if args.grid is None else args.grid, args.target_error, args.pareto, design,
+                         args.device)
+
+
+def _device_options(args) -> str:
+    """The spring kind, with the options the chosen device does not take refused in one sentence."""
+    from balance.errors import InvalidInput
+
+    if args.device == "slotted-lever":
+        missing = [k for k, v in (("--kind", args.kind), ("--r0", args.r0)) if v is None]
+        if missing:
+            raise InvalidInput(f"the slotted-lever device needs {' and '.join(missing)}.")
+        wrong = [k for k, v in (("--rod", args.rod), ("--offset", args.offset)) if v is not None]
+        if wrong:
+            raise InvalidInput(f"{' and '.join(wrong)} belong to the slider-crank; the slotted lever has no rod.")
+        return args.kind
+    wrong = [k for k, v in (("--r0", args.r0),) if v is not None]
+    if args.device == "sine":
+        wrong += [k for k, v in (("--rod", args.rod), ("--offset", args.offset)) if v is not None]
+    if wrong:
+        raise InvalidInput(f"the {args.device} device takes no {' nor '.join(wrong)}.")
+    if args.kind not in (None, "compression"):
+        raise InvalidInput(f"the {args.device} device carries a compression spring on the slider (on the side the "
+                           f"sign of Φ0 asks for); --kind {args.kind} does not apply.")
+    if args.device == "slider-crank" and args.rod is None:
+        raise InvalidInput("the slider-crank device needs --rod A..B (the rod length range, m).")
+    return "compression"
 
 
 def _share(text: str) -> float:
@@ -337,6 +375,8 @@ def _form_text(form) -> str:
 
 
 def _table_spring(out: dict) -> str:
+    if out["family"] != "slotted-lever":
+        return _table_slider_spring(out)
     rows = [
         ("kind / sense", f"{out['kind']} / {out['sense_text']}"),
         ("method / norm", f"{out['method']} / {out['norm']}"),
@@ -356,7 +396,33 @@ def _table_spring(out: dict) -> str:
         rows.insert(9, ("lever reach from C (m)", lv["reach_from_C"]))
         rows.insert(10, ("  beyond the farthest pin (m)", lv["extra_length"]))
         rows.insert(11, ("  a spring between C and B reaches (m)", lv["reach_from_C_fig_a"]))
-    s = pairs(rows)
+    return pairs(rows) + _spring_design_text(out)
+
+
+def _table_slider_spring(out: dict) -> str:
+    rows = [
+        ("device / side", f"{out['family']} / {out['sense_text']}"),
+        ("method / norm", f"{out['method']} / {out['norm']}"),
+        ("c (N/m)", out["c"]), ("r (m)", out["r"]),
+    ]
+    if out["rod"] is not None:
+        rows += [("rod l (m)", out["rod"]), ("guide offset e (m)", out["offset"])]
+    rows += [
+        ("pre-load a: least deflection (m)", out["a"]),
+        ("slider position x_n with the spring unloaded (m from A)", out["neutral"]),
+        ("free length l0 (m)", out["free_length"]), ("deflection ratio at most", out["deflection"]),
+        ("max spring force (N)", out["max_force"]),
+        ("max relative error", out["max_rel_error"]), ("RMS relative error", out["rms_rel_error"]),
+        ("seconds", out["seconds"]), ("function evaluations", out["nfev"]),
+        ("active bounds", ", ".join(out["active_bounds"]) or "none"),
+        ("message", out["message"]),
+    ]
+    return pairs(rows) + _spring_design_text(out)
+
+
+def _spring_design_text(out: dict) -> str:
+    """The designed helical spring, the Pareto front, notes and warnings of a spring fit, as text."""
+    s = ""
     sp = out.get("spring")
     if sp:
         srows = [

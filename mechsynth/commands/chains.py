@@ -43,6 +43,10 @@ def _add_selection(p) -> None:
     p.add_argument("--prismatic", metavar="A..B",
                    help="chains with A…B prismatic pairs on their simple joints, up to symmetry; wedge loops of "
                    "prismatic pairs add to W, so --dof stays the mobility of every chain listed")
+    p.add_argument("--loop-classes", metavar="H=K,H=K",
+                   help="heterogeneous chains with K loops of each class H, two classes (e.g. 3=4,5=1: the linear "
+                   "translator): a base holding the higher class's loops on a chain of the lower class; --dof is W by "
+                   "the heterogeneous count; with --chain, every base on that chain")
     p.add_argument("--chain", help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
                    "a command printed): its row, its mechanisms, or with --prismatic its variants")
     p.add_argument("--idle-joints", action="store_true",
@@ -128,7 +132,8 @@ def _run_one_chain(args) -> int:
     """``--chain C``: that one chain (any joint list or JSON row a command printed), normalised —
     its row, or its mechanisms; with ``--prismatic A..B`` the variants of that chain (Fig. 6: a
     drive's cylinders)."""
-    from synth import Chain, mechanisms_of
+    from synth import mechanisms_of
+    from synth.exchange import read_chain
     from synth import parse_range
     from synth import prismatic_variants, variants_of
 
@@ -137,8 +142,12 @@ def _run_one_chain(args) -> int:
              ["--cranks"] if args.cranks else [])
     if given:
         raise _invalid(f"{given[0]} selects chains of a query and contradicts --chain")
-    chain = Chain.parse(args.chain)
-    if args.prismatic is None:
+    chain = read_chain(args.chain, None if args.h == 3 else args.h).chain  # as analyze, identify and draw read it
+    if args.loop_classes is not None or chain.classes is not None:
+        _refuse_classless_format(args)
+    if args.loop_classes is not None:
+        items = _class_variants_of(chain, args)
+    elif args.prismatic is None:
         if args.idle_joints or getattr(args, "cylinders", None):
             raise _invalid("--idle-joints and --cylinders go with --prismatic")
         items = [chain]
@@ -150,7 +159,66 @@ def _run_one_chain(args) -> int:
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))
     return write_items(items, args.what, fmt=args.format, count=args.count,
-                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints)
+                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints, h=chain.h)
+
+
+def _refuse_classless_format(args) -> None:
+    """Other tools' formats have no place for loop classes: they would drop them silently."""
+    if args.format in WRITTEN:
+        raise _invalid(f"--format {args.format} has no place for loop classes: list heterogeneous chains as table, "
+                       "jsonl, json or csv (their joint lists and rows carry the classes)")
+
+
+def _class_variants_of(chain, args) -> list:
+    """``--chain C --loop-classes H=K,X=K``: every base of K_X loops of class X on that chain, read
+    in class H (the lower one)."""
+    from dataclasses import replace
+
+    from synth import class_variants, split_classes
+
+    from .codes import _parse_classes
+
+    h, k_h, x, k_x = split_classes(_parse_classes(args.loop_classes))
+    if chain.kinds is not None or chain.classes is not None:
+        raise _invalid("--loop-classes lays bases on a revolute chain without classes: give its joint list without "
+                       "'=', '~' or '|'")
+    if chain.loops != k_h + k_x:
+        raise _invalid(f"the chain has {chain.loops} loop{'s' * (chain.loops != 1)} and --loop-classes asks for "
+                       f"{k_h + k_x}")
+    return class_variants(replace(chain, h=h), x, k_x)
+
+
+def _run_classes(args) -> int:
+    """``chains --dof W --loop-classes H=K,X=K``: every heterogeneous chain (a base of class X on a
+    chain of class H), skeletons built by type synthesis in the process, bases laid here."""
+    from synth import heterogeneous_synthesis, mechanisms_of, size_note, skeleton_query
+
+    from .codes import _parse_classes
+
+    refused = [name for name, value in (("--h", args.h != 3), ("--prismatic", args.prismatic is not None),
+                                        ("--n1", args.n1 is not None), ("--checkpoint", args.checkpoint is not None),
+                                        ("--scheduler", args.scheduler is not None)) if value]
+    if refused:
+        raise _invalid(f"{refused[0]} contradicts --loop-classes (the classes give each loop's motion space; "
+                       "heterogeneous chains are closed, revolute and listed on this machine)")
+    if args.dof is None:
+        raise _invalid("give --dof W (the heterogeneous count's W) with --loop-classes")
+    _refuse_classless_format(args)
+    classes = _parse_classes(args.loop_classes)
+    selection = dict(code=args.code, v=args.v, require=args.require, cranks=args.cranks,
+                     max_multiplicity=args.max_multiplicity, rigid_subchains=args.rigid_subchains,
+                     fractionated=args.fractionated, planar_only=args.planar_only)
+    import os
+
+    skeletons = skeleton_query(args.dof, classes, links=args.links, **selection)
+    note = size_note(skeletons, processes=args.workers or os.cpu_count() or 1, force=args.force)
+    if note:
+        print(f"mechsynth: {note}", file=sys.stderr)
+    items = heterogeneous_synthesis(args.dof, classes, links=args.links, workers=args.workers, progress=True,
+                                    **selection)
+    if args.what == "mechanisms":
+        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link))
+    return _write(items, args)
 
 
 def _run(args) -> int:
@@ -163,6 +231,8 @@ def _run(args) -> int:
         return _run_one_chain(args)
     if args.idle_joints and args.prismatic is None:
         raise _invalid("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.loop_classes is not None:
+        return _run_classes(args)
     query = query_of(args)
     most_v = query.code.v if query.code is not None else (query.v or (0, 0))[1]
     if args.format == "adjacency" and most_v != 0:
@@ -191,14 +261,15 @@ def _run(args) -> int:
 
 def _write(items, args) -> int:
     return write_items(items, args.what, fmt=args.format, count=args.count, kinds=args.prismatic is not None,
-                       idle=args.idle_joints)
+                       idle=args.idle_joints, h=args.h)
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,
-                idle: bool = False) -> int:
+                idle: bool = False, h: int = 3) -> int:
     """List chains or mechanisms (``what``) in the chosen format, or count them by code; with
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
-    with ``idle`` the joints that never move.  Returns the exit status (1 when none)."""
+    with ``idle`` the joints that never move, in motion space ``h`` ≠ 3 its column (a table or
+    CSV row is read back in its space).  Returns the exit status (1 when none)."""
     if count:
         from synth import count_by_code
 
@@ -214,6 +285,8 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
     rows = (_row(item, fmt, idle) for item in items)
     columns = ["index", "id", "code", "links", "joints", "certificate"]
+    if h != 3:
+        columns.insert(3, "h")
     if fmt in ("table", "csv") and what == "chains":  # the atlas site's columns, for people
         columns[-1:-1] = ["planar", "symmetry", "fractionated"]
     if kinds:
@@ -250,7 +323,7 @@ def _row(item, fmt: str, idle: bool) -> dict:
     if fmt in ("table", "csv") and chain is item:
         row.update(planar="yes" if chain.is_planar() else "no", symmetry=round(chain.automorphisms()[1]),
                    fractionated="yes" if chain.is_fractionated() else "no")
-    if chain.kinds is None:  # a revolute chain among prismatic variants: no wedge loop, nothing slides
+    if chain.kinds is None and chain.classes is None:  # a revolute chain among prismatic variants: nothing slides
         row.update(prismatic=0, loops_2=0, loops_3=chain.loops)
         if "frame" in row:
             row.update(guide=0, swinging=0, floating=0, slider=0)

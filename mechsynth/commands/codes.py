@@ -35,7 +35,7 @@ def add_commands(sub) -> None:
 
 def _parse_classes(text: str, what: str = "loop classes are written H=K,H=K (e.g. 3=4,5=1)") -> dict[int, int]:
     try:
-        pairs = [[int(x) for x in item.split("=")] for item in text.split(",") if item.strip()]
+        pairs = [[int(x) for x in item.split("=")] for item in text.replace(",", " ").split()]
         classes = {h: k for h, k in pairs}
     except ValueError:
         raise InvalidOption(f"{what}, not {text!r}") from None
@@ -59,7 +59,8 @@ def _add_codes(sub):
     p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--n1", default="0", help="single-joint links (open chains), N or A..B")
-    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W")
+    p.add_argument("--max-link-degree", help="largest joints per link: N, K+1 (default) or K+W (the limit theorem, for W ≥ 1); "
+                   "a bound below K + 1 names on stderr the codes it leaves out")
     p.add_argument("--max-multiplicity", type=whole, help="largest number of links on one joint")
     p.add_argument("--compositions", action="store_true", help="split v into its composition v2-v3-…")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
@@ -74,7 +75,8 @@ def _run_codes(args) -> int:
     from synth import QueryTooLarge
     from synth import iter_codes
 
-    args.h = _motion_space(args)
+    h = _motion_space(args)
+    args.h = 3 if h is None else h
 
     bar = None
     if sys.stderr.isatty():  # codes stream out; the bar counts them on a terminal
@@ -96,9 +98,12 @@ def _run_codes(args) -> int:
             raise QueryTooLarge(f"{exc}, or give --force to list them anyway") from None
         raise
 
+    listed: set[str] = set()
+
     def rows():
         for code in ([] if first is None else itertools.chain([first], codes)):
             per_k[code.loops] += 1
+            listed.add(str(code))
             yield dict(code.to_dict(), dof=args.dof)
 
     columns = ["code", "links", "loops", "v", "assortment"] + (["composition"] if args.compositions else [])
@@ -107,6 +112,8 @@ def _run_codes(args) -> int:
     finally:
         if bar is not None:
             bar.close()
+    if args.max_link_degree is not None:
+        _note_left_out(args, listed)
     if first is None:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
@@ -115,13 +122,37 @@ def _run_codes(args) -> int:
     return 0
 
 
+def _note_left_out(args, listed: set) -> None:
+    """Say on stderr which codes a ``--max-link-degree`` below the default K + 1 left out: the limit
+    theorem's K + W holds for chains that no sub-chain makes rigid (W ≥ 1), so with W = 0 it drops
+    trusses that exist (32/0, K = 2, has three-joint links)."""
+    from synth import iter_codes
+
+    every = iter_codes(
+        args.dof, loops=args.loops, links=args.links,
+        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        h=args.h, f=args.f, v=args.v, n1=args.n1, require=args.require, max_multiplicity=args.max_multiplicity,
+        compositions=args.compositions, max_codes=None if args.force else MAX_CODES)
+    left = [str(c) for c in every if str(c) not in listed]
+    if left:
+        why = (" (the limit K + W holds for chains with W ≥ 1 and no rigid sub-chain; a truss's links carry up to "
+               "K + 1 joints)" if args.dof == 0 else "")
+        shown = ", ".join(left[:5]) + (", …" if len(left) > 5 else "")
+        print(f"mechsynth: note: --max-link-degree {args.max_link_degree} leaves out {len(left)} code"
+              f"{'s' * (len(left) > 1)} with larger links that the default bound K + 1 lists: {shown}{why}",
+              file=sys.stderr)
+
+
 # ----------------------------------------------------------------- analyze
 def _add_analyze(sub):
     p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
-    p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …'")
+    p.add_argument("subject", help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …' "
+                   "('0=1 1=2 2=3 3=0': words a=b are a chain where they number links 0 … n − 1, counts where every "
+                   "I ≥ 1)")
     p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")
     p.add_argument("--v", type=whole, help="v, with explicit counts (a code carries its own)")
-    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar)")
+    p.add_argument("--h", type=whole, help="motion space of a loop (default 3, planar; a chain's own where it states "
+                   "one)")
     p.add_argument("--f", type=whole, default=0, help="extra mobility of multi-DOF pairs")
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
@@ -138,54 +169,97 @@ def _refuse_for_chain(args) -> None:
         raise InvalidOption(f"{given[0]} does not apply to a chain (it describes codes and counts)")
 
 
-def _looks_like_chain(text: str) -> bool:
+def _subject(text: str) -> str:
+    """What ``analyze`` is given: ``"chain"``, ``"counts"`` or ``"code"``.
+
+    A JSON row, a text with loop classes after ``|`` or with ``-`` or ``~`` joints (``0-1 1=2``) is a chain, one with ``/`` a
+    code; words ``a=b`` only are counts ``I=N`` or a chain of prismatic pairs, whichever they
+    read as (a chain numbers its links 0 … n − 1 without gaps, counts have I ≥ 1, so a text is
+    both only with a zero count ``I=0``: refused, saying how to write each).
+
+    >>> _subject("0-1 1-2 2-0"), _subject("0=1 1=2 2=3 3=0"), _subject("2=4,3=2"), _subject("6301/0")
+    ('chain', 'chain', 'counts', 'code')
+    """
+    from synth import Chain, MalformedChain
+
     s = text.strip()
-    return s.startswith("{") or s.startswith("[") or "-" in s.split("/")[0] and "/" not in s
+    words = s.replace(",", " ").split()
+    if s.startswith(("{", "[")) or "|" in s or ("/" not in s and any("-" in w or "~" in w for w in words)):
+        return "chain"
+    if "/" in s or "=" not in s:
+        return "code"
+    try:
+        Chain.parse(s)
+        as_chain = None
+    except MalformedChain as exc:
+        as_chain = str(exc)
+    try:
+        counts = _parse_classes(s, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
+        if min(counts) < 1:
+            raise InvalidOption(f"counts are n_I for links with I ≥ 1 joints, and '{s}' names I = {min(counts)}")
+        as_counts = None
+    except InvalidOption as exc:
+        as_counts = str(exc)
+    if as_chain is None and as_counts is None:
+        zero = [w for w in words if w.split("=")[1] == "0"]
+        kept = ",".join(w for w in words if w not in zero)
+        at = next(w for w in words if "0" in w.split("="))
+        first = "=".join(reversed(at.split("=")))
+        raise InvalidOption(f"'{s}' reads both as link counts I=N and as a chain of prismatic pairs: write the counts "
+                            f"without their zero counts ('{kept}'), or the chain with link 0 first in its joint "
+                            f"('{s.replace(at, first, 1)}')")
+    if as_chain is not None and as_counts is not None:  # a text naming link 0 meant a chain (no count has I = 0)
+        named = {x for w in words for x in w.split("=")}
+        raise InvalidOption(f"cannot read '{s}' as a chain of prismatic pairs: {as_chain}" if "0" in named else as_counts)
+    return "chain" if as_chain is None else "counts"
 
 
-def _motion_space(args) -> int:
-    """``--h`` (default 3); loop classes name the motion space of each loop themselves."""
+def _motion_space(args) -> int | None:
+    """``--h`` or None (a chain's own; 3 for codes and counts); loop classes name each loop's motion space themselves."""
     if args.h is not None and args.loop_classes:
         raise InvalidOption("--h and --loop-classes contradict each other: the classes give each loop's motion space")
-    return 3 if args.h is None else args.h
+    return args.h
 
 
 def _run_analyze(args) -> int:
     from synth import analyze
 
-    args.h = _motion_space(args)
+    h = _motion_space(args)
     classes = _parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
-    if _looks_like_chain(subject):
-        from synth import analyze_chain
+    kind = _subject(subject)
+    if kind == "chain":
+        from synth import analyze_chain, check_motion_space
+        from synth.exchange import read_chain
 
         _refuse_for_chain(args)
-        from synth import check_motion_space
-
-        h = check_motion_space(args.h, lowest=2)
-        if args.repairs and h != 3:
-            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
-        result = analyze_chain(subject, dof=args.dof, h=h).to_dict()
+        if h is not None:
+            check_motion_space(h, lowest=2)
+        chain = read_chain(subject, h).chain
+        if args.repairs and chain.h != 3:
+            raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {chain.h}")
+        if args.repairs and chain.classes is not None:
+            raise InvalidOption("--repairs rebuilds planar chains of one class, not a chain with loop classes")
+        result = analyze_chain(chain, dof=args.dof).to_dict()
         if args.repairs:
-            from synth import Chain
             from synth import chain_repairs
 
-            result["repairs"] = chain_repairs(Chain.parse(subject), dof=args.dof, limit=args.repairs)
-    elif "=" in subject and "/" not in subject:
+            result["repairs"] = chain_repairs(chain, dof=args.dof, limit=args.repairs)
+    elif kind == "counts":
         if args.repairs:
             raise InvalidOption("--repairs works on a code or a chain, not on bare counts")
         counts = _parse_classes(subject, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
-        result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=args.h, f=args.f,
+        result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=3 if h is None else h, f=args.f,
                          loop_classes=classes).to_dict()
     else:
         if args.v is not None:
             raise InvalidOption("--v goes with explicit counts: a code carries its own v")
-        result = analyze(subject, dof=args.dof, h=args.h, f=args.f, loop_classes=classes).to_dict()
+        result = analyze(subject, dof=args.dof, h=3 if h is None else h, f=args.f, loop_classes=classes).to_dict()
         if args.repairs:
             from synth import Code
             from synth import code_repairs
 
-            if args.h != 3 or args.f or classes:
+            if h not in (None, 3) or args.f or classes:
                 raise InvalidOption("--repairs rebuilds planar codes: drop --h, --f and --loop-classes")
             result["repairs"] = code_repairs(Code.parse(subject), result["dof"] if args.dof is None else args.dof,
                                              limit=args.repairs)

@@ -10,10 +10,13 @@ Example
 
 from __future__ import annotations
 
-from .._argtypes import whole, workers
+import sys
+
+from .._argtypes import picture_file, positive, whole, workers
 from .._output import COUNT_FORMATS, FORMATS, nothing_found, write_count, write_rows
 
 _RATIO_LINKS = 7  # --ratio over every train of a size: up to this many links
+_SHEET = 48  # schematics on one sheet unless --limit says otherwise
 
 
 def add_commands(sub) -> None:
@@ -36,12 +39,17 @@ def add_commands(sub) -> None:
     p.add_argument("--tolerance", help="with --ratio: relative error allowed, e.g. 1%% (default) or 0.002")
     p.add_argument("--teeth", metavar="A..B", help="with --ratio: tooth numbers allowed (default 17..150)")
     p.add_argument("--min-teeth", type=whole, help="with --ratio: fewest teeth without undercut (default 17)")
-    p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets, (z_sun + z_ring)/k whole")
+    p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets that assemble "
+                   "((z_sun + z_ring)/k whole) and clear each other")
     p.add_argument("--best", type=whole, default=5, help="with --ratio: designs listed (default 5)")
     p.add_argument("--mesh-kinds", choices=("given", "free"),
                    help="with --ratio: 'free' lets each mesh be external or internal (either gear the ring), "
                         "'given' keeps the train's (default: free for the atlas, given for --train)")
-    p.add_argument("--out", metavar="FILE", help="draw the functional schematics (.svg, .png, .pdf; up to 48 a sheet)")
+    p.add_argument("--out", metavar="FILE", type=picture_file,
+                   help="draw the functional schematics (.svg, .png, .pdf), checked before any work")
+    p.add_argument("--limit", type=positive,
+                   help=f"with --out: most schematics on one sheet (default {_SHEET}); a larger selection is refused")
+    p.add_argument("--force", action="store_true", help="run a count or listing estimated to take more than a day")
     p.add_argument("--workers", type=workers, help="processes, at most the number of cores (default 1)")
     p.add_argument("--format", choices=FORMATS,
                    help="table (default), jsonl, csv or json; with --count json (default), table, jsonl or csv")
@@ -76,8 +84,10 @@ def _check(args) -> None:
             raise InvalidOption("give --links N (and --dof F), or --train")
     if (args.input is None) != (args.output is None) or (args.input is not None and args.frame is None):
         raise InvalidOption("--input and --output go together, with --frame")
-    if args.out and not args.out.lower().endswith((".svg", ".png", ".pdf")):
-        raise InvalidOption(f"a drawing is written as .svg, .png or .pdf, not {args.out!r}")
+    if args.limit is not None and not args.out:
+        raise InvalidOption("--limit goes with --out (it is the most schematics drawn on one sheet)")
+    if args.force and (args.train is not None or args.ratio is not None):
+        raise InvalidOption("--force goes with a count or listing of the atlas (one train or a ratio design is not sized)")
     if args.best < 1:
         raise InvalidOption(f"--best must be a whole number ≥ 1, not {args.best}")
 
@@ -109,8 +119,10 @@ def _run(args) -> int:
         check_query(dof, args.links, args.graphs)
         if args.links < dof + 2:
             raise InvalidOption(f"a gear train with F = {dof} needs at least {dof + 2} links (one mesh), not {args.links}")
+    if args.train is None and args.ratio is None:
+        _size_note(args, dof)
     if args.count:
-        result = count_trains(dof, args.links, args.graphs, workers=args.workers)
+        result = count_trains(dof, args.links, args.graphs, workers=args.workers, progress=True)
         if write_count(result, args.format or "json") == 0:
             return nothing_found("gear trains satisfy these parameters")
         return 0
@@ -122,13 +134,15 @@ def _run(args) -> int:
             if x is not None and not 0 <= x < items[0].links:
                 raise InvalidOption(f"link {x} is not a link of the train (0…{items[0].links - 1})")
     else:
-        items = trains(dof, args.links, args.graphs, workers=args.workers)
+        items = trains(dof, args.links, args.graphs, workers=args.workers, progress=args.ratio is None)
     if args.ratio is not None:
         return _run_ratio(args, items, compound)
     if args.input_output or args.input is not None:
         return _run_mechanisms(args, items, compound)
     fmt = args.format or "table"
-    items = list(items) if args.out else items
+    if args.out:
+        items = list(items)
+        _check_sheet(args, len(items), "gear trains")
     columns = ["index", "train", "code", "dof", "carriers", "certificate"]
     n = write_rows(_indexed(_train_row(t, fmt) for t in items), columns, fmt)
     if fmt == "table":
@@ -138,13 +152,34 @@ def _run(args) -> int:
     return 0 if n else nothing_found("gear trains satisfy these parameters")
 
 
-def _draw(items, out: str, compound, teeth=None) -> None:
+def _size_note(args, dof: int) -> None:
+    """Refuse an atlas query too large to run unasked, and say how long a long one takes (stderr)."""
+    from synth.gears import size_check_trains
+
+    note = size_check_trains(dof, args.links, args.graphs, processes=args.workers or 1, force=args.force,
+                             table=not args.count and (args.format or "table") == "table")
+    if note:
+        print(f"mechsynth: {note}", file=sys.stderr)
+
+
+def _check_sheet(args, n: int, what: str) -> None:
+    """A sheet of more schematics than --limit is refused before anything is printed."""
+    from synth import InvalidOption
+
+    limit = args.limit or _SHEET
+    if n > limit:
+        count = f"{n:,}".replace(",", " ")
+        raise InvalidOption(f"{count} {what} to draw, more than --limit {limit} on one sheet: draw fewer (one --train, "
+                            "fewer --links, --graphs rotation) or raise --limit")
+
+
+def _draw(items, out: str, compound, teeth=None, titles=None) -> None:
     from synth.gears import draw_sheet, draw_train
 
     if len(items) == 1:
-        draw_train(items[0], out, teeth=teeth, compound=compound)
+        draw_train(items[0], out, teeth=teeth, compound=compound, title=titles[0] if titles else None)
     else:
-        draw_sheet(items, out)
+        draw_sheet(items, out, limit=len(items), titles=titles)
 
 
 def _mechanisms_of(args, items, compound):
@@ -160,10 +195,14 @@ def _mechanisms_of(args, items, compound):
 
 def _run_mechanisms(args, items, compound) -> int:
     fmt = args.format or "table"
+    found = _mechanisms_of(args, items, compound)
     drawn = []
+    if args.out:
+        found = list(found)
+        _check_sheet(args, len(found), "mechanisms")
 
     def rows():
-        for m in _mechanisms_of(args, items, compound):
+        for m in found:
             drawn.append(m)
             row = m.to_dict()
             if fmt == "table":
@@ -173,20 +212,20 @@ def _run_mechanisms(args, items, compound) -> int:
     columns = ["index", "train", "frame", "input_link", "output_link", "ratio"]
     n = write_rows(_indexed(rows()), columns, fmt)
     if fmt == "table":
-        print(f"{n} mechanisms (ratio i = ω_input/ω_output, frame at rest; z<link> teeth of its wheel)")
+        print(f"{n} mechanism{'s' * (n != 1)} (ratio i = ω_input/ω_output, frame at rest; z<link> teeth of its wheel)")
     if args.out and drawn:
         from dataclasses import replace
 
-        _draw([replace(m.train, frame=m.frame) for m in drawn[:48]], args.out, compound)
+        titles = [f"{k}: {m.train.compact()}: frame {m.frame}, input {m.input_link}, output {m.output_link}, "
+                  f"i = {m.ratio.text}" for k, m in enumerate(drawn, start=1)]
+        _draw([replace(m.train, frame=m.frame) for m in drawn], args.out, compound, titles=titles)
     return 0 if n else nothing_found("mechanisms with an input and an output on the frame")
 
 
 def _run_ratio(args, items, compound) -> int:
-    from fractions import Fraction
+    from tqdm import tqdm
 
-    from synth import parse_range
-    from synth import InvalidOption
-    from synth.gears import MIN_TEETH, NoDesign, design
+    from synth import InvalidOption, parse_range
 
     if args.train is None and args.links > _RATIO_LINKS:
         raise InvalidOption(f"--ratio over every train of a size goes up to {_RATIO_LINKS} links: choose one with --train")
@@ -194,19 +233,9 @@ def _run_ratio(args, items, compound) -> int:
     if hi is None:
         raise InvalidOption("--teeth needs an upper end: give A..B")
     kinds = args.mesh_kinds or ("given" if args.train is not None else "free")
-    kept: list = []  # the best so far over every mechanism: (error, teeth sum, order, design, mechanism)
-    for order, m in enumerate(_mechanisms_of(args, items, compound)):
-        beat = kept[-1][:2] if len(kept) >= args.best else None  # nothing worse can enter
-        try:
-            found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
-                           teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
-                           planets=args.planets, compound=compound, best=args.best, kinds=kinds, beat=beat)
-        except NoDesign:
-            if args.train is not None and args.input is not None:
-                raise
-            continue  # another mechanism may reach the ratio
-        kept += [(d.error, sum(d.teeth.values()), order, d, m) for d in found]
-        kept = sorted(kept, key=lambda x: x[:3])[:args.best]
+    items = list(items)  # the bar's total
+    with tqdm(items, unit=" trains", file=sys.stderr, disable=None, delay=1.0, leave=False, desc="ratio design") as bar:
+        kept = _best_designs(args, bar, compound, lo, hi, kinds)
     if not kept:
         raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "
                             f"{args.tolerance or '1%'} in these trains (coaxial, assembly and undercut conditions)")
@@ -230,8 +259,33 @@ def _run_ratio(args, items, compound) -> int:
         from dataclasses import replace
 
         best, m = designs[0]
-        _draw([replace(best.train or m.train, frame=m.frame)], args.out, compound, teeth=best.teeth)
+        train = replace(best.train or m.train, frame=m.frame)
+        title = (f"{train.compact()}: frame {m.frame}, input {m.input_link}, output {m.output_link}\n"
+                 f"i = ω{m.input_link}/ω{m.output_link} = {best.ratio} ≈ {float(best.ratio):.5g} "
+                 f"(wanted {args.ratio}, error {float(best.error):.3%})")
+        _draw([train], args.out, compound, teeth=best.teeth, titles=[title])
     return 0
+
+
+def _best_designs(args, items, compound, lo: int, hi: int, kinds: str) -> list:
+    """The ``--best`` designs over every mechanism of ``items``: (error, teeth sum, order, design,
+    mechanism), the worst kept so far bounding the next searches."""
+    from synth.gears import MIN_TEETH, NoDesign, design
+
+    kept: list = []
+    for order, m in enumerate(_mechanisms_of(args, items, compound)):
+        beat = kept[-1][:2] if len(kept) >= args.best else None  # nothing worse can enter
+        try:
+            found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
+                           teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
+                           planets=args.planets, compound=compound, best=args.best, kinds=kinds, beat=beat)
+        except NoDesign:
+            if args.train is not None and args.input is not None:
+                raise
+            continue  # another mechanism may reach the ratio
+        kept = sorted(kept + [(d.error, sum(d.teeth.values()), order, d, m) for d in found],
+                         key=lambda x: x[:3])[:args.best]
+    return kept
 
 
 def _formula(train, m, compound):

@@ -40,10 +40,11 @@ def add_commands(sub) -> None:
     p.add_argument("--input-format", choices=FORMATS, help="the input's format (default: from the file suffix or "
                    "its first characters)")
     p.add_argument("--frame", help="fix this link (as the input names it): identify the mechanism")
-    p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6 (default the chain's own, 3 for a "
-                   "joint list)")
+    p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6, for a source that states none (default "
+                   "the chain's own, 3 for a joint list); a source that states another is refused")
     p.add_argument("--index", action=argparse.BooleanOptionalAction, default=None,
-                   help="find the chain's row in its code's listing (default: for codes of up to 6 loops)")
+                   help="find the chain's row in its code's listing (default: where listing the chains of its link "
+                        "count is estimated at a minute or less on one core)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table",
                    help="table (default), json or jsonl (one row per chain)")
     p.set_defaults(run=_run_identify)
@@ -57,7 +58,8 @@ def add_commands(sub) -> None:
     p.add_argument("--links", type=whole, help="number of links n")
     p.add_argument("--code", help="only this code, e.g. 6301/0")
     p.add_argument("--v", help="multiple-joint count or range A..B (default 0)")
-    p.add_argument("--h", type=whole, default=3, help="motion space of the loops, 2 … 6 (default 3)")
+    p.add_argument("--h", type=whole, default=3, help="motion space of the loops, 2 … 6 (default 3); chains whose "
+                   "file states no h are read in it")
     p.add_argument("--n1", help="single-joint links, N or A..B (default 0)")
     p.add_argument("--max-multiplicity", type=whole, help="most links on one joint")
     p.add_argument("--require", action="append", default=[], metavar="I=N|I=A..B|I=A..",
@@ -101,6 +103,10 @@ def _table(row: dict) -> str:
     joints = " ".join(("=" if k == "prismatic" else "~" if k == "mesh" else "-").join(
         str(names[x]) if names else str(x) for x in j) for j, k in zip(row["joints"], row.get("kinds") or
                                                                       ["revolute"] * len(row["joints"])))
+    if row.get("classes"):  # a heterogeneous chain: its bases, class by class, as a joint list writes them
+        bases = [f"h{x}: " + " ".join(str(names[i]) if names else str(i) for i, c in enumerate(row["classes"]) if c == x)
+                 for x in sorted(set(row["classes"]) - {row["h"]})]
+        joints += " | " + "; ".join(([] if row["h"] == 3 else [f"h{row['h']}"]) + bases)
     passed = [_CONVENTIONS[name] for name, ok in row["conventions"].items() if ok]
     lines = [
         ("chain", joints),
@@ -124,7 +130,8 @@ def _table(row: dict) -> str:
     if row["note"]:
         lines.append(("note", row["note"]))
     if "frame" in row:
-        lines += [("frame", str(row["frame"])), ("frame's orbit", ", ".join(map(str, row["frame_orbit"]))),
+        lines += [("frame", str(row["frame"]) + (f", input link {row['input_link']}" if "input_link" in row else "")),
+                  ("frame's orbit", ", ".join(map(str, row["frame_orbit"]))),
                   ("inversion", "; ".join(row["inversion"]) or "-"),
                   ("mechanism listing", _listed(row, "mechanism_") if row.get("mechanism_listing") else "none")]
     lines.append(("certificate", row["certificate"]))

@@ -38,12 +38,12 @@ Example
 (True, ['met'])
 """
 
-from . import balancing, gear_trains, gears, structure
+from . import balancing, gear_trains, gears, motion, structure
 from .registry import KINDS, TABLES, ComputeKind, Expectation, Run, SceneTable, register
 
 # The run order of a scene's computations: structure first (others may read its results), then
-# balancing, joint kinds and the planetary layout, gear trains.
-register(structure.FAMILY, balancing.FAMILY, gears.FAMILY, gear_trains.FAMILY)
+# balancing, joint kinds and the planetary layout, gear trains, dimensioned mechanisms.
+register(structure.FAMILY, balancing.FAMILY, gears.FAMILY, gear_trains.FAMILY, motion.FAMILY)
 from .results import Check, DirectoryResult, Scene, SceneError, SceneResult
 from .runner import is_scene, iter_scene_paths, load_scene, run_directory, run_scene
 

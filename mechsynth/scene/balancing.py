@@ -106,16 +106,18 @@ balance_kind(
     after=_arm_terms, plot="plot_arm")
 
 balance_kind(
-    "balance spring", "spring", "solve_spring", "fit of a crank-and-rocker spring device ([spring])",
+    "balance spring", "spring", "solve_spring", "fit of a spring device ([spring]: slotted lever, slider-crank, sine)",
     "the moment, the angle range and the bounds of the device",
     expect={
         **{k: _below() for k in ("r", "r0", "a", "c", "d", "free_length", "max_force", "max_rel_error",
-                                 "rms_rel_error")},
+                                 "rms_rel_error", "rod", "offset", "neutral")},
         "seconds": Expectation(Number, below=True, best_of=3),  # timings on a shared machine are noisy
         "active_bounds": Expectation(Texts),
         "sense": Expectation(Int),
     },
-    report=lambda r: [f"c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, r0 = {r['r0']:.6g} m, a = {r['a']:.6g} m",
+    report=lambda r: [f"{r['family']}: c = {r['c']:.6g} N/m, r = {r['r']:.6g} m, "
+                      + "".join(f"{key} = {r[key]:.6g} m, " for key in ("r0", "rod", "offset") if r[key] is not None)
+                      + f"a = {r['a']:.6g} m",
                       f"max relative error {r['max_rel_error']:.4g}; "
                       f"active bounds {', '.join(r['active_bounds']) or 'none'}"],
     plot="plot_spring")

@@ -82,7 +82,8 @@ class Structure(Table):
     loops: RangeText | None = key("K, independent loops", *CODES, *CHAINS)
     links: RangeText | None = key("n, links with the frame", *CODES, *CHAINS)
     loop_classes: IndexTable("a table of loop classes { H = K_H, … } with whole numbers") | None = key(
-        "K_h of a heterogeneous system", *CODES, *ANALYSIS)
+        "K_h of a heterogeneous system (chains: a base of the higher class on a chain of the lower)",
+        *CODES, *ANALYSIS, *CHAINS)
     h: Count = key("motion space of a loop", *CODES, *ANALYSIS, *CHAINS, default=3)
     f: Whole = key("extra mobility of multi-DOF pairs", *CODES, *ANALYSIS, *CHAINS, default=0)
     v: VRange | None = key("multiple-joint count", *CODES, *CHAINS, *ANALYSIS)
@@ -104,7 +105,8 @@ class Structure(Table):
     code: CodeText | None = key("one standard code", *ANALYSIS, *CHAINS)
     counts: IndexTable("a table of link counts { I = n_I, … } with whole numbers") | None = key(
         "explicit link counts { 1 = n1, 2 = n2, … }", *ANALYSIS)
-    chain: Text | None = key("a chain as a joint list '0-1 1-2 …'", *ANALYSIS)
+    chain: Text | None = key("a chain as a joint list '0-1 1-2 …' (chains: with loop_classes, every base on it)",
+                             *ANALYSIS, *CHAINS)
 
     @model_validator(mode="after")
     def _every_key_used(self, info: ValidationInfo):
@@ -168,6 +170,21 @@ def _check_chains(scene: Scene) -> None:
         if isinstance(value, str) and ".." in value:
             raise scene.error(f"[structure] key '{name}' must be one whole number for chains, mechanisms and "
                               f"drawings, not the range {value!r}")
+    if s.loop_classes is not None:
+        if s.h != 3 or s.loops is not None or s.prismatic is not None or s.n1 is not None:
+            raise scene.error("[structure] key 'loop_classes' gives each loop's motion space and the links: it does "
+                              "not go with 'h', 'loops', 'prismatic' or 'n1' for chains, mechanisms and drawings")
+        if s.chain is not None:
+            from synth import Chain
+
+            loops, asked = Chain.parse(s.chain).loops, sum(s.loop_classes.values())
+            if loops != asked:
+                raise scene.error(f"[structure] key 'chain' has {loops} loop{'s' * (loops != 1)} and 'loop_classes' "
+                                  f"asks for {asked}")
+        return
+    if s.chain is not None:
+        raise scene.error("[structure] key 'chain' gives chains only with 'loop_classes' (every base on it); "
+                          "for its analysis, compute 'analysis'")
     if s.links is None and s.loops is None and s.code is None:
         raise scene.error("[structure] needs 'links', 'loops' or 'code' for chains, mechanisms and drawings")
 
@@ -216,12 +233,28 @@ def _codes_exclude(expected: list, actual: list, rel_tol: float) -> tuple[bool, 
 
 
 def _same_code(expected: str, actual: str, rel_tol: float) -> tuple[bool, str]:
-    return _canonical([expected]) == _canonical([actual]), f"the run gave {actual!r}"
+    """The standard code, without what follows it in a chain's analysis (' P2', ' K3=4 K5=1')."""
+    return _canonical([expected]) == _canonical([_split_suffix(actual)[0]]), f"the run gave {actual!r}"
+
+
+def _chains_include(expected: list, actual: list, rel_tol: float) -> tuple[bool, str]:
+    """Every chain named (a joint list, loop classes included) is among the chains listed, up to numbering."""
+    from synth import Chain
+
+    listed = {ch["certificate"] for ch in actual}
+    missing = [text for text in expected if Chain.parse(text).certificate not in listed]
+    return not missing, f"not listed: {'; '.join(missing)}"
+
+
+def _split_suffix(code: str) -> tuple[str, str]:
+    """A code with what follows it (' P2', ' K3=4 K5=1'): the code and that suffix."""
+    head, _, tail = code.partition(" ")
+    return head, (" " + tail) if tail else ""
 
 
 def _codes_table(expected: dict, actual: dict, rel_tol: float) -> tuple[bool, str]:
-    want = dict(zip(_canonical(expected), expected.values()))
-    got = dict(zip(_canonical(actual), actual.values()))
+    want = {_canonical([_split_suffix(c)[0]])[0] + _split_suffix(c)[1]: n for c, n in expected.items()}
+    got = {_canonical([_split_suffix(c)[0]])[0] + _split_suffix(c)[1]: n for c, n in actual.items()}
     diff = [f"{c}: expected {want.get(c, 0)}, got {got.get(c, 0)}" for c in sorted(set(want) | set(got))
             if want.get(c, 0) != got.get(c, 0)]
     return not diff, "; ".join(diff)
@@ -249,11 +282,31 @@ def _chain_list(run: Run) -> list:
     def make() -> list:
         from synth import type_synthesis  # graph models: only for chain queries
 
-        query = _query(run.scene.tables["structure"])
+        s = run.scene.tables["structure"]
+        if s.loop_classes is not None:
+            return _heterogeneous(s, run.workers)
+        query = _query(s)
         _refuse_large(query, run.workers)
         return list(type_synthesis(query, workers=run.workers))
 
     return run.shared("chains", make)
+
+
+def _heterogeneous(s: Structure, workers: int) -> list:
+    """The heterogeneous chains of a ``[structure]`` with ``loop_classes``: every base on its
+    ``chain`` (read as a chain of the lower class, its own classes dropped), or the query."""
+    from dataclasses import replace
+
+    from synth import Chain, class_variants, heterogeneous_synthesis, skeleton_query, split_classes
+
+    h, _, x, k_x = split_classes(s.loop_classes)
+    if s.chain is not None:  # (its loops checked against the classes before the run)
+        return class_variants(replace(Chain.parse(s.chain), h=h, classes=None), x, k_x, rigid_subchains=s.rigid_subchains)
+    selection = dict(code=s.code, v=s.v, require=s.require, cranks=s.cranks, fractionated=s.fractionated,
+                     planar_only=s.planar_only, max_multiplicity=s.max_multiplicity, rigid_subchains=s.rigid_subchains)
+    links = int(s.links) if s.links is not None else None
+    _refuse_large(skeleton_query(s.dof, s.loop_classes, links=links, **selection), workers)
+    return list(heterogeneous_synthesis(s.dof, s.loop_classes, links=links, workers=workers, **selection))
 
 
 def _query(s: Structure):
@@ -298,8 +351,8 @@ def _mechanism_list(run: Run) -> list:
         from synth import mechanisms_of
 
         s = run.scene.tables["structure"]
-        return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=s.input_link,
-                                                                        cylinders=_query(s).cylinders)]
+        cylinders = () if s.loop_classes is not None else _query(s).cylinders
+        return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=s.input_link, cylinders=cylinders)]
 
     return run.shared("mechanisms", make)
 
@@ -309,7 +362,7 @@ def _count(run: Run) -> dict:
     by_code: dict[str, int] = {}
     by_v: dict[str, int] = {}
     for ch in chains:
-        name = str(ch.code) + ch.kind_suffix
+        name = str(ch.code) + ch.kind_suffix + ch.class_suffix
         by_code[name] = by_code.get(name, 0) + 1
         by_v[str(ch.v)] = by_v.get(str(ch.v), 0) + 1
     return {"count": len(chains), "by_code": by_code, "by_v": dict(sorted(by_v.items(), key=lambda kv: int(kv[0]))),
@@ -318,8 +371,8 @@ def _count(run: Run) -> dict:
 
 
 def _chains(run: Run) -> dict:
-    return {**_count(run), "chains": [{"code": str(ch.code), "joints": ch.compact(), "certificate": ch.certificate}
-                                      for ch in _chain_list(run)]}
+    return {**_count(run), "chains": [{"code": str(ch.code) + ch.class_suffix, "joints": ch.compact(),
+                                       "certificate": ch.certificate} for ch in _chain_list(run)]}
 
 
 def _mechanisms(run: Run) -> dict:
@@ -412,6 +465,9 @@ _CHAIN_COUNTS = {
     "count_nonplanar": Expectation(Whole, ("nonplanar",)),
     "count_fractionated": Expectation(Whole, ("fractionated",)),
 }
+_CHAIN_LISTS = {**_CHAIN_COUNTS, "chains_include": Expectation(
+    Annotated[list[StrictStr], expect("a list of joint lists such as [\"0-1 1-2 2-3 3-0\"]")], ("chains",),
+    _chains_include)}
 
 FAMILY.kind(ComputeKind(
     "codes", "number synthesis: every standard code n2n3…/v for the structure", "structure", _codes,
@@ -430,7 +486,7 @@ FAMILY.kind(ComputeKind(
     _count, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
 FAMILY.kind(ComputeKind(
     "chains", "type synthesis: the chains themselves (joint lists and certificates) and their counts", "structure",
-    _chains, expect=_CHAIN_COUNTS, check=_check_chains, report=_report_chains))
+    _chains, expect=_CHAIN_LISTS, check=_check_chains, report=_report_chains))
 FAMILY.kind(ComputeKind(
     "mechanisms", "chains with a fixed link (and input link) up to symmetry", "structure", _mechanisms,
     expect={"mechanisms": Expectation(Whole, ("count",)),

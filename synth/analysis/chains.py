@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 
-from ..errors import ImpossibleParameters, MalformedChain, QueryTooLarge
+from ..errors import ImpossibleParameters, InvalidOption, MalformedChain, QueryTooLarge
 from ..structure.chain import Chain
 from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
 from ..structure.query import MAX_CODE_LINKS
@@ -72,18 +72,20 @@ class ChainAnalysis:
     required_dof: int | None = None
     defect: int | None = None
     redundant_joints: list | None = None
+    loop_classes: dict | None = None
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
 def mobility_of(chain: Chain) -> int:
-    """The chain's true mobility: generic for a planar chain, the count in other motion spaces.
+    """The chain's true mobility: generic for a planar chain, the count in other motion spaces and
+    in heterogeneous chains (whose loops' motion spaces are the designer's statement).
 
     >>> mobility_of(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced four-bar: rigid
     0
     """
-    return generic_mobility(chain) if chain.h == 3 else chain.dof
+    return generic_mobility(chain) if chain.h == 3 and chain.classes is None else chain.dof
 
 
 def _standard(chain: Chain) -> bool:
@@ -93,11 +95,12 @@ def _standard(chain: Chain) -> bool:
     W = base.dof - (wedge_loops(base) if base.kinds is not None else 0)
     code = base.code
     exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}  # one code to find
+    size = dict(loop_classes=chain.loop_classes) if chain.classes is not None else dict(loops=code.loops, h=chain.h)
     try:
         return W >= 0 and code.loops >= 0 and code in number_synthesis(
-            W, loops=code.loops, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
-            compositions=True, h=chain.h, max_multiplicity=max((len(j) for j in chain.joints), default=2),
-            require=exact)
+            W, v=code.v, n1=code.n1, max_link_degree=max(code.loops + 1, code.max_degree),
+            compositions=True, max_multiplicity=max((len(j) for j in chain.joints), default=2),
+            require=exact, **size)
     except ImpossibleParameters:
         return False
 
@@ -122,6 +125,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     '1|41/0'
     >>> analyze_chain("0=1 1=2 2=3 3=0").dof              # the wedge loop of four sliders
     2
+    >>> a = analyze_chain("0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13 | h5: 0 1 2 3 4 5")
+    >>> a.dof, a.code, a.loop_classes, a.subchain_defect     # the linear translator (Fig. 12б)
+    (1, '12.2.0.0.0/6 K3=4 K5=1', {'K3': 4, 'K5': 1}, 'none')
     """
     if isinstance(chain, str):
         chain = Chain.parse(chain)
@@ -135,11 +141,15 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         raise MalformedChain(f"link{'s' * (len(loose) > 1)} {shown} of the {chain.links} {verb} in no joint: a chain's "
                              "links are all jointed")
     if h is not None and h != chain.h:
+        if chain.classes is not None:
+            raise InvalidOption(f"the chain names its loop classes after '|' (its other links are of class "
+                                f"{chain.h}): h = {h} contradicts them")
         chain = replace(chain, h=h)
     report = check_subchains(chain, rigid_subchains=(dof if dof is not None else chain.dof) == 0)  # refuses pieces
     W = mobility_of(chain)
     idle = idle_joints(chain)
-    k2 = wedge_loops(chain) if chain.kinds is not None else 0
+    k2 = wedge_loops(chain) if chain.kinds is not None else chain.loop_classes.get(2, 0)
+    k3 = chain.loops - k2 if chain.classes is None else chain.loop_classes.get(3, 0)
     advice = []
     if dof is not None and dof != W:
         d = W - dof
@@ -166,9 +176,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     if chain.is_fractionated():
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
     return ChainAnalysis(
-        code=str(chain.code) + chain.kind_suffix, certificate=chain.certificate, h=chain.h, links=chain.links,
+        code=str(chain.code) + chain.kind_suffix + chain.class_suffix, certificate=chain.certificate, h=chain.h, links=chain.links,
         joints=len(chain.joints), dof=W,
-        dof_count=chain.dof, redundant=W - chain.dof, loops=chain.loops, loops_2=k2, loops_3=chain.loops - k2,
+        dof_count=chain.dof, redundant=W - chain.dof, loops=chain.loops, loops_2=k2, loops_3=k3,
         complexity=chain.loops - 1, v=chain.v, prismatic=kind_count(chain, "prismatic"),
         meshes=kind_count(chain, "mesh"), lever_analogue=str(lever_analogue(chain).code) if has_mesh else None,
         standard_code=_standard(chain), connected=True, fractionated=chain.is_fractionated(),
@@ -178,4 +188,5 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         advice="; ".join(advice) or "no defect: no rigid or over-constrained sub-chain, no idle joint",
         required_dof=dof, defect=None if dof is None else chain.dof - dof,
         redundant_joints=None if redundant is None else [list(j) for j in redundant],
+        loop_classes=None if chain.classes is None else {f"K{x}": k for x, k in chain.loop_classes.items()},
     )

@@ -163,19 +163,31 @@ def why_extra(entry, query) -> tuple[str, list]:
             "(please report it)"), []
 
 
+def _in_space(entry, h: int):
+    """The entry in motion space ``h`` where its source states none (and its joint kinds allow it)."""
+    from dataclasses import replace
+
+    if entry.h is not None or entry.chain.h == h or entry.chain.kinds is not None:
+        return entry
+    return replace(entry, chain=replace(entry.chain, h=h))
+
+
 def compare(entries, query, *, workers: int | None = 1, progress: bool = False,
             max_missing: int = 1000) -> Comparison:
     """Compare the given chains (:class:`~synth.exchange.Entry` objects) with the engine's listing
     of ``query`` (a :class:`~synth.structure.query.ChainQuery`), see the module docstring.
 
-    Findings come in the order duplicates, missing (by engine row), extra (in the order given).
-    The engine's listing streams by (memory holds the given chains); the first ``max_missing``
-    missing chains are listed one by one, the others counted in one last finding.
+    A chain whose source states no motion space (``entry.h`` None: a joint list, a foreign
+    graph or matrix) is taken in the query's; one that states another is another design there,
+    an extra chain.  Findings come in the order duplicates, missing (by engine row), extra (in
+    the order given).  The engine's listing streams by (memory holds the given chains); the
+    first ``max_missing`` missing chains are listed one by one, the others counted in one last
+    finding.
     """
     from ..synthesis.type_synthesis import type_synthesis
 
     groups: dict[str, list] = {}
-    for entry in entries:
+    for entry in map(lambda e: _in_space(e, query.h), entries):
         groups.setdefault(entry.chain.certificate, []).append(entry)
     findings = []
     for cert, group in groups.items():

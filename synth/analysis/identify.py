@@ -24,6 +24,7 @@ links, the number of workers or the run (docs/exchange.md, "The listing order").
 
 Example
 -------
+>>> from synth import identify                            # reads any source (synth.exchange.identify)
 >>> r = identify("0-3 3-5 5-1 1-0 0-2 2-4 4-1")        # a Watt chain, numbered at random
 >>> r.code, r.index, r.listed, r.listing, r.classical
 ('42/0', 2, 2, 'mechsynth chains --code 42/0', ['Watt chain'])
@@ -36,15 +37,22 @@ True
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 
-from ..errors import InvalidOption, MalformedChain
+from ..errors import MalformedChain
 from ..structure.chain import Chain, chain_id
 
-__all__ = ["Identity", "identify", "identify_all", "chain_id", "listing_query", "MAX_INDEXED_LOOPS"]
+__all__ = ["Identity", "identify_entry", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
 
-MAX_INDEXED_LOOPS = 6  # the place in a code's listing is found by listing the code: up to 14 links at W = 1
+# The place in a code's listing is found by listing the code.  Unasked, that is done when listing
+# every chain of the chain's link count (an upper bound of its code's listing) is estimated to take
+# at most this long on one core: 14 links at W = 1 (about 26 s), not 16 links at W = 3 (4.0e+06
+# chains, 4 to 7 min estimated; one code of it holds 2.4 million).
+INDEX_SECONDS = 60.0
+# a heterogeneous chain's listing (its bases laid on every skeleton) is not sized: found unasked up to 4 loops
+_INDEXED_CLASS_LOOPS = 4
 
 
 @dataclass(frozen=True)
@@ -86,12 +94,14 @@ class Identity:
     listed: int | None
     note: str = ""
     frame: object = None
+    input_link: object = None
     frame_orbit: list | None = None
     mechanism_certificate: str | None = None
     mechanism_listing: str | None = None
     mechanism_index: int | None = None
     mechanisms_listed: int | None = None
     inversion: list | None = None
+    classes: list | None = None  # a heterogeneous chain's loop class of each link
     chain: Chain | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict:
@@ -100,6 +110,10 @@ class Identity:
         d.pop("chain")
         if d["kinds"] is None:
             d.pop("kinds")
+        if d["input_link"] is None:
+            d.pop("input_link")
+        if d["classes"] is None:
+            d.pop("classes")
         if d["frame"] is None:
             for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
                         "mechanisms_listed", "inversion"):
@@ -125,6 +139,8 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     if chain.kinds is not None and "mesh" in chain.kinds:
         return None, ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
                       "listed by 'mechsynth gears')")
+    if chain.classes is not None:
+        return _class_listing(chain, dof, verdict)
     rigid = None
     if verdict is not None and verdict.worst_mobility < 1:
         if verdict.worst_mobility < 0 or verdict.redundant:
@@ -148,23 +164,89 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     return query, " ".join(words)
 
 
+@dataclass(frozen=True)
+class _ClassQuery:
+    """The listing of heterogeneous chains that holds a chain: ``chains --dof W --loop-classes … --code C``."""
+
+    dof: int
+    loop_classes: tuple[tuple[int, int], ...]
+    code: str
+    rigid_subchains: bool | None
+
+
+def _class_listing(chain: Chain, dof: int, verdict):
+    """:func:`listing_query` of a heterogeneous chain: two classes, the base's above the others'."""
+    classes = chain.loop_classes
+    if len(classes) != 2 or min(classes) != chain.h or min(classes.values()) < 1:
+        return None, ("heterogeneous chains are listed with two loop classes, a base of the higher class on a chain "
+                      "of the lower one")
+    rigid = None
+    if verdict is not None and verdict.worst_mobility < 1:
+        if verdict.worst_mobility < 0:
+            return None, "an over-constrained chain (a sub-chain with W(S) < 0) is in no listing"
+        rigid = True if dof >= 1 else None
+    code = str(chain.code)
+    words = ["mechsynth chains --dof", str(dof), "--loop-classes", ",".join(f"{x}={k}" for x, k in classes.items()),
+             "--code", code] + (["--rigid-subchains"] if rigid else [])
+    return _ClassQuery(dof, tuple(classes.items()), code, rigid), " ".join(words)
+
+
 @lru_cache(maxsize=32)
-def _chain_rows(query) -> dict[str, int]:
-    """Row (1-based) of every chain of a listing, by certificate."""
-    from ..synthesis.type_synthesis import type_synthesis
+def _chain_rows(query) -> dict[bytes, int]:
+    """Row (1-based) of every chain of a listing, by the SHA-1 digest of its certificate (20 bytes a
+    chain, where a certificate takes hundreds)."""
+    if isinstance(query, _ClassQuery):
+        from ..synthesis.classes import heterogeneous_synthesis
 
-    return {c.certificate: i for i, c in enumerate(type_synthesis(query, workers=1), start=1)}
+        chains = heterogeneous_synthesis(query.dof, dict(query.loop_classes), code=query.code,
+                                         rigid_subchains=query.rigid_subchains, workers=1)
+    else:
+        from ..synthesis.type_synthesis import type_synthesis
+
+        chains = type_synthesis(query, workers=1)
+    return {_digest(c.certificate): i for i, c in enumerate(chains, start=1)}
+
+
+def _digest(certificate: str) -> bytes:
+    return hashlib.sha1(certificate.encode()).digest()
+
+
+def index_size(chain: Chain, query, mechanisms: bool = False):
+    """The size of the listing that finds a chain's row, before it runs: an
+    :class:`~synth.synthesis.estimate.Estimate` of listing every chain of its link count with the
+    same conventions (``query`` is its code's listing query, from :func:`listing_query`), an upper
+    bound of its code's listing (with ``mechanisms``, of their mechanisms); None where no estimate
+    can be made (fewer than three smaller sizes with chains: a small query, unless it has many loops).
+
+    >>> from synth.structure.chain import Chain
+    >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    >>> index_size(watt, listing_query(watt, 1, None, False)[0]) is None   # 6 links: 2 and 4 below
+    True
+    """
+    from dataclasses import replace
+
+    from ..errors import SynthesisError
+    from ..synthesis.estimate import estimate
+
+    n1 = chain.code.n1
+    try:
+        whole = replace(query, code=None, v=(chain.v, chain.v), n1=(n1, n1))
+        return estimate(whole, work="mechanisms" if mechanisms else "list")
+    except SynthesisError:
+        return None
 
 
 @lru_cache(maxsize=32)
-def _mechanism_rows(query) -> dict[str, int]:
-    """Row (1-based) of every mechanism of ``mechanisms`` with the same query, by certificate."""
+def _mechanism_rows(query, input_link: bool) -> dict[bytes, int]:
+    """Row (1-based) of every mechanism of ``mechanisms`` with the same query (``--input-link``:
+    with every input link), by the digest of its certificate."""
     from ..synthesis.type_synthesis import mechanisms
 
-    return {m.certificate: i for i, m in enumerate(mechanisms(query, workers=1), start=1)}
+    return {_digest(m.certificate): i for i, m in enumerate(mechanisms(query, input_link=input_link, workers=1),
+                                                           start=1)}
 
 
-def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | None) -> dict:
+def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool | None) -> dict:
     """The listing, row and row count of a chain (and of its mechanism), or the reason there is none."""
     out = dict(listing=None, index=None, listed=None, note="")
     query, said = listing_query(chain, dof, verdict, idle)
@@ -175,26 +257,43 @@ def _place(chain: Chain, frame, dof: int, verdict, idle: bool, index: bool | Non
     if index is False:
         out["note"] = "its place in the listing was not asked for"
         return out
-    large = MAX_INDEXED_LOOPS - (1 if chain.v else 0)
-    if index is None and chain.loops > large:
-        out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and is listed "
-                       "whole to find it (ask for its index to have it computed)")
+    if index is None and isinstance(query, _ClassQuery) and chain.loops > _INDEXED_CLASS_LOOPS - (1 if chain.v else 0):
+        out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and its "
+                       "heterogeneous listing is built whole to find it (ask for its index to have it computed)")
         return out
+    if index is None and not isinstance(query, _ClassQuery):
+        from ..execution.sizes import describe_seconds, magnitude
+        from ..synthesis.estimate import sized_loops
+
+        size = index_size(chain, query, mechanisms=mechanism is not None)
+        if size is None and chain.loops >= sized_loops(chain.h, multiple=chain.v > 0):
+            out["note"] = (f"its place in the listing was not computed: the code has {chain.loops} loops and its "
+                           "listing cannot be sized (ask for its index to have it computed)")
+            return out
+        if size is not None and size.seconds > INDEX_SECONDS:
+            items = "mechanisms" if mechanism is not None else "chains"
+            took = describe_seconds(size.seconds, size.log10_seconds)
+            out["note"] = (f"its place in the listing was not computed: it is found by listing the code, and listing "
+                           f"every {chain.links}-link chain like it is about {magnitude(size.chains, size.log10_chains)} "
+                           f"{items}, {took} on one core ({size.basis}); ask for its index to have it computed")
+            return out
     rows = _chain_rows(query)
-    out.update(index=rows.get(chain.certificate), listed=len(rows))
+    out.update(index=rows.get(_digest(chain.certificate)), listed=len(rows))
     if out["index"] is None:  # the conventions say it is there: a chain the engine misses
         out["note"] = "not found in its listing: the engine misses this chain (please report it)"
-    if frame is not None:
-        from ..structure.chain import Mechanism
-
-        mechs = _mechanism_rows(query)
-        out.update(mechanism_listing=said.replace("mechsynth chains", "mechsynth mechanisms", 1),
-                   mechanism_index=mechs.get(Mechanism(chain, frame).certificate), mechanisms_listed=len(mechs))
+    if mechanism is not None:
+        moved = mechanism.input_link is not None
+        mechs = _mechanism_rows(query, moved)
+        listing = said.replace("mechsynth chains", "mechsynth mechanisms", 1) + (" --input-link" if moved else "")
+        out.update(mechanism_listing=listing, mechanism_index=mechs.get(_digest(mechanism.certificate)),
+                   mechanisms_listed=len(mechs))
     return out
 
 
-def _identify_entry(entry, *, index: bool | None = None) -> Identity:
-    from ..structure.chain import Mechanism
+def identify_entry(entry, *, index: bool | None = None) -> Identity:
+    """Identify one chain as read by :mod:`synth.exchange` (an entry: the chain, its frame and input
+    link, the names its source gave its links, where it came from); :func:`synth.identify` reads
+    any source and calls this for each chain."""
     from ..structure.kinds import idle_joints
     from ..structure.subchains import check_subchains
     from .chains import mobility_of
@@ -228,84 +327,27 @@ def _identify_entry(entry, *, index: bool | None = None) -> Identity:
     if not connected:
         place = dict(listing=None, index=None, listed=None, note="a chain in pieces is in no listing")
     else:
-        place = _place(chain, entry.frame, dof, verdict, bool(idle), index)
+        place = _place(chain, entry.item if entry.frame is not None else None, dof, verdict, bool(idle), index)
     worst = list(own.worst) if own is not None else []
     mechanism = {}
     if entry.frame is not None:
         frame = entry.frame
         orbit = [x for x in range(chain.links) if orbits[x] == orbits[frame]]
+        moved = entry.input_link
         mechanism = dict(frame=_named(names, [frame])[0], frame_orbit=_named(names, orbit),
-                         mechanism_certificate=Mechanism(chain, frame).certificate,
-                         inversion=inversion_names(chain, frame))
+                         input_link=None if moved is None else _named(names, [moved])[0],
+                         mechanism_certificate=entry.item.certificate, inversion=inversion_names(chain, frame))
         mechanism.update({k: place.pop(k) for k in ("mechanism_listing", "mechanism_index", "mechanisms_listed")
                           if k in place})
     return Identity(
         source=entry.source, links=chain.links, joints=[list(j) for j in chain.joints],
         kinds=list(chain.kinds) if chain.kinds else None, h=chain.h, names=list(names) if names else None,
-        id=chain_id(chain.certificate), certificate=chain.certificate, code=str(chain.code) + chain.kind_suffix,
+        id=chain_id(chain.certificate), certificate=chain.certificate,
+        code=str(chain.code) + chain.kind_suffix + chain.class_suffix,
         dof=dof, dof_count=chain.dof, loops=chain.loops, v=chain.v, connected=connected,
         subchains=own.kind if own is not None else "not connected", worst_subchain=_named(names, worst),
         worst_mobility=own.worst_mobility if own is not None and own.worst else None,
         fractionated=fractionated, planar=planar,
         idle_joints=[_named(names, j) for j in idle], conventions=conventions, symmetry=round(order),
         link_orbits=[_named(names, g) for g in sorted(groups.values())], classical=chain_names(chain),
-        **place, **mechanism, chain=chain)
-
-
-def identify_all(source, *, fmt: str | None = None, frame=None, h: int | None = None,
-                 index: bool | None = None) -> list[Identity]:
-    """:func:`identify` every chain of a source (a file or text may hold several)."""
-    from dataclasses import replace
-
-    from ..exchange import read
-
-    entries = read(source, fmt)
-    if frame is not None and len(entries) > 1:
-        raise InvalidOption(f"a frame names one link of one chain, and the source holds {len(entries)} chains")
-    out = []
-    for entry in entries:
-        if h is not None and h != entry.chain.h:
-            entry = replace(entry, chain=replace(entry.chain, h=h))
-        if frame is not None:
-            names = entry.names or [str(i) for i in range(entry.chain.links)]
-            if str(frame) not in names:
-                raise InvalidOption(f"the frame {frame} is not a link of the chain ({names[0]} … {names[-1]})")
-            entry = replace(entry, frame=names.index(str(frame)))
-        out.append(_identify_entry(entry, index=index))
-    return out
-
-
-def identify(source, *, fmt: str | None = None, frame=None, h: int | None = None,
-             index: bool | None = None) -> Identity:
-    """Identify one chain or mechanism.
-
-    Parameters
-    ----------
-    source : Chain, Mechanism, networkx graph, path or text
-        Anything :func:`synth.exchange.read` reads: a joint list (``"0-1 1=2 2-3 3-0"``), a JSON
-        row, a file in any of :data:`synth.exchange.FORMATS`, ``Chain.to_networkx()``.
-    fmt : str, optional
-        The input format, when it is not to be detected.
-    frame : link, optional
-        Fix this link (as the source names it): identify the mechanism.
-    h : int, optional
-        Motion space of the loops (default the chain's own: 3 for a joint list).
-    index : bool, optional
-        Find the chain's row in its code's listing: None (default) for codes of up to
-        :data:`MAX_INDEXED_LOOPS` loops, True always, False never.
-
-    Returns
-    -------
-    Identity
-
-    Raises
-    ------
-    MalformedChain
-        The source cannot be read as a chain (one sentence: what, and where).
-    InvalidOption
-        The source holds several chains (use :func:`identify_all`), or the frame is no link.
-    """
-    found = identify_all(source, fmt=fmt, frame=frame, h=h, index=index)
-    if len(found) != 1:
-        raise InvalidOption(f"the source holds {len(found)} chains: identify_all identifies each")
-    return found[0]
+        **place, **mechanism, classes=list(chain.classes) if chain.classes else None, chain=chain)

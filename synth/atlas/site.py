@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import html
 import json
+import math
 import os
 import re
 import sys
@@ -61,7 +62,7 @@ td,th{padding:2px 10px;text-align:right;border-bottom:1px solid #e3e8ee}th{backg
 td.c,th.c{text-align:left}.filters label{margin-right:1em}.grid{display:flex;flex-wrap:wrap;gap:10px}
 figure{margin:0;border:1px solid #dde4ec;border-radius:6px;padding:4px;width:180px;background:#fff}
 figure.train{width:240px}figure.train svg{max-width:100%;height:auto}
-figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
+figure.moving{width:auto;display:inline-block}figure:target{outline:3px solid #c0392b}figcaption{font-size:12px}details{font-size:11px}
 code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bold}
 """
 
@@ -112,13 +113,14 @@ def _train_card(index: int, chain: Chain, train: tuple, mechanisms, fractionated
             f'<code>mechsynth gears --train "{quoted}" --out train.svg</code></details></figure>')
 
 
-def _card(job: tuple) -> tuple[str, bool]:
-    """One chain's figure (HTML) and whether it is planar; ``job`` is (index, chain as JSON text,
-    stored mechanisms, fractionated, draw?, gear train or None) so that worker processes can build it."""
-    index, data, mechanisms, fractionated, draw, train = job
+def _card(job: tuple) -> tuple[str, bool, list[tuple[str, str]]]:
+    """One chain's figure (HTML), whether it is planar, and the pages of its mechanisms that move
+    (file name, HTML); ``job`` is (index, chain as JSON text, stored mechanisms, fractionated, draw?,
+    move?, gear train or None) so that worker processes can build it."""
+    index, data, mechanisms, fractionated, draw, move, train = job
     chain = Chain.from_dict(json.loads(data))
     if train is not None:
-        return _train_card(index, chain, train, mechanisms, fractionated, draw), chain.is_planar()
+        return _train_card(index, chain, train, mechanisms, fractionated, draw), chain.is_planar(), []
     cid = chain_id(chain.certificate)
     planar = chain.is_planar()
     picture = svg_inline(chain) if draw else "<p><i>not drawn</i> (see the site's note)</p>"
@@ -130,6 +132,11 @@ def _card(job: tuple) -> tuple[str, bool]:
     mech = f"{len(frames)} with a fixed link (up to symmetry): link " + ", ".join(map(str, frames))
     if inputs:
         mech += "; with an input link: " + ", ".join(f"{f}→{i}" for f, i in inputs)
+    pages = [_moving_page(chain, cid, frame) for frame in frames] if move else []
+    if pages:
+        mech += "<br>moving: " + ", ".join(f'<a href="../moving/{name}">link {frame} fixed</a>' if name else
+                                           f"link {frame} fixed: {html.escape(why)}"
+                                           for frame, (name, _, why) in zip(frames, pages))
     card = (f'<figure id="{cid}">{picture}<figcaption>#{index} <a href="#{cid}">{cid}</a><br>'
             f'{"planar" if planar else "non-planar"} · |Aut| = {order:g}<br>'
             f'{"fractionated" if fractionated else "not fractionated"}</figcaption><details>'
@@ -137,7 +144,52 @@ def _card(job: tuple) -> tuple[str, bool]:
             f'joints: <code>{html.escape(chain.compact())}</code><br>certificate: <code>{html.escape(chain.certificate)}'
             f'</code><br>mechanisms: {mech}<br><code>mechsynth draw --chain "{html.escape(chain.compact())}" '
             f'--mechanisms --out m.svg</code></details></figure>')
-    return card, planar
+    return card, planar, [(name, page) for name, page, _ in pages if name]
+
+
+def _moving_page(chain: Chain, cid: str, frame: int) -> tuple[str | None, str, str]:
+    """The page of one mechanism moving in the browser: (file name, HTML, ""), or (None, "", why
+    not) when no pose near its drawing moves."""
+    from ..errors import MotionError
+    from ..motion import joint_name, motion_range, sweep
+    from ..motion_draw import PLAYER_SCRIPT, linkage_from_layout, player_svg
+    from ..structure.chain import Mechanism
+
+    try:
+        linkage = linkage_from_layout(Mechanism(chain, frame), tries=8)
+        motion = sweep(linkage, steps=361)
+        reach = motion_range(linkage)
+        picture = player_svg(motion, size=360, frames=48)
+    except MotionError as exc:
+        return None, "", str(exc)
+    k = linkage.inputs[0]
+    if reach.full_rotation:
+        moves = "turns fully (a crank)"
+    elif reach.limits:
+        moves = f"rocks between {math.degrees(reach.limits[0]):.1f}° and {math.degrees(reach.limits[1]):.1f}°"
+    else:
+        moves = "does not move"
+    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()], default=None)
+    rows = [("input", f"joint {joint_name(chain, k)} ({linkage.kind(k)}), {moves}")]
+    if reach.grashof:
+        rows.append(("Grashof", reach.grashof))
+    if worst is not None:
+        rows.append(("worst transmission angle", f"{math.degrees(worst):.1f}°"))
+    if linkage.note:
+        rows.append(("pose", linkage.note))
+    compact = html.escape(chain.compact())
+    title = f"{chain.compact()} with link {frame} fixed"
+    body = (f"<h1>{html.escape(title)}</h1><p class='nav'><a href='../index.html'>index</a> · "
+            f"<a href='../chain.html#{cid}'>the chain {cid}</a></p><figure class='moving'>{picture}</figure>"
+            "<table>" + "".join(f"<tr><th class='c'>{html.escape(a)}</th><td class='c'>{html.escape(b)}</td></tr>"
+                                for a, b in rows) + "</table>"
+            f"<p>Dimensioned by the atlas's drawing (a linkage of size 100). The same in a terminal:<br>"
+            f"<code>mechsynth move --chain \"{compact}\" --frame {frame} --range</code><br>"
+            f"<code>mechsynth move --chain \"{compact}\" --frame {frame} --animate {cid}-{frame}.gif</code><br>"
+            f"<code>mechsynth move --chain \"{compact}\" --frame {frame} --save {cid}-{frame}.json</code> "
+            "(its dimensions, to edit)</p>"
+            f"<script>{PLAYER_SCRIPT}</script>")
+    return f"{cid}-{frame}.html", _page(title, body, 1), ""
 
 
 def _degrees(code: str) -> list[int]:
@@ -147,7 +199,7 @@ def _degrees(code: str) -> list[int]:
 
 
 def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_limit: int = 20000,
-               force: bool = False, progress: bool = False, workers: int | None = None,
+               move_limit: int = 0, force: bool = False, progress: bool = False, workers: int | None = None,
                note: Callable[[str], None] | None = None) -> SiteResult:
     """Write the atlas ``db`` as a static site into ``folder`` (see the module docstring).
 
@@ -157,7 +209,12 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
     ``OPENBLAS_NUM_THREADS=1`` before numpy is imported, as the command does, or OpenBLAS threads
     take the cores from the workers).  An existing non-empty folder is refused unless ``force``.
     ``note`` receives a sentence before a long drawing run (how many are drawn, how long it takes).
+    ``move_limit`` planar 1-DOF chains (the first drawn ones) get a page per mechanism (fixed link up
+    to symmetry) where it moves in the browser, dimensioned by its drawing
+    (:func:`synth.motion_draw.linkage_from_layout`); their cards link to those pages.
     """
+    if move_limit < 0:
+        raise InvalidOption(f"the number of chains whose mechanisms move is at least 0, not {move_limit}")
     if not 1 <= page_size <= MAX_PAGE_SIZE or draw_limit < 0 or (workers is not None and workers < 1):
         raise InvalidOption(f"the page size is 1 … {MAX_PAGE_SIZE} chains (a page is drawn and held in memory "
                             f"at once), workers at least 1 and the drawing limit at least 0, not {page_size}, "
@@ -182,8 +239,8 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
                          "first)")
     try:
         with _reading(db):
-            return _write(conn, out, total, page_size=page_size, draw_limit=draw_limit, progress=progress,
-                          workers=workers, note=note)
+            return _write(conn, out, total, page_size=page_size, draw_limit=draw_limit, move_limit=move_limit,
+                          progress=progress, workers=workers, note=note)
     except OSError as exc:
         raise InvalidOption(f"cannot write the site into {out}: {exc.strerror or exc}"
                             + (f" ({exc.filename})" if exc.filename and str(exc.filename) != str(out) else ""))
@@ -191,7 +248,7 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
         conn.close()
 
 
-def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, progress: bool,
+def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, move_limit: int, progress: bool,
            workers: int | None, note: Callable[[str], None] | None) -> SiteResult:
     """The body of :func:`write_site` on an open atlas with ``total`` chains."""
     pool = bar = None
@@ -202,10 +259,12 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             pool = process_pool(workers)  # workers leave Ctrl-C to this process, which terminates them
         (out / "codes").mkdir(parents=True, exist_ok=True)
         (out / "lookup").mkdir(exist_ok=True)
+        if move_limit:
+            (out / "moving").mkdir(exist_ok=True)
         (out / "style.css").write_text(_STYLE)
         groups: list[dict] = []
         lookup: dict[str, dict[str, str]] = {}
-        pages = drawn = 0
+        pages = drawn = moved = 0
         if progress:
             from tqdm import tqdm
 
@@ -222,7 +281,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
         current, buffer = None, []
 
         def flush(final: bool) -> None:
-            nonlocal pages, drawn
+            nonlocal pages, drawn, moved
             if not buffer:
                 return
             info = groups[-1]
@@ -230,11 +289,17 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
             slug = _slug(current)
             jobs = []
             for index, data, mechs, frac, cid, train in buffer:
-                jobs.append((index, data, mechs, frac, drawn < draw_limit, train))
+                move = (moved < move_limit and drawn < draw_limit and train is None and current[0] == 1
+                        and current[1] == 3 and not current[4])  # planar 1-DOF linkages, no gear trains
+                jobs.append((index, data, mechs, frac, drawn < draw_limit, move, train))
                 drawn += drawn < draw_limit
+                moved += move
                 lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
             cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
-            info["planar"] += sum(planar for _, planar in cards)
+            info["planar"] += sum(planar for _, planar, _ in cards)
+            for _, _, moving in cards:
+                for file_name, page in moving:
+                    (out / "moving" / file_name).write_text(page)
             name = f"{slug}-{number}.html"
             nav = ['<a href="../index.html">index</a>']
             if number > 1:
@@ -247,7 +312,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, prog
                      + (f", {info['G']} gear meshes" if info["G"] else ""))
             body = (f"<h1>{html.escape(title)}</h1><p class='nav'>{' · '.join(nav)}</p>"
                     f"<p>chains {first}–{last} of <span class='total' id='count'>{{TOTAL}}</span></p>"
-                    f"<div class='grid'>{''.join(card for card, _ in cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
+                    f"<div class='grid'>{''.join(card for card, _, _ in cards)}</div><p class='nav'>{' · '.join(nav)}</p>")
             (out / "codes" / name).write_text(_page(title, body, 1))
             info["pages"] = number
             pages += 1

@@ -5,6 +5,8 @@ format         what it holds                                           read / wr
 =============  ======================================================  ============
 ``text``       joint lists ``0-1 1=2 2~3``, one chain a line           both
 ``json``       the rows the commands print (jsonl, json, a row)        both
+``csv``        the rows of a listing in CSV (``--format csv``)         read
+``table``      the rows of a listing as a table (``--format table``)   read
 ``graphml``    incidence graph, or a link graph, per ``<graph>``       both
 ``gml``        the same, one ``graph [ … ]`` block each                both
 ``dot``        the same in Graphviz DOT, one ``graph { … }`` each      both
@@ -14,7 +16,10 @@ format         what it holds                                           read / wr
 =============  ======================================================  ============
 
 Joint kinds (revolute, prismatic, gear mesh) and multiple joints are kept by every format
-except the adjacency matrix (simple joints only).  A file's format is told by its suffix
+except the adjacency matrix (simple joints only, a multiple joint refused); so are the motion
+space h and a mechanism's frame and input link (graph attributes, ``# h 4`` and
+``# frame 0, input 1`` lines, a row's fields).  A source that states no h is planar unless
+:func:`in_motion_space` puts it elsewhere; one that states another h is refused there.  A file's format is told by its suffix
 (``.graphml``, ``.gml``, ``.dot``/``.gv``, ``.csv``, ``.json``/``.jsonl``) or, failing that, by
 its first characters; ``fmt`` names it outright.  The formats and their conventions are in
 docs/exchange.md.
@@ -39,16 +44,18 @@ from pathlib import Path
 from ..errors import InvalidOption, MalformedChain
 from ..structure.chain import Chain, Mechanism
 from ._dot import read_dot, write_dot
-from ._entry import Entry
+from ._entry import Entry, in_motion_space
 from ._graphs import describe, from_graph, read_gml, read_graphml, to_graph, write_gml, write_graphml
-from ._lists import edge_words, looks_like_joint_list, read_edgelist, read_json, read_text_lists, write_edgelist, write_lines
+from ._lists import (edge_words, looks_like_joint_list, looks_like_listing, looks_like_table, read_edgelist, read_json,
+                     read_listing, read_table, read_text_lists, write_edgelist, write_lines)
 from ._matrices import read_matrices, write_adjacency, write_incidence
 
-__all__ = ["FORMATS", "WRITTEN", "Entry", "read", "read_file", "read_text", "detect", "write", "to_graph",
+__all__ = ["FORMATS", "WRITTEN", "Entry", "in_motion_space", "read_chain", "read", "read_file", "read_text", "detect",
+           "write", "to_graph",
            "from_graph", "describe"]
 
-FORMATS = ("text", "json", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
-WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # the listings write text and json themselves
+FORMATS = ("text", "json", "csv", "table", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
+WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # the listings write text, json, csv themselves
 _SUFFIXES = {".graphml": "graphml", ".xml": "graphml", ".gml": "gml", ".dot": "dot", ".gv": "dot",
              ".json": "json", ".jsonl": "json", ".ndjson": "json", ".csv": "matrix", ".tsv": "matrix",
              ".edgelist": "edgelist", ".edges": "edgelist"}
@@ -78,6 +85,8 @@ def detect(text: str, suffix: str = "") -> str:
         return "gml"
     if words[:1] in (["graph"], ["digraph"], ["strict"]) or start.startswith("creator"):
         return "gml" if start.startswith("creator") else "dot"
+    if looks_like_table(text):
+        return "table"
     lines = [ln.split("#", 1)[0].strip() for ln in text.splitlines()]
     lines = [ln for ln in lines if ln]
     if lines and all(looks_like_joint_list(ln) for ln in lines):
@@ -119,6 +128,10 @@ def read_text(text: str, fmt: str | None = None, source: str = "the input", suff
         return read_dot(text, source)
     if kind == "edgelist":
         return read_edgelist(text, source)
+    if kind == "csv" or (kind == "matrix" and looks_like_listing(text)):
+        return read_listing(text, source)
+    if kind == "table":
+        return read_table(text, source)
     return read_matrices(text, source, None if kind == "matrix" else kind)
 
 
@@ -156,6 +169,12 @@ def read_file(path: str | Path, fmt: str | None = None) -> list[Entry]:
     return read_text(text, fmt, source=str(path), suffix=path.suffix)
 
 
+def _own_space(chain: Chain) -> int | None:
+    """The motion space a Chain object states: its h where it is not the default 3 (a chain built
+    without h is put in another space by ``h=``)."""
+    return None if chain.h == 3 else chain.h
+
+
 def read(source, fmt: str | None = None) -> list[Entry]:
     """Chains from anything :func:`synth.identify` accepts: a :class:`Chain` or :class:`Mechanism`,
     a networkx graph, a path to a file or folder, or the text itself (a joint list, JSON, …).
@@ -164,9 +183,9 @@ def read(source, fmt: str | None = None) -> list[Entry]:
     ['0-1 0-3 1-2 2-3']
     """
     if isinstance(source, Chain):
-        return [Entry(source, None, None, "the chain")]
+        return [Entry(source, None, None, "the chain", _own_space(source))]
     if isinstance(source, Mechanism):
-        return [Entry(source.chain, source.frame, None, "the mechanism")]
+        return [Entry(source.chain, source.frame, None, "the mechanism", _own_space(source.chain), source.input_link)]
     if hasattr(source, "nodes") and hasattr(source, "edges"):
         return [from_graph(source, "the graph")]
     if isinstance(source, Path):
@@ -189,17 +208,39 @@ def read(source, fmt: str | None = None) -> list[Entry]:
     return read_file(text, fmt) if exists else read_text(source, fmt, source="the chain given")
 
 
+def read_chain(text: str, h: int | None = None, source: str = "the chain given") -> Entry:
+    """One chain as a command line writes it — a joint list (``0-1 1=2 2~3``, a comment
+    ``# frame F, h H`` allowed) or a JSON row — in motion space ``h`` where it states none
+    (default: its own, 3 for a joint list).  ``analyze``, ``identify``, ``draw --chain`` and
+    ``chains --chain`` read a chain this way.
+
+    >>> read_chain("0=1 1=2 2=3 3=0").chain.dof, read_chain("0-1 1-2 2-3 3-4 4-5 5-0", 5).chain.dof
+    (2, 1)
+
+    Raises
+    ------
+    MalformedChain
+        Not one chain, or a row stating another motion space than ``h``.
+    """
+    body = text.strip()
+    entries = read_text(text, "json" if body.startswith(("{", "[")) else "text", source=source)
+    if len(entries) != 1:
+        raise MalformedChain(f"{source} holds {len(entries)} chains, and one is read here")
+    return in_motion_space(entries[0], h)
+
+
 _WRITERS = {"graphml": write_graphml, "gml": write_gml, "dot": write_dot, "edgelist": None,
             "adjacency": write_adjacency, "incidence": write_incidence}
 
 
 def write(items, fmt: str, out=None) -> int:
-    """Write chains or mechanisms to ``out`` (default stdout) in one of :data:`FORMATS`, as they
-    come (nothing is held back); returns how many were written."""
+    """Write chains or mechanisms to ``out`` (default stdout) as ``text``, ``json`` or one of
+    :data:`WRITTEN`, as they come (nothing is held back); returns how many were written."""
     import sys
 
-    if fmt not in FORMATS:
-        raise InvalidOption(f"chains are written as {', '.join(FORMATS)}, not {fmt!r}")
+    if fmt not in ("text", "json") + WRITTEN:
+        raise InvalidOption(f"chains are written as {', '.join(('text', 'json') + WRITTEN)} here (a CSV listing by "
+                            f"the commands' --format csv), not {fmt!r}")
     out = out or sys.stdout
     if fmt in ("text", "json"):
         return write_lines(items, fmt, out)

@@ -187,8 +187,9 @@ def read_dot(text: str, source: str) -> list[Entry]:
             for key in ("number", "multiplicity"):
                 if re.fullmatch(r"-?\d+", str(data.get(key, ""))):
                     data[key] = int(data[key])
-        if re.fullmatch(r"-?\d+", str(g.graph.get("frame", ""))):
-            g.graph["frame"] = int(g.graph["frame"])
+        for key in ("frame", "input_link"):
+            if re.fullmatch(r"-?\d+", str(g.graph.get(key, ""))):
+                g.graph[key] = int(g.graph[key])
         out.append(from_graph(g, f"{source} graph {i}" if len(graphs) > 1 else source))
     return out
 

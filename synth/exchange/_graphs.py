@@ -9,7 +9,8 @@ the graph carries the code, ``chain_id``, the certificate, W, K and h (a mechani
 Graphs from other tools are read either way: as an incidence graph when its nodes say which
 are links and joints (``kind`` = ``link``/``joint``), otherwise as a *link graph* whose nodes are
 the links and whose edges are the joints (edge attribute ``kind``, ``joint_kind`` or ``type``:
-revolute, prismatic, mesh; edges sharing a ``joint`` attribute form one multiple joint).
+revolute, prismatic, mesh; edges sharing a ``joint`` attribute form one multiple joint).  The
+graph attributes ``h``, ``frame`` and ``input_link`` are read back where a graph has them.
 
 Example
 -------
@@ -102,7 +103,7 @@ def _incidence(g, source: str, role: dict) -> Entry:
         kind = data.get("joint_kind", data.get("type", "revolute"))
         joints.append(held)
         kinds.append(kind_of(kind, f"{source}, joint {node}"))
-    return entry_of(joints, kinds, source, frame=g.graph.get("frame"), links=list(names.values()))
+    return entry_of(joints, kinds, source, links=list(names.values()), **_stated(g))
 
 
 def _link_graph(g, source: str) -> Entry:
@@ -130,7 +131,12 @@ def _link_graph(g, source: str) -> Entry:
             if kinds[k] != kind or kind != "revolute":
                 raise MalformedChain(f"{source}: joint {group} joins three links or more and is a pin (revolute), "
                                      "not a " + (kind if kind != "revolute" else kinds[k]) + " pair")
-    return entry_of(joints, kinds, source, frame=g.graph.get("frame"), links=list(g.nodes))
+    return entry_of(joints, kinds, source, links=list(g.nodes), **_stated(g))
+
+
+def _stated(g) -> dict:
+    """What a graph's attributes say of its chain beyond the joints: frame, input link, motion space."""
+    return dict(frame=g.graph.get("frame"), input_link=g.graph.get("input_link"), h=g.graph.get("h"))
 
 
 def from_graph(g, source: str = "graph") -> Entry:

@@ -1,14 +1,16 @@
 """Chains as lines of text: joint lists, JSON rows, edge lists.
 
 * ``text``: one chain per line in the joint-list notation (``0-1 1=2 2~3``; ``0-1-2`` a
-  double joint); ``#`` starts a comment.
+  double joint); ``#`` starts a comment, and a comment ``# frame F``, ``# h H`` (or both,
+  ``# frame F, input I, h H``) fixes a frame and states the motion space.
 * ``json``: a chain or mechanism row as the commands print it (``{"joints": …, "kinds": …,
   "frame": …}``), an array of rows (``--format json``), one row per line (``jsonl``), or a bare
-  array of joints.
+  array of joints; the motion space is the row's ``h``, else the one its certificate carries.
 * ``edgelist``: one joint per line, its links as numbers or names separated by spaces or commas
   (three or more: a multiple joint), then optionally its kind (``revolute``, ``prismatic``,
   ``mesh``, ``-``, ``=``, ``~``, or a networkx data dictionary such as ``{'kind': 'prismatic'}``);
-  a line ``# frame F`` fixes a frame; a blank line ends a chain.
+  a line ``# frame F`` fixes a frame (``# frame F, input I`` with its input link), ``# h H`` states
+  the motion space; a blank line ends a chain.
 
 Example
 -------
@@ -23,31 +25,34 @@ from __future__ import annotations
 import ast
 import json
 import re
+from dataclasses import replace
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain
-from ._entry import Entry, check_distinct, entry_of, kind_of
+from ._entry import Entry, check_distinct, entry_of, is_kind_word, kind_of, settings_of
 
 __all__ = ["read_text_lists", "read_json", "read_edgelist", "write_edgelist", "write_lines", "looks_like_joint_list",
-           "edge_words"]
+           "edge_words", "with_settings", "settings_text", "stated_space", "read_listing", "looks_like_listing",
+           "read_table", "looks_like_table"]
 
 _JOINT_TOKEN = re.compile(r"^\d+(?:[-=~]\d+)+$")
-_FRAME_LINE = re.compile(r"^#\s*frame\s*[:=]?\s*(\S+)\s*$", re.IGNORECASE)
 
 
 def looks_like_joint_list(line: str) -> bool:
-    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``).
+    """Whether a line is written in the joint-list notation (every word like ``0-1`` or ``2=3``;
+    a heterogeneous chain's loop classes may follow a ``|``).
 
-    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1")
-    (True, False)
+    >>> looks_like_joint_list("0-1 1=2"), looks_like_joint_list("0 1"), looks_like_joint_list("0-1 1-2 2-0 | h5: 0 1 2")
+    (True, False, True)
     """
-    words = line.split("#", 1)[0].replace(",", " ").split()
+    words = line.split("#", 1)[0].split("|", 1)[0].replace(",", " ").split()
     return bool(words) and all(_JOINT_TOKEN.match(w) for w in words)
 
 
 def read_text_lists(text: str, source: str) -> list[Entry]:
-    """One chain per non-empty line, in the joint-list notation; a comment ``# frame F`` on the
-    line fixes link F (a mechanism)."""
+    """One chain per non-empty line, in the joint-list notation; a comment of settings on the
+    line (``# frame F``, ``# frame F, input I``, ``# h H``) fixes link F (a mechanism, with its
+    input link I) or states the motion space; any other comment is a comment."""
     out = []
     lines = text.splitlines()
     single = sum(1 for line in lines if line.split("#", 1)[0].strip()) == 1
@@ -56,23 +61,26 @@ def read_text_lists(text: str, source: str) -> list[Entry]:
         body = body.strip()
         if not body:
             continue
-        frame = _FRAME_LINE.match("#" + comment.strip()) if comment else None
         where = source if single else f"{source} line {number}"
-        check_distinct([re.split(r"[-=~]", w) for w in body.replace(",", " ").split()], where)
+        joints = body.split("|", 1)[0]  # (a heterogeneous chain's loop classes follow a '|')
+        check_distinct([re.split(r"[-=~]", w) for w in joints.replace(",", " ").split()], where)
         try:
             chain = Chain.parse(body)
         except MalformedChain as exc:
             raise MalformedChain(f"{where}: {exc}") from None
-        out.append(_with_frame(Entry(chain, None, None, where), frame.group(1) if frame else None))
+        out.append(with_settings(chain, where, settings_of(comment) or {}))
     return out
 
 
-def _with_frame(entry: Entry, frame) -> Entry:
-    if frame is None:
-        return entry
-    if not re.fullmatch(r"\d+", str(frame)) or int(frame) >= entry.chain.links:
-        raise MalformedChain(f"{entry.source}: the frame {frame} is not a link of the chain (0 … {entry.chain.links - 1})")
-    return Entry(entry.chain, int(frame), entry.names, entry.source)
+def with_settings(chain: Chain, where: str, settings: dict) -> Entry:
+    """The entry of a chain read with its links numbered 0 … n − 1 and the settings its source
+    states (``frame``, ``input``, ``h``: see :func:`~synth.exchange._entry.settings_of`)."""
+    joints = [list(j) for j in chain.joints]
+    entry = entry_of(joints, chain.kinds, where, frame=settings.get("frame"), input_link=settings.get("input"),
+                     h=settings.get("h"), links=range(chain.links))
+    if chain.classes is not None:  # a heterogeneous chain keeps the loop classes it was written with
+        entry = replace(entry, chain=chain if settings.get("h") is None else replace(chain, h=entry.chain.h))
+    return entry
 
 
 def write_lines(items, fmt: str, out) -> int:
@@ -84,14 +92,68 @@ def write_lines(items, fmt: str, out) -> int:
     for item in items:
         chain = getattr(item, "chain", item)
         if fmt == "text":
-            frame = getattr(item, "frame", None)
-            out.write(chain.compact() + ("" if frame is None else f"  # frame {frame}") + "\n")
+            said = settings_text(item)
+            out.write(chain.compact() + (f"  # {said}" if said else "") + "\n")
         else:
             row = item.to_dict()
             row["id" if chain is item else "chain_id"] = describe(item)["id"]
             out.write(json.dumps(row) + "\n")
         count += 1
     return count
+
+
+def settings_text(item, every: bool = False) -> str:
+    """The settings comment of a chain or mechanism (without ``#``): ``frame F, input I, h H``;
+    h where it is not 3 unless ``every``.
+
+    >>> from synth.structure.chain import Mechanism
+    >>> settings_text(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)), settings_text(Chain.parse("0-1 1-2 2-0"), every=True)
+    ('frame 0, input 1', 'h 3')
+    """
+    chain = getattr(item, "chain", item)
+    said = []
+    if getattr(item, "frame", None) is not None:
+        said.append(f"frame {item.frame}")
+        if item.input_link is not None:
+            said.append(f"input {item.input_link}")
+    if every or chain.h != 3:
+        said.append(f"h {chain.h}")
+    return ", ".join(said)
+
+
+_CERTIFICATE_SPACE = re.compile(r"^(?:m\d+)?h(\d)")
+
+
+def stated_space(row: dict):
+    """The motion space a row states: its ``h``, else the one its certificate carries (the
+    engine's rows leave out h = 3, their certificates say h ≠ 3 in front), else None.
+
+    >>> stated_space({"h": 4}), stated_space({"certificate": "h50606…"}), stated_space({"certificate": "0606…"})
+    (4, 5, 3)
+    >>> stated_space({"joints": [[0, 1]]}) is None
+    True
+    """
+    if row.get("h") is not None:
+        return row["h"]
+    certificate = row.get("chain_certificate", row.get("certificate"))
+    if not isinstance(certificate, str) or not certificate:
+        return None
+    found = _CERTIFICATE_SPACE.match(certificate)
+    return int(found.group(1)) if found else 3
+
+
+def _link_of_row(row: dict, key: str, chain: Chain, where: str):
+    """A row's frame or input link: a link number, or a name of the row's ``names``."""
+    value = row.get(key)
+    names = row.get("names")
+    if value is None:
+        return None
+    if isinstance(names, list) and len(names) == chain.links and value in names and not isinstance(value, int):
+        return names.index(value)
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < chain.links:
+        what = "frame" if key == "frame" else "input link"
+        raise MalformedChain(f"{where}: the {what} {value!r} is not a link of the chain (0 … {chain.links - 1})")
+    return value
 
 
 def _entry_of_row(row, where: str) -> Entry:
@@ -103,10 +165,11 @@ def _entry_of_row(row, where: str) -> Entry:
         chain = Chain.from_dict(row)
     except MalformedChain as exc:
         raise MalformedChain(f"{where}: {exc}") from None
-    frame = row.get("frame") if isinstance(row, dict) else None
-    if frame is not None and (isinstance(frame, bool) or not isinstance(frame, int) or not 0 <= frame < chain.links):
-        raise MalformedChain(f"{where}: the frame {frame!r} is not a link of the chain (0 … {chain.links - 1})")
-    return Entry(chain, frame, None, where)
+    frame, moved = _link_of_row(row, "frame", chain, where), _link_of_row(row, "input_link", chain, where)
+    names = row.get("names")
+    names = tuple(map(str, names)) if isinstance(names, list) and len(names) == chain.links else None
+    entry = with_settings(chain, where, {"frame": frame, "input": moved, "h": stated_space(row)})
+    return Entry(entry.chain, entry.frame, names, where, entry.h, entry.input_link)
 
 
 def read_json(text: str, source: str) -> list[Entry]:
@@ -133,7 +196,93 @@ def read_json(text: str, source: str) -> list[Entry]:
     return out
 
 
-_KIND_TAILS = ("revolute", "prismatic", "mesh", "gear", "-", "=", "~")  # a kind written after the links
+def _header_of(text: str) -> list[str]:
+    """The cells of a CSV text's first line that is not a comment."""
+    first = next((ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")), "")
+    return [c.strip().strip('"').lower() for c in first.split(",")]
+
+
+def looks_like_listing(text: str) -> bool:
+    """Whether a CSV text is the listing ``chains``/``mechanisms --format csv`` print (a ``joints`` column).
+
+    >>> looks_like_listing("index,id,code,links,joints\\n1,x,4/0,4,0-1 1-2 2-3 3-0\\n"), looks_like_listing("0,1\\n1,0")
+    (True, False)
+    """
+    return "joints" in _header_of(text)
+
+
+def read_listing(text: str, source: str) -> list[Entry]:
+    """The rows of a listing in CSV: the ``joints`` column in the joint-list notation, the motion
+    space from the ``h`` column (else the certificate's), a mechanism's ``frame`` and ``input_link``."""
+    import csv
+
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    reader = csv.DictReader(lines)
+    fields = {(f or "").strip().lower(): f for f in reader.fieldnames or []}
+    if "joints" not in fields:
+        raise MalformedChain(f"{source}: a listing in CSV has a 'joints' column (as chains --format csv prints)")
+    out = []
+    for number, row in enumerate(reader, start=1):
+        where = f"{source} row {number}"
+        cell = {key: (row.get(name) or "").strip() for key, name in fields.items()}
+        try:
+            chain = Chain.parse(cell["joints"])
+        except MalformedChain as exc:
+            raise MalformedChain(f"{where}: {exc}") from None
+        space = cell.get("h") or stated_space({"certificate": cell.get("certificate")})
+        out.append(with_settings(chain, where, {"frame": cell.get("frame") or None,
+                                                "input": cell.get("input_link") or None, "h": space}))
+    if not out:
+        raise MalformedChain(f"{source}: the listing has a header and no row")
+    return out
+
+
+_RULE = re.compile(r"^-+(?: +-+)*$")
+_FOOTER = re.compile(r"^\d+ (chains|mechanisms)$")
+
+
+def looks_like_table(text: str) -> bool:
+    """Whether a text is a listing as a table (``chains``/``mechanisms``' default output): a header
+    with a ``joints`` column over a rule of dashes.
+
+    >>> looks_like_table("index  joints\\n-----  -------\\n1      0-1 1-2 2-0\\n"), looks_like_table("0 1\\n1 2\\n")
+    (True, False)
+    """
+    lines = [ln for ln in text.splitlines() if ln.strip()][:2]
+    return len(lines) == 2 and "joints" in lines[0].split() and bool(_RULE.match(lines[1].strip()))
+
+
+def read_table(text: str, source: str) -> list[Entry]:
+    """The rows of a listing as a table: its columns lie under the rule's dashes; the ``joints``
+    column in the joint-list notation, ``h`` (absent: the plane, as the table leaves it out for
+    h = 3), a mechanism's ``frame`` and ``input_link``; the count line ends it."""
+    lines = [ln.rstrip() for ln in text.splitlines() if ln.strip()]
+    if not looks_like_table(text):
+        raise MalformedChain(f"{source}: a listing as a table has a header with a 'joints' column over a rule of "
+                             "dashes (as chains prints)")
+    starts = [m.start() for m in re.finditer(r"-+", lines[1])] + [None]
+
+    def cells(line: str) -> list[str]:
+        return [line[a:b].strip() for a, b in zip(starts, starts[1:])]
+
+    names = cells(lines[0])
+    out = []
+    for number, line in enumerate(lines[2:], start=1):
+        if _FOOTER.match(line.strip()):
+            break
+        where = f"{source} row {number}"
+        cell = dict(zip(names, cells(line)))
+        try:
+            chain = Chain.parse(cell["joints"])
+        except MalformedChain as exc:
+            raise MalformedChain(f"{where}: {exc}") from None
+        out.append(with_settings(chain, where, {"frame": cell.get("frame") or None,
+                                                "input": cell.get("input_link") or None, "h": cell.get("h") or 3}))
+    if not out:
+        raise MalformedChain(f"{source}: the table has a header and no row")
+    return out
+
+
 _NAME = re.compile(r"^[A-Za-z0-9_.:]+$")
 
 
@@ -141,11 +290,20 @@ def edge_words(body: str) -> tuple[list[str], str | None] | None:
     """The link names and kind word of an edge-list line (data dictionary split off), or None
     when the line is not one: two or more names (letters, digits, ``_ . :``), then a kind.
 
-    >>> edge_words("0 1 prismatic"), edge_words("crank, rod"), edge_words('dof = 1')
-    ((['0', '1'], 'prismatic'), (['crank', 'rod'], None), None)
+    The last of three or more words is the joint's kind when it is a kind word (``revolute``,
+    ``R``, ``pin``, ``-``; ``prismatic``, ``P``, ``slider``, ``=``; ``mesh``, ``G``, ``gear``,
+    ``~``), and when it is any other word after link numbers (``0 1 X``: a kind to refuse, not a
+    link ``X``); otherwise every word names a link (``a b c``: a double joint).
+
+    >>> edge_words("0 1 prismatic"), edge_words("0 1 P"), edge_words("crank, rod"), edge_words('dof = 1')
+    ((['0', '1'], 'prismatic'), (['0', '1'], 'P'), (['crank', 'rod'], None), None)
+    >>> edge_words("0 1 X"), edge_words("a b c")
+    ((['0', '1'], 'X'), (['a', 'b', 'c'], None))
     """
     words = body.replace(",", " ").split()
-    kind = words.pop() if len(words) >= 3 and words[-1].lower() in _KIND_TAILS else None
+    last = words[-1] if words else ""
+    numbered = all(w.isdigit() for w in words[:-1]) and not last.isdigit()
+    kind = words.pop() if len(words) >= 3 and (is_kind_word(last) or numbered) else None
     if len(words) < 2 or not all(_NAME.match(w) for w in words):
         return None
     return words, kind
@@ -153,24 +311,26 @@ def edge_words(body: str) -> tuple[list[str], str | None] | None:
 
 def read_edgelist(text: str, source: str) -> list[Entry]:
     """Chains written one joint per line; a blank line ends a chain."""
-    out, joints, kinds, frame, start = [], [], [], None, None
+    out, joints, kinds, settings, start = [], [], [], {}, None
 
     def close():
-        nonlocal joints, kinds, frame, start
+        nonlocal joints, kinds, settings, start
         if joints:
-            out.append(entry_of(joints, kinds, f"{source} line {start}", frame=frame))
-        elif frame is not None:
-            raise MalformedChain(f"{source}: '# frame {frame}' is followed by no joint")
-        joints, kinds, frame, start = [], [], None, None
+            out.append(entry_of(joints, kinds, f"{source} line {start}", frame=settings.get("frame"),
+                                input_link=settings.get("input"), h=settings.get("h")))
+        elif settings:
+            said = ", ".join(f"{k} {v}" for k, v in settings.items())
+            raise MalformedChain(f"{source}: '# {said}' is followed by no joint")
+        joints, kinds, settings, start = [], [], {}, None
 
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped:
             close()
             continue
-        found = _FRAME_LINE.match(stripped)
+        found = settings_of(stripped) if stripped.startswith("#") else None
         if found:
-            frame = found.group(1)
+            settings.update(found)
             start = start or number
             continue
         body = stripped.split("#", 1)[0].strip()
@@ -212,9 +372,7 @@ def write_edgelist(item, out, names=None) -> None:
 
     chain = getattr(item, "chain", item)
     info = describe(item)
-    out.write(f"# {info['code']} id {info['id']}\n")
-    if getattr(item, "frame", None) is not None:
-        out.write(f"# frame {item.frame}\n")
+    out.write(f"# {info['code']} id {info['id']}\n# {settings_text(item, every=True)}\n")
     kinds = chain.kinds or ("revolute",) * len(chain.joints)
     for joint, kind in zip(chain.joints, kinds):
         out.write(" ".join(map(str, joint)) + ("" if kind == "revolute" else f" {kind}") + "\n")

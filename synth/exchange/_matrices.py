@@ -12,7 +12,8 @@ The matrices written here have a header row (corner ``link``, then link numbers 
 the link number first on every row; a bare matrix without them is read too (a square, symmetric
 one with a zero diagonal as an adjacency matrix, any other as an incidence matrix, unless the
 format is named).  Cells may be separated by commas, semicolons, tabs or spaces; a line
-``# frame F`` fixes a frame; a blank line ends a chain.
+``# frame F`` fixes a frame (``# frame F, input I`` with its input link), ``# h H`` states the
+motion space (the matrices written here always state it); a blank line ends a chain.
 
 Example
 -------
@@ -26,13 +27,12 @@ import re
 
 from ..errors import InvalidOption, MalformedChain
 from ..structure.chain import SYMBOLS, Chain, Mechanism
-from ._entry import Entry, entry_of, kind_of
+from ._entry import Entry, entry_of, kind_of, settings_of
 
 __all__ = ["read_matrices", "write_adjacency", "write_incidence"]
 
 _EMPTY = {"", "0", "0.0"}
 _LETTER = {"revolute": "1", "prismatic": "P", "mesh": "G"}
-_FRAME = re.compile(r"^#\s*frame\s*[:=]?\s*(\S+)\s*$", re.IGNORECASE)
 _NOTATION = re.compile(r"^\d+(?:[-=~]\d+)+$")
 
 
@@ -56,13 +56,14 @@ def _kind(cell: str, where: str) -> str | None:
 
 
 def _blocks(text: str, source: str):
-    """Blocks of non-empty lines: (rows of cells, first line number, frame or None)."""
-    rows, start, frame = [], None, None
+    """Blocks of non-empty lines: (rows of cells, first line number, settings: frame, input, h)."""
+    rows, start, settings = [], None, {}
     for number, line in enumerate(text.splitlines() + [""], start=1):
         stripped = line.strip()
-        found = _FRAME.match(stripped)
+        found = settings_of(stripped) if stripped.startswith("#") else None
         if found:
-            frame, start = found.group(1), start or number
+            settings.update(found)
+            start = start or number
             continue
         if stripped.startswith("#"):
             continue
@@ -70,10 +71,11 @@ def _blocks(text: str, source: str):
             rows.append(_cells(stripped))
             start = start or number
         elif rows:
-            yield rows, start, frame
-            rows, start, frame = [], None, None
-        elif frame is not None:
-            raise MalformedChain(f"{source}: '# frame {frame}' is followed by no matrix")
+            yield rows, start, settings
+            rows, start, settings = [], None, {}
+        elif settings:
+            said = ", ".join(f"{k} {v}" for k, v in settings.items())
+            raise MalformedChain(f"{source}: '# {said}' is followed by no matrix")
 
 
 def _split_header(rows):
@@ -89,7 +91,7 @@ def _split_header(rows):
     return None, None, rows
 
 
-def _read_block(rows, where: str, fmt: str | None, frame) -> Entry:
+def _read_block(rows, where: str, fmt: str | None, settings: dict) -> Entry:
     header, labels, body = _split_header(rows)
     width = len(body[0])
     if any(len(r) != width for r in body):
@@ -104,11 +106,15 @@ def _read_block(rows, where: str, fmt: str | None, frame) -> Entry:
         zero = square and all(body[i][i] in _EMPTY for i in range(width))
         fmt = "adjacency" if symmetric and zero and not notation else "incidence"
     if fmt == "adjacency":
-        return _adjacency(body, labels or header, where, frame)
-    return _incidence(body, labels, header, transposed, where, frame)
+        return _adjacency(body, labels or header, where, settings)
+    return _incidence(body, labels, header, transposed, where, settings)
 
 
-def _adjacency(body, names, where: str, frame) -> Entry:
+def _stated(settings: dict) -> dict:
+    return dict(frame=settings.get("frame"), input_link=settings.get("input"), h=settings.get("h"))
+
+
+def _adjacency(body, names, where: str, settings: dict) -> Entry:
     n = len(body)
     if any(len(r) != n for r in body):
         raise MalformedChain(f"{where}: an adjacency matrix is square, not {n} × {len(body[0])}")
@@ -125,10 +131,10 @@ def _adjacency(body, names, where: str, frame) -> Entry:
             if a is not None:
                 joints.append((names[i], names[j]))
                 kinds.append(a)
-    return entry_of(joints, kinds, where, frame=frame, links=names)
+    return entry_of(joints, kinds, where, links=names, **_stated(settings))
 
 
-def _incidence(body, labels, header, transposed: bool, where: str, frame) -> Entry:
+def _incidence(body, labels, header, transposed: bool, where: str, settings: dict) -> Entry:
     columns = [list(c) for c in zip(*body)] if not transposed else [list(r) for r in body]
     if transposed:
         labels, header = header, labels
@@ -147,7 +153,7 @@ def _incidence(body, labels, header, transposed: bool, where: str, frame) -> Ent
             kind = {v: key for key, v in SYMBOLS.items()}[symbol]
         joints.append([x for x, _ in held])
         kinds.append(kind)
-    return entry_of(joints, kinds, where, frame=frame, links=names)
+    return entry_of(joints, kinds, where, links=names, **_stated(settings))
 
 
 def read_matrices(text: str, source: str, fmt: str | None = None) -> list[Entry]:
@@ -155,17 +161,16 @@ def read_matrices(text: str, source: str, fmt: str | None = None) -> list[Entry]
     blocks = list(_blocks(text, source))
     if not blocks:
         raise MalformedChain(f"{source}: no matrix: write a link adjacency or link–joint incidence matrix in CSV")
-    return [_read_block(rows, f"{source} line {start}" if len(blocks) > 1 else source, fmt, frame)
-            for rows, start, frame in blocks]
+    return [_read_block(rows, f"{source} line {start}" if len(blocks) > 1 else source, fmt, settings)
+            for rows, start, settings in blocks]
 
 
 def _head(item, out) -> Chain:
     from ._graphs import describe
+    from ._lists import settings_text
 
     info = describe(item)
-    out.write(f"# {info['code']} id {info['id']}\n")
-    if isinstance(item, Mechanism):
-        out.write(f"# frame {item.frame}\n")
+    out.write(f"# {info['code']} id {info['id']}\n# {settings_text(item, every=True)}\n")
     return item.chain if isinstance(item, Mechanism) else item
 
 

@@ -25,10 +25,11 @@ from pathlib import Path
 from ..errors import InvalidOption
 from .train import GearTrain
 
-__all__ = ["draw_train", "draw_sheet", "schematic", "svg_text"]
+__all__ = ["draw_train", "draw_sheet", "sheet_figure", "schematic", "svg_text"]
 
 _FORMATS = (".svg", ".png", ".pdf")
 _GAP = 0.16  # between concentric shafts
+_PLATE = {"facecolor": "white", "edgecolor": "none", "pad": 0.6, "alpha": 0.85}  # a tooth number over the lines
 
 
 def _axis_heights(train: GearTrain) -> dict[int, float]:
@@ -87,6 +88,11 @@ def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
             return None
         return teeth.get(f"z{x}_{mate}", teeth.get(f"z{x}"))
 
+    def label(x, mate):
+        """``z<link>=teeth`` (``z<link>_<mate>`` for a wheel of a compound link), or None."""
+        name = f"z{x}_{mate}" if f"z{x}_{mate}" in (teeth or {}) else f"z{x}"
+        return f"{name}={teeth[name]}" if teeth and name in teeth else None
+
     columns: dict = {}  # (upper wheel, carrier) -> meshes
     for k, ((a, b), t) in enumerate(zip(train.meshes, train.carriers)):
         high = b if level[b] >= level[a] else a
@@ -109,16 +115,19 @@ def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
             radius = r if radius is None else min(radius, r)
         width = 0.18 + 0.3 * (len(members) - 1)  # a wheel meshing several gears side by side
         gears.append({"link": high, "x": x + (width - 0.18) / 2, "from": level[high] - radius,
-                      "to": level[high] + radius, "ring": False, "width": width})
+                      "to": level[high] + radius, "ring": False, "width": width,
+                      "label": label(high, sum(train.meshes[members[0]]) - high)})
         span[high].append(x)
         for j, k in enumerate(members):
             a, b = train.meshes[k]
             low = a if high == b else b
             at = x + 0.3 * j
             if train.internal[k]:  # a ring over the wheel
-                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] + radius, "ring": True})
+                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] + radius, "ring": True,
+                              "label": label(low, high)})
             else:
-                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] - radius, "ring": False})
+                gears.append({"link": low, "x": at, "from": level[low], "to": level[high] - radius, "ring": False,
+                              "label": label(low, high)})
             span[low].append(at)
         if level[high] > level[t] + 1e-9:
             arm_x = x - 0.5
@@ -132,22 +141,25 @@ def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
     return {"shafts": shafts, "gears": gears, "arms": arms}
 
 
-def _draw_on(ax, train: GearTrain, teeth, compound, title: str) -> None:
+def _draw_on(ax, train: GearTrain, teeth, compound, title: str, fontsize: float = 9) -> None:
     import matplotlib.pyplot as plt
 
     geometry = schematic(train, teeth, compound)
     colours = plt.get_cmap("tab10").colors
     colour_of = lambda x: "black" if x == train.frame else colours[x % 10]  # noqa: E731
-    for x, shaft in geometry["shafts"].items():
+    shafts = geometry["shafts"]
+    left = min(shaft["from"] for shaft in shafts.values())
+    for x, shaft in shafts.items():
         ax.plot([shaft["from"], shaft["to"]], [shaft["y"]] * 2, color=colour_of(x), lw=2.2, solid_capstyle="butt")
-        ax.text(shaft["from"] - 0.08, shaft["y"], str(x), ha="right", va="center", fontsize=10, color=colour_of(x),
-                fontweight="bold")
         if x == train.frame:  # hatched ground under the frame's shaft
             x0, x1 = shaft["from"], shaft["to"]
             ax.plot([x0, x1], [shaft["y"] - 0.12] * 2, color="black", lw=1)
             for i in range(int((x1 - x0) / 0.15) + 1):
                 t = x0 + i * 0.15
                 ax.plot([t, t - 0.1], [shaft["y"] - 0.12, shaft["y"] - 0.24], color="black", lw=0.8)
+    for x, at, y in _label_places(shafts, left):  # link numbers in a column left of every shaft
+        ax.text(at, y, str(x), ha="right", va="center", fontsize=fontsize + 1, color=colour_of(x), fontweight="bold")
+        ax.plot([at + 0.04, shafts[x]["from"]], [y, y], color=colour_of(x), lw=0.6, ls=":")
     for arm in geometry["arms"]:
         ax.plot([arm["x"]] * 2, [arm["from"], arm["to"]], color=colour_of(arm["link"]), lw=2.2)
     for gear in geometry["gears"]:
@@ -155,14 +167,47 @@ def _draw_on(ax, train: GearTrain, teeth, compound, title: str) -> None:
         if gear["ring"]:  # a bracket over the wheel it meshes: internal teeth
             ax.plot([x + 0.3, x + 0.3, x - 0.12], [y0, y1 + 0.06, y1 + 0.06], color=colour, lw=2.2)
             ax.add_patch(plt.Rectangle((x - 0.12, y1 + 0.06), 0.42, 0.14, facecolor=colour, edgecolor=colour))
+            if gear.get("label"):
+                ax.text(x + 0.36, y1 + 0.13, gear["label"], fontsize=fontsize - 1, color=colour, ha="left",
+                        va="center", bbox=_PLATE)
         else:
             w = gear.get("width", 0.18)
             ax.add_patch(plt.Rectangle((x - w / 2, min(y0, y1)), w, abs(y1 - y0), facecolor=colour,
                                        edgecolor=colour, alpha=0.85))
+            if gear.get("label"):
+                ax.text(x + max(w / 2, 0.3) + 0.08, (y0 + y1) / 2, gear["label"], fontsize=fontsize - 1, color=colour,
+                        ha="left", va="center", bbox=_PLATE)
     ax.set_aspect("equal")
     ax.axis("off")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=fontsize)
     ax.margins(0.08)
+
+
+def _label_places(shafts: dict, left: float) -> list[tuple[int, float, float]]:
+    """(link, x, y) of each link number: a column left of every shaft, a number stepped further
+    left when the one below it is closer than a text line (concentric shafts)."""
+    out, previous, step = [], None, 0
+    for x in sorted(shafts, key=lambda x: (shafts[x]["y"], x)):
+        y = shafts[x]["y"]
+        step = step + 1 if previous is not None and y - previous < 0.45 else 0
+        out.append((x, left - 0.2 - 0.3 * step, y))
+        previous = y
+    return out
+
+
+def _legend(fig, frame: bool, fontsize: float = 8) -> None:
+    """What the symbols mean, under the drawings."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles = [Line2D([], [], color="grey", lw=2.2, label="shaft (its link's number on the left)"),
+               Patch(facecolor="grey", alpha=0.85, label="gear wheel (bar: its pitch diameter)"),
+               Line2D([], [], color="grey", lw=2.2, marker="_", markersize=10, label="ring gear (bracket over its pinion)"),
+               Line2D([], [], color="grey", lw=2.2, marker="|", markersize=10, ls="none", label="carrier arm")]
+    if frame:
+        handles.append(Line2D([], [], color="black", lw=2.2, label="frame (black, hatched)"))
+    fig.legend(handles=handles, loc="lower center", ncol=3 if len(handles) > 4 else 2, fontsize=fontsize,
+               frameon=False, bbox_to_anchor=(0.5, 0.0))
 
 
 def _caption(train: GearTrain) -> str:
@@ -190,39 +235,64 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=(), title: str | None = None,
                size: float = 6.0) -> None:
-    """Write the functional schematic of one train to ``path`` (.svg, .png or .pdf)."""
+    """Write the functional schematic of one train to ``path`` (.svg, .png or .pdf), with a legend;
+    with ``teeth`` (a design) each wheel is labelled with its tooth number."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     path = _target(path)
-    fig, ax = plt.subplots(figsize=(size, size * 0.75))
+    fig, ax = plt.subplots(figsize=(size, size * 0.75 + 0.6))
     _draw_on(ax, train, teeth, compound, title or _caption(train))
+    fig.subplots_adjust(bottom=0.6 / (size * 0.75 + 0.6) + 0.04)
+    _legend(fig, train.frame is not None)
     _save(fig, path, 110)
 
 
 def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
-    """Several schematics on one sheet (at most ``limit``); returns how many were drawn."""
+    """Several schematics on one sheet, each captioned (wrapped to its cell) and a legend under
+    them; more than ``limit`` trains are refused (a sheet never drops trains silently).
+    Returns how many were drawn."""
+    path = _target(path)
+    trains = list(trains)
+    if len(trains) > limit:
+        raise InvalidOption(f"{len(trains)} trains are more than the {limit} a sheet holds here: select fewer")
+    if not trains:
+        return 0
+    _save(sheet_figure(trains, columns=columns, titles=titles), path, 90)
+    return len(trains)
+
+
+def sheet_figure(trains, *, columns: int = 4, titles=None):
+    """The matplotlib figure of a sheet of schematics (:func:`draw_sheet` writes it).
+
+    >>> fig = sheet_figure([GearTrain.parse("0-1-2 2-3 0~3i 1~3"), GearTrain.parse("0-1 0-2 1~2")])
+    >>> [ax.get_title() for ax in fig.axes]
+    ['1: 0-1-2 2-3 0~3i 1~3', '2: 0-1 0-2 1~2']
+    """
+    import textwrap
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    path = _target(path)
-    trains = list(trains)[:limit]
-    if not trains:
-        return 0
     columns = min(columns, len(trains))
     rows = -(-len(trains) // columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.2 * rows), squeeze=False)
+    width, height, foot = 3.6, 3.4, 0.5  # inches: a cell, and the legend's strip
+    fig, axes = plt.subplots(rows, columns, figsize=(width * columns, height * rows + foot), squeeze=False,
+                             layout="constrained")
     for k, ax in enumerate(axes.flat):
-        if k < len(trains):
-            _draw_on(ax, trains[k], None, (), (titles[k] if titles else f"{k + 1}: {_caption(trains[k])}"))
+        if k < len(trains):  # captions wrap at 11 characters an inch (at 8 points about 15 fit)
+            title = titles[k] if titles else f"{k + 1}: {_caption(trains[k])}"
+            _draw_on(ax, trains[k], None, (), textwrap.fill(title, int(width * 11)), fontsize=8)
         else:
-            ax.axis("off")
-    _save(fig, path, 90)
-    return len(trains)
+            fig.delaxes(ax)
+    share = foot / (height * rows + foot)
+    fig.get_layout_engine().set(h_pad=0.15, w_pad=0.1, rect=(0, share, 1, 1 - share))
+    _legend(fig, any(t.frame is not None for t in trains))
+    return fig
 
 
 def svg_text(train: GearTrain, *, size: float = 2.6) -> str:

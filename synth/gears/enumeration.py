@@ -35,6 +35,7 @@ Example
 
 from __future__ import annotations
 
+import sys
 from collections import Counter, deque
 from collections.abc import Iterator
 from functools import lru_cache
@@ -45,10 +46,12 @@ import pynauty
 from ..errors import InvalidOption
 from .train import GearTrain, axis_paths
 
-__all__ = ["GRAPHS", "MAX_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census", "check_query"]
+__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census",
+           "check_query", "estimate_trains", "size_check_trains"]
 
 GRAPHS = ("displacement", "rotation")
 MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
+SIZED_LINKS = 9  # from this size on a query is sized before it runs (1-DOF: 9 links take a CPU minute)
 _ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augmentation instead
 
 
@@ -265,20 +268,44 @@ def tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTr
     return out
 
 
-def _tree_summary(args) -> tuple[int, dict, set]:
+def _tree_summary(args) -> tuple[int, dict, dict]:
+    """A tree's count, its trains by lever-analogue code, and (``want_rotation``) the code of the
+    first train of each rotation certificate, in the tree's order."""
     dof, links, axes, want_rotation, method = args
     found = tree_trains(dof, links, axes, method)
     codes = Counter(str(t.lever_analogue().code) for t in found)
-    rotations = {t.rotation_certificate for t in found} if want_rotation else set()
+    rotations: dict = {}
+    for t in found if want_rotation else ():
+        rotations.setdefault(t.rotation_certificate, str(t.lever_analogue().code))
     return len(found), dict(codes), rotations
 
 
-def _units(dof: int, links: int, workers: int | None, work, args_of):
-    """Run ``work`` on every tree, in tree order, inline or on a process pool."""
+def _units(dof: int, links: int, workers: int | None, work, args_of, progress: bool = False):
+    """Run ``work`` on every tree, in tree order, inline or on a process pool; ``progress``: a bar
+    of the trees done on stderr (on a terminal)."""
     trees = link_axis_trees(links)
     jobs = [args_of(axes) for axes in trees]
+    bar = _bar(len(jobs), progress)
+    try:
+        for result in _run_units(jobs, workers, work):
+            bar.update(1)
+            yield result
+    finally:
+        bar.close()
+
+
+def _bar(total: int, progress: bool):
+    """A tqdm bar of ``total`` trees on stderr, shown on a terminal after a second; a bar that
+    shows nothing when ``progress`` is false."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit=" trees", file=sys.stderr, disable=None if progress else True, delay=1.0,
+                leave=False, desc="gear trains")
+
+
+def _run_units(jobs, workers: int | None, work):
     workers = workers or 1
-    if workers == 1 or len(trees) < 8:
+    if workers == 1 or len(jobs) < 8:
         for job in jobs:
             yield work(job)
         return
@@ -298,15 +325,17 @@ def _units(dof: int, links: int, workers: int | None, work, args_of):
         pool.join()
 
 
-def trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> Iterator[GearTrain]:
-    """Every train, one per displacement graph, or one (the first) per rotation graph.
+def trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1,
+           progress: bool = False) -> Iterator[GearTrain]:
+    """Every train, one per displacement graph, or one (the first) per rotation graph
+    (``progress``: a bar of the trees done on stderr).
 
     >>> [t.compact() for t in trains(1, 4)]
     ['0-1 0-2 0-3 1~2 1~3', '0-1 0-2 1-3 0~3 1~2', '0-1-3 0-2 1~2 2~3']
     """
     check_query(dof, links, graphs)
     seen: set[str] = set()
-    for found in _units(dof, links, workers, _tree_list, lambda axes: (dof, links, axes)):
+    for found in _units(dof, links, workers, _tree_list, lambda axes: (dof, links, axes), progress):
         for train in found:
             if graphs == "rotation":
                 if train.rotation_certificate in seen:
@@ -319,38 +348,156 @@ def _tree_list(args) -> list[GearTrain]:
     return tree_trains(*args)
 
 
-def census(dof: int, links: int, workers: int | None = 1, method: str = "auto") -> dict:
-    """Both counts in one pass: ``{"displacement": D, "rotation": R, "by_code": {code: D}}``.
-    ``method``: "auto" (orderly generation, canonical augmentation on very symmetric trees),
+def census(dof: int, links: int, workers: int | None = 1, method: str = "auto", progress: bool = False) -> dict:
+    """Both counts in one pass: ``{"displacement": D, "rotation": R, "by_code": {code: D},
+    "rotation_by_code": {code: R}}`` — a rotation graph counted under the code of its first
+    displacement graph (the train :func:`trains` lists for it).  ``method``: "auto" (orderly generation, canonical augmentation on very symmetric trees),
     "orderly" or "augmentation" everywhere (the two must agree).
 
     >>> census(1, 6)["displacement"], census(1, 6)["rotation"]
     (81, 27)
     """
     check_query(dof, links)
-    total, codes, rotations = 0, Counter(), set()
+    total, codes, rotations = 0, Counter(), {}
     if method not in _METHODS:
         raise InvalidOption(f"the method is auto, orderly or augmentation, not {method!r}")
-    for n, by_code, rot in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, True, method)):
+    for n, by_code, rot in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, True, method),
+                                  progress=progress):
         total += n
         codes.update(by_code)
-        rotations |= rot
-    return {"displacement": total, "rotation": len(rotations), "by_code": dict(sorted(codes.items()))}
+        for certificate, code in rot.items():  # trees in order: the first train of a rotation graph wins
+            rotations.setdefault(certificate, code)
+    return {"displacement": total, "rotation": len(rotations), "by_code": dict(sorted(codes.items())),
+            "rotation_by_code": dict(sorted(Counter(rotations.values()).items()))}
 
 
-def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1) -> dict:
+def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1,
+                 progress: bool = False) -> dict:
     """``{"count": N, "by_code": {lever-analogue code: N}}``; for rotation graphs, ``by_code`` counts
-    the displacement graphs of each code (a rotation graph has several).
+    each rotation graph under the code of the train listed for it (its first displacement graph),
+    so the codes add up to the count.  ``progress``: a bar on stderr (trees done).
 
     >>> count_trains(1, 5)
     {'count': 13, 'by_code': {'521/0': 3, '530/1': 4, '602/0': 2, '611/1': 2, '620/2': 1, '701/0-1': 1}}
+    >>> count_trains(1, 5, graphs="rotation")
+    {'count': 6, 'by_code': {'521/0': 1, '530/1': 3, '611/1': 2}}
     """
     check_query(dof, links, graphs)
     if graphs == "rotation":
-        found = census(dof, links, workers)
-        return {"count": found["rotation"], "by_code": found["by_code"]}
+        found = census(dof, links, workers, progress=progress)
+        return {"count": found["rotation"], "by_code": found["rotation_by_code"]}
     total, codes = 0, Counter()
-    for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False, "auto")):
+    for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False, "auto"),
+                                progress=progress):
         total += n
         codes.update(by_code)
     return {"count": total, "by_code": dict(sorted(codes.items()))}
+
+
+# ------------------------------------------------------------------------------ sizing
+_PER_LINK = 1.2  # allowance for the time per train growing with the size (0.42, 0.44, 0.56 ms at 7, 8, 9 links)
+_CALIBRATED: dict = {}  # (dof, links) -> (displacement, rotation, CPU seconds): counted once a process
+
+
+def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budget: float = 2.0):
+    """How many trains a query finds and how long it takes, before it runs.
+
+    The same F is counted exactly (both graphs) at the sizes below ``links``, smallest first,
+    while the next one is predicted to fit in what is left of ``budget`` CPU seconds.  From the
+    last three sizes with trains the growth ratio r(n) = count(n)/count(n − 1) is extrapolated
+    linearly, r(n + 1) = r(n) + (r(n) − r(n − 1)), and the count multiplied by it step by step.
+    The time is the count times the largest CPU time per train met on the way, raised by a fifth
+    for each link beyond the last size counted: that time grows slowly with the size (1-DOF on the
+    development machine: 0.42 ms a train at 7 links, 0.44 at 8, 0.56 at 9), so the estimate errs
+    long (9 links: 1.44 × 0.42 ms against 0.56 measured).  Returns an
+    :class:`~synth.synthesis.estimate.Estimate` (``chains``: trains,
+    ``units``: link–axis trees, exact), or None when fewer than three smaller sizes have trains.
+
+    Example
+    -------
+    >>> e = estimate_trains(1, 10)
+    >>> 8.0e5 < e.chains < 1.1e6, e.units, e.basis.startswith("exact counts at ")  # 904 156 trains
+    (True, 1540, True)
+    """
+    import math
+    import time
+
+    from ..synthesis.estimate import Estimate
+
+    check_query(dof, links, graphs)
+    which = 1 if graphs == "rotation" else 0
+    sizes, spent, per_train = [], 0.0, 0.0
+    for m in range(dof + 2, links):
+        if sizes:  # the next size's time: the count's last growth times the time per train, or tenfold
+            (_, before), (_, last) = ([(0, None)] + sizes)[-2:]
+            predicted = (last[0] ** 2 / before[0] * per_train if before and last and per_train
+                         else 10 * _CALIBRATED[dof, sizes[-1][0]][2])
+            wanted = sum(1 for _, c in sizes if c) < 3  # an extrapolation needs three sizes with trains
+            if spent + predicted > (2 * budget if wanted else budget):
+                break
+        if (dof, m) not in _CALIBRATED:
+            start = time.process_time()
+            found = census(dof, m)
+            _CALIBRATED[dof, m] = (found["displacement"], found["rotation"], time.process_time() - start)
+        d, r, seconds = _CALIBRATED[dof, m]
+        spent += seconds
+        if d >= 50:  # below, one tree's fixed costs are most of the time
+            per_train = max(per_train, seconds / d)
+        sizes.append((m, (d, r) if d else None))
+    counted = [(m, c[which]) for m, c in sizes if c]
+    if len(counted) < 3 or per_train == 0.0:
+        return None
+    (_, c1), (_, c2), (last, c3) = counted[-3:]
+    ratio, step = c3 / c2, max(c3 / c2 - c2 / c1, 0.0)
+    count = float(c3)
+    for k in range(1, links - last + 1):
+        count *= ratio + k * step
+    displacement = count if which == 0 else count * sizes[-1][1][0] / sizes[-1][1][1]
+    seconds = displacement * per_train * _PER_LINK ** (links - sizes[-1][0])
+    units = len(link_axis_trees(links))
+    basis = f"exact counts at {', '.join(str(m) for m, _ in counted[-3:])} links"
+    return Estimate(count, units, seconds, basis, math.log10(count), math.log10(units), math.log10(max(seconds, 1e-9)))
+
+
+def size_check_trains(dof: int, links: int, graphs: str = "displacement", *, processes: int = 1, table: bool = False,
+                      force: bool = False) -> str | None:
+    """Refuse, within seconds and with an estimate, a gear-train query too large to run unasked.
+
+    Sizes below :data:`SIZED_LINKS` pass at once.  Others are estimated (:func:`estimate_trains`)
+    and refused with :class:`~synth.errors.QueryTooLarge` when they would take more than a day on
+    ``processes`` workers (unless ``force``), or when a ``table`` would hold more than a million
+    rows; a query of more than ten minutes passes with a sentence to show before it starts
+    (returned).
+
+    >>> size_check_trains(1, 8) is None
+    True
+    """
+    from ..errors import QueryTooLarge, option
+    from ..execution.sizes import describe_seconds, magnitude
+    from ..synthesis.estimate import LIMIT_SECONDS, NOTE_SECONDS, TABLE_ROWS
+
+    check_query(dof, links, graphs)
+    if links < SIZED_LINKS:
+        return None
+    found = estimate_trains(dof, links, graphs)
+    if found is None:
+        return None if force else _refuse_unsized(links, option)
+    where = f"on {processes} worker{'s' * (processes > 1)}"
+    size = (f"about {magnitude(found.chains)} {graphs} graphs from {magnitude(found.units)} link–axis trees, "
+            f"about {describe_seconds(found.seconds / processes)} {where} (extrapolated from the {found.basis})")
+    if table and found.chains > TABLE_ROWS:
+        raise QueryTooLarge(f"a table is held in memory to align it and this listing ({links} links) is too large "
+                            f"for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
+    if not force and found.seconds / processes > LIMIT_SECONDS:
+        raise QueryTooLarge(f"this query ({links} links) is too large to run unasked: {size}; give {option('force')} "
+                            "to run it anyway")
+    if found.seconds / processes > NOTE_SECONDS:
+        return f"a long query: {size}"
+    return None
+
+
+def _refuse_unsized(links: int, option):
+    from ..errors import QueryTooLarge
+
+    raise QueryTooLarge(f"this query ({links} links) is large and its size cannot be estimated (fewer than three "
+                        f"smaller sizes have trains); give {option('force')} to run it anyway")

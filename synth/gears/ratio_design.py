@@ -43,7 +43,8 @@ from ..errors import InvalidOption, option
 from .ratios import RatioFormula, speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "MIN_TEETH", "RING_MARGIN"]
+__all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "carrier_cycles", "planet_clearance",
+           "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
 RING_MARGIN = 10  # an internal pair needs the ring this many teeth above its pinion (tip interference)
@@ -214,18 +215,12 @@ class _DesignModel:
             better = model.new_bool_var("better")
             self._error_is(model, "<", beat[0]).only_enforce_if(better)
             model.add(self.S <= beat[1]).only_enforce_if(better.negated())
-        if free:
-            self._free_kinds(names)
-        else:
-            for (za, zb), inner in zip(names, train.internal):
-                if inner:
-                    model.add(z[za] >= z[zb] + RING_MARGIN)
-            for members in _centre_groups(train).values():
-                sizes = [z[names[k][0]] + (-1 if train.internal[k] else 1) * z[names[k][1]] for k in members]
-                for other in sizes[1:]:
-                    model.add(other == sizes[0])
+        centre = self._centres(names)
+        self._one_kind_per_wheel(names)
+        _carrier_geometry(model, train, centre)
         if planets is not None:
             _assembly(model, train, names, z, planets, lo, hi, self.kind)
+            _planets_clear(model, train, names, z, centre, planets, lo, hi, self.kind)
 
     # ---------------------------------------------------------------- mesh kinds chosen
     def _kinds(self, meshes: int) -> dict:
@@ -242,22 +237,49 @@ class _DesignModel:
             out["sign"].append(s)
         return out
 
-    def _free_kinds(self, names) -> None:
-        """Ring margin and one centre distance per carrier's pair of axes, for whichever kinds are chosen."""
+    def _centres(self, names) -> list:
+        """Per mesh its centre distance in half modules, 2a/m: z_a + z_b for an external pair,
+        z_ring − z_pinion for an internal one (a ring at least ``RING_MARGIN`` teeth above its
+        pinion), for the kinds given or whichever the solver chooses."""
         model, z, kind = self.model, self.z, self.kind
+        if kind is None:
+            for (za, zb), inner in zip(names, self.train.internal):
+                if inner:
+                    model.add(z[za] >= z[zb] + RING_MARGIN)
+            return [z[za] - z[zb] if inner else z[za] + z[zb] for (za, zb), inner in zip(names, self.train.internal)]
         hi = self.teeth[1]
         centre = []
         for k, (za, zb) in enumerate(names):
-            c = model.new_int_var(-2 * hi, 2 * hi, f"centre{k}")
+            c = model.new_int_var(RING_MARGIN, 2 * hi, f"centre{k}")
             model.add(c == z[za] + z[zb]).only_enforce_if(kind["external"][k])
             model.add(c == z[za] - z[zb]).only_enforce_if(kind["ring_first"][k])
             model.add(c == z[zb] - z[za]).only_enforce_if(kind["ring_second"][k])
             model.add(z[za] >= z[zb] + RING_MARGIN).only_enforce_if(kind["ring_first"][k])
             model.add(z[zb] >= z[za] + RING_MARGIN).only_enforce_if(kind["ring_second"][k])
             centre.append(c)
-        for members in _centre_groups(self.train).values():
-            for k in members[1:]:
-                model.add(centre[k] == centre[members[0]])
+        return centre
+
+    def _one_kind_per_wheel(self, names) -> None:
+        """A wheel in several meshes is the ring of all of them or of none: one toothed rim is
+        internal or external (a link with a wheel of each kind is a compound link, ``compound``)."""
+        meshes_of: dict = {}
+        for k, pair in enumerate(names):
+            for side, wheel in enumerate(pair):
+                meshes_of.setdefault(wheel, []).append((k, side))
+        for wheel, where in meshes_of.items():
+            if self.kind is None:
+                rings = [self.train.internal[k] and side == 0 for k, side in where]
+                if any(rings) and not all(rings):
+                    (k1, _), (k2, _) = (where[rings.index(True)], where[rings.index(False)])
+                    a, b = self.train.meshes[k1]
+                    c, d = self.train.meshes[k2]
+                    raise NoDesign(f"wheel {wheel} is the ring of mesh {a}~{b}i and an external gear of mesh {c}~{d}: "
+                                   f"one rim has internal or external teeth; list link {wheel[1:].split('_')[0]} "
+                                   "with --compound to give it a wheel per mesh")
+                continue
+            lits = [self.kind["ring_first" if side == 0 else "ring_second"][k] for k, side in where]
+            for other in lits[1:]:
+                self.model.add(other == lits[0])
 
     # ---------------------------------------------------------------- the search
     def _error_is(self, model, relation: str, error: Fraction):
@@ -267,11 +289,15 @@ class _DesignModel:
         return model.add({"<": left < right, "<=": left <= right, "==": left == right, ">": left > right}[relation])
 
     def _solve(self, model, minimise=None):
+        """Solve ``model`` (minimising ``minimise``); Ctrl-C stops the search within milliseconds."""
+        from ..synthesis._cpsat import _solve as solve_stoppable
+
         solver = self.cp.CpSolver()
         solver.parameters.num_workers = 1
+        solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
         if minimise is not None:
             model.minimize(minimise)
-        status = solver.solve(model)
+        status = solve_stoppable(solver, model, None)
         if status not in (self.cp.OPTIMAL, self.cp.FEASIBLE):
             return None
         return solver
@@ -365,6 +391,96 @@ class _DesignModel:
         variant = GearTrain(t.links, t.axes, meshes, t.carriers, [bool(f or s) for f, s in rings], t.frame)
         exact = speed_ratio(variant, *self.mechanism, self.compound).evaluate(teeth)
         return Design(dict(sorted(teeth.items())), exact, abs(exact - self.target) / abs(self.target), variant)
+
+
+def carrier_cycles(train: GearTrain) -> list[tuple[int, list[list[int]]]]:
+    """Per carrier, the cycles its centre distances close: each cycle as the lists of meshes (one
+    group of meshes per side, a side joining two axes of the carrier) around a cycle of its axes.
+
+    A carrier holds its axes at fixed places; the centre distances of the meshes between them
+    must close every such cycle in the plane: each at most the sum of the others (for three
+    axes, the triangle inequality).  Those inequalities place the axes exactly when their graph
+    is series–parallel (no four axes joined pairwise through other axes); a carrier whose axes
+    are not is refused (:class:`NoDesign`) — the first such trains have 8 links.
+
+    >>> carrier_cycles(GearTrain.parse("0-1-4 0-2 0-3 1~2 2~3 4~3i", frame=1))
+    [(0, [[0], [1], [2]])]
+    """
+    import networkx as nx
+    from networkx.algorithms.approximation import treewidth_min_degree
+
+    graphs: dict = {}
+    for (t, ends), members in _centre_groups(train).items():
+        if len(ends) == 2:
+            graphs.setdefault(t, nx.Graph()).add_edge(*sorted(ends, key=repr), meshes=members)
+    out = []
+    for t, graph in graphs.items():
+        if treewidth_min_degree(graph)[0] > 2:  # exact up to 2: a vertex of degree ≤ 2 is always there to remove
+            raise NoDesign(f"carrier {t} holds four axes at mutually fixed distances (a complete quadrilateral of "
+                           "meshes): whether they lie in one plane is not modelled; carry fewer meshes on it")
+        for cycle in sorted(nx.simple_cycles(graph), key=lambda c: (len(c), sorted(map(repr, c)))):
+            sides = zip(cycle, cycle[1:] + cycle[:1])
+            out.append((t, [graph.edges[u, v]["meshes"] for u, v in sides]))
+    return out
+
+
+def _carrier_geometry(model, train: GearTrain, centre: list) -> None:
+    """The meshes a carrier holds between the same two axes share one centre distance, and the
+    distances around every cycle of its axes close (each side at most the sum of the others)."""
+    for members in _centre_groups(train).values():
+        for k in members[1:]:
+            model.add(centre[k] == centre[members[0]])
+    for _, sides in carrier_cycles(train):
+        lengths = [centre[group[0]] for group in sides]
+        for j, side in enumerate(lengths):
+            model.add(side <= sum(lengths[:j] + lengths[j + 1:]))
+
+
+def planet_clearance(planets: int, planet_teeth: int) -> int:
+    """The least centre distance 2a/m (z_sun + z_planet, or z_ring − z_planet) at which ``planets``
+    equally spaced planets of ``planet_teeth`` teeth clear each other: neighbours stand
+    2a·sin(π/k) apart and a planet's tip circle has the diameter m(z_planet + 2), so
+    (2a/m)·sin(π/k) > z_planet + 2.  Exact (sin² π/k is rational for k = 2, 3, 4, 6; otherwise
+    irrational, so the bound is never met with equality).
+
+    >>> planet_clearance(3, 17), planet_clearance(6, 20)   # 3: 19/sin 60° = 21.9…; 6: 22/(1/2) = 44
+    (22, 45)
+    """
+    import math
+
+    if planets < 2:
+        return 0  # one planet has no neighbour
+    exact = {2: Fraction(1), 3: Fraction(3, 4), 4: Fraction(1, 2), 6: Fraction(1, 4)}.get(planets)
+    tip = planet_teeth + 2
+    if exact is None:
+        return math.floor(tip / math.sin(math.pi / planets)) + 1
+    least = math.isqrt(int(tip * tip / exact))  # D² sin² > tip²
+    while least * least * exact <= tip * tip:
+        least += 1
+    return least
+
+
+def _planets_clear(model, train: GearTrain, names, z, centre, planets: int, lo: int, hi: int, kind=None) -> None:
+    """k equally spaced planets clear each other: per planet wheel, its mesh's centre distance at
+    least :func:`planet_clearance` of its teeth (a table over lo..hi)."""
+    if planets < 2:
+        return
+    table = [planet_clearance(planets, v) for v in range(lo, hi + 1)]
+    done = set()
+    for c1, p1, k1, s1, c2, p2, k2, s2 in _planet_meshes(train, names):
+        for planet, k, side in ((p1, k1, s1), (p2, k2, s2)):
+            if kind is None and train.internal[k] and side == 0:
+                continue  # the planet is the ring: no planet pair
+            if (planet, k) in done:
+                continue
+            done.add((planet, k))
+            index = model.new_int_var(0, hi - lo, f"clear_index_{planet}_{k}")
+            model.add(index == z[planet] - lo)
+            least = model.new_int_var(min(table), max(table), f"clear_{planet}_{k}")
+            model.add_element(index, table, least)
+            rule = model.add(centre[k] >= least)
+            if kind is not None:
+                rule.only_enforce_if(kind["ring_first" if side == 0 else "ring_second"][k].negated())
 
 
 def _planet_meshes(train: GearTrain, names) -> list[tuple]:

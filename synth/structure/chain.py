@@ -50,6 +50,11 @@ class Chain:
     h : int
         Motion space of its loops (2 … 6; 3 planar and spherical, 6 general spatial): the same
         graph is a different design in another space, with W = h(n − 1) − (h − 1)·p.
+    classes : sequence of int, optional
+        A heterogeneous chain: the loop class of each link (2 … 6).  Links of class x ≠ h form
+        *bases*: the loops made of class-x links only are of class x, every other loop is of
+        class h (docs/theory.md, "Heterogeneous chains"); each base link lies on such a loop.
+        None (or every link of class h) means a homogeneous chain.
 
     Two joints on the same two links hold them together as one link: synthesis never builds
     such a chain, and the analysis reports it as an over-constrained sub-chain.
@@ -67,6 +72,7 @@ class Chain:
     joints: tuple[tuple[int, ...], ...]
     kinds: tuple[str, ...] | None = None
     h: int = 3
+    classes: tuple[int, ...] | None = None
 
     def __post_init__(self):
         if isinstance(self.links, bool) or not isinstance(self.links, int) or self.links < 1:
@@ -106,9 +112,38 @@ class Chain:
         order = sorted(range(len(raw)), key=lambda k: (raw[k], kinds[k] if kinds else ""))
         object.__setattr__(self, "joints", tuple(raw[k] for k in order))
         object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
+        object.__setattr__(self, "classes", self._checked_classes())
+
+    def _checked_classes(self) -> tuple[int, ...] | None:
+        """The loop classes as given, checked: one per link, 2 … 6, revolute joints only, each
+        base link on a loop of its own class; None where every link is of class h."""
+        if self.classes is None:
+            return None
+        try:
+            classes = tuple(self.classes)
+        except TypeError:
+            raise MalformedChain("loop classes are one whole number 2 … 6 per link") from None
+        if len(classes) != self.links:
+            raise MalformedChain(f"{len(classes)} loop classes given for {self.links} links: give one per link")
+        bad = [x for x in classes if isinstance(x, bool) or not isinstance(x, int) or not 2 <= x <= 6]
+        if bad:
+            raise MalformedChain(f"a loop class is a motion space 2 … 6, not {bad[0]!r}")
+        if all(x == self.h for x in classes):
+            return None
+        if self.kinds is not None:
+            raise MalformedChain("a chain with loop classes has revolute joints only (prismatic pairs and meshes are "
+                                 "planar, h = 3)")
+        for x in sorted(set(classes) - {self.h}):
+            base = {i for i, c in enumerate(classes) if c == x}
+            lonely = sorted(base - _links_on_loops(base, self.joints))
+            if lonely:
+                raise MalformedChain(f"link{'s' * (len(lonely) > 1)} {', '.join(map(str, lonely))} of class h = {x} "
+                                     f"{'lie' if len(lonely) > 1 else 'lies'} on no loop of class-{x} links: a loop's "
+                                     "class belongs to the links of that loop")
+        return classes
 
     @classmethod
-    def trusted(cls, links: int, joints, h: int = 3, kinds=None) -> "Chain":
+    def trusted(cls, links: int, joints, h: int = 3, kinds=None, classes=None) -> "Chain":
         """Build a chain the engine constructed itself (valid by construction): skips the checks.
         With ``kinds``, the joints must be given sorted (as a chain's own), the kinds in their order.
 
@@ -123,6 +158,8 @@ class Chain:
         object.__setattr__(self, "kinds", None if kinds is None or all(k == "revolute" for k in kinds)
                            else tuple(kinds))
         object.__setattr__(self, "h", h)
+        object.__setattr__(self, "classes", None if classes is None or all(x == h for x in classes)
+                           else tuple(classes))
         return self
 
     # ---------------------------------------------------------------- numbers
@@ -163,12 +200,27 @@ class Chain:
         (3, 1)
         >>> Chain.parse("0=1 1=2 2=3 3=0").dof          # a wedge loop
         2
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 | h5: 0 1 2 3 4 5").dof   # the toroidal loop, in the plane
+        1
         """
-        if self.kinds is None:
+        if self.kinds is None and self.classes is None:
             return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
         from .kinds import structural_mobility
 
         return structural_mobility(self)
+
+    @property
+    def loop_classes(self) -> dict[int, int]:
+        """K_h, the loops of each class: the cycle rank of each base (its class-x links alone),
+        the rest of the K loops of the chain's class h.
+
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5").loop_classes
+        {3: 1, 5: 1}
+        """
+        from .kinds import class_loops
+
+        based = {x: class_loops(self, x) for x in sorted(set(self.classes or ())) if x != self.h}
+        return dict(sorted({self.h: self.loops - sum(based.values()), **based}.items()))
 
     @property
     def code(self) -> Code:
@@ -207,7 +259,11 @@ class Chain:
         """Incidence graph for nauty: links 0…n−1, joints n…; colour cells marked links, links, joints by kind."""
         n = self.links
         adjacency = {n + k: list(j) for k, j in enumerate(self.joints)}
-        coloring = [{m} for m in marked] + [set(range(n)) - set(marked)]
+        if self.classes is None:
+            coloring = [{m} for m in marked] + [set(range(n)) - set(marked)]
+        else:  # a cell of links per loop class: two class assignments of one graph are two chains
+            coloring = [{m} for m in marked] + [{i for i in range(n) if self.classes[i] == x and i not in marked}
+                                                for x in sorted(set(self.classes))]
         if self.kinds is None:
             coloring.append(set(range(n, n + len(self.joints))))
         else:  # a cell per kind (meshes only where there are some: older certificates stay valid)
@@ -236,6 +292,8 @@ class Chain:
             sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
             if "mesh" in self.kinds:
                 sizes += "g" + f"{self.kinds.count('mesh'):02x}"
+        if self.classes is not None:  # the links of each class, cell by cell as nauty sees them
+            sizes += "c" + "".join(f"{x}{self.classes.count(x):02x}" for x in sorted(set(self.classes)))
         return sizes
 
     def automorphisms(self, marked: Sequence[int] = ()) -> tuple[list[list[int]], float, list[int]]:
@@ -260,17 +318,24 @@ class Chain:
         """The same chain with link ``i`` renamed ``permutation[i]``."""
         if sorted(permutation) != list(range(self.links)):
             raise MalformedChain("a relabelling must be a permutation of the links")
-        return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h)
+        classes = None
+        if self.classes is not None:
+            classes = [0] * self.links
+            for i, x in enumerate(self.classes):
+                classes[permutation[i]] = x
+        return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h,
+                     classes)
 
     def to_networkx(self):
-        """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``.
+        """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``;
+        the graph attribute ``h`` is the motion space.
 
-        >>> g = Chain.parse("0-1 1-2 2-0").to_networkx(); g.number_of_nodes(), g.number_of_edges()
-        (6, 6)
+        >>> g = Chain.parse("0-1 1-2 2-0").to_networkx(); g.number_of_nodes(), g.number_of_edges(), g.graph
+        (6, 6, {'h': 3})
         """
         import networkx as nx
 
-        g = nx.Graph()
+        g = nx.Graph(h=self.h)
         for i in range(self.links):
             g.add_node(("link", i), kind="link")
         for k, j in enumerate(self.joints):
@@ -314,7 +379,7 @@ class Chain:
                 break
             joints = [([x for x in j if degree[x] >= 2], k) for j, k in joints]
             joints = [(j, k) for j, k in joints if len(j) >= 2]
-        return Chain(self.links, [j for j, _ in joints], [k for _, k in joints], self.h)
+        return Chain(self.links, [j for j, _ in joints], [k for _, k in joints], self.h, self.classes)
 
     def is_fractionated(self) -> bool:
         """Whether removing one link or one joint of the closed part disconnects it (a cut vertex
@@ -354,6 +419,10 @@ class Chain:
                      loops_3=self.loops - k2)
         if self.h != 3:
             d["h"] = self.h
+        if self.classes is not None:
+            d["classes"] = list(self.classes)
+            d["loop_classes"] = {str(x): k for x, k in self.loop_classes.items()}
+            d["code"] += self.class_suffix
         return d
 
     @classmethod
@@ -372,7 +441,10 @@ class Chain:
         if isinstance(h, bool) or not isinstance(h, int):
             raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
         _check_as_written(None, joints)
-        return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h)
+        classes = d.get("classes")
+        if classes is not None and not isinstance(classes, list):
+            raise MalformedChain("'classes' must be a list of loop classes, one per link")
+        return cls(links, tuple(tuple(j) for j in joints), d.get("kinds"), h, classes)
 
     @property
     def kind_suffix(self) -> str:
@@ -386,6 +458,18 @@ class Chain:
             return ""
         text = f" P{self.kinds.count('prismatic')}" if "prismatic" in self.kinds or "mesh" not in self.kinds else ""
         return text + (f" G{self.kinds.count('mesh')}" if "mesh" in self.kinds else "")
+
+    @property
+    def class_suffix(self) -> str:
+        """What the code leaves out of a heterogeneous chain: its loops by class, ``" K3=4 K5=1"``
+        (empty for a homogeneous chain).
+
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5").class_suffix
+        ' K3=1 K5=1'
+        """
+        if self.classes is None:
+            return ""
+        return "".join(f" K{x}={k}" for x, k in self.loop_classes.items())
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict())
@@ -409,10 +493,17 @@ class Chain:
         1
         >>> Chain.parse("0=1 1-2 2~0").kinds       # joints sorted: (0, 1), (0, 2), (1, 2)
         ('prismatic', 'mesh', 'revolute')
+
+        A heterogeneous chain names its base links after ``|``, class by class (the other links
+        are of the chain's class h, 3 here): ``"… | h5: 0 1 2 3 4 5"``.
+
+        >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5").loop_classes
+        {3: 1, 5: 1}
         """
         s = text.strip()
         if s.startswith("{") or s.startswith("["):
             return cls.from_json(s)
+        s, _, declared = s.partition("|")
         joints, kinds = [], []
         by_symbol = {v: k for k, v in SYMBOLS.items()}
         for token in s.replace(",", " ").split():
@@ -433,7 +524,8 @@ class Chain:
             raise MalformedChain("an empty joint list is not a chain")
         links = 1 + max(max(j) for j in joints)
         _check_as_written(links, joints)
-        return cls(links, tuple(joints), kinds)
+        h, classes = _read_classes(declared, links) if declared.strip() else (3, None)
+        return cls(links, tuple(joints), kinds, h, classes)
 
     def compact(self) -> str:
         """The compact joint-list notation read by :meth:`parse`, joint kinds included.
@@ -442,11 +534,87 @@ class Chain:
         '0=1 0-2 1~2'
         """
         kinds = self.kinds or ("revolute",) * len(self.joints)
-        return " ".join(SYMBOLS[k].join(map(str, j)) for j, k in zip(self.joints, kinds))
+        text = " ".join(SYMBOLS[k].join(map(str, j)) for j, k in zip(self.joints, kinds))
+        if self.classes is not None:
+            bases = [f"h{x}: " + " ".join(str(i) for i, c in enumerate(self.classes) if c == x)
+                     for x in sorted(set(self.classes) - {self.h})]
+            text += " | " + "; ".join(([] if self.h == 3 else [f"h{self.h}"]) + bases)
+        return text
 
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
         return svg_of(self)
+
+
+def _links_on_loops(links: set[int], joints) -> set[int]:
+    """The links of ``links`` that lie on a loop of those links alone (each joint restricted to
+    them): a cycle of their link–joint incidence graph, so two joints of the link still reach each
+    other without it.
+
+    >>> sorted(_links_on_loops({0, 1, 2, 3}, [(0, 1), (1, 2), (2, 0), (2, 3)]))
+    [0, 1, 2]
+    >>> sorted(_links_on_loops({0, 1, 2}, [(0, 1, 2)]))     # three links on one pin: no loop
+    []
+    """
+    inside = [[x for x in j if x in links] for j in joints]
+    inside = [j for j in inside if len(j) >= 2]
+    on = set()
+    for x in links:
+        own = [k for k, j in enumerate(inside) if x in j]
+        if len(own) < 2:
+            continue
+        root = {k: k for k in range(len(inside))}  # joints joined through the links other than x
+
+        def find(k):
+            while root[k] != k:
+                root[k] = root[root[k]]
+                k = root[k]
+            return k
+
+        first: dict[int, int] = {}
+        for k, j in enumerate(inside):
+            for y in j:
+                if y != x:
+                    root[find(k)] = find(first.setdefault(y, k))
+        if len({find(k) for k in own}) < len(own):
+            on.add(x)
+    return on
+
+
+def _read_classes(text: str, links: int) -> tuple[int, tuple[int, ...]]:
+    """The motion spaces written after ``|`` in a joint list: each base's class and links,
+    ``h5: 0 1 2 3 4 5`` (several separated by ``;``), and the class of the other links, ``h2``
+    alone (3 when not written).  Returns (h, the class of each link).
+
+    >>> _read_classes(" h5: 0 1 2", 4)
+    (3, (5, 5, 5, 3))
+    >>> _read_classes(" h2; h3: 0 1 2", 4)
+    (2, (3, 3, 3, 2))
+    """
+    ambient, bases = 3, []
+    for part in text.split(";"):
+        head, colon, body = part.partition(":")
+        head = head.strip()
+        try:
+            x = int(head[1:]) if head[:1] == "h" else None
+            members = [int(t) for t in body.replace(",", " ").split()]
+        except ValueError:
+            x = None
+        if x is None or bool(colon) != bool(members):
+            raise MalformedChain(f"cannot read the loop classes {part.strip()!r}: after '|' write each base's class and "
+                                 "links, e.g. '| h5: 0 1 2 3 4 5' ('| h2; h3: 0 1 2 3' where the other links are not of "
+                                 "class 3)")
+        if colon:
+            bases.append((x, members))
+        else:
+            ambient = x
+    classes = [ambient] * links
+    for x, members in bases:
+        for i in members:
+            if not 0 <= i < links:
+                raise MalformedChain(f"link {i} of class h = {x} is not a link of the chain (0 … {links - 1})")
+            classes[i] = x
+    return ambient, tuple(classes)
 
 
 def _check_as_written(links: int | None, joints) -> None:

@@ -47,7 +47,8 @@ from .joints import JOINT_KINDS, SYMBOLS
 if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and never import its type
     from .chain import Chain
 
-__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "wedge_loops", "structural_mobility", "generic_mobility",
+__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "class_loops",
+           "structural_mobility", "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 KINDS = JOINT_KINDS
@@ -111,8 +112,35 @@ def wedge_loops(chain: Chain, links=None) -> int:
     return cycle_rank(s, sliders)
 
 
+def restricted_pairs(joint, links) -> list[tuple[int, int]]:
+    """A joint restricted to ``links``, as the pairs of a path through those of its links (a pin that
+    holds m of them joins them as m − 1 pairs: the loops it closes are the loops of those pairs).
+
+    >>> restricted_pairs((0, 3, 5), {0, 5, 7})
+    [(0, 5)]
+    """
+    inside = [x for x in joint if x in links]
+    return list(zip(inside, inside[1:]))
+
+
+def class_loops(chain: Chain, h: int, links=None) -> int:
+    """c_h(S): independent loops made only of links of class ``h`` among ``links`` (all by
+    default) — the loops of a heterogeneous chain's base of that class (each joint restricted
+    to those links: a pin of m of them closes m − 1 pairs).
+
+    >>> from synth.structure.chain import Chain
+    >>> toroid = Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5")
+    >>> class_loops(toroid, 5), class_loops(toroid, 5, [0, 1, 2, 3, 6])
+    (1, 0)
+    """
+    s = _members(chain, links) & {i for i, x in enumerate(chain.classes or ()) if x == h}
+    return cycle_rank(s, [pair for j in chain.joints for pair in restricted_pairs(j, s)])
+
+
 def structural_mobility(chain: Chain, links=None) -> int:
-    """The count W(S) of the links ``links`` (the whole chain by default), in the chain's motion space.
+    """The count W(S) of the links ``links`` (the whole chain by default), in the chain's motion space;
+    in a heterogeneous chain each base's loops inside S count in their own class x:
+    + (h − x)·c_x(S).
 
     >>> from synth.structure.chain import Chain
     >>> structural_mobility(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), [0, 1, 2, 3])
@@ -130,6 +158,7 @@ def structural_mobility(chain: Chain, links=None) -> int:
         else:
             lower += max(inside - 1, 0)
     extra = wedge_loops(chain, s) if chain.kinds is not None else 0
+    extra += sum((h - x) * class_loops(chain, x, s) for x in set(chain.classes or ()) - {h})
     return h * (len(s) - 1) - (h - 1) * lower - mesh + extra
 
 

@@ -395,8 +395,8 @@ class ChainQuery:
             value = getattr(self, f.name)
             if f.name == "code" and value is not None:
                 value = str(value)
-            if value in (None, (), False) or (f.name == "fractionated" and value is True) or (f.name == "h" and value == 3):
-                continue
+            if value in (None, ()) or value == f.default:
+                continue  # (a default; but fractionated=False and rigid_subchains=False are choices)
             if f.name in ("v", "n1", "prismatic"):
                 value = _shown(value)
             elif f.name in ("require", "cylinders"):

@@ -35,10 +35,10 @@ import numpy as np
 
 from ._blas import single_threaded
 from .chain import Chain
-from .kinds import generic_mobility, lever_analogue, structural_mobility
+from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
-__all__ = ["SubchainReport", "check_subchains", "subchain_mobility"]
+__all__ = ["SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities"]
 
 _MAX_CORE = 24
 _MAX_SCANNED = 22  # links of a chain with prismatic pairs: every subset is scanned (4 M sets)
@@ -248,42 +248,71 @@ def _paths(chain: Chain, core: list[int]):
     return paths
 
 
-def _minimum_with_kinds(chain: Chain) -> tuple[int, tuple[int, ...]]:
-    """Least count W(S) (prismatic pairs and meshes included) over the proper sub-chains of at
-    least two links, and a smallest such S: every subset of links, block by block.
+def _cycle_ranks(bits: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
+    """For each subset (a row of ``bits``), the cycle rank of the ``pairs`` with both links in it:
+    |E| − |V| + components, by label propagation.
 
-    >>> _minimum_with_kinds(Chain.parse("0=1 1=2 2=0 2-3 3-4 4-0"))
+    >>> bits = np.array([[1, 1, 1, 0], [1, 1, 1, 1], [1, 1, 0, 1]])
+    >>> _cycle_ranks(bits, [(0, 1), (1, 2), (2, 0), (2, 3)]).tolist()
+    [1, 1, 0]
+    """
+    ends = sorted({x for pair in pairs for x in pair})
+    if not ends:
+        return np.zeros(len(bits), dtype=np.int64)
+    label = np.where(bits[:, ends] > 0, np.arange(len(ends)), -1)
+    where = {x: i for i, x in enumerate(ends)}
+    inside = [(where[a], where[b], (bits[:, a] & bits[:, b]) > 0) for a, b in pairs]
+    for _ in range(len(ends)):
+        for a, b, on in inside:
+            low = np.where(on, np.minimum(label[:, a], label[:, b]), label[:, a])
+            label[:, a] = low
+            label[:, b] = np.where(on, low, label[:, b])
+    edges = sum(on.astype(np.int64) for _, _, on in inside)
+    vertices = (label >= 0).sum(axis=1)
+    components = (label == np.arange(len(ends))).sum(axis=1)
+    return edges - vertices + components
+
+
+def _loop_terms(chain: Chain) -> list[tuple[int, list[tuple[int, int]]]]:
+    """The loops a count gives back, as (freedoms per loop, the pairs whose loops they are): the
+    wedge loops of prismatic pairs (+1 each) and, in a heterogeneous chain, the loops of each base
+    of class x (+(h − x) each; each joint restricted to the base's links, a pin of m of them m − 1
+    pairs)."""
+    terms = []
+    if chain.kinds is not None and "prismatic" in chain.kinds:
+        terms.append((1, [j for j, k in zip(chain.joints, chain.kinds) if k == "prismatic"]))
+    for x in sorted(set(chain.classes or ()) - {chain.h}):
+        base = {y for y in range(chain.links) if chain.classes[y] == x}
+        terms.append((chain.h - x, [pair for j in chain.joints for pair in restricted_pairs(j, base)]))
+    return terms
+
+
+def _minimum_by_count(chain: Chain) -> tuple[int, tuple[int, ...]]:
+    """Least count W(S) (prismatic pairs, meshes and loop classes included) over the proper
+    sub-chains of at least two links, and a smallest such S: every subset of links, block by block.
+
+    >>> _minimum_by_count(Chain.parse("0=1 1=2 2=0 2-3 3-4 4-0"))
+    (1, (0, 1))
+    >>> _minimum_by_count(Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5"))   # the toroid alone
     (1, (0, 1))
     """
-    n = chain.links
+    n, h = chain.links, chain.h
     kinds = chain.kinds or ("revolute",) * len(chain.joints)
     lower = [list(j) for j, k in zip(chain.joints, kinds) if k != "mesh"]
     meshes = [j for j, k in zip(chain.joints, kinds) if k == "mesh"]
-    sliders = [j for j, k in zip(chain.joints, kinds) if k == "prismatic"]
-    ends = sorted({x for j in sliders for x in j})
+    terms = _loop_terms(chain)
     best, best_set = _BIG, ()
     for start in range(0, 1 << n, _BLOCK):
         T = np.arange(start, min(1 << n, start + _BLOCK), dtype=np.int64)
         bits = ((T[:, None] >> np.arange(n)) & 1).astype(np.int64)
         size = bits.sum(axis=1)
-        W = 3 * (size - 1)
+        W = h * (size - 1)
         for j in lower:
-            W -= 2 * np.maximum(bits[:, j].sum(axis=1) - 1, 0)
+            W -= (h - 1) * np.maximum(bits[:, j].sum(axis=1) - 1, 0)
         for a, b in meshes:
             W -= bits[:, a] & bits[:, b]
-        if sliders:  # + the cycle rank of the sliders inside S: |E| − |V| + components
-            label = np.where(bits[:, ends] > 0, np.arange(len(ends)), -1)
-            where = {x: i for i, x in enumerate(ends)}
-            inside = [(where[a], where[b], (bits[:, a] & bits[:, b]) > 0) for a, b in sliders]
-            for _ in range(len(ends)):
-                for a, b, on in inside:
-                    low = np.where(on, np.minimum(label[:, a], label[:, b]), label[:, a])
-                    label[:, a] = low
-                    label[:, b] = np.where(on, low, label[:, b])
-            edges = sum(on.astype(np.int64) for _, _, on in inside)
-            vertices = (label >= 0).sum(axis=1)
-            components = (label == np.arange(len(ends))).sum(axis=1)
-            W += edges - vertices + components
+        for weight, pairs in terms:
+            W += weight * _cycle_ranks(bits, pairs)
         W = np.where((size >= 2) & (size < n), W, _BIG)
         low = int(W.min())
         if low < best or (low == best and low < _BIG):
@@ -304,11 +333,75 @@ def _check_with_kinds(chain: Chain, threshold: int) -> SubchainReport:
             return SubchainReport(analogue.ok, worst, analogue.worst_mobility, threshold)
         raise MalformedChain(f"the exact sub-chain test of a chain with prismatic pairs scans every set of links, "
                              f"up to {_MAX_SCANNED} links, not {chain.links}")
-    low, worst = _minimum_with_kinds(chain)
+    low, worst = _minimum_by_count(chain)
     if low == _BIG:  # two links: no proper sub-chain of two links or more
         low, worst = 10**9, ()
     redundant = _hidden_redundancy(chain) if "prismatic" in chain.kinds else 0
     return SubchainReport(low >= threshold and redundant == 0, worst, low, threshold, redundant)
+
+
+def least_base_mobilities(chain: Chain, base_class: int, bases) -> list[int]:
+    """The least W(S) over the proper sub-chains (|S| ≥ 2) of a homogeneous revolute chain read
+    with each of ``bases`` (sets of links) of class ``base_class``: the exact heterogeneous test of
+    many class assignments of one chain.
+
+    A base that is a single loop lowers W(S) by x − h exactly on the sets S that hold all of it,
+    so its least W(S) is the least of the chain's own (the homogeneous test, once) and of
+    W_h(S) − (x − h) over those supersets (2^(n − |B|) of them); a base of several loops is
+    scanned over every subset with its cycle rank in each.
+
+    >>> ring = Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3")
+    >>> least_base_mobilities(ring, 5, [{0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 6}])   # the five-link loop alone: W = 0
+    [1, 0]
+    """
+    n, h = chain.links, chain.h
+    bases = [sorted(b) for b in bases]
+    if n > _MAX_SCANNED:
+        raise MalformedChain(f"the exact sub-chain test of a chain with loop classes scans every set of links, "
+                             f"up to {_MAX_SCANNED} links, not {n}")
+    drop = base_class - h
+    pairs = [[pair for j in chain.joints for pair in restricted_pairs(j, set(b))] for b in bases]
+    incidence = np.zeros((n, len(chain.joints)), dtype=np.int64)
+    for k, j in enumerate(chain.joints):
+        incidence[list(j), k] = 1
+    own = check_subchains(chain, rigid_subchains=True).worst_mobility  # the least W_h(S), every proper S
+    best = []
+    for base, base_pairs in zip(bases, pairs):
+        if cycle_rank(base, base_pairs) == 1:  # a single loop: the proper supersets of it, block by block
+            rest = [x for x in range(n) if x not in base]
+            low = own
+            for start in range(0, (1 << len(rest)) - 1, _BLOCK):  # every part of the rest but all of it
+                R = np.arange(start, min((1 << len(rest)) - 1, start + _BLOCK), dtype=np.int64)
+                bits = np.zeros((len(R), n), dtype=np.int64)
+                bits[:, base] = 1
+                bits[:, rest] = (R[:, None] >> np.arange(len(rest))) & 1
+                size = bits.sum(axis=1)
+                W = h * (size - 1) - (h - 1) * np.maximum(bits @ incidence - 1, 0).sum(axis=1) - drop
+                low = min(low, int(W.min()))
+            best.append(low)
+            continue
+        low = _BIG
+        for start in range(0, 1 << n, _BLOCK):
+            T = np.arange(start, min(1 << n, start + _BLOCK), dtype=np.int64)
+            bits = (T[:, None] >> np.arange(n)) & 1
+            size = bits.sum(axis=1)
+            W = h * (size - 1) - (h - 1) * np.maximum(bits @ incidence - 1, 0).sum(axis=1)
+            W = np.where((size >= 2) & (size < n), W - drop * _cycle_ranks(bits, base_pairs), _BIG)
+            low = min(low, int(W.min()))
+        best.append(low)
+    return best
+
+
+def _check_with_classes(chain: Chain, threshold: int) -> SubchainReport:
+    """The exact test of a heterogeneous chain: the count with each base's loops in their own
+    class, over every subset of links (up to ``_MAX_SCANNED`` links)."""
+    if chain.links > _MAX_SCANNED:
+        raise MalformedChain(f"the exact sub-chain test of a chain with loop classes scans every set of links, "
+                             f"up to {_MAX_SCANNED} links, not {chain.links}")
+    low, worst = _minimum_by_count(chain)
+    if low == _BIG:  # two links: no proper sub-chain of two links or more
+        low, worst = 10**9, ()
+    return SubchainReport(low >= threshold, worst, low, threshold)
 
 
 def _hidden_redundancy(chain: Chain) -> int:
@@ -354,6 +447,8 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     threshold = 0 if rigid_subchains else 1
     if chain.kinds is not None:
         return _check_with_kinds(chain, threshold)
+    if chain.classes is not None:
+        return _check_with_classes(chain, threshold)
     h = chain.h
     degrees = chain.degrees
     core = sorted({x for j in chain.joints if len(j) > 2 for x in j} | {i for i, d in enumerate(degrees) if d != 2})

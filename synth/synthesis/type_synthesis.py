@@ -350,7 +350,7 @@ def count_by_code(items) -> dict[str, int]:
     out: dict[str, int] = {}
     for item in items:
         chain = item.chain if isinstance(item, Mechanism) else item
-        name = str(chain.code) + chain.kind_suffix
+        name = str(chain.code) + chain.kind_suffix + chain.class_suffix
         out[name] = out.get(name, 0) + 1
     return out
 

@@ -38,6 +38,23 @@ CASES = [
     ("codes --dof 1 --loop-classes 9=1", "not 9"),
     ("codes --dof 1 --loop-classes 3=4,3=2", "3="),
     ("codes --dof 1 --loop-classes 3=4 --h 5", "--h"),
+    # ---- heterogeneous chains: loop classes on chains, analyze, identify, draw
+    ("chains --dof 1 --loop-classes 3=4", "two classes"),
+    ("chains --dof 1 --loop-classes 3=4,5=1,6=1", "two classes"),
+    ("chains --dof 1 --loop-classes 3=4,5=1 --h 5", "--h contradicts --loop-classes"),
+    ("chains --dof 1 --loop-classes 3=4,5=1 --prismatic 1", "--prismatic contradicts"),
+    ("chains --dof 1 --loop-classes 3=4,5=1 --links 12", "n = W + 1"),
+    ("chains --loop-classes 3=4,5=1 --code 12.2000/6", "--dof"),
+    ("chains --dof 1 --loop-classes 3=4,9=1", "not 9"),
+    ("chains --dof 1 --loop-classes 3=1,5=1 --count --checkpoint {d}/c.sqlite", "--checkpoint contradicts"),
+    ("chains --dof 1 --loop-classes 3=1,5=1 --format graphml", "no place for loop classes"),
+    ("chains --chain '0-1 1-2 2-3 3-0' --loop-classes 3=1,5=1", "1 loop and"),
+    ("chains --chain '0-1 1-2 2-0 2-3 3-1 | h5: 0 1 2' --format gml", "no place for loop classes"),
+    ("analyze '0-1 1-2 2-0 2-3 | h5: 0 1 2 3'", "link 3 of class h = 5"),
+    ("analyze '0-1 1-2 2-0 | h5: 0 1 2' --h 5", "h = 5 contradicts"),
+    ("identify '0-1 1-2 2-0 | h5 0 1 2'", "cannot read the loop classes"),
+    ("draw --code 42/0 --loop-classes 3=1,5=1 --out {d}/x.png", "--loop-classes goes with --chain"),
+    ("draw --chain '0-1 1-2 2-3 3-0 | h5: 0 1 2 3' --h 4 --out {d}/x.png", "--h 4 contradicts"),
     ("codes --dof 1 --loops 2 --h 7", "not 7"),
     ("codes --dof -1 --loops 2", "-1"),
     ("codes --dof 1 --loops 2 --v 5..2", "5..2"),
@@ -145,6 +162,14 @@ CASES = [
     ("identify '0-1 1-2 2-0' --input-format graphml", "GraphML"),
     ("identify '0-1 1-2 2-0' --frame 5", "frame 5"),
     ("identify '0-1 1-2 2-0' --h 9", "9"),
+    ("identify '0-1 1-2 2-0 0-3 3-4 4-5 5-1  # h 4' --h 5", "h = 4, and --h 5"),
+    ("identify '0-1 1-2 2-0  # h 9'", "not '9'"),
+    ("identify '0-1 1-2 2-3 3-0  # frame 0, input 2'", "input link 2"),
+    ("identify {d}/kinds.edges", "joint kind 'X'"),
+    ("identify {d}/empty_listing.csv", "no row"),
+    ("analyze 1=0,2=1", "reads both as link counts"),
+    ("analyze '0=1 1=2 2=3 3=0' --h 4", "planar"),
+    ("draw --chain '0-1 1-2 2-3 3-4 4-5 5-0  # h 5' --h 3 --out {d}/x.svg", "h = 5, and --h 3"),
     ("compare {d}/binary.toml --dof 1 --links 8", "binary.toml"),
     ("compare {d}/grid_small.toml --dof 1 --links 8", "cannot tell"),
     ("compare {d}/missing.txt --dof 1 --links 9", "no whole number of loops"),
@@ -165,6 +190,17 @@ CASES = [
     ("planetary --satellites 1..40", "1..40"),
     ("planetary --satellites x", "'x'"),
     ("planetary --satellites -3", "'-3'"),
+    # ---- move
+    ("move {d}/binary.toml", "binary.toml"),
+    ("move {d}/grid_small.toml", "'dof'"),
+    ("move {m}/motion_four_bar.toml --steps 0", "not 0"),
+    ("move {m}/motion_four_bar.toml --steps 2000000", "--steps"),
+    ("move {m}/motion_four_bar.toml --start inf", "'inf'"),
+    ("move {m}/motion_four_bar.toml --out {d}/binary.toml", "binary.toml"),
+    ("move {m}/motion_four_bar.toml --animate {d}/nowhere/m.gif", "nowhere"),
+    ("move --db {d}/corrupt.sqlite --id 814ad964fad2 --frame 0", "corrupt.sqlite"),
+    ("move --db {d}/atlas.sqlite --id 000000000000 --frame 0", "000000000000"),
+    ("move --chain '0-1 1-2 2-0' --frame 0", "rigid"),
     # ---- gears
     ("gears --dof 1 --links 40", "40"),
     ("gears --train '0-1-2 2-3 0~3i 1~x'", "'1~x'"),
@@ -267,6 +303,8 @@ def folder(tmp_path_factory):
     (d / "grid_30.toml").write_text("dof = 1\nlinks = 30\n")
     (d / "grid_100.toml").write_text("dof = 1\nlinks = 100\n")
     (d / "binary.toml").write_bytes(bytes(range(256)) * 8)
+    (d / "kinds.edges").write_text("0 1 R\n1 2 X\n2 0 R\n")
+    (d / "empty_listing.csv").write_text("index,id,code,links,joints,certificate\n")
     (d / "scene_bad.toml").write_text('[scene]\nname = "x"\ndescription = "y"\ncompute = ["codes"]\n'
                                       "[structure]\ndof = 1\nloops = 2\nloopz = 3\n")
     assert main(["grid", str(d / "grid_small.toml"), "--db", str(d / "atlas.sqlite"), "--workers", "1",

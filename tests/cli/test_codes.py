@@ -25,6 +25,16 @@ def test_jsonl_contract(capsys):
     assert all({"code", "dof", "loops", "links", "v", "assortment"} <= set(r) for r in rows)
 
 
+def test_a_link_bound_below_k_plus_1_names_what_it_leaves_out(capsys):
+    """The limit K + W holds for chains with W ≥ 1 and no rigid sub-chain: for trusses it drops the
+    source's own 32/0 (three-joint links at K = 2), and the command says so on stderr."""
+    code, out, err = run(capsys, "codes", "--dof", "0", "--loops", "2", "--max-link-degree", "K+W", "--format", "csv")
+    assert code == 0 and out.splitlines()[1:] == ["50/2,5,2,2,5"]
+    assert "leaves out 2 codes" in err and "32/0, 41/1" in err and "W ≥ 1" in err
+    code, out, err = run(capsys, "codes", "--dof", "2", "--loops", "3", "--max-link-degree", "K+W", "--format", "csv")
+    assert code == 0 and err == ""  # K + W above K + 1: nothing left out
+
+
 def test_csv(capsys):
     code, out, _ = run(capsys, "codes", "--dof", "0", "--links", "5", "--format", "csv")
     assert out.splitlines()[0] == "code,links,loops,v,assortment" and "32/0,5,2,0,3 2" in out

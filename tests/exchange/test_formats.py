@@ -118,3 +118,68 @@ def test_a_folder_of_files_in_several_formats(tmp_path):
     (tmp_path / "c.txt").write_text("0-1 1-2 2-3 3-0\n")
     entries = read_file(tmp_path)
     assert [e.chain.links for e in entries] == [6, 6, 4] and entries[0].chain.certificate == entries[1].chain.certificate
+
+
+@pytest.mark.parametrize("text, sliding", [
+    ("graph { a -- b [kind=prismatic]; b -- c; c -- a }", ["a-b"]),
+    ("graph { a -- b [kind=P]; b -- c [kind=R]; c -- a [type=slider] }", ["a-b", "a-c"]),
+    ("graph { a -- b [color=red][kind=\"=\"]; b -- c [color=blue; joint_kind=pin]; c -- a }", ["a-b"]),
+    ("graph { edge [kind=prismatic]; a -- b; edge [kind=revolute]; b -- c; c -- a }", ["a-b"]),
+    ("graph { subgraph s { edge [kind=P]; a -- b } b -- c; c -- a }", ["a-b"]),  # defaults end with their block
+    ("graph { a -- b -- c [kind=P]; c -- a }", ["a-b", "b-c"]),                 # an edge chain: every edge
+    ("graph { edge [kind=P]; a -- b [kind=R]; b -- c; c -- a [kind=R] }", ["b-c"]),  # its own list over the default
+    ("graph { node [kind=link]; a; b; c; j1 [kind=joint, joint_kind=prismatic]; j2 [kind=joint]; "
+     "j3 [kind=joint, type=P]; j1 -- a; j1 -- b; j2 -- b; j2 -- c; j3 -- c; j3 -- a }", ["a-b", "a-c"]),
+])
+def test_a_slider_in_dot_stays_a_slider(text, sliding):
+    """Each way DOT writes a joint's kind (edge attribute lists, defaults, edge chains, joint
+    nodes of an incidence graph) gives exactly the prismatic pairs written, no more, no fewer."""
+    entry = _one(text)
+    names = entry.names
+    kinds = dict(zip(("-".join(names[x] for x in j) for j in entry.chain.joints), entry.chain.kinds or ()))
+    assert sorted(k for k, kind in kinds.items() if kind == "prismatic") == sliding
+
+
+def test_the_dot_the_engine_writes_keeps_every_slider_and_mesh():
+    for chain in (Chain.parse("0-1 1=2 2-3 3-0"), Chain.parse("0=1 1=2 2=3 3=0"), Chain.parse("0-1 0-2 1~2"),
+                  Chain.parse("0-1-2 2=3 3-0 0-4 4-5 5-1")):
+        text = text_of([chain], "dot")
+        (entry,) = read_text(text)
+        assert (entry.chain.joints, entry.chain.kinds) == (chain.joints, chain.kinds)
+        drawn = [line for line in text.splitlines() if line.lstrip().startswith("J") and "[" in line]
+        kinds = chain.kinds or ("revolute",) * len(chain.joints)
+        shapes = {"revolute": "shape=circle", "prismatic": "shape=box", "mesh": "shape=doublecircle"}
+        assert [shapes[k] in line for k, line in zip(kinds, drawn)] == [True] * len(kinds)  # dot draws a slider as a box
+
+
+@pytest.mark.parametrize("text, compact", [
+    ("0 1 R\n1 2 P\n2 3 R\n3 0 R\n", "0-1 0-3 1=2 2-3"),
+    ("0 1 r\n1 2 p\n2 3 G\n3 0\n", "0-1 0-3 1=2 2~3"),
+    ("0,1,revolute\n1,2,slider\n2,0,pin\n", "0-1 0-2 1=2"),
+    ("0 1 2\n2 3\n3 0\n", "0-1-2 0-3 2-3"),               # three numbers: a double joint
+    ("a b c\nc d\nd a\n", "0-1-2 0-3 2-3"),               # three names: a double joint
+    ("a b P\nb c\nc a\n", "0=1 0-2 1-2"),                 # a kind word after names: the kind
+])
+def test_edge_lists_read_a_kind_column(text, compact):
+    (entry,) = read_text(text, "edgelist")
+    assert entry.chain.compact() == compact
+
+
+@pytest.mark.parametrize("text", ["0 1 R\n1 2 X\n2 0 R\n", "0 1\n1 2 spring\n2 0\n"])
+def test_an_unknown_kind_in_an_edge_list_is_one_sentence(text):
+    with pytest.raises(MalformedChain) as info:
+        read_text(text)
+    assert "line 2: joint kind" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_settings_lines_of_edge_lists_and_matrices():
+    (edges,) = read_text("# frame 0, input 1\n# h 3\n0 1\n1 2\n2 3\n3 0\n", "edgelist")
+    assert (edges.frame, edges.input_link, edges.h) == (0, 1, 3)
+    (matrix,) = read_text("# h 5\n0,1,0,0,0,1\n1,0,1,0,0,0\n0,1,0,1,0,0\n0,0,1,0,1,0\n0,0,0,1,0,1\n1,0,0,0,1,0\n")
+    assert (matrix.chain.h, matrix.chain.dof) == (5, 1)
+    for bad, words in [("# h 7\n0 1\n1 2\n2 0\n", "not '7'"),
+                       ("# frame 0, input 2\n0 1\n1 2\n2 3\n3 0\n", "not jointed to the fixed link 0"),
+                       ("# h 4\n\n0 1\n1 2\n2 0\n", "'# h 4' is followed by no joint")]:
+        with pytest.raises(MalformedChain) as info:
+            read_text(bad, "edgelist")
+        assert words is None or words in str(info.value)

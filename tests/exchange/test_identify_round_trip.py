@@ -13,7 +13,8 @@ import pytest
 
 import synth
 from synth import exchange
-from synth.analysis.identify import chain_id, identify
+from synth.analysis.identify import chain_id
+from synth.exchange.identify import identify
 
 FORMATS = ("text", "json", "graphml", "gml", "dot", "edgelist", "adjacency", "incidence")
 
@@ -102,3 +103,53 @@ def test_a_listing_in_graphml_is_one_document_of_every_chain(capsys):
     entries = exchange.read_text(text)
     assert [e.chain.certificate for e in entries] == [c.certificate for c in synth.type_synthesis(1, 8, workers=1)]
     assert text.count("<key ") == len(set(line.strip() for line in text.splitlines() if "<key " in line))
+
+
+def test_the_row_is_found_unasked_up_to_the_documented_size_and_not_beyond(monkeypatch):
+    """The row is found by listing the code: unasked only where listing every chain of the link
+    count is estimated within INDEX_SECONDS (the bound itself included), always with index=True."""
+    from synth.analysis import identify as module
+
+    chains = list(synth.type_synthesis(1, 10, workers=1))
+    chain = chains[-1]
+    query, _ = module.listing_query(chain, 1, None, False)
+    size = module.index_size(chain, query)  # 10 links: from the exact counts at 4, 6 and 8
+    assert size is not None and size.basis == "exact counts at 4, 6, 8 links" and 0 < size.seconds
+    assert 0.5 * len(chains) < size.chains < 2 * len(chains)  # an estimate of the 230 chains
+    row = _rows_by_code(chains)[chain.certificate]
+    monkeypatch.setattr(module, "INDEX_SECONDS", size.seconds)
+    assert identify(chain).index == row
+    monkeypatch.setattr(module, "INDEX_SECONDS", size.seconds * (1 - 1e-9))
+    found = identify(chain)
+    assert found.index is None and found.listing == f"mechsynth chains --code {chain.code}"
+    assert "not computed" in found.note and f"about {round(size.chains)} chains" in found.note
+    assert "(exact counts at 4, 6, 8 links)" in found.note
+    assert identify(chain, index=True).index == row and identify(chain, index=False).index is None
+
+
+def test_a_large_code_is_not_listed_unasked():
+    """Issue 37: a 16-link chain of W = 3 listed 2.4 million chains (90 s, 1.9 GB) to find its
+    row; now it is sized first and the row left out with the estimate, in seconds."""
+    import time
+
+    start = time.perf_counter()
+    found = identify("0-8 0-10 0-11 1-6 1-7 1-9 2-6 2-7 2-8 3-5 3-7 3-8 4-5 4-12 4-14 5-15 6-15 9-10 9-11 12-13 13-14")
+    assert (found.dof, found.loops, found.index) == (3, 6, None) and time.perf_counter() - start < 30
+    assert "not computed" in found.note and "16-link chain" in found.note and "ask for its index" in found.note
+
+
+def test_a_mechanism_with_an_input_link_comes_back_to_its_row_in_the_input_link_listing():
+    query = synth.ChainQuery(1, 6, prismatic=(1, 1))
+    listed = list(synth.mechanisms(query, input_link=True, workers=1))
+    rng = random.Random(6)
+    for row, mech in enumerate(listed, start=1):
+        perm = list(range(mech.chain.links))
+        rng.shuffle(perm)
+        moved = synth.Mechanism(mech.chain.relabel(perm), perm[mech.frame], perm[mech.input_link])
+        found = identify(exchange.text_of([moved], "edgelist"))
+        code = f"{mech.chain.code}"
+        assert found.mechanism_listing == f"mechsynth mechanisms --code {code} --dof 1 --prismatic 1 --input-link"
+        assert (found.input_link, found.mechanism_certificate) == (moved.input_link, moved.certificate)
+        rows_of_code = [m.certificate for m in listed if str(m.chain.code) == code]
+        assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1
+        assert found.mechanisms_listed == len(rows_of_code)

@@ -43,6 +43,7 @@ WORKED_EXAMPLES = {
     "simplest 6-space loop": "spatial_loop_h6",
     "linear translator": "linear_translator",
     "wedge-lever system": "wedge_lever",
+    "four-link wedge mechanism (Fig. 6в)": "wedge_fig6v",
     "24-link planar system": "task1_24_links",
     "single loop with prismatic pairs": "task2_prismatic_loop",
     "two links with an elastic coupling": "task4_elastic_coupling",
@@ -136,6 +137,15 @@ def test_locomotive_drawing_written(tmp_path):
     assert [str(svg)] == list(result.files)
     assert svg.stat().st_size > 1000
     assert result.results["drawing"]["items"] == 25
+
+
+def test_translator_drawing_shows_its_classes(tmp_path):
+    """The linear translator's scene lists the class-V loops of its chain, the translator among
+    them, and draws them in the class colours with a key."""
+    result = run_scene(MODELS / "linear_translator.toml", out_dir=tmp_path)
+    assert result.ok and result.results["chains"]["count"] == 5
+    png = tmp_path / "linear_translator.png"
+    assert [str(png)] == list(result.files) and png.stat().st_size > 20_000
 
 
 def test_spring_plot_written(all_models):

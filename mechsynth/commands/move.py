@@ -1,0 +1,334 @@
+"""CLI command ``move``: a dimensioned mechanism moved through its input range.
+
+The mechanism is a linkage file (.toml or .json: chain, frame, inputs, the position of every joint
+in one assembled pose, sliding directions, gear ratios, tracer points) or any atlas mechanism
+(``--chain … --frame F`` or ``--db … --id … --frame F``), dimensioned by its drawing.  The command
+prints a row per step (input, every joint and tracer point, velocities and accelerations on
+request), or with ``--range`` what a designer checks: crank or rocker and its limits, Grashof's
+class, dead and toggle positions, transmission angles, the coupler curves' extent; ``--out`` draws
+the coupler curves over the mechanism, ``--animate`` writes a GIF or an animated SVG.
+
+Example
+-------
+>>> import os, tempfile
+>>> from mechsynth.cli import main
+>>> saved = os.path.join(tempfile.mkdtemp(), "four_bar.json")
+>>> main(["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--save", saved])
+0
+>>> main(["move", saved, "--steps", "3", "--format", "jsonl"]) == 0 and len(open(saved).read()) > 0  # doctest: +ELLIPSIS
+{"step": 0, ...}
+...
+True
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import math
+import os
+import sys
+
+from .._argtypes import positive, whole
+from .._output import pairs, write_document, write_rows
+
+__all__ = ["add_commands"]
+
+#: the longest sweep a command runs (rows are written as they come; the solver allows more from Python)
+MAX_STEPS = 1_000_000
+
+
+def _writable(text: str, suffixes: tuple[str, ...], what: str) -> str:
+    """An output file with one of ``suffixes`` that can be written, checked before any work (a probe
+    file is made and removed where none exists)."""
+    if os.path.splitext(text)[1].lower() not in suffixes:
+        raise argparse.ArgumentTypeError(f"{what} is written as {' or '.join(s[1:].upper() for s in suffixes)}: end "
+                                         f"the file name in {' or '.join(suffixes)}, not {text!r}")
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file to write {what} to")
+    if os.path.exists(text):
+        if not os.access(text, os.W_OK):
+            raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: permission denied")
+        return text
+    try:
+        with open(text, "x"):
+            pass
+        os.remove(text)
+    except OSError as exc:
+        raise argparse.ArgumentTypeError(f"cannot write {what} to {text}: {exc.strerror or exc}") from None
+    return text
+
+
+def _picture(text: str) -> str:
+    return _writable(text, (".png", ".svg"), "the picture")
+
+
+def _animation(text: str) -> str:
+    return _writable(text, (".gif", ".svg"), "the animation")
+
+
+def _saved(text: str) -> str:
+    return _writable(text, (".json",), "the linkage")
+
+
+def _number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, not {text!r}")
+    return value
+
+
+def add_commands(sub) -> None:
+    """Mount ``move`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("move", help="move a dimensioned mechanism: positions, velocities, range, coupler curves, "
+                                    "animations")
+    p.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
+                   help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers)")
+    p.add_argument("--chain", help="any planar mechanism, as a joint list '0-1 1-2 2-3 3-0', dimensioned by its drawing")
+    p.add_argument("--db", help="an atlas: the chain with --id, dimensioned by its drawing")
+    p.add_argument("--id", help="with --db: the chain's id (12 hex digits, as listings and the site show it)")
+    p.add_argument("--frame", type=whole, help="with --chain or --db: the fixed link")
+    p.add_argument("--input", metavar="JOINT",
+                   help="with --chain or --db: the input joint of the frame, e.g. 0-1 (default: a crank if one turns fully)")
+    p.add_argument("--steps", type=positive, default=360, help=f"input values, ends included (2 … {MAX_STEPS:,}; "
+                   "default 360)")
+    p.add_argument("--start", type=_number, help="first input value: degrees for a revolute input, length for a "
+                   "prismatic one (default: the pose's for a crank, the lower limit for a rocker)")
+    p.add_argument("--stop", type=_number, help="last input value, as --start (default: one turn, or the upper limit)")
+    p.add_argument("--velocities", action="store_true", help="add each joint's velocity per unit input rate")
+    p.add_argument("--accelerations", action="store_true", help="add each joint's acceleration per unit input rate "
+                   "squared (input turning steadily)")
+    p.add_argument("--format", choices=("table", "jsonl", "csv", "json"),
+                   help="rows per step (default table), or with --range: table or json")
+    p.add_argument("--range", action="store_true", help="what a designer checks instead of rows: crank or rocker, "
+                   "limits, Grashof, dead and toggle positions, transmission angles, curve extent")
+    p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
+    p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
+                   "in a browser)")
+    p.add_argument("--frames", type=positive, help="with --animate: frames of the animation (2 … 1000, default 60)")
+    p.add_argument("--save", type=_saved, metavar="FILE.json",
+                   help="write the linkage (as dimensioned, e.g. from a drawing) to a JSON file to edit and reuse")
+    p.set_defaults(run=_run)
+
+
+def _check(args) -> None:
+    """Every contradiction refused before any work."""
+    from synth import InvalidOption
+
+    sources = [name for name, given in (("a linkage file", args.linkage), ("--chain", args.chain), ("--db", args.db))
+               if given]
+    if len(sources) != 1:
+        raise InvalidOption("give one mechanism: a linkage file, --chain TEXT --frame F, or --db FILE --id ID --frame F"
+                            + (f" (not {' and '.join(sources)})" if sources else ""))
+    if args.linkage and (args.frame is not None or args.input is not None):
+        raise InvalidOption("--frame and --input go with --chain or --db; a linkage file names its frame and inputs")
+    if args.id is not None and not args.db:
+        raise InvalidOption("--id names a chain of an atlas: give --db too")
+    if args.db and args.id is None:
+        raise InvalidOption("--db needs --id ID: the chain of the atlas to move")
+    if (args.chain or args.db) and args.frame is None:
+        raise InvalidOption("--chain and --db need --frame F: the fixed link of the mechanism to move")
+    if not 2 <= args.steps <= MAX_STEPS:
+        raise InvalidOption(f"--steps must be 2 … {MAX_STEPS:,}, not {args.steps}")
+    if args.frames is not None and not args.animate:
+        raise InvalidOption("--frames goes with --animate (the animation's frames)")
+    if args.frames is not None and not 2 <= args.frames <= 1000:
+        raise InvalidOption(f"--frames must be 2 … 1000, not {args.frames}")
+    if args.range and args.format in ("csv", "jsonl"):
+        raise InvalidOption("--range prints one document: --format table or json, not " + args.format)
+    if args.range and (args.velocities or args.accelerations):
+        raise InvalidOption("--velocities and --accelerations add columns to the rows; --range prints no rows")
+    if args.start is not None and args.stop is not None and args.start == args.stop:
+        raise InvalidOption(f"--start and --stop are both {args.start:g}: a sweep needs two different ends")
+    outputs = [os.path.realpath(p) for p in (args.out, args.animate, args.save) if p]
+    if len(set(outputs)) != len(outputs):
+        raise InvalidOption("two outputs name the same file: give --out, --animate and --save different files")
+    if args.linkage and os.path.realpath(args.linkage) in outputs:
+        raise InvalidOption(f"{args.linkage} is the linkage read: an output would overwrite it")
+
+
+def _linkage(args):
+    """The linkage the command moves, and where it came from (for the messages)."""
+    from synth import Chain, InvalidOption, Mechanism
+    from synth.motion import read_linkage
+    from synth.motion_draw import linkage_from_layout
+
+    if args.linkage:
+        return read_linkage(args.linkage)
+    if args.chain:
+        chain = Chain.parse(args.chain)
+    else:
+        from synth.atlas import export
+
+        rows = list(export(args.db, "chains", where=[f"id={args.id}"]))
+        if not rows:
+            raise InvalidOption(f"the atlas {args.db} has no chain with id {args.id}")
+        chain = Chain.from_dict(rows[0])
+    if not 0 <= args.frame < chain.links:
+        raise InvalidOption(f"--frame {args.frame} is not a link of the chain (links 0 … {chain.links - 1})")
+    driven = None
+    if args.input is not None:
+        links = sorted(int(x) for x in args.input.replace("=", "-").split("-") if x.strip().isdigit())
+        if len(links) != 2 or tuple(links) not in chain.joints or args.frame not in links:
+            raise InvalidOption(f"--input {args.input} must be a joint of the frame (link {args.frame}) and one "
+                                f"moving link, written like {args.frame}-1")
+        driven = links[0] if links[1] == args.frame else links[1]
+    return linkage_from_layout(Mechanism(chain, args.frame, driven))
+
+
+def _run(args) -> int:
+    from synth import InvalidOption
+    from synth.motion import motion_range, sweep
+
+    _check(args)
+    linkage = _linkage(args)
+    if linkage.note:
+        print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
+    if args.save:
+        with open(args.save, "w") as fh:
+            json.dump(linkage.to_dict(), fh, indent=2)
+            fh.write("\n")
+    if linkage.dof != 1:
+        raise InvalidOption(f"this linkage has W = {linkage.dof} inputs; 'move' sweeps one input (from Python, "
+                            "synth.motion.sweep_grid moves several over a grid)")
+    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    start, stop = (None if v is None else (math.radians(v) if revolute else v) for v in (args.start, args.stop))
+    rows_only = not (args.out or args.animate or args.range or args.save)
+    if rows_only and args.steps > _CHUNK:
+        return _write_long_sweep(linkage, args, start, stop)
+    motion = sweep(linkage, steps=args.steps, start=start, stop=stop, velocities=args.velocities,
+                   accelerations=args.accelerations)
+    if motion.stopped:
+        print(f"mechsynth: the sweep stopped: {motion.stopped}", file=sys.stderr)
+    if args.out:
+        from synth.motion_draw import draw_motion
+
+        draw_motion(motion, args.out)
+        print(f"coupler curves -> {args.out}", file=sys.stderr)
+    if args.animate:
+        from synth.motion_draw import animate_motion
+
+        frames = animate_motion(motion, args.animate, frames=args.frames or 60, progress=sys.stderr.isatty())
+        print(f"{frames} frames -> {args.animate}", file=sys.stderr)
+    if args.range:
+        _write_range(linkage, motion_range(linkage), motion, args.format or "table")
+    elif args.format or not (args.out or args.animate or args.save):
+        rows = motion.rows()
+        first = next(rows, None)
+        if first is None:
+            print("mechsynth: the sweep has no step", file=sys.stderr)
+            return 1
+        import itertools
+
+        write_rows(itertools.chain([first], rows), list(first), args.format or "table")
+    return 0
+
+
+#: a long sweep's rows are computed this many steps at a time, so Ctrl-C is seen between pieces
+_CHUNK = 20_000
+
+
+def _write_long_sweep(linkage, args, start: float | None, stop: float | None) -> int:
+    """Rows of a sweep of more than :data:`_CHUNK` steps, computed and written piece by piece with a
+    progress bar: each piece continues the branch from the pose to its first input (the same
+    inputs as one sweep: ``start + i·(stop − start)/(steps − 1)``), and the run stops at a dead
+    position as one sweep does.  A piece takes well under a second, so Ctrl-C stops it within two."""
+    from tqdm import tqdm
+
+    from synth.motion import motion_range, sweep
+
+    if start is None or stop is None:  # the default range of one sweep: a crank's turn, a rocker's limits
+        reach = motion_range(linkage)
+        if reach.full_rotation:
+            low, high = float(linkage.pose_inputs[0]), float(linkage.pose_inputs[0]) + 2 * math.pi
+        else:
+            low, high = reach.limits
+        start = low if start is None else start
+        stop = high if stop is None else stop
+    fmt = args.format or "table"
+    if fmt == "table":
+        from synth import InvalidOption
+
+        raise InvalidOption(f"a table of {args.steps:,} rows is held in memory to align it: use --format jsonl or "
+                            "csv (written as they come)")
+    step = (stop - start) / (args.steps - 1)
+    written, columns = 0, None
+    with tqdm(total=args.steps, unit="step", file=sys.stderr, desc="move", disable=not sys.stderr.isatty()) as bar:
+        while written < args.steps:
+            count = min(_CHUNK, args.steps - written)
+            first = start + written * step
+            piece = sweep(linkage, steps=max(count, 2), start=first,
+                          stop=first + (count - 1) * step if count > 1 else first + step,
+                          velocities=args.velocities, accelerations=args.accelerations)
+            rows = list(piece.rows())[:count]
+            for row in rows:
+                row["step"] += written
+            if columns is None:
+                columns = list(rows[0]) if rows else []
+                if fmt == "json":
+                    sys.stdout.write("[")
+            _write_piece(rows, columns, fmt, written)
+            written += len(rows)
+            bar.update(len(rows))
+            if piece.stopped:
+                print(f"mechsynth: the sweep stopped: {piece.stopped}", file=sys.stderr)
+                break
+    if fmt == "json":
+        sys.stdout.write("]\n")
+    return 0
+
+
+def _write_piece(rows: list[dict], columns: list[str], fmt: str, before: int) -> None:
+    """One piece of a long sweep's rows, continuing the output of the pieces before it."""
+    if fmt == "json":
+        sys.stdout.write("".join(("" if before == 0 and i == 0 else ",\n ") + json.dumps(row)
+                                 for i, row in enumerate(rows)))
+    elif fmt == "csv":
+        buffer = io.StringIO()
+        write_rows(rows, columns, "csv", buffer)
+        text = buffer.getvalue()
+        sys.stdout.write(text if before == 0 else text.split("\n", 1)[1])
+    else:
+        write_rows(rows, columns, fmt)
+
+
+def _write_range(linkage, reach, motion, fmt: str) -> None:
+    """The range document: JSON, or a two-column table."""
+    from synth.motion import joint_name
+
+    k = linkage.inputs[0]
+    revolute = linkage.kind(k) == "revolute"
+    unit = (lambda v: math.degrees(v)) if revolute else (lambda v: v)
+    word = "°" if revolute else ""
+    doc = {"input": joint_name(linkage.chain, k), "kind": linkage.kind(k), "full_rotation": reach.full_rotation,
+           "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
+           "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
+           "toggles": [{"input": v, "link": link} for v, link in reach.toggles],
+           "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
+           "stopped": motion.stopped}
+    if fmt == "json":
+        write_document(doc, "json", "")
+        return
+    if reach.full_rotation:
+        motion_text = "turns fully (a crank)"
+    elif reach.limits:
+        motion_text = f"rocks between {unit(reach.limits[0]):.6g}{word} and {unit(reach.limits[1]):.6g}{word}"
+    else:
+        motion_text = "does not move"
+    lines = [("input", f"{doc['input']} ({doc['kind']})"), ("motion", motion_text)]
+    if reach.grashof:
+        lines.append(("Grashof", reach.grashof))
+    for v, why in reach.dead_positions:
+        lines.append(("dead position", f"{unit(v):.10g}{word}: {why}"))
+    for v, link in reach.toggles:
+        lines.append(("toggle", f"{unit(v):.10g}{word}: link {link} stops and turns back"))
+    for name, t in motion.transmission.items():
+        lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {unit(t['at_min']):.6g}{word}, "
+                                               f"max {math.degrees(t['max']):.4g}° at {unit(t['at_max']):.6g}{word}"))
+    for name, (x0, y0, x1, y1) in motion.extent().items():
+        lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
+    write_document(doc, "table", pairs(lines))

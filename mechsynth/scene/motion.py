@@ -1,0 +1,402 @@
+"""Scene computations for dimensioned mechanisms: ``motion`` and ``closed form``.
+
+``[linkage]`` is a linkage as :meth:`synth.motion.Linkage.from_dict` reads it (chain, frame,
+inputs, points, slides, meshes, tracers); ``[sweep]`` optionally sets the steps.  ``motion``
+sweeps it and finds its range: crank or rocker and limits, Grashof's class, the worst transmission
+angle, and the *rigidity error* — how far any two pins of one link drift from their distance in the
+pose, over every step (a loop that does not close shows here).  ``closed form`` checks the
+solver against the textbook's formulas, written here independently of :mod:`synth.motion`:
+
+``dyads``
+    every joint rebuilt step by step from circle–circle intersections (RRR dyads) and rigid
+    transfers, driven by the solver's angle of one crank (``driver``, default the input); for a
+    four-bar also the residual of Freudenstein's equation.  Driven by another crank than the input,
+    it checks a class III group (a triad) against the dyads of another inversion of its chain.
+``slider-crank``
+    the slider's pin on its line (circle–line intersection); stroke and quick-return ratio
+    measured on the solver's own positions (nested sweeps around each dead centre).
+``slotted-lever``
+    the crank-and-slotted-lever (an inverted slider-crank): the lever's angle and the slide; the
+    lever's swing and the slide's extremes measured on the solver.
+``willis``
+    a planetary train: each gear's rotation against Willis' equations from its tooth numbers.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from pydantic import StrictStr
+
+from synth.schema import Table
+
+from .registry import ComputeKind, Expectation, Family, Run, SceneTable
+from .results import SceneError
+from .types import Count, Flag, Number, Numbers, NumberTable, Text
+
+__all__ = ["Sweep", "ClosedForm"]
+
+
+class Sweep(Table):
+    """The ``[sweep]`` table: how many input values the sweep visits."""
+
+    steps: Count = 360
+
+
+class ClosedForm(Table):
+    """The ``[closed_form]`` table: which textbook formula checks the solver."""
+
+    kind: Text
+    driver: StrictStr | None = None
+    teeth: NumberTable | None = None
+
+
+_CLOSED_FORMS = ("dyads", "slider-crank", "slotted-lever", "willis")
+
+
+def _read_linkage(raw, path: str, compute) -> object:
+    from synth import MotionError
+    from synth.motion import Linkage
+
+    try:
+        return Linkage.from_dict(dict(raw))
+    except MotionError as exc:
+        raise SceneError(f"{path}: [linkage] {exc}.") from None
+
+
+def _read_closed_form(raw, path: str, compute) -> ClosedForm:
+    table = ClosedForm.read(raw, source=path, where="[closed_form]", error=SceneError)
+    if table.kind not in _CLOSED_FORMS:
+        raise SceneError(f"{path}: [closed_form] kind must be one of {', '.join(_CLOSED_FORMS)}, not {table.kind!r}.")
+    if table.kind == "willis" and not table.teeth:
+        raise SceneError(f"{path}: [closed_form] kind 'willis' needs teeth = {{ LINK = z, … }} for every gear.")
+    return table
+
+
+FAMILY = Family("motion")  # its tables and computations, registered by mechsynth.scene
+
+FAMILY.table(SceneTable("linkage", _read_linkage, "the linkage: chain, frame, inputs, points (slides, meshes, tracers)"))
+FAMILY.table(SceneTable("sweep", lambda raw, path, compute: Sweep.read(raw, source=path, where="[sweep]",
+                                                                         error=SceneError), "the number of steps"))
+FAMILY.table(SceneTable("closed_form", _read_closed_form, "the formula that checks the solver (kind = …)"))
+
+
+# --------------------------------------------------------------------------- motion
+def _steps(run: Run) -> int:
+    table = run.scene.tables.get("sweep")
+    return table.steps if table is not None else 360
+
+
+def _rigidity_error(linkage, joints: np.ndarray) -> float:
+    """The largest change, over the steps, of the distance between two revolute joints of one link."""
+    worst = 0.0
+    for link in range(linkage.chain.links):
+        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]
+        for i, a in enumerate(pins):
+            for b in pins[i + 1:]:
+                pose = math.dist(linkage.points[a], linkage.points[b])
+                now = np.hypot(*(joints[:, a] - joints[:, b]).T)
+                worst = max(worst, float(np.nanmax(np.abs(now - pose))))
+    return worst
+
+
+def _motion(run: Run) -> dict:
+    from synth.motion import motion_range, sweep
+
+    linkage = run.scene.tables["linkage"]
+    motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
+    reach = motion_range(linkage)
+    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()], default=None)
+    return {"full_rotation": reach.full_rotation,
+            "input_limits": [math.degrees(v) if revolute else v for v in reach.limits] if reach.limits else None,
+            "grashof": reach.grashof, "dead_positions": len(reach.dead_positions),
+            "min_transmission_angle": None if worst is None else math.degrees(worst),
+            "rigidity_error": _rigidity_error(linkage, motion.joints), "steps": motion.steps,
+            "stopped": motion.stopped is not None, "extent": {n: list(e) for n, e in motion.extent().items()}}
+
+
+# --------------------------------------------------------------------------- closed forms
+def _rotate(v: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """Vectors ``v`` (2,) or (S, 2) turned by ``theta`` (S,)."""
+    c, s = np.cos(theta), np.sin(theta)
+    v = np.broadcast_to(v, (len(theta), 2))
+    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=-1)
+
+
+def _angle(v: np.ndarray) -> np.ndarray:
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _circles(p: np.ndarray, r: float, q: np.ndarray, s: float, side: float) -> np.ndarray:
+    """The intersection of the circles (p, r) and (q, s) on the ``side`` (±1) of the line p → q."""
+    d = q - p
+    e = np.hypot(d[:, 0], d[:, 1])
+    x = (r * r - s * s + e * e) / (2 * e)
+    h = np.sqrt(np.maximum(r * r - x * x, 0.0))
+    u = d / e[:, None]
+    n = np.stack([-u[:, 1], u[:, 0]], axis=-1)
+    return p + x[:, None] * u + side * h[:, None] * n
+
+
+def _by_dyads(linkage, motion, driver: int) -> np.ndarray:
+    """Every joint at every step, rebuilt from the frame, the driver's angle (read from the solver)
+    and RRR dyads; revolute joints only."""
+    chain, pose = linkage.chain, linkage.points
+    steps = motion.steps
+    frame = linkage.frame
+    link = next(x for x in chain.joints[driver] if x != frame)
+    known: dict[int, np.ndarray] = {k: np.broadcast_to(pose[k], (steps, 2)) for k in linkage.joints_of(frame)}
+    turned: dict[int, np.ndarray] = {frame: np.zeros(steps), link: motion.angles[:, link]}
+    while len(known) < len(chain.joints):
+        progress = False
+        for x, theta in list(turned.items()):  # a link whose angle is known carries all its joints
+            a = next((k for k in linkage.joints_of(x) if k in known), None)
+            for k in linkage.joints_of(x):
+                if k not in known and a is not None:
+                    known[k] = known[a] + _rotate(pose[k] - pose[a], theta)
+                    progress = True
+        for x in range(chain.links):  # two known joints give a link's angle
+            on = [k for k in linkage.joints_of(x) if k in known]
+            if x not in turned and len(on) >= 2:
+                a, b = on[:2]
+                turned[x] = _angle(known[b] - known[a]) - math.atan2(*(pose[b] - pose[a])[::-1])
+                progress = True
+        for k, joint in enumerate(chain.joints):  # an RRR dyad: joint k of links x, y, each with one known pin
+            if k in known or len(joint) != 2:
+                continue
+            x, y = joint
+            px = [m for m in linkage.joints_of(x) if m in known]
+            py = [m for m in linkage.joints_of(y) if m in known]
+            if len(px) == 1 and len(py) == 1 and px != py:
+                a, b = px[0], py[0]
+                side = float(np.sign(_cross(pose[b] - pose[a], pose[k] - pose[a])))
+                known[k] = _circles(known[a], math.dist(pose[a], pose[k]), known[b], math.dist(pose[b], pose[k]), side)
+                progress = True
+        if not progress:
+            raise SceneError("the closed form 'dyads' cannot rebuild this mechanism from RRR dyads driven by joint "
+                             f"{chain.joints[driver]}")
+    return np.stack([known[k] for k in range(len(chain.joints))], axis=1)
+
+
+def _freudenstein(linkage, motion) -> float | None:
+    """The residual of Freudenstein's equation K1 cos θ4 − K2 cos θ2 + K3 = cos(θ2 − θ4) over the
+    sweep, angles from the ground line; None unless the linkage is a four-bar of revolute joints."""
+    chain = linkage.chain
+    if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != "revolute" for k in range(4)):
+        return None
+    frame = linkage.frame
+    o2 = linkage.inputs[0]
+    crank = next(x for x in chain.joints[o2] if x != frame)
+    o4 = next(k for k in linkage.joints_of(frame) if k != o2)
+    rocker = next(x for x in chain.joints[o4] if x != frame)
+    a_pin = next(k for k in linkage.joints_of(crank) if k != o2)
+    b_pin = next(k for k in linkage.joints_of(rocker) if k != o4)
+    p, j = linkage.points, motion.joints
+    a, b = math.dist(p[o2], p[a_pin]), math.dist(p[a_pin], p[b_pin])
+    c, d = math.dist(p[o4], p[b_pin]), math.dist(p[o2], p[o4])
+    ground = math.atan2(*(p[o4] - p[o2])[::-1])
+    t2 = _angle(j[:, a_pin] - p[o2]) - ground
+    t4 = _angle(j[:, b_pin] - p[o4]) - ground
+    k1, k2, k3 = d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)
+    return float(np.nanmax(np.abs(k1 * np.cos(t4) - k2 * np.cos(t2) + k3 - np.cos(t2 - t4))))
+
+
+def _extreme(linkage, value, lo: float, hi: float, sign: float) -> tuple[float, float]:
+    """The input in [lo, hi] where ``value(motion)`` (per step) is largest (sign = 1) or smallest
+    (−1), and that value, found by nested sweeps of the solver, each a tenth as wide."""
+    from synth.motion import sweep
+
+    for _ in range(60):
+        motion = sweep(linkage, steps=21, start=lo, stop=hi)
+        got = sign * value(motion)
+        i = int(np.nanargmax(got))
+        x, width = float(motion.inputs[i, 0]), (hi - lo) / 20
+        if width < 1e-13:
+            break
+        lo, hi = x - width, x + width
+    return x, sign * float(got[i])
+
+
+def _dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The inputs and values of the largest and smallest ``value`` over a crank's turn, refined."""
+    v = value(motion)
+    step = float(motion.inputs[1, 0] - motion.inputs[0, 0])
+    out = []
+    for sign in (1.0, -1.0):
+        x = float(motion.inputs[int(np.nanargmax(sign * v)), 0])
+        out.append(_extreme(linkage, value, x - 2 * step, x + 2 * step, sign))
+    return out[0], out[1]
+
+
+def _slider_crank(linkage, motion) -> dict:
+    """Roles: the input crank O–A, the rod A–B, the slider's pin B on the line along the slide of the
+    slider–frame prismatic pair (through B as posed)."""
+    chain, p, j = linkage.chain, linkage.points, motion.joints
+    o = linkage.inputs[0]
+    crank = linkage.input_link(0)
+    a_pin = next(k for k in linkage.joints_of(crank) if k != o)
+    rod = next(x for x in chain.joints[a_pin] if x != crank)
+    b_pin = next(k for k in linkage.joints_of(rod) if k != a_pin)
+    guide = next(k for k in linkage.slides)
+    u = np.array(linkage.slides[guide])
+    n = np.array([-u[1], u[0]])
+    r, l = math.dist(p[o], p[a_pin]), math.dist(p[a_pin], p[b_pin])
+    e = abs(float((p[o] - p[b_pin]) @ n))
+    a_cf = p[o] + _rotate(p[a_pin] - p[o], motion.inputs[:, 0] - linkage.pose_inputs[0])
+    w = a_cf - p[b_pin]
+    side = -1.0 if float((p[a_pin] - p[b_pin]) @ u) > 0 else 1.0
+    s = w @ u + side * np.sqrt(l * l - (w @ n) ** 2)
+    b_cf = p[b_pin] + s[:, None] * u
+    error = max(float(np.nanmax(np.hypot(*(j[:, a_pin] - a_cf).T))), float(np.nanmax(np.hypot(*(j[:, b_pin] - b_cf).T))))
+
+    def slide(m):
+        return (m.joints[:, b_pin] - p[b_pin]) @ u
+
+    (x_hi, s_hi), (x_lo, s_lo) = _dead_centres(linkage, motion, slide)
+    forward = (x_hi - x_lo) % (2 * math.pi)
+    ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
+    stroke = math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
+    delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
+    return {"closed_form_error": error, "stroke": s_hi - s_lo, "stroke_formula": stroke,
+            "quick_return_ratio": ratio, "quick_return_formula": (math.pi + delta) / (math.pi - delta),
+            "crank": r, "rod": l, "offset": e}
+
+
+def _slotted_lever(linkage, motion) -> dict:
+    """Roles: the input crank O–B, the block pinned at B sliding on the lever, the lever pivoted at C.
+    The lever's angle ψ solves (B − C)·n(ψ) = e, with e the pin's distance from the parallel to the
+    slide through C in the pose; the slide is (B − C)·u(ψ)."""
+    chain, p, j = linkage.chain, linkage.points, motion.joints
+    o = linkage.inputs[0]
+    crank = linkage.input_link(0)
+    b_pin = next(k for k in linkage.joints_of(crank) if k != o)
+    block = next(x for x in chain.joints[b_pin] if x != crank)
+    pair = next(k for k in linkage.slides)
+    lever = next(x for x in chain.joints[pair] if x != block)
+    c = next(k for k in linkage.joints_of(lever) if linkage.kind(k) == "revolute" and linkage.frame in chain.joints[k])
+    u0 = np.array(linkage.slides[pair])
+    n0 = np.array([-u0[1], u0[0]])
+    e = float((p[b_pin] - p[c]) @ n0)
+    b_cf = p[o] + _rotate(p[b_pin] - p[o], motion.inputs[:, 0] - linkage.pose_inputs[0])
+    w = b_cf - p[c]
+    rho = np.hypot(w[:, 0], w[:, 1])
+    # (B − C)·n(ψ) = ρ cos(β − ψ − ν) = e with β the angle of B − C and ν that of n0
+    beta, nu = _angle(w), math.atan2(n0[1], n0[0])
+    side = math.copysign(1.0, float(_cross(n0, p[b_pin] - p[c])))
+    psi = beta - nu - side * np.arccos(np.clip(e / rho, -1, 1))
+    psi = (psi - psi[0] + math.pi) % (2 * math.pi) - math.pi + psi[0]
+    lever_angle = motion.angles[:, lever]
+    error = float(np.nanmax(np.abs((lever_angle - psi + math.pi) % (2 * math.pi) - math.pi)))
+    error = max(error, float(np.nanmax(np.hypot(*(j[:, b_pin] - b_cf).T))))
+
+    def slide(m):
+        u = _rotate(u0, m.angles[:, lever])
+        return np.einsum("ij,ij->i", m.joints[:, b_pin] - p[c], u)
+
+    def turned(m):
+        return m.angles[:, lever]
+
+    (_, psi_hi), (_, psi_lo) = _dead_centres(linkage, motion, turned)
+    (_, s_hi), (_, s_lo) = _dead_centres(linkage, motion, slide)
+    r, d = math.dist(p[o], p[b_pin]), math.dist(p[o], p[c])
+    return {"closed_form_error": error, "lever_swing": math.degrees(psi_hi - psi_lo),
+            "lever_swing_formula": math.degrees(math.acos((e - r) / d) - math.acos((e + r) / d)),
+            "slide_range": [s_lo, s_hi], "crank": r, "centres": d, "offset": abs(e)}
+
+
+def _willis(linkage, motion, teeth: dict) -> dict:
+    """Each gear's speed relative to the input (the carrier), from Willis' equation of each mesh
+    z_a(ω_a − ω_t) = ∓ z_b(ω_b − ω_t) (− external, + internal: the ring's radius is written negative
+    in the pose, so the sign follows from the pitch point lying beyond or between the axes)."""
+    chain = linkage.chain
+    carrier = linkage.input_link(0)
+    z = {int(k): float(v) for k, v in teeth.items()}
+    speed = {linkage.frame: 0.0, carrier: 1.0}
+    while True:
+        grown = False
+        for k in range(len(chain.joints)):
+            if linkage.kind(k) != "mesh":
+                continue
+            a, b = chain.joints[k]
+            t = linkage.carrier(k)
+            if t not in speed or (a in speed) == (b in speed):
+                continue
+            if a not in z or b not in z:
+                raise SceneError(f"[closed_form] teeth needs the tooth numbers of links {a} and {b}")
+            pa = linkage.points[k] - linkage.points[linkage.axis(a, t)]
+            pb = linkage.points[k] - linkage.points[linkage.axis(b, t)]
+            internal = float(pa @ pb) > 0  # the pitch point beyond both axes: a ring and its planet
+            sign = 1.0 if internal else -1.0
+            if a in speed:
+                speed[b] = speed[t] + sign * z[a] / z[b] * (speed[a] - speed[t])
+            else:
+                speed[a] = speed[t] + sign * z[b] / z[a] * (speed[b] - speed[t])
+            grown = True
+        if not grown:
+            break
+    phi = motion.inputs[:, 0] - linkage.pose_inputs[0]
+    error = max(float(np.nanmax(np.abs(motion.angles[:, x] - w * phi))) for x, w in speed.items())
+    measured = {str(x): float((motion.angles[-1, x] - motion.angles[0, x]) / (phi[-1] - phi[0])) for x in speed}
+    return {"closed_form_error": error, "speed_ratios": measured, "willis": {str(x): w for x, w in speed.items()}}
+
+
+def _closed_form(run: Run) -> dict:
+    from synth.motion import sweep
+
+    linkage = run.scene.tables["linkage"]
+    table = run.scene.tables["closed_form"]
+    motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
+    if table.kind == "dyads":
+        driver = linkage.inputs[0]
+        if table.driver is not None:
+            links = tuple(sorted(int(x) for x in table.driver.split("-")))
+            if links not in linkage.chain.joints:
+                raise SceneError(f"[closed_form] driver {table.driver!r} is not a joint of the chain")
+            driver = linkage.chain.joints.index(links)
+        rebuilt = _by_dyads(linkage, motion, driver)
+        out = {"closed_form_error": float(np.nanmax(np.hypot(*(rebuilt - motion.joints).reshape(-1, 2).T)))}
+        residual = _freudenstein(linkage, motion)
+        if residual is not None:
+            out["freudenstein_residual"] = residual
+        return out
+    if table.kind == "slider-crank":
+        return _slider_crank(linkage, motion)
+    if table.kind == "slotted-lever":
+        return _slotted_lever(linkage, motion)
+    return _willis(linkage, motion, table.teeth)
+
+
+def _report_motion(r: dict) -> list[str]:
+    limits = "turns fully" if r["full_rotation"] else f"rocks {r['input_limits']}"
+    worst = "" if r["min_transmission_angle"] is None else f", worst transmission {r['min_transmission_angle']:.4g}°"
+    return [f"input {limits}{', ' + r['grashof'] if r['grashof'] else ''}{worst}, "
+            f"rigidity error {r['rigidity_error']:.2e} over {r['steps']} steps"]
+
+
+def _report_closed_form(r: dict) -> list[str]:
+    extra = "".join(f", {k} {v:.10g}" for k, v in r.items() if k != "closed_form_error" and isinstance(v, float))
+    return [f"closed form error {r['closed_form_error']:.2e}{extra}"]
+
+
+FAMILY.kind(ComputeKind(
+    "motion", "sweep a linkage: crank or rocker, limits, Grashof, worst transmission angle, rigidity error", "linkage",
+    _motion, reads=("sweep",),
+    expect={"full_rotation": Expectation(Flag), "input_limits": Expectation(Numbers), "grashof": Expectation(Text),
+            "min_transmission_angle": Expectation(Number), "rigidity_error": Expectation(Number, below=True),
+            "dead_positions": Expectation(Number)},
+    report=_report_motion))
+FAMILY.kind(ComputeKind(
+    "closed form", "the solver against a textbook formula (dyads, slider-crank, slotted-lever, willis)", "closed_form",
+    _closed_form, reads=("linkage", "sweep"),
+    expect={"closed_form_error": Expectation(Number, below=True),
+            "freudenstein_residual": Expectation(Number, below=True),
+            "stroke": Expectation(Number), "quick_return_ratio": Expectation(Number),
+            "lever_swing": Expectation(Number), "slide_range": Expectation(Numbers),
+            "speed_ratios": Expectation(NumberTable)},
+    report=_report_closed_form))

@@ -1,0 +1,651 @@
+"""Pictures of mechanisms that move: the pose with its coupler curves (PNG, SVG), animations (GIF,
+animated SVG), the frames a web page plays, and every atlas mechanism as a linkage from its drawing.
+
+One geometry serves every output: :func:`_elements` turns a :class:`~synth.motion.Motion` (or a
+linkage's pose alone) into drawing elements — link bodies, pins, ground pivots, sliders on their
+guides, gear pitch circles, tracer paths — each with its points at every frame, in pixels.  The
+writers only lay these out: a static SVG (one frame), an animated SVG (SMIL ``<animate>`` on each
+element's points), the site's player (the frames as JSON, a few lines of script), matplotlib for PNG
+and for the frames of a GIF.  A link is placed at a frame by its rotation from the pose
+(``Motion.angles``) and one of its joints' positions, so a slider's block and guide, a gear's spoke
+and a ternary link's plate move exactly as the solver moved the link.
+
+This module is on the top floor: it imports :mod:`synth.motion` and the drawings' layout
+(:func:`synth.draw.layout`), never the reverse.
+
+Example
+-------
+>>> from synth.structure.chain import Chain, Mechanism
+>>> from synth.motion import Linkage
+>>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
+>>> linkage_svg(four_bar).startswith("<svg")
+True
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InvalidOption
+from .motion import Linkage, Motion, joint_name, linkage_from_pose
+from .structure.chain import Mechanism
+
+__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_motion", "animate_motion", "player_svg",
+           "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
+
+#: what a still picture and an animation may be written as
+PICTURE_SUFFIXES = (".png", ".svg")
+ANIMATION_SUFFIXES = (".gif", ".svg")
+
+_BODY, _EDGE, _INPUT, _FRAME = "#dbe6f4", "#1f3a5f", "#c0632b", "#6b7785"
+_CURVES = ("#c0392b", "#1e7a46", "#7d3c98", "#b9770e", "#2471a3")
+_PATH = "#b8c2cc"
+_MESH = "#1e7a46"
+
+
+# ------------------------------------------------------------------ linkages from the atlas's drawings
+def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int = 24) -> Linkage:
+    """A dimensioned linkage for any planar mechanism of the atlas: its drawing's layout as the pose.
+
+    The joints stand where :func:`synth.draw.layout` draws them, scaled so that the drawing is
+    ``size`` across.  A drawing is made to be read, not to move: its symmetric poses are often
+    locked, or parallelograms that fold at a change point.  So each input joint of the frame (the
+    mechanism's input link's, if it has one) is tried on the drawing's pose and then on ``tries`` poses
+    whose joints are moved at random (fixed seed) by 5 … 30 % of the size, and the first that moves well
+    is kept: its input turns fully (a crank) and no transmission angle falls under 20°; failing that,
+    the best found (a crank first, then the widest transmission angle, then the largest swing).
+    :attr:`Linkage.note` says when the joints were moved, by how much, and why.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A chain (revolute, prismatic and gear joints, h = 3) with its frame.
+    size : float
+        The drawing's width and height in the linkage's length unit.
+    tries : int
+        Moved poses tried after the drawing's own.
+
+    Returns
+    -------
+    Linkage
+
+    Raises
+    ------
+    MotionError
+        The chain is not planar (h ≠ 3), rigid, or no pose tried moves.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0))
+    >>> lk.dof
+    1
+    """
+    from .draw import layout
+    from .errors import MotionError
+
+    chain = mechanism.chain
+    if chain.h != 3:
+        raise MotionError(f"a linkage moves in the plane (h = 3); this chain's loops are in motion space h = {chain.h}")
+    drawn = layout(chain).joints * (size / 2.0)
+    if chain.dof != 1:
+        return linkage_from_pose(mechanism, drawn, nudge=True)
+    kinds = chain.kinds or ("revolute",) * len(chain.joints)
+    inputs = [k for k, j in enumerate(chain.joints) if len(j) == 2 and mechanism.frame in j and kinds[k] != "mesh"
+              and (mechanism.input_link is None or mechanism.input_link in j)]
+    rng = np.random.default_rng(0)
+    best = None
+    first_why = None
+    for attempt in range(tries + 1):
+        pose = drawn if attempt == 0 else drawn + rng.uniform(-1, 1, drawn.shape) * size * 0.05 * (1 + 5 * attempt / tries)
+        turns = rng.uniform(0, 2 * math.pi, len(kinds))  # a slider's line is a choice too: tried at random
+        slides = None if attempt == 0 else {k: (math.cos(turns[k]), math.sin(turns[k]))
+                                            for k, kind in enumerate(kinds) if kind == "prismatic"}
+        for k in sorted(inputs, key=lambda k: (kinds[k] != "revolute", k)):
+            try:
+                candidate = linkage_from_pose(mechanism, pose, inputs=(k,), slides=slides, nudge=attempt == 0)
+                score, why = _how_well(candidate)
+            except MotionError as exc:
+                score, why = None, str(exc)
+            if attempt == 0 and first_why is None:
+                first_why = why
+            if score is not None and (best is None or score > best[0]):
+                best = (score, candidate, attempt)
+        if best is not None and best[0][0]:
+            break
+    if best is None:
+        raise MotionError(f"no pose near the drawing of {chain.compact()} with frame {mechanism.frame} moves "
+                          f"({first_why})")
+    score, linkage, attempt = best
+    if attempt == 0:
+        return linkage
+    shift = float(np.hypot(*(linkage.points - drawn).T).max())
+    if score[1]:
+        swing = "turns fully"
+    elif linkage.kind(linkage.inputs[0]) == "revolute":
+        swing = f"swings {math.degrees(score[3]):.0f}°"
+    else:
+        swing = f"slides {score[3] * linkage.scale / (2 * math.pi):.3g}"
+    note = (f"the drawing's pose does not move well ({first_why}); its joints were moved by up to {shift:.3g} "
+            f"({shift / size:.0%} of its size) to a pose whose input {swing}"
+            + (f" with transmission angles of at least {math.degrees(score[2]):.0f}°" if score[1] else ""))
+    return Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, linkage.tracers,
+                   note)
+
+
+#: the worst transmission angle a pose from a drawing may have and count as moving well
+_GOOD_TRANSMISSION = math.radians(20)
+
+
+def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
+    """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
+    angle, swing), and what is wrong with it in words (None when nothing is)."""
+    from .motion import sweep
+
+    motion = sweep(linkage, steps=73)
+    # a crank's sweep turns once from the pose; a rocker's goes from limit to limit (which may span
+    # more than a turn, but does not start at the pose's input)
+    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
+    full = (motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute"
+            and abs(motion.inputs[0, 0] - linkage.pose_inputs[0]) < 1e-12 and abs(span - 2 * math.pi) < 1e-9)
+    if linkage.kind(linkage.inputs[0]) != "revolute":  # a stroke as long as the mechanism is worth a turn
+        span *= 2 * math.pi / linkage.scale
+    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
+    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2]) if full else 0.0
+    good = full and worst >= _GOOD_TRANSMISSION
+    if good:
+        why = None
+    elif full:
+        why = f"a transmission angle falls to {math.degrees(worst):.2g}°"
+    else:
+        why = "its input does not turn fully"
+    return (good, full, round(worst, 3), span), why
+
+
+# ------------------------------------------------------------------ the geometry of each frame
+class _Placement:
+    """Where each link is at each frame: its rotation from the pose and one of its joints.
+
+    A revolute joint moves with every link it joins; a prismatic joint's point in a Motion is carried
+    by the joint's first link; the frame never moves."""
+
+    def __init__(self, linkage: Linkage, joints: np.ndarray, angles: np.ndarray):
+        self.linkage, self.joints, self.angles = linkage, joints, angles
+        self.anchor: list[int | None] = []
+        for link in range(linkage.chain.links):
+            on = linkage.joints_of(link)
+            pins = [k for k in on if linkage.kind(k) == "revolute"]
+            carried = [k for k in on if linkage.kind(k) == "prismatic" and linkage.chain.joints[k][0] == link]
+            self.anchor.append((pins + carried + [None])[0])
+
+    def place(self, link: int, p) -> np.ndarray:
+        """Positions (F, m, 2) at every frame of the points ``p`` (m, 2) of ``link`` as placed in the pose."""
+        p = np.atleast_2d(np.asarray(p, dtype=float))
+        frames = len(self.joints)
+        if link == self.linkage.frame:
+            return np.broadcast_to(p, (frames, *p.shape)).copy()
+        a = self.anchor[link]
+        theta = self.angles[:, link]
+        c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+        origin = self.linkage.points[a] if a is not None else p.mean(axis=0)
+        d = p - origin
+        rotated = np.stack([c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1]], axis=-1)
+        moved = self.joints[:, a][:, None, :] if a is not None else origin
+        return rotated + moved
+
+
+def _order(points: np.ndarray) -> list[int]:
+    """Indices of distinct points in turning order about their centre (a link's plate)."""
+    keep: list[int] = []
+    for i, p in enumerate(points):
+        if all(np.hypot(*(p - points[j])) > 1e-9 for j in keep):
+            keep.append(i)
+    centre = points[keep].mean(axis=0)
+    return sorted(keep, key=lambda i: math.atan2(*(points[i] - centre)[::-1]))
+
+
+def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers: dict[str, np.ndarray],
+              paths: dict[str, np.ndarray], reach: tuple[np.ndarray, np.ndarray] | None = None) -> list[dict]:
+    """The drawing's elements at every frame (world coordinates): ``tag`` (polygon, polyline,
+    circle, text), ``style`` (SVG attributes), ``frames`` (F, m, 2) and for circles ``r``, for
+    texts ``text``.  ``paths`` are drawn as still curves (pins' paths under the links, coupler
+    curves over them); ``reach`` (joints and angles of more steps than the frames) sets how long
+    a slider's guide is drawn: over the block's whole travel."""
+    chain, scale = linkage.chain, linkage.scale
+    place = _Placement(linkage, joints, angles)
+    pin = 0.018 * scale
+    out: list[dict] = []
+    colours = {name: _CURVES[i % len(_CURVES)] for i, name in enumerate(linkage.tracers)}
+
+    def curves(of_tracers: bool) -> None:  # grey pin paths under the links, coupler curves over them
+        for name, xy in paths.items():
+            ok = xy[np.isfinite(xy).all(axis=1)]
+            if len(ok) > 1 and (name in tracers) == of_tracers:
+                out.append({"tag": "polyline", "frames": ok[None], "static": True, "curve": True,
+                            "style": {"fill": "none", "stroke": colours[name] if of_tracers else _PATH,
+                                      "stroke-width": 1.8 if of_tracers else 0.8}})
+
+    curves(False)
+    driven = {linkage.input_link(i) for i in range(linkage.dof)}
+    slides = {k: np.array(v) for k, v in linkage.slides.items()}
+    for link in range(chain.links):
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]  # sliders: a block and a guide
+        if link == linkage.frame or not on:
+            continue
+        marks = [at for _, (carrier, at) in linkage.tracers.items() if carrier == link]  # a coupler's plate
+        pose = np.array([*linkage.points[on], *marks])
+        order = _order(pose)
+        colour = _INPUT if link in driven else _EDGE
+        if len(order) >= 3:
+            out.append({"tag": "polygon", "frames": place.place(link, pose[order]),
+                        "style": {"fill": _BODY, "stroke": colour, "stroke-width": 1.4, "stroke-linejoin": "round"}})
+        elif len(order) == 2:
+            out.append({"tag": "polyline", "frames": place.place(link, pose[order]),
+                        "style": {"fill": "none", "stroke": colour, "stroke-width": 3.2, "stroke-linecap": "round"}})
+    for k in range(len(chain.joints)):  # gears: pitch circle and a spoke that turns with the gear
+        if linkage.kind(k) != "mesh":
+            continue
+        carrier = linkage.carrier(k)
+        for gear in chain.joints[k]:
+            axis = linkage.points[linkage.axis(gear, carrier)]
+            radius = float(np.hypot(*(linkage.points[k] - axis)))
+            out.append({"tag": "circle", "r": radius, "frames": place.place(gear, axis),
+                        "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.4}})
+            out.append({"tag": "polyline", "frames": place.place(gear, [axis, linkage.points[k]]),
+                        "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.2}})
+    span = _Placement(linkage, *reach) if reach is not None else place
+    for k, d in slides.items():  # a prismatic pair: a slot or guide on one link, a block on the other
+        guide, block = _guide_and_block(linkage, k)
+        p = linkage.points[k]
+        u = d / np.hypot(*d)
+        theta = span.angles[:, guide] if guide != linkage.frame else np.zeros(len(span.angles))
+        travel = _along(span.place(block, p)[:, 0] - span.place(guide, p)[:, 0], theta, u)
+        pins = [float((linkage.points[m] - p) @ u) for m in linkage.joints_of(guide)
+                if m != k and linkage.kind(m) == "revolute"]  # the guide reaches its own pins (a lever's pivot)
+        half = 0.06 * scale
+        reach_along = [0.0, *travel[np.isfinite(travel)], *pins]
+        ends = [p + u * (min(reach_along) - 2 * half), p + u * (max(reach_along) + 2 * half)]
+        out.append({"tag": "polyline", "frames": place.place(guide, ends),
+                    "style": {"fill": "none", "stroke": _FRAME if guide == linkage.frame else _EDGE,
+                              "stroke-width": 2.0, "stroke-dasharray": "5 3" if guide == linkage.frame else None}})
+        for m in linkage.joints_of(guide):  # a pin of the guide off its line (an offset slot): an arm to the line
+            if m != k and linkage.kind(m) == "revolute" and guide != linkage.frame:
+                foot = p + float((linkage.points[m] - p) @ u) * u
+                if math.dist(foot, linkage.points[m]) > 1e-9 * scale:
+                    out.append({"tag": "polyline", "frames": place.place(guide, [linkage.points[m], foot]),
+                                "style": {"fill": "none", "stroke": _EDGE, "stroke-width": 3.2,
+                                          "stroke-linecap": "round"}})
+        n = np.array([-u[1], u[0]])
+        corners = [p - half * u - 0.6 * half * n, p + half * u - 0.6 * half * n,
+                   p + half * u + 0.6 * half * n, p - half * u + 0.6 * half * n]
+        out.append({"tag": "polygon", "frames": place.place(block, corners),
+                    "style": {"fill": "white", "stroke": _INPUT if block in driven else _EDGE, "stroke-width": 1.4}})
+    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) == "revolute"]
+    if len(base) >= 2:  # the fixed link: a dashed line through its joints
+        pose = linkage.points[base]
+        out.append({"tag": "polygon" if len(base) > 2 else "polyline", "static": True,
+                    "frames": pose[_order(pose)][None],
+                    "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 1.0, "stroke-dasharray": "6 4"}})
+    for k, joint in enumerate(chain.joints):  # ground pivots under the frame's pins
+        if linkage.frame in joint and linkage.kind(k) == "revolute":
+            x, y = linkage.points[k]
+            w = 2.6 * pin
+            out.append({"tag": "polygon", "frames": np.array([[[x, y], [x - w, y - 1.8 * w], [x + w, y - 1.8 * w]]]),
+                        "static": True, "style": {"fill": "#eef1f4", "stroke": _FRAME, "stroke-width": 1.2}})
+            out.append({"tag": "polyline", "static": True,
+                        "frames": np.array([[[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]]]),
+                        "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 2.4}})
+    curves(True)
+    for k, joint in enumerate(chain.joints):
+        if linkage.kind(k) == "revolute":
+            out.append({"tag": "circle", "r": pin * (1.6 if len(joint) > 2 else 1.0), "frames": joints[:, k][:, None],
+                        "style": {"fill": "white", "stroke": "#c0392b" if len(joint) > 2 else "black",
+                                  "stroke-width": 1.2}})
+    for name, xy in tracers.items():
+        colour = colours[name]
+        out.append({"tag": "circle", "r": 0.8 * pin, "frames": xy[:, None],
+                    "style": {"fill": colour, "stroke": colour, "stroke-width": 1.0}})
+        out.append({"tag": "text", "text": name, "frames": xy[:, None] + np.array([1.6 * pin, 1.6 * pin]),
+                    "style": {"fill": colour, "font-size": 12, "font-family": "sans-serif", "font-weight": "bold"}})
+    return out
+
+
+def _guide_and_block(linkage: Linkage, k: int) -> tuple[int, int]:
+    """The two links of prismatic joint ``k`` as a designer draws them: the block is the link pinned
+    nearest the sliding point (a slider's pin, a block on a crank pin), the guide the other."""
+    a, b = linkage.chain.joints[k]
+
+    def gap(link: int) -> float:
+        pins = [math.dist(linkage.points[m], linkage.points[k]) for m in linkage.joints_of(link)
+                if linkage.kind(m) == "revolute"]
+        return min(pins, default=math.inf)
+
+    return (b, a) if gap(a) < gap(b) else (a, b)
+
+
+def _along(local: np.ndarray, theta: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block's displacement along the guide's direction ``u`` (as placed in the pose), from the
+    world offsets ``local`` of the block from the guide's point, the guide turned by ``theta``."""
+    c, s = np.cos(theta), np.sin(theta)
+    back = np.stack([c * local[:, 0] + s * local[:, 1], -s * local[:, 0] + c * local[:, 1]], axis=-1)
+    return back @ u
+
+
+def _still(linkage: Linkage) -> tuple[np.ndarray, np.ndarray, dict]:
+    """The pose alone as one frame: joints, link angles (all zero) and tracer points."""
+    tracers = {name: np.array([at]) for name, (_, at) in linkage.tracers.items()}
+    return linkage.points[None], np.zeros((1, linkage.chain.links)), tracers
+
+
+def _frames(motion: Motion, count: int) -> np.ndarray:
+    """Indices of up to ``count`` finite steps spread over the sweep."""
+    ok = np.flatnonzero(np.isfinite(motion.joints).all(axis=(1, 2)) & np.isfinite(motion.angles).all(axis=1))
+    if len(ok) <= count:
+        return ok
+    return ok[np.unique(np.linspace(0, len(ok) - 1, count).round().astype(int))]
+
+
+class _Canvas:
+    """World coordinates to pixels: the box around every element at every frame, ``size`` pixels on
+    its longer side, y upwards on the page."""
+
+    def __init__(self, elements: list[dict], size: int):
+        pts = np.concatenate([e["frames"].reshape(-1, 2) for e in elements])
+        pts = pts[np.isfinite(pts).all(axis=1)]
+        radii = max([e.get("r", 0.0) for e in elements] + [0.0])
+        lo, hi = pts.min(axis=0) - radii, pts.max(axis=0) + radii
+        span = max(float((hi - lo).max()), 1e-9)
+        margin = 0.06 * span
+        self.lo, self.scale = lo - margin, size / (span + 2 * margin)
+        self.width = int(math.ceil((hi[0] - lo[0] + 2 * margin) * self.scale))
+        self.height = int(math.ceil((hi[1] - lo[1] + 2 * margin) * self.scale))
+
+    def pixels(self, xy: np.ndarray) -> np.ndarray:
+        out = (xy - self.lo) * self.scale
+        out[..., 1] = self.height - out[..., 1]
+        return out
+
+
+def _attrs(style: dict) -> str:
+    return " ".join(f'{k}="{v}"' for k, v in style.items() if v is not None)
+
+
+def _coords(points: np.ndarray) -> str:
+    return " ".join(f"{x:.1f},{y:.1f}" for x, y in points)
+
+
+def _svg(elements: list[dict], canvas: _Canvas, frame: int | None, *, seconds: float = 0.0, player: bool = False,
+         title: str | None = None) -> str:
+    """The SVG text: still at ``frame``, or animated (SMIL) over all frames in ``seconds``, or with
+    ``player`` the elements numbered for the site's script (``data-k``) and the frames as JSON."""
+    w, h = canvas.width, canvas.height
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}"'
+           + (' class="moving"' if player else "") + ">"]
+    if title:
+        out.append(f"<title>{html.escape(title)}</title>")
+    data = []
+    for e in elements:
+        frames = canvas.pixels(e["frames"])
+        static = e.get("static") or len(frames) == 1
+        at = frames[0 if static or frame is None else frame]
+        style = _attrs(e["style"])
+        key = ""
+        if player and not static:
+            key = f' data-k="{len(data)}"'
+            data.append([[round(float(v), 1) for v in f.ravel()] for f in frames])
+        animated = not static and not player and frame is None
+        if e["tag"] == "circle":
+            head = f'<circle cx="{at[0, 0]:.1f}" cy="{at[0, 1]:.1f}" r="{e["r"] * canvas.scale:.1f}" {style}{key}'
+            values = [("cx", ";".join(f"{f[0, 0]:.1f}" for f in frames)), ("cy", ";".join(f"{f[0, 1]:.1f}" for f in frames))]
+        elif e["tag"] == "text":
+            head = f'<text x="{at[0, 0]:.1f}" y="{at[0, 1]:.1f}" {style}{key}'
+            values = [("x", ";".join(f"{f[0, 0]:.1f}" for f in frames)), ("y", ";".join(f"{f[0, 1]:.1f}" for f in frames))]
+        else:
+            head = f'<{e["tag"]} points="{_coords(at)}" {style}{key}'
+            values = [("points", ";".join(_coords(f) for f in frames))]
+        body = "".join(f'<animate attributeName="{name}" dur="{seconds:.2f}s" repeatCount="indefinite" '
+                       f'values="{v}"/>' for name, v in values) if animated else ""
+        text = html.escape(e["text"]) if e["tag"] == "text" else ""
+        out.append(f"{head}>{body}{text}</{e['tag']}>" if body or text else f"{head}/>")
+    out.append("</svg>")
+    svg = "".join(out)
+    if player:
+        blob = html.escape(json.dumps({"n": len(elements[0]["frames"]) if not data else len(data[0]), "e": data},
+                                      separators=(",", ":")), quote=True)
+        svg = svg.replace('class="moving">', f'class="moving" data-motion="{blob}">', 1)
+    return svg
+
+
+def _paths(motion: Motion, most: int = 2000) -> dict[str, np.ndarray]:
+    """The curves a picture shows, thinned to ``most`` points each: the paths of the pins that
+    move (not on the frame) under every tracer's coupler curve."""
+    linkage = motion.linkage
+    keep = np.unique(np.linspace(0, motion.steps - 1, min(most, motion.steps)).round().astype(int))
+    paths = {joint_name(linkage.chain, k): motion.joints[keep, k] for k in range(len(linkage.chain.joints))
+             if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]}
+    return paths | {name: xy[keep] for name, xy in motion.tracers.items()}
+
+
+def _motion_elements(motion: Motion, frames: int) -> tuple[list[dict], np.ndarray]:
+    """The elements of up to ``frames`` frames spread over the sweep, and the steps they show."""
+    steps = _frames(motion, frames)
+    if len(steps) == 0:
+        raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
+    tracers = {name: xy[steps] for name, xy in motion.tracers.items()}
+    return _elements(motion.linkage, motion.joints[steps], motion.angles[steps], tracers, _paths(motion)), steps
+
+
+# ------------------------------------------------------------------ public writers
+def linkage_svg(linkage: Linkage, *, size: int = 360) -> str:
+    """A linkage in its pose as SVG text (what a notebook shows): links, ground pivots, sliders,
+    gears and tracer points with their names.
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]],
+    ...              tracers={"P": (2, (2.5, 2.5))})
+    >>> ">P</text>" in linkage_svg(lk)
+    True
+    """
+    joints, angles, tracers = _still(linkage)
+    elements = _elements(linkage, joints, angles, tracers, {})
+    return _svg(elements, _Canvas(elements, size), 0, title=_title(linkage))
+
+
+def motion_svg(motion: Motion, *, size: int = 480, frames: int = 90, seconds: float = 3.0) -> str:
+    """An animated SVG (SMIL, plays in any browser) of a sweep: the mechanism moving over its
+    joints' paths and coupler curves, ``frames`` frames in ``seconds`` a cycle.
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> motion_svg(sweep(four_bar, steps=19), frames=10).count('repeatCount="indefinite"') > 4
+    True
+    """
+    elements, _ = _motion_elements(motion, frames)
+    return _svg(elements, _Canvas(elements, size), None, seconds=seconds, title=_title(motion.linkage))
+
+
+def player_svg(motion: Motion, *, size: int = 300, frames: int = 36, seconds: float = 3.0) -> str:
+    """The SVG of a sweep for a web page's script: its moving elements carry ``data-k`` and the
+    frames (pixels, one decimal) are in ``data-motion`` as JSON ``{"n": frames, "e": [...]}``; the
+    script :data:`PLAYER_SCRIPT` plays them, ``seconds`` a cycle.
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> 'data-motion="{&quot;n&quot;:12' in player_svg(sweep(four_bar, steps=37), frames=12)
+    True
+    """
+    elements, _ = _motion_elements(motion, frames)
+    svg = _svg(elements, _Canvas(elements, size), 0, player=True, title=_title(motion.linkage))
+    return svg.replace('class="moving"', f'class="moving" data-ms="{1000 * seconds / max(frames, 1):.0f}"', 1)
+
+
+#: plays every ``svg.moving`` of a page: each tick puts the next frame's points on its elements
+PLAYER_SCRIPT = """
+document.querySelectorAll('svg.moving').forEach(function (svg) {
+  var m = JSON.parse(svg.getAttribute('data-motion')), els = svg.querySelectorAll('[data-k]'), f = 0;
+  setInterval(function () {
+    f = (f + 1) % m.n; svg.setAttribute('data-frame', f);
+    els.forEach(function (el) {
+      var v = m.e[+el.getAttribute('data-k')][f], t = el.tagName;
+      if (t === 'circle') { el.setAttribute('cx', v[0]); el.setAttribute('cy', v[1]); }
+      else if (t === 'text') { el.setAttribute('x', v[0]); el.setAttribute('y', v[1]); }
+      else { el.setAttribute('points', v.join(' ')); }
+    });
+  }, +svg.getAttribute('data-ms') || 80);
+});
+"""
+
+
+def _title(linkage: Linkage) -> str:
+    names = ", ".join(joint_name(linkage.chain, k) for k in linkage.inputs)
+    return f"{linkage.chain.compact()}, frame {linkage.frame}, input {names}"
+
+
+def _check_suffix(out: str | Path, allowed: tuple[str, ...], what: str) -> Path:
+    path = Path(out)
+    if path.suffix.lower() not in allowed:
+        raise InvalidOption(f"{what} is written as {' or '.join(s[1:].upper() for s in allowed)}: end the file name in "
+                            f"{' or '.join(allowed)}, not {path.name!r}")
+    return path
+
+
+def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> None:
+    from matplotlib.patches import Circle, Polygon
+
+    for e in elements:
+        frames = canvas.pixels(e["frames"])
+        at = frames[0 if e.get("static") or len(frames) == 1 else frame]
+        st = e["style"]
+        width = float(st.get("stroke-width", 1.0)) * 0.75
+        dash = (0, (4, 2)) if st.get("stroke-dasharray") else "solid"
+        if e["tag"] == "circle":
+            fill = st.get("fill", "none")
+            ax.add_patch(Circle(at[0], e["r"] * canvas.scale, facecolor="none" if fill == "none" else fill,
+                                edgecolor=st["stroke"], lw=width, zorder=4))
+        elif e["tag"] == "text":
+            ax.text(at[0, 0], at[0, 1], e["text"], color=st["fill"], fontsize=9, fontweight="bold", zorder=6,
+                    va="bottom")
+        elif e["tag"] == "polygon":
+            fill = st.get("fill", "none")
+            ax.add_patch(Polygon(at, closed=True, facecolor="none" if fill == "none" else fill, edgecolor=st["stroke"],
+                                 lw=width, linestyle=dash, joinstyle="round", zorder=3 if fill == "white" else 2))
+        else:
+            ax.plot(at[:, 0], at[:, 1], color=st["stroke"], lw=width, linestyle=dash,
+                    solid_capstyle="round", zorder=(3.5 if st["stroke"] != _PATH else 1) if e.get("curve") else 3)
+    ax.set_xlim(0, canvas.width)
+    ax.set_ylim(canvas.height, 0)
+    ax.set_aspect("equal")
+    ax.axis("off")
+
+
+def _figure(canvas: _Canvas, dpi: int):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure(figsize=(canvas.width / dpi, canvas.height / dpi + 0.3), dpi=dpi)
+    ax = fig.add_axes([0, 0, 1, canvas.height / (canvas.height + 0.3 * dpi)])
+    return fig, ax
+
+
+def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None) -> None:
+    """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
+    paths of its moving pins (grey), to a PNG or SVG file.
+
+    >>> import os, tempfile
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
+    ...                    tracers={"P": (2, (2, 4))})
+    >>> out = os.path.join(tempfile.mkdtemp(), "coupler.svg")
+    >>> draw_motion(sweep(four_bar, steps=37), out)
+    >>> ">P</text>" in open(out).read()
+    True
+    """
+    path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
+    linkage = motion.linkage
+    if len(_frames(motion, 2)) == 0:
+        raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
+    joints, angles, tracers = _still(linkage)
+    keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
+    elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
+                         reach=(motion.joints[keep], motion.angles[keep]))
+    canvas = _Canvas(elements, size)
+    text = title or _title(linkage)
+    try:
+        if path.suffix.lower() == ".svg":
+            path.write_text(_svg(elements, canvas, 0, title=text))
+            return
+        import matplotlib.pyplot as plt
+
+        fig, ax = _figure(canvas, 100)
+        try:
+            _draw_matplotlib(ax, elements, canvas, 0)
+            fig.suptitle(text, fontsize=9, y=0.995, va="top")
+            fig.savefig(path, dpi=100)
+        finally:
+            plt.close(fig)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
+
+
+def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds: float = 3.0, size: int = 480,
+                   progress: bool = False) -> int:
+    """An animation of the sweep: a GIF (``frames`` frames drawn by matplotlib, looping) or an
+    animated SVG (SMIL).  Returns the number of frames written.
+
+    >>> import os, tempfile
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> animate_motion(sweep(four_bar, steps=37), os.path.join(tempfile.mkdtemp(), "four_bar.gif"), frames=6)
+    6
+    """
+    path = _check_suffix(out, ANIMATION_SUFFIXES, "an animation")
+    if not 2 <= frames <= 1000:
+        raise InvalidOption(f"an animation has 2 … 1000 frames, not {frames}")
+    elements, steps = _motion_elements(motion, frames)
+    canvas = _Canvas(elements, size)
+    try:
+        if path.suffix.lower() == ".svg":
+            path.write_text(_svg(elements, canvas, None, seconds=seconds, title=_title(motion.linkage)))
+            return len(steps)
+        import matplotlib.pyplot as plt
+        from PIL import Image
+
+        images = []
+        bar = None
+        if progress:
+            from tqdm import tqdm
+
+            bar = tqdm(total=len(steps), unit="frame", file=sys.stderr, desc="animation")
+        fig, ax = _figure(canvas, 100)
+        try:
+            for i in range(len(steps)):
+                ax.clear()
+                _draw_matplotlib(ax, elements, canvas, i)
+                if i == 0:
+                    fig.suptitle(_title(motion.linkage), fontsize=9, y=0.995, va="top")
+                fig.canvas.draw()
+                rgba = np.asarray(fig.canvas.buffer_rgba())
+                images.append(Image.fromarray(rgba[..., :3].copy()).quantize(colors=64))
+                if bar is not None:
+                    bar.update()
+        finally:
+            plt.close(fig)
+            if bar is not None:
+                bar.close()
+        images[0].save(path, save_all=True, append_images=images[1:], loop=0,
+                       duration=max(20, int(1000 * seconds / len(images))), optimize=True)
+        return len(images)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None

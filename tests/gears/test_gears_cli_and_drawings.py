@@ -1,0 +1,160 @@
+"""``mechsynth gears`` as a user meets it: output paths checked before any work, sheets that never
+drop trains silently, captions and link numbers that overprint nothing, a legend, tooth numbers
+and the ratio on a design's schematic, rotation counts that add up, large queries sized first,
+progress bars on a terminal."""
+
+from __future__ import annotations
+
+import fcntl
+import json
+import os
+import pty
+import select
+import struct
+import subprocess
+import sys
+import termios
+import time
+
+import pytest
+
+from synth.gears import GearTrain, count_trains, trains
+from synth.gears.draw import schematic, sheet_figure, _label_places
+
+
+def _cli(*args, **kwargs):
+    return subprocess.run([sys.executable, "-m", "mechsynth", "gears", *args], capture_output=True, text=True, **kwargs)
+
+
+# ------------------------------------------------------------------ output paths and sheets
+def test_unwritable_out_is_refused_before_any_work(tmp_path):
+    started = time.monotonic()
+    out = _cli("--links", "8", "--out", str(tmp_path / "missing" / "eight.png"))
+    assert out.returncode == 2 and out.stdout == "" and "cannot write" in out.stderr
+    assert time.monotonic() - started < 10  # the 6 360 trains take longer than the refusal
+    (tmp_path / "taken.png").mkdir()
+    out = _cli("--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.2",
+               "--out", str(tmp_path / "taken.png"))
+    assert out.returncode == 2 and out.stdout == "" and "is a directory" in out.stderr
+
+
+def test_a_sheet_beyond_the_limit_is_refused_before_anything_is_printed(tmp_path):
+    out = _cli("--links", "6", "--out", str(tmp_path / "six.png"))
+    assert out.returncode == 2 and out.stdout == "" and not (tmp_path / "six.png").exists()
+    assert "81 gear trains to draw, more than --limit 48" in out.stderr
+    out = _cli("--links", "5", "--out", str(tmp_path / "five.png"), "--limit", "12")
+    assert out.returncode == 2 and "13 gear trains to draw, more than --limit 12" in out.stderr
+    out = _cli("--links", "5", "--out", str(tmp_path / "five.png"), "--limit", "13")
+    assert out.returncode == 0 and "13 gear trains" in out.stdout and (tmp_path / "five.png").stat().st_size > 0
+
+
+def test_sheet_captions_never_overlap_and_link_numbers_clear_every_shaft():
+    """Seven-link trains (captions of 40 to 50 characters, wrapped), every tenth: rendered, no two
+    captions' boxes meet, no caption meets another drawing, and no link number meets a shaft."""
+    fig = sheet_figure(list(trains(1, 7))[::10][:24])
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    titles = [ax.title.get_window_extent(renderer) for ax in fig.axes]
+    bodies = [ax.get_window_extent(renderer) for ax in fig.axes]
+    for i, box in enumerate(titles):
+        assert not any(box.overlaps(other) for j, other in enumerate(titles) if j != i)
+        assert not any(box.overlaps(body) for j, body in enumerate(bodies) if j != i)
+    for ax in fig.axes:
+        numbers = [t.get_window_extent(renderer) for t in ax.texts if t.get_text().isdigit()]
+        shafts = [line.get_window_extent(renderer) for line in ax.lines
+                  if line.get_linewidth() == 2.2 and len(set(line.get_ydata())) == 1]
+        assert numbers and not any(n.overlaps(s) for n in numbers for s in shafts)
+        assert not any(a.overlaps(b) for i, a in enumerate(numbers) for b in numbers[i + 1:])
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+
+
+def test_link_numbers_stand_left_of_every_shaft():
+    train = GearTrain.parse("0-1-4 0-2 0-3 1~2 2~3 3~4", frame=1)
+    shafts = schematic(train)["shafts"]
+    left = min(s["from"] for s in shafts.values())
+    places = _label_places(shafts, left)
+    assert sorted(x for x, _, _ in places) == list(range(5)) and all(at < left for _, at, _ in places)
+    close = [(a, b) for a in places for b in places if a[0] < b[0] and abs(a[2] - b[2]) < 0.45]
+    assert close and all(a[1] != b[1] for a, b in close)  # concentric shafts: numbers side by side
+
+
+def test_design_schematic_shows_teeth_ratio_and_legend(tmp_path):
+    picture = tmp_path / "reducer.svg"
+    out = _cli("--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.2",
+               "--tolerance", "0.5%", "--teeth", "17..100", "--planets", "3", "--out", str(picture), "--format", "jsonl")
+    assert out.returncode == 0
+    best = json.loads(out.stdout.splitlines()[0])
+    text = picture.read_text()
+    for wheel, z in best["teeth"].items():
+        assert f"{wheel}={z}" in text
+    assert f"i = ω1/ω2 = {best['ratio']}" in text and "wanted 4.2" in text
+    for words in ("gear wheel", "ring gear", "carrier arm", "frame (black, hatched)"):
+        assert words in text
+
+
+# ------------------------------------------------------------------ counts
+@pytest.mark.parametrize("dof,links", [(1, 5), (1, 6), (1, 7), (2, 7)])
+def test_rotation_counts_by_code_add_up_and_match_the_listing(dof, links):
+    found = count_trains(dof, links, graphs="rotation")
+    assert sum(found["by_code"].values()) == found["count"]
+    listed: dict = {}
+    for t in trains(dof, links, graphs="rotation"):
+        code = str(t.lever_analogue().code)
+        listed[code] = listed.get(code, 0) + 1
+    assert listed == found["by_code"]
+
+
+def test_large_counts_are_sized_first():
+    started = time.monotonic()
+    out = _cli("--links", "12", "--count")
+    assert out.returncode == 2 and out.stdout == "" and "give --force" in out.stderr
+    assert "displacement graphs" in out.stderr and "extrapolated from the exact counts" in out.stderr
+    assert time.monotonic() - started < 60
+
+
+def test_a_long_count_says_how_long_before_it_starts():
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "10", "--count"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        line = proc.stderr.readline()
+    finally:
+        os.killpg(proc.pid, 9)
+        proc.wait()
+    assert line.startswith("mechsynth: a long query: about ") and " min on 1 worker" in line
+
+
+# ------------------------------------------------------------------ progress on a terminal
+def _on_terminal(args, seconds: float) -> str:
+    """What a command writes to a terminal's stderr in its first ``seconds``."""
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 40, 120, 0, 0))
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", *args], stdout=subprocess.DEVNULL,
+                            stderr=slave, start_new_session=True)
+    os.close(slave)
+    seen, started = b"", time.monotonic()
+    try:
+        while time.monotonic() - started < seconds:
+            ready, _, _ = select.select([master], [], [], 0.2)
+            if ready:
+                try:
+                    chunk = os.read(master, 4096)
+                except OSError:
+                    break
+                if not chunk:
+                    break
+                seen += chunk
+    finally:
+        os.killpg(proc.pid, 9)
+        proc.wait()
+        os.close(master)
+    return seen.decode(errors="replace")
+
+
+def test_long_searches_show_a_progress_bar_on_a_terminal():
+    shown = _on_terminal(["--links", "9", "--count"], 15)
+    assert "gear trains:" in shown and "/496 [" in shown and "trees/s" in shown
+    shown = _on_terminal(["--links", "6", "--ratio", "7.3", "--tolerance", "0.5%", "--teeth", "17..80",
+                          "--planets", "3"], 10)
+    assert "ratio design:" in shown and "/81 [" in shown

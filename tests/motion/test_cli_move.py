@@ -1,0 +1,242 @@
+"""`mechsynth move` end to end: rows, range, pictures and animations, and bad inputs (one sentence,
+exit 2, nothing written or changed)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechsynth.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+FOUR_BAR = ROOT / "models" / "motion_four_bar.toml"
+SLIDER = ROOT / "models" / "motion_slider_crank.toml"
+
+
+def _run(capsys, *args):
+    code = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_rows_of_a_crank_rocker_follow_the_closed_form(capsys):
+    """csv rows: input from the pose's 90° through a turn; the coupler pin B on both circles."""
+    code, out, err = _run(capsys, "move", FOUR_BAR, "--steps", "37", "--format", "csv")
+    assert code == 0 and err == ""
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert len(rows) == 37
+    phi = np.array([float(r["input"]) for r in rows])
+    assert phi[0] == pytest.approx(math.pi / 2) and phi[-1] - phi[0] == pytest.approx(2 * math.pi)
+    a = np.array([[float(r["1-2.x"]), float(r["1-2.y"])] for r in rows])
+    b = np.array([[float(r["2-3.x"]), float(r["2-3.y"])] for r in rows])
+    assert np.allclose(a, np.c_[np.cos(phi), np.sin(phi)], atol=1e-12)
+    assert np.allclose(np.hypot(*(b - a).T), 3.5, atol=1e-12)
+    assert np.allclose(np.hypot(*(b - [4, 0]).T), 3.0, atol=1e-12)
+    assert {"P.x", "P.y"} <= set(rows[0])
+
+
+def test_velocities_match_central_differences(capsys):
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "721", "--velocities", "--accelerations",
+                        "--format", "jsonl")
+    assert code == 0
+    rows = [json.loads(line) for line in out.splitlines()]
+    h = rows[1]["input"] - rows[0]["input"]
+    for s in (100, 400, 650):
+        for axis in "xy":
+            diff = (rows[s + 1][f"2-3.{axis}"] - rows[s - 1][f"2-3.{axis}"]) / (2 * h)
+            assert rows[s][f"2-3.v{axis}"] == pytest.approx(diff, rel=1e-3, abs=1e-6)
+            second = (rows[s + 1][f"2-3.{axis}"] - 2 * rows[s][f"2-3.{axis}"] + rows[s - 1][f"2-3.{axis}"]) / h**2
+            assert rows[s][f"2-3.a{axis}"] == pytest.approx(second, rel=1e-3, abs=1e-5)
+
+
+def test_every_format_gives_the_same_rows(capsys):
+    outs = {fmt: _run(capsys, "move", SLIDER, "--steps", "5", "--format", fmt)[1] for fmt in ("jsonl", "json", "csv")}
+    from_jsonl = [json.loads(line) for line in outs["jsonl"].splitlines()]
+    assert json.loads(outs["json"]) == from_jsonl
+    from_csv = list(csv.DictReader(io.StringIO(outs["csv"])))
+    assert [float(r["2-3.x"]) for r in from_csv] == [r["2-3.x"] for r in from_jsonl]
+    code, table, _ = _run(capsys, "move", SLIDER, "--steps", "5")
+    assert code == 0 and table.splitlines()[0].split()[:2] == ["step", "input"] and len(table.splitlines()) == 7
+
+
+def test_range_of_the_four_bar(capsys):
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--format", "json")
+    doc = json.loads(out)
+    assert code == 0 and doc["full_rotation"] is True and doc["limits"] is None
+    assert doc["grashof"].startswith("crank-rocker")
+    worst = min(min(t["min"], math.pi - t["max"]) for t in doc["transmission"].values())
+    assert math.degrees(worst) == pytest.approx(54.31466528734795, abs=1e-6)
+    x0, y0, x1, y1 = doc["extent"]["P"]
+    assert x0 < x1 and y0 < y1
+    code, table, _ = _run(capsys, "move", FOUR_BAR, "--range")
+    assert code == 0 and "turns fully" in table and "Grashof" in table and "curve P" in table
+
+
+def test_a_rocker_reports_true_limits(capsys, tmp_path):
+    """The triad scene's linkage rocks: its limits are dead positions, and a sweep ends at them."""
+    triad = ROOT / "models" / "motion_triad.toml"
+    code, out, _ = _run(capsys, "move", triad, "--range", "--format", "json")
+    doc = json.loads(out)
+    assert code == 0 and doc["full_rotation"] is False and doc["limits"][0] < doc["limits"][1]
+    assert len(doc["dead_positions"]) == 2
+
+
+def test_pictures_and_animations_are_written(capsys, tmp_path):
+    png, gif, svg = tmp_path / "c.png", tmp_path / "m.gif", tmp_path / "m.svg"
+    code, out, err = _run(capsys, "move", FOUR_BAR, "--out", png, "--animate", gif, "--frames", "12")
+    assert code == 0 and out == "" and "12 frames" in err
+    from PIL import Image
+
+    with Image.open(png) as im:
+        assert im.size[0] >= 300
+    with Image.open(gif) as im:
+        assert im.n_frames == 12
+        im.seek(0)
+        first = np.asarray(im.convert("RGB")).copy()
+        im.seek(6)
+        assert (np.asarray(im.convert("RGB")) != first).any()  # the frames differ: it moves
+    code, _, _ = _run(capsys, "move", FOUR_BAR, "--animate", svg)
+    text = svg.read_text()
+    assert code == 0 and text.count("<animate ") > 10 and 'repeatCount="indefinite"' in text
+
+
+def test_a_chain_dimensioned_by_its_drawing_moves_and_can_be_saved(capsys, tmp_path):
+    saved = tmp_path / "watt.json"
+    code, _, err = _run(capsys, "move", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--frame", "0", "--save", saved)
+    assert code == 0
+    linkage = json.loads(saved.read_text())
+    assert linkage["chain"] == "0-1 0-3 0-4 1-2 1-5 2-3 4-5" and linkage["frame"] == 0
+    code, out, _ = _run(capsys, "move", saved, "--steps", "3", "--format", "jsonl")
+    assert code == 0 and len(out.splitlines()) == 3
+
+
+def test_a_sweep_into_a_dead_position_stops_there_and_says_so(capsys):
+    code, out, err = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--start", "130", "--stop", "200",
+                          "--steps", "50", "--format", "jsonl")
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert code == 0 and "stopped" in err and 0 < len(rows) < 50
+    assert math.degrees(rows[-1]["input"]) <= 161.1
+
+
+BAD = [
+    (["move"], "give one mechanism"),
+    (["move", str(FOUR_BAR), "--chain", "0-1 1-2 2-3 3-0"], "give one mechanism"),
+    (["move", "--chain", "0-1 1-2 2-3 3-0"], "--frame"),
+    (["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "7"], "not a link"),
+    (["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--input", "1-2"], "joint of the frame"),
+    (["move", "--chain", "0-1 1-2 2-0", "--frame", "0"], "rigid"),
+    (["move", "--chain", "0-1 1-2 2-3 3-4 4-0", "--frame", "0"], "W = 2"),
+    (["move", "--db", "x.sqlite"], "--id"),
+    (["move", "--id", "814ad964fad2", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0"], "--db"),
+    (["move", str(FOUR_BAR), "--frame", "0"], "--frame"),
+    (["move", str(FOUR_BAR), "--steps", "1"], "--steps"),
+    (["move", str(FOUR_BAR), "--steps", "100000000"], "--steps"),
+    (["move", str(FOUR_BAR), "--steps", "ten"], "whole number"),
+    (["move", str(FOUR_BAR), "--start", "nan"], "finite"),
+    (["move", str(FOUR_BAR), "--start", "10", "--stop", "10"], "two different ends"),
+    (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
+    (["move", str(FOUR_BAR), "--range", "--velocities"], "--range"),
+    (["move", str(FOUR_BAR), "--frames", "10"], "--animate"),
+    (["move", str(FOUR_BAR), "--out", "curves.jpg"], "PNG or SVG"),
+    (["move", str(FOUR_BAR), "--animate", "m.mp4"], "GIF or SVG"),
+    (["move", str(FOUR_BAR), "--out", "/no/such/dir/c.png"], "cannot write"),
+    (["move", str(FOUR_BAR), "--out", "same.svg", "--animate", "same.svg"], "same file"),
+    (["move", "no_such_file.toml"], "no linkage file"),
+    (["move", "README.md"], ".toml or .json"),
+]
+
+
+@pytest.mark.parametrize("argv, words", BAD, ids=[" ".join(a[1:])[:40] for a, _ in BAD])
+def test_bad_inputs_are_one_sentence_and_exit_2(argv, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code = main(argv)
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert words in err and err.count("\n") == 1 and "Traceback" not in err
+    assert not any(tmp_path.iterdir())  # nothing written
+
+
+@pytest.mark.parametrize("content, words", [
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\n'
+     'points = { "0-1" = [0, 0], "0-3" = [4, 0], "1-2" = [0, 0], "2-3" = [3, 2] }\n', "same point"),
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1", "0-3"]\n'
+     'points = { "0-1" = [0, 0], "0-3" = [4, 0], "1-2" = [1, 0], "2-3" = [3, 2] }\n', "needs 1 input"),
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = []\n'
+     'points = { "0-1" = [0, 0], "0-3" = [4, 0], "1-2" = [1, 0], "2-3" = [3, 2] }\n', "needs 1 input"),
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\n'
+     'points = { "0-1" = [0, 0], "0-3" = [4, 0], "1-2" = [1, 0], "2-3" = [nan, 2] }\n', "not finite"),
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\n'
+     'points = { "0-1" = [0, 0], "0-3" = [4, 0], "1-2" = [1, 0], "2-3" = [inf, 2] }\n', "not finite"),
+    ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\npoints = { "0-1" = [0, 0] }\n', "no position"),
+    ('[linkage]\nchain = "0-1 1-2 2-0"\nframe = 0\ninputs = ["0-1"]\n'
+     'points = { "0-1" = [0, 0], "1-2" = [1, 0], "0-2" = [0, 1] }\n', "rigid"),
+    ("not toml at all [", "not valid TOML"),
+])
+def test_bad_linkage_files(content, words, capsys, tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(content)
+    before = path.read_bytes()
+    code = main(["move", str(path), "--out", str(tmp_path / "c.png")])
+    err = capsys.readouterr().err
+    assert code == 2 and words in err and err.count("\n") == 1, err
+    assert path.read_bytes() == before and not (tmp_path / "c.png").exists()
+
+
+def test_an_input_the_branch_cannot_reach_is_refused_with_its_range(capsys):
+    """The triad's input rocks between 125.4° and 161.0°: a sweep from 0° cannot be assembled there."""
+    code, out, err = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--start", "0", "--stop", "10",
+                          "--format", "csv")
+    assert code == 2 and out == "" and "cannot be assembled" in err and "125.4" in err and err.count("\n") == 1
+
+
+def test_ctrl_c_stops_a_long_sweep_within_two_seconds(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "move", str(FOUR_BAR), "--steps", "1000000",
+                             "--velocities", "--format", "jsonl"], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, env=env, start_new_session=True)
+    time.sleep(4)
+    os.killpg(proc.pid, signal.SIGINT)
+    start = time.monotonic()
+    proc.wait(timeout=30)
+    assert time.monotonic() - start < 2.0 and proc.returncode == 130
+
+
+def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
+    """The Watt chain of an atlas (id 814ad964fad2), its ternary link 4 fixed: Watt II."""
+    from synth.atlas import run_grid
+    from synth.atlas.grid import parse_grid
+
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), str(db), workers=1)
+    before = db.read_bytes()
+    code, out, err = _run(capsys, "move", "--db", db, "--id", "814ad964fad2", "--frame", "4", "--range",
+                          "--format", "json")
+    assert code == 0 and "4" in json.loads(out)["input"].split("-")  # a joint of the frame drives
+    assert db.read_bytes() == before  # the atlas is only read
+    code, _, err = _run(capsys, "move", "--db", db, "--id", "000000000000", "--frame", "0")
+    assert code == 2 and "000000000000" in err
+
+
+def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
+    """More than 20 000 steps are computed a piece at a time (Ctrl-C is seen between pieces): the
+    rows are those of one sweep over the same inputs."""
+    from synth.motion import read_linkage, sweep
+
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "45001", "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(out)))
+    whole = sweep(read_linkage(FOUR_BAR), steps=45001)
+    assert code == 0 and len(rows) == 45001 and [int(r["step"]) for r in rows[::9000]] == list(range(0, 45001, 9000))
+    for s in (0, 19999, 20000, 20001, 45000):
+        assert float(rows[s]["input"]) == pytest.approx(whole.inputs[s, 0], abs=1e-12)
+        assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
