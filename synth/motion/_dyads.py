@@ -19,7 +19,7 @@ import numpy as np
 from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
-__all__ = ["Dyad", "decompose", "close", "locked_groups"]
+__all__ = ["Dyad", "Closure", "decompose", "close", "locked_groups"]
 
 
 @dataclass(frozen=True)
@@ -152,41 +152,74 @@ def _cross2(a, b):
 _KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "gear": GEAR}
 
 
-def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):
-    """Every link's pose at S input offsets (S, W) from the pose's inputs, by the compiled kernel.
+class Closure:
+    """A linkage's dyads packed once for the compiled kernel, closed at any input offsets (S, W)
+    from the pose's inputs.  Calling it gives θ (S, n), t (S, n, 2), g (S, G) the dyads'
+    normalised discriminants (the dyad closes where g ≥ 0), μ (S, G) their transmission angles (rad
+    in [0, π]; NaN for a gear) and every joint's position (S, J, 2); :meth:`points` gives only θ,
+    the joints and the tracer points (what a sweep keeps).  Where a dyad does not close, its links'
+    poses are NaN.
 
-    Returns θ (S, n), t (S, n, 2), g (S, G) the dyads' normalised discriminants (the dyad closes
-    where g ≥ 0), μ (S, G) their transmission angles (rad in [0, π]; NaN for a gear) and every
-    joint's position (S, J, 2).  Where a dyad does not close, its links' poses are NaN.
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> theta, joints, tracers = Closure(lk, decompose(lk)).points(np.array([[0.0], [np.pi]]))
+    >>> joints[1, 2].round(12).tolist()
+    [-1.0, 0.0]
     """
-    lk = linkage
-    chain = lk.chain
-    offsets = np.ascontiguousarray(offsets, dtype=float)
-    steps, n, count = offsets.shape[0], chain.links, len(chain.joints)
-    slides = np.zeros((count, 2))
-    for k, u in lk.slides.items():
-        slides[k] = u
-    in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
-    in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
-    in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
-    in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
-    groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)
-    ints = np.zeros((len(plan), 9), dtype=np.int64)
-    floats = np.zeros((len(plan), 2))
-    for m, d in enumerate(plan):
-        mesh = chain.joints[d.outer[1]] if d.kind == "gear" else (0, 0)
-        ints[m] = (*d.links, *d.outer, max(d.middle, 0), *d.known, *mesh)
-        floats[m] = (d.sign, lk.meshes.get(d.outer[1], 1.0) if d.kind == "gear" else 0.0)
-    theta = np.zeros((steps, n))
-    t = np.zeros((steps, n, 2))
-    g = np.empty((steps, len(plan)))
-    mu = np.empty((steps, len(plan)))
-    joints = np.empty((steps, count, 2))
-    first = np.array([j[0] for j in chain.joints], dtype=np.int64)
-    close_kernel(offsets, in_link, in_prismatic, in_point, in_slide, groups, ints, floats,
-                 np.ascontiguousarray(lk.points), slides, first, lk.scale ** 2, theta, t[:, :, 0], t[:, :, 1], g, mu,
-                 joints)
-    return theta, t, g, mu, joints
+
+    def __init__(self, linkage: Linkage, plan: list[Dyad]):
+        lk = self.linkage = linkage
+        chain = lk.chain
+        count = len(chain.joints)
+        slides = np.zeros((count, 2))
+        for k, u in lk.slides.items():
+            slides[k] = u
+        in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
+        in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
+        in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+        in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
+        groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)
+        ints = np.zeros((len(plan), 9), dtype=np.int64)
+        floats = np.zeros((len(plan), 2))
+        for m, d in enumerate(plan):
+            mesh = chain.joints[d.outer[1]] if d.kind == "gear" else (0, 0)
+            ints[m] = (*d.links, *d.outer, max(d.middle, 0), *d.known, *mesh)
+            floats[m] = (d.sign, lk.meshes.get(d.outer[1], 1.0) if d.kind == "gear" else 0.0)
+        points = np.array(lk.points, dtype=float)  # a writable copy, as the tracers' below: one compiled signature
+        self._dyads = (in_link, in_prismatic, in_point, in_slide, groups, ints, floats, points, slides)
+        first = np.array([j[0] for j in chain.joints], dtype=np.int64)
+        self._joints = (first, points)
+        traced = list(lk.tracers.values())
+        self._carried = (np.concatenate((first, np.array([link for link, _ in traced], dtype=np.int64))),
+                         np.concatenate((points, np.array([at for _, at in traced], dtype=float).reshape(-1, 2))))
+        self._scale2 = float(lk.scale) ** 2
+
+    def _run(self, offsets, carried, every: bool):
+        offsets = np.ascontiguousarray(offsets, dtype=float)
+        steps, n, groups = offsets.shape[0], self.linkage.chain.links, len(self._dyads[4])
+        rows = steps if every else 0
+        theta = np.empty((steps, n))
+        t_x, t_y = np.empty((rows, n)), np.empty((rows, n))
+        g, mu = np.empty((rows, groups)), np.empty((rows, groups))
+        out = np.empty((steps, len(carried[0]), 2))
+        close_kernel(offsets, *self._dyads, *carried, self._scale2, theta, t_x, t_y, g, mu, out)
+        return theta, t_x, t_y, g, mu, out
+
+    def __call__(self, offsets: np.ndarray):
+        theta, t_x, t_y, g, mu, joints = self._run(offsets, self._joints, True)
+        return theta, np.stack((t_x, t_y), axis=-1), g, mu, joints
+
+    def points(self, offsets: np.ndarray):
+        """θ (S, n), the joints (S, J, 2) and each tracer's points (S, 2) by name."""
+        theta, _, _, _, _, out = self._run(offsets, self._carried, False)
+        count = len(self.linkage.chain.joints)
+        return theta, out[:, :count], {name: out[:, count + i] for i, name in enumerate(self.linkage.tracers)}
+
+
+def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):
+    """Every link's pose at S input offsets (S, W) from the pose's inputs, by the compiled kernel:
+    θ, t, g, μ and the joints, as :class:`Closure` gives them."""
+    return Closure(linkage, plan)(offsets)
 
 
 def locked_groups(linkage: Linkage) -> list[tuple[int, int]]:

@@ -12,7 +12,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import BadSweep, CannotAssemble, MotionError
-from ._dyads import close, decompose
+from ._dyads import Closure, decompose
 from ._linkage import Linkage, joint_name
 from ._system import System
 
@@ -150,12 +150,13 @@ class _Solver:
         self.linkage = linkage
         self.system = System(linkage)
         self.plan = decompose(linkage)
+        self.closure = None if self.plan is None else Closure(linkage, self.plan)
         self.revolute = [linkage.kind(k) == "revolute" for k in linkage.inputs]
 
     # ------------------------------------------------------------ positions
     def closed(self, offsets: np.ndarray):
         """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
-        return close(self.linkage, self.plan, offsets)
+        return self.closure(offsets)
 
     def gmin(self, x: float) -> float:
         """The smallest dyad discriminant at 1-DOF offset x (≥ 0 where the linkage closes)."""
@@ -347,9 +348,8 @@ class _Solver:
         centre = len(xs) // 2
         ends = []
         for step in (-1, 1):
-            k = centre
-            while 0 <= k + step < len(xs) and not bad[k + step]:
-                k += step
+            beyond = np.flatnonzero(bad[centre + 1:] if step > 0 else bad[:centre][::-1])  # the first sample that fails
+            k = centre + step * (int(beyond[0]) if len(beyond) else (len(xs) - 1 - centre if step > 0 else centre))
             end = (step * math.inf, "")
             if 0 <= k + step < len(xs):
                 good_x, bad_x = xs[k], xs[k + step]
@@ -589,11 +589,14 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
     offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
-    theta, t, joints = solver.poses_along(offsets)
-    if joints is None or linkage.tracers:
-        joints, tracers = _points(linkage, theta, t, joints)
+    if solver.plan is not None and not (velocities or accelerations):  # the poses and points only: in one pass
+        theta, joints, tracers = solver.closure.points(offsets[:, None])
     else:
-        tracers = {}
+        theta, t, joints = solver.poses_along(offsets)
+        if joints is None or linkage.tracers:
+            joints, tracers = _points(linkage, theta, t, joints)
+        else:
+            tracers = {}
     inputs = (offsets - x0 + start)[:, None]
     vel = acc = None
     if velocities or accelerations:

@@ -27,9 +27,10 @@ __all__ = ["System", "check_movable"]
 
 
 def _rotate(theta: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """R(θ)·p for θ of shape (S,) and p of shape (2,): shape (S, 2)."""
+    """R(θ)·p for θ of shape (S,) and p of shape (2,): shape (S, 2); or θ (S, P) and points p (P, 2):
+    shape (S, P, 2)."""
     c, s = np.cos(theta), np.sin(theta)
-    return np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=-1)
+    return np.stack((c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]), axis=-1)
 
 
 def _perp(v: np.ndarray) -> np.ndarray:
@@ -74,6 +75,22 @@ class System:
         for i, k in enumerate(lk.inputs):
             self.drives.append((lk.input_link(i), lk.kind(k), points[k], np.array(lk.slides.get(k, (1.0, 0.0)))))
         self.rows = 2 * len(self.pins) + 2 * len(self.sliders) + len(self.meshes) + len(self.drives)
+        # the pins' equations at once: each pin's links, point, rows and (θ-)columns (−1: the frame)
+        self._pin_a = np.array([a for a, _, _ in self.pins], dtype=int)
+        self._pin_b = np.array([b for _, b, _ in self.pins], dtype=int)
+        self._pin_p = np.array([p for _, _, p in self.pins], dtype=float).reshape(-1, 2)
+        pin_rows = 2 * np.arange(len(self.pins))
+        theta_col = np.array([3 * self.column[x] + 2 if x in self.column else -1 for x in range(chain.links)])
+        self._pin_ends = np.concatenate((self._pin_a, self._pin_b))  # both ends' points turned in one call
+        self._pin_pp = np.concatenate((self._pin_p, self._pin_p))
+        self._constant = np.zeros((self.rows, self.size))  # the Jacobian's entries that do not depend on q
+        jac = []  # per pin end on a moving link: the end, its pin's x row, its link's θ column, its sign
+        for side, (links, sign) in enumerate(((self._pin_a, 1.0), (self._pin_b, -1.0))):
+            moving = np.flatnonzero(theta_col[links] >= 0)
+            rows, cols = pin_rows[moving], theta_col[links[moving]]
+            self._constant[rows, cols - 2] = self._constant[rows + 1, cols - 1] = sign
+            jac.append((moving + side * len(self.pins), rows, cols, np.full(len(moving), sign)))
+        self._pin_jac = tuple(np.concatenate(parts) for parts in zip(*jac))
 
     # ------------------------------------------------------------- poses
     def poses(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -94,9 +111,10 @@ class System:
     # ---------------------------------------------------------- equations
     def residual(self, theta, t, values) -> np.ndarray:
         """The closure equations' values (S, rows); ``values`` the inputs (S, W)."""
-        out = []
-        for a, b, p in self.pins:
-            out += list((_rotate(theta[:, a], p) + t[:, a] - _rotate(theta[:, b], p) - t[:, b]).T)
+        count = len(self.pins)
+        turned = _rotate(theta[:, self._pin_ends], self._pin_pp)
+        pins = turned[:, :count] + t[:, self._pin_a] - turned[:, count:] - t[:, self._pin_b]
+        out = list(pins.reshape(len(theta), -1).T)
         for a, b, p, u in self.sliders:
             d = _rotate(theta[:, b], p) + t[:, b] - _rotate(theta[:, a], p) - t[:, a]
             out += [theta[:, a] - theta[:, b], _cross(_rotate(theta[:, a], u), d)]
@@ -113,9 +131,13 @@ class System:
     def jacobian(self, theta, t) -> np.ndarray:
         """∂(equations)/∂q, shape (S, rows, 3m)."""
         s = theta.shape[0]
-        jac = np.zeros((s, self.rows, self.size))
+        jac = np.repeat(self._constant[None], s, axis=0)
         col = self.column
-        row = 0
+        ends, rows, cols, sign = self._pin_jac
+        turned = _rotate(theta[:, self._pin_ends[ends]], self._pin_pp[ends])  # ∂/∂θ: the point turned by +90°
+        jac[:, rows, cols] = -sign * turned[..., 1]
+        jac[:, rows + 1, cols] = sign * turned[..., 0]
+        row = 2 * len(self.pins)
 
         def put(r, link, dt, dtheta):  # dt (S, 2) or None, dtheta (S,)
             if link in col:
@@ -125,14 +147,6 @@ class System:
                 jac[:, r, c + 2] += dtheta
 
         one = np.ones(s)
-        for a, b, p in self.pins:
-            ra, rb = _perp(_rotate(theta[:, a], p)), _perp(_rotate(theta[:, b], p))
-            for axis in (0, 1):
-                e = np.zeros((s, 2))
-                e[:, axis] = 1
-                put(row + axis, a, e, ra[:, axis])
-                put(row + axis, b, -e, -rb[:, axis])
-            row += 2
         for a, b, p, u in self.sliders:
             put(row, a, None, one)
             put(row, b, None, -one)
@@ -183,12 +197,15 @@ class System:
         return np.stack(out, axis=1)
 
     # ------------------------------------------------------------ solves
-    def solve_linear(self, jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    def solve_linear(self, jac: np.ndarray, rhs: np.ndarray, regular: np.ndarray | None = None) -> np.ndarray:
         """Solve J·x = rhs per configuration (least squares where the system has more rows than
-        unknowns, as with wedge loops whose angle equations repeat); NaN where J is singular."""
+        unknowns, as with wedge loops whose angle equations repeat); NaN where J is singular.
+        ``regular``: where J is known not to be singular (det J ≠ 0), if already found."""
         if self.rows == self.size:
+            ok = np.abs(np.linalg.det(jac)) > 0 if regular is None else regular
+            if ok.all():  # (no copies of the regular configurations to make)
+                return np.linalg.solve(jac, rhs)
             out = np.full(rhs.shape, np.nan)
-            ok = np.abs(np.linalg.det(jac)) > 0
             if ok.any():
                 out[ok] = np.linalg.solve(jac[ok], rhs[ok])
             return out
@@ -200,14 +217,15 @@ class System:
         jac = self.jacobian(theta, t)
         w = len(self.drives)
         rhs = np.broadcast_to(self.rate_column(), (len(theta), self.rows, w))
-        qd = np.moveaxis(self.solve_linear(jac, np.array(rhs)), 2, 1)  # (S, W, 3m)
+        regular = np.abs(np.linalg.det(jac)) > 0 if accelerations and self.rows == self.size else None
+        qd = np.moveaxis(self.solve_linear(jac, np.array(rhs), regular), 2, 1)  # (S, W, 3m)
         if not accelerations:
             return qd, None
         qdd = np.empty_like(qd)
         for i in range(w):
             dtheta, dt = self.poses(qd[:, i])
             gamma = self.convective(theta, t, dtheta, dt)
-            qdd[:, i] = self.solve_linear(jac, -gamma[..., None])[..., 0]
+            qdd[:, i] = self.solve_linear(jac, -gamma[..., None], regular)[..., 0]
         return qd, qdd
 
     def conditioning(self, theta, t) -> np.ndarray:
