@@ -5,6 +5,7 @@ import signal
 import sys
 import tempfile
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 # Tests (and the subprocesses they start) use this checkout's packages, whatever is installed.
@@ -34,3 +35,15 @@ settings.register_profile(
 )
 settings.register_profile("explore", deadline=None, max_examples=500, suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+
+@pytest.fixture
+def no_solver_store(monkeypatch):
+    """Solver results computed afresh, none read from the store (synth.execution.memo off): for the
+    tests that change how stage A or number synthesis computes them."""
+    from synth.execution import memo
+
+    monkeypatch.setenv("MECHSYNTH_CACHE", "off")
+    memo._store.cache_clear()
+    yield
+    memo._store.cache_clear()

@@ -22,6 +22,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "models"
+PACKAGES = ("mechbase", "synth", "balance", "mechsynth")  # every package pyproject.toml installs
 
 # every subcommand of `mechsynth --help`, each with a small real job (paths are absolute: cwd is elsewhere)
 SMOKE = [
@@ -38,6 +39,7 @@ SMOKE = [
     ["compare", str(MODELS / "atlas_8_links_damaged.txt"), "--dof", "1", "--links", "8", "--workers", "1"],
     ["scene", str(MODELS / "locomotive_drive.toml")],
     ["planetary", "--satellites", "2..3"],
+    ["move", str(MODELS / "motion_four_bar.toml"), "--steps", "5", "--format", "csv"],
     ["gears", "--dof", "1", "--links", "5", "--count"],
     ["balance", "prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5"],
     ["balance", "arm", str(MODELS / "arm_base_drives.toml")],
@@ -48,7 +50,7 @@ def _copy_sources(dest: Path) -> None:
     """What a clone holds for building (the build writes build/ and *.egg-info next to the sources)."""
     for name in ("pyproject.toml", "README.md"):
         shutil.copy2(ROOT / name, dest / name)
-    for package in ("synth", "balance", "mechsynth"):
+    for package in PACKAGES:
         shutil.copytree(ROOT / package, dest / package, ignore=shutil.ignore_patterns("__pycache__"))
 
 
@@ -92,7 +94,7 @@ def test_the_wheel_holds_every_package_of_the_sources(installed):
                            capture_output=True, text=True, env=env, cwd=work, check=True).stdout.split()
     assert all(str(work / "venv") in path for path in found), found  # the wheel's copy, not the checkout
     packages = sorted(str(p.parent.relative_to(ROOT)).replace(os.sep, ".")
-                      for top in ("synth", "balance", "mechsynth") for p in (ROOT / top).rglob("__init__.py"))
+                      for top in PACKAGES for p in (ROOT / top).rglob("__init__.py"))
     missing = subprocess.run([str(python), "-c", "import importlib, sys\n"
                               "for name in sys.argv[1:]:\n"
                               "    try: importlib.import_module(name)\n"

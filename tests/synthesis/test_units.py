@@ -185,7 +185,7 @@ def test_count_descriptions_and_identities():
     from synth.synthesis.type_synthesis import _describe, _identity, plan_jobs
 
     query = synth.ChainQuery(1, 8, v=None, require=["3=2"], planar_only=True, fractionated=False, cranks=())
-    assert _describe("chains", query) == "chains dof=1 links=8 require=[3=2] planar_only=True"
+    assert _describe("chains", query) == "chains dof=1 links=8 require=[3=2] fractionated=False planar_only=True"
     jobs = plan_jobs(synth.ChainQuery(1, 8))
     assert _identity("chains", jobs) != _identity("chains", jobs[:1])
     assert _identity("chains", jobs) != _identity("mechanisms", jobs)
@@ -344,7 +344,7 @@ STAGE_A_QUERIES = [dict(dof=1, links=8, v=(0, 4)), dict(dof=1, links=6, h=2, v=(
 
 
 @pytest.mark.parametrize("query", STAGE_A_QUERIES, ids=_query_id)
-def test_stage_a_conditions_in_the_model_or_on_its_solutions_agree(query, monkeypatch):
+def test_stage_a_conditions_in_the_model_or_on_its_solutions_agree(query, monkeypatch, no_solver_store):
     """Stage A writes the sub-chain conditions of small codes into its CP-SAT model and checks those of
     large codes on the model's solutions (``_StringBounds.meet``, in blocks).  With every condition
     checked on the solutions, in blocks of 5, each query gets the same branch graphs H; and the
