@@ -162,6 +162,7 @@ def _linkage(args):
 def _run(args) -> int:
     from synth import InvalidOption
     from synth.motion import motion_range, sweep
+    from synth.structure.joints import REVOLUTE
 
     _check(args)
     linkage = _linkage(args)
@@ -174,7 +175,7 @@ def _run(args) -> int:
     if linkage.dof != 1:
         raise InvalidOption(f"this linkage has W = {linkage.dof} inputs; 'move' sweeps one input (from Python, "
                             "synth.motion.sweep_grid moves several over a grid)")
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
     start, stop = (None if v is None else (math.radians(v) if revolute else v) for v in (args.start, args.stop))
     rows_only = not (args.out or args.animate or args.range or args.save)
     if rows_only and args.steps > _CHUNK:
@@ -278,9 +279,10 @@ def _write_piece(rows: list[dict], columns: list[str], fmt: str, before: int) ->
 def _write_range(linkage, reach, motion, fmt: str) -> None:
     """The range document: JSON, or a two-column table."""
     from synth.motion import joint_name
+    from synth.structure.joints import REVOLUTE
 
     k = linkage.inputs[0]
-    revolute = linkage.kind(k) == "revolute"
+    revolute = linkage.kind(k) == REVOLUTE
     turns = revolute and reach.full_rotation  # a crank's positions are angles of one turn: 0 … 360°
     unit = (lambda v: math.degrees(v) % 360.0 if turns else math.degrees(v)) if revolute else (lambda v: v)
     word = "°" if revolute else ""

@@ -10,6 +10,7 @@ from __future__ import annotations
 from pydantic import StrictStr
 
 from synth.schema import Table
+from synth.structure.joints import PRISMATIC
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
@@ -53,8 +54,8 @@ def _prismatic(run: Run) -> dict:
     for r in rows:
         by_dof[str(r["dof"])] = by_dof.get(str(r["dof"]), 0) + 1
     # a cylinder: a prismatic pair between two binary links (the barrel and its rod)
-    actuated = sum(1 for c in variants if c.kinds and all(
-        c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == "prismatic"))
+    actuated = sum(1 for c in variants if not c.all_revolute and all(
+        c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == PRISMATIC))
     return {"count": len(rows), "by_dof": by_dof, "all_cylinders": actuated, "variants": rows}
 
 

@@ -30,6 +30,7 @@ import numpy as np
 from pydantic import StrictStr
 
 from synth.schema import Table
+from synth.structure.joints import MESH, REVOLUTE
 
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
@@ -92,7 +93,7 @@ def _rigidity_error(linkage, joints: np.ndarray) -> float:
     """The largest change, over the steps, of the distance between two revolute joints of one link."""
     worst = 0.0
     for link in range(linkage.chain.links):
-        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]
+        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
         for i, a in enumerate(pins):
             for b in pins[i + 1:]:
                 pose = math.dist(linkage.points[a], linkage.points[b])
@@ -107,7 +108,7 @@ def _motion(run: Run) -> dict:
     linkage = run.scene.tables["linkage"]
     motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
     reach = motion_range(linkage)
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
     worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()], default=None)
     return {"full_rotation": reach.full_rotation,
             "input_limits": [math.degrees(v) if revolute else v for v in reach.limits] if reach.limits else None,
@@ -188,7 +189,7 @@ def _freudenstein(linkage, motion) -> float | None:
     """The residual of Freudenstein's equation K1 cos θ4 − K2 cos θ2 + K3 = cos(θ2 − θ4) over the
     sweep, angles from the ground line; None unless the linkage is a four-bar of revolute joints."""
     chain = linkage.chain
-    if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != "revolute" for k in range(4)):
+    if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != REVOLUTE for k in range(4)):
         return None
     frame = linkage.frame
     o2 = linkage.inputs[0]
@@ -279,7 +280,7 @@ def _slotted_lever(linkage, motion) -> dict:
     block = next(x for x in chain.joints[b_pin] if x != crank)
     pair = next(k for k in linkage.slides)
     lever = next(x for x in chain.joints[pair] if x != block)
-    c = next(k for k in linkage.joints_of(lever) if linkage.kind(k) == "revolute" and linkage.frame in chain.joints[k])
+    c = next(k for k in linkage.joints_of(lever) if linkage.kind(k) == REVOLUTE and linkage.frame in chain.joints[k])
     u0 = np.array(linkage.slides[pair])
     n0 = np.array([-u0[1], u0[0]])
     e = float((p[b_pin] - p[c]) @ n0)
@@ -321,7 +322,7 @@ def _willis(linkage, motion, teeth: dict) -> dict:
     while True:
         grown = False
         for k in range(len(chain.joints)):
-            if linkage.kind(k) != "mesh":
+            if linkage.kind(k) != MESH:
                 continue
             a, b = chain.joints[k]
             t = linkage.carrier(k)

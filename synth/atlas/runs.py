@@ -43,6 +43,7 @@ from ..errors import InvalidOption, QueryTooLarge, option
 from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
+from ..structure.joints import MESH, PRISMATIC
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
 from ..gears.train import GearTrain
 from .database import _acquire, _release, _writable, open_atlas, transaction
@@ -90,11 +91,11 @@ def _canonical(chain: Chain) -> Chain:
 def _chain_rows(chain: Chain, fractionated: bool, input_link: bool, out: UnitRows) -> None:
     """Add a chain (in its canonical labelling) to a unit's rows: its chain row, link counts and mechanisms."""
     cert, code, degrees = chain.certificate, chain.code, chain.degrees
-    kinds = chain.kinds or ()
+    kinds = chain.kinds
     out.chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), chain.dof, chain.h,
-                       chain.links, chain.loops, chain.v, kinds.count("prismatic"), max(degrees),
+                       chain.links, chain.loops, chain.v, kinds.count(PRISMATIC), max(degrees),
                        " ".join(map(str, sorted(degrees, reverse=True))), int(fractionated),
-                       json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count("mesh")))
+                       json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count(MESH)))
     out.link_counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
     mechanisms = mechanisms_of(chain)
     if input_link:

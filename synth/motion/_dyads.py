@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
@@ -43,7 +44,7 @@ class Dyad:
 
 
 def _letter(linkage: Linkage, k: int) -> str:
-    return {"revolute": "R", "prismatic": "P", "mesh": "G"}[linkage.kind(k)]
+    return linkage.kind(k).letter
 
 
 def decompose(linkage: Linkage) -> list[Dyad] | None:
@@ -66,7 +67,7 @@ def decompose(linkage: Linkage) -> list[Dyad] | None:
         out = []
         for k in linkage.joints_of(link):
             kind = linkage.kind(k)
-            if kind == "mesh":
+            if kind == MESH:
                 continue
             held = [x for x in joints[k] if x in known]
             if held:
@@ -78,10 +79,10 @@ def decompose(linkage: Linkage) -> list[Dyad] | None:
         unknown = [x for x in range(chain.links) if x not in known]
         for g in unknown:  # a gear turning on a known axis, meshing with a known gear, both on a known carrier
             for k, held in attachments(g):
-                if linkage.kind(k) != "revolute":
+                if linkage.kind(k) != REVOLUTE:
                     continue
                 for m in linkage.joints_of(g):
-                    if linkage.kind(m) == "mesh":
+                    if linkage.kind(m) == MESH:
                         other = sum(joints[m]) - g
                         c = linkage.carrier(m)
                         if other in known and c in known:
@@ -94,10 +95,10 @@ def decompose(linkage: Linkage) -> list[Dyad] | None:
         if found is None:
             for i in unknown:
                 for k3 in linkage.joints_of(i):
-                    if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
+                    if linkage.kind(k3) == MESH or any(x in known for x in joints[k3]):
                         continue
                     for j in joints[k3]:
-                        if j == i or (linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2):
+                        if j == i or (linkage.kind(k3) == PRISMATIC and len(joints[k3]) != 2):
                             continue
                         for k1, h1 in attachments(i):
                             if k1 == k3 or j in joints[k1]:
@@ -175,7 +176,7 @@ class Closure:
         for k, u in lk.slides.items():
             slides[k] = u
         in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
-        in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
+        in_prismatic = np.array([lk.kind(k) == PRISMATIC for k in lk.inputs])
         in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
         in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
         groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)
