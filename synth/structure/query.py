@@ -311,8 +311,6 @@ class ChainQuery:
         dof = options.pop("dof", None) if query is None else query
         if "dof" in options:
             raise InvalidOption("W is given twice (as the first argument and as dof)")
-        if links is None:
-            links = options.pop("links", None)
         loops = options.pop("loops", None)
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(options) - known)
