@@ -300,9 +300,7 @@ class Chain:
     def _shown_kinds(self) -> tuple[JointKind, ...]:
         """The kinds whose colour cells and tags the certificate shows: the table up to the last kind
         the chain has (the revolute cell alone for a plain chain)."""
-        if self.all_revolute:
-            return JOINT_KINDS[:1]
-        return JOINT_KINDS[: 1 + max(kind.cell for kind in set(self.kinds))]
+        return JOINT_KINDS[: 1 + max((kind.cell for kind in set(self.kinds)), default=0)]
 
     def automorphisms(self, marked: Sequence[int] = ()) -> tuple[list[list[int]], float, list[int]]:
         """Generators (on links), group order and link orbits, fixing the ``marked`` links.

@@ -155,8 +155,7 @@ def structural_mobility(chain: Chain, links=None) -> int:
         inside = sum(1 for x in j if x in s)
         if inside > 1:
             removed += k.removes(h) * (inside - 1)
-    extra = 0 if chain.all_revolute else sum((h - k.loop_space) * kind_loops(chain, k, s)
-                                             for k in JOINT_KINDS if k.loop_space is not None)
+    extra = sum((h - k.loop_space) * kind_loops(chain, k, s) for k in JOINT_KINDS if k.loop_space is not None)
     extra += sum((h - x) * class_loops(chain, x, s) for x in set(chain.classes or ()) - {h})
     return h * (len(s) - 1) - removed + extra
 

@@ -116,7 +116,7 @@ def _coloured(c: Chain) -> nx.Graph:
     g = nx.Graph()
     g.add_nodes_from((("L", i), {"colour": "link"}) for i in range(c.links))
     for k, j in enumerate(c.joints):
-        g.add_node(("J", k), colour=c.kinds[k] if c.kinds else "revolute")
+        g.add_node(("J", k), colour=c.kinds[k])
         g.add_edges_from((("J", k), ("L", x)) for x in j)
     return g
 
