@@ -276,7 +276,8 @@ def _cycle_ranks(bits: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
 
 def _loop_terms(chain: Chain) -> list[tuple[int, list[tuple[int, int]]]]:
     """The loops a count gives back, as (freedoms per loop, the pairs whose loops they are): the
-    wedge loops of prismatic pairs (+1 each) and, in a heterogeneous chain, the loops of each base
+    loops of one kind whose loops live in a smaller motion space x (h − x each: the wedge loops of
+    prismatic pairs, +1 in the plane) and, in a heterogeneous chain, the loops of each base
     of class x (+(h − x) each; each joint restricted to the base's links, a pin of m of them m − 1
     pairs)."""
     terms = [(chain.h - kind.loop_space, [j for j, k in zip(chain.joints, chain.kinds) if k is kind])
