@@ -10,7 +10,6 @@ from __future__ import annotations
 from pydantic import StrictStr
 
 from synth.schema import Table
-from synth.structure.joints import PRISMATIC
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
@@ -45,6 +44,7 @@ FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
 
 def _prismatic(run: Run) -> dict:
     from synth import Chain, parse_range, variants_of
+    from synth.structure.joints import PRISMATIC
 
     t = run.scene.tables["prismatic"]
     chain = Chain.parse(t.chain)

@@ -30,7 +30,6 @@ import numpy as np
 from pydantic import StrictStr
 
 from synth.schema import Table
-from synth.structure.joints import MESH, REVOLUTE
 
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
@@ -91,6 +90,8 @@ def _steps(run: Run) -> int:
 
 def _rigidity_error(linkage, joints: np.ndarray) -> float:
     """The largest change, over the steps, of the distance between two revolute joints of one link."""
+    from synth.structure.joints import REVOLUTE
+
     worst = 0.0
     for link in range(linkage.chain.links):
         pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
@@ -104,6 +105,7 @@ def _rigidity_error(linkage, joints: np.ndarray) -> float:
 
 def _motion(run: Run) -> dict:
     from synth.motion import motion_range, sweep
+    from synth.structure.joints import REVOLUTE
 
     linkage = run.scene.tables["linkage"]
     motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
@@ -188,6 +190,8 @@ def _by_dyads(linkage, motion, driver: int) -> np.ndarray:
 def _freudenstein(linkage, motion) -> float | None:
     """The residual of Freudenstein's equation K1 cos θ4 − K2 cos θ2 + K3 = cos(θ2 − θ4) over the
     sweep, angles from the ground line; None unless the linkage is a four-bar of revolute joints."""
+    from synth.structure.joints import REVOLUTE
+
     chain = linkage.chain
     if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != REVOLUTE for k in range(4)):
         return None
@@ -273,6 +277,8 @@ def _slotted_lever(linkage, motion) -> dict:
     """Roles: the input crank O–B, the block pinned at B sliding on the lever, the lever pivoted at C.
     The lever's angle ψ solves (B − C)·n(ψ) = e, with e the pin's distance from the parallel to the
     slide through C in the pose; the slide is (B − C)·u(ψ)."""
+    from synth.structure.joints import REVOLUTE
+
     chain, p, j = linkage.chain, linkage.points, motion.joints
     o = linkage.inputs[0]
     crank = linkage.input_link(0)
@@ -315,6 +321,8 @@ def _willis(linkage, motion, teeth: dict) -> dict:
     """Each gear's speed relative to the input (the carrier), from Willis' equation of each mesh
     z_a(ω_a − ω_t) = ∓ z_b(ω_b − ω_t) (− external, + internal: the ring's radius is written negative
     in the pose, so the sign follows from the pitch point lying beyond or between the axes)."""
+    from synth.structure.joints import MESH
+
     chain = linkage.chain
     carrier = linkage.input_link(0)
     z = {int(k): float(v) for k, v in teeth.items()}
