@@ -156,13 +156,13 @@ class Closure:
     """A linkage's dyads packed once for the compiled kernel, closed at any input offsets (S, W)
     from the pose's inputs.  Calling it gives θ (S, n), t (S, n, 2), g (S, G) the dyads'
     normalised discriminants (the dyad closes where g ≥ 0), μ (S, G) their transmission angles (rad
-    in [0, π]; NaN for a gear) and every joint's position (S, J, 2); :meth:`points` gives only θ,
-    the joints and the tracer points (what a sweep keeps).  Where a dyad does not close, its links'
+    in [0, π]; NaN for a gear) and every joint's position (S, J, 2); :meth:`points` gives only the
+    joints and the tracer points (what a sweep keeps), :meth:`angles` only θ.  Where a dyad does not close, its links'
     poses are NaN.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
-    >>> theta, joints, tracers = Closure(lk, decompose(lk)).points(np.array([[0.0], [np.pi]]))
+    >>> joints, tracers = Closure(lk, decompose(lk)).points(np.array([[0.0], [np.pi]]))
     >>> joints[1, 2].round(12).tolist()
     [-1.0, 0.0]
     """
@@ -194,15 +194,15 @@ class Closure:
                          np.concatenate((points, np.array([at for _, at in traced], dtype=float).reshape(-1, 2))))
         self._scale2 = float(lk.scale) ** 2
 
-    def _run(self, offsets, carried, every: bool):
+    def _run(self, offsets, carried, every: bool, angles: bool = True, recurrence: bool = False):
         offsets = np.ascontiguousarray(offsets, dtype=float)
         steps, n, groups = offsets.shape[0], self.linkage.chain.links, len(self._dyads[4])
         rows = steps if every else 0
-        theta = np.empty((steps, n))
+        theta = np.empty((steps if angles else 0, n))
         t_x, t_y = np.empty((rows, n)), np.empty((rows, n))
         g, mu = np.empty((rows, groups)), np.empty((rows, groups))
         out = np.empty((steps, len(carried[0]), 2))
-        close_kernel(offsets, *self._dyads, *carried, self._scale2, theta, t_x, t_y, g, mu, out)
+        close_kernel(offsets, recurrence, *self._dyads, *carried, self._scale2, theta, t_x, t_y, g, mu, out)
         return theta, t_x, t_y, g, mu, out
 
     def __call__(self, offsets: np.ndarray):
@@ -210,10 +210,15 @@ class Closure:
         return theta, np.stack((t_x, t_y), axis=-1), g, mu, joints
 
     def points(self, offsets: np.ndarray):
-        """θ (S, n), the joints (S, J, 2) and each tracer's points (S, 2) by name."""
-        theta, _, _, _, _, out = self._run(offsets, self._carried, False)
+        """The joints (S, J, 2) and each tracer's points (S, 2) by name (the kernel computes no angle; a
+        revolute input's cosine and sine by the rotation recurrence: for a sweep's many steps)."""
+        out = self._run(offsets, self._carried, False, False, True)[-1]
         count = len(self.linkage.chain.joints)
-        return theta, out[:, :count], {name: out[:, count + i] for i, name in enumerate(self.linkage.tracers)}
+        return out[:, :count], {name: out[:, count + i] for i, name in enumerate(self.linkage.tracers)}
+
+    def angles(self, offsets: np.ndarray) -> np.ndarray:
+        """θ (S, n): each link's rotation from the pose (rad, modulo a turn; a gear's as its ratio turns it)."""
+        return self._run(offsets, (np.empty(0, dtype=np.int64), np.empty((0, 2))), False, True, True)[0]
 
 
 def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Iterator
-from dataclasses import dataclass
-from functools import cached_property
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -39,17 +39,24 @@ class Motion:
     transmission : dict
         Per closed-form dyad: least and greatest transmission angle and where (computed when read).
     angles : ndarray (S, n)
-        Each link's rotation from the pose (rad, modulo a turn).
+        Each link's rotation from the pose (rad, modulo a turn; computed when read for a linkage of
+        dyads, whose sweep needs no angle).
     """
 
     linkage: Linkage
     inputs: np.ndarray
     joints: np.ndarray
     tracers: dict
-    angles: np.ndarray
     velocities: np.ndarray | None = None
     accelerations: np.ndarray | None = None
     stopped: str | None = None
+    #: the angles (S, n), or a function that computes them
+    _angles: np.ndarray | Callable[[], np.ndarray] | None = field(default=None, repr=False)
+
+    @cached_property
+    def angles(self) -> np.ndarray:
+        """(S, n): each link's rotation from the pose (rad, modulo a turn)."""
+        return self._angles() if callable(self._angles) else self._angles
 
     @cached_property
     def transmission(self) -> dict:
@@ -590,7 +597,8 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
     offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
     if solver.plan is not None and not (velocities or accelerations):  # the poses and points only: in one pass
-        theta, joints, tracers = solver.closure.points(offsets[:, None])
+        joints, tracers = solver.closure.points(offsets[:, None])
+        theta = partial(solver.closure.angles, offsets[:, None])
     else:
         theta, t, joints = solver.poses_along(offsets)
         if joints is None or linkage.tracers:
@@ -609,7 +617,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
             acc[at_limit] = np.nan
         if not velocities:
             vel = None
-    return Motion(linkage, inputs, joints, tracers, theta, vel, acc, stopped)
+    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, theta)
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
@@ -729,7 +737,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
         vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, theta, vel, None, None)
+    return Motion(linkage, values, joints, tracers, vel, None, None, theta)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
