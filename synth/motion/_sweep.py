@@ -595,7 +595,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
-    offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
+    np.clip(offsets, lo, hi, out=offsets)  # (a range that ends at a limit, written as an input, rounds past it)
     if solver.plan is not None and not (velocities or accelerations):  # the poses and points only: in one pass
         joints, tracers = solver.closure.points(offsets[:, None])
         theta = partial(solver.closure.angles, offsets[:, None])
@@ -605,7 +605,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
             joints, tracers = _points(linkage, theta, t, joints)
         else:
             tracers = {}
-    inputs = (offsets - x0 + start)[:, None]
+    inputs = (offsets + (start - x0))[:, None]
     vel = acc = None
     if velocities or accelerations:
         vel, acc = _rates(linkage, theta, t, accelerations)
