@@ -165,9 +165,10 @@ class _Solver:
         """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
         return self.closure(offsets)
 
-    def gmin(self, x: float) -> float:
-        """The smallest dyad discriminant at 1-DOF offset x (≥ 0 where the linkage closes)."""
-        return float(self.closed(np.array([[x]]))[2].min())
+    def discriminants(self, x: float) -> np.ndarray:
+        """The dyads' discriminants at 1-DOF offset x (each ≥ 0 where its dyad closes; −1 for NaN)."""
+        g = self.closed(np.array([[x]]))[2][0]
+        return np.where(np.isfinite(g), g, -1.0)
 
     @cached_property
     def pose_sign(self) -> int:
@@ -360,12 +361,13 @@ class _Solver:
             end = (step * math.inf, "")
             if 0 <= k + step < len(xs):
                 good_x, bad_x = xs[k], xs[k + step]
-                m = int(np.argmin(measure[k + step]))
-                lo, hi = sorted((good_x, bad_x))
-                root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL,
-                              rtol=1e-15)
-                while self.gmin(root) < 0:  # keep the side where the dyad closes
-                    root -= step * LIMIT_TOL
+                while abs(bad_x - good_x) > LIMIT_TOL:  # bisection: every dyad closes at good_x, one not at bad_x
+                    middle = 0.5 * (good_x + bad_x)
+                    if self.discriminants(middle).min() >= 0:
+                        good_x = middle
+                    else:
+                        bad_x = middle
+                root, m = good_x, int(np.argmin(self.discriminants(bad_x)))
                 end = (root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)")
             for x, m in sorted(touches, key=lambda found: abs(found[0])):
                 if x * step > 0 and abs(x) < abs(end[0]):
