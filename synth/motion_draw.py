@@ -147,17 +147,25 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
     angle, swing), and what is wrong with it in words (None when nothing is)."""
     from .motion import sweep
+    from .motion._sweep import _solver
 
-    motion = sweep(linkage, steps=73)
-    # a crank's sweep turns once from the pose; a rocker's goes from limit to limit (which may span
-    # more than a turn, but does not start at the pose's input)
-    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
-    full = (motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute"
-            and abs(motion.inputs[0, 0] - linkage.pose_inputs[0]) < 1e-12 and abs(span - 2 * math.pi) < 1e-9)
-    if linkage.kind(linkage.inputs[0]) != "revolute":  # a stroke as long as the mechanism is worth a turn
+    solver = _solver(linkage)
+    lo, hi, _, _ = solver.branch
+    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    full = revolute and math.isinf(lo) and math.isinf(hi)
+    # a crank turns once; a rocker swings from limit to limit (which may span more than a turn), an
+    # endless slide as far as a sweep takes it (four sizes); a stroke as long as the mechanism is worth
+    # a turn
+    start = lo if math.isfinite(lo) else 0.0
+    span = 2 * math.pi if full else (hi if math.isfinite(hi) else start + 4 * linkage.scale) - start
+    if not revolute:
         span *= 2 * math.pi / linkage.scale
-    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
-    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2]) if full else 0.0
+    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's
+    # count (a group moved by Newton's method reports none)
+    worst = 0.0
+    if full:
+        transmission = sweep(linkage, steps=73).transmission.values() if solver.plan is not None else ()
+        worst = min([min(t["min"], math.pi - t["max"]) for t in transmission] + [math.pi / 2])
     good = full and worst >= _GOOD_TRANSMISSION
     if good:
         why = None
