@@ -4,19 +4,21 @@ every step of a sweep.
 A dyad is two moving links i, j joined by a middle joint, each with an outer joint to a link whose
 pose is already known.  Its kind is written by its joints outer–middle–outer (R revolute, P
 prismatic): RRR (two circles), PRR and RRP (a circle and a line), RPR (a line at a fixed distance
-from a point), PRP (two lines).  A gear on a known axis meshing with a known gear is a group of one
-link.  Each dyad has two assembly modes (PRP one); the pose's mode is its sign σ, kept for the
-whole sweep, so a sweep never jumps branch.  Each dyad also has a normalised discriminant g: the
+from a point), PRP (two lines), RPP and PPR (both links turn with the known link of the outer
+slider: two lines again, a Scotch yoke).  A gear on a known axis meshing with a known gear is a
+group of one link.  Each dyad has two assembly modes (PRP and RPP one); the pose's mode is its sign
+σ, kept for the whole sweep, so a sweep never jumps branch.  Each dyad also has a normalised discriminant g: the
 dyad closes where g ≥ 0, and g = 0 is a dead position (its two links aligned).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
-from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
+from ._kernel import GEAR, PRP, PRR, RPP, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
 __all__ = ["Dyad", "Closure", "decompose", "close", "locked_groups"]
@@ -26,7 +28,7 @@ __all__ = ["Dyad", "Closure", "decompose", "close", "locked_groups"]
 class Dyad:
     """One group of the decomposition, in solving order.
 
-    kind : "RRR", "PRR", "RPR", "PRP" or "gear" (one link: a gear on a known axis)
+    kind : "RRR", "PRR", "RPR", "PRP", "RPP" or "gear" (one link: a gear on a known axis)
     links : (i, j) — for a gear (g, g)
     outer : (J1, J2) — the outer joints (of i, of j); for a gear (axis joint, mesh joint)
     middle : J3 (−1 for a gear)
@@ -58,74 +60,63 @@ def decompose(linkage: Linkage) -> list[Dyad] | None:
     """
     chain = linkage.chain
     known = {linkage.frame} | {linkage.input_link(i) for i in range(linkage.dof)}
-    joints = chain.joints
     plan: list[Dyad] = []
-
-    def attachments(link):
-        """(joint, known link) pairs: joints of ``link`` that hold a known link."""
-        out = []
-        for k in linkage.joints_of(link):
-            kind = linkage.kind(k)
-            if kind == "mesh":
-                continue
-            held = [x for x in joints[k] if x in known]
-            if held:
-                out.append((k, held[0]))
-        return out
-
     while len(known) < chain.links:
-        found = None
         unknown = [x for x in range(chain.links) if x not in known]
-        for g in unknown:  # a gear turning on a known axis, meshing with a known gear, both on a known carrier
-            for k, held in attachments(g):
-                if linkage.kind(k) != "revolute":
-                    continue
-                for m in linkage.joints_of(g):
-                    if linkage.kind(m) == "mesh":
-                        other = sum(joints[m]) - g
-                        c = linkage.carrier(m)
-                        if other in known and c in known:
-                            found = Dyad("gear", (g, g), (k, m), -1, (held, c))
-                            break
-                if found:
-                    break
-            if found:
-                break
-        if found is None:
-            for i in unknown:
-                for k3 in linkage.joints_of(i):
-                    if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
-                        continue
-                    for j in joints[k3]:
-                        if j == i or (linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2):
-                            continue
-                        for k1, h1 in attachments(i):
-                            if k1 == k3 or j in joints[k1]:
-                                continue
-                            for k2, h2 in attachments(j):
-                                if k2 in (k1, k3) or i in joints[k2]:
-                                    continue
-                                kind = _letter(linkage, k1) + _letter(linkage, k3) + _letter(linkage, k2)
-                                if kind == "RRP":  # the same group seen from its other end
-                                    found = Dyad("PRR", (j, i), (k2, k1), k3, (h2, h1))
-                                elif kind in ("RRR", "PRR", "RPR", "PRP"):
-                                    found = Dyad(kind, (i, j), (k1, k2), k3, (h1, h2))
-                                else:
-                                    continue
-                                break
-                            if found:
-                                break
-                        if found:
-                            break
-                    if found:
-                        break
-                if found:
-                    break
+        found = next(_groups(linkage, known, unknown), None)
         if found is None:
             return None
         plan.append(found)
         known.update(found.links)
     return _with_signs(linkage, plan)
+
+
+def _attachments(linkage: Linkage, known: set[int], link: int) -> list[tuple[int, int]]:
+    """(joint, known link) pairs: the joints (not meshes) of ``link`` that hold a known link."""
+    out = []
+    for k in linkage.joints_of(link):
+        held = [x for x in linkage.chain.joints[k] if x in known]
+        if held and linkage.kind(k) != "mesh":
+            out.append((k, held[0]))
+    return out
+
+
+def _groups(linkage: Linkage, known: set[int], unknown: list[int]) -> Iterator[Dyad]:
+    """Every group that can be placed once the ``known`` links are: first gears turning on a known
+    axis and meshing with a known gear (both axes on a known carrier), then dyads, each seen from the
+    end its kind is written from (RRP is PRR reversed, PPR is RPP reversed)."""
+    joints = linkage.chain.joints
+    for g in unknown:
+        for k, held in _attachments(linkage, known, g):
+            if linkage.kind(k) != "revolute":
+                continue
+            for m in linkage.joints_of(g):
+                if linkage.kind(m) == "mesh" and sum(joints[m]) - g in known and linkage.carrier(m) in known:
+                    yield Dyad("gear", (g, g), (k, m), -1, (held, linkage.carrier(m)))
+    for i in unknown:
+        for k3 in linkage.joints_of(i):
+            if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
+                continue
+            if linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2:
+                continue
+            for j in joints[k3]:
+                if j == i:
+                    continue
+                for k1, h1 in _attachments(linkage, known, i):
+                    if k1 == k3 or j in joints[k1]:
+                        continue
+                    for k2, h2 in _attachments(linkage, known, j):
+                        if k2 in (k1, k3) or i in joints[k2]:
+                            continue
+                        kind = _letter(linkage, k1) + _letter(linkage, k3) + _letter(linkage, k2)
+                        if kind in _REVERSED:  # the same group seen from its other end
+                            yield Dyad(_REVERSED[kind], (j, i), (k2, k1), k3, (h2, h1))
+                        elif kind in _KINDS:
+                            yield Dyad(kind, (i, j), (k1, k2), k3, (h1, h2))
+
+
+#: dyads written from their other end
+_REVERSED = {"RRP": "PRR", "PPR": "RPP"}
 
 
 def _with_signs(linkage: Linkage, plan: list[Dyad]) -> list[Dyad]:
@@ -149,7 +140,7 @@ def _cross2(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "gear": GEAR}
+_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "RPP": RPP, "gear": GEAR}
 
 
 class Closure:

@@ -24,9 +24,9 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["RRR", "PRR", "RPR", "PRP", "GEAR", "close_kernel"]
+__all__ = ["RRR", "PRR", "RPR", "PRP", "RPP", "GEAR", "close_kernel"]
 
-RRR, PRR, RPR, PRP, GEAR = 0, 1, 2, 3, 4
+RRR, PRR, RPR, PRP, RPP, GEAR = 0, 1, 2, 3, 5, 4
 #: a dyad's normalised discriminant this far below 0 is a dead position reached up to rounding
 ROUNDING = 1e-12
 #: steps computed together, stage by stage
@@ -248,6 +248,29 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                         cx, cy = _at(cos, sin, tx, ty, j, b, c0x, c0y)
                         ux, uy = _at(cos, sin, tx, ty, i, b, u0x, u0y, False)
                         mu[s0 + b, m] = _between(cx - ax, cy - ay, -uy, ux)
+            elif kind == RPP:  # i turns about A with j, j slides on h2's line, i on j's: both turn with h2
+                a0x, a0y = points[k1, 0], points[k1, 1]
+                for b in range(nb):
+                    c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
+                    ax = c1 * a0x - s1 * a0y + tx[h1, b]
+                    ay = s1 * a0x + c1 * a0y + ty[h1, b]
+                    _place(cos, sin, tx, ty, i, b, c2, s2, ax, ay, a0x, a0y)
+                    u2x = c2 * slides[k2, 0] - s2 * slides[k2, 1]  # the outer slide's direction
+                    u2y = s2 * slides[k2, 0] + c2 * slides[k2, 1]
+                    u3x = c2 * slides[k3, 0] - s2 * slides[k3, 1]  # the middle slide's
+                    u3y = s2 * slides[k3, 0] + c2 * slides[k3, 1]
+                    # t_j = t_h2 + s₂u₂ = t_i + s₃u₃: s₂ = (t_i − t_h2) × u₃ / (u₂ × u₃)
+                    det = u2x * u3y - u2y * u3x
+                    gs[m, b] = det * det
+                    along = ((tx[i, b] - tx[h2, b]) * u3y - (ty[i, b] - ty[h2, b]) * u3x) / det if det != 0.0 else np.nan
+                    cos[j, b], sin[j, b] = c2, s2
+                    tx[j, b] = tx[h2, b] + along * u2x
+                    ty[j, b] = ty[h2, b] + along * u2y
+                if keep_mu:  # between the two slides
+                    for b in range(nb):
+                        u2x, u2y = _at(cos, sin, tx, ty, j, b, slides[k2, 0], slides[k2, 1], False)
+                        u3x, u3y = _at(cos, sin, tx, ty, j, b, slides[k3, 0], slides[k3, 1], False)
+                        mu[s0 + b, m] = _between(u2x, u2y, u3x, u3y)
             else:  # PRP
                 b0x, b0y = points[k3, 0], points[k3, 1]
                 for b in range(nb):
@@ -274,8 +297,9 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                         mu[s0 + b, m] = _between(u1x, u1y, u2x, u2y)
             if angles and kind != GEAR:  # the angles of the group's links: a slider's is its guide's
                 for b in range(nb):
-                    th[i, b] = th[h1, b] if kind == PRR or kind == PRP else math.atan2(sin[i, b], cos[i, b])
-                    th[j, b] = th[h2, b] if kind == PRP else math.atan2(sin[j, b], cos[j, b])
+                    th[i, b] = (th[h1, b] if kind == PRR or kind == PRP else th[h2, b] if kind == RPP
+                                else math.atan2(sin[i, b], cos[i, b]))
+                    th[j, b] = th[h2, b] if kind == PRP or kind == RPP else math.atan2(sin[j, b], cos[j, b])
         for b in range(nb):
             if keep_theta:
                 for x in range(n):
