@@ -376,6 +376,11 @@ def _write_piece(rows: list[dict], columns: list[str], fmt: str, before: int) ->
         write_rows(rows, columns, fmt)
 
 
+#: why a linkage moved by Newton's method reports no transmission angle
+_NO_TRANSMISSION = ("not reported: the linkage does not decompose into dyads (it has a group of class III or higher, "
+                    "moved by Newton's method), and a transmission angle is defined here for a dyad's two links only")
+
+
 def _write_range(linkage, reach, motion, fmt: str) -> None:
     """The range document: JSON, or a two-column table."""
     from synth.motion import joint_name
@@ -391,6 +396,8 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
            "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
            "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
            "stopped": motion.stopped}
+    if not motion.transmission:
+        doc["transmission_note"] = _NO_TRANSMISSION
     if fmt == "json":
         write_document(doc, "json", "")
         return
@@ -407,6 +414,8 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         lines.append(("dead position", f"{unit(v):.10g}{word}: {why}"))
     for v, link in reach.toggles:
         lines.append(("toggle", f"{unit(v):.10g}{word}: link {link} stops and turns back"))
+    if not motion.transmission:
+        lines.append(("transmission", _NO_TRANSMISSION))
     for name, t in motion.transmission.items():
         lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {unit(t['at_min']):.6g}{word}, "
                                                f"max {math.degrees(t['max']):.4g}° at {unit(t['at_max']):.6g}{word}"))

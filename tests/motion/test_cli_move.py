@@ -241,3 +241,11 @@ def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
     for s in (0, 19999, 20000, 20001, 45000):
         assert float(rows[s]["input"]) == pytest.approx(whole.inputs[s, 0], abs=1e-12)
         assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
+
+
+def test_a_triad_says_why_it_reports_no_transmission_angle(capsys):
+    code, out, _ = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--range", "--format", "json")
+    doc = json.loads(out)
+    assert code == 0 and doc["transmission"] == {} and "class III" in doc["transmission_note"]
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--format", "json")
+    assert "transmission_note" not in json.loads(out)
