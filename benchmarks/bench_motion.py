@@ -13,9 +13,9 @@ II six-bar of models/motion_watt_ii.toml, and their positions are compared at co
 anything is timed (pylinkage picks each RRR dyad's intersection nearest the previous step, the
 engine keeps the pose's branch; on these mechanisms, which never pass a dead position, both follow
 the same branch).  Each timing is the best of ``--reps`` runs after a warm-up (numba compiles on the
-first call of both), on one core.
+first call of both), in CPU seconds (the machine is shared), pinned to one core by ``taskset``.
 
-    python benchmarks/bench_motion.py [--steps 1000000] [--reps 5] [--out benchmarks/MOTION.md]
+    taskset -c 0 python benchmarks/bench_motion.py [--steps 1000000] [--reps 5] [--out benchmarks/MOTION.md]
 
 writes a table and a plot (benchmarks/figures/motion_speed.png) into MOTION.md.
 """
@@ -229,8 +229,10 @@ def _write(out: Path, rows: list[dict], every: dict, args) -> None:
     lines += ["", f"![steps per second](figures/{figure.name})", ""]
     ratios = [r["ratio"] for r in rows if "ratio" in r]
     if ratios:
+        cores = len(os.sched_getaffinity(0))
+        pinned = "pinned to one core" if cores == 1 else f"on {cores} cores (not pinned: run it under `taskset -c 0`)"
         lines += [f"The issue's goal is 3× pylinkage: here {min(ratios):.1f}× to {max(ratios):.1f}× (CPU time, best of "
-                  f"{args.reps}, `taskset -c 0`). The largest difference is between the two solvers' joint positions at "
+                  f"{args.reps}, {pinned}). The largest difference is between the two solvers' joint positions at "
                   "the same inputs (pylinkage accumulates its crank angle step by step).", ""]
     lines += [f"Every 1-DOF mechanism of {every['links']} links ({every['moved'] + len(every['failed'])}, a frame each "
               f"up to symmetry; {every['moved']} moved: {every['by_solver']['dyads']} by the dyads' closed forms, "
