@@ -41,7 +41,6 @@ sys.path.insert(0, str(ROOT))
 
 import synth  # noqa: E402
 from synth.motion import read_linkage, sweep  # noqa: E402
-from synth.motion._sweep import _solver  # noqa: E402  (which solver moves a linkage)
 from synth.motion_draw import linkage_from_layout  # noqa: E402
 
 DEFAULT_VENV = "/tmp/pylinkage-venv/bin/python"
@@ -150,9 +149,10 @@ def _every_mechanism(links: int) -> dict:
             build += time.process_time() - start
         nudged += linkage.note is not None
         start = time.process_time()
-        sweep(linkage, steps=360)
+        motion = sweep(linkage, steps=360)
         run += time.process_time() - start
-        kinds["dyads" if _solver(linkage).plan is not None else "Newton"] += 1
+        # a linkage of dyads reports their transmission angles; one moved by Newton's method none
+        kinds["dyads" if motion.transmission else "Newton"] += 1
         moved += 1
         print(f"{moved + len(failed)} mechanisms, {build:.1f} s for poses, {run:.2f} s for sweeps", file=sys.stderr,
               end="\r", flush=True)
