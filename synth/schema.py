@@ -1,12 +1,13 @@
-"""Typed values of the project's TOML files (grid files, scenes) and one-sentence errors.
+"""Typed values of synth's TOML files (grid files, scenes), each saying in words what a designer
+must write ("a whole number ≥ 0").
 
-Every table of a file is a pydantic model (:class:`Table`: strict types, unknown keys
-refused).  Each value type below says in words what a designer must write ("a whole
-number ≥ 0"), and :meth:`Table.read` turns pydantic's error into one sentence that
+The tables that hold them and their one-sentence errors are the project's one dialect,
+:mod:`mechbase.schema` (:class:`~mechbase.schema.Table`, ``expect``, ``refine``): :meth:`Table.read`
 names the file, the table, the key, what was expected and what was found.
 
 Example
 -------
+>>> from mechbase.schema import Table
 >>> class Loops(Table):
 ...     dof: Whole
 ...     loops: RangeText = 1
@@ -27,47 +28,15 @@ x.toml: [structure] has an unknown key 'lops' (allowed: dof, loops).
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
 from typing import Annotated, Any
 
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, GetCoreSchemaHandler, StrictBool, StrictInt,
-                      StrictStr, ValidationError)
-from pydantic_core import PydanticCustomError, core_schema
+from pydantic import AfterValidator, Field, StrictBool, StrictInt, StrictStr
+from pydantic_core import PydanticCustomError
 
-from mechbase import RangeSyntax, parse_range, show
+from mechbase import RangeSyntax, parse_range
+from mechbase.schema import expect, refine
 
-__all__ = ["Table", "expect", "refine", "show", "sentence",
-           "Text", "Flag", "Whole", "Count", "Number", "RangeText", "Require", "FileName", "parse_range_text"]
-
-
-class expect:
-    """Annotation metadata: a value that fails its type is reported as "must be ``words``".
-
-    A ``ValueError`` raised on purpose by a :func:`refine` check inside keeps its own words.
-    """
-
-    def __init__(self, words: str):
-        self.words = words
-
-    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
-        return core_schema.no_info_wrap_validator_function(self._validate, handler(source))
-
-    def _validate(self, value: Any, handler: Callable[[Any], Any]) -> Any:
-        try:
-            return handler(value)
-        except ValidationError as exc:
-            for err in exc.errors():
-                if err["type"] == "value_error":
-                    raise err["ctx"]["error"] from None
-            raise PydanticCustomError("expected", "must be {words}", {"words": self.words}) from None
-
-
-def refine(check: Callable[[Any], Any]) -> AfterValidator:
-    """Annotation metadata: ``check(value)`` returns the value to keep or raises ``ValueError(predicate)``.
-
-    The predicate follows the key in the sentence: ``key 'links' is the empty range '9..4'``.
-    """
-    return AfterValidator(check)
+__all__ = ["Text", "Flag", "Whole", "Count", "Number", "RangeText", "Require", "FileName", "parse_range_text"]
 
 
 def _non_blank(text: str) -> str:
@@ -145,52 +114,3 @@ def _file_name(name: str) -> str:
 
 #: A picture's file name without directories, ending in .svg, .png or .pdf.
 FileName = Annotated[StrictStr, AfterValidator(_file_name), expect("a file name ending in .svg, .png or .pdf")]
-
-
-class Table(BaseModel):
-    """A TOML table: strict types (``true`` is not 1, ``"3"`` is not 3) and no unknown key."""
-
-    model_config = ConfigDict(strict=True, extra="forbid", frozen=True)
-
-    @classmethod
-    def read(cls, raw: Any, *, source: str, where: str, error: type[Exception] = ValueError,
-             context: Mapping[str, Any] | None = None):
-        """Validate ``raw`` or raise ``error`` with one sentence ``SOURCE: WHERE …``.
-
-        ``context`` is passed to the model's validators (a scene's computations, for instance).
-        """
-        if not isinstance(raw, Mapping):
-            raise error(f"{source}: {where or 'the file'} must be a table, not {show(raw)}.")
-        try:
-            return cls.model_validate(dict(raw), context=dict(context or {}))
-        except ValidationError as exc:
-            raise error(f"{source}: {sentence(exc, cls, raw, where)}.") from None
-
-    def given(self) -> set[str]:
-        """The keys the file wrote (defaults excluded)."""
-        return set(self.model_fields_set)
-
-
-def sentence(exc: ValidationError, model: type[BaseModel], raw: Mapping[str, Any], where: str) -> str:
-    """The first error of ``exc`` as one sentence (no file name, no final period).
-
-    Unknown keys come first: a misspelt key is the likeliest cause of what follows.
-    """
-    errors = exc.errors(include_url=False)
-    order = {key: i for i, key in enumerate(raw)}
-    err = min(errors, key=lambda e: (e["type"] != "extra_forbidden", order.get(e["loc"][0] if e["loc"] else "", -1)))
-    head = f"{where} " if where else ""
-    key = err["loc"][0] if err["loc"] else None
-    kind = err["type"]
-    if key is None:
-        return head + str(err["ctx"]["error"] if kind == "value_error" else err["msg"])
-    if kind == "extra_forbidden":
-        return f"{head}{'has an ' if head else ''}unknown key '{key}' (allowed: {', '.join(sorted(model.model_fields))})"
-    if kind == "missing":
-        words = next((m.words for m in model.model_fields[key].metadata if isinstance(m, expect)), None)
-        return f"{head}needs the key '{key}'" + (f" ({words})" if words else "")
-    if kind == "value_error":
-        return f"{head}key '{key}' {err['ctx']['error']}"
-    if kind == "expected":
-        return f"{head}key '{key}' {err['msg']}, not {show(raw.get(key))}"
-    return f"{head}key '{key}' is not valid ({err['msg']}), not {show(raw.get(key))}"

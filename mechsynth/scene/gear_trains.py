@@ -13,7 +13,7 @@ from typing import Annotated
 
 from pydantic import Field, StrictInt, StrictStr
 
-from synth.schema import Table
+from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pydantic import StrictStr
 
-from synth.schema import Table
+from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError

@@ -19,7 +19,8 @@ from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validator
 
-from synth.schema import FileName, Table, expect, refine
+from mechbase.schema import Table, expect, refine
+from synth.schema import FileName
 
 from . import compare
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
