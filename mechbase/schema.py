@@ -4,7 +4,7 @@ for both engines.
 Every table a file holds is a :class:`Table` (strict types: ``true`` is not 1, ``"3"`` is not 3;
 unknown keys refused).  A value type may say in words what a designer must write (``expect``:
 "a whole number ≥ 0"); pydantic's own checks (numbers, bounds, one of several words, arrays) have
-words here too.  :meth:`Table.read` turns pydantic's error into one sentence that names the file,
+words here too.  The value types below (``Whole``, ``RangeText``, ``Text`` …) carry their words.  :meth:`Table.read` turns pydantic's error into one sentence that names the file,
 the table (nested tables and arrays of tables included: ``[[arm.links]] #2``), the key, what was
 expected and what was found.
 
@@ -30,14 +30,17 @@ x.toml: [structure] needs the key 'dof'.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Annotated, Any
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, GetCoreSchemaHandler, ValidationError
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, GetCoreSchemaHandler, StrictBool, StrictInt,
+                      StrictStr, ValidationError)
 from pydantic_core import PydanticCustomError, core_schema
 
+from .ranges import RangeSyntax, parse_range
 from .text import show
 
-__all__ = ["Table", "expect", "refine", "sentence"]
+__all__ = ["Table", "expect", "refine", "sentence",
+           "Text", "Flag", "Whole", "Count", "Number", "RangeText", "FileName", "parse_range_text"]
 
 
 class expect:
@@ -73,6 +76,62 @@ def refine(check: Callable[[Any], Any]) -> AfterValidator:
     The predicate follows the key in the sentence: ``key 'links' is the empty range '9..4'``.
     """
     return AfterValidator(check)
+
+
+def _non_blank(text: str) -> str:
+    if not text.strip():
+        raise PydanticCustomError("blank", "blank")
+    return text
+
+
+_RANGE_PATTERN = r"^\s*(\d+)\s*(?:\.\.\s*(\d*)\s*)?$"
+
+
+def parse_range_text(value: int | str) -> tuple[int, int | None]:
+    """``N``, ``"A..B"`` or ``"A.."`` as ``(A, B)`` (B is None when the range is open); ValueError if empty.
+
+    >>> parse_range_text("2..5"), parse_range_text("3.."), parse_range_text(4)
+    ((2, 5), (3, None), (4, 4))
+    """
+    try:
+        lo, hi = parse_range(value)
+    except RangeSyntax:
+        lo = -1
+    if lo < 0 or (hi is not None and hi < 0):
+        raise ValueError(f"is not a whole number or a range \"A..B\": {value!r}")
+    if hi is not None and hi < lo:
+        raise ValueError(f"is the empty range {value!r} ({hi} < {lo})")
+    return lo, hi
+
+
+def _check_range(value: int | str) -> int | str:
+    parse_range_text(value)
+    return value
+
+
+#: A non-empty string.
+Text = Annotated[StrictStr, AfterValidator(_non_blank), expect("a non-empty string")]
+#: ``true`` or ``false``.
+Flag = Annotated[StrictBool, expect("true or false")]
+#: A whole number ≥ 0.
+Whole = Annotated[StrictInt, Field(ge=0), expect("a whole number ≥ 0")]
+#: A whole number ≥ 1.
+Count = Annotated[StrictInt, Field(ge=1), expect("a whole number ≥ 1")]
+#: A finite number (a whole number is accepted).
+Number = Annotated[float, Field(strict=True, allow_inf_nan=False), expect("a finite number")]
+#: A whole number ≥ 0 or a range ``"A..B"`` / ``"A.."`` that is not empty.
+RangeText = Annotated[Annotated[StrictInt, Field(ge=0)] | Annotated[StrictStr, Field(pattern=_RANGE_PATTERN)],
+                      refine(_check_range),
+                      expect('a whole number or a range "A..B"')]
+
+def _file_name(name: str) -> str:
+    if "/" in name or "\\" in name or not name.lower().endswith((".svg", ".png", ".pdf")):
+        raise PydanticCustomError("file_name", "bad file name")
+    return name
+
+
+#: A picture's file name without directories, ending in .svg, .png or .pdf.
+FileName = Annotated[StrictStr, AfterValidator(_file_name), expect("a file name ending in .svg, .png or .pdf")]
 
 
 class Table(BaseModel):

@@ -21,8 +21,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from mechbase.schema import Table
-from synth.schema import FileName
+from mechbase.schema import FileName, Table
 
 from . import compare
 from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, Family

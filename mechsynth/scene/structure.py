@@ -19,8 +19,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validator
 
-from mechbase.schema import Table, expect, refine
-from synth.schema import FileName
+from mechbase.schema import FileName, Table, expect, refine
 
 from . import compare
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family

@@ -13,8 +13,8 @@ from typing import Annotated
 
 from pydantic import Field, StrictInt, StrictStr
 
-from mechbase.schema import expect, refine
-from synth.schema import Count, Flag, Number, RangeText, Require, Text, Whole
+from mechbase.schema import Count, Flag, Number, RangeText, Text, Whole, expect, refine
+from synth import Require
 
 __all__ = ["Flag", "Number", "Count", "RangeText", "Require", "Text", "Whole", "Int", "Numbers", "NumberRows",
            "Texts", "Wholes", "WholeTable", "NumberTable", "IndexTable", "Fraction"]
