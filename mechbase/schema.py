@@ -84,11 +84,9 @@ def _non_blank(text: str) -> str:
     return text
 
 
-_RANGE_PATTERN = r"^\s*(\d+)\s*(?:\.\.\s*(\d*)\s*)?$"
-
-
 def parse_range_text(value: int | str) -> tuple[int, int | None]:
-    """``N``, ``"A..B"`` or ``"A.."`` as ``(A, B)`` (B is None when the range is open); ValueError if empty.
+    """``N``, ``"A..B"`` or ``"A.."`` as ``(A, B)`` (B is None when the range is open); RangeSyntax if
+    it is none of these in whole numbers ≥ 0, ValueError if it is empty.
 
     >>> parse_range_text("2..5"), parse_range_text("3.."), parse_range_text(4)
     ((2, 5), (3, None), (4, 4))
@@ -98,14 +96,19 @@ def parse_range_text(value: int | str) -> tuple[int, int | None]:
     except RangeSyntax:
         lo = -1
     if lo < 0 or (hi is not None and hi < 0):
-        raise ValueError(f"is not a whole number or a range \"A..B\": {value!r}")
+        raise RangeSyntax(f"is not a whole number or a range \"A..B\": {value!r}")
     if hi is not None and hi < lo:
         raise ValueError(f"is the empty range {value!r} ({hi} < {lo})")
     return lo, hi
 
 
 def _check_range(value: int | str) -> int | str:
-    parse_range_text(value)
+    """The one grammar of ranges (:func:`parse_range`): text that is no range of whole numbers takes
+    ``RangeText``'s words; an empty range says which it is."""
+    try:
+        parse_range_text(value)
+    except RangeSyntax:
+        raise PydanticCustomError("range", "not a range") from None
     return value
 
 
@@ -120,7 +123,7 @@ Count = Annotated[StrictInt, Field(ge=1), expect("a whole number ≥ 1")]
 #: A finite number (a whole number is accepted).
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False), expect("a finite number")]
 #: A whole number ≥ 0 or a range ``"A..B"`` / ``"A.."`` that is not empty.
-RangeText = Annotated[Annotated[StrictInt, Field(ge=0)] | Annotated[StrictStr, Field(pattern=_RANGE_PATTERN)],
+RangeText = Annotated[Annotated[StrictInt, Field(ge=0)] | StrictStr,
                       refine(_check_range),
                       expect('a whole number or a range "A..B"')]
 

@@ -4,12 +4,10 @@ Example
 -------
 >>> import tempfile, pathlib
 >>> from mechsynth.cli import main
->>> folder = pathlib.Path(tempfile.mkdtemp())
->>> grid, db = str(folder / "g.toml"), str(folder / "a.sqlite")
->>> _ = pathlib.Path(grid).write_text('dof = 1\\nlinks = "4..8"\\n')
->>> main(["grid", grid, "--db", db, "--workers", "1", "--format", "json"])  # doctest: +ELLIPSIS
-{"status": "done", "units_total": 6, ...}
-0
+>>> from synth.atlas import parse_grid, run_grid
+>>> db = str(pathlib.Path(tempfile.mkdtemp()) / "a.sqlite")
+>>> run_grid(parse_grid('dof = 1\\nlinks = "8"\\n'), db, workers=1).status
+'done'
 >>> main(["atlas", "--db", db, "--export", "mechanisms", "--where", "n=8", "--count"])
 {"count": 71, "by_code": {"440/0": 35, "521/0": 31, "602/0": 5}}
 0
