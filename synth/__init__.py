@@ -72,7 +72,8 @@ _WHERE = {
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
     "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",
-    "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
+    "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair", "Repair": ".analysis.repair",
+    "ChainRepair": ".analysis.repair",
     # the source's planetary layout through its lever analogue
     "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
     "planetary_table": ".gears.planetary",

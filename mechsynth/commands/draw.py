@@ -182,8 +182,8 @@ def _run_draw(args) -> int:
             print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
                   file=sys.stderr)
             return 1
-        items = [chain, *(Chain.parse(r["chain"]) for r in repairs)]
-        notes = [_defect(chain, args.dof)] + ["; ".join(r["edits"]) for r in repairs]
+        items = [chain, *(Chain.parse(r.chain) for r in repairs)]
+        notes = [_defect(chain, args.dof)] + ["; ".join(r.edits) for r in repairs]
         title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
     elif args.chain:
         chain = given

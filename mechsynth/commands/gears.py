@@ -123,7 +123,7 @@ def _run(args) -> int:
         _size_note(args, dof)
     if args.count:
         result = count_trains(dof, args.links, args.graphs, workers=args.workers, progress=True)
-        if write_count(result, args.format or "json") == 0:
+        if write_count(result.to_dict(), args.format or "json") == 0:
             return nothing_found("gear trains satisfy these parameters")
         return 0
     if args.train is not None:
