@@ -29,6 +29,7 @@ from synth.gears.enumeration import census, count_trains, link_axis_trees, train
 from synth.gears.ratios import mechanisms, speed_ratio
 from tests.oracles import gear_ratios, gear_trains_fast
 from tests.oracles import gear_trains as brute
+from tests.load import allowed_seconds
 
 MODULES = ["synth.gears", "synth.gears.train", "synth.gears.enumeration", "synth.gears.ratios",
            "synth.gears.ratio_design", "synth.gears.draw", "mechsynth.commands.gears",
@@ -393,8 +394,8 @@ def test_ctrl_c_stops_the_ratio_search_within_two_seconds():
         assert proc.poll() is None
         sent = time.monotonic()
         os.killpg(proc.pid, signal.SIGINT)
-        out, err = proc.communicate(timeout=30)
-        assert time.monotonic() - sent < 2.0
+        out, err = proc.communicate(timeout=max(30.0, allowed_seconds(2.0)))
+        assert time.monotonic() - sent < allowed_seconds(2.0)  # 2 s of an idle machine
         assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
     finally:  # a search that ignored Ctrl-C must not outlive the test
         if proc.poll() is None:
