@@ -369,9 +369,14 @@ def test_ctrl_c_stops_a_count_on_the_pool():
     import signal
     import time
 
+    import psutil
+
     proc = subprocess.Popen([sys.executable, "-m", "mechsynth", "gears", "--links", "9", "--count", "--workers", "2"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
-    time.sleep(3)
+    hang_guard = time.monotonic() + 300  # wait for the pool, not for a time: a busy machine sizes for long
+    while not psutil.Process(proc.pid).children() and proc.poll() is None and time.monotonic() < hang_guard:
+        time.sleep(0.05)
+    time.sleep(0.5)
     os.killpg(proc.pid, signal.SIGINT)
     out, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and out == "" and err.strip() == "mechsynth: interrupted", err
