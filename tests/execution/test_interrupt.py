@@ -3,7 +3,8 @@
 Each command is started in a session of its own, as a terminal runs it, left working until it is
 inside its long part (a CP-SAT search, pool workers counting or drawing), and interrupted as a
 terminal does: SIGINT to the whole process group, workers included.  The command and every process
-it started must be gone within two seconds (on this shared machine they take 0.03–0.3 s).
+it started must be gone within two seconds (on this shared machine they take 0.03–0.3 s), seconds
+of a machine with a core to spare: the bound stretches with the load (tests/load.py).
 """
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ import time
 
 import psutil
 import pytest
+
+from tests.load import allowed_seconds
 
 CLI = [sys.executable, "-m", "mechsynth"]
 STOP_SECONDS = 2.0
@@ -39,11 +42,11 @@ def _interrupt(args: list[str], cwd, ready, *, wait_at_most: float = 60.0) -> tu
         sent = time.monotonic()
         os.killpg(proc.pid, signal.SIGINT)
         try:
-            status = proc.wait(timeout=30)
+            status = proc.wait(timeout=max(30.0, allowed_seconds(STOP_SECONDS)))
         except subprocess.TimeoutExpired:
             status = None
         took = time.monotonic() - sent
-        _, alive = psutil.wait_procs(started, timeout=max(0.0, STOP_SECONDS - took))
+        _, alive = psutil.wait_procs(started, timeout=max(0.0, allowed_seconds(STOP_SECONDS) - took))
         return status, took, err_path.read_text(), alive
     finally:  # whatever the verdict, nothing of this test outlives it
         for p in started:
@@ -83,7 +86,7 @@ def _check(status, took, err, alive):
     assert status == 130, (status, err[-800:])
     assert err.rstrip().endswith("mechsynth: interrupted"), err[-800:]
     assert "Traceback" not in err, err[-2000:]
-    assert took <= STOP_SECONDS, f"took {took:.2f} s to stop"
+    assert took <= allowed_seconds(STOP_SECONDS), f"took {took:.2f} s to stop (load {os.getloadavg()[0]:.1f})"
     assert not alive, f"left behind: {[p.pid for p in alive]}"
 
 
