@@ -147,11 +147,11 @@ def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, caps
             return self
 
         def run(self, args):
-            if self.error is None:
-                os.kill(os.getpid(), signal.SIGINT)
-                time.sleep(1)  # the handler runs at the next bytecode
             try:
-                raise self.error or KeyboardInterrupt
+                if self.error is None:
+                    os.kill(os.getpid(), signal.SIGINT)
+                    time.sleep(1)  # the handler raises KeyboardInterrupt at the next bytecode
+                raise self.error
             except KeyboardInterrupt:
                 raise TypeError("missing 'vertex_coloring' attribute") from None
 
