@@ -130,3 +130,36 @@ def test_ctrl_c_stops_a_site_and_its_drawing_workers(tmp_path):
         return bool(psutil.Process(proc.pid).children()) and "site:" in err_path.read_text()
 
     _check(*_interrupt(["atlas", "--db", "atlas.sqlite", "--html", "site", "--workers", "2"], tmp_path, drawing))
+
+
+def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, capsys):
+    """An extension interrupted in the middle of a call may turn the KeyboardInterrupt into another
+    error (pynauty once raised TypeError "missing 'vertex_coloring' attribute" when Ctrl-C came while it
+    built a graph): the command still says "interrupted" and exits 130, with no traceback; the same
+    error without a Ctrl-C is not hidden; and the handler of the calling process is put back."""
+    from mechsynth import cli
+
+    class Parser:
+        def __init__(self, error):
+            self.error = error
+
+        def parse_args(self, argv):
+            return self
+
+        def run(self, args):
+            try:
+                if self.error is None:
+                    os.kill(os.getpid(), signal.SIGINT)
+                    time.sleep(1)  # the handler raises KeyboardInterrupt at the next bytecode
+                raise self.error
+            except KeyboardInterrupt:
+                raise TypeError("missing 'vertex_coloring' attribute") from None
+
+    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(None))
+    before = signal.getsignal(signal.SIGINT)
+    assert cli.main(["chains"]) == 130
+    assert capsys.readouterr().err == "mechsynth: interrupted\n"
+    assert signal.getsignal(signal.SIGINT) is before
+    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(ValueError("a bug")))
+    with pytest.raises(ValueError, match="a bug"):
+        cli.main(["chains"])
