@@ -33,7 +33,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
-from ..execution.executor import process_pool, run_plan
+from ..execution.executor import Executor, run_plan
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
@@ -198,23 +198,16 @@ def plan_units(query: ChainQuery | int | None = None, links: int | None = None, 
     """
     query = ChainQuery.of(query, links, **options)
     _check_workers(workers)
-    workers = workers or os.cpu_count() or 1
-    if workers == 1:
-        return plan_many([query])[0]
-    pool = process_pool(workers)
-    try:
-        return plan_many([query], pool=pool)[0]
-    finally:
-        pool.terminate()
-        pool.join()
+    with Executor(workers or os.cpu_count() or 1) as executor:
+        return plan_many([query], executor=executor)[0]
 
 
-def plan_many(queries, *, pool=None, skip_impossible: bool = False) -> list[list[Unit]]:
+def plan_many(queries, *, executor: Executor | None = None, skip_impossible: bool = False) -> list[list[Unit]]:
     """:func:`plan_units` for several queries at once: stage A of all their codes in one batch.
 
-    ``queries`` are :class:`ChainQuery` objects (or keyword dictionaries of one); ``pool`` is an
-    optional ``multiprocessing`` pool that runs stage A; with ``skip_impossible`` a query the
-    counting equations rule out gets no units instead of raising :class:`ImpossibleParameters`.
+    ``queries`` are :class:`ChainQuery` objects (or keyword dictionaries of one); ``executor``
+    runs stage A (default: inline); with ``skip_impossible`` a query the counting equations rule
+    out gets no units instead of raising :class:`ImpossibleParameters`.
 
     >>> [len(units) for units in plan_many([dict(dof=1, links=8), dict(dof=1, links=9)], skip_impossible=True)]
     [4, 0]
@@ -232,7 +225,7 @@ def plan_many(queries, *, pool=None, skip_impossible: bool = False) -> list[list
         jobs += found
         owners += [index] * len(found)
     plans: list[list[Unit]] = [[] for _ in queries]
-    batches = pool.imap(job_units, jobs) if pool is not None else map(job_units, jobs)
+    batches = (executor or Executor()).map(job_units, jobs)
     for owner, batch in zip(owners, batches):
         plans[owner].extend(batch)
     return plans
@@ -312,7 +305,6 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
 
     ``work`` returns the unit's chains or its counts by code; the progress bar adds up either.
     """
-    workers = workers or os.cpu_count() or 1
     bar = None
     if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
         from tqdm import tqdm
@@ -327,15 +319,16 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
             load_kernel()  # once, here: the workers forked later inherit it
         if any(needs_solver(c, conv) for c, conv in jobs):
             from . import _cpsat  # noqa: F401 - likewise the solver (≈ 0.3 s), and outside the inline phase's clock
-        for event in run_plan(jobs, job_units, work, workers=workers, client=client,
-                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
-            if bar is not None:
-                if event[1] is None:
-                    bar.update(1)
-                else:
-                    found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
-                    bar.set_postfix(chains=found, refresh=False)
-            yield event
+        with Executor(workers or os.cpu_count() or 1, client) as executor:
+            for event in run_plan(jobs, job_units, work, executor=executor, skip_item=skip_code, skip_unit=skip_unit,
+                                  inline_seconds=inline, ordered=ordered):
+                if bar is not None:
+                    if event[1] is None:
+                        bar.update(1)
+                    else:
+                        found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
+                        bar.set_postfix(chains=found, refresh=False)
+                yield event
     finally:
         if bar is not None:
             bar.close()
