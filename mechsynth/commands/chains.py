@@ -245,8 +245,8 @@ def _run(args) -> int:
             log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
-        if args.what == "chains":
-            result = count_chains(query, **extra)
+        if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
+            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None, **extra)
         else:
             result = count_mechanisms(query, input_link=args.input_link, **extra)
         if write_count(result.to_dict(), args.format or "json") == 0:

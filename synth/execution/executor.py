@@ -37,7 +37,6 @@ Example
 
 from __future__ import annotations
 
-import multiprocessing
 import os
 import queue
 import signal
@@ -72,6 +71,8 @@ def process_pool(workers: int):
     handler is printed and dropped by Python ("Exception ignored …"), so the run would go on.
     Released afterwards, the held signal interrupts the caller as usual.
     """
+    import multiprocessing  # (here: a query that stays inline never loads it)
+
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None

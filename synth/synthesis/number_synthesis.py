@@ -417,13 +417,16 @@ def iter_codes(query: CodeQuery | int | None = None, /, *, max_codes: int | None
 
 def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
     """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
-    from ._sizing import check_excess, code_bound
+    from ._sizing import check_excess, coarse_bound, code_bound
     from ..execution.sizes import describe_seconds, magnitude
 
     if max_codes is None:  # asked for any number: only a model that cannot exist is refused
         for problem in problems:
             check_excess(problem)
         return
+    coarse = [coarse_bound(problem) for problem in problems]
+    if None not in coarse and sum(coarse) <= max_codes:
+        return  # surely few codes: the finer bound's tables are not needed
     total, exact = 0.0, True
     for problem in sorted(problems, key=lambda p: -p.loops):
         bound = code_bound(problem, stop=max_codes - total)
