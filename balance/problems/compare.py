@@ -725,14 +725,45 @@ def _n(v) -> str:
 
 
 # ----------------------------------------------------------------------------- reading
-def compare_problem(doc: Mapping[str, Any], source: str = "<compare>") -> CompareProblem:
-    """The :class:`CompareProblem` of a ``[compare]`` table; its ``arm`` (a TOML file with ``[arm]`` or a
-    URDF file) is relative to the file ``source``."""
+def compare_problem(doc: Mapping[str, Any], source: str = "<compare>",
+                    overrides: Mapping[str, Any] | None = None) -> CompareProblem:
+    """The :class:`CompareProblem` of a ``[compare]`` table: the one reader of that table.
+
+    Parameters
+    ----------
+    doc : mapping
+        A document with a ``[compare]`` table, whose ``arm`` (a TOML file with ``[arm]`` or a URDF
+        file) is relative to the file ``source``; or an arm's own document (an ``[arm]`` table and
+        no ``[compare]``, as a URDF file reads ``{"arm": {"urdf": PATH}}``): that arm, compared
+        with the default settings.
+    source : str
+        The file the document was read from (named in every error).
+    overrides : mapping, optional
+        Settings given elsewhere (the command line's ``--payload``, ``--target`` …) that replace
+        the table's; the table is checked as written first.
+
+    Raises
+    ------
+    SchemaError
+        A setting is malformed or unknown (the sentence names the file and the key).
+
+    >>> from pathlib import Path
+    >>> example = Path(__file__).parents[2] / "models" / "compare_example1.toml"
+    >>> pb = compare_problem({"compare": {"arm": example.name}}, str(example), {"target": 0.1})
+    >>> pb.target, pb.arm.n
+    (0.1, 2)
+    """
     import os
 
     from ..schema import load_toml
 
-    t = parse(doc, "compare", source)
+    if "compare" not in doc:  # the arm's own document: its [arm] table (a TOML arm or a URDF file's)
+        t = parse({"compare": {"arm": source, **(overrides or {})}}, "compare", source)
+        return compare_from_arm(arm_problem({k: v for k, v in doc.items() if k == "arm"}, source), t, source)
+    table = dict(doc["compare"])
+    if overrides:
+        parse({"compare": dict(table)}, "compare", source)  # the file's own table, checked as written
+    t = parse({"compare": {**table, **(overrides or {})}}, "compare", source)
     base = os.path.dirname(source) if os.path.exists(source) else ""
     path = t.arm if os.path.isabs(t.arm) else os.path.join(base, t.arm)
     if path.lower().endswith(".urdf"):

@@ -46,7 +46,7 @@ from ..structure.code import Code
 from ..execution.executor import Executor
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, run_unit
 from ..gears.train import GearTrain
-from .database import _acquire, _release, _writable, open_atlas, transaction
+from .database import acquire_run, open_atlas, refuse_unwritable, release_run, transaction
 from .grid import Cell, GearCell, Grid
 from .trains import TrainUnit, keep_representatives, plan_gear_cell, store_trains, train_row, unit_trains
 
@@ -243,7 +243,7 @@ def run_grid(
     workers = workers or os.cpu_count() or 1
     where = f"dask {scheduler}" if scheduler else f"local {workers}"  # the run's record says where it ran
     path = Path(db)
-    _writable(path)  # refuse a read-only atlas before connecting anywhere
+    refuse_unwritable(path)  # refuse a read-only atlas before connecting anywhere
     if path.exists() and path.stat().st_size:
         open_atlas(path).close()  # not an atlas, or another version: refused before any planning
     client = _connect(scheduler, connect_timeout) if scheduler else None
@@ -261,7 +261,7 @@ def run_grid(
         executor.close()
         raise
     try:
-        run = _acquire(conn, path, grid, where)
+        run = acquire_run(conn, path, grid, where)
         # WAL + synchronous=NORMAL: a commit survives kill -9 without an fsync per unit (a power
         # cut may lose the last units, never consistency); back to a plain journal at the end
         conn.execute("PRAGMA journal_mode = WAL")
@@ -309,7 +309,7 @@ def run_grid(
             result.units_run = done_now
             result.status = status
             result.seconds = time.perf_counter() - start
-            _release(conn, run, status, done_now)
+            release_run(conn, run, status, done_now)
     finally:
         if conn.execute("PRAGMA journal_mode").fetchone()[0] == "wal":
             try:
