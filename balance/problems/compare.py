@@ -748,10 +748,11 @@ def compare_problem(doc: Mapping[str, Any], source: str = "<compare>",
         A setting is malformed or unknown (the sentence names the file and the key).
 
     >>> from pathlib import Path
-    >>> example = Path(__file__).parents[2] / "models" / "compare_example1.toml"
-    >>> pb = compare_problem({"compare": {"arm": example.name}}, str(example), {"target": 0.1})
-    >>> pb.target, pb.arm.n
-    (0.1, 2)
+    >>> from balance.schema import load_toml
+    >>> example = str(Path(__file__).parents[2] / "models" / "compare_example1.toml")
+    >>> pb = compare_problem(load_toml(example), example, {"target": 0.1})   # --target 0.1 over the file's
+    >>> pb.target, pb.payload, pb.arm.n
+    (0.1, (0.0, 3.0), 4)
     """
     import os
 
