@@ -66,7 +66,6 @@ from .arm import G, _ensure_terms_affordable, arm_problem
 
 __all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "compare_problem", "STRATEGIES"]
 
-STRATEGIES = ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
 #: the spring devices' crank geometry when the arm's file gives none (m)
 DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
 
@@ -342,12 +341,8 @@ class _Solver:
             raise InvalidInput(f"the arm's gravity torque is zero in every configuration of the workspace and payload "
                                f"(the largest is {self.scale:.3g} N·m): there is nothing to balance.")
         self.recheck = _PinocchioRecheck(self)
-        none = self.residuals(zero)
-        strategies = [Strategy("none", True, devices=0, added_mass=0.0, tuned_for=None, joints=none,
-                               hardware=("the drives carry the whole gravity torque",),
-                               pinocchio=self.recheck(zero, none), forces=zero)]
-        for build in (self.counterweights, self.springs_per_joint, self.pruned, self.exact):
-            strategies.append(build())
+        self.zero = zero
+        strategies = [build(self) for build in _BUILDERS.values()]
         return Comparison(arm, self.workspace, self.p, pb.target, pb.acceleration, pb.samples, pb.seed,
                           tuple(strategies), self.gravity)
 
@@ -380,6 +375,13 @@ class _Solver:
 
         sol = optimize.minimize_scalar(worst, bounds=self.p, method="bounded", options={"xatol": 1e-4 * self.span})
         return min((self.p_mid, float(sol.x), self.p[0], self.p[1]), key=worst)  # the ends: Brent stops short of them
+
+    # -- 1. nothing ------------------------------------------------------------------------------
+    def none(self) -> Strategy:
+        joints = self.residuals(self.zero)
+        return Strategy("none", True, devices=0, added_mass=0.0, tuned_for=None, joints=joints,
+                        hardware=("the drives carry the whole gravity torque",),
+                        pinocchio=self.recheck(self.zero, joints), forces=self.zero)
 
     # -- 2. counterweights -------------------------------------------------------------------
     def counterweights(self) -> Strategy:
@@ -530,6 +532,19 @@ class _Solver:
 
 
 # ----------------------------------------------------------------------------- helpers
+#: Every strategy, in the order a comparison shows them: its name and the solver's method that builds
+#: it (a strategy that does not apply to the arm — counterweights or exact springs with a slide, exact
+#: springs where a term is not a link's absolute angle — is built unavailable, with the reason).
+_BUILDERS = {
+    "none": _Solver.none,
+    "counterweights": _Solver.counterweights,
+    "springs per joint": _Solver.springs_per_joint,
+    "harmonic, pruned": _Solver.pruned,
+    "exact springs": _Solver.exact,
+}
+STRATEGIES = tuple(_BUILDERS)
+
+
 def _phasors(terms: Sequence[HarmonicTerm]) -> dict:
     """form key → (phasor, form) of a list of terms."""
     return {tuple(round(v, 12) for v in t.form): (t.amplitude * cmath.exp(1j * t.phase), t.form) for t in terms}

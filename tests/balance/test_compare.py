@@ -271,3 +271,11 @@ def test_one_reader_of_compare_tables_with_the_command_lines_options_over_them(t
     assert own.arm.n == 4 and own.samples == 50 and own.target == 0.05
     urdf = str(MODELS / "arm_base_drives.urdf")
     assert compare_problem({"arm": {"urdf": urdf, "name": "arm_base_drives.urdf"}}, urdf).arm.n == 4
+
+
+def test_the_strategy_table_is_what_a_comparison_shows(example1):
+    """The strategies come from one table, name → builder, in its order (a slide makes some unavailable)."""
+    from balance.problems.compare import STRATEGIES
+
+    assert STRATEGIES == ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
+    assert tuple(s.name for s in example1.strategies) == STRATEGIES
