@@ -44,6 +44,11 @@ _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-9
 #: a module's docstring examples in the balance and synth suites (the module's name and "]" follow)
 _BALANCE_DOC = "tests/balance/test_docstrings.py::test_docstring_examples["
 _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
+#: the tests of reading and writing chains (not the 10-link atlas round trip: a minute per mutant)
+_IDENTIFY_LIGHT = "not row[10] and not a_large_code"
+_EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_every_property_round_trips.py",
+             "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
+             "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -113,6 +118,28 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "query": ("synth/structure/query.py", ["tests/structure/test_query_strength.py",
                                            "tests/cli/test_query_refusals.py", _SYNTH_DOC + "synth.structure.query]"]),
     "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
+    # reading and writing chains: every format's round trip, identify's, the chain given on the command line
+    **{key: (f"synth/exchange/{name}.py", _EXCHANGE + [_SYNTH_DOC + f"synth.exchange.{name}]".replace(".__init__", "")])
+       for key, name in (("exchange", "__init__"), ("exchange_dot", "_dot"), ("exchange_entry", "_entry"),
+                         ("exchange_graphs", "_graphs"), ("exchange_lists", "_lists"),
+                         ("exchange_matrices", "_matrices"), ("exchange_identify", "identify"))},
+    # a chain's id, code, place in its listing (sized first), symmetry and classical names
+    "identify": ("synth/analysis/identify.py", ["tests/exchange/test_identify_round_trip.py",
+                                                "tests/cli/test_identify_commands.py",
+                                                _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
+    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
+                                                 "-k", "bound or pareto or sensitivity or docstring"]),
+    # the parameters every query shares, the errors' sentences, the schema of scene files
+    "params": ("synth/structure/_params.py", ["tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+                                              _SYNTH_DOC + "synth.structure._params]"]),
+    # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
+    "synth_errors": ("synth/errors.py", ["tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+                                         _SYNTH_DOC + "synth.errors]"]),
+    "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
+                                         "malformed_scene or impossible_expectation or contradicted or copy_change "
+                                         "or command_line_mistakes or docstring"]),
+    "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
+                                             _BALANCE_DOC + "balance.schema]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests

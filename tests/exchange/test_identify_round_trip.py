@@ -153,3 +153,28 @@ def test_a_mechanism_with_an_input_link_comes_back_to_its_row_in_the_input_link_
         rows_of_code = [m.certificate for m in listed if str(m.chain.code) == code]
         assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1
         assert found.mechanisms_listed == len(rows_of_code)
+
+
+@pytest.mark.parametrize("classes, code, loops, indexed", [
+    ("3=3,5=1", "10.0.0.2/0", 4, True),     # the documented limit: 4 loops of simple joints
+    ("3=4,5=1", "12.0.0.0.2/0", 5, False),  # one loop more
+    ("3=2,5=1", "811/1", 3, True),          # with a multiple joint the limit is one loop lower
+    ("3=3,5=1", "10.0.1.1/1", 4, False),
+])
+def test_a_heterogeneous_row_is_found_unasked_up_to_the_documented_loops(capsys, classes, code, loops, indexed):
+    """A heterogeneous listing is not sized: identify lists it unasked up to 4 loops (3 with a multiple
+    joint); each row read back names its own row number in the listing the command printed."""
+    from mechsynth.cli import main
+
+    assert main(["chains", "--dof", "1", "--loop-classes", classes, "--code", code, "--format", "jsonl"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert rows and all(r["loops"] == loops for r in rows)
+    for number in sorted({1, len(rows) // 2 + 1, len(rows)}):
+        found = identify(json.dumps(rows[number - 1]))
+        assert found.listing == f"mechsynth chains --dof 1 --loop-classes {classes} --code {code}"
+        if indexed:
+            assert (found.index, found.listed, found.note) == (number, len(rows), "")
+        else:
+            assert (found.index, found.listed) == (None, None)
+            assert found.note.startswith(f"its place in the listing was not computed: the code has {loops} loops")
+            assert identify(json.dumps(rows[number - 1]), index=True).index == number
