@@ -46,7 +46,7 @@ _BALANCE_DOC = "tests/balance/test_docstrings.py::test_docstring_examples["
 _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 #: the tests of reading and writing chains (not the 10-link atlas round trip: a minute per mutant)
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
-_EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_every_property_round_trips.py",
+_EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_every_property_round_trips.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
@@ -107,7 +107,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
                                                 "tests/balance/test_compare.py",
                                                 _BALANCE_DOC + "balance.problems.compare]"]),
-    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py",
+    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_dynamics_strength.py",
                                                  _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
                                                    _BALANCE_DOC + "balance.model.pantograph]"]),
@@ -151,9 +151,13 @@ DOC = ROOT / "docs" / "mutation.md"
 BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
 
 
+def _selection(key: str) -> list[str]:
+    """The pytest arguments that choose the tests judging ``key`` (test files that no longer exist left out)."""
+    return [t for t in MODULES[key][1] if not t.startswith("tests/") or (ROOT / t.split("::")[0]).exists()]
+
+
 def _prepare(key: str, work: Path) -> Path:
-    path, tests = MODULES[key]
-    tests = [t for t in tests if not t.startswith("tests/") or (ROOT / t.split("::")[0]).exists() or t.startswith("-")]
+    path, tests = MODULES[key][0], _selection(key)
     where = work / key
     shutil.rmtree(where, ignore_errors=True)
     where.mkdir(parents=True)
@@ -237,6 +241,9 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
         config = re.sub(r"\nprocess_isolation = .*\n", "\n", config)
     if "timeout_constant" not in config:  # a run made before the caches were emptied (see _prepare)
         config += "timeout_constant = 60.0\n"
+    # the present selection: a test file added for the survivors is run too
+    config = re.sub(r"\npytest_add_cli_args_test_selection = .*\n",
+                    lambda _: f"\npytest_add_cli_args_test_selection = {json.dumps(_selection(key))}\n", config)
     (where / "pyproject.toml").write_text(config)
     # which tests reach which function, from the present tests (mutmut would map only the new ones)
     (where / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)

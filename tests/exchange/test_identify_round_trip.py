@@ -178,3 +178,53 @@ def test_a_heterogeneous_row_is_found_unasked_up_to_the_documented_loops(capsys,
             assert (found.index, found.listed) == (None, None)
             assert found.note.startswith(f"its place in the listing was not computed: the code has {loops} loops")
             assert identify(json.dumps(rows[number - 1]), index=True).index == number
+
+
+@pytest.mark.parametrize("text", [
+    "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h2: 0 1 2 3 4 5",          # a base of a lower class than the chain's
+    "0-1 1-2 2-3 3-0 | h5: 0 1 2 3",                              # no loop of the chain's own class
+    "0-1 1-2 2-3 3-0 4-5 5-6 6-7 7-4 0-4 2-6 | h5: 0 1 2 3; h4: 4 5 6 7",  # three classes
+])
+def test_a_heterogeneous_chain_no_listing_holds_says_why(text):
+    found = identify(text)
+    assert (found.listing, found.index) == (None, None)
+    assert found.note == ("heterogeneous chains are listed with two loop classes, a base of the higher class on a "
+                          "chain of the lower one")
+
+
+def test_a_heterogeneous_chain_with_a_rigid_sub_chain_is_in_the_rigid_listing(capsys):
+    """Chains of K3 = 2, K5 = 1 that only --rigid-subchains lists: each is found there, at its row; one
+    more joint inside its rigid sub-chain over-constrains it, and no listing holds it."""
+    from mechsynth.cli import main
+
+    def listing(*extra):
+        assert main(["chains", "--dof", "1", "--loop-classes", "3=2,5=1", "--code", "640/0", "--format", "jsonl",
+                     *extra]) == 0
+        return [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+
+    plain = {r["certificate"] for r in listing()}
+    rigid = listing("--rigid-subchains")
+    only = [(number, r) for number, r in enumerate(rigid, start=1) if r["certificate"] not in plain]
+    assert len(only) > 3
+    for number, row in only[:: len(only) // 3]:
+        found = identify(json.dumps(row))
+        assert found.listing == "mechsynth chains --dof 1 --loop-classes 3=2,5=1 --code 640/0 --rigid-subchains"
+        assert (found.index, found.listed, found.worst_mobility) == (number, len(rigid), 0)
+    # links 0, 2, 3, 4, 5 of this chain are rigid (5 links, 6 pins: 3·4 − 2·6 = 0); a pin 2-4 makes them −2
+    text = "0-2 0-4 0-5 1-2 1-6 1-9 2-3 3-4 3-5 6-7 7-8 8-9 | h5: 1 6 7 8 9"
+    assert identify(text).worst_subchain == [0, 2, 3, 4, 5]
+    over = identify(text.replace("2-3 ", "2-3 2-4 "))
+    assert (over.listing, over.index, over.worst_mobility) == (None, None, -2)
+    assert over.note == "an over-constrained chain (a sub-chain with W(S) < 0) is in no listing"
+
+
+def test_a_heterogeneous_truss_is_in_the_plain_listing(capsys):
+    """W = 0: the chain itself is rigid, which every truss listing allows (no --rigid-subchains)."""
+    from mechsynth.cli import main
+
+    assert main(["chains", "--dof", "0", "--loop-classes", "3=2,5=1", "--code", "702/0", "--format", "jsonl"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    for number, row in enumerate(rows, start=1):
+        found = identify(json.dumps(row))
+        assert found.listing == "mechsynth chains --dof 0 --loop-classes 3=2,5=1 --code 702/0"
+        assert (found.dof, found.index, found.listed) == (0, number, len(rows))
