@@ -130,7 +130,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
-    "params": ("synth/structure/_params.py", ["tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+    "params": ("synth/structure/_params.py", ["tests/structure/test_params.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                               _SYNTH_DOC + "synth.structure._params]"]),
     # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
     "synth_errors": ("synth/errors.py", ["tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
