@@ -64,3 +64,14 @@ def test_the_drawing_hints_are_graphviz_attributes():
         else:
             assert attrs["label"] == '""' and attrs["width"] == attrs["height"] and float(attrs["width"]) <= 0.2
             assert attrs["shape"] == ("box" if attrs["joint_kind"] == "prismatic" else "circle")
+
+
+def test_concatenated_ids_and_the_sentence_of_what_was_expected():
+    (entry,) = read_text('graph { "cr" + "ank" -- b; b -- c; c -- crank }', "dot")
+    assert sorted(entry.names) == ["b", "c", "crank"] and entry.chain.links == 3
+    for text, words in (("graph { a -- b", "expected 'id', found 'the end of the text'"),
+                        ("graph a -- b }", "expected '{', found '--'"),
+                        ("graph { a -- b [color=red; }", "expected 'id', found '}'")):
+        with pytest.raises(MalformedChain) as info:
+            read_text(text, "dot")
+        assert str(info.value) == "the input: not DOT: " + words

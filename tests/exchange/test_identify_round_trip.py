@@ -228,3 +228,28 @@ def test_a_heterogeneous_truss_is_in_the_plain_listing(capsys):
         found = identify(json.dumps(row))
         assert found.listing == "mechsynth chains --dof 0 --loop-classes 3=2,5=1 --code 702/0"
         assert (found.dof, found.index, found.listed) == (0, number, len(rows))
+
+
+def test_a_rigid_sub_chain_or_a_gear_mesh_chooses_the_listing():
+    """A rigid triangle in a 1-DOF chain: the --rigid-subchains listing, at the row that listing gives
+    it; a gear mesh: no listing of type synthesis."""
+    text = "0-1 1-2 2-0 0-3 3-4 4-5 5-1"
+    listed = list(synth.type_synthesis(synth.ChainQuery(1, code="42/0", rigid_subchains=True), workers=1))
+    found = identify(text)
+    assert found.listing == "mechsynth chains --code 42/0 --rigid-subchains" and found.worst_mobility == 0
+    assert listed[found.index - 1].certificate == found.certificate and found.listed == len(listed)
+    gears = identify("0-1 0-2 1~2")
+    assert (gears.listing, gears.index) == (None, None)
+    assert gears.note == ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
+                          "listed by 'mechsynth gears')")
+
+
+def test_the_size_of_a_mechanism_listing_counts_mechanisms():
+    """A 10-link chain: its listing sized as chains (230 chains of 10 links) and, with a frame, as
+    mechanisms (1 834): each estimate within a factor of two of its exact count."""
+    from synth.analysis import identify as module
+
+    chain = list(synth.type_synthesis(1, 10, workers=1))[-1]
+    query, _ = module.listing_query(chain, 1, None, False)
+    assert 115 < module.index_size(chain, query).chains < 460
+    assert 917 < module.index_size(chain, query, mechanisms=True).chains < 3668
