@@ -204,6 +204,7 @@ def test_sample_fills_the_ranges():
     (dict(k=1.0), "ratio k = AC/AB must exceed 1, not 1.0"),
     (dict(range2=(0.5, 0.5)), "angle range must be finite with low < high"),
     (dict(range3=(math.nan, 1.0)), "angle range"), (dict(range3=(0.0, math.inf)), "angle range"),
+    (dict(range2=(-math.inf, 1.0)), "angle range"),
     (dict(range2=(1.0, 0.0)), "angle range")])
 def test_bad_pantograph_geometry(bad, match):
     with pytest.raises(InvalidArm, match=match.replace("(", r"\(").replace(")", r"\)")):
