@@ -255,8 +255,12 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
     names = [n for n, diff in _diffs(where, path, names).items()
              if diff not in known and (not only or diff[0] in only)]  # (equivalents stay so)
     if names:
-        subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        proc = subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        (where / "again.log").write_text(proc.stdout)
+        if not (where / "mutants" / "mutmut-stats.json").exists():  # the unmutated code failed its tests
+            raise SystemExit(f"mutation.py: the tests of {key} fail on the unmutated copy under {where}, so no "
+                             f"survivor was run again (see {where / 'again.log'}); run {key} in full")
 
 
 _DIFFS = """
