@@ -133,7 +133,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "params": ("synth/structure/_params.py", ["tests/structure/test_params.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                               _SYNTH_DOC + "synth.structure._params]"]),
     # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
-    "synth_errors": ("synth/errors.py", ["tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+    "synth_errors": ("synth/errors.py", ["tests/test_errors.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                          _SYNTH_DOC + "synth.errors]"]),
     "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
                                          "malformed_scene or impossible_expectation or contradicted or copy_change "

@@ -75,3 +75,14 @@ def test_concatenated_ids_and_the_sentence_of_what_was_expected():
         with pytest.raises(MalformedChain) as info:
             read_text(text, "dot")
         assert str(info.value) == "the input: not DOT: " + words
+
+
+def test_an_attribute_without_its_equals_sign_and_the_graph_a_mistake_is_in():
+    with pytest.raises(MalformedChain) as info:
+        read_text("graph { a -- b [kind; P]; b -- c; c -- a }", "dot")
+    assert str(info.value) == "the input: not DOT: expected '=', found ';'"
+    with pytest.raises(MalformedChain) as info:
+        read_text("graph { a -- b -- c -- a }\ngraph { x -- y; y -- x -- x }", "dot")
+    assert str(info.value).startswith("the input graph 2: ") and "link x is joined to itself" in str(info.value)
+    two = read_text("graph { a -- b -- c -- a }\ngraph { x -- y -- z -- x }", "dot")
+    assert [e.source for e in two] == ["the input graph 1", "the input graph 2"]
