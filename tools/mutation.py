@@ -124,7 +124,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                          ("exchange_graphs", "_graphs"), ("exchange_lists", "_lists"),
                          ("exchange_matrices", "_matrices"), ("exchange_identify", "identify"))},
     # a chain's id, code, place in its listing (sized first), symmetry and classical names
-    "identify": ("synth/analysis/identify.py", ["tests/exchange/test_identify_round_trip.py",
+    "identify": ("synth/analysis/identify.py", ["tests/analysis/test_identify_strength.py",
+                                                "tests/exchange/test_identify_round_trip.py",
                                                 "tests/cli/test_identify_commands.py",
                                                 _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",

@@ -228,6 +228,7 @@ def test_a_heterogeneous_truss_is_in_the_plain_listing(capsys):
         found = identify(json.dumps(row))
         assert found.listing == "mechsynth chains --dof 0 --loop-classes 3=2,5=1 --code 702/0"
         assert (found.dof, found.index, found.listed) == (0, number, len(rows))
+        assert found.subchains == "none"  # judged with rigid sub-chains allowed, as a truss is
 
 
 def test_a_rigid_sub_chain_or_a_gear_mesh_chooses_the_listing():
