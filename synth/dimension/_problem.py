@@ -25,12 +25,14 @@ from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of"]
 
-#: samples of the input between and around the target's inputs where the dyads must close
-SPAN_SAMPLES = 48
+#: the widest step (rad, or target sizes for a slide) between the inputs where the dyads must close
+SPAN_STEP = 0.02
 #: samples of a full turn of the input where a crank's dyads must close
 TURN_SAMPLES = 72
 #: samples of the traced curve, each way from the pose, for a target without timing (global stage)
 CURVE_SAMPLES = 120
+#: a dyad's discriminant this far below 0 still closes (a target point at a dead position, up to rounding)
+ROUNDING = 1e-12
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 
@@ -283,8 +285,8 @@ class Problem:
         return target.inputs - target.inputs[0]
 
     def move(self, linkage: Linkage, offsets: np.ndarray):
-        """(tracer points (S, 2) or output angles (S,), g (S,) the least dyad discriminant (NaN-free:
-        −1 where a dyad cannot close), μ (S,) the worst transmission angle from the ideal: min(μ, π − μ)),
+        """(tracer points (S, 2) or output angles (S,), g (S,) the least dyad discriminant, up to rounding
+        (NaN-free: −1 where a dyad cannot close), μ (S,) the worst transmission angle from the ideal: min(μ, π − μ)),
         at the input offsets; g and μ are None for a linkage moved by Newton's method (it raises
         MotionError where it cannot reach)."""
         plan = decompose(linkage)
@@ -293,7 +295,7 @@ class Problem:
             g = mu = None
         else:
             theta, t, gs, mus, _ = Closure(linkage, plan)(np.asarray(offsets, dtype=float)[:, None])
-            g = np.where(np.isfinite(gs), gs, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
+            g = np.where(np.isfinite(gs), gs + ROUNDING, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
             ok = np.isfinite(theta).all(axis=1)
             g = np.where(ok, g, -1.0)
             worst = np.minimum(mus, math.pi - mus)
@@ -322,16 +324,17 @@ class Problem:
         if isinstance(target, MotionTarget):
             rows = target.poses if target_rows is None else target_rows
             dxy = (values[:, :2] - rows[:, :2]) / self.scale
-            turn = _wrap(values[:, 2] - (rows[:, 2] - rows[0, 2]))
+            turn = _wrap(values[:, 2] - (rows[:, 2] - target.poses[0, 2]))
             return np.column_stack((dxy, turn))
-        return (values - target.points) / self.scale
+        return (values - (target.points if target_rows is None else target_rows)) / self.scale
 
     # ------------------------------------------------------------ constraints
     def samples(self, offsets: np.ndarray) -> np.ndarray:
         """Inputs where the dyads must close: across the target's span (the pose included), and the
         whole turn for a crank."""
         lo, hi = min(0.0, float(offsets.min())), max(0.0, float(offsets.max()))
-        parts = [np.linspace(lo, hi, SPAN_SAMPLES)]
+        step = SPAN_STEP * (1.0 if self.revolute_input else self.scale)
+        parts = [np.linspace(lo, hi, 2 + int((hi - lo) / step))]
         if self.constraints.crank and self.revolute_input:
             parts.append(np.linspace(0, 2 * math.pi, TURN_SAMPLES, endpoint=False))
         return np.concatenate(parts)
