@@ -13,7 +13,7 @@ from scipy.optimize import differential_evolution, least_squares
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure.chain import Mechanism
-from ._problem import (CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio)
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -165,20 +165,49 @@ class _Evaluate:
 
     # ---- timed targets: the unknowns are the dimensions only
     def timed(self, x):
+        """(residuals, violations) of the unknowns x, or the share of samples where the dyads do not
+        close (a float), or None where the pose contradicts the chain.  For a timed path x may leave
+        out the tracer point: it is then the least-squares best for the rest."""
         p = self.problem
+        short = len(x) < p.dims
         try:
-            lk = p.linkage(x)
+            lk = p.linkage(np.concatenate((x, [0.0, 0.0])) if short else x)
             offsets = p.offsets_of_timing(lk)
             samples = p.samples(offsets)
-            values, g, mu = p.move(lk, np.concatenate((offsets, samples)))
+            every = np.concatenate((offsets, samples))
+            n = len(offsets)
+            if short:
+                theta, t, g, mu = p.poses(lk, every)
+                if g is not None and (g < 0).any():
+                    return float((g < 0).mean())
+                link = p.tracer_link
+                values = _carried(theta[:n, link], t[:n, link], p.best_tracer(theta[:n, link], t[:n, link]))
+            else:
+                values, g, mu = p.move(lk, every)
         except MotionError:
             return None
-        n = len(offsets)
         if g is not None and (g < 0).any():
             return float((g < 0).mean())
         if not np.isfinite(values[:n]).all():
             return 1.0
         return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:])
+
+    def complete(self, x) -> np.ndarray:
+        """The full unknowns of searched ones: a timed path's best tracer point appended."""
+        p = self.problem
+        if len(x) == p.dims:
+            return np.asarray(x, dtype=float)
+        full = np.concatenate((x, [0.0, 0.0]))
+        try:
+            lk = p.linkage(full)
+            offsets = p.offsets_of_timing(lk)
+            theta, t, _, _ = p.poses(lk, offsets)
+        except MotionError:
+            return full
+        tracer = p.best_tracer(theta[:, p.tracer_link], t[:, p.tracer_link])
+        if np.isfinite(tracer).all():
+            full[-2:] = np.clip((tracer - p.centre) / p.scale, p.lower[-2:], p.upper[-2:])
+        return full
 
     # ---- untimed targets: dimensions, then the inputs (a direction and increments)
     def curve(self, x):
@@ -463,9 +492,9 @@ class _Search:
             return (watch.over() or self.exact or fun <= EXACT ** 2
                     or state["generation"] - state["improved"] > self.STAGNANT)
 
-        bounds = list(zip(problem.lower, problem.upper))
-        x0 = problem.unknowns_of(start) if start is not None else None
-        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.dims),
+        bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
+        x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
+        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
                       maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
                       callback=stop, x0=x0)
         if pool is not None:
@@ -482,8 +511,8 @@ class _Search:
             x = result.population[i]
             if result.population_energies[i] >= INFEASIBLE:
                 break
-            if all(np.abs(x - y).max() > 1e-3 for y in picked):
-                picked.append(x)
+            if all(np.abs(x - y[:len(x)]).max() > 1e-3 for y in picked):
+                picked.append(self.evaluate.complete(x))
             if len(picked) == 3:
                 break
         return picked
@@ -493,7 +522,7 @@ class _Search:
         curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
-            z0, lower, upper, direction = x, problem.lower, problem.upper, 0
+            z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
         else:
             found = evaluate.untimed(x)
             if found is None or isinstance(found, float):
