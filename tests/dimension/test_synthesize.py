@@ -82,9 +82,10 @@ def test_a_four_bars_coupler_points_without_timing_are_found_without_a_guess():
 
 
 def freudenstein(phi, psi):
-    """K1, K2, K3 of Freudenstein's equation K1 cos φ − K2 cos ψ + K3 = cos(φ − ψ), solved for three
-    precision points."""
-    rows = np.column_stack((np.cos(phi), -np.cos(psi), np.ones(3)))
+    """K1, K2, K3 of Freudenstein's equation K1 cos ψ − K2 cos φ + K3 = cos(φ − ψ) (K1 = d/a,
+    K2 = d/c, K3 = (a² − b² + c² + d²)/(2ac); a the input crank, b the coupler, c the output
+    rocker, d the frame), solved for three precision points."""
+    rows = np.column_stack((np.cos(psi), -np.cos(phi), np.ones(3)))
     return np.linalg.solve(rows, np.cos(phi - psi))
 
 
@@ -97,7 +98,7 @@ def test_function_generation_matches_freudensteins_closed_form():
     a = math.dist(lk.points[0], lk.points[2])
     b = math.dist(lk.points[2], lk.points[3])
     c = math.dist(lk.points[1], lk.points[3])
-    found = np.array([d / c, d / a, (a * a - b * b + c * c + d * d) / (2 * a * c)])
+    found = np.array([d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)])
     assert np.allclose(found, freudenstein(phi, psi), rtol=1e-8, atol=1e-10)
     # the output angles, measured by the motion layer from the frame line, are the target's
     for value, want in zip(result.inputs, psi):
@@ -162,11 +163,12 @@ def test_the_designers_constraints_are_met_and_reported():
 
 
 def test_a_constraint_no_candidate_meets_is_reported_as_failed():
+    """A crank whose transmission angle stays within 89° … 91° over its whole turn: no four-bar has one."""
     target = PathTarget([[0, 0], [1, 0], [2, 0.1], [3, 0.5], [4, 1.5]], np.radians([0, 20, 40, 60, 80]))
-    far = (100.0, 101.0, 100.0, 101.0)  # fixed pivots forced a hundred target sizes away
-    result = synthesize(FOUR_BAR, target, constraints=Constraints(pivots=far, reach=200.0), budget=3, seed=0)
+    impossible = Constraints(crank=True, min_transmission=math.radians(89))
+    result = synthesize(FOUR_BAR, target, constraints=impossible, budget=3, seed=0)
     assert not result.met
-    assert any(f.startswith("pivots") or f.startswith("branch") for f in result.failed())
+    assert any(f.startswith("transmission") or f.startswith("crank") for f in result.failed())
 
 
 def test_refusals():
