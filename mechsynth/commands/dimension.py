@@ -95,8 +95,8 @@ def add_commands(sub) -> None:
     p.add_argument("--max-ratio", type=_number, metavar="R", help="bound on the longest over the shortest "
                    "distance between two joints of one link")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
-    p.add_argument("--reach", type=_number, default=2.0, help="the search box: joints within this many target "
-                   "sizes of its centre (default 2)")
+    p.add_argument("--reach", type=_number, default=4.0, help="the search box: joints within this many target "
+                   "sizes of its centre (default 4)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")

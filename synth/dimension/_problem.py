@@ -70,7 +70,7 @@ class Constraints:
     min_transmission: float = 0.0
     max_ratio: float | None = None
     pivots: tuple[float, float, float, float] | None = None
-    reach: float = 2.0
+    reach: float = 4.0
 
     def __post_init__(self):
         if self.crank and self.rocker is not None:
