@@ -559,7 +559,10 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     x = z[:problem.dims]
     linkage = problem.linkage(x)
     if isinstance(problem.target, FunctionTarget):  # posed at the first input, as every other result
-        linkage = assemble(linkage, float(problem.target.inputs[0]))
+        try:
+            linkage = assemble(linkage, float(problem.target.inputs[0]))
+        except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
+            pass
     if problem.timed:
         offsets = problem.offsets_of_timing(linkage)
     else:
@@ -578,7 +581,11 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     else:
         traced = values
         errors = np.hypot(*(values - target.points).T)
-    constraints = _checked(problem, linkage, offsets)
+    try:
+        constraints = _checked(problem, linkage, offsets)
+    except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
+        constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
+                                  "met": False}}
     method = (f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), "
               f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
     return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
