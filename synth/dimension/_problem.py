@@ -56,8 +56,9 @@ class Constraints:
         included).
     pivots : (x0, x1, y0, y1), optional
         A box the frame's joints (fixed pivots, slide lines' points) must lie in.
-    reach : float
-        The search box: every joint within ``reach`` target sizes of the target's centre.
+    reach : float, optional
+        The search box: every joint within ``reach`` target sizes of the target's centre (default 4;
+        for a function, frame lengths from the input pivot, default 2).
 
     Examples
     --------
@@ -70,7 +71,7 @@ class Constraints:
     min_transmission: float = 0.0
     max_ratio: float | None = None
     pivots: tuple[float, float, float, float] | None = None
-    reach: float = 4.0
+    reach: float | None = None
 
     def __post_init__(self):
         if self.crank and self.rocker is not None:
@@ -90,7 +91,7 @@ class Constraints:
             if not all(map(math.isfinite, (x0, x1, y0, y1))) or x0 >= x1 or y0 >= y1:
                 raise DimensionError(f"the pivots' region must be x0 < x1 and y0 < y1, finite, not {self.pivots}")
             object.__setattr__(self, "pivots", (x0, x1, y0, y1))
-        if not (math.isfinite(self.reach) and self.reach > 0):
+        if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
             raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
 
 
@@ -154,7 +155,7 @@ class Problem:
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
-        reach = constraints.reach
+        reach = self.reach = constraints.reach or (2.0 if isinstance(target, FunctionTarget) else 4.0)
         for k in range(len(chain.joints)):
             if k in self.fixed:
                 continue
@@ -211,7 +212,7 @@ class Problem:
 
     def _pivot_box(self, k: int) -> tuple[float, float, float, float]:
         """The search box of joint k's position, non-dimensional (the pivots' region for the frame's joints)."""
-        reach = self.constraints.reach
+        reach = self.reach
         box = (-reach, reach, -reach, reach)
         if self.constraints.pivots is not None and k in self.frame_joints:
             x0, x1, y0, y1 = self.constraints.pivots
