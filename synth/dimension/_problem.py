@@ -33,6 +33,8 @@ TURN_SAMPLES = 72
 CURVE_SAMPLES = 120
 #: a dyad's discriminant this far below 0 still closes (a target point at a dead position, up to rounding)
 ROUNDING = 1e-12
+#: the search aims this far inside each of the designer's limits (rad, relative, target sizes)
+MARGIN = 1e-4
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 
@@ -357,22 +359,26 @@ class Problem:
 
     def violations(self, linkage: Linkage, offsets: np.ndarray, g, mu) -> np.ndarray:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
-        transmission (rad), ratio (log), pivots (target sizes), rocker limits (rad or sizes)."""
+        transmission (rad), ratio (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
+        measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
+        that binds settles a little beyond its limit."""
         c = self.constraints
         out = []
         if c.min_transmission > 0:
-            out.append(max(0.0, c.min_transmission - float(np.min(mu))) if mu is not None else 0.0)
+            out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
         if c.max_ratio is not None:
-            out.append(max(0.0, math.log(link_ratio(linkage) / c.max_ratio)))
+            out.append(max(0.0, math.log(link_ratio(linkage) / (c.max_ratio * (1 - MARGIN)))))
         if c.pivots is not None:
-            x0, x1, y0, y1 = c.pivots
+            inset = MARGIN * self.scale
+            x0, x1, y0, y1 = c.pivots[0] + inset, c.pivots[1] - inset, c.pivots[2] + inset, c.pivots[3] - inset
             p = linkage.points[self.frame_joints]
             gap = np.maximum.reduce([x0 - p[:, 0], p[:, 0] - x1, y0 - p[:, 1], p[:, 1] - y1, np.zeros(len(p))])
             out.append(float(np.hypot.reduce(gap)) / self.scale if len(gap) else 0.0)
         if c.rocker is not None:
+            unit = 1.0 if self.revolute_input else self.scale
             values = linkage.pose_inputs[0] + np.array([min(0.0, offsets.min()), max(0.0, offsets.max())])
-            over = max(0.0, c.rocker[0] - values[0]) + max(0.0, values[1] - c.rocker[1])
-            out.append(over / (1.0 if self.revolute_input else self.scale))
+            over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
+            out.append(over / unit)
         return np.array(out)
 
 
