@@ -31,6 +31,7 @@ def test_a_function_found_is_saved_and_moved(tmp_path, capsys):
     capsys.readouterr()
 
 
+@pytest.mark.slow  # about 11 CPU seconds of search
 def test_a_path_found_is_drawn_over_its_target(tmp_path, capsys):
     picture = tmp_path / "path.svg"
     code = main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "60", "--out",

@@ -57,6 +57,7 @@ def test_a_four_bars_coupler_points_with_timing_are_found_exactly():
     assert np.allclose(np.diff(result.inputs), np.diff(target.inputs), atol=1e-12)
 
 
+@pytest.mark.slow  # up to 30–60 CPU seconds
 def test_a_four_bars_coupler_points_without_timing_are_found_exactly_from_a_near_guess():
     """Without timing the inputs are unknowns; from a guess 2 % off the search returns to the curve."""
     original = random_crank_rocker(3)
@@ -71,14 +72,6 @@ def test_a_four_bars_coupler_points_without_timing_are_found_exactly_from_a_near
     order = np.diff(result.inputs)
     assert (order > 0).all() or (order < 0).all()  # the points passed in their order
     assert result.constraints["order"]["met"] and result.constraints["branch"]["met"]
-
-
-@pytest.mark.slow
-def test_a_four_bars_coupler_points_without_timing_are_found_without_a_guess():
-    original = random_crank_rocker(1)
-    target = PathTarget(sweep(original, steps=11).tracers["P"][:10])
-    result = synthesize(FOUR_BAR, target, budget=300, seed=0)
-    assert result.relative_max < 1e-6
 
 
 def freudenstein(phi, psi):
@@ -108,6 +101,7 @@ def test_function_generation_matches_freudensteins_closed_form():
     assert abs(float(lk.pose_inputs[0]) - phi[0]) < 1e-9  # posed at the first input
 
 
+@pytest.mark.slow  # up to 30–60 CPU seconds
 def test_a_slider_cranks_coupler_points_are_found_exactly_from_a_near_guess():
     """A slide's line is two unknowns (a point and a direction): from a guess 2 % off (its slide
     turned by 0.02 rad) the search returns to the timed points."""
@@ -132,6 +126,7 @@ def circumcentre(p):
     return np.array([ux, uy])
 
 
+@pytest.mark.slow  # up to 30–60 CPU seconds
 def test_three_poses_of_a_body_are_met_as_burmester_constructs_them():
     """Three poses: each fixed pivot is the centre of the circle through its moving pivot's three
     positions (the body's points carried by each pose) — Burmester's construction."""
@@ -152,6 +147,7 @@ def test_three_poses_of_a_body_are_met_as_burmester_constructs_them():
         assert np.allclose(circumcentre(np.array(places)), lk.points[fixed], atol=1e-7)
 
 
+@pytest.mark.slow  # up to 30–60 CPU seconds
 def test_the_designers_constraints_are_met_and_reported():
     original = random_crank_rocker(5)
     motion = sweep(original, steps=7, stop=float(original.pose_inputs[0]) + math.radians(200))
