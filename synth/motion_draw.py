@@ -88,7 +88,7 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     >>> lk.dof
     1
     """
-    from .draw import layout
+    from .draw._layout import layout
     from .errors import MotionError
 
     chain = mechanism.chain

@@ -162,7 +162,7 @@ def _linkage(args):
     """The linkage the command moves, and where it came from (for the messages)."""
     from synth import Chain, InvalidOption, Mechanism
     from synth.motion import read_linkage
-    from synth.motion_draw import linkage_from_layout
+    from synth import linkage_from_layout
 
     if args.linkage:
         return read_linkage(args.linkage)
@@ -213,12 +213,12 @@ def _run(args) -> int:
     if motion.stopped:
         print(f"mechsynth: the sweep stopped: {motion.stopped}", file=sys.stderr)
     if args.out:
-        from synth.motion_draw import draw_motion
+        from synth import draw_motion
 
         draw_motion(motion, args.out)
         print(f"coupler curves -> {args.out}", file=sys.stderr)
     if args.animate:
-        from synth.motion_draw import animate_motion
+        from synth import animate_motion
 
         frames = animate_motion(motion, args.animate, frames=args.frames or 60, progress=sys.stderr.isatty())
         print(f"{frames} frames -> {args.animate}", file=sys.stderr)

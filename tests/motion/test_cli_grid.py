@@ -50,7 +50,7 @@ def test_grid_rows_hold_every_grid_point_in_row_major_order(capsys, five_bar):
     assert np.allclose(first[:, 0], np.radians(np.linspace(30, 150, 5)), atol=1e-15)
     assert np.allclose(second[0], np.radians(np.linspace(0, 120, 4)), atol=1e-15)
     assert (first == first[:, :1]).all() and (second == second[:1]).all()  # the last input varies fastest
-    reached = [r for r in rows if r["2-3.x"] != "None"]
+    reached = [r for r in rows if r["2-3.x"] != ""]
     assert 0 < len(reached) < 20  # some of this grid is beyond the branch: empty cells, not dropped rows
     for r in reached:
         phi, psi = float(r["input.0-1"]), float(r["input.0-4"])
@@ -60,7 +60,7 @@ def test_grid_rows_hold_every_grid_point_in_row_major_order(capsys, five_bar):
         assert np.hypot(*(pin - b)) == pytest.approx(math.hypot(1.5, 1.5), abs=1e-12)
     grid = sweep_grid(read_linkage(five_bar), [(math.radians(30), math.radians(150)),
                                                (math.radians(0), math.radians(120))], steps=[5, 4])
-    assert [r["2-3.x"] != "None" for r in rows] == np.isfinite(grid.joints).all(axis=(1, 2)).tolist()
+    assert [r["2-3.x"] != "" for r in rows] == np.isfinite(grid.joints).all(axis=(1, 2)).tolist()
 
 
 def test_grid_velocities_per_input_match_differences(capsys, five_bar):
