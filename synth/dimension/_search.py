@@ -318,7 +318,7 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
                budget: float = 60.0, seed: int = 0, workers: int = 1, underdetermined: bool = False,
-               progress=None) -> DimensionalResult:
+               progress=None, polish_only: bool = False) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -342,6 +342,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         Allow fewer target equations than unknowns (infinitely many exact solutions: one is
         returned), as in Burmester's three poses.
     progress : callable (seconds, best cost), optional
+    polish_only : bool
+        No global search: only the least-squares polish from the given Linkage's pose (the atlas
+        search starts each topology from its nearest indexed sample this way).
 
     Returns
     -------
@@ -366,6 +369,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     from ..errors import BadTarget
 
     problem, start = _problem(mechanism, target, tracer_link, constraints)
+    if polish_only and start is None:
+        raise DimensionError("a polish alone starts from a dimensioned linkage, not from a Mechanism")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
         raise DimensionError(f"the budget must be a positive number of seconds, not {budget!r}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
@@ -388,7 +393,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
 
         pool = process_pool(workers)
     try:
-        while not watch.over():
+        if polish_only:
+            best = _polish(evaluate, problem, watch, problem.unknowns_of(start))
+        while not polish_only and not watch.over():
             runs += 1
             found = _global(evaluate, problem, watch, rng, start if runs == 1 else None, pool)
             for x in found:
@@ -515,8 +522,9 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
         traced = values
         errors = np.hypot(*(values - target.points).T)
     constraints = _checked(problem, linkage, offsets)
-    method = (f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), "
-              f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
+    method = (("bounded least squares (trf) from a given start, " if runs == 0 else
+               f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
+              + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
     return DimensionalResult(linkage, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
                              else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
 
