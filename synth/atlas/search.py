@@ -79,10 +79,11 @@ class AtlasMatch:
     tried: int
 
     def row(self) -> dict:
+        """One JSON-able row: the topology, its errors (target units and relative), where it started."""
         r = self.result
-        return {"chain": self.mechanism.chain.compact(), "chain_id": self.mechanism.chain.certificate and
-                _chain_id(self.mechanism.chain), "frame": self.mechanism.frame,
-                "input": self.result.linkage.to_dict()["inputs"][0], "tracer_link": self.candidate.tracer_link,
+        return {"chain": self.mechanism.chain.compact(), "chain_id": _chain_id(self.mechanism.chain),
+                "frame": self.mechanism.frame, "input": r.linkage.to_dict()["inputs"][0],
+                "tracer_link": self.candidate.tracer_link,
                 "links": self.candidate.links, "error_max": r.error_max, "error_rms": r.error_rms,
                 "relative_max": r.relative_max, "relative_rms": r.relative_rms, "misfit": self.candidate.misfit,
                 "met": r.met, "tried": self.tried, "seconds": round(r.seconds, 3)}
@@ -221,8 +222,9 @@ def _load(conn, links: tuple[int, int] | None, h: int):
 
 def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, per_topology: int = 3,
              topologies: int | None = None) -> tuple[list[Candidate], int]:
-    """The indexed curves nearest the target: the best ``per_topology`` of each topology, the
-    topologies ordered by their best misfit (at most ``topologies`` of them); and the index's size.
+    """The indexed curves nearest the target: the best ``per_topology`` of each topology, for the
+    best-fitting topology of every link count and then the others by their best misfit (at most
+    ``topologies`` in all, or one per link count if that is more); and the index's size.
 
     Brute force over the whole index with numpy (the alignment of every curve to the target is one
     FFT of 512 shifts per form of the curve).
@@ -256,12 +258,21 @@ def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, pe
             shift[block] = np.where(better, s, shift[block])
     order = np.argsort(best, kind="stable")
     chosen: dict[tuple, list] = {}
+    # the best topology of every link count first (the answer is error against complexity), then the rest
+    simplest = {}
+    for i in order:
+        if math.isfinite(best[i]):
+            simplest.setdefault(int(meta[i, 6]), tuple(int(v) for v in meta[i, 1:4]))
+    for key in simplest.values():
+        chosen[key] = []
     for i in order:
         if not math.isfinite(best[i]):
             break
         key = tuple(int(v) for v in meta[i, 1:4])
-        if len(chosen.get(key, ())) < per_topology and (key in chosen or topologies is None or len(chosen) < topologies):
-            chosen.setdefault(key, []).append(int(i))
+        if key not in chosen and (topologies is None or len(chosen) < max(topologies, len(simplest))):
+            chosen[key] = []
+        if key in chosen and len(chosen[key]) < per_topology:
+            chosen[key].append(int(i))
     out = []
     for key, rows in chosen.items():
         for i in rows:
@@ -303,3 +314,180 @@ def start_linkage(candidate: Candidate, chain: Chain, points: np.ndarray, tracer
         k = int(np.argmin(np.hypot(*(motion.tracers["P"] - first).T)))
         value = float(motion.inputs[k, 0])
     return assemble(linkage, value)
+
+
+# ------------------------------------------------------------------ polish, per topology
+@dataclass(frozen=True)
+class _Polish:
+    """One topology's candidates as a worker receives them (picklable)."""
+
+    chain_json: str
+    candidates: tuple  # (Candidate, points, tracer_at), best misfit first
+    target: object
+    constraints: object
+    budget: float
+    seed: int
+
+
+def _expand(task: _Polish) -> list:
+    return [task]
+
+
+def _polish_topology(task: _Polish):
+    """Polish a topology's candidates in turn, each from its start linkage, until one meets the
+    target exactly or the topology's budget is spent: (best result or None, candidate, tried, why)."""
+    from dataclasses import replace
+
+    from ..dimension import synthesize
+
+    chain = Chain.from_dict(json.loads(task.chain_json))
+    clock = time.process_time()
+    best, best_candidate, tried, why = None, None, 0, None
+    centre = (np.min(task.target.points, axis=0) + np.max(task.target.points, axis=0)) / 2
+    for candidate, points, at in task.candidates:
+        left = task.budget - (time.process_time() - clock)
+        if left <= 0:
+            break
+        tried += 1
+        try:
+            start = start_linkage(candidate, chain, points, at, task.target)
+            far = float(np.hypot(*(np.vstack((start.points, start.tracers["P"][1])) - centre).T).max())
+            constraints = replace(task.constraints, reach=max(task.constraints.reach, 3.0 * far / task.target.size))
+            result = synthesize(start, task.target, tracer_link=candidate.tracer_link, constraints=constraints,
+                                budget=left, seed=task.seed, polish_only=True)
+        except SynthesisError as exc:
+            why = str(exc)
+            continue
+        if best is None or (result.met, -result.error_rms) > (best.met, -best.error_rms):
+            best, best_candidate = result, candidate
+        if result.met and result.relative_max <= EXACT:
+            break
+    return best, best_candidate, tried, why
+
+
+#: a polished mechanism meets the target exactly when its largest error is below this × the target's size
+EXACT = 1e-9
+
+
+def _rechecked(result, target) -> float:
+    """The largest distance between the reported curve and the returned linkage moved by the motion
+    layer to each reported input (:func:`synth.motion.assemble`), over the target's size."""
+    from ..motion import assemble
+
+    moved = np.array([assemble(result.linkage, float(v)).tracers["P"][1] for v in result.inputs])
+    return float(np.hypot(*(moved - result.traced).T).max() / target.size)
+
+
+def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None, top: int = 5,
+                 per_topology: int = 3, budget: float = 60.0, constraints=None, seed: int = 0,
+                 workers: int = 1, scheduler: str | None = None, progress: bool = False,
+                 connect_timeout: float = 5.0) -> AtlasSearchResult:
+    """Which mechanisms of the atlas trace the target path, and with which dimensions.
+
+    Parameters
+    ----------
+    db : path
+        An atlas with a curve index (``mechsynth atlas --db F --index-curves``).
+    target : synth.dimension.PathTarget
+        Points round a closed curve, with a timing over a full turn or without one.
+    links : (int, int), optional
+        Search only mechanisms with this many links.
+    top : int
+        Topologies (chain, frame, input) polished: those whose nearest samples fit best.
+    per_topology : int
+        Samples of each topology polished at most (nearest first).
+    budget : float
+        CPU seconds of polishing in all, shared equally by the topologies.
+    constraints : synth.dimension.Constraints, optional
+        What the answer must also meet (the search box grows to hold each start).
+    workers, scheduler
+        Topologies are polished on the project's executor: local processes or a Dask cluster.
+
+    Returns
+    -------
+    AtlasSearchResult
+        The best mechanism of each topology polished, ordered by met constraints, then error.
+
+    Raises
+    ------
+    NoCurveIndex, BadTarget, InvalidOption
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> from synth.atlas import parse_grid, run_grid
+    >>> from synth.atlas.curves import index_curves, IndexSettings
+    >>> from synth.dimension import PathTarget
+    >>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+    >>> _ = run_grid(parse_grid('dof = 1\\nlinks = 4'), db, workers=1)
+    >>> _ = index_curves(db, settings=IndexSettings(samples=30), workers=1)
+    >>> t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    >>> found = search_atlas(db, PathTarget(np.c_[np.cos(t), 0.6 * np.sin(t)]), budget=5)
+    >>> found.best.candidate.links, found.best.result.relative_max < 0.05
+    (4, True)
+    """
+    from ..dimension import Constraints
+
+    for name, value, low in (("top", top, 1), ("per_topology", per_topology, 1), ("workers", workers, 1)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < low:
+            raise InvalidOption(f"{name} must be a whole number ≥ {low}, not {value!r}")
+    if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
+        raise InvalidOption(f"the budget must be a positive number of seconds, not {budget!r}")
+    constraints = constraints or Constraints()
+    clock = time.process_time()
+    candidates, size = retrieve(db, target, links=links, per_topology=per_topology, topologies=top)
+    conn = open_atlas(db)
+    try:
+        tasks = []
+        by_topology: dict[tuple, list] = {}
+        for c in candidates:
+            by_topology.setdefault(c.topology, []).append(c)
+        for key, group in by_topology.items():
+            chain_json = conn.execute("SELECT chain FROM chains WHERE id = ?", (key[0],)).fetchone()[0]
+            rows = []
+            for c in sorted(group, key=lambda c: c.misfit):
+                points, at = conn.execute("SELECT points, tracer FROM curve_samples WHERE id = ?", (c.row,)).fetchone()
+                rows.append((c, json.loads(points), json.loads(at)))
+            tasks.append(_Polish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1), seed))
+    finally:
+        conn.close()
+    client = None
+    if scheduler:
+        from ..execution.scheduler import connect
+
+        client = connect(scheduler, connect_timeout)
+    matches, notes = [], []
+    bar = None
+    if progress and tasks:
+        import sys
+
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(tasks), unit="topology", file=sys.stderr, desc="polish")
+    try:
+        from ..execution.executor import run_plan
+
+        for _, task, found in run_plan(tasks, _expand, _polish_topology, workers=workers, client=client,
+                                       inline_seconds=0 if workers > 1 else 0.25):
+            if task is None:
+                continue
+            if bar is not None:
+                bar.update()
+            result, candidate, tried, why = found
+            chain = Chain.from_dict(json.loads(task.chain_json))
+            if result is None:
+                notes.append(f"{chain.compact()} (frame {task.candidates[0][0].frame}): no polish reached the "
+                             f"target ({why})")
+                continue
+            gap = _rechecked(result, target)
+            if gap > EXACT:
+                notes.append(f"{chain.compact()}: the linkage moved again departs from the reported curve by "
+                             f"{gap:.2g} of the target's size")
+            matches.append(AtlasMatch(candidate, result.linkage.mechanism, result, tried))
+    finally:
+        if bar is not None:
+            bar.close()
+        if client is not None:
+            client.close()
+    matches.sort(key=lambda m: (not m.result.met, m.result.error_rms, m.candidate.links))
+    return AtlasSearchResult(matches, size, len(tasks), time.process_time() - clock, target.inputs is not None, notes)
