@@ -28,6 +28,8 @@ SLOW = {
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
     "--html moving_site": "moves the mechanisms of three chains, triads among them: about a minute "
                           "(tests/atlas/test_site_motion.py plays a site's moving page in Chromium)",
+    "dimension models/dimension_path.csv": "a path synthesis with a 30 CPU-second budget "
+                                           "(tests/dimension finds the same points again in the default suite)",
     "--code 12.2000/6-0 --cranks 3=3": "the translator's query, 21 841 heterogeneous chains: about 13 CPU seconds "
                                        "(tests/synthesis/test_classes_vs_oracle.py runs it in the slow set too)",
 }

@@ -25,12 +25,14 @@ from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of"]
 
-#: samples of the input between and around the target's inputs where the dyads must close
-SPAN_SAMPLES = 48
+#: the widest step (rad, or target sizes for a slide) between the inputs where the dyads must close
+SPAN_STEP = 0.02
 #: samples of a full turn of the input where a crank's dyads must close
 TURN_SAMPLES = 72
 #: samples of the traced curve, each way from the pose, for a target without timing (global stage)
 CURVE_SAMPLES = 120
+#: a dyad's discriminant this far below 0 still closes (a target point at a dead position, up to rounding)
+ROUNDING = 1e-12
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 
@@ -170,6 +172,10 @@ class Problem:
             upper += [reach, reach]
         self.lower, self.upper = np.array(lower), np.array(upper)
         self.dims = len(self.lower)
+        # a timed path's tracer point is found by linear least squares for the rest: the global
+        # stage searches the other unknowns only (the tracer's two come last)
+        self.projected = self.timed and isinstance(target, PathTarget)
+        self.searched = self.dims - (2 if self.projected else 0)
         self.points = len(target)
         self.input_span = 2 * math.pi if self.revolute_input else 2 * reach * self.scale
         self.unknowns = self._count_unknowns()
@@ -282,32 +288,43 @@ class Problem:
             return _wrap(target.inputs - linkage.pose_inputs[0])
         return target.inputs - target.inputs[0]
 
-    def move(self, linkage: Linkage, offsets: np.ndarray):
-        """(tracer points (S, 2) or output angles (S,), g (S,) the least dyad discriminant (NaN-free:
-        −1 where a dyad cannot close), μ (S,) the worst transmission angle from the ideal: min(μ, π − μ)),
-        at the input offsets; g and μ are None for a linkage moved by Newton's method (it raises
-        MotionError where it cannot reach)."""
+    def poses(self, linkage: Linkage, offsets: np.ndarray):
+        """Every link's rotation θ (S, n) and translation t (S, n, 2) from the pose, g (S,) the least
+        dyad discriminant, up to rounding (NaN-free: −1 where a dyad cannot close), μ (S,) the worst
+        transmission angle from the ideal, min(μ, π − μ), at the input offsets; g and μ are None for a
+        linkage moved by Newton's method (it raises MotionError where it cannot reach)."""
         plan = decompose(linkage)
         if plan is None:
             theta, t, _ = _solver(linkage).poses_along(np.asarray(offsets, dtype=float))
-            g = mu = None
-        else:
-            theta, t, gs, mus, _ = Closure(linkage, plan)(np.asarray(offsets, dtype=float)[:, None])
-            g = np.where(np.isfinite(gs), gs, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
-            ok = np.isfinite(theta).all(axis=1)
-            g = np.where(ok, g, -1.0)
-            worst = np.minimum(mus, math.pi - mus)
-            mu = np.where(np.isfinite(worst), worst, math.pi / 2).min(axis=1) if mus.shape[1] else np.full(len(offsets), math.pi / 2)
+            return theta, t, None, None
+        theta, t, gs, mus, _ = Closure(linkage, plan)(np.asarray(offsets, dtype=float)[:, None])
+        g = np.where(np.isfinite(gs), gs + ROUNDING, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
+        g = np.where(np.isfinite(theta).all(axis=1), g, -1.0)
+        worst = np.minimum(mus, math.pi - mus)
+        mu = (np.where(np.isfinite(worst), worst, math.pi / 2).min(axis=1) if mus.shape[1]
+              else np.full(len(offsets), math.pi / 2))
+        return theta, t, g, mu
+
+    def move(self, linkage: Linkage, offsets: np.ndarray):
+        """(tracer points (S, 2), poses (S, 3: x, y and the body's turn) or output angles (S,), g, μ)
+        at the input offsets (g and μ as :meth:`poses` gives them)."""
+        theta, t, g, mu = self.poses(linkage, offsets)
         if self.tracer_link is None:
             ref = linkage.points[self.output_reference(linkage)] - linkage.points[self.output_joint]
             return math.atan2(ref[1], ref[0]) + theta[:, self.output_link], g, mu
         link = self.tracer_link
-        p = np.array(linkage.tracers["P"][1])
-        c, s = np.cos(theta[:, link]), np.sin(theta[:, link])
-        xy = np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=1) + t[:, link]
+        xy = _carried(theta[:, link], t[:, link], np.array(linkage.tracers["P"][1]))
         if isinstance(self.target, MotionTarget):
             return np.column_stack((xy, theta[:, link])), g, mu
         return xy, g, mu
+
+    def best_tracer(self, theta: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """The tracer point (as placed in the pose) nearest the timed target's points in the least-squares
+        sense, for the tracer link's rotations θ (N,) and translations t (N, 2) at the target's inputs:
+        the mean of R(−θ_i)(target_i − t_i), since every R is a rotation (variable projection)."""
+        q = self.target.points - t
+        c, s = np.cos(theta), np.sin(theta)
+        return np.column_stack((c * q[:, 0] + s * q[:, 1], -s * q[:, 0] + c * q[:, 1])).mean(axis=0)
 
     def output_reference(self, linkage: Linkage) -> int:
         """The joint of the output link whose direction from its pivot is the output angle."""
@@ -322,16 +339,17 @@ class Problem:
         if isinstance(target, MotionTarget):
             rows = target.poses if target_rows is None else target_rows
             dxy = (values[:, :2] - rows[:, :2]) / self.scale
-            turn = _wrap(values[:, 2] - (rows[:, 2] - rows[0, 2]))
+            turn = _wrap(values[:, 2] - (rows[:, 2] - target.poses[0, 2]))
             return np.column_stack((dxy, turn))
-        return (values - target.points) / self.scale
+        return (values - (target.points if target_rows is None else target_rows)) / self.scale
 
     # ------------------------------------------------------------ constraints
     def samples(self, offsets: np.ndarray) -> np.ndarray:
         """Inputs where the dyads must close: across the target's span (the pose included), and the
         whole turn for a crank."""
         lo, hi = min(0.0, float(offsets.min())), max(0.0, float(offsets.max()))
-        parts = [np.linspace(lo, hi, SPAN_SAMPLES)]
+        step = SPAN_STEP * (1.0 if self.revolute_input else self.scale)
+        parts = [np.linspace(lo, hi, 2 + int((hi - lo) / step))]
         if self.constraints.crank and self.revolute_input:
             parts.append(np.linspace(0, 2 * math.pi, TURN_SAMPLES, endpoint=False))
         return np.concatenate(parts)
@@ -355,6 +373,12 @@ class Problem:
             over = max(0.0, c.rocker[0] - values[0]) + max(0.0, values[1] - c.rocker[1])
             out.append(over / (1.0 if self.revolute_input else self.scale))
         return np.array(out)
+
+
+def _carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Where a point p of a link (as placed in the pose) is when the link is turned by θ and moved by t."""
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=1) + t
 
 
 def link_ratio(linkage: Linkage) -> float:

@@ -11,9 +11,9 @@ import numpy as np
 from scipy.optimize import differential_evolution, least_squares
 
 from ..errors import DimensionError, MotionError
-from ..motion import Linkage, motion_range, sweep
+from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure.chain import Mechanism
-from ._problem import (CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio)
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -38,6 +38,8 @@ class DimensionalResult:
     ----------
     linkage : Linkage
         The mechanism in its pose at the first target point; its tracer point is named "P".
+    target : PathTarget, FunctionTarget or MotionTarget
+        The target it was dimensioned for.
     kind : str
         "path", "function" or "motion".
     inputs : ndarray (N,)
@@ -62,6 +64,7 @@ class DimensionalResult:
     """
 
     linkage: Linkage
+    target: object
     kind: str
     inputs: np.ndarray
     traced: np.ndarray
@@ -162,20 +165,49 @@ class _Evaluate:
 
     # ---- timed targets: the unknowns are the dimensions only
     def timed(self, x):
+        """(residuals, violations) of the unknowns x, or the share of samples where the dyads do not
+        close (a float), or None where the pose contradicts the chain.  For a timed path x may leave
+        out the tracer point: it is then the least-squares best for the rest."""
         p = self.problem
+        short = len(x) < p.dims
         try:
-            lk = p.linkage(x)
+            lk = p.linkage(np.concatenate((x, [0.0, 0.0])) if short else x)
             offsets = p.offsets_of_timing(lk)
             samples = p.samples(offsets)
-            values, g, mu = p.move(lk, np.concatenate((offsets, samples)))
+            every = np.concatenate((offsets, samples))
+            n = len(offsets)
+            if short:
+                theta, t, g, mu = p.poses(lk, every)
+                if g is not None and (g < 0).any():
+                    return float((g < 0).mean())
+                link = p.tracer_link
+                values = _carried(theta[:n, link], t[:n, link], p.best_tracer(theta[:n, link], t[:n, link]))
+            else:
+                values, g, mu = p.move(lk, every)
         except MotionError:
             return None
-        n = len(offsets)
         if g is not None and (g < 0).any():
             return float((g < 0).mean())
         if not np.isfinite(values[:n]).all():
             return 1.0
         return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:])
+
+    def complete(self, x) -> np.ndarray:
+        """The full unknowns of searched ones: a timed path's best tracer point appended."""
+        p = self.problem
+        if len(x) == p.dims:
+            return np.asarray(x, dtype=float)
+        full = np.concatenate((x, [0.0, 0.0]))
+        try:
+            lk = p.linkage(full)
+            offsets = p.offsets_of_timing(lk)
+            theta, t, _, _ = p.poses(lk, offsets)
+        except MotionError:
+            return full
+        tracer = p.best_tracer(theta[:, p.tracer_link], t[:, p.tracer_link])
+        if np.isfinite(tracer).all():
+            full[-2:] = np.clip((tracer - p.centre) / p.scale, p.lower[-2:], p.upper[-2:])
+        return full
 
     # ---- untimed targets: dimensions, then the inputs (a direction and increments)
     def curve(self, x):
@@ -197,8 +229,9 @@ class _Evaluate:
         return lk, ways
 
     def project(self, values, rows):
-        """Each target row's nearest place on the sampled curve (segments between samples):
-        (distance², sample position as a float index)."""
+        """The target rows' places on the sampled curve (segments between samples), in order:
+        each row's place is at or after the one before (dynamic programming over the segments);
+        (distance² per row, place as a float sample index)."""
         p = self.problem
         if isinstance(p.target, MotionTarget):
             angle = np.unwrap(values[:, 2])
@@ -217,13 +250,20 @@ class _Evaluate:
         ab2 = (ab ** 2).sum(axis=1)
         f = np.clip((w * ab[None]).sum(axis=2) / np.where(ab2 > 0, ab2, 1.0), 0.0, 1.0)
         d = ((w - f[:, :, None] * ab[None]) ** 2).sum(axis=2)
-        k = d.argmin(axis=1)
-        rows_ = np.arange(len(want))
-        return d[rows_, k], k + f[rows_, k]
+        total = np.empty_like(d)
+        total[0] = d[0]
+        for i in range(1, len(d)):
+            total[i] = d[i] + np.minimum.accumulate(total[i - 1])
+        k = np.empty(len(d), dtype=int)
+        k[-1] = int(np.argmin(total[-1]))
+        for i in range(len(d) - 2, -1, -1):
+            k[i] = int(np.argmin(total[i, :k[i + 1] + 1]))
+        rows_ = np.arange(len(d))
+        return d[rows_, k], np.maximum.accumulate(k + f[rows_, k])
 
     def untimed(self, x):
         """The global stage's cost of the dimensions alone: each later target point's distance to the
-        curve, in order, the better direction; returns (cost, direction, sample positions)."""
+        curve, in order, the better direction; returns (cost, direction, input offsets)."""
         p = self.problem
         try:
             lk, ways = self.curve(x)
@@ -238,8 +278,7 @@ class _Evaluate:
                 continue
             first = p.residuals(values[:1], rows[:1]).ravel()
             d2, where = self.project(values, rows[1:])
-            back = np.maximum(0.0, -np.diff(np.concatenate(([0.0], where))))
-            cost = (float(first @ first) + float(d2.sum())) / len(rows) + 1e-2 * float(back.sum()) / len(rows)
+            cost = (float(first @ first) + float(d2.sum())) / len(rows)
             reached = int(math.ceil(where.max())) + 1 if len(where) else 1
             offsets = np.interp(where, np.arange(len(xs)), xs)
             viol = p.violations(lk, offsets, None, None if mu is None else mu[:reached])
@@ -383,10 +422,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                         f"{problem.unknowns} unknowns of this {target.kind} synthesis: give at least {enough} points "
                         f"(or allow an underdetermined problem: {_option('underdetermined')})")
     watch = _Watch(float(budget), progress, wall=workers > 1)
-    evaluate = _Evaluate(problem)
+    search = _Search(_Evaluate(problem), problem, watch)
     rng = np.random.default_rng(seed)
-    best = None  # (cost, z, direction)
-    runs = 0
     pool = None
     if workers > 1:
         from ..execution.executor import process_pool
@@ -394,28 +431,25 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         pool = process_pool(workers)
     try:
         if polish_only:
-            best = _polish(evaluate, problem, watch, problem.unknowns_of(start))
-        while not polish_only and not watch.over():
-            runs += 1
-            found = _global(evaluate, problem, watch, rng, start if runs == 1 else None, pool)
-            for x in found:
-                polished = _polish(evaluate, problem, watch, x)
-                if polished is not None and (best is None or polished[0] < best[0]):
-                    best = polished
-                if best is not None and best[0] <= EXACT ** 2:
+            search.polish(problem.unknowns_of(start))
+        while not (polish_only or watch.over() or search.exact):
+            search.runs += 1
+            for x in search.evolve(rng, start if search.runs == 1 else None, pool):
+                search.polish(x)
+                if search.exact:
                     break
-            if best is not None and best[0] <= EXACT ** 2:
-                break
     except _OutOfTime:
         pass
     finally:
         if pool is not None:
             pool.terminate()
             pool.join()
-    if best is None:
+    if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
+        search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+    if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
-    return _result(problem, evaluate, best, watch, runs)
+    return _result(problem, search.evaluate, search.best, watch, search.runs)
 
 
 def _option(name: str) -> str:
@@ -424,78 +458,106 @@ def _option(name: str) -> str:
     return option(name)
 
 
-def _global(evaluate: _Evaluate, problem: Problem, watch: _Watch, rng, start: Linkage | None, pool) -> list:
-    """One run of differential evolution; its best distinct candidates, best first."""
-    def cost(x):
-        if watch.over():
-            raise _OutOfTime
-        value = evaluate(x)
-        watch.seen(value, x)
-        return value
+class _Search:
+    """Differential evolution runs and their polish, keeping the best polished candidate."""
 
-    def stop(intermediate_result):
-        watch.seen(float(intermediate_result.fun), intermediate_result.x)
-        return watch.over() or float(intermediate_result.fun) <= EXACT ** 2
+    #: generations between polishes of a run's best; and without improvement before a run ends
+    POLISH_EVERY, STAGNANT = 20, 200
 
-    bounds = list(zip(problem.lower, problem.upper))
-    x0 = problem.unknowns_of(start) if start is not None else None
-    kwargs = dict(seed=int(rng.integers(2 ** 31)), popsize=max(15, 60 // problem.dims), maxiter=100_000, tol=1e-3,
-                  mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False, callback=stop, x0=x0)
-    if pool is not None:
-        result = differential_evolution(evaluate, bounds, workers=pool.map, updating="deferred", **kwargs)
-        watch.count += int(result.nfev)
-    else:
+    def __init__(self, evaluate: _Evaluate, problem: Problem, watch: _Watch):
+        self.evaluate, self.problem, self.watch = evaluate, problem, watch
+        self.best = None  # (cost, unknowns, direction)
+        self.runs = 0
+
+    @property
+    def exact(self) -> bool:
+        return self.best is not None and self.best[0] <= EXACT ** 2
+
+    def evolve(self, rng, start: Linkage | None, pool) -> list:
+        """One run of differential evolution (polishing its best now and then); its best distinct
+        candidates, best first."""
+        problem, watch = self.problem, self.watch
+        state = {"generation": 0, "fun": math.inf, "improved": 0, "polished": None}
+
+        def cost(x):
+            if watch.over():
+                raise _OutOfTime
+            value = self.evaluate(x)
+            watch.seen(value, x)
+            return value
+
+        def stop(intermediate_result):
+            fun, x = float(intermediate_result.fun), intermediate_result.x
+            watch.seen(fun, x)
+            state["generation"] += 1
+            if fun < state["fun"]:
+                state["fun"], state["improved"] = fun, state["generation"]
+            if (state["generation"] % self.POLISH_EVERY == 0 and fun < INFEASIBLE
+                    and state["polished"] != state["improved"]):
+                state["polished"] = state["improved"]
+                self.polish(x)
+            return (watch.over() or self.exact or fun <= EXACT ** 2
+                    or state["generation"] - state["improved"] > self.STAGNANT)
+
+        bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
+        x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
+        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
+                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
+                      callback=stop, x0=x0)
+        if pool is not None:
+            result = differential_evolution(self.evaluate, bounds, workers=pool.map, updating="deferred", **kwargs)
+            watch.count += int(result.nfev)
+        else:
+            try:
+                result = differential_evolution(cost, bounds, **kwargs)
+            except _OutOfTime:
+                return []
+        order = np.argsort(result.population_energies)
+        picked = []
+        for i in order:
+            x = result.population[i]
+            if result.population_energies[i] >= INFEASIBLE:
+                break
+            if all(np.abs(x - y[:len(x)]).max() > 1e-3 for y in picked):
+                picked.append(self.evaluate.complete(x))
+            if len(picked) == 3:
+                break
+        return picked
+
+    def polish(self, x, grace: bool = False) -> None:
+        """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
+        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched."""
+        problem, watch, evaluate = self.problem, self.watch, self.evaluate
+        if problem.timed:
+            z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
+        else:
+            found = evaluate.untimed(x)
+            if found is None or isinstance(found, float):
+                return
+            _, direction, offsets = found
+            steps = np.maximum(np.diff(np.concatenate(([0.0], np.abs(offsets)))), 0.0)
+            lower = np.concatenate((problem.lower, np.zeros(len(steps))))
+            upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))
+            z0 = np.clip(np.concatenate((x, steps)), lower, upper)
+        best = [math.inf, z0]
+
+        def fun(z):
+            if watch.over() and not grace:
+                raise _OutOfTime
+            r = evaluate.vector(z, direction)
+            cost = float(r @ r)
+            watch.seen(cost, z[:problem.dims])
+            if cost < best[0]:
+                best[0], best[1] = cost, np.array(z)
+            return r
+
         try:
-            result = differential_evolution(cost, bounds, **kwargs)
+            least_squares(fun, z0, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15, ftol=1e-15,
+                          gtol=1e-15, max_nfev=200 * len(z0))
         except _OutOfTime:
-            return [watch.best[1]] if watch.best[1] is not None and watch.best[0] < INFEASIBLE else []
-    order = np.argsort(result.population_energies)
-    picked = []
-    for i in order:
-        x = result.population[i]
-        if result.population_energies[i] >= INFEASIBLE:
-            break
-        if all(np.abs(x - y).max() > 1e-3 for y in picked):
-            picked.append(x)
-        if len(picked) == 3:
-            break
-    return picked
-
-
-def _polish(evaluate: _Evaluate, problem: Problem, watch: _Watch, x) -> tuple | None:
-    """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its curve)."""
-    if problem.timed:
-        z0, lower, upper, direction = x, problem.lower, problem.upper, 0
-    else:
-        found = evaluate.untimed(x)
-        if found is None or isinstance(found, float):
-            return None
-        _, direction, offsets = found
-        steps = np.maximum(np.diff(np.concatenate(([0.0], np.abs(offsets)))), 0.0)
-        z0 = np.concatenate((x, steps))
-        lower = np.concatenate((problem.lower, np.zeros(len(steps))))
-        upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))
-        z0 = np.clip(z0, lower, upper)
-    best = [math.inf, z0]
-
-    def fun(z):
-        if watch.over():
-            raise _OutOfTime
-        r = evaluate.vector(z, direction)
-        cost = float(r @ r)
-        watch.seen(cost, z[:problem.dims])
-        if cost < best[0]:
-            best[0], best[1] = cost, np.array(z)
-        return r
-
-    try:
-        least_squares(fun, z0, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15, ftol=1e-15,
-                      gtol=1e-15, max_nfev=200 * len(z0))
-    except _OutOfTime:
-        pass
-    if not math.isfinite(best[0]) or best[0] >= INFEASIBLE / 10:
-        return None
-    return best[0], best[1], direction
+            pass
+        if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
+            self.best = (best[0], best[1], direction)
 
 
 def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int) -> DimensionalResult:
@@ -503,6 +565,8 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     _, z, direction = best
     x = z[:problem.dims]
     linkage = problem.linkage(x)
+    if isinstance(problem.target, FunctionTarget):  # posed at the first input, as every other result
+        linkage = assemble(linkage, float(problem.target.inputs[0]))
     if problem.timed:
         offsets = problem.offsets_of_timing(linkage)
     else:
@@ -525,7 +589,7 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     method = (("bounded least squares (trf) from a given start, " if runs == 0 else
                f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
               + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
-    return DimensionalResult(linkage, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
+    return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
                              else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
 
 
