@@ -236,10 +236,10 @@ def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, pe
     BadTarget
         A target the index cannot serve (see :func:`descriptor_of`).
     """
-    t, h, timed = descriptor_of(target)
     conn = open_atlas(db)
     try:
-        _info(conn, db)
+        _info(conn, db)  # an atlas without an index is refused first, whatever the target
+        t, h, timed = descriptor_of(target)
         meta, timed_c, untimed_c = _load(conn, links, h)
     finally:
         conn.close()
