@@ -126,7 +126,7 @@ def descriptor_of(target) -> tuple[np.ndarray, int, bool]:
     >>> from synth.dimension import PathTarget
     >>> t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
     >>> c, h, timed = descriptor_of(PathTarget(np.c_[np.cos(t), np.sin(t)], inputs=t))
-    >>> h, timed, round(abs(c[h + 1]), 9)
+    >>> h, timed, round(float(abs(c[h + 1])), 9)
     (12, True, 1.0)
     """
     points = np.asarray(target.points, dtype=float)
