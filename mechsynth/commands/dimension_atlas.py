@@ -72,8 +72,10 @@ def run(args, target, constraints, *, save, draw) -> int:
         if args.format == "json":
             row["linkage"] = match.result.linkage.to_dict()
         rows.append(row)
-    print(f"mechsynth: {found.index_curves} indexed curves, {found.topologies} topologies polished in "
-          f"{found.seconds:.1f} CPU s", file=sys.stderr)
+    if not found.index_curves:
+        return nothing_found(f"curve of the index belongs to a mechanism with {args.links} links")
+    print(f"mechsynth: {found.index_curves} indexed curves, {found.topologies} "
+          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.seconds:.1f} CPU s", file=sys.stderr)
     if not rows:
         return nothing_found("topology of the atlas could be dimensioned for this target within the budget")
     write_rows(rows, COLUMNS, {"table": "table", "json": "json", "jsonl": "jsonl", "csv": "csv"}[args.format])
