@@ -179,7 +179,7 @@ def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     from synth import mechanisms
 
     watt = next(m for m in mechanisms(1, 6, input_link=True, workers=1)
-                if m.chain.code.text == "42/0" and m.frame == 0 and m.input_link == 1)
+                if str(m.chain.code) == "42/0" and m.frame == 0 and m.input_link == 1)
     coupler = [link for link in range(6) if not any(0 in j and link in j for j in watt.chain.joints) and link][-1]
     linkage = _random_crank(watt, coupler, seed=11)
     target = _target(linkage, 72, True)
