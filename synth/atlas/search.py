@@ -77,6 +77,7 @@ class AtlasMatch:
     mechanism: Mechanism
     result: object  # synth.dimension.DimensionalResult
     tried: int
+    seconds: float  # CPU seconds of this topology's polishes
 
     def row(self) -> dict:
         """One JSON-able row: the topology, its errors (target units and relative), where it started."""
@@ -86,7 +87,7 @@ class AtlasMatch:
                 "tracer_link": self.candidate.tracer_link,
                 "links": self.candidate.links, "error_max": r.error_max, "error_rms": r.error_rms,
                 "relative_max": r.relative_max, "relative_rms": r.relative_rms, "misfit": self.candidate.misfit,
-                "met": r.met, "tried": self.tried, "seconds": round(r.seconds, 3)}
+                "met": r.met, "tried": self.tried, "seconds": round(self.seconds, 3)}
 
 
 def _chain_id(chain: Chain) -> str:
@@ -335,7 +336,8 @@ def _expand(task: _Polish) -> list:
 
 def _polish_topology(task: _Polish):
     """Polish a topology's candidates in turn, each from its start linkage, until one meets the
-    target exactly or the topology's budget is spent: (best result or None, candidate, tried, why)."""
+    target exactly or the topology's budget is spent, then go on from the best while that halves its
+    error: (best result or None, its candidate, candidates tried, why the last failed, CPU seconds)."""
     from dataclasses import replace
 
     from ..dimension import synthesize
@@ -344,17 +346,19 @@ def _polish_topology(task: _Polish):
     clock = time.process_time()
     best, best_candidate, tried, why = None, None, 0, None
     centre = (np.min(task.target.points, axis=0) + np.max(task.target.points, axis=0)) / 2
+
+    def polish(start, tracer_link):
+        far = float(np.hypot(*(np.vstack((start.points, start.tracers["P"][1])) - centre).T).max())
+        constraints = replace(task.constraints, reach=max(task.constraints.reach, 3.0 * far / task.target.size))
+        return synthesize(start, task.target, tracer_link=tracer_link, constraints=constraints,
+                          budget=task.budget - (time.process_time() - clock), seed=task.seed, polish_only=True)
+
     for candidate, points, at in task.candidates:
-        left = task.budget - (time.process_time() - clock)
-        if left <= 0:
+        if time.process_time() - clock >= task.budget:
             break
         tried += 1
         try:
-            start = start_linkage(candidate, chain, points, at, task.target)
-            far = float(np.hypot(*(np.vstack((start.points, start.tracers["P"][1])) - centre).T).max())
-            constraints = replace(task.constraints, reach=max(task.constraints.reach, 3.0 * far / task.target.size))
-            result = synthesize(start, task.target, tracer_link=candidate.tracer_link, constraints=constraints,
-                                budget=left, seed=task.seed, polish_only=True)
+            result = polish(start_linkage(candidate, chain, points, at, task.target), candidate.tracer_link)
         except SynthesisError as exc:
             why = str(exc)
             continue
@@ -362,7 +366,17 @@ def _polish_topology(task: _Polish):
             best, best_candidate = result, candidate
         if result.met and result.relative_max <= EXACT:
             break
-    return best, best_candidate, tried, why
+    # the least squares stop at their evaluation limit on long untimed problems: go on from the best
+    # while the budget lasts and each polish at least halves its error
+    while best is not None and best.relative_max > EXACT and time.process_time() - clock < task.budget:
+        try:
+            again = polish(best.linkage, best_candidate.tracer_link)
+        except SynthesisError:
+            break
+        if not again.error_rms < 0.5 * best.error_rms:
+            break
+        best = again
+    return best, best_candidate, tried, why, time.process_time() - clock
 
 
 #: a polished mechanism meets the target exactly when its largest error is below this × the target's size
@@ -473,7 +487,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
                 continue
             if bar is not None:
                 bar.update()
-            result, candidate, tried, why = found
+            result, candidate, tried, why, spent = found
             chain = Chain.from_dict(json.loads(task.chain_json))
             if result is None:
                 notes.append(f"{chain.compact()} (frame {task.candidates[0][0].frame}): no polish reached the "
@@ -483,7 +497,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             if gap > EXACT:
                 notes.append(f"{chain.compact()}: the linkage moved again departs from the reported curve by "
                              f"{gap:.2g} of the target's size")
-            matches.append(AtlasMatch(candidate, result.linkage.mechanism, result, tried))
+            matches.append(AtlasMatch(candidate, result.linkage.mechanism, result, tried, spent))
     finally:
         if bar is not None:
             bar.close()
