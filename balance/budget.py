@@ -48,7 +48,7 @@ def duration(seconds: float) -> str:
     for unit, size in (("days", 86400), ("h", 3600), ("min", 60)):
         if seconds >= 1.5 * size or (unit == "min" and seconds >= 90):
             n = round(seconds / size)
-            return f"{n} {'day' if unit == 'days' and n == 1 else unit}"
+            return f"{n} {unit}"  # days from 1.5 on: n ≥ 2
         if unit == "days" and seconds >= size:
             return "1 day"
     return f"{seconds:.2g} s"

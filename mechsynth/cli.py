@@ -48,7 +48,7 @@ class _Version(argparse.Action):
 
 # each command by the module of mechsynth.commands that mounts it, in the order of --help
 COMMANDS = {"codes": "codes", "analyze": "codes", "chains": "chains", "mechanisms": "chains",
-            "identify": "identify", "compare": "identify", "grid": "atlas", "atlas": "atlas", "draw": "atlas",
+            "identify": "identify", "compare": "identify", "grid": "grid", "atlas": "atlas", "draw": "draw",
             "scene": "scene", "planetary": "planetary", "gears": "gears", "move": "move", "dimension": "dimension",
             "balance": "balance"}
 

@@ -31,7 +31,7 @@ from tests.oracles import gear_ratios, gear_trains_fast
 from tests.oracles import gear_trains as brute
 
 MODULES = ["synth.gears", "synth.gears.train", "synth.gears.enumeration", "synth.gears.ratios",
-           "synth.gears.ratio_design", "synth.gears.draw", "mechsynth.commands.gears",
+           "synth.gears.ratio_design", "synth.draw._gears", "mechsynth.commands.gears",
            "tests.oracles.gear_trains", "tests.oracles.gear_trains_fast", "tests.oracles.gear_ratios"]
 
 

@@ -156,14 +156,9 @@ def format_form(coeffs: Sequence[float], names: Sequence[str], digits: int = 6) 
     'b − c'
     """
     parts: list[str] = []
-    pairs = list(zip(coeffs, names))
-    pairs = [p for p in pairs if round(float(p[0]), digits) > 0] + [
-        p for p in pairs if round(float(p[0]), digits) < 0
-    ]  # positive shafts first: 'ψ2 − ψ1'
+    rounded = [(round(float(c), digits), n) for c, n in zip(coeffs, names)]
+    pairs = [p for p in rounded if p[0] > 0] + [p for p in rounded if p[0] < 0]  # positive shafts first: 'ψ2 − ψ1'
     for c, n in pairs:
-        c = round(float(c), digits)
-        if c == 0:
-            continue
         sign = "−" if c < 0 else "+"
         mag = abs(c)
         body = n if mag == 1 else f"{mag:.{digits}g}·{n}"

@@ -87,7 +87,7 @@ class Code:
             raise MalformedCode("link counts and v must not be negative")
         if (sum(i * c for i, c in enumerate(self.assortment, start=2)) + self.n1 + self.v) % 2:
             raise MalformedCode(
-                f"code {self} is impossible: the joint incidences Σ i·n_i + v must be even"
+                f"code {self.brief} is impossible: the joint incidences Σ i·n_i + v must be even"
             )
 
     # ------------------------------------------------------------------ counts
@@ -129,6 +129,20 @@ class Code:
     # ---------------------------------------------------------------- notation
     def __str__(self) -> str:
         return self._text
+
+    @property
+    def brief(self) -> str:
+        """The code as written, or for a code longer than 60 characters (thousands of loops, each a
+        digit) its head, an ellipsis and the number of counts, as sentences about it quote it.
+
+        >>> Code((0, 20000), 0).brief, Code.parse("6301/0").brief
+        ('0.20000.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.0.…/0 (10001 counts n2, n3, …)', '6301/0')
+        """
+        text = self._text
+        if len(text) <= 60:
+            return text
+        left, right = text.rsplit("/", 1)
+        return f"{left[:48]}…/{right} ({max(self.loops, len(self.assortment), 1)} counts n2, n3, …)"
 
     @cached_property
     def _text(self) -> str:

@@ -267,7 +267,12 @@ class ChainQuery:
                                            f"joints: {lo} do not fit" if simple else f"code {code} has no simple joint: "
                                            "prismatic pairs go on simple joints (a multiple joint is a pin)")
             return
-        most = max((self.links - 1 - self.dof + k) // 2 + self.links - 1 for k in self.skeleton_slacks() or [0])
+        slacks = self.skeleton_slacks()
+        if not slacks and self.dof > self.links - 1:
+            raise ImpossibleParameters(f"no chain of {self.links} links has W = {self.dof}: an open chain of n links "
+                                       f"moves with W = n − 1 = {self.links - 1}, and every loop, wedge loops of "
+                                       "prismatic pairs included, takes mobility away")
+        most = max((self.links - 1 - self.dof + k) // 2 + self.links - 1 for k in slacks or [0])
         if lo > most:
             raise ImpossibleParameters(f"{lo} prismatic pairs do not fit: a chain with W = {self.dof} and "
                                        f"{self.links} links has at most {most} joints")
@@ -306,8 +311,6 @@ class ChainQuery:
         dof = options.pop("dof", None) if query is None else query
         if "dof" in options:
             raise InvalidOption("W is given twice (as the first argument and as dof)")
-        if links is None:
-            links = options.pop("links", None)
         loops = options.pop("loops", None)
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(options) - known)

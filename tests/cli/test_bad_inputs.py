@@ -232,7 +232,7 @@ CASES = [
 # start-up and the imports again for each of the hundred cases.
 _SERVER = r"""
 import json, os, resource, signal, sys, time, traceback
-import mechsynth.cli, mechsynth.commands.balance, synth.synthesis.type_synthesis, synth.atlas.runs, synth.atlas.queries, synth.draw
+import mechsynth.cli, mechsynth.commands.balance, synth.synthesis.type_synthesis, synth.atlas.runs, synth.atlas.queries, synth.draw._render
 for line in sys.stdin:
     job = json.loads(line)
     pid = os.fork()

@@ -19,7 +19,8 @@ import time
 import pytest
 
 from synth.gears import GearTrain, count_trains, trains
-from synth.gears.draw import schematic, sheet_figure, _label_places
+from synth.draw import schematic, sheet_figure
+from synth.draw._gears import _label_places
 
 
 def _cli(*args, **kwargs):

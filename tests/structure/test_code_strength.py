@@ -129,3 +129,16 @@ def test_a_code_of_more_loops_than_can_be_written_is_refused_briefly():
         Code.parse(wide)
     assert str(caught.value) == (f"code {wide[:20]}… (47 characters) describes a chain of 10001 loops, more than "
                                  "the 10000 a code is read with")
+
+
+def test_a_code_of_thousands_of_loops_is_quoted_briefly():
+    """A code is written with one count per loop: an impossible code of 10 001 loops is refused in one
+    sentence that quotes its head and how many counts it has, not a 20 kB line."""
+    with pytest.raises(MalformedCode) as caught:
+        Code((0, 20001), 0)
+    sentence = str(caught.value)
+    assert len(sentence) < 200
+    assert sentence.startswith("code 0.20001.0.")
+    assert "…/0 (10001 counts n2, n3, …) is impossible" in sentence
+    assert Code((0, 20000), 0).brief.endswith("…/0 (10001 counts n2, n3, …)")
+    assert len(str(Code((0, 20000), 0))) > 20000  # the notation itself stays whole

@@ -118,6 +118,13 @@ def test_cylinders_and_cranks():
     # W = 1, 8 links: at most (8 − 1 − 1 + k)/2 + 7 joints over the wedge-loop counts k = 0, 2, 4, 6
     (lambda: ChainQuery(1, 8, prismatic=14), ImpossibleParameters,
      "14 prismatic pairs do not fit: a chain with W = 1 and 8 links has at most 13 joints"),
+    # a tree of 2 links moves with W = 1 at most, and no loop (wedge loops included) adds mobility
+    (lambda: ChainQuery(4, 2, prismatic=0), ImpossibleParameters,
+     "no chain of 2 links has W = 4: an open chain of n links moves with W = n − 1 = 1, and every loop, "
+     "wedge loops of prismatic pairs included, takes mobility away"),
+    (lambda: ChainQuery(3, 3, prismatic="0.."), ImpossibleParameters,
+     "no chain of 3 links has W = 3: an open chain of n links moves with W = n − 1 = 2, and every loop, "
+     "wedge loops of prismatic pairs included, takes mobility away"),
     # 7201/1: 12 joints, one of them double
     (lambda: ChainQuery(1, code="7201/1", prismatic=12), ImpossibleParameters,
      "code 7201/1 has 11 simple joint(s) and prismatic pairs go on simple joints: 12 do not fit"),
