@@ -95,8 +95,8 @@ def add_commands(sub) -> None:
     p.add_argument("--max-ratio", type=_number, metavar="R", help="bound on the longest over the shortest "
                    "distance between two joints of one link")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
-    p.add_argument("--reach", type=_number, default=2.0, help="the search box: joints within this many target "
-                   "sizes of its centre (default 2)")
+    p.add_argument("--reach", type=_number, help="the search box: joints within this many target "
+                   "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")
@@ -143,7 +143,7 @@ def _check(args) -> None:
         raise InvalidOption(f"--min-transmission must be between 0 and 90 degrees, not {args.min_transmission:g}")
     if args.max_ratio is not None and not args.max_ratio > 1:
         raise InvalidOption(f"--max-ratio must be above 1 (the longest over the shortest), not {args.max_ratio:g}")
-    if not args.reach > 0:
+    if args.reach is not None and not args.reach > 0:
         raise InvalidOption(f"--reach must be a positive number of target sizes, not {args.reach:g}")
     if args.seed < 0:
         raise InvalidOption(f"--seed must be a whole number ≥ 0, not {args.seed}")

@@ -33,6 +33,8 @@ TURN_SAMPLES = 72
 CURVE_SAMPLES = 120
 #: a dyad's discriminant this far below 0 still closes (a target point at a dead position, up to rounding)
 ROUNDING = 1e-12
+#: the search aims this far inside each of the designer's limits (rad, relative, target sizes)
+MARGIN = 1e-4
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 
@@ -56,8 +58,9 @@ class Constraints:
         included).
     pivots : (x0, x1, y0, y1), optional
         A box the frame's joints (fixed pivots, slide lines' points) must lie in.
-    reach : float
-        The search box: every joint within ``reach`` target sizes of the target's centre.
+    reach : float, optional
+        The search box: every joint within ``reach`` target sizes of the target's centre (default 4;
+        for a function, frame lengths from the input pivot, default 2).
 
     Examples
     --------
@@ -70,7 +73,7 @@ class Constraints:
     min_transmission: float = 0.0
     max_ratio: float | None = None
     pivots: tuple[float, float, float, float] | None = None
-    reach: float = 2.0
+    reach: float | None = None
 
     def __post_init__(self):
         if self.crank and self.rocker is not None:
@@ -90,7 +93,7 @@ class Constraints:
             if not all(map(math.isfinite, (x0, x1, y0, y1))) or x0 >= x1 or y0 >= y1:
                 raise DimensionError(f"the pivots' region must be x0 < x1 and y0 < y1, finite, not {self.pivots}")
             object.__setattr__(self, "pivots", (x0, x1, y0, y1))
-        if not (math.isfinite(self.reach) and self.reach > 0):
+        if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
             raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
 
 
@@ -154,7 +157,7 @@ class Problem:
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
-        reach = constraints.reach
+        reach = self.reach = constraints.reach or (2.0 if isinstance(target, FunctionTarget) else 4.0)
         for k in range(len(chain.joints)):
             if k in self.fixed:
                 continue
@@ -211,7 +214,7 @@ class Problem:
 
     def _pivot_box(self, k: int) -> tuple[float, float, float, float]:
         """The search box of joint k's position, non-dimensional (the pivots' region for the frame's joints)."""
-        reach = self.constraints.reach
+        reach = self.reach
         box = (-reach, reach, -reach, reach)
         if self.constraints.pivots is not None and k in self.frame_joints:
             x0, x1, y0, y1 = self.constraints.pivots
@@ -356,22 +359,26 @@ class Problem:
 
     def violations(self, linkage: Linkage, offsets: np.ndarray, g, mu) -> np.ndarray:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
-        transmission (rad), ratio (log), pivots (target sizes), rocker limits (rad or sizes)."""
+        transmission (rad), ratio (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
+        measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
+        that binds settles a little beyond its limit."""
         c = self.constraints
         out = []
         if c.min_transmission > 0:
-            out.append(max(0.0, c.min_transmission - float(np.min(mu))) if mu is not None else 0.0)
+            out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
         if c.max_ratio is not None:
-            out.append(max(0.0, math.log(link_ratio(linkage) / c.max_ratio)))
+            out.append(max(0.0, math.log(link_ratio(linkage) / (c.max_ratio * (1 - MARGIN)))))
         if c.pivots is not None:
-            x0, x1, y0, y1 = c.pivots
+            inset = MARGIN * self.scale
+            x0, x1, y0, y1 = c.pivots[0] + inset, c.pivots[1] - inset, c.pivots[2] + inset, c.pivots[3] - inset
             p = linkage.points[self.frame_joints]
             gap = np.maximum.reduce([x0 - p[:, 0], p[:, 0] - x1, y0 - p[:, 1], p[:, 1] - y1, np.zeros(len(p))])
             out.append(float(np.hypot.reduce(gap)) / self.scale if len(gap) else 0.0)
         if c.rocker is not None:
+            unit = 1.0 if self.revolute_input else self.scale
             values = linkage.pose_inputs[0] + np.array([min(0.0, offsets.min()), max(0.0, offsets.max())])
-            over = max(0.0, c.rocker[0] - values[0]) + max(0.0, values[1] - c.rocker[1])
-            out.append(over / (1.0 if self.revolute_input else self.scale))
+            over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
+            out.append(over / unit)
         return np.array(out)
 
 
