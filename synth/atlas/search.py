@@ -349,7 +349,7 @@ def _polish_topology(task: _Polish):
 
     def polish(start, tracer_link):
         far = float(np.hypot(*(np.vstack((start.points, start.tracers["P"][1])) - centre).T).max())
-        constraints = replace(task.constraints, reach=max(task.constraints.reach, 3.0 * far / task.target.size))
+        constraints = replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=constraints,
                           budget=task.budget - (time.process_time() - clock), seed=task.seed, polish_only=True)
 
