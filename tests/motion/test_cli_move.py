@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from mechsynth.cli import main
+from tests.load import allowed_seconds
 
 ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = ROOT / "models" / "motion_four_bar.toml"
@@ -209,8 +210,8 @@ def test_ctrl_c_stops_a_long_sweep_within_two_seconds(tmp_path):
     time.sleep(4)
     os.killpg(proc.pid, signal.SIGINT)
     start = time.monotonic()
-    proc.wait(timeout=30)
-    assert time.monotonic() - start < 2.0 and proc.returncode == 130
+    proc.wait(timeout=max(30.0, allowed_seconds(2.0)))
+    assert time.monotonic() - start < allowed_seconds(2.0) and proc.returncode == 130  # 2 s of an idle machine
 
 
 def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
