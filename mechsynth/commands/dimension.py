@@ -108,8 +108,12 @@ def add_commands(sub) -> None:
                    "and scene read; or .json)")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
                    "(.png or .svg)")
-    p.add_argument("--db", help=argparse.SUPPRESS)
-    p.add_argument("--links", help=argparse.SUPPRESS)
+    p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
+                   "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
+    p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
+    p.add_argument("--top", type=workers, default=5, metavar="K", help="with --db: topologies polished (default 5; "
+                   "the best of every link count is always among them)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="with --db: polish the topologies on a Dask scheduler")
     p.set_defaults(run=_run)
 
 
@@ -117,10 +121,16 @@ def _check(args) -> None:
     """Every contradiction refused before any work."""
     from synth import InvalidOption
 
-    if args.db is not None or args.links is not None:
-        raise InvalidOption("the search over a whole atlas (--db, --links) is not available yet: give the topology "
-                            "with --linkage FILE or --mechanism CHAIN --frame F")
-    if bool(args.linkage) == bool(args.mechanism):
+    if args.db is None:
+        alone = [name for name, value in (("--links", args.links), ("--top", args.top != 5),
+                                          ("--scheduler", args.scheduler)) if value]
+        if alone:
+            raise InvalidOption(f"{', '.join(alone)} go{'es' * (len(alone) == 1)} with --db (the search over an atlas)")
+    else:
+        from .dimension_atlas import check
+
+        check(args)
+    if args.db is None and bool(args.linkage) == bool(args.mechanism):
         raise InvalidOption("give one mechanism: --linkage FILE, or --mechanism CHAIN --frame F"
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
@@ -180,6 +190,13 @@ def _run(args) -> int:
         from synth import InvalidOption
 
         raise InvalidOption("--tracer-link names the link of a path's or motion's tracer; this target is a function")
+    if args.db is not None:
+        from .dimension_atlas import run
+
+        constraints = Constraints(crank=args.crank, rocker=args.rocker and tuple(math.radians(v) for v in args.rocker),
+                                  min_transmission=math.radians(args.min_transmission or 0.0),
+                                  max_ratio=args.max_ratio, pivots=args.pivots, reach=args.reach)
+        return run(args, target, constraints, save=_save, draw=_draw)
     mechanism = _mechanism(args)
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,

@@ -357,7 +357,7 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
                budget: float = 60.0, seed: int = 0, workers: int = 1, underdetermined: bool = False,
-               progress=None) -> DimensionalResult:
+               progress=None, polish_only: bool = False) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -381,6 +381,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         Allow fewer target equations than unknowns (infinitely many exact solutions: one is
         returned), as in Burmester's three poses.
     progress : callable (seconds, best cost), optional
+    polish_only : bool
+        No global search: only the least-squares polish from the given Linkage's pose (the atlas
+        search starts each topology from its nearest indexed sample this way).
 
     Returns
     -------
@@ -405,6 +408,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     from ..errors import BadTarget
 
     problem, start = _problem(mechanism, target, tracer_link, constraints)
+    if polish_only and start is None:
+        raise DimensionError("a polish alone starts from a dimensioned linkage, not from a Mechanism")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
         raise DimensionError(f"the budget must be a positive number of seconds, not {budget!r}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
@@ -425,7 +430,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
 
         pool = process_pool(workers)
     try:
-        while not (watch.over() or search.exact):
+        if polish_only:
+            search.polish(problem.unknowns_of(start))
+        while not (polish_only or watch.over() or search.exact):
             search.runs += 1
             for x in search.evolve(rng, start if search.runs == 1 else None, pool):
                 search.polish(x)
@@ -586,8 +593,9 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
         constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
                                   "met": False}}
-    method = (f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), "
-              f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
+    method = (("bounded least squares (trf) from a given start, " if runs == 0 else
+               f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
+              + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
     return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
                              else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
 

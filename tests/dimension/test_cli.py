@@ -51,8 +51,8 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
 
 
 @pytest.mark.parametrize("args, words", [
-    ([*FOUR_BAR, "--db", "atlas.sqlite"], "not available yet"),
-    ([*FOUR_BAR, "--links", "4..8"], "not available yet"),
+    ([*FOUR_BAR, "--db", "atlas.sqlite"], "does not go with --mechanism"),
+    ([*FOUR_BAR, "--links", "4..8"], "--links goes with --db"),
     (["--frame", "0"], "give one mechanism"),
     ([*FOUR_BAR, "--linkage", "x.toml"], "give one mechanism"),
     (["--mechanism", "0-1 1-2 2-3 3-0"], "needs --frame"),
