@@ -59,6 +59,11 @@ _WHERE = {
     "counter_mass_laws": "devices.countermass", "crank_construction": "devices.countermass",
     "verify_counter_mass": "devices.countermass",
     "Counterweights": "devices.counterweights", "counterweights": "devices.counterweights",
+    # reading a problem's tables and writing its results
+    "parse": "schema", "arm_problem": "problems.arm", "pantograph_problem": "problems.pantograph",
+    "compare_from_arm": "problems.compare", "DEFAULT_GRID": "devices.fit", "format_form": "model.potential",
+    "plot_spring": "plots", "plot_arm": "plots", "plot_prismatic": "plots", "plot_pantograph": "plots",
+    "plot_compare": "plots",
     # the rest
     "Extreme": "extremes", "box_extremes": "extremes", "TooMuchWork": "budget",
     "BalanceError": "errors", "InvalidInput": "errors", "InvalidArm": "errors", "InvalidRange": "errors",

@@ -22,9 +22,10 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, Literal, Mapping
 
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
+from pydantic import AfterValidator, BeforeValidator, ConfigDict, Field, field_validator
 
 from mechbase import read_toml, show
+from mechbase.schema import Table, expect
 
 from .errors import InvalidInput, SchemaError
 
@@ -38,8 +39,10 @@ __all__ = [
 OWNED_BY_RUNNER = frozenset({"scene", "expect", "plot"})
 
 
-class _Table(BaseModel):
-    model_config = ConfigDict(strict=True, extra="forbid", allow_inf_nan=False, frozen=True)
+class _Table(Table):
+    """A balance table: the project's dialect (:class:`mechbase.schema.Table`), no infinite number."""
+
+    model_config = ConfigDict(allow_inf_nan=False)
 
 
 def _inf_allowed(v: Any) -> Any:
@@ -50,10 +53,12 @@ def _inf_allowed(v: Any) -> Any:
 
 
 Number = float
-Pair = Annotated[list[float], Field(min_length=2, max_length=2)]
+#: an array of two numbers: one that is no array, or of another length, is "not a pair"
+_PAIR = expect("a pair [low, high]", only=("too_short", "too_long", "list_type"))
+Pair = Annotated[list[float], Field(min_length=2, max_length=2), _PAIR]
 OpenPair = Annotated[
     list[Annotated[float, Field(allow_inf_nan=True), BeforeValidator(_inf_allowed)]],
-    Field(min_length=2, max_length=2),
+    Field(min_length=2, max_length=2), _PAIR,
 ]
 Positive = Annotated[float, Field(gt=0)]
 Count = Annotated[int, Field(ge=1)]
@@ -63,7 +68,7 @@ def _seed_fault(seed: int) -> str | None:
     """What is wrong with a random seed (numpy's generators take 0 ≤ seed < 2**32), or None."""
     if 0 <= seed < 2**32:
         return None
-    return f"must be a whole number from 0 to {2**32 - 1}, not {seed}."
+    return f"must be a whole number from 0 to {2**32 - 1}, not {seed}"
 
 
 def check_seed(seed: int) -> int:
@@ -79,7 +84,7 @@ def check_seed(seed: int) -> int:
     """
     fault = _seed_fault(seed)
     if fault:
-        raise InvalidInput(f"the random seed {fault}")
+        raise InvalidInput(f"the random seed {fault}.")
     return seed
 
 
@@ -167,7 +172,7 @@ class ArmTable(_Table):
             isinstance(row, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool)
                                           and math.isfinite(x) for x in row) for row in v)
         if not ok:
-            raise ValueError(f"must be 'joint', 'base' or a square matrix of numbers, not {v!r}.")
+            raise ValueError(f"must be 'joint', 'base' or a square matrix of numbers, not {v!r}")
         return [[float(x) for x in row] for row in v]
 
 
@@ -273,92 +278,6 @@ TABLES: dict[str, type[_Table]] = {
     "compare": CompareTable,
 }
 
-# ------------------------------------------------------------------------- parsing
-_TYPE_WORDS = {
-    "float_type": "a number", "int_type": "a whole number", "bool_type": "true or false",
-    "string_type": "a string", "finite_number": "a finite number", "list_type": "an array",
-    "model_type": "a table", "dict_type": "a table",
-}
-
-_PAIRS = {"range", "range_deg", "range_upper_deg", "range_forearm_deg", "r", "r0", "a", "base", "mass", "weight",
-          "payload"}
-
-
-def _where(loc: tuple) -> tuple[str, str | None]:
-    """``('arm', 'links', 0, 'weight')`` → (``"[[arm.links]] #1"``, ``"weight"``)."""
-    parts: list[str] = []
-    table = ""
-    key = None
-    items = list(loc)
-    # an index into an array of numbers (e.g. a range) belongs to its key
-    if len(items) >= 2 and isinstance(items[-1], int) and isinstance(items[-2], str):
-        items = items[:-1]
-    for i, e in enumerate(items):
-        last = i == len(items) - 1
-        if isinstance(e, int):
-            table = f"[[{'.'.join(parts)}]] #{e + 1}"
-            continue
-        if last and i > 0:
-            key = str(e)
-            break
-        parts.append(str(e))
-        table = f"{table} [{e}]" if table.startswith("[[") else f"[{'.'.join(parts)}]"
-    return table or "[?]", key
-
-
-def _allowed(model: type[BaseModel], loc: tuple) -> list[str]:
-    """Keys allowed in the table holding the last key of ``loc`` (relative to ``model``)."""
-    cur: Any = model
-    for e in loc[:-1]:
-        if isinstance(e, int):
-            continue
-        field = getattr(cur, "model_fields", {}).get(e)
-        if field is None:
-            return []
-        cur = _model_in(field.annotation)
-        if cur is None:
-            return []
-    return sorted(getattr(cur, "model_fields", {}))
-
-
-def _model_in(ann: Any) -> type[BaseModel] | None:
-    if isinstance(ann, type) and issubclass(ann, BaseModel):
-        return ann
-    for arg in getattr(ann, "__args__", ()) or ():
-        m = _model_in(arg)
-        if m is not None:
-            return m
-    return None
-
-
-def _sentence(err: dict, model: type[BaseModel], table_name: str, source: str) -> str:
-    """One sentence in the words every project file uses: ``SOURCE: [TABLE] key 'K' must be …, not V.``"""
-    rel = tuple(err["loc"])
-    loc = (table_name,) + rel
-    table, key = _where(loc)
-    kind = err["type"]
-    value = err.get("input")
-    if kind == "extra_forbidden":
-        return f"{source}: {table} has an unknown key '{loc[-1]}' (allowed: {', '.join(_allowed(model, rel))})."
-    if kind == "missing":
-        return f"{source}: {table} needs the key '{key}'."
-    what = f"{table} key '{key}'" if key else table
-    if kind in {"too_short", "too_long"} or (kind == "list_type" and key in _PAIRS):
-        return f"{source}: {what} must be a pair [low, high], not {show(value)}."
-    if kind == "literal_error":
-        expected = err.get("ctx", {}).get("expected", "")
-        return f"{source}: {what} must be {expected}, not {show(value)}."
-    if kind in {"greater_than", "greater_than_equal", "less_than", "less_than_equal"}:
-        ctx = err.get("ctx", {})
-        bound = next(ctx[k] for k in ("gt", "ge", "lt", "le") if k in ctx)
-        sign = {"greater_than": ">", "greater_than_equal": "≥", "less_than": "<", "less_than_equal": "≤"}[kind]
-        return f"{source}: {what} must be {sign} {bound:g}, not {show(value)}."
-    if kind == "value_error":
-        return f"{source}: {what} {err['ctx']['error']}"
-    words = _TYPE_WORDS.get(kind, err["msg"][0].lower() + err["msg"][1:])
-    return f"{source}: {what} must be {words}, not {show(value)}."
-
-
 def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
     """Validate ``doc[table]`` against its schema; ``[scene]``, ``[expect]``, ``[plot]`` are ignored.
 
@@ -375,14 +294,7 @@ def parse(doc: Mapping[str, Any], table: str, source: str = "<input>") -> Any:
                               f"{', '.join(f'[{k}]' for k in sorted(OWNED_BY_RUNNER))}).")
     if table not in doc:
         raise SchemaError(f"{source}: the file needs the table [{table}].")
-    if not isinstance(doc[table], Mapping):
-        raise SchemaError(f"{source}: [{table}] must be a table, not {show(doc[table])}.")
-    model = TABLES[table]
-    try:
-        return model.model_validate(dict(doc[table]))
-    except ValidationError as exc:
-        err = exc.errors(include_url=False)[0]
-        raise SchemaError(_sentence(err, model, table, source)) from None
+    return TABLES[table].read(doc[table], source=source, where=f"[{table}]", error=SchemaError)
 
 
 def load_toml(path: str) -> dict:

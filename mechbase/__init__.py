@@ -1,5 +1,6 @@
 """The ground both engines stand on, and nothing else: one error base, one reader of TOML files, one
-grammar of ranges ``A..B`` and one way to quote a value as a file writes it.
+grammar of ranges ``A..B``, one way to quote a value as a file writes it and one way a typed result
+becomes a row (:class:`Row`); the dialect of TOML tables is :mod:`mechbase.schema`.
 
 ``synth`` and ``balance`` may import this package; it imports neither of them (tests/test_layering.py).
 
@@ -10,7 +11,8 @@ grammar of ranges ``A..B`` and one way to quote a value as a file writes it.
 
 from .errors import ProjectError
 from .ranges import RangeSyntax, parse_range
+from .rows import Row, as_row
 from .text import show
 from .toml import read_toml, read_toml_text
 
-__all__ = ["ProjectError", "RangeSyntax", "parse_range", "show", "read_toml", "read_toml_text"]
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text"]

@@ -13,7 +13,7 @@ import os
 from mechbase import RangeSyntax, parse_range
 
 __all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "output_file", "output_folder",
-           "PICTURE_FORMATS"]
+           "where_conditions", "PICTURE_FORMATS"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
@@ -142,3 +142,13 @@ def output_folder(text: str) -> str:
         if made and os.path.isdir(text):
             os.rmdir(text)
     return text
+
+
+def where_conditions(groups: list[list[str]]) -> list[str]:
+    """The conditions of repeated ``--where`` options (``nargs="+"``): ``--where n3 '>=' 2`` and
+    ``--where n3>=2`` are the same condition.
+
+    >>> where_conditions([["n3", ">=", "2"], ["W=1"]])
+    ['n3>=2', 'W=1']
+    """
+    return ["".join(words) for words in groups]

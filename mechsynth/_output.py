@@ -21,6 +21,9 @@ COUNT_FORMATS = ("json", "table", "jsonl", "csv")  # --count: one JSON object by
 
 
 def _cell(value) -> str:
+    """One cell of a table or csv row: a list as its items, a missing value (None) empty."""
+    if value is None:
+        return ""
     if isinstance(value, (list, tuple)):
         return " ".join(map(str, value)) if all(not isinstance(x, (list, tuple)) for x in value) else json.dumps(value)
     return str(value)
@@ -33,10 +36,11 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
     A table holds its rows to align its columns: beyond ``synth.TABLE_ROWS`` it writes nothing and
     raises :class:`synth.QueryTooLarge` (the listings size themselves first; this bounds any other).
 
-    >>> write_rows([{"code": "44/0", "v": 0}], ["code", "v"], "csv")
+    >>> write_rows([{"code": "44/0", "v": 0}, {"code": "53/1", "v": None}], ["code", "v"], "csv")
     code,v
     44/0,0
-    1
+    53/1,
+    2
     >>> write_rows([{"code": "44/0"}, {"code": "53/1"}], ["code"], "json")
     [{"code": "44/0"},
      {"code": "53/1"}]

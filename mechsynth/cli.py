@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
+import threading
 
 # The engine runs in parallel by processes, and its linear algebra is small (the drawing's Tutte
 # solve, fits of a few parameters): OpenBLAS threads only spin between such calls and take the
@@ -48,8 +50,9 @@ class _Version(argparse.Action):
 
 # each command by the module of mechsynth.commands that mounts it, in the order of --help
 COMMANDS = {"codes": "codes", "analyze": "codes", "chains": "chains", "mechanisms": "chains",
-            "identify": "identify", "compare": "identify", "grid": "atlas", "atlas": "atlas", "draw": "atlas",
-            "scene": "scene", "planetary": "planetary", "gears": "gears", "move": "move", "balance": "balance"}
+            "identify": "identify", "compare": "identify", "grid": "grid", "atlas": "atlas", "draw": "draw",
+            "scene": "scene", "planetary": "planetary", "gears": "gears", "move": "move", "dimension": "dimension",
+            "balance": "balance"}
 
 
 def _build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
@@ -75,6 +78,16 @@ def _build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    interrupted, previous = [], None
+
+    def on_interrupt(signum, frame):
+        interrupted.append(signum)
+        raise KeyboardInterrupt
+
+    # Ctrl-C raises KeyboardInterrupt as Python's own handler does, and is remembered: an extension
+    # interrupted in the middle of a call (nauty building a graph) may raise something else instead
+    if threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous = signal.signal(signal.SIGINT, on_interrupt)
     try:
         args = _build_parser(argv).parse_args(argv)
         return args.run(args)
@@ -88,6 +101,14 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except Exception:
+        if not interrupted:
+            raise
+        print("mechsynth: interrupted", file=sys.stderr)
+        return 130
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
 
 
 if __name__ == "__main__":

@@ -45,7 +45,7 @@ _WHERE = {
     "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
     "JOINT_KINDS": ".structure.joints", "chain_id": ".structure.chain",
     "ChainQuery": ".structure.query", "parse_range": ".structure.query", "parse_requirements": ".structure.query",
-    "check_motion_space": ".structure._params",
+    "check_motion_space": ".structure._params", "Require": ".schema",
     "structural_mobility": ".structure.kinds", "generic_mobility": ".structure.kinds",
     "redundant_constraints": ".structure.kinds", "idle_joints": ".structure.kinds", "wedge_loops": ".structure.kinds",
     "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds",
@@ -72,7 +72,8 @@ _WHERE = {
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
     "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",
-    "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair",
+    "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair", "Repair": ".analysis.repair",
+    "ChainRepair": ".analysis.repair",
     # the source's planetary layout through its lever analogue
     "planetary_row": ".gears.planetary", "planetary_rows": ".gears.planetary",
     "planetary_table": ".gears.planetary",
@@ -82,6 +83,8 @@ _WHERE = {
     "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
     "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
+    # drawings of moving mechanisms (chains, mechanisms and gear trains: synth.draw)
+    "linkage_from_layout": ".motion_draw", "draw_motion": ".motion_draw", "animate_motion": ".motion_draw",
 }
 
 __all__ = [*_WHERE, *_errors_all]

@@ -47,6 +47,7 @@ _BODY, _EDGE, _INPUT, _FRAME = "#dbe6f4", "#1f3a5f", "#c0632b", "#6b7785"
 _CURVES = ("#c0392b", "#1e7a46", "#7d3c98", "#b9770e", "#2471a3")
 _PATH = "#b8c2cc"
 _MESH = "#1e7a46"
+_MARK = "#1f4e9c"  # target points of a synthesis
 
 
 # ------------------------------------------------------------------ linkages from the atlas's drawings
@@ -87,7 +88,7 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     >>> lk.dof
     1
     """
-    from .draw import layout
+    from .draw._layout import layout
     from .errors import MotionError
 
     chain = mechanism.chain
@@ -147,17 +148,25 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
     angle, swing), and what is wrong with it in words (None when nothing is)."""
     from .motion import sweep
+    from .motion._sweep import _solver
 
-    motion = sweep(linkage, steps=73)
-    # a crank's sweep turns once from the pose; a rocker's goes from limit to limit (which may span
-    # more than a turn, but does not start at the pose's input)
-    span = float(abs(motion.inputs[-1, 0] - motion.inputs[0, 0]))
-    full = (motion.stopped is None and linkage.kind(linkage.inputs[0]) == "revolute"
-            and abs(motion.inputs[0, 0] - linkage.pose_inputs[0]) < 1e-12 and abs(span - 2 * math.pi) < 1e-9)
-    if linkage.kind(linkage.inputs[0]) != "revolute":  # a stroke as long as the mechanism is worth a turn
+    solver = _solver(linkage)
+    lo, hi, _, _ = solver.branch
+    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    full = revolute and math.isinf(lo) and math.isinf(hi)
+    # a crank turns once; a rocker swings from limit to limit (which may span more than a turn), an
+    # endless slide as far as a sweep takes it (four sizes); a stroke as long as the mechanism is worth
+    # a turn
+    start = lo if math.isfinite(lo) else 0.0
+    span = 2 * math.pi if full else (hi if math.isfinite(hi) else start + 4 * linkage.scale) - start
+    if not revolute:
         span *= 2 * math.pi / linkage.scale
-    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's count
-    worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()] + [math.pi / 2]) if full else 0.0
+    # a rocker's ends are dead positions, where some transmission angle is 0 by nature: only a crank's
+    # count (a group moved by Newton's method reports none)
+    worst = 0.0
+    if full:
+        transmission = sweep(linkage, steps=73).transmission.values() if solver.plan is not None else ()
+        worst = min([min(t["min"], math.pi - t["max"]) for t in transmission] + [math.pi / 2])
     good = full and worst >= _GOOD_TRANSMISSION
     if good:
         why = None
@@ -211,10 +220,10 @@ def _order(points: np.ndarray) -> list[int]:
 
 
 def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers: dict[str, np.ndarray],
-              paths: dict[str, np.ndarray], reach: tuple[np.ndarray, np.ndarray] | None = None) -> list[dict]:
+              paths: dict[str, list[np.ndarray]], reach: tuple[np.ndarray, np.ndarray] | None = None) -> list[dict]:
     """The drawing's elements at every frame (world coordinates): ``tag`` (polygon, polyline,
     circle, text), ``style`` (SVG attributes), ``frames`` (F, m, 2) and for circles ``r``, for
-    texts ``text``.  ``paths`` are drawn as still curves (pins' paths under the links, coupler
+    texts ``text``.  ``paths`` (curves by name) are drawn as still curves (pins' paths under the links, coupler
     curves over them); ``reach`` (joints and angles of more steps than the frames) sets how long
     a slider's guide is drawn: over the block's whole travel."""
     chain, scale = linkage.chain, linkage.scale
@@ -224,12 +233,13 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
     colours = {name: _CURVES[i % len(_CURVES)] for i, name in enumerate(linkage.tracers)}
 
     def curves(of_tracers: bool) -> None:  # grey pin paths under the links, coupler curves over them
-        for name, xy in paths.items():
-            ok = xy[np.isfinite(xy).all(axis=1)]
-            if len(ok) > 1 and (name in tracers) == of_tracers:
-                out.append({"tag": "polyline", "frames": ok[None], "static": True, "curve": True,
-                            "style": {"fill": "none", "stroke": colours[name] if of_tracers else _PATH,
-                                      "stroke-width": 1.8 if of_tracers else 0.8}})
+        for name, lines in paths.items():
+            for xy in lines:
+                ok = xy[np.isfinite(xy).all(axis=1)]
+                if len(ok) > 1 and (name in tracers) == of_tracers:
+                    out.append({"tag": "polyline", "frames": ok[None], "static": True, "curve": True,
+                                "style": {"fill": "none", "stroke": colours[name] if of_tracers else _PATH,
+                                          "stroke-width": (1.8 if len(lines) == 1 else 0.9) if of_tracers else 0.8}})
 
     curves(False)
     driven = {linkage.input_link(i) for i in range(linkage.dof)}
@@ -422,14 +432,31 @@ def _svg(elements: list[dict], canvas: _Canvas, frame: int | None, *, seconds: f
     return svg
 
 
-def _paths(motion: Motion, most: int = 2000) -> dict[str, np.ndarray]:
+def _paths(motion: Motion, most: int = 2000) -> dict[str, list[np.ndarray]]:
     """The curves a picture shows, thinned to ``most`` points each: the paths of the pins that
-    move (not on the frame) under every tracer's coupler curve."""
+    move (not on the frame) under every tracer's coupler curve.  Of a grid of inputs, the images of
+    up to 25 of its lines along each input (the workspace, as a mesh), cut where the branch does
+    not reach."""
     linkage = motion.linkage
-    keep = np.unique(np.linspace(0, motion.steps - 1, min(most, motion.steps)).round().astype(int))
-    paths = {joint_name(linkage.chain, k): motion.joints[keep, k] for k in range(len(linkage.chain.joints))
-             if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]}
-    return paths | {name: xy[keep] for name, xy in motion.tracers.items()}
+    pins = [k for k in range(len(linkage.chain.joints))
+            if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]]
+    curves = {joint_name(linkage.chain, k): motion.joints[:, k] for k in pins} | dict(motion.tracers)
+    if motion.grid is None:
+        keep = np.unique(np.linspace(0, motion.steps - 1, min(most, motion.steps)).round().astype(int))
+        return {name: [xy[keep]] for name, xy in curves.items()}
+    return {name: _grid_lines(xy.reshape(*motion.grid, 2)) for name, xy in curves.items()}
+
+
+def _grid_lines(grid: np.ndarray, most: int = 25) -> list[np.ndarray]:
+    """The images (runs of reached points) of up to ``most`` lines of a grid along each of its axes."""
+    lines = []
+    for axis in range(grid.ndim - 1):
+        along = np.moveaxis(grid, axis, -2).reshape(-1, grid.shape[axis], 2)
+        for line in along[np.unique(np.linspace(0, len(along) - 1, min(most, len(along))).round().astype(int))]:
+            ok = np.isfinite(line).all(axis=1)
+            cuts = np.flatnonzero(np.diff(ok.astype(int))) + 1
+            lines += [run for run, good in zip(np.split(line, cuts), np.split(ok, cuts)) if good[0] and len(run) > 1]
+    return lines
 
 
 def _motion_elements(motion: Motion, frames: int) -> tuple[list[dict], np.ndarray]:
@@ -557,9 +584,11 @@ def _figure(canvas: _Canvas, dpi: int):
     return fig, ax
 
 
-def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None) -> None:
+def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None,
+                marks: np.ndarray | None = None) -> None:
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
-    paths of its moving pins (grey), to a PNG or SVG file.
+    paths of its moving pins (grey), to a PNG or SVG file; ``marks`` (N, 2) are drawn as hollow
+    circles over them (the points a synthesis was asked to pass).
 
     >>> import os, tempfile
     >>> from synth.structure.chain import Chain, Mechanism
@@ -579,6 +608,9 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
     elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
                          reach=(motion.joints[keep], motion.angles[keep]))
+    for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
+        elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
+                         "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
     canvas = _Canvas(elements, size)
     text = title or _title(linkage)
     try:

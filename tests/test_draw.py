@@ -7,6 +7,7 @@ import pytest
 
 import synth
 from synth import draw
+from synth.draw import _render
 from synth.structure.chain import Chain, Mechanism
 from mechsynth.cli import main
 
@@ -222,13 +223,13 @@ def test_cli_size_dpi_and_labels(tmp_path, capsys):
 
 def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
     """Captions of mechanisms name the fixed link, so the sheet numbers the links."""
-    labels, real = [], draw._draw
+    labels, real = [], _render._draw
 
     def spy(ax, item, **kw):
         labels.append(kw["labels"])
         return real(ax, item, **kw)
 
-    monkeypatch.setattr(draw, "_draw", spy)
+    monkeypatch.setattr(_render, "_draw", spy)
     mechanisms = draw.expand([Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")], mechanisms=True)
     draw.draw_sheet(mechanisms, tmp_path / "m.png")
     draw.draw_sheet([Chain.parse("0-1 1-2 2-3 3-0")], tmp_path / "c.png")
@@ -245,7 +246,7 @@ def test_draw_prismatic_variants(tmp_path, capsys):
     variants = list(variants_of([Chain.parse(watt)], (1, 2)))
     assert main(["draw", "--chain", watt, "--prismatic", "1..2", "--out", str(tmp_path / "w.svg")]) == 0
     assert f"{len(variants)} drawings" in capsys.readouterr().err
-    assert draw._caption(variants[-1], None).startswith("42/0 P2")
+    assert _render._caption(variants[-1], None).startswith("42/0 P2")
     for bad in (["--idle-joints"], ["--prismatic", "1", "--frame", "0"], ["--prismatic", "9"],
                 ["--prismatic", "1", "--h", "4"]):
         assert main(["draw", "--chain", watt, *bad, "--out", str(tmp_path / "x.png")]) == 2

@@ -17,6 +17,7 @@ from matplotlib.path import Path as MplPath  # noqa: E402
 
 import synth  # noqa: E402
 from synth import draw  # noqa: E402
+from synth.draw import _render  # noqa: E402
 from synth.structure.chain import Chain  # noqa: E402
 from mechsynth.cli import main  # noqa: E402
 
@@ -24,7 +25,7 @@ from mechsynth.cli import main  # noqa: E402
 def _drawn(item, labels=True):
     """Draw one item on an axes and return the axes (closed by the caller through plt.close)."""
     fig, ax = plt.subplots(figsize=(3, 3))
-    draw._draw(ax, item, labels=labels, caption="x")
+    _render._draw(ax, item, labels=labels, caption="x")
     return fig, ax
 
 
@@ -50,7 +51,7 @@ def test_open_chains_numbers_clear_of_every_bar_and_free_ends_apart():
     for chain in chains:
         fig, ax = _drawn(chain)
         try:
-            r = draw._Marks(chain).r
+            r = _render._Marks(chain).r
             bars = [np.asarray(line.get_xydata()) for line in ax.lines if (line.get_gid() or "").startswith("bar")]
             ends = [np.asarray(p.get_xy())[:4].mean(axis=0) for p in ax.patches if (p.get_gid() or "").startswith("end")]
             assert len(ends) == chain.degrees.count(1)
@@ -79,7 +80,7 @@ def _label_heights(monkeypatch, run) -> list[float]:
         seen.extend(t.get_window_extent(renderer).height for ax in fig.axes for t in ax.texts
                     if (t.get_gid() or "").startswith("label"))
 
-    monkeypatch.setattr(draw, "_save", keep)
+    monkeypatch.setattr(_render, "_save", keep)
     run()
     return seen
 
@@ -113,8 +114,8 @@ def test_non_planar_chains_have_no_overlapping_link_polygons_and_say_so():
         lay = draw.layout(chain)
         polygons = [lay.joints[p] for p in lay.polygons if len(p) >= 3]
         assert _overlap_points(polygons) == 0, chain.compact()
-        assert "non-planar" in draw._caption(chain, 1)
-    assert "non-planar" not in draw._caption(synth.Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 1)
+        assert "non-planar" in _render._caption(chain, 1)
+    assert "non-planar" not in _render._caption(synth.Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 1)
 
 
 def test_the_overlap_measure_sees_overlapping_polygons():
@@ -171,7 +172,7 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
         mech = Mechanism(chain, frame)
         fig, ax = _drawn(mech)
         try:
-            marks = draw._Marks(chain)
+            marks = _render._Marks(chain)
             r = marks.r
             signs = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("ground")}
             assert set(signs) == {f"ground{k}" for k, j in enumerate(chain.joints) if frame in j}

@@ -28,9 +28,18 @@ SLOW = {
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
     "--html moving_site": "moves the mechanisms of three chains, triads among them: about a minute "
                           "(tests/atlas/test_site_motion.py plays a site's moving page in Chromium)",
+    "--index-curves --samples 200": "samples 200 crank poses of each 4- and 6-link mechanism: about two CPU minutes "
+                                    "(tests/atlas/test_curve_search.py builds a four-bar index in the default suite)",
+    "dimension models/dimension_closed_path.csv": "an atlas search with a 60 CPU-second budget on the index above "
+                                                  "(tests/atlas/test_curve_search.py finds a four-bar again)",
+    "dimension models/dimension_path.csv": "a path synthesis with a 30 CPU-second budget "
+                                           "(tests/dimension finds the same points again in the default suite)",
     "--code 12.2000/6-0 --cranks 3=3": "the translator's query, 21 841 heterogeneous chains: about 13 CPU seconds "
                                        "(tests/synthesis/test_classes_vs_oracle.py runs it in the slow set too)",
+    "--code 8310/1 --prismatic 3 --cylinders": "Fig. 6's query, 8 096 mechanisms of 4 617 chains: about 30 CPU seconds",
 }
+# a slow command's smaller case, run as written but for these words, in the default suite
+SMALLER = {"--code 8310/1 --prismatic 3 --cylinders": ("8310/1", "71/1")}
 SKIP = {
     "--scheduler tcp://127.0.0.1:8786": "needs the Dask scheduler the README starts by hand "
                                         "(tests/execution runs the same units on a real Dask cluster)",
@@ -113,6 +122,17 @@ def test_readme_command_runs_as_written(argv, tour, monkeypatch, capsys):
     assert status == 0, (shlex.join(argv), err[-1500:])
     assert "Traceback" not in err
     assert out.strip() or any(a in argv for a in ("--out", "--animate", "--save", "--html", "--plot", "grid")), shlex.join(argv)
+
+
+@pytest.mark.parametrize("argv", [c for c in COMMANDS if any(key in shlex.join(c) for key in SMALLER)],
+                         ids=lambda c: shlex.join(c[1:4]))
+def test_a_slow_readme_command_runs_on_a_smaller_case(argv, tour, monkeypatch, capsys):
+    (words, smaller), = [change for key, change in SMALLER.items() if key in shlex.join(argv)]
+    assert words in argv
+    monkeypatch.chdir(tour)
+    status = main([smaller if a == words else a for a in argv[1:]])
+    out, err = capsys.readouterr()
+    assert status == 0 and out.strip() and "Traceback" not in err, (shlex.join(argv), err[-1500:])
 
 
 _NUMBER = re.compile(r"\d+(?:[ .]\d+)*(?:e[+-]\d+)?(?: (?:s|min|h|days|years)\b)?")

@@ -141,8 +141,7 @@ def add_commands(sub) -> None:
 
 # ----------------------------------------------------------------- running
 def _run(args) -> int:
-    from balance.budget import TooMuchWork
-    from balance.errors import BalanceError
+    from balance import BalanceError, TooMuchWork
     from synth import InvalidOption
 
     try:
@@ -156,9 +155,9 @@ def _run(args) -> int:
         table = args.table or _TABLES[type(result).__name__]
         write_document(out, args.format, "" if args.format == "json" else table(out))
         if getattr(args, "plot", None):
-            from balance import plots
+            import balance
 
-            getattr(plots, args.plot_with)(result, args.plot)
+            getattr(balance, args.plot_with)(result, args.plot)
     except TooMuchWork as exc:
         raise InvalidOption(f"{str(exc).rstrip('.')}; give --force to run it anyway.") from None
     except BalanceError as exc:
@@ -169,11 +168,11 @@ def _run(args) -> int:
 
 
 def _file_problem(args):
-    from balance.problems import load_toml, read_problem
+    from balance import load_toml, read_problem
 
     doc = load_toml(args.file)
     if args.balance_command == "pantograph":
-        from balance.problems.pantograph import pantograph_problem
+        from balance import pantograph_problem
 
         return pantograph_problem(doc, args.file)
     return read_problem(doc, args.file)
@@ -182,8 +181,7 @@ def _file_problem(args):
 def _arm_problem(args):
     from dataclasses import replace
 
-    from balance.problems.arm import arm_problem
-    from balance.problems import load_toml
+    from balance import arm_problem, load_toml
 
     if args.file.lower().endswith(".urdf"):
         doc = {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
@@ -197,9 +195,7 @@ def _arm_problem(args):
 
 
 def _spring_problem(args):
-    from balance.devices.fit import DEFAULT_GRID, SpringBounds
-    from balance.errors import InvalidInput
-    from balance.problems.spring import SpringOptions, SpringProblem
+    from balance import DEFAULT_GRID, InvalidInput, SpringBounds, SpringOptions, SpringProblem
 
     given = {"--material": args.material, "--max-outer-diameter": args.max_outer_diameter,
              "--min-inner-diameter": args.min_inner_diameter, "--spring-ends": args.spring_ends,
@@ -225,7 +221,7 @@ def _spring_problem(args):
 
 def _device_options(args) -> str:
     """The spring kind, with the options the chosen device does not take refused in one sentence."""
-    from balance.errors import InvalidInput
+    from balance import InvalidInput
 
     if args.device == "slotted-lever":
         missing = [k for k, v in (("--kind", args.kind), ("--r0", args.r0)) if v is None]
@@ -272,10 +268,7 @@ def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
 
 
 def _compare_problem(args):
-    from balance.problems import load_toml
-    from balance.problems.arm import arm_problem
-    from balance.problems.compare import compare_from_arm
-    from balance.schema import parse
+    from balance import arm_problem, compare_from_arm, load_toml, parse
 
     options = {k: v for k, v in (("target", args.target), ("acceleration", args.acceleration),
                                  ("samples", args.samples), ("seed", args.seed)) if v is not None}
@@ -302,7 +295,7 @@ def _compare_problem(args):
 
 
 def _prismatic_problem(args):
-    from balance.problems.slider import DynamicsCheck, SliderProblem
+    from balance import DynamicsCheck, SliderProblem
 
     return SliderProblem(args.mass, args.inertia, args.counter_mass, args.stroke, args.travel, args.C,
                          dynamics=None if args.dynamics is None else DynamicsCheck(args.dynamics))
@@ -369,7 +362,7 @@ def _table_arm(out: dict) -> str:
 
 
 def _form_text(form) -> str:
-    from balance.model.potential import format_form
+    from balance import format_form
 
     return format_form(form, [f"ψ{i + 1}" for i in range(len(form))])
 

@@ -244,7 +244,7 @@ def _run_analyze(args) -> int:
         if args.repairs:
             from synth import chain_repairs
 
-            result["repairs"] = chain_repairs(chain, dof=args.dof, limit=args.repairs)
+            result["repairs"] = [r.to_dict() for r in chain_repairs(chain, dof=args.dof, limit=args.repairs)]
     elif kind == "counts":
         if args.repairs:
             raise InvalidOption("--repairs works on a code or a chain, not on bare counts")
@@ -261,8 +261,9 @@ def _run_analyze(args) -> int:
 
             if h not in (None, 3) or args.f or classes:
                 raise InvalidOption("--repairs rebuilds planar codes: drop --h, --f and --loop-classes")
-            result["repairs"] = code_repairs(Code.parse(subject), result["dof"] if args.dof is None else args.dof,
-                                             limit=args.repairs)
+            found = code_repairs(Code.parse(subject), result["dof"] if args.dof is None else args.dof,
+                                 limit=args.repairs)
+            result["repairs"] = [r.to_dict() for r in found]
     repairs = result.pop("repairs", None)
     if repairs is not None:
         result["repairs"] = repairs

@@ -123,7 +123,7 @@ def _run(args) -> int:
         _size_note(args, dof)
     if args.count:
         result = count_trains(dof, args.links, args.graphs, workers=args.workers, progress=True)
-        if write_count(result, args.format or "json") == 0:
+        if write_count(result.to_dict(), args.format or "json") == 0:
             return nothing_found("gear trains satisfy these parameters")
         return 0
     if args.train is not None:
@@ -174,12 +174,12 @@ def _check_sheet(args, n: int, what: str) -> None:
 
 
 def _draw(items, out: str, compound, teeth=None, titles=None) -> None:
-    from synth.gears import draw_sheet, draw_train
+    from synth.draw import draw_train, draw_train_sheet
 
     if len(items) == 1:
         draw_train(items[0], out, teeth=teeth, compound=compound, title=titles[0] if titles else None)
     else:
-        draw_sheet(items, out, limit=len(items), titles=titles)
+        draw_train_sheet(items, out, limit=len(items), titles=titles)
 
 
 def _mechanisms_of(args, items, compound):

@@ -35,8 +35,11 @@ from .._output import pairs, write_document, write_rows
 
 __all__ = ["add_commands"]
 
-#: the longest sweep a command runs (rows are written as they come; the solver allows more from Python)
+#: the longest sweep (or largest grid) a command runs (rows are written as they come; the solver allows
+#: more from Python)
 MAX_STEPS = 1_000_000
+#: a grid's default values per input
+GRID_STEPS = 37
 
 
 def _picture(text: str) -> str:
@@ -51,14 +54,29 @@ def _saved(text: str) -> str:
     return output_file(text, (".json",), "the linkage")
 
 
-def _number(text: str) -> float:
+def _numbers(text: str) -> tuple[float, ...]:
+    """One finite number, or one per input separated by commas (``80,100``)."""
+    out = []
+    for part in text.split(","):
+        try:
+            value = float(part)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a number, or one per input separated by commas, not "
+                                             f"{text!r}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
+        out.append(value)
+    return tuple(out)
+
+
+def _counts(text: str) -> tuple[int, ...]:
+    """A number of steps, or one per input of a grid separated by x (``36x24``)."""
     try:
-        value = float(text)
+        out = tuple(int(part) for part in text.lower().split("x"))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, not {text!r}")
-    return value
+        raise argparse.ArgumentTypeError(f"expected a number of steps, or one per input like 36x24, not "
+                                         f"{text!r}") from None
+    return out
 
 
 def add_commands(sub) -> None:
@@ -73,11 +91,14 @@ def add_commands(sub) -> None:
     p.add_argument("--frame", type=whole, help="with --chain or --db: the fixed link")
     p.add_argument("--input", metavar="JOINT",
                    help="with --chain or --db: the input joint of the frame, e.g. 0-1 (default: a crank if one turns fully)")
-    p.add_argument("--steps", type=positive, default=360, help=f"input values, ends included (2 … {MAX_STEPS:,}; "
-                   "default 360)")
-    p.add_argument("--start", type=_number, help="first input value: degrees for a revolute input, length for a "
-                   "prismatic one (default: the pose's for a crank, the lower limit for a rocker)")
-    p.add_argument("--stop", type=_number, help="last input value, as --start (default: one turn, or the upper limit)")
+    p.add_argument("--steps", type=_counts, help=f"input values, ends included (2 … {MAX_STEPS:,}; default 360); "
+                   f"with W > 1 inputs a grid: one count for every input or one each, like 36x24 (default "
+                   f"{GRID_STEPS} each)")
+    p.add_argument("--start", type=_numbers, help="first input value: degrees for a revolute input, length for a "
+                   "prismatic one (default: the pose's for a crank, the lower limit for a rocker); with W > 1 one "
+                   "per input, like 80,100")
+    p.add_argument("--stop", type=_numbers, help="last input value, as --start (default: one turn, or the upper "
+                   "limit; a grid: half a turn (or the mechanism's size) each side of the pose)")
     p.add_argument("--velocities", action="store_true", help="add each joint's velocity per unit input rate")
     p.add_argument("--accelerations", action="store_true", help="add each joint's acceleration per unit input rate "
                    "squared (input turning steadily)")
@@ -111,8 +132,10 @@ def _check(args) -> None:
         raise InvalidOption("--db needs --id ID: the chain of the atlas to move")
     if (args.chain or args.db) and args.frame is None:
         raise InvalidOption("--chain and --db need --frame F: the fixed link of the mechanism to move")
-    if not 2 <= args.steps <= MAX_STEPS:
-        raise InvalidOption(f"--steps must be 2 … {MAX_STEPS:,}, not {args.steps}")
+    if args.steps is not None and not (all(2 <= n <= MAX_STEPS for n in args.steps)
+                                       and math.prod(args.steps) <= MAX_STEPS):
+        raise InvalidOption(f"--steps must be 2 … {MAX_STEPS:,} in all (each input's count at least 2), not "
+                            + "x".join(map(str, args.steps)))
     if args.frames is not None and not args.animate:
         raise InvalidOption("--frames goes with --animate (the animation's frames)")
     if args.frames is not None and not 2 <= args.frames <= 1000:
@@ -121,8 +144,13 @@ def _check(args) -> None:
         raise InvalidOption("--range prints one document: --format table or json, not " + args.format)
     if args.range and (args.velocities or args.accelerations):
         raise InvalidOption("--velocities and --accelerations add columns to the rows; --range prints no rows")
-    if args.start is not None and args.stop is not None and args.start == args.stop:
-        raise InvalidOption(f"--start and --stop are both {args.start:g}: a sweep needs two different ends")
+    if args.start is not None and args.stop is not None:
+        if len(args.start) != len(args.stop):
+            raise InvalidOption(f"--start gives {len(args.start)} value(s) and --stop {len(args.stop)}: one each per "
+                                "input")
+        if any(a == b for a, b in zip(args.start, args.stop)):
+            raise InvalidOption(f"--start and --stop are both {next(a for a, b in zip(args.start, args.stop) if a == b):g}"
+                                " for an input: a sweep needs two different ends")
     outputs = [os.path.realpath(p) for p in (args.out, args.animate, args.save) if p]
     if len(set(outputs)) != len(outputs):
         raise InvalidOption("two outputs name the same file: give --out, --animate and --save different files")
@@ -134,7 +162,7 @@ def _linkage(args):
     """The linkage the command moves, and where it came from (for the messages)."""
     from synth import Chain, InvalidOption, Mechanism
     from synth.motion import read_linkage
-    from synth.motion_draw import linkage_from_layout
+    from synth import linkage_from_layout
 
     if args.linkage:
         return read_linkage(args.linkage)
@@ -165,6 +193,7 @@ def _run(args) -> int:
 
     _check(args)
     linkage = _linkage(args)
+    _check_inputs(args, linkage)
     if linkage.note:
         print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
     if args.save:
@@ -172,24 +201,24 @@ def _run(args) -> int:
             json.dump(linkage.to_dict(), fh, indent=2)
             fh.write("\n")
     if linkage.dof != 1:
-        raise InvalidOption(f"this linkage has W = {linkage.dof} inputs; 'move' sweeps one input (from Python, "
-                            "synth.motion.sweep_grid moves several over a grid)")
+        return _grid(linkage, args)
     revolute = linkage.kind(linkage.inputs[0]) == "revolute"
-    start, stop = (None if v is None else (math.radians(v) if revolute else v) for v in (args.start, args.stop))
+    start, stop = (None if v is None else (math.radians(v[0]) if revolute else v[0]) for v in (args.start, args.stop))
+    steps = args.steps[0] if args.steps else 360
     rows_only = not (args.out or args.animate or args.range or args.save)
-    if rows_only and args.steps > _CHUNK:
-        return _write_long_sweep(linkage, args, start, stop)
-    motion = sweep(linkage, steps=args.steps, start=start, stop=stop, velocities=args.velocities,
+    if rows_only and steps > _CHUNK:
+        return _write_long_sweep(linkage, args, steps, start, stop)
+    motion = sweep(linkage, steps=steps, start=start, stop=stop, velocities=args.velocities,
                    accelerations=args.accelerations)
     if motion.stopped:
         print(f"mechsynth: the sweep stopped: {motion.stopped}", file=sys.stderr)
     if args.out:
-        from synth.motion_draw import draw_motion
+        from synth import draw_motion
 
         draw_motion(motion, args.out)
         print(f"coupler curves -> {args.out}", file=sys.stderr)
     if args.animate:
-        from synth.motion_draw import animate_motion
+        from synth import animate_motion
 
         frames = animate_motion(motion, args.animate, frames=args.frames or 60, progress=sys.stderr.isatty())
         print(f"{frames} frames -> {args.animate}", file=sys.stderr)
@@ -207,11 +236,88 @@ def _run(args) -> int:
     return 0
 
 
-#: a long sweep's rows are computed this many steps at a time, so Ctrl-C is seen between pieces
+#: a long sweep's rows are computed this many steps at a time, so Ctrl-C is seen between pieces; a
+#: table of more rows is refused (it is held in memory to align its columns)
 _CHUNK = 20_000
 
 
-def _write_long_sweep(linkage, args, start: float | None, stop: float | None) -> int:
+def _check_inputs(args, linkage) -> None:
+    """What depends on the linkage's number of inputs W, refused before anything is written."""
+    from synth import InvalidOption
+
+    w = linkage.dof
+    if w == 1:
+        if args.steps is not None and len(args.steps) != 1:
+            raise InvalidOption(f"this linkage has one input: --steps is one count, not {'x'.join(map(str, args.steps))}")
+        for name, given in (("--start", args.start), ("--stop", args.stop)):
+            if given is not None and len(given) != 1:
+                raise InvalidOption(f"this linkage has one input: {name} is one value, not {len(given)}")
+        steps = args.steps[0] if args.steps else 360
+    else:
+        if args.range or args.animate or args.accelerations:
+            option = "--range" if args.range else "--animate" if args.animate else "--accelerations"
+            raise InvalidOption(f"this linkage has W = {w} inputs, moved over a grid: {option} is for one input "
+                                "(a grid gives rows, velocities and a picture of the workspace, --out)")
+        if args.steps is not None and len(args.steps) not in (1, w):
+            raise InvalidOption(f"this linkage has W = {w} inputs: --steps is one count for each or {w} counts like "
+                                + "x".join(["24"] * w) + f", not {'x'.join(map(str, args.steps))}")
+        for name, given in (("--start", args.start), ("--stop", args.stop)):
+            if given is not None and len(given) != w:
+                raise InvalidOption(f"this linkage has W = {w} inputs: {name} takes one value per input separated by "
+                                    f"commas ({w} values), not {len(given)}")
+        if (args.start is None) != (args.stop is None):
+            raise InvalidOption("a grid's ranges need both --start and --stop (one value per input each), or neither")
+        steps = math.prod(_grid_counts(args, w))
+        if steps > MAX_STEPS:
+            raise InvalidOption(f"the grid has {steps:,} steps; at most {MAX_STEPS:,}")
+    if steps > _CHUNK and (args.format or "table") == "table" and not (args.out or args.animate or args.range
+                                                                      or args.save):
+        raise InvalidOption(f"a table of {steps:,} rows is held in memory to align it: use --format jsonl or csv "
+                            "(written as they come)")
+
+
+def _grid_counts(args, w: int) -> tuple[int, ...]:
+    """A grid's values per input: --steps given once for all, or one each, or the default."""
+    return args.steps * w if args.steps and len(args.steps) == 1 else args.steps or (GRID_STEPS,) * w
+
+
+def _grid(linkage, args) -> int:
+    """A linkage of W > 1 inputs moved over a grid of them: rows per grid point, the workspace drawn."""
+    import numpy as np
+    from tqdm import tqdm
+
+    from synth.motion import sweep_grid
+
+    w = linkage.dof
+    revolute = [linkage.kind(k) == "revolute" for k in linkage.inputs]
+    counts = _grid_counts(args, w)
+    if args.start is None:  # half a turn (or the mechanism's size) each side of the pose
+        half = [math.pi if r else linkage.scale for r in revolute]
+        ranges = [(v - h, v + h) for v, h in zip(linkage.pose_inputs, half)]
+    else:
+        ranges = [(math.radians(a), math.radians(b)) if r else (a, b)
+                  for a, b, r in zip(args.start, args.stop, revolute)]
+    with tqdm(total=math.prod(counts), unit="cell", file=sys.stderr, desc="move",
+              disable=not sys.stderr.isatty()) as bar:
+        motion = sweep_grid(linkage, ranges, steps=list(counts), velocities=args.velocities, progress=bar.update)
+    reached = int(np.isfinite(motion.joints).all(axis=(1, 2)).sum())
+    print(f"mechsynth: {reached:,} of {motion.steps:,} grid points are on the branch of the pose (the rest are "
+          "written without positions)", file=sys.stderr)
+    if args.out:
+        from synth.motion_draw import draw_motion
+
+        draw_motion(motion, args.out)
+        print(f"workspace -> {args.out}", file=sys.stderr)
+    if args.format or not (args.out or args.save):
+        rows = motion.rows()
+        first = next(rows)
+        import itertools
+
+        write_rows(itertools.chain([first], rows), list(first), args.format or "table")
+    return 0
+
+
+def _write_long_sweep(linkage, args, steps: int, start: float | None, stop: float | None) -> int:
     """Rows of a sweep of more than :data:`_CHUNK` steps, computed and written piece by piece with a
     progress bar: each piece continues the branch from the pose to its first input (the same
     inputs as one sweep: ``start + i·(stop − start)/(steps − 1)``), and the run stops at a dead
@@ -229,16 +335,11 @@ def _write_long_sweep(linkage, args, start: float | None, stop: float | None) ->
         start = low if start is None else start
         stop = high if stop is None else stop
     fmt = args.format or "table"
-    if fmt == "table":
-        from synth import InvalidOption
-
-        raise InvalidOption(f"a table of {args.steps:,} rows is held in memory to align it: use --format jsonl or "
-                            "csv (written as they come)")
-    step = (stop - start) / (args.steps - 1)
+    step = (stop - start) / (steps - 1)
     written, columns = 0, None
-    with tqdm(total=args.steps, unit="step", file=sys.stderr, desc="move", disable=not sys.stderr.isatty()) as bar:
-        while written < args.steps:
-            count = min(_CHUNK, args.steps - written)
+    with tqdm(total=steps, unit="step", file=sys.stderr, desc="move", disable=not sys.stderr.isatty()) as bar:
+        while written < steps:
+            count = min(_CHUNK, steps - written)
             first = start + written * step
             piece = sweep(linkage, steps=max(count, 2), start=first,
                           stop=first + (count - 1) * step if count > 1 else first + step,
@@ -275,6 +376,11 @@ def _write_piece(rows: list[dict], columns: list[str], fmt: str, before: int) ->
         write_rows(rows, columns, fmt)
 
 
+#: why a linkage moved by Newton's method reports no transmission angle
+_NO_TRANSMISSION = ("not reported: the linkage does not decompose into dyads (it has a group of class III or higher, "
+                    "moved by Newton's method), and a transmission angle is defined here for a dyad's two links only")
+
+
 def _write_range(linkage, reach, motion, fmt: str) -> None:
     """The range document: JSON, or a two-column table."""
     from synth.motion import joint_name
@@ -290,6 +396,8 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
            "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
            "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
            "stopped": motion.stopped}
+    if not motion.transmission:
+        doc["transmission_note"] = _NO_TRANSMISSION
     if fmt == "json":
         write_document(doc, "json", "")
         return
@@ -306,6 +414,8 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         lines.append(("dead position", f"{unit(v):.10g}{word}: {why}"))
     for v, link in reach.toggles:
         lines.append(("toggle", f"{unit(v):.10g}{word}: link {link} stops and turns back"))
+    if not motion.transmission:
+        lines.append(("transmission", _NO_TRANSMISSION))
     for name, t in motion.transmission.items():
         lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {unit(t['at_min']):.6g}{word}, "
                                                f"max {math.degrees(t['max']):.4g}° at {unit(t['at_max']):.6g}{word}"))

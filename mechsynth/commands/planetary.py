@@ -42,7 +42,7 @@ def _run(args) -> int:
         raise InvalidOption("--satellites needs an upper end: give A..B")
     rows = planetary_rows((lo, hi), args.sun)  # streamed: a row is written when its exact test is done
     first = next(rows)  # the range is checked before anything is written
-    write_rows((_cells(r, args.format) for r in itertools.chain([first], rows)), COLUMNS, args.format)
+    write_rows((_cells(r.to_dict(), args.format) for r in itertools.chain([first], rows)), COLUMNS, args.format)
     if args.format == "table":
         print("determinate: W = 1, D = 0 and no rigid or over-constrained sub-chain (ring fixed, carrier driving)")
     return 0

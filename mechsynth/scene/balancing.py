@@ -21,7 +21,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from synth.schema import FileName, Table
+from mechbase.schema import FileName, Table
 
 from . import compare
 from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, Family
@@ -44,17 +44,17 @@ FAMILY = Family("balancing")  # its tables and computations, registered by mechs
 def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
                  expect: Mapping[str, Expectation], report: Callable[[dict], list[str]],
                  after: Callable[[dict], dict] | None = None, plot: str | None = None) -> ComputeKind:
-    """Register the compute word ``name`` solving the table ``[table]`` with ``balance.problems.<solver>``.
+    """Register the compute word ``name`` solving the table ``[table]`` with ``balance.<solver>``.
 
-    ``after(result)`` adds derived values to the result's dict; ``plot`` names its figure in ``balance.plots``.
+    ``after(result)`` adds derived values to the result's dict; ``plot`` names its figure's function in ``balance``.
     """
 
     def run(r: Run) -> dict:
-        from balance import problems
-        from balance.errors import BalanceError
+        import balance
+        from balance import BalanceError
 
         try:
-            result = getattr(problems, solver)({table: r.scene.tables[table]}, r.scene.path)
+            result = getattr(balance, solver)({table: r.scene.tables[table]}, r.scene.path)
         except BalanceError as exc:
             msg = str(exc).rstrip(".")
             prefix = f"{r.scene.path}: "
@@ -197,12 +197,12 @@ def _plot(run: Run) -> dict:
     names = [name.stem + ("" if len(kinds) == 1 else "_" + KINDS[k].table) + name.suffix for k in kinds]
     if run.out_dir is None:
         return {"files": [], "written": False, "skipped": f"no --out DIR given to write {', '.join(names)}"}
-    from balance import plots
+    import balance
 
     files = []
     for kind, file_name in zip(kinds, names):
         out = run.picture(file_name)
-        getattr(plots, _PLOTTERS[kind])(run.shared(f"{kind} result", dict)["result"], str(out))
+        getattr(balance, _PLOTTERS[kind])(run.shared(f"{kind} result", dict)["result"], str(out))
         files.append(str(out))
     return {"files": files, "written": True}
 

@@ -13,7 +13,7 @@ from typing import Annotated
 
 from pydantic import Field, StrictInt, StrictStr
 
-from synth.schema import Table
+from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
@@ -90,7 +90,7 @@ def _gear_train(run: Run) -> dict:
     if t.drawing:
         picture = run.picture(f"{run.scene.name}.svg")
         if picture is not None:
-            from synth.gears import draw_train
+            from synth.draw import draw_train
 
             best = out.get("designs", [{}])[0].get("teeth") or t.teeth
             draw_train(train, picture, teeth=best, compound=t.compound)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pydantic import StrictStr
 
-from synth.schema import Table
+from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
@@ -62,7 +62,7 @@ def _planetary(run: Run) -> dict:
     from synth import planetary_row
 
     t = run.scene.tables["planetary"]
-    row = planetary_row(t.satellites, t.sun)
+    row = planetary_row(t.satellites, t.sun).to_dict()
     row["assur_group_names"] = [g["name"] for g in row["assur_groups"]]
     return row
 

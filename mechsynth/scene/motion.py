@@ -29,7 +29,7 @@ import math
 import numpy as np
 from pydantic import StrictStr
 
-from synth.schema import Table
+from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError

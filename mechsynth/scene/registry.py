@@ -38,7 +38,7 @@ class Expectation:
     Attributes
     ----------
     type : type
-        The expected value's type, with the words of its error (``synth.schema`` types).
+        The expected value's type, with the words of its error (``synth.schema`` types or others that say their words with ``mechbase.schema.expect``).
     path : tuple
         Where the actual value sits in the computation's result (default: the key itself).
     compare : callable

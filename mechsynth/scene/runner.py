@@ -16,7 +16,7 @@ from pydantic import StrictStr, create_model
 
 from mechbase import read_toml, show
 from synth import SynthesisError
-from synth.schema import Table, expect, refine
+from mechbase.schema import Table, expect, refine
 
 from .registry import KINDS, TABLES, ComputeKind, Run
 from .results import Check, DirectoryResult, Scene, SceneError, SceneResult

@@ -19,7 +19,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validator
 
-from synth.schema import FileName, Table, expect, refine
+from mechbase.schema import FileName, Table, expect, refine
 
 from . import compare
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family

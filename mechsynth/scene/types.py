@@ -1,6 +1,6 @@
 """Value types of scene tables and expectations, each with the words of its error.
 
-Built on :mod:`synth.schema` (shared with grid files).
+Built on :mod:`mechbase.schema` (the one dialect of every TOML table) and :mod:`synth.schema` (value types shared with grid files).
 
 >>> from pydantic import TypeAdapter
 >>> TypeAdapter(Numbers).validate_python([1, 2.5])
@@ -13,7 +13,8 @@ from typing import Annotated
 
 from pydantic import Field, StrictInt, StrictStr
 
-from synth.schema import Count, Flag, Number, RangeText, Require, Text, Whole, expect, refine
+from mechbase.schema import Count, Flag, Number, RangeText, Text, Whole, expect, refine
+from synth import Require
 
 __all__ = ["Flag", "Number", "Count", "RangeText", "Require", "Text", "Whole", "Int", "Numbers", "NumberRows",
            "Texts", "Wholes", "WholeTable", "NumberTable", "IndexTable", "Fraction"]

@@ -18,7 +18,9 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
+
+from mechbase import Row
 
 from ..errors import ImpossibleParameters, InvalidOption, MalformedChain, QueryTooLarge
 from ..structure.chain import Chain
@@ -33,7 +35,7 @@ __all__ = ["ChainAnalysis", "analyze_chain", "mobility_of"]
 
 
 @dataclass(frozen=True)
-class ChainAnalysis:
+class ChainAnalysis(Row):
     """What the theory says about one chain; ``advice`` tells how to remove a defect.
 
     ``dof`` is the true mobility (generic, for planar chains), ``dof_count`` the count and
@@ -73,9 +75,6 @@ class ChainAnalysis:
     defect: int | None = None
     redundant_joints: list | None = None
     loop_classes: dict | None = None
-
-    def to_dict(self) -> dict:
-        return asdict(self)
 
 
 def mobility_of(chain: Chain) -> int:

@@ -10,7 +10,9 @@ Example
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
+
+from mechbase import Row
 
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import Code
@@ -33,7 +35,7 @@ def mobility(links: int, loops: int, *, h: int = 3, f: int = 0, loop_classes: Ma
 
 
 @dataclass(frozen=True)
-class Analysis:
+class Analysis(Row):
     """What the counting theory says about one code.
 
     ``formulas`` holds W computed by each applicable formula of docs/theory.md (they agree,
@@ -56,10 +58,6 @@ class Analysis:
     defect: int | None = None
     criterion_holds: bool | None = None
     advice: str = ""
-
-    def to_dict(self) -> dict:
-        return asdict(self)
-
 
 #: elementary edits of a chain and what each does to W = 3(n − 1) − 2p (planar): the advice names only these
 RAISE_W = ("remove {k} binary link(s) with both their joints, or insert {k} binary link(s) into joints "

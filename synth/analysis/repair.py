@@ -10,21 +10,24 @@ Example
 -------
 >>> from synth.structure.chain import Chain
 >>> r = chain_repairs(Chain.parse("0-1 1-2 2-0 0-3 3-4 4-5 5-1"), limit=1)[0]
->>> len(r["edits"]), r["code"]
-(1, '42/0')
+>>> len(r.edits), r.code, list(r.to_dict())
+(1, '42/0', ['edits', 'code', 'chain', 'dof'])
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from itertools import combinations
 from math import comb
+
+from mechbase import Row
 
 from ..structure.chain import SYMBOLS, Chain
 from ..structure.code import Code
 from ..errors import InvalidOption, MalformedChain
 from ..structure.subchains import check_subchains
 
-__all__ = ["chain_edits", "chain_repairs", "code_repairs", "redundant_joints"]
+__all__ = ["Repair", "ChainRepair", "chain_edits", "chain_repairs", "code_repairs", "redundant_joints"]
 
 _DEPTH = 3
 _WORK = 1 << 28  # sets of links the search for redundant joints may scan
@@ -112,10 +115,26 @@ def _edits(chain: Chain):
                        build(n, pairs[:i] + split + pairs[i + 1:]))
 
 
-def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth: int = _DEPTH) -> list[dict]:
+@dataclass(frozen=True)
+class Repair(Row):
+    """A repair of a code: the ``edits`` (words), the ``code`` they lead to and one ``chain`` of it
+    (the compact joint list ``analyze`` reads)."""
+
+    edits: tuple[str, ...]
+    code: str
+    chain: str
+
+
+@dataclass(frozen=True)
+class ChainRepair(Repair):
+    """A repair of a chain: the rebuilt chain and its ``dof``."""
+
+    dof: int
+
+
+def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth: int = _DEPTH) -> list[ChainRepair]:
     """The nearest valid chains (intended W: ``dof`` or the chain's own), fewest edits first.
 
-    Each item: ``edits`` (words), ``code``, ``chain`` (the compact joint list ``analyze`` reads).
     A chain that is valid already needs no repair: the list is empty.
     """
     if limit < 1:
@@ -123,7 +142,7 @@ def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth
     target = chain.dof if dof is None else dof
     if _valid(chain, target):
         return []
-    found: list[dict] = []
+    found: list[ChainRepair] = []
     seen = {chain.certificate}
     level = [(chain, [])]
     for _ in range(depth):
@@ -135,9 +154,8 @@ def chain_repairs(chain: Chain, *, dof: int | None = None, limit: int = 5, depth
                 seen.add(candidate.certificate)
                 path = edits + [words]
                 if _valid(candidate, target):
-                    found.append({"edits": path, "code": str(candidate.code) + candidate.kind_suffix,
-                                  "chain": candidate.compact(),
-                                  "dof": candidate.dof})
+                    found.append(ChainRepair(tuple(path), str(candidate.code) + candidate.kind_suffix,
+                                             candidate.compact(), candidate.dof))
                 else:
                     nxt.append((candidate, path))
         if found:
@@ -219,7 +237,7 @@ def _code_edits(code: Code):
             yield f"split a multiple joint on a link with {i} joints", make(gain(i), -1)
 
 
-def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -> list[dict]:
+def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -> list[Repair]:
     """The nearest standard codes with W = ``dof``, fewest edits first, each verified by one chain
     (empty when ``code`` itself has W = ``dof`` and a valid chain)."""
     from ..synthesis.type_synthesis import type_synthesis
@@ -244,7 +262,7 @@ def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -
                 if candidate.dof() == dof:
                     chain = next(iter(type_synthesis(dof, code=text, workers=1)), None)
                     if chain is not None:
-                        found.append({"edits": path, "code": text, "chain": chain.compact()})
+                        found.append(Repair(tuple(path), text, chain.compact()))
                         continue
                 nxt.append((candidate, path))
         if found:

@@ -55,13 +55,14 @@ from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr
 
-from mechbase import read_toml_text
+from mechbase import read_toml_text, show
+from mechbase.schema import Flag, RangeText, Table, Text, expect, parse_range_text, refine
 
 from ..synthesis.number_synthesis import parse_requirements
 from ..structure.query import ChainQuery
 from ..synthesis.type_synthesis import Unit, plan_many
 from ..errors import SynthesisError
-from ..schema import Flag, RangeText, Require, Table, Text, expect, parse_range_text, refine, show
+from ..schema import Require
 
 __all__ = ["GridFileError", "Cell", "GearCell", "Grid", "load_grid", "parse_grid"]
 

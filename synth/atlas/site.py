@@ -8,7 +8,7 @@ fractionation, symmetry and its mechanisms (fixed links up to symmetry) on reque
 stable address is ``chain.html#<id>`` with ``id`` the first 12 hex digits of the SHA-1 of its
 certificate, which the pages and the lookup files (``lookup/<2 hex>.js``) resolve.  Chains stream
 from SQLite in code order, so memory stays bounded by one page and the lookup table.  A planetary
-gear train is drawn as its functional schematic (:func:`synth.gears.draw.svg_text`) with its text
+gear train is drawn as its functional schematic (:func:`synth.draw.svg_text`) with its text
 form, lever analogue, carriers, rotation graph and the ``mechsynth gears`` commands that list its
 mechanisms and draw it.
 
@@ -40,8 +40,8 @@ from .database import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import process_pool
 from ..structure.chain import Chain
 from ..structure.code import Code
-from ..draw import svg_inline
-from ..gears.draw import svg_text
+from ..draw._gears import svg_text
+from ..draw._render import svg_inline
 from ..gears.train import GearTrain
 from ..errors import InvalidOption, option
 

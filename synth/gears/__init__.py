@@ -1,6 +1,7 @@
 """Gear trains: planetary (epicyclic) trains — the train type, the atlas enumerator, mechanisms with
-their speed ratios, tooth numbers designed in integers, functional schematics (docs/gears.md) — and
-the lever analogues of the source's planetary layout (``planetary``).
+their speed ratios, tooth numbers designed in integers (docs/gears.md) — and the lever analogues of
+the source's planetary layout (``planetary``).  Their functional schematics are drawn on the top
+floor, by :mod:`synth.draw` (``draw_train``, ``draw_train_sheet``).
 
 The names below are loaded on first use (the enumerator and the ratio design load CP-SAT and nauty).
 
@@ -20,7 +21,6 @@ _WHERE = {
     "GearMechanism": ".ratios", "RatioFormula": ".ratios", "mechanisms": ".ratios",
     "speed_ratio": ".ratios",
     "Design": ".ratio_design", "NoDesign": ".ratio_design", "design": ".ratio_design", "MIN_TEETH": ".ratio_design",
-    "draw_train": ".draw", "draw_sheet": ".draw",
     "planetary_row": ".planetary", "planetary_rows": ".planetary", "planetary_table": ".planetary",
 }
 

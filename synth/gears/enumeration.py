@@ -39,12 +39,17 @@ import sys
 from collections import Counter, deque
 from collections.abc import Iterator
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pynauty
 
 from ..errors import InvalidOption
+from ..structure.disjoint import DisjointSets
 from .train import GearTrain, axis_paths
+
+if TYPE_CHECKING:
+    from ..synthesis.type_synthesis import Counts
 
 __all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census",
            "check_query", "estimate_trains", "size_check_trains"]
@@ -203,22 +208,12 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
 
     def pair_orbits(chosen, free):
         gens = pynauty.autgrp(graph(chosen))[0]
-        parent = {i: i for i in free}
-
-        def root(i):
-            while parent[i] != i:
-                parent[i] = parent[parent[i]]
-                i = parent[i]
-            return i
-
+        orbits = DisjointSets(free)  # each orbit named by its smallest pair
         for g in gens:
             for i in free:
                 a, b = pairs[i]
-                j = index[tuple(sorted((g[a], g[b])))]
-                ri, rj = root(i), root(j)
-                if ri != rj:
-                    parent[max(ri, rj)] = min(ri, rj)
-        return sorted({root(i) for i in free})
+                orbits.union(i, index[tuple(sorted((g[a], g[b])))])
+        return sorted(orbits.roots())
 
     def grow(chosen: tuple[int, ...], slack: np.ndarray):
         if len(chosen) == meshes:
@@ -372,26 +367,28 @@ def census(dof: int, links: int, workers: int | None = 1, method: str = "auto", 
 
 
 def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1,
-                 progress: bool = False) -> dict:
-    """``{"count": N, "by_code": {lever-analogue code: N}}``; for rotation graphs, ``by_code`` counts
+                 progress: bool = False) -> Counts:
+    """How many trains, in all and ``by_code`` (lever-analogue code: N); for rotation graphs, ``by_code`` counts
     each rotation graph under the code of the train listed for it (its first displacement graph),
     so the codes add up to the count.  ``progress``: a bar on stderr (trees done).
 
-    >>> count_trains(1, 5)
+    >>> count_trains(1, 5).to_dict()
     {'count': 13, 'by_code': {'521/0': 3, '530/1': 4, '602/0': 2, '611/1': 2, '620/2': 1, '701/0-1': 1}}
-    >>> count_trains(1, 5, graphs="rotation")
+    >>> count_trains(1, 5, graphs="rotation").to_dict()
     {'count': 6, 'by_code': {'521/0': 1, '530/1': 3, '611/1': 2}}
     """
+    from ..synthesis.type_synthesis import Counts
+
     check_query(dof, links, graphs)
     if graphs == "rotation":
         found = census(dof, links, workers, progress=progress)
-        return {"count": found["rotation"], "by_code": found["rotation_by_code"]}
+        return Counts(found["rotation"], found["rotation_by_code"])
     total, codes = 0, Counter()
     for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False, "auto"),
                                 progress=progress):
         total += n
         codes.update(by_code)
-    return {"count": total, "by_code": dict(sorted(codes.items()))}
+    return Counts(total, dict(sorted(codes.items())))
 
 
 # ------------------------------------------------------------------------------ sizing

@@ -12,15 +12,18 @@ split the lever analogue (ring fixed, carrier driving).
 Example
 -------
 >>> row = planetary_row(3)
->>> row["code"], row["dof"], row["defect"], row["determinate"]
+>>> row.code, row.dof, row.defect, row.determinate
 ('64200/0', 1, 0, True)
->>> [g["name"] for g in row["assur_groups"]]
+>>> [g.name for g in row.assur_groups]
 ['dyad', 'dyad', 'dyad', 'triad']
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from itertools import combinations
+
+from mechbase import Row
 
 from ..structure.chain import Chain
 from ..errors import InvalidOption
@@ -28,8 +31,8 @@ from ..structure.kinds import lever_analogue as lever_of
 from ..structure.subchains import _MAX_CORE
 from .train import GearTrain
 
-__all__ = ["RING", "CARRIER", "SUN", "planetary_train", "lever_analogue", "assur_groups", "planetary_row",
-           "planetary_table", "planetary_rows"]
+__all__ = ["RING", "CARRIER", "SUN", "AssurGroup", "PlanetaryRow", "planetary_train", "lever_analogue",
+           "assur_groups", "planetary_row", "planetary_table", "planetary_rows"]
 
 RING, CARRIER, SUN = 0, 1, 2
 SUNS = ("floating", "fixed")
@@ -66,15 +69,46 @@ def lever_analogue(satellites: int, sun: str = "floating") -> Chain:
 _GROUP_NAMES = {(2, 2): "dyad", (4, 3): "triad"}  # (links, outer joints)
 
 
-def assur_groups(chain: Chain, frame: int, driving: int, *, largest: int = 6) -> list[dict]:
+@dataclass(frozen=True)
+class AssurGroup(Row):
+    """An Assur group: its ``name`` (dyad, triad, …), its ``links`` and the joints that join it to
+    the links placed before it (``outer_joints``)."""
+
+    name: str
+    links: tuple[int, ...]
+    outer_joints: tuple[tuple[int, ...], ...]
+
+
+@dataclass(frozen=True)
+class PlanetaryRow(Row):
+    """One planetary train as its lever analogue shows it: code, W, K, D against W = 1, the exact
+    sub-chain verdict and, for a determinate train, its Assur groups."""
+
+    satellites: int
+    sun: str
+    code: str
+    links: int
+    joints: tuple[tuple[int, ...], ...]
+    train: str
+    dof: int
+    loops: int
+    defect: int
+    subchains: str
+    worst_subchain: tuple[int, ...]
+    redundant_joints: tuple[tuple[int, ...], ...] | None
+    determinate: bool
+    assur_groups: tuple[AssurGroup, ...]
+
+
+def assur_groups(chain: Chain, frame: int, driving: int, *, largest: int = 6) -> list[AssurGroup]:
     """Split a 1-DOF mechanism into Assur groups (W = 0, none smaller inside), smallest first.
 
     With the frame and the driving link placed, a set S of the other links is a group when its
     joints among S and the placed links leave 3|S| − 2p = 0 and no smaller set does; joints to
     links not yet placed are the outer joints of later groups.
 
-    >>> [g["links"] for g in assur_groups(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)]
-    [[2, 3]]
+    >>> [g.links for g in assur_groups(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)]
+    [(2, 3)]
     """
     placed = {frame, driving}
     groups = []
@@ -92,14 +126,14 @@ def assur_groups(chain: Chain, frame: int, driving: int, *, largest: int = 6) ->
                 break
         if found is None:
             return []
-        outer = [list(j) for j in chain.joints if any(x in found for x in j) and any(x in placed for x in j)]
-        groups.append({"name": _GROUP_NAMES.get((len(found), len(outer)), f"{len(found)}-link group"),
-                       "links": list(found), "outer_joints": outer})
+        outer = tuple(j for j in chain.joints if any(x in found for x in j) and any(x in placed for x in j))
+        groups.append(AssurGroup(_GROUP_NAMES.get((len(found), len(outer)), f"{len(found)}-link group"),
+                                 tuple(found), outer))
         placed.update(found)
     return groups
 
 
-def planetary_row(satellites: int, sun: str = "floating") -> dict:
+def planetary_row(satellites: int, sun: str = "floating") -> PlanetaryRow:
     """Code, W, K, D (against W = 1), exact sub-chain verdict and Assur groups of one train, from
     the general analysis of the train as a chain with gear meshes."""
     from ..analysis.chains import analyze_chain
@@ -108,19 +142,17 @@ def planetary_row(satellites: int, sun: str = "floating") -> dict:
     report = analyze_chain(chain, dof=1)
     lever = lever_of(chain)
     determinate = report.dof_count == 1 and report.defect == 0 and report.subchain_defect == "none"
-    return {
-        "satellites": satellites, "sun": sun, "code": report.lever_analogue, "links": lever.links,
-        "joints": [list(j) for j in lever.joints], "train": chain.compact(), "dof": report.dof_count,
-        "loops": report.loops, "defect": report.defect, "subchains": report.subchain_defect,
-        "worst_subchain": report.worst_subchain, "redundant_joints": report.redundant_joints,
-        "determinate": determinate, "assur_groups": assur_groups(lever, RING, CARRIER) if determinate else [],
-    }
+    return PlanetaryRow(satellites, sun, report.lever_analogue, lever.links, tuple(lever.joints), chain.compact(),
+                        report.dof_count, report.loops, report.defect, report.subchain_defect,
+                        tuple(report.worst_subchain),
+                        None if report.redundant_joints is None else tuple(report.redundant_joints), determinate,
+                        tuple(assur_groups(lever, RING, CARRIER)) if determinate else ())
 
 
-def planetary_table(satellites: tuple[int, int], sun: str = "floating") -> list[dict]:
+def planetary_table(satellites: tuple[int, int], sun: str = "floating") -> list[PlanetaryRow]:
     """:func:`planetary_row` for k0 = A … B satellites.
 
-    >>> [r["satellites"] for r in planetary_table((1, 6)) if r["determinate"]]
+    >>> [r.satellites for r in planetary_table((1, 6)) if r.determinate]
     [3]
     """
     return list(planetary_rows(satellites, sun))

@@ -4,19 +4,21 @@ every step of a sweep.
 A dyad is two moving links i, j joined by a middle joint, each with an outer joint to a link whose
 pose is already known.  Its kind is written by its joints outer–middle–outer (R revolute, P
 prismatic): RRR (two circles), PRR and RRP (a circle and a line), RPR (a line at a fixed distance
-from a point), PRP (two lines).  A gear on a known axis meshing with a known gear is a group of one
-link.  Each dyad has two assembly modes (PRP one); the pose's mode is its sign σ, kept for the
-whole sweep, so a sweep never jumps branch.  Each dyad also has a normalised discriminant g: the
+from a point), PRP (two lines), RPP and PPR (both links turn with the known link of the outer
+slider: two lines again, a Scotch yoke).  A gear on a known axis meshing with a known gear is a
+group of one link.  Each dyad has two assembly modes (PRP and RPP one); the pose's mode is its sign
+σ, kept for the whole sweep, so a sweep never jumps branch.  Each dyad also has a normalised discriminant g: the
 dyad closes where g ≥ 0, and g = 0 is a dead position (its two links aligned).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
-from ._kernel import GEAR, PRP, PRR, RPR, RRR, close_kernel
+from ._kernel import GEAR, PRP, PRR, RPP, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
 __all__ = ["Dyad", "Closure", "decompose", "close", "locked_groups"]
@@ -26,7 +28,7 @@ __all__ = ["Dyad", "Closure", "decompose", "close", "locked_groups"]
 class Dyad:
     """One group of the decomposition, in solving order.
 
-    kind : "RRR", "PRR", "RPR", "PRP" or "gear" (one link: a gear on a known axis)
+    kind : "RRR", "PRR", "RPR", "PRP", "RPP" or "gear" (one link: a gear on a known axis)
     links : (i, j) — for a gear (g, g)
     outer : (J1, J2) — the outer joints (of i, of j); for a gear (axis joint, mesh joint)
     middle : J3 (−1 for a gear)
@@ -58,74 +60,63 @@ def decompose(linkage: Linkage) -> list[Dyad] | None:
     """
     chain = linkage.chain
     known = {linkage.frame} | {linkage.input_link(i) for i in range(linkage.dof)}
-    joints = chain.joints
     plan: list[Dyad] = []
-
-    def attachments(link):
-        """(joint, known link) pairs: joints of ``link`` that hold a known link."""
-        out = []
-        for k in linkage.joints_of(link):
-            kind = linkage.kind(k)
-            if kind == "mesh":
-                continue
-            held = [x for x in joints[k] if x in known]
-            if held:
-                out.append((k, held[0]))
-        return out
-
     while len(known) < chain.links:
-        found = None
         unknown = [x for x in range(chain.links) if x not in known]
-        for g in unknown:  # a gear turning on a known axis, meshing with a known gear, both on a known carrier
-            for k, held in attachments(g):
-                if linkage.kind(k) != "revolute":
-                    continue
-                for m in linkage.joints_of(g):
-                    if linkage.kind(m) == "mesh":
-                        other = sum(joints[m]) - g
-                        c = linkage.carrier(m)
-                        if other in known and c in known:
-                            found = Dyad("gear", (g, g), (k, m), -1, (held, c))
-                            break
-                if found:
-                    break
-            if found:
-                break
-        if found is None:
-            for i in unknown:
-                for k3 in linkage.joints_of(i):
-                    if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
-                        continue
-                    for j in joints[k3]:
-                        if j == i or (linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2):
-                            continue
-                        for k1, h1 in attachments(i):
-                            if k1 == k3 or j in joints[k1]:
-                                continue
-                            for k2, h2 in attachments(j):
-                                if k2 in (k1, k3) or i in joints[k2]:
-                                    continue
-                                kind = _letter(linkage, k1) + _letter(linkage, k3) + _letter(linkage, k2)
-                                if kind == "RRP":  # the same group seen from its other end
-                                    found = Dyad("PRR", (j, i), (k2, k1), k3, (h2, h1))
-                                elif kind in ("RRR", "PRR", "RPR", "PRP"):
-                                    found = Dyad(kind, (i, j), (k1, k2), k3, (h1, h2))
-                                else:
-                                    continue
-                                break
-                            if found:
-                                break
-                        if found:
-                            break
-                    if found:
-                        break
-                if found:
-                    break
+        found = next(_groups(linkage, known, unknown), None)
         if found is None:
             return None
         plan.append(found)
         known.update(found.links)
     return _with_signs(linkage, plan)
+
+
+def _attachments(linkage: Linkage, known: set[int], link: int) -> list[tuple[int, int]]:
+    """(joint, known link) pairs: the joints (not meshes) of ``link`` that hold a known link."""
+    out = []
+    for k in linkage.joints_of(link):
+        held = [x for x in linkage.chain.joints[k] if x in known]
+        if held and linkage.kind(k) != "mesh":
+            out.append((k, held[0]))
+    return out
+
+
+def _groups(linkage: Linkage, known: set[int], unknown: list[int]) -> Iterator[Dyad]:
+    """Every group that can be placed once the ``known`` links are: first gears turning on a known
+    axis and meshing with a known gear (both axes on a known carrier), then dyads, each seen from the
+    end its kind is written from (RRP is PRR reversed, PPR is RPP reversed)."""
+    joints = linkage.chain.joints
+    for g in unknown:
+        for k, held in _attachments(linkage, known, g):
+            if linkage.kind(k) != "revolute":
+                continue
+            for m in linkage.joints_of(g):
+                if linkage.kind(m) == "mesh" and sum(joints[m]) - g in known and linkage.carrier(m) in known:
+                    yield Dyad("gear", (g, g), (k, m), -1, (held, linkage.carrier(m)))
+    for i in unknown:
+        for k3 in linkage.joints_of(i):
+            if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
+                continue
+            if linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2:
+                continue
+            for j in joints[k3]:
+                if j == i:
+                    continue
+                for k1, h1 in _attachments(linkage, known, i):
+                    if k1 == k3 or j in joints[k1]:
+                        continue
+                    for k2, h2 in _attachments(linkage, known, j):
+                        if k2 in (k1, k3) or i in joints[k2]:
+                            continue
+                        kind = _letter(linkage, k1) + _letter(linkage, k3) + _letter(linkage, k2)
+                        if kind in _REVERSED:  # the same group seen from its other end
+                            yield Dyad(_REVERSED[kind], (j, i), (k2, k1), k3, (h2, h1))
+                        elif kind in _KINDS:
+                            yield Dyad(kind, (i, j), (k1, k2), k3, (h1, h2))
+
+
+#: dyads written from their other end
+_REVERSED = {"RRP": "PRR", "PPR": "RPP"}
 
 
 def _with_signs(linkage: Linkage, plan: list[Dyad]) -> list[Dyad]:
@@ -149,20 +140,20 @@ def _cross2(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "gear": GEAR}
+_KINDS = {"RRR": RRR, "PRR": PRR, "RPR": RPR, "PRP": PRP, "RPP": RPP, "gear": GEAR}
 
 
 class Closure:
     """A linkage's dyads packed once for the compiled kernel, closed at any input offsets (S, W)
     from the pose's inputs.  Calling it gives θ (S, n), t (S, n, 2), g (S, G) the dyads'
     normalised discriminants (the dyad closes where g ≥ 0), μ (S, G) their transmission angles (rad
-    in [0, π]; NaN for a gear) and every joint's position (S, J, 2); :meth:`points` gives only θ,
-    the joints and the tracer points (what a sweep keeps).  Where a dyad does not close, its links'
+    in [0, π]; NaN for a gear) and every joint's position (S, J, 2); :meth:`points` gives only the
+    joints and the tracer points (what a sweep keeps), :meth:`angles` only θ.  Where a dyad does not close, its links'
     poses are NaN.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
-    >>> theta, joints, tracers = Closure(lk, decompose(lk)).points(np.array([[0.0], [np.pi]]))
+    >>> joints, tracers = Closure(lk, decompose(lk)).points(np.array([[0.0], [np.pi]]))
     >>> joints[1, 2].round(12).tolist()
     [-1.0, 0.0]
     """
@@ -194,15 +185,15 @@ class Closure:
                          np.concatenate((points, np.array([at for _, at in traced], dtype=float).reshape(-1, 2))))
         self._scale2 = float(lk.scale) ** 2
 
-    def _run(self, offsets, carried, every: bool):
+    def _run(self, offsets, carried, every: bool, angles: bool = True, recurrence: bool = False):
         offsets = np.ascontiguousarray(offsets, dtype=float)
         steps, n, groups = offsets.shape[0], self.linkage.chain.links, len(self._dyads[4])
         rows = steps if every else 0
-        theta = np.empty((steps, n))
+        theta = np.empty((steps if angles else 0, n))
         t_x, t_y = np.empty((rows, n)), np.empty((rows, n))
         g, mu = np.empty((rows, groups)), np.empty((rows, groups))
         out = np.empty((steps, len(carried[0]), 2))
-        close_kernel(offsets, *self._dyads, *carried, self._scale2, theta, t_x, t_y, g, mu, out)
+        close_kernel(offsets, recurrence, *self._dyads, *carried, self._scale2, theta, t_x, t_y, g, mu, out)
         return theta, t_x, t_y, g, mu, out
 
     def __call__(self, offsets: np.ndarray):
@@ -210,10 +201,15 @@ class Closure:
         return theta, np.stack((t_x, t_y), axis=-1), g, mu, joints
 
     def points(self, offsets: np.ndarray):
-        """θ (S, n), the joints (S, J, 2) and each tracer's points (S, 2) by name."""
-        theta, _, _, _, _, out = self._run(offsets, self._carried, False)
+        """The joints (S, J, 2) and each tracer's points (S, 2) by name (the kernel computes no angle; a
+        revolute input's cosine and sine by the rotation recurrence: for a sweep's many steps)."""
+        out = self._run(offsets, self._carried, False, False, True)[-1]
         count = len(self.linkage.chain.joints)
-        return theta, out[:, :count], {name: out[:, count + i] for i, name in enumerate(self.linkage.tracers)}
+        return out[:, :count], {name: out[:, count + i] for i, name in enumerate(self.linkage.tracers)}
+
+    def angles(self, offsets: np.ndarray) -> np.ndarray:
+        """θ (S, n): each link's rotation from the pose (rad, modulo a turn; a gear's as its ratio turns it)."""
+        return self._run(offsets, (np.empty(0, dtype=np.int64), np.empty((0, 2))), False, True, True)[0]
 
 
 def close(linkage: Linkage, plan: list[Dyad], offsets: np.ndarray):

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Iterator
-from dataclasses import dataclass
-from functools import cached_property
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -36,20 +36,30 @@ class Motion:
         With W > 1, velocities are (S, W, J, 2): one per input.  NaN where the step is a dead position.
     stopped : str or None
         One sentence when the sweep ended at a dead or singular position (with the input there).
+    grid : tuple of int or None
+        For a grid (:func:`sweep_grid`): the values per input, the steps in row-major order.
     transmission : dict
         Per closed-form dyad: least and greatest transmission angle and where (computed when read).
     angles : ndarray (S, n)
-        Each link's rotation from the pose (rad, modulo a turn).
+        Each link's rotation from the pose (rad, modulo a turn; computed when read for a linkage of
+        dyads, whose sweep needs no angle).
     """
 
     linkage: Linkage
     inputs: np.ndarray
     joints: np.ndarray
     tracers: dict
-    angles: np.ndarray
     velocities: np.ndarray | None = None
     accelerations: np.ndarray | None = None
     stopped: str | None = None
+    grid: tuple[int, ...] | None = None
+    #: the angles (S, n), or a function that computes them
+    _angles: np.ndarray | Callable[[], np.ndarray] | None = field(default=None, repr=False)
+
+    @cached_property
+    def angles(self) -> np.ndarray:
+        """(S, n): each link's rotation from the pose (rad, modulo a turn)."""
+        return self._angles() if callable(self._angles) else self._angles
 
     @cached_property
     def transmission(self) -> dict:
@@ -76,27 +86,42 @@ class Motion:
         return out
 
     def rows(self) -> Iterator[dict]:
-        """One JSON-able dict per step: ``step``, ``input`` (a list for W > 1), each joint's ``x``/``y``
-        keyed by its name (``"1-2.x"``), each tracer's, and velocities (``"1-2.vx"``) and accelerations
-        (``"1-2.ax"``) where computed (None where undefined)."""
+        """One JSON-able dict per step: ``step``, ``input`` (for W > 1 one column per input joint,
+        ``"input.0-1"``), each joint's ``x``/``y`` keyed by its name (``"1-2.x"``), each tracer's, and
+        velocities (``"1-2.vx"``; for W > 1 per unit rate of each input, ``"1-2.vx.0-1"``) and
+        accelerations (``"1-2.ax"``) where computed (None where undefined: beyond a grid's reach).
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
+        ...                    [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
+        >>> list(next(sweep_grid(five_bar, [(1.4, 1.8), (1.4, 1.8)], steps=2).rows()))[:4]
+        ['step', 'input.0-1', 'input.0-4', '0-1.x']
+        """
         chain = self.linkage.chain
         names = [joint_name(chain, k) for k in range(len(chain.joints))]
+        inputs = [joint_name(chain, k) for k in self.linkage.inputs]
 
         def num(v):
             v = float(v)
             return v if math.isfinite(v) else None
 
         for s in range(self.steps):
-            row = {"step": s, "input": num(self.inputs[s, 0]) if self.inputs.shape[1] == 1
-                   else [num(v) for v in self.inputs[s]]}
+            row = {"step": s}
+            if len(inputs) == 1:
+                row["input"] = num(self.inputs[s, 0])
+            else:
+                row.update((f"input.{name}", num(v)) for name, v in zip(inputs, self.inputs[s]))
             for k, name in enumerate(names):
                 row[f"{name}.x"], row[f"{name}.y"] = num(self.joints[s, k, 0]), num(self.joints[s, k, 1])
             for name, xy in self.tracers.items():
                 row[f"{name}.x"], row[f"{name}.y"] = num(xy[s, 0]), num(xy[s, 1])
             for label, values in (("v", self.velocities), ("a", self.accelerations)):
-                if values is not None and values.ndim == 3:
+                if values is None:
+                    continue
+                for w, per in ([(None, values[s])] if values.ndim == 3 else zip(inputs, values[s])):
+                    tail = "" if w is None else f".{w}"
                     for k, name in enumerate(names):
-                        row[f"{name}.{label}x"], row[f"{name}.{label}y"] = num(values[s, k, 0]), num(values[s, k, 1])
+                        row[f"{name}.{label}x{tail}"], row[f"{name}.{label}y{tail}"] = num(per[k, 0]), num(per[k, 1])
             yield row
 
 
@@ -158,9 +183,10 @@ class _Solver:
         """θ, t, g, μ and the joints' positions at input offsets (S, W) by the dyads' closed forms."""
         return self.closure(offsets)
 
-    def gmin(self, x: float) -> float:
-        """The smallest dyad discriminant at 1-DOF offset x (≥ 0 where the linkage closes)."""
-        return float(self.closed(np.array([[x]]))[2].min())
+    def discriminants(self, x: float) -> np.ndarray:
+        """The dyads' discriminants at 1-DOF offset x (each ≥ 0 where its dyad closes; −1 for NaN)."""
+        g = self.closed(np.array([[x]]))[2][0]
+        return np.where(np.isfinite(g), g, -1.0)
 
     @cached_property
     def pose_sign(self) -> int:
@@ -353,12 +379,13 @@ class _Solver:
             end = (step * math.inf, "")
             if 0 <= k + step < len(xs):
                 good_x, bad_x = xs[k], xs[k + step]
-                m = int(np.argmin(measure[k + step]))
-                lo, hi = sorted((good_x, bad_x))
-                root = brentq(lambda x: float(self.closed(np.array([[x]]))[2][0, m]), lo, hi, xtol=LIMIT_TOL,
-                              rtol=1e-15)
-                while self.gmin(root) < 0:  # keep the side where the dyad closes
-                    root -= step * LIMIT_TOL
+                while abs(bad_x - good_x) > LIMIT_TOL:  # bisection: every dyad closes at good_x, one not at bad_x
+                    middle = 0.5 * (good_x + bad_x)
+                    if self.discriminants(middle).min() >= 0:
+                        good_x = middle
+                    else:
+                        bad_x = middle
+                root, m = good_x, int(np.argmin(self.discriminants(bad_x)))
                 end = (root, f"{_dyad_name(self.linkage, self.plan[m])} is aligned (a dead position)")
             for x, m in sorted(touches, key=lambda found: abs(found[0])):
                 if x * step > 0 and abs(x) < abs(end[0]):
@@ -588,16 +615,17 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         inside = offsets[(offsets - end) * np.sign(x1 - x0) < 0]
         offsets = np.append(inside, end)
         stopped = f"the sweep stops at input {_describe(linkage, phi0 + end)}: {why}; the input cannot go further"
-    offsets = np.clip(offsets, lo, hi)  # (a range that ends at a limit, written as an input, rounds past it)
+    np.clip(offsets, lo, hi, out=offsets)  # (a range that ends at a limit, written as an input, rounds past it)
     if solver.plan is not None and not (velocities or accelerations):  # the poses and points only: in one pass
-        theta, joints, tracers = solver.closure.points(offsets[:, None])
+        joints, tracers = solver.closure.points(offsets[:, None])
+        theta = partial(solver.closure.angles, offsets[:, None])
     else:
         theta, t, joints = solver.poses_along(offsets)
         if joints is None or linkage.tracers:
             joints, tracers = _points(linkage, theta, t, joints)
         else:
             tracers = {}
-    inputs = (offsets - x0 + start)[:, None]
+    inputs = (offsets + (start - x0))[:, None]
     vel = acc = None
     if velocities or accelerations:
         vel, acc = _rates(linkage, theta, t, accelerations)
@@ -609,7 +637,7 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
             acc[at_limit] = np.nan
         if not velocities:
             vel = None
-    return Motion(linkage, inputs, joints, tracers, theta, vel, acc, stopped)
+    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta)
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
@@ -635,7 +663,8 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
     return out
 
 
-def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False) -> Motion:
+def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False,
+               progress: Callable[[int], None] | None = None) -> Motion:
     """Move a linkage over a grid of its W inputs, on the assembly branch of its pose.
 
     Parameters
@@ -646,12 +675,16 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
         Values per input (default 21 each); the grid has their product of steps (≤ 10 000 000).
     velocities : bool
         Velocities per unit rate of each input: ``Motion.velocities`` of shape (S, W, J, 2).
+    progress : callable, optional
+        Called with the number of cells solved since its last call (the cells of a linkage moved by
+        Newton's method are solved one by one, each from a neighbour; closed forms solve all at once).
 
     Returns
     -------
     Motion
-        ``inputs`` (S, W) in row-major grid order (the last input varying fastest); the cells the
-        pose's branch does not reach (beyond a dead position, or only across one) are NaN.
+        ``inputs`` (S, W) in row-major grid order (the last input varying fastest), ``grid`` the
+        steps per input; the cells the pose's branch does not reach (beyond a dead position, or only
+        across one) are NaN.
 
     Examples
     --------
@@ -691,6 +724,8 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
         closes = (g >= 0).all(axis=1)
         reached = _flood(closes.reshape(shape), start)
         theta[reached], t[reached] = th[reached], tt[reached]
+        if progress is not None:
+            progress(int(reached.sum()))
     else:
         flat = np.ravel_multi_index(start, shape)
         reached = np.zeros(total, dtype=bool)
@@ -698,6 +733,8 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
         first = _step(solver, np.zeros(solver.system.size), np.zeros(w), offsets[flat])
         if first is not None:
             qs[flat], reached[flat] = first, True
+            if progress is not None:
+                progress(1)
             queue = deque([start])
             while queue:
                 cell = queue.popleft()
@@ -715,6 +752,8 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
                         if q is not None:
                             qs[there], reached[there] = q, True
                             queue.append(tuple(nxt))
+                            if progress is not None:
+                                progress(1)
         th, tt = solver.system.poses(qs[reached])
         theta[reached], t[reached] = th, tt
     if not reached.any():
@@ -729,7 +768,7 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
         vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, theta, vel, None, None)
+    return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:

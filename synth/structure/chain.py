@@ -28,6 +28,7 @@ import pynauty
 from ..errors import MalformedChain
 from .code import Code
 from ..display import svg_of
+from .disjoint import DisjointSets
 from .joints import JOINT_KINDS, SYMBOLS
 
 __all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]
@@ -563,20 +564,13 @@ def _links_on_loops(links: set[int], joints) -> set[int]:
         own = [k for k, j in enumerate(inside) if x in j]
         if len(own) < 2:
             continue
-        root = {k: k for k in range(len(inside))}  # joints joined through the links other than x
-
-        def find(k):
-            while root[k] != k:
-                root[k] = root[root[k]]
-                k = root[k]
-            return k
-
+        joined = DisjointSets(range(len(inside)))  # joints joined through the links other than x
         first: dict[int, int] = {}
         for k, j in enumerate(inside):
             for y in j:
                 if y != x:
-                    root[find(k)] = find(first.setdefault(y, k))
-        if len({find(k) for k in own}) < len(own):
+                    joined.union(k, first.setdefault(y, k))
+        if len({joined.find(k) for k in own}) < len(own):
             on.add(x)
     return on
 

@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .disjoint import DisjointSets
 from .joints import JOINT_KINDS, SYMBOLS
 
 if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and never import its type
@@ -82,22 +83,8 @@ def cycle_rank(nodes, edges) -> int:
     >>> cycle_rank(range(3), [(0, 1), (1, 2), (2, 0)]), cycle_rank(range(4), [(0, 1), (2, 3)])
     (1, 0)
     """
-    root = {x: x for x in nodes}
-
-    def find(x):
-        while root[x] != x:
-            root[x] = root[root[x]]
-            x = root[x]
-        return x
-
-    loops = 0
-    for a, b in edges:
-        ra, rb = find(a), find(b)
-        if ra == rb:
-            loops += 1
-        else:
-            root[ra] = rb
-    return loops
+    joined = DisjointSets(nodes)
+    return sum(not joined.union(a, b) for a, b in edges)
 
 
 def wedge_loops(chain: Chain, links=None) -> int:

@@ -29,6 +29,7 @@ from itertools import combinations
 
 from ..errors import ImpossibleParameters, InvalidOption
 from ..structure.chain import Chain
+from ..structure.disjoint import DisjointSets
 from ..structure.kinds import cycle_rank, restricted_pairs
 from ..structure.query import ChainQuery
 from ..structure.subchains import least_base_mobilities
@@ -72,22 +73,10 @@ def _cycles(chain: Chain) -> list[frozenset[int]]:
     """
     n = chain.links
     edges = [(x, n + k) for k, j in enumerate(chain.joints) for x in j]  # link x – joint k
-    parent = list(range(n + len(chain.joints)))
-
-    def find(v):
-        while parent[v] != v:
-            parent[v] = parent[parent[v]]
-            v = parent[v]
-        return v
-
+    joined = DisjointSets(range(n + len(chain.joints)))
     tree, chords = [], []
     for e, (a, b) in enumerate(edges):
-        ra, rb = find(a), find(b)
-        if ra == rb:
-            chords.append(e)
-        else:
-            parent[ra] = rb
-            tree.append(e)
+        (tree if joined.union(a, b) else chords).append(e)
     adjacent: dict[int, list[tuple[int, int]]] = {}
     for e in tree:
         a, b = edges[e]

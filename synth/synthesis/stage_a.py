@@ -29,6 +29,7 @@ import pynauty
 
 from ..execution.memo import is_remembered, remembered
 from ..structure.code import Code
+from ..structure.disjoint import DisjointSets
 
 __all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "needs_solver", "uses_kernel",
            "kernel_loops"]
@@ -508,20 +509,8 @@ def _connected(m: int, edges) -> bool:
     >>> _connected(3, [(0, 1), (1, 1), (1, 2)]), _connected(3, [(0, 1), (2, 2)])
     (True, False)
     """
-    root = list(range(m))
-
-    def find(u: int) -> int:
-        while root[u] != u:
-            root[u] = u = root[root[u]]
-        return u
-
-    parts = m
-    for u, v in edges:
-        a, b = find(u), find(v)
-        if a != b:
-            root[a] = b
-            parts -= 1
-    return parts == 1
+    joined = DisjointSets(range(m))
+    return m - sum(joined.union(u, v) for u, v in edges) == 1
 
 
 def _closed_core(edges) -> list[tuple[int, int]]:

@@ -32,6 +32,8 @@ import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from mechbase import Row
+
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ..execution.executor import process_pool, run_plan
 from ..structure.chain import Chain, Mechanism
@@ -382,7 +384,7 @@ class _MechanismCount:
 
 
 @dataclass(frozen=True)
-class Counts:
+class Counts(Row):
     """How many chains (or mechanisms) a query has: in all and by code (``'42/0 P2'`` with
     prismatic pairs), in the order of the plan.  ``counts["count"]`` reads its JSON form.
 
@@ -392,10 +394,6 @@ class Counts:
 
     count: int
     by_code: dict
-
-    def to_dict(self) -> dict:
-        """``{"count": N, "by_code": {...}}``, as ``--count`` prints it."""
-        return {"count": self.count, "by_code": dict(self.by_code)}
 
     def __getitem__(self, key: str):
         return self.to_dict()[key]

@@ -28,10 +28,10 @@ def test_rigid_triangle_chains_get_verified_repairs(text):
     chain = Chain.parse(text)
     assert not exhaustive_subchains(chain.links, chain.joints).ok(False)  # the triangle is rigid
     repairs = chain_repairs(chain)
-    assert repairs and all(len(r["edits"]) == 1 for r in repairs)  # one move mends it
+    assert repairs and all(len(r.edits) == 1 for r in repairs)  # one move mends it
     for r in repairs:
-        _check(r["chain"], 1)
-        assert r["code"] == str(Chain.parse(r["chain"]).code)
+        _check(r.chain, 1)
+        assert r.code == str(Chain.parse(r.chain).code)
 
 
 @pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-3 3-4 4-5 5-1", "0-1 1-2 2-0 0-3 3-4 4-5 5-0",
@@ -43,7 +43,7 @@ def test_repairs_are_distinct_chains_and_keep_joint_kinds(text):
 
     chain = Chain.parse(text)
     repairs = chain_repairs(chain)
-    proposed = [Chain.parse(r["chain"]) for r in repairs]
+    proposed = [Chain.parse(r.chain) for r in repairs]
     assert len({c.certificate for c in proposed}) == len(proposed) > 0
     for c in proposed:
         assert sorted(c.kinds or ["revolute"] * len(c.joints)) == sorted(chain.kinds or ["revolute"] * len(chain.joints))
@@ -54,11 +54,11 @@ def test_repairs_are_distinct_chains_and_keep_joint_kinds(text):
 def test_over_constrained_code_gets_verified_repairs():
     """6301/0 has W = 1: with W = 2 required, D = −1.  One binary link fewer mends the counts."""
     repairs = code_repairs(Code.parse("6301/0"), 2)
-    assert repairs and all(len(r["edits"]) == 1 for r in repairs)
+    assert repairs and all(len(r.edits) == 1 for r in repairs)
     for r in repairs:
-        assert Code.parse(r["code"]).dof() == 2
-        assert str(Chain.parse(r["chain"]).code) == r["code"]
-        _check(r["chain"], 2)
+        assert Code.parse(r.code).dof() == 2
+        assert str(Chain.parse(r.chain).code) == r.code
+        _check(r.chain, 2)
 
 
 def test_valid_structures_need_no_repair():

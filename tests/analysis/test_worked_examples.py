@@ -114,7 +114,7 @@ def test_defect_advice_names_edits_that_move_w_its_way(code, dof):
         links, joints = _edited(chain.links, list(chain.joints), edit)
         assert _grubler(links, joints) == a.dof + (1 if raise_w else -1), edit
     repair = code_repairs(Code.parse(code), dof, limit=1)[0]
-    assert Code.parse(repair["code"]).dof() == dof and analyze(repair["code"], dof=dof).defect == 0
+    assert Code.parse(repair.code).dof() == dof and analyze(repair.code, dof=dof).defect == 0
 
 
 def test_defect_and_advice():

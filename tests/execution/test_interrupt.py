@@ -3,7 +3,8 @@
 Each command is started in a session of its own, as a terminal runs it, left working until it is
 inside its long part (a CP-SAT search, pool workers counting or drawing), and interrupted as a
 terminal does: SIGINT to the whole process group, workers included.  The command and every process
-it started must be gone within two seconds (on this shared machine they take 0.03–0.3 s).
+it started must be gone within two seconds (on this shared machine they take 0.03–0.3 s), seconds
+of a machine with a core to spare: the bound stretches with the load (tests/load.py).
 """
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ import time
 
 import psutil
 import pytest
+
+from tests.load import allowed_seconds
 
 CLI = [sys.executable, "-m", "mechsynth"]
 STOP_SECONDS = 2.0
@@ -39,11 +42,11 @@ def _interrupt(args: list[str], cwd, ready, *, wait_at_most: float = 60.0) -> tu
         sent = time.monotonic()
         os.killpg(proc.pid, signal.SIGINT)
         try:
-            status = proc.wait(timeout=30)
+            status = proc.wait(timeout=max(30.0, allowed_seconds(STOP_SECONDS)))
         except subprocess.TimeoutExpired:
             status = None
         took = time.monotonic() - sent
-        _, alive = psutil.wait_procs(started, timeout=max(0.0, STOP_SECONDS - took))
+        _, alive = psutil.wait_procs(started, timeout=max(0.0, allowed_seconds(STOP_SECONDS) - took))
         return status, took, err_path.read_text(), alive
     finally:  # whatever the verdict, nothing of this test outlives it
         for p in started:
@@ -83,7 +86,7 @@ def _check(status, took, err, alive):
     assert status == 130, (status, err[-800:])
     assert err.rstrip().endswith("mechsynth: interrupted"), err[-800:]
     assert "Traceback" not in err, err[-2000:]
-    assert took <= STOP_SECONDS, f"took {took:.2f} s to stop"
+    assert took <= allowed_seconds(STOP_SECONDS), f"took {took:.2f} s to stop (load {os.getloadavg()[0]:.1f})"
     assert not alive, f"left behind: {[p.pid for p in alive]}"
 
 
@@ -127,3 +130,36 @@ def test_ctrl_c_stops_a_site_and_its_drawing_workers(tmp_path):
         return bool(psutil.Process(proc.pid).children()) and "site:" in err_path.read_text()
 
     _check(*_interrupt(["atlas", "--db", "atlas.sqlite", "--html", "site", "--workers", "2"], tmp_path, drawing))
+
+
+def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, capsys):
+    """An extension interrupted in the middle of a call may turn the KeyboardInterrupt into another
+    error (pynauty once raised TypeError "missing 'vertex_coloring' attribute" when Ctrl-C came while it
+    built a graph): the command still says "interrupted" and exits 130, with no traceback; the same
+    error without a Ctrl-C is not hidden; and the handler of the calling process is put back."""
+    from mechsynth import cli
+
+    class Parser:
+        def __init__(self, error):
+            self.error = error
+
+        def parse_args(self, argv):
+            return self
+
+        def run(self, args):
+            try:
+                if self.error is None:
+                    os.kill(os.getpid(), signal.SIGINT)
+                    time.sleep(1)  # the handler raises KeyboardInterrupt at the next bytecode
+                raise self.error
+            except KeyboardInterrupt:
+                raise TypeError("missing 'vertex_coloring' attribute") from None
+
+    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(None))
+    before = signal.getsignal(signal.SIGINT)
+    assert cli.main(["chains"]) == 130
+    assert capsys.readouterr().err == "mechsynth: interrupted\n"
+    assert signal.getsignal(signal.SIGINT) is before
+    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(ValueError("a bug")))
+    with pytest.raises(ValueError, match="a bug"):
+        cli.main(["chains"])

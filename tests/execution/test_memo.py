@@ -17,7 +17,7 @@ from synth.execution import memo
 
 QUERIES = [  # (W, links, options): number synthesis and stage A's CP-SAT path, and the kernel's
     (1, 10, {}), (1, 10, {"v": "0..3"}), (3, 8, {"n1": "0..3", "v": "0..2"}), (1, 8, {"h": 2}),
-    (1, 8, {"h": 4}), (1, 8, {"prismatic": "0..4"}), (0, 9, {}),
+    (1, 8, {"h": 4}), (1, 6, {"prismatic": "0..6"}), (0, 9, {}),
 ]
 
 SCRIPT = """

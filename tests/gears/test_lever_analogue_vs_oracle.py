@@ -153,7 +153,7 @@ def test_planetary_rows_through_the_general_path(satellites, sun):
     row = planetary_row(satellites, sun)
     train = planetary_train(satellites, sun)
     a = analyze_chain(train.to_chain(), dof=1)
-    assert (row["dof"], row["loops"], row["defect"], row["code"]) == (a.dof_count, a.loops, a.defect,
+    assert (row.dof, row.loops, row.defect, row.code) == (a.dof_count, a.loops, a.defect,
                                                                        a.lever_analogue)
     n, pins, contacts = _planetary_geometry(satellites, sun)
     built = oracle.mobility(n, pins, contacts)
@@ -162,10 +162,10 @@ def test_planetary_rows_through_the_general_path(satellites, sun):
     # a floating sun with one satellite swings about it; with two, it also slides between them
     free = {("floating", 1): 3, ("floating", 2): 2}.get((sun, satellites), 1)
     assert built == free
-    assert row["dof"] + redundant == built  # the count, plus what the built geometry makes redundant
+    assert row.dof + redundant == built  # the count, plus what the built geometry makes redundant
     if built == 1:
-        assert redundant == -row["defect"]
-    assert row["determinate"] == ((sun, satellites) in {("floating", 3), ("fixed", 1)})
+        assert redundant == -row.defect
+    assert row.determinate == ((sun, satellites) in {("floating", 3), ("fixed", 1)})
 
 
 def test_three_satellites_64200_through_the_general_path():
@@ -173,7 +173,7 @@ def test_three_satellites_64200_through_the_general_path():
     a = analyze_chain(GearTrain.parse(text).to_chain(), dof=1)
     assert (a.lever_analogue, a.dof, a.dof_count, a.loops, a.defect) == ("64200/0", 1, 1, 5, 0)
     assert a.subchain_defect == "none" and a.redundant_joints is None
-    assert planetary_row(3)["train"] == GearTrain.parse(text).to_chain().compact()
+    assert planetary_row(3).train == GearTrain.parse(text).to_chain().compact()
 
 
 def test_four_satellites_name_the_redundant_meshes():
@@ -199,20 +199,20 @@ def test_repairs_keep_kinds_and_are_distinct(text, dof):
     chain = Chain.parse(text)
     repairs = chain_repairs(chain, dof=dof, limit=50)
     assert repairs
-    certificates = [Chain.parse(r["chain"]).certificate for r in repairs]
+    certificates = [Chain.parse(r.chain).certificate for r in repairs]
     assert len(set(certificates)) == len(certificates)  # no chain twice
     for r in repairs:
-        fixed = Chain.parse(r["chain"])
+        fixed = Chain.parse(r.chain)
         assert fixed.dof == dof and check_subchains(fixed).ok and fixed.is_connected()
-        assert r["code"] == str(fixed.code) + fixed.kind_suffix
+        assert r.code == str(fixed.code) + fixed.kind_suffix
         # kinds are kept: the edits add revolute joints, remove or add meshes by name only
         kinds = fixed.kinds or ("revolute",) * len(fixed.joints)
-        edits = " ".join(r["edits"])
+        edits = " ".join(r.edits)
         assert kinds.count("prismatic") == chain.kinds.count("prismatic") - sum(
-            e.count("=") for e in r["edits"] if e.startswith("remove the binary"))
+            e.count("=") for e in r.edits if e.startswith("remove the binary"))
         assert kinds.count("mesh") == (chain.kinds.count("mesh") + edits.count("mesh links")
                                        - edits.count("remove the gear mesh")
-                                       - sum(e.count("~") for e in r["edits"] if e.startswith("remove the binary")))
+                                       - sum(e.count("~") for e in r.edits if e.startswith("remove the binary")))
         assert all(k == "revolute" for j, k in zip(fixed.joints, kinds) if len(j) > 2)
 
 

@@ -19,16 +19,16 @@ def test_table_against_hand_counts_and_every_subset(sun, offset):
     the sub-chain verdict of every row equals the verdict over every subset (k0 ≤ 4)."""
     rows = planetary_table((1, 6), sun)
     for r in rows:
-        k0 = r["satellites"]
-        assert r["links"] == 3 * k0 + 3 and r["dof"] == offset - k0 == _w(r["links"], r["joints"])
-        assert r["defect"] == r["dof"] - 1
+        k0 = r.satellites
+        assert r.links == 3 * k0 + 3 and r.dof == offset - k0 == _w(r.links, r.joints)
+        assert r.defect == r.dof - 1
         if k0 <= 4:
-            assert r["subchains"] == exhaustive_subchains(r["links"], r["joints"]).kind(False)
-    determinate = [r["satellites"] for r in rows if r["determinate"]]
+            assert r.subchains == exhaustive_subchains(r.links, r.joints).kind(False)
+    determinate = [r.satellites for r in rows if r.determinate]
     if sun == "floating":
-        assert determinate == [3] and rows[2]["code"] == "64200/0" and rows[2]["loops"] == 5
+        assert determinate == [3] and rows[2].code == "64200/0" and rows[2].loops == 5
     else:  # a fixed sun is never statically determinate with two or more satellites
-        assert all(r["defect"] != 0 for r in rows if r["satellites"] >= 2) and determinate == [1]
+        assert all(r.defect != 0 for r in rows if r.satellites >= 2) and determinate == [1]
 
 
 def test_three_satellites_assur_groups():
@@ -36,16 +36,16 @@ def test_three_satellites_assur_groups():
     with its three mesh links: a 4-link group with 3 outer joints), each of zero mobility."""
     chain = lever_analogue(3)
     groups = assur_groups(chain, RING, CARRIER)
-    assert [g["name"] for g in groups] == ["dyad", "dyad", "dyad", "triad"]
+    assert [g.name for g in groups] == ["dyad", "dyad", "dyad", "triad"]
     placed = {RING, CARRIER}
     for g in groups:
-        s = set(g["links"])
+        s = set(g.links)
         inner = [j for j in chain.joints if set(j) & s and set(j) <= s | placed]
         assert 3 * len(s) - 2 * len(inner) == 0
         placed |= s
     assert placed == set(range(chain.links))
-    (triad,) = [g for g in groups if g["name"] == "triad"]
-    assert 2 in triad["links"] and len(triad["outer_joints"]) == 3  # the sun
+    (triad,) = [g for g in groups if g.name == "triad"]
+    assert 2 in triad.links and len(triad.outer_joints) == 3  # the sun
 
 
 @pytest.mark.parametrize("call,message", [

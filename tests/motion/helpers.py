@@ -39,3 +39,18 @@ def inverted_slider_crank(r, d, phi=1.0):
     u = (A - C) / np.hypot(*(A - C))
     chain = Chain.parse("0-1 1-2 2=3 3-0")  # joints 0-1 0-3 1-2 2=3
     return Linkage(Mechanism(chain, 0), (0,), np.array([[0, 0], C, A, A]), slides={3: tuple(u)})
+
+
+def scotch_yoke(r, phi=1.0, reversed_chain=False):
+    """Crank r (0-1 at the origin), block 2 pinned to the crank (1-2), sliding in the yoke's vertical
+    slot (2=3); the yoke 3 slides horizontally on the frame (0=3) and carries the tracer Y at
+    (2, −1) in the pose.  Its group (links 2, 3) is an RPP dyad; ``reversed_chain`` numbers the
+    links so that the search meets it from its other end, as PPR (crank 3, yoke 1, block 2)."""
+    A = np.array([r * math.cos(phi), r * math.sin(phi)])
+    if reversed_chain:
+        chain = Chain.parse("0-3 3-2 2=1 1=0")  # joints 0=1 0-3 1=2 2-3
+        points, slides, crank, yoke = np.array([[2, -1], [0, 0], A, A]), {0: (1.0, 0.0), 2: (0.0, 1.0)}, 1, 1
+    else:
+        chain = Chain.parse("0-1 1-2 2=3 3=0")  # joints 0-1 0=3 1-2 2=3
+        points, slides, crank, yoke = np.array([[0, 0], [2, -1], A, A]), {1: (1.0, 0.0), 3: (0.0, 1.0)}, 0, 3
+    return Linkage(Mechanism(chain, 0), (crank,), points, slides=slides, tracers={"Y": (yoke, (2.0, -1.0))})

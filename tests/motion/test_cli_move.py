@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from mechsynth.cli import main
+from tests.load import allowed_seconds
 
 ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = ROOT / "models" / "motion_four_bar.toml"
@@ -136,13 +137,14 @@ BAD = [
     (["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "7"], "not a link"),
     (["move", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--input", "1-2"], "joint of the frame"),
     (["move", "--chain", "0-1 1-2 2-0", "--frame", "0"], "rigid"),
-    (["move", "--chain", "0-1 1-2 2-3 3-4 4-0", "--frame", "0"], "W = 2"),
+    (["move", "--chain", "0-1 1-2 2-3 3-4 4-0", "--frame", "0", "--range"], "W = 2"),
     (["move", "--db", "x.sqlite"], "--id"),
     (["move", "--id", "814ad964fad2", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0"], "--db"),
     (["move", str(FOUR_BAR), "--frame", "0"], "--frame"),
     (["move", str(FOUR_BAR), "--steps", "1"], "--steps"),
     (["move", str(FOUR_BAR), "--steps", "100000000"], "--steps"),
-    (["move", str(FOUR_BAR), "--steps", "ten"], "whole number"),
+    (["move", str(FOUR_BAR), "--steps", "ten"], "number of steps"),
+    (["move", str(FOUR_BAR), "--steps", "30000"], "--format jsonl or csv"),
     (["move", str(FOUR_BAR), "--start", "nan"], "finite"),
     (["move", str(FOUR_BAR), "--start", "10", "--stop", "10"], "two different ends"),
     (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
@@ -208,8 +210,8 @@ def test_ctrl_c_stops_a_long_sweep_within_two_seconds(tmp_path):
     time.sleep(4)
     os.killpg(proc.pid, signal.SIGINT)
     start = time.monotonic()
-    proc.wait(timeout=30)
-    assert time.monotonic() - start < 2.0 and proc.returncode == 130
+    proc.wait(timeout=max(30.0, allowed_seconds(2.0)))
+    assert time.monotonic() - start < allowed_seconds(2.0) and proc.returncode == 130  # 2 s of an idle machine
 
 
 def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
@@ -240,3 +242,11 @@ def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
     for s in (0, 19999, 20000, 20001, 45000):
         assert float(rows[s]["input"]) == pytest.approx(whole.inputs[s, 0], abs=1e-12)
         assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
+
+
+def test_a_triad_says_why_it_reports_no_transmission_angle(capsys):
+    code, out, _ = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--range", "--format", "json")
+    doc = json.loads(out)
+    assert code == 0 and doc["transmission"] == {} and "class III" in doc["transmission_note"]
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--format", "json")
+    assert "transmission_note" not in json.loads(out)

@@ -162,3 +162,54 @@ def test_a_parallelogram_stops_at_its_change_points():
     assert abs(lo) < 1e-6 and abs(hi - math.pi) < 1e-6
     assert all("change point" in why for _, why in r.dead_positions)
     assert motion_range(four_bar(1.0, 3.5, 3.0, 4.0)).full_rotation  # a crank-rocker has none
+
+
+@pytest.mark.parametrize("reversed_chain", [False, True], ids=["RPP", "PPR"])
+def test_scotch_yoke_in_closed_form(reversed_chain):
+    """The yoke moves by r cos φ and never turns; the block in its slot moves with the crank pin
+    (velocity and acceleration too); the group is a dyad (RPP, met from either end), not a group for
+    Newton's method; its slides stay square (90°)."""
+    from synth.motion._dyads import decompose
+
+    from .helpers import scotch_yoke
+
+    r, phi0 = 1.3, 1.0
+    lk = scotch_yoke(r, phi0, reversed_chain)
+    assert [d.kind for d in decompose(lk)] == ["RPP"]
+    m = sweep(lk, steps=721, velocities=True, accelerations=True)
+    phi = m.inputs[:, 0]
+    yoke = 1 if reversed_chain else 3
+    x = 2 + r * (np.cos(phi) - math.cos(phi0))
+    assert np.abs(m.tracers["Y"] - np.c_[x, np.full_like(x, -1.0)]).max() < 1e-12
+    assert np.abs(np.remainder(m.angles[:, yoke] + math.pi, 2 * math.pi) - math.pi).max() < 1e-12  # it never turns
+    # the block's points: its pin on the crank (2-3 / 1-2) and, in the yoke's slot, the prismatic
+    # joint's point where the block carries it (2=3; 1=2 is carried by the yoke: its x is the yoke's)
+    pin, slot = (3, 2) if reversed_chain else (2, 3)
+    circle = np.c_[np.cos(phi), np.sin(phi)]
+    assert np.abs(m.joints[:, pin] - r * circle).max() < 1e-12
+    assert np.abs(m.velocities[:, pin] - r * circle[:, ::-1] * [-1, 1]).max() < 1e-12
+    assert np.abs(m.accelerations[:, pin] + r * circle).max() < 1e-12
+    if reversed_chain:  # carried by the yoke: up and down with nothing, across with the yoke
+        assert np.abs(m.joints[:, slot, 0] - r * circle[:, 0]).max() < 1e-12
+        assert np.abs(m.velocities[:, slot] - np.c_[-r * circle[:, 1], 0 * phi]).max() < 1e-12
+    else:
+        assert np.abs(m.joints[:, slot] - r * circle).max() < 1e-12
+    t = m.transmission["links 2, 1" if reversed_chain else "links 2, 3"]
+    assert t["min"] == pytest.approx(math.pi / 2, abs=1e-12) and t["max"] == pytest.approx(math.pi / 2, abs=1e-12)
+    assert motion_range(lk).full_rotation
+
+
+def test_the_sweeps_crank_table_agrees_with_each_angles_own_cosine():
+    """A sweep turns its crank by a table of rotations from each block's exact first angle; over
+    10⁵ steps and four turns its points agree with those solved from every angle's own cos and sin
+    (the search for a branch's ends uses those) to 1e-13, and its link angles, computed only when
+    read, agree modulo a turn."""
+    from synth.motion._sweep import _solver
+
+    lk = four_bar(1.0, 3.5, 3.0, 4.0, tracer=(2.5, 4.5))
+    m = sweep(lk, steps=100_001, start=-7.0, stop=20.0)
+    assert "angles" not in m.__dict__  # not computed by the sweep
+    theta, _, _, _, joints = _solver(lk).closed(m.inputs - lk.pose_inputs)
+    assert np.abs(m.joints - joints).max() < 1e-13
+    turned = np.remainder(m.angles - theta + math.pi, 2 * math.pi) - math.pi
+    assert np.abs(turned).max() < 1e-13

@@ -11,7 +11,7 @@ from synth.motion import linkage_from_pose, motion_range, sweep
 from synth.structure.chain import Chain, Mechanism
 
 from ..oracles.motion import OracleLinkage, follow
-from .helpers import four_bar, inverted_slider_crank, slider_crank
+from .helpers import four_bar, inverted_slider_crank, scotch_yoke, slider_crank
 
 
 def triad():
@@ -38,6 +38,8 @@ CASES = {
     "watt": lambda: linkage_from_pose(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 2-4 4-5 5-3"), 0, 1),
                                       [[0, 0], [3, 0], [0.5, 1], [1.5, 2], [2.5, 2.2], [3.2, 1.4], [2.4, 3.4]]),
     "triad": triad,
+    "Scotch yoke (RPP)": lambda: scotch_yoke(1.3),
+    "Scotch yoke (PPR)": lambda: scotch_yoke(0.7, phi=2.0, reversed_chain=True),
 }
 
 

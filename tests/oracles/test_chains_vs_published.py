@@ -7,7 +7,6 @@ Reference numbers: docs/theory.md, "Reference counts".
 
 from __future__ import annotations
 
-import functools
 import itertools
 import os
 import random
@@ -20,7 +19,7 @@ import pytest
 from tests.oracles.chains import (  # noqa: E402
     ChainIndex,
     _SubsetChecker,
-    brute_force_chains,
+    brute_force_chains_once,
     code_key,
     count_by_code,
     is_connected,
@@ -30,10 +29,8 @@ from tests.oracles.chains import (  # noqa: E402
 )
 
 
-@functools.lru_cache(maxsize=None)
 def chains(links, dof, v_max=0, rigid=False, frac=True):
-    return tuple(brute_force_chains(links, dof, v_max=v_max,
-                                    rigid_subchains=rigid, fractionated=frac))
+    return brute_force_chains_once(links, dof, v_max=v_max, rigid_subchains=rigid, fractionated=frac)
 
 
 def _by_v(cs):

@@ -30,6 +30,7 @@ import synth
 from tests.oracles.chains import (  # noqa: E402
     ChainIndex,
     brute_force_chains,
+    brute_force_chains_once,
     code_key,
     count_by_code,
     is_connected,
@@ -99,10 +100,8 @@ CASES = [
 ]
 
 
-@functools.lru_cache(maxsize=None)
 def oracle(dof, links, v_max, rigid, frac):
-    return tuple(brute_force_chains(links, dof, v_max=v_max,
-                                    rigid_subchains=rigid, fractionated=frac))
+    return brute_force_chains_once(links, dof, v_max=v_max, rigid_subchains=rigid, fractionated=frac)
 
 
 @functools.lru_cache(maxsize=None)

@@ -23,9 +23,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InvalidOption
-from .train import GearTrain
+from ..gears.train import GearTrain
 
-__all__ = ["draw_train", "draw_sheet", "sheet_figure", "schematic", "svg_text"]
+__all__ = ["draw_train", "draw_train_sheet", "sheet_figure", "schematic", "svg_text"]
 
 _FORMATS = (".svg", ".png", ".pdf")
 _GAP = 0.16  # between concentric shafts
@@ -250,7 +250,7 @@ def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=()
     _save(fig, path, 110)
 
 
-def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
+def draw_train_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
     """Several schematics on one sheet, each captioned (wrapped to its cell) and a legend under
     them; more than ``limit`` trains are refused (a sheet never drops trains silently).
     Returns how many were drawn."""
@@ -265,7 +265,7 @@ def draw_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) 
 
 
 def sheet_figure(trains, *, columns: int = 4, titles=None):
-    """The matplotlib figure of a sheet of schematics (:func:`draw_sheet` writes it).
+    """The matplotlib figure of a sheet of schematics (:func:`draw_train_sheet` writes it).
 
     >>> fig = sheet_figure([GearTrain.parse("0-1-2 2-3 0~3i 1~3"), GearTrain.parse("0-1 0-2 1~2")])
     >>> [ax.get_title() for ax in fig.axes]

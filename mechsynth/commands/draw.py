@@ -1,0 +1,245 @@
+"""CLI command ``draw``: chains, mechanisms and gear trains drawn as a designer does (SVG, PNG, PDF).
+
+Example
+-------
+>>> import tempfile, pathlib
+>>> from mechsynth.cli import main
+>>> out = str(pathlib.Path(tempfile.mkdtemp()) / "watt.svg")
+>>> main(["draw", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--out", out])
+0
+>>> pathlib.Path(out).read_text().count("<svg") >= 1
+True
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .._argtypes import inches, positive, where_conditions, whole
+
+__all__ = ["add_commands"]
+
+
+def add_commands(sub) -> None:
+    """Mount ``draw`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("draw", help="draw chains or mechanisms as a designer does (SVG/PNG)")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
+    g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
+    g.add_argument("--db", help="chains of an atlas selected with --where or --id")
+    p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
+                   "with --repairs: the intended W")
+    p.add_argument("--h", type=whole, help="with --code or --chain: motion space of the loops, 2 … 6 (default 3, or "
+                   "the chain's own)")
+    p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
+                   help="with --db: filter (as for 'mechsynth atlas')")
+    p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
+    p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
+    p.add_argument("--loop-classes", metavar="H=K,H=K",
+                   help="with --chain: every base of the higher class's loops on that chain (e.g. 3=4,5=1), "
+                        "each base's links in its class's colour")
+    p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
+                   help="with --chain: draw it beside its N (default 5) nearest valid rebuilt chains")
+    p.add_argument("--mechanisms", action="store_true", help="draw every mechanism (fixed link up to symmetry)")
+    p.add_argument("--prismatic", metavar="A..B",
+                   help="draw every assignment of A…B prismatic pairs to the simple joints, up to symmetry "
+                        "(a slider is a block on a bar, a cylinder a dark barrel)")
+    p.add_argument("--idle-joints", action="store_true",
+                   help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
+    p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
+    p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
+    p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
+    p.add_argument("--labels", action=argparse.BooleanOptionalAction, default=None,
+                   help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
+    p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
+    p.add_argument("--title", help="sheet title (default: the selection)")
+    p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
+    p.set_defaults(run=_run_draw)
+
+
+def _variants(args, chains: list) -> list:
+    """The chains themselves, or with ``--prismatic A..B`` every R/P variant of each."""
+    if args.prismatic is None:
+        return chains
+    from synth import InvalidOption
+    from synth import parse_range
+    from synth import variants_of
+
+    lo, hi = parse_range(args.prismatic, "--prismatic")
+    chains = [c for c in chains if c.kinds is None]  # an atlas may hold variants already
+    if not chains:
+        return []
+    simple = max(sum(1 for j in c.joints if len(j) == 2) for c in chains)
+    if lo > simple:
+        raise InvalidOption(f"--prismatic {args.prismatic} asks for more prismatic pairs than the {simple} "
+                            "simple joints of these chains")
+    return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
+
+
+def _defect(chain, dof) -> str:
+    """What is wrong with a chain to repair, in a few words (the caption of its drawing)."""
+    from synth import check_subchains
+
+    report = check_subchains(chain, rigid_subchains=(chain.dof if dof is None else dof) == 0)
+    wrong = f"W = {chain.dof}, not {dof}; " if dof is not None and dof != chain.dof else ""
+    if report.ok:
+        return f"given: {wrong or 'no defect'}".rstrip("; ")
+    return (f"given: {wrong}{report.kind} of links {', '.join(map(str, report.worst))} (W(S) = "
+            f"{report.worst_mobility})")
+
+
+def _at_most(chains, args):
+    """The selected chains, stopped once they are more than ``--limit`` drawings (each chain is
+    at least one; R/P variants may be none): a large selection is refused without being built."""
+    import itertools
+
+    return chains if args.prismatic is not None else itertools.islice(chains, args.limit + 1)
+
+
+def _draw_trains(rows, args) -> int:
+    """Gear trains of an atlas as functional schematics (shafts, gears on their axes, carriers), as
+    ``gears --out`` and the site draw them."""
+    from synth import InvalidOption
+    from synth.draw import draw_train, draw_train_sheet
+    from synth.gears import GearTrain
+
+    if len(rows) > args.limit:
+        raise InvalidOption(f"the selection has more than {args.limit} drawings (--limit); narrow it with --where "
+                            "or raise --limit")
+    unused = [name for name, given in (("--dpi", args.dpi), ("--labels", args.labels is not None),
+                                       ("--size", args.size is not None and len(rows) > 1)) if given]
+    if unused:
+        raise InvalidOption(f"gear trains are drawn as schematics, which take no {', '.join(unused)}"
+                            + (" on a sheet" if unused == ["--size"] else ""))
+    trains = [GearTrain.parse(row["train"]) for row in rows]
+    if len(trains) == 1:
+        draw_train(trains[0], args.out, title=args.title, size=args.size or 6.0)
+    else:
+        draw_train_sheet(trains, args.out, columns=args.columns or 4, limit=args.limit,
+                   titles=[f"{k + 1}: {row['code']}  id {row['id']}" for k, row in enumerate(rows)])
+    print(f"{len(trains)} schematic{'s' if len(trains) != 1 else ''} -> {args.out}", file=sys.stderr)
+    return 0
+
+
+def _run_draw(args) -> int:
+    from synth.draw import CELL, SINGLE, draw_one, draw_sheet, expand
+    from synth import Chain, Mechanism
+    from synth import InvalidOption
+
+    args.where = where_conditions(args.where)
+    if args.id is not None:
+        if not args.db:
+            raise InvalidOption("--id names a chain of an atlas: give --db too (for a chain of your own, "
+                                "'mechsynth identify' finds its id)")
+        args.where.append(f"id={args.id}")
+    if args.dpi is not None and not args.out.lower().endswith(".png"):
+        raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
+    if args.where and not args.db:
+        raise InvalidOption("--where filters an atlas: give --db too")
+    if args.loop_classes is not None and not args.chain:
+        raise InvalidOption("--loop-classes goes with --chain (for a query: mechsynth chains --loop-classes … "
+                            "--format jsonl, then draw a row with --chain)")
+    if args.frame is not None and not args.chain:
+        raise InvalidOption("--frame goes with --chain (for sheets use --mechanisms)")
+    if args.frame is not None and args.mechanisms:
+        raise InvalidOption("--frame and --mechanisms contradict each other: one fixed link, or every one up to "
+                            "symmetry")
+    if args.dof is not None and not (args.code or args.repairs):
+        raise InvalidOption("--dof goes with --code (the W of its chains) or --repairs (the intended W); a chain "
+                            "and an atlas's chains carry their own")
+    if args.h is not None:
+        from synth import check_motion_space
+
+        if args.db:
+            raise InvalidOption("--h goes with --code or --chain (an atlas's chains carry their own h)")
+        check_motion_space(args.h, lowest=2)
+        if args.repairs and args.h != 3:
+            raise InvalidOption("--repairs rebuilds planar chains (h = 3), not chains in motion space h = "
+                                f"{args.h}")
+    given = None
+    if args.chain:  # read as analyze and identify read it, in its own motion space unless --h says another
+        from synth.exchange import read_chain
+
+        given = read_chain(args.chain, args.h).chain
+    h = given.h if given is not None else args.h or 3
+    if args.repairs and h != 3:
+        raise InvalidOption(f"--repairs rebuilds planar chains (h = 3), not chains in motion space h = {h}")
+    notes = None  # the words under each drawing of a sheet: the edits of the repairs
+    if args.idle_joints and args.prismatic is None:
+        raise InvalidOption("--idle-joints goes with --prismatic (an all-revolute chain has no idle joint)")
+    if args.prismatic is not None and (args.repairs or args.frame is not None or h != 3):
+        raise InvalidOption("--prismatic draws the variants of planar chains (h = 3); it does not go with "
+                            "--repairs or --frame (use --mechanisms for every fixed link)")
+    if args.repairs and (not args.chain or args.frame is not None or args.mechanisms):
+        raise InvalidOption("--repairs goes with --chain alone (not --frame or --mechanisms)")
+    if args.chain and args.repairs:
+        from synth import chain_repairs
+
+        chain = given
+        repairs = chain_repairs(chain, dof=args.dof, limit=args.repairs)
+        if not repairs:
+            print("mechsynth: no repair: the chain is valid already, or no valid one lies within three edits",
+                  file=sys.stderr)
+            return 1
+        items = [chain, *(Chain.parse(r.chain) for r in repairs)]
+        notes = [_defect(chain, args.dof)] + ["; ".join(r.edits) for r in repairs]
+        title = args.title or f"{chain.compact()} and {len(repairs)} repairs"
+    elif args.chain:
+        chain = given
+        if args.loop_classes is not None:
+            from .chains import _class_variants_of
+
+            if args.frame is not None or args.prismatic is not None:
+                raise InvalidOption("--loop-classes draws every base on the chain: it does not go with --frame or "
+                                    "--prismatic (use --mechanisms for every fixed link)")
+            items = expand(_class_variants_of(chain, args), mechanisms=args.mechanisms)
+            if not items:
+                print("mechsynth: no base of those loop classes passes the exact test on this chain", file=sys.stderr)
+                return 1
+        elif args.frame is not None:
+            items = [Mechanism(chain, args.frame)]
+        else:
+            items = expand(_variants(args, [chain]), mechanisms=args.mechanisms)
+        title = args.title
+    elif args.code:
+        import synth
+
+        query = synth.ChainQuery.of(args.dof, code=args.code, h=h)
+        code, dof = query.code, query.dof
+        chains = list(_at_most(synth.type_synthesis(query, workers=1), args))
+        if not chains:
+            print(f"mechsynth: no chain has code {args.code} with W = {dof}", file=sys.stderr)
+            return 1
+        items = expand(_variants(args, chains), mechanisms=args.mechanisms)
+        title = args.title or f"{code} (W = {dof}{'' if h == 3 else f', h = {h}'}): {len(chains)} chains"
+    else:
+        from synth.atlas import export
+
+        rows = list(_at_most(export(args.db, "chains", where=args.where), args))
+        if not rows:
+            print("mechsynth: no chain of the atlas matches the selection", file=sys.stderr)
+            return 1
+        if all(row.get("kind") == "gears" for row in rows) and args.prismatic is None and not args.mechanisms:
+            return _draw_trains(rows, args)
+        chains = [Chain.from_dict(row) for row in rows]
+        items = expand(_variants(args, chains), mechanisms=args.mechanisms)
+        title = args.title or (None if args.id else f"{' '.join(args.where) or 'atlas'}: {len(chains)} chains")
+    if not items:  # only --prismatic can empty a selection here
+        print(f"mechsynth: no variant with {args.prismatic} prismatic pairs passes the exact test", file=sys.stderr)
+        return 1
+    if len(items) > args.limit:
+        cut = args.prismatic is None and bool(args.code or args.db) and len(chains) > args.limit  # not all built
+        size = (f"more than {args.limit} drawings (--limit)" if cut
+                else f"{len(items)} drawings, more than --limit {args.limit}")
+        raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
+    if len(items) == 1 and not (args.code or (args.db and args.id is None)):
+        size, dpi = SINGLE
+        draw_one(items[0], args.out, title=title, labels=args.labels is not False,
+                      size=args.size or size, dpi=args.dpi or dpi)
+    else:
+        size, dpi = CELL
+        draw_sheet(items, args.out, columns=args.columns, title=title, labels=args.labels,
+                        size=args.size or size, dpi=args.dpi or dpi, notes=notes)
+    print(f"{len(items)} drawing{'s' if len(items) != 1 else ''} -> {args.out}", file=sys.stderr)
+    return 0
