@@ -45,7 +45,7 @@ import numpy as np
 
 from ..errors import InvalidOption, MotionError, SynthesisError
 from ..structure.chain import Chain, Mechanism
-from .database import AtlasError, _writable, open_atlas, transaction
+from .database import AtlasError, open_atlas, refuse_unwritable, transaction
 
 __all__ = ["INDEX_VERSION", "HARMONICS", "STEPS", "IndexSettings", "IndexResult", "CurveUnit", "harmonics",
            "untimed_parameter", "periodic_harmonics", "tracer_links", "index_curves", "index_units", "sample_unit", "index_info", "NoCurveIndex"]
@@ -396,7 +396,7 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
     """
     import os
 
-    from ..execution.executor import run_plan
+    from ..execution.executor import Executor, run_plan
 
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
@@ -405,7 +405,7 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
     path = Path(db)
     if not path.is_file():
         raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
-    _writable(path)
+    refuse_unwritable(path)
     conn = open_atlas(path, write=True)
     client = None
     try:
@@ -439,8 +439,9 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
 
             bar = tqdm(total=len(todo), unit="mechanism", file=sys.stderr, desc="curve index")
         run = skipped = 0
+        runner = Executor(workers, client)
         try:
-            for _, unit, result in run_plan(todo, _expand, sample_unit, workers=workers, client=client,
+            for _, unit, result in run_plan(todo, _expand, sample_unit, executor=runner,
                                              inline_seconds=0 if workers > 1 else 0.25, ordered=False):
                 if unit is None:
                     continue
@@ -451,6 +452,7 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
                     bar.update()
                     bar.set_postfix(curves=len(result.rows), refresh=False)
         finally:
+            runner.close()  # no worker outlives the index
             if bar is not None:
                 bar.close()
         curves = conn.execute("SELECT COUNT(*) FROM curve_samples").fetchone()[0]

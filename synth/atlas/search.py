@@ -471,7 +471,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
 
         client = connect(scheduler, connect_timeout)
     matches, notes = [], []
-    bar = None
+    bar = executor = None
     if progress and tasks:
         import sys
 
@@ -479,9 +479,10 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
 
         bar = tqdm(total=len(tasks), unit="topology", file=sys.stderr, desc="polish")
     try:
-        from ..execution.executor import run_plan
+        from ..execution.executor import Executor, run_plan
 
-        for _, task, found in run_plan(tasks, _expand, _polish_topology, workers=workers, client=client,
+        executor = Executor(workers, client)
+        for _, task, found in run_plan(tasks, _expand, _polish_topology, executor=executor,
                                        inline_seconds=0 if workers > 1 else 0.25):
             if task is None:
                 continue
@@ -501,6 +502,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     finally:
         if bar is not None:
             bar.close()
+        if executor is not None:
+            executor.close()  # no worker outlives the search
         if client is not None:
             client.close()
     matches.sort(key=lambda m: (not m.result.met, m.result.error_rms, m.candidate.links))
