@@ -61,7 +61,7 @@ _WHERE = {
     "Counterweights": "devices.counterweights", "counterweights": "devices.counterweights",
     # reading a problem's tables and writing its results
     "parse": "schema", "arm_problem": "problems.arm", "pantograph_problem": "problems.pantograph",
-    "compare_from_arm": "problems.compare", "DEFAULT_GRID": "devices.fit", "format_form": "model.potential",
+    "compare_problem": "problems.compare", "DEFAULT_GRID": "devices.fit", "format_form": "model.potential",
     "plot_spring": "plots", "plot_arm": "plots", "plot_prismatic": "plots", "plot_pantograph": "plots",
     "plot_compare": "plots",
     # the rest

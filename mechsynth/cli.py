@@ -51,7 +51,8 @@ class _Version(argparse.Action):
 # each command by the module of mechsynth.commands that mounts it, in the order of --help
 COMMANDS = {"codes": "codes", "analyze": "codes", "chains": "chains", "mechanisms": "chains",
             "identify": "identify", "compare": "identify", "grid": "grid", "atlas": "atlas", "draw": "draw",
-            "scene": "scene", "planetary": "planetary", "gears": "gears", "move": "move", "balance": "balance"}
+            "scene": "scene", "planetary": "planetary", "gears": "gears", "move": "move", "dimension": "dimension",
+            "balance": "balance"}
 
 
 def _build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:

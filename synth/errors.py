@@ -35,6 +35,8 @@ __all__ = [
     "LockedMechanism",
     "WrongInputs",
     "BadSweep",
+    "DimensionError",
+    "BadTarget",
 ]
 
 
@@ -112,3 +114,13 @@ class WrongInputs(MotionError):
 
 class BadSweep(MotionError):
     """A sweep's step count or input range is absurd (not a number, too few or too many steps)."""
+
+
+class DimensionError(SynthesisError):
+    """Dimensional synthesis (:mod:`synth.dimension`) cannot be run as asked."""
+
+
+class BadTarget(DimensionError):
+    """A synthesis target is malformed: NaN or infinite values, duplicate points, a timing that is not
+    monotonic, an empty file, fewer points than the problem's unknowns."""
+

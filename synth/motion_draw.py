@@ -47,6 +47,7 @@ ANIMATION_SUFFIXES = (".gif", ".svg")
 _BODY, _EDGE, _INPUT, _FRAME = "#dbe6f4", "#1f3a5f", "#c0632b", "#6b7785"
 _CURVES = ("#c0392b", "#1e7a46", "#7d3c98", "#b9770e", "#2471a3")
 _PATH = "#b8c2cc"
+_MARK = "#1f4e9c"  # target points of a synthesis
 
 
 # ------------------------------------------------------------------ linkages from the atlas's drawings
@@ -584,9 +585,11 @@ def _figure(canvas: _Canvas, dpi: int):
     return fig, ax
 
 
-def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None) -> None:
+def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None,
+                marks: np.ndarray | None = None) -> None:
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
-    paths of its moving pins (grey), to a PNG or SVG file.
+    paths of its moving pins (grey), to a PNG or SVG file; ``marks`` (N, 2) are drawn as hollow
+    circles over them (the points a synthesis was asked to pass).
 
     >>> import os, tempfile
     >>> from synth.structure.chain import Chain, Mechanism
@@ -606,6 +609,9 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
     elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
                          reach=(motion.joints[keep], motion.angles[keep]))
+    for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
+        elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
+                         "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
     canvas = _Canvas(elements, size)
     text = title or _title(linkage)
     try:

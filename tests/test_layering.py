@@ -110,7 +110,7 @@ FLOORS = {
         {"synth.errors", "synth._lazy", "synth.schema", "synth.display", "synth.structure"},  # the chain types
         {"synth.execution"},  # running work: a service that imports no floor above the chain types
         {"synth.synthesis"},  # number and type synthesis, and sizing them (planning)
-        {"synth.analysis", "synth.gears", "synth.motion"},
+        {"synth.analysis", "synth.gears", "synth.motion", "synth.dimension"},
         {"synth.atlas", "synth.exchange", "synth.draw", "synth.motion_draw"},  # drawings on the top floor
     ],
     "balance": [

@@ -28,6 +28,12 @@ SLOW = {
     "--db gears.sqlite --html gears_site": "draws 741 gear trains: about 20 seconds",
     "--html moving_site": "moves the mechanisms of three chains, triads among them: about a minute "
                           "(tests/atlas/test_site_motion.py plays a site's moving page in Chromium)",
+    "--index-curves --samples 200": "samples 200 crank poses of each 4- and 6-link mechanism: about two CPU minutes "
+                                    "(tests/atlas/test_curve_search.py builds a four-bar index in the default suite)",
+    "dimension models/dimension_closed_path.csv": "an atlas search with a 60 CPU-second budget on the index above "
+                                                  "(tests/atlas/test_curve_search.py finds a four-bar again)",
+    "dimension models/dimension_path.csv": "a path synthesis with a 30 CPU-second budget "
+                                           "(tests/dimension finds the same points again in the default suite)",
     "--code 12.2000/6-0 --cranks 3=3": "the translator's query, 21 841 heterogeneous chains: about 13 CPU seconds "
                                        "(tests/synthesis/test_classes_vs_oracle.py runs it in the slow set too)",
     "--code 8310/1 --prismatic 3 --cylinders": "Fig. 6's query, 8 096 mechanisms of 4 617 chains: about 30 CPU seconds",

@@ -44,6 +44,12 @@ _HEAVY = ("not W2-n9 and not W1-n8-v4 and not W3-n8-v2 and not 6856 and not 12-9
 #: a module's docstring examples in the balance and synth suites (the module's name and "]" follow)
 _BALANCE_DOC = "tests/balance/test_docstrings.py::test_docstring_examples["
 _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
+#: the tests of reading and writing chains (not the 10-link atlas round trip: a minute per mutant)
+_IDENTIFY_LIGHT = "not row[10] and not a_large_code"
+_EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
+             "tests/exchange/test_every_property_round_trips.py",
+             "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
+             "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -102,7 +108,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
                                                 "tests/balance/test_compare.py",
                                                 _BALANCE_DOC + "balance.problems.compare]"]),
-    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py",
+    "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_dynamics_strength.py",
                                                  _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
                                                    _BALANCE_DOC + "balance.model.pantograph]"]),
@@ -113,6 +119,29 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "query": ("synth/structure/query.py", ["tests/structure/test_query_strength.py",
                                            "tests/cli/test_query_refusals.py", _SYNTH_DOC + "synth.structure.query]"]),
     "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
+    # reading and writing chains: every format's round trip, identify's, the chain given on the command line
+    **{key: (f"synth/exchange/{name}.py", _EXCHANGE + [_SYNTH_DOC + f"synth.exchange.{name}]".replace(".__init__", "")])
+       for key, name in (("exchange", "__init__"), ("exchange_dot", "_dot"), ("exchange_entry", "_entry"),
+                         ("exchange_graphs", "_graphs"), ("exchange_lists", "_lists"),
+                         ("exchange_matrices", "_matrices"), ("exchange_identify", "identify"))},
+    # a chain's id, code, place in its listing (sized first), symmetry and classical names
+    "identify": ("synth/analysis/identify.py", ["tests/analysis/test_identify_strength.py",
+                                                "tests/exchange/test_identify_round_trip.py",
+                                                "tests/cli/test_identify_commands.py",
+                                                _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
+    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
+                                                 "-k", "bound or pareto or sensitivity or docstring"]),
+    # the parameters every query shares, the errors' sentences, the schema of scene files
+    "params": ("synth/structure/_params.py", ["tests/structure/test_params.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+                                              _SYNTH_DOC + "synth.structure._params]"]),
+    # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
+    "synth_errors": ("synth/errors.py", ["tests/test_errors.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
+                                         _SYNTH_DOC + "synth.errors]"]),
+    "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
+                                         "malformed_scene or impossible_expectation or contradicted or copy_change "
+                                         "or command_line_mistakes or docstring"]),
+    "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
+                                             _BALANCE_DOC + "balance.schema]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
@@ -124,9 +153,13 @@ DOC = ROOT / "docs" / "mutation.md"
 BEGIN, END = "<!-- mutation-scores:begin -->", "<!-- mutation-scores:end -->"
 
 
+def _selection(key: str) -> list[str]:
+    """The pytest arguments that choose the tests judging ``key`` (test files that no longer exist left out)."""
+    return [t for t in MODULES[key][1] if not t.startswith("tests/") or (ROOT / t.split("::")[0]).exists()]
+
+
 def _prepare(key: str, work: Path) -> Path:
-    path, tests = MODULES[key]
-    tests = [t for t in tests if not t.startswith("tests/") or (ROOT / t.split("::")[0]).exists() or t.startswith("-")]
+    path, tests = MODULES[key][0], _selection(key)
     where = work / key
     shutil.rmtree(where, ignore_errors=True)
     where.mkdir(parents=True)
@@ -210,6 +243,9 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
         config = re.sub(r"\nprocess_isolation = .*\n", "\n", config)
     if "timeout_constant" not in config:  # a run made before the caches were emptied (see _prepare)
         config += "timeout_constant = 60.0\n"
+    # the present selection: a test file added for the survivors is run too
+    config = re.sub(r"\npytest_add_cli_args_test_selection = .*\n",
+                    lambda _: f"\npytest_add_cli_args_test_selection = {json.dumps(_selection(key))}\n", config)
     (where / "pyproject.toml").write_text(config)
     # which tests reach which function, from the present tests (mutmut would map only the new ones)
     (where / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
@@ -221,8 +257,12 @@ def _retest(key: str, work: Path, children: int, env: dict, only: list[str] | No
     names = [n for n, diff in _diffs(where, path, names).items()
              if diff not in known and (not only or diff[0] in only)]  # (equivalents stay so)
     if names:
-        subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        proc = subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=where, env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        (where / "again.log").write_text(proc.stdout)
+        if not (where / "mutants" / "mutmut-stats.json").exists():  # the unmutated code failed its tests
+            raise SystemExit(f"mutation.py: the tests of {key} fail on the unmutated copy under {where}, so no "
+                             f"survivor was run again (see {where / 'again.log'}); run {key} in full")
 
 
 _DIFFS = """

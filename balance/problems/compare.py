@@ -66,7 +66,6 @@ from .arm import G, _ensure_terms_affordable, arm_problem
 
 __all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "compare_problem", "STRATEGIES"]
 
-STRATEGIES = ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
 #: the spring devices' crank geometry when the arm's file gives none (m)
 DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
 
@@ -342,12 +341,8 @@ class _Solver:
             raise InvalidInput(f"the arm's gravity torque is zero in every configuration of the workspace and payload "
                                f"(the largest is {self.scale:.3g} N·m): there is nothing to balance.")
         self.recheck = _PinocchioRecheck(self)
-        none = self.residuals(zero)
-        strategies = [Strategy("none", True, devices=0, added_mass=0.0, tuned_for=None, joints=none,
-                               hardware=("the drives carry the whole gravity torque",),
-                               pinocchio=self.recheck(zero, none), forces=zero)]
-        for build in (self.counterweights, self.springs_per_joint, self.pruned, self.exact):
-            strategies.append(build())
+        self.zero = zero
+        strategies = [build(self) for build in _BUILDERS.values()]
         return Comparison(arm, self.workspace, self.p, pb.target, pb.acceleration, pb.samples, pb.seed,
                           tuple(strategies), self.gravity)
 
@@ -380,6 +375,13 @@ class _Solver:
 
         sol = optimize.minimize_scalar(worst, bounds=self.p, method="bounded", options={"xatol": 1e-4 * self.span})
         return min((self.p_mid, float(sol.x), self.p[0], self.p[1]), key=worst)  # the ends: Brent stops short of them
+
+    # -- 1. nothing ------------------------------------------------------------------------------
+    def none(self) -> Strategy:
+        joints = self.residuals(self.zero)
+        return Strategy("none", True, devices=0, added_mass=0.0, tuned_for=None, joints=joints,
+                        hardware=("the drives carry the whole gravity torque",),
+                        pinocchio=self.recheck(self.zero, joints), forces=self.zero)
 
     # -- 2. counterweights -------------------------------------------------------------------
     def counterweights(self) -> Strategy:
@@ -530,6 +532,19 @@ class _Solver:
 
 
 # ----------------------------------------------------------------------------- helpers
+#: Every strategy, in the order a comparison shows them: its name and the solver's method that builds
+#: it (a strategy that does not apply to the arm — counterweights or exact springs with a slide, exact
+#: springs where a term is not a link's absolute angle — is built unavailable, with the reason).
+_BUILDERS = {
+    "none": _Solver.none,
+    "counterweights": _Solver.counterweights,
+    "springs per joint": _Solver.springs_per_joint,
+    "harmonic, pruned": _Solver.pruned,
+    "exact springs": _Solver.exact,
+}
+STRATEGIES = tuple(_BUILDERS)
+
+
 def _phasors(terms: Sequence[HarmonicTerm]) -> dict:
     """form key → (phasor, form) of a list of terms."""
     return {tuple(round(v, 12) for v in t.form): (t.amplitude * cmath.exp(1j * t.phase), t.form) for t in terms}
@@ -725,14 +740,46 @@ def _n(v) -> str:
 
 
 # ----------------------------------------------------------------------------- reading
-def compare_problem(doc: Mapping[str, Any], source: str = "<compare>") -> CompareProblem:
-    """The :class:`CompareProblem` of a ``[compare]`` table; its ``arm`` (a TOML file with ``[arm]`` or a
-    URDF file) is relative to the file ``source``."""
+def compare_problem(doc: Mapping[str, Any], source: str = "<compare>",
+                    overrides: Mapping[str, Any] | None = None) -> CompareProblem:
+    """The :class:`CompareProblem` of a ``[compare]`` table: the one reader of that table.
+
+    Parameters
+    ----------
+    doc : mapping
+        A document with a ``[compare]`` table, whose ``arm`` (a TOML file with ``[arm]`` or a URDF
+        file) is relative to the file ``source``; or an arm's own document (an ``[arm]`` table and
+        no ``[compare]``, as a URDF file reads ``{"arm": {"urdf": PATH}}``): that arm, compared
+        with the default settings.
+    source : str
+        The file the document was read from (named in every error).
+    overrides : mapping, optional
+        Settings given elsewhere (the command line's ``--payload``, ``--target`` …) that replace
+        the table's; the table is checked as written first.
+
+    Raises
+    ------
+    SchemaError
+        A setting is malformed or unknown (the sentence names the file and the key).
+
+    >>> from pathlib import Path
+    >>> from balance.schema import load_toml
+    >>> example = str(Path(__file__).parents[2] / "models" / "compare_example1.toml")
+    >>> pb = compare_problem(load_toml(example), example, {"target": 0.1})   # --target 0.1 over the file's
+    >>> pb.target, pb.payload, pb.arm.n
+    (0.1, (0.0, 3.0), 4)
+    """
     import os
 
     from ..schema import load_toml
 
-    t = parse(doc, "compare", source)
+    if "compare" not in doc:  # the arm's own document: its [arm] table (a TOML arm or a URDF file's)
+        t = parse({"compare": {"arm": source, **(overrides or {})}}, "compare", source)
+        return compare_from_arm(arm_problem({k: v for k, v in doc.items() if k == "arm"}, source), t, source)
+    table = dict(doc["compare"])
+    if overrides:
+        parse({"compare": dict(table)}, "compare", source)  # the file's own table, checked as written
+    t = parse({"compare": {**table, **(overrides or {})}}, "compare", source)
     base = os.path.dirname(source) if os.path.exists(source) else ""
     path = t.arm if os.path.isabs(t.arm) else os.path.join(base, t.arm)
     if path.lower().endswith(".urdf"):

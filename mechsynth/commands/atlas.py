@@ -51,7 +51,17 @@ def add_commands(sub) -> None:
                         "where they move (default 0; about a second a mechanism)")
     p.add_argument("--force", action="store_true", help="with --html: write into a non-empty DIR")
     p.add_argument("--workers", type=workers,
-                   help="with --html: processes building the pages (default: all cores beyond 200 chains)")
+                   help="with --html: processes building the pages (default: all cores beyond 200 chains); with "
+                        "--index-curves: processes sampling the mechanisms (default: all cores)")
+    p.add_argument("--index-curves", action="store_true",
+                   help="build (or resume) the curve index the atlas search of 'mechsynth dimension --db' needs: "
+                        "coupler curves of random crank poses of every planar 1-DOF mechanism, as Fourier descriptors")
+    p.add_argument("--samples", type=positive, help="with --index-curves: crank poses per mechanism (default 200)")
+    p.add_argument("--links", metavar="A..B", help="with --index-curves: only the mechanisms with this many links")
+    p.add_argument("--triads", action="store_true", help="with --index-curves: also the mechanisms moved by Newton's "
+                   "method (triads and higher groups; about a second a sample)")
+    p.add_argument("--seed", type=whole, help="with --index-curves: seed of the random poses (default 0)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="with --index-curves: sample on a Dask scheduler")
     p.set_defaults(run=_run_atlas)
 
 
@@ -66,6 +76,12 @@ def _run_atlas(args) -> int:
     from synth import InvalidOption
 
     args.where = where_conditions(args.where)
+    if args.index_curves:
+        return _index_curves(args)
+    extra = [name for name, given in (("--samples", args.samples), ("--links", args.links), ("--triads", args.triads),
+                                      ("--seed", args.seed is not None), ("--scheduler", args.scheduler)) if given]
+    if extra:
+        raise InvalidOption(f"{', '.join(extra)} go{'es' * (len(extra) == 1)} with --index-curves")
     if args.html is not None:
         return _write_site(args)
     if args.force or any(given is not None for given in (args.page_size, args.draw_limit, args.move_limit,
@@ -104,6 +120,34 @@ def _run_atlas(args) -> int:
         rows, columns = _columns(rows, what)
         found = write_rows(_written(rows, fmt), columns, fmt)
     return 0 if found else nothing_found(f"{what} of the atlas match the selection")
+
+
+def _index_curves(args) -> int:
+    """``--index-curves``: sample every mechanism's coupler curves into the atlas (resumable)."""
+    from synth import InvalidOption
+    from synth.atlas import IndexSettings, index_curves
+
+    other = [name for name, given in (("--export", args.export), ("--where", args.where), ("--count", args.count),
+                                      ("--prismatic", args.prismatic), ("--html", args.html is not None),
+                                      ("--format", args.format not in (None, "table", "json"))) if given]
+    if other:
+        raise InvalidOption(f"--index-curves builds the curve index; it does not go with {', '.join(other)}")
+    if args.workers is not None and args.scheduler is not None:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers sample")
+    if args.seed is not None and args.seed < 0:
+        raise InvalidOption(f"--seed must be a whole number ≥ 0, not {args.seed}")
+    from .dimension_atlas import links_range
+
+    settings = IndexSettings(samples=args.samples or 200, seed=args.seed or 0, triads=args.triads)
+    result = index_curves(args.db, settings=settings, links=links_range(args.links), workers=args.workers,
+                          scheduler=args.scheduler, progress=True)
+    if args.format == "json":
+        print(json.dumps(result.to_dict()))
+    else:
+        print(f"curve index of {args.db}: {result.units_total} mechanisms ({result.units_run} sampled now, "
+              f"{result.units_skipped} of them without curves), {result.curves} curves in all; "
+              f"{result.seconds:.1f} s on {result.executor}")
+    return 0
 
 
 def _columns(rows, what: str):

@@ -268,7 +268,8 @@ def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
 
 
 def _compare_problem(args):
-    from balance import arm_problem, compare_from_arm, load_toml, parse
+    """``balance compare FILE``: a [compare] table, an arm's TOML or a URDF file, with the options over the table's."""
+    from balance import compare_problem, load_toml
 
     options = {k: v for k, v in (("target", args.target), ("acceleration", args.acceleration),
                                  ("samples", args.samples), ("seed", args.seed)) if v is not None}
@@ -277,21 +278,10 @@ def _compare_problem(args):
     if args.ranges:
         options["workspace"] = {name: list(rng) for name, rng in args.ranges}
     if args.file.lower().endswith(".urdf"):
-        path, doc = args.file, {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
+        doc = {"arm": {"urdf": os.path.abspath(args.file), "name": os.path.basename(args.file)}}
     else:
         doc = load_toml(args.file)
-        path = args.file
-        if "compare" in doc:
-            table = dict(doc["compare"])
-            base = os.path.dirname(args.file)
-            path = table["arm"] if os.path.isabs(str(table.get("arm", ""))) else os.path.join(base, str(table.get("arm")))
-            options = {**{k: v for k, v in table.items() if k != "arm"}, **options}
-            parse({"compare": dict(table)}, "compare", args.file)  # the file's own table, checked as written
-            doc = load_toml(path) if not path.lower().endswith(".urdf") else \
-                {"arm": {"urdf": os.path.abspath(path), "name": os.path.basename(path)}}
-    doc = {k: v for k, v in doc.items() if k in ("arm", "scene", "expect", "plot")}
-    table = parse({"compare": {"arm": path, **options}}, "compare", args.file)
-    return compare_from_arm(arm_problem(doc, path), table, args.file)
+    return compare_problem(doc, args.file, options)
 
 
 def _prismatic_problem(args):

@@ -146,7 +146,7 @@ def _run_one_chain(args) -> int:
     if args.loop_classes is not None or chain.classes is not None:
         _refuse_classless_format(args)
     if args.loop_classes is not None:
-        items = _class_variants_of(chain, args)
+        items = class_variants_of(chain, args)
     elif args.prismatic is None:
         if args.idle_joints or getattr(args, "cylinders", None):
             raise _invalid("--idle-joints and --cylinders go with --prismatic")
@@ -169,16 +169,16 @@ def _refuse_classless_format(args) -> None:
                        "jsonl, json or csv (their joint lists and rows carry the classes)")
 
 
-def _class_variants_of(chain, args) -> list:
+def class_variants_of(chain, args) -> list:
     """``--chain C --loop-classes H=K,X=K``: every base of K_X loops of class X on that chain, read
     in class H (the lower one)."""
     from dataclasses import replace
 
     from synth import class_variants, split_classes
 
-    from .codes import _parse_classes
+    from .codes import parse_classes
 
-    h, k_h, x, k_x = split_classes(_parse_classes(args.loop_classes))
+    h, k_h, x, k_x = split_classes(parse_classes(args.loop_classes))
     if not chain.all_revolute or chain.classes is not None:
         raise _invalid("--loop-classes lays bases on a revolute chain without classes: give its joint list without "
                        "'=', '~' or '|'")
@@ -193,7 +193,7 @@ def _run_classes(args) -> int:
     chain of class H), skeletons built by type synthesis in the process, bases laid here."""
     from synth import heterogeneous_synthesis, mechanisms_of, size_note, skeleton_query
 
-    from .codes import _parse_classes
+    from .codes import parse_classes
 
     refused = [name for name, value in (("--h", args.h != 3), ("--prismatic", args.prismatic is not None),
                                         ("--n1", args.n1 is not None), ("--checkpoint", args.checkpoint is not None),
@@ -204,7 +204,7 @@ def _run_classes(args) -> int:
     if args.dof is None:
         raise _invalid("give --dof W (the heterogeneous count's W) with --loop-classes")
     _refuse_classless_format(args)
-    classes = _parse_classes(args.loop_classes)
+    classes = parse_classes(args.loop_classes)
     selection = dict(code=args.code, v=args.v, require=args.require, cranks=args.cranks,
                      max_multiplicity=args.max_multiplicity, rigid_subchains=args.rigid_subchains,
                      fractionated=args.fractionated, planar_only=args.planar_only)
@@ -245,8 +245,8 @@ def _run(args) -> int:
             log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
-        if args.what == "chains":
-            result = count_chains(query, **extra)
+        if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
+            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None, **extra)
         else:
             result = count_mechanisms(query, input_link=args.input_link, **extra)
         if write_count(result.to_dict(), args.format or "json") == 0:

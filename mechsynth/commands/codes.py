@@ -33,7 +33,17 @@ def add_commands(sub) -> None:
     _add_analyze(sub)
 
 
-def _parse_classes(text: str, what: str = "loop classes are written H=K,H=K (e.g. 3=4,5=1)") -> dict[int, int]:
+def parse_classes(text: str, what: str = "loop classes are written H=K,H=K (e.g. 3=4,5=1)") -> dict[int, int]:
+    """The loop classes of ``--loop-classes`` (motion space H → loops K), read by ``codes`` and ``chains``.
+
+    Raises
+    ------
+    InvalidOption
+        With ``what`` (how to write them) when the text is not H=K pairs, or gives an H twice.
+
+    >>> parse_classes("3=4,5=1")
+    {3: 4, 5: 1}
+    """
     try:
         pairs = [[int(x) for x in item.split("=")] for item in text.replace(",", " ").split()]
         classes = {h: k for h, k in pairs}
@@ -85,7 +95,7 @@ def _run_codes(args) -> int:
         bar = tqdm(unit=" codes", file=sys.stderr, leave=False, delay=2.0)
     codes = iter_codes(
         args.dof, loops=args.loops, links=args.links,
-        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        loop_classes=parse_classes(args.loop_classes) if args.loop_classes else None,
         h=args.h, f=args.f, v=args.v, n1=args.n1, max_link_degree=args.max_link_degree,
         require=args.require, max_multiplicity=args.max_multiplicity, compositions=args.compositions,
         max_codes=None if args.force else MAX_CODES, progress=bar.update if bar is not None else None,
@@ -130,7 +140,7 @@ def _note_left_out(args, listed: set) -> None:
 
     every = iter_codes(
         args.dof, loops=args.loops, links=args.links,
-        loop_classes=_parse_classes(args.loop_classes) if args.loop_classes else None,
+        loop_classes=parse_classes(args.loop_classes) if args.loop_classes else None,
         h=args.h, f=args.f, v=args.v, n1=args.n1, require=args.require, max_multiplicity=args.max_multiplicity,
         compositions=args.compositions, max_codes=None if args.force else MAX_CODES)
     left = [str(c) for c in every if str(c) not in listed]
@@ -194,7 +204,7 @@ def _subject(text: str) -> str:
     except MalformedChain as exc:
         as_chain = str(exc)
     try:
-        counts = _parse_classes(s, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
+        counts = parse_classes(s, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
         if min(counts) < 1:
             raise InvalidOption(f"counts are n_I for links with I ≥ 1 joints, and '{s}' names I = {min(counts)}")
         as_counts = None
@@ -225,7 +235,7 @@ def _run_analyze(args) -> int:
     from synth import analyze
 
     h = _motion_space(args)
-    classes = _parse_classes(args.loop_classes) if args.loop_classes else None
+    classes = parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     kind = _subject(subject)
     if kind == "chain":
@@ -248,7 +258,7 @@ def _run_analyze(args) -> int:
     elif kind == "counts":
         if args.repairs:
             raise InvalidOption("--repairs works on a code or a chain, not on bare counts")
-        counts = _parse_classes(subject, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
+        counts = parse_classes(subject, "counts are written I=N,I=N (links with I joints, e.g. 2=4,3=2)")
         result = analyze(counts=counts, v=args.v or 0, dof=args.dof, h=3 if h is None else h, f=args.f,
                          loop_classes=classes).to_dict()
     else:

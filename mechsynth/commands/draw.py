@@ -188,12 +188,12 @@ def _run_draw(args) -> int:
     elif args.chain:
         chain = given
         if args.loop_classes is not None:
-            from .chains import _class_variants_of
+            from .chains import class_variants_of
 
             if args.frame is not None or args.prismatic is not None:
                 raise InvalidOption("--loop-classes draws every base on the chain: it does not go with --frame or "
                                     "--prismatic (use --mechanisms for every fixed link)")
-            items = expand(_class_variants_of(chain, args), mechanisms=args.mechanisms)
+            items = expand(class_variants_of(chain, args), mechanisms=args.mechanisms)
             if not items:
                 print("mechsynth: no base of those loop classes passes the exact test on this chain", file=sys.stderr)
                 return 1

@@ -7,6 +7,8 @@
 ``trains``     gear-train cells: their units (link–axis trees) and rows, one train per rotation graph
 ``queries``    the ``--where`` language, exports and the summary
 ``site``       the atlas as a static web site
+``curves``     the curve index: coupler curves of sampled crank poses as Fourier descriptors
+``search``     type and dimensional synthesis over the atlas: retrieval from the index, then the polish
 =============  ======================================================================
 
 The names below are loaded on first use.
@@ -26,6 +28,9 @@ _WHERE = {
     "chain_id": ".database",
     "GridRunResult": ".runs", "compute_unit": ".runs", "run_grid": ".runs", "size_grid": ".runs",
     "parse_where": ".queries", "export": ".queries", "summary": ".queries",
+    "IndexSettings": ".curves", "IndexResult": ".curves", "NoCurveIndex": ".curves", "index_curves": ".curves",
+    "index_info": ".curves",
+    "AtlasSearchResult": ".search", "AtlasMatch": ".search", "search_atlas": ".search", "retrieve": ".search",
     "write_site": ".site", "SiteResult": ".site", "EmptyAtlas": ".site", "MAX_PAGE_SIZE": ".site",
 }
 

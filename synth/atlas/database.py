@@ -125,7 +125,7 @@ CREATE TABLE run_lock (
 
 
 # ------------------------------------------------------------------ opening
-def _writable(path: Path) -> None:
+def refuse_unwritable(path: Path) -> None:
     """Refuse before touching anything when the file or its directory is read-only.
 
     Permission bits are checked as well as ``os.access`` so that a file made read-only
@@ -232,7 +232,7 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
     """
     path = Path(path)
     if write:
-        _writable(path)
+        refuse_unwritable(path)
         fresh = not path.exists() or path.stat().st_size == 0
         if not fresh:  # read-only first: a file that is not an atlas, or a damaged one, is never written to
             open_atlas(path, check_pages=True).close()
@@ -307,7 +307,15 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) -> int:
+def acquire_run(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) -> int:
+    """Record a grid run of ``grid`` on ``executor`` (``"local 2"``, ``"dask tcp://…"``) and take the
+    atlas's run lock; returns the run's id.  A lock left by a killed run is taken over.
+
+    Raises
+    ------
+    AtlasLocked
+        Another live run holds the lock.
+    """
     host = socket.gethostname()
     with transaction(conn):
         row = conn.execute("SELECT run, pid, host, started FROM run_lock WHERE id = 1").fetchone()
@@ -330,7 +338,8 @@ def _acquire(conn: sqlite3.Connection, path: Path, grid: Grid, executor: str) ->
     return run
 
 
-def _release(conn: sqlite3.Connection, run: int, status: str, units_run: int) -> None:
+def release_run(conn: sqlite3.Connection, run: int, status: str, units_run: int) -> None:
+    """End run ``run`` with ``status`` (done, interrupted, failed) and ``units_run``, and free the lock."""
     with transaction(conn):
         conn.execute("UPDATE runs SET status = ?, finished = ?, units_run = ? WHERE id = ?",
                      (status, time.time(), units_run, run))

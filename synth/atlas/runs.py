@@ -33,7 +33,7 @@ import os
 import sqlite3
 import sys
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,10 +43,11 @@ from ..errors import InvalidOption, QueryTooLarge, option
 from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
+from ..execution.executor import Executor
 from ..structure.joints import MESH, PRISMATIC
-from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, process_pool, run_unit
+from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, run_unit
 from ..gears.train import GearTrain
-from .database import _acquire, _release, _writable, open_atlas, transaction
+from .database import acquire_run, open_atlas, refuse_unwritable, release_run, transaction
 from .grid import Cell, GearCell, Grid
 from .trains import TrainUnit, keep_representatives, plan_gear_cell, store_trains, train_row, unit_trains
 
@@ -198,31 +199,6 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell | GearCell, l
                              [(cell.key, u.key, str(u.code)) for u in units])
 
 
-def _local_pool(workers: int):
-    """The process pool of a local run (planning and units share it), or None for one worker."""
-    return process_pool(workers) if workers > 1 else None
-
-
-def _local(tasks: list[UnitTask], pool) -> Iterator[UnitRows]:
-    if pool is None or len(tasks) <= 1:
-        for task in tasks:
-            yield compute_unit(task)
-        return
-    yield from pool.imap_unordered(compute_unit, tasks, chunksize=1)
-
-
-def _dask(tasks: list[UnitTask], client) -> Iterator[UnitRows]:
-    from distributed import as_completed
-
-    futures = client.map(compute_unit, tasks, pure=False) if tasks else []
-    try:
-        for future in as_completed(futures, loop=client.loop):
-            yield future.result()
-    finally:
-        if futures:
-            client.cancel(futures)
-
-
 def run_grid(
     grid: Grid,
     db: str | Path,
@@ -266,30 +242,27 @@ def run_grid(
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
     workers = workers or os.cpu_count() or 1
-    executor = f"dask {scheduler}" if scheduler else f"local {workers}"
+    where = f"dask {scheduler}" if scheduler else f"local {workers}"  # the run's record says where it ran
     path = Path(db)
-    _writable(path)  # refuse a read-only atlas before connecting anywhere
+    refuse_unwritable(path)  # refuse a read-only atlas before connecting anywhere
     if path.exists() and path.stat().st_size:
         open_atlas(path).close()  # not an atlas, or another version: refused before any planning
     client = _connect(scheduler, connect_timeout) if scheduler else None
     start = time.perf_counter()
-    pool = None
+    executor = Executor(workers, client)  # the units' executor; its pool (if any) plans too
     try:
-        pool = _local_pool(workers) if client is None else None
-        # planned before the atlas is created: a grid the engine refuses leaves no file behind
-        plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], pool=pool,
-                                               skip_impossible=True)))
+        # planned on this machine, before the atlas is created: a grid the engine refuses leaves no file behind
+        plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], skip_impossible=True,
+                                               executor=executor if client is None else None)))
         plans += [(cell, plan_gear_cell(cell)) for cell in grid.gear_cells]
         conn = open_atlas(path, write=True)
     except BaseException:
         if client is not None:
             client.close()
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+        executor.close()
         raise
     try:
-        run = _acquire(conn, path, grid, executor)
+        run = acquire_run(conn, path, grid, where)
         # WAL + synchronous=NORMAL: a commit survives kill -9 without an fsync per unit (a power
         # cut may lose the last units, never consistency); back to a plain journal at the end
         conn.execute("PRAGMA journal_mode = WAL")
@@ -297,7 +270,7 @@ def run_grid(
         conn.execute("PRAGMA cache_size = -65536")  # 64 MiB of pages: the certificate index stays in memory
         conn.execute("PRAGMA wal_autocheckpoint = 10000")  # checkpoint rarely during a run (and at its end)
         status, done_now = "failed", 0
-        result = GridRunResult("running", 0, 0, 0, executor=executor, cells=len(plans))
+        result = GridRunResult("running", 0, 0, 0, executor=where, cells=len(plans))
         try:
             _register(conn, plans)
             done = {(c, u) for c, u in conn.execute("SELECT cell, unit FROM units WHERE status = 'done'")}
@@ -317,8 +290,7 @@ def run_grid(
                 bar = tqdm(total=len(tasks), unit="unit", file=sys.stderr, disable=None, desc=grid.name,
                            dynamic_ncols=True)
             try:
-                results = _dask(tasks, client) if client is not None else _local(tasks, pool)
-                for res in results:
+                for res in executor.map(compute_unit, tasks, ordered=False):
                     result.chains_new += _commit(conn, res, run)
                     result.chains_found += len(res.chains)
                     result.mechanisms_found += len(res.mechanisms)
@@ -334,13 +306,11 @@ def run_grid(
             status = "interrupted"
             raise
         finally:
-            if pool is not None:
-                pool.terminate()  # before the atlas is released: no worker outlives the run
-                pool.join()
+            executor.close()  # before the atlas is released: no worker outlives the run
             result.units_run = done_now
             result.status = status
             result.seconds = time.perf_counter() - start
-            _release(conn, run, status, done_now)
+            release_run(conn, run, status, done_now)
     finally:
         if conn.execute("PRAGMA journal_mode").fetchone()[0] == "wal":
             try:
@@ -350,9 +320,7 @@ def run_grid(
         conn.close()
         if client is not None:
             client.close()
-        if pool is not None:
-            pool.terminate()  # no-op after the run; the atlas was locked by another run
-            pool.join()
+        executor.close()  # no-op after the run; the atlas was locked by another run
     return result
 
 

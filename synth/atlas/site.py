@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .database import AtlasError, _reading, chain_id, open_atlas
-from ..execution.executor import process_pool
+from ..execution.executor import Executor
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..draw._gears import svg_text
@@ -251,12 +251,10 @@ def write_site(db: str | Path, folder: str | Path, *, page_size: int = 60, draw_
 def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, move_limit: int, progress: bool,
            workers: int | None, note: Callable[[str], None] | None) -> SiteResult:
     """The body of :func:`write_site` on an open atlas with ``total`` chains."""
-    pool = bar = None
+    if workers is None:
+        workers = (os.cpu_count() or 1) if total > 200 else 1
+    executor, bar = Executor(workers), None  # its workers leave Ctrl-C to this process, which ends them
     try:
-        if workers is None:
-            workers = (os.cpu_count() or 1) if total > 200 else 1
-        if workers > 1:
-            pool = process_pool(workers)  # workers leave Ctrl-C to this process, which terminates them
         (out / "codes").mkdir(parents=True, exist_ok=True)
         (out / "lookup").mkdir(exist_ok=True)
         if move_limit:
@@ -295,7 +293,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, move
                 drawn += drawn < draw_limit
                 moved += move
                 lookup.setdefault(cid[:2], {})[cid] = f"codes/{slug}-{number}.html"
-            cards = list(pool.imap(_card, jobs, chunksize=4) if pool else map(_card, jobs))
+            cards = list(executor.map(_card, jobs, chunk=4))
             info["planar"] += sum(planar for _, planar, _ in cards)
             for _, _, moving in cards:
                 for file_name, page in moving:
@@ -338,9 +336,7 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, move
                 bar.update()
         flush(True)
     finally:
-        if pool is not None:
-            pool.terminate()  # Ctrl-C or an error: no worker goes on drawing
-            pool.join()
+        executor.close()  # Ctrl-C or an error: no worker goes on drawing
         if bar is not None:
             bar.close()
     _fill_totals(out, groups)

@@ -1,6 +1,15 @@
-"""Running a query's plan: inline, on a local process pool, or on Dask — streamed, bounded, in order.
+"""Where work runs — inline, on a local process pool, or on Dask — through one :class:`Executor`.
 
-A plan is a list of *items* (one per code); ``expand(item)`` (stage A) turns an item into
+Every command that runs many independent pieces of work (type synthesis, grid runs, gear trains,
+the site's drawings) runs them through one :class:`Executor`: picklable module-level functions
+mapped over picklable units (:meth:`Executor.map`), in order or as they finish, with at most a
+*window* of tasks in flight so memory stays flat however many units there are.  The pool starts
+on first use, so a query that stays inline never pays for it; its workers ignore Ctrl-C and die
+with this process, which terminates them when the executor closes, so Ctrl-C stops a run within a
+moment whatever the workers are doing.  On Dask, a cluster that has lost all its workers is
+reported in one sentence instead of waited on for ever.
+
+A query's *plan* is a list of items (one per code); ``expand(item)`` (stage A) turns an item into
 its units and ``work(unit)`` (stage B) gives a unit's result (its chains, or a count).
 :func:`run_plan` yields ``(index, unit, result)`` for every unit and ``(index, None, n_units)``
 once item ``index`` is complete, in plan order (a listing) or as units finish (a count),
@@ -18,6 +27,9 @@ whatever the backend:
 
 Example
 -------
+>>> with Executor(workers=1) as executor:
+...     list(executor.map(abs, [-3, 1, -2]))
+[3, 1, 2]
 >>> double = lambda xs: list(xs)
 >>> [e for e in run_plan([[1, 2], [3]], double, abs)]
 [(0, 1, 1), (0, 2, 2), (0, None, 2), (1, 3, 3), (1, None, 1)]
@@ -25,7 +37,6 @@ Example
 
 from __future__ import annotations
 
-import multiprocessing
 import os
 import queue
 import signal
@@ -34,8 +45,9 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
+from itertools import islice
 
-__all__ = ["process_pool", "run_plan"]
+__all__ = ["Executor", "process_pool", "run_plan"]
 
 
 def _worker_start(parent: int) -> None:
@@ -59,6 +71,8 @@ def process_pool(workers: int):
     handler is printed and dropped by Python ("Exception ignored …"), so the run would go on.
     Released afterwards, the held signal interrupts the caller as usual.
     """
+    import multiprocessing  # (here: a query that stays inline never loads it)
+
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
@@ -146,18 +160,18 @@ class _DaskTask:
     """A task on a Dask cluster; puts itself on ``done`` when it finishes."""
 
     def __init__(self, client, fn, arg, done: queue.SimpleQueue | None, alive: _Liveness):
-        self._future = client.submit(fn, arg, pure=False)
+        self.future = client.submit(fn, arg, pure=False)
         self._alive = alive
         if done is not None:
-            self._future.add_done_callback(lambda _: done.put(self))
+            self.future.add_done_callback(lambda _: done.put(self))
 
     def ready(self) -> bool:
-        return self._future.done()
+        return self.future.done()
 
     def get(self):
         while True:
             try:
-                return self._future.result(timeout=LIVENESS_SECONDS)
+                return self.future.result(timeout=LIVENESS_SECONDS)
             except TimeoutError:  # (Dask's is the built-in one)
                 self._alive()
 
@@ -170,6 +184,107 @@ def _next_done(done: queue.SimpleQueue, alive: Callable[[], None] | None):
         except queue.Empty:
             if alive is not None:
                 alive()
+
+
+class Executor:
+    """Where picklable work runs: inline (one worker), a local process pool, or a Dask cluster.
+
+    Parameters
+    ----------
+    workers : int
+        Local processes; 1 runs everything in this process.  Ignored with ``client``.
+    client : distributed.Client, optional
+        Run the tasks on this Dask cluster instead.
+
+    Notes
+    -----
+    The pool starts on the first parallel task and is terminated by :meth:`close` (or the end
+    of a ``with`` block): no worker outlives the executor, and Ctrl-C (which the workers leave
+    to this process) ends a run at once.  The caller owns the ``client`` and closes it.
+
+    Example
+    -------
+    >>> with Executor(workers=1) as executor:
+    ...     list(executor.map(abs, [-1, -2], ordered=False))
+    [1, 2]
+    """
+
+    def __init__(self, workers: int = 1, client=None):
+        self.workers, self.client = workers, client
+        self._pool = None
+        self._alive = _Liveness(client) if client is not None else None
+
+    @property
+    def parallel(self) -> bool:
+        """Whether tasks leave this process (a pool of two or more workers, or Dask)."""
+        return self.client is not None or self.workers > 1
+
+    @property
+    def slots(self) -> int:
+        """How many tasks run at once: the workers, or the cluster's threads."""
+        if self.client is not None:
+            return max(1, sum(self.client.nthreads().values()))
+        return self.workers
+
+    def _submit(self, fn, arg, done: queue.SimpleQueue | None = None):
+        """Start ``fn(arg)`` on the pool or the cluster; the task puts itself on ``done`` when it ends."""
+        if self.client is not None:
+            return _DaskTask(self.client, fn, arg, done, self._alive)
+        if self._pool is None:
+            self._pool = process_pool(self.workers)
+        return _PoolTask(self._pool, fn, arg, done)
+
+    def map(self, fn: Callable, items: Iterable, *, ordered: bool = True, window: int | None = None,
+            chunk: int = 1) -> Iterator:
+        """``fn(item)`` for every item: in item order, or as the tasks finish (``ordered=False``).
+
+        Items travel ``chunk`` to a task (for small ones); at most ``window`` tasks (default 4
+        per slot) are in flight, so the results of a long iterable never pile up.  ``fn`` and
+        the items must pickle (module-level functions).  A task's exception is raised here, and
+        the tasks still in flight are dropped.
+        """
+        if not self.parallel:
+            yield from map(fn, items)
+            return
+        window = window or 4 * self.slots
+        done = None if ordered else queue.SimpleQueue()
+        flight: dict[int, object] = {}  # id(task) -> task, in submission order
+        items = iter(items)
+        try:
+            while part := list(islice(items, chunk)):
+                task = self._submit(_apply_batch, (fn, part), done)
+                flight[id(task)] = task
+                if len(flight) >= window:
+                    yield from self._take(flight, done)
+            while flight:
+                yield from self._take(flight, done)
+        finally:
+            self._cancel(flight.values())
+
+    def _take(self, flight: dict, done: queue.SimpleQueue | None) -> list:
+        """The results of the first task in flight (``done`` is None), or of the next to finish."""
+        task = flight[next(iter(flight))] if done is None else _next_done(done, self._alive)
+        del flight[id(task)]
+        return task.get()[0]
+
+    def _cancel(self, tasks) -> None:
+        """Drop tasks whose results nobody will read (on Dask; a pool's are dropped when it ends)."""
+        futures = [t.future for t in tasks if isinstance(t, _DaskTask)]
+        if futures:
+            self.client.cancel(futures)
+
+    def close(self) -> None:
+        """Terminate the pool (if one started): no worker goes on working."""
+        if self._pool is not None:
+            self._pool.terminate()
+            self._pool.join()
+            self._pool = None
+
+    def __enter__(self) -> "Executor":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
 
 
 class _Item:
@@ -190,8 +305,7 @@ def run_plan(
     expand: Callable,
     work: Callable,
     *,
-    workers: int = 1,
-    client=None,
+    executor: Executor | None = None,
     skip_item: Callable[[int], bool] | None = None,
     skip_unit: Callable | None = None,
     inline_seconds: float = 0.25,
@@ -207,10 +321,9 @@ def run_plan(
         The plan; ``expand(item)`` returns the item's units (a list).
     expand, work : callables
         Module-level functions (they are pickled to the workers).
-    workers : int
-        Local processes; 1 runs everything inline.
-    client : distributed.Client, optional
-        Run the tasks on this Dask cluster instead (no inline phase).
+    executor : Executor, optional
+        Where the units run (default: inline).  A local pool starts only after the inline
+        phase; on Dask there is no inline phase.  The caller closes it.
     skip_item, skip_unit : callables, optional
         Items (by index) and units already done elsewhere (a checkpoint): not run, not yielded;
         ``n_units`` still counts every unit of the item.
@@ -225,11 +338,12 @@ def run_plan(
         task never holds the other workers back (a count).  Every unit of an item comes
         before the item's ``(index, None, n_units)`` either way.
     """
+    executor = executor or Executor()
     todo = [(i, item) for i, item in enumerate(items) if not (skip_item and skip_item(i))]
     position, first = 0, None
-    if client is None:
+    if executor.client is None:
         start = time.perf_counter()
-        over = lambda: workers > 1 and time.perf_counter() - start >= inline_seconds  # noqa: E731
+        over = lambda: executor.parallel and time.perf_counter() - start >= inline_seconds  # noqa: E731
         while position < len(todo) and not over():
             index, item = todo[position]
             units = expand(item)
@@ -246,32 +360,19 @@ def run_plan(
         if position == len(todo) and first is None:
             return
     done = None if ordered else queue.SimpleQueue()
-    if client is not None:
-        slots = max(1, sum(client.nthreads().values()))
-        alive = _Liveness(client)
-        submit = lambda fn, arg: _DaskTask(client, fn, arg, done, alive)  # noqa: E731
-        pool = None
-    else:
-        slots, alive = workers, None
-        pool = process_pool(workers)
-        submit = lambda fn, arg: _PoolTask(pool, fn, arg, done)  # noqa: E731
-    try:
-        yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * slots,
-                             task_seconds or (0.5 if client is not None else 0.05), first, done, alive)
-    finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+    submit = lambda fn, arg: executor._submit(fn, arg, done)  # noqa: E731
+    next_done = None if ordered else (lambda: _next_done(done, executor._alive))  # noqa: E731
+    yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * executor.slots,
+                         task_seconds or (0.5 if executor.client is not None else 0.05), first, next_done)
 
 
 def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float,
-              first: _Item | None = None, done: queue.SimpleQueue | None = None,
-              alive: Callable[[], None] | None = None) -> Iterator[tuple]:
+              first: _Item | None = None, next_done: Callable[[], object] | None = None) -> Iterator[tuple]:
     """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight.
 
     ``first`` is an item the inline phase expanded but did not finish (its remaining units).
-    Results come in plan order, or as they finish when ``done`` (the queue that finished
-    tasks put themselves on) is given.
+    Results come in plan order, or as they finish when ``next_done`` (which waits for the next
+    finished task) is given.
     """
     pending = iter(todo)
     # stage A's worker works on the item's first units too, unless units are skipped (a checkpoint
@@ -317,7 +418,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
 
     def top_up() -> None:
         while len(owner) < window:
-            if done is None:  # in order: take the units of later items as soon as they are known
+            if next_done is None:  # in order: take the units of later items as soon as they are known
                 for entry in entries:
                     if entry.expansion is not None and entry.expansion.ready():
                         expand_in_order(entry)
@@ -332,7 +433,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             entry.expansion = launch(entry, _expand_and_work, (expand, work, nxt[1], fused))
             entries.append(entry)
 
-    if done is not None:  # as they finish
+    if next_done is not None:  # as they finish
         while True:
             top_up()
             for entry in [e for e in entries if e.expansion is None and not e.units and not e.batches]:
@@ -340,7 +441,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
                 yield entry.index, None, entry.total
             if not entries:
                 return
-            task = _next_done(done, alive)
+            task = next_done()
             entry = owner[id(task)]
             if task is entry.expansion:
                 finished = expanded(entry)

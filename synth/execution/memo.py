@@ -4,6 +4,8 @@ Number synthesis's codes and stage A's branch multigraphs of a small code are th
 results the engine needs for most queries, and loading OR-Tools (with the pandas it imports)
 costs about 0.3 s — most of a small query's time.  :func:`remembered` keeps each such result in
 a file the first time it is computed; later runs read it instead and never load the solver.
+A count on the command line keeps each finished code's count the same way (:func:`keep`,
+:func:`recall`): asked again, it runs none of that code's units.
 
 Where
     ``$MECHSYNTH_CACHE`` if set (``off`` turns the store off), else
@@ -36,7 +38,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import TypeVar
 
-__all__ = ["remembered", "is_remembered", "cache_folder"]
+__all__ = ["remembered", "recall", "keep", "is_remembered", "cache_folder"]
 
 T = TypeVar("T")
 _ENGINE = Path(__file__).resolve().parents[1]  # the synth package
@@ -88,6 +90,49 @@ def is_remembered(kind: str, key: str) -> bool:
     return folder is not None and _entry(folder, kind, key).is_file()
 
 
+def recall(kind: str, key: str, *, decode: Callable[[object], T] = lambda x: x) -> T | None:
+    """The value an earlier run of this engine stored under (``kind``, ``key``) with :func:`keep`,
+    or None (nothing stored, the store off, or an entry that cannot be read or holds another key).
+
+    >>> import uuid; key = uuid.uuid4().hex
+    >>> recall("demo", key) is None
+    True
+    >>> keep("demo", key, {"42/0": 2}); recall("demo", key) == ({"42/0": 2} if cache_folder() else None)
+    True
+    """
+    folder = _store()
+    if folder is None:
+        return None
+    try:
+        entry = json.loads(_entry(folder, kind, key).read_text())
+        if entry["key"] == key:
+            return decode(entry["value"])
+    except (OSError, ValueError, KeyError, TypeError):
+        pass  # not there, or not readable
+    return None
+
+
+def keep(kind: str, key: str, value: T, *, encode: Callable[[T], object] = lambda x: x) -> None:
+    """Store ``value`` under (``kind``, ``key``) for later runs (nothing when the store is off or
+    cannot be written to); ``key`` must say everything the value depends on."""
+    folder = _store()
+    if folder is None:
+        return
+    path = _entry(folder, kind, key)
+    text = json.dumps({"key": key, "value": encode(value)})
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, temporary = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+    except OSError:
+        return  # a folder that cannot be written to: the result is used, not kept
+    try:
+        with os.fdopen(fd, "w") as out:
+            out.write(text)
+        os.replace(temporary, path)
+    except OSError:
+        Path(temporary).unlink(missing_ok=True)
+
+
 def remembered(kind: str, key: str, compute: Callable[[], T], *, encode: Callable[[T], object] = lambda x: x,
                decode: Callable[[object], T] = lambda x: x) -> T:
     """``compute()``, or the value an earlier run of this engine stored under (``kind``, ``key``).
@@ -95,27 +140,8 @@ def remembered(kind: str, key: str, compute: Callable[[], T], *, encode: Callabl
     ``key`` must say everything the value depends on (a problem's ``repr``); ``encode`` turns the
     value into JSON-able data and ``decode`` back.
     """
-    folder = _store()
-    if folder is None:
-        return compute()
-    path = _entry(folder, kind, key)
-    try:
-        entry = json.loads(path.read_text())
-        if entry["key"] == key:
-            return decode(entry["value"])
-    except (OSError, ValueError, KeyError, TypeError):
-        pass  # not there, or not readable: computed below
-    value = compute()
-    text = json.dumps({"key": key, "value": encode(value)})
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, temporary = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    except OSError:
-        return value  # a folder that cannot be written to: the result is used, not kept
-    try:
-        with os.fdopen(fd, "w") as out:
-            out.write(text)
-        os.replace(temporary, path)
-    except OSError:
-        Path(temporary).unlink(missing_ok=True)
+    value = recall(kind, key, decode=decode)
+    if value is None:
+        value = compute()
+        keep(kind, key, value, encode=encode)
     return value

@@ -36,7 +36,7 @@ Example
 from __future__ import annotations
 
 import sys
-from collections import Counter, deque
+from collections import Counter
 from collections.abc import Iterator
 from functools import lru_cache
 from typing import TYPE_CHECKING
@@ -45,6 +45,7 @@ import numpy as np
 import pynauty
 
 from ..errors import InvalidOption
+from ..execution.executor import Executor
 from ..structure.disjoint import DisjointSets
 from .train import GearTrain, axis_paths
 
@@ -299,25 +300,10 @@ def _bar(total: int, progress: bool):
 
 
 def _run_units(jobs, workers: int | None, work):
-    workers = workers or 1
-    if workers == 1 or len(jobs) < 8:
-        for job in jobs:
-            yield work(job)
-        return
-    from ..execution.executor import process_pool  # workers leave Ctrl-C to this process and die with it
-
-    pool = process_pool(workers)
-    window: deque = deque()  # at most 4 trees a worker in flight: results never pile up
-    try:
-        for job in jobs:
-            window.append(pool.apply_async(work, (job,)))
-            if len(window) >= 4 * workers:
-                yield window.popleft().get()
-        while window:
-            yield window.popleft().get()
-    finally:  # Ctrl-C, an error or a reader that stops early: no worker goes on
-        pool.terminate()
-        pool.join()
+    """``work`` on every job, in order: inline for one worker or fewer than 8 jobs, else on a pool
+    with at most 4 trees a worker in flight (results never pile up)."""
+    with Executor((workers or 1) if len(jobs) >= 8 else 1) as executor:
+        yield from executor.map(work, jobs)
 
 
 def trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1,

@@ -28,7 +28,7 @@ from mechbase import Row
 from ..structure.chain import Chain
 from ..errors import InvalidOption
 from ..structure.kinds import lever_analogue as lever_of
-from ..structure.subchains import _MAX_CORE
+from ..structure.subchains import MAX_CORE
 from .train import GearTrain
 
 __all__ = ["RING", "CARRIER", "SUN", "AssurGroup", "PlanetaryRow", "planetary_train", "lever_analogue",
@@ -172,11 +172,11 @@ def planetary_rows(satellites: tuple[int, int], sun: str = "floating"):
     lo, hi = satellites
     if lo < 1:
         raise InvalidOption(f"a planetary train needs at least one satellite, not {lo}")
-    most = next(k for k in range(1, _MAX_CORE + 1) if _core_links(k + 1, sun) > _MAX_CORE)
+    most = next(k for k in range(1, MAX_CORE + 1) if _core_links(k + 1, sun) > MAX_CORE)
     if hi > most:
         raise InvalidOption(f"{lo}..{hi} satellites: at most {most}, whose lever analogue has "
                             f"{_core_links(most, sun)} non-binary links (the exact sub-chain test handles up to "
-                            f"{_MAX_CORE})")
+                            f"{MAX_CORE})")
     for k in range(lo, hi + 1):
         yield planetary_row(k, sun)
 

@@ -290,14 +290,14 @@ class _DesignModel:
 
     def _solve(self, model, minimise=None):
         """Solve ``model`` (minimising ``minimise``); Ctrl-C stops the search within milliseconds."""
-        from ..synthesis._cpsat import _solve as solve_stoppable
+        from ..execution.interrupt import solve_stoppably
 
         solver = self.cp.CpSolver()
         solver.parameters.num_workers = 1
         solver.parameters.catch_sigint_signal = False  # Ctrl-C belongs to the caller (KeyboardInterrupt)
         if minimise is not None:
             model.minimize(minimise)
-        status = solve_stoppable(solver, model, None)
+        status = solve_stoppably(solver, model)
         if status not in (self.cp.OPTIMAL, self.cp.FEASIBLE):
             return None
         return solver

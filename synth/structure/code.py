@@ -26,9 +26,9 @@ from functools import cached_property
 
 from ..errors import MalformedCode
 
-__all__ = ["Code"]
+__all__ = ["Code", "MAX_LOOPS"]
 
-_MAX_LOOPS = 10_000  # a code is written with one count per loop (n2 … n_{K+1})
+MAX_LOOPS = 10_000  # the most loops a code is read or written with: it is written with one count per loop (n2 … n_{K+1})
 _CODE_RE = re.compile(r"^\s*(?:(\d+)\|)?([0-9.,]+)\s*/\s*([0-9]+(?:-[0-9]+)*)\s*$")
 
 
@@ -204,10 +204,10 @@ class Code:
             composition = tuple(numbers)
             v = sum((k + 1) * vk for k, vk in enumerate(composition))
         code = cls(tuple(counts), v, composition, int(n1_text) if n1_text else 0)
-        if code.loops > _MAX_LOOPS:  # its written form alone (one count per loop) would fill memory
+        if code.loops > MAX_LOOPS:  # its written form alone (one count per loop) would fill memory
             written = text.strip()
             shown = written if len(written) <= 40 else f"{written[:20]}… ({len(written)} characters)"
-            raise MalformedCode(f"code {shown} describes a chain of {code.loops} loops, more than the {_MAX_LOOPS} "
+            raise MalformedCode(f"code {shown} describes a chain of {code.loops} loops, more than the {MAX_LOOPS} "
                                 "a code is read with")
         return code
 

@@ -39,9 +39,9 @@ from .joints import JOINT_KINDS, PRISMATIC
 from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
-__all__ = ["SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities"]
+__all__ = ["MAX_CORE", "SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities"]
 
-_MAX_CORE = 24
+MAX_CORE = 24  # non-binary links the exact test handles (2^24 subsets of the core)
 _MAX_SCANNED = 22  # links of a chain with prismatic pairs: every subset is scanned (4 M sets)
 _BLOCK = 1 << 16  # subsets T of the core links scanned at once (a block of W is candidates × _BLOCK)
 _BIG = 1 << 20  # stands for "no proper sub-chain of two links or more"
@@ -448,8 +448,8 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     h = chain.h
     degrees = chain.degrees
     core = sorted({x for j in chain.joints if len(j) > 2 for x in j} | {i for i, d in enumerate(degrees) if d != 2})
-    if len(core) > _MAX_CORE:
-        raise MalformedChain(f"the exact sub-chain test handles up to {_MAX_CORE} non-binary links, not {len(core)}")
+    if len(core) > MAX_CORE:
+        raise MalformedChain(f"the exact sub-chain test handles up to {MAX_CORE} non-binary links, not {len(core)}")
     # two links on one joint always give W = h − (h − 1) = 1: the least value any larger S must beat
     best = (1, chain.joints[0][:2]) if chain.joints and chain.links > 2 else (10**9, ())
     if not core:  # a single loop of binary links: its proper sub-chains are open paths, W ≥ 1

@@ -10,13 +10,11 @@ engine builds with OR-Tools' deprecation warnings turned into errors.
 
 from __future__ import annotations
 
-import os
-import signal
-import threading
-import time
 from collections.abc import Sequence
 
 from ortools.sat.python import cp_model
+
+from ..execution.interrupt import solve_stoppably
 
 __all__ = ["cp_model", "all_solutions", "each_solution"]
 
@@ -83,7 +81,7 @@ def all_solutions(
     """
     solver = _solver(model, variables, time_limit, fixed_search)
     collector = _Collector(variables, limit, tick)
-    status = _solve(solver, model, collector)
+    status = solve_stoppably(solver, model, collector)
     complete = status in (cp_model.OPTIMAL, cp_model.INFEASIBLE)
     if not complete and not (limit is not None and len(collector.solutions) >= limit):
         raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.status_name(status)})")
@@ -102,7 +100,7 @@ def each_solution(model: cp_model.CpModel, variables: Sequence[cp_model.IntVar],
     """
     solver = _solver(model, variables, None, fixed_search)
     collector = _Batches(variables, fn, batch)
-    status = _solve(solver, model, collector)
+    status = solve_stoppably(solver, model, collector)
     if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE):
         raise RuntimeError(f"CP-SAT stopped before the enumeration was complete ({solver.status_name(status)})")
     if collector.batch:
@@ -126,58 +124,3 @@ def _solver(model, variables, time_limit: float | None, fixed_search: bool):
         model.add_decision_strategy(variables, cp_model.CHOOSE_FIRST, cp_model.SELECT_MIN_VALUE)
         solver.parameters.search_branching = cp_model.FIXED_SEARCH
     return solver
-
-
-# ------------------------------------------------------------------- Ctrl-C
-# CP-SAT searches without the GIL, and Python runs its SIGINT handler only between bytecodes
-# of the main thread: a search that finds no solution for minutes would hold Ctrl-C back for
-# minutes.  Python also writes the number of every caught signal to its wakeup file descriptor;
-# a daemon thread reading it stops the searches running now, and the pending handler raises
-# KeyboardInterrupt as soon as ``Solve`` returns.  (Pool workers ignore SIGINT: their parent
-# terminates them.)
-_RUNNING: set = set()
-_watching = False
-
-
-def _watch_interrupts() -> None:
-    """Start the thread that stops searches on Ctrl-C (once, from the main thread only).
-
-    A wakeup descriptor set by someone else (an asyncio loop) is left alone.
-    """
-    global _watching
-    if _watching or threading.current_thread() is not threading.main_thread():
-        return
-    _watching = True
-    read, write = os.pipe()
-    os.set_blocking(write, False)
-    try:
-        previous = signal.set_wakeup_fd(write, warn_on_full_buffer=False)
-    except ValueError:  # pragma: no cover - not the main thread of the main interpreter
-        previous = None
-    if previous != -1:
-        if previous is not None:
-            signal.set_wakeup_fd(previous)
-        os.close(read)
-        os.close(write)
-        return
-    threading.Thread(target=_stop_on_interrupt, args=(read,), daemon=True, name="cp-sat-ctrl-c").start()
-
-
-def _stop_on_interrupt(fd: int) -> None:
-    while True:
-        if signal.SIGINT not in os.read(fd, 64):
-            continue
-        for _ in range(20):  # a search started in the instant after the signal is caught too
-            for solver in list(_RUNNING):
-                solver.stop_search()
-            time.sleep(0.05)
-
-
-def _solve(solver, model, callback):
-    """``solver.solve(model, callback)``, stopped within milliseconds by Ctrl-C (KeyboardInterrupt)."""
-    _watch_interrupts()
-    _RUNNING.add(solver)
-    try:
-        return solver.solve(model, callback)
-    finally:
-        _RUNNING.discard(solver)

@@ -24,16 +24,21 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-
-import numpy as np
+from functools import lru_cache
+from typing import TYPE_CHECKING
 
 from ..errors import QueryTooLarge
 
-__all__ = ["Bound", "code_bound", "check_excess", "MAX_EXCESS"]
+if TYPE_CHECKING:
+    import numpy as np
+
+__all__ = ["Bound", "code_bound", "coarse_bound", "check_excess", "MAX_EXCESS"]
 
 # The table of partitions has one entry per unit of excess 2K − 2 + n1: beyond this the
 # problem is refused unsized (K = 500 000 loops; the largest published tables stop at K = 10).
 MAX_EXCESS = 1_000_000
+# coarse_bound counts in integers up to this excess (K = 51 closed loops; 10 000 steps of its table)
+_COARSE_EXCESS = 100
 _SECONDS = 1.0  # time allowed for sizing (a problem whose bound is already above ``stop`` ends then)
 
 
@@ -48,6 +53,8 @@ class Bound:
 
 def _partitions_bounded(table: np.ndarray, part: int, most: int | None) -> np.ndarray:
     """Convolve ``table`` with 0 … ``most`` copies of ``part`` (None: any number)."""
+    import numpy as np
+
     size = len(table)
     if most is None or most * part >= size:
         rows = -(-size // part)
@@ -80,6 +87,43 @@ def check_excess(problem) -> int:
     return top
 
 
+def coarse_bound(problem) -> int | None:
+    """A coarser upper bound of the codes than :func:`code_bound`, from the excess alone, in
+    integers and without numpy (a small count never loads it); None above an excess of 100.
+
+    Each of the ``n1`` values adds at most one term per split of the excess e = 2K − 2 + n1 − v
+    between the links (a partition of e) and v (a partition of v, or one way): at most
+    q(top) = Σ_v p(v)·p(top − v) codes, with p the partition numbers and top the largest excess
+    (q grows with its argument, p being non-decreasing).
+
+    >>> from synth.synthesis.number_synthesis import make_problem
+    >>> problem = make_problem(1, loops=5)
+    >>> coarse_bound(problem), code_bound(problem).value   # 12 links: 53 codes of table 1
+    (185, 53.0)
+    """
+    n1_lo, n1_hi = _open_links(problem)
+    top = 2 * problem.loops - 2 + n1_hi
+    if n1_hi < n1_lo or top < 0:
+        return 0
+    if top > _COARSE_EXCESS:
+        return None
+    return (n1_hi - n1_lo + 1) * _partition_pairs(top)
+
+
+@lru_cache(maxsize=None)
+def _partition_pairs(top: int) -> int:
+    """Σ_{v=0..top} p(v)·p(top − v): the pairs of partitions of two numbers adding up to ``top``.
+
+    >>> [_partition_pairs(n) for n in range(5)]   # the coefficients of P(x)², OEIS A000712
+    [1, 2, 5, 10, 20]
+    """
+    p = [1] + [0] * top
+    for part in range(1, top + 1):
+        for x in range(part, top + 1):
+            p[x] += p[x - part]
+    return sum(p[v] * p[top - v] for v in range(top + 1))
+
+
 def code_bound(problem, *, stop: float = math.inf) -> Bound:
     """An upper bound of the codes of a validated :class:`~synth.synthesis.number_synthesis.Problem`.
 
@@ -95,6 +139,8 @@ def code_bound(problem, *, stop: float = math.inf) -> Bound:
     >>> code_bound(make_problem(1, loops=4, require=["5=1.."])).value  # the seven codes of the locomotive drive
     7.0
     """
+    import numpy as np
+
     K = problem.loops
     requirements = dict(problem.requirements)
     n1_lo, n1_hi = _open_links(problem)

@@ -25,7 +25,7 @@ from dataclasses import dataclass, fields, replace
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
 from ..execution.memo import remembered
 from ..structure._params import check_dof, check_extra_mobility, check_motion_space
-from ..structure.code import _MAX_LOOPS, Code
+from ..structure.code import MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
 
 __all__ = ["CodeQuery", "Problem", "number_synthesis", "iter_codes", "make_problem", "parse_range",
@@ -185,9 +185,9 @@ def make_problem(query: CodeQuery | int | None = None, /, **options) -> Problem:
     if n > _MAX_LINKS:
         raise QueryTooLarge(f"n = {n} links (W = {dof}, K = {K}): number synthesis lists codes of chains of up to "
                             f"{_MAX_LINKS:_} links".replace("_", " "))
-    if K > _MAX_LOOPS:
+    if K > MAX_LOOPS:
         raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
-                            f"are written and read up to {_MAX_LOOPS} loops")
+                            f"are written and read up to {MAX_LOOPS} loops")
     n1_range = parse_range(query.n1, "n1")
     if n1_range[1] is None:
         n1_range = (n1_range[0], n)
@@ -417,13 +417,16 @@ def iter_codes(query: CodeQuery | int | None = None, /, *, max_codes: int | None
 
 def _refuse_too_many(problems: list[Problem], max_codes: int | None) -> None:
     """Size the problems (largest first) and refuse them together above ``max_codes`` codes."""
-    from ._sizing import check_excess, code_bound
+    from ._sizing import check_excess, coarse_bound, code_bound
     from ..execution.sizes import describe_seconds, magnitude
 
     if max_codes is None:  # asked for any number: only a model that cannot exist is refused
         for problem in problems:
             check_excess(problem)
         return
+    coarse = [coarse_bound(problem) for problem in problems]
+    if None not in coarse and sum(coarse) <= max_codes:
+        return  # surely few codes: the finer bound's tables are not needed
     total, exact = 0.0, True
     for problem in sorted(problems, key=lambda p: -p.loops):
         bound = code_bound(problem, stop=max_codes - total)

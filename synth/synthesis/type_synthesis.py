@@ -35,7 +35,8 @@ from dataclasses import dataclass
 from mechbase import Row
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
-from ..execution.executor import process_pool, run_plan
+from ..execution.executor import Executor, run_plan
+from ..execution.memo import keep, recall
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
@@ -200,23 +201,16 @@ def plan_units(query: ChainQuery | int | None = None, links: int | None = None, 
     """
     query = ChainQuery.of(query, links, **options)
     _check_workers(workers)
-    workers = workers or os.cpu_count() or 1
-    if workers == 1:
-        return plan_many([query])[0]
-    pool = process_pool(workers)
-    try:
-        return plan_many([query], pool=pool)[0]
-    finally:
-        pool.terminate()
-        pool.join()
+    with Executor(workers or os.cpu_count() or 1) as executor:
+        return plan_many([query], executor=executor)[0]
 
 
-def plan_many(queries, *, pool=None, skip_impossible: bool = False) -> list[list[Unit]]:
+def plan_many(queries, *, executor: Executor | None = None, skip_impossible: bool = False) -> list[list[Unit]]:
     """:func:`plan_units` for several queries at once: stage A of all their codes in one batch.
 
-    ``queries`` are :class:`ChainQuery` objects (or keyword dictionaries of one); ``pool`` is an
-    optional ``multiprocessing`` pool that runs stage A; with ``skip_impossible`` a query the
-    counting equations rule out gets no units instead of raising :class:`ImpossibleParameters`.
+    ``queries`` are :class:`ChainQuery` objects (or keyword dictionaries of one); ``executor``
+    runs stage A (default: inline); with ``skip_impossible`` a query the counting equations rule
+    out gets no units instead of raising :class:`ImpossibleParameters`.
 
     >>> [len(units) for units in plan_many([dict(dof=1, links=8), dict(dof=1, links=9)], skip_impossible=True)]
     [4, 0]
@@ -234,7 +228,7 @@ def plan_many(queries, *, pool=None, skip_impossible: bool = False) -> list[list
         jobs += found
         owners += [index] * len(found)
     plans: list[list[Unit]] = [[] for _ in queries]
-    batches = pool.imap(job_units, jobs) if pool is not None else map(job_units, jobs)
+    batches = (executor or Executor()).map(job_units, jobs)
     for owner, batch in zip(owners, batches):
         plans[owner].extend(batch)
     return plans
@@ -314,7 +308,6 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
 
     ``work`` returns the unit's chains or its counts by code; the progress bar adds up either.
     """
-    workers = workers or os.cpu_count() or 1
     bar = None
     if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
         from tqdm import tqdm
@@ -324,20 +317,22 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
         found = 0
         # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
         # a plan with such codes goes to the pool at once, a smaller one starts inline
-        inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in jobs), default=0) <= _INLINE_BRANCH else 0.0
-        if any(uses_kernel(c, conv) for c, conv in jobs):
+        to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
+        inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
+        if any(uses_kernel(c, conv) for c, conv in to_run):
             load_kernel()  # once, here: the workers forked later inherit it
-        if any(needs_solver(c, conv) for c, conv in jobs):
+        if any(needs_solver(c, conv) for c, conv in to_run):
             from . import _cpsat  # noqa: F401 - likewise the solver (≈ 0.3 s), and outside the inline phase's clock
-        for event in run_plan(jobs, job_units, work, workers=workers, client=client,
-                              skip_item=skip_code, skip_unit=skip_unit, inline_seconds=inline, ordered=ordered):
-            if bar is not None:
-                if event[1] is None:
-                    bar.update(1)
-                else:
-                    found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
-                    bar.set_postfix(chains=found, refresh=False)
-            yield event
+        with Executor(workers or os.cpu_count() or 1, client) as executor:
+            for event in run_plan(jobs, job_units, work, executor=executor, skip_item=skip_code, skip_unit=skip_unit,
+                                  inline_seconds=inline, ordered=ordered):
+                if bar is not None:
+                    if event[1] is None:
+                        bar.update(1)
+                    else:
+                        found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
+                        bar.set_postfix(chains=found, refresh=False)
+                yield event
     finally:
         if bar is not None:
             bar.close()
@@ -411,17 +406,28 @@ def _describe(what: str, query: ChainQuery) -> str:
     return " ".join([what] + [f"{k}={v}" for k, v in query.to_dict().items()]).replace("'", "")
 
 
-def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log) -> Counts:
-    """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked."""
+def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log,
+           remember: bool = False) -> Counts:
+    """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked; with
+    ``remember``, each code's counts read from the store of earlier runs, or kept there once found."""
     from contextlib import ExitStack
 
     _check_workers(workers)
     if query.prismatic is not None and (checkpoint is not None or scheduler is not None):
         raise InvalidOption("chains with prismatic pairs are counted on this machine, without a checkpoint or a "
                             "scheduler")
+    if remember and (checkpoint is not None or scheduler is not None):
+        raise InvalidOption("counts are kept between runs only for a count on this machine without a checkpoint: "
+                            "a checkpoint or a scheduler says where to work, and every unit is run")
     jobs = plan_jobs(query)
     names = [str(c) for c, _ in jobs]
     totals: dict[str, int] = {}
+    stored = {i: found for i, job in enumerate(jobs) if remember
+              for found in [recall("counts", repr((what, *job)))] if found is not None}
+    for found in stored.values():
+        for name, n in found.items():
+            totals[name] = totals.get(name, 0) + n
+    found_now: dict[int, dict[str, int]] = {}  # counts of the codes run here (with ``remember``)
     with ExitStack() as stack:
         client = None
         if scheduler is not None:  # (before the checkpoint: an unreachable scheduler leaves no file behind)
@@ -437,15 +443,19 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             for name, n in list(ck.codes.items()) + list(ck.units.values()):
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
-                            skip_code=(lambda i: names[i] in ck.codes) if ck else None,
+                            skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
                             skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:
                     ck.finish_code(names[index], totals.get(names[index], 0), units=result)
+                if remember:  # every unit of the code ran here: its counts are whole
+                    keep("counts", repr((what, *jobs[index])), found_now.pop(index, {}))
                 continue
             for name, n in result.items():
                 totals[name] = totals.get(name, 0) + n
+                if remember:
+                    found_now.setdefault(index, {})[name] = found_now.get(index, {}).get(name, 0) + n
             if ck is not None:
                 ck.add_unit(unit.key, names[index], result.get(names[index], 0))
     order = {name: i for i, name in enumerate(dict.fromkeys(names))}
@@ -459,13 +469,16 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, **options) -> Counts:
+                 log=None, remember: bool = False, **options) -> Counts:
     """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
     With ``checkpoint`` (a file path) finished units are committed as they finish and a rerun
     with the same file resumes (see :mod:`synth.execution.checkpoint`); with ``scheduler`` (a Dask
-    address such as ``tcp://host:8786``) the units run on that cluster.
+    address such as ``tcp://host:8786``) the units run on that cluster.  With ``remember`` (what the
+    command line does), each code's counts are kept in the store of solver results
+    (:mod:`synth.execution.memo`) once found, and a later count of the same code reads them
+    instead of running its units (not with a checkpoint or a scheduler, which ask for the units run).
 
     >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
@@ -473,7 +486,7 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     {'4/0': 1, '4/0 P1': 1, '4/0 P2': 2}
     """
     query = ChainQuery.of(query, links, **options)
-    return _count(count_unit, "chains", query, workers, progress, checkpoint, scheduler, timeout, log)
+    return _count(count_unit, "chains", query, workers, progress, checkpoint, scheduler, timeout, log, remember)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,

@@ -119,8 +119,12 @@ def test_resume_after_interrupt_stores_nothing_twice(tmp_path, monkeypatch):
 
 def test_rotation_cells_keep_the_first_train_whatever_order_units_finish(tmp_path, monkeypatch):
     grid = parse_grid('[[gears]]\nlinks = 7\ngraphs = "rotation"\n')
-    real = runs._local
-    monkeypatch.setattr(runs, "_local", lambda tasks, pool: real(tasks[::-1], pool))  # last tree first
+    class LastTreeFirst(runs.Executor):
+        def map(self, fn, items, **options):
+            items = list(items)
+            return super().map(fn, items[::-1] if fn is runs.compute_unit else items, **options)
+
+    monkeypatch.setattr(runs, "Executor", LastTreeFirst)
     db = tmp_path / "reversed.sqlite"
     run_grid(grid, db, workers=1)
     wanted = {t.to_chain().certificate for t in trains(1, 7, "rotation")}

@@ -250,3 +250,32 @@ def test_arm_payload_table_for_toml_and_urdf_arms(tmp_path):
     assert res.payload.tuned_for == pytest.approx(2.5 * G) and res.check.relative_residual < 1e-12
     with pytest.raises(BalanceError, match=r"\[arm.payload\] the URDF has no link 'gripper' to carry the payload"):
         solve_arm({"arm": {"urdf": urdf, "payload": {"mass": [0.0, 5.0], "link": "gripper"}}}, "x.toml")
+
+
+def test_one_reader_of_compare_tables_with_the_command_lines_options_over_them(tmp_path):
+    """compare_problem reads a [compare] table, an arm's own file and a URDF file's arm, the command
+    line's options replacing the table's only after the table is checked as written."""
+    from balance.errors import SchemaError
+
+    example = str(MODELS / "compare_example1.toml")
+    written = compare_problem(load_toml(example), example)
+    over = compare_problem(load_toml(example), example, {"target": 0.1, "payload": [1.0, 2.0]})
+    assert (written.target, written.payload) == (0.2, (0.0, 3.0)) and (over.target, over.payload) == (0.1, (1.0, 2.0))
+    assert over.arm.n == written.arm.n == 4
+    bad = tmp_path / "bad.toml"
+    bad.write_text(f'[compare]\narm = "{MODELS / "arm_base_drives.toml"}"\ntarget = 5\n')
+    with pytest.raises(SchemaError, match="bad.toml: \\[compare\\] key 'target' must be < 1, not 5"):
+        compare_problem(load_toml(str(bad)), str(bad), {"target": 0.1})  # the file's own value is wrong
+    arm_file = str(MODELS / "arm_base_drives.toml")
+    own = compare_problem(load_toml(arm_file), arm_file, {"samples": 50})
+    assert own.arm.n == 4 and own.samples == 50 and own.target == 0.05
+    urdf = str(MODELS / "arm_base_drives.urdf")
+    assert compare_problem({"arm": {"urdf": urdf, "name": "arm_base_drives.urdf"}}, urdf).arm.n == 4
+
+
+def test_the_strategy_table_is_what_a_comparison_shows(example1):
+    """The strategies come from one table, name → builder, in its order (a slide makes some unavailable)."""
+    from balance.problems.compare import STRATEGIES
+
+    assert STRATEGIES == ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
+    assert tuple(s.name for s in example1.strategies) == STRATEGIES

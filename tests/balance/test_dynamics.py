@@ -74,7 +74,15 @@ def test_one_mass_keeping_inertia_is_bounded():
     assert out["one_mass"]["valid_interval"] == pytest.approx(math.sqrt((C - 0.1) / 2.0))
 
 
-@pytest.mark.parametrize("args", [(0, 0.1, 1, 0.5), (1, 0.1, -1, 0.5), (1, 0.1, 1, 0.5, "curved")])
-def test_bad_dynamics_input(args):
-    with pytest.raises(InvalidInput):
-        slide_dynamics(*args, samples=2)
+@pytest.mark.parametrize("args, options, words", [
+    ((0, 0.1, 1, 0.5), {}, "the link mass m must be a positive number, not 0"),
+    ((1, 0.1, -1, 0.5), {}, "the counter-mass M must be a positive number, not -1"),
+    ((1, 0.1, 1, 0.0), {}, "the stroke q_max must be a positive number, not 0.0"),
+    ((1, 0.1, 1, 0.5), {"length": 0.0}, "the length must be a positive number, not 0.0"),
+    ((1, 0.1, 1, 0.5), {"parent_mass": math.nan}, "the parent mass must be a positive number, not nan"),
+    ((1, 0.1, 1, 0.5), {"samples": 0}, "the dynamics check needs at least one sample, not 0"),
+    ((1, 0.1, 1, 0.5, "curved"), {}, "the sliding-link arm is 'spatial' or 'planar', not 'curved'")])
+def test_bad_dynamics_input(args, options, words):
+    with pytest.raises(InvalidInput) as info:
+        slide_dynamics(*args, **{"samples": 2, **options})
+    assert str(info.value) == words + "."

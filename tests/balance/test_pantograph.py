@@ -125,3 +125,92 @@ def test_bad_pantograph():
         solve_pantograph({"pantograph": {"l2": 1, "l3": 1, "ratio": 3, "cylinder": {"base": [0.0, 0.0]}}})
     with pytest.raises(InvalidArm, match="p.toml"):
         solve_pantograph({"pantograph": {"l2": -1, "l3": 1, "ratio": 3}}, "p.toml")
+
+
+def test_points_by_hand():
+    """θ2 = 30°, θ3 = −45°, l2 = 0.8, l3 = 1.2, k = 3, offset 0.15: every joint from its definition."""
+    p = Pantograph(l2=0.8, l3=1.2, k=3.0)
+    r2, r3 = math.radians(30), math.radians(-45)
+    u2, u3 = np.array([math.cos(r2), math.sin(r2)]), np.array([math.cos(r3), math.sin(r3)])
+    P = {k: v[0] for k, v in p.points(np.array([r2, r3])).items()}
+    expect = {"A": np.zeros(2), "D": 0.8 * u2, "C": 0.8 * u2 + 1.2 * u3, "E": 0.8 / 3 * u2,
+              "B": 0.8 / 3 * u2 + 0.4 * u3, "F": 0.8 * u2 + 0.4 * u3}
+    expect.update({k + "1": expect[k] + np.array([0.0, -0.15]) for k in "ADC"})
+    assert set(P) == set(expect)
+    for k, v in expect.items():
+        np.testing.assert_allclose(P[k], v, atol=1e-15, err_msg=k)
+
+
+def test_substitution_weights_with_centres_off_the_middle():
+    """Forearm 1.25 m with its centre of mass 0.5 m from D: 60 % of w3 at D, 40 % at C; upper arm
+    0.8 m with its centre 0.2 m from A: 75 % of w2 at A."""
+    p = Pantograph(l2=0.8, l3=1.25, k=4.0, w2=100.0, w3=50.0, s2=0.2, s3=0.5)
+    w = p.point_weights()
+    assert w["A"] == pytest.approx(75.0) and w["D"] == pytest.approx(25.0 + 30.0)
+    assert w["C"] == pytest.approx(20.0) and w["B"] == 0.0
+    half = Pantograph(l2=0.8, l3=1.25, k=4.0, w3=50.0).point_weights()  # centres at the middle
+    assert half["D"] == pytest.approx(25.0) and half["C"] == pytest.approx(25.0)
+    # the bars and plates: w9 (E→B) splits 1 − 1/k : 1/k between A and D and half to B, and so on
+    bars = Pantograph(l2=0.8, l3=1.25, k=4.0, w9=8.0, w8=16.0, w14=2.0, w15=4.0, w16=1.0, w4=3.0, tool=5.0,
+                      payload=10.0).point_weights(payload_fraction=1.0)
+    assert bars["A"] == pytest.approx(4.0 * 0.75 + 1.0)
+    assert bars["D"] == pytest.approx(4.0 / 4 + 8.0 * 0.75 + 1.0 + 2.0 + 1.0)
+    assert bars["B"] == pytest.approx(4.0 + 8.0)
+    assert bars["C"] == pytest.approx(8.0 / 4 + 2.0 + 3.0 + 5.0 + 10.0)
+
+
+def test_each_body_centre_of_mass_by_hand():
+    """(a, b) of every body's centre, height a·sin θ2 + b·sin θ3, from the figure's geometry."""
+    l2, l3, k = 0.8, 1.25, 4.0
+    p = Pantograph(l2=l2, l3=l3, k=k, w2=1, w3=2, w9=3, w8=4, w14=5, w15=6, w16=7, w4=8, tool=9, payload=10,
+                   s2=0.3, s3=0.5)
+    e, g = l2 / k, l3 / k
+    expect = {"2": (1, 0.3, 0.0), "3": (2, l2, 0.5), "9": (3, e, g / 2), "8": (4, (l2 + e) / 2, g),
+              "14": (5, l2 / 2, 0.0), "15": (6, l2, l3 / 2), "16": (7, l2, 0.0), "4": (8, l2, l3),
+              "tool": (9, l2, l3), "payload": (2.5, l2, l3)}
+    got = {name: (w, a, b) for name, w, a, b in p.height_coefficients(payload_fraction=0.25)}
+    assert list(got) == list(expect)
+    for name, v in expect.items():
+        assert got[name] == pytest.approx(v, abs=1e-15), name
+    # the default payload is half of it, in the forces as in the load reduced to B
+    th = np.array([[0.4, -0.3]])
+    only = Pantograph(l2=l2, l3=l3, k=k, payload=10.0)
+    np.testing.assert_allclose(only.gravity_forces(th), [[-5.0 * l2 * math.cos(0.4), -5.0 * l3 * math.cos(-0.3)]])
+    assert only.vertical_load() == pytest.approx(k * 5.0)
+    with_tool = Pantograph(l2=l2, l3=l3, k=k, w2=60.0, tool=20.0, payload=10.0)
+    np.testing.assert_allclose(virtual_work_forces(with_tool, th)[:, 0], with_tool.cylinder_force(th, 0.5), rtol=1e-12)
+
+
+def test_spring_term_is_the_weight_at_d_on_the_upper_arm():
+    """W_D·l2·sin θ2 as the potential (cos(θ2 − 90°)) and W_D·l2·cos θ2 as the moment, whatever θ3."""
+    p = Pantograph(l2=0.8, l3=1.25, k=4.0, w2=60.0, w3=40.0)
+    wd = p.point_weights()["D"]
+    th = np.array([[0.3, 1.1], [-0.7, -0.2], [1.2, 0.0]])
+    term = p.term()
+    np.testing.assert_allclose(term.value(th), wd * 0.8 * np.sin(th[:, 0]), atol=1e-12)
+    np.testing.assert_allclose(term.moment(th[:, 0]), wd * 0.8 * np.cos(th[:, 0]), atol=1e-12)
+
+
+def test_sample_fills_the_ranges():
+    p = Pantograph(l2=0.8, l3=1.0, k=4.0, range2=(-0.5, 1.0), range3=(0.2, 0.9))
+    th = p.sample(2000, seed=5)
+    for j, (lo, hi) in enumerate((p.range2, p.range3)):
+        assert lo <= th[:, j].min() < lo + 0.01 * (hi - lo) and hi - 0.01 * (hi - lo) < th[:, j].max() <= hi
+    np.testing.assert_array_equal(p.sample(3, seed=5), th[:3])  # seeded: the same draws again
+
+
+@pytest.mark.parametrize("bad, match", [
+    (dict(l2=0.0), "length l2 must be positive, not 0.0"), (dict(offset=-0.1), "length offset must be positive"),
+    (dict(k=1.0), "ratio k = AC/AB must exceed 1, not 1.0"),
+    (dict(range2=(0.5, 0.5)), "angle range must be finite with low < high"),
+    (dict(range3=(math.nan, 1.0)), "angle range"), (dict(range3=(0.0, math.inf)), "angle range"),
+    (dict(range2=(-math.inf, 1.0)), "angle range"),
+    (dict(range2=(1.0, 0.0)), "angle range")])
+def test_bad_pantograph_geometry(bad, match):
+    with pytest.raises(InvalidArm, match=match.replace("(", r"\(").replace(")", r"\)")):
+        Pantograph(**{"l2": 0.8, "l3": 1.0, "k": 3.0, **bad})
+
+
+def test_ratio_just_above_one_is_a_pantograph():
+    p = Pantograph(l2=0.8, l3=1.0, k=1.5)
+    assert p.g == pytest.approx(1.0 / 1.5)

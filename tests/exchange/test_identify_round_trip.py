@@ -154,3 +154,104 @@ def test_a_mechanism_with_an_input_link_comes_back_to_its_row_in_the_input_link_
         rows_of_code = [m.certificate for m in listed if str(m.chain.code) == code]
         assert found.mechanism_index == rows_of_code.index(mech.certificate) + 1
         assert found.mechanisms_listed == len(rows_of_code)
+
+
+@pytest.mark.parametrize("classes, code, loops, indexed", [
+    ("3=3,5=1", "10.0.0.2/0", 4, True),     # the documented limit: 4 loops of simple joints
+    ("3=4,5=1", "12.0.0.0.2/0", 5, False),  # one loop more
+    ("3=2,5=1", "811/1", 3, True),          # with a multiple joint the limit is one loop lower
+    ("3=3,5=1", "10.0.1.1/1", 4, False),
+])
+def test_a_heterogeneous_row_is_found_unasked_up_to_the_documented_loops(capsys, classes, code, loops, indexed):
+    """A heterogeneous listing is not sized: identify lists it unasked up to 4 loops (3 with a multiple
+    joint); each row read back names its own row number in the listing the command printed."""
+    from mechsynth.cli import main
+
+    assert main(["chains", "--dof", "1", "--loop-classes", classes, "--code", code, "--format", "jsonl"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert rows and all(r["loops"] == loops for r in rows)
+    for number in sorted({1, len(rows) // 2 + 1, len(rows)}):
+        found = identify(json.dumps(rows[number - 1]))
+        assert found.listing == f"mechsynth chains --dof 1 --loop-classes {classes} --code {code}"
+        if indexed:
+            assert (found.index, found.listed, found.note) == (number, len(rows), "")
+        else:
+            assert (found.index, found.listed) == (None, None)
+            assert found.note.startswith(f"its place in the listing was not computed: the code has {loops} loops")
+            assert identify(json.dumps(rows[number - 1]), index=True).index == number
+
+
+@pytest.mark.parametrize("text", [
+    "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h2: 0 1 2 3 4 5",          # a base of a lower class than the chain's
+    "0-1 1-2 2-3 3-0 | h5: 0 1 2 3",                              # no loop of the chain's own class
+    "0-1 1-2 2-3 3-0 4-5 5-6 6-7 7-4 0-4 2-6 | h5: 0 1 2 3; h4: 4 5 6 7",  # three classes
+])
+def test_a_heterogeneous_chain_no_listing_holds_says_why(text):
+    found = identify(text)
+    assert (found.listing, found.index) == (None, None)
+    assert found.note == ("heterogeneous chains are listed with two loop classes, a base of the higher class on a "
+                          "chain of the lower one")
+
+
+def test_a_heterogeneous_chain_with_a_rigid_sub_chain_is_in_the_rigid_listing(capsys):
+    """Chains of K3 = 2, K5 = 1 that only --rigid-subchains lists: each is found there, at its row; one
+    more joint inside its rigid sub-chain over-constrains it, and no listing holds it."""
+    from mechsynth.cli import main
+
+    def listing(*extra):
+        assert main(["chains", "--dof", "1", "--loop-classes", "3=2,5=1", "--code", "640/0", "--format", "jsonl",
+                     *extra]) == 0
+        return [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+
+    plain = {r["certificate"] for r in listing()}
+    rigid = listing("--rigid-subchains")
+    only = [(number, r) for number, r in enumerate(rigid, start=1) if r["certificate"] not in plain]
+    assert len(only) > 3
+    for number, row in only[:: len(only) // 3]:
+        found = identify(json.dumps(row))
+        assert found.listing == "mechsynth chains --dof 1 --loop-classes 3=2,5=1 --code 640/0 --rigid-subchains"
+        assert (found.index, found.listed, found.worst_mobility) == (number, len(rigid), 0)
+    # links 0, 2, 3, 4, 5 of this chain are rigid (5 links, 6 pins: 3·4 − 2·6 = 0); a pin 2-4 makes them −2
+    text = "0-2 0-4 0-5 1-2 1-6 1-9 2-3 3-4 3-5 6-7 7-8 8-9 | h5: 1 6 7 8 9"
+    assert identify(text).worst_subchain == [0, 2, 3, 4, 5]
+    over = identify(text.replace("2-3 ", "2-3 2-4 "))
+    assert (over.listing, over.index, over.worst_mobility) == (None, None, -2)
+    assert over.note == "an over-constrained chain (a sub-chain with W(S) < 0) is in no listing"
+
+
+def test_a_heterogeneous_truss_is_in_the_plain_listing(capsys):
+    """W = 0: the chain itself is rigid, which every truss listing allows (no --rigid-subchains)."""
+    from mechsynth.cli import main
+
+    assert main(["chains", "--dof", "0", "--loop-classes", "3=2,5=1", "--code", "702/0", "--format", "jsonl"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    for number, row in enumerate(rows, start=1):
+        found = identify(json.dumps(row))
+        assert found.listing == "mechsynth chains --dof 0 --loop-classes 3=2,5=1 --code 702/0"
+        assert (found.dof, found.index, found.listed) == (0, number, len(rows))
+        assert found.subchains == "none"  # judged with rigid sub-chains allowed, as a truss is
+
+
+def test_a_rigid_sub_chain_or_a_gear_mesh_chooses_the_listing():
+    """A rigid triangle in a 1-DOF chain: the --rigid-subchains listing, at the row that listing gives
+    it; a gear mesh: no listing of type synthesis."""
+    text = "0-1 1-2 2-0 0-3 3-4 4-5 5-1"
+    listed = list(synth.type_synthesis(synth.ChainQuery(1, code="42/0", rigid_subchains=True), workers=1))
+    found = identify(text)
+    assert found.listing == "mechsynth chains --code 42/0 --rigid-subchains" and found.worst_mobility == 0
+    assert listed[found.index - 1].certificate == found.certificate and found.listed == len(listed)
+    gears = identify("0-1 0-2 1~2")
+    assert (gears.listing, gears.index) == (None, None)
+    assert gears.note == ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
+                          "listed by 'mechsynth gears')")
+
+
+def test_the_size_of_a_mechanism_listing_counts_mechanisms():
+    """A 10-link chain: its listing sized as chains (230 chains of 10 links) and, with a frame, as
+    mechanisms (1 834): each estimate within a factor of two of its exact count."""
+    from synth.analysis import identify as module
+
+    chain = list(synth.type_synthesis(1, 10, workers=1))[-1]
+    query, _ = module.listing_query(chain, 1, None, False)
+    assert 115 < module.index_size(chain, query).chains < 460
+    assert 917 < module.index_size(chain, query, mechanisms=True).chains < 3668

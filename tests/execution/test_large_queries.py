@@ -45,6 +45,12 @@ def _slow_square(x):
     return x * x
 
 
+def _pool2(*args, **kwargs) -> list:
+    """Every event of run_plan on an executor of two local workers, closed after it."""
+    with _executor.Executor(2) as executor:
+        return list(_executor.run_plan(*args, executor=executor, **kwargs))
+
+
 # task_seconds: None (stage A's worker works on every unit of these small items), 1e-9 (on none:
 # every unit goes out in a batch), and a slow work of which the worker does a few, the rest batched
 _FUSION = [(None, _square), (1e-9, _square), (0.01, _slow_square)]
@@ -55,8 +61,7 @@ _FUSION = [(None, _square), (1e-9, _square), (0.01, _slow_square)]
 def test_pool_pipeline_keeps_plan_order(window, task_seconds, work):
     items = [3, 0, 5, 1, 4]
     inline = list(_executor.run_plan(items, _units, _square))
-    pooled = list(_executor.run_plan(items, _units, work, workers=2, inline_seconds=0, window=window,
-                                     task_seconds=task_seconds))
+    pooled = _pool2(items, _units, work, inline_seconds=0, window=window, task_seconds=task_seconds)
     assert pooled == inline
     assert [e for e in inline if e[1] is None] == [(0, None, 3), (1, None, 0), (2, None, 5), (3, None, 1), (4, None, 4)]
 
@@ -67,7 +72,7 @@ def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
     ticks = itertools.count()
     monkeypatch.setattr(_executor.time, "perf_counter", lambda: float(next(ticks)))  # a clock that counts calls
     items = [5, 3]
-    events = list(_executor.run_plan(items, _units, _square, workers=2, inline_seconds=3))
+    events = _pool2(items, _units, _square, inline_seconds=3)
     assert events == list(_executor.run_plan(items, _units, _square))
 
 
@@ -75,8 +80,8 @@ def test_inline_phase_hands_the_rest_of_an_item_to_the_pool(monkeypatch):
 @pytest.mark.parametrize("window", [1, 3, 64])
 def test_unordered_pipeline_yields_every_unit_before_its_item(window, task_seconds, work):
     items = [3, 0, 5, 1, 4, 7, 2]
-    events = list(_executor.run_plan(items, _units, work, workers=2, inline_seconds=0, window=window,
-                                     ordered=False, task_seconds=task_seconds))
+    events = _pool2(items, _units, work, inline_seconds=0, window=window, ordered=False,
+                    task_seconds=task_seconds)
     assert sorted(events, key=repr) == sorted(_executor.run_plan(items, _units, _square), key=repr)
     closed = {index: k for k, (index, unit, _) in enumerate(events) if unit is None}
     assert all(k < closed[index] for k, (index, unit, _) in enumerate(events) if unit is not None)
@@ -98,8 +103,8 @@ def _square_but_zero(x):
 
 def test_skipped_items_and_units_are_not_run():
     items = [3, 2]
-    events = list(_executor.run_plan(items, _units, _square_but_zero, workers=2, inline_seconds=0,
-                                     skip_item=lambda i: i == 1, skip_unit=lambda u: u == 0))
+    events = _pool2(items, _units, _square_but_zero, inline_seconds=0, skip_item=lambda i: i == 1,
+                    skip_unit=lambda u: u == 0)
     assert events == [(0, 1, 1), (0, 2, 4), (0, None, 3)]
 
 
@@ -120,7 +125,7 @@ def test_small_query_starts_no_pool(monkeypatch):
 def test_pool_and_inline_counts_agree():
     inline = count_chains(1, 10, workers=1)
     # inline_seconds=0 through run_plan: every code goes to the pool
-    events = list(_executor.run_plan([1], _units, _square, workers=2, inline_seconds=0))
+    events = _pool2([1], _units, _square, inline_seconds=0)
     assert events == [(0, 0, 0), (0, None, 1)]
     assert count_chains(1, 10, workers=2) == inline
     assert count_mechanisms(1, 8, workers=2) == count_mechanisms(1, 8, workers=1)

@@ -94,3 +94,63 @@ def test_the_store_is_turned_off(setting, monkeypatch):
         assert len(calls) == 2
     finally:
         memo._store.cache_clear()
+
+
+# ------------------------------------------------------------------ counts kept between runs
+COUNT_SCRIPT = """
+import json, sys
+from mechsynth import cli
+status = cli.main(sys.argv[1:])
+print(json.dumps([status, sorted(m for m in ("numpy", "multiprocessing", "ortools") if m in sys.modules)]),
+      file=sys.stderr)
+"""
+
+
+def _count_cli(store, *args):
+    env = dict(os.environ, MECHSYNTH_CACHE=str(store))
+    out = subprocess.run([sys.executable, "-c", COUNT_SCRIPT, *args], env=env, capture_output=True, text=True,
+                         timeout=600, cwd=Path(__file__).resolve().parents[2])
+    status, modules = json.loads(out.stderr.strip().splitlines()[-1])
+    return out.stdout, status, modules
+
+
+def test_a_count_asked_again_is_read_from_the_store_without_numpy_or_a_pool(tmp_path):
+    """The 12-link count of the issue: the second run reads each code's count, runs no unit, loads
+    neither numpy (its sizing is coarse enough in integers) nor multiprocessing, and prints the same."""
+    query = ["chains", "--dof", "1", "--links", "12", "--count", "--workers", "2"]
+    first, status, cold_modules = _count_cli(tmp_path, *query)
+    again, status_again, warm_modules = _count_cli(tmp_path, *query)
+    off, _, _ = _count_cli("off", *query)
+    assert first == again == off and status == status_again == 0
+    assert json.loads(first)["count"] == 6856
+    assert "numpy" in cold_modules and warm_modules == []
+    assert len(list(tmp_path.rglob("counts/*.json"))) == 15  # one entry per code
+
+
+@pytest.fixture
+def own_store(monkeypatch, tmp_path):
+    """A store of this test's own (the session's may hold counts other tests kept)."""
+    monkeypatch.setenv("MECHSYNTH_CACHE", str(tmp_path / "store"))
+    memo._store.cache_clear()
+    yield tmp_path
+    memo._store.cache_clear()
+
+
+def test_stored_codes_are_read_and_the_others_counted(monkeypatch, own_store):
+    from synth.errors import InvalidOption
+    from synth.synthesis import type_synthesis as ts
+
+    tmp_path = own_store
+
+    fresh = ts.count_chains(1, 8, v="0..2", workers=1)
+    assert ts.count_chains(1, 8, workers=1, remember=True).count == 16  # stores 440/0, 521/0 and 602/0
+    ran = []
+    real = ts.count_unit
+    monkeypatch.setattr(ts, "count_unit", lambda unit: ran.append(str(unit.code)) or real(unit))
+    assert ts.count_chains(1, 8, v="0..2", workers=1, remember=True) == fresh
+    assert ran and not {"440/0", "521/0", "602/0"} & set(ran)
+    ran.clear()
+    assert ts.count_chains(1, 8, v="0..2", workers=1, remember=True) == fresh and ran == []  # all stored now
+    with pytest.raises(InvalidOption, match="kept between runs only"):
+        ts.count_chains(1, 8, workers=1, remember=True, checkpoint=tmp_path / "unused.sqlite")
+    assert not (tmp_path / "unused.sqlite").exists()

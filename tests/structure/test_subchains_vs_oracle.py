@@ -178,8 +178,8 @@ def test_core_limit(monkeypatch):
     def ring_on_one_joint(n):  # a loop of n links that all share one more (multiple) joint: n core links
         return Chain(n, [(i, (i + 1) % n) for i in range(n)] + [tuple(range(n))])
 
-    assert mobility._MAX_CORE == 24
-    monkeypatch.setattr(mobility, "_MAX_CORE", 6)
+    assert mobility.MAX_CORE == 24
+    monkeypatch.setattr(mobility, "MAX_CORE", 6)
     chain = ring_on_one_joint(6)
     _check(chain.links, chain.joints, False)
     with pytest.raises(MalformedChain, match="up to 6 non-binary links, not 7"):

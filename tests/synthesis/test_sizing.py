@@ -60,3 +60,16 @@ def test_large_queries_are_refused_by_their_size_without_a_model(monkeypatch):
 def test_a_bound_beyond_floating_point_is_infinite_not_an_error():
     bound = code_bound(make_problem(1, loops=9000), stop=MAX_CODES)
     assert bound.value > MAX_CODES
+
+
+@pytest.mark.parametrize("query", PROBLEMS + [dict(dof=1, loops=20), dict(dof=2, loops=12, n1="0..30"),
+                                              dict(dof=1, loops=51), dict(dof=3, loops=9, v="0..8", compositions=True)],
+                         ids=str)
+def test_the_coarse_bound_is_never_below_the_bound(query):
+    """coarse_bound decides alone (no numpy) when it is at most the limit: it must bound code_bound."""
+    from synth.synthesis._sizing import coarse_bound
+
+    q = dict(query)
+    problem = make_problem(q.pop("dof"), **q)
+    coarse = coarse_bound(problem)
+    assert coarse is not None and coarse >= code_bound(problem).value

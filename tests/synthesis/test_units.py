@@ -113,19 +113,19 @@ def test_the_model_conditions_are_the_exact_subchain_test(query, monkeypatch):
 
 
 class _PoolSpy:
-    """A process pool that says which stage it ran (``imap``) and that it was shut down."""
+    """A process pool that says how many tasks it was given (``apply_async``) and that it was shut down."""
 
     made: list = []
 
     def __init__(self, workers):
         import multiprocessing
 
-        self.workers, self.mapped, self._pool = workers, 0, multiprocessing.get_context("fork").Pool(workers)
+        self.workers, self.tasks, self._pool = workers, 0, multiprocessing.get_context("fork").Pool(workers)
         _PoolSpy.made.append(self)
 
-    def imap(self, func, jobs):
-        self.mapped += 1
-        return self._pool.imap(func, jobs)
+    def apply_async(self, func, args, **callbacks):
+        self.tasks += 1
+        return self._pool.apply_async(func, args, **callbacks)
 
     def terminate(self):
         self._pool.terminate()
@@ -137,20 +137,21 @@ class _PoolSpy:
 def test_plan_units_is_inline_on_one_worker_and_on_a_pool_otherwise(monkeypatch):
     import os
 
+    import synth.execution.executor as ex
     import synth.synthesis.type_synthesis as ts
 
-    monkeypatch.setattr(ts, "process_pool", _PoolSpy)
+    monkeypatch.setattr(ex, "process_pool", _PoolSpy)
     _PoolSpy.made = []
     inline = ts.plan_units(1, 8, workers=1)
     ts.plan_units(1, 8)  # the default: inline (a plan is small next to its units)
     assert _PoolSpy.made == []
     pooled = ts.plan_units(1, 8, workers=2)
-    assert [(p.workers, p.mapped) for p in _PoolSpy.made] == [(2, 1)]
+    assert [(p.workers, p.tasks) for p in _PoolSpy.made] == [(2, 3)]  # stage A of the three codes
     assert [u.key for u in pooled] == [u.key for u in inline]
     _PoolSpy.made = []
     ts.plan_units(1, 8, workers=None)  # every core
     cores = os.cpu_count() or 1
-    assert [(p.workers, p.mapped) for p in _PoolSpy.made] == ([] if cores == 1 else [(cores, 1)])
+    assert [(p.workers, p.tasks) for p in _PoolSpy.made] == ([] if cores == 1 else [(cores, 3)])
 
 
 @pytest.mark.parametrize("links, workers, message", [

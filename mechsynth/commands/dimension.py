@@ -1,0 +1,323 @@
+"""CLI command ``dimension``: the dimensions with which a given mechanism meets a target — a path
+(with or without timing), a function (input–output angles) or poses of a body.
+
+The target is a CSV or JSON file (columns ``x,y`` / ``x,y,input`` / ``input,output`` / ``x,y,angle``,
+a ``*_deg`` column in degrees); the topology is a linkage file (its pose is a first guess) or a
+joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
+linkage file that ``move`` and ``scene`` read, and drawn over the target.
+
+Example
+-------
+>>> import os, tempfile
+>>> from mechsynth.cli import main
+>>> folder = tempfile.mkdtemp()
+>>> target = os.path.join(folder, "function.csv")
+>>> _ = open(target, "w").write("input_deg,output_deg\\n40,70\\n60,85\\n80,105\\n")
+>>> main(["dimension", target, "--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0", "--budget", "5",
+...       "--format", "jsonl"])  # doctest: +ELLIPSIS
+{"kind": "function", ...}
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+
+from .._argtypes import output_file, seconds, whole, workers
+from .._output import pairs, write_document
+
+__all__ = ["add_commands"]
+
+
+def _picture(text: str) -> str:
+    return output_file(text, (".png", ".svg"), "the picture")
+
+
+def _saved(text: str) -> str:
+    return output_file(text, (".toml", ".json"), "the linkage")
+
+
+def _number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, not {text!r}")
+    return value
+
+
+def _limits(text: str) -> tuple[float, float]:
+    """``A..B``: two finite numbers, A < B."""
+    parts = text.split("..")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected A..B, not {text!r}")
+    lo, hi = (_number(p) for p in parts)
+    if not lo < hi:
+        raise argparse.ArgumentTypeError(f"expected A..B with A < B, not {text!r}")
+    return lo, hi
+
+
+def _box(text: str) -> tuple[float, float, float, float]:
+    """``x0..x1,y0..y1``."""
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected x0..x1,y0..y1, not {text!r}")
+    (x0, x1), (y0, y1) = (_limits(p) for p in parts)
+    return x0, x1, y0, y1
+
+
+def add_commands(sub) -> None:
+    """Mount ``dimension`` on the ``mechsynth`` parser."""
+    p = sub.add_parser("dimension", help="dimensional synthesis: the dimensions with which a mechanism traces a path, "
+                                         "generates a function or guides a body")
+    p.add_argument("target", metavar="TARGET", help="a .csv or .json target: columns x,y (a path), x,y,input (timed "
+                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees")
+    p.add_argument("--linkage", metavar="FILE", help="the mechanism as a linkage file (.toml or .json); its pose is a "
+                   "first guess")
+    p.add_argument("--mechanism", metavar="CHAIN", help="the mechanism as a joint list, e.g. '0-1 1-2 2-3 3-0'")
+    p.add_argument("--frame", type=whole, help="with --mechanism: the fixed link")
+    p.add_argument("--input", metavar="JOINT", help="with --mechanism: the input joint of the frame, e.g. 0-1 "
+                   "(default: the frame's first revolute joint)")
+    p.add_argument("--tracer-link", type=whole, metavar="L", help="the link carrying the tracer point P (path, "
+                   "motion; default the coupler)")
+    p.add_argument("--output-link", type=whole, metavar="L", help="a function's output link, pivoted on the frame "
+                   "(default: the only other one)")
+    p.add_argument("--crank", action="store_true", help="the input must turn fully")
+    p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
+                   "length for a slide) over the target")
+    p.add_argument("--min-transmission", type=_number, metavar="DEG", help="least transmission angle of every "
+                   "dyad over the target (over the turn for a crank), degrees")
+    p.add_argument("--max-ratio", type=_number, metavar="R", help="bound on the longest over the shortest "
+                   "distance between two joints of one link")
+    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
+    p.add_argument("--reach", type=_number, help="the search box: joints within this many target "
+                   "sizes of its centre (default 4; a function: frame lengths, default 2)")
+    p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
+                   "(one of infinitely many exact solutions is returned)")
+    p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")
+    p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
+    p.add_argument("--workers", type=workers, default=1, help="processes for the global search (default 1)")
+    p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
+                   "(the result with its linkage) or jsonl (one row)")
+    p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
+                   "and scene read; or .json)")
+    p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
+                   "(.png or .svg)")
+    p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
+                   "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
+    p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
+    p.add_argument("--top", type=workers, default=5, metavar="K", help="with --db: topologies polished (default 5; "
+                   "the best of every link count is always among them)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="with --db: polish the topologies on a Dask scheduler")
+    p.set_defaults(run=_run)
+
+
+def _check(args) -> None:
+    """Every contradiction refused before any work."""
+    from synth import InvalidOption
+
+    if args.db is None:
+        alone = [name for name, value in (("--links", args.links), ("--top", args.top != 5),
+                                          ("--scheduler", args.scheduler)) if value]
+        if alone:
+            raise InvalidOption(f"{', '.join(alone)} go{'es' * (len(alone) == 1)} with --db (the search over an atlas)")
+    else:
+        from .dimension_atlas import check
+
+        check(args)
+    if args.db is None and bool(args.linkage) == bool(args.mechanism):
+        raise InvalidOption("give one mechanism: --linkage FILE, or --mechanism CHAIN --frame F"
+                            + (" (not both)" if args.linkage else ""))
+    if args.linkage and (args.frame is not None or args.input is not None):
+        raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
+    if args.mechanism and args.frame is None:
+        raise InvalidOption("--mechanism needs --frame F: the fixed link")
+    if args.crank and args.rocker:
+        raise InvalidOption("--crank and --rocker contradict each other: the input turns fully or rocks within limits")
+    if args.min_transmission is not None and not 0 < args.min_transmission < 90:
+        raise InvalidOption(f"--min-transmission must be between 0 and 90 degrees, not {args.min_transmission:g}")
+    if args.max_ratio is not None and not args.max_ratio > 1:
+        raise InvalidOption(f"--max-ratio must be above 1 (the longest over the shortest), not {args.max_ratio:g}")
+    if args.reach is not None and not args.reach > 0:
+        raise InvalidOption(f"--reach must be a positive number of target sizes, not {args.reach:g}")
+    if args.seed < 0:
+        raise InvalidOption(f"--seed must be a whole number ≥ 0, not {args.seed}")
+    outputs = [os.path.realpath(p) for p in (args.out, args.save) if p]
+    if len(set(outputs)) != len(outputs):
+        raise InvalidOption("--out and --save name the same file: give them different files")
+    for given in (args.target, args.linkage):
+        if given and os.path.realpath(given) in outputs:
+            raise InvalidOption(f"{given} is read by this command: an output would overwrite it")
+
+
+def _mechanism(args):
+    """The linkage or mechanism to dimension."""
+    from synth import Chain, InvalidOption, Mechanism
+    from synth.motion import read_linkage
+
+    if args.linkage:
+        return read_linkage(args.linkage)
+    chain = Chain.parse(args.mechanism)
+    if not 0 <= args.frame < chain.links:
+        raise InvalidOption(f"--frame {args.frame} is not a link of the chain (links 0 … {chain.links - 1})")
+    driven = None
+    if args.input is not None:
+        links = sorted(int(x) for x in args.input.replace("=", "-").split("-") if x.strip().isdigit())
+        if len(links) != 2 or tuple(links) not in chain.joints or args.frame not in links:
+            raise InvalidOption(f"--input {args.input} must be a joint of the frame (link {args.frame}) and one "
+                                f"moving link, written like {args.frame}-1")
+        driven = links[0] if links[1] == args.frame else links[1]
+    return Mechanism(chain, args.frame, driven)
+
+
+def _run(args) -> int:
+    from tqdm import tqdm
+
+    from synth.dimension import Constraints, read_target, synthesize
+
+    _check(args)
+    target = read_target(args.target, output_link=args.output_link)
+    if args.output_link is not None and target.kind != "function":
+        from synth import InvalidOption
+
+        raise InvalidOption("--output-link names a function's output; this target is a " + target.kind)
+    if args.tracer_link is not None and target.kind == "function":
+        from synth import InvalidOption
+
+        raise InvalidOption("--tracer-link names the link of a path's or motion's tracer; this target is a function")
+    if args.db is not None:
+        from .dimension_atlas import run
+
+        constraints = Constraints(crank=args.crank, rocker=args.rocker and tuple(math.radians(v) for v in args.rocker),
+                                  min_transmission=math.radians(args.min_transmission or 0.0),
+                                  max_ratio=args.max_ratio, pivots=args.pivots, reach=args.reach)
+        return run(args, target, constraints, save=_save, draw=_draw)
+    mechanism = _mechanism(args)
+    constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
+                              min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
+                              pivots=args.pivots, reach=args.reach)
+    with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
+              bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s {postfix}",
+              disable=not sys.stderr.isatty()) as bar:
+        def progress(used: float, cost: float) -> None:
+            bar.n = round(used, 1)
+            bar.set_postfix_str(f"best {math.sqrt(cost):.3g}" if cost < 1e3 else "")
+
+        result = synthesize(mechanism, target, tracer_link=args.tracer_link, constraints=constraints,
+                            budget=args.budget, seed=args.seed, workers=args.workers,
+                            underdetermined=args.underdetermined, progress=progress)
+    _write(result, args.format)
+    if not result.met:
+        print(f"mechsynth: no mechanism met the constraints within the budget; the best found fails: "
+              f"{'; '.join(result.failed())} (nothing saved or drawn)", file=sys.stderr)
+        return 1
+    if args.save:
+        _save(result, args.save)
+        print(f"linkage -> {args.save}", file=sys.stderr)
+    if args.out:
+        _draw(result, args.out)
+        print(f"picture -> {args.out}", file=sys.stderr)
+    return 0
+
+
+def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
+    """The rocker's limits in the input's unit: degrees to radians for a revolute input."""
+    from synth import JointKind
+    from synth.motion import Linkage
+
+    chain = mechanism.chain
+    if isinstance(mechanism, Linkage):
+        k = mechanism.inputs[0]
+    else:
+        k = next(k for k, j in enumerate(chain.joints) if mechanism.frame in j and len(j) == 2
+                 and (mechanism.input_link is None or mechanism.input_link in j))
+    return tuple(math.radians(v) for v in limits) if chain.kinds[k] == JointKind.REVOLUTE else limits
+
+
+def _write(result, fmt: str) -> None:
+    from synth.motion import joint_name
+
+    if fmt == "jsonl":
+        sys.stdout.write(json.dumps(result.row()) + "\n")
+        return
+    if fmt == "json":
+        write_document(result.to_dict(), "json", "")
+        return
+    lk = result.linkage
+    unit = "rad" if result.kind == "function" else "target units"
+    lines = [("mechanism", f"{lk.chain.compact()}, frame {lk.frame}, input {joint_name(lk.chain, lk.inputs[0])}"),
+             ("target", f"{result.kind}, {len(result.errors)} points, size {result.size:.6g}"),
+             (f"error max ({unit})", result.error_max), (f"error rms ({unit})", result.error_rms),
+             ("relative max", result.relative_max), ("relative rms", result.relative_rms)]
+    if result.angle_errors is not None:
+        lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
+    for name, c in result.constraints.items():
+        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}"
+                      + (f" (limit {_value(c['limit'])})" if c["limit"] is not None else "")))
+    for k in range(len(lk.chain.joints)):
+        lines.append((f"joint {joint_name(lk.chain, k)}", f"{lk.points[k][0]:.10g}, {lk.points[k][1]:.10g}"))
+    for name, (link, at) in lk.tracers.items():
+        lines.append((f"tracer {name} (link {link})", f"{at[0]:.10g}, {at[1]:.10g}"))
+    for link, length in sorted(lk.lengths().items()):
+        lines.append((f"link {link} length", length))
+    lines += [("CPU seconds", result.seconds), ("evaluations", result.evaluations), ("method", result.method)]
+    write_document({}, "table", pairs(lines))
+
+
+def _value(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    if isinstance(v, list):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    return str(v)
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    return "{ " + ", ".join(f"{json.dumps(str(k))} = {_toml_value(x)}" for k, x in v.items()) + " }"
+
+
+def _save(result, path: str) -> None:
+    """The linkage as JSON, or as a TOML scene (``move`` reads its ``[linkage]``, ``scene`` runs it)."""
+    d = result.linkage.to_dict()
+    with open(path, "w", encoding="utf-8") as fh:
+        if path.lower().endswith(".json"):
+            json.dump(d, fh, indent=2)
+            fh.write("\n")
+            return
+        name = os.path.splitext(os.path.basename(path))[0]
+        fh.write(f"# Found by 'mechsynth dimension': {result.kind} target of {len(result.errors)} points, error max "
+                 f"{result.error_max:.6g} (relative {result.relative_max:.3g}).\n\n")
+        fh.write(f'[scene]\nname = {json.dumps(name)}\ndescription = "a linkage found by dimensional synthesis"\n'
+                 f'source = "mechsynth dimension"\ncompute = ["motion"]\n\n[linkage]\n')
+        for key, value in d.items():
+            fh.write(f"{key} = {_toml_value(value)}\n")
+
+
+def _draw(result, path: str) -> None:
+    """The mechanism in its pose over the target's points and the traced curve."""
+    from synth.motion import motion_range, sweep
+    from synth.motion_draw import draw_motion
+
+    lk = result.linkage
+    reach = motion_range(lk)
+    if reach.full_rotation:
+        motion = sweep(lk, steps=721)
+    else:
+        motion = sweep(lk, steps=721, start=reach.limits[0], stop=reach.limits[1])
+    marks = None if result.kind == "function" else result.target.points
+    draw_motion(motion, path, marks=marks,
+                title=f"{lk.chain.compact()}: {result.kind} target" + (" (circles)" if marks is not None else "")
+                + f", error max {result.error_max:.3g}")

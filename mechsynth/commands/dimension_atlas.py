@@ -1,0 +1,93 @@
+"""``mechsynth dimension TARGET --db ATLAS``: type and dimensional synthesis over an atlas — which
+mechanisms trace a closed path, each topology's best dimensions, error against links.
+
+The atlas needs its curve index (``mechsynth atlas --db ATLAS --index-curves``); the target is a path
+(columns ``x,y``, or ``x,y,input`` with timing) round a closed curve.  The command ``dimension`` reads
+its options (:mod:`mechsynth.commands.dimension`) and hands a ``--db`` run to :func:`run`.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from .._output import nothing_found, write_rows
+
+__all__ = ["check", "run", "COLUMNS"]
+
+#: the columns of the table and CSV, one row per topology, best first
+COLUMNS = ["rank", "links", "chain", "chain_id", "frame", "input", "tracer_link", "error_max", "error_rms",
+           "relative_max", "misfit", "met", "seconds"]
+
+
+def check(args) -> None:
+    """What contradicts a search over an atlas, refused before any work."""
+    from synth import InvalidOption
+
+    given = [name for name, value in (("--linkage", args.linkage), ("--mechanism", args.mechanism),
+                                      ("--frame", args.frame), ("--input", args.input),
+                                      ("--tracer-link", args.tracer_link), ("--output-link", args.output_link),
+                                      ("--underdetermined", args.underdetermined or None)) if value is not None]
+    if given:
+        raise InvalidOption(f"--db searches every topology of the atlas: it does not go with {', '.join(given)} "
+                            "(which name one topology)")
+    if args.scheduler is not None and args.workers != 1:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers polish the "
+                            "topologies")
+
+
+def links_range(text: str | None) -> tuple[int, int] | None:
+    """``--links 4..8`` (or one number) as a range of link counts."""
+    from synth import InvalidOption, SynthesisError, parse_range
+
+    if text is None:
+        return None
+    wrong = InvalidOption(f"--links must be a number of links or a range of them, low to high, from 4 (e.g. 4..8), "
+                          f"not {text!r}")
+    try:
+        lo, hi = parse_range(text, int)
+    except SynthesisError:
+        raise wrong from None
+    if lo is None or hi is None or lo > hi or lo < 4:
+        raise wrong
+    return lo, hi
+
+
+def run(args, target, constraints, *, save, draw) -> int:
+    """Search the atlas for the target; print a row per topology; ``save`` and ``draw`` the best (the
+    command's own writers of a result)."""
+    from synth import InvalidOption
+    from synth.atlas import search_atlas
+
+    if target.kind != "path":
+        raise InvalidOption(f"the atlas search looks for paths (its index holds coupler curves), not a {target.kind}: "
+                            "give the topology with --mechanism or --linkage")
+    found = search_atlas(args.db, target, links=links_range(args.links), top=args.top, budget=args.budget,
+                         constraints=constraints, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
+                         progress=sys.stderr.isatty())
+    for note in found.notes:
+        print(f"mechsynth: {note}", file=sys.stderr)
+    rows = []
+    for rank, match in enumerate(found.matches, 1):
+        row = {"rank": rank, **match.row()}
+        if args.format == "json":
+            row["linkage"] = match.result.linkage.to_dict()
+        rows.append(row)
+    if not found.index_curves:
+        return nothing_found(f"curve of the index belongs to a mechanism with {args.links} links")
+    print(f"mechsynth: {found.index_curves} indexed curves, {found.topologies} "
+          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.seconds:.1f} CPU s", file=sys.stderr)
+    if not rows:
+        return nothing_found("topology of the atlas could be dimensioned for this target within the budget")
+    write_rows(rows, COLUMNS, {"table": "table", "json": "json", "jsonl": "jsonl", "csv": "csv"}[args.format])
+    best = found.best
+    if not best.result.met:
+        print(f"mechsynth: no mechanism met the constraints within the budget; the best found fails: "
+              f"{'; '.join(best.result.failed())} (nothing saved or drawn)", file=sys.stderr)
+        return 1
+    if args.save:
+        save(best.result, args.save)
+        print(f"linkage -> {args.save}", file=sys.stderr)
+    if args.out:
+        draw(best.result, args.out)
+        print(f"picture -> {args.out}", file=sys.stderr)
+    return 0

@@ -1,0 +1,481 @@
+"""The curve index of an atlas: coupler curves of every 1-DOF planar mechanism, sampled and reduced
+to normalised Fourier descriptors, stored in the atlas's SQLite file for the atlas-wide search.
+
+A *unit* of the index is one mechanism of the atlas with its input (a chain, its frame, its input
+link up to symmetry).  Its linkage is posed by its drawing (:func:`synth.motion_draw.linkage_from_layout`);
+a seeded random generator then moves every joint by 5 … 35 % of the mechanism's size, and a pose is
+kept only when its input turns fully (a crank: the coupler curves are closed and periodic in the
+input).  On every moving link not jointed to the frame (a coupler, a *tracer link*) a tracer point is
+put at random near the link's joints, and its curve is swept at :data:`STEPS` inputs over one turn.
+Each curve is stored as two sets of Fourier coefficients c_n, n = −H … H (:data:`HARMONICS`):
+
+* ``timed``: z(φ) = Σ c_n e^{inφ} in the absolute input angle φ — the curve with its timing;
+* ``untimed``: the same series in t = 2π s / L, s the arc length from the pose's point and L the
+  curve's length — the curve alone.
+
+The coefficients themselves are stored (not only invariants), so the search can align a target
+to each sample (rotation, scale, translation, start point or input offset, direction, mirror image)
+and turn the sample into a start linkage in the target's frame (:mod:`synth.atlas.search`).
+A unit commits in one transaction with its ``done`` row, so an interrupted build resumes where it
+stopped; the index's settings (samples, harmonics, steps, seed) are kept in ``meta`` and a build
+with other settings is refused.  Mechanisms moved by Newton's method (triads and higher groups,
+about a second a sample) are left out unless asked for; prismatic and geared chains are not indexed.
+
+Example
+-------
+>>> import numpy as np
+>>> t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+>>> c = harmonics(np.exp(1j * t) + 0.5 * np.exp(-2j * t), t, 3)
+>>> [round(float(abs(x)), 9) for x in c]   # c_-3 … c_3: c_-2 = 0.5, c_1 = 1
+[0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0]
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sqlite3
+import sys
+import time
+import zlib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InvalidOption, MotionError, SynthesisError
+from ..structure.chain import Chain, Mechanism
+from .database import AtlasError, open_atlas, refuse_unwritable, transaction
+
+__all__ = ["INDEX_VERSION", "HARMONICS", "STEPS", "IndexSettings", "IndexResult", "CurveUnit", "harmonics",
+           "untimed_parameter", "periodic_harmonics", "tracer_links", "index_curves", "index_units", "sample_unit", "index_info", "NoCurveIndex"]
+
+#: version of the curve index's tables (``meta.curve_index_version``)
+INDEX_VERSION = 1
+#: Fourier harmonics kept each side of the mean: c_-H … c_H
+HARMONICS = 12
+#: inputs at which each sampled curve is swept over one turn
+STEPS = 256
+
+_TABLES = """
+CREATE TABLE IF NOT EXISTS curve_units (
+    chain INTEGER NOT NULL REFERENCES chains, frame INTEGER NOT NULL, input_link INTEGER NOT NULL,
+    input_joint INTEGER, status TEXT NOT NULL CHECK (status IN ('done', 'skipped')), note TEXT,
+    samples INTEGER NOT NULL, tries INTEGER NOT NULL, seconds REAL NOT NULL,
+    PRIMARY KEY (chain, frame, input_link)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS curve_samples (
+    id INTEGER PRIMARY KEY, chain INTEGER NOT NULL REFERENCES chains, frame INTEGER NOT NULL,
+    input_link INTEGER NOT NULL, input_joint INTEGER NOT NULL, sample INTEGER NOT NULL,
+    tracer_link INTEGER NOT NULL, points TEXT NOT NULL, tracer TEXT NOT NULL,
+    timed BLOB NOT NULL, untimed BLOB NOT NULL,
+    UNIQUE (chain, frame, input_link, sample, tracer_link)
+);
+"""
+
+
+class NoCurveIndex(AtlasError):
+    """The atlas has no curve index (or one of another version)."""
+
+
+@dataclass(frozen=True)
+class IndexSettings:
+    """How an index is sampled: poses kept per mechanism, the seed, and whether triads are included.
+
+    Parameters
+    ----------
+    samples : int
+        Poses kept per mechanism (each gives one curve per tracer link).
+    seed : int
+        Seeds every mechanism's random poses (with the mechanism's identity).
+    triads : bool
+        Also index the mechanisms moved by Newton's method (about a second a sample).
+    """
+
+    samples: int = 200
+    seed: int = 0
+    triads: bool = False
+
+    def to_meta(self) -> str:
+        return json.dumps({"samples": self.samples, "seed": self.seed, "triads": self.triads,
+                           "harmonics": HARMONICS, "steps": STEPS}, sort_keys=True)
+
+
+@dataclass(frozen=True)
+class CurveUnit:
+    """One mechanism of the atlas to sample: its chain (atlas row and JSON), frame and input link."""
+
+    chain: int
+    chain_json: str
+    frame: int
+    input_link: int
+    settings: IndexSettings
+
+
+@dataclass
+class _UnitRows:
+    unit: CurveUnit
+    input_joint: int | None
+    status: str
+    note: str | None
+    rows: list = field(default_factory=list)
+    tries: int = 0
+    seconds: float = 0.0
+
+
+@dataclass(frozen=True)
+class IndexResult:
+    """What a build did: mechanisms in the index, how many this run sampled, curves stored, time."""
+
+    units_total: int
+    units_run: int
+    units_skipped: int
+    curves: int
+    seconds: float
+    executor: str
+
+    def to_dict(self) -> dict:
+        return {"units_total": self.units_total, "units_run": self.units_run, "units_skipped": self.units_skipped,
+                "curves": self.curves, "seconds": round(self.seconds, 3), "executor": self.executor}
+
+
+# ------------------------------------------------------------------ descriptors
+def harmonics(z: np.ndarray, t: np.ndarray, count: int) -> np.ndarray:
+    """Fourier coefficients c_-count … c_count of a closed curve z(t) (complex) sampled at t (rad).
+
+    A least-squares fit of the truncated series Σ c_n e^{int} to the samples: for equally spaced
+    samples of one period it is the discrete Fourier transform; for unequal spacing (a target's
+    points) it is the closest truncated series.
+
+    Parameters
+    ----------
+    z : ndarray (N,) complex
+    t : ndarray (N,)
+        The parameter of each sample, one period being 2π.
+    count : int
+        Harmonics each side of the mean, at most (N − 1) // 2.
+
+    Returns
+    -------
+    ndarray (2·count + 1,) complex, c_-count first.
+
+    Examples
+    --------
+    >>> t = np.linspace(0, 2 * np.pi, 16, endpoint=False)
+    >>> [round(float(abs(x)), 12) for x in harmonics(3 + np.exp(-1j * t), t, 2)]
+    [0.0, 1.0, 3.0, 0.0, 0.0]
+    """
+    n = np.arange(-count, count + 1)
+    basis = np.exp(1j * np.outer(t, n))
+    return np.linalg.lstsq(basis, z, rcond=None)[0]
+
+
+def periodic_harmonics(z: np.ndarray, count: int) -> np.ndarray:
+    """The coefficients c_-count … c_count of z(t) sampled at t = 2πk/N, k = 0 … N − 1 (a discrete
+    Fourier transform; the same as :func:`harmonics` for such samples, without a solve).
+
+    >>> t = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    >>> np.allclose(periodic_harmonics(np.exp(2j * t) - 1j, 2), harmonics(np.exp(2j * t) - 1j, t, 2))
+    True
+    """
+    d = np.fft.fft(z) / len(z)
+    return np.concatenate((d[len(z) - count:], d[:count + 1]))
+
+
+def _by_arc_length(z: np.ndarray) -> np.ndarray:
+    """The closed curve through the points z resampled at as many points equally spaced along it,
+    starting at its first point (linear between the points)."""
+    t = untimed_parameter(z)
+    even = np.linspace(0, 2 * math.pi, len(z), endpoint=False)
+    closed_t = np.append(t, 2 * math.pi)
+    closed_z = np.append(z, z[0])
+    return np.interp(even, closed_t, closed_z.real) + 1j * np.interp(even, closed_t, closed_z.imag)
+
+
+def untimed_parameter(z: np.ndarray) -> np.ndarray:
+    """The arc-length parameter t = 2π s / L of the points of a closed curve (the polygon through
+    them, closed from the last back to the first), 0 at the first point.
+
+    >>> untimed_parameter(np.array([0, 1, 1 + 1j, 1j])).tolist()
+    [0.0, 1.5707963267948966, 3.141592653589793, 4.71238898038469]
+    """
+    seg = np.abs(np.diff(np.append(z, z[0])))
+    s = np.concatenate(([0.0], np.cumsum(seg[:-1])))
+    return 2 * math.pi * s / seg.sum()
+
+
+def _blob(c: np.ndarray) -> bytes:
+    return np.asarray(c, dtype=np.complex128).tobytes()
+
+
+def unblob(data: bytes) -> np.ndarray:
+    """Coefficients stored by the index (complex128)."""
+    return np.frombuffer(data, dtype=np.complex128)
+
+
+# ------------------------------------------------------------------ one mechanism
+def tracer_links(mechanism: Mechanism) -> list[int]:
+    """The moving links not jointed to the frame: the couplers, whose points trace coupler curves
+    (a point of a link pivoted on the frame traces a circle).
+
+    >>> tracer_links(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0))
+    [2]
+    """
+    chain, frame = mechanism.chain, mechanism.frame
+    touching = {link for j in chain.joints if frame in j for link in j}
+    return [link for link in range(chain.links) if link not in touching]
+
+
+def _unit_seed(unit: CurveUnit, certificate: str) -> np.random.Generator:
+    key = zlib.crc32(f"{certificate}:{unit.frame}:{unit.input_link}".encode())
+    return np.random.default_rng([unit.settings.seed, key])
+
+
+def sample_unit(unit: CurveUnit) -> _UnitRows:
+    """Sample one mechanism: ``settings.samples`` crank poses, each with a tracer point on every
+    tracer link, their curves and descriptors (the work of one unit; runs in a worker)."""
+    from ..motion import Linkage, sweep
+    from ..motion_draw import linkage_from_layout
+
+    start = time.process_time()
+    chain = Chain.from_dict(json.loads(unit.chain_json))
+    mechanism = Mechanism(chain, unit.frame, None if unit.input_link < 0 else unit.input_link)
+    links = tracer_links(mechanism)
+    if not links:
+        return _UnitRows(unit, None, "skipped", "no link carries a coupler curve (every moving link is jointed to "
+                                                "the frame)", seconds=time.process_time() - start)
+    try:
+        base = linkage_from_layout(mechanism)
+    except MotionError as exc:
+        return _UnitRows(unit, None, "skipped", f"no moving pose: {exc}", seconds=time.process_time() - start)
+    joint = base.inputs[0]
+    if not unit.settings.triads and not _closed_form(base):
+        return _UnitRows(unit, joint, "skipped", "moved by Newton's method (a triad or higher group): index it with "
+                                                 "triads", seconds=time.process_time() - start)
+    rng = _unit_seed(unit, chain.certificate)
+    size = base.scale
+    out = _UnitRows(unit, joint, "done", None)
+    groups = [[k for k, j in enumerate(chain.joints) if link in j] for link in links]
+    while len(out.rows) < unit.settings.samples * len(links) and out.tries < 40 * unit.settings.samples:
+        out.tries += 1
+        spread = rng.uniform(0.05, 0.35) * size
+        points = base.points + rng.normal(size=base.points.shape) * spread
+        tracers = {}
+        for link, ks in zip(links, groups):
+            centre = points[ks].mean(axis=0)
+            reach = max(float(np.hypot(*(points[ks] - centre).T).max()), 0.05 * size)
+            tracers[f"T{link}"] = (link, tuple(centre + rng.normal(size=2) * 0.6 * reach))
+        try:
+            linkage = Linkage(base.mechanism, base.inputs, points, tracers=tracers)
+            motion = sweep(linkage, steps=STEPS + 1)  # a crank turns once from its pose; a rocker does not
+        except SynthesisError:
+            continue
+        phi = motion.inputs[:, 0]
+        if motion.stopped is not None or abs(phi[-1] - phi[0] - 2 * math.pi) > 1e-9 \
+                or abs(phi[0] - linkage.pose_inputs[0]) > 1e-12:
+            continue
+        curves = []
+        for link in links:
+            xy = motion.tracers[f"T{link}"][:STEPS]
+            z = xy[:, 0] + 1j * xy[:, 1]
+            if not np.isfinite(z).all() or np.ptp(xy, axis=0).max() < 1e-3 * size:
+                break
+            curves.append((link, z))
+        else:
+            for link, z in curves:
+                timed = periodic_harmonics(z, HARMONICS) * np.exp(-1j * np.arange(-HARMONICS, HARMONICS + 1) * phi[0])
+                untimed = periodic_harmonics(_by_arc_length(z), HARMONICS)
+                at = tracers[f"T{link}"][1]
+                out.rows.append((out.tries, link, json.dumps(np.round(points, 12).tolist()),
+                                 json.dumps([round(float(at[0]), 12), round(float(at[1]), 12)]),
+                                 _blob(timed), _blob(untimed)))
+    out.seconds = time.process_time() - start
+    if not out.rows:
+        out.status, out.note = "skipped", f"none of {out.tries} random poses near its drawing turns its input fully"
+    return out
+
+
+def _closed_form(linkage) -> bool:
+    """Whether the motion layer moves the linkage by the dyads' closed forms (else Newton)."""
+    from ..motion import sweep
+
+    return bool(sweep(linkage, steps=2).transmission)  # (a transmission angle per closed-form dyad)
+
+
+def _expand(unit: CurveUnit) -> list:
+    return [unit]
+
+
+# ------------------------------------------------------------------ the index in the atlas
+def _settings_of(conn: sqlite3.Connection) -> dict | None:
+    row = conn.execute("SELECT value FROM meta WHERE key = 'curve_index'").fetchone()
+    return None if row is None else json.loads(row[0])
+
+
+def index_info(db: str | Path) -> dict:
+    """What the atlas's curve index holds: its settings, mechanisms done and skipped, curves.
+
+    Raises
+    ------
+    NoCurveIndex
+        The atlas has no curve index, or one of another version.
+    """
+    conn = open_atlas(db)
+    try:
+        return _info(conn, db)
+    finally:
+        conn.close()
+
+
+def _info(conn: sqlite3.Connection, db) -> dict:
+    version = conn.execute("SELECT value FROM meta WHERE key = 'curve_index_version'").fetchone()
+    if version is None:
+        raise NoCurveIndex(f"the atlas {db} has no curve index: build it with "
+                           f"'mechsynth atlas --db {db} --index-curves'")
+    if version[0] != str(INDEX_VERSION):
+        raise NoCurveIndex(f"the atlas {db} has a curve index of version {version[0]}, but this mechsynth reads "
+                           f"version {INDEX_VERSION}: rebuild it in a fresh copy of the atlas")
+    by_status = dict(conn.execute("SELECT status, COUNT(*) FROM curve_units GROUP BY status").fetchall())
+    curves = conn.execute("SELECT COUNT(*) FROM curve_samples").fetchone()[0]
+    return {"settings": _settings_of(conn), "mechanisms": by_status.get("done", 0),
+            "skipped": by_status.get("skipped", 0), "curves": curves}
+
+
+def index_units(conn: sqlite3.Connection, settings: IndexSettings, links: tuple[int, int] | None = None) -> list:
+    """Every mechanism (with its input link, up to symmetry) of the atlas's planar, all-revolute
+    1-DOF chains, with ``links`` in the given range: the units of the index, in the atlas's order."""
+    from ..synthesis.type_synthesis import mechanisms_of
+
+    lo, hi = links or (0, 10 ** 9)
+    units = []
+    for chain_id_, text in conn.execute(
+            "SELECT id, chain FROM chains WHERE dof = 1 AND h = 3 AND prismatic = 0 AND meshes = 0 "
+            "AND links BETWEEN ? AND ? ORDER BY links, v, code, certificate", (lo, hi)):
+        chain = Chain.from_dict(json.loads(text))
+        for m in mechanisms_of(chain, input_link=True):
+            units.append(CurveUnit(chain_id_, text, m.frame, -1 if m.input_link is None else m.input_link, settings))
+    return units
+
+
+def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), links: tuple[int, int] | None = None,
+                 workers: int | None = None, scheduler: str | None = None, progress: bool = False,
+                 connect_timeout: float = 5.0) -> IndexResult:
+    """Build (or resume) the curve index of an atlas.
+
+    Parameters
+    ----------
+    db : path
+        An atlas written by ``mechsynth grid``; the index is added to it (its other tables untouched).
+    settings : IndexSettings
+    links : (int, int), optional
+        Index only the mechanisms with this many links (default: every planar 1-DOF chain).
+    workers : int, optional
+        Local processes (default: all cores; 1 runs inline).
+    scheduler : str, optional
+        A Dask scheduler's address: the mechanisms are sampled there.
+    progress : bool
+        A bar on stderr (mechanisms, curves).
+
+    Returns
+    -------
+    IndexResult
+
+    Raises
+    ------
+    AtlasError
+        The file is missing, not an atlas, read-only; the index was built with other settings.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> from synth.atlas import parse_grid, run_grid
+    >>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+    >>> _ = run_grid(parse_grid('dof = 1\\nlinks = 4'), db, workers=1)
+    >>> index_curves(db, settings=IndexSettings(samples=3), workers=1).curves
+    3
+    """
+    import os
+
+    from ..execution.executor import Executor, run_plan
+
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
+    if isinstance(settings.samples, bool) or not isinstance(settings.samples, int) or not 1 <= settings.samples <= 100_000:
+        raise InvalidOption(f"samples must be a whole number 1 … 100 000 per mechanism, not {settings.samples!r}")
+    path = Path(db)
+    if not path.is_file():
+        raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
+    refuse_unwritable(path)
+    conn = open_atlas(path, write=True)
+    client = None
+    try:
+        with transaction(conn):
+            found = _settings_of(conn)
+            version = conn.execute("SELECT value FROM meta WHERE key = 'curve_index_version'").fetchone()
+            if version is not None and version[0] != str(INDEX_VERSION):
+                raise NoCurveIndex(f"the atlas {path} has a curve index of version {version[0]}; this mechsynth "
+                                   f"writes version {INDEX_VERSION}: build the index in a fresh copy of the atlas")
+            if found is not None and found != json.loads(settings.to_meta()):
+                raise AtlasError(f"the curve index of {path} was built with {_said(found)}; resume it with the same "
+                                 f"settings, not {_said(json.loads(settings.to_meta()))}")
+            for statement in _TABLES.split(";"):
+                if statement.strip():
+                    conn.execute(statement)
+            conn.execute("INSERT OR IGNORE INTO meta VALUES ('curve_index_version', ?)", (str(INDEX_VERSION),))
+            conn.execute("INSERT OR IGNORE INTO meta VALUES ('curve_index', ?)", (settings.to_meta(),))
+        units = index_units(conn, settings, links)
+        done = {tuple(r) for r in conn.execute("SELECT chain, frame, input_link FROM curve_units")}
+        todo = [u for u in units if (u.chain, u.frame, u.input_link) not in done]
+        if scheduler:
+            from ..execution.scheduler import connect
+
+            client = connect(scheduler, connect_timeout)
+        workers = workers or os.cpu_count() or 1
+        executor = f"dask {scheduler}" if scheduler else f"local {workers}"
+        start = time.perf_counter()
+        bar = None
+        if progress and todo:
+            from tqdm import tqdm
+
+            bar = tqdm(total=len(todo), unit="mechanism", file=sys.stderr, desc="curve index")
+        run = skipped = 0
+        runner = Executor(workers, client)
+        try:
+            for _, unit, result in run_plan(todo, _expand, sample_unit, executor=runner,
+                                             inline_seconds=0 if workers > 1 else 0.25, ordered=False):
+                if unit is None:
+                    continue
+                _commit(conn, result)
+                run += 1
+                skipped += result.status == "skipped"
+                if bar is not None:
+                    bar.update()
+                    bar.set_postfix(curves=len(result.rows), refresh=False)
+        finally:
+            runner.close()  # no worker outlives the index
+            if bar is not None:
+                bar.close()
+        curves = conn.execute("SELECT COUNT(*) FROM curve_samples").fetchone()[0]
+        return IndexResult(len(units), run, skipped, curves, time.perf_counter() - start, executor)
+    finally:
+        if client is not None:
+            client.close()
+        conn.close()
+
+
+def _said(settings: dict) -> str:
+    return (f"{settings['samples']} samples per mechanism, seed {settings['seed']}"
+            + (", triads" if settings.get("triads") else ", without triads"))
+
+
+def _commit(conn: sqlite3.Connection, result: _UnitRows) -> None:
+    """One mechanism's curves and its ``curve_units`` row in one transaction."""
+    u = result.unit
+    with transaction(conn):
+        conn.executemany(
+            "INSERT OR IGNORE INTO curve_samples (chain, frame, input_link, input_joint, sample, tracer_link, points, "
+            "tracer, timed, untimed) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+            [(u.chain, u.frame, u.input_link, result.input_joint, *row) for row in result.rows])
+        conn.execute("INSERT OR REPLACE INTO curve_units VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                     (u.chain, u.frame, u.input_link, result.input_joint, result.status, result.note,
+                      len({row[0] for row in result.rows}), result.tries, round(result.seconds, 4)))

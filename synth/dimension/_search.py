@@ -1,0 +1,659 @@
+"""The search: differential evolution over the dimensions, restarted while the budget lasts, each
+run's best candidates polished by bounded least squares; the result re-checked by the motion layer."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import differential_evolution, least_squares
+
+from ..errors import DimensionError, MotionError
+from ..motion import Linkage, assemble, motion_range, sweep
+from ..structure.chain import Mechanism
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio
+from ._target import FunctionTarget, MotionTarget, PathTarget
+
+__all__ = ["DimensionalResult", "synthesize"]
+
+#: weight of a constraint's squared violation against the mean squared relative error
+PENALTY = 1e2
+#: a search stops early once the relative RMS error is below this (the target is met exactly)
+EXACT = 1e-11
+#: a constraint is met within this (rad, log-ratio, target sizes)
+MET = 1e-9
+
+
+class _OutOfTime(Exception):
+    pass
+
+
+@dataclass
+class DimensionalResult:
+    """A dimensioned mechanism found for a target, with its errors and the constraints it meets.
+
+    Attributes
+    ----------
+    linkage : Linkage
+        The mechanism in its pose at the first target point; its tracer point is named "P".
+    target : PathTarget, FunctionTarget or MotionTarget
+        The target it was dimensioned for.
+    kind : str
+        "path", "function" or "motion".
+    inputs : ndarray (N,)
+        The input's value at each target point (rad or length; on the pose's branch).
+    traced : ndarray
+        What the linkage does there: tracer points (N, 2), output angles (N,), or poses (N, 3)
+        (the body's angle measured as the target's: the first pose's angle plus its turn).
+    errors : ndarray (N,)
+        Each target point's error in the target's units (distance; rad for a function; for a
+        motion the position error — the angle errors are in ``angle_errors``).
+    size : float
+        The target's size (bounding-box diagonal; 1 for a function): relative errors are over it.
+    seconds : float
+        CPU seconds of the search (this process).
+    evaluations : int
+        Candidate mechanisms evaluated.
+    method : str
+    constraints : dict name -> {"value", "limit", "met"}
+        Each constraint as re-checked by the motion layer on the returned linkage.
+    angle_errors : ndarray (N,) or None
+        A motion's angle errors (rad).
+    """
+
+    linkage: Linkage
+    target: object
+    kind: str
+    inputs: np.ndarray
+    traced: np.ndarray
+    errors: np.ndarray
+    size: float
+    seconds: float
+    evaluations: int
+    method: str
+    constraints: dict = field(default_factory=dict)
+    angle_errors: np.ndarray | None = None
+
+    @property
+    def error_max(self) -> float:
+        return float(self.errors.max())
+
+    @property
+    def error_rms(self) -> float:
+        return float(np.sqrt(np.mean(self.errors ** 2)))
+
+    @property
+    def relative_max(self) -> float:
+        return self.error_max / self.size
+
+    @property
+    def relative_rms(self) -> float:
+        return self.error_rms / self.size
+
+    @property
+    def met(self) -> bool:
+        """Every constraint met (the branch reaching every target point included)."""
+        return all(c["met"] for c in self.constraints.values())
+
+    def failed(self) -> list[str]:
+        """The constraints not met, each as a short phrase."""
+        return [f"{name} ({_said(c)})" for name, c in self.constraints.items() if not c["met"]]
+
+    def row(self) -> dict:
+        """One flat JSON-able row: errors, time, work, whether the constraints are met."""
+        row = {"kind": self.kind, "chain": self.linkage.chain.compact(), "frame": self.linkage.frame,
+               "points": len(self.errors), "error_max": self.error_max, "error_rms": self.error_rms,
+               "relative_max": self.relative_max, "relative_rms": self.relative_rms, "size": self.size}
+        if self.angle_errors is not None:
+            row["angle_error_max_deg"] = math.degrees(float(self.angle_errors.max()))
+        row.update({"met": self.met, "seconds": round(self.seconds, 3), "evaluations": self.evaluations,
+                    "method": self.method})
+        return row
+
+    def to_dict(self) -> dict:
+        """The row, the constraints, the inputs and traced values, and the linkage (its file object)."""
+        d = self.row()
+        d["constraints"] = self.constraints
+        d["inputs"] = self.inputs.tolist()
+        d["traced"] = self.traced.tolist()
+        d["errors"] = self.errors.tolist()
+        d["linkage"] = self.linkage.to_dict()
+        return d
+
+
+def _said(c: dict) -> str:
+    value, limit = c["value"], c["limit"]
+    return f"{value} against {limit}" if limit is not None else f"{value}"
+
+
+class _Watch:
+    """The budget (CPU seconds of this process) and the best candidate seen by any evaluation."""
+
+    def __init__(self, budget: float, progress, wall: bool = False):
+        self.clock = time.monotonic if wall else time.process_time
+        self.start = self.clock()
+        self.budget = budget
+        self.progress = progress
+        self.best = (math.inf, None)
+        self.count = 0
+        self.last = 0.0
+
+    def used(self) -> float:
+        return self.clock() - self.start
+
+    def over(self) -> bool:
+        return self.used() >= self.budget
+
+    def seen(self, cost: float, x) -> None:
+        self.count += 1
+        if cost < self.best[0]:
+            self.best = (cost, np.array(x, dtype=float))
+        if self.progress is not None and self.count % 64 == 0:
+            used = self.used()
+            if used - self.last > 0.2:
+                self.last = used
+                self.progress(min(used, self.budget), self.best[0])
+
+
+class _Evaluate:
+    """A candidate's residuals and cost (picklable: the search's workers call it)."""
+
+    def __init__(self, problem: Problem):
+        self.problem = problem
+
+    # ---- timed targets: the unknowns are the dimensions only
+    def timed(self, x):
+        """(residuals, violations) of the unknowns x, or the share of samples where the dyads do not
+        close (a float), or None where the pose contradicts the chain.  For a timed path x may leave
+        out the tracer point: it is then the least-squares best for the rest."""
+        p = self.problem
+        short = len(x) < p.dims
+        try:
+            lk = p.linkage(np.concatenate((x, [0.0, 0.0])) if short else x)
+            offsets = p.offsets_of_timing(lk)
+            samples = p.samples(offsets)
+            every = np.concatenate((offsets, samples))
+            n = len(offsets)
+            if short:
+                theta, t, g, mu = p.poses(lk, every)
+                if g is not None and (g < 0).any():
+                    return float((g < 0).mean())
+                link = p.tracer_link
+                values = _carried(theta[:n, link], t[:n, link], p.best_tracer(theta[:n, link], t[:n, link]))
+            else:
+                values, g, mu = p.move(lk, every)
+        except MotionError:
+            return None
+        if g is not None and (g < 0).any():
+            return float((g < 0).mean())
+        if not np.isfinite(values[:n]).all():
+            return 1.0
+        return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:])
+
+    def complete(self, x) -> np.ndarray:
+        """The full unknowns of searched ones: a timed path's best tracer point appended."""
+        p = self.problem
+        if len(x) == p.dims:
+            return np.asarray(x, dtype=float)
+        full = np.concatenate((x, [0.0, 0.0]))
+        try:
+            lk = p.linkage(full)
+            offsets = p.offsets_of_timing(lk)
+            theta, t, _, _ = p.poses(lk, offsets)
+        except MotionError:
+            return full
+        tracer = p.best_tracer(theta[:, p.tracer_link], t[:, p.tracer_link])
+        if np.isfinite(tracer).all():
+            full[-2:] = np.clip((tracer - p.centre) / p.scale, p.lower[-2:], p.upper[-2:])
+        return full
+
+    # ---- untimed targets: dimensions, then the inputs (a direction and increments)
+    def curve(self, x):
+        """The traced curve each way from the pose: (values, xs) per direction, on the branch."""
+        p = self.problem
+        lk = p.linkage(x)
+        span = p.input_span
+        xs = np.linspace(-span, span, 2 * CURVE_SAMPLES + 1)
+        values, g, mu = p.move(lk, xs)
+        ok = np.ones(len(xs), bool) if g is None else g >= 0
+        ok &= np.isfinite(np.asarray(values).reshape(len(xs), -1)).all(axis=1)
+        m = CURVE_SAMPLES
+        if not ok[m]:
+            return lk, None
+        fwd = m + (np.flatnonzero(~ok[m:])[0] if (~ok[m:]).any() else len(xs) - m)
+        back = m - (np.flatnonzero(~ok[:m + 1][::-1])[0] if (~ok[:m + 1]).any() else m + 1)
+        ways = {1: (values[m:fwd], xs[m:fwd], None if mu is None else mu[m:fwd]),
+                -1: (values[back + 1:m + 1][::-1], xs[back + 1:m + 1][::-1], None if mu is None else mu[back + 1:m + 1][::-1])}
+        return lk, ways
+
+    def project(self, values, rows):
+        """The target rows' places on the sampled curve (segments between samples), in order:
+        each row's place is at or after the one before (dynamic programming over the segments);
+        (distance² per row, place as a float sample index)."""
+        p = self.problem
+        if isinstance(p.target, MotionTarget):
+            angle = np.unwrap(values[:, 2])
+            curve = np.column_stack((values[:, :2] / p.scale, angle))
+            want = np.column_stack((rows[:, :2] / p.scale, rows[:, 2] - p.target.poses[0, 2]))
+        else:
+            curve, want = values / p.scale, rows / p.scale
+        if len(curve) < 2:
+            d = ((want[:, None, :] - curve[None, :1, :]) ** 2).sum(axis=2)
+            return d[:, 0], np.zeros(len(want))
+        a, b = curve[:-1], curve[1:]
+        ab = b - a
+        w = want[:, None, :] - a[None, :, :]
+        if isinstance(p.target, MotionTarget):  # the angle's difference modulo a turn
+            w[:, :, 2] = np.remainder(w[:, :, 2] + math.pi, 2 * math.pi) - math.pi
+        ab2 = (ab ** 2).sum(axis=1)
+        f = np.clip((w * ab[None]).sum(axis=2) / np.where(ab2 > 0, ab2, 1.0), 0.0, 1.0)
+        d = ((w - f[:, :, None] * ab[None]) ** 2).sum(axis=2)
+        total = np.empty_like(d)
+        total[0] = d[0]
+        for i in range(1, len(d)):
+            total[i] = d[i] + np.minimum.accumulate(total[i - 1])
+        k = np.empty(len(d), dtype=int)
+        k[-1] = int(np.argmin(total[-1]))
+        for i in range(len(d) - 2, -1, -1):
+            k[i] = int(np.argmin(total[i, :k[i + 1] + 1]))
+        rows_ = np.arange(len(d))
+        return d[rows_, k], np.maximum.accumulate(k + f[rows_, k])
+
+    def untimed(self, x):
+        """The global stage's cost of the dimensions alone: each later target point's distance to the
+        curve, in order, the better direction; returns (cost, direction, input offsets)."""
+        p = self.problem
+        try:
+            lk, ways = self.curve(x)
+        except MotionError:
+            return None
+        if ways is None:
+            return 1.0
+        rows = p.target.poses if isinstance(p.target, MotionTarget) else p.target.points
+        best = None
+        for direction, (values, xs, mu) in ways.items():
+            if len(values) < 2 or (p.constraints.crank and p.revolute_input and len(values) <= CURVE_SAMPLES):
+                continue
+            first = p.residuals(values[:1], rows[:1]).ravel()
+            d2, where = self.project(values, rows[1:])
+            cost = (float(first @ first) + float(d2.sum())) / len(rows)
+            reached = int(math.ceil(where.max())) + 1 if len(where) else 1
+            offsets = np.interp(where, np.arange(len(xs)), xs)
+            viol = p.violations(lk, offsets, None, None if mu is None else mu[:reached])
+            cost += PENALTY * float(viol @ viol)
+            if best is None or cost < best[0]:
+                best = (cost, direction, offsets)
+        return best if best is not None else 1.0
+
+    def __call__(self, x) -> float:
+        """The global stage's cost of the dimensions ``x``."""
+        if self.problem.timed:
+            out = self.timed(x)
+            if out is None or isinstance(out, float):
+                return INFEASIBLE * (2.0 if out is None else 1.0 + out)
+            r, viol = out
+            return float(r @ r) / self.problem.points + PENALTY * float(viol @ viol)
+        out = self.untimed(x)
+        if out is None or isinstance(out, float):
+            return INFEASIBLE * (2.0 if out is None else 1.0 + out)
+        return out[0]
+
+    # ---- the polish: a residual vector of fixed length
+    def vector(self, z, direction: int):
+        """Residuals for least squares: target rows, then constraint violations, then (untimed) the
+        turn beyond one full turn; a candidate off its branch gets a large constant vector."""
+        p = self.problem
+        size = p.equations + self.n_violations + (0 if p.timed else 1)
+        if p.timed:
+            out = self.timed(z)
+            if out is None or isinstance(out, float):
+                return np.full(size, math.sqrt(INFEASIBLE / size) * (2.0 if out is None else 1.0 + out))
+            r, viol = out
+            return np.concatenate((r / math.sqrt(p.points), math.sqrt(PENALTY) * viol))
+        x, steps = z[:p.dims], z[p.dims:]
+        offsets = direction * np.concatenate(([0.0], np.cumsum(steps)))
+        try:
+            lk = p.linkage(x)
+            samples = p.samples(offsets)
+            values, g, mu = p.move(lk, np.concatenate((offsets, samples)))
+        except MotionError:
+            return np.full(size, 2.0 * math.sqrt(INFEASIBLE / size))
+        n = len(offsets)
+        if g is not None and (g < 0).any():
+            return np.full(size, math.sqrt(INFEASIBLE / size) * (1.0 + float((g < 0).mean())))
+        if not np.isfinite(values[:n]).all():
+            return np.full(size, 2.0 * math.sqrt(INFEASIBLE / size))
+        r = p.residuals(values[:n]).ravel() / math.sqrt(p.points)
+        viol = p.violations(lk, offsets, g, None if mu is None else mu[n:])
+        beyond = max(0.0, abs(offsets[-1]) - p.input_span) if p.revolute_input else 0.0
+        return np.concatenate((r, math.sqrt(PENALTY) * viol, [math.sqrt(PENALTY) * beyond]))
+
+    @property
+    def n_violations(self) -> int:
+        c = self.problem.constraints
+        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None))
+
+
+def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:
+    if isinstance(mechanism, Linkage):
+        linkage = mechanism
+        if linkage.dof != 1:
+            raise DimensionError(f"dimensional synthesis drives one input, not W = {linkage.dof}")
+        mech = linkage.mechanism
+    elif isinstance(mechanism, Mechanism):
+        linkage, mech = None, mechanism
+    else:
+        raise DimensionError(f"synthesize takes a Mechanism or a Linkage, not {type(mechanism).__name__}")
+    if not isinstance(target, (PathTarget, FunctionTarget, MotionTarget)):
+        raise DimensionError(f"the target must be a PathTarget, FunctionTarget or MotionTarget, not "
+                             f"{type(target).__name__}")
+    if not isinstance(constraints, Constraints):
+        raise DimensionError("constraints must be a Constraints object")
+    joint, driven = input_joint_of(mech, linkage)
+    return Problem(mech, joint, target, tracer_link, constraints, driven), linkage
+
+
+def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
+               budget: float = 60.0, seed: int = 0, workers: int = 1, underdetermined: bool = False,
+               progress=None, polish_only: bool = False) -> DimensionalResult:
+    """Dimension a mechanism of given topology so that it meets a target as closely as it can.
+
+    Parameters
+    ----------
+    mechanism : Mechanism or Linkage
+        The topology, frame and input (a Mechanism's ``input_link``, else the frame's first revolute
+        joint); a Linkage also gives a first guess (its pose).
+    target : PathTarget, FunctionTarget or MotionTarget
+    tracer_link : int, optional
+        The link carrying the tracer point (default: the coupler, see :class:`Problem`).
+    constraints : Constraints
+    budget : float
+        CPU seconds of the search (this process's; with ``workers`` > 1 the parent's wall-clock
+        seconds).  The search stops earlier once the target is met exactly (relative RMS 1e-11).
+    seed : int
+        Seeds the search: the same seed and budget give the same result on an idle machine (the
+        budget cuts the last run where the clock says).
+    workers : int
+        Processes evaluating the global stage's candidates.
+    underdetermined : bool
+        Allow fewer target equations than unknowns (infinitely many exact solutions: one is
+        returned), as in Burmester's three poses.
+    progress : callable (seconds, best cost), optional
+    polish_only : bool
+        No global search: only the least-squares polish from the given Linkage's pose (the atlas
+        search starts each topology from its nearest indexed sample this way).
+
+    Returns
+    -------
+    DimensionalResult
+
+    Raises
+    ------
+    BadTarget
+        Fewer target equations than unknowns (unless ``underdetermined``), a timing over a full turn.
+    DimensionError
+        A mechanism this synthesis does not dimension (gear meshes, W ≠ 1), contradictory constraints.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.dimension import FunctionTarget
+    >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)
+    >>> r = synthesize(four_bar, FunctionTarget(np.radians([40, 60, 80]), np.radians([70, 85, 105])), budget=10)
+    >>> r.error_max < 1e-9, r.met
+    (True, True)
+    """
+    from ..errors import BadTarget
+
+    problem, start = _problem(mechanism, target, tracer_link, constraints)
+    if polish_only and start is None:
+        raise DimensionError("a polish alone starts from a dimensioned linkage, not from a Mechanism")
+    if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
+        raise DimensionError(f"the budget must be a positive number of seconds, not {budget!r}")
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise DimensionError(f"workers must be a whole number ≥ 1, not {workers!r}")
+    if problem.equations < problem.unknowns and not underdetermined:
+        per = {"path": 2, "function": 1, "motion": 3}[target.kind]
+        need = problem.unknowns - (0 if problem.timed else problem.points - 1)
+        enough = math.ceil(need / (per - (0 if problem.timed else 1)))
+        raise BadTarget(f"{problem.points} target points give {problem.equations} equations for the "
+                        f"{problem.unknowns} unknowns of this {target.kind} synthesis: give at least {enough} points "
+                        f"(or allow an underdetermined problem: {_option('underdetermined')})")
+    watch = _Watch(float(budget), progress, wall=workers > 1)
+    search = _Search(_Evaluate(problem), problem, watch)
+    rng = np.random.default_rng(seed)
+    pool = None
+    if workers > 1:
+        from ..execution.executor import process_pool
+
+        pool = process_pool(workers)
+    try:
+        if polish_only:
+            search.polish(problem.unknowns_of(start))
+        while not (polish_only or watch.over() or search.exact):
+            search.runs += 1
+            for x in search.evolve(rng, start if search.runs == 1 else None, pool):
+                search.polish(x)
+                if search.exact:
+                    break
+    except _OutOfTime:
+        pass
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+    if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
+        search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+    if search.best is None:
+        raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
+                             f"within {budget:g} s: give a longer budget or a larger reach")
+    return _result(problem, search.evaluate, search.best, watch, search.runs)
+
+
+def _option(name: str) -> str:
+    from ..errors import option
+
+    return option(name)
+
+
+class _Search:
+    """Differential evolution runs and their polish, keeping the best polished candidate."""
+
+    #: generations between polishes of a run's best; and without a 1 % improvement before a run ends
+    POLISH_EVERY, STAGNANT = 20, 60
+
+    def __init__(self, evaluate: _Evaluate, problem: Problem, watch: _Watch):
+        self.evaluate, self.problem, self.watch = evaluate, problem, watch
+        self.best = None  # (cost, unknowns, direction)
+        self.runs = 0
+
+    @property
+    def exact(self) -> bool:
+        return self.best is not None and self.best[0] <= EXACT ** 2
+
+    def evolve(self, rng, start: Linkage | None, pool) -> list:
+        """One run of differential evolution (polishing its best now and then); its best distinct
+        candidates, best first."""
+        problem, watch = self.problem, self.watch
+        state = {"generation": 0, "fun": math.inf, "improved": 0, "polished": None}
+
+        def cost(x):
+            if watch.over():
+                raise _OutOfTime
+            value = self.evaluate(x)
+            watch.seen(value, x)
+            return value
+
+        def stop(intermediate_result):
+            fun, x = float(intermediate_result.fun), intermediate_result.x
+            watch.seen(fun, x)
+            state["generation"] += 1
+            if fun < state["fun"] * (1 - 1e-2):  # a real improvement, not a crawl into a local minimum
+                state["fun"], state["improved"] = fun, state["generation"]
+            if (state["generation"] % self.POLISH_EVERY == 0 and fun < INFEASIBLE
+                    and state["polished"] != state["improved"]):
+                state["polished"] = state["improved"]
+                self.polish(x)
+            return (watch.over() or self.exact or fun <= EXACT ** 2
+                    or state["generation"] - state["improved"] > self.STAGNANT)
+
+        bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
+        x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
+        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
+                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
+                      callback=stop, x0=x0)
+        if pool is not None:
+            result = differential_evolution(self.evaluate, bounds, workers=pool.map, updating="deferred", **kwargs)
+            watch.count += int(result.nfev)
+        else:
+            try:
+                result = differential_evolution(cost, bounds, **kwargs)
+            except _OutOfTime:
+                return []
+        order = np.argsort(result.population_energies)
+        picked = []
+        for i in order:
+            x = result.population[i]
+            if result.population_energies[i] >= INFEASIBLE:
+                break
+            if all(np.abs(x - y[:len(x)]).max() > 1e-3 for y in picked):
+                picked.append(self.evaluate.complete(x))
+            if len(picked) == 3:
+                break
+        return picked
+
+    def polish(self, x, grace: bool = False) -> None:
+        """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
+        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched."""
+        problem, watch, evaluate = self.problem, self.watch, self.evaluate
+        if problem.timed:
+            z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
+        else:
+            found = evaluate.untimed(x)
+            if found is None or isinstance(found, float):
+                return
+            _, direction, offsets = found
+            steps = np.maximum(np.diff(np.concatenate(([0.0], np.abs(offsets)))), 0.0)
+            lower = np.concatenate((problem.lower, np.zeros(len(steps))))
+            upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))
+            z0 = np.clip(np.concatenate((x, steps)), lower, upper)
+        best = [math.inf, z0]
+
+        def fun(z):
+            if watch.over() and not grace:
+                raise _OutOfTime
+            r = evaluate.vector(z, direction)
+            cost = float(r @ r)
+            watch.seen(cost, z[:problem.dims])
+            if cost < best[0]:
+                best[0], best[1] = cost, np.array(z)
+            return r
+
+        try:
+            least_squares(fun, z0, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15, ftol=1e-15,
+                          gtol=1e-15, max_nfev=200 * len(z0))
+        except _OutOfTime:
+            pass
+        if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
+            self.best = (best[0], best[1], direction)
+
+
+def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int) -> DimensionalResult:
+    """The best candidate as a linkage, its errors and constraints re-checked by the motion layer."""
+    _, z, direction = best
+    x = z[:problem.dims]
+    linkage = problem.linkage(x)
+    if isinstance(problem.target, FunctionTarget):  # posed at the first input, as every other result
+        try:
+            linkage = assemble(linkage, float(problem.target.inputs[0]))
+        except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
+            pass
+    if problem.timed:
+        offsets = problem.offsets_of_timing(linkage)
+    else:
+        offsets = direction * np.concatenate(([0.0], np.cumsum(z[problem.dims:])))
+    inputs = linkage.pose_inputs[0] + offsets
+    values, _, _ = problem.move(linkage, offsets)
+    target = problem.target
+    angle_errors = None
+    if isinstance(target, FunctionTarget):
+        traced = values
+        errors = np.abs(problem.residuals(values)[:, 0])
+    elif isinstance(target, MotionTarget):
+        traced = np.column_stack((values[:, :2], target.poses[0, 2] + values[:, 2]))
+        errors = np.hypot(*(values[:, :2] - target.points).T)
+        angle_errors = np.abs(problem.residuals(values)[:, 2])
+    else:
+        traced = values
+        errors = np.hypot(*(values - target.points).T)
+    try:
+        constraints = _checked(problem, linkage, offsets)
+    except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
+        constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
+                                  "met": False}}
+    method = (("bounded least squares (trf) from a given start, " if runs == 0 else
+               f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
+              + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
+    return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
+                             else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
+
+
+def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
+    """Every constraint re-checked by the motion layer's own tools (true limits, refined angles)."""
+    c = problem.constraints
+    reach = motion_range(linkage)
+    phi0 = float(linkage.pose_inputs[0])
+    lo_in, hi_in = phi0 + min(0.0, offsets.min()), phi0 + max(0.0, offsets.max())
+    out = {}
+    if reach.full_rotation:
+        on_branch = True
+    else:
+        lo, hi = reach.limits
+        on_branch = lo - 1e-9 <= lo_in and hi_in <= hi + 1e-9
+    out["branch"] = {"value": "every target point on the pose's branch" if on_branch
+                     else "a dead position lies between the target points", "limit": None, "met": bool(on_branch)}
+    if c.crank:
+        out["crank"] = {"value": "turns fully" if reach.full_rotation else
+                        f"rocks between {_angle(reach.limits[0])} and {_angle(reach.limits[1])}",
+                        "limit": None, "met": bool(reach.full_rotation)}
+    if c.rocker is not None:
+        inside = c.rocker[0] - 1e-9 <= lo_in and hi_in <= c.rocker[1] + 1e-9
+        out["rocker"] = {"value": [lo_in, hi_in], "limit": list(c.rocker), "met": bool(inside)}
+    if c.min_transmission > 0:
+        worst = _worst_transmission(linkage, lo_in, hi_in, c.crank and reach.full_rotation)
+        out["transmission"] = {"value": None if worst is None else math.degrees(worst),
+                               "limit": math.degrees(c.min_transmission),
+                               "met": worst is not None and worst >= c.min_transmission - MET}
+    if c.max_ratio is not None:
+        ratio = link_ratio(linkage)
+        out["ratio"] = {"value": ratio, "limit": c.max_ratio, "met": ratio <= c.max_ratio * (1 + MET)}
+    if c.pivots is not None:
+        x0, x1, y0, y1 = c.pivots
+        p = linkage.points[problem.frame_joints]
+        tol = MET * problem.scale
+        inside = bool(((p[:, 0] >= x0 - tol) & (p[:, 0] <= x1 + tol) & (p[:, 1] >= y0 - tol) & (p[:, 1] <= y1 + tol)).all())
+        out["pivots"] = {"value": p.tolist(), "limit": list(c.pivots), "met": inside}
+    if not problem.timed and problem.revolute_input:
+        turn = abs(float(offsets[-1]))
+        out["order"] = {"value": f"the input turns {math.degrees(turn):.6g}° over the points, in order",
+                        "limit": None, "met": turn <= 2 * math.pi + 1e-9}
+    return out
+
+
+def _angle(v: float) -> str:
+    return f"{math.degrees(v):.6g}°"
+
+
+def _worst_transmission(linkage: Linkage, lo: float, hi: float, whole_turn: bool) -> float | None:
+    """The least of min(μ, π − μ) over the dyads, between the inputs lo and hi (a whole turn for a
+    crank), from the motion layer's refined extremes; None for a linkage moved by Newton's method."""
+    if whole_turn:
+        motion = sweep(linkage, steps=361)
+    else:
+        motion = sweep(linkage, steps=181, start=lo, stop=hi if hi > lo else lo + 1e-9)
+    if not motion.transmission:
+        return None
+    return min(min(t["min"], math.pi - t["max"]) for t in motion.transmission.values())
+

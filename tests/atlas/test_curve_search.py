@@ -1,0 +1,256 @@
+"""The curve index of an atlas and the atlas search: descriptors, alignment, exact recovery of
+mechanisms whose dimensions were picked at random (their topology withheld), refusals."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from synth.atlas import AtlasError, NoCurveIndex, index_curves, parse_grid, run_grid, search_atlas
+from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
+                                untimed_parameter)
+from synth.atlas.search import Candidate, _form, _misfits, _refine, _variants, descriptor_of, start_linkage
+from synth.dimension import PathTarget
+from synth.errors import BadTarget
+from synth.motion import Linkage, assemble, sweep
+from synth.motion_draw import linkage_from_layout
+from synth.structure.chain import Chain, Mechanism
+
+FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
+
+
+def _atlas(folder, links: str) -> str:
+    db = str(folder / "atlas.sqlite")
+    run_grid(parse_grid(f"dof = 1\nlinks = {links}"), db, workers=1)
+    return db
+
+
+@pytest.fixture(scope="module")
+def four_bar_index(tmp_path_factory):
+    """An atlas of the four-bar alone with a small curve index (60 crank poses)."""
+    db = _atlas(tmp_path_factory.mktemp("fourbar"), "4")
+    index_curves(db, settings=IndexSettings(samples=60), workers=1)
+    return db
+
+
+def _random_crank(mechanism: Mechanism, tracer_link: int, seed: int) -> Linkage:
+    """The mechanism with dimensions picked at random (seeded) near its drawing's, a crank whose
+    transmission angles stay above 17°, with a tracer point P on ``tracer_link``."""
+    base = linkage_from_layout(mechanism)
+    rng = np.random.default_rng(seed)
+    ks = [k for k, j in enumerate(mechanism.chain.joints) if tracer_link in j]
+    for _ in range(2000):
+        points = base.points + rng.normal(size=base.points.shape) * rng.uniform(0.05, 0.3) * base.scale
+        at = points[ks].mean(axis=0) + rng.normal(size=2) * 0.1 * base.scale
+        try:
+            linkage = Linkage(base.mechanism, base.inputs, points, tracers={"P": (tracer_link, tuple(at))})
+            motion = sweep(linkage, steps=73)
+        except Exception:
+            continue
+        if motion.stopped is None and abs(motion.inputs[-1, 0] - motion.inputs[0, 0] - 2 * math.pi) < 1e-9 \
+                and all(min(t["min"], math.pi - t["max"]) > 0.3 for t in motion.transmission.values()):
+            return linkage
+    raise AssertionError("no random crank found")
+
+
+def _target(linkage: Linkage, points: int, timed: bool) -> PathTarget:
+    motion = sweep(linkage, steps=points + 1)
+    return PathTarget(motion.tracers["P"][:points], inputs=motion.inputs[:points, 0] if timed else None)
+
+
+def _assert_recovered(found, target, links: int):
+    best = found.best
+    assert best is not None, found.notes
+    assert best.candidate.links == links
+    assert best.result.met
+    assert best.result.relative_max <= 1e-6
+    # the returned linkage, moved by the motion layer to each reported input, traces the reported curve
+    moved = np.array([assemble(best.result.linkage, float(v)).tracers["P"][1] for v in best.result.inputs])
+    assert np.abs(moved - best.result.traced).max() <= 1e-9 * target.size
+    assert np.abs(moved - target.points).max() <= 1e-6 * target.size
+
+
+# ------------------------------------------------------------------ descriptors and alignment
+def test_periodic_harmonics_are_the_least_squares_fit_of_evenly_spaced_samples():
+    rng = np.random.default_rng(1)
+    t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    c = rng.normal(size=2 * 5 + 1) + 1j * rng.normal(size=2 * 5 + 1)
+    z = np.exp(1j * np.outer(t, np.arange(-5, 6))) @ c
+    assert np.allclose(periodic_harmonics(z, 5), c, atol=1e-12)
+    assert np.allclose(harmonics(z, t, 5), c, atol=1e-12)
+    uneven = np.sort(rng.uniform(0, 2 * np.pi, 40))
+    assert np.allclose(harmonics(np.exp(1j * np.outer(uneven, np.arange(-5, 6))) @ c, uneven, 5), c, atol=1e-9)
+
+
+def test_arc_length_resampling_keeps_a_circle_and_its_parameter_starts_at_the_first_point():
+    t = np.sort(np.random.default_rng(2).uniform(0, 2 * np.pi, 2000))
+    z = 2 + 3j + 5 * np.exp(1j * t)
+    even = _by_arc_length(z)
+    assert abs(even[0] - z[0]) < 1e-12
+    assert np.allclose(np.abs(even - (2 + 3j)), 5, atol=1e-3)  # on the chords of gaps below 2°
+    chords = np.abs(np.diff(np.append(even, even[0])))
+    assert np.ptp(chords) < 1e-3 * chords.mean()  # evenly spaced along the curve
+    assert untimed_parameter(z)[0] == 0
+
+
+@pytest.mark.parametrize("mirror", [False, True])
+@pytest.mark.parametrize("timed", [True, False])
+def test_alignment_finds_a_moved_turned_scaled_mirrored_curve_and_its_start(timed, mirror):
+    """A four-bar's curve, the same four-bar mirrored / turned / scaled / moved and re-timed with an
+    unknown input offset: misfit ~0, and the start linkage meets the target's first point."""
+    sample = Linkage(FOUR_BAR, (0,), [[0, 0], [4, 0], [1, 0.3], [3.5, 3]], tracers={"P": (2, (2.5, 2.0))})
+    motion = sweep(sample, steps=257)
+    z = motion.tracers["P"][:256] @ np.array([1, 1j])
+    n = np.arange(-HARMONICS, HARMONICS + 1)
+    coefficients = (periodic_harmonics(z, HARMONICS) * np.exp(-1j * n * motion.inputs[0, 0]) if timed
+                    else periodic_harmonics(_by_arc_length(z), HARMONICS))
+    flip = np.array([1.0, -1.0]) if mirror else np.ones(2)
+    lam, delta = 0.7 * np.exp(0.9j), 3 - 2j
+
+    def moved(p):
+        w = lam * ((np.asarray(p) * flip) @ np.array([1, 1j])) + delta
+        return np.stack((w.real, w.imag), axis=-1)
+
+    other = Linkage(FOUR_BAR, (0,), moved(sample.points), tracers={"P": (2, tuple(moved([2.5, 2.0])))})
+    traced = sweep(other, steps=61)
+    target = PathTarget(traced.tracers["P"][:60], inputs=traced.inputs[:60, 0] + 5.0 if timed else None)
+    t, h, is_timed = descriptor_of(target)
+    assert is_timed == timed
+    s = coefficients[HARMONICS - h:HARMONICS + h + 1]
+    fits = [(_misfits(t, _form(s[None], *v))[0][0], k) for k, v in enumerate(_variants(timed))]
+    best, k = min(fits)
+    mirrored, reverse = _variants(timed)[k]
+    assert mirrored == mirror
+    u = _form(s, mirrored, reverse)
+    misfit, tau, scale = _refine(t, u, float(_misfits(t, u[None])[1][0]))
+    assert misfit < (1e-7 if timed else 2e-3)  # (harmonics above the 12th left out)
+    assert abs(abs(scale) - 0.7) < (1e-7 if timed else 1e-3)
+    candidate = Candidate(0, 0, 0, 1, 0, 2, 4, misfit, mirrored, reverse, tau, scale, complex(t[h] - scale * u[h]))
+    start = start_linkage(candidate, FOUR_BAR.chain, sample.points, (2.5, 2.0), target)
+    gap = np.hypot(*(start.tracers["P"][1] - target.points[0]))
+    assert gap < (1e-8 if timed else 1e-3) * target.size
+
+
+# ------------------------------------------------------------------ the index
+def test_the_index_is_resumable_and_keeps_its_settings(four_bar_index, tmp_path):
+    again = index_curves(four_bar_index, settings=IndexSettings(samples=60), workers=1)
+    assert again.units_run == 0 and again.units_total == 1 and again.curves == 60
+    with pytest.raises(AtlasError, match="built with 60 samples"):
+        index_curves(four_bar_index, settings=IndexSettings(samples=61), workers=1)
+
+
+def test_an_atlas_without_an_index_is_refused(tmp_path):
+    db = _atlas(tmp_path, "4")
+    t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    with pytest.raises(NoCurveIndex, match="no curve index"):
+        search_atlas(db, PathTarget(np.c_[np.cos(t), np.sin(t)]), budget=1)
+
+
+def test_targets_the_index_cannot_serve_are_refused():
+    t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    with pytest.raises(BadTarget, match="open"):
+        descriptor_of(PathTarget(np.c_[np.cos(t / 2), np.sin(t / 2)]))  # half a circle
+    with pytest.raises(BadTarget, match="gap of 186°"):
+        descriptor_of(PathTarget(np.c_[np.cos(t / 2), np.sin(t / 2)], inputs=t / 2))
+    with pytest.raises(BadTarget, match="at least 7"):
+        descriptor_of(PathTarget(np.c_[np.cos(t[:5]), np.sin(t[:5])]))
+
+
+# ------------------------------------------------------------------ exact recovery
+@pytest.mark.parametrize("timed", [True, False])
+def test_a_random_four_bar_is_found_again_on_a_tiny_index(four_bar_index, timed):
+    linkage = _random_crank(FOUR_BAR, 2, seed=7)
+    target = _target(linkage, 48, timed)
+    found = search_atlas(four_bar_index, target, budget=30)
+    _assert_recovered(found, target, 4)
+
+
+@pytest.mark.slow
+def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
+    """Must show: a six-bar with dimensions picked at random, given only as points with timing (its
+    topology withheld), found by the search of the 4- and 6-link atlas to 1e-6 of the curve's size."""
+    db = _atlas(tmp_path, '"4..6"')
+    index_curves(db, settings=IndexSettings(samples=100), workers=2)
+    from synth import mechanisms
+
+    watt = next(m for m in mechanisms(1, 6, input_link=True, workers=1)
+                if str(m.chain.code) == "42/0" and m.frame == 0 and m.input_link == 1)
+    coupler = [link for link in range(6) if not any(0 in j and link in j for j in watt.chain.joints) and link][-1]
+    linkage = _random_crank(watt, coupler, seed=11)
+    target = _target(linkage, 72, True)
+    found = search_atlas(db, target, budget=240, workers=2)
+    _assert_recovered(found, target, 6)
+
+
+@pytest.mark.slow
+def test_a_random_four_bar_is_found_from_its_points_alone_among_six_bars(tmp_path):
+    db = _atlas(tmp_path, '"4..6"')
+    index_curves(db, settings=IndexSettings(samples=100), workers=2)
+    linkage = _random_crank(FOUR_BAR, 2, seed=3)
+    target = _target(linkage, 60, False)
+    found = search_atlas(db, target, budget=240, workers=2)
+    four = [m for m in found.matches if m.candidate.links == 4]
+    assert four and four[0].result.relative_max <= 1e-6
+
+
+# ------------------------------------------------------------------ the command
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "mechsynth", *args], capture_output=True, text=True, timeout=600,
+                          env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
+
+
+def test_the_command_finds_the_four_bar_saves_and_draws_it(four_bar_index, tmp_path):
+    linkage = _random_crank(FOUR_BAR, 2, seed=7)
+    target = _target(linkage, 48, True)
+    csv = tmp_path / "timed.csv"
+    csv.write_text("x,y,input\n" + "".join(f"{x!r},{y!r},{a!r}\n" for (x, y), a in
+                                          zip(target.points.tolist(), target.inputs.tolist())))
+    out, saved = tmp_path / "best.png", tmp_path / "best.toml"
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "30", "--format", "jsonl",
+                "--out", str(out), "--save", str(saved))
+    assert done.returncode == 0, done.stderr
+    import json
+
+    rows = [json.loads(line) for line in done.stdout.splitlines()]
+    assert rows[0]["rank"] == 1 and rows[0]["links"] == 4 and rows[0]["relative_max"] <= 1e-6
+    assert out.stat().st_size > 0 and "[linkage]" in saved.read_text()
+    moved = _cli("move", str(saved), "--range", "--format", "json")
+    assert moved.returncode == 0, moved.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0"], "does not go with --mechanism, --frame"),
+    (["--links", "4..6"], None),  # (without --db: below)
+    (["--links", "8..4"], "--links must be a number of links or a range"),
+    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "contradict"),
+])
+def test_the_command_refuses_contradictions(four_bar_index, tmp_path, args, message):
+    csv = tmp_path / "p.csv"
+    t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    csv.write_text("x,y\n" + "".join(f"{math.cos(a)},{math.sin(a)}\n" for a in t))
+    if message is None:
+        done = _cli("dimension", str(csv), *args, "--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0")
+        message = "--links goes with --db"
+    else:
+        done = _cli("dimension", str(csv), "--db", four_bar_index, *args)
+    assert done.returncode == 2 and message in done.stderr and len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_the_command_refuses_an_atlas_without_index_and_an_open_path(four_bar_index, tmp_path):
+    bare = _atlas(tmp_path, "4")
+    csv = tmp_path / "p.csv"
+    t = np.linspace(0, np.pi, 30)
+    csv.write_text("x,y\n" + "".join(f"{math.cos(a)},{math.sin(a)}\n" for a in t))
+    done = _cli("dimension", str(csv), "--db", bare)
+    assert done.returncode == 2 and "no curve index" in done.stderr
+    done = _cli("dimension", str(csv), "--db", four_bar_index)
+    assert done.returncode == 2 and "open" in done.stderr and "Traceback" not in done.stderr
+    done = _cli("atlas", "--db", four_bar_index, "--samples", "5")
+    assert done.returncode == 2 and "--samples goes with --index-curves" in done.stderr
+    done = _cli("atlas", "--db", four_bar_index, "--index-curves", "--export", "chains")
+    assert done.returncode == 2 and "does not go with --export" in done.stderr

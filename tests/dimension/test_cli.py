@@ -1,0 +1,102 @@
+"""``mechsynth dimension``: a result chained into ``move`` and ``scene``, and every refusal one
+sentence with exit status 2, before any work and with nothing written."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from mechsynth.cli import main
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+FOUR_BAR = ["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0"]
+
+
+def test_a_function_found_is_saved_and_moved(tmp_path, capsys):
+    saved, picture = tmp_path / "found.toml", tmp_path / "found.png"
+    code = main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "20",
+                 "--save", str(saved), "--out", str(picture), "--format", "json"])
+    out = capsys.readouterr().out
+    assert code == 0
+    result = json.loads(out)
+    assert result["kind"] == "function" and result["error_max"] < 1e-9 and result["met"]
+    assert picture.stat().st_size > 0
+    assert main(["move", str(saved), "--range", "--format", "json"]) == 0  # the saved linkage moves
+    moved = json.loads(capsys.readouterr().out)
+    assert moved["input"] == "0-1"
+    assert main(["scene", str(saved)]) == 0  # and is a scene
+    capsys.readouterr()
+
+
+@pytest.mark.slow  # about 11 CPU seconds of search
+def test_a_path_found_is_drawn_over_its_target(tmp_path, capsys):
+    picture = tmp_path / "path.svg"
+    code = main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "60", "--out",
+                 str(picture), "--format", "jsonl"])
+    row = json.loads(capsys.readouterr().out)
+    assert code == 0 and row["relative_max"] < 1e-6
+    svg = picture.read_text()
+    assert svg.count('stroke="#1f4e9c"') == 7  # the seven target points
+
+
+def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, capsys):
+    saved = tmp_path / "none.toml"
+    code = main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "2",
+                 "--crank", "--min-transmission", "89", "--save", str(saved)])
+    err = capsys.readouterr().err
+    assert code == 1 and "fails" in err and not saved.exists()
+
+
+@pytest.mark.parametrize("args, words", [
+    ([*FOUR_BAR, "--db", "atlas.sqlite"], "does not go with --mechanism"),
+    ([*FOUR_BAR, "--links", "4..8"], "--links goes with --db"),
+    (["--frame", "0"], "give one mechanism"),
+    ([*FOUR_BAR, "--linkage", "x.toml"], "give one mechanism"),
+    (["--mechanism", "0-1 1-2 2-3 3-0"], "needs --frame"),
+    ([*FOUR_BAR, "--crank", "--rocker", "0..90"], "contradict"),
+    ([*FOUR_BAR, "--rocker", "90..0"], "A < B"),
+    ([*FOUR_BAR, "--min-transmission", "95"], "between 0 and 90"),
+    ([*FOUR_BAR, "--max-ratio", "0.5"], "above 1"),
+    ([*FOUR_BAR, "--pivots", "0..1"], "x0..x1,y0..y1"),
+    ([*FOUR_BAR, "--budget", "0"], "positive number of seconds"),
+    ([*FOUR_BAR, "--out", "picture.gif"], "PNG or SVG"),
+    ([*FOUR_BAR, "--save", "x.txt"], "TOML or JSON"),
+    ([*FOUR_BAR, "--frame", "9"], "not a link"),
+    (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0", "--input", "1-2"], "must be a joint of the frame"),
+    ([*FOUR_BAR, "--tracer-link", "2"], "this target is a function"),
+    (["--mechanism", "0-1 1-2 2-0", "--frame", "0"], "W = 0"),
+])
+def test_a_contradiction_is_one_sentence_and_exit_2(tmp_path, capsys, monkeypatch, args, words):
+    monkeypatch.chdir(tmp_path)
+    shutil.copy(MODELS / "dimension_function.csv", tmp_path / "f.csv")
+    assert main(["dimension", "f.csv", *args]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.csv"]  # nothing written
+
+
+def test_a_bad_target_file_is_one_sentence_and_exit_2(tmp_path, capsys):
+    bad = tmp_path / "nan.csv"
+    bad.write_text("x,y,input\n0,0,0\nnan,1,1\n")
+    assert main(["dimension", str(bad), *FOUR_BAR]) == 2
+    err = capsys.readouterr().err
+    assert "not all finite" in err and err.count("\n") == 1
+    few = tmp_path / "few.csv"
+    few.write_text("x,y,input\n0,0,0\n1,0,1\n1,1,2\n")
+    assert main(["dimension", str(few), *FOUR_BAR]) == 2
+    assert "give at least 5 points" in capsys.readouterr().err
+
+
+def test_the_target_read_is_never_overwritten(tmp_path, capsys):
+    target = tmp_path / "f.csv"
+    shutil.copy(MODELS / "dimension_function.csv", target)
+    before = target.read_text()
+    assert main(["dimension", str(target), *FOUR_BAR, "--save", str(tmp_path / "f.json"), "--out",
+                 str(tmp_path / "f.json")]) == 2
+    assert main(["dimension", str(target), *FOUR_BAR, "--out", str(target.with_suffix(".svg")), "--save",
+                 str(target)]) == 2
+    assert target.read_text() == before
+    capsys.readouterr()
