@@ -43,7 +43,7 @@ from .errors import __all__ as _errors_all
 _WHERE = {
     # core types, joint kinds, the exact sub-chain test
     "Code": ".structure.code", "Chain": ".structure.chain", "Mechanism": ".structure.chain",
-    "JOINT_KINDS": ".structure.joints", "chain_id": ".structure.chain",
+    "JOINT_KINDS": ".structure.joints", "JointKind": ".structure.joints", "chain_id": ".structure.chain",
     "ChainQuery": ".structure.query", "parse_range": ".structure.query", "parse_requirements": ".structure.query",
     "check_motion_space": ".structure._params", "Require": ".schema",
     "structural_mobility": ".structure.kinds", "generic_mobility": ".structure.kinds",

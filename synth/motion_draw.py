@@ -35,6 +35,7 @@ import numpy as np
 from .errors import InvalidOption
 from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
+from .structure.joints import MESH, PRISMATIC, REVOLUTE
 
 __all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_motion", "animate_motion", "player_svg",
            "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
@@ -46,7 +47,6 @@ ANIMATION_SUFFIXES = (".gif", ".svg")
 _BODY, _EDGE, _INPUT, _FRAME = "#dbe6f4", "#1f3a5f", "#c0632b", "#6b7785"
 _CURVES = ("#c0392b", "#1e7a46", "#7d3c98", "#b9770e", "#2471a3")
 _PATH = "#b8c2cc"
-_MESH = "#1e7a46"
 _MARK = "#1f4e9c"  # target points of a synthesis
 
 
@@ -97,8 +97,8 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     drawn = layout(chain).joints * (size / 2.0)
     if chain.dof != 1:
         return linkage_from_pose(mechanism, drawn, nudge=True)
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
-    inputs = [k for k, j in enumerate(chain.joints) if len(j) == 2 and mechanism.frame in j and kinds[k] != "mesh"
+    kinds = chain.kinds
+    inputs = [k for k, j in enumerate(chain.joints) if len(j) == 2 and mechanism.frame in j and kinds[k] != MESH
               and (mechanism.input_link is None or mechanism.input_link in j)]
     rng = np.random.default_rng(0)
     best = None
@@ -107,8 +107,8 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
         pose = drawn if attempt == 0 else drawn + rng.uniform(-1, 1, drawn.shape) * size * 0.05 * (1 + 5 * attempt / tries)
         turns = rng.uniform(0, 2 * math.pi, len(kinds))  # a slider's line is a choice too: tried at random
         slides = None if attempt == 0 else {k: (math.cos(turns[k]), math.sin(turns[k]))
-                                            for k, kind in enumerate(kinds) if kind == "prismatic"}
-        for k in sorted(inputs, key=lambda k: (kinds[k] != "revolute", k)):
+                                            for k, kind in enumerate(kinds) if kind == PRISMATIC}
+        for k in sorted(inputs, key=lambda k: (kinds[k] != REVOLUTE, k)):
             try:
                 candidate = linkage_from_pose(mechanism, pose, inputs=(k,), slides=slides, nudge=attempt == 0)
                 score, why = _how_well(candidate)
@@ -129,7 +129,7 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     shift = float(np.hypot(*(linkage.points - drawn).T).max())
     if score[1]:
         swing = "turns fully"
-    elif linkage.kind(linkage.inputs[0]) == "revolute":
+    elif linkage.kind(linkage.inputs[0]) == REVOLUTE:
         swing = f"swings {math.degrees(score[3]):.0f}°"
     else:
         swing = f"slides {score[3] * linkage.scale / (2 * math.pi):.3g}"
@@ -152,7 +152,7 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
 
     solver = _solver(linkage)
     lo, hi, _, _ = solver.branch
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
     full = revolute and math.isinf(lo) and math.isinf(hi)
     # a crank turns once; a rocker swings from limit to limit (which may span more than a turn), an
     # endless slide as far as a sweep takes it (four sizes); a stroke as long as the mechanism is worth
@@ -189,8 +189,8 @@ class _Placement:
         self.anchor: list[int | None] = []
         for link in range(linkage.chain.links):
             on = linkage.joints_of(link)
-            pins = [k for k in on if linkage.kind(k) == "revolute"]
-            carried = [k for k in on if linkage.kind(k) == "prismatic" and linkage.chain.joints[k][0] == link]
+            pins = [k for k in on if linkage.kind(k) == REVOLUTE]
+            carried = [k for k in on if linkage.kind(k) == PRISMATIC and linkage.chain.joints[k][0] == link]
             self.anchor.append((pins + carried + [None])[0])
 
     def place(self, link: int, p) -> np.ndarray:
@@ -245,7 +245,7 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
     driven = {linkage.input_link(i) for i in range(linkage.dof)}
     slides = {k: np.array(v) for k, v in linkage.slides.items()}
     for link in range(chain.links):
-        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]  # sliders: a block and a guide
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]  # sliders: a block and a guide
         if link == linkage.frame or not on:
             continue
         marks = [at for _, (carrier, at) in linkage.tracers.items() if carrier == link]  # a coupler's plate
@@ -259,16 +259,16 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
             out.append({"tag": "polyline", "frames": place.place(link, pose[order]),
                         "style": {"fill": "none", "stroke": colour, "stroke-width": 3.2, "stroke-linecap": "round"}})
     for k in range(len(chain.joints)):  # gears: pitch circle and a spoke that turns with the gear
-        if linkage.kind(k) != "mesh":
+        if linkage.kind(k) != MESH:
             continue
         carrier = linkage.carrier(k)
         for gear in chain.joints[k]:
             axis = linkage.points[linkage.axis(gear, carrier)]
             radius = float(np.hypot(*(linkage.points[k] - axis)))
             out.append({"tag": "circle", "r": radius, "frames": place.place(gear, axis),
-                        "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.4}})
+                        "style": {"fill": "none", "stroke": MESH.stroke, "stroke-width": 1.4}})
             out.append({"tag": "polyline", "frames": place.place(gear, [axis, linkage.points[k]]),
-                        "style": {"fill": "none", "stroke": _MESH, "stroke-width": 1.2}})
+                        "style": {"fill": "none", "stroke": MESH.stroke, "stroke-width": 1.2}})
     span = _Placement(linkage, *reach) if reach is not None else place
     for k, d in slides.items():  # a prismatic pair: a slot or guide on one link, a block on the other
         guide, block = _guide_and_block(linkage, k)
@@ -277,7 +277,7 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         theta = span.angles[:, guide] if guide != linkage.frame else np.zeros(len(span.angles))
         travel = _along(span.place(block, p)[:, 0] - span.place(guide, p)[:, 0], theta, u)
         pins = [float((linkage.points[m] - p) @ u) for m in linkage.joints_of(guide)
-                if m != k and linkage.kind(m) == "revolute"]  # the guide reaches its own pins (a lever's pivot)
+                if m != k and linkage.kind(m) == REVOLUTE]  # the guide reaches its own pins (a lever's pivot)
         half = 0.06 * scale
         reach_along = [0.0, *travel[np.isfinite(travel)], *pins]
         ends = [p + u * (min(reach_along) - 2 * half), p + u * (max(reach_along) + 2 * half)]
@@ -285,7 +285,7 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
                     "style": {"fill": "none", "stroke": _FRAME if guide == linkage.frame else _EDGE,
                               "stroke-width": 2.0, "stroke-dasharray": "5 3" if guide == linkage.frame else None}})
         for m in linkage.joints_of(guide):  # a pin of the guide off its line (an offset slot): an arm to the line
-            if m != k and linkage.kind(m) == "revolute" and guide != linkage.frame:
+            if m != k and linkage.kind(m) == REVOLUTE and guide != linkage.frame:
                 foot = p + float((linkage.points[m] - p) @ u) * u
                 if math.dist(foot, linkage.points[m]) > 1e-9 * scale:
                     out.append({"tag": "polyline", "frames": place.place(guide, [linkage.points[m], foot]),
@@ -295,15 +295,16 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         corners = [p - half * u - 0.6 * half * n, p + half * u - 0.6 * half * n,
                    p + half * u + 0.6 * half * n, p - half * u + 0.6 * half * n]
         out.append({"tag": "polygon", "frames": place.place(block, corners),
-                    "style": {"fill": "white", "stroke": _INPUT if block in driven else _EDGE, "stroke-width": 1.4}})
-    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) == "revolute"]
+                    "style": {"fill": "white", "stroke": _INPUT if block in driven else PRISMATIC.stroke,
+                              "stroke-width": 1.4}})
+    base = [k for k in linkage.joints_of(linkage.frame) if linkage.kind(k) == REVOLUTE]
     if len(base) >= 2:  # the fixed link: a dashed line through its joints
         pose = linkage.points[base]
         out.append({"tag": "polygon" if len(base) > 2 else "polyline", "static": True,
                     "frames": pose[_order(pose)][None],
                     "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 1.0, "stroke-dasharray": "6 4"}})
     for k, joint in enumerate(chain.joints):  # ground pivots under the frame's pins
-        if linkage.frame in joint and linkage.kind(k) == "revolute":
+        if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
             x, y = linkage.points[k]
             w = 2.6 * pin
             out.append({"tag": "polygon", "frames": np.array([[[x, y], [x - w, y - 1.8 * w], [x + w, y - 1.8 * w]]]),
@@ -313,9 +314,9 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
                         "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 2.4}})
     curves(True)
     for k, joint in enumerate(chain.joints):
-        if linkage.kind(k) == "revolute":
+        if linkage.kind(k) == REVOLUTE:
             out.append({"tag": "circle", "r": pin * (1.6 if len(joint) > 2 else 1.0), "frames": joints[:, k][:, None],
-                        "style": {"fill": "white", "stroke": "#c0392b" if len(joint) > 2 else "black",
+                        "style": {"fill": "white", "stroke": "#c0392b" if len(joint) > 2 else REVOLUTE.stroke,
                                   "stroke-width": 1.2}})
     for name, xy in tracers.items():
         colour = colours[name]
@@ -333,7 +334,7 @@ def _guide_and_block(linkage: Linkage, k: int) -> tuple[int, int]:
 
     def gap(link: int) -> float:
         pins = [math.dist(linkage.points[m], linkage.points[k]) for m in linkage.joints_of(link)
-                if linkage.kind(m) == "revolute"]
+                if linkage.kind(m) == REVOLUTE]
         return min(pins, default=math.inf)
 
     return (b, a) if gap(a) < gap(b) else (a, b)
@@ -439,7 +440,7 @@ def _paths(motion: Motion, most: int = 2000) -> dict[str, list[np.ndarray]]:
     not reach."""
     linkage = motion.linkage
     pins = [k for k in range(len(linkage.chain.joints))
-            if linkage.kind(k) == "revolute" and linkage.frame not in linkage.chain.joints[k]]
+            if linkage.kind(k) == REVOLUTE and linkage.frame not in linkage.chain.joints[k]]
     curves = {joint_name(linkage.chain, k): motion.joints[:, k] for k in pins} | dict(motion.tracers)
     if motion.grid is None:
         keep = np.unique(np.linspace(0, motion.steps - 1, min(most, motion.steps)).round().astype(int))

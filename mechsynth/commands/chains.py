@@ -159,7 +159,7 @@ def _run_one_chain(args) -> int:
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))
     return write_items(items, args.what, fmt=args.format, count=args.count,
-                       kinds=args.prismatic is not None or chain.kinds is not None, idle=args.idle_joints, h=chain.h)
+                       kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h)
 
 
 def _refuse_classless_format(args) -> None:
@@ -179,7 +179,7 @@ def class_variants_of(chain, args) -> list:
     from .codes import parse_classes
 
     h, k_h, x, k_x = split_classes(parse_classes(args.loop_classes))
-    if chain.kinds is not None or chain.classes is not None:
+    if not chain.all_revolute or chain.classes is not None:
         raise _invalid("--loop-classes lays bases on a revolute chain without classes: give its joint list without "
                        "'=', '~' or '|'")
     if chain.loops != k_h + k_x:
@@ -323,11 +323,11 @@ def _row(item, fmt: str, idle: bool) -> dict:
     if fmt in ("table", "csv") and chain is item:
         row.update(planar="yes" if chain.is_planar() else "no", symmetry=round(chain.automorphisms()[1]),
                    fractionated="yes" if chain.is_fractionated() else "no")
-    if chain.kinds is None and chain.classes is None:  # a revolute chain among prismatic variants: nothing slides
+    if chain.all_revolute and chain.classes is None:  # a revolute chain among prismatic variants: nothing slides
         row.update(prismatic=0, loops_2=0, loops_3=chain.loops)
         if "frame" in row:
             row.update(guide=0, swinging=0, floating=0, slider=0)
-    if idle and chain.kinds is not None:
+    if idle and not chain.all_revolute:
         from synth import idle_joints
 
         row["idle_joints"] = [list(j) for j in idle_joints(chain)]

@@ -227,6 +227,7 @@ def _run(args) -> int:
 
 def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
     """The rocker's limits in the input's unit: degrees to radians for a revolute input."""
+    from synth import JointKind
     from synth.motion import Linkage
 
     chain = mechanism.chain
@@ -235,8 +236,7 @@ def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
     else:
         k = next(k for k, j in enumerate(chain.joints) if mechanism.frame in j and len(j) == 2
                  and (mechanism.input_link is None or mechanism.input_link in j))
-    kind = chain.kinds[k] if chain.kinds else "revolute"
-    return tuple(math.radians(v) for v in limits) if kind == "revolute" else limits
+    return tuple(math.radians(v) for v in limits) if chain.kinds[k] == JointKind.REVOLUTE else limits
 
 
 def _write(result, fmt: str) -> None:

@@ -67,7 +67,7 @@ def _variants(args, chains: list) -> list:
     from synth import variants_of
 
     lo, hi = parse_range(args.prismatic, "--prismatic")
-    chains = [c for c in chains if c.kinds is None]  # an atlas may hold variants already
+    chains = [c for c in chains if c.all_revolute]  # an atlas may hold variants already
     if not chains:
         return []
     simple = max(sum(1 for j in c.joints if len(j) == 2) for c in chains)

@@ -99,10 +99,11 @@ _CONVENTIONS = {"non_degenerate": "non-degenerate (every sub-chain moves)",
 
 
 def _table(row: dict) -> str:
+    from synth import JointKind
+
     names = row.get("names")
-    joints = " ".join(("=" if k == "prismatic" else "~" if k == "mesh" else "-").join(
-        str(names[x]) if names else str(x) for x in j) for j, k in zip(row["joints"], row.get("kinds") or
-                                                                      ["revolute"] * len(row["joints"])))
+    joints = " ".join(JointKind(k).symbol.join(str(names[x]) if names else str(x) for x in j)
+                      for j, k in zip(row["joints"], row.get("kinds") or [JointKind.REVOLUTE] * len(row["joints"])))
     if row.get("classes"):  # a heterogeneous chain: its bases, class by class, as a joint list writes them
         bases = [f"h{x}: " + " ".join(str(names[i]) if names else str(i) for i, c in enumerate(row["classes"]) if c == x)
                  for x in sorted(set(row["classes"]) - {row["h"]})]

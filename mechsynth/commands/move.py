@@ -190,6 +190,7 @@ def _linkage(args):
 def _run(args) -> int:
     from synth import InvalidOption
     from synth.motion import motion_range, sweep
+    from synth import JointKind
 
     _check(args)
     linkage = _linkage(args)
@@ -202,7 +203,7 @@ def _run(args) -> int:
             fh.write("\n")
     if linkage.dof != 1:
         return _grid(linkage, args)
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE
     start, stop = (None if v is None else (math.radians(v[0]) if revolute else v[0]) for v in (args.start, args.stop))
     steps = args.steps[0] if args.steps else 360
     rows_only = not (args.out or args.animate or args.range or args.save)
@@ -286,10 +287,11 @@ def _grid(linkage, args) -> int:
     import numpy as np
     from tqdm import tqdm
 
+    from synth import JointKind
     from synth.motion import sweep_grid
 
     w = linkage.dof
-    revolute = [linkage.kind(k) == "revolute" for k in linkage.inputs]
+    revolute = [linkage.kind(k) == JointKind.REVOLUTE for k in linkage.inputs]
     counts = _grid_counts(args, w)
     if args.start is None:  # half a turn (or the mechanism's size) each side of the pose
         half = [math.pi if r else linkage.scale for r in revolute]
@@ -384,9 +386,10 @@ _NO_TRANSMISSION = ("not reported: the linkage does not decompose into dyads (it
 def _write_range(linkage, reach, motion, fmt: str) -> None:
     """The range document: JSON, or a two-column table."""
     from synth.motion import joint_name
+    from synth import JointKind
 
     k = linkage.inputs[0]
-    revolute = linkage.kind(k) == "revolute"
+    revolute = linkage.kind(k) == JointKind.REVOLUTE
     turns = revolute and reach.full_rotation  # a crank's positions are angles of one turn: 0 … 360°
     unit = (lambda v: math.degrees(v) % 360.0 if turns else math.degrees(v)) if revolute else (lambda v: v)
     word = "°" if revolute else ""

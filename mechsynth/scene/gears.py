@@ -44,6 +44,7 @@ FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
 
 def _prismatic(run: Run) -> dict:
     from synth import Chain, parse_range, variants_of
+    from synth import JointKind
 
     t = run.scene.tables["prismatic"]
     chain = Chain.parse(t.chain)
@@ -53,8 +54,8 @@ def _prismatic(run: Run) -> dict:
     for r in rows:
         by_dof[str(r["dof"])] = by_dof.get(str(r["dof"]), 0) + 1
     # a cylinder: a prismatic pair between two binary links (the barrel and its rod)
-    actuated = sum(1 for c in variants if c.kinds and all(
-        c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == "prismatic"))
+    actuated = sum(1 for c in variants if not c.all_revolute and all(
+        c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == JointKind.PRISMATIC))
     return {"count": len(rows), "by_dof": by_dof, "all_cylinders": actuated, "variants": rows}
 
 

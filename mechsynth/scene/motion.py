@@ -90,9 +90,11 @@ def _steps(run: Run) -> int:
 
 def _rigidity_error(linkage, joints: np.ndarray) -> float:
     """The largest change, over the steps, of the distance between two revolute joints of one link."""
+    from synth import JointKind
+
     worst = 0.0
     for link in range(linkage.chain.links):
-        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]
+        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == JointKind.REVOLUTE]
         for i, a in enumerate(pins):
             for b in pins[i + 1:]:
                 pose = math.dist(linkage.points[a], linkage.points[b])
@@ -103,11 +105,12 @@ def _rigidity_error(linkage, joints: np.ndarray) -> float:
 
 def _motion(run: Run) -> dict:
     from synth.motion import motion_range, sweep
+    from synth import JointKind
 
     linkage = run.scene.tables["linkage"]
     motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
     reach = motion_range(linkage)
-    revolute = linkage.kind(linkage.inputs[0]) == "revolute"
+    revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE
     worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()], default=None)
     return {"full_rotation": reach.full_rotation,
             "input_limits": [math.degrees(v) if revolute else v for v in reach.limits] if reach.limits else None,
@@ -187,8 +190,10 @@ def _by_dyads(linkage, motion, driver: int) -> np.ndarray:
 def _freudenstein(linkage, motion) -> float | None:
     """The residual of Freudenstein's equation K1 cos θ4 − K2 cos θ2 + K3 = cos(θ2 − θ4) over the
     sweep, angles from the ground line; None unless the linkage is a four-bar of revolute joints."""
+    from synth import JointKind
+
     chain = linkage.chain
-    if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != "revolute" for k in range(4)):
+    if chain.links != 4 or len(chain.joints) != 4 or any(linkage.kind(k) != JointKind.REVOLUTE for k in range(4)):
         return None
     frame = linkage.frame
     o2 = linkage.inputs[0]
@@ -272,6 +277,8 @@ def _slotted_lever(linkage, motion) -> dict:
     """Roles: the input crank O–B, the block pinned at B sliding on the lever, the lever pivoted at C.
     The lever's angle ψ solves (B − C)·n(ψ) = e, with e the pin's distance from the parallel to the
     slide through C in the pose; the slide is (B − C)·u(ψ)."""
+    from synth import JointKind
+
     chain, p, j = linkage.chain, linkage.points, motion.joints
     o = linkage.inputs[0]
     crank = linkage.input_link(0)
@@ -279,7 +286,8 @@ def _slotted_lever(linkage, motion) -> dict:
     block = next(x for x in chain.joints[b_pin] if x != crank)
     pair = next(k for k in linkage.slides)
     lever = next(x for x in chain.joints[pair] if x != block)
-    c = next(k for k in linkage.joints_of(lever) if linkage.kind(k) == "revolute" and linkage.frame in chain.joints[k])
+    c = next(k for k in linkage.joints_of(lever)
+             if linkage.kind(k) == JointKind.REVOLUTE and linkage.frame in chain.joints[k])
     u0 = np.array(linkage.slides[pair])
     n0 = np.array([-u0[1], u0[0]])
     e = float((p[b_pin] - p[c]) @ n0)
@@ -314,6 +322,8 @@ def _willis(linkage, motion, teeth: dict) -> dict:
     """Each gear's speed relative to the input (the carrier), from Willis' equation of each mesh
     z_a(ω_a − ω_t) = ∓ z_b(ω_b − ω_t) (− external, + internal: the ring's radius is written negative
     in the pose, so the sign follows from the pitch point lying beyond or between the axes)."""
+    from synth import JointKind
+
     chain = linkage.chain
     carrier = linkage.input_link(0)
     z = {int(k): float(v) for k, v in teeth.items()}
@@ -321,7 +331,7 @@ def _willis(linkage, motion, teeth: dict) -> dict:
     while True:
         grown = False
         for k in range(len(chain.joints)):
-            if linkage.kind(k) != "mesh":
+            if linkage.kind(k) != JointKind.MESH:
                 continue
             a, b = chain.joints[k]
             t = linkage.carrier(k)

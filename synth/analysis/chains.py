@@ -24,6 +24,7 @@ from mechbase import Row
 
 from ..errors import ImpossibleParameters, InvalidOption, MalformedChain, QueryTooLarge
 from ..structure.chain import Chain
+from ..structure.joints import MESH, PRISMATIC
 from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
 from ..structure.query import MAX_CODE_LINKS
 from ..structure.subchains import check_subchains
@@ -90,8 +91,8 @@ def mobility_of(chain: Chain) -> int:
 def _standard(chain: Chain) -> bool:
     """Whether the code of the chain's revolute reading (meshes as binary links, prismatic pairs
     as pins, W without the wedge loops) is one of the standard codes."""
-    base = lever_analogue(chain) if chain.kinds is not None and "mesh" in chain.kinds else chain
-    W = base.dof - (wedge_loops(base) if base.kinds is not None else 0)
+    base = lever_analogue(chain) if MESH in chain.kinds else chain
+    W = base.dof - wedge_loops(base)
     code = base.code
     exact = {i: (code.count(i), code.count(i)) for i in range(2, code.max_degree + 1)}  # one code to find
     size = dict(loop_classes=chain.loop_classes) if chain.classes is not None else dict(loops=code.loops, h=chain.h)
@@ -106,7 +107,7 @@ def _standard(chain: Chain) -> bool:
 
 def _joint_text(chain: Chain, joints) -> str:
     index = {j: k for k, j in enumerate(chain.joints)}
-    return ", ".join(Chain(chain.links, [j], [chain.kinds[index[j]]] if chain.kinds else None).compact()
+    return ", ".join(Chain(chain.links, [j], [chain.kinds[index[j]]]).compact()
                      for j in joints)
 
 
@@ -147,7 +148,7 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     report = check_subchains(chain, rigid_subchains=(dof if dof is not None else chain.dof) == 0)  # refuses pieces
     W = mobility_of(chain)
     idle = idle_joints(chain)
-    k2 = wedge_loops(chain) if chain.kinds is not None else chain.loop_classes.get(2, 0)
+    k2 = wedge_loops(chain) if not chain.all_revolute else chain.loop_classes.get(2, 0)
     k3 = chain.loops - k2 if chain.classes is None else chain.loop_classes.get(3, 0)
     advice = []
     if dof is not None and dof != W:
@@ -163,14 +164,14 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
             f"links {list(report.worst)} form a {report.kind} with W(S) = {report.worst_mobility}: it acts as "
             f"one link; insert {k} binary link(s) into its joints (a–b becomes a–x–b) or move one of its joints "
             "to a link outside it")
-    has_mesh = chain.kinds is not None and "mesh" in chain.kinds
+    has_mesh = MESH in chain.kinds
     redundant = redundant_joints(chain, dof) if has_mesh and dof is not None and report.ok else None
     if redundant:
         advice.append(f"D = {chain.dof - dof}: joint(s) {_joint_text(chain, redundant)} carry the redundant "
                       f"constraint(s); removing {dof - chain.dof} of them leaves W = {dof} with no rigid sub-chain")
     if idle and report.ok and W > 0:  # (inside a rigid sub-chain every joint is idle: the sub-chain says why)
         why = ("prismatic pairs lock the rotation of their links; make one of those pairs revolute"
-               if kind_count(chain, "prismatic") else "the rest of the chain holds their links together")
+               if kind_count(chain, PRISMATIC) else "the rest of the chain holds their links together")
         advice.append(f"joint(s) {_joint_text(chain, idle)} never move: {why}")
     if chain.is_fractionated():
         advice.append("a link or joint splits the closed part of the chain: its mobility divides between the parts")
@@ -178,8 +179,8 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
         code=str(chain.code) + chain.kind_suffix + chain.class_suffix, certificate=chain.certificate, h=chain.h, links=chain.links,
         joints=len(chain.joints), dof=W,
         dof_count=chain.dof, redundant=W - chain.dof, loops=chain.loops, loops_2=k2, loops_3=k3,
-        complexity=chain.loops - 1, v=chain.v, prismatic=kind_count(chain, "prismatic"),
-        meshes=kind_count(chain, "mesh"), lever_analogue=str(lever_analogue(chain).code) if has_mesh else None,
+        complexity=chain.loops - 1, v=chain.v, prismatic=kind_count(chain, PRISMATIC),
+        meshes=kind_count(chain, MESH), lever_analogue=str(lever_analogue(chain).code) if has_mesh else None,
         standard_code=_standard(chain), connected=True, fractionated=chain.is_fractionated(),
         planar=chain.is_planar(), subchain_defect=report.kind, worst_subchain=list(report.worst),
         worst_subchain_mobility=report.worst_mobility if report.worst else None,

@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 from ..structure.chain import Chain
+from ..structure.joints import MESH, PRISMATIC
 from .identify import chain_id
 
 __all__ = ["Finding", "Comparison", "compare", "why_extra"]
@@ -114,7 +115,7 @@ def why_extra(entry, query) -> tuple[str, list]:
         return f"{chain.links} links, not {query.links}", []
     if chain.h != query.h:
         return f"loops in motion space h = {chain.h}, not {query.h}", []
-    if chain.kinds is not None and "mesh" in chain.kinds:
+    if MESH in chain.kinds:
         return "gear meshes: type synthesis lists revolute and prismatic chains", []
     dof = mobility_of(chain)
     if dof != query.dof:
@@ -127,7 +128,7 @@ def why_extra(entry, query) -> tuple[str, list]:
             return f"redundant constraints: its pairs constrain each other beyond the count ({report.redundant})", links
         kind = "a rigid sub-chain" if report.worst_mobility == 0 else "an over-constrained sub-chain"
         return f"{kind}: links {', '.join(map(str, links))} with W(S) = {report.worst_mobility}", links
-    prismatic = chain.kinds.count("prismatic") if chain.kinds is not None else 0
+    prismatic = chain.kinds.count(PRISMATIC)
     if query.prismatic is None and prismatic:
         return f"{prismatic} prismatic pair(s): the query lists revolute chains (it asks for no prismatic pair)", []
     if query.prismatic is not None and _outside(prismatic, query.prismatic):
@@ -167,7 +168,7 @@ def _in_space(entry, h: int):
     """The entry in motion space ``h`` where its source states none (and its joint kinds allow it)."""
     from dataclasses import replace
 
-    if entry.h is not None or entry.chain.h == h or entry.chain.kinds is not None:
+    if entry.h is not None or entry.chain.h == h or not entry.chain.all_revolute:
         return entry
     return replace(entry, chain=replace(entry.chain, h=h))
 

@@ -43,6 +43,7 @@ from functools import lru_cache
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain, chain_id
+from ..structure.joints import MESH, PRISMATIC
 
 __all__ = ["Identity", "identify_entry", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
 
@@ -136,7 +137,7 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     """
     from ..structure.query import ChainQuery
 
-    if chain.kinds is not None and "mesh" in chain.kinds:
+    if MESH in chain.kinds:
         return None, ("type synthesis lists revolute and prismatic chains, not gear meshes (gear trains are "
                       "listed by 'mechsynth gears')")
     if chain.classes is not None:
@@ -147,7 +148,7 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
             return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
         rigid = True if dof >= 1 else None
     code = str(chain.code)
-    prismatic = chain.kinds.count("prismatic") if chain.kinds is not None else None
+    prismatic = chain.kinds.count(PRISMATIC) if not chain.all_revolute else None
     query = ChainQuery(dof, code=code, h=chain.h, rigid_subchains=rigid, prismatic=prismatic,
                        idle_joints=bool(idle and prismatic))
     words = ["mechsynth chains --code", code]
@@ -341,7 +342,7 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
                           if k in place})
     return Identity(
         source=entry.source, links=chain.links, joints=[list(j) for j in chain.joints],
-        kinds=list(chain.kinds) if chain.kinds else None, h=chain.h, names=list(names) if names else None,
+        kinds=None if chain.all_revolute else list(chain.kinds), h=chain.h, names=list(names) if names else None,
         id=chain_id(chain.certificate), certificate=chain.certificate,
         code=str(chain.code) + chain.kind_suffix + chain.class_suffix,
         dof=dof, dof_count=chain.dof, loops=chain.loops, v=chain.v, connected=connected,

@@ -22,7 +22,8 @@ from math import comb
 
 from mechbase import Row
 
-from ..structure.chain import SYMBOLS, Chain
+from ..structure.chain import Chain
+from ..structure.joints import MESH, REVOLUTE, JointKind
 from ..structure.code import Code
 from ..errors import InvalidOption, MalformedChain
 from ..structure.subchains import check_subchains
@@ -38,8 +39,8 @@ def _valid(chain: Chain, dof: int) -> bool:
             and check_subchains(chain, rigid_subchains=dof == 0).ok)
 
 
-def _text(joint, kind: str = "revolute") -> str:
-    return SYMBOLS[kind].join(map(str, joint))
+def _text(joint, kind: JointKind = REVOLUTE) -> str:
+    return kind.symbol.join(map(str, joint))
 
 
 def chain_edits(chain: Chain):
@@ -62,7 +63,7 @@ def chain_edits(chain: Chain):
 def _edits(chain: Chain):
     """:func:`chain_edits`, with None for an edit whose result is no chain."""
     n = chain.links
-    pairs = list(zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)))
+    pairs = list(zip(chain.joints, chain.kinds))
 
     def build(links, items):
         try:
@@ -72,7 +73,7 @@ def _edits(chain: Chain):
 
     for a, b in combinations(range(n), 2):
         yield (f"add a binary link {n} jointed to links {a} and {b}",
-               build(n + 1, pairs + [((a, n), "revolute"), ((b, n), "revolute")]))
+               build(n + 1, pairs + [((a, n), REVOLUTE), ((b, n), REVOLUTE)]))
     for x in range(n):
         on = [(j, k) for j, k in pairs if x in j]
         if len(on) == 2 and all(len(j) == 2 for j, _ in on) and n > 3:
@@ -90,27 +91,26 @@ def _edits(chain: Chain):
                 moved = tuple(sorted([y for y in j if y != end] + [c]))
                 if frozenset(moved) in present:
                     continue
-                what = "joint" if kind == "revolute" else ("mesh" if kind == "mesh" else "prismatic pair")
-                yield (f"move {what} {_text(j, kind)} from link {end} to link {c}",
+                yield (f"move {kind.noun} {_text(j, kind)} from link {end} to link {c}",
                        build(n, pairs[:i] + [(moved, kind)] + pairs[i + 1:]))
-        if kind == "mesh":
+        if kind == MESH:
             yield f"remove the gear mesh {_text(j, kind)}", build(n, pairs[:i] + pairs[i + 1:])
-    if any(k == "mesh" for _, k in pairs):
+    if any(k == MESH for _, k in pairs):
         joined = {frozenset(q) for j, _ in pairs for q in combinations(j, 2)}
         for a, b in combinations(range(n), 2):
             if frozenset((a, b)) not in joined:
-                yield f"mesh links {a} and {b} (gear mesh {a}~{b})", build(n, pairs + [((a, b), "mesh")])
+                yield f"mesh links {a} and {b} (gear mesh {a}~{b})", build(n, pairs + [((a, b), MESH)])
     for (i, (p, kp)), (m, (q, kq)) in combinations(enumerate(pairs), 2):
-        if kp == kq == "revolute" and len(p) == 2 and len(q) == 2 and len(set(p) & set(q)) == 1:
+        if kp == kq == REVOLUTE and len(p) == 2 and len(q) == 2 and len(set(p) & set(q)) == 1:
             merged = tuple(sorted(set(p) | set(q)))
             rest = [jk for k, jk in enumerate(pairs) if k not in (i, m)]
             yield (f"merge joints {_text(p)} and {_text(q)} into the double joint {_text(merged)}",
-                   build(n, rest + [(merged, "revolute")]))
+                   build(n, rest + [(merged, REVOLUTE)]))
     for i, (j, kind) in enumerate(pairs):
         if len(j) > 2:
             for x in j:
                 rest = [y for y in j if y != x]
-                split = [(tuple(rest), "revolute"), ((x, rest[0]), "revolute")]
+                split = [(tuple(rest), REVOLUTE), ((x, rest[0]), REVOLUTE)]
                 yield (f"split joint {_text(j)} into {_text(split[0][0])} and {_text(split[1][0])}",
                        build(n, pairs[:i] + split + pairs[i + 1:]))
 
@@ -181,7 +181,7 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
     missing = dof - chain.dof
     if missing <= 0 or missing > most:
         return None
-    pairs = list(zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)))
+    pairs = list(zip(chain.joints, chain.kinds))
     tries = sum(comb(len(pairs), size) for size in range(1, missing + 1))
     if tries << min(chain.links, 22) > _WORK:  # each try scans every set of links
         return None

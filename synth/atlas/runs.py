@@ -44,6 +44,7 @@ from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..execution.executor import Executor
+from ..structure.joints import MESH, PRISMATIC
 from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, run_unit
 from ..gears.train import GearTrain
 from .database import acquire_run, open_atlas, refuse_unwritable, release_run, transaction
@@ -91,11 +92,11 @@ def _canonical(chain: Chain) -> Chain:
 def _chain_rows(chain: Chain, fractionated: bool, input_link: bool, out: UnitRows) -> None:
     """Add a chain (in its canonical labelling) to a unit's rows: its chain row, link counts and mechanisms."""
     cert, code, degrees = chain.certificate, chain.code, chain.degrees
-    kinds = chain.kinds or ()
+    kinds = chain.kinds
     out.chains.append((cert, str(code), str(Code(code.assortment, code.v, None, code.n1)), chain.dof, chain.h,
-                       chain.links, chain.loops, chain.v, kinds.count("prismatic"), max(degrees),
+                       chain.links, chain.loops, chain.v, kinds.count(PRISMATIC), max(degrees),
                        " ".join(map(str, sorted(degrees, reverse=True))), int(fractionated),
-                       json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count("mesh")))
+                       json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count(MESH)))
     out.link_counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
     mechanisms = mechanisms_of(chain)
     if input_link:

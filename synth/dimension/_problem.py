@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import BadTarget, DimensionError
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..motion import Linkage
 from ..motion._dyads import Closure, decompose
 from ..motion._sweep import _solver
@@ -122,22 +123,22 @@ class Problem:
         chain = mechanism.chain
         self.chain, self.frame, self.input_joint = chain, mechanism.frame, input_joint
         self.driven = driven
-        kinds = chain.kinds or ("revolute",) * len(chain.joints)
+        kinds = chain.kinds
         self.kinds = kinds
-        if "mesh" in kinds:
+        if MESH in kinds:
             raise DimensionError("a mechanism with gear meshes is not dimensioned by this synthesis (links and "
                                  "revolute or prismatic pairs only)")
         if chain.h != 3 or chain.dof != 1:
             raise DimensionError(f"dimensional synthesis moves a planar mechanism of one input (W = 1), not W = "
                                  f"{chain.dof}" + (f" in motion space h = {chain.h}" if chain.h != 3 else ""))
-        self.revolute_input = kinds[input_joint] == "revolute"
+        self.revolute_input = kinds[input_joint] == REVOLUTE
         self.input_link = driven if driven is not None else next(x for x in chain.joints[input_joint] if x != self.frame)
         frame_joints = [k for k, j in enumerate(chain.joints) if self.frame in j]
         self.frame_joints = frame_joints
         if isinstance(target, FunctionTarget):
             self.output_link = self._output_link(target.output_link)
             self.output_joint = next(k for k in frame_joints if self.output_link in chain.joints[k])
-            if kinds[self.output_joint] != "revolute" or not self.revolute_input:
+            if kinds[self.output_joint] != REVOLUTE or not self.revolute_input:
                 raise DimensionError("function generation relates the angles of two links pivoted on the frame: the "
                                      "input and the output joints must be revolute")
             self.tracer_link = None
@@ -165,7 +166,7 @@ class Problem:
             self.layout.append(("joint", k))
             lower += [box[0], box[2]]
             upper += [box[1], box[3]]
-            if kinds[k] == "prismatic":
+            if kinds[k] == PRISMATIC:
                 self.layout.append(("slide", k))
                 lower.append(0.0)
                 upper.append(math.pi)
@@ -226,7 +227,7 @@ class Problem:
         """The problem's real unknowns: a pin's 2 coordinates, a slide's line (2: a point along it is
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
-        count = sum(2 if kind == "joint" and self.kinds[k] == "revolute" else 1 if kind == "joint" else 1
+        count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1 if kind == "joint" else 1
                     for kind, k in self.layout if kind in ("joint", "slide"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:
@@ -398,7 +399,7 @@ def link_ratio(linkage: Linkage) -> float:
     """
     lengths = []
     for link in range(linkage.chain.links):
-        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == "revolute"]
+        pins = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
         p = linkage.points[pins]
         for a in range(len(pins)):
             for b in range(a + 1, len(pins)):
@@ -412,12 +413,12 @@ def input_joint_of(mechanism, linkage: Linkage | None) -> tuple[int, int | None]
     if linkage is not None:
         return linkage.inputs[0], linkage.driven[0] if len(linkage.chain.joints[linkage.inputs[0]]) > 2 else None
     chain, frame = mechanism.chain, mechanism.frame
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
-    candidates = [k for k, j in enumerate(chain.joints) if frame in j and len(j) == 2 and kinds[k] != "mesh"
+    kinds = chain.kinds
+    candidates = [k for k, j in enumerate(chain.joints) if frame in j and len(j) == 2 and kinds[k] != MESH
                   and (mechanism.input_link is None or mechanism.input_link in j)]
     if not candidates:
         raise DimensionError(f"the frame (link {frame}) has no joint with one moving link to drive"
                              + (f" (link {mechanism.input_link})" if mechanism.input_link is not None else ""))
-    revolute = [k for k in candidates if kinds[k] == "revolute"]
+    revolute = [k for k in candidates if kinds[k] == REVOLUTE]
     return (revolute or candidates)[0], None
 

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ..structure.chain import Chain, Mechanism
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..errors import InvalidOption, SynthesisError, option
 from ._layout import Layout, _sides, layout
 
@@ -70,7 +71,7 @@ class _Marks:
         for link, poly in enumerate(lay.polygons):
             points = [pos[j] for j in poly] + ([self.free_ends[link]] if len(poly) == 1 else [])
             self.labels[link] = np.mean(points, axis=0)
-        self.meshes = {k: _pitch_circles(chain, lay, k, r) for k, kind in enumerate(chain.kinds or ()) if kind == "mesh"}
+        self.meshes = {k: _pitch_circles(chain, lay, k, r) for k, kind in enumerate(chain.kinds) if kind == MESH}
         self.reach = max([1.25] + [float(np.abs(end).max()) + 2 * r for end in self.free_ends.values()]
                          + [float(np.abs(n).max()) + 2 * r for n in self.numbers.values()])
 
@@ -100,7 +101,6 @@ def _pitch_circles(chain: Chain, lay: Layout, k: int, r: float) -> list[tuple[np
     return [(pos[k] - u * radius, radius), (pos[k] + u * radius, radius)]
 
 
-_MESH = "#1e7a46"
 #: the links of a heterogeneous chain's base, by its loops' class (the other links keep the usual colours)
 _CLASS_COLOURS = {2: "#7b3294", 3: "#1b9e77", 4: "#b8860b", 5: "#e66101", 6: "#e7298a"}
 
@@ -161,22 +161,22 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                     gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     for k, joint in enumerate(chain.joints):
         x, y = pos[k]
-        kind = chain.kinds[k] if chain.kinds is not None else "revolute"
+        kind = chain.kinds[k]
         if len(joint) > 2:  # a ring, and the multiplicity in the widest free angle at the joint
             ax.add_patch(Circle((x, y), r * 1.75, facecolor="white", edgecolor=_MULTI, lw=1.6, zorder=3))
             nx_, ny_ = marks.numbers[k]
             ax.text(nx_, ny_, str(len(joint)), color=_MULTI, fontsize=7, fontweight="bold", ha="center",
                     va="center", zorder=6, gid=f"multiplicity{k}")
-        if kind == "prismatic":
+        if kind == PRISMATIC:
             corners, cylinder = _slider(chain, lay, k, r)
-            ax.add_patch(Polygon(corners, closed=True, facecolor=_EDGE if cylinder else "white", edgecolor=_EDGE,
+            ax.add_patch(Polygon(corners, closed=True, facecolor=PRISMATIC.stroke if cylinder else "white", edgecolor=PRISMATIC.stroke,
                                  lw=1.2, zorder=4, gid=f"{'cylinder' if cylinder else 'slider'}{k}"))
-        elif kind == "mesh":
+        elif kind == MESH:
             for centre, radius in marks.meshes[k]:
-                ax.add_patch(Circle(centre, radius, facecolor="white", edgecolor=_MESH, lw=1.4, zorder=4,
+                ax.add_patch(Circle(centre, radius, facecolor="white", edgecolor=MESH.stroke, lw=1.4, zorder=4,
                                     gid=f"mesh{k}"))
         else:
-            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", lw=1.2, zorder=4, gid=f"pin{k}"))
+            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor=REVOLUTE.stroke, lw=1.2, zorder=4, gid=f"pin{k}"))
     if mech is not None:  # the frame's pivots as a designer marks them: a support on a hatched base at each
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
@@ -226,7 +226,7 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarra
     across = np.array([-along[1], along[0]])
     cylinder = all(len(lay.polygons[x]) == 2 for x in chain.joints[k])
     if cylinder:  # from the joint towards the cylinder's far end, leaving room for a block there
-        reach = 0.4 if other is not None and chain.kinds[other] == "prismatic" else 0.55
+        reach = 0.4 if other is not None and chain.kinds[other] == PRISMATIC else 0.55
         start, end, half = pos[k], pos[k] + along * reach * length, 1.3 * r
     else:
         start, end, half = pos[k] - along * 1.6 * r, pos[k] + along * 1.6 * r, 1.0 * r
@@ -498,17 +498,17 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
                        'stroke-width="1.4"/>')
             out.append(f'<text x="{tx:.1f}" y="{ty:.1f}" fill="{_MULTI}" font-size="9" font-weight="bold" '
                        f'text-anchor="middle" dominant-baseline="central">{len(joint)}</text>')
-        if chain.kinds is not None and chain.kinds[k] == "prismatic":
+        if chain.kinds[k] == PRISMATIC:
             corners, cylinder = _slider(chain, lay, k, r)
-            out.append(f'<polygon points="{" ".join(xy(c) for c in corners)}" fill="{_EDGE if cylinder else "white"}" '
-                       f'stroke="{_EDGE}" stroke-width="1.1"/>')
-        elif chain.kinds is not None and chain.kinds[k] == "mesh":  # two pitch circles in mesh
+            out.append(f'<polygon points="{" ".join(xy(c) for c in corners)}" fill="{PRISMATIC.stroke if cylinder else "white"}" '
+                       f'stroke="{PRISMATIC.stroke}" stroke-width="1.1"/>')
+        elif chain.kinds[k] == MESH:  # two pitch circles in mesh
             for centre, radius in marks.meshes[k]:
                 cx, cy = xy(centre).split(",")
                 out.append(f'<circle class="mesh" cx="{cx}" cy="{cy}" r="{radius * scale:.1f}" fill="white" '
-                           f'stroke="{_MESH}" stroke-width="1.2"/>')
+                           f'stroke="{MESH.stroke}" stroke-width="1.2"/>')
         else:
-            out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * scale:.1f}" fill="white" stroke="black" '
+            out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * scale:.1f}" fill="white" stroke="{REVOLUTE.stroke}" '
                        'stroke-width="1.1"/>')
     if labels:
         for link in range(chain.links):

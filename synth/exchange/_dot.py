@@ -21,6 +21,7 @@ import re
 
 from ..errors import MalformedChain
 from ..structure.chain import Mechanism
+from ..structure.joints import JointKind
 from ._entry import Entry
 
 __all__ = ["read_dot", "write_dot"]
@@ -203,9 +204,6 @@ def _attr_list(values: dict) -> str:
     return "[" + ", ".join(f"{k}={_quoted(v)}" for k, v in values.items()) + "]"
 
 
-_SHAPES = {"revolute": "circle", "prismatic": "box", "mesh": "doublecircle"}
-
-
 def write_dot(items, out) -> int:
     """Write chains or mechanisms as DOT, one ``graph`` each (see the module docstring)."""
     from ._graphs import to_graph
@@ -227,7 +225,7 @@ def write_dot(items, out) -> int:
                 if isinstance(item, Mechanism) and data["number"] == item.frame:
                     style["style"] = "filled"
             else:
-                style = {"shape": _SHAPES[data["joint_kind"]], "label": "", "width": 0.15, "height": 0.15}
+                style = {"shape": JointKind(data["joint_kind"]).graph_shape, "label": "", "width": 0.15, "height": 0.15}
             out.write(f"  {node} {_attr_list({**data, **style})};\n")
         for a, b in g.edges():
             joint, link = (a, b) if a.startswith("J") else (b, a)

@@ -19,15 +19,9 @@ from dataclasses import dataclass
 
 from ..errors import MalformedChain
 from ..structure.chain import JOINT_KINDS, Chain, Mechanism, _check_as_written
+from ..structure.joints import JointKind
 
 __all__ = ["Entry", "entry_of", "kind_of", "is_kind_word", "check_distinct", "motion_space_of", "in_motion_space", "settings_of"]
-
-_KIND_WORDS = {
-    "revolute": "revolute", "r": "revolute", "-": "revolute", "pin": "revolute",
-    "prismatic": "prismatic", "p": "prismatic", "=": "prismatic", "slider": "prismatic",
-    "mesh": "mesh", "gear": "mesh", "g": "mesh", "~": "mesh",
-}
-
 
 @dataclass(frozen=True)
 class Entry:
@@ -63,19 +57,19 @@ def is_kind_word(word: str) -> bool:
     >>> is_kind_word("P"), is_kind_word("crank")
     (True, False)
     """
-    return str(word).strip().lower() in _KIND_WORDS
+    return JointKind.read(word) is not None
 
 
-def kind_of(value, where: str) -> str:
+def kind_of(value, where: str) -> JointKind:
     """A joint kind from the words other tools use: revolute/R/pin/-, prismatic/P/slider/=, mesh/gear/G/~.
 
     >>> kind_of("P", "x"), kind_of("gear", "x")
     ('prismatic', 'mesh')
     """
-    kind = _KIND_WORDS.get(str(value).strip().lower())
+    kind = JointKind.read(value)
     if kind is None:
         raise MalformedChain(f"{where}: joint kind {str(value)!r} is not one of {', '.join(JOINT_KINDS)} "
-                             "(or R, P, G; -, =, ~)")
+                             f"(or {', '.join(k.letter for k in JointKind)}; {', '.join(JointKind.symbols())})")
     return kind
 
 

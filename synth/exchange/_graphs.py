@@ -29,6 +29,7 @@ import re
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain, Mechanism, chain_id
+from ..structure.joints import REVOLUTE
 from ._entry import Entry, entry_of, kind_of
 
 __all__ = ["describe", "to_graph", "from_graph", "read_graphml", "write_graphml", "read_gml", "write_gml"]
@@ -56,11 +57,10 @@ def to_graph(item: Chain | Mechanism):
     info = describe(item)
     info["chain_id"] = info.pop("id")  # GraphML takes a graph's 'id' for its element id
     g = nx.Graph(**info)
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
     for i in range(chain.links):
         g.add_node(f"L{i}", kind="link", number=i)
-    for k, (joint, kind) in enumerate(zip(chain.joints, kinds)):
-        g.add_node(f"J{k}", kind="joint", number=k, joint_kind=kind, multiplicity=len(joint))
+    for k, (joint, kind) in enumerate(zip(chain.joints, chain.kinds)):
+        g.add_node(f"J{k}", kind="joint", number=k, joint_kind=kind.value, multiplicity=len(joint))
         g.add_edges_from((f"J{k}", f"L{x}") for x in joint)
     return g
 
@@ -100,7 +100,7 @@ def _incidence(g, source: str, role: dict) -> Entry:
             raise MalformedChain(f"{source}: joint {node} holds {len(held)} link{'s' * (len(held) != 1)}: a joint "
                                  "joins two links or more")
         data = g.nodes[node]
-        kind = data.get("joint_kind", data.get("type", "revolute"))
+        kind = data.get("joint_kind", data.get("type", REVOLUTE))
         joints.append(held)
         kinds.append(kind_of(kind, f"{source}, joint {node}"))
     return entry_of(joints, kinds, source, links=list(names.values()), **_stated(g))
@@ -114,7 +114,7 @@ def _link_graph(g, source: str) -> Entry:
     grouped: dict = {}
     joints, kinds = [], []
     for a, b, data in g.edges(data=True):
-        kind = kind_of(data.get("kind", data.get("joint_kind", data.get("type", "revolute"))),
+        kind = kind_of(data.get("kind", data.get("joint_kind", data.get("type", REVOLUTE))),
                        f"{source}, edge {a}-{b}")
         group = data.get("joint")
         if group is None:
@@ -128,9 +128,9 @@ def _link_graph(g, source: str) -> Entry:
         else:
             k = grouped[group]
             joints[k] += [x for x in (a, b) if x not in joints[k]]
-            if kinds[k] != kind or kind != "revolute":
+            if kinds[k] != kind or kind != REVOLUTE:
                 raise MalformedChain(f"{source}: joint {group} joins three links or more and is a pin (revolute), "
-                                     "not a " + (kind if kind != "revolute" else kinds[k]) + " pair")
+                                     "not a " + (kind if kind != REVOLUTE else kinds[k]) + " pair")
     return entry_of(joints, kinds, source, links=list(g.nodes), **_stated(g))
 
 

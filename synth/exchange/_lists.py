@@ -29,6 +29,7 @@ from dataclasses import replace
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain
+from ..structure.joints import REVOLUTE
 from ._entry import Entry, check_distinct, entry_of, is_kind_word, kind_of, settings_of
 
 __all__ = ["read_text_lists", "read_json", "read_edgelist", "write_edgelist", "write_lines", "looks_like_joint_list",
@@ -352,7 +353,7 @@ def read_edgelist(text: str, source: str) -> list[Entry]:
             raise MalformedChain(f"{where}: cannot read {body!r} as a joint: an edge-list line names the two (or more) "
                                  "links of a joint, then optionally its kind, e.g. '0 1' or '1 2 prismatic'")
         words, word = found
-        kind = "revolute" if word is None else kind_of(word, where)
+        kind = REVOLUTE if word is None else kind_of(word, where)
         if data:
             value = data.get("kind", data.get("joint_kind", data.get("type")))
             if value is not None:
@@ -373,6 +374,6 @@ def write_edgelist(item, out, names=None) -> None:
     chain = getattr(item, "chain", item)
     info = describe(item)
     out.write(f"# {info['code']} id {info['id']}\n# {settings_text(item, every=True)}\n")
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
+    kinds = chain.kinds
     for joint, kind in zip(chain.joints, kinds):
-        out.write(" ".join(map(str, joint)) + ("" if kind == "revolute" else f" {kind}") + "\n")
+        out.write(" ".join(map(str, joint)) + ("" if kind == REVOLUTE else f" {kind}") + "\n")

@@ -26,13 +26,14 @@ from __future__ import annotations
 import re
 
 from ..errors import InvalidOption, MalformedChain
-from ..structure.chain import SYMBOLS, Chain, Mechanism
+from ..structure.chain import Chain, Mechanism
+from ..structure.joints import REVOLUTE, JointKind
 from ._entry import Entry, entry_of, kind_of, settings_of
 
 __all__ = ["read_matrices", "write_adjacency", "write_incidence"]
 
 _EMPTY = {"", "0", "0.0"}
-_LETTER = {"revolute": "1", "prismatic": "P", "mesh": "G"}
+_LETTER = {kind: kind.letter for kind in JointKind} | {REVOLUTE: "1"}  # a pin is the plain 1
 _NOTATION = re.compile(r"^\d+(?:[-=~]\d+)+$")
 
 
@@ -49,7 +50,7 @@ def _kind(cell: str, where: str) -> str | None:
         return None
     if re.fullmatch(r"\d+(\.0*)?", cell):
         if int(float(cell)) == 1:
-            return "revolute"
+            return REVOLUTE
         raise MalformedChain(f"{where}: entry {cell} is not 0 or 1 (or a joint kind R, P, G): two joints between "
                              "the same links, or a link held twice by a joint, are not a chain")
     return kind_of(cell, where)
@@ -147,10 +148,10 @@ def _incidence(body, labels, header, transposed: bool, where: str, settings: dic
         if len(held) < 2:
             raise MalformedChain(f"{where}: joint {title} holds {len(held)} link{'s' * (len(held) != 1)}: a joint "
                                  "joins two links or more")
-        kind = next((kind for _, kind in held if kind != "revolute"), "revolute")
+        kind = next((kind for _, kind in held if kind != REVOLUTE), REVOLUTE)
         if header and _NOTATION.match(header[k]):
             symbol = next(c for c in header[k] if c in "-=~")
-            kind = {v: key for key, v in SYMBOLS.items()}[symbol]
+            kind = JointKind.by_symbol(symbol)
         joints.append([x for x, _ in held])
         kinds.append(kind)
     return entry_of(joints, kinds, where, links=names, **_stated(settings))
@@ -186,7 +187,7 @@ def write_adjacency(items, out) -> int:
             out.write("\n")
         _head(item, out)
         cells = [["0"] * chain.links for _ in range(chain.links)]
-        for (a, b), kind in zip(chain.joints, chain.kinds or ("revolute",) * len(chain.joints)):
+        for (a, b), kind in zip(chain.joints, chain.kinds):
             cells[a][b] = cells[b][a] = _LETTER[kind]
         out.write("link," + ",".join(map(str, range(chain.links))) + "\n")
         for i, row in enumerate(cells):
@@ -202,8 +203,8 @@ def write_incidence(items, out) -> int:
         if count:
             out.write("\n")
         chain = _head(item, out)
-        kinds = chain.kinds or ("revolute",) * len(chain.joints)
-        out.write("link," + ",".join(SYMBOLS[k].join(map(str, j)) for j, k in zip(chain.joints, kinds)) + "\n")
+        kinds = chain.kinds
+        out.write("link," + ",".join(k.symbol.join(map(str, j)) for j, k in zip(chain.joints, kinds)) + "\n")
         for i in range(chain.links):
             out.write(f"{i}," + ",".join("1" if i in j else "0" for j in chain.joints) + "\n")
         count += 1

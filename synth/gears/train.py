@@ -31,6 +31,7 @@ from functools import cached_property
 import pynauty
 
 from ..structure.chain import Chain
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..errors import MalformedChain
 from ..structure.kinds import lever_analogue
 from ..structure.subchains import check_subchains
@@ -178,7 +179,7 @@ class GearTrain:
         '0-1-2 0~3 1~3 2-3'
         """
         joints = list(self.axes) + list(self.meshes)
-        return Chain(self.links, joints, ["revolute"] * len(self.axes) + ["mesh"] * len(self.meshes))
+        return Chain(self.links, joints, [REVOLUTE] * len(self.axes) + [MESH] * len(self.meshes))
 
     @classmethod
     def from_chain(cls, chain: Chain) -> "GearTrain":
@@ -188,11 +189,11 @@ class GearTrain:
         >>> GearTrain.from_chain(Chain.parse("0-1-2 2-3 1~3 0~3")).compact() == GearTrain.parse("0-1-2 2-3 1~3 0~3").compact()
         True
         """
-        kinds = chain.kinds or ("revolute",) * len(chain.joints)
-        if "prismatic" in kinds:
+        kinds = chain.kinds
+        if PRISMATIC in kinds:
             raise MalformedChain("a gear train turns on axes and meshes: it has no prismatic pair")
-        axes = [j for j, k in zip(chain.joints, kinds) if k == "revolute"]
-        meshes = [j for j, k in zip(chain.joints, kinds) if k == "mesh"]
+        axes = [j for j, k in zip(chain.joints, kinds) if k == REVOLUTE]
+        meshes = [j for j, k in zip(chain.joints, kinds) if k == MESH]
         return cls(chain.links, axes, meshes)
 
     @cached_property

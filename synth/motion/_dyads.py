@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ._kernel import GEAR, PRP, PRR, RPP, RPR, RRR, close_kernel
 from ._linkage import Linkage
 
@@ -45,7 +46,7 @@ class Dyad:
 
 
 def _letter(linkage: Linkage, k: int) -> str:
-    return {"revolute": "R", "prismatic": "P", "mesh": "G"}[linkage.kind(k)]
+    return linkage.kind(k).letter
 
 
 def decompose(linkage: Linkage) -> list[Dyad] | None:
@@ -76,7 +77,7 @@ def _attachments(linkage: Linkage, known: set[int], link: int) -> list[tuple[int
     out = []
     for k in linkage.joints_of(link):
         held = [x for x in linkage.chain.joints[k] if x in known]
-        if held and linkage.kind(k) != "mesh":
+        if held and linkage.kind(k) != MESH:
             out.append((k, held[0]))
     return out
 
@@ -88,16 +89,16 @@ def _groups(linkage: Linkage, known: set[int], unknown: list[int]) -> Iterator[D
     joints = linkage.chain.joints
     for g in unknown:
         for k, held in _attachments(linkage, known, g):
-            if linkage.kind(k) != "revolute":
+            if linkage.kind(k) != REVOLUTE:
                 continue
             for m in linkage.joints_of(g):
-                if linkage.kind(m) == "mesh" and sum(joints[m]) - g in known and linkage.carrier(m) in known:
+                if linkage.kind(m) == MESH and sum(joints[m]) - g in known and linkage.carrier(m) in known:
                     yield Dyad("gear", (g, g), (k, m), -1, (held, linkage.carrier(m)))
     for i in unknown:
         for k3 in linkage.joints_of(i):
-            if linkage.kind(k3) == "mesh" or any(x in known for x in joints[k3]):
+            if linkage.kind(k3) == MESH or any(x in known for x in joints[k3]):
                 continue
-            if linkage.kind(k3) == "prismatic" and len(joints[k3]) != 2:
+            if linkage.kind(k3) == PRISMATIC and len(joints[k3]) != 2:
                 continue
             for j in joints[k3]:
                 if j == i:
@@ -166,7 +167,7 @@ class Closure:
         for k, u in lk.slides.items():
             slides[k] = u
         in_link = np.array([lk.input_link(i) for i in range(lk.dof)], dtype=np.int64)
-        in_prismatic = np.array([lk.kind(k) == "prismatic" for k in lk.inputs])
+        in_prismatic = np.array([lk.kind(k) == PRISMATIC for k in lk.inputs])
         in_point = np.array([lk.points[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
         in_slide = np.array([slides[k] for k in lk.inputs], dtype=float).reshape(-1, 2)
         groups = np.array([_KINDS[d.kind] for d in plan], dtype=np.int64)

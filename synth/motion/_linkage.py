@@ -21,7 +21,8 @@ from mechbase.toml import read_toml_text
 
 from ..display import svg_of
 from ..errors import BadPose, LockedMechanism, MalformedChain, MotionError, WrongInputs
-from ..structure.chain import SYMBOLS, Chain, Mechanism
+from ..structure.chain import Chain, Mechanism
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 
 __all__ = ["Linkage", "read_linkage", "joint_name"]
 
@@ -35,8 +36,8 @@ def joint_name(chain: Chain, k: int) -> str:
     >>> joint_name(Chain.parse("0-1 1=2 2-3 3-0"), 2)
     '1=2'
     """
-    kind = chain.kinds[k] if chain.kinds else "revolute"
-    return SYMBOLS[kind].join(map(str, chain.joints[k]))
+    kind = chain.kinds[k]
+    return kind.symbol.join(map(str, chain.joints[k]))
 
 
 def _joint_index(chain: Chain, key, what: str) -> int:
@@ -200,7 +201,7 @@ class Linkage:
             if not 0 <= k < len(chain.joints):
                 raise WrongInputs(f"input joint {k} is not a joint of the chain (0 … {len(chain.joints) - 1})")
             name = joint_name(chain, k)
-            if self.kind(k) == "mesh":
+            if self.kind(k) == MESH:
                 raise WrongInputs(f"input joint {name} is a gear mesh: drive a revolute or prismatic joint of the frame")
         driven = [self.input_link(i) for i in range(w)]
         if len(set(driven)) != len(driven):
@@ -211,7 +212,7 @@ class Linkage:
         axis, as a planetary train's shafts on its frame, are allowed where the link has others)."""
         scale = self.scale
         for link in range(self.chain.links):
-            pins = [k for k in self.joints_of(link) if self.kind(k) == "revolute"]
+            pins = [k for k in self.joints_of(link) if self.kind(k) == REVOLUTE]
             if len(pins) >= 2 and all(np.hypot(*(self.points[k] - self.points[pins[0]])) <= COINCIDENT * scale
                                       for k in pins[1:]):
                 raise BadPose(f"joints {joint_name(self.chain, pins[0])} and {joint_name(self.chain, pins[1])} of link "
@@ -221,10 +222,10 @@ class Linkage:
         chain, out = self.chain, {}
         given = dict(self.slides)
         for k in given:
-            if not (isinstance(k, int) and 0 <= k < len(chain.joints) and self.kind(k) == "prismatic"):
+            if not (isinstance(k, int) and 0 <= k < len(chain.joints) and self.kind(k) == PRISMATIC):
                 raise BadPose(f"a sliding direction is given for joint {k!r}, which is not a prismatic joint")
         for k in range(len(chain.joints)):
-            if self.kind(k) != "prismatic":
+            if self.kind(k) != PRISMATIC:
                 continue
             if k not in given:
                 raise BadPose(f"prismatic joint {joint_name(chain, k)} needs its sliding direction")
@@ -241,7 +242,7 @@ class Linkage:
         The frame is preferred where several links do."""
         a, b = self.chain.joints[k]
         def pinned(x):
-            return {y for m in self.joints_of(x) if self.kind(m) == "revolute" for y in self.chain.joints[m] if y != x}
+            return {y for m in self.joints_of(x) if self.kind(m) == REVOLUTE for y in self.chain.joints[m] if y != x}
         common = sorted(pinned(a) & pinned(b), key=lambda c: (c != self.frame, c))
         if not common:
             raise BadPose(f"gear mesh {joint_name(self.chain, k)} needs a link carrying both gears' axes (a carrier)")
@@ -249,16 +250,16 @@ class Linkage:
 
     def axis(self, gear: int, carrier: int) -> int:
         """The revolute joint of ``gear`` and ``carrier`` (the gear's axis)."""
-        return next(m for m in self.joints_of(gear) if self.kind(m) == "revolute" and carrier in self.chain.joints[m])
+        return next(m for m in self.joints_of(gear) if self.kind(m) == REVOLUTE and carrier in self.chain.joints[m])
 
     def _checked_meshes(self) -> dict:
         chain, out = self.chain, {}
         given = dict(self.meshes)
         for k in given:
-            if not (isinstance(k, int) and 0 <= k < len(chain.joints) and self.kind(k) == "mesh"):
+            if not (isinstance(k, int) and 0 <= k < len(chain.joints) and self.kind(k) == MESH):
                 raise BadPose(f"a gear ratio is given for joint {k!r}, which is not a gear mesh")
         for k in range(len(chain.joints)):
-            if self.kind(k) != "mesh":
+            if self.kind(k) != MESH:
                 continue
             name = joint_name(chain, k)
             c = self.carrier(k)
@@ -315,7 +316,7 @@ class Linkage:
 
     def kind(self, k: int) -> str:
         """Kind of joint ``k``: revolute, prismatic or mesh."""
-        return self.chain.kinds[k] if self.chain.kinds else "revolute"
+        return self.chain.kinds[k]
 
     def joints_of(self, link: int) -> tuple[int, ...]:
         """Indices of the joints on ``link``."""
@@ -343,7 +344,7 @@ class Linkage:
         """For a revolute input, the joint of the driven link whose direction from the input joint is
         the input angle; None for a prismatic input (its input is the displacement from the pose)."""
         k = self.inputs[i]
-        if self.kind(k) != "revolute":
+        if self.kind(k) != REVOLUTE:
             return None
         link = self.input_link(i)
         others = [m for m in self.joints_of(link) if m != k]
@@ -368,7 +369,7 @@ class Linkage:
         """Length of each link with exactly two revolute joints (the distance between its pins)."""
         out = {}
         for link in range(self.chain.links):
-            pins = [k for k in self.joints_of(link) if self.kind(k) == "revolute"]
+            pins = [k for k in self.joints_of(link) if self.kind(k) == REVOLUTE]
             if len(pins) == 2:
                 out[link] = float(np.hypot(*(self.points[pins[0]] - self.points[pins[1]])))
         return out

@@ -6,6 +6,7 @@ import numpy as np
 
 from ..errors import BadPose, LockedMechanism, MotionError
 from ..structure.chain import Mechanism
+from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ._linkage import Linkage
 from ._system import check_movable
 
@@ -47,13 +48,13 @@ def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=No
         raise BadPose("the joint positions must be numbers, one [x, y] per joint") from None
     if points.shape != (len(chain.joints), 2):
         raise BadPose(f"the pose needs one [x, y] per joint ({len(chain.joints)}), not an array of shape {points.shape}")
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
+    kinds = chain.kinds
     if inputs is None:
-        on_frame = [k for k, j in enumerate(chain.joints) if len(j) == 2 and frame in j and kinds[k] != "mesh"]
+        on_frame = [k for k, j in enumerate(chain.joints) if len(j) == 2 and frame in j and kinds[k] != MESH]
         if mechanism.input_link is not None:
             on_frame.sort(key=lambda k: mechanism.input_link not in chain.joints[k])
         else:
-            on_frame.sort(key=lambda k: (kinds[k] != "revolute", k))
+            on_frame.sort(key=lambda k: (kinds[k] != REVOLUTE, k))
         picked, driven = [], set()
         for k in on_frame:
             other = sum(chain.joints[k]) - frame
@@ -64,7 +65,7 @@ def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=No
     if slides is None:
         slides = {}
         for k, kind in enumerate(kinds):
-            if kind == "prismatic":
+            if kind == PRISMATIC:
                 others = [m for x in chain.joints[k] for m in range(len(chain.joints)) if m != k and x in chain.joints[m]]
                 d = points[others] - points[k]
                 far = d[np.hypot(d[:, 0], d[:, 1]) > 1e-6 * max(float(np.ptp(points, axis=0).max()), 1e-12)]

@@ -12,6 +12,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import BadSweep, CannotAssemble, MotionError
+from ..structure.joints import MESH, REVOLUTE
 from ._dyads import Closure, decompose
 from ._linkage import Linkage, joint_name
 from ._system import System
@@ -176,7 +177,7 @@ class _Solver:
         self.system = System(linkage)
         self.plan = decompose(linkage)
         self.closure = None if self.plan is None else Closure(linkage, self.plan)
-        self.revolute = [linkage.kind(k) == "revolute" for k in linkage.inputs]
+        self.revolute = [linkage.kind(k) == REVOLUTE for k in linkage.inputs]
 
     # ------------------------------------------------------------ positions
     def closed(self, offsets: np.ndarray):
@@ -486,7 +487,7 @@ def _check_value(value, name: str) -> float:
 
 def _describe(linkage: Linkage, value: float) -> str:
     """An input value as a designer reads it: degrees for a revolute input."""
-    if linkage.kind(linkage.inputs[0]) == "revolute":
+    if linkage.kind(linkage.inputs[0]) == REVOLUTE:
         return f"{value:.9f} rad ({math.degrees(value):.6f}°)"
     return f"{value:.9g}"
 
@@ -807,7 +808,7 @@ _GRASHOF = {"frame": "double-crank", "input": "crank-rocker", "output": "rocker-
 def _grashof(linkage: Linkage) -> str | None:
     """Grashof's class of a four-bar of revolute joints (None for any other linkage)."""
     chain = linkage.chain
-    if chain.links != 4 or len(chain.joints) != 4 or chain.kinds is not None or chain.v:
+    if chain.links != 4 or len(chain.joints) != 4 or not chain.all_revolute or chain.v:
         return None
     p, frame = linkage.points, linkage.frame
     length = {x: float(np.hypot(*np.subtract(*[p[k] for k in linkage.joints_of(x)]))) for x in range(4)}
@@ -863,7 +864,7 @@ def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
     frame = linkage.frame
     outputs = []
     for k, j in enumerate(linkage.chain.joints):
-        if frame in j and k not in linkage.inputs and linkage.kind(k) != "mesh":
+        if frame in j and k not in linkage.inputs and linkage.kind(k) != MESH:
             for x in j:
                 if x != frame and x != linkage.input_link(0):
                     outputs.append((x, linkage.kind(k), np.array(linkage.slides.get(k, (1.0, 0.0)))))
@@ -875,7 +876,7 @@ def _toggles(linkage: Linkage, a: float, b: float) -> tuple:
         theta, t, _ = solver.poses_along(np.atleast_1d(xs))
         qd, _ = system.rates(theta, t)
         dtheta, dt = system.poses(qd[:, 0])
-        return np.stack([dtheta[:, x] if kind == "revolute" else dt[:, x] @ u for x, kind, u in outputs], axis=1)
+        return np.stack([dtheta[:, x] if kind == REVOLUTE else dt[:, x] @ u for x, kind, u in outputs], axis=1)
 
     margin = 1e-7 * (b - a)
     xs = np.linspace(a + margin, b - margin, 721)

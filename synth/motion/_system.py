@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..structure.joints import PRISMATIC, REVOLUTE
 from ._linkage import Linkage, joint_name
 
 __all__ = ["System", "check_movable"]
@@ -65,9 +66,9 @@ class System:
         self.meshes = []  # (a, b, carrier, ratio)
         for k, j in enumerate(chain.joints):
             kind = lk.kind(k)
-            if kind == "revolute":
+            if kind == REVOLUTE:
                 self.pins += [(j[0], x, points[k]) for x in j[1:]]
-            elif kind == "prismatic":
+            elif kind == PRISMATIC:
                 self.sliders.append((j[0], j[1], points[k], np.array(lk.slides[k])))
             else:
                 self.meshes.append((j[0], j[1], lk.carrier(k), lk.meshes[k]))
@@ -122,7 +123,7 @@ class System:
             out.append(theta[:, a] - theta[:, c] - ratio * (theta[:, b] - theta[:, c]))
         offsets = self.input_offsets(values)
         for i, (link, kind, p, u) in enumerate(self.drives):
-            if kind == "revolute":
+            if kind == REVOLUTE:
                 out.append(theta[:, link] - offsets[:, i])
             else:
                 out.append((_rotate(theta[:, link], p) + t[:, link] - p) @ u - offsets[:, i])
@@ -161,7 +162,7 @@ class System:
             put(row, c, None, (ratio - 1) * one)
             row += 1
         for link, kind, p, u in self.drives:
-            if kind == "revolute":
+            if kind == REVOLUTE:
                 put(row, link, None, one)
             else:
                 put(row, link, np.broadcast_to(u, (s, 2)), _perp(_rotate(theta[:, link], p)) @ u)
@@ -192,7 +193,7 @@ class System:
         for _ in self.meshes:
             out.append(np.zeros(len(theta)))
         for link, kind, p, u in self.drives:
-            out.append(np.zeros(len(theta)) if kind == "revolute"
+            out.append(np.zeros(len(theta)) if kind == REVOLUTE
                        else (-dtheta[:, link, None] ** 2 * _rotate(theta[:, link], p)) @ u)
         return np.stack(out, axis=1)
 

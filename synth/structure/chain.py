@@ -29,9 +29,9 @@ from ..errors import MalformedChain
 from .code import Code
 from ..display import svg_of
 from .disjoint import DisjointSets
-from .joints import JOINT_KINDS, SYMBOLS
+from .joints import JOINT_KINDS, MESH, PRISMATIC, REVOLUTE, JointKind
 
-__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "SYMBOLS", "chain_id"]
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "JointKind", "chain_id"]
 
 
 @dataclass(frozen=True)
@@ -45,9 +45,10 @@ class Chain:
     joints : sequence of sequences of int
         Each joint as the links it joins (at least two, all different).
     kinds : sequence of str, optional
-        ``"revolute"``, ``"prismatic"`` or ``"mesh"`` (a gear mesh) per joint; None means all
-        revolute.  Prismatic pairs and meshes join two links, in planar chains (see
-        :mod:`synth.structure.kinds`).
+        A :class:`~synth.structure.joints.JointKind` or its name (``"revolute"``, ``"prismatic"``,
+        ``"mesh"``: a gear mesh) per joint; None means all revolute.  Held as a tuple of
+        ``JointKind`` always (all ``REVOLUTE`` for a plain chain).  Prismatic pairs and meshes
+        join two links, in planar chains (see :mod:`synth.structure.kinds`).
     h : int
         Motion space of its loops (2 … 6; 3 planar and spherical, 6 general spatial): the same
         graph is a different design in another space, with W = h(n − 1) − (h − 1)·p.
@@ -71,7 +72,7 @@ class Chain:
 
     links: int
     joints: tuple[tuple[int, ...], ...]
-    kinds: tuple[str, ...] | None = None
+    kinds: tuple[JointKind, ...] | None = None
     h: int = 3
     classes: tuple[int, ...] | None = None
 
@@ -84,15 +85,12 @@ class Chain:
             raw = [tuple(sorted(int(x) for x in j)) for j in self.joints]
         except (TypeError, ValueError):
             raise MalformedChain("each joint must be a list of link numbers") from None
-        kinds = None if self.kinds is None else tuple(self.kinds)
-        if kinds is not None:
+        if self.kinds is None:
+            kinds = (REVOLUTE,) * len(raw)
+        else:
+            kinds = _read_kinds(self.kinds)
             if len(kinds) != len(raw):
                 raise MalformedChain(f"{len(kinds)} joint kinds given for {len(raw)} joints")
-            bad = [k for k in kinds if k not in JOINT_KINDS]
-            if bad:
-                raise MalformedChain(f"joint kind {bad[0]!r} is not one of {', '.join(JOINT_KINDS)}")
-            if all(k == "revolute" for k in kinds):
-                kinds = None
         for k, j in enumerate(raw):
             if len(j) < 2:
                 raise MalformedChain(f"joint {list(j)} joins fewer than two links")
@@ -100,19 +98,19 @@ class Chain:
                 raise MalformedChain(f"joint {list(j)} names a link twice")
             if j[0] < 0 or j[-1] >= self.links:
                 raise MalformedChain(f"joint {list(j)} names a link outside 0…{self.links - 1}")
-            if kinds is not None and kinds[k] != "revolute" and len(j) > 2:
+            if not kinds[k].joins_many and len(j) > 2:
                 raise MalformedChain(f"joint {list(j)} joins {len(j)} links: a multiple joint is a pin (revolute), "
                                      f"a {kinds[k]} pair joins two links")
-        if kinds is not None and "mesh" in kinds:
+        if MESH in kinds:
             for k, j in enumerate(raw):
-                if kinds[k] == "mesh" and raw.count(j) > 1:
+                if kinds[k] is MESH and raw.count(j) > 1:
                     raise MalformedChain(f"links {j[0]} and {j[1]} are joined twice, once by a gear mesh: two gears "
                                          "mesh once, and gears on one axis cannot mesh")
-        if kinds is not None and self.h != 3:
+        if self.h != 3 and any(k.planar for k in kinds):
             raise MalformedChain(f"prismatic pairs and gear meshes are planar (h = 3), not in motion space h = {self.h}")
-        order = sorted(range(len(raw)), key=lambda k: (raw[k], kinds[k] if kinds else ""))
+        order = sorted(range(len(raw)), key=lambda k: (raw[k], kinds[k]))
         object.__setattr__(self, "joints", tuple(raw[k] for k in order))
-        object.__setattr__(self, "kinds", None if kinds is None else tuple(kinds[k] for k in order))
+        object.__setattr__(self, "kinds", tuple(kinds[k] for k in order))
         object.__setattr__(self, "classes", self._checked_classes())
 
     def _checked_classes(self) -> tuple[int, ...] | None:
@@ -131,7 +129,7 @@ class Chain:
             raise MalformedChain(f"a loop class is a motion space 2 … 6, not {bad[0]!r}")
         if all(x == self.h for x in classes):
             return None
-        if self.kinds is not None:
+        if not self.all_revolute:
             raise MalformedChain("a chain with loop classes has revolute joints only (prismatic pairs and meshes are "
                                  "planar, h = 3)")
         for x in sorted(set(classes) - {self.h}):
@@ -156,14 +154,23 @@ class Chain:
         self = object.__new__(cls)
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "joints", tuple(sorted(tuple(sorted(j)) for j in joints)))
-        object.__setattr__(self, "kinds", None if kinds is None or all(k == "revolute" for k in kinds)
-                           else tuple(kinds))
+        object.__setattr__(self, "kinds", (REVOLUTE,) * len(self.joints) if kinds is None
+                           else tuple(_BY_NAME[k] for k in kinds))
         object.__setattr__(self, "h", h)
         object.__setattr__(self, "classes", None if classes is None or all(x == h for x in classes)
                            else tuple(classes))
         return self
 
     # ---------------------------------------------------------------- numbers
+    @property
+    def all_revolute(self) -> bool:
+        """Whether every joint is a pin (a plain chain: its kinds are not written in its rows).
+
+        >>> Chain.parse("0-1 1-2 2-0").all_revolute, Chain.parse("0-1 1=2 2-0").all_revolute
+        (True, False)
+        """
+        return self.kinds.count(REVOLUTE) == len(self.kinds)
+
     @property
     def degrees(self) -> tuple[int, ...]:
         """Number of joints on each link."""
@@ -204,7 +211,7 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-3 3-4 4-5 5-0 | h5: 0 1 2 3 4 5").dof   # the toroidal loop, in the plane
         1
         """
-        if self.kinds is None and self.classes is None:
+        if self.classes is None and self.all_revolute:
             return self.h * (self.links - 1) - (self.h - 1) * self.simple_joint_equivalents
         from .kinds import structural_mobility
 
@@ -265,11 +272,8 @@ class Chain:
         else:  # a cell of links per loop class: two class assignments of one graph are two chains
             coloring = [{m} for m in marked] + [{i for i in range(n) if self.classes[i] == x and i not in marked}
                                                 for x in sorted(set(self.classes))]
-        if self.kinds is None:
-            coloring.append(set(range(n, n + len(self.joints))))
-        else:  # a cell per kind (meshes only where there are some: older certificates stay valid)
-            shown = JOINT_KINDS if "mesh" in self.kinds else JOINT_KINDS[:2]
-            coloring += [{n + k for k, kk in enumerate(self.kinds) if kk == kind} for kind in shown]
+        # a cell per kind up to the last kind the chain has (joints.py: appending a kind keeps every id)
+        coloring += [{n + k for k, kk in enumerate(self.kinds) if kk is kind} for kind in self._shown_kinds()]
         return pynauty.Graph(n + len(self.joints), adjacency_dict=adjacency, vertex_coloring=coloring)
 
     @property
@@ -289,13 +293,15 @@ class Chain:
         """The certificate's prefix: motion space (where h ≠ 3), links, joints, and the number of
         prismatic pairs and meshes (where there are any)."""
         sizes = ("" if self.h == 3 else f"h{self.h}") + f"{self.links:02x}{len(self.joints):02x}"
-        if self.kinds is not None:
-            sizes += "p" + f"{self.kinds.count('prismatic'):02x}"
-            if "mesh" in self.kinds:
-                sizes += "g" + f"{self.kinds.count('mesh'):02x}"
+        sizes += "".join(f"{kind.tag}{self.kinds.count(kind):02x}" for kind in self._shown_kinds() if kind.tag)
         if self.classes is not None:  # the links of each class, cell by cell as nauty sees them
             sizes += "c" + "".join(f"{x}{self.classes.count(x):02x}" for x in sorted(set(self.classes)))
         return sizes
+
+    def _shown_kinds(self) -> tuple[JointKind, ...]:
+        """The kinds whose colour cells and tags the certificate shows: the table up to the last kind
+        the chain has (the revolute cell alone for a plain chain)."""
+        return JOINT_KINDS[: 1 + max((kind.cell for kind in set(self.kinds)), default=0)]
 
     def automorphisms(self, marked: Sequence[int] = ()) -> tuple[list[list[int]], float, list[int]]:
         """Generators (on links), group order and link orbits, fixing the ``marked`` links.
@@ -341,7 +347,7 @@ class Chain:
             g.add_node(("link", i), kind="link")
         for k, j in enumerate(self.joints):
             g.add_node(("joint", k), kind="joint", multiplicity=len(j),
-                       joint_kind=self.kinds[k] if self.kinds else "revolute")
+                       joint_kind=self.kinds[k].value)
             g.add_edges_from((("joint", k), ("link", x)) for x in j)
         return g
 
@@ -370,7 +376,7 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-0 2-3 3-4").closed_part().compact()
         '0-1 0-2 1-2'
         """
-        joints = [(list(j), k) for j, k in zip(self.joints, self.kinds or ("revolute",) * len(self.joints))]
+        joints = [(list(j), k) for j, k in zip(self.joints, self.kinds)]
         while True:
             degree = [0] * self.links
             for j, _ in joints:
@@ -410,13 +416,13 @@ class Chain:
             "loops": self.loops,
             "v": self.v,
         }
-        if self.kinds is not None:  # the code says how many pairs are prismatic and meshes, e.g. '42/0 P2'
+        if not self.all_revolute:  # the code says how many pairs are prismatic and meshes, e.g. '42/0 P2'
             from .kinds import wedge_loops
 
             d["kinds"] = list(self.kinds)
             d["code"] += self.kind_suffix
             k2 = wedge_loops(self)
-            d.update(prismatic=self.kinds.count("prismatic"), meshes=self.kinds.count("mesh"), loops_2=k2,
+            d.update(prismatic=self.kinds.count(PRISMATIC), meshes=self.kinds.count(MESH), loops_2=k2,
                      loops_3=self.loops - k2)
         if self.h != 3:
             d["h"] = self.h
@@ -455,10 +461,8 @@ class Chain:
         >>> Chain.parse("0-1 1=2 2~3 3-0").kind_suffix
         ' P1 G1'
         """
-        if self.kinds is None:
-            return ""
-        text = f" P{self.kinds.count('prismatic')}" if "prismatic" in self.kinds or "mesh" not in self.kinds else ""
-        return text + (f" G{self.kinds.count('mesh')}" if "mesh" in self.kinds else "")
+        counts = ((kind, self.kinds.count(kind)) for kind in JOINT_KINDS if kind is not REVOLUTE)
+        return "".join(f" {kind.letter}{count}" for kind, count in counts if count)
 
     @property
     def class_suffix(self) -> str:
@@ -506,10 +510,10 @@ class Chain:
             return cls.from_json(s)
         s, _, declared = s.partition("|")
         joints, kinds = [], []
-        by_symbol = {v: k for k, v in SYMBOLS.items()}
+        signs = JointKind.symbols()
         for token in s.replace(",", " ").split():
-            symbols = {c for c in token if c in by_symbol}
-            parts = token.replace("=", "-").replace("~", "-").split("-")
+            symbols = {c for c in token if c in signs}
+            parts = token.translate(_TO_DASH).split("-")
             try:
                 joint = tuple(int(x) for x in parts)
             except ValueError:
@@ -520,7 +524,7 @@ class Chain:
                     "'0-1-2' joins three links), '=' (prismatic) or '~' (gear mesh), e.g. '0-1 1=2 2~3'"
                 ) from None
             joints.append(joint)
-            kinds.append(by_symbol[symbols.pop()])
+            kinds.append(JointKind.by_symbol(symbols.pop()))
         if not joints:
             raise MalformedChain("an empty joint list is not a chain")
         links = 1 + max(max(j) for j in joints)
@@ -534,8 +538,7 @@ class Chain:
         >>> Chain.parse("2~1 0=1 0-2").compact()
         '0=1 0-2 1~2'
         """
-        kinds = self.kinds or ("revolute",) * len(self.joints)
-        text = " ".join(SYMBOLS[k].join(map(str, j)) for j, k in zip(self.joints, kinds))
+        text = " ".join(k.symbol.join(map(str, j)) for j, k in zip(self.joints, self.kinds))
         if self.classes is not None:
             bases = [f"h{x}: " + " ".join(str(i) for i, c in enumerate(self.classes) if c == x)
                      for x in sorted(set(self.classes) - {self.h})]
@@ -545,6 +548,28 @@ class Chain:
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
         return svg_of(self)
+
+
+_BY_NAME = {kind.value: kind for kind in JointKind}  # a name or a member: members hash as their names
+
+
+def _read_kinds(kinds) -> tuple[JointKind, ...]:
+    """Joint kinds given by name or as members, as members.
+
+    >>> _read_kinds(["revolute", JointKind.MESH])
+    ('revolute', 'mesh')
+    """
+    try:
+        given = [kinds] if isinstance(kinds, str) else list(kinds)
+    except TypeError:
+        given = [kinds]
+    out = []
+    for kind in given:
+        if not isinstance(kind, str) or kind not in _BY_NAME:
+            raise MalformedChain(f"joint kind {kind!r} is not one of {', '.join(JOINT_KINDS)}")
+        out.append(_BY_NAME[kind])
+    return tuple(out)
+_TO_DASH = str.maketrans({symbol: "-" for symbol in JointKind.symbols()})
 
 
 def _links_on_loops(links: set[int], joints) -> set[int]:
@@ -689,7 +714,7 @@ class Mechanism:
         (guide, swinging or floating cylinder, slider) where it has some."""
         d = self.chain.to_dict()
         d["frame"] = self.frame
-        if self.chain.kinds is not None and "prismatic" in self.chain.kinds:
+        if PRISMATIC in self.chain.kinds:
             from .kinds import prismatic_roles
 
             d.update(prismatic_roles(self.chain, self.frame))

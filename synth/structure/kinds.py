@@ -1,18 +1,15 @@
-"""Joint kinds of a planar chain — revolute, prismatic, gear mesh — and the mobility they give.
+"""The mobility joint kinds give a planar chain — revolute, prismatic, gear mesh (their table:
+:mod:`synth.structure.joints`).
 
-=========  ======  ==========================================================================
-kind       text    what it does in the plane
-=========  ======  ==========================================================================
-revolute   ``-``   a pin: one relative rotation; removes 2 freedoms.  A multiple joint
-                   (``0-1-2``) is a pin shared by all its links.
-prismatic  ``=``   a slider: one relative translation; removes 2 freedoms and fixes the
-                   relative rotation, so a loop of prismatic pairs only is a *wedge loop*
-                   (motion space 2) that gives one freedom back.
-mesh       ``~``   a gear mesh: a higher pair with two freedoms (f = 1); removes 1.  Its
-                   *lever analogue* is a binary link with a revolute joint on each gear.
-=========  ======  ==========================================================================
+A pin gives one relative rotation and removes 2 freedoms (a multiple joint ``0-1-2`` is a pin
+shared by all its links); a slider one relative translation, removing 2 and fixing the relative
+rotation, so a loop of prismatic pairs only is a *wedge loop* (motion space 2) that gives one
+freedom back; a gear mesh is a higher pair with two freedoms that removes 1, and its *lever
+analogue* is a binary link with a revolute joint on each gear.
 
-The structural count of a set S of links (docs/theory.md, "Joint kinds")::
+The structural count of a set S of links (docs/theory.md, "Joint kinds") sums each kind's
+term of the table, h − freedom per pair, and gives back h − x per loop of a kind whose loops
+live in motion space x::
 
     W(S) = 3(|S| − 1) − 2·p(S) − g(S) + c_P(S)
 
@@ -43,16 +40,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .disjoint import DisjointSets
-from .joints import JOINT_KINDS, SYMBOLS
+from .joints import JOINT_KINDS, MESH, PRISMATIC, REVOLUTE
 
 if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and never import its type
     from .chain import Chain
 
-__all__ = ["KINDS", "SYMBOLS", "kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "class_loops",
+__all__ = ["kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "kind_loops", "class_loops",
            "structural_mobility", "generic_mobility",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
-KINDS = JOINT_KINDS
 _PRIME = 2_147_483_647  # 2^31 − 1: a product of two residues fits in a 64-bit integer
 _DRAWS = 2  # random configurations; the largest rank is kept (a draw can only lose rank by chance)
 
@@ -64,13 +60,7 @@ def kind_count(chain: Chain, kind: str) -> int:
     >>> kind_count(Chain.parse("0-1 1=2 2~3 3-0"), "mesh")
     1
     """
-    if chain.kinds is None:
-        return len(chain.joints) if kind == "revolute" else 0
     return chain.kinds.count(kind)
-
-
-def _kinds(chain: Chain) -> tuple[str, ...]:
-    return chain.kinds or ("revolute",) * len(chain.joints)
 
 
 def _members(chain: Chain, links) -> set[int]:
@@ -94,9 +84,19 @@ def wedge_loops(chain: Chain, links=None) -> int:
     >>> wedge_loops(Chain.parse("0=1 1=2 2=0 2-3 3-0"))
     1
     """
+    return kind_loops(chain, PRISMATIC, links)
+
+
+def kind_loops(chain: Chain, kind, links=None) -> int:
+    """Independent loops made only of pairs of ``kind`` among ``links`` (all by default).
+
+    >>> from synth.structure.chain import Chain
+    >>> kind_loops(Chain.parse("0~1 1~2 2~0 2-3 3-0"), "mesh"), kind_loops(Chain.parse("0~1 1~2 2-0"), "mesh")
+    (1, 0)
+    """
     s = _members(chain, links)
-    sliders = [j for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic" and j[0] in s and j[1] in s]
-    return cycle_rank(s, sliders)
+    pairs = [j for j, k in zip(chain.joints, chain.kinds) if k == kind and j[0] in s and j[1] in s]
+    return cycle_rank(s, pairs)
 
 
 def restricted_pairs(joint, links) -> list[tuple[int, int]]:
@@ -137,16 +137,14 @@ def structural_mobility(chain: Chain, links=None) -> int:
     """
     s = _members(chain, links)
     h = chain.h
-    lower = mesh = 0
-    for j, k in zip(chain.joints, _kinds(chain)):
+    removed = 0
+    for j, k in zip(chain.joints, chain.kinds):  # a pair removes h − freedom; a pin of m links, m − 1 times that
         inside = sum(1 for x in j if x in s)
-        if k == "mesh":
-            mesh += inside == 2
-        else:
-            lower += max(inside - 1, 0)
-    extra = wedge_loops(chain, s) if chain.kinds is not None else 0
+        if inside > 1:
+            removed += k.removes(h) * (inside - 1)
+    extra = sum((h - k.loop_space) * kind_loops(chain, k, s) for k in JOINT_KINDS if k.loop_space is not None)
     extra += sum((h - x) * class_loops(chain, x, s) for x in set(chain.classes or ()) - {h})
-    return h * (len(s) - 1) - (h - 1) * lower - mesh + extra
+    return h * (len(s) - 1) - removed + extra
 
 
 def _rows(chain: Chain, s: list[int], rng: random.Random) -> np.ndarray:
@@ -168,16 +166,16 @@ def _rows(chain: Chain, s: list[int], rng: random.Random) -> np.ndarray:
             row[c], row[c + 1], row[c + 2] = sign * (x * ny - y * nx), sign * nx, sign * ny
         rows.append(row)
 
-    for j, kind in zip(chain.joints, _kinds(chain)):
+    for j, kind in zip(chain.joints, chain.kinds):
         inside = [x for x in j if x in col]
         if len(inside) < 2:
             continue
         x, y = rng.randrange(_PRIME), rng.randrange(_PRIME)
-        if kind == "revolute":
+        if kind is REVOLUTE:
             for b in inside[1:]:
                 point_row(inside[0], b, x, y, 1, 0)
                 point_row(inside[0], b, x, y, 0, 1)
-        elif kind == "prismatic":
+        elif kind is PRISMATIC:
             a, b = inside
             rows.append({col[a]: 1, col[b]: -1})
             point_row(a, b, 0, 0, x, y)
@@ -304,9 +302,9 @@ def motion(chain: Chain) -> tuple[int, tuple[tuple[int, ...], ...]]:
         basis[i, f] = 1
         basis[i, pivots] = (-reduced[:, f]) % _PRIME
     idle = []
-    for j, kind in zip(chain.joints, _kinds(chain)):
+    for j, kind in zip(chain.joints, chain.kinds):
         pairs = [(a, b) for i, a in enumerate(j) for b in j[i + 1:]]
-        if kind == "prismatic":  # never slides: no relative translation
+        if kind is PRISMATIC:  # never slides: no relative translation
             moves = any(np.any((basis[:, 3 * a + c] - basis[:, 3 * b + c]) % _PRIME) for a, b in pairs for c in (1, 2))
             if not moves:
                 idle.append(j)
@@ -326,12 +324,11 @@ def lever_analogue(chain: Chain) -> Chain:
     >>> lever_analogue(Chain.parse("0-1 1~2 2-0")).compact()
     '0-1 0-2 1-3 2-3'
     """
-    kinds = _kinds(chain)
     joints, out_kinds, n = [], [], chain.links
-    for j, k in zip(chain.joints, kinds):
-        if k == "mesh":
+    for j, k in zip(chain.joints, chain.kinds):
+        if k is MESH:
             joints += [(j[0], n), (n, j[1])]
-            out_kinds += ["revolute", "revolute"]
+            out_kinds += [REVOLUTE, REVOLUTE]
             n += 1
         else:
             joints.append(j)
@@ -355,8 +352,8 @@ def prismatic_roles(chain: Chain, frame: int) -> dict[str, int]:
     """
     roles = dict.fromkeys(("guide", "swinging", "floating", "slider"), 0)
     degree = chain.degrees
-    pinned = {x for j, k in zip(chain.joints, _kinds(chain)) if k == "revolute" and frame in j for x in j}
-    for (a, b), k in ((j, k) for j, k in zip(chain.joints, _kinds(chain)) if k == "prismatic"):
+    pinned = {x for j, k in zip(chain.joints, chain.kinds) if k is REVOLUTE and frame in j for x in j}
+    for (a, b), k in ((j, k) for j, k in zip(chain.joints, chain.kinds) if k is PRISMATIC):
         if frame in (a, b):
             roles["guide"] += 1
         elif degree[a] == degree[b] == 2:

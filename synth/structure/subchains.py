@@ -35,6 +35,7 @@ import numpy as np
 
 from ._blas import single_threaded
 from .chain import Chain
+from .joints import JOINT_KINDS, PRISMATIC
 from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
@@ -275,12 +276,12 @@ def _cycle_ranks(bits: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
 
 def _loop_terms(chain: Chain) -> list[tuple[int, list[tuple[int, int]]]]:
     """The loops a count gives back, as (freedoms per loop, the pairs whose loops they are): the
-    wedge loops of prismatic pairs (+1 each) and, in a heterogeneous chain, the loops of each base
+    loops of one kind whose loops live in a smaller motion space x (h − x each: the wedge loops of
+    prismatic pairs, +1 in the plane) and, in a heterogeneous chain, the loops of each base
     of class x (+(h − x) each; each joint restricted to the base's links, a pin of m of them m − 1
     pairs)."""
-    terms = []
-    if chain.kinds is not None and "prismatic" in chain.kinds:
-        terms.append((1, [j for j, k in zip(chain.joints, chain.kinds) if k == "prismatic"]))
+    terms = [(chain.h - kind.loop_space, [j for j, k in zip(chain.joints, chain.kinds) if k is kind])
+             for kind in JOINT_KINDS if kind.loop_space is not None and kind in chain.kinds]
     for x in sorted(set(chain.classes or ()) - {chain.h}):
         base = {y for y in range(chain.links) if chain.classes[y] == x}
         terms.append((chain.h - x, [pair for j in chain.joints for pair in restricted_pairs(j, base)]))
@@ -297,9 +298,6 @@ def _minimum_by_count(chain: Chain) -> tuple[int, tuple[int, ...]]:
     (1, (0, 1))
     """
     n, h = chain.links, chain.h
-    kinds = chain.kinds or ("revolute",) * len(chain.joints)
-    lower = [list(j) for j, k in zip(chain.joints, kinds) if k != "mesh"]
-    meshes = [j for j, k in zip(chain.joints, kinds) if k == "mesh"]
     terms = _loop_terms(chain)
     best, best_set = _BIG, ()
     for start in range(0, 1 << n, _BLOCK):
@@ -307,10 +305,8 @@ def _minimum_by_count(chain: Chain) -> tuple[int, tuple[int, ...]]:
         bits = ((T[:, None] >> np.arange(n)) & 1).astype(np.int64)
         size = bits.sum(axis=1)
         W = h * (size - 1)
-        for j in lower:
-            W -= (h - 1) * np.maximum(bits[:, j].sum(axis=1) - 1, 0)
-        for a, b in meshes:
-            W -= bits[:, a] & bits[:, b]
+        for j, k in zip(chain.joints, chain.kinds):  # h − freedom per pair inside (a pin of m links: m − 1 pairs)
+            W -= k.removes(h) * np.maximum(bits[:, list(j)].sum(axis=1) - 1, 0)
         for weight, pairs in terms:
             W += weight * _cycle_ranks(bits, pairs)
         W = np.where((size >= 2) & (size < n), W, _BIG)
@@ -327,7 +323,7 @@ def _check_with_kinds(chain: Chain, threshold: int) -> SubchainReport:
     """The exact test of a planar chain with prismatic pairs or gear meshes: the count over
     every subset, and the rank of the whole chain's velocity constraints for redundancy."""
     if chain.links > _MAX_SCANNED:
-        if "prismatic" not in chain.kinds:  # meshes only: the lever analogue has the same sub-chains
+        if PRISMATIC not in chain.kinds:  # meshes only: the lever analogue has the same sub-chains
             analogue = check_subchains(lever_analogue(chain), rigid_subchains=threshold == 0)
             worst = tuple(x for x in analogue.worst if x < chain.links)
             return SubchainReport(analogue.ok, worst, analogue.worst_mobility, threshold)
@@ -336,7 +332,7 @@ def _check_with_kinds(chain: Chain, threshold: int) -> SubchainReport:
     low, worst = _minimum_by_count(chain)
     if low == _BIG:  # two links: no proper sub-chain of two links or more
         low, worst = 10**9, ()
-    redundant = _hidden_redundancy(chain) if "prismatic" in chain.kinds else 0
+    redundant = _hidden_redundancy(chain) if PRISMATIC in chain.kinds else 0
     return SubchainReport(low >= threshold and redundant == 0, worst, low, threshold, redundant)
 
 
@@ -445,7 +441,7 @@ def check_subchains(chain: Chain, *, rigid_subchains: bool = False) -> SubchainR
     if not chain.is_connected():
         raise MalformedChain("the chain is not connected: every link must be reachable through joints")
     threshold = 0 if rigid_subchains else 1
-    if chain.kinds is not None:
+    if not chain.all_revolute:
         return _check_with_kinds(chain, threshold)
     if chain.classes is not None:
         return _check_with_classes(chain, threshold)

@@ -161,7 +161,7 @@ def class_variants(chain: Chain, base_class: int, loops: int, *, rigid_subchains
     >>> [v.compact() for v in class_variants(watt, 4, 1)]          # a four-link loop of class IV: W = 0
     ['0-1 0-3 0-4 1-2 1-5 2-3 4-5 | h4: 0 1 2 3']
     """
-    if chain.kinds is not None or chain.classes is not None:
+    if not chain.all_revolute or chain.classes is not None:
         raise InvalidOption(f"loop classes are laid on a homogeneous revolute chain, not on {chain.compact()}")
     if isinstance(base_class, bool) or not isinstance(base_class, int) or not chain.h < base_class <= 6:
         raise InvalidOption(f"the base's class must be above the chain's own class h = {chain.h} (and at most 6), "

@@ -23,6 +23,7 @@ from itertools import combinations
 
 from ..errors import InvalidOption
 from ..structure.chain import Chain
+from ..structure.joints import PRISMATIC, REVOLUTE
 from ..structure.kinds import cycle_rank, motion
 from ..structure.subchains import check_subchains
 from .stage_a import Conventions
@@ -55,9 +56,9 @@ def _assign(chain: Chain, counts, keep, first=None, *, candidates=None) -> list[
         for chosen in combinations(simple, count):
             if first is not None and not first([chain.joints[k] for k in chosen]):
                 continue
-            kinds = ["revolute"] * len(chain.joints)
+            kinds = [REVOLUTE] * len(chain.joints)
             for k in chosen:
-                kinds[k] = "prismatic"
+                kinds[k] = PRISMATIC
             variant = Chain.trusted(chain.links, chain.joints, chain.h, kinds)
             certificate = variant.certificate
             if certificate not in seen:
@@ -104,7 +105,7 @@ def prismatic_variants(chain: Chain, count: int, *, idle: bool = False,
         raise InvalidOption("prismatic pairs go on simple joints and this chain has multiple joints only")
     if count > len(simple):
         raise InvalidOption(f"{count} prismatic pairs asked for, but the chain has only {len(simple)} simple joints")
-    if chain.kinds is not None:
+    if not chain.all_revolute:
         raise InvalidOption(f"the chain has joint kinds already ({chain.compact()}): give its revolute form")
     return _assign(chain, [count], lambda v: _admissible(
         v, v.dof == 0 if rigid_subchains is None else rigid_subchains, idle))

@@ -57,7 +57,7 @@ def _listing(item, fmt: str, capsys) -> str:
     """What ``chains``/``mechanisms --format FMT`` print for this one item."""
     chain = _chain(item)
     what = "mechanisms" if isinstance(item, Mechanism) else "chains"
-    assert write_items([item], what, fmt=fmt, kinds=chain.kinds is not None, h=chain.h) == 0
+    assert write_items([item], what, fmt=fmt, kinds=not chain.all_revolute, h=chain.h) == 0
     return capsys.readouterr().out
 
 

@@ -136,7 +136,7 @@ def test_a_slider_in_dot_stays_a_slider(text, sliding):
     nodes of an incidence graph) gives exactly the prismatic pairs written, no more, no fewer."""
     entry = _one(text)
     names = entry.names
-    kinds = dict(zip(("-".join(names[x] for x in j) for j in entry.chain.joints), entry.chain.kinds or ()))
+    kinds = dict(zip(("-".join(names[x] for x in j) for j in entry.chain.joints), entry.chain.kinds))
     assert sorted(k for k, kind in kinds.items() if kind == "prismatic") == sliding
 
 
@@ -147,7 +147,7 @@ def test_the_dot_the_engine_writes_keeps_every_slider_and_mesh():
         (entry,) = read_text(text)
         assert (entry.chain.joints, entry.chain.kinds) == (chain.joints, chain.kinds)
         drawn = [line for line in text.splitlines() if line.lstrip().startswith("J") and "[" in line]
-        kinds = chain.kinds or ("revolute",) * len(chain.joints)
+        kinds = chain.kinds
         shapes = {"revolute": "shape=circle", "prismatic": "shape=box", "mesh": "shape=doublecircle"}
         assert [shapes[k] in line for k, line in zip(kinds, drawn)] == [True] * len(kinds)  # dot draws a slider as a box
 

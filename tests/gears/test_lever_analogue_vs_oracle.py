@@ -206,7 +206,7 @@ def test_repairs_keep_kinds_and_are_distinct(text, dof):
         assert fixed.dof == dof and check_subchains(fixed).ok and fixed.is_connected()
         assert r.code == str(fixed.code) + fixed.kind_suffix
         # kinds are kept: the edits add revolute joints, remove or add meshes by name only
-        kinds = fixed.kinds or ("revolute",) * len(fixed.joints)
+        kinds = fixed.kinds
         edits = " ".join(r.edits)
         assert kinds.count("prismatic") == chain.kinds.count("prismatic") - sum(
             e.count("=") for e in r.edits if e.startswith("remove the binary"))
@@ -221,7 +221,7 @@ def test_edits_never_merge_a_mesh_and_add_revolute_joints():
 
     chain = Chain.parse("0-1 1~2 2-0 0~3 3-1")
     for words, edited in chain_edits(chain):
-        kinds = edited.kinds or ("revolute",) * len(edited.joints)
+        kinds = edited.kinds
         assert all(k == "revolute" for j, k in zip(edited.joints, kinds) if len(j) > 2)
         if words.startswith("add a binary link"):
             assert [k for j, k in zip(edited.joints, kinds) if chain.links in j] == ["revolute", "revolute"]

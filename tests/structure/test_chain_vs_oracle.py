@@ -116,7 +116,7 @@ def _coloured(c: Chain) -> nx.Graph:
     g = nx.Graph()
     g.add_nodes_from((("L", i), {"colour": "link"}) for i in range(c.links))
     for k, j in enumerate(c.joints):
-        g.add_node(("J", k), colour=c.kinds[k] if c.kinds else "revolute")
+        g.add_node(("J", k), colour=c.kinds[k])
         g.add_edges_from((("J", k), ("L", x)) for x in j)
     return g
 
@@ -222,7 +222,9 @@ def test_chain_reading_and_writing():
     joints = [(3, 2), (0, 1, 2), (0, 3)]
     c = Chain(4, joints, ["prismatic", "revolute", "revolute"])
     assert c.joints == ((0, 1, 2), (0, 3), (2, 3)) and c.kinds == ("revolute", "revolute", "prismatic")
-    assert Chain(4, joints, ["revolute"] * 3).kinds is None and Chain(4, joints, ["revolute"] * 3) == Chain(4, joints)
+    plain = Chain(4, joints, ["revolute"] * 3)  # kinds are always a tuple: a plain chain's all revolute
+    assert plain.kinds == Chain(4, joints).kinds == ("revolute",) * 3 and plain.all_revolute
+    assert plain == Chain(4, joints) and hash(plain) == hash(Chain(4, joints))
     d = c.to_dict()
     assert d["joints"] == [[0, 1, 2], [0, 3], [2, 3]] and d["kinds"] == ["revolute", "revolute", "prismatic"]
     assert (d["links"], d["dof"], d["loops"], d["v"], d["code"]) == (4, c.dof, c.loops, 1, f"{c.code} P1")  # the code says P

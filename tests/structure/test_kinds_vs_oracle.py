@@ -81,7 +81,7 @@ def test_meshes_count_one_constraint_and_have_a_lever_analogue():
     train = Chain.parse("0-1-2 2-3 0~3 1~3")   # simple planetary: frame/ring 0, sun 1, carrier 2, planet 3
     analogue = lever_analogue(train)
     assert structural_mobility(train) == 3 * 3 - 2 * 3 - 2 == 1 == generic_mobility(train)
-    assert analogue.kinds is None and analogue.links == 6 and analogue.compact() == "0-1-2 0-4 1-5 2-3 3-4 3-5"
+    assert analogue.all_revolute and analogue.links == 6 and analogue.compact() == "0-1-2 0-4 1-5 2-3 3-4 3-5"
     assert generic_mobility(analogue) == 1 == analogue.dof
     for size in range(2, 5):
         for s in itertools.combinations(range(4), size):

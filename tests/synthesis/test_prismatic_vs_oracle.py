@@ -29,7 +29,7 @@ def _assignments(chain: Chain):
 
 
 def _kinds(chain: Chain):
-    return chain.kinds or ("revolute",) * len(chain.joints)
+    return chain.kinds
 
 
 def _hidden(chain: Chain, rng) -> list[Chain]:

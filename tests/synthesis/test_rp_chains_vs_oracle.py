@@ -40,7 +40,7 @@ def test_counts_by_prismatic_pairs(W, n):
 
 
 def _canonical(chain: Chain):
-    kinds = "".join("P" if k == "prismatic" else "R" for k in (chain.kinds or ("revolute",) * len(chain.joints)))
+    kinds = "".join("P" if k == "prismatic" else "R" for k in chain.kinds)
     return oracle.canonical(chain.links, chain.joints, kinds)
 
 

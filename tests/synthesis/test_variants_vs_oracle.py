@@ -18,7 +18,7 @@ WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
 
 
 def _canonical(chain: Chain):
-    kinds = "".join("P" if k == "prismatic" else "R" for k in (chain.kinds or ("revolute",) * len(chain.joints)))
+    kinds = "".join("P" if k == "prismatic" else "R" for k in chain.kinds)
     return oracle.canonical(chain.links, chain.joints, kinds)
 
 
