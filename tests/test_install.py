@@ -40,6 +40,8 @@ SMOKE = [
     ["scene", str(MODELS / "locomotive_drive.toml")],
     ["planetary", "--satellites", "2..3"],
     ["move", str(MODELS / "motion_four_bar.toml"), "--steps", "5", "--format", "csv"],
+    ["dimension", str(MODELS / "dimension_function.csv"), "--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0",
+     "--budget", "5", "--format", "json"],
     ["gears", "--dof", "1", "--links", "5", "--count"],
     ["balance", "prismatic", "--mass", "2", "--inertia", "0.1", "--counter-mass", "2", "--stroke", "0.5"],
     ["balance", "arm", str(MODELS / "arm_base_drives.toml")],

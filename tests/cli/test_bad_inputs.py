@@ -204,6 +204,18 @@ CASES = [
     ("move --db {d}/corrupt.sqlite --id 814ad964fad2 --frame 0", "corrupt.sqlite"),
     ("move --db {d}/atlas.sqlite --id 000000000000 --frame 0", "000000000000"),
     ("move --chain '0-1 1-2 2-0' --frame 0", "rigid"),
+    # ---- dimension
+    ("dimension {d}/binary.toml --mechanism '0-1 1-2 2-3 3-0' --frame 0", "binary.toml"),
+    ("dimension {m}/dimension_function.csv", "give one mechanism"),
+    ("dimension {m}/dimension_function.csv --mechanism '0-1 1-2 2-0' --frame 0", "not W = 0"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --budget -1", "'-1'"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --crank --rocker 10..20",
+     "contradict"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --min-transmission 120", "120"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --db {d}/atlas.sqlite", "--db"),
+    ("dimension {m}/dimension_closed_path.csv --db {d}/corrupt.sqlite", "corrupt.sqlite"),
+    ("dimension {m}/dimension_closed_path.csv --db {d}/atlas.sqlite", "no curve index"),
+    ("atlas --db {d}/corrupt.sqlite --index-curves", "corrupt.sqlite"),
     # ---- gears
     ("gears --dof 1 --links 40", "40"),
     ("gears --train '0-1-2 2-3 0~3i 1~x'", "'1~x'"),
