@@ -152,3 +152,25 @@ def where_conditions(groups: list[list[str]]) -> list[str]:
     ['n3>=2', 'W=1']
     """
     return ["".join(words) for words in groups]
+
+
+def mechanism_of(chain, frame: int, input_joint: str | None):
+    """The mechanism named by ``--frame F`` and ``--input F-L`` on ``chain`` (the input joint of the
+    frame and one moving link; without ``--input``, the mechanism's own choice).
+
+    >>> from synth import Chain
+    >>> mechanism_of(Chain.parse("0-1 1-2 2-3 3-0"), 0, "1-0").input_link
+    1
+    """
+    from synth import InvalidOption, Mechanism
+
+    if not 0 <= frame < chain.links:
+        raise InvalidOption(f"--frame {frame} is not a link of the chain (links 0 … {chain.links - 1})")
+    driven = None
+    if input_joint is not None:
+        links = sorted(int(x) for x in input_joint.replace("=", "-").split("-") if x.strip().isdigit())
+        if len(links) != 2 or tuple(links) not in chain.joints or frame not in links:
+            raise InvalidOption(f"--input {input_joint} must be a joint of the frame (link {frame}) and one "
+                                f"moving link, written like {frame}-1")
+        driven = links[0] if links[1] == frame else links[1]
+    return Mechanism(chain, frame, driven)

@@ -27,7 +27,7 @@ import math
 import os
 import sys
 
-from .._argtypes import output_file, seconds, whole, workers
+from .._argtypes import mechanism_of, output_file, seconds, whole, workers
 from .._output import pairs, write_document
 
 __all__ = ["add_commands"]
@@ -157,22 +157,13 @@ def _check(args) -> None:
 
 def _mechanism(args):
     """The linkage or mechanism to dimension."""
-    from synth import Chain, InvalidOption, Mechanism
+    from synth import Chain
     from synth.motion import read_linkage
 
     if args.linkage:
         return read_linkage(args.linkage)
     chain = Chain.parse(args.mechanism)
-    if not 0 <= args.frame < chain.links:
-        raise InvalidOption(f"--frame {args.frame} is not a link of the chain (links 0 … {chain.links - 1})")
-    driven = None
-    if args.input is not None:
-        links = sorted(int(x) for x in args.input.replace("=", "-").split("-") if x.strip().isdigit())
-        if len(links) != 2 or tuple(links) not in chain.joints or args.frame not in links:
-            raise InvalidOption(f"--input {args.input} must be a joint of the frame (link {args.frame}) and one "
-                                f"moving link, written like {args.frame}-1")
-        driven = links[0] if links[1] == args.frame else links[1]
-    return Mechanism(chain, args.frame, driven)
+    return mechanism_of(chain, args.frame, args.input)
 
 
 def _run(args) -> int:

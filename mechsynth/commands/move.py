@@ -30,7 +30,7 @@ import math
 import os
 import sys
 
-from .._argtypes import output_file, positive, whole
+from .._argtypes import mechanism_of, output_file, positive, whole
 from .._output import pairs, write_document, write_rows
 
 __all__ = ["add_commands"]
@@ -160,7 +160,7 @@ def _check(args) -> None:
 
 def _linkage(args):
     """The linkage the command moves, and where it came from (for the messages)."""
-    from synth import Chain, InvalidOption, Mechanism
+    from synth import Chain, InvalidOption
     from synth.motion import read_linkage
     from synth import linkage_from_layout
 
@@ -175,16 +175,7 @@ def _linkage(args):
         if not rows:
             raise InvalidOption(f"the atlas {args.db} has no chain with id {args.id}")
         chain = Chain.from_dict(rows[0])
-    if not 0 <= args.frame < chain.links:
-        raise InvalidOption(f"--frame {args.frame} is not a link of the chain (links 0 … {chain.links - 1})")
-    driven = None
-    if args.input is not None:
-        links = sorted(int(x) for x in args.input.replace("=", "-").split("-") if x.strip().isdigit())
-        if len(links) != 2 or tuple(links) not in chain.joints or args.frame not in links:
-            raise InvalidOption(f"--input {args.input} must be a joint of the frame (link {args.frame}) and one "
-                                f"moving link, written like {args.frame}-1")
-        driven = links[0] if links[1] == args.frame else links[1]
-    return linkage_from_layout(Mechanism(chain, args.frame, driven))
+    return linkage_from_layout(mechanism_of(chain, args.frame, args.input))
 
 
 def _run(args) -> int:
