@@ -1,4 +1,4 @@
-"""The ground both engines stand on, and nothing else: one error base, one reader of TOML files, one
+"""The ground both engines stand on, and nothing else: one error base, one reader of text and of TOML files, one
 grammar of ranges ``A..B``, one way to quote a value as a file writes it and one way a typed result
 becomes a row (:class:`Row`); the dialect of TOML tables is :mod:`mechbase.schema`.
 
@@ -10,9 +10,10 @@ becomes a row (:class:`Row`); the dialect of TOML tables is :mod:`mechbase.schem
 """
 
 from .errors import ProjectError
+from .files import read_text
 from .ranges import RangeSyntax, parse_range
 from .rows import Row, as_row
 from .text import show
 from .toml import read_toml, read_toml_text
 
-__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text"]
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text"]

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mechbase.files import read_text
+
 from ..errors import BadTarget
 
 __all__ = ["PathTarget", "FunctionTarget", "MotionTarget", "read_target"]
@@ -207,12 +209,7 @@ COLUMNS = {
 
 def _rows(path: Path) -> tuple[list[str], list[list]]:
     """The header and the rows of a CSV or JSON target file."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise BadTarget(f"no target file {str(path)!r}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise BadTarget(f"cannot read {str(path)!r}: {getattr(exc, 'strerror', None) or exc}") from None
+    text = read_text(path, error=BadTarget, what="target file")
     if not text.strip():
         raise BadTarget(f"the target file {path.name} is empty")
     if path.suffix.lower() == ".json":

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mechbase.files import read_text
 from mechbase.toml import read_toml_text
 
 from ..display import svg_of
@@ -503,12 +504,7 @@ def read_linkage(path: str | Path) -> Linkage:
     suffix = path.suffix.lower()
     if suffix not in (".toml", ".json"):
         raise MotionError(f"a linkage file is .toml or .json, not {path.name!r}")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise MotionError(f"no linkage file {str(path)!r}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MotionError(f"cannot read {str(path)!r}: {getattr(exc, 'strerror', None) or exc}") from None
+    text = read_text(path, error=MotionError, what="linkage file")
     if suffix == ".toml":
         data = read_toml_text(text, error=MotionError, source=path.name)
     else:
