@@ -302,7 +302,7 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
 
     chain, names = entry.chain, entry.names
     loose = [x for x, d in enumerate(chain.degrees) if d == 0]
-    if loose and chain.links > 1:
+    if loose:  # (a Chain made in Python; a reader refuses it first)
         raise MalformedChain(f"{entry.source}: link {_named(names, loose)[0]} is in no joint: a chain's links are all "
                              "jointed")
     connected = chain.is_connected()
