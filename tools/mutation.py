@@ -137,9 +137,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
     "synth_errors": ("synth/errors.py", ["tests/test_errors.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                          _SYNTH_DOC + "synth.errors]"]),
-    "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
+    "synth_schema": ("synth/schema.py", ["tests/scenes/test_require_schema.py", "tests/scenes/test_scenes.py",
+                                         _SYNTH_DOC + "synth.schema]", "-k",
                                          "malformed_scene or impossible_expectation or contradicted or copy_change "
-                                         "or command_line_mistakes or docstring"]),
+                                         "or command_line_mistakes or docstring or require_schema"]),
     "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
                                              _BALANCE_DOC + "balance.schema]"]),
 }
