@@ -131,6 +131,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                 "tests/exchange/test_identify_round_trip.py",
                                                 "tests/cli/test_identify_commands.py",
                                                 _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
+    # analyze of a code or counts: every formula by hand, the defect's advice, the seeds' worked examples
+    "analysis_codes": ("synth/analysis/codes.py", ["tests/analysis/test_codes_strength.py",
+                                                   "tests/analysis/test_worked_examples.py",
+                                                   _SYNTH_DOC + "synth.analysis.codes]"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files

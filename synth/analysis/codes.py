@@ -113,11 +113,12 @@ def analyze(
     if (code is None) == (counts is None):
         raise InvalidOption("give a code or explicit counts, not both or neither")
     if code is None:
-        if any(int(i) < 1 or int(c) < 0 for i, c in counts.items()):
+        counts = {int(i): int(c) for i, c in counts.items()}  # (keys and counts as numbers or their text)
+        if any(i < 1 or c < 0 for i, c in counts.items()):
             raise ImpossibleParameters("counts are n_i ≥ 0 for links with i ≥ 1 joints")
-        top = max((int(i) for i, c in counts.items() if c), default=2)
-        assortment = tuple(int(counts.get(i, 0)) for i in range(2, top + 1))
-        code = Code(assortment, int(v), None, int(counts.get(1, 0)))
+        top = max((i for i, c in counts.items() if c), default=2)
+        assortment = tuple(counts.get(i, 0) for i in range(2, top + 1))
+        code = Code(assortment, int(v), None, counts.get(1, 0))
     elif isinstance(code, str):
         code = Code.parse(code)
     check_motion_space(h), check_extra_mobility(f)
