@@ -48,6 +48,7 @@ _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
 _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
              "tests/exchange/test_every_property_round_trips.py", "tests/exchange/test_identify_source_strength.py",
+             "tests/exchange/test_entry_strength.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
