@@ -160,3 +160,26 @@ def test_gml_networkx_cannot_read_is_refused_with_its_reason():
 
     assert (_first_line(ValueError("first\nsecond")), _first_line(ValueError(" ")), _first_line(KeyError())) == (
         "first", "ValueError", "KeyError")
+
+
+def test_link_numbers_are_whole_numbers_else_the_nodes_are_named_by_their_ids():
+    """A ``number`` that is no whole number (text, a truth value) does not name a link: its node id does."""
+    from synth.exchange._graphs import from_graph
+
+    g = nx.Graph()
+    g.add_nodes_from([("a", {"kind": "link", "number": "first"}), ("b", {"kind": "link", "number": True}),
+                      ("c", {"kind": "link", "number": "third"})])
+    g.add_nodes_from(["j", "k", "m"], kind="joint")
+    g.add_edges_from([("j", "a"), ("j", "b"), ("k", "b"), ("k", "c"), ("m", "c"), ("m", "a")])
+    entry = from_graph(g)
+    assert entry.names == ("a", "b", "c") and entry.chain == Chain.parse("0-1 1-2 2-0")
+
+
+def test_gml_counts_what_it_writes_and_refuses_text_without_a_graph():
+    out = io.StringIO()
+    chains = [Chain.parse("0-1 1-2 2-0"), Chain.parse("0-1 1=2 2-3 3-0")]
+    assert write(chains, "gml", out) == 2
+    assert [e.chain for e in read_text(out.getvalue(), "gml")] == chains
+    with pytest.raises(MalformedChain) as info:
+        read_text("node [ id 0 ]", "gml")
+    assert str(info.value) == "the input: not GML: no 'graph [ … ]' block"
