@@ -136,6 +136,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "analysis_codes": ("synth/analysis/codes.py", ["tests/analysis/test_codes_strength.py",
                                                    "tests/analysis/test_worked_examples.py",
                                                    _SYNTH_DOC + "synth.analysis.codes]"]),
+    # analyze of a chain: every field and advice by hand, the lever analogue of gear chains, loop classes
+    "analysis_chains": ("synth/analysis/chains.py", ["tests/analysis/test_chains_strength.py",
+                                                     "tests/gears/test_lever_analogue_vs_oracle.py",
+                                                     "tests/cli/test_chain_or_counts.py", "tests/cli/test_loop_classes.py",
+                                                     _SYNTH_DOC + "synth.analysis.chains]"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
