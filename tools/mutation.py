@@ -141,6 +141,17 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                      "tests/gears/test_lever_analogue_vs_oracle.py",
                                                      "tests/cli/test_chain_or_counts.py", "tests/cli/test_loop_classes.py",
                                                      _SYNTH_DOC + "synth.analysis.chains]"]),
+    # classical names of chains and inversions, checked against their definitions on renumbered chains
+    "analysis_classical": ("synth/analysis/classical.py", ["tests/analysis/test_classical.py",
+                                                           _SYNTH_DOC + "synth.analysis.classical]"]),
+    # the repairs of a chain or code, each checked on a chain; the redundant meshes of gear chains
+    "analysis_repair": ("synth/analysis/repair.py", ["tests/analysis/test_repair_vs_oracle.py",
+                                                     "tests/gears/test_lever_analogue_vs_oracle.py",
+                                                     _SYNTH_DOC + "synth.analysis.repair]"]),
+    # a set of chains compared with a listing: matched, missing, extra and why
+    "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare.py",
+                                                       "tests/exchange/test_every_property_round_trips.py",
+                                                       _SYNTH_DOC + "synth.analysis.compare]"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
