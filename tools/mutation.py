@@ -152,6 +152,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare.py",
                                                        "tests/exchange/test_every_property_round_trips.py",
                                                        _SYNTH_DOC + "synth.analysis.compare]"]),
+    # linkages moved: poses, dyads, the system of loop equations (closed forms, the oracle, branches, rates)
+    **{f"motion_{name.strip('_')}": (f"synth/motion/{name}.py", [
+        "tests/motion/test_errors.py", "tests/motion/test_closed_forms.py", "tests/motion/test_oracle.py",
+        "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
+       for name in ("_pose", "_dyads", "_system")},
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
