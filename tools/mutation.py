@@ -157,6 +157,13 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/motion/test_errors.py", "tests/motion/test_closed_forms.py", "tests/motion/test_oracle.py",
         "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
        for name in ("_pose", "_dyads", "_system")},
+    # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
+    # 7- and 8-link cases, half a minute each), ratios and designs that can be built
+    **{f"gears_{name}": (f"synth/gears/{name}.py", [
+        "tests/test_gear_trains.py", "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
+        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py", _SYNTH_DOC + f"synth.gears.{name}]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes"])
+       for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
