@@ -149,7 +149,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                      "tests/gears/test_lever_analogue_vs_oracle.py",
                                                      _SYNTH_DOC + "synth.analysis.repair]"]),
     # a set of chains compared with a listing: matched, missing, extra and why
-    "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare.py",
+    "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare_strength.py", "tests/analysis/test_compare.py",
                                                        "tests/exchange/test_every_property_round_trips.py",
                                                        _SYNTH_DOC + "synth.analysis.compare]"]),
     # linkages moved: poses, dyads, the system of loop equations (closed forms, the oracle, branches, rates)
