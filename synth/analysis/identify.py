@@ -143,9 +143,10 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     if chain.classes is not None:
         return _class_listing(chain, dof, verdict)
     rigid = None
+    # (redundant constraints: of a sub-chain, or of the whole chain, whose true W is above its count)
+    if verdict is not None and (verdict.worst_mobility < 0 or verdict.redundant or dof != chain.dof):
+        return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
     if verdict is not None and verdict.worst_mobility < 1:
-        if verdict.worst_mobility < 0 or verdict.redundant:
-            return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
         rigid = True if dof >= 1 else None
     code = str(chain.code)
     prismatic = chain.kinds.count(PRISMATIC) if not chain.all_revolute else None

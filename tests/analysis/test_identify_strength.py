@@ -157,3 +157,35 @@ def test_a_listing_that_cannot_be_sized_is_not_run_unasked_from_the_sized_loops(
     assert (planar.h, planar.loops, planar.dof) == (3, 7, 1)
     assert planar.note == ("its place in the listing was not computed: the code has 7 loops and its listing cannot be "
                            "sized (ask for its index to have it computed)")
+
+
+def test_a_truss_with_a_rigid_triangle_is_in_the_plain_truss_listing():
+    """W = 0: 5 links, 6 pins (12 − 12); its triangle 0-1-2 is rigid, as every truss listing allows."""
+    found = identify("0-1 1-2 2-0 0-3 3-4 4-1")
+    listed = [c.certificate for c in synth.type_synthesis(synth.ChainQuery(0, code="32/0"), workers=1)]
+    assert (found.dof, found.dof_count, found.code, found.listing) == (0, 0, "32/0", "mechsynth chains --code 32/0")
+    assert (found.index, found.listed) == (listed.index(found.certificate) + 1, len(listed))
+
+
+def test_kinds_count_and_pieces_are_reported_as_they_are():
+    """The over-braced four-bar: W = 0 in fact, −3 by the count; kinds only where a joint is no pin."""
+    braced = identify("0-1 1-2 2-3 3-0 0-2 1-3")  # (its code's listing would be asked for W = 0 and refused)
+    assert (braced.dof, braced.dof_count, braced.kinds) == (0, -3, None) and "kinds" not in braced.to_dict()
+    assert (braced.listing, braced.index) == (None, None)
+    assert braced.note == ("an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in "
+                           "no listing")
+    slider = identify("0-1 1=2 2-3 3-0")  # joints in order 0-1, 0-3, 1=2, 2-3
+    assert slider.kinds == ["revolute", "revolute", "prismatic", "revolute"] and slider.to_dict()["kinds"] == slider.kinds
+    assert identify("0-1 1-2 2-0 3-4 4-5 5-3").subchains == "not connected"
+
+
+def test_an_open_chains_listing_is_sized_with_its_single_joint_links():
+    """Two single-joint links on a 10-link chain of W = 3: the estimate is of the open chains (305 of them,
+    counted here; 98 closed ones), from the exact counts of smaller open chains."""
+    from synth.analysis.identify import index_size, listing_query
+
+    chain = synth.Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1 2-6 6-7 7-3 0-8 1-9")
+    assert (str(chain.code), chain.dof) == ("2|422/0", 3)
+    size = index_size(chain, listing_query(chain, 3, None, False)[0])
+    counted = synth.count_chains(3, 10, n1=(2, 2), v=(0, 0), workers=1)["count"]
+    assert counted == 305 and size is not None and counted / 3 < size.chains < counted * 3
