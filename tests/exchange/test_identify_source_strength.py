@@ -51,3 +51,19 @@ def test_the_motion_space_given_is_the_chains():
     found = identify("0-1 1-2 2-3 3-0", h=4)
     assert (found.h, found.dof) == (4, 0)
     assert identify("0-1 1-2 2-3 3-0").dof == 1
+
+
+def test_the_format_given_is_the_one_read():
+    """A joint list read as GraphML is no GraphML; an adjacency matrix, read unasked as a joint list, is read as
+    the matrix it is when its format is given."""
+    from synth import MalformedChain
+
+    for call in (identify, identify_all):
+        with pytest.raises(MalformedChain) as info:
+            call("0-1 1-2 2-3 3-0", fmt="graphml")
+        assert str(info.value).startswith("the chain given: not a GraphML document networkx can read (")
+    matrix = "0 1 0 1\n1 0 1 0\n0 1 0 1\n1 0 1 0\n"  # the four-bar's adjacency (unasked: a joint list 0-1-0-1)
+    with pytest.raises(MalformedChain):
+        identify(matrix)
+    assert identify(matrix, fmt="adjacency").code == "4/0"
+    assert [f.code for f in identify_all(matrix, fmt="adjacency")] == ["4/0"]
