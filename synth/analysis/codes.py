@@ -125,6 +125,8 @@ def analyze(
     if dof is not None:
         check_dof(dof)
     n, K = code.links, code.loops
+    if n == 0:
+        raise ImpossibleParameters(f"code {code} counts no link: a chain has links")
     if K < 0:
         raise ImpossibleParameters(f"code {code} has fewer joints than a connected chain of {n} links needs")
     if loop_classes and sum(int(k) for k in loop_classes.values()) != K:

@@ -83,6 +83,9 @@ def test_the_defect_and_its_advice(dof, defect, advice):
     ({"counts": {0: 1, 2: 4}}, ImpossibleParameters, "counts are n_i ≥ 0 for links with i ≥ 1 joints"),
     ({"counts": {2: -1}}, ImpossibleParameters, "counts are n_i ≥ 0 for links with i ≥ 1 joints"),
     ({"counts": {1: 4}}, ImpossibleParameters, "code 4|0/0 has fewer joints than a connected chain of 4 links needs"),
+    ({"counts": {}}, ImpossibleParameters, "code 0/0 counts no link: a chain has links"),
+    ({"counts": {2: 0, 3: 0}}, ImpossibleParameters, "code 0/0 counts no link: a chain has links"),
+    ({"code": "0/0"}, ImpossibleParameters, "code 0/0 counts no link: a chain has links"),
 ])
 def test_refusals(kwargs, error, said):
     with pytest.raises(error) as info:
