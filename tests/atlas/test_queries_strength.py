@@ -14,9 +14,10 @@ from synth.atlas.grid import parse_grid
 from synth.errors import InvalidOption
 from synth.structure.code import Code
 
-# four-bars and Watt/Stephenson chains (v ≤ 1), slider four-bars (1 or 2 sliders), five-link gear trains
+# four-bars and Watt/Stephenson chains (v ≤ 1), slider four-bars (1 or 2 sliders), the ring of six in h = 5,
+# five-link gear trains
 GRID = ('dof = 1\nlinks = "4..6"\nv = "0..1"\n[[block]]\n[[block]]\nprismatic = "1..2"\nlinks = "4"\n'
-        '[[gears]]\nlinks = 5\n')
+        '[[block]]\nh = 5\nlinks = 6\nv = 0\n[[gears]]\nlinks = 5\n')
 
 
 @pytest.fixture(scope="module")
@@ -115,8 +116,8 @@ def test_kind_cell_and_fractionated_words(atlas, rows):
 
 def test_mechanism_rows_are_those_of_each_chain(atlas, rows):
     """Four-bar: one mechanism; Watt and Stephenson: 2 and 3 (their frames up to symmetry)."""
-    mechanisms = list(export(atlas, "mechanisms", where=["n=6", "v=0"]))
-    assert len(mechanisms) == 5 == sum(1 for r in rows if r["links"] == 6 and r["v"] == 0) + 3
+    mechanisms = list(export(atlas, "mechanisms", where=["n=6", "v=0", "h=3"]))
+    assert len(mechanisms) == 5 == sum(1 for r in rows if r["links"] == 6 and r["v"] == 0 and r.get("h", 3) == 3) + 3
     for m in mechanisms:
         chain = synth.Chain.from_dict(m)
         assert m["certificate"] == synth.Mechanism(chain, m["frame"]).certificate
@@ -145,6 +146,9 @@ def test_the_summary_counts_by_hand(atlas, rows):
     assert info["mechanisms"] == sum(1 for _ in export(atlas, "mechanisms")) and info["mechanisms_with_input"] == 0
     assert info["locked_by"] is None and [r["status"] for r in info["runs"]] == ["done"]
     assert {c["code"]: (c["dof"], c["h"], c["links"]) for c in info["codes"]}["42/0"] == (1, 3, 6)
+    assert info["by_code"]["6/0 h=5"] == 1 and info["mechanisms_by_code"]["6/0 h=5"] == 1  # the ring: one orbit
+    gears = sum(1 for r in rows if r.get("kind") == "gears")
+    assert gears == sum(n for code, n in info["by_code"].items() if code.endswith(" G3")) > 0
     four = next(c for c in info["cells"] if c["cell"].endswith("p=1..2"))
     assert (four["links"], four["chains"], four["by_code"]) == (4, 3, {"4/0 P1": 1, "4/0 P2": 2})
 
