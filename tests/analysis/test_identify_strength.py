@@ -33,6 +33,11 @@ def test_a_rigid_sub_chain_breaks_one_convention_and_an_over_constrained_one_bot
     assert (over.listing, over.index) == (None, None)
     assert over.note == ("an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in "
                          "no listing")
+    # in h = 4 a triangle is over-constrained (W(S) = 2 − 3 = −1), and W is the count: 7 − 3·2 = 1
+    h4 = identify('{"links": 8, "h": 4, "joints": [[0, 1], [1, 2], [2, 0], [0, 3], [3, 4], [4, 5], [5, 6], [6, 7], '
+                  '[7, 1]]}')
+    assert (h4.dof, h4.dof_count, h4.worst_mobility, h4.worst_subchain) == (1, 1, -1, [0, 1, 2])
+    assert (h4.listing, h4.index) == (None, None) and h4.note == over.note
 
 
 def test_a_chain_in_pieces_and_a_link_in_no_joint():
