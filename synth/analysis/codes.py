@@ -66,11 +66,11 @@ LOWER_W = ("add {k} binary link(s), each jointed to two links already there, or 
            "their strings (a–x–b becomes a–b); each lowers W by 1")
 
 
-def _advice(defect: int, code: Code) -> str:
+def _advice(defect: int) -> str:
     """What to change for D = 0, in the edits of :mod:`synth.analysis.repair` (the repairs list such edits,
     each checked on a chain).
 
-    >>> _advice(-1, Code.parse("6301/0")).split("; ")[1]
+    >>> _advice(-1).split("; ")[1]
     'remove 1 binary link(s) with both their joints, or insert 1 binary link(s) into joints (a joint a–b becomes a–x–b)'
     """
     if defect == 0:
@@ -150,7 +150,7 @@ def analyze(
     )
     if dof is not None:
         D = W - dof
-        result.update(required_dof=dof, defect=D, advice=_advice(D, code))
+        result.update(required_dof=dof, defect=D, advice=_advice(D))
         if h == 3 and not loop_classes:
             result["criterion_holds"] = (dof + 1) + 2 * K == n + f
     return Analysis(**result)

@@ -37,6 +37,15 @@ def test_every_formula_gives_the_hand_count(code, n1, assortment, v):
     assert (a.required_dof, a.defect, a.criterion_holds, a.advice) == (None, None, None, "")
 
 
+@pytest.mark.parametrize("counts, n, p, W", [({1: 2}, 2, 1, 1), ({1: 2, 2: 1}, 3, 2, 2), ({1: 3, 3: 1}, 4, 3, 3)])
+def test_open_chains_without_a_loop(counts, n, p, W):
+    """A pin (two links), a two-pin arm, a three-armed star: K = 0 and W = 3(n − 1) − 2p."""
+    a = analyze(counts=counts)
+    assert (a.links, a.simple_joint_equivalents, a.loops, a.complexity, a.dof) == (n, p, 0, -1, W)
+    assert a.formulas == {"general (2a/2b)": W, "Grübler 3(n−1)−2p+f": W, "VIP assortment (2c)": W}
+    assert W == 3 * (n - 1) - 2 * p
+
+
 def test_the_vip_formula_weighs_links_of_four_joints_and_more():
     """2·n1 + n2 − Σ (i − 3)·n_i − v − 3 + f: a 6-joint link counts 3, a 5-joint link 2."""
     a = analyze(counts={1: 1, 2: 9, 4: 1, 6: 1}, v=1, f=1)
