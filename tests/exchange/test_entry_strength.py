@@ -78,6 +78,7 @@ def test_settings_of_a_comment():
     assert settings_of("# frame 2; input 3 ,h=4") == {"frame": "2", "input": "3", "h": "4"}
     assert settings_of("# FRAME: base") == {"frame": "base"}
     assert settings_of("#h 5") == {"h": "5"}
+    assert settings_of("# frame 2,h 4") == {"frame": "2", "h": "4"}  # one separator, then the next setting
     for other in ("# frame 2 frame 3", "#", "# framework 2", "# frame 2 and more", "# a slider-crank"):
         assert settings_of(other) is None, other
 
@@ -97,6 +98,8 @@ def test_kinds_motion_spaces_and_distinct_links():
         "x: link 2 is joined to itself (joint 2-2): a joint joins different links")
     assert _refused(lambda: check_distinct([("a", "b", "a")], "x")) == (
         "x: link a is joined to itself (joint a-b-a): a joint joins different links")
+    assert _refused(lambda: check_distinct([("a", "b", "b")], "x")) == (
+        "x: link b is joined to itself (joint a-b-b): a joint joins different links")
 
 
 def test_a_motion_space_given_against_the_one_stated():
