@@ -16,8 +16,9 @@ from synth.structure.code import Code
 
 # four-bars and Watt/Stephenson chains (v ≤ 1), slider four-bars (1 or 2 sliders), the ring of six in h = 5,
 # five-link gear trains
+# and the 2-DOF chains of 7 links (one of them fractionated: two loops on one link)
 GRID = ('dof = 1\nlinks = "4..6"\nv = "0..1"\n[[block]]\n[[block]]\nprismatic = "1..2"\nlinks = "4"\n'
-        '[[block]]\nh = 5\nlinks = 6\nv = 0\n[[gears]]\nlinks = 5\n')
+        '[[block]]\nh = 5\nlinks = 6\nv = 0\n[[block]]\ndof = 2\nlinks = 7\nv = 0\n[[gears]]\nlinks = 5\n')
 
 
 @pytest.fixture(scope="module")
@@ -27,9 +28,11 @@ def atlas(tmp_path_factory):
     return db
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def rows(atlas):
-    return list(export(atlas, "chains"))
+    """Every chain row, exported anew in each test (a module fixture would export once, in the first test, and a
+    mutation run maps the exporting code to that test alone)."""
+    return list(export(atlas))
 
 
 def _base(code: str) -> str:
@@ -190,3 +193,33 @@ def test_the_largest_counts_an_atlas_holds_are_read():
     assert parse_where(["n=9223372036854775807", "v=-9223372036854775807..9223372036854775807"]) == (
         "c.links = ? AND c.v >= ? AND c.v <= ?", [2**63 - 1, -(2**63 - 1), 2**63 - 1])
     assert parse_where([]) == ("1", [])
+
+
+def test_rows_say_what_each_chain_is(atlas, rows):
+    assert rows == list(export(atlas, "chains"))  # chains unless asked otherwise
+    two_loops = synth.Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-6 6-0")
+    split = [r for r in rows if r["certificate"] == two_loops.certificate]
+    assert len(split) == 1 and split[0]["fractionated"] is True
+    assert all(r["fractionated"] is synth.Chain.from_dict(r).is_fractionated() for r in rows)
+    assert sum(r["fractionated"] for r in rows) == 1
+    info = summary(atlas)
+    assert info["db"] == str(atlas) and [set(r) for r in info["runs"]] == [
+        {"id", "status", "executor", "units_run", "started", "finished"}]
+    assert info["runs"][0]["id"] == 1 and info["runs"][0]["started"] is not None
+    ring = next(c for c in info["cells"] if c["h"] == 5)
+    assert (ring["dof"], ring["links"], ring["chains"]) == (1, 6, 1) and ring["units_done"] == ring["units_total"] >= 1
+    assert {c["dof"] for c in info["cells"]} == {1, 2}
+
+
+def test_mechanism_rows_with_their_input_links(tmp_path):
+    """The four-bar: one frame up to symmetry, and one input link for it (its two neighbours are mirror images)."""
+    db = tmp_path / "inputs.sqlite"
+    run_grid(parse_grid("input_link = true\ndof = 1\nlinks = 4\n"), db, workers=1)
+    rows = list(export(db, "mechanisms"))
+    chain = synth.Chain.parse("0-1 1-2 2-3 3-0")
+    assert len(rows) == len(synth.mechanisms_of(chain)) + len(synth.mechanisms_of(chain, input_link=True)) == 2
+    plain, moved = rows
+    assert "input_link" not in plain and moved["input_link"] in (0, 1, 2, 3) and moved["input_link"] != moved["frame"]
+    m = synth.Mechanism(synth.Chain.from_dict(moved), moved["frame"], moved["input_link"])
+    assert moved["certificate"] == m.certificate != plain["certificate"]
+    assert summary(db)["mechanisms_with_input"] == 1
