@@ -136,3 +136,14 @@ def test_refusals():
         analyze_chain(Chain(n, [(i, (i + 1) % n) for i in range(n)]))
     assert str(info.value) == (f"the chain has {n} links; chains are analysed here up to {MAX_CODE_LINKS} links (the "
                                "generic mobility's matrix grows with the square of the links)")
+
+
+@pytest.mark.parametrize("text, standard", [
+    ("0=1 1=2 2=0", True),        # read with pins, W without its wedge loop: 1 − 1 = 0, the triangle truss 3/0
+    ("0-1 1-2", True),            # an open chain without a loop: 2|1/0 at W = 2
+    ("0-1-2 2-3 3-4 4-0 1-5 5-4", True),  # a double joint: 51/1 at W = 1
+    ("0-1 1~2 2~3 3-0 1-3", True),  # meshes read as binary links: 42/0 at W = 1
+    ("0-1 1-2 2-3 3-0 0-2 1-3", False),  # W = −3 by the count: no code of number synthesis
+])
+def test_whether_the_code_is_standard(text, standard):
+    assert analyze_chain(text).standard_code is standard
