@@ -112,6 +112,12 @@ def test_motion_spaces_and_loop_classes():
     bricard = analyze_chain("0-1 1-2 2-3 3-4 4-5 5-0", h=5)  # W = 5 − 4
     assert (bricard.h, bricard.dof, bricard.dof_count, bricard.loops_3) == (5, 1, 1, 1)
     assert analyze_chain("0-1 1-2 2-3 3-4 4-5 5-0", h=3).dof == 3
+    # in h = 2 every loop of pins is a loop of class 2: W = 3 − 1
+    flat = analyze_chain("0-1 1-2 2-3 3-0", h=2)
+    assert (flat.h, flat.dof, flat.loops_2, flat.loops_3) == (2, 2, 1, 0)
+    # one pin (W = 3 − 2): no proper sub-chain of two links or more
+    pin = analyze_chain("0-1")
+    assert (pin.dof, pin.loops, pin.worst_subchain, pin.worst_subchain_mobility) == (1, 0, [], None)
     het = analyze_chain("0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3 | h5: 0 1 2 3 4 5")
     assert het.loop_classes == {"K3": 1, "K5": 1} and (het.loops_2, het.loops_3) == (0, 1)
     with pytest.raises(InvalidOption) as info:
@@ -127,6 +133,14 @@ def test_refusals():
     with pytest.raises(MalformedChain) as info:
         analyze_chain(Chain(16, [(0, 1), (1, 2), (2, 3), (3, 0)]))
     assert str(info.value) == ("links 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, … of the 16 are in no joint: a chain's links "
+                               "are all jointed")
+    with pytest.raises(MalformedChain) as info:
+        analyze_chain(Chain(15, [(0, 1), (1, 2), (2, 3), (3, 0)]))  # eleven: the first ten shown
+    assert str(info.value) == ("links 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, … of the 15 are in no joint: a chain's links "
+                               "are all jointed")
+    with pytest.raises(MalformedChain) as info:
+        analyze_chain(Chain(14, [(0, 1), (1, 2), (2, 3), (3, 0)]))  # ten: all shown
+    assert str(info.value) == ("links 4, 5, 6, 7, 8, 9, 10, 11, 12, 13 of the 14 are in no joint: a chain's links "
                                "are all jointed")
     with pytest.raises(MalformedChain) as info:
         analyze_chain(Chain(6, [(0, 1), (1, 2), (2, 3), (3, 0)]))
