@@ -85,3 +85,28 @@ def test_the_links_of_a_sub_chain_are_named_as_the_source_names_them():
 ])
 def test_the_listing_command_of_every_option(query, command):
     assert listing_command(query) == command
+
+
+@pytest.mark.parametrize("text, query", [
+    ("0-1 1-2 2-3 3-0", Q(1, 4, fractionated=False)),                  # not fractionated
+    ("0-1 1-2 2-3 3-0", Q(1, 4, planar_only=True)),                    # planar
+    ("0-1 1=2 2=3 3=0", Q(1, 4, prismatic=3, idle_joints=True)),       # its idle pin is allowed
+])
+def test_a_convention_the_chain_meets_is_no_reason(text, query):
+    (entry,) = read_text(text)
+    assert why_extra(entry, query)[0].startswith("it meets every convention of the query")
+
+
+def test_the_findings_counted_by_kind_and_said_in_full():
+    """The four-bar given twice and a triangle, against the four-bar's listing: one duplicate, one extra."""
+    from synth.analysis.compare import compare
+
+    entries = read_text("0-1 1-2 2-3 3-0") + read_text("3-2 2-1 1-0 0-3") + read_text("0-1 1-2 2-0")
+    result = compare(entries, Q(1, 4))
+    assert (result.count("duplicate"), result.count("extra"), result.count("missing")) == (1, 1, 0)
+    extra = next(f for f in result.findings if f.kind == "extra")
+    assert (extra.joints, extra.reason) == ("0-1 0-2 1-2", "3 links, not 4")
+    few = compare(read_text("0-1 1-2 2-3 3-0"), Q(1, 8), max_missing=3)
+    last = [f for f in few.findings if f.kind == "missing"][-1]
+    assert (last.id, last.joints, last.given, last.row) == ("", "", [], None)
+    assert last.reason == "and 13 more chains of the engine, not in the atlas (not listed one by one)"
