@@ -145,7 +145,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "analysis_classical": ("synth/analysis/classical.py", ["tests/analysis/test_classical.py",
                                                            _SYNTH_DOC + "synth.analysis.classical]"]),
     # the repairs of a chain or code, each checked on a chain; the redundant meshes of gear chains
-    "analysis_repair": ("synth/analysis/repair.py", ["tests/analysis/test_repair_vs_oracle.py",
+    "analysis_repair": ("synth/analysis/repair.py", ["tests/analysis/test_repair_strength.py", "tests/analysis/test_repair_vs_oracle.py",
                                                      "tests/gears/test_lever_analogue_vs_oracle.py",
                                                      _SYNTH_DOC + "synth.analysis.repair]"]),
     # a set of chains compared with a listing: matched, missing, extra and why
