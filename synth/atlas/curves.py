@@ -255,6 +255,10 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
     if not links:
         return _UnitRows(unit, None, "skipped", "no link carries a coupler curve (every moving link is jointed to "
                                                 "the frame)", seconds=time.process_time() - start)
+    if not unit.settings.triads:
+        newton = _moved_by_newton(mechanism)
+        if newton is not None:  # (known before a moving pose is searched for: that costs seconds with Newton)
+            return _UnitRows(unit, newton, "skipped", _NEWTON_NOTE, seconds=time.process_time() - start)
     try:
         base = linkage_from_layout(mechanism)
     except MotionError as exc:
@@ -264,8 +268,7 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
         return _UnitRows(unit, joint, "skipped", "its input slides: only a crank's coupler curves are closed and "
                                                  "indexed", seconds=time.process_time() - start)
     if not unit.settings.triads and not _closed_form(base):
-        return _UnitRows(unit, joint, "skipped", "moved by Newton's method (a triad or higher group): index it with "
-                                                 "triads", seconds=time.process_time() - start)
+        return _UnitRows(unit, joint, "skipped", _NEWTON_NOTE, seconds=time.process_time() - start)
     rng = _unit_seed(unit, chain.certificate)
     size = base.scale
     out = _UnitRows(unit, joint, "done", None)
@@ -330,6 +333,24 @@ def slides_of(text: str | None) -> dict:
     ({3: (0.0, 1.0)}, {})
     """
     return {} if text is None else {int(k): (float(x), float(y)) for k, (x, y) in json.loads(text).items()}
+
+
+_NEWTON_NOTE = "moved by Newton's method (a triad or higher group): index it with triads"
+
+
+def _moved_by_newton(mechanism: Mechanism) -> int | None:
+    """The input joint of a mechanism the motion layer moves by Newton's method (its groups after the
+    input are not all dyads: a fact of the chain, frame and input, not of the dimensions), found on
+    its drawing's pose without moving it; None when it decomposes into dyads or the drawing cannot
+    be posed (the full posing then decides)."""
+    from ..draw import layout
+    from ..motion import link_poses, linkage_from_pose
+
+    try:
+        drawn = linkage_from_pose(mechanism, layout(mechanism.chain).joints, nudge=True)
+        return drawn.inputs[0] if link_poses(drawn, [0.0]).discriminants is None else None
+    except MotionError:
+        return None
 
 
 def _closed_form(linkage) -> bool:
