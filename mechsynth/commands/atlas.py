@@ -147,6 +147,9 @@ def _index_curves(args) -> int:
                              prismatic=_pairs(args.prismatic))
     result = index_curves(args.db, settings=settings, links=links_range(args.links), workers=args.workers,
                           scheduler=args.scheduler, progress=True)
+    if result.units_total == 0:
+        return nothing_found("mechanism of the atlas is planar, 1-DOF and without gears with the links and "
+                             "prismatic pairs asked for: the index has nothing to sample")
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:

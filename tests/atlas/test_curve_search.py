@@ -274,6 +274,11 @@ def test_a_random_slider_crank_is_found_again_with_its_topology_withheld(slider_
     assert best.slides and best.chain.certificate == SLIDER_CRANK.chain.certificate  # a slider-crank, not a four-bar
 
 
+def test_an_index_of_sliders_on_an_atlas_without_them_says_so_and_exits_1(tmp_path):
+    done = _cli("atlas", "--db", _atlas(tmp_path, "4"), "--index-curves", "--prismatic", "1", "--samples", "5")
+    assert done.returncode == 1 and "the index has nothing to sample" in done.stderr, done.stderr
+
+
 @pytest.mark.parametrize("args, message", [
     (["--prismatic", "2..1"], "--prismatic must be a number of prismatic pairs or a range"),
     (["--prismatic", "1.."], "--prismatic must be a number of prismatic pairs or a range"),
