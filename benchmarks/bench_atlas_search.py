@@ -8,10 +8,10 @@ Run (after ``mechsynth grid`` and ``mechsynth atlas --index-curves`` on the atla
 
 Prints JSON lines: the index (mechanisms sampled and skipped, curves, the CPU seconds its units took,
 the file's size), retrieval (CPU seconds to align the target to every indexed curve, timed and without
-timing), and the search (the withheld mechanism's rank, each topology's error over the curve's size,
-CPU seconds of this process and wall seconds; the withheld chain's rank, by certificate).  The default mechanism is the eight-bar of
-tests/atlas/test_curve_search.py (a tracer link whose motion depends on all eight links); its random
-dimensions come from the same seeded generator as the tests'.
+timing), and the search (each topology's error over the curve's size, CPU seconds of this process and
+wall seconds, and the withheld chain's rank, by certificate).  The default
+mechanism is an eight-bar whose tracer link's motion depends on all eight links; its random dimensions
+come from the seeded generator of tests/atlas/test_curve_search.py.
 """
 
 from __future__ import annotations
@@ -30,7 +30,11 @@ sys.path.insert(0, str(ROOT))
 from synth import Chain, Mechanism  # noqa: E402
 from synth.atlas import index_info, retrieve, search_atlas  # noqa: E402
 from synth.dimension import PathTarget  # noqa: E402
-from tests.atlas.test_curve_search import EIGHT_BAR, _random_crank, _target  # noqa: E402
+from tests.atlas.test_curve_search import _random_crank, _target  # noqa: E402
+
+#: the default withheld mechanism: chain, frame, input link, tracer link (a link whose motion depends on all
+#: eight: no smaller mechanism inside the chain traces its curve)
+EIGHT_BAR = ("0-1 0-2 0-4 1-3 1-5 2-5 2-6 3-4 3-7 6-7", 2, 5, 7)
 
 
 def main() -> None:

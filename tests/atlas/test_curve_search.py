@@ -191,34 +191,6 @@ def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     _assert_recovered(found, target, 6)
 
 
-#: the eight-link mechanism whose curve the slow test withholds: chain, frame, input link, tracer link
-#: (a link whose motion depends on all eight: no smaller mechanism inside the chain traces its curve)
-EIGHT_BAR = ("0-1 0-2 0-4 1-3 1-5 2-5 2-6 3-4 3-7 6-7", 2, 5, 7)
-
-
-@pytest.mark.slow  # a few CPU minutes: the index of the 153 eight-link mechanisms, then the search
-def test_a_random_eight_bar_is_found_from_its_timed_points_among_every_eight_link_mechanism(tmp_path):
-    """An eight-link mechanism with dimensions picked at random, given only as timed points (its topology
-    withheld), found by the search of the index of every 1-DOF eight-link mechanism to 1e-6 of the curve's
-    size (benchmarks/logs/atlas_8_links.txt: the same on the index of 4 to 8 links)."""
-    from synth import mechanisms
-
-    db = _atlas(tmp_path, "8")
-    built = index_curves(db, settings=IndexSettings(samples=20), workers=2)
-    assert built.units_total == 153
-    chain, frame, input_link, tracer = EIGHT_BAR
-    eight = next(m for m in mechanisms(1, 8, input_link=True, workers=1)
-                 if m.chain.compact() == chain and m.frame == frame and m.input_link == input_link)
-    linkage = _random_crank(eight, tracer, seed=8)
-    target = _target(linkage, 72, True)
-    found = search_atlas(db, target, top=3, budget=120, workers=2)
-    print(f"\nindex: {built.curves} curves of {built.units_total - built.units_skipped} mechanisms sampled "
-          f"({built.units_skipped} skipped), {os.path.getsize(db)} bytes; search: {found.seconds:.1f} CPU s;",
-          [(m.mechanism.chain.compact(), m.result.relative_max, m.candidate.misfit, m.seconds) for m in found.matches])
-    _assert_recovered(found, target, 8)
-    assert found.best.mechanism.chain.certificate == eight.chain.certificate
-
-
 @pytest.mark.slow
 def test_a_random_four_bar_is_found_from_its_points_alone_among_six_bars(tmp_path):
     db = _atlas(tmp_path, '"4..6"')
