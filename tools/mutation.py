@@ -50,6 +50,9 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
              "tests/exchange/test_every_property_round_trips.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
+#: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
+_FIT = ["tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
+        "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -142,6 +145,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                          "or command_line_mistakes or docstring"]),
     "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
                                              _BALANCE_DOC + "balance.schema]"]),
+    # the spring devices' fit: its methods, exact devices, driver and result, the slider devices' problem
+    **{f"fit_{name}": (f"balance/devices/fit/{name}.py", _FIT + [_BALANCE_DOC + f"balance.devices.fit.{name}]"])
+       for name in ("slider_problem", "exact", "driver", "result", "kinds", "trf", "slsqp", "de", "nelder_mead")},
+    "sliders": ("balance/devices/sliders.py", ["tests/balance/test_slider_devices.py",
+                                               _BALANCE_DOC + "balance.devices.sliders]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
