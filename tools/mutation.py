@@ -143,7 +143,9 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
                                          "malformed_scene or impossible_expectation or contradicted or copy_change "
                                          "or command_line_mistakes or docstring"]),
-    "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
+    # (not tests/balance/test_cli.py: every command reaches parse, minutes per mutant; its refusals of files
+    # are the sentences test_schema_strength.py asserts)
+    "balance_schema": ("balance/schema.py", ["tests/balance/test_schema_strength.py", "tests/balance/test_arm.py",
                                              _BALANCE_DOC + "balance.schema]"]),
     # the spring devices' fit: its methods, exact devices, driver and result, the slider devices' problem
     **{f"fit_{name}": (f"balance/devices/fit/{name}.py", _FIT + [_BALANCE_DOC + f"balance.devices.fit.{name}]"])
