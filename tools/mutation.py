@@ -132,8 +132,9 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                 "tests/exchange/test_identify_round_trip.py",
                                                 "tests/cli/test_identify_commands.py",
                                                 _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
-    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
-                                                 "-k", "bound or pareto or sensitivity or docstring"]),
+    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
+                                                 _BALANCE_DOC + "balance.devices.tradeoff]",
+                                                 "-k", "bound or pareto or sensitivity or docstring or strength"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
     "params": ("synth/structure/_params.py", ["tests/structure/test_params.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                               _SYNTH_DOC + "synth.structure._params]"]),
