@@ -258,7 +258,7 @@ def test_infeasible_bounds_one_sentence(bounds, device, text):
 @pytest.mark.parametrize("kind, bounds, device, text", [
     ("tension", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "sine", "carries a compression spring"),
     ("compression", SpringBounds((0.02, 0.2), (0.1, 0.2), (0.0, 0.3)), "sine", "has no r0"),
-    ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3), rod=(0.2, 0.3)), "sine", "has no the rod"),
+    ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3), rod=(0.2, 0.3)), "sine", "has no rod length l;"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "slider-crank", "needs a range of the rod"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "slotted-lever", "needs a range of r0"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "yoke", "device must be one of"),
