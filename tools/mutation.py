@@ -51,7 +51,8 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
-_FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py", "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
+_FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py",
+        "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
         "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
