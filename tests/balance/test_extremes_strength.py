@@ -107,3 +107,21 @@ def test_a_second_basin_is_found_from_a_spread_start():
 def test_extreme_as_a_dict():
     e = Extreme(2.5, (0.1, 0.2), 2.0)
     assert e.to_dict() == {"value": 2.5, "at": [0.1, 0.2], "sampled": 2.0}
+
+
+def test_a_held_coordinate_does_not_stop_the_starts_spreading():
+    """The two peaks of the test above with a second coordinate held: still found from a second start."""
+    f = lambda x: np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.05) ** 2) + x[:, 1:]  # noqa
+    pts = np.column_stack([np.concatenate([np.linspace(0.18, 0.22, 10), [0.7]]), np.full(11, 0.25)])
+    (_, hi), = box_extremes(f, [0.0, 0.25], [1.0, 0.25], pts, starts=2)
+    assert hi.value == pytest.approx(1.75, rel=1e-9) and hi.at == pytest.approx((0.8, 0.25), abs=1e-6)
+
+
+def test_the_local_search_stops_after_max_iter():
+    """Rosenbrock's valley (largest 0 at (1, 1)): one iteration from a far sample does not get there."""
+    f = lambda x: -((1 - x[:, :1]) ** 2 + 100 * (x[:, 1:] - x[:, :1] ** 2) ** 2)  # noqa: E731
+    pts = np.array([[-1.5, 2.0], [-1.6, 2.0]])
+    (_, one), = box_extremes(f, [-2.0, -2.0], [2.0, 2.0], pts, starts=1, max_iter=1)
+    (_, full), = box_extremes(f, [-2.0, -2.0], [2.0, 2.0], pts, starts=1)
+    assert full.value == pytest.approx(0.0, abs=1e-8) and full.at == pytest.approx((1.0, 1.0), abs=1e-4)
+    assert one.sampled < one.value < -1e-2
