@@ -127,3 +127,35 @@ def test_the_advice_in_words(fit):
                          "force of 700 N (free length 2 m): raise the maximum free length or the force limit to there")
     line = advice(fit, sens, target_error=0.001, front=[point(0.2, 0.1, 10.0)])[1]
     assert line.endswith("; no device within the bounds on r, r0 and a reaches it: widen them")
+
+
+def test_the_front_sweeps_the_free_length_and_force_limits_it_documents(fit, monkeypatch):
+    """7 × 7 fits: free-length limits from 1.02 × the shortest device of the box (2·r_min + r0_min + a_min)
+    to the free length of the best device without limits, force limits from 1.05 × the least a crank of
+    r_max can work with (|Φ0|·max|sin φ|/r_max) to that device's peak force, both geometric."""
+    import numpy as np
+
+    from balance.devices import tradeoff
+
+    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0, max_free_length=1.5)
+    calls = []
+    real = tradeoff._refit
+
+    def recorded(res, bounds):
+        calls.append(bounds)
+        return real(res, bounds)
+
+    monkeypatch.setattr(tradeoff, "_refit", recorded)
+    front = pareto_front(fit, b, steps=3)
+    free = fit_spring("compression", 100.0, RAD, SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0)))
+    assert calls[0] == SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
+    sizes = np.geomspace(1.02 * (0.02 + 0.01 + 0.0), free.free_length, 3)
+    forces = np.geomspace(1.05 * 100.0 / 0.5, free.max_force, 3)
+    swept = [(c.max_free_length, c.max_force) for c in calls[1:]]
+    assert swept == pytest.approx([(s, f) for s in sizes for f in forces], rel=1e-12)
+    assert all((c.r, c.r0, c.a) == (b.r, b.r0, b.a) for c in calls)
+    # the device without those limits has the least error of all: it is on the front
+    best = min(front, key=lambda p: p.error)
+    assert (best.error, best.size, best.force) == pytest.approx((free.max_rel_error, free.free_length,
+                                                                 free.max_force), rel=1e-9)
+    assert front and all(p.to_dict()["active_bounds"] == list(p.active_bounds) for p in front)
