@@ -53,7 +53,7 @@ def test_an_interior_peak_between_the_samples():
     assert lo.sampled == f(pts).min()
 
 
-@pytest.mark.parametrize("scale", [1e-6, 1.0, 1e6])
+@pytest.mark.parametrize("scale", [1e-13, 1e-6, 1.0, 1e6])
 def test_the_scale_of_the_function_does_not_matter(scale):
     f = lambda x: scale * np.sin(x[:, :1] * 2) * np.cos(x[:, 1:] - 0.4)  # noqa: E731
     pts = np.random.default_rng(5).uniform([0, 0], [1.5, 1], (25, 2))
@@ -97,11 +97,11 @@ def test_the_starts_are_spread_over_the_box():
 def test_a_second_basin_is_found_from_a_spread_start():
     """Two peaks, the samples crowd on the lower one: the higher one is reached from a second start."""
     f = lambda x: np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.05) ** 2)  # noqa
-    pts = np.concatenate([np.linspace(0.18, 0.22, 10), [0.7]])[:, None]
+    pts = np.concatenate([np.linspace(0.18, 0.22, 5), [0.7]])[:, None]  # all of them candidates
     (_, hi), = box_extremes(f, [0.0], [1.0], pts, starts=2)
     assert hi.value == pytest.approx(1.5, rel=1e-9) and hi.at == pytest.approx((0.8,), abs=1e-6)
     (_, one), = box_extremes(f, [0.0], [1.0], pts, starts=1)  # one start: the lower peak only
-    assert one.value == pytest.approx(1.0, rel=1e-9) and len(pts) < CANDIDATES * 2
+    assert one.value == pytest.approx(1.0, rel=1e-9) and len(pts) < CANDIDATES
 
 
 def test_extreme_as_a_dict():
