@@ -90,3 +90,9 @@ def test_load_toml_reads_a_file_and_refuses_a_missing_one(tmp_path):
     with pytest.raises(SchemaError) as exc:
         load_toml(str(tmp_path / "none.toml"))
     assert str(exc.value) == f"{tmp_path / 'none.toml'}: no such TOML file."
+
+
+def test_a_table_given_without_a_file_is_called_input():
+    with pytest.raises(SchemaError) as exc:
+        parse({"plot": {}}, "slider")
+    assert str(exc.value) == "<input>: the file needs the table [slider]."
