@@ -84,6 +84,8 @@ def test_the_devices_no_other_beats_in_all_three():
     # sorted by size, then by force
     assert [p.size for p in front] == sorted(p.size for p in front)
     assert [p.force for p in _nondominated([point(0.02, 1.0, 400.0), point(0.01, 1.0, 500.0)])] == [400.0, 500.0]
+    # equal in two coordinates and smaller in the third: beaten
+    assert _nondominated([point(0.01, 1.0, 500.0), point(0.01, 0.9, 500.0)]) == [point(0.01, 0.9, 500.0)]
     # beaten in one coordinate by a hair, equal in the others: not beaten
     assert len(_nondominated([point(0.01, 1.0, 500.0), point(0.01 * (1 + 1e-8), 1.0, 500.0 * (1 - 1e-8))])) == 2
 
@@ -123,21 +125,26 @@ def test_the_advice_in_words(fit):
     assert line == f"the RMS error {100 * fit.rms_rel_error:.3g} % misses the requested 0.1 %"
     front = [point(0.0005, 1.2, 900.0), point(0.0008, 0.9, 1500.0), point(0.0009, 2.0, 700.0), point(0.2, 0.1, 10.0)]
     (line,) = advice(fit, [], target_error=0.001, front=front)
-    assert line.endswith("; the Pareto front reaches it with a free length of 0.9 m (peak force 1500 N) or a peak "
-                         "force of 700 N (free length 2 m): raise the maximum free length or the force limit to there")
+    assert line == (f"the max error {100 * err:.3g} % misses the requested 0.1 %; the Pareto front reaches it with "
+                    "a free length of 0.9 m (peak force 1500 N) or a peak force of 700 N (free length 2 m): raise the "
+                    "maximum free length or the force limit to there")
     line = advice(fit, sens, target_error=0.001, front=[point(0.2, 0.1, 10.0)])[1]
-    assert line.endswith("; no device within the bounds on r, r0 and a reaches it: widen them")
+    assert line == (f"the max error {100 * err:.3g} % misses the requested 0.1 %; no device within the bounds "
+                    "on r, r0 and a reaches it: widen them")
 
 
-def test_the_front_sweeps_the_free_length_and_force_limits_it_documents(fit, monkeypatch):
-    """7 × 7 fits: free-length limits from 1.02 × the shortest device of the box (2·r_min + r0_min + a_min)
-    to the free length of the best device without limits, force limits from 1.05 × the least a crank of
-    r_max can work with (|Φ0|·max|sin φ|/r_max) to that device's peak force, both geometric."""
+# (a long crank: the free device's peak force is 1.36× the least any crank can work with)
+@pytest.mark.parametrize("r", [(0.01, 0.5), (0.45, 0.5)])
+def test_the_front_sweeps_the_free_length_and_force_limits_it_documents(r, monkeypatch):
+    """steps × steps fits: free-length limits from 1.02 × the shortest device of the box (2·r_min + r0_min +
+    a_min) to the free length of the best device without limits, force limits from 1.05 × the least a crank
+    of r_max can work with (|Φ0|·max|sin φ|/r_max) to that device's peak force, both geometric."""
     import numpy as np
 
     from balance.devices import tradeoff
 
-    b = SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0, max_free_length=1.5)
+    b = SpringBounds(r=r, r0=(0.01, 1.0), a=(0.0, 1.0), max_force=2000.0, max_free_length=1.5)
+    fit = fit_spring("compression", 100.0, RAD, b)
     calls = []
     real = tradeoff._refit
 
@@ -147,9 +154,9 @@ def test_the_front_sweeps_the_free_length_and_force_limits_it_documents(fit, mon
 
     monkeypatch.setattr(tradeoff, "_refit", recorded)
     front = pareto_front(fit, b, steps=3)
-    free = fit_spring("compression", 100.0, RAD, SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0)))
-    assert calls[0] == SpringBounds(r=(0.01, 0.5), r0=(0.01, 1.0), a=(0.0, 1.0))
-    sizes = np.geomspace(1.02 * (0.02 + 0.01 + 0.0), free.free_length, 3)
+    free = fit_spring("compression", 100.0, RAD, SpringBounds(r=r, r0=(0.01, 1.0), a=(0.0, 1.0)))
+    assert calls[0] == SpringBounds(r=r, r0=(0.01, 1.0), a=(0.0, 1.0))
+    sizes = np.geomspace(1.02 * (2 * r[0] + 0.01 + 0.0), free.free_length, 3)
     forces = np.geomspace(1.05 * 100.0 / 0.5, free.max_force, 3)
     swept = [(c.max_free_length, c.max_force) for c in calls[1:]]
     assert swept == pytest.approx([(s, f) for s in sizes for f in forces], rel=1e-12)
@@ -158,4 +165,15 @@ def test_the_front_sweeps_the_free_length_and_force_limits_it_documents(fit, mon
     best = min(front, key=lambda p: p.error)
     assert (best.error, best.size, best.force) == pytest.approx((free.max_rel_error, free.free_length,
                                                                  free.max_force), rel=1e-9)
-    assert front and all(p.to_dict()["active_bounds"] == list(p.active_bounds) for p in front)
+    assert all(p.to_dict()["active_bounds"] == list(p.active_bounds) for p in front)
+
+
+def test_a_slider_device_is_refitted_as_itself():
+    b = SpringBounds((0.02, 0.12), None, (0.0, 0.3), max_force=1500.0, max_free_length=0.5)
+    res = fit_spring("compression", -30.0, (math.radians(-80), math.radians(250)), b, device="sine")
+    rows = bound_sensitivity(res, b)
+    assert rows
+    for s in rows:
+        moved, _ = _relaxed(s.bound, b, res)
+        again = fit_spring("compression", -30.0, (math.radians(-80), math.radians(250)), moved, device="sine")
+        assert s.error == pytest.approx(again.max_rel_error, rel=1e-6)
