@@ -155,6 +155,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
        for name in ("slider_problem", "exact", "driver", "result", "kinds", "trf", "slsqp", "de", "nelder_mead")},
     "sliders": ("balance/devices/sliders.py", ["tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.sliders]"]),
+    # the helical spring's design (wire, coils, buckling) and the arm's transmissions (drive forms)
+    "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
+                                               _BALANCE_DOC + "balance.devices.helical]", "-k",
+                                               "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
+                                                         _BALANCE_DOC + "balance.devices.transmission]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
