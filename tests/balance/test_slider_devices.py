@@ -393,3 +393,11 @@ def test_dead_centres_by_hand():
     # a range holding a dead centre two turns on
     lo, hi = slider_extremes(4 * math.pi - 0.1, 4 * math.pi + 0.3, 0.1, 0.3, 0.02)
     assert hi == pytest.approx(math.sqrt(0.16 - 0.0004), rel=1e-14)
+
+
+def test_an_in_line_guide_by_default():
+    """No offset given: the guide passes through A — dead centres at 0 and π, positions l ± r there."""
+    from balance.devices.sliders import slider_dead_centres
+
+    assert slider_dead_centres(0.1, 0.3) == (0.0, math.pi)
+    assert slider_extremes(-1.0, 4.0, 0.1, 0.3) == pytest.approx((0.2, 0.4), rel=1e-15)
