@@ -128,3 +128,25 @@ def test_the_bounds_a_device_takes_come_back_as_floats():
 def test_the_grid_limits_are_taken(grid):
     res = fit_spring("tension", -10.0, R, SpringBounds((0.02, 0.2), (0.1, 0.3), (0.0, 0.3)), grid=grid)
     assert res.grid == grid and res.method == "exact"
+
+
+@pytest.mark.parametrize("norm", ["max", "rms"])
+@pytest.mark.parametrize("method, message", [
+    ("nelder-mead", "Optimization terminated successfully."),
+    ("de", "differential_evolution (seed 12345) polished by SLSQP"),
+    ("slsqp", "SLSQP: Optimization terminated successfully"),
+])
+def test_a_method_that_reports_convergence_is_not_restarted(method, message, norm):
+    """The driver restarts a method only when it does not report convergence (and trf's max norm)."""
+    res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)),
+                     SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), method=method, norm=norm)
+    assert (res.restarts, res.message) == (0, message)
+
+
+def test_trf_on_the_max_norm_is_always_confirmed():
+    res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)),
+                     SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), method="trf", norm="rms")
+    assert (res.restarts, res.message) == (0, "`gtol` termination condition is satisfied.")
+    res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)),
+                     SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), method="trf", norm="max")
+    assert res.message.startswith("least_squares (trf) with Lawson reweighting for the max norm; ")
