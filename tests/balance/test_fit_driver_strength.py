@@ -150,3 +150,11 @@ def test_trf_on_the_max_norm_is_always_confirmed():
     res = fit_spring("compression", 100.0, (math.radians(20), math.radians(160)),
                      SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0)), method="trf", norm="max")
     assert res.message.startswith("least_squares (trf) with Lawson reweighting for the max norm; ")
+
+
+def test_differential_evolution_is_repeatable():
+    """Its seed is fixed: the same input gives the same device to the last bit."""
+    b = SpringBounds((0.02, 0.12), None, (0.0, 0.3), max_force=1500.0, max_free_length=0.5)
+    one, two = (fit_spring("compression", -30.0, (math.radians(-80), math.radians(250)), b, device="sine",
+                           method="de") for _ in range(2))
+    assert one.x == two.x and (one.c, one.r, one.a) == (two.c, two.r, two.a) and one.nfev == two.nfev
