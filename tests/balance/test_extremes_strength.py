@@ -111,7 +111,8 @@ def test_extreme_as_a_dict():
 
 def test_a_held_coordinate_does_not_stop_the_starts_spreading():
     """The two peaks of the test above with a second coordinate held: still found from a second start."""
-    f = lambda x: np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.05) ** 2) + x[:, 1:]  # noqa
+    def f(x):
+        return np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.05) ** 2) + x[:, 1:]
     pts = np.column_stack([np.concatenate([np.linspace(0.18, 0.22, 10), [0.7]]), np.full(11, 0.25)])
     (_, hi), = box_extremes(f, [0.0, 0.25], [1.0, 0.25], pts, starts=2)
     assert hi.value == pytest.approx(1.75, rel=1e-9) and hi.at == pytest.approx((0.8, 0.25), abs=1e-6)
