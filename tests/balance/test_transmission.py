@@ -68,7 +68,7 @@ def test_elements_by_hand():
     (only,) = design_train([0.0, 1.0], ["ψ1", "ψ2"], "φ1")
     assert only.to_dict() == {"element": "shaft", "input": "ψ2", "output": "φ1", "ratio": 1.0, "reverses": False}
     (half,) = design_train([0.5, 0.0], ["ψ1", "ψ2"], "φ1")
-    assert (half.element, half.ratio, half.input) == ("reducer", 2.0, "ψ1")
+    assert (half.element, half.ratio, half.input, half.output) == ("reducer", 2.0, "ψ1", "φ1")
     (double,) = design_train([0.0, -2.0], ["ψ1", "ψ2"], "φ1")
     assert (double.element, double.ratio, double.reverses) == ("step-up stage", -0.5, True)
     (back,) = design_train([-1.0], ["ψ1"], "φ1")
@@ -112,3 +112,20 @@ def test_trains_of_an_arm_with_their_check():
 
     off = GearTrain(1, "φ2", (1.0, 2.0), (), (1.0, 2.5))
     assert off.error == 0.5 and GearTrain(0, "φ", (), (), ()).error == 0.0
+
+
+def test_the_tolerances_of_a_form():
+    """A coefficient counts above ``tol``; a single one within ``tol`` of 1 is the shaft itself."""
+    assert [e.input for e in design_train([1e-12, 1.0], ["ψ1", "ψ2"], "φ", tol=1e-12)] == ["ψ2"]
+    assert design_train([1.5], ["ψ1"], "φ", tol=0.5)[0].element == "shaft"
+    assert design_train([1.5], ["ψ1"], "φ", tol=0.4)[0].element == "step-up stage"
+
+
+@pytest.mark.parametrize("ratio, kind", [
+    (1 + 5e-13, "spur stage"), (-(1 - 5e-13), "spur stage"), (1 + 1e-12, "reducer"),  # (was a step-up stage)
+    (1 + 3e-12, "reducer"), (1 - 3e-12, "step-up stage"), (-2.0, "reducer"), (-0.5, "step-up stage")])
+def test_a_stage_is_named_by_its_ratio_with_no_gap(ratio, kind):
+    """Within 1e-12 of ±1 a spur stage, above a reducer, below a step-up stage: every ratio has its name."""
+    from balance.devices.transmission import _stage
+
+    assert _stage("a", "b", ratio).element == kind
