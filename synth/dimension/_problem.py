@@ -19,9 +19,7 @@ import numpy as np
 
 from ..errors import BadTarget, DimensionError
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
-from ..motion import Linkage
-from ..motion._dyads import Closure, decompose
-from ..motion._sweep import _solver
+from ..motion import Linkage, link_poses
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of"]
@@ -297,11 +295,9 @@ class Problem:
         dyad discriminant, up to rounding (NaN-free: −1 where a dyad cannot close), μ (S,) the worst
         transmission angle from the ideal, min(μ, π − μ), at the input offsets; g and μ are None for a
         linkage moved by Newton's method (it raises MotionError where it cannot reach)."""
-        plan = decompose(linkage)
-        if plan is None:
-            theta, t, _ = _solver(linkage).poses_along(np.asarray(offsets, dtype=float))
+        theta, t, gs, mus = link_poses(linkage, offsets)
+        if gs is None:
             return theta, t, None, None
-        theta, t, gs, mus, _ = Closure(linkage, plan)(np.asarray(offsets, dtype=float)[:, None])
         g = np.where(np.isfinite(gs), gs + ROUNDING, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
         g = np.where(np.isfinite(theta).all(axis=1), g, -1.0)
         worst = np.minimum(mus, math.pi - mus)

@@ -356,8 +356,9 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 
 
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
-               budget: float = 60.0, seed: int = 0, workers: int = 1, underdetermined: bool = False,
-               progress=None, polish_only: bool = False) -> DimensionalResult:
+               budget: float = 60.0, seed: int = 0, workers: int = 1, scheduler: str | None = None,
+               underdetermined: bool = False, progress=None, polish_only: bool = False,
+               connect_timeout: float = 5.0) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -370,13 +371,18 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         The link carrying the tracer point (default: the coupler, see :class:`Problem`).
     constraints : Constraints
     budget : float
-        CPU seconds of the search (this process's; with ``workers`` > 1 the parent's wall-clock
-        seconds).  The search stops earlier once the target is met exactly (relative RMS 1e-11).
+        CPU seconds of the search (this process's; with ``workers`` > 1 or a ``scheduler`` the
+        parent's wall-clock seconds).  The search stops earlier once the target is met exactly
+        (relative RMS 1e-11).
     seed : int
         Seeds the search: the same seed and budget give the same result on an idle machine (the
         budget cuts the last run where the clock says).
     workers : int
-        Processes evaluating the global stage's candidates.
+        Local processes evaluating each generation of the global stage (the project's one
+        :class:`~synth.execution.executor.Executor`); 1 evaluates in this process.
+    scheduler : str, optional
+        A Dask scheduler's address (``tcp://HOST:PORT``): the generations are evaluated on its
+        cluster instead (not with ``workers`` > 1).
     underdetermined : bool
         Allow fewer target equations than unknowns (infinitely many exact solutions: one is
         returned), as in Burmester's three poses.
@@ -384,6 +390,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     polish_only : bool
         No global search: only the least-squares polish from the given Linkage's pose (the atlas
         search starts each topology from its nearest indexed sample this way).
+    connect_timeout : float
+        Seconds to wait for the ``scheduler``.
 
     Returns
     -------
@@ -414,6 +422,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise DimensionError(f"the budget must be a positive number of seconds, not {budget!r}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise DimensionError(f"workers must be a whole number ≥ 1, not {workers!r}")
+    if scheduler is not None and workers != 1:
+        raise DimensionError("workers and a scheduler contradict each other: the scheduler's workers evaluate the "
+                             "candidates")
     if problem.equations < problem.unknowns and not underdetermined:
         per = {"path": 2, "function": 1, "motion": 3}[target.kind]
         need = problem.unknowns - (0 if problem.timed else problem.points - 1)
@@ -421,29 +432,35 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise BadTarget(f"{problem.points} target points give {problem.equations} equations for the "
                         f"{problem.unknowns} unknowns of this {target.kind} synthesis: give at least {enough} points "
                         f"(or allow an underdetermined problem: {_option('underdetermined')})")
-    watch = _Watch(float(budget), progress, wall=workers > 1)
+    parallel = not polish_only and (workers > 1 or scheduler is not None)
+    watch = _Watch(float(budget), progress, wall=parallel)
     search = _Search(_Evaluate(problem), problem, watch)
     rng = np.random.default_rng(seed)
-    pool = None
-    if workers > 1:
-        from ..execution.executor import process_pool
+    executor = client = None
+    if parallel:
+        from ..execution.executor import Executor
 
-        pool = process_pool(workers)
+        if scheduler is not None:
+            from ..execution.scheduler import connect
+
+            client = connect(scheduler, connect_timeout)
+        executor = Executor(workers, client)
     try:
         if polish_only:
             search.polish(problem.unknowns_of(start))
         while not (polish_only or watch.over() or search.exact):
             search.runs += 1
-            for x in search.evolve(rng, start if search.runs == 1 else None, pool):
+            for x in search.evolve(rng, start if search.runs == 1 else None, executor):
                 search.polish(x)
                 if search.exact:
                     break
     except _OutOfTime:
         pass
     finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+        if executor is not None:
+            executor.close()  # no worker outlives the search (Ctrl-C included)
+        if client is not None:
+            client.close()
     if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
         search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
     if search.best is None:
@@ -473,9 +490,9 @@ class _Search:
     def exact(self) -> bool:
         return self.best is not None and self.best[0] <= EXACT ** 2
 
-    def evolve(self, rng, start: Linkage | None, pool) -> list:
+    def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
-        candidates, best first."""
+        candidates, best first.  With an executor each generation is evaluated on it."""
         problem, watch = self.problem, self.watch
         state = {"generation": 0, "fun": math.inf, "improved": 0, "polished": None}
 
@@ -504,9 +521,16 @@ class _Search:
         kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
                       maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
                       callback=stop, x0=x0)
-        if pool is not None:
-            result = differential_evolution(self.evaluate, bounds, workers=pool.map, updating="deferred", **kwargs)
-            watch.count += int(result.nfev)
+        if executor is not None:
+            def generation(fn, population):
+                population = list(population)
+                chunk = max(1, math.ceil(len(population) / (2 * executor.slots)))
+                values = list(executor.map(fn, population, chunk=chunk))
+                for x, value in zip(population, values):
+                    watch.seen(value, x)  # (the count, the best and the progress bar, as inline)
+                return values
+
+            result = differential_evolution(self.evaluate, bounds, workers=generation, updating="deferred", **kwargs)
         else:
             try:
                 result = differential_evolution(cost, bounds, **kwargs)
