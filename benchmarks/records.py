@@ -51,16 +51,16 @@ COLUMNS = ["query", "count", "published", "source", "check", "by_code_file", "wa
 SECTION = "## Published counts"
 SECTIONS = [SECTION, "## 20-link chains: the counting path", "## Gear trains"]
 
-SOURCES = {
-    "A233288": "OEIS A233288 (https://oeis.org/A233288); 16 links: Sunkari & Schmidt 2006; 18 links: M. Larsson, "
-               "added 2025",
-    "T": "Tsai 2001, atlases of 2- and 3-DOF chains (docs/theory.md, Sources [T])",
-    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops; its tables could not "
-               "be read here (abstract only), so no value is quoted",
-    "A227117": "OEIS A227117 (https://oeis.org/A227117), Laman graphs on n vertices",
-    "Ding2013": "Ding et al., J. Mech. Des. 135(9) 091007 (2013), multiple-joint chains to 16 links; its tables "
-                "could not be read here (abstract only), so no value is quoted",
-    "": "",
+SOURCES = {  # the keys of docs/theory.md, "Sources"
+    "A233288": "OEIS A233288 (https://oeis.org/A233288): 12 and 14 links also Butcher & Hartman 2005, 16 links "
+               "Sunkari & Schmidt 2006, 18 links M. Larsson (added 2025)",
+    "T": "L.-W. Tsai, Mechanism Design (2001): the atlases of 2- and 3-DOF chains",
+    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops; only its abstract "
+               "could be read here, so no value of it is quoted",
+    "A227117": "OEIS A227117 (https://oeis.org/A227117): Laman graphs on n vertices, the 1-DOF chains of n links "
+               "in h = 2",
+    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links; only its "
+                "abstract could be read here, so no value of it is quoted",
 }
 
 
@@ -113,13 +113,18 @@ ROWS = (
     + [_row("W = 1", 1, 20, None, "",
             heavy="not run: the engine's sizing gives about 1.5e11 chains, 3 days on 2 workers (README)")]
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
-       for n in range(5, 18, 2)]
+       for n in range(5, 16, 2)]
+    + [_row("W = 2", 2, 17, None, "JMD2024",
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
-            heavy="not run: 8 loops, beyond the 7 of the literature by one; sizing from the 17-link count")]
+            heavy="not run: 8 loops; about 60 times the 17-link count by the growth of the counts (an hour of CPU "
+                  "or more)")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
-       for n in range(6, 19, 2)]
+       for n in range(6, 17, 2)]
+    + [_row("W = 3", 3, 18, None, "JMD2024",
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
@@ -302,7 +307,10 @@ def section(lines: dict[str, dict]) -> str:
            "(`MECHSYNTH_CACHE=off`), on the shared 2-core machine (times are disturbed by other work; CPU s are",
            "those of the command and its workers, peak MiB the largest sum of their resident memory). Checks:",
            "*published* = the source's value; *oracle* = the brute force of tests/oracles/chains.py, code by",
-           "code; *listing* = the listing path (every chain built and told apart by nauty), code by code.", "",
+           "code; *listing* = the listing path (every chain built and told apart by nauty), code by code;",
+           "*none* = no check but the engine's own. A row without a published value goes beyond the source;",
+           "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
+           "Counts by code: the JSON file of each query in `benchmarks/records/`.", "",
            "| series | query | chains | published | source | checks passed | wall s | CPU s | peak MiB | commit |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     keys = []
@@ -320,8 +328,8 @@ def section(lines: dict[str, dict]) -> str:
         out += [f"- `{row.query}`" + (f" (published {_number(str(row.published))}, {row.source})"
                                       if row.published else "") + f": {row.heavy or 'not run yet'}"
                 for row in missing]
-    out += ["", "Sources:", ""]
-    out += [f"- **{key}**: {SOURCES[key]}" for key in SOURCES if key and key in keys + [r.source for r in missing]]
+    out += ["", "Sources (full references: docs/theory.md, \"Sources\"):", ""]
+    out += [f"- **{key}**: {SOURCES[key]}" for key in SOURCES if key in keys + [r.source for r in missing]]
     return "\n".join(out) + "\n"
 
 
