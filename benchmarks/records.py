@@ -364,10 +364,12 @@ def main(argv=None) -> int:
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
     parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included)")
     parser.add_argument("--again", action="store_true", help="run rows already in the CSV again")
-    parser.add_argument("--csv", type=Path, default=ROOT / "benchmarks" / "records.csv")
-    parser.add_argument("--md", type=Path, default=ROOT / "benchmarks" / "RECORDS.md")
+    parser.add_argument("--csv", type=Path, default=ROOT / "benchmarks" / "records.csv",
+                        help="the table of counts, one line a query, updated in place (default: %(default)s)")
+    parser.add_argument("--md", type=Path, default=ROOT / "benchmarks" / "RECORDS.md",
+                        help="its section 'Published counts' is written from the CSV (default: %(default)s)")
     parser.add_argument("--by-code", type=Path, default=ROOT / "benchmarks" / "records",
-                        help="folder of the counts by code, one JSON file a query")
+                        help="folder of the counts by code, one JSON file a query (default: %(default)s)")
     args = parser.parse_args(argv)
     if args.quick and args.only is not None:
         fail("--quick and --only choose the rows in two different ways: give one of them")
@@ -391,6 +393,7 @@ def main(argv=None) -> int:
     lines = read_csv(args.csv)
     if args.only is None and not args.again:
         rows = [row for row in rows if row.query not in lines]
+    rows.sort(key=lambda row: row.published is None)  # the published counts first, should the run be cut short
     sys.path.insert(0, str(ROOT))
     commit, bad = _commit(), 0
     try:

@@ -55,7 +55,8 @@ def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
     text = md.read_text()
     assert "old text" not in text and "the gear rows stay" in text
     assert text.index("## Published counts") < text.index("`chains --dof 3 --links 6`") < text.index("## Gear")
-    assert "- `chains --dof 3 --links 18`: not run yet" in text  # every row not run is named
+    assert "- `chains --dof 3 --links 16`: not run yet" in text  # every row not run is named, heavy ones with why
+    assert "- `chains --dof 3 --links 18`: run on its own (--only): 7 loops" in text
 
 
 def test_each_check_reports_a_count_that_is_off():
@@ -95,3 +96,25 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
     p = _run("--only", "no such query", "--csv", tmp_path / "r.csv", "--md", tmp_path / "R.md")
     assert p.returncode == 1 and "no row's query contains" in p.stderr
     assert not (tmp_path / "r.csv").exists()
+
+
+def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(tmp_path):
+    import os
+    import signal
+    import time
+
+    from tests.load import allowed_seconds
+
+    csv_file = tmp_path / "r.csv"
+    proc = subprocess.Popen([sys.executable, str(ROOT / "benchmarks" / "records.py"), "--only", "dof 1 --links 16",
+                             "--csv", str(csv_file), "--md", str(tmp_path / "R.md"), "--by-code", str(tmp_path)],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    time.sleep(4)  # the 16-link count takes about a minute of CPU: it is running now
+    assert proc.poll() is None
+    os.killpg(proc.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole process group
+    start = time.monotonic()
+    _, err = proc.communicate(timeout=60)
+    assert time.monotonic() - start < allowed_seconds(2.0)
+    assert proc.returncode == 130 and "interrupted" in err.splitlines()[-1] and "Traceback" not in err
+    assert not csv_file.exists()  # no row finished, none written
