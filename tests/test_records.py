@@ -87,6 +87,8 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--csv", tmp_path], "is a folder, not a file"),
         (["--md", other / "R.md"], "is not a folder"),
         (["--frobnicate"], "unrecognized arguments"),
+        (["--list-max", "-1"], "--list-max must be 0"),
+        (["--list-max", "many"], "invalid int value"),
     ]
     for args, words in cases:
         p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
