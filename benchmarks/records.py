@@ -117,14 +117,17 @@ ROWS = (
     + [_row("W = 2", 2, 17, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
-            heavy="not run: 8 loops; about 60 times the 17-link count by the growth of the counts (an hour of CPU "
-                  "or more)")]
+            heavy="not run: 8 loops; the engine's sizing gives about 7.5e9 chains, 8 CPU hours")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min; "
+                  "not run on 28 Nov: the shared machine's load (20 on 2 cores) would have taken it past the "
+                  "session")]
+    + [_row("W = 3", 3, 20, None, "",
+            heavy="not run: 8 loops; the engine's sizing gives about 3.3e10 chains, 24 CPU hours")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]

@@ -56,7 +56,7 @@ def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
     assert "old text" not in text and "the gear rows stay" in text
     assert text.index("## Published counts") < text.index("`chains --dof 3 --links 6`") < text.index("## Gear")
     assert "- `chains --dof 3 --links 16`: not run yet" in text  # every row not run is named, heavy ones with why
-    assert "- `chains --dof 3 --links 18`: run on its own (--only): 7 loops" in text
+    assert "- `chains --dof 3 --links 20`: not run: 8 loops" in text
 
 
 def test_each_check_reports_a_count_that_is_off():
