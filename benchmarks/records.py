@@ -123,9 +123,7 @@ ROWS = (
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min; "
-                  "not run on 28 Nov: the shared machine's load (20 on 2 cores) would have taken it past the "
-                  "session")]
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
             heavy="not run: 8 loops; the engine's sizing gives about 3.3e10 chains, 24 CPU hours")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
