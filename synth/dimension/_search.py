@@ -13,7 +13,7 @@ from scipy.optimize import differential_evolution, least_squares
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure.chain import Mechanism
-from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -330,6 +330,7 @@ class _Evaluate:
         if arc[-1] <= 1e-12:
             return None
         share /= share[-1]
+
         def fitted(places):  # (mean squared distance, places, λ, t) of the best similarity for these places
             on = np.interp(places, index, z.real) + 1j * np.interp(places, index, z.imag)
             fit = similarity(on, w)
@@ -351,13 +352,12 @@ class _Evaluate:
         best = min(fits, key=lambda f: f[0])
         for _ in range(ALIGN_ROUNDS):
             again = replaced(best)
-            if again is None or again[0] >= best[0] * (1 - 1e-3):
-                best = best if again is None or again[0] >= best[0] else again
+            if again is None or again[0] >= best[0]:
                 break
-            best = again
+            best, crawling = again, again[0] > best[0] * (1 - 1e-3)
+            if crawling:  # less than 0.1 % better: the fit has settled
+                break
         return best[0], best[1][1:], best[2], best[3]
-
-        return best
 
     def moved(self, x, lam: complex, shift: complex) -> np.ndarray:
         """The unknowns of the mechanism ``x`` carried by the similarity w = λz + t (z, w positions over
