@@ -1,7 +1,7 @@
 """Dimensional synthesis on classical four-bar path problems and on pylinkage's documented examples:
 error and CPU time per problem, pylinkage 1.3.0 side by side where it has an example.
 
-Usage: ``python benchmarks/bench_dimension.py [--budget SECONDS] [--seed N] [--only NAME]
+Usage: ``python benchmarks/bench_dimension.py [--budget SECONDS] [--seed N] [--only NAME] [--reach R]
 [--pylinkage-python PATH]`` — one row per problem (JSON lines on stdout): the sum of squared
 errors (the objective the literature reports), the largest and RMS error in the target's units,
 the relative error, CPU seconds and candidates evaluated.  The problems and their sources are in
@@ -41,7 +41,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from synth import Chain, Mechanism  # noqa: E402
-from synth.dimension import PathTarget, synthesize  # noqa: E402
+from synth.dimension import Constraints, PathTarget, synthesize  # noqa: E402
 from synth.motion import Linkage, motion_range, sweep  # noqa: E402
 from tests.dimension.test_synthesize import SLIDER_CRANK, random_crank_rocker  # noqa: E402
 
@@ -152,6 +152,7 @@ def main() -> None:
     parser.add_argument("--budget", type=float, default=60.0, help="CPU seconds per problem (default 60)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", choices=sorted(PROBLEMS), help="run this problem alone")
+    parser.add_argument("--reach", type=float, help="the search box in target sizes (default 4)")
     parser.add_argument("--pylinkage-python", default=DEFAULT_PYLINKAGE,
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", help="the reliability runs for these seeds instead")
@@ -165,7 +166,8 @@ def main() -> None:
         if args.only is not None and name != args.only:
             continue
         target = PathTarget(np.array(points, dtype=float), None if inputs is None else np.array(inputs))
-        result = synthesize(FOUR_BAR, target, budget=args.budget, seed=args.seed, underdetermined=True)
+        result = synthesize(FOUR_BAR, target, constraints=Constraints(reach=args.reach), budget=args.budget,
+                            seed=args.seed, underdetermined=True)
         row = {"problem": name, "points": len(points), "sum_squared_error": float(np.sum(result.errors ** 2)),
                "error_max": result.error_max, "error_rms": result.error_rms, "relative_max": result.relative_max,
                "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations, "met": result.met}
