@@ -147,6 +147,18 @@ def reliability(seeds: range, budget: float) -> None:
                               "met": result.met}), flush=True)
 
 
+def seed_range(text: str) -> range:
+    """Seeds "A..B" (or one seed "A") for --reliability."""
+    lo, _, hi = text.partition("..")
+    try:
+        seeds = range(int(lo), int(hi or lo) + 1)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"seeds are A..B or A, whole numbers, not {text!r}") from None
+    if not seeds:
+        raise argparse.ArgumentTypeError(f"the seed range {text!r} is empty")
+    return seeds
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--budget", type=float, default=60.0, help="CPU seconds per problem (default 60)")
@@ -155,11 +167,11 @@ def main() -> None:
     parser.add_argument("--reach", type=float, help="the search box in target sizes (default 4)")
     parser.add_argument("--pylinkage-python", default=DEFAULT_PYLINKAGE,
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
-    parser.add_argument("--reliability", metavar="A..B", help="the reliability runs for these seeds instead")
+    parser.add_argument("--reliability", metavar="A..B", type=seed_range,
+                        help="the reliability runs for these seeds instead")
     args = parser.parse_args()
     if args.reliability is not None:
-        lo, _, hi = args.reliability.partition("..")
-        reliability(range(int(lo), int(hi or lo) + 1), args.budget)
+        reliability(args.reliability, args.budget)
         return
     have_pylinkage = Path(args.pylinkage_python).exists()
     for name, (points, inputs, theirs) in PROBLEMS.items():
