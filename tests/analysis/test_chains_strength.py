@@ -94,6 +94,15 @@ def test_an_over_braced_four_bar():
     assert mobility_of(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3")) == 0
 
 
+def test_an_over_braced_four_bar_as_a_structure_is_over_constrained_as_a_whole():
+    """W = 0 allows its rigid triangles, so no proper sub-chain is defective, but the whole chain's count
+    (9 − 12 = −3) is 3 below its true W (0): the advice must say so, not 'no defect'."""
+    a = analyze_chain("0-1 1-2 2-3 3-0 0-2 1-3", dof=0)
+    assert (a.dof, a.dof_count, a.redundant, a.subchain_defect, a.defect) == (0, -3, 3, "none", -3)
+    assert a.advice == ("the chain as a whole carries 3 redundant constraint(s): the count gives -3, its links "
+                        "move with W = 0; remove joints or add links (--repairs)")
+
+
 def test_gear_meshes_their_lever_analogue_and_the_redundant_meshes():
     # two meshes in a five-joint chain: each mesh read as a binary link gives six links, code 42/0
     gears = analyze_chain("0-1 1~2 2~3 3-0 1-3")
