@@ -1,0 +1,168 @@
+"""Counting by orbits (Burnside's lemma over the automorphisms of each branch multigraph H,
+``stage_b.count_orbits``) against the listing path and the brute-force oracle.
+
+* the claim it rests on: the exact sub-chain test of a weight vector depends only on its
+  pattern min(w_e, h − 1), checked on every weight vector of every H up to 12 links (W = 1);
+* the number of valid weight vectors the search fixes under the identity equals the number the
+  exact test passes (no symmetry involved: the search's rule against the independent test);
+* per unit, ``count_orbits`` equals ``count_realised`` (the listing path) on every H of every
+  code, W = 1 to 14 links, other mobilities, motion spaces and conventions at smaller sizes;
+* counts by code of ``count_chains(method="orbits")`` equal the brute-force oracle's;
+* the 16-link comparison by code is ``slow`` (benchmarks/logs/orbits_vs_listing_16.txt).
+"""
+
+from __future__ import annotations
+
+from collections import Counter, defaultdict
+
+import numpy as np
+import pytest
+
+import synth
+from synth.synthesis import stage_b
+from synth.synthesis.type_synthesis import job_units, plan_jobs
+from tests.oracles.chains import brute_force_chains_once, count_by_code
+
+
+def _units(query):
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
+        for unit in job_units((code, conv)):
+            if unit.contracted is not None:
+                yield unit
+
+
+def _all_vectors(unit):
+    """Every weight vector of the unit's H: n2 binary links on its strings above their least weights
+    (no symmetry removed)."""
+    lows, _ = stage_b._string_limits(unit.contracted, unit.conventions)
+    spare = unit.code.count(2) - sum(lows)
+    if spare < 0:
+        return np.zeros((0, len(lows)), dtype=np.int64)
+    return np.asarray(stage_b._compositions(spare, len(lows)), dtype=np.int64) + np.array(lows)
+
+
+@pytest.mark.parametrize("links", [6, 8, 10, 12])
+def test_the_exact_test_depends_only_on_the_pattern(links):
+    """Two weight vectors of one H with the same pattern min(w, h − 1) pass or fail the exact
+    sub-chain test together (so counting patterns is counting valid vectors)."""
+    tested = 0
+    for unit in _units(dict(dof=1, links=links)):
+        graph, conv = unit.contracted, unit.conventions
+        assert stage_b.orbits_apply(unit.code, graph, conv)
+        vectors = _all_vectors(unit)
+        if not len(vectors):
+            continue
+        passes = stage_b._exact_test(graph.vertices, graph.edges, vectors, conv)
+        by_pattern = defaultdict(set)
+        for w, ok in zip(np.minimum(vectors, conv.h - 1).tolist(), passes.tolist()):
+            by_pattern[tuple(w)].add(ok)
+        assert all(len(results) == 1 for results in by_pattern.values()), unit.key
+        tested += len(vectors)
+    assert tested
+
+
+@pytest.mark.parametrize("query", [dict(dof=1, links=10), dict(dof=1, links=12), dict(dof=2, links=9),
+                                   dict(dof=3, links=10), dict(dof=1, links=11, h=4), dict(dof=0, links=9)],
+                         ids=lambda q: "-".join(f"{k}{v}" for k, v in q.items()))
+def test_the_identity_fixes_every_valid_vector(query):
+    """Fix(identity) of the search is the number of weight vectors the exact test passes."""
+    from synth.synthesis._stage_b_kernel import fixed_total
+
+    compared = 0
+    for unit in _units(query):
+        graph, conv = unit.contracted, unit.conventions
+        if not stage_b.orbits_apply(unit.code, graph, conv):
+            continue
+        vectors = _all_vectors(unit)
+        valid = int(stage_b._exact_test(graph.vertices, graph.edges, vectors, conv).sum()) if len(vectors) else 0
+        # every string a bundle of its own and the identity alone: the search counts labelled vectors
+        lows, _ = stage_b._string_limits(graph, conv)
+        inner, k, _, _ = stage_b._pebble_vertices(graph.vertices, conv.h, conv.threshold)
+        a_end, b_end = (np.array(x, dtype=np.int64) for x in stage_b._game_ends(graph, inner))
+        C, l, n2 = conv.h - 1, conv.h + conv.threshold, unit.code.count(2)
+        b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_end, lows))
+        need = stage_b._deficit_bounds(k, l, b0, n2, conv.h)[1]
+        E = len(graph.edges)
+        least = np.array(lows, dtype=np.int64)
+        fixed = fixed_total(len(inner), a_end, b_end, least, least, np.ones(E, dtype=np.int64), n2, k, C, l, need,
+                            np.arange(E, dtype=np.int64)[None, :])
+        assert fixed == valid, unit.key
+        compared += 1
+    assert compared
+
+
+QUERIES = [dict(dof=1, links=n) for n in (6, 8, 10, 12)] + [
+    dict(dof=2, links=11), dict(dof=3, links=12), dict(dof=0, links=9), dict(dof=2, links=9, fractionated=False),
+    dict(dof=1, links=10, rigid_subchains=True), dict(dof=1, links=11, h=4), dict(dof=1, links=12, h=6),
+    dict(dof=1, links=10, h=5), dict(dof=1, links=8, h=2), dict(dof=3, links=8, n1=(0, 3)),
+    dict(dof=1, links=10, v=(0, 3)), dict(dof=1, links=12, planar_only=True)]
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=lambda q: "-".join(f"{k}{v}" for k, v in q.items()))
+def test_orbits_equal_the_listing_on_every_unit(query):
+    """count_orbits == count_realised on every branch multigraph (the listing path: CP-SAT or the
+    direct listing at these sizes, lex-least vectors or certificates), where orbits apply and where
+    they fall back."""
+    applied = 0
+    for unit in _units(query):
+        args = unit.code, unit.contracted, unit.conventions
+        assert stage_b.count_orbits(*args) == stage_b.count_realised(*args), unit.key
+        applied += stage_b.orbits_apply(*args)
+    assert applied or query.get("v")
+
+
+@pytest.mark.slow
+def test_orbits_equal_the_listing_on_every_unit_of_14_links():
+    """The same at 14 links, W = 1 (1 040 units; the listing there is the compiled kernel)."""
+    units = list(_units(dict(dof=1, links=14)))
+    assert len(units) == 1040
+    for unit in units:
+        args = unit.code, unit.contracted, unit.conventions
+        assert stage_b.count_orbits(*args) == stage_b.count_realised(*args), unit.key
+
+
+@pytest.mark.parametrize("dof, links, rigid", [(1, 6, False), (1, 8, False), (2, 7, False), (3, 8, False),
+                                               (1, 8, True), (0, 7, True)])
+def test_counts_by_orbits_equal_the_brute_force(dof, links, rigid):
+    """Counts by code of the orbit count against the oracle (which shares no code with the engine)."""
+    got = synth.count_chains(dof, links, rigid_subchains=rigid, workers=1, method="orbits")
+    expected = count_by_code(brute_force_chains_once(links, dof, rigid_subchains=rigid))
+
+    def key(name):  # '440/0' -> the oracle's (assortment, composition) with trailing zeros stripped
+        assortment = synth.Code.parse(name).assortment
+        while assortment and assortment[-1] == 0:
+            assortment = assortment[:-1]
+        return tuple(assortment), ()
+
+    assert {key(name): n for name, n in got.by_code.items()} == expected
+    assert got.count == sum(expected.values())
+
+
+def test_the_two_methods_count_alike_by_code_and_apart_in_the_store():
+    """count_chains by either method: the same counts by code; a count kept in the store by one
+    method is not read back for the other."""
+    from synth.synthesis import type_synthesis as ts
+
+    ran = Counter()
+    real = ts.count_unit
+    try:
+        ts.count_unit = lambda unit, method="listing": ran.update([method]) or real(unit, method)
+        listing = synth.count_chains(1, 10, workers=1, remember=True)
+        orbits = synth.count_chains(1, 10, workers=1, remember=True, method="orbits")
+    finally:
+        ts.count_unit = real
+    assert orbits == listing and listing.count == 230
+    assert ran["orbits"] == len(list(_units(dict(dof=1, links=10))))  # every unit ran: none read as the listing's
+
+
+@pytest.mark.parametrize("options, words", [
+    (dict(prismatic="0..2"), "prismatic"), (dict(cranks=["3=2"]), "crank"),
+    (dict(h=2, rigid_subchains=True), "h = 2")])
+def test_orbits_are_refused_where_no_unit_could_use_them(options, words):
+    with pytest.raises(synth.InvalidOption, match=words):
+        synth.count_chains(1, 8, workers=1, method="orbits", **options)
+
+
+def test_an_unknown_method_is_refused():
+    with pytest.raises(synth.InvalidOption, match="listing, orbits"):
+        synth.count_chains(1, 8, workers=1, method="burnside")
