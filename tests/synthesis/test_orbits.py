@@ -166,3 +166,25 @@ def test_orbits_are_refused_where_no_unit_could_use_them(options, words):
 def test_an_unknown_method_is_refused():
     with pytest.raises(synth.InvalidOption, match="listing, orbits"):
         synth.count_chains(1, 8, workers=1, method="burnside")
+
+
+def test_the_command_counts_by_either_method(capsys):
+    from mechsynth.cli import main
+
+    outputs = []
+    for method in ("listing", "orbits"):
+        assert main(["chains", "--dof", "1", "--links", "10", "--count", "--workers", "1", "--method", method]) == 0
+        outputs.append(capsys.readouterr().out)
+    assert outputs[0] == outputs[1] and '"count": 230' in outputs[0]
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--dof", "1", "--links", "10", "--method", "orbits"], "--method goes with --count"),
+    (["--chain", "0-1 1-2 2-3 3-0", "--count", "--method", "orbits"], "not with --chain"),
+    (["--dof", "1", "--links", "8", "--count", "--method", "orbits", "--prismatic", "0..2"], "cannot be counted by orbits")])
+def test_the_command_refuses_a_method_that_cannot_apply(capsys, argv, words):
+    from mechsynth.cli import main
+
+    assert main(["chains", *argv]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1
