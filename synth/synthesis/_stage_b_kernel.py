@@ -258,7 +258,7 @@ def _ways(sizes, count, total, ways):
 
 
 @njit(cache=True)
-def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_need, g):
+def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, g):
     """Fix(g): the placements that pass the pebble game of :func:`place`, taken up to the order
     of parallel strings, that the permutation ``g`` of the bundles of parallel strings leaves
     unchanged.
@@ -274,7 +274,8 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_n
     pattern the long slots' weights are counted, not listed: r long slots of a cycle of s bundles
     are a partition into at most r parts, coins s·1 … s·r of a coin change count (``_ways``).
     Prunes: the binary links taken so far (long slots at their least, the slots to come at theirs)
-    at most n2, and ``vertex_need`` as in :func:`place`.  Other arguments as :func:`place`.
+    at most n2; the excess the long slots will carry at most ``x_most`` (the slots to come taken
+    long at their least); ``vertex_need`` as in :func:`place`.  Other arguments as :func:`place`.
     """
     Q = len(a_end)
     if Q == 0:
@@ -307,10 +308,12 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_n
             first_slot[i] = j == 0
             i += 1
     lowest = np.zeros(S + 1, dtype=np.int64)  # binary links the slots i … take at least
+    most = np.zeros(S + 1, dtype=np.int64)  # … and at most without excess (every one long at its least)
     for i in range(S - 1, -1, -1):
         c = slot_cycle[i]
         q = members[start[c]]
         lowest[i] = lowest[i + 1] + (size[c] * least[q] if a_end[q] < 0 else 0)
+        most[i] = most[i + 1] + size[c] * (least[q] if a_end[q] < 0 else max(C, least[q]))
     pebbles = k.copy()
     arcs = np.zeros((M, M), dtype=np.int64)
     seen = np.zeros(M, dtype=np.bool_)
@@ -366,6 +369,8 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_n
         if used[i] + cost + lowest[i + 1] > n2:
             choice[i] = C  # every later choice costs more: nothing left to try
             continue
+        if n2 - used[i] - cost - most[i + 1] > x_most:
+            continue  # too much deficit: the long slots would carry more excess than the rule allows
         if short_able:
             d = C - p if p < C else 0
             for m in range(start[c], start[c + 1]):
@@ -405,12 +410,12 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_n
 
 
 @njit(cache=True)
-def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_need, group):
+def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group):
     """Σ Fix(g) over the rows of ``group``, permutations of the bundles of parallel strings
     (:func:`fixed_placements`): by Burnside's lemma, the orbits of the valid placements times the
     number of rows when the rows are every permutation of the bundles that an automorphism of H
     makes (identity included)."""
     total = 0
     for r in range(group.shape[0]):
-        total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, vertex_need, group[r])
+        total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group[r])
     return total

@@ -299,9 +299,11 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     if not whole_group:
         return count_realised(code, graph, conv, stats)
     t0 = perf_counter()
-    firsts = [e for e in range(len(edges)) if not e or edges[e] != edges[e - 1]]  # parallel strings are adjacent
-    bundle_of = np.cumsum([e in firsts for e in range(len(edges))]) - 1 if edges else []
-    bundles = {tuple(range(len(firsts)))} | {tuple(int(bundle_of[g[e]]) for e in firsts) for g in group}
+    starts = np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))])  # parallel strings are adjacent
+    picked = np.flatnonzero(starts)
+    # the permutations of the bundles the automorphisms make (the identity among them), each once
+    images = np.vstack([np.arange(len(edges)), np.array(group, dtype=np.int64).reshape(len(group), len(edges))])
+    bundles = np.unique((np.cumsum(starts) - 1)[images[:, picked]], axis=0)
     lows, parallel = _string_limits(graph, conv)
     later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
     for e, least in parallel:
@@ -309,11 +311,11 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     inner, k, _, _ = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     a_list, b_list = _game_ends(graph, inner)
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
-    _, vertex_need = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2, conv.h)
-    picked = np.array(firsts, dtype=np.int64)
+    x_most, vertex_need = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2,
+                                          conv.h)
     total = fixed_total(len(inner), np.array(a_list, dtype=np.int64)[picked], np.array(b_list, dtype=np.int64)[picked],
                         np.array(lows, dtype=np.int64)[picked], later[picked], np.diff(np.append(picked, len(edges))),
-                        n2, k, C, l, vertex_need, np.array(sorted(bundles), dtype=np.int64))
+                        n2, k, C, l, x_most, vertex_need, bundles)
     orbits, rest = divmod(int(total), len(bundles))
     if rest:  # Burnside's sum is a multiple of |G/P|; anything else is a fault of this engine
         raise RuntimeError(f"Burnside's sum {total} over the {len(bundles)} permutations of bundles of a branch "

@@ -81,10 +81,10 @@ def test_the_identity_fixes_every_valid_vector(query):
         a_end, b_end = (np.array(x, dtype=np.int64) for x in stage_b._game_ends(graph, inner))
         C, l, n2 = conv.h - 1, conv.h + conv.threshold, unit.code.count(2)
         b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_end, lows))
-        need = stage_b._deficit_bounds(k, l, b0, n2, conv.h)[1]
+        x_most, need = stage_b._deficit_bounds(k, l, b0, n2, conv.h)
         E = len(graph.edges)
         least = np.array(lows, dtype=np.int64)
-        fixed = fixed_total(len(inner), a_end, b_end, least, least, np.ones(E, dtype=np.int64), n2, k, C, l, need,
+        fixed = fixed_total(len(inner), a_end, b_end, least, least, np.ones(E, dtype=np.int64), n2, k, C, l, x_most, need,
                             np.arange(E, dtype=np.int64)[None, :])
         assert fixed == valid, unit.key
         compared += 1
