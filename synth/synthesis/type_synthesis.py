@@ -524,8 +524,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     query = ChainQuery.of(query, links, **options)
     _check_method(method, query)
     # the store and a checkpoint keep each method's counts apart: a count by one never stands for the other
-    what = "chains" if method == "listing" else f"chains by {method}"
-    return _count(_ChainCount(method), what, query, workers, progress, checkpoint, scheduler, timeout, log, remember)
+    work, what = (count_unit, "chains") if method == "listing" else (_ChainCount(method), f"chains by {method}")
+    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,
