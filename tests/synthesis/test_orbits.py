@@ -188,3 +188,16 @@ def test_the_command_refuses_a_method_that_cannot_apply(capsys, argv, words):
     assert main(["chains", *argv]) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
+
+
+@pytest.mark.slow
+def test_counts_by_orbits_of_16_links_equal_the_recorded_listing_by_code():
+    """The 19 819 281 chains of 16 links counted by orbits, code by code, against the listing's counts
+    recorded in benchmarks/logs/bycode_27a4901.json (about a CPU minute a method)."""
+    import json
+    from pathlib import Path
+
+    recorded = json.loads((Path(__file__).parents[2] / "benchmarks/logs/bycode_27a4901.json").read_text())
+    want = recorded["queries"]["dof=1,links=16"]["by_code"]
+    got = synth.count_chains(1, 16, workers=2, method="orbits")
+    assert got.by_code == want and got.count == 19_819_281
