@@ -201,3 +201,15 @@ def test_counts_by_orbits_of_16_links_equal_the_recorded_listing_by_code():
     want = recorded["queries"]["dof=1,links=16"]["by_code"]
     got = synth.count_chains(1, 16, workers=2, method="orbits")
     assert got.by_code == want and got.count == 19_819_281
+
+
+def test_a_group_too_large_to_list_falls_back_to_the_listing(monkeypatch):
+    """Where the group of H is not listed whole (forced here: at most one element), a unit is
+    counted as the listing counts it, by certificates, and the counts stay."""
+    from synth.synthesis import stage_a
+
+    units = list(_units(dict(dof=1, links=10)))
+    want = [stage_b.count_orbits(u.code, u.contracted, u.conventions) for u in units]
+    monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 1)
+    assert any(not u.contracted.edge_group()[1] for u in units)
+    assert [stage_b.count_orbits(u.code, u.contracted, u.conventions) for u in units] == want
