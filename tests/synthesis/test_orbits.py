@@ -106,6 +106,8 @@ def test_orbits_equal_the_listing_on_every_unit(query):
     applied = 0
     for unit in _units(query):
         args = unit.code, unit.contracted, unit.conventions
+        runs = [e for i, e in enumerate(unit.contracted.edges) if not i or e != unit.contracted.edges[i - 1]]
+        assert len(runs) == len(set(runs)), unit.key  # parallel strings adjacent: the bundles count_orbits reads
         assert stage_b.count_orbits(*args) == stage_b.count_realised(*args), unit.key
         applied += stage_b.orbits_apply(*args)
     assert applied or query.get("v")
