@@ -264,10 +264,10 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
     unchanged.
 
     Bundle q is ``width[q]`` parallel strings between the game's vertices ``a_end[q]`` and
-    ``b_end[q]`` (−1 for strings that are never short: loops, strings to single-joint links),
-    the first of at least ``least[q]`` binary links, the others of at least ``later[q]``; Σ w = n2.  A placement up to the order of parallel
-    strings is a non-decreasing vector per bundle, and g leaves it unchanged when every bundle of
-    a cycle of g holds the same vector.  The rule sees a string only through its *pattern*
+    ``b_end[q]`` (−1 for strings that are never short: loops, strings to single-joint links), the
+    first of at least ``least[q]`` binary links, the others of at least ``later[q]``; Σ w = n2.
+    A placement up to the order of parallel strings is a non-decreasing vector per bundle, and g
+    leaves it unchanged when every bundle of a cycle of g holds the same vector.  The rule sees a string only through its *pattern*
     min(w, C): a string of C = h − 1 binary links or more costs nothing.  So the search gives
     each cycle's vector a non-decreasing pattern, slot by slot (every string of the slot, one per
     bundle of the cycle, takes C − w units in the game), the long slots last; for a complete

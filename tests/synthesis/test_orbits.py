@@ -84,8 +84,8 @@ def test_the_identity_fixes_every_valid_vector(query):
         x_most, need = stage_b._deficit_bounds(k, l, b0, n2, conv.h)
         E = len(graph.edges)
         least = np.array(lows, dtype=np.int64)
-        fixed = fixed_total(len(inner), a_end, b_end, least, least, np.ones(E, dtype=np.int64), n2, k, C, l, x_most, need,
-                            np.arange(E, dtype=np.int64)[None, :])
+        fixed = fixed_total(len(inner), a_end, b_end, least, least, np.ones(E, dtype=np.int64), n2, k, C, l, x_most,
+                            need, np.arange(E, dtype=np.int64)[None, :])
         assert fixed == valid, unit.key
         compared += 1
     assert compared
@@ -183,7 +183,8 @@ def test_the_command_counts_by_either_method(capsys):
 @pytest.mark.parametrize("argv, words", [
     (["--dof", "1", "--links", "10", "--method", "orbits"], "--method goes with --count"),
     (["--chain", "0-1 1-2 2-3 3-0", "--count", "--method", "orbits"], "not with --chain"),
-    (["--dof", "1", "--links", "8", "--count", "--method", "orbits", "--prismatic", "0..2"], "cannot be counted by orbits")])
+    (["--dof", "1", "--links", "8", "--count", "--method", "orbits", "--prismatic", "0..2"],
+     "cannot be counted by orbits")])
 def test_the_command_refuses_a_method_that_cannot_apply(capsys, argv, words):
     from mechsynth.cli import main
 
