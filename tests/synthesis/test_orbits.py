@@ -216,3 +216,29 @@ def test_a_group_too_large_to_list_falls_back_to_the_listing(monkeypatch):
     monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 1)
     assert any(not u.contracted.edge_group()[1] for u in units)
     assert [stage_b.count_orbits(u.code, u.contracted, u.conventions) for u in units] == want
+
+
+def test_a_count_by_orbits_resumes_from_its_checkpoint(tmp_path, monkeypatch):
+    """Ctrl-C in the middle of a count by orbits with a checkpoint: the rerun computes only the units
+    left and gives the whole count; the listing is refused that checkpoint (another method's)."""
+    from synth.synthesis import type_synthesis as ts
+
+    real, calls = ts.count_unit, []
+
+    def interrupted(unit, method="listing"):
+        if len(calls) == 7:
+            raise KeyboardInterrupt
+        calls.append(unit.key)
+        return real(unit, method)
+
+    path = tmp_path / "c.sqlite"
+    monkeypatch.setattr(ts, "count_unit", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        synth.count_chains(1, 10, workers=1, checkpoint=path, method="orbits")
+    done = list(calls)
+    calls.clear()
+    monkeypatch.setattr(ts, "count_unit", lambda unit, method="listing": (calls.append(unit.key), real(unit, method))[1])
+    assert synth.count_chains(1, 10, workers=1, checkpoint=path, method="orbits").count == 230
+    assert len(done) == 7 and not set(done) & set(calls) and len(done) + len(calls) == len(synth.plan_units(1, 10))
+    with pytest.raises(synth.SynthesisError, match="belongs to another query"):
+        synth.count_chains(1, 10, workers=1, checkpoint=path)
