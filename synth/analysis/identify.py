@@ -143,9 +143,10 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     if chain.classes is not None:
         return _class_listing(chain, dof, verdict)
     rigid = None
+    # (redundant constraints: of a sub-chain, or of the whole chain, whose true W is above its count)
+    if verdict is not None and (verdict.worst_mobility < 0 or verdict.redundant or dof != chain.dof):
+        return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
     if verdict is not None and verdict.worst_mobility < 1:
-        if verdict.worst_mobility < 0 or verdict.redundant:
-            return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
         rigid = True if dof >= 1 else None
     code = str(chain.code)
     prismatic = chain.kinds.count(PRISMATIC) if not chain.all_revolute else None
@@ -302,7 +303,7 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
 
     chain, names = entry.chain, entry.names
     loose = [x for x, d in enumerate(chain.degrees) if d == 0]
-    if loose and chain.links > 1:
+    if loose:  # (a Chain made in Python; a reader refuses it first)
         raise MalformedChain(f"{entry.source}: link {_named(names, loose)[0]} is in no joint: a chain's links are all "
                              "jointed")
     connected = chain.is_connected()
