@@ -97,6 +97,13 @@ CASES = [
     ("chains --dof 1 --links 1000 --count", "1000 links"),
     ("chains --dof 1 --links 1000 --count --force", "n = 1000"),
     ("chains --dof 1 --links 20", "20 links"),
+    # counting by orbits: only a count, only where it applies
+    ("chains --dof 1 --links 10 --method orbits", "--method goes with --count"),
+    ("chains --dof 1 --links 10 --count --method burnside", "burnside"),
+    ("chains --dof 1 --links 8 --count --method orbits --prismatic 0..2", "cannot be counted by orbits"),
+    ("chains --dof 1 --links 8 --count --method orbits --cranks 3=2", "crank requirement"),
+    ("chains --chain '0-1 1-2 2-3 3-0' --count --method orbits", "not with --chain"),
+    ("mechanisms --dof 1 --links 8 --count --method orbits", "--method"),
     (f"chains --code {BIG_CODE}", "5002 characters"),
     ("chains --code 99999999/0", "99999999/0"),
     ("chains --code 7201/1 --v 0 --count", "v = 0"),
