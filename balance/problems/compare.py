@@ -49,6 +49,8 @@ from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
+
+from mechbase import Row
 from scipy import optimize
 
 from ..budget import WORK_LIMIT, ensure_affordable
@@ -58,13 +60,13 @@ from ..devices.helical import design_for_device
 from ..devices.transmission import transmissions
 from ..errors import BalanceError, InvalidInput, SchemaError
 from ..extremes import EXTREMES_NOTE, box_extremes
-from ..model.arm import Arm, ArmModel, Load, describe_form
+from ..model.arm import Arm, ArmModel, Load, describe_term
 from ..model.potential import HarmonicTerm, merge_terms, terms_forces
 from ..model.urdf import UrdfArm, arm_to_urdf, pinocchio_gravity, pinocchio_model
 from ..schema import parse
-from .arm import G, _ensure_terms_affordable, arm_problem
+from .arm import G, JointRow, _ensure_terms_affordable, arm_problem, joint_rows
 
-__all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "compare_problem", "STRATEGIES"]
+__all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "PinocchioRecheck", "CompareJoint", "compare_problem", "STRATEGIES"]
 
 #: the spring devices' crank geometry when the arm's file gives none (m)
 DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
@@ -72,7 +74,14 @@ DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
 
 # ----------------------------------------------------------------------------- results
 @dataclass(frozen=True)
-class JointResidual:
+class CompareJoint(JointRow):
+    """A joint of the arm compared, as the comparison lists it: its coordinate first."""
+
+    row_keys = ("coordinate", "name", "kind")
+
+
+@dataclass(frozen=True)
+class JointResidual(Row):
     """One joint's residual torque (N·m, or N on a slide) under a strategy, against the baseline.
 
     ``max`` is the largest ``|residual|`` over the workspace and the payload range (a true extreme),
@@ -89,6 +98,9 @@ class JointResidual:
     worst_at: tuple[float, ...]
     worst_payload: float
 
+    row_keys = ("coordinate", "name", "max", "rms", "baseline_max", "baseline_rms", "removed_max", "removed_rms",
+                "worst_at", "worst_payload")
+
     @property
     def removed_max(self) -> float:
         """The share of the baseline's largest torque removed (1 = all of it)."""
@@ -98,15 +110,24 @@ class JointResidual:
     def removed_rms(self) -> float:
         return 1 - self.rms / self.baseline_rms if self.baseline_rms > 0 else 0.0
 
-    def to_dict(self) -> dict:
-        return {"coordinate": self.coordinate, "name": self.name, "max": self.max, "rms": self.rms,
-                "baseline_max": self.baseline_max, "baseline_rms": self.baseline_rms,
-                "removed_max": self.removed_max, "removed_rms": self.removed_rms,
-                "worst_at": list(self.worst_at), "worst_payload": self.worst_payload}
 
 
 @dataclass(frozen=True)
-class Strategy:
+class PinocchioRecheck(Row):
+    """A strategy's residual recomputed by Pinocchio at random configurations (``configurations`` of
+    them, at each payload of ``payloads``) and at the worst ones: the largest difference from the
+    project's own residual, and the residual at each worst configuration against the one reported."""
+
+    configurations: int
+    payloads: tuple[float, ...]
+    max_difference: float
+    at_worst: tuple[float, ...]
+    reported: tuple[float, ...]
+    method: str = "rnea(q, 0, 0) on a model rebuilt from URDF text"
+
+
+@dataclass(frozen=True)
+class Strategy(Row):
     """One balancing strategy: its hardware and what it leaves of the gravity torque.
 
     ``devices`` counts springs or counterweights; ``added_mass`` (kg) is what the hardware adds
@@ -124,7 +145,7 @@ class Strategy:
     joints: tuple[JointResidual, ...] = ()
     hardware: tuple[str, ...] = ()
     details: dict = field(default_factory=dict)
-    pinocchio: dict = field(default_factory=dict)
+    pinocchio: PinocchioRecheck | None = None
     forces: Any = field(default=None, repr=False, compare=False)  # the devices' forces, q → (m, n), for figures
 
     @property
@@ -142,20 +163,17 @@ class Strategy:
         worst = max(self.joints, key=lambda j: j.max, default=None)
         return None if worst is None else worst.worst_payload
 
-    def to_dict(self) -> dict:
-        out = {"name": self.name, "available": self.available}
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: why the strategy is not available, or what it leaves."""
         if not self.available:
-            return out | {"reason": self.reason}
-        return out | {
-            "devices": self.devices, "added_mass": self.added_mass, "tuned_for": self.tuned_for,
-            "max_residual": self.max_residual, "removed": self.removed, "worst_payload": self.worst_payload,
-            "joints": [j.to_dict() for j in self.joints], "hardware": list(self.hardware),
-            "details": self.details, "pinocchio": self.pinocchio,
-        }
+            return ("name", "available", "reason")
+        return ("name", "available", "devices", "added_mass", "tuned_for", "max_residual", "removed", "worst_payload",
+                "joints", "hardware", "details", "pinocchio")
 
 
 @dataclass(frozen=True)
-class Comparison:
+class Comparison(Row):
     """What :class:`CompareProblem` finds: the strategies side by side (see :meth:`to_dict`)."""
 
     arm: ArmModel
@@ -168,18 +186,21 @@ class Comparison:
     strategies: tuple[Strategy, ...]
     gravity: Any = field(default=None, repr=False, compare=False)  # Q(q, payload), for the figure
 
+    row_keys = ("kind", "name", "joints", "workspace", "payload", "target", "acceleration", "samples", "seed",
+                "extremes", "strategies")
+    kind = "compare"
+    extremes = EXTREMES_NOTE
+
     def strategy(self, name: str) -> Strategy:
         return next(s for s in self.strategies if s.name == name)
 
-    def to_dict(self) -> dict:
-        return {
-            "kind": "compare", "name": self.arm.name,
-            "joints": [{"coordinate": f"q{i + 1}", "name": c.name, "kind": c.joint}
-                       for i, c in enumerate(self.arm.coordinates)],
-            "workspace": [list(w) for w in self.workspace], "payload": list(self.payload), "target": self.target,
-            "acceleration": self.acceleration, "samples": self.samples, "seed": self.seed,
-            "extremes": EXTREMES_NOTE, "strategies": [s.to_dict() for s in self.strategies],
-        }
+    @property
+    def name(self) -> str:
+        return self.arm.name
+
+    @property
+    def joints(self) -> tuple[CompareJoint, ...]:
+        return joint_rows(self.arm, CompareJoint)
 
 
 # ----------------------------------------------------------------------------- the problem
@@ -482,16 +503,16 @@ class _Solver:
         for t in trace:
             ext = box_extremes(lambda x, t=t: terms_forces([t], x), self.lo, self.hi, self.q[:200])
             dropped.append({"amplitude": t.amplitude, "form": list(t.form),
-                            "form_text": describe_form(arm, t.form)["form_text"],
+                            "form_text": describe_term(arm, t).form_text,
                             "largest_torque_per_joint": [abs(max(-a.value, b.value)) for a, b in ext]})
-        trains = transmissions([describe_form(arm, t.form)["drive_form"] for t in at_p0], arm.shaft_names)
+        trains = transmissions([describe_term(arm, t).drive_form for t in at_p0], arm.shaft_names)
         hardware, springs, mass = [], [], 0.0
         for k, (t, tr) in enumerate(zip(at_p0, trains)):
             row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
-            text = describe_form(arm, t.form)
-            springs.append(row | {"form_text": text["form_text"], "amplitude": t.amplitude})
-            hardware.append(f"φ{k + 1} = {text['drive_form_text']} ({tr.differentials} differential(s)): spring "
+            text = describe_term(arm, t)
+            springs.append(row | {"form_text": text.form_text, "amplitude": t.amplitude})
+            hardware.append(f"φ{k + 1} = {text.drive_form_text} ({tr.differentials} differential(s)): spring "
                             f"device c·r·d = {t.amplitude:.4g} N·m, {row['summary']}")
         details = {"terms": len(terms), "kept": len(at_p0), "target_torque": limit, "dropped": dropped,
                    "springs": springs, "differentials": sum(t.differentials for t in trains)}
@@ -517,7 +538,7 @@ class _Solver:
         joints = self.residuals(devices)
         hardware, springs, mass = [], [], 0.0
         for t in sorted(terms, key=lambda t: -t.amplitude):
-            text = describe_form(arm, t.form)["form_text"]
+            text = describe_term(arm, t).form_text
             row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
             springs.append(row | {"form_text": text, "amplitude": t.amplitude})
@@ -620,7 +641,7 @@ def _not_planar_chain(arm: ArmModel, terms: Sequence[HarmonicTerm]) -> str | Non
         f = np.round(np.asarray(t.form), 12)
         idx = np.flatnonzero(f)
         if not (np.all(f[idx] == 1) and np.all(np.diff(idx) == 1)):
-            return (f"the term {describe_form(arm, t.form)['form_text']} is not the absolute angle of a link of a "
+            return (f"the term {describe_term(arm, t).form_text} is not the absolute angle of a link of a "
                     "planar chain (a sum q_i + … + q_k of consecutive parallel joints): the joints' axes are not "
                     "all parallel")
         first = idx[0] if first is None else first
@@ -641,7 +662,7 @@ class _PinocchioRecheck:
         self.q = solver.lo + (solver.hi - solver.lo) * np.random.default_rng(solver.pb.seed + 1).random((100, n))
         self.models: dict = {}
 
-    def __call__(self, devices, joints, counterweights=()) -> dict:
+    def __call__(self, devices, joints, counterweights=()) -> PinocchioRecheck:
         import pinocchio as pin
 
         s = self.s
@@ -658,9 +679,7 @@ class _PinocchioRecheck:
             gaps.append(float(np.max(np.abs(r - mine))))
             if i >= len(rows) - len(worst):
                 at_worst.append(abs(float(r[i - (len(rows) - len(worst))])))
-        return {"configurations": len(self.q), "payloads": list(s.p), "max_difference": max(gaps),
-                "at_worst": at_worst, "reported": [j.max for j in joints],
-                "method": "rnea(q, 0, 0) on a model rebuilt from URDF text"}
+        return PinocchioRecheck(len(self.q), tuple(s.p), max(gaps), tuple(at_worst), tuple(j.max for j in joints))
 
     def _model(self, payload: float, counterweights):
         """(model, data, q → configuration) of the arm with ``payload`` kg (and the counterweights)."""
