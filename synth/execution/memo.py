@@ -65,13 +65,9 @@ def _store() -> Path | None:
 
 
 def _fingerprint() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    import pynauty  # its version, from the module: 1 ms, where importlib.metadata costs a query 15–20 ms
 
-    try:  # read from the installed package's metadata: importing nauty for it would load it in every query
-        nauty = version("pynauty")
-    except PackageNotFoundError:  # pragma: no cover - pynauty is a dependency
-        nauty = "unknown"
-    digest = hashlib.sha1(f"nauty {nauty}".encode())
+    digest = hashlib.sha1(f"nauty {pynauty.__version__}".encode())
     for folder in _SOURCES:
         for path in sorted((_ENGINE / folder).glob("*.py")):
             digest.update(path.name.encode())
