@@ -319,7 +319,11 @@ class JointRow(Row):
 
 
 def joint_rows(arm: ArmModel, row: type[JointRow] = JointRow) -> tuple[JointRow, ...]:
-    """The arm's joints, in order, as rows (of the class ``row``)."""
+    """The arm's joints, in order, as rows (of the class ``row``).
+
+    >>> joint_rows(Arm((Link("upper", "revolute", 1.0, 10.0, 0.5),)))[0].to_dict()
+    {'name': 'upper', 'coordinate': 'q1', 'kind': 'revolute'}
+    """
     return tuple(row(c.name, f"q{i + 1}", c.joint) for i, c in enumerate(arm.coordinates))
 
 
