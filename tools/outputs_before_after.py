@@ -131,6 +131,7 @@ def main() -> int:
     ap.add_argument("checkout", type=Path, help="the checkout to run")
     ap.add_argument("--save", type=Path, required=True, help="where to write what it printed (JSON)")
     ap.add_argument("--compare", type=Path, help="a JSON saved before: print the log of the comparison")
+    ap.add_argument("--reuse", action="store_true", help="read --save instead of running the commands again")
     args = ap.parse_args()
     commands, skipped = [], []
     for c in readme_commands(args.checkout / "README.md"):
@@ -141,8 +142,11 @@ def main() -> int:
             commands += variants(c)
     commands += ["mechsynth scene --all models/", "mechsynth scene --all models/ --format json"]
     commands = list(dict.fromkeys(commands))  # each once (the README runs every scene too)
-    now = record(args.checkout, commands)
-    args.save.write_text(json.dumps(now, ensure_ascii=False, indent=0))
+    if args.reuse:
+        now = json.loads(args.save.read_text())
+    else:
+        now = record(args.checkout, commands)
+        args.save.write_text(json.dumps(now, ensure_ascii=False, indent=0))
     if args.compare is None:
         return 0
     then = json.loads(args.compare.read_text())
