@@ -26,6 +26,7 @@ import os
 import re
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -40,6 +41,8 @@ SKIP = {
     "--index-curves": "indexes curves for minutes",
     "dimension ": "dimensional synthesis: searches for a time budget",
 }
+#: seconds a command may take (then it and its children are stopped and "timeout" is recorded)
+TIMEOUT = 900
 #: options naming a file the command writes; the variants in other formats drop them
 WRITES = ("--out", "--plot", "--save", "--animate", "--html", "--checkpoint")
 TIMINGS = [(re.compile(r'"(seconds|time|elapsed|wall_seconds|cpu_seconds)": [0-9.e+-]+'), r'"\1": T'),
@@ -98,10 +101,14 @@ def run(checkout: Path, command: str, cwd: Path) -> tuple[str, str, int, dict[st
     before = {p: p.stat().st_mtime_ns for p in cwd.rglob("*") if p.is_file()}
     env = dict(os.environ, PYTHONPATH=str(checkout), COLUMNS="120")
     shell = command.replace("mechsynth ", f"{shlex.quote(sys.executable)} -m mechsynth ")
+    p = subprocess.Popen(shell, shell=True, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         text=True, start_new_session=True)
     try:
-        p = subprocess.run(shell, shell=True, cwd=cwd, env=env, capture_output=True, text=True, timeout=600)
-        result = (masked(p.stdout), masked(p.stderr), p.returncode)
+        out, err = p.communicate(timeout=TIMEOUT)
+        result = (masked(out), masked(err), p.returncode)
     except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)  # the shell and the command it started
+        p.communicate()
         result = ("", "timeout", -1)
     files = {str(p.relative_to(cwd)): hashlib.sha256(p.read_bytes()).hexdigest()[:16]
              for p in cwd.rglob("*") if p.is_file() and before.get(p) != p.stat().st_mtime_ns}
@@ -132,15 +139,27 @@ def main() -> int:
     ap.add_argument("--save", type=Path, required=True, help="where to write what it printed (JSON)")
     ap.add_argument("--compare", type=Path, help="a JSON saved before: print the log of the comparison")
     ap.add_argument("--reuse", action="store_true", help="read --save instead of running the commands again")
+    ap.add_argument("--only", metavar="WORDS", help="only the README commands of these subcommands (comma-separated, "
+                                                    "e.g. balance,identify,gears)")
+    ap.add_argument("--each-scene", action="store_true",
+                    help="run each scene of models/ alone (--format json) instead of scene --all: a slow scene then "
+                         "costs its own time only")
     args = ap.parse_args()
     commands, skipped = [], []
+    only = None if args.only is None else set(args.only.split(","))
     for c in readme_commands(args.checkout / "README.md"):
+        if only is not None and c.split()[1] not in only:
+            continue
         reason = next((r for k, r in SKIP.items() if k in c), None)
         if reason:
             skipped.append(f"skip   {c}   ({reason})")
         else:
             commands += variants(c)
-    commands += ["mechsynth scene --all models/", "mechsynth scene --all models/ --format json"]
+    if args.each_scene:
+        commands += [f"mechsynth scene models/{p.name} --format json"
+                     for p in sorted((args.checkout / "models").glob("*.toml")) if "[scene]" in p.read_text()]
+    else:
+        commands += ["mechsynth scene --all models/", "mechsynth scene --all models/ --format json"]
     commands = list(dict.fromkeys(commands))  # each once (the README runs every scene too)
     if args.reuse:
         now = json.loads(args.save.read_text())
