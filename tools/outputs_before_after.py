@@ -15,6 +15,11 @@ Usage::
 
     nice -n 10 python tools/outputs_before_after.py BEFORE --save before.json
     nice -n 10 python tools/outputs_before_after.py AFTER --save after.json --compare before.json > log.txt
+
+``--only balance,gears`` keeps the README commands of those subcommands; ``--each-scene`` runs each scene
+alone instead of ``scene --all``; ``--reuse`` compares a saved run again without running it. The two
+runs may go side by side (each works in a scratch folder of its own); checkouts made with
+``git archive REV | tar -x -C DIR`` keep a run from seeing edits made meanwhile.
 """
 
 from __future__ import annotations
@@ -145,6 +150,14 @@ def main() -> int:
                     help="run each scene of models/ alone (--format json) instead of scene --all: a slow scene then "
                          "costs its own time only")
     args = ap.parse_args()
+    if not (args.checkout / "README.md").is_file() or not (args.checkout / "models").is_dir():
+        ap.error(f"{args.checkout} is not a checkout of mechsynth (no README.md and models/ there)")
+    if args.reuse and not args.save.is_file():
+        ap.error(f"--reuse reads --save, and {args.save} is no file")
+    if not args.reuse and not os.access(args.save.parent.resolve(), os.W_OK):
+        ap.error(f"cannot write {args.save}: its folder is missing or not writable")
+    if args.compare is not None and not args.compare.is_file():
+        ap.error(f"--compare reads a saved run, and {args.compare} is no file")
     commands, skipped = [], []
     only = None if args.only is None else set(args.only.split(","))
     for c in readme_commands(args.checkout / "README.md"):
