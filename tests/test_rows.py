@@ -143,3 +143,17 @@ def test_no_result_builds_its_row_by_hand():
                         isinstance(f, ast.FunctionDef) and f.name == "to_dict" for f in node.body):
                     own.append(f"{path.relative_to(root)}:{node.name}")
     assert sorted(set(own) - NOT_YET) == []
+
+
+def test_gear_rows_extend_the_trains_row_and_show_only_what_was_chosen():
+    from synth.gears import GearTrain, design
+    from synth.gears.ratios import mechanisms
+
+    train = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
+    plain = mechanisms(train)[0].to_dict()
+    assert list(plain)[:len(train.to_dict())] == list(train.to_dict()) and plain["frame"] == 0
+    assert "input_link" not in plain and "ratio" not in plain
+    driven = mechanisms(train, input_output=True)[0].to_dict()
+    assert (driven["input_link"], driven["output_link"], driven["ratio"]) == (1, 2, "(z0 + z1)/z1")
+    best = design(train, 0, 1, 2, "4", tolerance="0", teeth=(17, 80), best=1)[0]
+    assert best.to_dict() == {"teeth": dict(best.teeth), "ratio": "4", "ratio_value": 4.0, "error": 0.0}
