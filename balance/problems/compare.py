@@ -49,14 +49,14 @@ from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
-
-from mechbase import Row
 from scipy import optimize
 
+from mechbase import Row
+
 from ..budget import WORK_LIMIT, ensure_affordable
-from ..devices.counterweights import counterweights
+from ..devices.counterweights import Counterweight, counterweights
 from ..devices.fit import SpringBounds, fit_spring
-from ..devices.helical import design_for_device
+from ..devices.helical import HelicalSpring, design_for_device
 from ..devices.transmission import transmissions
 from ..errors import BalanceError, InvalidInput, SchemaError
 from ..extremes import EXTREMES_NOTE, box_extremes
@@ -113,6 +113,116 @@ class JointResidual(Row):
 
 
 @dataclass(frozen=True)
+class TensionFit(Row):
+    """A zero-free-length tension device fitted to a torque amplitude: its spring rate ``c`` (N/m), crank
+    ``r``, ``r0`` and pre-extension ``a`` (m), its largest spring force (N) and relative error."""
+
+    c: float
+    r: float
+    r0: float
+    a: float
+    max_force: float
+    max_rel_error: float
+
+
+@dataclass(frozen=True)
+class SpringDevice(Row):
+    """The device fitted (None when none fits), the helical spring made for it (None when none is made)
+    and both in words (or why not)."""
+
+    device: TensionFit | None
+    spring: HelicalSpring | None
+    summary: str
+
+
+@dataclass(frozen=True)
+class JointSpring(Row):
+    """One joint's spring of the springs-per-joint strategy: a device for the torque ``amplitude``·sin(q +
+    phase) averaged over the other joints."""
+
+    fitted: SpringDevice
+    coordinate: str
+    amplitude: float
+    phase_deg: float
+
+    row_keys = ("*fitted", "coordinate", "amplitude", "phase_deg")
+
+
+@dataclass(frozen=True)
+class ConstantForce(Row):
+    """A slide's constant averaged gravity force (N), held by a gas spring."""
+
+    coordinate: str
+    constant_force: float
+
+
+@dataclass(frozen=True)
+class TermSpring(Row):
+    """A spring device for one harmonic term (its form as text and its amplitude, N·m)."""
+
+    fitted: SpringDevice
+    form_text: str
+    amplitude: float
+
+    row_keys = ("*fitted", "form_text", "amplitude")
+
+
+@dataclass(frozen=True)
+class DroppedTerm(Row):
+    """A term the pruned decomposition leaves out, and the largest torque it puts on each joint."""
+
+    amplitude: float
+    form: tuple[float, ...]
+    form_text: str
+    largest_torque_per_joint: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class CounterweightDetails(Row):
+    """The counterweights, the inertia they add to each joint (kg·m², or kg on a slide) and the motor
+    torque that inertia alone needs at the comparison's acceleration."""
+
+    weights: tuple[Counterweight, ...]
+    added_inertia: tuple[float, ...]
+    motor_torque_at_acceleration: tuple[float, ...]
+    note: str = ("added inertia: the largest increase of each joint's diagonal mass-matrix entry over the workspace "
+                 "(kg·m², or kg on a slide); the motor torque accelerates it alone at the stated acceleration")
+
+
+@dataclass(frozen=True)
+class JointSpringDetails(Row):
+    """The springs of the springs-per-joint strategy."""
+
+    springs: tuple[JointSpring | ConstantForce, ...]
+    note: str = "each device cancels its joint's gravity torque averaged over the other joints' ranges (uniformly)"
+
+
+@dataclass(frozen=True)
+class PrunedDetails(Row):
+    """The pruned decomposition: terms in all, kept, the target torque (N·m), the terms dropped, the springs of
+    the kept ones, the differentials of their shafts, and why the target is missed (None: it is met)."""
+
+    terms: int
+    kept: int
+    target_torque: float
+    dropped: tuple[DroppedTerm, ...]
+    springs: tuple[TermSpring, ...]
+    differentials: int
+    note: str | None = None
+
+    row_keys = ("terms", "kept", "target_torque", "dropped", "springs", "differentials", "note?")
+
+
+@dataclass(frozen=True)
+class ExactDetails(Row):
+    """The exact springs, one per link's absolute angle, and the parallelograms that carry those angles."""
+
+    springs: tuple[TermSpring, ...]
+    parallelograms: int
+    note: str = "each link's absolute angle is carried to the base by a parallelogram (its bars are not weighed)"
+
+
+@dataclass(frozen=True)
 class PinocchioRecheck(Row):
     """A strategy's residual recomputed by Pinocchio at random configurations (``configurations`` of
     them, at each payload of ``payloads``) and at the worst ones: the largest difference from the
@@ -144,7 +254,8 @@ class Strategy(Row):
     tuned_for: float | None = None
     joints: tuple[JointResidual, ...] = ()
     hardware: tuple[str, ...] = ()
-    details: dict = field(default_factory=dict)
+    details: CounterweightDetails | JointSpringDetails | PrunedDetails | ExactDetails | dict = field(
+        default_factory=dict)
     pinocchio: PinocchioRecheck | None = None
     forces: Any = field(default=None, repr=False, compare=False)  # the devices' forces, q → (m, n), for figures
 
@@ -427,14 +538,7 @@ class _Solver:
         mass = sum(w.mass for w in cw.weights)
         hardware = tuple(f"{w.mass:.4g} kg on {w.link}, {w.arm:.3g} m from the axis of {w.coordinate}"
                          for w in cw.weights)
-        details = {
-            "weights": [w.to_dict() for w in cw.weights],
-            "added_inertia": inertia,
-            "motor_torque_at_acceleration": [v * pb.acceleration for v in inertia],
-            "note": "added inertia: the largest increase of each joint's diagonal mass-matrix entry over the "
-                    "workspace (kg·m², or kg on a slide); the motor torque accelerates it alone at the stated "
-                    "acceleration",
-        }
+        details = CounterweightDetails(cw.weights, tuple(inertia), tuple(v * pb.acceleration for v in inertia))
         return Strategy("counterweights", True, None, len(cw.weights), mass, self.p_mid, joints, hardware, details,
                         self.recheck(counter, joints, counterweights=cw.weights), counter)
 
@@ -463,17 +567,16 @@ class _Solver:
             c = arm.coordinates[j]
             if isinstance(a, complex):
                 amp, phase = abs(a), cmath.phase(a)  # Q̄ = amp·sin(q + phase): the device gives −amp·sin(φ)
-                row, m = _spring_device(amp, (float(self.lo[j] + phase), float(self.hi[j] + phase)), pb)
+                fitted, m = _spring_device(amp, (float(self.lo[j] + phase), float(self.hi[j] + phase)), pb)
                 mass += m
-                springs.append(row | {"coordinate": f"q{j + 1}", "amplitude": amp, "phase_deg": math.degrees(phase)})
+                springs.append(JointSpring(fitted, f"q{j + 1}", amp, math.degrees(phase)))
                 hardware.append(f"q{j + 1} ({c.name}): crank-and-rocker, zero free length, c·r·d = {amp:.4g} N·m, "
-                                + row["summary"])
+                                + fitted.summary)
             else:
-                springs.append({"coordinate": f"q{j + 1}", "constant_force": -a})
+                springs.append(ConstantForce(f"q{j + 1}", -a))
                 hardware.append(f"q{j + 1} ({c.name}): a constant-force spring of {abs(a):.4g} N (gas spring)")
         return Strategy("springs per joint", True, None, len(avg), mass, p0, joints, tuple(hardware),
-                        {"springs": springs, "note": "each device cancels its joint's gravity torque averaged over "
-                                                     "the other joints' ranges (uniformly)"},
+                        JointSpringDetails(tuple(springs)),
                         self.recheck(devices, joints), devices)
 
     # -- 4. the source's decomposition, pruned ---------------------------------------------------
@@ -502,23 +605,23 @@ class _Solver:
         dropped = []
         for t in trace:
             ext = box_extremes(lambda x, t=t: terms_forces([t], x), self.lo, self.hi, self.q[:200])
-            dropped.append({"amplitude": t.amplitude, "form": list(t.form),
-                            "form_text": describe_term(arm, t).form_text,
-                            "largest_torque_per_joint": [abs(max(-a.value, b.value)) for a, b in ext]})
+            dropped.append(DroppedTerm(t.amplitude, t.form, describe_term(arm, t).form_text,
+                                       tuple(abs(max(-a.value, b.value)) for a, b in ext)))
         trains = transmissions([describe_term(arm, t).drive_form for t in at_p0], arm.shaft_names)
         hardware, springs, mass = [], [], 0.0
         for k, (t, tr) in enumerate(zip(at_p0, trains)):
-            row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
+            fitted, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
             text = describe_term(arm, t)
-            springs.append(row | {"form_text": text.form_text, "amplitude": t.amplitude})
+            springs.append(TermSpring(fitted, text.form_text, t.amplitude))
             hardware.append(f"φ{k + 1} = {text.drive_form_text} ({tr.differentials} differential(s)): spring "
-                            f"device c·r·d = {t.amplitude:.4g} N·m, {row['summary']}")
-        details = {"terms": len(terms), "kept": len(at_p0), "target_torque": limit, "dropped": dropped,
-                   "springs": springs, "differentials": sum(t.differentials for t in trains)}
+                            f"device c·r·d = {t.amplitude:.4g} N·m, {fitted.summary}")
+        missed = None
         if max(j.max for j in joints) > limit:
-            details["note"] = (f"every term kept still leaves {max(j.max for j in joints):.4g} N·m over the payload "
-                               f"range, above the target {limit:.4g} N·m: the payload's range alone exceeds it")
+            missed = (f"every term kept still leaves {max(j.max for j in joints):.4g} N·m over the payload "
+                      f"range, above the target {limit:.4g} N·m: the payload's range alone exceeds it")
+        details = PrunedDetails(len(terms), len(at_p0), limit, tuple(dropped), tuple(springs),
+                                sum(t.differentials for t in trains), missed)
         return Strategy("harmonic, pruned", True, None, len(at_p0), mass, p0, joints, tuple(hardware), details,
                         self.recheck(devices, joints), devices)
 
@@ -539,15 +642,13 @@ class _Solver:
         hardware, springs, mass = [], [], 0.0
         for t in sorted(terms, key=lambda t: -t.amplitude):
             text = describe_term(arm, t).form_text
-            row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
+            fitted, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
-            springs.append(row | {"form_text": text, "amplitude": t.amplitude})
+            springs.append(TermSpring(fitted, text, t.amplitude))
             hardware.append(f"absolute angle {text}: zero-free-length spring c·r·d = {t.amplitude:.4g} N·m on a "
-                            f"parallelogram, {row['summary']}")
+                            f"parallelogram, {fitted.summary}")
         links = len({int(np.flatnonzero(np.abs(t.form) > 0)[-1]) for t in terms})
-        details = {"springs": springs, "parallelograms": max(links - 1, 0),
-                   "note": "each link's absolute angle is carried to the base by a parallelogram (its bars are not "
-                           "weighed)"}
+        details = ExactDetails(tuple(springs), max(links - 1, 0))
         return Strategy("exact springs", True, None, len(terms), mass, self.p_mid, joints, tuple(hardware), details,
                         self.recheck(devices, joints), devices)
 
@@ -610,25 +711,24 @@ def _phi_range(t: HarmonicTerm, lo, hi) -> tuple[float, float]:
     return (a, min(b, a + 2 * math.pi))
 
 
-def _spring_device(amplitude: float, phi: tuple[float, float], pb: CompareProblem) -> tuple[dict, float]:
+def _spring_device(amplitude: float, phi: tuple[float, float], pb: CompareProblem) -> tuple[SpringDevice, float]:
     """A zero-free-length tension device of ``c·r·d = amplitude`` over ``phi`` and its helical spring:
-    (description, spring mass in kg; 0 when no spring is made, the reason then in the description)."""
+    (the device, spring mass in kg; 0 when no spring is made, the reason then in its summary)."""
     lo, hi = phi
     if hi - lo < 1e-6:
         hi = lo + 1e-6
     try:
         fit = fit_spring("tension", -amplitude, (lo, hi), pb.spring_bounds)
     except BalanceError as exc:
-        return {"device": None, "spring": None, "summary": f"no device: {exc}"}, 0.0
-    row = {"device": {"c": fit.c, "r": fit.r, "r0": fit.r0, "a": fit.a, "max_force": fit.max_force,
-                      "max_rel_error": fit.max_rel_error}}
+        return SpringDevice(None, None, f"no device: {exc}"), 0.0
+    device = TensionFit(fit.c, fit.r, fit.r0, fit.a, fit.max_force, fit.max_rel_error)
     try:
         spring = design_for_device(fit, material=pb.material)
     except BalanceError as exc:
-        return row | {"spring": None, "summary": f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m; no spring: {exc}"}, 0.0
-    return row | {"spring": spring.to_dict(),
-                  "summary": f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m, {pb.material} spring "
-                             f"d = {1e3 * spring.wire_diameter_m:.3g} mm, {spring.mass_kg:.3g} kg"}, spring.mass_kg
+        return SpringDevice(device, None, f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m; no spring: {exc}"), 0.0
+    summary = (f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m, {pb.material} spring d = {1e3 * spring.wire_diameter_m:.3g} "
+               f"mm, {spring.mass_kg:.3g} kg")
+    return SpringDevice(device, spring, summary), spring.mass_kg
 
 
 def _not_planar_chain(arm: ArmModel, terms: Sequence[HarmonicTerm]) -> str | None:
