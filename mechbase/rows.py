@@ -76,7 +76,8 @@ def as_row(value: Any) -> Any:
 class Row:
     """A mixin of frozen dataclasses whose instances are printed as rows (:func:`as_row`).
 
-    ``row_keys`` (a class attribute) names the row's keys when they are not the fields: fields or
+    ``row_keys`` (a class attribute, or a property where the keys depend on the result) names the
+    row's keys when they are not the fields: fields or
     properties in the row's order, ``key=name`` for an attribute shown under another key, ``key?``
     left out while None, ``*name`` for the keys of the row of ``name``. Empty: every field in order.
     """
