@@ -216,6 +216,10 @@ CASES = [
     ("dimension {m}/dimension_closed_path.csv --db {d}/corrupt.sqlite", "corrupt.sqlite"),
     ("dimension {m}/dimension_closed_path.csv --db {d}/atlas.sqlite", "no curve index"),
     ("atlas --db {d}/corrupt.sqlite --index-curves", "corrupt.sqlite"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --workers 2 --scheduler tcp://127.0.0.1:1",
+     "contradict"),
+    ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --scheduler nonsense", "nonsense"),
+    ("atlas --db {d}/atlas.sqlite --index-curves --prismatic 2..1", "--prismatic"),
     # ---- gears
     ("gears --dof 1 --links 40", "40"),
     ("gears --train '0-1-2 2-3 0~3i 1~x'", "'1~x'"),
