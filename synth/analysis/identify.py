@@ -38,8 +38,10 @@ True
 from __future__ import annotations
 
 import hashlib
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import lru_cache
+
+from mechbase import Row
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain, chain_id
@@ -57,7 +59,7 @@ _INDEXED_CLASS_LOOPS = 4
 
 
 @dataclass(frozen=True)
-class Identity:
+class Identity(Row):
     """What a chain (or mechanism) is: see the module docstring.  Links are named as the source
     named them (``names``; numbers 0 … n − 1 where the source used those).
 
@@ -105,21 +107,15 @@ class Identity:
     classes: list | None = None  # a heterogeneous chain's loop class of each link
     chain: Chain | None = field(default=None, repr=False, compare=False)
 
-    def to_dict(self) -> dict:
-        """JSON-able, and a chain row again: ``identify`` reads its own output back."""
-        d = asdict(self)
-        d.pop("chain")
-        if d["kinds"] is None:
-            d.pop("kinds")
-        if d["input_link"] is None:
-            d.pop("input_link")
-        if d["classes"] is None:
-            d.pop("classes")
-        if d["frame"] is None:
-            for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
-                        "mechanisms_listed", "inversion"):
-                d.pop(key)
-        return d
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row, a chain row again (``identify`` reads its own output back): every field but the chain,
+        the kinds, input link and classes where there are some, the mechanism's fields where there is a frame."""
+        mechanism = {"frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
+                     "mechanisms_listed", "inversion"}
+        optional = {"kinds", "input_link", "classes"}
+        return tuple(f.name + "?" * (f.name in optional) for f in fields(self)
+                     if f.name != "chain" and (self.frame is not None or f.name not in mechanism))
 
 
 def _named(names, links):
