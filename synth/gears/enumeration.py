@@ -57,7 +57,7 @@ __all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains
 
 GRAPHS = ("displacement", "rotation")
 MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
-SIZED_LINKS = 9  # from this size on a query is sized before it runs (1-DOF: 9 links take a CPU minute)
+SIZED_LINKS = 9  # from this size on a query is sized before it runs (1-DOF: 9 links take 3 CPU seconds, 11 ten minutes)
 _ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augmentation instead
 
 
@@ -456,7 +456,6 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
 
 
 # ------------------------------------------------------------------------------ sizing
-_PER_LINK = 1.2  # allowance for the time per train growing with the size (0.42, 0.44, 0.56 ms at 7, 8, 9 links)
 _CALIBRATED: dict = {}  # (dof, links) -> (displacement, rotation, CPU seconds): counted once a process
 
 
@@ -467,10 +466,10 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     while the next one is predicted to fit in what is left of ``budget`` CPU seconds.  From the
     last three sizes with trains the growth ratio r(n) = count(n)/count(n − 1) is extrapolated
     linearly, r(n + 1) = r(n) + (r(n) − r(n − 1)), and the count multiplied by it step by step.
-    The time is the count times the largest CPU time per train met on the way, raised by a fifth
-    for each link beyond the last size counted: that time grows slowly with the size (1-DOF on the
-    development machine: 0.42 ms a train at 7 links, 0.44 at 8, 0.56 at 9), so the estimate errs
-    long (9 links: 1.44 × 0.42 ms against 0.56 measured).  Returns an
+    The time is the count times the CPU time per train of the largest size counted: that time
+    falls as the trees' fixed costs spread over more trains (1-DOF on the development machine:
+    81, 47, 39, 36 µs a train at 7, 8, 9, 10 links), so the estimate errs long (10 links: 47 s
+    from 8 links against 33 s measured).  Returns an
     :class:`~synth.synthesis.estimate.Estimate` (``chains``: trains,
     ``units``: link–axis trees, exact), or None when fewer than three smaller sizes have trains.
 
@@ -503,7 +502,7 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
         d, r, seconds = _CALIBRATED[dof, m]
         spent += seconds
         if d >= 50:  # below, one tree's fixed costs are most of the time
-            per_train = max(per_train, seconds / d)
+            per_train = seconds / d
         sizes.append((m, (d, r) if d else None))
     counted = [(m, c[which]) for m, c in sizes if c]
     if len(counted) < 3 or per_train == 0.0:
@@ -514,7 +513,7 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     for k in range(1, links - last + 1):
         count *= ratio + k * step
     displacement = count if which == 0 else count * sizes[-1][1][0] / sizes[-1][1][1]
-    seconds = displacement * per_train * _PER_LINK ** (links - sizes[-1][0])
+    seconds = displacement * per_train
     units = len(link_axis_trees(links))
     basis = f"exact counts at {', '.join(str(m) for m, _ in counted[-3:])} links"
     return Estimate(count, units, seconds, basis, math.log10(count), math.log10(units), math.log10(max(seconds, 1e-9)))
