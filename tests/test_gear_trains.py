@@ -101,6 +101,7 @@ def test_census_of_each_tree_equals_its_listed_trains(dof, links):
     """The census finds a train's code from its links' degrees and its rotation graph from the
     triples, building no train: tree by tree, the same as the listed trains' lever analogues and
     rotation certificates, each train passing the exact sub-chain test (the pruning table's check)."""
+    pairs: set = set()
     for axes in link_axis_trees(links):
         listed = enumeration.tree_trains(dof, links, axes)
         assert all(t.is_rigid_free() and (dof == 1 or not t.is_fractionated()) for t in listed)
@@ -110,7 +111,10 @@ def test_census_of_each_tree_equals_its_listed_trains(dof, links):
         for t in listed:
             firsts.setdefault(t.rotation_certificate, str(t.lever_analogue().code))
         assert sorted(firsts.values()) == sorted(rotations.values())
-        assert {f"r{links:02x}{links - 1 - dof:02x}" + c.hex() for c in rotations} == set(firsts)
+        keys = {(t.rotation_certificate, enumeration._rotation_key(links, t.triples)) for t in listed}
+        assert {k for _, k in keys} == set(rotations)
+        pairs |= keys
+    assert len(pairs) == len({c for c, _ in pairs}) == len({k for _, k in pairs})  # one key a certificate, all trees
 
 
 def test_least_image_test_equals_every_image():
