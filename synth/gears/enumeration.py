@@ -484,8 +484,8 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     linearly, r(n + 1) = r(n) + (r(n) − r(n − 1)), and the count multiplied by it step by step.
     The time is the count times the CPU time per train of the largest size counted: that time
     falls as the trees' fixed costs spread over more trains (1-DOF on the development machine:
-    81, 47, 39, 36 µs a train at 7, 8, 9, 10 links), so the estimate errs long (10 links: 47 s
-    from 8 links against 33 s measured).  Returns an
+    64, 47, 43, 42 µs a train at 7, 8, 9, 10 links), so the estimate errs long (10 links: 46 s
+    from 8 links against 38 s measured).  Returns an
     :class:`~synth.synthesis.estimate.Estimate` (``chains``: trains,
     ``units``: link–axis trees, exact), or None when fewer than three smaller sizes have trains.
 
