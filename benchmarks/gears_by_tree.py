@@ -29,10 +29,10 @@ sys.path.insert(0, str(ROOT))
 
 
 def _tree(args):
-    from synth.gears.enumeration import _tree_summary
+    from synth.gears import tree_census
 
     start = time.process_time()
-    n, codes, rotations = _tree_summary(args)
+    n, codes, rotations = tree_census(*args)
     return n, codes, rotations, time.process_time() - start
 
 

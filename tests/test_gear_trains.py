@@ -105,7 +105,7 @@ def test_census_of_each_tree_equals_its_listed_trains(dof, links):
     for axes in link_axis_trees(links):
         listed = enumeration.tree_trains(dof, links, axes)
         assert all(t.is_rigid_free() and (dof == 1 or not t.is_fractionated()) for t in listed)
-        count, codes, rotations = enumeration._tree_summary((dof, links, axes, True, "auto"))
+        count, codes, rotations = enumeration.tree_census(dof, links, axes)
         assert count == len(listed) and codes == dict(collections.Counter(str(t.lever_analogue().code) for t in listed))
         firsts: dict = {}
         for t in listed:

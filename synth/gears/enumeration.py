@@ -52,7 +52,7 @@ from .train import GearTrain, axis_paths, fractionated, rotation_graph
 if TYPE_CHECKING:
     from ..synthesis.type_synthesis import Counts
 
-__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census",
+__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "tree_census", "trains", "count_trains", "census",
            "check_query", "estimate_trains", "size_check_trains"]
 
 GRAPHS = ("displacement", "rotation")
@@ -314,11 +314,18 @@ def tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTr
     return out
 
 
-def _tree_summary(args) -> tuple[int, dict, dict]:
-    """A tree's count, its trains by lever-analogue code, and (``want_rotation``) the code of the
-    first train of each rotation graph (by :func:`_rotation_key`), in the tree's order.  No train
-    is built: a code is found from the links' degrees, a rotation graph from the triples."""
-    dof, links, axes, want_rotation, method = args
+def tree_census(dof: int, links: int, axes, rotation: bool = True, method: str = "auto") -> tuple[int, dict, dict]:
+    """The census of one link–axis tree (one of :func:`link_axis_trees`): its number of trains,
+    their numbers by lever-analogue code, and (``rotation``) for each rotation graph met on the
+    tree — keyed by its canonical form, the triples renumbered by nauty and sorted, three bytes a
+    mesh — the code of its first train in the tree's order.  No train is built: a code is found
+    from the links' degrees, a rotation graph from the triples; :func:`census` adds the trees up.
+
+    Example
+    -------
+    >>> [tree_census(1, 4, axes)[:2] for axes in link_axis_trees(4)]
+    [(1, {'42/0': 1}), (1, {'42/0': 1}), (0, {}), (1, {'51/1': 1})]
+    """
     tree = _Tree(links, axes)
     meshes = links - 1 - dof
     on_axes = [sum(x in axis for axis in axes) for x in range(links)]
@@ -337,9 +344,14 @@ def _tree_summary(args) -> tuple[int, dict, dict]:
         if code is None:
             code = _lever_code(GearTrain(links, axes, [t[:2] for t in triples], [t[2] for t in triples]), shape)
         codes[code] += 1
-        if want_rotation:
+        if rotation:
             rotations.setdefault(_rotation_key(links, triples), code)
     return sum(codes.values()), dict(codes), rotations
+
+
+def _tree_summary(args) -> tuple[int, dict, dict]:
+    """:func:`tree_census` of ``(dof, links, axes, rotation, method)``: a unit of the executor."""
+    return tree_census(*args)
 
 
 def _rotation_key(links: int, triples) -> bytes:
