@@ -191,7 +191,7 @@ class _Images:
     two sets of one size the lexicographically smaller (as increasing tuples) has the larger mask.
     A set is kept when no symmetry maps it onto a larger mask; the masks of its images under every
     symmetry but the identity are carried along (``extend``: one OR per symmetry), in a numpy
-    array for large groups.
+    array of int64 for large groups (a tree of 12 links has at most 55 candidates).
 
     >>> images = _Images([(0, 1, 2), (2, 1, 0)], 3)  # the reflection of three candidates
     >>> images.extend(images.start(), 0) is not None, images.extend(images.start(), 2) is None
