@@ -424,7 +424,7 @@ def test_cli_bad_input_is_one_sentence_exit_2(args, words):
 
 
 def test_ctrl_c_stops_a_count_on_the_pool():
-    """Ctrl-C to the whole process group during a 10-link count on two workers (half a CPU minute):
+    """Ctrl-C to the whole process group during a 10-link count on two workers (17 CPU seconds):
     exit 130, one line, no count printed, no worker left."""
     import os
     import signal
