@@ -50,6 +50,10 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
              "tests/exchange/test_every_property_round_trips.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
+#: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
+_FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py",
+        "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
+        "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -112,7 +116,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                  _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
                                                    _BALANCE_DOC + "balance.model.pantograph]"]),
-    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes.py", _BALANCE_DOC + "balance.extremes]"]),
+    "extremes": ("balance/extremes.py", ["tests/balance/test_extremes_strength.py", "tests/balance/test_extremes.py",
+                                         _BALANCE_DOC + "balance.extremes]"]),
     "budget": ("balance/budget.py", ["tests/balance/test_budget.py", _BALANCE_DOC + "balance.budget]"]),
     "code": ("synth/structure/code.py", ["tests/structure/test_code.py", "tests/structure/test_code_strength.py",
                                          _SYNTH_DOC + "synth.structure.code]"]),
@@ -129,8 +134,9 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                 "tests/exchange/test_identify_round_trip.py",
                                                 "tests/cli/test_identify_commands.py",
                                                 _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
-    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_devices.py", _BALANCE_DOC + "balance.devices.tradeoff]",
-                                                 "-k", "bound or pareto or sensitivity or docstring"]),
+    "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
+                                                 _BALANCE_DOC + "balance.devices.tradeoff]",
+                                                 "-k", "bound or pareto or sensitivity or docstring or strength"]),
     # the parameters every query shares, the errors' sentences, the schema of scene files
     "params": ("synth/structure/_params.py", ["tests/structure/test_params.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                               _SYNTH_DOC + "synth.structure._params]"]),
@@ -140,8 +146,21 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
                                          "malformed_scene or impossible_expectation or contradicted or copy_change "
                                          "or command_line_mistakes or docstring"]),
-    "balance_schema": ("balance/schema.py", ["tests/balance/test_arm.py", "tests/balance/test_cli.py",
+    # (not tests/balance/test_cli.py: every command reaches parse, minutes per mutant; its refusals of files
+    # are the sentences test_schema_strength.py asserts)
+    "balance_schema": ("balance/schema.py", ["tests/balance/test_schema_strength.py", "tests/balance/test_arm.py",
                                              _BALANCE_DOC + "balance.schema]"]),
+    # the spring devices' fit: its methods, exact devices, driver and result, the slider devices' problem
+    **{f"fit_{name}": (f"balance/devices/fit/{name}.py", _FIT + [_BALANCE_DOC + f"balance.devices.fit.{name}]"])
+       for name in ("slider_problem", "exact", "driver", "result", "kinds", "trf", "slsqp", "de", "nelder_mead")},
+    "sliders": ("balance/devices/sliders.py", ["tests/balance/test_slider_devices.py",
+                                               _BALANCE_DOC + "balance.devices.sliders]"]),
+    # the helical spring's design (wire, coils, buckling) and the arm's transmissions (drive forms)
+    "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
+                                               _BALANCE_DOC + "balance.devices.helical]", "-k",
+                                               "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
+                                                         _BALANCE_DOC + "balance.devices.transmission]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests

@@ -99,7 +99,7 @@ class GearTrain:
 
 
 def _stage(src: str, dst: str, ratio: float) -> GearElement:
-    kind = "reducer" if abs(ratio) > 1 + 1e-12 else ("spur stage" if abs(abs(ratio) - 1) <= 1e-12 else "step-up stage")
+    kind = "spur stage" if abs(abs(ratio) - 1) <= 1e-12 else ("reducer" if abs(ratio) > 1 else "step-up stage")
     return GearElement(kind, dst, src, float(ratio))
 
 

@@ -258,7 +258,7 @@ def test_infeasible_bounds_one_sentence(bounds, device, text):
 @pytest.mark.parametrize("kind, bounds, device, text", [
     ("tension", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "sine", "carries a compression spring"),
     ("compression", SpringBounds((0.02, 0.2), (0.1, 0.2), (0.0, 0.3)), "sine", "has no r0"),
-    ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3), rod=(0.2, 0.3)), "sine", "has no the rod"),
+    ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3), rod=(0.2, 0.3)), "sine", "has no rod length l;"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "slider-crank", "needs a range of the rod"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "slotted-lever", "needs a range of r0"),
     ("compression", SpringBounds((0.02, 0.2), None, (0.0, 0.3)), "yoke", "device must be one of"),
@@ -363,3 +363,41 @@ def test_helical_spring_for_a_slider_device_works_between_its_lengths():
     assert spring.min_working_length_m == pytest.approx(fit.free_length - fit.a - stroke)
     assert stroke == pytest.approx(fit.r * (math.cos(math.radians(20)) - math.cos(math.radians(160))))
     assert not spring.buckling.safe and any("buckles" in w for w in design.warnings)
+
+
+def test_a_device_by_hand_at_the_quarter_turn():
+    """r = 0.1, l = 0.3, e = 0.02, x_n = 0.2, c = 2000 at φ = 90°: B = (0, 0.1), P at height 0.02, so
+    x = √(0.09 − 0.0064) = √0.0836, dx/dφ = −0.1 (cos φ = 0); force c·(x − x_n), moment c·(x − x_n)·0.1."""
+    dev = SliderSpringDevice(c=2000.0, r=0.1, neutral=0.2, rod=0.3, offset=0.02)
+    x = math.sqrt(0.0836)
+    assert float(dev.position(math.pi / 2)) == pytest.approx(x, rel=1e-14)
+    assert float(dev.rate(math.pi / 2)) == pytest.approx(-0.1, rel=1e-14)
+    assert float(dev.force(math.pi / 2)) == pytest.approx(2000 * (x - 0.2), rel=1e-13)
+    assert float(dev.force(math.pi)) == pytest.approx(2000 * abs(-0.1 + math.sqrt(0.09 - 0.0004) - 0.2), rel=1e-13)
+    assert float(dev.potential(math.pi / 2)) == pytest.approx(1000 * (x - 0.2) ** 2, rel=1e-13)
+    assert float(dev.moment(math.pi / 2)) == pytest.approx(2000 * (x - 0.2) * 0.1, rel=1e-13)
+    assert dev.family == "slider-crank" and SliderSpringDevice(1.0, 0.1, 0.0).family == "sine"
+    assert dev.to_dict() == {"family": "slider-crank", "c": 2000.0, "r": 0.1, "neutral": 0.2, "rod": 0.3,
+                             "offset": 0.02}
+
+
+def test_dead_centres_by_hand():
+    """In line at sin φ = e/(l + r), folded at φ = π + asin(e/(l − r)); the sine device at 0 and π."""
+    from balance.devices.sliders import slider_dead_centres
+
+    outer, inner = slider_dead_centres(0.1, 0.3, 0.02)
+    assert outer == pytest.approx(math.asin(0.05), rel=1e-15) and inner == pytest.approx(math.pi + math.asin(0.1))
+    assert float(slider_position(outer, 0.1, 0.3, 0.02)) == pytest.approx(math.sqrt(0.16 - 0.0004), rel=1e-14)
+    assert float(slider_position(inner, 0.1, 0.3, 0.02)) == pytest.approx(math.sqrt(0.04 - 0.0004), rel=1e-12)
+    assert slider_dead_centres(0.1, None, 0.02) == (0.0, math.pi)
+    # a range holding a dead centre two turns on
+    lo, hi = slider_extremes(4 * math.pi - 0.1, 4 * math.pi + 0.3, 0.1, 0.3, 0.02)
+    assert hi == pytest.approx(math.sqrt(0.16 - 0.0004), rel=1e-14)
+
+
+def test_an_in_line_guide_by_default():
+    """No offset given: the guide passes through A — dead centres at 0 and π, positions l ± r there."""
+    from balance.devices.sliders import slider_dead_centres
+
+    assert slider_dead_centres(0.1, 0.3) == (0.0, math.pi)
+    assert slider_extremes(-1.0, 4.0, 0.1, 0.3) == pytest.approx((0.2, 0.4), rel=1e-15)

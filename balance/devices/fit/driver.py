@@ -230,7 +230,8 @@ def _checked_bounds(bounds: SpringBounds, family) -> SpringBounds:
     extra = [name for name in ("r0", "rod", "offset")
              if getattr(bounds, name) is not None and name not in family.bounds]
     if extra:
-        raise InvalidInput(f"the {family.name} device has no {' nor '.join(_BOUND_TEXT[n] for n in extra)}; "
+        raise InvalidInput(f"the {family.name} device has no "
+                           f"{' nor '.join(_BOUND_TEXT[n].removeprefix('the ') for n in extra)}; "
                            "leave that bound out.")
     missing = [name for name in ("r0", "rod") if name in family.bounds and getattr(bounds, name) is None]
     if missing:
