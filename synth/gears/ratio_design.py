@@ -42,7 +42,7 @@ from fractions import Fraction
 from mechbase import Row
 
 from ..errors import InvalidOption, option
-from .ratios import RatioFormula, speed_ratio, wheel_names
+from .ratios import speed_ratio, wheel_names
 from .train import GearTrain
 
 __all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "carrier_cycles", "planet_clearance",
