@@ -123,9 +123,6 @@ def test_balance_rows_are_typed_and_print_what_they_held():
 
 #: the types that keep a to_dict of their own: exchange formats read back by from_dict
 OWN_TO_DICT = {"Chain", "Mechanism", "Code", "ChainQuery", "GearTrain", "Linkage", "Row"}
-#: not yet typed: dimensional synthesis and the curve index (synth/dimension, synth/atlas/curves.py), reworked
-#: on another branch at the time this test was written
-NOT_YET = {"synth/atlas/curves.py:IndexResult", "synth/dimension/_search.py:DimensionalResult"}
 
 
 def test_no_result_builds_its_row_by_hand():
@@ -142,7 +139,7 @@ def test_no_result_builds_its_row_by_hand():
                 if isinstance(node, ast.ClassDef) and node.name not in OWN_TO_DICT and any(
                         isinstance(f, ast.FunctionDef) and f.name == "to_dict" for f in node.body):
                     own.append(f"{path.relative_to(root)}:{node.name}")
-    assert sorted(set(own) - NOT_YET) == []
+    assert sorted(own) == []
 
 
 def test_gear_rows_extend_the_trains_row_and_show_only_what_was_chosen():

@@ -45,6 +45,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mechbase import Row
+
 from ..errors import InvalidOption, MotionError, SynthesisError
 from ..structure.chain import Chain, Mechanism
 from ..structure.joints import PRISMATIC
@@ -135,7 +137,7 @@ class _UnitRows:
 
 
 @dataclass(frozen=True)
-class IndexResult:
+class IndexResult(Row):
     """What a build did: mechanisms in the index, how many this run sampled, curves stored, time."""
 
     units_total: int
@@ -145,9 +147,11 @@ class IndexResult:
     seconds: float
     executor: str
 
-    def to_dict(self) -> dict:
-        return {"units_total": self.units_total, "units_run": self.units_run, "units_skipped": self.units_skipped,
-                "curves": self.curves, "seconds": round(self.seconds, 3), "executor": self.executor}
+    row_keys = ("units_total", "units_run", "units_skipped", "curves", "seconds=seconds_rounded", "executor")
+
+    @property
+    def seconds_rounded(self) -> float:
+        return round(self.seconds, 3)
 
 
 # ------------------------------------------------------------------ descriptors

@@ -10,6 +10,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import differential_evolution, least_squares
 
+from mechbase import Row
+
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure.chain import Mechanism
@@ -35,7 +37,7 @@ class _OutOfTime(Exception):
 
 
 @dataclass
-class DimensionalResult:
+class DimensionalResult(Row):
     """A dimensioned mechanism found for a target, with its errors and the constraints it meets.
 
     Attributes
@@ -105,26 +107,51 @@ class DimensionalResult:
         """The constraints not met, each as a short phrase."""
         return [f"{name} ({_said(c)})" for name, c in self.constraints.items() if not c["met"]]
 
-    def row(self) -> dict:
-        """One flat JSON-able row: errors, time, work, whether the constraints are met."""
-        row = {"kind": self.kind, "chain": self.linkage.chain.compact(), "frame": self.linkage.frame,
-               "points": len(self.errors), "error_max": self.error_max, "error_rms": self.error_rms,
-               "relative_max": self.relative_max, "relative_rms": self.relative_rms, "size": self.size}
-        if self.angle_errors is not None:
-            row["angle_error_max_deg"] = math.degrees(float(self.angle_errors.max()))
-        row.update({"met": self.met, "seconds": round(self.seconds, 3), "evaluations": self.evaluations,
-                    "method": self.method})
-        return row
+    #: the row (:meth:`to_dict`): first the flat summary of :meth:`row`, then the constraints as re-checked,
+    #: the input, traced value and error at each target point, and the linkage (its file object)
+    row_keys = ("kind", "chain=chain_text", "frame=linkage_frame", "points=point_count", "error_max", "error_rms",
+                "relative_max", "relative_rms", "size", "angle_error_max_deg?", "met", "seconds=seconds_rounded",
+                "evaluations", "method", "constraints", "inputs=inputs_list", "traced=traced_list",
+                "errors=errors_list", "linkage")
+    _SUMMARY = 14  # row_keys[:14] are the flat row
 
-    def to_dict(self) -> dict:
-        """The row, the constraints, the inputs and traced values, and the linkage (its file object)."""
-        d = self.row()
-        d["constraints"] = self.constraints
-        d["inputs"] = self.inputs.tolist()
-        d["traced"] = self.traced.tolist()
-        d["errors"] = self.errors.tolist()
-        d["linkage"] = self.linkage.to_dict()
-        return d
+    @property
+    def chain_text(self) -> str:
+        return self.linkage.chain.compact()
+
+    @property
+    def linkage_frame(self) -> int:
+        return self.linkage.frame
+
+    @property
+    def point_count(self) -> int:
+        return len(self.errors)
+
+    @property
+    def angle_error_max_deg(self) -> float | None:
+        return None if self.angle_errors is None else math.degrees(float(self.angle_errors.max()))
+
+    @property
+    def seconds_rounded(self) -> float:
+        return round(self.seconds, 3)
+
+    @property
+    def inputs_list(self) -> list:
+        return self.inputs.tolist()
+
+    @property
+    def traced_list(self) -> list:
+        return self.traced.tolist()
+
+    @property
+    def errors_list(self) -> list:
+        return self.errors.tolist()
+
+    def row(self) -> dict:
+        """One flat JSON-able row: errors, time, work, whether the constraints are met (the first keys of
+        :meth:`to_dict`)."""
+        summary = {entry.rstrip("?").partition("=")[0] for entry in self.row_keys[:self._SUMMARY]}
+        return {key: value for key, value in self.to_dict().items() if key in summary}
 
 
 def _said(c: dict) -> str:
