@@ -333,3 +333,39 @@ def test_helical_extension_spring_for_a_tension_device():
     assert s.anchor_offset_m == pytest.approx(res.free_length - free, rel=1e-12)
     out = s.to_dict()
     assert out["initial_tension_N"] == 0.0 and out["total_coils"] == n + 1 and "buckling" not in out
+
+
+def test_helical_spring_may_close_to_its_minimum_gaps():
+    """A spring whose solid length plus minimum coil gaps just reach the shortest working length is accepted,
+    also at the edge of the 1e-12 m tolerance."""
+    s = design_spring("compression", 2000.0, 300.0, free_length=0.5, min_length=0.3, max_length=0.45)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    least = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    assert least == pytest.approx(s.solid_length_m + s.min_gap_sum_m, rel=1e-12)
+    for shortest in (least, s.solid_length_m + s.min_gap_sum_m - 1e-12):
+        t = design_spring("compression", 2000.0, 300.0, free_length=0.5, min_length=shortest, max_length=0.45)
+        assert (t.wire_diameter_m, t.active_coils) == (d, n) and t.min_working_length_m == shortest
+
+
+@pytest.mark.parametrize("force, shortest, reason", [(300.0, 0.02, "solid"), (600.0, 0.04, "stress")])
+def test_helical_refusal_names_the_least_failing_candidate(force, shortest, reason):
+    """Thin wires are over-stressed, thick ones too long when closed: the refusal names the candidate that
+    misses by the smallest fraction (58.6 % too long at 300 N; 44.4 % over-stressed at 600 N)."""
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("compression", 2000.0, force, free_length=0.5, min_length=shortest, max_length=0.45)
+    d, n = refusal_parts(str(ei.value))
+    D = coil_for_rate(2000.0, d, n)
+    least = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    tau, allowed = corrected_stress(d, D, force), 0.5 * music_wire_strength(d)
+    head = (f"no music-wire spring of 2000 N/m for {force:.4g} N fits: the closest, wire {1e3 * d:.3g} mm on a "
+            f"{1e3 * D:.4g} mm coil with {n:g} active coils, fails because its ")
+    if reason == "solid":
+        assert (least - shortest) / shortest == pytest.approx(0.586, abs=1e-3) and tau <= allowed
+        assert str(ei.value) == head + (
+            f"solid length plus the minimum coil gaps ({1e3 * least:.4g} mm) exceed the shortest working length "
+            f"{1e3 * shortest:.4g} mm; try a longer spring (larger r0 or a).")
+    else:
+        assert tau / allowed - 1 == pytest.approx(0.444, abs=1e-3) and least <= shortest
+        assert str(ei.value) == head + (
+            f"shear stress {tau / 1e6:.4g} MPa exceeds the allowed {allowed / 1e6:.4g} MPa; try a lower peak force "
+            "(a force limit on the device) or a material drawn thicker (oil-tempered, up to 12.7 mm).")
