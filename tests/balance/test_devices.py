@@ -277,7 +277,8 @@ def refusal_parts(message):
 
 
 def test_helical_refusal_sentences_in_full():
-    hint_stress = "a lower peak force (a force limit on the device) or a material drawn thicker (oil-tempered, up to 12.7 mm)"
+    hint_stress = ("a lower peak force (a force limit on the device) or a material drawn thicker "
+                   "(oil-tempered, up to 12.7 mm)")
     # 10 kN at 10 kN/m on music wire: too much stress for every wire
     with pytest.raises(NoSpringFits) as ei:
         design_spring("extension", 10000.0, 10000.0, max_deflection=0.5)
