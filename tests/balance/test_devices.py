@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from balance import InfeasibleBounds, InvalidInput, SpringBounds, SpringOptions, SpringProblem, fit_spring
 from balance.devices.helical import (
-    MATERIALS, NoSpringFits, WIRE_SERIES_MM, bergstraesser, buckling_deflection, design_for_device, design_spring,
+    MATERIALS, NoSpringFits, WIRE_SERIES_MM, _candidates, bergstraesser, buckling_deflection, design_for_device,
+    design_spring,
 )
 from balance.devices.tradeoff import bound_sensitivity
 
@@ -258,7 +260,6 @@ def test_helical_spring_fits_its_bore(bore_mm):
 
 def test_helical_candidates_cover_the_coil_range():
     """Every half-coil count from the smallest coil diameter down to the largest's is offered, at the rate."""
-    from balance.devices.helical import _candidates
     c, d = 500.0, 0.002
     lo, hi = 4 * d, 20 * d
     got = list(_candidates(MATERIALS["music-wire"], "compression", c, d, lo, hi))
@@ -271,7 +272,6 @@ def test_helical_candidates_cover_the_coil_range():
 
 def refusal_parts(message):
     """Wire d (m) and active coils n of the closest candidate a refusal names."""
-    import re
     m = re.search(r"the closest, wire ([\d.]+) mm on a [\d.]+ mm coil with ([\d.]+) active coils", message)
     return float(m.group(1)) * 1e-3, float(m.group(2))
 
