@@ -371,3 +371,64 @@ def test_helical_refusal_names_the_least_failing_candidate(force, shortest, reas
         assert str(ei.value) == head + (
             f"shear stress {tau / 1e6:.4g} MPa exceeds the allowed {allowed / 1e6:.4g} MPa; try a lower peak force "
             "(a force limit on the device) or a material drawn thicker (oil-tempered, up to 12.7 mm).")
+
+
+def test_helical_unguided_spring_that_cannot_buckle_is_preferred():
+    """Unguided, a heavier spring that cannot buckle beats the lightest, which would buckle by EN 13906-1."""
+    L0, Lmin, Lmax = 0.1, 0.06, 0.09
+    free = design_spring("compression", 2000.0, 100.0, free_length=L0, min_length=Lmin, max_length=Lmax)
+    guided = design_spring("compression", 2000.0, 100.0, free_length=L0, min_length=Lmin, max_length=Lmax, guided=True)
+    assert guided.buckling.guided is True and guided.buckling.critical_deflection_m == math.inf
+    assert free.buckling.guided is False and free.buckling.safe and guided.mass_kg < free.mass_kg
+    r = 1 - G_MUSIC / E_MUSIC  # the guided (lighter) spring's critical deflection with pinned ends, ν = 1
+    s_k = L0 * 0.5 / r * (1 - math.sqrt(1 - r / (0.5 + G_MUSIC / E_MUSIC) * (math.pi * guided.mean_diameter_m / L0) ** 2))
+    assert s_k < L0 - Lmin
+
+
+def test_helical_spring_reports_its_rate_error_and_wire_strength():
+    s = design_spring("compression", 2000.0, 100.0, free_length=0.5, min_length=0.3, max_length=0.45)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    out = s.to_dict()
+    assert out["stiffness_error"] == pytest.approx(G_MUSIC * d ** 4 / (8 * D ** 3 * n) / 2000.0 - 1, abs=1e-12)
+    assert abs(out["stiffness_error"]) < 1e-12
+    assert out["tensile_strength_Pa"] == pytest.approx(music_wire_strength(d), rel=1e-12)
+    assert out["stress_ratio"] == pytest.approx(corrected_stress(d, D, 100.0) / (0.5 * music_wire_strength(d)))
+
+
+def test_helical_candidates_reach_two_active_coils():
+    """At 20 N/m the widest coil of 2 mm wire would need 1.6 coils: the candidates stop at two."""
+    c, d = 1600.0, 0.002
+    ns = [n for _, n in _candidates(MATERIALS["music-wire"], "compression", c, d, 4 * d, 20 * d)]
+    assert G_MUSIC * d ** 4 / (8 * (20 * d) ** 3 * c) < 2 and ns[-1] == 2.0
+
+
+@pytest.mark.parametrize("args, kw, sentence", [
+    (("torsion", 1.0, 1.0), {}, "a helical spring is 'compression' or 'extension', not 'torsion'."),
+    (("compression", 1.0, 1.0), {"material": "unobtainium"},
+     "unknown spring material 'unobtainium'; choose one of music-wire, oil-tempered, chrome-vanadium, "
+     "chrome-silicon, stainless."),
+    (("compression", 1.0, 1.0), {"ends": "free"},
+     "unknown end condition 'free'; choose one of fixed-free, pinned, fixed-pinned, fixed."),
+    (("compression", 0.0, 1.0), {}, "the spring's stiffness must be a positive number, not 0.0."),
+    (("compression", 1.0, math.nan), {}, "the spring's peak force must be a positive number, not nan."),
+    (("compression", 1.0, 1.0), {"max_outer_diameter": -0.01}, "the largest outer diameter must be positive, not -0.01."),
+    (("compression", 1.0, 1.0), {"min_inner_diameter": -1.0}, "the smallest inner diameter must be ≥ 0, not -1.0."),
+    (("compression", 1.0, 1.0), {}, "a compression spring needs its free length or its largest deflection."),
+])
+def test_helical_input_refusals_in_full(args, kw, sentence):
+    with pytest.raises(InvalidInput) as ei:
+        design_spring(*args, **kw)
+    assert str(ei.value) == sentence
+
+
+@pytest.mark.parametrize("degrees", [(20.0, 160.0), (-150.0, 170.0), (-100.0, 200.0)])
+def test_helical_lever_spring_is_guided_and_tension_spring_reports_its_stretch(degrees):
+    """The longest a tension device's spring gets, also over ranges holding a dead centre (φ = 0, ±π)."""
+    rng = tuple(math.radians(v) for v in degrees)
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.4), a=(0.0, 0.3), max_force=1500.0)
+    lever = design_for_device(fit_spring("compression-lever", -100.0, RAD, b), material="chrome-silicon")
+    assert lever.buckling.guided is True and lever.buckling.critical_deflection_m == math.inf
+    res = fit_spring("tension", -100.0, rng, b)
+    s = design_for_device(res, material="oil-tempered")
+    longest = float(np.max(res.device.length(np.linspace(*rng, 200001))))  # a dense sweep of the crank
+    assert s.max_extension_m == pytest.approx(longest - res.free_length, abs=1e-9)
