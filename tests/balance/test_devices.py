@@ -246,6 +246,8 @@ def test_helical_compression_spring_by_hand():
     assert out["inner_diameter_m"] == pytest.approx(D - d, rel=1e-12)
     assert out["spring_index"] == pytest.approx(D / d, rel=1e-12) and out["total_coils"] == n + 2
     assert out["safe_when_solid"] == (out["solid_shear_stress_Pa"] <= allowed) and "initial_tension_N" not in out
+    assert out["material_description"] == "patented cold-drawn spring steel, EN 10270-1 DH (ASTM A228)"
+    assert out["elastic_modulus_Pa"] == E_MUSIC and out["buckling"]["seating_coefficient"] == 1.0
 
 
 @pytest.mark.parametrize("bore_mm", [6.3, 6.6, 7.1, 7.6, 10.6, 10.7, 14.0])
@@ -330,7 +332,7 @@ def test_helical_extension_spring_for_a_tension_device():
     assert 79.5e9 * d ** 4 / (8 * D ** 3 * n) == pytest.approx(res.c, rel=1e-9)
     # close-wound body of n + 1 coils and two loops of about one inner diameter each (one coil of wire each)
     free = (n + 1) * d + 2 * (D - d)
-    assert s.free_length_m == pytest.approx(free, rel=1e-12)
+    assert s.free_length_m == pytest.approx(free, rel=1e-12) and s.loop_length_m == pytest.approx(D - d, rel=1e-12)
     assert s.mass_kg == pytest.approx(7850.0 * math.pi * d ** 2 / 4 * math.pi * D * (n + 3), rel=1e-12)
     assert s.anchor_offset_m == pytest.approx(res.free_length - free, rel=1e-12)
     out = s.to_dict()
@@ -432,3 +434,14 @@ def test_helical_lever_spring_is_guided_and_tension_spring_reports_its_stretch(d
     s = design_for_device(res, material="oil-tempered")
     longest = float(np.max(res.device.length(np.linspace(*rng, 200001))))  # a dense sweep of the crank
     assert s.max_extension_m == pytest.approx(longest - res.free_length, abs=1e-9)
+
+
+def test_helical_spring_for_a_slider_device_takes_the_options():
+    """A sine (slider) device's compression spring runs from a to the largest force; material and ends pass."""
+    res = fit_spring("compression", 30.0, RAD, SpringBounds((0.05, 0.2), None, (0.0, 0.2)), device="sine")
+    s = design_for_device(res, material="oil-tempered", ends="fixed", guided=False)
+    assert s.material == "oil-tempered" and s.buckling.end_condition == "fixed"
+    assert s.buckling.seating_coefficient == 0.5
+    assert s.free_length_m == pytest.approx(res.free_length, rel=1e-12)
+    assert s.min_working_length_m == pytest.approx(res.free_length - res.max_force / res.c, rel=1e-12)
+    assert s.max_working_length_m == pytest.approx(res.free_length - res.a, rel=1e-12)
