@@ -29,6 +29,8 @@ import numpy as np
 from scipy import optimize
 from threadpoolctl import threadpool_limits
 
+from mechbase import Row
+
 __all__ = ["Extreme", "box_extremes", "CHUNK", "EXTREMES_NOTE"]
 
 #: how every reported extreme is found, in the words of a result
@@ -42,7 +44,7 @@ CANDIDATES = 10
 
 
 @dataclass(frozen=True)
-class Extreme:
+class Extreme(Row):
     """The largest or smallest value of a function over a box, and where it is reached.
 
     Attributes
@@ -58,9 +60,6 @@ class Extreme:
     value: float
     at: tuple[float, ...]
     sampled: float
-
-    def to_dict(self) -> dict:
-        return {"value": self.value, "at": list(self.at), "sampled": self.sampled}
 
 
 def _best_rows(values: np.ndarray, k: int) -> np.ndarray:

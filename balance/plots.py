@@ -145,7 +145,7 @@ def plot_arm(result, path: str, n: int = 241) -> str:
             bot.plot(xs, 100 * res, color=color, lw=1.3, label=label)
         bot.axhline(0, color="k", lw=0.5)
         bot.set_xlabel(f"q{i + 1} ({xunit})")
-        bot.set_ylabel(f"residual / max |gravity moment| (%)")
+        bot.set_ylabel("residual / max |gravity moment| (%)")
         whole = result.check.per_joint[i] if not has_payload else result.payload.per_joint[i]
         if worst < 1e-12:
             bot.set_ylim(-1, 1)

@@ -14,7 +14,12 @@ Stages:
 * ``sub-chain test``    ``_exact_test``: the exact test of a unit's candidates in one batch (none
   where stage B's model wrote the exact conditions: simple joints);
 * ``Chain``             building the ``Chain`` objects (``_expand``);
-* ``nauty``             certificates of the chains (duplicates removed).
+* ``nauty``             certificates of the chains (duplicates removed);
+* ``placements``        the compiled kernel's search over the placements (large queries), the
+  rest of stage B being its per-unit set-up.
+
+``--by-code`` adds, per code, stage A, the automorphisms, the kernel's placements and the rest of
+stage B (CPU seconds).
 
 Run: ``python benchmarks/profile_stages.py 12 [--v 0..10] [--count] [--json FILE]``.  Timers cost
 about 1 µs per call; the total is printed next to the sum of the stages.
@@ -34,6 +39,7 @@ sys.path.insert(0, str(ROOT))
 
 T: dict[str, float] = defaultdict(float)
 N: dict[str, int] = defaultdict(int)
+STAGE_A: dict[str, float] = defaultdict(float)  # stage A's CPU seconds by code
 
 
 STAGE = ["stage B"]  # the stage running now: CP-SAT time is charged to it
@@ -62,7 +68,16 @@ def instrument() -> None:
     from synth.structure.chain import Chain
 
     ts.number_synthesis = _timed("number synthesis", ts.number_synthesis, "number synthesis")
-    ts.contracted_graphs = _timed("stage A", ts.contracted_graphs, "stage A")
+    timed_a = _timed("stage A", ts.contracted_graphs, "stage A")
+
+    def stage_a_by_code(code, conv):
+        t0 = time.process_time()
+        try:
+            return timed_a(code, conv)
+        finally:
+            STAGE_A[str(code)] += time.process_time() - t0
+
+    ts.contracted_graphs = stage_a_by_code
     ts.realise = _timed("stage B (all)", ts.realise)
     ts.count_realised = _timed("stage B (all)", ts.count_realised)
     # stages A and B import the solver when they run: the timer wraps it where they find it
@@ -71,6 +86,9 @@ def instrument() -> None:
     stage_b._exact_test = _timed("sub-chain test", stage_b._exact_test)
     stage_b._expand = _timed("Chain", stage_b._expand)
     stage_a.Contracted.edge_group = _timed("automorphisms", stage_a.Contracted.edge_group)
+    from synth.synthesis import _stage_b_kernel
+
+    _stage_b_kernel.place = _timed("placements (kernel)", _stage_b_kernel.place)
     cert = Chain.certificate.fget
     Chain.certificate = property(_timed("nauty", cert))
 
@@ -91,12 +109,14 @@ def profile(dof: int, links: int, v: str, count: bool = False) -> dict:
 
     T.clear()
     N.clear()
+    STAGE_A.clear()
     t0 = time.process_time()
     units = ts.plan_units(dof, links, v=v, workers=1)
     t_plan = time.process_time() - t0
     records = []
     for unit in units:
         stats: dict = {}
+        before = T["automorphisms"], T["placements (kernel)"]
         t1 = time.process_time()
         if count and unit.contracted is not None:
             found = ts.count_realised(unit.code, unit.contracted, unit.conventions, stats)
@@ -105,10 +125,13 @@ def profile(dof: int, links: int, v: str, count: bool = False) -> dict:
         records.append({"code": str(unit.code), "v": unit.code.v,
                         "edges": len(unit.contracted.edges) if unit.contracted else 0,
                         "candidates": stats.get("candidates", 0), "chains": found,
-                        "seconds": time.process_time() - t1})
+                        "seconds": time.process_time() - t1,
+                        "automorphisms": T["automorphisms"] - before[0],
+                        "placements": T["placements (kernel)"] - before[1]})
     total = time.process_time() - t0
     stage_b = T["stage B (all)"]
-    inner = sum(T[k] for k in ("stage B CP-SAT", "sub-chain test", "Chain", "nauty", "automorphisms"))
+    inner = sum(T[k] for k in ("stage B CP-SAT", "sub-chain test", "Chain", "nauty", "automorphisms",
+                                "placements (kernel)"))
     stages = {
         "number synthesis": T["number synthesis"],
         "stage A": T["stage A"],
@@ -116,13 +139,14 @@ def profile(dof: int, links: int, v: str, count: bool = False) -> dict:
         "  of which CpModel()": T["CpModel()"],
         "stage B CP-SAT": T["stage B CP-SAT"],
         "automorphisms of H": T["automorphisms"],
+        "placements (kernel)": T["placements (kernel)"],
         "sub-chain test": T["sub-chain test"],
         "Chain": T["Chain"],
         "nauty": T["nauty"],
         "plan, outside stages": t_plan - T["number synthesis"] - T["stage A"],
         "units, outside realise": total - t_plan - stage_b,
     }
-    return {"dof": dof, "links": links, "v": v, "units": len(units), "total": total,
+    return {"dof": dof, "links": links, "v": v, "units": len(units), "total": total, "stage A": dict(STAGE_A),
             "chains": sum(r["chains"] for r in records), "stages": stages, "calls": dict(N), "records": records}
 
 
@@ -141,6 +165,20 @@ def by_size(records: list[dict]) -> list[dict]:
                     "seconds": round(secs, 3), "share": f"{100 * secs / total:.0f} %",
                     "ms per unit": round(1000 * secs / len(rs), 2),
                     "µs per chain": round(1e6 * secs / chains, 1) if chains else None})
+    return out
+
+
+def by_code(records: list[dict], stage_a: dict[str, float]) -> list[dict]:
+    """Per code: units, chains, stage A, automorphisms of H, the kernel's placements and the rest
+    of stage B (per-unit set-up), CPU seconds."""
+    out = []
+    for code in dict.fromkeys(r["code"] for r in records):
+        rs = [r for r in records if r["code"] == code]
+        autos, places = sum(r["automorphisms"] for r in rs), sum(r["placements"] for r in rs)
+        out.append({"code": code, "units": len(rs), "chains": sum(r["chains"] for r in rs),
+                    "stage A": round(stage_a.get(code, 0.0), 2), "automorphisms": round(autos, 2),
+                    "placements": round(places, 2),
+                    "rest of stage B": round(sum(r["seconds"] for r in rs) - autos - places, 2)})
     return out
 
 
@@ -163,6 +201,7 @@ def main(argv=None) -> int:
     parser.add_argument("--dof", type=int, default=1)
     parser.add_argument("--v", default="0")
     parser.add_argument("--count", action="store_true", help="profile the count (chains built only where needed)")
+    parser.add_argument("--by-code", action="store_true", help="stage A and stage B's parts per code")
     parser.add_argument("--json", help="write the full result (per-unit records included) here")
     args = parser.parse_args(argv)
     instrument()
@@ -173,6 +212,9 @@ def main(argv=None) -> int:
         print(f"  {name:38s} {secs:8.3f} s  {100 * secs / result['total']:5.1f} %")
     for row in by_size(result["records"]):
         print("  ", row)
+    if args.by_code:
+        for row in by_code(result["records"], result["stage A"]):
+            print("  ", row)
     if args.v != "0":
         for row in by_v(result["records"]):
             print("  ", row)

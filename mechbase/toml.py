@@ -16,7 +16,6 @@ b.toml: no such scene file.
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 
 __all__ = ["read_toml", "read_toml_text"]
@@ -49,6 +48,8 @@ def read_toml_text(text: str, *, error: type[Exception], source: str) -> dict:
     ...
     ValueError: x.toml: not valid TOML (Unclosed array (at end of document)).
     """
+    import tomllib  # 4 ms: loaded by the commands that read a TOML file, not by every command
+
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

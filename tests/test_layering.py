@@ -238,3 +238,15 @@ def test_the_motion_floor_stands_on_the_chain_types_only():
                 assert module.startswith(allowed_synth), f"{f.relative_to(ROOT)} imports {module}"
             else:
                 assert top in ("numpy", "scipy", "numba", "mechbase") or top in sys.stdlib_module_names, (f, module)
+
+
+def test_synthesis_over_dimensions_moves_linkages_through_the_motion_layers_public_names():
+    """The dimensional synthesis and the atlas (its curve index and search) move candidates through
+    ``synth.motion``'s ``__all__`` (``link_poses``, ``sweep``, ``assemble`` …), never its private modules."""
+    import synth.motion
+
+    wrong = [f"{f.relative_to(ROOT)} imports {module}:{name}"
+             for f in _files("synth/dimension", "synth/atlas") for module, name in _imports(f)
+             if module.split(".")[:2] == ["synth", "motion"]
+             and (module != "synth.motion" or name not in synth.motion.__all__)]
+    assert not wrong, "\n".join(wrong)

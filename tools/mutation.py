@@ -47,7 +47,8 @@ _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 #: the tests of reading and writing chains (not the 10-link atlas round trip: a minute per mutant)
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
 _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
-             "tests/exchange/test_every_property_round_trips.py",
+             "tests/exchange/test_every_property_round_trips.py", "tests/exchange/test_identify_source_strength.py",
+             "tests/exchange/test_entry_strength.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
@@ -123,7 +124,9 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                          _SYNTH_DOC + "synth.structure.code]"]),
     "query": ("synth/structure/query.py", ["tests/structure/test_query_strength.py",
                                            "tests/cli/test_query_refusals.py", _SYNTH_DOC + "synth.structure.query]"]),
-    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_atlas.py", _SYNTH_DOC + "synth.atlas.queries]"]),
+    # every --where field and operator against the rows' own values on a small atlas (not test_atlas.py: its
+    # module fixture runs a grid of 201 units, a minute per mutant)
+    "atlas_queries": ("synth/atlas/queries.py", ["tests/atlas/test_queries_strength.py", _SYNTH_DOC + "synth.atlas.queries]"]),
     # reading and writing chains: every format's round trip, identify's, the chain given on the command line
     **{key: (f"synth/exchange/{name}.py", _EXCHANGE + [_SYNTH_DOC + f"synth.exchange.{name}]".replace(".__init__", "")])
        for key, name in (("exchange", "__init__"), ("exchange_dot", "_dot"), ("exchange_entry", "_entry"),
@@ -134,6 +137,38 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                 "tests/exchange/test_identify_round_trip.py",
                                                 "tests/cli/test_identify_commands.py",
                                                 _SYNTH_DOC + "synth.analysis.identify]", "-k", _IDENTIFY_LIGHT]),
+    # analyze of a code or counts: every formula by hand, the defect's advice, the seeds' worked examples
+    "analysis_codes": ("synth/analysis/codes.py", ["tests/analysis/test_codes_strength.py",
+                                                   "tests/analysis/test_worked_examples.py",
+                                                   _SYNTH_DOC + "synth.analysis.codes]"]),
+    # analyze of a chain: every field and advice by hand, the lever analogue of gear chains, loop classes
+    "analysis_chains": ("synth/analysis/chains.py", ["tests/analysis/test_chains_strength.py",
+                                                     "tests/gears/test_lever_analogue_vs_oracle.py",
+                                                     "tests/cli/test_chain_or_counts.py", "tests/cli/test_loop_classes.py",
+                                                     _SYNTH_DOC + "synth.analysis.chains]"]),
+    # classical names of chains and inversions, checked against their definitions on renumbered chains
+    "analysis_classical": ("synth/analysis/classical.py", ["tests/analysis/test_classical.py",
+                                                           _SYNTH_DOC + "synth.analysis.classical]"]),
+    # the repairs of a chain or code, each checked on a chain; the redundant meshes of gear chains
+    "analysis_repair": ("synth/analysis/repair.py", ["tests/analysis/test_repair_strength.py", "tests/analysis/test_repair_vs_oracle.py",
+                                                     "tests/gears/test_lever_analogue_vs_oracle.py",
+                                                     _SYNTH_DOC + "synth.analysis.repair]"]),
+    # a set of chains compared with a listing: matched, missing, extra and why
+    "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare_strength.py", "tests/analysis/test_compare.py",
+                                                       "tests/exchange/test_every_property_round_trips.py",
+                                                       _SYNTH_DOC + "synth.analysis.compare]"]),
+    # linkages moved: poses, dyads, the system of loop equations (closed forms, the oracle, branches, rates)
+    **{f"motion_{name.strip('_')}": (f"synth/motion/{name}.py", [
+        "tests/motion/test_errors.py", "tests/motion/test_closed_forms.py", "tests/motion/test_oracle.py",
+        "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
+       for name in ("_pose", "_dyads", "_system")},
+    # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
+    # 7- and 8-link cases, half a minute each), ratios and designs that can be built
+    **{f"gears_{name}": (f"synth/gears/{name}.py", [
+        "tests/test_gear_trains.py", "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
+        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py", _SYNTH_DOC + f"synth.gears.{name}]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes"])
+       for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
                                                  _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring or strength"]),
@@ -143,9 +178,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # (not tests/cli/test_bad_inputs.py: every error reaches these functions, minutes per mutant)
     "synth_errors": ("synth/errors.py", ["tests/test_errors.py", "tests/structure/test_query_strength.py", "tests/cli/test_query_refusals.py",
                                          _SYNTH_DOC + "synth.errors]"]),
-    "synth_schema": ("synth/schema.py", ["tests/scenes/test_scenes.py", _SYNTH_DOC + "synth.schema]", "-k",
+    "synth_schema": ("synth/schema.py", ["tests/scenes/test_require_schema.py", "tests/scenes/test_scenes.py",
+                                         _SYNTH_DOC + "synth.schema]", "-k",
                                          "malformed_scene or impossible_expectation or contradicted or copy_change "
-                                         "or command_line_mistakes or docstring"]),
+                                         "or command_line_mistakes or docstring or require_schema"]),
     # (not tests/balance/test_cli.py: every command reaches parse, minutes per mutant; its refusals of files
     # are the sentences test_schema_strength.py asserts)
     "balance_schema": ("balance/schema.py", ["tests/balance/test_schema_strength.py", "tests/balance/test_arm.py",

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechbase import Row
+
 from ..errors import InvalidInput
 from ..extremes import box_extremes
 
@@ -70,7 +72,18 @@ def crank_construction(eta, q_max: float, stroke: float | None = None) -> tuple[
 
 
 @dataclass(frozen=True)
-class CounterMass:
+class CrankCheck(Row):
+    """The three cranks phased 120° apart (:func:`crank_construction`): whether they are exact, and the
+    drift of the centre of mass and of the inertia they leave."""
+
+    exact: bool
+    max_com_error: float
+    max_inertia_error: float
+    laws: str = "q = s·cos η, z1 = q_max·cos(η + 120°), z2 = q_max·cos(η − 120°)"
+
+
+@dataclass(frozen=True)
+class CounterMass(Row):
     """Result of :func:`verify_counter_mass` (SI units)."""
 
     m: float
@@ -89,18 +102,12 @@ class CounterMass:
     samples: int
     messages: tuple[str, ...]
 
-    def to_dict(self) -> dict:
-        return {
-            "m": self.m, "I": self.inertia, "M": self.M, "q_max": self.q_max, "stroke": self.stroke,
-            "C": self.C, "C_min": self.C_min, "law_valid_stroke": self.law_valid_stroke,
-            "max_com_error": self.max_com_error, "max_inertia_error": self.max_inertia_error,
-            "crank": {
-                "exact": self.crank_exact, "max_com_error": self.crank_max_com_error,
-                "max_inertia_error": self.crank_max_inertia_error,
-                "laws": "q = s·cos η, z1 = q_max·cos(η + 120°), z2 = q_max·cos(η − 120°)",
-            },
-            "samples": self.samples, "messages": list(self.messages),
-        }
+    row_keys = ("m", "I=inertia", "M", "q_max", "stroke", "C", "C_min", "law_valid_stroke", "max_com_error",
+                "max_inertia_error", "crank", "samples", "messages")
+
+    @property
+    def crank(self) -> CrankCheck:
+        return CrankCheck(self.crank_exact, self.crank_max_com_error, self.crank_max_inertia_error)
 
 
 def verify_counter_mass(m: float, inertia: float, M: float, q_max: float, stroke: float | None = None,

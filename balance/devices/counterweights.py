@@ -27,6 +27,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from mechbase import Row
+
 from ..errors import InvalidArm
 from ..extremes import box_extremes
 from ..model.arm import Arm, ArmModel
@@ -36,7 +38,7 @@ __all__ = ["Counterweight", "Counterweights", "counterweights"]
 
 
 @dataclass(frozen=True)
-class Counterweight:
+class Counterweight(Row):
     """One counterweight: a point mass on the link a joint moves.
 
     Attributes
@@ -64,13 +66,11 @@ class Counterweight:
     position: tuple[float, ...]
     point: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
-    def to_dict(self) -> dict:
-        return {"link": self.link, "coordinate": self.coordinate, "weight": self.weight, "mass": self.mass,
-                "arm": self.arm, "position": list(self.position)}
+    row_keys = ("link", "coordinate", "weight", "mass", "arm", "position")
 
 
 @dataclass(frozen=True)
-class Counterweights:
+class Counterweights(Row):
     """What :func:`counterweights` finds for an arm (or why it cannot).
 
     ``max_residual`` (N·m) is the largest gravity force left over the workspace, a true extreme
@@ -92,12 +92,13 @@ class Counterweights:
         """Added weight over the arm's own."""
         return self.added_weight / self.arm_weight if self.arm_weight > 0 else math.inf
 
-    def to_dict(self) -> dict:
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: why not, or the weights and what they leave."""
         if not self.available:
-            return {"available": False, "reason": self.reason}
-        return {"available": True, "weights": [w.to_dict() for w in self.weights], "added_weight": self.added_weight,
-                "arm_weight": self.arm_weight, "ratio": self.ratio, "max_residual": self.max_residual,
-                "potential_spread": self.potential_spread, "worst": list(self.worst)}
+            return ("available", "reason")
+        return ("available", "weights", "added_weight", "arm_weight", "ratio", "max_residual", "potential_spread",
+                "worst")
 
 
 def _default_arm(arm: ArmModel, j: int, pa: UrdfArm, axis_point: np.ndarray, axis: np.ndarray) -> float:

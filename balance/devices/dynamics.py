@@ -27,14 +27,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechbase import Row
+
 from .countermass import c_min
 from ..errors import InvalidInput
 
-__all__ = ["sliding_arm_urdf", "slide_dynamics", "SlideDynamics", "MassMatrixCase"]
+__all__ = ["sliding_arm_urdf", "slide_dynamics", "SlideDynamics", "MassMatrixCase", "OneCounterMass"]
 
 
 @dataclass(frozen=True)
-class MassMatrixCase:
+class MassMatrixCase(Row):
     """How the mass matrix depends on the last coordinate in one case (relative to its largest entry).
 
     ``max_dM`` is the largest ``|∂M/∂x_n|`` at the sampled configurations (central differences),
@@ -47,17 +49,27 @@ class MassMatrixCase:
     largest_entry: float
     max_change_relative: float
 
+    row_keys = ("coordinate", "max_dM", "max_dM_relative", "max_change_relative", "largest_entry")
+
     @property
     def max_dM_relative(self) -> float:
         return self.max_dM / self.largest_entry
 
-    def to_dict(self) -> dict:
-        return {"coordinate": self.coordinate, "max_dM": self.max_dM, "max_dM_relative": self.max_dM_relative,
-                "max_change_relative": self.max_change_relative, "largest_entry": self.largest_entry}
 
 
 @dataclass(frozen=True)
-class SlideDynamics:
+class OneCounterMass(Row):
+    """One counter-mass on a slide: keeping the centre of mass (the inertia grows, as the text says) or
+    keeping the inertia ``C`` (valid only for ``|q| ≤ valid_interval``)."""
+
+    keeps_centre_of_mass: str
+    keeps_inertia_C: float
+    valid_interval: float
+    valid_interval_text: str
+
+
+@dataclass(frozen=True)
+class SlideDynamics(Row):
     """What :func:`slide_dynamics` finds: each case's dependence of ``M`` on the last coordinate."""
 
     arm: str
@@ -70,25 +82,22 @@ class SlideDynamics:
     C_min: float
     cases: dict[str, MassMatrixCase]
 
+    row_keys = ("arm", "samples", "seed", "C_min", "cases", "one_mass", "crank_laws")
+    crank_laws = "z1,2 = q_max·(−m·cos η ± √(m² + 2mM)·sin η)/(2M), q = q_max·cos η"
+
     @property
     def one_mass_interval(self) -> float:
         """One counter-mass keeping the inertia C_min: real only for ``|q| ≤ √((C − I)/m)``."""
         return math.sqrt(max(self.C_min - self.inertia, 0.0) / self.m)
 
-    def to_dict(self) -> dict:
+    @property
+    def one_mass(self) -> OneCounterMass:
+        """What one counter-mass keeps, and what it cannot."""
         m, inertia, M, q_max = self.m, self.inertia, self.M, self.q_max
-        return {
-            "arm": self.arm, "samples": self.samples, "seed": self.seed, "C_min": self.C_min,
-            "cases": {k: c.to_dict() for k, c in self.cases.items()},
-            "one_mass": {
-                "keeps_centre_of_mass": f"inertia I + m(1 + m/M)·q² grows from {inertia:.4g} to "
-                                        f"{inertia + m * (1 + m / M) * q_max ** 2:.4g} kg·m² over the stroke",
-                "keeps_inertia_C": self.C_min, "valid_interval": self.one_mass_interval,
-                "valid_interval_text": f"|q| ≤ √((C − I)/m) = {self.one_mass_interval:.4g} m, and its centre of "
-                                       "mass moves",
-            },
-            "crank_laws": "z1,2 = q_max·(−m·cos η ± √(m² + 2mM)·sin η)/(2M), q = q_max·cos η",
-        }
+        return OneCounterMass(
+            f"inertia I + m(1 + m/M)·q² grows from {inertia:.4g} to {inertia + m * (1 + m / M) * q_max ** 2:.4g} "
+            "kg·m² over the stroke", self.C_min, self.one_mass_interval,
+            f"|q| ≤ √((C − I)/m) = {self.one_mass_interval:.4g} m, and its centre of mass moves")
 
 
 def _inertial(m: float, com, diag) -> str:

@@ -38,9 +38,11 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
+
+from mechbase import Row
 
 from ..errors import InfeasibleBounds, InvalidInput
 
@@ -285,7 +287,7 @@ def design_spring(
 
 
 @dataclass(frozen=True)
-class Buckling:
+class Buckling(Row):
     """A compression spring's buckling check (EN 13906-1): the critical against the working deflection."""
 
     end_condition: str
@@ -294,16 +296,15 @@ class Buckling:
     critical_deflection_m: float
     max_deflection_m: float
 
+    row_keys = ("end_condition", "seating_coefficient", "guided", "critical_deflection_m", "max_deflection_m", "safe")
+
     @property
     def safe(self) -> bool:
         return self.max_deflection_m < self.critical_deflection_m
 
-    def to_dict(self) -> dict:
-        return asdict(self) | {"safe": self.safe}
-
 
 @dataclass(frozen=True)
-class HelicalSpring:
+class HelicalSpring(Row):
     """A helical spring a maker can wind, with the checks it passed (SI units).
 
     Compression springs fill ``solid_length_m`` … ``buckling``; extension springs
@@ -365,17 +366,22 @@ class HelicalSpring:
     def stress_ratio(self) -> float:
         return self.max_shear_stress_Pa / self.allowed_shear_stress_Pa
 
-    def to_dict(self) -> dict:
-        out = {k: v for k, v in asdict(self).items() if v is not None}
-        out.update(standard=self.standard, outer_diameter_m=self.outer_diameter_m,
-                   inner_diameter_m=self.inner_diameter_m, spring_index=self.spring_index,
-                   total_coils=self.total_coils, stiffness_error=self.stiffness_error, stress_ratio=self.stress_ratio)
-        if self.kind == "compression":
-            out["safe_when_solid"] = self.solid_shear_stress_Pa <= self.allowed_shear_stress_Pa
-            out["buckling"] = self.buckling.to_dict()
-        else:
-            out["initial_tension_N"] = 0.0
-        return out
+    @property
+    def safe_when_solid(self) -> bool | None:
+        """A compression spring's shear stress when pressed solid is allowed (None: an extension spring)."""
+        if self.solid_shear_stress_Pa is None:
+            return None
+        return self.solid_shear_stress_Pa <= self.allowed_shear_stress_Pa
+
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: every field given (the kind's own), the derived sizes, and the kind's last check."""
+        last = ("safe_when_solid",) if self.kind == "compression" else ("initial_tension_N",)
+        return (*(f.name + "?" for f in fields(self)), "standard", "outer_diameter_m", "inner_diameter_m",
+                "spring_index", "total_coils", "stiffness_error", "stress_ratio", *last)
+
+    #: an extension spring wound without initial tension (the formulas assume none)
+    initial_tension_N = 0.0
 
 
 def _report(b: dict, kind: str, mat: Material, c: float, F: float, ends: str, nu: float,

@@ -36,6 +36,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechbase import Row
+
 __all__ = ["slider_position", "slider_rate", "slider_dead_centres", "slider_extremes", "SliderSpringDevice"]
 
 
@@ -100,7 +102,7 @@ def slider_extremes(lo: float, hi: float, r: float, rod: float | None, offset: f
 
 
 @dataclass(frozen=True)
-class SliderSpringDevice:
+class SliderSpringDevice(Row):
     """A spring on a slider driven by a crank (SI units): ``rod=None`` is the sine (Scotch-yoke) device.
 
     Attributes
@@ -129,6 +131,8 @@ class SliderSpringDevice:
     rod: float | None = None
     offset: float = 0.0
 
+    row_keys = ("family", "c", "r", "neutral", "rod", "offset")
+
     @property
     def family(self) -> str:
         return "sine" if self.rod is None else "slider-crank"
@@ -150,7 +154,3 @@ class SliderSpringDevice:
     def force(self, phi) -> np.ndarray:
         """Spring force magnitude ``c·|x − x_n|`` (N)."""
         return self.c * np.abs(self.position(phi) - self.neutral)
-
-    def to_dict(self) -> dict:
-        return {"family": self.family, "c": self.c, "r": self.r, "neutral": self.neutral, "rod": self.rod,
-                "offset": self.offset}

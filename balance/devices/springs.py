@@ -29,6 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechbase import Row
+
 from ..errors import InvalidInput
 
 __all__ = [
@@ -102,7 +104,7 @@ def crank_moment(phi, kind: str, c: float, r: float, r0: float, a: float) -> np.
 
 
 @dataclass(frozen=True)
-class CrankRockerDevice:
+class CrankRockerDevice(Row):
     """A crank-and-rocker spring device with its parameters (SI units).
 
     Examples
@@ -117,6 +119,8 @@ class CrankRockerDevice:
     r: float
     r0: float
     a: float
+
+    row_keys = ("kind", "c", "r", "r0", "a", "d", "free_length")
 
     @property
     def d(self) -> float:
@@ -149,12 +153,6 @@ class CrankRockerDevice:
     def force(self, phi) -> np.ndarray:
         """Spring force magnitude ``c·|L − l0|`` (N)."""
         return self.c * np.abs(self.length(phi) - self.free_length)
-
-    def to_dict(self) -> dict:
-        return {
-            "kind": self.kind, "c": self.c, "r": self.r, "r0": self.r0, "a": self.a,
-            "d": self.d, "free_length": self.free_length,
-        }
 
 
 @dataclass(frozen=True)

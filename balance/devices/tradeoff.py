@@ -20,9 +20,11 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
+
+from mechbase import Row
 
 from ..errors import BalanceError
 from .fit import FitResult, SpringBounds, fit_spring
@@ -34,7 +36,7 @@ RELAX = 0.25
 
 
 @dataclass(frozen=True)
-class Sensitivity:
+class Sensitivity(Row):
     """What moving one active bound by :data:`RELAX` buys: the fit's norm after the move."""
 
     bound: str
@@ -42,12 +44,9 @@ class Sensitivity:
     error: float
     gain: float
 
-    def to_dict(self) -> dict:
-        return asdict(self)
-
 
 @dataclass(frozen=True)
-class ParetoPoint:
+class ParetoPoint(Row):
     """A device on the front: its error (the fit's norm), size (free length, m) and peak force (N)."""
 
     error: float
@@ -58,9 +57,6 @@ class ParetoPoint:
     r0: float
     a: float
     active_bounds: tuple[str, ...]
-
-    def to_dict(self) -> dict:
-        return asdict(self) | {"active_bounds": list(self.active_bounds)}
 
 
 def _refit(res: FitResult, bounds: SpringBounds) -> FitResult | None:

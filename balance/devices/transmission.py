@@ -35,11 +35,13 @@ from typing import Sequence
 
 import numpy as np
 
+from mechbase import Row
+
 __all__ = ["GearElement", "GearTrain", "design_train", "compose", "transmissions"]
 
 
 @dataclass(frozen=True)
-class GearElement:
+class GearElement(Row):
     """One element of a train: a gear stage, a differential, or the crank on the shaft itself.
 
     Attributes
@@ -66,16 +68,16 @@ class GearElement:
     def reverses(self) -> bool:
         return self.ratio is not None and self.ratio < 0
 
-    def to_dict(self) -> dict:
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: a differential's two inputs, or a stage's input."""
         if self.element == "differential":
-            return {"element": self.element, "carrier": self.carrier, "side": self.side, "output": self.output,
-                    "ratio": None, "reverses": False}
-        return {"element": self.element, "input": self.input, "output": self.output, "ratio": self.ratio,
-                "reverses": self.reverses}
+            return ("element", "carrier", "side", "output", "ratio", "reverses")
+        return ("element", "input", "output", "ratio", "reverses")
 
 
 @dataclass(frozen=True)
-class GearTrain:
+class GearTrain(Row):
     """The train forming one device shaft ``shaft = Σ form_j·ψ_j``, with the form it composes back to."""
 
     term: int
@@ -83,6 +85,8 @@ class GearTrain:
     form: tuple[float, ...]
     train: tuple[GearElement, ...]
     composed_form: tuple[float, ...]
+
+    row_keys = ("term", "shaft", "form", "train", "differentials", "composed_form", "error")
 
     @property
     def differentials(self) -> int:
@@ -93,9 +97,6 @@ class GearTrain:
         """The largest coefficient error of the composed form."""
         return float(np.max(np.abs(np.subtract(self.composed_form, self.form)))) if self.form else 0.0
 
-    def to_dict(self) -> dict:
-        return {"term": self.term, "shaft": self.shaft, "form": list(self.form), "train": [e.to_dict() for e in self.train],
-                "differentials": self.differentials, "composed_form": list(self.composed_form), "error": self.error}
 
 
 def _stage(src: str, dst: str, ratio: float) -> GearElement:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -27,7 +27,7 @@ from ..errors import InvalidArm
 from .potential import HarmonicTerm, format_form, merge_terms
 
 __all__ = ["Coordinate", "ArmModel", "Link", "Load", "Arm", "JOINT_KINDS", "ZERO_DIRECTIONS",
-           "gear_ratio_for_accuracy", "describe_form", "base_drives"]
+           "gear_ratio_for_accuracy", "DescribedTerm", "describe_term", "base_drives"]
 
 JOINT_KINDS = ("vertical", "revolute", "prismatic")
 ZERO_DIRECTIONS = {"vertical": math.pi / 2, "horizontal": 0.0}
@@ -459,12 +459,26 @@ def base_drives(n: int) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(v) for v in row) for row in d)
 
 
-def describe_form(arm: ArmModel, form: Sequence[float]) -> dict:
-    """The form over joints and over drive shafts, as numbers and text."""
-    drive = np.asarray(form) @ arm.drives
+@dataclass(frozen=True)
+class DescribedTerm(HarmonicTerm):
+    """A harmonic term of an arm with its form written out over the joints and over the drive shafts (None: a
+    mechanism whose shafts are not the arm's joints)."""
+
+    form_text: str = ""
+    drive_form: tuple[float, ...] | None = None
+    drive_form_text: str | None = None
+
+    row_keys = HarmonicTerm.row_keys + ("form_text", "drive_form?", "drive_form_text?")
+
+
+def describe_term(arm: ArmModel, term: HarmonicTerm) -> DescribedTerm:
+    """The term with its form over joints and over drive shafts, as numbers and text.
+
+    >>> t = describe_term(Arm((Link("l", "revolute", 1.0, 10.0, 0.5),)), HarmonicTerm(5.0, 0.0, (1.0,)))
+    >>> t.form_text, t.drive_form
+    ('q1', (1.0,))
+    """
+    drive = np.asarray(term.form) @ arm.drives
     drive = np.where(np.abs(drive) < 1e-14, 0.0, drive)
-    return {
-        "form_text": format_form(form, arm.joint_names),
-        "drive_form": [float(v) for v in drive],
-        "drive_form_text": format_form(drive, arm.shaft_names),
-    }
+    return DescribedTerm(term.amplitude, term.phase, term.form, format_form(term.form, arm.joint_names),
+                         tuple(float(v) for v in drive), format_form(drive, arm.shaft_names))

@@ -13,13 +13,15 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from mechbase import Row
+
 __all__ = ["HarmonicTerm", "merge_terms", "terms_potential", "terms_forces", "format_form"]
 
 _FORM_DIGITS = 12  # forms are compared after rounding their coefficients to this many digits
 
 
 @dataclass(frozen=True)
-class HarmonicTerm:
+class HarmonicTerm(Row):
     """One term ``amplitude·cos(form·q + phase)`` of a potential.
 
     Attributes
@@ -42,6 +44,13 @@ class HarmonicTerm:
     phase: float
     form: tuple[float, ...]
 
+    row_keys = ("amplitude", "phase", "phase_deg", "form")
+
+    @property
+    def phase_deg(self) -> float:
+        """``α`` in degrees."""
+        return math.degrees(self.phase)
+
     def angle(self, q: np.ndarray) -> np.ndarray:
         """``φ = form·q`` for one configuration ``q`` (n,) or many (m, n)."""
         return np.asarray(q, dtype=float) @ np.asarray(self.form)
@@ -57,15 +66,6 @@ class HarmonicTerm:
         ``+∂U_k/∂φ``; it cancels the gravity force ``−∂U_k/∂φ``.
         """
         return -self.amplitude * np.sin(np.asarray(phi, dtype=float) + self.phase)
-
-    def to_dict(self) -> dict:
-        """JSON-able form of the term."""
-        return {
-            "amplitude": self.amplitude,
-            "phase": self.phase,
-            "phase_deg": math.degrees(self.phase),
-            "form": list(self.form),
-        }
 
 
 def _canonical(z: complex, form: Sequence[float]) -> tuple[complex, tuple[float, ...]]:

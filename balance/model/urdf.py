@@ -25,9 +25,11 @@ import itertools
 import math
 import os
 import sys
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
+
+from mechbase import Row
 
 from ..errors import InvalidArm, SchemaError
 from .arm import Arm, ArmModel, Coordinate, gear_ratio_for_accuracy
@@ -557,7 +559,7 @@ def arm_to_urdf(arm: Arm, g: float = _G) -> str:
 
 
 @dataclass(frozen=True)
-class PinocchioCheck:
+class PinocchioCheck(Row):
     """An arm's balance recomputed with Pinocchio's generalised gravity (the independent check).
 
     Attributes
@@ -588,8 +590,8 @@ class PinocchioCheck:
     max_residual_at_worst: float | None = None
     gravity_agreement: float | None = None
 
-    def to_dict(self) -> dict:
-        return {k: v for k, v in asdict(self).items() if v is not None}
+    row_keys = ("samples", "seed", "worst_configurations", "pinocchio", "max_gravity_force", "max_residual",
+                "relative_residual", "max_residual_at_worst?", "gravity_agreement?")
 
 
 def pinocchio_gravity(arm: ArmModel, g: float = _G) -> "UrdfArm":

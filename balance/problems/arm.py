@@ -20,30 +20,33 @@ from __future__ import annotations
 import math
 import os
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
+
+from mechbase import Row
 
 from ..budget import WORK_LIMIT, ensure_affordable, unit_seconds
 from ..devices.counterweights import Counterweights, counterweights
 from ..devices.transmission import GearTrain, transmissions
 from ..errors import InvalidArm, InvalidInput, SchemaError
 from ..extremes import EXTREMES_NOTE, box_extremes
-from ..model.arm import Arm, ArmModel, Link, Load, base_drives, describe_form, gear_ratio_for_accuracy
+from ..model.arm import Arm, ArmModel, Link, Load, DescribedTerm, base_drives, describe_term, gear_ratio_for_accuracy
 from ..model.potential import HarmonicTerm, terms_forces, terms_potential
 from ..model.urdf import PinocchioCheck, UrdfArm, load_urdf, pinocchio_check, pinocchio_gravity
 from ..schema import ArmTable, check_seed, parse
 
 __all__ = ["ArmProblem", "ArmBalance", "CheckResult", "DeviceSizes", "TermDevices", "SlideApproximation",
-           "PayloadEffect", "balance_arm", "check_terms", "arm_from_dict", "arm_problem"]
+           "PayloadEffect", "JointRow", "SpringFitRequest", "SineSizes", "TensionSizes", "CompressionFit", "joint_rows",
+           "balance_arm", "check_terms", "arm_from_dict", "arm_problem"]
 
 G = 9.80665
 
 
 # ------------------------------------------------------------------------------ the check
 @dataclass(frozen=True)
-class CheckResult:
+class CheckResult(Row):
     """Residual generalised forces of gravity plus devices over the workspace.
 
     Every maximum is a true one (:mod:`balance.extremes`): the random samples are the starts
@@ -63,10 +66,7 @@ class CheckResult:
     seconds: float
     worst: tuple[tuple[float, ...], ...] = ()
     sampled_max_residual: float = 0.0
-
-    def to_dict(self) -> dict:
-        return asdict(self) | {"per_joint": list(self.per_joint), "worst": [list(w) for w in self.worst],
-                               "extremes": EXTREMES_NOTE}
+    extremes: str = EXTREMES_NOTE
 
 
 def largest_gravity_force(arm: ArmModel, q: np.ndarray) -> float:
@@ -128,7 +128,65 @@ class DeviceSizes:
 
 
 @dataclass(frozen=True)
-class TermDevices:
+class SpringFitRequest(Row):
+    """What ``balance spring`` is asked to fit a spring device to one term: the spring kind, the moment
+    amplitude ``Φ0`` (N·m) and the shaft angle ``φ`` the device turns by, as text."""
+
+    kind: str
+    moment: float
+    phi: str
+
+
+@dataclass(frozen=True)
+class SineSizes(Row):
+    """A sine device for amplitude ``A``: ``e·T = A``; with a chosen eccentricity ``e``, ``T = A/e``."""
+
+    eT: float
+    e: float | None = None
+    T: float | None = None
+
+    row_keys = ("eT", "e?", "T?")
+
+
+@dataclass(frozen=True)
+class TensionSizes(Row):
+    """A zero-free-length tension crank-and-rocker for amplitude ``A``: ``c·r·d = A`` with its zero at
+    ``zero_at_deg``; with chosen ``r`` and ``r0``, ``a = r0`` and ``c = A/(r·(r + r0))``."""
+
+    crd: float
+    zero_at_deg: float
+    spring_fit: SpringFitRequest | None = None
+    r: float | None = None
+    r0: float | None = None
+    a: float | None = None
+    c: float | None = None
+
+    row_keys = ("crd", "zero_at_deg", "spring_fit?", "r?", "r0?", "a?", "c?")
+
+    @classmethod
+    def of(cls, amplitude: float, zero_at_deg: float, r: float | None, r0: float | None,
+           spring_fit: SpringFitRequest | None = None) -> "TensionSizes":
+        """The device for ``amplitude``, sized when both ``r`` and ``r0`` are given.
+
+        >>> TensionSizes.of(6.0, 90.0, 0.1, 0.5).c
+        100.0
+        >>> TensionSizes.of(6.0, 90.0, 0.1, None).to_dict()
+        {'crd': 6.0, 'zero_at_deg': 90.0}
+        """
+        if r is None or r0 is None:
+            return cls(amplitude, zero_at_deg, spring_fit)
+        return cls(amplitude, zero_at_deg, spring_fit, r, r0, r0, amplitude / (r * (r + r0)))
+
+
+@dataclass(frozen=True)
+class CompressionFit(Row):
+    """A compression crank-and-rocker for a term: fitted, not exact (the request to fit it)."""
+
+    spring_fit: SpringFitRequest
+
+
+@dataclass(frozen=True)
+class TermDevices(Row):
     """The devices that can cancel one term ``A·cos(φ + α)``: a sine device (``e·T = A``), a
     zero-free-length tension crank-and-rocker (``c·r·d = A``) or a fitted compression one."""
 
@@ -138,29 +196,33 @@ class TermDevices:
     phase: float
     sizes: DeviceSizes = DeviceSizes()
 
-    def to_dict(self) -> dict:
-        k, a, ph = self.term, self.amplitude, self.phase
-        sine: dict[str, float] = {"eT": a}
-        tension: dict[str, Any] = {
-            "crd": a, "zero_at_deg": math.degrees(-ph),
-            "spring_fit": {"kind": "tension", "moment": -a, "phi": f"φ{k + 1} + {math.degrees(ph):.6g}°"},
-        }
-        e, r, r0 = self.sizes.eccentricity, self.sizes.r, self.sizes.r0
-        if e is not None:
-            sine.update({"e": e, "T": a / e})
-        if r is not None and r0 is not None:
-            tension.update({"r": r, "r0": r0, "a": r0, "c": a / (r * (r + r0))})
-        return {
-            "term": k, "shaft": self.shaft,
-            "moment": f"{-a:.6g}·sin(φ{k + 1} {'+' if ph >= 0 else '−'} {abs(math.degrees(ph)):.6g}°)",
-            "sine": sine, "tension": tension,
-            "compression": {"spring_fit": {"kind": "compression", "moment": a,
-                                           "phi": f"φ{k + 1} + {math.degrees(ph) + 180:.6g}°"}},
-        }
+    row_keys = ("term", "shaft", "moment=moment_text", "sine", "tension", "compression")
+
+    @property
+    def moment_text(self) -> str:
+        """The moment the device applies to its shaft, ``−A·sin(φ + α)``, as text."""
+        ph = self.phase
+        return f"{-self.amplitude:.6g}·sin(φ{self.term + 1} {'+' if ph >= 0 else '−'} {abs(math.degrees(ph)):.6g}°)"
+
+    @property
+    def sine(self) -> SineSizes:
+        e = self.sizes.eccentricity
+        return SineSizes(self.amplitude) if e is None else SineSizes(self.amplitude, e, self.amplitude / e)
+
+    @property
+    def tension(self) -> TensionSizes:
+        a, ph = self.amplitude, self.phase
+        fit = SpringFitRequest("tension", -a, f"φ{self.term + 1} + {math.degrees(ph):.6g}°")
+        return TensionSizes.of(a, math.degrees(-ph), self.sizes.r, self.sizes.r0, fit)
+
+    @property
+    def compression(self) -> CompressionFit:
+        return CompressionFit(SpringFitRequest("compression", self.amplitude,
+                                               f"φ{self.term + 1} + {math.degrees(self.phase) + 180:.6g}°"))
 
 
 @dataclass(frozen=True)
-class SlideApproximation:
+class SlideApproximation(Row):
     """A slide's ``γ = q/k`` substitution: its gear ratio ``k`` (m/rad), ``γ_max``, the relative
     error bound ``1 − sin γ/γ`` and the residual bound it gives on every joint (N·m or N)."""
 
@@ -170,6 +232,9 @@ class SlideApproximation:
     gear_ratio: float
     residual_bound_per_joint: tuple[float, ...]
 
+    row_keys = ("link", "coordinate", "stroke", "gear_ratio", "gamma_max", "rel_error_bound",
+                "rel_error_bound_gamma2_over_6", "residual_bound_per_joint")
+
     @property
     def gamma_max(self) -> float:
         return (self.stroke / 2) / self.gear_ratio
@@ -178,11 +243,10 @@ class SlideApproximation:
     def rel_error_bound(self) -> float:
         return 1 - math.sin(self.gamma_max) / self.gamma_max
 
-    def to_dict(self) -> dict:
-        return {"link": self.link, "coordinate": self.coordinate, "stroke": self.stroke, "gear_ratio": self.gear_ratio,
-                "gamma_max": self.gamma_max, "rel_error_bound": self.rel_error_bound,
-                "rel_error_bound_gamma2_over_6": self.gamma_max ** 2 / 6,
-                "residual_bound_per_joint": list(self.residual_bound_per_joint)}
+    @property
+    def rel_error_bound_gamma2_over_6(self) -> float:
+        """The bound ``γ_max²/6`` the gear ratio was chosen by."""
+        return self.gamma_max ** 2 / 6
 
 
 def slide_approximations(arm: ArmModel) -> tuple[SlideApproximation, ...]:
@@ -192,7 +256,7 @@ def slide_approximations(arm: ArmModel) -> tuple[SlideApproximation, ...]:
 
 
 @dataclass(frozen=True)
-class PayloadEffect:
+class PayloadEffect(Row):
     """The payload as a range (weights in N): the devices are tuned for ``tuned_for``, the middle of the
     range, which minimises the worst residual (it is the payload's deviation alone, linear in it) — the
     source's "half the maximum payload" when the range starts at 0; the worst residual over the range
@@ -206,6 +270,13 @@ class PayloadEffect:
     approximation_bound_per_joint: tuple[float, ...]
     g: float = G
 
+    row_keys = ("max_payload", "min_payload", "tuned_for", "mass_range_kg", "max_residual", "per_joint",
+                "half_payload_effect", "half_payload_effect_per_joint", "approximation_bound_per_joint")
+
+    @property
+    def mass_range_kg(self) -> tuple[float, float]:
+        return self.min_payload / self.g, self.max_payload / self.g
+
     @property
     def max_residual(self) -> float:
         return max(self.per_joint)
@@ -214,13 +285,6 @@ class PayloadEffect:
     def half_payload_effect(self) -> float:
         return max(self.half_payload_effect_per_joint)
 
-    def to_dict(self) -> dict:
-        return {"max_payload": self.max_payload, "min_payload": self.min_payload, "tuned_for": self.tuned_for,
-                "mass_range_kg": [self.min_payload / self.g, self.max_payload / self.g],
-                "max_residual": self.max_residual, "per_joint": list(self.per_joint),
-                "half_payload_effect": self.half_payload_effect,
-                "half_payload_effect_per_joint": list(self.half_payload_effect_per_joint),
-                "approximation_bound_per_joint": list(self.approximation_bound_per_joint)}
 
 
 def payload_effect(arm: ArmModel, terms: Sequence[HarmonicTerm], q: np.ndarray, scale: float,
@@ -246,8 +310,26 @@ def payload_effect(arm: ArmModel, terms: Sequence[HarmonicTerm], q: np.ndarray, 
 
 # ---------------------------------------------------------------------------- the problem
 @dataclass(frozen=True)
-class ArmBalance:
-    """Everything :class:`ArmProblem` finds for an arm (see :meth:`to_dict` for the JSON).
+class JointRow(Row):
+    """A joint of an arm as a result lists it: its name, its coordinate ``q1, q2, …`` and its kind."""
+
+    name: str
+    coordinate: str
+    kind: str
+
+
+def joint_rows(arm: ArmModel, row: type[JointRow] = JointRow) -> tuple[JointRow, ...]:
+    """The arm's joints, in order, as rows (of the class ``row``).
+
+    >>> joint_rows(Arm((Link("upper", "revolute", 1.0, 10.0, 0.5),)))[0].to_dict()
+    {'name': 'upper', 'coordinate': 'q1', 'kind': 'revolute'}
+    """
+    return tuple(row(c.name, f"q{i + 1}", c.joint) for i, c in enumerate(arm.coordinates))
+
+
+@dataclass(frozen=True)
+class ArmBalance(Row):
+    """Everything :class:`ArmProblem` finds for an arm (its row, :meth:`to_dict`, is the JSON).
 
     ``arm`` is the arm as balanced (its payload at the tuned value), ``terms`` the harmonic terms
     the devices cancel, ``devices`` one :class:`TermDevices` per term.
@@ -266,30 +348,39 @@ class ArmBalance:
     full_payload: ArmModel | None = field(default=None, repr=False)  # the arm at its largest payload (plots)
     empty: ArmModel | None = field(default=None, repr=False)  # and at its smallest
 
-    def to_dict(self) -> dict:
-        terms = [t.to_dict() | describe_form(self.arm, t.form) for t in self.terms]
-        out = {
-            "name": self.arm.name,
-            "joints": [{"name": c.name, "coordinate": f"q{i + 1}", "kind": c.joint}
-                       for i, c in enumerate(self.arm.coordinates)],
-            "terms": terms,
-            "devices": [d.to_dict() for d in self.devices],
-            "max_residual": self.check.max_residual,
-            "max_gravity_force": self.check.max_gravity_force,
-            "relative_residual": self.check.relative_residual,
-            "potential_spread": self.check.potential_spread,
-            "check": self.check.to_dict(),
-            "prismatic": [s.to_dict() for s in self.slides],
-            "payload": None if self.payload is None else self.payload.to_dict(),
-            "counterweights": self.counterweights.to_dict(),
-            "pinocchio": self.pinocchio.to_dict(),
-            "kind": "arm",
-        }
-        if self.urdf is not None:
-            out["urdf"] = self.urdf
-        if self.transmission is not None:
-            out["transmission"] = [t.to_dict() for t in self.transmission]
-        return out
+    row_keys = ("name", "joints", "terms=described_terms", "devices", "max_residual", "max_gravity_force",
+                "relative_residual", "potential_spread", "check", "prismatic=slides", "payload", "counterweights",
+                "pinocchio", "kind", "urdf?", "transmission?")
+    kind = "arm"
+
+    @property
+    def name(self) -> str:
+        return self.arm.name
+
+    @property
+    def joints(self) -> tuple[JointRow, ...]:
+        return joint_rows(self.arm)
+
+    @property
+    def described_terms(self) -> tuple[DescribedTerm, ...]:
+        """The terms with their forms written out over the joints and the drive shafts."""
+        return tuple(describe_term(self.arm, t) for t in self.terms)
+
+    @property
+    def max_residual(self) -> float:
+        return self.check.max_residual
+
+    @property
+    def max_gravity_force(self) -> float:
+        return self.check.max_gravity_force
+
+    @property
+    def relative_residual(self) -> float:
+        return self.check.relative_residual
+
+    @property
+    def potential_spread(self) -> float:
+        return self.check.potential_spread
 
 
 @dataclass(frozen=True)
@@ -368,9 +459,9 @@ class ArmProblem:
                              scale=check.max_gravity_force)
         trains = None
         if self.transmission:
-            forms = [describe_form(tuned, t.form)["drive_form"] for t in terms]
+            forms = [describe_term(tuned, t).drive_form for t in terms]
             trains = tuple(transmissions(forms, tuned.shaft_names))
-        devices = tuple(TermDevices(k, describe_form(tuned, t.form)["drive_form_text"], t.amplitude, t.phase,
+        devices = tuple(TermDevices(k, describe_term(tuned, t).drive_form_text, t.amplitude, t.phase,
                                     self.devices) for k, t in enumerate(terms))
         return ArmBalance(tuned, terms, devices, check, slide_approximations(tuned), effect, cw, pc, trains,
                           self.urdf, arm.with_payload(payload[1], self.g) if payload else None,
@@ -386,7 +477,7 @@ def _ensure_terms_affordable(arm: UrdfArm, own: np.ndarray, samples: int, limit:
     most = (3 ** arm.n + 1) // 2
     probe = [HarmonicTerm(1.0, 0.5, tuple(float(x) for x in np.resize((1, -1, 0), arm.n))) for _ in range(8)]
     per_value = unit_seconds(lambda: (terms_forces(probe, own), terms_potential(probe, own))) / (len(probe) * len(own))
-    per_text = unit_seconds(lambda: [describe_form(arm, t.form) for t in probe]) / len(probe)
+    per_text = unit_seconds(lambda: [describe_term(arm, t) for t in probe]) / len(probe)
     ensure_affordable(f"checking {samples} configurations against up to {most} harmonic terms", most,
                       passes * samples * per_value + 2 * per_text, limit)
 

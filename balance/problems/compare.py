@@ -51,20 +51,22 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 from scipy import optimize
 
+from mechbase import Row
+
 from ..budget import WORK_LIMIT, ensure_affordable
-from ..devices.counterweights import counterweights
+from ..devices.counterweights import Counterweight, counterweights
 from ..devices.fit import SpringBounds, fit_spring
-from ..devices.helical import design_for_device
+from ..devices.helical import HelicalSpring, design_for_device
 from ..devices.transmission import transmissions
 from ..errors import BalanceError, InvalidInput, SchemaError
 from ..extremes import EXTREMES_NOTE, box_extremes
-from ..model.arm import Arm, ArmModel, Load, describe_form
+from ..model.arm import Arm, ArmModel, Load, describe_term
 from ..model.potential import HarmonicTerm, merge_terms, terms_forces
 from ..model.urdf import UrdfArm, arm_to_urdf, pinocchio_gravity, pinocchio_model
 from ..schema import parse
-from .arm import G, _ensure_terms_affordable, arm_problem
+from .arm import G, JointRow, _ensure_terms_affordable, arm_problem, joint_rows
 
-__all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "compare_problem", "STRATEGIES"]
+__all__ = ["CompareProblem", "Comparison", "Strategy", "JointResidual", "PinocchioRecheck", "CompareJoint", "compare_problem", "STRATEGIES"]
 
 #: the spring devices' crank geometry when the arm's file gives none (m)
 DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
@@ -72,7 +74,14 @@ DEVICE_BOUNDS = SpringBounds(r=(0.02, 0.1), r0=(0.05, 0.3), a=(0.0, 0.3))
 
 # ----------------------------------------------------------------------------- results
 @dataclass(frozen=True)
-class JointResidual:
+class CompareJoint(JointRow):
+    """A joint of the arm compared, as the comparison lists it: its coordinate first."""
+
+    row_keys = ("coordinate", "name", "kind")
+
+
+@dataclass(frozen=True)
+class JointResidual(Row):
     """One joint's residual torque (N·m, or N on a slide) under a strategy, against the baseline.
 
     ``max`` is the largest ``|residual|`` over the workspace and the payload range (a true extreme),
@@ -89,6 +98,9 @@ class JointResidual:
     worst_at: tuple[float, ...]
     worst_payload: float
 
+    row_keys = ("coordinate", "name", "max", "rms", "baseline_max", "baseline_rms", "removed_max", "removed_rms",
+                "worst_at", "worst_payload")
+
     @property
     def removed_max(self) -> float:
         """The share of the baseline's largest torque removed (1 = all of it)."""
@@ -98,15 +110,134 @@ class JointResidual:
     def removed_rms(self) -> float:
         return 1 - self.rms / self.baseline_rms if self.baseline_rms > 0 else 0.0
 
-    def to_dict(self) -> dict:
-        return {"coordinate": self.coordinate, "name": self.name, "max": self.max, "rms": self.rms,
-                "baseline_max": self.baseline_max, "baseline_rms": self.baseline_rms,
-                "removed_max": self.removed_max, "removed_rms": self.removed_rms,
-                "worst_at": list(self.worst_at), "worst_payload": self.worst_payload}
 
 
 @dataclass(frozen=True)
-class Strategy:
+class TensionFit(Row):
+    """A zero-free-length tension device fitted to a torque amplitude: its spring rate ``c`` (N/m), crank
+    ``r``, ``r0`` and pre-extension ``a`` (m), its largest spring force (N) and relative error."""
+
+    c: float
+    r: float
+    r0: float
+    a: float
+    max_force: float
+    max_rel_error: float
+
+
+@dataclass(frozen=True)
+class SpringDevice(Row):
+    """The device fitted (None when none fits), the helical spring made for it (None when none is made)
+    and both in words (or why not)."""
+
+    device: TensionFit | None
+    spring: HelicalSpring | None
+    summary: str
+
+
+@dataclass(frozen=True)
+class JointSpring(Row):
+    """One joint's spring of the springs-per-joint strategy: a device for the torque ``amplitude``·sin(q +
+    phase) averaged over the other joints."""
+
+    fitted: SpringDevice
+    coordinate: str
+    amplitude: float
+    phase_deg: float
+
+    row_keys = ("*fitted", "coordinate", "amplitude", "phase_deg")
+
+
+@dataclass(frozen=True)
+class ConstantForce(Row):
+    """A slide's constant averaged gravity force (N), held by a gas spring."""
+
+    coordinate: str
+    constant_force: float
+
+
+@dataclass(frozen=True)
+class TermSpring(Row):
+    """A spring device for one harmonic term (its form as text and its amplitude, N·m)."""
+
+    fitted: SpringDevice
+    form_text: str
+    amplitude: float
+
+    row_keys = ("*fitted", "form_text", "amplitude")
+
+
+@dataclass(frozen=True)
+class DroppedTerm(Row):
+    """A term the pruned decomposition leaves out, and the largest torque it puts on each joint."""
+
+    amplitude: float
+    form: tuple[float, ...]
+    form_text: str
+    largest_torque_per_joint: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class CounterweightDetails(Row):
+    """The counterweights, the inertia they add to each joint (kg·m², or kg on a slide) and the motor
+    torque that inertia alone needs at the comparison's acceleration."""
+
+    weights: tuple[Counterweight, ...]
+    added_inertia: tuple[float, ...]
+    motor_torque_at_acceleration: tuple[float, ...]
+    note: str = ("added inertia: the largest increase of each joint's diagonal mass-matrix entry over the workspace "
+                 "(kg·m², or kg on a slide); the motor torque accelerates it alone at the stated acceleration")
+
+
+@dataclass(frozen=True)
+class JointSpringDetails(Row):
+    """The springs of the springs-per-joint strategy."""
+
+    springs: tuple[JointSpring | ConstantForce, ...]
+    note: str = "each device cancels its joint's gravity torque averaged over the other joints' ranges (uniformly)"
+
+
+@dataclass(frozen=True)
+class PrunedDetails(Row):
+    """The pruned decomposition: terms in all, kept, the target torque (N·m), the terms dropped, the springs of
+    the kept ones, the differentials of their shafts, and why the target is missed (None: it is met)."""
+
+    terms: int
+    kept: int
+    target_torque: float
+    dropped: tuple[DroppedTerm, ...]
+    springs: tuple[TermSpring, ...]
+    differentials: int
+    note: str | None = None
+
+    row_keys = ("terms", "kept", "target_torque", "dropped", "springs", "differentials", "note?")
+
+
+@dataclass(frozen=True)
+class ExactDetails(Row):
+    """The exact springs, one per link's absolute angle, and the parallelograms that carry those angles."""
+
+    springs: tuple[TermSpring, ...]
+    parallelograms: int
+    note: str = "each link's absolute angle is carried to the base by a parallelogram (its bars are not weighed)"
+
+
+@dataclass(frozen=True)
+class PinocchioRecheck(Row):
+    """A strategy's residual recomputed by Pinocchio at random configurations (``configurations`` of
+    them, at each payload of ``payloads``) and at the worst ones: the largest difference from the
+    project's own residual, and the residual at each worst configuration against the one reported."""
+
+    configurations: int
+    payloads: tuple[float, ...]
+    max_difference: float
+    at_worst: tuple[float, ...]
+    reported: tuple[float, ...]
+    method: str = "rnea(q, 0, 0) on a model rebuilt from URDF text"
+
+
+@dataclass(frozen=True)
+class Strategy(Row):
     """One balancing strategy: its hardware and what it leaves of the gravity torque.
 
     ``devices`` counts springs or counterweights; ``added_mass`` (kg) is what the hardware adds
@@ -123,8 +254,9 @@ class Strategy:
     tuned_for: float | None = None
     joints: tuple[JointResidual, ...] = ()
     hardware: tuple[str, ...] = ()
-    details: dict = field(default_factory=dict)
-    pinocchio: dict = field(default_factory=dict)
+    details: CounterweightDetails | JointSpringDetails | PrunedDetails | ExactDetails | dict = field(
+        default_factory=dict)
+    pinocchio: PinocchioRecheck | None = None
     forces: Any = field(default=None, repr=False, compare=False)  # the devices' forces, q → (m, n), for figures
 
     @property
@@ -142,20 +274,17 @@ class Strategy:
         worst = max(self.joints, key=lambda j: j.max, default=None)
         return None if worst is None else worst.worst_payload
 
-    def to_dict(self) -> dict:
-        out = {"name": self.name, "available": self.available}
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: why the strategy is not available, or what it leaves."""
         if not self.available:
-            return out | {"reason": self.reason}
-        return out | {
-            "devices": self.devices, "added_mass": self.added_mass, "tuned_for": self.tuned_for,
-            "max_residual": self.max_residual, "removed": self.removed, "worst_payload": self.worst_payload,
-            "joints": [j.to_dict() for j in self.joints], "hardware": list(self.hardware),
-            "details": self.details, "pinocchio": self.pinocchio,
-        }
+            return ("name", "available", "reason")
+        return ("name", "available", "devices", "added_mass", "tuned_for", "max_residual", "removed", "worst_payload",
+                "joints", "hardware", "details", "pinocchio")
 
 
 @dataclass(frozen=True)
-class Comparison:
+class Comparison(Row):
     """What :class:`CompareProblem` finds: the strategies side by side (see :meth:`to_dict`)."""
 
     arm: ArmModel
@@ -168,18 +297,21 @@ class Comparison:
     strategies: tuple[Strategy, ...]
     gravity: Any = field(default=None, repr=False, compare=False)  # Q(q, payload), for the figure
 
+    row_keys = ("kind", "name", "joints", "workspace", "payload", "target", "acceleration", "samples", "seed",
+                "extremes", "strategies")
+    kind = "compare"
+    extremes = EXTREMES_NOTE
+
     def strategy(self, name: str) -> Strategy:
         return next(s for s in self.strategies if s.name == name)
 
-    def to_dict(self) -> dict:
-        return {
-            "kind": "compare", "name": self.arm.name,
-            "joints": [{"coordinate": f"q{i + 1}", "name": c.name, "kind": c.joint}
-                       for i, c in enumerate(self.arm.coordinates)],
-            "workspace": [list(w) for w in self.workspace], "payload": list(self.payload), "target": self.target,
-            "acceleration": self.acceleration, "samples": self.samples, "seed": self.seed,
-            "extremes": EXTREMES_NOTE, "strategies": [s.to_dict() for s in self.strategies],
-        }
+    @property
+    def name(self) -> str:
+        return self.arm.name
+
+    @property
+    def joints(self) -> tuple[CompareJoint, ...]:
+        return joint_rows(self.arm, CompareJoint)
 
 
 # ----------------------------------------------------------------------------- the problem
@@ -406,14 +538,7 @@ class _Solver:
         mass = sum(w.mass for w in cw.weights)
         hardware = tuple(f"{w.mass:.4g} kg on {w.link}, {w.arm:.3g} m from the axis of {w.coordinate}"
                          for w in cw.weights)
-        details = {
-            "weights": [w.to_dict() for w in cw.weights],
-            "added_inertia": inertia,
-            "motor_torque_at_acceleration": [v * pb.acceleration for v in inertia],
-            "note": "added inertia: the largest increase of each joint's diagonal mass-matrix entry over the "
-                    "workspace (kg·m², or kg on a slide); the motor torque accelerates it alone at the stated "
-                    "acceleration",
-        }
+        details = CounterweightDetails(cw.weights, tuple(inertia), tuple(v * pb.acceleration for v in inertia))
         return Strategy("counterweights", True, None, len(cw.weights), mass, self.p_mid, joints, hardware, details,
                         self.recheck(counter, joints, counterweights=cw.weights), counter)
 
@@ -442,17 +567,16 @@ class _Solver:
             c = arm.coordinates[j]
             if isinstance(a, complex):
                 amp, phase = abs(a), cmath.phase(a)  # Q̄ = amp·sin(q + phase): the device gives −amp·sin(φ)
-                row, m = _spring_device(amp, (float(self.lo[j] + phase), float(self.hi[j] + phase)), pb)
+                fitted, m = _spring_device(amp, (float(self.lo[j] + phase), float(self.hi[j] + phase)), pb)
                 mass += m
-                springs.append(row | {"coordinate": f"q{j + 1}", "amplitude": amp, "phase_deg": math.degrees(phase)})
+                springs.append(JointSpring(fitted, f"q{j + 1}", amp, math.degrees(phase)))
                 hardware.append(f"q{j + 1} ({c.name}): crank-and-rocker, zero free length, c·r·d = {amp:.4g} N·m, "
-                                + row["summary"])
+                                + fitted.summary)
             else:
-                springs.append({"coordinate": f"q{j + 1}", "constant_force": -a})
+                springs.append(ConstantForce(f"q{j + 1}", -a))
                 hardware.append(f"q{j + 1} ({c.name}): a constant-force spring of {abs(a):.4g} N (gas spring)")
         return Strategy("springs per joint", True, None, len(avg), mass, p0, joints, tuple(hardware),
-                        {"springs": springs, "note": "each device cancels its joint's gravity torque averaged over "
-                                                     "the other joints' ranges (uniformly)"},
+                        JointSpringDetails(tuple(springs)),
                         self.recheck(devices, joints), devices)
 
     # -- 4. the source's decomposition, pruned ---------------------------------------------------
@@ -481,23 +605,23 @@ class _Solver:
         dropped = []
         for t in trace:
             ext = box_extremes(lambda x, t=t: terms_forces([t], x), self.lo, self.hi, self.q[:200])
-            dropped.append({"amplitude": t.amplitude, "form": list(t.form),
-                            "form_text": describe_form(arm, t.form)["form_text"],
-                            "largest_torque_per_joint": [abs(max(-a.value, b.value)) for a, b in ext]})
-        trains = transmissions([describe_form(arm, t.form)["drive_form"] for t in at_p0], arm.shaft_names)
+            dropped.append(DroppedTerm(t.amplitude, t.form, describe_term(arm, t).form_text,
+                                       tuple(abs(max(-a.value, b.value)) for a, b in ext)))
+        trains = transmissions([describe_term(arm, t).drive_form for t in at_p0], arm.shaft_names)
         hardware, springs, mass = [], [], 0.0
         for k, (t, tr) in enumerate(zip(at_p0, trains)):
-            row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
+            fitted, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
-            text = describe_form(arm, t.form)
-            springs.append(row | {"form_text": text["form_text"], "amplitude": t.amplitude})
-            hardware.append(f"φ{k + 1} = {text['drive_form_text']} ({tr.differentials} differential(s)): spring "
-                            f"device c·r·d = {t.amplitude:.4g} N·m, {row['summary']}")
-        details = {"terms": len(terms), "kept": len(at_p0), "target_torque": limit, "dropped": dropped,
-                   "springs": springs, "differentials": sum(t.differentials for t in trains)}
+            text = describe_term(arm, t)
+            springs.append(TermSpring(fitted, text.form_text, t.amplitude))
+            hardware.append(f"φ{k + 1} = {text.drive_form_text} ({tr.differentials} differential(s)): spring "
+                            f"device c·r·d = {t.amplitude:.4g} N·m, {fitted.summary}")
+        missed = None
         if max(j.max for j in joints) > limit:
-            details["note"] = (f"every term kept still leaves {max(j.max for j in joints):.4g} N·m over the payload "
-                               f"range, above the target {limit:.4g} N·m: the payload's range alone exceeds it")
+            missed = (f"every term kept still leaves {max(j.max for j in joints):.4g} N·m over the payload "
+                      f"range, above the target {limit:.4g} N·m: the payload's range alone exceeds it")
+        details = PrunedDetails(len(terms), len(at_p0), limit, tuple(dropped), tuple(springs),
+                                sum(t.differentials for t in trains), missed)
         return Strategy("harmonic, pruned", True, None, len(at_p0), mass, p0, joints, tuple(hardware), details,
                         self.recheck(devices, joints), devices)
 
@@ -517,16 +641,14 @@ class _Solver:
         joints = self.residuals(devices)
         hardware, springs, mass = [], [], 0.0
         for t in sorted(terms, key=lambda t: -t.amplitude):
-            text = describe_form(arm, t.form)["form_text"]
-            row, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
+            text = describe_term(arm, t).form_text
+            fitted, m = _spring_device(t.amplitude, _phi_range(t, self.lo, self.hi), pb)
             mass += m
-            springs.append(row | {"form_text": text, "amplitude": t.amplitude})
+            springs.append(TermSpring(fitted, text, t.amplitude))
             hardware.append(f"absolute angle {text}: zero-free-length spring c·r·d = {t.amplitude:.4g} N·m on a "
-                            f"parallelogram, {row['summary']}")
+                            f"parallelogram, {fitted.summary}")
         links = len({int(np.flatnonzero(np.abs(t.form) > 0)[-1]) for t in terms})
-        details = {"springs": springs, "parallelograms": max(links - 1, 0),
-                   "note": "each link's absolute angle is carried to the base by a parallelogram (its bars are not "
-                           "weighed)"}
+        details = ExactDetails(tuple(springs), max(links - 1, 0))
         return Strategy("exact springs", True, None, len(terms), mass, self.p_mid, joints, tuple(hardware), details,
                         self.recheck(devices, joints), devices)
 
@@ -589,25 +711,24 @@ def _phi_range(t: HarmonicTerm, lo, hi) -> tuple[float, float]:
     return (a, min(b, a + 2 * math.pi))
 
 
-def _spring_device(amplitude: float, phi: tuple[float, float], pb: CompareProblem) -> tuple[dict, float]:
+def _spring_device(amplitude: float, phi: tuple[float, float], pb: CompareProblem) -> tuple[SpringDevice, float]:
     """A zero-free-length tension device of ``c·r·d = amplitude`` over ``phi`` and its helical spring:
-    (description, spring mass in kg; 0 when no spring is made, the reason then in the description)."""
+    (the device, spring mass in kg; 0 when no spring is made, the reason then in its summary)."""
     lo, hi = phi
     if hi - lo < 1e-6:
         hi = lo + 1e-6
     try:
         fit = fit_spring("tension", -amplitude, (lo, hi), pb.spring_bounds)
     except BalanceError as exc:
-        return {"device": None, "spring": None, "summary": f"no device: {exc}"}, 0.0
-    row = {"device": {"c": fit.c, "r": fit.r, "r0": fit.r0, "a": fit.a, "max_force": fit.max_force,
-                      "max_rel_error": fit.max_rel_error}}
+        return SpringDevice(None, None, f"no device: {exc}"), 0.0
+    device = TensionFit(fit.c, fit.r, fit.r0, fit.a, fit.max_force, fit.max_rel_error)
     try:
         spring = design_for_device(fit, material=pb.material)
     except BalanceError as exc:
-        return row | {"spring": None, "summary": f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m; no spring: {exc}"}, 0.0
-    return row | {"spring": spring.to_dict(),
-                  "summary": f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m, {pb.material} spring "
-                             f"d = {1e3 * spring.wire_diameter_m:.3g} mm, {spring.mass_kg:.3g} kg"}, spring.mass_kg
+        return SpringDevice(device, None, f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m; no spring: {exc}"), 0.0
+    summary = (f"r = {fit.r:.3g} m, c = {fit.c:.4g} N/m, {pb.material} spring d = {1e3 * spring.wire_diameter_m:.3g} "
+               f"mm, {spring.mass_kg:.3g} kg")
+    return SpringDevice(device, spring, summary), spring.mass_kg
 
 
 def _not_planar_chain(arm: ArmModel, terms: Sequence[HarmonicTerm]) -> str | None:
@@ -620,7 +741,7 @@ def _not_planar_chain(arm: ArmModel, terms: Sequence[HarmonicTerm]) -> str | Non
         f = np.round(np.asarray(t.form), 12)
         idx = np.flatnonzero(f)
         if not (np.all(f[idx] == 1) and np.all(np.diff(idx) == 1)):
-            return (f"the term {describe_form(arm, t.form)['form_text']} is not the absolute angle of a link of a "
+            return (f"the term {describe_term(arm, t).form_text} is not the absolute angle of a link of a "
                     "planar chain (a sum q_i + … + q_k of consecutive parallel joints): the joints' axes are not "
                     "all parallel")
         first = idx[0] if first is None else first
@@ -641,7 +762,7 @@ class _PinocchioRecheck:
         self.q = solver.lo + (solver.hi - solver.lo) * np.random.default_rng(solver.pb.seed + 1).random((100, n))
         self.models: dict = {}
 
-    def __call__(self, devices, joints, counterweights=()) -> dict:
+    def __call__(self, devices, joints, counterweights=()) -> PinocchioRecheck:
         import pinocchio as pin
 
         s = self.s
@@ -658,9 +779,7 @@ class _PinocchioRecheck:
             gaps.append(float(np.max(np.abs(r - mine))))
             if i >= len(rows) - len(worst):
                 at_worst.append(abs(float(r[i - (len(rows) - len(worst))])))
-        return {"configurations": len(self.q), "payloads": list(s.p), "max_difference": max(gaps),
-                "at_worst": at_worst, "reported": [j.max for j in joints],
-                "method": "rnea(q, 0, 0) on a model rebuilt from URDF text"}
+        return PinocchioRecheck(len(self.q), tuple(s.p), max(gaps), tuple(at_worst), tuple(j.max for j in joints))
 
     def _model(self, payload: float, counterweights):
         """(model, data, q → configuration) of the arm with ``payload`` kg (and the counterweights)."""

@@ -23,11 +23,15 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from mechbase import Row
+
 from ..budget import WORK_LIMIT, ensure_affordable
 from ..errors import InvalidArm
 from ..extremes import EXTREMES_NOTE, Extreme, box_extremes
+from ..model.arm import DescribedTerm
 from ..model.pantograph import PAYLOADS, Pantograph, stroke_gradients
 from ..schema import PantographTable, parse
+from .arm import SineSizes, TensionSizes
 
 __all__ = ["PantographProblem", "PantographBalance", "pantograph_problem"]
 
@@ -61,8 +65,67 @@ def _magnitude(pair: tuple[Extreme, Extreme]) -> float:
 
 
 @dataclass(frozen=True)
-class PantographBalance:
-    """What :class:`PantographProblem` finds (see :meth:`to_dict` for the JSON).
+class Span(Row):
+    """The smallest and largest value of a quantity."""
+
+    min: float
+    max: float
+
+
+@dataclass(frozen=True)
+class ExtremesAt(Row):
+    """The smallest and largest value of a quantity and the arm's angles (degrees) where they are reached."""
+
+    min: float
+    max: float
+    at_min_deg: tuple[float, ...]
+    at_max_deg: tuple[float, ...]
+
+    @classmethod
+    def of(cls, low: Extreme, high: Extreme) -> "ExtremesAt":
+        return cls(low.value, high.value, _degrees(low), _degrees(high))
+
+
+@dataclass(frozen=True)
+class CylinderForce(Row):
+    """The cylinder's force over the workspace and the payload range, at half the payload, by payload
+    fraction, and the best of the random samples alone."""
+
+    min: float
+    max: float
+    at_min_deg: tuple[float, ...]
+    at_max_deg: tuple[float, ...]
+    half_payload: ExtremesAt
+    by_payload: dict[str, Span]
+    sampled: Span
+
+
+@dataclass(frozen=True)
+class CylinderSizes(Row):
+    """The cylinder's base point, its shortest and longest length and its shortest and longest lever about A."""
+
+    base: tuple[float, ...]
+    length_min: float
+    length_max: float
+    lever_min: float
+    lever_max: float
+
+
+@dataclass(frozen=True)
+class PantographDevices(Row):
+    """The spring devices that cancel the pantograph's one term."""
+
+    sine: SineSizes
+    tension: TensionSizes
+
+
+def _degrees(e: Extreme) -> tuple[float, ...]:
+    return tuple(math.degrees(v) for v in e.at)
+
+
+@dataclass(frozen=True)
+class PantographBalance(Row):
+    """What :class:`PantographProblem` finds (its row, :meth:`to_dict`, is the JSON).
 
     ``force`` and ``hand`` map each payload fraction (0, ½, 1) to the (min, max)
     :class:`~balance.extremes.Extreme` of the cylinder's force and of the operator's force along
@@ -101,7 +164,9 @@ class PantographBalance:
     def relative_residual(self) -> float:
         return self.max_residual / self.max_gravity_force if self.max_gravity_force > 0 else 0.0
 
+    @property
     def notes(self) -> list[str]:
+        """What a designer must know of the forces: a pulling cylinder, a large hand force."""
         p = self.pantograph
         lo, hi = self.hand_range
         hand_peak = max(-lo.value, hi.value)
@@ -115,51 +180,66 @@ class PantographBalance:
                        "vertical")
         return out
 
-    def to_dict(self) -> dict:
-        p, t = self.pantograph, self.pantograph.term()
-        dev: dict[str, Any] = {"sine": {"eT": t.amplitude}, "tension": {"crd": t.amplitude, "zero_at_deg": 90.0}}
-        if self.r is not None and self.r0 is not None:
-            dev["tension"].update({"r": self.r, "r0": self.r0, "a": self.r0,
-                                   "c": t.amplitude / (self.r * (self.r + self.r0))})
+    row_keys = ("point_weights", "point_weights_without_payload", "term", "device", "spring_moment", "drive_force",
+                "drive_force_range", "cylinder_force", "hand_force", "cylinder", "max_residual",
+                "residual_by_payload", "max_gravity_force", "relative_residual", "samples", "seed", "extremes",
+                "notes", "note")
+    extremes = EXTREMES_NOTE
+    note = "the payload sits at C: it changes the cylinder and hand forces, never the spring"
 
-        def deg(e: Extreme) -> list[float]:
-            return [math.degrees(v) for v in e.at]
+    @property
+    def point_weights(self) -> dict[str, float]:
+        return self.pantograph.point_weights(0.5)
 
+    @property
+    def point_weights_without_payload(self) -> dict[str, float]:
+        return self.pantograph.point_weights(0.0)
+
+    @property
+    def term(self) -> DescribedTerm:
+        """The one harmonic term, ``A·cos θ2``."""
+        t = self.pantograph.term()
+        return DescribedTerm(t.amplitude, t.phase, t.form, "θ2")
+
+    @property
+    def device(self) -> PantographDevices:
+        a = self.pantograph.term().amplitude
+        return PantographDevices(SineSizes(a), TensionSizes.of(a, 90.0, self.r, self.r0))
+
+    @property
+    def spring_moment(self) -> str:
+        return f"{self.pantograph.term().amplitude:.6g}·cos θ2 on the upper arm (base point C above A)"
+
+    @property
+    def drive_force(self) -> float:
+        return self.pantograph.vertical_load(0.5)
+
+    @property
+    def drive_force_range(self) -> tuple[float, float]:
+        return self.pantograph.vertical_load(0.0), self.pantograph.vertical_load(1.0)
+
+    @property
+    def cylinder_force(self) -> CylinderForce:
         f_lo, f_hi = self.force_range
-        h_lo, h_hi = self.hand_range
-        half = self.force[0.5]
-        return {
-            "point_weights": p.point_weights(0.5),
-            "point_weights_without_payload": p.point_weights(0.0),
-            "term": t.to_dict() | {"form_text": "θ2"},
-            "device": dev,
-            "spring_moment": f"{t.amplitude:.6g}·cos θ2 on the upper arm (base point C above A)",
-            "drive_force": p.vertical_load(0.5),
-            "drive_force_range": [p.vertical_load(0.0), p.vertical_load(1.0)],
-            "cylinder_force": {
-                "min": f_lo.value, "max": f_hi.value, "at_min_deg": deg(f_lo), "at_max_deg": deg(f_hi),
-                "half_payload": {"min": half[0].value, "max": half[1].value, "at_min_deg": deg(half[0]),
-                                 "at_max_deg": deg(half[1])},
-                "by_payload": {str(f): {"min": lo.value, "max": hi.value} for f, (lo, hi) in self.force.items()},
-                "sampled": {"min": f_lo.sampled, "max": f_hi.sampled},
-            },
-            "hand_force": {"min": h_lo.value, "max": h_hi.value},
-            "cylinder": {
-                "base": [float(v) for v in p.cylinder_base],
-                "length_min": self.length[0].value, "length_max": self.length[1].value,
-                "lever_min": min(abs(self.lever[0].value), abs(self.lever[1].value)),
-                "lever_max": max(abs(self.lever[0].value), abs(self.lever[1].value)),
-            },
-            "max_residual": self.max_residual,
-            "residual_by_payload": {str(f): v for f, v in self.residual.items()},
-            "max_gravity_force": self.max_gravity_force,
-            "relative_residual": self.relative_residual,
-            "samples": self.samples,
-            "seed": self.seed,
-            "extremes": EXTREMES_NOTE,
-            "notes": self.notes(),
-            "note": "the payload sits at C: it changes the cylinder and hand forces, never the spring",
-        }
+        return CylinderForce(f_lo.value, f_hi.value, _degrees(f_lo), _degrees(f_hi),
+                             ExtremesAt.of(*self.force[0.5]),
+                             {str(f): Span(lo.value, hi.value) for f, (lo, hi) in self.force.items()},
+                             Span(f_lo.sampled, f_hi.sampled))
+
+    @property
+    def hand_force(self) -> Span:
+        lo, hi = self.hand_range
+        return Span(lo.value, hi.value)
+
+    @property
+    def cylinder(self) -> CylinderSizes:
+        levers = abs(self.lever[0].value), abs(self.lever[1].value)
+        return CylinderSizes(tuple(float(v) for v in self.pantograph.cylinder_base), self.length[0].value,
+                             self.length[1].value, min(levers), max(levers))
+
+    @property
+    def residual_by_payload(self) -> dict[str, float]:
+        return {str(f): v for f, v in self.residual.items()}
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from mechbase import Row
+
 from ..budget import WORK_LIMIT, ensure_affordable
 from ..devices.countermass import CounterMass, verify_counter_mass
 from ..devices.dynamics import SlideDynamics, slide_dynamics
@@ -32,17 +34,13 @@ class DynamicsCheck:
 
 
 @dataclass(frozen=True)
-class SliderBalance:
+class SliderBalance(Row):
     """The counter-mass design and, when asked, the mass-matrix check."""
 
     counter_mass: CounterMass
     dynamics: SlideDynamics | None = None
 
-    def to_dict(self) -> dict:
-        out = self.counter_mass.to_dict()
-        if self.dynamics is not None:
-            out["dynamics"] = self.dynamics.to_dict()
-        return out
+    row_keys = ("*counter_mass", "dynamics?")
 
 
 @dataclass(frozen=True)

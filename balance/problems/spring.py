@@ -22,8 +22,10 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Mapping
+
+from mechbase import Row
 
 from ..devices.fit import DEFAULT_GRID, FitResult, LeverGeometry, SpringBounds, fit_spring
 from ..devices.helical import HelicalSpring, design_for_device
@@ -53,8 +55,9 @@ class SpringOptions:
 
 
 @dataclass(frozen=True)
-class SpringDesign:
-    """What :class:`SpringProblem` finds (see :meth:`to_dict` for the JSON)."""
+class SpringDesign(Row):
+    """What :class:`SpringProblem` finds (its row, :meth:`to_dict`, is the JSON): the fit's row, its
+    lever and notes as the designed spring fixes them, then the sensitivity, trade-off and spring."""
 
     fit: FitResult
     sensitivity: tuple[Sensitivity, ...]
@@ -62,6 +65,10 @@ class SpringDesign:
     warnings: tuple[str, ...]
     target_error: float | None
     spring: HelicalSpring | None = None
+
+    row_keys = ("*designed_fit", "sensitivity", "pareto?", "warnings", "target_error", "target_met", "spring?",
+                "kind_of_problem")
+    kind_of_problem = "spring"
 
     @property
     def error(self) -> float:
@@ -80,23 +87,14 @@ class SpringDesign:
             return lv
         return LeverGeometry.for_spring(self.spring.free_length_m, lv.compression_min, lv.compression_max, True)
 
-    def to_dict(self) -> dict:
-        out = self.fit.to_dict()
+    @property
+    def designed_fit(self) -> FitResult:
+        """The fit, its lever, deflection and lever note replaced by those of the designed spring's lever."""
         lever = self.lever
-        out["sensitivity"] = [s.to_dict() for s in self.sensitivity]
-        if self.pareto is not None:
-            out["pareto"] = [p.to_dict() for p in self.pareto]
-        out["warnings"] = list(self.warnings)
-        out["target_error"] = self.target_error
-        out["target_met"] = self.target_met
-        if self.spring is not None:
-            out["spring"] = self.spring.to_dict()
-            if lever is not None and lever.designed_from_spring:
-                out["lever"] = lever.to_dict()
-                out["deflection"] = lever.deflection_ratio
-                out["notes"] = [n for n in out["notes"] if not n.startswith("the lever reaches")] + [lever.note()]
-        out["kind_of_problem"] = "spring"
-        return out
+        if self.spring is None or lever is None or not lever.designed_from_spring:
+            return self.fit
+        notes = tuple(n for n in self.fit.notes if not n.startswith("the lever reaches")) + (lever.note(),)
+        return replace(self.fit, lever=lever, deflection=lever.deflection_ratio, notes=notes)
 
 
 @dataclass(frozen=True)

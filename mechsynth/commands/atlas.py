@@ -37,7 +37,9 @@ def add_commands(sub) -> None:
                         "meshes=4, carriers=2, lever=530/1, rotation=ID")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} of the selection')
     p.add_argument("--prismatic", metavar="A..B",
-                   help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry")
+                   help="export the variants with A…B prismatic pairs of the selected revolute chains, up to symmetry; "
+                        "with --index-curves: also index the atlas's chains with A…B prismatic pairs (slider-cranks, "
+                        "six-bars with sliders; the atlas holds them when its grid has 'prismatic')")
     p.add_argument("--idle-joints", action="store_true", help="with --prismatic: keep variants with idle joints")
     p.add_argument("--format", choices=("table", "json", "jsonl", "csv", *WRITTEN), default=None,
                    help="summary: table or json; export: jsonl, csv, table, or graphml, gml, dot, edgelist, adjacency, "
@@ -128,19 +130,26 @@ def _index_curves(args) -> int:
     from synth.atlas import IndexSettings, index_curves
 
     other = [name for name, given in (("--export", args.export), ("--where", args.where), ("--count", args.count),
-                                      ("--prismatic", args.prismatic), ("--html", args.html is not None),
+                                      ("--html", args.html is not None),
                                       ("--format", args.format not in (None, "table", "json"))) if given]
     if other:
         raise InvalidOption(f"--index-curves builds the curve index; it does not go with {', '.join(other)}")
+    if args.idle_joints:
+        raise InvalidOption("--idle-joints goes with --prismatic when exporting variants; the index takes the "
+                            "atlas's own chains")
     if args.workers is not None and args.scheduler is not None:
         raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers sample")
     if args.seed is not None and args.seed < 0:
         raise InvalidOption(f"--seed must be a whole number ≥ 0, not {args.seed}")
     from .dimension_atlas import links_range
 
-    settings = IndexSettings(samples=args.samples or 200, seed=args.seed or 0, triads=args.triads)
+    settings = IndexSettings(samples=args.samples or 200, seed=args.seed or 0, triads=args.triads,
+                             prismatic=_pairs(args.prismatic))
     result = index_curves(args.db, settings=settings, links=links_range(args.links), workers=args.workers,
                           scheduler=args.scheduler, progress=True)
+    if result.units_total == 0:
+        return nothing_found("mechanism of the atlas is planar, 1-DOF and without gears with the links and "
+                             "prismatic pairs asked for: the index has nothing to sample")
     if args.format == "json":
         print(json.dumps(result.to_dict()))
     else:
@@ -148,6 +157,22 @@ def _index_curves(args) -> int:
               f"{result.units_skipped} of them without curves), {result.curves} curves in all; "
               f"{result.seconds:.1f} s on {result.executor}")
     return 0
+
+
+def _pairs(text: str | None) -> tuple[int, int]:
+    """``--prismatic A..B`` of the index: a closed range of whole numbers of prismatic pairs (default 0..0)."""
+    from synth import InvalidOption, SynthesisError, parse_range
+
+    if text is None:
+        return 0, 0
+    try:
+        lo, hi = parse_range(text, int)
+    except SynthesisError:
+        lo = hi = None
+    if lo is None or hi is None or not 0 <= lo <= hi:
+        raise InvalidOption(f"--prismatic must be a number of prismatic pairs or a range of them, low to high "
+                            f"(e.g. 0..2), not {text!r}")
+    return lo, hi
 
 
 def _columns(rows, what: str):

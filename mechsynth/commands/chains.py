@@ -69,6 +69,10 @@ def add_commands(sub) -> None:
     """Mount ``chains`` and ``mechanisms`` on the ``mechsynth`` parser."""
     p = sub.add_parser("chains", help="type synthesis: every non-isomorphic chain")
     _add_selection(p)
+    p.add_argument("--method", choices=("listing", "orbits"),
+                   help="with --count: how each branch multigraph's chains are counted — listing (default: one "
+                   "placement of the binary links per chain, as a listing finds them) or orbits (Burnside's lemma "
+                   "over the multigraph's automorphisms, without listing them; the same counts)")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)
@@ -109,6 +113,10 @@ def _check_options(args) -> None:
         raise _invalid("--workers and --scheduler contradict each other: the scheduler's workers run the units")
     if args.timeout is not None and args.scheduler is None:
         raise _invalid("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
+    if getattr(args, "method", None) is not None and not args.count:
+        raise _invalid("--method goes with --count (it says how chains are counted; a listing lists them)")
+    if getattr(args, "method", None) is not None and (args.chain is not None or args.loop_classes is not None):
+        raise _invalid("--method goes with a query's count, not with --chain or --loop-classes")
     if args.count and args.format in WRITTEN:
         raise _invalid(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of chains)")
 
@@ -246,7 +254,8 @@ def _run(args) -> int:
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
         if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
-            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None, **extra)
+            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
+                                  method=args.method or "listing", **extra)
         else:
             result = count_mechanisms(query, input_link=args.input_link, **extra)
         if write_count(result.to_dict(), args.format or "json") == 0:

@@ -101,7 +101,8 @@ def add_commands(sub) -> None:
                    "(one of infinitely many exact solutions is returned)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
-    p.add_argument("--workers", type=workers, default=1, help="processes for the global search (default 1)")
+    p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
+                   "generations, or (with --db) polishing the topologies (default 1)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
                    "(the result with its linkage) or jsonl (one row)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
@@ -113,7 +114,8 @@ def add_commands(sub) -> None:
     p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
     p.add_argument("--top", type=workers, default=5, metavar="K", help="with --db: topologies polished (default 5; "
                    "the best of every link count is always among them)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="with --db: polish the topologies on a Dask scheduler")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
+                   "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
     p.set_defaults(run=_run)
 
 
@@ -122,14 +124,16 @@ def _check(args) -> None:
     from synth import InvalidOption
 
     if args.db is None:
-        alone = [name for name, value in (("--links", args.links), ("--top", args.top != 5),
-                                          ("--scheduler", args.scheduler)) if value]
+        alone = [name for name, value in (("--links", args.links), ("--top", args.top != 5)) if value]
         if alone:
             raise InvalidOption(f"{', '.join(alone)} go{'es' * (len(alone) == 1)} with --db (the search over an atlas)")
     else:
         from .dimension_atlas import check
 
         check(args)
+    if args.scheduler is not None and args.workers is not None:
+        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers do the work")
+    args.workers = args.workers or 1
     if args.db is None and bool(args.linkage) == bool(args.mechanism):
         raise InvalidOption("give one mechanism: --linkage FILE, or --mechanism CHAIN --frame F"
                             + (" (not both)" if args.linkage else ""))
@@ -200,7 +204,7 @@ def _run(args) -> int:
             bar.set_postfix_str(f"best {math.sqrt(cost):.3g}" if cost < 1e3 else "")
 
         result = synthesize(mechanism, target, tracer_link=args.tracer_link, constraints=constraints,
-                            budget=args.budget, seed=args.seed, workers=args.workers,
+                            budget=args.budget, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
                             underdetermined=args.underdetermined, progress=progress)
     _write(result, args.format)
     if not result.met:

@@ -30,9 +30,6 @@ def check(args) -> None:
     if given:
         raise InvalidOption(f"--db searches every topology of the atlas: it does not go with {', '.join(given)} "
                             "(which name one topology)")
-    if args.scheduler is not None and args.workers != 1:
-        raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers polish the "
-                            "topologies")
 
 
 def links_range(text: str | None) -> tuple[int, int] | None:

@@ -179,7 +179,6 @@ def _linkage(args):
 
 
 def _run(args) -> int:
-    from synth import InvalidOption
     from synth.motion import motion_range, sweep
     from synth import JointKind
 

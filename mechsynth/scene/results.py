@@ -11,6 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from mechbase import Row
 from synth import SynthesisError
 
 __all__ = ["SceneError", "Scene", "Check", "SceneResult", "DirectoryResult"]
@@ -57,7 +58,7 @@ class Scene:
 
 
 @dataclass(frozen=True)
-class Check:
+class Check(Row):
     """One expectation: ``status`` is ``"met"``, ``"failed"`` or ``"skipped"``."""
 
     key: str
@@ -66,13 +67,9 @@ class Check:
     status: str
     message: str
 
-    def to_dict(self) -> dict:
-        return {"key": self.key, "expected": self.expected, "actual": self.actual,
-                "status": self.status, "message": self.message}
-
 
 @dataclass(frozen=True)
-class SceneResult:
+class SceneResult(Row):
     """What a scene computed and how each expectation fared.
 
     ``results`` maps each computation to its JSON-able result; ``files`` lists the
@@ -89,6 +86,14 @@ class SceneResult:
     notes: tuple[str, ...] = ()
     seconds: float = 0.0
 
+    row_keys = ("path", "name", "description", "compute", "ok", "results", "checks", "files", "notes",
+                "seconds=seconds_shown")
+
+    @property
+    def seconds_shown(self) -> float:
+        """The run time to the millisecond."""
+        return round(self.seconds, 3)
+
     @property
     def ok(self) -> bool:
         """True when no expectation failed (skipped ones do not count against it)."""
@@ -98,15 +103,26 @@ class SceneResult:
     def failed(self) -> list[Check]:
         return [c for c in self.checks if c.status == "failed"]
 
-    def to_dict(self) -> dict:
-        return {"path": self.path, "name": self.name, "description": self.description,
-                "compute": list(self.compute), "ok": self.ok, "results": self.results,
-                "checks": [c.to_dict() for c in self.checks], "files": list(self.files),
-                "notes": list(self.notes), "seconds": round(self.seconds, 3)}
 
 
 @dataclass(frozen=True)
-class DirectoryResult:
+class SceneFileError(Row):
+    """A scene file that could not be run, and why (one sentence)."""
+
+    path: str
+    message: str
+
+
+@dataclass(frozen=True)
+class SkippedFile(Row):
+    """A file of the directory that is no scene, and why it was passed over."""
+
+    path: str
+    reason: str
+
+
+@dataclass(frozen=True)
+class DirectoryResult(Row):
     """Every scene of a directory: results, errors (one sentence each) and skipped files."""
 
     directory: str
@@ -114,12 +130,16 @@ class DirectoryResult:
     errors: tuple[tuple[str, str], ...] = field(default=())
     skipped: tuple[tuple[str, str], ...] = field(default=())
 
+    row_keys = ("directory", "ok", "scenes=results", "errors=error_rows", "skipped=skipped_rows")
+
     @property
     def ok(self) -> bool:
         return not self.errors and all(r.ok for r in self.results)
 
-    def to_dict(self) -> dict:
-        return {"directory": self.directory, "ok": self.ok,
-                "scenes": [r.to_dict() for r in self.results],
-                "errors": [{"path": p, "message": m} for p, m in self.errors],
-                "skipped": [{"path": p, "reason": m} for p, m in self.skipped]}
+    @property
+    def error_rows(self) -> tuple[SceneFileError, ...]:
+        return tuple(SceneFileError(*e) for e in self.errors)
+
+    @property
+    def skipped_rows(self) -> tuple[SkippedFile, ...]:
+        return tuple(SkippedFile(*s) for s in self.skipped)

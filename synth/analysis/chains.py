@@ -158,6 +158,9 @@ def analyze_chain(chain: Chain | str, *, dof: int | None = None, h: int | None =
     if report.kind == "redundant constraints":
         advice.append(f"its pairs carry {report.redundant} redundant constraint(s) the count does not see "
                       f"(W = {W}, the count {chain.dof}): turn a prismatic pair into a revolute one or add a link")
+    elif W > chain.dof and report.ok:  # every proper sub-chain passes: the whole chain is over-constrained
+        advice.append(f"the chain as a whole carries {W - chain.dof} redundant constraint(s): the count gives "
+                      f"{chain.dof}, its links move with W = {W}; remove joints or add links (--repairs)")
     elif not report.ok:
         k = report.threshold - report.worst_mobility
         advice.append(

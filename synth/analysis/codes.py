@@ -66,11 +66,11 @@ LOWER_W = ("add {k} binary link(s), each jointed to two links already there, or 
            "their strings (a–x–b becomes a–b); each lowers W by 1")
 
 
-def _advice(defect: int, code: Code) -> str:
+def _advice(defect: int) -> str:
     """What to change for D = 0, in the edits of :mod:`synth.analysis.repair` (the repairs list such edits,
     each checked on a chain).
 
-    >>> _advice(-1, Code.parse("6301/0")).split("; ")[1]
+    >>> _advice(-1).split("; ")[1]
     'remove 1 binary link(s) with both their joints, or insert 1 binary link(s) into joints (a joint a–b becomes a–x–b)'
     """
     if defect == 0:
@@ -113,17 +113,20 @@ def analyze(
     if (code is None) == (counts is None):
         raise InvalidOption("give a code or explicit counts, not both or neither")
     if code is None:
-        if any(int(i) < 1 or int(c) < 0 for i, c in counts.items()):
+        counts = {int(i): int(c) for i, c in counts.items()}  # (keys and counts as numbers or their text)
+        if any(i < 1 or c < 0 for i, c in counts.items()):
             raise ImpossibleParameters("counts are n_i ≥ 0 for links with i ≥ 1 joints")
-        top = max((int(i) for i, c in counts.items() if c), default=2)
-        assortment = tuple(int(counts.get(i, 0)) for i in range(2, top + 1))
-        code = Code(assortment, int(v), None, int(counts.get(1, 0)))
+        top = max((i for i, c in counts.items() if c), default=2)
+        assortment = tuple(counts.get(i, 0) for i in range(2, top + 1))
+        code = Code(assortment, int(v), None, counts.get(1, 0))
     elif isinstance(code, str):
         code = Code.parse(code)
     check_motion_space(h), check_extra_mobility(f)
     if dof is not None:
         check_dof(dof)
     n, K = code.links, code.loops
+    if n == 0:
+        raise ImpossibleParameters(f"code {code} counts no link: a chain has links")
     if K < 0:
         raise ImpossibleParameters(f"code {code} has fewer joints than a connected chain of {n} links needs")
     if loop_classes and sum(int(k) for k in loop_classes.values()) != K:
@@ -147,7 +150,7 @@ def analyze(
     )
     if dof is not None:
         D = W - dof
-        result.update(required_dof=dof, defect=D, advice=_advice(D, code))
+        result.update(required_dof=dof, defect=D, advice=_advice(D))
         if h == 3 and not loop_classes:
             result["criterion_holds"] = (dof + 1) + 2 * K == n + f
     return Analysis(**result)

@@ -24,7 +24,9 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
+
+from mechbase import Row
 
 from ..structure.chain import Chain
 from ..structure.joints import MESH, PRISMATIC
@@ -34,7 +36,7 @@ __all__ = ["Finding", "Comparison", "compare", "why_extra"]
 
 
 @dataclass(frozen=True)
-class Finding:
+class Finding(Row):
     """One difference: ``kind`` duplicate, missing or extra; the chain's ``id`` and joint list;
     ``given`` where it was given (sources, empty for a missing chain); ``row`` in the engine's
     listing (missing chains); ``reason`` in words; ``links`` the links it concerns (the rigid or
@@ -50,7 +52,7 @@ class Finding:
 
 
 @dataclass(frozen=True)
-class Comparison:
+class Comparison(Row):
     """The outcome of :func:`compare`: counts and the findings (duplicates, missing, extra)."""
 
     query: dict
@@ -71,10 +73,16 @@ class Comparison:
         """How many findings of a kind (missing chains: all of them, listed or not)."""
         return self.missing if kind == "missing" else sum(1 for f in self.findings if f.kind == kind)
 
-    def to_dict(self) -> dict:
-        d = asdict(self)
-        d.update(agree=self.agree, duplicates=self.count("duplicate"), extra=self.count("extra"))
-        return d
+    @property
+    def duplicates(self) -> int:
+        return self.count("duplicate")
+
+    @property
+    def extra(self) -> int:
+        return self.count("extra")
+
+    row_keys = ("query", "listing", "given", "distinct", "engine", "matched", "findings", "missing", "agree",
+                "duplicates", "extra")
 
 
 def _named(entry, links) -> list:

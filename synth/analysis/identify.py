@@ -38,8 +38,10 @@ True
 from __future__ import annotations
 
 import hashlib
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import lru_cache
+
+from mechbase import Row
 
 from ..errors import MalformedChain
 from ..structure.chain import Chain, chain_id
@@ -57,7 +59,7 @@ _INDEXED_CLASS_LOOPS = 4
 
 
 @dataclass(frozen=True)
-class Identity:
+class Identity(Row):
     """What a chain (or mechanism) is: see the module docstring.  Links are named as the source
     named them (``names``; numbers 0 … n − 1 where the source used those).
 
@@ -105,21 +107,15 @@ class Identity:
     classes: list | None = None  # a heterogeneous chain's loop class of each link
     chain: Chain | None = field(default=None, repr=False, compare=False)
 
-    def to_dict(self) -> dict:
-        """JSON-able, and a chain row again: ``identify`` reads its own output back."""
-        d = asdict(self)
-        d.pop("chain")
-        if d["kinds"] is None:
-            d.pop("kinds")
-        if d["input_link"] is None:
-            d.pop("input_link")
-        if d["classes"] is None:
-            d.pop("classes")
-        if d["frame"] is None:
-            for key in ("frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
-                        "mechanisms_listed", "inversion"):
-                d.pop(key)
-        return d
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row, a chain row again (``identify`` reads its own output back): every field but the chain,
+        the kinds, input link and classes where there are some, the mechanism's fields where there is a frame."""
+        mechanism = {"frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
+                     "mechanisms_listed", "inversion"}
+        optional = {"kinds", "input_link", "classes"}
+        return tuple(f.name + "?" * (f.name in optional) for f in fields(self)
+                     if f.name != "chain" and (self.frame is not None or f.name not in mechanism))
 
 
 def _named(names, links):
@@ -143,9 +139,10 @@ def listing_query(chain: Chain, dof: int, verdict, idle: bool):
     if chain.classes is not None:
         return _class_listing(chain, dof, verdict)
     rigid = None
+    # (redundant constraints: of a sub-chain, or of the whole chain, whose true W is above its count)
+    if verdict is not None and (verdict.worst_mobility < 0 or verdict.redundant or dof != chain.dof):
+        return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
     if verdict is not None and verdict.worst_mobility < 1:
-        if verdict.worst_mobility < 0 or verdict.redundant:
-            return None, "an over-constrained chain (a sub-chain with W(S) < 0, or redundant constraints) is in no listing"
         rigid = True if dof >= 1 else None
     code = str(chain.code)
     prismatic = chain.kinds.count(PRISMATIC) if not chain.all_revolute else None
@@ -302,7 +299,7 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
 
     chain, names = entry.chain, entry.names
     loose = [x for x, d in enumerate(chain.degrees) if d == 0]
-    if loose and chain.links > 1:
+    if loose:  # (a Chain made in Python; a reader refuses it first)
         raise MalformedChain(f"{entry.source}: link {_named(names, loose)[0]} is in no joint: a chain's links are all "
                              "jointed")
     connected = chain.is_connected()

@@ -19,7 +19,9 @@ and turn the sample into a start linkage in the target's frame (:mod:`synth.atla
 A unit commits in one transaction with its ``done`` row, so an interrupted build resumes where it
 stopped; the index's settings (samples, harmonics, steps, seed) are kept in ``meta`` and a build
 with other settings is refused.  Mechanisms moved by Newton's method (triads and higher groups,
-about a second a sample) are left out unless asked for; prismatic and geared chains are not indexed.
+about a second a sample) are left out unless asked for; chains with prismatic pairs (slider-cranks,
+six-bars with sliders: the atlas's variants of a grid with ``prismatic``) are indexed on request, their
+sliding lines turned at random with the joints and stored with each sample; geared chains are not indexed.
 
 Example
 -------
@@ -45,6 +47,7 @@ import numpy as np
 
 from ..errors import InvalidOption, MotionError, SynthesisError
 from ..structure.chain import Chain, Mechanism
+from ..structure.joints import PRISMATIC
 from .database import AtlasError, open_atlas, refuse_unwritable, transaction
 
 __all__ = ["INDEX_VERSION", "HARMONICS", "STEPS", "IndexSettings", "IndexResult", "CurveUnit", "harmonics",
@@ -68,7 +71,7 @@ CREATE TABLE IF NOT EXISTS curve_samples (
     id INTEGER PRIMARY KEY, chain INTEGER NOT NULL REFERENCES chains, frame INTEGER NOT NULL,
     input_link INTEGER NOT NULL, input_joint INTEGER NOT NULL, sample INTEGER NOT NULL,
     tracer_link INTEGER NOT NULL, points TEXT NOT NULL, tracer TEXT NOT NULL,
-    timed BLOB NOT NULL, untimed BLOB NOT NULL,
+    timed BLOB NOT NULL, untimed BLOB NOT NULL, slides TEXT,
     UNIQUE (chain, frame, input_link, sample, tracer_link)
 );
 """
@@ -90,15 +93,23 @@ class IndexSettings:
         Seeds every mechanism's random poses (with the mechanism's identity).
     triads : bool
         Also index the mechanisms moved by Newton's method (about a second a sample).
+    prismatic : (int, int)
+        Index the atlas's chains with this many prismatic pairs (default (0, 0): revolute chains only;
+        (0, 2): slider-cranks and six-bars with one or two sliders too).  Only mechanisms whose input
+        is a revolute joint are sampled (a crank: a slide's curves are not closed).
     """
 
     samples: int = 200
     seed: int = 0
     triads: bool = False
+    prismatic: tuple[int, int] = (0, 0)
 
     def to_meta(self) -> str:
-        return json.dumps({"samples": self.samples, "seed": self.seed, "triads": self.triads,
-                           "harmonics": HARMONICS, "steps": STEPS}, sort_keys=True)
+        meta = {"samples": self.samples, "seed": self.seed, "triads": self.triads, "harmonics": HARMONICS,
+                "steps": STEPS}
+        if tuple(self.prismatic) != (0, 0):  # (an index of revolute chains keeps the settings it always had)
+            meta["prismatic"] = list(self.prismatic)
+        return json.dumps(meta, sort_keys=True)
 
 
 @dataclass(frozen=True)
@@ -244,14 +255,20 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
     if not links:
         return _UnitRows(unit, None, "skipped", "no link carries a coupler curve (every moving link is jointed to "
                                                 "the frame)", seconds=time.process_time() - start)
+    if not unit.settings.triads:
+        newton = _moved_by_newton(mechanism)
+        if newton is not None:  # (known before a moving pose is searched for: that costs seconds with Newton)
+            return _UnitRows(unit, newton, "skipped", _NEWTON_NOTE, seconds=time.process_time() - start)
     try:
         base = linkage_from_layout(mechanism)
     except MotionError as exc:
         return _UnitRows(unit, None, "skipped", f"no moving pose: {exc}", seconds=time.process_time() - start)
     joint = base.inputs[0]
+    if base.kind(joint) == PRISMATIC:
+        return _UnitRows(unit, joint, "skipped", "its input slides: only a crank's coupler curves are closed and "
+                                                 "indexed", seconds=time.process_time() - start)
     if not unit.settings.triads and not _closed_form(base):
-        return _UnitRows(unit, joint, "skipped", "moved by Newton's method (a triad or higher group): index it with "
-                                                 "triads", seconds=time.process_time() - start)
+        return _UnitRows(unit, joint, "skipped", _NEWTON_NOTE, seconds=time.process_time() - start)
     rng = _unit_seed(unit, chain.certificate)
     size = base.scale
     out = _UnitRows(unit, joint, "done", None)
@@ -260,13 +277,14 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
         out.tries += 1
         spread = rng.uniform(0.05, 0.35) * size
         points = base.points + rng.normal(size=base.points.shape) * spread
+        slides = {k: _turned(u, rng.normal() * spread / size) for k, u in base.slides.items()}
         tracers = {}
         for link, ks in zip(links, groups):
             centre = points[ks].mean(axis=0)
             reach = max(float(np.hypot(*(points[ks] - centre).T).max()), 0.05 * size)
             tracers[f"T{link}"] = (link, tuple(centre + rng.normal(size=2) * 0.6 * reach))
         try:
-            linkage = Linkage(base.mechanism, base.inputs, points, tracers=tracers)
+            linkage = Linkage(base.mechanism, base.inputs, points, slides, tracers=tracers)
             motion = sweep(linkage, steps=STEPS + 1)  # a crank turns once from its pose; a rocker does not
         except SynthesisError:
             continue
@@ -288,11 +306,51 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
                 at = tracers[f"T{link}"][1]
                 out.rows.append((out.tries, link, json.dumps(np.round(points, 12).tolist()),
                                  json.dumps([round(float(at[0]), 12), round(float(at[1]), 12)]),
-                                 _blob(timed), _blob(untimed)))
+                                 _blob(timed), _blob(untimed), _slides_text(linkage)))
     out.seconds = time.process_time() - start
     if not out.rows:
         out.status, out.note = "skipped", f"none of {out.tries} random poses near its drawing turns its input fully"
     return out
+
+
+def _turned(u, angle: float) -> tuple[float, float]:
+    """The direction u turned by ``angle`` (rad)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return c * u[0] - s * u[1], s * u[0] + c * u[1]
+
+
+def _slides_text(linkage) -> str | None:
+    """A sample's sliding directions as JSON {joint index: [x, y]} (None for a revolute chain)."""
+    if not linkage.slides:
+        return None
+    return json.dumps({str(k): [round(float(x), 15), round(float(y), 15)] for k, (x, y) in linkage.slides.items()})
+
+
+def slides_of(text: str | None) -> dict:
+    """The sliding directions a sample stored (:func:`_slides_text`), by joint index.
+
+    >>> slides_of('{"3": [0.0, 1.0]}'), slides_of(None)
+    ({3: (0.0, 1.0)}, {})
+    """
+    return {} if text is None else {int(k): (float(x), float(y)) for k, (x, y) in json.loads(text).items()}
+
+
+_NEWTON_NOTE = "moved by Newton's method (a triad or higher group): index it with triads"
+
+
+def _moved_by_newton(mechanism: Mechanism) -> int | None:
+    """The input joint of a mechanism the motion layer moves by Newton's method (its groups after the
+    input are not all dyads: a fact of the chain, frame and input, not of the dimensions), found on
+    its drawing's pose without moving it; None when it decomposes into dyads or the drawing cannot
+    be posed (the full posing then decides)."""
+    from ..draw import layout
+    from ..motion import link_poses, linkage_from_pose
+
+    try:
+        drawn = linkage_from_pose(mechanism, layout(mechanism.chain).joints, nudge=True)
+        return drawn.inputs[0] if link_poses(drawn, [0.0]).discriminants is None else None
+    except MotionError:
+        return None
 
 
 def _closed_form(linkage) -> bool:
@@ -342,15 +400,17 @@ def _info(conn: sqlite3.Connection, db) -> dict:
 
 
 def index_units(conn: sqlite3.Connection, settings: IndexSettings, links: tuple[int, int] | None = None) -> list:
-    """Every mechanism (with its input link, up to symmetry) of the atlas's planar, all-revolute
-    1-DOF chains, with ``links`` in the given range: the units of the index, in the atlas's order."""
+    """Every mechanism (with its input link, up to symmetry) of the atlas's planar 1-DOF chains without
+    gears, with ``links`` in the given range and as many prismatic pairs as ``settings.prismatic``
+    allows: the units of the index, in the atlas's order."""
     from ..synthesis.type_synthesis import mechanisms_of
 
     lo, hi = links or (0, 10 ** 9)
+    p_lo, p_hi = settings.prismatic
     units = []
     for chain_id_, text in conn.execute(
-            "SELECT id, chain FROM chains WHERE dof = 1 AND h = 3 AND prismatic = 0 AND meshes = 0 "
-            "AND links BETWEEN ? AND ? ORDER BY links, v, code, certificate", (lo, hi)):
+            "SELECT id, chain FROM chains WHERE dof = 1 AND h = 3 AND prismatic BETWEEN ? AND ? AND meshes = 0 "
+            "AND links BETWEEN ? AND ? ORDER BY links, prismatic, v, code, certificate", (p_lo, p_hi, lo, hi)):
         chain = Chain.from_dict(json.loads(text))
         for m in mechanisms_of(chain, input_link=True):
             units.append(CurveUnit(chain_id_, text, m.frame, -1 if m.input_link is None else m.input_link, settings))
@@ -402,6 +462,10 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
     if isinstance(settings.samples, bool) or not isinstance(settings.samples, int) or not 1 <= settings.samples <= 100_000:
         raise InvalidOption(f"samples must be a whole number 1 … 100 000 per mechanism, not {settings.samples!r}")
+    p_lo, p_hi = settings.prismatic
+    if not (isinstance(p_lo, int) and isinstance(p_hi, int) and 0 <= p_lo <= p_hi):
+        raise InvalidOption(f"prismatic must be a range of whole numbers of prismatic pairs, low to high, not "
+                            f"{settings.prismatic!r}")
     path = Path(db)
     if not path.is_file():
         raise AtlasError(f"no atlas at {path} (run 'mechsynth grid GRID.toml --db {path}' first)")
@@ -421,6 +485,8 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
             for statement in _TABLES.split(";"):
                 if statement.strip():
                     conn.execute(statement)
+            if "slides" not in {row[1] for row in conn.execute("PRAGMA table_info(curve_samples)")}:
+                conn.execute("ALTER TABLE curve_samples ADD COLUMN slides TEXT")  # (an index built before sliders)
             conn.execute("INSERT OR IGNORE INTO meta VALUES ('curve_index_version', ?)", (str(INDEX_VERSION),))
             conn.execute("INSERT OR IGNORE INTO meta VALUES ('curve_index', ?)", (settings.to_meta(),))
         units = index_units(conn, settings, links)
@@ -464,8 +530,10 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
 
 
 def _said(settings: dict) -> str:
+    lo, hi = settings.get("prismatic", (0, 0))
     return (f"{settings['samples']} samples per mechanism, seed {settings['seed']}"
-            + (", triads" if settings.get("triads") else ", without triads"))
+            + (", triads" if settings.get("triads") else ", without triads")
+            + (f", {lo}..{hi} prismatic pairs" if (lo, hi) != (0, 0) else ""))
 
 
 def _commit(conn: sqlite3.Connection, result: _UnitRows) -> None:
@@ -474,7 +542,7 @@ def _commit(conn: sqlite3.Connection, result: _UnitRows) -> None:
     with transaction(conn):
         conn.executemany(
             "INSERT OR IGNORE INTO curve_samples (chain, frame, input_link, input_joint, sample, tracer_link, points, "
-            "tracer, timed, untimed) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+            "tracer, timed, untimed, slides) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
             [(u.chain, u.frame, u.input_link, result.input_joint, *row) for row in result.rows])
         conn.execute("INSERT OR REPLACE INTO curve_units VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
                      (u.chain, u.frame, u.input_link, result.input_joint, result.status, result.note,

@@ -268,7 +268,8 @@ def open_atlas(path: str | Path, *, write: bool = False, check_pages: bool | Non
         conn.close()
         raise
     conn.execute("PRAGMA foreign_keys = OFF")
-    conn.create_function("chain_id", 1, chain_id, deterministic=True)  # for --where id=…
+    # for --where id=… and rotation=… (NULL in, NULL out: a chain that is no gear train has no rotation graph)
+    conn.create_function("chain_id", 1, lambda c: None if c is None else chain_id(c), deterministic=True)
     return conn
 
 

@@ -16,9 +16,10 @@ import json
 import re
 import sqlite3
 from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
-from mechbase import parse_range
+from mechbase import Row, parse_range
 
 from ..errors import InvalidOption, MalformedCode
 from ..structure.chain import Chain, Mechanism
@@ -26,7 +27,7 @@ from ..structure.code import Code
 from ..gears.train import GearTrain
 from .database import SCHEMA_VERSION, _reading, chain_id, open_atlas
 
-__all__ = ["parse_where", "export", "summary"]
+__all__ = ["parse_where", "export", "summary", "AtlasChain", "AtlasMechanism", "TrainColumns"]
 
 
 # ------------------------------------------------------------------ queries
@@ -172,6 +173,60 @@ def _export_rows(conn: sqlite3.Connection, db, what: str, condition: str, params
         conn.close()
 
 
+@dataclass(frozen=True)
+class TrainColumns(Row):
+    """What a gear train adds to its chain's row in an atlas: the train as text, the carrier of each
+    mesh, the code of its lever analogue and its rotation graph's id and certificate."""
+
+    train: str
+    carriers: tuple[int, ...]
+    lever_code: str | None
+    rotation_id: str
+    rotation_certificate: str
+
+    row_keys = ("kind", "train", "carriers", "lever_code", "rotation_id", "rotation_certificate")
+    kind = "gears"
+
+    @classmethod
+    def of(cls, train: str | None, lever_code: str | None, rotation: str | None) -> "TrainColumns | None":
+        """The columns of a stored train (None: the chain is no gear train)."""
+        if train is None:
+            return None
+        return cls(train, GearTrain.parse(train).carriers, lever_code, chain_id(rotation), rotation)
+
+
+@dataclass(frozen=True)
+class AtlasChain(Row):
+    """A chain of an atlas as ``atlas --format`` and :func:`export` give it: the chain's own row
+    (``Chain.to_dict()``, as stored), its id, its links' degrees, whether it is fractionated, the
+    cells that hold it and, for a gear train, the train's columns."""
+
+    chain: dict
+    id: str
+    degrees: tuple[int, ...]
+    fractionated: bool
+    cells: tuple[str, ...]
+    gears: TrainColumns | None = None
+
+    row_keys = ("*chain", "id", "degrees", "fractionated", "cells", "*gears?")
+
+
+@dataclass(frozen=True)
+class AtlasMechanism(Row):
+    """A mechanism of an atlas: its chain's row (without the chain's certificate), the train's columns
+    for a gear train, the chain's id and certificate, its own certificate, frame and input link."""
+
+    chain: dict
+    gears: TrainColumns | None
+    chain_id: str
+    chain_certificate: str
+    certificate: str
+    frame: int
+    input_link: int | None = None
+
+    row_keys = ("*chain", "*gears?", "chain_id", "chain_certificate", "certificate", "frame", "input_link?")
+
+
 def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> Iterator[dict]:
     train = "t.train, t.lever_code, t.rotation"
     if what == "chains":
@@ -180,32 +235,20 @@ def _rows(conn: sqlite3.Connection, what: str, condition: str, params: list) -> 
                f"FROM chains c LEFT JOIN trains t ON t.chain = c.id WHERE {condition} {_ORDER}")
         for chain, degrees, fractionated, cells, *gears in conn.execute(sql, params):
             row = json.loads(chain)
-            row["id"] = chain_id(row["certificate"])
-            row["degrees"] = [int(x) for x in degrees.split()]
-            row["fractionated"] = bool(fractionated)
-            row["cells"] = sorted(cells.split(";")) if cells else []
-            yield _with_train(row, *gears)
+            yield AtlasChain(row, chain_id(row["certificate"]), tuple(int(x) for x in degrees.split()),
+                             bool(fractionated), tuple(sorted(cells.split(";"))) if cells else (),
+                             TrainColumns.of(*gears)).to_dict()
     else:
         sql = (f"SELECT c.chain, k.frame, k.input_link, {train} FROM mechanisms k "
                f"JOIN chains c ON c.id = k.chain LEFT JOIN trains t ON t.chain = c.id WHERE {condition} "
                f"{_ORDER}, k.input_link >= 0, k.frame, k.input_link")
         for chain, frame, input_link, *gears in conn.execute(sql, params):
-            row = _with_train(json.loads(chain), *gears)
-            mechanism = Mechanism(Chain.from_dict(row), frame, None if input_link < 0 else input_link)
-            row["chain_id"] = chain_id(row["certificate"])
-            row["chain_certificate"] = row.pop("certificate")
-            row.update(certificate=mechanism.certificate, frame=frame)
-            if input_link >= 0:
-                row["input_link"] = input_link
-            yield row
-
-
-def _with_train(row: dict, train: str | None, lever_code: str | None, rotation: str | None) -> dict:
-    """A chain's row, with what its gear train adds when it is one."""
-    if train is not None:
-        row.update(kind="gears", train=train, carriers=list(GearTrain.parse(train).carriers), lever_code=lever_code,
-                   rotation_id=chain_id(rotation), rotation_certificate=rotation)
-    return row
+            row = json.loads(chain)
+            driven = None if input_link < 0 else input_link
+            mechanism = Mechanism(Chain.from_dict(row), frame, driven)
+            certificate = row.pop("certificate")
+            yield AtlasMechanism(row, TrainColumns.of(*gears), chain_id(certificate), certificate,
+                                 mechanism.certificate, frame, driven).to_dict()
 
 
 def summary(db: str | Path) -> dict:

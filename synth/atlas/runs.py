@@ -39,6 +39,8 @@ from pathlib import Path
 
 import pynauty
 
+from mechbase import Row
+
 from ..errors import InvalidOption, QueryTooLarge, option
 from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
@@ -158,8 +160,9 @@ def _commit(conn: sqlite3.Connection, result: UnitRows, run: int) -> int:
 
 # ------------------------------------------------------------------ running
 @dataclass
-class GridRunResult:
-    """What a grid run did: units (total, already done, run now), chains and mechanisms, time."""
+class GridRunResult(Row):
+    """What a grid run did: units (total, already done, run now), chains and mechanisms, time (its row
+    gives the seconds to the millisecond and the rate to a tenth)."""
 
     status: str
     units_total: int
@@ -172,15 +175,20 @@ class GridRunResult:
     executor: str = ""
     cells: int = 0
 
+    row_keys = ("status", "units_total", "units_skipped", "units_run", "chains_found", "chains_new",
+                "mechanisms_found", "seconds=seconds_shown", "executor", "cells", "chains_per_second=rate_shown")
+
     @property
     def chains_per_second(self) -> float:
         return self.chains_found / self.seconds if self.seconds > 0 else 0.0
 
-    def to_dict(self) -> dict:
-        d = dict(self.__dict__)
-        d["chains_per_second"] = round(self.chains_per_second, 1)
-        d["seconds"] = round(self.seconds, 3)
-        return d
+    @property
+    def seconds_shown(self) -> float:
+        return round(self.seconds, 3)
+
+    @property
+    def rate_shown(self) -> float:
+        return round(self.chains_per_second, 1)
 
 
 def _cell_row(cell: Cell | GearCell, units: int) -> tuple:

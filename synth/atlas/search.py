@@ -16,8 +16,8 @@ path — retrieval from the atlas's curve index, then the polish of :func:`synth
 
 Retrieval can miss: a topology whose samples are all far from the target's shape (the samples are a
 few hundred random poses, not every dimension), curves of rockers (only cranks are indexed), of
-mechanisms moved by Newton's method unless the index holds them, of prismatic and geared chains, and
-open paths (the descriptors are of closed curves).
+mechanisms moved by Newton's method unless the index holds them, of prismatic chains unless the index
+holds them, of geared chains, and open paths (the descriptors are of closed curves).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from scipy.optimize import minimize_scalar
 
 from ..errors import BadTarget, InvalidOption, SynthesisError
 from ..structure.chain import Chain, Mechanism
-from .curves import HARMONICS, _info, harmonics, unblob, untimed_parameter
+from .curves import HARMONICS, _info, harmonics, slides_of, unblob, untimed_parameter
 from .database import open_atlas
 
 __all__ = ["Candidate", "AtlasMatch", "AtlasSearchResult", "descriptor_of", "retrieve", "search_atlas"]
@@ -287,11 +287,12 @@ def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, pe
 
 
 # ------------------------------------------------------------------ from a sample to a start linkage
-def start_linkage(candidate: Candidate, chain: Chain, points: np.ndarray, tracer_at, target):
+def start_linkage(candidate: Candidate, chain: Chain, points: np.ndarray, tracer_at, target, slides=None):
     """The candidate's sample as a linkage in the target's frame, posed at the first target point:
     mirrored if its mirror image fits, turned and scaled by λ, moved so its curve's centre is the
     target's, its input set where its tracer point meets the target's first point (timed: the
-    input the alignment gives; untimed: the nearest point of its curve).  Its tracer point is "P".
+    input the alignment gives; untimed: the nearest point of its curve).  Its tracer point is "P";
+    its sliding directions (``slides``, by joint index) are mirrored and turned with it.
     """
     from ..motion import Linkage, assemble, sweep
 
@@ -304,9 +305,14 @@ def start_linkage(candidate: Candidate, chain: Chain, points: np.ndarray, tracer
         z = lam * (p[..., 0] + 1j * p[..., 1]) + delta
         return np.stack((z.real, z.imag), axis=-1)
 
+    turn = lam / abs(lam)
+    lines = {}
+    for k, (ux, uy) in (slides or {}).items():
+        u = turn * complex(ux * flip[0], uy * flip[1])
+        lines[k] = (u.real, u.imag)
     mechanism = Mechanism(chain, candidate.frame, None if candidate.input_link < 0 else candidate.input_link)
-    linkage = Linkage(mechanism, (candidate.input_joint,), moved(pts), tracers={"P": (candidate.tracer_link,
-                                                                                    tuple(moved(at)))})
+    linkage = Linkage(mechanism, (candidate.input_joint,), moved(pts), lines,
+                      tracers={"P": (candidate.tracer_link, tuple(moved(at)))})
     first = np.asarray(target.points[0], dtype=float)
     if target.inputs is not None:
         value = float(target.inputs[0]) + candidate.shift + math.atan2(lam.imag, lam.real)
@@ -323,7 +329,7 @@ class _Polish:
     """One topology's candidates as a worker receives them (picklable)."""
 
     chain_json: str
-    candidates: tuple  # (Candidate, points, tracer_at), best misfit first
+    candidates: tuple  # (Candidate, points, tracer_at, slides), best misfit first
     target: object
     constraints: object
     budget: float
@@ -353,12 +359,12 @@ def _polish_topology(task: _Polish):
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=constraints,
                           budget=task.budget - (time.process_time() - clock), seed=task.seed, polish_only=True)
 
-    for candidate, points, at in task.candidates:
+    for candidate, points, at, slides in task.candidates:
         if time.process_time() - clock >= task.budget:
             break
         tried += 1
         try:
-            result = polish(start_linkage(candidate, chain, points, at, task.target), candidate.tracer_link)
+            result = polish(start_linkage(candidate, chain, points, at, task.target, slides), candidate.tracer_link)
         except SynthesisError as exc:
             why = str(exc)
             continue
@@ -452,6 +458,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     candidates, size = retrieve(db, target, links=links, per_topology=per_topology, topologies=top)
     conn = open_atlas(db)
     try:
+        stored = {row[1] for row in conn.execute("PRAGMA table_info(curve_samples)")}
+        slides_column = "slides" if "slides" in stored else "NULL"  # (an index built before sliders were indexed)
         tasks = []
         by_topology: dict[tuple, list] = {}
         for c in candidates:
@@ -460,8 +468,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             chain_json = conn.execute("SELECT chain FROM chains WHERE id = ?", (key[0],)).fetchone()[0]
             rows = []
             for c in sorted(group, key=lambda c: c.misfit):
-                points, at = conn.execute("SELECT points, tracer FROM curve_samples WHERE id = ?", (c.row,)).fetchone()
-                rows.append((c, json.loads(points), json.loads(at)))
+                points, at, slides = conn.execute(f"SELECT points, tracer, {slides_column} FROM curve_samples "
+                                                  "WHERE id = ?", (c.row,)).fetchone()
+                rows.append((c, json.loads(points), json.loads(at), slides_of(slides)))
             tasks.append(_Polish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1), seed))
     finally:
         conn.close()

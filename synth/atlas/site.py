@@ -36,6 +36,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from mechbase import Row
+
+
 from .database import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import Executor
 from ..structure.chain import Chain
@@ -68,7 +71,7 @@ code{word-break:break-all;font-size:10px}.nav{margin:1em 0}.total{font-weight:bo
 
 
 @dataclass
-class SiteResult:
+class SiteResult(Row):
     """What :func:`write_site` wrote: codes, pages, chains and how many of them are drawn."""
 
     folder: str
@@ -76,9 +79,6 @@ class SiteResult:
     pages: int
     chains: int
     drawn: int
-
-    def to_dict(self) -> dict:
-        return dict(self.__dict__)
 
 
 def _slug(group: tuple) -> str:

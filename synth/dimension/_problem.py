@@ -19,9 +19,7 @@ import numpy as np
 
 from ..errors import BadTarget, DimensionError
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
-from ..motion import Linkage
-from ..motion._dyads import Closure, decompose
-from ..motion._sweep import _solver
+from ..motion import Linkage, link_poses
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of"]
@@ -297,11 +295,9 @@ class Problem:
         dyad discriminant, up to rounding (NaN-free: −1 where a dyad cannot close), μ (S,) the worst
         transmission angle from the ideal, min(μ, π − μ), at the input offsets; g and μ are None for a
         linkage moved by Newton's method (it raises MotionError where it cannot reach)."""
-        plan = decompose(linkage)
-        if plan is None:
-            theta, t, _ = _solver(linkage).poses_along(np.asarray(offsets, dtype=float))
+        theta, t, gs, mus = link_poses(linkage, offsets)
+        if gs is None:
             return theta, t, None, None
-        theta, t, gs, mus, _ = Closure(linkage, plan)(np.asarray(offsets, dtype=float)[:, None])
         g = np.where(np.isfinite(gs), gs + ROUNDING, -1.0).min(axis=1) if gs.shape[1] else np.ones(len(offsets))
         g = np.where(np.isfinite(theta).all(axis=1), g, -1.0)
         worst = np.minimum(mus, math.pi - mus)
@@ -322,13 +318,27 @@ class Problem:
             return np.column_stack((xy, theta[:, link])), g, mu
         return xy, g, mu
 
-    def best_tracer(self, theta: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """The tracer point (as placed in the pose) nearest the timed target's points in the least-squares
-        sense, for the tracer link's rotations θ (N,) and translations t (N, 2) at the target's inputs:
-        the mean of R(−θ_i)(target_i − t_i), since every R is a rotation (variable projection)."""
-        q = self.target.points - t
-        c, s = np.cos(theta), np.sin(theta)
-        return np.column_stack((c * q[:, 0] + s * q[:, 1], -s * q[:, 0] + c * q[:, 1])).mean(axis=0)
+    def best_placement(self, theta: np.ndarray, t: np.ndarray):
+        """Where the mechanism and its tracer point best meet a timed path, for the tracer link's
+        rotations θ (N,) and translations t (N, 2) at the target's inputs (variable projection).
+
+        The whole mechanism may be moved by a similarity z ↦ λz + s (a turn, a scale and a shift:
+        timing is relative, so its motion is the same) and the tracer put anywhere on its link; in
+        complex numbers over the target's size the tracer then passes e^{iθᵢ}q + λtᵢ + s, linear
+        in q, λ, s, which least squares gives.  Returns (tracer, λ, s, traced points (N, 2)): the
+        tracer in the placed pose is q + s (both over the target's size, from the origin).  Where
+        λ is not determined (a link turning about a fixed point) the mechanism stays and only q is fitted.
+        """
+        T = (t[:, 0] + 1j * t[:, 1]) / self.scale
+        W = (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale
+        turn = np.exp(1j * theta)
+        a = np.column_stack((turn, T, np.ones(len(T))))
+        (q, lam, shift), *_ = np.linalg.lstsq(a, W, rcond=None)
+        if not abs(lam) > 1e-6:
+            lam, shift = 1.0 + 0j, 0j
+            q = np.mean((W - T) / turn)
+        z = turn * q + lam * T + shift
+        return complex(q + shift), complex(lam), complex(shift), np.column_stack((z.real, z.imag)) * self.scale
 
     def output_reference(self, linkage: Linkage) -> int:
         """The joint of the output link whose direction from its pivot is the output angle."""

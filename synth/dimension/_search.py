@@ -13,7 +13,7 @@ from scipy.optimize import differential_evolution, least_squares
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure.chain import Mechanism
-from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -24,6 +24,10 @@ PENALTY = 1e2
 EXACT = 1e-11
 #: a constraint is met within this (rad, log-ratio, target sizes)
 MET = 1e-9
+#: shares of the curve (from the pose on) an untimed path's points are first spread over
+SPANS = (0.5, 1.0)
+#: rounds of fitting the similarity and moving the points to their places on the carried curve
+ALIGN_ROUNDS = 4
 
 
 class _OutOfTime(Exception):
@@ -165,9 +169,11 @@ class _Evaluate:
 
     # ---- timed targets: the unknowns are the dimensions only
     def timed(self, x):
-        """(residuals, violations) of the unknowns x, or the share of samples where the dyads do not
-        close (a float), or None where the pose contradicts the chain.  For a timed path x may leave
-        out the tracer point: it is then the least-squares best for the rest."""
+        """(residuals, violations, unknowns) of the unknowns x, or the share of samples where the dyads
+        do not close (a float), or None where the pose contradicts the chain.  For a timed path x may
+        leave out the tracer point: the mechanism is then placed by the best similarity and its tracer
+        point is the best for the rest (:meth:`Problem.best_placement`), and the unknowns returned
+        are the placed mechanism's, its tracer point included."""
         p = self.problem
         short = len(x) < p.dims
         try:
@@ -181,7 +187,11 @@ class _Evaluate:
                 if g is not None and (g < 0).any():
                     return float((g < 0).mean())
                 link = p.tracer_link
-                values = _carried(theta[:n, link], t[:n, link], p.best_tracer(theta[:n, link], t[:n, link]))
+                tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link])
+                x = self.moved(np.concatenate((x, [0.0, 0.0])), lam, shift)
+                x[-2:] = [tracer.real - p.centre[0] / p.scale, tracer.imag - p.centre[1] / p.scale]
+                if p.constraints.pivots is not None or p.constraints.rocker is not None:
+                    lk = p.linkage(x)  # the designer's region and limits are measured where it stands
             else:
                 values, g, mu = p.move(lk, every)
         except MotionError:
@@ -190,24 +200,18 @@ class _Evaluate:
             return float((g < 0).mean())
         if not np.isfinite(values[:n]).all():
             return 1.0
-        return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:])
+        return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:]), x
 
     def complete(self, x) -> np.ndarray:
-        """The full unknowns of searched ones: a timed path's best tracer point appended."""
+        """The full unknowns of searched ones: a timed path's mechanism placed best, with its best
+        tracer point."""
         p = self.problem
         if len(x) == p.dims:
             return np.asarray(x, dtype=float)
-        full = np.concatenate((x, [0.0, 0.0]))
-        try:
-            lk = p.linkage(full)
-            offsets = p.offsets_of_timing(lk)
-            theta, t, _, _ = p.poses(lk, offsets)
-        except MotionError:
-            return full
-        tracer = p.best_tracer(theta[:, p.tracer_link], t[:, p.tracer_link])
-        if np.isfinite(tracer).all():
-            full[-2:] = np.clip((tracer - p.centre) / p.scale, p.lower[-2:], p.upper[-2:])
-        return full
+        out = self.timed(x)
+        if out is None or isinstance(out, float):
+            return np.concatenate((x, [0.0, 0.0]))
+        return np.clip(out[2], p.lower, p.upper)
 
     # ---- untimed targets: dimensions, then the inputs (a direction and increments)
     def curve(self, x):
@@ -263,7 +267,12 @@ class _Evaluate:
 
     def untimed(self, x):
         """The global stage's cost of the dimensions alone: each later target point's distance to the
-        curve, in order, the better direction; returns (cost, direction, input offsets)."""
+        curve, in order, the better direction; returns (cost, direction, input offsets, unknowns).
+
+        For a path the curve is first carried onto the target by the best similarity (turn, scale,
+        shift: the whole mechanism moved with it traces the moved curve), so the search explores the
+        mechanism's shape only; the unknowns returned are the moved mechanism's.  A motion's poses
+        are matched where the mechanism stands."""
         p = self.problem
         try:
             lk, ways = self.curve(x)
@@ -271,30 +280,113 @@ class _Evaluate:
             return None
         if ways is None:
             return 1.0
-        rows = p.target.poses if isinstance(p.target, MotionTarget) else p.target.points
+        motion = isinstance(p.target, MotionTarget)
+        rows = p.target.poses if motion else p.target.points
         best = None
         for direction, (values, xs, mu) in ways.items():
             if len(values) < 2 or (p.constraints.crank and p.revolute_input and len(values) <= CURVE_SAMPLES):
                 continue
-            first = p.residuals(values[:1], rows[:1]).ravel()
-            d2, where = self.project(values, rows[1:])
-            cost = (float(first @ first) + float(d2.sum())) / len(rows)
+            if motion:
+                first = p.residuals(values[:1], rows[:1]).ravel()
+                d2, where = self.project(values, rows[1:])
+                cost, moved, placed = (float(first @ first) + float(d2.sum())) / len(rows), x, lk
+            else:
+                fit = self.aligned(values, rows)
+                if fit is None:
+                    continue
+                cost, where, lam, shift = fit
+                moved = self.moved(x, lam, shift)
+                try:
+                    placed = p.linkage(moved)
+                except MotionError:
+                    continue
+                outside = np.maximum(moved - p.upper, 0.0) + np.maximum(p.lower - moved, 0.0)
+                cost += PENALTY * float(outside @ outside)  # the placed mechanism must stay in the search box
             reached = int(math.ceil(where.max())) + 1 if len(where) else 1
             offsets = np.interp(where, np.arange(len(xs)), xs)
-            viol = p.violations(lk, offsets, None, None if mu is None else mu[:reached])
+            viol = p.violations(placed, offsets, None, None if mu is None else mu[:reached])
             cost += PENALTY * float(viol @ viol)
             if best is None or cost < best[0]:
-                best = (cost, direction, offsets)
+                best = (cost, direction, offsets, moved)
         return best if best is not None else 1.0
+
+    def aligned(self, values, rows):
+        """The curve (samples from the pose on, in the target's units) carried onto the target rows by
+        the best similarity w = λz + t (complex, non-dimensional): (mean squared distance, each later
+        row's place on the curve as a float sample index, λ, t), or None for a curve that is a point.
+
+        The rows start at their nearest places in order on the curve where it stands (so the fit is
+        never worse than the curve unmoved), or at their share of the target polygon's length along
+        a span of the curve (half or all of it); for each, λ and t are
+        fitted and the rows moved to their nearest places in order on the curve as carried
+        (:meth:`project`); the best start is then refitted and moved again, up to
+        :data:`ALIGN_ROUNDS` times while the fit improves."""
+        p = self.problem
+        z = (values[:, 0] + 1j * values[:, 1]) / p.scale
+        w = (rows[:, 0] + 1j * rows[:, 1]) / p.scale
+        index = np.arange(len(z), dtype=float)
+        arc = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(z)))))
+        share = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(w)))))
+        if arc[-1] <= 1e-12:
+            return None
+        share /= share[-1]
+
+        def fitted(places):  # (mean squared distance, places, λ, t) of the best similarity for these places
+            on = np.interp(places, index, z.real) + 1j * np.interp(places, index, z.imag)
+            fit = similarity(on, w)
+            if fit is None:
+                return None
+            return float(np.mean(np.abs(fit[0] * on + fit[1] - w) ** 2)), places, fit[0], fit[1]
+
+        def replaced(fit):  # the rows moved to their places in order on the curve carried by the fit
+            carried = fit[2] * z + fit[3]
+            _, later = self.project(np.column_stack((carried.real, carried.imag)) * p.scale, rows[1:])
+            return fitted(np.concatenate(([0.0], later)))
+
+        _, later = self.project(values, rows[1:])
+        starts = [np.concatenate(([0.0], later))] + [np.interp(span * arc[-1] * share, arc, index) for span in SPANS]
+        fits = [f for f in map(fitted, starts) if f is not None]
+        fits = [g for g in map(replaced, fits) if g is not None]
+        if not fits:
+            return None
+        best = min(fits, key=lambda f: f[0])
+        for _ in range(ALIGN_ROUNDS):
+            again = replaced(best)
+            if again is None or again[0] >= best[0]:
+                break
+            best, crawling = again, again[0] > best[0] * (1 - 1e-3)
+            if crawling:  # less than 0.1 % better: the fit has settled
+                break
+        return best[0], best[1][1:], best[2], best[3]
+
+    def moved(self, x, lam: complex, shift: complex) -> np.ndarray:
+        """The unknowns of the mechanism ``x`` carried by the similarity w = λz + t (z, w positions over
+        the target's size, as :meth:`aligned` gives it): its curve is carried the same way."""
+        p = self.problem
+        out = np.array(x, dtype=float)
+        origin = (p.centre[0] + 1j * p.centre[1]) / p.scale
+        turn = math.atan2(lam.imag, lam.real)
+        i = 0
+        for kind, _ in p.layout:
+            if kind == "slide":
+                out[i] = (out[i] + turn) % math.pi
+                i += 1
+                continue
+            q = lam * (origin + out[i] + 1j * out[i + 1]) + shift - origin
+            out[i], out[i + 1] = q.real, q.imag
+            i += 2
+        return out
 
     def __call__(self, x) -> float:
         """The global stage's cost of the dimensions ``x``."""
-        if self.problem.timed:
+        p = self.problem
+        if p.timed:
             out = self.timed(x)
             if out is None or isinstance(out, float):
                 return INFEASIBLE * (2.0 if out is None else 1.0 + out)
-            r, viol = out
-            return float(r @ r) / self.problem.points + PENALTY * float(viol @ viol)
+            r, viol, placed = out
+            outside = np.maximum(placed - p.upper, 0.0) + np.maximum(p.lower - placed, 0.0)
+            return float(r @ r) / p.points + PENALTY * (float(viol @ viol) + float(outside @ outside))
         out = self.untimed(x)
         if out is None or isinstance(out, float):
             return INFEASIBLE * (2.0 if out is None else 1.0 + out)
@@ -310,7 +402,7 @@ class _Evaluate:
             out = self.timed(z)
             if out is None or isinstance(out, float):
                 return np.full(size, math.sqrt(INFEASIBLE / size) * (2.0 if out is None else 1.0 + out))
-            r, viol = out
+            r, viol, _ = out
             return np.concatenate((r / math.sqrt(p.points), math.sqrt(PENALTY) * viol))
         x, steps = z[:p.dims], z[p.dims:]
         offsets = direction * np.concatenate(([0.0], np.cumsum(steps)))
@@ -336,6 +428,22 @@ class _Evaluate:
         return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None))
 
 
+def similarity(z: np.ndarray, w: np.ndarray) -> tuple[complex, complex] | None:
+    """The similarity w ≈ λz + t (complex λ: a turn and a scale; t a shift) nearest in least squares
+    carrying the points z onto w, or None when the z are one point.
+
+    >>> z = np.array([0, 1, 1j]); lam, t = similarity(z, 2j * z + 3)
+    >>> complex(round(lam.real, 12), round(lam.imag, 12)), complex(round(t.real, 12), round(t.imag, 12))
+    (2j, (3+0j))
+    """
+    zc, wc = z - z.mean(), w - w.mean()
+    norm = float(np.vdot(zc, zc).real)
+    if norm <= 1e-24:
+        return None
+    lam = complex(np.vdot(zc, wc) / norm)
+    return lam, complex(w.mean() - lam * z.mean())
+
+
 def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:
     if isinstance(mechanism, Linkage):
         linkage = mechanism
@@ -356,8 +464,9 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 
 
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
-               budget: float = 60.0, seed: int = 0, workers: int = 1, underdetermined: bool = False,
-               progress=None, polish_only: bool = False) -> DimensionalResult:
+               budget: float = 60.0, seed: int = 0, workers: int = 1, scheduler: str | None = None,
+               underdetermined: bool = False, progress=None, polish_only: bool = False,
+               connect_timeout: float = 5.0) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -370,13 +479,18 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         The link carrying the tracer point (default: the coupler, see :class:`Problem`).
     constraints : Constraints
     budget : float
-        CPU seconds of the search (this process's; with ``workers`` > 1 the parent's wall-clock
-        seconds).  The search stops earlier once the target is met exactly (relative RMS 1e-11).
+        CPU seconds of the search (this process's; with ``workers`` > 1 or a ``scheduler`` the
+        parent's wall-clock seconds).  The search stops earlier once the target is met exactly
+        (relative RMS 1e-11).
     seed : int
         Seeds the search: the same seed and budget give the same result on an idle machine (the
         budget cuts the last run where the clock says).
     workers : int
-        Processes evaluating the global stage's candidates.
+        Local processes evaluating each generation of the global stage (the project's one
+        :class:`~synth.execution.executor.Executor`); 1 evaluates in this process.
+    scheduler : str, optional
+        A Dask scheduler's address (``tcp://HOST:PORT``): the generations are evaluated on its
+        cluster instead (not with ``workers`` > 1).
     underdetermined : bool
         Allow fewer target equations than unknowns (infinitely many exact solutions: one is
         returned), as in Burmester's three poses.
@@ -384,6 +498,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     polish_only : bool
         No global search: only the least-squares polish from the given Linkage's pose (the atlas
         search starts each topology from its nearest indexed sample this way).
+    connect_timeout : float
+        Seconds to wait for the ``scheduler``.
 
     Returns
     -------
@@ -414,6 +530,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise DimensionError(f"the budget must be a positive number of seconds, not {budget!r}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise DimensionError(f"workers must be a whole number ≥ 1, not {workers!r}")
+    if scheduler is not None and workers != 1:
+        raise DimensionError("workers and a scheduler contradict each other: the scheduler's workers evaluate the "
+                             "candidates")
     if problem.equations < problem.unknowns and not underdetermined:
         per = {"path": 2, "function": 1, "motion": 3}[target.kind]
         need = problem.unknowns - (0 if problem.timed else problem.points - 1)
@@ -421,29 +540,35 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise BadTarget(f"{problem.points} target points give {problem.equations} equations for the "
                         f"{problem.unknowns} unknowns of this {target.kind} synthesis: give at least {enough} points "
                         f"(or allow an underdetermined problem: {_option('underdetermined')})")
-    watch = _Watch(float(budget), progress, wall=workers > 1)
+    parallel = not polish_only and (workers > 1 or scheduler is not None)
+    watch = _Watch(float(budget), progress, wall=parallel)
     search = _Search(_Evaluate(problem), problem, watch)
     rng = np.random.default_rng(seed)
-    pool = None
-    if workers > 1:
-        from ..execution.executor import process_pool
+    executor = client = None
+    if parallel:
+        from ..execution.executor import Executor
 
-        pool = process_pool(workers)
+        if scheduler is not None:
+            from ..execution.scheduler import connect
+
+            client = connect(scheduler, connect_timeout)
+        executor = Executor(workers, client)
     try:
         if polish_only:
             search.polish(problem.unknowns_of(start))
         while not (polish_only or watch.over() or search.exact):
             search.runs += 1
-            for x in search.evolve(rng, start if search.runs == 1 else None, pool):
+            for x in search.evolve(rng, start if search.runs == 1 else None, executor):
                 search.polish(x)
                 if search.exact:
                     break
     except _OutOfTime:
         pass
     finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+        if executor is not None:
+            executor.close()  # no worker outlives the search (Ctrl-C included)
+        if client is not None:
+            client.close()
     if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
         search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
     if search.best is None:
@@ -473,9 +598,9 @@ class _Search:
     def exact(self) -> bool:
         return self.best is not None and self.best[0] <= EXACT ** 2
 
-    def evolve(self, rng, start: Linkage | None, pool) -> list:
+    def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
-        candidates, best first."""
+        candidates, best first.  With an executor each generation is evaluated on it."""
         problem, watch = self.problem, self.watch
         state = {"generation": 0, "fun": math.inf, "improved": 0, "polished": None}
 
@@ -504,9 +629,16 @@ class _Search:
         kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
                       maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
                       callback=stop, x0=x0)
-        if pool is not None:
-            result = differential_evolution(self.evaluate, bounds, workers=pool.map, updating="deferred", **kwargs)
-            watch.count += int(result.nfev)
+        if executor is not None:
+            def generation(fn, population):
+                population = list(population)
+                chunk = max(1, math.ceil(len(population) / (2 * executor.slots)))
+                values = list(executor.map(fn, population, chunk=chunk))
+                for x, value in zip(population, values):
+                    watch.seen(value, x)  # (the count, the best and the progress bar, as inline)
+                return values
+
+            result = differential_evolution(self.evaluate, bounds, workers=generation, updating="deferred", **kwargs)
         else:
             try:
                 result = differential_evolution(cost, bounds, **kwargs)
@@ -515,11 +647,11 @@ class _Search:
         order = np.argsort(result.population_energies)
         picked = []
         for i in order:
-            x = result.population[i]
             if result.population_energies[i] >= INFEASIBLE:
                 break
-            if all(np.abs(x - y[:len(x)]).max() > 1e-3 for y in picked):
-                picked.append(self.evaluate.complete(x))
+            x = self.evaluate.complete(result.population[i])
+            if all(np.abs(x - y).max() > 1e-3 for y in picked):
+                picked.append(x)
             if len(picked) == 3:
                 break
         return picked
@@ -534,7 +666,7 @@ class _Search:
             found = evaluate.untimed(x)
             if found is None or isinstance(found, float):
                 return
-            _, direction, offsets = found
+            _, direction, offsets, x = found
             steps = np.maximum(np.diff(np.concatenate(([0.0], np.abs(offsets)))), 0.0)
             lower = np.concatenate((problem.lower, np.zeros(len(steps))))
             upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))

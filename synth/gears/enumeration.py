@@ -47,17 +47,17 @@ import pynauty
 from ..errors import InvalidOption
 from ..execution.executor import Executor
 from ..structure.disjoint import DisjointSets
-from .train import GearTrain, axis_paths
+from .train import GearTrain, axis_paths, fractionated, rotation_graph
 
 if TYPE_CHECKING:
     from ..synthesis.type_synthesis import Counts
 
-__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "trains", "count_trains", "census",
+__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "tree_census", "trains", "count_trains", "census",
            "check_query", "estimate_trains", "size_check_trains"]
 
 GRAPHS = ("displacement", "rotation")
 MAX_LINKS = 12  # 2^n link sets in the pruning table; 12 links: 4096 a tree
-SIZED_LINKS = 9  # from this size on a query is sized before it runs (1-DOF: 9 links take a CPU minute)
+SIZED_LINKS = 9  # from this size on a query is sized before it runs (1-DOF: 9 links take 3 CPU seconds, 11 ten minutes)
 _ORDERLY_GROUP = 5_000  # trees with more symmetries are grown by canonical augmentation instead
 
 
@@ -106,23 +106,27 @@ def link_axis_trees(links: int) -> tuple[tuple[tuple[int, ...], ...], ...]:
 
 
 class _Tree:
-    """A tree with what the orderly generation needs: candidate meshes, their carriers, the
-    pruning table's index sets and the automorphisms acting on the candidates."""
+    """A tree with what the enumeration needs: candidate meshes, their carriers, the pruning
+    table and the automorphisms acting on the candidates."""
 
     def __init__(self, links: int, axes):
         self.links, self.axes = links, axes
         paths = axis_paths(links, axes)
         self.pairs = [(a, b) for a in range(links) for b in range(a + 1, links) if len(paths[a].get(b, ())) == 5]
         self.carriers = [paths[a][b][2] for a, b in self.pairs]
+        self.triples = [(a, b, t) for (a, b), t in zip(self.pairs, self.carriers)]
         index = {p: i for i, p in enumerate(self.pairs)}
         gens, size1, size2, _, _ = pynauty.autgrp(_tree_graph(links, axes))
         self.order = size1 * 10.0**size2  # on links: at least the order of the group on the pairs
         self.moves = [tuple(index[tuple(sorted((g[a], g[b])))] for a, b in self.pairs) for g in gens]
         self.group = _closure(self.moves, len(self.pairs)) if self.order <= _ORDERLY_GROUP else None
 
-    def table(self) -> tuple[np.ndarray, list[np.ndarray]]:
-        """Slack 3(|S| − 1) − 2p(S) − 1 of every link set S (|S| ≥ 2; large below), and per
-        candidate mesh the sets that hold both its gears."""
+    def table(self, meshes: int) -> tuple[list[int], list[int]]:
+        """The pruning table for sets of ``meshes`` meshes, as bit masks over the link sets S that
+        can refuse a mesh: ``levels[k]`` the sets of slack 3(|S| − 1) − 2p(S) − 1 = k, for
+        k < ``meshes`` (a set of larger slack never refuses one), and ``holds[i]`` the sets
+        holding both gears of candidate i.  A mesh may join while no set holding it has slack 0
+        (:func:`_lowered` takes it in)."""
         sets = np.arange(1 << self.links, dtype=np.int64)
         size = np.zeros(len(sets), dtype=np.int64)
         for x in range(self.links):
@@ -133,9 +137,33 @@ class _Tree:
             for x in axis:
                 on += (sets >> x) & 1
             p += np.maximum(on - 1, 0)
-        slack = np.where(size >= 2, 3 * (size - 1) - 2 * p - 1, 1 << 20).astype(np.int32)
-        holds = [np.flatnonzero(((sets >> a) & 1) & ((sets >> b) & 1)) for a, b in self.pairs]
-        return slack, holds
+        slack = np.where(size >= 2, 3 * (size - 1) - 2 * p - 1, meshes)
+        held = [((sets >> a) & 1 & (sets >> b)).astype(bool) for a, b in self.pairs]
+        refusing = (slack < meshes) & np.logical_or.reduce(held) if held else np.zeros(len(sets), dtype=bool)
+
+        def bits(on: np.ndarray) -> int:
+            return int.from_bytes(np.packbits(on[refusing], bitorder="little").tobytes(), "little")
+
+        return [bits(slack == k) for k in range(meshes)], [bits(h) for h in held]
+
+    def mesh_sets(self, meshes: int, method: str = "auto") -> Iterator[tuple[int, ...]]:
+        """One set of ``meshes`` candidates without a rigid sub-chain per class (indices into
+        :attr:`pairs`, increasing): by orderly generation, or by canonical augmentation where the
+        tree has many symmetries (``method``: "auto", "orderly", "augmentation")."""
+        if meshes > len(self.pairs):
+            return
+        levels, holds = self.table(meshes)
+        if method == "augmentation" or (method == "auto" and self.group is None):
+            yield from _augmented(self, meshes, levels, holds)
+            return
+        group = self.group if self.group is not None else _closure(self.moves, len(self.pairs))
+        yield from _orderly(_Images(group, len(self.pairs)), meshes, levels, holds)
+
+
+def _lowered(levels: list[int], held: int) -> list[int]:
+    """The slack levels after a mesh joins the sets ``held``: each of them one level down; the top
+    level is dropped (one mesh fewer to come, a set of that slack can no longer refuse one)."""
+    return [(levels[k] & ~held) | (levels[k + 1] & held) for k in range(len(levels) - 1)]
 
 
 def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ...]]:
@@ -156,43 +184,75 @@ def _closure(generators: list[tuple[int, ...]], size: int) -> list[tuple[int, ..
     return [identity] + sorted(group)
 
 
-def _least(chosen: tuple[int, ...], group) -> bool:
-    """Whether ``chosen`` (increasing) is the lexicographically least of its images."""
-    for g in group[1:]:
-        if tuple(sorted(g[i] for i in chosen)) < chosen:
-            return False
-    return True
+class _Images:
+    """The least-image test of orderly generation, one candidate at a time.
+
+    A set of candidates is the bit mask with candidate i at bit ``count − 1 − i``, so that of
+    two sets of one size the lexicographically smaller (as increasing tuples) has the larger mask.
+    A set is kept when no symmetry maps it onto a larger mask; the masks of its images under every
+    symmetry but the identity are carried along (``extend``: one OR per symmetry), in a numpy
+    array of int64 for large groups (a tree of 12 links has at most 55 candidates).
+
+    >>> images = _Images([(0, 1, 2), (2, 1, 0)], 3)  # the reflection of three candidates
+    >>> images.extend(images.start(), 0) is not None, images.extend(images.start(), 2) is None
+    (True, True)
+    """
+
+    def __init__(self, group, count: int):
+        top, others = count - 1, group[1:]
+        if len(others) > 16:
+            self.columns = np.array([[1 << (top - g[i]) for g in others] for i in range(count)], dtype=np.int64)
+        else:
+            self.columns = [tuple(1 << (top - g[i]) for g in others) for i in range(count)]
+        self.top, self.wide, self.trivial = top, len(others) > 16, not others
+
+    def start(self):
+        """The state of the empty set: its mask and its images' masks."""
+        return 0, (np.zeros(self.columns.shape[1], dtype=np.int64) if self.wide else (0,) * len(self.columns[0]))
+
+    def extend(self, state, i: int):
+        """The state of the set with candidate i added (larger than any in it), or None when an
+        image of that set is smaller."""
+        mask, images = state
+        mask |= 1 << (self.top - i)
+        if self.trivial:
+            return mask, images
+        if self.wide:
+            images = images | self.columns[i]
+            return None if (images > mask).any() else (mask, images)
+        images = tuple(a | b for a, b in zip(images, self.columns[i]))
+        return None if max(images) > mask else (mask, images)
 
 
-def _mesh_sets(tree: _Tree, meshes: int, augment: bool | None = None) -> Iterator[tuple[int, ...]]:
-    """One candidate set of ``meshes`` meshes without a rigid sub-chain per class: by orderly
-    generation, or by canonical augmentation where the tree has many symmetries (or ``augment``)."""
-    slack, holds = tree.table()
-    if augment or (augment is None and tree.group is None):
-        yield from _augmented(tree, meshes, slack, holds)
+def _orderly(images: _Images, meshes: int, levels: list[int], holds: list[int]) -> Iterator[tuple[int, ...]]:
+    """Orderly generation: a set grows by candidates of higher number only and is kept when it is
+    the least of its images; the candidates still open to a set (no rigid sub-chain, higher
+    number) are carried along, and a set with fewer of them than meshes missing is dropped."""
+
+    def grow(chosen: tuple[int, ...], levels: list[int], options: list[int], state):
+        wanted = len(levels)
+        for position in range(len(options) - wanted + 1):
+            i = options[position]
+            child = images.extend(state, i)
+            if child is None:
+                continue
+            if wanted == 1:
+                yield chosen + (i,)
+                continue
+            lowered = _lowered(levels, holds[i])
+            full = lowered[0]
+            rest = [j for j in options[position + 1:] if not holds[j] & full]
+            if len(rest) >= wanted - 1:
+                yield from grow(chosen + (i,), lowered, rest, child)
+
+    if meshes == 0:
+        yield ()
         return
-    count = len(tree.pairs)
-    group = tree.group
-
-    def grow(chosen: tuple[int, ...], slack: np.ndarray):
-        if len(chosen) == meshes:
-            yield chosen
-            return
-        start = chosen[-1] + 1 if chosen else 0
-        for i in range(start, count - (meshes - len(chosen)) + 1):
-            if slack[holds[i]].min() < 1:
-                continue
-            new = chosen + (i,)
-            if len(group) > 1 and not _least(new, group):
-                continue
-            lowered = slack.copy()
-            lowered[holds[i]] -= 1
-            yield from grow(new, lowered)
-
-    yield from grow((), slack)
+    options = [i for i, held in enumerate(holds) if not held & levels[0]]
+    yield from grow((), levels, options, images.start())
 
 
-def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[tuple[int, ...]]:
+def _augmented(tree: _Tree, meshes: int, levels: list[int], holds: list[int]) -> Iterator[tuple[int, ...]]:
     """McKay's canonical augmentation: a set grows by one mesh per orbit of its symmetries, and a
     child is kept when the mesh added is in the orbit of the mesh its canonical labelling names
     last (the mesh vertex of least canonical position)."""
@@ -216,11 +276,11 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
                 orbits.union(i, index[tuple(sorted((g[a], g[b])))])
         return sorted(orbits.roots())
 
-    def grow(chosen: tuple[int, ...], slack: np.ndarray):
+    def grow(chosen: tuple[int, ...], levels: list[int]):
         if len(chosen) == meshes:
             yield tuple(sorted(chosen))
             return
-        free = [i for i in range(len(pairs)) if i not in chosen and slack[holds[i]].min() >= 1]
+        free = [i for i in range(len(pairs)) if i not in chosen and not holds[i] & levels[0]]
         for i in pair_orbits(chosen, free):
             child = chosen + (i,)
             g = graph(child)
@@ -229,14 +289,12 @@ def _augmented(tree: _Tree, meshes: int, slack: np.ndarray, holds) -> Iterator[t
             last = min((pos, v) for pos, v in enumerate(lab) if v >= base)[1]
             if orbits[last] != orbits[base + len(chosen)]:
                 continue
-            lowered = slack.copy()
-            lowered[holds[i]] -= 1
-            yield from grow(child, lowered)
+            yield from grow(child, _lowered(levels, holds[i]))
 
-    yield from grow((), slack)
+    yield from grow((), levels)
 
 
-_METHODS = {"auto": None, "orderly": False, "augmentation": True}
+_METHODS = ("auto", "orderly", "augmentation")
 
 
 def tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTrain]:
@@ -247,33 +305,81 @@ def tree_trains(dof: int, links: int, axes, method: str = "auto") -> list[GearTr
     [1, 1, 0, 1]
     """
     tree = _Tree(links, axes)
-    meshes = links - 1 - dof
     out = []
-    if meshes > len(tree.pairs):
-        return out
-    if method == "orderly" and tree.group is None:
-        tree.group = _closure(tree.moves, len(tree.pairs))
-    for chosen in _mesh_sets(tree, meshes, _METHODS[method]):
-        train = GearTrain(links, axes, tuple(tree.pairs[i] for i in chosen),
-                          tuple(tree.carriers[i] for i in chosen))
-        if dof >= 2 and train.is_fractionated():
+    for chosen in tree.mesh_sets(links - 1 - dof, method):
+        triples = [tree.triples[i] for i in chosen]
+        if dof >= 2 and fractionated(links, triples):
             continue
-        if not train.is_rigid_free():  # the table and the exact test must agree
-            raise AssertionError(f"the pruning table passed {train.compact()}, which has a rigid sub-chain")
-        out.append(train)
+        out.append(GearTrain(links, axes, tuple(tree.pairs[i] for i in chosen), tuple(t for _, _, t in triples)))
     return out
 
 
-def _tree_summary(args) -> tuple[int, dict, dict]:
-    """A tree's count, its trains by lever-analogue code, and (``want_rotation``) the code of the
-    first train of each rotation certificate, in the tree's order."""
-    dof, links, axes, want_rotation, method = args
-    found = tree_trains(dof, links, axes, method)
-    codes = Counter(str(t.lever_analogue().code) for t in found)
+def tree_census(dof: int, links: int, axes, rotation: bool = True, method: str = "auto") -> tuple[int, dict, dict]:
+    """The census of one link–axis tree (one of :func:`link_axis_trees`): its number of trains,
+    their numbers by lever-analogue code, and (``rotation``) for each rotation graph met on the
+    tree — keyed by its canonical form, the triples renumbered by nauty and sorted, three bytes a
+    mesh — the code of its first train in the tree's order.  No train is built: a code is found
+    from the links' degrees, a rotation graph from the triples; :func:`census` adds the trees up.
+
+    Example
+    -------
+    >>> [tree_census(1, 4, axes)[:2] for axes in link_axis_trees(4)]
+    [(1, {'42/0': 1}), (1, {'42/0': 1}), (0, {}), (1, {'51/1': 1})]
+    """
+    tree = _Tree(links, axes)
+    meshes = links - 1 - dof
+    on_axes = [sum(x in axis for axis in axes) for x in range(links)]
+    shape = (meshes, tuple(sorted(len(axis) for axis in axes)))
+    codes: Counter = Counter()
     rotations: dict = {}
-    for t in found if want_rotation else ():
-        rotations.setdefault(t.rotation_certificate, str(t.lever_analogue().code))
-    return len(found), dict(codes), rotations
+    for chosen in tree.mesh_sets(meshes, method):
+        triples = [tree.triples[i] for i in chosen]
+        if dof >= 2 and fractionated(links, triples):
+            continue
+        degrees = on_axes[:]
+        for a, b, _ in triples:
+            degrees[a] += 1
+            degrees[b] += 1
+        code = _LEVER_CODES.get((shape, tuple(sorted(degrees))))
+        if code is None:
+            code = _lever_code(GearTrain(links, axes, [t[:2] for t in triples], [t[2] for t in triples]), shape)
+        codes[code] += 1
+        if rotation:
+            rotations.setdefault(_rotation_key(links, triples), code)
+    return sum(codes.values()), dict(codes), rotations
+
+
+def _tree_summary(args) -> tuple[int, dict, dict]:
+    """:func:`tree_census` of ``(dof, links, axes, rotation, method)``: a unit of the executor."""
+    return tree_census(*args)
+
+
+def _rotation_key(links: int, triples) -> bytes:
+    """The rotation graph of ``triples`` as the triples renumbered by nauty's canonical labelling
+    and sorted, three bytes a mesh: equal exactly when the rotation certificates are (the canonical
+    graph is read back from them), and ten times smaller — the census holds one per rotation graph.
+
+    >>> _rotation_key(4, [(0, 3, 2), (1, 3, 2)]) == _rotation_key(4, [(1, 0, 3), (2, 0, 3)])
+    True
+    """
+    label = pynauty.canon_label(rotation_graph(links, triples))  # links keep positions 0 … n − 1
+    position = [0] * links
+    for k, vertex in enumerate(label[:links]):
+        position[vertex] = k
+    renumbered = sorted((*sorted((position[a], position[b])), position[t]) for a, b, t in triples)
+    return bytes(x for triple in renumbered for x in triple)
+
+
+_LEVER_CODES: dict = {}  # (meshes, axis sizes, sorted link degrees) -> the lever analogue's code, a process
+
+
+def _lever_code(train: GearTrain, shape) -> str:
+    """The code of ``train``'s lever analogue, remembered under what decides it: the number of meshes,
+    the sizes of the axes and the links' degrees (axes and meshes on each)."""
+    code = str(train.lever_analogue().code)
+    degrees = [sum(x in axis for axis in train.axes) + sum(x in mesh for mesh in train.meshes) for x in range(train.links)]
+    _LEVER_CODES[shape, tuple(sorted(degrees))] = code
+    return code
 
 
 def _units(dof: int, links: int, workers: int | None, work, args_of, progress: bool = False):
@@ -378,7 +484,6 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
 
 
 # ------------------------------------------------------------------------------ sizing
-_PER_LINK = 1.2  # allowance for the time per train growing with the size (0.42, 0.44, 0.56 ms at 7, 8, 9 links)
 _CALIBRATED: dict = {}  # (dof, links) -> (displacement, rotation, CPU seconds): counted once a process
 
 
@@ -389,10 +494,10 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     while the next one is predicted to fit in what is left of ``budget`` CPU seconds.  From the
     last three sizes with trains the growth ratio r(n) = count(n)/count(n − 1) is extrapolated
     linearly, r(n + 1) = r(n) + (r(n) − r(n − 1)), and the count multiplied by it step by step.
-    The time is the count times the largest CPU time per train met on the way, raised by a fifth
-    for each link beyond the last size counted: that time grows slowly with the size (1-DOF on the
-    development machine: 0.42 ms a train at 7 links, 0.44 at 8, 0.56 at 9), so the estimate errs
-    long (9 links: 1.44 × 0.42 ms against 0.56 measured).  Returns an
+    The time is the count times the CPU time per train of the largest size counted: that time
+    falls as the trees' fixed costs spread over more trains (1-DOF on the development machine:
+    64, 47, 43, 42 µs a train at 7, 8, 9, 10 links), so the estimate errs long (10 links: 46 s
+    from 8 links against 38 s measured).  Returns an
     :class:`~synth.synthesis.estimate.Estimate` (``chains``: trains,
     ``units``: link–axis trees, exact), or None when fewer than three smaller sizes have trains.
 
@@ -425,7 +530,7 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
         d, r, seconds = _CALIBRATED[dof, m]
         spent += seconds
         if d >= 50:  # below, one tree's fixed costs are most of the time
-            per_train = max(per_train, seconds / d)
+            per_train = seconds / d
         sizes.append((m, (d, r) if d else None))
     counted = [(m, c[which]) for m, c in sizes if c]
     if len(counted) < 3 or per_train == 0.0:
@@ -436,7 +541,7 @@ def estimate_trains(dof: int, links: int, graphs: str = "displacement", *, budge
     for k in range(1, links - last + 1):
         count *= ratio + k * step
     displacement = count if which == 0 else count * sizes[-1][1][0] / sizes[-1][1][1]
-    seconds = displacement * per_train * _PER_LINK ** (links - sizes[-1][0])
+    seconds = displacement * per_train
     units = len(link_axis_trees(links))
     basis = f"exact counts at {', '.join(str(m) for m, _ in counted[-3:])} links"
     return Estimate(count, units, seconds, basis, math.log10(count), math.log10(units), math.log10(max(seconds, 1e-9)))

@@ -39,8 +39,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
+from mechbase import Row
+
 from ..errors import InvalidOption, option
-from .ratios import RatioFormula, speed_ratio, wheel_names
+from .ratios import speed_ratio, wheel_names
 from .train import GearTrain
 
 __all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "carrier_cycles", "planet_clearance",
@@ -56,7 +58,7 @@ class NoDesign(InvalidOption):
 
 
 @dataclass(frozen=True)
-class Design:
+class Design(Row):
     """Tooth numbers, the exact ratio they give and its relative error against the target."""
 
     teeth: dict
@@ -64,12 +66,25 @@ class Design:
     error: Fraction
     train: GearTrain | None = None  # with kinds="free": the train with the mesh kinds chosen
 
-    def to_dict(self) -> dict:
-        d = {"teeth": dict(self.teeth), "ratio": str(self.ratio), "ratio_value": float(self.ratio),
-             "error": float(self.error)}
-        if self.train is not None:
-            d["train"] = self.train.compact()
-        return d
+    row_keys = ("teeth", "ratio=ratio_text", "ratio_value", "error=error_value", "train=train_text?")
+
+    @property
+    def ratio_text(self) -> str:
+        """The exact ratio, ``17/4``."""
+        return str(self.ratio)
+
+    @property
+    def ratio_value(self) -> float:
+        return float(self.ratio)
+
+    @property
+    def error_value(self) -> float:
+        return float(self.error)
+
+    @property
+    def train_text(self) -> str | None:
+        """The train with its chosen mesh kinds as a joint list (None: the kinds were given)."""
+        return None if self.train is None else self.train.compact()
 
 
 def parse_fraction(text, what: str) -> Fraction:

@@ -27,6 +27,8 @@ import random
 from dataclasses import dataclass
 from fractions import Fraction
 
+from mechbase import Row
+
 from ..errors import InvalidOption
 from .train import GearTrain
 
@@ -261,7 +263,7 @@ def speed_ratio(train: GearTrain, frame: int, input_link: int, output_link: int,
 
 
 @dataclass(frozen=True)
-class GearMechanism:
+class GearMechanism(Row):
     """A train with a fixed link and, for F = 1, an input and an output shaft turning on the frame."""
 
     train: GearTrain
@@ -270,14 +272,15 @@ class GearMechanism:
     output_link: int | None = None
     ratio: RatioFormula | None = None
 
-    def to_dict(self) -> dict:
-        d = self.train.to_dict()
-        d["frame"] = self.frame
-        if self.input_link is not None:
-            d.update(input_link=self.input_link, output_link=self.output_link)
-        if self.ratio is not None:
-            d["ratio"] = self.ratio.text
-        return d
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The train's row, its frame, the input and output shafts when chosen, and the ratio's formula."""
+        shafts = ("input_link", "output_link") if self.input_link is not None else ()
+        return ("*train", "frame", *shafts, "ratio=ratio_text?")
+
+    @property
+    def ratio_text(self) -> str | None:
+        return None if self.ratio is None else self.ratio.text
 
 
 def _shafts(train: GearTrain, frame: int) -> list[int]:

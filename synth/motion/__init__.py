@@ -25,6 +25,7 @@ _WHERE = {
     "Linkage": "._linkage", "read_linkage": "._linkage", "linkage_from_pose": "._pose", "joint_name": "._linkage",
     "Motion": "._sweep", "MotionRange": "._sweep", "sweep": "._sweep", "sweep_grid": "._sweep",
     "motion_range": "._sweep", "assemble": "._sweep",
+    "LinkPoses": "._sweep", "link_poses": "._sweep",
 }
 
 __all__ = list(_WHERE)

@@ -189,7 +189,7 @@ class Linkage:
             object.__setattr__(self, "driven", driven)
 
     def _check_inputs(self) -> None:
-        chain, frame = self.chain, self.frame
+        chain = self.chain
         w = chain.dof
         if w <= 0:
             raise LockedMechanism(f"the chain {chain.compact()} is rigid (W = {w}): nothing can move it")

@@ -203,7 +203,10 @@ class System:
         unknowns, as with wedge loops whose angle equations repeat); NaN where J is singular.
         ``regular``: where J is known not to be singular (det J ≠ 0), if already found."""
         if self.rows == self.size:
-            ok = np.abs(np.linalg.det(jac)) > 0 if regular is None else regular
+            if regular is None:
+                with np.errstate(divide="ignore", invalid="ignore"):  # (an exactly singular J: its det is 0, said below)
+                    regular = np.abs(np.linalg.det(jac)) > 0
+            ok = regular
             if ok.all():  # (no copies of the regular configurations to make)
                 return np.linalg.solve(jac, rhs)
             out = np.full(rhs.shape, np.nan)

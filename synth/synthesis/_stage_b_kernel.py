@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["place"]
+__all__ = ["fixed_placements", "fixed_total", "place"]
 
 
 @njit(cache=True)
@@ -240,3 +240,182 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
             w[e] = lo - 1
             top[e] = left[e] - least_after[e + 1]
     return found
+
+
+@njit(cache=True)
+def _ways(sizes, count, total, ways):
+    """Solutions y ≥ 0 of Σ sizes[c]·y[c] = total over the first ``count`` cycles: a coin change
+    count, one pass over ``ways`` (an array of at least total + 1 entries) per cycle."""
+    if total <= 0 or count == 0:
+        return 1 if total == 0 else 0
+    ways[:total + 1] = 0
+    ways[0] = 1
+    for c in range(count):
+        s = sizes[c]
+        for t in range(s, total + 1):
+            ways[t] += ways[t - s]
+    return ways[total]
+
+
+@njit(cache=True)
+def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, g):
+    """Fix(g): the placements that pass the pebble game of :func:`place`, taken up to the order
+    of parallel strings, that the permutation ``g`` of the bundles of parallel strings leaves
+    unchanged.
+
+    Bundle q is ``width[q]`` parallel strings between the game's vertices ``a_end[q]`` and
+    ``b_end[q]`` (−1 for strings that are never short: loops, strings to single-joint links), the
+    first of at least ``least[q]`` binary links, the others of at least ``later[q]``; Σ w = n2.
+    A placement up to the order of parallel strings is a non-decreasing vector per bundle, and g
+    leaves it unchanged when every bundle of a cycle of g holds the same vector.  The rule sees a string only through its *pattern*
+    min(w, C): a string of C = h − 1 binary links or more costs nothing.  So the search gives
+    each cycle's vector a non-decreasing pattern, slot by slot (every string of the slot, one per
+    bundle of the cycle, takes C − w units in the game), the long slots last; for a complete
+    pattern the long slots' weights are counted, not listed: r long slots of a cycle of s bundles
+    are a partition into at most r parts, coins s·1 … s·r of a coin change count (``_ways``).
+    Prunes: the binary links taken so far (long slots at their least, the slots to come at theirs)
+    at most n2; the excess the long slots will carry at most ``x_most`` (the slots to come taken
+    long at their least); ``vertex_need`` as in :func:`place`.  Other arguments as :func:`place`.
+    """
+    Q = len(a_end)
+    if Q == 0:
+        return 0
+    # the cycles of g on the bundles; their slots, cycle after cycle (slot_cycle), first bundle first
+    cycle_of = np.full(Q, -1, dtype=np.int64)
+    size = np.zeros(Q, dtype=np.int64)
+    members = np.zeros(Q, dtype=np.int64)  # bundles of cycle c: members[start[c]:start[c + 1]]
+    start = np.zeros(Q + 1, dtype=np.int64)
+    nc = 0
+    for q in range(Q):
+        x = q
+        while cycle_of[x] < 0:
+            cycle_of[x] = nc
+            members[start[nc] + size[nc]] = x
+            size[nc] += 1
+            x = g[x]
+        if cycle_of[q] == nc:
+            start[nc + 1] = start[nc] + size[nc]
+            nc += 1
+    S = 0
+    for c in range(nc):
+        S += width[members[start[c]]]
+    slot_cycle = np.zeros(S, dtype=np.int64)
+    first_slot = np.zeros(S, dtype=np.bool_)
+    i = 0
+    for c in range(nc):
+        for j in range(width[members[start[c]]]):
+            slot_cycle[i] = c
+            first_slot[i] = j == 0
+            i += 1
+    lowest = np.zeros(S + 1, dtype=np.int64)  # binary links the slots i … take at least
+    most = np.zeros(S + 1, dtype=np.int64)  # … and at most without excess (every one long at its least)
+    for i in range(S - 1, -1, -1):
+        c = slot_cycle[i]
+        q = members[start[c]]
+        lowest[i] = lowest[i + 1] + (size[c] * least[q] if a_end[q] < 0 else 0)
+        most[i] = most[i + 1] + size[c] * (least[q] if a_end[q] < 0 else max(C, least[q]))
+    pebbles = k.copy()
+    arcs = np.zeros((M, M), dtype=np.int64)
+    seen = np.zeros(M, dtype=np.bool_)
+    parent = np.zeros(M, dtype=np.int64)
+    stack = np.zeros(M, dtype=np.int64)
+    at = np.zeros(M, dtype=np.int64)  # deficit on the strings of each vertex so far
+    open_ = np.zeros(M, dtype=np.int64)  # short-able strings of each vertex not yet given a pattern
+    for q in range(Q):
+        if a_end[q] >= 0:
+            open_[a_end[q]] += width[q]
+            open_[b_end[q]] += width[q]
+    choice = np.full(S, -1, dtype=np.int64)  # pattern of slot i: 0 … C − 1 exact, C long
+    placed = np.zeros(S, dtype=np.bool_)  # slot i's pattern is counted in ``at`` and ``open_``
+    units = np.zeros(S, dtype=np.int64)  # units slot i holds in the game (over its bundles)
+    used = np.zeros(S + 1, dtype=np.int64)  # binary links taken before slot i (long slots: their least)
+    coins = np.zeros(S, dtype=np.int64)
+    n_coins = np.zeros(S + 1, dtype=np.int64)  # coins before slot i
+    run = np.zeros(S + 1, dtype=np.int64)  # long slots of slot i's cycle before it
+    ways = np.zeros(n2 + 1, dtype=np.int64)
+    fixed = 0
+    i = 0
+    while i >= 0:
+        c = slot_cycle[i]
+        q0 = members[start[c]]
+        short_able = a_end[q0] >= 0
+        d = C - choice[i] if 0 <= choice[i] < C else 0
+        if placed[i]:  # take slot i back, bundle by bundle
+            left = units[i]
+            for m in range(start[c], start[c + 1]):
+                q = members[m]
+                for _ in range(min(left, d)):
+                    _take_back(a_end[q], b_end[q], pebbles, arcs)
+                left -= min(left, d)
+                at[a_end[q]] -= d
+                at[b_end[q]] -= d
+                open_[a_end[q]] += 1
+                open_[b_end[q]] += 1
+            placed[i] = False
+            units[i] = 0
+        if choice[i] < 0 and not first_slot[i]:
+            choice[i] = choice[i - 1] - 1  # non-decreasing in a bundle
+        choice[i] += 1
+        if not short_able and choice[i] < C:
+            choice[i] = C  # never short: long at once
+        if choice[i] > C:
+            choice[i] = -1
+            i -= 1
+            continue
+        p = choice[i]
+        if p < C and p < (least[q0] if first_slot[i] else later[q0]):
+            continue
+        cost = size[c] * (p if p < C else max(C, least[q0]) if short_able else least[q0])
+        if used[i] + cost + lowest[i + 1] > n2:
+            choice[i] = C  # every later choice costs more: nothing left to try
+            continue
+        if n2 - used[i] - cost - most[i + 1] > x_most:
+            continue  # too much deficit: the long slots would carry more excess than the rule allows
+        if short_able:
+            d = C - p if p < C else 0
+            for m in range(start[c], start[c + 1]):
+                q = members[m]
+                at[a_end[q]] += d
+                at[b_end[q]] += d
+                open_[a_end[q]] -= 1
+                open_[b_end[q]] -= 1
+            placed[i] = True
+            ok = True
+            for m in range(start[c], start[c + 1]):  # the strings still open at its ends can carry the rest
+                q = members[m]
+                if (at[a_end[q]] + C * open_[a_end[q]] < vertex_need[a_end[q]]
+                        or at[b_end[q]] + C * open_[b_end[q]] < vertex_need[b_end[q]]):
+                    ok = False
+            for m in range(start[c], start[c + 1]):
+                q = members[m]
+                for _ in range(d):
+                    if not ok or not _accept(a_end[q], b_end[q], l, pebbles, arcs, seen, parent, stack):
+                        ok = False
+                        break
+                    units[i] += 1
+            if not ok:
+                continue
+        used[i + 1] = used[i] + cost
+        n_coins[i + 1] = n_coins[i]
+        run[i + 1] = 0
+        if p == C:  # the r-th long slot of its cycle: a coin of r·s
+            run[i + 1] = (0 if first_slot[i] else run[i]) + 1
+            coins[n_coins[i]] = run[i + 1] * size[c]
+            n_coins[i + 1] += 1
+        if i == S - 1:
+            fixed += _ways(coins, n_coins[i + 1], n2 - used[i + 1], ways)
+            continue
+        i += 1
+    return fixed
+
+
+@njit(cache=True)
+def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group):
+    """Σ Fix(g) over the rows of ``group``, permutations of the bundles of parallel strings
+    (:func:`fixed_placements`): by Burnside's lemma, the orbits of the valid placements times the
+    number of rows when the rows are every permutation of the bundles that an automorphism of H
+    makes (identity included)."""
+    total = 0
+    for r in range(group.shape[0]):
+        total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group[r])
+    return total

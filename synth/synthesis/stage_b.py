@@ -23,7 +23,7 @@ from ..structure.chain import Chain
 from ..structure.code import Code
 from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_realised", "load_kernel", "realise"]
+__all__ = ["count_orbits", "count_realised", "load_kernel", "orbits_apply", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -193,6 +193,7 @@ def load_kernel() -> None:
     code, conv = Code.parse("440/0"), Conventions()
     for graph in _contracted_by_kernel(code, conv):
         _kernel_placements(code, graph, conv, None, listing=False)
+        count_orbits(code, graph, conv)
 
 
 def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
@@ -219,20 +220,17 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     lows, parallel = _string_limits(graph, conv)
     inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     M, E = len(inner), len(graph.edges)
-    # the ends of each string among the game's vertices; −1 for a string that is never short
-    a_list = [inner.get(u, -1) if u != v and v in inner else -1 for u, v in graph.edges]
-    b_list = [inner[v] if a >= 0 else -1 for a, (_, v) in zip(a_list, graph.edges)]
+    a_list, b_list = _game_ends(graph, inner)
     least = np.array(lows, dtype=np.int64)
     after = np.full(E, -1, dtype=np.int64)
     for e, least_e in parallel:
         after[e] = least_e
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
     b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
-    x_most = b0 + int(k.sum()) - l if M >= 2 else n2
-    vertex_need = k - (b0 + int(k.sum()) - l) if M >= 3 else np.full(M, -n2 * conv.h, dtype=np.int64)
+    x_most, vertex_need = _deficit_bounds(k, l, b0, n2, conv.h)
     if l2 >= 0:  # the tighter of the two games' bounds
-        x_most = min(x_most, b0 + int(k2.sum()) - l2) if M >= 2 else x_most
-        vertex_need = np.maximum(vertex_need, k2 - (b0 + int(k2.sum()) - l2)) if M >= 3 else vertex_need
+        x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, conv.h)
+        x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
     group, whole_group = graph.edge_group() if E > 1 else ([], True)
     group = np.array(group, dtype=np.int64).reshape(len(group), E)
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
@@ -243,6 +241,87 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found], whole_group
+
+
+def _deficit_bounds(k, l: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarray"]:
+    """The kernel's prunes for a game of ``k`` pebbles a vertex and sparsity ``l``, ``b0`` the
+    binary links left when every short-able string holds h − 1 and every other its least: the most
+    excess the long strings can carry (the set of every vertex is sparse), and the least deficit
+    the strings at each vertex carry (the set of every vertex but that one is sparse)."""
+    import numpy as np
+
+    M, slack = len(k), b0 + int(k.sum()) - l
+    return (slack if M >= 2 else n2), (k - slack if M >= 3 else np.full(M, -n2 * h, dtype=np.int64))
+
+
+def _game_ends(graph: Contracted, inner: dict[int, int]) -> tuple[list[int], list[int]]:
+    """The ends of each string of H among the pebble game's vertices ``inner``; −1 for a string
+    that is never short (a loop, a string to a single-joint link)."""
+    a_list = [inner.get(u, -1) if u != v and v in inner else -1 for u, v in graph.edges]
+    return a_list, [inner[v] if a >= 0 else -1 for a, (_, v) in zip(a_list, graph.edges)]
+
+
+def orbits_apply(code: Code, graph: Contracted, conv: Conventions) -> bool:
+    """Whether :func:`count_orbits` counts this unit's chains by Burnside's lemma: where the
+    kernel's pebble game is the exact rule (simple joints, :func:`_kernel_applies`) and two strings
+    between the same two links never both hold no binary link (h + threshold > 2: the rule already
+    refuses it, so the search need not order parallel strings)."""
+    return (all(vertex.is_link for vertex in graph.vertices) and conv.h + conv.threshold > 2
+            and _kernel_applies(code, graph, conv))
+
+
+def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``count_realised``, counted by orbits: Burnside's lemma over the automorphisms of H.
+
+    The chains of H are the orbits of the valid placements under the group G of H acting on its
+    strings.  The permutations of parallel strings among themselves are a normal subgroup P of G,
+    so the chains are also the orbits of G/P (permutations of the bundles of parallel strings) on
+    the placements up to the order of parallel strings: (1/|G/P|) Σ Fix(g) over G/P
+    (:func:`synth.synthesis._stage_b_kernel.fixed_placements`: a search over the patterns
+    min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
+    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or the group of H
+    is too large to list (more than 4096 elements), the unit is counted as :func:`count_realised`
+    counts it (docs/theory.md).
+
+    >>> from synth.synthesis.stage_a import contracted_graphs
+    >>> code = Code.parse("64200/0")
+    >>> [count_orbits(code, g, Conventions()) for g in contracted_graphs(code, Conventions())][:6]
+    [15, 104, 13, 6, 15, 681]
+    """
+    if not orbits_apply(code, graph, conv):
+        return count_realised(code, graph, conv, stats)
+    import numpy as np
+
+    from ._stage_b_kernel import fixed_total
+
+    edges = graph.edges
+    group, whole_group = graph.edge_group() if len(edges) > 1 else ([], True)
+    if not whole_group:
+        return count_realised(code, graph, conv, stats)
+    t0 = perf_counter()
+    starts = np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))])  # parallel strings are adjacent
+    picked = np.flatnonzero(starts)
+    # the permutations of the bundles the automorphisms make (the identity among them), each once
+    images = np.vstack([np.arange(len(edges)), np.array(group, dtype=np.int64).reshape(len(group), len(edges))])
+    bundles = np.unique((np.cumsum(starts) - 1)[images[:, picked]], axis=0)
+    lows, parallel = _string_limits(graph, conv)
+    later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
+    for e, least in parallel:
+        later[e - 1] = least
+    inner, k, _, _ = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    a_list, b_list = _game_ends(graph, inner)
+    C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
+    x_most, vertex_need = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2,
+                                          conv.h)
+    total = fixed_total(len(inner), np.array(a_list, dtype=np.int64)[picked], np.array(b_list, dtype=np.int64)[picked],
+                        np.array(lows, dtype=np.int64)[picked], later[picked], np.diff(np.append(picked, len(edges))),
+                        n2, k, C, l, x_most, vertex_need, bundles)
+    orbits, rest = divmod(int(total), len(bundles))
+    if rest:  # Burnside's sum is a multiple of |G/P|; anything else is a fault of this engine
+        raise RuntimeError(f"Burnside's sum {total} over the {len(bundles)} permutations of bundles of a branch "
+                           f"multigraph of {code} is not a multiple of their number")
+    _add(stats, cpsat_s=perf_counter() - t0)
+    return orbits
 
 
 @lru_cache(maxsize=256)

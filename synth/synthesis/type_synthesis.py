@@ -41,11 +41,11 @@ from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
 from .stage_a import Contracted, Conventions, contracted_graphs, needs_solver, uses_kernel
-from .stage_b import count_realised, load_kernel, realise
+from .stage_b import count_orbits, count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
-           "count_chains", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units"]
+           "count_chains", "COUNT_METHODS", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units"]
 
 
 # Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
@@ -352,18 +352,49 @@ def count_by_code(items) -> dict[str, int]:
     return out
 
 
-def count_unit(unit: Unit) -> dict[str, int]:
+# How a count finds each unit's chains: "listing" as stage B lists them (one lex-least placement per
+# orbit, or the chains compared), "orbits" by Burnside's lemma over the automorphisms of H
+# (stage_b.count_orbits, where it applies; docs/theory.md, "Counting by orbits").
+COUNT_METHODS = ("listing", "orbits")
+
+
+def count_unit(unit: Unit, method: str = "listing") -> dict[str, int]:
     """Counts by code of one unit's chains (``'42/0 P2'`` with prismatic pairs): counted where they
     are computed, without building the chains where stage B's solutions are already one per chain;
-    what ``count_chains`` runs on each unit, on any scheduler.
+    what ``count_chains`` runs on each unit, on any scheduler.  ``method`` is one of
+    :data:`COUNT_METHODS` (both give the same counts).
 
-    >>> [count_unit(u) for u in plan_units(1, 6)]
-    [{'42/0': 2}]
+    >>> [count_unit(u) for u in plan_units(1, 6)], [count_unit(u, "orbits") for u in plan_units(1, 6)]
+    ([{'42/0': 2}], [{'42/0': 2}])
     """
     if unit.contracted is None or unit.conventions.prismatic is not None:
         return count_by_code(run_unit(unit))
-    n = count_realised(unit.code, unit.contracted, unit.conventions)
+    count = count_orbits if method == "orbits" else count_realised
+    n = count(unit.code, unit.contracted, unit.conventions)
     return {str(unit.code): n} if n else {}
+
+
+@dataclass(frozen=True)
+class _ChainCount:
+    """The chains of one unit counted by ``method`` (a picklable work function)."""
+
+    method: str
+
+    def __call__(self, unit: Unit) -> dict[str, int]:
+        return count_unit(unit, self.method)
+
+
+def _check_method(method: str, query: ChainQuery) -> None:
+    """Refuse an unknown counting method, and counting by orbits where no unit could use it."""
+    if method not in COUNT_METHODS:
+        raise InvalidOption(f"the counting method is one of {', '.join(COUNT_METHODS)}, not {method!r}")
+    if method == "orbits":
+        why = ("chains with prismatic pairs are counted from their revolute skeletons' listings" if query.prismatic
+               is not None else "a crank requirement is checked on each chain" if query.cranks else
+               "with h = 2 and rigid sub-chains allowed two strings between the same links may both be empty"
+               if query.h + (0 if query.rigid else 1) <= 2 else None)
+        if why:
+            raise InvalidOption(f"these chains cannot be counted by orbits ({why}): use the listing method")
 
 
 @dataclass(frozen=True)
@@ -469,7 +500,7 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, remember: bool = False, **options) -> Counts:
+                 log=None, remember: bool = False, method: str = "listing", **options) -> Counts:
     """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
@@ -479,14 +510,22 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     command line does), each code's counts are kept in the store of solver results
     (:mod:`synth.execution.memo`) once found, and a later count of the same code reads them
     instead of running its units (not with a checkpoint or a scheduler, which ask for the units run).
+    ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
+    counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
+    the group of H listed whole) and as the listing does elsewhere; both give the same counts.
 
     >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
+    >>> count_chains(1, 10, workers=1, method="orbits").count
+    230
     >>> count_chains(1, 4, prismatic="0..4", workers=1)["by_code"]   # the all-prismatic loop has W = 2
     {'4/0': 1, '4/0 P1': 1, '4/0 P2': 2}
     """
     query = ChainQuery.of(query, links, **options)
-    return _count(count_unit, "chains", query, workers, progress, checkpoint, scheduler, timeout, log, remember)
+    _check_method(method, query)
+    # the store and a checkpoint keep each method's counts apart: a count by one never stands for the other
+    work, what = (count_unit, "chains") if method == "listing" else (_ChainCount(method), f"chains by {method}")
+    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,

@@ -3,6 +3,7 @@ mechanisms whose dimensions were picked at random (their topology withheld), ref
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import subprocess
@@ -40,15 +41,18 @@ def four_bar_index(tmp_path_factory):
 
 def _random_crank(mechanism: Mechanism, tracer_link: int, seed: int) -> Linkage:
     """The mechanism with dimensions picked at random (seeded) near its drawing's, a crank whose
-    transmission angles stay above 17°, with a tracer point P on ``tracer_link``."""
+    transmission angles stay above 17°, with a tracer point P on ``tracer_link`` (a slider's line
+    turned at random too)."""
     base = linkage_from_layout(mechanism)
     rng = np.random.default_rng(seed)
     ks = [k for k, j in enumerate(mechanism.chain.joints) if tracer_link in j]
     for _ in range(2000):
         points = base.points + rng.normal(size=base.points.shape) * rng.uniform(0.05, 0.3) * base.scale
         at = points[ks].mean(axis=0) + rng.normal(size=2) * 0.1 * base.scale
+        slides = {k: tuple(np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]) @ u)
+                  for k, u in base.slides.items() for a in [rng.normal() * 0.3]}
         try:
-            linkage = Linkage(base.mechanism, base.inputs, points, tracers={"P": (tracer_link, tuple(at))})
+            linkage = Linkage(base.mechanism, base.inputs, points, slides, tracers={"P": (tracer_link, tuple(at))})
             motion = sweep(linkage, steps=73)
         except Exception:
             continue
@@ -198,6 +202,65 @@ def test_a_random_four_bar_is_found_from_its_points_alone_among_six_bars(tmp_pat
     assert four and four[0].result.relative_max <= 1e-6
 
 
+# ------------------------------------------------------------------ prismatic variants
+SLIDER_CRANK = Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), 0, 1)  # crank 0-1, coupler 2, slider 3 on the frame
+
+
+@pytest.fixture(scope="module")
+def slider_index(tmp_path_factory):
+    """The four-link chains with up to one prismatic pair (the four-bar, slider-cranks and inverted
+    sliders), indexed with their prismatic variants (40 crank poses each)."""
+    db = str(tmp_path_factory.mktemp("sliders") / "atlas.sqlite")
+    run_grid(parse_grid('dof = 1\nlinks = 4\nprismatic = "0..1"'), db, workers=1)
+    index_curves(db, settings=IndexSettings(samples=40, prismatic=(0, 1)), workers=1)
+    return db
+
+
+def test_prismatic_variants_are_indexed_on_request_with_their_sliding_lines(slider_index, tmp_path):
+    import sqlite3
+
+    conn = sqlite3.connect(slider_index)
+    units = conn.execute("SELECT c.prismatic, u.status, u.note FROM curve_units u JOIN chains c ON c.id = u.chain").fetchall()
+    rows = conn.execute("SELECT c.prismatic, s.slides FROM curve_samples s JOIN chains c ON c.id = s.chain").fetchall()
+    conn.close()
+    # the four-bar, and the slider chain on each frame with each input link: a slider's input is left out
+    assert sorted((p, status) for p, status, _ in units) == [(0, "done"), (1, "done"), (1, "done"), (1, "done"),
+                                                             (1, "skipped")]
+    assert [note for _, status, note in units if status == "skipped"][0].startswith("its input slides")
+    assert {p for p, slides in rows if slides is None} == {0}  # a revolute chain's samples carry no line
+    assert all(len(json.loads(slides)) == 1 for p, slides in rows if p == 1)
+    # an index of revolute chains leaves the variants out, and one index does not mix the two settings
+    plain = _atlas(tmp_path, "4")
+    assert index_curves(plain, settings=IndexSettings(samples=5), workers=1).units_total == 1
+    with pytest.raises(AtlasError, match="0..1 prismatic pairs"):
+        index_curves(slider_index, settings=IndexSettings(samples=40), workers=1)
+
+
+def test_a_random_slider_crank_is_found_again_with_its_topology_withheld(slider_index):
+    linkage = _random_crank(SLIDER_CRANK, 2, seed=5)
+    target = _target(linkage, 48, True)
+    found = search_atlas(slider_index, target, budget=60)
+    assert not found.notes
+    _assert_recovered(found, target, 4)
+    best = found.best.result.linkage
+    assert best.slides and best.chain.certificate == SLIDER_CRANK.chain.certificate  # a slider-crank, not a four-bar
+
+
+def test_an_index_of_sliders_on_an_atlas_without_them_says_so_and_exits_1(tmp_path):
+    done = _cli("atlas", "--db", _atlas(tmp_path, "4"), "--index-curves", "--prismatic", "1", "--samples", "5")
+    assert done.returncode == 1 and "the index has nothing to sample" in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--prismatic", "2..1"], "--prismatic must be a number of prismatic pairs or a range"),
+    (["--prismatic", "1.."], "--prismatic must be a number of prismatic pairs or a range"),
+    (["--prismatic", "0..1", "--idle-joints"], "--idle-joints goes with --prismatic when exporting"),
+])
+def test_the_index_command_refuses_bad_prismatic_ranges(four_bar_index, args, message):
+    done = _cli("atlas", "--db", four_bar_index, "--index-curves", *args)
+    assert done.returncode == 2 and message in done.stderr and len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
 # ------------------------------------------------------------------ the command
 def _cli(*args):
     return subprocess.run([sys.executable, "-m", "mechsynth", *args], capture_output=True, text=True, timeout=600,
@@ -214,7 +277,6 @@ def test_the_command_finds_the_four_bar_saves_and_draws_it(four_bar_index, tmp_p
     done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "30", "--format", "jsonl",
                 "--out", str(out), "--save", str(saved))
     assert done.returncode == 0, done.stderr
-    import json
 
     rows = [json.loads(line) for line in done.stdout.splitlines()]
     assert rows[0]["rank"] == 1 and rows[0]["links"] == 4 and rows[0]["relative_max"] <= 1e-6

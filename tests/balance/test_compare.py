@@ -81,8 +81,8 @@ def test_every_strategy_is_recomputed_by_pinocchio(which, request):
         if not s.available:
             continue
         pc = s.pinocchio
-        assert pc["max_difference"] <= 1e-12 * scale, s.name
-        assert pc["at_worst"] == pytest.approx(pc["reported"], rel=1e-9, abs=1e-12 * scale), s.name
+        assert pc.max_difference <= 1e-12 * scale, s.name
+        assert pc.at_worst == pytest.approx(pc.reported, rel=1e-9, abs=1e-12 * scale), s.name
 
 
 def test_the_largest_residuals_are_those_of_a_dense_search(example1):
@@ -116,14 +116,14 @@ def test_example1_numbers_by_hand(example1):
     pruned = c.strategy("harmonic, pruned")
     target = 0.2 * c.strategy("none").max_residual
     assert pruned.devices == 2 and pruned.max_residual <= target
-    assert [d["form_text"] for d in pruned.details["dropped"]] == ["q2 + q3 + q4"]
-    assert pruned.details["dropped"][0]["largest_torque_per_joint"][1:] == pytest.approx([15 + 1.5 * G * 0.3] * 3)
+    assert [d.form_text for d in pruned.details.dropped] == ["q2 + q3 + q4"]
+    assert pruned.details.dropped[0].largest_torque_per_joint[1:] == pytest.approx([15 + 1.5 * G * 0.3] * 3)
     assert pruned.max_residual == pytest.approx(15 + (1.5 + 0.9 / 2.2) * G * 1.1, rel=1e-5)  # see the scene
     spj = c.strategy("springs per joint")
     assert spj.devices == 1 and spj.max_residual == pytest.approx(55 + 15 + 3 * G * 0.8, rel=1e-5)
     cw = c.strategy("counterweights")
-    assert cw.devices == 3 and len(cw.details["added_inertia"]) == 4
-    assert cw.details["motor_torque_at_acceleration"] == pytest.approx(cw.details["added_inertia"])  # 1 rad/s²
+    assert cw.devices == 3 and len(cw.details.added_inertia) == 4
+    assert cw.details.motor_torque_at_acceleration == pytest.approx(cw.details.added_inertia)  # 1 rad/s²
 
 
 def test_exact_springs_on_a_planar_two_link_arm_leave_nothing():
@@ -133,11 +133,11 @@ def test_exact_springs_on_a_planar_two_link_arm_leave_nothing():
               (Load(1, 2 * G, 0.4, payload=True, name="tool"),), zero="horizontal")
     c = CompareProblem(arm, payload=(2.0, 2.0), samples=300).solve()
     ex = c.strategy("exact springs")
-    assert ex.available and ex.devices == 2 and ex.details["parallelograms"] == 1
+    assert ex.available and ex.devices == 2 and ex.details.parallelograms == 1
     base = c.strategy("none").max_residual
     assert base == pytest.approx(40 * 0.2 + 20 * 0.75 + 2 * G * 0.9, rel=1e-12)
     assert ex.max_residual <= 1e-13 * base and ex.removed == pytest.approx(1.0, abs=1e-13)
-    assert ex.pinocchio["max_difference"] <= 1e-12 * base
+    assert ex.pinocchio.max_difference <= 1e-12 * base
 
 
 def test_exact_springs_refused_with_the_term_that_stops_them(ur5e):
@@ -157,7 +157,7 @@ def test_counterweights_put_every_sub_arms_centre_of_mass_on_its_axis(ur5e):
 
     balanced = counterweights(tuned, samples=50).balanced
     model, data = balanced.model, balanced.model.createData()
-    joints = [int(w["coordinate"][1:]) for w in cw.details["weights"]]
+    joints = [int(w.coordinate[1:]) for w in cw.details.weights]
     assert joints == [2, 3, 4, 5]  # q1 stays vertical; q6's sub-arm is on its axis already
     for q in np.random.default_rng(4).uniform(-math.pi, math.pi, (25, 6)):
         pin.forwardKinematics(model, data, balanced.config(q))

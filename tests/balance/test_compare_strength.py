@@ -100,7 +100,7 @@ def test_the_comparisons_counterweights_weigh_what_the_moments_say(two_link_comp
     items = [(0, 40.0, 0.2), (1, 20.0, 0.2), (1, 2.5 * G, 0.4)]
     by_hand = hand_counterweights([0.5, 0.4], items, {0: 0.25, 1: 0.2})
     masses = [by_hand[k] / G for k in (0, 1)]
-    assert [w["mass"] for w in cw.details["weights"]] == pytest.approx(masses, rel=1e-12)
+    assert [w.mass for w in cw.details.weights] == pytest.approx(masses, rel=1e-12)
     assert cw.devices == 2 and cw.added_mass == pytest.approx(sum(masses), rel=1e-12)
     assert cw.hardware == (f"{masses[0]:.4g} kg on upper, 0.25 m from the axis of q1",
                            f"{masses[1]:.4g} kg on fore, 0.2 m from the axis of q2")

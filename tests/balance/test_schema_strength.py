@@ -1,5 +1,5 @@
-"""The checks of balance/schema.py that no scene exercises: each refusal's sentence, the seed's
-two limits, "inf" in an open pair, a drive matrix of numbers only, the tables a file may hold."""
+"""The checks of balance/schema.py that no scene exercises: each refusal's sentence, the limits of
+the random seed, "inf" in an open pair, a drive matrix of numbers only, the tables a file may hold."""
 
 from __future__ import annotations
 

@@ -177,7 +177,9 @@ def test_a_heterogeneous_row_is_found_unasked_up_to_the_documented_loops(capsys,
             assert (found.index, found.listed, found.note) == (number, len(rows), "")
         else:
             assert (found.index, found.listed) == (None, None)
-            assert found.note.startswith(f"its place in the listing was not computed: the code has {loops} loops")
+            assert found.note == (f"its place in the listing was not computed: the code has {loops} loops and its "
+                                  "heterogeneous listing is built whole to find it (ask for its index to have it "
+                                  "computed)")
             assert identify(json.dumps(rows[number - 1]), index=True).index == number
 
 

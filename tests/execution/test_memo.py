@@ -101,7 +101,8 @@ COUNT_SCRIPT = """
 import json, sys
 from mechsynth import cli
 status = cli.main(sys.argv[1:])
-print(json.dumps([status, sorted(m for m in ("numpy", "multiprocessing", "ortools") if m in sys.modules)]),
+print(json.dumps([status, sorted(m for m in ("numpy", "multiprocessing", "ortools", "importlib.metadata", "tomllib")
+                                  if m in sys.modules)]),
       file=sys.stderr)
 """
 
@@ -116,7 +117,8 @@ def _count_cli(store, *args):
 
 def test_a_count_asked_again_is_read_from_the_store_without_numpy_or_a_pool(tmp_path):
     """The 12-link count of the issue: the second run reads each code's count, runs no unit, loads
-    neither numpy (its sizing is coarse enough in integers) nor multiprocessing, and prints the same."""
+    neither numpy (its sizing is coarse enough in integers) nor multiprocessing nor importlib.metadata
+    (the store's fingerprint reads nauty's version from pynauty's own file) nor tomllib, and prints the same."""
     query = ["chains", "--dof", "1", "--links", "12", "--count", "--workers", "2"]
     first, status, cold_modules = _count_cli(tmp_path, *query)
     again, status_again, warm_modules = _count_cli(tmp_path, *query)

@@ -32,18 +32,18 @@ def universe(links: int):
         tree = enumeration._Tree(links, axes)
         if links - 2 > len(tree.pairs):
             continue
-        group = tree.group or enumeration._closure(tree.moves, len(tree.pairs))
+        images = enumeration._Images(tree.group or enumeration._closure(tree.moves, len(tree.pairs)), len(tree.pairs))
 
-        def grow(chosen):
+        def grow(chosen, state):
             if len(chosen) == links - 2:
                 yield chosen
                 return
             for i in range((chosen[-1] + 1) if chosen else 0, len(tree.pairs)):
-                new = chosen + (i,)
-                if enumeration._least(new, group):
-                    yield from grow(new)
+                child = images.extend(state, i)
+                if child is not None:
+                    yield from grow(chosen + (i,), child)
 
-        for chosen in grow(()):
+        for chosen in grow((), images.start()):
             yield axes, [tree.pairs[i] for i in chosen], [tree.carriers[i] for i in chosen]
 
 

@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy import optimize
+
+from mechbase import Row
 
 from ..sliders import SliderSpringDevice
 from ..springs import KIND_SENSE, CrankRockerDevice
@@ -64,7 +66,7 @@ class SpringBounds:
 
 
 @dataclass(frozen=True)
-class LeverGeometry:
+class LeverGeometry(Row):
     """The slotted lever of a compression-lever device (lengths in m, from the base point ``C``).
 
     The spring is compressed by ``L`` (``compression_min`` … ``compression_max``); its free length
@@ -81,6 +83,10 @@ class LeverGeometry:
     compression_max: float
     deflection_ratio: float
     designed_from_spring: bool = False
+
+    row_keys = ("stop_distance_from_C", "spring_free_length", "spring_length_min", "spring_length_max",
+                "compression_min", "compression_max", "deflection_ratio", "designed_from_spring", "reach_from_C",
+                "reach_from_C_fig_a", "extra_length", "size_ratio")
 
     @property
     def reach_from_C(self) -> float:
@@ -111,13 +117,9 @@ class LeverGeometry:
                 f"({s / lmax:.3g}× the {lmax:.4g} m of a spring between C and B): the price of an exact compression "
                 "spring")
 
-    def to_dict(self) -> dict:
-        return asdict(self) | {"reach_from_C": self.reach_from_C, "reach_from_C_fig_a": self.reach_from_C_fig_a,
-                               "extra_length": self.extra_length, "size_ratio": self.size_ratio}
-
 
 @dataclass(frozen=True)
-class FitResult:
+class FitResult(Row):
     """Outcome of :func:`fit_spring` (SI units; errors relative to ``|Φ0|``).
 
     ``x`` holds the non-dimensional optimum: ``(ρ, ρ0, α, κ)`` for the slotted lever, ``(ρ, ε, λ, α, κ)``
@@ -166,15 +168,14 @@ class FitResult:
             return CrankRockerDevice(self.kind, self.c, self.r, self.r0, self.a)
         return SliderSpringDevice(self.c, self.r, self.neutral, self.rod, self.offset or 0.0)
 
-    def to_dict(self) -> dict:
-        d = asdict(self)
-        d["phi_range_deg"] = [math.degrees(v) for v in self.phi_range]
-        d["x"] = list(self.x)
-        d["phi_range"] = list(self.phi_range)
-        d["active_bounds"] = list(self.active_bounds)
-        d["notes"] = list(self.notes)
-        d["lever"] = None if self.lever is None else self.lever.to_dict()
-        return d
+    @property
+    def phi_range_deg(self) -> tuple[float, float]:
+        return math.degrees(self.phi_range[0]), math.degrees(self.phi_range[1])
+
+    @property
+    def row_keys(self) -> tuple[str, ...]:
+        """The row: every field, then the range in degrees."""
+        return (*(f.name for f in fields(self)), "phi_range_deg")
 
 
 def relative_errors(device: CrankRockerDevice | SliderSpringDevice, moment: float, phi: np.ndarray) -> np.ndarray:

@@ -1,0 +1,436 @@
+"""Every published count of chains reproduced, and one step beyond, as data (issue 41, items 2–3).
+
+Each row of :data:`ROWS` is one count query of the command line, ``mechsynth chains … --count
+--workers 2``, run in a fresh process with the store of solver results off (``MECHSYNTH_CACHE=off``:
+every count is computed, none read back).  For each the script measures the wall time, the CPU
+time of the command and its workers, and the peak resident memory of all of them together
+(sampled every 0.2 s), writes the counts by code to ``benchmarks/records/<query>.json`` and a row
+to ``benchmarks/records.csv``, and checks the count by whatever independent means the row has:
+
+* ``published``: the count equals the published value of the row's source;
+* ``oracle``: the counts by code equal those of the brute force of ``tests/oracles/chains.py``
+  (no engine code: labelled search, networkx isomorphism; small sizes only);
+* ``listing``: the counts by code equal those of the listing path, which builds every chain and
+  tells chains apart by their nauty certificates (queries up to ``LIST_MAX`` chains).
+
+A row with none of them says ``none``.  The table of the section "Published counts" of
+``benchmarks/RECORDS.md`` is then written from the whole CSV (other sections of that file are left
+as they are), with the rows not run and why.
+
+Run from the project root (a long row prints the command's own progress bar)::
+
+    nice -n 19 python benchmarks/records.py                  # every row but the heavy ones
+    nice -n 19 python benchmarks/records.py --only "dof 3 --links 18"   # one row, heavy or not
+    python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
+
+Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
+keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
+row or a check failed, 2 for bad options, 130 on Ctrl-C.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+LIST_MAX = 400_000  # the listing path checks a count up to this many chains by default (14 links: 21 CPU s)
+COLUMNS = ["query", "count", "published", "source", "check", "by_code_file", "wall_s", "cpu_s", "peak_mib",
+           "method", "commit", "date"]
+SECTION = "## Published counts"
+SECTIONS = [SECTION, "## 20-link chains: the counting path", "## Gear trains"]
+
+SOURCES = {  # the keys of docs/theory.md, "Sources"
+    "A233288": "OEIS A233288 (https://oeis.org/A233288): 12 and 14 links also Butcher & Hartman 2005, 16 links "
+               "Sunkari & Schmidt 2006, 18 links M. Larsson (added 2025)",
+    "T": "L.-W. Tsai, Mechanism Design (2001): the atlases of 2- and 3-DOF chains",
+    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops; only its abstract "
+               "could be read here, so no value of it is quoted",
+    "A227117": "OEIS A227117 (https://oeis.org/A227117): Laman graphs on n vertices, the 1-DOF chains of n links "
+               "in h = 2",
+    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links; only its "
+                "abstract could be read here, so no value of it is quoted",
+}
+
+
+@dataclass(frozen=True)
+class Row:
+    """One count query: its command-line options, the published value and its source."""
+
+    series: str
+    options: tuple[str, ...]
+    published: int | None = None
+    source: str = ""
+    quick: bool = False
+    oracle: bool = False  # the brute force finishes in seconds
+    heavy: str = ""  # not run unless asked by --only: why, with the engine's estimate
+
+    @property
+    def query(self) -> str:
+        return "chains " + " ".join(self.options)
+
+    @property
+    def slug(self) -> str:
+        return "_".join(o.lstrip("-").replace("..", "-") for o in self.options)
+
+    def option(self, name: str, default=None):
+        return self.options[self.options.index(name) + 1] if name in self.options else default
+
+
+def _row(series, dof, links, published=None, source="", *, h=None, v=None, frac=True, quick=False, oracle=False,
+         heavy=""):
+    options = ["--dof", str(dof), "--links", str(links)]
+    if h is not None:
+        options += ["--h", str(h)]
+    if v is not None:
+        options += ["--v", f"0..{v}"]
+    if not frac:
+        options += ["--no-fractionated"]
+    return Row(series, tuple(options), published, source, quick, oracle, heavy)
+
+
+_A233288 = {4: 1, 6: 2, 8: 16, 10: 230, 12: 6856, 14: 318162, 16: 19819281, 18: 1535380884}
+_A227117 = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132, 11: 2039273, 12: 44176717}
+_TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
+         (3, True): {6: 1, 8: 7, 10: 98}, (3, False): {6: 1, 8: 5, 10: 74}}
+
+ROWS = (
+    [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
+    + [_row("W = 1", 1, 18, _A233288[18], "A233288",
+            heavy="not run: 59 CPU min on a quiet machine (the project's own log, benchmarks/logs/"
+                  "count_18_links_quiet.txt), the whole budget of this session")]
+    + [_row("W = 1", 1, 20, None, "",
+            heavy="not run: the engine's sizing gives about 1.5e11 chains, 3 days on 2 workers (README)")]
+    + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
+       for n in range(5, 16, 2)]
+    + [_row("W = 2", 2, 17, None, "JMD2024",
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
+    + [_row("W = 2", 2, 19, None, "",
+            heavy="not run: 8 loops; the engine's sizing gives about 7.5e9 chains, 8 CPU hours")]
+    + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
+            oracle=n <= 7) for n in range(5, 16, 2)]
+    + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
+       for n in range(6, 17, 2)]
+    + [_row("W = 3", 3, 18, None, "JMD2024",
+            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
+    + [_row("W = 3", 3, 20, None, "",
+            heavy="not run: 8 loops; the engine's sizing gives about 3.3e10 chains, 24 CPU hours")]
+    + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
+            oracle=n <= 8) for n in range(6, 17, 2)]
+    + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
+    + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
+            heavy="not run: refused by the engine's memory check (about 5.3 GiB of plan on 2 workers, README)")]
+    + [_row("h = 4", 1, n, h=4, oracle=n <= 8) for n in (5, 8, 11, 14, 17, 20)]
+    + [_row("h = 5", 1, n, h=5, oracle=n <= 6) for n in (6, 10, 14, 18, 22)]
+    + [_row("h = 6", 1, n, h=6, oracle=n <= 7) for n in (7, 12, 17, 22)]
+    + [_row("W = 1, multiple joints", 1, n, None, "Ding2013", v=n - 2, oracle=n <= 8) for n in range(4, 13, 2)]
+    + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
+            heavy="not run: the engine's sizing gives about 2.0e7 chains, 42 CPU min (2.5e3 one-core s)")]
+    + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
+            heavy="not run: the engine's sizing gives about 2.6e9 chains, 88 CPU hours")]
+)
+
+
+def fail(sentence: str) -> None:
+    """One sentence on stderr and exit status 2."""
+    print(f"records: {sentence}", file=sys.stderr)
+    raise SystemExit(2)
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        fail(message)
+
+
+def _commit() -> str:
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+
+    dirty = git("status", "--porcelain", "--", "synth", "mechsynth", "mechbase")
+    return git("rev-parse", "--short", "HEAD") + ("+changes" if dirty else "")
+
+
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+class _PeakMemory(threading.Thread):
+    """The largest sum of resident memory of a process and its descendants, sampled every 0.2 s."""
+
+    def __init__(self, pid: int):
+        super().__init__(daemon=True)
+        self.pid, self.peak, self.done = pid, 0, threading.Event()
+
+    def run(self):
+        import psutil
+
+        try:
+            root = psutil.Process(self.pid)
+        except psutil.NoSuchProcess:
+            return
+        while not self.done.is_set():
+            total = 0
+            try:
+                for p in [root, *root.children(recursive=True)]:
+                    try:
+                        total += p.memory_info().rss
+                    except psutil.NoSuchProcess:
+                        pass
+            except psutil.NoSuchProcess:
+                return
+            self.peak = max(self.peak, total)
+            self.done.wait(0.2)
+
+
+def run_count(row: Row) -> dict:
+    """Run the row's count as the command line does; its counts, wall and CPU seconds and peak MiB."""
+    command = [sys.executable, "-m", "mechsynth", *row.query.split(), "--count", "--workers", "2", "--force"]
+    env = dict(os.environ, MECHSYNTH_CACHE="off", PYTHONPATH=str(ROOT))
+    cpu0, t0 = _children_cpu(), time.perf_counter()
+    proc = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True)
+    memory = _PeakMemory(proc.pid)
+    memory.start()
+    try:
+        out, _ = proc.communicate()
+    except KeyboardInterrupt:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=2)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        raise
+    finally:
+        memory.done.set()
+    wall, cpu = time.perf_counter() - t0, _children_cpu() - cpu0
+    if proc.returncode not in (0, 1):
+        raise RuntimeError(f"`mechsynth {row.query} --count` failed with exit status {proc.returncode}")
+    result = json.loads(out)
+    return {"count": result["count"], "by_code": result["by_code"], "wall_s": round(wall, 2),
+            "cpu_s": round(cpu, 2), "peak_mib": round(memory.peak / 2**20)}
+
+
+def _oracle_key(code: str) -> tuple:
+    """The brute force's code key ``(assortment, composition)`` of an engine code such as ``620/0-1``."""
+    import synth
+
+    def strip(t):
+        t = list(t)
+        while t and t[-1] == 0:
+            t.pop()
+        return tuple(t)
+
+    return strip(synth.Code.parse(code).assortment), strip(int(x) for x in code.split("/")[1].split("-"))
+
+
+def oracle_by_code(row: Row) -> dict:
+    """Counts by code key of the brute force (tests/oracles/chains.py) for the row's query."""
+    from tests.oracles.chains import brute_force_chains, count_by_code
+
+    links, dof = int(row.option("--links")), int(row.option("--dof"))
+    v = row.option("--v")
+    return count_by_code(brute_force_chains(links, dof, v_max=int(v.split("..")[1]) if v else 0,
+                                            fractionated="--no-fractionated" not in row.options,
+                                            h=int(row.option("--h", 3))))
+
+
+def listing_by_code(row: Row) -> dict:
+    """Counts by code of the listing path (every chain built, nauty certificates) for the row's query."""
+    import synth
+
+    v = row.option("--v")
+    query = dict(dof=int(row.option("--dof")), links=int(row.option("--links")), h=int(row.option("--h", 3)),
+                 fractionated="--no-fractionated" not in row.options,
+                 v=(0, int(v.split("..")[1])) if v else None)
+    out: dict[str, int] = {}
+    for chain in synth.type_synthesis(**{k: x for k, x in query.items() if x is not None}, workers=2):
+        key = str(chain.code) + chain.kind_suffix
+        out[key] = out.get(key, 0) + 1
+    return out
+
+
+def checks(row: Row, found: dict, list_max: int = LIST_MAX) -> tuple[str, bool]:
+    """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
+    the listing path checks counts of up to ``list_max`` chains."""
+    passed, ok = [], True
+    if row.published is not None:
+        ok &= found["count"] == row.published
+        passed.append("published" if found["count"] == row.published else "PUBLISHED DIFFERS")
+    if row.oracle:
+        same = oracle_by_code(row) == {_oracle_key(c): n for c, n in found["by_code"].items()}
+        ok &= same
+        passed.append("oracle by code" if same else "ORACLE DIFFERS")
+    if 0 < found["count"] <= list_max:
+        same = listing_by_code(row) == found["by_code"]
+        ok &= same
+        passed.append("listing by code" if same else "LISTING DIFFERS")
+    return "; ".join(passed) or "none", ok
+
+
+def read_csv(path: Path) -> dict[str, dict]:
+    if not path.exists():
+        return {}
+    with path.open(newline="") as f:
+        return {line["query"]: line for line in csv.DictReader(f)}
+
+
+def write_csv(path: Path, lines: dict[str, dict]) -> None:
+    order = {row.query: k for k, row in enumerate(ROWS)}
+    tmp = path.with_suffix(".tmp")
+    with tmp.open("w", newline="") as f:
+        writer = csv.DictWriter(f, COLUMNS)
+        writer.writeheader()
+        for query in sorted(lines, key=lambda q: order.get(q, len(order))):
+            writer.writerow({c: lines[query].get(c, "") for c in COLUMNS})
+    tmp.replace(path)
+
+
+def _number(text: str) -> str:
+    return f"{int(text):,}".replace(",", " ") if text else ""
+
+
+def section(lines: dict[str, dict]) -> str:
+    """The text of the section "Published counts" of RECORDS.md, written from the CSV's lines."""
+    out = [SECTION, "",
+           "Written by `benchmarks/records.py` from `benchmarks/records.csv` (do not edit by hand). Each count is",
+           "`mechsynth chains … --count --workers 2` run in a fresh process with the store of solver results off",
+           "(`MECHSYNTH_CACHE=off`), on the shared 2-core machine (times are disturbed by other work; CPU s are",
+           "those of the command and its workers, peak MiB the largest sum of their resident memory). Checks:",
+           "*published* = the source's value; *oracle* = the brute force of tests/oracles/chains.py, code by",
+           "code; *listing* = the listing path (every chain built and told apart by nauty), code by code",
+           f"(counts of up to {_number(str(LIST_MAX))} chains unless `--list-max` says otherwise);",
+           "*none* = no independent check. A row without a published value goes beyond its source;",
+           "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
+           "Counts by code: the JSON file of each query in `benchmarks/records/`.", "",
+           "| series | query | chains | published | source | checks passed | wall s | CPU s | peak MiB | commit |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    keys = []
+    for row in ROWS:
+        line = lines.get(row.query)
+        if line is None:
+            continue
+        keys.append(row.source)
+        out.append(f"| {row.series} | `{row.query}` | {_number(line['count'])} | {_number(line['published'])} | "
+                   f"{row.source or '—'} | {line['check']} | {line['wall_s']} | {line['cpu_s']} | "
+                   f"{line['peak_mib']} | {line['commit']} |")
+    missing = [row for row in ROWS if row.query not in lines]
+    if missing:
+        out += ["", "Not run:", ""]
+        out += [f"- `{row.query}`" + (f" (published {_number(str(row.published))}, {row.source})"
+                                      if row.published else "") + f": {row.heavy or 'not run yet'}"
+                for row in missing]
+    out += ["", "Sources (full references: docs/theory.md, \"Sources\"):", ""]
+    out += [f"- **{key}**: {SOURCES[key]}" for key in SOURCES if key in keys + [r.source for r in missing]]
+    return "\n".join(out) + "\n"
+
+
+def write_md(path: Path, lines: dict[str, dict]) -> None:
+    """Replace the section "Published counts" of ``path`` (created with every section if missing)."""
+    text = path.read_text() if path.exists() else "# Records\n\n" + "\n".join(f"{s}\n" for s in SECTIONS)
+    if SECTION not in text:
+        text = text.rstrip("\n") + f"\n\n{SECTION}\n"
+    head, rest = text.split(SECTION, 1)
+    following = rest.find("\n## ")
+    tail = rest[following + 1:] if following >= 0 else ""
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(head + section(lines) + ("\n" + tail if tail else ""))
+    tmp.replace(path)
+
+
+def _writable(path: Path, what: str, directory: bool = False) -> None:
+    folder = path if directory else path.parent
+    if not directory and path.is_dir():
+        fail(f"the {what} {path} is a folder, not a file")
+    if folder.exists() and not folder.is_dir():
+        fail(f"the {what} {path} cannot be written: {folder} is not a folder")
+    probe = folder
+    while not probe.exists():
+        probe = probe.parent
+    if not os.access(probe, os.W_OK) or path.exists() and not os.access(path, os.W_OK):
+        fail(f"the {what} {path} cannot be written (no permission)")
+
+
+def main(argv=None) -> int:
+    parser = _Parser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
+    parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included)")
+    parser.add_argument("--again", action="store_true", help="run rows already in the CSV again")
+    parser.add_argument("--list-max", type=int, default=LIST_MAX, metavar="N",
+                        help="check by the listing path the counts of up to N chains (default: %(default)s)")
+    parser.add_argument("--csv", type=Path, default=ROOT / "benchmarks" / "records.csv",
+                        help="the table of counts, one line a query, updated in place (default: %(default)s)")
+    parser.add_argument("--md", type=Path, default=ROOT / "benchmarks" / "RECORDS.md",
+                        help="its section 'Published counts' is written from the CSV (default: %(default)s)")
+    parser.add_argument("--by-code", type=Path, default=ROOT / "benchmarks" / "records",
+                        help="folder of the counts by code, one JSON file a query (default: %(default)s)")
+    args = parser.parse_args(argv)
+    if args.quick and args.only is not None:
+        fail("--quick and --only choose the rows in two different ways: give one of them")
+    if args.list_max < 0:
+        fail(f"--list-max must be 0 (no listing check) or more, not {args.list_max}")
+    if args.only is not None and not args.only.strip():
+        fail("--only needs some text of a query, such as 'dof 2 --links 11'")
+    for path, what, directory in ((args.csv, "CSV file", False), (args.md, "Markdown file", False),
+                                  (args.by_code, "by-code folder", True)):
+        _writable(path, what, directory)
+    if args.csv.exists():
+        with args.csv.open(newline="") as f:
+            header = next(csv.reader(f), None)
+        if header != COLUMNS:
+            fail(f"{args.csv} is not a records CSV (its first line is not the header {','.join(COLUMNS)})")
+    if args.only is not None:
+        rows = [row for row in ROWS if args.only in row.query]
+        if not rows:
+            print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
+            return 1
+    else:
+        rows = [row for row in ROWS if (row.quick if args.quick else not row.heavy)]
+    lines = read_csv(args.csv)
+    if args.only is None and not args.again:
+        rows = [row for row in rows if row.query not in lines]
+    rows.sort(key=lambda row: row.published is None)  # the published counts first, should the run be cut short
+    sys.path.insert(0, str(ROOT))
+    commit, bad = _commit(), 0
+    try:
+        for k, row in enumerate(rows, 1):
+            print(f"records [{k}/{len(rows)}] mechsynth {row.query} --count", file=sys.stderr, flush=True)
+            found = run_count(row)
+            check, ok = checks(row, found, args.list_max)
+            bad += not ok
+            args.by_code.mkdir(parents=True, exist_ok=True)
+            by_code_file = args.by_code / f"{row.slug}.json"
+            by_code_file.write_text(json.dumps({"query": row.query, "count": found["count"],
+                                                "by_code": found["by_code"]}, indent=0) + "\n")
+            shown = by_code_file.relative_to(ROOT) if by_code_file.is_relative_to(ROOT) else by_code_file
+            lines[row.query] = {
+                "query": row.query, "count": found["count"], "published": row.published or "",
+                "source": row.source, "check": check, "by_code_file": str(shown), "wall_s": found["wall_s"],
+                "cpu_s": found["cpu_s"], "peak_mib": found["peak_mib"],
+                "method": "count path (stage B vectors, no chain built), 2 workers, store off",
+                "commit": commit, "date": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M")}
+            write_csv(args.csv, lines)
+            write_md(args.md, lines)
+            print(f"records   {found['count']} chains, {found['cpu_s']} CPU s, {found['wall_s']} s, "
+                  f"{found['peak_mib']} MiB; {check}", file=sys.stderr, flush=True)
+    except KeyboardInterrupt:
+        print("records: interrupted; the rows finished so far are written", file=sys.stderr)
+        return 130
+    if not rows:
+        write_md(args.md, lines)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,122 @@
+"""benchmarks/records.py: the published counts reproduced as data (benchmarks/records.csv, RECORDS.md).
+
+The fast path (``--quick``: the four smallest rows) runs the real command line and its checks; the
+CSV's columns, the by-code files and the section of RECORDS.md are read back.  The checks must be
+able to fail: a count that is off is reported by each of them.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _records():
+    spec = importlib.util.spec_from_file_location("records", ROOT / "benchmarks" / "records.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["records"] = module  # its dataclass looks its module up by name
+    spec.loader.exec_module(module)
+    return module
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, str(ROOT / "benchmarks" / "records.py"), *map(str, args)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
+    records = _records()
+    md = tmp_path / "RECORDS.md"
+    md.write_text("# Records\n\n## Published counts\n\nold text\n\n## Gear trains\n\nthe gear rows stay\n")
+    p = _run("--quick", "--csv", tmp_path / "r.csv", "--md", md, "--by-code", tmp_path / "bc")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout == ""  # progress and results of the rows go to stderr; the data to the files
+    with (tmp_path / "r.csv").open(newline="") as f:
+        reader = csv.DictReader(f)
+        assert reader.fieldnames == records.COLUMNS == [
+            "query", "count", "published", "source", "check", "by_code_file", "wall_s", "cpu_s", "peak_mib",
+            "method", "commit", "date"]
+        lines = list(reader)
+    quick = [row for row in records.ROWS if row.quick]
+    assert [line["query"] for line in lines] == [row.query for row in quick]
+    assert len(lines) == 4
+    for line, row in zip(lines, quick):
+        assert int(line["count"]) == row.published == int(line["published"])
+        assert line["check"] == "published; oracle by code; listing by code"
+        assert float(line["cpu_s"]) > 0 and float(line["wall_s"]) > 0 and int(line["peak_mib"]) > 0
+        found = json.loads(Path(line["by_code_file"]).read_text())
+        assert found["query"] == row.query and sum(found["by_code"].values()) == int(line["count"])
+    text = md.read_text()
+    assert "old text" not in text and "the gear rows stay" in text
+    assert text.index("## Published counts") < text.index("`chains --dof 3 --links 6`") < text.index("## Gear")
+    assert "- `chains --dof 3 --links 16`: not run yet" in text  # every row not run is named, heavy ones with why
+    assert "- `chains --dof 3 --links 20`: not run: 8 loops" in text
+
+
+def test_each_check_reports_a_count_that_is_off():
+    records = _records()
+    row = records.ROWS[0]
+    assert row.query == "chains --dof 1 --links 4" and row.published == 1 and row.oracle
+    check, ok = records.checks(row, {"count": 2, "by_code": {"4/0": 2}})
+    assert not ok
+    assert check == "PUBLISHED DIFFERS; ORACLE DIFFERS; LISTING DIFFERS"
+    assert records.checks(row, {"count": 1, "by_code": {"4/0": 1}}) == (
+        "published; oracle by code; listing by code", True)
+
+
+def test_engine_codes_read_as_the_oracles_keys():
+    records = _records()
+    assert records._oracle_key("440/0") == ((4, 4), ())
+    assert records._oracle_key("620/0-1") == ((6, 2), (0, 1))
+    assert records._oracle_key("60/2") == ((6,), (2,))
+
+
+def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path):
+    other = tmp_path / "other.csv"
+    other.write_text("a,b\n1,2\n")
+    cases = [
+        (["--quick", "--only", "dof 1"], "give one of them"),
+        (["--only", " "], "--only needs some text"),
+        (["--csv", other], "is not a records CSV"),
+        (["--csv", tmp_path], "is a folder, not a file"),
+        (["--md", other / "R.md"], "is not a folder"),
+        (["--frobnicate"], "unrecognized arguments"),
+        (["--list-max", "-1"], "--list-max must be 0"),
+        (["--list-max", "many"], "invalid int value"),
+    ]
+    for args, words in cases:
+        p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
+        assert p.returncode == 2, (args, p.stderr)
+        assert p.stderr.count("\n") == 1 and words in p.stderr and "Traceback" not in p.stderr, (args, p.stderr)
+    assert other.read_text() == "a,b\n1,2\n" and not (tmp_path / "R.md").exists()
+    p = _run("--only", "no such query", "--csv", tmp_path / "r.csv", "--md", tmp_path / "R.md")
+    assert p.returncode == 1 and "no row's query contains" in p.stderr
+    assert not (tmp_path / "r.csv").exists()
+
+
+def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(tmp_path):
+    import os
+    import signal
+    import time
+
+    from tests.load import allowed_seconds
+
+    csv_file = tmp_path / "r.csv"
+    proc = subprocess.Popen([sys.executable, str(ROOT / "benchmarks" / "records.py"), "--only", "dof 1 --links 16",
+                             "--csv", str(csv_file), "--md", str(tmp_path / "R.md"), "--by-code", str(tmp_path)],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    time.sleep(4)  # the 16-link count takes about a minute of CPU: it is running now
+    assert proc.poll() is None
+    os.killpg(proc.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole process group
+    start = time.monotonic()
+    _, err = proc.communicate(timeout=60)
+    assert time.monotonic() - start < allowed_seconds(2.0)
+    assert proc.returncode == 130 and "interrupted" in err.splitlines()[-1] and "Traceback" not in err
+    assert not csv_file.exists()  # no row finished, none written
