@@ -204,7 +204,6 @@ def design_spring(
     c = float(stiffness)
     tau_frac = ALLOWED_FRACTION[kind]
     nu = END_CONDITIONS[ends]
-    ratio_GE = mat.shear_modulus / mat.elastic_modulus
     best, closest = None, None
     for d_mm in WIRE_SERIES_MM:
         if not mat.d_range[0] <= d_mm <= mat.d_range[1]:

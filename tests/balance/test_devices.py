@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from balance import InfeasibleBounds, InvalidInput, SpringBounds, SpringOptions, SpringProblem, fit_spring
 from balance.devices.helical import (
-    MATERIALS, NoSpringFits, WIRE_SERIES_MM, bergstraesser, buckling_deflection, design_for_device, design_spring,
+    MATERIALS, NoSpringFits, WIRE_SERIES_MM, _candidates, bergstraesser, buckling_deflection, design_for_device,
+    design_spring,
 )
 from balance.devices.tradeoff import bound_sensitivity
 
@@ -195,3 +197,251 @@ def test_pareto_front_is_nondominated_and_contains_better_devices():
     for p in front[::5]:
         e = (CrankRockerDevice("compression", p["c"], p["r"], p["r0"], p["a"]).moment(phi) - 100 * np.sin(phi)) / 100
         assert np.max(np.abs(e)) == pytest.approx(p["error"], rel=1e-3)
+
+
+# ------------------------------------------------ helical springs worked out by hand (EN 13906-1/-2)
+# Music wire (EN 10270-1 DH): G = 81.5 GPa, E = 206 GPa, ρ = 7850 kg/m³, R_m = 2211·d^−0.145 MPa (d in mm).
+G_MUSIC, E_MUSIC, RHO_MUSIC = 81.5e9, 206e9, 7850.0
+
+
+def music_wire_strength(d):
+    """R_m (Pa) of music wire of diameter d (m)."""
+    return 2211e6 / (1e3 * d) ** 0.145
+
+
+def coil_for_rate(c, d, n):
+    """The mean coil diameter at which d and n give the rate c: D from c = G·d⁴/(8·D³·n)."""
+    return (G_MUSIC * d ** 4 / (8 * c * n)) ** (1 / 3)
+
+
+def corrected_stress(d, D, F):
+    """Bergsträsser-corrected shear stress k·8·D·F/(π·d³), k = (w + 0.5)/(w − 0.75), w = D/d."""
+    w = D / d
+    return (w + 0.5) / (w - 0.75) * 8 * D * F / (math.pi * d ** 3)
+
+
+def test_helical_compression_spring_by_hand():
+    c, F, L0, Lmin, Lmax = 2000.0, 100.0, 0.5, 0.3, 0.45
+    s = design_spring("compression", c, F, free_length=L0, min_length=Lmin, max_length=Lmax)
+    d, n = s.wire_diameter_m, s.active_coils
+    D = coil_for_rate(c, d, n)
+    assert s.mean_diameter_m == pytest.approx(D, rel=1e-12)
+    # two closed and ground end coils: total coils n + 2, solid length (n + 2)·d
+    mass = RHO_MUSIC * math.pi * d ** 2 / 4 * math.pi * D * (n + 2)
+    gaps = (0.0015 * D ** 2 / d + 0.1 * d) * n
+    assert s.mass_kg == pytest.approx(mass, rel=1e-12)
+    assert s.solid_length_m == pytest.approx((n + 2) * d, rel=1e-12)
+    assert s.min_gap_sum_m == pytest.approx(gaps, rel=1e-12)
+    assert (n + 2) * d + gaps <= Lmin
+    tau, allowed = corrected_stress(d, D, F), 0.5 * music_wire_strength(d)
+    assert s.max_shear_stress_Pa == pytest.approx(tau, rel=1e-12) and tau <= allowed
+    assert s.allowed_shear_stress_Pa == pytest.approx(allowed, rel=1e-12)
+    assert s.solid_shear_stress_Pa == pytest.approx(8 * D * c * (L0 - (n + 2) * d) / (math.pi * d ** 3), rel=1e-12)
+    r = 1 - G_MUSIC / E_MUSIC  # pinned ends, ν = 1
+    s_k = L0 * 0.5 / r * (1 - math.sqrt(1 - r / (0.5 + G_MUSIC / E_MUSIC) * (math.pi * D / L0) ** 2))
+    assert s.buckling.critical_deflection_m == pytest.approx(s_k, rel=1e-12)
+    assert s.buckling.max_deflection_m == pytest.approx(L0 - Lmin, rel=1e-12)
+    out = s.to_dict()
+    assert out["outer_diameter_m"] == pytest.approx(D + d, rel=1e-12)
+    assert out["inner_diameter_m"] == pytest.approx(D - d, rel=1e-12)
+    assert out["spring_index"] == pytest.approx(D / d, rel=1e-12) and out["total_coils"] == n + 2
+    assert out["safe_when_solid"] == (out["solid_shear_stress_Pa"] <= allowed) and "initial_tension_N" not in out
+    assert out["material_description"] == "patented cold-drawn spring steel, EN 10270-1 DH (ASTM A228)"
+    assert out["elastic_modulus_Pa"] == E_MUSIC and out["buckling"]["seating_coefficient"] == 1.0
+
+
+@pytest.mark.parametrize("bore_mm", [6.3, 6.6, 7.1, 7.6, 10.6, 10.7, 14.0])
+def test_helical_spring_fits_its_bore(bore_mm):
+    """The coil diameter re-solved from the half-coil count may land just past the bore (at 6.3 … 10.6 mm the
+    widest coil of some wire does): that coil is refused and a narrower one chosen."""
+    bore = bore_mm * 1e-3
+    s = design_spring("compression", 2000.0, 100.0, free_length=0.5, min_length=0.3, max_length=0.45,
+                      max_outer_diameter=bore)
+    assert s.mean_diameter_m + s.wire_diameter_m <= bore * (1 + 1e-9)
+
+
+def test_helical_candidates_cover_the_coil_range():
+    """Every half-coil count from the smallest coil diameter down to the largest's is offered, at the rate."""
+    c, d = 500.0, 0.002
+    lo, hi = 4 * d, 20 * d
+    got = list(_candidates(MATERIALS["music-wire"], "compression", c, d, lo, hi))
+    ns = [n for _, n in got]
+    assert ns == sorted(set(ns), reverse=True)
+    assert ns[0] == round(2 * G_MUSIC * d ** 4 / (8 * lo ** 3 * c)) / 2  # 636.5 coils at D = 8 mm
+    assert ns[-1] == round(2 * G_MUSIC * d ** 4 / (8 * hi ** 3 * c)) / 2 == 5.0  # at D = 40 mm
+    assert all(D == pytest.approx(coil_for_rate(c, d, n), rel=1e-12) for D, n in got)
+
+
+def refusal_parts(message):
+    """Wire d (m) and active coils n of the closest candidate a refusal names."""
+    m = re.search(r"the closest, wire ([\d.]+) mm on a [\d.]+ mm coil with ([\d.]+) active coils", message)
+    return float(m.group(1)) * 1e-3, float(m.group(2))
+
+
+def test_helical_refusal_sentences_in_full():
+    hint_stress = ("a lower peak force (a force limit on the device) or a material drawn thicker "
+                   "(oil-tempered, up to 12.7 mm)")
+    # 10 kN at 10 kN/m on music wire: too much stress for every wire
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", 10000.0, 10000.0, max_deflection=0.5)
+    d, n = refusal_parts(str(ei.value))
+    D = coil_for_rate(1e4, d, n)
+    tau, allowed = corrected_stress(d, D, 1e4), 0.45 * music_wire_strength(d)
+    assert str(ei.value) == (
+        f"no music-wire spring of 1e+04 N/m for 1e+04 N fits: the closest, wire {1e3 * d:.3g} mm on a "
+        f"{1e3 * D:.4g} mm coil with {n:g} active coils, fails because its shear stress {tau / 1e6:.4g} MPa "
+        f"exceeds the allowed {allowed / 1e6:.4g} MPa; try {hint_stress}.")
+    # 5 mm shortest length: no spring's solid length and gaps fit
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("compression", 500.0, 200.0, free_length=0.405, min_length=0.005, max_length=0.405)
+    d, n = refusal_parts(str(ei.value))
+    D = coil_for_rate(500.0, d, n)
+    least = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    assert str(ei.value) == (
+        f"no music-wire spring of 500 N/m for 200 N fits: the closest, wire {1e3 * d:.3g} mm on a {1e3 * D:.4g} mm "
+        f"coil with {n:g} active coils, fails because its solid length plus the minimum coil gaps "
+        f"({1e3 * least:.4g} mm) exceed the shortest working length 5 mm; try a longer spring (larger r0 or a).")
+    # a 30 mm rod inside a 34 mm bore: the closest is both too tight on the rod and too stressed
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("compression", 2000.0, 100.0, free_length=0.5, min_length=0.3, max_length=0.45,
+                      min_inner_diameter=0.03, max_outer_diameter=0.034)
+    d, n = refusal_parts(str(ei.value))
+    D = coil_for_rate(2000.0, d, n)
+    tau, allowed = corrected_stress(d, D, 100.0), 0.5 * music_wire_strength(d)
+    assert D - d < 0.03 and tau > allowed
+    assert str(ei.value) == (
+        f"no music-wire spring of 2000 N/m for 100 N fits (outer diameter ≤ 34 mm, inner diameter ≥ 30 mm): the "
+        f"closest, wire {1e3 * d:.3g} mm on a {1e3 * D:.4g} mm coil with {n:g} active coils, fails because its "
+        f"inner diameter {1e3 * (D - d):.4g} mm does not clear 30 mm and its shear stress {tau / 1e6:.4g} MPa "
+        f"exceeds the allowed {allowed / 1e6:.4g} MPa; try a thinner guide rod or {hint_stress}.")
+    # a 50 mm rod in a 54 mm bore: no wire of the series gives any coil there
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("compression", 2000.0, 100.0, free_length=0.5, min_length=0.3, max_length=0.45,
+                      min_inner_diameter=0.05, max_outer_diameter=0.054)
+    assert str(ei.value) == ("no music-wire wire of the series gives a spring of 2000 N/m in the space given "
+                             "(outer diameter ≤ 54 mm, inner diameter ≥ 50 mm); allow a larger outer diameter or "
+                             "another material.")
+
+
+def test_helical_extension_spring_for_a_tension_device():
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.4), a=(0.0, 0.3), max_force=1500.0)
+    res = fit_spring("tension", -100.0, RAD, b)
+    s = design_for_device(res, material="oil-tempered")  # G = 79.5 GPa, ρ = 7850 kg/m³
+    assert s.material == "oil-tempered" and s.kind == "extension"
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    assert 79.5e9 * d ** 4 / (8 * D ** 3 * n) == pytest.approx(res.c, rel=1e-9)
+    # close-wound body of n + 1 coils and two loops of about one inner diameter each (one coil of wire each)
+    free = (n + 1) * d + 2 * (D - d)
+    assert s.free_length_m == pytest.approx(free, rel=1e-12) and s.loop_length_m == pytest.approx(D - d, rel=1e-12)
+    assert s.mass_kg == pytest.approx(7850.0 * math.pi * d ** 2 / 4 * math.pi * D * (n + 3), rel=1e-12)
+    assert s.anchor_offset_m == pytest.approx(res.free_length - free, rel=1e-12)
+    out = s.to_dict()
+    assert out["initial_tension_N"] == 0.0 and out["total_coils"] == n + 1 and "buckling" not in out
+
+
+def test_helical_spring_may_close_to_its_minimum_gaps():
+    """A spring whose solid length plus minimum coil gaps just reach the shortest working length is accepted,
+    also at the edge of the 1e-12 m tolerance."""
+    s = design_spring("compression", 2000.0, 300.0, free_length=0.5, min_length=0.3, max_length=0.45)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    least = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    assert least == pytest.approx(s.solid_length_m + s.min_gap_sum_m, rel=1e-12)
+    for shortest in (least, s.solid_length_m + s.min_gap_sum_m - 1e-12):
+        t = design_spring("compression", 2000.0, 300.0, free_length=0.5, min_length=shortest, max_length=0.45)
+        assert (t.wire_diameter_m, t.active_coils) == (d, n) and t.min_working_length_m == shortest
+
+
+@pytest.mark.parametrize("force, shortest, reason", [(300.0, 0.02, "solid"), (600.0, 0.04, "stress")])
+def test_helical_refusal_names_the_least_failing_candidate(force, shortest, reason):
+    """Thin wires are over-stressed, thick ones too long when closed: the refusal names the candidate that
+    misses by the smallest fraction (58.6 % too long at 300 N; 44.4 % over-stressed at 600 N)."""
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("compression", 2000.0, force, free_length=0.5, min_length=shortest, max_length=0.45)
+    d, n = refusal_parts(str(ei.value))
+    D = coil_for_rate(2000.0, d, n)
+    least = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    tau, allowed = corrected_stress(d, D, force), 0.5 * music_wire_strength(d)
+    head = (f"no music-wire spring of 2000 N/m for {force:.4g} N fits: the closest, wire {1e3 * d:.3g} mm on a "
+            f"{1e3 * D:.4g} mm coil with {n:g} active coils, fails because its ")
+    if reason == "solid":
+        assert (least - shortest) / shortest == pytest.approx(0.586, abs=1e-3) and tau <= allowed
+        assert str(ei.value) == head + (
+            f"solid length plus the minimum coil gaps ({1e3 * least:.4g} mm) exceed the shortest working length "
+            f"{1e3 * shortest:.4g} mm; try a longer spring (larger r0 or a).")
+    else:
+        assert tau / allowed - 1 == pytest.approx(0.444, abs=1e-3) and least <= shortest
+        assert str(ei.value) == head + (
+            f"shear stress {tau / 1e6:.4g} MPa exceeds the allowed {allowed / 1e6:.4g} MPa; try a lower peak force "
+            "(a force limit on the device) or a material drawn thicker (oil-tempered, up to 12.7 mm).")
+
+
+def test_helical_unguided_spring_that_cannot_buckle_is_preferred():
+    """Unguided, a heavier spring that cannot buckle beats the lightest, which would buckle by EN 13906-1."""
+    L0, Lmin, Lmax = 0.1, 0.06, 0.09
+    free = design_spring("compression", 2000.0, 100.0, free_length=L0, min_length=Lmin, max_length=Lmax)
+    guided = design_spring("compression", 2000.0, 100.0, free_length=L0, min_length=Lmin, max_length=Lmax, guided=True)
+    assert guided.buckling.guided is True and guided.buckling.critical_deflection_m == math.inf
+    assert free.buckling.guided is False and free.buckling.safe and guided.mass_kg < free.mass_kg
+    r = 1 - G_MUSIC / E_MUSIC  # the guided (lighter) spring's critical deflection with pinned ends, ν = 1
+    s_k = L0 * 0.5 / r * (1 - math.sqrt(1 - r / (0.5 + G_MUSIC / E_MUSIC) * (math.pi * guided.mean_diameter_m / L0) ** 2))
+    assert s_k < L0 - Lmin
+
+
+def test_helical_spring_reports_its_rate_error_and_wire_strength():
+    s = design_spring("compression", 2000.0, 100.0, free_length=0.5, min_length=0.3, max_length=0.45)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    out = s.to_dict()
+    assert out["stiffness_error"] == pytest.approx(G_MUSIC * d ** 4 / (8 * D ** 3 * n) / 2000.0 - 1, abs=1e-12)
+    assert abs(out["stiffness_error"]) < 1e-12
+    assert out["tensile_strength_Pa"] == pytest.approx(music_wire_strength(d), rel=1e-12)
+    assert out["stress_ratio"] == pytest.approx(corrected_stress(d, D, 100.0) / (0.5 * music_wire_strength(d)))
+
+
+def test_helical_candidates_reach_two_active_coils():
+    """At 20 N/m the widest coil of 2 mm wire would need 1.6 coils: the candidates stop at two."""
+    c, d = 1600.0, 0.002
+    ns = [n for _, n in _candidates(MATERIALS["music-wire"], "compression", c, d, 4 * d, 20 * d)]
+    assert G_MUSIC * d ** 4 / (8 * (20 * d) ** 3 * c) < 2 and ns[-1] == 2.0
+
+
+@pytest.mark.parametrize("args, kw, sentence", [
+    (("torsion", 1.0, 1.0), {}, "a helical spring is 'compression' or 'extension', not 'torsion'."),
+    (("compression", 1.0, 1.0), {"material": "unobtainium"},
+     "unknown spring material 'unobtainium'; choose one of music-wire, oil-tempered, chrome-vanadium, "
+     "chrome-silicon, stainless."),
+    (("compression", 1.0, 1.0), {"ends": "free"},
+     "unknown end condition 'free'; choose one of fixed-free, pinned, fixed-pinned, fixed."),
+    (("compression", 0.0, 1.0), {}, "the spring's stiffness must be a positive number, not 0.0."),
+    (("compression", 1.0, math.nan), {}, "the spring's peak force must be a positive number, not nan."),
+    (("compression", 1.0, 1.0), {"max_outer_diameter": -0.01}, "the largest outer diameter must be positive, not -0.01."),
+    (("compression", 1.0, 1.0), {"min_inner_diameter": -1.0}, "the smallest inner diameter must be ≥ 0, not -1.0."),
+    (("compression", 1.0, 1.0), {}, "a compression spring needs its free length or its largest deflection."),
+])
+def test_helical_input_refusals_in_full(args, kw, sentence):
+    with pytest.raises(InvalidInput) as ei:
+        design_spring(*args, **kw)
+    assert str(ei.value) == sentence
+
+
+@pytest.mark.parametrize("degrees", [(20.0, 160.0), (-150.0, 170.0), (-100.0, 200.0)])
+def test_helical_lever_spring_is_guided_and_tension_spring_reports_its_stretch(degrees):
+    """The longest a tension device's spring gets, also over ranges holding a dead centre (φ = 0, ±π)."""
+    rng = tuple(math.radians(v) for v in degrees)
+    b = SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.4), a=(0.0, 0.3), max_force=1500.0)
+    lever = design_for_device(fit_spring("compression-lever", -100.0, RAD, b), material="chrome-silicon")
+    assert lever.buckling.guided is True and lever.buckling.critical_deflection_m == math.inf
+    res = fit_spring("tension", -100.0, rng, b)
+    s = design_for_device(res, material="oil-tempered")
+    longest = float(np.max(res.device.length(np.linspace(*rng, 200001))))  # a dense sweep of the crank
+    assert s.max_extension_m == pytest.approx(longest - res.free_length, abs=1e-9)
+
+
+def test_helical_spring_for_a_slider_device_takes_the_options():
+    """A sine (slider) device's compression spring runs from a to the largest force; material and ends pass."""
+    res = fit_spring("compression", 30.0, RAD, SpringBounds((0.05, 0.2), None, (0.0, 0.2)), device="sine")
+    s = design_for_device(res, material="oil-tempered", ends="fixed", guided=False)
+    assert s.material == "oil-tempered" and s.buckling.end_condition == "fixed"
+    assert s.buckling.seating_coefficient == 0.5
+    assert s.free_length_m == pytest.approx(res.free_length, rel=1e-12)
+    assert s.min_working_length_m == pytest.approx(res.free_length - res.max_force / res.c, rel=1e-12)
+    assert s.max_working_length_m == pytest.approx(res.free_length - res.a, rel=1e-12)
