@@ -67,7 +67,7 @@ def test_published_counts(dof, links, displacement, rotation):
 @pytest.mark.parametrize("dof,links", [(1, 8), (2, 8)])
 def test_second_method_agrees_at_eight_links(dof, links):
     found = census(dof, links)  # the engine's census also splits its counts by code; the second method does not
-    assert gear_trains_fast.census(dof, links) == {"displacement": found["displacement"], "rotation": found["rotation"]}
+    assert gear_trains_fast.census(dof, links) == {"displacement": found.displacement, "rotation": found.rotation}
 
 
 @pytest.mark.parametrize("dof,links", [(1, n) for n in range(3, 8)] + [(2, 6), (2, 7)])

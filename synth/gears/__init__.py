@@ -16,7 +16,7 @@ from .._lazy import lazy_exports
 
 _WHERE = {
     "GearTrain": ".train",
-    "GRAPHS": ".enumeration", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration", "link_axis_trees": ".enumeration", "tree_trains": ".enumeration", "tree_census": ".enumeration",
+    "GRAPHS": ".enumeration", "trains": ".enumeration", "count_trains": ".enumeration", "census": ".enumeration", "Census": ".enumeration", "link_axis_trees": ".enumeration", "tree_trains": ".enumeration", "tree_census": ".enumeration",
     "check_query": ".enumeration", "estimate_trains": ".enumeration", "size_check_trains": ".enumeration",
     "GearMechanism": ".ratios", "RatioFormula": ".ratios", "mechanisms": ".ratios",
     "speed_ratio": ".ratios",

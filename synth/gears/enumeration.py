@@ -38,11 +38,14 @@ from __future__ import annotations
 import sys
 from collections import Counter
 from collections.abc import Iterator
+from dataclasses import dataclass
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
 import numpy as np
 import pynauty
+
+from mechbase import Row
 
 from ..errors import InvalidOption
 from ..execution.executor import Executor
@@ -52,7 +55,7 @@ from .train import GearTrain, axis_paths, fractionated, rotation_graph
 if TYPE_CHECKING:
     from ..synthesis.type_synthesis import Counts
 
-__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "tree_census", "trains", "count_trains", "census",
+__all__ = ["GRAPHS", "MAX_LINKS", "SIZED_LINKS", "link_axis_trees", "tree_trains", "tree_census", "trains", "count_trains", "census", "Census",
            "check_query", "estimate_trains", "size_check_trains"]
 
 GRAPHS = ("displacement", "rotation")
@@ -435,10 +438,27 @@ def _tree_list(args) -> list[GearTrain]:
     return tree_trains(*args)
 
 
-def census(dof: int, links: int, workers: int | None = 1, method: str = "auto", progress: bool = False) -> dict:
-    """Both counts in one pass: ``{"displacement": D, "rotation": R, "by_code": {code: D},
-    "rotation_by_code": {code: R}}`` — a rotation graph counted under the code of its first
-    displacement graph (the train :func:`trains` lists for it).  ``method``: "auto" (orderly generation, canonical augmentation on very symmetric trees),
+@dataclass(frozen=True)
+class Census(Row):
+    """Both counts of a gear-train query: displacement graphs D and rotation graphs R, each by
+    lever-analogue code; ``census["rotation"]`` reads its JSON form.
+
+    >>> Census(13, 6, {"521/0": 13}, {"521/0": 6}).to_dict()["rotation_by_code"]
+    {'521/0': 6}
+    """
+
+    displacement: int
+    rotation: int
+    by_code: dict
+    rotation_by_code: dict
+
+    def __getitem__(self, key: str):
+        return self.to_dict()[key]
+
+
+def census(dof: int, links: int, workers: int | None = 1, method: str = "auto", progress: bool = False) -> Census:
+    """Both counts in one pass (:class:`Census`) — a rotation graph counted under the code of its
+    first displacement graph (the train :func:`trains` lists for it).  ``method``: "auto" (orderly generation, canonical augmentation on very symmetric trees),
     "orderly" or "augmentation" everywhere (the two must agree).
 
     >>> census(1, 6)["displacement"], census(1, 6)["rotation"]
@@ -454,8 +474,8 @@ def census(dof: int, links: int, workers: int | None = 1, method: str = "auto", 
         codes.update(by_code)
         for certificate, code in rot.items():  # trees in order: the first train of a rotation graph wins
             rotations.setdefault(certificate, code)
-    return {"displacement": total, "rotation": len(rotations), "by_code": dict(sorted(codes.items())),
-            "rotation_by_code": dict(sorted(Counter(rotations.values()).items()))}
+    return Census(total, len(rotations), dict(sorted(codes.items())),
+                  dict(sorted(Counter(rotations.values()).items())))
 
 
 def count_trains(dof: int, links: int, graphs: str = "displacement", workers: int | None = 1,
@@ -474,7 +494,7 @@ def count_trains(dof: int, links: int, graphs: str = "displacement", workers: in
     check_query(dof, links, graphs)
     if graphs == "rotation":
         found = census(dof, links, workers, progress=progress)
-        return Counts(found["rotation"], found["rotation_by_code"])
+        return Counts(found.rotation, found.rotation_by_code)
     total, codes = 0, Counter()
     for n, by_code, _ in _units(dof, links, workers, _tree_summary, lambda axes: (dof, links, axes, False, "auto"),
                                 progress=progress):
