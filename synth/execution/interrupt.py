@@ -28,7 +28,11 @@ import time
 
 __all__ = ["solve_stoppably"]
 
-_RUNNING: set = set()
+_RUNNING: dict = {}  # solver -> when its search began (time.monotonic)
+#: a search that began this long after a Ctrl-C was caught is stopped too (it was being entered as the
+#: signal came); one that began later belongs to a caller that has handled the KeyboardInterrupt
+#: already (a notebook, a test) and runs to its end
+_INSTANT = 0.1
 _watching = False
 
 
@@ -47,11 +51,11 @@ def solve_stoppably(solver, model, callback=None):
     The solver's status.
     """
     _watch_interrupts()
-    _RUNNING.add(solver)
+    _RUNNING[solver] = time.monotonic()
     try:
         return solver.solve(model, callback)
     finally:
-        _RUNNING.discard(solver)
+        _RUNNING.pop(solver, None)
 
 
 def _watch_interrupts() -> None:
@@ -82,7 +86,9 @@ def _stop_on_interrupt(fd: int) -> None:
     while True:
         if signal.SIGINT not in os.read(fd, 64):
             continue
+        caught = time.monotonic()
         for _ in range(20):  # a search started in the instant after the signal is caught too
-            for solver in list(_RUNNING):
-                solver.stop_search()
+            for solver, began in list(_RUNNING.items()):
+                if began <= caught + _INSTANT:
+                    solver.stop_search()
             time.sleep(0.05)

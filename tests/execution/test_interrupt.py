@@ -163,3 +163,33 @@ def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, caps
     monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(ValueError("a bug")))
     with pytest.raises(ValueError, match="a bug"):
         cli.main(["chains"])
+
+
+def test_a_search_begun_after_a_handled_ctrl_c_runs_to_its_end():
+    """A Ctrl-C caught and handled in this process (a notebook's interrupt, a test) must not stop the
+    next search: the watcher stops the searches running when it comes, and those begun in that
+    instant, not one begun a quarter of a second after the KeyboardInterrupt was handled."""
+    from synth.execution.interrupt import solve_stoppably
+
+    class Slow:  # a search of 0.6 s that reports whether it was stopped
+        def __init__(self):
+            self.stopped = False
+
+        def solve(self, model, callback=None):
+            end = time.monotonic() + 0.6
+            while time.monotonic() < end and not self.stopped:
+                time.sleep(0.01)
+            return "UNKNOWN" if self.stopped else "OPTIMAL"
+
+        def stop_search(self):
+            self.stopped = True
+
+    assert solve_stoppably(Slow(), model=None) == "OPTIMAL"  # the watcher is installed by the first search
+    ours = signal.set_wakeup_fd(-1)
+    signal.set_wakeup_fd(ours)
+    assert ours != -1, "the watcher of Ctrl-C is not installed: this test would prove nothing"
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1)
+    time.sleep(0.25)
+    assert solve_stoppably(Slow(), model=None) == "OPTIMAL"
