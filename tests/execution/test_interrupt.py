@@ -158,6 +158,7 @@ def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, caps
     monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(None))
     before = signal.getsignal(signal.SIGINT)
     assert cli.main(["chains"]) == 130
+    time.sleep(allowed_seconds(0.3))  # the search watcher's instant after this Ctrl-C passes before the next test
     assert capsys.readouterr().err == "mechsynth: interrupted\n"
     assert signal.getsignal(signal.SIGINT) is before
     monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(ValueError("a bug")))
@@ -184,6 +185,7 @@ def test_a_search_begun_after_a_handled_ctrl_c_runs_to_its_end():
         def stop_search(self):
             self.stopped = True
 
+    time.sleep(allowed_seconds(0.3))  # past the instant of a Ctrl-C an earlier test sent to this process
     assert solve_stoppably(Slow(), model=None) == "OPTIMAL"  # the watcher is installed by the first search
     ours = signal.set_wakeup_fd(-1)
     signal.set_wakeup_fd(ours)
