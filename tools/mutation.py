@@ -165,7 +165,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     **{f"motion_{name.strip('_')}": (f"synth/motion/{name}.py", [
         "tests/motion/test_errors.py", "tests/motion/test_closed_forms.py", "tests/motion/test_oracle.py",
         "tests/motion/test_branches.py", "tests/motion/test_rates.py", "tests/motion/test_pose_strength.py",
-        "tests/motion/test_linkage_strength.py", "tests/motion/test_dyads_strength.py", *_MOTION_MORE.get(name, ()),
+        "tests/motion/test_linkage_strength.py", "tests/motion/test_dyads_strength.py",
+        "tests/motion/test_system_strength.py", *_MOTION_MORE.get(name, ()),
         _SYNTH_DOC + f"synth.motion.{name}]".replace(".__init__", "")])
        for name in ("_pose", "_dyads", "_system", "_linkage", "_kernel", "_sweep", "__init__")},
     # dimensional synthesis: targets read and checked, the problem's placement and errors, the search on exact
