@@ -58,6 +58,12 @@ def test_a_slide_guessed_points_from_the_slider_to_the_first_other_joint_away_fr
     # ... 1e-6 from it is at it
     assert linkage_from_pose(slider_crank, [[0, 0], [0, 1e-6], [0.6, 0.8], [3, 0.5]]).slides[1] == \
         pytest.approx(u, abs=1e-6)
+    # away along x only: the slide points along x
+    assert linkage_from_pose(slider_crank, [[1e-5, 0], [0, 0], [0.6, 0.8], [3, 0.5]]).slides[1] == \
+        pytest.approx((1.0, 0.0), abs=1e-12)
+    # exactly 1e-6 of the size (1) away is still at the point: the slide points at 2-3
+    exact = linkage_from_pose(slider_crank, [[1e-6, 0], [0, 0], [0.6, 0.8], [1, 0.5]])
+    assert exact.slides[1] == pytest.approx((1 / math.hypot(1, 0.5), 0.5 / math.hypot(1, 0.5)), abs=1e-12)
     # given slides are kept
     assert linkage_from_pose(slider_crank, [[0, 0], [3, 0.5], [0.6, 0.8], [3, 0.5]], slides={1: (1, 0)}).slides == \
         {1: (1.0, 0.0)}
