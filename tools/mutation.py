@@ -173,6 +173,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # targets known by construction (not the CLI's and the executors' tests: Ctrl-C, Dask, seconds per mutant)
     **{f"dimension_{name.strip('_')}": (f"synth/dimension/{name}.py", [
         "tests/dimension/test_targets.py", "tests/dimension/test_targets_strength.py", "tests/dimension/test_problem_strength.py",
+        "tests/dimension/test_search_strength.py",
         "tests/dimension/test_placement.py",
         "tests/dimension/test_synthesize.py",
         _SYNTH_DOC + f"synth.dimension.{name}]".replace(".__init__", "")])
