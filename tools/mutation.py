@@ -56,7 +56,7 @@ _FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_res
         "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
         "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
 #: the motion tests that judge some motion modules only (the sweep's link poses and grids, the linkage's files)
-_MOTION_MORE = {"_sweep": ("tests/motion/test_link_poses.py", "tests/motion/test_grid.py"),
+_MOTION_MORE = {"_sweep": ("tests/motion/test_link_poses.py", "tests/motion/test_grid.py", "tests/motion/test_sweep_strength.py"),
                 "__init__": ("tests/motion/test_link_poses.py", "tests/motion/test_grid.py")}
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
