@@ -64,6 +64,9 @@ def test_a_slide_guessed_points_from_the_slider_to_the_first_other_joint_away_fr
     # exactly 1e-6 of the size (1) away is still at the point: the slide points at 2-3
     exact = linkage_from_pose(slider_crank, [[1e-6, 0], [0, 0], [0.6, 0.8], [1, 0.5]])
     assert exact.slides[1] == pytest.approx((1 / math.hypot(1, 0.5), 0.5 / math.hypot(1, 0.5)), abs=1e-12)
+    # every other joint at the slider's point: no line to guess, the slide is along x
+    alone = linkage_from_pose(slider_crank, [[0, 0], [0, 0], [0.6, 0.8], [0, 0]])
+    assert alone.slides[1] == (1.0, 0.0)
     # given slides are kept
     assert linkage_from_pose(slider_crank, [[0, 0], [3, 0.5], [0.6, 0.8], [3, 0.5]], slides={1: (1, 0)}).slides == \
         {1: (1.0, 0.0)}
@@ -82,6 +85,8 @@ def test_a_locked_pose_is_refused_or_nudged_by_a_stated_distance():
                        f"({shift / 4:.1%} of the mechanism's size) to a nearby pose that moves")
     assert lk.tracers == {"P": (2, (1.5, 1.0))} and lk.inputs == (0,)
     assert sweep(lk, steps=3).stopped is None or sweep(lk, steps=3).joints.shape == (3, 4, 2)
+    # the nudge is drawn with a fixed seed: the same pose twice gives the same linkage
+    assert np.array_equal(linkage_from_pose(FOUR_BAR, flat, nudge=True).points, lk.points)
     # a pose that moves is not nudged
     assert linkage_from_pose(FOUR_BAR, [[0, 0], [4, 0], [1, 0], [3.5, 3]], nudge=True).note is None
 
