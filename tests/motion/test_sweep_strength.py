@@ -119,3 +119,33 @@ def test_the_extent_of_a_curve_leaves_out_what_is_not_finite():
     # a crank pin's circle of radius 1 about the origin
     turned = sweep(Linkage(lk.mechanism, (0,), lk.points, tracers={"A": (1, (1.0, 0.0))}), steps=361)
     assert turned.extent()["A"] == pytest.approx((-1, -1, 1, 1), abs=1e-12)
+
+
+def test_grashofs_classes_by_the_shortest_links_place():
+    from synth.motion import motion_range
+    from synth.motion._sweep import _grashof
+
+    # s + l < p + q with the shortest link the output (rocker 3): a rocker-crank
+    assert _grashof(four_bar(3, 3.5, 1, 4, phi=1.2)) == "rocker-crank (Grashof)"
+    # s + l = p + q: a change point (a parallelogram)
+    assert _grashof(four_bar(1.0, 2.0, 1.0, 2.0)) == "change-point (s + l = p + q)"
+    # s + l > p + q: 1 + 4.4 against 3.5 + 1.8
+    assert _grashof(four_bar(1.8, 3.5, 1.0, 4.4, phi=1.2)) == "triple-rocker (non-Grashof)"
+    # only four-bars of revolute joints have a class
+    assert _grashof(slider_crank(1, 3, 0.5)) is None and motion_range(slider_crank(1, 3, 0.5)).grashof is None
+
+
+def test_a_linkage_assembled_at_another_input_carries_its_slides_and_tracers():
+    from synth.motion import assemble
+
+    from .helpers import inverted_slider_crank
+
+    lk = inverted_slider_crank(1.0, 2.0)  # the guide 3 about (2, 0) points at the crank pin
+    posed = assemble(lk, 2.5)
+    pin = np.array([math.cos(2.5), math.sin(2.5)])
+    u = (pin - [2, 0]) / np.hypot(*(pin - [2, 0]))
+    assert posed.pose_inputs[0] == pytest.approx(2.5, abs=1e-12)
+    assert np.abs(posed.points[2] - pin).max() < 1e-12 and np.abs(np.array(posed.slides[3]) - u).max() < 1e-12
+    traced = assemble(four_bar(1, 3.5, 3, 4, tracer=(2, 3)), 1.0)
+    assert traced.tracers == {"P": (2, pytest.approx((2.0, 3.0), abs=1e-12))}  # helpers pose it at φ = 1
+    assert refused(BadSweep, assemble, lk, math.nan) == "the input must be a finite number, not nan"
