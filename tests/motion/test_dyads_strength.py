@@ -103,3 +103,18 @@ def test_the_closure_carries_the_tracers_and_turns_the_links():
     _, _, _, mu0, _ = closure(np.array([[0.0]]))
     assert mu0[0, 0] == pytest.approx(math.acos(u @ v / np.hypot(*u) / np.hypot(*v)), abs=1e-12)
     assert slider_crank(1.0, 3.0, 0.5).dof == 1
+
+
+def test_a_dyad_held_by_a_multiple_joint_keeps_every_links_lengths():
+    # a four-bar 0-1-2-3 whose coupler-rocker pin 2-3-5 also holds link 5; links 4 and 5 close a second
+    # dyad on that pin and the frame pivot 0-4 (joints 0-1 0-3 0-4 1-2 2-3-5 4-5)
+    chain = Chain.parse("0-1 1-2 2-3-5 3-0 5-4 4-0")
+    at = {(0, 1): (0, 0), (1, 2): (0.6, 0.8), (2, 3, 5): (3, 2.5), (0, 3): (4, 0), (4, 5): (5.5, 3.5), (0, 4): (7, 0)}
+    lk = linkage_from_pose(Mechanism(chain, 0, 1), [at[j] for j in chain.joints])
+    plan = decompose(lk)
+    assert plan == [Dyad("RRR", (2, 3), (3, 1), 4, (1, 0), 1.0), Dyad("RRR", (4, 5), (2, 4), 5, (0, 2), -1.0)]
+    joints = Closure(lk, plan).points(np.linspace(0, 0.6, 7)[:, None])[0]
+    for a, b in ((0, 3), (1, 4), (3, 4), (4, 5), (2, 5), (1, 2)):  # the pins of one link stay apart by their length
+        d = np.hypot(*(joints[:, a] - joints[:, b]).T)
+        assert np.abs(d - d[0]).max() < 1e-12, (a, b)
+    assert np.abs(joints[:, 0]).max() == 0 and np.abs(joints[:, 2] - [7, 0]).max() == 0
