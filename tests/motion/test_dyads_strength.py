@@ -42,6 +42,12 @@ def test_an_inverted_slider_cranks_dyad_has_the_sign_of_its_slide_along_the_pivo
     assert decompose(lk) == [Dyad("RPR", (2, 3), (2, 1), 3, (1, 0), -1.0)]
     turned = Linkage(lk.mechanism, (0,), lk.points, {3: tuple(-np.array(lk.slides[3]))})
     assert decompose(turned)[0].sign == 1.0
+    # a crank longer than the frame (a quick-return drive) and the whole mechanism moved far off: the same
+    # side, u · (C − A) = −|A − C| < 0, whatever |A| and |C|
+    whitworth = inverted_slider_crank(2.0, 1.0)
+    assert decompose(whitworth)[0].sign == -1.0
+    far = Linkage(whitworth.mechanism, (0,), whitworth.points + [-50, 30], whitworth.slides)
+    assert decompose(far)[0].sign == -1.0
 
 
 def test_two_slides_and_a_pin_are_a_prp_dyad_of_sign_one():
