@@ -48,8 +48,13 @@ def test_arrays_are_refused_by_what_is_wrong_with_them():
     assert refused(FunctionTarget, [0], [1]) == "the target has 1 pair: give at least 2"
     assert refused(PathTarget, [[0, 0]]) == "the target has 1 point: give at least 2"
     assert refused(MotionTarget, [[0, 0, 1]]) == "the target has 1 pose: give at least 2"
+    assert refused(FunctionTarget, [0, "x"], [0, 1]) == "the input values must be numbers"
+    assert refused(FunctionTarget, [0, 1], [[0], [1]]) == \
+        "the output values must be a list of numbers, not an array of shape (2, 1)"
     t = PathTarget([[0, 0], [1, 2]], [0.5, 0.25])
     assert not t.points.flags.writeable and not t.inputs.flags.writeable
+    f = FunctionTarget((0, 1), [2, 3])
+    assert not f.inputs.flags.writeable and not f.outputs.flags.writeable and f.outputs.dtype == float
 
 
 def test_a_duplicate_is_a_point_within_a_billionth_of_the_targets_size():
