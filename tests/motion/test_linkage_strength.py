@@ -88,6 +88,10 @@ def test_slides_are_checked_and_made_unit():
         "a sliding direction is given for joint 2, which is not a prismatic joint"
     assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 9: (1, 0)}) == \
         "a sliding direction is given for joint 9, which is not a prismatic joint"
+    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 4: (1, 0)}) == \
+        "a sliding direction is given for joint 4, which is not a prismatic joint"  # one past the last joint
+    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), -1: (1, 0)}) == \
+        "a sliding direction is given for joint -1, which is not a prismatic joint"
     assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), "0=3": (1, 0)}) == \
         "a sliding direction is given for joint '0=3', which is not a prismatic joint"
     assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: "ab"}) == \
@@ -120,6 +124,10 @@ def test_gear_ratios_follow_from_the_pitch_points_or_are_checked():
         "a gear ratio is given for joint 2, which is not a gear mesh"
     assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={9: 1.0}, driven=(1, 2)) == \
         "a gear ratio is given for joint 9, which is not a gear mesh"
+    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={4: 1.0}, driven=(1, 2)) == \
+        "a gear ratio is given for joint 4, which is not a gear mesh"  # one past the last joint
+    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={-1: 1.0}, driven=(1, 2)) == \
+        "a gear ratio is given for joint -1, which is not a gear mesh"
     # the pitch point on the planet's axis
     assert sentence(BadPose, Linkage, PLANETARY, (0, 0), [[0, 0], [1.5, 0], [1.5, 0], [2, 0]], driven=(1, 2)) == \
         "the pitch point of mesh 1~4 is on a gear's axis: give the ratio or move the point"
