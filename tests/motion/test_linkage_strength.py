@@ -114,6 +114,10 @@ def test_gear_ratios_follow_from_the_pitch_points_or_are_checked():
         "a pitch radius of mesh 1~4 is zero"
     assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (3, 0)}, driven=(1, 2)) == \
         "a pitch radius of mesh 1~4 is zero"
+    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (1, "x")}, driven=(1, 2)) == \
+        "the pitch radii of mesh 1~4 must be two numbers [x, y], not (1, 'x')"
+    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: [1, math.inf]}, driven=(1, 2)) == \
+        "the pitch radii of mesh 1~4 is not finite: [1, inf]"
     assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: "x"}, driven=(1, 2)) == \
         "the ratio of mesh 1~4 must be a number or a pair of pitch radii, not 'x'"
     assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: 0}, driven=(1, 2)) == \
