@@ -107,6 +107,9 @@ def test_gear_ratios_follow_from_the_pitch_points_or_are_checked():
     # sun ~ planet: pitch point 1 from the sun's axis, 0.5 from the planet's, on opposite sides: −0.5
     # planet ~ ring: 0.5 from the planet's axis, 2 from the ring's, on the same side: +0.25
     assert lk.meshes == {1: -0.5, 3: 0.25}
+    # the same train anywhere: the same ratios (radii from each gear's own axis)
+    moved = Linkage(PLANETARY, (0, 0), np.array(PLANETARY_POINTS) + [5.0, -3.0], driven=(1, 2))
+    assert moved.meshes == pytest.approx({1: -0.5, 3: 0.25})
     assert lk.carrier(1) == 2 and lk.carrier(3) == 2 and lk.axis(4, 2) == 2 and lk.axis(1, 2) == 0
     given = Linkage(PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (2.0, 3.0), 3: -0.7}, driven=(1, 2))
     assert given.meshes == {1: -1.5, 3: -0.7}
