@@ -149,3 +149,18 @@ def test_a_linkage_assembled_at_another_input_carries_its_slides_and_tracers():
     traced = assemble(four_bar(1, 3.5, 3, 4, tracer=(2, 3)), 1.0)
     assert traced.tracers == {"P": (2, pytest.approx((2.0, 3.0), abs=1e-12))}  # helpers pose it at φ = 1
     assert refused(BadSweep, assemble, lk, math.nan) == "the input must be a finite number, not nan"
+
+
+def test_a_grid_by_continuation_steps_a_whole_radian_at_a_time():
+    from synth.motion import sweep_grid
+    from synth.motion._sweep import _solver
+
+    # the crank-rocker posed at φ = 0 (its crank pin at (1, 0)): the grid's inputs 0, 1, 2 rad are its offsets,
+    # one whole radian apart; continuation (its dyad ignored) must reach each as the closed form does
+    closed = sweep_grid(four_bar(1, 3.5, 3, 4, phi=0.0), [(0.0, 2.0)], steps=3)
+    lk = four_bar(1, 3.5, 3, 4, phi=0.0)
+    _solver(lk).plan = None
+    newton = sweep_grid(lk, [(0.0, 2.0)], steps=3)
+    assert closed.inputs[:, 0].tolist() == [0.0, 1.0, 2.0] and lk.pose_inputs[0] == 0.0
+    assert np.abs(newton.joints - closed.joints).max() < 1e-10
+    assert np.abs(newton.joints[1, 2] - [math.cos(1.0), math.sin(1.0)]).max() < 1e-12
