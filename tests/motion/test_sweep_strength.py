@@ -164,3 +164,45 @@ def test_a_grid_by_continuation_steps_a_whole_radian_at_a_time():
     assert closed.inputs[:, 0].tolist() == [0.0, 1.0, 2.0] and lk.pose_inputs[0] == 0.0
     assert np.abs(newton.joints - closed.joints).max() < 1e-10
     assert np.abs(newton.joints[1, 2] - [math.cos(1.0), math.sin(1.0)]).max() < 1e-12
+
+
+def test_a_grid_keeps_the_region_of_its_pose():
+    from synth.motion import sweep_grid
+
+    # a five-bar whose cranks (1 each, pivots 3 apart) reach each other's coupler links (1.2 each) only
+    # pointing towards each other: crank 2 near ±π, which the grid (−π … π) splits in two regions; the
+    # pose (0.3, 2.8) is in the upper one, and the grid keeps that one alone
+    a, b = np.array([math.cos(0.3), math.sin(0.3)]), np.array([3 + math.cos(2.8), math.sin(2.8)])
+    middle, d = (a + b) / 2, b - a
+    pin = middle + math.sqrt(1.2 ** 2 - (np.hypot(*d) / 2) ** 2) * np.array([-d[1], d[0]]) / np.hypot(*d)
+    lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], a, pin, b])
+    m = sweep_grid(lk, [(-math.pi, math.pi), (-math.pi, math.pi)], steps=41)
+    reached = np.isfinite(m.joints).all(axis=(1, 2))
+    assert reached.sum() > 100 and (m.inputs[reached, 1] > 0).all()
+    pose_cell = np.argmin(np.abs(m.inputs - [0.3, 2.8]).max(axis=1))
+    assert reached[pose_cell]
+    # every reached cell keeps the coupler links' lengths
+    c = m.joints[reached]
+    assert np.abs(np.hypot(*(c[:, 3] - c[:, 2]).T) - 1.2).max() < 1e-12
+    assert np.abs(np.hypot(*(c[:, 3] - c[:, 4]).T) - 1.2).max() < 1e-12
+
+
+def test_a_grids_refusals():
+    from synth.motion import sweep_grid
+
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
+    assert refused(BadSweep, sweep_grid, five_bar, [(0, 1), (0, 1)], steps=[3, 1]) == \
+        "each input's steps must be 2 … 10,000,000 (a sweep's steps, start and stop included), not 1"
+    assert refused(BadSweep, sweep_grid, five_bar, [(0, 1)], steps=3) == \
+        "this linkage has 2 inputs: give 2 ranges and step counts, not 1 and 2"
+    assert refused(BadSweep, sweep_grid, four_bar(1, 3.5, 3, 4), [(0, 1), (0, 1)]) == \
+        "this linkage has 1 input: give 1 range and step counts, not 2 and 1"
+    assert refused(BadSweep, sweep_grid, five_bar, [(0, math.nan), (0, 1)]) == "a range's stop must be a finite number, not nan"
+    assert refused(BadSweep, sweep_grid, five_bar, [1, 2]) == \
+        "ranges must be one (start, stop) pair per input, steps one count per input"
+    assert refused(BadSweep, sweep_grid, five_bar, [(0, 1), (0, 1)], steps=10_000) == \
+        "the grid has 100,000,000 steps; at most 10,000,000"
+    # cranks pointing away from each other (pins 5 apart) cannot be joined by couplers of 2.12
+    assert refused(CannotAssemble, sweep_grid, five_bar, [(3.0, 3.2), (-0.1, 0.1)], steps=3) == (
+        "the linkage cannot be assembled at the grid's input nearest to its pose on the branch of its pose: "
+        f"widen the ranges to include the pose's inputs {math.pi / 2:.6g}, {math.pi / 2:.6g}")
