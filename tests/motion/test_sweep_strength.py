@@ -206,3 +206,15 @@ def test_a_grids_refusals():
     assert refused(CannotAssemble, sweep_grid, five_bar, [(3.0, 3.2), (-0.1, 0.1)], steps=3) == (
         "the linkage cannot be assembled at the grid's input nearest to its pose on the branch of its pose: "
         f"widen the ranges to include the pose's inputs {math.pi / 2:.6g}, {math.pi / 2:.6g}")
+
+
+def test_a_grids_velocities_of_a_slider_are_a_sweeps():
+    from synth.motion import sweep_grid
+
+    lk = slider_crank(1.0, 3.0, 0.5)  # the slider's equations read the links' translations
+    grid = sweep_grid(lk, [(0.5, 1.5)], steps=3, velocities=True)
+    swept = sweep(lk, start=0.5, stop=1.5, steps=3, velocities=True)
+    assert np.abs(grid.velocities[:, 0] - swept.velocities).max() < 1e-12
+    # the crank pin: unit speed square to the crank
+    phi = grid.inputs[:, 0]
+    assert np.abs(grid.velocities[:, 0, 2] - np.c_[-np.sin(phi), np.cos(phi)]).max() < 1e-12
