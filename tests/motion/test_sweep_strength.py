@@ -218,3 +218,13 @@ def test_a_grids_velocities_of_a_slider_are_a_sweeps():
     # the crank pin: unit speed square to the crank
     phi = grid.inputs[:, 0]
     assert np.abs(grid.velocities[:, 0, 2] - np.c_[-np.sin(phi), np.cos(phi)]).max() < 1e-12
+
+
+def test_a_rockers_dead_positions_are_its_limits_named():
+    from synth.motion import motion_range
+
+    r = motion_range(four_bar(2.5, 3.2, 3.0, 4.0, phi=0.5))
+    assert not r.full_rotation and r.limits == pytest.approx((-ROCKER_LIMIT, ROCKER_LIMIT), abs=1e-9)
+    assert [why for _, why in r.dead_positions] == [DYAD, DYAD]
+    assert [x for x, _ in r.dead_positions] == pytest.approx([-ROCKER_LIMIT, ROCKER_LIMIT], abs=1e-9)
+    assert motion_range(four_bar(1, 3.5, 3, 4)).dead_positions == ()
