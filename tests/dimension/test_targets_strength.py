@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from synth.dimension import FunctionTarget, MotionTarget, PathTarget, read_target

@@ -3,7 +3,6 @@ terms (the second derivative along a straight path of the unknowns) and the inpu
 pins, sliders on turning guides, gear meshes and both kinds of input; Newton's method and the
 conditioning that says a pose is locked."""
 
-import math
 
 import numpy as np
 import pytest
