@@ -134,6 +134,9 @@ def test_a_linkage_is_built_from_the_unknowns_and_read_back():
     back = p.unknowns_of(far)
     assert back[0] == 4.0 and back[4] == pytest.approx(math.pi / 3)
     assert back[-2:].tolist() == [0.0, 0.0]  # a tracer on another link: the target's centre
+    # the tracer named P is read, whichever comes first
+    two = Linkage(lk.mechanism, (0,), lk.points, lk.slides, tracers={"Q": (3, (0, 0)), "P": (2, (3.5, 3.5))})
+    assert p.unknowns_of(two)[-2:].tolist() == pytest.approx([0.2, 0.1])
     f = Problem(FOUR_BAR, 0, FunctionTarget([0.1, 0.2], [1, 2]), None, Constraints())
     built = f.linkage(np.array([0.2, 0.3, 1.2, 0.9]))
     assert close(built.points, [[0, 0], [1, 0], [0.2, 0.3], [1.2, 0.9]]) and built.tracers == {}
@@ -185,6 +188,10 @@ def test_each_violation_is_measured_inside_the_designers_limit():
     pv = Problem(FOUR_BAR, 0, PATH, None, Constraints(pivots=(1, 3, -1, 1)))
     gap = 1 + MARGIN * 5
     assert pv.violations(lk, np.array([0.5]), None, None).tolist() == pytest.approx([math.hypot(gap, gap) / 5])
+    # pivots at y = 1 inside the box's y range 0.2 … 2: only their x is out
+    high = Linkage(FOUR_BAR, (0,), [[0, 1], [4, 1], [1, 1], [3, 3]])
+    box = Problem(FOUR_BAR, 0, PATH, None, Constraints(pivots=(1, 3, 0.2, 2)))
+    assert box.violations(high, np.array([0.5]), None, None).tolist() == pytest.approx([math.hypot(gap, gap) / 5])
     # the input starts at atan2(0, 1) = 0 and runs to 0.5; limits (0.1, 0.4): 0.1 + M below, 0.1 + M above;
     # run back to −0.05 instead: 0.15 + M below only
     rk = Problem(FOUR_BAR, 0, PATH, None, Constraints(rocker=(0.1, 0.4)))
@@ -221,3 +228,5 @@ def test_link_ratio_and_the_input_joint():
     central = Mechanism(Chain.parse("0-1-2-3 2-4 1~4 3~4"), 0)  # the frame's one joint is the central axis
     assert refused(DimensionError, input_joint_of, central, None) == \
         "the frame (link 0) has no joint with one moving link to drive"
+    assert refused(DimensionError, input_joint_of, Mechanism(central.chain, 0, 1), None) == \
+        "the frame (link 0) has no joint with one moving link to drive (link 1)"
