@@ -212,8 +212,9 @@ def test_poses_give_the_least_discriminant_and_the_worst_transmission():
     assert close(_carried(np.array([math.pi / 2]), np.array([[1.0, 2.0]]), np.array([1.0, 0.0])), [[1, 3]])
     # a crank too short for its rocker: a dyad that cannot close at some input gives g = −1 there
     short = Linkage(FOUR_BAR, (0,), [[0, 0], [4, 0], [2.5, 0], [3.5, 1]])
-    g = p.poses(short, np.array([0.0, math.pi]))[2]
+    _, _, g, mu = p.poses(short, np.array([0.0, math.pi]))
     assert g[0] > 0 and g[1] == -1.0
+    assert mu[1] == math.pi / 2  # no transmission angle where the dyad does not close: counted as the best
 
 
 def test_link_ratio_and_the_input_joint():
