@@ -255,9 +255,8 @@ class Problem:
             elif kind == "slide":
                 slides[k] = (math.cos(x[i]), math.sin(x[i]))
                 i += 1
-            else:
+            else:  # (the tracer's two are the layout's last)
                 tracer = self.centre + self.scale * x[i:i + 2]
-                i += 2
         for k, p in self.fixed.items():
             points[k] = p
         tracers = {} if tracer is None else {"P": (self.tracer_link, (float(tracer[0]), float(tracer[1])))}
