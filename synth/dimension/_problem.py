@@ -225,7 +225,7 @@ class Problem:
         """The problem's real unknowns: a pin's 2 coordinates, a slide's line (2: a point along it is
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
-        count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1 if kind == "joint" else 1
+        count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1
                     for kind, k in self.layout if kind in ("joint", "slide"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:

@@ -74,8 +74,9 @@ def test_the_problems_refusals():
     assert refused(DimensionError, Problem, spatial, 0, PATH, None, Constraints()) == \
         "dimensional synthesis moves a planar mechanism of one input (W = 1), not W = 1 in motion space h = 5"
     f = FunctionTarget([0, 1], [0, 1])
-    assert refused(DimensionError, Problem, SLIDER_CRANK, 0, f, None, Constraints()).startswith(
-        "function generation relates the angles of two links pivoted on the frame")
+    assert refused(DimensionError, Problem, SLIDER_CRANK, 0, f, None, Constraints()) == (
+        "function generation relates the angles of two links pivoted on the frame: the input and the output joints "
+        "must be revolute")
     assert refused(DimensionError, Problem, FOUR_BAR, 0, FunctionTarget([0, 1], [0, 1], 2), None, Constraints()) == \
         ("the output link 2 must be pivoted on the frame (link 0) and not be the input link; links pivoted there: [3]")
     watt = Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-2"), 0)
@@ -215,6 +216,11 @@ def test_poses_give_the_least_discriminant_and_the_worst_transmission():
     _, _, g, mu = p.poses(short, np.array([0.0, math.pi]))
     assert g[0] > 0 and g[1] == -1.0
     assert mu[1] == math.pi / 2  # no transmission angle where the dyad does not close: counted as the best
+    # a lone crank has no dyad: every input closes, at the best transmission
+    crank = Mechanism(Chain.parse("0-1"), 0)
+    lone = Problem(crank, 0, PATH, None, Constraints())
+    _, _, g, mu = lone.poses(Linkage(crank, (0,), [[0, 0]], tracers={"P": (1, (1, 0))}), np.array([0.0, 1.0, 2.0]))
+    assert g.tolist() == [1, 1, 1] and mu.tolist() == [math.pi / 2] * 3
 
 
 def test_link_ratio_and_the_input_joint():
