@@ -55,6 +55,9 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
 _FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py",
         "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
         "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
+#: the atlas tests without the module fixtures of test_atlas.py (the 201 units of grid_small.toml) and Dask
+_ATLAS_LIGHT = ("not per_cell and not mechanism_counts_one_dof and not rerun_does_nothing and not sigkill and not dask "
+                "and not where_filters and not summary_table and not unreachable")
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -195,6 +198,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.helical]", "-k",
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    # the atlas file: its schema, version checks, refusals and run lock (not test_atlas.py's 201-unit grid: a
+    # minute per mutant)
+    "atlas_database": ("synth/atlas/database.py", ["tests/atlas/test_database_strength.py", "tests/atlas/test_atlas.py",
+                                                   "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
+    # grid files: cells by hand from n = W + 1 + (h − 1)·K, every key's part, every refusal's sentence
+    "atlas_grid": ("synth/atlas/grid.py", ["tests/atlas/test_grid_strength.py", "tests/atlas/test_grid.py"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }
