@@ -204,6 +204,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                    "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
     # grid files: cells by hand from n = W + 1 + (h − 1)·K, every key's part, every refusal's sentence
     "atlas_grid": ("synth/atlas/grid.py", ["tests/atlas/test_grid_strength.py", "tests/atlas/test_grid.py"]),
+    # grid runs: every column of the rows by hand on a few links, stopped runs, the sizing from estimates by hand
+    "atlas_runs": ("synth/atlas/runs.py", ["tests/atlas/test_runs_strength.py", "tests/atlas/test_database_strength.py",
+                                           "tests/atlas/test_atlas.py",
+                                           "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from synth.atlas import AtlasError, AtlasLocked, open_atlas, parse_grid, run_grid
+from synth.atlas import AtlasError, AtlasLocked, database, open_atlas, parse_grid, run_grid
 from synth.atlas.database import SCHEMA_VERSION, acquire_run, refuse_unwritable, release_run, transaction
 from synth.structure.chain import Chain, chain_id
 
@@ -174,7 +174,7 @@ def test_a_missing_column_is_named(four_bar):
     assert str(e.value) == f"{four_bar} is not a complete mechsynth atlas: table 'units' lacks finished, seconds"
 
 
-def test_text_and_damaged_pages_are_refused_before_anything_is_written(four_bar, tmp_path):
+def test_text_and_damaged_pages_are_refused_before_anything_is_written(four_bar, tmp_path, monkeypatch):
     text = tmp_path / "text.sqlite"
     text.write_bytes(b"hello, not a database\n" * 100)
     with pytest.raises(AtlasError) as e:
@@ -190,12 +190,31 @@ def test_text_and_damaged_pages_are_refused_before_anything_is_written(four_bar,
     for write in (False, True):
         with pytest.raises(AtlasError) as e:
             open_atlas(damaged, write=write)
-        message = str(e.value)
-        assert message.startswith(f"the atlas {damaged} is damaged (") and message.endswith(
-            "); it was only read, not changed") and "***" not in message and "  " not in message
+        # SQLite's verdict without its "*** in database main ***" line
+        assert str(e.value) == (f"the atlas {damaged} is damaged (Page {root}: btreeInitPage() returns error code 11); "
+                                "it was only read, not changed")
     assert _digest(damaged) == digest
     # the page check can be skipped: the damage is then found when a query meets it
     open_atlas(damaged, check_pages=False).close()
+    # an atlas too large to be checked when it is only read is still checked before a write
+    monkeypatch.setattr(database, "_CHECKED_READ_BYTES", 0)
+    open_atlas(damaged).close()
+    with pytest.raises(AtlasError, match="is damaged"):
+        open_atlas(damaged, write=True)
+    assert _digest(damaged) == digest
+
+
+def test_a_file_sqlite_cannot_create_is_one_sentence(tmp_path):
+    link = tmp_path / "link.sqlite"
+    link.symlink_to(tmp_path / "none" / "a.sqlite")  # a dangling link passes the path checks
+    with pytest.raises(AtlasError) as e:
+        open_atlas(link, write=True)
+    assert str(e.value) == f"cannot write the atlas {link}: unable to open database file"
+
+
+def test_the_tables_of_a_schema_are_read_back_from_sqlite():
+    schema = "CREATE TABLE a (x INTEGER, y TEXT NOT NULL); CREATE INDEX i ON a (x); CREATE TABLE b (z)"
+    assert database._columns(schema) == {"a": {"x", "y"}, "b": {"z"}}  # the index is no table
 
 
 def _as_version_3(db: Path) -> None:
@@ -333,9 +352,14 @@ def test_a_lock_held_on_another_host_is_never_taken_over(tmp_path):
     conn.close()
 
 
-def test_a_dead_process_is_not_alive_and_a_live_one_is():
-    from synth.atlas.database import _alive
-
+def test_a_dead_process_is_not_alive_and_a_live_one_is(monkeypatch):
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
-    assert _alive(os.getpid()) and not _alive(dead.pid)
+    assert database._alive(os.getpid()) and not database._alive(dead.pid)
+
+    def kill(pid, signal):  # another user's process: signal 0 is refused, but the process is there
+        assert signal == 0
+        raise PermissionError(1, "Operation not permitted")
+
+    monkeypatch.setattr(os, "kill", kill)
+    assert database._alive(dead.pid)
