@@ -208,6 +208,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_runs": ("synth/atlas/runs.py", ["tests/atlas/test_runs_strength.py", "tests/atlas/test_database_strength.py",
                                            "tests/atlas/test_atlas.py",
                                            "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
+    # the curve index and the atlas search: descriptors, alignment, recovery of random cranks (not the slow
+    # six-bar cases), refusals
+    **{f"atlas_{name}": (f"synth/atlas/{name}.py", ["tests/atlas/test_curve_search.py", "tests/atlas/test_search_strength.py",
+                                                     _SYNTH_DOC + f"synth.atlas.{name}]"])
+       for name in ("curves", "search")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }

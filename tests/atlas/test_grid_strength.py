@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from synth.atlas.grid import Cell, GearCell, GridFileError, load_grid, parse_grid
+from mechbase.schema import Table
+from synth.atlas.grid import Cell, GearCell, GridFileError, _values, load_grid, parse_grid
 from synth.structure.query import ChainQuery
 
 
@@ -22,6 +23,8 @@ def test_the_cells_are_the_triples_with_a_whole_number_of_loops():
     assert _cells('dof = [2, 0]\nloops = "1..2"\nh = [5, 3]') == [
         (0, 3, 3), (0, 5, 3), (2, 5, 3), (2, 7, 3), (0, 5, 5), (0, 9, 5), (2, 7, 5), (2, 11, 5)]
     assert [c.loops for c in parse_grid('dof = [2, 0]\nloops = "1..2"\nh = [5, 3]').cells] == [1, 2, 1, 2, 1, 2, 1, 2]
+    # h = 2: n = W + 2 is the smallest cell (K = 1); n = W + 1 would have no loop
+    assert _cells('dof = 1\nlinks = "2..4"\nh = 2') == [(1, 3, 2), (1, 4, 2)]
     assert Cell(1, 8, (0, 0), h=4).loops == 2 and Cell(2, 11, (0, 0), h=5).loops == 2 and Cell(1, 10, (0, 0)).loops == 4
 
 
@@ -170,3 +173,22 @@ def test_every_refusal_is_its_sentence(text, sentence):
         parse_grid(text, source="g.toml")
     message = str(e.value)
     assert message.startswith("grid file g.toml: " + sentence) and "\n" not in message, message
+
+
+def test_the_value_type_of_the_keys_reads_numbers_ranges_and_lists():
+    """The type a grid key's value takes (built once, when the module is imported), built here anew."""
+
+    class Keys(Table):
+        count: _values(2)
+
+    def read(value):
+        return Keys.read({"count": value}, source="f", where="", error=GridFileError).count
+
+    assert read([5, 2, 5, 3]) == [2, 3, 5] and read("2..4") == [2, 3, 4] and read(7) == [7]
+    for value, sentence in (([], "key 'count' must be a whole number, a range \"A..B\" or a list of whole numbers, "
+                                 "not []."),
+                            ([1, 4], "key 'count' must be at least 2, not [1, 4]."),
+                            ("3..", "key 'count' is the range '3..' with no upper end.")):
+        with pytest.raises(GridFileError) as e:
+            read(value)
+        assert str(e.value) == "f: " + sentence
