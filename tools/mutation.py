@@ -213,6 +213,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     **{f"atlas_{name}": (f"synth/atlas/{name}.py", ["tests/atlas/test_curve_search.py", "tests/atlas/test_search_strength.py",
                                                      _SYNTH_DOC + f"synth.atlas.{name}]"])
        for name in ("curves", "search")},
+    # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not the
+    # headless-browser cases)
+    "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", "tests/atlas/test_site.py",
+                                           "tests/atlas/test_site_motion.py", _SYNTH_DOC + "synth.atlas.site]",
+                                           "-k", "not chromium"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }
