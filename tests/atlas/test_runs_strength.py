@@ -65,6 +65,7 @@ def test_every_column_of_the_one_dof_chains_by_hand(atlas):
         assert row[12] == 0  # no gear mesh
         stored = Chain.from_dict(json.loads(row[11]))
         assert stored.certificate == chain.certificate and stored.links == links
+        assert row[11] == json.dumps(json.loads(row[11]), separators=(",", ":"))  # compact: no blank after , and :
         assert dict(_sql(db, "SELECT degree, count FROM link_counts WHERE chain = ?", row[13])) == counts
         frames = _sql(db, "SELECT frame, input_link FROM mechanisms WHERE chain = ?", row[13])
         assert len(frames) == inversions and all(i == -1 for _, i in frames)
@@ -339,3 +340,59 @@ def test_sums_of_logarithms_and_powers_by_hand():
     assert _log_sum(400.0, 400.0) == pytest.approx(400 + math.log10(2))  # 10^400 is no float
     assert _power(2.0) == pytest.approx(100.0) and _power(307.9) == pytest.approx(10 ** 307.9)
     assert _power(308.0) == math.inf and _power(500.0) == math.inf
+
+
+def test_the_run_says_where_it_ran(tmp_path, monkeypatch):
+    monkeypatch.setattr(runs.os, "cpu_count", lambda: 5)
+    grid = parse_grid("dof = 1\nlinks = 4")
+    assert run_grid(grid, tmp_path / "a.sqlite").executor == "local 5"  # every core by default
+    assert run_grid(grid, tmp_path / "b.sqlite", workers=3).executor == "local 3"
+    assert _sql(tmp_path / "b.sqlite", "SELECT executor FROM runs") == [("local 3",)]
+    monkeypatch.setattr(runs.os, "cpu_count", lambda: None)
+    assert run_grid(grid, tmp_path / "c.sqlite").executor == "local 1"
+
+
+class _Terminal:
+    """A stderr that says it is a terminal (tqdm draws no bar on anything else) and keeps what is written."""
+
+    def __init__(self):
+        self.text = ""
+
+    def write(self, text):
+        self.text += text
+
+    def flush(self):
+        pass
+
+    def isatty(self):
+        return True
+
+
+def test_the_progress_bar_counts_units_and_chains(tmp_path, monkeypatch):
+    import sys
+
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    run_grid(parse_grid('name = "tiny"\ndof = 1\nlinks = "4..6"'), tmp_path / "a.sqlite", workers=1, progress=True)
+    last = terminal.text.replace("\r", "\n").strip().splitlines()[-1]
+    assert last.startswith("tiny: 100%") and "2/2 [" in last and "unit" in last and "chains=3" in last
+
+
+def test_a_grid_of_more_than_any_float_is_said_in_powers_of_ten(estimates):
+    given, _ = estimates
+    given[16] = _Estimate(400.0, 390.0)
+    with pytest.raises(QueryTooLarge) as e:
+        size_grid(parse_grid("dof = 1\nlinks = 16"), processes=1, db="a.sqlite")
+    # 10^400 s / (365.25 × 86 400 s a year) = 10^392.50 years; 10^390 × 210 bytes = 2.1e+383 GB
+    assert ("holds about 1e+390 mechanisms, 3.2e+392 years on 1 worker and 2.1e+383 GB in the atlas"
+            in str(e.value))
+
+
+def test_a_disk_without_a_free_byte_takes_no_grid(estimates, tmp_path, monkeypatch):
+    import shutil
+
+    given, _ = estimates
+    given[16] = _Estimate(2.0, math.log10(1.5 / 210))  # an atlas of 1.5 bytes
+    monkeypatch.setattr(shutil, "disk_usage", lambda folder: shutil._ntuple_diskusage(100, 100, 0))
+    with pytest.raises(QueryTooLarge, match="has 0.0 GB free"):
+        size_grid(parse_grid("dof = 1\nlinks = 16"), processes=1, db=str(tmp_path / "a.sqlite"))
