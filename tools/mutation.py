@@ -221,12 +221,13 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # the atlas package's lazy names
     "atlas_init": ("synth/atlas/__init__.py", ["tests/atlas/test_grid.py::test_docstring_examples",
                                                _SYNTH_DOC + "synth.atlas]"]),
-    # where links and joints go: convex polygons without crossings for every planar chain up to 9 links (and the
-    # 10-link cases of W = 2), the measured drawings (not the 10-link W = 1 and W = 3 cases and the open chains:
-    # half a minute each)
-    "draw_layout": ("synth/draw/_layout.py", ["tests/test_draw.py", "tests/test_draw_measured.py",
-                                              _SYNTH_DOC + "synth.draw._layout]",
-                                              "-k", "not 1-10-query3 and not 3-10-query9 and not open_chains"]),
+    # where links and joints go, and the marks drawn there: convex polygons without crossings for every planar chain
+    # up to 9 links (and the 10-link cases of W = 2), each mark by kind where it stands, the measured drawings (not
+    # the 10-link W = 1 and W = 3 cases and the open chains: half a minute each)
+    **{f"draw_{name.strip('_')}": (f"synth/draw/{name}.py", ["tests/test_draw_strength.py", "tests/test_draw.py",
+                                                            "tests/test_draw_measured.py", _SYNTH_DOC + f"synth.draw.{name}]",
+                                                            "-k", "not 1-10-query3 and not 3-10-query9 and not open_chains"])
+       for name in ("_layout", "_render")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }
