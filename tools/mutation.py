@@ -208,11 +208,14 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_runs": ("synth/atlas/runs.py", ["tests/atlas/test_runs_strength.py", "tests/atlas/test_database_strength.py",
                                            "tests/atlas/test_atlas.py",
                                            "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
-    # the curve index and the atlas search: descriptors, alignment, recovery of random cranks (not the slow
-    # six-bar cases), refusals
-    **{f"atlas_{name}": (f"synth/atlas/{name}.py", ["tests/atlas/test_curve_search.py", "tests/atlas/test_search_strength.py",
-                                                     _SYNTH_DOC + f"synth.atlas.{name}]"])
-       for name in ("curves", "search")},
+    # the atlas search: descriptors, alignment, recovery of random cranks (not the slow six-bar cases), refusals
+    "atlas_search": ("synth/atlas/search.py", ["tests/atlas/test_curve_search.py", "tests/atlas/test_search_strength.py",
+                                               _SYNTH_DOC + "synth.atlas.search]"]),
+    # the curve index: every stored curve swept again, its settings, resumption and refusals (not the searches'
+    # recoveries and commands, which read the index and take half a minute each)
+    "atlas_curves": ("synth/atlas/curves.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
+                                               _SYNTH_DOC + "synth.atlas.curves]", "-k",
+                                               "not found_again and not command and not alignment_finds"]),
     # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not the
     # headless-browser cases)
     "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", "tests/atlas/test_site.py",
