@@ -222,9 +222,6 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", "tests/atlas/test_site.py",
                                            "tests/atlas/test_site_motion.py", _SYNTH_DOC + "synth.atlas.site]",
                                            "-k", "not chromium"]),
-    # the atlas package's lazy names
-    "atlas_init": ("synth/atlas/__init__.py", ["tests/atlas/test_grid.py::test_docstring_examples",
-                                               _SYNTH_DOC + "synth.atlas]"]),
     # where links and joints go, and the marks drawn there: convex polygons without crossings for every planar chain
     # up to 9 links (and the 10-link cases of W = 2), each mark by kind where it stands, the measured drawings (not
     # the 10-link W = 1 and W = 3 cases and the open chains: half a minute each)
