@@ -217,17 +217,17 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_curves": ("synth/atlas/curves.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
                                                _SYNTH_DOC + "synth.atlas.curves]", "-k",
                                                "not found_again and not command and not alignment_finds"]),
-    # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not the
-    # headless-browser cases)
-    "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", "tests/atlas/test_site.py",
-                                           "tests/atlas/test_site_motion.py", _SYNTH_DOC + "synth.atlas.site]",
-                                           "-k", "not chromium"]),
-    # where links and joints go, and the marks drawn there: convex polygons without crossings for every planar chain
-    # up to 9 links (and the 10-link cases of W = 2), each mark by kind where it stands, the measured drawings (not
-    # the 10-link W = 1 and W = 3 cases and the open chains: half a minute each)
+    # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not
+    # test_site.py and test_site_motion.py: their atlases of 1- and 2-DOF chains up to 8 links are drawn anew for
+    # every mutant, minutes on the loaded machine)
+    "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", _SYNTH_DOC + "synth.atlas.site]"]),
+    # where links and joints go, and the marks drawn there: each mark by kind where it stands, the layouts of the
+    # 8-link chains (not the drawings of every planar chain, the commands and the measured drawings: minutes a
+    # mutant on the loaded machine)
     **{f"draw_{name.strip('_')}": (f"synth/draw/{name}.py", ["tests/test_draw_strength.py", "tests/test_draw.py",
-                                                            "tests/test_draw_measured.py", _SYNTH_DOC + f"synth.draw.{name}]",
-                                                            "-k", "not 1-10-query3 and not 3-10-query9 and not open_chains"])
+                                                            _SYNTH_DOC + f"synth.draw.{name}]",
+                                                            "-k", "not every_planar_chain and not cli and not sheet_png "
+                                                                  "and not jupyter and not prismatic_variants"])
        for name in ("_layout", "_render")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
