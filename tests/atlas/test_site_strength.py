@@ -175,6 +175,8 @@ def test_moving_pages_say_how_the_input_moves(atlas, tmp_path):
     page = _text((folder / "moving" / f"{four}-0.html").read_text())
     assert "<title>0-1 0-2 1-3 2-3 with link 0 fixed</title>" in page
     assert f"<a href='../chain.html#{four}'>the chain {four}</a>" in page
+    # the drawing's own pose does not turn the four-bar's crank: the page says how it was moved
+    assert "<tr><th class='c'>pose</th><td class='c'>the drawing&#x27;s pose does not move well" in page
     assert "<code>mechsynth move --chain \"0-1 0-2 1-3 2-3\" --frame 0 --range</code>" in page
     assert f"--frame 0 --animate {four}-0.gif</code>" in page and f"--frame 0 --save {four}-0.json</code>" in page
     card = _cards(folder)[four]
@@ -262,3 +264,30 @@ def test_a_long_drawing_run_is_said_first(atlas, tmp_path, monkeypatch):
     said.clear()
     write_site(atlas, tmp_path / "c", workers=1, progress=True, note=said.append)
     assert said == []
+
+
+def test_a_card_says_what_the_atlas_did_not_store():
+    from synth.gears.train import GearTrain
+
+    text = "0-1-4 0-2 1-3 0~3 1~2 2~4"  # a train of 5 links whose meshes have two carriers, 1 and 0
+    train = GearTrain.parse(text)
+    assert sorted(set(train.carriers)) == [0, 1]
+    chain = train.to_chain()
+    card = site._train_card(4, chain, (text, "x", chain.certificate), [], False, False)
+    assert "lever analogue x · 2 carriers<br>" in card and "fixed link up to symmetry: none stored<br>" in card
+    assert "<p><i>not drawn</i> (see the site's note)</p>" in card and "#4 " in card
+    # a fractionated chain (two four-bars sharing link 0) without stored mechanisms: its link orbits are the frames
+    two = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-6 6-0")
+    card, planar, pages = site._card((2, json.dumps(two.to_dict()), [], True, False, False, None))
+    assert "<br>fractionated</figcaption>" in card and planar and pages == []
+    assert f"mechanisms: {len(two.link_orbits)} with a fixed link (up to symmetry): link " in card
+
+
+def test_the_long_drawing_note_begins_past_a_minute(atlas, tmp_path, monkeypatch):
+    said = []
+    monkeypatch.setattr(site, "_SECONDS_PER_DRAWING", 10.0)  # 6 drawings: exactly 60 s
+    write_site(atlas, tmp_path / "a", draw_limit=6, workers=1, progress=True, note=said.append)
+    assert said == []
+    monkeypatch.setattr(site, "_SECONDS_PER_DRAWING", 10.1)  # 60.6 s
+    write_site(atlas, tmp_path / "b", draw_limit=6, workers=1, progress=True, note=said.append)
+    assert said == ["6 of the 9 chains are drawn: about 61 s on 1 worker (a lower drawing limit draws fewer)"]
