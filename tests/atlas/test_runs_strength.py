@@ -368,7 +368,7 @@ class _Terminal:
         return True
 
 
-def test_the_progress_bar_counts_units_and_chains(tmp_path, monkeypatch):
+def test_the_progress_bar_counts_units_and_chains(tmp_path, monkeypatch, plain_bar):
     import sys
 
     terminal = _Terminal()
@@ -396,3 +396,15 @@ def test_a_disk_without_a_free_byte_takes_no_grid(estimates, tmp_path, monkeypat
     monkeypatch.setattr(shutil, "disk_usage", lambda folder: shutil._ntuple_diskusage(100, 100, 0))
     with pytest.raises(QueryTooLarge, match="has 0.0 GB free"):
         size_grid(parse_grid("dof = 1\nlinks = 16"), processes=1, db=str(tmp_path / "a.sqlite"))
+
+
+@pytest.fixture
+def plain_bar(monkeypatch):
+    """tqdm with a plain thread lock and no monitor thread: its default also makes a multiprocessing lock, which
+    hangs in a process forked from a threaded one (mutmut runs each mutant so)."""
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)

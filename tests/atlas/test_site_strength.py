@@ -252,7 +252,7 @@ def test_an_empty_atlas_has_no_site(tmp_path):
                             "first)")
 
 
-def test_a_long_drawing_run_is_said_first(atlas, tmp_path, monkeypatch):
+def test_a_long_drawing_run_is_said_first(atlas, tmp_path, monkeypatch, plain_bar):
     monkeypatch.setattr(site, "_SECONDS_PER_DRAWING", 100.0)  # 9 drawings: 900 s on one worker
     said = []
     write_site(atlas, tmp_path / "a", draw_limit=9, workers=1, progress=True, note=said.append)
@@ -283,7 +283,7 @@ def test_a_card_says_what_the_atlas_did_not_store():
     assert f"mechanisms: {len(two.link_orbits)} with a fixed link (up to symmetry): link " in card
 
 
-def test_the_long_drawing_note_begins_past_a_minute(atlas, tmp_path, monkeypatch):
+def test_the_long_drawing_note_begins_past_a_minute(atlas, tmp_path, monkeypatch, plain_bar):
     said = []
     monkeypatch.setattr(site, "_SECONDS_PER_DRAWING", 10.0)  # 6 drawings: exactly 60 s
     write_site(atlas, tmp_path / "a", draw_limit=6, workers=1, progress=True, note=said.append)
@@ -291,3 +291,15 @@ def test_the_long_drawing_note_begins_past_a_minute(atlas, tmp_path, monkeypatch
     monkeypatch.setattr(site, "_SECONDS_PER_DRAWING", 10.1)  # 60.6 s
     write_site(atlas, tmp_path / "b", draw_limit=6, workers=1, progress=True, note=said.append)
     assert said == ["6 of the 9 chains are drawn: about 61 s on 1 worker (a lower drawing limit draws fewer)"]
+
+
+@pytest.fixture
+def plain_bar(monkeypatch):
+    """tqdm with a plain thread lock and no monitor thread: its default also makes a multiprocessing lock, which
+    hangs in a process forked from a threaded one (mutmut runs each mutant so)."""
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)
