@@ -33,9 +33,11 @@ def atlas(tmp_path_factory):
     return db
 
 
-@pytest.fixture(scope="module")
-def built(atlas, tmp_path_factory):
-    folder = tmp_path_factory.mktemp("built") / "s"
+@pytest.fixture
+def built(atlas, tmp_path):
+    """The site written anew in each test (a module fixture would write it once, in the first test, and a mutation
+    run maps the writing code to that test alone)."""
+    folder = tmp_path / "s"
     result = write_site(atlas, folder, page_size=1, draw_limit=2, workers=1)
     return folder, result
 
@@ -73,6 +75,8 @@ def test_the_index_lists_every_code_by_hand(atlas, built):
     assert sum(e["chains"] for e in expected) == sum(by_code.values()) == 9
     index = (folder / "index.html").read_text()
     assert "<h1>Atlas: 9 chains in 6 codes</h1>" in index
+    assert 'const CODES=[{"code":"22/0 G2","W":1,"h":3,' in index  # compact JSON
+    assert not (folder / "moving").exists()  # no moving pages unless asked for
     assert ("<p>The first 2 chains (in code order) are drawn; the others are listed with their data (raise "
             "--draw-limit to draw them).</p>") in index
     assert ('<label>kind <select id="fkind"><option value="">all</option><option>chains</option><option>gears</option>'
@@ -157,6 +161,7 @@ def test_every_chain_is_looked_up_on_its_page(atlas, built):
         text = path.read_text()
         assert text.startswith("found(") and text.endswith(");")
         table = json.loads(text[len("found("):-2])
+        assert text == "found(" + json.dumps(table, separators=(",", ":")) + ");"  # compact: no blanks
         assert all(cid[:2] == path.stem for cid in table)
         entries.update(table)
     with open_atlas(atlas) as conn:
@@ -257,6 +262,7 @@ def test_a_long_drawing_run_is_said_first(atlas, tmp_path, monkeypatch, plain_ba
     said = []
     write_site(atlas, tmp_path / "a", draw_limit=9, workers=1, progress=True, note=said.append)
     assert said == ["9 of the 9 chains are drawn: about 15 min on 1 worker (a lower drawing limit draws fewer)"]
+    assert not (tmp_path / "a" / "moving").exists()  # every chain drawn, none moves unless asked for
     said.clear()
     write_site(atlas, tmp_path / "b", draw_limit=6, workers=2, progress=True, note=said.append)
     assert said == ["6 of the 9 chains are drawn: about 5 min on 2 workers (a lower drawing limit draws fewer)"]
