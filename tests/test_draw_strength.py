@@ -5,7 +5,6 @@ grid; the inline SVG's elements at the layout's points.  Read from the matplotli
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -61,7 +60,7 @@ def test_each_joint_is_marked_by_its_kind_where_it_stands():
         fig, ax = _axes(chain)
         marks = _Marks(chain)
         pos, r = marks.pos, marks.r
-        pins, sliders, meshes = _by_gid(ax, "pin"), _by_gid(ax, "slider"), _by_gid(ax, "mesh")
+        pins, sliders = _by_gid(ax, "pin"), _by_gid(ax, "slider")
         sliders.update(_by_gid(ax, "cylinder"))
         for k, kind in enumerate(chain.kinds):
             if kind == REVOLUTE:

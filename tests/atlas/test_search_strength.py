@@ -13,7 +13,7 @@ import pytest
 
 from synth.atlas import AtlasError, NoCurveIndex, index_curves, index_info, parse_grid, run_grid, search_atlas
 from synth.atlas import curves
-from synth.atlas.curves import (HARMONICS, STEPS, CurveUnit, IndexResult, IndexSettings, _by_arc_length,
+from synth.atlas.curves import (HARMONICS, STEPS, IndexResult, IndexSettings, _by_arc_length,
                                 _slides_text, _turned, harmonics, index_units, slides_of, tracer_links, unblob,
                                 untimed_parameter)
 from synth.atlas.search import (SHIFTS, AtlasSearchResult, _form, _misfits, _refine, _variants, descriptor_of,

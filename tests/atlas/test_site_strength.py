@@ -125,7 +125,7 @@ def test_the_cards_of_the_four_bar_and_the_six_bars_by_hand(built):
     for chain, order, frames in ((FOUR_BAR, 8, 1), (WATT, 4, 2), (STEPHENSON, 4, 3)):
         cid = chain_id(chain.certificate)
         card = cards[cid]
-        assert f"<figcaption>#" in card and f'<a href="#{cid}">{cid}</a><br>planar · |Aut| = {order}<br>' \
+        assert "<figcaption>#" in card and f'<a href="#{cid}">{cid}</a><br>planar · |Aut| = {order}<br>' \
                                              "not fractionated</figcaption>" in card
         assert f"mechanisms: {frames} with a fixed link (up to symmetry): link " in card
         compact = re.search(r"joints: <code>(.*?)</code>", card).group(1)
