@@ -97,6 +97,7 @@ def test_each_code_page_its_title_navigation_and_count(built):
                                    for k in range(1, {"22/0 G2": 2, "4/0 P2": 2, "42/0": 2}.get(code, 1) + 1))
     first, second = pages["W1-h3-42_0-1.html"], pages["W1-h3-42_0-2.html"]
     assert "<title>42/0 — W = 1, h = 3, n = 6, v = 0</title>" in first
+    assert all('<link rel="stylesheet" href="../style.css">' in page for page in pages.values())  # one folder down
     nav = "<p class='nav'><a href=\"../index.html\">index</a> · <a href=\"W1-h3-42_0-2.html\">next page</a></p>"
     assert first.count(nav) == 2 and "previous page" not in first
     assert "<p>chains 1–1 of <span class='total' id='count'>2</span></p>" in first
