@@ -233,6 +233,8 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
     group, whole_group = graph.edge_group() if E > 1 else ([], True)
     group = np.array(group, dtype=np.int64).reshape(len(group), E)
+    if whole_group:  # the lex-least test of sorted bundles needs one permutation per coset
+        group = _in_bundle_order(graph.edges, group)
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
     found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
@@ -241,6 +243,45 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found], whole_group
+
+
+def _bundle_starts(edges) -> "np.ndarray":
+    """Whether each string of H begins a bundle of parallel strings (H lists parallel strings
+    next to each other)."""
+    import numpy as np
+
+    return np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))], dtype=np.bool_)
+
+
+def _in_bundle_order(edges, group: "np.ndarray") -> "np.ndarray":
+    """The automorphisms ``group`` (rows, edge permutations) with the parallel strings of each
+    bundle taken in order: one row per coset of the permutations of parallel strings among
+    themselves, the identity's coset left out.
+
+    Stage B keeps the weights of a bundle non-decreasing, so among the images of a vector under a
+    coset the one that reads each bundle in order is the least: a vector is the lex-least of its
+    images under the whole group exactly when it is under these rows (fewer and, in the kernel,
+    ones that decide on shorter prefixes than the swaps of equal parallel strings).
+
+    >>> import numpy as np
+    >>> _in_bundle_order(((0, 1), (0, 1), (1, 2)), np.array([[1, 0, 2]])).shape  # a swap of parallel strings
+    (0, 3)
+    >>> _in_bundle_order(((0, 1), (0, 1), (1, 2), (1, 2)), np.array([[3, 2, 1, 0], [2, 3, 0, 1]])).tolist()
+    [[2, 3, 0, 1]]
+    """
+    import numpy as np
+
+    starts = _bundle_starts(edges)
+    if starts.all():  # no parallel strings: every row is a coset of its own
+        return group
+    first = np.flatnonzero(starts)
+    bundle = np.cumsum(starts) - 1
+    E = len(edges)
+    # string p of bundle B goes to the same place in the bundle that the first string of B goes to
+    rows = first[bundle[group[:, first]]][:, bundle] + (np.arange(E) - first[bundle])
+    identity = tuple(range(E))
+    kept = {row for row in map(tuple, rows.tolist()) if row != identity}
+    return np.array(sorted(kept), dtype=np.int64).reshape(len(kept), E)
 
 
 def _deficit_bounds(k, l: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarray"]:
@@ -299,7 +340,7 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     if not whole_group:
         return count_realised(code, graph, conv, stats)
     t0 = perf_counter()
-    starts = np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))])  # parallel strings are adjacent
+    starts = _bundle_starts(edges)
     picked = np.flatnonzero(starts)
     # the permutations of the bundles the automorphisms make (the identity among them), each once
     images = np.vstack([np.arange(len(edges)), np.array(group, dtype=np.int64).reshape(len(group), len(edges))])
