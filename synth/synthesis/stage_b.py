@@ -267,24 +267,26 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
     """
     import numpy as np
 
-    degree, links = [0] * M, [0] * M  # strings of each vertex; strings to the vertices taken
+    neighbours: list[list[int]] = [[] for _ in range(M)]
     for a, b in zip(a_list, b_list):
         if a >= 0:
-            degree[a] += 1
-            degree[b] += 1
-    rank: dict[int, int] = {}
-    while len(rank) < M:
-        v = max((u for u in range(M) if u not in rank), key=lambda u: (links[u], degree[u]))
-        rank[v] = len(rank)
-        for a, b in zip(a_list, b_list):
-            if a >= 0 and v in (a, b) and (b if a == v else a) not in rank:
-                links[b if a == v else a] += 1
-    firsts = [e for e in range(len(edges)) if not e or edges[e] != edges[e - 1]]
-    ends = [(-1, 0) if a_list[e] < 0 else (max(rank[a_list[e]], rank[b_list[e]]), -min(rank[a_list[e]], rank[b_list[e]]))
-            for e in firsts]
-    widths = np.diff(firsts + [len(edges)])
-    return np.concatenate([np.arange(firsts[q], firsts[q] + widths[q]) for q in sorted(range(len(firsts)),
-                                                                                       key=ends.__getitem__)])
+            neighbours[a].append(b)
+            neighbours[b].append(a)
+    score = [len(n) for n in neighbours]  # strings to the vertices taken × 1024 + strings
+    rank = [-1] * M
+    for r in range(M):
+        v = max((u for u in range(M) if rank[u] < 0), key=score.__getitem__)
+        rank[v] = r
+        for u in neighbours[v]:
+            score[u] += 1024
+    firsts = [e for e in range(len(edges)) if not e or edges[e] != edges[e - 1]] + [len(edges)]
+
+    def key(q):
+        a, b = a_list[firsts[q]], b_list[firsts[q]]
+        return (-1, 0) if a < 0 else (max(rank[a], rank[b]), -min(rank[a], rank[b]))
+
+    return np.array([e for q in sorted(range(len(firsts) - 1), key=key) for e in range(firsts[q], firsts[q + 1])],
+                    dtype=np.int64)
 
 
 def _bundle_starts(edges) -> "np.ndarray":
