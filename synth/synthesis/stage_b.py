@@ -279,7 +279,7 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
         rank[v] = r
         for u in neighbours[v]:
             score[u] += 1024
-    firsts = [e for e in range(len(edges)) if not e or edges[e] != edges[e - 1]] + [len(edges)]
+    firsts = np.flatnonzero(_bundle_starts(edges)).tolist() + [len(edges)]
 
     def key(q):
         a, b = a_list[firsts[q]], b_list[firsts[q]]
