@@ -14,6 +14,7 @@ from mechbase import Row
 
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
+from ..structure._blas import single_threaded
 from ..structure.chain import Mechanism
 from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
@@ -580,24 +581,27 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
 
             client = connect(scheduler, connect_timeout)
         executor = Executor(workers, client)
-    try:
-        if polish_only:
-            search.polish(problem.unknowns_of(start))
-        while not (polish_only or watch.over() or search.exact):
-            search.runs += 1
-            for x in search.evolve(rng, start if search.runs == 1 else None, executor):
-                search.polish(x)
-                if search.exact:
-                    break
-    except _OutOfTime:
-        pass
-    finally:
-        if executor is not None:
-            executor.close()  # no worker outlives the search (Ctrl-C included)
-        if client is not None:
-            client.close()
-    if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
-        search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+    # BLAS on one thread: the polish's SVDs are of matrices of a few hundred entries, and OpenBLAS's
+    # threads spinning between them cost 60 times the CPU of the SVD itself on the loaded 2-core machine
+    with single_threaded():
+        try:
+            if polish_only:
+                search.polish(problem.unknowns_of(start))
+            while not (polish_only or watch.over() or search.exact):
+                search.runs += 1
+                for x in search.evolve(rng, start if search.runs == 1 else None, executor):
+                    search.polish(x)
+                    if search.exact:
+                        break
+        except _OutOfTime:
+            pass
+        finally:
+            if executor is not None:
+                executor.close()  # no worker outlives the search (Ctrl-C included)
+            if client is not None:
+                client.close()
+        if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
+            search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
     if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
@@ -710,13 +714,46 @@ class _Search:
                 best[0], best[1] = cost, np.array(z)
             return r
 
+        jac = "2-point" if problem.timed else (lambda z: self.untimed_jacobian(fun, z, upper))
         try:
-            least_squares(fun, z0, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15, ftol=1e-15,
-                          gtol=1e-15, max_nfev=200 * len(z0))
+            least_squares(fun, z0, jac=jac, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15,
+                          ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
         except _OutOfTime:
             pass
         if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
             self.best = (best[0], best[1], direction)
+
+
+    def untimed_jacobian(self, fun, z, upper) -> np.ndarray:
+        """Forward differences of the untimed residuals ``fun`` at z = (dimensions, input steps), at the
+        cost of one evaluation per dimension and one for all the steps.
+
+        Point i is reached at the input offset direction·(s₁ + … + sᵢ) and its residuals depend on that
+        offset alone; the constraint rows depend on the last offset (the target's span).  So one step
+        of s₁, which moves every later point's offset by the same amount, gives each point's derivative
+        along its own offset, and the column of step k is that of s₁ with the points before k zeroed.
+        """
+        problem = self.problem
+        r0 = fun(z)
+        jac = np.empty((len(r0), len(z)))
+        for j in range(problem.dims + 1):
+            h = _STEP * max(1.0, abs(z[j]))
+            if z[j] + h > upper[j]:
+                h = -h
+            moved = np.array(z)
+            moved[j] += h
+            jac[:, j] = (fun(moved) - r0) / h
+        rows = problem.equations // problem.points  # residuals per target point
+        block = np.arange(problem.points * rows) // rows  # the target point of each residual row
+        later = block[:, None] >= np.arange(1, len(z) - problem.dims + 1)[None, :]
+        first = jac[:, problem.dims]
+        jac[:len(block), problem.dims:] = np.where(later, first[:len(block), None], 0.0)
+        jac[len(block):, problem.dims:] = first[len(block):, None]
+        return jac
+
+
+#: the forward-difference step of the untimed polish's Jacobian (relative; scipy's "2-point")
+_STEP = float(np.finfo(float).eps) ** 0.5
 
 
 def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int) -> DimensionalResult:

@@ -1,0 +1,42 @@
+"""The polish of an untimed target: its Jacobian, built from one evaluation per dimension and one for
+all the input steps, is the full finite-difference Jacobian (one evaluation per unknown)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize._numdiff import approx_derivative
+
+from synth.dimension import Constraints, PathTarget
+from synth.dimension._search import _Evaluate, _problem, _Search, _Watch
+from synth.motion import sweep
+
+from .test_synthesize import FOUR_BAR, random_crank_rocker
+
+
+@pytest.mark.parametrize("constraints", [Constraints(reach=8),
+                                         Constraints(reach=8, min_transmission=math.radians(80), max_ratio=2.0)])
+def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
+    original = random_crank_rocker(3)
+    motion = sweep(original, steps=9, stop=float(original.pose_inputs[0]) + math.radians(300))
+    target = PathTarget(motion.tracers["P"])
+    problem, _ = _problem(FOUR_BAR, target, None, constraints)
+    search = _Search(_Evaluate(problem), problem, _Watch(1e9, None))
+    rng = np.random.default_rng(1)
+    dims = problem.unknowns_of(original) + rng.normal(size=problem.dims) * 0.01  # off the answer: residuals ≠ 0
+    steps = np.diff(motion.inputs[:, 0]) * rng.uniform(0.9, 1.1, size=len(target.points) - 1)
+    z = np.concatenate((dims, steps))
+    upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))
+
+    def fun(x):
+        return search.evaluate.vector(x, 1)
+
+    if constraints.max_ratio is not None:
+        assert np.abs(fun(z)[2 * len(target.points):]).max() > 0  # the constraint rows are active
+    fast = search.untimed_jacobian(fun, z, upper)
+    full = approx_derivative(fun, z, method="3-point")  # every unknown on its own, central differences
+    assert fast.shape == full.shape == (len(fun(z)), len(z))
+    assert np.abs(fast - full).max() <= 1e-5 * np.abs(full).max()
+    assert np.abs(full[:, problem.dims + 2]).max() > 0  # a later step moves the points after it
