@@ -31,6 +31,9 @@ MET = 1e-9
 SPANS = (0.5, 1.0)
 #: rounds of fitting the similarity and moving the points to their places on the carried curve
 ALIGN_ROUNDS = 4
+#: crank poses sampled (as an atlas's curve index samples them) for the starts of a closed path, the
+#: nearest starts polished, and the share of the budget they may take before differential evolution
+SAMPLED_POSES, SAMPLED_STARTS, SAMPLED_SHARE = 100, 5, 0.5
 
 
 class _OutOfTime(Exception):
@@ -587,6 +590,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         try:
             if polish_only:
                 search.polish(problem.unknowns_of(start))
+            elif start is None:
+                search.from_samples(seed)
             while not (polish_only or watch.over() or search.exact):
                 search.runs += 1
                 for x in search.evolve(rng, start if search.runs == 1 else None, executor):
@@ -605,7 +610,7 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
-    return _result(problem, search.evaluate, search.best, watch, search.runs)
+    return _result(problem, search.evaluate, search.best, watch, search.runs, bool(search.sampled))
 
 
 def _option(name: str) -> str:
@@ -624,10 +629,42 @@ class _Search:
         self.evaluate, self.problem, self.watch = evaluate, problem, watch
         self.best = None  # (cost, unknowns, direction)
         self.runs = 0
+        self.sampled = []  # searched unknowns of sampled crank curves, least cost first (from_samples)
 
     @property
     def exact(self) -> bool:
         return self.best is not None and self.best[0] <= EXACT ** 2
+
+    def from_samples(self, seed: int) -> None:
+        """Polish starts from the mechanism's own crank curves sampled at random
+        (:func:`synth.atlas.search.sampled_starts`: each turned, scaled and posed on the target as its
+        Fourier descriptor aligns it), the :data:`SAMPLED_STARTS` of least cost first — the global
+        stage's cost, which places each where it fits best and matches the points in order: a few
+        points describe a curve's shape too coarsely to rank the samples by their descriptors alone.
+        For a path's target with points all round a closed curve; each polish gets an equal part of
+        :data:`SAMPLED_SHARE` of the budget."""
+        problem, watch = self.problem, self.watch
+        if not isinstance(problem.target, PathTarget) or not problem.revolute_input or problem.driven is not None:
+            return
+        from ..atlas.search import sampled_starts
+
+        mechanism = Mechanism(problem.chain, problem.frame, problem.input_link)
+        starts = [problem.unknowns_of(start) for start in
+                  sampled_starts(mechanism, problem.tracer_link, problem.target, SAMPLED_POSES, seed, SAMPLED_POSES)
+                  if start.inputs[0] == problem.input_joint]
+        costs = []
+        for x in starts:
+            costs.append(self.evaluate(x[:problem.searched]))
+            watch.seen(costs[-1], x[:problem.searched])
+        order = np.argsort(costs, kind="stable")
+        self.sampled = [starts[i][:problem.searched] for i in order if costs[i] < INFEASIBLE]
+        for rank, i in enumerate(order[:SAMPLED_STARTS]):
+            if self.exact or costs[i] >= INFEASIBLE:
+                break
+            share = (SAMPLED_SHARE * watch.budget - watch.used()) / (SAMPLED_STARTS - rank)
+            if share <= 0:
+                break
+            self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + share)
 
     def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
@@ -657,8 +694,15 @@ class _Search:
 
         bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
         x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
-        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
-                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
+        popsize = max(15, 60 // problem.searched)
+        init = "sobol"
+        if start is None and self.runs == 1 and self.sampled:  # half the first population from the sampled curves
+            size = popsize * problem.searched
+            ours = np.array(self.sampled[:size // 2])
+            lower, upper = problem.lower[:problem.searched], problem.upper[:problem.searched]
+            init = np.vstack((ours, lower + rng.random((size - len(ours), problem.searched)) * (upper - lower)))
+        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=popsize,
+                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init=init, polish=False,
                       callback=stop, x0=x0)
         if executor is not None:
             def generation(fn, population):
@@ -687,9 +731,10 @@ class _Search:
                 break
         return picked
 
-    def polish(self, x, grace: bool = False) -> None:
+    def polish(self, x, grace: bool = False, until: float | None = None) -> None:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
-        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched."""
+        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched;
+        with ``until`` the polish also stops once that many seconds of the budget are used."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
             z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
@@ -705,7 +750,7 @@ class _Search:
         best = [math.inf, z0]
 
         def fun(z):
-            if watch.over() and not grace:
+            if (watch.over() or (until is not None and watch.used() >= until)) and not grace:
                 raise _OutOfTime
             r = evaluate.vector(z, direction)
             cost = float(r @ r)
@@ -756,7 +801,8 @@ class _Search:
 _STEP = float(np.finfo(float).eps) ** 0.5
 
 
-def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int) -> DimensionalResult:
+def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int,
+            sampled: bool = False) -> DimensionalResult:
     """The best candidate as a linkage, its errors and constraints re-checked by the motion layer."""
     _, z, direction = best
     x = z[:problem.dims]
@@ -789,9 +835,10 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
         constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
                                   "met": False}}
-    method = (("bounded least squares (trf) from a given start, " if runs == 0 else
-               f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
-              + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
+    method = ("sampled crank curves + " if sampled else "") + (
+        ("bounded least squares (trf) from " + ("them, " if sampled else "a given start, ")) if runs == 0 else
+        f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
+        "timed" if problem.timed else "inputs as unknowns, in order")
     return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
                              else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
 
