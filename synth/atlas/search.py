@@ -36,7 +36,8 @@ from ..structure.chain import Chain, Mechanism
 from .curves import HARMONICS, _info, harmonics, slides_of, unblob, untimed_parameter
 from .database import open_atlas
 
-__all__ = ["Candidate", "AtlasMatch", "AtlasSearchResult", "descriptor_of", "retrieve", "search_atlas"]
+__all__ = ["Candidate", "AtlasMatch", "AtlasSearchResult", "descriptor_of", "retrieve", "sampled_starts",
+           "search_atlas"]
 
 #: shifts τ on which the alignment is evaluated before it is refined
 SHIFTS = 512
@@ -300,25 +301,29 @@ def _candidate(t: np.ndarray, u: np.ndarray, variant: tuple[bool, bool], shift: 
                      complex(t[h] - lam * u[h]))
 
 
-def sampled_starts(mechanism: Mechanism, tracer_link: int, target, samples: int, seed: int, count: int) -> list:
+def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0, *, samples: int = 100,
+                   count: int | None = None) -> list:
     """Start linkages for a path target from the mechanism's own curves sampled at random as an atlas
-    index samples them (``samples`` crank poses near its drawing, seeded): the ``count`` curves of the
-    tracer link nearest the target's shape, each turned, scaled and posed on the target as the atlas
-    search poses its candidates (:func:`start_linkage`), nearest first.  Empty where the index could
-    not serve the target (an open path, a timing with a gap, a mechanism whose input does not turn
-    fully, a tracer link that traces a circle).
+    index samples them (``samples`` crank poses near its drawing, seeded): the ``count`` (default all)
+    curves of the tracer link nearest the target's shape, each turned, scaled and posed on the target
+    as the atlas search poses its candidates (:func:`start_linkage`), nearest first.  Empty where the
+    index could not serve the target (not a path, an open path, a timing with a gap, a mechanism whose
+    input does not turn fully, a tracer link that traces a circle).  The ``starts`` of
+    :func:`synth.dimension.synthesize`.
 
     Examples
     --------
     >>> from synth.dimension import PathTarget
     >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
-    >>> starts = sampled_starts(four_bar, 2, PathTarget(np.c_[np.cos(t), 0.6 * np.sin(t)]), 20, 0, 3)
+    >>> starts = sampled_starts(four_bar, 2, PathTarget(np.c_[np.cos(t), 0.6 * np.sin(t)]), samples=20, count=3)
     >>> len(starts), starts[0].tracers["P"][0]
     (3, 2)
     """
     from .curves import CurveUnit, IndexSettings, sample_unit
 
+    if getattr(target, "kind", None) != "path":
+        return []
     try:
         t, h, timed = descriptor_of(target)
     except BadTarget:
@@ -335,7 +340,7 @@ def sampled_starts(mechanism: Mechanism, tracer_link: int, target, samples: int,
     best, form, shift = _aligned_all(t, coefficients, timed)
     variants = _variants(timed)
     starts = []
-    for i in np.argsort(best, kind="stable")[:count]:
+    for i in np.argsort(best, kind="stable")[:count or len(rows)]:
         if not math.isfinite(best[i]):
             break
         meta = (i, 0, mechanism.frame, unit.input_link, sampled.input_joint, tracer_link, mechanism.chain.links)

@@ -31,9 +31,9 @@ MET = 1e-9
 SPANS = (0.5, 1.0)
 #: rounds of fitting the similarity and moving the points to their places on the carried curve
 ALIGN_ROUNDS = 4
-#: crank poses sampled (as an atlas's curve index samples them) for the starts of a closed path, the
-#: nearest starts polished, and the share of the budget they may take before differential evolution
-SAMPLED_POSES, SAMPLED_STARTS, SAMPLED_SHARE = 100, 5, 0.5
+#: the given starts polished (least cost first), and the share of the budget they may take before
+#: differential evolution
+SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
 
 
 class _OutOfTime(Exception):
@@ -497,7 +497,7 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
                budget: float = 60.0, seed: int = 0, workers: int = 1, scheduler: str | None = None,
                underdetermined: bool = False, progress=None, polish_only: bool = False,
-               connect_timeout: float = 5.0) -> DimensionalResult:
+               connect_timeout: float = 5.0, starts=None) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -531,6 +531,11 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         search starts each topology from its nearest indexed sample this way).
     connect_timeout : float
         Seconds to wait for the ``scheduler``.
+    starts : callable, optional
+        A source of start linkages polished before the global search (from no guess only), called as
+        ``starts(mechanism, tracer_link, target, seed)`` within the budget: :func:`synth.atlas.sampled_starts`
+        (the mechanism's own crank curves sampled at random, for points all round a closed curve)
+        finds untimed paths far more reliably than the global search alone.
 
     Returns
     -------
@@ -590,8 +595,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         try:
             if polish_only:
                 search.polish(problem.unknowns_of(start))
-            elif start is None:
-                search.from_samples(seed)
+            elif start is None and starts is not None:
+                search.from_samples(starts, seed)
             while not (polish_only or watch.over() or search.exact):
                 search.runs += 1
                 for x in search.evolve(rng, start if search.runs == 1 else None, executor):
@@ -635,23 +640,20 @@ class _Search:
     def exact(self) -> bool:
         return self.best is not None and self.best[0] <= EXACT ** 2
 
-    def from_samples(self, seed: int) -> None:
-        """Polish starts from the mechanism's own crank curves sampled at random
-        (:func:`synth.atlas.search.sampled_starts`: each turned, scaled and posed on the target as its
-        Fourier descriptor aligns it), the :data:`SAMPLED_STARTS` of least cost first — the global
-        stage's cost, which places each where it fits best and matches the points in order: a few
-        points describe a curve's shape too coarsely to rank the samples by their descriptors alone.
-        For a path's target with points all round a closed curve; each polish gets an equal part of
-        :data:`SAMPLED_SHARE` of the budget."""
+    def from_samples(self, source, seed: int) -> None:
+        """Polish the start linkages of ``source`` (called as ``source(mechanism, tracer_link, target,
+        seed)``, e.g. :func:`synth.atlas.sampled_starts`: the mechanism's own crank curves sampled at
+        random, each posed on the target as its Fourier descriptor aligns it), the
+        :data:`SAMPLED_STARTS` of least cost first — the global stage's cost, which places each where it
+        fits best and matches the points in order: a few points describe a curve's shape too coarsely
+        to rank samples by their descriptors alone.  Each polish gets an equal part of
+        :data:`SAMPLED_SHARE` of the budget; the rest seed the first population."""
         problem, watch = self.problem, self.watch
-        if not isinstance(problem.target, PathTarget) or not problem.revolute_input or problem.driven is not None:
+        if problem.tracer_link is None or problem.driven is not None:
             return
-        from ..atlas.search import sampled_starts
-
         mechanism = Mechanism(problem.chain, problem.frame, problem.input_link)
-        starts = [problem.unknowns_of(start) for start in
-                  sampled_starts(mechanism, problem.tracer_link, problem.target, SAMPLED_POSES, seed, SAMPLED_POSES)
-                  if start.inputs[0] == problem.input_joint]
+        starts = [problem.unknowns_of(start) for start in source(mechanism, problem.tracer_link, problem.target, seed)
+                  if start.inputs[0] == problem.input_joint and start.chain.certificate == problem.chain.certificate]
         costs = []
         for x in starts:
             costs.append(self.evaluate(x[:problem.searched]))

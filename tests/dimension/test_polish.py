@@ -1,7 +1,7 @@
 """The polish of an untimed target and where it starts: its Jacobian, built from one evaluation per
 dimension and one for all the input steps, is the full finite-difference Jacobian (one evaluation per
-unknown); from no guess, the starts sampled from the mechanism's own crank curves find a random
-crank-rocker's ten untimed points exactly within seconds."""
+unknown); from no guess, the starts sampled from the mechanism's own crank curves
+(``synth.atlas.sampled_starts``) find a random crank-rocker's ten untimed points exactly within seconds."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from scipy.optimize._numdiff import approx_derivative
 
+from synth.atlas import sampled_starts
 from synth.dimension import Constraints, PathTarget, synthesize
 from synth.dimension._search import _Evaluate, _problem, _Search, _Watch
 from synth.motion import assemble, sweep
@@ -49,7 +50,7 @@ def test_ten_untimed_points_of_a_random_crank_rocker_are_found_exactly_from_no_g
     # 30 CPU s (benchmarks/DIMENSION.md); now well within 10
     original = random_crank_rocker(7)
     target = PathTarget(sweep(original, steps=11).tracers["P"][:10])
-    result = synthesize(FOUR_BAR, target, budget=10, seed=7)
+    result = synthesize(FOUR_BAR, target, budget=10, seed=7, starts=sampled_starts)
     assert result.method.startswith("sampled crank curves")
     assert result.relative_max <= 1e-6 and result.met
     for value, want in zip(result.inputs, target.points):  # the motion layer's own assembly passes the points
