@@ -237,3 +237,15 @@ def test_link_ratio_and_the_input_joint():
         "the frame (link 0) has no joint with one moving link to drive"
     assert refused(DimensionError, input_joint_of, Mechanism(central.chain, 0, 1), None) == \
         "the frame (link 0) has no joint with one moving link to drive (link 1)"
+
+
+def test_a_tracer_turning_about_a_fixed_pivot_is_placed_without_moving_the_mechanism():
+    # the tracer on the crank: the crank's translation is 0 (it turns about the origin), so no scale or
+    # shift can be fitted; the point is q with e^{iθ}·q through the target's points
+    theta = np.array([0.0, 0.5, 1.0])
+    q0 = 0.8 + 0.6j
+    points = np.column_stack(((np.exp(1j * theta) * q0).real, (np.exp(1j * theta) * q0).imag))
+    p = Problem(FOUR_BAR, 0, PathTarget(points, theta), 1, Constraints())
+    tracer, lam, shift, traced = p.best_placement(theta, np.zeros((3, 2)))
+    assert lam == 1 and shift == 0
+    assert abs(tracer - q0 / p.scale) < 1e-12 and close(traced, points)
