@@ -227,7 +227,7 @@ def design_spring(
             why = []
             if not INDEX_RANGE[0] - 1e-9 <= w <= INDEX_RANGE[1] + 1e-9:
                 why.append((abs(w - min(max(w, INDEX_RANGE[0]), INDEX_RANGE[1])) / 4,
-                            f"its spring index D/d = {w:.3g} is outside 4 … 20", "another wire size or material"))
+                            f"its spring index D/d = {w:.4g} is outside 4 … 20", "another wire size or material"))
             if max_outer_diameter is not None and D + d > max_outer_diameter * (1 + 1e-9):
                 why.append(((D + d) / max_outer_diameter - 1,
                             f"its outer diameter {1e3 * (D + d):.4g} mm exceeds {1e3 * max_outer_diameter:.4g} mm",

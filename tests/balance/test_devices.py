@@ -115,9 +115,15 @@ def test_designed_spring_realises_the_device(kind, moment, material):
     mat = MATERIALS[material]
     assert sp["allowed_shear_stress_Pa"] == pytest.approx(frac * 1e6 * mat.A / (1e3 * d) ** mat.m)
     assert tau <= sp["allowed_shear_stress_Pa"]
+    assert sp["stress_correction_factor"] == pytest.approx((w + 0.5) / (w - 0.75), rel=1e-12)
     if sp["kind"] == "compression":
         assert sp["solid_length_m"] == pytest.approx((n + 2) * d)
         assert sp["solid_length_m"] + sp["min_gap_sum_m"] <= sp["min_working_length_m"] + 1e-12
+    if kind == "compression":  # between C and B: |CB| over the range, longest at 160°, shortest at 20°
+        phi = np.linspace(*RAD, 20001)
+        L = np.hypot(res.r + res.r0 - res.r * np.cos(phi), res.r * np.sin(phi))
+        assert sp["max_working_length_m"] == pytest.approx(L.max(), rel=1e-9)
+        assert sp["min_working_length_m"] == pytest.approx(L.min(), rel=1e-9)
 
 
 def test_buckling_formula_limits():
@@ -410,6 +416,7 @@ def test_helical_extension_spring_for_a_tension_device():
     assert 79.5e9 * d ** 4 / (8 * D ** 3 * n) == pytest.approx(res.c, rel=1e-9)
     # close-wound body of n + 1 coils and two loops of about one inner diameter each (one coil of wire each)
     free = (n + 1) * d + 2 * (D - d)
+    assert s.body_length_m == pytest.approx((n + 1) * d, rel=1e-12)
     assert s.free_length_m == pytest.approx(free, rel=1e-12) and s.loop_length_m == pytest.approx(D - d, rel=1e-12)
     assert s.mass_kg == pytest.approx(7850.0 * math.pi * d ** 2 / 4 * math.pi * D * (n + 3), rel=1e-12)
     assert s.anchor_offset_m == pytest.approx(res.free_length - free, rel=1e-12)
@@ -475,24 +482,69 @@ def test_helical_spring_reports_its_rate_error_and_wire_strength():
     assert out["stress_ratio"] == pytest.approx(corrected_stress(d, D, 100.0) / (0.5 * music_wire_strength(d)))
 
 
-def test_helical_refusal_names_the_coil_that_misses_by_less():
-    """Two coils of the thinnest wire are left: 30 coils whose inner diameter misses the rod by 0.1 µm, and
-    29.5 coils, a wider coil stressed a little past the allowed stress.  Each fails once; the refusal names the
-    one that misses by the smaller fraction — the rod's 0.1 µm, not the stress's percent."""
+@pytest.mark.parametrize("miss, named", [
+    ({"rod": 1e-7, "stress": True}, "rod"),  # the rod's 0.1 µm, not the stress's percent
+    ({"rod": 1e-6, "bore": 1e-7}, "bore"),  # 0.1 µm on the bore, 1 µm on the rod
+    ({"rod": 1e-7, "bore": 1e-6}, "rod"),
+])
+def test_helical_refusal_names_the_coil_that_misses_by_less(miss, named):
+    """Two coils of the thinnest wire are left: 30 coils at index 12, whose inner diameter may miss the rod, and
+    29.5 coils, a wider coil that may overrun the bore or be stressed 2 % past the allowed stress.  Each fails
+    once; the refusal names the one that misses by the smaller fraction of its limit."""
     d, n = 0.0001, 30.0
     D0 = 12 * d
     c = G_MUSIC * d ** 4 / (8 * D0 ** 3 * n)
     D1 = coil_for_rate(c, d, n - 0.5)
-    rod, bore = D0 - d + 1e-7, D1 + d
-    F = 0.45 * music_wire_strength(d) / corrected_stress(d, D0, 1.0) * (1 - 1e-6)  # 30 coils: just within
-    assert corrected_stress(d, D1, F) / (0.45 * music_wire_strength(d)) - 1 > 1e-7 / rod
+    rod, bore = D0 - d + miss["rod"], D1 + d - miss.get("bore", 0.0)
+    F = 0.45 * music_wire_strength(d) / corrected_stress(d, D0, 1.0) * (1 - 1e-6) if "stress" in miss else 0.01
     with pytest.raises(NoSpringFits) as ei:
         design_spring("extension", c, F, max_outer_diameter=bore, min_inner_diameter=rod)
+    if named == "rod":
+        coil = "1.2 mm coil with 30 active coils"
+        why = f"its inner diameter {1e3 * (D0 - d):.4g} mm does not clear {1e3 * rod:.4g} mm; try a thinner guide rod."
+    else:
+        coil = f"{1e3 * D1:.4g} mm coil with 29.5 active coils"
+        why = f"its outer diameter {1e3 * (D1 + d):.4g} mm exceeds {1e3 * bore:.4g} mm; try a larger outer diameter."
     assert str(ei.value) == (
         f"no music-wire spring of {c:.4g} N/m for {F:.4g} N fits (outer diameter ≤ {1e3 * bore:.4g} mm, inner "
-        f"diameter ≥ {1e3 * rod:.4g} mm): the closest, wire 0.1 mm on a 1.2 mm coil with 30 active coils, fails "
-        f"because its inner diameter {1e3 * (D0 - d):.4g} mm does not clear {1e3 * rod:.4g} mm; try a thinner "
-        f"guide rod.")
+        f"diameter ≥ {1e3 * rod:.4g} mm): the closest, wire 0.1 mm on a {coil}, fails because {why}")
+
+
+def test_helical_refusal_weighs_a_spring_index_past_twenty_by_its_quarter():
+    """The thinnest wire has two coils left: 20 coils at index 20.008 (0.008 past the band, a quarter of it:
+    0.002) and 20.5 coils whose inner diameter misses the rod by 0.3 % — the index is named, to four digits."""
+    d = 0.0001
+    D_A = 20 * d * 1.0004
+    c = G_MUSIC * d ** 4 / (8 * D_A ** 3 * 20)
+    D_B = coil_for_rate(c, d, 20.5)
+    rod, bore = D_B * 1.003 - d, (D_A + d) * (1 + 1e-6)
+    assert 0.008 / 4 < 1 - (D_B - d) / rod < 0.008
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", c, 0.01, max_outer_diameter=bore, min_inner_diameter=rod)
+    assert str(ei.value) == (
+        f"no music-wire spring of {c:.4g} N/m for 0.01 N fits (outer diameter ≤ {1e3 * bore:.4g} mm, inner "
+        f"diameter ≥ {1e3 * rod:.4g} mm): the closest, wire 0.1 mm on a {1e3 * D_A:.4g} mm coil with 20 active "
+        f"coils, fails because its spring index D/d = 20.01 is outside 4 … 20; try another wire size or material.")
+
+
+def test_helical_refusal_when_only_coils_past_index_twenty_would_fill_the_space():
+    """A 25 mm rod in a 27.5 mm bore: wires up to 1.25 mm would need an index above 20 to reach the rod, thicker
+    ones overrun the bore — no wire of the series gives a coil there at all."""
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", 100.0, 1.0, max_outer_diameter=0.0275, min_inner_diameter=0.025)
+    assert str(ei.value) == ("no music-wire wire of the series gives a spring of 100 N/m in the space given "
+                             "(outer diameter ≤ 27.5 mm, inner diameter ≥ 25 mm); allow a larger outer diameter or "
+                             "another material.")
+
+
+def test_helical_compression_spring_made_as_short_as_it_may_be():
+    """Without a free length the spring is its solid length, the minimum gaps and the deflection asked for."""
+    s = design_spring("compression", 2000.0, 100.0, max_deflection=0.05, guided=True)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    shortest = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    assert s.min_working_length_m == pytest.approx(shortest, rel=1e-12)
+    assert s.free_length_m == s.max_working_length_m == pytest.approx(shortest + 0.05, rel=1e-12)
+    assert s.buckling.max_deflection_m == pytest.approx(0.05, rel=1e-12)
 
 
 def test_helical_refusal_states_the_allowed_stress_of_its_wire():
