@@ -200,6 +200,30 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.helical]", "-k",
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    # the planar arm from TOML: links, loads, the gravity potential (terms against hand sums, moments against
+    # finite differences) and the counterweights' sub-arms
+    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_potential_strength.py",
+                                           "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
+    # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
+    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
+                                       "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
+                                       _BALANCE_DOC + "balance.model.urdf]"]),
+    # the [arm], [pantograph], [slider] and [spring] problems, read and solved
+    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", _BALANCE_DOC + "balance.problems.arm]"]),
+    "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                               _BALANCE_DOC + "balance.problems.pantograph]"]),
+    "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
+                                                       "tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems.slider]"]),
+    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_slider_devices.py", "tests/balance/test_devices.py",
+                                                       "tests/balance/test_fit.py", _BALANCE_DOC + "balance.problems.spring]",
+                                                       "-k", "not under_100_ms and not model_matches"]),
+    # the package's lazily loaded names, the problems' readers, the fit's names
+    "balance_init": ("balance/__init__.py", ["tests/balance/test_packages_strength.py", _BALANCE_DOC + "balance]"]),
+    "problems_init": ("balance/problems/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems]"]),
+    "fit_init": ("balance/devices/fit/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                     _BALANCE_DOC + "balance.devices.fit]"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }
