@@ -224,6 +224,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                        _BALANCE_DOC + "balance.problems]"]),
     "fit_init": ("balance/devices/fit/__init__.py", ["tests/balance/test_packages_strength.py",
                                                      _BALANCE_DOC + "balance.devices.fit]"]),
+    # the figures: each curve's data, the labels, markers and captions read back from the saved figure
+    "plots": ("balance/plots.py", ["tests/balance/test_plots_strength.py", _BALANCE_DOC + "balance.plots]"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }
