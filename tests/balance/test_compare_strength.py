@@ -299,3 +299,22 @@ def test_a_urdf_counterweight_sits_level_with_its_sub_arms_centre_of_mass():
         com = sum(model.inertias[k].mass * data.oMi[k].act(model.inertias[k].lever) for k in below) / mass
         assert data.oMi[j].actInv(com)[2] == pytest.approx(w.point[2], abs=1e-12), w.coordinate
     assert any(abs(w.point[2]) > 0.05 for w in cw.weights)  # (not all level with the joint's origin)
+
+
+def test_a_compare_workspace_is_in_degrees_for_a_pin_and_in_metres_for_a_slide():
+    """models/arm_prismatic.toml: q1 revolute (±90°), q2 a slide of 0.4 m stroke."""
+    from balance.problems.compare import compare_problem
+
+    doc = {"compare": {"arm": str(MODELS / "arm_prismatic.toml"), "workspace": {"q1": [-30, 60], "q2": [0.1, 0.3]}}}
+    pb = compare_problem(doc, "c.toml")
+    assert pb.workspace[0] == pytest.approx((-math.pi / 6, math.pi / 3), rel=1e-15)
+    assert pb.workspace[1] == (0.1, 0.3)
+
+
+def test_a_compare_table_without_a_file_names_compare_in_its_refusals():
+    from balance import SchemaError
+    from balance.problems.compare import compare_problem
+
+    with pytest.raises(SchemaError) as ei:
+        compare_problem({"compare": {"nonsense": 1}})
+    assert str(ei.value).startswith("<compare>: [compare] has an unknown key 'nonsense'")
