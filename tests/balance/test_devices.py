@@ -13,7 +13,6 @@ from balance.devices.helical import (
     MATERIALS, NoSpringFits, WIRE_SERIES_MM, _candidates, bergstraesser, buckling_deflection, design_for_device,
     design_spring,
 )
-from balance.devices.tradeoff import bound_sensitivity
 
 RAD = (math.radians(20), math.radians(160))
 BOUNDS = SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0))
