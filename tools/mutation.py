@@ -113,9 +113,14 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py",
                                                  "tests/balance/test_arm.py",
                                                  _BALANCE_DOC + "balance.model.potential]"]),
-    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
-                                                "tests/balance/test_compare.py",
-                                                _BALANCE_DOC + "balance.problems.compare]"]),
+    # (of test_compare.py only the small arms: its module fixtures solve example 1 and the UR5e, 20 minutes clean)
+    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py", *(
+        "tests/balance/test_compare.py::test_" + name for name in (
+            "exact_springs_on_a_planar_two_link_arm_leave_nothing", "the_payload_is_a_range_and_the_devices_are_tuned_for_its_middle",
+            "bad_input_one_sentence", "an_arm_without_gravity_torque_has_nothing_to_balance",
+            "arm_payload_table_for_toml_and_urdf_arms", "one_reader_of_compare_tables_with_the_command_lines_options_over_them",
+            "the_ur5e_urdf_is_written_from_the_published_numbers")),
+        _BALANCE_DOC + "balance.problems.compare]"]),
     "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_dynamics_strength.py",
                                                  _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
@@ -198,6 +203,32 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.helical]", "-k",
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    # the planar arm from TOML: links, loads, the gravity potential (terms against hand sums, moments against
+    # finite differences) and the counterweights' sub-arms
+    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_potential_strength.py",
+                                           "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
+    # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
+    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
+                                       "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
+                                       _BALANCE_DOC + "balance.model.urdf]"]),
+    # the [arm], [pantograph], [slider] and [spring] problems, read and solved
+    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", _BALANCE_DOC + "balance.problems.arm]"]),
+    "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                               _BALANCE_DOC + "balance.problems.pantograph]"]),
+    "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
+                                                       "tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems.slider]"]),
+    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_slider_devices.py", "tests/balance/test_devices.py",
+                                                       "tests/balance/test_fit.py", _BALANCE_DOC + "balance.problems.spring]",
+                                                       "-k", "not under_100_ms and not model_matches"]),
+    # the package's lazily loaded names, the problems' readers, the fit's names
+    "balance_init": ("balance/__init__.py", ["tests/balance/test_packages_strength.py", _BALANCE_DOC + "balance]"]),
+    "problems_init": ("balance/problems/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems]"]),
+    "fit_init": ("balance/devices/fit/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                     _BALANCE_DOC + "balance.devices.fit]"]),
+    # the figures: each curve's data, the labels, markers and captions read back from the saved figure
+    "plots": ("balance/plots.py", ["tests/balance/test_plots_strength.py", _BALANCE_DOC + "balance.plots]"]),
     # the atlas file: its schema, version checks, refusals and run lock (not test_atlas.py's 201-unit grid: a
     # minute per mutant)
     "atlas_database": ("synth/atlas/database.py", ["tests/atlas/test_database_strength.py", "tests/atlas/test_atlas.py",
