@@ -199,7 +199,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
     # synthesis internals: the bound of the codes before a model, the size estimate and its refusals (the
     # estimate's test counts real sizes: its 14-link case is left out, minutes a mutant), heterogeneous chains
-    "sizing": ("synth/synthesis/_sizing.py", ["tests/synthesis/test_sizing.py", _SYNTH_DOC + "synth.synthesis._sizing]"]),
+    "sizing": ("synth/synthesis/_sizing.py", ["tests/synthesis/test_sizing_strength.py", "tests/synthesis/test_sizing.py", _SYNTH_DOC + "synth.synthesis._sizing]"]),
     "estimate": ("synth/synthesis/estimate.py", [
         "tests/synthesis/test_estimate_strength.py", "tests/execution/test_large_queries.py",
         "tests/synthesis/test_classes_vs_oracle.py", _SYNTH_DOC + "synth.synthesis.estimate]",
