@@ -224,9 +224,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "executor": ("synth/execution/executor.py", ["tests/execution/test_executor.py", "tests/execution/test_large_queries.py",
                                                  _SYNTH_DOC + "synth.execution.executor]",
                                                  "-k", "not dask and not sigkill and not estimate_of_14"]),
-    "interrupt": ("synth/execution/interrupt.py", ["tests/execution/test_interrupt.py",
+    "interrupt": ("synth/execution/interrupt.py", ["tests/execution/test_interrupt_strength.py",
+                                                   "tests/execution/test_interrupt.py",
                                                    _SYNTH_DOC + "synth.execution.interrupt]",
-                                                   "-k", "cp_sat or extension or after_a_handled or docstring"]),
+                                                   "-k", "strength or extension or after_a_handled or docstring"]),
     "sqlite_files": ("synth/execution/sqlite_files.py", ["tests/test_small_modules_strength.py",
                                                          _SYNTH_DOC + "synth.execution.sqlite_files]"]),
     # small structure modules and the package's start-up paths
