@@ -298,3 +298,15 @@ def test_plan_bytes_counts_each_worker_expanding_a_code():
     found = _estimate(1e6, 1e5, 10.0, largest=1000)
     assert est.plan_bytes(found, 1) == 3_500_000
     assert est.plan_bytes(found, 3) == 10_500_000
+
+
+@pytest.mark.parametrize("processes, wall", [(1, "3.2e+1992 years on 1 worker"), (2, "1.6e+1992 years on 2 workers")])
+def test_a_query_beyond_floating_point_is_refused_with_its_size_from_the_logarithms(monkeypatch, processes, wall):
+    # 10^2000 s on one worker: 10^(2000 − log10 31 557 600) = 10^1992.5009 years; on two, 10^1992.1998
+    found = est.Estimate(math.inf, math.inf, math.inf, "exact counts at 10, 12, 14 links", 2100.3, 1500.0, 2000.0)
+    _given(monkeypatch, found)
+    with pytest.raises(QueryTooLarge) as refused:
+        est.size_check(ChainQuery(1, 400), processes=processes, count=False, table=False)
+    assert refused.value.text(flag) == (
+        f"this query (400 links) is too large to run unasked: about 2e+2100 chains in 1e+1500 units, {wall}, "
+        "extrapolated from the exact counts at 10, 12, 14 links; give --force to run it anyway")
