@@ -169,6 +169,9 @@ def test_the_growth_factor_is_the_product_of_the_extrapolated_ratios(ratio, step
     (ChainQuery(1, 14, v="0..2"), False, True), (ChainQuery(1, 12, v="0..2"), False, False),  # multiple: K = 6
     (ChainQuery(1, 14, v=0), False, False),                          # v = 0 only: simple joints, K = 7
     (ChainQuery(1, 14, code="662000/0"), True, False),            # one code: never sized
+    (ChainQuery(1, 12, prismatic="0.."), False, True),   # wedge loops: skeletons of up to K = (10 + 10)/2 loops
+    (ChainQuery(1, 15, prismatic=(0, 2)), False, False),  # no skeleton at all: K = (15 − 2)//2 = 6 from n alone
+    (ChainQuery(1, 15, prismatic=(0, 2)), True, True),
     (ChainQuery(1, 20, h=4), False, False), (ChainQuery(1, 23, h=4), False, True),  # h = 4: K = (n − 2)/3 = 6, 7
 ])
 def test_which_queries_are_sized_before_they_run(query, table, sized):
@@ -310,3 +313,13 @@ def test_a_query_beyond_floating_point_is_refused_with_its_size_from_the_logarit
     assert refused.value.text(flag) == (
         f"this query (400 links) is too large to run unasked: about 2e+2100 chains in 1e+1500 units, {wall}, "
         "extrapolated from the exact counts at 10, 12, 14 links; give --force to run it anyway")
+
+
+def test_the_memory_limits_are_exclusive_and_one_worker_is_one(monkeypatch):
+    # largest code units · 3 500 B · processes exactly at 1 GiB and at 3 GiB (exact in floating point)
+    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=2**30 / 3500))
+    assert est.size_check(ChainQuery(1, 16), processes=1, count=True, table=False) is None  # 1 GiB: no note
+    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=3 * 2**30 / 3500))
+    assert est.size_check(ChainQuery(1, 16), processes=1, count=True, table=False) == (
+        "its largest code has about 920 350 branch multigraphs, kept whole until the code is done: about 3.0 GiB on 1 "
+        "worker")  # 3 GiB: noted, not refused
