@@ -99,6 +99,16 @@ def test_a_size_predicted_to_end_past_one_and_a_half_budgets_is_not_started(monk
     assert found.basis == ("exact counts at 10, 12, 14 links" if counted_14 else "exact counts at 8, 10, 12 links")
 
 
+def test_the_default_budget_is_two_cpu_seconds(monkeypatch):
+    # 10 links take 2.1 s: past two seconds, 12 is not started (with three, 12 and 14 would be: 2.5 s in all)
+    sizes = {4: ([[1]], 0.0), 6: ([[50]], 0.0), 8: ([[100]], 0.0), 10: ([[110]], 2.1), 12: ([[120]], 0.4),
+             14: ([[130]], 0.0)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).basis == "exact counts at 6, 8, 10 links"
+    assert [run[0] for run in calibrations.runs] == [4, 6, 8, 10]
+    assert est.estimate(ChainQuery(1, 16), budget=3.0).basis == "exact counts at 10, 12, 14 links"
+
+
 def test_fewer_than_three_sizes_with_chains_give_no_estimate(monkeypatch):
     sizes = {4: ([[]], 0.0), 6: ([[]], 0.0), 8: ([[3]], 0.0), 10: ([[]], 0.0), 12: ([[5]], 0.0)}
     _Calibrations(monkeypatch, sizes)
@@ -133,7 +143,8 @@ def test_each_work_times_what_the_query_will_do(monkeypatch, work, unit_work):
 
 
 @pytest.mark.parametrize("query, compiled", [(ChainQuery(1, 16), True), (ChainQuery(1, 14), True),
-                                             (ChainQuery(1, 12), False), (ChainQuery(1, 12, v="0..1"), True)])
+                                             (ChainQuery(1, 12), False), (ChainQuery(1, 12, v="0..1"), True),
+                                             (ChainQuery(1, 12, v="0.."), True), (ChainQuery(1, 12, v=0), False)])
 def test_the_calibrations_take_the_compiled_path_of_a_large_query(monkeypatch, query, compiled):
     # the kernel from K = 6 loops (5 with multiple joints): 16 and 14 links have 7 and 6, 12 links 5
     calibrations = _Calibrations(monkeypatch, SIZES)
