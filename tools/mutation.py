@@ -241,6 +241,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                              _SYNTH_DOC + "synth.structure.joints]"]),
     "lazy": ("synth/_lazy.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth._lazy]"]),
     "synth_init": ("synth/__init__.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth]"]),
+    # stage A's compiled search: its @njit functions are not mutated (mutmut skips decorated functions), only
+    # new_state, the size of the search's state; judged by the kernel against the CP-SAT model's multigraphs
+    "stage_a_kernel": ("synth/synthesis/_stage_a_kernel.py", ["tests/synthesis/test_kernels.py",
+                                                              _SYNTH_DOC + "synth.synthesis._stage_a_kernel]",
+                                                              "-k", "(stage_a_kernel or docstring) and " + _HEAVY]),
     "display": ("synth/display.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth.display]"]),
 }
 
