@@ -31,7 +31,7 @@ class _Calibrations:
     """Stand-ins of plan_jobs and _map_units over a table like SIZES, with a CPU clock."""
 
     def __init__(self, monkeypatch, sizes):
-        self.sizes, self.now, self.runs, self.kernels = sizes, 0.0, [], 0
+        self.sizes, self.now, self.runs, self.kernels, self.planned = sizes, 100.0, [], 0, []
         monkeypatch.setattr(est, "_COUNTED", {})
         monkeypatch.setattr(est, "time", types.SimpleNamespace(process_time=lambda: self.now))
         monkeypatch.setattr(ts, "plan_jobs", self.plan_jobs)
@@ -42,6 +42,7 @@ class _Calibrations:
         self.kernels += 1
 
     def plan_jobs(self, query):
+        self.planned.append(query.links)
         if query.links not in self.sizes:
             raise ImpossibleParameters("no chain of that size")
         return [((query.links, k), ts._conventions(query)) for k in range(len(self.sizes[query.links][0]))]
@@ -61,6 +62,7 @@ def test_the_estimate_extrapolates_the_growth_ratio_linearly(monkeypatch):
     calibrations = _Calibrations(monkeypatch, SIZES)
     found = est.estimate(ChainQuery(1, 16))
     assert [run[0] for run in calibrations.runs] == [4, 6, 8, 10, 12, 14]  # every smaller size, smallest first
+    assert calibrations.planned == [2, 4, 6, 8, 10, 12, 14]  # (2 links: no chain, refused)
     assert found.basis == "exact counts at 10, 12, 14 links"
     r14, r12 = 318162 / 6856, 6856 / 230
     chains = 318162 * (r14 + (r14 - r12))  # one step of two links
@@ -334,3 +336,86 @@ def test_the_memory_limits_are_exclusive_and_one_worker_is_one(monkeypatch):
     assert est.size_check(ChainQuery(1, 16), processes=1, count=True, table=False) == (
         "its largest code has about 920 350 branch multigraphs, kept whole until the code is done: about 3.0 GiB on 1 "
         "worker")  # 3 GiB: noted, not refused
+
+
+def test_a_size_with_units_but_no_chains_is_no_point_of_the_ratio(monkeypatch):
+    sizes = {**SIZES, 12: ([[0, 0], [0]], 0.0)}
+    _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).basis == "exact counts at 8, 10, 14 links"
+
+
+def test_two_points_are_enough_to_predict_the_next_size_past_the_budget(monkeypatch):
+    # only 10 and 12 have chains; 14 is predicted to take 0.5 · 6856/230 = 14.9 s: not started, so no estimate
+    sizes = {**SIZES, 4: ([[]], 0.0), 6: ([[]], 0.0), 8: ([[]], 0.0), 10: ([[230]], 0.0), 12: (SIZES[12][0], 0.5)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)) is None
+    assert 14 not in [run[0] for run in calibrations.runs]
+
+
+def test_a_size_predicted_to_end_at_exactly_one_and_a_half_budgets_is_started(monkeypatch):
+    # before 14: 1.0 s spent, 14 predicted at 0.5 · 400/100 = 2.0 s: 3.0 s in all, not more than 1.5 · 2 s
+    sizes = {4: ([[1]], 0.0), 6: ([[10]], 0.0), 8: ([[50]], 0.0), 10: ([[100]], 0.5), 12: ([[400]], 0.5),
+             14: ([[1000]], 0.0)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).basis == "exact counts at 10, 12, 14 links"
+    assert calibrations.runs[-1][0] == 14
+
+
+def test_past_the_budget_no_size_is_started_even_a_quick_one(monkeypatch):
+    # 4 links take 2.1 s: 6 is not started, though the later sizes take no time at all
+    sizes = {**SIZES, 4: ([[1]], 2.1), 10: (SIZES[10][0], 0.0), 12: (SIZES[12][0], 0.0)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)) is None
+    assert [run[0] for run in calibrations.runs] == [4]
+
+
+def test_a_budget_spent_exactly_is_not_past(monkeypatch):
+    sizes = {**SIZES, 4: ([[1]], 2.0), 10: (SIZES[10][0], 0.0), 12: (SIZES[12][0], 0.0)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).basis == "exact counts at 10, 12, 14 links"
+    assert len(calibrations.runs) == 6
+
+
+def test_sizes_without_chains_are_tried_up_to_64_links_past_the_budget(monkeypatch):
+    # h = 2: every size from 2 links; none has chains and the first takes the whole budget
+    sizes = {n: ([[]], 3.0 if n == 2 else 0.0) for n in range(2, 70)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 70, h=2)) is None
+    assert calibrations.planned == list(range(2, 65))
+
+
+def test_the_largest_calibration_of_one_unit_gives_units_from_one(monkeypatch):
+    sizes = {**SIZES, 10: ([[230]], 0.0), 12: ([[6856]], 0.0), 14: ([[318162]], 0.0)}
+    _Calibrations(monkeypatch, sizes)
+    found = est.estimate(ChainQuery(1, 16))
+    assert found.units == 1.0 and found.log10_units == 0.0 and found.largest_code_units == 1.0
+
+
+def test_a_falling_ratio_is_not_extrapolated_downwards(monkeypatch):
+    # ratios 10 then 5: the change −5 is clipped to 0, so the ratio stays 5
+    sizes = {**SIZES, 10: ([[100]], 0.0), 12: ([[1000]], 0.0), 14: ([[5000]], 0.0)}
+    _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).chains == pytest.approx(25000, rel=1e-12)
+
+
+@pytest.mark.parametrize("units, expected", [
+    ((1, 1, 3), 3 * (3 + 2)),      # ratios 1 then 3: the next 3 + 2
+    ((2, 4, 12), 12 * (3 + 1)),    # ratios 2 then 3: the next 3 + 1
+])
+def test_the_units_ratio_is_extrapolated_like_the_chains(monkeypatch, units, expected):
+    sizes = {**SIZES, **{n: ([[1] * u], 0.0) for n, u in zip((10, 12, 14), units)}}
+    _Calibrations(monkeypatch, sizes)
+    assert est.estimate(ChainQuery(1, 16)).units == pytest.approx(expected, rel=1e-12)
+
+
+def test_the_sizes_of_a_query_are_shared_by_its_larger_sizes(monkeypatch):
+    calibrations = _Calibrations(monkeypatch, {**SIZES, 14: (SIZES[14][0], 0.0), 16: ([[10**7]], 0.0)})
+    est.estimate(ChainQuery(1, 16))
+    est.estimate(ChainQuery(1, 18))  # 4 … 14 links again: read back, only 16 counted
+    assert [run[0] for run in calibrations.runs] == [4, 6, 8, 10, 12, 14, 16]
+
+
+def test_powers_of_ten_beyond_floating_point_are_infinite():
+    assert est._power(307.5) == pytest.approx(10**307.5, rel=1e-12)
+    assert est._power(308.5) == math.inf  # (10.0 ** 308.5 overflows)
+    assert est._power(5000.0) == math.inf
