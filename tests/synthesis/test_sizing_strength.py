@@ -188,3 +188,31 @@ def test_a_bound_that_cannot_be_sized_in_time_is_refused(monkeypatch):
 def test_time_is_looked_at_every_16_parts_only(monkeypatch):
     _clock(monkeypatch, 0.0)  # K = 8: 7 parts, no look at the clock after the start
     assert code_bound(make_problem(1, loops=8), stop=1) == _sizing.Bound(433.0)
+
+
+def test_the_sum_over_the_single_joint_links_stops_once_above_the_limit():
+    problem = make_problem(2, loops=3, n1="0..3")
+    first = _brute_bound(dataclasses.replace(problem, n1=(0, 0)))  # the codes without a single-joint link
+    full = _brute_bound(problem)
+    assert code_bound(problem, stop=first - 1) == _sizing.Bound(float(first), exact=False)
+    assert code_bound(problem, stop=full - 1) == _sizing.Bound(float(full), exact=True)  # the last n1: all summed
+    assert code_bound(problem, stop=full) == _sizing.Bound(float(full), exact=True)
+
+
+def test_a_wide_range_of_single_joint_links_is_refused_when_the_second_is_out(monkeypatch):
+    # (``codes --dof 2 --loops 3 --n1 0..999000`` summed for minutes before it was refused within a second)
+    problem = make_problem(2, loops=3, n1="0..600")
+    _clock(monkeypatch, 10.0, 10.9, 11.0)  # the clock is read after every 256 values of n1: at 255 and 511
+    assert code_bound(problem) == _sizing.Bound(float(_brute_bound(problem)))  # within 1 s
+    _clock(monkeypatch, 10.0, 10.5, 11.01)
+    with pytest.raises(QueryTooLarge) as refused:
+        code_bound(problem)
+    assert str(refused.value) == "the codes of K = 3 loops and up to 600 single-joint links cannot be sized within 1 s"
+
+
+def test_the_splits_of_many_multiple_joints_are_refused_when_the_second_is_out(monkeypatch):
+    problem = make_problem(1, loops=40, v="0..70", compositions=True, max_multiplicity=80)  # v in parts 1 … 70: read at 64
+    _clock(monkeypatch, 10.0, 11.01)
+    with pytest.raises(QueryTooLarge) as refused:
+        code_bound(problem)
+    assert str(refused.value) == "the codes of K = 40 loops cannot be sized within 1 s"
