@@ -76,9 +76,20 @@ class _Blocking:
         os.write(self._write, b"x")
 
 
-def test_ctrl_c_stops_a_running_search_of_this_process_at_once():
+@pytest.fixture
+def watcher(monkeypatch):
+    """The watcher of this process: a process forked from one that had it (mutation testing forks each
+    mutant's tests from the process that ran the tests first) has no thread but the flag, so it is
+    made a fresh process's state, where the first search installs the watcher."""
+    if not any(t.name == "cp-sat-ctrl-c" and t.is_alive() for t in threading.enumerate()):
+        monkeypatch.setattr(interrupt, "_watching", False)
+        signal.set_wakeup_fd(-1)
+    solve_stoppably(_Slow(0.0), None)
+    assert any(t.name == "cp-sat-ctrl-c" and t.is_alive() for t in threading.enumerate())
+
+
+def test_ctrl_c_stops_a_running_search_of_this_process_at_once(watcher):
     time.sleep(allowed_seconds(0.3))  # past the instant of a Ctrl-C an earlier test sent to this process
-    solve_stoppably(_Slow(0.0), None)  # (the watcher is installed by a first search)
     search = _Blocking(30.0)
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     sent = time.monotonic()
