@@ -4,8 +4,10 @@ full with the refused file left byte for byte as it was.
 
 from __future__ import annotations
 
+import os
 import re
 import sqlite3
+from pathlib import Path
 
 import pytest
 
@@ -224,3 +226,24 @@ def test_a_write_that_fails_is_one_sentence(tmp_path):
     assert str(refused.value) == f"cannot write the checkpoint {path}: database is locked"
     blocker.rollback()
     blocker.close()
+
+
+def test_a_checkpoint_another_count_wrote_meanwhile_is_refused(tmp_path, monkeypatch):
+    # the file was empty when looked at (so not checked read-only first), and another count wrote its
+    # identity before this one took the lock: refused all the same, and the file left unlocked
+    path = tmp_path / "c.sqlite"
+    Checkpoint(path, "plan-a", "chains W=1 n=8").close()
+    before_meta = _rows(path, "meta")
+    real = Path.stat
+    monkeypatch.setattr(Path, "stat", lambda self, **kw: os.stat_result((0,) * 10) if self == path else real(self, **kw))
+    with pytest.raises(CheckpointMismatch) as refused:
+        Checkpoint(path, "plan-b", "chains W=1 n=10")
+    assert refused.value.text(flag) == (
+        f"the checkpoint {path} belongs to another query (chains W=1 n=8), not to chains W=1 n=10; give a new "
+        "--checkpoint FILE or repeat that query")
+    monkeypatch.undo()
+    db = sqlite3.connect(path, timeout=0)
+    db.execute("BEGIN EXCLUSIVE")  # no connection of the refused checkpoint holds it
+    db.rollback()
+    db.close()
+    assert _rows(path, "meta") == before_meta  # (its journal mode may be the other count's WAL: that count runs)
