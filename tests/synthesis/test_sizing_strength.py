@@ -14,6 +14,7 @@ import dataclasses
 import functools
 import math
 import types
+import warnings
 
 import numpy as np
 import pytest
@@ -39,6 +40,7 @@ def _walk(degrees, requirements, excess):
     return sum(_walk(rest, requirements, excess - (i - 2) * n) for n in range(lo, top + 1))
 
 
+@functools.lru_cache(maxsize=None)
 def _partitions(v, largest):
     """Partitions of v into parts 1 … largest, counted by recursion."""
     if v == 0:
@@ -74,6 +76,9 @@ PROBLEMS = [
     dict(dof=1, loops=5, v="0..6", compositions=True, max_multiplicity=4), dict(dof=1, loops=6, v="2..3", max_link_degree=4),
     dict(dof=1, loops=6, max_link_degree=3), dict(dof=3, loops=4, max_link_degree="K+W", v="0..2"),
     dict(dof=0, loops=3, v="0..2", require=["4=1..1", "3=0..2"]), dict(dof=1, loops=3, v=4),
+    # links of as many joints as the whole excess (a part equal to it), and beyond it
+    dict(dof=1, loops=3, max_link_degree=6), dict(dof=1, loops=2, max_link_degree=5),
+    dict(dof=2, loops=2, n1="0..2", max_link_degree=7),
 ]
 
 
@@ -122,6 +127,7 @@ def test_the_coarse_bound_of_an_empty_or_a_large_problem():
     assert coarse_bound(dataclasses.replace(problem, loops=1, n1=(0, 0))) == 1  # excess 0: one pair of empty partitions
     wide = make_problem(2, loops=3, n1="0..3")
     assert coarse_bound(dataclasses.replace(wide, n1=(3, 2))) == 0
+    assert coarse_bound(dataclasses.replace(wide, n1=(5, 2))) == 0  # (not −3 times the pairs)
     assert coarse_bound(make_problem(1, loops=51)) == _sizing._partition_pairs(100)  # excess 100: still counted
     assert coarse_bound(make_problem(1, loops=52)) is None  # 102: beyond the integers it counts in
 
@@ -216,3 +222,30 @@ def test_the_splits_of_many_multiple_joints_are_refused_when_the_second_is_out(m
     with pytest.raises(QueryTooLarge) as refused:
         code_bound(problem)
     assert str(refused.value) == "the codes of K = 40 loops cannot be sized within 1 s"
+
+
+def test_problems_of_many_parts_of_v_or_many_single_joint_links_are_sized_when_quick():
+    # the clock is looked at every 64 parts of v and every 256 values of n1, and only a second past refuses
+    many_parts = make_problem(1, loops=40, v="0..70", compositions=True, max_multiplicity=80)
+    assert code_bound(many_parts) == _sizing.Bound(float(_brute_bound(many_parts)))
+    wide = make_problem(2, loops=3, n1="0..600")
+    assert code_bound(wide) == _sizing.Bound(float(_brute_bound(wide)))
+
+
+def test_a_refusal_of_the_splits_names_the_single_joint_links(monkeypatch):
+    problem = make_problem(2, loops=40, n1="0..3", v="0..70", compositions=True, max_multiplicity=80)
+    _clock(monkeypatch, 10.0, 11.01)
+    with pytest.raises(QueryTooLarge) as refused:
+        code_bound(problem)
+    assert str(refused.value) == "the codes of K = 40 loops and up to 3 single-joint links cannot be sized within 1 s"
+
+
+def test_tables_beyond_floating_point_warn_of_nothing(monkeypatch):
+    # links of up to 300 joints and up to 200 000 single-joint links: the partitions pass 1e308 within the
+    # second (on a clock that does not move here); the bound is then the sum so far, without a warning
+    monkeypatch.setattr(_sizing, "time", types.SimpleNamespace(perf_counter=lambda: 0.0))
+    problem = make_problem(2, loops=3, n1="0..200000", max_link_degree=300)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        found = code_bound(problem, stop=1e6)
+    assert not found.exact and 1e6 < found.value < math.inf
