@@ -79,6 +79,8 @@ PROBLEMS = [
     # links of as many joints as the whole excess (a part equal to it), and beyond it
     dict(dof=1, loops=3, max_link_degree=6), dict(dof=1, loops=2, max_link_degree=5),
     dict(dof=2, loops=2, n1="0..2", max_link_degree=7),
+    # the required links leave no excess for the first values of n1; v's least is above it
+    dict(dof=2, loops=3, n1="0..5", require=["3=5.."]), dict(dof=2, loops=2, n1="0..3", v="3..4"),
 ]
 
 
@@ -202,6 +204,7 @@ def test_the_sum_over_the_single_joint_links_stops_once_above_the_limit():
     full = _brute_bound(problem)
     assert code_bound(problem, stop=first - 1) == _sizing.Bound(float(first), exact=False)
     assert code_bound(problem, stop=full - 1) == _sizing.Bound(float(full), exact=True)  # the last n1: all summed
+    assert code_bound(problem, stop=first) == _sizing.Bound(float(full), exact=True)  # not above: summed on
     assert code_bound(problem, stop=full) == _sizing.Bound(float(full), exact=True)
 
 
