@@ -204,7 +204,8 @@ def test_the_sum_over_the_single_joint_links_stops_once_above_the_limit():
     full = _brute_bound(problem)
     assert code_bound(problem, stop=first - 1) == _sizing.Bound(float(first), exact=False)
     assert code_bound(problem, stop=full - 1) == _sizing.Bound(float(full), exact=True)  # the last n1: all summed
-    assert code_bound(problem, stop=first) == _sizing.Bound(float(full), exact=True)  # not above: summed on
+    two = _brute_bound(dataclasses.replace(problem, n1=(0, 1)))
+    assert code_bound(problem, stop=first) == _sizing.Bound(float(two), exact=False)  # equal is not above: on to n1 = 1
     assert code_bound(problem, stop=full) == _sizing.Bound(float(full), exact=True)
 
 
