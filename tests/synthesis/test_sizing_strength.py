@@ -253,3 +253,26 @@ def test_tables_beyond_floating_point_warn_of_nothing(monkeypatch):
         warnings.simplefilter("error")
         found = code_bound(problem, stop=1e6)
     assert not found.exact and 1e6 < found.value < math.inf
+
+
+class _Reads:
+    """A perf_counter that reads 0 s ``quiet`` times, then ``then`` s."""
+
+    def __init__(self, quiet, then):
+        self.quiet, self.then = quiet, then
+
+    def perf_counter(self):
+        self.quiet -= 1
+        return 0.0 if self.quiet >= 0 else self.then
+
+
+@pytest.mark.parametrize("quiet, exact", [(10**9, True), (23, False)])
+def test_a_bound_lost_to_overflow_is_infinite_never_nan(monkeypatch, quiet, exact):
+    # no joint of three links (the splits of v are 1, 0, 0): 0 · inf in the sum is nan, which would pass every
+    # limit unnoticed; the bound is inf instead — at the end (a clock that never moves), or in the sum so far
+    # when the clock is past half a second at the 368th part (after the start and 22 quiet looks)
+    monkeypatch.setattr(_sizing, "time", types.SimpleNamespace(perf_counter=_Reads(quiet, 0.6).perf_counter))
+    problem = make_problem(2, loops=3, n1="0..100000", v="0..2", max_link_degree=400, max_multiplicity=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert code_bound(problem) == _sizing.Bound(math.inf, exact=exact)
