@@ -276,3 +276,11 @@ def test_a_bound_lost_to_overflow_is_infinite_never_nan(monkeypatch, quiet, exac
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert code_bound(problem) == _sizing.Bound(math.inf, exact=exact)
+
+
+def test_a_refusal_at_the_parts_names_the_single_joint_links(monkeypatch):
+    problem = make_problem(2, loops=20, n1="0..3")  # links of up to 22 joints: the clock read at the 16th part
+    _clock(monkeypatch, 10.0, 10.6, 11.01)
+    with pytest.raises(QueryTooLarge) as refused:
+        code_bound(problem)
+    assert str(refused.value) == "the codes of K = 20 loops and up to 3 single-joint links cannot be sized within 1 s"
