@@ -205,7 +205,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/synthesis/test_classes_vs_oracle.py", _SYNTH_DOC + "synth.synthesis.estimate]",
         "-k", "estimate_strength or giant or long_query or large_listing or model_too_large or size_note "
               "or docstring"]),
-    "classes": ("synth/synthesis/classes.py", ["tests/synthesis/test_classes_vs_oracle.py",
+    "classes": ("synth/synthesis/classes.py", ["tests/synthesis/test_classes_strength.py",
+                                               "tests/synthesis/test_classes_vs_oracle.py",
                                                _SYNTH_DOC + "synth.synthesis.classes]"]),
     "cpsat": ("synth/synthesis/_cpsat.py", ["tests/synthesis/test_cpsat_api.py", "tests/synthesis/test_cpsat_strength.py",
                                             _SYNTH_DOC + "synth.synthesis._cpsat]"]),
