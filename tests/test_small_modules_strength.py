@@ -26,7 +26,7 @@ YEAR = 365.25 * DAY
 @pytest.mark.parametrize("seconds, words", [
     (0, "0 s"), (42.4, "42 s"), (119.4, "119 s"),          # seconds below two minutes
     (120, "2 min"), (5400, "90 min"), (7199, "120 min"),    # minutes below two hours
-    (7200, "2.0 h"), (9000, "2.5 h"), (2 * DAY - 1, "48.0 h"),  # hours below two days
+    (7200, "2.0 h"), (9000, "2.5 h"), (144184, "40.1 h"), (2 * DAY - 1, "48.0 h"),  # hours below two days
     (2 * DAY, "2.0 days"), (3e5, "3.5 days"), (365 * DAY - 1, "365.0 days"),
     (365 * DAY, "1 year"), (1.4 * YEAR, "1 year"), (2 * YEAR, "2 years"),
     (9999 * YEAR, "9999 years"), (12345 * YEAR, "1.2e+04 years"),
@@ -39,6 +39,8 @@ def test_a_duration_beyond_floating_point_is_written_from_its_logarithm():
     # 10^2000 s = 10^(2000 − log10 31 557 600) years = 10^1992.5009 years = 3.17e+1992
     assert describe_seconds(math.inf, 2000.0) == "3.2e+1992 years"
     assert describe_seconds(math.inf) == "more than 1e+308 years"  # no logarithm given: unknown
+    # a Julian year of 365.25 days of 86 400 s: 1.050005e+2000 years is written 1.1e+2000 (a year 1e-5 longer: 1e+2000)
+    assert describe_seconds(math.inf, 2000 + math.log10(1.050005) + math.log10(365.25 * 86400)) == "1.1e+2000 years"
 
 
 @pytest.mark.parametrize("count, words", [
@@ -55,6 +57,8 @@ def test_a_count_is_written_with_spaces_or_in_powers_of_ten(count, words):
     (7.0, "1e+7"),
     (2.99999, "1e+3"),        # 10^0.99999 = 9.99977: rounds to 10, written as 1e+3, not 10e+2
     (1000.96, "9.1e+1000"),   # 10^0.96 = 9.12: below the rounding step
+    (4.98, "9.5e+4"),         # 10^0.98 = 9.55: rounds to 9.5 or 9.6 at one decimal, not to 10
+    (2.9987, "1e+3"),         # 10^0.9987 = 9.970: 10.0 at one decimal (at two it would be 9.97, written 10e+2)
 ])
 def test_a_count_beyond_floating_point_is_written_from_its_logarithm(log10, words):
     assert magnitude(math.inf, log10) == words
