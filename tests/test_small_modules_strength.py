@@ -27,9 +27,10 @@ YEAR = 365.25 * DAY
     (0, "0 s"), (42.4, "42 s"), (119.4, "119 s"),          # seconds below two minutes
     (120, "2 min"), (5400, "90 min"), (7199, "120 min"),    # minutes below two hours
     (7200, "2.0 h"), (9000, "2.5 h"), (144184, "40.1 h"), (2 * DAY - 1, "48.0 h"),  # hours below two days
-    (2 * DAY, "2.0 days"), (3e5, "3.5 days"), (365 * DAY - 1, "365.0 days"),
+    (2 * DAY, "2.0 days"), (3e5, "3.5 days"), (8644407, "100.1 days"), (365 * DAY - 1, "365.0 days"),
     (365 * DAY, "1 year"), (1.4 * YEAR, "1 year"), (2 * YEAR, "2 years"),
-    (9999 * YEAR, "9999 years"), (12345 * YEAR, "1.2e+04 years"),
+    (100.5006 * YEAR, "101 years"), (9999 * YEAR, "9999 years"), (1e4 * YEAR, "1e+04 years"),
+    (12345 * YEAR, "1.2e+04 years"),
 ])
 def test_a_duration_is_written_in_its_largest_sensible_unit(seconds, words):
     assert describe_seconds(seconds) == words
