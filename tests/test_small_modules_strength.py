@@ -171,7 +171,8 @@ def package(monkeypatch):
     """A package ``demo_pkg`` with one submodule, made in memory."""
     pkg = types.ModuleType("demo_pkg")
     pkg.__path__ = []
-    pkg.__all__ = ["b_name", "a_name"]
+    pkg.__all__ = ["b_name", "c_eager", "a_name"]
+    pkg.c_eager = "defined at import"
     sub = types.ModuleType("demo_pkg.sub")
     sub.a_name = "from sub"
     pkg.b_name = "own"
@@ -194,7 +195,7 @@ def test_an_unknown_lazy_name_is_an_attribute_error_naming_it(package):
 
 
 def test_the_lazy_listing_is_the_sorted_public_names(package):
-    assert package.__dir__() == ["a_name", "b_name"]
+    assert package.__dir__() == ["a_name", "b_name", "c_eager"]  # what the package lists, lazy or not
     del package.__all__
     assert package.__dir__() == ["a_name", "b_name"]  # without __all__: the names it exports
 
