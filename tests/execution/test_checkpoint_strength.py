@@ -247,3 +247,17 @@ def test_a_checkpoint_another_count_wrote_meanwhile_is_refused(tmp_path, monkeyp
     db.rollback()
     db.close()
     assert _rows(path, "meta") == before_meta  # (its journal mode may be the other count's WAL: that count runs)
+
+
+def test_a_file_that_cannot_be_opened_is_one_sentence(tmp_path, monkeypatch):
+    path = tmp_path / "c.sqlite"
+    Checkpoint(path, "p", "q").close()
+
+    def refuse(*args, **kwargs):
+        raise sqlite3.OperationalError("unable to open database file")
+
+    monkeypatch.setattr(module.sqlite3, "connect", refuse)  # (as a file the user may not read would)
+    with pytest.raises(CheckpointError) as refused:
+        Checkpoint(path, "p", "q")
+    assert str(refused.value) == (f"cannot read the checkpoint {path} (unable to open database file); "
+                                  "it was not changed")
