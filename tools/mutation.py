@@ -215,7 +215,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # child process and wait for it: mutmut does not see which function a child reaches)
     "checkpoint": ("synth/execution/checkpoint.py", ["tests/execution/test_large_queries.py",
                                                      "tests/execution/test_checkpoint_strength.py",
-                                                     _SYNTH_DOC + "synth.execution.checkpoint]", "-k", "checkpoint"]),
+                                                     _SYNTH_DOC + "synth.execution.checkpoint]", "-k", "checkpoint and not sigkill"]),
     "memo": ("synth/execution/memo.py", ["tests/execution/test_memo_strength.py", "tests/execution/test_memo.py", _SYNTH_DOC + "synth.execution.memo]"]),
     "sizes": ("synth/execution/sizes.py", ["tests/test_small_modules_strength.py",
                                            _SYNTH_DOC + "synth.execution.sizes]"]),

@@ -78,6 +78,14 @@ def test_a_unit_is_committed_once_every_seconds_have_passed(tmp_path, monkeypatc
     resumed = []
     Checkpoint(path, "p", "q", every=0.0, log=resumed.append).add_unit("c|1", "c", 1)
     assert resumed == [f"checkpoint {path}: 1 units (0 codes complete) committed in this run, 3 units done before"]
+    clock[0] = 200.0
+    default = Checkpoint(path, "p", "q", log=resumed.append)  # one second by default
+    clock[0] = 200.99
+    default.add_unit("c|2", "c", 1)
+    assert len(resumed) == 1
+    clock[0] = 201.0
+    default.add_unit("c|3", "c", 1)
+    assert len(resumed) == 2 and resumed[-1].startswith(f"checkpoint {path}: 2 units")
 
 
 def test_ctrl_c_keeps_what_finished_and_an_error_drops_what_was_not_committed(tmp_path):
