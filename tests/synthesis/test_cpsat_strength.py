@@ -112,3 +112,29 @@ def test_the_solver_leaves_ctrl_c_to_the_caller():
     assert solver.parameters.catch_sigint_signal is False  # KeyboardInterrupt, not CP-SAT's own handler
     assert solver.parameters.enumerate_all_solutions and solver.parameters.num_workers == 1
     assert _solver(m, xs, 2.5, False).parameters.max_time_in_seconds == 2.5
+
+
+def test_a_tick_comes_at_exactly_1024_solutions():
+    m = cp_model.CpModel()
+    x = m.new_int_var(0, 1023, "x")
+    ticks = []
+    all_solutions(m, [x], tick=ticks.append)
+    assert ticks == [1024]
+
+
+def test_the_default_batch_is_4096_solutions():
+    m = cp_model.CpModel()
+    x = m.new_int_var(0, 4999, "x")
+    seen = []
+    each_solution(m, [x], lambda b: seen.append(len(b)))
+    assert seen == [4096, 904]
+
+
+def test_the_model_gets_a_search_strategy_only_when_the_fixed_search_is_asked():
+    for run in (lambda m, xs: all_solutions(m, xs), lambda m, xs: each_solution(m, xs, list)):
+        m, xs, _ = _sum_model()
+        run(m, xs)
+        assert len(m.proto.search_strategy) == 0  # the caller's model is left as it was
+    m, xs, _ = _sum_model()
+    all_solutions(m, xs, fixed_search=True)
+    assert len(m.proto.search_strategy) == 1
