@@ -269,3 +269,13 @@ def test_a_file_that_cannot_be_opened_is_one_sentence(tmp_path, monkeypatch):
         Checkpoint(path, "p", "q")
     assert str(refused.value) == (f"cannot read the checkpoint {path} (unable to open database file); "
                                   "it was not changed")
+
+
+def test_a_new_checkpoint_that_cannot_be_written_is_one_sentence(tmp_path, monkeypatch):
+    def refuse(*args, **kwargs):
+        raise sqlite3.OperationalError("disk I/O error")
+
+    monkeypatch.setattr(module.sqlite3, "connect", refuse)  # (as a full or failing disk would)
+    with pytest.raises(CheckpointError) as refused:
+        Checkpoint(tmp_path / "c.sqlite", "p", "q")
+    assert str(refused.value) == f"{tmp_path / 'c.sqlite'} is not a usable checkpoint (disk I/O error)"
