@@ -161,3 +161,29 @@ def test_the_handshake_fails_on_an_http_answer_even_inside_a_running_loop():
         asyncio.run(in_a_notebook())
     finally:
         server.close()
+
+
+def test_the_address_is_tried_as_written_with_the_timeout(monkeypatch):
+    tried = []
+
+    def refuse(where, timeout):
+        tried.append((where, timeout))
+        raise ConnectionRefusedError(111, "Connection refused")
+
+    monkeypatch.setattr(scheduler.socket, "create_connection", refuse)
+    for address in ("tcp://Xhost:1", "[::1]:8786"):
+        with pytest.raises(SchedulerUnreachable, match="cannot reach the Dask scheduler"):
+            connect(address, 2.5)
+    assert tried == [(("Xhost", 1), 2.5), (("::1", 8786), 2.5)]  # port 1 is a port; only the brackets go
+    with pytest.raises(SchedulerUnreachable) as refused:
+        connect("tcp://10.0.0.1:8786")
+    assert str(refused.value) == "cannot reach the Dask scheduler at tcp://10.0.0.1:8786 within 5 s (connection refused)"
+
+
+def test_without_dask_the_sentence_says_what_to_install(listening, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # importing it raises ImportError
+    with pytest.raises(SchedulerUnreachable) as refused:
+        connect(f"tcp://127.0.0.1:{listening}", 1.0)
+    assert str(refused.value) == "a Dask scheduler needs the 'distributed' package (pip install dask[distributed])"
