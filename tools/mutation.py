@@ -262,6 +262,59 @@ MODULES: dict[str, tuple[str, list[str]]] = {
        for name in ("_layout", "_render")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
+    # synthesis internals: the bound of the codes before a model, the size estimate and its refusals (the
+    # estimate's test counts real sizes: its 14-link case is left out, minutes a mutant), heterogeneous chains
+    "sizing": ("synth/synthesis/_sizing.py", ["tests/synthesis/test_sizing_strength.py", "tests/synthesis/test_sizing.py", _SYNTH_DOC + "synth.synthesis._sizing]"]),
+    "estimate": ("synth/synthesis/estimate.py", [
+        "tests/synthesis/test_estimate_strength.py", "tests/execution/test_large_queries.py",
+        "tests/synthesis/test_classes_vs_oracle.py", _SYNTH_DOC + "synth.synthesis.estimate]",
+        "-k", "estimate_strength or giant or long_query or large_listing or model_too_large or size_note "
+              "or docstring"]),
+    "classes": ("synth/synthesis/classes.py", ["tests/synthesis/test_classes_strength.py",
+                                               "tests/synthesis/test_classes_vs_oracle.py",
+                                               _SYNTH_DOC + "synth.synthesis.classes]"]),
+    "cpsat": ("synth/synthesis/_cpsat.py", ["tests/synthesis/test_cpsat_api.py", "tests/synthesis/test_cpsat_strength.py",
+                                            _SYNTH_DOC + "synth.synthesis._cpsat]"]),
+    # execution: checkpoints of counts, the store of results, sizes in words, the scheduler's address, the
+    # pools and pipelines (inline and in pool processes), Ctrl-C in a search (not the tests that signal a
+    # child process and wait for it: mutmut does not see which function a child reaches)
+    "checkpoint": ("synth/execution/checkpoint.py", ["tests/execution/test_large_queries.py",
+                                                     "tests/execution/test_checkpoint_strength.py",
+                                                     _SYNTH_DOC + "synth.execution.checkpoint]", "-k", "checkpoint and not sigkill"]),
+    # (not the test of which modules a warm count loads: mutmut's trampolines load importlib.metadata)
+    "memo": ("synth/execution/memo.py", ["tests/execution/test_memo_strength.py", "tests/execution/test_memo.py",
+                                         _SYNTH_DOC + "synth.execution.memo]", "-k", "not without_numpy"]),
+    "sizes": ("synth/execution/sizes.py", ["tests/test_small_modules_strength.py",
+                                           _SYNTH_DOC + "synth.execution.sizes]"]),
+    "scheduler": ("synth/execution/scheduler.py", ["tests/execution/test_scheduler_strength.py",
+                                                   "tests/execution/test_large_queries.py",
+                                                   _SYNTH_DOC + "synth.execution.scheduler]",
+                                                   "-k", "scheduler or endpoint"]),
+    "executor": ("synth/execution/executor.py", ["tests/execution/test_executor_strength.py",
+                                                 "tests/execution/test_executor.py", "tests/execution/test_large_queries.py",
+                                                 _SYNTH_DOC + "synth.execution.executor]",
+                                                 "-k", "not dask and not sigkill and not estimate_of_14"]),
+    "interrupt": ("synth/execution/interrupt.py", ["tests/execution/test_interrupt_strength.py",
+                                                   "tests/execution/test_interrupt.py",
+                                                   _SYNTH_DOC + "synth.execution.interrupt]",
+                                                   "-k", "strength or extension or after_a_handled or docstring"]),
+    "sqlite_files": ("synth/execution/sqlite_files.py", ["tests/test_small_modules_strength.py",
+                                                         _SYNTH_DOC + "synth.execution.sqlite_files]"]),
+    # small structure modules and the package's start-up paths (not synth/__init__.py: no function, so mutmut
+    # makes no mutant of it; its names are checked by tests/test_small_modules_strength.py)
+    "disjoint": ("synth/structure/disjoint.py", ["tests/test_small_modules_strength.py",
+                                                 _SYNTH_DOC + "synth.structure.disjoint]"]),
+    "blas": ("synth/structure/_blas.py", ["tests/test_small_modules_strength.py",
+                                          _SYNTH_DOC + "synth.structure._blas]"]),
+    "joints": ("synth/structure/joints.py", ["tests/structure/test_joint_kinds_table.py",
+                                             _SYNTH_DOC + "synth.structure.joints]"]),
+    "lazy": ("synth/_lazy.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth._lazy]"]),
+    # stage A's compiled search: its @njit functions are not mutated (mutmut skips decorated functions), only
+    # new_state, the size of the search's state; judged by the kernel against the CP-SAT model's multigraphs
+    "stage_a_kernel": ("synth/synthesis/_stage_a_kernel.py", ["tests/synthesis/test_kernels.py",
+                                                              _SYNTH_DOC + "synth.synthesis._stage_a_kernel]",
+                                                              "-k", "(stage_a_kernel or docstring) and " + _HEAVY]),
+    "display": ("synth/display.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth.display]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests
