@@ -1,9 +1,11 @@
-"""The elementary edits of a chain by hand: a binary link removed with its joints, a multiple joint split."""
+"""The elementary edits of a chain and of a code by hand: a binary link removed with its joints, a multiple joint
+split, the counts of a code with double joints, a truss's rigid triangle, the redundant meshes of a large chain."""
 
 from __future__ import annotations
 
 from synth import Chain
-from synth.analysis.repair import chain_edits
+from synth.analysis.repair import _code_edits, chain_edits, chain_repairs, code_repairs
+from synth.structure.code import Code
 
 
 def test_a_binary_link_of_a_four_bar_is_removed_with_its_joints():
@@ -19,3 +21,58 @@ def test_a_double_joint_is_split_into_two_pins():
     split = edits["split joint 0-1-2 into 1-2 and 0-1"]
     assert split == Chain.parse("0-1 1-2 2-3 3-4 4-0 1-5 5-4") and (split.v, split.links) == (0, 6)
     assert sum(w.startswith("split joint 0-1-2") for w in edits) == 3
+
+
+def test_a_truss_may_hold_a_rigid_triangle():
+    """W = 0: a triangle 0-1-2 with a dyad 3-4 from link 0 to link 1 is a statically determinate truss
+    (5 links, 6 pins: 3·4 − 2·6 = 0) whose triangle is rigid, which a truss allows: it needs no repair,
+    while as a mechanism (W = 1 asked, the triangle forbidden) it does."""
+    from tests.oracles.subchains import exhaustive_subchains
+
+    truss = Chain.parse("0-1 1-2 2-0 0-3 3-4 4-1")
+    oracle = exhaustive_subchains(truss.links, truss.joints)
+    assert truss.dof == 0 and oracle.ok(rigid_subchains=True) and not oracle.ok(rigid_subchains=False)
+    assert chain_repairs(truss, dof=0) == []
+    assert chain_repairs(truss, dof=1)
+
+
+def test_code_edits_with_double_joints_by_hand():
+    """42/2 (n2 = 4, n3 = 2, two double joints): each edit moves link counts by hand, e.g. a binary link
+    added between the two ternary links turns both into quaternary ones (n2 = 5, n3 = 0, n4 = 2) and
+    splitting a double joint on a ternary link makes it quaternary with one double joint fewer."""
+    edits = {words: str(code) for words, code in _code_edits(Code.parse("42/2"))}
+    by_hand = {
+        "add a binary link jointed to links with 2 and 2 joints": "34/2",
+        "add a binary link jointed to links with 2 and 3 joints": "421/2",
+        "add a binary link jointed to links with 3 and 3 joints": "502/2",
+        "remove a binary link jointed to links with 3 and 3 joints": "5/2",
+        "move a joint from a link with 3 joints to one with 2": "42/2",
+        "move a joint from a link with 3 joints to one with 3": "501/2",
+        "merge two joints of a link with 3 joints into a double joint": "51/3",
+        "split a multiple joint on a link with 2 joints": "33/1",
+        "split a multiple joint on a link with 3 joints": "411/1",
+    }
+    assert edits == {words: str(Code.parse(text)) for words, text in by_hand.items()}
+
+
+def test_code_repairs_name_each_code_once():
+    """6301/0 (W = 1) asked for W = 3 needs two binary links fewer: removing one between a ternary and the
+    quinary link and then one between two ternary links gives 701/0, in either order; then one between the
+    ternary and the quaternary link left gives 62/0.  Each code is proposed once, by its first path."""
+    repairs = code_repairs(Code.parse("6301/0"), 3, limit=50)
+    assert sorted(r.code for r in repairs) == ["62/0", "701/0"]
+    for r in repairs:
+        assert len(r.edits) == 2 and str(Chain.parse(r.chain).code) == r.code and Chain.parse(r.chain).dof == 3
+
+
+def test_redundant_meshes_are_named_on_a_large_chain_of_few_core_links():
+    """The planetary train with four planets (W = 0, D = −1: any one of its eight meshes can go) with eight
+    dyads pinned between the sun and the carrier (each adds two links and three pins, no freedom and no
+    redundancy): 23 links, 37 joints; its sets of links are scanned through the 7 links of its core, so
+    the search runs and names the same eight meshes."""
+    from synth.analysis.repair import redundant_joints
+
+    dyads = " ".join(f"0-{7 + 2 * k} {7 + 2 * k}-{8 + 2 * k} {8 + 2 * k}-1" for k in range(8))
+    train = Chain.parse("0-1 1-3 1-4 1-5 1-6 0~3 0~4 0~5 0~6 2~3 2~4 2~5 2~6 " + dyads)
+    assert (train.links, len(train.joints), train.dof) == (23, 37, 0)
+    assert redundant_joints(train, 1) == [(0, 3), (0, 4), (0, 5), (0, 6), (2, 3), (2, 4), (2, 5), (2, 6)]
