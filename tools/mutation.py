@@ -163,11 +163,15 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
        for name in ("_pose", "_dyads", "_system")},
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
-    # 7- and 8-link cases, half a minute each), ratios and designs that can be built
+    # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
+    # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:
+    # 10 to 20 s each, a minute per mutant; lighter cases of each stay)
     **{f"gears_{name}": (f"synth/gears/{name}.py", [
         "tests/test_gear_trains.py", "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
-        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py", _SYNTH_DOC + f"synth.gears.{name}]",
-        "-k", "not ctrl_c and not 7] and not -8- and not three_axes"])
+        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py",
+        f"tests/gears/test_{name}_strength.py", _SYNTH_DOC + f"synth.gears.{name}]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not random_ and not cli_count_and_listing "
+              "and not over_a_size and not five_links_are_buildable"])
        for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
                                                  _BALANCE_DOC + "balance.devices.tradeoff]",

@@ -199,7 +199,8 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
 
 
 def _code_edits(code: Code):
-    """Codes one edit away: a binary link added or removed, a joint end moved, joints merged or split.
+    """Codes one edit away: a binary link added or removed, a joint end moved, joints merged or split
+    (an open chain's single-joint links stay as they are).
 
     Each edit changes the degrees of the links it touches: a link with i joints that gains one
     becomes a link with i + 1 joints (at most one more than the code's largest degree, which
@@ -215,7 +216,7 @@ def _code_edits(code: Code):
         if any(x < 0 for x in c.values()) or code.v + dv < 0:
             return None
         top = max(i for i, k in c.items() if k)  # (an edit leaves at least one link)
-        return Code(tuple(c[i] for i in range(2, top + 1)), code.v + dv)
+        return Code(tuple(c[i] for i in range(2, top + 1)), code.v + dv, n1=code.n1)  # free ends kept
 
     def gain(i):
         return [(i, -1), (i + 1, +1)]

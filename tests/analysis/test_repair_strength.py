@@ -3,6 +3,8 @@ split, the counts of a code with double joints, a truss's rigid triangle, the re
 
 from __future__ import annotations
 
+import pytest
+
 from synth import Chain
 from synth.analysis.repair import _code_edits, chain_edits, chain_repairs, code_repairs
 from synth.structure.code import Code
@@ -65,14 +67,51 @@ def test_code_repairs_name_each_code_once():
         assert len(r.edits) == 2 and str(Chain.parse(r.chain).code) == r.code and Chain.parse(r.chain).dof == 3
 
 
-def test_redundant_meshes_are_named_on_a_large_chain_of_few_core_links():
-    """The planetary train with four planets (W = 0, D = −1: any one of its eight meshes can go) with eight
-    dyads pinned between the sun and the carrier (each adds two links and three pins, no freedom and no
-    redundancy): 23 links, 37 joints; its sets of links are scanned through the 7 links of its core, so
-    the search runs and names the same eight meshes."""
+@pytest.mark.parametrize("dyads,links,joints", [(8, 23, 37), (17, 41, 64)])
+def test_redundant_meshes_are_named_on_a_large_chain_of_few_core_links(dyads, links, joints):
+    """The planetary train with four planets (W = 0, D = −1: any one of its eight meshes can go) with dyads
+    pinned between the sun and the carrier (each adds two links and three pins, no freedom and no
+    redundancy); its sets of links are scanned through the 7 links of its core.  The search's bound counts
+    a try as 2^min(n, 22) sets: 37 tries on 23 links are below 2^28 sets, and 64 tries on 41 links are
+    exactly 2^28, still allowed; both name the same eight meshes."""
     from synth.analysis.repair import redundant_joints
 
-    dyads = " ".join(f"0-{7 + 2 * k} {7 + 2 * k}-{8 + 2 * k} {8 + 2 * k}-1" for k in range(8))
-    train = Chain.parse("0-1 1-3 1-4 1-5 1-6 0~3 0~4 0~5 0~6 2~3 2~4 2~5 2~6 " + dyads)
-    assert (train.links, len(train.joints), train.dof) == (23, 37, 0)
+    pinned = " ".join(f"0-{7 + 2 * k} {7 + 2 * k}-{8 + 2 * k} {8 + 2 * k}-1" for k in range(dyads))
+    train = Chain.parse("0-1 1-3 1-4 1-5 1-6 0~3 0~4 0~5 0~6 2~3 2~4 2~5 2~6 " + pinned)
+    assert (train.links, len(train.joints), train.dof) == (links, joints, 0)
     assert redundant_joints(train, 1) == [(0, 3), (0, 4), (0, 5), (0, 6), (2, 3), (2, 4), (2, 5), (2, 6)]
+
+
+def test_redundant_joints_are_not_searched_beyond_the_bound():
+    """One dyad more (18: 43 links, 67 joints, 67 tries of 2^22 sets, more than 2^28) and the search is not
+    made: None, as for a chain whose W by the count is not below the one asked for."""
+    from synth.analysis.repair import redundant_joints
+
+    pinned = " ".join(f"0-{7 + 2 * k} {7 + 2 * k}-{8 + 2 * k} {8 + 2 * k}-1" for k in range(18))
+    train = Chain.parse("0-1 1-3 1-4 1-5 1-6 0~3 0~4 0~5 0~6 2~3 2~4 2~5 2~6 " + pinned)
+    assert (train.links, len(train.joints), train.dof) == (43, 67, 0)
+    assert redundant_joints(train, 1) is None and redundant_joints(train, 0) is None
+
+
+def test_code_edits_keep_an_open_chains_free_ends():
+    """2|5/2 (two single-joint links, five binary ones, two double joints, W = 4): its edits act on the
+    closed part and keep the two free ends; a binary link added between two binary links makes them
+    ternary (2|42/2, W = 3), which one chain verifies."""
+    edits = {words: str(code) for words, code in _code_edits(Code.parse("2|5/2"))}
+    assert edits == {"add a binary link jointed to links with 2 and 2 joints": "2|42/2",
+                     "split a multiple joint on a link with 2 joints": "2|41/1"}
+    (repair,) = code_repairs(Code.parse("2|5/2"), 3)
+    chain = Chain.parse(repair.chain)
+    assert repair.code == "2|42/2" and (chain.code.n1, chain.code.assortment, chain.code.v) == (2, (4, 2), 2)
+    assert chain.dof == 3 and chain.degrees.count(1) == 2
+
+
+def test_code_repairs_are_five_unless_more_are_asked_for():
+    """7111/0 (W = 1) asked for W = 0: one binary link more, jointed to two links of degrees 2 and 2, 2 and 3,
+    2 and 4, 2 and 5, 3 and 4, 3 and 5 or 4 and 5 (one link each of 3, 4, 5 joints): seven codes one edit
+    away; five by default."""
+    code = Code.parse("7111/0")
+    every = code_repairs(code, 0, limit=10)
+    assert sorted(r.code for r in every) == sorted(
+        str(Code.parse(t)) for t in ("6311/0", "7121/0", "7202/0", "72101/0", "80120/0", "80201/0", "81011/0"))
+    assert [r.code for r in code_repairs(code, 0)] == [r.code for r in every][:5]
