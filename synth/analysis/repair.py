@@ -236,8 +236,7 @@ def _code_edits(code: Code):
                 yield f"move a joint from a link with {i} joints to one with {k}", make(lose(i) + gain(k))
         if i > 2:
             yield f"merge two joints of a link with {i} joints into a double joint", make(lose(i), +1)
-        if code.v > 0:
-            yield f"split a multiple joint on a link with {i} joints", make(gain(i), -1)
+        yield f"split a multiple joint on a link with {i} joints", make(gain(i), -1)  # (None without one)
 
 
 def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -> list[Repair]:

@@ -115,3 +115,28 @@ def test_code_repairs_are_five_unless_more_are_asked_for():
     assert sorted(r.code for r in every) == sorted(
         str(Code.parse(t)) for t in ("6311/0", "7121/0", "7202/0", "72101/0", "80120/0", "80201/0", "81011/0"))
     assert [r.code for r in code_repairs(code, 0)] == [r.code for r in every][:5]
+
+
+def test_a_repaired_chain_states_its_mobility():
+    """The rigid triangle 0-1-2 with a three-link chain from 0 to 1 (W = 1 by the count) mended in one edit:
+    each repair is a chain of W = 1 and says so."""
+    for repair in chain_repairs(Chain.parse("0-1 1-2 2-0 0-3 3-4 4-5 5-1")):
+        assert repair.dof == 1 == Chain.parse(repair.chain).dof and repair.to_dict()["dof"] == 1
+
+
+def test_more_than_three_redundant_constraints_are_not_searched():
+    """Seven planets on a floating sun: W = 4 − 7 = −3, D = −4 against W = 1, beyond the three searched."""
+    from synth.analysis.repair import redundant_joints
+    from synth.gears.planetary import planetary_train
+
+    seven = planetary_train(7).to_chain()
+    assert seven.dof == -3 and redundant_joints(seven, 1) is None
+    assert redundant_joints(planetary_train(6).to_chain(), 1, most=2) is None  # D = −3 with at most 2 asked
+
+
+def test_a_code_without_multiple_joints_has_none_to_split():
+    """42/0: the splits name no code (None), as the other edits that cannot be made."""
+    edits = dict(_code_edits(Code.parse("42/0")))
+    assert edits["split a multiple joint on a link with 2 joints"] is None
+    assert edits["split a multiple joint on a link with 3 joints"] is None
+    assert str(edits["merge two joints of a link with 3 joints into a double joint"]) == str(Code.parse("51/1"))
