@@ -48,7 +48,8 @@ _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
 _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
              "tests/exchange/test_every_property_round_trips.py", "tests/exchange/test_identify_source_strength.py",
-             "tests/exchange/test_entry_strength.py",
+             "tests/exchange/test_entry_strength.py", "tests/exchange/test_lists_strength.py",
+             "tests/exchange/test_matrices_strength.py", "tests/exchange/test_read_write_strength.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
