@@ -55,6 +55,7 @@ _FORMS = "write axes as '0-1-2' and meshes as '1~3', '0~3i' (internal, ring firs
     (lambda: GearTrain.from_chain(Chain.parse("0-1 1=2 2-0")), "a gear train turns on axes and meshes: it has no prismatic pair"),
     (lambda: GearTrain.from_dict([]), "a gear train object needs 'axes' and 'meshes' (or 'train', its text form)"),
     (lambda: GearTrain.from_dict({"axes": []}), "a gear train object needs 'axes' and 'meshes' (or 'train', its text form)"),
+    (lambda: GearTrain.from_dict({"axes": [], "meshes": []}), "a gear train needs a whole number of links ≥ 2, not 1"),
 ])
 def test_every_refusal_in_full(make, sentence):
     with pytest.raises(MalformedChain) as refused:
@@ -83,6 +84,7 @@ def test_text_json_and_chain_forms_round_trip():
         "train": "0-1 1-3 1-4 0~3i 0~4i 2~3@1 2~4@1", "links": 5, "axes": [[0, 1], [1, 3], [1, 4]],
         "meshes": [[0, 3], [0, 4], [2, 3], [2, 4]], "carriers": [1, 1, 1, 1], "dof": 12 - 6 - 4, "code": "540/0",
         "internal": [True, True, False, False]}
+    assert row["certificate"] == TWO_PLANETS.certificate and row["rotation_certificate"] == TWO_PLANETS.rotation_certificate
     assert "frame" not in row and "internal" not in GearTrain.parse("0-1 1-2 0~2").to_dict()
     assert GearTrain.from_dict(row) == TWO_PLANETS == GearTrain.parse(TWO_PLANETS.to_json())
     framed = GearTrain.parse(SIMPLE.compact(), frame=0)
