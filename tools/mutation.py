@@ -174,6 +174,10 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not random_ and not cli_count_and_listing "
               "and not over_a_size and not five_links_are_buildable"])
        for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
+    # (the source's planetary layout: only these tests reach it; the others' clean run would cost minutes)
+    "gears_planetary": ("synth/gears/planetary.py", [
+        "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
+        "tests/gears/test_planetary_strength.py", _SYNTH_DOC + "synth.gears.planetary]", "-k", "not random_"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
                                                  _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring or strength"]),
