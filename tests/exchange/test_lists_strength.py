@@ -45,6 +45,10 @@ _FOUR = '"joints": [[0, 1], [1, 2], [2, 3], [3, 0]]'
     (lambda: read_table("index  joints\n-----  -----------\n1      0-1 1-2 2-0\n2      0-1 1-x\n", "src"),
      f"src row 2: {_JOINTS}"),
     (lambda: read_edgelist("# frame 0\n\n0 1\n1 2\n2 0\n", "src"), "src: '# frame 0' is followed by no joint"),
+    (lambda: read_edgelist("# frame 0, input 1\n\n0 1\n1 2\n2 0\n", "src"),
+     "src: '# frame 0, input 1' is followed by no joint"),
+    (lambda: read_text_lists("0-1 1-2 2-3 3-0 2-4 4-5 5-3 | h5: 0 1 2 3  # h 4", "src"),
+     "src names its loop classes (its other links are of class 3): h = 4 contradicts them"),
     (lambda: read_edgelist("0 1 {bad\n", "src"),
      "src line 1: cannot read the data '{bad' (a dictionary such as {'kind': 'prismatic'})"),
     (lambda: read_edgelist("0 1 {1, 2}\n", "src"), "src line 1: the joint's data must be a dictionary, not {1, 2}"),
@@ -140,3 +144,21 @@ def test_what_the_writers_put_on_a_line():
     head, settings, *joints = out.getvalue().splitlines()
     assert head.startswith("# 4/0 P1 G1 id ") and settings == "# frame 0, h 3"
     assert joints == ["0 1", "0 3", "1 2 prismatic", "2 3 mesh"]
+
+
+def test_a_heterogeneous_line_keeps_its_loop_classes():
+    """The classes after '|' (a base of class 5, the other links of class 4 by 'h4'); a setting '# h 4' agrees
+    with them, '# h 4' on a line whose other links are of class 3 does not (refused above); a base may name a
+    link twice."""
+    (entry,) = read_text_lists("0-1 1-2 2-3 3-0 2-4 4-5 5-3 | h4; h5: 0 1 2 3  # h 4", "src")
+    assert (entry.chain.classes, entry.chain.h, entry.h) == ((5, 5, 5, 5, 4, 4), 4, 4)
+    (entry,) = read_text_lists("0-1 1-2 2-3 3-0 2-4 4-5 5-3 | h5: 0 1 2 3 3  # frame 0", "src")
+    assert (entry.chain.classes, entry.chain.h, entry.h, entry.frame) == ((5, 5, 5, 5, 3, 3), 3, None, 0)
+    assert entry.chain.compact() == "0-1 0-3 1-2 2-3 2-4 3-5 4-5 | h5: 0 1 2 3"
+
+
+def test_more_edge_list_kinds_and_a_listing_of_comments():
+    """A joint's data may name its kind as 'kind', 'joint_kind' or 'type'; a text of comments only is no listing."""
+    entries = read_edgelist("0 1\n1 2 {'type': 'prismatic'}\n2 0 {'joint_kind': 'mesh'}\n", "s")
+    assert [e.chain.compact() for e in entries] == ["0-1 0~2 1=2"]
+    assert not looks_like_listing("# only a comment\n") and not looks_like_listing("")
