@@ -15,6 +15,9 @@ from synth.structure.chain import Chain, Mechanism
 
 @pytest.mark.parametrize("text,fmt,sentence", [
     ("0,1,1\n1,0,1\n1,1,0\n0,0,0\n", None, "m: link 3 is in no joint: a chain's links are all jointed"),
+    ("0,1,1,0\n1,0,1,0\n1,1,0,0\n0,0,0,0\n", None, "m: link 3 is in no joint: a chain's links are all jointed"),
+    ("link,0-1,1-2\n0,1,0\n1,X,1\n2,0,1\n", None,
+     "m, joint 0-1: joint kind 'X' is not one of revolute, prismatic, mesh (or R, P, G; -, =, ~)"),
     ("0,2\n2,0\n", None, "m: entry 2 is not 0 or 1 (or a joint kind R, P, G): two joints between the same links, or a "
                          "link held twice by a joint, are not a chain"),
     ("0,1,1\n1,0,1\n0,1,0\n", "adjacency", "m: the adjacency matrix is not symmetric at links 0 and 2 (1 and 0)"),
@@ -49,6 +52,7 @@ def test_adjacency_matrices():
     assert _read("0,1.0,1\n1.0,0.0,1\n1,1,0\n") == [("0-1 0-2 1-2", None, None, None, None, "m")]
     assert _read("link;a;b;c\na;0;1;1\nb;1;0;P\nc;1;P;0\n") == [("0-1 0-2 1=2", None, None, None, ("a", "b", "c"), "m")]
     assert _read(",a,b,c\na,0,1,1\nb,1,0,G\nc,1,G,0\n") == [("0-1 0-2 1~2", None, None, None, ("a", "b", "c"), "m")]
+    assert _read("links,a,b,c\na,0,1,1\nb,1,0,1\nc,1,1,0\n") == [("0-1 0-2 1-2", None, None, None, ("a", "b", "c"), "m")]
 
 
 def test_incidence_matrices():
@@ -58,6 +62,7 @@ def test_incidence_matrices():
     assert _read(text) == [("0-1 0-3 1=2 2-3", 0, 1, 3, None, "m")]
     rows = "joint\t0\t1\t2\t3\nj0\t1\t1\t1\t0\nj1\t0\t0\t1\t1\nj2\t1\t0\t0\t1\nj3\t0\t1\t0\t1\n"
     assert _read(rows) == [("0-1-2 0-3 1-3 2-3", None, None, None, None, "m")]
+    assert _read(rows.replace("joint", "joints", 1)) == _read(rows)
     four = "1 1 0 0\n0 1 1 0\n0 0 1 1\n1 0 0 1\n"
     assert _read(four) == _read(four, "incidence") == [("0-1 0-3 1-2 2-3", None, None, None, None, "m")]
     assert _read("1,1,0\n0,1,1\n1,0,P\n") == [("0-1 0-2 1=2", None, None, None, None, "m")]
