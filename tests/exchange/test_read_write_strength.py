@@ -20,7 +20,8 @@ _FORMATS = "text, json, csv, table, graphml, gml, dot, edgelist, adjacency, inci
     ("0-1 1-2 2-0", "", "text"), ("# a comment\n0-1 1-2", "", "text"),
     ("0 1\n1 2\n2 0\n", "", "edgelist"), ("a b\nb c", "", "edgelist"),
     ("graph { a -- b }", "", "dot"), ("digraph {}", "", "dot"), ("strict graph {}", "", "dot"),
-    ("/* c */ graph {}", "", "dot"), ("// c\ngraph {}", "", "dot"),
+    ("/* c */ graph {}", "", "dot"), ("// c\ngraph {}", "", "dot"), ("/* a\nb */ graph {}", "", "dot"),
+    ("# c1\n# c2\ngraph [ node [ id 0 ] ]", "", "gml"),
     ("graph [ node [ id 0 ] ]", "", "gml"), ("graph\n[", "", "gml"), ('Creator "x"\ngraph [', "", "gml"),
     ("<graphml>", "", "graphml"), ("[1]", "", "json"), ('{"joints": []}', "", "json"),
     ("0,1\n1,0", "", "matrix"), ("0;1\n1;0", "", "matrix"), ("0\t1\n1\t0", "", "matrix"),
@@ -136,3 +137,20 @@ def test_what_is_written():
     for fmt in exchange.WRITTEN:
         assert [e.chain for e in exchange.read_text(exchange.text_of(chains, fmt), fmt if fmt in
                                                     ("adjacency", "incidence") else None)] == chains
+
+
+def test_a_named_format_and_a_path_with_a_space(tmp_path):
+    """K4's adjacency matrix read as what it is, and as the incidence matrix it is named (four joints of three
+    links each); a file whose name has a space is still a file; a JSON array of joints is a chain; a listing's
+    bad row is named with its source."""
+    path = tmp_path / "k4.csv"
+    path.write_text("0,1,1,1\n1,0,1,1\n1,1,0,1\n1,1,1,0\n")
+    assert [e.chain.compact() for e in exchange.read(str(path))] == ["0-1 0-2 0-3 1-2 1-3 2-3"]
+    assert [e.chain.compact() for e in exchange.read(str(path), "incidence")] == ["0-1-2 0-1-3 0-2-3 1-2-3"]
+    spaced = tmp_path / "my chains.txt"
+    spaced.write_text("0-1 1-2 2-3 3-0\n")
+    assert [(e.chain.compact(), e.source) for e in exchange.read(str(spaced))] == [("0-1 0-3 1-2 2-3", str(spaced))]
+    assert exchange.read_chain("[[0, 1], [1, 2], [2, 0]]").chain == Chain.parse("0-1 1-2 2-0")
+    with pytest.raises(MalformedChain) as refused:
+        exchange.read_text("index,joints\n1,0-1 1-x\n", source="f.csv")
+    assert str(refused.value).startswith("f.csv row 1: cannot read joint '1-x'")
