@@ -45,6 +45,7 @@ def test_assur_groups_by_hand():
         ("dyad", (2, 3), ((0, 3), (1, 2))), ("dyad", (4, 5), ((0, 5), (2, 4)))]
     assert assur_groups(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0, 1) == []
     assert assur_groups(lever_analogue(3), 0, 1, largest=2) == []
+    assert assur_groups(lever_analogue(3), 0, 1, largest=3) == []  # groups have an even number of links
     triad = assur_groups(lever_analogue(3), 0, 1)[-1]
     assert (triad.name, triad.links, triad.outer_joints) == ("triad", (2, 9, 10, 11), ((3, 9), (4, 10), (5, 11)))
 
