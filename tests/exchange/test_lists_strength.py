@@ -47,6 +47,9 @@ _FOUR = '"joints": [[0, 1], [1, 2], [2, 3], [3, 0]]'
     (lambda: read_edgelist("# frame 0\n\n0 1\n1 2\n2 0\n", "src"), "src: '# frame 0' is followed by no joint"),
     (lambda: read_edgelist("# frame 0, input 1\n\n0 1\n1 2\n2 0\n", "src"),
      "src: '# frame 0, input 1' is followed by no joint"),
+    (lambda: read_text_lists("0-1 1-2 2-0 | h5: 0-0", "src"),  # the loop classes are no joints
+     "src: cannot read the loop classes 'h5: 0-0': after '|' write each base's class and links, e.g. "
+     "'| h5: 0 1 2 3 4 5' ('| h2; h3: 0 1 2 3' where the other links are not of class 3)"),
     (lambda: read_text_lists("0-1 1-2 2-3 3-0 2-4 4-5 5-3 | h5: 0 1 2 3  # h 4", "src"),
      "src names its loop classes (its other links are of class 3): h = 4 contradicts them"),
     (lambda: read_edgelist("0 1 {bad\n", "src"),
