@@ -174,6 +174,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not random_ and not cli_count_and_listing "
               "and not over_a_size and not five_links_are_buildable"])
        for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
+    # (the enumerator: the counts against brute force, the nine-link readings, its strength file; not the
+    # planetary, lever-analogue and design files, which list no train)
+    "gears_enumeration": ("synth/gears/enumeration.py", [
+        "tests/test_gear_trains.py", "tests/gears/test_nine_link_readings.py", "tests/gears/test_enumeration_strength.py",
+        _SYNTH_DOC + "synth.gears.enumeration]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not cli_ and not design"]),
     # (the source's planetary layout: only these tests reach it; the others' clean run would cost minutes)
     "gears_planetary": ("synth/gears/planetary.py", [
         "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
