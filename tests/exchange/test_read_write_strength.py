@@ -151,6 +151,8 @@ def test_a_named_format_and_a_path_with_a_space(tmp_path):
     spaced.write_text("0-1 1-2 2-3 3-0\n")
     assert [(e.chain.compact(), e.source) for e in exchange.read(str(spaced))] == [("0-1 0-3 1-2 2-3", str(spaced))]
     assert exchange.read_chain("[[0, 1], [1, 2], [2, 0]]").chain == Chain.parse("0-1 1-2 2-0")
+    framed = exchange.read_chain('[{"joints": [[0, 1], [1, 2], [2, 3], [3, 0]], "frame": 0}]')  # an array of one row
+    assert (framed.chain, framed.frame, framed.source) == (Chain.parse("0-1 1-2 2-3 3-0"), 0, "the chain given row 1")
     with pytest.raises(MalformedChain) as refused:
         exchange.read_text("index,joints\n1,0-1 1-x\n", source="f.csv")
     assert str(refused.value).startswith("f.csv row 1: cannot read joint '1-x'")
