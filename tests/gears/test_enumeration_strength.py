@@ -166,3 +166,79 @@ def test_a_size_that_cannot_be_estimated_is_refused_unless_forced(counted, monke
     assert str(refused.value) == ("this query (9 links) is large and its size cannot be estimated (fewer than three "
                                   "smaller sizes have trains); give force=True to run it anyway")
     assert size_check_trains(1, 9, force=True) is None
+
+
+def test_a_trees_census_with_its_rotation_graphs():
+    """The star (frame 0, links 1, 2, 3 on axes of their own) holds one train, 1~2 and 1~3 held by the frame: its
+    census names its code and its one rotation graph, under the canonical key of its triples."""
+    from synth.gears.enumeration import _rotation_key, tree_census
+
+    star = ((0, 1), (0, 2), (0, 3))
+    assert tree_census(1, 4, star) == (1, {"42/0": 1}, {_rotation_key(4, [(1, 2, 0), (1, 3, 0)]): "42/0"})
+
+
+@pytest.mark.parametrize("dof,links", [(1, 6), (2, 6), (1, 7)])
+def test_the_census_codes_are_those_of_the_trains_lever_analogues(dof, links):
+    """The census finds each code from the links' degrees (remembered per shape); the slow way builds every listed
+    train's lever analogue."""
+    from collections import Counter
+
+    from synth.gears.enumeration import trains
+
+    listed = Counter(str(t.lever_analogue().code) for t in trains(dof, links))
+    assert census(dof, links).by_code == dict(sorted(listed.items()))
+
+
+def test_bars_only_when_asked(monkeypatch):
+    """census and count_trains show a bar of the trees on stderr only when asked, rotation graphs included."""
+    asked = []
+    real = enumeration._bar
+
+    def bar(total, progress):
+        asked.append(progress)
+        return real(total, False)
+
+    monkeypatch.setattr(enumeration, "_bar", bar)
+    census(1, 4)
+    enumeration.count_trains(1, 4, "rotation", progress=True)
+    enumeration.count_trains(1, 4)
+    assert asked == [False, True, False]
+    with pytest.raises(InvalidOption) as refused:
+        enumeration.count_trains(1, 4, "rot")
+    assert str(refused.value) == "a gear train is listed by its displacement or its rotation graph, not 'rot'"
+
+
+def test_the_default_budget_is_two_seconds(counted, monkeypatch):
+    """With 6 links counted in 0.405 s (5 ms a train), 7 links would take 81²/13 · 5 ms = 2.5 s more: past the
+    default budget of 2 s, so 8 links are extrapolated from 4, 5, 6 (census is never called)."""
+    counted(3, 4, 5)
+    monkeypatch.setitem(enumeration._CALIBRATED, (1, 6), (81, 27, 0.405))
+    assert estimate_trains(1, 8).basis == "exact counts at 4, 5, 6 links"
+
+
+def test_the_next_size_is_predicted_from_the_displacement_counts(counted):
+    """7 links are predicted at 81²/13 · 0.1 ms = 0.05 s (not 81²/6 with the rotation count, 0.11 s): within a
+    budget of 0.08 s, so 7 links are counted too."""
+    counted(3, 4, 5, 6, 7)
+    assert estimate_trains(1, 8, budget=0.08).basis == "exact counts at 5, 6, 7 links"
+
+
+def test_the_budget_doubles_until_three_sizes_have_trains(counted, monkeypatch):
+    """Counts 1, 10, 100 at 3, 4, 5 links.  Before 5 links only two sizes have trains: 5 links are predicted at ten
+    times the 0.15 s of 4 links, within twice a budget of 1 s, so they are counted (growth 10, no change: 1 000 at
+    6 links).  With three sizes counted the budget is itself again: 6 links, predicted at 5 s, are not counted
+    within 3 s (10 000 at 7 links, extrapolated twice)."""
+    for m, row in ((3, (1, 1, 1e-4)), (4, (10, 5, 0.15)), (5, (100, 40, 0.01))):
+        monkeypatch.setitem(enumeration._CALIBRATED, (1, m), row)
+    assert estimate_trains(1, 6, budget=1.0).chains == pytest.approx(1000)
+    monkeypatch.setitem(enumeration._CALIBRATED, (1, 5), (100, 40, 0.5))
+    assert estimate_trains(1, 7, budget=3.0).chains == pytest.approx(10000)
+
+
+def test_a_query_of_exactly_the_notes_time_has_no_note(counted, monkeypatch):
+    import synth.synthesis.estimate as estimate
+
+    counted(3, 4, 5, 6, 7, 8)
+    monkeypatch.setattr(estimate, "NOTE_SECONDS", estimate_trains(1, 9).seconds / 20)
+    assert size_check_trains(1, 9, processes=20) is None
+    assert size_check_trains(1, 9, processes=19).startswith("a long query: ")
