@@ -48,7 +48,8 @@ _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
 _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
              "tests/exchange/test_every_property_round_trips.py", "tests/exchange/test_identify_source_strength.py",
-             "tests/exchange/test_entry_strength.py",
+             "tests/exchange/test_entry_strength.py", "tests/exchange/test_lists_strength.py",
+             "tests/exchange/test_matrices_strength.py", "tests/exchange/test_read_write_strength.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
@@ -171,12 +172,26 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
        for name in ("_pose", "_dyads", "_system")},
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
-    # 7- and 8-link cases, half a minute each), ratios and designs that can be built
+    # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
+    # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:
+    # 10 to 20 s each, a minute per mutant; lighter cases of each stay)
     **{f"gears_{name}": (f"synth/gears/{name}.py", [
         "tests/test_gear_trains.py", "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
-        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py", _SYNTH_DOC + f"synth.gears.{name}]",
-        "-k", "not ctrl_c and not 7] and not -8- and not three_axes"])
+        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py",
+        f"tests/gears/test_{name}_strength.py", _SYNTH_DOC + f"synth.gears.{name}]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not random_ and not cli_count_and_listing "
+              "and not over_a_size and not five_links_are_buildable"])
        for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
+    # (the enumerator: the counts against brute force, the nine-link readings, its strength file; not the
+    # planetary, lever-analogue and design files, which list no train)
+    "gears_enumeration": ("synth/gears/enumeration.py", [
+        "tests/test_gear_trains.py", "tests/gears/test_nine_link_readings.py", "tests/gears/test_enumeration_strength.py",
+        _SYNTH_DOC + "synth.gears.enumeration]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not cli_ and not design"]),
+    # (the source's planetary layout: only these tests reach it; the others' clean run would cost minutes)
+    "gears_planetary": ("synth/gears/planetary.py", [
+        "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
+        "tests/gears/test_planetary_strength.py", _SYNTH_DOC + "synth.gears.planetary]", "-k", "not random_"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
                                                  _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring or strength"]),
