@@ -48,7 +48,8 @@ _SYNTH_DOC = "tests/test_doctests.py::test_docstring_examples["
 _IDENTIFY_LIGHT = "not row[10] and not a_large_code"
 _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength.py", "tests/exchange/test_graphs_strength.py",
              "tests/exchange/test_every_property_round_trips.py", "tests/exchange/test_identify_source_strength.py",
-             "tests/exchange/test_entry_strength.py",
+             "tests/exchange/test_entry_strength.py", "tests/exchange/test_lists_strength.py",
+             "tests/exchange/test_matrices_strength.py", "tests/exchange/test_read_write_strength.py",
              "tests/exchange/test_identify_round_trip.py", "tests/cli/test_chain_or_counts.py",
              "tests/cli/test_identify_commands.py", "-k", _IDENTIFY_LIGHT]
 #: the tests of the spring fits: every method, device and refusal (not the timing and model-file cases)
@@ -116,9 +117,14 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "potential": ("balance/model/potential.py", ["tests/balance/test_potential_strength.py",
                                                  "tests/balance/test_arm.py",
                                                  _BALANCE_DOC + "balance.model.potential]"]),
-    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py",
-                                                "tests/balance/test_compare.py",
-                                                _BALANCE_DOC + "balance.problems.compare]"]),
+    # (of test_compare.py only the small arms: its module fixtures solve example 1 and the UR5e, 20 minutes clean)
+    "compare": ("balance/problems/compare.py", ["tests/balance/test_compare_strength.py", *(
+        "tests/balance/test_compare.py::test_" + name for name in (
+            "exact_springs_on_a_planar_two_link_arm_leave_nothing", "the_payload_is_a_range_and_the_devices_are_tuned_for_its_middle",
+            "bad_input_one_sentence", "an_arm_without_gravity_torque_has_nothing_to_balance",
+            "arm_payload_table_for_toml_and_urdf_arms", "one_reader_of_compare_tables_with_the_command_lines_options_over_them",
+            "the_ur5e_urdf_is_written_from_the_published_numbers")),
+        _BALANCE_DOC + "balance.problems.compare]"]),
     "dynamics": ("balance/devices/dynamics.py", ["tests/balance/test_dynamics.py", "tests/balance/test_dynamics_strength.py",
                                                  _BALANCE_DOC + "balance.devices.dynamics]"]),
     "pantograph": ("balance/model/pantograph.py", ["tests/balance/test_pantograph.py",
@@ -182,12 +188,26 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         _SYNTH_DOC + f"synth.dimension.{name}]".replace(".__init__", "")])
        for name in ("_target", "_problem", "_search", "__init__")},
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
-    # 7- and 8-link cases, half a minute each), ratios and designs that can be built
+    # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
+    # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:
+    # 10 to 20 s each, a minute per mutant; lighter cases of each stay)
     **{f"gears_{name}": (f"synth/gears/{name}.py", [
         "tests/test_gear_trains.py", "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
-        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py", _SYNTH_DOC + f"synth.gears.{name}]",
-        "-k", "not ctrl_c and not 7] and not -8- and not three_axes"])
+        "tests/gears/test_nine_link_readings.py", "tests/gears/test_buildable_designs.py",
+        f"tests/gears/test_{name}_strength.py", _SYNTH_DOC + f"synth.gears.{name}]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not random_ and not cli_count_and_listing "
+              "and not over_a_size and not five_links_are_buildable"])
        for name in ("train", "planetary", "enumeration", "ratios", "ratio_design")},
+    # (the enumerator: the counts against brute force, the nine-link readings, its strength file; not the
+    # planetary, lever-analogue and design files, which list no train)
+    "gears_enumeration": ("synth/gears/enumeration.py", [
+        "tests/test_gear_trains.py", "tests/gears/test_nine_link_readings.py", "tests/gears/test_enumeration_strength.py",
+        _SYNTH_DOC + "synth.gears.enumeration]",
+        "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not cli_ and not design"]),
+    # (the source's planetary layout: only these tests reach it; the others' clean run would cost minutes)
+    "gears_planetary": ("synth/gears/planetary.py", [
+        "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
+        "tests/gears/test_planetary_strength.py", _SYNTH_DOC + "synth.gears.planetary]", "-k", "not random_"]),
     "tradeoff": ("balance/devices/tradeoff.py", ["tests/balance/test_tradeoff_strength.py", "tests/balance/test_devices.py",
                                                  _BALANCE_DOC + "balance.devices.tradeoff]",
                                                  "-k", "bound or pareto or sensitivity or docstring or strength"]),
@@ -214,6 +234,32 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.helical]", "-k",
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    # the planar arm from TOML: links, loads, the gravity potential (terms against hand sums, moments against
+    # finite differences) and the counterweights' sub-arms
+    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_potential_strength.py",
+                                           "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
+    # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
+    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
+                                       "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
+                                       _BALANCE_DOC + "balance.model.urdf]"]),
+    # the [arm], [pantograph], [slider] and [spring] problems, read and solved
+    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", _BALANCE_DOC + "balance.problems.arm]"]),
+    "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                               _BALANCE_DOC + "balance.problems.pantograph]"]),
+    "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
+                                                       "tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems.slider]"]),
+    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_slider_devices.py", "tests/balance/test_devices.py",
+                                                       "tests/balance/test_fit.py", _BALANCE_DOC + "balance.problems.spring]",
+                                                       "-k", "not under_100_ms and not model_matches"]),
+    # the package's lazily loaded names, the problems' readers, the fit's names
+    "balance_init": ("balance/__init__.py", ["tests/balance/test_packages_strength.py", _BALANCE_DOC + "balance]"]),
+    "problems_init": ("balance/problems/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                       _BALANCE_DOC + "balance.problems]"]),
+    "fit_init": ("balance/devices/fit/__init__.py", ["tests/balance/test_packages_strength.py",
+                                                     _BALANCE_DOC + "balance.devices.fit]"]),
+    # the figures: each curve's data, the labels, markers and captions read back from the saved figure
+    "plots": ("balance/plots.py", ["tests/balance/test_plots_strength.py", _BALANCE_DOC + "balance.plots]"]),
     # the atlas file: its schema, version checks, refusals and run lock (not test_atlas.py's 201-unit grid: a
     # minute per mutant)
     "atlas_database": ("synth/atlas/database.py", ["tests/atlas/test_database_strength.py", "tests/atlas/test_atlas.py",
@@ -247,6 +293,59 @@ MODULES: dict[str, tuple[str, list[str]]] = {
        for name in ("_layout", "_render")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
+    # synthesis internals: the bound of the codes before a model, the size estimate and its refusals (the
+    # estimate's test counts real sizes: its 14-link case is left out, minutes a mutant), heterogeneous chains
+    "sizing": ("synth/synthesis/_sizing.py", ["tests/synthesis/test_sizing_strength.py", "tests/synthesis/test_sizing.py", _SYNTH_DOC + "synth.synthesis._sizing]"]),
+    "estimate": ("synth/synthesis/estimate.py", [
+        "tests/synthesis/test_estimate_strength.py", "tests/execution/test_large_queries.py",
+        "tests/synthesis/test_classes_vs_oracle.py", _SYNTH_DOC + "synth.synthesis.estimate]",
+        "-k", "estimate_strength or giant or long_query or large_listing or model_too_large or size_note "
+              "or docstring"]),
+    "classes": ("synth/synthesis/classes.py", ["tests/synthesis/test_classes_strength.py",
+                                               "tests/synthesis/test_classes_vs_oracle.py",
+                                               _SYNTH_DOC + "synth.synthesis.classes]"]),
+    "cpsat": ("synth/synthesis/_cpsat.py", ["tests/synthesis/test_cpsat_api.py", "tests/synthesis/test_cpsat_strength.py",
+                                            _SYNTH_DOC + "synth.synthesis._cpsat]"]),
+    # execution: checkpoints of counts, the store of results, sizes in words, the scheduler's address, the
+    # pools and pipelines (inline and in pool processes), Ctrl-C in a search (not the tests that signal a
+    # child process and wait for it: mutmut does not see which function a child reaches)
+    "checkpoint": ("synth/execution/checkpoint.py", ["tests/execution/test_large_queries.py",
+                                                     "tests/execution/test_checkpoint_strength.py",
+                                                     _SYNTH_DOC + "synth.execution.checkpoint]", "-k", "checkpoint and not sigkill"]),
+    # (not the test of which modules a warm count loads: mutmut's trampolines load importlib.metadata)
+    "memo": ("synth/execution/memo.py", ["tests/execution/test_memo_strength.py", "tests/execution/test_memo.py",
+                                         _SYNTH_DOC + "synth.execution.memo]", "-k", "not without_numpy"]),
+    "sizes": ("synth/execution/sizes.py", ["tests/test_small_modules_strength.py",
+                                           _SYNTH_DOC + "synth.execution.sizes]"]),
+    "scheduler": ("synth/execution/scheduler.py", ["tests/execution/test_scheduler_strength.py",
+                                                   "tests/execution/test_large_queries.py",
+                                                   _SYNTH_DOC + "synth.execution.scheduler]",
+                                                   "-k", "scheduler or endpoint"]),
+    "executor": ("synth/execution/executor.py", ["tests/execution/test_executor_strength.py",
+                                                 "tests/execution/test_executor.py", "tests/execution/test_large_queries.py",
+                                                 _SYNTH_DOC + "synth.execution.executor]",
+                                                 "-k", "not dask and not sigkill and not estimate_of_14"]),
+    "interrupt": ("synth/execution/interrupt.py", ["tests/execution/test_interrupt_strength.py",
+                                                   "tests/execution/test_interrupt.py",
+                                                   _SYNTH_DOC + "synth.execution.interrupt]",
+                                                   "-k", "strength or extension or after_a_handled or docstring"]),
+    "sqlite_files": ("synth/execution/sqlite_files.py", ["tests/test_small_modules_strength.py",
+                                                         _SYNTH_DOC + "synth.execution.sqlite_files]"]),
+    # small structure modules and the package's start-up paths (not synth/__init__.py: no function, so mutmut
+    # makes no mutant of it; its names are checked by tests/test_small_modules_strength.py)
+    "disjoint": ("synth/structure/disjoint.py", ["tests/test_small_modules_strength.py",
+                                                 _SYNTH_DOC + "synth.structure.disjoint]"]),
+    "blas": ("synth/structure/_blas.py", ["tests/test_small_modules_strength.py",
+                                          _SYNTH_DOC + "synth.structure._blas]"]),
+    "joints": ("synth/structure/joints.py", ["tests/structure/test_joint_kinds_table.py",
+                                             _SYNTH_DOC + "synth.structure.joints]"]),
+    "lazy": ("synth/_lazy.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth._lazy]"]),
+    # stage A's compiled search: its @njit functions are not mutated (mutmut skips decorated functions), only
+    # new_state, the size of the search's state; judged by the kernel against the CP-SAT model's multigraphs
+    "stage_a_kernel": ("synth/synthesis/_stage_a_kernel.py", ["tests/synthesis/test_kernels.py",
+                                                              _SYNTH_DOC + "synth.synthesis._stage_a_kernel]",
+                                                              "-k", "(stage_a_kernel or docstring) and " + _HEAVY]),
+    "display": ("synth/display.py", ["tests/test_small_modules_strength.py", _SYNTH_DOC + "synth.display]"]),
 }
 
 #: the packages pyproject.toml installs (a new one is copied without an edit here), the data and the tests

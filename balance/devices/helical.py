@@ -127,15 +127,18 @@ def buckling_deflection(free_length: float, D: float, G: float, E: float, nu: fl
 
 
 def _candidates(mat: Material, kind: str, c: float, d: float, lo_D: float, hi_D: float):
-    """Coil diameters and half-coil counts giving exactly the stiffness ``c`` with wire ``d``."""
+    """Coil diameters and half-coil counts giving exactly the stiffness ``c`` with wire ``d``.
+
+    Every half-coil count from the one nearest the widest coil ``hi_D`` (the fewest coils, the lightest
+    spring of the wire) to the one nearest the narrowest ``lo_D``, at least :data:`MIN_ACTIVE_COILS`;
+    each coil diameter is re-solved for its count, so the first and last may lie just outside the range.
+    """
     if hi_D <= lo_D:
         return
-    seen = set()
-    for D in np.geomspace(lo_D, hi_D, 160):
-        n = round(2 * mat.shear_modulus * d ** 4 / (8 * D ** 3 * c)) / 2
-        if n < MIN_ACTIVE_COILS or n in seen:
-            continue
-        seen.add(n)
+    half_coils = 2 * mat.shear_modulus * d ** 4 / (8 * c)  # 2n·D³
+    fewest = max(round(half_coils / hi_D ** 3), round(2 * MIN_ACTIVE_COILS))
+    for twice_n in range(fewest, round(half_coils / lo_D ** 3) + 1):
+        n = twice_n / 2
         yield (mat.shear_modulus * d ** 4 / (8 * c * n)) ** (1 / 3), n
 
 
@@ -219,10 +222,12 @@ def design_spring(
             k = bergstraesser(w)
             tau = k * 8 * D * max_force / (math.pi * d ** 3)
             mass = mat.density * math.pi * d * d / 4 * math.pi * D * (n + (2 if kind == "compression" else 3))
+            if best is not None and best[0] < (False, mass):
+                break  # every further coil of this wire is heavier: D·(n + 2 or 3) grows with n ≥ 2
             why = []
             if not INDEX_RANGE[0] - 1e-9 <= w <= INDEX_RANGE[1] + 1e-9:
                 why.append((abs(w - min(max(w, INDEX_RANGE[0]), INDEX_RANGE[1])) / 4,
-                            f"its spring index D/d = {w:.3g} is outside 4 … 20", "another wire size or material"))
+                            f"its spring index D/d = {w:.4g} is outside 4 … 20", "another wire size or material"))
             if max_outer_diameter is not None and D + d > max_outer_diameter * (1 + 1e-9):
                 why.append(((D + d) / max_outer_diameter - 1,
                             f"its outer diameter {1e3 * (D + d):.4g} mm exceeds {1e3 * max_outer_diameter:.4g} mm",
@@ -236,7 +241,7 @@ def design_spring(
                                                    f"{tau_allowed / 1e6:.4g} MPa",
                             "a lower peak force (a force limit on the device) or a material drawn thicker (oil-tempered, up to "
                             "12.7 mm)"))
-            row = {"d": d, "D": D, "n": n, "w": w, "k": k, "tau": tau, "tau_allowed": tau_allowed, "mass": mass}
+            row = {"d": d, "D": D, "n": n, "k": k, "tau": tau, "tau_allowed": tau_allowed, "mass": mass}
             if kind == "compression":
                 solid = (n + 2) * d
                 gaps = (0.0015 * D * D / d + 0.1 * d) * n

@@ -183,18 +183,18 @@ def _subject(text: str) -> str:
     """What ``analyze`` is given: ``"chain"``, ``"counts"`` or ``"code"``.
 
     A JSON row, a text with loop classes after ``|`` or with ``-`` or ``~`` joints (``0-1 1=2``) is a chain, one with ``/`` a
-    code; words ``a=b`` only are counts ``I=N`` or a chain of prismatic pairs, whichever they
+    code (an open chain's ``2|5/2`` too); words ``a=b`` only are counts ``I=N`` or a chain of prismatic pairs, whichever they
     read as (a chain numbers its links 0 … n − 1 without gaps, counts have I ≥ 1, so a text is
     both only with a zero count ``I=0``: refused, saying how to write each).
 
-    >>> _subject("0-1 1-2 2-0"), _subject("0=1 1=2 2=3 3=0"), _subject("2=4,3=2"), _subject("6301/0")
-    ('chain', 'chain', 'counts', 'code')
+    >>> _subject("0-1 1-2 2-0"), _subject("0=1 1=2 2=3 3=0"), _subject("2=4,3=2"), _subject("6301/0"), _subject("2|5/2")
+    ('chain', 'chain', 'counts', 'code', 'code')
     """
     from synth import Chain, MalformedChain
 
     s = text.strip()
     words = s.replace(",", " ").split()
-    if s.startswith(("{", "[")) or "|" in s or ("/" not in s and any("-" in w or "~" in w for w in words)):
+    if s.startswith(("{", "[")) or ("/" not in s and ("|" in s or any("-" in w or "~" in w for w in words))):
         return "chain"
     if "/" in s or "=" not in s:
         return "code"

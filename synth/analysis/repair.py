@@ -169,7 +169,8 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
     removal leaves a connected chain with W = ``dof`` by the count and no rigid or over-constrained
     sub-chain.  Sets of up to D joints are tried (D = ``dof`` − W, at most ``most``); None when the
     chain has no redundant constraint by the count (W ≥ ``dof``), D is larger, or the tries would
-    scan more than 2^28 sets of links.
+    scan more than 2^28 sets of links (a try counted as 2^min(n, 22): the sub-chain test of a
+    larger chain scans the sets of its core, whose binary links it contracts).
 
     A planetary train with four planets and a floating sun has W = 0: each planet beyond the
     third is redundant, and any one of its meshes can go.
@@ -198,10 +199,12 @@ def redundant_joints(chain: Chain, dof: int, *, most: int = 3) -> list[tuple[int
 
 
 def _code_edits(code: Code):
-    """Codes one edit away: a binary link added or removed, a joint end moved, joints merged or split.
+    """Codes one edit away: a binary link added or removed, a joint end moved, joints merged or split
+    (an open chain's single-joint links stay as they are).
 
     Each edit changes the degrees of the links it touches: a link with i joints that gains one
-    becomes a link with i + 1 joints.
+    becomes a link with i + 1 joints (at most one more than the code's largest degree, which
+    ``counts`` already holds, as it holds every degree a lost joint leaves).
     """
     counts = {i: code.count(i) for i in range(2, code.max_degree + 2)}
     degrees = [i for i in counts if counts[i]]
@@ -209,11 +212,11 @@ def _code_edits(code: Code):
     def make(changes, dv=0):
         c = dict(counts)
         for i, d in changes:
-            c[i] = c.get(i, 0) + d
+            c[i] += d
         if any(x < 0 for x in c.values()) or code.v + dv < 0:
             return None
-        top = max((i for i, k in c.items() if k), default=2)
-        return Code(tuple(c.get(i, 0) for i in range(2, top + 1)), code.v + dv)
+        top = max(i for i, k in c.items() if k)  # (an edit leaves at least one link)
+        return Code(tuple(c[i] for i in range(2, top + 1)), code.v + dv, n1=code.n1)  # free ends kept
 
     def gain(i):
         return [(i, -1), (i + 1, +1)]
@@ -233,8 +236,7 @@ def _code_edits(code: Code):
                 yield f"move a joint from a link with {i} joints to one with {k}", make(lose(i) + gain(k))
         if i > 2:
             yield f"merge two joints of a link with {i} joints into a double joint", make(lose(i), +1)
-        if code.v > 0:
-            yield f"split a multiple joint on a link with {i} joints", make(gain(i), -1)
+        yield f"split a multiple joint on a link with {i} joints", make(gain(i), -1)  # (None without one)
 
 
 def code_repairs(code: Code, dof: int, *, limit: int = 5, depth: int = _DEPTH) -> list[Repair]:

@@ -80,7 +80,10 @@ def with_settings(chain: Chain, where: str, settings: dict) -> Entry:
     entry = entry_of(joints, chain.kinds, where, frame=settings.get("frame"), input_link=settings.get("input"),
                      h=settings.get("h"), links=range(chain.links))
     if chain.classes is not None:  # a heterogeneous chain keeps the loop classes it was written with
-        entry = replace(entry, chain=chain if settings.get("h") is None else replace(chain, h=entry.chain.h))
+        if entry.h not in (None, chain.h):
+            raise MalformedChain(f"{where} names its loop classes (its other links are of class {chain.h}): "
+                                 f"h = {entry.h} contradicts them")
+        entry = replace(entry, chain=chain)
     return entry
 
 

@@ -107,7 +107,7 @@ class Checkpoint:
         wanted = f"{PLAN_FORMAT}:{identity}"
         if self.path.is_dir():
             raise CheckpointError(f"the checkpoint {self.path} is a directory, not a file")
-        directory = self.path.parent if str(self.path.parent) else Path(".")
+        directory = self.path.parent  # ('.' for a bare file name)
         if not directory.is_dir():
             raise CheckpointError(f"cannot create the checkpoint {self.path}: the directory {directory} does not exist")
         if self.path.exists() and self.path.stat().st_size:

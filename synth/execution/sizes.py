@@ -32,7 +32,9 @@ def describe_seconds(seconds: float, log10: float | None = None) -> str:
     if seconds < 365 * 86400:
         return f"{seconds / 86400:.1f} days"
     years = seconds / (365.25 * 86400)
-    return f"{years:.0f} years" if years < 1e4 else f"{years:.2g} years"
+    if years >= 1e4:
+        return f"{years:.2g} years"
+    return f"{years:.0f} year" + "s" * (round(years) != 1)
 
 
 def magnitude(x: float, log10: float | None = None) -> str:

@@ -195,7 +195,7 @@ class GearTrain:
         keys = [frozenset(m) for m, _, _ in rows]
         if len(set(keys)) != len(keys):
             raise MalformedChain("two meshes join the same two links: a pair of gears meshes once")
-        if self.frame is not None and not (isinstance(self.frame, int) and 0 <= self.frame < n):
+        if self.frame is not None and (isinstance(self.frame, bool) or not (isinstance(self.frame, int) and 0 <= self.frame < n)):
             raise MalformedChain(f"the frame {self.frame!r} is not a link of 0…{n - 1}")
         object.__setattr__(self, "axes", tuple(sorted(axes)))
         object.__setattr__(self, "meshes", tuple(m for m, _, _ in rows))

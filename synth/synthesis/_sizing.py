@@ -124,11 +124,18 @@ def _partition_pairs(top: int) -> int:
     return sum(p[v] * p[top - v] for v in range(top + 1))
 
 
+def _too_slow(problem, n1_hi: int) -> str:
+    open_links = f" and up to {n1_hi} single-joint links" if n1_hi else ""
+    return f"the codes of K = {problem.loops} loops{open_links} cannot be sized within {_SECONDS:g} s"
+
+
 def code_bound(problem, *, stop: float = math.inf) -> Bound:
     """An upper bound of the codes of a validated :class:`~synth.synthesis.number_synthesis.Problem`.
 
-    Sizing takes milliseconds up to thousands of loops; when it runs out of time (K of tens of
-    thousands), the bound found so far is returned if it already exceeds ``stop``.
+    Sizing takes milliseconds up to thousands of loops; it stops as soon as the sum exceeds
+    ``stop`` (the bound found so far is returned, not exact), and when it runs out of time (K of
+    tens of thousands, or hundreds of thousands of single-joint links) the bound found so far is
+    returned if it already exceeds ``stop``, else the problem is refused.
 
     Raises
     ------
@@ -169,12 +176,17 @@ def code_bound(problem, *, stop: float = math.inf) -> Bound:
         if problem.compositions:
             for part in range(1, min(biggest, v_hi) + 1):
                 splits = _partitions_bounded(splits, part, None)
+                if part % 64 == 0 and time.perf_counter() - start > _SECONDS:
+                    raise QueryTooLarge(_too_slow(problem, n1_hi))
         elif biggest >= 1:
             splits[:] = 1.0
         table = np.zeros(top + 1)
         table[0] = 1.0
 
-        def total() -> float:
+        def total() -> tuple[float, bool]:
+            """The codes of the parts added so far summed over n1, and whether every n1 was summed:
+            the sum stops once above ``stop`` (it only grows), and is refused when the second is out
+            (a range of n1 of hundreds of thousands)."""
             found = 0.0
             for n1 in range(n1_lo, n1_hi + 1):
                 rest = 2 * K - 2 + n1 - shift  # excess left for the links with 3+ joints and v
@@ -182,15 +194,19 @@ def code_bound(problem, *, stop: float = math.inf) -> Bound:
                     continue
                 vs = np.arange(v_lo, min(v_hi, rest) + 1)
                 found += float(np.dot(splits[vs], table[rest - vs])) if len(vs) else 0.0
-            return found
+                if found > stop and n1 < n1_hi:
+                    return found, False
+                if (n1 - n1_lo) % 256 == 255 and time.perf_counter() - start > _SECONDS:
+                    raise QueryTooLarge(_too_slow(problem, n1_hi))
+            return found, True
 
         for number, (part, most) in enumerate(parts, 1):
             table = _partitions_bounded(table, part, most)
             if number % 16 == 0 and time.perf_counter() - start > _SECONDS / 2:
-                partial = total()  # the parts not yet added at their least: a lower bound of the bound
+                partial, _ = total()  # the parts not yet added at their least: a lower bound of the bound
                 if partial > stop or not math.isfinite(partial):
                     return Bound(partial if math.isfinite(partial) else math.inf, exact=False)
                 if time.perf_counter() - start > _SECONDS:
-                    raise QueryTooLarge(f"the codes of K = {K} loops cannot be sized within {_SECONDS:g} s")
-        value = total()
-    return Bound(value if math.isfinite(value) else math.inf)
+                    raise QueryTooLarge(_too_slow(problem, n1_hi))
+        value, complete = total()
+    return Bound(value if math.isfinite(value) else math.inf, exact=complete)

@@ -299,3 +299,48 @@ def test_a_urdf_counterweight_sits_level_with_its_sub_arms_centre_of_mass():
         com = sum(model.inertias[k].mass * data.oMi[k].act(model.inertias[k].lever) for k in below) / mass
         assert data.oMi[j].actInv(com)[2] == pytest.approx(w.point[2], abs=1e-12), w.coordinate
     assert any(abs(w.point[2]) > 0.05 for w in cw.weights)  # (not all level with the joint's origin)
+
+
+def test_a_compare_workspace_is_in_degrees_for_a_pin_and_in_metres_for_a_slide():
+    """models/arm_prismatic.toml: q1 revolute (±90°), q2 a slide of 0.4 m stroke."""
+    from balance.problems.compare import compare_problem
+
+    doc = {"compare": {"arm": str(MODELS / "arm_prismatic.toml"), "workspace": {"q1": [-30, 60], "q2": [0.1, 0.3]}}}
+    pb = compare_problem(doc, "c.toml")
+    assert pb.workspace[0] == pytest.approx((-math.pi / 6, math.pi / 3), rel=1e-15)
+    assert pb.workspace[1] == (0.1, 0.3)
+
+
+def test_a_compare_table_without_a_file_names_compare_in_its_refusals():
+    from balance import SchemaError
+    from balance.problems.compare import compare_problem
+
+    with pytest.raises(SchemaError) as ei:
+        compare_problem({"compare": {"nonsense": 1}})
+    assert str(ei.value).startswith("<compare>: [compare] has an unknown key 'nonsense'")
+
+
+def test_each_strategy_pushes_back_the_tuned_payloads_torque():
+    """One link: 40 N at 0.2 m and a payload of 1 … 4 kg at 0.5 m, tuned for 2.5 kg: every device pushes with
+    −(8 + 2.5·G·0.5)·sin q (angles from the vertical), the unbalanced arm with nothing."""
+    arm = Arm((Link("upper", "revolute", 0.5, 40.0, 0.2),), (Load(0, 4 * G, 0.5, payload=True),))
+    c = CompareProblem(arm, payload=(1.0, 4.0), samples=200).solve()
+    q = np.random.default_rng(3).uniform(-math.pi, math.pi, (7, 1))
+    assert np.allclose(c.gravity(q, 4.0)[:, 0], (8 + 2 * G) * np.sin(q[:, 0]), atol=1e-12)
+    for s in c.strategies:
+        expected = 0.0 if s.name == "none" else -(8 + 1.25 * G) * np.sin(q[:, 0])
+        assert np.allclose(s.forces(q)[:, 0], expected, atol=1e-9), s.name
+    assert c.strategy("none").hardware == ("the drives carry the whole gravity torque",)
+
+
+def test_a_compare_table_names_the_arm_file_a_mistake_is_in(tmp_path):
+    from balance import SchemaError
+    from balance.problems.compare import compare_problem
+
+    arm = tmp_path / "arm.toml"
+    arm.write_text('[arm]\nnonsense = 1\n')
+    table = tmp_path / "c.toml"  # the arm is found beside it
+    table.write_text('[compare]\narm = "arm.toml"\n')
+    with pytest.raises(SchemaError) as ei:
+        compare_problem(load_toml(str(table)), str(table))
+    assert str(ei.value).startswith(f"{arm}: [arm] has an unknown key 'nonsense'")

@@ -13,7 +13,6 @@ from balance.devices.helical import (
     MATERIALS, NoSpringFits, WIRE_SERIES_MM, _candidates, bergstraesser, buckling_deflection, design_for_device,
     design_spring,
 )
-from balance.devices.tradeoff import bound_sensitivity
 
 RAD = (math.radians(20), math.radians(160))
 BOUNDS = SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0))
@@ -115,9 +114,15 @@ def test_designed_spring_realises_the_device(kind, moment, material):
     mat = MATERIALS[material]
     assert sp["allowed_shear_stress_Pa"] == pytest.approx(frac * 1e6 * mat.A / (1e3 * d) ** mat.m)
     assert tau <= sp["allowed_shear_stress_Pa"]
+    assert sp["stress_correction_factor"] == pytest.approx((w + 0.5) / (w - 0.75), rel=1e-12)
     if sp["kind"] == "compression":
         assert sp["solid_length_m"] == pytest.approx((n + 2) * d)
         assert sp["solid_length_m"] + sp["min_gap_sum_m"] <= sp["min_working_length_m"] + 1e-12
+    if kind == "compression":  # between C and B: |CB| over the range, longest at 160°, shortest at 20°
+        phi = np.linspace(*RAD, 20001)
+        L = np.hypot(res.r + res.r0 - res.r * np.cos(phi), res.r * np.sin(phi))
+        assert sp["max_working_length_m"] == pytest.approx(L.max(), rel=1e-9)
+        assert sp["min_working_length_m"] == pytest.approx(L.min(), rel=1e-9)
 
 
 def test_buckling_formula_limits():
@@ -261,15 +266,93 @@ def test_helical_spring_fits_its_bore(bore_mm):
 
 
 def test_helical_candidates_cover_the_coil_range():
-    """Every half-coil count from the smallest coil diameter down to the largest's is offered, at the rate."""
+    """Every half-coil count from the widest coil's (the fewest coils) to the narrowest's is offered, at the rate."""
     c, d = 500.0, 0.002
     lo, hi = 4 * d, 20 * d
     got = list(_candidates(MATERIALS["music-wire"], "compression", c, d, lo, hi))
     ns = [n for _, n in got]
-    assert ns == sorted(set(ns), reverse=True)
-    assert ns[0] == round(2 * G_MUSIC * d ** 4 / (8 * lo ** 3 * c)) / 2  # 636.5 coils at D = 8 mm
-    assert ns[-1] == round(2 * G_MUSIC * d ** 4 / (8 * hi ** 3 * c)) / 2 == 5.0  # at D = 40 mm
+    # 5 coils at D = 40 mm … 636.5 coils at D = 8 mm, every half coil between
+    assert ns[0] == round(2 * G_MUSIC * d ** 4 / (8 * hi ** 3 * c)) / 2 == 5.0
+    assert ns[-1] == round(2 * G_MUSIC * d ** 4 / (8 * lo ** 3 * c)) / 2 == 636.5
+    assert ns == [k / 2 for k in range(10, 1274)]
     assert all(D == pytest.approx(coil_for_rate(c, d, n), rel=1e-12) for D, n in got)
+    # a range of no width (or reversed) holds no coil: no count of half coils gives exactly that diameter
+    assert list(_candidates(MATERIALS["music-wire"], "compression", c, d, 0.01, 0.01)) == []
+    assert list(_candidates(MATERIALS["music-wire"], "compression", c, d, 0.02, 0.01)) == []
+
+
+def lightest_by_enumeration(kind, c, F, free_length=None, min_length=None):
+    """The lightest music-wire spring (buckling-safe first) over every wire of the series and every half-coil
+    count, the checks written out from EN 13906-1's definitions: (mass, wire, active coils)."""
+    best = None
+    for d_mm in (x for x in WIRE_SERIES_MM if 0.1 <= x <= 6.5):
+        d = d_mm * 1e-3
+        for twice_n in range(4, math.ceil(2 * G_MUSIC * d / (8 * 4 ** 3 * c)) + 2):
+            n = twice_n / 2
+            D = coil_for_rate(c, d, n)
+            allowed = (0.5 if kind == "compression" else 0.45) * music_wire_strength(d)
+            if not 4 - 1e-9 <= D / d <= 20 + 1e-9 or corrected_stress(d, D, F) > allowed:
+                continue
+            mass = RHO_MUSIC * math.pi * d * d / 4 * math.pi * D * (n + (2 if kind == "compression" else 3))
+            buckles = False
+            if kind == "compression":
+                if min_length < (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n - 1e-12:
+                    continue
+                buckles = not free_length - min_length < buckling_deflection(free_length, D, G_MUSIC, E_MUSIC, 1.0)
+            if best is None or (buckles, mass) < best[0]:
+                best = ((buckles, mass), d, n)
+    return best[0][1], best[1], best[2]
+
+
+@pytest.mark.parametrize("kind, c, F, lengths", [
+    ("extension", 1515.699505563206, 57.44211824541962, {}),  # 22.5 coils of 1.12 mm wire (160 sampled coils: 23)
+    ("extension", 200.5510312559761, 46.27968248839384, {}),  # 1.25 mm wire (sampled: 1.12 mm, 2 % heavier)
+    ("extension", 20000.0, 300.0, {}),
+    ("compression", 2000.0, 100.0, {"free_length": 0.5, "min_length": 0.3}),
+    ("compression", 800.0, 150.0, {"free_length": 0.3, "min_length": 0.12}),
+])
+def test_helical_spring_is_the_lightest_of_every_wire_and_half_coil(kind, c, F, lengths):
+    """The design is the lightest spring that passes every check, found by trying every wire and half coil."""
+    kw = dict(lengths, max_length=lengths["free_length"]) if lengths else {}
+    s = design_spring(kind, c, F, **kw)
+    mass, d, n = lightest_by_enumeration(kind, c, F, **lengths)
+    assert (s.wire_diameter_m, s.active_coils) == (d, n)
+    assert s.mass_kg == pytest.approx(mass, rel=1e-12)
+
+
+def test_helical_spring_index_may_be_exactly_twenty():
+    """The thinnest wire wound at index 20 with a whole number of coils: that widest (lightest) coil is taken."""
+    d, n = 0.0001, 40.0
+    c = G_MUSIC * d / (8 * 20 ** 3 * n)  # the rate of 40 coils at D = 20·d
+    s = design_spring("extension", c, 0.01)
+    assert (s.wire_diameter_m, s.active_coils) == (d, n)
+    assert s.spring_index == pytest.approx(20.0, rel=1e-12)
+
+
+def test_helical_spring_may_fill_its_bore_and_hug_its_rod_exactly():
+    """The thinnest wire's coil of 30 active coils at index 12 with a bore and a rod that leave it no play: it
+    fits (the limits hold to 1e-9 of their size), and nothing else does."""
+    d, n = 0.0001, 30.0
+    D = 12 * d
+    c = G_MUSIC * d ** 4 / (8 * D ** 3 * n)
+    s = design_spring("extension", c, 0.01, max_outer_diameter=D + d, min_inner_diameter=D - d)
+    assert (s.wire_diameter_m, s.active_coils) == (d, n)
+    assert s.outer_diameter_m == pytest.approx(D + d, rel=1e-12)
+    assert s.inner_diameter_m == pytest.approx(D - d, rel=1e-12)
+
+
+def test_helical_refusal_names_a_coil_past_its_bore():
+    """A rod and a bore that leave the thinnest wire only the coil of 30 coils at index 12, 1 µm too wide: the
+    refusal names that coil and its outer diameter against the bore."""
+    d, n = 0.0001, 30.0
+    D = 12 * d
+    c = G_MUSIC * d ** 4 / (8 * D ** 3 * n)
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", c, 0.01, max_outer_diameter=D + d - 1e-6, min_inner_diameter=D - d - 1e-6)
+    assert str(ei.value) == (
+        f"no music-wire spring of {c:.4g} N/m for 0.01 N fits (outer diameter ≤ 1.299 mm, inner diameter ≥ 1.099 mm): "
+        f"the closest, wire 0.1 mm on a 1.2 mm coil with 30 active coils, fails because its outer diameter 1.3 mm "
+        f"exceeds 1.299 mm; try a larger outer diameter.")
 
 
 def refusal_parts(message):
@@ -332,6 +415,7 @@ def test_helical_extension_spring_for_a_tension_device():
     assert 79.5e9 * d ** 4 / (8 * D ** 3 * n) == pytest.approx(res.c, rel=1e-9)
     # close-wound body of n + 1 coils and two loops of about one inner diameter each (one coil of wire each)
     free = (n + 1) * d + 2 * (D - d)
+    assert s.body_length_m == pytest.approx((n + 1) * d, rel=1e-12)
     assert s.free_length_m == pytest.approx(free, rel=1e-12) and s.loop_length_m == pytest.approx(D - d, rel=1e-12)
     assert s.mass_kg == pytest.approx(7850.0 * math.pi * d ** 2 / 4 * math.pi * D * (n + 3), rel=1e-12)
     assert s.anchor_offset_m == pytest.approx(res.free_length - free, rel=1e-12)
@@ -397,11 +481,94 @@ def test_helical_spring_reports_its_rate_error_and_wire_strength():
     assert out["stress_ratio"] == pytest.approx(corrected_stress(d, D, 100.0) / (0.5 * music_wire_strength(d)))
 
 
+@pytest.mark.parametrize("miss, named", [
+    ({"rod": 1e-7, "stress": True}, "rod"),  # the rod's 0.1 µm, not the stress's percent
+    ({"rod": 1e-6, "bore": 1e-7}, "bore"),  # 0.1 µm on the bore, 1 µm on the rod
+    ({"rod": 1e-7, "bore": 1e-6}, "rod"),
+])
+def test_helical_refusal_names_the_coil_that_misses_by_less(miss, named):
+    """Two coils of the thinnest wire are left: 30 coils at index 12, whose inner diameter may miss the rod, and
+    29.5 coils, a wider coil that may overrun the bore or be stressed 2 % past the allowed stress.  Each fails
+    once; the refusal names the one that misses by the smaller fraction of its limit."""
+    d, n = 0.0001, 30.0
+    D0 = 12 * d
+    c = G_MUSIC * d ** 4 / (8 * D0 ** 3 * n)
+    D1 = coil_for_rate(c, d, n - 0.5)
+    rod, bore = D0 - d + miss["rod"], D1 + d - miss.get("bore", 0.0)
+    F = 0.45 * music_wire_strength(d) / corrected_stress(d, D0, 1.0) * (1 - 1e-6) if "stress" in miss else 0.01
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", c, F, max_outer_diameter=bore, min_inner_diameter=rod)
+    if named == "rod":
+        coil = "1.2 mm coil with 30 active coils"
+        why = f"its inner diameter {1e3 * (D0 - d):.4g} mm does not clear {1e3 * rod:.4g} mm; try a thinner guide rod."
+    else:
+        coil = f"{1e3 * D1:.4g} mm coil with 29.5 active coils"
+        why = f"its outer diameter {1e3 * (D1 + d):.4g} mm exceeds {1e3 * bore:.4g} mm; try a larger outer diameter."
+    assert str(ei.value) == (
+        f"no music-wire spring of {c:.4g} N/m for {F:.4g} N fits (outer diameter ≤ {1e3 * bore:.4g} mm, inner "
+        f"diameter ≥ {1e3 * rod:.4g} mm): the closest, wire 0.1 mm on a {coil}, fails because {why}")
+
+
+def test_helical_refusal_weighs_a_spring_index_past_twenty_by_its_quarter():
+    """The thinnest wire has two coils left: 20 coils at index 20.008 (0.008 past the band, a quarter of it:
+    0.002) and 20.5 coils whose inner diameter misses the rod by 0.3 % — the index is named, to four digits."""
+    d = 0.0001
+    D_A = 20 * d * 1.0004
+    c = G_MUSIC * d ** 4 / (8 * D_A ** 3 * 20)
+    D_B = coil_for_rate(c, d, 20.5)
+    rod, bore = D_B * 1.003 - d, (D_A + d) * (1 + 1e-6)
+    assert 0.008 / 4 < 1 - (D_B - d) / rod < 0.008
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", c, 0.01, max_outer_diameter=bore, min_inner_diameter=rod)
+    assert str(ei.value) == (
+        f"no music-wire spring of {c:.4g} N/m for 0.01 N fits (outer diameter ≤ {1e3 * bore:.4g} mm, inner "
+        f"diameter ≥ {1e3 * rod:.4g} mm): the closest, wire 0.1 mm on a {1e3 * D_A:.4g} mm coil with 20 active "
+        f"coils, fails because its spring index D/d = 20.01 is outside 4 … 20; try another wire size or material.")
+
+
+def test_helical_refusal_when_only_coils_past_index_twenty_would_fill_the_space():
+    """A 25 mm rod in a 27.5 mm bore: wires up to 1.25 mm would need an index above 20 to reach the rod, thicker
+    ones overrun the bore — no wire of the series gives a coil there at all."""
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", 100.0, 1.0, max_outer_diameter=0.0275, min_inner_diameter=0.025)
+    assert str(ei.value) == ("no music-wire wire of the series gives a spring of 100 N/m in the space given "
+                             "(outer diameter ≤ 27.5 mm, inner diameter ≥ 25 mm); allow a larger outer diameter or "
+                             "another material.")
+
+
+def test_helical_compression_spring_made_as_short_as_it_may_be():
+    """Without a free length the spring is its solid length, the minimum gaps and the deflection asked for."""
+    s = design_spring("compression", 2000.0, 100.0, max_deflection=0.05, guided=True)
+    d, D, n = s.wire_diameter_m, s.mean_diameter_m, s.active_coils
+    shortest = (n + 2) * d + (0.0015 * D * D / d + 0.1 * d) * n
+    assert s.min_working_length_m == pytest.approx(shortest, rel=1e-12)
+    assert s.free_length_m == s.max_working_length_m == pytest.approx(shortest + 0.05, rel=1e-12)
+    assert s.buckling.max_deflection_m == pytest.approx(0.05, rel=1e-12)
+
+
+def test_helical_refusal_states_the_allowed_stress_of_its_wire():
+    """A rod and a bore 1 mm either side of an 8 mm coil leave 1 mm wire one coil, 20 % over its allowed stress
+    (0.45 · 2211 MPa = 994.95 MPa, said as 995 MPa), and every thinner wire more: the refusal names it."""
+    d, n = 0.001, 10.0
+    D = 8 * d
+    c = G_MUSIC * d ** 4 / (8 * D ** 3 * n)
+    allowed = 0.45 * music_wire_strength(d)
+    F = 1.2 * allowed / corrected_stress(d, D, 1.0)
+    with pytest.raises(NoSpringFits) as ei:
+        design_spring("extension", c, F, max_outer_diameter=D + d, min_inner_diameter=D - d)
+    assert f"{allowed / 1e6:.4g}" == "995"
+    assert str(ei.value) == (
+        f"no music-wire spring of {c:.4g} N/m for {F:.4g} N fits (outer diameter ≤ 9 mm, inner diameter ≥ 7 mm): "
+        f"the closest, wire 1 mm on a 8 mm coil with 10 active coils, fails because its shear stress "
+        f"{1.2 * allowed / 1e6:.4g} MPa exceeds the allowed 995 MPa; try a lower peak force (a force limit on the "
+        f"device) or a material drawn thicker (oil-tempered, up to 12.7 mm).")
+
+
 def test_helical_candidates_reach_two_active_coils():
-    """At 20 N/m the widest coil of 2 mm wire would need 1.6 coils: the candidates stop at two."""
+    """At 1600 N/m the widest coil of 2 mm wire would need 1.6 coils: the candidates start at two."""
     c, d = 1600.0, 0.002
     ns = [n for _, n in _candidates(MATERIALS["music-wire"], "compression", c, d, 4 * d, 20 * d)]
-    assert G_MUSIC * d ** 4 / (8 * (20 * d) ** 3 * c) < 2 and ns[-1] == 2.0
+    assert G_MUSIC * d ** 4 / (8 * (20 * d) ** 3 * c) < 2 and ns[0] == 2.0
 
 
 @pytest.mark.parametrize("args, kw, sentence", [

@@ -460,3 +460,21 @@ def test_an_optimiser_that_stops_short_is_restarted_and_says_so(case):
         assert res.message.endswith("× from its point (Nelder–Mead, then SLSQP): a local optimum to 1e-09 of the error")
     others = min(fit(rng, bounds=bounds, method=m).grid_max_rel_error for m in ("nelder-mead", "de"))
     assert res.grid_max_rel_error <= others * (1 + 1e-6)
+
+
+@pytest.mark.parametrize("case", ["compression-20..160", "compression-0..180", "compression-interior"])
+def test_trf_lawson_reweighting_alone_nears_the_minimax_error(case):
+    """Before the driver's confirming restart, trf's Lawson iteration for the max norm ends within 0.4 % of the
+    minimax error SLSQP finds (measured 0.33 %, 0.32 %, 0.01 %); trf's plain least squares (no reweighting)
+    is 6.5 % off on the first two."""
+    from balance.devices.fit.driver import DEFAULT_GRID
+    from balance.devices.fit.problem import _Problem
+    from balance.devices.fit.trf import _fit_trf
+
+    kind, moment, rng, bounds, _ = INTERIOR[case]
+    lo, hi = rad(rng)
+    p = _Problem(kind, moment, lo, hi, bounds, DEFAULT_GRID, "max")
+    z, msg, ok = _fit_trf(p, "max")
+    minimax = fit_spring(kind, moment, (lo, hi), bounds, method="slsqp", norm="max").grid_max_rel_error
+    assert minimax <= p.objective(z, "max") <= minimax * 1.004
+    assert msg == "least_squares (trf) with Lawson reweighting for the max norm"

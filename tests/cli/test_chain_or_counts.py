@@ -38,6 +38,14 @@ def test_counts_stay_counts(text, links, capsys):
     assert status == 0 and result["links"] == links and "certificate" not in result
 
 
+def test_an_open_chains_code_is_a_code(capsys):
+    """``2|5/2`` (an open chain: two single-joint links and five binary links, v = 2) is a code, not a chain whose
+    loop classes follow a '|'; for W = 3 its nearest repair adds a binary link (``2|42/2``, as in the repair tests)."""
+    status, result = _analyze(capsys, "2|5/2", "--dof", "3", "--repairs", "1")
+    assert status == 0 and result["code"] == "2|5/2" and (result["links"], result["loops"]) == (7, 1)
+    assert [r["code"] for r in result["repairs"]] == ["2|42/2"]
+
+
 @pytest.mark.parametrize("text, counts, chain", [
     ("1=0,2=1", "'2=1'", "'0=1,2=1'"),
     ("1=0 2=1", "'2=1'", "'0=1 2=1'"),

@@ -1,0 +1,158 @@
+"""Reading and writing chains by hand (synth.exchange): the format told from a text or a suffix, every refusal of a
+text, a file, a folder and a format, what each kind of source reads as, and what is written."""
+
+from __future__ import annotations
+
+import io
+import sys
+
+import networkx as nx
+import pytest
+
+import synth.exchange as exchange
+from synth.errors import InvalidOption, MalformedChain
+from synth.structure.chain import Chain, Mechanism
+
+_FORMATS = "text, json, csv, table, graphml, gml, dot, edgelist, adjacency, incidence"
+
+
+@pytest.mark.parametrize("text,suffix,kind", [
+    ("0-1 1-2 2-0", "", "text"), ("# a comment\n0-1 1-2", "", "text"),
+    ("0 1\n1 2\n2 0\n", "", "edgelist"), ("a b\nb c", "", "edgelist"),
+    ("graph { a -- b }", "", "dot"), ("digraph {}", "", "dot"), ("strict graph {}", "", "dot"),
+    ("/* c */ graph {}", "", "dot"), ("// c\ngraph {}", "", "dot"), ("/* a\nb */ graph {}", "", "dot"),
+    ("# c1\n# c2\ngraph [ node [ id 0 ] ]", "", "gml"),
+    ("graph [ node [ id 0 ] ]", "", "gml"), ("graph\n[", "", "gml"), ('Creator "x"\ngraph [', "", "gml"),
+    ("<graphml>", "", "graphml"), ("[1]", "", "json"), ('{"joints": []}', "", "json"),
+    ("0,1\n1,0", "", "matrix"), ("0;1\n1;0", "", "matrix"), ("0\t1\n1\t0", "", "matrix"),
+    ("index  joints\n-----  ------\n1  0-1 1-2 2-0\n", "", "table"),
+    ("root:x", "", "unknown"), ("0-1\n0 1", "", "unknown"),
+    ("anything", ".GML", "gml"), ("anything", ".gv", "dot"), ("anything", ".jsonl", "json"), ("x", ".tsv", "matrix"),
+    ("0-1 1-2 2-0", ".txt", "text"),
+])
+def test_the_format_of_a_text(text, suffix, kind):
+    assert exchange.detect(text, suffix) == kind
+
+
+@pytest.mark.parametrize("call,kind,sentence", [
+    (lambda: exchange.read_text("0-1", "xml"), InvalidOption, f"chains are read from {_FORMATS}, not 'xml'"),
+    (lambda: exchange.read_text("  \n"), MalformedChain, "the input is empty: no chain to read"),
+    (lambda: exchange.read_text("root:x:0", source="f.txt"), MalformedChain,
+     "cannot tell what f.txt holds: it is not a joint list, JSON, GraphML, GML, DOT, an edge list or a CSV matrix "
+     "(name its format)"),
+    (lambda: exchange.read(5), MalformedChain, "a chain is given as a Chain, a graph, a file or text, not int"),
+    (lambda: exchange.read_chain("0-1 1-2 2-0\n0-1 1-2 2-3 3-0"), MalformedChain,
+     "the chain given holds 2 chains, and one is read here"),
+    (lambda: exchange.read_chain('{"joints": [[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 0]], "h": 5}', 4), MalformedChain,
+     "the chain given states motion space h = 5, and --h 4 was given: leave out --h (the chain's own h is used) or "
+     "give --h 5"),
+    (lambda: exchange.write([], "csv"), InvalidOption,
+     "chains are written as text, json, graphml, gml, dot, edgelist, adjacency, incidence here (a CSV listing by the "
+     "commands' --format csv), not 'csv'"),
+])
+def test_refusals_in_full(call, kind, sentence):
+    with pytest.raises(kind) as refused:
+        call()
+    assert str(refused.value) == sentence
+
+
+def test_files_and_folders(tmp_path, monkeypatch):
+    (tmp_path / "bad.bin").write_bytes(b"\xff\xfe")
+    (tmp_path / "nul.txt").write_bytes(b"0-1\x00")
+    (tmp_path / "empty").mkdir()
+    cases = [(tmp_path / "none.txt", f"no file {tmp_path / 'none.txt'}"),
+             (tmp_path / "empty", f"the folder {tmp_path / 'empty'} holds no file of chains"),
+             (tmp_path / "bad.bin", f"{tmp_path / 'bad.bin'} is not a text file (not UTF-8): chains are read from text "
+                                    f"formats ({_FORMATS})"),
+             (tmp_path / "nul.txt", f"{tmp_path / 'nul.txt'} is a binary file: chains are read from text formats ({_FORMATS})")]
+    for path, sentence in cases:
+        with pytest.raises(MalformedChain) as refused:
+            exchange.read_file(path)
+        assert str(refused.value) == sentence
+    big = tmp_path / "big.txt"
+    big.write_text("0-1 1-2 2-0\n" * (3 * 2**20 // 12 + 1))
+    monkeypatch.setattr(exchange, "_MAX_BYTES", 2**20)
+    with pytest.raises(MalformedChain) as refused:
+        exchange.read_file(big)
+    assert str(refused.value) == f"{big} is 3 MiB: files of chains are read up to 1 MiB (split it)"
+    (tmp_path / "folder").mkdir()
+    big.rename(tmp_path / "folder" / "big.txt")
+    with pytest.raises(MalformedChain) as refused:
+        exchange.read_file(tmp_path / "folder")  # a folder is read file by file, and the large one is refused
+    assert str(refused.value) == f"{tmp_path / 'folder' / 'big.txt'} is 3 MiB: files of chains are read up to 1 MiB (split it)"
+
+
+def test_a_folder_is_read_in_name_order_without_hidden_files(tmp_path):
+    (tmp_path / "b.txt").write_text("0-1 1-2 2-3 3-0\n")
+    (tmp_path / "a.edges").write_text("0 1\n1 2\n2 0\n")
+    (tmp_path / ".hidden").write_text("not a chain")
+    (tmp_path / "sub").mkdir()
+    read = [(e.chain.compact(), e.source) for e in exchange.read_file(tmp_path)]
+    assert read == [("0-1 0-2 1-2", f"{tmp_path / 'a.edges'} line 1"), ("0-1 0-3 1-2 2-3", str(tmp_path / "b.txt"))]
+    assert [e.chain.compact() for e in exchange.read(str(tmp_path / "b.txt"))] == ["0-1 0-3 1-2 2-3"]
+    assert [e.chain.compact() for e in exchange.read(tmp_path / "b.txt")] == ["0-1 0-3 1-2 2-3"]
+    with pytest.raises(MalformedChain) as refused:
+        exchange.read(str(tmp_path / "missing.txt"))  # one word, no joint list: a path, said to be missing
+    assert str(refused.value) == f"no file {tmp_path / 'missing.txt'}"
+
+
+def test_what_each_source_reads_as(monkeypatch):
+    four = Chain.parse("0-1 1-2 2-3 3-0")
+    assert [(e.chain, e.source, e.frame, e.input_link, e.h) for e in exchange.read(Mechanism(four, 0, 1))] == [
+        (four, "the mechanism", 0, 1, None)]
+    assert [(e.chain, e.source, e.frame, e.h) for e in exchange.read(four)] == [(four, "the chain", None, None)]
+    graph = nx.Graph([(0, 1), (1, 2), (2, 0)])
+    (entry,) = exchange.read(graph)
+    assert entry.chain == Chain.parse("0-1 1-2 2-0") and entry.source == "the graph"
+    monkeypatch.setattr(sys, "stdin", io.StringIO("0-1 1-2 2-0\n0-1 1-2 2-3 3-0\n"))
+    assert [e.source for e in exchange.read("-")] == ["standard input line 1", "standard input line 2"]
+    assert [e.source for e in exchange.read("0-1 1-2 2-0")] == ["the chain given"]
+    assert [e.chain.compact() for e in exchange.read("0 1\n1 2\n2 0")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read('[[0, 1], [1, 2], [2, 0]]', "json")] == ["0-1 0-2 1-2"]
+    (long,) = exchange.read("x" * 5000 + " y")  # a name too long for a file: text, an edge list of one joint
+    assert (long.chain.compact(), long.source, long.names) == ("0-1", "the chain given line 1", ("x" * 5000, "y"))
+
+
+def test_each_format_read_when_named():
+    text = "0,1,1\n1,0,1\n1,1,0\n"
+    assert [e.chain.compact() for e in exchange.read_text(text, "adjacency")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read_text("1,1,0\n1,0,1\n0,1,1\n", "incidence")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read_text("index,joints\n1,0-1 1-2 2-0\n", "csv")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read_text("index,joints\n1,0-1 1-2 2-0\n")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read_text("0 1\n1 2\n2 0\n", "edgelist")] == ["0-1 0-2 1-2"]
+    assert [e.chain.compact() for e in exchange.read_text("graph { 0 -- 1; 1 -- 2; 2 -- 0 }", "dot")] == ["0-1 0-2 1-2"]
+    one = exchange.read_chain("0-1 1-2 2-3 3-0  # frame 0")
+    assert (one.chain.compact(), one.frame, one.chain.h) == ("0-1 0-3 1-2 2-3", 0, 3)
+
+
+def test_what_is_written():
+    chains = [Chain.parse("0-1 1-2 2-0"), Chain.parse("0-1 1=2 2-0")]
+    out = io.StringIO()
+    assert exchange.write(chains, "edgelist", out) == 2
+    blocks = out.getvalue().split("\n\n")
+    assert len(blocks) == 2 and blocks[0].endswith("0 1\n0 2\n1 2") and blocks[1].endswith("1 2 prismatic\n")
+    assert exchange.write([], "edgelist", io.StringIO()) == 0
+    assert exchange.text_of(chains, "text") == "0-1 0-2 1-2\n0-1 0-2 1=2\n"
+    assert exchange.text_of(chains[:1], "adjacency").splitlines()[2:] == ["link,0,1,2", "0,0,1,1", "1,1,0,1", "2,1,1,0"]
+    for fmt in exchange.WRITTEN:
+        assert [e.chain for e in exchange.read_text(exchange.text_of(chains, fmt), fmt if fmt in
+                                                    ("adjacency", "incidence") else None)] == chains
+
+
+def test_a_named_format_and_a_path_with_a_space(tmp_path):
+    """K4's adjacency matrix read as what it is, and as the incidence matrix it is named (four joints of three
+    links each); a file whose name has a space is still a file; a JSON array of joints is a chain; a listing's
+    bad row is named with its source."""
+    path = tmp_path / "k4.csv"
+    path.write_text("0,1,1,1\n1,0,1,1\n1,1,0,1\n1,1,1,0\n")
+    assert [e.chain.compact() for e in exchange.read(str(path))] == ["0-1 0-2 0-3 1-2 1-3 2-3"]
+    assert [e.chain.compact() for e in exchange.read(str(path), "incidence")] == ["0-1-2 0-1-3 0-2-3 1-2-3"]
+    spaced = tmp_path / "my chains.txt"
+    spaced.write_text("0-1 1-2 2-3 3-0\n")
+    assert [(e.chain.compact(), e.source) for e in exchange.read(str(spaced))] == [("0-1 0-3 1-2 2-3", str(spaced))]
+    assert exchange.read_chain("[[0, 1], [1, 2], [2, 0]]").chain == Chain.parse("0-1 1-2 2-0")
+    framed = exchange.read_chain('[{"joints": [[0, 1], [1, 2], [2, 3], [3, 0]], "frame": 0}]')  # an array of one row
+    assert (framed.chain, framed.frame, framed.source) == (Chain.parse("0-1 1-2 2-3 3-0"), 0, "the chain given row 1")
+    with pytest.raises(MalformedChain) as refused:
+        exchange.read_text("index,joints\n1,0-1 1-x\n", source="f.csv")
+    assert str(refused.value).startswith("f.csv row 1: cannot read joint '1-x'")

@@ -1,0 +1,181 @@
+"""The pipeline of :func:`run_plan` without processes: tasks run when they are submitted and finish
+in an order the test chooses, on a clock the units advance by a known time, so what is yielded,
+how many tasks are in flight and how units are batched can be checked against the plan itself.
+"""
+
+from __future__ import annotations
+
+import random
+import types
+
+import pytest
+
+from synth.execution import executor as module
+from synth.execution.executor import Executor, run_plan
+
+UNIT = 1 / 64  # seconds a unit takes on the test's clock
+
+
+class _Clock:
+    def __init__(self):
+        self.now = 0.0
+
+    def perf_counter(self):
+        return self.now
+
+
+@pytest.fixture
+def clock(monkeypatch):
+    c = _Clock()
+    monkeypatch.setattr(module, "time", types.SimpleNamespace(perf_counter=c.perf_counter))
+    return c
+
+
+def _plan(sizes):
+    return [[(i, u) for u in range(n)] for i, n in enumerate(sizes)]
+
+
+def _expected(plan, skip_item=None, skip_unit=None):
+    """What run_plan yields in plan order, from the plan alone."""
+    out = []
+    for i, units in enumerate(plan):
+        if skip_item and skip_item(i):
+            continue
+        out += [(i, u, ("done", u)) for u in units if not (skip_unit and skip_unit(u))]
+        out.append((i, None, len(units)))
+    return out
+
+
+class _Tasks:
+    """submit(fn, arg) runs fn(arg) at once; next_done hands back the tasks in a chosen order."""
+
+    def __init__(self, clock, order="fifo", seed=0):
+        self.clock, self.order, self.rng = clock, order, random.Random(seed)
+        self.launched, self.waiting, self.in_flight, self.most = [], [], 0, 0
+        self.batches, self.worked = [], []
+
+    def work(self, unit):
+        self.worked.append(unit)
+        self.clock.now += UNIT
+        return ("done", unit)
+
+    def submit(self, fn, arg):
+        tasks = self
+
+        class Task:
+            def __init__(self):
+                self.value, self.taken = fn(arg), False
+
+            def ready(self):
+                return True
+
+            def get(self):
+                if not self.taken:
+                    self.taken = True
+                    tasks.in_flight -= 1
+                return self.value
+
+        if fn is module._apply_batch:
+            self.batches.append(len(arg[1]))
+        task = Task()
+        self.launched.append(task)
+        self.waiting.append(task)
+        self.in_flight += 1
+        self.most = max(self.most, self.in_flight)
+        return task
+
+    def next_done(self):
+        pick = {"fifo": 0, "lifo": -1}.get(self.order)
+        return self.waiting.pop(self.rng.randrange(len(self.waiting)) if pick is None else pick)
+
+
+@pytest.mark.parametrize("sizes", [[3], [0, 2, 0, 5], [40, 1, 17, 0, 64], [1] * 9])
+@pytest.mark.parametrize("window", [1, 2, 5])
+@pytest.mark.parametrize("task_seconds", [UNIT / 2, 4 * UNIT, 1000.0])
+def test_in_order_the_pipeline_yields_the_plan_and_bounds_the_tasks_in_flight(clock, sizes, window, task_seconds):
+    plan = _plan(sizes)
+    tasks = _Tasks(clock)
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, tasks.submit, None, window, task_seconds))
+    assert got == _expected(plan)
+    assert tasks.most <= window + 1  # the head's batch may go beyond a full window, by one
+    assert sorted(tasks.worked) == sorted(u for units in plan for u in units)  # each unit worked on once
+
+
+@pytest.mark.parametrize("order", ["fifo", "lifo", "random"])
+@pytest.mark.parametrize("sizes", [[3], [0, 2, 0, 5], [40, 1, 17, 0, 64]])
+@pytest.mark.parametrize("window", [1, 3])
+def test_as_they_finish_every_unit_comes_once_and_before_its_item(clock, order, sizes, window):
+    plan = _plan(sizes)
+    tasks = _Tasks(clock, order, seed=sum(sizes) + window)
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, tasks.submit, None, window, 4 * UNIT,
+                                next_done=tasks.next_done))
+    assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+    for i, units in enumerate(plan):
+        where = got.index((i, None, len(units)))
+        assert all(got.index((i, u, ("done", u))) < where for u in units)
+    assert tasks.most <= window
+
+
+def test_stage_a_s_task_works_on_the_first_units_then_batches_follow_the_time_per_unit(clock):
+    # 100 units of 1/64 s and tasks of 1/8 s: stage A's task works on the first 8 (1/8 s), and once a
+    # unit's time is known every batch holds 8; before that, one unit a batch
+    plan = _plan([100])
+    tasks = _Tasks(clock)
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, tasks.submit, None, 2, 8 * UNIT))
+    assert got == _expected(plan)
+    first = tasks.launched[0].value
+    assert first[0] == plan[0] and first[1] == [("done", (0, u)) for u in range(8)] and first[2] == 8 * UNIT
+    known = tasks.batches[tasks.batches.index(8):]
+    assert tasks.batches[0] == 1 and known[:-1] == [8] * (len(known) - 1) and 1 <= known[-1] <= 8
+    assert sum(tasks.batches) == 92
+
+
+def test_units_of_no_time_travel_512_a_batch(clock):
+    plan = _plan([1500])
+    tasks = _Tasks(clock)
+    work = lambda unit: ("done", unit)  # noqa: E731 - no time on the clock
+    keep_all = lambda unit: False  # noqa: E731 - (a filter of units: stage A's task then works on none)
+    got = list(module._pipeline(list(enumerate(plan)), list, work, tasks.submit, keep_all, 2, 0.05))
+    assert got == _expected(plan)
+    assert tasks.batches[:3] == [1, 1, 512] and max(tasks.batches) == 512
+
+
+def test_skipped_units_are_not_worked_on_and_still_counted(clock):
+    plan = _plan([6, 4, 5])
+    skip = lambda unit: unit[1] % 2 == 0  # noqa: E731
+    tasks = _Tasks(clock)
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, tasks.submit, skip, 2, 4 * UNIT))
+    assert got == _expected(plan, skip_unit=skip)
+    assert all(not skip(u) for u in tasks.worked)
+    assert all(task.value[1] == [] for task in tasks.launched if len(task.value) == 3)  # stage A worked on none
+
+
+def test_a_plan_runs_inline_on_one_worker_with_skips(clock):
+    plan = _plan([3, 2, 4, 1])
+    skip_item = lambda i: i == 1  # noqa: E731
+    skip_unit = lambda unit: unit == (2, 0) or unit == (3, 0)  # noqa: E731
+    tasks = _Tasks(clock)
+    got = list(run_plan(plan, list, tasks.work, skip_item=skip_item, skip_unit=skip_unit))
+    assert got == _expected(plan, skip_item, skip_unit)
+
+
+def test_the_inline_phase_hands_an_unfinished_item_to_the_pool(clock, monkeypatch):
+    # two workers: units run here for inline_seconds (4 units of 1/64 s), then the rest of that item and the
+    # later items go to the pool; the answer is the plan's either way
+    plan = _plan([6, 3])
+    tasks = _Tasks(clock)
+    executor = Executor(workers=2)
+    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: tasks.submit(fn, arg))
+    got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=4 * UNIT, task_seconds=UNIT))
+    assert got == _expected(plan)
+    assert tasks.worked[:4] == [(0, 0), (0, 1), (0, 2), (0, 3)] and len(tasks.launched) > 0
+    inline = Executor(workers=1)
+    monkeypatch.setattr(inline, "_submit", lambda fn, arg, done=None: pytest.fail("one worker started a task"))
+    assert list(run_plan(plan, list, tasks.work, executor=inline, inline_seconds=0.0)) == _expected(plan)
+
+
+def test_map_on_one_worker_is_the_builtin_map():
+    with Executor(workers=1) as executor:
+        assert not executor.parallel and executor.slots == 1
+        assert list(executor.map(abs, [-3, 2, -1], ordered=False, window=1, chunk=2)) == [3, 2, 1]
+    assert Executor(workers=2).parallel and Executor(workers=3).slots == 3
