@@ -56,6 +56,9 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
 _FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py",
         "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
         "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
+#: the motion tests that judge some motion modules only (the sweep's link poses and grids, the linkage's files)
+_MOTION_MORE = {"_sweep": ("tests/motion/test_link_poses.py", "tests/motion/test_grid.py", "tests/motion/test_sweep_strength.py"),
+                "__init__": ("tests/motion/test_link_poses.py", "tests/motion/test_grid.py")}
 #: the atlas tests without the module fixtures of test_atlas.py (the 201 units of grid_small.toml) and Dask
 _ATLAS_LIGHT = ("not per_cell and not mechanism_counts_one_dof and not rerun_does_nothing and not sigkill and not dask "
                 "and not where_filters and not summary_table and not unreachable")
@@ -166,11 +169,24 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "analysis_compare": ("synth/analysis/compare.py", ["tests/analysis/test_compare_strength.py", "tests/analysis/test_compare.py",
                                                        "tests/exchange/test_every_property_round_trips.py",
                                                        _SYNTH_DOC + "synth.analysis.compare]"]),
-    # linkages moved: poses, dyads, the system of loop equations (closed forms, the oracle, branches, rates)
+    # linkages moved: poses, dyads, the system of loop equations, the linkage, its sweeps (closed forms, the
+    # independent solver, branches, rates, link poses, a grid); the kernel is compiled (numba): no mutant
     **{f"motion_{name.strip('_')}": (f"synth/motion/{name}.py", [
         "tests/motion/test_errors.py", "tests/motion/test_closed_forms.py", "tests/motion/test_oracle.py",
-        "tests/motion/test_branches.py", "tests/motion/test_rates.py", _SYNTH_DOC + f"synth.motion.{name}]"])
-       for name in ("_pose", "_dyads", "_system")},
+        "tests/motion/test_branches.py", "tests/motion/test_rates.py", "tests/motion/test_pose_strength.py",
+        "tests/motion/test_linkage_strength.py", "tests/motion/test_dyads_strength.py",
+        "tests/motion/test_system_strength.py", *_MOTION_MORE.get(name, ()),
+        _SYNTH_DOC + f"synth.motion.{name}]".replace(".__init__", "")])
+       for name in ("_pose", "_dyads", "_system", "_linkage", "_kernel", "_sweep", "__init__")},
+    # dimensional synthesis: targets read and checked, the problem's placement and errors, the search on exact
+    # targets known by construction (not the CLI's and the executors' tests: Ctrl-C, Dask, seconds per mutant)
+    # (the targets by their own tests alone: the searches add half a minute per mutant and reach nothing more of them)
+    **{f"dimension_{name.strip('_')}": (f"synth/dimension/{name}.py", [
+        "tests/dimension/test_targets.py", "tests/dimension/test_targets_strength.py",
+        *(() if name == "_target" else ("tests/dimension/test_problem_strength.py", "tests/dimension/test_search_strength.py",
+                                        "tests/dimension/test_placement.py", "tests/dimension/test_synthesize.py")),
+        _SYNTH_DOC + f"synth.dimension.{name}]".replace(".__init__", "")])
+       for name in ("_target", "_problem", "_search", "__init__")},
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
     # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
     # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:

@@ -225,7 +225,7 @@ class Problem:
         """The problem's real unknowns: a pin's 2 coordinates, a slide's line (2: a point along it is
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
-        count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1 if kind == "joint" else 1
+        count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1
                     for kind, k in self.layout if kind in ("joint", "slide"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:
@@ -255,9 +255,8 @@ class Problem:
             elif kind == "slide":
                 slides[k] = (math.cos(x[i]), math.sin(x[i]))
                 i += 1
-            else:
+            else:  # (the tracer's two are the layout's last)
                 tracer = self.centre + self.scale * x[i:i + 2]
-                i += 2
         for k, p in self.fixed.items():
             points[k] = p
         tracers = {} if tracer is None else {"P": (self.tracer_link, (float(tracer[0]), float(tracer[1])))}

@@ -31,10 +31,9 @@ def _array(values, columns: int | None, what: str) -> np.ndarray:
         out = np.array(values, dtype=float)
     except (TypeError, ValueError):
         raise BadTarget(f"the {what} must be numbers") from None
-    shape = (-1, columns) if columns else (-1,)
     if out.size == 0:
         raise BadTarget(f"the target has no {what}")
-    if out.ndim != len(shape) or (columns and out.shape[1] != columns):
+    if out.ndim != (2 if columns else 1) or (columns and out.shape[1] != columns):
         raise BadTarget(f"the {what} must be {'rows of ' + str(columns) + ' numbers' if columns else 'a list of numbers'}, "
                         f"not an array of shape {out.shape}")
     bad = np.flatnonzero(~np.isfinite(out.reshape(len(out), -1)).all(axis=1))

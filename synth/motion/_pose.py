@@ -28,7 +28,7 @@ def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=No
         frame's first W joints that join it to one moving link each (revolute before prismatic).
     slides : dict, optional
         Sliding directions; by default each prismatic joint slides along the line from its point
-        to the nearest other joint of its links (perpendicular to nothing in particular: a guess).
+        to the first other joint of its links (in the chain's order) not at that point (a guess).
     meshes, tracers : dict, optional
         As in :class:`Linkage`.
     nudge : bool
@@ -55,13 +55,7 @@ def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=No
             on_frame.sort(key=lambda k: mechanism.input_link not in chain.joints[k])
         else:
             on_frame.sort(key=lambda k: (kinds[k] != REVOLUTE, k))
-        picked, driven = [], set()
-        for k in on_frame:
-            other = sum(chain.joints[k]) - frame
-            if other not in driven:
-                picked.append(k)
-                driven.add(other)
-        inputs = picked[: max(chain.dof, 0)]
+        inputs = on_frame[: max(chain.dof, 0)]  # (each drives its own link: two joints never join the same links)
     if slides is None:
         slides = {}
         for k, kind in enumerate(kinds):
@@ -71,12 +65,12 @@ def linkage_from_pose(mechanism: Mechanism, positions, *, inputs=None, slides=No
                 far = d[np.hypot(d[:, 0], d[:, 1]) > 1e-6 * max(float(np.ptp(points, axis=0).max()), 1e-12)]
                 slides[k] = tuple(far[0]) if len(far) else (1.0, 0.0)
     linkage = Linkage(mechanism, tuple(inputs), points, slides, meshes or {}, tracers or {})
-    if check_movable(linkage) is None:
+    why = check_movable(linkage)
+    if why is None:
         return linkage
     if not nudge:
-        raise LockedMechanism(check_movable(linkage))
+        raise LockedMechanism(why)
     rng = np.random.default_rng(0)
-    why = check_movable(linkage)
     for attempt in range(1, 41):
         size = 0.02 * linkage.scale * (1 + attempt // 10)
         moved = points + rng.uniform(-size, size, points.shape)
