@@ -43,8 +43,7 @@ from .database import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import Executor
 from ..structure.chain import Chain
 from ..structure.code import Code
-from ..draw._gears import svg_text
-from ..draw._render import svg_inline
+from ..draw import svg_inline, svg_text
 from ..gears.train import GearTrain
 from ..errors import InvalidOption, option
 

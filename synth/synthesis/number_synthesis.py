@@ -24,7 +24,7 @@ from dataclasses import dataclass, fields, replace
 
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
 from ..execution.memo import remembered
-from ..structure._params import check_dof, check_extra_mobility, check_motion_space
+from ..structure import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import MAX_LOOPS, Code
 from ..structure.query import Range, parse_range, parse_requirements
 
