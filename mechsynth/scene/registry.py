@@ -70,14 +70,16 @@ class ComputeKind:
     table : str or None
         The scene table that states its problem (``"structure"``, ``"arm"``); required when given.
     run : callable
-        ``run(Run) -> dict``: the JSON-able result.  It may read the results of kinds
-        registered before it (``Run.results``) and share work through ``Run.shared``.
+        ``run(Run) -> result``: the typed result, a frozen dataclass inheriting ``mechbase.Row``
+        (the structural kinds; the others still return their row as a dict), printed and checked
+        as its row (``mechbase.as_row``).  It may read the results of kinds registered before it
+        (``Run.results``) and share work through ``Run.shared``.
     expect : mapping
         The ``[expect]`` keys its result provides.
     check : callable, optional
         ``check(scene)`` raises ``scene.error(...)`` for a rule across keys or tables.
     report : callable, optional
-        ``report(result) -> lines`` of the readable summary (default: the start of its JSON).
+        ``report(row) -> lines`` of the readable summary, from the result's row (default: the start of its JSON).
     reads : tuple of str
         Optional tables it also reads (``"drawing"``, ``"plot"``).
     """
@@ -85,7 +87,7 @@ class ComputeKind:
     name: str
     summary: str
     table: str | None
-    run: Callable[[Run], dict]
+    run: Callable[[Run], Any]
     expect: Mapping[str, Expectation] = field(default_factory=dict)
     check: Callable[[Scene], None] | None = None
     report: Callable[[dict], list[str]] = lambda result: [json.dumps(result)[:200]]
