@@ -6,8 +6,13 @@ result provides and how it is summarised; each table says how it is validated.  
 a computation, write its function in the module of its family and register it there:
 
 >>> from mechsynth.scene.registry import ComputeKind, Expectation, KINDS
+>>> from dataclasses import dataclass
+>>> from mechbase import Row
+>>> @dataclass(frozen=True)
+... class Links(Row):
+...     links: int
 >>> def _count_links(run):
-...     return {"links": run.scene.tables["structure"].dof + 1}
+...     return Links(run.scene.tables["structure"].dof + 1)
 >>> kind = ComputeKind("links demo", "W + 1, as an example", table="structure", run=_count_links,
 ...                    expect={"demo_links": Expectation(int, path=("links",))})
 >>> kind.provides("demo_links"), "links demo" in KINDS
@@ -70,9 +75,8 @@ class ComputeKind:
     table : str or None
         The scene table that states its problem (``"structure"``, ``"arm"``); required when given.
     run : callable
-        ``run(Run) -> result``: the typed result, a frozen dataclass inheriting ``mechbase.Row``
-        (the structural kinds; the others still return their row as a dict), printed and checked
-        as its row (``mechbase.as_row``).  It may read the results of kinds registered before it
+        ``run(Run) -> result``: the typed result, a frozen dataclass inheriting ``mechbase.Row``,
+        printed and checked as its row (``mechbase.as_row``).  It may read the results of kinds registered before it
         (``Run.results``) and share work through ``Run.shared``.
     expect : mapping
         The ``[expect]`` keys its result provides.

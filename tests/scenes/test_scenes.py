@@ -466,9 +466,19 @@ def test_through_the_mechsynth_command(tmp_path, capsys):
     ("mechanisms_1dof_8links.toml", {"count": "ChainCount", "mechanisms": "MechanismCount"}),
     ("table1_universal.toml", {"codes": "CodeList"}),
     ("task1_24_links.toml", {"analysis": "CodeAnalysis"}),
+    ("planetary_lever_64200.toml", {"codes": "CodeList", "analysis": "CodeAnalysis", "planetary": "PlanetaryLever"}),
+    ("task2_prismatic_loop.toml", {"analysis": "CodeAnalysis", "prismatic": "Variants"}),
+    ("gears_ratio_design.toml", {"gear train": "TrainAnalysis"}),
+    ("gears_simpson.toml", {"gear train": "TrainAnalysis", "gear atlas": "GearCensus"}),
+    ("motion_four_bar.toml", {"motion": "MotionSummary", "closed form": "DyadCheck"}),
+    ("motion_slider_crank.toml", {"motion": "MotionSummary", "closed form": "SliderCrankCheck"}),
+    ("motion_planetary_willis.toml", {"motion": "MotionSummary", "closed form": "WillisCheck"}),
+    ("arm_prismatic.toml", {"balance arm": "Derived"}),
+    ("spring_sine.toml", {"balance spring": "SpringDesign", "plot": "Figures"}),
+    ("pantograph.toml", {"balance pantograph": "PantographBalance"}),
 ])
-def test_the_structural_computations_give_typed_results_printed_as_their_rows(scene, kinds):
-    """Each structural computation returns a frozen Row; the scene's output is its row, and nothing
+def test_every_computation_gives_a_typed_result_printed_as_its_row(scene, kinds):
+    """Each computation (structure, gears, motion, balancing) returns a frozen Row; the scene's output is its row, and nothing
     else turns it into one (the expectations are checked on the same rows)."""
     import dataclasses
 
