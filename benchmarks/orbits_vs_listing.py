@@ -1,15 +1,23 @@
-"""The two counting methods of ``chains --count`` side by side, code by code: the listing
-(``count_realised``: one lex-least placement per chain) and the orbits (``count_orbits``:
-Burnside's lemma over the bundle permutations of each branch multigraph).
+"""Ways of counting the chains of ``chains --count`` side by side, code by code:
 
-Stage A runs once per code; each unit is then counted by both methods in this process, with the
-CPU seconds of each (``time.process_time``: other work on a shared machine hardly changes them).
-Prints one row per code (units, chains by each method, CPU seconds of stage A and of each
-method, µs per chain) and the totals; exit 1 if any code's counts differ.
+* ``count``: ``count_realised``, what ``--count`` runs (the compiled kernel's count search where
+  it applies: one lex-least placement per chain in the search order, nothing written out);
+* ``listing``: what the listing finds for each unit, the placements stage B writes out in the
+  strings' own order (one per chain where the whole group of H is listed and the joints are
+  simple; elsewhere the chains ``realise`` builds, told apart by certificate);
+* ``orbits``: ``count_orbits``, Burnside's lemma over the bundle permutations of each branch
+  multigraph (``--method orbits``).
+
+Stage A runs once per code; each unit is then counted by each method asked (``--methods``, two or
+more; ``count,orbits`` by default) in this process, with the CPU seconds of each
+(``time.process_time``: other work on a shared machine hardly changes them). Prints one row per
+code (units, chains by each method, CPU seconds of stage A and of each method, µs per chain) and
+the totals; exit 1 if any code's counts differ.
 
 Run from the project root::
 
-    nice -n 19 python benchmarks/orbits_vs_listing.py 16 [--dof 1] [--h 3] > benchmarks/logs/orbits_vs_listing_16.txt
+    nice -n 19 python benchmarks/orbits_vs_listing.py 16 [--dof 1] [--h 3] [--methods count,listing,orbits] \
+        > benchmarks/logs/orbits_vs_listing_16.txt
 """
 
 from __future__ import annotations
@@ -24,38 +32,54 @@ ROOT = Path.cwd()
 sys.path.insert(0, str(ROOT))
 
 
-def compare(dof: int, links: int, h: int) -> int:
+def _listed(code, graph, conv) -> int:
+    """The chains the listing finds for one unit (see the module)."""
+    from synth.synthesis.stage_b import _distributions, _passing, realise
+
+    solutions, one_per_orbit, checked = _distributions(code, graph, conv, None)
+    if one_per_orbit and checked:
+        return len(_passing(graph, conv, solutions, None, checked))
+    return len(realise(code, graph, conv))
+
+
+def compare(dof: int, links: int, h: int, methods: list[str]) -> int:
     from synth import ChainQuery
     from synth.synthesis.stage_b import count_orbits, count_realised, load_kernel
     from synth.synthesis.type_synthesis import job_units, plan_jobs
 
+    ways = {"count": count_realised, "listing": _listed, "orbits": count_orbits}
+    count = [ways[m] for m in methods]
     load_kernel()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     print(f"W = {dof}, {links} links, h = {h}; engine {commit}; CPU seconds of one process")
-    print(f"{'code':>20} {'units':>6} {'listing':>11} {'orbits':>11} {'stage A':>8} {'listing s':>9} "
-          f"{'orbits s':>9} {'µs/chain L':>10} {'µs/chain O':>10}")
-    totals = [0, 0, 0, 0.0, 0.0, 0.0]
+    print(f"{'code':>20} {'units':>6} " + " ".join(f"{m:>11}" for m in methods) + f" {'stage A':>8} "
+          + " ".join(f"{m + ' s':>9}" for m in methods) + " " + " ".join(f"{'µs/ch ' + m[0].upper():>10}" for m in methods))
+    n = len(methods)
+    totals = [0] * (1 + n) + [0.0] * (1 + n)
     bad = 0
     for code, conv in plan_jobs(ChainQuery(dof, links, h=h)):
         t0 = time.process_time()
         units = [u for u in job_units((code, conv)) if u.contracted is not None]
         stage_a = time.process_time() - t0
-        found = [0, 0]
-        seconds = [0.0, 0.0]
+        found = [0] * n
+        seconds = [0.0] * n
         for unit in units:
-            for i, count in enumerate((count_realised, count_orbits)):
+            for i, way in enumerate(count):
                 t0 = time.process_time()
-                found[i] += count(unit.code, unit.contracted, unit.conventions)
+                found[i] += way(unit.code, unit.contracted, unit.conventions)
                 seconds[i] += time.process_time() - t0
-        bad += found[0] != found[1]
+        differ = len(set(found)) > 1
+        bad += differ
         rate = [f"{1e6 * s / found[0]:.2f}" if found[0] else "-" for s in seconds]
-        print(f"{str(code):>20} {len(units):>6} {found[0]:>11} {found[1]:>11} {stage_a:>8.2f} {seconds[0]:>9.2f} "
-              f"{seconds[1]:>9.2f} {rate[0]:>10} {rate[1]:>10}" + ("" if found[0] == found[1] else "  DIFFERENT"),
-              flush=True)
+        print(f"{str(code):>20} {len(units):>6} " + " ".join(f"{x:>11}" for x in found) + f" {stage_a:>8.2f} "
+              + " ".join(f"{x:>9.2f}" for x in seconds) + " " + " ".join(f"{x:>10}" for x in rate)
+              + ("  DIFFERENT" if differ else ""), flush=True)
         for i, x in enumerate((len(units), *found, stage_a, *seconds)):
             totals[i] += x
-    print(f"{'total':>20} {totals[0]:>6} {totals[1]:>11} {totals[2]:>11} {totals[3]:>8.2f} {totals[4]:>9.2f} "
-          f"{totals[5]:>9.2f} {1e6 * totals[4] / max(1, totals[1]):>10.2f} {1e6 * totals[5] / max(1, totals[1]):>10.2f}")
+    chains = max(1, totals[1])
+    print(f"{'total':>20} {totals[0]:>6} " + " ".join(f"{x:>11}" for x in totals[1:1 + n]) + f" {totals[1 + n]:>8.2f} "
+          + " ".join(f"{x:>9.2f}" for x in totals[2 + n:]) + " "
+          + " ".join(f"{1e6 * x / chains:>10.2f}" for x in totals[2 + n:]))
     print("codes whose counts differ:", bad)
     return 1 if bad else 0
 
@@ -65,8 +89,13 @@ def main() -> int:
     parser.add_argument("links", type=int)
     parser.add_argument("--dof", type=int, default=1)
     parser.add_argument("--h", type=int, default=3)
+    parser.add_argument("--methods", default="count,orbits",
+                        help="two or more of count, listing, orbits, comma-separated (default count,orbits)")
     args = parser.parse_args()
-    return compare(args.dof, args.links, args.h)
+    methods = args.methods.split(",")
+    if len(methods) < 2 or len(set(methods)) < len(methods) or not set(methods) <= {"count", "listing", "orbits"}:
+        parser.error("--methods takes two or more different ones of count, listing, orbits")
+    return compare(args.dof, args.links, args.h, methods)
 
 
 if __name__ == "__main__":

@@ -276,19 +276,27 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         travel = _along(span.place(block, p)[:, 0] - span.place(guide, p)[:, 0], theta, u)
         pins = [float((linkage.points[m] - p) @ u) for m in linkage.joints_of(guide)
                 if m != k and linkage.kind(m) == REVOLUTE]  # the guide reaches its own pins (a lever's pivot)
+        # the joint's point is any point of its line (a synthesis leaves it where it lies): the block is
+        # drawn where it is, at the foot of its pin nearest the line
+        feet = [(abs(u[0] * (q[1] - p[1]) - u[1] * (q[0] - p[0])), float((q - p) @ u))
+                for q in (linkage.points[m] for m in linkage.joints_of(block) if m != k and linkage.kind(m) == REVOLUTE)]
+        at = min(feet)[1] if feet else 0.0
+        p = p + at * u
+        pins = [f - at for f in pins]
         half = 0.06 * scale
         reach_along = [0.0, *travel[np.isfinite(travel)], *pins]
         ends = [p + u * (min(reach_along) - 2 * half), p + u * (max(reach_along) + 2 * half)]
         out.append({"tag": "polyline", "frames": place.place(guide, ends),
                     "style": {"fill": "none", "stroke": _FRAME if guide == linkage.frame else _EDGE,
                               "stroke-width": 2.0, "stroke-dasharray": "5 3" if guide == linkage.frame else None}})
-        for m in linkage.joints_of(guide):  # a pin of the guide off its line (an offset slot): an arm to the line
-            if m != k and linkage.kind(m) == REVOLUTE and guide != linkage.frame:
-                foot = p + float((linkage.points[m] - p) @ u) * u
-                if math.dist(foot, linkage.points[m]) > 1e-9 * scale:
-                    out.append({"tag": "polyline", "frames": place.place(guide, [linkage.points[m], foot]),
-                                "style": {"fill": "none", "stroke": _EDGE, "stroke-width": 3.2,
-                                          "stroke-linecap": "round"}})
+        for link in (guide, block):  # a pin off the line (an offset slot or slider): an arm to the line
+            for m in linkage.joints_of(link):
+                if m != k and linkage.kind(m) == REVOLUTE and link != linkage.frame:
+                    foot = p + float((linkage.points[m] - p) @ u) * u
+                    if math.dist(foot, linkage.points[m]) > 1e-9 * scale:
+                        out.append({"tag": "polyline", "frames": place.place(link, [linkage.points[m], foot]),
+                                    "style": {"fill": "none", "stroke": _EDGE, "stroke-width": 3.2,
+                                              "stroke-linecap": "round"}})
         n = np.array([-u[1], u[0]])
         corners = [p - half * u - 0.6 * half * n, p + half * u - 0.6 * half * n,
                    p + half * u + 0.6 * half * n, p - half * u + 0.6 * half * n]
@@ -326,13 +334,18 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
 
 
 def _guide_and_block(linkage: Linkage, k: int) -> tuple[int, int]:
-    """The two links of prismatic joint ``k`` as a designer draws them: the block is the link pinned
-    nearest the sliding point (a slider's pin, a block on a crank pin), the guide the other."""
+    """The two links of prismatic joint ``k`` as a designer draws them: the frame is the guide of a
+    slider on it; otherwise the block is the link pinned nearest the sliding line (a block on a crank
+    pin), the guide the other.  (The distance is to the line, not to the joint's point: that may be
+    anywhere along it.)"""
     a, b = linkage.chain.joints[k]
+    if linkage.frame in (a, b):
+        return linkage.frame, b if a == linkage.frame else a
+    p, u = linkage.points[k], np.asarray(linkage.slides[k], dtype=float) / math.hypot(*linkage.slides[k])
 
     def gap(link: int) -> float:
-        pins = [math.dist(linkage.points[m], linkage.points[k]) for m in linkage.joints_of(link)
-                if linkage.kind(m) == REVOLUTE]
+        pins = [abs(u[0] * (q[1] - p[1]) - u[1] * (q[0] - p[0]))
+                for q in (linkage.points[m] for m in linkage.joints_of(link) if linkage.kind(m) == REVOLUTE)]
         return min(pins, default=math.inf)
 
     return (b, a) if gap(a) < gap(b) else (a, b)

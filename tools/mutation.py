@@ -55,6 +55,9 @@ _EXCHANGE = ["tests/exchange/test_formats.py", "tests/exchange/test_dot_strength
 _FIT = ["tests/balance/test_fit_driver_strength.py", "tests/balance/test_fit_result_strength.py",
         "tests/balance/test_fit_vs_oracle.py", "tests/balance/test_fit.py", "tests/balance/test_devices.py",
         "tests/balance/test_slider_devices.py", "-k", "not under_100_ms and not model_matches"]
+#: the atlas tests without the module fixtures of test_atlas.py (the 201 units of grid_small.toml) and Dask
+_ATLAS_LIGHT = ("not per_cell and not mechanism_counts_one_dof and not rerun_does_nothing and not sigkill and not dask "
+                "and not where_filters and not summary_table and not unreachable")
 #: module key -> (file to mutate, test selection); the tests are the fast ones that judge it
 MODULES: dict[str, tuple[str, list[str]]] = {
     "mobility": ("synth/structure/subchains.py", ["tests/structure/test_subchains_vs_oracle.py",
@@ -195,6 +198,37 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "helical": ("balance/devices/helical.py", ["tests/balance/test_devices.py", "tests/balance/test_slider_devices.py",
                                                _BALANCE_DOC + "balance.devices.helical]", "-k",
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
+    # the atlas file: its schema, version checks, refusals and run lock (not test_atlas.py's 201-unit grid: a
+    # minute per mutant)
+    "atlas_database": ("synth/atlas/database.py", ["tests/atlas/test_database_strength.py", "tests/atlas/test_atlas.py",
+                                                   "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
+    # grid files: cells by hand from n = W + 1 + (h − 1)·K, every key's part, every refusal's sentence
+    "atlas_grid": ("synth/atlas/grid.py", ["tests/atlas/test_grid_strength.py", "tests/atlas/test_grid.py"]),
+    # grid runs: every column of the rows by hand on a few links, stopped runs, the sizing from estimates by hand
+    "atlas_runs": ("synth/atlas/runs.py", ["tests/atlas/test_runs_strength.py", "tests/atlas/test_database_strength.py",
+                                           "tests/atlas/test_atlas.py",
+                                           "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
+    # the atlas search: descriptors, alignment, refusals, the search of its doctest (not the recoveries of random
+    # cranks and the commands: half a minute of polishing each, minutes a mutant on the loaded machine)
+    "atlas_search": ("synth/atlas/search.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
+                                               _SYNTH_DOC + "synth.atlas.search]", "-k", "not found_again and not command"]),
+    # the curve index: every stored curve swept again, its settings, resumption and refusals (not the searches'
+    # recoveries and commands, which read the index and take half a minute each)
+    "atlas_curves": ("synth/atlas/curves.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
+                                               _SYNTH_DOC + "synth.atlas.curves]", "-k",
+                                               "not found_again and not command and not alignment_finds"]),
+    # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not
+    # test_site.py and test_site_motion.py: their atlases of 1- and 2-DOF chains up to 8 links are drawn anew for
+    # every mutant, minutes on the loaded machine)
+    "atlas_site": ("synth/atlas/site.py", ["tests/atlas/test_site_strength.py", _SYNTH_DOC + "synth.atlas.site]"]),
+    # where links and joints go, and the marks drawn there: each mark by kind where it stands, the layouts of the
+    # 8-link chains (not the drawings of every planar chain, the commands and the measured drawings: minutes a
+    # mutant on the loaded machine)
+    **{f"draw_{name.strip('_')}": (f"synth/draw/{name}.py", ["tests/test_draw_strength.py", "tests/test_draw.py",
+                                                            _SYNTH_DOC + f"synth.draw.{name}]",
+                                                            "-k", "not every_planar_chain and not cli and not sheet_png "
+                                                                  "and not jupyter and not prismatic_variants"])
+       for name in ("_layout", "_render")},
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
 }

@@ -172,6 +172,7 @@ def _mechanism(args):
 def _run(args) -> int:
     from tqdm import tqdm
 
+    from synth.atlas import sampled_starts
     from synth.dimension import Constraints, read_target, synthesize
 
     _check(args)
@@ -204,7 +205,7 @@ def _run(args) -> int:
 
         result = synthesize(mechanism, target, tracer_link=args.tracer_link, constraints=constraints,
                             budget=args.budget, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
-                            underdetermined=args.underdetermined, progress=progress)
+                            underdetermined=args.underdetermined, progress=progress, starts=sampled_starts)
     _write(result, args.format)
     if not result.met:
         print(f"mechsynth: no mechanism met the constraints within the budget; the best found fails: "

@@ -31,6 +31,7 @@ _WHERE = {
     "IndexSettings": ".curves", "IndexResult": ".curves", "NoCurveIndex": ".curves", "index_curves": ".curves",
     "index_info": ".curves",
     "AtlasSearchResult": ".search", "AtlasMatch": ".search", "search_atlas": ".search", "retrieve": ".search",
+    "sampled_starts": ".search",
     "write_site": ".site", "SiteResult": ".site", "EmptyAtlas": ".site", "MAX_PAGE_SIZE": ".site",
 }
 

@@ -136,7 +136,7 @@ def refuse_unwritable(path: Path) -> None:
             raise AtlasError(f"the atlas path {path} is a directory, not a file")
         if not os.access(path, os.W_OK) or not path.stat().st_mode & 0o222:
             raise AtlasError(f"cannot write the atlas {path}: the file is read-only")
-    directory = path.parent if str(path.parent) else Path(".")
+    directory = path.parent  # (a bare file name's parent is ".")
     if not directory.is_dir():
         raise AtlasError(f"cannot create the atlas {path}: the directory {directory} does not exist")
     if not os.access(directory, os.W_OK) or not directory.stat().st_mode & 0o222:

@@ -368,7 +368,8 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
         worst = worst or (cell, found)
     wall = log_seconds - math.log10(processes)
     log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
-    where = "on the scheduler's workers (one core shown)" if scheduler else f"on {processes} workers"
+    where = ("on the scheduler's workers (one core shown)" if scheduler
+             else f"on {processes} worker{'s' if processes != 1 else ''}")
     cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} large cells hold"
     size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
             f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "

@@ -36,7 +36,8 @@ from ..structure.chain import Chain, Mechanism
 from .curves import HARMONICS, _info, harmonics, slides_of, unblob, untimed_parameter
 from .database import open_atlas
 
-__all__ = ["Candidate", "AtlasMatch", "AtlasSearchResult", "descriptor_of", "retrieve", "search_atlas"]
+__all__ = ["Candidate", "AtlasMatch", "AtlasSearchResult", "descriptor_of", "retrieve", "sampled_starts",
+           "search_atlas"]
 
 #: shifts τ on which the alignment is evaluated before it is refined
 SHIFTS = 512
@@ -245,18 +246,8 @@ def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, pe
     finally:
         conn.close()
     coefficients = timed_c if timed else untimed_c
-    best = np.full(len(meta), np.inf)
-    form = np.zeros(len(meta), dtype=int)
-    shift = np.zeros(len(meta))
+    best, form, shift = _aligned_all(t, coefficients, timed)
     variants = _variants(timed)
-    for start in range(0, len(meta), 4096):
-        block = slice(start, start + 4096)
-        for k, (mirror, reverse) in enumerate(variants):
-            m, s = _misfits(t, _form(coefficients[block], mirror, reverse))
-            better = m < best[block]
-            best[block] = np.where(better, m, best[block])
-            form[block] = np.where(better, k, form[block])
-            shift[block] = np.where(better, s, shift[block])
     order = np.argsort(best, kind="stable")
     chosen: dict[tuple, list] = {}
     # the best topology of every link count first (the answer is error against complexity), then the rest
@@ -277,13 +268,89 @@ def retrieve(db: str | Path, target, *, links: tuple[int, int] | None = None, pe
     out = []
     for key, rows in chosen.items():
         for i in rows:
-            mirror, reverse = variants[form[i]]
-            u = _form(coefficients[i], mirror, reverse)
-            misfit, tau, lam = _refine(t, u, float(shift[i]))
-            row_id, chain, frame, input_link, input_joint, tracer, n = (int(v) for v in meta[i])
-            out.append(Candidate(row_id, chain, frame, input_link, input_joint, tracer, n, misfit, mirror, reverse,
-                                 tau, lam, complex(t[h] - lam * u[h])))
+            out.append(_candidate(t, coefficients[i], variants[form[i]], float(shift[i]), meta[i]))
     return out, len(meta)
+
+
+def _aligned_all(t: np.ndarray, coefficients: np.ndarray, timed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every curve's (row of ``coefficients``) best misfit to the target's t over its forms, the form
+    (an index of :func:`_variants`) and the grid shift where it is reached."""
+    best = np.full(len(coefficients), np.inf)
+    form = np.zeros(len(coefficients), dtype=int)
+    shift = np.zeros(len(coefficients))
+    for start in range(0, len(coefficients), 4096):
+        block = slice(start, start + 4096)
+        for k, (mirror, reverse) in enumerate(_variants(timed)):
+            m, s = _misfits(t, _form(coefficients[block], mirror, reverse))
+            better = m < best[block]
+            best[block] = np.where(better, m, best[block])
+            form[block] = np.where(better, k, form[block])
+            shift[block] = np.where(better, s, shift[block])
+    return best, form, shift
+
+
+def _candidate(t: np.ndarray, u: np.ndarray, variant: tuple[bool, bool], shift: float, meta) -> Candidate:
+    """The curve u (its coefficients) in the form ``variant`` aligned to t, refined from the grid
+    shift; ``meta`` its (row, chain, frame, input link, input joint, tracer link, links)."""
+    h = (t.shape[-1] - 1) // 2
+    mirror, reverse = variant
+    u = _form(u, mirror, reverse)
+    misfit, tau, lam = _refine(t, u, shift)
+    row_id, chain, frame, input_link, input_joint, tracer, n = (int(v) for v in meta)
+    return Candidate(row_id, chain, frame, input_link, input_joint, tracer, n, misfit, mirror, reverse, tau, lam,
+                     complex(t[h] - lam * u[h]))
+
+
+def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0, *, samples: int = 100,
+                   count: int | None = None) -> list:
+    """Start linkages for a path target from the mechanism's own curves sampled at random as an atlas
+    index samples them (``samples`` crank poses near its drawing, seeded): the ``count`` (default all)
+    curves of the tracer link nearest the target's shape, each turned, scaled and posed on the target
+    as the atlas search poses its candidates (:func:`start_linkage`), nearest first.  Empty where the
+    index could not serve the target (not a path, an open path, a timing with a gap, a mechanism whose
+    input does not turn fully, a tracer link that traces a circle).  The ``starts`` of
+    :func:`synth.dimension.synthesize`.
+
+    Examples
+    --------
+    >>> from synth.dimension import PathTarget
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
+    >>> starts = sampled_starts(four_bar, 2, PathTarget(np.c_[np.cos(t), 0.6 * np.sin(t)]), samples=20, count=3)
+    >>> len(starts), starts[0].tracers["P"][0]
+    (3, 2)
+    """
+    from .curves import CurveUnit, IndexSettings, sample_unit
+
+    if getattr(target, "kind", None) != "path":
+        return []
+    try:
+        t, h, timed = descriptor_of(target)
+    except BadTarget:
+        return []
+    unit = CurveUnit(0, json.dumps(mechanism.chain.to_dict()), mechanism.frame,
+                     -1 if mechanism.input_link is None else mechanism.input_link,
+                     IndexSettings(samples=samples, seed=seed))
+    sampled = sample_unit(unit)
+    rows = [row for row in sampled.rows if row[1] == tracer_link]
+    if not rows:
+        return []
+    cut = slice(HARMONICS - h, HARMONICS + h + 1)
+    coefficients = np.array([unblob(row[5 if not timed else 4])[cut] for row in rows])
+    best, form, shift = _aligned_all(t, coefficients, timed)
+    variants = _variants(timed)
+    starts = []
+    for i in np.argsort(best, kind="stable")[:count or len(rows)]:
+        if not math.isfinite(best[i]):
+            break
+        meta = (i, 0, mechanism.frame, unit.input_link, sampled.input_joint, tracer_link, mechanism.chain.links)
+        candidate = _candidate(t, coefficients[i], variants[form[i]], float(shift[i]), meta)
+        try:
+            starts.append(start_linkage(candidate, mechanism.chain, json.loads(rows[i][2]), json.loads(rows[i][3]),
+                                        target, slides_of(rows[i][6])))
+        except SynthesisError:
+            continue
+    return starts
 
 
 # ------------------------------------------------------------------ from a sample to a start linkage

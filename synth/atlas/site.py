@@ -43,6 +43,7 @@ from .database import AtlasError, _reading, chain_id, open_atlas
 from ..execution.executor import Executor
 from ..structure.chain import Chain
 from ..structure.code import Code
+from ..structure.joints import PRISMATIC
 from ..draw import svg_inline, svg_text
 from ..gears.train import GearTrain
 from ..errors import InvalidOption, option
@@ -164,6 +165,8 @@ def _moving_page(chain: Chain, cid: str, frame: int) -> tuple[str | None, str, s
     k = linkage.inputs[0]
     if reach.full_rotation:
         moves = "turns fully (a crank)"
+    elif reach.limits and linkage.kind(k) == PRISMATIC:  # a slide's limits are lengths, in the drawing's units
+        moves = f"slides between {reach.limits[0]:.1f} and {reach.limits[1]:.1f}"
     elif reach.limits:
         moves = f"rocks between {math.degrees(reach.limits[0]):.1f}° and {math.degrees(reach.limits[1]):.1f}°"
     else:

@@ -14,6 +14,7 @@ from mechbase import Row
 
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
+from ..structure import single_threaded
 from ..structure.chain import Mechanism
 from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget
@@ -30,6 +31,9 @@ MET = 1e-9
 SPANS = (0.5, 1.0)
 #: rounds of fitting the similarity and moving the points to their places on the carried curve
 ALIGN_ROUNDS = 4
+#: the given starts polished (least cost first), and the share of the budget they may take before
+#: differential evolution
+SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
 
 
 class _OutOfTime(Exception):
@@ -493,7 +497,7 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
                budget: float = 60.0, seed: int = 0, workers: int = 1, scheduler: str | None = None,
                underdetermined: bool = False, progress=None, polish_only: bool = False,
-               connect_timeout: float = 5.0) -> DimensionalResult:
+               connect_timeout: float = 5.0, starts=None) -> DimensionalResult:
     """Dimension a mechanism of given topology so that it meets a target as closely as it can.
 
     Parameters
@@ -527,6 +531,11 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         search starts each topology from its nearest indexed sample this way).
     connect_timeout : float
         Seconds to wait for the ``scheduler``.
+    starts : callable, optional
+        A source of start linkages polished before the global search (from no guess only), called as
+        ``starts(mechanism, tracer_link, target, seed)`` within the budget: :func:`synth.atlas.sampled_starts`
+        (the mechanism's own crank curves sampled at random, for points all round a closed curve)
+        finds untimed paths far more reliably than the global search alone.
 
     Returns
     -------
@@ -580,28 +589,33 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
 
             client = connect(scheduler, connect_timeout)
         executor = Executor(workers, client)
-    try:
-        if polish_only:
-            search.polish(problem.unknowns_of(start))
-        while not (polish_only or watch.over() or search.exact):
-            search.runs += 1
-            for x in search.evolve(rng, start if search.runs == 1 else None, executor):
-                search.polish(x)
-                if search.exact:
-                    break
-    except _OutOfTime:
-        pass
-    finally:
-        if executor is not None:
-            executor.close()  # no worker outlives the search (Ctrl-C included)
-        if client is not None:
-            client.close()
-    if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
-        search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+    # BLAS on one thread: the polish's SVDs are of matrices of a few hundred entries, and OpenBLAS's
+    # threads spinning between them cost 60 times the CPU of the SVD itself on the loaded 2-core machine
+    with single_threaded():
+        try:
+            if polish_only:
+                search.polish(problem.unknowns_of(start))
+            elif start is None and starts is not None:
+                search.from_samples(starts, seed)
+            while not (polish_only or watch.over() or search.exact):
+                search.runs += 1
+                for x in search.evolve(rng, start if search.runs == 1 else None, executor):
+                    search.polish(x)
+                    if search.exact:
+                        break
+        except _OutOfTime:
+            pass
+        finally:
+            if executor is not None:
+                executor.close()  # no worker outlives the search (Ctrl-C included)
+            if client is not None:
+                client.close()
+        if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
+            search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
     if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
-    return _result(problem, search.evaluate, search.best, watch, search.runs)
+    return _result(problem, search.evaluate, search.best, watch, search.runs, bool(search.sampled))
 
 
 def _option(name: str) -> str:
@@ -620,10 +634,39 @@ class _Search:
         self.evaluate, self.problem, self.watch = evaluate, problem, watch
         self.best = None  # (cost, unknowns, direction)
         self.runs = 0
+        self.sampled = []  # searched unknowns of sampled crank curves, least cost first (from_samples)
 
     @property
     def exact(self) -> bool:
         return self.best is not None and self.best[0] <= EXACT ** 2
+
+    def from_samples(self, source, seed: int) -> None:
+        """Polish the start linkages of ``source`` (called as ``source(mechanism, tracer_link, target,
+        seed)``, e.g. :func:`synth.atlas.sampled_starts`: the mechanism's own crank curves sampled at
+        random, each posed on the target as its Fourier descriptor aligns it), the
+        :data:`SAMPLED_STARTS` of least cost first — the global stage's cost, which places each where it
+        fits best and matches the points in order: a few points describe a curve's shape too coarsely
+        to rank samples by their descriptors alone.  Each polish gets an equal part of
+        :data:`SAMPLED_SHARE` of the budget; the rest seed the first population."""
+        problem, watch = self.problem, self.watch
+        if problem.tracer_link is None or problem.driven is not None:
+            return
+        mechanism = Mechanism(problem.chain, problem.frame, problem.input_link)
+        starts = [problem.unknowns_of(start) for start in source(mechanism, problem.tracer_link, problem.target, seed)
+                  if start.inputs[0] == problem.input_joint and start.chain.certificate == problem.chain.certificate]
+        costs = []
+        for x in starts:
+            costs.append(self.evaluate(x[:problem.searched]))
+            watch.seen(costs[-1], x[:problem.searched])
+        order = np.argsort(costs, kind="stable")
+        self.sampled = [starts[i][:problem.searched] for i in order if costs[i] < INFEASIBLE]
+        for rank, i in enumerate(order[:SAMPLED_STARTS]):
+            if self.exact or costs[i] >= INFEASIBLE:
+                break
+            share = (SAMPLED_SHARE * watch.budget - watch.used()) / (SAMPLED_STARTS - rank)
+            if share <= 0:
+                break
+            self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + share)
 
     def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
@@ -653,8 +696,15 @@ class _Search:
 
         bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
         x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
-        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=max(15, 60 // problem.searched),
-                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init="sobol", polish=False,
+        popsize = max(15, 60 // problem.searched)
+        init = "sobol"
+        if start is None and self.runs == 1 and self.sampled:  # half the first population from the sampled curves
+            size = popsize * problem.searched
+            ours = np.array(self.sampled[:size // 2])
+            lower, upper = problem.lower[:problem.searched], problem.upper[:problem.searched]
+            init = np.vstack((ours, lower + rng.random((size - len(ours), problem.searched)) * (upper - lower)))
+        kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=popsize,
+                      maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init=init, polish=False,
                       callback=stop, x0=x0)
         if executor is not None:
             def generation(fn, population):
@@ -683,9 +733,10 @@ class _Search:
                 break
         return picked
 
-    def polish(self, x, grace: bool = False) -> None:
+    def polish(self, x, grace: bool = False, until: float | None = None) -> None:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
-        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched."""
+        curve); the result kept if it is the best yet.  With ``grace`` the budget is not watched;
+        with ``until`` the polish also stops once that many seconds of the budget are used."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
             z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
@@ -701,7 +752,7 @@ class _Search:
         best = [math.inf, z0]
 
         def fun(z):
-            if watch.over() and not grace:
+            if (watch.over() or (until is not None and watch.used() >= until)) and not grace:
                 raise _OutOfTime
             r = evaluate.vector(z, direction)
             cost = float(r @ r)
@@ -710,16 +761,50 @@ class _Search:
                 best[0], best[1] = cost, np.array(z)
             return r
 
+        jac = "2-point" if problem.timed else (lambda z: self.untimed_jacobian(fun, z, upper))
         try:
-            least_squares(fun, z0, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15, ftol=1e-15,
-                          gtol=1e-15, max_nfev=200 * len(z0))
+            least_squares(fun, z0, jac=jac, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15,
+                          ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
         except _OutOfTime:
             pass
         if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
             self.best = (best[0], best[1], direction)
 
 
-def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int) -> DimensionalResult:
+    def untimed_jacobian(self, fun, z, upper) -> np.ndarray:
+        """Forward differences of the untimed residuals ``fun`` at z = (dimensions, input steps), at the
+        cost of one evaluation per dimension and one for all the steps.
+
+        Point i is reached at the input offset direction·(s₁ + … + sᵢ) and its residuals depend on that
+        offset alone; the constraint rows depend on the last offset (the target's span).  So one step
+        of s₁, which moves every later point's offset by the same amount, gives each point's derivative
+        along its own offset, and the column of step k is that of s₁ with the points before k zeroed.
+        """
+        problem = self.problem
+        r0 = fun(z)
+        jac = np.empty((len(r0), len(z)))
+        for j in range(problem.dims + 1):
+            h = _STEP * max(1.0, abs(z[j]))
+            if z[j] + h > upper[j]:
+                h = -h
+            moved = np.array(z)
+            moved[j] += h
+            jac[:, j] = (fun(moved) - r0) / h
+        rows = problem.equations // problem.points  # residuals per target point
+        block = np.arange(problem.points * rows) // rows  # the target point of each residual row
+        later = block[:, None] >= np.arange(1, len(z) - problem.dims + 1)[None, :]
+        first = jac[:, problem.dims]
+        jac[:len(block), problem.dims:] = np.where(later, first[:len(block), None], 0.0)
+        jac[len(block):, problem.dims:] = first[len(block):, None]
+        return jac
+
+
+#: the forward-difference step of the untimed polish's Jacobian (relative; scipy's "2-point")
+_STEP = float(np.finfo(float).eps) ** 0.5
+
+
+def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int,
+            sampled: bool = False) -> DimensionalResult:
     """The best candidate as a linkage, its errors and constraints re-checked by the motion layer."""
     _, z, direction = best
     x = z[:problem.dims]
@@ -752,9 +837,10 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
         constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
                                   "met": False}}
-    method = (("bounded least squares (trf) from a given start, " if runs == 0 else
-               f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ")
-              + f"{'timed' if problem.timed else 'inputs as unknowns, in order'}")
+    method = ("sampled crank curves + " if sampled else "") + (
+        ("bounded least squares (trf) from " + ("them, " if sampled else "a given start, ")) if runs == 0 else
+        f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
+        "timed" if problem.timed else "inputs as unknowns, in order")
     return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
                              else 1.0, watch.used(), watch.count, method, constraints, angle_errors)
 

@@ -93,9 +93,24 @@ def detect(text: str, suffix: str = "") -> str:
         return "text"
     if lines and all(("," in ln or ";" in ln or "\t" in ln) for ln in lines):
         return "matrix"
+    if _spaced_matrix(lines):
+        return "matrix"
     if lines and all(edge_words(ln.split("{", 1)[0]) is not None for ln in lines):
         return "edgelist"
     return "unknown"
+
+
+def _spaced_matrix(lines: list[str]) -> bool:
+    """Whether lines are the rows of a matrix written with spaces: rows of equal length (three
+    numbers or more), each repeating a number — which no edge-list line can (a joint names
+    different links), so the reading takes nothing away from edge lists.
+
+    >>> _spaced_matrix(["0 1 1", "1 0 1", "1 1 0"]), _spaced_matrix(["0 1 2", "2 3 4"])
+    (True, False)
+    """
+    rows = [ln.split() for ln in lines]
+    return (len(rows) >= 2 and len({len(r) for r in rows}) == 1 and len(rows[0]) >= 3
+            and all(w.isdigit() for r in rows for w in r) and all(len(set(r)) < len(r) for r in rows))
 
 
 def read_text(text: str, fmt: str | None = None, source: str = "the input", suffix: str = "") -> list[Entry]:

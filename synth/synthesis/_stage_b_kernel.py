@@ -17,6 +17,11 @@ lexicographic order; a complete one is kept where it is the lex-least of its ima
 given edge permutations (the automorphisms of H: one placement per orbit when the whole group
 is given).  Prunes that cut no solution:
 
+* a partial placement that an image already beats on the strings placed so far (an image w[g]
+  that differs from w first at a string i, reading only strings up to the current one, and is
+  smaller there) is beaten whatever the later strings hold: the search backs up at once instead of
+  visiting every completion to reject it (14 links: half the search's steps; issue 41);
+
 * the set of all inner links is sparse too, so the excess X above h − 1 on long strings (and
   above the least weight on strings that are never short) is at most B0 + Σ k − l, where
   B0 = n2 − (h − 1)·(short-able strings) − (least weights of the others);
@@ -107,14 +112,20 @@ def _accept(a, b, l, pebbles, arcs, seen, parent, stack):
 
 
 @njit(cache=True)
-def _lex_least(w, group):
-    """Whether w is lexicographically least among its images w[g] under the rows of ``group``."""
-    E = len(w)
+def _not_beaten(w, group, e):
+    """Whether no image w[g] under a row g of ``group`` is already lexicographically smaller than
+    w, judged on the strings 0 … e placed so far (e = len(w) − 1: w is the lex-least of its images).
+
+    Each row is compared up to the first string where w and its image differ, or where the image
+    reads a string not yet placed: there the row cannot decide yet, whatever comes later.
+    """
     for g in range(group.shape[0]):
-        for i in range(E):
-            image = w[group[g, i]]
-            if image != w[i]:
-                if image < w[i]:
+        for i in range(e + 1):
+            j = group[g, i]
+            if j > e:
+                break
+            if w[j] != w[i]:
+                if w[j] < w[i]:
                     return False
                 break
     return True
@@ -223,10 +234,12 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
         if not ok:
             continue
         if e == E - 1:
-            if _lex_least(w, group):
+            if _not_beaten(w, group, e):
                 if found < out.shape[0]:
                     out[found, :] = w
                 found += 1
+            continue
+        if not _not_beaten(w, group, e):  # every placement below is beaten by its image
             continue
         left[e + 1], excess[e + 1], deficit[e + 1] = left[e] - we, x, d
         e += 1

@@ -73,6 +73,11 @@ def test_formats_told_apart():
     assert detect("digraph { a -> b }") == "dot"
     assert detect("a b\nb c\n") == "edgelist"
     assert detect("0,1\n1,0\n") == "matrix"
+    # a matrix written with spaces (as numpy.savetxt or a hand writes it) is a matrix, not an edge list:
+    # its rows repeat a number, which no joint's line can
+    spaced = "0 1 0 1\n1 0 1 0\n0 1 0 1\n1 0 1 0\n"
+    assert detect(spaced) == "matrix" and read_text(spaced)[0].chain.compact() == "0-1 0-3 1-2 2-3"
+    assert detect("0 1 2\n2 3 4\n") == "edgelist"  # two double joints: no number repeats within a line
     assert detect("anything", ".gv") == "dot"
     assert detect("dof = 1\nname = 'x'\n") == "unknown"
 

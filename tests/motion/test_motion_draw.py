@@ -99,3 +99,29 @@ def test_a_linkage_shows_itself_in_a_notebook(four_bar):
     from synth.display import svg_of
 
     assert svg_of(four_bar) == linkage_svg(four_bar)
+
+
+@pytest.mark.parametrize("along", [0.0, 7.5, -12.0])
+def test_a_sliders_block_is_drawn_where_the_slider_is_wherever_its_joint_lies_on_its_line(along):
+    """A prismatic joint's point may be anywhere on its line (the dimensional synthesis leaves it where
+    the search put it): the block is drawn at the foot of the slider's pin, the frame is the guide, and
+    an offset pin gets an arm to its block."""
+    from synth.motion import Linkage
+    from synth.motion_draw import _elements, _still
+
+    u = np.array([math.cos(0.4), math.sin(0.4)])
+    pin = np.array([3.0, 2.5])  # the slider's pin 2-3, 0.8 off the line through (3, 1.7) along u
+    foot = pin - 0.8 * np.array([-u[1], u[0]])
+    chain = Chain.parse("0-1 1-2 2-3 3=0")
+    at = {(0, 1): [0, 0], (1, 2): [0.6, 0.8], (2, 3): pin, (0, 3): foot + along * u}  # joints by their links
+    slide = next(k for k, j in enumerate(chain.joints) if tuple(sorted(j)) == (0, 3))
+    slider_crank = Linkage(Mechanism(chain, 0), (0,), [at[tuple(sorted(j))] for j in chain.joints], {slide: tuple(u)})
+    joints, angles, tracers = _still(slider_crank)
+    elements = _elements(slider_crank, joints, angles, tracers, {})
+    block = [e for e in elements if e["tag"] == "polygon" and e["style"].get("fill") == "white"]
+    assert len(block) == 1
+    assert np.allclose(block[0]["frames"][0].mean(axis=0), foot, atol=1e-9)
+    arms = [e["frames"][0] for e in elements if e["tag"] == "polyline" and len(e["frames"][0]) == 2]
+    assert any(np.allclose(a, [pin, foot], atol=1e-9) for a in arms)
+    guide = [e for e in elements if e["tag"] == "polyline" and e["style"].get("stroke-dasharray") == "5 3"]
+    assert len(guide) == 1  # dashed: the frame carries the guide

@@ -1,0 +1,376 @@
+"""The curve index and the atlas search piece by piece: every stored curve swept again by the motion layer
+and its coefficients fitted by least squares (not the index's FFT), the curve forms and alignments against
+transformed curves sampled anew, the misfit against a projection on every shift, every refusal's sentence."""
+
+from __future__ import annotations
+
+import json
+import math
+import sqlite3
+
+import numpy as np
+import pytest
+
+from synth.atlas import AtlasError, NoCurveIndex, index_curves, index_info, parse_grid, run_grid, search_atlas
+from synth.atlas import curves
+from synth.atlas.curves import (HARMONICS, STEPS, IndexResult, IndexSettings, _by_arc_length,
+                                _slides_text, _turned, harmonics, index_units, slides_of, tracer_links, unblob,
+                                untimed_parameter)
+from synth.atlas.search import (SHIFTS, AtlasSearchResult, _form, _misfits, _refine, _variants, descriptor_of,
+                                retrieve)
+from synth.dimension import PathTarget
+from synth.errors import BadTarget, InvalidOption
+from synth.motion import Linkage, sweep
+from synth.structure.chain import Chain, Mechanism
+from synth.synthesis.type_synthesis import mechanisms_of
+
+WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")
+
+
+@pytest.fixture(scope="module")
+def index(tmp_path_factory):
+    """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism."""
+    db = tmp_path_factory.mktemp("index") / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    result = index_curves(db, settings=IndexSettings(samples=3), workers=1)
+    return db, result
+
+
+def _sql(db, statement, *args):
+    with sqlite3.connect(db) as conn:
+        rows = list(conn.execute(statement, args))
+    conn.close()
+    return rows
+
+
+# ------------------------------------------------------------------ the index
+def test_settings_and_results_as_stored():
+    assert IndexSettings().to_meta() == '{"harmonics": 12, "samples": 200, "seed": 0, "steps": 256, "triads": false}'
+    assert json.loads(IndexSettings(5, 3, True, (0, 2)).to_meta()) == {
+        "harmonics": 12, "samples": 5, "seed": 3, "steps": 256, "triads": True, "prismatic": [0, 2]}
+    assert IndexResult(3, 2, 1, 40, 1.23456, "local 1").to_dict() == {
+        "units_total": 3, "units_run": 2, "units_skipped": 1, "curves": 40, "seconds": 1.235, "executor": "local 1"}
+
+
+def test_tracer_links_are_the_links_not_on_the_frame():
+    assert tracer_links(Mechanism(WATT, 0)) == [2, 5]  # the frame 0 is jointed to 1, 3 and 4
+    assert tracer_links(Mechanism(STEPHENSON, 0)) == [2, 4, 5]  # to 1 and 3
+    assert tracer_links(Mechanism(STEPHENSON, 1)) == [3, 5]  # to 0, 2 and 4
+
+
+def test_small_helpers_by_hand():
+    x, y = _turned((1.0, 0.0), math.pi / 2)
+    assert abs(x) < 1e-15 and y == pytest.approx(1.0)
+    assert _turned((0.6, 0.8), math.pi) == pytest.approx((-0.6, -0.8))
+    assert slides_of('{"3": [0.0, 1.0], "5": [0.6, -0.8]}') == {3: (0.0, 1.0), 5: (0.6, -0.8)}
+    assert slides_of(None) == {}
+
+    class Slid:
+        slides = {2: (0.1234567890123456789, -1.0)}
+
+    assert _slides_text(Slid()) == '{"2": [0.123456789012346, -1.0]}'
+    Slid.slides = {}
+    assert _slides_text(Slid()) is None
+    c = np.array([1 + 2j, -3.5j])
+    assert unblob(curves._blob(c)).tolist() == c.tolist() and len(curves._blob(c)) == 32
+    # a 2 × 1 rectangle: perimeter 6, corners at arc lengths 0, 2, 3, 5
+    assert untimed_parameter(np.array([0, 2, 2 + 1j, 1j])) == pytest.approx(
+        [0, 2 * math.pi * 2 / 6, 2 * math.pi * 3 / 6, 2 * math.pi * 5 / 6])
+    # resampled at as many points equally spaced along the closed polygon: a 2 × 1 rectangle's 6 points
+    square = _by_arc_length(np.array([0, 2, 2 + 1j, 1j]))
+    assert square == pytest.approx([0, 1.5, 2 + 1j, 0.5 + 1j])
+
+
+def test_the_units_are_the_engines_mechanisms_with_input_links(index):
+    db, result = index
+    conn = sqlite3.connect(db)
+    units = index_units(conn, IndexSettings(samples=3))
+    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in conn.execute("SELECT id, chain FROM chains")}
+    conn.close()
+    expected = sorted((cid, m.frame, m.input_link) for cid, c in chains.items() for m in mechanisms_of(c, input_link=True))
+    assert sorted((u.chain, u.frame, u.input_link) for u in units) == expected
+    assert (result.units_total, result.units_run, result.executor) == (len(expected), len(expected), "local 1")
+    assert [u for u in index_units(sqlite3.connect(db), IndexSettings(), links=(5, 5))] == []
+    four = index_units(sqlite3.connect(db), IndexSettings(), links=(4, 4))
+    assert [(u.frame, u.input_link) for u in four] == [(0, 1)]  # the four-bar: one crank up to symmetry
+
+
+def _walked(z):
+    """Points at equal arc lengths along the closed polygon through z, from z[0] (a walk, segment by segment)."""
+    points = list(z) + [z[0]]
+    lengths = [abs(b - a) for a, b in zip(points, points[1:])]
+    total, out, k, done = sum(lengths), [], 0, 0.0
+    for i in range(len(z)):
+        s = total * i / len(z)
+        while k < len(lengths) - 1 and done + lengths[k] < s:
+            done += lengths[k]
+            k += 1
+        out.append(points[k] + (points[k + 1] - points[k]) * ((s - done) / lengths[k]))
+    return np.array(out)
+
+
+def test_every_stored_curve_is_its_linkage_swept_again(index):
+    db, result = index
+    rows = _sql(db, "SELECT s.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer, "
+                    "s.timed, s.untimed, s.slides, c.chain FROM curve_samples s JOIN chains c ON c.id = s.chain")
+    assert len(rows) == result.curves
+    units = _sql(db, "SELECT chain, frame, input_link, status, samples FROM curve_units")
+    # each done mechanism: 3 poses, each with a curve on every tracer link
+    per = {(c, f, i): (s, n) for c, f, i, s, n in units}
+    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in _sql(db, "SELECT id, chain FROM chains")}
+    assert result.curves == sum(3 * len(tracer_links(Mechanism(chains[c], f))) for (c, f, i), (s, _) in per.items()
+                                if s == "done")
+    assert result.units_skipped == sum(s == "skipped" for s, _ in per.values()) > 0
+    assert all(n == 3 for s, n in per.values() if s == "done")
+    for chain_id, frame, input_link, joint, tracer, points, at, timed, untimed, slides, text in rows[::5]:
+        chain = chains[chain_id]
+        assert chain.joints[joint] in {(frame, input_link), (input_link, frame)} or {frame, input_link} <= set(
+            chain.joints[joint])
+        linkage = Linkage(Mechanism(chain, frame, input_link), (joint,), json.loads(points), slides_of(slides),
+                          tracers={"P": (tracer, tuple(json.loads(at)))})
+        motion = sweep(linkage, steps=STEPS + 1)
+        assert motion.stopped is None and motion.inputs[-1, 0] - motion.inputs[0, 0] == pytest.approx(2 * math.pi)
+        xy = motion.tracers["P"][:STEPS]
+        z = xy[:, 0] + 1j * xy[:, 1]
+        phi = motion.inputs[:STEPS, 0]
+        fitted = harmonics(z, phi, HARMONICS)  # in the absolute input angle, by least squares
+        stored = unblob(timed)
+        assert stored.shape == (2 * HARMONICS + 1,)
+        assert np.abs(stored - fitted).max() <= 1e-9 * np.abs(fitted).max()
+        assert abs(z[0] - complex(*json.loads(at))) <= 1e-9 * np.abs(fitted).max()  # the pose's point first
+        # untimed: the polygon through the points walked at equal arc lengths from the pose's point, then
+        # fitted in t = 2π s / L by least squares
+        even = _walked(z)
+        loose = harmonics(even, 2 * math.pi * np.arange(STEPS) / STEPS, HARMONICS)
+        assert np.abs(unblob(untimed) - loose).max() <= 1e-9 * np.abs(loose).max()
+
+
+def test_the_skipped_mechanisms_say_why(index):
+    db, _ = index
+    notes = {note for (note,) in _sql(db, "SELECT note FROM curve_units WHERE status = 'skipped'")}
+    assert notes == {"moved by Newton's method (a triad or higher group): index it with triads"}
+    assert _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done' AND note IS NOT NULL") == [(0,)]
+
+
+def test_index_info_and_its_refusals(index, tmp_path):
+    db, result = index
+    info = index_info(db)
+    skipped = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'skipped'")[0][0]
+    assert info == {"settings": json.loads(IndexSettings(samples=3).to_meta()),
+                    "mechanisms": result.units_total - skipped, "skipped": skipped, "curves": result.curves}
+    bare = tmp_path / "bare.sqlite"
+    run_grid(parse_grid("dof = 1\nlinks = 4"), bare, workers=1)
+    with pytest.raises(NoCurveIndex) as e:
+        index_info(bare)
+    assert str(e.value) == f"the atlas {bare} has no curve index: build it with 'mechsynth atlas --db {bare} --index-curves'"
+    with sqlite3.connect(bare) as conn:
+        conn.execute("INSERT INTO meta VALUES ('curve_index_version', '7')")
+    conn.close()
+    with pytest.raises(NoCurveIndex) as e:
+        index_info(bare)
+    assert str(e.value) == (f"the atlas {bare} has a curve index of version 7, but this mechsynth reads version 1: "
+                            "rebuild it in a fresh copy of the atlas")
+    with pytest.raises(NoCurveIndex) as e:
+        index_curves(bare, settings=IndexSettings(samples=1), workers=1)
+    assert str(e.value) == (f"the atlas {bare} has a curve index of version 7; this mechsynth writes version 1: build "
+                            "the index in a fresh copy of the atlas")
+
+
+@pytest.mark.parametrize("options, sentence", [
+    (dict(workers=0), "workers must be a whole number ≥ 1, not 0"),
+    (dict(workers=True), "workers must be a whole number ≥ 1, not True"),
+    (dict(settings=IndexSettings(samples=0)), "samples must be a whole number 1 … 100 000 per mechanism, not 0"),
+    (dict(settings=IndexSettings(samples=100_001)), "samples must be a whole number 1 … 100 000 per mechanism, not 100001"),
+    (dict(settings=IndexSettings(samples=2.0)), "samples must be a whole number 1 … 100 000 per mechanism, not 2.0"),
+    (dict(settings=IndexSettings(samples=True)), "samples must be a whole number 1 … 100 000 per mechanism, not True"),
+    (dict(settings=IndexSettings(prismatic=(2, 1))), "prismatic must be a range of whole numbers of prismatic pairs, "
+                                                     "low to high, not (2, 1)"),
+    (dict(settings=IndexSettings(prismatic=(-1, 0))), "prismatic must be a range of whole numbers of prismatic pairs, "
+                                                      "low to high, not (-1, 0)"),
+    (dict(settings=IndexSettings(prismatic=(0, 1.0))), "prismatic must be a range of whole numbers of prismatic "
+                                                       "pairs, low to high, not (0, 1.0)"),
+])
+def test_index_options_are_refused_with_their_sentence(tmp_path, options, sentence):
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid("dof = 1\nlinks = 4"), db, workers=1)
+    before = db.read_bytes()
+    with pytest.raises(InvalidOption) as e:
+        index_curves(db, **options)
+    assert str(e.value) == sentence
+    assert db.read_bytes() == before
+
+
+def test_an_index_is_resumed_only_with_its_settings(tmp_path):
+    db = tmp_path / "a.sqlite"
+    with pytest.raises(AtlasError) as e:
+        index_curves(db, settings=IndexSettings(samples=1), workers=1)
+    assert str(e.value) == f"no atlas at {db} (run 'mechsynth grid GRID.toml --db {db}' first)"
+    run_grid(parse_grid('dof = 1\nlinks = 4\nprismatic = "0..1"'), db, workers=1)
+    first = index_curves(db, settings=IndexSettings(samples=1, prismatic=(0, 1)), workers=1)
+    assert first.units_run == first.units_total > 1
+    for settings, said in ((IndexSettings(samples=2, prismatic=(0, 1)), "2 samples per mechanism, seed 0, without "
+                                                                        "triads, 0..1 prismatic pairs"),
+                           (IndexSettings(samples=1, seed=4, triads=True), "1 samples per mechanism, seed 4, triads")):
+        with pytest.raises(AtlasError) as e:
+            index_curves(db, settings=settings, workers=1)
+        assert str(e.value) == (f"the curve index of {db} was built with 1 samples per mechanism, seed 0, without "
+                                f"triads, 0..1 prismatic pairs; resume it with the same settings, not {said}")
+    again = index_curves(db, settings=IndexSettings(samples=1, prismatic=(0, 1)), workers=1)
+    assert (again.units_total, again.units_run, again.curves) == (first.units_total, 0, first.curves)
+    # the slider-crank's samples keep their sliding line; the four-bar's have none
+    assert {s is None for (s,) in _sql(db, "SELECT slides FROM curve_samples")} == {True, False}
+
+
+# ------------------------------------------------------------------ the search's pieces
+def test_the_forms_of_a_curve_are_the_transformed_curves_sampled_anew():
+    rng = np.random.default_rng(4)
+    h = 4
+    c = rng.normal(size=2 * h + 1) + 1j * rng.normal(size=2 * h + 1)
+    t = np.linspace(0, 2 * math.pi, 64, endpoint=False)
+    n = np.arange(-h, h + 1)
+
+    def curve(x):
+        return np.exp(1j * np.outer(x, n)) @ c
+
+    forms = {(False, False): curve(t), (True, False): np.conj(curve(-t)),   # mirrored, the crank's angle with it
+             (False, True): curve(-t), (True, True): np.conj(curve(t))}     # run backwards; both
+    for (mirror, reverse), z in forms.items():
+        assert np.abs(_form(c, mirror, reverse) - harmonics(z, t, h)).max() < 1e-12, (mirror, reverse)
+    assert _form(np.stack([c, 2 * c]), True, False)[1] == pytest.approx(2 * np.conj(c))  # row by row
+    assert _variants(True) == ((False, False), (True, False))
+    assert _variants(False) == ((False, False), (False, True), (True, False), (True, True))
+
+
+def _projection_misfit(t, u, tau):
+    """min over λ of ‖t − λ·u·e^{inτ}‖ / ‖t‖ without the mean, λ by least squares."""
+    h = (len(t) - 1) // 2
+    n = np.arange(-h, h + 1)
+    keep = n != 0
+    v = (u * np.exp(1j * n * tau))[keep]
+    lam = np.linalg.lstsq(v[:, None], t[keep], rcond=None)[0][0]
+    return np.linalg.norm(t[keep] - lam * v) / np.linalg.norm(t[keep]), lam
+
+
+def test_the_misfit_on_the_shift_grid_is_the_best_projection_on_every_shift():
+    rng = np.random.default_rng(8)
+    h = 5
+    t = rng.normal(size=2 * h + 1) + 1j * rng.normal(size=2 * h + 1)
+    u = rng.normal(size=(3, 2 * h + 1)) + 1j * rng.normal(size=(3, 2 * h + 1))
+    u[2] = 0
+    u[2, h] = 5  # only a mean: no shape at all
+    misfit, shift = _misfits(t, u)
+    taus = 2 * math.pi * np.arange(SHIFTS) / SHIFTS
+    for row in range(2):
+        slow = [_projection_misfit(t, u[row], tau)[0] for tau in taus]
+        assert misfit[row] == pytest.approx(min(slow), abs=1e-12)
+        assert shift[row] == pytest.approx(taus[int(np.argmin(slow))])
+    assert misfit[2] == math.inf
+
+
+def test_an_aligned_copy_fits_exactly_and_its_shift_is_refined_between_the_grid():
+    rng = np.random.default_rng(9)
+    h = 6
+    n = np.arange(-h, h + 1)
+    u = rng.normal(size=2 * h + 1) + 1j * rng.normal(size=2 * h + 1)
+    lam, tau = 0.4 * np.exp(2.1j), 2 * math.pi * 100.37 / SHIFTS  # between grid shifts 100 and 101
+    t = lam * u * np.exp(1j * n * tau)
+    t[h] = 7 - 3j  # another mean: the translation is left out
+    misfit, shift = _misfits(t, u[None])
+    assert misfit[0] < 0.02 and shift[0] == pytest.approx(2 * math.pi * 100 / SHIFTS)
+    value, refined, scale = _refine(t, u, float(shift[0]))
+    assert value < 1e-7 and refined == pytest.approx(tau, abs=1e-7) and scale == pytest.approx(lam, abs=1e-7)
+    # a shift that is already the best is kept
+    exact = lam * u * np.exp(1j * n * shift[0])
+    value, kept, _ = _refine(exact, u, float(shift[0]))
+    assert value < 1e-12 and kept == pytest.approx(shift[0], abs=1e-9)
+
+
+def _ellipse(count, timed=True, start=0.0):
+    t = start + np.linspace(0, 2 * math.pi, count, endpoint=False)
+    return PathTarget(np.c_[2 * np.cos(t), np.sin(t)], inputs=t if timed else None)
+
+
+def test_a_targets_descriptor():
+    c, h, timed = descriptor_of(_ellipse(30))
+    # 2 cos t + i sin t = 1.5 e^{it} + 0.5 e^{−it}
+    assert (h, timed) == (12, True) and c[h + 1] == pytest.approx(1.5) and c[h - 1] == pytest.approx(0.5)
+    assert np.abs(np.delete(c, [h - 1, h + 1])).max() < 1e-12
+    assert descriptor_of(_ellipse(7, timed=False))[1] == 3 and descriptor_of(_ellipse(24))[1] == 11
+    assert descriptor_of(_ellipse(25))[1] == 12 and descriptor_of(_ellipse(26))[1] == 12
+    c, h, timed = descriptor_of(_ellipse(40, timed=False))
+    points = _ellipse(40).points
+    z = points[:, 0] + 1j * points[:, 1]
+    assert not timed and np.abs(c - harmonics(z, untimed_parameter(z), 12)).max() < 1e-12
+
+
+def test_targets_the_index_cannot_serve_are_refused_with_their_sentence():
+    with pytest.raises(BadTarget) as e:
+        descriptor_of(_ellipse(6, timed=False))
+    assert str(e.value) == "the atlas search needs at least 7 target points to describe a closed curve, not 6"
+    t = np.linspace(0, 2 * math.pi, 8, endpoint=False)  # a gap of exactly 45° between inputs is served
+    assert descriptor_of(PathTarget(np.c_[np.cos(t), np.sin(t)], inputs=t))[2]
+    wide = np.append(t[:-1], t[-1] - 0.02)  # the last gap 45° + 1.1°
+    with pytest.raises(BadTarget) as e:
+        descriptor_of(PathTarget(np.c_[np.cos(wide), np.sin(wide)], inputs=wide))
+    assert str(e.value) == ("the atlas's curves are indexed over a full turn of a crank: this timing leaves a gap of 46° "
+                            "(at most 45°) — search a given topology instead (--mechanism)")
+    # five unit steps along a line, then a last point at distance d from the first: served while d ≤ 3 median steps
+    for d, served in ((2.999, True), (3.01, False)):
+        target = PathTarget([[0.0, 0.0], [1, 0], [2, 0], [3, 0], [4, 0], [5, 0], [0, d]])
+        if served:
+            assert not descriptor_of(target)[2]
+        else:
+            with pytest.raises(BadTarget) as e:
+                descriptor_of(target)
+            assert str(e.value) == ("the atlas's curves are closed and this path is open (its ends are 3.01 apart, "
+                                    "3.0 times its median spacing): search a given topology instead (--mechanism), or "
+                                    "give points all round a closed curve")
+
+
+def test_retrieval_keeps_the_best_of_each_topology(index):
+    db, _ = index
+    target = _ellipse(36)
+    found, size = retrieve(db, target, per_topology=2)
+    assert size == _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    topologies = {}
+    for c in found:
+        topologies.setdefault(c.topology, []).append(c)
+    assert all(len(group) <= 2 for group in topologies.values())
+    done = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done'")[0][0]
+    assert len(topologies) == done  # no limit on topologies: every indexed one
+    t, h, _ = descriptor_of(target)
+    for c in found:  # each candidate's misfit is its stored curve's, aligned anew
+        (coefficients,) = _sql(db, "SELECT timed FROM curve_samples WHERE id = ?", c.row)[0]
+        u = _form(unblob(coefficients)[HARMONICS - h:HARMONICS + h + 1], c.mirror, c.reverse)
+        assert c.misfit == pytest.approx(_projection_misfit(t, u, c.shift)[0], abs=1e-9)
+        assert not c.reverse  # a timed target is never run backwards
+    one, _ = retrieve(db, target, per_topology=1, topologies=1)
+    links = {c.links for c in found}
+    assert len(one) == len(links)  # at least the best topology of every link count
+    best = {}
+    for c in sorted(found, key=lambda c: c.misfit):
+        best.setdefault(c.links, c)
+    assert sorted(c.row for c in one) == sorted(c.row for c in best.values())
+    only_four, size = retrieve(db, target, links=(4, 4))
+    assert {c.links for c in only_four} == {4} and size == _sql(
+        db, "SELECT COUNT(*) FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE c.links = 4")[0][0]
+
+
+@pytest.mark.parametrize("options, sentence", [
+    (dict(top=0), "top must be a whole number ≥ 1, not 0"),
+    (dict(per_topology=True), "per_topology must be a whole number ≥ 1, not True"),
+    (dict(workers=1.5), "workers must be a whole number ≥ 1, not 1.5"),
+    (dict(budget=0), "the budget must be a positive number of seconds, not 0"),
+    (dict(budget=math.inf), "the budget must be a positive number of seconds, not inf"),
+    (dict(budget="5"), "the budget must be a positive number of seconds, not '5'"),
+])
+def test_search_options_are_refused_with_their_sentence(index, options, sentence):
+    with pytest.raises(InvalidOption) as e:
+        search_atlas(index[0], _ellipse(30), **options)
+    assert str(e.value) == sentence
+
+
+def test_a_result_without_matches_has_no_best():
+    assert AtlasSearchResult([], 10, 0, 0.1, True).best is None
+    assert AtlasSearchResult(["a", "b"], 10, 2, 0.1, True).best == "a"

@@ -1,0 +1,129 @@
+"""The count's search of stage B (issue 41): the compiled kernel run over the strings of H in
+maximum-adjacency order, with the prefix prune and one automorphism per coset of the parallel-string
+swaps, against the listing's search (the strings' own order, every lex-least placement written out),
+against counting by orbits (Burnside's lemma, no lex-least test), and against the brute-force oracle.
+
+The kernel is forced on every code here (small queries do not load it otherwise); the 14-link
+comparison is ``slow`` (the 16-link one is benchmarks/logs/count_search_16.txt).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import synth
+from synth.synthesis import stage_a, stage_b
+from tests.oracles.chains import brute_force_chains_once, count_by_code
+
+# simple joints (the count's kernel), every motion space and convention the kernel takes
+QUERIES = [dict(dof=1, links=10), dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11),
+           dict(dof=2, links=11, fractionated=False), dict(dof=3, links=12), dict(dof=3, links=10, n1=(0, 3)),
+           dict(dof=1, links=7, h=2), dict(dof=1, links=11, h=4), dict(dof=1, links=14, h=5),
+           dict(dof=1, links=12, h=6), dict(dof=2, links=9, rigid_subchains=True), dict(dof=1, links=12, planar_only=True)]
+
+
+def _ids(query):
+    return ",".join(f"{k}={v}" for k, v in query.items())
+
+
+@pytest.fixture
+def kernel_everywhere(monkeypatch):
+    monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
+
+
+def _compare_units(query) -> int:
+    """Per unit: the count's search, the listing's rows and (where it applies) the orbits agree."""
+    compared = 0
+    for u in synth.plan_units(**query, workers=1):
+        graph = u.contracted
+        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
+            continue
+        args = (u.code, graph, u.conventions)
+        counted, _, whole = stage_b._kernel_placements(*args, None, listing=False)
+        listed, rows, _ = stage_b._kernel_placements(*args, None, listing=True)
+        assert counted == listed == len(rows), u.key
+        if whole and stage_b.orbits_apply(*args):
+            assert counted == stage_b.count_orbits(*args), u.key
+        compared += 1
+    return compared
+
+
+@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+def test_the_count_search_finds_as_many_placements_as_the_listing(query, kernel_everywhere):
+    """Unit by unit: as many placements in the search order as the listing writes out in the
+    strings' own order (one per orbit either way), and as many orbits as Burnside's lemma counts."""
+    assert _compare_units(query)
+
+
+@pytest.mark.slow
+def test_the_count_search_at_14_links(kernel_everywhere):
+    """The same on every one of the 1 040 units of the 14-link 1-DOF chains."""
+    assert _compare_units(dict(dof=1, links=14)) == 1040
+
+
+def test_the_search_order_keeps_bundles_whole_and_relabels_the_automorphisms():
+    """On every unit of 12 links: a permutation of the strings with parallel strings adjacent and
+    in their order, and the automorphisms relabelled as the count does (``back[g[order]]``) move a
+    placement read in the search order as the automorphisms move it in the strings' own order."""
+    rng = np.random.default_rng(41)
+    checked = 0
+    for u in synth.plan_units(dof=1, links=12, workers=1):
+        graph = u.contracted
+        inner, *_ = stage_b._pebble_vertices(graph.vertices, u.conventions.h, u.conventions.threshold)
+        a_list, b_list = stage_b._game_ends(graph, inner)
+        order = stage_b._search_order(graph.edges, a_list, b_list, len(inner))
+        assert sorted(order.tolist()) == list(range(len(graph.edges)))
+        edges = [graph.edges[e] for e in order]
+        runs = [e for i, e in enumerate(edges) if not i or e != edges[i - 1]]
+        assert len(runs) == len(set(runs)), u.key  # each bundle in one piece
+        assert all(order[i] < order[i + 1] for i in range(len(edges) - 1) if edges[i] == edges[i + 1])
+        group, _ = graph.edge_group()
+        if not group:
+            continue
+        group = np.asarray(group, dtype=np.int64)
+        relabelled = np.argsort(order)[group[:, order]]
+        w = rng.integers(0, 5, size=(8, len(edges)))
+        for g, g2 in zip(group, relabelled):
+            assert (w[:, order][:, g2] == w[:, g][:, order]).all(), u.key
+        checked += 1
+    assert checked
+
+
+def test_one_automorphism_per_coset_decides_as_the_whole_group():
+    """For every placement with ordered bundles of every unit of 10 links, lex-least under the
+    whole group of H exactly when lex-least under the rows ``_in_bundle_order`` keeps."""
+    checked = 0
+    for u in synth.plan_units(dof=1, links=10, workers=1):
+        graph = u.contracted
+        group, whole = graph.edge_group()
+        if not group:
+            continue
+        assert whole
+        lows, parallel = stage_b._string_limits(graph, u.conventions)
+        vectors = np.asarray(stage_b._compositions(u.code.count(2) - sum(lows), len(lows)), dtype=np.int64) + lows
+        for k, _ in parallel:
+            vectors = vectors[vectors[:, k] >= vectors[:, k - 1]]
+        full = {tuple(w) for w in stage_b._lex_least(vectors, group).tolist()}
+        rows = stage_b._in_bundle_order(graph.edges, np.asarray(group, dtype=np.int64))
+        assert len(rows) <= len(group)
+        assert {tuple(w) for w in stage_b._lex_least(vectors, rows).tolist()} == full, u.key
+        checked += len(vectors)
+    assert checked
+
+
+@pytest.mark.parametrize("dof, links, rigid", [(1, 6, False), (1, 8, False), (2, 7, False), (3, 8, False),
+                                               (1, 8, True), (0, 7, True)])
+def test_counts_with_the_count_search_equal_the_brute_force(dof, links, rigid, kernel_everywhere):
+    """Counts by code, the kernel's count search on every code, against the oracle (which shares no
+    code with the engine)."""
+    got = synth.count_chains(dof, links, rigid_subchains=rigid, workers=1)
+    expected = count_by_code(brute_force_chains_once(links, dof, rigid_subchains=rigid))
+
+    def key(name):  # '440/0' -> the oracle's (assortment, composition) with trailing zeros stripped
+        assortment = synth.Code.parse(name).assortment
+        while assortment and assortment[-1] == 0:
+            assortment = assortment[:-1]
+        return tuple(assortment), ()
+
+    assert {key(name): n for name, n in got.by_code.items()} == expected
