@@ -56,6 +56,10 @@ def test_every_synthesis_model_uses_the_pep8_api(solver_calls):
     # crank constraint is the one stage B's shortcuts do not take)
     counts = synth.count_chains(1, 10, v="0..3", require=["5=1.."], cranks=["5=5"], workers=1)
     assert counts["count"] == 32  # models/locomotive_cranks.toml
+    # (stage A of codes this small runs its plain search: its model is solved here)
+    from synth.synthesis.stage_a import Conventions, _contracted_by_model
+
+    assert len(_contracted_by_model(synth.Code.parse("6301/0"), Conventions())) > 0
     assert {"synth.synthesis.number_synthesis", "synth.synthesis.stage_a", "synth.synthesis.stage_b"} <= set(solver_calls)
 
 
