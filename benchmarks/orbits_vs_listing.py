@@ -32,22 +32,12 @@ ROOT = Path.cwd()
 sys.path.insert(0, str(ROOT))
 
 
-def _listed(code, graph, conv) -> int:
-    """The chains the listing finds for one unit (see the module)."""
-    from synth.synthesis.stage_b import _distributions, _passing, realise
-
-    solutions, one_per_orbit, checked = _distributions(code, graph, conv, None)
-    if one_per_orbit and checked:
-        return len(_passing(graph, conv, solutions, None, checked))
-    return len(realise(code, graph, conv))
-
-
 def compare(dof: int, links: int, h: int, methods: list[str]) -> int:
     from synth import ChainQuery
-    from synth.synthesis.stage_b import count_orbits, count_realised, load_kernel
+    from synth.synthesis.stage_b import count_listed, count_orbits, count_realised, load_kernel
     from synth.synthesis.type_synthesis import job_units, plan_jobs
 
-    ways = {"count": count_realised, "listing": _listed, "orbits": count_orbits}
+    ways = {"count": count_realised, "listing": count_listed, "orbits": count_orbits}
     count = [ways[m] for m in methods]
     load_kernel()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()

@@ -23,7 +23,7 @@ from ..structure.chain import Chain
 from ..structure.code import Code
 from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_orbits", "count_realised", "load_kernel", "orbits_apply", "realise"]
+__all__ = ["count_listed", "count_orbits", "count_realised", "load_kernel", "orbits_apply", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -67,6 +67,23 @@ def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict
     solutions, one_per_orbit, checked = _distributions(code, graph, conv, stats)
     kept = _passing(graph, conv, solutions, stats, checked)
     return len(kept) if one_per_orbit else len(_distinct(graph, conv, kept, stats))
+
+
+def count_listed(code: Code, graph: Contracted, conv: Conventions) -> int:
+    """The chains the listing path finds for one unit: the weight vectors it lists that pass the
+    sub-chain test, one per orbit where the whole group of H is listed (else the chains, by
+    certificate) — the listing's own count, against which :func:`count_realised`'s search is checked.
+
+    >>> from synth.synthesis.stage_a import contracted_graphs
+    >>> code = Code((4, 2), 0, ())
+    >>> graph = contracted_graphs(code, Conventions())[0]
+    >>> count_listed(code, graph, Conventions()) == count_realised(code, graph, Conventions()) == 2
+    True
+    """
+    solutions, one_per_orbit, checked = _distributions(code, graph, conv, None)
+    if one_per_orbit and checked:
+        return len(_passing(graph, conv, solutions, None, checked))
+    return len(realise(code, graph, conv))
 
 
 def _distinct(graph: Contracted, conv: Conventions, kept: list, stats: dict | None) -> list[Chain]:
