@@ -88,7 +88,7 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
     >>> lk.dof
     1
     """
-    from .draw._layout import layout
+    from .draw import layout
     from .errors import MotionError
 
     chain = mechanism.chain
@@ -147,11 +147,9 @@ _GOOD_TRANSMISSION = math.radians(20)
 def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
     angle, swing), and what is wrong with it in words (None when nothing is)."""
-    from .motion import sweep
-    from .motion._sweep import _solver
+    from .motion import pose_branch, sweep
 
-    solver = _solver(linkage)
-    lo, hi, _, _ = solver.branch
+    lo, hi, closed_form = pose_branch(linkage)
     revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
     full = revolute and math.isinf(lo) and math.isinf(hi)
     # a crank turns once; a rocker swings from limit to limit (which may span more than a turn), an
@@ -165,7 +163,7 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
     # count (a group moved by Newton's method reports none)
     worst = 0.0
     if full:
-        transmission = sweep(linkage, steps=73).transmission.values() if solver.plan is not None else ()
+        transmission = sweep(linkage, steps=73).transmission.values() if closed_form else ()
         worst = min([min(t["min"], math.pi - t["max"]) for t in transmission] + [math.pi / 2])
     good = full and worst >= _GOOD_TRANSMISSION
     if good:

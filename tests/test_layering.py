@@ -78,6 +78,52 @@ def test_the_application_and_the_benchmarks_use_public_names_only():
                 assert not private, f"{f.relative_to(ROOT)} imports {module}:{name}"
 
 
+def _owner_of_private(module: str, name: str) -> str | None:
+    """The package a private part of an import belongs to: for ``a.b._c`` (a module) or ``a.b.m:_f``
+    (a name of module ``a.b.m``) the package ``a.b``; None when no part is private (dunders such as
+    ``__version__`` are public)."""
+    parts = module.split(".") + ([name] if name else [])
+    for i, part in enumerate(parts[1:], 1):
+        if part.startswith("_") and not (part.startswith("__") and part.endswith("__")):
+            owner = parts[:i]
+            if not (ROOT.joinpath(*owner) / "__init__.py").is_file():
+                owner = owner[:-1]  # a name of a module: private to that module's package
+            return ".".join(owner)
+    return None
+
+
+def _module_name(path: Path) -> str:
+    return ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
+
+
+def test_no_import_of_a_private_name_from_another_package():
+    """A name with a leading underscore (a module or an attribute) is private to the package that holds
+    it and its sub-packages: ``synth.draw._layout`` may be imported inside ``synth.draw`` only,
+    ``synth.structure.chain._helper`` inside ``synth.structure`` only, ``mechsynth._output`` anywhere in
+    ``mechsynth``.  Every import counts, at load time or inside a function."""
+    wrong = []
+    for f in _files("synth", "balance", "mechsynth", "mechbase"):
+        me = _module_name(f)
+        for module, name in _imports(f):
+            if module.split(".")[0] not in ("synth", "balance", "mechsynth", "mechbase"):
+                continue
+            owner = _owner_of_private(module, name)
+            if owner is not None and not (me == owner or me.startswith(owner + ".")):
+                wrong.append(f"{f.relative_to(ROOT)} imports {module}:{name}, private to {owner}")
+    assert not wrong, "\n".join(wrong)
+
+
+def test_a_private_import_across_packages_is_seen():
+    """The rule above reads modules, names and their packages as intended."""
+    assert _owner_of_private("synth.draw._layout", "layout") == "synth.draw"
+    assert _owner_of_private("synth.motion._sweep", "_solver") == "synth.motion"
+    assert _owner_of_private("synth.structure.chain", "_check") == "synth.structure"
+    assert _owner_of_private("synth.structure", "_params") == "synth.structure"
+    assert _owner_of_private("mechsynth._output", "emit") == "mechsynth"
+    assert _owner_of_private("mechsynth", "__version__") is None
+    assert _owner_of_private("synth.draw", "layout") is None
+
+
 def _facade_names(module: str) -> set[str]:
     """The names an import from ``module`` may take: the ``__all__`` of its engine's facade and,
     for a module of a sub-package of synth with its own facade (``synth.atlas``, ``synth.draw`` …),

@@ -27,7 +27,7 @@ import math
 import os
 import sys
 
-from .._argtypes import mechanism_of, output_file, seconds, whole, workers
+from .._argtypes import mechanism_of, number_range, output_file, seconds, whole, workers
 from .._output import pairs, write_document
 
 __all__ = ["add_commands"]
@@ -52,11 +52,10 @@ def _number(text: str) -> float:
 
 
 def _limits(text: str) -> tuple[float, float]:
-    """``A..B``: two finite numbers, A < B."""
-    parts = text.split("..")
-    if len(parts) != 2:
-        raise argparse.ArgumentTypeError(f"expected A..B, not {text!r}")
-    lo, hi = (_number(p) for p in parts)
+    """``A..B``: two finite numbers, A < B (read as every range of numbers is: ``number_range``)."""
+    lo, hi = number_range(text)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
     if not lo < hi:
         raise argparse.ArgumentTypeError(f"expected A..B with A < B, not {text!r}")
     return lo, hi

@@ -84,7 +84,7 @@ def format_result(result) -> str:
     width = max([5, *(len(k) for k in result.compute)])
     lines = [f"{'scene':<{width}}  {result.name} — {result.description} ({result.path})"]
     for kind in result.compute:
-        for i, line in enumerate(KINDS[kind].report(result.results[kind])):
+        for i, line in enumerate(KINDS[kind].report(result.rows[kind])):
             lines.append(f"{kind if i == 0 else '':<{width}}  {line}")
     for c in result.checks:
         lines.append(f"  {_STATUS[c.status]}  {c.message}")

@@ -4,8 +4,9 @@
 The balance package owns its tables (``[arm]``, ``[spring]``, ``[slider]``,
 ``[pantograph]``): the runner hands each table to ``balance.problems`` unchanged and
 turns a :class:`balance.errors.BalanceError` into the scene's one sentence.  The typed
-result is kept for the figure (which draws it, never solving again); its ``to_dict()`` is
-what ``[expect]`` compares.  Nothing here imports balance until a balancing scene runs,
+result is the computation's result and is kept for the figure (which draws it, never solving
+again); its row is what ``[expect]`` compares, with the values a scene derives from it (the arm's
+terms in order, the strategies compared) added by :class:`Derived`.  Nothing here imports balance until a balancing scene runs,
 and nothing imports synth's solvers.
 
 To add a balance problem, call :func:`balance_kind` once: its table, the
@@ -19,8 +20,11 @@ summary lines and, optionally, its figure.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
+from mechbase import Row
 from mechbase.schema import FileName, Table
 
 from . import compare
@@ -28,7 +32,7 @@ from .registry import KINDS, ComputeKind, Expectation, Run, SceneTable, Family
 from .results import Scene, SceneError
 from .types import Flag, Int, Number, NumberRows, Numbers, NumberTable, Texts
 
-__all__ = ["balance_kind", "Plot"]
+__all__ = ["balance_kind", "Plot", "Derived", "Figures"]
 
 #: balance kind -> the name of its figure in ``balance.plots``: ``plot(result, out)``.
 _PLOTTERS: dict[str, str] = {}
@@ -41,15 +45,30 @@ def _read_balance_table(raw, path: str, compute: frozenset):
 FAMILY = Family("balancing")  # its tables and computations, registered by mechsynth.scene
 
 
+@dataclass(frozen=True)
+class Derived(Row):
+    """A balance result and the values a scene derives from its row: the result's row, then the
+    derived keys (``derive(row) -> dict``)."""
+
+    result: Any
+    derive: Callable[[dict], dict]
+    row_keys = ("*result", "*derived")
+
+    @property
+    def derived(self) -> dict:
+        return self.derive(self.result.to_dict())
+
+
 def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
                  expect: Mapping[str, Expectation], report: Callable[[dict], list[str]],
                  after: Callable[[dict], dict] | None = None, plot: str | None = None) -> ComputeKind:
     """Register the compute word ``name`` solving the table ``[table]`` with ``balance.<solver>``.
 
-    ``after(result)`` adds derived values to the result's dict; ``plot`` names its figure's function in ``balance``.
+    ``after(row)`` derives values from the result's row (added after it, :class:`Derived`); ``plot`` names
+    its figure's function in ``balance``.
     """
 
-    def run(r: Run) -> dict:
+    def run(r: Run) -> Row:
         import balance
         from balance import BalanceError
 
@@ -60,8 +79,7 @@ def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
             prefix = f"{r.scene.path}: "
             raise SceneError((msg if msg.startswith(prefix) else f"{prefix}[{table}] {msg}") + ".") from None
         r.shared(f"{name} result", dict)["result"] = result  # the typed result, for the figure
-        out = result.to_dict()
-        return after(out) if after else out
+        return Derived(result, after) if after else result
 
     FAMILY.table(SceneTable(table, _read_balance_table, hint))
     if plot is not None:
@@ -70,14 +88,11 @@ def balance_kind(name: str, table: str, solver: str, summary: str, hint: str, *,
 
 
 # --------------------------------------------------------------------------- the kinds
-def _arm_terms(out: dict) -> dict:
-    terms = sorted(out["terms"], key=lambda t: -t["amplitude"])
-    out["amplitudes"] = [t["amplitude"] for t in terms]
-    out["phases_deg"] = [t["phase_deg"] for t in terms]
-    out["forms"] = [t["form"] for t in terms]
-    out["drive_forms"] = [t["drive_form"] for t in terms]
-    out["eT"] = sorted((d["sine"]["eT"] for d in out["devices"] if "sine" in d), reverse=True)
-    return out
+def _arm_terms(row: dict) -> dict:
+    terms = sorted(row["terms"], key=lambda t: -t["amplitude"])
+    return {"amplitudes": [t["amplitude"] for t in terms], "phases_deg": [t["phase_deg"] for t in terms],
+            "forms": [t["form"] for t in terms], "drive_forms": [t["drive_form"] for t in terms],
+            "eT": sorted((d["sine"]["eT"] for d in row["devices"] if "sine" in d), reverse=True)}
 
 
 def _below(path: tuple = ()) -> Expectation:
@@ -147,17 +162,13 @@ balance_kind(
     plot="plot_pantograph")
 
 
-def _compare_summary(out: dict) -> dict:
-    ok = [s for s in out["strategies"] if s["available"]]
-    out["available"] = [s["name"] for s in ok]
-    out["removed"] = {s["name"]: s["removed"] for s in ok}
-    out["devices"] = {s["name"]: s["devices"] for s in ok}
-    out["baseline"] = out["strategies"][0]["max_residual"]
+def _compare_summary(row: dict) -> dict:
+    ok = [s for s in row["strategies"] if s["available"]]
     pruned = next(s for s in ok if s["name"] == "harmonic, pruned")
-    out["pruned_residual"] = pruned["max_residual"]
-    out["pruned_target"] = pruned["details"]["target_torque"]
-    out["recheck"] = max(s["pinocchio"]["max_difference"] for s in ok)
-    return out
+    return {"available": [s["name"] for s in ok], "removed": {s["name"]: s["removed"] for s in ok},
+            "devices": {s["name"]: s["devices"] for s in ok}, "baseline": row["strategies"][0]["max_residual"],
+            "pruned_residual": pruned["max_residual"], "pruned_target": pruned["details"]["target_torque"],
+            "recheck": max(s["pinocchio"]["max_difference"] for s in ok)}
 
 
 balance_kind(
@@ -190,13 +201,23 @@ def _check_plot(scene: Scene) -> None:
         raise scene.error(f"[scene] compute 'plot' needs a balance computation ({', '.join(_PLOTTERS)}) to plot")
 
 
-def _plot(run: Run) -> dict:
+@dataclass(frozen=True)
+class Figures(Row):
+    """``plot``: the figures written, or why none was."""
+
+    files: tuple[str, ...]
+    written: bool
+    skipped: str | None = None
+    row_keys = ("files", "written", "skipped?")
+
+
+def _plot(run: Run) -> Figures:
     scene = run.scene
     kinds = [k for k in scene.compute if k in _PLOTTERS]
     name = Path((scene.tables.get("plot") or Plot()).out or f"{scene.name}.png")
     names = [name.stem + ("" if len(kinds) == 1 else "_" + KINDS[k].table) + name.suffix for k in kinds]
     if run.out_dir is None:
-        return {"files": [], "written": False, "skipped": f"no --out DIR given to write {', '.join(names)}"}
+        return Figures((), False, f"no --out DIR given to write {', '.join(names)}")
     import balance
 
     files = []
@@ -204,7 +225,7 @@ def _plot(run: Run) -> dict:
         out = run.picture(file_name)
         getattr(balance, _PLOTTERS[kind])(run.shared(f"{kind} result", dict)["result"], str(out))
         files.append(str(out))
-    return {"files": files, "written": True}
+    return Figures(tuple(files), True)
 
 
 FAMILY.table(SceneTable("plot", lambda raw, path, compute: Plot.read(raw, source=path, where="[plot]", error=SceneError),

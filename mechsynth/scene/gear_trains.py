@@ -9,17 +9,19 @@ mechanisms as ``[frame, input, output]`` triples, tooth numbers, and a ratio to 
 
 from __future__ import annotations
 
-from typing import Annotated
+from dataclasses import dataclass, replace
+from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr
 
+from mechbase import Row
 from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
 from .types import Count, Flag, Int, Number, Numbers, Text, Texts, Whole, WholeTable
 
-__all__ = ["GearTrainTable", "GearAtlasTable"]
+__all__ = ["GearTrainTable", "GearAtlasTable", "TrainAnalysis", "GearCensus"]
 
 Triples = Annotated[list[Annotated[list[Annotated[StrictInt, Field(ge=0)]], Field(min_length=3, max_length=3)]],
                     Field(min_length=1)]
@@ -58,7 +60,51 @@ FAMILY.table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.
     raw, source=path, where="[gear_atlas]", error=SceneError), "the DOF and the number of links"))
 
 
-def _gear_train(run: Run) -> dict:
+@dataclass(frozen=True)
+class TrainAnalysis(Row):
+    """``gear train``: the train's W, K, D and verdict as a chain, its lever analogue, the speed ratios of
+    its mechanisms and, when asked, the tooth designs and the schematic written."""
+
+    train: str
+    dof: int
+    generic_dof: int
+    loops: int
+    defect: int
+    subchains: str
+    redundant_joints: tuple
+    lever_code: str
+    lever_dof: int
+    rigid_free: bool
+    fractionated: bool
+    certificate: str
+    ratio_formulas: tuple[str, ...] = ()
+    ratio_values: tuple[float, ...] = ()
+    designs: tuple[Any, ...] | None = None
+    files: tuple[str, ...] | None = None
+    row_keys = ("train", "dof", "generic_dof", "loops", "defect", "subchains", "redundant_joints", "lever_code",
+                "lever_dof", "rigid_free", "fractionated", "certificate", "ratio_formulas", "ratio_values",
+                "designs?", "best_error?", "best_ratio?", "files?")
+
+    @property
+    def best_error(self) -> float | None:
+        return float(self.designs[0].error) if self.designs else None
+
+    @property
+    def best_ratio(self) -> float | None:
+        return float(self.designs[0].ratio) if self.designs else None
+
+
+@dataclass(frozen=True)
+class GearCensus(Row):
+    """``gear atlas``: the displacement and rotation graphs of F DOF and n links, and whether a train is among them."""
+
+    displacement: int
+    rotation: int
+    contains: bool | None = None
+    row_keys = ("displacement", "rotation", "contains?")
+
+
+def _gear_train(run: Run) -> TrainAnalysis:
     from synth import analyze_chain, parse_range
     from synth.gears import GearTrain, design, speed_ratio
 
@@ -66,49 +112,43 @@ def _gear_train(run: Run) -> dict:
     first = t.mechanisms[0] if t.mechanisms else None
     train = GearTrain.parse(t.train, first[0] if first else None)
     a = analyze_chain(train.to_chain(), dof=t.required_dof)  # the general path: the train as a chain
-    out = {"train": train.compact(), "dof": a.dof_count, "generic_dof": a.dof, "loops": a.loops,
-           "defect": a.defect, "subchains": a.subchain_defect, "redundant_joints": a.redundant_joints or [],
-           "lever_code": a.lever_analogue, "lever_dof": train.lever_analogue().dof,
-           "rigid_free": train.is_rigid_free(), "fractionated": train.is_fractionated(),
-           "certificate": train.certificate}
     formulas, values = [], []
     for frame, i, o in t.mechanisms or ():
         formula = speed_ratio(train, frame, i, o, t.compound)
         formulas.append(formula.text)
         if t.teeth:
             values.append(float(formula.evaluate(t.teeth)))
-    out.update(ratio_formulas=formulas, ratio_values=values)
+    out = TrainAnalysis(train.compact(), a.dof_count, a.dof, a.loops, a.defect, a.subchain_defect,
+                        tuple(a.redundant_joints or ()), a.lever_analogue, train.lever_analogue().dof,
+                        train.is_rigid_free(), train.is_fractionated(), train.certificate, tuple(formulas), tuple(values))
     if t.ratio is not None:
         if first is None:
             raise SceneError(f"{run.scene.path}: [gear_train] ratio needs mechanisms = [[frame, input, output]].")
         lo, hi = parse_range(t.teeth_range, "teeth_range")
-        found = design(train, *first, t.ratio, tolerance=t.tolerance, teeth=(lo, hi), planets=t.planets,
-                       compound=t.compound, best=t.best)
-        out["designs"] = [d.to_dict() for d in found]
-        out["best_error"] = float(found[0].error)
-        out["best_ratio"] = float(found[0].ratio)
+        out = replace(out, designs=tuple(design(train, *first, t.ratio, tolerance=t.tolerance, teeth=(lo, hi),
+                                                 planets=t.planets, compound=t.compound, best=t.best)))
     if t.drawing:
         picture = run.picture(f"{run.scene.name}.svg")
         if picture is not None:
             from synth.draw import draw_train
 
-            best = out.get("designs", [{}])[0].get("teeth") or t.teeth
+            best = (out.designs[0].teeth if out.designs else None) or t.teeth
             draw_train(train, picture, teeth=best, compound=t.compound)
-            out["files"] = [str(picture)]
+            out = replace(out, files=(str(picture),))
     return out
 
 
-def _gear_atlas(run: Run) -> dict:
+def _gear_atlas(run: Run) -> GearCensus:
     from synth.gears import GearTrain, census, trains
 
     t = run.scene.tables["gear_atlas"]
     found = census(t.dof, t.links)
-    out = {"displacement": found["displacement"], "rotation": found["rotation"]}
+    contains = None
     if t.contains is not None:
         wanted = GearTrain.parse(t.contains)
         plain = GearTrain(wanted.links, wanted.axes, wanted.meshes, wanted.carriers)  # mesh kinds aside
-        out["contains"] = any(x.certificate == plain.certificate for x in trains(t.dof, t.links))
-    return out
+        contains = any(x.certificate == plain.certificate for x in trains(t.dof, t.links))
+    return GearCensus(found["displacement"], found["rotation"], contains)
 
 
 FAMILY.kind(ComputeKind(

@@ -7,15 +7,19 @@ lists its R/P variants up to symmetry.  ``[planetary]`` names the satellites and
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Any
+
 from pydantic import StrictStr
 
+from mechbase import Row
 from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import SceneError
 from .types import Count, Flag, Int, RangeText, Text, Texts, Whole, WholeTable
 
-__all__ = ["Prismatic", "Planetary"]
+__all__ = ["Prismatic", "Planetary", "Variants", "PlanetaryLever"]
 
 
 class Prismatic(Table):
@@ -42,30 +46,49 @@ FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
     raw, source=path, where="[planetary]", error=SceneError), "the satellites and the sun"))
 
 
-def _prismatic(run: Run) -> dict:
+@dataclass(frozen=True)
+class Variants(Row):
+    """``prismatic``: the R/P variants of the chain, how many by W, and those whose every P pair is a cylinder."""
+
+    count: int
+    by_dof: dict[str, int]
+    all_cylinders: int
+    variants: tuple[Any, ...]
+
+
+@dataclass(frozen=True)
+class PlanetaryLever(Row):
+    """``planetary``: the train's row and the names of its Assur groups."""
+
+    train: Any
+    row_keys = ("*train", "assur_group_names")
+
+    @property
+    def assur_group_names(self) -> list[str]:
+        return [g.name for g in self.train.assur_groups]
+
+
+def _prismatic(run: Run) -> Variants:
     from synth import Chain, parse_range, variants_of
     from synth import JointKind
 
     t = run.scene.tables["prismatic"]
     chain = Chain.parse(t.chain)
-    variants = list(variants_of([chain], parse_range(t.pairs, "pairs"), idle=t.idle_joints))
-    rows = [c.to_dict() for c in variants]
+    variants = tuple(variants_of([chain], parse_range(t.pairs, "pairs"), idle=t.idle_joints))
     by_dof: dict[str, int] = {}
-    for r in rows:
-        by_dof[str(r["dof"])] = by_dof.get(str(r["dof"]), 0) + 1
+    for c in variants:
+        by_dof[str(c.dof)] = by_dof.get(str(c.dof), 0) + 1
     # a cylinder: a prismatic pair between two binary links (the barrel and its rod)
     actuated = sum(1 for c in variants if not c.all_revolute and all(
         c.degrees[j[0]] == c.degrees[j[1]] == 2 for j, k in zip(c.joints, c.kinds) if k == JointKind.PRISMATIC))
-    return {"count": len(rows), "by_dof": by_dof, "all_cylinders": actuated, "variants": rows}
+    return Variants(len(variants), by_dof, actuated, variants)
 
 
-def _planetary(run: Run) -> dict:
+def _planetary(run: Run) -> PlanetaryLever:
     from synth import planetary_row
 
     t = run.scene.tables["planetary"]
-    row = planetary_row(t.satellites, t.sun).to_dict()
-    row["assur_group_names"] = [g["name"] for g in row["assur_groups"]]
-    return row
+    return PlanetaryLever(planetary_row(t.satellites, t.sun))
 
 
 FAMILY.kind(ComputeKind(

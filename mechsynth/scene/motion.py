@@ -25,17 +25,20 @@ solver against the textbook's formulas, written here independently of :mod:`synt
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from pydantic import StrictStr
 
+from mechbase import Row
 from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
 from .types import Count, Flag, Number, Numbers, NumberTable, Text
 
-__all__ = ["Sweep", "ClosedForm"]
+__all__ = ["Sweep", "ClosedForm", "MotionSummary", "DyadCheck", "SliderCrankCheck", "SlottedLeverCheck",
+           "WillisCheck"]
 
 
 class Sweep(Table):
@@ -103,7 +106,69 @@ def _rigidity_error(linkage, joints: np.ndarray) -> float:
     return worst
 
 
-def _motion(run: Run) -> dict:
+@dataclass(frozen=True)
+class MotionSummary(Row):
+    """``motion``: crank or rocker, the input's limits (degrees for a revolute input), Grashof class,
+    dead positions, worst transmission angle (degrees), rigidity error and the sweep's extent."""
+
+    full_rotation: bool
+    input_limits: tuple[float, float] | None
+    grashof: str | None
+    dead_positions: int
+    min_transmission_angle: float | None
+    rigidity_error: float
+    steps: int
+    stopped: bool
+    extent: dict
+
+
+@dataclass(frozen=True)
+class DyadCheck(Row):
+    """``closed form`` by dyads: the joints rebuilt dyad by dyad against the sweep, and Freudenstein's
+    residual for a four-bar of revolute joints."""
+
+    closed_form_error: float
+    freudenstein_residual: float | None = None
+    row_keys = ("closed_form_error", "freudenstein_residual?")
+
+
+@dataclass(frozen=True)
+class SliderCrankCheck(Row):
+    """``closed form`` of a slider-crank: stroke and quick-return ratio, measured and by formula."""
+
+    closed_form_error: float
+    stroke: float
+    stroke_formula: float
+    quick_return_ratio: float
+    quick_return_formula: float
+    crank: float
+    rod: float
+    offset: float
+
+
+@dataclass(frozen=True)
+class SlottedLeverCheck(Row):
+    """``closed form`` of a slotted lever: its swing, measured and by formula, and the slide's range."""
+
+    closed_form_error: float
+    lever_swing: float
+    lever_swing_formula: float
+    slide_range: tuple[float, float]
+    crank: float
+    centres: float
+    offset: float
+
+
+@dataclass(frozen=True)
+class WillisCheck(Row):
+    """``closed form`` of a planetary train: speed ratios measured against Willis's."""
+
+    closed_form_error: float
+    speed_ratios: dict
+    willis: dict
+
+
+def _motion(run: Run) -> MotionSummary:
     from synth.motion import motion_range, sweep
     from synth import JointKind
 
@@ -112,12 +177,11 @@ def _motion(run: Run) -> dict:
     reach = motion_range(linkage)
     revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE
     worst = min([min(t["min"], math.pi - t["max"]) for t in motion.transmission.values()], default=None)
-    return {"full_rotation": reach.full_rotation,
-            "input_limits": [math.degrees(v) if revolute else v for v in reach.limits] if reach.limits else None,
-            "grashof": reach.grashof, "dead_positions": len(reach.dead_positions),
-            "min_transmission_angle": None if worst is None else math.degrees(worst),
-            "rigidity_error": _rigidity_error(linkage, motion.joints), "steps": motion.steps,
-            "stopped": motion.stopped is not None, "extent": {n: list(e) for n, e in motion.extent().items()}}
+    return MotionSummary(
+        reach.full_rotation, tuple(math.degrees(v) if revolute else v for v in reach.limits) if reach.limits else None,
+        reach.grashof, len(reach.dead_positions), None if worst is None else math.degrees(worst),
+        _rigidity_error(linkage, motion.joints), motion.steps, motion.stopped is not None,
+        {n: list(e) for n, e in motion.extent().items()})
 
 
 # --------------------------------------------------------------------------- closed forms
@@ -239,7 +303,7 @@ def _dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[fl
     return out[0], out[1]
 
 
-def _slider_crank(linkage, motion) -> dict:
+def _slider_crank(linkage, motion) -> SliderCrankCheck:
     """Roles: the input crank O–A, the rod A–B, the slider's pin B on the line along the slide of the
     slider–frame prismatic pair (through B as posed)."""
     chain, p, j = linkage.chain, linkage.points, motion.joints
@@ -268,12 +332,10 @@ def _slider_crank(linkage, motion) -> dict:
     ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
     stroke = math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
     delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
-    return {"closed_form_error": error, "stroke": s_hi - s_lo, "stroke_formula": stroke,
-            "quick_return_ratio": ratio, "quick_return_formula": (math.pi + delta) / (math.pi - delta),
-            "crank": r, "rod": l, "offset": e}
+    return SliderCrankCheck(error, s_hi - s_lo, stroke, ratio, (math.pi + delta) / (math.pi - delta), r, l, e)
 
 
-def _slotted_lever(linkage, motion) -> dict:
+def _slotted_lever(linkage, motion) -> SlottedLeverCheck:
     """Roles: the input crank O–B, the block pinned at B sliding on the lever, the lever pivoted at C.
     The lever's angle ψ solves (B − C)·n(ψ) = e, with e the pin's distance from the parallel to the
     slide through C in the pose; the slide is (B − C)·u(ψ)."""
@@ -313,12 +375,11 @@ def _slotted_lever(linkage, motion) -> dict:
     (_, psi_hi), (_, psi_lo) = _dead_centres(linkage, motion, turned)
     (_, s_hi), (_, s_lo) = _dead_centres(linkage, motion, slide)
     r, d = math.dist(p[o], p[b_pin]), math.dist(p[o], p[c])
-    return {"closed_form_error": error, "lever_swing": math.degrees(psi_hi - psi_lo),
-            "lever_swing_formula": math.degrees(math.acos((e - r) / d) - math.acos((e + r) / d)),
-            "slide_range": [s_lo, s_hi], "crank": r, "centres": d, "offset": abs(e)}
+    return SlottedLeverCheck(error, math.degrees(psi_hi - psi_lo),
+                             math.degrees(math.acos((e - r) / d) - math.acos((e + r) / d)), (s_lo, s_hi), r, d, abs(e))
 
 
-def _willis(linkage, motion, teeth: dict) -> dict:
+def _willis(linkage, motion, teeth: dict) -> WillisCheck:
     """Each gear's speed relative to the input (the carrier), from Willis' equation of each mesh
     z_a(ω_a − ω_t) = ∓ z_b(ω_b − ω_t) (− external, + internal: the ring's radius is written negative
     in the pose, so the sign follows from the pitch point lying beyond or between the axes)."""
@@ -353,10 +414,10 @@ def _willis(linkage, motion, teeth: dict) -> dict:
     phi = motion.inputs[:, 0] - linkage.pose_inputs[0]
     error = max(float(np.nanmax(np.abs(motion.angles[:, x] - w * phi))) for x, w in speed.items())
     measured = {str(x): float((motion.angles[-1, x] - motion.angles[0, x]) / (phi[-1] - phi[0])) for x in speed}
-    return {"closed_form_error": error, "speed_ratios": measured, "willis": {str(x): w for x, w in speed.items()}}
+    return WillisCheck(error, measured, {str(x): w for x, w in speed.items()})
 
 
-def _closed_form(run: Run) -> dict:
+def _closed_form(run: Run) -> Row:
     from synth.motion import sweep
 
     linkage = run.scene.tables["linkage"]
@@ -370,11 +431,8 @@ def _closed_form(run: Run) -> dict:
                 raise SceneError(f"[closed_form] driver {table.driver!r} is not a joint of the chain")
             driver = linkage.chain.joints.index(links)
         rebuilt = _by_dyads(linkage, motion, driver)
-        out = {"closed_form_error": float(np.nanmax(np.hypot(*(rebuilt - motion.joints).reshape(-1, 2).T)))}
-        residual = _freudenstein(linkage, motion)
-        if residual is not None:
-            out["freudenstein_residual"] = residual
-        return out
+        return DyadCheck(float(np.nanmax(np.hypot(*(rebuilt - motion.joints).reshape(-1, 2).T))),
+                         _freudenstein(linkage, motion))
     if table.kind == "slider-crank":
         return _slider_crank(linkage, motion)
     if table.kind == "slotted-lever":

@@ -6,8 +6,13 @@ result provides and how it is summarised; each table says how it is validated.  
 a computation, write its function in the module of its family and register it there:
 
 >>> from mechsynth.scene.registry import ComputeKind, Expectation, KINDS
+>>> from dataclasses import dataclass
+>>> from mechbase import Row
+>>> @dataclass(frozen=True)
+... class Links(Row):
+...     links: int
 >>> def _count_links(run):
-...     return {"links": run.scene.tables["structure"].dof + 1}
+...     return Links(run.scene.tables["structure"].dof + 1)
 >>> kind = ComputeKind("links demo", "W + 1, as an example", table="structure", run=_count_links,
 ...                    expect={"demo_links": Expectation(int, path=("links",))})
 >>> kind.provides("demo_links"), "links demo" in KINDS
@@ -70,14 +75,15 @@ class ComputeKind:
     table : str or None
         The scene table that states its problem (``"structure"``, ``"arm"``); required when given.
     run : callable
-        ``run(Run) -> dict``: the JSON-able result.  It may read the results of kinds
-        registered before it (``Run.results``) and share work through ``Run.shared``.
+        ``run(Run) -> result``: the typed result, a frozen dataclass inheriting ``mechbase.Row``,
+        printed and checked as its row (``mechbase.as_row``).  It may read the results of kinds registered before it
+        (``Run.results``) and share work through ``Run.shared``.
     expect : mapping
         The ``[expect]`` keys its result provides.
     check : callable, optional
         ``check(scene)`` raises ``scene.error(...)`` for a rule across keys or tables.
     report : callable, optional
-        ``report(result) -> lines`` of the readable summary (default: the start of its JSON).
+        ``report(row) -> lines`` of the readable summary, from the result's row (default: the start of its JSON).
     reads : tuple of str
         Optional tables it also reads (``"drawing"``, ``"plot"``).
     """
@@ -85,7 +91,7 @@ class ComputeKind:
     name: str
     summary: str
     table: str | None
-    run: Callable[[Run], dict]
+    run: Callable[[Run], Any]
     expect: Mapping[str, Expectation] = field(default_factory=dict)
     check: Callable[[Scene], None] | None = None
     report: Callable[[dict], list[str]] = lambda result: [json.dumps(result)[:200]]

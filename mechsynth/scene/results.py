@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from mechbase import Row
+from mechbase import Row, as_row
 from synth import SynthesisError
 
 __all__ = ["SceneError", "Scene", "Check", "SceneResult", "DirectoryResult"]
@@ -72,8 +72,8 @@ class Check(Row):
 class SceneResult(Row):
     """What a scene computed and how each expectation fared.
 
-    ``results`` maps each computation to its JSON-able result; ``files`` lists the
-    pictures written; ``notes`` what was not done and why.
+    ``results`` maps each computation to its typed result (printed as its row, :attr:`rows`);
+    ``files`` lists the pictures written; ``notes`` what was not done and why.
     """
 
     path: str
@@ -98,6 +98,11 @@ class SceneResult(Row):
     def ok(self) -> bool:
         """True when no expectation failed (skipped ones do not count against it)."""
         return all(c.status != "failed" for c in self.checks)
+
+    @property
+    def rows(self) -> dict:
+        """Each computation's result as its row (``mechbase.as_row``): what every output prints."""
+        return {name: as_row(result) for name, result in self.results.items()}
 
     @property
     def failed(self) -> list[Check]:

@@ -14,7 +14,7 @@ from typing import Annotated, Any
 
 from pydantic import StrictStr, create_model
 
-from mechbase import read_toml, show
+from mechbase import as_row, read_toml, show
 from synth import SynthesisError
 from mechbase.schema import Table, expect, refine
 
@@ -164,7 +164,7 @@ def run_scene(scene: Scene | str | Path, *, out_dir: str | Path | None = None, w
     Examples
     --------
     >>> r = run_scene("models/chains_1dof_8links.toml")  # doctest: +SKIP
-    >>> r.results["chains"]["count"]                     # doctest: +SKIP
+    >>> r.results["chains"].count                        # doctest: +SKIP
     16
     """
     if not isinstance(scene, Scene):
@@ -174,14 +174,15 @@ def run_scene(scene: Scene | str | Path, *, out_dir: str | Path | None = None, w
     for name, kind in KINDS.items():  # registry order: a kind may use the results of earlier ones
         if name in scene.compute:
             run.results[name] = _run_kind(run, kind)
-    checks = tuple(_check(run, key, expected) for key, expected in scene.expect.items())
-    files = tuple(f for r in run.results.values() for f in r.get("files", ()))
-    notes = tuple(f"{name} skipped: {r['skipped']}" for name, r in run.results.items() if r.get("skipped"))
+    rows = {name: as_row(result) for name, result in run.results.items()}  # as every output prints them
+    checks = tuple(_check(run, rows, key, expected) for key, expected in scene.expect.items())
+    files = tuple(f for r in rows.values() for f in r.get("files", ()))
+    notes = tuple(f"{name} skipped: {r['skipped']}" for name, r in rows.items() if r.get("skipped"))
     return SceneResult(scene.path, scene.name, scene.description, scene.compute, run.results, checks, files, notes,
                        time.perf_counter() - started)
 
 
-def _run_kind(run: Run, kind: ComputeKind) -> dict:
+def _run_kind(run: Run, kind: ComputeKind) -> Any:
     try:
         return kind.run(run)
     except SceneError:
@@ -203,13 +204,14 @@ def _lookup(result: Any, path: tuple) -> tuple[bool, Any]:
     return True, result
 
 
-def _check(run: Run, key: str, expected: Any) -> Check:
+def _check(run: Run, rows: dict, key: str, expected: Any) -> Check:
+    """How the expectation ``key`` fares against the rows of the scene's results."""
     scene = run.scene
     kind = next(KINDS[k] for k in KINDS if k in run.results and KINDS[k].provides(key))
     below = key not in kind.expect
     base = key.removesuffix("_below") if below else key
     spec = kind.expect[base]
-    result = run.results[kind.name]
+    result = rows[kind.name]
     if result.get("skipped"):
         return Check(key, expected, None, "skipped", f"{key}: skipped ({result['skipped']})")
     found, actual = _lookup(result, spec.path or (base,))
@@ -227,7 +229,7 @@ def _check(run: Run, key: str, expected: Any) -> Check:
     for _ in range(spec.best_of - 1):
         if ok:
             break
-        found, again = _lookup(kind.run(run), spec.path or (base,))
+        found, again = _lookup(as_row(kind.run(run)), spec.path or (base,))
         actual = min(actual, again)
         ok, detail = compare(actual)
     if ok:

@@ -15,10 +15,12 @@ computation is refused.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Annotated, Any
 
 from pydantic import Field, StrictInt, StrictStr, ValidationInfo, model_validator
 
+from mechbase import Row
 from mechbase.schema import FileName, Table, expect, refine
 
 from . import compare
@@ -26,7 +28,8 @@ from .registry import ComputeKind, Expectation, Run, SceneTable, Family
 from .results import Scene, SceneError
 from .types import (Count, Flag, Int, IndexTable, RangeText, Require, Text, Whole, WholeTable, Wholes)
 
-__all__ = ["Structure", "Drawing", "CODES", "CHAINS", "ANALYSIS"]
+__all__ = ["Structure", "Drawing", "CODES", "CHAINS", "ANALYSIS", "CodeList", "ChainCount", "ListedChain",
+           "ChainListing", "MechanismCount", "CodeAnalysis", "Sheet"]
 
 CODES = ("codes",)
 CHAINS = ("count", "chains", "mechanisms", "drawing")
@@ -260,8 +263,79 @@ def _codes_table(expected: dict, actual: dict, rel_tol: float) -> tuple[bool, st
     return not diff, "; ".join(diff)
 
 
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True)
+class CodeList(Row):
+    """``codes``: the standard codes of the structure, how many, per K, their sizes and largest link."""
+
+    codes: tuple[str, ...]
+    count: int
+    by_loops: dict[str, int]
+    links: tuple[int, ...]
+    i_max: int
+
+
+@dataclass(frozen=True)
+class ChainCount(Row):
+    """``count``: the chains of the structure, by code (with its suffixes), by v, non-planar, fractionated."""
+
+    count: int
+    by_code: dict[str, int]
+    by_v: dict[str, int]
+    nonplanar: int
+    fractionated: int
+
+
+@dataclass(frozen=True)
+class ListedChain(Row):
+    """One chain of a listing: its code, joint list and certificate."""
+
+    code: str
+    joints: str
+    certificate: str
+
+
+@dataclass(frozen=True)
+class ChainListing(ChainCount):
+    """``chains``: the counts and every chain."""
+
+    chains: tuple[ListedChain, ...] = ()
+
+
+@dataclass(frozen=True)
+class MechanismCount(Row):
+    """``mechanisms``: the mechanisms of the chains (fixed link, and input link if asked) by code."""
+
+    count: int
+    by_code: dict[str, int]
+    input_link: bool
+
+
+@dataclass(frozen=True)
+class CodeAnalysis(Row):
+    """``analysis`` of a code or of counts: the analysis and whether every formula gives one W."""
+
+    analysis: Any
+    row_keys = ("*analysis", "formulas_agree")
+
+    @property
+    def formulas_agree(self) -> bool:
+        return len(set(self.analysis.formulas.values())) == 1
+
+
+@dataclass(frozen=True)
+class Sheet(Row):
+    """``drawing``: the file written and how many of the items it shows, or why none was written."""
+
+    files: tuple[str, ...]
+    skipped: str | None = None
+    items: int | None = None
+    of: int | None = None
+    row_keys = ("files", "skipped?", "items?", "of?")
+
+
 # --------------------------------------------------------------------------- computations
-def _codes(run: Run) -> dict:
+def _codes(run: Run) -> CodeList:
     from synth import number_synthesis  # CP-SAT counting model only
 
     s = run.scene.tables["structure"]
@@ -272,8 +346,8 @@ def _codes(run: Run) -> dict:
     by_loops: dict[str, int] = {}
     for c in codes:
         by_loops[str(c.loops)] = by_loops.get(str(c.loops), 0) + 1
-    return {"codes": [str(c) for c in codes], "count": len(codes), "by_loops": by_loops,
-            "links": sorted({c.links for c in codes}), "i_max": max((c.max_degree for c in codes), default=0)}
+    return CodeList(tuple(str(c) for c in codes), len(codes), by_loops, tuple(sorted({c.links for c in codes})),
+                    max((c.max_degree for c in codes), default=0))
 
 
 def _chain_list(run: Run) -> list:
@@ -357,7 +431,7 @@ def _mechanism_list(run: Run) -> list:
     return run.shared("mechanisms", make)
 
 
-def _count(run: Run) -> dict:
+def _count(run: Run) -> ChainCount:
     chains = _chain_list(run)
     by_code: dict[str, int] = {}
     by_v: dict[str, int] = {}
@@ -365,54 +439,51 @@ def _count(run: Run) -> dict:
         name = str(ch.code) + ch.kind_suffix + ch.class_suffix
         by_code[name] = by_code.get(name, 0) + 1
         by_v[str(ch.v)] = by_v.get(str(ch.v), 0) + 1
-    return {"count": len(chains), "by_code": by_code, "by_v": dict(sorted(by_v.items(), key=lambda kv: int(kv[0]))),
-            "nonplanar": sum(1 for ch in chains if not ch.is_planar()),
-            "fractionated": sum(1 for ch in chains if ch.is_fractionated())}
+    return ChainCount(len(chains), by_code, dict(sorted(by_v.items(), key=lambda kv: int(kv[0]))),
+                      sum(1 for ch in chains if not ch.is_planar()), sum(1 for ch in chains if ch.is_fractionated()))
 
 
-def _chains(run: Run) -> dict:
-    return {**_count(run), "chains": [{"code": str(ch.code) + ch.class_suffix, "joints": ch.compact(),
-                                       "certificate": ch.certificate} for ch in _chain_list(run)]}
+def _chains(run: Run) -> ChainListing:
+    counted = _count(run)
+    listed = tuple(ListedChain(str(ch.code) + ch.class_suffix, ch.compact(), ch.certificate) for ch in _chain_list(run))
+    return ChainListing(counted.count, counted.by_code, counted.by_v, counted.nonplanar, counted.fractionated, listed)
 
 
-def _mechanisms(run: Run) -> dict:
+def _mechanisms(run: Run) -> MechanismCount:
     mechs = _mechanism_list(run)
     by_code: dict[str, int] = {}
     for m in mechs:
         by_code[str(m.chain.code)] = by_code.get(str(m.chain.code), 0) + 1
-    return {"count": len(mechs), "by_code": by_code, "input_link": run.scene.tables["structure"].input_link}
+    return MechanismCount(len(mechs), by_code, run.scene.tables["structure"].input_link)
 
 
-def _analysis(run: Run) -> dict:
+def _analysis(run: Run) -> Row:
     s = run.scene.tables["structure"]
     if s.chain is not None:
         from synth import analyze_chain
 
-        return analyze_chain(s.chain, dof=s.dof, h=s.h).to_dict()
+        return analyze_chain(s.chain, dof=s.dof, h=s.h)
     from synth import analyze  # pure counting: no solver
 
     common = dict(dof=s.dof, h=s.h, f=s.f, loop_classes=s.loop_classes)
     if s.code is not None:
-        out = analyze(s.code, **common).to_dict()
-    else:
-        out = analyze(counts=s.counts, v=s.v or 0, **common).to_dict()
-    out["formulas_agree"] = len(set(out["formulas"].values())) == 1
-    return out
+        return CodeAnalysis(analyze(s.code, **common))
+    return CodeAnalysis(analyze(counts=s.counts, v=s.v or 0, **common))
 
 
-def _drawing(run: Run) -> dict:
+def _drawing(run: Run) -> Sheet:
     scene = run.scene
     opts = scene.tables.get("drawing") or Drawing()
     name = opts.out or f"{scene.name}.svg"
     out = run.picture(name)
     if out is None:
-        return {"files": [], "skipped": f"no --out DIR given to write {name}"}
+        return Sheet((), skipped=f"no --out DIR given to write {name}")
     items = _mechanism_list(run) if opts.mechanisms else _chain_list(run)
     chosen = items[: opts.limit]
     from synth.draw import draw_sheet
 
     draw_sheet(chosen, out, columns=opts.columns, title=opts.title or scene.description, labels=opts.labels)
-    return {"files": [str(out)], "items": len(chosen), "of": len(items)}
+    return Sheet((str(out),), items=len(chosen), of=len(items))
 
 
 # --------------------------------------------------------------------------- readable summaries

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from mechbase import Row
 
-from ..structure._params import check_dof, check_extra_mobility, check_motion_space
+from ..structure import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import Code
 from ..errors import ImpossibleParameters, InvalidOption
 

@@ -44,8 +44,7 @@ from ..execution.executor import Executor
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..structure.joints import PRISMATIC
-from ..draw._gears import svg_text
-from ..draw._render import svg_inline
+from ..draw import svg_inline, svg_text
 from ..gears.train import GearTrain
 from ..errors import InvalidOption, option
 

@@ -14,7 +14,7 @@ from mechbase import Row
 
 from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
-from ..structure._blas import single_threaded
+from ..structure import single_threaded
 from ..structure.chain import Mechanism
 from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
 from ._target import FunctionTarget, MotionTarget, PathTarget

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..errors import MalformedChain
-from ..structure.chain import JOINT_KINDS, Chain, Mechanism, _check_as_written
+from ..structure.chain import JOINT_KINDS, Chain, Mechanism, check_as_written
 from ..structure.joints import JointKind
 
 __all__ = ["Entry", "entry_of", "kind_of", "is_kind_word", "check_distinct", "motion_space_of", "in_motion_space", "settings_of"]
@@ -202,7 +202,7 @@ def entry_of(joints: Sequence[Sequence], kinds: Sequence[str] | None, source: st
     number = {str(x): i for i, x in enumerate(order)}
     numbered = [tuple(number[str(x)] for x in j) for j in joints]
     try:
-        _check_as_written(None, numbered)
+        check_as_written(None, numbered)
         chain = Chain(len(order), numbered, list(kinds) if kinds is not None else None, stated or 3)
     except MalformedChain as exc:
         raise MalformedChain(f"{source}: {_renamed(str(exc), order)}") from None

@@ -24,7 +24,7 @@ from .._lazy import lazy_exports
 _WHERE = {
     "Linkage": "._linkage", "read_linkage": "._linkage", "linkage_from_pose": "._pose", "joint_name": "._linkage",
     "Motion": "._sweep", "MotionRange": "._sweep", "sweep": "._sweep", "sweep_grid": "._sweep",
-    "motion_range": "._sweep", "assemble": "._sweep",
+    "motion_range": "._sweep", "assemble": "._sweep", "pose_branch": "._sweep", "Branch": "._sweep",
     "LinkPoses": "._sweep", "link_poses": "._sweep",
 }
 

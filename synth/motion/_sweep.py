@@ -18,7 +18,8 @@ from ._dyads import Closure, decompose
 from ._linkage import Linkage, joint_name
 from ._system import System
 
-__all__ = ["Motion", "MotionRange", "LinkPoses", "sweep", "sweep_grid", "motion_range", "assemble", "link_poses"]
+__all__ = ["Motion", "MotionRange", "LinkPoses", "Branch", "sweep", "sweep_grid", "motion_range", "pose_branch", "assemble",
+           "link_poses"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -913,6 +914,40 @@ def _grashof(linkage: Linkage) -> str | None:
     role = ("frame" if shortest == frame else "input" if shortest == crank
             else "coupler" if not any(frame in chain.joints[k] for k in linkage.joints_of(shortest)) else "output")
     return f"{_GRASHOF[role]} (Grashof)"
+
+
+class Branch(NamedTuple):
+    """Where the input of a 1-DOF linkage ends on the branch of its pose, and how the branch is moved.
+
+    Attributes
+    ----------
+    low, high : float
+        The input's offsets from the pose where the branch ends (rad or length; −inf and +inf for a
+        crank or an endless slide).
+    closed_form : bool
+        Every group moves by a dyad's closed form (False: Newton's method with continuation, which
+        reports no transmission angles).
+    """
+
+    low: float
+    high: float
+    closed_form: bool
+
+
+def pose_branch(linkage: Linkage) -> Branch:
+    """The ends of the branch of a 1-DOF linkage's pose, as offsets of its input (the search of
+    :func:`motion_range` without its toggles and Grashof class: a cheap question for ranking poses).
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> pose_branch(lk)
+    Branch(low=-inf, high=inf, closed_form=True)
+    """
+    solver = _solver(linkage)
+    low, high, _, _ = solver.branch
+    return Branch(low, high, solver.plan is not None)
 
 
 def motion_range(linkage: Linkage) -> MotionRange:

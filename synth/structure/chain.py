@@ -31,7 +31,7 @@ from ..display import svg_of
 from .disjoint import DisjointSets
 from .joints import JOINT_KINDS, MESH, PRISMATIC, REVOLUTE, JointKind
 
-__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "JointKind", "chain_id"]
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "JointKind", "chain_id", "check_as_written"]
 
 
 @dataclass(frozen=True)
@@ -447,7 +447,7 @@ class Chain:
         h = d.get("h", 3)
         if isinstance(h, bool) or not isinstance(h, int):
             raise MalformedChain(f"'h' must be a whole number 2 … 6, not {h!r}")
-        _check_as_written(None, joints)
+        check_as_written(None, joints)
         classes = d.get("classes")
         if classes is not None and not isinstance(classes, list):
             raise MalformedChain("'classes' must be a list of loop classes, one per link")
@@ -528,7 +528,7 @@ class Chain:
         if not joints:
             raise MalformedChain("an empty joint list is not a chain")
         links = 1 + max(max(j) for j in joints)
-        _check_as_written(links, joints)
+        check_as_written(links, joints)
         h, classes = _read_classes(declared, links) if declared.strip() else (3, None)
         return cls(links, tuple(joints), kinds, h, classes)
 
@@ -636,15 +636,15 @@ def _read_classes(text: str, links: int) -> tuple[int, tuple[int, ...]]:
     return ambient, tuple(classes)
 
 
-def _check_as_written(links: int | None, joints) -> None:
+def check_as_written(links: int | None, joints) -> None:
     """A chain as a user writes it: no two joints join the same links, and (with ``links``, for a
     joint list) every link number 0 … links − 1 is in some joint (a gap is a typo, not a separate link).
 
-    >>> _check_as_written(3, [(0, 1), (1, 2), (2, 0), (1, 0)])
+    >>> check_as_written(3, [(0, 1), (1, 2), (2, 0), (1, 0)])
     Traceback (most recent call last):
     ...
     synth.errors.MalformedChain: joints 0-1 and 1-0 join the same links: two joints never join the same set of links
-    >>> _check_as_written(100, [(0, 1), (1, 2), (2, 99)])
+    >>> check_as_written(100, [(0, 1), (1, 2), (2, 99)])
     Traceback (most recent call last):
     ...
     synth.errors.MalformedChain: links 3…98 are in no joint: number the links 0 … n − 1 without gaps (here 0 … 3)

@@ -49,6 +49,8 @@ _CONDITION_BLOCK = 512  # conditions checked at once on stage A's solutions
 _CONDITION_BATCH = 4096  # labelled multigraphs stage A's kernel returns at once
 # Stages A and B use the compiled kernels for codes of at least this many loops K (by motion space h; None: others)
 _KERNEL_LOOPS = {2: 8, 3: 6, None: 5}
+# Stage A of a code with at most this many branch vertices runs the plain search, not the CP-SAT model
+_SEARCH_VERTICES = 8
 
 
 @dataclass(frozen=True)
@@ -225,6 +227,8 @@ def contracted_graphs(code: Code, conv: Conventions) -> list[Contracted]:
         return []
     if uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
         return _contracted_by_kernel(code, conv)
+    if _searched(code, conv):
+        return _contracted_by_search(code, conv)
     return remembered("stage-a", _stored_as(code, conv), lambda: _contracted_by_model(code, conv),
                       encode=lambda graphs: [[[list(u) for u in g.vertices], [list(e) for e in g.edges], g.certificate]
                                              for g in graphs],
@@ -244,13 +248,11 @@ def needs_solver(code: Code, conv: Conventions) -> bool:
     False
     """
     return (bool(_branch_vertices(code)) and not (uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv))
-            and not is_remembered("stage-a", _stored_as(code, conv)))
+            and not _searched(code, conv) and not is_remembered("stage-a", _stored_as(code, conv)))
 
 
 def _contracted_by_model(code: Code, conv: Conventions) -> list[Contracted]:
     """Stage A's CP-SAT model of a code (the kernel's searches take the large ones)."""
-    import numpy as np
-
     from ._cpsat import cp_model, each_solution  # loaded by the first query that needs a solver
 
     vertices = _branch_vertices(code)
@@ -296,26 +298,135 @@ def _contracted_by_model(code: Code, conv: Conventions) -> list[Contracted]:
         ru, rv = row(u)[:L], row(v)[:L]
         weights = [base ** (L - 1 - i) for i in range(L)]
         model.add(cp_model.LinearExpr.weighted_sum(ru, weights) <= cp_model.LinearExpr.weighted_sum(rv, weights))
-    seen: dict[str, Contracted] = {}
+    distinct = _Distinct(vertices, pairs, bounds, later, conv)
+    # branching on the rows in order, least value first, follows the lexicographic row constraints
+    each_solution(model, [x[p] for p in pairs] + y, distinct.add, fixed_search=True)
+    return distinct.graphs()
 
-    def keep(batch: list[tuple[int, ...]]) -> None:
+
+class _Distinct:
+    """The labelled multigraphs a search finds (rows x_p …, y_u …), told apart by nauty: those that
+    meet the sub-chain ``conditions`` left to them, are connected and kept by the conventions; of
+    each class the first found, in the order of the certificates."""
+
+    def __init__(self, vertices, pairs, bounds: "_StringBounds", conditions, conv: Conventions):
+        self.vertices, self.pairs, self.bounds, self.conditions, self.conv = vertices, pairs, bounds, conditions, conv
+        self.seen: dict[str, Contracted] = {}
+
+    def add(self, batch: list[tuple[int, ...]]) -> None:
+        import numpy as np
+
+        pairs, m = self.pairs, len(self.vertices)
         sol = np.asarray(batch, dtype=np.int64)
-        for row in sol[bounds.meet(sol[:, :len(pairs)], sol[:, len(pairs):], later)]:
+        for row in sol[self.bounds.meet(sol[:, :len(pairs)], sol[:, len(pairs):], self.conditions)]:
             edges = []
             for (u, v), k in zip(pairs, row[:len(pairs)]):
                 edges += [(u, v)] * int(k)
             for u, k in enumerate(row[len(pairs):]):
                 edges += [(u, u)] * int(k)
-            if not _connected(m, edges) or not _keep_multigraph(m, edges, conv):
+            if not _connected(m, edges) or not _keep_multigraph(m, edges, self.conv):
                 continue
-            graph = Contracted(vertices, tuple(sorted(edges)), "")
+            graph = Contracted(self.vertices, tuple(sorted(edges)), "")
             cert = pynauty.certificate(graph._subdivided()).hex()
-            if cert not in seen:
-                seen[cert] = Contracted(vertices, graph.edges, cert)
+            if cert not in self.seen:
+                self.seen[cert] = Contracted(self.vertices, graph.edges, cert)
 
-    # branching on the rows in order, least value first, follows the lexicographic row constraints
-    each_solution(model, [x[p] for p in pairs] + y, keep, fixed_search=True)
-    return [seen[c] for c in sorted(seen)]
+    def graphs(self) -> list[Contracted]:
+        return [self.seen[c] for c in sorted(self.seen)]
+
+
+def _searched(code: Code, conv: Conventions) -> bool:
+    """Whether stage A of ``code`` runs the plain search (:func:`_contracted_by_search`) rather than
+    the CP-SAT model: a code of few branch vertices, where the search costs about what the model
+    does and a query of them then never loads OR-Tools (≈ 0.3 s with the pandas it imports)."""
+    return len(_branch_vertices(code)) <= _SEARCH_VERTICES
+
+
+def _contracted_by_search(code: Code, conv: Conventions) -> list[Contracted]:
+    """Stage A without a solver: the model's labelled multigraphs listed depth first in its own
+    order (the pairs' multiplicities row by row, least first), so the same classes with the same
+    first representatives.
+
+    The search keeps the degrees, the loops a vertex may carry, the binary links the strings need
+    and the sb*ℓ rows of vertices of one colour in lexicographic order (a row is compared as soon
+    as its first values are known); the sub-chain conditions, connectivity and the conventions
+    are checked on each multigraph found.
+
+    >>> code = Code.parse("4400/0")
+    >>> _contracted_by_search(code, Conventions()) == _contracted_by_model(code, Conventions())
+    True
+    """
+    vertices = _branch_vertices(code)
+    m, n2 = len(vertices), code.count(2)
+    deg = [vertex.degree for vertex in vertices]
+    pairs = list(combinations(range(m), 2))
+    bounds = _StringBounds(vertices, pairs, code, conv)
+    slope, offset, loop_lb = bounds.slope.tolist(), bounds.offset.tolist(), bounds.loop.tolist()
+    loops_most = [d // 2 if conv.fractionated or code.n1 else 0 for d in deg]
+    last = {}  # the last pair of each vertex: its loops are fixed by its degree once that pair is chosen
+    for k, (u, v) in enumerate(pairs):
+        last[u] = last[v] = k
+    closes: list[list[int]] = [[] for _ in range(len(pairs) + 1)]
+    for u in range(m):
+        closes[last.get(u, len(pairs))].append(u)  # a lone vertex (no pair) at the end
+    # the values x_p (pair p) then y_u (at len(pairs) + u), as the model's variables; the rows the
+    # model's sb*ℓ constraints compare, each value with the step after which it is known: after a step,
+    # each comparison whose leading values are then known (a run from the first) is made on them
+    P = len(pairs)
+    at = {p: k for k, p in enumerate(pairs)}
+    known = [k for k in range(P)] + [last.get(u, P) for u in range(m)]
+    width = min(m - 1, max(1, _LEX_BITS // (max(deg) + 1).bit_length()))
+    compare_after: list[list[tuple]] = [[] for _ in range(P + 1)]
+    for u, v in pairs:
+        if vertices[u] != vertices[v]:
+            continue
+        lower, upper = ([P + a if k == u else at[min(a, k), max(a, k)] for k in range(m) if k != v][:width]
+                        for a in (u, v))
+        ready = [max(known[i], known[j]) for i, j in zip(lower, upper)]
+        for step in sorted(set(ready)):
+            leading = next((n for n, when in enumerate(ready) if when > step), len(ready))
+            compare_after[step].append(tuple(zip(lower, upper))[:leading])
+    value, left = [0] * (P + m), list(deg)
+    found: list[tuple[int, ...]] = []
+
+    def close(step: int) -> bool:
+        """The loops of the vertices whose last pair this was, and the rows' order so far."""
+        for w in closes[step]:
+            if left[w] % 2 or left[w] // 2 > loops_most[w]:
+                return False
+            value[P + w] = left[w] // 2
+        for leading in compare_after[step]:
+            for i, j in leading:
+                if value[i] != value[j]:
+                    if value[i] > value[j]:
+                        return False
+                    break
+        return True
+
+    def search(k: int, least: int) -> None:
+        if k == P:
+            if close(k) and least + sum(a * b for a, b in zip(loop_lb, value[P:])) <= n2:
+                found.append(tuple(value))
+            return
+        u, v = pairs[k]
+        for c in range(min(left[u], left[v]) + 1):
+            lb = max(0, slope[k] * c + offset[k])
+            if least + lb > n2:
+                break  # the least weight grows with the multiplicity
+            value[k] = c
+            left[u] -= c
+            left[v] -= c
+            if close(k):
+                search(k + 1, least + lb)
+            left[u] += c
+            left[v] += c
+        value[k] = 0
+
+    search(0, 0)
+    distinct = _Distinct(vertices, pairs, bounds, _subset_conditions(vertices, code.dof(conv.h), conv), conv)
+    if found:
+        distinct.add(found)
+    return distinct.graphs()
 
 
 def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:

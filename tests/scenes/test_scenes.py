@@ -155,8 +155,8 @@ def test_a_smaller_cylinder_scene_equals_a_count_by_roles(tmp_path):
     text = re.sub(r"mechanisms = 8096", f"mechanisms = {expected}", text)
     (tmp_path / "fig6_cylinders.toml").write_text(text)
     result = run_scene(tmp_path / "fig6_cylinders.toml", out_dir=tmp_path)
-    assert result.ok and result.results["mechanisms"]["count"] == expected
-    assert result.results["drawing"]["items"] == 12 and (tmp_path / "fig6_cylinders.png").stat().st_size > 1000
+    assert result.ok and result.results["mechanisms"].count == expected
+    assert result.results["drawing"].items == 12 and (tmp_path / "fig6_cylinders.png").stat().st_size > 1000
 
 
 @pytest.mark.parametrize("path", SCENE_FILES, ids=lambda p: p.stem)
@@ -179,14 +179,14 @@ def test_locomotive_drawing_written(tmp_path):
     svg = tmp_path / "locomotive_drive.svg"
     assert [str(svg)] == list(result.files)
     assert svg.stat().st_size > 1000
-    assert result.results["drawing"]["items"] == 25
+    assert result.results["drawing"].items == 25
 
 
 def test_translator_drawing_shows_its_classes(tmp_path):
     """The linear translator's scene lists the class-V loops of its chain, the translator among
     them, and draws them in the class colours with a key."""
     result = run_scene(MODELS / "linear_translator.toml", out_dir=tmp_path)
-    assert result.ok and result.results["chains"]["count"] == 5
+    assert result.ok and result.results["chains"].count == 5
     png = tmp_path / "linear_translator.png"
     assert [str(png)] == list(result.files) and png.stat().st_size > 20_000
 
@@ -458,3 +458,37 @@ def test_through_the_mechsynth_command(tmp_path, capsys):
     assert err.startswith("mechsynth: ") and "'dof'" in err and err.count("\n") == 1
     assert cli.main(["scene", str(bad), "--all", str(tmp_path)]) == 2
     assert "not both" in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------- typed results
+@pytest.mark.parametrize("scene, kinds", [
+    ("chains_1dof_8links.toml", {"chains": "ChainListing"}),
+    ("mechanisms_1dof_8links.toml", {"count": "ChainCount", "mechanisms": "MechanismCount"}),
+    ("table1_universal.toml", {"codes": "CodeList"}),
+    ("task1_24_links.toml", {"analysis": "CodeAnalysis"}),
+    ("planetary_lever_64200.toml", {"codes": "CodeList", "analysis": "CodeAnalysis", "planetary": "PlanetaryLever"}),
+    ("task2_prismatic_loop.toml", {"analysis": "CodeAnalysis", "prismatic": "Variants"}),
+    ("gears_ratio_design.toml", {"gear train": "TrainAnalysis"}),
+    ("gears_simpson.toml", {"gear train": "TrainAnalysis", "gear atlas": "GearCensus"}),
+    ("motion_four_bar.toml", {"motion": "MotionSummary", "closed form": "DyadCheck"}),
+    ("motion_slider_crank.toml", {"motion": "MotionSummary", "closed form": "SliderCrankCheck"}),
+    ("motion_planetary_willis.toml", {"motion": "MotionSummary", "closed form": "WillisCheck"}),
+    ("arm_prismatic.toml", {"balance arm": "Derived"}),
+    ("spring_sine.toml", {"balance spring": "SpringDesign", "plot": "Figures"}),
+    ("pantograph.toml", {"balance pantograph": "PantographBalance"}),
+])
+def test_every_computation_gives_a_typed_result_printed_as_its_row(scene, kinds):
+    """Each computation (structure, gears, motion, balancing) returns a frozen Row; the scene's output is its row, and nothing
+    else turns it into one (the expectations are checked on the same rows)."""
+    import dataclasses
+
+    from mechbase import Row, as_row
+
+    result = run_scene(ROOT / "models" / scene)
+    assert result.ok
+    assert {name: type(r).__name__ for name, r in result.results.items()} == kinds
+    for name, typed in result.results.items():
+        assert isinstance(typed, Row) and dataclasses.is_dataclass(typed)
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(typed, dataclasses.fields(typed)[0].name, None)
+        assert result.rows[name] == as_row(typed) == result.to_dict()["results"][name]

@@ -48,11 +48,18 @@ def solver_calls(monkeypatch):
 
 
 def test_every_synthesis_model_uses_the_pep8_api(solver_calls):
-    assert [str(c) for c in synth.number_synthesis(1, loops=2)] == ["42/0", "51/1", "60/2"]
+    from synth.synthesis.number_synthesis import _solve_model, make_problem
+
+    # (a query this small is listed without the model: its model is solved here)
+    assert [str(c) for c in sorted(_solve_model(make_problem(1, loops=2)))] == ["42/0", "51/1", "60/2"]
     # five parallel cranks on a 5-joint frame: stage A's model and stage B's CP-SAT model (the
     # crank constraint is the one stage B's shortcuts do not take)
     counts = synth.count_chains(1, 10, v="0..3", require=["5=1.."], cranks=["5=5"], workers=1)
     assert counts["count"] == 32  # models/locomotive_cranks.toml
+    # (stage A of codes this small runs its plain search: its model is solved here)
+    from synth.synthesis.stage_a import Conventions, _contracted_by_model
+
+    assert len(_contracted_by_model(synth.Code.parse("6301/0"), Conventions())) > 0
     assert {"synth.synthesis.number_synthesis", "synth.synthesis.stage_a", "synth.synthesis.stage_b"} <= set(solver_calls)
 
 

@@ -255,14 +255,14 @@ def test_make_problem_accepts(kwargs, links, loops):
 ], ids=["plain", "compositions", "multiplicity", "n2-low", "n2-high", "n3", "K+W"])
 @pytest.mark.parametrize("dof", [0, 1, 3])
 def test_single_loop_equals_brute_force_and_the_model(dof, kwargs, brute_kwargs):
-    """One loop is solved without CP-SAT (every link binary): the same codes as the model."""
-    from synth.synthesis.number_synthesis import _model_codes, _single_loop, make_problem
+    """One loop (every link binary) is listed without CP-SAT: the same codes as the model."""
+    from synth.synthesis.number_synthesis import _direct_codes, _model_codes, make_problem
 
     bk = dict(brute_kwargs)
     if bk.get("imax") == "K+W":
         bk["imax"] = max(2, 1 + dof)  # a closed chain allows binary links whatever the bound
     problem = make_problem(dof, loops=1, **kwargs)
-    assert set(_single_loop(problem)) == set(_model_codes(problem)) == brute(dof, 1, **bk)
+    assert set(_direct_codes(problem)) == set(_model_codes(problem)) == brute(dof, 1, **bk)
     assert set(number_synthesis(dof, loops=1, **kwargs)) == brute(dof, 1, **bk)
 
 
