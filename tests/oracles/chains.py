@@ -285,6 +285,20 @@ def count_by_code(chains) -> dict:
     return dict(Counter(c.code_key for c in chains))
 
 
+def engine_counts_by_key(by_code: dict) -> dict:
+    """The engine's counts by code name (``'440/0'``) under the oracle's keys ``(assortment, ())``,
+    trailing zero counts stripped: only the names are read by the engine's parser, no count."""
+    from synth import Code
+
+    def key(name):
+        assortment = list(Code.parse(name).assortment)
+        while assortment and assortment[-1] == 0:
+            assortment.pop()
+        return tuple(assortment), ()
+
+    return {key(name): n for name, n in by_code.items()}
+
+
 # --------------------------------------------------------------------------
 # Packed all-subsets sub-chain check (pruning rule 2)
 # --------------------------------------------------------------------------
