@@ -193,8 +193,7 @@ def make_problem(query: CodeQuery | int | None = None, /, **options) -> Problem:
         raise QueryTooLarge(f"K = {K} loops (n = {n} links): a code is written with one count per loop, and codes "
                             f"are written and read up to {MAX_LOOPS} loops")
     n1_range = parse_range(query.n1, "n1")
-    if n1_range[1] is None:
-        n1_range = (n1_range[0], n)
+    n1_range = (n1_range[0], n if n1_range[1] is None else min(n1_range[1], n))  # (no more free ends than links)
     if n1_range[0] > n:
         raise ImpossibleParameters(f"n1 = {n1_range[0]} single-joint links do not fit in {n} links")
     closed = n1_range[1] == 0

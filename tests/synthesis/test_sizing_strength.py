@@ -22,7 +22,7 @@ import pytest
 from synth.errors import QueryTooLarge
 from synth.synthesis import _sizing
 from synth.synthesis._sizing import MAX_EXCESS, check_excess, coarse_bound, code_bound
-from synth.synthesis.number_synthesis import make_problem
+from synth.synthesis.number_synthesis import make_problem, number_synthesis
 
 
 def _assortments(degrees, requirements, excess):
@@ -210,8 +210,9 @@ def test_the_sum_over_the_single_joint_links_stops_once_above_the_limit():
 
 
 def test_a_wide_range_of_single_joint_links_is_refused_when_the_second_is_out(monkeypatch):
-    # (``codes --dof 2 --loops 3 --n1 0..999000`` summed for minutes before it was refused within a second)
-    problem = make_problem(2, loops=3, n1="0..600")
+    # (``codes --dof 2 --loops 3 --n1 0..999000`` summed for minutes before it was refused within a second; a query
+    # now keeps n1 within its n links, so the wide problem is built as it was: n1 up to 600, v up to 2p − 2n + 600)
+    problem = dataclasses.replace(make_problem(2, loops=3, n1="0..9"), n1=(0, 600), v=(0, 604))
     _clock(monkeypatch, 10.0, 10.9, 11.0)  # the clock is read after every 256 values of n1: at 255 and 511
     assert code_bound(problem) == _sizing.Bound(float(_brute_bound(problem)))  # within 1 s
     _clock(monkeypatch, 10.0, 10.5, 11.01)
@@ -248,7 +249,9 @@ def test_tables_beyond_floating_point_warn_of_nothing(monkeypatch):
     # links of up to 300 joints and up to 200 000 single-joint links: the partitions pass 1e308 within the
     # second (on a clock that does not move here); the bound is then the sum so far, without a warning
     monkeypatch.setattr(_sizing, "time", types.SimpleNamespace(perf_counter=lambda: 0.0))
-    problem = make_problem(2, loops=3, n1="0..200000", max_link_degree=300)
+    # (built as a query of n1 up to 200 000 was before n1 was kept within n: v up to 2p − 2n + 200 000)
+    problem = dataclasses.replace(make_problem(2, loops=3, n1="0..9", max_link_degree=300), n1=(0, 200000),
+                                  v=(0, 200004))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         found = code_bound(problem, stop=1e6)
@@ -272,7 +275,9 @@ def test_a_bound_lost_to_overflow_is_infinite_never_nan(monkeypatch, quiet, exac
     # limit unnoticed; the bound is inf instead — at the end (a clock that never moves), or in the sum so far
     # when the clock is past half a second at the 368th part (after the start and 22 quiet looks)
     monkeypatch.setattr(_sizing, "time", types.SimpleNamespace(perf_counter=_Reads(quiet, 0.6).perf_counter))
-    problem = make_problem(2, loops=3, n1="0..100000", v="0..2", max_link_degree=400, max_multiplicity=2)
+    # (built as a query of n1 up to 100 000 was before n1 was kept within the chain's n links)
+    problem = dataclasses.replace(make_problem(2, loops=3, n1="0..9", v="0..2", max_link_degree=400, max_multiplicity=2),
+                                  n1=(0, 100000))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert code_bound(problem) == _sizing.Bound(math.inf, exact=exact)
@@ -284,3 +289,11 @@ def test_a_refusal_at_the_parts_names_the_single_joint_links(monkeypatch):
     with pytest.raises(QueryTooLarge) as refused:
         code_bound(problem)
     assert str(refused.value) == "the codes of K = 20 loops and up to 3 single-joint links cannot be sized within 1 s"
+
+
+def test_single_joint_links_beyond_the_links_of_the_chain_change_nothing():
+    """n1 ≤ n: a range of single-joint links past the chain's n links is the range up to n (it was sized as
+    written: ``--n1 0..999000`` with n = 9 was refused as "more than 202 729 codes" where there are 99)."""
+    wide, tight = make_problem(2, loops=3, n1="0..999000"), make_problem(2, loops=3, n1="0..9")
+    assert wide == tight and wide.n1 == (0, 9)
+    assert len(number_synthesis(2, loops=3, n1="0..999000")) == len(number_synthesis(2, loops=3, n1="0..9")) == 99
