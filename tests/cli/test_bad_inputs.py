@@ -37,7 +37,7 @@ CASES = [
     ("codes --dof 1 --loops 1000", "K = 1000"),
     ("codes --dof 1 --links 100000000", "n = 100000000"),
     ("codes --dof 1 --links 1..100000000", "1..100000000"),
-    ("codes --dof 1 --loops 3 --n1 0..2000000", "2000000"),
+    ("codes --dof 1 --loops 3 --n1 2000000..2000001", "2000000"),  # (0..2000000 is up to n: 78 codes)
     ("codes --dof 1 --loop-classes 9=1", "not 9"),
     ("codes --dof 1 --loop-classes 3=4,3=2", "3="),
     ("codes --dof 1 --loop-classes 3=4 --h 5", "--h"),
