@@ -236,7 +236,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
     # the planar arm from TOML: links, loads, the gravity potential (terms against hand sums, moments against
     # finite differences) and the counterweights' sub-arms
-    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_potential_strength.py",
+    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_arm_model_strength.py",
+                                           "tests/balance/test_potential_strength.py",
                                            "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
     # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
     "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
