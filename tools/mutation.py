@@ -250,9 +250,15 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
                                                        "tests/balance/test_packages_strength.py",
                                                        _BALANCE_DOC + "balance.problems.slider]"]),
-    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_slider_devices.py", "tests/balance/test_devices.py",
-                                                       "tests/balance/test_fit.py", _BALANCE_DOC + "balance.problems.spring]",
-                                                       "-k", "not under_100_ms and not model_matches"]),
+    # (its strength file and the spring problems of the device tests; not test_fit.py and the rest of
+    # test_devices.py and test_slider_devices.py: 24 CPU s, the fits' own modules are judged by them)
+    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_spring_problem_strength.py",
+                                                       "tests/balance/test_devices.py::test_unguided_long_spring_warns_about_buckling",
+                                                       "tests/balance/test_devices.py::test_bound_warnings_say_which_bound_to_move",
+                                                       "tests/balance/test_devices.py::test_pareto_front_is_nondominated_and_contains_better_devices",
+                                                       "tests/balance/test_slider_devices.py::test_sensitivity_moves_the_rod_and_refits_the_same_device",
+                                                       "tests/balance/test_slider_devices.py::test_helical_spring_for_a_slider_device_works_between_its_lengths",
+                                                       _BALANCE_DOC + "balance.problems.spring]"]),
     # the package's lazily loaded names, the problems' readers, the fit's names
     "balance_init": ("balance/__init__.py", ["tests/balance/test_packages_strength.py", _BALANCE_DOC + "balance]"]),
     "problems_init": ("balance/problems/__init__.py", ["tests/balance/test_packages_strength.py",
