@@ -244,7 +244,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                        "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
                                        _BALANCE_DOC + "balance.model.urdf]"]),
     # the [arm], [pantograph], [slider] and [spring] problems, read and solved
-    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", _BALANCE_DOC + "balance.problems.arm]"]),
+    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_arm_problem_strength.py",
+                                                _BALANCE_DOC + "balance.problems.arm]"]),
     "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
                                                                _BALANCE_DOC + "balance.problems.pantograph]"]),
     "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",

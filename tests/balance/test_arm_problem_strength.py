@@ -1,0 +1,74 @@
+"""The [arm] problem (balance.problems.arm) checked by hand: Example 1 read from URDF with a payload range on
+its flange (the amplitudes grow by the payload's moment arms), the device sizes and the options of the table
+handed over, the payload on the Moon, the work estimate of a URDF arm's terms and its refusal."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+import balance.problems.arm as problems_arm
+from balance.budget import TooMuchWork
+from balance.model.arm import Arm, Link, Load
+from balance.model.urdf import load_urdf
+from balance.problems.arm import ArmProblem, arm_problem
+
+URDF = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "models", "arm_base_drives.urdf"))
+G = 9.80665
+# Example 1: link lengths 0.6, 0.5, 0.3 m; A1 = 126, A2 = 55, A3 = 15 N·m without payload
+LENGTHS, EMPTY = (0.6, 0.5, 0.3), (126.0, 55.0, 15.0)
+
+
+def test_example1_from_urdf_with_a_payload_range_on_its_flange():
+    doc = {"arm": {"urdf": URDF, "drives": "base", "counterweights": {"arm": 0.2}, "check": {"samples": 50, "seed": 3},
+                   "payload": {"mass": [0, 2], "link": "link4", "at": [0, 0, 0.3]},
+                   "devices": {"eccentricity": 0.05, "r": 0.1, "r0": 0.4}, "transmission": True}}
+    p = arm_problem(doc, "x.toml")
+    assert (p.samples, p.seed, p.urdf, p.payload, p.transmission) == (50, 3, URDF, (0.0, 2.0), True)
+    assert p.counterweight_arms == {0: 0.2, 1: 0.2, 2: 0.2, 3: 0.2}
+    assert (p.devices.eccentricity, p.devices.r, p.devices.r0) == (0.05, 0.1, 0.4)
+    res = p.solve()
+    # tuned for 1 kg at the end of link 4: each amplitude grows by 1·g times the lengths from its joint
+    reach = (sum(LENGTHS), sum(LENGTHS[1:]), LENGTHS[2])
+    want = [EMPTY[0] + G * LENGTHS[0], EMPTY[1] + G * LENGTHS[1], EMPTY[2] + G * LENGTHS[2]]
+    assert [t.amplitude for t in res.terms] == pytest.approx(want, rel=1e-12)
+    # the payload's half range (1 kg) alone, its largest moment at full reach
+    pl = res.payload
+    assert (pl.min_payload, pl.max_payload, pl.tuned_for) == pytest.approx((0.0, 2 * G, G), rel=1e-15)
+    assert pl.half_payload_effect_per_joint[1:] == pytest.approx([G * r for r in reach], rel=1e-9)
+    assert pl.max_residual == pytest.approx(G * reach[0], rel=1e-9)
+    # the sine devices e·T = A with e = 50 mm; the tension devices c = A/(r·(r + r0))
+    for dev, a in zip(res.devices, want):
+        assert dev.sine.e == 0.05 and dev.sine.T == pytest.approx(a / 0.05, rel=1e-12)
+        assert dev.tension.c == pytest.approx(a / (0.1 * 0.5), rel=1e-12) and dev.tension.a == 0.4
+    assert res.transmission is not None and len(res.transmission) == 3
+    assert res.pinocchio.relative_residual < 1e-9 and res.check.relative_residual < 1e-9
+
+
+def test_a_payload_weighed_under_another_gravity_is_read_back_in_kilograms():
+    moon = 1.62
+    arm = Arm((Link("a", "revolute", 0.7, 50.0, 0.35), Link("b", "revolute", 0.5, 30.0, 0.25)),
+              (Load(1, 4 * moon, 0.5, payload=True, name="payload"),))
+    res = ArmProblem(arm, samples=30, g=moon).solve()
+    assert res.payload.g == moon
+    assert res.payload.mass_range_kg == pytest.approx((0.0, 4.0), rel=1e-14)
+    assert res.to_dict()["payload"]["mass_range_kg"] == pytest.approx([0.0, 4.0], rel=1e-14)
+    # tuned for 2 kg: the second link's amplitude 30·0.25 + 2·1.62·0.5
+    by_form = {t.form: t.amplitude for t in res.terms}
+    assert by_form[(1.0, 1.0)] == pytest.approx(30 * 0.25 + 2 * moon * 0.5, rel=1e-12)
+
+
+def test_the_work_of_a_urdf_arms_terms_is_estimated_from_its_largest_count_and_refused_past_the_limit(monkeypatch):
+    arm = load_urdf(URDF)
+    own = arm.sample(16)
+    # every timing one millisecond: per value 1 ms over 8 probe terms × 16 configurations, per text 1 ms / 8
+    monkeypatch.setattr(problems_arm, "unit_seconds", lambda unit: (unit(), 1e-3)[1])
+    most = (3 ** 4 + 1) // 2  # 41 terms at most for four joints
+    seconds = most * (2 * 100 * 1e-3 / (8 * 16) + 2 * 1e-3 / 8)
+    with pytest.raises(TooMuchWork) as err:
+        problems_arm._ensure_terms_affordable(arm, own, 100, seconds / 2)
+    assert err.value.seconds == pytest.approx(seconds, rel=1e-12)
+    assert str(err.value).startswith("checking 100 configurations against up to 41 harmonic terms would take about ")
+    problems_arm._ensure_terms_affordable(arm, own, 100, seconds * 2)
+    problems_arm._ensure_terms_affordable(arm, own, 100, None)
