@@ -72,3 +72,68 @@ def test_the_work_of_a_urdf_arms_terms_is_estimated_from_its_largest_count_and_r
     assert str(err.value).startswith("checking 100 configurations against up to 41 harmonic terms would take about ")
     problems_arm._ensure_terms_affordable(arm, own, 100, seconds * 2)
     problems_arm._ensure_terms_affordable(arm, own, 100, None)
+
+
+LINK = {"joint": "revolute", "length": 1.0, "weight": 2.0}
+
+
+@pytest.mark.parametrize("arm, words", [
+    ({"urdf": URDF, "links": [LINK]}, "s.toml: [arm] takes its links from 'urdf'; remove [[arm.links]] and [[arm.loads]]."),
+    ({"urdf": URDF, "loads": [{"weight": 1.0}]},
+     "s.toml: [arm] takes its links from 'urdf'; remove [[arm.links]] and [[arm.loads]]."),
+    ({"urdf": URDF, "payload": {"mass": [0, 1], "at": 0.3}},
+     "s.toml: [arm.payload] key 'at' must be [x, y, z] (m, in the link's frame) for a URDF arm."),
+    ({"urdf": URDF, "drives": [[1, 0], [0, 1]]},
+     "s.toml: [arm] key 'drives' must be a non-singular 4×4 matrix for this URDF arm."),
+    ({"urdf": URDF, "drives": [[1, 0, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+     "s.toml: [arm] key 'drives' must be a non-singular 4×4 matrix for this URDF arm."),
+    ({"urdf": URDF, "payload": {"mass": [0, 1], "link": "base", "at": [0, 0, 0]}},
+     "s.toml: [arm.payload] the payload's link 'base' is the base: it does not move."),
+    ({"urdf": URDF, "payload": {"mass": [0, 1], "link": "nope", "at": [0, 0, 0]}},
+     "s.toml: [arm.payload] the URDF has no link 'nope' to carry the payload (links: base, link1, link2, link3, link4)."),
+    ({"links": [LINK], "loads": [{"weight": 1.0, "payload": True}], "payload": {"mass": [0, 1]}},
+     "s.toml: give the payload either as [arm.payload] or as [[arm.loads]] with payload = true, not both."),
+    ({"links": [LINK], "payload": {"mass": [0, 1], "at": [0, 0, 0]}},
+     "s.toml: [arm.payload] key 'at' must be a number (m along the link) for a TOML arm."),
+    ({"links": [LINK], "payload": {"mass": [0, 1], "link": "zz"}},
+     "s.toml: [arm.payload] key 'link' names no link: 'zz' (links: link1)."),
+    ({"links": [LINK], "payload": {"mass": [0, 1], "weight": [0, 1]}},
+     "s.toml: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' (N), not both or neither."),
+    ({"links": [LINK], "payload": {}},
+     "s.toml: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' (N), not both or neither."),
+    ({"links": [LINK], "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
+])
+def test_a_table_that_contradicts_itself_is_refused_in_one_sentence(arm, words):
+    with pytest.raises(Exception) as err:
+        arm_problem({"arm": arm}, "s.toml")
+    assert str(err.value) == words
+
+
+def test_a_urdf_is_found_next_to_its_scene_file_or_from_the_working_directory(monkeypatch):
+    import tomllib
+
+    scene = os.path.join(os.path.dirname(URDF), "arm_urdf_example1.toml")
+    with open(scene, "rb") as fh:
+        doc = tomllib.load(fh)
+    assert doc["arm"]["urdf"] == "arm_base_drives.urdf"
+    assert arm_problem(doc, scene).urdf == URDF
+    monkeypatch.chdir(os.path.dirname(URDF))  # a document with no file: the name is the working directory's
+    p = arm_problem(doc)
+    assert p.urdf == "arm_base_drives.urdf" and p.arm.n == 4
+
+
+def test_a_toml_arms_payload_given_in_newtons_sits_at_the_end_of_its_link_unless_placed():
+    two = [dict(LINK, name="upper"), dict(LINK, name="fore", length=0.8)]
+    p = arm_problem({"arm": {"links": two, "payload": {"weight": [G, 3 * G]}}}, "s.toml")
+    assert p.payload == pytest.approx((1.0, 3.0), rel=1e-15)
+    (load,) = p.arm.loads
+    assert (load.link, load.weight, load.at, load.payload, load.name) == (1, pytest.approx(3 * G), 0.8, True, "payload")
+    placed = arm_problem({"arm": {"links": two, "payload": {"mass": [0, 2], "link": "upper", "at": 0.4}}}, "s.toml")
+    (load,) = placed.arm.loads
+    assert (load.link, load.weight, load.at) == (0, pytest.approx(2 * G), 0.4)
+    none = arm_problem({"arm": {"links": two, "payload": {"mass": [0, 0]}}}, "s.toml")
+    assert none.arm.loads == () and none.payload == (0.0, 0.0)
+    # payload loads of the links' table carry the largest payload, from none
+    loads = arm_problem({"arm": {"links": two, "loads": [{"weight": 5.0, "payload": True}]}}, "s.toml")
+    assert loads.payload == pytest.approx((0.0, 5.0 / G), rel=1e-15)
+    assert arm_problem({"arm": {"links": two}}, "s.toml").payload is None
