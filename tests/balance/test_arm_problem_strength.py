@@ -137,3 +137,11 @@ def test_a_toml_arms_payload_given_in_newtons_sits_at_the_end_of_its_link_unless
     loads = arm_problem({"arm": {"links": two, "loads": [{"weight": 5.0, "payload": True}]}}, "s.toml")
     assert loads.payload == pytest.approx((0.0, 5.0 / G), rel=1e-15)
     assert arm_problem({"arm": {"links": two}}, "s.toml").payload is None
+
+
+def test_a_urdf_arm_takes_the_tables_name_gravity_and_accuracy():
+    p = arm_problem({"arm": {"urdf": URDF, "name": "robot", "g": 1.62, "accuracy": 1e-4}}, "s.toml")
+    assert (p.arm.name, p.arm.g, p.arm.accuracy, p.g) == ("robot", 1.62, 1e-4, 1.62)
+    # Example 1's first amplitude weighs the same masses under the Moon's gravity: 126·1.62/g
+    assert p.solve().terms[0].amplitude == pytest.approx(126.0 * 1.62 / G, rel=1e-12)
+    assert arm_problem({"arm": {"urdf": URDF}}, "s.toml").arm.name == "arm_base_drives.urdf"
