@@ -102,6 +102,7 @@ LINK = {"joint": "revolute", "length": 1.0, "weight": 2.0}
     ({"links": [LINK], "payload": {}},
      "s.toml: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' (N), not both or neither."),
     ({"links": [LINK], "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
+    ({"urdf": URDF, "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
 ])
 def test_a_table_that_contradicts_itself_is_refused_in_one_sentence(arm, words):
     with pytest.raises(Exception) as err:
@@ -145,3 +146,11 @@ def test_a_urdf_arm_takes_the_tables_name_gravity_and_accuracy():
     # Example 1's first amplitude weighs the same masses under the Moon's gravity: 126·1.62/g
     assert p.solve().terms[0].amplitude == pytest.approx(126.0 * 1.62 / G, rel=1e-12)
     assert arm_problem({"arm": {"urdf": URDF}}, "s.toml").arm.name == "arm_base_drives.urdf"
+
+
+def test_a_urdf_payload_without_a_place_sits_at_its_links_origin():
+    # 2 kg on link 4's joint (the wrist): it loads the first two terms (0.6 m, 0.5 m), not the third
+    res = arm_problem({"arm": {"urdf": URDF, "payload": {"mass": [2, 2], "link": "link4"},
+                               "check": {"samples": 20}}}, "s.toml").solve()
+    want = [EMPTY[0] + 2 * G * LENGTHS[0], EMPTY[1] + 2 * G * LENGTHS[1], EMPTY[2]]
+    assert [t.amplitude for t in res.terms] == pytest.approx(want, rel=1e-12)
