@@ -154,3 +154,13 @@ def test_a_urdf_payload_without_a_place_sits_at_its_links_origin():
                                "check": {"samples": 20}}}, "s.toml").solve()
     want = [EMPTY[0] + 2 * G * LENGTHS[0], EMPTY[1] + 2 * G * LENGTHS[1], EMPTY[2]]
     assert [t.amplitude for t in res.terms] == pytest.approx(want, rel=1e-12)
+
+
+def test_a_toml_arm_turns_a_full_turn_and_names_its_loads_unless_told():
+    import math
+
+    p = arm_problem({"arm": {"links": [LINK, dict(LINK, joint="prismatic", stroke=0.4, gear_ratio=2.0)],
+                             "loads": [{"weight": 3.0}, {"weight": 1.0, "name": "tool", "link": "link1"}]}}, "s.toml")
+    assert p.arm.links[0].limits == (-math.pi, math.pi)
+    assert p.arm.links[1].limits == (-0.2, 0.2)
+    assert [(ld.name, ld.link, ld.at) for ld in p.arm.loads] == [("load1", 1, 1.0), ("tool", 0, 1.0)]
