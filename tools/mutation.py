@@ -240,7 +240,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                            "tests/balance/test_potential_strength.py",
                                            "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
     # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
-    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
+    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py", "tests/balance/test_urdf_strength.py",
                                        "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
                                        _BALANCE_DOC + "balance.model.urdf]"]),
     # the [arm], [pantograph], [slider] and [spring] problems, read and solved
