@@ -4,12 +4,14 @@ handed over, the payload on the Moon, the work estimate of a URDF arm's terms an
 
 from __future__ import annotations
 
+import math
 import os
 
 import pytest
 
 import balance.problems.arm as problems_arm
 from balance.budget import TooMuchWork
+from balance.errors import InvalidInput
 from balance.model.arm import Arm, Link, Load
 from balance.model.urdf import load_urdf
 from balance.problems.arm import ArmProblem, arm_problem
@@ -57,6 +59,9 @@ def test_a_payload_weighed_under_another_gravity_is_read_back_in_kilograms():
     # tuned for 2 kg: the second link's amplitude 30·0.25 + 2·1.62·0.5
     by_form = {t.form: t.amplitude for t in res.terms}
     assert by_form[(1.0, 1.0)] == pytest.approx(30 * 0.25 + 2 * moon * 0.5, rel=1e-12)
+    # the counterweights' masses weigh their weights under the same gravity
+    for cw in res.counterweights.weights:
+        assert cw.mass == pytest.approx(cw.weight / moon, rel=1e-12)
 
 
 def test_the_work_of_a_urdf_arms_terms_is_estimated_from_its_largest_count_and_refused_past_the_limit(monkeypatch):
@@ -157,10 +162,46 @@ def test_a_urdf_payload_without_a_place_sits_at_its_links_origin():
 
 
 def test_a_toml_arm_turns_a_full_turn_and_names_its_loads_unless_told():
-    import math
-
     p = arm_problem({"arm": {"links": [LINK, dict(LINK, joint="prismatic", stroke=0.4, gear_ratio=2.0)],
                              "loads": [{"weight": 3.0}, {"weight": 1.0, "name": "tool", "link": "link1"}]}}, "s.toml")
     assert p.arm.links[0].limits == (-math.pi, math.pi)
     assert p.arm.links[1].limits == (-0.2, 0.2)
     assert [(ld.name, ld.link, ld.at) for ld in p.arm.loads] == [("load1", 1, 1.0), ("tool", 0, 1.0)]
+
+
+def test_the_check_finds_the_largest_residual_inside_the_workspace_where_it_is_on_its_edge():
+    # devices for half the link's weight: the residual is 2.5·sin q, over q ∈ [−1, −0.2] largest at q = −1
+    # (the search must not leave the range for −π/2, where it would be 2.5)
+    from balance.model.potential import HarmonicTerm
+    from balance.problems.arm import check_terms
+
+    arm = Arm((Link("l", "revolute", 1.0, 10.0, 0.5, q_range=(-1.0, -0.2)),))
+    (term,) = arm.harmonic_terms()
+    half = HarmonicTerm(term.amplitude / 2, term.phase, term.form)
+    chk = check_terms(arm, [half], samples=40, seed=5)
+    assert chk.seed == 5 and chk.samples == 40
+    assert chk.max_residual == pytest.approx(2.5 * math.sin(1.0), rel=1e-9)
+    assert chk.max_gravity_force == pytest.approx(5.0 * math.sin(1.0), rel=1e-9)
+    assert chk.relative_residual == pytest.approx(0.5, rel=1e-9)
+    assert chk.worst[0] == pytest.approx((-1.0,), abs=1e-9)
+
+
+def test_a_slide_is_reported_with_its_coordinate_stroke_ratio_and_bounds():
+    arm = Arm((Link("upper", "revolute", 0.5, 10.0, 0.25),
+               Link("s", "prismatic", 0.5, 20.0, 0.2, stroke=0.4, gear_ratio=2.0)), zero="horizontal")
+    res = ArmProblem(arm, samples=20, seed=4).solve()
+    assert res.check.seed == 4
+    (sl,) = res.slides
+    assert (sl.link, sl.coordinate, sl.stroke, sl.gear_ratio) == ("s", "q2", 0.4, 2.0)
+    # γ_max = 0.2/2 = 0.1: the slide's force within 20·(1 − cos 0.1), the upper joint's within 20·0.2·(1 − sin γ/γ)
+    assert sl.residual_bound_per_joint == pytest.approx((20 * 0.2 * (1 - math.sin(0.1) / 0.1), 20 * (1 - math.cos(0.1))),
+                                                        rel=1e-12)
+
+
+@pytest.mark.parametrize("payload", [(0.0, math.inf), (math.nan, 1.0), (2.0, 1.0), (-1.0, 1.0)])
+def test_a_payload_range_that_is_not_one_is_refused(payload):
+    arm = Arm((Link("l", "revolute", 1.0, 10.0, 0.5),), (Load(0, 1.0, 1.0, payload=True),))
+    with pytest.raises(InvalidInput) as err:
+        ArmProblem(arm, samples=10, payload=payload).solve()
+    assert str(err.value) == (f"the payload range must be finite with 0 ≤ low ≤ high, not {payload[0]:g} .. "
+                              f"{payload[1]:g} kg.")
