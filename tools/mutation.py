@@ -247,6 +247,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_arm_problem_strength.py",
                                                 _BALANCE_DOC + "balance.problems.arm]"]),
     "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                               "tests/balance/test_pantograph_problem_strength.py",
                                                                _BALANCE_DOC + "balance.problems.pantograph]"]),
     "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
                                                        "tests/balance/test_packages_strength.py",
