@@ -11,7 +11,7 @@ import pinocchio as pin
 import pytest
 
 from balance.model.arm import Arm, Link, Load
-from balance.model.potential import terms_forces
+from balance.model.potential import terms_forces, terms_potential
 from balance.model.urdf import UrdfArm, arm_to_urdf, pinocchio_check, pinocchio_model
 
 G = 9.80665
@@ -121,3 +121,63 @@ def test_the_check_of_a_toml_arm_reports_its_samples_worst_configurations_and_ag
     big = pinocchio_check(arm, terms, samples=40, seed=2, scale=10 * scale)
     assert big.max_gravity_force == 10 * scale and big.max_residual_at_worst is None
     assert big.worst_configurations == 0
+
+
+def test_a_revolute_joint_built_without_a_range_turns_a_full_turn():
+    # a model built in code (not from URDF, whose reader refuses lower ≥ upper) with the limits 0 … 0
+    model = pin.Model()
+    j = model.addJoint(0, pin.JointModelRY(), pin.SE3.Identity(), "j", np.array([1.0]), np.array([1.0]),
+                       np.array([0.0]), np.array([0.0]))
+    model.appendBodyToJoint(j, pin.Inertia(2.0, np.array([0.5, 0.0, 0.0]), np.zeros((3, 3))), pin.SE3.Identity())
+    assert UrdfArm(model, "r").coordinates[0].limits == (-math.pi, math.pi)
+
+
+def test_without_pinocchio_reading_urdf_says_how_to_install_it(monkeypatch):
+    import sys
+
+    from balance.errors import InvalidArm
+    from balance.model.urdf import _pin
+
+    monkeypatch.setitem(sys.modules, "pinocchio", None)  # import pinocchio now raises ImportError
+    with pytest.raises(InvalidArm) as err:
+        _pin()
+    assert str(err.value) == "reading URDF needs Pinocchio: python -m pip install pin."
+
+
+SLIDE_ARM = ('<robot name="r"><link name="a"/><link name="b"><inertial><origin xyz="0.3 0 0"/><mass value="1"/>'
+             '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>'
+             '<link name="c"><inertial><mass value="2"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+             '</inertial></link>'
+             '<joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/></joint>'
+             '<joint name="s" type="prismatic"><parent link="b"/><child link="c"/><origin xyz="0.5 0 0"/>'
+             '<axis xyz="1 0 0"/><limit lower="-0.2" upper="0.2" effort="1" velocity="1"/></joint></robot>')
+
+
+def test_an_arm_with_a_payload_keeps_its_name_accuracy_and_slides():
+    arm = UrdfArm(pinocchio_model(SLIDE_ARM), "slider", accuracy=1e-4)
+    moved = arm.with_payload_at(None, (0.1, 0.0, 0.0))
+    assert (moved.name, moved.accuracy, moved.payload_point) == ("slider", 1e-4, (2, (0.1, 0.0, 0.0)))
+    loaded = moved.with_payload(3.0)
+    assert (loaded.name, loaded.accuracy, loaded.coordinates) == ("slider", 1e-4, arm.coordinates)
+    # horizontal at q = 0, the slide at mid-stroke: moment 1·0.3 + 2·0.5 + 3·0.6 (kg·m) times g about j
+    assert abs(loaded.gravity_forces(np.zeros(2))[0]) == pytest.approx((0.3 + 1.0 + 1.8) * G, rel=1e-12)
+
+
+def test_an_arm_of_eight_joints_is_decomposed_over_its_whole_grid():
+    # 3⁸ = 6561 configurations: more than one chunk of 4096
+    rng = np.random.default_rng(8)
+    out = ['<robot name="r">', '<link name="l0"/>']
+    for i in range(1, 9):
+        c = rng.uniform(-0.2, 0.2, 3)
+        axis = rng.normal(size=3)
+        out.append(f'<link name="l{i}"><inertial><origin xyz="{c[0]} {c[1]} {c[2]}"/><mass value="{rng.uniform(0.5, 3)}"/>'
+                   '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>')
+        xyz = rng.uniform(-0.3, 0.3, 3)
+        out.append(f'<joint name="j{i}" type="continuous"><parent link="l{i - 1}"/><child link="l{i}"/>'
+                   f'<origin xyz="{xyz[0]} {xyz[1]} {xyz[2]}"/><axis xyz="{axis[0]} {axis[1]} {axis[2]}"/></joint>')
+    out.append("</robot>")
+    arm = UrdfArm(pinocchio_model("\n".join(out)), "eight")
+    terms = arm.harmonic_terms()
+    q = arm.sample(200, 1)
+    u = arm.potential(q)
+    assert np.ptp(u - terms_potential(terms, q)) <= 1e-9 * np.max(np.abs(u))
