@@ -181,3 +181,39 @@ def test_an_arm_of_eight_joints_is_decomposed_over_its_whole_grid():
     q = arm.sample(200, 1)
     u = arm.potential(q)
     assert np.ptp(u - terms_potential(terms, q)) <= 1e-9 * np.max(np.abs(u))
+
+
+def _robot(links: str, joints: str) -> str:
+    return f'<robot name="r">{links}{joints}</robot>'
+
+
+_B = '<link name="a"/><link name="b"><inertial><mass value="1"/></inertial></link>'
+_J = '<joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/></joint>'
+
+
+@pytest.mark.parametrize("text, words", [
+    (_robot('<link name="a"/><link name="b"><inertial><origin xyz="nan 0 0"/><mass value="1"/></inertial></link>', _J),
+     "the centre of mass of link 'b' must be 3 finite numbers, not 'nan 0 0'."),
+    (_robot('<link name="a"/><link name="b"><inertial><origin rpy="0 inf 0"/><mass value="1"/></inertial></link>', _J),
+     "the inertia frame of link 'b' must be 3 finite numbers, not '0 inf 0'."),
+    # a tiny link whose inertia is indefinite: refused at its own scale, not at 1 kg·m²'s
+    (_robot('<link name="a"/><link name="b"><inertial><mass value="1e-6"/><inertia ixx="1e-12" ixy="1e-11" ixz="0" '
+            'iyy="1e-12" iyz="0" izz="1e-12"/></inertial></link>', _J),
+     "link 'b' has an inertia with a negative principal moment (-9e-12, 1e-12, 1.1e-11 kg·m²): it must be positive "
+     "semi-definite."),
+    (_robot('<link name="a"/><link/>', ""), "a URDF link has no name."),
+    (_robot(_B, '<joint name="j" type="continuous"><parent link="a"/><child link="b"/><origin rpy="nan 0 0"/>'
+                '<axis xyz="0 1 0"/></joint>'),
+     "the orientation of joint 'j' must be 3 finite numbers, not 'nan 0 0'."),
+    (_robot(_B + "".join(f'<link name="{c}"/>' for c in "cdefg"),
+            _J + "".join(f'<joint name="k{p}" type="continuous"><parent link="{p}"/><child link="{c}"/></joint>'
+                         for p, c in zip("cdefg", "defgc"))),
+     "the links c, d, e, f hang in a loop of joints, not from the base 'a': an arm is a tree."),
+])
+def test_a_urdf_no_arm_can_be_read_from_is_refused_in_one_sentence(text, words):
+    from balance.errors import InvalidArm
+    from balance.model.urdf import validate_urdf
+
+    with pytest.raises(InvalidArm) as err:
+        validate_urdf(text)
+    assert str(err.value) == words
