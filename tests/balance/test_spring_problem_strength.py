@@ -58,6 +58,14 @@ def test_a_table_without_its_lengths_or_with_a_kind_its_device_cannot_take_is_re
     assert str(err.value) == words
 
 
+def test_a_key_the_table_does_not_have_is_refused_with_the_files_name():
+    with pytest.raises(SchemaError) as err:
+        spring_problem(table(colour="red"), "s.toml")
+    assert str(err.value) == ("s.toml: [spring] has an unknown key 'colour' (allowed: a, design, device, grid, kind, "
+                              "max_deflection, max_force, max_free_length, method, moment, norm, offset, pareto, r, r0, "
+                              "range_deg, rod, target_error).")
+
+
 def test_a_slider_device_takes_no_r0_and_may_name_its_compression_spring():
     doc = {"spring": {"device": "sine", "kind": "compression", "moment": 1.0, "range_deg": [0, 90],
                       "r": [0.1, 0.2], "a": [0, 0.3]}}
