@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from balance.errors import InvalidArm
+from balance.errors import InvalidArm, SchemaError
 from balance.model.pantograph import Pantograph
 from balance.problems.pantograph import PantographProblem, pantograph_problem
 
@@ -43,6 +43,11 @@ def test_the_table_is_read_field_by_field():
     with pytest.raises(InvalidArm) as err:
         pantograph_problem({"pantograph": {"l2": 0.8, "l3": 1.0, "ratio": 0.5}}, "p.toml")
     assert str(err.value) == "p.toml: the pantograph ratio k = AC/AB must exceed 1, not 0.5."
+    with pytest.raises(SchemaError) as err:
+        pantograph_problem({"pantograph": {"l2": 0.8, "l3": 1.0, "ratio": 4.0, "lenght": 2}}, "p.toml")
+    assert str(err.value) == ("p.toml: [pantograph] has an unknown key 'lenght' (allowed: bar_eb, bar_fb, check, "
+                              "cylinder, elbow_plate, forearm, l2, l3, parallelogram_bars, parallelogram_offset, "
+                              "payload, range_forearm_deg, range_upper_deg, ratio, spring, tool, upper, wrist_plate).")
 
 
 def test_every_reported_range_is_the_true_one_over_the_workspace():
