@@ -161,3 +161,13 @@ def test_a_cylinder_whose_line_passes_through_a_is_refused():
     # a base on the far side of A: the line sweeps through A somewhere in the workspace
     with pytest.raises(InvalidArm):
         PantographProblem(Pantograph(l2=0.8, l3=1.0, k=4.0, w2=60.0, base=(-0.2, 0.0)), samples=50).solve()
+
+
+def test_a_check_past_the_work_limit_is_refused_before_it_starts():
+    from balance.budget import TooMuchWork
+
+    p = Pantograph(l2=0.8, l3=1.0, k=4.0, w2=60.0, w3=40.0, tool=20.0)
+    with pytest.raises(TooMuchWork) as err:
+        PantographProblem(p, samples=10**9, work_limit=30.0).solve()
+    assert str(err.value).startswith("checking 1000000000 configurations would take about ")
+    assert err.value.limit == 30.0 and err.value.seconds > 30.0
