@@ -96,8 +96,7 @@ def test_every_reported_range_is_the_true_one_over_the_workspace():
 def test_the_row_by_hand():
     res = pantograph_problem(DOC).solve()
     out = res.to_dict()
-    p = res.pantograph
-    # substitution weights at half payload: W_D = 60·0.3/0.8 + 40·0.6 + 4 + 6·3/8 + 5 + 4 = 58.75 N
+    # substitution weights at half payload: W_D = 60·0.3/0.8 + 40·0.6 + 8/(2·4) + 6·(3/4)/2 + 5/2 + 5/2 + 4 = 58.75 N
     wd = 60 * 0.3 / 0.8 + 40 * (1 - 0.4) + 0.5 * 8 / 4 + 0.5 * 6 * (1 - 1 / 4) + 0.5 * 5 + 0.5 * 5 + 4
     assert out["point_weights"]["D"] == pytest.approx(wd, rel=1e-14)
     wc0 = 40 * 0.4 + 0.5 * 6 / 4 + 0.5 * 5 + 10 + 20  # without payload
