@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import os
 
+import numpy as np
 import pytest
 
 import balance.problems.arm as problems_arm
@@ -44,6 +45,8 @@ def test_example1_from_urdf_with_a_payload_range_on_its_flange():
     for dev, a in zip(res.devices, want):
         assert dev.sine.e == 0.05 and dev.sine.T == pytest.approx(a / 0.05, rel=1e-12)
         assert dev.tension.c == pytest.approx(a / (0.1 * 0.5), rel=1e-12) and dev.tension.a == 0.4
+        fit = dev.tension.spring_fit  # the request to fit a tension spring to the term, sized or not
+        assert (fit.kind, fit.moment, fit.phi) == ("tension", -dev.amplitude, f"φ{dev.term + 1} + 0°")
     assert res.transmission is not None and len(res.transmission) == 3
     assert res.pinocchio.relative_residual < 1e-9 and res.check.relative_residual < 1e-9
 
@@ -59,6 +62,9 @@ def test_a_payload_weighed_under_another_gravity_is_read_back_in_kilograms():
     # tuned for 2 kg: the second link's amplitude 30·0.25 + 2·1.62·0.5
     by_form = {t.form: t.amplitude for t in res.terms}
     assert by_form[(1.0, 1.0)] == pytest.approx(30 * 0.25 + 2 * moon * 0.5, rel=1e-12)
+    # the arm at the payload's ends (for the figures): 4 kg and none, weighed under the Moon's gravity
+    assert res.full_payload.payload_weight == pytest.approx(4 * moon, rel=1e-14)
+    assert res.empty.payload_weight == 0.0
     # the counterweights' masses weigh their weights under the same gravity
     for cw in res.counterweights.weights:
         assert cw.mass == pytest.approx(cw.weight / moon, rel=1e-12)
@@ -126,6 +132,8 @@ def test_a_urdf_is_found_next_to_its_scene_file_or_from_the_working_directory(mo
     monkeypatch.chdir(os.path.dirname(URDF))  # a document with no file: the name is the working directory's
     p = arm_problem(doc)
     assert p.urdf == "arm_base_drives.urdf" and p.arm.n == 4
+    # a document named after a file that does not exist (a table built in code): the working directory too
+    assert arm_problem(doc, os.path.join("elsewhere", "scene.toml")).urdf == "arm_base_drives.urdf"
 
 
 def test_a_toml_arms_payload_given_in_newtons_sits_at_the_end_of_its_link_unless_placed():
@@ -155,8 +163,10 @@ def test_a_urdf_arm_takes_the_tables_name_gravity_and_accuracy():
 
 def test_a_urdf_payload_without_a_place_sits_at_its_links_origin():
     # 2 kg on link 4's joint (the wrist): it loads the first two terms (0.6 m, 0.5 m), not the third
-    res = arm_problem({"arm": {"urdf": URDF, "payload": {"mass": [2, 2], "link": "link4"},
-                               "check": {"samples": 20}}}, "s.toml").solve()
+    p = arm_problem({"arm": {"urdf": URDF, "payload": {"mass": [2, 2], "link": "link4"}, "check": {"samples": 20}}},
+                    "s.toml")
+    assert p.arm.payload_point == (4, (0.0, 0.0, 0.0))  # joint 4's own origin
+    res = p.solve()
     want = [EMPTY[0] + 2 * G * LENGTHS[0], EMPTY[1] + 2 * G * LENGTHS[1], EMPTY[2]]
     assert [t.amplitude for t in res.terms] == pytest.approx(want, rel=1e-12)
 
@@ -167,6 +177,12 @@ def test_a_toml_arm_turns_a_full_turn_and_names_its_loads_unless_told():
     assert p.arm.links[0].limits == (-math.pi, math.pi)
     assert p.arm.links[1].limits == (-0.2, 0.2)
     assert [(ld.name, ld.link, ld.at) for ld in p.arm.loads] == [("load1", 1, 1.0), ("tool", 0, 1.0)]
+    ranged = arm_problem({"arm": {"links": [dict(LINK, joint="prismatic", stroke=0.4, gear_ratio=2.0,
+                                                 range=[-0.1, 0.15])]}}, "s.toml")
+    assert ranged.arm.links[0].limits == (-0.1, 0.15)
+    with pytest.raises(Exception) as err:
+        arm_problem({"arm": {"links": [dict(LINK, name="a"), dict(LINK, name="a")]}}, "s.toml")
+    assert str(err.value) == "s.toml: [[arm.links]] #2 repeats the name 'a' of [[arm.links]] #1."
 
 
 def test_the_check_finds_the_largest_residual_inside_the_workspace_where_it_is_on_its_edge():
@@ -180,6 +196,10 @@ def test_the_check_finds_the_largest_residual_inside_the_workspace_where_it_is_o
     half = HarmonicTerm(term.amplitude / 2, term.phase, term.form)
     chk = check_terms(arm, [half], samples=40, seed=5)
     assert chk.seed == 5 and chk.samples == 40
+    # the best of the samples alone, read off the residual −2.5·sin q at each of them
+    q = arm.sample(40, 5)
+    assert chk.sampled_max_residual == pytest.approx(np.max(np.abs(2.5 * np.sin(q[:, 0]))), rel=1e-12)
+    assert chk.sampled_max_residual < chk.max_residual
     assert chk.max_residual == pytest.approx(2.5 * math.sin(1.0), rel=1e-9)
     assert chk.max_gravity_force == pytest.approx(5.0 * math.sin(1.0), rel=1e-9)
     assert chk.relative_residual == pytest.approx(0.5, rel=1e-9)
