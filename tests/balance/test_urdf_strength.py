@@ -217,3 +217,71 @@ def test_a_urdf_no_arm_can_be_read_from_is_refused_in_one_sentence(text, words):
     with pytest.raises(InvalidArm) as err:
         validate_urdf(text)
     assert str(err.value) == words
+
+
+@pytest.mark.parametrize("text, words", [
+    (_robot('<link name="a"/><link name="b"/><link name="b"/>', _J), "two URDF links are named 'b'."),
+    (_robot(_B, '<joint type="continuous"><parent link="a"/><child link="b"/></joint>'), "a URDF joint has no name."),
+    (_robot(_B, '<joint name="j" type="continuous"><child link="b"/></joint>'), "joint 'j' names no parent link."),
+    (_robot(_B, '<joint name="j" type="continuous"><parent link="a"/><child link="b"/><origin xyz="nan 0 0"/>'
+                '<axis xyz="0 1 0"/></joint>'), "the origin of joint 'j' must be 3 finite numbers, not 'nan 0 0'."),
+])
+def test_a_urdf_with_a_repeated_or_missing_name_or_place_is_refused(text, words):
+    from balance.errors import InvalidArm
+    from balance.model.urdf import validate_urdf
+
+    with pytest.raises(InvalidArm) as err:
+        validate_urdf(text)
+    assert str(err.value) == words
+
+
+def test_a_fixed_joints_axis_is_ignored_and_a_missing_lower_limit_is_zero():
+    from balance.errors import InvalidArm
+
+    text = _robot(_B + '<link name="c"><inertial><mass value="1"/></inertial></link>',
+                  '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>'
+                  '<limit upper="1" effort="1" velocity="1"/></joint>'
+                  '<joint name="f" type="fixed"><parent link="b"/><child link="c"/><axis xyz="0 0 0"/></joint>')
+    arm = UrdfArm(pinocchio_model(text), "r")
+    assert [c.limits for c in arm.coordinates] == [(0.0, 1.0)]
+    with pytest.raises(InvalidArm) as err:
+        UrdfArm(pinocchio_model(_robot(_B, '<joint name="f" type="fixed"><parent link="a"/><child link="b"/>'
+                                           '</joint>')), "r")
+    assert str(err.value) == "the URDF has no movable joint."
+
+
+def test_the_decomposition_is_refused_past_sixteen_revolute_joints_or_the_work_limit():
+    from balance.budget import TooMuchWork
+    from balance.errors import InvalidArm
+
+    def chain(n):
+        links = '<link name="l0"/>' + "".join(f'<link name="l{i}"><inertial><origin xyz="0.1 0 0"/><mass value="1"/>'
+                                              '</inertial></link>' for i in range(1, n + 1))
+        joints = "".join(f'<joint name="j{i}" type="continuous"><parent link="l{i - 1}"/><child link="l{i}"/>'
+                         '<origin xyz="0.1 0 0"/><axis xyz="0 1 0"/></joint>' for i in range(1, n + 1))
+        return _robot(links, joints)
+
+    with pytest.raises(InvalidArm) as err:
+        UrdfArm(pinocchio_model(chain(17)), "r").ensure_decomposable(None)
+    assert str(err.value) == ("the URDF arm has 17 revolute joints; the exact decomposition samples 3ⁿ configurations "
+                              "and stops at 16 (its grid would fill memory).")
+    with pytest.raises(TooMuchWork) as err:
+        UrdfArm(pinocchio_model(chain(4)), "r").ensure_decomposable(1e-9)
+    assert str(err.value).startswith("decomposing the potential of 4 revolute joints and 0 slides (81 evaluations) "
+                                     "would take about ")
+    assert UrdfArm(pinocchio_model(chain(4)), "r").ensure_decomposable(None) > 0
+
+
+def test_the_urdf_written_for_a_toml_arm_names_its_joints_and_links_from_one():
+    arm = toml_arm("vertical")
+    ua = UrdfArm(pinocchio_model(arm_to_urdf(arm)), "written")
+    assert [c.name for c in ua.coordinates] == ["joint1", "joint2", "joint3", "joint4"]
+    assert [ua.link_name(j) for j in range(4)] == ["link1", "link2", "link3", "link4"]
+
+
+def test_a_dh_arm_carries_its_source_in_a_comment_only_when_given():
+    from balance.model.urdf import DHLink, urdf_from_dh
+
+    links = [DHLink("l1", 0.5, 0.0, 0.0, 2.0, (-0.25, 0.0, 0.0))]
+    assert "<!--" not in urdf_from_dh("one", links)
+    assert "<!-- published DH table -->" in urdf_from_dh("one", links, "published DH table")
