@@ -62,6 +62,8 @@ def test_a_payload_weighed_under_another_gravity_is_read_back_in_kilograms():
     # tuned for 2 kg: the second link's amplitude 30·0.25 + 2·1.62·0.5
     by_form = {t.form: t.amplitude for t in res.terms}
     assert by_form[(1.0, 1.0)] == pytest.approx(30 * 0.25 + 2 * moon * 0.5, rel=1e-12)
+    # the payload's half range (2 kg under the Moon) alone at the tip, 1.2 m and 0.5 m from the joints
+    assert res.payload.per_joint == pytest.approx((2 * moon * 1.2, 2 * moon * 0.5), rel=1e-9)
     # the arm at the payload's ends (for the figures): 4 kg and none, weighed under the Moon's gravity
     assert res.full_payload.payload_weight == pytest.approx(4 * moon, rel=1e-14)
     assert res.empty.payload_weight == 0.0
@@ -225,3 +227,16 @@ def test_a_payload_range_that_is_not_one_is_refused(payload):
         ArmProblem(arm, samples=10, payload=payload).solve()
     assert str(err.value) == (f"the payload range must be finite with 0 ≤ low ≤ high, not {payload[0]:g} .. "
                               f"{payload[1]:g} kg.")
+
+
+def test_the_work_estimate_times_the_terms_at_the_arms_own_configurations(monkeypatch):
+    arm = load_urdf(URDF)
+    own = arm.sample(16)
+    seen = []
+    for name in ("terms_forces", "terms_potential"):
+        real = getattr(problems_arm, name)
+        monkeypatch.setattr(problems_arm, name, lambda terms, q, real=real, name=name: (
+            seen.append((name, len(terms), q is own)), real(terms, q))[1])
+    problems_arm._ensure_terms_affordable(arm, own, 100, None)
+    # each timed call evaluates the eight probe terms at the sixteen configurations, forces and potential
+    assert {("terms_forces", 8, True), ("terms_potential", 8, True)} == set(seen)
