@@ -115,6 +115,8 @@ LINK = {"joint": "revolute", "length": 1.0, "weight": 2.0}
     ({"links": [LINK], "payload": {}},
      "s.toml: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' (N), not both or neither."),
     ({"links": [LINK], "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
+    ({}, "s.toml: [arm] needs at least one [[arm.links]] table (or the key 'urdf')."),
+    ({"links": []}, "s.toml: [arm] needs at least one [[arm.links]] table (or the key 'urdf')."),
     ({"urdf": URDF, "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
 ])
 def test_a_table_that_contradicts_itself_is_refused_in_one_sentence(arm, words):
