@@ -45,6 +45,7 @@ def test_example1_from_urdf_with_a_payload_range_on_its_flange():
     for dev, a in zip(res.devices, want):
         assert dev.sine.e == 0.05 and dev.sine.T == pytest.approx(a / 0.05, rel=1e-12)
         assert dev.tension.c == pytest.approx(a / (0.1 * 0.5), rel=1e-12) and dev.tension.a == 0.4
+        assert dev.tension.zero_at_deg == 0.0  # every term's phase is 0: the spring's zero at 0°
         fit = dev.tension.spring_fit  # the request to fit a tension spring to the term, sized or not
         assert (fit.kind, fit.moment, fit.phi) == ("tension", -dev.amplitude, f"φ{dev.term + 1} + 0°")
     assert res.transmission is not None and len(res.transmission) == 3
@@ -116,6 +117,8 @@ LINK = {"joint": "revolute", "length": 1.0, "weight": 2.0}
      "s.toml: [arm.payload] needs either the key 'mass' = [low, high] (kg) or 'weight' (N), not both or neither."),
     ({"links": [LINK], "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
     ({}, "s.toml: [arm] needs at least one [[arm.links]] table (or the key 'urdf')."),
+    ({"links": [LINK], "loads": [{"weight": 1.0, "mass": 1.0}]},
+     "s.toml: [[arm.loads]] #1 gives both 'weight' (N) and 'mass' (kg); keep one."),
     ({"links": []}, "s.toml: [arm] needs at least one [[arm.links]] table (or the key 'urdf')."),
     ({"urdf": URDF, "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
 ])
@@ -149,6 +152,8 @@ def test_a_toml_arms_payload_given_in_newtons_sits_at_the_end_of_its_link_unless
     placed = arm_problem({"arm": {"links": two, "payload": {"mass": [0, 2], "link": "upper", "at": 0.4}}}, "s.toml")
     (load,) = placed.arm.loads
     assert (load.link, load.weight, load.at) == (0, pytest.approx(2 * G), 0.4)
+    light = arm_problem({"arm": {"links": two, "payload": {"mass": [0, 0.5]}}}, "s.toml")
+    assert [ld.weight for ld in light.arm.loads] == [pytest.approx(0.5 * G)]
     none = arm_problem({"arm": {"links": two, "payload": {"mass": [0, 0]}}}, "s.toml")
     assert none.arm.loads == () and none.payload == (0.0, 0.0)
     # payload loads of the links' table carry the largest payload, from none
@@ -242,3 +247,34 @@ def test_the_work_estimate_times_the_terms_at_the_arms_own_configurations(monkey
     problems_arm._ensure_terms_affordable(arm, own, 100, None)
     # each timed call evaluates the eight probe terms at the sixteen configurations, forces and potential
     assert {("terms_forces", 8, True), ("terms_potential", 8, True)} == set(seen)
+
+
+def test_the_check_needs_a_sample_and_says_when_there_is_no_gravity_to_measure_by():
+    from balance.model.potential import HarmonicTerm
+    from balance.problems.arm import check_terms
+
+    arm = Arm((Link("l", "revolute", 1.0, 10.0, 0.5),))
+    for call in (lambda: check_terms(arm, arm.harmonic_terms(), samples=0),
+                 lambda: ArmProblem(arm, samples=0).solve()):
+        with pytest.raises(InvalidInput) as err:
+            call()
+        assert str(err.value) == "the check needs at least one sample, not 0."
+    assert ArmProblem(arm, samples=1).solve().check.samples == 1
+    # a weightless link under a device: a residual with no gravity force to divide it by
+    weightless = Arm((Link("l", "revolute", 1.0, 0.0, 0.5),))
+    chk = check_terms(weightless, [HarmonicTerm(1.0, 0.0, (1.0,))], samples=20)
+    assert chk.max_gravity_force == 0.0 and chk.max_residual == pytest.approx(1.0, rel=1e-9)
+    assert chk.relative_residual == math.inf
+    assert check_terms(weightless, [], samples=20).relative_residual == 0.0
+
+
+def test_the_check_samples_the_configurations_of_its_seed():
+    # a slide's γ = q/k substitution leaves a true residual: its best sample is read off the seed's configurations
+    from balance.model.potential import terms_forces
+
+    arm = Arm((Link("u", "revolute", 0.5, 10.0, 0.25),
+               Link("s", "prismatic", 0.5, 20.0, 0.2, stroke=0.4, gear_ratio=0.2)), zero="horizontal")
+    res = ArmProblem(arm, samples=30, seed=3).solve()
+    q = arm.sample(30, 3)
+    want = np.max(np.abs(arm.gravity_forces(q) - terms_forces(res.terms, q)))
+    assert res.check.sampled_max_residual == pytest.approx(want, rel=1e-12) and want > 1e-3
