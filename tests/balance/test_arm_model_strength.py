@@ -137,3 +137,28 @@ def test_a_drive_matrix_that_cannot_drive_the_joints_is_refused_in_one_sentence(
         Arm(links, drive_matrix=drives)
     assert str(err.value) == words
     assert Arm(links, drive_matrix=((1, 0), (-1, 1))).drives.tolist() == [[1.0, 0.0], [-1.0, 1.0]]
+
+
+def test_two_slides_after_a_revolute_joint_add_their_bounds_on_it():
+    # each slide p: W_p·(1 − cos γp) on itself and W_p·(A_p/2)·(1 − sin γp/γp) on the revolute joint before it,
+    # W_p the weight it carries (itself and beyond)
+    arm = Arm((Link("u", "revolute", 0.5, 10.0, 0.25),
+               Link("s1", "prismatic", 0.5, 20.0, 0.2, stroke=0.4, gear_ratio=1.0),
+               Link("s2", "prismatic", 0.3, 5.0, 0.1, stroke=0.2, gear_ratio=0.5)), zero="horizontal")
+    g1, g2 = 0.2 / 1.0, 0.1 / 0.5
+    w1, w2 = 25.0, 5.0
+    want = [w1 * 0.2 * (1 - math.sin(g1) / g1) + w2 * 0.1 * (1 - math.sin(g2) / g2),
+            w1 * (1 - math.cos(g1)), w2 * (1 - math.cos(g2))]
+    np.testing.assert_allclose(arm.approx_potential_error_bounds(), want, rtol=1e-14)
+
+
+def test_the_drive_form_clears_the_rounding_of_its_product():
+    from balance.model.arm import describe_term
+    from balance.model.potential import HarmonicTerm
+
+    # q = D·ψ with D = [[1, 0.7], [0, 1]]: the form (0.1, −0.07) over ψ is (0.1, 0.1·0.7 − 0.07) = (0.1, 0)
+    arm = Arm((Link("a", "revolute", 1.0, 1.0, 0.5), Link("b", "revolute", 1.0, 1.0, 0.5)),
+              drive_matrix=((1.0, 0.7), (0.0, 1.0)))
+    assert 0.1 * 0.7 - 0.07 != 0.0  # (rounding)
+    t = describe_term(arm, HarmonicTerm(1.0, 0.0, (0.1, -0.07)))
+    assert t.drive_form == (0.1, 0.0) and t.drive_form_text == "0.1·ψ1"
