@@ -162,3 +162,15 @@ def test_the_drive_form_clears_the_rounding_of_its_product():
     assert 0.1 * 0.7 - 0.07 != 0.0  # (rounding)
     t = describe_term(arm, HarmonicTerm(1.0, 0.0, (0.1, -0.07)))
     assert t.drive_form == (0.1, 0.0) and t.drive_form_text == "0.1·ψ1"
+
+
+def test_a_joint_of_another_kind_or_a_negative_load_is_refused_and_a_range_off_by_rounding_kept():
+    with pytest.raises(InvalidArm) as err:
+        Arm((Link("x", "helical", 1.0, 1.0, 0.5),))
+    assert str(err.value) == "link 'x': joint must be one of vertical, revolute, prismatic, not 'helical'."
+    with pytest.raises(InvalidArm) as err:
+        Arm((Link("l", "revolute", 1.0, 1.0, 0.5),), (Load(0, -1.0, 0.5, name="tool"),))
+    assert str(err.value) == "load 'tool': weight must be a finite number ≥ 0, not -1.0."
+    # the stroke's ends give or take 1e-12 m of rounding are inside it
+    edge = 0.4 / 2 + 1e-12
+    assert Arm((slide(q_range=(-edge, edge)),)).links[0].limits == (-edge, edge)
