@@ -58,6 +58,13 @@ def test_a_table_without_its_lengths_or_with_a_kind_its_device_cannot_take_is_re
     assert str(err.value) == words
 
 
+def test_a_table_given_in_code_is_named_spring_in_its_refusals():
+    doc = {"spring": {"kind": "tension", "moment": 1.0, "range_deg": [0, 90], "r": [0.1, 0.2], "r0": [0.1, 0.2]}}
+    with pytest.raises(SchemaError) as err:
+        spring_problem(doc)
+    assert str(err.value) == "<spring>: [spring] needs the key 'a' = [low, high] (m)."
+
+
 def test_a_key_the_table_does_not_have_is_refused_with_the_files_name():
     with pytest.raises(SchemaError) as err:
         spring_problem(table(colour="red"), "s.toml")
