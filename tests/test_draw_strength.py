@@ -5,6 +5,7 @@ grid; the inline SVG's elements at the layout's points.  Read from the matplotli
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -273,3 +274,132 @@ def test_layout_sides_by_hand():
     assert all(len({a, b}) == 2 and a in lay.polygons[link] and b in lay.polygons[link] for link, a, b in sides)
     open_lay = layout(OPEN)
     assert not any(link == 3 for link, _, _ in open_lay.segments())  # a free end is no side between joints
+
+
+def test_the_widest_free_angle_at_a_joint_by_hand():
+    from synth.draw._render import _free_ends, _widest_gap
+
+    pos = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [3.0, 3.0]])
+    # sides to 0°, 90° and 180°: the widest free angle is the lower half, its middle straight down
+    turn, gap = _widest_gap(pos, [(0, 1), (2, 0), (0, 3)], 0)
+    assert turn == pytest.approx(1.5 * math.pi) and gap == pytest.approx(math.pi)
+    # one side only: the whole turn is free, the middle opposite the side
+    assert _widest_gap(pos, [(0, 1)], 0) == pytest.approx((math.pi, 2 * math.pi))
+    # and a direction ``also`` counted with the sides: 0°, 90°, 180° and 225° leave 135° free from 225° to 360°
+    assert _widest_gap(pos, [(0, 1), (2, 0), (0, 3)], 0, also=[-0.75 * math.pi]) == pytest.approx(
+        (-0.75 * math.pi + 0.375 * math.pi, 0.75 * math.pi))
+    # nothing meets the joint: away from the centre of the drawing (its mean joint (0.6, 0.8)); half a turn said
+    assert _widest_gap(pos, [], 4) == pytest.approx((math.atan2(3 - 0.8, 3 - 0.6), math.pi))
+    centred = np.array([[0.0, 0.0]])
+    assert _widest_gap(centred, [], 0) == pytest.approx((-math.pi / 2, math.pi))
+    # two single-joint links on joint 0 (sides to 0° and 180°: two free halves, the first counted from 0° taken,
+    # its middle at 90°) fan out 0.7 × 180° / 2 = 63°, at most 1 rad, apart: at 90° ∓ 0.5 rad, 0.4 long
+    ends = _free_ends(pos[:4], [[1, 0], [0, 3], [0], [0]], length=0.4)
+    base = 0.5 * math.pi
+    assert sorted(ends) == [2, 3]
+    assert np.allclose(ends[2], 0.4 * np.array([math.cos(base - 0.5), math.sin(base - 0.5)]))
+    assert np.allclose(ends[3], 0.4 * np.array([math.cos(base + 0.5), math.sin(base + 0.5)]))
+
+
+def test_a_fixed_pivot_sign_and_a_fixed_bar_by_hand():
+    # the slider-crank's frame 3 is binary: a hatched bar 1.8 r wide along its side, and a pivot sign at its pin
+    mechanism = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 3)
+    fig, ax = _axes(mechanism)
+    marks = _Marks(mechanism.chain)
+    pos, r = marks.pos, marks.r
+    a, b = pos[marks.lay.polygons[3]]
+    hatched = [p for p in ax.patches if p.get_hatch() == "////" and not (p.get_gid() or "")]
+    bars = [p for p in hatched if p.get_zorder() == 2]
+    (bar,) = bars
+    corners = bar.get_xy()[:4]
+    normal = np.array([-(b - a)[1], (b - a)[0]]) / np.linalg.norm(b - a) * 0.9 * r
+    assert np.allclose(corners, [a + normal, b + normal, b - normal, a - normal])
+    assert _colour(bar) == "#1f3a5f"
+    for k in (1, 3):  # the frame's two joints, 0-3 (joint 1) and 2-3 (joint 3)
+        direction = marks.ground(k)
+        across = np.array([-direction[1], direction[0]])
+        base = pos[k] + 2.4 * r * direction
+        (strut,) = [p for p in ax.patches if p.get_gid() == f"ground{k}"]
+        assert np.allclose(strut.get_xy()[:3], [pos[k], base + 1.5 * r * across, base - 1.5 * r * across])
+        (plate,) = [p for p in hatched if p.get_zorder() == 3.5 and np.allclose(
+            p.get_xy()[0], base + 2.1 * r * across)]
+        assert np.allclose(plate.get_xy()[:4], [base + 2.1 * r * across, base - 2.1 * r * across,
+                                                 base - 2.1 * r * across + 0.8 * r * direction,
+                                                 base + 2.1 * r * across + 0.8 * r * direction])
+        # the sign stands in the widest free angle at its pin: no side of a link points into it
+        sides = [pos[j] - pos[k] for j in (0, 1, 2, 3) if j != k and any(
+            {j, k} <= set(p) for p in marks.lay.polygons)]
+        assert all(np.dot(s / np.linalg.norm(s), direction) < 0.99 for s in sides)
+    assert len(hatched) == 1 + 2
+
+
+def test_a_heterogeneous_chain_colours_its_base_and_keys_the_classes():
+    from matplotlib.colors import to_hex
+
+    # Watt's chain with its four-bar loop 0-1-2-3 of class 4, the other loops planar
+    chain = Chain(6, WATT := Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").joints, classes=(4, 4, 4, 4, 3, 3))
+    del WATT
+    fig, ax = _axes(chain)
+    marks = _Marks(chain)
+    bars = _by_gid(ax, "bar")
+    for link, poly in enumerate(marks.lay.polygons):
+        if len(poly) == 2:
+            colour, width = ("#b8860b", 2.2 * 1.4) if link < 4 else ("#1f3a5f", 2.2)
+            assert to_hex(bars[f"bar{link}"].get_color()) == colour and bars[f"bar{link}"].get_linewidth() == width
+    faces = [p for p in ax.patches if type(p).__name__ == "Polygon" and p.get_zorder() == 1]
+    for face in faces:  # the ternary links 0 and 1 are base links: drawn in their class's colour, wider
+        assert _colour(face) == "#b8860b" and face.get_linewidth() == 2.4
+    assert len(faces) == 2
+    legend = ax.get_legend()
+    assert [t.get_text() for t in legend.get_texts()] == ["h = 4: 1 loop", "h = 3: 1 other loop"]
+    fig, ax = _axes(chain, legend=False)
+    assert ax.get_legend() is None
+
+
+def test_one_drawing_written_with_its_title_and_a_64_colour_png(tmp_path):
+    from PIL import Image
+
+    draw_one(Mechanism(WATT_MULTIPLE, 0, 4), tmp_path / "w.png", size=1.0, dpi=60, title="Watt, fixed 0")
+    with Image.open(tmp_path / "w.png") as image:
+        assert image.mode == "P" and len(image.getcolors()) <= 64
+        assert max(image.size) <= 70  # one inch at 60 dpi, cut to the drawing
+    draw_one(SLIDER_CRANK, tmp_path / "s.svg", title="a & b")
+    text = (tmp_path / "s.svg").read_text()
+    assert ">a &amp; b</text>" in text and "<dc:date>" not in text
+    plain = _render.svg(SLIDER_CRANK)
+    assert ">4/0 P1</text>" in plain and plain.lstrip().startswith("<?xml")
+    import matplotlib.pyplot as plt
+
+    assert not plt.get_fignums()
+    with pytest.raises(InvalidOption) as e:
+        _render.svg(SLIDER_CRANK, size=0.4)
+    assert str(e.value) == "a drawing's size is 0.5 to 30 inches, not 0.4"
+
+
+def test_the_pixel_limit_by_hand():
+    from pathlib import Path
+
+    from synth.draw._render import _check_pixels
+
+    _check_pixels(Path("a.png"), 100, 100, 100)  # 10 000 × 10 000: exactly 100 megapixels
+    with pytest.raises(InvalidOption, match=r"^this picture would be 10001 × 10000 pixels"):
+        _check_pixels(Path("a.png"), 100.01, 100, 100)
+    _check_pixels(Path("a.png"), 655.35, 1, 100)  # 65 535 on a side
+    with pytest.raises(InvalidOption, match=r"^this picture would be 65536 × 100 pixels"):
+        _check_pixels(Path("a.png"), 655.36, 1, 100)
+    _check_pixels(Path("a.PDF"), 1000, 1000, 1200)  # no pixels in a vector file
+
+
+def test_a_sheet_with_notes_and_loop_classes_grows_to_hold_them(monkeypatch, tmp_path):
+    saved = []
+    monkeypatch.setattr(_render, "_save", lambda fig, path, dpi: saved.append(fig))
+    mixed = Chain(6, Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").joints, classes=(4, 4, 4, 4, 3, 3))
+    draw_sheet([mixed, SLIDER_CRANK], tmp_path / "m.svg", notes=["x " * 40, "y"], size=2.0, columns=1)
+    (fig,) = saved
+    # two lines of note under the first caption (80 characters at 33 a line: 3 lines): 3 × 0.14 in a row,
+    # and 0.3 in for the key of loop classes
+    assert fig.get_size_inches() == pytest.approx((2.0, (2.0 + 3 * 0.14) * 2 + 0.3))
+    (legend,) = fig.legends
+    assert [t.get_text() for t in legend.get_texts()] == ["h = 4: base loops", "h = 3: other loops"]
+    assert fig.axes[0].get_legend() is None  # one key for the sheet, none per drawing
+    assert fig.axes[0].get_title().count("\n") == 3 and fig.axes[1].get_title() == "4/0 P1  #2\ny"
