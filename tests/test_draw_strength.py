@@ -403,3 +403,98 @@ def test_a_sheet_with_notes_and_loop_classes_grows_to_hold_them(monkeypatch, tmp
     assert [t.get_text() for t in legend.get_texts()] == ["h = 4: base loops", "h = 3: other loops"]
     assert fig.axes[0].get_legend() is None  # one key for the sheet, none per drawing
     assert fig.axes[0].get_title().count("\n") == 3 and fig.axes[1].get_title() == "4/0 P1  #2\ny"
+
+
+# ------------------------------------------------------------------ the layout's own measures, by hand
+def test_corner_angles_by_hand_in_both_orientations_and_any_size():
+    from synth.draw._layout import _corner_angles
+
+    # a dart: (0, 0), (2, 1), (4, 0), (2, 3) turns counter-clockwise; its notch (2, 1) is a reflex corner
+    dart = np.array([[0, 0], [2, 1], [4, 0], [2, 3]], dtype=float)
+    tip = math.degrees(math.atan(1.5) - math.atan(0.5))  # between (2, 3) and (2, 1) seen from the origin
+    notch = 360 - (180 - 2 * math.degrees(math.atan(0.5)))
+    top = 2 * math.degrees(math.atan(2 / 3))
+    expected = [tip, notch, tip, top]
+    assert sum(expected) == pytest.approx(360)
+    for scale in (0.1, 1.0, 10.0):  # small drawings too: the [-1, 1]² frame's polygons are
+        assert _corner_angles(scale * dart) == pytest.approx(expected)
+        assert _corner_angles(scale * dart[::-1]) == pytest.approx(expected[::-1])  # clockwise
+    assert _corner_angles(np.array([[0, 0], [0, 1], [1, 0.0]])) == pytest.approx([90, 45, 45])  # clockwise
+    # a batch of polygons, each with its own orientation
+    batch = np.stack([0.1 * dart, 10 * dart[::-1]])
+    assert _corner_angles(batch) == pytest.approx(np.array([expected, expected[::-1]]))
+
+
+def test_defects_by_hand():
+    from synth.draw._layout import _defects
+
+    bars = [[0, 1], [2, 3]]
+    crossing = np.array([[0, 0], [1, 1], [0, 1], [1, 0.0]])
+    assert _defects(crossing, bars, 0.1) == 1000
+    # a bar in line with the other, past its end: nothing touches (a side ends at its joints)
+    in_line = np.array([[0, 0], [1, 0], [1.5, 0], [2.5, 0.0]])
+    assert _defects(in_line, bars, 0.1) == 0
+    assert _defects(in_line, bars, 0.6) == 2  # joints 1 and 2 each within 0.6 of the other bar's end
+    # a joint 0.05 from a foreign side
+    touching = np.array([[0, 0], [1, 0], [0.5, 0.05], [0.5, 1.0]])
+    assert _defects(touching, bars, 0.1) == 1 and _defects(touching, bars, 0.04) == 0
+    # a bar inside a triangle: two joints inside a foreign link
+    inside = np.array([[0, 0], [2, 0], [0, 2], [0.3, 0.3], [0.6, 0.6]])
+    assert _defects(inside, [[0, 1, 2], [3, 4]], 0.1) == 2000
+    assert _defects(inside + np.array([[0, 0]] * 3 + [[3, 0]] * 2), [[0, 1, 2], [3, 4]], 0.1) == 0  # the bar moved out
+
+
+def _crossings(points, sides):
+    """Pairs of sides (no joint in common) that cross, by the plain orientation test."""
+    def orient(p, q, r):
+        return np.sign((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+
+    found = 0
+    for i, (a, b) in enumerate(sides):
+        for c, d in sides[i + 1:]:
+            if {a, b} & {c, d}:
+                continue
+            p, q, r, s = points[[a, b, c, d]]
+            found += orient(p, q, r) * orient(p, q, s) < 0 and orient(r, s, p) * orient(r, s, q) < 0
+    return found
+
+
+def test_a_non_planar_chain_lets_its_string_of_binary_links_cross_the_rest():
+    from synth.draw._layout import _crossing_strings, _incidence, _strings
+
+    # K3,3 of ternary links 0, 1, 2 and 3, 4, 5, its edge 0–3 a string of two binary links 6 and 7
+    chain = Chain.parse("0-6 6-7 7-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert not chain.is_planar()
+    g = _incidence(chain)
+    assert _strings(chain, g) == [[6, 7]] and _crossing_strings(chain, g) == [[[6, 7]]]
+    # two edges subdivided: either string alone, set aside, leaves a planar rest
+    two = Chain.parse("0-6 6-3 0-4 0-5 1-3 1-7 7-4 1-5 2-3 2-4 2-5")
+    assert _strings(two, _incidence(two)) == [[6], [7]]
+    assert _crossing_strings(two, _incidence(two)) == [[[6]], [[7]]]
+    # no binary link at all: nothing to set aside
+    k33 = Chain.parse("0-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert _crossing_strings(k33, _incidence(k33)) == []
+    lay = layout(chain)
+    assert not lay.planar
+    joint = {tuple(sorted(j)): k for k, j in enumerate(chain.joints)}
+    # the string is a straight bar across: its middle joint halfway between its ends
+    ends = lay.joints[[joint[(0, 6)], joint[(3, 7)]]]
+    assert np.allclose(lay.joints[joint[(6, 7)]], ends.mean(axis=0))
+    # the rest is drawn without a crossing; the string crosses it
+    rest = [(a, b) for link, a, b in lay.segments() if link < 6]
+    assert _crossings(lay.joints, rest) == 0
+    assert _crossings(lay.joints, [(a, b) for _, a, b in lay.segments()]) >= 1
+    assert np.abs(lay.joints).max() == pytest.approx(1.0)  # scaled into [-1, 1]²
+    # the chain's six ternary links are triangles of distinct joints
+    assert [len(set(p)) for p in lay.polygons] == [3] * 6 + [2, 2]
+
+
+def test_chains_without_a_side_between_joints_are_laid_out():
+    # two links on one joint, and three: a point; two joints on a bar: the bar, upright, filling the frame
+    for text in ("0-1", "0-1-2"):
+        lay = layout(Chain.parse(text))
+        assert np.allclose(lay.joints, [[0, 0]]) and lay.polygons == [[0]] * Chain.parse(text).links and lay.planar
+        assert lay.segments() == []
+    lay = layout(Chain.parse("0-1 1-2"))
+    assert lay.polygons == [[0], [0, 1], [1]] and lay.segments() == [(1, 0, 1)]
+    assert np.linalg.norm(lay.joints[0] - lay.joints[1]) == pytest.approx(2.0)
