@@ -498,3 +498,32 @@ def test_chains_without_a_side_between_joints_are_laid_out():
     lay = layout(Chain.parse("0-1 1-2"))
     assert lay.polygons == [[0], [0, 1], [1]] and lay.segments() == [(1, 0, 1)]
     assert np.linalg.norm(lay.joints[0] - lay.joints[1]) == pytest.approx(2.0)
+
+
+def test_distances_to_sides_and_the_shaping_cost_by_hand():
+    from synth.draw._layout import _gaps, _Shape
+
+    a, ab = np.array([[1.0, 1.0]]), np.array([[2.0, 0.0]])  # the side from (1, 1) to (3, 1)
+    points = np.array([[2.0, 3.0], [0.0, 1.0], [4.0, 2.0], [1.5, 0.5]])
+    assert _gaps(points[:, None], a[None], ab[None]).ravel() == pytest.approx([2.0, 1.0, math.sqrt(2), 0.5])
+    # two bars, 0-1 along y = 0 and 2-3 along y = 1, of four joints: spacing 2/√4 = 1, so sides are kept 0.36
+    # apart from foreign joints, joints 0.72 from each other
+    pos = np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]])
+    shape = _Shape(pos, [[0, 1], [2, 3]])
+    assert (shape.side_gap, shape.joint_gap) == pytest.approx((0.36, 0.72))
+
+    def near(d, gap):
+        return (40 * max(0.0, 1 - d / gap)) ** 2
+
+    cost = shape.cost(0, np.array([[0, 0], [0.5, 0.6], [0.5, 0.8]]))
+    # where it is, nothing is too near; at (0.5, 0.6) it is 0.64 from joints 2 and 3 (the sides clear); at
+    # (0.5, 0.8) it is 0.2 from bar 2-3 and √0.29 from joints 2 and 3
+    assert cost == pytest.approx([0.0, 2 * near(math.sqrt(0.41), 0.72),
+                                  near(0.2, 0.36) + 2 * near(math.sqrt(0.29), 0.72)])
+    # a corner under 30° or over 160° costs the square of the degrees it is past; three joints: spacing 2/√3
+    big = np.array([[0, 0], [4, 0], [4, 4 * math.tan(math.radians(20))]])  # corners 20°, 90°, 70°, all apart
+    assert _Shape(big, [[0, 1, 2]]).cost(1, big[1:2]) == pytest.approx([(30 - 20) ** 2])
+    flat = np.array([[0, 0], [2, 0], [1, math.tan(math.radians(5))]])  # corners 5°, 5°, 170°; joint 2 near 0-1
+    shape = _Shape(flat, [[0, 1, 2]])
+    assert shape.cost(2, flat[2:]) == pytest.approx(
+        [(170 - 160) ** 2 + 2 * (30 - 5) ** 2 + near(math.tan(math.radians(5)), 0.36 * 2 / math.sqrt(3))])
