@@ -487,6 +487,25 @@ def test_a_non_planar_chain_lets_its_string_of_binary_links_cross_the_rest():
     assert np.abs(lay.joints).max() == pytest.approx(1.0)  # scaled into [-1, 1]²
     # the chain's six ternary links are triangles of distinct joints
     assert [len(set(p)) for p in lay.polygons] == [3] * 6 + [2, 2]
+    # of two ways (either string may cross), the drawing keeps one: only that string's bar crosses the rest
+    lay = layout(two)
+    crossing = {link for link, a, b in lay.segments()
+                if any(_crossings(lay.joints, [(a, b), (c, d)]) for other, c, d in lay.segments() if other != link)}
+    assert not lay.planar and len(crossing & {6, 7}) == 1
+    assert _crossings(lay.joints, [(a, b) for link, a, b in lay.segments() if link not in {6, 7}]) == 0
+
+
+def test_a_polygon_without_an_embedding_goes_round_its_own_centre():
+    from synth.draw._layout import _incidence, _polygons
+
+    # link 0 has four joints (to links 1 … 4) on a square about (10, 0), handed over out of turn
+    chain = Chain.parse("0-1 0-2 0-3 0-4 1-2 2-3 3-4 4-1")
+    corners = {(0, 1): (11, 1), (0, 2): (9, -1), (0, 3): (11, -1), (0, 4): (9, 1)}
+    pos = {("J", k): np.array(corners.get(tuple(sorted(j)), (0, 5)), dtype=float) for k, j in enumerate(chain.joints)}
+    order = _polygons(chain, _incidence(chain), None, pos)[0]
+    at = [tuple(pos[("J", k)]) for k in order]
+    # counter-clockwise from the lower left: (9, −1), (11, −1), (11, 1), (9, 1)
+    assert at == [(9, -1), (11, -1), (11, 1), (9, 1)]
 
 
 def test_chains_without_a_side_between_joints_are_laid_out():
