@@ -222,6 +222,11 @@ def test_a_single_schematic_has_its_size_caption_and_legend(tmp_path, monkeypatc
     assert labels == ["shaft (its link's number on the left)", "gear wheel (bar: its pitch diameter)",
                       "ring gear (bracket over its pinion)", "carrier arm", "frame (black, hatched)"]
     assert legend._ncols == 3
+    # the symbols as drawn: a thick grey shaft, a grey bar, a ring's bracket end (a dash), a carrier's arm (a bar)
+    shaft, wheel, ring, arm, frame = legend.legend_handles
+    assert [(h.get_marker(), h.get_markersize()) for h in (ring, arm)] == [("_", 10), ("|", 10)]
+    assert arm.get_linestyle() == "None" and shaft.get_linewidth() == ring.get_linewidth() == frame.get_linewidth() == 2.2
+    assert _colour(frame) == "#000000" and _colour(shaft) == "#808080" and wheel.get_alpha() == 0.85
     assert fig.subplotpars.bottom == pytest.approx(0.6 / 3.6 + 0.04)
     saved.clear()
     _gears.draw_train(GearTrain.parse("0-1 0-2 1~2"), tmp_path / "q.png", title="two wheels")
@@ -258,6 +263,9 @@ def test_sheets_hold_their_trains_in_a_grid_with_wrapped_captions(tmp_path, monk
     ((fig, path, dpi),) = saved
     assert dpi == 90 and len(fig.axes) == 5 and fig.axes[4].get_title().startswith("5: ")
     assert _gears.draw_train_sheet([], tmp_path / "e.png") == 0 and len(saved) == 1
+    assert _gears.draw_train_sheet(trains, tmp_path / "t.png", columns=2) == 5
+    assert tuple(saved[-1][0].get_size_inches()) == pytest.approx((2 * 3.6, 3 * 3.4 + 0.5))  # 3 rows of 2
+    saved.pop()
     with pytest.raises(InvalidOption) as e:
         _gears.draw_train_sheet(trains, tmp_path / "s.png", limit=4)
     assert str(e.value) == "5 trains are more than the 4 a sheet holds here: select fewer"
