@@ -135,12 +135,14 @@ def test_the_drawing_puts_each_part_where_the_schematic_says():
         assert drawn.get_linewidth() == 2.2 and _colour(drawn) == colour[x]
     # the frame's ground: a line 0.12 under its shaft and a hatch stroke every 0.15 along it
     frame = s["shafts"][0]
-    assert _colour(line([frame["from"], frame["to"]], [frame["y"] - 0.12] * 2)) == "#000000"
+    ground = line([frame["from"], frame["to"]], [frame["y"] - 0.12] * 2)
+    assert _colour(ground) == "#000000" and ground.get_linewidth() == 1
     strokes = [ln for x, y, ln in lines if len(y) == 2 and np.allclose(y, [frame["y"] - 0.12, frame["y"] - 0.24])]
     starts = sorted(ln.get_xdata()[0] for ln in strokes)
     assert len(strokes) == int(round((frame["to"] - frame["from"]) / 0.15)) + 1 == 5
     assert np.allclose(starts, frame["from"] + 0.15 * np.arange(5))
     assert all(np.isclose(ln.get_xdata()[0] - ln.get_xdata()[1], 0.1) for ln in strokes)
+    assert all(ln.get_linewidth() == 0.8 and _colour(ln) == "#000000" for ln in strokes)
     # the carrier's arm: a vertical line in its colour
     arm = s["arms"][0]
     assert _colour(line([arm["x"]] * 2, [arm["from"], arm["to"]])) == colour[2]
@@ -221,7 +223,9 @@ def test_a_single_schematic_has_its_size_caption_and_legend(tmp_path, monkeypatc
     labels, legend = _legend_labels(fig)
     assert labels == ["shaft (its link's number on the left)", "gear wheel (bar: its pitch diameter)",
                       "ring gear (bracket over its pinion)", "carrier arm", "frame (black, hatched)"]
-    assert legend._ncols == 3
+    assert legend._ncols == 3 and not legend.get_frame_on()  # plain, under the drawing
+    assert legend._loc == 8 and tuple(legend.get_bbox_to_anchor().transformed(fig.transFigure.inverted()).p0) == \
+        pytest.approx((0.5, 0.0))
     # the symbols as drawn: a thick grey shaft, a grey bar, a ring's bracket end (a dash), a carrier's arm (a bar)
     shaft, wheel, ring, arm, frame = legend.legend_handles
     assert [(h.get_marker(), h.get_markersize()) for h in (ring, arm)] == [("_", 10), ("|", 10)]
