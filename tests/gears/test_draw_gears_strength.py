@@ -71,6 +71,12 @@ def test_the_planetary_schematic_by_hand():
                        [(0, 0.7, 1.3), (1, 1.0, 1.6), (2, 0.2, 0.8), (3, 0.2, 1.3)])
 
 
+def test_a_gear_on_no_axis_is_drawn_one_gap_above_its_carrier():
+    # wheel 2 meshes the frame 0 and is carried by link 1, but no axis holds it: it sits 0.16 above link 1's shaft
+    s = schematic(GearTrain.parse("0-1 0~2@1", frame=0))
+    assert {x: v["y"] for x, v in s["shafts"].items()} == pytest.approx({0: -0.16, 1: 0.0, 2: 0.16})
+
+
 def test_three_axes_staggered_and_two_columns_by_hand():
     s = schematic(SPUR_CHAIN)
     levels = {x: v["y"] for x, v in s["shafts"].items()}
@@ -159,7 +165,8 @@ def test_the_drawing_puts_each_part_where_the_schematic_says():
         w = gear.get("width", 0.18)
         (bar,) = [p for p in rectangles if np.allclose(p.get_xy(), (gear["x"] - w / 2, min(gear["from"], gear["to"])))]
         assert bar.get_width() == pytest.approx(w) and bar.get_height() == pytest.approx(abs(gear["to"] - gear["from"]))
-        assert to_hex(bar.get_facecolor()) == colour[gear["link"]] and bar.get_alpha() == 0.85
+        assert to_hex(bar.get_facecolor()) == to_hex(bar.get_edgecolor()) == colour[gear["link"]]
+        assert bar.get_alpha() == 0.85
     assert len(rectangles) == 3
     # tooth numbers beside their wheels, the ring's over its bracket
     texts = {t.get_text(): t for t in ax.texts}
