@@ -546,3 +546,63 @@ def test_distances_to_sides_and_the_shaping_cost_by_hand():
     shape = _Shape(flat, [[0, 1, 2]])
     assert shape.cost(2, flat[2:]) == pytest.approx(
         [(170 - 160) ** 2 + 2 * (30 - 5) ** 2 + near(math.tan(math.radians(5)), 0.36 * 2 / math.sqrt(3))])
+
+
+def test_the_inline_svg_places_each_mark_at_its_size():
+    def parsed(item, **options):
+        return [(tag, a) for tag, a in _svg_elements(svg_inline(item, **options))]
+
+    for chain in (WATT_MULTIPLE, GEARS, OPEN):
+        marks = _Marks(chain)
+        scale = 160 / (2 * marks.reach)
+
+        def at(p):
+            return round((p[0] + marks.reach) * scale, 1), round((marks.reach - p[1]) * scale, 1)
+
+        elements = parsed(chain, labels=True)
+        circles = [a for tag, a in elements if tag == "circle"]
+        for k, kind in enumerate(chain.kinds):
+            if kind == REVOLUTE:
+                (pin,) = [a for a in circles if a["stroke"] == REVOLUTE.stroke and
+                          (float(a["cx"]), float(a["cy"])) == at(marks.pos[k])]
+                assert float(pin["r"]) == pytest.approx(marks.r * scale, abs=0.06) and pin["fill"] == "white"
+            if len(chain.joints[k]) > 2:  # the ring and the multiplicity at its place
+                (ring,) = [a for a in circles if a["stroke"] == "#c0392b"]
+                assert (float(ring["cx"]), float(ring["cy"])) == at(marks.pos[k])
+                assert float(ring["r"]) == pytest.approx(1.75 * marks.r * scale, abs=0.06)
+                (number,) = [a for tag, a in elements if tag == "text" and a.get("fill") == "#c0392b"]
+                assert (float(number["x"]), float(number["y"])) == at(marks.numbers[k])
+            if kind == MESH:
+                pitch = [a for a in circles if a.get("class") == "mesh"
+                         and any((float(a["cx"]), float(a["cy"])) == at(c) for c, _ in marks.meshes[k])]
+                assert len(pitch) == 2 and all(float(a["r"]) == pytest.approx(1.25 * marks.r * scale, abs=0.06)
+                                               for a in pitch)
+        labels = {t.text: t for t in ET.fromstring(svg_inline(chain, labels=True)).iter() if t.tag.endswith("text")
+                  and t.get("font-size") == "8"}
+        for link in range(chain.links):
+            assert (float(labels[str(link)].get("x")), float(labels[str(link)].get("y"))) == at(marks.labels[link])
+    # a single-joint link: a bar from its joint to its free end and a square of side 2r there
+    marks = _Marks(OPEN)
+    scale = 160 / (2 * marks.reach)
+    end = marks.free_ends[3]
+    x, y = (end[0] + marks.reach) * scale, (marks.reach - end[1]) * scale
+    (square,) = [a for tag, a in parsed(OPEN) if tag == "rect"]
+    assert float(square["x"]) == pytest.approx(x - marks.r * scale, abs=0.11)
+    assert float(square["y"]) == pytest.approx(y - marks.r * scale, abs=0.11)
+    assert float(square["width"]) == float(square["height"]) == pytest.approx(2 * marks.r * scale, abs=0.06)
+    (bar,) = [a for tag, a in parsed(OPEN) if tag == "polyline"]
+    assert bar["points"].split()[1] == f"{x:.1f},{y:.1f}"
+
+
+def test_the_input_arrow_turns_at_the_input_joint():
+    from matplotlib.patches import FancyArrowPatch
+
+    mechanism = Mechanism(WATT_MULTIPLE, 0, 4)
+    fig, ax = _axes(mechanism)
+    marks = _Marks(WATT_MULTIPLE)
+    k = next(i for i, j in enumerate(WATT_MULTIPLE.joints) if set(j) == {0, 4})
+    (arrow,) = [p for p in ax.patches if isinstance(p, FancyArrowPatch)]
+    x, y = marks.pos[k]
+    start, end = arrow._posA_posB
+    assert np.allclose(start, (x + 2.6 * marks.r, y)) and np.allclose(end, (x, y + 2.6 * marks.r))
+    assert _colour(arrow) == "#c0392b"
