@@ -306,3 +306,15 @@ def test_linkages_from_drawings_say_what_was_moved():
     # a 2-DOF chain takes the drawing's pose as it is (nudged off locked poses)
     five_bar = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0))
     assert five_bar.dof == 2 and five_bar.inputs == (0, 1)
+
+
+def test_a_blocks_travel_is_read_in_its_turning_guides_direction():
+    from synth.motion_draw import _along
+
+    u = np.array([math.cos(0.3), math.sin(0.3)])  # the guide's direction in the pose
+    theta = np.array([0.0, math.pi / 2, 2.0, -1.0])  # the guide turned by θ at four frames
+    d = np.array([1.5, -0.5, 2.0, 0.25])  # the block that far along the guide
+    turned = np.stack([np.cos(0.3 + theta), np.sin(0.3 + theta)], axis=-1)
+    across = np.stack([-turned[:, 1], turned[:, 0]], axis=-1)
+    local = d[:, None] * turned + 0.7 * across  # an offset across the guide is not travel
+    assert _along(local, theta, u) == pytest.approx(d)
