@@ -467,6 +467,9 @@ def test_a_non_planar_chain_lets_its_string_of_binary_links_cross_the_rest():
     assert not chain.is_planar()
     g = _incidence(chain)
     assert _strings(chain, g) == [[6, 7]] and _crossing_strings(chain, g) == [[[6, 7]]]
+    # a string walked both ways from its lowest link: 0 – 7 – 6 – 8 – 3, listed in its order along the chain
+    three = Chain.parse("0-7 7-6 6-8 8-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert _strings(three, _incidence(three)) in ([[7, 6, 8]], [[8, 6, 7]])
     # two edges subdivided: either string alone, set aside, leaves a planar rest
     two = Chain.parse("0-6 6-3 0-4 0-5 1-3 1-7 7-4 1-5 2-3 2-4 2-5")
     assert _strings(two, _incidence(two)) == [[6], [7]]
