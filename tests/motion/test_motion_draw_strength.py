@@ -318,3 +318,24 @@ def test_a_blocks_travel_is_read_in_its_turning_guides_direction():
     across = np.stack([-turned[:, 1], turned[:, 0]], axis=-1)
     local = d[:, None] * turned + 0.7 * across  # an offset across the guide is not travel
     assert _along(local, theta, u) == pytest.approx(d)
+
+
+def test_a_gif_shows_its_progress_and_plays_in_the_time_asked(tmp_path, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+    from PIL import Image
+
+    # tqdm with a plain thread lock and no monitor thread (its default multiprocessing lock can hang a forked process)
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)
+    motion = sweep(_four_bar(), steps=9)
+    assert animate_motion(motion, tmp_path / "m.gif", frames=4, seconds=2.0, progress=True) == 4
+    err = capsys.readouterr().err
+    assert "animation: 100%" in err and "4/4" in err and "frame" in err
+    with Image.open(tmp_path / "m.gif") as gif:
+        assert gif.n_frames == 4 and gif.info["loop"] == 0 and gif.info["duration"] == 500  # 2 s over 4 frames
+    animate_motion(motion, tmp_path / "q.gif", frames=4, seconds=0.01)
+    with Image.open(tmp_path / "q.gif") as gif:
+        assert gif.info["duration"] == 20  # never faster than 50 frames a second
+    assert capsys.readouterr().err == ""  # no bar unless asked
