@@ -253,6 +253,10 @@ def test_a_png_draws_each_element_as_an_artist(tmp_path, monkeypatch):
     assert marks[0].radius == pytest.approx(white[0].radius * 0.014 / 0.018)  # 0.014 and 0.018 of the size
     (text,) = ax.texts
     assert text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
+    assert text.get_zorder() == 6 and text.get_va() == "bottom" and text.get_fontsize() == 9  # over everything
+    (dot,) = [c for c in circles if to_hex(c.get_facecolor()) == "#c0392b"]
+    beside = 1.6 / 0.8 * dot.radius  # the name 1.6 pin radii right of and above the dot (y down in pixels)
+    assert text.get_position() == pytest.approx((dot.center[0] + beside, dot.center[1] - beside))
     dashed = [ln for ln in ax.lines if ln.get_linestyle() != "-"]
     assert len(dashed) == 1  # the frame's line O2 O4
     assert ax.get_ylim()[0] > ax.get_ylim()[1] and not ax.axison
