@@ -343,3 +343,20 @@ def test_a_gif_shows_its_progress_and_plays_in_the_time_asked(tmp_path, monkeypa
     with Image.open(tmp_path / "q.gif") as gif:
         assert gif.info["duration"] == 20  # never faster than 50 frames a second
     assert capsys.readouterr().err == ""  # no bar unless asked
+
+
+def test_an_svg_picture_holds_the_pin_paths_and_the_coupler_curve(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    lk = _four_bar(tracers={"P": (2, (2.5, 4.5))})
+    motion = sweep(lk, steps=37)
+    draw_motion(motion, tmp_path / "m.svg", marks=[[1.0, 1.0]])
+    root = ET.fromstring((tmp_path / "m.svg").read_text())
+    lines = [el for el in root.iter() if el.tag.endswith("}polyline")]
+    grey = [el for el in lines if el.get("stroke") == "#b8c2cc"]
+    curve = [el for el in lines if el.get("stroke") == "#c0392b"]
+    # the two moving pins' paths and the tracer's coupler curve, a point per step of the sweep
+    assert len(grey) == 2 and len(curve) == 1 and len(curve[0].get("points").split()) == 37
+    assert [len(el.get("points").split()) for el in grey] == [37, 37]
+    (mark,) = [el for el in root.iter() if el.tag.endswith("}circle") and el.get("stroke") == "#1f4e9c"]
+    assert mark.get("fill") == "none"
