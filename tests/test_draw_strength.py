@@ -158,6 +158,9 @@ def test_a_single_joint_link_ends_free_in_a_square():
     end = marks.free_ends[3]
     bar = _by_gid(ax, "bar3")["bar3"]
     assert np.allclose(bar.get_xydata(), [marks.pos[marks.lay.polygons[3][0]], end])
+    from matplotlib.colors import to_hex
+
+    assert to_hex(bar.get_color()) == "#1f3a5f" and bar.get_linewidth() == 2.2 and bar.get_solid_capstyle() == "butt"
     square = _by_gid(ax, "end3")["end3"]
     assert np.allclose(square.get_xy()[:4].mean(axis=0), end) and square.get_hatch() == "////"  # the frame
     assert np.linalg.norm(end - marks.pos[marks.lay.polygons[3][0]]) == pytest.approx(max(0.35, 6 * marks.r))
@@ -352,6 +355,7 @@ def test_a_heterogeneous_chain_colours_its_base_and_keys_the_classes():
     assert len(faces) == 2
     legend = ax.get_legend()
     assert [t.get_text() for t in legend.get_texts()] == ["h = 4: 1 loop", "h = 3: 1 other loop"]
+    assert not legend.get_frame_on() and legend._loc == 2 and legend.get_texts()[0].get_fontsize() == 6
     fig, ax = _axes(chain, legend=False)
     assert ax.get_legend() is None
 
