@@ -239,7 +239,8 @@ def test_a_single_schematic_has_its_size_caption_and_legend(tmp_path, monkeypatc
     # the symbols as drawn: a thick grey shaft, a grey bar, a ring's bracket end (a dash), a carrier's arm (a bar)
     shaft, wheel, ring, arm, frame = legend.legend_handles
     assert [(h.get_marker(), h.get_markersize()) for h in (ring, arm)] == [("_", 10), ("|", 10)]
-    assert arm.get_linestyle() == "None" and shaft.get_linewidth() == ring.get_linewidth() == frame.get_linewidth() == 2.2
+    assert arm.get_linestyle() == "None"
+    assert shaft.get_linewidth() == ring.get_linewidth() == frame.get_linewidth() == 2.2
     assert _colour(frame) == "#000000" and _colour(shaft) == "#808080" and wheel.get_alpha() == 0.85
     assert fig.subplotpars.bottom == pytest.approx(0.6 / 3.6 + 0.04)
     saved.clear()
