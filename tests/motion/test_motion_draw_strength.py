@@ -310,6 +310,14 @@ def test_linkages_from_drawings_say_what_was_moved():
                        f"by up to {shift:.3g} ({shift / 100:.0%} of its size) to a pose whose input turns fully with "
                        f"transmission angles of at least {math.degrees(worst):.0f}°")
     assert worst >= math.radians(20) and 0.05 * 100 <= shift
+    # Stephenson's chain on link 0 driven at link 1: no pose tried turns fully; the note gives the swing of the
+    # best, its input's travel between the two dead positions that motion_range finds
+    from synth.motion import motion_range
+
+    rocker = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3"), 0, 1))
+    low, high = motion_range(rocker).limits
+    assert rocker.note.endswith(f"to a pose whose input swings {math.degrees(high - low):.0f}°")
+    assert "its input does not turn fully" in rocker.note
     # a 2-DOF chain takes the drawing's pose as it is (nudged off locked poses)
     five_bar = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0))
     assert five_bar.dof == 2 and five_bar.inputs == (0, 1)
