@@ -168,8 +168,8 @@ def mechanism_of(chain, frame: int, input_joint: str | None):
         raise InvalidOption(f"--frame {frame} is not a link of the chain (links 0 … {chain.links - 1})")
     driven = None
     if input_joint is not None:
-        links = sorted(int(x) for x in input_joint.replace("=", "-").split("-") if x.strip().isdigit())
-        if len(links) != 2 or tuple(links) not in chain.joints or frame not in links:
+        links = chain.joints[chain.joint_index(input_joint, "--input")]
+        if len(links) != 2 or frame not in links:
             raise InvalidOption(f"--input {input_joint} must be a joint of the frame (link {frame}) and one "
                                 f"moving link, written like {frame}-1")
         driven = links[0] if links[1] == frame else links[1]
