@@ -80,8 +80,7 @@ def _read_closed_form(raw, path: str, compute) -> ClosedForm:
 FAMILY = Family("motion")  # its tables and computations, registered by mechsynth.scene
 
 FAMILY.table(SceneTable("linkage", _read_linkage, "the linkage: chain, frame, inputs, points (slides, meshes, tracers)"))
-FAMILY.table(SceneTable("sweep", lambda raw, path, compute: Sweep.read(raw, source=path, where="[sweep]",
-                                                                         error=SceneError), "the number of steps"))
+FAMILY.table(SceneTable.typed("sweep", Sweep, "the number of steps"))
 FAMILY.table(SceneTable("closed_form", _read_closed_form, "the formula that checks the solver (kind = …)"))
 
 
