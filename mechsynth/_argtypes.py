@@ -12,8 +12,8 @@ import os
 
 from mechbase import RangeSyntax, parse_range
 
-__all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file", "output_file", "output_folder",
-           "where_conditions", "PICTURE_FORMATS"]
+__all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
+           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")

@@ -242,8 +242,9 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                     c2, s2 = cos[h2, b], sin[h2, b]
                     ax, ay = _at(cos, sin, tx, ty, h1, b, a0x, a0y)
                     _place(cos, sin, tx, ty, i, b, c2, s2, ax, ay, a0x, a0y)
-                    u2x, u2y = _at(cos, sin, tx, ty, h2, b, slides[k2, 0], slides[k2, 1], False)  # the outer slide's direction
-                    u3x, u3y = _at(cos, sin, tx, ty, h2, b, slides[k3, 0], slides[k3, 1], False)  # the middle slide's
+                    # the directions of the outer slide and of the middle one
+                    u2x, u2y = _at(cos, sin, tx, ty, h2, b, slides[k2, 0], slides[k2, 1], False)
+                    u3x, u3y = _at(cos, sin, tx, ty, h2, b, slides[k3, 0], slides[k3, 1], False)
                     # t_j = t_h2 + s₂u₂ = t_i + s₃u₃: s₂ = (t_i − t_h2) × u₃ / (u₂ × u₃)
                     det = u2x * u3y - u2y * u3x
                     gs[m, b] = det * det
