@@ -67,6 +67,14 @@ def _between(vx, vy, wx, wy):
     return math.atan2(abs(vx * wy - vy * wx), vx * wx + vy * wy)
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _between_slides(cos, sin, tx, ty, b, slides, link1, k1, link2, k2):
+    """The angle between slide k1 carried by link1 and slide k2 carried by link2 at step b."""
+    u1x, u1y = _at(cos, sin, tx, ty, link1, b, slides[k1, 0], slides[k1, 1], False)
+    u2x, u2y = _at(cos, sin, tx, ty, link2, b, slides[k2, 0], slides[k2, 1], False)
+    return _between(u1x, u1y, u2x, u2y)
+
+
 @njit(cache=True, error_model="numpy")
 def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, groups, ints, floats, points, slides,
                  carried_link, carried_point, scale2, theta, t_x, t_y, g, mu, carried):
@@ -254,9 +262,7 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                     ty[j, b] = ty[h2, b] + along * u2y
                 if keep_mu:  # between the two slides
                     for b in range(nb):
-                        u2x, u2y = _at(cos, sin, tx, ty, j, b, slides[k2, 0], slides[k2, 1], False)
-                        u3x, u3y = _at(cos, sin, tx, ty, j, b, slides[k3, 0], slides[k3, 1], False)
-                        mu[s0 + b, m] = _between(u2x, u2y, u3x, u3y)
+                        mu[s0 + b, m] = _between_slides(cos, sin, tx, ty, b, slides, j, k2, j, k3)
             else:  # PRP
                 b0x, b0y = points[k3, 0], points[k3, 1]
                 for b in range(nb):
@@ -277,9 +283,7 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                     ty[j, b] = ty[h2, b] + s2_ * u2y
                 if keep_mu:  # between the two slides
                     for b in range(nb):
-                        u1x, u1y = _at(cos, sin, tx, ty, i, b, slides[k1, 0], slides[k1, 1], False)
-                        u2x, u2y = _at(cos, sin, tx, ty, j, b, slides[k2, 0], slides[k2, 1], False)
-                        mu[s0 + b, m] = _between(u1x, u1y, u2x, u2y)
+                        mu[s0 + b, m] = _between_slides(cos, sin, tx, ty, b, slides, i, k1, j, k2)
             if angles and kind != GEAR:  # the angles of the group's links: a slider's is its guide's
                 for b in range(nb):
                     th[i, b] = (th[h1, b] if kind == PRR or kind == PRP else th[h2, b] if kind == RPP
