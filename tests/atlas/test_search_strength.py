@@ -24,6 +24,8 @@ from synth.motion import Linkage, sweep
 from synth.structure.chain import Chain, Mechanism
 from synth.synthesis.type_synthesis import mechanisms_of
 
+from .helpers import sql
+
 WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
 STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")
 
@@ -35,13 +37,6 @@ def index(tmp_path_factory):
     run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
     result = index_curves(db, settings=IndexSettings(samples=3), workers=1)
     return db, result
-
-
-def _sql(db, statement, *args):
-    with sqlite3.connect(db) as conn:
-        rows = list(conn.execute(statement, args))
-    conn.close()
-    return rows
 
 
 # ------------------------------------------------------------------ the index
@@ -112,13 +107,13 @@ def _walked(z):
 
 def test_every_stored_curve_is_its_linkage_swept_again(index):
     db, result = index
-    rows = _sql(db, "SELECT s.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer, "
-                    "s.timed, s.untimed, s.slides, c.chain FROM curve_samples s JOIN chains c ON c.id = s.chain")
+    rows = sql(db, "SELECT s.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer, "
+                   "s.timed, s.untimed, s.slides, c.chain FROM curve_samples s JOIN chains c ON c.id = s.chain")
     assert len(rows) == result.curves
-    units = _sql(db, "SELECT chain, frame, input_link, status, samples FROM curve_units")
+    units = sql(db, "SELECT chain, frame, input_link, status, samples FROM curve_units")
     # each done mechanism: 3 poses, each with a curve on every tracer link
     per = {(c, f, i): (s, n) for c, f, i, s, n in units}
-    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in _sql(db, "SELECT id, chain FROM chains")}
+    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in sql(db, "SELECT id, chain FROM chains")}
     assert result.curves == sum(3 * len(tracer_links(Mechanism(chains[c], f))) for (c, f, i), (s, _) in per.items()
                                 if s == "done")
     assert result.units_skipped == sum(s == "skipped" for s, _ in per.values()) > 0
@@ -148,15 +143,15 @@ def test_every_stored_curve_is_its_linkage_swept_again(index):
 
 def test_the_skipped_mechanisms_say_why(index):
     db, _ = index
-    notes = {note for (note,) in _sql(db, "SELECT note FROM curve_units WHERE status = 'skipped'")}
+    notes = {note for (note,) in sql(db, "SELECT note FROM curve_units WHERE status = 'skipped'")}
     assert notes == {"moved by Newton's method (a triad or higher group): index it with triads"}
-    assert _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done' AND note IS NOT NULL") == [(0,)]
+    assert sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done' AND note IS NOT NULL") == [(0,)]
 
 
 def test_index_info_and_its_refusals(index, tmp_path):
     db, result = index
     info = index_info(db)
-    skipped = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'skipped'")[0][0]
+    skipped = sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'skipped'")[0][0]
     assert info == {"settings": json.loads(IndexSettings(samples=3).to_meta()),
                     "mechanisms": result.units_total - skipped, "skipped": skipped, "curves": result.curves}
     bare = tmp_path / "bare.sqlite"
@@ -219,7 +214,7 @@ def test_an_index_is_resumed_only_with_its_settings(tmp_path):
     again = index_curves(db, settings=IndexSettings(samples=1, prismatic=(0, 1)), workers=1)
     assert (again.units_total, again.units_run, again.curves) == (first.units_total, 0, first.curves)
     # the slider-crank's samples keep their sliding line; the four-bar's have none
-    assert {s is None for (s,) in _sql(db, "SELECT slides FROM curve_samples")} == {True, False}
+    assert {s is None for (s,) in sql(db, "SELECT slides FROM curve_samples")} == {True, False}
 
 
 # ------------------------------------------------------------------ the search's pieces
@@ -332,16 +327,16 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
     db, _ = index
     target = _ellipse(36)
     found, size = retrieve(db, target, per_topology=2)
-    assert size == _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    assert size == sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
     topologies = {}
     for c in found:
         topologies.setdefault(c.topology, []).append(c)
     assert all(len(group) <= 2 for group in topologies.values())
-    done = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done'")[0][0]
+    done = sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done'")[0][0]
     assert len(topologies) == done  # no limit on topologies: every indexed one
     t, h, _ = descriptor_of(target)
     for c in found:  # each candidate's misfit is its stored curve's, aligned anew
-        (coefficients,) = _sql(db, "SELECT timed FROM curve_samples WHERE id = ?", c.row)[0]
+        (coefficients,) = sql(db, "SELECT timed FROM curve_samples WHERE id = ?", c.row)[0]
         u = _form(unblob(coefficients)[HARMONICS - h:HARMONICS + h + 1], c.mirror, c.reverse)
         assert c.misfit == pytest.approx(_projection_misfit(t, u, c.shift)[0], abs=1e-9)
         assert not c.reverse  # a timed target is never run backwards
@@ -353,7 +348,7 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
         best.setdefault(c.links, c)
     assert sorted(c.row for c in one) == sorted(c.row for c in best.values())
     only_four, size = retrieve(db, target, links=(4, 4))
-    assert {c.links for c in only_four} == {4} and size == _sql(
+    assert {c.links for c in only_four} == {4} and size == sql(
         db, "SELECT COUNT(*) FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE c.links = 4")[0][0]
 
 

@@ -5,31 +5,20 @@ each accepted spelling hands to Dask (no cluster is started: Dask's client is st
 from __future__ import annotations
 
 import socket
-import threading
 
 import pytest
 
 from synth.execution import scheduler
 from synth.execution.scheduler import SchedulerUnreachable, connect
 
+from .servers import local_server
+
 
 @pytest.fixture
 def listening():
     """A local TCP port that accepts connections (and says nothing)."""
-    server = socket.create_server(("127.0.0.1", 0))
-    port = server.getsockname()[1]
-
-    def accept():
-        while True:
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                return
-            conn.close()
-
-    threading.Thread(target=accept, daemon=True).start()
-    yield port
-    server.close()
+    with local_server() as port:
+        yield port
 
 
 @pytest.fixture
@@ -139,28 +128,12 @@ def test_the_handshake_fails_on_an_http_answer_even_inside_a_running_loop():
     pytest.importorskip("distributed")
     import asyncio
 
-    server = socket.create_server(("127.0.0.1", 0))
-    port = server.getsockname()[1]
-
-    def answer():
-        try:
-            conn, _ = server.accept()
-        except OSError:
-            return
-        with conn:
-            conn.recv(1024)
-            conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4)
-
-    threading.Thread(target=answer, daemon=True).start()
-
-    async def in_a_notebook():
+    async def in_a_notebook(port):
         with pytest.raises(Exception):
             scheduler._handshake(f"tcp://127.0.0.1:{port}", 3.0)
 
-    try:
-        asyncio.run(in_a_notebook())
-    finally:
-        server.close()
+    with local_server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4) as port:
+        asyncio.run(in_a_notebook(port))
 
 
 def test_the_address_is_tried_as_written_with_the_timeout(monkeypatch):
