@@ -454,3 +454,33 @@ def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path):
         kind = "function"
 
     assert sampled_starts(mechanism, tracer, NotAPath(), samples=4) == []
+
+
+def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    result = index_curves(db, settings=IndexSettings(samples=2), links=(4, 4), workers=1, progress=True)
+    # only the four-bar's one mechanism with an input link, sampled twice with a curve of its coupler each
+    assert (result.units_total, result.units_run, result.units_skipped, result.curves) == (1, 1, 0, 2)
+    bar = capsys.readouterr().err
+    assert "curve index" in bar and "1/1" in bar and "mechanism" in bar and "curves=2" in bar
+    ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = _sql(
+        db, "SELECT u.chain, c.links, u.frame, u.input_link, u.input_joint, u.status, u.note, u.samples, u.tries, "
+            "u.seconds FROM curve_units u JOIN chains c ON c.id = u.chain")
+    four_bar = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains WHERE id = ?", chain)[0][0]))
+    assert (links, frame, input_link, status, note, samples) == (4, 0, 1, "done", None, 2)
+    assert set(four_bar.joints[joint]) == {0, 1}  # the input joint: the crank's pivot on the frame
+    assert 2 <= tries <= 80 and seconds >= 0 and round(seconds, 4) == seconds
+    rows = _sql(db, "SELECT sample, tracer_link, points, tracer FROM curve_samples ORDER BY sample")
+    assert len({s for s, *_ in rows}) == 2 and all(1 <= s <= tries for s, *_ in rows) and rows[-1][0] == tries
+    for _, tracer, points, at in rows:
+        assert [tracer] == tracer_links(Mechanism(four_bar, frame))  # the coupler: the link off the frame
+        for value in [v for p in json.loads(points) for v in p] + json.loads(at):  # kept to 12 decimals
+            assert abs(value * 1e12 - round(value * 1e12)) < 1e-3
+    assert index_info(db)["mechanisms"] == 1
