@@ -393,8 +393,15 @@ def _stored_curve(db, row: int, steps: int):
 
 
 @pytest.mark.parametrize("timed", [True, False])
-def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed):
+def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
     db = _four_bar_index(tmp_path, 4)
+    capsys.readouterr()
     size = _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
     row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
@@ -402,8 +409,10 @@ def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed):
     turn = 0.5 * np.exp(0.7j)
     z = turn * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
     target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36] if timed else None)  # the mirror's crank turns back
-    found = search_atlas(db, target, per_topology=2, budget=3)
+    found = search_atlas(db, target, per_topology=2, budget=3, progress=timed)
     assert (found.index_curves, found.topologies, found.timed, found.notes) == (size, 1, timed, [])
+    bar = capsys.readouterr().err  # a bar of the topologies polished, when asked for
+    assert ("polish" in bar and "1/1" in bar and "topology" in bar) if timed else bar == ""
     best = found.best
     # (without timing the target's 36-gon is walked by arc length, not the index's 256 steps: close, not exact)
     assert best.candidate.mirror and best.candidate.misfit < (1e-6 if timed else 1e-3) and best.candidate.row == row
