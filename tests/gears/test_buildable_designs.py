@@ -241,13 +241,20 @@ def test_a_planet_wheel_that_is_a_ring_needs_no_clearance_from_its_neighbours():
     assert (z["z0"] * z["z3_1"] + z["z1"] * z["z3_0"]) % (3 * gcd(z["z3_0"], z["z3_1"])) == 0  # the planets assemble
 
 
-def test_free_kinds_with_planets_keep_the_clearance_of_a_planet_numbered_first():
-    # the simple planetary with its planet numbered before the sun and the ring (link 1 on carrier 0): each mesh has
-    # the planet as its first gear, and with kinds free either gear of a mesh may be the ring; three planets of
-    # whatever kinds the solver picks must still clear and assemble
-    layout = GearTrain.parse("0-2-3 0-1 1~2 1~3")
+@pytest.mark.parametrize("text, frame, driver, driven, ring", [
+    ("0-2-3 0-1 1~2 1~3", 2, 3, 0, "2~1i"),   # the planet 1 numbered first: the ring 2 is a mesh's second gear
+    ("0-1-2 2-3 0~3 1~3", 0, 1, 2, "0~3i"),   # the ring 0 numbered first: the first gear of its mesh
+])
+def test_free_kinds_with_planets_keep_the_clearance_and_name_the_ring(text, frame, driver, driven, ring):
+    # the simple planetary (sun fixed or ring fixed) with kinds free: the solver may make either gear of a mesh the
+    # ring; three planets of whatever kinds it picks must clear and assemble, and the train it reports names the
+    # ring first in its internal mesh
+    layout = GearTrain.parse(text)
     target, tol = Fraction(4), Fraction(5, 100)
-    found = design(layout, 2, 3, 0, "4", tolerance="5%", teeth=(17, 60), planets=3, kinds="free", best=3)
+    found = design(layout, frame, driver, driven, "4", tolerance="5%", teeth=(17, 60), planets=3, kinds="free", best=3)
     assert len(found) == 3
     for d in found:
-        _assert_buildable(d, layout, 2, 3, 0, target, tol, planets=3)
+        _assert_buildable(d, layout, frame, driver, driven, target, tol, planets=3)
+        assert ring in d.train_text.split()
+        (a, b), = [m for m, inner in zip(d.train.meshes, d.train.internal) if inner]
+        assert d.teeth[f"z{a}"] >= d.teeth[f"z{b}"] + 10  # the ring, RING_MARGIN teeth above its pinion
