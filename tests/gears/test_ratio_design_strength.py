@@ -32,6 +32,10 @@ SIMPLE = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, plan
     (lambda: design(SIMPLE, 0, 1, 2, "4.0000000000000000000001"), InvalidOption,
      "the ratio and tolerance need integers too large for an exact model: give the ratio with fewer digits or "
      "narrow teeth=A..B"),
+    # (the error's bound, about 6·10^16, fits; times the denominator's bound 10^4 it does not)
+    (lambda: design(SIMPLE, 0, 1, 2, "4.0000000001", teeth=(17, 10 ** 4)), InvalidOption,
+     "the ratio and tolerance need integers too large for an exact model: give the ratio with fewer digits or "
+     "narrow teeth=A..B"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", planets=0), InvalidOption, "the number of planets must be a whole number ≥ 1, not 0"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", kinds="any"), InvalidOption, "mesh kinds are given or free, not 'any'"),
     (lambda: design(SIMPLE, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60)), NoDesign,
