@@ -373,10 +373,10 @@ def test_search_options_are_refused_with_their_sentence(tmp_path, options, sente
     assert str(e.value) == sentence
 
 
-def _four_bar_index(folder, samples: int):
+def _four_bar_index(folder, samples: int, seed: int = 0):
     db = folder / "four.sqlite"
     run_grid(parse_grid("dof = 1\nlinks = 4"), db, workers=1)
-    index_curves(db, settings=IndexSettings(samples=samples), workers=1)
+    index_curves(db, settings=IndexSettings(samples=samples, seed=seed), workers=1)
     return db
 
 
@@ -416,6 +416,9 @@ def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, mon
     best = found.best
     # (without timing the target's 36-gon is walked by arc length, not the index's 256 steps: close, not exact)
     assert best.candidate.mirror and best.candidate.misfit < (1e-6 if timed else 1e-3) and best.candidate.row == row
+    # the mirror image z̄ in the sample's order: timed, its crank turns back (z̄(−ψ), the mirror's own form); untimed,
+    # the mirror image run in the order it was sampled is the mirrored form run backwards (z̄(t))
+    assert best.candidate.reverse is (not timed)
     assert best.result.met and best.result.relative_max < 1e-8 and best.tried == 1
     assert best.mechanism.chain.certificate == mechanism.chain.certificate
     # its row: the topology and the errors of the polished result, the candidate it started from
@@ -438,15 +441,16 @@ def test_a_result_without_matches_has_no_best():
     assert AtlasSearchResult(["a", "b"], 10, 2, 0.1, True).best == "a"
 
 
-def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path):
-    db = _four_bar_index(tmp_path, 4)
+@pytest.mark.parametrize("seed", [0, 5])
+def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed):
+    db = _four_bar_index(tmp_path, 4, seed)
     row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
     z = 0.5 * np.exp(0.7j) * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
     target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36])
     # the index's own 4 samples of the mechanism (same seed): the nearest is the one that traced the target
-    starts = sampled_starts(mechanism, tracer, target, samples=4, count=2)
-    assert len(starts) == 2 and len(sampled_starts(mechanism, tracer, target, samples=4)) == 4
+    starts = sampled_starts(mechanism, tracer, target, seed, samples=4, count=2)
+    assert len(starts) == 2 and len(sampled_starts(mechanism, tracer, target, seed, samples=4)) == 4
     first = starts[0]
     assert first.tracers["P"][0] == tracer and first.mechanism.chain.certificate == mechanism.chain.certificate
     # posed at the target's first point, and it traces the target: swept from there, its curve is the target's
@@ -493,3 +497,45 @@ def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkey
         for value in [v for p in json.loads(points) for v in p] + json.loads(at):  # kept to 12 decimals
             assert abs(value * 1e12 - round(value * 1e12)) < 1e-3
     assert index_info(db)["mechanisms"] == 1
+
+
+class _Clock:
+    """A CPU clock for the search: starts at ``start`` seconds and moves ``step`` seconds a reading."""
+
+    def __init__(self, start: float, step: float):
+        self.now, self.step = start, step
+
+    def __call__(self) -> float:
+        self.now += self.step
+        return self.now
+
+
+def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(tmp_path, monkeypatch):
+    import time
+
+    db = _four_bar_index(tmp_path, 4)
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    _, _, xy, phi = _stored_curve(db, row, 36)
+    target = PathTarget(xy[:36], inputs=phi[:36])
+    # a process that has run for hours already: the budget is the time spent since the search began
+    monkeypatch.setattr(time, "process_time", _Clock(1e4, 1e-6))
+    found = search_atlas(db, target, budget=3)
+    assert found.notes == [] and found.best.result.relative_max < 1e-8 and found.best.tried == 1
+    # a clock that jumps 10 s a reading spends a budget of 3 s before the first polish: the note says so
+    monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
+    found = search_atlas(db, target, budget=3)
+    chain = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains")[0][0]))
+    assert found.matches == [] and found.notes == [
+        f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
+        "a polish began)"]
+
+
+def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):
+    # a timed ellipse: the first polish stops short of it, and the search goes on from its best while that halves
+    # the error and time is left; what it returns is a four-bar the motion layer moves along its reported curve
+    db = _four_bar_index(tmp_path, 4)
+    found = search_atlas(db, _ellipse(30), per_topology=1, budget=1.5)
+    assert found.notes == [] and len(found.matches) == 1
+    best = found.best
+    assert best.tried == 1 and best.result.relative_max > 1e-9 and best.candidate.links == 4
+    assert best.result.error_rms <= best.result.error_max
