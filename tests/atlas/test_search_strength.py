@@ -421,6 +421,10 @@ def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, mon
     assert best.candidate.reverse is (not timed)
     assert best.result.met and best.result.relative_max < 1e-8 and best.tried == 1
     assert best.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (best.mechanism.frame, best.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
+    # polished from the sample alone, no global search: the dimensional synthesis says how it got there
+    assert best.result.method == "bounded least squares (trf) from a given start, " + (
+        "timed" if timed else "inputs as unknowns, in order")
     # its row: the topology and the errors of the polished result, the candidate it started from
     from synth.atlas.database import chain_id
 
@@ -453,6 +457,7 @@ def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed
     assert len(starts) == 2 and len(sampled_starts(mechanism, tracer, target, seed, samples=4)) == 4
     first = starts[0]
     assert first.tracers["P"][0] == tracer and first.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (first.mechanism.frame, first.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
     # posed at the target's first point, and it traces the target: swept from there, its curve is the target's
     assert np.hypot(*(np.asarray(first.tracers["P"][1]) - target.points[0])) < 1e-9 * target.size
     # (the sweep turns its crank forward; the mirror's target inputs run backward: the points in reverse order)
@@ -523,7 +528,7 @@ def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(t
     assert found.notes == [] and found.best.result.relative_max < 1e-8 and found.best.tried == 1
     # a clock that jumps 10 s a reading spends a budget of 3 s before the first polish: the note says so
     monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
-    found = search_atlas(db, target, budget=3)
+    found = search_atlas(db, target, budget=3, per_topology=1)
     chain = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains")[0][0]))
     assert found.matches == [] and found.notes == [
         f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
