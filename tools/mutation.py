@@ -300,6 +300,13 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                             "-k", "not every_planar_chain and not cli and not sheet_png "
                                                                   "and not jupyter and not prismatic_variants"])
        for name in ("_layout", "_render")},
+    # gear schematics: axis heights, shaft levels, bars to their pitch points, rings, arms, hatching, numbers,
+    # legend and sheets by hand, read from the artists (not the gears command's tests: subprocesses, minutes)
+    "draw_gears": ("synth/draw/_gears.py", ["tests/gears/test_draw_gears_strength.py", _SYNTH_DOC + "synth.draw._gears]"]),
+    # pictures of moving mechanisms: each element where the pose and the sweep put it, its style by kind, the
+    # SVG, SMIL and player texts, the files and refusals, linkages from the atlas's drawings
+    "motion_draw": ("synth/motion_draw.py", ["tests/motion/test_motion_draw_strength.py", "tests/motion/test_motion_draw.py",
+                                             _SYNTH_DOC + "synth.motion_draw]"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
     # synthesis internals: the bound of the codes before a model, the size estimate and its refusals (the
