@@ -204,6 +204,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "tests/test_gear_trains.py", "tests/gears/test_nine_link_readings.py", "tests/gears/test_enumeration_strength.py",
         _SYNTH_DOC + "synth.gears.enumeration]",
         "-k", "not ctrl_c and not 7] and not -8- and not three_axes and not cli_ and not design"]),
+    # (the ratio designer: its strength file, the designs that can be built and the designs of test_gear_trains.py;
+    # not the listings and readings of trains, which never call it, nor the three-axes brute force, 12 s a mutant)
+    "gears_ratio_design": ("synth/gears/ratio_design.py", [
+        "tests/gears/test_ratio_design_strength.py", "tests/gears/test_buildable_designs.py", "tests/test_gear_trains.py",
+        _SYNTH_DOC + "synth.gears.ratio_design]", "-k", "(design or strength or clearance or docstring or free_mesh_kinds) "
+                                                        "and not three_axes and not five_links_are_buildable and not ctrl_c"]),
     # (the source's planetary layout: only these tests reach it; the others' clean run would cost minutes)
     "gears_planetary": ("synth/gears/planetary.py", [
         "tests/gears/test_planetary_vs_oracle.py", "tests/gears/test_lever_analogue_vs_oracle.py",
@@ -279,15 +285,18 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "atlas_runs": ("synth/atlas/runs.py", ["tests/atlas/test_runs_strength.py", "tests/atlas/test_database_strength.py",
                                            "tests/atlas/test_atlas.py",
                                            "tests/atlas/test_grid.py::test_docstring_examples", "-k", _ATLAS_LIGHT]),
-    # the atlas search: descriptors, alignment, refusals, the search of its doctest (not the recoveries of random
-    # cranks and the commands: half a minute of polishing each, minutes a mutant on the loaded machine)
+    # the atlas search: descriptors, alignment, refusals, a stored curve moved and mirrored found exactly, the
+    # starts sampled for a mechanism (not the recoveries of random cranks and the commands, half a minute of
+    # polishing each; not its doctest either, whose search polishes for 5 CPU s: minutes a mutant when loaded)
     "atlas_search": ("synth/atlas/search.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
-                                               _SYNTH_DOC + "synth.atlas.search]", "-k", "not found_again and not command"]),
+                                               "-k", "not found_again and not command"]),
     # the curve index: every stored curve swept again, its settings, resumption and refusals (not the searches'
     # recoveries and commands, which read the index and take half a minute each)
     "atlas_curves": ("synth/atlas/curves.py", ["tests/atlas/test_search_strength.py", "tests/atlas/test_curve_search.py",
                                                _SYNTH_DOC + "synth.atlas.curves]", "-k",
                                                "not found_again and not command and not alignment_finds"]),
+    # gear cells of an atlas: units, ranks, rows and rotation representatives on hand-built databases, one 6-link run
+    "atlas_trains": ("synth/atlas/trains.py", ["tests/atlas/test_trains_strength.py", _SYNTH_DOC + "synth.atlas.trains]"]),
     # the atlas's web site: every code's entry, page, card and lookup by hand, moving pages, refusals (not
     # test_site.py and test_site_motion.py: their atlases of 1- and 2-DOF chains up to 8 links are drawn anew for
     # every mutant, minutes on the loaded machine)

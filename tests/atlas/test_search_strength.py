@@ -17,7 +17,7 @@ from synth.atlas.curves import (HARMONICS, STEPS, IndexResult, IndexSettings, _b
                                 _slides_text, _turned, harmonics, index_units, slides_of, tracer_links, unblob,
                                 untimed_parameter)
 from synth.atlas.search import (SHIFTS, AtlasSearchResult, _form, _misfits, _refine, _variants, descriptor_of,
-                                retrieve)
+                                retrieve, sampled_starts)
 from synth.dimension import PathTarget
 from synth.errors import BadTarget, InvalidOption
 from synth.motion import Linkage, sweep
@@ -30,10 +30,11 @@ WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
 STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")
 
 
-@pytest.fixture(scope="module")
-def index(tmp_path_factory):
-    """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism."""
-    db = tmp_path_factory.mktemp("index") / "a.sqlite"
+@pytest.fixture
+def index(tmp_path):
+    """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism (built for each test, 1.5 CPU s: a
+    mutation run maps the index's code to every test that reads it, and each mutant's tests build it anew)."""
+    db = tmp_path / "a.sqlite"
     run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
     result = index_curves(db, settings=IndexSettings(samples=3), workers=1)
     return db, result
@@ -360,12 +361,181 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
     (dict(budget=math.inf), "the budget must be a positive number of seconds, not inf"),
     (dict(budget="5"), "the budget must be a positive number of seconds, not '5'"),
 ])
-def test_search_options_are_refused_with_their_sentence(index, options, sentence):
+def test_search_options_are_refused_with_their_sentence(tmp_path, options, sentence):
+    db = _four_bar_index(tmp_path, 1)
     with pytest.raises(InvalidOption) as e:
-        search_atlas(index[0], _ellipse(30), **options)
+        search_atlas(db, _ellipse(30), **options)
     assert str(e.value) == sentence
+
+
+def _four_bar_index(folder, samples: int, seed: int = 0):
+    db = folder / "four.sqlite"
+    run_grid(parse_grid("dof = 1\nlinks = 4"), db, workers=1)
+    index_curves(db, settings=IndexSettings(samples=samples, seed=seed), workers=1)
+    return db
+
+
+def _stored_curve(db, row: int, steps: int):
+    """The stored sample's linkage swept by the motion layer: (its mechanism, tracer link, the linkage,
+    steps + 1 tracer points and crank angles over a full turn)."""
+    ((chain_json, frame, input_link, joint, tracer, points, at),) = _sql(
+        db, "SELECT c.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer "
+            "FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE s.id = ?", row)
+    mechanism = Mechanism(Chain.from_dict(json.loads(chain_json)), frame, input_link)
+    linkage = Linkage(mechanism, (joint,), json.loads(points), tracers={"P": (tracer, tuple(json.loads(at)))})
+    motion = sweep(linkage, steps=steps + 1)
+    return mechanism, tracer, motion.tracers["P"], motion.inputs[:, 0]
+
+
+@pytest.mark.parametrize("timed", [True, False])
+def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+    db = _four_bar_index(tmp_path, 4)
+    capsys.readouterr()
+    size = _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
+    # the curve mirrored in the x axis, turned by 40°, halved and moved: a four-bar of the same topology traces it
+    turn = 0.5 * np.exp(0.7j)
+    z = turn * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
+    target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36] if timed else None)  # the mirror's crank turns back
+    found = search_atlas(db, target, per_topology=2, budget=3, progress=timed)
+    assert (found.index_curves, found.topologies, found.timed, found.notes) == (size, 1, timed, [])
+    bar = capsys.readouterr().err  # a bar of the topologies polished, when asked for
+    assert ("polish" in bar and "1/1" in bar and "topology" in bar) if timed else bar == ""
+    best = found.best
+    # (without timing the target's 36-gon is walked by arc length, not the index's 256 steps: close, not exact)
+    assert best.candidate.mirror and best.candidate.misfit < (1e-6 if timed else 1e-3) and best.candidate.row == row
+    # the mirror image z̄ in the sample's order: timed, its crank turns back (z̄(−ψ), the mirror's own form); untimed,
+    # the mirror image run in the order it was sampled is the mirrored form run backwards (z̄(t))
+    assert best.candidate.reverse is (not timed)
+    assert best.result.met and best.result.relative_max < 1e-8 and best.tried == 1
+    assert best.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (best.mechanism.frame, best.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
+    # polished from the sample alone, no global search: the dimensional synthesis says how it got there
+    assert best.result.method == "bounded least squares (trf) from a given start, " + (
+        "timed" if timed else "inputs as unknowns, in order")
+    # its row: the topology and the errors of the polished result, the candidate it started from
+    from synth.atlas.database import chain_id
+
+    r = best.row()
+    assert r["chain"] == best.mechanism.chain.compact() and r["chain_id"] == chain_id(mechanism.chain.certificate)
+    assert (r["frame"], r["tracer_link"], r["links"], r["tried"]) == (mechanism.frame, tracer, 4, 1)
+    assert r["input"] == best.result.linkage.to_dict()["inputs"][0]
+    assert (r["error_max"], r["relative_max"], r["met"]) == (best.result.error_max, best.result.relative_max, True)
+    assert (r["error_rms"], r["relative_rms"], r["misfit"]) == (best.result.error_rms, best.result.relative_rms,
+                                                                best.candidate.misfit)
+    assert r["seconds"] == round(best.seconds, 3) and 0 < best.seconds <= found.seconds
+    # the polished linkage traces the target: moved again to each target point's input
+    assert best.result.error_max <= 1e-8 * target.size
 
 
 def test_a_result_without_matches_has_no_best():
     assert AtlasSearchResult([], 10, 0, 0.1, True).best is None
     assert AtlasSearchResult(["a", "b"], 10, 2, 0.1, True).best == "a"
+
+
+@pytest.mark.parametrize("seed", [0, 5])
+def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed):
+    db = _four_bar_index(tmp_path, 4, seed)
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
+    z = 0.5 * np.exp(0.7j) * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
+    target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36])
+    # the index's own 4 samples of the mechanism (same seed): the nearest is the one that traced the target
+    starts = sampled_starts(mechanism, tracer, target, seed, samples=4, count=2)
+    assert len(starts) == 2 and len(sampled_starts(mechanism, tracer, target, seed, samples=4)) == 4
+    first = starts[0]
+    assert first.tracers["P"][0] == tracer and first.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (first.mechanism.frame, first.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
+    # posed at the target's first point, and it traces the target: swept from there, its curve is the target's
+    assert np.hypot(*(np.asarray(first.tracers["P"][1]) - target.points[0])) < 1e-9 * target.size
+    # (the sweep turns its crank forward; the mirror's target inputs run backward: the points in reverse order)
+    motion = sweep(first, steps=37)
+    traced = motion.tracers["P"][:36, 0] + 1j * motion.tracers["P"][:36, 1]
+    assert np.abs(traced - z[(-np.arange(36)) % 36]).max() < 1e-8 * target.size
+    # what the index cannot serve gives no start: no path, a target too short, the frame as tracer
+    assert sampled_starts(mechanism, tracer, PathTarget(target.points[:6], inputs=target.inputs[:6]), samples=4) == []
+    assert sampled_starts(mechanism, mechanism.frame, target, samples=4) == []
+
+    class NotAPath:
+        kind = "function"
+
+    assert sampled_starts(mechanism, tracer, NotAPath(), samples=4) == []
+
+
+def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    result = index_curves(db, settings=IndexSettings(samples=2), links=(4, 4), workers=1, progress=True)
+    # only the four-bar's one mechanism with an input link, sampled twice with a curve of its coupler each
+    assert (result.units_total, result.units_run, result.units_skipped, result.curves) == (1, 1, 0, 2)
+    bar = capsys.readouterr().err
+    assert "curve index" in bar and "1/1" in bar and "mechanism" in bar and "curves=2" in bar
+    ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = _sql(
+        db, "SELECT u.chain, c.links, u.frame, u.input_link, u.input_joint, u.status, u.note, u.samples, u.tries, "
+            "u.seconds FROM curve_units u JOIN chains c ON c.id = u.chain")
+    four_bar = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains WHERE id = ?", chain)[0][0]))
+    assert (links, frame, input_link, status, note, samples) == (4, 0, 1, "done", None, 2)
+    assert set(four_bar.joints[joint]) == {0, 1}  # the input joint: the crank's pivot on the frame
+    assert 2 <= tries <= 80 and seconds >= 0 and round(seconds, 4) == seconds
+    rows = _sql(db, "SELECT sample, tracer_link, points, tracer FROM curve_samples ORDER BY sample")
+    assert len({s for s, *_ in rows}) == 2 and all(1 <= s <= tries for s, *_ in rows) and rows[-1][0] == tries
+    for _, tracer, points, at in rows:
+        assert [tracer] == tracer_links(Mechanism(four_bar, frame))  # the coupler: the link off the frame
+        for value in [v for p in json.loads(points) for v in p] + json.loads(at):  # kept to 12 decimals
+            assert abs(value * 1e12 - round(value * 1e12)) < 1e-3
+    assert index_info(db)["mechanisms"] == 1
+
+
+class _Clock:
+    """A CPU clock for the search: starts at ``start`` seconds and moves ``step`` seconds a reading."""
+
+    def __init__(self, start: float, step: float):
+        self.now, self.step = start, step
+
+    def __call__(self) -> float:
+        self.now += self.step
+        return self.now
+
+
+def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(tmp_path, monkeypatch):
+    import time
+
+    db = _four_bar_index(tmp_path, 4)
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    _, _, xy, phi = _stored_curve(db, row, 36)
+    target = PathTarget(xy[:36], inputs=phi[:36])
+    # a process that has run for hours already: the budget is the time spent since the search began
+    monkeypatch.setattr(time, "process_time", _Clock(1e4, 1e-6))
+    found = search_atlas(db, target, budget=3)
+    assert found.notes == [] and found.best.result.relative_max < 1e-8 and found.best.tried == 1
+    # a clock that jumps 10 s a reading spends a budget of 3 s before the first polish: the note says so
+    monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
+    found = search_atlas(db, target, budget=3, per_topology=1)
+    chain = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains")[0][0]))
+    assert found.matches == [] and found.notes == [
+        f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
+        "a polish began)"]
+
+
+def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):
+    # a timed ellipse: the first polish stops short of it, and the search goes on from its best while that halves
+    # the error and time is left; what it returns is a four-bar the motion layer moves along its reported curve
+    db = _four_bar_index(tmp_path, 4)
+    found = search_atlas(db, _ellipse(30), per_topology=1, budget=1.5)
+    assert found.notes == [] and len(found.matches) == 1
+    best = found.best
+    assert best.tried == 1 and best.result.relative_max > 1e-9 and best.candidate.links == 4
+    assert best.result.error_rms <= best.result.error_max
