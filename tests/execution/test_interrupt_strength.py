@@ -92,7 +92,7 @@ def watcher(monkeypatch):
 
 def test_ctrl_c_stops_a_running_search_of_this_process_at_once(watcher):
     time.sleep(allowed_seconds(0.3))  # past the instant of a Ctrl-C an earlier test sent to this process
-    search = _Blocking(30.0)
+    search = _Blocking(allowed_seconds(1.0) + 1.0)  # longer than the bound below: a search not stopped fails it
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     sent = time.monotonic()
     timer.start()
@@ -192,7 +192,7 @@ class _Reads:
 
     def wait_for(self, begun):
         with self.changed:
-            return self.changed.wait_for(lambda: self.begun >= begun, allowed_seconds(10.0))
+            return self.changed.wait_for(lambda: self.begun >= begun, allowed_seconds(3.0))
 
 
 class _Search:
