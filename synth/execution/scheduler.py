@@ -70,17 +70,17 @@ def connect(address: str, timeout: float = 5.0):
 def _handshake(address: str, timeout: float) -> None:
     """Dask's handshake on a connection of its own, closed at once: whatever answers there but is not
     a scheduler fails here (a proxy's HTTP reply read as a frame length), before a ``Client`` exists,
-    which once half built cannot be closed quietly.  The whole of it within ``timeout`` seconds (Dask's
-    ``connect`` bounds the connection but then waits for the handshake's answer for ever: a port that
-    accepts and stays silent raises TimeoutError here).  In a thread of its own, so that a caller with a
-    running event loop (a notebook) can call it too."""
+    which once half built cannot be closed quietly.  The whole of it within ``timeout`` seconds: Dask's
+    ``connect`` bounds its connection attempts only and then waits for the handshake's answer for ever,
+    so a port that accepts and stays silent raises TimeoutError here.  In a thread of its own, so that a
+    caller with a running event loop (a notebook) can call it too."""
     import asyncio
     from concurrent.futures import ThreadPoolExecutor
 
     from distributed.comm import connect as dask_connect
 
     async def shake():
-        comm = await dask_connect(address, timeout=timeout)
+        comm = await dask_connect(address)  # (bounded as a whole below)
         await comm.close()
 
     with ThreadPoolExecutor(1) as thread:
