@@ -41,7 +41,6 @@ import os
 import queue
 import signal
 import sys
-import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
@@ -74,7 +73,7 @@ def process_pool(workers: int):
     import multiprocessing  # (here: a query that stays inline never loads it)
 
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    hold = hasattr(signal, "pthread_sigmask")  # (in any thread: the forking thread's mask is what the fork sees)
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
     try:
         return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import random
+import time
 import types
 
 import pytest
@@ -19,7 +20,7 @@ UNIT = 1 / 64  # seconds a unit takes on the test's clock
 
 class _Clock:
     def __init__(self):
-        self.now = 0.0
+        self.now = 100.0  # (not 0: durations are differences of its readings)
 
     def perf_counter(self):
         return self.now
@@ -382,3 +383,39 @@ def test_ctrl_c_is_held_back_while_the_workers_are_forked(monkeypatch):
     assert module.process_pool(3) == "pool"
     assert seen == ["fork", (3, module._worker_start, (os.getpid(),), True)]
     assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # and released afterwards
+    seen.clear()
+    monkeypatch.setattr(module.sys, "platform", "darwin")  # elsewhere than Linux, fork is not safe: spawn
+    module.process_pool(2)
+    assert seen[0] == "spawn"
+
+
+def test_the_inline_phase_hands_the_last_item_unfinished_to_the_pool(clock, monkeypatch):
+    # the inline phase's time runs out inside the last item of the plan: its other units still go to the pool
+    plan = _plan([2, 6])
+    tasks = _Tasks(clock)
+    executor = Executor(workers=2)
+    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: tasks.submit(fn, arg))
+    got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=4 * UNIT, task_seconds=UNIT))
+    assert got == _expected(plan)
+    assert tasks.worked[:4] == [(0, 0), (0, 1), (1, 0), (1, 1)] and sum(tasks.batches) == 4
+
+
+def _units_of(item):
+    return list(item)
+
+
+def _slow_first(unit):
+    time.sleep(1.0 if unit == (0, 0) else 0.0)
+    return ("done", unit)
+
+
+def test_a_plan_run_as_units_finish_on_a_pool_is_not_held_back_by_a_slow_unit():
+    """ordered=False on a pool of two workers: the other items' units and ends come while item 0's one
+    unit (a second long) still runs; everything comes once, each unit before its item's end."""
+    plan = _plan([1, 3, 2])
+    with Executor(workers=2) as executor:
+        got = list(run_plan(plan, _units_of, _slow_first, executor=executor, inline_seconds=0.0, ordered=False))
+    assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+    assert got.index((1, None, 3)) < got.index((0, (0, 0), ("done", (0, 0))))
+    for i, units in enumerate(plan):
+        assert all(got.index((i, u, ("done", u))) < got.index((i, None, len(units))) for u in units)
