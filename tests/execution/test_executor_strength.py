@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import random
+import threading
 import time
 import types
 
@@ -14,6 +15,7 @@ import pytest
 
 from synth.execution import executor as module
 from synth.execution.executor import Executor, run_plan
+from tests.load import allowed_seconds
 
 UNIT = 1 / 64  # seconds a unit takes on the test's clock
 
@@ -419,3 +421,64 @@ def test_a_plan_run_as_units_finish_on_a_pool_is_not_held_back_by_a_slow_unit():
     assert got.index((1, None, 3)) < got.index((0, (0, 0), ("done", (0, 0))))
     for i, units in enumerate(plan):
         assert all(got.index((i, u, ("done", u))) < got.index((i, None, len(units))) for u in units)
+
+
+def test_an_unordered_map_on_a_cluster_that_lost_its_workers_is_one_sentence_not_a_hang(monkeypatch):
+    from synth.execution.scheduler import SchedulerUnreachable
+
+    class Stuck(_Future):  # a task that never finishes: its done-callback is never called
+        def add_done_callback(self, callback):
+            pass
+
+    client = _Client(infos=[{"workers": {}}, {"workers": {}}])
+    client.submit = lambda fn, arg, pure=True: Stuck(None)
+    monkeypatch.setattr(module, "LIVENESS_SECONDS", 0.01)
+    outcome = []
+
+    def run():  # (in a thread: a map that waits for ever fails this test instead of hanging it)
+        try:
+            list(Executor(client=client).map(abs, range(3), ordered=False))
+        except SchedulerUnreachable as exc:
+            outcome.append(str(exc))
+
+    waiting = threading.Thread(target=run, daemon=True)
+    waiting.start()
+    waiting.join(allowed_seconds(5.0))
+    assert outcome and "has had no workers" in outcome[0] and client.infos == []
+
+
+def test_a_run_in_plan_order_keeps_no_finished_task_and_fills_eight_tasks_a_thread(clock):
+    """In plan order no task is told to announce its end (a queue of finished tasks that nobody reads would
+    keep every result of a long listing); as they finish, every task is.  At most 8 tasks a thread of the
+    cluster are in flight (3 threads: 24), and a long plan fills them."""
+    plan = _plan([1] * 60)
+
+    class Counted(_Client):
+        def __init__(self):
+            super().__init__()
+            self.announced, self.read, self.most = 0, 0, 0
+
+        def submit(self, fn, arg, pure=True):
+            future = super().submit(fn, arg, pure)
+            counted, unread = self, future.result
+
+            def result(timeout):
+                counted.read += 1
+                return unread(timeout)
+
+            def announce(callback):
+                counted.announced += 1
+                callback(future)
+
+            future.result, future.add_done_callback = result, announce
+            future.done = lambda: False  # (a task not known to be finished: later items' tasks are launched)
+            self.most = max(self.most, len(self.submitted) - self.read)
+            return future
+
+    for ordered in (True, False):
+        client = Counted()
+        got = list(run_plan(plan, list, lambda unit: ("done", unit), executor=Executor(client=client), ordered=ordered))
+        assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+        assert client.announced == (0 if ordered else len(client.submitted))
+        if ordered:
+            assert client.most == 24
