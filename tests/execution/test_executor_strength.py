@@ -179,6 +179,7 @@ def test_the_inline_phase_hands_an_unfinished_item_to_the_pool(clock, monkeypatc
 
 
 def test_map_on_one_worker_is_the_builtin_map():
+    assert Executor().workers == 1 and not Executor().parallel  # by default everything runs in this process
     with Executor(workers=1) as executor:
         assert not executor.parallel and executor.slots == 1
         assert list(executor.map(abs, [-3, 2, -1], ordered=False, window=1, chunk=2)) == [3, 2, 1]
@@ -342,7 +343,7 @@ def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
             calls.append(("prctl", option, value))
 
     monkeypatch.setattr(module.signal, "signal", lambda sig, action: calls.append(("signal", sig, action)))
-    monkeypatch.setattr(ctypes, "CDLL", lambda name, use_errno=False: Libc())
+    monkeypatch.setattr(ctypes, "CDLL", lambda name: Libc())
     monkeypatch.setattr(module.os, "getppid", lambda: 4242)
     monkeypatch.setattr(module.os, "_exit", lambda status: calls.append(("exit", status)))
     module._worker_start(4242)
