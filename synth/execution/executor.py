@@ -97,13 +97,11 @@ def _expand_and_work(args):
 
 
 class _Finished:
-    """The results of units a stage-A task already worked on, standing where a batch's task would."""
+    """The results of units a stage-A task already worked on, standing where a batch's task would
+    (only ever read: it is never in flight)."""
 
     def __init__(self, results: list, seconds: float):
         self._value = results, seconds
-
-    def ready(self) -> bool:
-        return True
 
     def get(self):
         return self._value

@@ -392,6 +392,21 @@ def test_ctrl_c_is_held_back_while_the_workers_are_forked(monkeypatch):
     assert seen[0] == "spawn"
 
 
+def test_on_a_pool_skipped_units_are_not_run_and_tasks_aim_at_50_ms(clock, monkeypatch):
+    # no inline phase: stage A's task works on the first units for 0.05 s (a pool's tasks; Dask's are 0.5 s),
+    # except where units are skipped (a checkpoint): then every unit goes through the filter here
+    plan = _plan([10, 4])
+    tasks, submitted = _Tasks(clock), []
+    executor = Executor(workers=2)
+    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: submitted.append((fn, arg)) or tasks.submit(fn, arg))
+    assert list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=0.0)) == _expected(plan)
+    assert submitted[0][0] is module._expand_and_work and submitted[0][1][3] == 0.05
+    skip = lambda unit: unit[1] % 3 == 0  # noqa: E731
+    tasks.worked.clear()
+    got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=0.0, skip_unit=skip))
+    assert got == _expected(plan, skip_unit=skip) and tasks.worked and not any(skip(u) for u in tasks.worked)
+
+
 def test_the_inline_phase_hands_the_last_item_unfinished_to_the_pool(clock, monkeypatch):
     # the inline phase's time runs out inside the last item of the plan: its other units still go to the pool
     plan = _plan([2, 6])
