@@ -236,22 +236,31 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                "wire or designed or buckling or refusal or helical or compression_lever or docstring"]),
     # the planar arm from TOML: links, loads, the gravity potential (terms against hand sums, moments against
     # finite differences) and the counterweights' sub-arms
-    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_potential_strength.py",
+    "arm_model": ("balance/model/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_arm_model_strength.py",
+                                           "tests/balance/test_potential_strength.py",
                                            "tests/balance/test_compare_strength.py", _BALANCE_DOC + "balance.model.arm]"]),
     # arms from URDF (Pinocchio the independent check) and the URDF written from DH parameters
-    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py",
+    "urdf": ("balance/model/urdf.py", ["tests/balance/test_urdf.py", "tests/balance/test_urdf_strength.py",
                                        "tests/balance/test_compare.py::test_the_ur5e_urdf_is_written_from_the_published_numbers",
                                        _BALANCE_DOC + "balance.model.urdf]"]),
     # the [arm], [pantograph], [slider] and [spring] problems, read and solved
-    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", _BALANCE_DOC + "balance.problems.arm]"]),
+    "problems_arm": ("balance/problems/arm.py", ["tests/balance/test_arm.py", "tests/balance/test_arm_problem_strength.py",
+                                                _BALANCE_DOC + "balance.problems.arm]"]),
     "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
+                                                               "tests/balance/test_pantograph_problem_strength.py",
                                                                _BALANCE_DOC + "balance.problems.pantograph]"]),
     "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
                                                        "tests/balance/test_packages_strength.py",
                                                        _BALANCE_DOC + "balance.problems.slider]"]),
-    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_slider_devices.py", "tests/balance/test_devices.py",
-                                                       "tests/balance/test_fit.py", _BALANCE_DOC + "balance.problems.spring]",
-                                                       "-k", "not under_100_ms and not model_matches"]),
+    # (its strength file and the spring problems of the device tests; not test_fit.py and the rest of
+    # test_devices.py and test_slider_devices.py: 24 CPU s, the fits' own modules are judged by them)
+    "problems_spring": ("balance/problems/spring.py", ["tests/balance/test_spring_problem_strength.py",
+                                                       "tests/balance/test_devices.py::test_unguided_long_spring_warns_about_buckling",
+                                                       "tests/balance/test_devices.py::test_bound_warnings_say_which_bound_to_move",
+                                                       "tests/balance/test_devices.py::test_pareto_front_is_nondominated_and_contains_better_devices",
+                                                       "tests/balance/test_slider_devices.py::test_sensitivity_moves_the_rod_and_refits_the_same_device",
+                                                       "tests/balance/test_slider_devices.py::test_helical_spring_for_a_slider_device_works_between_its_lengths",
+                                                       _BALANCE_DOC + "balance.problems.spring]"]),
     # the package's lazily loaded names, the problems' readers, the fit's names
     "balance_init": ("balance/__init__.py", ["tests/balance/test_packages_strength.py", _BALANCE_DOC + "balance]"]),
     "problems_init": ("balance/problems/__init__.py", ["tests/balance/test_packages_strength.py",
@@ -291,6 +300,13 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                                                             "-k", "not every_planar_chain and not cli and not sheet_png "
                                                                   "and not jupyter and not prismatic_variants"])
        for name in ("_layout", "_render")},
+    # gear schematics: axis heights, shaft levels, bars to their pitch points, rings, arms, hatching, numbers,
+    # legend and sheets by hand, read from the artists (not the gears command's tests: subprocesses, minutes)
+    "draw_gears": ("synth/draw/_gears.py", ["tests/gears/test_draw_gears_strength.py", _SYNTH_DOC + "synth.draw._gears]"]),
+    # pictures of moving mechanisms: each element where the pose and the sweep put it, its style by kind, the
+    # SVG, SMIL and player texts, the files and refusals, linkages from the atlas's drawings
+    "motion_draw": ("synth/motion_draw.py", ["tests/motion/test_motion_draw_strength.py", "tests/motion/test_motion_draw.py",
+                                             _SYNTH_DOC + "synth.motion_draw]"]),
     "transmission": ("balance/devices/transmission.py", ["tests/balance/test_transmission.py",
                                                          _BALANCE_DOC + "balance.devices.transmission]"]),
     # synthesis internals: the bound of the codes before a model, the size estimate and its refusals (the
