@@ -156,7 +156,8 @@ def test_the_problems_scale_minimises_its_norm():
 
 
 # ---------------------------------------------------------------- the limits of α and κ
-@pytest.mark.parametrize("lo, hi", [(0.3, 2.6), (-0.4, 1.0), (2.0, 4.0), (-3.5, -2.0)])
+@pytest.mark.parametrize("lo, hi", [(0.3, 2.6), (-0.4, 1.0), (2.0, 4.0), (-3.5, -2.0), (8.0, 10.0), (-10.0, -8.0),
+                                    (11.0, 14.0)])
 def test_the_extremes_of_the_spring_length(lo, hi):
     s = np.sin(dense(lo, hi, 200001) / 2) ** 2
     assert _sin2_half_extremes(lo, hi) == pytest.approx((s.min(), s.max()), abs=1e-9)
@@ -269,6 +270,7 @@ def test_the_start_is_the_best_corner_or_better():
 def test_the_scan_spacing():
     np.testing.assert_allclose(_span(0.01, 1.0, 3), [0.01, 0.1, 1.0], rtol=1e-12)    # a ratio above 10: logarithmic
     np.testing.assert_allclose(_span(0.1, 1.0, 3), [0.1, 0.55, 1.0], rtol=1e-12)     # 10 exactly: linear
+    np.testing.assert_allclose(_span(0.1, 1.05, 3), [0.1, math.sqrt(0.105), 1.05], rtol=1e-12)  # just above 10
     np.testing.assert_allclose(_span(0.0, 1.0, 3), [0.0, 0.5, 1.0], rtol=1e-12)
 
 
