@@ -17,6 +17,9 @@ from balance.devices.fit.problem import _Problem
 from balance.devices.fit.slsqp import _fit_slsqp
 from balance.errors import FitFailed, InvalidInput, InvalidRange, WrongSense
 
+# a solver option misspelt or unknown is ignored by scipy with only a warning: here it fails
+pytestmark = pytest.mark.filterwarnings("error::scipy.optimize.OptimizeWarning")
+
 R = (0.3, 2.8)
 LEVER = SpringBounds((0.02, 0.2), (0.1, 0.3), (0.0, 0.3))
 SINE = SpringBounds((0.02, 0.2), None, (0.0, 0.3))
@@ -127,6 +130,9 @@ def test_the_bounds_a_device_takes_come_back_as_floats():
     assert _checked_bounds(SpringBounds((0.02, 0.2), None, (0, 0.3), rod=(0.3, 0.5)),
                            DEVICES["slider-crank"]).offset == (0.0, 0.0)  # no offset given: an in-line guide
     assert _checked_bounds(SINE, DEVICES["sine"]).offset is None
+    # a range of one value fixes that length
+    fixed = _checked_bounds(SpringBounds((0.2, 0.2), (0.3, 0.3), (0.1, 0.1)), DEVICES["slotted-lever"])
+    assert (fixed.r, fixed.r0, fixed.a) == ((0.2, 0.2), (0.3, 0.3), (0.1, 0.1))
 
 
 @pytest.mark.parametrize("grid", [5, MAX_GRID])
@@ -188,6 +194,15 @@ def test_a_restart_from_a_poor_point_reaches_the_optimum_and_one_from_the_optimu
     assert p.objective(z, norm) == pytest.approx(best, rel=1e-7)
     z2, gain2, rounds2 = _confirm_optimum(p, z, norm)
     assert rounds2 == 0 and gain2 <= CONFIRM_TOL and np.array_equal(z2, z)
+
+
+def test_a_restart_from_an_exact_device_gains_nothing():
+    """At a = r0 with κ = 1 the error is 0 to the last bit (a zero free length makes the shape 1 exactly): the
+    relative gain of a restart is then 0, not 0/0."""
+    p = _Problem("tension", -50.0, 0.3, 2.6, SpringBounds((0.05, 0.2), (0.1, 0.3), (0.0, 0.3)), 21, "rms")
+    z = p.encode(1.0, 1.0, 1.0)
+    assert p.objective(z, "rms") == 0.0
+    assert _confirm_optimum(p, z, "rms")[1:] == (0.0, 0)
 
 
 def test_a_restart_that_cannot_settle_is_refused(monkeypatch):
@@ -278,6 +293,7 @@ def test_a_tension_spring_is_exact_only_when_no_method_is_asked_for():
 def test_each_device_is_finished_by_its_own_family():
     lever = fit_spring("compression-lever", -10.0, R, LEVER)
     assert lever.method == "exact" and lever.lever is not None and lever.family == "slotted-lever"
+    assert lever.norm == "max" and fit_spring("compression-lever", -10.0, R, LEVER, norm="rms").norm == "rms"
     sine = fit_spring("compression", -10.0, R, SINE, device="sine", grid=21)
     assert sine.family == "sine" and sine.r0 is None and sine.rod is None
     # the slider devices take either sign of Φ0: no refusal of the sense
