@@ -159,6 +159,8 @@ def test_the_verification_grid_resolves_the_dead_centres():
     np.testing.assert_allclose(np.sort(extra), np.sort(want[(want >= -1.0) & (want <= 7.0)]), rtol=1e-15)
     assert len(extra) == 762                                     # (the offsets past −1 and 7 left out)
     assert len(_verify_grid(0.5, 6.0, 0.5, 0.01)) == VERIFY_GRID                 # no multiple of 2π inside
+    near_zero = _verify_grid(-1.0, 5.0, 0.5, 0.01)[VERIFY_GRID:]                 # 2π − 2 = 4.28 < 5: not a centre
+    assert np.all(np.abs(near_zero) <= 2.0 * (1 + 1e-12)) and len(near_zero) == 200 + 185   # (185 of the 200 below 0 within −1)
     wide = _verify_grid(-4.0, 2.0, 0.01, 1.0)                                    # r0/r = 100: offsets up to π
     assert np.max(np.abs(wide[VERIFY_GRID:])) == pytest.approx(math.pi, rel=1e-14)
     assert np.min(np.abs(_verify_grid(-1.0, 1.0, 1.0, 0.0)[VERIFY_GRID:])) == pytest.approx(1e-14, rel=1e-9)
