@@ -204,6 +204,14 @@ def test_each_active_bound_named_within_its_tolerance(shift, named):
     assert _active(p, 0.3, 1.0, 0.2, 0.5 * km) == []
 
 
+def test_the_tolerance_of_a_long_bound_is_relative():
+    """Past 1 (in units of the longest crank) the tolerance grows with the bound: r0 ≤ 8 m is 20 ℓ, so a value
+    2e-6 below it (1e-7 relative) is on it."""
+    p = _Problem("compression", 80.0, 0.3, 2.6, SpringBounds((0.05, 0.4), (0.1, 8.0), (0.0, 0.3)), 31, "max")
+    assert _active(p, 0.3, 20.0 / (1 + 1e-7), 0.2, 1.0) == ["r0=max"]
+    assert _active(p, 0.3, 20.0 / (1 + 2e-6), 0.2, 1.0) == []
+
+
 def test_the_tension_springs_own_active_bounds():
     b = SpringBounds(r=(0.05, 0.4), r0=(0.1, 0.8), a=(0.0, 0.5))
     p = _Problem("tension", -60.0, 0.3, 2.6, b, 31, "max")
