@@ -312,6 +312,18 @@ def test_bounds_on_the_edge_of_a_refusal_are_taken(family, b):
     assert problem(family, 10.0, 0.3, math.pi / 2 + 0.5, b).check_feasible() is None
 
 
+def test_the_force_limit_against_the_targets_peak_in_the_range():
+    """Over 0.3 … 0.9 rad the target peaks at 10·sin 0.9 = 7.833 N·m: 80 N on a 0.1 m crank (8 N·m) may do,
+    78 N (7.8 N·m) cannot."""
+    b = SpringBounds((0.02, 0.1), None, (0.0, 0.3))
+    assert problem("sine", 10.0, 0.3, 0.9, SpringBounds(**{**b.__dict__, "max_force": 80.0})).check_feasible() is None
+    with pytest.raises(InfeasibleBounds) as exc:
+        problem("sine", 10.0, 0.3, 0.9, SpringBounds(**{**b.__dict__, "max_force": 78.0})).check_feasible()
+    assert str(exc.value) == ("the force limit 78 N on a slider driven by a crank of at most 0.1 m gives at most 7.8 "
+                              "N·m, less than the 7.83327 N·m the target needs in this range; raise the force limit or "
+                              "the longest crank.")
+
+
 @pytest.mark.parametrize("offset, max_free_length", [((-0.1, 0.04), None), ((-0.1, 0.04), 2.0), ((0.002, 0.05), None)])
 def test_a_short_rod_with_an_offset_range_about_the_in_line_guide_is_fitted(offset, max_free_length):
     """Bug (29 Nov 2026): the feasibility scan took 7 offsets of the range and missed the one nearest an
