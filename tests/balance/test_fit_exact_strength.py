@@ -40,7 +40,9 @@ def test_the_exact_device_needs_the_least_peak_force(name):
     assert res.c * L.max() <= best * (1 + 1e-9) and res.c * L.max() >= best * (1 - 1e-2)
     assert L.max() <= limit * (1 + 1e-9)
     if kind == "compression-lever" and b.max_free_length is not None:
+        # on the limit, and within it to the last bit
         assert res.lever.spring_free_length == pytest.approx(b.max_free_length, rel=1e-9)
+        assert res.lever.spring_free_length <= b.max_free_length
 
 
 def test_the_exact_device_balances_the_crank():
@@ -73,6 +75,19 @@ def test_the_exact_point_in_units_of_the_longest_crank():
     assert _tension_exact(narrow) == (1.0, 0.25, 0.25, 1.0)
     low = _Problem("tension", -50.0, lo, hi, SpringBounds(b.r, b.r0, (0.55, 1.0)), 21, "max")
     assert _tension_exact(low) == (1.0, pytest.approx(2.75), pytest.approx(2.75), 1.0)
+
+
+def test_a_force_limit_above_the_least_force_keeps_the_exact_device():
+    """The least peak force of an a = r0 device here is 659.085 N: a limit of 800 N leaves it exact."""
+    b = SpringBounds((0.01, 0.2), (0.05, 0.4), (0.0, 1.0))
+    free = fit_spring("compression-lever", -100.0, (math.radians(20), math.radians(160)), b)
+    capped = fit_spring("compression-lever", -100.0, (math.radians(20), math.radians(160)),
+                        SpringBounds(b.r, b.r0, b.a, max_force=800.0))
+    assert free.max_force == pytest.approx(659.0851345, rel=1e-8)
+    assert (capped.r, capped.r0, capped.c) == (free.r, free.r0, free.c) and capped.method == "exact"
+    p = _Problem("tension", -100.0, math.radians(20), math.radians(160), SpringBounds(b.r, b.r0, b.a, max_force=800.0),
+                 21, "max")
+    assert _tension_exact(p) == pytest.approx(free.x, rel=1e-12)
 
 
 @pytest.mark.parametrize("b, why", [
@@ -124,6 +139,7 @@ def test_the_compression_lever_by_hand(rng):
     assert (res.lever.compression_min, res.lever.compression_max) == pytest.approx((L.min(), L.max()), rel=1e-6)
     assert res.deflection == 0.5 and res.notes[-1] == res.lever.note()
     assert res.message == "compression spring on the lever beyond B, a = r0: exact" and res.kind == "compression-lever"
+    assert res.norm == "max" and fit_spring("compression-lever", -100.0, phi_rng, b, norm="rms").norm == "rms"
     stiff = fit_spring("compression-lever", -100.0, phi_rng, SpringBounds(b.r, b.r0, b.a, max_deflection=0.2))
     assert stiff.lever.spring_free_length == pytest.approx(stiff.lever.compression_max / 0.2, rel=1e-12)
     assert stiff.deflection == 0.2
