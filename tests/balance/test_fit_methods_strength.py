@@ -131,3 +131,61 @@ def test_trf_keeps_a_tension_springs_free_length_in_its_box():
         z, _, _ = _fit_trf(p, norm)
         rho, rho0, al, viol = p.decode(z)
         assert viol == 0.0 and (rho * 0.5, rho0 * 0.5, al * 0.5) == pytest.approx((0.5, 0.11, 0.05), rel=1e-6)
+
+
+@pytest.mark.parametrize("b", [SpringBounds((0.2, 0.2), (0.3, 0.3), (0.0, 0.1)), SpringBounds((0.1, 0.2), (0.3, 0.3), (0.0, 0.1))])
+@pytest.mark.parametrize("norm", ["max", "rms"])
+def test_trf_takes_a_length_fixed_by_a_range_of_one_value(b, norm):
+    """Bug (29 Nov 2026): a range of one value (a crank or r0 fixed) ended trf in scipy's ValueError "Each lower
+    bound must be strictly less than each upper bound" (a traceback of `balance spring --method trf`), where every
+    other method fits; now the fixed variable is held and trf reaches SLSQP's error."""
+    from balance import fit_spring
+
+    res = fit_spring("tension", -100.0, MID, b, method="trf", norm=norm, grid=21)
+    ref = fit_spring("tension", -100.0, MID, b, method="slsqp", norm=norm, grid=21)
+    assert (res.r, res.r0) == pytest.approx((ref.r, 0.3), rel=1e-6) and res.method == "trf"
+    key = "grid_max_rel_error" if norm == "max" else "grid_rms_rel_error"
+    assert getattr(res, key) == pytest.approx(getattr(ref, key), rel=1e-8)
+
+
+def test_trf_on_the_only_device_an_exact_one():
+    """r, r0 and a = r0 fixed: the one device is exact, its errors 0 to the last bit, and Lawson's reweighting
+    (weights |e| summing to 0) stops at once."""
+    from balance import fit_spring
+
+    b = SpringBounds((0.2, 0.2), (0.3, 0.3), (0.3, 0.3))
+    p = _Problem("tension", -100.0, *MID, b, 21, "max")
+    z, msg, ok = _fit_trf(p, "max")
+    assert p.objective(z, "max") == 0.0 and ok
+    assert fit_spring("tension", -100.0, MID, b, method="trf").max_rel_error < 1e-12
+
+
+def test_trf_from_a_dead_centre():
+    """A range from φ = 0, where the weight |sin φ| and so the error are 0: Lawson's weights stay positive (a
+    weight of 0 plus 1e-300) and trf ends near the minimax error."""
+    p = _Problem("compression", 100.0, 0.0, math.pi, ISSUE, 21, "max")
+    z, _, _ = _fit_trf(p, "max")
+    minimax = p.objective(_fit_slsqp(p, "max")[0], "max")
+    assert minimax <= p.objective(z, "max") <= minimax * 1.005
+
+
+def test_trf_on_the_rms_norm_where_the_scale_is_free():
+    """No force limit: κ is the least-squares one inside trf's residuals too, and trf reaches SLSQP's RMS optimum
+    (the crank at its shortest, the free length at its limit, r0 against a)."""
+    b = SpringBounds(r=(0.03, 0.21), r0=(0.15, 1.2), a=(0.0, 0.6), max_free_length=0.65)
+    p = _Problem("compression", 100.0, math.radians(-36), math.radians(160), b, 21, "rms")
+    z, _, _ = _fit_trf(p, "rms")
+    assert p.objective(z, "rms") == pytest.approx(p.objective(_fit_slsqp(p, "rms")[0], "rms"), rel=1e-9)
+
+
+@pytest.mark.parametrize("norm", ["rms", "max"])
+def test_trf_stops_just_past_a_coupled_limit(norm):
+    """A compression spring's free length and deflection with a lower bound on a couple r and r0: trf (a penalty
+    of 10× the violation against errors scaled by 1/√N) stops within 1e-4 ℓ past the limit (6e-5 and 1.5e-6
+    measured), and 10 % or so above SLSQP's error; the driver's restart brings it back (test_fit.py)."""
+    b = SpringBounds(r=(0.0956, 0.2378), r0=(0.1631, 1.1118), a=(0.0717, 0.6667), max_force=2920.0,
+                     max_free_length=0.7321, max_deflection=0.3991)
+    p = _Problem("compression", 100.0, math.radians(-25.2), math.radians(145.07), b, 61, norm)
+    z, _, _ = _fit_trf(p, norm)
+    assert p.decode(z)[3] <= 1e-4
+    assert p.objective(z, norm) <= 1.2 * p.objective(_fit_slsqp(p, norm)[0], norm)
