@@ -13,14 +13,14 @@ from .problem import _Problem
 
 def _fit_trf(p: _Problem, norm: str):
     z0 = p.start(norm)
-    lb, ub = (np.asarray(v, dtype=float) for v in p.z_bounds)
+    lb, ub = (np.asarray(v) for v in p.z_bounds)
     free = lb < ub  # least_squares takes no variable whose range is one value (a length fixed): it is held there
     sq = math.sqrt(len(p.phi))
 
     def run(z_start, weights):
         """The least-squares point from ``z_start`` (its fixed variables kept) and scipy's result."""
         def at(x):
-            z = np.array(z_start, dtype=float)
+            z = np.array(z_start)
             z[free] = x
             return z
 
@@ -30,7 +30,7 @@ def _fit_trf(p: _Problem, norm: str):
             return np.append(r / sq, 10.0 * viol)
 
         sol = optimize.least_squares(
-            fun, np.asarray(z_start, dtype=float)[free], bounds=(lb[free], ub[free]), method="trf", x_scale="jac",
+            fun, np.asarray(z_start)[free], bounds=(lb[free], ub[free]), method="trf", x_scale="jac",
             ftol=1e-12, xtol=1e-12, gtol=1e-12,
         )
         return at(sol.x), sol
