@@ -186,9 +186,12 @@ class _SliderProblem:
         return y0, bounds, cons, err
 
     def unpack(self, y) -> tuple[float, float, float, float, float]:
-        """``(ρ, ε, λ, α, κ)`` of SLSQP's ``y``."""
+        """``(ρ, ε, λ, α, κ)`` of SLSQP's ``y``.  SLSQP may step past the rod's angle limit (a linear constraint)
+        in a line search, where a rod shorter than ``r + |e|`` cannot reach the guide: the rod is then taken at the
+        shortest length that limit allows there."""
         if self.rod:
-            return tuple(float(v) for v in y[:5])
+            rho, eps, lam, al, kappa = (float(v) for v in y[:5])
+            return rho, eps, max(lam, (rho + abs(eps)) / math.sin(MAX_ROD_ANGLE)), al, kappa
         return float(y[0]), 0.0, math.inf, float(y[1]), float(y[2])
 
     def encode_full(self, y) -> np.ndarray:
