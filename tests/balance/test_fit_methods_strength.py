@@ -189,3 +189,19 @@ def test_trf_stops_just_past_a_coupled_limit(norm):
     z, _, _ = _fit_trf(p, norm)
     assert p.decode(z)[3] <= 1e-4
     assert p.objective(z, norm) <= 1.2 * p.objective(_fit_slsqp(p, norm)[0], norm)
+
+
+@pytest.mark.parametrize("device, b", [
+    # no offset range: an in-line guide, the offset fixed at 0 (the default of the slider-crank)
+    ("slider-crank", SpringBounds((0.02, 0.2), None, (0.0, 0.5), max_free_length=0.6, rod=(0.1, 0.6))),
+    ("sine", SpringBounds((0.1, 0.1), None, (0.0, 0.3), max_free_length=0.6)),
+])
+def test_trf_on_a_slider_device_with_a_fixed_variable(device, b):
+    """The same bug on the slider devices: a slider-crank without an offset range (its guide in line) ended trf in
+    scipy's ValueError; now trf reaches SLSQP's error."""
+    from balance import fit_spring
+
+    res = fit_spring("compression", 50.0, MID, b, device=device, method="trf", grid=21)
+    ref = fit_spring("compression", 50.0, MID, b, device=device, method="slsqp", grid=21)
+    assert res.grid_max_rel_error == pytest.approx(ref.grid_max_rel_error, rel=1e-8)
+    assert res.offset in (None, 0.0) and res.method == "trf"
