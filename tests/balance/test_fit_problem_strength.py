@@ -136,6 +136,19 @@ def test_the_max_scale_against_a_dense_search():
     assert np.max(np.abs(k * h - s)) <= worst.min() + 1e-12
     assert k == pytest.approx(grid[np.argmin(worst)], abs=2e-4)
     assert best_scale(h, s, 0.5, "max") == 0.5
+    # terms of either sign (|κh − s| = |κ(−h) − (−s)|), against the same dense search
+    hm, sm = np.concatenate([h, -h[:5]]), np.concatenate([s, -s[:5] + 0.3])
+    k = best_scale(hm, sm, 10.0, "max")
+    assert np.max(np.abs(k * hm - sm)) <= np.min(np.max(np.abs(grid[:, None] * hm - sm), axis=1)) + 1e-12
+
+
+def test_the_max_scale_where_nothing_lifts():
+    """No points, no lever (h = 0), or the largest overshoot already beyond the undershoot at κ = 0: κ = 0."""
+    assert best_scale(np.zeros(0), np.zeros(0), 5.0, "max") == 0.0
+    assert best_scale(np.zeros(4), np.ones(4), 5.0, "max") == 0.0
+    assert best_scale(np.ones(3), -np.ones(3), 5.0, "max") == 0.0
+    # max(|κ − 1|, |κ + 3|) over κ ≥ 0 is least at 0 (3), where it is 3 + κ beyond
+    assert best_scale(np.array([1.0, 1.0]), np.array([1.0, -3.0]), 5.0, "max") == 0.0
 
 
 def test_the_problems_scale_minimises_its_norm():
@@ -342,6 +355,10 @@ def test_the_full_problem_of_a_tension_spring():
     ("tension", -60.0, 0.3, 2.6, SpringBounds((0.05, 0.4), (0.1, 0.2), (0.25, 0.3)), InfeasibleBounds,
      "a tension spring needs a pre-extension a ≤ r0, but a ≥ 0.25 m and r0 ≤ 0.2 m."),
     ("tension", -60.0, 0.3, 2.6, SpringBounds((0.05, 0.4), (0.5, 0.8), (0.0, 0.1), max_free_length=0.3),
+     InfeasibleBounds, "no device within the stated bounds satisfies the free-length limit."),
+    # (a deflection limit means nothing to a tension spring: its free length is what refuses it)
+    ("tension", -60.0, 0.3, 2.6, SpringBounds((0.05, 0.4), (0.5, 0.8), (0.0, 0.1), max_free_length=0.3,
+                                              max_deflection=0.3),
      InfeasibleBounds, "no device within the stated bounds satisfies the free-length limit."),
 ])
 def test_each_refusal_of_the_bounds_in_full(kind, moment, lo, hi, b, error, sentence):
