@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy import optimize
 
 from balance import SpringBounds, fit_spring
 from balance.devices.fit import DEVICES, MAX_GRID, driver
@@ -97,6 +98,8 @@ def refusal(**kw):
      "the crank length r must be a range low..high, not 'ab'."),
     ({"bounds": SpringBounds(None, (0.1, 0.3), (0.0, 0.3))}, "InvalidRange",
      "the crank length r must be a range low..high, not None."),
+    ({"bounds": SpringBounds((0.02, 0.2), (0.1, 0.3), (0.0, math.nan))}, "InvalidRange",
+     "the pre-extension a range 0.0..nan must be finite."),
     ({"bounds": SpringBounds((0.02, 0.2), (0.1, 0.3), (0.0, 0.3), max_force=0.0)}, "InvalidInput",
      "the maximum force must be a positive number, not 0.0."),
     ({"bounds": SpringBounds((0.02, 0.2), (0.1, 0.3), (0.0, 0.3), max_force=math.nan)}, "InvalidInput",
@@ -211,8 +214,11 @@ def test_a_restart_that_cannot_settle_is_refused(monkeypatch):
     monkeypatch.setitem(driver.METHODS, "slsqp", lambda p, norm: (np.array([0.5, 0.5, 0.5]), "stopped", False))
     with pytest.raises(FitFailed) as exc:
         fit_spring("compression", 100.0, MID, ISSUE)
-    gain = str(exc.value).split("lowered the max error by ")[1].split(" %")[0]
-    assert float(gain) > 1.0
+    # the relative gain of the one round: from the poor point's error to the optimum's (SLSQP from the scan)
+    p = lever_problem(grid=61)
+    best, opt = p.objective(np.array([0.5, 0.5, 0.5]), "max"), p.objective(_fit_slsqp(p, "max")[0], "max")
+    gain = f"{100 * (best - opt) / best:.3g}"
+    assert float(gain) > 90
     assert str(exc.value) == (f"the slsqp fit did not settle: 0 restarts from its point (Nelder–Mead, then SLSQP) "
                               f"still lowered the max error by {gain} % in the last (stopped).")
 
@@ -228,6 +234,11 @@ def test_a_method_that_stops_at_the_optimum_without_saying_so(monkeypatch):
                            "than 1e-09: a local optimum")
 
 
+#: two limits binding, two directions free: the optimum of the max norm is not that of the RMS norm
+INTERIOR = SpringBounds(r=(0.03, 0.32), r0=(0.03, 0.88), a=(0.0, 0.58), max_force=2400.0, max_free_length=0.97)
+WIDE = (math.radians(8), math.radians(188))
+
+
 def test_a_method_that_stops_short_is_restarted_and_says_how_often(monkeypatch):
     monkeypatch.setitem(driver.METHODS, "slsqp", lambda p, norm: (np.array([0.5, 0.5, 0.5]), "stopped", False))
     res = fit_spring("compression", 100.0, MID, ISSUE, grid=21)
@@ -235,6 +246,19 @@ def test_a_method_that_stops_short_is_restarted_and_says_how_often(monkeypatch):
     assert res.restarts >= 1 and res.grid_max_rel_error == pytest.approx(ref.grid_max_rel_error, rel=1e-7)
     assert res.message == (f"stopped; restarted {res.restarts}× from its point (Nelder–Mead, then SLSQP): a local "
                            "optimum to 1e-09 of the error")
+
+
+@pytest.mark.parametrize("norm", ["max", "rms"])
+def test_the_restarts_minimise_the_norm_asked(monkeypatch, norm):
+    """Where the two norms' optima differ, the restarts from a poor point end at the optimum of the norm asked
+    (measured to 1e-14 of SLSQP's own; with the other norm 6 % off)."""
+    honest = driver.METHODS["slsqp"]
+    ref = fit_spring("compression", 100.0, WIDE, INTERIOR, norm=norm, grid=21)
+    monkeypatch.setitem(driver.METHODS, "slsqp", lambda p, norm: (np.array([0.5, 0.5, 0.5]), "stopped", False))
+    res = fit_spring("compression", 100.0, WIDE, INTERIOR, norm=norm, grid=21)
+    key = "grid_max_rel_error" if norm == "max" else "grid_rms_rel_error"
+    assert getattr(res, key) == pytest.approx(getattr(ref, key), rel=1e-9) and res.restarts >= 1
+    monkeypatch.setitem(driver.METHODS, "slsqp", honest)
 
 
 @pytest.mark.parametrize("point, sentence", [
@@ -268,13 +292,19 @@ def test_trf_on_the_max_norm_says_its_restart_gained_nothing(monkeypatch):
 
 @pytest.mark.parametrize("norm", ["max", "rms"])
 def test_the_scale_is_solved_for_the_final_shape(norm):
-    """κ of the result is the best one for its geometry (no κ of a dense grid does better), and c follows."""
+    """κ of the result is the best one for its geometry in the norm asked (a least-squares solve for the RMS norm,
+    a linear programme for the max norm: the two differ by 3.5e-5 here), and c follows."""
     res = fit_spring("compression", 100.0, MID, ISSUE, norm=norm, grid=21)
     p = lever_problem(norm)
     rho, rho0, al, kappa = res.x
-    f = (lambda e: np.max(np.abs(e))) if norm == "max" else (lambda e: np.sqrt(np.mean(e ** 2)))
-    ks = np.linspace(0.5 * kappa, 1.5 * kappa, 2001)
-    assert f(p.errors(rho, rho0, al, kappa)) <= min(f(p.errors(rho, rho0, al, k)) for k in ks) + 1e-12
+    h, s = p.w * p.shape(rho, rho0, al), p.w
+    if norm == "rms":
+        best = float(np.linalg.lstsq(h[:, None], s, rcond=None)[0][0])
+    else:
+        n = len(h)
+        best = optimize.linprog([0, 1], A_ub=np.block([[h[:, None], -np.ones((n, 1))], [-h[:, None], -np.ones((n, 1))]]),
+                                b_ub=np.concatenate([s, -s]), bounds=[(0, None), (0, None)], method="highs").x[0]
+    assert kappa == pytest.approx(best, rel=1e-9)
     assert res.c == pytest.approx(kappa * 100.0 / (res.r * (res.r + res.r0)), rel=1e-12)
     assert res.method == "slsqp" and res.norm == norm and res.seconds > 0
 
@@ -298,6 +328,30 @@ def test_each_device_is_finished_by_its_own_family():
     assert sine.family == "sine" and sine.r0 is None and sine.rod is None
     # the slider devices take either sign of Φ0: no refusal of the sense
     assert fit_spring("compression", 10.0, R, SINE, device="sine", grid=21).sense == 1 and sine.sense == -1
+
+
+def test_a_small_moment_of_the_right_sign_is_taken():
+    """Φ0 = 0.5 N·m on a compression spring: positive, the device's own sense (nothing about 1 N·m)."""
+    assert fit_spring("compression", 0.5, R, LEVER, grid=21).sense == 1
+    assert fit_spring("tension", -0.5, R, LEVER, grid=21).sense == -1
+
+
+def test_the_max_norm_sees_a_steep_dead_centre():
+    """r0/r = 2e-4 and φ = 0 in the range, κ the only freedom: the fit's grid resolves the turn of the moment at
+    0 (points clustered there), so its largest error is the minimax one of a dense grid (a linear programme in
+    κ over 40 001 uniform and 4 000 clustered angles, moments from positions); on the uniform grid alone 3 % more."""
+    from tests.balance.test_fit_vs_oracle import moment_from_positions
+
+    b = SpringBounds(r=(0.5, 0.5), r0=(1e-4, 1e-4), a=(0.0, 0.0))
+    lo, hi = math.radians(-30), math.radians(30)
+    res = fit_spring("compression", 100.0, (lo, hi), b)
+    offs = np.geomspace(1e-8, 0.5, 2000)
+    phi = np.unique(np.concatenate([np.linspace(lo, hi, 40001), offs, -offs]))
+    m, _ = moment_from_positions("compression", 1.0, 0.5, 1e-4, 0.0, phi)
+    h, s, n = m / 100.0, np.sin(phi), len(phi)
+    lp = optimize.linprog([0, 1], A_ub=np.block([[h[:, None], -np.ones((n, 1))], [-h[:, None], -np.ones((n, 1))]]),
+                          b_ub=np.concatenate([s, -s]), bounds=[(0, None), (0, None)], method="highs")
+    assert lp.fun <= res.max_rel_error <= lp.fun * 1.001
 
 
 def test_a_range_given_as_text_is_read():
