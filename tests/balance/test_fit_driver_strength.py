@@ -67,6 +67,8 @@ def refusal(**kw):
      "the range of φ 180°..90° is inverted; give low < high."),
     ({"phi_range": (0.0, 2 * math.pi + 1e-11)}, "InvalidRange",
      "the range of φ spans 360°, more than one turn (360°)."),
+    ({"phi_range": (1.0, 2.0 + 2 * math.pi)}, "InvalidRange",
+     "the range of φ spans 417.296°, more than one turn (360°)."),
     ({"phi_range": (1.0, 1.0 + 5e-10)}, "InvalidRange",
      "the range of φ is narrower than 1e-9 rad; the fit is meaningless there."),
     ({"bounds": SINE}, "InvalidInput", "the slotted-lever device needs a range of r0 (spring length at φ = 0)."),
@@ -265,6 +267,9 @@ def test_the_restarts_minimise_the_norm_asked(monkeypatch, norm):
     (np.array([0.5, math.nan, 0.5]), "the slsqp method returned a non-finite point (stopped)."),
     (np.array([1.0, 2.0, 0.5]), "the slsqp method ended outside the bounds (stopped): where a limit leaves no room "
                                 "for a, it stops just past it; the default method, slsqp, keeps such limits exactly."),
+    # 2r + r0 = 1.21 ℓ against a free length of at most 1.2 ℓ: 0.01 past it
+    (np.array([0.5, 0.21, 0.5]), "the slsqp method ended outside the bounds (stopped): where a limit leaves no room "
+                                 "for a, it stops just past it; the default method, slsqp, keeps such limits exactly."),
 ])
 def test_a_method_that_ends_where_no_device_is_refused(monkeypatch, point, sentence):
     """A non-finite point, or one past a limit (here 2r + r0 = 2 m over a free length of at most 0.6 m)."""
