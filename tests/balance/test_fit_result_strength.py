@@ -49,6 +49,10 @@ def test_the_largest_value_on_a_range():
     assert largest_on_range(small, 0.0, 1.0, grid, floor=1e-16) == pytest.approx(1e-14, rel=1e-12)
     # two points, one of them the larger: nothing to bracket
     assert largest_on_range(peak, 0.5, 0.6, np.array([])) == pytest.approx(1 - 0.037 ** 2, rel=1e-15)
+    # 50 peaks rising towards x = 1, none on a grid point: the highest is refined (the first 24 by height)
+    many = lambda x: (1 + x) * np.cos(2 * math.pi * 50 * (x - 0.013))  # noqa: E731
+    dense = np.linspace(0.9, 1.0, 2_000_001)
+    assert largest_on_range(many, 0.0, 1.0, np.linspace(0.0, 1.0, 173)) == pytest.approx(many(dense).max(), rel=1e-9)
     # two peaks: the higher one, wherever the grid's best sample lies
     two = lambda x: np.maximum(1.0 - 400 * (x - 0.12) ** 2, 1.001 - 400 * (x - 0.75) ** 2)  # noqa: E731
     assert largest_on_range(two, 0.0, 1.0, np.linspace(0, 1, 5)) == pytest.approx(1.001, rel=1e-12)
@@ -67,6 +71,10 @@ def test_the_largest_value_on_a_range():
                 "held in both directions; at 0° the spring is shortest (0.2 m) and at 180° longest "
                 "(2r + r0 = 0.4 m)"]),
     (0, 180, []),        # a dead centre at an end of the range is not crossed
+    # half a degree past a dead centre (a division by 181 instead of 180 would miss it)
+    (100, 180.5, ["the range crosses the dead centre φ = 180°, where crank AB and spring BC are in line: the "
+                  "device's moment and the target both pass through zero and change sign there, so the crank is "
+                  "held in both directions; at 180° longest (2r + r0 = 0.4 m)"]),
     (170, 370, ["the range crosses the dead centres φ = 180° and 360°, where crank AB and spring BC are in line: "
                 "the device's moment and the target both pass through zero and change sign there, so the crank "
                 "is held in both directions; at 0° the spring is shortest (0.2 m) and at 180° longest "
@@ -159,6 +167,8 @@ def test_the_verification_grid_resolves_the_dead_centres():
     np.testing.assert_allclose(np.sort(extra), np.sort(want[(want >= -1.0) & (want <= 7.0)]), rtol=1e-15)
     assert len(extra) == 762                                     # (the offsets past −1 and 7 left out)
     assert len(_verify_grid(0.5, 6.0, 0.5, 0.01)) == VERIFY_GRID                 # no multiple of 2π inside
+    below = _verify_grid(-7.0, -5.0, 0.5, 0.01)[VERIFY_GRID:]                    # −2π inside a negative range
+    assert len(below) == 200 + 167 and np.all(np.abs(below + 2 * math.pi) <= 2.0 * (1 + 1e-12))  # (167 above −7)
     near_zero = _verify_grid(-1.0, 5.0, 0.5, 0.01)[VERIFY_GRID:]                 # 2π − 2 = 4.28 < 5: not a centre
     assert np.all(np.abs(near_zero) <= 2.0 * (1 + 1e-12)) and len(near_zero) == 200 + 185   # (185 of the 200 below 0 within −1)
     wide = _verify_grid(-4.0, 2.0, 0.01, 1.0)                                    # r0/r = 100: offsets up to π
