@@ -272,6 +272,17 @@ def test_each_active_bound_named_within_its_tolerance(shift, named):
     assert _active_slider(p, 0.5, 0.0, 3.0, 0.5, 0.5 * km) == []
     sine = problem("sine", b=SINE)
     assert _active_slider(sine, 1.0, 0.0, math.inf, 0.1, 1.0) == ["r=max", "a=min"]
+    # in the order of the device's variables: crank, offset, rod, pre-load
+    assert _active_slider(p, 0.2, -0.5, 2.0, 0.1, 0.1) == ["r=min", "offset=min", "rod=min", "a=min"]
+
+
+def test_a_finished_slider_result_names_the_force_limit():
+    """κ at its largest: the force limit is named among the result's active bounds (and κ is the result's)."""
+    b = SpringBounds(r=(0.02, 0.1), r0=None, a=(0.01, 0.3), max_force=400.0, rod=(0.2, 0.5), offset=(-0.05, 0.05))
+    p = problem(b=b)
+    km = p.kappa_max(0.8, 0.3, 3.0, 0.5)
+    res = _finish_slider(p, (0.8, 0.3, 3.0, 0.5, km), "slsqp", "max", 0.0, "done", [])
+    assert "max_force" in res.active_bounds and res.max_force == pytest.approx(400.0, rel=1e-12)
 
 
 # ---------------------------------------------------------------- refusals
