@@ -445,46 +445,6 @@ def test_each_method_says_how_it_ended(method, norm, words):
     assert re.search(words, res.message) and res.method == method
 
 
-LEAST_FORCE = {  # kind, range, bounds: the zero-free-length device with the least peak force
-    "tension-S<1/2": ("tension", deg(10, 70), SpringBounds(r=(0.05, 0.2), r0=(0.01, 0.6), a=(0.0, 1.0))),
-    "tension-S>1/2": ("tension", deg(10, 170), SpringBounds(r=(0.05, 0.2), r0=(0.1, 0.6), a=(0.0, 1.0))),
-    "tension-a-range": ("tension", deg(-40, 60), SpringBounds(r=(0.02, 0.3), r0=(0.01, 0.5), a=(0.05, 0.3))),
-    "lever-S<1/2-capped": ("compression-lever", deg(0, 40),  # S = 0.12: the limit binds at the longest crank
-                           SpringBounds(r=(0.05, 0.3), r0=(0.01, 0.6), a=(0.0, 1.0), max_free_length=0.5)),
-    "lever-capped": ("compression-lever", deg(20, 160),  # the limit shortens the crank
-                     SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0), max_deflection=0.25, max_free_length=1.2)),
-    "lever-cap-within": ("compression-lever", deg(20, 160),  # the limit binds at the longest crank
-                         SpringBounds(r=(0.01, 0.2), r0=(0.05, 0.4), a=(0.0, 1.0), max_free_length=1.2)),
-    "lever-cap-above": ("compression-lever", deg(10, 70),  # the limit shortens the crank
-                        SpringBounds(r=(0.05, 0.3), r0=(0.01, 0.6), a=(0.0, 1.0), max_free_length=0.5)),
-}
-
-
-@pytest.mark.parametrize("name", LEAST_FORCE)
-def test_exact_device_has_the_least_force_of_a_dense_search(name):
-    """Every device with a = r0 is exact (c·r·d = |Φ0|); the one reported needs no more peak force
-    than any of a 150 × 150 grid of them within the bounds (and, for the lever, whose spring
-    L_max/δ fits the free-length limit), forces from positions."""
-    kind, rng, b = LEAST_FORCE[name]
-    res = fit_spring(kind, -50.0, rng, b)
-    assert res.method == "exact" and res.a == res.r0 and res.max_rel_error < 1e-12
-    delta = 0.5 if b.max_deflection is None else b.max_deflection
-    phi = np.linspace(*rng, 801)
-    best, lengths = math.inf, []
-    for r in np.linspace(*b.r, 150):
-        for r0 in np.linspace(max(b.r0[0], b.a[0]), min(b.r0[1], b.a[1]), 150):
-            _, L = moment_from_positions("tension", 50.0 / (r * (r + r0)), r, r0, r0, phi)
-            if b.max_free_length is None or L.max() / delta <= b.max_free_length:
-                best = min(best, 50.0 / (r * (r + r0)) * L.max())
-    _, L = moment_from_positions("tension", res.c, res.r, res.r0, res.r0, phi)
-    assert res.c * L.max() <= best * (1 + 1e-9)
-    assert res.c * L.max() >= best * (1 - 5e-3)  # (the grid is within that of the optimum)
-    if kind == "compression-lever" and b.max_free_length is not None:
-        assert res.lever.spring_free_length <= b.max_free_length
-        # the limit binds wherever a longer spring would have less force (every case here)
-        assert res.lever.spring_free_length == pytest.approx(b.max_free_length, rel=1e-9)
-
-
 @pytest.mark.parametrize("method", ["trf", "slsqp", "nelder-mead"])
 def test_every_method_finds_an_exact_tension_device_within_a_force_limit(method):
     """With 400 N allowed exact zero-free-length devices exist (the exact search shows the least-force

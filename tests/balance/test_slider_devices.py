@@ -295,6 +295,21 @@ def test_cli_slider_crank_json_matches_the_api(capsys):
     assert d["max_rel_error"] == pytest.approx(res.max_rel_error) and d["rod"] == pytest.approx(res.rod)
 
 
+def test_cli_slider_crank_with_a_short_rod_about_an_in_line_guide(capsys):
+    """Bug (29 Nov 2026): a 26.558 mm rod allows a 20 mm crank only with |e| ≤ 3 mm; the command ended in a
+    traceback (first in the feasibility check, then in SLSQP's line search past the rod's angle limit while the
+    bounds' sensitivities were refitted).  The device is at the rod's 60° limit, its offset within 3 mm."""
+    import json
+
+    code, out, err = _run(capsys, ["spring", "--device", "slider-crank", "--moment", "10", "--range", "17..115",
+                                   "--r", "0.02..0.1", "--a", "0..0.3", "--rod", "0.01..0.026558", "--offset=-0.1..0.04",
+                                   "--format", "json"])
+    assert code == 0 and "Traceback" not in err
+    d = json.loads(out)
+    assert d["rod"] == pytest.approx(0.026558) and abs(d["offset"]) <= 0.003 * (1 + 1e-6)
+    assert "rod angle" in d["active_bounds"]
+
+
 def test_cli_sine_table_and_plot(capsys, tmp_path):
     png = tmp_path / "sine.png"
     code, out, err = _run(capsys, ["spring", "--device", "sine", "--moment=-20", "--range=-30..120", "--r", "0.02..0.1",

@@ -233,10 +233,9 @@ def _checked_bounds(bounds: SpringBounds, family) -> SpringBounds:
         raise InvalidInput(f"the {family.name} device has no "
                            f"{' nor '.join(_BOUND_TEXT[n].removeprefix('the ') for n in extra)}; "
                            "leave that bound out.")
-    missing = [name for name in ("r0", "rod") if name in family.bounds and getattr(bounds, name) is None]
-    if missing:
-        raise InvalidInput(f"the {family.name} device needs a range of "
-                           f"{' and '.join(_BOUND_TEXT[n] for n in missing)}.")
+    for name in ("r0", "rod"):  # (no device takes both)
+        if name in family.bounds and getattr(bounds, name) is None:
+            raise InvalidInput(f"the {family.name} device needs a range of {_BOUND_TEXT[name]}.")
     r = _check_range("the crank length r", bounds.r, positive=True)
     r0 = _check_range(_BOUND_TEXT["r0"], bounds.r0, positive=True) if bounds.r0 is not None else None
     a = _check_range("the pre-extension a" if family.name == "slotted-lever" else "the pre-load a", bounds.a,

@@ -44,6 +44,8 @@ class _SliderProblem:
         self.al_b = (b.a[0] / e, b.a[1] / e)
         self.lam_b = (b.rod[0] / e, b.rod[1] / e) if self.rod else (math.inf, math.inf)
         self.eps_b = (b.offset[0] / e, b.offset[1] / e) if self.rod else (0.0, 0.0)
+        #: the offset nearest an in-line guide: it leaves the shortest rod, so every scan of the box holds it
+        self.eps_in_line = min(max(0.0, self.eps_b[0]), self.eps_b[1])
         self.Fhat = math.inf if b.max_force is None else b.max_force * e / abs(moment)
         self.Lf = math.inf if b.max_free_length is None else b.max_free_length / e
         self.delta = LEVER_DEFLECTION if b.max_deflection is None else b.max_deflection  # as the lever's spring
@@ -66,7 +68,10 @@ class _SliderProblem:
         return xmax - xmin
 
     def rod_limits(self, rho, eps) -> tuple[float, float]:
-        return max(self.lam_b[0], (rho + abs(eps)) / math.sin(MAX_ROD_ANGLE)), self.lam_b[1]
+        lo, hi = max(self.lam_b[0], (rho + abs(eps)) / math.sin(MAX_ROD_ANGLE)), self.lam_b[1]
+        if hi < lo <= hi + 1e-12 * max(1.0, hi):
+            lo = hi  # a rod exactly on the angle's limit, not to be lost to the round-off of normalising
+        return lo, hi
 
     def alpha_limits(self, rho, eps, lam) -> tuple[float, float]:
         lo, hi = self.al_b
@@ -135,7 +140,7 @@ class _SliderProblem:
     def start(self, norm: str) -> np.ndarray:
         """Best point of a small deterministic scan of the box."""
         lb, ub = self.z_bounds
-        axes = [_span(lb[0], ub[0], 4)] + [np.linspace(a, b, 3) for a, b in zip(lb[1:], ub[1:])]
+        axes = self._with_in_line([_span(lb[0], ub[0], 4)] + [np.linspace(a, b, 3) for a, b in zip(lb[1:], ub[1:])])
         grids = np.meshgrid(*axes, indexing="ij")
         best, bz = math.inf, None
         for z in np.stack([g.ravel() for g in grids], axis=1):
@@ -143,6 +148,12 @@ class _SliderProblem:
             if v < best:
                 best, bz = v, z
         return bz
+
+    def _with_in_line(self, axes: list) -> list:
+        """The axes of a scan of the box, the in-line offset among the offsets (the slider-crank's)."""
+        if self.rod:
+            axes[1] = np.union1d(axes[1], [self.eps_in_line])
+        return axes
 
     # -- SLSQP's full variables -----------------------------------------------------------------
     def full_problem(self, z0, norm: str):
@@ -175,9 +186,12 @@ class _SliderProblem:
         return y0, bounds, cons, err
 
     def unpack(self, y) -> tuple[float, float, float, float, float]:
-        """``(ρ, ε, λ, α, κ)`` of SLSQP's ``y``."""
+        """``(ρ, ε, λ, α, κ)`` of SLSQP's ``y``.  SLSQP may step past the rod's angle limit (a linear constraint)
+        in a line search, where a rod shorter than ``r + |e|`` cannot reach the guide: the rod is then taken at the
+        shortest length that limit allows there."""
         if self.rod:
-            return tuple(float(v) for v in y[:5])
+            rho, eps, lam, al, kappa = (float(v) for v in y[:5])
+            return rho, eps, max(lam, (rho + abs(eps)) / math.sin(MAX_ROD_ANGLE)), al, kappa
         return float(y[0]), 0.0, math.inf, float(y[1]), float(y[2])
 
     def encode_full(self, y) -> np.ndarray:
@@ -193,7 +207,7 @@ class _SliderProblem:
                 "with no upper bound on the pre-load a (nor a maximum free length), the error keeps falling as "
                 "a grows without limit (the spring's force tends to a constant); give a finite upper bound on a "
                 "or a maximum free length.")
-        least_eps = 0.0 if self.eps_b[0] <= 0 <= self.eps_b[1] else min(abs(v) for v in self.eps_b)
+        least_eps = abs(self.eps_in_line)
         if self.rod and self.lam_b[1] * math.sin(MAX_ROD_ANGLE) < self.rho_b[0] + least_eps:
             raise InfeasibleBounds(
                 f"a rod of at most {b.rod[1]:g} m is too short for a crank of at least {b.r[0]:g} m and an offset of "
@@ -208,8 +222,8 @@ class _SliderProblem:
                 f"most {b.max_force * rate:g} N·m, less than the {abs(self.moment) * peak:g} N·m the target needs in "
                 "this range; raise the force limit or the longest crank.")
         lb, ub = self.z_bounds
-        for z in np.stack([g.ravel() for g in np.meshgrid(*[_span(a, c, 7) for a, c in zip(lb, ub)],
-                                                          indexing="ij")], axis=1):
+        axes = self._with_in_line([_span(a, c, 7) for a, c in zip(lb, ub)])
+        for z in np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1):
             rho, eps, lam, al, viol = self.decode(z)
             if viol == 0.0:
                 break

@@ -13,22 +13,29 @@ from .problem import _Problem
 
 def _fit_trf(p: _Problem, norm: str):
     z0 = p.start(norm)
-    lb, ub = p.z_bounds
+    lb, ub = (np.asarray(v) for v in p.z_bounds)
+    free = lb < ub  # least_squares takes no variable whose range is one value (a length fixed): it is held there
     sq = math.sqrt(len(p.phi))
 
     def run(z_start, weights):
-        def fun(z):
-            e, _, viol = p.projected(z, "rms", weights)
+        """The least-squares point from ``z_start`` (its fixed variables kept) and scipy's result."""
+        def at(x):
+            z = np.array(z_start)
+            z[free] = x
+            return z
+
+        def fun(x):
+            e, _, viol = p.projected(at(x), "rms", weights)
             r = e if weights is None else np.sqrt(weights) * e
             return np.append(r / sq, 10.0 * viol)
 
-        return optimize.least_squares(
-            fun, z_start, bounds=(lb, ub), method="trf", x_scale="jac",
+        sol = optimize.least_squares(
+            fun, np.asarray(z_start)[free], bounds=(lb[free], ub[free]), method="trf", x_scale="jac",
             ftol=1e-12, xtol=1e-12, gtol=1e-12,
         )
+        return at(sol.x), sol
 
-    sol = run(z0, None)
-    z = sol.x
+    z, sol = run(z0, None)
     msg, ok = sol.message, sol.status > 0
     if norm == "max":
         # Lawson's algorithm: reweight by the error magnitude, refit, keep the best max-norm point
@@ -41,7 +48,7 @@ def _fit_trf(p: _Problem, norm: str):
             if not tot > 0:
                 break
             v = v / tot + 1e-300
-            z = run(z, v).x
+            z, _ = run(z, v)
             val = p.objective(z, "max")
             if val < best:
                 best, bz = val, z
