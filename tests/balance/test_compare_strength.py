@@ -344,3 +344,67 @@ def test_a_compare_table_names_the_arm_file_a_mistake_is_in(tmp_path):
     with pytest.raises(SchemaError) as ei:
         compare_problem(load_toml(str(table)), str(table))
     assert str(ei.value).startswith(f"{arm}: [arm] has an unknown key 'nonsense'")
+
+
+# --------------------------------------------------------------------- partial ranges: averages and the recheck
+#: the two-link arm (angles from the vertical) over part of a turn at each joint
+PARTIAL = ((math.radians(-40.0), math.radians(70.0)), (math.radians(10.0), math.radians(100.0)))
+
+
+def test_springs_per_joint_cancel_the_torque_averaged_over_the_other_joints_range():
+    """2 kg at the tip, angles from the horizontal: gravity's forces −∂V/∂q are Q1 = −A·cos q1 − B·cos(q1 + q2),
+    Q2 = −B·cos(q1 + q2) with A = 40·0.2 + (20 + 2g)·0.5 and B = 20·0.2 + 2g·0.4 (N·m).  Each joint's spring cancels its torque averaged
+    over the other joint's range, here by Gauss–Legendre quadrature of the hand formula, then written
+    α·sin q + β·cos q = amp·sin(q + phase) by least squares on a few angles."""
+    A, B = 8 + (20 + 2 * G) * 0.5, 4 + 2 * G * 0.4
+    torque = [lambda q1, q2: -A * np.cos(q1) - B * np.cos(q1 + q2), lambda q1, q2: -B * np.cos(q1 + q2)]
+    c = CompareProblem(two_links(2 * G), payload=(2.0, 2.0), workspace=PARTIAL, samples=40).solve()
+    s = c.strategy("springs per joint")
+    nodes, weights = np.polynomial.legendre.leggauss(40)
+    q = np.linspace(-1.0, 2.0, 7)
+    for j, spring in enumerate(s.details.springs):
+        lo, hi = PARTIAL[1 - j]
+        other = lo + (hi - lo) * (nodes + 1) / 2  # the other joint's angles, weights / 2 summing to 1
+        mean = np.array([np.sum(weights / 2 * (torque[j](x, other) if j == 0 else torque[j](other, x))) for x in q])
+        (alpha, beta), *_ = np.linalg.lstsq(np.column_stack([np.sin(q), np.cos(q)]), mean, rcond=None)
+        assert spring.coordinate == f"q{j + 1}"
+        assert spring.amplitude == pytest.approx(math.hypot(alpha, beta), rel=1e-12)
+        assert spring.phase_deg == pytest.approx(math.degrees(math.atan2(beta, alpha)), rel=1e-10)
+        x = np.zeros((len(q), 2))
+        x[:, j] = q
+        assert s.forces(x)[:, j] == pytest.approx(-mean, abs=1e-12 * A)
+
+
+def test_pinocchio_recomputes_each_strategys_residual_and_its_worst_values():
+    """1 … 3 kg at the tip over part of a turn: the recheck's own residual (Pinocchio's RNEA on a model rebuilt
+    from URDF, counterweights as masses of the model) is the strategy's everywhere, and at each joint's worst
+    configuration and payload it is the largest residual reported for that joint."""
+    c = CompareProblem(two_links(3 * G), payload=(1.0, 3.0), workspace=PARTIAL, samples=40).solve()
+    scale = max(j.max for j in c.strategy("none").joints)
+    for s in c.strategies:
+        check = s.pinocchio
+        assert check.configurations == 100 and check.payloads == (1.0, 3.0), s.name
+        assert check.max_difference < 1e-9 * scale, s.name
+        assert check.reported == tuple(j.max for j in s.joints), s.name
+        assert check.at_worst == pytest.approx(check.reported, rel=1e-9, abs=1e-9 * scale), s.name
+
+
+def test_a_terms_angle_ranges_over_the_corners_of_the_box_at_most_a_turn():
+    """A harmonic term's angle φ + α = Σ aᵢ·qᵢ + α is linear in q: over a box its extremes are at corners,
+    here every corner is tried (coefficients of both signs and zero ones, a range from 0); a range wider
+    than a turn is cut at a turn (the device's angle is periodic)."""
+    from itertools import product
+
+    from balance.model.potential import HarmonicTerm
+    from balance.problems.compare import _phi_range
+
+    rng = np.random.default_rng(5)
+    for form in ((1.0, 0.0, 0.0), (1.0, -1.0, 0.0), (0.0, 2.0, -1.0), (0.0, 0.0, 1.0), (1.0, 1.0, 1.0)):
+        lo = np.array([0.0, *rng.uniform(-1.0, 0.0, 2)])
+        hi = lo + rng.uniform(0.0, 1.2, 3)
+        t = HarmonicTerm(3.0, 0.4, form)
+        angles = [float(np.dot(form, corner)) + 0.4 for corner in product(*zip(lo, hi))]
+        assert _phi_range(t, lo, hi) == pytest.approx((min(angles), min(max(angles), min(angles) + 2 * math.pi)),
+                                                      abs=1e-15), form
+    wide = HarmonicTerm(1.0, 0.0, (2.0, 1.0))
+    assert _phi_range(wide, np.array([0.0, 0.0]), np.array([3.0, 1.0])) == (0.0, 2 * math.pi)
