@@ -193,8 +193,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "dimension_search": ("synth/dimension/_search.py", [
         "tests/dimension/test_targets.py", "tests/dimension/test_targets_strength.py",
         "tests/dimension/test_problem_strength.py", "tests/dimension/test_search_strength.py",
-        "tests/dimension/test_placement.py", "tests/dimension/test_synthesize.py",
-        "-k", "not coupler_points and not no_candidate"]),
+        "tests/dimension/test_search_evaluate_strength.py", "tests/dimension/test_placement.py",
+        "tests/dimension/test_synthesize.py", "-k", "not coupler_points and not no_candidate"]),
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
     # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
     # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:
