@@ -4,6 +4,7 @@ labels, the markers and the captions (the figure is caught as it is saved, then 
 from __future__ import annotations
 
 import math
+import struct
 from pathlib import Path
 
 import matplotlib.colors as mcolors
@@ -37,6 +38,9 @@ def drawn(monkeypatch, tmp_path):
         path = tmp_path / f"{plot.__name__}.png"
         assert plot(result, str(path), **kw) == str(path) and path.stat().st_size > 10_000
         assert len(saved) == 1
+        # a PNG at 110 dots an inch: its width and height in its header (bytes 16–24, big-endian)
+        width, height = struct.unpack(">II", path.read_bytes()[16:24])
+        assert (width, height) == tuple(round(110 * v) for v in saved[0].get_size_inches())
         return saved.pop()
 
     return draw
@@ -85,6 +89,7 @@ def test_spring_figure_draws_the_target_the_device_and_their_difference(drawn, d
         title += (f"\nspring: d = {1e3 * s.wire_diameter_m:.3g} mm, D = {1e3 * s.mean_diameter_m:.4g} mm, "
                   f"n = {s.active_coils:g}, {s.material}")
     assert ax1.get_title() == title
+    assert ax1.title.get_fontsize() == ax2.title.get_fontsize() == 9
     if res.max_rel_error < 1e-12:  # the tension spring of zero free length
         assert ax2.get_title() == f"exact to rounding: max |error| {res.max_rel_error:.2g}"
         assert ax2.get_ylim() == (-1, 1)
@@ -153,6 +158,7 @@ def test_prismatic_figure_draws_the_laws_and_the_inertia_they_keep(drawn, C, val
         assert shaded == [] and ax2.get_title() == ("margin C − C_min = 0 kg·m²: the laws are real for "
                                                     "|q| ≤ 0.5 m")
     assert legend_texts(ax1) == ["counter-mass 1: z1(q)", "counter-mass 2: z2(q)", "sliding link: q"]
+    assert [ln.get_linewidth() for ln in ax1.get_lines()] == [2, 2, 1]  # the laws bold, the link thin
     assert legend_texts(ax2) == ["transverse inertia I + m·q² + M·(z1² + z2²)", f"C = {C:.4g} kg·m² (used)",
                                  "C_min = 0.85 kg·m² (full stroke ±0.5 m)"]
     assert ax1.get_title() == ("laws z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M): m = 2 kg, I = 0.1 kg·m², "
@@ -265,7 +271,8 @@ def test_pantograph_figure_draws_the_mechanism_forces_extremes_and_spring(drawn)
     assert mech.texts[-1].get_fontsize() == 8 and tuple(fig.get_size_inches()) == (12, 9.5)
     dots = [ln for ln in mech.get_lines() if ln.get_marker() == "o"]
     assert [ln.get_markersize() for ln in dots] == pytest.approx([5 + 12 * w[k] / 103.25 for k in "ADBC"])
-    assert sum(ln.get_marker() == "^" for ln in mech.get_lines()) == 2  # the two ground pivots A and A1
+    pivots = [ln for ln in mech.get_lines() if ln.get_marker() == "^"]
+    assert len(pivots) == 2 and {ln.get_markersize() for ln in pivots} == {9}  # the two ground pivots A and A1
     assert mech.get_xlabel() == "x from A (m)" and mech.get_ylabel() == "height from A (m)"
     # the force maps: the true extremes marked where the result reached them, said in the title
     grid = np.radians(np.stack(np.meshgrid(np.linspace(-30, 80, 61), np.linspace(-80, 40, 61)), -1).reshape(-1, 2))
@@ -273,7 +280,12 @@ def test_pantograph_figure_draws_the_mechanism_forces_extremes_and_spring(drawn)
                                     (hand, p.hand_force, result.hand[0.5], "what the operator holds, half payload")):
         (lx, ly), (hx, hy) = lines(ax)
         assert np.allclose([lx[0], ly[0]], np.degrees(lo.at)) and np.allclose([hx[0], hy[0]], np.degrees(hi.at))
+        # the extremes drawn whole where they are (on the map's edge too), ▽ and △ of 9 points
+        assert [(ln.get_marker(), ln.get_markersize(), ln.get_clip_on()) for ln in ax.get_lines()] == [
+            ("v", 9, False), ("^", 9, False)]
         on_grid = fn(grid, 0.5)
+        filled = ax.collections[0]  # the map is filled from the 61 × 61 grid: its values' range is the grid's
+        assert (filled.zmin, filled.zmax) == pytest.approx((on_grid.min(), on_grid.max()), rel=1e-12)
         assert lo.value <= on_grid.min() + 1e-9 and hi.value >= on_grid.max() - 1e-9  # true extremes
         assert fn(np.array([lo.at]), 0.5)[0] == pytest.approx(lo.value, rel=1e-9)
         assert ax.get_title() == f"{title}: {lo.value:.4g} … {hi.value:.4g} N (▽ least, △ largest)"
@@ -331,4 +343,17 @@ def test_compare_figure_draws_each_strategys_torque_and_its_bars(drawn):
     assert bot.get_xlabel() == "residual torque over the workspace and payloads (N·m)"
     assert legend_texts(bot) == ["largest (true extreme)", "RMS"]
     assert fig._suptitle.get_text() == "arm: gravity torque before and after each strategy (payload 1 … 4 kg)"
+    assert fig._suptitle.get_fontsize() == 10 and top.title.get_fontsize() == 9
+    # the largest residual's bars pale (α 0.35) behind the RMS bars, which are solid
+    assert [b.get_alpha() for b in bars] == [0.35] * 5 + [None] * 5
     assert tuple(fig.get_size_inches()) == (9.0, 7.4)  # one joint: the least width, 9 inches
+
+
+def test_compare_figure_has_a_column_per_loaded_joint(drawn):
+    """The two-link arm of test_compare_strength.py (40 N at 0.2 m on 0.5 m, 20 N at 0.2 m on 0.4 m), both
+    joints loaded: two columns of a sweep above its bars, on a page 4.2 inches a column but at least 9."""
+    arm = Arm((Link("upper", "revolute", 0.5, 40.0, 0.2), Link("fore", "revolute", 0.4, 20.0, 0.2)))
+    fig = drawn(plot_compare, CompareProblem(arm, samples=100).solve())
+    assert len(fig.axes) == 4 and tuple(fig.get_size_inches()) == (9.0, 7.4)
+    assert [ax.get_title().split(" swept")[0] for ax in fig.axes[:2]] == ["q1 (upper)", "q2 (fore)"]
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque over the workspace and payloads (N·m)"] * 2
