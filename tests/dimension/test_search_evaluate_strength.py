@@ -158,3 +158,20 @@ def test_the_same_seed_gives_the_same_search():
     first, second = (synthesize(FOUR_BAR, target, budget=30, seed=3) for _ in range(2))
     assert first.error_max < 1e-9 and first.evaluations == second.evaluations
     assert np.array_equal(first.linkage.points, second.linkage.points)
+
+
+def test_sampled_starts_of_the_same_chain_are_polished_first():
+    """A source of starts hands an offset slider-crank (another chain: left out) and the crank-rocker that traced
+    the points: the crank-rocker is polished before any global search and meets the points exactly."""
+    slider_crank = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), 0), (0,), [[0, 0], [3.0, 0.4], [0.6, 0.8], [3.0, 0.4]],
+                           {1: (1.0, 0.0)}, tracers={"P": (2, (1.5, 1.6))})
+    handed = []
+
+    def starts(mechanism, tracer_link, target, seed):
+        handed.append((mechanism.chain.certificate == FOUR_BAR.chain.certificate, tracer_link, seed))
+        return [slider_crank, CRANK_ROCKER]
+
+    result = synthesize(FOUR_BAR, own_points(CRANK_ROCKER), budget=30, seed=4, starts=starts)
+    assert handed == [(True, 2, 4)]
+    assert result.error_max < 1e-9
+    assert result.method == "sampled crank curves + bounded least squares (trf) from them, timed"
