@@ -202,7 +202,7 @@ def plot_prismatic(result, path: str) -> str:
     if np.any(disc < 0):
         msg += "; shaded: beyond it the inertia cannot be kept"
     ax2.set_title(msg, fontsize=9)
-    lo = min(float(np.min(total)), cmin, C)
+    lo = min(cmin, C)  # the laws keep the inertia at C where they are real and raise it beyond: never below C
     hi = max(float(np.max(total)), cmin, C)
     pad = max(0.1 * (hi - lo), 0.05 * abs(C))
     ax2.set_ylim(lo - pad, hi + pad)

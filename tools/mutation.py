@@ -188,7 +188,15 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         *(() if name == "_target" else ("tests/dimension/test_problem_strength.py", "tests/dimension/test_search_strength.py",
                                         "tests/dimension/test_placement.py", "tests/dimension/test_synthesize.py")),
         _SYNTH_DOC + f"synth.dimension.{name}]".replace(".__init__", "")])
-       for name in ("_target", "_problem", "_search", "__init__")},
+       for name in ("_target", "_problem", "__init__")},
+    # (the search by its cheap cases: in the mutation copy the searches for a four-bar's coupler points, for a
+    # constraint no candidate meets and the docstring's run to their budgets, minutes a mutant; the docstring's
+    # function generation is Freudenstein's case of test_synthesize.py, which stays)
+    "dimension_search": ("synth/dimension/_search.py", [
+        "tests/dimension/test_targets.py", "tests/dimension/test_targets_strength.py",
+        "tests/dimension/test_problem_strength.py", "tests/dimension/test_search_strength.py",
+        "tests/dimension/test_search_evaluate_strength.py", "tests/dimension/test_placement.py",
+        "tests/dimension/test_synthesize.py", "-k", "not coupler_points and not no_candidate"]),
     # gear trains: the text form and its chain, planetary trains, enumeration against brute force (not its
     # 7- and 8-link cases, half a minute each), ratios and designs that can be built; each module's strength
     # file (not the random trains against their geometry, the CLI listings and the 5-link kinds' design:
@@ -266,7 +274,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "problems_pantograph": ("balance/problems/pantograph.py", ["tests/balance/test_pantograph.py",
                                                                "tests/balance/test_pantograph_problem_strength.py",
                                                                _BALANCE_DOC + "balance.problems.pantograph]"]),
-    "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
+    "problems_slider": ("balance/problems/slider.py", ["tests/balance/test_slider_problem_strength.py",
+                                                       "tests/balance/test_countermass.py", "tests/balance/test_dynamics.py",
                                                        "tests/balance/test_packages_strength.py",
                                                        _BALANCE_DOC + "balance.problems.slider]"]),
     # (its strength file and the spring problems of the device tests; not test_fit.py and the rest of

@@ -331,6 +331,13 @@ def test_each_strategy_pushes_back_the_tuned_payloads_torque():
         expected = 0.0 if s.name == "none" else -(8 + 1.25 * G) * np.sin(q[:, 0])
         assert np.allclose(s.forces(q)[:, 0], expected, atol=1e-9), s.name
     assert c.strategy("none").hardware == ("the drives carry the whole gravity torque",)
+    # the exact spring: zero free length (a = r0), c·r·d = the term's amplitude (d = r + r0), and over a full
+    # turn its longest stretch, crank pointing away from the anchor: L = r + d, so the largest force c·(2r + r0)
+    (spring,) = c.strategy("exact springs").details.springs
+    device = spring.fitted.device
+    assert spring.amplitude == pytest.approx(8 + 1.25 * G, rel=1e-12) and device.a == pytest.approx(device.r0)
+    assert device.c * device.r * (device.r + device.r0) == pytest.approx(spring.amplitude, rel=1e-9)
+    assert device.max_force == pytest.approx(device.c * (2 * device.r + device.r0), rel=1e-9)
 
 
 def test_a_compare_table_names_the_arm_file_a_mistake_is_in(tmp_path):
@@ -344,3 +351,116 @@ def test_a_compare_table_names_the_arm_file_a_mistake_is_in(tmp_path):
     with pytest.raises(SchemaError) as ei:
         compare_problem(load_toml(str(table)), str(table))
     assert str(ei.value).startswith(f"{arm}: [arm] has an unknown key 'nonsense'")
+
+
+# --------------------------------------------------------------------- partial ranges: averages and the recheck
+#: the two-link arm (angles from the vertical) over part of a turn at each joint
+PARTIAL = ((math.radians(-40.0), math.radians(70.0)), (math.radians(10.0), math.radians(100.0)))
+
+
+def test_springs_per_joint_cancel_the_torque_averaged_over_the_other_joints_range():
+    """2 kg at the tip, angles from the horizontal: gravity's forces −∂V/∂q are Q1 = −A·cos q1 − B·cos(q1 + q2),
+    Q2 = −B·cos(q1 + q2) with A = 40·0.2 + (20 + 2g)·0.5 and B = 20·0.2 + 2g·0.4 (N·m).  Each joint's spring cancels its torque averaged
+    over the other joint's range, here by Gauss–Legendre quadrature of the hand formula, then written
+    α·sin q + β·cos q = amp·sin(q + phase) by least squares on a few angles."""
+    A, B = 8 + (20 + 2 * G) * 0.5, 4 + 2 * G * 0.4
+    torque = [lambda q1, q2: -A * np.cos(q1) - B * np.cos(q1 + q2), lambda q1, q2: -B * np.cos(q1 + q2)]
+    c = CompareProblem(two_links(2 * G), payload=(2.0, 2.0), workspace=PARTIAL, samples=40).solve()
+    s = c.strategy("springs per joint")
+    nodes, weights = np.polynomial.legendre.leggauss(40)
+    q = np.linspace(-1.0, 2.0, 7)
+    for j, spring in enumerate(s.details.springs):
+        lo, hi = PARTIAL[1 - j]
+        other = lo + (hi - lo) * (nodes + 1) / 2  # the other joint's angles, weights / 2 summing to 1
+        mean = np.array([np.sum(weights / 2 * (torque[j](x, other) if j == 0 else torque[j](other, x))) for x in q])
+        (alpha, beta), *_ = np.linalg.lstsq(np.column_stack([np.sin(q), np.cos(q)]), mean, rcond=None)
+        assert spring.coordinate == f"q{j + 1}"
+        assert spring.amplitude == pytest.approx(math.hypot(alpha, beta), rel=1e-12)
+        assert spring.phase_deg == pytest.approx(math.degrees(math.atan2(beta, alpha)), rel=1e-10)
+        x = np.zeros((len(q), 2))
+        x[:, j] = q
+        assert s.forces(x)[:, j] == pytest.approx(-mean, abs=1e-12 * A)
+
+
+def test_pinocchio_recomputes_each_strategys_residual_and_its_worst_values():
+    """1 … 3 kg at the tip over part of a turn: the recheck's own residual (Pinocchio's RNEA on a model rebuilt
+    from URDF, counterweights as masses of the model) is the strategy's everywhere, and at each joint's worst
+    configuration and payload it is the largest residual reported for that joint."""
+    c = CompareProblem(two_links(3 * G), payload=(1.0, 3.0), workspace=PARTIAL, samples=40).solve()
+    scale = max(j.max for j in c.strategy("none").joints)
+    for s in c.strategies:
+        check = s.pinocchio
+        assert check.configurations == 100 and check.payloads == (1.0, 3.0), s.name
+        assert check.max_difference < 1e-9 * scale, s.name
+        assert check.reported == tuple(j.max for j in s.joints), s.name
+        assert check.at_worst == pytest.approx(check.reported, rel=1e-9, abs=1e-9 * scale), s.name
+
+
+def test_a_terms_angle_ranges_over_the_corners_of_the_box_at_most_a_turn():
+    """A harmonic term's angle φ + α = Σ aᵢ·qᵢ + α is linear in q: over a box its extremes are at corners,
+    here every corner is tried (coefficients of both signs and zero ones, a range from 0); a range wider
+    than a turn is cut at a turn (the device's angle is periodic)."""
+    from itertools import product
+
+    from balance.model.potential import HarmonicTerm
+    from balance.problems.compare import _phi_range
+
+    rng = np.random.default_rng(5)
+    for form in ((1.0, 0.0, 0.0), (1.0, -1.0, 0.0), (0.0, 2.0, -1.0), (0.0, 0.0, 1.0), (1.0, 1.0, 1.0)):
+        lo = np.array([0.0, *rng.uniform(-1.0, 0.0, 2)])
+        hi = lo + rng.uniform(0.0, 1.2, 3)
+        t = HarmonicTerm(3.0, 0.4, form)
+        angles = [float(np.dot(form, corner)) + 0.4 for corner in product(*zip(lo, hi))]
+        assert _phi_range(t, lo, hi) == pytest.approx((min(angles), min(max(angles), min(angles) + 2 * math.pi)),
+                                                      abs=1e-15), form
+    wide = HarmonicTerm(1.0, 0.0, (2.0, 1.0))
+    assert _phi_range(wide, np.array([0.0, 0.0]), np.array([3.0, 1.0])) == (0.0, 2 * math.pi)
+
+
+def test_a_term_below_the_target_is_left_out_and_its_torque_said():
+    """A heavy upper link (40 N at 0.2 m) under a light forearm (1 N at 0.2 m of 0.4 m), full turns, no payload:
+    the terms are 8.5·cos q1 (40·0.2 + 1·0.5) and 0.2·cos(q1 + q2).  The target, 5 % of the largest torque
+    8.5 + 0.2 = 8.7 N·m, is 0.435 N·m: the pruned decomposition drops the 0.2 N·m term and leaves its torque,
+    0.2 N·m on each joint; the exact springs keep one spring for each link's absolute angle."""
+    arm = Arm((Link("upper", "revolute", 0.5, 40.0, 0.2), Link("fore", "revolute", 0.4, 1.0, 0.2)))
+    c = CompareProblem(arm, samples=200).solve()
+    assert [j.max for j in c.strategy("none").joints] == pytest.approx([8.7, 0.2], rel=1e-9)
+    pruned = c.strategy("harmonic, pruned")
+    d = pruned.details
+    assert (d.terms, d.kept, d.target_torque, d.note) == (2, 1, pytest.approx(0.435), None)
+    (dropped,) = d.dropped
+    assert (dropped.amplitude, dropped.form, dropped.form_text) == (pytest.approx(0.2), (1.0, 1.0), "q1 + q2")
+    assert dropped.largest_torque_per_joint == pytest.approx((0.2, 0.2), rel=1e-9)
+    assert [(t.form_text, t.amplitude) for t in d.springs] == [("q1", pytest.approx(8.5))]
+    assert pruned.devices == 1 and len(pruned.hardware) == 1 and "c·r·d = 8.5 N·m" in pruned.hardware[0]
+    assert [j.max for j in pruned.joints] == pytest.approx([0.2, 0.2], rel=1e-9)
+    exact = c.strategy("exact springs")
+    assert [(t.form_text, t.amplitude) for t in exact.details.springs] == [("q1", pytest.approx(8.5)),
+                                                                         ("q1 + q2", pytest.approx(0.2))]
+    assert [h.split(":")[0] for h in exact.hardware] == ["absolute angle q1", "absolute angle q1 + q2"]
+    assert exact.details.parallelograms == 1
+
+
+def test_a_strategy_that_does_not_apply_says_false_and_why():
+    """models/arm_prismatic.toml (a turning arm with a slide): no counterweight follows the slide and no
+    parallelogram spring cancels q·sin θ; both strategies read available: false (not null) with the reason."""
+    from balance.problems.compare import compare_problem
+
+    c = compare_problem({"compare": {"arm": str(MODELS / "arm_prismatic.toml"), "samples": 100}}, "c.toml").solve()
+    off = {s.name: s for s in c.strategies if not s.available}
+    assert sorted(off) == ["counterweights", "exact springs"]
+    for s in off.values():
+        assert s.available is False and s.to_dict()["available"] is False
+    assert off["exact springs"].reason.startswith("a slide enters the potential bilinearly (q·sin θ)")
+
+
+def test_the_recheck_of_a_urdf_arm_rebuilds_its_model_from_urdf_text():
+    """models/arm_base_drives.urdf (a turntable under three pitch joints): the recheck writes the loaded model
+    back to URDF text, reads it into Pinocchio again and finds each strategy's residual (the turntable,
+    never loaded by gravity, carries nothing)."""
+    c = CompareProblem(load_urdf(str(MODELS / "arm_base_drives.urdf")), payload=(0.0, 1.0), samples=50).solve()
+    scale = max(j.max for j in c.strategy("none").joints)
+    assert all(s.available for s in c.strategies) and scale > 100
+    for s in c.strategies:
+        assert s.joints[0].max == 0.0 and s.pinocchio.max_difference < 1e-9 * scale, s.name
+        assert s.pinocchio.at_worst == pytest.approx(s.pinocchio.reported, rel=1e-9, abs=1e-9 * scale), s.name

@@ -4,8 +4,10 @@ labels, the markers and the captions (the figure is caught as it is saved, then 
 from __future__ import annotations
 
 import math
+import struct
 from pathlib import Path
 
+import matplotlib.colors as mcolors
 import numpy as np
 import pytest
 
@@ -36,6 +38,9 @@ def drawn(monkeypatch, tmp_path):
         path = tmp_path / f"{plot.__name__}.png"
         assert plot(result, str(path), **kw) == str(path) and path.stat().st_size > 10_000
         assert len(saved) == 1
+        # a PNG at 110 dots an inch: its width and height in its header (bytes 16–24, big-endian)
+        width, height = struct.unpack(">II", path.read_bytes()[16:24])
+        assert (width, height) == tuple(round(110 * v) for v in saved[0].get_size_inches())
         return saved.pop()
 
     return draw
@@ -84,6 +89,7 @@ def test_spring_figure_draws_the_target_the_device_and_their_difference(drawn, d
         title += (f"\nspring: d = {1e3 * s.wire_diameter_m:.3g} mm, D = {1e3 * s.mean_diameter_m:.4g} mm, "
                   f"n = {s.active_coils:g}, {s.material}")
     assert ax1.get_title() == title
+    assert ax1.title.get_fontsize() == ax2.title.get_fontsize() == 9
     if res.max_rel_error < 1e-12:  # the tension spring of zero free length
         assert ax2.get_title() == f"exact to rounding: max |error| {res.max_rel_error:.2g}"
         assert ax2.get_ylim() == (-1, 1)
@@ -106,6 +112,14 @@ def test_spring_figures_pareto_panel_has_a_line_per_peak_force_and_marks_the_fit
         assert list(x) == [q.size for q in pts] and np.allclose(y, [100 * q.error for q in pts], rtol=1e-15)
     (fx, fy) = drawn_lines[-1]
     assert list(fx) == [res.free_length] and list(fy) == pytest.approx([100 * res.max_rel_error])
+    # the peak forces from dark violet to yellow along viridis (its ends written out), the fit a red ring alone
+    colours = [mcolors.to_rgba(ln.get_color()) for ln in ax3.get_lines()]
+    assert len(levels) >= 2 and len(set(colours[:-1])) == len(levels)
+    assert colours[0] == pytest.approx((0.267004, 0.004874, 0.329415, 1.0), abs=1e-6)
+    assert colours[len(levels) - 1] == pytest.approx((0.993248, 0.906157, 0.143936, 1.0), abs=1e-6)
+    ring = ax3.get_lines()[-1]
+    assert ring.get_marker() == "o" and ring.get_linestyle() == "None" and ring.get_markersize() == 13
+    assert ring.get_markeredgecolor() == "red" and ring.get_markerfacecolor() == "none"
     assert legend_texts(ax3) == [f"peak force {f:.3g} N" for f in levels] + ["this fit"]
     assert ax3.get_xscale() == ax3.get_yscale() == "log"
     assert ax3.get_xlabel() == "device size: free length 2r + r0 + a (m)"
@@ -127,6 +141,7 @@ def test_prismatic_figure_draws_the_laws_and_the_inertia_they_keep(drawn, C, val
     root = np.sqrt(np.maximum(2 * 2 * (C - 0.1 - 2 * q * q) - 4 * q * q, 0))
     assert np.allclose(z1, (-2 * q + root) / 4, atol=1e-12) and np.allclose(z2, (-2 * q - root) / 4, atol=1e-12)
     (qt, total), (_, c_line), (_, cmin_line) = lines(ax2)
+    assert mcolors.same_color(ax2.get_lines()[0].get_color(), "C3")  # the inertia kept, red as the spans where it is not
     inside = np.abs(qt) <= valid + 1e-12
     assert np.allclose(total[inside], C, atol=1e-12)  # the laws keep the inertia where they are real
     # beyond, both counter-masses sit at −m·q/(2M) = −q/2: I + m·q² + 2M·q²/4 = 0.1 + 3q², more than C
@@ -143,6 +158,7 @@ def test_prismatic_figure_draws_the_laws_and_the_inertia_they_keep(drawn, C, val
         assert shaded == [] and ax2.get_title() == ("margin C − C_min = 0 kg·m²: the laws are real for "
                                                     "|q| ≤ 0.5 m")
     assert legend_texts(ax1) == ["counter-mass 1: z1(q)", "counter-mass 2: z2(q)", "sliding link: q"]
+    assert [ln.get_linewidth() for ln in ax1.get_lines()] == [2, 2, 1]  # the laws bold, the link thin
     assert legend_texts(ax2) == ["transverse inertia I + m·q² + M·(z1² + z2²)", f"C = {C:.4g} kg·m² (used)",
                                  "C_min = 0.85 kg·m² (full stroke ±0.5 m)"]
     assert ax1.get_title() == ("laws z1,2 = [−m·q ± √(2M(C − I − m·q²) − m²q²)]/(2M): m = 2 kg, I = 0.1 kg·m², "
@@ -199,7 +215,11 @@ def test_arm_figure_sweeps_each_joint_with_gravity_devices_and_payload_residuals
         assert top.get_ylabel() == f"generalised force on q{i + 1} (N·m)" and top.get_xlabel() == f"q{i + 1} (deg)"
         assert bot.get_ylabel() == "residual / max |gravity moment| (%)" and bot.get_xlabel() == f"q{i + 1} (deg)"
         assert legend_texts(top) == ["gravity moment (to carry)", "spring devices"]
+        # two panels a joint on a page 9.2 inches wide: titles at 9 pt, legends at 7 pt
+        assert top.title.get_fontsize() == bot.title.get_fontsize() == 9
+        assert {t.get_fontsize() for ax in (top, bot) for t in ax.get_legend().get_texts()} == {7}
     assert fig._suptitle.get_text() == "arm: gravity against the spring devices (tuned for 20 N, payload 0 … 40 N)"
+    assert fig._suptitle.get_fontsize() == 11 and tuple(fig.get_size_inches()) == (9.2, 6.6)
 
 
 def test_arm_figure_of_an_exactly_balanced_arm_without_payload(drawn):
@@ -234,12 +254,25 @@ def test_pantograph_figure_draws_the_mechanism_forces_extremes_and_spring(drawn)
     for (u, v), (s, t) in ((ends[4], ends[0]), (ends[5], ends[1])):  # 14 ∥ 2 and 15 ∥ 3, as long
         assert np.allclose(v - u, t - s, atol=1e-12)
     assert [t.get_text() for t in mech.texts][:8] == ["2", "3", "9", "8", "14", "15", "16", "4"]
+    # the arm's links 2 and 3 drawn thicker than the bars; the numbers in blue, as the title says
+    assert [ln.get_linewidth() for ln in mech.get_lines()[:8]] == [2.5, 2.5] + [1.5] * 6
+    assert [t.get_color() for t in mech.texts[:8]] == ["C0"] * 8 and mech.get_title().endswith("(link numbers in blue)")
+    # the cylinder runs from B down to the panel's lower edge (its base P = (0.3, −1.6) m is far below)
+    cylinder = next(ln for ln in mech.get_lines() if ln.get_color() == "C2")
+    (cut_x, b_x), (cut_y, b_y) = cylinder.get_xdata(), cylinder.get_ydata()
+    assert (b_x, b_y) == pytest.approx(tuple(ends[2][1])) and cut_y == mech.get_ylim()[0]
+    assert (cut_x - b_x) / (cut_y - b_y) == pytest.approx((0.3 - b_x) / (-1.6 - b_y), rel=1e-12)  # towards P
+    # the mechanism fills most of its panel's width (1.66 m of 2.41 m), with more room left of A for the labels
+    (left, right), x_ends = mech.get_xlim(), np.concatenate([e[:, 0] for e in ends])
+    assert (x_ends.max() - x_ends.min()) / (right - left) > 0.6 and x_ends.min() - left > right - x_ends.max() > 0
     w = {"A": 43.0, "D": 54.75, "B": 7.0, "C": 103.25}  # the scene's substitution weights, by hand
     assert mech.texts[-1].get_text() == ("substitution weights (half payload):\n" +
                                          "\n".join(f"W_{k} = {w[k]:.4g} N" for k in "ADBC"))
+    assert mech.texts[-1].get_fontsize() == 8 and tuple(fig.get_size_inches()) == (12, 9.5)
     dots = [ln for ln in mech.get_lines() if ln.get_marker() == "o"]
     assert [ln.get_markersize() for ln in dots] == pytest.approx([5 + 12 * w[k] / 103.25 for k in "ADBC"])
-    assert sum(ln.get_marker() == "^" for ln in mech.get_lines()) == 2  # the two ground pivots A and A1
+    pivots = [ln for ln in mech.get_lines() if ln.get_marker() == "^"]
+    assert len(pivots) == 2 and {ln.get_markersize() for ln in pivots} == {9}  # the two ground pivots A and A1
     assert mech.get_xlabel() == "x from A (m)" and mech.get_ylabel() == "height from A (m)"
     # the force maps: the true extremes marked where the result reached them, said in the title
     grid = np.radians(np.stack(np.meshgrid(np.linspace(-30, 80, 61), np.linspace(-80, 40, 61)), -1).reshape(-1, 2))
@@ -247,7 +280,12 @@ def test_pantograph_figure_draws_the_mechanism_forces_extremes_and_spring(drawn)
                                     (hand, p.hand_force, result.hand[0.5], "what the operator holds, half payload")):
         (lx, ly), (hx, hy) = lines(ax)
         assert np.allclose([lx[0], ly[0]], np.degrees(lo.at)) and np.allclose([hx[0], hy[0]], np.degrees(hi.at))
+        # the extremes drawn whole where they are (on the map's edge too), ▽ and △ of 9 points
+        assert [(ln.get_marker(), ln.get_markersize(), ln.get_clip_on()) for ln in ax.get_lines()] == [
+            ("v", 9, False), ("^", 9, False)]
         on_grid = fn(grid, 0.5)
+        filled = ax.collections[0]  # the map is filled from the 61 × 61 grid: its values' range is the grid's
+        assert (filled.zmin, filled.zmax) == pytest.approx((on_grid.min(), on_grid.max()), rel=1e-12)
         assert lo.value <= on_grid.min() + 1e-9 and hi.value >= on_grid.max() - 1e-9  # true extremes
         assert fn(np.array([lo.at]), 0.5)[0] == pytest.approx(lo.value, rel=1e-9)
         assert ax.get_title() == f"{title}: {lo.value:.4g} … {hi.value:.4g} N (▽ least, △ largest)"
@@ -305,3 +343,17 @@ def test_compare_figure_draws_each_strategys_torque_and_its_bars(drawn):
     assert bot.get_xlabel() == "residual torque over the workspace and payloads (N·m)"
     assert legend_texts(bot) == ["largest (true extreme)", "RMS"]
     assert fig._suptitle.get_text() == "arm: gravity torque before and after each strategy (payload 1 … 4 kg)"
+    assert fig._suptitle.get_fontsize() == 10 and top.title.get_fontsize() == 9
+    # the largest residual's bars pale (α 0.35) behind the RMS bars, which are solid
+    assert [b.get_alpha() for b in bars] == [0.35] * 5 + [None] * 5
+    assert tuple(fig.get_size_inches()) == (9.0, 7.4)  # one joint: the least width, 9 inches
+
+
+def test_compare_figure_has_a_column_per_loaded_joint(drawn):
+    """The two-link arm of test_compare_strength.py (40 N at 0.2 m on 0.5 m, 20 N at 0.2 m on 0.4 m), both
+    joints loaded: two columns of a sweep above its bars, on a page 4.2 inches a column but at least 9."""
+    arm = Arm((Link("upper", "revolute", 0.5, 40.0, 0.2), Link("fore", "revolute", 0.4, 20.0, 0.2)))
+    fig = drawn(plot_compare, CompareProblem(arm, samples=100).solve())
+    assert len(fig.axes) == 4 and tuple(fig.get_size_inches()) == (9.0, 7.4)
+    assert [ax.get_title().split(" swept")[0] for ax in fig.axes[:2]] == ["q1 (upper)", "q2 (fore)"]
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque over the workspace and payloads (N·m)"] * 2
