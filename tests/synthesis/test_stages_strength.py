@@ -1,0 +1,170 @@
+"""Stages A and B of type synthesis, on every path they can take, against the brute-force oracle.
+
+Small queries (at most 8 links) take the plain search of stage A and the direct listing of stage B;
+the CP-SAT models and the compiled kernels take over for larger ones.  Here every path is forced
+on the small queries, so that each is judged by the independent oracle (tests/oracles/chains.py,
+no engine code) in seconds:
+
+* ``listing``: the engine's own choice (stage A's search, stage B's listing, the exact test);
+* ``kernel``: the compiled searches of both stages (``Conventions.kernel_loops = 1``);
+* ``model``: stage A's CP-SAT model and stage B's CP-SAT model (their size thresholds set to 0).
+
+On each path the chains listed (``realise``), the chains counted (``count_realised``,
+``count_listed``, ``count_orbits``) and the branch multigraphs must give the oracle's chains:
+the same number per code and, for the listing, one chain of each isomorphism class of the oracle
+(networkx VF2, no nauty).  The solver store is off: a stored stage-A result would hide the stage.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import replace
+
+import pytest
+
+from synth.structure.query import ChainQuery
+from synth.synthesis import stage_a, stage_b
+from synth.synthesis.stage_a import JOINT, LINK, Vertex, contracted_graphs
+from synth.synthesis.stage_b import count_listed, count_orbits, count_realised, orbits_apply, realise
+from synth.synthesis.type_synthesis import plan_jobs
+from tests.oracles.chains import ChainIndex, brute_force_chains, code_key
+
+# name: (the engine's query, the oracle's arguments); oracle CPU time under 1.2 s each
+CASES = {
+    "W1-n6-v2": (dict(dof=1, links=6, v=(0, 2)), dict(links=6, dof=1, v_max=2)),
+    "W1-n8": (dict(dof=1, links=8), dict(links=8, dof=1)),
+    "W1-n6-v2-rigid": (dict(dof=1, links=6, v=(0, 2), rigid_subchains=True),
+                       dict(links=6, dof=1, v_max=2, rigid_subchains=True)),
+    "W2-n7-v3-nofrac": (dict(dof=2, links=7, v=(0, 3), fractionated=False),
+                        dict(links=7, dof=2, v_max=3, fractionated=False)),
+    "W2-n7-v1": (dict(dof=2, links=7, v=(0, 1)), dict(links=7, dof=2, v_max=1)),
+    "W3-n8-nofrac": (dict(dof=3, links=8, fractionated=False), dict(links=8, dof=3, fractionated=False)),
+    "W0-n7-v1-rigid": (dict(dof=0, links=7, v=(0, 1), rigid_subchains=True),
+                       dict(links=7, dof=0, v_max=1, rigid_subchains=True)),
+    # trusses without rigid sub-chains: the whole chain is exempt from the rule its parts keep
+    "W0-n7-v2": (dict(dof=0, links=7, v=(0, 2), rigid_subchains=False), dict(links=7, dof=0, v_max=2)),
+    # open chains: single-joint links
+    "W2-n7-n1-v1": (dict(dof=2, links=7, n1=(0, 3), v=(0, 1)), dict(links=7, dof=2, n1=(0, 3), v_max=1)),
+    "W3-n6-n1-nofrac": (dict(dof=3, links=6, n1=(1, 2), fractionated=False),
+                        dict(links=6, dof=3, n1=(1, 2), fractionated=False)),
+    # wedge systems (motion space h = 2)
+    "h2-W1-n6": (dict(dof=1, links=6, h=2), dict(links=6, dof=1, h=2)),
+    "h2-W1-n5-v1": (dict(dof=1, links=5, h=2, v=(0, 1)), dict(links=5, dof=1, h=2, v_max=1)),
+    "h2-W0-n5-rigid": (dict(dof=0, links=5, h=2, rigid_subchains=True), dict(links=5, dof=0, h=2, rigid_subchains=True)),
+}
+
+PATHS = ("listing", "kernel", "model")
+
+
+def key(joints, links: int) -> str:
+    """A chain's code written from its joints alone: single-joint links | assortment / composition."""
+    degree = Counter(i for joint in joints for i in joint)
+    assortment, composition = code_key(joints, links)
+    single = sum(1 for i in range(links) if degree[i] == 1)
+    return f"{single}|{'.'.join(map(str, assortment))}/{'.'.join(map(str, composition))}"
+
+
+def _joints(chain) -> tuple[tuple[int, ...], ...]:
+    return tuple(sorted(tuple(sorted(j)) for j in chain.joints))
+
+
+def _jobs(query: dict, path: str, monkeypatch) -> list:
+    jobs = plan_jobs(ChainQuery(**query))
+    if path == "kernel":
+        return [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
+    if path == "model":
+        monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 0)
+        monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)
+    return jobs
+
+
+def _single_loop(code) -> bool:
+    """A code of binary links alone (one loop): no branch multigraph, no stage A or B."""
+    return code.count(2) == code.links and not code.v
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_every_path_lists_and_counts_the_oracles_chains(name, monkeypatch, no_solver_store):
+    query, oracle_args = CASES[name]
+    expected = brute_force_chains(**oracle_args)
+    assert expected, name
+    want = Counter(key(c.joints, c.links) for c in expected)
+    index = ChainIndex(expected)
+    for path in PATHS:
+        listed, counted, by_listing, by_orbits, classes = Counter(), Counter(), Counter(), Counter(), []
+        for code, conv in _jobs(query, path, monkeypatch):
+            if _single_loop(code):
+                listed[f"0|{code.links}/"] += 1
+                counted[f"0|{code.links}/"] += 1
+                by_listing[f"0|{code.links}/"] += 1
+                by_orbits[f"0|{code.links}/"] += 1
+                classes.append(index.find(tuple((i, (i + 1) % code.links) for i in range(code.links)), code.links))
+                continue
+            for graph in contracted_graphs(code, conv):
+                chains = realise(code, graph, conv)
+                for chain in chains:
+                    listed[key(_joints(chain), chain.links)] += 1
+                    classes.append(index.find(_joints(chain), chain.links))
+                label = key(_joints(chains[0]), chains[0].links) if chains else None
+                for tally, count in ((counted, count_realised), (by_listing, count_listed), (by_orbits, count_orbits)):
+                    n = count(code, graph, conv)
+                    assert n == len(chains), (path, str(code), graph.edges, count.__name__)
+                    if n:
+                        tally[label] += n
+        assert listed == want, (path, name)
+        assert counted == by_listing == by_orbits == want, (path, name)
+        assert sorted(classes, key=lambda k: -1 if k is None else k) == list(range(len(expected))), (path, name)
+
+
+def test_planar_only_drops_the_one_non_planar_wedge_chain(monkeypatch, no_solver_store):
+    expected = [c for c in brute_force_chains(links=6, dof=1, h=2) if c.planar]
+    assert len(expected) == 12  # of 13: one chain of 1-DOF wedge systems of 6 links is not planar
+    want = Counter(key(c.joints, c.links) for c in expected)
+    for path in PATHS:
+        got = Counter()
+        for code, conv in _jobs(dict(dof=1, links=6, h=2, planar_only=True), path, monkeypatch):
+            for graph in contracted_graphs(code, conv):
+                got.update(key(_joints(c), c.links) for c in realise(code, graph, conv))
+        assert got == want, path
+
+
+def _cranks(joints, links: int, joints_on_link: int) -> int:
+    """The most cranks (binary links jointed to it by a simple joint) of a link with that many joints."""
+    degree = Counter(i for joint in joints for i in joint)
+    most = 0
+    for link in range(links):
+        if degree[link] == joints_on_link:
+            most = max(most, sum(1 for j in joints if len(j) == 2 and link in j and degree[j[0] + j[1] - link] == 2))
+    return most
+
+
+@pytest.mark.parametrize("joints_on_link, cranks", [(3, 2), (4, 2), (3, 3)])
+def test_a_crank_requirement_keeps_the_chains_with_such_a_link(joints_on_link, cranks, monkeypatch, no_solver_store):
+    """Stage B's model carries the requirement (the listing cannot): the oracle's 1-DOF 8-link chains
+    with a link of ``joints_on_link`` joints carrying at least ``cranks`` binary links."""
+    expected = [c for c in brute_force_chains(links=8, dof=1) if _cranks(c.joints, 8, joints_on_link) >= cranks]
+    want = Counter(key(c.joints, c.links) for c in expected)
+    got = Counter()
+    query = dict(dof=1, links=8, require={joints_on_link: (1, None)}, cranks={joints_on_link: cranks})
+    for code, conv in plan_jobs(ChainQuery(**query)):
+        for graph in contracted_graphs(code, conv):
+            chains = realise(code, graph, conv)
+            assert count_realised(code, graph, conv) == len(chains)
+            got.update(key(_joints(c), c.links) for c in chains)
+    assert got == want
+
+
+def test_the_branch_multigraphs_of_watt_and_stephenson():
+    """6 links, 1 DOF (4 binary, 2 ternary links): Watt's and Stephenson's chains share one H, two
+    ternary links joined by three strings; of the four ordered ways to put the 4 binary links on
+    them, (0, 0, 4) and (0, 1, 3) leave a rigid loop (three links, or four with a one-link string
+    beside a direct joint: W = 0): Watt is (0, 2, 2), Stephenson (1, 1, 2)."""
+    code = plan_jobs(ChainQuery(dof=1, links=6))[0][0]
+    for conv in (stage_a.Conventions(), stage_a.Conventions(kernel_loops=1)):
+        graphs = contracted_graphs(code, conv)
+        assert [g.vertices for g in graphs] == [(Vertex(LINK, 3), Vertex(LINK, 3))]
+        assert [g.edges for g in graphs] == [((0, 1), (0, 1), (0, 1))]
+        solutions, whole_group, checked = stage_b._distributions(code, graphs[0], conv, None)
+        kept = stage_b._passing(graphs[0], conv, solutions, None, checked)
+        assert sorted(map(tuple, kept)) == [(0, 2, 2), (1, 1, 2)]
+    assert sorted([Vertex(LINK, 1), Vertex(JOINT, 3)]) == [Vertex(JOINT, 3), Vertex(LINK, 1)]
