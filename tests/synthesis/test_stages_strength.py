@@ -168,3 +168,9 @@ def test_the_branch_multigraphs_of_watt_and_stephenson():
         kept = stage_b._passing(graphs[0], conv, solutions, None, checked)
         assert sorted(map(tuple, kept)) == [(0, 2, 2), (1, 1, 2)]
     assert sorted([Vertex(LINK, 1), Vertex(JOINT, 3)]) == [Vertex(JOINT, 3), Vertex(LINK, 1)]
+
+
+def test_loading_the_kernels_runs_both_stages_on_a_code():
+    """What a pool runs before it forks its workers: stage A's and stage B's kernels on 440/0, whose
+    results it throws away (a mistake there would stop every large query)."""
+    assert stage_b.load_kernel() is None
