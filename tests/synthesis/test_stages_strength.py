@@ -6,8 +6,11 @@ on the small queries, so that each is judged by the independent oracle (tests/or
 no engine code) in seconds:
 
 * ``listing``: the engine's own choice (stage A's search, stage B's listing, the exact test);
-* ``kernel``: the compiled searches of both stages (``Conventions.kernel_loops = 1``);
-* ``model``: stage A's CP-SAT model and stage B's CP-SAT model (their size thresholds set to 0).
+* ``kernel``: the compiled searches of both stages (``Conventions.kernel_loops = 1``), stage A's
+  in batches of two multigraphs and stage B's listing from a first pass of one placement;
+* ``model``: stage A's CP-SAT model and stage B's CP-SAT model (their size thresholds set to 0);
+* ``generators``: the models with the automorphisms of H known by their generators only (as for a
+  group of more than 4 096 elements): stage B then compares the chains by certificate.
 
 On each path the chains listed (``realise``), the chains counted (``count_realised``,
 ``count_listed``, ``count_orbits``) and the branch multigraphs must give the oracle's chains:
@@ -19,6 +22,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import replace
+from time import perf_counter
 
 import pytest
 
@@ -51,9 +55,12 @@ CASES = {
     "h2-W1-n6": (dict(dof=1, links=6, h=2), dict(links=6, dof=1, h=2)),
     "h2-W1-n5-v1": (dict(dof=1, links=5, h=2, v=(0, 1)), dict(links=5, dof=1, h=2, v_max=1)),
     "h2-W0-n5-rigid": (dict(dof=0, links=5, h=2, rigid_subchains=True), dict(links=5, dof=0, h=2, rigid_subchains=True)),
+    # h = 2 with rigid sub-chains and multiple joints: two joints on the same links pass the rule (W = 0)
+    "h2-W0-n5-v1-rigid": (dict(dof=0, links=5, h=2, v=(0, 1), rigid_subchains=True),
+                          dict(links=5, dof=0, h=2, v_max=1, rigid_subchains=True)),
 }
 
-PATHS = ("listing", "kernel", "model")
+PATHS = ("listing", "kernel", "model", "generators")
 
 
 def key(joints, links: int) -> str:
@@ -70,9 +77,13 @@ def _joints(chain) -> tuple[tuple[int, ...], ...]:
 
 def _jobs(query: dict, path: str, monkeypatch) -> list:
     jobs = plan_jobs(ChainQuery(**query))
-    if path == "kernel":
+    if path == "kernel":  # (in small batches: stage A's search resumed, stage B's listing read in a second pass)
+        monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 2)
+        monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
         return [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
-    if path == "model":
+    if path == "generators":  # Aut(H) as its generators only, as for a group too large to list
+        monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 0)
+    if path in ("model", "generators"):
         monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 0)
         monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)
     return jobs
@@ -156,9 +167,9 @@ def test_a_crank_requirement_keeps_the_chains_with_such_a_link(joints_on_link, c
 
 def test_the_branch_multigraphs_of_watt_and_stephenson():
     """6 links, 1 DOF (4 binary, 2 ternary links): Watt's and Stephenson's chains share one H, two
-    ternary links joined by three strings; of the four ordered ways to put the 4 binary links on
-    them, (0, 0, 4) and (0, 1, 3) leave a rigid loop (three links, or four with a one-link string
-    beside a direct joint: W = 0): Watt is (0, 2, 2), Stephenson (1, 1, 2)."""
+    ternary links joined by three strings; of the three ordered ways to put the 4 binary links on
+    them with one empty string at most, (0, 1, 3) leaves a rigid triangle (the direct joint beside
+    a one-link string): Watt is (0, 2, 2), Stephenson (1, 1, 2)."""
     code = plan_jobs(ChainQuery(dof=1, links=6))[0][0]
     for conv in (stage_a.Conventions(), stage_a.Conventions(kernel_loops=1)):
         graphs = contracted_graphs(code, conv)
@@ -174,3 +185,27 @@ def test_loading_the_kernels_runs_both_stages_on_a_code():
     """What a pool runs before it forks its workers: stage A's and stage B's kernels on 440/0, whose
     results it throws away (a mistake there would stop every large query)."""
     assert stage_b.load_kernel() is None
+
+
+@pytest.mark.parametrize("path, candidates", [
+    # the listing: the three ordered vectors (0, 1, 3), (0, 2, 2), (1, 1, 2) (two joints of the same two
+    # links would be one: one string at most is empty), tested after
+    ("listing", 3),
+    # the kernel and the model: their conditions are the exact rule for simple joints, Watt and Stephenson pass
+    ("kernel", 2), ("model", 2),
+])
+def test_the_statistics_of_a_unit_count_its_candidates(path, candidates, monkeypatch, no_solver_store):
+    """What the benchmarks read of a unit (candidates per chain, seconds by step): Watt's and
+    Stephenson's H, listed and counted; each time within the time of the call."""
+    [(code, conv)] = _jobs(dict(dof=1, links=6), path, monkeypatch)
+    [graph] = contracted_graphs(code, conv)
+    for count, steps in ((realise, {"candidates", "cpsat_s", "subchain_s", "nauty_s"}),
+                         (count_realised, {"candidates", "cpsat_s"} | ({"subchain_s"} if path != "kernel" else set()))):
+        stats: dict = {}
+        start = perf_counter()
+        found = count(code, graph, conv, stats)
+        elapsed = perf_counter() - start
+        assert (found if isinstance(found, int) else len(found)) == 2
+        assert stats["candidates"] == candidates
+        assert set(stats) == steps, count.__name__
+        assert all(0 <= seconds <= elapsed for name, seconds in stats.items() if name.endswith("_s"))
