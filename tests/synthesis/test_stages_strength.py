@@ -5,7 +5,8 @@ the CP-SAT models and the compiled kernels take over for larger ones.  Here ever
 on the small queries, so that each is judged by the independent oracle (tests/oracles/chains.py,
 no engine code) in seconds:
 
-* ``listing``: the engine's own choice (stage A's search, stage B's listing, the exact test);
+* ``listing``: the engine's own choice (stage A's search, stage B's listing, the exact test), the
+  conditions checked on stage A's multigraphs in blocks of one;
 * ``kernel``: the compiled searches of both stages (``Conventions.kernel_loops = 1``), stage A's
   in batches of two multigraphs and stage B's listing from a first pass of one placement;
 * ``model``: stage A's CP-SAT model and stage B's CP-SAT model (their size thresholds set to 0);
@@ -51,6 +52,8 @@ CASES = {
     "W2-n7-n1-v1": (dict(dof=2, links=7, n1=(0, 3), v=(0, 1)), dict(links=7, dof=2, n1=(0, 3), v_max=1)),
     "W3-n6-n1-nofrac": (dict(dof=3, links=6, n1=(1, 2), fractionated=False),
                         dict(links=6, dof=3, n1=(1, 2), fractionated=False)),
+    # trees (no loop): a serial arm of four links and the star of three arms on one link
+    "W3-n4-n1-tree": (dict(dof=3, links=4, n1=(0, 4)), dict(links=4, dof=3, n1=(0, 4))),
     # wedge systems (motion space h = 2)
     "h2-W1-n6": (dict(dof=1, links=6, h=2), dict(links=6, dof=1, h=2)),
     "h2-W1-n5-v1": (dict(dof=1, links=5, h=2, v=(0, 1)), dict(links=5, dof=1, h=2, v_max=1)),
@@ -83,6 +86,8 @@ def _jobs(query: dict, path: str, monkeypatch) -> list:
         return [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
     if path == "generators":  # Aut(H) as its generators only, as for a group too large to list
         monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 0)
+    if path == "listing":  # (the conditions checked on the search's multigraphs one at a time)
+        monkeypatch.setattr(stage_a, "_CONDITION_BLOCK", 1)
     if path in ("model", "generators"):
         monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 0)
         monkeypatch.setattr(stage_b, "_FEW_VECTORS", 0)
@@ -209,3 +214,64 @@ def test_the_statistics_of_a_unit_count_its_candidates(path, candidates, monkeyp
         assert stats["candidates"] == candidates
         assert set(stats) == steps, count.__name__
         assert all(0 <= seconds <= elapsed for name, seconds in stats.items() if name.endswith("_s"))
+
+
+@pytest.mark.parametrize("query, chains", [
+    (dict(dof=2, links=9), 40),  # the brute force (test_chains_vs_oracle.py, W2-n9)
+    (dict(dof=1, links=10), 230),  # the published count of 1-DOF 10-link chains
+    (dict(dof=3, links=10), 98),  # the brute force (W3-n10, a slow case of test_chains_vs_oracle.py)
+    (dict(dof=0, links=9, rigid_subchains=True), 414),  # the brute force (40 CPU s)
+], ids=str)
+def test_the_kernel_finds_the_models_branch_multigraphs_where_its_game_stops(query, chains, monkeypatch, no_solver_store):
+    """Codes of 9 and 10 links, where the binary links to spare exceed the pebble game's l (the
+    kernel marks those multigraphs and stage A checks every condition on them) and stage A's model
+    writes the conditions of sets of three links and more: the kernel's branch multigraphs (in
+    batches of two) are the model's, in one order and labelling, and the chains of each path add
+    up to the independent counts."""
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 2)
+    jobs = plan_jobs(ChainQuery(**query))
+    found = {}
+    for path, conventions in (("kernel", lambda conv: replace(conv, kernel_loops=1)), ("model", lambda conv: conv)):
+        with monkeypatch.context() as setting:
+            if path == "model":
+                setting.setattr(stage_a, "_SEARCH_VERTICES", 0)
+            graphs = [[(g.certificate, g.edges) for g in contracted_graphs(code, conventions(conv))] for code, conv in jobs]
+            found[path] = graphs
+            total = sum(count_realised(code, g, conventions(conv)) for code, conv in jobs
+                        for g in contracted_graphs(code, conventions(conv)))
+        assert total + sum(1 for code, _ in jobs if _single_loop(code)) == chains, path
+    assert found["kernel"] == found["model"]
+
+
+def test_stage_a_is_stored_and_read_back(tmp_path, monkeypatch):
+    """With the solver store on, stage A's model runs once per code: the second query reads the same
+    branch multigraphs back, and a code stored needs no solver."""
+    from synth.execution import memo
+
+    monkeypatch.setenv("MECHSYNTH_CACHE", str(tmp_path))
+    memo._store.cache_clear()
+    monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 0)  # (the model, not the plain search, of small codes)
+    try:
+        jobs = plan_jobs(ChainQuery(dof=1, links=8, v=(0, 1)))
+        assert [stage_a.needs_solver(code, conv) for code, conv in jobs] == [True] * len(jobs)
+        first = [contracted_graphs(code, conv) for code, conv in jobs]
+        assert [stage_a.needs_solver(code, conv) for code, conv in jobs] == [False] * len(jobs)
+        monkeypatch.setattr(stage_a, "_contracted_by_model", lambda code, conv: pytest.fail("stage A ran again"))
+        assert [contracted_graphs(code, conv) for code, conv in jobs] == first
+        assert all(isinstance(v, stage_a.Vertex) for graphs in first for g in graphs for v in g.vertices)
+    finally:
+        memo._store.cache_clear()
+
+
+def test_which_codes_need_the_solver(monkeypatch, no_solver_store):
+    """A single loop has no H; a code the kernel takes (K ≥ 6) or the plain search takes (at most 8
+    branch vertices) needs no CP-SAT model; one of more branch vertices below the kernel's size does."""
+    from synth.structure.code import Code
+
+    conv = stage_a.Conventions()
+    assert not stage_a.needs_solver(Code((4,), 0, ()), conv)
+    assert not stage_a.needs_solver(Code((4, 4), 0, ()), conv)  # 4 ternary links: the search
+    assert not stage_a.needs_solver(Code((4, 4), 0, ()), replace(conv, kernel_loops=1))  # the kernel
+    monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 3)
+    assert stage_a.needs_solver(Code((4, 4), 0, ()), conv)  # 4 branch vertices, K = 3 < 6: the model
+    assert not stage_a.needs_solver(Code((4, 4), 0, ()), replace(conv, kernel_loops=3))
