@@ -275,3 +275,15 @@ def test_which_codes_need_the_solver(monkeypatch, no_solver_store):
     monkeypatch.setattr(stage_a, "_SEARCH_VERTICES", 3)
     assert stage_a.needs_solver(Code((4, 4), 0, ()), conv)  # 4 branch vertices, K = 3 < 6: the model
     assert not stage_a.needs_solver(Code((4, 4), 0, ()), replace(conv, kernel_loops=3))
+
+
+@pytest.mark.parametrize("code, vertices", [
+    ("521/0", [(LINK, 4), (LINK, 3), (LINK, 3)]),  # links of 3+ joints, most first
+    ("610/1-1", [(LINK, 3), (JOINT, 4), (JOINT, 3)]),  # then the multiple joints, most links first
+    ("2|5/0-1", [(LINK, 1), (LINK, 1), (JOINT, 4)]),  # single-joint links after the others
+    ("4/0", []),  # one loop: no branch vertex
+])
+def test_the_branch_vertices_of_a_code(code, vertices):
+    from synth.structure.code import Code
+
+    assert list(stage_a._branch_vertices(Code.parse(code))) == [Vertex(*v) for v in vertices]
