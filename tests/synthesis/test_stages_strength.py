@@ -58,9 +58,10 @@ CASES = {
     "h2-W1-n6": (dict(dof=1, links=6, h=2), dict(links=6, dof=1, h=2)),
     "h2-W1-n5-v1": (dict(dof=1, links=5, h=2, v=(0, 1)), dict(links=5, dof=1, h=2, v_max=1)),
     "h2-W0-n5-rigid": (dict(dof=0, links=5, h=2, rigid_subchains=True), dict(links=5, dof=0, h=2, rigid_subchains=True)),
-    # h = 2 with rigid sub-chains and multiple joints: two joints on the same links pass the rule (W = 0)
-    "h2-W0-n5-v1-rigid": (dict(dof=0, links=5, h=2, v=(0, 1), rigid_subchains=True),
-                          dict(links=5, dof=0, h=2, v_max=1, rigid_subchains=True)),
+    # h = 2 with rigid sub-chains and multiple joints: two joints on the same links pass the rule
+    # (W = 2 − h = 0), so stage B compares the chains (two joints of the same links are one)
+    "h2-W1-n5-v2-rigid": (dict(dof=1, links=5, h=2, v=(0, 2), rigid_subchains=True),
+                          dict(links=5, dof=1, h=2, v_max=2, rigid_subchains=True)),
 }
 
 PATHS = ("listing", "kernel", "model", "generators")
