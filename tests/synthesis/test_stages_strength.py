@@ -288,3 +288,16 @@ def test_the_branch_vertices_of_a_code(code, vertices):
     from synth.structure.code import Code
 
     assert list(stage_a._branch_vertices(Code.parse(code))) == [Vertex(*v) for v in vertices]
+
+
+@pytest.mark.parametrize("query", [dict(dof=1, links=8), dict(dof=0, links=7, v=(0, 1), rigid_subchains=True),
+                                   dict(dof=2, links=9), dict(dof=1, links=6, v=(0, 2), rigid_subchains=True)], ids=str)
+@pytest.mark.parametrize("path", PATHS)
+def test_stage_a_leaves_no_branch_multigraph_without_a_chain_here(query, path, monkeypatch, no_solver_store):
+    """Stage A's sub-chain conditions on H exist to drop the multigraphs whose binary links are too
+    few for every placement (each would be a unit of stage B that finds nothing).  They are
+    necessary conditions, not always sufficient (1-DOF 10 links keeps one such H), but on these
+    queries they drop every one: each unit gives a chain."""
+    for code, conv in _jobs(query, path, monkeypatch):
+        for graph in contracted_graphs(code, conv):
+            assert realise(code, graph, conv), (str(code), graph.edges)
