@@ -139,3 +139,19 @@ def test_every_base_of_watt_s_chain_by_hand():
     # with rigid sub-chains allowed the four-bars of W = 0 pass (the whole chain is not its own sub-chain)
     [both] = class_variants(watt, 4, 2, rigid_subchains=True)
     assert both.classes == (4,) * 6 and both.dof == -1
+
+
+@pytest.mark.parametrize("text", [WATT, "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3",  # Watt's, a ring with a diameter
+                                  "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13",  # the translator
+                                  "0-1 1-2 2-0 0-3 3-4 4-5 5-0 1-4 2-5"])  # a truss with a rigid triangle
+def test_the_loops_of_a_chain_are_the_simple_cycles_of_its_incidence_graph(text):
+    """_cycles against networkx's list of simple cycles (links and joints as vertices)."""
+    import networkx as nx
+
+    from synth import Chain
+    from synth.synthesis.classes import _cycles
+
+    chain = Chain.parse(text)
+    graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
+    expected = {frozenset(v for v in cycle if not isinstance(v, tuple)) for cycle in nx.simple_cycles(graph)}
+    assert set(_cycles(chain)) == expected and len(_cycles(chain)) == len(expected)
