@@ -166,8 +166,8 @@ def class_variants(chain: Chain, base_class: int, loops: int, *, rigid_subchains
         raise InvalidOption(f"a base holds 1 … {chain.loops} of the chain's loops, not {loops!r}")
     dof = chain.dof - (base_class - chain.h) * loops
     rigid = dof == 0 if rigid_subchains is None else rigid_subchains
-    bases = list(_bases(chain, loops))
-    least = least_base_mobilities(chain, base_class, bases) if bases else []
+    bases = list(_bases(chain, loops))  # (never empty: a cycle and ears on it hold every count 1 … K of loops)
+    least = least_base_mobilities(chain, base_class, bases)
     found: dict[str, Chain] = {}
     for base, low in zip(bases, least):
         if low >= (0 if rigid else 1):

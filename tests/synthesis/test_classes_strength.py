@@ -155,3 +155,31 @@ def test_the_loops_of_a_chain_are_the_simple_cycles_of_its_incidence_graph(text)
     graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
     expected = {frozenset(v for v in cycle if not isinstance(v, tuple)) for cycle in nx.simple_cycles(graph)}
     assert set(_cycles(chain)) == expected and len(_cycles(chain)) == len(expected)
+
+
+@pytest.mark.parametrize("text", [WATT, "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3", "0-1 1-2 2-0 0-3 3-4 4-5 5-0 1-4 2-5",
+                                  "0-1 1-2 2-0 2-3 3-4 4-2"])  # (two triangles on one link: loops not joined)
+def test_every_number_of_loops_of_a_chain_has_a_base(text):
+    """A base of k loops for every k = 1 … K: brute force over the sets of links (the union of loops
+    with exactly k independent loops of its own), against _bases."""
+    import itertools
+
+    import networkx as nx
+
+    from synth import Chain
+    from synth.synthesis.classes import _bases
+
+    chain = Chain.parse(text)
+    graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
+    for k in range(1, chain.loops + 1):
+        expected = set()
+        for size in range(3, chain.links + 1):
+            for links in itertools.combinations(range(chain.links), size):
+                # each joint restricted to the set: its links in the set, when two or more
+                sub = nx.Graph((link, ("joint", j)) for j, joint in enumerate(chain.joints)
+                               for link in joint if link in links and sum(x in links for x in joint) >= 2)
+                on_loop = {v for cycle in nx.cycle_basis(sub) for v in cycle}
+                rank = sub.number_of_edges() - sub.number_of_nodes() + nx.number_connected_components(sub) if len(sub) else 0
+                if set(links) <= on_loop and rank == k:
+                    expected.add(frozenset(links))
+        assert expected and set(_bases(chain, k)) == expected, k
