@@ -182,4 +182,5 @@ def test_every_number_of_loops_of_a_chain_has_a_base(text):
                 rank = sub.number_of_edges() - sub.number_of_nodes() + nx.number_connected_components(sub) if len(sub) else 0
                 if set(links) <= on_loop and rank == k:
                     expected.add(frozenset(links))
-        assert expected and set(_bases(chain, k)) == expected, k
+        found = list(_bases(chain, k))
+        assert expected and set(found) == expected and len(found) == len(expected), k  # each base once
