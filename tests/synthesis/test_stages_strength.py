@@ -221,7 +221,7 @@ def test_the_statistics_of_a_unit_count_its_candidates(path, candidates, monkeyp
     (dict(dof=2, links=9), 40),  # the brute force (test_chains_vs_oracle.py, W2-n9)
     (dict(dof=1, links=10), 230),  # the published count of 1-DOF 10-link chains
     (dict(dof=3, links=10), 98),  # the brute force (W3-n10, a slow case of test_chains_vs_oracle.py)
-    (dict(dof=0, links=9, rigid_subchains=True), 414),  # the brute force (40 CPU s)
+    (dict(dof=0, links=9, rigid_subchains=True), 414),  # the brute force (the slow test below)
 ], ids=str)
 def test_the_kernel_finds_the_models_branch_multigraphs_where_its_game_stops(query, chains, monkeypatch, no_solver_store):
     """Codes of 9 and 10 links, where the binary links to spare exceed the pebble game's l (the
@@ -301,3 +301,9 @@ def test_stage_a_leaves_no_branch_multigraph_without_a_chain_here(query, path, m
     for code, conv in _jobs(query, path, monkeypatch):
         for graph in contracted_graphs(code, conv):
             assert realise(code, graph, conv), (str(code), graph.edges)
+
+
+@pytest.mark.slow
+def test_the_brute_force_counts_414_rigid_trusses_of_9_links():
+    """The brute-force count the kernel test above uses for trusses of 9 links (about 40 CPU s)."""
+    assert len(brute_force_chains(links=9, dof=0, rigid_subchains=True)) == 414
