@@ -4,10 +4,12 @@ Every largest or smallest value :mod:`balance` reports over a workspace or a ran
 residual, a force, a length) comes from here, not from the best of a random sample: the
 function is evaluated at the given points (in chunks, so memory stays bounded), the
 ``starts`` best points of each column and sense are polished by L-BFGS-B inside the box
-(gradients by central differences, one vectorised call per gradient), and the better of
-the sample and the polished point is kept. The result is a local extreme to the
+(gradients by central differences, one vectorised call per gradient), and so is the best
+corner of the box (an extreme of a workspace is often at a corner, in a basin too small for
+a sample to land in; up to :data:`CORNER_DIMS` free coordinates); the best of the samples,
+the corners and the polished points is kept. The result is a local extreme to the
 optimiser's tolerance (projected gradient ≤ ``1e-12`` of the function's scale) reached
-from the best samples; the tests compare it with dense grid searches.
+from the best samples and the best corner; the tests compare it with dense grid searches.
 
 Examples
 --------
@@ -34,11 +36,13 @@ from mechbase import Row
 __all__ = ["Extreme", "box_extremes", "CHUNK", "EXTREMES_NOTE"]
 
 #: how every reported extreme is found, in the words of a result
-EXTREMES_NOTE = ("true extremes: the best random samples polished by a bounded local search (L-BFGS-B, "
-                 "projected gradient ≤ 1e-12 of the scale)")
+EXTREMES_NOTE = ("true extremes: the best random samples and the best corner of the box polished by a bounded "
+                 "local search (L-BFGS-B, projected gradient ≤ 1e-12 of the scale)")
 
 #: points evaluated at once (bounds the memory of a large sample)
 CHUNK = 20_000
+#: boxes with at most this many free coordinates also have their 2**d corners searched
+CORNER_DIMS = 10
 #: best samples kept per start, among which the starts are spread out
 CANDIDATES = 10
 
@@ -123,16 +127,31 @@ def box_extremes(f: Callable[[np.ndarray], np.ndarray], lo: Sequence[float], hi:
     scale = max(float(np.max(np.abs(best_max[0]))), float(np.max(np.abs(best_min[0]))), 1e-300)
     free = hi > lo
     width = np.where(free, hi - lo, 1.0)
+    corners = _corners(lo, hi, free)
+    corner_values = _values(f, corners) if len(corners) else np.empty((0, columns))
     out = []
     with threadpool_limits(1, "blas"):  # BLAS threads only spin on these tiny problems (6× slower)
         for c in range(columns):
-            out.append(_column_extremes(f, c, best_min, best_max, floor, lo, hi, free, width, scale, max_iter,
-                                        starts))
+            out.append(_column_extremes(f, c, best_min, best_max, (corners, corner_values[:, c]), floor, lo, hi,
+                                        free, width, scale, max_iter, starts))
     return out
 
 
-def _column_extremes(f, c, best_min, best_max, floor, lo, hi, free, width, scale, max_iter, starts):
-    """``(min, max)`` of column ``c``: the kept samples, each polished unless the column is noise."""
+def _corners(lo: np.ndarray, hi: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """The 2**d corners of the box over its d free coordinates (none past :data:`CORNER_DIMS`)."""
+    idx = np.flatnonzero(free)
+    if len(idx) > CORNER_DIMS:
+        return np.empty((0, len(lo)))
+    bits = (np.arange(2 ** len(idx))[:, None] >> np.arange(len(idx))) & 1
+    out = np.repeat(lo[None], len(bits), axis=0)
+    out[:, idx] = np.where(bits == 1, hi[idx], lo[idx])
+    return out
+
+
+def _column_extremes(f, c, best_min, best_max, corners, floor, lo, hi, free, width, scale, max_iter, starts):
+    """``(min, max)`` of column ``c``: the kept samples, and unless the column is noise, the best corner
+    and the polish of both."""
+    corner_x, corner_v = corners
     colmax = max(float(np.max(np.abs(best_max[0][:, c]))), float(np.max(np.abs(best_min[0][:, c]))))
     pair = []
     for sign, kept in ((-1, best_min), (1, best_max)):
@@ -141,7 +160,13 @@ def _column_extremes(f, c, best_min, best_max, floor, lo, hi, free, width, scale
         best_v, best_x = float(vals[i0]), xs[i0]
         sampled = best_v
         if colmax > floor and np.any(free):
-            for x0 in _spread(vals * sign, xs, width, starts):
+            x0s = _spread(vals * sign, xs, width, starts)
+            if len(corner_v):
+                k = int(np.argmax(sign * corner_v))
+                x0s.append(corner_x[k])
+                if sign * corner_v[k] > sign * best_v:
+                    best_v, best_x = float(corner_v[k]), corner_x[k]
+            for x0 in x0s:
                 v, x = _polish(f, c, sign, x0, lo, hi, free, width, scale, max_iter)
                 if sign * v > sign * best_v:
                     best_v, best_x = v, x

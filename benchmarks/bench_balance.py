@@ -13,7 +13,6 @@ From Python: ``rows = run(quick=True)`` returns the rows of both tables (key ``t
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import sys
 import time
@@ -26,8 +25,7 @@ if str(ROOT) not in sys.path:
 from balance import DEFAULT_METHOD, METHODS, SpringBounds, arm_from_dict, check_terms, fit_spring  # noqa: E402
 from balance.devices.fit import DEFAULT_GRID  # noqa: E402
 from balance.problems import load_toml  # noqa: E402
-
-OUT = ROOT / "benchmarks" / "out"
+from benchmarks._out import OUT, write_csv  # noqa: E402
 
 CASES = {
     "issue 20..160": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0))),
@@ -156,13 +154,6 @@ def run_hard_cases() -> list[dict]:
     return rows
 
 
-def _write_csv(path: Path, rows: list[dict]) -> None:
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-
-
 def plot_pareto(rows: list[dict], path: Path) -> None:
     import matplotlib
 
@@ -221,8 +212,8 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     fit_rows = run_fit(ns.quick)
     arm_rows = run_arm(ns.quick)
-    _write_csv(OUT / "balance_fit.csv", fit_rows)
-    _write_csv(OUT / "balance_arm_check.csv", arm_rows)
+    write_csv(OUT / "balance_fit.csv", fit_rows)
+    write_csv(OUT / "balance_arm_check.csv", arm_rows)
     plot_pareto(fit_rows, OUT / "balance_pareto.png")
     print(f"{'case':<22} {'norm':<4} {'method':<12} {'grid':>4} {'ms':>8} {'max err %':>10} {'rms err %':>10} "
           "front(all) front(methods)")

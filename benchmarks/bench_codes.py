@@ -5,15 +5,13 @@ Writes ``benchmarks/out/codes.csv``.  Run: ``python benchmarks/bench_codes.py [-
 
 from __future__ import annotations
 
-import argparse
-import csv
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-OUT = ROOT / "benchmarks" / "out"
+from benchmarks._out import OUT, print_rows, write_csv  # noqa: E402
 TABLE_1 = {1: 1, 2: 3, 3: 9, 4: 23, 5: 53}
 
 
@@ -35,16 +33,9 @@ def run(quick: bool = False) -> list[dict]:
         ref = TABLE_1.get(K)
         rows.append({"query": f"W=1, K={K}", "codes": len(codes), "reference": ref,
                      "error": None if ref is None else len(codes) - ref, "seconds": round(best, 4)})
-    OUT.mkdir(parents=True, exist_ok=True)
-    with open(OUT / "codes.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(OUT / "codes.csv", rows)
     return rows
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true")
-    for row in run(parser.parse_args().quick):
-        print(row)
+    print_rows(run, __doc__)

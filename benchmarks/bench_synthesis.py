@@ -20,7 +20,6 @@ Run: ``python benchmarks/bench_synthesis.py [--quick | --full] [--reps N]`` (``-
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import os
 import re
@@ -32,7 +31,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-OUT = ROOT / "benchmarks" / "out"
+from benchmarks._out import OUT, write_csv  # noqa: E402
 
 # (series, W, links) -> published count (OEIS A233288 for W = 1; docs/theory.md's reference counts otherwise)
 REFERENCE = {
@@ -168,12 +167,8 @@ def run(quick: bool = False, full: bool = False, reps: int = 3) -> list[dict]:
         row = measure(series, dof, links, v, reps=1 if heavy else reps)
         rows.append(row)
         print(json.dumps(row), file=sys.stderr)
-    OUT.mkdir(parents=True, exist_ok=True)
     columns = list(dict.fromkeys(k for r in rows for k in r if k != "by_v"))  # every row's keys, in order
-    with open(OUT / "synthesis.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=columns, extrasaction="ignore")
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(OUT / "synthesis.csv", rows, columns)
     plot(rows, OUT / "synthesis.png")
     return rows
 

@@ -11,15 +11,13 @@ synthesis, one CP-SAT model per code and per unit), so a small query is compared
 
 from __future__ import annotations
 
-import argparse
-import csv
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-OUT = ROOT / "benchmarks" / "out"
+from benchmarks._out import OUT, print_rows, write_csv  # noqa: E402
 
 #: (h, links) at 1 DOF, smallest first; --quick stops at the first two of each h
 CASES_1DOF = {2: [5, 6, 7, 8, 9, 10], 3: [4, 6, 8, 10, 12, 14], 4: [5, 8, 11, 14, 17], 5: [6, 10, 14, 18],
@@ -73,18 +71,11 @@ def run(quick: bool = False, budget: float = 60.0) -> list[dict]:
         near = min(planar, key=lambda r: abs(r["chains"] - row["chains"]), default=None)
         if near and row["us_per_chain"]:
             row["per_chain_vs_h3"] = round(row["us_per_chain"] / near["us_per_chain"], 2)
-    OUT.mkdir(parents=True, exist_ok=True)
     columns = ["series", "h", "links", "chains", "units", "seconds", "reps", "chains_per_s", "candidates_per_chain",
                "us_per_chain", "per_chain_vs_h3"]
-    with open(OUT / "universal.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=columns)
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(OUT / "universal.csv", rows, columns)
     return rows
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true")
-    for row in run(parser.parse_args().quick):
-        print(row)
+    print_rows(run, __doc__)

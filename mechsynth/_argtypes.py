@@ -1,7 +1,7 @@
 """Value parsers shared by the CLI commands (argparse ``type=`` callables).
 
->>> whole("3"), positive("2"), seconds("0.5"), workers("1"), number_range("-90..90")
-(3, 2, 0.5, 1, (-90.0, 90.0))
+>>> whole("3"), positive("2"), finite("-1.5"), seconds("0.5"), workers("1"), number_range("-90..90")
+(3, 2, -1.5, 0.5, 1, (-90.0, 90.0))
 """
 
 from __future__ import annotations
@@ -12,19 +12,24 @@ import os
 
 from mechbase import RangeSyntax, parse_range
 
-__all__ = ["whole", "positive", "seconds", "inches", "workers", "number_range", "picture_file", "output_file", "output_folder",
-           "where_conditions", "PICTURE_FORMATS"]
+__all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
+           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
 
 
+def _read(text: str, number, what: str):
+    """``number(text)`` (``int`` or ``float``), or argparse's error naming ``what``."""
+    try:
+        return number(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {what}, not {text!r}") from None
+
+
 def whole(text: str) -> int:
     """A whole number (negative values are left to the command's own check)."""
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    return _read(text, int, "a whole number")
 
 
 def positive(text: str) -> int:
@@ -35,12 +40,27 @@ def positive(text: str) -> int:
     return value
 
 
+def real(text: str, what: str = "a number") -> float:
+    """A real number, ``inf`` and ``nan`` included (what else it must be is the caller's check); ``what``
+    names the value in the error: ``expected a number of seconds, not 'x'``.
+
+    >>> real("1e-3"), real("-inf")
+    (0.001, -inf)
+    """
+    return _read(text, float, what)
+
+
+def finite(text: str) -> float:
+    """A finite real number (a bound, an angle, a ratio: its range is the command's check)."""
+    value = real(text)
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, not {text!r}")
+    return value
+
+
 def seconds(text: str) -> float:
     """A time in seconds > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
+    value = real(text, "a number of seconds")
     if not value > 0:
         raise argparse.ArgumentTypeError(f"expected a positive number of seconds, not {text!r}")
     return value
@@ -48,10 +68,7 @@ def seconds(text: str) -> float:
 
 def inches(text: str) -> float:
     """A drawing's edge in inches, 0.5 … 30 (larger pictures would only fill memory)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a size in inches, not {text!r}") from None
+    value = real(text, "a size in inches")
     if not 0.5 <= value <= 30:
         raise argparse.ArgumentTypeError(f"expected a size of 0.5 to 30 inches, not {text}")
     return value
@@ -168,8 +185,8 @@ def mechanism_of(chain, frame: int, input_joint: str | None):
         raise InvalidOption(f"--frame {frame} is not a link of the chain (links 0 … {chain.links - 1})")
     driven = None
     if input_joint is not None:
-        links = sorted(int(x) for x in input_joint.replace("=", "-").split("-") if x.strip().isdigit())
-        if len(links) != 2 or tuple(links) not in chain.joints or frame not in links:
+        links = chain.joints[chain.joint_index(input_joint, "--input")]
+        if len(links) != 2 or frame not in links:
             raise InvalidOption(f"--input {input_joint} must be a joint of the frame (link {frame}) and one "
                                 f"moving link, written like {frame}-1")
         driven = links[0] if links[1] == frame else links[1]

@@ -27,6 +27,7 @@ __all__ = [
     "ImpossibleParameters",
     "MalformedCode",
     "MalformedChain",
+    "UnknownJoint",
     "InvalidOption",
     "QueryTooLarge",
     "MotionError",
@@ -81,6 +82,11 @@ class MalformedCode(SynthesisError):
 
 class MalformedChain(SynthesisError):
     """A chain description (JSON or joint list) could not be read or is not a chain."""
+
+
+class UnknownJoint(SynthesisError):
+    """A joint named by its links (``"1-2"``) or its index that the chain does not have, or a name that is
+    no joint's."""
 
 
 class InvalidOption(SynthesisError):

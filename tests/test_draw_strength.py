@@ -5,6 +5,7 @@ grid; the inline SVG's elements at the layout's points.  Read from the matplotli
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -157,6 +158,9 @@ def test_a_single_joint_link_ends_free_in_a_square():
     end = marks.free_ends[3]
     bar = _by_gid(ax, "bar3")["bar3"]
     assert np.allclose(bar.get_xydata(), [marks.pos[marks.lay.polygons[3][0]], end])
+    from matplotlib.colors import to_hex
+
+    assert to_hex(bar.get_color()) == "#1f3a5f" and bar.get_linewidth() == 2.2 and bar.get_solid_capstyle() == "butt"
     square = _by_gid(ax, "end3")["end3"]
     assert np.allclose(square.get_xy()[:4].mean(axis=0), end) and square.get_hatch() == "////"  # the frame
     assert np.linalg.norm(end - marks.pos[marks.lay.polygons[3][0]]) == pytest.approx(max(0.35, 6 * marks.r))
@@ -273,3 +277,339 @@ def test_layout_sides_by_hand():
     assert all(len({a, b}) == 2 and a in lay.polygons[link] and b in lay.polygons[link] for link, a, b in sides)
     open_lay = layout(OPEN)
     assert not any(link == 3 for link, _, _ in open_lay.segments())  # a free end is no side between joints
+
+
+def test_the_widest_free_angle_at_a_joint_by_hand():
+    from synth.draw._render import _free_ends, _widest_gap
+
+    pos = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [3.0, 3.0]])
+    # sides to 0°, 90° and 180°: the widest free angle is the lower half, its middle straight down
+    turn, gap = _widest_gap(pos, [(0, 1), (2, 0), (0, 3)], 0)
+    assert turn == pytest.approx(1.5 * math.pi) and gap == pytest.approx(math.pi)
+    # one side only: the whole turn is free, the middle opposite the side
+    assert _widest_gap(pos, [(0, 1)], 0) == pytest.approx((math.pi, 2 * math.pi))
+    # and a direction ``also`` counted with the sides: 0°, 90°, 180° and 225° leave 135° free from 225° to 360°
+    assert _widest_gap(pos, [(0, 1), (2, 0), (0, 3)], 0, also=[-0.75 * math.pi]) == pytest.approx(
+        (-0.75 * math.pi + 0.375 * math.pi, 0.75 * math.pi))
+    # nothing meets the joint: away from the centre of the drawing (its mean joint (0.6, 0.8)); half a turn said
+    assert _widest_gap(pos, [], 4) == pytest.approx((math.atan2(3 - 0.8, 3 - 0.6), math.pi))
+    centred = np.array([[0.0, 0.0]])
+    assert _widest_gap(centred, [], 0) == pytest.approx((-math.pi / 2, math.pi))
+    # two single-joint links on joint 0 (sides to 0° and 180°: two free halves, the first counted from 0° taken,
+    # its middle at 90°) fan out 0.7 × 180° / 2 = 63°, at most 1 rad, apart: at 90° ∓ 0.5 rad, 0.4 long
+    ends = _free_ends(pos[:4], [[1, 0], [0, 3], [0], [0]], length=0.4)
+    base = 0.5 * math.pi
+    assert sorted(ends) == [2, 3]
+    assert np.allclose(ends[2], 0.4 * np.array([math.cos(base - 0.5), math.sin(base - 0.5)]))
+    assert np.allclose(ends[3], 0.4 * np.array([math.cos(base + 0.5), math.sin(base + 0.5)]))
+
+
+def test_a_fixed_pivot_sign_and_a_fixed_bar_by_hand():
+    # the slider-crank's frame 3 is binary: a hatched bar 1.8 r wide along its side, and a pivot sign at its pin
+    mechanism = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 3)
+    fig, ax = _axes(mechanism)
+    marks = _Marks(mechanism.chain)
+    pos, r = marks.pos, marks.r
+    a, b = pos[marks.lay.polygons[3]]
+    hatched = [p for p in ax.patches if p.get_hatch() == "////" and not (p.get_gid() or "")]
+    bars = [p for p in hatched if p.get_zorder() == 2]
+    (bar,) = bars
+    corners = bar.get_xy()[:4]
+    normal = np.array([-(b - a)[1], (b - a)[0]]) / np.linalg.norm(b - a) * 0.9 * r
+    assert np.allclose(corners, [a + normal, b + normal, b - normal, a - normal])
+    assert _colour(bar) == "#1f3a5f"
+    for k in (1, 3):  # the frame's two joints, 0-3 (joint 1) and 2-3 (joint 3)
+        direction = marks.ground(k)
+        across = np.array([-direction[1], direction[0]])
+        base = pos[k] + 2.4 * r * direction
+        (strut,) = [p for p in ax.patches if p.get_gid() == f"ground{k}"]
+        assert np.allclose(strut.get_xy()[:3], [pos[k], base + 1.5 * r * across, base - 1.5 * r * across])
+        (plate,) = [p for p in hatched if p.get_zorder() == 3.5 and np.allclose(
+            p.get_xy()[0], base + 2.1 * r * across)]
+        assert np.allclose(plate.get_xy()[:4], [base + 2.1 * r * across, base - 2.1 * r * across,
+                                                 base - 2.1 * r * across + 0.8 * r * direction,
+                                                 base + 2.1 * r * across + 0.8 * r * direction])
+        # the sign stands in the widest free angle at its pin: no side of a link points into it
+        sides = [pos[j] - pos[k] for j in (0, 1, 2, 3) if j != k and any(
+            {j, k} <= set(p) for p in marks.lay.polygons)]
+        assert all(np.dot(s / np.linalg.norm(s), direction) < 0.99 for s in sides)
+    assert len(hatched) == 1 + 2
+
+
+def test_a_heterogeneous_chain_colours_its_base_and_keys_the_classes():
+    from matplotlib.colors import to_hex
+
+    # Watt's chain with its four-bar loop 0-1-2-3 of class 4, the other loops planar
+    chain = Chain(6, WATT := Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").joints, classes=(4, 4, 4, 4, 3, 3))
+    del WATT
+    fig, ax = _axes(chain)
+    marks = _Marks(chain)
+    bars = _by_gid(ax, "bar")
+    for link, poly in enumerate(marks.lay.polygons):
+        if len(poly) == 2:
+            colour, width = ("#b8860b", 2.2 * 1.4) if link < 4 else ("#1f3a5f", 2.2)
+            assert to_hex(bars[f"bar{link}"].get_color()) == colour and bars[f"bar{link}"].get_linewidth() == width
+    faces = [p for p in ax.patches if type(p).__name__ == "Polygon" and p.get_zorder() == 1]
+    for face in faces:  # the ternary links 0 and 1 are base links: drawn in their class's colour, wider
+        assert _colour(face) == "#b8860b" and face.get_linewidth() == 2.4
+    assert len(faces) == 2
+    legend = ax.get_legend()
+    assert [t.get_text() for t in legend.get_texts()] == ["h = 4: 1 loop", "h = 3: 1 other loop"]
+    assert not legend.get_frame_on() and legend._loc == 2 and legend.get_texts()[0].get_fontsize() == 6
+    fig, ax = _axes(chain, legend=False)
+    assert ax.get_legend() is None
+
+
+def test_one_drawing_written_with_its_title_and_a_64_colour_png(tmp_path):
+    from PIL import Image
+
+    draw_one(Mechanism(WATT_MULTIPLE, 0, 4), tmp_path / "w.png", size=1.0, dpi=60, title="Watt, fixed 0")
+    with Image.open(tmp_path / "w.png") as image:
+        assert image.mode == "P" and len(image.getcolors()) <= 64
+        assert max(image.size) <= 70  # one inch at 60 dpi, cut to the drawing
+    draw_one(SLIDER_CRANK, tmp_path / "s.svg", title="a & b")
+    text = (tmp_path / "s.svg").read_text()
+    assert ">a &amp; b</text>" in text and "<dc:date>" not in text
+    plain = _render.svg(SLIDER_CRANK)
+    assert ">4/0 P1</text>" in plain and plain.lstrip().startswith("<?xml")
+    import matplotlib.pyplot as plt
+
+    assert not plt.get_fignums()
+    with pytest.raises(InvalidOption) as e:
+        _render.svg(SLIDER_CRANK, size=0.4)
+    assert str(e.value) == "a drawing's size is 0.5 to 30 inches, not 0.4"
+
+
+def test_the_pixel_limit_by_hand():
+    from pathlib import Path
+
+    from synth.draw._render import _check_pixels
+
+    _check_pixels(Path("a.png"), 100, 100, 100)  # 10 000 × 10 000: exactly 100 megapixels
+    with pytest.raises(InvalidOption, match=r"^this picture would be 10001 × 10000 pixels"):
+        _check_pixels(Path("a.png"), 100.01, 100, 100)
+    _check_pixels(Path("a.png"), 655.35, 1, 100)  # 65 535 on a side
+    with pytest.raises(InvalidOption, match=r"^this picture would be 65536 × 100 pixels"):
+        _check_pixels(Path("a.png"), 655.36, 1, 100)
+    _check_pixels(Path("a.PDF"), 1000, 1000, 1200)  # no pixels in a vector file
+
+
+def test_a_sheet_with_notes_and_loop_classes_grows_to_hold_them(monkeypatch, tmp_path):
+    saved = []
+    monkeypatch.setattr(_render, "_save", lambda fig, path, dpi: saved.append(fig))
+    mixed = Chain(6, Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").joints, classes=(4, 4, 4, 4, 3, 3))
+    draw_sheet([mixed, SLIDER_CRANK], tmp_path / "m.svg", notes=["x " * 40, "y"], size=2.0, columns=1)
+    (fig,) = saved
+    # two lines of note under the first caption (80 characters at 33 a line: 3 lines): 3 × 0.14 in a row,
+    # and 0.3 in for the key of loop classes
+    assert fig.get_size_inches() == pytest.approx((2.0, (2.0 + 3 * 0.14) * 2 + 0.3))
+    (legend,) = fig.legends
+    assert [t.get_text() for t in legend.get_texts()] == ["h = 4: base loops", "h = 3: other loops"]
+    assert fig.axes[0].get_legend() is None  # one key for the sheet, none per drawing
+    assert fig.axes[0].get_title().count("\n") == 3 and fig.axes[1].get_title() == "4/0 P1  #2\ny"
+
+
+# ------------------------------------------------------------------ the layout's own measures, by hand
+def test_corner_angles_by_hand_in_both_orientations_and_any_size():
+    from synth.draw._layout import _corner_angles
+
+    # a dart: (0, 0), (2, 1), (4, 0), (2, 3) turns counter-clockwise; its notch (2, 1) is a reflex corner
+    dart = np.array([[0, 0], [2, 1], [4, 0], [2, 3]], dtype=float)
+    tip = math.degrees(math.atan(1.5) - math.atan(0.5))  # between (2, 3) and (2, 1) seen from the origin
+    notch = 360 - (180 - 2 * math.degrees(math.atan(0.5)))
+    top = 2 * math.degrees(math.atan(2 / 3))
+    expected = [tip, notch, tip, top]
+    assert sum(expected) == pytest.approx(360)
+    for scale in (0.1, 1.0, 10.0):  # small drawings too: the [-1, 1]² frame's polygons are
+        assert _corner_angles(scale * dart) == pytest.approx(expected)
+        assert _corner_angles(scale * dart[::-1]) == pytest.approx(expected[::-1])  # clockwise
+    assert _corner_angles(np.array([[0, 0], [0, 1], [1, 0.0]])) == pytest.approx([90, 45, 45])  # clockwise
+    # a batch of polygons, each with its own orientation
+    batch = np.stack([0.1 * dart, 10 * dart[::-1]])
+    assert _corner_angles(batch) == pytest.approx(np.array([expected, expected[::-1]]))
+
+
+def test_defects_by_hand():
+    from synth.draw._layout import _defects
+
+    bars = [[0, 1], [2, 3]]
+    crossing = np.array([[0, 0], [1, 1], [0, 1], [1, 0.0]])
+    assert _defects(crossing, bars, 0.1) == 1000
+    # a bar in line with the other, past its end: nothing touches (a side ends at its joints)
+    in_line = np.array([[0, 0], [1, 0], [1.5, 0], [2.5, 0.0]])
+    assert _defects(in_line, bars, 0.1) == 0
+    assert _defects(in_line, bars, 0.6) == 2  # joints 1 and 2 each within 0.6 of the other bar's end
+    # a joint 0.05 from a foreign side
+    touching = np.array([[0, 0], [1, 0], [0.5, 0.05], [0.5, 1.0]])
+    assert _defects(touching, bars, 0.1) == 1 and _defects(touching, bars, 0.04) == 0
+    # a bar inside a triangle: two joints inside a foreign link
+    inside = np.array([[0, 0], [2, 0], [0, 2], [0.3, 0.3], [0.6, 0.6]])
+    assert _defects(inside, [[0, 1, 2], [3, 4]], 0.1) == 2000
+    assert _defects(inside + np.array([[0, 0]] * 3 + [[3, 0]] * 2), [[0, 1, 2], [3, 4]], 0.1) == 0  # the bar moved out
+
+
+def _crossings(points, sides):
+    """Pairs of sides (no joint in common) that cross, by the plain orientation test."""
+    def orient(p, q, r):
+        return np.sign((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+
+    found = 0
+    for i, (a, b) in enumerate(sides):
+        for c, d in sides[i + 1:]:
+            if {a, b} & {c, d}:
+                continue
+            p, q, r, s = points[[a, b, c, d]]
+            found += orient(p, q, r) * orient(p, q, s) < 0 and orient(r, s, p) * orient(r, s, q) < 0
+    return found
+
+
+def test_a_non_planar_chain_lets_its_string_of_binary_links_cross_the_rest():
+    from synth.draw._layout import _crossing_strings, _incidence, _strings
+
+    # K3,3 of ternary links 0, 1, 2 and 3, 4, 5, its edge 0–3 a string of two binary links 6 and 7
+    chain = Chain.parse("0-6 6-7 7-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert not chain.is_planar()
+    g = _incidence(chain)
+    assert _strings(chain, g) == [[6, 7]] and _crossing_strings(chain, g) == [[[6, 7]]]
+    # a string walked both ways from its lowest link: 0 – 7 – 6 – 8 – 3, listed in its order along the chain
+    three = Chain.parse("0-7 7-6 6-8 8-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert _strings(three, _incidence(three)) in ([[7, 6, 8]], [[8, 6, 7]])
+    # two edges subdivided: either string alone, set aside, leaves a planar rest
+    two = Chain.parse("0-6 6-3 0-4 0-5 1-3 1-7 7-4 1-5 2-3 2-4 2-5")
+    assert _strings(two, _incidence(two)) == [[6], [7]]
+    assert _crossing_strings(two, _incidence(two)) == [[[6]], [[7]]]
+    # no binary link at all: nothing to set aside
+    k33 = Chain.parse("0-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5")
+    assert _crossing_strings(k33, _incidence(k33)) == []
+    lay = layout(chain)
+    assert not lay.planar
+    joint = {tuple(sorted(j)): k for k, j in enumerate(chain.joints)}
+    # the string is a straight bar across: its middle joint halfway between its ends
+    ends = lay.joints[[joint[(0, 6)], joint[(3, 7)]]]
+    assert np.allclose(lay.joints[joint[(6, 7)]], ends.mean(axis=0))
+    # the rest is drawn without a crossing; the string crosses it
+    rest = [(a, b) for link, a, b in lay.segments() if link < 6]
+    assert _crossings(lay.joints, rest) == 0
+    assert _crossings(lay.joints, [(a, b) for _, a, b in lay.segments()]) >= 1
+    assert np.abs(lay.joints).max() == pytest.approx(1.0)  # scaled into [-1, 1]²
+    # the chain's six ternary links are triangles of distinct joints
+    assert [len(set(p)) for p in lay.polygons] == [3] * 6 + [2, 2]
+    # of two ways (either string may cross), the drawing keeps one: only that string's bar crosses the rest
+    lay = layout(two)
+    crossing = {link for link, a, b in lay.segments()
+                if any(_crossings(lay.joints, [(a, b), (c, d)]) for other, c, d in lay.segments() if other != link)}
+    assert not lay.planar and len(crossing & {6, 7}) == 1
+    assert _crossings(lay.joints, [(a, b) for link, a, b in lay.segments() if link not in {6, 7}]) == 0
+
+
+def test_a_polygon_without_an_embedding_goes_round_its_own_centre():
+    from synth.draw._layout import _incidence, _polygons
+
+    # link 0 has four joints (to links 1 … 4) on a square about (10, 0), handed over out of turn
+    chain = Chain.parse("0-1 0-2 0-3 0-4 1-2 2-3 3-4 4-1")
+    corners = {(0, 1): (11, 1), (0, 2): (9, -1), (0, 3): (11, -1), (0, 4): (9, 1)}
+    pos = {("J", k): np.array(corners.get(tuple(sorted(j)), (0, 5)), dtype=float) for k, j in enumerate(chain.joints)}
+    order = _polygons(chain, _incidence(chain), None, pos)[0]
+    at = [tuple(pos[("J", k)]) for k in order]
+    # counter-clockwise from the lower left: (9, −1), (11, −1), (11, 1), (9, 1)
+    assert at == [(9, -1), (11, -1), (11, 1), (9, 1)]
+
+
+def test_chains_without_a_side_between_joints_are_laid_out():
+    # two links on one joint, and three: a point; two joints on a bar: the bar, upright, filling the frame
+    for text in ("0-1", "0-1-2"):
+        lay = layout(Chain.parse(text))
+        assert np.allclose(lay.joints, [[0, 0]]) and lay.polygons == [[0]] * Chain.parse(text).links and lay.planar
+        assert lay.segments() == []
+    lay = layout(Chain.parse("0-1 1-2"))
+    assert lay.polygons == [[0], [0, 1], [1]] and lay.segments() == [(1, 0, 1)]
+    assert np.linalg.norm(lay.joints[0] - lay.joints[1]) == pytest.approx(2.0)
+
+
+def test_distances_to_sides_and_the_shaping_cost_by_hand():
+    from synth.draw._layout import _gaps, _Shape
+
+    a, ab = np.array([[1.0, 1.0]]), np.array([[2.0, 0.0]])  # the side from (1, 1) to (3, 1)
+    points = np.array([[2.0, 3.0], [0.0, 1.0], [4.0, 2.0], [1.5, 0.5]])
+    assert _gaps(points[:, None], a[None], ab[None]).ravel() == pytest.approx([2.0, 1.0, math.sqrt(2), 0.5])
+    # two bars, 0-1 along y = 0 and 2-3 along y = 1, of four joints: spacing 2/√4 = 1, so sides are kept 0.36
+    # apart from foreign joints, joints 0.72 from each other
+    pos = np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]])
+    shape = _Shape(pos, [[0, 1], [2, 3]])
+    assert (shape.side_gap, shape.joint_gap) == pytest.approx((0.36, 0.72))
+
+    def near(d, gap):
+        return (40 * max(0.0, 1 - d / gap)) ** 2
+
+    cost = shape.cost(0, np.array([[0, 0], [0.5, 0.6], [0.5, 0.8]]))
+    # where it is, nothing is too near; at (0.5, 0.6) it is 0.64 from joints 2 and 3 (the sides clear); at
+    # (0.5, 0.8) it is 0.2 from bar 2-3 and √0.29 from joints 2 and 3
+    assert cost == pytest.approx([0.0, 2 * near(math.sqrt(0.41), 0.72),
+                                  near(0.2, 0.36) + 2 * near(math.sqrt(0.29), 0.72)])
+    # a corner under 30° or over 160° costs the square of the degrees it is past; three joints: spacing 2/√3
+    big = np.array([[0, 0], [4, 0], [4, 4 * math.tan(math.radians(20))]])  # corners 20°, 90°, 70°, all apart
+    assert _Shape(big, [[0, 1, 2]]).cost(1, big[1:2]) == pytest.approx([(30 - 20) ** 2])
+    flat = np.array([[0, 0], [2, 0], [1, math.tan(math.radians(5))]])  # corners 5°, 5°, 170°; joint 2 near 0-1
+    shape = _Shape(flat, [[0, 1, 2]])
+    assert shape.cost(2, flat[2:]) == pytest.approx(
+        [(170 - 160) ** 2 + 2 * (30 - 5) ** 2 + near(math.tan(math.radians(5)), 0.36 * 2 / math.sqrt(3))])
+
+
+def test_the_inline_svg_places_each_mark_at_its_size():
+    def parsed(item, **options):
+        return [(tag, a) for tag, a in _svg_elements(svg_inline(item, **options))]
+
+    for chain in (WATT_MULTIPLE, GEARS, OPEN):
+        marks = _Marks(chain)
+        scale = 160 / (2 * marks.reach)
+
+        def at(p):
+            return round((p[0] + marks.reach) * scale, 1), round((marks.reach - p[1]) * scale, 1)
+
+        elements = parsed(chain, labels=True)
+        circles = [a for tag, a in elements if tag == "circle"]
+        for k, kind in enumerate(chain.kinds):
+            if kind == REVOLUTE:
+                (pin,) = [a for a in circles if a["stroke"] == REVOLUTE.stroke and
+                          (float(a["cx"]), float(a["cy"])) == at(marks.pos[k])]
+                assert float(pin["r"]) == pytest.approx(marks.r * scale, abs=0.06) and pin["fill"] == "white"
+            if len(chain.joints[k]) > 2:  # the ring and the multiplicity at its place
+                (ring,) = [a for a in circles if a["stroke"] == "#c0392b"]
+                assert (float(ring["cx"]), float(ring["cy"])) == at(marks.pos[k])
+                assert float(ring["r"]) == pytest.approx(1.75 * marks.r * scale, abs=0.06)
+                (number,) = [a for tag, a in elements if tag == "text" and a.get("fill") == "#c0392b"]
+                assert (float(number["x"]), float(number["y"])) == at(marks.numbers[k])
+            if kind == MESH:
+                pitch = [a for a in circles if a.get("class") == "mesh"
+                         and any((float(a["cx"]), float(a["cy"])) == at(c) for c, _ in marks.meshes[k])]
+                assert len(pitch) == 2 and all(float(a["r"]) == pytest.approx(1.25 * marks.r * scale, abs=0.06)
+                                               for a in pitch)
+        labels = {t.text: t for t in ET.fromstring(svg_inline(chain, labels=True)).iter() if t.tag.endswith("text")
+                  and t.get("font-size") == "8"}
+        for link in range(chain.links):
+            assert (float(labels[str(link)].get("x")), float(labels[str(link)].get("y"))) == at(marks.labels[link])
+    # a single-joint link: a bar from its joint to its free end and a square of side 2r there
+    marks = _Marks(OPEN)
+    scale = 160 / (2 * marks.reach)
+    end = marks.free_ends[3]
+    x, y = (end[0] + marks.reach) * scale, (marks.reach - end[1]) * scale
+    (square,) = [a for tag, a in parsed(OPEN) if tag == "rect"]
+    assert float(square["x"]) == pytest.approx(x - marks.r * scale, abs=0.11)
+    assert float(square["y"]) == pytest.approx(y - marks.r * scale, abs=0.11)
+    assert float(square["width"]) == float(square["height"]) == pytest.approx(2 * marks.r * scale, abs=0.06)
+    (bar,) = [a for tag, a in parsed(OPEN) if tag == "polyline"]
+    assert bar["points"].split()[1] == f"{x:.1f},{y:.1f}"
+
+
+def test_the_input_arrow_turns_at_the_input_joint():
+    from matplotlib.patches import FancyArrowPatch
+
+    mechanism = Mechanism(WATT_MULTIPLE, 0, 4)
+    fig, ax = _axes(mechanism)
+    marks = _Marks(WATT_MULTIPLE)
+    k = next(i for i, j in enumerate(WATT_MULTIPLE.joints) if set(j) == {0, 4})
+    (arrow,) = [p for p in ax.patches if isinstance(p, FancyArrowPatch)]
+    x, y = marks.pos[k]
+    start, end = arrow._posA_posB
+    assert np.allclose(start, (x + 2.6 * marks.r, y)) and np.allclose(end, (x, y + 2.6 * marks.r))
+    assert _colour(arrow) == "#c0392b"

@@ -604,7 +604,7 @@ def arm_from_table(a: ArmTable, source: str = "<arm>") -> Arm:
         if t.joint == "prismatic":
             if not t.stroke > 0:
                 raise InvalidArm(f"{source}: {where} is prismatic and needs a positive 'stroke' (m).")
-            rng = tuple(t.range) if t.range is not None else (-t.stroke / 2, t.stroke / 2)
+            rng = tuple(t.range) if t.range is not None else None  # None: the whole stroke (Link.limits)
             if t.gear_ratio is not None:
                 k = t.gear_ratio
             else:

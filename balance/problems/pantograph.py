@@ -47,17 +47,21 @@ def _cylinder(p: Pantograph, th: np.ndarray) -> np.ndarray:
     return np.stack([length, lever], axis=1)
 
 
+def _gravity(p: Pantograph, th: np.ndarray) -> np.ndarray:
+    """Per configuration: the gravity forces on (θ2, θ3) at payloads 0, ½, 1 (m, 6)."""
+    return np.concatenate([p.gravity_forces(th, frac) for frac in PAYLOADS], axis=1)
+
+
 def _residuals(p: Pantograph, th: np.ndarray) -> np.ndarray:
-    """Virtual-work residual on (θ2, θ3) at payloads 0, ½, 1, then the gravity forces (m, 12)."""
+    """Per configuration: the virtual-work residual on (θ2, θ3) at payloads 0, ½, 1 (m, 6)."""
     ds, drho = stroke_gradients(p, th)
     t = p.term()
-    res, grav = [], []
+    res = []
     for frac in PAYLOADS:
         q = p.gravity_forces(th, frac)
-        grav.append(q.copy())
         q[:, 0] += t.moment(th[:, 0])
         res.append(q + p.cylinder_force(th, frac)[:, None] * ds + p.hand_force(th, frac)[:, None] * drho)
-    return np.concatenate(res + grav, axis=1)
+    return np.concatenate(res, axis=1)
 
 
 def _magnitude(pair: tuple[Extreme, Extreme]) -> float:
@@ -260,7 +264,7 @@ class PantographProblem:
 
         def unit():
             with np.errstate(all="ignore"):  # a cylinder through A is refused below, not here
-                return _forces(p, probe), _cylinder(p, probe), _residuals(p, probe)
+                return _forces(p, probe), _cylinder(p, probe), _gravity(p, probe), _residuals(p, probe)
 
         ensure_affordable(f"checking {self.samples} configurations", self.samples, unit, self.work_limit,
                           per=len(probe))
@@ -271,9 +275,10 @@ class PantographProblem:
             raise InvalidArm("the cylinder's line of action passes through A in the workspace, so it cannot hold "
                              "the pantograph there; move its base (cylinder.base).")
         ext = box_extremes(lambda x: _forces(p, x), lo, hi, th)
-        res = box_extremes(lambda x: _residuals(p, x), lo, hi, th, floor=math.inf)
+        mg = max(_magnitude(e) for e in box_extremes(lambda x: _gravity(p, x), lo, hi, th))
+        # the residual of an exact balance is rounding noise: searched only where it is more (as an arm's check)
+        res = box_extremes(lambda x: _residuals(p, x), lo, hi, th, floor=1e-11 * mg)
         residual = {f: max(_magnitude(res[2 * i]), _magnitude(res[2 * i + 1])) for i, f in enumerate(PAYLOADS)}
-        mg = max(_magnitude(e) for e in res[6:])
         return PantographBalance(p, dict(zip(PAYLOADS, ext[:3])), dict(zip(PAYLOADS, ext[3:6])), length, lever,
                                  residual, mg, self.samples, self.seed, self.r, self.r0)
 

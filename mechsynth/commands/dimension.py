@@ -27,7 +27,7 @@ import math
 import os
 import sys
 
-from .._argtypes import mechanism_of, number_range, output_file, seconds, whole, workers
+from .._argtypes import finite, mechanism_of, number_range, output_file, seconds, whole, workers
 from .._output import pairs, write_document
 
 __all__ = ["add_commands"]
@@ -39,16 +39,6 @@ def _picture(text: str) -> str:
 
 def _saved(text: str) -> str:
     return output_file(text, (".toml", ".json"), "the linkage")
-
-
-def _number(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, not {text!r}")
-    return value
 
 
 def _limits(text: str) -> tuple[float, float]:
@@ -89,12 +79,12 @@ def add_commands(sub) -> None:
     p.add_argument("--crank", action="store_true", help="the input must turn fully")
     p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
                    "length for a slide) over the target")
-    p.add_argument("--min-transmission", type=_number, metavar="DEG", help="least transmission angle of every "
+    p.add_argument("--min-transmission", type=finite, metavar="DEG", help="least transmission angle of every "
                    "dyad over the target (over the turn for a crank), degrees")
-    p.add_argument("--max-ratio", type=_number, metavar="R", help="bound on the longest over the shortest "
+    p.add_argument("--max-ratio", type=finite, metavar="R", help="bound on the longest over the shortest "
                    "distance between two joints of one link")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
-    p.add_argument("--reach", type=_number, help="the search box: joints within this many target "
+    p.add_argument("--reach", type=finite, help="the search box: joints within this many target "
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned)")

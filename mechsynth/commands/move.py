@@ -30,7 +30,7 @@ import math
 import os
 import sys
 
-from .._argtypes import mechanism_of, output_file, positive, whole
+from .._argtypes import finite, mechanism_of, output_file, positive, whole
 from .._output import pairs, write_document, write_rows
 
 __all__ = ["add_commands"]
@@ -56,17 +56,11 @@ def _saved(text: str) -> str:
 
 def _numbers(text: str) -> tuple[float, ...]:
     """One finite number, or one per input separated by commas (``80,100``)."""
-    out = []
-    for part in text.split(","):
-        try:
-            value = float(part)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"expected a number, or one per input separated by commas, not "
-                                             f"{text!r}") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"expected finite numbers, not {text!r}")
-        out.append(value)
-    return tuple(out)
+    try:
+        return tuple(finite(part) for part in text.split(","))
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"expected a finite number, or one per input separated by commas, not "
+                                         f"{text!r}") from None
 
 
 def _counts(text: str) -> tuple[int, ...]:

@@ -228,8 +228,7 @@ def _plot(run: Run) -> Figures:
     return Figures(tuple(files), True)
 
 
-FAMILY.table(SceneTable("plot", lambda raw, path, compute: Plot.read(raw, source=path, where="[plot]", error=SceneError),
-                     "the figure's file name"))
+FAMILY.table(SceneTable.typed("plot", Plot, "the figure's file name"))
 FAMILY.kind(ComputeKind(
     "plot", "a figure of the balance result (balance.plots): device moment, laws or residuals, written to --out",
     None, _plot, expect={"plotted": Expectation(Flag, ("written",))}, check=_check_plot,

@@ -54,10 +54,8 @@ class GearAtlasTable(Table):
 FAMILY = Family("gear_trains")  # its tables and computations, registered by mechsynth.scene
 
 
-FAMILY.table(SceneTable("gear_train", lambda raw, path, compute: GearTrainTable.read(
-    raw, source=path, where="[gear_train]", error=SceneError), "the train (and its mechanisms, teeth, ratio)"))
-FAMILY.table(SceneTable("gear_atlas", lambda raw, path, compute: GearAtlasTable.read(
-    raw, source=path, where="[gear_atlas]", error=SceneError), "the DOF and the number of links"))
+FAMILY.table(SceneTable.typed("gear_train", GearTrainTable, "the train (and its mechanisms, teeth, ratio)"))
+FAMILY.table(SceneTable.typed("gear_atlas", GearAtlasTable, "the DOF and the number of links"))
 
 
 @dataclass(frozen=True)

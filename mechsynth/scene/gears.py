@@ -16,7 +16,6 @@ from mechbase import Row
 from mechbase.schema import Table
 
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
-from .results import SceneError
 from .types import Count, Flag, Int, RangeText, Text, Texts, Whole, WholeTable
 
 __all__ = ["Prismatic", "Planetary", "Variants", "PlanetaryLever"]
@@ -40,10 +39,8 @@ class Planetary(Table):
 FAMILY = Family("gears")  # its tables and computations, registered by mechsynth.scene
 
 
-FAMILY.table(SceneTable("prismatic", lambda raw, path, compute: Prismatic.read(
-    raw, source=path, where="[prismatic]", error=SceneError), "the chain and the number of P pairs"))
-FAMILY.table(SceneTable("planetary", lambda raw, path, compute: Planetary.read(
-    raw, source=path, where="[planetary]", error=SceneError), "the satellites and the sun"))
+FAMILY.table(SceneTable.typed("prismatic", Prismatic, "the chain and the number of P pairs"))
+FAMILY.table(SceneTable.typed("planetary", Planetary, "the satellites and the sun"))
 
 
 @dataclass(frozen=True)

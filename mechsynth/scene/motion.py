@@ -80,8 +80,7 @@ def _read_closed_form(raw, path: str, compute) -> ClosedForm:
 FAMILY = Family("motion")  # its tables and computations, registered by mechsynth.scene
 
 FAMILY.table(SceneTable("linkage", _read_linkage, "the linkage: chain, frame, inputs, points (slides, meshes, tracers)"))
-FAMILY.table(SceneTable("sweep", lambda raw, path, compute: Sweep.read(raw, source=path, where="[sweep]",
-                                                                         error=SceneError), "the number of steps"))
+FAMILY.table(SceneTable.typed("sweep", Sweep, "the number of steps"))
 FAMILY.table(SceneTable("closed_form", _read_closed_form, "the formula that checks the solver (kind = …)"))
 
 
@@ -424,12 +423,7 @@ def _closed_form(run: Run) -> Row:
     table = run.scene.tables["closed_form"]
     motion = run.shared("motion", lambda: sweep(linkage, steps=_steps(run), velocities=True))
     if table.kind == "dyads":
-        driver = linkage.inputs[0]
-        if table.driver is not None:
-            links = tuple(sorted(int(x) for x in table.driver.split("-")))
-            if links not in linkage.chain.joints:
-                raise SceneError(f"[closed_form] driver {table.driver!r} is not a joint of the chain")
-            driver = linkage.chain.joints.index(links)
+        driver = linkage.inputs[0] if table.driver is None else linkage.chain.joint_index(table.driver, "driver")
         rebuilt = _by_dyads(linkage, motion, driver)
         return DyadCheck(float(np.nanmax(np.hypot(*(rebuilt - motion.joints).reshape(-1, 2).T))),
                          _freudenstein(linkage, motion))

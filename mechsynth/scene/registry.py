@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from .compare import equal
-from .results import Scene
+from .results import Scene, SceneError
 
 __all__ = ["Expectation", "ComputeKind", "SceneTable", "Run", "KINDS", "TABLES", "Family", "register"]
 
@@ -115,6 +115,20 @@ class SceneTable:
     name: str
     read: Callable[[Any, str, frozenset], Any]
     hint: str
+
+    @classmethod
+    def typed(cls, name: str, schema, hint: str) -> "SceneTable":
+        """The table ``[name]`` read as ``schema`` (a :class:`mechbase.schema.Table`, its validators given
+        the scene's computations as ``compute``), its errors as :class:`~mechsynth.scene.SceneError`.
+
+        >>> from mechbase.schema import Table
+        >>> class Steps(Table):
+        ...     steps: int = 10
+        >>> SceneTable.typed("sweep", Steps, "the number of steps").read({"steps": 5}, "a.toml", frozenset()).steps
+        5
+        """
+        return cls(name, lambda raw, path, compute: schema.read(raw, source=path, where=f"[{name}]", error=SceneError,
+                                                                context={"compute": compute}), hint)
 
 
 @dataclass

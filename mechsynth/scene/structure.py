@@ -25,7 +25,7 @@ from mechbase.schema import FileName, Table, expect, refine
 
 from . import compare
 from .registry import ComputeKind, Expectation, Run, SceneTable, Family
-from .results import Scene, SceneError
+from .results import Scene
 from .types import (Count, Flag, Int, IndexTable, RangeText, Require, Text, Whole, WholeTable, Wholes)
 
 __all__ = ["Structure", "Drawing", "CODES", "CHAINS", "ANALYSIS", "CodeList", "ChainCount", "ListedChain",
@@ -138,13 +138,8 @@ class Drawing(Table):
 FAMILY = Family("structure")  # its tables and computations, registered by mechsynth.scene
 
 
-FAMILY.table(SceneTable(
-    "structure", lambda raw, path, compute: Structure.read(raw, source=path, where="[structure]", error=SceneError,
-                                                           context={"compute": compute}),
-    "dof and loops, links, a code, counts or a chain"))
-FAMILY.table(SceneTable(
-    "drawing", lambda raw, path, compute: Drawing.read(raw, source=path, where="[drawing]", error=SceneError),
-    "the sheet's options"))
+FAMILY.table(SceneTable.typed("structure", Structure, "dof and loops, links, a code, counts or a chain"))
+FAMILY.table(SceneTable.typed("drawing", Drawing, "the sheet's options"))
 
 
 # --------------------------------------------------------------------------- checks

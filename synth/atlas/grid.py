@@ -59,14 +59,12 @@ from mechbase import read_toml_text, show
 from mechbase.schema import Flag, RangeText, Table, Text, expect, parse_range_text, refine
 
 from ..synthesis.number_synthesis import parse_requirements
-from ..structure.query import ChainQuery
+from ..structure.query import ChainQuery, Range
 from ..synthesis.type_synthesis import Unit, plan_many
 from ..errors import SynthesisError
 from ..schema import Require
 
 __all__ = ["GridFileError", "Cell", "GearCell", "Grid", "load_grid", "parse_grid"]
-
-Range = tuple[int, int | None]
 
 
 class GridFileError(SynthesisError):

@@ -417,7 +417,7 @@ def _polish_topology(task: _Polish):
 
     chain = Chain.from_dict(json.loads(task.chain_json))
     clock = time.process_time()
-    best, best_candidate, tried, why = None, None, 0, None
+    best, best_candidate, tried, why = None, None, 0, "its share of the time budget was spent before a polish began"
     centre = (np.min(task.target.points, axis=0) + np.max(task.target.points, axis=0)) / 2
 
     def polish(start, tracer_link):

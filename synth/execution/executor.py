@@ -41,7 +41,6 @@ import os
 import queue
 import signal
 import sys
-import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
@@ -57,7 +56,7 @@ def _worker_start(parent: int) -> None:
         try:
             import ctypes
 
-            ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+            ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
         except (OSError, AttributeError):  # pragma: no cover - no prctl: workers end after their task
             pass
     if os.getppid() != parent:  # the parent died before prctl took effect
@@ -74,7 +73,7 @@ def process_pool(workers: int):
     import multiprocessing  # (here: a query that stays inline never loads it)
 
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    hold = hasattr(signal, "pthread_sigmask")  # (in any thread: the forking thread's mask is what the fork sees)
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
     try:
         return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
@@ -98,13 +97,11 @@ def _expand_and_work(args):
 
 
 class _Finished:
-    """The results of units a stage-A task already worked on, standing where a batch's task would."""
+    """The results of units a stage-A task already worked on, standing where a batch's task would
+    (only ever read: it is never in flight)."""
 
     def __init__(self, results: list, seconds: float):
         self._value = results, seconds
-
-    def ready(self) -> bool:
-        return True
 
     def get(self):
         return self._value

@@ -4,8 +4,10 @@ CP-SAT searches without the GIL, and Python runs its SIGINT handler only between
 the main thread: a search that finds no solution for minutes would hold Ctrl-C back for
 minutes.  Python also writes the number of every caught signal to its wakeup file descriptor; a
 daemon thread reading it stops the searches running now, and the pending handler raises
-KeyboardInterrupt as soon as ``solve`` returns.  (Pool workers ignore SIGINT: their parent
-terminates them.)  The solver is whatever has ``solve(model, callback)`` and ``stop_search()``
+KeyboardInterrupt as soon as ``solve`` returns.  For one second after each Ctrl-C, the thread
+stops every search that began before it or in the instant after it, checking every 50 ms; other
+signals stop nothing, and a full descriptor is never reported on stderr.  (Pool workers ignore
+SIGINT: their parent terminates them.)  The solver is whatever has ``solve(model, callback)`` and ``stop_search()``
 (OR-Tools' ``CpSolver``): this module never loads OR-Tools itself.
 
 Example
@@ -55,7 +57,7 @@ def solve_stoppably(solver, model, callback=None):
     try:
         return solver.solve(model, callback)
     finally:
-        _RUNNING.pop(solver, None)
+        del _RUNNING[solver]
 
 
 def _watch_interrupts() -> None:

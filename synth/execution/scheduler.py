@@ -1,7 +1,7 @@
 """Connecting to a Dask scheduler (``--scheduler ADDRESS``): one sentence when it cannot be done.
 
 The address is checked before Dask is even imported, and a TCP scheduler must accept a
-connection within the timeout, and then answer Dask's handshake, before a ``distributed.Client``
+connection and answer Dask's handshake, both within the timeout, before a ``distributed.Client``
 is built, so a wrong address fails fast and quietly (a half-built Client would otherwise spend
 ten seconds closing itself at exit and print "Exception ignored …").
 
@@ -54,6 +54,9 @@ def connect(address: str, timeout: float = 5.0):
         raise SchedulerUnreachable("a Dask scheduler needs the 'distributed' package (pip install dask[distributed])") from None
     try:
         _handshake(f"{scheme}://{match.group(2)}:{port}", timeout)
+    except TimeoutError:
+        raise SchedulerUnreachable(f"{address} accepted the connection but did not answer as a Dask scheduler "
+                                   f"within {timeout:g} s") from None
     except Exception as exc:  # a garbled answer can raise anything in Dask's reader (a 3 EiB frame: MemoryError)
         raise SchedulerUnreachable(f"{address} answered, but not as a Dask scheduler ({type(exc).__name__})") from None
     try:
@@ -67,16 +70,18 @@ def connect(address: str, timeout: float = 5.0):
 def _handshake(address: str, timeout: float) -> None:
     """Dask's handshake on a connection of its own, closed at once: whatever answers there but is not
     a scheduler fails here (a proxy's HTTP reply read as a frame length), before a ``Client`` exists,
-    which once half built cannot be closed quietly.  In a thread of its own, so that a caller with a
-    running event loop (a notebook) can call it too."""
+    which once half built cannot be closed quietly.  The whole of it within ``timeout`` seconds: Dask's
+    ``connect`` bounds its connection attempts only and then waits for the handshake's answer for ever,
+    so a port that accepts and stays silent raises TimeoutError here.  In a thread of its own, so that a
+    caller with a running event loop (a notebook) can call it too."""
     import asyncio
     from concurrent.futures import ThreadPoolExecutor
 
     from distributed.comm import connect as dask_connect
 
     async def shake():
-        comm = await dask_connect(address, timeout=timeout)
+        comm = await dask_connect(address)  # (bounded as a whole below)
         await comm.close()
 
     with ThreadPoolExecutor(1) as thread:
-        thread.submit(asyncio.run, shake()).result()
+        thread.submit(asyncio.run, asyncio.wait_for(shake(), timeout)).result()

@@ -142,6 +142,8 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
         raise InvalidOption("a speed ratio of 0 would need an output that never turns")
     if tol < 0:
         raise InvalidOption(f"the tolerance must be ≥ 0, not {tolerance}")
+    if teeth[0] < 1:
+        raise InvalidOption(f"a gear has at least 1 tooth: the tooth range {teeth[0]}..{teeth[1]} starts below 1")
     lo, hi = max(teeth[0], min_teeth), teeth[1]
     if lo > hi:
         raise InvalidOption(f"no tooth number fits {teeth[0]}..{teeth[1]} with at least {min_teeth} teeth "

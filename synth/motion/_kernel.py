@@ -67,6 +67,14 @@ def _between(vx, vy, wx, wy):
     return math.atan2(abs(vx * wy - vy * wx), vx * wx + vy * wy)
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _between_slides(cos, sin, tx, ty, b, slides, link1, k1, link2, k2):
+    """The angle between slide k1 carried by link1 and slide k2 carried by link2 at step b."""
+    u1x, u1y = _at(cos, sin, tx, ty, link1, b, slides[k1, 0], slides[k1, 1], False)
+    u2x, u2y = _at(cos, sin, tx, ty, link2, b, slides[k2, 0], slides[k2, 1], False)
+    return _between(u1x, u1y, u2x, u2y)
+
+
 @njit(cache=True, error_model="numpy")
 def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, groups, ints, floats, points, slides,
                  carried_link, carried_point, scale2, theta, t_x, t_y, g, mu, carried):
@@ -150,9 +158,7 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                         angle = th[h2, b] + (th[a, b] - th[h2, b]) / ratio
                     else:
                         angle = th[h2, b] + ratio * (th[b_, b] - th[h2, b])
-                    c1, s1 = cos[h1, b], sin[h1, b]
-                    ax = c1 * a0x - s1 * a0y + tx[h1, b]
-                    ay = s1 * a0x + c1 * a0y + ty[h1, b]
+                    ax, ay = _at(cos, sin, tx, ty, h1, b, a0x, a0y)
                     _place(cos, sin, tx, ty, i, b, math.cos(angle), math.sin(angle), ax, ay, a0x, a0y)
                     th[i, b] = angle
                     gs[m, b] = 1.0
@@ -164,11 +170,8 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                 lj2, inv_lj2, vjx, vjy = const[m, 0], const[m, 1], const[m, 2], const[m, 3]
                 li2, inv_li2, vix, viy = const[m, 4], const[m, 5], const[m, 6], const[m, 7]
                 for b in range(nb):
-                    c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
-                    ax = c1 * a0x - s1 * a0y + tx[h1, b]
-                    ay = s1 * a0x + c1 * a0y + ty[h1, b]
-                    cx = c2 * c0x - s2 * c0y + tx[h2, b]
-                    cy = s2 * c0x + c2 * c0y + ty[h2, b]
+                    ax, ay = _at(cos, sin, tx, ty, h1, b, a0x, a0y)
+                    cx, cy = _at(cos, sin, tx, ty, h2, b, c0x, c0y)
                     dx, dy = cx - ax, cy - ay
                     dd = dx * dx + dy * dy
                     inv = 1.0 / dd  # (dd = 0: NaN below, and g = −1)
@@ -196,20 +199,16 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                 u0x, u0y = slides[k1, 0], slides[k1, 1]
                 lj2, inv_lj2, vjx, vjy = const[m, 0], const[m, 1], const[m, 2], const[m, 3]
                 for b in range(nb):
-                    c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
-                    ux = c1 * u0x - s1 * u0y
-                    uy = s1 * u0x + c1 * u0y
-                    basex = c1 * b0x - s1 * b0y + tx[h1, b]
-                    basey = s1 * b0x + c1 * b0y + ty[h1, b]
-                    cx = c2 * c0x - s2 * c0y + tx[h2, b]
-                    cy = s2 * c0x + c2 * c0y + ty[h2, b]
+                    ux, uy = _at(cos, sin, tx, ty, h1, b, u0x, u0y, False)
+                    basex, basey = _at(cos, sin, tx, ty, h1, b, b0x, b0y)
+                    cx, cy = _at(cos, sin, tx, ty, h2, b, c0x, c0y)
                     wx, wy = basex - cx, basey - cy
                     bb = ux * wx + uy * wy
                     disc = bb * bb - (wx * wx + wy * wy) + lj2
                     gs[m, b] = disc * inv_lj2
                     slide = -bb + sign * math.sqrt(max(disc, 0.0)) if gs[m, b] >= -ROUNDING else np.nan
                     bx, by = basex + slide * ux, basey + slide * uy
-                    cos[i, b], sin[i, b] = c1, s1
+                    cos[i, b], sin[i, b] = cos[h1, b], sin[h1, b]
                     tx[i, b] = tx[h1, b] + slide * ux
                     ty[i, b] = ty[h1, b] + slide * uy
                     cj, sj = _turn(bx - cx, by - cy, vjx, vjy, inv_lj2, disc < 0.0)
@@ -226,11 +225,8 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                 u0x, u0y = slides[k3, 0], slides[k3, 1]
                 h = const[m, 0]
                 for b in range(nb):
-                    c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
-                    ax = c1 * a0x - s1 * a0y + tx[h1, b]
-                    ay = s1 * a0x + c1 * a0y + ty[h1, b]
-                    cx = c2 * c0x - s2 * c0y + tx[h2, b]
-                    cy = s2 * c0x + c2 * c0y + ty[h2, b]
+                    ax, ay = _at(cos, sin, tx, ty, h1, b, a0x, a0y)
+                    cx, cy = _at(cos, sin, tx, ty, h2, b, c0x, c0y)
                     dx, dy = cx - ax, cy - ay
                     disc = dx * dx + dy * dy - h * h
                     gs[m, b] = disc * inv_scale2
@@ -251,14 +247,12 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
             elif kind == RPP:  # i turns about A with j, j slides on h2's line, i on j's: both turn with h2
                 a0x, a0y = points[k1, 0], points[k1, 1]
                 for b in range(nb):
-                    c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
-                    ax = c1 * a0x - s1 * a0y + tx[h1, b]
-                    ay = s1 * a0x + c1 * a0y + ty[h1, b]
+                    c2, s2 = cos[h2, b], sin[h2, b]
+                    ax, ay = _at(cos, sin, tx, ty, h1, b, a0x, a0y)
                     _place(cos, sin, tx, ty, i, b, c2, s2, ax, ay, a0x, a0y)
-                    u2x = c2 * slides[k2, 0] - s2 * slides[k2, 1]  # the outer slide's direction
-                    u2y = s2 * slides[k2, 0] + c2 * slides[k2, 1]
-                    u3x = c2 * slides[k3, 0] - s2 * slides[k3, 1]  # the middle slide's
-                    u3y = s2 * slides[k3, 0] + c2 * slides[k3, 1]
+                    # the directions of the outer slide and of the middle one
+                    u2x, u2y = _at(cos, sin, tx, ty, h2, b, slides[k2, 0], slides[k2, 1], False)
+                    u3x, u3y = _at(cos, sin, tx, ty, h2, b, slides[k3, 0], slides[k3, 1], False)
                     # t_j = t_h2 + s₂u₂ = t_i + s₃u₃: s₂ = (t_i − t_h2) × u₃ / (u₂ × u₃)
                     det = u2x * u3y - u2y * u3x
                     gs[m, b] = det * det
@@ -268,19 +262,16 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                     ty[j, b] = ty[h2, b] + along * u2y
                 if keep_mu:  # between the two slides
                     for b in range(nb):
-                        u2x, u2y = _at(cos, sin, tx, ty, j, b, slides[k2, 0], slides[k2, 1], False)
-                        u3x, u3y = _at(cos, sin, tx, ty, j, b, slides[k3, 0], slides[k3, 1], False)
-                        mu[s0 + b, m] = _between(u2x, u2y, u3x, u3y)
+                        mu[s0 + b, m] = _between_slides(cos, sin, tx, ty, b, slides, j, k2, j, k3)
             else:  # PRP
                 b0x, b0y = points[k3, 0], points[k3, 1]
                 for b in range(nb):
                     c1, s1, c2, s2 = cos[h1, b], sin[h1, b], cos[h2, b], sin[h2, b]
-                    u1x = c1 * slides[k1, 0] - s1 * slides[k1, 1]
-                    u1y = s1 * slides[k1, 0] + c1 * slides[k1, 1]
-                    u2x = c2 * slides[k2, 0] - s2 * slides[k2, 1]
-                    u2y = s2 * slides[k2, 0] + c2 * slides[k2, 1]
-                    deltax = (c2 * b0x - s2 * b0y + tx[h2, b]) - (c1 * b0x - s1 * b0y + tx[h1, b])
-                    deltay = (s2 * b0x + c2 * b0y + ty[h2, b]) - (s1 * b0x + c1 * b0y + ty[h1, b])
+                    u1x, u1y = _at(cos, sin, tx, ty, h1, b, slides[k1, 0], slides[k1, 1], False)
+                    u2x, u2y = _at(cos, sin, tx, ty, h2, b, slides[k2, 0], slides[k2, 1], False)
+                    b2x, b2y = _at(cos, sin, tx, ty, h2, b, b0x, b0y)
+                    b1x, b1y = _at(cos, sin, tx, ty, h1, b, b0x, b0y)
+                    deltax, deltay = b2x - b1x, b2y - b1y
                     det = u2x * u1y - u2y * u1x
                     gs[m, b] = det * det
                     s1_ = (deltax * (-u2y) - deltay * (-u2x)) / det if det != 0.0 else np.nan
@@ -292,9 +283,7 @@ def close_kernel(offsets, spaced, in_link, in_prismatic, in_point, in_slide, gro
                     ty[j, b] = ty[h2, b] + s2_ * u2y
                 if keep_mu:  # between the two slides
                     for b in range(nb):
-                        u1x, u1y = _at(cos, sin, tx, ty, i, b, slides[k1, 0], slides[k1, 1], False)
-                        u2x, u2y = _at(cos, sin, tx, ty, j, b, slides[k2, 0], slides[k2, 1], False)
-                        mu[s0 + b, m] = _between(u1x, u1y, u2x, u2y)
+                        mu[s0 + b, m] = _between_slides(cos, sin, tx, ty, b, slides, i, k1, j, k2)
             if angles and kind != GEAR:  # the angles of the group's links: a slider's is its guide's
                 for b in range(nb):
                     th[i, b] = (th[h1, b] if kind == PRR or kind == PRP else th[h2, b] if kind == RPP

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -21,8 +20,8 @@ from mechbase.files import read_text
 from mechbase.toml import read_toml_text
 
 from ..display import svg_of
-from ..errors import BadPose, LockedMechanism, MalformedChain, MotionError, WrongInputs
-from ..structure.chain import Chain, Mechanism
+from ..errors import BadPose, LockedMechanism, MalformedChain, MotionError, UnknownJoint, WrongInputs
+from ..structure.chain import Chain, Mechanism, joint_links
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 
 __all__ = ["Linkage", "read_linkage", "joint_name"]
@@ -43,18 +42,10 @@ def joint_name(chain: Chain, k: int) -> str:
 
 def _joint_index(chain: Chain, key, what: str) -> int:
     """The joint a user names by its links (``"1-2"``, ``"2=1"``, ``[1, 2]``) or by its index."""
-    if isinstance(key, int) and not isinstance(key, bool):
-        if 0 <= key < len(chain.joints):
-            return key
-        raise MotionError(f"{what} names joint {key}, but the chain has joints 0 … {len(chain.joints) - 1}")
     try:
-        links = tuple(sorted(int(x) for x in (re.split(r"[-=~]", key) if isinstance(key, str) else key)))
-    except (TypeError, ValueError):
-        raise MotionError(f"{what} names joint {key!r}: write a joint by its links, e.g. '1-2'") from None
-    for k, j in enumerate(chain.joints):
-        if j == links:
-            return k
-    raise MotionError(f"{what} names joint {key!r}, which is not a joint of the chain {chain.compact()}")
+        return chain.joint_index(key, what)
+    except UnknownJoint as exc:
+        raise MotionError(str(exc)) from None
 
 
 def _input_joint(chain: Chain, frame: int, key) -> tuple[int, int | None]:
@@ -65,10 +56,7 @@ def _input_joint(chain: Chain, frame: int, key) -> tuple[int, int | None]:
     except MotionError:
         if not isinstance(key, str):
             raise
-        try:
-            links = {int(x) for x in re.split(r"[-=~]", key)}
-        except ValueError:
-            raise MotionError(f"'inputs' names joint {key!r}: write a joint by its links, e.g. '0-1'") from None
+        links = set(joint_links(key) or ())
         holding = [k for k, j in enumerate(chain.joints) if links <= set(j)]
         if len(links) != 2 or frame not in links or len(holding) != 1:
             raise

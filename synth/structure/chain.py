@@ -25,13 +25,13 @@ from functools import cached_property
 
 import pynauty
 
-from ..errors import MalformedChain
+from ..errors import MalformedChain, UnknownJoint
 from .code import Code
 from ..display import svg_of
 from .disjoint import DisjointSets
 from .joints import JOINT_KINDS, MESH, PRISMATIC, REVOLUTE, JointKind
 
-__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "JointKind", "chain_id", "check_as_written"]
+__all__ = ["Chain", "Mechanism", "JOINT_KINDS", "JointKind", "chain_id", "check_as_written", "joint_links"]
 
 
 @dataclass(frozen=True)
@@ -545,9 +545,58 @@ class Chain:
             text += " | " + "; ".join(([] if self.h == 3 else [f"h{self.h}"]) + bases)
         return text
 
+    def joint_index(self, name, what: str = "a joint name") -> int:
+        """The index of the joint a user names by its links — ``"1-2"``, ``"2=1"`` (any kind's sign, in
+        any order), ``[1, 2]`` — or by its index (an ``int``).
+
+        ``what`` says where the name was written (``"--input"``, ``"'inputs'"``); the error's sentence
+        begins with it.
+
+        Raises
+        ------
+        UnknownJoint
+            The name cannot be read as links, or names no joint of the chain.
+
+        Examples
+        --------
+        >>> four_bar = Chain.parse("0-1 1-2 2-3 3-0")
+        >>> four_bar.joint_index("2-1"), four_bar.joint_index([3, 0]), four_bar.joint_index(3)
+        (2, 1, 3)
+        >>> four_bar.joint_index("1-3", "--input")
+        Traceback (most recent call last):
+        ...
+        synth.errors.UnknownJoint: --input names joint '1-3', which is not a joint of the chain 0-1 0-3 1-2 2-3
+        """
+        if isinstance(name, int) and not isinstance(name, bool):
+            if 0 <= name < len(self.joints):
+                return name
+            raise UnknownJoint(f"{what} names joint {name}, but the chain has joints 0 … {len(self.joints) - 1}")
+        links = joint_links(name)
+        if links is None:
+            raise UnknownJoint(f"{what} names joint {name!r}: write a joint by its links, e.g. '1-2'")
+        try:
+            return self.joints.index(links)
+        except ValueError:
+            raise UnknownJoint(f"{what} names joint {name!r}, which is not a joint of the chain "
+                               f"{self.compact()}") from None
+
     def _repr_svg_(self) -> str:
         """The drawing Jupyter shows (links as polygons, multiple joints marked, links numbered)."""
         return svg_of(self)
+
+
+def joint_links(name) -> tuple[int, ...] | None:
+    """The links, sorted, of a joint written as ``"1-2"``, ``"2=1"``, ``"0-1-2"`` (any kind's sign) or
+    ``[1, 2]``; None if ``name`` is not written so (an index is not: see :meth:`Chain.joint_index`).
+
+    >>> joint_links("2=1"), joint_links((3, 0)), joint_links("1-x"), joint_links(2)
+    ((1, 2), (0, 3), None, None)
+    """
+    try:
+        return tuple(sorted(int(x) for x in (name.translate(_TO_DASH).split("-") if isinstance(name, str)
+                                             else name)))
+    except (TypeError, ValueError):
+        return None
 
 
 _BY_NAME = {kind.value: kind for kind in JointKind}  # a name or a member: members hash as their names

@@ -61,6 +61,8 @@ def _sparse(M, inner, pu, pv, x, cost_of, k, l, pebbles, arcs, seen, parent, sta
 
 @njit(cache=True)
 def _connected(m, pu, pv, x, root):
+    """Whether the pairs with x > 0 join the m vertices into one part: union–find on an array, the
+    compiled form of :class:`synth.structure.disjoint.DisjointSets` (numba compiles no dict-based class)."""
     for i in range(m):
         root[i] = i
     parts = m

@@ -474,9 +474,19 @@ def _lex_least(w, group):
     """
     import numpy as np
 
-    if not len(group):
+    if not len(group) or not len(w):
         return w
     images = np.asarray(group, dtype=np.int64)
+    base, edges = int(w.max()) + 1, w.shape[1]
+    if base ** edges < 1 << 62:
+        # each vector as one number of ``edges`` digits in ``base`` (the first edge the highest): lex order
+        # is the order of the numbers, and the image under g has the digit of edge g[e] at place e, so
+        # all the images' numbers are one integer product w @ places (exact in int64)
+        place = base ** np.arange(edges - 1, -1, -1, dtype=np.int64)
+        places = np.zeros((edges, len(images)), dtype=np.int64)
+        places[images.T, np.arange(len(images))] = place[:, None]
+        w = np.asarray(w, dtype=np.int64)
+        return w[w @ place <= (w @ places).min(axis=1)]
     step = max(1, _LEX_BLOCK // max(1, len(w) * w.shape[1]))
     for start in range(0, len(images), step):  # where w and an image first differ, w is smaller
         if not len(w):

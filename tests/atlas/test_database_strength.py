@@ -18,6 +18,8 @@ from synth.atlas import AtlasError, AtlasLocked, database, open_atlas, parse_gri
 from synth.atlas.database import SCHEMA_VERSION, acquire_run, refuse_unwritable, release_run, transaction
 from synth.structure.chain import Chain, chain_id
 
+from .helpers import as_version_3, sql
+
 #: every table of a version-4 atlas and its columns, written out from the module docstring's schema
 TABLES = {
     "meta": {"key", "value"},
@@ -48,13 +50,6 @@ def _tables(db: Path) -> dict[str, set[str]]:
     return out
 
 
-def _sql(db: Path, statement: str, *args) -> list[tuple]:
-    with sqlite3.connect(db) as conn:
-        rows = list(conn.execute(statement, args))
-    conn.close()
-    return rows
-
-
 @pytest.fixture
 def four_bar(tmp_path) -> Path:
     """An atlas of the one 1-DOF chain of four links (the four-bar)."""
@@ -69,7 +64,7 @@ def test_a_new_atlas_has_every_table_and_column_and_its_version(tmp_path):
     open_atlas(db, write=True).close()
     after = time.strftime("%Y-%m-%dT%H:%M:%S")
     assert _tables(db) == TABLES
-    meta = dict(_sql(db, "SELECT key, value FROM meta"))
+    meta = dict(sql(db, "SELECT key, value FROM meta"))
     assert meta["schema_version"] == str(SCHEMA_VERSION) == "4"
     assert before <= meta["created"] <= after and len(meta["created"]) == 19
     # an empty file (as `touch` leaves it) is a new atlas too
@@ -80,11 +75,11 @@ def test_a_new_atlas_has_every_table_and_column_and_its_version(tmp_path):
 
 
 def test_opening_an_atlas_twice_for_writing_keeps_it(four_bar):
-    rows = _sql(four_bar, "SELECT certificate FROM chains")
-    created = _sql(four_bar, "SELECT value FROM meta WHERE key = 'created'")
+    rows = sql(four_bar, "SELECT certificate FROM chains")
+    created = sql(four_bar, "SELECT value FROM meta WHERE key = 'created'")
     open_atlas(four_bar, write=True).close()
-    assert _sql(four_bar, "SELECT certificate FROM chains") == rows and len(rows) == 1
-    assert _sql(four_bar, "SELECT value FROM meta WHERE key = 'created'") == created
+    assert sql(four_bar, "SELECT certificate FROM chains") == rows and len(rows) == 1
+    assert sql(four_bar, "SELECT value FROM meta WHERE key = 'created'") == created
 
 
 def test_every_refusal_of_a_path_is_its_sentence(tmp_path):
@@ -180,7 +175,7 @@ def test_text_and_damaged_pages_are_refused_before_anything_is_written(four_bar,
     with pytest.raises(AtlasError) as e:
         open_atlas(text)
     assert str(e.value) == f"{text} is not an SQLite atlas or is damaged (file is not a database)"
-    (root,), = _sql(four_bar, "SELECT rootpage FROM sqlite_master WHERE name = 'chains'")
+    (root,), = sql(four_bar, "SELECT rootpage FROM sqlite_master WHERE name = 'chains'")
     data = bytearray(four_bar.read_bytes())
     page = int.from_bytes(data[16:18], "big")
     data[(root - 1) * page] = 0x42  # the chains table's root page: not a page type SQLite knows
@@ -217,17 +212,8 @@ def test_the_tables_of_a_schema_are_read_back_from_sqlite():
     assert database._columns(schema) == {"a": {"x", "y"}, "b": {"z"}}  # the index is no table
 
 
-def _as_version_3(db: Path) -> None:
-    with sqlite3.connect(db) as conn:
-        conn.execute("DROP TABLE trains")
-        conn.execute("DROP TABLE rotations")
-        conn.execute("ALTER TABLE chains DROP COLUMN meshes")
-        conn.execute("UPDATE meta SET value = '3' WHERE key = 'schema_version'")
-    conn.close()
-
-
 def test_a_version_3_atlas_is_read_through_views_and_upgraded_by_a_write(four_bar):
-    _as_version_3(four_bar)
+    as_version_3(four_bar)
     digest = _digest(four_bar)
     conn = open_atlas(four_bar)
     assert conn.execute("SELECT meshes FROM chains").fetchall() == [(0,)]
@@ -243,14 +229,14 @@ def test_a_version_3_atlas_is_read_through_views_and_upgraded_by_a_write(four_ba
 
 
 def test_the_upgrade_adds_the_gear_tables_and_keeps_every_chain(four_bar):
-    rows = _sql(four_bar, "SELECT certificate, code, chain FROM chains")
-    _as_version_3(four_bar)
+    rows = sql(four_bar, "SELECT certificate, code, chain FROM chains")
+    as_version_3(four_bar)
     conn = open_atlas(four_bar, write=True)
     conn.close()
     assert _tables(four_bar) == TABLES
-    assert _sql(four_bar, "SELECT value FROM meta WHERE key = 'schema_version'") == [("4",)]
-    assert _sql(four_bar, "SELECT certificate, code, chain FROM chains") == rows
-    assert _sql(four_bar, "SELECT meshes FROM chains") == [(0,)]
+    assert sql(four_bar, "SELECT value FROM meta WHERE key = 'schema_version'") == [("4",)]
+    assert sql(four_bar, "SELECT certificate, code, chain FROM chains") == rows
+    assert sql(four_bar, "SELECT meshes FROM chains") == [(0,)]
 
 
 def test_the_connection_knows_chain_ids_and_writes_at_once(four_bar):
@@ -266,7 +252,7 @@ def test_the_connection_knows_chain_ids_and_writes_at_once(four_bar):
     assert conn.isolation_level is None  # autocommit: each write is its own or inside transaction()
     conn.execute("INSERT INTO meta VALUES ('note', 'x')")
     conn.close()
-    assert _sql(four_bar, "SELECT value FROM meta WHERE key = 'note'") == [("x",)]
+    assert sql(four_bar, "SELECT value FROM meta WHERE key = 'note'") == [("x",)]
 
 
 def test_a_transaction_lands_whole_or_not_at_all(tmp_path):
@@ -282,7 +268,7 @@ def test_a_transaction_lands_whole_or_not_at_all(tmp_path):
             raise KeyboardInterrupt
     assert not conn.in_transaction
     conn.close()
-    assert dict(_sql(db, "SELECT key, value FROM meta")).keys() == {"schema_version", "created", "a"}
+    assert dict(sql(db, "SELECT key, value FROM meta")).keys() == {"schema_version", "created", "a"}
 
 
 def test_a_run_is_recorded_and_its_lock_taken_and_freed(tmp_path):
@@ -293,22 +279,22 @@ def test_a_run_is_recorded_and_its_lock_taken_and_freed(tmp_path):
     run = acquire_run(conn, db, grid, "local 2")
     t1 = time.time()
     assert run == 1
-    (rid, pid, host, source, started, finished, status, executor, units), = _sql(db, "SELECT * FROM runs")
+    (rid, pid, host, source, started, finished, status, executor, units), = sql(db, "SELECT * FROM runs")
     assert (rid, pid, host, source, finished, status, executor, units) == (
         1, os.getpid(), socket.gethostname(), "g.toml", None, "running", "local 2", 0)
     assert t0 <= started <= t1
-    assert _sql(db, "SELECT * FROM run_lock") == [(1, 1, os.getpid(), socket.gethostname(), started)]
+    assert sql(db, "SELECT * FROM run_lock") == [(1, 1, os.getpid(), socket.gethostname(), started)]
     # the same process may take its own lock again (a second run of one session): the first is closed as killed
     second = acquire_run(conn, db, grid, "local 1")
     assert second == 2
-    assert _sql(db, "SELECT id, status FROM runs ORDER BY id") == [(1, "killed"), (2, "running")]
-    assert _sql(db, "SELECT finished >= ? FROM runs WHERE id = 1", started) == [(1,)]
+    assert sql(db, "SELECT id, status FROM runs ORDER BY id") == [(1, "killed"), (2, "running")]
+    assert sql(db, "SELECT finished >= ? FROM runs WHERE id = 1", started) == [(1,)]
     release_run(conn, second, "interrupted", 7)
     t2 = time.time()
-    (status, finished, units), = _sql(db, "SELECT status, finished, units_run FROM runs WHERE id = 2")
+    (status, finished, units), = sql(db, "SELECT status, finished, units_run FROM runs WHERE id = 2")
     assert (status, units) == ("interrupted", 7) and t1 <= finished <= t2
-    assert _sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
-    assert _sql(db, "SELECT status FROM runs WHERE id = 1") == [("killed",)]  # a finished run is not touched
+    assert sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
+    assert sql(db, "SELECT status FROM runs WHERE id = 1") == [("killed",)]  # a finished run is not touched
     conn.close()
 
 
@@ -328,14 +314,14 @@ def test_a_live_lock_names_its_holder_and_changes_nothing(tmp_path):
         when = time.strftime("%H:%M:%S", time.localtime(started))
         assert str(e.value) == (f"the atlas {db} is being written by another grid run (pid {sleeper.pid} on "
                                 f"{socket.gethostname()}, started {when}); wait for it to finish or use another atlas file")
-        assert _sql(db, "SELECT id, status FROM runs") == [(1, "running")]
+        assert sql(db, "SELECT id, status FROM runs") == [(1, "running")]
     finally:
         sleeper.kill()
         sleeper.wait()
     # the holder is dead now: its run is closed as killed and the lock taken over
     assert acquire_run(conn, db, grid, "local 1") == 2
-    assert _sql(db, "SELECT id, status FROM runs ORDER BY id") == [(1, "killed"), (2, "running")]
-    assert _sql(db, "SELECT run, pid FROM run_lock") == [(2, os.getpid())]
+    assert sql(db, "SELECT id, status FROM runs ORDER BY id") == [(1, "killed"), (2, "running")]
+    assert sql(db, "SELECT run, pid FROM run_lock") == [(2, os.getpid())]
     conn.close()
 
 
@@ -348,7 +334,7 @@ def test_a_lock_held_on_another_host_is_never_taken_over(tmp_path):
         conn.execute("INSERT INTO run_lock VALUES (1, 9, ?, 'elsewhere', ?)", (dead.pid, time.time()))
     with pytest.raises(AtlasLocked, match=f"pid {dead.pid} on elsewhere"):
         acquire_run(conn, db, parse_grid("dof = 1\nlinks = 4"), "dask tcp://x:1")
-    assert _sql(db, "SELECT COUNT(*) FROM runs") == [(0,)]
+    assert sql(db, "SELECT COUNT(*) FROM runs") == [(0,)]
     conn.close()
 
 

@@ -22,6 +22,8 @@ from synth.atlas.grid import load_grid, parse_grid
 from synth.atlas.site import write_site
 from synth.gears import GearTrain, count_trains, trains
 
+from .helpers import as_version_3
+
 ROOT = Path(__file__).resolve().parents[2]
 GEARS = ROOT / "models" / "grid_gears.toml"
 SIX = '[[gears]]\nlinks = 6\n\n[[gears]]\nlinks = 6\ngraphs = "rotation"\n'
@@ -251,20 +253,11 @@ def test_bad_gear_cells_are_one_sentence(tmp_path, capsys, text, words):
     assert not db.exists()
 
 
-def _as_version_3(db: Path) -> None:
-    """What an atlas of schema version 3 holds: no mesh counts, no gear-train tables."""
-    with sqlite3.connect(db) as conn:
-        conn.execute("DROP TABLE trains")
-        conn.execute("DROP TABLE rotations")
-        conn.execute("ALTER TABLE chains DROP COLUMN meshes")
-        conn.execute("UPDATE meta SET value = '3' WHERE key = 'schema_version'")
-
-
 def test_version_3_atlases_are_read_and_upgraded(tmp_path, capsys):
     db = tmp_path / "old.sqlite"
     run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
     before = list(export(db, "chains"))
-    _as_version_3(db)
+    as_version_3(db)
     digest = hashlib.sha256(db.read_bytes()).hexdigest()
     assert list(export(db, "chains")) == before
     assert _count(db, "kind=chains")["count"] == len(before) and _count(db, "kind=gears")["count"] == 0

@@ -8,7 +8,6 @@ from __future__ import annotations
 import json
 import math
 import random
-import sqlite3
 import time
 from pathlib import Path
 
@@ -22,6 +21,8 @@ from synth.errors import InvalidOption, QueryTooLarge
 from synth.structure.chain import Chain
 from synth.synthesis.type_synthesis import mechanisms_of
 
+from .helpers import sql
+
 GRID = 'dof = 1\nlinks = "4..6"\n[[block]]\n[[block]]\ndof = 2\nlinks = 7\n[[gears]]\nlinks = 4\n'
 #: the 1-DOF chains by hand: code, base code, loops, sorted degrees, link counts n2, n3, inversions
 HAND = {
@@ -33,13 +34,6 @@ WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")  # two ternary links joined di
 STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")  # ternary links 1 and 3, never joined
 
 
-def _sql(db: Path, statement: str, *args) -> list[tuple]:
-    with sqlite3.connect(db) as conn:
-        rows = list(conn.execute(statement, args))
-    conn.close()
-    return rows
-
-
 @pytest.fixture
 def atlas(tmp_path):
     db = tmp_path / "a.sqlite"
@@ -49,8 +43,8 @@ def atlas(tmp_path):
 
 
 def _chains(db: Path, where: str = "1") -> dict[str, tuple]:
-    return {r[0]: r[1:] for r in _sql(db, f"SELECT certificate, code, base_code, dof, h, links, loops, v, prismatic, "
-                                          f"max_degree, degrees, fractionated, chain, meshes, id FROM chains WHERE {where}")}
+    return {r[0]: r[1:] for r in sql(db, f"SELECT certificate, code, base_code, dof, h, links, loops, v, prismatic, "
+                                         f"max_degree, degrees, fractionated, chain, meshes, id FROM chains WHERE {where}")}
 
 
 def test_every_column_of_the_one_dof_chains_by_hand(atlas):
@@ -66,8 +60,8 @@ def test_every_column_of_the_one_dof_chains_by_hand(atlas):
         stored = Chain.from_dict(json.loads(row[11]))
         assert stored.certificate == chain.certificate and stored.links == links
         assert row[11] == json.dumps(json.loads(row[11]), separators=(",", ":"))  # compact: no blank after , and :
-        assert dict(_sql(db, "SELECT degree, count FROM link_counts WHERE chain = ?", row[13])) == counts
-        frames = _sql(db, "SELECT frame, input_link FROM mechanisms WHERE chain = ?", row[13])
+        assert dict(sql(db, "SELECT degree, count FROM link_counts WHERE chain = ?", row[13])) == counts
+        frames = sql(db, "SELECT frame, input_link FROM mechanisms WHERE chain = ?", row[13])
         assert len(frames) == inversions and all(i == -1 for _, i in frames)
         # each frame is the smallest link of its orbit in the stored labelling: no two frames are alike
         assert len({stored.degrees[f] for f, _ in frames}) <= inversions
@@ -79,7 +73,7 @@ def test_the_fractionated_chain_is_flagged_and_only_it(atlas):
     assert sorted((r[0], r[10]) for r in two.values()) == [("52/0", 0), ("52/0", 0), ("52/0", 0), ("601/0", 1)]
     (row,) = [r for r in two.values() if r[0] == "601/0"]
     assert row[9] == "4 2 2 2 2 2 2" and row[8] == 4  # two four-bars sharing one link
-    assert dict(_sql(db, "SELECT degree, count FROM link_counts WHERE chain = ?", row[13])) == {2: 6, 4: 1}
+    assert dict(sql(db, "SELECT degree, count FROM link_counts WHERE chain = ?", row[13])) == {2: 6, 4: 1}
 
 
 def test_mechanisms_are_the_engines_inversions(atlas):
@@ -87,7 +81,7 @@ def test_mechanisms_are_the_engines_inversions(atlas):
     for certificate, row in _chains(db, "meshes = 0").items():
         stored = Chain.from_dict(json.loads(row[11]))
         expected = sorted(m.frame for m in mechanisms_of(stored))
-        assert sorted(f for (f,) in _sql(db, "SELECT frame FROM mechanisms WHERE chain = ?", row[13])) == expected
+        assert sorted(f for (f,) in sql(db, "SELECT frame FROM mechanisms WHERE chain = ?", row[13])) == expected
 
 
 def test_the_chain_is_stored_in_its_canonical_labelling():
@@ -103,8 +97,8 @@ def test_the_chain_is_stored_in_its_canonical_labelling():
 
 def test_units_cells_and_the_run_row(atlas):
     db, result, t0, t1 = atlas
-    units = _sql(db, "SELECT cell, code, status, chains, mechanisms, attempts, seconds, finished, run FROM units "
-                     "WHERE cell NOT LIKE 'gears%' ORDER BY cell, code")
+    units = sql(db, "SELECT cell, code, status, chains, mechanisms, attempts, seconds, finished, run FROM units "
+                    "WHERE cell NOT LIKE 'gears%' ORDER BY cell, code")
     mechanisms = {"4/0": 1, "42/0": 5}
     assert [(c, code, s, n, a, r) for c, code, s, n, _, a, _, _, r in units] == [
         ("W=1 n=4 v=0..0 rigid=0 frac=1 planar=0", "4/0", "done", 1, 1, 1),
@@ -117,25 +111,25 @@ def test_units_cells_and_the_run_row(atlas):
         assert 0 < seconds < t1 - t0 and t0 <= finished <= t1
     two = sum(len(mechanisms_of(c)) for c in synth.type_synthesis(2, 7))
     assert sum(m for _, code, _, _, m, *_ in units if code in ("52/0", "601/0")) == two
-    cells = _sql(db, "SELECT * FROM cells ORDER BY cell")
+    cells = sql(db, "SELECT * FROM cells ORDER BY cell")
     assert cells == [
         ("W=1 n=4 v=0..0 rigid=0 frac=1 planar=0", 1, 3, 4, 0, 0, 0, 1, 0, "[]", 1),
         ("W=1 n=6 v=0..0 rigid=0 frac=1 planar=0", 1, 3, 6, 0, 0, 0, 1, 0, "[]", 1),
         ("W=2 n=7 v=0..0 rigid=0 frac=1 planar=0", 2, 3, 7, 0, 0, 0, 1, 0, "[]", 2),
         ("gears F=1 n=4 graphs=displacement", 1, 3, 4, 0, None, 0, 1, 0, "[]", 4)]
-    gear_units = _sql(db, "SELECT status, attempts FROM units WHERE cell LIKE 'gears%'")
+    gear_units = sql(db, "SELECT status, attempts FROM units WHERE cell LIKE 'gears%'")
     assert gear_units == [("done", 1)] * 4
-    (run,) = _sql(db, "SELECT id, status, executor, units_run, grid, started <= finished FROM runs")
+    (run,) = sql(db, "SELECT id, status, executor, units_run, grid, started <= finished FROM runs")
     assert run == (1, "done", "local 1", 8, "g.toml", 1)
-    assert _sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
-    assert _sql(db, "PRAGMA journal_mode") == [("delete",)] and not Path(f"{db}-wal").exists()
+    assert sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
+    assert sql(db, "PRAGMA journal_mode") == [("delete",)] and not Path(f"{db}-wal").exists()
 
 
 def test_the_result_counts_units_chains_and_mechanisms(atlas):
     db, result, t0, t1 = atlas
-    gears = _sql(db, "SELECT COUNT(*) FROM chains WHERE meshes > 0")[0][0]
-    gear_mechanisms = _sql(db, "SELECT COUNT(*) FROM mechanisms k JOIN chains c ON c.id = k.chain "
-                               "WHERE c.meshes > 0")[0][0]
+    gears = sql(db, "SELECT COUNT(*) FROM chains WHERE meshes > 0")[0][0]
+    gear_mechanisms = sql(db, "SELECT COUNT(*) FROM mechanisms k JOIN chains c ON c.id = k.chain "
+                              "WHERE c.meshes > 0")[0][0]
     two = sum(len(mechanisms_of(c)) for c in synth.type_synthesis(2, 7))
     assert gears > 0
     assert (result.status, result.units_total, result.units_skipped, result.units_run, result.executor,
@@ -149,8 +143,8 @@ def test_the_result_counts_units_chains_and_mechanisms(atlas):
     again = run_grid(parse_grid(GRID), db, workers=1)
     assert (again.status, again.units_total, again.units_skipped, again.units_run, again.chains_found,
             again.chains_new, again.mechanisms_found) == ("done", 8, 8, 0, 0, 0, 0)
-    assert _sql(db, "SELECT DISTINCT attempts FROM units") == [(1,)]  # nothing was scheduled again
-    assert _sql(db, "SELECT id, status, units_run, executor FROM runs ORDER BY id") == [
+    assert sql(db, "SELECT DISTINCT attempts FROM units") == [(1,)]  # nothing was scheduled again
+    assert sql(db, "SELECT id, status, units_run, executor FROM runs ORDER BY id") == [
         (1, "done", 8, "local 1"), (2, "done", 0, "local 1")]
 
 
@@ -164,18 +158,18 @@ def test_a_chain_found_again_in_another_cell_is_new_once(tmp_path):
     # the 1-DOF chains of 6 links with and without fractionated chains: the same two chains in two cells
     result = run_grid(parse_grid('dof = 1\nlinks = 6\n[[block]]\n[[block]]\nfractionated = false\n'), db, workers=1)
     assert (result.chains_found, result.chains_new, result.mechanisms_found) == (4, 2, 10)
-    assert _sql(db, "SELECT COUNT(*) FROM chains") == [(2,)] and _sql(db, "SELECT COUNT(*) FROM members") == [(4,)]
-    assert _sql(db, "SELECT COUNT(*) FROM mechanisms") == [(5,)]
+    assert sql(db, "SELECT COUNT(*) FROM chains") == [(2,)] and sql(db, "SELECT COUNT(*) FROM members") == [(4,)]
+    assert sql(db, "SELECT COUNT(*) FROM mechanisms") == [(5,)]
 
 
 def test_input_link_mechanisms_are_the_engines(tmp_path):
     db = tmp_path / "a.sqlite"
     run_grid(parse_grid("input_link = true\ndof = 1\nlinks = 6\n"), db, workers=1)
-    for cid, text in _sql(db, "SELECT id, chain FROM chains"):
+    for cid, text in sql(db, "SELECT id, chain FROM chains"):
         chain = Chain.from_dict(json.loads(text))
         expected = sorted([(m.frame, -1) for m in mechanisms_of(chain)] +
                           [(m.frame, m.input_link) for m in mechanisms_of(chain, input_link=True)])
-        assert sorted(_sql(db, "SELECT frame, input_link FROM mechanisms WHERE chain = ?", cid)) == expected
+        assert sorted(sql(db, "SELECT frame, input_link FROM mechanisms WHERE chain = ?", cid)) == expected
         assert any(i >= 0 for _, i in expected)
 
 
@@ -202,14 +196,14 @@ def test_a_stopped_run_keeps_its_finished_units_and_frees_the_lock(tmp_path, mon
     monkeypatch.setattr(runs, "compute_unit", second_fails)
     with pytest.raises(error):
         run_grid(grid, db, workers=1)
-    assert _sql(db, "SELECT id, status, units_run FROM runs") == [(1, status, 1)]
-    assert _sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
-    assert sorted(_sql(db, "SELECT status, attempts FROM units")) == [("done", 1), ("pending", 1)]
-    assert _sql(db, "SELECT COUNT(*) FROM chains") == [(1,)]
+    assert sql(db, "SELECT id, status, units_run FROM runs") == [(1, status, 1)]
+    assert sql(db, "SELECT COUNT(*) FROM run_lock") == [(0,)]
+    assert sorted(sql(db, "SELECT status, attempts FROM units")) == [("done", 1), ("pending", 1)]
+    assert sql(db, "SELECT COUNT(*) FROM chains") == [(1,)]
     monkeypatch.setattr(runs, "compute_unit", compute)
     result = run_grid(grid, db, workers=1)  # resumed: the pending unit alone
     assert (result.units_total, result.units_skipped, result.units_run, result.chains_new) == (2, 1, 1, 2)
-    assert sorted(_sql(db, "SELECT status, attempts FROM units")) == [("done", 1), ("done", 2)]
+    assert sorted(sql(db, "SELECT status, attempts FROM units")) == [("done", 1), ("done", 2)]
 
 
 def test_a_unit_of_more_chains_than_one_lookup_takes_is_stored_whole(tmp_path):
@@ -228,9 +222,9 @@ def test_a_unit_of_more_chains_than_one_lookup_takes_is_stored_whole(tmp_path):
     assert _commit(conn, rows, 7) == 0  # stored once
     conn.close()
     for table in ("chains", "link_counts", "members", "mechanisms"):
-        assert _sql(db, f"SELECT COUNT(*) FROM {table}") == [(1201,)], table
-    assert _sql(db, "SELECT COUNT(*) FROM link_counts l JOIN chains c ON c.id = l.chain") == [(1201,)]
-    assert _sql(db, "SELECT status, chains, mechanisms, seconds, run FROM units") == [("done", 1201, 1201, 0.5, 7)]
+        assert sql(db, f"SELECT COUNT(*) FROM {table}") == [(1201,)], table
+    assert sql(db, "SELECT COUNT(*) FROM link_counts l JOIN chains c ON c.id = l.chain") == [(1201,)]
+    assert sql(db, "SELECT status, chains, mechanisms, seconds, run FROM units") == [("done", 1201, 1201, 0.5, 7)]
 
 
 # ------------------------------------------------------------------ sizing, from estimates given by hand
@@ -347,7 +341,7 @@ def test_the_run_says_where_it_ran(tmp_path, monkeypatch):
     grid = parse_grid("dof = 1\nlinks = 4")
     assert run_grid(grid, tmp_path / "a.sqlite").executor == "local 5"  # every core by default
     assert run_grid(grid, tmp_path / "b.sqlite", workers=3).executor == "local 3"
-    assert _sql(tmp_path / "b.sqlite", "SELECT executor FROM runs") == [("local 3",)]
+    assert sql(tmp_path / "b.sqlite", "SELECT executor FROM runs") == [("local 3",)]
     monkeypatch.setattr(runs.os, "cpu_count", lambda: None)
     assert run_grid(grid, tmp_path / "c.sqlite").executor == "local 1"
 

@@ -17,31 +17,27 @@ from synth.atlas.curves import (HARMONICS, STEPS, IndexResult, IndexSettings, _b
                                 _slides_text, _turned, harmonics, index_units, slides_of, tracer_links, unblob,
                                 untimed_parameter)
 from synth.atlas.search import (SHIFTS, AtlasSearchResult, _form, _misfits, _refine, _variants, descriptor_of,
-                                retrieve)
+                                retrieve, sampled_starts)
 from synth.dimension import PathTarget
 from synth.errors import BadTarget, InvalidOption
 from synth.motion import Linkage, sweep
 from synth.structure.chain import Chain, Mechanism
 from synth.synthesis.type_synthesis import mechanisms_of
 
+from .helpers import sql
+
 WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
 STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")
 
 
-@pytest.fixture(scope="module")
-def index(tmp_path_factory):
-    """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism."""
-    db = tmp_path_factory.mktemp("index") / "a.sqlite"
+@pytest.fixture
+def index(tmp_path):
+    """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism (built for each test, 1.5 CPU s: a
+    mutation run maps the index's code to every test that reads it, and each mutant's tests build it anew)."""
+    db = tmp_path / "a.sqlite"
     run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
     result = index_curves(db, settings=IndexSettings(samples=3), workers=1)
     return db, result
-
-
-def _sql(db, statement, *args):
-    with sqlite3.connect(db) as conn:
-        rows = list(conn.execute(statement, args))
-    conn.close()
-    return rows
 
 
 # ------------------------------------------------------------------ the index
@@ -112,13 +108,13 @@ def _walked(z):
 
 def test_every_stored_curve_is_its_linkage_swept_again(index):
     db, result = index
-    rows = _sql(db, "SELECT s.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer, "
-                    "s.timed, s.untimed, s.slides, c.chain FROM curve_samples s JOIN chains c ON c.id = s.chain")
+    rows = sql(db, "SELECT s.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer, "
+                   "s.timed, s.untimed, s.slides, c.chain FROM curve_samples s JOIN chains c ON c.id = s.chain")
     assert len(rows) == result.curves
-    units = _sql(db, "SELECT chain, frame, input_link, status, samples FROM curve_units")
+    units = sql(db, "SELECT chain, frame, input_link, status, samples FROM curve_units")
     # each done mechanism: 3 poses, each with a curve on every tracer link
     per = {(c, f, i): (s, n) for c, f, i, s, n in units}
-    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in _sql(db, "SELECT id, chain FROM chains")}
+    chains = {cid: Chain.from_dict(json.loads(text)) for cid, text in sql(db, "SELECT id, chain FROM chains")}
     assert result.curves == sum(3 * len(tracer_links(Mechanism(chains[c], f))) for (c, f, i), (s, _) in per.items()
                                 if s == "done")
     assert result.units_skipped == sum(s == "skipped" for s, _ in per.values()) > 0
@@ -148,15 +144,15 @@ def test_every_stored_curve_is_its_linkage_swept_again(index):
 
 def test_the_skipped_mechanisms_say_why(index):
     db, _ = index
-    notes = {note for (note,) in _sql(db, "SELECT note FROM curve_units WHERE status = 'skipped'")}
+    notes = {note for (note,) in sql(db, "SELECT note FROM curve_units WHERE status = 'skipped'")}
     assert notes == {"moved by Newton's method (a triad or higher group): index it with triads"}
-    assert _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done' AND note IS NOT NULL") == [(0,)]
+    assert sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done' AND note IS NOT NULL") == [(0,)]
 
 
 def test_index_info_and_its_refusals(index, tmp_path):
     db, result = index
     info = index_info(db)
-    skipped = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'skipped'")[0][0]
+    skipped = sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'skipped'")[0][0]
     assert info == {"settings": json.loads(IndexSettings(samples=3).to_meta()),
                     "mechanisms": result.units_total - skipped, "skipped": skipped, "curves": result.curves}
     bare = tmp_path / "bare.sqlite"
@@ -219,7 +215,7 @@ def test_an_index_is_resumed_only_with_its_settings(tmp_path):
     again = index_curves(db, settings=IndexSettings(samples=1, prismatic=(0, 1)), workers=1)
     assert (again.units_total, again.units_run, again.curves) == (first.units_total, 0, first.curves)
     # the slider-crank's samples keep their sliding line; the four-bar's have none
-    assert {s is None for (s,) in _sql(db, "SELECT slides FROM curve_samples")} == {True, False}
+    assert {s is None for (s,) in sql(db, "SELECT slides FROM curve_samples")} == {True, False}
 
 
 # ------------------------------------------------------------------ the search's pieces
@@ -332,16 +328,16 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
     db, _ = index
     target = _ellipse(36)
     found, size = retrieve(db, target, per_topology=2)
-    assert size == _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    assert size == sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
     topologies = {}
     for c in found:
         topologies.setdefault(c.topology, []).append(c)
     assert all(len(group) <= 2 for group in topologies.values())
-    done = _sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done'")[0][0]
+    done = sql(db, "SELECT COUNT(*) FROM curve_units WHERE status = 'done'")[0][0]
     assert len(topologies) == done  # no limit on topologies: every indexed one
     t, h, _ = descriptor_of(target)
     for c in found:  # each candidate's misfit is its stored curve's, aligned anew
-        (coefficients,) = _sql(db, "SELECT timed FROM curve_samples WHERE id = ?", c.row)[0]
+        (coefficients,) = sql(db, "SELECT timed FROM curve_samples WHERE id = ?", c.row)[0]
         u = _form(unblob(coefficients)[HARMONICS - h:HARMONICS + h + 1], c.mirror, c.reverse)
         assert c.misfit == pytest.approx(_projection_misfit(t, u, c.shift)[0], abs=1e-9)
         assert not c.reverse  # a timed target is never run backwards
@@ -353,7 +349,7 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
         best.setdefault(c.links, c)
     assert sorted(c.row for c in one) == sorted(c.row for c in best.values())
     only_four, size = retrieve(db, target, links=(4, 4))
-    assert {c.links for c in only_four} == {4} and size == _sql(
+    assert {c.links for c in only_four} == {4} and size == sql(
         db, "SELECT COUNT(*) FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE c.links = 4")[0][0]
 
 
@@ -365,12 +361,181 @@ def test_retrieval_keeps_the_best_of_each_topology(index):
     (dict(budget=math.inf), "the budget must be a positive number of seconds, not inf"),
     (dict(budget="5"), "the budget must be a positive number of seconds, not '5'"),
 ])
-def test_search_options_are_refused_with_their_sentence(index, options, sentence):
+def test_search_options_are_refused_with_their_sentence(tmp_path, options, sentence):
+    db = _four_bar_index(tmp_path, 1)
     with pytest.raises(InvalidOption) as e:
-        search_atlas(index[0], _ellipse(30), **options)
+        search_atlas(db, _ellipse(30), **options)
     assert str(e.value) == sentence
+
+
+def _four_bar_index(folder, samples: int, seed: int = 0):
+    db = folder / "four.sqlite"
+    run_grid(parse_grid("dof = 1\nlinks = 4"), db, workers=1)
+    index_curves(db, settings=IndexSettings(samples=samples, seed=seed), workers=1)
+    return db
+
+
+def _stored_curve(db, row: int, steps: int):
+    """The stored sample's linkage swept by the motion layer: (its mechanism, tracer link, the linkage,
+    steps + 1 tracer points and crank angles over a full turn)."""
+    ((chain_json, frame, input_link, joint, tracer, points, at),) = _sql(
+        db, "SELECT c.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer "
+            "FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE s.id = ?", row)
+    mechanism = Mechanism(Chain.from_dict(json.loads(chain_json)), frame, input_link)
+    linkage = Linkage(mechanism, (joint,), json.loads(points), tracers={"P": (tracer, tuple(json.loads(at)))})
+    motion = sweep(linkage, steps=steps + 1)
+    return mechanism, tracer, motion.tracers["P"], motion.inputs[:, 0]
+
+
+@pytest.mark.parametrize("timed", [True, False])
+def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+    db = _four_bar_index(tmp_path, 4)
+    capsys.readouterr()
+    size = _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
+    # the curve mirrored in the x axis, turned by 40°, halved and moved: a four-bar of the same topology traces it
+    turn = 0.5 * np.exp(0.7j)
+    z = turn * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
+    target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36] if timed else None)  # the mirror's crank turns back
+    found = search_atlas(db, target, per_topology=2, budget=3, progress=timed)
+    assert (found.index_curves, found.topologies, found.timed, found.notes) == (size, 1, timed, [])
+    bar = capsys.readouterr().err  # a bar of the topologies polished, when asked for
+    assert ("polish" in bar and "1/1" in bar and "topology" in bar) if timed else bar == ""
+    best = found.best
+    # (without timing the target's 36-gon is walked by arc length, not the index's 256 steps: close, not exact)
+    assert best.candidate.mirror and best.candidate.misfit < (1e-6 if timed else 1e-3) and best.candidate.row == row
+    # the mirror image z̄ in the sample's order: timed, its crank turns back (z̄(−ψ), the mirror's own form); untimed,
+    # the mirror image run in the order it was sampled is the mirrored form run backwards (z̄(t))
+    assert best.candidate.reverse is (not timed)
+    assert best.result.met and best.result.relative_max < 1e-8 and best.tried == 1
+    assert best.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (best.mechanism.frame, best.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
+    # polished from the sample alone, no global search: the dimensional synthesis says how it got there
+    assert best.result.method == "bounded least squares (trf) from a given start, " + (
+        "timed" if timed else "inputs as unknowns, in order")
+    # its row: the topology and the errors of the polished result, the candidate it started from
+    from synth.atlas.database import chain_id
+
+    r = best.row()
+    assert r["chain"] == best.mechanism.chain.compact() and r["chain_id"] == chain_id(mechanism.chain.certificate)
+    assert (r["frame"], r["tracer_link"], r["links"], r["tried"]) == (mechanism.frame, tracer, 4, 1)
+    assert r["input"] == best.result.linkage.to_dict()["inputs"][0]
+    assert (r["error_max"], r["relative_max"], r["met"]) == (best.result.error_max, best.result.relative_max, True)
+    assert (r["error_rms"], r["relative_rms"], r["misfit"]) == (best.result.error_rms, best.result.relative_rms,
+                                                                best.candidate.misfit)
+    assert r["seconds"] == round(best.seconds, 3) and 0 < best.seconds <= found.seconds
+    # the polished linkage traces the target: moved again to each target point's input
+    assert best.result.error_max <= 1e-8 * target.size
 
 
 def test_a_result_without_matches_has_no_best():
     assert AtlasSearchResult([], 10, 0, 0.1, True).best is None
     assert AtlasSearchResult(["a", "b"], 10, 2, 0.1, True).best == "a"
+
+
+@pytest.mark.parametrize("seed", [0, 5])
+def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed):
+    db = _four_bar_index(tmp_path, 4, seed)
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
+    z = 0.5 * np.exp(0.7j) * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
+    target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36])
+    # the index's own 4 samples of the mechanism (same seed): the nearest is the one that traced the target
+    starts = sampled_starts(mechanism, tracer, target, seed, samples=4, count=2)
+    assert len(starts) == 2 and len(sampled_starts(mechanism, tracer, target, seed, samples=4)) == 4
+    first = starts[0]
+    assert first.tracers["P"][0] == tracer and first.mechanism.chain.certificate == mechanism.chain.certificate
+    assert (first.mechanism.frame, first.mechanism.input_link) == (mechanism.frame, mechanism.input_link)
+    # posed at the target's first point, and it traces the target: swept from there, its curve is the target's
+    assert np.hypot(*(np.asarray(first.tracers["P"][1]) - target.points[0])) < 1e-9 * target.size
+    # (the sweep turns its crank forward; the mirror's target inputs run backward: the points in reverse order)
+    motion = sweep(first, steps=37)
+    traced = motion.tracers["P"][:36, 0] + 1j * motion.tracers["P"][:36, 1]
+    assert np.abs(traced - z[(-np.arange(36)) % 36]).max() < 1e-8 * target.size
+    # what the index cannot serve gives no start: no path, a target too short, the frame as tracer
+    assert sampled_starts(mechanism, tracer, PathTarget(target.points[:6], inputs=target.inputs[:6]), samples=4) == []
+    assert sampled_starts(mechanism, mechanism.frame, target, samples=4) == []
+
+    class NotAPath:
+        kind = "function"
+
+    assert sampled_starts(mechanism, tracer, NotAPath(), samples=4) == []
+
+
+def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkeypatch, capsys):
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    result = index_curves(db, settings=IndexSettings(samples=2), links=(4, 4), workers=1, progress=True)
+    # only the four-bar's one mechanism with an input link, sampled twice with a curve of its coupler each
+    assert (result.units_total, result.units_run, result.units_skipped, result.curves) == (1, 1, 0, 2)
+    bar = capsys.readouterr().err
+    assert "curve index" in bar and "1/1" in bar and "mechanism" in bar and "curves=2" in bar
+    ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = _sql(
+        db, "SELECT u.chain, c.links, u.frame, u.input_link, u.input_joint, u.status, u.note, u.samples, u.tries, "
+            "u.seconds FROM curve_units u JOIN chains c ON c.id = u.chain")
+    four_bar = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains WHERE id = ?", chain)[0][0]))
+    assert (links, frame, input_link, status, note, samples) == (4, 0, 1, "done", None, 2)
+    assert set(four_bar.joints[joint]) == {0, 1}  # the input joint: the crank's pivot on the frame
+    assert 2 <= tries <= 80 and seconds >= 0 and round(seconds, 4) == seconds
+    rows = _sql(db, "SELECT sample, tracer_link, points, tracer FROM curve_samples ORDER BY sample")
+    assert len({s for s, *_ in rows}) == 2 and all(1 <= s <= tries for s, *_ in rows) and rows[-1][0] == tries
+    for _, tracer, points, at in rows:
+        assert [tracer] == tracer_links(Mechanism(four_bar, frame))  # the coupler: the link off the frame
+        for value in [v for p in json.loads(points) for v in p] + json.loads(at):  # kept to 12 decimals
+            assert abs(value * 1e12 - round(value * 1e12)) < 1e-3
+    assert index_info(db)["mechanisms"] == 1
+
+
+class _Clock:
+    """A CPU clock for the search: starts at ``start`` seconds and moves ``step`` seconds a reading."""
+
+    def __init__(self, start: float, step: float):
+        self.now, self.step = start, step
+
+    def __call__(self) -> float:
+        self.now += self.step
+        return self.now
+
+
+def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(tmp_path, monkeypatch):
+    import time
+
+    db = _four_bar_index(tmp_path, 4)
+    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    _, _, xy, phi = _stored_curve(db, row, 36)
+    target = PathTarget(xy[:36], inputs=phi[:36])
+    # a process that has run for hours already: the budget is the time spent since the search began
+    monkeypatch.setattr(time, "process_time", _Clock(1e4, 1e-6))
+    found = search_atlas(db, target, budget=3)
+    assert found.notes == [] and found.best.result.relative_max < 1e-8 and found.best.tried == 1
+    # a clock that jumps 10 s a reading spends a budget of 3 s before the first polish: the note says so
+    monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
+    found = search_atlas(db, target, budget=3, per_topology=1)
+    chain = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains")[0][0]))
+    assert found.matches == [] and found.notes == [
+        f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
+        "a polish began)"]
+
+
+def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):
+    # a timed ellipse: the first polish stops short of it, and the search goes on from its best while that halves
+    # the error and time is left; what it returns is a four-bar the motion layer moves along its reported curve
+    db = _four_bar_index(tmp_path, 4)
+    found = search_atlas(db, _ellipse(30), per_topology=1, budget=1.5)
+    assert found.notes == [] and len(found.matches) == 1
+    best = found.best
+    assert best.tried == 1 and best.result.relative_max > 1e-9 and best.candidate.links == 4
+    assert best.result.error_rms <= best.result.error_max

@@ -95,9 +95,10 @@ def test_the_starts_are_spread_over_the_box():
 
 
 def test_a_second_basin_is_found_from_a_spread_start():
-    """Two peaks, the samples crowd on the lower one: the higher one is reached from a second start."""
-    f = lambda x: np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.05) ** 2)  # noqa
-    pts = np.concatenate([np.linspace(0.18, 0.22, 5), [0.7]])[:, None]  # all of them candidates
+    """Two peaks, the samples crowd on the lower one: the higher one is reached from a second start.
+    The higher peak is narrow, so the best corner (x = 0) lies in the lower peak's basin too."""
+    f = lambda x: np.exp(-((x[:, :1] - 0.2) / 0.05) ** 2) + 1.5 * np.exp(-((x[:, :1] - 0.8) / 0.02) ** 2)  # noqa
+    pts = np.concatenate([np.linspace(0.18, 0.22, 5), [0.77]])[:, None]  # all of them candidates
     (_, hi), = box_extremes(f, [0.0], [1.0], pts, starts=2)
     assert hi.value == pytest.approx(1.5, rel=1e-9) and hi.at == pytest.approx((0.8,), abs=1e-6)
     (_, one), = box_extremes(f, [0.0], [1.0], pts, starts=1)  # one start: the lower peak only
@@ -126,3 +127,41 @@ def test_the_local_search_stops_after_max_iter():
     (_, full), = box_extremes(f, [-2.0, -2.0], [2.0, 2.0], pts, starts=1)
     assert full.value == pytest.approx(0.0, abs=1e-8) and full.at == pytest.approx((1.0, 1.0), abs=1e-4)
     assert one.sampled < one.value < -1e-2
+
+
+def test_a_corner_extreme_in_a_basin_no_sample_reaches():
+    """A broad well of depth 0.9 over the whole box, deepest at the centre, and a narrow one of depth 1
+    at the corner (1, 1): every sample and every local search from one lies in the broad well, so only
+    the corner finds the smallest value, about −1.4 at (1, 1) (a mutant study found a workspace force
+    whose least value sat at such a corner)."""
+    def f(x):
+        broad = 0.9 * np.exp(-((x - 0.5) ** 2).sum(axis=1) / 0.5)
+        narrow = np.exp(-((x - 1.0) ** 2).sum(axis=1) / 1e-4)
+        return -(broad + narrow)
+    pts = np.random.default_rng(0).uniform(0, 1, (200, 2))
+    assert f(pts).min() > -0.91                       # no sample near the corner's well
+    (lo, hi), = box_extremes(f, [0.0, 0.0], [1.0, 1.0], pts)
+    # by symmetry the least value lies on the diagonal x = y = t, a hair inside the corner (the broad
+    # well pulls it in): a dense search over t, independent of the engine
+    t = np.linspace(0.99, 1.0, 100_001)
+    diag = f(np.column_stack([t, t]))
+    assert lo.value == pytest.approx(diag.min(), abs=1e-9)
+    assert lo.at == pytest.approx((t[diag.argmin()],) * 2, abs=1e-6) and lo.value < -1.33
+    assert lo.sampled == f(pts).min()                 # what the samples alone would have said
+
+
+def test_a_box_of_many_free_coordinates_is_not_cornered():
+    """Past CORNER_DIMS free coordinates the 2**d corners are not evaluated (f counts its points)."""
+    from balance.extremes import CORNER_DIMS
+    seen = []
+
+    def f(x):
+        seen.append(len(x))
+        return x.sum(axis=1)
+    d = CORNER_DIMS + 1
+    pts = np.random.default_rng(1).uniform(0, 1, (50, d))
+    box_extremes(f, np.zeros(d), np.ones(d), pts, floor=1e9)
+    assert seen == [50]
+    seen.clear()
+    box_extremes(f, np.zeros(CORNER_DIMS), np.ones(CORNER_DIMS), pts[:, :CORNER_DIMS], floor=1e9)
+    assert seen == [50, 2 ** CORNER_DIMS]

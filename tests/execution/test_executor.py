@@ -39,10 +39,11 @@ def test_pool_map_in_order_is_the_inline_map(chunk, window):
         assert list(executor.map(_square, iter(items), window=window, chunk=chunk)) == [x * x for x in items]
 
 
-@pytest.mark.parametrize("chunk", [1, 4])
-def test_unordered_map_yields_each_result_once_as_tasks_finish(chunk):
+@pytest.mark.parametrize("chunk, window", [(1, 3), (4, 3), (1, 10)])
+def test_unordered_map_yields_each_result_once_as_tasks_finish(chunk, window):
+    # (a window of 3 takes the slow task while submitting, one of 10 after every task is submitted)
     with Executor(2) as executor:
-        found = list(executor.map(_late_for_zero, range(8), ordered=False, chunk=chunk, window=3))
+        found = list(executor.map(_late_for_zero, range(8), ordered=False, chunk=chunk, window=window))
     assert sorted(found) == list(range(8))
     if chunk == 1:
         assert found[0] != 0  # the slow first task did not hold the others back

@@ -5,20 +5,24 @@ how many tasks are in flight and how units are batched can be checked against th
 
 from __future__ import annotations
 
+import os
 import random
+import threading
+import time
 import types
 
 import pytest
 
 from synth.execution import executor as module
 from synth.execution.executor import Executor, run_plan
+from tests.load import allowed_seconds
 
 UNIT = 1 / 64  # seconds a unit takes on the test's clock
 
 
 class _Clock:
     def __init__(self):
-        self.now = 0.0
+        self.now = 100.0  # (not 0: durations are differences of its readings)
 
     def perf_counter(self):
         return self.now
@@ -175,7 +179,322 @@ def test_the_inline_phase_hands_an_unfinished_item_to_the_pool(clock, monkeypatc
 
 
 def test_map_on_one_worker_is_the_builtin_map():
+    assert Executor().workers == 1 and not Executor().parallel  # by default everything runs in this process
     with Executor(workers=1) as executor:
         assert not executor.parallel and executor.slots == 1
         assert list(executor.map(abs, [-3, 2, -1], ordered=False, window=1, chunk=2)) == [3, 2, 1]
     assert Executor(workers=2).parallel and Executor(workers=3).slots == 3
+
+
+# ------------------------------------------------------------------ Dask, stood in for
+class _Future:
+    """A Dask future whose task ran at submission; ``late`` waits time out before its result comes."""
+
+    def __init__(self, value, late=0):
+        self.value, self.late, self.waits = value, late, []
+
+    def result(self, timeout):
+        self.waits.append(timeout)
+        if self.late:
+            self.late -= 1
+            raise TimeoutError
+        if isinstance(self.value, Exception):
+            raise self.value
+        return self.value
+
+    def done(self):
+        return True
+
+    def add_done_callback(self, callback):
+        callback(self)
+
+
+class _Client:
+    """A Dask client: runs a task when it is submitted; ``nthreads`` per worker; ``infos`` are the
+    successive answers of ``scheduler_info`` (an exception is raised)."""
+
+    def __init__(self, nthreads=None, infos=(), late=0):
+        self.threads = {"tcp://a:1": 2, "tcp://b:1": 1} if nthreads is None else nthreads
+        self.infos, self.late = list(infos), late
+        self.submitted, self.cancelled = [], []
+
+    def submit(self, fn, arg, pure=True):
+        try:
+            value = fn(arg)
+        except Exception as exc:  # noqa: BLE001 - raised where the result is read, as Dask does
+            value = exc
+        future = _Future(value, self.late)
+        self.submitted.append((fn, arg, pure, future))
+        return future
+
+    def nthreads(self):
+        return self.threads
+
+    def scheduler_info(self):
+        info = self.infos.pop(0)
+        if isinstance(info, Exception):
+            raise info
+        return info
+
+    def cancel(self, futures):
+        self.cancelled.extend(futures)
+
+
+def _fail_on_three(x):
+    if x == 3:
+        raise ValueError("three")
+    return x
+
+
+def test_on_dask_map_runs_every_task_on_the_cluster_in_order_and_as_they_finish():
+    client = _Client()
+    executor = Executor(workers=1, client=client)  # the workers are ignored with a client
+    assert executor.parallel and executor.slots == 3
+    assert list(executor.map(abs, range(-5, 5), chunk=3)) == [abs(x) for x in range(-5, 5)]
+    assert [arg[1] for _, arg, _, _ in client.submitted] == [[-5, -4, -3], [-2, -1, 0], [1, 2, 3], [4]]
+    assert all(fn is module._apply_batch and pure is False for fn, _, pure, _ in client.submitted)  # never merged
+    assert sorted(executor.map(abs, range(-4, 0), ordered=False)) == [1, 2, 3, 4]
+    assert Executor(client=_Client(nthreads={})).slots == 1  # a cluster without threads yet: one slot
+
+
+def test_on_dask_a_task_error_is_raised_and_the_tasks_in_flight_are_cancelled():
+    client = _Client()
+    executor = Executor(client=client)
+    with pytest.raises(ValueError, match="three"):
+        list(executor.map(_fail_on_three, [3, 4, 5], window=10))
+    futures = [future for *_, future in client.submitted]
+    assert len(futures) == 3 and client.cancelled == futures[1:]  # the failed task's own is no longer in flight
+
+
+def test_a_dask_result_late_past_the_liveness_interval_asks_for_workers_then_comes():
+    client = _Client(infos=[{"workers": {"a": {}}}, {"workers": {"a": {}}}], late=2)
+    executor = Executor(client=client)
+    assert list(executor.map(abs, [-7])) == [7]
+    [(*_, future)] = client.submitted
+    assert future.waits == [module.LIVENESS_SECONDS] * 3 and module.LIVENESS_SECONDS == 30.0
+    assert client.infos == []  # asked twice, once per wait that timed out
+
+
+def test_a_cluster_without_workers_at_two_checks_in_a_row_is_one_sentence():
+    from synth.execution.scheduler import SchedulerUnreachable
+
+    alive = module._Liveness(_Client(infos=[{"workers": {}}, {"workers": {"a": {}}}, {"workers": {}}, {}]))
+    alive()  # empty once: a nanny restarting its worker
+    alive()  # workers again: the count starts over
+    alive()
+    with pytest.raises(SchedulerUnreachable) as refused:
+        alive()  # (no workers listed at all is empty too)
+    assert str(refused.value) == ("the Dask cluster has had no workers for 60 s: its units cannot run (start workers, "
+                                  "or run without a scheduler)")
+    gone = module._Liveness(_Client(infos=[ConnectionResetError("reset")]))
+    with pytest.raises(SchedulerUnreachable) as refused:
+        gone()
+    assert str(refused.value) == "the Dask scheduler stopped answering (ConnectionResetError)"
+
+
+def test_waiting_for_the_next_finished_task_checks_the_workers_between_waits(monkeypatch):
+    import queue
+
+    monkeypatch.setattr(module, "LIVENESS_SECONDS", 0.01)
+    done, checks = queue.SimpleQueue(), []
+
+    def alive():
+        checks.append(1)
+        if len(checks) == 3:
+            done.put("task")
+
+    assert module._next_done(done, alive) == "task" and len(checks) == 3
+    done.put("next")
+    assert module._next_done(done, None) == "next"
+
+
+def test_on_dask_there_is_no_inline_phase_and_tasks_aim_at_half_a_second(clock):
+    """With a client every unit runs on the cluster (none in this process first), stage A's task works on
+    the first units for 0.5 s (32 units of 1/64 s), and at most 8 tasks a thread are in flight."""
+    plan = _plan([100, 3])
+    client = _Client()
+    worked = []
+
+    def work(unit):
+        worked.append(unit)
+        clock.now += UNIT
+        return ("done", unit)
+
+    executor = Executor(client=client)
+    assert list(run_plan(plan, list, work, executor=executor, inline_seconds=1e9)) == _expected(plan)
+    fns = [fn for fn, *_ in client.submitted]
+    assert fns[0] is module._expand_and_work and client.submitted[0][1][3] == 0.5
+    _, first, _ = client.submitted[0][3].value
+    assert len(first) == 32
+    assert len(worked) == 103 and fns.count(module._expand_and_work) == 2
+
+
+# ------------------------------------------------------------------ the pool's workers
+def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
+    """In this process, with the calls a worker makes stood in for: SIGINT ignored, the kernel asked to
+    kill it with SIGKILL when its parent dies (PR_SET_PDEATHSIG = 1), and an orphan exits at once."""
+    import ctypes
+    import signal
+
+    calls = []
+
+    class Libc:
+        def prctl(self, option, value):
+            calls.append(("prctl", option, value))
+
+    monkeypatch.setattr(module.signal, "signal", lambda sig, action: calls.append(("signal", sig, action)))
+    monkeypatch.setattr(ctypes, "CDLL", lambda name: Libc())
+    monkeypatch.setattr(module.os, "getppid", lambda: 4242)
+    monkeypatch.setattr(module.os, "_exit", lambda status: calls.append(("exit", status)))
+    module._worker_start(4242)
+    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("prctl", 1, signal.SIGKILL)]
+    calls.clear()
+    module._worker_start(1)  # the parent died before prctl took effect: the worker is an orphan
+    assert calls[-1] == ("exit", 1)
+
+
+def _worker_settings(_):
+    import ctypes
+    import signal
+
+    death = ctypes.c_int(0)
+    ctypes.CDLL(None).prctl(2, ctypes.byref(death))  # PR_GET_PDEATHSIG
+    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN, death.value, os.getppid()
+
+
+def test_pool_workers_are_forked_ignore_ctrl_c_and_die_with_this_process():
+    import signal
+
+    with Executor(workers=2) as executor:
+        assert set(executor.map(_worker_settings, range(4))) == {(True, signal.SIGKILL, os.getpid())}
+        assert executor._pool._ctx.get_start_method() == "fork"
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # Ctrl-C no longer held back
+
+
+def test_ctrl_c_is_held_back_while_the_workers_are_forked(monkeypatch):
+    import multiprocessing
+    import signal
+
+    seen = []
+
+    class Context:
+        def Pool(self, workers, initializer, initargs):  # noqa: N802 - multiprocessing's name
+            seen.append((workers, initializer, initargs, signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])))
+            return "pool"
+
+    monkeypatch.setattr(multiprocessing, "get_context", lambda method: seen.append(method) or Context())
+    assert module.process_pool(3) == "pool"
+    assert seen == ["fork", (3, module._worker_start, (os.getpid(),), True)]
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # and released afterwards
+    seen.clear()
+    monkeypatch.setattr(module.sys, "platform", "darwin")  # elsewhere than Linux, fork is not safe: spawn
+    module.process_pool(2)
+    assert seen[0] == "spawn"
+
+
+def test_on_a_pool_skipped_units_are_not_run_and_tasks_aim_at_50_ms(clock, monkeypatch):
+    # no inline phase: stage A's task works on the first units for 0.05 s (a pool's tasks; Dask's are 0.5 s),
+    # except where units are skipped (a checkpoint): then every unit goes through the filter here
+    plan = _plan([10, 4])
+    tasks, submitted = _Tasks(clock), []
+    executor = Executor(workers=2)
+    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: submitted.append((fn, arg)) or tasks.submit(fn, arg))
+    assert list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=0.0)) == _expected(plan)
+    assert submitted[0][0] is module._expand_and_work and submitted[0][1][3] == 0.05
+    skip = lambda unit: unit[1] % 3 == 0  # noqa: E731
+    tasks.worked.clear()
+    got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=0.0, skip_unit=skip))
+    assert got == _expected(plan, skip_unit=skip) and tasks.worked and not any(skip(u) for u in tasks.worked)
+
+
+def test_the_inline_phase_hands_the_last_item_unfinished_to_the_pool(clock, monkeypatch):
+    # the inline phase's time runs out inside the last item of the plan: its other units still go to the pool
+    plan = _plan([2, 6])
+    tasks = _Tasks(clock)
+    executor = Executor(workers=2)
+    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: tasks.submit(fn, arg))
+    got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=4 * UNIT, task_seconds=UNIT))
+    assert got == _expected(plan)
+    assert tasks.worked[:4] == [(0, 0), (0, 1), (1, 0), (1, 1)] and sum(tasks.batches) == 4
+
+
+def _units_of(item):
+    return list(item)
+
+
+def _slow_first(unit):
+    time.sleep(1.0 if unit == (0, 0) else 0.0)
+    return ("done", unit)
+
+
+def test_a_plan_run_as_units_finish_on_a_pool_is_not_held_back_by_a_slow_unit():
+    """ordered=False on a pool of two workers: the other items' units and ends come while item 0's one
+    unit (a second long) still runs; everything comes once, each unit before its item's end."""
+    plan = _plan([1, 3, 2])
+    with Executor(workers=2) as executor:
+        got = list(run_plan(plan, _units_of, _slow_first, executor=executor, inline_seconds=0.0, ordered=False))
+    assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+    assert got.index((1, None, 3)) < got.index((0, (0, 0), ("done", (0, 0))))
+    for i, units in enumerate(plan):
+        assert all(got.index((i, u, ("done", u))) < got.index((i, None, len(units))) for u in units)
+
+
+def test_an_unordered_map_on_a_cluster_that_lost_its_workers_is_one_sentence_not_a_hang(monkeypatch):
+    from synth.execution.scheduler import SchedulerUnreachable
+
+    class Stuck(_Future):  # a task that never finishes: its done-callback is never called
+        def add_done_callback(self, callback):
+            pass
+
+    client = _Client(infos=[{"workers": {}}, {"workers": {}}])
+    client.submit = lambda fn, arg, pure=True: Stuck(None)
+    monkeypatch.setattr(module, "LIVENESS_SECONDS", 0.01)
+    outcome = []
+
+    def run():  # (in a thread: a map that waits for ever fails this test instead of hanging it)
+        try:
+            list(Executor(client=client).map(abs, range(3), ordered=False))
+        except SchedulerUnreachable as exc:
+            outcome.append(str(exc))
+
+    waiting = threading.Thread(target=run, daemon=True)
+    waiting.start()
+    waiting.join(allowed_seconds(5.0))
+    assert outcome and "has had no workers" in outcome[0] and client.infos == []
+
+
+def test_a_run_in_plan_order_keeps_no_finished_task_and_fills_eight_tasks_a_thread(clock):
+    """In plan order no task is told to announce its end (a queue of finished tasks that nobody reads would
+    keep every result of a long listing); as they finish, every task is.  At most 8 tasks a thread of the
+    cluster are in flight (3 threads: 24), and a long plan fills them."""
+    plan = _plan([1] * 60)
+
+    class Counted(_Client):
+        def __init__(self):
+            super().__init__()
+            self.announced, self.read, self.most = 0, 0, 0
+
+        def submit(self, fn, arg, pure=True):
+            future = super().submit(fn, arg, pure)
+            counted, unread = self, future.result
+
+            def result(timeout):
+                counted.read += 1
+                return unread(timeout)
+
+            def announce(callback):
+                counted.announced += 1
+                callback(future)
+
+            future.result, future.add_done_callback = result, announce
+            future.done = lambda: False  # (a task not known to be finished: later items' tasks are launched)
+            self.most = max(self.most, len(self.submitted) - self.read)
+            return future
+
+    for ordered in (True, False):
+        client = Counted()
+        got = list(run_plan(plan, list, lambda unit: ("done", unit), executor=Executor(client=client), ordered=ordered))
+        assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+        assert client.announced == (0 if ordered else len(client.submitted))
+        if ordered:
+            assert client.most == 24

@@ -24,6 +24,8 @@ from synth.execution.checkpoint import CheckpointMismatch
 from synth.errors import QueryTooLarge
 from synth.synthesis.estimate import estimate
 
+from .servers import local_server
+
 CLI = [sys.executable, "-m", "mechsynth"]
 
 
@@ -238,29 +240,10 @@ def test_bad_scheduler_is_one_sentence(command, address, tmp_path):
 def test_an_endpoint_that_answers_something_else_is_one_sentence_and_leaves_no_file(tmp_path):
     """A proxy's HTTP reply, read by Dask as the length of a frame, asked Dask for 3 EiB
     (a MemoryError traceback, then a ten-second close of the half-built Client)."""
-    import socket
-    import threading
-
-    server = socket.create_server(("127.0.0.1", 0))
-    port = server.getsockname()[1]
-
-    def answer():
-        while True:
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                return
-            with conn:
-                conn.recv(1024)
-                conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
-
-    threading.Thread(target=answer, daemon=True).start()
-    try:
-        checkpoint = tmp_path / "c.sqlite"
+    checkpoint = tmp_path / "c.sqlite"
+    with local_server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n") as port:
         out = _run("chains", "--dof", "1", "--links", "8", "--count", "--scheduler", f"tcp://127.0.0.1:{port}",
                    "--checkpoint", str(checkpoint), "--timeout", "2", timeout=60)
-    finally:
-        server.close()
     assert out.returncode == 2 and out.stdout == "" and not checkpoint.exists()
     assert out.stderr.startswith("mechsynth: ") and "not as a Dask scheduler" in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1, out.stderr

@@ -173,3 +173,31 @@ def test_an_entry_that_cannot_be_put_in_place_leaves_no_temporary_file(store, mo
     monkeypatch.setattr(memo.os, "replace", refuse)
     memo.keep("x", "k", 1)
     assert list((store / "x").iterdir()) == []
+
+
+def test_an_entry_is_written_beside_its_place_not_in_the_temporary_folder(store, monkeypatch, tmp_path):
+    """The temporary file is made in the entry's own folder, so that the rename stays on one file system:
+    with the system's temporary folder unusable (TMPDIR gone, or on another file system) entries are kept."""
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "no such folder"))
+    memo.keep("x", "k", [1, 2])
+    assert memo.recall("x", "k") == [1, 2]
+    assert [p.name for p in (store / "x").iterdir()] == [f"{hashlib.sha1(b'k').hexdigest()}.json"]
+
+
+def test_the_store_deleted_while_an_entry_is_written_is_no_error(store, monkeypatch):
+    """Deleting the folder is safe at any time, also between an entry's temporary file and its rename:
+    the value is used, not kept, and nothing is raised."""
+    real = memo.os.replace
+
+    def deleted_first(source, target):
+        shutil.rmtree(store)
+        real(source, target)  # FileNotFoundError: the temporary file went with the folder
+
+    monkeypatch.setattr(memo.os, "replace", deleted_first)
+    memo.keep("x", "k", 1)
+    assert not store.exists()
+    monkeypatch.undo()
+    assert memo.remembered("x", "k", lambda: 4) == 4  # and the next value is kept in a folder made anew
+    assert memo.recall("x", "k") == 4

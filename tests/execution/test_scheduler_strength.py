@@ -6,30 +6,22 @@ from __future__ import annotations
 
 import socket
 import threading
+import time
 
 import pytest
 
 from synth.execution import scheduler
 from synth.execution.scheduler import SchedulerUnreachable, connect
+from tests.load import allowed_seconds
+
+from .servers import local_server
 
 
 @pytest.fixture
 def listening():
     """A local TCP port that accepts connections (and says nothing)."""
-    server = socket.create_server(("127.0.0.1", 0))
-    port = server.getsockname()[1]
-
-    def accept():
-        while True:
-            try:
-                conn, _ = server.accept()
-            except OSError:
-                return
-            conn.close()
-
-    threading.Thread(target=accept, daemon=True).start()
-    yield port
-    server.close()
+    with local_server() as port:
+        yield port
 
 
 @pytest.fixture
@@ -139,28 +131,12 @@ def test_the_handshake_fails_on_an_http_answer_even_inside_a_running_loop():
     pytest.importorskip("distributed")
     import asyncio
 
-    server = socket.create_server(("127.0.0.1", 0))
-    port = server.getsockname()[1]
-
-    def answer():
-        try:
-            conn, _ = server.accept()
-        except OSError:
-            return
-        with conn:
-            conn.recv(1024)
-            conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4)
-
-    threading.Thread(target=answer, daemon=True).start()
-
-    async def in_a_notebook():
+    async def in_a_notebook(port):
         with pytest.raises(Exception):
             scheduler._handshake(f"tcp://127.0.0.1:{port}", 3.0)
 
-    try:
-        asyncio.run(in_a_notebook())
-    finally:
-        server.close()
+    with local_server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4) as port:
+        asyncio.run(in_a_notebook(port))
 
 
 def test_the_address_is_tried_as_written_with_the_timeout(monkeypatch):
@@ -187,3 +163,87 @@ def test_without_dask_the_sentence_says_what_to_install(listening, monkeypatch):
     with pytest.raises(SchedulerUnreachable) as refused:
         connect(f"tcp://127.0.0.1:{listening}", 1.0)
     assert str(refused.value) == "a Dask scheduler needs the 'distributed' package (pip install dask[distributed])"
+
+
+@pytest.fixture
+def silent():
+    """A local TCP port that accepts connections and then says nothing (``nc -l``, a forwarded port with
+    nothing behind it)."""
+    server = socket.create_server(("127.0.0.1", 0))
+    held = []
+
+    def accept():
+        while True:
+            try:
+                held.append(server.accept()[0])
+            except OSError:
+                return
+
+    threading.Thread(target=accept, daemon=True).start()
+    yield server.getsockname()[1]
+    server.close()
+    for conn in held:
+        conn.close()
+
+
+def _within(seconds, call):
+    """``call()``'s exception, raised within ``seconds`` of a machine with a core to spare, or a failure
+    (the call is left waiting in a daemon thread, so that a test of a hang fails instead of hanging)."""
+    outcome = []
+
+    def run():
+        try:
+            outcome.append(("returned", call()))
+        except BaseException as exc:  # noqa: BLE001 - the outcome is judged by the test
+            outcome.append(("raised", exc))
+
+    worker = threading.Thread(target=run, daemon=True)
+    worker.start()
+    worker.join(allowed_seconds(seconds))
+    assert outcome, f"still waiting after {allowed_seconds(seconds):.1f} s"
+    return outcome[0]
+
+
+def test_a_port_that_accepts_and_stays_silent_is_one_sentence_within_the_timeout(silent, monkeypatch):
+    """Dask's own connect waits for the handshake's answer without a bound: the whole handshake is bounded by
+    the timeout (this once waited for ever, and Ctrl-C then hung in the thread pool's exit)."""
+    distributed = pytest.importorskip("distributed")
+    made = []
+    monkeypatch.setattr(distributed, "Client", lambda *a, **k: made.append((a, k)))
+    began = time.monotonic()
+    how, refused = _within(10.0, lambda: connect(f"tcp://127.0.0.1:{silent}", 0.5))
+    assert how == "raised" and isinstance(refused, SchedulerUnreachable), refused
+    assert str(refused) == (f"tcp://127.0.0.1:{silent} accepted the connection but did not answer as a Dask "
+                            "scheduler within 0.5 s")
+    assert time.monotonic() - began >= 0.5  # (it waited the timeout, not less)
+    assert made == []  # no Client was built
+
+
+def test_the_handshake_succeeds_with_a_dask_endpoint_and_closes_its_connection():
+    """Against Dask's own listener (no scheduler: the comm layer that answers the handshake), the handshake
+    returns, and the listener sees one connection that is closed at once."""
+    pytest.importorskip("distributed")
+    import asyncio
+
+    from distributed.comm import listen
+
+    loop = asyncio.new_event_loop()
+    threading.Thread(target=loop.run_forever, daemon=True).start()
+    seen = []
+
+    async def handler(comm):
+        seen.append(await comm.read())  # the client closes without a message: the read ends the comm
+        await comm.close()
+
+    async def start():
+        listener = listen("tcp://127.0.0.1:0", handler)
+        await listener.start()
+        return listener
+
+    listener = asyncio.run_coroutine_threadsafe(start(), loop).result()
+    try:
+        how, result = _within(10.0, lambda: scheduler._handshake(listener.contact_address, 2.0))
+        assert (how, result) == ("returned", None)
+    finally:
+        loop.call_soon_threadsafe(listener.stop)
+        loop.call_soon_threadsafe(loop.stop)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import itertools
 import json
+from math import gcd
 import subprocess
 import sys
 from fractions import Fraction
@@ -220,3 +221,40 @@ def test_simple_planetary_planets_clear_and_equal_the_brute_force(planets, ratio
     assert [(d.error, sum(d.teeth.values())) for d in found] == [k[:2] for k in kept[:5]]
     for d in found:
         _assert_buildable(d, simple, 0, 1, 2, target, tol, planets)
+
+
+def test_a_planet_wheel_that_is_a_ring_needs_no_clearance_from_its_neighbours():
+    # carrier 2 holds planet 3, a compound of three wheels: z3_0 meshes sun 0, z3_1 meshes ring 1 inside it, and
+    # z3_4 is itself a ring around pinion 4 on the central axis.  Three planets: the two pinion wheels must clear
+    # their neighbours, the ring wheel surrounds the central pinion and cannot (it is wider than its centre
+    # distance), so only the pinion wheels are held to it.
+    layout = GearTrain.parse("0-1-2-4 2-3 0~3 1~3i 3~4i")
+    (d,) = design(layout, 0, 1, 2, "147/85", tolerance="0", teeth=(17, 80), planets=3, compound=[3], best=1)
+    z = d.teeth
+    # ω1/ω2 with the sun fixed, by Willis: 1 + z0·z3_1 / (z1·z3_0)
+    assert d.ratio == 1 + Fraction(z["z0"] * z["z3_1"], z["z1"] * z["z3_0"]) == Fraction(147, 85) and d.error == 0
+    centre = z["z0"] + z["z3_0"]  # 2a/m, the same for the three meshes on the carrier's two axes
+    assert z["z1"] - z["z3_1"] == centre == z["z3_4"] - z["z4"]
+    for pinion in ("z3_0", "z3_1"):  # neighbours 2a·sin 60° apart clear tip circles of m(z + 2)
+        assert centre ** 2 * Fraction(3, 4) > (z[pinion] + 2) ** 2
+    assert centre ** 2 * Fraction(3, 4) <= (z["z3_4"] + 2) ** 2  # the ring wheel would not clear: it is exempt
+    assert (z["z0"] * z["z3_1"] + z["z1"] * z["z3_0"]) % (3 * gcd(z["z3_0"], z["z3_1"])) == 0  # the planets assemble
+
+
+@pytest.mark.parametrize("text, frame, driver, driven, ring", [
+    ("0-2-3 0-1 1~2 1~3", 2, 3, 0, "2~1i"),   # the planet 1 numbered first: the ring 2 is a mesh's second gear
+    ("0-1-2 2-3 0~3 1~3", 0, 1, 2, "0~3i"),   # the ring 0 numbered first: the first gear of its mesh
+])
+def test_free_kinds_with_planets_keep_the_clearance_and_name_the_ring(text, frame, driver, driven, ring):
+    # the simple planetary (sun fixed or ring fixed) with kinds free: the solver may make either gear of a mesh the
+    # ring; three planets of whatever kinds it picks must clear and assemble, and the train it reports names the
+    # ring first in its internal mesh
+    layout = GearTrain.parse(text)
+    target, tol = Fraction(4), Fraction(5, 100)
+    found = design(layout, frame, driver, driven, "4", tolerance="5%", teeth=(17, 60), planets=3, kinds="free", best=3)
+    assert len(found) == 3
+    for d in found:
+        _assert_buildable(d, layout, frame, driver, driven, target, tol, planets=3)
+        assert ring in d.train_text.split()
+        (a, b), = [m for m, inner in zip(d.train.meshes, d.train.internal) if inner]
+        assert d.teeth[f"z{a}"] >= d.teeth[f"z{b}"] + 10  # the ring, RING_MARGIN teeth above its pinion

@@ -23,6 +23,19 @@ SIMPLE = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, plan
      "no tooth number fits 5..12 with at least 17 teeth (fewer are undercut)"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", teeth=(5, 16), min_teeth=17), InvalidOption,
      "no tooth number fits 5..16 with at least 17 teeth (fewer are undercut)"),
+    # (a planet of 0 teeth was designed for tooth ranges from 0 before this refusal: z0 = z1 = 10, z3 = 0)
+    (lambda: design(SIMPLE, 0, 1, 2, "3", teeth=(0, 12), min_teeth=0), InvalidOption,
+     "a gear has at least 1 tooth: the tooth range 0..12 starts below 1"),
+    (lambda: design(GearTrain.parse("0-1 0-2 0-3 1~2 2~3"), 0, 1, 3, "6", compound=[2], teeth=(17, 2 * 10 ** 9)),
+     InvalidOption, "these tooth ranges make the ratio's polynomials too large for exact integers: narrow "
+                    "teeth=A..B"),  # z2_1·z3 up to 4·10^18 ≥ 2^61
+    (lambda: design(SIMPLE, 0, 1, 2, "4.0000000000000000000001"), InvalidOption,
+     "the ratio and tolerance need integers too large for an exact model: give the ratio with fewer digits or "
+     "narrow teeth=A..B"),
+    # (the error's bound, about 6·10^16, fits; times the denominator's bound 10^4 it does not)
+    (lambda: design(SIMPLE, 0, 1, 2, "4.0000000001", teeth=(17, 10 ** 4)), InvalidOption,
+     "the ratio and tolerance need integers too large for an exact model: give the ratio with fewer digits or "
+     "narrow teeth=A..B"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", planets=0), InvalidOption, "the number of planets must be a whole number ≥ 1, not 0"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", kinds="any"), InvalidOption, "mesh kinds are given or free, not 'any'"),
     (lambda: design(SIMPLE, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60)), NoDesign,
@@ -89,3 +102,14 @@ def test_two_suns_of_one_planet_by_hand():
     train = GearTrain.parse("0-1-2 2-3 0~3 1~3")
     with pytest.raises(NoDesign):
         design(train, 0, 1, 2, "2", teeth=(17, 40))
+
+
+def test_a_design_to_beat_keeps_only_smaller_errors_or_as_small_with_no_more_teeth():
+    every = design(SIMPLE, 0, 1, 2, "4.63", tolerance="3%", teeth=(17, 100), best=12)
+    assert len(every) == 12 and len({d.error for d in every}) > 2
+    # (the ninth design shares its error with three others of 108, 126 and 162 teeth: the last is not kept)
+    for worst in (every[3], every[8]):
+        error, total = worst.error, sum(worst.teeth.values())
+        wanted = [d for d in every if d.error < error or (d.error == error and sum(d.teeth.values()) <= total)]
+        found = design(SIMPLE, 0, 1, 2, "4.63", tolerance="3%", teeth=(17, 100), best=12, beat=(error, total))
+        assert [d.teeth for d in found] == [d.teeth for d in wanted] and worst.teeth in [d.teeth for d in found]

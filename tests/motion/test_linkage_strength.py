@@ -229,7 +229,7 @@ def test_joints_are_named_by_links_or_index_and_refused_clearly():
     cases = [
         ({**base, "inputs": [4]}, "'inputs' names joint 4, but the chain has joints 0 … 3"),
         ({**base, "inputs": [True]}, "'inputs' names joint True: write a joint by its links, e.g. '1-2'"),
-        ({**base, "inputs": ["a-b"]}, "'inputs' names joint 'a-b': write a joint by its links, e.g. '0-1'"),
+        ({**base, "inputs": ["a-b"]}, "'inputs' names joint 'a-b': write a joint by its links, e.g. '1-2'"),
         ({**base, "inputs": ["1-3"]}, "'inputs' names joint '1-3', which is not a joint of the chain 0-1 0-3 1-2 2-3"),
         ({**base, "inputs": [[1, 3]]}, "'inputs' names joint [1, 3], which is not a joint of the chain 0-1 0-3 1-2 2-3"),
         ({**base, "inputs": {"0-1": 1}}, "'inputs' must be a list of joints, e.g. ['0-1']"),
@@ -268,7 +268,7 @@ def test_an_input_inside_a_multiple_joint_is_named_by_the_frame_and_its_link():
     for inputs, words in ((["1-2", "0-3"], "'inputs' names joint '1-2', which is not a joint"),
                           (["0-1-2", "0-3"], "'inputs' names joint '0-1-2', which is not a joint"),
                           (["0-5", "0-3"], "'inputs' names joint '0-5', which is not a joint"),
-                          (["0-x", "0-3"], "'inputs' names joint '0-x': write a joint by its links, e.g. '0-1'"),
+                          (["0-x", "0-3"], "'inputs' names joint '0-x': write a joint by its links, e.g. '1-2'"),
                           ([(0, 1), "0-3"], "'inputs' names joint (0, 1), which is not a joint")):
         assert sentence(MotionError, Linkage.from_dict, {**base, "inputs": inputs}).startswith(words), inputs
 

@@ -300,6 +300,11 @@ MALFORMED = {
                                  "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\n[expect]\nC_min_below = \"x\"\n",
                                  ["[expect] key 'C_min_below' must be a finite number, not 'x'"]),
     "drawing table without drawing": (GOOD.replace("[expect]", "[drawing]\nlimit = 3\n[expect]"), ["[drawing]", "'drawing'"]),
+    "closed-form driver not written as links": ((MODELS / "motion_triad.toml").read_text().replace(
+        'driver = "0-2"', 'driver = "0=x"'), ["[closed_form] driver names joint '0=x': write a joint by its links"]),
+    "closed-form driver no joint": ((MODELS / "motion_triad.toml").read_text().replace(
+        'driver = "0-2"', 'driver = "0-5"'),
+        ["[closed_form] driver names joint '0-5', which is not a joint of the chain"]),
     "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                             "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
 }

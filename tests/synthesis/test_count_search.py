@@ -121,3 +121,18 @@ def test_counts_with_the_count_search_equal_the_brute_force(dof, links, rigid, k
     expected = count_by_code(brute_force_chains_once(links, dof, rigid_subchains=rigid))
 
     assert engine_counts_by_key(got.by_code) == expected
+
+
+@pytest.mark.parametrize("most", [1, 6, 2 ** 40], ids=["binary", "small", "beyond int64 digits"])
+def test_the_lex_least_vectors_are_those_no_image_undercuts(most):
+    """Against Python's own tuple order: a vector is kept when no image w[g] under the permutations is
+    smaller; ``2 ** 40`` leaves the one-product path (E digits would not fit in int64) for the blocks."""
+    import random
+
+    rng = random.Random(7)
+    for _ in range(200):
+        edges = rng.randint(1, 7)
+        w = np.array([[rng.randint(0, most) for _ in range(edges)] for _ in range(rng.randint(1, 30))], dtype=np.int64)
+        group = [tuple(rng.sample(range(edges), edges)) for _ in range(rng.randint(1, 6))]
+        kept = [tuple(v) for v in w.tolist() if all(tuple(v) <= tuple(v[e] for e in g) for g in group)]
+        assert [tuple(v) for v in stage_b._lex_least(w, group).tolist()] == kept

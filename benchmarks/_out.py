@@ -1,0 +1,37 @@
+"""What the benchmarks share: their tables under ``benchmarks/out`` and the ``--quick`` command line.
+
+>>> import tempfile, pathlib; folder = pathlib.Path(tempfile.mkdtemp())
+>>> write_csv(folder / "demo.csv", [{"links": 8, "chains": 16}]).read_text().splitlines()
+['links,chains', '8,16']
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+__all__ = ["OUT", "write_csv", "print_rows"]
+
+#: where every benchmark writes its tables and figures
+OUT = Path(__file__).resolve().parent / "out"
+
+
+def write_csv(path: Path, rows: Sequence[dict], columns: Sequence[str] | None = None) -> Path:
+    """Write ``rows`` to ``path`` (its folder made if need be) under ``columns`` (default: the first row's
+    keys); a key of a row that is no column is left out."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(columns or rows[0]), extrasaction="ignore")
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def print_rows(run: Callable[[bool], list[dict]], description: str) -> None:
+    """A benchmark's command line: ``--quick`` (a smaller run) passed to ``run``, each row printed."""
+    parser = argparse.ArgumentParser(description=description.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a smaller run of a few seconds")
+    for row in run(parser.parse_args().quick):
+        print(row)

@@ -1,0 +1,25 @@
+"""What several atlas tests do to an atlas file directly (SQLite): read rows, and take an atlas back to an
+older schema."""
+
+from __future__ import annotations
+
+import sqlite3
+from pathlib import Path
+
+
+def sql(db: Path, statement: str, *args) -> list[tuple]:
+    """The rows of one statement on the atlas ``db`` (the connection closed after it)."""
+    with sqlite3.connect(db) as conn:
+        rows = list(conn.execute(statement, args))
+    conn.close()
+    return rows
+
+
+def as_version_3(db: Path) -> None:
+    """Make ``db`` what an atlas of schema version 3 holds: no mesh counts, no gear-train tables."""
+    with sqlite3.connect(db) as conn:
+        conn.execute("DROP TABLE trains")
+        conn.execute("DROP TABLE rotations")
+        conn.execute("ALTER TABLE chains DROP COLUMN meshes")
+        conn.execute("UPDATE meta SET value = '3' WHERE key = 'schema_version'")
+    conn.close()
