@@ -268,8 +268,8 @@ def test_the_check_needs_a_sample_and_says_when_there_is_no_gravity_to_measure_b
     assert check_terms(weightless, [], samples=20).relative_residual == 0.0
 
 
-def test_the_check_samples_the_configurations_of_its_seed():
-    # a slide's γ = q/k substitution leaves a true residual: its best sample is read off the seed's configurations
+def test_the_check_samples_the_configurations_of_its_random_seed():
+    # a slide's γ = q/k substitution leaves a true residual: its best sample is read off the configurations of its random seed
     from balance.model.potential import terms_forces
 
     arm = Arm((Link("u", "revolute", 0.5, 10.0, 0.25),
