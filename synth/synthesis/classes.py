@@ -89,7 +89,7 @@ def _cycles(chain: Chain) -> list[frozenset[int]]:
             v, mask = stack.pop()
             if v == b:
                 return mask
-            for w, e in adjacent.get(v, ()):
+            for w, e in adjacent[v]:  # (every vertex reached has a tree edge: a chord's end was joined before)
                 if w not in seen:
                     seen.add(w)
                     stack.append((w, mask | 1 << e))
@@ -107,15 +107,11 @@ def _cycles(chain: Chain) -> list[frozenset[int]]:
         for a, b in chosen:
             degree[a] = degree.get(a, 0) + 1
             degree[b] = degree.get(b, 0) + 1
-        if any(d != 2 for d in degree.values()) or cycle_rank(degree, chosen) != 1 or not _connected(degree, chosen):
+        # every vertex on two of the edges: disjoint cycles, as many as the cycle rank (one: connected)
+        if any(d != 2 for d in degree.values()) or cycle_rank(degree, chosen) != 1:
             continue
         found.add(frozenset(v for v in degree if v < n))
     return sorted(found, key=sorted)
-
-
-def _connected(vertices, edges) -> bool:
-    """Whether ``edges`` join all of ``vertices`` into one piece (union–find count)."""
-    return len(vertices) - (len(edges) - cycle_rank(vertices, edges)) == 1
 
 
 def _bases(chain: Chain, loops: int) -> Iterator[frozenset[int]]:
@@ -170,8 +166,8 @@ def class_variants(chain: Chain, base_class: int, loops: int, *, rigid_subchains
         raise InvalidOption(f"a base holds 1 … {chain.loops} of the chain's loops, not {loops!r}")
     dof = chain.dof - (base_class - chain.h) * loops
     rigid = dof == 0 if rigid_subchains is None else rigid_subchains
-    bases = list(_bases(chain, loops))
-    least = least_base_mobilities(chain, base_class, bases) if bases else []
+    bases = list(_bases(chain, loops))  # (never empty: a cycle and ears on it hold every count 1 … K of loops)
+    least = least_base_mobilities(chain, base_class, bases)
     found: dict[str, Chain] = {}
     for base, low in zip(bases, least):
         if low >= (0 if rigid else 1):

@@ -49,14 +49,15 @@ def _every_link_on_a_loop(g: nx.Graph, base) -> bool:
     return on == set(base)
 
 
-def hetero_chains(dof: int, classes: dict[int, int]) -> list[tuple[nx.Graph, frozenset]]:
-    """Every non-isomorphic (graph, base) of mobility ``dof`` with the loops ``classes``."""
+def hetero_chains(dof: int, classes: dict[int, int], rigid_subchains: bool | None = None) -> list[tuple[nx.Graph, frozenset]]:
+    """Every non-isomorphic (graph, base) of mobility ``dof`` with the loops ``classes``; proper
+    sub-chains of W(S) = 0 allowed with ``rigid_subchains`` (default: where W = 0)."""
     (h, k_h), (x, k_x) = sorted(classes.items())
     n = dof + 1 + (h - 1) * k_h + (x - 1) * k_x
     if n > 7:
         raise ValueError("the oracle lists chains of up to 7 links")
     edges = n - 1 + k_h + k_x
-    threshold = 0 if dof == 0 else 1
+    threshold = 0 if (dof == 0 if rigid_subchains is None else rigid_subchains) else 1
     found: list[tuple[nx.Graph, frozenset]] = []
     for g in nx.graph_atlas_g():
         if len(g) != n or g.number_of_edges() != edges or not nx.is_connected(g) or min(d for _, d in g.degree()) < 2:

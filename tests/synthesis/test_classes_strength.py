@@ -86,3 +86,101 @@ def test_the_skeletons_are_listed_with_the_caller_s_workers_and_progress(monkeyp
     assert list(heterogeneous_synthesis(1, {3: 1, 5: 1}, workers=3, progress=True)) == []
     query = skeleton_query(1, {3: 1, 5: 1})
     assert calls == [(query, {"workers": None, "progress": False}), (query, {"workers": 3, "progress": True})]
+
+
+WATT = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"  # h = 3, W = 1, two loops
+
+
+@pytest.mark.parametrize("base_class, loops, words", [
+    (3, 1, "above the chain's own class h = 3 (and at most 6), not 3"),  # the chain's own class
+    (7, 1, "above the chain's own class h = 3 (and at most 6), not 7"),
+    (True, 1, "not True"),
+    (4.0, 1, "not 4.0"),
+    (4, 0, "a base holds 1 … 2 of the chain's loops, not 0"),
+    (4, 3, "a base holds 1 … 2 of the chain's loops, not 3"),  # more loops than the chain has
+    (4, True, "not True"),
+    (4, 1.0, "not 1.0"),
+])
+def test_class_variants_refuses_a_class_or_loop_count_out_of_range(base_class, loops, words):
+    from synth import Chain, InvalidOption
+    from synth.synthesis.classes import class_variants
+
+    with pytest.raises(InvalidOption) as refused:
+        class_variants(Chain.parse(WATT), base_class, loops)
+    assert words in str(refused.value)
+
+
+@pytest.mark.parametrize("text", ["0-1 1=2 2-3 3-0", WATT + " | h4: 0 1 2 3"])
+def test_class_variants_refuses_a_chain_that_is_not_homogeneous_and_revolute(text):
+    from synth import Chain, InvalidOption
+    from synth.synthesis.classes import class_variants
+
+    with pytest.raises(InvalidOption, match="loop classes are laid on a homogeneous revolute chain"):
+        class_variants(Chain.parse(text), 5, 1)
+
+
+def test_every_base_of_watt_s_chain_by_hand():
+    """Watt's chain (loops 0-1-2-3 and 0-1-5-4) with one loop of class IV: W = 1 − 1 = 0, rigid
+    sub-chains allowed.  Its bases of one loop are the two four-link loops (the ring of all six
+    links holds the joint 0-1 too: two loops); each made class IV is a rigid four-bar
+    (W(S) = 4·3 − 3·4 = 0) and the rest keeps W(S) ≥ 0, and the symmetry swapping 2, 3 with 5, 4
+    maps one onto the other: one chain.  Both loops of class IV: W = 1 − 2 = −1, no rigid sub-chain
+    allowed by default, and the four-bar of class IV has W = 0: no chain."""
+    from synth import Chain
+    from synth.synthesis.classes import _bases, class_variants
+
+    watt = Chain.parse(WATT)
+    assert sorted(sorted(b) for b in _bases(watt, 1)) == [[0, 1, 2, 3], [0, 1, 4, 5]]
+    assert [sorted(b) for b in _bases(watt, 2)] == [[0, 1, 2, 3, 4, 5]]
+    found = class_variants(watt, 4, 1)
+    assert len(found) == 1 and sorted(i for i, c in enumerate(found[0].classes) if c == 4) in ([0, 1, 2, 3], [0, 1, 4, 5])
+    assert found[0].dof == 0
+    assert class_variants(watt, 4, 2) == []
+    # with rigid sub-chains allowed the four-bars of W = 0 pass (the whole chain is not its own sub-chain)
+    [both] = class_variants(watt, 4, 2, rigid_subchains=True)
+    assert both.classes == (4,) * 6 and both.dof == -1
+
+
+@pytest.mark.parametrize("text", [WATT, "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3",  # Watt's, a ring with a diameter
+                                  "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13",  # the translator
+                                  "0-1 1-2 2-0 0-3 3-4 4-5 5-0 1-4 2-5"])  # a truss with a rigid triangle
+def test_the_loops_of_a_chain_are_the_simple_cycles_of_its_incidence_graph(text):
+    """_cycles against networkx's list of simple cycles (links and joints as vertices)."""
+    import networkx as nx
+
+    from synth import Chain
+    from synth.synthesis.classes import _cycles
+
+    chain = Chain.parse(text)
+    graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
+    expected = {frozenset(v for v in cycle if not isinstance(v, tuple)) for cycle in nx.simple_cycles(graph)}
+    assert set(_cycles(chain)) == expected and len(_cycles(chain)) == len(expected)
+
+
+@pytest.mark.parametrize("text", [WATT, "0-1 1-2 2-3 3-4 4-5 5-0 0-6 6-3", "0-1 1-2 2-0 0-3 3-4 4-5 5-0 1-4 2-5",
+                                  "0-1 1-2 2-0 2-3 3-4 4-2"])  # (two triangles on one link: loops not joined)
+def test_every_number_of_loops_of_a_chain_has_a_base(text):
+    """A base of k loops for every k = 1 … K: brute force over the sets of links (the union of loops
+    with exactly k independent loops of its own), against _bases."""
+    import itertools
+
+    import networkx as nx
+
+    from synth import Chain
+    from synth.synthesis.classes import _bases
+
+    chain = Chain.parse(text)
+    graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
+    for k in range(1, chain.loops + 1):
+        expected = set()
+        for size in range(3, chain.links + 1):
+            for links in itertools.combinations(range(chain.links), size):
+                # each joint restricted to the set: its links in the set, when two or more
+                sub = nx.Graph((link, ("joint", j)) for j, joint in enumerate(chain.joints)
+                               for link in joint if link in links and sum(x in links for x in joint) >= 2)
+                on_loop = {v for cycle in nx.cycle_basis(sub) for v in cycle}
+                rank = sub.number_of_edges() - sub.number_of_nodes() + nx.number_connected_components(sub) if len(sub) else 0
+                if set(links) <= on_loop and rank == k:
+                    expected.add(frozenset(links))
+        found = list(_bases(chain, k))
+        assert expected and set(found) == expected and len(found) == len(expected), k  # each base once

@@ -183,3 +183,14 @@ def test_size_note_adds_the_bases_to_the_skeletons(monkeypatch):
     assert 1.0e5 * SECONDS_PER_SKELETON > 599 and "a long query" in size_note(query, processes=2)
     monkeypatch.setattr(sizing, "estimate", lambda q, **kw: fake(q, 1.0e3, 10.0))
     assert size_note(query, processes=2) is None
+
+
+@pytest.mark.parametrize("dof, classes", [(1, {2: 1, 3: 1}), (2, {2: 1, 3: 1}), (1, {3: 1, 4: 1}), (1, {2: 2, 3: 1})])
+def test_rigid_sub_chains_asked_for_equal_the_brute_force(dof, classes):
+    """rigid_subchains=True reaches the bases' test too: chains with a sub-chain of W(S) = 0 are kept."""
+    engine = list(heterogeneous_synthesis(dof, classes, workers=1, rigid_subchains=True))
+    oracle = hetero_chains(dof, classes, rigid_subchains=True)
+    assert len(engine) == len(oracle) > len(hetero_chains(dof, classes))
+    match = nx.algorithms.isomorphism.categorical_node_match("base", False)
+    for chain in engine:
+        assert sum(nx.is_isomorphic(_as_graph(chain), g, node_match=match) for g, _ in oracle) == 1

@@ -137,3 +137,16 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
         assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
         compared += len(model)
     assert compared
+
+
+@pytest.mark.parametrize("pairs, vertices", [(0, 1), (1, 2), (6, 4), (45, 10)])
+def test_stage_a_kernel_new_state_holds_every_slot_of_the_search(pairs, vertices):
+    """The state :func:`multigraphs` lays out, counted from its slices: depth and started, five values
+    per pair (multiplicity, largest left, least weight and game units added, loops' least weight),
+    three per vertex (joints left, loops, pebbles), the arcs of the pebble game (vertices²) and the
+    binary links used so far; all zero (a search not started) and int64, the kernel's type."""
+    from synth.synthesis._stage_a_kernel import new_state
+
+    state = new_state(pairs, vertices)
+    assert state.shape == (2 + 5 * pairs + 3 * vertices + vertices ** 2 + 1,)
+    assert state.dtype == "int64" and not state.any()
