@@ -175,3 +175,30 @@ def test_sampled_starts_of_the_same_chain_are_polished_first():
     assert handed == [(True, 2, 4)]
     assert result.error_max < 1e-9
     assert result.method == "sampled crank curves + bounded least squares (trf) from them, timed"
+
+
+def test_a_transmission_angle_met_to_the_stated_tolerance(monkeypatch):
+    """The worst transmission angle (stubbed) exactly MET below the limit is met; twice MET below is not."""
+    from synth.dimension import _search
+
+    limit = math.radians(30.0)
+    problem, _ = _problem(FOUR_BAR, own_points(CRANK_ROCKER), None, Constraints(min_transmission=limit))
+    for worst, met in ((limit - _search.MET, True), (limit - 2 * _search.MET, False), (None, False)):
+        monkeypatch.setattr(_search, "_worst_transmission", lambda *a, w=worst: w)
+        row = _checked(problem, CRANK_ROCKER, np.array([0.0, 0.3]))["transmission"]
+        assert row["met"] is met and row["limit"] == pytest.approx(30.0)
+
+
+def test_a_branch_the_motion_layer_cannot_trace_is_reported_unmet(monkeypatch):
+    """When the re-check of the found linkage fails in the motion layer, the result says so in its one
+    constraint row, unmet (a stand-in for the motion layer's refusal)."""
+    from synth.dimension import _search
+    from synth.errors import MotionError
+
+    def refuse(*args):
+        raise MotionError("the dyad does not close at 1.2 rad")
+    monkeypatch.setattr(_search, "_checked", refuse)
+    result = synthesize(CRANK_ROCKER, poses_of(CRANK_ROCKER), polish_only=True, budget=30)
+    assert result.constraints == {"branch": {
+        "value": "the motion layer could not trace the branch: the dyad does not close at 1.2 rad",
+        "limit": None, "met": False}}
