@@ -378,7 +378,7 @@ def _four_bar_index(folder, samples: int, seed: int = 0):
 def _stored_curve(db, row: int, steps: int):
     """The stored sample's linkage swept by the motion layer: (its mechanism, tracer link, the linkage,
     steps + 1 tracer points and crank angles over a full turn)."""
-    ((chain_json, frame, input_link, joint, tracer, points, at),) = _sql(
+    ((chain_json, frame, input_link, joint, tracer, points, at),) = sql(
         db, "SELECT c.chain, s.frame, s.input_link, s.input_joint, s.tracer_link, s.points, s.tracer "
             "FROM curve_samples s JOIN chains c ON c.id = s.chain WHERE s.id = ?", row)
     mechanism = Mechanism(Chain.from_dict(json.loads(chain_json)), frame, input_link)
@@ -397,8 +397,8 @@ def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, mon
     monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
     db = _four_bar_index(tmp_path, 4)
     capsys.readouterr()
-    size = _sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
-    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    size = sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
+    row = sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
     # the curve mirrored in the x axis, turned by 40°, halved and moved: a four-bar of the same topology traces it
     turn = 0.5 * np.exp(0.7j)
@@ -443,7 +443,7 @@ def test_a_result_without_matches_has_no_best():
 @pytest.mark.parametrize("seed", [0, 5])
 def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed):
     db = _four_bar_index(tmp_path, 4, seed)
-    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    row = sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
     z = 0.5 * np.exp(0.7j) * (xy[:36, 0] - 1j * xy[:36, 1]) + (3 - 2j)
     target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36])
@@ -483,14 +483,14 @@ def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkey
     assert (result.units_total, result.units_run, result.units_skipped, result.curves) == (1, 1, 0, 2)
     bar = capsys.readouterr().err
     assert "curve index" in bar and "1/1" in bar and "mechanism" in bar and "curves=2" in bar
-    ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = _sql(
+    ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = sql(
         db, "SELECT u.chain, c.links, u.frame, u.input_link, u.input_joint, u.status, u.note, u.samples, u.tries, "
             "u.seconds FROM curve_units u JOIN chains c ON c.id = u.chain")
-    four_bar = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains WHERE id = ?", chain)[0][0]))
+    four_bar = Chain.from_dict(json.loads(sql(db, "SELECT chain FROM chains WHERE id = ?", chain)[0][0]))
     assert (links, frame, input_link, status, note, samples) == (4, 0, 1, "done", None, 2)
     assert set(four_bar.joints[joint]) == {0, 1}  # the input joint: the crank's pivot on the frame
     assert 2 <= tries <= 80 and seconds >= 0 and round(seconds, 4) == seconds
-    rows = _sql(db, "SELECT sample, tracer_link, points, tracer FROM curve_samples ORDER BY sample")
+    rows = sql(db, "SELECT sample, tracer_link, points, tracer FROM curve_samples ORDER BY sample")
     assert len({s for s, *_ in rows}) == 2 and all(1 <= s <= tries for s, *_ in rows) and rows[-1][0] == tries
     for _, tracer, points, at in rows:
         assert [tracer] == tracer_links(Mechanism(four_bar, frame))  # the coupler: the link off the frame
@@ -514,7 +514,7 @@ def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(t
     import time
 
     db = _four_bar_index(tmp_path, 4)
-    row = _sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    row = sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     _, _, xy, phi = _stored_curve(db, row, 36)
     target = PathTarget(xy[:36], inputs=phi[:36])
     # a process that has run for hours already: the budget is the time spent since the search began
@@ -524,7 +524,7 @@ def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(t
     # a clock that jumps 10 s a reading spends a budget of 3 s before the first polish: the note says so
     monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
     found = search_atlas(db, target, budget=3, per_topology=1)
-    chain = Chain.from_dict(json.loads(_sql(db, "SELECT chain FROM chains")[0][0]))
+    chain = Chain.from_dict(json.loads(sql(db, "SELECT chain FROM chains")[0][0]))
     assert found.matches == [] and found.notes == [
         f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
         "a polish began)"]
