@@ -23,3 +23,16 @@ def as_version_3(db: Path) -> None:
         conn.execute("ALTER TABLE chains DROP COLUMN meshes")
         conn.execute("UPDATE meta SET value = '3' WHERE key = 'schema_version'")
     conn.close()
+
+
+def units_in_reverse(monkeypatch) -> None:
+    """Make every atlas run hand its gear units to the pool last tree first (the order units finish in
+    on a real pool is not fixed; a rotation cell's result must not depend on it)."""
+    from synth.atlas import runs
+
+    class LastTreeFirst(runs.Executor):
+        def map(self, fn, items, **options):
+            items = list(items)
+            return super().map(fn, items[::-1] if fn is runs.compute_unit else items, **options)
+
+    monkeypatch.setattr(runs, "Executor", LastTreeFirst)

@@ -22,7 +22,7 @@ from synth.atlas.grid import load_grid, parse_grid
 from synth.atlas.site import write_site
 from synth.gears import GearTrain, count_trains, trains
 
-from .helpers import as_version_3
+from .helpers import as_version_3, units_in_reverse
 
 ROOT = Path(__file__).resolve().parents[2]
 GEARS = ROOT / "models" / "grid_gears.toml"
@@ -121,12 +121,7 @@ def test_resume_after_interrupt_stores_nothing_twice(tmp_path, monkeypatch):
 
 def test_rotation_cells_keep_the_first_train_whatever_order_units_finish(tmp_path, monkeypatch):
     grid = parse_grid('[[gears]]\nlinks = 7\ngraphs = "rotation"\n')
-    class LastTreeFirst(runs.Executor):
-        def map(self, fn, items, **options):
-            items = list(items)
-            return super().map(fn, items[::-1] if fn is runs.compute_unit else items, **options)
-
-    monkeypatch.setattr(runs, "Executor", LastTreeFirst)
+    units_in_reverse(monkeypatch)
     db = tmp_path / "reversed.sqlite"
     run_grid(grid, db, workers=1)
     wanted = {t.to_chain().certificate for t in trains(1, 7, "rotation")}

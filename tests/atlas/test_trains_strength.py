@@ -10,11 +10,12 @@ import sqlite3
 from dataclasses import dataclass, field
 
 from synth.atlas import run_grid
-from synth.atlas import runs
 from synth.atlas.grid import GearCell, parse_grid
 from synth.atlas.trains import TrainUnit, keep_representatives, plan_gear_cell, store_trains, train_row, unit_trains
 from synth.gears import GearTrain, trains
 from synth.gears.enumeration import link_axis_trees, tree_trains
+
+from .helpers import units_in_reverse
 
 
 def test_the_units_of_a_gear_cell_are_its_link_axis_trees_in_order():
@@ -162,12 +163,7 @@ def test_store_trains_of_a_displacement_cell_writes_only_trains_and_keeps_a_stor
 
 
 def test_a_rotation_cell_run_in_reverse_keeps_the_representatives(tmp_path, monkeypatch):
-    class LastTreeFirst(runs.Executor):
-        def map(self, fn, items, **options):
-            items = list(items)
-            return super().map(fn, items[::-1] if fn is runs.compute_unit else items, **options)
-
-    monkeypatch.setattr(runs, "Executor", LastTreeFirst)
+    units_in_reverse(monkeypatch)
     db = tmp_path / "reversed.sqlite"
     run_grid(parse_grid('[[gears]]\nlinks = 6\ngraphs = "rotation"\n'), db, workers=1, progress=False)
     wanted = {t.to_chain().certificate for t in trains(1, 6, "rotation")}

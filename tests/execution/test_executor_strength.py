@@ -163,13 +163,24 @@ def test_a_plan_runs_inline_on_one_worker_with_skips(clock):
     assert got == _expected(plan, skip_item, skip_unit)
 
 
+def _pool_of_two(clock, monkeypatch, submitted: list | None = None):
+    """A two-worker executor whose submissions run on the hand-driven tasks (each also noted in
+    ``submitted`` if given): (tasks, executor)."""
+    tasks = _Tasks(clock)
+    executor = Executor(workers=2)
+
+    def submit(fn, arg, done=None):
+        if submitted is not None:
+            submitted.append((fn, arg))
+        return tasks.submit(fn, arg)
+    monkeypatch.setattr(executor, "_submit", submit)
+    return tasks, executor
+
 def test_the_inline_phase_hands_an_unfinished_item_to_the_pool(clock, monkeypatch):
     # two workers: units run here for inline_seconds (4 units of 1/64 s), then the rest of that item and the
     # later items go to the pool; the answer is the plan's either way
     plan = _plan([6, 3])
-    tasks = _Tasks(clock)
-    executor = Executor(workers=2)
-    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: tasks.submit(fn, arg))
+    tasks, executor = _pool_of_two(clock, monkeypatch)
     got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=4 * UNIT, task_seconds=UNIT))
     assert got == _expected(plan)
     assert tasks.worked[:4] == [(0, 0), (0, 1), (0, 2), (0, 3)] and len(tasks.launched) > 0
@@ -396,9 +407,8 @@ def test_on_a_pool_skipped_units_are_not_run_and_tasks_aim_at_50_ms(clock, monke
     # no inline phase: stage A's task works on the first units for 0.05 s (a pool's tasks; Dask's are 0.5 s),
     # except where units are skipped (a checkpoint): then every unit goes through the filter here
     plan = _plan([10, 4])
-    tasks, submitted = _Tasks(clock), []
-    executor = Executor(workers=2)
-    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: submitted.append((fn, arg)) or tasks.submit(fn, arg))
+    submitted = []
+    tasks, executor = _pool_of_two(clock, monkeypatch, submitted)
     assert list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=0.0)) == _expected(plan)
     assert submitted[0][0] is module._expand_and_work and submitted[0][1][3] == 0.05
     skip = lambda unit: unit[1] % 3 == 0  # noqa: E731
@@ -410,9 +420,7 @@ def test_on_a_pool_skipped_units_are_not_run_and_tasks_aim_at_50_ms(clock, monke
 def test_the_inline_phase_hands_the_last_item_unfinished_to_the_pool(clock, monkeypatch):
     # the inline phase's time runs out inside the last item of the plan: its other units still go to the pool
     plan = _plan([2, 6])
-    tasks = _Tasks(clock)
-    executor = Executor(workers=2)
-    monkeypatch.setattr(executor, "_submit", lambda fn, arg, done=None: tasks.submit(fn, arg))
+    tasks, executor = _pool_of_two(clock, monkeypatch)
     got = list(run_plan(plan, list, tasks.work, executor=executor, inline_seconds=4 * UNIT, task_seconds=UNIT))
     assert got == _expected(plan)
     assert tasks.worked[:4] == [(0, 0), (0, 1), (1, 0), (1, 1)] and sum(tasks.batches) == 4
