@@ -16,6 +16,8 @@ import synth
 from synth.synthesis import stage_a, stage_b
 from tests.oracles.chains import brute_force_chains_once, count_by_code, engine_counts_by_key
 
+from .kernel_units import kernel_units
+
 # simple joints (the count's kernel), every motion space and convention the kernel takes
 QUERIES = [dict(dof=1, links=10), dict(dof=1, links=12), dict(dof=0, links=9), dict(dof=2, links=11),
            dict(dof=2, links=11, fractionated=False), dict(dof=3, links=12), dict(dof=3, links=10, n1=(0, 3)),
@@ -35,11 +37,7 @@ def kernel_everywhere(monkeypatch):
 def _compare_units(query) -> int:
     """Per unit: the count's search, the listing's rows and (where it applies) the orbits agree."""
     compared = 0
-    for u in synth.plan_units(**query, workers=1):
-        graph = u.contracted
-        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
-            continue
-        args = (u.code, graph, u.conventions)
+    for u, args in kernel_units(query):
         counted, _, whole = stage_b._kernel_placements(*args, None, listing=False)
         listed, rows, _ = stage_b._kernel_placements(*args, None, listing=True)
         assert counted == listed == len(rows), u.key

@@ -10,6 +10,8 @@ import pytest
 import synth
 from synth.synthesis import stage_a, stage_b
 
+from .kernel_units import kernel_units
+
 # every kind of unit the kernel takes: h = 2…6, W = 0…3, both conventions, open chains (leaves),
 # loops, fractionated and non-fractionated, planar only, prismatic skeletons (slack: lower thresholds)
 QUERIES = [
@@ -44,11 +46,8 @@ def test_the_kernel_finds_the_model_placements(query, kernel_everywhere, monkeyp
     test for simple joints), one per orbit of Aut(H) the same way; and the listing's read of more
     rows than its first pass holds (``_KERNEL_ROWS``) loses none."""
     compared = 0
-    for u in synth.plan_units(**query, workers=1):
-        graph = u.contracted
-        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
-            continue
-        args = (u.code, graph, u.conventions)
+    for u, args in kernel_units(query):
+        graph = args[1]
         monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
         kernel, whole, checked = stage_b._distributions(*args, None)
         simple = all(vertex.is_link for vertex in graph.vertices)
@@ -75,11 +74,7 @@ def test_the_kernel_placements_pass_the_exact_test_on_every_subset(query, kernel
     from synth.structure.subchains import check_subchains
 
     compared = 0
-    for u in synth.plan_units(**query, workers=1):
-        graph = u.contracted
-        if graph is None or not stage_b._kernel_applies(u.code, graph, u.conventions):
-            continue
-        conv = u.conventions
+    for u, (_, graph, conv) in kernel_units(query):
         kernel, whole, checked = stage_b._distributions(u.code, graph, conv, None)
         kernel = stage_b._passing(graph, conv, kernel, None, checked)
         for s in kernel:
