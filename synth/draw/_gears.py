@@ -77,10 +77,10 @@ def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
         members = sorted((x for x in axis if own_axis[x] == k), key=lambda x: (x == train.frame, x))
         for rank, x in enumerate(members):
             level[x] = heights[k] - _GAP * rank
-    for x in range(train.links):  # a floating gear turns about its carrier's lowest axis
+    for x in range(train.links):  # a floating gear (a link on no axis meshes) turns about its carrier's lowest axis
         if x not in level:
-            carrier = next((t for (a, b), t in zip(train.meshes, train.carriers) if x in (a, b)), None)
-            level[x] = (level.get(carrier, 0.0) + _GAP) if carrier is not None else 0.0
+            carrier = next(t for (a, b), t in zip(train.meshes, train.carriers) if x in (a, b))
+            level[x] = level.get(carrier, 0.0) + _GAP
     compound = set(compound)
 
     def tooth(x, mate):
