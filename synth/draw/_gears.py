@@ -22,6 +22,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mechbase import save_figure
+
 from ..errors import InvalidOption
 from ..gears.train import GearTrain
 
@@ -225,8 +227,7 @@ def _save(fig, path: Path, dpi: int) -> None:
     import matplotlib.pyplot as plt
 
     try:
-        with plt.rc_context({"svg.fonttype": "none"}):  # SVG text stays text: searchable, selectable
-            fig.savefig(path, bbox_inches="tight", dpi=dpi)
+        save_figure(fig, path, bbox_inches="tight", dpi=dpi)
     except OSError as exc:
         raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
     finally:
@@ -313,8 +314,7 @@ def svg_text(train: GearTrain, *, size: float = 2.6) -> str:
     _draw_on(ax, train, None, (), "")
     buffer = io.StringIO()
     try:
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
-            fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
+        save_figure(fig, buffer, fmt="svg", bbox_inches="tight")
     finally:
         plt.close(fig)
     text = buffer.getvalue()

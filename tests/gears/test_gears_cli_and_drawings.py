@@ -44,6 +44,17 @@ def test_unwritable_out_is_refused_before_any_work(tmp_path):
     assert out.returncode == 2 and out.stdout == "" and "is a directory" in out.stderr
 
 
+@pytest.mark.parametrize("suffix", ["svg", "png"])
+def test_the_same_sheet_twice_is_the_same_file(tmp_path, suffix):
+    """No date, no random clip ids, no writer's version: two runs give identical bytes (matplotlib alone writes a
+    <dc:date> and ids drawn at random into an SVG)."""
+    files = [tmp_path / f"{name}.{suffix}" for name in ("first", "second")]
+    for path in files:
+        assert _cli("--links", "4", "--out", str(path)).returncode == 0
+    first = files[0].read_bytes()
+    assert first == files[1].read_bytes() and b"Matplotlib" not in first and b"dc:date" not in first
+
+
 @pytest.mark.parametrize("train,sentence", [
     ("0-1 0~3@1", "link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
     ('{"axes": [], "meshes": []}', "the gear train object has no axes and no meshes: give each axis as the links "
