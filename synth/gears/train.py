@@ -445,6 +445,16 @@ class GearTrain:
 
     @classmethod
     def from_dict(cls, d: dict) -> "GearTrain":
+        """A train from its JSON row (:meth:`to_dict`): ``axes`` and ``meshes`` (with ``links``,
+        ``carriers``, ``internal`` and ``frame`` where given), or ``train``, its text form.
+
+        >>> GearTrain.from_dict({"axes": [[0, 1, 2], [2, 3]], "meshes": [[1, 3], [0, 3]]}).compact()
+        '0-1-2 2-3 0~3 1~3'
+        >>> GearTrain.from_dict({"axes": [], "meshes": []})
+        Traceback (most recent call last):
+        ...
+        synth.errors.MalformedChain: the gear train object has no axes and no meshes: give each axis as the links that turn about it and each mesh as its two gears
+        """
         if not isinstance(d, dict) or "axes" not in d or "meshes" not in d:
             if isinstance(d, dict) and isinstance(d.get("train"), str):
                 return cls.parse(d["train"], d.get("frame"))
