@@ -53,7 +53,8 @@ def looks_like_joint_list(line: str) -> bool:
 def read_text_lists(text: str, source: str) -> list[Entry]:
     """One chain per non-empty line, in the joint-list notation; a comment of settings on the
     line (``# frame F``, ``# frame F, input I``, ``# h H``) fixes link F (a mechanism, with its
-    input link I) or states the motion space; any other comment is a comment."""
+    input link I) or states the motion space; any other comment is a comment.  Settings on a
+    line of their own belong to no chain and are refused (an edge list's belong to its block)."""
     out = []
     lines = text.splitlines()
     single = sum(1 for line in lines if line.split("#", 1)[0].strip()) == 1
@@ -61,6 +62,10 @@ def read_text_lists(text: str, source: str) -> list[Entry]:
         body, _, comment = line.partition("#")
         body = body.strip()
         if not body:
+            if settings_of(comment):
+                raise MalformedChain(f"{source} line {number}: '# {comment.strip()}' stands on a line of its own: in a "
+                                     "joint list the settings follow their chain on its line, e.g. "
+                                     "'0-1 1-2 2-3 3-0  # frame 0'")
             continue
         where = source if single else f"{source} line {number}"
         joints = body.split("|", 1)[0]  # (a heterogeneous chain's loop classes follow a '|')

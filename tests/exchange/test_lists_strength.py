@@ -38,6 +38,9 @@ _NO_COMMENT = ("JSON takes no '#' comment: give a frame, an input link or a moti
      "src row 2: 'joints' must be a list of lists of link numbers"),
     (lambda: read_json('{"joints": [[0, 1], [1, 2], [2, 0]]}\n{bad\n', "src"),
      "src line 2: not valid JSON (Expecting property name enclosed in double quotes at column 2)"),
+    (lambda: read_text_lists("0-1 1-2 2-3 3-0\n# frame 0\n", "src"),  # the old reader dropped it without a word
+     "src line 2: '# frame 0' stands on a line of its own: in a joint list the settings follow their chain on its "
+     "line, e.g. '0-1 1-2 2-3 3-0  # frame 0'"),
     (lambda: read_json("[[0, 1], [1, 2], [2, 0]]  # frame 0", "src"), f"src line 1: {_NO_COMMENT}"),
     (lambda: read_json('{"joints": [[0, 1], [1, 2], [2, 0]]}\n# a note\n', "src"), f"src line 2: {_NO_COMMENT}"),
     (lambda: read_json('[\n  {"joints": [[0, 1], [1, 2], [2, 0]]}  # the triangle\n]', "src"),
