@@ -116,19 +116,23 @@ def _check_joined(links: int, axes, meshes) -> None:
     synth.errors.MalformedChain: link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes
     """
     near = [0] * links
-    for group in list(axes) + list(meshes):
-        mask = sum(1 << x for x in group)
+    for group in (*axes, *meshes):
+        mask = 0
+        for x in group:
+            mask |= 1 << x
         for x in group:
             near[x] |= mask
+    every = (1 << links) - 1
+    seen = _reached(near, every)
+    if seen == every:
+        return
     loose = [x for x in range(links) if not near[x]]
     if loose:
         raise MalformedChain(f"{_links_are(loose)} in no axis and no mesh: every link of a gear train turns on an "
                              "axis or meshes")
-    seen = _reached(near, (1 << links) - 1)
     apart = [x for x in range(links) if not seen >> x & 1]
-    if apart:
-        raise MalformedChain(f"{_links_are(apart)} not joined to link 0 by axes and meshes: a gear train is one "
-                             "connected set of links")
+    raise MalformedChain(f"{_links_are(apart)} not joined to link 0 by axes and meshes: a gear train is one connected "
+                         "set of links")
 
 
 def _links_are(links: list[int]) -> str:
