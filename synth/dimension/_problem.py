@@ -22,7 +22,7 @@ from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..motion import Linkage, link_poses
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
-__all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of"]
+__all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of", "placement"]
 
 #: the widest step (rad, or target sizes for a slide) between the inputs where the dyads must close
 SPAN_STEP = 0.02
@@ -174,9 +174,10 @@ class Problem:
             upper += [reach, reach]
         self.lower, self.upper = np.array(lower), np.array(upper)
         self.dims = len(self.lower)
-        # a timed path's tracer point is found by linear least squares for the rest: the global
-        # stage searches the other unknowns only (the tracer's two come last)
-        self.projected = self.timed and isinstance(target, PathTarget)
+        # a path's tracer point is found by linear least squares for the rest (timed: at the target's
+        # inputs; untimed: at the points' places on the curve): the global stage searches the other
+        # unknowns only (the tracer's two come last)
+        self.projected = isinstance(target, PathTarget)
         self.searched = self.dims - (2 if self.projected else 0)
         self.points = len(target)
         self.input_span = 2 * math.pi if self.revolute_input else 2 * reach * self.scale
@@ -324,19 +325,13 @@ class Problem:
         The whole mechanism may be moved by a similarity z ↦ λz + s (a turn, a scale and a shift:
         timing is relative, so its motion is the same) and the tracer put anywhere on its link; in
         complex numbers over the target's size the tracer then passes e^{iθᵢ}q + λtᵢ + s, linear
-        in q, λ, s, which least squares gives.  Returns (tracer, λ, s, traced points (N, 2)): the
-        tracer in the placed pose is q + s (both over the target's size, from the origin).  Where
-        λ is not determined (a link turning about a fixed point) the mechanism stays and only q is fitted.
+        in q, λ, s, which least squares gives (:func:`placement`).  Returns (tracer, λ, s, traced
+        points (N, 2)): the tracer in the placed pose is q + s (both over the target's size, from the
+        origin).
         """
-        T = (t[:, 0] + 1j * t[:, 1]) / self.scale
-        W = (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale
-        turn = np.exp(1j * theta)
-        a = np.column_stack((turn, T, np.ones(len(T))))
-        (q, lam, shift), *_ = np.linalg.lstsq(a, W, rcond=None)
-        if not abs(lam) > 1e-6:
-            lam, shift = 1.0 + 0j, 0j
-            q = np.mean((W - T) / turn)
-        z = turn * q + lam * T + shift
+        turn, moves = np.exp(1j * theta), (t[:, 0] + 1j * t[:, 1]) / self.scale
+        q, lam, shift = placement(turn, moves, (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale)
+        z = turn * q + lam * moves + shift
         return complex(q + shift), complex(lam), complex(shift), np.column_stack((z.real, z.imag)) * self.scale
 
     def output_reference(self, linkage: Linkage) -> int:
@@ -390,6 +385,25 @@ class Problem:
             over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
             out.append(over / unit)
         return np.array(out)
+
+
+def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray) -> tuple[complex, complex, complex]:
+    """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
+    link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
+    the link's rotation e^{iθᵢ} and movesᵢ its translation at each point).  Where λ is not
+    determined (a link turning about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is
+    fitted.
+
+    >>> theta = np.array([0.0, 1.0, 2.0]); moves = np.array([0, 1 + 1j, 2])
+    >>> q, lam, s = placement(np.exp(1j * theta), moves, np.exp(1j * theta) * (1 - 2j) + 3j * moves + 0.5)
+    >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 3j, 0.5))]
+    [0.0, 0.0, 0.0]
+    """
+    a = np.column_stack((turn, moves, np.ones(len(moves))))
+    (q, lam, shift), *_ = np.linalg.lstsq(a, w, rcond=None)
+    if not abs(lam) > 1e-6:
+        return complex(np.mean((w - moves) / turn)), 1.0 + 0j, 0j
+    return complex(q), complex(lam), complex(shift)
 
 
 def _carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:

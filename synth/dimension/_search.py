@@ -16,7 +16,7 @@ from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
-from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio
+from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio, placement
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -27,9 +27,10 @@ PENALTY = 1e2
 EXACT = 1e-11
 #: a constraint is met within this (rad, log-ratio, target sizes)
 MET = 1e-9
-#: shares of the curve (from the pose on) an untimed path's points are first spread over
+#: shares of the curve (from the pose on: of its length, and of the input's span) an untimed path's
+#: points are first spread over
 SPANS = (0.5, 1.0)
-#: rounds of fitting the similarity and moving the points to their places on the carried curve
+#: rounds of fitting the placement and moving the points to their places on the carried curve
 ALIGN_ROUNDS = 4
 #: the given starts polished (least cost first), and the share of the budget they may take before
 #: differential evolution
@@ -219,8 +220,7 @@ class _Evaluate:
                     return float((g < 0).mean())
                 link = p.tracer_link
                 tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link])
-                x = self.moved(np.concatenate((x, [0.0, 0.0])), lam, shift)
-                x[-2:] = [tracer.real - p.centre[0] / p.scale, tracer.imag - p.centre[1] / p.scale]
+                x = self.moved(np.concatenate((x, [0.0, 0.0])), lam, shift, tracer)
                 if p.constraints.pivots is not None or p.constraints.rocker is not None:
                     lk = p.linkage(x)  # the designer's region and limits are measured where it stands
             else:
@@ -234,24 +234,31 @@ class _Evaluate:
         return p.residuals(values[:n]).ravel(), p.violations(lk, offsets, g, None if mu is None else mu[n:]), x
 
     def complete(self, x) -> np.ndarray:
-        """The full unknowns of searched ones: a timed path's mechanism placed best, with its best
-        tracer point."""
+        """The full unknowns of searched ones: a path's mechanism placed best, with its best tracer
+        point."""
         p = self.problem
         if len(x) == p.dims:
             return np.asarray(x, dtype=float)
-        out = self.timed(x)
+        out = self.timed(x) if p.timed else self.untimed(x)
         if out is None or isinstance(out, float):
             return np.concatenate((x, [0.0, 0.0]))
-        return np.clip(out[2], p.lower, p.upper)
+        return np.clip(out[2] if p.timed else out[3], p.lower, p.upper)
 
     # ---- untimed targets: dimensions, then the inputs (a direction and increments)
     def curve(self, x):
-        """The traced curve each way from the pose: (values, xs) per direction, on the branch."""
+        """The traced curve each way from the pose: (linkage, {direction: (values, xs, μ, link)}) on
+        the branch, ``link`` the tracer link's rotations θ and translations t at the samples (for a
+        path: its tracer point is then fitted, :meth:`aligned`)."""
         p = self.problem
         lk = p.linkage(x)
         span = p.input_span
         xs = np.linspace(-span, span, 2 * CURVE_SAMPLES + 1)
-        values, g, mu = p.move(lk, xs)
+        if p.projected:
+            theta, t, g, mu = p.poses(lk, xs)
+            theta, t = theta[:, p.tracer_link], t[:, p.tracer_link]
+            values = _carried(theta, t, np.array(lk.tracers["P"][1]))
+        else:
+            values, g, mu = p.move(lk, xs)
         ok = np.ones(len(xs), bool) if g is None else g >= 0
         ok &= np.isfinite(np.asarray(values).reshape(len(xs), -1)).all(axis=1)
         m = CURVE_SAMPLES
@@ -259,8 +266,9 @@ class _Evaluate:
             return lk, None
         fwd = m + (np.flatnonzero(~ok[m:])[0] if (~ok[m:]).any() else len(xs) - m)
         back = m - (np.flatnonzero(~ok[:m + 1][::-1])[0] if (~ok[:m + 1]).any() else m + 1)
-        ways = {1: (values[m:fwd], xs[m:fwd], None if mu is None else mu[m:fwd]),
-                -1: (values[back + 1:m + 1][::-1], xs[back + 1:m + 1][::-1], None if mu is None else mu[back + 1:m + 1][::-1])}
+        forward, backward = np.arange(m, fwd), np.arange(m, back, -1)
+        ways = {d: (values[k], xs[k], None if mu is None else mu[k], (theta[k], t[k]) if p.projected else None)
+                for d, k in ((1, forward), (-1, backward))}
         return lk, ways
 
     def project(self, values, rows):
@@ -301,11 +309,17 @@ class _Evaluate:
         curve, in order, the better direction; returns (cost, direction, input offsets, unknowns).
 
         For a path the curve is first carried onto the target by the best similarity (turn, scale,
-        shift: the whole mechanism moved with it traces the moved curve), so the search explores the
-        mechanism's shape only; the unknowns returned are the moved mechanism's.  A motion's poses
-        are matched where the mechanism stands."""
+        shift: the whole mechanism moved with it traces the moved curve) with the best tracer point
+        on its link, so the search explores the mechanism's shape only; the unknowns returned are the
+        moved mechanism's with that tracer point.  x may leave out the tracer point (the searched
+        unknowns): its first guess is then the middle of its link's joints.  A motion's poses are
+        matched where the mechanism stands."""
         p = self.problem
         try:
+            if len(x) < p.dims:
+                lk = p.linkage(np.concatenate((x, [0.0, 0.0])))
+                joints = [k for k, j in enumerate(p.chain.joints) if p.tracer_link in j]
+                x = np.concatenate((x, (lk.points[joints].mean(axis=0) - p.centre) / p.scale))
             lk, ways = self.curve(x)
         except MotionError:
             return None
@@ -314,7 +328,7 @@ class _Evaluate:
         motion = isinstance(p.target, MotionTarget)
         rows = p.target.poses if motion else p.target.points
         best = None
-        for direction, (values, xs, mu) in ways.items():
+        for direction, (values, xs, mu, link) in ways.items():
             if len(values) < 2 or (p.constraints.crank and p.revolute_input and len(values) <= CURVE_SAMPLES):
                 continue
             if motion:
@@ -322,11 +336,11 @@ class _Evaluate:
                 d2, where = self.project(values, rows[1:])
                 cost, moved, placed = (float(first @ first) + float(d2.sum())) / len(rows), x, lk
             else:
-                fit = self.aligned(values, rows)
+                fit = self.aligned(values, rows, link)
                 if fit is None:
                     continue
-                cost, where, lam, shift = fit
-                moved = self.moved(x, lam, shift)
+                cost, where, lam, shift, tracer = fit
+                moved = self.moved(x, lam, shift, tracer)
                 try:
                     placed = p.linkage(moved)
                 except MotionError:
@@ -341,58 +355,74 @@ class _Evaluate:
                 best = (cost, direction, offsets, moved)
         return best if best is not None else 1.0
 
-    def aligned(self, values, rows):
+    def aligned(self, values, rows, link):
         """The curve (samples from the pose on, in the target's units) carried onto the target rows by
-        the best similarity w = λz + t (complex, non-dimensional): (mean squared distance, each later
-        row's place on the curve as a float sample index, λ, t), or None for a curve that is a point.
+        the best similarity z ↦ λz + t of the whole mechanism (complex, non-dimensional) with the best
+        tracer point q on its link, ``link`` the link's rotations θ and translations m at the samples:
+        the rows w ≈ e^{iθ}q + λm + t (:func:`placement`).  Returns (mean squared distance, each later
+        row's place on the curve as a float sample index, λ, t, the placed tracer point q + t), or
+        None for a curve that is a point.
 
         The rows start at their nearest places in order on the curve where it stands (so the fit is
         never worse than the curve unmoved), or at their share of the target polygon's length along
-        a span of the curve (half or all of it); for each, λ and t are
-        fitted and the rows moved to their nearest places in order on the curve as carried
-        (:meth:`project`); the best start is then refitted and moved again, up to
-        :data:`ALIGN_ROUNDS` times while the fit improves."""
+        a span of the curve (half or all of its length, or of the input's span: :data:`SPANS`); for
+        each, the placement is fitted and the rows moved to their nearest places in order on the
+        curve as carried (:meth:`project`).  The best start is then improved, up to
+        :data:`ALIGN_ROUNDS` times while the fit improves, by the better of the same move and a
+        Gauss-Newton step of the places and the placement together (the rows slide along the curve's
+        chords as the placement changes: closest points alone crawl, a step converges)."""
         p = self.problem
         z = (values[:, 0] + 1j * values[:, 1]) / p.scale
         w = (rows[:, 0] + 1j * rows[:, 1]) / p.scale
-        index = np.arange(len(z), dtype=float)
+        index = np.arange(len(z), dtype=float)  # (a place on the curve: a float sample index)
         arc = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(z)))))
         share = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(w)))))
         if arc[-1] <= 1e-12:
             return None
         share /= share[-1]
+        # the columns the carried curve is linear in: the link's turn (times q), its translation (λ), 1 (t)
+        basis = np.column_stack((np.exp(1j * link[0]), (link[1][:, 0] + 1j * link[1][:, 1]) / p.scale, np.ones(len(z))))
 
-        def fitted(places):  # (mean squared distance, places, λ, t) of the best similarity for these places
-            on = np.interp(places, index, z.real) + 1j * np.interp(places, index, z.imag)
-            fit = similarity(on, w)
-            if fit is None:
-                return None
-            return float(np.mean(np.abs(fit[0] * on + fit[1] - w) ** 2)), places, fit[0], fit[1]
+        def at(places):  # the columns at the places (on the chords between samples), and each place's chord
+            k = np.minimum(places.astype(int), len(z) - 2)
+            return basis[k] + (places - k)[:, None] * (basis[k + 1] - basis[k]), k
+
+        def fitted(places):  # (mean squared distance, places, λ, t, tracer, coefficients) for these places
+            on, _ = at(places)
+            c = np.array(placement(on[:, 0], on[:, 1], w))
+            return float(np.mean(np.abs(on @ c - w) ** 2)), places, c[1], c[2], c[0] + c[2], c
 
         def replaced(fit):  # the rows moved to their places in order on the curve carried by the fit
-            carried = fit[2] * z + fit[3]
+            carried = basis @ fit[5]
             _, later = self.project(np.column_stack((carried.real, carried.imag)) * p.scale, rows[1:])
             return fitted(np.concatenate(([0.0], later)))
 
+        def stepped(fit):  # the rows' places and the coefficients moved together by a Gauss-Newton step
+            places, c = fit[1], fit[5]
+            on, k = at(places)
+            slope = np.diag((basis[k + 1] - basis[k]) @ c)[:, 1:]  # the carried curve along each later place
+            a = np.vstack((np.hstack((on.real, -on.imag, slope.real)), np.hstack((on.imag, on.real, slope.imag))))
+            solved, *_ = np.linalg.lstsq(a, np.concatenate((w.real, w.imag)), rcond=None)
+            moved = np.clip(places[1:] + solved[2 * len(c):], 0.0, len(z) - 1.0)
+            return fitted(np.concatenate(([0.0], np.maximum.accumulate(moved))))
+
         _, later = self.project(values, rows[1:])
-        starts = [np.concatenate(([0.0], later))] + [np.interp(span * arc[-1] * share, arc, index) for span in SPANS]
-        fits = [f for f in map(fitted, starts) if f is not None]
-        fits = [g for g in map(replaced, fits) if g is not None]
-        if not fits:
-            return None
-        best = min(fits, key=lambda f: f[0])
+        starts = ([np.concatenate(([0.0], later))] + [np.interp(span * arc[-1] * share, arc, index) for span in SPANS]
+                  + [span * index[-1] * share for span in SPANS])
+        best = min((replaced(fitted(places)) for places in starts), key=lambda f: f[0])
         for _ in range(ALIGN_ROUNDS):
-            again = replaced(best)
-            if again is None or again[0] >= best[0]:
+            again = min(replaced(best), stepped(best), key=lambda f: f[0])
+            if again[0] >= best[0]:
                 break
             best, crawling = again, again[0] > best[0] * (1 - 1e-3)
             if crawling:  # less than 0.1 % better: the fit has settled
                 break
-        return best[0], best[1][1:], best[2], best[3]
+        return best[0], best[1][1:], best[2], best[3], best[4]
 
-    def moved(self, x, lam: complex, shift: complex) -> np.ndarray:
+    def moved(self, x, lam: complex, shift: complex, tracer: complex) -> np.ndarray:
         """The unknowns of the mechanism ``x`` carried by the similarity w = λz + t (z, w positions over
-        the target's size, as :meth:`aligned` gives it): its curve is carried the same way."""
+        the target's size, as :meth:`aligned` gives it), its tracer point put at ``tracer`` (a position
+        as w)."""
         p = self.problem
         out = np.array(x, dtype=float)
         origin = (p.centre[0] + 1j * p.centre[1]) / p.scale
@@ -406,6 +436,7 @@ class _Evaluate:
             q = lam * (origin + out[i] + 1j * out[i + 1]) + shift - origin
             out[i], out[i + 1] = q.real, q.imag
             i += 2
+        out[-2:] = [tracer.real - origin.real, tracer.imag - origin.imag]  # (the tracer's two are the layout's last)
         return out
 
     def __call__(self, x) -> float:
@@ -457,22 +488,6 @@ class _Evaluate:
     def n_violations(self) -> int:
         c = self.problem.constraints
         return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None))
-
-
-def similarity(z: np.ndarray, w: np.ndarray) -> tuple[complex, complex] | None:
-    """The similarity w ≈ λz + t (complex λ: a turn and a scale; t a shift) nearest in least squares
-    carrying the points z onto w, or None when the z are one point.
-
-    >>> z = np.array([0, 1, 1j]); lam, t = similarity(z, 2j * z + 3)
-    >>> complex(round(lam.real, 12), round(lam.imag, 12)), complex(round(t.real, 12), round(t.imag, 12))
-    (2j, (3+0j))
-    """
-    zc, wc = z - z.mean(), w - w.mean()
-    norm = float(np.vdot(zc, zc).real)
-    if norm <= 1e-24:
-        return None
-    lam = complex(np.vdot(zc, wc) / norm)
-    return lam, complex(w.mean() - lam * z.mean())
 
 
 def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:

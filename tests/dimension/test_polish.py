@@ -1,7 +1,8 @@
 """The polish of an untimed target and where it starts: its Jacobian, built from one evaluation per
 dimension and one for all the input steps, is the full finite-difference Jacobian (one evaluation per
 unknown); from no guess, the starts sampled from the mechanism's own crank curves
-(``synth.atlas.sampled_starts``) find a random crank-rocker's ten untimed points exactly within seconds."""
+(``synth.atlas.sampled_starts``), each with its tracer point fitted, find a random crank-rocker's ten
+untimed points exactly within seconds."""
 
 from __future__ import annotations
 
@@ -45,12 +46,16 @@ def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
     assert np.abs(full[:, problem.dims + 2]).max() > 0  # a later step moves the points after it
 
 
-def test_ten_untimed_points_of_a_random_crank_rocker_are_found_exactly_from_no_guess():
+@pytest.mark.parametrize("seed, budget", [(7, 10), (0, 30)])
+def test_ten_untimed_points_of_a_random_crank_rocker_are_found_exactly_from_no_guess(seed, budget):
     # seed 7: before the sampled starts, differential evolution ended at 0.38 % of the target's size after
-    # 30 CPU s (benchmarks/DIMENSION.md); now well within 10
-    original = random_crank_rocker(7)
+    # 30 CPU s; seed 0 (its coupler point farther from the coupler than the coupler is long, its points
+    # unevenly spread): with the sampled starts but the tracer point searched, 3.0e-4 after 30 CPU s
+    # (benchmarks/DIMENSION.md); with the tracer point fitted to each sample both within a few CPU s (seed 0's
+    # budget is 30 for the share of it each sampled start's polish gets: 10 leaves it at 7e-5)
+    original = random_crank_rocker(seed)
     target = PathTarget(sweep(original, steps=11).tracers["P"][:10])
-    result = synthesize(FOUR_BAR, target, budget=10, seed=7, starts=sampled_starts)
+    result = synthesize(FOUR_BAR, target, budget=budget, seed=seed, starts=sampled_starts)
     assert result.method.startswith("sampled crank curves")
     assert result.relative_max <= 1e-6 and result.met
     for value, want in zip(result.inputs, target.points):  # the motion layer's own assembly passes the points

@@ -97,8 +97,8 @@ def test_the_unknowns_their_box_and_their_count():
     # the frame's joints 0-1 and 0-3 in the pivots' box, over the size from the centre; the others ±4
     box = [-0.5, 0.5, -1.0, 0.0]
     assert p.lower.tolist() == [box[0], box[2]] * 2 + [-4.0] * 6 and p.upper.tolist() == [box[1], box[3]] * 2 + [4.0] * 6
-    assert (p.dims, p.searched, p.points, p.equations) == (10, 10, 3, 6)
-    assert p.unknowns == 8 + 2 + 2 and not p.timed and not p.projected and p.input_span == 2 * math.pi
+    assert (p.dims, p.searched, p.points, p.equations) == (10, 8, 3, 6)  # the tracer point is fitted, not searched
+    assert p.unknowns == 8 + 2 + 2 and not p.timed and p.projected and p.input_span == 2 * math.pi
     timed = Problem(FOUR_BAR, 0, PathTarget(PATH.points, [0, 1, 2]), 3, Constraints(reach=2))
     assert timed.tracer_link == 3 and timed.reach == 2 and timed.lower.min() == -2
     assert (timed.dims, timed.searched, timed.unknowns, timed.equations) == (10, 8, 10, 6)

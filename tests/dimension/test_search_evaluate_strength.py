@@ -83,14 +83,17 @@ def test_the_curve_of_a_rocker_stops_at_its_dead_positions_each_way():
     problem = untimed(ROCKER, Constraints(min_transmission=math.radians(5)))
     _, ways = _Evaluate(problem).curve(problem.unknowns_of(ROCKER))
     for way, end in ((1, hi), (-1, lo)):
-        values, xs, mu = ways[way]
+        values, xs, mu, (theta, t) = ways[way]
         assert xs[0] == 0.0 and np.all(np.diff(way * xs) > 0)
         assert abs(xs[-1] + pose - end) < 2 * math.pi / CURVE_SAMPLES  # the last sample before the dead position
-        assert mu is not None and len(mu) == len(values) == len(xs)
+        assert mu is not None and len(mu) == len(values) == len(xs) == len(theta) == len(t)
+        # the coupler's motion carries its point P (2, 3) of the pose through the traced values
+        turn = np.exp(1j * theta) * (2 + 3j) + t[:, 0] + 1j * t[:, 1]
+        assert np.abs(turn - (values[:, 0] + 1j * values[:, 1])).max() < 1e-12
     problem = untimed(CRANK_ROCKER, Constraints(min_transmission=math.radians(5)))
     _, ways = _Evaluate(problem).curve(problem.unknowns_of(CRANK_ROCKER))
     assert [len(ways[w][1]) for w in (1, -1)] == [CURVE_SAMPLES + 1] * 2
-    values, xs, mu = ways[-1]
+    values, xs, mu, _ = ways[-1]
     _, _, mu_all = problem.move(problem.linkage(problem.unknowns_of(CRANK_ROCKER)), xs)
     assert np.allclose(mu, mu_all, atol=1e-12)
 
@@ -116,7 +119,8 @@ def test_the_curve_places_a_motion_targets_own_poses_on_it():
     problem, _ = _problem(CRANK_ROCKER, target, None, Constraints())
     evaluate = _Evaluate(problem)
     _, ways = evaluate.curve(problem.unknowns_of(CRANK_ROCKER))
-    values, _, _ = ways[1]
+    values, _, _, link = ways[1]
+    assert link is None  # a motion's body is matched as it is: no point of it to fit
     d, places = evaluate.project(values, target.poses)
     # (the curve is sampled: a pose between two samples is off their chord by about h²/8 of the curve's
     # radius, h = 2π/120, so its squared distance is below 1e-6 of the target's size squared)

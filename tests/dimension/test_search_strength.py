@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from synth.dimension import Constraints, FunctionTarget, MotionTarget, PathTarget, synthesize
-from synth.dimension._search import DimensionalResult, _checked, _problem, similarity
+from synth.dimension._search import DimensionalResult, _checked, _problem
 from synth.errors import BadTarget, DimensionError
 from synth.motion import Linkage, sweep
 from synth.structure.chain import Chain, Mechanism
@@ -63,15 +63,6 @@ def test_refusals_name_what_is_wrong():
 ])
 def test_an_underdetermined_target_says_how_many_points_it_needs(target, sentence):
     assert refused(BadTarget, synthesize, FOUR_BAR, target, budget=1).startswith(sentence + " (or allow")
-
-
-def test_the_similarity_is_found_in_closed_form():
-    z = np.array([0, 2, 1 + 1j, -1j])
-    lam, shift = similarity(z, (0.5 - 1.5j) * z + (2 + 3j))
-    assert abs(lam - (0.5 - 1.5j)) < 1e-14 and abs(shift - (2 + 3j)) < 1e-14
-    assert similarity(np.array([1 + 1j, 1 + 1j]), z[:2]) is None
-    # points 1e-13 apart are one point; 1e-11 apart are not
-    assert similarity(np.array([0, 1e-13]), z[:2]) is None and similarity(np.array([0, 1e-11]), z[:2]) is not None
 
 
 def test_a_polish_from_the_mechanism_that_traced_the_points_returns_it():
