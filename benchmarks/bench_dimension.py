@@ -278,6 +278,17 @@ def seed_range(text: str) -> range:
     return seeds
 
 
+def positive(text: str) -> float:
+    """A positive finite number, for --budget and --reach."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, not {text!r}")
+    return value
+
+
 def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None = None) -> dict:
     """One row: our synthesis of the problem as the command line runs it (the sampled starts
     included), its errors and CPU time, and the source's record beside it where there is one."""
@@ -304,16 +315,18 @@ def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--budget", type=float, default=60.0, help="CPU seconds per problem (default 60)")
+    parser.add_argument("--budget", type=positive, default=60.0, help="CPU seconds per problem (default 60)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", choices=sorted(PROBLEMS), help="run this problem alone")
-    parser.add_argument("--reach", type=float, help="the search box in target sizes (default 4)")
+    parser.add_argument("--reach", type=positive, help="the search box in target sizes (default 4)")
     parser.add_argument("--pylinkage-python", default=DEFAULT_PYLINKAGE,
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
     args = parser.parse_args()
     if args.reliability is not None:
+        if args.only is not None or args.reach is not None:
+            parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")
         reliability(args.reliability, args.budget)
         return
     have_pylinkage = Path(args.pylinkage_python).exists()
