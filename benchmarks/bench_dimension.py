@@ -4,8 +4,12 @@ error and CPU time per problem, pylinkage 1.3.0 side by side where it has an exa
 Usage: ``python benchmarks/bench_dimension.py [--budget SECONDS] [--seed N] [--only NAME] [--reach R]
 [--pylinkage-python PATH]`` — one row per problem (JSON lines on stdout): the sum of squared
 errors (the objective the literature reports), the largest and RMS error in the target's units,
-the relative error, CPU seconds and candidates evaluated.  The problems and their sources are in
-benchmarks/DIMENSION.md.
+the relative error, CPU seconds and candidates evaluated, each constraint's value, and where the
+problem was read.  Ours is run as ``mechsynth synthesize`` runs it (the sampled starts included).
+Where a source records its own best answer (a vector of its four-bar model, :func:`source_model`),
+the row gives that answer's sum of squared errors as recorded and as the motion layer recomputes it,
+and says how our statement of the problem is freer than the source's.  The problems, their sources
+and the results are in benchmarks/DIMENSION.md.
 
 ``python benchmarks/bench_dimension.py --reliability SEEDS [--budget SECONDS]`` measures how often
 the search finds a mechanism's own points again from no guess: for each seed (``0..9``) a crank-rocker
@@ -34,6 +38,7 @@ import json
 import math
 import subprocess
 import sys
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -44,27 +49,139 @@ sys.path.insert(0, str(ROOT))
 from synth import Chain, Mechanism  # noqa: E402
 from synth.atlas import sampled_starts  # noqa: E402
 from synth.dimension import Constraints, PathTarget, synthesize  # noqa: E402
-from synth.motion import Linkage, motion_range, sweep  # noqa: E402
+from synth.motion import Linkage, assemble, motion_range, sweep  # noqa: E402
 from tests.dimension.test_synthesize import SLIDER_CRANK, random_crank_rocker  # noqa: E402
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0)
 DEFAULT_PYLINKAGE = "/tmp/pylinkage-synth/bin/python"
 
-#: name -> (points, inputs or None, pylinkage runs it too)
+#: The public code the problems below were read from (benchmarks/DIMENSION.md, "The literature").
+ECA = "jmejia8/eca-four-bar-mechanisms"
+HNMED = "roydes/HNMED-Implementacion-y-Pruebas"
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A classical path problem: the points, their timing, our constraints and where it was read.
+
+    ``recorded`` is the best answer a source records for the problem as *it* states it: the vector
+    ``(r1, r2, r3, r4, rcx, rcy[, θ0, x0, y0, θ2 at each point])`` of the sources' four-bar model
+    (:func:`source_points`), its sum of squared errors, the method and where.  ``differs`` says how
+    our statement of the problem is freer than the source's, where it is."""
+
+    points: list
+    inputs: list | None
+    constraints: Constraints
+    source: str
+    pylinkage: bool = False
+    recorded: dict | None = None
+    differs: str | None = None
+
+
+# CE2's five points and their timing, as both sources state them (the crank's angle from the frame line)
+ARC = [(3, 3), (2.759, 3.363), (2.372, 3.663), (1.890, 3.862), (1.355, 3.943)]
+ARC_TIMING = [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi / 2]
+ARC_RECORD = {"vector": [2.275311865, 2.085761231, 2.275311865, 2.275311865, 1.503900733, 1.725985126],
+              "sum_squared_error": 2.5643900e-4, "method": "HNMED (hybrid Nelder-Mead and differential evolution)",
+              "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE2"}
+FIXED_FRAME = ("the source fixes the input pivot at the origin and the frame along +x, and times the crank from the "
+               "frame line (6 unknowns for 10 equations)")
+
 PROBLEMS = {
-    # as later papers restate Cabrera, Simon and Prado (2002); see DIMENSION.md for what is unchecked
-    "five points on a line, timed": (
+    "five points on a line, timed": Problem(
         [(20, 20), (20, 25), (20, 30), (20, 35), (20, 40)],
-        [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi / 2], False),
-    "six points on a line, untimed": (
-        [(20, 20), (20, 25), (20, 30), (20, 35), (20, 40), (20, 45)], None, False),
-    "ten points of a closed path, untimed": (
+        [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi / 2], Constraints(),
+        "none read: restated on 28 Nov from later papers' openings (points of CE1, timing of CE2)"),
+    "six points on a line, untimed": Problem(
+        [(20, 20), (20, 25), (20, 30), (20, 35), (20, 40), (20, 45)], None, Constraints(crank=True),
+        f"{ECA}: tools.jl case 1; {HNMED}: Problema_1.m (CE1)",
+        recorded={"vector": [36.20984565222868, 8.5122713957833192, 26.286150530546053, 36.133728484955391,
+                             35.285017928880542, 15.856251446094324, 3.9425512258184425, -7.5517166964425364,
+                             57.867501834179919, 1.6656403214572555, 2.4331171195675414, 2.9521145521903884,
+                             3.4537405841629933, 4.0026514475284003, 5.3124518167904986],
+                  "sum_squared_error": 3.7865323450608567e-29,
+                  "method": "HNMED (hybrid Nelder-Mead and differential evolution)",
+                  "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE1"},
+        differs="the source asks r2 <= r3 <= r4 <= r1 and r1 + r2 <= r3 + r4 (a crank-rocker, frame longest); "
+                "ours asks only that the crank turns"),
+    "five timed points on an arc, frame free": Problem(
+        ARC, ARC_TIMING, Constraints(crank=True), f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)",
+        recorded=ARC_RECORD,
+        differs=FIXED_FRAME + "; ours places the frame and the crank's first angle freely (10 unknowns)"),
+    "five timed points on an arc, pivots on the x axis": Problem(
+        ARC, ARC_TIMING, Constraints(crank=True, pivots=(-1e-3, 50.0, -1e-3, 1e-3)),
+        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", recorded=ARC_RECORD,
+        differs=FIXED_FRAME + "; ours keeps both pivots within 0.001 of the x axis between x = 0 and 50, but the "
+                "input pivot may slide along it and the crank's first angle is free (8 unknowns)"),
+    "ten points of a closed path, untimed": Problem(
         [(20, 10), (17.66, 15.142), (11.736, 17.878), (5, 16.928), (0.60307, 12.736), (0, 6.9519),
-         (3.5396, 2.5171), (10, 0.2679), (16.736, 2.1216), (20, 6.5798)], None, False),
+         (3.5396, 2.5171), (10, 0.2679), (16.736, 2.1216), (20, 6.5798)], None, Constraints(),
+        "none read: restated on 28 Nov from later papers' openings"),
+    "eighteen points of a closed path, untimed": Problem(
+        [(0.5, 1.1), (0.4, 1.1), (0.3, 1.1), (0.2, 1.0), (0.1, 0.9), (0.05, 0.75), (0.02, 0.6), (0, 0.5),
+         (0, 0.4), (0.03, 0.3), (0.1, 0.25), (0.15, 0.2), (0.2, 0.3), (0.3, 0.4), (0.4, 0.5), (0.5, 0.7),
+         (0.6, 0.9), (0.6, 1.0)], None, Constraints(crank=True),
+        f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
+        differs="the source's box is links 0-5 and offsets and pivot within +-5; ours is 4 target sizes (4.3) "
+                "round the points' centre, and asks only that the crank turns"),
     # pylinkage 1.3.0: its README's example, and its path_generation docstring's
-    "pylinkage README: four points, untimed": ([(0, 0), (1, 1), (2, 1), (3, 0)], None, True),
-    "pylinkage docstring: four points, untimed": ([(0, 1), (1, 2), (2, 1.5), (3, 0)], None, True),
+    "pylinkage README: four points, untimed": Problem([(0, 0), (1, 1), (2, 1), (3, 0)], None, Constraints(),
+                                                      "pylinkage 1.3.0 README", pylinkage=True),
+    "pylinkage docstring: four points, untimed": Problem([(0, 1), (1, 2), (2, 1.5), (3, 0)], None, Constraints(),
+                                                         "pylinkage 1.3.0 path_generation docstring", pylinkage=True),
 }
+
+
+def source_model(vector, angles) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The sources' four-bar model in closed form: the fixed pivots, and the crank pin, the coupler's
+    far joint and the coupler point at each crank angle.
+
+    The model both sources share: input pivot at (x0, y0), frame of length r1 turned by θ0, crank r2 at
+    θ2 from the frame line, coupler r3, rocker r4, the coupler point (rcx, rcy) in the coupler's frame,
+    and the coupler's angle θ3 = 2·atan((−B + √(A² + B² − C²)) / (C − A)) with A = 2·r3·(r2·cos θ2 − r1),
+    B = 2·r3·r2·sin θ2, C = r1² + r2² + r3² − r4² − 2·r1·r2·cos θ2.  ``vector`` is
+    (r1, r2, r3, r4, rcx, rcy) with the frame at the origin along +x, or (…, θ0, x0, y0).
+
+    Returns
+    -------
+    pivots : array (2, 2)
+        The input pivot and the rocker's pivot.
+    crank_pins, far_joints, coupler_points : arrays (N, 2)
+
+    Examples
+    --------
+    >>> pivots, a, b, c = source_model([4, 1, 3, 3, 1.5, 0], [0.0])   # crank along the frame
+    >>> b.round(6).tolist(), c.round(6).tolist()
+    ([[2.5, 2.598076]], [[1.75, 1.299038]])
+    """
+    r1, r2, r3, r4, rcx, rcy = vector[:6]
+    theta0, x0, y0 = vector[6:9] if len(vector) >= 9 else (0.0, 0.0, 0.0)
+    t2 = np.asarray(angles, dtype=float)
+    a = 2 * r3 * (r2 * np.cos(t2) - r1)
+    b = 2 * r3 * r2 * np.sin(t2)
+    c = r1 * r1 + r2 * r2 + r3 * r3 - r4 * r4 - 2 * r1 * r2 * np.cos(t2)
+    t3 = 2 * np.arctan((-b + np.sqrt(a * a + b * b - c * c)) / (c - a))
+    crank = np.stack((r2 * np.cos(t2), r2 * np.sin(t2)), axis=1)
+    far = crank + r3 * np.stack((np.cos(t3), np.sin(t3)), axis=1)
+    point = crank + np.stack((rcx * np.cos(t3) - rcy * np.sin(t3), rcx * np.sin(t3) + rcy * np.cos(t3)), axis=1)
+    turn = np.array([[math.cos(theta0), -math.sin(theta0)], [math.sin(theta0), math.cos(theta0)]])
+    pivots = np.array([[0.0, 0.0], [r1, 0.0]])
+    return tuple(v @ turn.T + [x0, y0] for v in (pivots, crank, far, point))
+
+
+def recorded_by_motion(problem: Problem) -> tuple[float, float]:
+    """The source's recorded answer, posed at its first point by :func:`source_model` and moved to
+    the others by the motion layer: its sum of squared errors against the problem's points, and the
+    largest gap between the motion layer's coupler points and the closed form's."""
+    vector = problem.recorded["vector"]
+    angles = np.array(vector[9:] if len(vector) > 9 else problem.inputs, dtype=float)
+    theta0 = vector[6] if len(vector) >= 9 else 0.0
+    pivots, crank, far, point = source_model(vector, angles)
+    linkage = Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], crank[0], far[0]], tracers={"P": (2, tuple(point[0]))})
+    traced = np.array([assemble(linkage, theta0 + t).tracers["P"][1] for t in angles])
+    residual = traced - np.array(problem.points, dtype=float)
+    return float((residual ** 2).sum()), float(np.abs(traced - point).max())
+
 
 # The pylinkage side, run by its own interpreter: path_generation as documented, each solution moved
 # through a whole turn of its crank by its own simulation, each target point's distance to that curve.
@@ -161,33 +278,64 @@ def seed_range(text: str) -> range:
     return seeds
 
 
+def positive(text: str) -> float:
+    """A positive finite number, for --budget and --reach."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, not {text!r}")
+    return value
+
+
+def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None = None) -> dict:
+    """One row: our synthesis of the problem as the command line runs it (the sampled starts
+    included), its errors and CPU time, and the source's record beside it where there is one."""
+    problem = PROBLEMS[name]
+    target = PathTarget(np.array(problem.points, dtype=float),
+                        None if problem.inputs is None else np.array(problem.inputs, dtype=float))
+    constraints = replace(problem.constraints, reach=reach)
+    result = synthesize(FOUR_BAR, target, constraints=constraints, budget=budget, seed=seed,
+                        underdetermined=True, starts=sampled_starts)
+    row = {"problem": name, "points": len(problem.points), "sum_squared_error": float(np.sum(result.errors ** 2)),
+           "error_max": result.error_max, "error_rms": result.error_rms, "relative_max": result.relative_max,
+           "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations, "met": result.met,
+           "constraints": result.constraints, "source": problem.source}
+    if problem.recorded is not None:
+        again, _ = recorded_by_motion(problem)
+        row.update({"recorded_sum_squared_error": problem.recorded["sum_squared_error"],
+                    "recorded_recomputed": again, "recorded_method": problem.recorded["method"],
+                    "recorded_where": problem.recorded["where"]})
+    if problem.differs is not None:
+        row["differs"] = problem.differs
+    row["linkage"] = result.linkage.to_dict()
+    return row
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--budget", type=float, default=60.0, help="CPU seconds per problem (default 60)")
+    parser.add_argument("--budget", type=positive, default=60.0, help="CPU seconds per problem (default 60)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", choices=sorted(PROBLEMS), help="run this problem alone")
-    parser.add_argument("--reach", type=float, help="the search box in target sizes (default 4)")
+    parser.add_argument("--reach", type=positive, help="the search box in target sizes (default 4)")
     parser.add_argument("--pylinkage-python", default=DEFAULT_PYLINKAGE,
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
     args = parser.parse_args()
     if args.reliability is not None:
+        if args.only is not None or args.reach is not None:
+            parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")
         reliability(args.reliability, args.budget)
         return
     have_pylinkage = Path(args.pylinkage_python).exists()
-    for name, (points, inputs, theirs) in PROBLEMS.items():
+    for name, problem in PROBLEMS.items():
         if args.only is not None and name != args.only:
             continue
-        target = PathTarget(np.array(points, dtype=float), None if inputs is None else np.array(inputs))
-        result = synthesize(FOUR_BAR, target, constraints=Constraints(reach=args.reach), budget=args.budget,
-                            seed=args.seed, underdetermined=True)
-        row = {"problem": name, "points": len(points), "sum_squared_error": float(np.sum(result.errors ** 2)),
-               "error_max": result.error_max, "error_rms": result.error_rms, "relative_max": result.relative_max,
-               "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations, "met": result.met}
-        if theirs and have_pylinkage:
-            row.update(_pylinkage(args.pylinkage_python, points) or {})
-        row["linkage"] = result.linkage.to_dict()
+        row = run_problem(name, budget=args.budget, seed=args.seed, reach=args.reach)
+        if problem.pylinkage and have_pylinkage:
+            row.update(_pylinkage(args.pylinkage_python, problem.points) or {})
         print(json.dumps(row), flush=True)
 
 
