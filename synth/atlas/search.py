@@ -11,8 +11,10 @@ path — retrieval from the atlas's curve index, then the polish of :func:`synth
    is a trigonometric polynomial in τ, evaluated by one FFT on 512 shifts and refined by a scalar search.
 3. The best few samples of each topology (chain, frame, input) are turned into start linkages in the
    target's frame (mirrored, turned, scaled, moved, posed at the first target point) and polished by
-   :func:`synth.dimension.synthesize` within the time budget; the answer is the best mechanism of each
-   topology, errors re-checked by the motion layer.
+   :func:`synth.dimension.synthesize` within half the topology's share of the time budget; a topology
+   none of whose polishes meets the target exactly spends the rest in synthesize's global stage
+   (differential evolution seeded from its best polished linkage and samples).  The answer is the best
+   mechanism of each topology, errors re-checked by the motion layer.
 
 Retrieval can miss: a topology whose samples are all far from the target's shape (the samples are a
 few hundred random poses, not every dimension), curves of rockers (only cranks are indexed), of
@@ -508,7 +510,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     per_topology : int
         Samples of each topology polished at most (nearest first).
     budget : float
-        CPU seconds of polishing in all, shared equally by the topologies.
+        CPU seconds of polishing and global search in all, shared equally by the topologies (a topology
+        met exactly stops early).
     constraints : synth.dimension.Constraints, optional
         What the answer must also meet (the search box grows to hold each start).
     workers, scheduler
