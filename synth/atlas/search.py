@@ -11,8 +11,10 @@ path — retrieval from the atlas's curve index, then the polish of :func:`synth
    is a trigonometric polynomial in τ, evaluated by one FFT on 512 shifts and refined by a scalar search.
 3. The best few samples of each topology (chain, frame, input) are turned into start linkages in the
    target's frame (mirrored, turned, scaled, moved, posed at the first target point) and polished by
-   :func:`synth.dimension.synthesize` within the time budget; the answer is the best mechanism of each
-   topology, errors re-checked by the motion layer.
+   :func:`synth.dimension.synthesize` within half the topology's share of the time budget; a topology
+   none of whose polishes meets the target exactly spends the rest in synthesize's global stage
+   (differential evolution seeded from its best polished linkage and samples).  The answer is the best
+   mechanism of each topology, errors re-checked by the motion layer.
 
 Retrieval can miss: a topology whose samples are all far from the target's shape (the samples are a
 few hundred random poses, not every dimension), curves of rockers (only cranks are indexed), of
@@ -408,9 +410,12 @@ def _expand(task: _Polish) -> list:
 
 
 def _polish_topology(task: _Polish):
-    """Polish a topology's candidates in turn, each from its start linkage, until one meets the
-    target exactly or the topology's budget is spent, then go on from the best while that halves its
-    error: (best result or None, its candidate, candidates tried, why the last failed, CPU seconds)."""
+    """A topology's search within its share of the budget: its candidates polished in turn, each from
+    its start linkage, until one meets the target exactly or :data:`POLISH_SHARE` of the share is spent,
+    going on from the best while that halves its error; then, if none met the target exactly, the
+    global stage of :func:`synth.dimension.synthesize` (differential evolution, its first population
+    seeded from the best polished linkage and the samples) for the rest of the share.  Returns (best
+    result or None, its candidate, candidates polished, why the last failed, CPU seconds)."""
     from dataclasses import replace
 
     from ..dimension import synthesize
@@ -419,29 +424,35 @@ def _polish_topology(task: _Polish):
     clock = time.process_time()
     best, best_candidate, tried, why = None, None, 0, "its share of the time budget was spent before a polish began"
     centre = (np.min(task.target.points, axis=0) + np.max(task.target.points, axis=0)) / 2
+    polishing = POLISH_SHARE * task.budget
+
+    def widened(starts):  # the search box holds every start (a tighter box held every start at one false minimum)
+        far = max(float(np.hypot(*(np.vstack((s.points, s.tracers["P"][1])) - centre).T).max()) for s in starts)
+        return replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
 
     def polish(start, tracer_link):
-        far = float(np.hypot(*(np.vstack((start.points, start.tracers["P"][1])) - centre).T).max())
-        constraints = replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
-        return synthesize(start, task.target, tracer_link=tracer_link, constraints=constraints,
-                          budget=task.budget - (time.process_time() - clock), seed=task.seed, polish_only=True)
+        return synthesize(start, task.target, tracer_link=tracer_link, constraints=widened([start]),
+                          budget=polishing - (time.process_time() - clock), seed=task.seed, polish_only=True)
 
+    starts = []
     for candidate, points, at, slides in task.candidates:
-        if time.process_time() - clock >= task.budget:
+        if time.process_time() - clock >= polishing:
             break
         tried += 1
         try:
-            result = polish(start_linkage(candidate, chain, points, at, task.target, slides), candidate.tracer_link)
+            start = start_linkage(candidate, chain, points, at, task.target, slides)
+            result = polish(start, candidate.tracer_link)
         except SynthesisError as exc:
             why = str(exc)
             continue
+        starts.append((candidate.tracer_link, start))
         if best is None or (result.met, -result.error_rms) > (best.met, -best.error_rms):
             best, best_candidate = result, candidate
         if result.met and result.relative_max <= EXACT:
             break
     # the least squares stop at their evaluation limit on long untimed problems: go on from the best
-    # while the budget lasts and each polish at least halves its error
-    while best is not None and best.relative_max > EXACT and time.process_time() - clock < task.budget:
+    # while the polishing share lasts and each polish at least halves its error
+    while best is not None and best.relative_max > EXACT and time.process_time() - clock < polishing:
         try:
             again = polish(best.linkage, best_candidate.tracer_link)
         except SynthesisError:
@@ -449,9 +460,24 @@ def _polish_topology(task: _Polish):
         if not again.error_rms < 0.5 * best.error_rms:
             break
         best = again
+    # no sample lay in the target's basin (eight links: a few random poses of twenty dimensions): the global
+    # stage, from the best polished linkage and the samples of the best one's tracer link
+    left = task.budget - (time.process_time() - clock)
+    if best is not None and best.relative_max > EXACT and left > 0:
+        tracer = best_candidate.tracer_link
+        seeds = [best.linkage] + [start for link, start in starts if link == tracer]
+        try:
+            found = synthesize(best.linkage.mechanism, task.target, tracer_link=tracer, constraints=widened(seeds),
+                               budget=left, seed=task.seed, starts=lambda *_: seeds)
+        except SynthesisError:
+            found = None
+        if found is not None and (found.met, -found.error_rms) > (best.met, -best.error_rms):
+            best = found
     return best, best_candidate, tried, why, time.process_time() - clock
 
 
+#: the share of a topology's budget its samples' polishes may take before the global stage
+POLISH_SHARE = 0.5
 #: a polished mechanism meets the target exactly when its largest error is below this × the target's size
 EXACT = 1e-9
 
@@ -484,7 +510,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     per_topology : int
         Samples of each topology polished at most (nearest first).
     budget : float
-        CPU seconds of polishing in all, shared equally by the topologies.
+        CPU seconds of polishing and global search in all, shared equally by the topologies (a topology
+        met exactly stops early).
     constraints : synth.dimension.Constraints, optional
         What the answer must also meet (the search box grows to hold each start).
     workers, scheduler

@@ -174,6 +174,22 @@ def test_a_random_four_bar_is_found_again_on_a_tiny_index(four_bar_index, timed)
     _assert_recovered(found, target, 4)
 
 
+def test_a_topology_whose_polish_stops_short_goes_on_with_the_global_stage(tmp_path):
+    """An index of one four-bar pose, far from a random four-bar (seed 3): the polish of that sample
+    stops in a local minimum, and the rest of the topology's share goes to differential evolution
+    seeded from the polished linkage (an exact polish stops before it: see the strength tests)."""
+    db = _atlas(tmp_path, "4")
+    index_curves(db, settings=IndexSettings(samples=1), workers=1)
+    target = _target(_random_crank(FOUR_BAR, 2, seed=3), 36, True)
+    found = search_atlas(db, target, budget=4)
+    best = found.best
+    assert found.notes == [] and best.tried == 1 and best.result.met
+    assert best.result.method == ("sampled crank curves + differential evolution (1 run) + bounded least squares "
+                                  "(trf), timed")
+    assert best.result.relative_max > 1e-6  # (not found: the global stage had 2 s of a four-bar's 8 dimensions)
+    assert 2 <= best.seconds <= 4 + 1  # the whole share spent (the last evaluation may overrun it)
+
+
 @pytest.mark.slow
 def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     """Must show: a six-bar with dimensions picked at random, given only as points with timing (its
