@@ -31,6 +31,9 @@ _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constrai
 _FEW_VECTORS = 16384
 _LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms × edges) in that enumeration
 _KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
+# entries (placements × strings, 16 MiB) a count with multiple joints reads from the kernel's first pass: a
+# second pass repeats the whole search (14 links, v = 0..12: 40 % of the kernel's time with 4096 rows)
+_COUNT_ENTRIES = 1 << 21
 
 
 def realise(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
@@ -261,7 +264,10 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         group, edges = np.ascontiguousarray(back[group[:, order]]), tuple(edges[e] for e in order)
     if whole_group:  # the lex-least test of sorted bundles needs one permutation per coset
         group = _in_bundle_order(edges, group)
-    out = np.zeros((_KERNEL_ROWS if listing or rows else 0, E), dtype=np.int64)
+    if rows and not listing:  # (the kernel writes whole rows, and only rows up to what it found are read)
+        out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
+    else:
+        out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
     found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
     if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
