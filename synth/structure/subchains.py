@@ -39,7 +39,7 @@ from .joints import JOINT_KINDS, PRISMATIC
 from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
-__all__ = ["MAX_CORE", "SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities"]
+__all__ = ["MAX_CORE", "SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities", "passing"]
 
 MAX_CORE = 24  # non-binary links the exact test handles (2^24 subsets of the core)
 _MAX_SCANNED = 22  # links of a chain with prismatic pairs: every subset is scanned (4 M sets)
@@ -175,6 +175,27 @@ def least_mobilities(h: int, is_link, groups: list[list[int]], ends, lengths) ->
     # (the scan takes whole strings only, so it does not see a link with one of its neighbours)
     pair = np.where(is_link.sum() + lengths.sum(axis=1) >= 3, 1, _BIG)
     return np.minimum(np.minimum(low, alone.min(axis=1, initial=_BIG)), pair)
+
+
+def passing(h: int, is_link, ends, lengths, threshold: int) -> np.ndarray:
+    """``least_mobilities(h, is_link, [], ends, lengths) >= threshold``, compiled and stopping at the
+    first set that refuses a candidate: for large batches where most candidates fail (stage B's
+    kernel placements with multiple joints), where the scan computes every set for every candidate.
+
+    Only the sets T of the core that can give a sub-chain below ``threshold`` for some candidate of
+    the batch are looked at (:mod:`synth.structure._subchain_kernel`).  Loads numba (about a second
+    the first time in a process).
+
+    >>> joint = [[0, 3], [1, 3], [2, 3], [0, 1]]  # links 0, 1, 2 on a multiple joint (vertex 3), a path 0–1
+    >>> passing(3, [True, True, True, False], joint, [[0, 0, 0, 2], [0, 0, 0, 1]], 1).tolist()
+    [True, False]
+    """
+    from ._subchain_kernel import passes
+
+    ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+    lengths = np.ascontiguousarray(np.asarray(lengths, dtype=np.int64).reshape(-1, len(ends)))
+    return passes(h, np.asarray(is_link, dtype=np.bool_), np.ascontiguousarray(ends[:, 0]),
+                  np.ascontiguousarray(ends[:, 1]), lengths, threshold, np.zeros(len(lengths), dtype=np.bool_))
 
 
 def subchain_mobility(chain: Chain, links) -> int:

@@ -31,6 +31,9 @@ _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constrai
 _FEW_VECTORS = 16384
 _LEX_BLOCK = 1 << 20  # entries of one numpy block of (vectors × automorphisms × edges) in that enumeration
 _KERNEL_ROWS = 4096  # placements a listing reads from the kernel's first pass (more: a second pass)
+# entries (placements × strings, 16 MiB) a count with multiple joints reads from the kernel's first pass: a
+# second pass repeats the whole search (14 links, v = 0..12: 40 % of the kernel's time with 4096 rows)
+_COUNT_ENTRIES = 1 << 21
 
 
 def realise(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> list[Chain]:
@@ -56,12 +59,12 @@ def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict
     if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
         simple = not any(_vertex_terms(graph.vertices, conv)[1])
         if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
-            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=not simple)
+            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=False, rows=not simple)
             if whole_group and simple:
                 return found
             if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
                 t0 = perf_counter()
-                valid = int(_exact_test(graph.vertices, graph.edges, placements, conv).sum()) if found else 0
+                valid = int(_exact_test(graph.vertices, graph.edges, placements, conv, compiled=True).sum()) if found else 0
                 _add(stats, subchain_s=perf_counter() - t0)
                 return valid
     solutions, one_per_orbit, checked = _distributions(code, graph, conv, stats)
@@ -225,10 +228,12 @@ def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
 
 
 def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
-                       listing: bool) -> tuple[int, "np.ndarray", bool]:
+                       listing: bool, rows: bool = False) -> tuple[int, "np.ndarray", bool]:
     """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
     Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
-    and whether the group was whole."""
+    and whether the group was whole.  With ``rows`` (a count that tests each placement: multiple
+    joints) the search runs in a count's order of the strings and still returns the placements,
+    one per orbit but not the lex-least in H's own order, with their columns in H's order."""
     import numpy as np
 
     from ._stage_b_kernel import place
@@ -259,13 +264,16 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         group, edges = np.ascontiguousarray(back[group[:, order]]), tuple(edges[e] for e in order)
     if whole_group:  # the lex-least test of sorted bundles needs one permutation per coset
         group = _in_bundle_order(edges, group)
-    out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
+    if rows and not listing:  # (the kernel writes whole rows, and only rows up to what it found are read)
+        out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
+    else:
+        out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
     found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
-    if listing and found > len(out):
+    if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
-    return found, out[:found], whole_group
+    return found, out[:found] if listing or not rows else out[:found, back], whole_group
 
 
 def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.ndarray":
@@ -568,9 +576,11 @@ def _subset_constraint(model, vertices, edges, short, TL: set, TJ: set, n_links:
         model.add(expr <= bound + conv.threshold - conv.threshold * some)
 
 
-def _exact_test(vertices, edges, solutions, conv: Conventions):
+def _exact_test(vertices, edges, solutions, conv: Conventions, compiled: bool = False):
     """Exact sub-chain test of the chains of H with the weight vectors ``solutions``, all at once:
-    a bool per vector (:func:`synth.structure.subchains.least_mobilities` over the sets of H's vertices).
+    a bool per vector (:func:`synth.structure.subchains.least_mobilities` over the sets of H's vertices;
+    with ``compiled``, :func:`synth.structure.subchains.passing`, the same verdicts where the kernels
+    are loaded and most vectors fail: the kernel's placements with multiple joints).
 
     A multiple joint J counts as a vertex of its own with h − 1 freedoms, joined to each of its
     links by a simple joint: W(S) is then the same for every S that takes J with its links, and
@@ -581,7 +591,7 @@ def _exact_test(vertices, edges, solutions, conv: Conventions):
     """
     import numpy as np
 
-    from ..structure.subchains import least_mobilities
+    from ..structure.subchains import least_mobilities, passing
 
     inner = set(_inner_links(vertices))
     kept = [u for u, vertex in enumerate(vertices) if u in inner or vertex.is_joint]
@@ -591,6 +601,8 @@ def _exact_test(vertices, edges, solutions, conv: Conventions):
                     dtype=np.int64).reshape(-1, 2)
     lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
     is_link = [vertices[u].is_link for u in kept]
+    if compiled:
+        return passing(conv.h, is_link, ends, lengths, conv.threshold)
     return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
 
 

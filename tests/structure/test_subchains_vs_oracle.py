@@ -311,8 +311,9 @@ BATCH_QUERIES = [dict(dof=1, links=8, v="0..4"), dict(dof=0, links=7, v="0..3"),
 def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
     """Stage B judges all candidate vectors of a unit at once on its branch multigraph (a multiple
     joint is a vertex of h − 1 freedoms, a single-joint link ends a free path).  Every verdict, on
-    valid and invalid candidates alike, is that of every subset of links of the chain it stands for
-    (tests/oracles/chains.py, any h)."""
+    valid and invalid candidates alike, by the scan and by the compiled test that stops at the first
+    refusing set, is that of every subset of links of the chain it stands for (tests/oracles/chains.py,
+    any h)."""
     import synth
     from synth.synthesis import stage_b
 
@@ -327,10 +328,11 @@ def test_the_batched_test_of_stage_b_equals_every_subset(query, monkeypatch):
         candidates = stage_b._distributions(u.code, u.contracted, conv, None)[0]
         if not candidates:
             continue
-        for s, ok in zip(candidates, stage_b._exact_test(vertices, edges, candidates, conv)):
+        compiled = stage_b._exact_test(vertices, edges, candidates, conv, compiled=True)
+        for s, ok, ok_compiled in zip(candidates, stage_b._exact_test(vertices, edges, candidates, conv), compiled):
             chain = stage_b._expand(vertices, edges, s, conv.h)
             truth = subchain_ok(chain.joints, chain.links, conv.rigid_subchains, conv.h)
-            assert bool(ok) == truth, (u.key, s, chain.compact())
+            assert bool(ok) == bool(ok_compiled) == truth, (u.key, s, chain.compact())
             judged[truth] += 1
     assert judged[True] and judged[False]  # both verdicts occur
 
@@ -360,6 +362,44 @@ def test_the_exact_test_gives_the_same_verdicts_in_chunks(query, pairs, monkeypa
     monkeypatch.setattr(mobility, "_CANDIDATE_SUBSETS", pairs)
     for (u, s), verdicts in zip(batches, whole):
         assert np.array_equal(stage_b._exact_test(u.contracted.vertices, u.contracted.edges, s, u.conventions), verdicts)
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_the_compiled_test_gives_the_scans_verdicts_on_random_batches(seed):
+    """``passing`` against ``least_mobilities`` on random cores (links and multiple-joint vertices),
+    random paths (between two core vertices, closed on one, with a free end) and random batches of
+    lengths 0 … h + 1, for h = 2 … 6 and thresholds −1 … 2; the verdicts do not depend on the order
+    of the batch (the compiled test moves the refusing sets to the front as it goes)."""
+    import numpy as np
+
+    from synth.structure.subchains import least_mobilities, passing
+
+    rng = random.Random(seed)
+    checked = {True: 0, False: 0}
+    for _ in range(25):
+        h = rng.randint(2, 6)
+        c = rng.randint(1, 7)
+        is_link = [rng.random() < 0.6 for _ in range(c)]
+        ends = []
+        for _ in range(rng.randint(1, 9)):
+            kind = rng.random()
+            if kind < 0.15:
+                ends.append([-1, -1])
+            elif kind < 0.3:
+                ends.append([rng.randrange(c)] * 2)
+            elif c >= 2:
+                ends.append(sorted(rng.sample(range(c), 2)))
+        if not ends:
+            continue
+        lengths = np.array([[rng.randint(0, h + 1) for _ in ends] for _ in range(rng.randint(1, 60))])
+        threshold = rng.randint(-1, 2)
+        scan = least_mobilities(h, is_link, [], ends, lengths) >= threshold
+        assert passing(h, is_link, ends, lengths, threshold).tolist() == scan.tolist(), (h, is_link, ends, threshold)
+        shuffled = np.array(rng.sample(range(len(lengths)), len(lengths)))
+        assert passing(h, is_link, ends, lengths[shuffled], threshold).tolist() == scan[shuffled].tolist()
+        checked[True] += int(scan.sum())
+        checked[False] += int((~scan).sum())
+    assert checked[True] and checked[False]
 
 
 @pytest.mark.parametrize("text", ["0-1 1-2 2-0 0-3 4-5 5-6 6-7 7-4", "0-1 1-2 2-3 3-0 4-5 5-6 6-4", "0-1 2-3"])

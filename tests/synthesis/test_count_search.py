@@ -152,3 +152,55 @@ def test_the_lex_least_vectors_are_those_no_image_undercuts(most):
         group = [tuple(rng.sample(range(edges), edges)) for _ in range(rng.randint(1, 6))]
         kept = [tuple(v) for v in w.tolist() if all(tuple(v) <= tuple(v[e] for e in g) for g in group)]
         assert [tuple(v) for v in stage_b._lex_least(w, group).tolist()] == kept
+
+
+# multiple joints: the kernel's weaker rule, every placement then through the exact test
+MULTIPLE_QUERIES = [dict(dof=1, links=10, v=(1, 8)), dict(dof=0, links=9, v=(1, 4)), dict(dof=1, links=7, h=2, v=(1, 3)),
+                    dict(dof=1, links=11, h=4, v=(1, 4)), dict(dof=2, links=9, v=(1, 7)),
+                    dict(dof=3, links=8, v=(1, 4), n1=(0, 2))]
+
+
+@pytest.mark.parametrize("query, first_pass", [(q, "whole") for q in MULTIPLE_QUERIES]
+                         + [(q, "one row") for q in MULTIPLE_QUERIES[1:3]], ids=lambda x: _ids(x) if isinstance(x, dict) else x)
+def test_the_count_rows_with_multiple_joints_are_the_listings_orbits(query, first_pass, kernel_everywhere, monkeypatch):
+    """Unit by unit with multiple joints: the count reads the placements of the search order
+    (``rows``), with their columns back in H's order; as many as the listing writes out, the same
+    chains (by certificate) among those the exact test keeps, and the same count as the listing's,
+    whether the first pass holds every row or one (then a second pass reads them)."""
+    if first_pass == "one row":
+        monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
+        monkeypatch.setattr(stage_b, "_COUNT_ENTRIES", 1)
+    compared = {True: 0, False: 0}
+    for u, args in kernel_units(query):
+        graph, conv = args[1], args[2]
+        if all(vertex.is_link for vertex in graph.vertices):
+            continue
+        found, rows, whole = stage_b._kernel_placements(*args, None, listing=False, rows=True)
+        listed, listing, _ = stage_b._kernel_placements(*args, None, listing=True)
+        assert found == listed == len(rows) == len(listing), u.key
+        if whole and found:
+            certificates = []
+            for placements in (rows, listing):
+                valid = stage_b._exact_test(graph.vertices, graph.edges, placements, conv, compiled=True)
+                certificates.append(sorted(stage_b._expand(graph.vertices, graph.edges, s, conv.h).certificate
+                                           for s in placements[valid].tolist()))
+            assert certificates[0] == certificates[1], u.key
+        assert stage_b.count_realised(*args) == stage_b.count_listed(*args), u.key
+        compared[found > 1] += 1
+    assert compared[True]  # units with several placements, where the order of the strings matters
+
+
+@pytest.mark.parametrize("dof, links, v", [(1, 8, 6), (1, 6, 4), (2, 7, 5), (0, 7, 3)])
+def test_counts_with_multiple_joints_by_the_compiled_test_equal_the_brute_force(dof, links, v, kernel_everywhere):
+    """Counts by code with multiple joints, the kernel's placements and the compiled exact test on every
+    code, against the oracle (which shares no code with the engine)."""
+    def key(name):  # the oracle's (assortment, composition), trailing zeros stripped
+        code = synth.Code.parse(name)
+        composition = code.composition or ((code.v,) if code.v else ())  # (none written: v ternary joints)
+        return tuple(np.trim_zeros(list(code.assortment), "b")), tuple(np.trim_zeros(list(composition), "b"))
+
+    got = synth.count_chains(dof, links, v=(0, v), workers=1)
+    expected = count_by_code(brute_force_chains_once(links, dof, v_max=v, rigid_subchains=dof == 0))
+
+    assert {key(name): n for name, n in got.by_code.items()} == expected
+    assert any(key(name)[1] for name in got.by_code)  # chains with multiple joints among them
