@@ -46,13 +46,15 @@ def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
     assert np.abs(full[:, problem.dims + 2]).max() > 0  # a later step moves the points after it
 
 
-@pytest.mark.parametrize("seed, budget", [(7, 10), (0, 30)])
+@pytest.mark.parametrize("seed, budget", [(7, 30), (0, 30)])
 def test_ten_untimed_points_of_a_random_crank_rocker_are_found_exactly_from_no_guess(seed, budget):
     # seed 7: before the sampled starts, differential evolution ended at 0.38 % of the target's size after
     # 30 CPU s; seed 0 (its coupler point farther from the coupler than the coupler is long, its points
     # unevenly spread): with the sampled starts but the tracer point searched, 3.0e-4 after 30 CPU s
     # (benchmarks/DIMENSION.md); with the tracer point fitted to each sample both within a few CPU s (seed 0's
-    # budget is 30 for the share of it each sampled start's polish gets: 10 leaves it at 7e-5)
+    # budget is 30 for the share of it each sampled start's polish gets: 10 leaves it at 7e-5; seed 7's 10 CPU s
+    # were once spent before its polish met the points under a load of 10, so it has 30 too: the search stops
+    # as soon as the points are met, so the budget only bounds a failing run)
     original = random_crank_rocker(seed)
     target = PathTarget(sweep(original, steps=11).tracers["P"][:10])
     result = synthesize(FOUR_BAR, target, budget=budget, seed=seed, starts=sampled_starts)
