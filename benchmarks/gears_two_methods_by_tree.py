@@ -27,6 +27,7 @@ import argparse
 import json
 import random
 import resource
+import signal
 import sys
 import time
 from pathlib import Path
@@ -114,7 +115,12 @@ def main(argv=None) -> int:
             if row.get("dof") == args.dof and row.get("links") == args.links and "tree" in row:
                 if "engine_rotation" in row or not args.rotation:
                     done[row["tree"]] = row
-    pairs = paired_trees(args.links)
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # Ctrl-C stops even a run started in the background
+    try:
+        pairs = paired_trees(args.links)
+    except KeyboardInterrupt:
+        print("gears_two_methods_by_tree: interrupted before any tree was compared", file=sys.stderr)
+        return 130
     # a sample in its drawn order: a run stopped early has compared a random part of it
     chosen = pairs if args.sample is None else random.Random(args.seed).sample(pairs, min(args.sample, len(pairs)))
     todo = [p for p in chosen if p[0] not in done]

@@ -17,8 +17,10 @@ import itertools
 import collections
 import json
 import random
+import signal
 import subprocess
 import sys
+import time
 from fractions import Fraction
 from pathlib import Path
 
@@ -153,6 +155,23 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
         assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
     result = run(tmp_path / "missing" / "log.jsonl", "--dof", 1, "--links", 7)
     assert result.returncode == 2 and "cannot write" in result.stderr
+
+
+def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log = tmp_path / "log.jsonl"
+    proc = subprocess.Popen([sys.executable, str(script), str(log), "--dof", "1", "--links", "10"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and (not log.exists() or not log.read_text()):
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    stopped = time.monotonic()
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and time.monotonic() - stopped < 10 and "interrupted" in err
+    summary = json.loads(out)["summary"]
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    assert summary["interrupted"] and summary["trees_compared"] == len(rows) - 1 < summary["trees_of_the_size"] == 1540
 
 
 @pytest.mark.slow
