@@ -74,7 +74,7 @@ def test_second_method_agrees_at_eight_links(dof, links):
     assert gear_trains_fast.census(dof, links) == {"displacement": found.displacement, "rotation": found.rotation}
 
 
-@pytest.mark.parametrize("dof,links", [(1, n) for n in range(3, 8)] + [(2, 6), (2, 7)])
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(2, 8)] + [(2, 3), (2, 6), (2, 7), (3, 4), (3, 7)])
 def test_second_method_equals_brute_force(dof, links):
     assert gear_trains_fast.census(dof, links) == brute.count_trains(dof, links)
 

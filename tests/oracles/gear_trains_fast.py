@@ -1,11 +1,16 @@
-"""A second, independent count of planetary gear trains, fast enough for 10 links (test oracle).
+"""A second, independent count of planetary gear trains, a tree at a time (test oracle).
+
+:func:`tree_trains` / :func:`tree_census` count the trains on one link–axis tree given by its axes
+(any numbering), holding only that tree's trains: the unit of the tree-by-tree comparison with the
+engine (benchmarks/gears_two_methods_by_tree.py), which reaches 11 links.  :func:`census` adds the
+trees of the brute force's list up, keeping one graph per rotation-graph class.
 
 It shares no code with ``synth`` (nor with nauty): trees come from :mod:`gear_trains` (the brute
 force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher
 (the first ``_CAP`` of them; the star, whose symmetries are all permutations of its n − 1 gears,
 has its 1-DOF trains counted as the unlabelled trees on those gears, see :func:`_star_trains`); mesh sets are grown in *another order* than the engine's (candidates
-sorted by carrier first, then by their gears, from the last to the first) and kept when no listed
-symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
+sorted by carrier first, then by their gears, from the last to the first; a numba loop with a
+stack of slack tables) and kept when no listed symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
 of each class passes, for any list of symmetries); where the list is not the whole group the
 sets kept on a tree are told apart by VF2 within classes of a Weisfeiler–Lehman hash.  Rigid
 sub-chains are found by counting, for every link set S, the meshes inside it against
@@ -206,7 +211,7 @@ def tree_trains(dof: int, links: int, axes) -> list[tuple[tuple[int, int, int], 
     holding = np.array([subsets[subsets & m == m] for m in ((1 << a) | (1 << b) for a, b in order)], dtype=np.int64)
     slack = _slack_table(links, axes)
     out = np.empty((1024, need), np.int64)
-    found = _grow(need, slack, holding, images, out)
+    found = _grow(need, slack, holding, images, out) if need else 1  # no mesh to place: the empty set
     if found > len(out):  # room for all of them, and again
         out = np.empty((found, need), np.int64)
         _grow(need, slack, holding, images, out)
