@@ -111,7 +111,12 @@ def main(argv=None) -> int:
     done = {}
     if args.log.exists():
         for line in args.log.read_text().splitlines():
-            row = json.loads(line)
+            try:
+                row = json.loads(line)
+            except ValueError:
+                parser.error(f"{args.log} is not a log of this script (a line is not JSON); give a new file or its log")
+            if not isinstance(row, dict):
+                parser.error(f"{args.log} is not a log of this script (a line is not a JSON object)")
             if row.get("dof") == args.dof and row.get("links") == args.links and "tree" in row:
                 if "engine_rotation" in row or not args.rotation:
                     done[row["tree"]] = row
