@@ -12,13 +12,17 @@ from __future__ import annotations
 
 import doctest
 import importlib
+import importlib.util
 import itertools
 import collections
 import json
 import random
+import signal
 import subprocess
 import sys
+import time
 from fractions import Fraction
+from pathlib import Path
 
 import networkx as nx
 import pytest
@@ -27,7 +31,7 @@ from synth.errors import InvalidOption, MalformedChain, flag
 from synth.gears import GearTrain
 from synth.gears.ratio_design import design
 from synth.gears import enumeration
-from synth.gears.enumeration import census, link_axis_trees, trains
+from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
 from synth.gears.train import fractionated
 from synth.gears.ratios import mechanisms, speed_ratio
 from tests.oracles import gear_ratios, gear_trains_fast
@@ -70,7 +74,7 @@ def test_second_method_agrees_at_eight_links(dof, links):
     assert gear_trains_fast.census(dof, links) == {"displacement": found.displacement, "rotation": found.rotation}
 
 
-@pytest.mark.parametrize("dof,links", [(1, n) for n in range(3, 8)] + [(2, 6), (2, 7)])
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(2, 8)] + [(2, 3), (2, 6), (2, 7), (3, 4), (3, 7)])
 def test_second_method_equals_brute_force(dof, links):
     assert gear_trains_fast.census(dof, links) == brute.count_trains(dof, links)
 
@@ -79,6 +83,95 @@ def test_second_method_with_few_listed_symmetries(monkeypatch):
     """Where a tree's symmetries are not all listed, the second method tells the sets apart by VF2."""
     monkeypatch.setattr(gear_trains_fast, "_CAP", 2)
     assert gear_trains_fast.census(1, 7) == {"displacement": 647, "rotation": 152}
+
+
+def _two_methods():
+    """benchmarks/gears_two_methods_by_tree.py as a module."""
+    path = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    spec = importlib.util.spec_from_file_location("gears_two_methods_by_tree", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _agree_tree_by_tree(dof, links, rotation):
+    """Every tree's trains (and rotation graphs among them) counted by the engine on its tree and
+    by the second method on its own numbering of the same tree; their sum is the census."""
+    bench = _two_methods()
+    rows = [bench.compare_tree(dof, links, pair, rotation) for pair in bench.paired_trees(links)]
+    assert [(r["tree"], r["engine"], r.get("engine_rotation")) for r in rows] == \
+        [(r["tree"], r["second"], r.get("second_rotation")) for r in rows]
+    assert sum(r["engine"] for r in rows) == count_trains(dof, links).count
+    assert len(rows) == len(link_axis_trees(links)) and any(r["engine"] for r in rows)
+
+
+@pytest.mark.parametrize("dof,links,rotation", [(1, n, n < 8) for n in range(4, 9)] + [(2, n, True) for n in range(6, 9)])
+def test_second_method_agrees_tree_by_tree(dof, links, rotation):
+    _agree_tree_by_tree(dof, links, rotation)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("dof,links,rotation", [(1, 8, True), (1, 9, True), (2, 9, True), (1, 10, False), (2, 10, False)])
+def test_second_method_agrees_tree_by_tree_to_ten_links(dof, links, rotation):
+    _agree_tree_by_tree(dof, links, rotation)
+
+
+def test_second_method_tree_trains_are_valid_and_distinct():
+    """The second method's trains on one tree: g = n − 1 − F meshes at tree distance 4 with their
+    carriers, no rigid sub-chain (every subset), pairwise non-isomorphic (brute force)."""
+    axes = ((0, 1, 5), (0, 2), (1, 3), (2, 4), (5, 6))
+    found = gear_trains_fast.tree_trains(1, 7, axes)
+    pairs = brute.mesh_pairs(7, axes)
+    symmetries = brute._automorphisms(7, axes)
+
+    def orbit(meshes):
+        return min(tuple(sorted(tuple(sorted((perm[a], perm[b]))) for a, b in meshes)) for perm in symmetries)
+
+    for a, b, t in itertools.chain.from_iterable(found):
+        assert pairs[(a, b)] == t
+    forms = {orbit([(a, b) for a, b, _ in triples]) for triples in found}
+    every = {orbit(meshes) for meshes in itertools.combinations(sorted(pairs), 5) if brute.rigid_free(7, axes, meshes)}
+    assert len(forms) == len(found) > 1 and forms == every
+
+
+def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+
+    def run(*args):
+        return subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True, text=True, timeout=300)
+
+    log = tmp_path / "log.jsonl"
+    first = run(log, "--dof", 1, "--links", 7, "--sample", 5, "--seed", 3)
+    assert first.returncode == 0, first.stderr
+    summary = json.loads(first.stdout)["summary"]
+    assert summary["trees_compared"] == summary["trees_agreeing"] == 5 and summary["trees_of_the_size"] == 59
+    again = run(log, "--dof", 1, "--links", 7, "--sample", 5, "--seed", 3)
+    assert json.loads(again.stdout)["summary"]["trains_on_agreeing_trees"] == summary["trains_on_agreeing_trees"]
+    assert "5 in the log" in again.stderr
+    assert sum("tree" in json.loads(line) for line in log.read_text().splitlines()) == 5  # nothing run twice
+    for bad in (["--dof", 1, "--links", 7, "--sample", 5], ["--dof", 0, "--links", 7], ["--dof", 1, "--links", 30],
+                ["--dof", 1], ["--dof", 1, "--links", 7, "--sample", 0, "--seed", 1]):
+        result = run(log, *bad)
+        assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
+    result = run(tmp_path / "missing" / "log.jsonl", "--dof", 1, "--links", 7)
+    assert result.returncode == 2 and "cannot write" in result.stderr
+
+
+def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log = tmp_path / "log.jsonl"
+    proc = subprocess.Popen([sys.executable, str(script), str(log), "--dof", "1", "--links", "10"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and (not log.exists() or not log.read_text()):
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    stopped = time.monotonic()
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and time.monotonic() - stopped < 10 and "interrupted" in err
+    summary = json.loads(out)["summary"]
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    assert summary["interrupted"] and summary["trees_compared"] == len(rows) - 1 < summary["trees_of_the_size"] == 1540
 
 
 @pytest.mark.slow

@@ -39,12 +39,12 @@ from itertools import combinations, permutations
 
 import networkx as nx
 
-__all__ = ["link_axis_trees", "mesh_pairs", "rigid_free", "non_fractionated", "trains", "count_trains",
+__all__ = ["canonical_tree", "link_axis_trees", "mesh_pairs", "rigid_free", "non_fractionated", "trains", "count_trains",
            "rotation_triples", "rotation_classes"]
 
 
 # ------------------------------------------------------------------ trees of links and axes
-def _canonical_tree(links: int, axes) -> str:
+def canonical_tree(links: int, axes) -> str:
     """Canonical string of the link–axis tree: the least rooted form over all roots."""
     adj = defaultdict(list)
     for k, axis in enumerate(axes):
@@ -67,14 +67,14 @@ def link_axis_trees(links: int) -> list[tuple[tuple[int, ...], ...]]:
     """
     level = {"": ()} if links == 1 else {}
     if links >= 2:
-        level = {_canonical_tree(2, [(0, 1)]): ((0, 1),)}
+        level = {canonical_tree(2, [(0, 1)]): ((0, 1),)}
         for n in range(2, links):  # add link n to every tree of n links
             grown = {}
             for axes in level.values():
                 options = [axes + ((x, n),) for x in range(n)]  # a new axis with link x
                 options += [axes[:k] + (axis + (n,),) + axes[k + 1:] for k, axis in enumerate(axes)]  # on axis k
                 for new in options:
-                    grown.setdefault(_canonical_tree(n + 1, new), tuple(tuple(sorted(a)) for a in new))
+                    grown.setdefault(canonical_tree(n + 1, new), tuple(tuple(sorted(a)) for a in new))
             level = grown
     return [level[key] for key in sorted(level)]
 
@@ -128,7 +128,7 @@ def rigid_free(links: int, axes, meshes) -> bool:
     return True
 
 
-def non_fractionated(links: int, axes, meshes) -> bool:
+def non_fractionated(links: int, axes, meshes, carriers: dict | None = None) -> bool:
     """True when the graph on the links with a triangle (a, b, t) per mesh and its carrier is
     2-connected.  Two gear pairs on one frame, with one gear of each on a common axis, are
     fractionated: their equations share the frame only.
@@ -138,7 +138,8 @@ def non_fractionated(links: int, axes, meshes) -> bool:
     >>> non_fractionated(5, ((0, 1, 4), (0, 2), (0, 3)), ((1, 2), (3, 4)))
     False
     """
-    carriers = mesh_pairs(links, axes)
+    if carriers is None:  # the caller may pass mesh_pairs(links, axes)
+        carriers = mesh_pairs(links, axes)
     g = nx.Graph()
     g.add_nodes_from(range(links))
     for a, b in meshes:

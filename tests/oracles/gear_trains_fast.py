@@ -1,11 +1,16 @@
-"""A second, independent count of planetary gear trains, fast enough for 10 links (test oracle).
+"""A second, independent count of planetary gear trains, a tree at a time (test oracle).
+
+:func:`tree_trains` / :func:`tree_census` count the trains on one link–axis tree given by its axes
+(any numbering), holding only that tree's trains: the unit of the tree-by-tree comparison with the
+engine (benchmarks/gears_two_methods_by_tree.py), which reaches 11 links.  :func:`census` adds the
+trees of the brute force's list up, keeping one graph per rotation-graph class.
 
 It shares no code with ``synth`` (nor with nauty): trees come from :mod:`gear_trains` (the brute
 force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher
 (the first ``_CAP`` of them; the star, whose symmetries are all permutations of its n − 1 gears,
 has its 1-DOF trains counted as the unlabelled trees on those gears, see :func:`_star_trains`); mesh sets are grown in *another order* than the engine's (candidates
-sorted by carrier first, then by their gears, from the last to the first) and kept when no listed
-symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
+sorted by carrier first, then by their gears, from the last to the first; a numba loop with a
+stack of slack tables) and kept when no listed symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
 of each class passes, for any list of symmetries); where the list is not the whole group the
 sets kept on a tree are told apart by VF2 within classes of a Weisfeiler–Lehman hash.  Rigid
 sub-chains are found by counting, for every link set S, the meshes inside it against
@@ -23,6 +28,8 @@ from __future__ import annotations
 from multiprocessing import Pool
 
 import networkx as nx
+import numpy as np
+from numba import njit
 from networkx.algorithms.isomorphism import GraphMatcher
 
 try:
@@ -30,7 +37,7 @@ try:
 except ImportError:  # run as a top-level module
     import gear_trains as brute
 
-__all__ = ["census", "rotation_form"]
+__all__ = ["census", "tree_census", "tree_trains", "rotation_form"]
 
 
 # ------------------------------------------------------------------------ one tree
@@ -107,69 +114,140 @@ def _star_trains(links: int, hub: int = 0) -> list[tuple]:
     return [tuple((gears[a], gears[b], hub) for a, b in tree.edges()) for tree in nx.nonisomorphic_trees(links - 1)]
 
 
-def _tree_counts(job):
-    """(displacement graphs, their rotation forms) of one tree."""
-    dof, links, axes = job
+def _slack_table(links: int, axes) -> np.ndarray:
+    """slack(S) = 3(|S| − 1) − 2·p(S) − 1 for every link set S (a bit mask) of two links or more:
+    the meshes S can still take without a rigid sub-chain; a large number for smaller sets."""
+    subsets = np.arange(1 << links)
+    member = (subsets[:, None] >> np.arange(links)) & 1
+    size = member.sum(axis=1)
+    p = sum(np.maximum(member[:, list(axis)].sum(axis=1) - 1, 0) for axis in axes)
+    return np.where(size >= 2, 3 * (size - 1) - 2 * p - 1, 10**6).astype(np.int32)
+
+
+@njit(cache=True)
+def _is_least(chosen, depth, images) -> bool:
+    """No listed symmetry maps the first ``depth`` chosen candidates to a lexicographically
+    smaller sorted set."""
+    moved = np.empty(depth, np.int64)
+    for r in range(images.shape[0]):
+        for j in range(depth):  # insertion sort of the image
+            v = images[r, chosen[j]]
+            k = j
+            while k > 0 and moved[k - 1] > v:
+                moved[k] = moved[k - 1]
+                k -= 1
+            moved[k] = v
+        for j in range(depth):
+            if moved[j] != chosen[j]:
+                if moved[j] < chosen[j]:
+                    return False
+                break
+    return True
+
+
+@njit(cache=True)
+def _grow(need, slack0, holding, images, out) -> int:
+    """Every set of ``need`` candidates (ascending) that leaves every link set a freedom and that
+    no listed symmetry maps to a smaller set; the first ``len(out)`` go to ``out``.  Returns how
+    many there are (depth-first, a stack of slack tables instead of recursion)."""
+    m = holding.shape[0]
+    slack = np.empty((need + 1, slack0.shape[0]), np.int32)
+    slack[0] = slack0
+    chosen = np.empty(need, np.int64)
+    start = np.zeros(need + 1, np.int64)  # the next candidate to try at each depth
+    depth, found = 0, 0
+    while depth >= 0:
+        i = start[depth]
+        if i > m - (need - depth):
+            depth -= 1
+            continue
+        start[depth] = i + 1
+        free = True
+        for s in holding[i]:
+            if slack[depth, s] < 1:
+                free = False
+                break
+        if not free:
+            continue
+        chosen[depth] = i
+        if not _is_least(chosen, depth + 1, images):
+            continue
+        if depth + 1 == need:
+            if found < out.shape[0]:
+                out[found] = chosen
+            found += 1
+            continue
+        slack[depth + 1] = slack[depth]
+        for s in holding[i]:
+            slack[depth + 1, s] -= 1
+        depth += 1
+        start[depth] = i + 1
+    return found
+
+
+def tree_trains(dof: int, links: int, axes) -> list[tuple[tuple[int, int, int], ...]]:
+    """The trains of mobility ``dof`` on one link–axis tree (its axes: any tree, numbered as the
+    caller likes), one per displacement graph, each as its meshes (a, b, carrier).  Only this
+    tree is held in memory: the unit of a tree-by-tree comparison.
+
+    Example
+    -------
+    >>> len(tree_trains(1, 5, ((0, 1, 2), (0, 3), (1, 4))))
+    2
+    """
     hubs = set.intersection(*(set(a) for a in axes)) if axes else set()
     if dof == 1 and links >= 4 and hubs and all(len(a) == 2 for a in axes):
-        found = _star_trains(links, hubs.pop())
-        return len(found), found
+        return _star_trains(links, hubs.pop())
     pairs = brute.mesh_pairs(links, axes)  # {(a, b): carrier}
     order = sorted(pairs, key=lambda ab: (pairs[ab], ab), reverse=True)
     need = links - 1 - dof
     if len(order) < need:
-        return 0, []
+        return []
     where = {ab: i for i, ab in enumerate(order)}
     perms, complete = _symmetries(links, axes)
-    images = [tuple(where[tuple(sorted((perm[a], perm[b])))] for a, b in order) for perm in perms]
-    images = [img for img in images if img != tuple(range(len(order)))]
-    full = 1 << links
-    # slack(S) = 3(|S| − 1) − 2 p(S) − 1 for |S| ≥ 2
-    slack = [0] * full
-    for s in range(full):
-        size = bin(s).count("1")
-        if size < 2:
-            slack[s] = 10 ** 6
+    images = np.array([[where[tuple(sorted((perm[a], perm[b])))] for a, b in order] for perm in perms], dtype=np.int64)
+    images = images[(images != np.arange(len(order))).any(axis=1)]
+    subsets = np.arange(1 << links)
+    holding = np.array([subsets[subsets & m == m] for m in ((1 << a) | (1 << b) for a, b in order)], dtype=np.int64)
+    slack = _slack_table(links, axes)
+    out = np.empty((1024, need), np.int64)
+    found = _grow(need, slack, holding, images, out) if need else 1  # no mesh to place: the empty set
+    if found > len(out):  # room for all of them, and again
+        out = np.empty((found, need), np.int64)
+        _grow(need, slack, holding, images, out)
+    trains, kept = [], {}
+    for chosen in out[:found]:
+        meshes = [order[i] for i in chosen]
+        if dof >= 2 and not brute.non_fractionated(links, axes, meshes, pairs):
             continue
-        p = sum(max(bin(s & sum(1 << x for x in axis)).count("1") - 1, 0) for axis in axes)
-        slack[s] = 3 * (size - 1) - 2 * p - 1
-    masks = [(1 << a) | (1 << b) for a, b in order]
-    holding = [[s for s in range(full) if s & m == m] for m in masks]
-    found, forms, kept = 0, [], {}
-
-    def least(chosen):
-        for img in images:
-            if tuple(sorted(img[i] for i in chosen)) < chosen:
-                return False
-        return True
-
-    def grow(chosen, slack):
-        nonlocal found
-        if len(chosen) == need:
-            meshes = [order[i] for i in chosen]
-            if dof >= 2 and not brute.non_fractionated(links, axes, meshes):
-                return
-            if not complete:  # some symmetries were not listed: tell the kept sets apart
-                key, g = _typed(_train_graph(links, axes, meshes))
-                if any(_same(g, h) for h in kept.get(key, ())):
-                    return
-                kept.setdefault(key, []).append(g)
-            found += 1
-            forms.append(tuple((a, b, pairs[(a, b)]) for a, b in meshes))
-            return
-        for i in range((chosen[-1] + 1) if chosen else 0, len(order) - (need - len(chosen)) + 1):
-            if min(slack[s] for s in holding[i]) < 1:
+        if not complete:  # some symmetries were not listed: tell the kept sets apart
+            key, g = _typed(_train_graph(links, axes, meshes))
+            if any(_same(g, h) for h in kept.get(key, ())):
                 continue
-            new = chosen + (i,)
-            if not least(new):
-                continue
-            lowered = list(slack)
-            for s in holding[i]:
-                lowered[s] -= 1
-            grow(new, lowered)
+            kept.setdefault(key, []).append(g)
+        trains.append(tuple((a, b, pairs[(a, b)]) for a, b in meshes))
+    return trains
 
-    grow((), slack)
-    return found, forms
+
+def tree_census(dof: int, links: int, axes, rotation: bool = False) -> dict:
+    """Numbers of displacement graphs on one tree and (``rotation``) of the rotation graphs among
+    them — the rotation graphs met on this tree, not the first met here.
+
+    Example
+    -------
+    >>> tree_census(1, 5, ((0, 1, 2), (0, 3), (1, 4)), rotation=True)
+    {'displacement': 2, 'rotation': 2}
+    """
+    trains = tree_trains(dof, links, axes)
+    out = {"displacement": len(trains)}
+    if rotation:
+        classes: dict = {}
+        for triples in trains:
+            key, g = _typed(_rotation_graph(links, triples))
+            if not any(_same(g, h) for h in classes.get(key, ())):
+                classes.setdefault(key, []).append(g)
+        out["rotation"] = sum(len(v) for v in classes.values())
+    return out
 
 
 # ------------------------------------------------------------------ rotation forms
@@ -224,24 +302,27 @@ def rotation_form(links: int, triples) -> tuple:
 
 # ---------------------------------------------------------------------------- census
 def census(dof: int, links: int, workers: int = 1) -> dict:
-    """Numbers of displacement graphs and rotation graphs."""
+    """Numbers of displacement graphs and rotation graphs, a tree at a time: the parent holds one
+    graph per rotation graph found so far, never the trains of more than the trees in flight."""
     jobs = [(dof, links, axes) for axes in brute.link_axis_trees(links)]
-    if workers > 1:
-        with Pool(workers) as pool:
-            results = pool.map(_tree_counts, jobs, chunksize=1)
-            hashed = pool.map(_hash_rotations, [(links, triples) for _, triples in results], chunksize=4)
-    else:
-        results = [_tree_counts(job) for job in jobs]
-        hashed = [_hash_rotations((links, triples)) for _, triples in results]
     classes: dict = {}
-    for tree_hashes, (_, triples) in zip(hashed, results):
-        for key, found in zip(tree_hashes, triples):
-            g = _rotation_graph(links, found)
-            if not any(_same(g, h) for h in classes.get(key, ())):
-                classes.setdefault(key, []).append(g)
-    return {"displacement": sum(n for n, _ in results), "rotation": sum(len(v) for v in classes.values())}
+    displacement = 0
+    pool = Pool(workers) if workers > 1 else None
+    try:
+        for trains, hashes in (pool.imap(_hashed_trains, jobs) if pool else map(_hashed_trains, jobs)):
+            displacement += len(trains)
+            for key, triples in zip(hashes, trains):
+                g = _rotation_graph(links, triples)
+                if not any(_same(g, h) for h in classes.get(key, ())):
+                    classes.setdefault(key, []).append(g)
+    finally:
+        if pool:
+            pool.terminate()
+    return {"displacement": displacement, "rotation": sum(len(v) for v in classes.values())}
 
 
-def _hash_rotations(job) -> list[str]:
-    links, triples = job
-    return [_typed(_rotation_graph(links, t))[0] for t in triples]
+def _hashed_trains(job) -> tuple[list, list[str]]:
+    """The trains of one tree and the Weisfeiler–Lehman hashes of their rotation graphs."""
+    dof, links, axes = job
+    trains = tree_trains(dof, links, axes)
+    return trains, [_typed(_rotation_graph(links, t))[0] for t in trains]
