@@ -380,9 +380,9 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     the placements up to the order of parallel strings: (1/|G/P|) Σ Fix(g) over G/P
     (:func:`synth.synthesis._stage_b_kernel.fixed_placements`: a search over the patterns
     min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
-    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or the group of H
-    is too large to list (more than 4096 elements), the unit is counted as :func:`count_realised`
-    counts it (docs/theory.md).
+    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or G/P is too
+    large to list (more than 4096 elements, :meth:`Contracted.bundle_group`), the unit is counted
+    as :func:`count_realised` counts it (docs/theory.md).
 
     >>> from synth.synthesis.stage_a import contracted_graphs
     >>> code = Code.parse("64200/0")
