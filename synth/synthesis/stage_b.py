@@ -293,24 +293,23 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
             neighbours[a].append(b)
             neighbours[b].append(a)
     score = [len(n) for n in neighbours]  # strings to the vertices taken × 1024 + strings; −1 once taken
-    rank = np.zeros(M + 1, dtype=np.int64)  # (the end −1 of a string the game never sees reads the last)
+    rank = [0] * M
     for r in range(M):
         v = score.index(max(score))  # (the first of the best)
         rank[v], score[v] = r, -1
         for u in neighbours[v]:
             if score[u] >= 0:
                 score[u] += 1024
-    starts = _bundle_starts(edges)
-    firsts = np.flatnonzero(starts)
-    a, b = np.asarray(a_list)[firsts], np.asarray(b_list)[firsts]
-    shown = a >= 0  # bundles the game never sees first, then by the later end's rank, the earlier's last
-    later = np.where(shown, np.maximum(rank[a], rank[b]), -1)
-    earlier = np.where(shown, -np.minimum(rank[a], rank[b]), 0)
-    bundles = np.lexsort((earlier, later))  # (stable: ties in the strings' order)
-    return np.argsort(bundles.argsort()[np.cumsum(starts) - 1], kind="stable")  # each string with its bundle
+    firsts = np.flatnonzero(_bundle_starts(edges)).tolist() + [len(edges)]
+
+    def key(q):  # bundles the game never sees first, then by the later end's rank, the earlier's last
+        a, b = a_list[firsts[q]], b_list[firsts[q]]
+        return (-1, 0) if a < 0 else (max(rank[a], rank[b]), -min(rank[a], rank[b]))
+
+    return np.array([e for q in sorted(range(len(firsts) - 1), key=key) for e in range(firsts[q], firsts[q + 1])],
+                    dtype=np.int64)
 
 
-@lru_cache(maxsize=8)
 def _bundle_starts(edges) -> "np.ndarray":
     """Whether each string of H begins a bundle of parallel strings (H lists parallel strings
     next to each other); read-only (stage B asks it of the same strings a few times per unit)."""
