@@ -59,6 +59,7 @@ _WHERE = {
     "counter_mass_laws": "devices.countermass", "crank_construction": "devices.countermass",
     "verify_counter_mass": "devices.countermass",
     "Counterweights": "devices.counterweights", "counterweights": "devices.counterweights",
+    "place_counterweights": "devices.counterweights",
     # reading a problem's tables and writing its results
     "parse": "schema", "arm_problem": "problems.arm", "pantograph_problem": "problems.pantograph",
     "compare_problem": "problems.compare", "DEFAULT_GRID": "devices.fit", "format_form": "model.potential",

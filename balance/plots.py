@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechbase import save_figure
+
 from .devices.fit import relative_errors
 from .model.potential import terms_forces
 
@@ -93,7 +95,7 @@ def plot_spring(design, path: str) -> str:
         ax3.set_title("Pareto front: error against size, one line per peak spring force", fontsize=9)
         ax3.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
         ax3.grid(alpha=0.3, which="both")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -161,7 +163,7 @@ def plot_arm(result, path: str, n: int = 241) -> str:
         pl = result.payload
         title += f" (tuned for {pl.tuned_for:.4g} N, payload {pl.min_payload:.4g} … {pl.max_payload:.4g} N)"
     fig.suptitle(title, fontsize=11)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -207,7 +209,7 @@ def plot_prismatic(result, path: str) -> str:
     pad = max(0.1 * (hi - lo), 0.05 * abs(C))
     ax2.set_ylim(lo - pad, hi + pad)
     ax2.legend(fontsize=8, loc="upper center")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -299,7 +301,7 @@ def plot_pantograph(result, path: str, n: int = 61) -> str:
                  fontsize=9)
     fig.suptitle(f"Pantograph manipulator, k = {p.k:g}: cylinder base P = ({base[0]:.3g}, {base[1]:.3g}) m",
                  fontsize=11)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -366,6 +368,6 @@ def plot_compare(result, path: str, n: int = 241) -> str:
 
         title += "\n" + "\n".join(textwrap.fill(u, 24 * max(cols, 4)) for u in unavailable)
     fig.suptitle(title, fontsize=10)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path

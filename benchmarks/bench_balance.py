@@ -26,6 +26,7 @@ from balance import DEFAULT_METHOD, METHODS, SpringBounds, arm_from_dict, check_
 from balance.devices.fit import DEFAULT_GRID  # noqa: E402
 from balance.problems import load_toml  # noqa: E402
 from benchmarks._out import OUT, write_csv  # noqa: E402
+from mechbase import save_figure  # noqa: E402
 
 CASES = {
     "issue 20..160": ((20.0, 160.0), SpringBounds((0.01, 0.5), (0.01, 1.0), (0.0, 1.0))),
@@ -200,7 +201,7 @@ def plot_pareto(rows: list[dict], path: Path) -> None:
     fig.suptitle("Compression-spring fit of 100·sin φ N·m: speed against error", fontsize=11)
     fig.canvas.draw()  # constrained layout places the axes before the labels are measured
     place_labels(fig, labels)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 

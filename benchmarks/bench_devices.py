@@ -28,6 +28,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from balance import SpringBounds, fit_spring  # noqa: E402
+from mechbase import save_figure  # noqa: E402
 
 FIGURES = ROOT / "benchmarks" / "figures"
 REPORT = ROOT / "benchmarks" / "DEVICES.md"
@@ -111,7 +112,7 @@ def write(rows, residuals) -> None:
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=5, fontsize=7.5)
     fig.suptitle("filled: largest error, hollow: RMS error", fontsize=9)
-    fig.savefig(FIGURES / "devices_error_time.png", dpi=110)
+    save_figure(fig, FIGURES / "devices_error_time.png", dpi=110)
     plt.close(fig)
 
     fig, axes = plt.subplots(1, len(devices), figsize=(13, 4.2), constrained_layout=True)
@@ -131,7 +132,7 @@ def write(rows, residuals) -> None:
                                                       lambda p, s=abs(moment): p * s / 100))
         right.set_ylabel("relative to |Φ0| (%)")
     axes[0].legend(fontsize=7, loc="best")
-    fig.savefig(FIGURES / "devices_residuals.png", dpi=110)
+    save_figure(fig, FIGURES / "devices_residuals.png", dpi=110)
     plt.close(fig)
 
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,

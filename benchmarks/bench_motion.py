@@ -42,6 +42,7 @@ sys.path.insert(0, str(ROOT))
 import synth  # noqa: E402
 from synth.motion import read_linkage, sweep  # noqa: E402
 from synth.motion_draw import linkage_from_layout  # noqa: E402
+from mechbase import save_figure  # noqa: E402
 
 DEFAULT_VENV = "/tmp/pylinkage-venv/bin/python"
 
@@ -212,7 +213,7 @@ def _write(out: Path, rows: list[dict], every: dict, args) -> None:
     ax.set_title(f"position analysis, {args.steps:,} steps, best of {args.reps}, one core", fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(figure, dpi=110)
+    save_figure(fig, figure, dpi=110)
     plt.close(fig)
     lines = ["# Motion: speed of the position analysis", "",
              f"`python benchmarks/bench_motion.py --steps {args.steps} --reps {args.reps}` on "

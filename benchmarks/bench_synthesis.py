@@ -32,6 +32,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 from benchmarks._out import OUT, write_csv  # noqa: E402
+from mechbase import save_figure  # noqa: E402
 
 # (series, W, links) -> published count (OEIS A233288 for W = 1; docs/theory.md's reference counts otherwise)
 REFERENCE = {
@@ -201,7 +202,7 @@ def plot(rows: list[dict], path: Path) -> None:
     ax.legend()
     fig.tight_layout()
     place_labels(fig, labels)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
 
 

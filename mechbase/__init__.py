@@ -1,6 +1,7 @@
 """The ground both engines stand on, and nothing else: one error base, one reader of text and of TOML files, one
-grammar of ranges ``A..B``, one way to quote a value as a file writes it and one way a typed result
-becomes a row (:class:`Row`); the dialect of TOML tables is :mod:`mechbase.schema`.
+grammar of ranges ``A..B``, one way to quote a value as a file writes it, one way a typed result
+becomes a row (:class:`Row`) and one way a figure is written (:func:`save_figure`, byte-reproducible);
+the dialect of TOML tables is :mod:`mechbase.schema`.
 
 ``synth`` and ``balance`` may import this package; it imports neither of them (tests/test_layering.py).
 
@@ -10,10 +11,12 @@ becomes a row (:class:`Row`); the dialect of TOML tables is :mod:`mechbase.schem
 """
 
 from .errors import ProjectError
+from .figures import save_figure
 from .files import read_text
 from .ranges import RangeSyntax, parse_range
 from .rows import Row, as_row
 from .text import show
 from .toml import read_toml, read_toml_text
 
-__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text"]
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text",
+           "save_figure"]

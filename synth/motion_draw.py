@@ -32,6 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mechbase import save_figure
+
 from .errors import InvalidOption
 from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
@@ -635,7 +637,7 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
         try:
             _draw_matplotlib(ax, elements, canvas, 0)
             fig.suptitle(text, fontsize=9, y=0.995, va="top")
-            fig.savefig(path, dpi=100)
+            save_figure(fig, path, dpi=100)
         finally:
             plt.close(fig)
     except OSError as exc:

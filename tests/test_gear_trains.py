@@ -27,7 +27,7 @@ from synth.errors import InvalidOption, MalformedChain, flag
 from synth.gears import GearTrain
 from synth.gears.ratio_design import design
 from synth.gears import enumeration
-from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
+from synth.gears.enumeration import census, link_axis_trees, trains
 from synth.gears.train import fractionated
 from synth.gears.ratios import mechanisms, speed_ratio
 from tests.oracles import gear_ratios, gear_trains_fast

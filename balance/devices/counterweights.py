@@ -23,7 +23,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -34,7 +34,7 @@ from ..extremes import box_extremes
 from ..model.arm import Arm, ArmModel
 from ..model.urdf import UrdfArm, pinocchio_gravity
 
-__all__ = ["Counterweight", "Counterweights", "counterweights"]
+__all__ = ["Counterweight", "Counterweights", "counterweights", "place_counterweights"]
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,9 @@ class Counterweights(Row):
     """What :func:`counterweights` finds for an arm (or why it cannot).
 
     ``max_residual`` (N·m) is the largest gravity force left over the workspace, a true extreme
-    (:mod:`balance.extremes`); ``balanced`` is the arm's Pinocchio model with the counterweights.
+    (:mod:`balance.extremes`), ``potential_spread`` the spread of the potential and ``worst`` the
+    configuration of the largest force (all three None when not checked:
+    :func:`place_counterweights`); ``balanced`` is the arm's Pinocchio model with the counterweights.
     """
 
     available: bool
@@ -82,9 +84,9 @@ class Counterweights(Row):
     weights: tuple[Counterweight, ...] = ()
     added_weight: float = 0.0
     arm_weight: float = 0.0
-    max_residual: float = 0.0
-    potential_spread: float = 0.0
-    worst: tuple[float, ...] = ()
+    max_residual: float | None = None
+    potential_spread: float | None = None
+    worst: tuple[float, ...] | None = None
     balanced: UrdfArm | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -133,7 +135,8 @@ def _subtree_com(model, data, joint: int) -> tuple[float, np.ndarray]:
 
 def counterweights(arm: ArmModel, arms: dict[int, float] | None = None, samples: int = 1000, seed: int = 0,
                    g: float = 9.80665) -> Counterweights:
-    """Counterweights that balance ``arm`` statically, with the added weight and a check.
+    """Counterweights that balance ``arm`` statically, with the added weight and a check: the
+    largest gravity force left over the workspace and the spread of the potential.
 
     Parameters
     ----------
@@ -151,6 +154,34 @@ def counterweights(arm: ArmModel, arms: dict[int, float] | None = None, samples:
     Returns
     -------
     Counterweights
+    """
+    cw = place_counterweights(arm, arms, g)
+    if not cw.available:
+        return cw
+    base, balanced = pinocchio_gravity(arm, g), cw.balanced
+    lo, hi = arm.box
+    pts = arm.sample(samples, seed)
+    scale = max(float(np.max(np.abs(base.gravity_forces(pts[:50])))), 1e-300)
+    ext = box_extremes(balanced.gravity_forces, lo, hi, pts, floor=1e-11 * scale)
+    per = [max(-a.value, b.value) for a, b in ext]
+    j_worst = int(np.argmax(per))
+    worst = ext[j_worst][0].at if -ext[j_worst][0].value > ext[j_worst][1].value else ext[j_worst][1].at
+    (u_lo, u_hi), = box_extremes(lambda x: balanced.potential(x)[:, None] - balanced.potential(pts[:1])[0],
+                                 lo, hi, pts, floor=1e-11 * scale)
+    return replace(cw, max_residual=max(per), potential_spread=u_hi.value - u_lo.value, worst=tuple(worst))
+
+
+def place_counterweights(arm: ArmModel, arms: dict[int, float] | None = None, g: float = 9.80665) -> Counterweights:
+    """The counterweights of :func:`counterweights` without its check (``max_residual``,
+    ``potential_spread`` and ``worst`` are None): for a caller that measures what they leave
+    in its own way, as ``balance compare`` does over the workspace and the payload range.
+
+    Examples
+    --------
+    >>> from balance.model.arm import Arm, Link
+    >>> cw = place_counterweights(Arm((Link("l", "revolute", 1.0, 10.0, 0.5),)), {0: 0.25})
+    >>> round(cw.added_weight, 9), cw.max_residual
+    (20.0, None)
     """
     import pinocchio as pin
 
@@ -195,20 +226,10 @@ def counterweights(arm: ArmModel, arms: dict[int, float] | None = None, samples:
         p = -b * off / np.linalg.norm(off) + (c @ axis) * axis
         model.inertias[j] = model.inertias[j] + pin.Inertia(m_cw, p, np.zeros((3, 3)))
         rows.append((j - 1, m_cw, b, p))
-    balanced = base.copy(model)
-    lo, hi = arm.box
-    pts = arm.sample(samples, seed)
-    scale = max(float(np.max(np.abs(base.gravity_forces(pts[:50])))), 1e-300)
-    ext = box_extremes(balanced.gravity_forces, lo, hi, pts, floor=1e-11 * scale)
-    per = [max(-a.value, b.value) for a, b in ext]
-    j_worst = int(np.argmax(per))
-    worst = ext[j_worst][0].at if -ext[j_worst][0].value > ext[j_worst][1].value else ext[j_worst][1].at
-    (u_lo, u_hi), = box_extremes(lambda x: balanced.potential(x)[:, None] - balanced.potential(pts[:1])[0],
-                                 lo, hi, pts, floor=1e-11 * scale)
     weights = tuple(_row(arm, j, m, b, p, g) for j, m, b, p in sorted(rows))
     own = sum(float(model.inertias[k].mass) for k in range(1, model.njoints)) - sum(w.mass for w in weights)
-    return Counterweights(True, None, weights, sum(w.weight for w in weights), own * g, max(per),
-                          u_hi.value - u_lo.value, tuple(worst), balanced)
+    return Counterweights(True, None, weights, sum(w.weight for w in weights), own * g, None, None, None,
+                          base.copy(model))
 
 
 def _row(arm: ArmModel, j: int, m: float, b: float, p: np.ndarray, g: float) -> Counterweight:

@@ -54,7 +54,7 @@ from scipy import optimize
 from mechbase import Row
 
 from ..budget import WORK_LIMIT, ensure_affordable
-from ..devices.counterweights import Counterweight, counterweights
+from ..devices.counterweights import Counterweight, place_counterweights
 from ..devices.fit import SpringBounds, fit_spring
 from ..devices.helical import HelicalSpring, design_for_device
 from ..devices.transmission import transmissions
@@ -519,7 +519,7 @@ class _Solver:
     def counterweights(self) -> Strategy:
         pb, arm = self.pb, self.pb.arm
         tuned = arm.with_payload(self.p_mid, self.g)
-        cw = counterweights(tuned, dict(pb.counterweight_arms), samples=min(pb.samples, 200), seed=pb.seed, g=self.g)
+        cw = place_counterweights(tuned, dict(pb.counterweight_arms), g=self.g)  # what they leave: self.residuals
         if not cw.available:
             return Strategy("counterweights", False, cw.reason)
         balanced = cw.balanced

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mechbase import save_figure
+
 from ..errors import InvalidOption
 from ..gears.train import GearTrain
 
@@ -77,10 +79,10 @@ def schematic(train: GearTrain, teeth: dict | None = None, compound=()) -> dict:
         members = sorted((x for x in axis if own_axis[x] == k), key=lambda x: (x == train.frame, x))
         for rank, x in enumerate(members):
             level[x] = heights[k] - _GAP * rank
-    for x in range(train.links):  # a floating gear turns about its carrier's lowest axis
+    for x in range(train.links):  # a floating gear (a link on no axis meshes) turns about its carrier's lowest axis
         if x not in level:
-            carrier = next((t for (a, b), t in zip(train.meshes, train.carriers) if x in (a, b)), None)
-            level[x] = (level.get(carrier, 0.0) + _GAP) if carrier is not None else 0.0
+            carrier = next(t for (a, b), t in zip(train.meshes, train.carriers) if x in (a, b))
+            level[x] = level.get(carrier, 0.0) + _GAP
     compound = set(compound)
 
     def tooth(x, mate):
@@ -225,8 +227,7 @@ def _save(fig, path: Path, dpi: int) -> None:
     import matplotlib.pyplot as plt
 
     try:
-        with plt.rc_context({"svg.fonttype": "none"}):  # SVG text stays text: searchable, selectable
-            fig.savefig(path, bbox_inches="tight", dpi=dpi)
+        save_figure(fig, path, bbox_inches="tight", dpi=dpi)
     except OSError as exc:
         raise InvalidOption(f"cannot write {path}: {exc.strerror}") from None
     finally:
@@ -313,8 +314,7 @@ def svg_text(train: GearTrain, *, size: float = 2.6) -> str:
     _draw_on(ax, train, None, (), "")
     buffer = io.StringIO()
     try:
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
-            fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
+        save_figure(fig, buffer, fmt="svg", bbox_inches="tight")
     finally:
         plt.close(fig)
     text = buffer.getvalue()

@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mechbase import save_figure
+
 from ..structure.chain import Chain, Mechanism
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..errors import InvalidOption, SynthesisError, option
@@ -284,13 +286,8 @@ def _check_out(out: str | Path) -> Path:
 
 
 def _save(fig, path: Path, dpi: int) -> None:
-    kwargs = {"metadata": {"Date": None}} if path.suffix.lower() == ".svg" else {}
-    import matplotlib
-
     try:
-        # stable SVG ids (same input, same file) and text kept as text (searchable, selectable)
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
-            fig.savefig(path, dpi=dpi, bbox_inches="tight", **kwargs)
+        save_figure(fig, path, dpi=dpi, bbox_inches="tight")
         if path.suffix.lower() == ".png":  # a 64-colour palette: line art, a third of the size
             from PIL import Image
 
@@ -380,15 +377,13 @@ def svg(item: Chain | Mechanism, *, labels: bool = True, size: float = SINGLE[0]
     """
     import io
 
-    import matplotlib
     import matplotlib.pyplot as plt
 
     _check_size(size, SINGLE[1])
     fig = _figure(item, labels, size)
     try:
         out = io.StringIO()
-        with matplotlib.rc_context({"svg.hashsalt": "mechsynth", "svg.fonttype": "none"}):
-            fig.savefig(out, format="svg", bbox_inches="tight", metadata={"Date": None})
+        save_figure(fig, out, fmt="svg", bbox_inches="tight")
         return out.getvalue()
     finally:
         plt.close(fig)

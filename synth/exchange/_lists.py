@@ -53,7 +53,8 @@ def looks_like_joint_list(line: str) -> bool:
 def read_text_lists(text: str, source: str) -> list[Entry]:
     """One chain per non-empty line, in the joint-list notation; a comment of settings on the
     line (``# frame F``, ``# frame F, input I``, ``# h H``) fixes link F (a mechanism, with its
-    input link I) or states the motion space; any other comment is a comment."""
+    input link I) or states the motion space; any other comment is a comment.  Settings on a
+    line of their own belong to no chain and are refused (an edge list's belong to its block)."""
     out = []
     lines = text.splitlines()
     single = sum(1 for line in lines if line.split("#", 1)[0].strip()) == 1
@@ -61,6 +62,10 @@ def read_text_lists(text: str, source: str) -> list[Entry]:
         body, _, comment = line.partition("#")
         body = body.strip()
         if not body:
+            if settings_of(comment):
+                raise MalformedChain(f"{source} line {number}: '# {comment.strip()}' stands on a line of its own: in a "
+                                     "joint list the settings follow their chain on its line, e.g. "
+                                     "'0-1 1-2 2-3 3-0  # frame 0'")
             continue
         where = source if single else f"{source} line {number}"
         joints = body.split("|", 1)[0]  # (a heterogeneous chain's loop classes follow a '|')
@@ -178,10 +183,10 @@ def _entry_of_row(row, where: str) -> Entry:
 
 def read_json(text: str, source: str) -> list[Entry]:
     """Chain rows: one JSON document (a row, an array of rows or an array of joints) or one row a line."""
-    stripped = text.strip()
     try:
-        data = json.loads(stripped)
-    except json.JSONDecodeError:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        _refuse_comment(exc, f"{source} line {exc.lineno}")
         data = None
     if data is not None:
         if isinstance(data, list) and data and all(isinstance(r, dict) for r in data):
@@ -195,9 +200,17 @@ def read_json(text: str, source: str) -> list[Entry]:
         try:
             row = json.loads(line)
         except json.JSONDecodeError as exc:
+            _refuse_comment(exc, where)
             raise MalformedChain(f"{where}: not valid JSON ({exc.msg} at column {exc.colno})") from None
         out.append(_entry_of_row(row, where))
     return out
+
+
+def _refuse_comment(exc: json.JSONDecodeError, where: str) -> None:
+    """Refuse a ``#`` comment in JSON (which has none) in a sentence that says where its settings go."""
+    if exc.doc[exc.pos:].lstrip().startswith("#"):
+        raise MalformedChain(f"{where}: JSON takes no '#' comment: give a frame, an input link or a motion space as "
+                             'keys of the row, e.g. {"joints": [[0, 1], [1, 2], [2, 0]], "frame": 0, "h": 3}') from None
 
 
 def _header_of(text: str) -> list[str]:
@@ -337,9 +350,11 @@ def read_edgelist(text: str, source: str) -> list[Entry]:
             settings.update(found)
             start = start or number
             continue
-        body = stripped.split("#", 1)[0].strip()
+        body, _, comment = stripped.partition("#")
+        body = body.strip()
         if not body:
             continue
+        settings.update(settings_of(comment) or {})  # settings after a joint, as on a line of their own
         where = f"{source} line {number}"
         data = None
         if "{" in body:

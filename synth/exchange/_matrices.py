@@ -60,17 +60,17 @@ def _blocks(text: str, source: str):
     """Blocks of non-empty lines: (rows of cells, first line number, settings: frame, input, h)."""
     rows, start, settings = [], None, {}
     for number, line in enumerate(text.splitlines() + [""], start=1):
-        stripped = line.strip()
-        found = settings_of(stripped) if stripped.startswith("#") else None
+        body, hashed, comment = line.partition("#")  # a comment: a line of its own or after a row
+        body = body.strip()
+        found = settings_of(comment) if hashed else None
         if found:
             settings.update(found)
             start = start or number
-            continue
-        if stripped.startswith("#"):
-            continue
-        if stripped:
-            rows.append(_cells(stripped))
+        if body:
+            rows.append(_cells(body))
             start = start or number
+        elif hashed:
+            continue
         elif rows:
             yield rows, start, settings
             rows, start, settings = [], None, {}

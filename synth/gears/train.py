@@ -105,8 +105,50 @@ def fractionated(links: int, triples) -> bool:
     return links > 2 and not all(_connected(near, every & ~(1 << x)) for x in range(links))
 
 
+def _check_joined(links: int, axes, meshes) -> None:
+    """Refuse a train whose axes and meshes do not join its links into one body of links: a link
+    in no axis and no mesh (a carrier too turns on an axis or meshes), or a group of links apart
+    from the rest.
+
+    >>> _check_joined(4, [(0, 1)], [(0, 3)])
+    Traceback (most recent call last):
+    ...
+    synth.errors.MalformedChain: link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes
+    """
+    near = [0] * links
+    for group in (*axes, *meshes):
+        mask = 0
+        for x in group:
+            mask |= 1 << x
+        for x in group:
+            near[x] |= mask
+    every = (1 << links) - 1
+    seen = _reached(near, every)
+    if seen == every:
+        return
+    loose = [x for x in range(links) if not near[x]]
+    if loose:
+        raise MalformedChain(f"{_links_are(loose)} in no axis and no mesh: every link of a gear train turns on an "
+                             "axis or meshes")
+    apart = [x for x in range(links) if not seen >> x & 1]
+    raise MalformedChain(f"{_links_are(apart)} not joined to link 0 by axes and meshes: a gear train is one connected "
+                         "set of links")
+
+
+def _links_are(links: list[int]) -> str:
+    """``link 2 is`` / ``links 2, 3 are`` (the first five named)."""
+    if len(links) == 1:
+        return f"link {links[0]} is"
+    return "links " + ", ".join(map(str, links[:5])) + (", …" if len(links) > 5 else "") + " are"
+
+
 def _connected(near: list[int], within: int) -> bool:
     """Whether the links of the bit mask ``within`` are connected by the neighbours ``near``."""
+    return _reached(near, within) == within
+
+
+def _reached(near: list[int], within: int) -> int:
+    """The bit mask of the links of ``within`` that its lowest link reaches through the neighbours ``near``."""
     seen = frontier = within & -within
     while frontier:
         reach = 0
@@ -116,7 +158,7 @@ def _connected(near: list[int], within: int) -> bool:
             frontier ^= low
         frontier = reach & within & ~seen
         seen |= frontier
-    return seen == within
+    return seen
 
 
 @dataclass(frozen=True)
@@ -197,6 +239,7 @@ class GearTrain:
             raise MalformedChain("two meshes join the same two links: a pair of gears meshes once")
         if self.frame is not None and (isinstance(self.frame, bool) or not (isinstance(self.frame, int) and 0 <= self.frame < n)):
             raise MalformedChain(f"the frame {self.frame!r} is not a link of 0…{n - 1}")
+        _check_joined(n, axes, raw)
         object.__setattr__(self, "axes", tuple(sorted(axes)))
         object.__setattr__(self, "meshes", tuple(m for m, _, _ in rows))
         object.__setattr__(self, "carriers", tuple(t for _, t, _ in rows))
@@ -406,13 +449,29 @@ class GearTrain:
 
     @classmethod
     def from_dict(cls, d: dict) -> "GearTrain":
+        """A train from its JSON row (:meth:`to_dict`): ``axes`` and ``meshes`` (with ``links``,
+        ``carriers``, ``internal`` and ``frame`` where given), or ``train``, its text form.
+
+        >>> GearTrain.from_dict({"axes": [[0, 1, 2], [2, 3]], "meshes": [[1, 3], [0, 3]]}).compact()
+        '0-1-2 2-3 0~3 1~3'
+        >>> GearTrain.from_dict({"axes": [], "meshes": []})
+        Traceback (most recent call last):
+        ...
+        synth.errors.MalformedChain: the gear train object has no axes and no meshes: give each axis as the links that turn about it and each mesh as its two gears
+        """
         if not isinstance(d, dict) or "axes" not in d or "meshes" not in d:
             if isinstance(d, dict) and isinstance(d.get("train"), str):
                 return cls.parse(d["train"], d.get("frame"))
             raise MalformedChain("a gear train object needs 'axes' and 'meshes' (or 'train', its text form)")
+        if not d["axes"] and not d["meshes"]:
+            raise MalformedChain("the gear train object has no axes and no meshes: give each axis as the links that "
+                                 "turn about it and each mesh as its two gears")
         links = d.get("links")
         if links is None:
-            links = 1 + max((x for item in d["axes"] + d["meshes"] for x in item), default=0)
+            try:
+                links = 1 + max(int(x) for item in list(d["axes"]) + list(d["meshes"]) for x in item)
+            except (TypeError, ValueError):
+                raise MalformedChain("axes and meshes must be lists of link numbers") from None
         return cls(links, tuple(map(tuple, d["axes"])), tuple(map(tuple, d["meshes"])),
                    tuple(d["carriers"]) if d.get("carriers") is not None else None,
                    tuple(d["internal"]) if d.get("internal") is not None else None, d.get("frame"))

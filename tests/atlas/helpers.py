@@ -1,10 +1,18 @@
-"""What several atlas tests do to an atlas file directly (SQLite): read rows, and take an atlas back to an
-older schema."""
+"""What several atlas tests do to an atlas file: build one from a grid file's text, read its rows (SQLite),
+and take it back to an older schema."""
 
 from __future__ import annotations
 
 import sqlite3
 from pathlib import Path
+
+
+def grid_atlas(db: Path, grid: str) -> Path:
+    """The atlas ``db`` of the grid file ``grid`` (its text), run in this process."""
+    from synth.atlas import parse_grid, run_grid
+
+    run_grid(parse_grid(grid), db, workers=1)
+    return db
 
 
 def sql(db: Path, statement: str, *args) -> list[tuple]:

@@ -8,6 +8,7 @@ import pytest
 from mechbase.schema import Table
 from synth.atlas.grid import Cell, GearCell, GridFileError, _values, load_grid, parse_grid
 from synth.structure.query import ChainQuery
+from tests.refusals import refused
 
 
 def _cells(text: str) -> list[tuple[int, int, int]]:
@@ -169,10 +170,7 @@ def test_gear_cells():
     ('dof = 1\nlinks = "4.."', "key 'links' is the range '4..' with no upper end"),
 ])
 def test_every_refusal_is_its_sentence(text, sentence):
-    with pytest.raises(GridFileError) as e:
-        parse_grid(text, source="g.toml")
-    message = str(e.value)
-    assert message.startswith("grid file g.toml: " + sentence) and "\n" not in message, message
+    assert refused(GridFileError, parse_grid, text, source="g.toml").startswith("grid file g.toml: " + sentence)
 
 
 def test_the_value_type_of_the_keys_reads_numbers_ranges_and_lists():

@@ -15,17 +15,16 @@ import subprocess
 import pytest
 
 from mechsynth.cli import main
-from synth.atlas import run_grid, summary
+from synth.atlas import summary
 from synth.atlas.site import chain_id, write_site
 from synth.structure.chain import Chain
-from synth.atlas.grid import parse_grid
+
+from .helpers import grid_atlas
 
 
 @pytest.fixture(scope="module")
 def atlas(tmp_path_factory):
-    db = tmp_path_factory.mktemp("site") / "a.sqlite"
-    run_grid(parse_grid('dof = "1..2"\nlinks = "4..8"\nv = "0..1"'), db, workers=1)
-    return db
+    return grid_atlas(tmp_path_factory.mktemp("site") / "a.sqlite", 'dof = "1..2"\nlinks = "4..8"\nv = "0..1"')
 
 
 def _codes(folder) -> list[dict]:

@@ -10,11 +10,12 @@ from pathlib import Path
 
 import pytest
 
-from synth.atlas import EmptyAtlas, open_atlas, parse_grid, run_grid, summary
+from synth.atlas import EmptyAtlas, open_atlas, summary
 from synth.atlas import site
 from synth.atlas.site import SiteResult, _degrees, _page, _slug, chain_id, write_site
 from synth.errors import InvalidOption
 from synth.structure.chain import Chain
+from .helpers import grid_atlas
 
 GRID = ('input_link = true\ndof = 1\nlinks = "4..6"\n[[block]]\n[[block]]\nlinks = 4\nprismatic = "1..2"\n'
         '[[gears]]\nlinks = 4\n')
@@ -28,9 +29,7 @@ CODES = [("22/0 G2", 4, 0, 0, 2, "gears", [2, 3], "W1-h3-22_0-G2"), ("4/0", 4, 0
 
 @pytest.fixture(scope="module")
 def atlas(tmp_path_factory):
-    db = tmp_path_factory.mktemp("site") / "a.sqlite"
-    run_grid(parse_grid(GRID), db, workers=1)
-    return db
+    return grid_atlas(tmp_path_factory.mktemp("site") / "a.sqlite", GRID)
 
 
 @pytest.fixture

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from balance import CompareProblem, load_toml, load_urdf, solve_arm
-from balance.devices.counterweights import counterweights
+from balance.devices.counterweights import counterweights, place_counterweights
 from balance.model.arm import Arm, Link, Load
 from mechsynth.cli import main
 
@@ -104,6 +104,28 @@ def test_the_comparisons_counterweights_weigh_what_the_moments_say(two_link_comp
     assert cw.devices == 2 and cw.added_mass == pytest.approx(sum(masses), rel=1e-12)
     assert cw.hardware == (f"{masses[0]:.4g} kg on upper, 0.25 m from the axis of q1",
                            f"{masses[1]:.4g} kg on fore, 0.2 m from the axis of q2")
+
+
+def test_the_comparison_measures_what_the_counterweights_leave_once(monkeypatch):
+    """compare finds the counterweights' residual over the workspace and the payload range itself: their own
+    check of the balanced arm (a second search of 200 starts, whose result nothing read) no longer runs."""
+    import balance.devices.counterweights as module
+
+    def no_second_search(*args, **kwargs):
+        raise AssertionError("the counterweights' own residual search ran")
+
+    monkeypatch.setattr(module, "box_extremes", no_second_search)
+    comparison = CompareProblem(two_links(4 * G), payload=(1.0, 4.0), workspace=((0.0, 0.0), (0.0, 0.0)), samples=40)
+    cw = comparison.solve().strategy("counterweights")
+    assert cw.available and cw.devices == 2
+    assert max(j.max for j in cw.joints) == pytest.approx(1.5 * G * 0.9, rel=1e-9)  # the payload's deviation at q1
+
+
+def test_placing_the_counterweights_is_counterweights_without_the_check():
+    placed, checked = place_counterweights(two_links()), counterweights(two_links(), samples=20)
+    assert placed.weights == checked.weights and placed.added_weight == checked.added_weight
+    assert (placed.max_residual, placed.potential_spread, placed.worst) == (None, None, None)
+    assert checked.max_residual < 1e-12 * 60.0 and checked.worst is not None
 
 
 # --------------------------------------------------------------------- the RMS of the residual

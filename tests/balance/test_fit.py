@@ -10,7 +10,7 @@ import pytest
 from scipy.optimize import linprog
 
 from balance import (
-    DEFAULT_METHOD, METHODS, FitFailed, InfeasibleBounds, InvalidInput, InvalidRange,
+    DEFAULT_METHOD, METHODS, InfeasibleBounds, InvalidInput, InvalidRange,
     SpringBounds, WrongSense, fit_spring, solve_spring,
 )
 from balance.devices.fit import relative_errors

@@ -15,6 +15,7 @@ from synth.dimension._problem import MARGIN, SPAN_STEP, TURN_SAMPLES, Problem, _
 from synth.errors import BadTarget, DimensionError
 from synth.motion import Linkage
 from synth.structure.chain import Chain, Mechanism
+from tests.refusals import refused
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)  # joints 0-1 0-3 1-2 2-3
 SLIDER_CRANK = Mechanism(Chain.parse("0-1 1-2 2-3 0=3"), 0)  # joints 0-1 0=3 1-2 2-3
@@ -23,12 +24,6 @@ PATH = PathTarget([[1, 1], [4, 1], [4, 5]])  # centre (2.5, 3), size 5
 
 def close(got, want, tol=1e-12) -> bool:
     return np.shape(got) == np.shape(want) and np.abs(np.asarray(got, dtype=float) - np.asarray(want, dtype=float)).max() <= tol
-
-
-def refused(error, call, *args, **kwargs) -> str:
-    with pytest.raises(error) as info:
-        call(*args, **kwargs)
-    return str(info.value)
 
 
 def test_the_constraints_are_refused_in_one_sentence_each():

@@ -15,17 +15,12 @@ from synth.dimension._search import DimensionalResult, _checked, _problem, simil
 from synth.errors import BadTarget, DimensionError
 from synth.motion import Linkage, sweep
 from synth.structure.chain import Chain, Mechanism
+from tests.refusals import refused
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0)  # joints 0-1, 0-3, 1-2, 2-3
 #: a crank-rocker (crank 1, coupler 3.5, rocker 3, frame 4) with a coupler point
 CRANK_ROCKER = Linkage(FOUR_BAR, (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]], tracers={"P": (2, (2.0, 3.0))})
 TIMED = PathTarget([[0, 0], [1, 0], [1, 1]], [0.0, 0.1, 0.2])
-
-
-def refused(error, call, *args, **kwargs) -> str:
-    with pytest.raises(error) as info:
-        call(*args, **kwargs)
-    return str(info.value)
 
 
 def own_points(linkage: Linkage, steps: int = 7, turn: float = 240.0) -> PathTarget:

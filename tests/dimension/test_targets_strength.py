@@ -10,14 +10,7 @@ import pytest
 
 from synth.dimension import FunctionTarget, MotionTarget, PathTarget, read_target
 from synth.errors import BadTarget
-
-
-def refused(call, *args, **kwargs) -> str:
-    with pytest.raises(BadTarget) as info:
-        call(*args, **kwargs)
-    text = str(info.value)
-    assert text and "\n" not in text
-    return text
+from tests.refusals import refused
 
 
 def write(tmp_path, name, text):
@@ -27,28 +20,28 @@ def write(tmp_path, name, text):
 
 
 def test_arrays_are_refused_by_what_is_wrong_with_them():
-    assert refused(PathTarget, [[0, 0], ["a", 1]]) == "the points must be numbers"
-    assert refused(PathTarget, [[0, 0], [1]]) == "the points must be numbers"
-    assert refused(PathTarget, []) == "the target has no points"
-    assert refused(PathTarget, [0, 1, 2]) == "the points must be rows of 2 numbers, not an array of shape (3,)"
-    assert refused(PathTarget, [[0, 0, 0], [1, 1, 1]]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], ["a", 1]]) == "the points must be numbers"
+    assert refused(BadTarget, PathTarget, [[0, 0], [1]]) == "the points must be numbers"
+    assert refused(BadTarget, PathTarget, []) == "the target has no points"
+    assert refused(BadTarget, PathTarget, [0, 1, 2]) == "the points must be rows of 2 numbers, not an array of shape (3,)"
+    assert refused(BadTarget, PathTarget, [[0, 0, 0], [1, 1, 1]]) == \
         "the points must be rows of 2 numbers, not an array of shape (2, 3)"
-    assert refused(PathTarget, [[0, 0], [1, 1], [2, math.inf]]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 1], [2, math.inf]]) == \
         "the points are not all finite numbers: row 3 is [2.0, inf]"
-    assert refused(PathTarget, [[0, 0], [1, 1]], [[0], [1]]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 1]], [[0], [1]]) == \
         "the input values must be a list of numbers, not an array of shape (2, 1)"
-    assert refused(PathTarget, [[0, 0], [1, 1]], [0, math.nan]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 1]], [0, math.nan]) == \
         "the input values are not all finite numbers: row 2 is nan"
-    assert refused(PathTarget, [[0, 0], [1, 1]], []) == "the target has no input values"
-    assert refused(PathTarget, [[0, 0], [1, 1]], [0, 1, 2]) == "the timing gives 3 input values for 2 points"
-    assert refused(MotionTarget, [[0, 0], [1, 1]]) == "the poses must be rows of 3 numbers, not an array of shape (2, 2)"
-    assert refused(FunctionTarget, [0, 1], [0, "x"]) == "the output values must be numbers"
-    assert refused(FunctionTarget, [0, 1], [0, 1, 2]) == "the function gives 2 input values and 3 output values"
-    assert refused(FunctionTarget, [0], [1]) == "the target has 1 pair: give at least 2"
-    assert refused(PathTarget, [[0, 0]]) == "the target has 1 point: give at least 2"
-    assert refused(MotionTarget, [[0, 0, 1]]) == "the target has 1 pose: give at least 2"
-    assert refused(FunctionTarget, [0, "x"], [0, 1]) == "the input values must be numbers"
-    assert refused(FunctionTarget, [0, 1], [[0], [1]]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 1]], []) == "the target has no input values"
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 1]], [0, 1, 2]) == "the timing gives 3 input values for 2 points"
+    assert refused(BadTarget, MotionTarget, [[0, 0], [1, 1]]) == "the poses must be rows of 3 numbers, not an array of shape (2, 2)"
+    assert refused(BadTarget, FunctionTarget, [0, 1], [0, "x"]) == "the output values must be numbers"
+    assert refused(BadTarget, FunctionTarget, [0, 1], [0, 1, 2]) == "the function gives 2 input values and 3 output values"
+    assert refused(BadTarget, FunctionTarget, [0], [1]) == "the target has 1 pair: give at least 2"
+    assert refused(BadTarget, PathTarget, [[0, 0]]) == "the target has 1 point: give at least 2"
+    assert refused(BadTarget, MotionTarget, [[0, 0, 1]]) == "the target has 1 pose: give at least 2"
+    assert refused(BadTarget, FunctionTarget, [0, "x"], [0, 1]) == "the input values must be numbers"
+    assert refused(BadTarget, FunctionTarget, [0, 1], [[0], [1]]) == \
         "the output values must be a list of numbers, not an array of shape (2, 1)"
     t = PathTarget([[0, 0], [1, 2]], [0.5, 0.25])
     assert not t.points.flags.writeable and not t.inputs.flags.writeable
@@ -58,26 +51,26 @@ def test_arrays_are_refused_by_what_is_wrong_with_them():
 
 def test_a_duplicate_is_a_point_within_a_billionth_of_the_targets_size():
     # size √(3² + 4²) = 5: a gap of 4e-9 (below 5e-9) is a duplicate, 6e-9 is not
-    assert refused(PathTarget, [[0, 0], [3, 4], [1, 1], [1 + 4e-9, 1]]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [3, 4], [1, 1], [1 + 4e-9, 1]]) == \
         "points 3 and 4 are the same ([1.0, 1.0]): give each once"
     assert len(PathTarget([[0, 0], [3, 4], [1, 1], [1 + 6e-9, 1]])) == 4
     # the pair found first is the closest one, named in the order of the rows
-    assert refused(PathTarget, [[2, 2], [0, 0], [3, 4], [2, 2]]) == "points 1 and 4 are the same ([2.0, 2.0]): give each once"
+    assert refused(BadTarget, PathTarget, [[2, 2], [0, 0], [3, 4], [2, 2]]) == "points 1 and 4 are the same ([2.0, 2.0]): give each once"
     # a pose at the same point but another angle is another pose; the same angle is a duplicate
     assert len(MotionTarget([[1, 1, 0], [1, 1, 0.5]])) == 2
-    assert refused(MotionTarget, [[1, 1, 0.5], [2, 1, 0], [1, 1, 0.5]]) == \
+    assert refused(BadTarget, MotionTarget, [[1, 1, 0.5], [2, 1, 0], [1, 1, 0.5]]) == \
         "poses 1 and 3 are the same ([1.0, 1.0, 0.5]): give each once"
 
 
 def test_the_timing_must_be_strictly_monotonic_and_says_where_it_is_not():
-    assert refused(PathTarget, [[0, 0], [1, 0], [2, 0], [3, 0]], [0, 1, 2, 1.5]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 0], [2, 0], [3, 0]], [0, 1, 2, 1.5]) == \
         "the input values must increase (or decrease) from row to row, but rows 3 and 4 go 2 → 1.5"
-    assert refused(PathTarget, [[0, 0], [1, 0], [2, 0]], [3, 2, 2]) == \
+    assert refused(BadTarget, PathTarget, [[0, 0], [1, 0], [2, 0]], [3, 2, 2]) == \
         "the input values must increase (or decrease) from row to row, but rows 2 and 3 go 2 → 2"
     # a timing that starts still is refused at its first rows
-    assert refused(FunctionTarget, [0.125, 0.125, 1], [0, 1, 2]) == \
+    assert refused(BadTarget, FunctionTarget, [0.125, 0.125, 1], [0, 1, 2]) == \
         "the input values must increase (or decrease) from row to row, but rows 1 and 2 go 0.125 → 0.125"
-    assert refused(FunctionTarget, [1 / 3, 0.5, 0.4], [0, 1, 2]) == \
+    assert refused(BadTarget, FunctionTarget, [1 / 3, 0.5, 0.4], [0, 1, 2]) == \
         "the input values must increase (or decrease) from row to row, but rows 2 and 3 go 0.5 → 0.4"
     assert len(FunctionTarget([3, 2, 1], [0, 0, 0])) == 3  # outputs need not be monotonic
     assert PathTarget([[0, 0], [1, 0], [2, 0]], [0, -1, -5]).inputs.tolist() == [0, -1, -5]
@@ -128,10 +121,10 @@ def test_files_say_their_kind_and_units_by_their_columns(tmp_path):
 ])
 def test_a_bad_file_is_refused_in_the_sentence_that_names_its_fault(tmp_path, name, text, sentence):
     path = write(tmp_path, name, text)
-    assert refused(read_target, path) == sentence
+    assert refused(BadTarget, read_target, path) == sentence
     assert path.read_text() == text
 
 
 def test_a_json_value_that_is_not_a_number_is_named(tmp_path):
-    assert refused(read_target, write(tmp_path, "v.json", '[{"x": 0, "y": 0}, {"x": null, "y": 1}]')) == \
+    assert refused(BadTarget, read_target, write(tmp_path, "v.json", '[{"x": 0, "y": 0}, {"x": null, "y": 1}]')) == \
         "v.json: None is not a number"

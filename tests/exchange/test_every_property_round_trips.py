@@ -9,7 +9,6 @@ states another h than ``--h`` is refused — never a silent planar default."""
 
 from __future__ import annotations
 
-import io
 import json
 
 import pytest

@@ -20,6 +20,8 @@ from synth.structure.chain import Chain, Mechanism
 _JOINTS = ("cannot read joint '1-x': write joints as link numbers joined by '-' (revolute, '0-1-2' joins three links), "
            "'=' (prismatic) or '~' (gear mesh), e.g. '0-1 1=2 2~3'")
 _FOUR = '"joints": [[0, 1], [1, 2], [2, 3], [3, 0]]'
+_NO_COMMENT = ("JSON takes no '#' comment: give a frame, an input link or a motion space as keys of the row, e.g. "
+               '{"joints": [[0, 1], [1, 2], [2, 0]], "frame": 0, "h": 3}')
 
 
 @pytest.mark.parametrize("call,sentence", [
@@ -36,6 +38,13 @@ _FOUR = '"joints": [[0, 1], [1, 2], [2, 3], [3, 0]]'
      "src row 2: 'joints' must be a list of lists of link numbers"),
     (lambda: read_json('{"joints": [[0, 1], [1, 2], [2, 0]]}\n{bad\n', "src"),
      "src line 2: not valid JSON (Expecting property name enclosed in double quotes at column 2)"),
+    (lambda: read_text_lists("0-1 1-2 2-3 3-0\n# frame 0\n", "src"),  # the old reader dropped it without a word
+     "src line 2: '# frame 0' stands on a line of its own: in a joint list the settings follow their chain on its "
+     "line, e.g. '0-1 1-2 2-3 3-0  # frame 0'"),
+    (lambda: read_json("[[0, 1], [1, 2], [2, 0]]  # frame 0", "src"), f"src line 1: {_NO_COMMENT}"),
+    (lambda: read_json('{"joints": [[0, 1], [1, 2], [2, 0]]}\n# a note\n', "src"), f"src line 2: {_NO_COMMENT}"),
+    (lambda: read_json('[\n  {"joints": [[0, 1], [1, 2], [2, 0]]}  # the triangle\n]', "src"),
+     f"src line 2: {_NO_COMMENT}"),
     (lambda: read_listing("a,b\n1,2\n", "src"), "src: a listing in CSV has a 'joints' column (as chains --format csv prints)"),
     (lambda: read_listing("index,joints\n", "src"), "src: the listing has a header and no row"),
     (lambda: read_listing("index,joints\n1,0-1 1-2 2-0\n2,0-1 1-x\n", "src"), f"src row 2: {_JOINTS}"),
@@ -119,6 +128,9 @@ def test_edge_lists_with_kinds_settings_and_two_chains():
             "# h 4\n0 1 2\n2 3\n3 4\n4 0 {'weight': 1}\n")
     assert _read(read_edgelist(text, "src")) == [("0-1 0-3 1=2 2~3", 1, 0, None, None, "src line 1"),
                                                  ("0-1-2 0-4 2-3 3-4", None, None, 4, None, "src line 7")]
+    # settings after a joint count as on a line of their own (the old reader dropped them without a word)
+    assert _read(read_edgelist("0 1  # frame 1\n1 2\n2 0  # h 4, input 0\n", "src")) == [
+        ("0-1 0-2 1-2", 1, 0, 4, None, "src line 1")]
     assert edge_words("0 1 X") == (["0", "1"], "X") and edge_words("a b c") == (["a", "b", "c"], None)
     assert edge_words("a b ~") == (["a", "b"], "~") and edge_words("a") is None and edge_words("a b!") is None
 

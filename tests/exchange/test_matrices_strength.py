@@ -75,6 +75,14 @@ def test_two_matrices_each_with_its_settings():
                            ("0-1 0-5 1-2 2-3 3-4 4-5", None, None, 5, None, "m line 5")]
 
 
+def test_a_comment_after_a_row_is_a_comment_and_its_settings_count():
+    """As in a joint list and an edge list: '#' starts a comment anywhere on a line (the old reader took it for a
+    cell: 'link 2 is joined to itself (entry 0  # frame 1 on the diagonal)')."""
+    assert _read("0,1,1  # a triangle\n1,0,1\n1,1,0  # frame 1, h 4\n") == [("0-1 0-2 1-2", 1, None, 4, None, "m")]
+    assert _read("link,0-1,1-2,2-0\n0,1,0,1 # frame 2\n1,1,1,0\n2,0,1,1\n") == [("0-1 0-2 1-2", 2, None, None,
+                                                                                     None, "m")]
+
+
 def test_the_matrices_written():
     out = io.StringIO()
     assert write_adjacency([Chain.parse("0-1 1=2 2~3 3-0"), Mechanism(Chain.parse("0-1 1-2 2-0"), 0, 1)], out) == 2

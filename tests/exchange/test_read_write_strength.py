@@ -12,6 +12,7 @@ import pytest
 import synth.exchange as exchange
 from synth.errors import InvalidOption, MalformedChain
 from synth.structure.chain import Chain, Mechanism
+from tests.refusals import refused
 
 _FORMATS = "text, json, csv, table, graphml, gml, dot, edgelist, adjacency, incidence"
 
@@ -51,9 +52,7 @@ def test_the_format_of_a_text(text, suffix, kind):
      "commands' --format csv), not 'csv'"),
 ])
 def test_refusals_in_full(call, kind, sentence):
-    with pytest.raises(kind) as refused:
-        call()
-    assert str(refused.value) == sentence
+    assert refused(kind, call) == sentence
 
 
 def test_files_and_folders(tmp_path, monkeypatch):
@@ -66,20 +65,16 @@ def test_files_and_folders(tmp_path, monkeypatch):
                                     f"formats ({_FORMATS})"),
              (tmp_path / "nul.txt", f"{tmp_path / 'nul.txt'} is a binary file: chains are read from text formats ({_FORMATS})")]
     for path, sentence in cases:
-        with pytest.raises(MalformedChain) as refused:
-            exchange.read_file(path)
-        assert str(refused.value) == sentence
+        assert refused(MalformedChain, exchange.read_file, path) == sentence
     big = tmp_path / "big.txt"
     big.write_text("0-1 1-2 2-0\n" * (3 * 2**20 // 12 + 1))
     monkeypatch.setattr(exchange, "_MAX_BYTES", 2**20)
-    with pytest.raises(MalformedChain) as refused:
-        exchange.read_file(big)
-    assert str(refused.value) == f"{big} is 3 MiB: files of chains are read up to 1 MiB (split it)"
+    too_large = "is 3 MiB: files of chains are read up to 1 MiB (split it)"
+    assert refused(MalformedChain, exchange.read_file, big) == f"{big} {too_large}"
     (tmp_path / "folder").mkdir()
     big.rename(tmp_path / "folder" / "big.txt")
-    with pytest.raises(MalformedChain) as refused:
-        exchange.read_file(tmp_path / "folder")  # a folder is read file by file, and the large one is refused
-    assert str(refused.value) == f"{tmp_path / 'folder' / 'big.txt'} is 3 MiB: files of chains are read up to 1 MiB (split it)"
+    # a folder is read file by file, and the large one is refused
+    assert refused(MalformedChain, exchange.read_file, tmp_path / "folder") == f"{tmp_path / 'folder' / 'big.txt'} {too_large}"
 
 
 def test_a_folder_is_read_in_name_order_without_hidden_files(tmp_path):
@@ -91,9 +86,8 @@ def test_a_folder_is_read_in_name_order_without_hidden_files(tmp_path):
     assert read == [("0-1 0-2 1-2", f"{tmp_path / 'a.edges'} line 1"), ("0-1 0-3 1-2 2-3", str(tmp_path / "b.txt"))]
     assert [e.chain.compact() for e in exchange.read(str(tmp_path / "b.txt"))] == ["0-1 0-3 1-2 2-3"]
     assert [e.chain.compact() for e in exchange.read(tmp_path / "b.txt")] == ["0-1 0-3 1-2 2-3"]
-    with pytest.raises(MalformedChain) as refused:
-        exchange.read(str(tmp_path / "missing.txt"))  # one word, no joint list: a path, said to be missing
-    assert str(refused.value) == f"no file {tmp_path / 'missing.txt'}"
+    # one word, no joint list: a path, said to be missing
+    assert refused(MalformedChain, exchange.read, str(tmp_path / "missing.txt")) == f"no file {tmp_path / 'missing.txt'}"
 
 
 def test_what_each_source_reads_as(monkeypatch):
@@ -153,6 +147,5 @@ def test_a_named_format_and_a_path_with_a_space(tmp_path):
     assert exchange.read_chain("[[0, 1], [1, 2], [2, 0]]").chain == Chain.parse("0-1 1-2 2-0")
     framed = exchange.read_chain('[{"joints": [[0, 1], [1, 2], [2, 3], [3, 0]], "frame": 0}]')  # an array of one row
     assert (framed.chain, framed.frame, framed.source) == (Chain.parse("0-1 1-2 2-3 3-0"), 0, "the chain given row 1")
-    with pytest.raises(MalformedChain) as refused:
-        exchange.read_text("index,joints\n1,0-1 1-x\n", source="f.csv")
-    assert str(refused.value).startswith("f.csv row 1: cannot read joint '1-x'")
+    assert refused(MalformedChain, exchange.read_text, "index,joints\n1,0-1 1-x\n", source="f.csv").startswith(
+        "f.csv row 1: cannot read joint '1-x'")

@@ -75,9 +75,10 @@ def test_a_gear_on_no_axis_is_drawn_one_gap_above_its_carrier():
     # wheel 2 meshes the frame 0 and is carried by link 1, but no axis holds it: it sits 0.16 above link 1's shaft
     s = schematic(GearTrain.parse("0-1 0~2@1", frame=0))
     assert {x: v["y"] for x, v in s["shafts"].items()} == pytest.approx({0: -0.16, 1: 0.0, 2: 0.16})
-    # a link in no axis and no mesh (the text form lets one through): a stub on the main level, not a crash
-    s = schematic(GearTrain.parse("0-1 0~3@1"))
-    assert s["shafts"][2] == pytest.approx({"y": 0.0, "from": 0.2, "to": 0.8})
+    # wheel 2 is carried by wheel 3, itself on no axis and not yet placed: one gap above the main level; wheel 3
+    # one gap above its carrier 1 (a link in no axis and no mesh is no train: refused by GearTrain)
+    s = schematic(GearTrain.parse("0-1 1~2@3 2~3@1 0~3@1"))
+    assert {x: v["y"] for x, v in s["shafts"].items()} == pytest.approx({0: 0.0, 1: -0.16, 2: 0.16, 3: 0.0})
 
 
 def test_three_axes_staggered_and_two_columns_by_hand():

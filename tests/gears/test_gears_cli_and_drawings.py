@@ -44,6 +44,27 @@ def test_unwritable_out_is_refused_before_any_work(tmp_path):
     assert out.returncode == 2 and out.stdout == "" and "is a directory" in out.stderr
 
 
+@pytest.mark.parametrize("suffix", ["svg", "png"])
+def test_the_same_sheet_twice_is_the_same_file(tmp_path, suffix):
+    """No date, no random clip ids, no writer's version: two runs give identical bytes (matplotlib alone writes a
+    <dc:date> and ids drawn at random into an SVG)."""
+    files = [tmp_path / f"{name}.{suffix}" for name in ("first", "second")]
+    for path in files:
+        assert _cli("--links", "4", "--out", str(path)).returncode == 0
+    first = files[0].read_bytes()
+    assert first == files[1].read_bytes() and b"Matplotlib" not in first and b"dc:date" not in first
+
+
+@pytest.mark.parametrize("train,sentence", [
+    ("0-1 0~3@1", "link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
+    ('{"axes": [], "meshes": []}', "the gear train object has no axes and no meshes: give each axis as the links "
+                                   "that turn about it and each mesh as its two gears"),
+])
+def test_a_train_with_a_link_in_nothing_or_nothing_at_all_is_refused(train, sentence):
+    out = _cli("--train", train)
+    assert (out.returncode, out.stdout, out.stderr) == (2, "", f"mechsynth: {sentence}\n")
+
+
 def test_a_sheet_beyond_the_limit_is_refused_before_anything_is_printed(tmp_path):
     out = _cli("--links", "6", "--out", str(tmp_path / "six.png"))
     assert out.returncode == 2 and out.stdout == "" and not (tmp_path / "six.png").exists()

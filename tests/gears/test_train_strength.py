@@ -55,7 +55,29 @@ _FORMS = "write axes as '0-1-2' and meshes as '1~3', '0~3i' (internal, ring firs
     (lambda: GearTrain.from_chain(Chain.parse("0-1 1=2 2-0")), "a gear train turns on axes and meshes: it has no prismatic pair"),
     (lambda: GearTrain.from_dict([]), "a gear train object needs 'axes' and 'meshes' (or 'train', its text form)"),
     (lambda: GearTrain.from_dict({"axes": []}), "a gear train object needs 'axes' and 'meshes' (or 'train', its text form)"),
-    (lambda: GearTrain.from_dict({"axes": [], "meshes": []}), "a gear train needs a whole number of links ≥ 2, not 1"),
+    (lambda: GearTrain.from_dict({"axes": [], "meshes": []}),
+     "the gear train object has no axes and no meshes: give each axis as the links that turn about it and each mesh "
+     "as its two gears"),
+    (lambda: GearTrain.from_dict({"axes": [], "meshes": [], "links": 3}),
+     "the gear train object has no axes and no meshes: give each axis as the links that turn about it and each mesh "
+     "as its two gears"),
+    (lambda: GearTrain.from_dict({"axes": 5, "meshes": []}), "axes and meshes must be lists of link numbers"),
+    (lambda: GearTrain.from_dict({"axes": [[0, 1]], "meshes": [[1, None]]}), "axes and meshes must be lists of link numbers"),
+    # every link turns on an axis or meshes (a carrier too), and the axes and meshes join them all
+    (lambda: GearTrain.parse("0-1 0~3@1"),
+     "link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
+    (lambda: GearTrain.parse("0-1 1~2@3"),
+     "link 3 is in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
+    (lambda: GearTrain.from_dict({"axes": [[0, 1]], "meshes": [[0, 3]], "carriers": [1]}),
+     "link 2 is in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
+    (lambda: GearTrain.from_dict({"axes": [[0, 1]], "meshes": [], "links": 9}),
+     "links 2, 3, 4, 5, 6, … are in no axis and no mesh: every link of a gear train turns on an axis or meshes"),
+    (lambda: GearTrain.parse("0-1 2-3"),
+     "links 2, 3 are not joined to link 0 by axes and meshes: a gear train is one connected set of links"),
+    (lambda: GearTrain.parse("0-1 2~3@0"),
+     "links 2, 3 are not joined to link 0 by axes and meshes: a gear train is one connected set of links"),
+    (lambda: GearTrain(5, [(0, 1), (1, 2), (3, 4)], [(0, 2)], carriers=[1]),
+     "links 3, 4 are not joined to link 0 by axes and meshes: a gear train is one connected set of links"),
 ])
 def test_every_refusal_in_full(make, sentence):
     with pytest.raises(MalformedChain) as refused:

@@ -10,6 +10,7 @@ import pytest
 from synth.errors import BadPose, LockedMechanism, MotionError, WrongInputs
 from synth.motion import Linkage, joint_name, read_linkage
 from synth.structure.chain import Chain, Mechanism
+from tests.refusals import refused
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)  # joints 0-1 0-3 1-2 2-3
 GOOD = [[0, 0], [4, 0], [1, 0], [3.5, 3]]
@@ -20,26 +21,18 @@ PLANETARY = Mechanism(Chain.parse("0-1-2-3 2-4 1~4 3~4"), 0)
 PLANETARY_POINTS = [[0, 0], [1, 0], [1.5, 0], [2, 0]]
 
 
-def sentence(error, call, *args, **kwargs):
-    with pytest.raises(error) as exc:
-        call(*args, **kwargs)
-    text = str(exc.value)
-    assert text and "\n" not in text
-    return text
-
-
 # ------------------------------------------------------------------ the pose
 def test_the_pose_is_refused_in_a_sentence_that_names_what_is_wrong():
-    assert sentence(MotionError, Linkage, Mechanism(Chain(6, tuple((i, (i + 1) % 6) for i in range(6)), h=5), 0), (0,),
+    assert refused(MotionError, Linkage, Mechanism(Chain(6, tuple((i, (i + 1) % 6) for i in range(6)), h=5), 0), (0,),
                     np.zeros((6, 2))) == "a linkage moves in the plane (h = 3), not in motion space h = 5"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [1, 0], ["a", 3]]) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [1, 0], ["a", 3]]) == \
         "the joint positions must be numbers, one [x, y] per joint"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), np.zeros((4, 3))) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), np.zeros((4, 3))) == \
         "the pose needs one [x, y] per joint (4), not an array of shape (4, 3)"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [1, math.nan], [3.5, 3]]) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [1, math.nan], [3.5, 3]]) == \
         "joint 1-2 has a position that is not finite: [1.0, nan]"
     # the crank's two pins at one point: joints 0-1 and 1-2 of link 1
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [0, 0], [3.5, 3]]) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), [[0, 0], [4, 0], [0, 0], [3.5, 3]]) == \
         ("joints 0-1 and 1-2 of link 1 are at the same point: a link's pins must be apart (a zero-length link)")
     # a gap of 1e-8 of the mechanism's size is a length; 1e-10 is not
     Linkage(FOUR_BAR, (0,), [[0, 0], [4, 0], [4e-8, 0], [3.5, 3]])
@@ -48,31 +41,31 @@ def test_the_pose_is_refused_in_a_sentence_that_names_what_is_wrong():
 
 
 def test_the_inputs_are_refused_in_a_sentence_that_names_what_is_wrong():
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (), GOOD) == \
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (), GOOD) == \
         "this mechanism has W = 1 and needs 1 input joint on the frame, not 0"
     five_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0)  # joints 0-1 0-4 1-2 2-3 3-4
     five = [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]]
-    assert sentence(WrongInputs, Linkage, five_bar, (0,), five) == \
+    assert refused(WrongInputs, Linkage, five_bar, (0,), five) == \
         "this mechanism has W = 2 and needs 2 input joints on the frame, not 1"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (7,), GOOD) == "input joint 7 is not a joint of the chain (0 … 3)"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (-1,), GOOD) == "input joint -1 is not a joint of the chain (0 … 3)"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (3,), GOOD) == \
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (7,), GOOD) == "input joint 7 is not a joint of the chain (0 … 3)"
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (-1,), GOOD) == "input joint -1 is not a joint of the chain (0 … 3)"
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (3,), GOOD) == \
         "input joint 2-3 must join the frame (link 0) to one moving link, or name the link it drives"
-    assert sentence(WrongInputs, Linkage, five_bar, (0, 0), five) == "an input joint is named twice"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(1, 3)) == \
+    assert refused(WrongInputs, Linkage, five_bar, (0, 0), five) == "an input joint is named twice"
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(1, 3)) == \
         "2 driven links given for 1 inputs"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(3,)) == \
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(3,)) == \
         "input joint 0-1 does not join the frame (link 0) to link 3"
-    assert sentence(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(0,)) == \
+    assert refused(WrongInputs, Linkage, FOUR_BAR, (0,), GOOD, driven=(0,)) == \
         "input joint 0-1 does not join the frame (link 0) to link 0"
-    assert sentence(WrongInputs, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, driven=(1, 1)) == \
+    assert refused(WrongInputs, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, driven=(1, 1)) == \
         "an input joint is named twice"
     # a mesh of the frame as an input
     geared = Mechanism(Chain.parse("0-1 1-2 0~2"), 0)  # a planet 2 on the arm 1 rolling on the fixed sun 0
     assert geared.chain.joints == ((0, 1), (0, 2), (1, 2))
-    assert sentence(WrongInputs, Linkage, geared, (1,), [[0, 0], [2, 0], [3, 0]]) == \
+    assert refused(WrongInputs, Linkage, geared, (1,), [[0, 0], [2, 0], [3, 0]]) == \
         "input joint 0~2 is a gear mesh: drive a revolute or prismatic joint of the frame"
-    assert sentence(LockedMechanism, Linkage, Mechanism(Chain.parse("0-1 1-2 2-0"), 0), (0,),
+    assert refused(LockedMechanism, Linkage, Mechanism(Chain.parse("0-1 1-2 2-0"), 0), (0,),
                     [[0, 0], [1, 0], [0.5, 1]]) == "the chain 0-1 0-2 1-2 is rigid (W = 0): nothing can move it"
     # the only revolute input of each joint of the frame: the link it drives
     assert Linkage(FOUR_BAR, (1,), GOOD).driven == (3,) and Linkage(FOUR_BAR, (0,), GOOD).driven == (1,)
@@ -80,25 +73,25 @@ def test_the_inputs_are_refused_in_a_sentence_that_names_what_is_wrong():
 
 def test_slides_are_checked_and_made_unit():
     assert Linkage(SLIDER, (0,), SLIDER_POINTS, {1: (3, 4)}).slides == {1: (0.6, 0.8)}
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {}) == \
         "prismatic joint 0=3 needs its sliding direction"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (0, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (0, 0)}) == \
         "the sliding direction of joint 0=3 has zero length"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 2: (1, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 2: (1, 0)}) == \
         "a sliding direction is given for joint 2, which is not a prismatic joint"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 9: (1, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 9: (1, 0)}) == \
         "a sliding direction is given for joint 9, which is not a prismatic joint"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 4: (1, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), 4: (1, 0)}) == \
         "a sliding direction is given for joint 4, which is not a prismatic joint"  # one past the last joint
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), -1: (1, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), -1: (1, 0)}) == \
         "a sliding direction is given for joint -1, which is not a prismatic joint"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), "0=3": (1, 0)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, 0), "0=3": (1, 0)}) == \
         "a sliding direction is given for joint '0=3', which is not a prismatic joint"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: "ab"}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: "ab"}) == \
         "the sliding direction of joint 0=3 must be two numbers [x, y], not 'ab'"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, math.inf)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, math.inf)}) == \
         "the sliding direction of joint 0=3 is not finite: (1, inf)"
-    assert sentence(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (math.nan, 1)}) == \
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (math.nan, 1)}) == \
         "the sliding direction of joint 0=3 is not finite: (nan, 1)"
 
 
@@ -113,34 +106,34 @@ def test_gear_ratios_follow_from_the_pitch_points_or_are_checked():
     assert lk.carrier(1) == 2 and lk.carrier(3) == 2 and lk.axis(4, 2) == 2 and lk.axis(1, 2) == 0
     given = Linkage(PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (2.0, 3.0), 3: -0.7}, driven=(1, 2))
     assert given.meshes == {1: -1.5, 3: -0.7}
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (0, 3)}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (0, 3)}, driven=(1, 2)) == \
         "a pitch radius of mesh 1~4 is zero"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (3, 0)}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (3, 0)}, driven=(1, 2)) == \
         "a pitch radius of mesh 1~4 is zero"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (1, "x")}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: (1, "x")}, driven=(1, 2)) == \
         "the pitch radii of mesh 1~4 must be two numbers [x, y], not (1, 'x')"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: [1, math.inf]}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: [1, math.inf]}, driven=(1, 2)) == \
         "the pitch radii of mesh 1~4 is not finite: [1, inf]"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: "x"}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: "x"}, driven=(1, 2)) == \
         "the ratio of mesh 1~4 must be a number or a pair of pitch radii, not 'x'"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: 0}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: 0}, driven=(1, 2)) == \
         "the ratio of mesh 1~4 must be finite and not zero, not 0"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: math.inf}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={1: math.inf}, driven=(1, 2)) == \
         "the ratio of mesh 1~4 must be finite and not zero, not inf"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={2: 1.0}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={2: 1.0}, driven=(1, 2)) == \
         "a gear ratio is given for joint 2, which is not a gear mesh"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={9: 1.0}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={9: 1.0}, driven=(1, 2)) == \
         "a gear ratio is given for joint 9, which is not a gear mesh"
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={4: 1.0}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={4: 1.0}, driven=(1, 2)) == \
         "a gear ratio is given for joint 4, which is not a gear mesh"  # one past the last joint
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={-1: 1.0}, driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), PLANETARY_POINTS, meshes={-1: 1.0}, driven=(1, 2)) == \
         "a gear ratio is given for joint -1, which is not a gear mesh"
     # the pitch point on the planet's axis
-    assert sentence(BadPose, Linkage, PLANETARY, (0, 0), [[0, 0], [1.5, 0], [1.5, 0], [2, 0]], driven=(1, 2)) == \
+    assert refused(BadPose, Linkage, PLANETARY, (0, 0), [[0, 0], [1.5, 0], [1.5, 0], [2, 0]], driven=(1, 2)) == \
         "the pitch point of mesh 1~4 is on a gear's axis: give the ratio or move the point"
     # no link carries both gears' axes
     loose = Mechanism(Chain.parse("0-1 1~2 2-3 3-0"), 0)
-    assert sentence(BadPose, Linkage, loose, (0, 1), [[0, 0], [4, 0], [1, 0], [3.5, 3]]) == \
+    assert refused(BadPose, Linkage, loose, (0, 1), [[0, 0], [4, 0], [1, 0], [3.5, 3]]) == \
         "gear mesh 1~2 needs a link carrying both gears' axes (a carrier)"
 
 
@@ -158,15 +151,15 @@ def test_the_frame_is_the_carrier_preferred_among_several():
 
 def test_tracers_are_checked():
     assert Linkage(FOUR_BAR, (0,), GOOD, tracers={7: ("2", [1, "2"])}).tracers == {"7": (2, (1.0, 2.0))}
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (2,)}) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (2,)}) == \
         "tracer 'P' must be (link, [x, y]), not (2,)"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": ("a", (1, 2))}) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": ("a", (1, 2))}) == \
         "tracer 'P' must be (link, [x, y]), not ('a', (1, 2))"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (4, (1, 2))}) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (4, (1, 2))}) == \
         "tracer 'P' is on link 4, which is not a link of the chain"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (-1, (1, 2))}) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (-1, (1, 2))}) == \
         "tracer 'P' is on link -1, which is not a link of the chain"
-    assert sentence(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (3, (1, math.inf))}) == \
+    assert refused(BadPose, Linkage, FOUR_BAR, (0,), GOOD, tracers={"P": (3, (1, math.inf))}) == \
         "the position of tracer 'P' is not finite: (1, inf)"
 
 
@@ -253,10 +246,10 @@ def test_joints_are_named_by_links_or_index_and_refused_clearly():
                                             "slides, meshes, tracers)"),
     ]
     for d, words in cases:
-        assert sentence(MotionError, Linkage.from_dict, d) == words, words
-    assert sentence(MotionError, Linkage.from_dict, [base]) == \
+        assert refused(MotionError, Linkage.from_dict, d) == words, words
+    assert refused(MotionError, Linkage.from_dict, [base]) == \
         "a linkage must be an object (a table) with 'chain', 'frame', 'inputs' and 'points'"
-    assert sentence(MotionError, Linkage.from_dict, {**base, "chain": {"joints": "x"}}).startswith(
+    assert refused(MotionError, Linkage.from_dict, {**base, "chain": {"joints": "x"}}).startswith(
         "the linkage's chain cannot be read: ")
 
 
@@ -270,14 +263,14 @@ def test_an_input_inside_a_multiple_joint_is_named_by_the_frame_and_its_link():
                           (["0-5", "0-3"], "'inputs' names joint '0-5', which is not a joint"),
                           (["0-x", "0-3"], "'inputs' names joint '0-x': write a joint by its links, e.g. '1-2'"),
                           ([(0, 1), "0-3"], "'inputs' names joint (0, 1), which is not a joint")):
-        assert sentence(MotionError, Linkage.from_dict, {**base, "inputs": inputs}).startswith(words), inputs
+        assert refused(MotionError, Linkage.from_dict, {**base, "inputs": inputs}).startswith(words), inputs
 
 
 def test_files_are_read_as_toml_or_json_only(tmp_path):
-    assert sentence(MotionError, read_linkage, tmp_path / "a.yaml") == "a linkage file is .toml or .json, not 'a.yaml'"
+    assert refused(MotionError, read_linkage, tmp_path / "a.yaml") == "a linkage file is .toml or .json, not 'a.yaml'"
     bad = tmp_path / "a.json"
     bad.write_text('{"chain": ')
-    assert sentence(MotionError, read_linkage, bad) == "a.json: not valid JSON (Expecting value at line 1)."
+    assert refused(MotionError, read_linkage, bad) == "a.json: not valid JSON (Expecting value at line 1)."
     top = tmp_path / "top.JSON"
     top.write_text(Linkage(FOUR_BAR, (0,), GOOD).to_json())
     assert read_linkage(top).points.tolist() == [[0, 0], [4, 0], [1, 0], [3.5, 3]]

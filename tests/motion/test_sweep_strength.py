@@ -12,6 +12,7 @@ from synth.motion import Linkage, Motion, sweep
 from synth.structure.chain import Chain, Mechanism
 
 from .helpers import four_bar, slider_crank
+from tests.refusals import refused
 
 #: crank a = 2.5, coupler b = 3.2, rocker c = 3, frame d = 4: the crank stops where b and c are in line,
 #: |A − O4| = b + c, at cos φ = (a² + d² − (b + c)²) / 2ad
@@ -21,12 +22,6 @@ DYAD = "the RRR dyad of links 2, 3 is aligned (a dead position)"
 
 def said(value: float) -> str:
     return f"{value:.9f} rad ({math.degrees(value):.6f}°)"
-
-
-def refused(error, call, *args, **kwargs) -> str:
-    with pytest.raises(error) as info:
-        call(*args, **kwargs)
-    return str(info.value)
 
 
 def test_the_sweeps_arguments_are_refused_in_one_sentence_each():

@@ -8,9 +8,7 @@ Reference numbers: docs/theory.md, "Reference counts".
 from __future__ import annotations
 
 import itertools
-import os
 import random
-import sys
 from collections import Counter
 
 import pytest

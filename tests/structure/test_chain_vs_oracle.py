@@ -12,9 +12,7 @@ from __future__ import annotations
 
 import functools
 import itertools
-import os
 import random
-import sys
 from collections import defaultdict
 
 import networkx as nx

@@ -16,9 +16,7 @@ from __future__ import annotations
 
 import itertools
 import json
-import os
 import random
-import sys
 from collections import Counter
 
 import pytest

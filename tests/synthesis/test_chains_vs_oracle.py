@@ -18,8 +18,6 @@ fractionated rule, v range) and its ``code`` matches its joints.
 from __future__ import annotations
 
 import functools
-import os
-import sys
 from collections import Counter
 
 import pytest

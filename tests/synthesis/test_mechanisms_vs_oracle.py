@@ -13,9 +13,7 @@ brute-force chain enumerator ``tests/oracles/chains.py``.
 from __future__ import annotations
 
 import functools
-import os
 import random
-import sys
 from collections import defaultdict
 
 import pytest

@@ -30,7 +30,7 @@ import pytest
 from synth.structure.query import ChainQuery
 from synth.synthesis import stage_a, stage_b
 from synth.synthesis.stage_a import JOINT, LINK, Vertex, contracted_graphs
-from synth.synthesis.stage_b import count_listed, count_orbits, count_realised, orbits_apply, realise
+from synth.synthesis.stage_b import count_listed, count_orbits, count_realised, realise
 from synth.synthesis.type_synthesis import plan_jobs
 from tests.oracles.chains import ChainIndex, brute_force_chains, code_key
 
