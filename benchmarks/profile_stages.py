@@ -86,6 +86,7 @@ def instrument() -> None:
     stage_b._exact_test = _timed("sub-chain test", stage_b._exact_test)
     stage_b._expand = _timed("Chain", stage_b._expand)
     stage_a.Contracted.edge_group = _timed("automorphisms", stage_a.Contracted.edge_group)
+    stage_a.Contracted.bundle_group = _timed("automorphisms", stage_a.Contracted.bundle_group)  # (the kernel's)
     from synth.synthesis import _stage_b_kernel
 
     _stage_b_kernel.place = _timed("placements (kernel)", _stage_b_kernel.place)

@@ -8,16 +8,20 @@ CPU seconds have been spent (CPU, not wall: a loaded machine sizes a query as a 
 never at n itself, and never a size predicted to end later than one and a half budgets).  From the last three sizes with chains,
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
-Time is the largest calibration size's measured seconds per chain times the chains; the
-calibrations run on the path the query will take (the compiled searches of stages A and B when
-the query is large enough for them, however small the calibration sizes are).
+Time is measured in two parts at the largest calibration size, each scaled by what it grows
+with: the CPU seconds of the units' own work (stage B: placing the binary links, counting or
+building the chains) per chain, times the chains; and the rest (number synthesis, stage A, the
+plan) per unit, times the units.  The calibrations run on the path the query will take (the
+compiled searches of stages A and B when the query is large enough for them, however small the
+calibration sizes are), with the engine of the day, so the estimate follows every change of speed.
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
 −2.5 % at 14 links, −5.0 % at 16 and −6.7 % at 18 against the published counts (318 162,
-19 819 281, 1 535 380 884).  The time per chain falls as n grows (a unit's fixed costs spread
-over more chains: on the compiled path ≈ 26 µs at 12 links, 7 at 14, 2.6 at 16), so the time
-estimate is an upper bound, not a prediction (benchmarks/PROFILE.md measures its error).
+19 819 281, 1 535 380 884).  Stage B's time per chain falls as n grows (a unit's fixed costs
+spread over more chains; with the engine of 29 Nov 2026, one process: 4.7 µs at 12 links, 1.7
+at 14, 1.2 at 16, about 1.0 on a sample of 18), so the time is an upper bound where the chains
+are right, not a prediction (benchmarks/PROFILE.md, section 24, measures its error).
 
 Example
 -------
@@ -74,6 +78,22 @@ class Estimate:
     log10_units: float = 0.0
     log10_seconds: float = 0.0
     largest_code_units: float = 0.0  # units of the code with the most: its share of the units at the basis
+
+
+@dataclass
+class _TimedWork:
+    """A unit work (``count_unit``, ``run_unit``, …) that adds up the CPU seconds it takes: the
+    calibrations run inline, so its total is the units' own share of a size's time."""
+
+    work: object
+    seconds: float = 0.0
+
+    def __call__(self, unit):
+        t0 = time.process_time()
+        try:
+            return self.work(unit)
+        finally:
+            self.seconds += time.process_time() - t0
 
 
 _COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
@@ -140,18 +160,19 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
             if compiled:
                 jobs = [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
             chains = units = largest = 0
-            for _, unit, result in ts._map_units(unit_work, jobs, 1, False):
+            timed = _TimedWork(unit_work)
+            for _, unit, result in ts._map_units(timed, jobs, 1, False):
                 if unit is not None:
                     chains += len(result) if isinstance(result, list) else sum(result.values())
                     units += 1
                 else:  # a code is complete: result is its number of units
                     largest = max(largest, result)
-            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest)
+            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.seconds)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
     if len(points) < 3:
         return None
-    (_, c0, u0, _, _), (_, c1, u1, _, _), (n2, c2, u2, s2, l2) = points[-3:]
+    (_, c0, u0, *_), (_, c1, u1, *_), (n2, c2, u2, s2, l2, w2) = points[-3:]
     steps = (links - n2) // step
     r_c, d_c = c2 / c1, max(c2 / c1 - c1 / c0, 0.0)
     r_u, d_u = max(u2 / max(u1, 1), 1.0), max(u2 / max(u1, 1) - u1 / max(u0, 1), 0.0)
@@ -160,7 +181,11 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
     # the largest code's share of the units changes slowly (h = 2: 0.21, 0.16, 0.13, 0.12 at 7 … 10 links),
     # so it is kept from the largest calibration (the ratio of its own growth swings with the basis)
     log_largest = log_units + math.log10(max(l2, 1) / max(u2, 1))
-    log_seconds = log_chains + math.log10(max(s2, 1e-9) / c2)  # the largest calibration's time per chain
+    # the largest calibration's time: its units' work per chain times the chains, the rest per unit times the units
+    parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
+    parts += [log_units + math.log10((s2 - w2) / max(u2, 1))] if s2 > w2 else []
+    top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
+    log_seconds = top + math.log10(sum(10.0 ** (part - top) for part in parts) or 1.0)
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
     return Estimate(_power(log_chains), _power(log_units), _power(log_seconds), basis,
                     log_chains, log_units, log_seconds, _power(log_largest))

@@ -242,33 +242,37 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     lows, parallel = _string_limits(graph, conv)
     inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     M, E = len(inner), len(graph.edges)
+    n2 = code.count(2)
+    if sum(lows) > n2:  # no placement: nothing else is needed
+        return 0, np.zeros((0, E), dtype=np.int64), True
     a_list, b_list = _game_ends(graph, inner)
     least = np.array(lows, dtype=np.int64)
     after = np.full(E, -1, dtype=np.int64)
     for e, least_e in parallel:
         after[e] = least_e
-    C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
+    C, l = conv.h - 1, conv.h + conv.threshold
     b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
     x_most, vertex_need = _deficit_bounds(k, l, b0, n2, conv.h)
     if l2 >= 0:  # the tighter of the two games' bounds
         x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, conv.h)
         x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
-    group, whole_group = graph.edge_group() if E > 1 else ([], True)
-    group = np.array(group, dtype=np.int64).reshape(len(group), E)
+    perms, whole_group = graph.bundle_group()
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
     if not listing:  # a count: any order of the strings keeps one placement per orbit
         order = _search_order(edges, a_list, b_list, M)
         a_end, b_end, least, after = a_end[order], b_end[order], least[order], after[order]
-        back = np.argsort(order)  # string order[i] is string i of the search: relabel the automorphisms
-        group, edges = np.ascontiguousarray(back[group[:, order]]), tuple(edges[e] for e in order)
-    if whole_group:  # the lex-least test of sorted bundles needs one permutation per coset
-        group = _in_bundle_order(edges, group)
+        back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
+        if perms:  # bundle q_order[i] is bundle i of the search: relabel the permutations of the bundles
+            edges = tuple(edges[e] for e in order)
+            q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(edges)]
+            perms = np.argsort(q_order)[np.array(perms, dtype=np.int64)[:, q_order]]
+    group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
     if rows and not listing:  # (the kernel writes whole rows, and only rows up to what it found are read)
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out) if sum(lows) <= n2 else 0
+    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
@@ -297,16 +301,17 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
         if a >= 0:
             neighbours[a].append(b)
             neighbours[b].append(a)
-    score = [len(n) for n in neighbours]  # strings to the vertices taken × 1024 + strings
-    rank = [-1] * M
+    score = [len(n) for n in neighbours]  # strings to the vertices taken × 1024 + strings; −1 once taken
+    rank = [0] * M
     for r in range(M):
-        v = max((u for u in range(M) if rank[u] < 0), key=score.__getitem__)
-        rank[v] = r
+        v = score.index(max(score))  # (the first of the best)
+        rank[v], score[v] = r, -1
         for u in neighbours[v]:
-            score[u] += 1024
+            if score[u] >= 0:
+                score[u] += 1024
     firsts = np.flatnonzero(_bundle_starts(edges)).tolist() + [len(edges)]
 
-    def key(q):
+    def key(q):  # bundles the game never sees first, then by the later end's rank, the earlier's last
         a, b = a_list[firsts[q]], b_list[firsts[q]]
         return (-1, 0) if a < 0 else (max(rank[a], rank[b]), -min(rank[a], rank[b]))
 
@@ -316,41 +321,35 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
 
 def _bundle_starts(edges) -> "np.ndarray":
     """Whether each string of H begins a bundle of parallel strings (H lists parallel strings
-    next to each other)."""
+    next to each other); read-only (stage B asks it of the same strings a few times per unit)."""
     import numpy as np
 
-    return np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))], dtype=np.bool_)
+    starts = np.array([not e or edges[e] != edges[e - 1] for e in range(len(edges))], dtype=np.bool_)
+    starts.flags.writeable = False
+    return starts
 
 
-def _in_bundle_order(edges, group: "np.ndarray") -> "np.ndarray":
-    """The automorphisms ``group`` (rows, edge permutations) with the parallel strings of each
-    bundle taken in order: one row per coset of the permutations of parallel strings among
-    themselves, the identity's coset left out.
+def _coset_rows(edges, perms: "np.ndarray") -> "np.ndarray":
+    """The automorphisms of H that make the permutations of its bundles ``perms`` (rows over the
+    bundles of parallel strings in the order of ``edges``, as :meth:`Contracted.bundle_group`
+    gives them) and take the strings of each bundle in order: as edge permutations (rows).
 
     Stage B keeps the weights of a bundle non-decreasing, so among the images of a vector under a
-    coset the one that reads each bundle in order is the least: a vector is the lex-least of its
-    images under the whole group exactly when it is under these rows (fewer and, in the kernel,
-    ones that decide on shorter prefixes than the swaps of equal parallel strings).
+    coset of the swaps of parallel strings the one that reads each bundle in order is the least:
+    a vector is the lex-least of its images under the whole group of H exactly when it is under
+    one such row per coset, the identity's left out (fewer rows and, in the kernel, ones that
+    decide on shorter prefixes than the swaps of equal parallel strings).
 
     >>> import numpy as np
-    >>> _in_bundle_order(((0, 1), (0, 1), (1, 2)), np.array([[1, 0, 2]])).shape  # a swap of parallel strings
-    (0, 3)
-    >>> _in_bundle_order(((0, 1), (0, 1), (1, 2), (1, 2)), np.array([[3, 2, 1, 0], [2, 3, 0, 1]])).tolist()
+    >>> _coset_rows(((0, 1), (0, 1), (1, 2), (1, 2)), np.array([[1, 0]])).tolist()
     [[2, 3, 0, 1]]
     """
     import numpy as np
 
     starts = _bundle_starts(edges)
-    if starts.all():  # no parallel strings: every row is a coset of its own
-        return group
     first = np.flatnonzero(starts)
-    bundle = np.cumsum(starts) - 1
-    E = len(edges)
-    # string p of bundle B goes to the same place in the bundle that the first string of B goes to
-    rows = first[bundle[group[:, first]]][:, bundle] + (np.arange(E) - first[bundle])
-    identity = tuple(range(E))
-    kept = {row for row in map(tuple, rows.tolist()) if row != identity}
-    return np.array(sorted(kept), dtype=np.int64).reshape(len(kept), E)
+    bundle = np.cumsum(starts) - 1  # string p of bundle B goes to place p of the bundle B is sent to
+    return np.ascontiguousarray(first[perms[:, bundle]] + (np.arange(len(edges)) - first[bundle]))
 
 
 def _deficit_bounds(k, l: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarray"]:
@@ -389,9 +388,9 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     the placements up to the order of parallel strings: (1/|G/P|) Σ Fix(g) over G/P
     (:func:`synth.synthesis._stage_b_kernel.fixed_placements`: a search over the patterns
     min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
-    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or the group of H
-    is too large to list (more than 4096 elements), the unit is counted as :func:`count_realised`
-    counts it (docs/theory.md).
+    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or G/P is too
+    large to list (more than 4096 elements, :meth:`Contracted.bundle_group`), the unit is counted
+    as :func:`count_realised` counts it (docs/theory.md).
 
     >>> from synth.synthesis.stage_a import contracted_graphs
     >>> code = Code.parse("64200/0")
@@ -405,15 +404,13 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     from ._stage_b_kernel import fixed_total
 
     edges = graph.edges
-    group, whole_group = graph.edge_group() if len(edges) > 1 else ([], True)
+    perms, whole_group = graph.bundle_group()
     if not whole_group:
         return count_realised(code, graph, conv, stats)
     t0 = perf_counter()
-    starts = _bundle_starts(edges)
-    picked = np.flatnonzero(starts)
+    picked = np.flatnonzero(_bundle_starts(edges))
     # the permutations of the bundles the automorphisms make (the identity among them), each once
-    images = np.vstack([np.arange(len(edges)), np.array(group, dtype=np.int64).reshape(len(group), len(edges))])
-    bundles = np.unique((np.cumsum(starts) - 1)[images[:, picked]], axis=0)
+    bundles = np.vstack([np.arange(len(picked)), np.array(perms, dtype=np.int64).reshape(len(perms), len(picked))])
     lows, parallel = _string_limits(graph, conv)
     later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
     for e, least in parallel:

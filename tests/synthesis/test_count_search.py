@@ -108,7 +108,8 @@ def test_the_search_order_keeps_bundles_whole_and_relabels_the_automorphisms():
 
 def test_one_automorphism_per_coset_decides_as_the_whole_group():
     """For every placement with ordered bundles of every unit of 10 links, lex-least under the
-    whole group of H exactly when lex-least under the rows ``_in_bundle_order`` keeps."""
+    whole group of H exactly when lex-least under the rows ``_coset_rows`` makes of the
+    permutations of the bundles (nauty on H with each bundle one vertex)."""
     checked = 0
     for u in synth.plan_units(dof=1, links=10, workers=1):
         graph = u.contracted
@@ -121,10 +122,33 @@ def test_one_automorphism_per_coset_decides_as_the_whole_group():
         for k, _ in parallel:
             vectors = vectors[vectors[:, k] >= vectors[:, k - 1]]
         full = {tuple(w) for w in stage_b._lex_least(vectors, group).tolist()}
-        rows = stage_b._in_bundle_order(graph.edges, np.asarray(group, dtype=np.int64))
+        perms, whole = graph.bundle_group()
+        assert whole
+        rows = stage_b._coset_rows(graph.edges, np.asarray(perms, dtype=np.int64).reshape(len(perms), -1)) \
+            if perms else np.zeros((0, len(graph.edges)), dtype=np.int64)
         assert len(rows) <= len(group)
         assert {tuple(w) for w in stage_b._lex_least(vectors, rows).tolist()} == full, u.key
         checked += len(vectors)
+    assert checked
+
+
+@pytest.mark.parametrize("dof, links, v", [(1, 12, 0), (2, 11, 0), (1, 10, 2)])
+def test_the_bundle_group_is_the_edge_group_read_on_bundles(dof, links, v):
+    """On every unit (12 links W = 1, 11 links W = 2, 10 links W = 1 with two multiple joints):
+    the permutations of the bundles of parallel strings that the automorphisms of H make, from
+    nauty on H itself (every automorphism), are those ``bundle_group`` lists from H with each
+    bundle one vertex — each once, the identity left out."""
+    checked = 0
+    for u in synth.plan_units(dof=dof, links=links, v=v, workers=1):
+        graph = u.contracted
+        group, whole = graph.edge_group()
+        perms, whole_bundles = graph.bundle_group()
+        assert whole and whole_bundles
+        starts = stage_b._bundle_starts(graph.edges)
+        first, bundle = np.flatnonzero(starts), np.cumsum(starts) - 1
+        read = {tuple(bundle[np.asarray(g)[first]].tolist()) for g in group} - {tuple(range(len(first)))}
+        assert sorted(read) == perms, u.key
+        checked += bool(perms)
     assert checked
 
 

@@ -20,10 +20,11 @@ from synth.synthesis import estimate as est
 from synth.synthesis import stage_b
 from synth.synthesis import type_synthesis as ts
 
-#: links -> units of each code (their chain counts), and the CPU seconds the size takes
+#: links -> units of each code (their chain counts), the CPU seconds the size takes, and of those the
+#: seconds of its units' own work (none where not given), spread over the units by their chains
 SIZES = {
     4: ([[1]], 0.0), 6: ([[2]], 0.0), 8: ([[16]], 0.0), 10: ([[230]], 0.01),
-    12: ([[6000, 356], [500]], 0.01), 14: ([[100000, 100000, 18162], [100000]], 0.5),
+    12: ([[6000, 356], [500]], 0.01), 14: ([[100000, 100000, 18162], [100000]], 0.5, 0.4),
 }
 
 
@@ -48,14 +49,24 @@ class _Calibrations:
         return [((query.links, k), ts._conventions(query)) for k in range(len(self.sizes[query.links][0]))]
 
     def map_units(self, work, jobs, workers, progress):
+        """The units of the table run through ``work`` (the estimate's timed wrapper), with the
+        query's own work (recorded) replaced by one that takes the unit's share of the seconds."""
         n = jobs[0][0][0]
-        self.runs.append((n, work, workers, progress, jobs[0][1].kernel_loops))
+        query_work, units_seconds = work.work, (self.sizes[n][2] if len(self.sizes[n]) > 2 else 0.0)
+        self.runs.append((n, query_work, workers, progress, jobs[0][1].kernel_loops))
+        total = sum(map(sum, self.sizes[n][0]))
+
+        def run(chains):
+            self.now += units_seconds * chains / total if total else 0.0
+            return ["chain"] * chains if query_work is ts.run_unit else {"7201/1": chains}
+
+        work.work = run
         for index, ((_, k), _) in enumerate(jobs):
             units = self.sizes[n][0][k]
-            for u, chains in enumerate(units):
-                yield index, f"unit {u}", (["chain"] * chains if work is ts.run_unit else {"7201/1": chains})
+            for chains in units:
+                yield index, f"unit of {chains} chains", work(chains)
             yield index, None, len(units)
-        self.now += self.sizes[n][1]
+        self.now += self.sizes[n][1] - units_seconds
 
 
 def test_the_estimate_extrapolates_the_growth_ratio_linearly(monkeypatch):
@@ -73,9 +84,20 @@ def test_the_estimate_extrapolates_the_growth_ratio_linearly(monkeypatch):
     assert found.log10_units == pytest.approx(math.log10(16 / 3), rel=1e-12)
     # the largest code's share of the units is that of the largest calibration: 3 of 4
     assert found.largest_code_units == pytest.approx(16 / 3 * 3 / 4, rel=1e-12)
-    # time: the largest calibration's seconds per chain
-    assert found.seconds == pytest.approx(chains * 0.5 / 318162, rel=1e-12)
-    assert found.log10_seconds == pytest.approx(math.log10(chains * 0.5 / 318162), rel=1e-12)
+    # time: the largest calibration's units' work per chain (0.4 s) times the chains, and the rest
+    # (0.1 s) per unit times the units
+    seconds = chains * 0.4 / 318162 + 16 / 3 * 0.1 / 4
+    assert found.seconds == pytest.approx(seconds, rel=1e-12)
+    assert found.log10_seconds == pytest.approx(math.log10(seconds), rel=1e-12)
+
+
+@pytest.mark.parametrize("units_seconds", [0.0, 0.5])
+def test_a_calibration_whose_time_is_all_in_one_part_scales_that_part_only(monkeypatch, units_seconds):
+    """Every second in the units' work: time per chain times the chains; none there: per unit times the units."""
+    _Calibrations(monkeypatch, {**SIZES, 14: (SIZES[14][0], 0.5, units_seconds)})
+    found = est.estimate(ChainQuery(1, 16))
+    per_chain = 0.5 / 318162 * found.chains
+    assert found.seconds == pytest.approx(per_chain if units_seconds else 0.5 / 4 * found.units, rel=1e-12)
 
 
 def test_sizes_past_the_budget_are_not_counted_and_the_ratio_steps_on(monkeypatch):
@@ -87,7 +109,7 @@ def test_sizes_past_the_budget_are_not_counted_and_the_ratio_steps_on(monkeypatc
     d = r14 - r12
     assert found.basis == "exact counts at 10, 12, 14 links"
     assert found.chains == pytest.approx(318162 * (r14 + d) * (r14 + 2 * d), rel=1e-12)
-    assert found.seconds == pytest.approx(found.chains * 3.0 / 318162, rel=1e-12)
+    assert found.seconds == pytest.approx(found.units * 3.0 / 4, rel=1e-12)  # (no time in the units' work given)
 
 
 @pytest.mark.parametrize("seconds_12, counted_14", [(0.09, True), (0.1, False)])
@@ -163,7 +185,9 @@ def test_growth_beyond_floating_point_is_infinite_with_a_finite_logarithm(monkey
     log10 = math.log10(318162) + sum(math.log10(r14 + k * d) for k in range(1, (400 - 14) // 2 + 1))
     assert found.chains == math.inf and found.seconds == math.inf
     assert found.log10_chains == pytest.approx(log10, rel=1e-9)
-    assert found.log10_seconds == pytest.approx(log10 + math.log10(0.5 / 318162), rel=1e-9)
+    log10_units = math.log10(4 * (4 / 3) ** 193)  # the rest's 0.1 s per unit is far below the chains' share
+    assert found.log10_seconds == pytest.approx(log10 + math.log10(0.4 / 318162 + 10 ** (log10_units - log10) * 0.1 / 4),
+                                                rel=1e-9)
     assert found.units == pytest.approx(4 * (4 / 3) ** 193, rel=1e-9)  # the units' ratio does not grow
 
 
@@ -419,3 +443,14 @@ def test_powers_of_ten_beyond_floating_point_are_infinite():
     assert est._power(307.5) == pytest.approx(10**307.5, rel=1e-12)
     assert est._power(308.5) == math.inf  # (10.0 ** 308.5 overflows)
     assert est._power(5000.0) == math.inf
+
+
+def test_a_real_calibration_times_its_units_work_inside_its_own_time(monkeypatch):
+    """Run for real (14 links, 8 … 12 counted): each size's units' own work is timed, and takes
+    a share of the size's CPU seconds (stage A and the plan take the rest)."""
+    monkeypatch.setattr(est, "_COUNTED", {})
+    found = est.estimate(ChainQuery(1, 14))
+    points = {n: point for (_, n), point in est._COUNTED.items()}
+    assert found.basis == "exact counts at 8, 10, 12 links" and points[12][1:3] == (6856, 104)
+    assert all(0.0 <= point[5] <= point[3] for point in points.values())
+    assert points[12][5] > 0.0
