@@ -471,7 +471,8 @@ def _polish_topology(task: _Polish):
                                budget=left, seed=task.seed, starts=lambda *_: seeds)
         except SynthesisError:
             found = None
-        if found is not None and (found.met, -found.error_rms) > (best.met, -best.error_rms):
+        if found is not None and (found.met, -found.error_rms) > (best.met, -best.error_rms) \
+                and _rechecked(found, task.target) <= EXACT:  # (kept only if the motion layer moves it again)
             best = found
     return best, best_candidate, tried, why, time.process_time() - clock
 
@@ -484,10 +485,14 @@ EXACT = 1e-9
 
 def _rechecked(result, target) -> float:
     """The largest distance between the reported curve and the returned linkage moved by the motion
-    layer to each reported input (:func:`synth.motion.assemble`), over the target's size."""
+    layer to each reported input (:func:`synth.motion.assemble`), over the target's size; infinite
+    where the branch of its pose does not reach one of the inputs."""
     from ..motion import assemble
 
-    moved = np.array([assemble(result.linkage, float(v)).tracers["P"][1] for v in result.inputs])
+    try:
+        moved = np.array([assemble(result.linkage, float(v)).tracers["P"][1] for v in result.inputs])
+    except SynthesisError:  # (CannotAssemble: a dead position between the pose and an input)
+        return math.inf
     return float(np.hypot(*(moved - result.traced).T).max() / target.size)
 
 
@@ -600,7 +605,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             gap = _rechecked(result, target)
             if gap > EXACT:
                 notes.append(f"{chain.compact()}: the linkage moved again departs from the reported curve by "
-                             f"{gap:.2g} of the target's size")
+                             f"{gap:.2g} of the target's size" if math.isfinite(gap) else
+                             f"{chain.compact()}: the linkage cannot be moved again to every reported input")
             matches.append(AtlasMatch(candidate, result.linkage.mechanism, result, tried, spent))
     finally:
         if bar is not None:

@@ -539,3 +539,19 @@ def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):
     best = found.best
     assert best.tried == 1 and best.result.relative_max > 1e-9 and best.candidate.links == 4
     assert best.result.error_rms <= best.result.error_max
+
+
+def test_a_result_the_motion_layer_cannot_move_to_an_input_is_infinitely_far_from_its_curve():
+    # the README's slider-crank search was refused (CannotAssemble, exit 2) when the global stage's answer
+    # for another topology could not be moved to one of its inputs: now that answer is not kept, and the
+    # re-check reads such a gap as infinite instead of raising
+    from types import SimpleNamespace
+
+    from synth.atlas.search import _rechecked
+    from tests.motion.helpers import four_bar
+
+    rocker = four_bar(2.5, 3.2, 3.0, 4.0, phi=0.5, tracer=(1, 1))  # a rocker: no assembly at 3.0 rad
+    result = SimpleNamespace(linkage=rocker, inputs=np.array([0.5, 3.0]), traced=np.zeros((2, 2)))
+    assert _rechecked(result, SimpleNamespace(size=1.0)) == math.inf
+    inside = SimpleNamespace(linkage=rocker, inputs=np.array([0.5]), traced=np.zeros((1, 2)))
+    assert math.isfinite(_rechecked(inside, SimpleNamespace(size=1.0)))
