@@ -108,10 +108,11 @@ _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
 ROWS = (
     [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
     + [_row("W = 1", 1, 18, _A233288[18], "A233288",
-            heavy="not run: 59 CPU min on a quiet machine (the project's own log, benchmarks/logs/"
-                  "count_18_links_quiet.txt), the whole budget of this session")]
+            heavy="not run by this script: counted by hand on 29 Nov 2026, the published value in 9 min 37 s "
+                  "wall on 2 workers of a quiet machine, 19 CPU min, the same 105 codes as the 26 Nov run "
+                  "(benchmarks/logs/count_18_links_e43e1b1.txt)")]
     + [_row("W = 1", 1, 20, None, "",
-            heavy="not run: the engine's sizing gives about 1.5e11 chains, 3 days on 2 workers (README)")]
+            heavy="not run: the engine's sizing gives about 1.5e11 chains, about a day on 2 workers (README)")]
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
