@@ -313,7 +313,7 @@ class Problem:
             ref = linkage.points[self.output_reference(linkage)] - linkage.points[self.output_joint]
             return math.atan2(ref[1], ref[0]) + theta[:, self.output_link], g, mu
         link = self.tracer_link
-        xy = _carried(theta[:, link], t[:, link], np.array(linkage.tracers["P"][1]))
+        xy = point_carried(theta[:, link], t[:, link], np.array(linkage.tracers["P"][1]))
         if isinstance(self.target, MotionTarget):
             return np.column_stack((xy, theta[:, link])), g, mu
         return xy, g, mu
@@ -406,8 +406,12 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray) -> tuple[compl
     return complex(q), complex(lam), complex(shift)
 
 
-def _carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """Where a point p of a link (as placed in the pose) is when the link is turned by θ and moved by t."""
+def point_carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Where a point p of a link (as placed in the pose) is when the link is turned by θ and moved by t.
+
+    >>> point_carried(np.array([np.pi / 2]), np.array([[1.0, 2.0]]), np.array([1.0, 0.0])).round(12)
+    array([[1., 3.]])
+    """
     c, s = np.cos(theta), np.sin(theta)
     return np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=1) + t
 

@@ -16,7 +16,8 @@ from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
-from ._problem import CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, _carried, input_joint_of, link_ratio, placement
+from ._problem import (CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio, placement,
+                       point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -256,7 +257,7 @@ class _Evaluate:
         if p.projected:
             theta, t, g, mu = p.poses(lk, xs)
             theta, t = theta[:, p.tracer_link], t[:, p.tracer_link]
-            values = _carried(theta, t, np.array(lk.tracers["P"][1]))
+            values = point_carried(theta, t, np.array(lk.tracers["P"][1]))
         else:
             values, g, mu = p.move(lk, xs)
         ok = np.ones(len(xs), bool) if g is None else g >= 0

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from synth.dimension import Constraints, FunctionTarget, MotionTarget, PathTarget, link_ratio
-from synth.dimension._problem import MARGIN, SPAN_STEP, TURN_SAMPLES, Problem, _carried, input_joint_of
+from synth.dimension._problem import MARGIN, SPAN_STEP, TURN_SAMPLES, Problem, point_carried, input_joint_of
 from synth.errors import BadTarget, DimensionError
 from synth.motion import Linkage
 from synth.structure.chain import Chain, Mechanism
@@ -205,7 +205,7 @@ def test_poses_give_the_least_discriminant_and_the_worst_transmission():
     assert mu[0] == pytest.approx(min(angle, math.pi - angle)) and (g > 0).all()
     xy, _, _ = p.move(lk, np.array([0.0]))
     assert close(xy, [[2, 3]])
-    assert close(_carried(np.array([math.pi / 2]), np.array([[1.0, 2.0]]), np.array([1.0, 0.0])), [[1, 3]])
+    assert close(point_carried(np.array([math.pi / 2]), np.array([[1.0, 2.0]]), np.array([1.0, 0.0])), [[1, 3]])
     # a crank too short for its rocker: a dyad that cannot close at some input gives g = −1 there
     short = Linkage(FOUR_BAR, (0,), [[0, 0], [4, 0], [2.5, 0], [3.5, 1]])
     _, _, g, mu = p.poses(short, np.array([0.0, math.pi]))
