@@ -60,7 +60,7 @@ def add_commands(sub) -> None:
                         "coupler curves of random crank poses of every planar 1-DOF mechanism, as Fourier descriptors")
     p.add_argument("--samples", type=positive, help="with --index-curves: crank poses per mechanism and drawing "
                    "(default 200)")
-    p.add_argument("--drawings", type=positive, help="with --index-curves: drawings of each mechanism its poses are "
+    p.add_argument("--drawings", type=positive, metavar="K", help="with --index-curves: drawings of each mechanism its poses are "
                    "sampled around: the atlas's and K − 1 of its chain numbered at random (default 1; see "
                    "docs/dimension.md)")
     p.add_argument("--links", metavar="A..B", help="with --index-curves: only the mechanisms with this many links")
