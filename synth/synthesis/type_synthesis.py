@@ -522,11 +522,11 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             from ..execution.checkpoint import Checkpoint
 
             ck = stack.enter_context(Checkpoint(checkpoint, _identity(what, jobs), _describe(what, query), log=log))
-            for name, n in list(ck.codes.items()) + list(ck.units.values()):
+            for name, n in list(ck.codes.items()) + list(ck.unit_counts.items()):
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
-                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
+                            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:
