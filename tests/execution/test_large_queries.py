@@ -168,7 +168,8 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     reference = _run(*query)
     assert reference.returncode == 0
     ck = str(tmp_path / "count.sqlite")
-    children = _kill_after_first_commit([*query, "--checkpoint", ck])
+    # (the killed run's folder of spilled units, if any, is left in tmp_path, not in the system's)
+    children = _kill_after_first_commit([*query, "--checkpoint", ck], env=dict(os.environ, TMPDIR=str(tmp_path)))
     _, alive = psutil.wait_procs(children, timeout=60)
     assert not alive, "pool workers outlived their killed parent"
     resumed = _run(*query, "--checkpoint", ck)
