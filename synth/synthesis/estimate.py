@@ -60,9 +60,10 @@ NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it start
 # per worker).
 BYTES_PER_UNIT = 3500
 # A count on this machine hands a code's units on as stage A finds them (a window at a time, through a
-# file: type_synthesis.UNIT_WINDOW) and keeps only the certificates it has met, as bytes, to tell the
-# next ones apart: about this many bytes per unit of the largest code, per worker expanding one (18 links,
-# 78300000/0: 232-byte certificates, 324 B a unit with the set's table; 20 links: about 270-byte ones).
+# file: type_synthesis.UNIT_WINDOW) and keeps only the certificates it has met, as bytes (the rows of the
+# strings' vertices), to tell the next ones apart: at most this many bytes per unit of the largest code,
+# per worker expanding one (18 links, 78300000/0: 144-byte rows, 236 B a unit with the set's table;
+# 20 links, 7.10.3.0.0.0.0.0.0/0: 168-byte rows, about 270 B).
 CERTIFICATE_BYTES = 400
 NOTE_BYTES = 2**30  # a query whose plan may hold more says so before it starts
 # refused without force above this: with the processes' own 150-250 MiB each (numpy, numba's kernels,

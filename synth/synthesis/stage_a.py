@@ -488,8 +488,9 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
 def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     """Stage A for a count: every branch multigraph H of ``code`` once, as :func:`contracted_graphs`
     finds them but in the order found, not sorted; where the compiled kernel runs, each is handed on
-    as soon as nauty has told it apart, so what stays held is the set of certificates met (as bytes:
-    about 300 B an H at 20 links, against some 3 kB for the H themselves), never the code's H.
+    as soon as nauty has told it apart, so what stays held is the set of certificates met (as bytes, the
+    rows of the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H
+    themselves), never the code's H.
 
     >>> code, conv = Code.parse("662000/0"), Conventions()   # 14 links: the kernel's search
     >>> found = [g.certificate for g in contracted_stream(code, conv)]
@@ -528,7 +529,11 @@ def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
     out_y = np.zeros((_CONDITION_BATCH, m), dtype=np.int64)
     flags = np.zeros(_CONDITION_BATCH, dtype=np.int64)
-    seen: set[bytes] = set()  # nauty's certificates met, as bytes (half their hex, no object per H)
+    # nauty's certificates met, as bytes, and of them only the rows of the strings' vertices: the canonical
+    # labelling keeps the colour cells in place (the m branch vertices first) and every edge of the
+    # subdivided H has a string's vertex at one end, so those rows are the whole graph (20 links: 168 of
+    # 272 bytes) — exact, no object per H
+    seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
                             h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
@@ -545,8 +550,9 @@ def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
             edges.sort()
             graph = Contracted(vertices, tuple(edges), "")
             cert = pynauty.certificate(graph._subdivided())
-            if cert not in seen:
-                seen.add(cert)
+            rows = cert[m * (len(cert) // (m + len(edges))):]
+            if rows not in seen:
+                seen.add(rows)
                 yield Contracted(vertices, graph.edges, cert.hex())
         if found < _CONDITION_BATCH:
             return
