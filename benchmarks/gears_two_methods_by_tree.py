@@ -9,7 +9,10 @@ the tree (the engine's index and axes), both counts, both CPU times, and with ``
 the numbers of rotation graphs among the tree's trains by both.  A tree already in the log is
 not run again, so a killed run goes on where it stopped.  At the end a summary line gives
 what was checked: the trees, the trees agreeing, the trains they hold, the CPU seconds of
-each method and the peak memory of this process.
+each method and the peak memory of this process; with ``--rotation`` also the rotation graphs
+of the whole size by each method — the union over the trees of each method's own canonical
+forms (nauty for the engine, bliss for the second method) — when this run compared every tree
+(``null`` after a sample or a resumed run: the forms of the trees in the log are not kept).
 
 Run from the project root (one process; a progress bar on stderr)::
 
@@ -52,8 +55,9 @@ def paired_trees(links: int) -> list[tuple[int, tuple, tuple]]:
     return [(k, axes, second[key]) for k, (axes, key) in enumerate(zip(engine, keys))]
 
 
-def compare_tree(dof: int, links: int, pair, rotation: bool) -> dict:
-    """Both counts of one tree, and the CPU seconds of each."""
+def compare_tree(dof: int, links: int, pair, rotation: bool, union: dict | None = None) -> dict:
+    """Both counts of one tree, and the CPU seconds of each; with ``union`` (two sets, ``engine``
+    and ``second``) each method's canonical forms of the tree's rotation graphs are added to it."""
     from synth.gears import tree_census
     from tests.oracles import gear_trains_fast
 
@@ -61,8 +65,11 @@ def compare_tree(dof: int, links: int, pair, rotation: bool) -> dict:
     start = time.process_time()
     n, _, rotations = tree_census(dof, links, axes, rotation=rotation)
     middle = time.process_time()
-    second = gear_trains_fast.tree_census(dof, links, other, rotation=rotation)
+    second = gear_trains_fast.tree_census(dof, links, other, rotation=rotation, keys=union is not None)
     end = time.process_time()
+    if union is not None:
+        union["engine"].update(rotations)
+        union["second"].update(second["keys"])
     row = {"dof": dof, "links": links, "tree": k, "axes": [list(a) for a in axes], "engine": n,
            "second": second["displacement"], "engine_cpu": round(middle - start, 3), "second_cpu": round(end - middle, 3)}
     if rotation:
@@ -129,13 +136,15 @@ def main(argv=None) -> int:
     # a sample in its drawn order: a run stopped early has compared a random part of it
     chosen = pairs if args.sample is None else random.Random(args.seed).sample(pairs, min(args.sample, len(pairs)))
     todo = [p for p in chosen if p[0] not in done]
+    whole = args.rotation and len(todo) == len(pairs)  # every tree run here: each method's union is the size's count
+    union = {"engine": set(), "second": set()} if whole else None
     wall, cpu = time.perf_counter(), time.process_time()
     print(f"F={args.dof}, {args.links} links: {len(chosen)} of {len(pairs)} trees, {len(chosen) - len(todo)} in the log",
           file=sys.stderr)
     try:
         with open(args.log, "a") as out:
             for i, pair in enumerate(todo, 1):
-                row = compare_tree(args.dof, args.links, pair, args.rotation)
+                row = compare_tree(args.dof, args.links, pair, args.rotation, union)
                 out.write(json.dumps(row) + "\n")
                 out.flush()
                 done[row["tree"]] = row
@@ -151,6 +160,10 @@ def main(argv=None) -> int:
     seconds = {"this_run_cpu_s": round(time.process_time() - cpu, 1), "this_run_wall_s": round(time.perf_counter() - wall, 1),
                "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024,
                "sample": args.sample, "seed": args.seed, "interrupted": interrupted}
+    if args.rotation:
+        complete = union is not None and not interrupted
+        seconds.update(engine_rotation_total=len(union["engine"]) if complete else None,
+                       second_rotation_total=len(union["second"]) if complete else None)
     result = {"summary": {"dof": args.dof, "links": args.links, **summary(rows, len(pairs), seconds)}}
     with open(args.log, "a") as out:
         out.write(json.dumps(result) + "\n")
@@ -159,7 +172,8 @@ def main(argv=None) -> int:
     if interrupted:
         print("interrupted: the trees compared so far are in the log and in the summary above", file=sys.stderr)
         return 130
-    return 0 if result["summary"]["trees_agreeing"] == len(rows) else 1
+    totals_agree = result["summary"].get("engine_rotation_total") == result["summary"].get("second_rotation_total")
+    return 0 if result["summary"]["trees_agreeing"] == len(rows) and totals_agree else 1
 
 
 if __name__ == "__main__":

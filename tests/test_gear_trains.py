@@ -299,6 +299,27 @@ def test_rotation_form_is_an_isomorphism_invariant():
         assert same == (s.rotation_certificate == t.rotation_certificate)
 
 
+@pytest.mark.parametrize("dof,links", [(1, 7), (2, 7)])
+def test_second_methods_rotation_key_classes_as_individualisation_refinement_does(dof, links):
+    """The second method's bliss key parts every train of the second method's own list (its trees,
+    its numbering) into the same classes as the pure-Python canonical form, and does not move when
+    the links are renumbered at random."""
+    rng = random.Random(7)
+    keys, forms, moved = {}, {}, 0
+    for axes in brute.link_axis_trees(links):
+        for triples in gear_trains_fast.tree_trains(dof, links, axes):
+            key = gear_trains_fast.rotation_key(links, triples)
+            keys.setdefault(key, set()).add(gear_trains_fast.rotation_form(links, triples))
+            forms.setdefault(gear_trains_fast.rotation_form(links, triples), set()).add(key)
+            perm = list(range(links))
+            rng.shuffle(perm)
+            renumbered = [(perm[a], perm[b], perm[t]) for a, b, t in rng.sample(triples, len(triples))]
+            assert gear_trains_fast.rotation_key(links, renumbered) == key
+            moved += 1
+    assert all(len(v) == 1 for v in keys.values()) and all(len(v) == 1 for v in forms.values())
+    assert len(keys) == brute.count_trains(dof, links)["rotation"] and moved == brute.count_trains(dof, links)["displacement"]
+
+
 # ------------------------------------------------------------------------ the train type
 def test_round_trips_and_certificates():
     for k, t in enumerate(list(trains(1, 6))[:30]):
