@@ -155,6 +155,15 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
         assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
     result = run(tmp_path / "missing" / "log.jsonl", "--dof", 1, "--links", 7)
     assert result.returncode == 2 and "cannot write" in result.stderr
+    # rotation graphs: each method's union over every tree is the size's count (Tsai & Lin's 20 at F = 2,
+    # 7 links); a run that took trees from the log, or a sample, cannot give it
+    whole = run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation")
+    summary = json.loads(whole.stdout)["summary"]
+    assert whole.returncode == 0 and summary["engine_rotation_total"] == summary["second_rotation_total"] == 20
+    assert sum(json.loads(line).get("second_rotation", 0) for line in (tmp_path / "rotation.jsonl").read_text().splitlines()) > 20
+    resumed = json.loads(run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation").stdout)["summary"]
+    sampled = json.loads(run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--sample", 3, "--seed", 1).stdout)
+    assert resumed["second_rotation_total"] is None and sampled["summary"]["engine_rotation_total"] is None
 
 
 def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
