@@ -16,8 +16,8 @@ sets kept on a tree are told apart by VF2 within classes of a Weisfeiler–Lehma
 sub-chains are found by counting, for every link set S, the meshes inside it against
 3(|S| − 1) − 2·p(S) − 1.  Rotation graphs are told apart by their canonical form under bliss
 (Junttila & Kaski's canonical labelling, through igraph — another program than nauty):
-:func:`rotation_key`, checked against the pure-Python individualisation–refinement form
-:func:`rotation_form` and against VF2 in the tests.
+:func:`rotation_key`, checked in the tests against the pure-Python individualisation–refinement
+form :func:`rotation_form` and under random renumberings of the links.
 
 Example
 -------
