@@ -15,6 +15,7 @@ import importlib
 import importlib.util
 import itertools
 import collections
+import csv
 import json
 import random
 import signal
@@ -164,6 +165,17 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
     resumed = json.loads(run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation").stdout)["summary"]
     sampled = json.loads(run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--sample", 3, "--seed", 1).stdout)
     assert resumed["second_rotation_total"] is None and sampled["summary"]["engine_rotation_total"] is None
+    # --record: the counts a whole run checked go to the records table, its other lines kept; a sample records nothing
+    table = tmp_path / "records.csv"
+    table.write_text((Path(__file__).resolve().parent.parent / "benchmarks" / "records.csv").read_text())
+    before = table.read_text().splitlines()
+    written = run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation", "--record", table)
+    assert written.returncode == 0, written.stderr
+    lines = {line["query"]: line for line in csv.DictReader(table.open())}
+    assert lines["gears --dof 2 --links 7"]["count"] == "50" and lines["gears --dof 2 --links 7 --graphs rotation"]["count"] == "20"
+    assert table.read_text().splitlines()[:len(before)] == before and len(lines) == len(before) + 1
+    refused = run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--record", table)
+    assert refused.returncode == 2 and "nothing to record" in refused.stderr and len(lines) == len(list(csv.DictReader(table.open())))
 
 
 def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
