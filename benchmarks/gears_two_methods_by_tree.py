@@ -26,8 +26,9 @@ random part of it; the summary then says how many trees that was.
 tree of it with both methods agreeing (and with ``--rotation``, the two totals equal), and writes the
 engine's counts so checked to the records table (``benchmarks/records.csv``, the other lines kept)::
 
-    python benchmarks/gears_two_methods_by_tree.py benchmarks/logs/gears_two_methods_rotation_F1_n10.jsonl --dof 1 --links 10 --rotation --record benchmarks/records.csv  Exit status: 0 when every
-tree compared agrees, 1 when one does not, 2 for bad options, 130 on Ctrl-C (after the summary).
+    python benchmarks/gears_two_methods_by_tree.py benchmarks/logs/gears_two_methods_rotation_F1_n10.jsonl --dof 1 --links 10 --rotation --record benchmarks/records.csv
+
+Exit status: 0 when every tree compared agrees, 1 when one does not, 2 for bad options, 130 on Ctrl-C (after the summary).
 """
 
 from __future__ import annotations
