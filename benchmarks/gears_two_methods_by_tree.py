@@ -119,7 +119,8 @@ def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list
                                 text=True).stdout.split() or ["uncommitted", ""]
     shown = log.resolve().relative_to(ROOT) if log.resolve().is_relative_to(ROOT) else log
     method = (f"engine synth.gears.tree_census tree by tree in one process beside the second method, nice -n 19 on the "
-              f"shared machine (CPU s: the engine's; the second method's {done['second_cpu_s']}; "
+              f"shared machine (CPU s: the engine's, {'both graphs' if done['rotation_compared'] else 'displacement graphs only'}; "
+              f"the second method's {done['second_cpu_s']}; "
               f"peak MiB: both in one process)")
     base = {"published": "", "source": "", "by_code_file": str(shown), "wall_s": "", "cpu_s": done["engine_cpu_s"],
             "peak_mib": done["peak_mib"], "method": method, "commit": commit[0], "date": commit[-1]}
