@@ -175,7 +175,7 @@ def main(argv=None) -> int:
     parser.add_argument("--links", type=int, required=True, help="number of links (4 … 12)")
     parser.add_argument("--sample", type=int, help="compare this many trees drawn at random (default: every tree)")
     parser.add_argument("--seed", type=int, help="seed of the sample (required with --sample)")
-    parser.add_argument("--rotation", action="store_true", help="compare the numbers of rotation graphs per tree too")
+    parser.add_argument("--rotation", action="store_true", help="compare the numbers of rotation graphs per tree too, and (every tree run at once) each method's total")
     parser.add_argument("--record", type=Path, metavar="CSV",
                         help="run nothing: write the counts the log shows checked to this records table")
     args = parser.parse_args(argv)
