@@ -249,8 +249,10 @@ def _run(args) -> int:
     _size_note(query, args)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None
-        if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit
-            log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
+        if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log the first commit, then one a minute
+            from synth import Every
+
+            log = Every(lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True))
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
         if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)

@@ -28,7 +28,6 @@ Example
 from __future__ import annotations
 
 import os
-import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -37,6 +36,7 @@ from mechbase import Row
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ..execution.executor import Executor, run_plan
 from ..execution.memo import keep, recall
+from ..execution.progress import Progress
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
@@ -45,7 +45,8 @@ from .stage_b import count_orbits, count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
-           "count_chains", "COUNT_METHODS", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units"]
+           "count_chains", "COUNT_METHODS", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units",
+           "count_identity"]
 
 
 # Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
@@ -306,18 +307,14 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
     :mod:`synth.execution.executor`); in plan order, or as units finish with ``ordered=False``.
 
-    ``work`` returns the unit's chains or its counts by code; the progress bar adds up either.
+    ``work`` returns the unit's chains or its counts by code; the progress (a bar on a terminal, a
+    line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either.
     """
-    bar = None
-    if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(jobs), unit=" codes", file=sys.stderr, leave=False)
+    # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
+    # a plan with such codes goes to the pool at once, a smaller one starts inline
+    to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
+    bar = Progress(len(to_run), "codes", desc="mechsynth") if progress else None  # (of this run: a resumed one has fewer)
     try:
-        found = 0
-        # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
-        # a plan with such codes goes to the pool at once, a smaller one starts inline
-        to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in to_run):
             load_kernel()  # once, here: the workers forked later inherit it
@@ -330,8 +327,8 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
                     if event[1] is None:
                         bar.update(1)
                     else:
-                        found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
-                        bar.set_postfix(chains=found, refresh=False)
+                        found = sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
+                        bar.update(0, units=1, chains=found)
                 yield event
     finally:
         if bar is not None:
@@ -435,6 +432,17 @@ def _identity(what: str, jobs: list[tuple[Code, Conventions]]) -> str:
 
 def _describe(what: str, query: ChainQuery) -> str:
     return " ".join([what] + [f"{k}={v}" for k, v in query.to_dict().items()]).replace("'", "")
+
+
+def count_identity(query: ChainQuery, what: str = "chains") -> tuple[str, str]:
+    """The plan's digest and the query in words that a checkpoint of this count is written with
+    (``what``: ``"chains"``, ``"chains by orbits"``, ``"mechanisms"``, ``"mechanisms with input link"``),
+    so a checkpoint can be matched to its query and plan without running it.
+
+    >>> digest, words = count_identity(ChainQuery(1, 8)); len(digest), words
+    (64, 'chains dof=1 links=8')
+    """
+    return _identity(what, plan_jobs(query)), _describe(what, query)
 
 
 def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log,
