@@ -121,19 +121,26 @@ def _check_options(args) -> None:
         raise _invalid(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of chains)")
 
 
-def _size_note(query, args) -> None:
-    """Refuse a query too large to run unasked, and say how long a long one takes (stderr)."""
+def _size_note(query, args) -> float | None:
+    """Refuse a query too large to run unasked, and say how long a long one takes (stderr), with
+    ``--force`` too; return the chains a count of chains is expected to find (None: not sized)."""
     import os
 
-    from synth import size_check
+    from synth import NOTE_SECONDS, describe_estimate, estimate, size_check, worth_sizing
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
     note = size_check(query, processes=processes, count=args.count, table=(args.format or "table") == "table",
                       force=args.force, mechanisms=mechanisms, scheduler=args.scheduler is not None)
+    found = None
+    if args.count and mechanisms is None and worth_sizing(query):
+        found = estimate(query)  # (the sizing's calibrations are kept in this process: counted once)
+        if args.force and found is not None and found.seconds / processes > NOTE_SECONDS:  # skipped by size_check
+            note = "a long query: " + describe_estimate(found, processes=processes, scheduler=args.scheduler is not None)
     if note:
         resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
         print(f"mechsynth: {note}{resumable}", file=sys.stderr)
+    return None if found is None else found.chains
 
 
 def _run_one_chain(args) -> int:
@@ -246,7 +253,7 @@ def _run(args) -> int:
     if args.format == "adjacency" and most_v != 0:
         raise _invalid("an adjacency matrix holds simple joints only, and this query lists multiple joints (--v): "
                        "use --format incidence")
-    _size_note(query, args)
+    expected = _size_note(query, args)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None
         if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log the first commit, then one a minute
@@ -257,7 +264,7 @@ def _run(args) -> int:
                      timeout=args.timeout or 5.0, log=log)
         if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
             result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
-                                  method=args.method or "listing", **extra)
+                                  method=args.method or "listing", expected=expected, **extra)
         else:
             result = count_mechanisms(query, input_link=args.input_link, **extra)
         if write_count(result.to_dict(), args.format or "json") == 0:

@@ -301,19 +301,22 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
 
 
 def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, progress: bool, *,
-               client=None, skip_code=None, skip_unit=None, ordered: bool = True) -> Iterator[tuple]:
+               client=None, skip_code=None, skip_unit=None, ordered: bool = True,
+               expected: float | None = None) -> Iterator[tuple]:
     """``(job index, unit, work(unit))`` for every unit of the stage-A ``jobs`` (code, conventions),
     then ``(index, None, units)`` when a job is complete: inline for a small query, else streamed to
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
     :mod:`synth.execution.executor`); in plan order, or as units finish with ``ordered=False``.
 
     ``work`` returns the unit's chains or its counts by code; the progress (a bar on a terminal, a
-    line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either.
+    line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either, and with
+    ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted.
     """
     # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
     # a plan with such codes goes to the pool at once, a smaller one starts inline
     to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
-    bar = Progress(len(to_run), "codes", desc="mechsynth") if progress else None  # (of this run: a resumed one has fewer)
+    bar = Progress(len(to_run), "codes", desc="mechsynth",  # (the codes of this run: a resumed one has fewer)
+                   expected=None if expected is None else ("chains", expected)) if progress else None
     try:
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in to_run):
@@ -446,7 +449,7 @@ def count_identity(query: ChainQuery, what: str = "chains") -> tuple[str, str]:
 
 
 def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log,
-           remember: bool = False) -> Counts:
+           remember: bool = False, expected: float | None = None) -> Counts:
     """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked; with
     ``remember``, each code's counts read from the store of earlier runs, or kept there once found."""
     from contextlib import ExitStack
@@ -483,7 +486,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
-                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
+                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False,
+                            expected=expected)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:
@@ -508,7 +512,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, remember: bool = False, method: str = "listing", **options) -> Counts:
+                 log=None, remember: bool = False, method: str = "listing", expected: float | None = None,
+                 **options) -> Counts:
     """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
@@ -521,6 +526,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
     counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
     the group of H listed whole) and as the listing does elsewhere; both give the same counts.
+    ``expected``: the chains an estimate expects (:func:`~synth.synthesis.estimate.estimate`), from
+    which the progress reckons the time to go.
 
     >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
@@ -533,7 +540,7 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     _check_method(method, query)
     # the store and a checkpoint keep each method's counts apart: a count by one never stands for the other
     work, what = (count_unit, "chains") if method == "listing" else (_ChainCount(method), f"chains by {method}")
-    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember)
+    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember, expected)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,

@@ -84,3 +84,45 @@ def test_a_batch_count_with_a_checkpoint_logs_its_first_commit_not_every_one(tmp
     assert done.returncode == 0
     committed = [line for line in err.read_text().splitlines() if "committed in this run" in line]
     assert len(committed) == 1 and committed[0].startswith("mechsynth: checkpoint ")
+
+
+def test_the_line_comes_on_time_while_no_step_ends(tmp_path):
+    """A step may take an hour (stage A of a 20-link code): the line a period is written all the same,
+    by the thread, to the file, and the thread ends with the progress."""
+    import threading
+    import time
+
+    path = tmp_path / "run.err"
+    with path.open("w") as stream:
+        progress = Progress(3, "codes", desc="mechsynth", every=0.2, stream=stream)
+        progress.update(0, chains=12)  # before the first period: no line
+        time.sleep(0.9)  # no step ends
+        progress.close()
+    lines = path.read_text().splitlines()
+    assert len(lines) >= 2 and all(line.startswith("mechsynth: 0/3 codes, 12 chains; ") for line in lines)
+    assert not any(t.name == "progress-lines" for t in threading.enumerate())
+
+
+def test_the_time_to_go_is_reckoned_from_the_chains_an_estimate_expects():
+    log, clock = io.StringIO(), Clock()
+    progress = Progress(100, "codes", desc="mechsynth", stream=log, clock=clock, expected=("chains", 1000.0))
+    clock.now += 60
+    progress.update(50, chains=250)  # half the codes, a quarter of the chains: 3 minutes to go, not 1
+    clock.now += 60
+    progress.update(50, chains=900)
+    assert log.getvalue().splitlines() == [
+        "mechsynth: 50/100 codes, 250 chains; 60 s elapsed, about 3 min to go if the chains are the 1 000 estimated",
+        "mechsynth: 100/100 codes, 1 150 chains; 2 min elapsed, past the 1 000 chains estimated"]
+
+
+def test_a_forced_long_count_still_says_its_estimate_before_it_starts():
+    """--force skips the refusal, not the estimate (the 20-link count's log began with nothing)."""
+    proc = subprocess.Popen([*CLI, "chains", "--dof", "1", "--links", "18", "--count", "--force", "--workers", "1"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        first = proc.stderr.readline()
+    finally:
+        proc.kill()
+        proc.communicate()
+    assert first.startswith("mechsynth: a long query: about ") and "e+09 chains in " in first and " on 1 worker, " in first
+    assert first.rstrip().endswith("(give --checkpoint FILE to make it resumable)")
