@@ -126,7 +126,7 @@ def _size_note(query, args) -> float | None:
     ``--force`` too; return the chains a count of chains is expected to find (None: not sized)."""
     import os
 
-    from synth import NOTE_SECONDS, describe_estimate, estimate, size_check, worth_sizing
+    from synth import NOTE_SECONDS, describe_estimate, estimate, plan_jobs, size_check, worth_sizing
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
@@ -134,6 +134,7 @@ def _size_note(query, args) -> float | None:
                       force=args.force, mechanisms=mechanisms, scheduler=args.scheduler is not None)
     found = None
     if args.count and mechanisms is None and worth_sizing(query):
+        plan_jobs(query)  # a plan this engine cannot build is refused alone, not after an estimate of it
         found = estimate(query)  # (the sizing's calibrations are kept in this process: counted once)
         if args.force and found is not None and found.seconds / processes > NOTE_SECONDS:  # skipped by size_check
             note = "a long query: " + describe_estimate(found, processes=processes, scheduler=args.scheduler is not None)
