@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 import os
 import sys
@@ -152,6 +153,28 @@ def compare(a: tuple[dict, bool], b: tuple[dict, bool]) -> dict:
             "only_in_b": only_b, "pending": pending}
 
 
+def _links(code: str) -> int | None:
+    """The links of a code's chains (None for a name that is not a code)."""
+    from synth import Code, SynthesisError
+
+    try:
+        return Code.parse(code.split(" ")[0]).links
+    except (SynthesisError, ValueError):
+        return None
+
+
+def _words(sizes: list[int]) -> str:
+    return ", ".join(map(str, sizes))
+
+
+def _emit(text: str) -> None:
+    """The result on stdout; a reader that stops early (``| head``) changes no exit status."""
+    try:
+        print(text, flush=True)
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+
+
 def main(argv=None) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -172,12 +195,15 @@ def main(argv=None) -> int:
         bare = [q.replace(" by orbits", "") for q in (query_a, query_b)]
         if query_a and query_b and bare[0] != bare[1]:
             fail(f"{args.a} counts another query ({query_a}) than {args.b} ({query_b})")
+        sizes = [sorted({_links(code) for code in side[0]} - {None}) for side in (a, b)]
+        if all(sizes) and sizes[0] != sizes[1]:
+            fail(f"{args.a} counts chains of {_words(sizes[0])} links and {args.b} of {_words(sizes[1])}")
         result = {"a": str(args.a), "b": str(args.b), **compare(tuple(a), tuple(b))}
-        print(json.dumps(result, indent=1))
+        _emit(json.dumps(result, indent=1))
         return 1 if result["verdict"] == "different" else 0
     state = _state(args.checkpoint)
     if args.command == "status":
-        print(json.dumps({"checkpoint": str(args.checkpoint), **status(state)}, indent=1))
+        _emit(json.dumps({"checkpoint": str(args.checkpoint), **status(state)}, indent=1))
         return 0
     codes = plan_codes_of(state)
     if args.complete and (state.partial or codes is None or set(codes) - set(state.complete)):
@@ -186,18 +212,17 @@ def main(argv=None) -> int:
               "complete)" if codes is not None else f"checkpoints: the plan of {args.checkpoint} cannot be rebuilt, "
               "so whether it is finished is unknown", file=sys.stderr)
         return 1
-    writer = csv.DictWriter(sys.stdout, fieldnames=["code", "count", "units", "state"], lineterminator="\n")
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=["code", "count", "units", "state"], lineterminator="\n")
     writer.writeheader()
     writer.writerows(table_rows(state))
+    _emit(text.getvalue().rstrip("\n"))
     return 0
 
 
 if __name__ == "__main__":
     try:
         sys.exit(main())
-    except BrokenPipeError:  # the reader (head) stopped reading: nothing more to say
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        sys.exit(0)
     except KeyboardInterrupt:
         print("checkpoints: interrupted", file=sys.stderr)
         sys.exit(130)

@@ -154,6 +154,8 @@ def test_bad_inputs_are_one_sentence_and_exit_2(counted, tmp_path):
     text.write_text("no count here\n")
     other = tmp_path / "other.sqlite"
     count_chains(1, 8, workers=1, checkpoint=other)
+    eight = tmp_path / "eight.json"
+    eight.write_text(json.dumps(count_chains(1, 8, workers=1).to_dict()))
     bad_json = tmp_path / "bad.json"
     bad_json.write_text(json.dumps({"count": 5, "by_code": {"440/0": 9}}))
     listing = folder / "listing.sqlite"
@@ -164,6 +166,7 @@ def test_bad_inputs_are_one_sentence_and_exit_2(counted, tmp_path):
              ("compare", listing, listing): "compared with itself",
              ("compare", listing, other): "counts another query",
              ("compare", listing, bad_json): "is not the sum of its counts by code",
+             ("compare", listing, eight): "counts chains of 10 links and",
              ("compare", listing): "the following arguments are required",
              ("verify", listing): "invalid choice"}
     for args, words in cases.items():
@@ -171,3 +174,15 @@ def test_bad_inputs_are_one_sentence_and_exit_2(counted, tmp_path):
         assert result.returncode == 2, (args, result.stderr)
         assert words in result.stderr and len(result.stderr.strip().splitlines()) == 1, (args, result.stderr)
         assert "Traceback" not in result.stderr
+
+
+def test_a_reader_that_stops_early_changes_no_exit_status(counted, tmp_path):
+    folder, listing, _ = counted
+    planted = tmp_path / "planted.json"
+    by_code = dict(listing.by_code)
+    by_code["4600/0"] += 1
+    planted.write_text(json.dumps({"by_code": by_code}))
+    # ``true`` reads nothing and is gone long before Python starts: the result meets a closed pipe
+    shell = subprocess.run(f"{sys.executable} {SCRIPT} compare {folder / 'listing.sqlite'} {planted} | true; "
+                           "exit ${PIPESTATUS[0]}", shell=True, executable="/bin/bash", capture_output=True, text=True)
+    assert shell.returncode == 1 and shell.stderr == ""
