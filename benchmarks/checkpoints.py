@@ -92,10 +92,15 @@ def status(state) -> dict:
     return out
 
 
-def table_rows(state) -> list[dict]:
-    """One row a code: code, count, units, state (complete or partial), complete codes first."""
-    return ([{"code": code, "count": n, "units": units, "state": "complete"} for code, (n, units) in state.complete.items()]
+def table_rows(state, plan: list[str] | None = None) -> list[dict]:
+    """One row a code: code, count, units, state (complete or partial); in the order of the ``plan``'s
+    codes where it is known (the order of ``--count``'s output), else complete codes first, as they finished."""
+    rows = ([{"code": code, "count": n, "units": units, "state": "complete"} for code, (n, units) in state.complete.items()]
             + [{"code": code, "count": n, "units": units, "state": "partial"} for code, (n, units) in state.partial.items()])
+    if plan is not None:
+        place = {code: i for i, code in enumerate(plan)}
+        rows.sort(key=lambda row: place.get(row["code"], len(place)))
+    return rows
 
 
 def read_counts(path: Path) -> tuple[dict, bool, str]:
@@ -215,7 +220,7 @@ def main(argv=None) -> int:
     text = io.StringIO()
     writer = csv.DictWriter(text, fieldnames=["code", "count", "units", "state"], lineterminator="\n")
     writer.writeheader()
-    writer.writerows(table_rows(state))
+    writer.writerows(table_rows(state, codes))
     _emit(text.getvalue().rstrip("\n"))
     return 0
 

@@ -87,6 +87,7 @@ def test_the_table_is_csv_by_code_and_complete_refuses_a_count_not_finished(coun
     assert result.returncode == 0, result.stderr
     rows = list(csv.DictReader(io.StringIO(result.stdout)))
     assert {r["code"]: int(r["count"]) for r in rows if int(r["count"])} == listing.by_code
+    assert [r["code"] for r in rows if int(r["count"])] == list(listing.by_code)  # in the count's order
     assert {r["state"] for r in rows} == {"complete"}
     path = tmp_path / "running.sqlite"
     _partial(path)
