@@ -8,6 +8,7 @@ is still writing it, too — and compares two counts of the same query made by d
     python benchmarks/checkpoints.py status c20.sqlite                 # how far it is
     python benchmarks/checkpoints.py table c20.sqlite > by_code.csv    # code,count,units,state
     python benchmarks/checkpoints.py compare c18_orbits.sqlite benchmarks/logs/count_18_links_e43e1b1.txt
+    python benchmarks/checkpoints.py compare --part small_codes.json benchmarks/logs/count_18_links_e43e1b1.txt
 
 ``status`` prints the query, the units done, the chains counted so far and the codes complete,
 partial and not begun (the plan's codes are rebuilt from the query in the file, by number
@@ -15,9 +16,11 @@ synthesis in milliseconds, and matched to the file by the plan's digest).  ``tab
 counts by code as CSV (``--complete`` refuses a count not finished).  ``compare A B`` takes two
 checkpoints, or a checkpoint and a count's JSON (``{"count": …, "by_code": {…}}``: the output of
 ``mechsynth chains … --count``, a file of ``benchmarks/records/``, or a log whose last JSON line
-is that), or two of either, and compares every code complete in both; it prints one JSON object
-(codes compared, equal, different with both counts, codes only one has, codes complete in one of two counts still running), and whether each count is finished:
-"equal" only when both are finished and agree on every code.
+is that), or two of either, and compares every code complete in both (with ``--part``, A is a
+spot check of some of B's codes — ``--code`` queries — and only those are compared).  It prints
+one JSON object: the codes compared, equal, different (with both counts), complete in one count
+only, pending (complete in one of two counts still running), and whether each count is
+finished; the verdict is "equal" only when both are finished and agree on every code.
 
 Exit status: 0 when every code compared is equal (``status``, ``table``: the file was read),
 1 when a code differs or one side has a complete code the other lacks, 2 for bad input
@@ -191,15 +194,23 @@ def main(argv=None) -> int:
     p = commands.add_parser("compare", help="two counts (checkpoints or JSON) code by code")
     p.add_argument("a", type=Path)
     p.add_argument("b", type=Path)
+    p.add_argument("--part", action="store_true",
+                   help="A counts some codes of B's query (--code queries, a spot check): B's other codes are left out")
     args = parser.parse_args(argv)
     if args.command == "compare":
         if args.a.resolve() == args.b.resolve():
             fail(f"{args.a} compared with itself proves nothing: give the two counts to compare")
         *a, query_a = read_counts(args.a)
         *b, query_b = read_counts(args.b)  # (a query in words comes from a checkpoint; a JSON count has none)
-        bare = [q.replace(" by orbits", "") for q in (query_a, query_b)]
+        # a spot check's --code query has no links= (the code says them, and the sizes are checked below)
+        bare = [" ".join(word for word in q.replace(" by orbits", "").split()
+                         if not (args.part and word.startswith(("code=", "links=")))) for q in (query_a, query_b)]
         if query_a and query_b and bare[0] != bare[1]:
             fail(f"{args.a} counts another query ({query_a}) than {args.b} ({query_b})")
+        if args.part:
+            if not a[0]:
+                fail(f"{args.a} has no complete code to compare (--part compares A's codes)")
+            b[0] = {code: n for code, n in b[0].items() if code in a[0]}
         sizes = [sorted({_links(code) for code in side[0]} - {None}) for side in (a, b)]
         if all(sizes) and sizes[0] != sizes[1]:
             fail(f"{args.a} counts chains of {_words(sizes[0])} links and {args.b} of {_words(sizes[1])}")

@@ -187,3 +187,24 @@ def test_a_reader_that_stops_early_changes_no_exit_status(counted, tmp_path):
     shell = subprocess.run(f"{sys.executable} {SCRIPT} compare {folder / 'listing.sqlite'} {planted} | true; "
                            "exit ${PIPESTATUS[0]}", shell=True, executable="/bin/bash", capture_output=True, text=True)
     assert shell.returncode == 1 and shell.stderr == ""
+
+
+def test_a_spot_check_of_some_codes_is_compared_as_a_part(counted, tmp_path):
+    folder, listing, _ = counted
+    spot = count_chains(1, 10, code="5410/0", workers=1, method="orbits")
+    assert spot.by_code == {"5410/0": 95}
+    part = tmp_path / "spot.json"
+    part.write_text(json.dumps(spot.to_dict()))
+    whole = json.loads(_script("compare", part, folder / "listing.json").stdout)
+    assert whole["verdict"] == "different" and len(whole["only_in_b"]) == 6  # as a whole count it lacks six codes
+    result = _script("compare", "--part", part, folder / "listing.json")
+    found = json.loads(result.stdout)
+    assert result.returncode == 0 and found["verdict"] == "equal" and found["codes_compared"] == 1
+    ck = tmp_path / "spot.sqlite"  # a --code query's checkpoint against the whole query's
+    count_chains(1, 10, code="5410/0", workers=1, method="orbits", checkpoint=ck)
+    assert json.loads(_script("compare", "--part", ck, folder / "listing.sqlite").stdout)["verdict"] == "equal"
+    refused = _script("compare", ck, folder / "listing.sqlite")
+    assert refused.returncode == 2 and "counts another query" in refused.stderr
+    wrong = tmp_path / "wrong.json"
+    wrong.write_text(json.dumps({"by_code": {"5410/0": 94}}))
+    assert _script("compare", "--part", wrong, folder / "listing.json").returncode == 1
