@@ -40,8 +40,8 @@ from dataclasses import dataclass, replace
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_estimate", "plan_bytes", "TABLE_ROWS",
-           "MEMORY_LIMIT", "NOTE_SECONDS"]
+__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_estimate", "plan_bytes",
+           "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
