@@ -4,8 +4,9 @@ On a terminal :class:`Progress` draws a tqdm bar.  Anywhere else (stderr redirec
 a batch job) a bar would print nothing, or one line per step; there it writes one plain line
 every ``every`` seconds instead (60 by default): steps done of the total, the counters the
 caller keeps (units, chains …), the time elapsed, and — when the total is known — the time
-to go if the remaining steps go at the rate of those done.  The line comes on time even when
-no step ends for an hour (a 20-link count's first codes): a thread of its own writes it.  :class:`Every` is the same gate
+to go if the remaining steps go at the rate of those done (or, given an estimate of a counter's
+total, at the rate of that counter).  The line comes on time even when no step ends for an hour
+(a 20-link count's first codes): a thread of its own writes it.  :class:`Every` is the same gate
 for any other line a run logs (a checkpoint's commits): the first line at once, then at most
 one every ``every`` seconds.
 
