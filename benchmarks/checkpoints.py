@@ -111,8 +111,11 @@ def read_counts(path: Path) -> tuple[dict, bool, str]:
     a count's JSON (finished; codes without chains left out)."""
     if not path.is_file():
         fail(f"there is no file {path}" + (" (it is a folder)" if path.is_dir() else ""))
-    with path.open("rb") as f:
-        head = f.read(len(SQLITE_HEADER))
+    try:
+        with path.open("rb") as f:
+            head = f.read(len(SQLITE_HEADER))
+    except OSError as exc:
+        fail(f"cannot read {path} ({exc.strerror})")
     if head == SQLITE_HEADER:
         state = _state(path)  # a code complete with no chain is no row of a count's JSON: left out here too
         codes = plan_codes_of(state)
