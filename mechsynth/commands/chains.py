@@ -263,11 +263,15 @@ def _run(args) -> int:
             log = Every(lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True))
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
-        if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
-            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
-                                  method=args.method or "listing", expected=expected, **extra)
-        else:
-            result = count_mechanisms(query, input_link=args.input_link, **extra)
+        try:
+            if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
+                result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
+                                      method=args.method or "listing", expected=expected, **extra)
+            else:
+                result = count_mechanisms(query, input_link=args.input_link, **extra)
+        finally:
+            if log is not None:
+                log.flush()  # the checkpoint's last commit, held back by the minute, ends the log
         if write_count(result.to_dict(), args.format or "json") == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0

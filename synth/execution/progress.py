@@ -48,17 +48,20 @@ class Every:
     """Pass a line on to ``write`` at once the first time, then at most once every ``every`` seconds
     (default :data:`LOG_EVERY`).
 
-    >>> lines, clock = [], iter([0.0, 1.0, 61.0]).__next__
+    ``flush()`` passes the last line held back, if any (a run's final state).
+
+    >>> lines, clock = [], iter([0.0, 1.0, 61.0, 62.0]).__next__
     >>> say = Every(lines.append, 60, clock=clock)
-    >>> for text in ("first", "dropped", "third"):
+    >>> for text in ("first", "dropped", "third", "held"):
     ...     say(text)
-    >>> lines
-    ['first', 'third']
+    >>> say.flush(); lines
+    ['first', 'third', 'held']
     """
 
     def __init__(self, write: Callable[[str], object], every: float | None = None, *, clock=time.monotonic):
         self._write, self.every, self._clock = write, LOG_EVERY if every is None else every, clock
         self.last: float | None = None  # when a line last passed
+        self._held: str | None = None
 
     def due(self) -> bool:
         """Whether a line may pass now (and if so, it is counted as passed)."""
@@ -70,6 +73,15 @@ class Every:
 
     def __call__(self, line: str) -> None:
         if self.due():
+            self._held = None
+            self._write(line)
+        else:
+            self._held = line
+
+    def flush(self) -> None:
+        """Pass the line last held back (none if the last line passed)."""
+        if self._held is not None:
+            line, self._held = self._held, None
             self._write(line)
 
 

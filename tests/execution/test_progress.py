@@ -61,6 +61,10 @@ def test_every_lets_the_first_line_through_then_one_a_period():
         say(f"commit {step}")
         clock.now += 1
     assert lines == ["commit 0", "commit 60", "commit 120", "commit 180"]
+    say.flush()  # the last line, held back, is the final state
+    assert lines[-1] == "commit 199"
+    say.flush()
+    assert len(lines) == 5  # written once
 
 
 def test_a_count_logs_codes_units_and_chains_where_stderr_is_a_file(monkeypatch):
@@ -83,7 +87,10 @@ def test_a_batch_count_with_a_checkpoint_logs_its_first_commit_not_every_one(tmp
                               text=True, timeout=600)
     assert done.returncode == 0
     committed = [line for line in err.read_text().splitlines() if "committed in this run" in line]
-    assert len(committed) == 1 and committed[0].startswith("mechsynth: checkpoint ")
+    codes = len(synth.plan_codes(1, 12))
+    # the first commit, then (the run is shorter than a minute) only the last, held back until the end
+    assert len(committed) == 2 and all(line.startswith("mechsynth: checkpoint ") for line in committed)
+    assert f"({codes} codes complete) committed in this run, 0 units done before" in committed[-1]
 
 
 def test_the_line_comes_on_time_while_no_step_ends(tmp_path):
