@@ -133,3 +133,17 @@ def test_a_forced_long_count_still_says_its_estimate_before_it_starts():
         proc.communicate()
     assert first.startswith("mechsynth: a long query: about ") and "e+09 chains in " in first and " on 1 worker, " in first
     assert first.rstrip().endswith("(give --checkpoint FILE to make it resumable)")
+
+
+def test_the_gear_census_script_logs_no_line_per_tree_to_a_file(tmp_path):
+    """The opposite fault: a script that printed one line per tree into a redirected stderr."""
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "benchmarks" / "gears_two_methods_by_tree.py"
+    err = tmp_path / "census.err"
+    with err.open("w") as f:
+        done = subprocess.run([sys.executable, str(script), str(tmp_path / "log.jsonl"), "--dof", "1", "--links", "7",
+                               "--sample", "5", "--seed", "3"], stdout=subprocess.PIPE, stderr=f, text=True,
+                              timeout=300)
+    assert done.returncode == 0
+    assert err.read_text().splitlines() == ["F=1, 7 links: 5 of 59 trees, 0 in the log"]  # a short run: no progress line
