@@ -767,14 +767,14 @@ class _Search:
             return (watch.over() or self.exact or fun <= EXACT ** 2
                     or state["generation"] - state["improved"] > self.STAGNANT)
 
-        bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
-        x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
+        lower, upper = self.bounds()
+        bounds = list(zip(lower, upper))
+        x0 = self.canonical(problem.unknowns_of(start)[:problem.searched]) if start is not None else None
         popsize = max(15, 60 // problem.searched)
         init = "sobol"
         if start is None and self.runs == 1 and self.sampled:  # half the first population from the sampled curves
             size = popsize * problem.searched
-            ours = np.array(self.sampled[:size // 2])
-            lower, upper = problem.lower[:problem.searched], problem.upper[:problem.searched]
+            ours = np.array([self.canonical(x) for x in self.sampled[:size // 2]])
             init = np.vstack((ours, lower + rng.random((size - len(ours), problem.searched)) * (upper - lower)))
         kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=popsize,
                       maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init=init, polish=False,
@@ -805,6 +805,54 @@ class _Search:
             if len(picked) == 3:
                 break
         return picked
+
+    def pinned(self) -> tuple[int, int] | None:
+        """Where, in the searched unknowns, the input's pivot and a second fixed pivot are (path targets
+        with a turning input on two pivots of the frame placed by the search), else None."""
+        p = self.problem
+        if not (p.projected and p.revolute_input):
+            return None
+        at, i = {}, 0
+        for kind, k in p.layout:
+            if kind == "joint" and k in p.frame_joints:
+                at[k] = i
+            i += 2 if kind != "slide" else 1
+        other = [k for k in p.frame_joints if k != p.input_joint and k in at]
+        if p.input_joint not in at or not other:
+            return None
+        return at[p.input_joint], at[other[0]]
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Differential evolution's box: the searched unknowns', with a path's two pivots pinned
+        (:meth:`canonical`)."""
+        p = self.problem
+        lower, upper = p.lower[:p.searched].copy(), p.upper[:p.searched].copy()
+        pins = self.pinned()
+        if pins is not None:
+            a, b = pins
+            lower[a:a + 2] = upper[a:a + 2] = 0.0
+            lower[b:b + 2] = upper[b:b + 2] = (1.0, 0.0)
+        return lower, upper
+
+    def canonical(self, x) -> np.ndarray:
+        """The searched unknowns x carried by the similarity that puts the input's pivot at the target's
+        centre and the second pivot one target size to its right (:meth:`pinned`), within the box.
+
+        A path's candidates are judged where the best similarity places them, so differential
+        evolution need not search where the mechanism stands, how it is turned or its size: with two
+        pivots pinned a four-bar's eight searched unknowns are its four of shape."""
+        pins = self.pinned()
+        if pins is None:
+            return np.asarray(x, dtype=float)
+        p, (a, b) = self.problem, pins
+        origin = (p.centre[0] + 1j * p.centre[1]) / p.scale
+        za, zb = complex(x[a], x[a + 1]), complex(x[b], x[b + 1])
+        if za == zb:
+            return np.asarray(x, dtype=float)
+        lam = 1.0 / (zb - za)
+        full = self.evaluate.moved(np.concatenate((x, [0.0, 0.0])), lam, origin - lam * (origin + za), 0j)
+        lower, upper = self.bounds()
+        return np.clip(full[:p.searched], lower, upper)
 
     def polish(self, x, grace: bool = False, until: float | None = None) -> None:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
