@@ -39,8 +39,9 @@ SETTLE_STEPS = 2
 #: the given starts polished (least cost first), and the share of the budget they may take before
 #: differential evolution
 SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
-#: the share of the budget the given starts' ranking by the global stage's cost may take
-RANK_SHARE = 0.1
+#: the share of the budget the given starts' ranking by the global stage's cost may take, and the
+#: share the best of their polishes may then go on with
+RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
 
 
 class _OutOfTime(Exception):
@@ -717,8 +718,10 @@ class _Search:
         random, each posed on the target as its Fourier descriptor aligns it), the
         :data:`SAMPLED_STARTS` of least cost first — the global stage's cost, which places each where it
         fits best and matches the points in order: a few points describe a curve's shape too coarsely
-        to rank samples by their descriptors alone.  Each polish gets an equal part of
-        :data:`SAMPLED_SHARE` of the budget; the rest seed the first population."""
+        to rank samples by their descriptors alone; the ranking stops once it has taken
+        :data:`RANK_SHARE` of the budget, those left being the farthest by the source's own measure.
+        Each polish gets an equal part of :data:`SAMPLED_SHARE` of the budget, and the best of them
+        goes on with :data:`GO_ON_SHARE` more; the rest seed the first population."""
         problem, watch = self.problem, self.watch
         if problem.tracer_link is None or problem.driven is not None:
             return
@@ -740,6 +743,8 @@ class _Search:
             if share <= 0:
                 break
             self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + share)
+        if self.best is not None and not self.exact:  # the best of them goes on, its polish cut by its share
+            self.polish(self.best[1][:problem.dims], until=watch.used() + GO_ON_SHARE * watch.budget)
 
     def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
