@@ -812,10 +812,13 @@ class _Search:
         return picked
 
     def pinned(self) -> tuple[int, int] | None:
-        """Where, in the searched unknowns, the input's pivot and a second fixed pivot are (path targets
-        with a turning input on two pivots of the frame placed by the search), else None."""
+        """Where, in the searched unknowns, the input's pivot and a second fixed pivot are (untimed path
+        targets with a turning input on two pivots of the frame placed by the search), else None.  (Timed
+        paths are searched unpinned: pinned, a crank-rocker's seven timed points with a transmission
+        angle, a link ratio and a pivot region, tests/dimension/test_synthesize.py, ended 0.14° short of
+        the transmission limit after 30 CPU s, where unpinned they are met in 9.)"""
         p = self.problem
-        if not (p.projected and p.revolute_input):
+        if not (p.projected and not p.timed and p.revolute_input):
             return None
         at, i = {}, 0
         for kind, k in p.layout:
