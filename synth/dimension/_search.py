@@ -8,7 +8,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares
+from scipy.optimize import differential_evolution, least_squares, minimize
 
 from mechbase import Row
 
@@ -16,8 +16,8 @@ from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
-from ._problem import (CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio, placement,
-                       point_carried)
+from ._problem import (CURVE_SAMPLES, INFEASIBLE, MET, ORDER_MARGIN, Constraints, Problem, input_joint_of,
+                       link_ratio, point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -26,8 +26,6 @@ __all__ = ["DimensionalResult", "synthesize"]
 PENALTY = 1e2
 #: a search stops early once the relative RMS error is below this (the target is met exactly)
 EXACT = 1e-11
-#: a constraint is met within this (rad, log-ratio, target sizes)
-MET = 1e-9
 #: shares of the curve (from the pose on: of its length, and of the input's span) an untimed path's
 #: points are first spread over
 SPANS = (0.5, 1.0)
@@ -42,6 +40,8 @@ SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
 #: the share of the budget the given starts' ranking by the global stage's cost may take, and the
 #: share the best of their polishes may then go on with
 RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
+#: runs of the final constrained polish of a link-length order (:meth:`_Search.stiffen`), 100 steps each
+STIFF_RUNS = 5
 
 
 class _OutOfTime(Exception):
@@ -377,7 +377,7 @@ class _Evaluate:
         """A path's placement and inputs where the mechanism itself passes the target, from those on
         its sampled curve: up to :data:`SETTLE_STEPS` rounds of a Newton step of each later point's
         input offset along the motion (at most ``step``, the curve's sample step) and the placement
-        fitted again (:func:`placement`), while the error falls.  ``linkage`` unplaced, ``coefficients``
+        fitted again (:meth:`Problem.place`), while the error falls.  ``linkage`` unplaced, ``coefficients``
         the placement (q, λ, t) as :meth:`aligned` fits it; returns (mean squared distance, offsets,
         (q, λ, t)), or None where the motion does not reach the offsets.
 
@@ -407,7 +407,7 @@ class _Evaluate:
             on_, slope_, ok_ = columns(moved)
             moved = np.where(ok_, moved, offsets)  # (a point whose step leaves the branch stays)
             on_[1:][~ok_], slope_[~ok_] = on[1:][~ok_], slope[~ok_]
-            c_ = np.array(placement(on_[:, 0], on_[:, 1], w))
+            c_ = np.array(p.place(on_[:, 0], on_[:, 1], w))
             again = float(np.mean(np.abs(on_ @ c_ - w) ** 2))
             if not again < cost:
                 break
@@ -448,7 +448,7 @@ class _Evaluate:
 
         def fitted(places):  # (mean squared distance, places, λ, t, tracer, coefficients) for these places
             on, _ = at(places)
-            c = np.array(placement(on[:, 0], on[:, 1], w))
+            c = np.array(p.place(on[:, 0], on[:, 1], w))
             return float(np.mean(np.abs(on @ c - w) ** 2)), places, c[1], c[2], c[0] + c[2], c
 
         def replaced(fit):  # the rows moved to their places in order on the curve carried by the fit
@@ -488,6 +488,10 @@ class _Evaluate:
         for kind, _ in p.layout:
             if kind == "slide":
                 out[i] = (out[i] + turn) % math.pi
+                i += 1
+                continue
+            if kind == "along":  # a distance along the frame's fixed direction (λ is then real)
+                out[i] *= abs(lam)
                 i += 1
                 continue
             q = lam * (origin + out[i] + 1j * out[i + 1]) + shift - origin
@@ -544,7 +548,8 @@ class _Evaluate:
     @property
     def n_violations(self) -> int:
         c = self.problem.constraints
-        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None))
+        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None,
+                    self.problem.order_pairs))
 
 
 def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:
@@ -684,6 +689,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                 client.close()
         if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
             search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+        if problem.order and search.best is not None:
+            search.stiffen()
     if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
@@ -818,13 +825,13 @@ class _Search:
         angle, a link ratio and a pivot region, tests/dimension/test_synthesize.py, ended 0.14° short of
         the transmission limit after 30 CPU s, where unpinned they are met in 9.)"""
         p = self.problem
-        if not (p.projected and not p.timed and p.revolute_input):
-            return None
+        if not (p.projected and not p.timed and p.revolute_input) or p.fixed or p.along is not None or p.absolute:
+            return None  # (a pivot at a given point, a frame of given direction: the placement is not free)
         at, i = {}, 0
         for kind, k in p.layout:
             if kind == "joint" and k in p.frame_joints:
                 at[k] = i
-            i += 2 if kind != "slide" else 1
+            i += 1 if kind in ("slide", "along") else 2
         other = [k for k in p.frame_joints if k != p.input_joint and k in at]
         if p.input_joint not in at or not other:
             return None
@@ -899,6 +906,40 @@ class _Search:
         if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
             self.best = (best[0], best[1], direction)
 
+    def stiffen(self) -> None:
+        """Polish the best answer once more with the link-length orders as inequality constraints of their
+        own (SLSQP on the squared residuals, the orders' penalty rows dropped), each held
+        :data:`ORDER_MARGIN` inside its bound: the search's penalty, aimed 1e-4 inside (``MARGIN``), leaves a
+        binding order that far inside it (0.6 % of CE2's error), and a stiffer penalty slides along a
+        binding order too slowly (or, from the start, misleads the search).  Kept if it meets the orders
+        and errs no more."""
+        problem, evaluate = self.problem, self.evaluate
+        _, z0, direction = self.best
+        problem.order_penalty = (0.0, 0.0)
+        extra = len(z0) - problem.dims  # (untimed: the input steps)
+        bounds = list(zip(np.concatenate((problem.lower, np.zeros(extra))),
+                          np.concatenate((problem.upper, np.full(extra, problem.input_span)))))
+
+        def cost(z):
+            r = evaluate.vector(z, direction)
+            return float(r @ r)
+
+        def inside(z):
+            try:
+                return -(problem.order_gaps(problem.linkage(z[:problem.dims])) + ORDER_MARGIN)
+            except MotionError:
+                return np.full(problem.order_pairs, -1.0)
+
+        z = z0
+        for _ in range(STIFF_RUNS):  # (a run that stalls is restarted: its quasi-Newton matrix afresh)
+            found = minimize(cost, z, method="SLSQP", bounds=bounds, constraints={"type": "ineq", "fun": inside},
+                             options={"ftol": 1e-12 * cost(z0), "maxiter": 100})
+            z = np.clip(found.x, *np.array(bounds).T)
+            if found.status == 0:
+                break
+        value, before = cost(z), cost(z0)
+        if (inside(z) >= -MET).all() and value < INFEASIBLE / 10 and (value <= before or (inside(z0) < -MET).any()):
+            self.best = (value, z, direction)
 
     def untimed_jacobian(self, fun, z, upper) -> np.ndarray:
         """Forward differences of the untimed residuals ``fun`` at z = (dimensions, input steps), at the
@@ -961,9 +1002,9 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     _, z, direction = best
     x = z[:problem.dims]
     linkage = problem.linkage(x)
-    if isinstance(problem.target, FunctionTarget):  # posed at the first input, as every other result
+    if problem.absolute_start is not None:  # posed at the first input, as every other result
         try:
-            linkage = assemble(linkage, float(problem.target.inputs[0]))
+            linkage = assemble(linkage, problem.absolute_start)
         except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
             pass
     if problem.timed:
@@ -1032,6 +1073,7 @@ def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
         tol = MET * problem.scale
         inside = bool(((p[:, 0] >= x0 - tol) & (p[:, 0] <= x1 + tol) & (p[:, 1] >= y0 - tol) & (p[:, 1] <= y1 + tol)).all())
         out["pivots"] = {"value": p.tolist(), "limit": list(c.pivots), "met": inside}
+    out.update(problem.placing(linkage))
     if not problem.timed and problem.revolute_input:
         turn = abs(float(offsets[-1]))
         out["order"] = {"value": f"the input turns {math.degrees(turn):.6g}° over the points, in order",
