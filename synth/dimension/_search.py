@@ -31,9 +31,15 @@ EXACT = 1e-11
 SPANS = (0.5, 1.0)
 #: rounds of fitting the placement and moving the points to their places on the carried curve
 ALIGN_ROUNDS = 4
+#: rounds of moving an untimed path's inputs onto the mechanism's own motion (Newton) and fitting its
+#: placement again, before the global stage's cost is taken
+SETTLE_STEPS = 2
 #: the given starts polished (least cost first), and the share of the budget they may take before
 #: differential evolution
 SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
+#: the share of the budget the given starts' ranking by the global stage's cost may take, and the
+#: share the best of their polishes may then go on with
+RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
 #: runs of the final constrained polish of a link-length order (:meth:`_Search.stiffen`), 100 steps each
 STIFF_RUNS = 5
 
@@ -292,16 +298,22 @@ class _Evaluate:
         if isinstance(p.target, MotionTarget):  # the angle's difference modulo a turn
             w[:, :, 2] = np.remainder(w[:, :, 2] + math.pi, 2 * math.pi) - math.pi
         ab2 = (ab ** 2).sum(axis=1)
-        f = np.clip((w * ab[None]).sum(axis=2) / np.where(ab2 > 0, ab2, 1.0), 0.0, 1.0)
-        d = ((w - f[:, :, None] * ab[None]) ** 2).sum(axis=2)
+        f = np.clip(np.einsum("rsk,sk->rs", w, ab) / np.where(ab2 > 0, ab2, 1.0), 0.0, 1.0)
+        w -= f[:, :, None] * ab[None]
+        d = np.einsum("rsk,rsk->rs", w, w)
         total = np.empty_like(d)
         total[0] = d[0]
         for i in range(1, len(d)):
             total[i] = d[i] + np.minimum.accumulate(total[i - 1])
+        # each row's first least total up to each segment: where a new least begins, carried on
+        least = np.minimum.accumulate(total, axis=1)
+        begins = np.ones(total.shape, bool)
+        begins[:, 1:] = total[:, 1:] < least[:, :-1]
+        first = np.maximum.accumulate(np.where(begins, np.arange(total.shape[1]), 0), axis=1)
         k = np.empty(len(d), dtype=int)
-        k[-1] = int(np.argmin(total[-1]))
+        k[-1] = first[-1, -1]
         for i in range(len(d) - 2, -1, -1):
-            k[i] = int(np.argmin(total[i, :k[i + 1] + 1]))
+            k[i] = first[i, k[i + 1]]
         rows_ = np.arange(len(d))
         return d[rows_, k], np.maximum.accumulate(k + f[rows_, k])
 
@@ -336,12 +348,18 @@ class _Evaluate:
                 first = p.residuals(values[:1], rows[:1]).ravel()
                 d2, where = self.project(values, rows[1:])
                 cost, moved, placed = (float(first @ first) + float(d2.sum())) / len(rows), x, lk
+                offsets = np.interp(where, np.arange(len(xs)), xs)
             else:
                 fit = self.aligned(values, rows, link)
                 if fit is None:
                     continue
-                cost, where, lam, shift, tracer = fit
-                moved = self.moved(x, lam, shift, tracer)
+                _, where, lam, shift, tracer = fit
+                found = self.settled(lk, np.interp(where, np.arange(len(xs)), xs), (tracer - shift, lam, shift),
+                                     direction, float(xs[1] - xs[0]))
+                if found is None:
+                    continue
+                cost, offsets, (q, lam, shift) = found
+                moved = self.moved(x, lam, shift, q + shift)
                 try:
                     placed = p.linkage(moved)
                 except MotionError:
@@ -349,12 +367,52 @@ class _Evaluate:
                 outside = np.maximum(moved - p.upper, 0.0) + np.maximum(p.lower - moved, 0.0)
                 cost += PENALTY * float(outside @ outside)  # the placed mechanism must stay in the search box
             reached = int(math.ceil(where.max())) + 1 if len(where) else 1
-            offsets = np.interp(where, np.arange(len(xs)), xs)
             viol = p.violations(placed, offsets, None, None if mu is None else mu[:reached])
             cost += PENALTY * float(viol @ viol)
             if best is None or cost < best[0]:
                 best = (cost, direction, offsets, moved)
         return best if best is not None else 1.0
+
+    def settled(self, linkage: Linkage, offsets: np.ndarray, coefficients, direction: int, step: float):
+        """A path's placement and inputs where the mechanism itself passes the target, from those on
+        its sampled curve: up to :data:`SETTLE_STEPS` rounds of a Newton step of each later point's
+        input offset along the motion (at most ``step``, the curve's sample step) and the placement
+        fitted again (:meth:`Problem.place`), while the error falls.  ``linkage`` unplaced, ``coefficients``
+        the placement (q, λ, t) as :meth:`aligned` fits it; returns (mean squared distance, offsets,
+        (q, λ, t)), or None where the motion does not reach the offsets.
+
+        The places on the sampled curve lie on its chords, and a chord is straight: points on a line
+        lie exactly on one chord of almost any curve, within one sample step of input, so the chords'
+        distance alone ranks a sliver of any curve as exact (six points on a line were met within 13°
+        of crank turn where the exact four-bar turns 209°).  The error ranked is the mechanism's own
+        at its own inputs."""
+        p = self.problem
+        w = (p.target.points[:, 0] + 1j * p.target.points[:, 1]) / p.scale
+        n, h = len(offsets), -direction * _STEP  # (the slope's step towards the pose: the motion reaches there)
+
+        def columns(at):  # the columns the carried tracer point is linear in (as aligned's), and where it is reached
+            theta, t, g, _ = p.poses(linkage, np.concatenate(([0.0], at, at + h)))
+            theta, t = theta[:, p.tracer_link], t[:, p.tracer_link]
+            ok = np.isfinite(theta) & np.isfinite(t).all(axis=1) & (True if g is None else g >= 0)
+            basis = np.column_stack((np.exp(1j * theta), (t[:, 0] + 1j * t[:, 1]) / p.scale, np.ones(len(theta))))
+            return basis[:n + 1], (basis[n + 1:] - basis[1:n + 1]) / h, ok[1:n + 1] & ok[n + 1:]
+
+        on, slope, ok = columns(offsets)
+        if not ok.all():
+            return None
+        c = np.array(coefficients)
+        cost = float(np.mean(np.abs(on @ c - w) ** 2))
+        for _ in range(SETTLE_STEPS):
+            moved = offsets + np.clip(_places_step(on, slope @ c, w), -step, step)
+            on_, slope_, ok_ = columns(moved)
+            moved = np.where(ok_, moved, offsets)  # (a point whose step leaves the branch stays)
+            on_[1:][~ok_], slope_[~ok_] = on[1:][~ok_], slope[~ok_]
+            c_ = np.array(p.place(on_[:, 0], on_[:, 1], w))
+            again = float(np.mean(np.abs(on_ @ c_ - w) ** 2))
+            if not again < cost:
+                break
+            offsets, on, slope, c, cost = moved, on_, slope_, c_, again
+        return cost, offsets, tuple(c)
 
     def aligned(self, values, rows, link):
         """The curve (samples from the pose on, in the target's units) carried onto the target rows by
@@ -401,15 +459,13 @@ class _Evaluate:
         def stepped(fit):  # the rows' places and the coefficients moved together by a Gauss-Newton step
             places, c = fit[1], fit[5]
             on, k = at(places)
-            slope = np.diag((basis[k + 1] - basis[k]) @ c)[:, 1:]  # the carried curve along each later place
-            a = np.vstack((np.hstack((on.real, -on.imag, slope.real)), np.hstack((on.imag, on.real, slope.imag))))
-            solved, *_ = np.linalg.lstsq(a, np.concatenate((w.real, w.imag)), rcond=None)
-            moved = np.clip(places[1:] + solved[2 * len(c):], 0.0, len(z) - 1.0)
+            moved = np.clip(places[1:] + _places_step(on, ((basis[k + 1] - basis[k]) @ c)[1:], w), 0.0, len(z) - 1.0)
             return fitted(np.concatenate(([0.0], np.maximum.accumulate(moved))))
 
         _, later = self.project(values, rows[1:])
+        steps = np.arange(len(w)) / len(w)
         starts = ([np.concatenate(([0.0], later))] + [np.interp(span * arc[-1] * share, arc, index) for span in SPANS]
-                  + [span * index[-1] * share for span in SPANS])
+                  + [span * index[-1] * share for span in SPANS] + [span * index[-1] * steps for span in SPANS])
         best = min((replaced(fitted(places)) for places in starts), key=lambda f: f[0])
         for _ in range(ALIGN_ROUNDS):
             again = min(replaced(best), stepped(best), key=lambda f: f[0])
@@ -669,16 +725,20 @@ class _Search:
         random, each posed on the target as its Fourier descriptor aligns it), the
         :data:`SAMPLED_STARTS` of least cost first — the global stage's cost, which places each where it
         fits best and matches the points in order: a few points describe a curve's shape too coarsely
-        to rank samples by their descriptors alone.  Each polish gets an equal part of
-        :data:`SAMPLED_SHARE` of the budget; the rest seed the first population."""
+        to rank samples by their descriptors alone; the ranking stops once it has taken
+        :data:`RANK_SHARE` of the budget, those left being the farthest by the source's own measure.
+        Each polish gets an equal part of :data:`SAMPLED_SHARE` of the budget, and the best of them
+        goes on with :data:`GO_ON_SHARE` more; the rest seed the first population."""
         problem, watch = self.problem, self.watch
         if problem.tracer_link is None or problem.driven is not None:
             return
         mechanism = Mechanism(problem.chain, problem.frame, problem.input_link)
         starts = [problem.unknowns_of(start) for start in source(mechanism, problem.tracer_link, problem.target, seed)
                   if start.inputs[0] == problem.input_joint and start.chain.certificate == problem.chain.certificate]
-        costs = []
-        for x in starts:
+        costs, ranking = [], watch.used()
+        for x in starts:  # (nearest first by the source's own measure: those left unranked are the farthest)
+            if len(costs) >= SAMPLED_STARTS and watch.used() - ranking >= RANK_SHARE * watch.budget:
+                break
             costs.append(self.evaluate(x[:problem.searched]))
             watch.seen(costs[-1], x[:problem.searched])
         order = np.argsort(costs, kind="stable")
@@ -690,6 +750,8 @@ class _Search:
             if share <= 0:
                 break
             self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + share)
+        if self.best is not None and not self.exact:  # the best of them goes on, its polish cut by its share
+            self.polish(self.best[1][:problem.dims], until=watch.used() + GO_ON_SHARE * watch.budget)
 
     def evolve(self, rng, start: Linkage | None, executor) -> list:
         """One run of differential evolution (polishing its best now and then); its best distinct
@@ -717,14 +779,14 @@ class _Search:
             return (watch.over() or self.exact or fun <= EXACT ** 2
                     or state["generation"] - state["improved"] > self.STAGNANT)
 
-        bounds = list(zip(problem.lower[:problem.searched], problem.upper[:problem.searched]))
-        x0 = problem.unknowns_of(start)[:problem.searched] if start is not None else None
+        lower, upper = self.bounds()
+        bounds = list(zip(lower, upper))
+        x0 = self.canonical(problem.unknowns_of(start)[:problem.searched]) if start is not None else None
         popsize = max(15, 60 // problem.searched)
         init = "sobol"
         if start is None and self.runs == 1 and self.sampled:  # half the first population from the sampled curves
             size = popsize * problem.searched
-            ours = np.array(self.sampled[:size // 2])
-            lower, upper = problem.lower[:problem.searched], problem.upper[:problem.searched]
+            ours = np.array([self.canonical(x) for x in self.sampled[:size // 2]])
             init = np.vstack((ours, lower + rng.random((size - len(ours), problem.searched)) * (upper - lower)))
         kwargs = dict(seed=int(rng.integers(2 ** 31)), strategy="rand1bin", popsize=popsize,
                       maxiter=100_000, tol=1e-6, mutation=(0.5, 1.0), recombination=0.9, init=init, polish=False,
@@ -755,6 +817,57 @@ class _Search:
             if len(picked) == 3:
                 break
         return picked
+
+    def pinned(self) -> tuple[int, int] | None:
+        """Where, in the searched unknowns, the input's pivot and a second fixed pivot are (untimed path
+        targets with a turning input on two pivots of the frame placed by the search), else None.  (Timed
+        paths are searched unpinned: pinned, a crank-rocker's seven timed points with a transmission
+        angle, a link ratio and a pivot region, tests/dimension/test_synthesize.py, ended 0.14° short of
+        the transmission limit after 30 CPU s, where unpinned they are met in 9.)"""
+        p = self.problem
+        if not (p.projected and not p.timed and p.revolute_input) or p.fixed or p.along is not None or p.absolute:
+            return None  # (a pivot at a given point, a frame of given direction: the placement is not free)
+        at, i = {}, 0
+        for kind, k in p.layout:
+            if kind == "joint" and k in p.frame_joints:
+                at[k] = i
+            i += 1 if kind in ("slide", "along") else 2
+        other = [k for k in p.frame_joints if k != p.input_joint and k in at]
+        if p.input_joint not in at or not other:
+            return None
+        return at[p.input_joint], at[other[0]]
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Differential evolution's box: the searched unknowns', with a path's two pivots pinned
+        (:meth:`canonical`)."""
+        p = self.problem
+        lower, upper = p.lower[:p.searched].copy(), p.upper[:p.searched].copy()
+        pins = self.pinned()
+        if pins is not None:
+            a, b = pins
+            lower[a:a + 2] = upper[a:a + 2] = 0.0
+            lower[b:b + 2] = upper[b:b + 2] = (1.0, 0.0)
+        return lower, upper
+
+    def canonical(self, x) -> np.ndarray:
+        """The searched unknowns x carried by the similarity that puts the input's pivot at the target's
+        centre and the second pivot one target size to its right (:meth:`pinned`), within the box.
+
+        A path's candidates are judged where the best similarity places them, so differential
+        evolution need not search where the mechanism stands, how it is turned or its size: with two
+        pivots pinned a four-bar's eight searched unknowns are its four of shape."""
+        pins = self.pinned()
+        if pins is None:
+            return np.asarray(x, dtype=float)
+        p, (a, b) = self.problem, pins
+        origin = (p.centre[0] + 1j * p.centre[1]) / p.scale
+        za, zb = complex(x[a], x[a + 1]), complex(x[b], x[b + 1])
+        if za == zb:
+            return np.asarray(x, dtype=float)
+        lam = 1.0 / (zb - za)
+        full = self.evaluate.moved(np.concatenate((x, [0.0, 0.0])), lam, origin - lam * (origin + za), 0j)
+        lower, upper = self.bounds()
+        return np.clip(full[:p.searched], lower, upper)
 
     def polish(self, x, grace: bool = False, until: float | None = None) -> None:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
@@ -858,6 +971,29 @@ class _Search:
 
 #: the forward-difference step of the untimed polish's Jacobian (relative; scipy's "2-point")
 _STEP = float(np.finfo(float).eps) ** 0.5
+
+
+def _places_step(on: np.ndarray, along: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The Gauss-Newton step of an untimed path's later places when they move with its placement:
+    w ≈ on·c + (0, along·δ) in least squares over c (complex, the placement's coefficients) and δ (real,
+    each later row's place), ``on`` (N, 3) the columns the carried curve is linear in at each row's
+    place and ``along`` (N − 1,) the carried curve's derivative at each later place; returns δ.
+
+    >>> on = np.column_stack((np.ones(3), [0, 1, 2], np.zeros(3))).astype(complex)
+    >>> _places_step(on, np.array([1j, 1j]), np.array([0, 1 + 0.5j, 2 - 0.25j])).round(12).tolist()
+    [0.5, -0.25]
+    """
+    size = np.abs(along)
+    still = size == 0  # (a place where the curve stands still keeps both equations, and does not move)
+    u = np.where(still, 1.0, along / np.where(still, 1.0, size))
+    turned, aim = np.conj(u)[:, None] * on[1:], np.conj(u) * w[1:]  # each later row along and across its tangent
+    # δ takes the part along the tangent whatever c is: c is fitted to the first row and the parts across
+    a = np.vstack((np.hstack((on[:1].real, -on[:1].imag)), np.hstack((on[:1].imag, on[:1].real)),
+                   np.hstack((turned.imag, turned.real)), np.hstack((turned.real, -turned.imag))[still]))
+    b = np.concatenate((w[:1].real, w[:1].imag, aim.imag, aim.real[still]))
+    solved, *_ = np.linalg.lstsq(a, b, rcond=None)
+    c = solved[:on.shape[1]] + 1j * solved[on.shape[1]:]
+    return np.where(still, 0.0, (aim - turned @ c).real / np.where(still, 1.0, size))
 
 
 def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: int,
