@@ -4,8 +4,9 @@ writes out, chains that pass the exact test, and CPU seconds of the kernel and o
 (``time.process_time`` of this one process: other work on a shared machine hardly changes them).
 
 Every unit of the codes with multiple joints of ``chains --dof W --links N --v A..B`` (or every
-``--every``-th code from the ``--first``-th, a sample) is counted both ways in this process; the
-chains must agree unit by unit (exit 1 otherwise).  Prints one row per code and the totals.
+``--every``-th code from the ``--first``-th, a sample) is counted both ways in this process, on the
+kernel whatever the size (a count loads it for large queries only); the chains must agree unit by
+unit (exit 1 otherwise; 1 also where the query has no code with multiple joints, 2 for bad input).  Prints one row per code and the totals.
 
 Run from the project root::
 
@@ -19,6 +20,7 @@ import argparse
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 ROOT = Path.cwd()
@@ -40,23 +42,42 @@ def count_unit(unit, check_sets: bool) -> tuple[int, int, float, float]:
     return found, chains, t1 - t0, time.process_time() - t1
 
 
+def fail(sentence: str) -> None:
+    """One sentence on stderr and exit status 2."""
+    print(f"multiple_joint_prune: {sentence}", file=sys.stderr)
+    raise SystemExit(2)
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        fail(message)
+
+
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("links", type=int)
-    parser.add_argument("--dof", type=int, default=1)
+    parser = _Parser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("links", type=int, help="links of the chains")
+    parser.add_argument("--dof", type=int, default=1, help="their degree of freedom W (default: %(default)s)")
     parser.add_argument("--v", default="0..10", help="range A..B of multiple joints (default: %(default)s)")
     parser.add_argument("--every", type=int, default=1, help="count every N-th code with multiple joints")
     parser.add_argument("--first", type=int, default=0, help="… starting from this one (0-based)")
     args = parser.parse_args(argv)
+    if args.every < 1 or args.first < 0:
+        fail(f"--every must be 1 or more and --first 0 or more, not {args.every} and {args.first}")
     from synth import ChainQuery
-    from synth.synthesis.stage_a import uses_kernel
+    from synth.errors import SynthesisError
     from synth.synthesis.stage_b import _kernel_applies, load_kernel
     from synth.synthesis.type_synthesis import job_units, plan_jobs
 
-    lo, hi = (int(x) for x in args.v.split(".."))
+    try:
+        jobs = [(code, replace(conv, kernel_loops=1))  # (the kernel on every code, as a large query runs it)
+                for code, conv in plan_jobs(ChainQuery(args.dof, args.links, v=args.v)) if code.v]
+    except SynthesisError as error:
+        fail(str(error))
+    if not jobs[args.first::args.every]:
+        print("multiple_joint_prune: no code with multiple joints in this query (or this sample of it)", file=sys.stderr)
+        return 1
     load_kernel()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    jobs = [(code, conv) for code, conv in plan_jobs(ChainQuery(args.dof, args.links, v=(lo, hi))) if code.v]
     jobs = jobs[args.first::args.every]
     print(f"W = {args.dof}, {args.links} links, v = {args.v}: {len(jobs)} codes with multiple joints; engine {commit}; "
           "CPU seconds of one process; without / with the check of the sets")
@@ -65,8 +86,6 @@ def main(argv=None) -> int:
     total = [0] * 4 + [0.0] * 4
     bad = 0
     for code, conv in jobs:
-        if not uses_kernel(code, conv):
-            continue
         units = [u for u in job_units((code, conv)) if u.contracted is not None
                  and _kernel_applies(u.code, u.contracted, u.conventions)]
         row = [len(units), 0, 0, 0] + [0.0] * 4
