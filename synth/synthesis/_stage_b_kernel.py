@@ -176,7 +176,8 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
     from which a string is long; ``x_most``,
     ``vertex_need[v]``: the bounds of the module's prunes; ``group``: edge permutations (rows).
     With multiple joints, ``sets`` = (bucket, base, size, start, inside) are sets T of the exact
-    test checked as soon as their strings are placed (:func:`_sets_hold`; empty with simple joints).
+    test checked as soon as their strings are placed (:func:`_sets_hold`; none with simple joints,
+    in the listing's search, or where ``threshold`` ≤ 0).
     """
     E = len(a_end)
     if E == 0:
