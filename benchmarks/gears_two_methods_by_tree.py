@@ -14,7 +14,7 @@ of the whole size by each method — the union over the trees of each method's o
 forms (nauty for the engine, bliss for the second method) — when this run compared every tree
 (``null`` after a sample or a resumed run: the forms of the trees in the log are not kept).
 
-Run from the project root (one process; a progress bar on stderr)::
+Run from the project root (one process; a progress bar on stderr, or a line a minute when it is a file)::
 
     nice -n 19 python benchmarks/gears_two_methods_by_tree.py benchmarks/logs/gears_two_methods_F1_n11.jsonl --dof 1 --links 11
     python benchmarks/gears_two_methods_by_tree.py /tmp/t.jsonl --dof 2 --links 8 --rotation --sample 20 --seed 1
@@ -229,17 +229,19 @@ def main(argv=None) -> int:
     commit = _commit()
     print(f"F={args.dof}, {args.links} links: {len(chosen)} of {len(pairs)} trees, {len(chosen) - len(todo)} in the log",
           file=sys.stderr)
-    try:
-        with open(args.log, "a") as out:
-            for i, pair in enumerate(todo, 1):
+    from synth import Progress
+
+    try:  # a bar on a terminal, a line a minute in a log
+        with open(args.log, "a") as out, Progress(len(todo), "trees", desc="gears_two_methods_by_tree") as progress:
+            for pair in todo:
                 row = compare_tree(args.dof, args.links, pair, args.rotation, union)
                 out.write(json.dumps(row) + "\n")
                 out.flush()
                 done[row["tree"]] = row
                 if not _agrees(row):
-                    print(f"\ntree {row['tree']} {row['axes']}: engine {row['engine']}, second method {row['second']}",
-                          file=sys.stderr)
-                print(f"\r[{'#' * (30 * i // len(todo)):<30}] {i}/{len(todo)} trees", end="", file=sys.stderr, flush=True)
+                    progress.write(f"tree {row['tree']} {row['axes']}: engine {row['engine']}, "
+                                   f"second method {row['second']}")
+                progress.update(1, disagreeing=not _agrees(row))
     except KeyboardInterrupt:
         interrupted = True
     else:
@@ -255,7 +257,6 @@ def main(argv=None) -> int:
     result = {"summary": {"dof": args.dof, "links": args.links, **summary(rows, len(pairs), seconds)}}
     with open(args.log, "a") as out:
         out.write(json.dumps(result) + "\n")
-    print(file=sys.stderr)
     print(json.dumps(result))
     if interrupted:
         print("interrupted: the trees compared so far are in the log and in the summary above", file=sys.stderr)

@@ -10,7 +10,7 @@ SQLite atlases and drawn.  The package is laid out by pipeline stage:
 ``structure``  the core types (:class:`Code`, :class:`Chain`, :class:`Mechanism`,
                :class:`ChainQuery`), joint kinds and the exact sub-chain test
 ``synthesis``  number synthesis and type synthesis (stages A and B), prismatic assignments, size estimates
-``execution``  running units inline, on a pool or on Dask; checkpoints; sizes and times in words
+``execution``  running units inline, on a pool or on Dask; checkpoints; progress; sizes and times in words
 ``atlas``      grid files, SQLite atlases, the ``--where`` language, the static web site
 ``analysis``   analysis of codes and chains, directed repair, identification, atlas comparison
 ``exchange``   chains read and written in other tools' formats (GraphML, GML, DOT, edge lists, matrices)
@@ -68,7 +68,12 @@ _WHERE = {
     # how large a query is
     "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
     "worth_sizing": ".synthesis.estimate", "TABLE_ROWS": ".synthesis.estimate",
+    "describe_estimate": ".synthesis.estimate", "NOTE_SECONDS": ".synthesis.estimate",
     "describe_seconds": ".execution.sizes", "magnitude": ".execution.sizes",
+    # a long run's progress (a bar on a terminal, a line a minute in a log) and its checkpoint read back
+    "Progress": ".execution.progress", "Every": ".execution.progress",
+    "read_checkpoint": ".execution.checkpoint", "CheckpointState": ".execution.checkpoint",
+    "PLAN_FORMAT": ".execution.checkpoint", "count_identity": ".synthesis.type_synthesis", "plan_jobs": ".synthesis.type_synthesis",
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
     "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",

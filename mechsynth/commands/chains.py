@@ -121,19 +121,27 @@ def _check_options(args) -> None:
         raise _invalid(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of chains)")
 
 
-def _size_note(query, args) -> None:
-    """Refuse a query too large to run unasked, and say how long a long one takes (stderr)."""
+def _size_note(query, args) -> float | None:
+    """Refuse a query too large to run unasked, and say how long a long one takes (stderr), with
+    ``--force`` too; return the chains a count of chains is expected to find (None: not sized)."""
     import os
 
-    from synth import size_check
+    from synth import NOTE_SECONDS, describe_estimate, estimate, plan_jobs, size_check, worth_sizing
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
     note = size_check(query, processes=processes, count=args.count, table=(args.format or "table") == "table",
                       force=args.force, mechanisms=mechanisms, scheduler=args.scheduler is not None)
+    found = None
+    if args.count and mechanisms is None and worth_sizing(query):
+        plan_jobs(query)  # a plan this engine cannot build is refused alone, not after an estimate of it
+        found = estimate(query)  # (the sizing's calibrations are kept in this process: counted once)
+        if args.force and found is not None and found.seconds / processes > NOTE_SECONDS:  # skipped by size_check
+            note = "a long query: " + describe_estimate(found, processes=processes, scheduler=args.scheduler is not None)
     if note:
         resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
         print(f"mechsynth: {note}{resumable}", file=sys.stderr)
+    return None if found is None else found.chains
 
 
 def _run_one_chain(args) -> int:
@@ -246,18 +254,24 @@ def _run(args) -> int:
     if args.format == "adjacency" and most_v != 0:
         raise _invalid("an adjacency matrix holds simple joints only, and this query lists multiple joints (--v): "
                        "use --format incidence")
-    _size_note(query, args)
+    expected = _size_note(query, args)
     if args.count:  # counted in the worker processes: flat memory at any size
         log = None
-        if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log each commit
-            log = lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True)  # noqa: E731
+        if args.checkpoint is not None and not sys.stderr.isatty():  # batch runs log the first commit, then one a minute
+            from synth import Every
+
+            log = Every(lambda line: print(f"mechsynth: {line}", file=sys.stderr, flush=True))
         extra = dict(workers=args.workers, progress=True, checkpoint=args.checkpoint, scheduler=args.scheduler,
                      timeout=args.timeout or 5.0, log=log)
-        if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
-            result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
-                                  method=args.method or "listing", **extra)
-        else:
-            result = count_mechanisms(query, input_link=args.input_link, **extra)
+        try:
+            if args.what == "chains":  # a code counted before is read from the solver store (not on request for units)
+                result = count_chains(query, remember=args.checkpoint is None and args.scheduler is None,
+                                      method=args.method or "listing", expected=expected, **extra)
+            else:
+                result = count_mechanisms(query, input_link=args.input_link, **extra)
+        finally:
+            if log is not None:
+                log.flush()  # the checkpoint's last commit, held back by the minute, ends the log
         if write_count(result.to_dict(), args.format or "json") == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0

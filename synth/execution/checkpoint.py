@@ -26,12 +26,13 @@ from __future__ import annotations
 
 import sqlite3
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import SynthesisError, option
 from .sqlite_files import read_only_uri
 
-__all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "PLAN_FORMAT"]
+__all__ = ["Checkpoint", "CheckpointError", "CheckpointMismatch", "CheckpointState", "PLAN_FORMAT", "read_checkpoint"]
 
 # Bump when unit keys or the split of a query into units change: an old checkpoint is refused.
 PLAN_FORMAT = 2  # 2: units carry slack and prismatic pairs (joint kinds in the chain)
@@ -213,3 +214,63 @@ class Checkpoint:
             self._conn.close()
         return False
 
+
+
+@dataclass(frozen=True)
+class CheckpointState:
+    """What a checkpoint holds, read without changing it (a count may be writing it meanwhile).
+
+    ``complete`` maps each complete code to (its count, its units); ``partial`` each code begun
+    and not complete to (the count of its units done, those units).  ``identity`` is the plan
+    the file belongs to (plan format and digest), ``query`` that query in words.
+    """
+
+    path: str
+    identity: str
+    query: str
+    created: str
+    complete: dict
+    partial: dict
+
+    @property
+    def units(self) -> int:
+        """Units done, in complete and partial codes."""
+        return sum(units for _, units in self.complete.values()) + sum(units for _, units in self.partial.values())
+
+    @property
+    def chains(self) -> int:
+        """Chains (or mechanisms) counted so far."""
+        return sum(n for n, _ in self.complete.values()) + sum(n for n, _ in self.partial.values())
+
+
+def read_checkpoint(path) -> CheckpointState:
+    """The state of the checkpoint ``path``, read only (a running count is not disturbed).
+
+    Raises :class:`CheckpointError` for a missing file or one that is not a checkpoint.
+
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "c.sqlite")
+    >>> with Checkpoint(path, "plan-a", "chains W=1 n=8") as ck:
+    ...     ck.add_unit("521/0|x", "521/0", 5)
+    ...     ck.add_unit("440/0|a", "440/0", 6)
+    ...     ck.finish_code("521/0", 5, units=1)
+    >>> state = read_checkpoint(path)
+    >>> state.complete, state.partial, state.units, state.chains
+    ({'521/0': (5, 1)}, {'440/0': (6, 1)}, 2, 11)
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise CheckpointError(f"there is no checkpoint {path}" + (" (it is a folder)" if path.is_dir() else ""))
+    identity, query = _check_file(path)
+    conn = sqlite3.connect(read_only_uri(path), uri=True, timeout=30)
+    try:
+        conn.execute("BEGIN")  # one snapshot of both tables, whatever a writer commits meanwhile
+        created = conn.execute("SELECT value FROM meta WHERE key = 'created'").fetchone()
+        complete = {code: (n, units) for code, n, units in conn.execute("SELECT code, count, units FROM codes")}
+        partial = {code: (n, units) for code, n, units in
+                   conn.execute("SELECT code, SUM(count), COUNT(*) FROM units GROUP BY code ORDER BY MIN(rowid)")}
+    except sqlite3.DatabaseError as exc:
+        raise CheckpointError(f"cannot read the checkpoint {path} ({exc})") from None
+    finally:
+        conn.close()
+    return CheckpointState(str(path), identity, query, created[0] if created else "", complete, partial)

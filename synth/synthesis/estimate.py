@@ -48,7 +48,8 @@ from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
 __all__ = ["BUDGET", "MULTIPLE_BUDGET", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
-           "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "BYTES_PER_UNIT", "CERTIFICATE_BYTES"]
+           "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
+           "CERTIFICATE_BYTES"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -266,12 +267,7 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
                                 f"(fewer than three smaller sizes have chains); give {option('force')} to run it anyway")
         return None
-    where = "on the scheduler's workers (one core shown)" if scheduler else \
-        f"on {processes} worker{'s' * (processes > 1)}"
-    log_wall = found.log10_seconds - math.log10(processes)
-    size = (f"about {magnitude(found.chains, found.log10_chains)} {items} in "
-            f"{magnitude(found.units, found.log10_units)} units, {describe_seconds(found.seconds / processes, log_wall)} "
-            f"{where}, extrapolated from the {found.basis}")
+    size = describe_estimate(found, processes=processes, items=items, scheduler=scheduler)
     if rows_held and found.chains > TABLE_ROWS:
         raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
                             f"large for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
@@ -290,6 +286,20 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
     notes = ([f"a long query: {size}"] if found.seconds / processes > NOTE_SECONDS else []) + (
         [memory] if held > NOTE_BYTES else [])
     return "; ".join(notes) or None
+
+
+def describe_estimate(found: Estimate, *, processes: int, items: str = "chains", scheduler: bool = False) -> str:
+    """An estimate in words: chains (or ``items``), units, the time on ``processes`` workers, and its basis.
+
+    >>> describe_estimate(Estimate(1.5e11, 4892940, 1.5e5, "exact counts at 10, 12, 14 links"), processes=2)
+    'about 1.5e+11 chains in 4 892 940 units, 20.8 h on 2 workers, extrapolated from the exact counts at 10, 12, 14 links'
+    """
+    where = "on the scheduler's workers (one core shown)" if scheduler else \
+        f"on {processes} worker{'s' * (processes > 1)}"
+    log_wall = (found.log10_seconds or math.log10(found.seconds)) - math.log10(processes)
+    return (f"about {magnitude(found.chains, found.log10_chains or None)} {items} in "
+            f"{magnitude(found.units, found.log10_units or None)} units, "
+            f"{describe_seconds(found.seconds / processes, log_wall)} {where}, extrapolated from the {found.basis}")
 
 
 def plan_bytes(found: Estimate, processes: int, *, streamed: bool = False) -> float:

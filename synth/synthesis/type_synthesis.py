@@ -28,7 +28,6 @@ Example
 from __future__ import annotations
 
 import os
-import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -37,6 +36,7 @@ from mechbase import Row
 from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge
 from ..execution.executor import Executor, run_plan
 from ..execution.memo import keep, recall
+from ..execution.progress import Progress
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
@@ -45,7 +45,8 @@ from .stage_b import count_orbits, count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
-           "count_chains", "COUNT_METHODS", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units"]
+           "count_chains", "COUNT_METHODS", "count_mechanisms", "mechanisms", "mechanisms_of", "run_unit", "count_unit", "count_by_code", "job_units",
+           "count_identity"]
 
 
 # Stages A and B write one sub-chain condition per set of branch vertices: 2^m of them;
@@ -339,28 +340,27 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
 
 
 def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, progress: bool, *,
-               client=None, skip_code=None, skip_unit=None, ordered: bool = True) -> Iterator[tuple]:
+               client=None, skip_code=None, skip_unit=None, ordered: bool = True,
+               expected: float | None = None) -> Iterator[tuple]:
     """``(job index, unit, work(unit))`` for every unit of the stage-A ``jobs`` (code, conventions),
     then ``(index, None, units)`` when a job is complete: inline for a small query, else streamed to
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
     :mod:`synth.execution.executor`); in plan order, or as units finish with ``ordered=False``.
 
-    ``work`` returns the unit's chains or its counts by code; the progress bar adds up either.
+    ``work`` returns the unit's chains or its counts by code; the progress (a bar on a terminal, a
+    line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either, and with
+    ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted.
     Unordered on this machine (a count), a code's units are never held whole: stage A hands them on
     as found, through a temporary folder when they are more than :func:`unit_window`.
     """
     from contextlib import ExitStack
 
-    bar = None
-    if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(jobs), unit=" codes", file=sys.stderr, leave=False)
+    # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
+    # a plan with such codes goes to the pool at once, a smaller one starts inline
+    to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
+    bar = Progress(len(to_run), "codes", desc="mechsynth",  # (the codes of this run: a resumed one has fewer)
+                   expected=None if expected is None else ("chains", expected)) if progress else None
     try:
-        found = 0
-        # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
-        # a plan with such codes goes to the pool at once, a smaller one starts inline
-        to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in to_run):
             load_kernel()  # once, here: the workers forked later inherit it
@@ -381,8 +381,8 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
                     if event[1] is None:
                         bar.update(1)
                     else:
-                        found += sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
-                        bar.set_postfix(chains=found, refresh=False)
+                        found = sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
+                        bar.update(0, units=1, chains=found)
                 yield event
     finally:
         if bar is not None:
@@ -488,8 +488,19 @@ def _describe(what: str, query: ChainQuery) -> str:
     return " ".join([what] + [f"{k}={v}" for k, v in query.to_dict().items()]).replace("'", "")
 
 
+def count_identity(query: ChainQuery, what: str = "chains") -> tuple[str, str]:
+    """The plan's digest and the query in words that a checkpoint of this count is written with
+    (``what``: ``"chains"``, ``"chains by orbits"``, ``"mechanisms"``, ``"mechanisms with input link"``),
+    so a checkpoint can be matched to its query and plan without running it.
+
+    >>> digest, words = count_identity(ChainQuery(1, 8)); len(digest), words
+    (64, 'chains dof=1 links=8')
+    """
+    return _identity(what, plan_jobs(query)), _describe(what, query)
+
+
 def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log,
-           remember: bool = False) -> Counts:
+           remember: bool = False, expected: float | None = None) -> Counts:
     """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked; with
     ``remember``, each code's counts read from the store of earlier runs, or kept there once found."""
     from contextlib import ExitStack
@@ -526,7 +537,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
-                            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False)
+                            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False,
+                            expected=expected)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:
@@ -551,7 +563,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, remember: bool = False, method: str = "listing", **options) -> Counts:
+                 log=None, remember: bool = False, method: str = "listing", expected: float | None = None,
+                 **options) -> Counts:
     """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
@@ -564,6 +577,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
     counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
     the group of H listed whole) and as the listing does elsewhere; both give the same counts.
+    ``expected``: the chains an estimate expects (:func:`~synth.synthesis.estimate.estimate`), from
+    which the progress reckons the time to go.
 
     >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}
@@ -576,7 +591,7 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     _check_method(method, query)
     # the store and a checkpoint keep each method's counts apart: a count by one never stands for the other
     work, what = (count_unit, "chains") if method == "listing" else (_ChainCount(method), f"chains by {method}")
-    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember)
+    return _count(work, what, query, workers, progress, checkpoint, scheduler, timeout, log, remember, expected)
 
 
 def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = None, *, input_link: bool = False,

@@ -1,0 +1,149 @@
+"""Progress where stderr is not a terminal: a plain line a minute (not nothing, not a line a step)."""
+
+import io
+import subprocess
+import sys
+
+import synth
+from synth.execution import progress as _progress
+from synth.execution.progress import Every, Progress
+
+from .test_large_queries import CLI
+
+
+class Clock:
+    """A clock the test moves by hand."""
+
+    def __init__(self):
+        self.now = 1000.0
+
+    def __call__(self):
+        return self.now
+
+
+def test_plain_lines_come_once_a_minute_with_the_time_to_go():
+    log, clock = io.StringIO(), Clock()
+    progress = Progress(10, "trees", desc="census", stream=log, clock=clock)
+    for _ in range(3):
+        clock.now += 10
+        progress.update(1, trains=7)
+    assert log.getvalue() == ""  # 30 s: nothing yet
+    clock.now += 30
+    progress.update(1, trains=3)  # 60 s, 4 of 10 done: 90 s to go at 15 s a tree
+    clock.now += 59
+    progress.update(1)  # too soon after the last line
+    assert log.getvalue() == "census: 4/10 trees, 24 trains; 60 s elapsed, about 90 s to go at the rate so far\n"
+    clock.now += 1
+    progress.update(0, trains=1)
+    assert log.getvalue().splitlines()[-1] == "census: 5/10 trees, 25 trains; 2 min elapsed, about 2 min to go at the rate so far"
+    clock.now += 5
+    progress.update(5)
+    progress.close()  # a log that has lines ends with the final state
+    assert log.getvalue().splitlines()[-1] == "census: 10/10 trees, 25 trains; 2 min elapsed"
+    assert len(log.getvalue().splitlines()) == 3
+
+
+def test_a_short_run_writes_nothing_and_an_unknown_total_gives_no_time_to_go():
+    log, clock = io.StringIO(), Clock()
+    with Progress(None, "units", desc="run", stream=log, clock=clock) as progress:
+        progress.update(3)
+    assert log.getvalue() == ""  # finished within the minute: no line, and none at the close
+    with Progress(None, "units", desc="run", stream=log, clock=clock, every=5) as progress:
+        clock.now += 6
+        progress.update(2)
+    assert log.getvalue() == "run: 2 units; 6 s elapsed\n"  # the close repeats nothing already said
+
+
+def test_every_lets_the_first_line_through_then_one_a_period():
+    lines, clock = [], Clock()
+    say = Every(lines.append, 60, clock=clock)
+    for step in range(200):  # one line a second for 200 s
+        say(f"commit {step}")
+        clock.now += 1
+    assert lines == ["commit 0", "commit 60", "commit 120", "commit 180"]
+    say.flush()  # the last line, held back, is the final state
+    assert lines[-1] == "commit 199"
+    say.flush()
+    assert len(lines) == 5  # written once
+
+
+def test_a_count_logs_codes_units_and_chains_where_stderr_is_a_file(monkeypatch):
+    monkeypatch.setattr(_progress, "LOG_EVERY", 0.0)  # a line at every step
+    log = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", log)
+    assert synth.count_chains(1, 10, workers=1, progress=True)["count"] == 230
+    lines = log.getvalue().splitlines()
+    assert lines[-1].startswith("mechsynth: 7/7 codes, ") and lines[-1].endswith(" s elapsed")
+    last = lines[-1].split(";")[0].split(", ")
+    assert last[1].endswith(" units") and last[2] == "230 chains"
+    assert all(line.startswith("mechsynth: ") and "elapsed" in line for line in lines)
+
+
+def test_a_batch_count_with_a_checkpoint_logs_its_first_commit_not_every_one(tmp_path):
+    err = tmp_path / "count.err"
+    with err.open("w") as f:  # stderr a file, as in a batch job
+        done = subprocess.run([*CLI, "chains", "--dof", "1", "--links", "12", "--count", "--workers", "1",
+                               "--checkpoint", str(tmp_path / "c.sqlite")], stdout=subprocess.PIPE, stderr=f,
+                              text=True, timeout=600)
+    assert done.returncode == 0
+    committed = [line for line in err.read_text().splitlines() if "committed in this run" in line]
+    codes = len(synth.plan_codes(1, 12))
+    # the first commit, then (the run is shorter than a minute) only the last, held back until the end
+    assert len(committed) == 2 and all(line.startswith("mechsynth: checkpoint ") for line in committed)
+    assert f"({codes} codes complete) committed in this run, 0 units done before" in committed[-1]
+
+
+def test_the_line_comes_on_time_while_no_step_ends(tmp_path):
+    """A step may take an hour (stage A of a 20-link code): the line a period is written all the same,
+    by the thread, to the file, and the thread ends with the progress."""
+    import threading
+    import time
+
+    path = tmp_path / "run.err"
+    with path.open("w") as stream:
+        progress = Progress(3, "codes", desc="mechsynth", every=0.2, stream=stream)
+        progress.update(0, chains=12)  # before the first period: no line
+        time.sleep(0.9)  # no step ends
+        progress.close()
+    lines = path.read_text().splitlines()
+    assert len(lines) >= 2 and all(line.startswith("mechsynth: 0/3 codes, 12 chains; ") for line in lines)
+    assert not any(t.name == "progress-lines" for t in threading.enumerate())
+
+
+def test_the_time_to_go_is_reckoned_from_the_chains_an_estimate_expects():
+    log, clock = io.StringIO(), Clock()
+    progress = Progress(100, "codes", desc="mechsynth", stream=log, clock=clock, expected=("chains", 1000.0))
+    clock.now += 60
+    progress.update(50, chains=250)  # half the codes, a quarter of the chains: 3 minutes to go, not 1
+    clock.now += 60
+    progress.update(50, chains=900)
+    assert log.getvalue().splitlines() == [
+        "mechsynth: 50/100 codes, 250 chains; 60 s elapsed, about 3 min to go if the chains are the 1 000 estimated",
+        "mechsynth: 100/100 codes, 1 150 chains; 2 min elapsed, past the 1 000 chains estimated"]
+
+
+def test_a_forced_long_count_still_says_its_estimate_before_it_starts():
+    """--force skips the refusal, not the estimate (the 20-link count's log began with nothing)."""
+    proc = subprocess.Popen([*CLI, "chains", "--dof", "1", "--links", "18", "--count", "--force", "--workers", "1"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        first = proc.stderr.readline()
+    finally:
+        proc.kill()
+        proc.communicate()
+    assert first.startswith("mechsynth: a long query: about ") and "e+09 chains in " in first and " on 1 worker, " in first
+    assert first.rstrip().endswith("(give --checkpoint FILE to make it resumable)")
+
+
+def test_the_gear_census_script_logs_no_line_per_tree_to_a_file(tmp_path):
+    """The opposite fault: a script that printed one line per tree into a redirected stderr."""
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "benchmarks" / "gears_two_methods_by_tree.py"
+    err = tmp_path / "census.err"
+    with err.open("w") as f:
+        done = subprocess.run([sys.executable, str(script), str(tmp_path / "log.jsonl"), "--dof", "1", "--links", "7",
+                               "--sample", "5", "--seed", "3"], stdout=subprocess.PIPE, stderr=f, text=True,
+                              timeout=300)
+    assert done.returncode == 0
+    assert err.read_text().splitlines() == ["F=1, 7 links: 5 of 59 trees, 0 in the log"]  # a short run: no progress line
