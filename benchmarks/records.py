@@ -137,9 +137,10 @@ ROWS = (
     + [_row("h = 6", 1, n, h=6, oracle=n <= 7) for n in (7, 12, 17, 22)]
     + [_row("W = 1, multiple joints", 1, n, None, "Ding2013", v=n - 2, oracle=n <= 8) for n in range(4, 13, 2)]
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
-            heavy="run on its own (--only): 16 CPU min, 17 min on 2 workers (PROFILE.md section 25)")]
+            heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
-            heavy="not run: the engine's sizing gives about 2.6e9 chains, 88 CPU hours")]
+            heavy="not run: the engine's sizing (from 8, 10, 12 links) gives about 6.9e9 chains, 29 CPU hours "
+                  "(PROFILE.md section 28)")]
 )
 
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["passes"]
+__all__ = ["partial_sets", "passes"]
 
 
 @njit(cache=True)
@@ -54,7 +54,8 @@ def _bounds(T, h, is_link, end_a, end_b, most_cost, most_taken):
 @njit(cache=True)
 def _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold):
     """The sets T that may give a sub-chain below ``threshold``: their Σ freedoms − h, links,
-    whether they hold every core link, and their core paths (``inside[start[t]:start[t + 1]]``)."""
+    whether they hold every core link, their core paths (``inside[start[t]:start[t + 1]]``) and the
+    sets themselves (bit masks of core vertices)."""
     c = len(is_link)
     n_links = 0
     for v in range(c):
@@ -68,20 +69,21 @@ def _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold):
     base = np.zeros(n_sets, dtype=np.int64)
     size = np.zeros(n_sets, dtype=np.int64)
     every = np.zeros(n_sets, dtype=np.bool_)
+    mask = np.zeros(n_sets, dtype=np.int64)
     start = np.zeros(n_sets + 1, dtype=np.int64)
     inside = np.zeros(n_inside, dtype=np.int64)
     t, k = 0, 0
     for T in range(1, 1 << c):
         free, links, low, most, _ = _bounds(T, h, is_link, end_a, end_b, most_cost, most_taken)
         if low < threshold and most >= 2:
-            base[t], size[t], every[t] = free, links, links == n_links
+            base[t], size[t], every[t], mask[t] = free, links, links == n_links, T
             for p in range(len(end_a)):
                 if end_a[p] >= 0 and (T >> end_a[p]) & 1 and (T >> end_b[p]) & 1:
                     inside[k] = p
                     k += 1
             t += 1
             start[t] = k
-    return base, size, every, start, inside
+    return base, size, every, start, inside, mask
 
 
 @njit(cache=True)
@@ -103,7 +105,7 @@ def passes(h, is_link, end_a, end_b, lengths, threshold, out):
             d, x = _terms(h, neutral, end_a[p] >= 0, lengths[i, p])
             most_cost[p] = max(most_cost[p], d)
             most_taken[p] = max(most_taken[p], x)
-    base, size, every, start, inside = _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
+    base, size, every, start, inside, _ = _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
     order = np.arange(len(base))
     cost = np.zeros(P, dtype=np.int64)
     taken = np.zeros(P, dtype=np.int64)
@@ -145,3 +147,50 @@ def passes(h, is_link, end_a, end_b, lengths, threshold, out):
                 order[r], order[0] = order[0], t  # the set that refused it first next time
         out[i] = ok
     return out
+
+
+@njit(cache=True)
+def partial_sets(h, is_link, end_a, end_b, least, threshold, position):
+    """The sets T of the core that hold a multiple joint but not every core link and can give a
+    sub-chain below ``threshold`` for some weights of at least ``least`` (binary links per path):
+    (bucket, base, size, start, inside) with ``base[t]`` (Σ freedoms − h), ``size[t]`` (links) and their paths ``inside[start[t]:start[t + 1]]``
+    written as the positions ``position[p]`` of a search order, the sets ordered by the position of
+    their last path: ``bucket[e]`` … ``bucket[e + 1] − 1`` are the sets whose paths are all placed
+    once the path at position e is.  Arguments as :func:`passes`, ``least`` per path."""
+    P = len(end_a)
+    most_cost = np.zeros(P, dtype=np.int64)
+    most_taken = np.zeros(P, dtype=np.int64)
+    for p in range(P):
+        if end_a[p] >= 0 and least[p] <= h - 1:  # a short path: its least weight costs the most
+            most_cost[p], most_taken[p] = h - 1 - least[p], h - 1
+    base, size, every, start, inside, mask = _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
+    joints = 0
+    for v in range(len(is_link)):
+        if not is_link[v]:
+            joints |= 1 << v
+    last = np.full(len(base), -1, dtype=np.int64)
+    bucket = np.zeros(P + 1, dtype=np.int64)
+    n_inside = 0
+    for t in range(len(base)):
+        if every[t] or not mask[t] & joints:  # (the whole chain's correction needs every path)
+            continue
+        last[t] = 0  # (a set without paths refuses every placement, from the first string on)
+        for q in range(start[t], start[t + 1]):
+            last[t] = max(last[t], position[inside[q]])
+        bucket[last[t] + 1] += 1
+        n_inside += start[t + 1] - start[t]
+    for e in range(P):
+        bucket[e + 1] += bucket[e]
+    order = np.zeros(bucket[P], dtype=np.int64)  # the kept sets by the position of their last path
+    fill = bucket[:P].copy()
+    for t in range(len(base)):
+        if last[t] >= 0:
+            order[fill[last[t]]] = t
+            fill[last[t]] += 1
+    start2, inside2 = np.zeros(len(order) + 1, dtype=np.int64), np.zeros(n_inside, dtype=np.int64)
+    for i in range(len(order)):
+        t = order[i]
+        start2[i + 1] = start2[i] + start[t + 1] - start[t]
+        for q in range(start[t], start[t + 1]):
+            inside2[start2[i] + q - start[t]] = position[inside[q]]
+    return bucket, base[order], size[order], start2, inside2

@@ -39,7 +39,8 @@ from .joints import JOINT_KINDS, PRISMATIC
 from .kinds import cycle_rank, generic_mobility, lever_analogue, restricted_pairs, structural_mobility
 from ..errors import MalformedChain
 
-__all__ = ["MAX_CORE", "SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities", "passing"]
+__all__ = ["MAX_CORE", "SubchainReport", "check_subchains", "subchain_mobility", "least_base_mobilities", "passing",
+           "sets_to_check"]
 
 MAX_CORE = 24  # non-binary links the exact test handles (2^24 subsets of the core)
 _MAX_SCANNED = 22  # links of a chain with prismatic pairs: every subset is scanned (4 M sets)
@@ -196,6 +197,32 @@ def passing(h: int, is_link, ends, lengths, threshold: int) -> np.ndarray:
     lengths = np.ascontiguousarray(np.asarray(lengths, dtype=np.int64).reshape(-1, len(ends)))
     return passes(h, np.asarray(is_link, dtype=np.bool_), np.ascontiguousarray(ends[:, 0]),
                   np.ascontiguousarray(ends[:, 1]), lengths, threshold, np.zeros(len(lengths), dtype=np.bool_))
+
+
+def sets_to_check(h: int, is_link, ends, least, threshold: int, position) -> tuple:
+    """The sets T of the core that :func:`passing` may refuse a candidate by and that hold a
+    multiple joint (not every core link), for a search that places the paths one at a time in the
+    order ``position`` (path p is placed ``position[p]``-th) and checks each set once its paths are
+    all placed: (bucket, base, size, start, inside), the sets completed by the path placed e-th being
+    ``bucket[e]`` … ``bucket[e + 1] − 1``, set t with Σ freedoms − h ``base[t]``, ``size[t]`` links
+    and its paths at the positions ``inside[start[t]:start[t + 1]]``.  ``least[p]``: the fewest
+    binary links path p takes (a set that no weights from those can refuse is left out).  Stage B's
+    kernel checks them as it places the strings (:func:`synth.synthesis._stage_b_kernel.place`).
+
+    >>> joint = [[0, 3], [1, 3], [2, 3], [0, 1]]  # links 0, 1, 2 on a multiple joint (vertex 3), a path 0–1
+    >>> bucket, base, size, start, inside = sets_to_check(3, [True, True, True, False], joint, [0, 0, 0, 0], 1,
+    ...                                                   [0, 1, 2, 3])
+    >>> bucket.tolist()   # {0, J}, {1, J}, {2, J} complete with their one path, {0, 1, J} with path 0–1
+    [0, 1, 2, 3, 4]
+    >>> base.tolist(), size.tolist(), inside[start[3]:start[4]].tolist()   # {0, 1, 2, J} holds every link
+    ([2, 2, 2, 5], [1, 1, 1, 2], [0, 1, 3])
+    """
+    from ._subchain_kernel import partial_sets
+
+    ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+    return partial_sets(
+        h, np.asarray(is_link, dtype=np.bool_), np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1]),
+        np.asarray(least, dtype=np.int64), threshold, np.asarray(position, dtype=np.int64))
 
 
 def subchain_mobility(chain: Chain, links) -> int:

@@ -42,6 +42,11 @@ h + min(threshold, 0) — exact for the sets of two links or more up to the thre
 wrong for the sets of fewer, which the rule leaves out (a link with joints on it alone, two joints
 with one binary link between them); in the other J has h pebbles and l = h + threshold — exact
 for the sets without multiple joints, one freedom weaker for each joint in a set.
+A count with W ≥ 1 also checks the exact rule itself on the sets T with a multiple joint that can
+refuse a placement (W_T below the threshold with two links or more; not the set of every link,
+whose rule depends on every string), each as soon as its last string is placed, so that a refused
+prefix is not completed (12 links: 10.9 placements written per chain → 1.4; benchmarks/PROFILE.md
+section 28).  The listing's search runs without it and stays a check of the count.
 
 Numba compiles the kernel once (cached beside this file, or in numba's user cache); loading it
 takes about a second per process, so type synthesis uses it for large queries only
@@ -137,7 +142,30 @@ def _not_beaten(w, group, e):
 
 
 @njit(cache=True)
-def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_need, group, out):
+def _sets_hold(w, e, C, threshold, sets, order):
+    """Whether the placement w of strings 0 … e passes the exact rule on the sets T whose strings
+    are all placed once string e is (``sets``: see :func:`place`): W_T = base − Σ (C − w) and
+    X_T = size + Σ w over the strings of T with w ≤ C, refused where X_T ≥ 2 and W_T < threshold, the
+    exact test's own arithmetic (:mod:`synth.structure._subchain_kernel`).  A set that refuses moves
+    to the front of its group in ``order``: the next placement tried is usually refused by it too."""
+    bucket, base, size, start, inside = sets
+    for r in range(bucket[e], bucket[e + 1]):
+        t = order[r]
+        W, X = base[t], size[t]
+        for q in range(start[t], start[t + 1]):
+            L = w[inside[q]]
+            if L <= C:
+                W -= C - L
+                X += L
+        if X >= 2 and W < threshold:
+            order[r], order[bucket[e]] = order[bucket[e]], t
+            return False
+    return True
+
+
+@njit(cache=True)
+def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
+          threshold, sets):
     """Count the placements (and write the first ``len(out)`` into ``out``); see the module.
 
     M: pebble-game vertices (inner branch links, multiple joints); ``a_end[e]``, ``b_end[e]``: the
@@ -147,6 +175,9 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
     of vertex v and l the sparsity (and a second game ``k2``, ``l2`` where l2 ≥ 0); C the weight
     from which a string is long; ``x_most``,
     ``vertex_need[v]``: the bounds of the module's prunes; ``group``: edge permutations (rows).
+    With multiple joints, ``sets`` = (bucket, base, size, start, inside) are sets T of the exact
+    test checked as soon as their strings are placed (:func:`_sets_hold`; none with simple joints,
+    in the listing's search, or where ``threshold`` ≤ 0).
     """
     E = len(a_end)
     if E == 0:
@@ -189,6 +220,7 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
             open_[a_end[e]] += 1
             open_[b_end[e]] += 1
     w = np.zeros(E, dtype=np.int64)
+    set_order = np.arange(len(sets[1]))  # the sets of the exact test in the order they are tried
     top = np.zeros(E, dtype=np.int64)  # largest weight left to try
     units = np.zeros(E, dtype=np.int64)  # deficit units of string e in the pebble game
     units2 = np.zeros(E, dtype=np.int64)  # … in the second game
@@ -258,7 +290,7 @@ def place(M, a_end, b_end, least, parallel, n2, k, C, l, k2, l2, x_most, vertex_
             at[b] += units[e]
             open_[a] -= 1
             open_[b] -= 1
-        if not ok:
+        if not ok or not _sets_hold(w, e, C, threshold, sets, set_order):
             continue
         if e == E - 1:
             if found < out.shape[0]:

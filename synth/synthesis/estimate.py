@@ -23,6 +23,13 @@ spread over more chains; with the engine of 29 Nov 2026, one process: 4.7 µs at
 at 14, 1.2 at 16, about 1.0 on a sample of 18), so the time is an upper bound where the chains
 are right, not a prediction (benchmarks/PROFILE.md, section 24, measures its error).
 
+With multiple joints the counts grow faster and less regularly (1-DOF, v up to n − 2: 1, 4, 60,
+2 645, 248 203, 35 396 111 at 4 … 14 links; ratios 4, 15, 44.1, 93.8, 142.6, whose steps 11, 29.1,
+49.7, 48.8 settle only from 10 links on), so a basis that ends at 10 links is far off: from 6, 8, 10
+links the estimate is −22 % at 12 links and −44 % at 14, from 8, 10, 12 links +0.6 % at 14.  Such a
+query is therefore sized for :data:`MULTIPLE_BUDGET` CPU seconds, which reach 12 links (about 6 s)
+when the query has 14 links or more (benchmarks/PROFILE.md, section 28).
+
 Example
 -------
 >>> from synth.structure.query import ChainQuery
@@ -40,8 +47,9 @@ from dataclasses import dataclass, replace
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "describe_estimate", "plan_bytes",
-           "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT", "CERTIFICATE_BYTES"]
+__all__ = ["BUDGET", "MULTIPLE_BUDGET", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
+           "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
+           "CERTIFICATE_BYTES"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -49,6 +57,8 @@ __all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", 
 # single link, so in loops h = 2 grows far more slowly (K = 8, 10 links: 110 132 chains, 5 CPU s,
 # where sizing took 0.5 s; K = 9, 11 links: 61 CPU s, as the plane's K = 7, 16 links, takes 51).
 SIZED_LOOPS = {2: 9, None: 7}
+BUDGET = 2.0  # CPU seconds of exact counts a query is sized from (the module's Method)
+MULTIPLE_BUDGET = 8.0  # … with multiple joints: 1-DOF, the 12-link count (5.6 CPU s) after 4 … 10 links (0.17 s)
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
@@ -126,11 +136,12 @@ def _log10_growth(ratio: float, step: float, steps: int) -> float:
     return steps * math.log10(step) + (math.lgamma(start + steps + 1) - math.lgamma(start + 1)) / math.log(10)
 
 
-def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | None:
+def estimate(query, *, budget: float | None = None, work: str = "count") -> Estimate | None:
     """Estimate a :class:`~synth.structure.query.ChainQuery` (with ``links``; not its code).
 
     Only sizes below ``links`` with the same number of loops modulo one (n − (h − 1)·k) are
-    counted (the query itself never is), for about ``budget`` seconds; the time taken does not
+    counted (the query itself never is), for about ``budget`` seconds (None: :data:`BUDGET`, or
+    :data:`MULTIPLE_BUDGET` where the query takes multiple joints); the time taken does not
     grow with ``links``.  ``work`` is what the query does with each unit, timed the same way:
     ``"count"`` its chains, ``"list"`` them (each chain built), ``"mechanisms"`` or
     ``"mechanisms with input"`` count its mechanisms (then ``chains`` counts mechanisms).
@@ -142,6 +153,8 @@ def estimate(query, *, budget: float = 2.0, work: str = "count") -> Estimate | N
 
     conv = ts._conventions(query)
     multiple = query.v is not None and (query.v[1] is None or query.v[1] > 0)
+    if budget is None:
+        budget = MULTIPLE_BUDGET if multiple else BUDGET
     # the calibrations run on the path the query will take: compiled searches for a large query
     compiled = query.loops >= kernel_loops(conv, multiple)
     if compiled:

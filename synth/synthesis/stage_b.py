@@ -228,14 +228,18 @@ def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
 
 
 def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
-                       listing: bool, rows: bool = False) -> tuple[int, "np.ndarray", bool]:
+                       listing: bool, rows: bool = False, check_sets: bool = True) -> tuple[int, "np.ndarray", bool]:
     """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
     Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
     and whether the group was whole.  With ``rows`` (a count that tests each placement: multiple
     joints) the search runs in a count's order of the strings and still returns the placements,
-    one per orbit but not the lex-least in H's own order, with their columns in H's order."""
+    one per orbit but not the lex-least in H's own order, with their columns in H's order; there
+    the search also checks the exact test's sets with a multiple joint as soon as their strings are
+    placed, unless ``check_sets`` is off (the tests compare both: the check drops only placements
+    the exact test refuses).  The listing's search stays without it, a check of the count's."""
     import numpy as np
 
+    from ..structure.subchains import sets_to_check
     from ._stage_b_kernel import place
 
     t0 = perf_counter()
@@ -268,14 +272,22 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
             q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(edges)]
             perms = np.argsort(q_order)[np.array(perms, dtype=np.int64)[:, q_order]]
     group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
+    if rows and not listing and check_sets and conv.threshold > 0:  # (else the first game is the exact rule)
+        is_link, ends = _core(graph.vertices, graph.edges)
+        sets = sets_to_check(conv.h, is_link, ends, lows, conv.threshold, back)
+    else:
+        empty = np.zeros(0, dtype=np.int64)
+        sets = (np.zeros(E + 1, dtype=np.int64), empty, empty, np.zeros(1, dtype=np.int64), empty)
     if rows and not listing:  # (the kernel writes whole rows, and only rows up to what it found are read)
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
+    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
+                  conv.threshold, sets)
     if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
-        place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
+        place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
+              conv.threshold, sets)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
 
@@ -590,17 +602,28 @@ def _exact_test(vertices, edges, solutions, conv: Conventions, compiled: bool = 
 
     from ..structure.subchains import least_mobilities, passing
 
-    inner = set(_inner_links(vertices))
-    kept = [u for u, vertex in enumerate(vertices) if u in inner or vertex.is_joint]
-    index = {u: i for i, u in enumerate(kept)}
+    is_link, ends = _core(vertices, edges)
     sol = np.asarray(solutions, dtype=np.int64).reshape(len(solutions), len(edges))
-    ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
-                    dtype=np.int64).reshape(-1, 2)
     lengths = sol + (ends[:, 0] < 0)  # a string to a single-joint link holds that link too
-    is_link = [vertices[u].is_link for u in kept]
     if compiled:
         return passing(conv.h, is_link, ends, lengths, conv.threshold)
     return least_mobilities(conv.h, is_link, [], ends, lengths) >= conv.threshold
+
+
+@lru_cache(maxsize=256)
+def _core(vertices, edges) -> tuple[tuple[bool, ...], "np.ndarray"]:
+    """The exact test's core of H (:func:`_exact_test`): whether each core vertex is a link (else a
+    multiple joint), and each string's ends among them, (−1, −1) for a string to a single-joint
+    link; read-only (the same for every vector of a unit)."""
+    import numpy as np
+
+    inner = set(_inner_links(vertices))
+    kept = [u for u, vertex in enumerate(vertices) if u in inner or vertex.is_joint]
+    index = {u: i for i, u in enumerate(kept)}
+    ends = np.array([(index[u], index[v]) if u in index and v in index else (-1, -1) for u, v in edges],
+                    dtype=np.int64).reshape(-1, 2)
+    ends.flags.writeable = False
+    return tuple(vertices[u].is_link for u in kept), ends
 
 
 @lru_cache(maxsize=256)

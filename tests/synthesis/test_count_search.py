@@ -188,9 +188,10 @@ MULTIPLE_QUERIES = [dict(dof=1, links=10, v=(1, 8)), dict(dof=0, links=9, v=(1, 
                          + [(q, "one row") for q in MULTIPLE_QUERIES[1:3]], ids=lambda x: _ids(x) if isinstance(x, dict) else x)
 def test_the_count_rows_with_multiple_joints_are_the_listings_orbits(query, first_pass, kernel_everywhere, monkeypatch):
     """Unit by unit with multiple joints: the count reads the placements of the search order
-    (``rows``), with their columns back in H's order; as many as the listing writes out, the same
-    chains (by certificate) among those the exact test keeps, and the same count as the listing's,
-    whether the first pass holds every row or one (then a second pass reads them)."""
+    (``rows``), with their columns back in H's order; as many as the listing writes out without the
+    check of the exact test's sets (fewer with it), the same chains (by certificate) among those the
+    exact test keeps, and the same count as the listing's, whether the first pass holds every row or
+    one (then a second pass reads them)."""
     if first_pass == "one row":
         monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
         monkeypatch.setattr(stage_b, "_COUNT_ENTRIES", 1)
@@ -200,8 +201,9 @@ def test_the_count_rows_with_multiple_joints_are_the_listings_orbits(query, firs
         if all(vertex.is_link for vertex in graph.vertices):
             continue
         found, rows, whole = stage_b._kernel_placements(*args, None, listing=False, rows=True)
+        unchecked, _, _ = stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False)
         listed, listing, _ = stage_b._kernel_placements(*args, None, listing=True)
-        assert found == listed == len(rows) == len(listing), u.key
+        assert unchecked == listed == len(listing) and found == len(rows) <= listed, u.key
         if whole and found:
             certificates = []
             for placements in (rows, listing):
@@ -212,6 +214,34 @@ def test_the_count_rows_with_multiple_joints_are_the_listings_orbits(query, firs
         assert stage_b.count_realised(*args) == stage_b.count_listed(*args), u.key
         compared[found > 1] += 1
     assert compared[True]  # units with several placements, where the order of the strings matters
+
+
+# every code with multiple joints of 10 and 11 links the kernel takes, W = 0 … 3
+CHECKED_QUERIES = [dict(dof=1, links=10, v=(1, 8)), dict(dof=0, links=11, v=(1, 9)), dict(dof=2, links=11, v=(1, 9)),
+                   dict(dof=3, links=10, v=(1, 8))]
+
+
+@pytest.mark.parametrize("query", CHECKED_QUERIES, ids=_ids)
+def test_the_check_of_the_exact_tests_sets_drops_no_chain(query, kernel_everywhere):
+    """Unit by unit with multiple joints, the count's search with and without its check of the exact
+    test's sets as strings are placed: with it, the placements are some of those without it, and
+    every one it leaves out is refused by the exact test, so the placements that pass are the same;
+    and it leaves some out (it is not idle) where the chains' sub-chains must move (W ≥ 1; with W = 0
+    the first pebble game is the exact rule on these sets already, and the search skips the check)."""
+    dropped = 0
+    for u, args in kernel_units(query):
+        graph, conv = args[1], args[2]
+        if all(vertex.is_link for vertex in graph.vertices):
+            continue
+        found, rows, whole = stage_b._kernel_placements(*args, None, listing=False, rows=True)
+        unchecked, every, _ = stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False)
+        kept, all_rows = set(map(tuple, rows.tolist())), set(map(tuple, every.tolist()))
+        assert len(kept) == found and kept <= all_rows, u.key
+        if unchecked:
+            valid = stage_b._exact_test(graph.vertices, graph.edges, every, conv)  # (the scan of every set)
+            assert {r for r, ok in zip(map(tuple, every.tolist()), valid) if ok} <= kept, u.key
+        dropped += unchecked - found
+    assert dropped > 0 if query["dof"] else dropped == 0
 
 
 @pytest.mark.parametrize("dof, links, v", [(1, 8, 6), (1, 6, 4), (2, 7, 5), (0, 7, 3)])

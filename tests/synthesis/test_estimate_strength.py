@@ -133,6 +133,26 @@ def test_the_default_budget_is_two_cpu_seconds(monkeypatch):
     assert est.estimate(ChainQuery(1, 16), budget=3.0).basis == "exact counts at 10, 12, 14 links"
 
 
+def test_a_query_with_multiple_joints_is_sized_for_eight_cpu_seconds(monkeypatch):
+    # 4 … 10 links take 2.1 s, 12 links 5 s: 7.1 s in all; 14 would end at 12.6 s, past one and a half budgets
+    sizes = {4: ([[1]], 0.0), 6: ([[50]], 0.0), 8: ([[100]], 0.0), 10: ([[110]], 2.1), 12: ([[120]], 5.0),
+             14: ([[130]], 0.0)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    assert est.MULTIPLE_BUDGET == 8.0
+    assert est.estimate(ChainQuery(1, 16, v=(0, 14))).basis == "exact counts at 8, 10, 12 links"
+    assert [run[0] for run in calibrations.runs] == [4, 6, 8, 10, 12]
+    assert est.estimate(ChainQuery(1, 16, v=(0, 0))).basis == "exact counts at 6, 8, 10 links"  # (simple joints only)
+
+
+@pytest.mark.slow
+def test_the_estimate_with_multiple_joints_at_14_links_is_within_one_percent():
+    """Run for real: 1-DOF chains of 14 links with multiple joints, 35 396 111 (benchmarks/RECORDS.md, the
+    count; from 6, 8, 10 links the estimate was 1.98e7, −44 %)."""
+    found = est.estimate(ChainQuery(1, 14, v=(0, 12)))
+    assert found.basis == "exact counts at 8, 10, 12 links"
+    assert found.chains == pytest.approx(35_396_111, rel=0.01)
+
+
 def test_fewer_than_three_sizes_with_chains_give_no_estimate(monkeypatch):
     sizes = {4: ([[]], 0.0), 6: ([[]], 0.0), 8: ([[3]], 0.0), 10: ([[]], 0.0), 12: ([[5]], 0.0)}
     _Calibrations(monkeypatch, sizes)
