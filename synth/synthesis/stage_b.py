@@ -236,7 +236,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     one per orbit but not the lex-least in H's own order, with their columns in H's order."""
     import numpy as np
 
-    from ._stage_b_kernel import place
+    from ._stage_b_kernel import place, tight_count
 
     t0 = perf_counter()
     lows, parallel = _string_limits(graph, conv)
@@ -272,12 +272,28 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
+    if not (listing or rows or len(group)) and _tight(M, l2, x_most, l, conv.h):
+        found = tight_count(M, a_end, b_end, least, after, k, C, l)  # counted, not visited
+    else:
+        found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
+
+
+def _tight(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
+    """Whether a count of one unit with no automorphism to test can be counted without visiting its
+    placements (:func:`synth.synthesis._stage_b_kernel.tight_count`): simple joints (one pebble
+    game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and no excess on the long
+    strings (``x_most`` = 0: the rule's equality case, e.g. every 1-DOF chain), so that every valid
+    placement's deficit multigraph is tight.
+
+    >>> _tight(6, -1, 0, 4, 3), _tight(6, -1, 1, 4, 3), _tight(6, 4, 0, 4, 3)
+    (True, False, False)
+    """
+    return l2 < 0 and M >= 2 and x_most == 0 and l < 2 * h
 
 
 def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.ndarray":
