@@ -209,11 +209,12 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
 
 def load_kernel() -> None:
     """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: a small code through both."""
-    code, conv = Code.parse("440/0"), Conventions()
-    for graph in _contracted_by_kernel(code, conv):
-        _kernel_placements(code, graph, conv, None, listing=False)
-        count_orbits(code, graph, conv)
+    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``)."""
+    conv = Conventions()
+    for code in (Code.parse("440/0"), Code.parse("6020/0")):
+        for graph in _contracted_by_kernel(code, conv):
+            _kernel_placements(code, graph, conv, None, listing=False)
+            count_orbits(code, graph, conv)
 
 
 def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
