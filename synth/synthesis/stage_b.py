@@ -273,8 +273,14 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    if not (listing or rows or len(group)) and _tight(M, l2, x_most, l, conv.h):
-        found = tight_count(M, a_end, b_end, least, after, k, C, l)  # counted, not visited
+    if not (listing or rows) and (whole_group or not len(group)) and _tight(M, l2, x_most, l, conv.h):
+        # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
+        identity = np.zeros(0, dtype=np.int64)
+        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g) for g in (identity, *group))
+        found, rest = divmod(found, len(group) + 1)
+        if rest:  # a fault of this engine
+            raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
+                               f"multigraph of {code} is not a multiple of their number")
     else:
         found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out)
     if (listing or rows) and found > len(out):
@@ -285,11 +291,11 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
 
 
 def _tight(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
-    """Whether a count of one unit with no automorphism to test can be counted without visiting its
-    placements (:func:`synth.synthesis._stage_b_kernel.tight_count`): simple joints (one pebble
-    game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and no excess on the long
-    strings (``x_most`` = 0: the rule's equality case, e.g. every 1-DOF chain), so that every valid
-    placement's deficit multigraph is tight.
+    """Whether a count of one unit can count its placements instead of visiting them, the orbits by
+    Burnside's lemma over the permutations of its bundles (:func:`synth.synthesis._stage_b_kernel.tight_count`):
+    simple joints (one pebble game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and no
+    excess on the long strings (``x_most`` = 0: the rule's equality case, e.g. every 1-DOF chain), so that every
+    valid placement's deficit multigraph is tight.
 
     >>> _tight(6, -1, 0, 4, 3), _tight(6, -1, 1, 4, 3), _tight(6, 4, 0, 4, 3)
     (True, False, False)
