@@ -14,6 +14,8 @@ from mechbase import save_figure
 from .devices.fit import relative_errors
 from .model.potential import terms_forces
 
+ZERO_SHARE = 1e-9  # a swept curve below this share of the joint's largest torque is rounding, drawn flat
+
 __all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph", "plot_compare"]
 
 
@@ -333,11 +335,17 @@ def plot_compare(result, path: str, n: int = 241) -> str:
         xs = np.degrees(x) if rev else x
         unit = "N·m" if rev else "N"
         top, bot = axes[0][c], axes[1][c]
+        curves = {s.name: grav[:, i] + s.forces(q)[:, i] for s in strategies}
         for s in strategies:
-            r = grav[:, i] + s.forces(q)[:, i]
+            r = curves[s.name]
             top.plot(xs, r, color=colors[s.name], lw=2.2 if s.name in ("none", "counterweights") else 1.4,
                      ls=dashes.get(s.name, "-"), label="gravity (no balancing)" if s.name == "none" else s.name)
         top.axhline(0, color="0.5", lw=0.6)
+        largest = max(s.joints[i].max for s in strategies)
+        if max(np.abs(r).max() for r in curves.values()) <= ZERO_SHARE * largest:  # rounding only: not magnified
+            top.set_ylim(-largest, largest)
+            top.text(0.5, 0.62, f"every curve zero at this pose\n(below {ZERO_SHARE:g} of {largest:.3g} {'N·m' if rev else 'N'},\n"
+                     "the largest over the workspace)", transform=top.transAxes, ha="center", va="center", fontsize=8)
         top.set_title(f"q{i + 1} ({arm.coordinates[i].name}) swept\nothers at 80 % of their ranges, payload "
                       f"{payload:g} kg", fontsize=9)
         top.set_xlabel(f"q{i + 1} ({'deg' if rev else 'm'})")

@@ -42,6 +42,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import random
 import sys
 import time
@@ -50,6 +51,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+SAVE_EVERY = 30.0  # seconds between writes of --cache during a run (and once at its end)
 PUBLISHED = {4: 1, 6: 2, 8: 16, 10: 230, 12: 6856, 14: 318162, 16: 19819281, 18: 1535380884}  # OEIS A233288
 
 
@@ -78,17 +80,26 @@ def _plans(all_codes, conv, drawn, cache: str | None):
 
     from synth.synthesis.type_synthesis import job_units
 
+    def save():  # whole or not at all: a run killed while writing keeps the previous file
+        temporary = Path(f"{cache}.partial")
+        temporary.write_bytes(pickle.dumps(stored))
+        os.replace(temporary, cache)
+
     stored = {}
     if cache and Path(cache).exists():
         stored = pickle.loads(Path(cache).read_bytes())
-    out = {}
+    out, saved, added = {}, time.monotonic(), False
     for i in drawn:
         key = str(all_codes[i])
         if key not in stored:
             stored[key] = _cpu(job_units, (all_codes[i], conv))
-            if cache:
-                Path(cache).write_bytes(pickle.dumps(stored))
+            added = True
+            if cache and time.monotonic() - saved > SAVE_EVERY:  # not after every code: the file grows with them
+                save()
+                saved, added = time.monotonic(), False
         out[i] = stored[key]
+    if cache and added:
+        save()
     return out
 
 

@@ -179,7 +179,6 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
             others = [p for p in ax.patches if p not in signs.values() and not (p.get_gid() or "").startswith("pin")]
             for gid, sign in signs.items():
                 assert all(sign.get_zorder() > p.get_zorder() for p in others if p.get_hatch() is None)
-                k = int(gid[len("ground"):])
                 base = np.asarray(sign.get_xy())[1:3].mean(axis=0)  # the middle of the base line
                 for j, at in enumerate(marks.pos):
                     reach = 1.75 * r if len(chain.joints[j]) > 2 else r

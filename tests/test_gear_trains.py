@@ -222,7 +222,7 @@ def test_least_image_test_equals_every_image():
         images = enumeration._Images(tree.group, len(tree.pairs))
         for _ in range(20):
             chosen = tuple(sorted(rng.sample(range(len(tree.pairs)), rng.randint(1, min(6, len(tree.pairs))))))
-            state, least = images.start(), True
+            state = images.start()
             for k, i in enumerate(chosen):
                 state = images.extend(state, i)
                 prefix = chosen[:k + 1]

@@ -50,8 +50,11 @@ __all__ = ["Executor", "process_pool", "run_plan"]
 
 
 def _worker_start(parent: int) -> None:
-    """Workers leave Ctrl-C to the parent and do not outlive it (``kill -9`` of a long count)."""
+    """Workers leave Ctrl-C to the parent and do not outlive it (``kill -9`` of a long count); the
+    parent's wake-up pipe for signals (:mod:`synth.execution.interrupt`), inherited by the fork, is
+    let go, so no signal a worker catches reads in the parent as its own."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.set_wakeup_fd(-1)
     if sys.platform.startswith("linux"):
         try:
             import ctypes

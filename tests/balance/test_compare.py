@@ -279,3 +279,27 @@ def test_the_strategy_table_is_what_a_comparison_shows(example1):
 
     assert STRATEGIES == ("none", "counterweights", "springs per joint", "harmonic, pruned", "exact springs")
     assert tuple(s.name for s in example1.strategies) == STRATEGIES
+
+
+def test_a_sweep_zero_to_rounding_is_drawn_flat_not_magnified(tmp_path, monkeypatch):
+    """The README's UR5e (q2 within −180 … 0°, the others whole turns): its wrist q5, swept with the others
+    at 80 % of their ranges, carries no torque at all; the panel says so on the scale of the joint's largest
+    torque instead of plotting 1e-15 noise."""
+    from matplotlib.figure import Figure
+
+    from balance import plot_compare
+
+    urdf = str(MODELS / "arm_ur5e.urdf")
+    ur5e = compare_problem({"arm": {"urdf": urdf, "name": "arm_ur5e.urdf"}}, urdf,
+                           {"payload": [0, 5], "workspace": {"q2": [-180, 0]}, "samples": 200}).solve()
+    saved, keep = [], Figure.savefig
+    monkeypatch.setattr(Figure, "savefig", lambda self, path, **kw: saved.append(self) or keep(self, path, **kw))
+    plot_compare(ur5e, str(tmp_path / "compare.png"))
+    tops = saved[0].axes[:len(saved[0].axes) // 2]
+    flat = [ax for ax in tops if ax.texts]
+    assert [ax.get_title().split(" swept")[0] for ax in flat] == ["q5 (joint5)"]
+    largest = max(s.joints[4].max for s in ur5e.strategies if s.available)
+    assert flat[0].get_ylim() == pytest.approx((-largest, largest)) and largest > 1
+    assert all(np.abs(line.get_ydata()).max() < 1e-9 * largest for line in flat[0].get_lines())
+    assert all(abs(ax.get_ylim()[1]) < 1e3 * max(np.abs(ln.get_ydata()).max() for ln in ax.get_lines())
+               for ax in tops if ax not in flat)  # the others keep their own scale

@@ -354,11 +354,12 @@ def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
             calls.append(("prctl", option, value))
 
     monkeypatch.setattr(module.signal, "signal", lambda sig, action: calls.append(("signal", sig, action)))
+    monkeypatch.setattr(module.signal, "set_wakeup_fd", lambda fd: calls.append(("wakeup", fd)))
     monkeypatch.setattr(ctypes, "CDLL", lambda name: Libc())
     monkeypatch.setattr(module.os, "getppid", lambda: 4242)
     monkeypatch.setattr(module.os, "_exit", lambda status: calls.append(("exit", status)))
     module._worker_start(4242)
-    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("prctl", 1, signal.SIGKILL)]
+    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("wakeup", -1), ("prctl", 1, signal.SIGKILL)]
     calls.clear()
     module._worker_start(1)  # the parent died before prctl took effect: the worker is an orphan
     assert calls[-1] == ("exit", 1)
@@ -370,15 +371,25 @@ def _worker_settings(_):
 
     death = ctypes.c_int(0)
     ctypes.CDLL(None).prctl(2, ctypes.byref(death))  # PR_GET_PDEATHSIG
-    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN, death.value, os.getppid()
+    wakeup = signal.set_wakeup_fd(-1)  # (the worker's own, returned: -1 when it holds none)
+    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN, death.value, os.getppid(), wakeup
 
 
 def test_pool_workers_are_forked_ignore_ctrl_c_and_die_with_this_process():
+    """… and do not keep this process's wake-up pipe for signals (set here as the Ctrl-C watcher sets it)."""
     import signal
 
-    with Executor(workers=2) as executor:
-        assert set(executor.map(_worker_settings, range(4))) == {(True, signal.SIGKILL, os.getpid())}
-        assert executor._pool._ctx.get_start_method() == "fork"
+    read, write = os.pipe()
+    os.set_blocking(write, False)
+    previous = signal.set_wakeup_fd(write)
+    try:
+        with Executor(workers=2) as executor:
+            assert set(executor.map(_worker_settings, range(4))) == {(True, signal.SIGKILL, os.getpid(), -1)}
+            assert executor._pool._ctx.get_start_method() == "fork"
+    finally:
+        signal.set_wakeup_fd(previous)
+        os.close(read)
+        os.close(write)
     assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # Ctrl-C no longer held back
 
 

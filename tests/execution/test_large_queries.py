@@ -336,3 +336,25 @@ def test_projection_is_exact_when_every_unit_is_sampled():
     assert (full["chains_projected"], full["chains_se"], full["units_projected"], full["units_se"]) == (230, 0, 16, 0)
     part = module.project(1, 10, codes=4, units=2, seed=0)  # a real sample: an estimate with an error bar
     assert part["codes_sampled"] == 4 and part["chains_se"] > 0
+
+
+def test_projection_cache_is_written_whole_and_reused(tmp_path, monkeypatch):
+    """--cache: one write at the end (atomic, no partial file left), read back by the next seed."""
+    import importlib.util
+    import pickle
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_projection.py"
+    spec = importlib.util.spec_from_file_location("bench_projection", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    cache = tmp_path / "plans.pkl"
+    writes = []
+    real = Path.write_bytes
+    monkeypatch.setattr(Path, "write_bytes", lambda self, data: writes.append(self.name) or real(self, data))
+    first = module.project(1, 10, codes=10**3, units=10**6, seed=0, cache=str(cache))
+    assert writes == ["plans.pkl.partial"] and cache.exists() and not (tmp_path / "plans.pkl.partial").exists()
+    assert len(pickle.loads(cache.read_bytes())) == first["codes_sampled"]
+    again = module.project(1, 10, codes=10**3, units=10**6, seed=1, cache=str(cache))
+    assert writes == ["plans.pkl.partial"]  # every code read from the file: nothing new to write
+    assert again["chains_projected"] == first["chains_projected"] == 230

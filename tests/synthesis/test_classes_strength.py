@@ -170,7 +170,6 @@ def test_every_number_of_loops_of_a_chain_has_a_base(text):
     from synth.synthesis.classes import _bases
 
     chain = Chain.parse(text)
-    graph = nx.Graph((link, ("joint", k)) for k, joint in enumerate(chain.joints) for link in joint)
     for k in range(1, chain.loops + 1):
         expected = set()
         for size in range(3, chain.links + 1):
