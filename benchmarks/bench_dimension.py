@@ -113,6 +113,13 @@ PROBLEMS = {
         f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", recorded=ARC_RECORD,
         differs=FIXED_FRAME + "; ours keeps both pivots within 0.001 of the x axis between x = 0 and 50, but the "
                 "input pivot may slide along it and the crank's first angle is free (8 unknowns)"),
+    "five timed points on an arc, as stated": Problem(
+        ARC, ARC_TIMING, Constraints(crank=True, pivot_at={"0-1": (0.0, 0.0)}, frame_angle=0.0, timing="absolute",
+                                     order=("r2 <= r3 <= r4 <= r1",)),
+        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", recorded=ARC_RECORD,
+        differs="none: as the sources state it (input pivot at the origin, frame along +x, the crank's absolute "
+                "angles, r2 <= r3 <= r4 <= r1; with that order their r1 + r2 <= r3 + r4 is the crank turning fully), "
+                "but any assembly branch, where the sources take the + root"),
     "ten points of a closed path, untimed": Problem(
         [(20, 10), (17.66, 15.142), (11.736, 17.878), (5, 16.928), (0.60307, 12.736), (0, 6.9519),
          (3.5396, 2.5171), (10, 0.2679), (16.736, 2.1216), (20, 6.5798)], None, Constraints(),

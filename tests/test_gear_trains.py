@@ -15,6 +15,7 @@ import importlib
 import importlib.util
 import itertools
 import collections
+import csv
 import json
 import random
 import signal
@@ -155,6 +156,26 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
         assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
     result = run(tmp_path / "missing" / "log.jsonl", "--dof", 1, "--links", 7)
     assert result.returncode == 2 and "cannot write" in result.stderr
+    # rotation graphs: each method's union over every tree is the size's count (Tsai & Lin's 20 at F = 2,
+    # 7 links); a run that took trees from the log, or a sample, cannot give it
+    whole = run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation")
+    summary = json.loads(whole.stdout)["summary"]
+    assert whole.returncode == 0 and summary["engine_rotation_total"] == summary["second_rotation_total"] == 20
+    assert sum(json.loads(line).get("second_rotation", 0) for line in (tmp_path / "rotation.jsonl").read_text().splitlines()) > 20
+    resumed = json.loads(run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation").stdout)["summary"]
+    sampled = json.loads(run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--sample", 3, "--seed", 1).stdout)
+    assert resumed["second_rotation_total"] is None and sampled["summary"]["engine_rotation_total"] is None
+    # --record: the counts a whole run checked go to the records table, its other lines kept; a sample records nothing
+    table = tmp_path / "records.csv"
+    table.write_text((Path(__file__).resolve().parent.parent / "benchmarks" / "records.csv").read_text())
+    before = table.read_text().splitlines()
+    written = run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation", "--record", table)
+    assert written.returncode == 0, written.stderr
+    lines = {line["query"]: line for line in csv.DictReader(table.open())}
+    assert lines["gears --dof 2 --links 7"]["count"] == "50" and lines["gears --dof 2 --links 7 --graphs rotation"]["count"] == "20"
+    assert table.read_text().splitlines()[:len(before)] == before and len(lines) == len(before) + 1
+    refused = run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--record", table)
+    assert refused.returncode == 2 and "nothing to record" in refused.stderr and len(lines) == len(list(csv.DictReader(table.open())))
 
 
 def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
@@ -297,6 +318,27 @@ def test_rotation_form_is_an_isomorphism_invariant():
     for s, t in itertools.combinations(sample[:25], 2):
         same = gear_trains_fast.rotation_form(7, s.triples) == gear_trains_fast.rotation_form(7, t.triples)
         assert same == (s.rotation_certificate == t.rotation_certificate)
+
+
+@pytest.mark.parametrize("dof,links", [(1, 7), (2, 7)])
+def test_second_methods_rotation_key_classes_as_individualisation_refinement_does(dof, links):
+    """The second method's bliss key parts every train of the second method's own list (its trees,
+    its numbering) into the same classes as the pure-Python canonical form, and does not move when
+    the links are renumbered at random."""
+    rng = random.Random(7)
+    keys, forms, moved = {}, {}, 0
+    for axes in brute.link_axis_trees(links):
+        for triples in gear_trains_fast.tree_trains(dof, links, axes):
+            key = gear_trains_fast.rotation_key(links, triples)
+            keys.setdefault(key, set()).add(gear_trains_fast.rotation_form(links, triples))
+            forms.setdefault(gear_trains_fast.rotation_form(links, triples), set()).add(key)
+            perm = list(range(links))
+            rng.shuffle(perm)
+            renumbered = [(perm[a], perm[b], perm[t]) for a, b, t in rng.sample(triples, len(triples))]
+            assert gear_trains_fast.rotation_key(links, renumbered) == key
+            moved += 1
+    assert all(len(v) == 1 for v in keys.values()) and all(len(v) == 1 for v in forms.values())
+    assert len(keys) == brute.count_trains(dof, links)["rotation"] and moved == brute.count_trains(dof, links)["displacement"]
 
 
 # ------------------------------------------------------------------------ the train type

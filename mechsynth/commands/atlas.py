@@ -58,7 +58,11 @@ def add_commands(sub) -> None:
     p.add_argument("--index-curves", action="store_true",
                    help="build (or resume) the curve index the atlas search of 'mechsynth dimension --db' needs: "
                         "coupler curves of random crank poses of every planar 1-DOF mechanism, as Fourier descriptors")
-    p.add_argument("--samples", type=positive, help="with --index-curves: crank poses per mechanism (default 200)")
+    p.add_argument("--samples", type=positive, help="with --index-curves: crank poses per mechanism and drawing "
+                   "(default 200)")
+    p.add_argument("--drawings", type=positive, metavar="K", help="with --index-curves: drawings of each mechanism its poses are "
+                   "sampled around: the atlas's and K − 1 of its chain numbered at random (default 1; see "
+                   "docs/dimension.md)")
     p.add_argument("--links", metavar="A..B", help="with --index-curves: only the mechanisms with this many links")
     p.add_argument("--triads", action="store_true", help="with --index-curves: also the mechanisms moved by Newton's "
                    "method (triads and higher groups; about a second a sample)")
@@ -80,7 +84,8 @@ def _run_atlas(args) -> int:
     args.where = where_conditions(args.where)
     if args.index_curves:
         return _index_curves(args)
-    extra = [name for name, given in (("--samples", args.samples), ("--links", args.links), ("--triads", args.triads),
+    extra = [name for name, given in (("--samples", args.samples), ("--drawings", args.drawings),
+                                      ("--links", args.links), ("--triads", args.triads),
                                       ("--seed", args.seed is not None), ("--scheduler", args.scheduler)) if given]
     if extra:
         raise InvalidOption(f"{', '.join(extra)} go{'es' * (len(extra) == 1)} with --index-curves")
@@ -144,7 +149,7 @@ def _index_curves(args) -> int:
     from .dimension_atlas import links_range
 
     settings = IndexSettings(samples=args.samples or 200, seed=args.seed or 0, triads=args.triads,
-                             prismatic=_pairs(args.prismatic))
+                             prismatic=_pairs(args.prismatic), drawings=args.drawings or 1)
     result = index_curves(args.db, settings=settings, links=links_range(args.links), workers=args.workers,
                           scheduler=args.scheduler, progress=True)
     if result.units_total == 0:

@@ -60,6 +60,19 @@ def _box(text: str) -> tuple[float, float, float, float]:
     return x0, x1, y0, y1
 
 
+def _held(text: str) -> tuple[str, tuple[float, float]]:
+    """``J=x,y``: a joint held at a point."""
+    joint, _, at = text.rpartition("=")
+    parts = at.split(",")
+    try:
+        x, y = (float(v) for v in parts)
+    except ValueError:
+        x = y = math.nan
+    if not joint or len(parts) != 2 or not (math.isfinite(x) and math.isfinite(y)):
+        raise argparse.ArgumentTypeError(f"expected JOINT=x,y with finite x and y, e.g. 0-1=0,0, not {text!r}")
+    return joint, (x, y)
+
+
 def add_commands(sub) -> None:
     """Mount ``dimension`` on the ``mechsynth`` parser."""
     p = sub.add_parser("dimension", help="dimensional synthesis: the dimensions with which a mechanism traces a path, "
@@ -84,6 +97,17 @@ def add_commands(sub) -> None:
     p.add_argument("--max-ratio", type=finite, metavar="R", help="bound on the longest over the shortest "
                    "distance between two joints of one link")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
+    p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
+                   "joint J at the point (x, y), e.g. 0-1=0,0 (repeatable)")
+    p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
+                   "axis): from the input pivot to --frame-line")
+    p.add_argument("--frame-line", metavar="JOINT", help="the frame line's far joint (default: the frame's only "
+                   "other joint)")
+    p.add_argument("--timing", choices=("relative", "absolute"), default="relative", help="a timed path's inputs "
+                   "counted from the first point's (relative, default) or the crank's angles from the frame line "
+                   "(absolute; needs --frame-angle)")
+    p.add_argument("--order", action="append", metavar="ORDER", help="a link-length order, e.g. 'r2<=r3<=r4<=r1' "
+                   "(a four-bar's frame, input, coupler, output) or '1<=2<=3<=0' in link numbers (repeatable)")
     p.add_argument("--reach", type=finite, help="the search box: joints within this many target "
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
@@ -120,6 +144,13 @@ def _check(args) -> None:
         from .dimension_atlas import check
 
         check(args)
+        named = [flag for flag, value in (("--pivot-at", args.pivot_at), ("--frame-angle", args.frame_angle is not None),
+                                          ("--frame-line", args.frame_line), ("--timing absolute",
+                                                                              args.timing == "absolute"),
+                                          ("--order", args.order)) if value]
+        if named:
+            raise InvalidOption(f"{', '.join(named)} name joints, links or the frame of one mechanism: they do not go "
+                                "with --db (every topology of the atlas)")
     if args.scheduler is not None and args.workers is not None:
         raise InvalidOption("--workers and --scheduler contradict each other: the scheduler's workers do the work")
     args.workers = args.workers or 1
@@ -180,12 +211,12 @@ def _run(args) -> int:
 
         constraints = Constraints(crank=args.crank, rocker=args.rocker and tuple(math.radians(v) for v in args.rocker),
                                   min_transmission=math.radians(args.min_transmission or 0.0),
-                                  max_ratio=args.max_ratio, pivots=args.pivots, reach=args.reach)
+                                  max_ratio=args.max_ratio, pivots=args.pivots, reach=args.reach, **_placing(args))
         return run(args, target, constraints, save=_save, draw=_draw)
     mechanism = _mechanism(args)
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
-                              pivots=args.pivots, reach=args.reach)
+                              pivots=args.pivots, reach=args.reach, **_placing(args))
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
               bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s {postfix}",
               disable=not sys.stderr.isatty()) as bar:
@@ -208,6 +239,17 @@ def _run(args) -> int:
         _draw(result, args.out)
         print(f"picture -> {args.out}", file=sys.stderr)
     return 0
+
+
+def _placing(args) -> dict:
+    """The fixed pivots, the frame's direction, the timing and the link-length orders as Constraints' keywords."""
+    held = dict(args.pivot_at or ())
+    if len(held) != len(args.pivot_at or ()):
+        from synth import InvalidOption
+
+        raise InvalidOption("--pivot-at names one joint twice: hold each pivot at one point")
+    return {"pivot_at": held, "frame_angle": None if args.frame_angle is None else math.radians(args.frame_angle),
+            "frame_line": args.frame_line, "timing": args.timing, "order": tuple(args.order or ())}
 
 
 def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:

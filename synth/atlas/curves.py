@@ -2,10 +2,12 @@
 to normalised Fourier descriptors, stored in the atlas's SQLite file for the atlas-wide search.
 
 A *unit* of the index is one mechanism of the atlas with its input (a chain, its frame, its input
-link up to symmetry).  Its linkage is posed by its drawing (:func:`synth.motion_draw.linkage_from_layout`);
-a seeded random generator then moves every joint by 5 … 35 % of the mechanism's size, and a pose is
-kept only when its input turns fully (a crank: the coupler curves are closed and periodic in the
-input).  On every moving link not jointed to the frame (a coupler, a *tracer link*) a tracer point is
+link up to symmetry).  Its linkage is posed by its drawing (:func:`synth.motion_draw.linkage_from_layout`)
+and, on request, by the drawings of ``drawings − 1`` more labellings of its chain picked at random (the
+drawing of a chain depends on how its links are numbered, and a mechanism a designer dimensions near
+one drawing traces curves the poses near another do not reach); a seeded random generator then moves
+every joint by 5 … 35 % of the mechanism's size around each drawing, and a pose is kept only when its
+input turns fully (a crank: the coupler curves are closed and periodic in the input).  On every moving link not jointed to the frame (a coupler, a *tracer link*) a tracer point is
 put at random near the link's joints, and its curve is swept at :data:`STEPS` inputs over one turn.
 Each curve is stored as two sets of Fourier coefficients c_n, n = −H … H (:data:`HARMONICS`):
 
@@ -18,7 +20,7 @@ to each sample (rotation, scale, translation, start point or input offset, direc
 and turn the sample into a start linkage in the target's frame (:mod:`synth.atlas.search`).
 A unit commits in one transaction with its ``done`` row, so an interrupted build resumes where it
 stopped; the index's settings (samples, harmonics, steps, seed) are kept in ``meta`` and a build
-with other settings is refused.  Mechanisms moved by Newton's method (triads and higher groups,
+with other settings is refused (an index of one drawing per mechanism keeps the settings it always had).  Mechanisms moved by Newton's method (triads and higher groups,
 about a second a sample) are left out unless asked for; chains with prismatic pairs (slider-cranks,
 six-bars with sliders: the atlas's variants of a grid with ``prismatic``) are indexed on request, their
 sliding lines turned at random with the joints and stored with each sample; geared chains are not indexed.
@@ -90,7 +92,7 @@ class IndexSettings:
     Parameters
     ----------
     samples : int
-        Poses kept per mechanism (each gives one curve per tracer link).
+        Poses kept per mechanism and drawing (each gives one curve per tracer link).
     seed : int
         Seeds every mechanism's random poses (with the mechanism's identity).
     triads : bool
@@ -99,18 +101,29 @@ class IndexSettings:
         Index the atlas's chains with this many prismatic pairs (default (0, 0): revolute chains only;
         (0, 2): slider-cranks and six-bars with one or two sliders too).  Only mechanisms whose input
         is a revolute joint are sampled (a crank: a slide's curves are not closed).
+    drawings : int
+        Drawings each mechanism's poses are sampled around, ``samples`` poses each: the atlas's
+        drawing of the chain and ``drawings − 1`` drawings of it numbered at random (seeded).
+
+    Examples
+    --------
+    >>> IndexSettings(samples=20, drawings=10).to_meta()
+    '{"drawings": 10, "harmonics": 12, "samples": 20, "seed": 0, "steps": 256, "triads": false}'
     """
 
     samples: int = 200
     seed: int = 0
     triads: bool = False
     prismatic: tuple[int, int] = (0, 0)
+    drawings: int = 1
 
     def to_meta(self) -> str:
         meta = {"samples": self.samples, "seed": self.seed, "triads": self.triads, "harmonics": HARMONICS,
                 "steps": STEPS}
         if tuple(self.prismatic) != (0, 0):  # (an index of revolute chains keeps the settings it always had)
             meta["prismatic"] = list(self.prismatic)
+        if self.drawings != 1:  # (nor does an index of one drawing per mechanism)
+            meta["drawings"] = self.drawings
         return json.dumps(meta, sort_keys=True)
 
 
@@ -247,9 +260,9 @@ def _unit_seed(unit: CurveUnit, certificate: str) -> np.random.Generator:
 
 
 def sample_unit(unit: CurveUnit) -> _UnitRows:
-    """Sample one mechanism: ``settings.samples`` crank poses, each with a tracer point on every
-    tracer link, their curves and descriptors (the work of one unit; runs in a worker)."""
-    from ..motion import Linkage, sweep
+    """Sample one mechanism: ``settings.samples`` crank poses around each of its ``settings.drawings``
+    drawings (:func:`drawings_of`), each pose with a tracer point on every tracer link, their curves and
+    descriptors (the work of one unit; runs in a worker)."""
     from ..motion_draw import linkage_from_layout
 
     start = time.process_time()
@@ -274,10 +287,79 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
     if not unit.settings.triads and not _closed_form(base):
         return _UnitRows(unit, joint, "skipped", _NEWTON_NOTE, seconds=time.process_time() - start)
     rng = _unit_seed(unit, chain.certificate)
-    size = base.scale
     out = _UnitRows(unit, joint, "done", None)
     groups = [[k for k, j in enumerate(chain.joints) if link in j] for link in links]
-    while len(out.rows) < unit.settings.samples * len(links) and out.tries < 40 * unit.settings.samples:
+    # (the labellings drawn from a generator of their own: the atlas's drawing keeps its poses whatever the count)
+    for drawn in drawings_of(base, unit.settings.drawings, rng.spawn(1)[0]):
+        _sample_drawing(drawn, links, groups, unit.settings.samples, rng, out)
+    out.seconds = time.process_time() - start
+    if not out.rows:
+        out.status, out.note = "skipped", (f"none of {out.tries} random poses near its drawing"
+                                            f"{'s' * (unit.settings.drawings > 1)} turns its input fully")
+    return out
+
+
+def drawings_of(base, count: int, rng: np.random.Generator) -> list:
+    """The linkage ``base`` (posed by the atlas's drawing of its mechanism) and up to ``count − 1``
+    linkages of the same mechanism posed by the drawings of its chain with the links numbered at
+    random: the centres the index samples poses around.
+
+    The drawing of a chain (:func:`synth.draw.layout`) depends on how its links are numbered (which
+    loop is drawn outside, how the embedding is shaped), so the same mechanism numbered otherwise is
+    drawn with other proportions; each is posed as :func:`synth.motion_draw.linkage_from_layout`
+    poses the atlas's (a moving pose near the drawing) and keeps ``base``'s joint numbers and input.
+    A drawing is kept when its pose is a crank (the input of ``base`` turns fully: poses moved at
+    random around a drawing that locks or rocks seldom turn) and is not one already kept (the same
+    distances between its joints, to 1e-6 of its size: labellings related by a symmetry draw the same
+    pose, turned or mirrored).  At most ``8·(count − 1)`` labellings are tried.
+
+    Examples
+    --------
+    >>> from synth.motion_draw import linkage_from_layout
+    >>> watt = Mechanism(Chain.parse("0-1 0-2 1-3 2-3 2-4 3-5 4-5"), 0, 1)
+    >>> found = drawings_of(linkage_from_layout(watt), 3, np.random.default_rng(0))
+    >>> len(found), all(d.inputs == found[0].inputs and d.points.shape == (7, 2) for d in found)
+    (3, True)
+    """
+    from ..motion import Linkage, pose_branch
+    from ..motion_draw import linkage_from_layout
+
+    mechanism = base.mechanism
+    found = [base]
+
+    def shape(linkage) -> bytes:  # the joints' mutual distances: the pose up to a turn, a move or a mirror
+        gaps = np.hypot(*(linkage.points[:, None] - linkage.points[None]).transpose(2, 0, 1))
+        return np.round(gaps / base.scale, 6).tobytes()
+
+    seen = {shape(base)}
+    for _ in range(8 * (count - 1)):
+        if len(found) == count:
+            break
+        order = [int(x) for x in rng.permutation(mechanism.chain.links)]  # link i is numbered order[i]
+        renamed = Mechanism(mechanism.chain.relabel(order), order[mechanism.frame],
+                            None if mechanism.input_link is None else order[mechanism.input_link])
+        try:
+            drawn = linkage_from_layout(renamed)  # (relabelling keeps the joints' order: its points are base's)
+            posed = Linkage(mechanism, base.inputs, drawn.points * (base.scale / drawn.scale), drawn.slides)
+            branch = pose_branch(posed)
+        except SynthesisError:
+            continue
+        if math.isinf(branch.low) and math.isinf(branch.high) and shape(posed) not in seen:
+            seen.add(shape(posed))
+            found.append(posed)
+    return found
+
+
+def _sample_drawing(base, links: list, groups: list, samples: int, rng: np.random.Generator, out: _UnitRows) -> None:
+    """``samples`` crank poses of ``base`` with its joints moved at random, the curves of a tracer point
+    put at random on each of ``links`` (their joints ``groups``), appended to ``out.rows`` (at most 40
+    tries a pose kept)."""
+    from ..motion import Linkage, sweep
+
+    size = base.scale
+    kept = tries = 0
+    while kept < samples and tries < 40 * samples:
+        tries += 1
         out.tries += 1
         spread = rng.uniform(0.05, 0.35) * size
         points = base.points + rng.normal(size=base.points.shape) * spread
@@ -304,6 +386,7 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
                 break
             curves.append((link, z))
         else:
+            kept += 1
             for link, z in curves:
                 timed = periodic_harmonics(z, HARMONICS) * np.exp(-1j * np.arange(-HARMONICS, HARMONICS + 1) * phi[0])
                 untimed = periodic_harmonics(_by_arc_length(z), HARMONICS)
@@ -311,10 +394,6 @@ def sample_unit(unit: CurveUnit) -> _UnitRows:
                 out.rows.append((out.tries, link, json.dumps(np.round(points, 12).tolist()),
                                  json.dumps([round(float(at[0]), 12), round(float(at[1]), 12)]),
                                  _blob(timed), _blob(untimed), _slides_text(linkage)))
-    out.seconds = time.process_time() - start
-    if not out.rows:
-        out.status, out.note = "skipped", f"none of {out.tries} random poses near its drawing turns its input fully"
-    return out
 
 
 def _turned(u, angle: float) -> tuple[float, float]:
@@ -466,6 +545,8 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
         raise InvalidOption(f"workers must be a whole number ≥ 1, not {workers!r}")
     if isinstance(settings.samples, bool) or not isinstance(settings.samples, int) or not 1 <= settings.samples <= 100_000:
         raise InvalidOption(f"samples must be a whole number 1 … 100 000 per mechanism, not {settings.samples!r}")
+    if isinstance(settings.drawings, bool) or not isinstance(settings.drawings, int) or not 1 <= settings.drawings <= 1000:
+        raise InvalidOption(f"drawings must be a whole number 1 … 1000 per mechanism, not {settings.drawings!r}")
     p_lo, p_hi = settings.prismatic
     if not (isinstance(p_lo, int) and isinstance(p_hi, int) and 0 <= p_lo <= p_hi):
         raise InvalidOption(f"prismatic must be a range of whole numbers of prismatic pairs, low to high, not "
@@ -535,7 +616,9 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
 
 def _said(settings: dict) -> str:
     lo, hi = settings.get("prismatic", (0, 0))
-    return (f"{settings['samples']} samples per mechanism, seed {settings['seed']}"
+    drawings = settings.get("drawings", 1)
+    return (f"{settings['samples']} samples per mechanism" + (f" and drawing, {drawings} drawings" if drawings > 1 else "")
+            + f", seed {settings['seed']}"
             + (", triads" if settings.get("triads") else ", without triads")
             + (f", {lo}..{hi} prismatic pairs" if (lo, hi) != (0, 0) else ""))
 

@@ -304,10 +304,10 @@ def _candidate(t: np.ndarray, u: np.ndarray, variant: tuple[bool, bool], shift: 
 
 
 def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0, *, samples: int = 100,
-                   count: int | None = None) -> list:
+                   count: int | None = None, drawings: int = 1) -> list:
     """Start linkages for a path target from the mechanism's own curves sampled at random as an atlas
-    index samples them (``samples`` crank poses near its drawing, seeded): the ``count`` (default all)
-    curves of the tracer link nearest the target's shape, each turned, scaled and posed on the target
+    index samples them (``samples`` crank poses near each of its ``drawings`` drawings, seeded): the
+    ``count`` (default all) curves of the tracer link nearest the target's shape, each turned, scaled and posed on the target
     as the atlas search poses its candidates (:func:`start_linkage`), nearest first.  Empty where the
     index could not serve the target (not a path, an open path, a timing with a gap, a mechanism whose
     input does not turn fully, a tracer link that traces a circle).  The ``starts`` of
@@ -332,7 +332,7 @@ def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0
         return []
     unit = CurveUnit(0, json.dumps(mechanism.chain.to_dict()), mechanism.frame,
                      -1 if mechanism.input_link is None else mechanism.input_link,
-                     IndexSettings(samples=samples, seed=seed))
+                     IndexSettings(samples=samples, seed=seed, drawings=drawings))
     sampled = sample_unit(unit)
     rows = [row for row in sampled.rows if row[1] == tracer_link]
     if not rows:

@@ -13,16 +13,17 @@ meets a dead position between the target points is penalised (a circuit defect).
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import BadTarget, DimensionError
+from ..errors import BadTarget, DimensionError, option
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..motion import Linkage, link_poses
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
-__all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of", "placement"]
+__all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of", "placement", "read_order"]
 
 #: the widest step (rad, or target sizes for a slide) between the inputs where the dyads must close
 SPAN_STEP = 0.02
@@ -36,6 +37,15 @@ ROUNDING = 1e-12
 MARGIN = 1e-4
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
+#: a link-length order's violation row in the search is (log(shorter / longer) + MARGIN)⁺, as the other
+#: constraints'; the answer is then polished with the orders as inequality constraints, held this far
+#: inside their bounds (``_Search.stiffen``): met to 1e-9 at a cost of 1e-10 of the lengths, where MARGIN
+#: alone cost 0.6 % of CE2's error
+ORDER_MARGIN = 1e-10
+#: the least frame length along a fixed frame direction (target sizes)
+SHORTEST_FRAME = 1e-3
+#: a designer's constraint is met within this (rad, log-ratio, target sizes)
+MET = 1e-9
 
 
 @dataclass(frozen=True)
@@ -60,11 +70,31 @@ class Constraints:
     reach : float, optional
         The search box: every joint within ``reach`` target sizes of the target's centre (default 4;
         for a function, frame lengths from the input pivot, default 2).
+    pivot_at : dict joint -> (x, y), optional
+        Revolute joints of the frame held at given points (a joint named by its links, ``"0-1"``, or by
+        its index).  They are no unknowns: the search places the mechanism about them.
+    frame_angle : float, optional
+        The frame line's direction (rad, from the x axis): the line from the input pivot to
+        ``frame_line``.  Its far end then moves along it only.
+    frame_line : joint, optional
+        The revolute joint of the frame at the frame line's far end (default: the frame's only other
+        joint; named when the frame has more).
+    timing : "relative" or "absolute"
+        A timed path's inputs counted from the first point's (relative: the crank may start anywhere)
+        or the input's angles from the frame line (absolute: needs ``frame_angle``), as a function's are.
+    order : tuple of str
+        Link-length orders, each written ``"1 <= 2 <= 3 <= 0"`` (link numbers; ``>=`` for a
+        descending one) or, for a four-bar, in its classical names ``"r2 <= r3 <= r4 <= r1"`` (r1 the
+        frame, r2 the input link, r3 the coupler, r4 the output link).  Each named link is a binary
+        link; its length is the distance between its two pins.
 
     Examples
     --------
     >>> Constraints(crank=True, min_transmission=math.radians(30)).crank
     True
+    >>> c = Constraints(pivot_at={"0-1": (0, 0)}, frame_angle=0.0, timing="absolute", order=("r2<=r3<=r4<=r1",))
+    >>> c.pivot_at, c.order
+    ((('0-1', (0.0, 0.0)),), ('r2<=r3<=r4<=r1',))
     """
 
     crank: bool = False
@@ -73,6 +103,11 @@ class Constraints:
     max_ratio: float | None = None
     pivots: tuple[float, float, float, float] | None = None
     reach: float | None = None
+    pivot_at: tuple = ()
+    frame_angle: float | None = None
+    frame_line: int | str | None = None
+    timing: str = "relative"
+    order: tuple[str, ...] = ()
 
     def __post_init__(self):
         if self.crank and self.rocker is not None:
@@ -94,6 +129,44 @@ class Constraints:
             object.__setattr__(self, "pivots", (x0, x1, y0, y1))
         if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
             raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
+        self._check_placing()
+        if isinstance(self.order, str):
+            object.__setattr__(self, "order", (self.order,))
+        object.__setattr__(self, "order", tuple(self.order))
+        for text in self.order:
+            _order_terms(text)
+
+    def _check_placing(self) -> None:
+        """The fixed pivots, the frame's direction and the timing: each well formed, none contradicting
+        another or the pivots' box."""
+        given = self.pivot_at.items() if isinstance(self.pivot_at, dict) else self.pivot_at
+        held = []
+        for joint, at in given:
+            try:
+                x, y = (float(v) for v in at)
+            except (TypeError, ValueError):
+                raise DimensionError(f"a fixed pivot is a point (x, y), not {at!r} (joint {joint})") from None
+            if not (math.isfinite(x) and math.isfinite(y)):
+                raise DimensionError(f"the fixed pivot of joint {joint} must be at finite coordinates, not {at!r}")
+            if self.pivots is not None:
+                x0, x1, y0, y1 = self.pivots
+                if not (x0 <= x <= x1 and y0 <= y <= y1):
+                    raise DimensionError(f"the fixed pivot of joint {joint} at ({x:g}, {y:g}) lies outside the "
+                                         f"pivots' region x {x0:g}..{x1:g}, y {y0:g}..{y1:g}")
+            held.append((joint, (x, y)))
+        object.__setattr__(self, "pivot_at", tuple(held))
+        if self.frame_angle is not None:
+            if not math.isfinite(self.frame_angle):
+                raise DimensionError(f"the frame's direction must be a finite angle, not {self.frame_angle}")
+            object.__setattr__(self, "frame_angle", float(self.frame_angle))
+        elif self.frame_line is not None:
+            raise DimensionError(f"{option('frame_line', 'JOINT')} names the far end of a frame line whose direction is "
+                                 f"fixed: give {option('frame_angle', 'ANGLE')} too")
+        if self.timing not in ("relative", "absolute"):
+            raise DimensionError(f"the timing is 'relative' or 'absolute', not {self.timing!r}")
+        if self.timing == "absolute" and self.frame_angle is None:
+            raise DimensionError(f"{option('timing', 'absolute')} counts the input's angles from the frame line: fix "
+                                 f"its direction with {option('frame_angle', 'ANGLE')}")
 
 
 def _wrap(a):
@@ -140,6 +213,9 @@ class Problem:
                 raise DimensionError("function generation relates the angles of two links pivoted on the frame: the "
                                      "input and the output joints must be revolute")
             self.tracer_link = None
+            if constraints.pivot_at or constraints.timing == "absolute":
+                raise DimensionError("a function's frame is fixed by its gauge (the input pivot at (0, 0), the output's "
+                                     "at (1, 0)) and its angles are absolute: fixed pivots and a timing do not apply")
             self.centre, self.scale = np.zeros(2), 1.0
             self.fixed = {input_joint: np.zeros(2), self.output_joint: np.array([1.0, 0.0])}  # the frame line: x axis
         else:
@@ -147,18 +223,30 @@ class Problem:
             pts = target.points
             self.centre = (pts.min(axis=0) + pts.max(axis=0)) / 2
             self.scale = target.size
-            self.fixed = {}
+            self.fixed = self._fixed_pivots()
         self.timed = isinstance(target, FunctionTarget) or (isinstance(target, PathTarget) and target.inputs is not None)
         if self.timed and self.revolute_input:
             values = target.inputs
             if np.ptp(values) >= 2 * math.pi:
                 raise BadTarget("the timing spans a full turn of the input or more: the points would repeat")
+        self.along = self._frame_line()
+        self.absolute = constraints.timing == "absolute"
+        if self.absolute and not (self.timed and self.revolute_input):
+            raise DimensionError(f"{option('timing', 'absolute')} gives a crank's angles from the frame line: it needs a "
+                                 "timed path (an input column) and a revolute input")
+        self.order = tuple(read_order(text, chain, self.frame, self.input_link) for text in constraints.order)
+        self.order_penalty = (1.0, MARGIN)  # (weight, margin) of the order's violation rows: STIFF_ORDER at the end
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
         reach = self.reach = constraints.reach or (2.0 if isinstance(target, FunctionTarget) else 4.0)
         for k in range(len(chain.joints)):
             if k in self.fixed:
+                continue
+            if self.along is not None and k == self.along[0]:  # the frame line's free end: its distance along it
+                self.layout.append(("along", k))
+                lower.append(SHORTEST_FRAME)
+                upper.append(2 * reach)
                 continue
             box = self._pivot_box(k)
             self.layout.append(("joint", k))
@@ -227,13 +315,60 @@ class Problem:
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
         count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1
-                    for kind, k in self.layout if kind in ("joint", "slide"))
+                    for kind, k in self.layout if kind in ("joint", "slide", "along"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:
             count += self.points - 1
-        if isinstance(self.target, FunctionTarget):
+        if isinstance(self.target, FunctionTarget) or self.absolute:
             count -= 1  # the pose may be anywhere on its branch: only the dimensions count
         return count
+
+    def _fixed_pivots(self) -> dict[int, np.ndarray]:
+        """The designer's pivots held at points: revolute joints of the frame, at distinct points."""
+        chain, fixed = self.chain, {}
+        for name, at in self.constraints.pivot_at:
+            k = chain.joint_index(name, "a fixed pivot")
+            if k not in self.frame_joints or self.kinds[k] != REVOLUTE:
+                raise DimensionError(f"a fixed pivot is a revolute joint of the frame (link {self.frame}); joint "
+                                     f"{name} is not")
+            if k in fixed:
+                raise DimensionError(f"joint {name} is held at two points: give each fixed pivot once")
+            fixed[k] = np.array(at, dtype=float)
+        spots = list(fixed.values())
+        if any(np.array_equal(a, b) for i, a in enumerate(spots) for b in spots[i + 1:]):
+            raise DimensionError("two fixed pivots are held at one point: a link's pins must be apart")
+        return fixed
+
+    def _frame_line(self) -> tuple[int, int, np.ndarray] | None:
+        """The frame line of a fixed direction: (its free end, the end it is measured from, the unit
+        vector from that end), the free end then an unknown distance along it; None without one."""
+        c = self.constraints
+        if c.frame_angle is None:
+            return None
+        if isinstance(self.target, FunctionTarget):
+            raise DimensionError("a function's frame is fixed by its gauge (the input pivot at (0, 0), the output's at "
+                                 f"(1, 0)): {option('frame_angle', 'ANGLE')} does not apply")
+        chain, k_in = self.chain, self.input_joint
+        others = [k for k in self.frame_joints if k != k_in]
+        if c.frame_line is not None:
+            far = chain.joint_index(c.frame_line, "the frame line")
+            if far not in others:
+                raise DimensionError(f"the frame line runs from the input pivot to another joint of the frame (link "
+                                     f"{self.frame}); joint {c.frame_line} is not one")
+        elif len(others) == 1:
+            far = others[0]
+        else:
+            from ..motion import joint_name
+
+            raise DimensionError(f"the frame has joints {', '.join(joint_name(chain, k) for k in others)} besides the "
+                                 f"input: name the frame line's far end ({option('frame_line', 'JOINT')})")
+        if self.kinds[far] != REVOLUTE or self.kinds[k_in] != REVOLUTE:
+            raise DimensionError("a frame line of fixed direction runs between two revolute joints of the frame")
+        if k_in in self.fixed and far in self.fixed:
+            raise DimensionError("the frame line's two pivots are both held at points: its direction is theirs, "
+                                 f"{option('frame_angle', 'ANGLE')} contradicts or repeats it")
+        u = np.array([math.cos(c.frame_angle), math.sin(c.frame_angle)])
+        return (k_in, far, -u) if far in self.fixed else (far, k_in, u)
 
     # ------------------------------------------------------------ unknowns → linkage
     def linkage(self, x: np.ndarray) -> Linkage:
@@ -256,10 +391,16 @@ class Problem:
             elif kind == "slide":
                 slides[k] = (math.cos(x[i]), math.sin(x[i]))
                 i += 1
+            elif kind == "along":
+                distance = x[i]
+                i += 1
             else:  # (the tracer's two are the layout's last)
                 tracer = self.centre + self.scale * x[i:i + 2]
         for k, p in self.fixed.items():
             points[k] = p
+        if self.along is not None:
+            end, start, u = self.along
+            points[end] = points[start] + self.scale * distance * u
         tracers = {} if tracer is None else {"P": (self.tracer_link, (float(tracer[0]), float(tracer[1])))}
         return Linkage(self.mechanism, (self.input_joint,), points, slides, {}, tracers,
                        driven=None if self.driven is None else (self.driven,))
@@ -273,6 +414,9 @@ class Problem:
             elif kind == "slide":
                 u = linkage.slides[k]
                 x.append(math.atan2(u[1], u[0]) % math.pi)
+            elif kind == "along":
+                end, start, u = self.along
+                x.append(float((linkage.points[end] - linkage.points[start]) @ u) / self.scale)
             else:
                 at = linkage.tracers.get("P", next(iter(linkage.tracers.values()), None))
                 if at is None or at[0] != self.tracer_link:
@@ -288,7 +432,19 @@ class Problem:
         target = self.target
         if isinstance(target, FunctionTarget):
             return _wrap(target.inputs - linkage.pose_inputs[0])
+        if self.absolute:  # the pose anywhere on its branch: the first point's turn from it, then the timing's
+            return _wrap(self.absolute_start - linkage.pose_inputs[0]) + target.inputs - target.inputs[0]
         return target.inputs - target.inputs[0]
+
+    @property
+    def absolute_start(self) -> float | None:
+        """The input's angle from the x axis at the first target point, where it is prescribed (a
+        function's, an absolute timing's: the frame line's direction plus the first angle)."""
+        if isinstance(self.target, FunctionTarget):
+            return float(self.target.inputs[0])
+        if self.absolute:
+            return self.constraints.frame_angle + float(self.target.inputs[0])
+        return None
 
     def poses(self, linkage: Linkage, offsets: np.ndarray):
         """Every link's rotation θ (S, n) and translation t (S, n, 2) from the pose, g (S,) the least
@@ -330,9 +486,21 @@ class Problem:
         origin).
         """
         turn, moves = np.exp(1j * theta), (t[:, 0] + 1j * t[:, 1]) / self.scale
-        q, lam, shift = placement(turn, moves, (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale)
+        q, lam, shift = self.place(turn, moves, (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale)
         z = turn * q + lam * moves + shift
         return complex(q + shift), complex(lam), complex(shift), np.column_stack((z.real, z.imag)) * self.scale
+
+    def place(self, turn: np.ndarray, moves: np.ndarray, w: np.ndarray) -> tuple[complex, complex, complex]:
+        """:func:`placement` as the designer's constraints allow it: about the fixed pivot (two or more
+        fixed: no similarity, the tracer point alone fitted), without a turn where the frame's
+        direction is fixed.  Positions are complex, over the target's size."""
+        if len(self.fixed) > 1:
+            return placement(turn, moves, w, similar=False)
+        pivot = None
+        if self.fixed:
+            (at,) = self.fixed.values()
+            pivot = complex(at[0], at[1]) / self.scale
+        return placement(turn, moves, w, pivot=pivot, turns=self.along is None)
 
     def output_reference(self, linkage: Linkage) -> int:
         """The joint of the output link whose direction from its pivot is the output angle."""
@@ -384,26 +552,92 @@ class Problem:
             values = linkage.pose_inputs[0] + np.array([min(0.0, offsets.min()), max(0.0, offsets.max())])
             over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
             out.append(over / unit)
+        if self.order:
+            weight, margin = self.order_penalty
+            out += list(weight * np.maximum(self.order_gaps(linkage) + margin, 0.0))  # a row per pair
         return np.array(out)
 
+    @property
+    def order_pairs(self) -> int:
+        """The neighbouring pairs of the link-length orders: a violation row each."""
+        return sum(len(links) - 1 for links in self.order)
 
-def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray) -> tuple[complex, complex, complex]:
+    def order_gaps(self, linkage: Linkage) -> np.ndarray:
+        """log(shorter / longer) of every pair of neighbours in the designer's link-length orders: ≤ 0
+        where the order holds."""
+        lengths = linkage.lengths()
+        gaps = [math.log(max(lengths[a], 1e-300) / max(lengths[b], 1e-300))
+                for links in self.order for a, b in zip(links, links[1:])]
+        return np.array(gaps)
+
+    def placing(self, linkage: Linkage) -> dict:
+        """The designer's fixed pivots, frame direction, absolute timing and link-length orders, each
+        re-checked on a linkage posed at the first target point: {name: {"value", "limit", "met"}}
+        (met to :data:`MET` target sizes, rad or relative length)."""
+        from ..motion import joint_name
+
+        out = {}
+        if self.fixed and self.tracer_link is not None:
+            gap = max(float(np.hypot(*(linkage.points[k] - at))) for k, at in self.fixed.items())
+            out["pivot_at"] = {"value": {joint_name(self.chain, k): linkage.points[k].tolist() for k in self.fixed},
+                               "limit": {joint_name(self.chain, k): at.tolist() for k, at in self.fixed.items()},
+                               "met": gap <= MET * self.scale}
+        if self.along is not None:
+            end, start, u = self.along
+            d = linkage.points[end] - linkage.points[start]
+            turn = float(_wrap(math.atan2(d[1], d[0]) - math.atan2(u[1], u[0])))
+            angle = self.constraints.frame_angle
+            out["frame_angle"] = {"value": math.degrees(angle + turn), "limit": math.degrees(angle),
+                                  "met": abs(turn) <= MET}
+        if self.absolute:
+            first = float(_wrap(linkage.pose_inputs[0] - self.absolute_start))
+            out["timing"] = {"value": f"absolute: the input at {math.degrees(self.absolute_start + first):.9g}° from the "
+                                      f"x axis at the first point", "limit": None, "met": abs(first) <= MET}
+        if self.order:
+            lengths = linkage.lengths()
+            gaps = self.order_gaps(linkage)
+            out["link_order"] = {"value": [[lengths[k] for k in links] for links in self.order],
+                                 "limit": list(self.constraints.order), "met": bool((gaps <= MET).all())}
+        return out
+
+
+def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: complex | None = None,
+              turns: bool = True, similar: bool = True) -> tuple[complex, complex, complex]:
     """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
     link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
     the link's rotation e^{iθᵢ} and movesᵢ its translation at each point).  Where λ is not
     determined (a link turning about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is
     fitted.
 
+    A similarity that keeps a ``pivot`` has s = pivot·(1 − λ); one that keeps the directions
+    (``turns=False``) has λ real and positive; ``similar=False`` keeps the mechanism where it is.
+
     >>> theta = np.array([0.0, 1.0, 2.0]); moves = np.array([0, 1 + 1j, 2])
     >>> q, lam, s = placement(np.exp(1j * theta), moves, np.exp(1j * theta) * (1 - 2j) + 3j * moves + 0.5)
     >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 3j, 0.5))]
     [0.0, 0.0, 0.0]
+    >>> w = np.exp(1j * theta) * (1 - 2j) + 2 * (moves - 1j) + 1j          # scaled by 2 about the pivot i
+    >>> q, lam, s = placement(np.exp(1j * theta), moves, w, pivot=1j, turns=False)
+    >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 2, -1j))]
+    [0.0, 0.0, 0.0]
     """
-    a = np.column_stack((turn, moves, np.ones(len(moves))))
-    (q, lam, shift), *_ = np.linalg.lstsq(a, w, rcond=None)
-    if not abs(lam) > 1e-6:
-        return complex(np.mean((w - moves) / turn)), 1.0 + 0j, 0j
-    return complex(q), complex(lam), complex(shift)
+    if similar:
+        origin = 0j if pivot is None else pivot
+        columns = [turn, moves - origin] + ([np.ones(len(moves))] if pivot is None else [])
+        a, b = np.column_stack(columns), w - origin
+        if turns:
+            coef, *_ = np.linalg.lstsq(a, b, rcond=None)
+        else:  # λ real: the real and imaginary parts of every column but λ's are unknowns of their own
+            real = np.vstack((np.column_stack([f(c) for c in columns for f in (np.real, lambda z: -z.imag)]),
+                              np.column_stack([f(c) for c in columns for f in (np.imag, np.real)])))
+            real = np.delete(real, 3, axis=1)  # λ's imaginary part
+            x, *_ = np.linalg.lstsq(real, np.concatenate((b.real, b.imag)), rcond=None)
+            coef = [x[0] + 1j * x[1], x[2]] + ([x[3] + 1j * x[4]] if pivot is None else [])
+        q, lam = complex(coef[0]), complex(coef[1])
+        shift = complex(coef[2]) if pivot is None else origin * (1 - lam)
+        if abs(lam) > 1e-6 and (turns or lam.real > 1e-6):
+            return q, lam, shift
+    return complex(np.mean((w - moves) / turn)), 1.0 + 0j, 0j
 
 
 def point_carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -449,3 +683,59 @@ def input_joint_of(mechanism, linkage: Linkage | None) -> tuple[int, int | None]
     revolute = [k for k in candidates if kinds[k] == REVOLUTE]
     return (revolute or candidates)[0], None
 
+
+
+_ORDER_SIGN = re.compile(r"\s*(<=|>=|≤|≥)\s*")
+_ORDER_TERM = re.compile(r"r[1-4]|\d+")
+
+
+def _order_terms(text: str) -> tuple[list[str], bool]:
+    """The terms of a written link-length order and whether it ascends (``<=``) — one sign throughout."""
+    if not isinstance(text, str):
+        raise DimensionError(f"a link-length order is written as text, e.g. 'r2 <= r3 <= r4 <= r1', not {text!r}")
+    parts = _ORDER_SIGN.split(text.strip())
+    terms, signs = parts[0::2], set(parts[1::2])
+    if len(terms) < 2 or not all(_ORDER_TERM.fullmatch(t) for t in terms):
+        raise DimensionError(f"a link-length order is link numbers (or a four-bar's r1 … r4) joined by <= or >=, "
+                             f"e.g. 'r2 <= r3 <= r4 <= r1', not {text!r}")
+    if len(signs) > 1:
+        raise DimensionError(f"a link-length order goes one way: {text!r} mixes <= and >=")
+    return terms, signs <= {"<=", "≤"}
+
+
+def read_order(text: str, chain, frame: int, input_link: int) -> tuple[int, ...]:
+    """The links of a written link-length order, shortest first.
+
+    Terms are link numbers, or a four-bar's classical names: r1 the frame, r2 the input link, r3 the
+    coupler, r4 the output link (the other one pivoted on the frame).  Each link must be binary (two
+    revolute joints: its length is their distance) and named once.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain
+    >>> four_bar = Chain.parse("0-1 1-2 2-3 3-0")
+    >>> read_order("r2 <= r3 <= r4 <= r1", four_bar, 0, 1), read_order("0 >= 2", four_bar, 0, 1)
+    ((1, 2, 3, 0), (2, 0))
+    """
+    terms, ascending = _order_terms(text)
+    names = {}
+    if any(t.startswith("r") for t in terms):
+        if chain.links != 4 or len(chain.joints) != 4 or any(k != REVOLUTE for k in chain.kinds):
+            raise DimensionError(f"r1 … r4 name the links of a four-bar (frame, input link, coupler, output link); "
+                                 f"this mechanism has {chain.links} links: name its links by number in {text!r}")
+        pivoted = {x for j in chain.joints if frame in j for x in j} - {frame}
+        output = next(iter(pivoted - {input_link}))
+        coupler = next(iter(set(range(4)) - {frame, input_link, output}))
+        names = {"r1": frame, "r2": input_link, "r3": coupler, "r4": output}
+    links = [names[t] if t in names else int(t) for t in terms]
+    for term, link in zip(terms, links):
+        if link >= chain.links:
+            raise DimensionError(f"the link-length order {text!r} names link {term}, but the mechanism has links "
+                                 f"0 … {chain.links - 1}")
+        pins = [k for k, j in enumerate(chain.joints) if link in j and chain.kinds[k] == REVOLUTE]
+        if len(pins) != 2 or sum(link in j for j in chain.joints) != 2:
+            raise DimensionError(f"the link-length order {text!r} names link {term}, which is not a binary link "
+                                 f"with two pins: its length is not one distance")
+    if len(set(links)) != len(links):
+        raise DimensionError(f"the link-length order {text!r} names a link twice")
+    return tuple(links if ascending else links[::-1])

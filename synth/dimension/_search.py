@@ -8,7 +8,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares
+from scipy.optimize import differential_evolution, least_squares, minimize
 
 from mechbase import Row
 
@@ -16,8 +16,8 @@ from ..errors import DimensionError, MotionError
 from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
-from ._problem import (CURVE_SAMPLES, INFEASIBLE, Constraints, Problem, input_joint_of, link_ratio, placement,
-                       point_carried)
+from ._problem import (CURVE_SAMPLES, INFEASIBLE, MET, ORDER_MARGIN, Constraints, Problem, input_joint_of,
+                       link_ratio, point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -26,8 +26,6 @@ __all__ = ["DimensionalResult", "synthesize"]
 PENALTY = 1e2
 #: a search stops early once the relative RMS error is below this (the target is met exactly)
 EXACT = 1e-11
-#: a constraint is met within this (rad, log-ratio, target sizes)
-MET = 1e-9
 #: shares of the curve (from the pose on: of its length, and of the input's span) an untimed path's
 #: points are first spread over
 SPANS = (0.5, 1.0)
@@ -36,6 +34,8 @@ ALIGN_ROUNDS = 4
 #: the given starts polished (least cost first), and the share of the budget they may take before
 #: differential evolution
 SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
+#: runs of the final constrained polish of a link-length order (:meth:`_Search.stiffen`), 100 steps each
+STIFF_RUNS = 5
 
 
 class _OutOfTime(Exception):
@@ -390,7 +390,7 @@ class _Evaluate:
 
         def fitted(places):  # (mean squared distance, places, λ, t, tracer, coefficients) for these places
             on, _ = at(places)
-            c = np.array(placement(on[:, 0], on[:, 1], w))
+            c = np.array(p.place(on[:, 0], on[:, 1], w))
             return float(np.mean(np.abs(on @ c - w) ** 2)), places, c[1], c[2], c[0] + c[2], c
 
         def replaced(fit):  # the rows moved to their places in order on the curve carried by the fit
@@ -432,6 +432,10 @@ class _Evaluate:
         for kind, _ in p.layout:
             if kind == "slide":
                 out[i] = (out[i] + turn) % math.pi
+                i += 1
+                continue
+            if kind == "along":  # a distance along the frame's fixed direction (λ is then real)
+                out[i] *= abs(lam)
                 i += 1
                 continue
             q = lam * (origin + out[i] + 1j * out[i + 1]) + shift - origin
@@ -488,7 +492,8 @@ class _Evaluate:
     @property
     def n_violations(self) -> int:
         c = self.problem.constraints
-        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None))
+        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None,
+                    self.problem.order_pairs))
 
 
 def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:
@@ -628,6 +633,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                 client.close()
         if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
             search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+        if problem.order and search.best is not None:
+            search.stiffen()
     if search.best is None:
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach")
@@ -786,6 +793,40 @@ class _Search:
         if math.isfinite(best[0]) and best[0] < INFEASIBLE / 10 and (self.best is None or best[0] < self.best[0]):
             self.best = (best[0], best[1], direction)
 
+    def stiffen(self) -> None:
+        """Polish the best answer once more with the link-length orders as inequality constraints of their
+        own (SLSQP on the squared residuals, the orders' penalty rows dropped), each held
+        :data:`ORDER_MARGIN` inside its bound: the search's penalty, aimed 1e-4 inside (``MARGIN``), leaves a
+        binding order that far inside it (0.6 % of CE2's error), and a stiffer penalty slides along a
+        binding order too slowly (or, from the start, misleads the search).  Kept if it meets the orders
+        and errs no more."""
+        problem, evaluate = self.problem, self.evaluate
+        _, z0, direction = self.best
+        problem.order_penalty = (0.0, 0.0)
+        extra = len(z0) - problem.dims  # (untimed: the input steps)
+        bounds = list(zip(np.concatenate((problem.lower, np.zeros(extra))),
+                          np.concatenate((problem.upper, np.full(extra, problem.input_span)))))
+
+        def cost(z):
+            r = evaluate.vector(z, direction)
+            return float(r @ r)
+
+        def inside(z):
+            try:
+                return -(problem.order_gaps(problem.linkage(z[:problem.dims])) + ORDER_MARGIN)
+            except MotionError:
+                return np.full(problem.order_pairs, -1.0)
+
+        z = z0
+        for _ in range(STIFF_RUNS):  # (a run that stalls is restarted: its quasi-Newton matrix afresh)
+            found = minimize(cost, z, method="SLSQP", bounds=bounds, constraints={"type": "ineq", "fun": inside},
+                             options={"ftol": 1e-12 * cost(z0), "maxiter": 100})
+            z = np.clip(found.x, *np.array(bounds).T)
+            if found.status == 0:
+                break
+        value, before = cost(z), cost(z0)
+        if (inside(z) >= -MET).all() and value < INFEASIBLE / 10 and (value <= before or (inside(z0) < -MET).any()):
+            self.best = (value, z, direction)
 
     def untimed_jacobian(self, fun, z, upper) -> np.ndarray:
         """Forward differences of the untimed residuals ``fun`` at z = (dimensions, input steps), at the
@@ -825,9 +866,9 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     _, z, direction = best
     x = z[:problem.dims]
     linkage = problem.linkage(x)
-    if isinstance(problem.target, FunctionTarget):  # posed at the first input, as every other result
+    if problem.absolute_start is not None:  # posed at the first input, as every other result
         try:
-            linkage = assemble(linkage, float(problem.target.inputs[0]))
+            linkage = assemble(linkage, problem.absolute_start)
         except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
             pass
     if problem.timed:
@@ -896,6 +937,7 @@ def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
         tol = MET * problem.scale
         inside = bool(((p[:, 0] >= x0 - tol) & (p[:, 0] <= x1 + tol) & (p[:, 1] >= y0 - tol) & (p[:, 1] <= y1 + tol)).all())
         out["pivots"] = {"value": p.tolist(), "limit": list(c.pivots), "met": inside}
+    out.update(problem.placing(linkage))
     if not problem.timed and problem.revolute_input:
         turn = abs(float(offsets[-1]))
         out["order"] = {"value": f"the input turns {math.degrees(turn):.6g}° over the points, in order",

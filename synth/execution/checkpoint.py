@@ -81,7 +81,9 @@ def _check_file(path: Path) -> tuple[str, str]:
 
 
 class Checkpoint:
-    """The finished codes (``codes``: code → count) and units (``units``: unit key → (code, count)) of one query.
+    """The finished codes (``codes``: code → count) and units of one query: a unit's key is looked up
+    in the file (:meth:`has_unit`), never loaded with the others (a code of 20 links may have half a
+    million units committed, each key some 500 characters); ``unit_counts`` sums them by code.
 
     Parameters
     ----------
@@ -136,8 +138,23 @@ class Checkpoint:
             raise CheckpointMismatch(f"the checkpoint {self.path} belongs to another query ({stored[0]}), not to "
                                      f"{description}; give a new {option('checkpoint', 'FILE')} or repeat that query")
         self.codes = dict(self._conn.execute("SELECT code, count FROM codes"))
-        self.units = {unit: (code, n) for unit, code, n in self._conn.execute("SELECT unit, code, count FROM units")}
-        self.resumed_units = len(self.units) + sum(n for (n,) in self._conn.execute("SELECT units FROM codes"))
+        # code -> (units committed, their count), for the codes not complete
+        done = {code: (k, n) for code, k, n in self._conn.execute("SELECT code, COUNT(*), SUM(count) FROM units GROUP BY code")}
+        self.unit_counts = {code: n for code, (_, n) in done.items()}
+        self.resumed_units = sum(k for k, _ in done.values()) + sum(n for (n,) in self._conn.execute("SELECT units FROM codes"))
+
+    @property
+    def units(self) -> dict[str, tuple[str, int]]:
+        """Every committed unit of the codes not complete: key → (code, count) (read from the file
+        on each call: for inspection; a count asks :meth:`has_unit`)."""
+        return {unit: (code, n) for unit, code, n in self._conn.execute("SELECT unit, code, count FROM units")}
+
+    def has_unit(self, unit: str) -> bool:
+        """Whether the unit of key ``unit`` (``code|…``) was committed by an earlier run (looked up only
+        for the codes with units committed)."""
+        if unit.split("|", 1)[0] not in self.unit_counts:
+            return False
+        return self._conn.execute("SELECT 1 FROM units WHERE unit = ?", (unit,)).fetchone() is not None
 
     def add_unit(self, unit: str, code: str, count: int) -> None:
         """Record a finished unit (committed within ``every`` seconds)."""

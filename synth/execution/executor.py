@@ -23,7 +23,10 @@ whatever the backend:
 * units travel in batches sized from the measured time per unit (about ``task_seconds``
   per task), so inter-process traffic stays small next to the work; the worker that runs
   stage A of an item also works on its first units for that long, so an item of small units
-  (h = 2: a few hundred of 70 µs) sends none of them out again.
+  (h = 2: a few hundred of 70 µs) sends none of them out again;
+* an item's units may come as a :class:`~synth.execution.spill.Spilled` file (a count's large
+  codes): they are read from it a batch at a time as they are submitted, never held whole, and
+  the file is removed once read through.
 
 Example
 -------
@@ -45,6 +48,8 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from itertools import islice
+
+from .spill import Spilled
 
 __all__ = ["Executor", "process_pool", "run_plan"]
 
@@ -87,8 +92,8 @@ def process_pool(workers: int):
 
 def _expand_and_work(args):
     """Stage A of an item, then ``work`` on its first units for up to ``budget`` seconds, in the
-    same worker (those units never travel back out): the units, the results of the first ones
-    and the seconds they took."""
+    same worker (those units never travel back out): the units (a list, or a spilled file's name),
+    the results of the first ones and the seconds they took."""
     expand, work, item, budget = args
     units = expand(item)
     start, results = time.perf_counter(), []
@@ -287,6 +292,39 @@ class Executor:
         self.close()
 
 
+_END = object()
+
+
+class _Waiting:
+    """The units of an item not yet submitted, less the skipped ones, taken from its list or its
+    spilled file as they are needed (the file is removed once read through).  True while any is left."""
+
+    __slots__ = ("_units", "_skip", "_source", "_next")
+
+    def __init__(self, units: Iterable = (), skip: Callable | None = None, source=None):
+        self._units, self._skip, self._source = iter(units), skip, source
+        self._next: list = []  # a unit looked at by ``bool`` and not yet taken
+
+    def __bool__(self) -> bool:
+        if not self._next:
+            self._next = self.take(1)
+        return bool(self._next)
+
+    def take(self, n: int) -> list:
+        """Up to ``n`` (≥ 1) units, in order; fewer only when none is left."""
+        out, self._next = self._next, []
+        while len(out) < n:
+            unit = next(self._units, _END)
+            if unit is _END:
+                if isinstance(self._source, Spilled):
+                    self._source.remove()
+                self._source = None
+                break
+            if not (self._skip and self._skip(unit)):
+                out.append(unit)
+        return out
+
+
 class _Item:
     """One item of the plan on its way through the pipeline."""
 
@@ -295,7 +333,7 @@ class _Item:
     def __init__(self, index: int, expansion):
         self.index = index
         self.expansion = expansion  # stage A task, None once its units are known
-        self.units: deque = deque()  # units not yet submitted
+        self.units = _Waiting()  # units not yet submitted
         self.batches: deque = deque()  # (units, task) in flight, in order
         self.total = 0
 
@@ -318,7 +356,8 @@ def run_plan(
     Parameters
     ----------
     items : iterable
-        The plan; ``expand(item)`` returns the item's units (a list).
+        The plan; ``expand(item)`` returns the item's units (a list, or a
+        :class:`~synth.execution.spill.Spilled` file of them).
     expand, work : callables
         Module-level functions (they are pickled to the workers).
     executor : Executor, optional
@@ -348,9 +387,9 @@ def run_plan(
             index, item = todo[position]
             units = expand(item)
             position += 1
-            pending = deque(u for u in units if not (skip_unit and skip_unit(u)))
-            while pending and not over():
-                unit = pending.popleft()
+            pending = _Waiting(units, skip_unit, units)
+            while not over() and pending:
+                [unit] = pending.take(1)
                 yield index, unit, work(unit)
             if pending:  # the rest of this item goes to the pool first
                 first = _Item(index, None)
@@ -394,8 +433,10 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
         del owner[id(entry.expansion)]
         entry.expansion = None
         entry.total = len(units)
-        entry.units = deque(u for u in units[len(results):] if not (skip_unit and skip_unit(u)))
-        return (units[:len(results)], _Finished(results, seconds)) if results else None
+        rest = iter(units)
+        worked = list(islice(rest, len(results)))
+        entry.units = _Waiting(rest, skip_unit, units)
+        return (worked, _Finished(results, seconds)) if results else None
 
     def collected(entry: _Item, batch: list, task) -> Iterator[tuple]:
         nonlocal per_unit
@@ -413,7 +454,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
 
     def submit_batch(entry: _Item) -> None:
         size = 1 if per_unit is None else max(1, min(512, int(task_seconds / max(per_unit, 1e-6))))
-        batch = [entry.units.popleft() for _ in range(min(size, len(entry.units)))]
+        batch = entry.units.take(size)
         entry.batches.append((batch, launch(entry, _apply_batch, (work, batch))))
 
     def top_up() -> None:

@@ -41,7 +41,7 @@ from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
 __all__ = ["Estimate", "estimate", "worth_sizing", "sized_loops", "size_check", "plan_bytes", "TABLE_ROWS",
-           "MEMORY_LIMIT"]
+           "MEMORY_LIMIT", "BYTES_PER_UNIT", "CERTIFICATE_BYTES"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -52,14 +52,23 @@ SIZED_LOOPS = {2: 9, None: 7}
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
-# Stage A of a code keeps every branch multigraph of the code until the code is done (isomorphic copies
-# are removed against all of them), and its units travel whole to the parent: about this many bytes per
-# unit of the largest code, for each worker expanding a code at the same time (h = 2, 10 links: a unit
-# is 830 B held and 480 B pickled; 11 links: 715 MiB peak for the three processes, about 150 MiB each
-# at rest, against about 38 000 units in the largest code: 3.5 kB a unit per worker).
+# A listing (and a count on a Dask cluster) keeps every branch multigraph of a code until the code is
+# done (its output is in the order of their certificates), and its units travel whole to the parent:
+# about this many bytes per unit of the largest code, for each worker expanding a code at the same time
+# (h = 2, 10 links: a unit is 830 B held and 480 B pickled; 11 links: 715 MiB peak for the three
+# processes, about 150 MiB each at rest, against about 38 000 units in the largest code: 3.5 kB a unit
+# per worker).
 BYTES_PER_UNIT = 3500
+# A count on this machine hands a code's units on as stage A finds them (a window at a time, through a
+# file: type_synthesis.UNIT_WINDOW) and keeps only the certificates it has met, as bytes (the rows of the
+# strings' vertices), to tell the next ones apart: at most this many bytes per unit of the largest code,
+# per worker expanding one (18 links, 78300000/0: 144-byte rows, 236 B a unit with the set's table;
+# 20 links, 7.10.3.0.0.0.0.0.0/0: 168-byte rows, about 270 B).
+CERTIFICATE_BYTES = 400
 NOTE_BYTES = 2**30  # a query whose plan may hold more says so before it starts
-MEMORY_LIMIT = 3 * 2**30  # refused without force above this (the machine is shared)
+# refused without force above this: with the processes' own 150-250 MiB each (numpy, numba's kernels,
+# nauty), a run of 2 workers stays within 2 GiB
+MEMORY_LIMIT = 1.5 * 2**30
 
 
 @dataclass(frozen=True)
@@ -258,23 +267,28 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
         hint = f" (with {option('checkpoint', 'FILE')} it can be stopped and resumed)" if count else ""
         raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give {option('force')} to "
                             f"run it anyway{hint}")
-    held = plan_bytes(found, processes)
-    memory = (f"its largest code has about {magnitude(found.largest_code_units)} branch multigraphs, kept whole "
+    streamed = count and not scheduler
+    held = plan_bytes(found, processes, streamed=streamed)
+    kept = "whose certificates are kept" if streamed else "kept whole"
+    memory = (f"its largest code has about {magnitude(found.largest_code_units)} branch multigraphs, {kept} "
               f"until the code is done: about {held / 2**30:.1f} GiB on {processes} worker{'s' * (processes > 1)}")
     if not force and held > MEMORY_LIMIT:
         raise QueryTooLarge(f"this query ({query.links} links) would hold too much memory to run unasked: {memory} "
-                            f"(more than {MEMORY_LIMIT / 2**30:.0f} GiB); {size}; give {option('force')} to run it anyway")
+                            f"(more than {MEMORY_LIMIT / 2**30:g} GiB); {size}; give {option('force')} to run it anyway")
     notes = ([f"a long query: {size}"] if found.seconds / processes > NOTE_SECONDS else []) + (
         [memory] if held > NOTE_BYTES else [])
     return "; ".join(notes) or None
 
 
-def plan_bytes(found: Estimate, processes: int) -> float:
-    """Memory a query's plan may hold at once: the units of its largest code, in the worker that
-    expands it, in transit and in the parent (:data:`BYTES_PER_UNIT`), for each worker expanding one.
+def plan_bytes(found: Estimate, processes: int, *, streamed: bool = False) -> float:
+    """Memory a query's plan may hold at once, for each worker expanding a code: the units of its
+    largest code, in that worker, in transit and in the parent (:data:`BYTES_PER_UNIT`), or for a
+    ``streamed`` count only the certificates of that code's branch multigraphs met so far
+    (:data:`CERTIFICATE_BYTES`; its units pass a window at a time, a few tens of MiB in all).
 
-    >>> plan_bytes(Estimate(1e6, 1e5, 10.0, "", largest_code_units=1000), processes=2)
-    7000000
+    >>> found = Estimate(1e6, 1e5, 10.0, "", largest_code_units=1000)
+    >>> plan_bytes(found, processes=2), plan_bytes(found, processes=2, streamed=True)
+    (7000000, 800000)
     """
-    return found.largest_code_units * BYTES_PER_UNIT * processes
+    return found.largest_code_units * (CERTIFICATE_BYTES if streamed else BYTES_PER_UNIT) * processes
 

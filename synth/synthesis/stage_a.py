@@ -19,6 +19,7 @@ subdivision keeps both), so they are decided once per H.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import lru_cache
 from itertools import combinations
@@ -31,8 +32,8 @@ from ..execution.memo import is_remembered, remembered
 from ..structure.code import Code
 from ..structure.disjoint import DisjointSets
 
-__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "needs_solver", "uses_kernel",
-           "kernel_loops"]
+__all__ = ["Conventions", "Contracted", "Vertex", "LINK", "JOINT", "contracted_graphs", "contracted_stream",
+           "needs_solver", "uses_kernel", "kernel_loops"]
 
 _GROUP_LIMIT = 4096  # enumerate the automorphism group of H up to this order
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
@@ -479,7 +480,31 @@ def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:
 
 def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
     """Stage A by the compiled kernel (:mod:`synth.synthesis._stage_a_kernel`): the same branch
-    multigraphs as the CP-SAT model, from labelled ones found batch by batch and told apart by nauty."""
+    multigraphs as the CP-SAT model, from labelled ones found batch by batch and told apart by nauty,
+    in the order of their certificates."""
+    return sorted(_kernel_stream(code, conv), key=lambda graph: graph.certificate)
+
+
+def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
+    """Stage A for a count: every branch multigraph H of ``code`` once, as :func:`contracted_graphs`
+    finds them but in the order found, not sorted; where the compiled kernel runs, each is handed on
+    as soon as nauty has told it apart, so what stays held is the set of certificates met (as bytes, the
+    rows of the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H
+    themselves), never the code's H.
+
+    >>> code, conv = Code.parse("662000/0"), Conventions()   # 14 links: the kernel's search
+    >>> found = [g.certificate for g in contracted_stream(code, conv)]
+    >>> len(found), sorted(found) == [g.certificate for g in contracted_graphs(code, conv)]
+    (215, True)
+    """
+    if _branch_vertices(code) and uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
+        return _kernel_stream(code, conv)
+    return iter(contracted_graphs(code, conv))
+
+
+def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
+    """The branch multigraphs of the compiled kernel's search, each once, in the order found (a class
+    is represented by its first labelled multigraph, as in the CP-SAT model's order)."""
     import numpy as np
 
     from ._stage_a_kernel import multigraphs, new_state
@@ -504,7 +529,11 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
     out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
     out_y = np.zeros((_CONDITION_BATCH, m), dtype=np.int64)
     flags = np.zeros(_CONDITION_BATCH, dtype=np.int64)
-    seen: dict[str, Contracted] = {}
+    # nauty's certificates met, as bytes, and of them only the rows of the strings' vertices: the canonical
+    # labelling keeps the colour cells in place (the m branch vertices first) and every edge of the
+    # subdivided H has a string's vertex at one end, so those rows are the whole graph (20 links: 168 of
+    # 272 bytes) — exact, no object per H
+    seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
                             h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
@@ -520,11 +549,13 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
                 continue
             edges.sort()
             graph = Contracted(vertices, tuple(edges), "")
-            cert = pynauty.certificate(graph._subdivided()).hex()
-            if cert not in seen:
-                seen[cert] = Contracted(vertices, graph.edges, cert)
+            cert = pynauty.certificate(graph._subdivided())
+            rows = cert[m * (len(cert) // (m + len(edges))):]
+            if rows not in seen:
+                seen.add(rows)
+                yield Contracted(vertices, graph.edges, cert.hex())
         if found < _CONDITION_BATCH:
-            return [seen[c] for c in sorted(seen)]
+            return
 
 
 class _StringBounds:

@@ -40,7 +40,7 @@ from ..execution.memo import keep, recall
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, contracted_graphs, needs_solver, uses_kernel
+from .stage_a import Contracted, Conventions, contracted_graphs, contracted_stream, needs_solver, uses_kernel
 from .stage_b import count_orbits, count_realised, load_kernel, realise
 from .number_synthesis import number_synthesis
 
@@ -57,6 +57,11 @@ _MAX_BRANCH = 18
 # wall on 2 workers, and queries that end sooner (10 links: 0.2 s with start-up) pay nothing.
 _INLINE_SECONDS = 0.05
 _INLINE_BRANCH = 8
+# A count holds at most this many units of a code at a time in any process: a code with more is
+# written by the worker of its stage A to a temporary file, this many at a time, and read back as
+# it is worked on (synth.execution.spill).  4 096 units of 20 links are about 2.5 MB pickled, 10 MB
+# held.  The environment variable MECHSYNTH_UNIT_WINDOW sets another (tests: a tiny one).
+UNIT_WINDOW = 4096
 
 
 def _branch_vertices(code: Code) -> int:
@@ -165,6 +170,40 @@ def job_units(job: tuple[Code, Conventions]) -> list[Unit]:
     if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
         return [Unit(code, None, conv)]
     return [Unit(code, graph, conv) for graph in contracted_graphs(code, conv)]
+
+
+def unit_window() -> int:
+    """The units of a code a count holds at a time (:data:`UNIT_WINDOW`, or the environment's
+    ``MECHSYNTH_UNIT_WINDOW``, a whole number ≥ 1).
+
+    >>> unit_window()
+    4096
+    """
+    text = os.environ.get("MECHSYNTH_UNIT_WINDOW")
+    if text is None:
+        return UNIT_WINDOW
+    if not text.isdigit() or int(text) < 1:
+        raise InvalidOption(f"MECHSYNTH_UNIT_WINDOW must be a whole number ≥ 1, not {text!r}")
+    return int(text)
+
+
+@dataclass(frozen=True)
+class _StreamedUnits:
+    """Stage A of one job for a count (a picklable expand function): its units in the order found
+    (:func:`~synth.synthesis.stage_a.contracted_stream`), a list when there are at most ``window``
+    of them, else spilled to a file in ``directory`` ``window`` at a time (:func:`spill`)."""
+
+    directory: str
+    window: int
+
+    def __call__(self, job: tuple[Code, Conventions]):
+        from ..execution.spill import spill
+
+        code, conv = job
+        if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
+            return [Unit(code, None, conv)]
+        return spill((Unit(code, graph, conv) for graph in contracted_stream(code, conv)), self.directory,
+                     chunk=self.window)
 
 
 def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:
@@ -307,7 +346,11 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
     :mod:`synth.execution.executor`); in plan order, or as units finish with ``ordered=False``.
 
     ``work`` returns the unit's chains or its counts by code; the progress bar adds up either.
+    Unordered on this machine (a count), a code's units are never held whole: stage A hands them on
+    as found, through a temporary folder when they are more than :func:`unit_window`.
     """
+    from contextlib import ExitStack
+
     bar = None
     if progress and sys.stderr.isatty():  # tqdm shows nothing elsewhere: do not even import it
         from tqdm import tqdm
@@ -323,8 +366,16 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
             load_kernel()  # once, here: the workers forked later inherit it
         if any(needs_solver(c, conv) for c, conv in to_run):
             from . import _cpsat  # noqa: F401 - likewise the solver (≈ 0.3 s), and outside the inline phase's clock
-        with Executor(workers or os.cpu_count() or 1, client) as executor:
-            for event in run_plan(jobs, job_units, work, executor=executor, skip_item=skip_code, skip_unit=skip_unit,
+        with ExitStack() as stack:
+            expand = job_units
+            if not ordered and client is None:  # (a Dask worker elsewhere could not write to this machine's folder)
+                import tempfile
+
+                folder = stack.enter_context(tempfile.TemporaryDirectory(prefix="mechsynth-units-"))
+                expand = _StreamedUnits(folder, unit_window())
+            # (entered last, left first: the pool ends before its folder is removed)
+            executor = stack.enter_context(Executor(workers or os.cpu_count() or 1, client))
+            for event in run_plan(jobs, expand, work, executor=executor, skip_item=skip_code, skip_unit=skip_unit,
                                   inline_seconds=inline, ordered=ordered):
                 if bar is not None:
                     if event[1] is None:
@@ -471,11 +522,11 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             from ..execution.checkpoint import Checkpoint
 
             ck = stack.enter_context(Checkpoint(checkpoint, _identity(what, jobs), _describe(what, query), log=log))
-            for name, n in list(ck.codes.items()) + list(ck.units.values()):
+            for name, n in list(ck.codes.items()) + list(ck.unit_counts.items()):
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
-                            skip_unit=(lambda u: u.key in ck.units) if ck else None, ordered=False)
+                            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:

@@ -350,3 +350,72 @@ def test_the_command_refuses_an_atlas_without_index_and_an_open_path(four_bar_in
     assert done.returncode == 2 and "--samples goes with --index-curves" in done.stderr
     done = _cli("atlas", "--db", four_bar_index, "--index-curves", "--export", "chains")
     assert done.returncode == 2 and "does not go with --export" in done.stderr
+
+
+# ------------------------------------------------------------------ several drawings per mechanism
+WATT = Mechanism(Chain.parse("0-1 0-2 1-3 2-3 2-4 3-5 4-5"), 0, 1)  # crank 1, couplers 3, 4 and 5
+
+
+def test_more_drawings_grow_a_mechanisms_samples_and_keep_the_first_drawings_poses():
+    """Watt's six-bar sampled around 1 and 3 drawings: the second holds the first one's poses (the
+    atlas's drawing is sampled first, with the same seed) and poses around the other drawings, which
+    lie elsewhere."""
+    from synth.atlas.curves import CurveUnit, sample_unit
+
+    one, three = (sample_unit(CurveUnit(0, json.dumps(WATT.chain.to_dict()), 0, 1, IndexSettings(samples=3, drawings=k)))
+                  for k in (1, 3))
+    assert one.status == three.status == "done"
+    assert len(one.rows) == 3 * 3 and len(three.rows) > len(one.rows)  # 3 poses × 3 tracer links per drawing
+    assert three.rows[:len(one.rows)] == one.rows
+    first = {row[2] for row in one.rows}
+    extra = [np.array(json.loads(row[2])) for row in three.rows[len(one.rows):]]
+    assert min(np.abs(e - np.array(json.loads(f))).max() for e in extra for f in first) > 1.0  # (the size is 100)
+
+
+def test_drawings_of_a_mechanism_are_its_own_joints_posed_as_cranks():
+    from synth.atlas.curves import drawings_of
+    from synth.motion import motion_range
+
+    base = linkage_from_layout(WATT)
+    found = drawings_of(base, 4, np.random.default_rng(5))
+    assert found[0] is base and 1 < len(found) <= 4
+    for drawn in found:
+        assert drawn.mechanism == WATT and drawn.inputs == base.inputs
+        assert motion_range(drawn).full_rotation  # a crank
+        assert abs(drawn.scale - base.scale) < 1e-9 * base.scale
+    assert len({np.round(d.points, 6).tobytes() for d in found}) == len(found)  # distinct drawings
+
+
+def test_an_index_of_several_drawings_is_searched_and_resumed_with_its_settings(tmp_path):
+    db = _atlas(tmp_path, "4")
+    built = index_curves(db, settings=IndexSettings(samples=10, drawings=3), workers=1)
+    assert built.curves > 10
+    again = index_curves(db, settings=IndexSettings(samples=10, drawings=3), workers=1)
+    assert again.units_run == 0 and again.curves == built.curves
+    with pytest.raises(AtlasError, match="10 samples per mechanism and drawing, 3 drawings"):
+        index_curves(db, settings=IndexSettings(samples=10), workers=1)
+    target = _target(_random_crank(FOUR_BAR, 2, seed=7), 48, True)
+    found = search_atlas(db, target, budget=30)
+    assert found.index_curves == built.curves
+    _assert_recovered(found, target, 4)
+
+
+@pytest.mark.parametrize("drawings", [0, -1, 1001, 2.5, True])
+def test_a_bad_number_of_drawings_is_refused(tmp_path, drawings):
+    from synth.errors import InvalidOption
+
+    db = _atlas(tmp_path, "4")
+    with pytest.raises(InvalidOption, match="drawings must be a whole number 1 … 1000"):
+        index_curves(db, settings=IndexSettings(samples=3, drawings=drawings), workers=1)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--index-curves", "--drawings", "0"], "--drawings: expected a whole number ≥ 1, not 0"),
+    (["--index-curves", "--drawings", "two"], "--drawings"),
+    (["--drawings", "3"], "--drawings goes with --index-curves"),
+    (["--index-curves", "--drawings", "3", "--samples", "60"], "resume it with the same settings"),
+])
+def test_the_index_command_refuses_bad_drawings(four_bar_index, args, message):
+    done = _cli("atlas", "--db", four_bar_index, *args)
+    assert done.returncode == 2 and message in done.stderr and len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert "Traceback" not in done.stderr

@@ -169,14 +169,17 @@ def test_a_table_of_mechanisms_is_sized_one_loop_earlier_than_a_count():
     assert synth.size_check(ChainQuery(1, 14), processes=2, count=False, table=False, mechanisms="mechanisms") is None
 
 
-def test_a_count_whose_plan_would_hold_gigabytes_is_refused_with_its_memory_and_a_small_one_is_not():
-    """Issue 37: the h = 2 count of 12 links grew to 4.5 GiB in silence (stage A keeps a code's branch
-    multigraphs whole, about 800 000 in its largest code); it is refused with the memory it would hold,
-    and the plane's 16-link count (a few thousand units a code) is neither refused nor noted."""
+def test_a_count_holds_certificates_not_codes_and_a_listing_that_would_hold_gigabytes_is_refused():
+    """Issue 37: the h = 2 count of 12 links grew to 4.5 GiB in silence (stage A kept a code's branch
+    multigraphs whole, about 800 000 in its largest code); a count now keeps only their certificates
+    (0.6 GiB on 2 workers: not even noted) and runs, where the listing, which keeps them whole for its
+    order, is refused with the memory it would hold."""
+    note = synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False)
+    assert note.startswith("a long query: ") and "GiB" not in note
     with pytest.raises(QueryTooLarge) as err:
-        synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False)
+        synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=False, table=False)
     text = str(err.value)
     assert text.startswith("this query (12 links) would hold too much memory to run unasked: its largest code has about ")
-    assert "GiB on 2 workers (more than 3 GiB)" in text and text.endswith("give force=True to run it anyway")  # (the CLI says --force)
-    assert synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False, force=True) is None
+    assert "kept whole until the code is done" in text and "GiB on 2 workers (more than 1.5 GiB)" in text
+    assert text.endswith("give force=True to run it anyway")  # (the CLI says --force)
     assert synth.size_check(ChainQuery(1, 16), processes=2, count=True, table=False) is None

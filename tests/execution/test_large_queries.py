@@ -143,9 +143,9 @@ def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
 
 
 # --------------------------------------------------------------- checkpoint
-def _kill_after_first_commit(args):
+def _kill_after_first_commit(args, env=None):
     """Start a counting run, SIGKILL it as soon as it reports a commit; return its pool workers."""
-    proc = subprocess.Popen([*CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen([*CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         for line in proc.stderr:
             if "committed in this run" in line:
@@ -168,7 +168,8 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     reference = _run(*query)
     assert reference.returncode == 0
     ck = str(tmp_path / "count.sqlite")
-    children = _kill_after_first_commit([*query, "--checkpoint", ck])
+    # (the killed run's folder of spilled units, if any, is left in tmp_path, not in the system's)
+    children = _kill_after_first_commit([*query, "--checkpoint", ck], env=dict(os.environ, TMPDIR=str(tmp_path)))
     _, alive = psutil.wait_procs(children, timeout=60)
     assert not alive, "pool workers outlived their killed parent"
     resumed = _run(*query, "--checkpoint", ck)
@@ -179,6 +180,61 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     assert done_before > 0, first
     again = _run(*query, "--checkpoint", ck)  # everything done: nothing runs, same answer
     assert again.stdout == reference.stdout
+
+
+def test_a_code_larger_than_the_window_is_spilled_and_read_back_whole(tmp_path):
+    """Stage A for a count hands on the same units as the listing's stage A, a code of more than
+    the window through a file that the pipeline removes once it has read it."""
+    from synth.execution.spill import Spilled
+    from synth.structure.query import ChainQuery
+    from synth.synthesis.type_synthesis import _StreamedUnits, job_units, plan_jobs
+
+    expand = _StreamedUnits(str(tmp_path), 3)
+    spilled = 0
+    for job in plan_jobs(ChainQuery(1, 12)):
+        units = expand(job)
+        assert sorted(u.key for u in units) == sorted(u.key for u in job_units(job))
+        if len(units) > 3:
+            assert isinstance(units, Spilled) and os.path.exists(units.path)
+            spilled += 1
+            events = _pool2([job], _StreamedUnits(str(tmp_path), 3), _count_keys, inline_seconds=0)
+            assert sorted(unit.key for _, unit, _ in events if unit is not None) == sorted(u.key for u in units)
+            units.remove()
+        else:
+            assert isinstance(units, list)
+    assert spilled >= 5
+    assert not list(tmp_path.iterdir())  # every file read through by the pipeline was removed by it
+
+
+def _count_keys(unit):
+    return {unit.key: 1}
+
+
+def test_a_tiny_window_counts_the_same_and_resumes_without_double_counting(tmp_path):
+    """Counts by code with a window of 2 units (MECHSYNTH_UNIT_WINDOW) are those of the default
+    window; killed while a code is half done (its units committed one by one), the rerun skips those
+    units and gives the same counts: no unit lost or counted twice; no spilled file is left once a
+    run ends."""
+    import sqlite3
+
+    query = ["chains", "--dof", "1", "--links", "14", "--count", "--workers", "2"]
+    env = dict(os.environ, MECHSYNTH_CACHE="off", TMPDIR=str(tmp_path))
+    tiny = dict(env, MECHSYNTH_UNIT_WINDOW="2")
+    reference = _run(*query, env=env)
+    assert reference.returncode == 0 and json.loads(reference.stdout)["count"] == 318162
+    assert _run(*query, env=tiny).stdout == reference.stdout
+    assert not list(tmp_path.glob("mechsynth-units-*"))  # removed by the runs that ended
+    ck = str(tmp_path / "count.sqlite")
+    _kill_after_first_commit([*query, "--checkpoint", ck], env=tiny)
+    with sqlite3.connect(ck) as conn:  # what the rerun must skip, not run again
+        assert conn.execute("SELECT COUNT(*) FROM units").fetchone()[0] > 0
+    resumed = _run(*query, "--checkpoint", ck, env=tiny)
+    assert resumed.returncode == 0, resumed.stderr
+    assert resumed.stdout == reference.stdout
+    assert int(resumed.stderr.splitlines()[0].split(", ")[-1].split()[0]) > 0
+    assert len(list(tmp_path.glob("mechsynth-units-*"))) <= 1  # the killed run's only
+    bad = _run(*query, env=dict(env, MECHSYNTH_UNIT_WINDOW="0"))
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "MECHSYNTH_UNIT_WINDOW" in bad.stderr
 
 
 def test_checkpoint_commit_keeps_the_order_of_units_and_codes(tmp_path):

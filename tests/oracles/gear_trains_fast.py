@@ -14,8 +14,10 @@ stack of slack tables) and kept when no listed symmetry maps them to a smaller s
 of each class passes, for any list of symmetries); where the list is not the whole group the
 sets kept on a tree are told apart by VF2 within classes of a Weisfeiler–Lehman hash.  Rigid
 sub-chains are found by counting, for every link set S, the meshes inside it against
-3(|S| − 1) − 2·p(S) − 1.  Rotation graphs are told apart by VF2 within classes of a
-Weisfeiler–Lehman hash (the canonical form :func:`rotation_form` serves small checks).
+3(|S| − 1) − 2·p(S) − 1.  Rotation graphs are told apart by their canonical form under bliss
+(Junttila & Kaski's canonical labelling, through igraph — another program than nauty):
+:func:`rotation_key`, checked in the tests against the pure-Python individualisation–refinement
+form :func:`rotation_form` and under random renumberings of the links.
 
 Example
 -------
@@ -27,6 +29,7 @@ from __future__ import annotations
 
 from multiprocessing import Pool
 
+import igraph
 import networkx as nx
 import numpy as np
 from numba import njit
@@ -37,7 +40,7 @@ try:
 except ImportError:  # run as a top-level module
     import gear_trains as brute
 
-__all__ = ["census", "tree_census", "tree_trains", "rotation_form"]
+__all__ = ["census", "tree_census", "tree_trains", "rotation_key", "rotation_form"]
 
 
 # ------------------------------------------------------------------------ one tree
@@ -92,16 +95,6 @@ def _train_graph(links: int, axes, meshes) -> nx.Graph:
     for k, (a, b) in enumerate(meshes):
         g.add_node(("M", k), t="M")
         g.add_edges_from(((("M", k), ("L", x)) for x in (a, b)), k="g")
-    return g
-
-
-def _rotation_graph(links: int, triples) -> nx.Graph:
-    g = nx.Graph()
-    g.add_nodes_from(((("L", x), {"t": "L"}) for x in range(links)))
-    for k, (a, b, t) in enumerate(triples):
-        g.add_node(("M", k), t="M")
-        g.add_edges_from(((("M", k), ("L", x)) for x in (a, b)), k="g")
-        g.add_edge(("M", k), ("L", t), k="c")
     return g
 
 
@@ -229,9 +222,10 @@ def tree_trains(dof: int, links: int, axes) -> list[tuple[tuple[int, int, int], 
     return trains
 
 
-def tree_census(dof: int, links: int, axes, rotation: bool = False) -> dict:
+def tree_census(dof: int, links: int, axes, rotation: bool = False, keys: bool = False) -> dict:
     """Numbers of displacement graphs on one tree and (``rotation``) of the rotation graphs among
-    them — the rotation graphs met on this tree, not the first met here.
+    them — the rotation graphs met on this tree, not the first met here; with ``keys`` also the
+    set of their :func:`rotation_key` (to count the rotation graphs of many trees as a union).
 
     Example
     -------
@@ -240,14 +234,49 @@ def tree_census(dof: int, links: int, axes, rotation: bool = False) -> dict:
     """
     trains = tree_trains(dof, links, axes)
     out = {"displacement": len(trains)}
-    if rotation:
-        classes: dict = {}
-        for triples in trains:
-            key, g = _typed(_rotation_graph(links, triples))
-            if not any(_same(g, h) for h in classes.get(key, ())):
-                classes.setdefault(key, []).append(g)
-        out["rotation"] = sum(len(v) for v in classes.values())
+    if rotation or keys:
+        found = {rotation_key(links, triples) for triples in trains}
+        out["rotation"] = len(found)
+        if keys:
+            out["keys"] = found
     return out
+
+
+def rotation_key(links: int, triples) -> bytes:
+    """Canonical form of a rotation graph — a set of triples (a, b, t), meshing links a, b and
+    their carrier t — under renumbering of the links, by bliss: the graph with a vertex per link,
+    per mesh (joined to a and b) and per carrier mark (joined to the mesh and to t), in three
+    colours.  The triples read back from the canonical graph (links numbered in their order
+    there), sorted, three bytes a mesh, are the key: equal keys ⇔ the same rotation graph.
+
+    >>> rotation_key(4, [(1, 3, 2), (0, 3, 2)]) == rotation_key(4, [(0, 1, 3), (0, 2, 3)])
+    True
+    >>> rotation_key(4, [(1, 3, 2), (0, 3, 2)]) == rotation_key(4, [(0, 1, 3), (0, 2, 1)])
+    False
+    """
+    meshes = len(triples)
+    edges = []
+    for k, (a, b, t) in enumerate(triples):
+        mesh, mark = links + k, links + meshes + k
+        edges += [(mesh, a), (mesh, b), (mesh, mark), (mark, t)]
+    graph = igraph.Graph(n=links + 2 * meshes, edges=edges)
+    graph.vs["colour"] = [0] * links + [1] * meshes + [2] * meshes
+    canonical = graph.permute_vertices(graph.canonical_permutation(color=graph.vs["colour"]))
+    colour = canonical.vs["colour"]  # read the triples back from the canonical graph itself
+    rank = {x: r for r, x in enumerate(v for v in range(len(colour)) if colour[v] == 0)}
+    gears: dict = {}
+    mark_of, carrier_at = {}, {}
+    for u, v in canonical.get_edgelist():
+        if colour[u] > colour[v]:
+            u, v = v, u
+        if colour[v] == 1:  # link u is a gear of mesh v
+            gears.setdefault(v, []).append(rank[u])
+        elif colour[u] == 1:  # mesh u has the carrier mark v
+            mark_of[u] = v
+        else:  # mark v stands on link u, the carrier
+            carrier_at[v] = rank[u]
+    renumbered = sorted((*sorted(pair), carrier_at[mark_of[mesh]]) for mesh, pair in gears.items())
+    return bytes(x for triple in renumbered for x in triple)
 
 
 # ------------------------------------------------------------------ rotation forms
@@ -303,26 +332,23 @@ def rotation_form(links: int, triples) -> tuple:
 # ---------------------------------------------------------------------------- census
 def census(dof: int, links: int, workers: int = 1) -> dict:
     """Numbers of displacement graphs and rotation graphs, a tree at a time: the parent holds one
-    graph per rotation graph found so far, never the trains of more than the trees in flight."""
+    key (:func:`rotation_key`) per rotation graph found so far, never the trains of more than the
+    trees in flight."""
     jobs = [(dof, links, axes) for axes in brute.link_axis_trees(links)]
-    classes: dict = {}
+    classes: set = set()
     displacement = 0
     pool = Pool(workers) if workers > 1 else None
     try:
-        for trains, hashes in (pool.imap(_hashed_trains, jobs) if pool else map(_hashed_trains, jobs)):
-            displacement += len(trains)
-            for key, triples in zip(hashes, trains):
-                g = _rotation_graph(links, triples)
-                if not any(_same(g, h) for h in classes.get(key, ())):
-                    classes.setdefault(key, []).append(g)
+        for found in (pool.imap(_keyed_trains, jobs) if pool else map(_keyed_trains, jobs)):
+            displacement += found["displacement"]
+            classes |= found["keys"]
     finally:
         if pool:
             pool.terminate()
-    return {"displacement": displacement, "rotation": sum(len(v) for v in classes.values())}
+    return {"displacement": displacement, "rotation": len(classes)}
 
 
-def _hashed_trains(job) -> tuple[list, list[str]]:
-    """The trains of one tree and the Weisfeiler–Lehman hashes of their rotation graphs."""
+def _keyed_trains(job) -> dict:
+    """:func:`tree_census` of one tree with the keys of its rotation graphs."""
     dof, links, axes = job
-    trains = tree_trains(dof, links, axes)
-    return trains, [_typed(_rotation_graph(links, t))[0] for t in trains]
+    return tree_census(dof, links, axes, keys=True)

@@ -306,31 +306,41 @@ def test_a_query_of_more_than_ten_minutes_says_so(monkeypatch, seconds, noted):
 
 
 def test_a_plan_that_would_hold_too_much_memory_is_refused_unless_forced(monkeypatch):
-    # 3 GiB over 2 workers at 3 500 B a unit: 460 175.2 units of the largest code
-    limit_units = 3 * 2**30 / 3500 / 2
+    # 1.5 GiB over 2 workers at 400 B a unit (a count: the certificates met): 2 013 265.92 units of the largest code
+    limit_units = 1.5 * 2**30 / 400 / 2
     _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=math.floor(limit_units) + 1))
     with pytest.raises(QueryTooLarge) as refused:
         est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False)
     assert refused.value.text(flag) == (
-        "this query (16 links) would hold too much memory to run unasked: its largest code has about 460 176 branch "
-        "multigraphs, kept whole until the code is done: about 3.0 GiB on 2 workers (more than 3 GiB); about 2e+07 "
-        "chains in 1 000 000 units, 50 s on 2 workers, extrapolated from the exact counts at 10, 12, 14 links; give "
-        "--force to run it anyway")
-    note = est.size_check(ChainQuery(1, 16), processes=2, count=False, table=False, force=True)  # (a listing)
-    assert note == ("its largest code has about 460 176 branch multigraphs, kept whole until the code is done: about "
-                    "3.0 GiB on 2 workers")
+        "this query (16 links) would hold too much memory to run unasked: its largest code has about 2 013 266 branch "
+        "multigraphs, whose certificates are kept until the code is done: about 1.5 GiB on 2 workers (more than 1.5 "
+        "GiB); about 2e+07 chains in 1 000 000 units, 50 s on 2 workers, extrapolated from the exact counts at 10, 12, "
+        "14 links; give --force to run it anyway")
     _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=math.floor(limit_units)))
     assert est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False).startswith("its largest code")
 
 
-@pytest.mark.parametrize("largest, noted", [(153391, False), (153392, True)])  # 1 GiB / 3 500 B / 2 = 153 391.5
+def test_a_listing_and_a_count_on_a_cluster_keep_whole_codes(monkeypatch):
+    # 3 500 B a unit: 1.5 GiB over 2 workers is 230 087.5 units of the largest code
+    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=230088))
+    whole = ("its largest code has about 230 088 branch multigraphs, kept whole until the code is done: about 1.5 GiB "
+             "on 2 workers")
+    with pytest.raises(QueryTooLarge, match="too much memory to run unasked: " + whole):
+        est.size_check(ChainQuery(1, 16), processes=2, count=False, table=False)
+    assert est.size_check(ChainQuery(1, 16), processes=2, count=False, table=False, force=True) == whole
+    with pytest.raises(QueryTooLarge, match="kept whole until the code is done: about 1.5 GiB on 2 workers"):
+        est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False, scheduler=True)
+    assert est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False) is None  # 0.17 GiB, streamed
+
+
+@pytest.mark.parametrize("largest, noted", [(1342177, False), (1342178, True)])  # 1 GiB / 400 B / 2 = 1 342 177.28
 def test_a_plan_of_more_than_a_gibibyte_says_so_with_a_long_query(monkeypatch, largest, noted):
     _given(monkeypatch, _estimate(2e7, 1e6, 4000.0, largest=largest))
     note = est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False)
     long = ("a long query: about 2e+07 chains in 1 000 000 units, 33 min on 2 workers, extrapolated from the exact "
             "counts at 10, 12, 14 links")
-    memory = (f"its largest code has about {largest // 1000} {largest % 1000:03} branch multigraphs, kept whole until "
-              f"the code is done: about 1.0 GiB on 2 workers")
+    memory = (f"its largest code has about {largest // 10**6} {largest // 1000 % 1000:03} {largest % 1000:03} branch "
+              f"multigraphs, whose certificates are kept until the code is done: about 1.0 GiB on 2 workers")
     assert note == (f"{long}; {memory}" if noted else long)
 
 
@@ -338,6 +348,7 @@ def test_plan_bytes_counts_each_worker_expanding_a_code():
     found = _estimate(1e6, 1e5, 10.0, largest=1000)
     assert est.plan_bytes(found, 1) == 3_500_000
     assert est.plan_bytes(found, 3) == 10_500_000
+    assert est.plan_bytes(found, 3, streamed=True) == 1_200_000
 
 
 @pytest.mark.parametrize("processes, wall", [(1, "3.2e+1992 years on 1 worker"), (2, "1.6e+1992 years on 2 workers")])
@@ -353,13 +364,13 @@ def test_a_query_beyond_floating_point_is_refused_with_its_size_from_the_logarit
 
 
 def test_the_memory_limits_are_exclusive_and_one_worker_is_one(monkeypatch):
-    # largest code units · 3 500 B · processes exactly at 1 GiB and at 3 GiB (exact in floating point)
-    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=2**30 / 3500))
+    # largest code units · 400 B · processes exactly at 1 GiB and at 1.5 GiB (exact in floating point)
+    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=2**30 / 400))
     assert est.size_check(ChainQuery(1, 16), processes=1, count=True, table=False) is None  # 1 GiB: no note
-    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=3 * 2**30 / 3500))
+    _given(monkeypatch, _estimate(2e7, 1e6, 100.0, largest=1.5 * 2**30 / 400))
     assert est.size_check(ChainQuery(1, 16), processes=1, count=True, table=False) == (
-        "its largest code has about 920 350 branch multigraphs, kept whole until the code is done: about 3.0 GiB on 1 "
-        "worker")  # 3 GiB: noted, not refused
+        "its largest code has about 4 026 532 branch multigraphs, whose certificates are kept until the code is done: "
+        "about 1.5 GiB on 1 worker")  # 1.5 GiB: noted, not refused
 
 
 def test_a_size_with_units_but_no_chains_is_no_point_of_the_ratio(monkeypatch):
