@@ -58,7 +58,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["fixed_placements", "fixed_total", "place"]
+__all__ = ["fixed_placements", "fixed_total", "place", "tight_count"]
 
 
 @njit(cache=True)
@@ -488,3 +488,269 @@ def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, verte
     for r in range(group.shape[0]):
         total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group[r])
     return total
+
+
+@njit(cache=True)
+def _bundle_deficits(C, lows, ways):
+    """``ways[t]``: the deficits d_0 ≥ d_1 ≥ … of a bundle of parallel strings (their binary links
+    non-decreasing), 0 ≤ d_x ≤ C − ``lows[x]``, that add up to t (t = 0 … C·len(lows))."""
+    r = len(lows)
+    T = C * r
+    ways[:T + 1] = 0
+    if C < lows[0]:
+        return
+    last = np.zeros((C + 1, T + 1), dtype=np.int64)  # last[v, t]: the strings so far, the last one's deficit v, Σ t
+    nxt = np.zeros((C + 1, T + 1), dtype=np.int64)
+    for v in range(C - lows[0] + 1):
+        last[v, v] = 1
+    for x in range(1, r):
+        nxt[:, :] = 0
+        for v in range(C + 1):
+            for t in range(T + 1):
+                if last[v, t]:
+                    for v2 in range(min(v, C - lows[x]) + 1):
+                        nxt[v2, t + v2] += last[v, t]
+        last[:, :] = nxt
+    for v in range(C + 1):
+        for t in range(T + 1):
+            ways[t] += last[v, t]
+
+
+@njit(cache=True)
+def _state_slot(table, mask, states, totals, row, width, W, P, total):
+    """Where the state (``row[:width]``, ``row[W:W + P]``, ``total``) is in a layer (``states``,
+    ``totals``) hashed in ``table``: its index, or −(slot + 1) for the empty slot where it goes."""
+    code = np.int64(total) * np.int64(-7046029254386353131)
+    for U in range(width):
+        code = (code ^ row[U]) * np.int64(1099511628211)
+    for U in range(W, W + P):
+        code = (code ^ row[U]) * np.int64(1099511628211)
+    slot = (code ^ (code >> 29)) & mask
+    while True:
+        j = table[slot]
+        if j < 0:
+            return -(slot + 1)
+        if totals[j] == total:
+            same = True
+            for U in range(width):
+                if states[j, U] != row[U]:
+                    same = False
+                    break
+            for U in range(W, W + P):
+                if states[j, U] != row[U]:
+                    same = False
+                    break
+            if same:
+                return j
+        slot = (slot + 1) & mask
+
+
+@njit(cache=True)
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, g):
+    """The placements :func:`place` counts with no edge permutation and the excess bound
+    ``x_most`` = 0 (every long string exactly at h − 1 = C binary links, every never-short string at
+    its least: the rule's equality case, e.g. 1-DOF chains), counted without visiting them; or, with
+    a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to bundles, each
+    read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's lemma.
+
+    Such a placement is a choice of deficit d_e = C − w_e on each string between two of the game's
+    vertices such that the multigraph D holding each string d_e times is (k, l)-tight: Σ d =
+    Σ k − l, and every set X of vertices holds at most Σ_X k − l (docs/theory.md).  The bundles of
+    parallel strings are taken one after the other (as :func:`place` takes them); a bundle adds t
+    units on one pair a–b, in as many ways as its non-increasing deficits add up to t
+    (:func:`_bundle_deficits`).  A vertex is *open* from its first bundle to its last; the state
+    after a bundle is, for every set U of open vertices, the most that i(U ∪ Z) − k·|U ∪ Z| reaches
+    over the sets Z of closed vertices, with the total Σ d so far.  A bundle on a–b adds t to the
+    sets that hold both and is allowed where none of them then exceeds −l (a set that holds no new
+    unit was checked before); closing a vertex keeps the larger of a set with and without it.
+    Values below −l less the deficit still to come can never matter and are raised to one level,
+    so placements whose prefixes differ there share a state.  The count is the sum, over the
+    states of the last layer with Σ d = Σ k − l, of the placements that reach each.  With ``g``, the
+    first bundle of each cycle of g keeps its t in the state until the last, and every other
+    bundle of the cycle must take the same deficits (in one way).
+
+    ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
+    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2; ``g`` empty for every placement.  The strings
+    the game never sees each take their least weight: loops (parallel loops have one least weight)
+    and the one string of a single-joint link.  The states of a layer are a few hundred where
+    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304).
+
+    >>> import numpy as np
+    >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
+    >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, none[:0])  # 5 units, ≤ 2 a pair
+    3
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, np.array([1, 0, 2]))  # d_0 = d_1
+    1
+    """
+    E = len(a_end)
+    full = -l  # Σ d of a complete placement
+    for v in range(M):
+        full += k[v]
+    starts = np.zeros(E, dtype=np.int64)  # the bundles the game sees: strings starts[i] … ends[i] − 1
+    ends = np.zeros(E, dtype=np.int64)
+    bundle = np.full(E, -1, dtype=np.int64)  # of the first string of each
+    nb = 0
+    e = 0
+    while e < E:
+        f = e
+        e += 1
+        while e < E and parallel[e] >= 0:
+            e += 1
+        if a_end[f] >= 0:
+            starts[nb], ends[nb] = f, e
+            bundle[f] = nb
+            nb += 1
+    last = np.full(M, -1, dtype=np.int64)  # the last bundle at each vertex
+    room_after = np.zeros(nb + 1, dtype=np.int64)  # the most deficit bundles i … can take
+    for i in range(nb - 1, -1, -1):
+        a, b = a_end[starts[i]], b_end[starts[i]]
+        for v in (a, b):
+            if last[v] < 0:
+                last[v] = i
+        room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), k[a] + k[b] - l)
+    # with g: the slot in the state that holds the t of bundle i's cycle while the cycle is partly placed,
+    # kept by its first bundle (keep), read by the others (same), freed by its last (free)
+    keep = np.full(nb, -1, dtype=np.int64)
+    same = np.full(nb, -1, dtype=np.int64)
+    free = np.zeros(nb, dtype=np.bool_)
+    P = 0
+    if len(g):
+        busy = np.zeros(nb, dtype=np.bool_)
+        for i in range(nb):
+            lo, hi, j = i, i, bundle[g[starts[i]]]
+            while j != i:
+                lo, hi, j = min(lo, j), max(hi, j), bundle[g[starts[j]]]
+            if lo == hi:
+                continue
+            if i == lo:
+                slot = 0
+                while busy[slot]:
+                    slot += 1
+                busy[slot] = True
+                keep[i] = slot
+                P = max(P, slot + 1)
+            else:
+                same[i] = keep[lo]
+                if i == hi:
+                    free[i] = True
+                    busy[keep[lo]] = False
+    position = np.full(M, -1, dtype=np.int64)  # of an open vertex among the open ones; −1 before, −2 after
+    widest = 0
+    n_open = 0
+    for i in range(nb):
+        for v in (a_end[starts[i]], b_end[starts[i]]):
+            if position[v] == -1:
+                position[v] = 0
+                n_open += 1
+        widest = max(widest, n_open)
+        for v in (a_end[starts[i]], b_end[starts[i]]):
+            if last[v] == i and position[v] == 0:
+                position[v] = -2
+                n_open -= 1
+    W = 1 << widest
+    states = np.zeros((64, W + P), dtype=np.int64)  # a layer: per state, its sets' values, then the kept t
+    totals = np.zeros(64, dtype=np.int64)
+    ways_in = np.zeros(64, dtype=np.int64)  # the placements that reach each state
+    new_states, new_totals, new_ways = states.copy(), totals.copy(), ways_in.copy()
+    n = 1
+    ways_in[0] = 1
+    position[:] = -1
+    n_open = 0
+    row = np.zeros(W + P, dtype=np.int64)
+    ways = np.zeros(C * E + 1, dtype=np.int64)
+    lows = np.zeros(E, dtype=np.int64)
+    table = np.full(128, -1, dtype=np.int64)
+    for i in range(nb):
+        f, r = starts[i], ends[i] - starts[i]
+        a, b = a_end[f], b_end[f]
+        for v in (a, b):  # opening v: the sets with it hold no unit at it yet
+            if position[v] == -1:
+                bit = 1 << n_open
+                position[v] = n_open
+                for s in range(n):
+                    for U in range(bit):
+                        states[s, U | bit] = states[s, U] - k[v]
+                n_open += 1
+        both = (1 << position[a]) | (1 << position[b])
+        for x in range(r):
+            lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
+        _bundle_deficits(C, lows[:r], ways)
+        shut0 = position[a] if last[a] == i else -1  # the positions closed after this bundle, highest first
+        shut1 = position[b] if last[b] == i else -1
+        if shut0 < shut1:
+            shut0, shut1 = shut1, shut0
+        n_after = n_open - (shut0 >= 0) - (shut1 >= 0)
+        width = 1 << n_after
+        size = table.shape[0]
+        while size < 4 * n * (C * r + 1):
+            size *= 2
+        if size != table.shape[0]:
+            table = np.full(size, -1, dtype=np.int64)
+        else:
+            table[:] = -1
+        m = 0
+        for s in range(n):
+            most = -(1 << 60)  # the largest value of a set holding a and b
+            for U in range(1 << n_open):
+                if U & both == both and states[s, U] > most:
+                    most = states[s, U]
+            for t in range(C * r + 1):
+                d = totals[s] + t
+                if (t > 0 and most + t > -l) or d > full:
+                    break
+                if ways[t] == 0 or d + room_after[i + 1] < full or (same[i] >= 0 and t != states[s, W + same[i]]):
+                    continue
+                for U in range(1 << n_open):
+                    row[U] = states[s, U] + t if U & both == both else states[s, U]
+                span = 1 << n_open
+                for p in (shut0, shut1):
+                    if p >= 0:  # close the vertex at position p: the larger of each set with and without it
+                        span >>= 1
+                        below = (1 << p) - 1
+                        for U in range(span):
+                            at = (U & below) | ((U >> p) << (p + 1))
+                            row[U] = max(row[at], row[at | (1 << p)])
+                floor = -l - (full - d) - 1
+                for U in range(width):
+                    row[U] = max(row[U], floor)
+                row[W:] = states[s, W:]
+                if keep[i] >= 0:
+                    row[W + keep[i]] = t
+                if free[i]:
+                    row[W + same[i]] = 0
+                weight = ways_in[s] if same[i] >= 0 else ways_in[s] * ways[t]  # (a cycle's deficits: chosen once)
+                j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d)
+                if j >= 0:
+                    new_ways[j] += weight
+                    continue
+                if m == len(new_totals):  # a larger layer
+                    grown = np.zeros((2 * m, W + P), dtype=np.int64)
+                    grown[:m] = new_states
+                    new_states = grown
+                    new_totals = np.concatenate((new_totals, np.zeros(m, dtype=np.int64)))
+                    new_ways = np.concatenate((new_ways, np.zeros(m, dtype=np.int64)))
+                table[-j - 1] = m
+                new_states[m, :width] = row[:width]
+                new_states[m, W:] = row[W:]
+                new_totals[m], new_ways[m] = d, weight
+                m += 1
+        for p in (shut0, shut1):
+            if p >= 0:
+                for v in range(M):
+                    if position[v] == p:
+                        position[v] = -2
+                    elif position[v] > p:
+                        position[v] -= 1
+        n_open = n_after
+        states, new_states = new_states, states
+        totals, new_totals = new_totals, totals
+        ways_in, new_ways = new_ways, ways_in
+        n = m
+        if n == 0:
+            return 0
+    found = 0
+    for s in range(n):
+        if totals[s] == full:
+            found += ways_in[s]
+    return found

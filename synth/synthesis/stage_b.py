@@ -209,11 +209,12 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
 
 def load_kernel() -> None:
     """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: a small code through both."""
-    code, conv = Code.parse("440/0"), Conventions()
-    for graph in _contracted_by_kernel(code, conv):
-        _kernel_placements(code, graph, conv, None, listing=False)
-        count_orbits(code, graph, conv)
+    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``)."""
+    conv = Conventions()
+    for code in (Code.parse("440/0"), Code.parse("6020/0")):
+        for graph in _contracted_by_kernel(code, conv):
+            _kernel_placements(code, graph, conv, None, listing=False)
+            count_orbits(code, graph, conv)
 
 
 def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
@@ -240,7 +241,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     import numpy as np
 
     from ..structure.subchains import sets_to_check
-    from ._stage_b_kernel import place
+    from ._stage_b_kernel import place, tight_count
 
     t0 = perf_counter()
     lows, parallel = _string_limits(graph, conv)
@@ -282,14 +283,36 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
-                  conv.threshold, sets)
+    if not (listing or rows) and (whole_group or not len(group)) and _tight(M, l2, x_most, l, conv.h):
+        # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
+        identity = np.zeros(0, dtype=np.int64)
+        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g) for g in (identity, *group))
+        found, rest = divmod(found, len(group) + 1)
+        if rest:  # a fault of this engine
+            raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
+                               f"multigraph of {code} is not a multiple of their number")
+    else:
+        found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
+                      conv.threshold, sets)
     if (listing or rows) and found > len(out):
         out = np.zeros((found, E), dtype=np.int64)
         place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
               conv.threshold, sets)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
+
+
+def _tight(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
+    """Whether a count of one unit can count its placements instead of visiting them, the orbits by
+    Burnside's lemma over the permutations of its bundles (:func:`synth.synthesis._stage_b_kernel.tight_count`):
+    simple joints (one pebble game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and no
+    excess on the long strings (``x_most`` = 0: the rule's equality case, e.g. every 1-DOF chain), so that every
+    valid placement's deficit multigraph is tight.
+
+    >>> _tight(6, -1, 0, 4, 3), _tight(6, -1, 1, 4, 3), _tight(6, 4, 0, 4, 3)
+    (True, False, False)
+    """
+    return l2 < 0 and M >= 2 and x_most == 0 and l < 2 * h
 
 
 def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.ndarray":
