@@ -108,11 +108,12 @@ _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
 ROWS = (
     [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
     + [_row("W = 1", 1, 18, _A233288[18], "A233288",
-            heavy="not run by this script: counted by hand on 29 Nov 2026, the published value in 9 min 37 s "
-                  "wall on 2 workers of a quiet machine, 19 CPU min, the same 105 codes as the 26 Nov run "
-                  "(benchmarks/logs/count_18_links_e43e1b1.txt)")]
+            heavy="not run by this script: counted by hand on 29 Nov 2026 (c280dda), the published value in "
+                  "1 min 36 s wall on 2 workers of a quiet machine, 186.5 user CPU s, the same 105 codes as the "
+                  "runs of 26 Nov and of the morning (benchmarks/logs/count_18_links_c280dda.txt)")]
     + [_row("W = 1", 1, 20, None, "",
-            heavy="not run: the engine's sizing gives about 1.5e11 chains, about a day on 2 workers (README)")]
+            heavy="not run to the end: running since 29 Nov 2026 10:28 UTC from c280dda (section '20-link "
+                  "chains' below); extrapolated at 3.5–6.6 CPU hours")]
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
