@@ -191,7 +191,7 @@ CASES = [
     ("chains --dof 1 --links 8 --v 1 --format adjacency", "adjacency matrix"),
     # ---- scene and planetary
     ("mechanisms --dof 1 --links 14", "--format jsonl"),  # 4.27 million rows: no table, sized first
-    ("chains --dof 1 --links 12 --h 2 --count", "GiB"),  # its plan would hold gigabytes: sized first
+    ("chains --dof 1 --links 12 --h 2 --format jsonl", "GiB"),  # the listing's plan would hold gigabytes: sized first
     ("scene {d}/binary.toml", "binary.toml"),
     ("scene {d}/missing.toml", "missing.toml"),
     ("scene {d}/scene_bad.toml", "loopz"),
