@@ -178,6 +178,16 @@ def test_the_lex_least_vectors_are_those_no_image_undercuts(most):
         assert [tuple(v) for v in stage_b._lex_least(w, group).tolist()] == kept
 
 
+def _with_and_without_the_check(query):
+    """Each unit of ``query`` with a multiple joint: its args and the count's search with and without
+    the check of the exact test's sets (placements, rows, whole group)."""
+    for u, args in kernel_units(query):
+        if all(vertex.is_link for vertex in args[1].vertices):
+            continue
+        yield (u, args, stage_b._kernel_placements(*args, None, listing=False, rows=True),
+               stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False))
+
+
 # multiple joints: the kernel's weaker rule, every placement then through the exact test
 MULTIPLE_QUERIES = [dict(dof=1, links=10, v=(1, 8)), dict(dof=0, links=9, v=(1, 4)), dict(dof=1, links=7, h=2, v=(1, 3)),
                     dict(dof=1, links=11, h=4, v=(1, 4)), dict(dof=2, links=9, v=(1, 7)),
@@ -196,12 +206,8 @@ def test_the_count_rows_with_multiple_joints_are_the_listings_orbits(query, firs
         monkeypatch.setattr(stage_b, "_KERNEL_ROWS", 1)
         monkeypatch.setattr(stage_b, "_COUNT_ENTRIES", 1)
     compared = {True: 0, False: 0}
-    for u, args in kernel_units(query):
+    for u, args, (found, rows, whole), (unchecked, _, _) in _with_and_without_the_check(query):
         graph, conv = args[1], args[2]
-        if all(vertex.is_link for vertex in graph.vertices):
-            continue
-        found, rows, whole = stage_b._kernel_placements(*args, None, listing=False, rows=True)
-        unchecked, _, _ = stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False)
         listed, listing, _ = stage_b._kernel_placements(*args, None, listing=True)
         assert unchecked == listed == len(listing) and found == len(rows) <= listed, u.key
         if whole and found:
@@ -229,12 +235,8 @@ def test_the_check_of_the_exact_tests_sets_drops_no_chain(query, kernel_everywhe
     and it leaves some out (it is not idle) where the chains' sub-chains must move (W ≥ 1; with W = 0
     the first pebble game is the exact rule on these sets already, and the search skips the check)."""
     dropped = 0
-    for u, args in kernel_units(query):
+    for u, args, (found, rows, whole), (unchecked, every, _) in _with_and_without_the_check(query):
         graph, conv = args[1], args[2]
-        if all(vertex.is_link for vertex in graph.vertices):
-            continue
-        found, rows, whole = stage_b._kernel_placements(*args, None, listing=False, rows=True)
-        unchecked, every, _ = stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False)
         kept, all_rows = set(map(tuple, rows.tolist())), set(map(tuple, every.tolist()))
         assert len(kept) == found and kept <= all_rows, u.key
         if unchecked:
