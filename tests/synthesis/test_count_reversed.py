@@ -4,6 +4,19 @@ Burnside's lemma over the bundle group read off nauty's group of H on its string
 listed — against the first count (the kernel forced on every code, so that it is the programme too),
 unit by unit on the 13 queries of the programme's own tests; each check shown able to fail (a fault
 put into either count is caught by the other); the command line, its refusals and its checkpoint.
+
+Faults put by hand into the compiled kernel (numba: not patchable from a test), each caught by the
+comparison of the two counts on every unit of 10 and 12 links (1-DOF), 11 links h = 4, 9 links W = 0
+and 12 links W = 3 (220 units), or of 7 links h = 2, 8 links h = 2 W = 0 and 9 links W = 2 rigid:
+
+* first count only, ``_bundle_deficits`` letting a bundle's deficits rise by one
+  (``min(v + 1, C − lows[x])``): 98 of 220 units differ;
+* shared programme ``tight_count``, the floor raised two levels too high (``+ 1`` for ``− 1``):
+  4 units of 9 links W = 0 differ (the order of the bundles changes which states it merges);
+* second count only, each bundle's least weights without the parallel strings' (two empty
+  parallel strings allowed): no unit differs where h + threshold > 2 (the pair's rule refuses them
+  anyway), 90 of 117 units differ at 6 links h = 2 W = 0 (hence that query below), 8 057 of 11 469
+  at 8 links.
 """
 
 from __future__ import annotations
@@ -32,15 +45,18 @@ def _both(query, stats=None):
     return [(key, stage_b.count_realised(*args), stage_b.count_reversed(*args, stats)) for key, args in _units(query)]
 
 
-@pytest.mark.parametrize("query", QUERIES, ids=_ids)
+# the 13 queries, and W = 0 in the plane of wedges (h = 2), where h + threshold = 2: only the bundles'
+# least weights keep two parallel strings from both being empty
+@pytest.mark.parametrize("query", QUERIES + [dict(dof=0, links=6, h=2)], ids=_ids)
 def test_the_second_count_equals_the_first_on_every_unit(query, kernel_everywhere):
-    """Unit by unit, the same count; no unit counted as the first count counts it (every one by the
-    reversed programme or by orbits), and the programme counts units wherever the first does."""
+    """Unit by unit, the same count; no unit of the 13 queries counted as the first count counts it
+    (every one by the reversed programme or by orbits; at W = 0, h = 2, the few the kernel does not
+    take), and the programme counts units wherever the first does."""
     stats = {}
     pairs = _both(query, stats)
     assert pairs
     assert [(key, first) for key, first, _ in pairs] == [(key, second) for key, _, second in pairs]
-    assert stats.get("shared", 0) == 0
+    assert stats.get("shared", 0) == 0 if query in QUERIES else stats.get("shared", 0) < stats["reversed"] / 4
     if query.get("fractionated", True) and not query.get("rigid_subchains"):  # (else every unit may carry excess)
         assert stats["reversed"] and any(first > 1 for _, first, _ in pairs)
 
