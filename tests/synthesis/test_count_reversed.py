@@ -179,10 +179,23 @@ def test_the_command_refuses_what_the_second_count_does_not_cover(capsys, argv, 
 
 def test_the_second_count_keeps_its_own_checkpoint(tmp_path):
     """A checkpoint of the first count is refused to the second and the second's to the first (the
-    plan identity differs); the second resumes from its own."""
+    plan identity differs); benchmarks/checkpoints.py reads the second's and compares the two code by
+    code; the second resumes from its own."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
     first, second = tmp_path / "first.sqlite", tmp_path / "second.sqlite"
     assert synth.count_chains(1, 10, workers=1, checkpoint=first).count == 230
     assert synth.count_chains(1, 10, workers=1, checkpoint=second, method="tight-reverse").count == 230
+    script = Path(__file__).resolve().parents[2] / "benchmarks" / "checkpoints.py"
+    run = [subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=300)
+           for args in (["status", str(second)], ["compare", str(first), str(second)])]
+    assert [r.returncode for r in run] == [0, 0], [r.stderr for r in run]
+    assert json.loads(run[0].stdout)["codes_in_plan"] == 7
+    found = json.loads(run[1].stdout)
+    assert found["verdict"] == "equal" and found["codes_equal"] == 7 and found["chains_compared"] == 230
     with pytest.raises(synth.SynthesisError, match="belongs to another query"):
         synth.count_chains(1, 10, workers=1, checkpoint=first, method="tight-reverse")
     with pytest.raises(synth.SynthesisError, match="belongs to another query"):
