@@ -456,7 +456,7 @@ def _check_method(method: str, query: ChainQuery) -> None:
                if most_v != 0 else None)
         if why:
             raise InvalidOption(f"the second count (tight-reverse) does not cover these chains ({why}): use the "
-                                f"listing or orbits method")
+                                f"listing method")
 
 
 @dataclass(frozen=True)
