@@ -465,9 +465,10 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.quick and args.only is not None:
         fail("--quick and --only choose the rows in two different ways: give one of them")
-    if args.list_max < 0 or args.second_max < 0:
-        fail(f"--list-max and --second-max must be 0 (no such check) or more, not {args.list_max} and "
-             f"{args.second_max}")
+    if args.list_max < 0:
+        fail(f"--list-max must be 0 (no listing check) or more, not {args.list_max}")
+    if args.second_max < 0:
+        fail(f"--second-max must be 0 (no check with the kernels off) or more, not {args.second_max}")
     if args.second_every < 1:
         fail(f"--second-every must be 1 (every code) or more, not {args.second_every}")
     if args.recheck and (args.only is None or args.again):
