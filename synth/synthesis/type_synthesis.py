@@ -453,11 +453,16 @@ def _check_method(method: str, query: ChainQuery) -> None:
 
 
 def _allows_multiple_joints(query: ChainQuery) -> bool:
-    """Whether some chain of ``query`` may have a multiple joint (its code's v, else its range of v).
+    """Whether some chain of ``query`` may have a multiple joint (its code's v, else its range of v, unless
+    no joint may join more than two links).
 
     >>> _allows_multiple_joints(ChainQuery(1, 8)), _allows_multiple_joints(ChainQuery(1, 8, v="0..6"))
     (False, True)
+    >>> _allows_multiple_joints(ChainQuery(1, 8, v="0..6", max_multiplicity=2))
+    False
     """
+    if query.max_multiplicity == 2:
+        return False
     if query.code is not None:
         return query.code.v > 0
     return query.v is not None and (query.v[1] is None or query.v[1] > 0)

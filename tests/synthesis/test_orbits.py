@@ -162,7 +162,8 @@ def test_orbits_are_refused_where_a_chain_needs_what_they_do_not_check(options, 
         synth.count_chains(1, options.pop("links", 8), workers=1, method="orbits", **options)
 
 
-@pytest.mark.parametrize("options", [dict(links=8, v=0), dict(links=8, v="0..0"), dict(code="440/0")])
+@pytest.mark.parametrize("options", [dict(links=8, v=0), dict(links=8, v="0..0"), dict(code="440/0"),
+                                     dict(links=8, v="0..6", max_multiplicity=2)])
 def test_orbits_count_a_query_of_simple_joints_given_by_its_v_or_its_code(options):
     """v = 0 (or a code of simple joints) is not refused, and counts what the listing counts."""
     assert synth.count_chains(1, workers=1, method="orbits", **options) == synth.count_chains(1, workers=1, **options)
