@@ -26,7 +26,7 @@ Run from the project root (a long row prints the command's own progress bar)::
     nice -n 19 python benchmarks/records.py                  # every row but the heavy ones
     nice -n 19 python benchmarks/records.py --only "dof 3 --links 18"   # one row, heavy or not
     nice -n 10 python benchmarks/records.py --only "links 14 --v" --recheck --list-max 0 --second-max 100000000 \
-        --second-every 6                                  # a recorded count checked again on a sample of codes
+        --second-every 10                                 # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
@@ -331,8 +331,8 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
         differ = sorted(c for c in codes if found["by_code"].get(c, 0) != second.get(c, 0))
         same = not differ
         for code in differ:
-            print(f"records   {code}: {found['by_code'].get(code, 0)} counted, {second.get(code, 0)} with the kernels off",
-                  file=sys.stderr)
+            print(f"records   {code}: {found['by_code'].get(code, 0)} counted, {second.get(code, 0)} with the "
+                  "kernels off", file=sys.stderr)
         ok &= same
         sample = "" if whole else (f" (1 code in {second_every}: {len(second)} codes, "
                                                 f"{sum(second.values())} chains)")
