@@ -102,17 +102,24 @@ class Estimate:
 @dataclass
 class _TimedWork:
     """A unit work (``count_unit``, ``run_unit``, …) that adds up the CPU seconds it takes: the
-    calibrations run inline, so its total is the units' own share of a size's time."""
+    calibrations run inline, so its total is the units' own share of a size's time.  ``visited``
+    is the share of the units whose chains were visited one by one (a search or a listing found
+    some: their time grows with the chains); the others were counted without visiting them
+    (stage B's tight count, ``stats["tight"]``) or found none, and their time is the unit's."""
 
     work: object
     seconds: float = 0.0
+    visited: float = 0.0
 
     def __call__(self, unit):
+        stats: dict = {}
         t0 = time.process_time()
-        try:
-            return self.work(unit)
-        finally:
-            self.seconds += time.process_time() - t0
+        result = self.work(unit, stats=stats)
+        spent = time.process_time() - t0
+        self.seconds += spent
+        if not stats.get("tight") and (sum(result.values()) if isinstance(result, dict) else len(result)):
+            self.visited += spent
+        return result
 
 
 _COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
@@ -189,7 +196,7 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
                     units += 1
                 else:  # a code is complete: result is its number of units
                     largest = max(largest, result)
-            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.seconds)
+            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.visited)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
     if len(points) < 3:
@@ -203,7 +210,8 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     # the largest code's share of the units changes slowly (h = 2: 0.21, 0.16, 0.13, 0.12 at 7 … 10 links),
     # so it is kept from the largest calibration (the ratio of its own growth swings with the basis)
     log_largest = log_units + math.log10(max(l2, 1) / max(u2, 1))
-    # the largest calibration's time: its units' work per chain times the chains, the rest per unit times the units
+    # the largest calibration's time: the work of the units whose chains were visited per chain times the
+    # chains, the rest (stage A, the plan, the units counted without visiting) per unit times the units
     parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
     parts += [log_units + math.log10((s2 - w2) / max(u2, 1))] if s2 > w2 else []
     top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
