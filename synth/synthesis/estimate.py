@@ -47,7 +47,7 @@ from dataclasses import dataclass, replace
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["BUDGET", "MULTIPLE_BUDGET", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
+__all__ = ["BUDGET", "MULTIPLE_BUDGET", "UNIT_GROWTH", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
            "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
            "CERTIFICATE_BYTES"]
 
@@ -62,6 +62,13 @@ MULTIPLE_BUDGET = 8.0  # … with multiple joints: 1-DOF, the 12-link count (5.6
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
+# The time of one unit (stage A, the plan, stage B's count without visiting) grows with its branch
+# multigraph from 16 links on, past every calibration: 1-DOF counts in one process (the engine of
+# 29 Nov 2026 after PROFILE.md section 27, `time.process_time`, the shared 2-core machine at nice 10)
+# took 0.49 ms a unit at 14 and at 16 links and 0.80 at 18 (stage A 0.13, 0.18, 0.36 ms), a factor of
+# 1.27 a loop from 14 to 18 links.  With h = 2 it falls instead (0.28, 0.27, 0.22 ms at 8, 9, 10 links),
+# and h ≥ 4 was not measured: no growth there.
+UNIT_GROWTH = {3: 1.27}  # factor a loop on a unit's time beyond the largest calibration, by h
 # A listing (and a count on a Dask cluster) keeps every branch multigraph of a code until the code is
 # done (its output is in the order of their certificates), and its units travel whole to the parent:
 # about this many bytes per unit of the largest code, for each worker expanding a code at the same time
@@ -211,9 +218,11 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     # so it is kept from the largest calibration (the ratio of its own growth swings with the basis)
     log_largest = log_units + math.log10(max(l2, 1) / max(u2, 1))
     # the largest calibration's time: the work of the units whose chains were visited per chain times the
-    # chains, the rest (stage A, the plan, the units counted without visiting) per unit times the units
+    # chains, the rest (stage A, the plan, the units counted without visiting) per unit, grown by
+    # UNIT_GROWTH a loop, times the units
     parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
-    parts += [log_units + math.log10((s2 - w2) / max(u2, 1))] if s2 > w2 else []
+    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0))
+    parts += [log_units + math.log10((s2 - w2) / max(u2, 1)) + log_growth] if s2 > w2 else []
     top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
     log_seconds = top + math.log10(sum(10.0 ** (part - top) for part in parts) or 1.0)
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"
