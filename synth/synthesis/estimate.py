@@ -9,19 +9,23 @@ never at n itself, and never a size predicted to end later than one and a half b
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is measured in two parts at the largest calibration size, each scaled by what it grows
-with: the CPU seconds of the units' own work (stage B: placing the binary links, counting or
-building the chains) per chain, times the chains; and the rest (number synthesis, stage A, the
-plan) per unit, times the units.  The calibrations run on the path the query will take (the
-compiled searches of stages A and B when the query is large enough for them, however small the
-calibration sizes are), with the engine of the day, so the estimate follows every change of speed.
+with: the CPU seconds of the units whose chains were visited one by one (stage B's search with
+multiple joints or above the rule's equality case, a listing, the mechanisms) per chain, times the
+chains; and the rest per unit, times the units: number synthesis, stage A, the plan, and stage B
+where it counts a unit's placements without visiting them (the tight count of 1-DOF chains and
+every chain at the rule's equality case, benchmarks/PROFILE.md section 27, whose cost does not grow
+with the unit's chains) or finds none.  A unit's own time grows with its branch multigraph past
+the calibration sizes (:data:`UNIT_GROWTH`, a factor a loop).  The calibrations run on the path
+the query will take (the compiled searches of stages A and B when the query is large enough for
+them, however small the calibration sizes are), with the engine of the day, so the estimate
+follows every change of speed.
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
 −2.5 % at 14 links, −5.0 % at 16 and −6.7 % at 18 against the published counts (318 162,
-19 819 281, 1 535 380 884).  Stage B's time per chain falls as n grows (a unit's fixed costs
-spread over more chains; with the engine of 29 Nov 2026, one process: 4.7 µs at 12 links, 1.7
-at 14, 1.2 at 16, about 1.0 on a sample of 18), so the time is an upper bound where the chains
-are right, not a prediction (benchmarks/PROFILE.md, section 24, measures its error).
+19 819 281, 1 535 380 884).  The time, against the count's CPU in one process (section 29):
++22 % at 16 links, −11 % at 18 (188 against 212 CPU s; +1 % against the 186.5 CPU s of the
+whole 2-worker command on a quiet machine), 0.6 against 0.40–0.51 s at 14 links.
 
 With multiple joints the counts grow faster and less regularly (1-DOF, v up to n − 2: 1, 4, 60,
 2 645, 248 203, 35 396 111 at 4 … 14 links; ratios 4, 15, 44.1, 93.8, 142.6, whose steps 11, 29.1,
