@@ -143,12 +143,13 @@ def test_listing_through_the_pool_is_the_inline_listing(monkeypatch):
 
 
 # --------------------------------------------------------------- checkpoint
-def _kill_after_first_commit(args, env=None):
-    """Start a counting run, SIGKILL it as soon as it reports a commit; return its pool workers."""
+def _kill_after_first_commit(args, env=None, until=lambda: True):
+    """Start a counting run, SIGKILL it as soon as it reports a commit after which ``until()``
+    holds; return its pool workers."""
     proc = subprocess.Popen([*CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         for line in proc.stderr:
-            if "committed in this run" in line:
+            if "committed in this run" in line and until():
                 break
         else:
             pytest.fail("the run ended without reporting a commit")
@@ -225,9 +226,13 @@ def test_a_tiny_window_counts_the_same_and_resumes_without_double_counting(tmp_p
     assert _run(*query, env=tiny).stdout == reference.stdout
     assert not list(tmp_path.glob("mechsynth-units-*"))  # removed by the runs that ended
     ck = str(tmp_path / "count.sqlite")
-    _kill_after_first_commit([*query, "--checkpoint", ck], env=tiny)
-    with sqlite3.connect(ck) as conn:  # what the rerun must skip, not run again
-        assert conn.execute("SELECT COUNT(*) FROM units").fetchone()[0] > 0
+
+    def partial_units() -> int:  # units of codes not complete (a complete code keeps its total only)
+        with sqlite3.connect(ck) as conn:
+            return conn.execute("SELECT COUNT(*) FROM units").fetchone()[0]
+
+    _kill_after_first_commit([*query, "--checkpoint", ck], env=tiny, until=lambda: partial_units() > 0)
+    assert partial_units() > 0  # what the rerun must skip, not run again
     resumed = _run(*query, "--checkpoint", ck, env=tiny)
     assert resumed.returncode == 0, resumed.stderr
     assert resumed.stdout == reference.stdout
