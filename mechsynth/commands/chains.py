@@ -74,7 +74,8 @@ def add_commands(sub) -> None:
                    "placement of the binary links per chain, as a listing finds them), orbits (Burnside's lemma "
                    "over the multigraph's automorphisms, without listing them) or tight-reverse (the second count "
                    "of a record: the counting programme over the strings in reverse, with another reading of the "
-                   "automorphisms; simple joints only); the same counts")
+                   "automorphisms); the same counts; orbits and tight-reverse refused with multiple joints, "
+                   "prismatic pairs or cranks")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)
