@@ -402,16 +402,21 @@ def run_plan(
     submit = lambda fn, arg: executor._submit(fn, arg, done)  # noqa: E731
     next_done = None if ordered else (lambda: _next_done(done, executor._alive))  # noqa: E731
     yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * executor.slots,
-                         task_seconds or (0.5 if executor.client is not None else 0.05), first, next_done)
+                         task_seconds or (0.5 if executor.client is not None else 0.05), first, next_done,
+                         ahead=executor.slots)
 
 
 def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float,
-              first: _Item | None = None, next_done: Callable[[], object] | None = None) -> Iterator[tuple]:
+              first: _Item | None = None, next_done: Callable[[], object] | None = None,
+              ahead: int | None = None) -> Iterator[tuple]:
     """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight.
 
     ``first`` is an item the inline phase expanded but did not finish (its remaining units).
     Results come in plan order, or as they finish when ``next_done`` (which waits for the next
-    finished task) is given.
+    finished task) is given; then at most ``ahead`` of the tasks in flight are stage A's (one a
+    worker), so the units of an item already expanded are never queued behind a window of stage
+    A tasks: the 20-link count's first codes take minutes of stage A each, and with the window
+    full of them no unit was counted (nor committed) for the first 48 minutes.
     """
     pending = iter(todo)
     # stage A's worker works on the item's first units too, unless units are skipped (a checkpoint
@@ -467,6 +472,8 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             if target is not None:
                 submit_batch(target)
                 continue
+            if next_done is not None and ahead is not None and sum(e.expansion is not None for e in entries) >= ahead:
+                return  # (as they finish: stage A of the next item waits for a worker to be free of one)
             nxt = next(pending, None)
             if nxt is None:
                 return
