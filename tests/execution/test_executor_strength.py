@@ -56,7 +56,7 @@ class _Tasks:
     def __init__(self, clock, order="fifo", seed=0):
         self.clock, self.order, self.rng = clock, order, random.Random(seed)
         self.launched, self.waiting, self.in_flight, self.most = [], [], 0, 0
-        self.batches, self.worked, self.kinds = [], [], []
+        self.batches, self.worked = [], []
 
     def work(self, unit):
         self.worked.append(unit)
@@ -81,7 +81,6 @@ class _Tasks:
 
         if fn is module._apply_batch:
             self.batches.append(len(arg[1]))
-        self.kinds.append("batch" if fn is module._apply_batch else "stage A")
         task = Task()
         self.launched.append(task)
         self.waiting.append(task)
@@ -135,19 +134,20 @@ def test_stage_a_s_task_works_on_the_first_units_then_batches_follow_the_time_pe
     assert sum(tasks.batches) == 92
 
 
-@pytest.mark.parametrize("ahead", [1, 2, 3])
-def test_as_they_finish_stage_a_runs_at_most_ahead_items_before_the_units_of_the_first(clock, ahead):
-    # a checkpoint's filter (no unit worked on in stage A's task) and a window of 16: with every task
-    # finishing in the order submitted, the first item's units go out once its stage A is done, after
-    # at most ``ahead`` stage A tasks (not after the window's worth of them), and the plan is whole
-    plan = _plan([5] * 8)
+@pytest.mark.parametrize("expansions", [1, 2])
+def test_stage_a_waits_while_units_of_an_expanded_item_are_waiting(clock, expansions):
+    # a count with a checkpoint (stage A's task works on no unit) and a wide window: the pool runs
+    # tasks first come first served, so no more than `expansions` stage-A tasks may be submitted
+    # before the first batch of units (a window of stage-A tasks held every unit of 8 items at once)
+    plan = _plan([30] * 6)
     tasks = _Tasks(clock)
+    kinds = []
+    submit = lambda fn, arg: (kinds.append(fn is module._apply_batch), tasks.submit(fn, arg))[1]  # noqa: E731
     keep_all = lambda unit: False  # noqa: E731
-    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, tasks.submit, keep_all, 16, 4 * UNIT,
-                                next_done=tasks.next_done, ahead=ahead))
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, submit, keep_all, 8, 4 * UNIT,
+                                next_done=tasks.next_done, expansions=expansions))
     assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
-    assert tasks.kinds.index("batch") == ahead and tasks.kinds.count("stage A") == len(plan)
-    assert got.index((0, (0, 0), ("done", (0, 0)))) < got.index((ahead, None, 5))
+    assert kinds.index(True) == expansions  # the first batch follows the first expansions
 
 
 def test_units_of_no_time_travel_512_a_batch(clock):
