@@ -576,8 +576,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     from ..dimension import Constraints
     from .curves import index_info
 
-    given = (("top", top), ("workers", workers)) + ((("per_topology", per_topology),) if per_topology is not None else ())
-    for name, value in given:
+    given = [("top", top), ("workers", workers)]
+    for name, value in given + ([("per_topology", per_topology)] if per_topology is not None else []):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise InvalidOption(f"{name} must be a whole number ≥ 1, not {value!r}")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
