@@ -409,19 +409,20 @@ def count_by_code(items) -> dict[str, int]:
 COUNT_METHODS = ("listing", "orbits")
 
 
-def count_unit(unit: Unit, method: str = "listing") -> dict[str, int]:
+def count_unit(unit: Unit, method: str = "listing", stats: dict | None = None) -> dict[str, int]:
     """Counts by code of one unit's chains (``'42/0 P2'`` with prismatic pairs): counted where they
     are computed, without building the chains where stage B's solutions are already one per chain;
     what ``count_chains`` runs on each unit, on any scheduler.  ``method`` is one of
-    :data:`COUNT_METHODS` (both give the same counts).
+    :data:`COUNT_METHODS` (both give the same counts); ``stats`` gathers stage B's figures as
+    :func:`run_unit`'s does (``"tight"``: the unit was counted without visiting its placements).
 
     >>> [count_unit(u) for u in plan_units(1, 6)], [count_unit(u, "orbits") for u in plan_units(1, 6)]
     ([{'42/0': 2}], [{'42/0': 2}])
     """
     if unit.contracted is None or unit.conventions.prismatic is not None:
-        return count_by_code(run_unit(unit))
+        return count_by_code(run_unit(unit, stats))
     count = count_orbits if method == "orbits" else count_realised
-    n = count(unit.code, unit.contracted, unit.conventions)
+    n = count(unit.code, unit.contracted, unit.conventions, stats)
     return {str(unit.code): n} if n else {}
 
 
@@ -455,9 +456,9 @@ class _MechanismCount:
     input_link: bool = False
     cylinders: tuple = ()
 
-    def __call__(self, unit: Unit) -> dict[str, int]:
-        return count_by_code(m for c in run_unit(unit) for m in mechanisms_of(c, input_link=self.input_link,
-                                                                            cylinders=self.cylinders))
+    def __call__(self, unit: Unit, stats: dict | None = None) -> dict[str, int]:
+        return count_by_code(m for c in run_unit(unit, stats) for m in mechanisms_of(c, input_link=self.input_link,
+                                                                                   cylinders=self.cylinders))
 
 
 @dataclass(frozen=True)
