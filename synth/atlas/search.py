@@ -9,9 +9,10 @@ path — retrieval from the atlas's curve index, then the polish of :func:`synth
    start point or input offset.  For each τ the best λ is a projection, so the shape's misfit
    ‖t − λ u e^{inτ}‖ / ‖t‖ (n ≠ 0: translation left out) depends on τ alone, and |Σ ū_n t_n e^{−inτ}|
    is a trigonometric polynomial in τ, evaluated by one FFT on 512 shifts and refined by a scalar search.
-3. The best few samples of each topology (chain, frame, input) are turned into start linkages in the
-   target's frame (mirrored, turned, scaled, moved, posed at the first target point) and polished by
-   :func:`synth.dimension.synthesize` within half the topology's share of the time budget; a topology
+3. The best few samples of each topology (chain, frame, input; 3 per drawing of the index) are turned
+   into start linkages in the target's frame (mirrored, turned, scaled, moved, posed at the first target
+   point) and polished by :func:`synth.dimension.synthesize` within half the topology's share of the time
+   budget, each for an equal slice of it, the best then going on; a topology
    none of whose polishes meets the target exactly spends the rest in synthesize's global stage
    (differential evolution seeded from its best polished linkage and samples).  The answer is the best
    mechanism of each topology, errors re-checked by the motion layer.
