@@ -223,6 +223,7 @@ class _Evaluate:
             n = len(offsets)
             if short:
                 theta, t, g, mu = p.poses(lk, every)
+                g = p.dips(lk, every, g)
                 if g is not None and (g < 0).any():
                     return float((g < 0).mean())
                 link = p.tracer_link
@@ -232,6 +233,7 @@ class _Evaluate:
                     lk = p.linkage(x)  # the designer's region and limits are measured where it stands
             else:
                 values, g, mu = p.move(lk, every)
+                g = p.dips(lk, every, g)
         except MotionError:
             return None
         if g is not None and (g < 0).any():
@@ -266,6 +268,7 @@ class _Evaluate:
             values = point_carried(theta, t, np.array(lk.tracers["P"][1]))
         else:
             values, g, mu = p.move(lk, xs)
+        g = p.dips(lk, xs, g)
         ok = np.ones(len(xs), bool) if g is None else g >= 0
         ok &= np.isfinite(np.asarray(values).reshape(len(xs), -1)).all(axis=1)
         m = CURVE_SAMPLES
@@ -531,8 +534,9 @@ class _Evaluate:
         offsets = direction * np.concatenate(([0.0], np.cumsum(steps)))
         try:
             lk = p.linkage(x)
-            samples = p.samples(offsets)
-            values, g, mu = p.move(lk, np.concatenate((offsets, samples)))
+            every = np.concatenate((offsets, p.samples(offsets)))
+            values, g, mu = p.move(lk, every)
+            g = p.dips(lk, every, g)
         except MotionError:
             return np.full(size, 2.0 * math.sqrt(INFEASIBLE / size))
         n = len(offsets)
