@@ -18,6 +18,10 @@ with random dimensions eight timed points over 300° (the search given ``synth.a
 a row per seed and case says the relative error
 reached and the CPU seconds (the search stops early once the target is met to 1e-11 of its size).
 
+``python benchmarks/bench_dimension.py --table LOG [LOG ...]`` prints the Markdown tables of
+benchmarks/DIMENSION.md from such rows (JSON lines, as the runs above write them): one line per
+problem, and per reliability case the seeds found; no number in those tables is typed by hand.
+
 pylinkage is not a dependency of the project: its side runs in a virtual environment of its own with
 the SciPy extra its synthesis needs, made once with
 
@@ -320,6 +324,71 @@ def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None 
     return row
 
 
+#: a reliability case counts as found when the answer meets the points to this share of their size
+FOUND = 1e-6
+
+
+def _constraints_said(row: dict) -> str:
+    failed = [name for name, c in row["constraints"].items() if not c["met"]]
+    return "met" if not failed else "**not met**: " + ", ".join(failed)
+
+
+def table(rows: list[dict], log: str) -> str:
+    """The Markdown tables of rows from ``log``: a line per problem (our sum of squared errors beside
+    the source's record as our motion layer recomputes it, where one is recorded), and a line per
+    reliability case (the seeds whose answer meets the points to :data:`FOUND` of their size).
+
+    Examples
+    --------
+    >>> row = {"problem": "p", "sum_squared_error": 2.5e-4, "error_max": 0.01, "relative_max": 0.005,
+    ...        "evaluations": 1234, "cpu_seconds": 30.0, "constraints": {"crank": {"met": True}},
+    ...        "recorded_recomputed": 2.56e-4}
+    >>> print(table([row], "x.jsonl").splitlines()[2])
+    | p | 0.00025 | 0.000256 | 0.01 (0.005) | 1 234 | 30.0 | met | x.jsonl |
+    """
+    out = []
+    problems = [r for r in rows if "problem" in r]
+    if problems:
+        out += ["| problem | ours: sum of squares | recorded, recomputed by our motion layer | ours: largest error "
+                "(relative) | candidates | CPU s | constraints | rows |", "|---|---|---|---|---|---|---|---|"]
+        for r in problems:
+            recorded = f"{r['recorded_recomputed']:.8g}" if "recorded_recomputed" in r else "—"
+            candidates = f"{r['evaluations']:,}".replace(",", " ")
+            out.append(f"| {r['problem']} | {r['sum_squared_error']:.8g} | {recorded} | {r['error_max']:.2g} "
+                       f"({r['relative_max']:.2g}) | {candidates} | {r['cpu_seconds']:.1f} | {_constraints_said(r)} | {log} |")
+    cases = {}
+    for r in rows:
+        if "case" in r:
+            cases.setdefault(r["case"], []).append(r)
+    if cases:
+        if out:
+            out.append("")
+        out += ["| case | seeds | found | CPU s of the found (median) | misses (relative max) | rows |",
+                "|---|---|---|---|---|---|"]
+        for case, runs in cases.items():
+            found = [r for r in runs if r["relative_max"] <= FOUND and r["met"]]
+            seconds = sorted(r["cpu_seconds"] for r in found)
+            spread = (f"{seconds[0]:.1f}–{seconds[-1]:.1f} ({float(np.median(seconds)):.1f})" if seconds else "—")
+            misses = ", ".join(f"seed {r['seed']}: {r['relative_max']:.2g}" + ("" if r["met"] else " (a constraint failed)")
+                               for r in runs if r not in found) or "none"
+            seeds = sorted(r["seed"] for r in runs)
+            out.append(f"| {case} | {seeds[0]}–{seeds[-1]} | {len(found)} of {len(runs)} | {spread} | {misses} | {log} |")
+    return "\n".join(out)
+
+
+def read_rows(path: str) -> list[dict]:
+    """The JSON rows of a log (one per line; blank lines skipped)."""
+    try:
+        with open(path) as fh:
+            return [json.loads(line) for line in fh if line.strip()]
+    except OSError as exc:
+        said = f"cannot read {path}: {exc.strerror}"
+    except json.JSONDecodeError as exc:
+        said = f"{path} is not JSON lines ({exc.msg} at line {exc.lineno})"
+    print(f"bench_dimension: {said}", file=sys.stderr)
+    raise SystemExit(2)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--budget", type=positive, default=60.0, help="CPU seconds per problem (default 60)")
@@ -330,7 +399,14 @@ def main() -> None:
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
+    parser.add_argument("--table", metavar="LOG", nargs="+",
+                        help="print the Markdown tables of these logs' rows instead of running anything")
     args = parser.parse_args()
+    if args.table is not None:
+        if args.reliability is not None or args.only is not None or args.reach is not None:
+            parser.error("--table reads logs and runs nothing: --reliability, --only and --reach do not apply")
+        print("\n\n".join(table(read_rows(path), Path(path).name) for path in args.table))
+        return
     if args.reliability is not None:
         if args.only is not None or args.reach is not None:
             parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")
