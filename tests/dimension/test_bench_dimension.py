@@ -125,7 +125,7 @@ def test_the_tables_are_made_from_the_rows(bench, tmp_path):
             {"case": "c", "seed": 3, "relative_max": 1e-15, "cpu_seconds": 2.5, "met": True},
             {"case": "c", "seed": 4, "relative_max": 2e-3, "cpu_seconds": 30.0, "met": True},
             {"case": "c", "seed": 5, "relative_max": 1e-15, "cpu_seconds": 4.5, "met": False}]
-    lines = bench.table(rows, "log.jsonl").splitlines()
+    lines = bench.table([(row, "log.jsonl") for row in rows]).splitlines()
     assert lines[2] == ("| p | 0.00025643854 | 0.00025643854 | 0.012 (0.0063) | 48 649 | 31.1 | **not met**: order "
                         "| log.jsonl |")
     assert lines[-1] == ("| c | 3–5 | 1 of 3 | 2.5–2.5 (2.5) | seed 4: 0.002, seed 5: 1e-15 (a constraint failed) "
