@@ -384,10 +384,14 @@ def table(rows: list[tuple[dict, str]]) -> str:
 
 
 def read_rows(path: str) -> list[dict]:
-    """The JSON rows of a log (one per line; blank lines skipped)."""
+    """The JSON rows of a log (one per line; blank lines skipped); exits with status 2 and one sentence on
+    stderr where the file cannot be read or holds no rows of this benchmark."""
     try:
         with open(path) as fh:
-            return [json.loads(line) for line in fh if line.strip()]
+            rows = [json.loads(line) for line in fh if line.strip()]
+        if all(isinstance(row, dict) and ("problem" in row or "case" in row) for row in rows) and rows:
+            return rows
+        said = f"{path} holds no rows of this benchmark (a problem's or a reliability case's JSON object a line)"
     except OSError as exc:
         said = f"cannot read {path}: {exc.strerror}"
     except json.JSONDecodeError as exc:
