@@ -72,7 +72,8 @@ def add_commands(sub) -> None:
     p.add_argument("--method", choices=("listing", "orbits"),
                    help="with --count: how each branch multigraph's chains are counted — listing (default: one "
                    "placement of the binary links per chain, as a listing finds them) or orbits (Burnside's lemma "
-                   "over the multigraph's automorphisms, without listing them; the same counts)")
+                   "over the multigraph's automorphisms, without listing them; the same counts; refused with "
+                   "multiple joints, prismatic pairs or cranks)")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)

@@ -291,6 +291,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         if rest:  # a fault of this engine
             raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
                                f"multigraph of {code} is not a multiple of their number")
+        _add(stats, tight=1)  # (the sizing times these units per unit, the others per placement visited)
     else:
         found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
                       conv.threshold, sets)
