@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import argparse
 import csv
+import os
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-__all__ = ["OUT", "write_csv", "print_rows"]
+__all__ = ["OUT", "write_csv", "print_rows", "emit"]
 
 #: where every benchmark writes its tables and figures
 OUT = Path(__file__).resolve().parent / "out"
@@ -35,3 +37,12 @@ def print_rows(run: Callable[[bool], list[dict]], description: str) -> None:
     parser.add_argument("--quick", action="store_true", help="a smaller run of a few seconds")
     for row in run(parser.parse_args().quick):
         print(row)
+
+
+def emit(text: str) -> None:
+    """Print a result on stdout; a reader that stops early (``| head``) changes no exit status and
+    sees no traceback."""
+    try:
+        print(text, flush=True)
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -50,6 +50,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from benchmarks._out import emit  # noqa: E402
 from synth import Chain, Mechanism  # noqa: E402
 from synth.atlas import sampled_starts  # noqa: E402
 from synth.dimension import Constraints, PathTarget, synthesize  # noqa: E402
@@ -416,7 +417,7 @@ def main() -> None:
     if args.table is not None:
         if args.reliability is not None or args.only is not None or args.reach is not None:
             parser.error("--table reads logs and runs nothing: --reliability, --only and --reach do not apply")
-        print(table([(row, Path(path).name) for path in args.table for row in read_rows(path)]))
+        emit(table([(row, Path(path).name) for path in args.table for row in read_rows(path)]))
         return
     if args.reliability is not None:
         if args.only is not None or args.reach is not None:

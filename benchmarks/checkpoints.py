@@ -33,13 +33,14 @@ import argparse
 import csv
 import io
 import json
-import os
 import re
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+
+from benchmarks._out import emit  # noqa: E402
 
 SQLITE_HEADER = b"SQLite format 3\x00"
 
@@ -179,14 +180,6 @@ def _words(sizes: list[int]) -> str:
     return ", ".join(map(str, sizes))
 
 
-def _emit(text: str) -> None:
-    """The result on stdout; a reader that stops early (``| head``) changes no exit status."""
-    try:
-        print(text, flush=True)
-    except BrokenPipeError:
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-
-
 def main(argv=None) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -219,11 +212,11 @@ def main(argv=None) -> int:
         if all(sizes) and sizes[0] != sizes[1]:
             fail(f"{args.a} counts chains of {_words(sizes[0])} links and {args.b} of {_words(sizes[1])}")
         result = {"a": str(args.a), "b": str(args.b), **compare(tuple(a), tuple(b))}
-        _emit(json.dumps(result, indent=1))
+        emit(json.dumps(result, indent=1))
         return 1 if result["verdict"] == "different" else 0
     state = _state(args.checkpoint)
     if args.command == "status":
-        _emit(json.dumps({"checkpoint": str(args.checkpoint), **status(state)}, indent=1))
+        emit(json.dumps({"checkpoint": str(args.checkpoint), **status(state)}, indent=1))
         return 0
     codes = plan_codes_of(state)
     if args.complete and (state.partial or codes is None or set(codes) - set(state.complete)):
@@ -236,7 +229,7 @@ def main(argv=None) -> int:
     writer = csv.DictWriter(text, fieldnames=["code", "count", "units", "state"], lineterminator="\n")
     writer.writeheader()
     writer.writerows(table_rows(state, codes))
-    _emit(text.getvalue().rstrip("\n"))
+    emit(text.getvalue().rstrip("\n"))
     return 0
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import subprocess
 import sys
 from pathlib import Path
 
@@ -130,3 +131,12 @@ def test_the_tables_are_made_from_the_rows(bench, tmp_path):
                         "| log.jsonl |")
     assert lines[-1] == ("| c | 3–5 | 1 of 3 | 2.5–2.5 (2.5) | seed 4: 0.002, seed 5: 1e-15 (a constraint failed) "
                          "| log.jsonl |")
+
+
+def test_a_table_read_by_a_reader_that_stops_early_prints_no_traceback():
+    """``--table LOG | head``: the closed pipe ends the script quietly, exit status 0."""
+    script = ROOT / "benchmarks" / "bench_dimension.py"
+    log = ROOT / "benchmarks" / "logs" / "dimension_classical_30s.jsonl"
+    shell = subprocess.run(f"{sys.executable} {script} --table {log} | true; exit ${{PIPESTATUS[0]}}", shell=True,
+                           executable="/bin/bash", capture_output=True, text=True)
+    assert shell.returncode == 0 and shell.stderr == ""
