@@ -18,6 +18,10 @@ with random dimensions eight timed points over 300° (the search given ``synth.a
 a row per seed and case says the relative error
 reached and the CPU seconds (the search stops early once the target is met to 1e-11 of its size).
 
+``python benchmarks/bench_dimension.py --table LOG [LOG ...]`` prints the Markdown tables of
+benchmarks/DIMENSION.md from such rows (JSON lines, as the runs above write them): one line per
+problem, and per reliability case the seeds found; no number in those tables is typed by hand.
+
 pylinkage is not a dependency of the project: its side runs in a virtual environment of its own with
 the SciPy extra its synthesis needs, made once with
 
@@ -84,6 +88,9 @@ ARC_TIMING = [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi /
 ARC_RECORD = {"vector": [2.275311865, 2.085761231, 2.275311865, 2.275311865, 1.503900733, 1.725985126],
               "sum_squared_error": 2.5643900e-4, "method": "HNMED (hybrid Nelder-Mead and differential evolution)",
               "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE2"}
+# Kunjur and Krishnamurty's eighteen points, as [ECA] states them
+EIGHTEEN = [(0.5, 1.1), (0.4, 1.1), (0.3, 1.1), (0.2, 1.0), (0.1, 0.9), (0.05, 0.75), (0.02, 0.6), (0, 0.5), (0, 0.4),
+            (0.03, 0.3), (0.1, 0.25), (0.15, 0.2), (0.2, 0.3), (0.3, 0.4), (0.4, 0.5), (0.5, 0.7), (0.6, 0.9), (0.6, 1.0)]
 FIXED_FRAME = ("the source fixes the input pivot at the origin and the frame along +x, and times the crank from the "
                "frame line (6 unknowns for 10 equations)")
 
@@ -125,12 +132,16 @@ PROBLEMS = {
          (3.5396, 2.5171), (10, 0.2679), (16.736, 2.1216), (20, 6.5798)], None, Constraints(),
         "none read: restated on 28 Nov from later papers' openings"),
     "eighteen points of a closed path, untimed": Problem(
-        [(0.5, 1.1), (0.4, 1.1), (0.3, 1.1), (0.2, 1.0), (0.1, 0.9), (0.05, 0.75), (0.02, 0.6), (0, 0.5),
-         (0, 0.4), (0.03, 0.3), (0.1, 0.25), (0.15, 0.2), (0.2, 0.3), (0.3, 0.4), (0.4, 0.5), (0.5, 0.7),
-         (0.6, 0.9), (0.6, 1.0)], None, Constraints(crank=True),
+        EIGHTEEN, None, Constraints(crank=True),
         f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
         differs="the source's box is links 0-5 and offsets and pivot within +-5; ours is 4 target sizes (4.3) "
                 "round the points' centre, and asks only that the crank turns"),
+    "eighteen points of a closed path, untimed, transmission 20 deg": Problem(
+        EIGHTEEN, None, Constraints(crank=True, min_transmission=math.radians(20)),
+        f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
+        differs="the source asks only that the crank turns (Grashof's condition, its bound allowed): its best lies on "
+                "that bound, where the coupler and rocker fold flat once a turn; ours also asks a transmission angle of "
+                "at least 20 deg, a mechanism a designer would build"),
     # pylinkage 1.3.0: its README's example, and its path_generation docstring's
     "pylinkage README: four points, untimed": Problem([(0, 0), (1, 1), (2, 1), (3, 0)], None, Constraints(),
                                                       "pylinkage 1.3.0 README", pylinkage=True),
@@ -320,6 +331,75 @@ def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None 
     return row
 
 
+#: a reliability case counts as found when the answer meets the points to this share of their size
+FOUND = 1e-6
+
+
+def _constraints_said(row: dict) -> str:
+    failed = [name for name, c in row["constraints"].items() if not c["met"]]
+    return "met" if not failed else "**not met**: " + ", ".join(failed)
+
+
+def table(rows: list[tuple[dict, str]]) -> str:
+    """The Markdown tables of (row, the log it came from) pairs: a line per problem (our sum of squared errors beside
+    the source's record as our motion layer recomputes it, where one is recorded), and a line per
+    reliability case (the seeds whose answer meets the points to :data:`FOUND` of their size).
+
+    Examples
+    --------
+    >>> row = {"problem": "p", "sum_squared_error": 2.5e-4, "error_max": 0.01, "relative_max": 0.005,
+    ...        "evaluations": 1234, "cpu_seconds": 30.0, "constraints": {"crank": {"met": True}},
+    ...        "recorded_recomputed": 2.56e-4}
+    >>> print(table([(row, "x.jsonl")]).splitlines()[2])
+    | p | 0.00025 | 0.000256 | 0.01 (0.005) | 1 234 | 30.0 | met | x.jsonl |
+    """
+    out = []
+    problems = [(r, log) for r, log in rows if "problem" in r]
+    if problems:
+        out += ["| problem | ours: sum of squares | recorded, recomputed by our motion layer | ours: largest error "
+                "(relative) | candidates | CPU s | constraints | rows |", "|---|---|---|---|---|---|---|---|"]
+        for r, log in problems:
+            recorded = f"{r['recorded_recomputed']:.8g}" if "recorded_recomputed" in r else "—"
+            candidates = f"{r['evaluations']:,}".replace(",", " ")
+            out.append(f"| {r['problem']} | {r['sum_squared_error']:.8g} | {recorded} | {r['error_max']:.2g} "
+                       f"({r['relative_max']:.2g}) | {candidates} | {r['cpu_seconds']:.1f} | {_constraints_said(r)} | {log} |")
+    cases = {}
+    for r, log in rows:
+        if "case" in r:  # (a case's seeds are counted per log: each log is one run of them)
+            cases.setdefault((r["case"], log), []).append(r)
+    if cases:
+        if out:
+            out.append("")
+        out += ["| case | seeds | found | CPU s of the found (median) | misses (relative max) | rows |",
+                "|---|---|---|---|---|---|"]
+        for (case, log), runs in cases.items():
+            found = [r for r in runs if r["relative_max"] <= FOUND and r["met"]]
+            seconds = sorted(r["cpu_seconds"] for r in found)
+            spread = (f"{seconds[0]:.1f}–{seconds[-1]:.1f} ({float(np.median(seconds)):.1f})" if seconds else "—")
+            misses = ", ".join(f"seed {r['seed']}: {r['relative_max']:.2g}" + ("" if r["met"] else " (a constraint failed)")
+                               for r in runs if r not in found) or "none"
+            seeds = sorted(r["seed"] for r in runs)
+            out.append(f"| {case} | {seeds[0]}–{seeds[-1]} | {len(found)} of {len(runs)} | {spread} | {misses} | {log} |")
+    return "\n".join(out)
+
+
+def read_rows(path: str) -> list[dict]:
+    """The JSON rows of a log (one per line; blank lines skipped); exits with status 2 and one sentence on
+    stderr where the file cannot be read or holds no rows of this benchmark."""
+    try:
+        with open(path) as fh:
+            rows = [json.loads(line) for line in fh if line.strip()]
+        if all(isinstance(row, dict) and ("problem" in row or "case" in row) for row in rows) and rows:
+            return rows
+        said = f"{path} holds no rows of this benchmark (a problem's or a reliability case's JSON object a line)"
+    except OSError as exc:
+        said = f"cannot read {path}: {exc.strerror}"
+    except json.JSONDecodeError as exc:
+        said = f"{path} is not JSON lines ({exc.msg} at line {exc.lineno})"
+    print(f"bench_dimension: {said}", file=sys.stderr)
+    raise SystemExit(2)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--budget", type=positive, default=60.0, help="CPU seconds per problem (default 60)")
@@ -330,7 +410,14 @@ def main() -> None:
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
+    parser.add_argument("--table", metavar="LOG", nargs="+",
+                        help="print the Markdown tables of these logs' rows instead of running anything")
     args = parser.parse_args()
+    if args.table is not None:
+        if args.reliability is not None or args.only is not None or args.reach is not None:
+            parser.error("--table reads logs and runs nothing: --reliability, --only and --reach do not apply")
+        print(table([(row, Path(path).name) for path in args.table for row in read_rows(path)]))
+        return
     if args.reliability is not None:
         if args.only is not None or args.reach is not None:
             parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")

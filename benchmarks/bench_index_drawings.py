@@ -5,7 +5,7 @@ samples recovers the curve exactly.
 Run (after ``mechsynth grid`` on an atlas that holds the chain)::
 
     python benchmarks/bench_index_drawings.py --db ATLAS [--drawings 1 10 30] [--samples 20] [--seeds 8]
-        [--polish 8]
+        [--polish 8] [--atlas-polish BUDGET]
 
 The withheld mechanism (default: the eight-bar of bench_atlas_search.py) gets random dimensions from the
 seeded generator of tests/atlas/test_curve_search.py, near the drawing of the chain *as it is written
@@ -15,13 +15,17 @@ and K − 1 others.  Prints one JSON line per (seed, K): CPU seconds of the samp
 tracer link, the nearest descriptor misfits, and the polish of the ``--polish`` nearest (relative
 largest error, CPU seconds) — the starts and the polish of the atlas search's (:func:`start_linkage`,
 ``synthesize(..., polish_only=True)``), without the retrieval's ranking against the other mechanisms.
+With ``--atlas-polish BUDGET`` the nearest 3 K samples (the search's default for an index of K drawings)
+go instead through the atlas search's stage for one topology, with BUDGET CPU seconds (its share of the
+search's budget): the slices, the going on from the best, then the global stage.  ``same_dimensions``
+is the largest difference between the sorted distances of joints on a link, withheld against found,
+over the curve's size (0: the withheld mechanism itself; far from 0: another tracing the same curve).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import sqlite3
 import sys
 import time
 from pathlib import Path
@@ -32,28 +36,38 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from synth import Chain, Mechanism  # noqa: E402
-from synth.atlas.search import descriptor_of, sampled_starts  # noqa: E402
+from synth.atlas.search import PER_DRAWING, _Polish, _polish_topology, sampled_candidates, sampled_starts  # noqa: E402
 from synth.dimension import Constraints, synthesize  # noqa: E402
-from tests.atlas.test_curve_search import _random_crank, _target  # noqa: E402
+from tests.atlas.test_curve_search import _in_atlas, _random_crank, _target  # noqa: E402
 from bench_atlas_search import EIGHT_BAR  # noqa: E402
 
 
-def in_atlas(db: str, mechanism: Mechanism, tracer_link: int) -> tuple[Mechanism, int]:
-    """The mechanism in the atlas's numbering of its chain, and its tracer link there."""
-    import networkx as nx
+def link_distances(linkage) -> np.ndarray:
+    """The distances between the joints (and the tracer point) of each link in the pose, sorted: equal
+    for two linkages of one chain with the same dimensions, whatever their numbering or placement."""
+    chain = linkage.mechanism.chain
+    out = []
+    for link in range(chain.links):
+        at = [linkage.points[k] for k, joint in enumerate(chain.joints) if link in joint]
+        if linkage.tracers["P"][0] == link:
+            at.append(np.asarray(linkage.tracers["P"][1]))
+        out += [float(np.hypot(*(a - b))) for i, a in enumerate(at) for b in at[i + 1:]]
+    return np.sort(out)
 
-    from synth.synthesis.type_synthesis import mechanisms_of
 
-    conn = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
-    try:
-        chain = next(c for (text,) in conn.execute("SELECT chain FROM chains")
-                     for c in [Chain.from_dict(json.loads(text))] if c.certificate == mechanism.chain.certificate)
-    finally:
-        conn.close()
-    units = {(m.frame, m.input_link) for m in mechanisms_of(chain, input_link=True)}  # the index's, up to symmetry
-    matcher = nx.algorithms.isomorphism.GraphMatcher(mechanism.chain.link_graph(), chain.link_graph())
-    to = next(iso for iso in matcher.isomorphisms_iter() if (iso[mechanism.frame], iso[mechanism.input_link]) in units)
-    return Mechanism(chain, to[mechanism.frame], to[mechanism.input_link]), to[tracer_link]
+def atlas_polish(mechanism, tracer, withheld, target, drawings: int, samples: int, budget: float) -> dict:
+    """The atlas search's stage for one topology on the mechanism's nearest samples (see the module's
+    docstring)."""
+    clock = time.process_time()
+    rows = sampled_candidates(mechanism, tracer, target, samples=samples, drawings=drawings)[:PER_DRAWING * drawings]
+    sampled = time.process_time() - clock
+    task = _Polish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target, Constraints(), budget, 0)
+    result, candidate, tried, why, spent = _polish_topology(task)
+    gap = np.abs(link_distances(withheld) - link_distances(result.linkage)).max() / target.size
+    return {"candidates": len(rows), "sampling_cpu_seconds": round(sampled, 1), "tried": tried,
+            "relative_max": float(f"{result.relative_max:.3g}"), "cpu_seconds": round(spent, 1),
+            "nearest_misfit_rank": rows.index(next(r for r in rows if r[0] is candidate)),
+            "same_dimensions": float(f"{gap:.2g}")}
 
 
 def main() -> None:
@@ -64,14 +78,22 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, nargs="+", default=[8])
     parser.add_argument("--polish", type=int, default=8, help="nearest samples polished (default 8)")
     parser.add_argument("--points", type=int, default=72)
+    parser.add_argument("--atlas-polish", type=float, metavar="BUDGET",
+                        help="the atlas search's stage for one topology, with this many CPU seconds, instead")
     args = parser.parse_args()
 
     chain, frame, input_link, tracer_link = EIGHT_BAR
     withheld = Mechanism(Chain.parse(chain), frame, input_link)
-    mechanism, tracer = in_atlas(args.db, withheld, tracer_link)
+    mechanism, tracer = _in_atlas(args.db, withheld, tracer_link)
     for seed in args.seeds:
-        target = _target(_random_crank(withheld, tracer_link, seed=seed), args.points, True)
+        truth = _random_crank(withheld, tracer_link, seed=seed)
+        target = _target(truth, args.points, True)
         for drawings in args.drawings:
+            if args.atlas_polish:
+                print(json.dumps({"seed": seed, "drawings": drawings, "samples_per_drawing": args.samples,
+                                  **atlas_polish(mechanism, tracer, truth, target, drawings, args.samples,
+                                                 args.atlas_polish)}), flush=True)
+                continue
             clock = time.process_time()
             starts = sampled_starts(mechanism, tracer, target, samples=args.samples, drawings=drawings)
             sampled = time.process_time() - clock

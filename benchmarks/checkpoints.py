@@ -3,7 +3,7 @@
 A count run with ``--checkpoint FILE`` commits every finished unit to an SQLite file (issue 41:
 the 20-link count).  This script reads such a file without changing it — while the count
 is still writing it, too — and compares two counts of the same query made by different runs
-(``--method listing`` and ``--method orbits``, each with its own checkpoint), code by code::
+(``--method listing`` and ``--method orbits`` or ``tight-reverse``, each with its own checkpoint), code by code::
 
     python benchmarks/checkpoints.py status c20.sqlite                 # how far it is
     python benchmarks/checkpoints.py table c20.sqlite > by_code.csv    # code,count,units,state
@@ -34,6 +34,7 @@ import csv
 import io
 import json
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -206,7 +207,7 @@ def main(argv=None) -> int:
         *a, query_a = read_counts(args.a)
         *b, query_b = read_counts(args.b)  # (a query in words comes from a checkpoint; a JSON count has none)
         # a spot check's --code query has no links= (the code says them, and the sizes are checked below)
-        bare = [" ".join(word for word in q.replace(" by orbits", "").split()
+        bare = [" ".join(word for word in re.sub(r" by [\w-]+", "", q).split()  # (the method: " by orbits")
                          if not (args.part and word.startswith(("code=", "links=")))) for q in (query_a, query_b)]
         if query_a and query_b and bare[0] != bare[1]:
             fail(f"{args.a} counts another query ({query_a}) than {args.b} ({query_b})")

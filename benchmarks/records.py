@@ -11,7 +11,11 @@ to ``benchmarks/records.csv``, and checks the count by whatever independent mean
 * ``oracle``: the counts by code equal those of the brute force of ``tests/oracles/chains.py``
   (no engine code: labelled search, networkx isomorphism; small sizes only);
 * ``listing``: the counts by code equal those of the listing path, which builds every chain and
-  tells chains apart by their nauty certificates (queries up to ``LIST_MAX`` chains).
+  tells chains apart by their nauty certificates (queries up to ``LIST_MAX`` chains);
+* ``kernels off`` (multiple joints only): the counts by code equal those of the engine with its compiled
+  kernels off (:func:`kernels_off_by_code`; up to ``--second-max`` chains, or every ``--second-every``-th
+  code, a sample).  The count's search with multiple joints runs the stage-B kernel with the exact test's
+  sets checked inside it; this check shares neither, nor the listing's kernel.
 
 A row with none of them says ``none``.  The table of the section "Published counts" of
 ``benchmarks/RECORDS.md`` is then written from the whole CSV (other sections of that file are left
@@ -21,6 +25,8 @@ Run from the project root (a long row prints the command's own progress bar)::
 
     nice -n 19 python benchmarks/records.py                  # every row but the heavy ones
     nice -n 19 python benchmarks/records.py --only "dof 3 --links 18"   # one row, heavy or not
+    nice -n 10 python benchmarks/records.py --only "links 14 --v" --recheck --list-max 0 --second-max 100000000 \
+        --second-every 10                                 # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
@@ -252,24 +258,60 @@ def oracle_by_code(row: Row) -> dict:
                                             h=int(row.option("--h", 3))))
 
 
-def listing_by_code(row: Row) -> dict:
-    """Counts by code of the listing path (every chain built, nauty certificates) for the row's query."""
-    import synth
-
+def _query(row: Row) -> dict:
+    """The keyword arguments of ``synth`` for the row's query."""
     v = row.option("--v")
     query = dict(dof=int(row.option("--dof")), links=int(row.option("--links")), h=int(row.option("--h", 3)),
                  fractionated="--no-fractionated" not in row.options,
                  v=(0, int(v.split("..")[1])) if v else None)
+    return {k: x for k, x in query.items() if x is not None}
+
+
+def listing_by_code(row: Row) -> dict:
+    """Counts by code of the listing path (every chain built, nauty certificates) for the row's query."""
+    import synth
+
     out: dict[str, int] = {}
-    for chain in synth.type_synthesis(**{k: x for k, x in query.items() if x is not None}, workers=2):
+    for chain in synth.type_synthesis(**_query(row), workers=2):
         key = str(chain.code) + chain.kind_suffix
         out[key] = out.get(key, 0) + 1
     return out
 
 
-def checks(row: Row, found: dict, list_max: int = LIST_MAX) -> tuple[str, bool]:
+# kernel_loops for "never": the compiled kernels of stages A and B run from this many loops on
+_NO_KERNEL = 10**6
+
+
+def kernels_off_by_code(row: Row, every: int = 1) -> dict:
+    """Counts by code of the row's query with the engine's compiled kernels off, for every ``every``-th code
+    of its plan (the first included), in this process: stage A by its plain search or CP-SAT model, stage B
+    by its direct listing of weight vectors or CP-SAT model, one vector an orbit by the lex-least test in
+    numpy, and the exact sub-chain test in numpy — nothing of the kernels' searches, their pebble games, their
+    check of the exact test's sets or their Burnside counts.  Each code's count and CPU seconds go to stderr.
+    """
+    from dataclasses import replace
+
+    from synth import ChainQuery
+    from synth.synthesis.type_synthesis import count_unit, job_units, plan_jobs
+
+    jobs = plan_jobs(ChainQuery(**_query(row)))[::every]
+    out: dict[str, int] = {}
+    for k, (code, conv) in enumerate(jobs, 1):
+        t0 = time.process_time()
+        out.setdefault(str(code), 0)  # (a code sampled is compared even where it has no chain)
+        for unit in job_units((code, replace(conv, kernel_loops=_NO_KERNEL))):
+            for key, n in count_unit(unit).items():
+                out[key] = out.get(key, 0) + n
+        print(f"records   kernels off [{k}/{len(jobs)}] {code}: {out.get(str(code), 0)} chains, "
+              f"{time.process_time() - t0:.2f} CPU s", file=sys.stderr, flush=True)
+    return out
+
+
+def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
+           second_every: int = 1) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
-    the listing path checks counts of up to ``list_max`` chains."""
+    the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
+    the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan)."""
     passed, ok = [], True
     if row.published is not None:
         ok &= found["count"] == row.published
@@ -282,7 +324,35 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX) -> tuple[str, bool]:
         same = listing_by_code(row) == found["by_code"]
         ok &= same
         passed.append("listing by code" if same else "LISTING DIFFERS")
+    if row.option("--v") and 0 < found["count"] <= second_max:
+        second = kernels_off_by_code(row, second_every)
+        whole = second_every == 1  # (then every code counted is in the plan's sample)
+        codes = set(second) | (set(found["by_code"]) if whole else set())
+        differ = sorted(c for c in codes if found["by_code"].get(c, 0) != second.get(c, 0))
+        same = not differ
+        for code in differ:
+            print(f"records   {code}: {found['by_code'].get(code, 0)} counted, {second.get(code, 0)} with the "
+                  "kernels off", file=sys.stderr)
+        ok &= same
+        sample = "" if whole else (f" (1 code in {second_every}: {len(second)} codes, "
+                                                f"{sum(second.values())} chains)")
+        passed.append(f"kernels off by code{sample}" if same else "KERNELS OFF DIFFERS")
     return "; ".join(passed) or "none", ok
+
+
+def merge_checks(before: str, now: str) -> str:
+    """The checks column of a recorded count checked again: each check run now replaces the one of its kind
+    (its first word) recorded before, the others recorded are kept.
+
+    >>> merge_checks("oracle by code; listing by code", "oracle by code; kernels off by code")
+    'listing by code; oracle by code; kernels off by code'
+    """
+    def kind(check: str) -> str:
+        return check.split()[0].lower()
+
+    new = [c for c in now.split("; ") if c != "none"]
+    kept = [c for c in before.split("; ") if c != "none" and kind(c) not in {kind(n) for n in new}]
+    return "; ".join(kept + new) or "none"
 
 
 def read_csv(path: Path) -> dict[str, dict]:
@@ -317,6 +387,9 @@ def section(lines: dict[str, dict]) -> str:
            "*published* = the source's value; *oracle* = the brute force of tests/oracles/chains.py, code by",
            "code; *listing* = the listing path (every chain built and told apart by nauty), code by code",
            f"(counts of up to {_number(str(LIST_MAX))} chains unless `--list-max` says otherwise);",
+           "*kernels off* = with multiple joints, the engine with its compiled kernels of stages A and B turned",
+           "off (plain search or CP-SAT, the exact test in numpy), code by code, in one process (`--second-max`;",
+           "a sample of the codes where it says so; `--recheck` checks a recorded count again);",
            "*none* = no independent check. A row without a published value goes beyond its source;",
            "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
            "Counts by code: the JSON file of each query in `benchmarks/records/`.", "",
@@ -375,6 +448,14 @@ def main(argv=None) -> int:
     parser.add_argument("--again", action="store_true", help="run rows already in the CSV again")
     parser.add_argument("--list-max", type=int, default=LIST_MAX, metavar="N",
                         help="check by the listing path the counts of up to N chains (default: %(default)s)")
+    parser.add_argument("--second-max", type=int, default=LIST_MAX, metavar="N",
+                        help="with multiple joints, check by the count with the kernels off the counts of up to N "
+                        "chains (default: %(default)s)")
+    parser.add_argument("--second-every", type=int, default=1, metavar="K",
+                        help="… on every K-th code of the plan only, a sample (default: every code)")
+    parser.add_argument("--recheck", action="store_true",
+                        help="with --only: check again the counts already in the CSV (their by-code files), without "
+                        "counting them again; only the checks column changes")
     parser.add_argument("--csv", type=Path, default=ROOT / "benchmarks" / "records.csv",
                         help="the table of counts, one line a query, updated in place (default: %(default)s)")
     parser.add_argument("--md", type=Path, default=ROOT / "benchmarks" / "RECORDS.md",
@@ -386,6 +467,12 @@ def main(argv=None) -> int:
         fail("--quick and --only choose the rows in two different ways: give one of them")
     if args.list_max < 0:
         fail(f"--list-max must be 0 (no listing check) or more, not {args.list_max}")
+    if args.second_max < 0:
+        fail(f"--second-max must be 0 (no check with the kernels off) or more, not {args.second_max}")
+    if args.second_every < 1:
+        fail(f"--second-every must be 1 (every code) or more, not {args.second_every}")
+    if args.recheck and (args.only is None or args.again):
+        fail("--recheck checks the rows chosen by --only again, without counting them: give --only, not --again")
     if args.only is not None and not args.only.strip():
         fail("--only needs some text of a query, such as 'dof 2 --links 11'")
     for path, what, directory in ((args.csv, "CSV file", False), (args.md, "Markdown file", False),
@@ -404,6 +491,10 @@ def main(argv=None) -> int:
     else:
         rows = [row for row in ROWS if (row.quick if args.quick else not row.heavy)]
     lines = read_csv(args.csv)
+    if args.recheck:
+        missing = [row.query for row in rows if row.query not in lines]
+        if missing:
+            fail(f"--recheck needs counts in {args.csv}, and it has none of `{missing[0]}`")
     if args.only is None and not args.again:
         rows = [row for row in rows if row.query not in lines]
     rows.sort(key=lambda row: row.published is None)  # the published counts first, should the run be cut short
@@ -412,8 +503,19 @@ def main(argv=None) -> int:
     try:
         for k, row in enumerate(rows, 1):
             print(f"records [{k}/{len(rows)}] mechsynth {row.query} --count", file=sys.stderr, flush=True)
+            if args.recheck:  # the counts recorded, checked again
+                line = lines[row.query]
+                found = json.loads((ROOT / line["by_code_file"]).read_text())
+                check, ok = checks(row, found, args.list_max, args.second_max, args.second_every)
+                line["check"] = merge_checks(line["check"], check)
+                bad += not ok
+                write_csv(args.csv, lines)
+                write_md(args.md, lines)
+                print(f"records   {found['count']} chains recorded at {line['commit']}, checked at {commit}: "
+                      f"{line['check']}", file=sys.stderr, flush=True)
+                continue
             found = run_count(row)
-            check, ok = checks(row, found, args.list_max)
+            check, ok = checks(row, found, args.list_max, args.second_max, args.second_every)
             bad += not ok
             args.by_code.mkdir(parents=True, exist_ok=True)
             by_code_file = args.by_code / f"{row.slug}.json"

@@ -89,6 +89,11 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--frobnicate"], "unrecognized arguments"),
         (["--list-max", "-1"], "--list-max must be 0"),
         (["--list-max", "many"], "invalid int value"),
+        (["--second-max", "-1"], "--second-max must be 0"),
+        (["--second-every", "0"], "--second-every must be 1"),
+        (["--recheck"], "give --only"),
+        (["--recheck", "--only", "links 8 --v", "--again"], "not --again"),
+        (["--recheck", "--only", "links 8 --v", "--csv", tmp_path / "none.csv"], "has none of"),
     ]
     for args, words in cases:
         p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
@@ -120,3 +125,70 @@ def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(t
     assert time.monotonic() - start < allowed_seconds(2.0)
     assert proc.returncode == 130 and "interrupted" in err.splitlines()[-1] and "Traceback" not in err
     assert not csv_file.exists()  # no row finished, none written
+
+
+def _multiple_joint_row(records, links):
+    row = next(r for r in records.ROWS if r.query == f"chains --dof 1 --links {links} --v 0..{links - 2}")
+    return row, json.loads((ROOT / "benchmarks" / "records" / f"{row.slug}.json").read_text())
+
+
+def _sample(links, every, found):
+    """The codes and the recorded chains of every ``every``-th code of the plan, the first included."""
+    from synth import ChainQuery
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    codes = [str(code) for code, _ in plan_jobs(ChainQuery(1, links, v=(0, links - 2)))][::every]
+    return f"{len(codes)} codes, {sum(found['by_code'].get(c, 0) for c in codes)} chains"
+
+
+def test_the_count_with_the_kernels_off_checks_multiple_joints_code_by_code_and_reports_a_code_off():
+    """At 10 links (2 645 chains, 49 codes) the second check passes on the recorded counts, whole and on a
+    sample of the codes; one code off by one, or a code missing, is reported as a difference."""
+    records = _records()
+    row, found = _multiple_joint_row(records, 10)
+    assert records.checks(row, found) == ("listing by code; kernels off by code", True)
+    assert records.checks(row, found, list_max=0, second_every=4) == (
+        f"kernels off by code (1 code in 4: {_sample(10, 4, found)})", True)
+    off = dict(found, by_code=dict(found["by_code"], **{"6400/0-1": found["by_code"]["6400/0-1"] + 1}))
+    assert records.checks(row, off, list_max=0) == ("KERNELS OFF DIFFERS", False)
+    missing = dict(found, by_code={c: n for c, n in found["by_code"].items() if c != "5410/0"})
+    assert records.checks(row, missing, list_max=0) == ("KERNELS OFF DIFFERS", False)
+    simple = next(r for r in records.ROWS if r.query == "chains --dof 1 --links 10")
+    assert records.checks(simple, {"count": 230, "by_code": {}}, list_max=0) == ("published", True)  # no 2nd check
+
+
+def test_the_kernels_are_off_for_the_largest_multiple_joint_codes():
+    """The second check's conventions turn off the kernels of both stages even at 16 links (where a count
+    with multiple joints runs them from five loops on)."""
+    from dataclasses import replace
+
+    from synth import ChainQuery
+    from synth.synthesis.stage_a import uses_kernel
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    records = _records()
+    jobs = plan_jobs(ChainQuery(1, 16, v=(0, 14)))
+    assert all(uses_kernel(code, conv) for code, conv in jobs)
+    assert not any(uses_kernel(code, replace(conv, kernel_loops=records._NO_KERNEL)) for code, conv in jobs)
+
+
+def test_a_recheck_keeps_the_count_and_merges_the_checks(tmp_path):
+    """--recheck checks a recorded count again without counting it: only the checks column changes."""
+    for name in ("records.csv", "RECORDS.md"):
+        (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
+    def lines():
+        with (tmp_path / "records.csv").open(newline="") as f:
+            return list(csv.DictReader(f))
+
+    before = lines()
+    done = _run("--only", "links 8 --v", "--recheck", "--list-max", "0", "--second-every", "2",
+                "--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md", "--by-code", tmp_path / "bc")
+    assert done.returncode == 0, done.stderr
+    after = lines()
+    changed = [(a, b) for a, b in zip(before, after) if a != b]
+    assert len(before) == len(after) and len(changed) == 1
+    (was, now), = changed
+    assert {k for k in was if was[k] != now[k]} == {"check"} and was["check"] == "oracle by code; listing by code"
+    _, found = _multiple_joint_row(_records(), 8)
+    assert now["check"] == f"listing by code; oracle by code; kernels off by code (1 code in 2: {_sample(8, 2, found)})"
+    assert not (tmp_path / "bc").exists()  # no count was run, so no by-code file was written

@@ -69,10 +69,13 @@ def add_commands(sub) -> None:
     """Mount ``chains`` and ``mechanisms`` on the ``mechsynth`` parser."""
     p = sub.add_parser("chains", help="type synthesis: every non-isomorphic chain")
     _add_selection(p)
-    p.add_argument("--method", choices=("listing", "orbits"),
+    p.add_argument("--method", choices=("listing", "orbits", "tight-reverse"),
                    help="with --count: how each branch multigraph's chains are counted — listing (default: one "
-                   "placement of the binary links per chain, as a listing finds them) or orbits (Burnside's lemma "
-                   "over the multigraph's automorphisms, without listing them; the same counts)")
+                   "placement of the binary links per chain, as a listing finds them), orbits (Burnside's lemma "
+                   "over the multigraph's automorphisms, without listing them) or tight-reverse (the second count "
+                   "of a record: the counting programme over the strings in reverse, with another reading of the "
+                   "automorphisms); the same counts; orbits and tight-reverse refused with multiple joints, "
+                   "prismatic pairs or cranks")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)

@@ -9,9 +9,10 @@ path — retrieval from the atlas's curve index, then the polish of :func:`synth
    start point or input offset.  For each τ the best λ is a projection, so the shape's misfit
    ‖t − λ u e^{inτ}‖ / ‖t‖ (n ≠ 0: translation left out) depends on τ alone, and |Σ ū_n t_n e^{−inτ}|
    is a trigonometric polynomial in τ, evaluated by one FFT on 512 shifts and refined by a scalar search.
-3. The best few samples of each topology (chain, frame, input) are turned into start linkages in the
-   target's frame (mirrored, turned, scaled, moved, posed at the first target point) and polished by
-   :func:`synth.dimension.synthesize` within half the topology's share of the time budget; a topology
+3. The best few samples of each topology (chain, frame, input; 3 per drawing of the index) are turned
+   into start linkages in the target's frame (mirrored, turned, scaled, moved, posed at the first target
+   point) and polished by :func:`synth.dimension.synthesize` within half the topology's share of the time
+   budget, each for an equal slice of it, the best then going on; a topology
    none of whose polishes meets the target exactly spends the rest in synthesize's global stage
    (differential evolution seeded from its best polished linkage and samples).  The answer is the best
    mechanism of each topology, errors re-checked by the motion layer.
@@ -322,6 +323,31 @@ def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0
     >>> len(starts), starts[0].tracers["P"][0]
     (3, 2)
     """
+    starts = []
+    for candidate, points, at, slides in sampled_candidates(mechanism, tracer_link, target, seed, samples=samples,
+                                                            count=count, drawings=drawings):
+        try:
+            starts.append(start_linkage(candidate, mechanism.chain, points, at, target, slides))
+        except SynthesisError:
+            continue
+    return starts
+
+
+def sampled_candidates(mechanism: Mechanism, tracer_link: int, target, seed: int = 0, *, samples: int = 100,
+                       count: int | None = None, drawings: int = 1) -> list:
+    """The samples of :func:`sampled_starts` before they are posed: (candidate, points, tracer point,
+    slides) of each, nearest first, as the atlas search hands a topology's samples to its polish
+    (``_Polish.candidates``).
+
+    Examples
+    --------
+    >>> from synth.dimension import PathTarget
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
+    >>> rows = sampled_candidates(four_bar, 2, PathTarget(np.c_[np.cos(t), 0.6 * np.sin(t)]), samples=20, count=3)
+    >>> len(rows), rows[0][0].tracer_link, rows[0][0].misfit <= rows[1][0].misfit
+    (3, 2, True)
+    """
     from .curves import CurveUnit, IndexSettings, sample_unit
 
     if getattr(target, "kind", None) != "path":
@@ -341,18 +367,14 @@ def sampled_starts(mechanism: Mechanism, tracer_link: int, target, seed: int = 0
     coefficients = np.array([unblob(row[5 if not timed else 4])[cut] for row in rows])
     best, form, shift = _aligned_all(t, coefficients, timed)
     variants = _variants(timed)
-    starts = []
+    out = []
     for i in np.argsort(best, kind="stable")[:count or len(rows)]:
         if not math.isfinite(best[i]):
             break
         meta = (i, 0, mechanism.frame, unit.input_link, sampled.input_joint, tracer_link, mechanism.chain.links)
-        candidate = _candidate(t, coefficients[i], variants[form[i]], float(shift[i]), meta)
-        try:
-            starts.append(start_linkage(candidate, mechanism.chain, json.loads(rows[i][2]), json.loads(rows[i][3]),
-                                        target, slides_of(rows[i][6])))
-        except SynthesisError:
-            continue
-    return starts
+        out.append((_candidate(t, coefficients[i], variants[form[i]], float(shift[i]), meta),
+                    json.loads(rows[i][2]), json.loads(rows[i][3]), slides_of(rows[i][6])))
+    return out
 
 
 # ------------------------------------------------------------------ from a sample to a start linkage
@@ -411,8 +433,10 @@ def _expand(task: _Polish) -> list:
 
 def _polish_topology(task: _Polish):
     """A topology's search within its share of the budget: its candidates polished in turn, each from
-    its start linkage, until one meets the target exactly or :data:`POLISH_SHARE` of the share is spent,
-    going on from the best while that halves its error; then, if none met the target exactly, the
+    its start linkage and for at most an equal slice of :data:`POLISH_SHARE` of the share, until one
+    meets the target exactly; then the best goes on while the polishing share lasts and each polish
+    halves its error (a polish that slides along a valley of near-equal curves, as an eight-bar's do,
+    would otherwise spend the whole share on the first candidate); then, if none met the target exactly, the
     global stage of :func:`synth.dimension.synthesize` (differential evolution, its first population
     seeded from the best polished linkage and the samples) for the rest of the share.  Returns (best
     result or None, its candidate, candidates polished, why the last failed, CPU seconds)."""
@@ -430,18 +454,20 @@ def _polish_topology(task: _Polish):
         far = max(float(np.hypot(*(np.vstack((s.points, s.tracers["P"][1])) - centre).T).max()) for s in starts)
         return replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
 
-    def polish(start, tracer_link):
+    def polish(start, tracer_link, budget):
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=widened([start]),
-                          budget=polishing - (time.process_time() - clock), seed=task.seed, polish_only=True)
+                          budget=min(budget, polishing - (time.process_time() - clock)), seed=task.seed,
+                          polish_only=True)
 
     starts = []
+    piece = polishing / max(len(task.candidates), 1)  # each candidate's first polish at most
     for candidate, points, at, slides in task.candidates:
         if time.process_time() - clock >= polishing:
             break
         tried += 1
         try:
             start = start_linkage(candidate, chain, points, at, task.target, slides)
-            result = polish(start, candidate.tracer_link)
+            result = polish(start, candidate.tracer_link, piece)
         except SynthesisError as exc:
             why = str(exc)
             continue
@@ -450,11 +476,11 @@ def _polish_topology(task: _Polish):
             best, best_candidate = result, candidate
         if result.met and result.relative_max <= EXACT:
             break
-    # the least squares stop at their evaluation limit on long untimed problems: go on from the best
-    # while the polishing share lasts and each polish at least halves its error
+    # the least squares stop at their slice or evaluation limit (long untimed problems): go on from the
+    # best while the polishing share lasts and each polish at least halves its error
     while best is not None and best.relative_max > EXACT and time.process_time() - clock < polishing:
         try:
-            again = polish(best.linkage, best_candidate.tracer_link)
+            again = polish(best.linkage, best_candidate.tracer_link, polishing)
         except SynthesisError:
             break
         if not again.error_rms < 0.5 * best.error_rms:
@@ -479,6 +505,8 @@ def _polish_topology(task: _Polish):
 
 #: the share of a topology's budget its samples' polishes may take before the global stage
 POLISH_SHARE = 0.5
+#: samples of a topology polished per drawing of the index (an index of K drawings: K times as many)
+PER_DRAWING = 3
 #: a polished mechanism meets the target exactly when its largest error is below this × the target's size
 EXACT = 1e-9
 
@@ -497,7 +525,7 @@ def _rechecked(result, target) -> float:
 
 
 def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None, top: int = 5,
-                 per_topology: int = 3, budget: float = 60.0, constraints=None, seed: int = 0,
+                 per_topology: int | None = None, budget: float = 60.0, constraints=None, seed: int = 0,
                  workers: int = 1, scheduler: str | None = None, progress: bool = False,
                  connect_timeout: float = 5.0) -> AtlasSearchResult:
     """Which mechanisms of the atlas trace the target path, and with which dimensions.
@@ -512,8 +540,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         Search only mechanisms with this many links.
     top : int
         Topologies (chain, frame, input) polished: those whose nearest samples fit best.
-    per_topology : int
-        Samples of each topology polished at most (nearest first).
+    per_topology : int, optional
+        Samples of each topology polished at most (nearest first; default :data:`PER_DRAWING` for each
+        drawing the index samples a mechanism around).
     budget : float
         CPU seconds of polishing and global search in all, shared equally by the topologies (a topology
         met exactly stops early).
@@ -546,14 +575,18 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     (4, True)
     """
     from ..dimension import Constraints
+    from .curves import index_info
 
-    for name, value, low in (("top", top, 1), ("per_topology", per_topology, 1), ("workers", workers, 1)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            raise InvalidOption(f"{name} must be a whole number ≥ {low}, not {value!r}")
+    given = [("top", top), ("workers", workers)]
+    for name, value in given + ([("per_topology", per_topology)] if per_topology is not None else []):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise InvalidOption(f"{name} must be a whole number ≥ 1, not {value!r}")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
         raise InvalidOption(f"the budget must be a positive number of seconds, not {budget!r}")
     constraints = constraints or Constraints()
     clock = time.process_time()
+    if per_topology is None:
+        per_topology = PER_DRAWING * index_info(db)["settings"].get("drawings", 1)
     candidates, size = retrieve(db, target, links=links, per_topology=per_topology, topologies=top)
     conn = open_atlas(db)
     try:

@@ -29,6 +29,9 @@ __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of", "placement"
 SPAN_STEP = 0.02
 #: samples of a full turn of the input where a crank's dyads must close
 TURN_SAMPLES = 72
+#: rounds of the search between two samples for a dyad's least discriminant (each narrows it fourfold:
+#: six take a crank's 5° between samples to 0.003°, where a parabola through the last three is exact)
+DIP_ROUNDS = 6
 #: samples of the traced curve, each way from the pose, for a target without timing (global stage)
 CURVE_SAMPLES = 120
 #: a dyad's discriminant this far below 0 still closes (a target point at a dead position, up to rounding)
@@ -526,9 +529,62 @@ class Problem:
         lo, hi = min(0.0, float(offsets.min())), max(0.0, float(offsets.max()))
         step = SPAN_STEP * (1.0 if self.revolute_input else self.scale)
         parts = [np.linspace(lo, hi, 2 + int((hi - lo) / step))]
-        if self.constraints.crank and self.revolute_input:
-            parts.append(np.linspace(0, 2 * math.pi, TURN_SAMPLES, endpoint=False))
+        if self.constraints.crank and self.revolute_input:  # (one step before 0 too: every input lies between two)
+            parts.append(np.linspace(-2 * math.pi / TURN_SAMPLES, 2 * math.pi, TURN_SAMPLES + 2))
         return np.concatenate(parts)
+
+    def dips(self, linkage: Linkage, xs: np.ndarray, g: np.ndarray | None) -> np.ndarray | None:
+        """The least discriminants g (as :meth:`poses` gives them at the input offsets xs) with each
+        sampled local minimum that may hide a dead position replaced by the least found between its
+        neighbouring samples.
+
+        Samples alone miss a dyad that cannot close over an interval narrower than their step, and
+        the search's optimum often lies on such a boundary (a four-bar on the verge of Grashof's
+        condition: Kunjur and Krishnamurty's eighteen points ended with a crank that rocked, its
+        dead positions 0.17° apart between two samples 5° apart).  A sample is looked into where
+        it is a local minimum no higher than its rises to its neighbours (3·g ≤ left + right: a
+        smooth g that dips below 0 between samples always is one; a broad minimum far from 0 is
+        not): :data:`DIP_ROUNDS` rounds of nine samples each narrow the interval fourfold round its
+        least, and the vertex of the parabola through the last three gives the minimum.  A linkage
+        moved by Newton's method (g None) is returned as it is.
+
+        Examples
+        --------
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> from synth.dimension import PathTarget
+        >>> # frame 3, crank 1, coupler 4.01, rocker 2: the crank cannot pass within 6.6° of the frame line
+        >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [3, 0], [0, 1], [3.93586, 1.767531]])
+        >>> problem = Problem(lk.mechanism, 0, PathTarget(np.eye(2)), 2, Constraints())
+        >>> xs = np.linspace(-np.pi, np.pi, 8)                 # samples 51° apart, none within 12° of the frame line
+        >>> _, _, g, _ = problem.poses(lk, xs)
+        >>> bool((g >= 0).all()), bool((problem.dips(lk, xs, g) < 0).any())
+        (True, True)
+        """
+        if g is None or len(xs) < 3:
+            return g
+        s, first = np.unique(xs, return_index=True)
+        v = g[first]
+        left, mid, right = v[:-2], v[1:-1], v[2:]
+        (i,) = np.nonzero((mid >= 0) & (mid <= left) & (mid <= right) & (3 * mid <= left + right))
+        if not len(i):
+            return g
+        a, b, ga, gb, least = s[i], s[i + 2], v[i], v[i + 2], v[i + 1].copy()
+        fractions = np.linspace(0.0, 1.0, 9)
+        for _ in range(DIP_ROUNDS):
+            grid = a[:, None] + (b - a)[:, None] * fractions[None, :]
+            _, _, inner, _ = self.poses(linkage, grid[:, 1:-1].ravel())
+            values = np.column_stack((ga, inner.reshape(len(a), 7), gb))
+            least = np.minimum(least, values.min(axis=1))
+            j = np.clip(values.argmin(axis=1), 1, 7)
+            rows = np.arange(len(a))
+            a, b, ga, gb = grid[rows, j - 1], grid[rows, j + 1], values[rows, j - 1], values[rows, j + 1]
+            middle = values[rows, j]
+        bend = ga - 2 * middle + gb
+        vertex = middle - (gb - ga) ** 2 / (8 * np.where(bend > 0, bend, 1.0))
+        least = np.minimum(least, np.where(bend > 0, vertex, least))
+        out = np.array(g, dtype=float)
+        out[first[i + 1]] = np.minimum(out[first[i + 1]], least)
+        return out
 
     def violations(self, linkage: Linkage, offsets: np.ndarray, g, mu) -> np.ndarray:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:

@@ -402,16 +402,22 @@ def run_plan(
     submit = lambda fn, arg: executor._submit(fn, arg, done)  # noqa: E731
     next_done = None if ordered else (lambda: _next_done(done, executor._alive))  # noqa: E731
     yield from _pipeline(todo[position:], expand, work, submit, skip_unit, window or 8 * executor.slots,
-                         task_seconds or (0.5 if executor.client is not None else 0.05), first, next_done)
+                         task_seconds or (0.5 if executor.client is not None else 0.05), first, next_done,
+                         expansions=executor.slots)
 
 
 def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: float,
-              first: _Item | None = None, next_done: Callable[[], object] | None = None) -> Iterator[tuple]:
+              first: _Item | None = None, next_done: Callable[[], object] | None = None,
+              expansions: int = 1) -> Iterator[tuple]:
     """The pool / Dask part of :func:`run_plan`: at most ``window`` tasks in flight.
 
     ``first`` is an item the inline phase expanded but did not finish (its remaining units).
     Results come in plan order, or as they finish when ``next_done`` (which waits for the next
-    finished task) is given.
+    finished task) is given.  A pool runs its tasks first come first served, so a window filled
+    with stage-A tasks would expand that many items (and hold all their units) before the first
+    unit is worked on: at most ``expansions`` stage-A tasks are in flight (one a worker) until one
+    comes back with no unit left for later batches (small items, done by their own stage-A task),
+    and again as soon as one comes back with units left.
     """
     pending = iter(todo)
     # stage A's worker works on the item's first units too, unless units are skipped (a checkpoint
@@ -420,6 +426,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
     entries: deque[_Item] = deque([first] if first is not None else [])
     owner: dict[int, _Item] = {}  # id(task) -> its item, for the tasks in flight
     per_unit: float | None = None  # measured seconds per unit
+    stage_a_limit = expansions  # stage-A tasks in flight at most: the window once items are small
 
     def launch(entry: _Item, fn, arg):
         task = submit(fn, arg)
@@ -429,6 +436,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
     def expanded(entry: _Item) -> tuple[list, _Finished] | None:
         """Stage A of ``entry`` is done (or about to be): its units wait for submission, but for
         the first ones its task already worked on, returned as a finished batch (or None)."""
+        nonlocal stage_a_limit
         units, results, seconds = entry.expansion.get()
         del owner[id(entry.expansion)]
         entry.expansion = None
@@ -436,6 +444,7 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
         rest = iter(units)
         worked = list(islice(rest, len(results)))
         entry.units = _Waiting(rest, skip_unit, units)
+        stage_a_limit = expansions if entry.units else window
         return (worked, _Finished(results, seconds)) if results else None
 
     def collected(entry: _Item, batch: list, task) -> Iterator[tuple]:
@@ -467,6 +476,8 @@ def _pipeline(todo, expand, work, submit, skip_unit, window: int, task_seconds: 
             if target is not None:
                 submit_batch(target)
                 continue
+            if sum(e.expansion is not None for e in entries) >= stage_a_limit:
+                return
             nxt = next(pending, None)
             if nxt is None:
                 return

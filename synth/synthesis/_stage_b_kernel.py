@@ -546,7 +546,7 @@ def _state_slot(table, mask, states, totals, row, width, W, P, total):
 
 
 @njit(cache=True)
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, g):
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given):
     """The placements :func:`place` counts with no edge permutation and the excess bound
     ``x_most`` = 0 (every long string exactly at h − 1 = C binary links, every never-short string at
     its least: the rule's equality case, e.g. 1-DOF chains), counted without visiting them; or, with
@@ -570,7 +570,9 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g):
     bundle of the cycle must take the same deficits (in one way).
 
     ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
-    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2; ``g`` empty for every placement.  The strings
+    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2; ``g`` empty for every placement.  ``given``: an
+    empty array, or per string (rows) the ways of the bundle it begins, found elsewhere, in place
+    of :func:`_bundle_deficits` (the second count, :func:`synth.synthesis.stage_b.count_reversed`).  The strings
     the game never sees each take their least weight: loops (parallel loops have one least weight)
     and the one string of a single-joint link.  The states of a layer are a few hundred where
     :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304).
@@ -578,9 +580,10 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g):
     >>> import numpy as np
     >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
     >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, none[:0])  # 5 units, ≤ 2 a pair
+    >>> nothing = np.zeros((0, 0), dtype=np.int64)
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, none[:0], nothing)  # 5 units, ≤ 2 a pair
     3
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, np.array([1, 0, 2]))  # d_0 = d_1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, np.array([1, 0, 2]), nothing)  # d_0 = d_1
     1
     """
     E = len(a_end)
@@ -675,7 +678,10 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g):
         both = (1 << position[a]) | (1 << position[b])
         for x in range(r):
             lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
-        _bundle_deficits(C, lows[:r], ways)
+        if given.shape[0]:
+            ways[:C * r + 1] = given[f, :C * r + 1]
+        else:
+            _bundle_deficits(C, lows[:r], ways)
         shut0 = position[a] if last[a] == i else -1  # the positions closed after this bundle, highest first
         shut1 = position[b] if last[b] == i else -1
         if shut0 < shut1:

@@ -9,19 +9,23 @@ never at n itself, and never a size predicted to end later than one and a half b
 the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is measured in two parts at the largest calibration size, each scaled by what it grows
-with: the CPU seconds of the units' own work (stage B: placing the binary links, counting or
-building the chains) per chain, times the chains; and the rest (number synthesis, stage A, the
-plan) per unit, times the units.  The calibrations run on the path the query will take (the
-compiled searches of stages A and B when the query is large enough for them, however small the
-calibration sizes are), with the engine of the day, so the estimate follows every change of speed.
+with: the CPU seconds of the units whose chains were visited one by one (stage B's search with
+multiple joints or above the rule's equality case, a listing, the mechanisms) per chain, times the
+chains; and the rest per unit, times the units: number synthesis, stage A, the plan, and stage B
+where it counts a unit's placements without visiting them (the tight count of 1-DOF chains and
+every chain at the rule's equality case, benchmarks/PROFILE.md section 27, whose cost does not grow
+with the unit's chains) or finds none.  A unit's own time grows with its branch multigraph past
+the calibration sizes (:data:`UNIT_GROWTH`, a factor a loop).  The calibrations run on the path
+the query will take (the compiled searches of stages A and B when the query is large enough for
+them, however small the calibration sizes are), with the engine of the day, so the estimate
+follows every change of speed.
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
 −2.5 % at 14 links, −5.0 % at 16 and −6.7 % at 18 against the published counts (318 162,
-19 819 281, 1 535 380 884).  Stage B's time per chain falls as n grows (a unit's fixed costs
-spread over more chains; with the engine of 29 Nov 2026, one process: 4.7 µs at 12 links, 1.7
-at 14, 1.2 at 16, about 1.0 on a sample of 18), so the time is an upper bound where the chains
-are right, not a prediction (benchmarks/PROFILE.md, section 24, measures its error).
+19 819 281, 1 535 380 884).  The time, against the count's CPU in one process (section 29):
++22 % at 16 links, −11 % at 18 (188 against 212 CPU s; +1 % against the 186.5 CPU s of the
+whole 2-worker command on a quiet machine), 0.6 against 0.40–0.51 s at 14 links.
 
 With multiple joints the counts grow faster and less regularly (1-DOF, v up to n − 2: 1, 4, 60,
 2 645, 248 203, 35 396 111 at 4 … 14 links; ratios 4, 15, 44.1, 93.8, 142.6, whose steps 11, 29.1,
@@ -47,7 +51,7 @@ from dataclasses import dataclass, replace
 from ..errors import ImpossibleParameters, QueryTooLarge, option
 from ..execution.sizes import describe_seconds, magnitude
 
-__all__ = ["BUDGET", "MULTIPLE_BUDGET", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
+__all__ = ["BUDGET", "MULTIPLE_BUDGET", "UNIT_GROWTH", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
            "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
            "CERTIFICATE_BYTES"]
 
@@ -62,6 +66,13 @@ MULTIPLE_BUDGET = 8.0  # … with multiple joints: 1-DOF, the 12-link count (5.6
 LIMIT_SECONDS = 86400.0  # refused without force when estimated to take longer (wall, on the workers)
 TABLE_ROWS = 1_000_000  # a table is held in memory to align its columns: refused above this
 NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it starts
+# The time of one unit (stage A, the plan, stage B's count without visiting) grows with its branch
+# multigraph from 16 links on, past every calibration: 1-DOF counts in one process (the engine of
+# 29 Nov 2026 after PROFILE.md section 27, `time.process_time`, the shared 2-core machine at nice 10)
+# took 0.49 ms a unit at 14 and at 16 links and 0.80 at 18 (stage A 0.13, 0.18, 0.36 ms), a factor of
+# 1.27 a loop from 14 to 18 links.  With h = 2 it falls instead (0.28, 0.27, 0.22 ms at 8, 9, 10 links),
+# and h ≥ 4 was not measured: no growth there.
+UNIT_GROWTH = {3: 1.27}  # factor a loop on a unit's time beyond the largest calibration, by h
 # A listing (and a count on a Dask cluster) keeps every branch multigraph of a code until the code is
 # done (its output is in the order of their certificates), and its units travel whole to the parent:
 # about this many bytes per unit of the largest code, for each worker expanding a code at the same time
@@ -102,17 +113,24 @@ class Estimate:
 @dataclass
 class _TimedWork:
     """A unit work (``count_unit``, ``run_unit``, …) that adds up the CPU seconds it takes: the
-    calibrations run inline, so its total is the units' own share of a size's time."""
+    calibrations run inline, so its total is the units' own share of a size's time.  ``visited``
+    is the share of the units whose chains were visited one by one (a search or a listing found
+    some: their time grows with the chains); the others were counted without visiting them
+    (stage B's tight count, ``stats["tight"]``) or found none, and their time is the unit's."""
 
     work: object
     seconds: float = 0.0
+    visited: float = 0.0
 
     def __call__(self, unit):
+        stats: dict = {}
         t0 = time.process_time()
-        try:
-            return self.work(unit)
-        finally:
-            self.seconds += time.process_time() - t0
+        result = self.work(unit, stats=stats)
+        spent = time.process_time() - t0
+        self.seconds += spent
+        if not stats.get("tight") and (sum(result.values()) if isinstance(result, dict) else len(result)):
+            self.visited += spent
+        return result
 
 
 _COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
@@ -189,7 +207,7 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
                     units += 1
                 else:  # a code is complete: result is its number of units
                     largest = max(largest, result)
-            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.seconds)
+            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.visited)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
     if len(points) < 3:
@@ -203,9 +221,12 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     # the largest code's share of the units changes slowly (h = 2: 0.21, 0.16, 0.13, 0.12 at 7 … 10 links),
     # so it is kept from the largest calibration (the ratio of its own growth swings with the basis)
     log_largest = log_units + math.log10(max(l2, 1) / max(u2, 1))
-    # the largest calibration's time: its units' work per chain times the chains, the rest per unit times the units
+    # the largest calibration's time: the work of the units whose chains were visited per chain times the
+    # chains, the rest (stage A, the plan, the units counted without visiting) per unit, grown by
+    # UNIT_GROWTH a loop, times the units
     parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
-    parts += [log_units + math.log10((s2 - w2) / max(u2, 1))] if s2 > w2 else []
+    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0))
+    parts += [log_units + math.log10((s2 - w2) / max(u2, 1)) + log_growth] if s2 > w2 else []
     top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
     log_seconds = top + math.log10(sum(10.0 ** (part - top) for part in parts) or 1.0)
     basis = "exact counts at " + ", ".join(str(p[0]) for p in points[-3:]) + " links"

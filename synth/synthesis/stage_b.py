@@ -23,7 +23,7 @@ from ..structure.chain import Chain
 from ..structure.code import Code
 from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_listed", "count_orbits", "count_realised", "load_kernel", "orbits_apply", "realise"]
+__all__ = ["count_listed", "count_orbits", "count_realised", "count_reversed", "load_kernel", "orbits_apply", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -286,11 +286,13 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     if not (listing or rows) and (whole_group or not len(group)) and _tight(M, l2, x_most, l, conv.h):
         # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
         identity = np.zeros(0, dtype=np.int64)
-        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g) for g in (identity, *group))
+        computed = np.zeros((0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
+        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g, computed) for g in (identity, *group))
         found, rest = divmod(found, len(group) + 1)
         if rest:  # a fault of this engine
             raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
                                f"multigraph of {code} is not a multiple of their number")
+        _add(stats, tight=1)  # (the sizing times these units per unit, the others per placement visited)
     else:
         found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
                       conv.threshold, sets)
@@ -464,6 +466,131 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
                            f"multigraph of {code} is not a multiple of their number")
     _add(stats, cpsat_s=perf_counter() - t0)
     return orbits
+
+
+def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+    """``count_realised`` by a second route that shares as little of the first count's arithmetic as
+    can be arranged, so that an error in one is unlikely to be repeated by the other (issue 41).
+
+    Where the first count counts a unit's tight placements by the programme of
+    :func:`~synth.synthesis._stage_b_kernel.tight_count` (:func:`_tight`), this one runs that programme
+
+    * over the bundles of parallel strings in the reverse of the first count's order: the cuts
+      between bundles are the same, so the layers are as narrow, but each layer sums up the other
+      side of every cut, so no state of one run is a state of the other;
+    * with Burnside's lemma over the permutations of the bundles read off nauty's group of H acting
+      on its strings (:meth:`Contracted.edge_group`, the subdivided multigraph) and closed under
+      composition here (:func:`_bundle_closure`), where the first asks nauty of H with one vertex
+      per bundle (:meth:`Contracted.bundle_group`);
+    * with each bundle's ways to hold t units of deficit listed from its weights
+      (:func:`_bundle_ways`), not by the kernel's own programme.
+
+    A unit that is not tight is counted by orbits (:func:`count_orbits`: the search over patterns
+    and a coin-change count, where the first count visits placements); one that neither covers
+    (the group of the bundles above 4096, or two empty parallel strings to exclude outside the
+    tight case) as the first count does; ``stats`` counts the units of each kind (``reversed``,
+    ``by_orbits``, ``shared``).
+
+    >>> from synth.synthesis.stage_a import contracted_graphs
+    >>> code = Code.parse("64200/0")
+    >>> [count_reversed(code, g, Conventions()) for g in contracted_graphs(code, Conventions())][:6]
+    [15, 104, 13, 6, 15, 681]
+    """
+    import numpy as np
+
+    from ._stage_b_kernel import tight_count
+
+    lows, parallel = _string_limits(graph, conv)
+    inner, k, _, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    M, E, n2 = len(inner), len(graph.edges), code.count(2)
+    a_list, b_list = _game_ends(graph, inner)
+    C, l = conv.h - 1, conv.h + conv.threshold
+    x_most, _ = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2, conv.h)
+    simple = all(vertex.is_link for vertex in graph.vertices)
+    bundles = _bundle_closure(graph) if simple and E else None
+    if bundles is None or not (_kernel_applies(code, graph, conv) and _tight(M, l2, x_most, l, conv.h)):
+        if orbits_apply(code, graph, conv) and graph.bundle_group()[1]:
+            _add(stats, by_orbits=1)
+            return count_orbits(code, graph, conv, stats)
+        _add(stats, shared=1)
+        return count_realised(code, graph, conv, stats)
+    if sum(lows) > n2:
+        return 0
+    t0 = perf_counter()
+    order = _search_order(graph.edges, a_list, b_list, M)
+    searched = tuple(graph.edges[e] for e in order)
+    # the first count's bundles, each still read in order, taken last first
+    order = np.concatenate(np.split(order, np.flatnonzero(_bundle_starts(searched))[1:])[::-1])
+    edges = tuple(graph.edges[e] for e in order)
+    bundle_of = np.cumsum(_bundle_starts(graph.edges)) - 1  # H's bundle of each string
+    held = bundle_of[order[np.flatnonzero(_bundle_starts(edges))]]  # H's bundle at each place of the new order
+    place_of = np.argsort(held)
+    perms = place_of[bundles[1:][:, held]] if len(bundles) > 1 else np.zeros((0, len(held)), dtype=np.int64)
+    rows = _coset_rows(edges, perms) if len(perms) else np.zeros((0, E), dtype=np.int64)
+    a_end, b_end = np.array(a_list, dtype=np.int64)[order], np.array(b_list, dtype=np.int64)[order]
+    least, after = np.array(lows, dtype=np.int64)[order], np.full(E, -1, dtype=np.int64)
+    for e, least_e in parallel:
+        after[e] = least_e
+    after = after[order]
+    given = np.zeros((E, C * E + 1), dtype=np.int64)
+    for f in np.flatnonzero(_bundle_starts(edges)).tolist():
+        r = 1
+        while f + r < E and after[f + r] >= 0:
+            r += 1
+        ways = _bundle_ways(C, tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)]))
+        given[f, :len(ways)] = ways
+    total = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g, given)
+                for g in (np.zeros(0, dtype=np.int64), *rows))
+    orbits, rest = divmod(total, len(bundles))
+    if rest:  # a fault of this engine
+        raise RuntimeError(f"Burnside's sum over the {len(bundles)} permutations of the bundles of a branch "
+                           f"multigraph of {code}, counted in reverse, is not a multiple of their number")
+    _add(stats, reversed=1, tight=1, cpsat_s=perf_counter() - t0)  # (counted, not visited: as the sizing reads it)
+    return int(orbits)
+
+
+def _bundle_closure(graph: Contracted) -> "np.ndarray | None":
+    """The permutations of the bundles of parallel strings of H (rows, the identity first) that
+    nauty's automorphisms of H on its strings make, closed under composition; None where there are
+    more than 4096 (the group is then not listed whole).
+
+    >>> from synth.synthesis.stage_a import LINK, Vertex
+    >>> _bundle_closure(Contracted((Vertex(LINK, 3),) * 2, ((0, 0), (0, 1), (1, 1)), "")).tolist()
+    [[0, 1, 2], [2, 1, 0]]
+    """
+    import numpy as np
+
+    from .stage_a import _GROUP_LIMIT
+
+    first = _bundle_starts(graph.edges)
+    bundle_of, firsts = np.cumsum(first) - 1, np.flatnonzero(first)
+    found = {tuple(range(len(firsts)))}
+    steps = {tuple(bundle_of[np.asarray(g)[firsts]].tolist()) for g in graph.edge_group()[0]} - found
+    layer = list(found)
+    while layer:
+        layer = [p for p in {tuple(s[i] for i in q) for q in layer for s in steps} if p not in found]
+        found.update(layer)
+        if len(found) > _GROUP_LIMIT:
+            return None
+    return np.array(sorted(found), dtype=np.int64)
+
+
+@lru_cache(maxsize=1024)
+def _bundle_ways(C: int, lows: tuple[int, ...]) -> tuple[int, ...]:
+    """How many ways a bundle of parallel strings holds t = 0 … C·r units of deficit in a tight
+    placement: its weights w_1 ≤ … ≤ w_r with w_x between ``lows[x]`` and C, t = Σ (C − w_x) —
+    found by listing every such tuple (the second count's check of the kernel's programme).
+
+    >>> _bundle_ways(2, (0, 1))  # (0, 1) (0, 2) (1, 1) (1, 2) (2, 2)
+    (1, 1, 2, 1, 0)
+    """
+    from itertools import combinations_with_replacement
+
+    ways = [0] * (C * len(lows) + 1)
+    for weights in combinations_with_replacement(range(C + 1), len(lows)):
+        if all(w >= low for w, low in zip(weights, lows)):
+            ways[sum(C - w for w in weights)] += 1
+    return tuple(ways)
 
 
 @lru_cache(maxsize=256)

@@ -41,7 +41,7 @@ from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
 from .stage_a import Contracted, Conventions, contracted_graphs, contracted_stream, needs_solver, uses_kernel
-from .stage_b import count_orbits, count_realised, load_kernel, realise
+from .stage_b import count_orbits, count_realised, count_reversed, load_kernel, realise
 from .number_synthesis import number_synthesis
 
 __all__ = ["Conventions", "Unit", "Counts", "plan_codes", "plan_units", "plan_many", "plan_jobs", "type_synthesis",
@@ -405,23 +405,26 @@ def count_by_code(items) -> dict[str, int]:
 
 # How a count finds each unit's chains: "listing" as stage B lists them (one lex-least placement per
 # orbit, or the chains compared), "orbits" by Burnside's lemma over the automorphisms of H
-# (stage_b.count_orbits, where it applies; docs/theory.md, "Counting by orbits").
-COUNT_METHODS = ("listing", "orbits")
+# (stage_b.count_orbits, where it applies; docs/theory.md, "Counting by orbits"), "tight-reverse" by the
+# second count of issue 41 (stage_b.count_reversed: the programme over the bundles in reverse, another
+# reading of the group, the bundles' ways listed; docs/theory.md, "A second count").
+COUNT_METHODS = ("listing", "orbits", "tight-reverse")
 
 
-def count_unit(unit: Unit, method: str = "listing") -> dict[str, int]:
+def count_unit(unit: Unit, method: str = "listing", stats: dict | None = None) -> dict[str, int]:
     """Counts by code of one unit's chains (``'42/0 P2'`` with prismatic pairs): counted where they
     are computed, without building the chains where stage B's solutions are already one per chain;
     what ``count_chains`` runs on each unit, on any scheduler.  ``method`` is one of
-    :data:`COUNT_METHODS` (both give the same counts).
+    :data:`COUNT_METHODS` (all give the same counts); ``stats`` gathers stage B's figures as
+    :func:`run_unit`'s does (``"tight"``: the unit was counted without visiting its placements).
 
-    >>> [count_unit(u) for u in plan_units(1, 6)], [count_unit(u, "orbits") for u in plan_units(1, 6)]
+    >>> [count_unit(u) for u in plan_units(1, 6)], [count_unit(u, "tight-reverse") for u in plan_units(1, 6)]
     ([{'42/0': 2}], [{'42/0': 2}])
     """
     if unit.contracted is None or unit.conventions.prismatic is not None:
-        return count_by_code(run_unit(unit))
-    count = count_orbits if method == "orbits" else count_realised
-    n = count(unit.code, unit.contracted, unit.conventions)
+        return count_by_code(run_unit(unit, stats))
+    count = {"orbits": count_orbits, "tight-reverse": count_reversed}.get(method, count_realised)
+    n = count(unit.code, unit.contracted, unit.conventions, stats)
     return {str(unit.code): n} if n else {}
 
 
@@ -436,16 +439,44 @@ class _ChainCount:
 
 
 def _check_method(method: str, query: ChainQuery) -> None:
-    """Refuse an unknown counting method, and counting by orbits where no unit could use it."""
+    """Refuse an unknown counting method, and counting by orbits where some chain needs a rule or a check
+    Burnside's count over patterns does not make (prismatic pairs, cranks, multiple joints, two empty
+    parallel strings)."""
     if method not in COUNT_METHODS:
         raise InvalidOption(f"the counting method is one of {', '.join(COUNT_METHODS)}, not {method!r}")
     if method == "orbits":
         why = ("chains with prismatic pairs are counted from their revolute skeletons' listings" if query.prismatic
                is not None else "a crank requirement is checked on each chain" if query.cranks else
                "with h = 2 and rigid sub-chains allowed two strings between the same links may both be empty"
-               if query.h + (0 if query.rigid else 1) <= 2 else None)
+               if query.h + (0 if query.rigid else 1) <= 2 else
+               "a chain with multiple joints needs the exact sub-chain test, which Burnside's count over patterns "
+               "does not make" if _allows_multiple_joints(query) else None)
         if why:
             raise InvalidOption(f"these chains cannot be counted by orbits ({why}): use the listing method")
+    if method == "tight-reverse":
+        why = ("chains with prismatic pairs are counted from their revolute skeletons' listings" if query.prismatic
+               is not None else "a crank requirement is checked on each chain" if query.cranks else
+               "each placement with a multiple joint goes through the exact test, as in the first count"
+               if _allows_multiple_joints(query) else None)
+        if why:
+            raise InvalidOption(f"the second count (tight-reverse) does not cover these chains ({why}): use the "
+                                f"listing method")
+
+
+def _allows_multiple_joints(query: ChainQuery) -> bool:
+    """Whether some chain of ``query`` may have a multiple joint (its code's v, else its range of v, unless
+    no joint may join more than two links).
+
+    >>> _allows_multiple_joints(ChainQuery(1, 8)), _allows_multiple_joints(ChainQuery(1, 8, v="0..6"))
+    (False, True)
+    >>> _allows_multiple_joints(ChainQuery(1, 8, v="0..6", max_multiplicity=2))
+    False
+    """
+    if query.max_multiplicity == 2:
+        return False
+    if query.code is not None:
+        return query.code.v > 0
+    return query.v is not None and (query.v[1] is None or query.v[1] > 0)
 
 
 @dataclass(frozen=True)
@@ -455,9 +486,9 @@ class _MechanismCount:
     input_link: bool = False
     cylinders: tuple = ()
 
-    def __call__(self, unit: Unit) -> dict[str, int]:
-        return count_by_code(m for c in run_unit(unit) for m in mechanisms_of(c, input_link=self.input_link,
-                                                                            cylinders=self.cylinders))
+    def __call__(self, unit: Unit, stats: dict | None = None) -> dict[str, int]:
+        return count_by_code(m for c in run_unit(unit, stats) for m in mechanisms_of(c, input_link=self.input_link,
+                                                                                   cylinders=self.cylinders))
 
 
 @dataclass(frozen=True)
@@ -576,7 +607,10 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     instead of running its units (not with a checkpoint or a scheduler, which ask for the units run).
     ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
     counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
-    the group of H listed whole) and as the listing does elsewhere; both give the same counts.
+    the group of H listed whole) and as the listing does elsewhere; ``"tight-reverse"`` is a second
+    count sharing as little of the listing's arithmetic as can be arranged (simple joints only,
+    :func:`~synth.synthesis.stage_b.count_reversed`); all give the same counts, each kept apart in
+    the store and in a checkpoint.
     ``expected``: the chains an estimate expects (:func:`~synth.synthesis.estimate.estimate`), from
     which the progress reckons the time to go.
 

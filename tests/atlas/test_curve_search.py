@@ -8,6 +8,7 @@ import math
 import os
 import subprocess
 import sys
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -16,7 +17,7 @@ from synth.atlas import AtlasError, NoCurveIndex, index_curves, parse_grid, run_
 from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
                                 untimed_parameter)
 from synth.atlas.search import Candidate, _form, _misfits, _refine, _variants, descriptor_of, start_linkage
-from synth.dimension import PathTarget
+from synth.dimension import Constraints, PathTarget
 from synth.errors import BadTarget
 from synth.motion import Linkage, assemble, sweep
 from synth.motion_draw import linkage_from_layout
@@ -65,6 +66,27 @@ def _random_crank(mechanism: Mechanism, tracer_link: int, seed: int) -> Linkage:
 def _target(linkage: Linkage, points: int, timed: bool) -> PathTarget:
     motion = sweep(linkage, steps=points + 1)
     return PathTarget(motion.tracers["P"][:points], inputs=motion.inputs[:points, 0] if timed else None)
+
+
+def _in_atlas(db: str, mechanism: Mechanism, tracer_link: int) -> tuple[Mechanism, int]:
+    """The mechanism in the atlas's numbering of its chain (the one its index samples around), and its
+    tracer link there."""
+    import sqlite3
+
+    import networkx as nx
+
+    from synth.synthesis.type_synthesis import mechanisms_of
+
+    conn = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
+    try:
+        chain = next(c for (text,) in conn.execute("SELECT chain FROM chains")
+                     for c in [Chain.from_dict(json.loads(text))] if c.certificate == mechanism.chain.certificate)
+    finally:
+        conn.close()
+    units = {(m.frame, m.input_link) for m in mechanisms_of(chain, input_link=True)}  # the index's, up to symmetry
+    matcher = nx.algorithms.isomorphism.GraphMatcher(mechanism.chain.link_graph(), chain.link_graph())
+    to = next(iso for iso in matcher.isomorphisms_iter() if (iso[mechanism.frame], iso[mechanism.input_link]) in units)
+    return Mechanism(chain, to[mechanism.frame], to[mechanism.input_link]), to[tracer_link]
 
 
 def _assert_recovered(found, target, links: int):
@@ -190,6 +212,61 @@ def test_a_topology_whose_polish_stops_short_goes_on_with_the_global_stage(tmp_p
     assert 2 <= best.seconds <= 4 + 1  # the whole share spent (the last evaluation may overrun it)
 
 
+def test_each_sample_of_a_topology_gets_a_slice_of_the_polish_and_the_best_goes_on(monkeypatch):
+    """The polish of a sample that slides along a valley of near-equal curves (an eight-bar's, away from
+    the target's own dimensions) spends whatever it is given: each sample's first polish is held to an equal
+    slice of the polishing share, and the best of them then goes on.  Here the first sample's polish
+    ends at 1e-4, the second's at 3e-5, the third's at 2e-7 and going on from the third meets the target;
+    before the slices the first would have had the whole share."""
+    import synth.atlas.search as search
+    import synth.dimension as dimension
+
+    calls, ends = [], {0: 1e-4, 1: 3e-5, 2: 2e-7}
+    pose = Linkage(FOUR_BAR, (0,), np.array([[0.0, 0.0], [0.3, 0.0], [0.8, 0.6], [1.0, 0.0]]),
+                   tracers={"P": (2, (0.5, 0.5))})
+
+    def linkage(name):  # what the search reads of a start: where its joints and tracer point are
+        return SimpleNamespace(name=name, points=pose.points, tracers=pose.tracers, mechanism=FOUR_BAR)
+
+    def polished(error, name):
+        return SimpleNamespace(met=True, relative_max=error, error_rms=error, linkage=linkage(name))
+
+    def fake_synthesize(start, target, *, budget, polish_only=False, **_):
+        assert polish_only  # (no global stage: the target is met before it)
+        calls.append((start.name, budget))
+        return polished(ends[start.name] if isinstance(start.name, int) else 1e-12, f"from {start.name}")
+
+    monkeypatch.setattr(dimension, "synthesize", fake_synthesize)
+    monkeypatch.setattr(search, "start_linkage", lambda candidate, *_: linkage(candidate.row))
+    rows = tuple((SimpleNamespace(row=i, tracer_link=2), None, None, None) for i in range(3))
+    target = _target(_random_crank(FOUR_BAR, 2, seed=7), 24, True)
+    best, candidate, tried, _, _ = search._polish_topology(search._Polish(
+        json.dumps(FOUR_BAR.chain.to_dict()), rows, target, Constraints(), 60.0, 0))
+    polishing = search.POLISH_SHARE * 60.0
+    assert [name for name, _ in calls] == [0, 1, 2, "from 2"]
+    assert all(budget <= polishing / 3 + 1e-9 for _, budget in calls[:3])
+    assert calls[3][0] == "from 2" and calls[3][1] > polishing / 3  # the best goes on with what is left
+    assert tried == 3 and candidate.row == 2 and best.relative_max == 1e-12
+
+
+def test_an_index_of_k_drawings_hands_k_times_the_samples_of_each_topology_to_the_polish(tmp_path, monkeypatch):
+    import synth.atlas.search as search
+
+    asked = []
+
+    def retrieve(db, target, *, per_topology, **_):
+        asked.append(per_topology)
+        return [], 0
+
+    monkeypatch.setattr(search, "retrieve", retrieve)
+    db = _atlas(tmp_path, "4")
+    target = _target(_random_crank(FOUR_BAR, 2, seed=7), 24, True)
+    index_curves(db, settings=IndexSettings(samples=2, drawings=2), workers=1)
+    search_atlas(db, target, budget=1)
+    search_atlas(db, target, budget=1, per_topology=1)
+    assert asked == [2 * search.PER_DRAWING, 1]
+
+
 @pytest.mark.slow
 def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     """Must show: a six-bar with dimensions picked at random, given only as points with timing (its
@@ -216,6 +293,27 @@ def test_a_random_four_bar_is_found_from_its_points_alone_among_six_bars(tmp_pat
     found = search_atlas(db, target, budget=240, workers=2)
     four = [m for m in found.matches if m.candidate.links == 4]
     assert four and four[0].result.relative_max <= 1e-6
+
+
+@pytest.mark.slow
+def test_a_random_eight_bar_is_found_from_its_timed_points_by_its_topologys_polish(tmp_path):
+    """An eight-bar with dimensions picked at random (seed 3; its tracer link's motion depends on all
+    eight links), 72 timed points: the atlas search's stage for its topology, given the 3 K nearest of
+    its samples around K = 10 drawings as an index of ten drawings hands them over, meets the curve to
+    1e-6 of its size within a 120-CPU-s share (the nearest-first polish of main stopped at 5e-6).  The
+    retrieval's ranking of this topology among all 153 eight-link mechanisms is not part of it (an index
+    of them at ten drawings was not built)."""
+    from synth.atlas.search import PER_DRAWING, _Polish, _polish_topology, _rechecked, sampled_candidates
+
+    db = _atlas(tmp_path, "8")
+    withheld = Mechanism(Chain.parse("0-1 0-2 0-4 1-3 1-5 2-5 2-6 3-4 3-7 6-7"), 2, 5)
+    mechanism, tracer = _in_atlas(db, withheld, 7)
+    target = _target(_random_crank(withheld, 7, seed=3), 72, True)
+    rows = sampled_candidates(mechanism, tracer, target, samples=20, drawings=10)[:PER_DRAWING * 10]
+    best, _, _, _, _ = _polish_topology(_Polish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target,
+                                                Constraints(), 120.0, 0))
+    assert best.met and best.relative_max <= 1e-6
+    assert _rechecked(best, target) <= 1e-9  # the motion layer moves the returned linkage along the reported curve
 
 
 # ------------------------------------------------------------------ prismatic variants

@@ -102,6 +102,8 @@ CASES = [
     ("chains --dof 1 --links 10 --count --method burnside", "burnside"),
     ("chains --dof 1 --links 8 --count --method orbits --prismatic 0..2", "cannot be counted by orbits"),
     ("chains --dof 1 --links 8 --count --method orbits --cranks 3=2", "crank requirement"),
+    ("chains --dof 1 --links 8 --v 0..6 --count --method orbits", "multiple joints"),
+    ("chains --code 7201/1 --count --method orbits", "multiple joints"),
     ("chains --chain '0-1 1-2 2-3 3-0' --count --method orbits", "not with --chain"),
     ("mechanisms --dof 1 --links 8 --count --method orbits", "--method"),
     (f"chains --code {BIG_CODE}", "5002 characters"),

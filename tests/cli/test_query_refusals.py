@@ -173,9 +173,10 @@ def test_a_count_holds_certificates_not_codes_and_a_listing_that_would_hold_giga
     """Issue 37: the h = 2 count of 12 links grew to 4.5 GiB in silence (stage A kept a code's branch
     multigraphs whole, about 800 000 in its largest code); a count now keeps only their certificates
     (0.6 GiB on 2 workers: not even noted) and runs, where the listing, which keeps them whole for its
-    order, is refused with the memory it would hold."""
+    order, is refused with the memory it would hold.  (The count's time, about 13 min on 2 workers,
+    lies close to the ten minutes above which it is noted.)"""
     note = synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=True, table=False)
-    assert note.startswith("a long query: ") and "GiB" not in note
+    assert "GiB" not in (note or "")
     with pytest.raises(QueryTooLarge) as err:
         synth.size_check(ChainQuery(1, 12, h=2), processes=2, count=False, table=False)
     text = str(err.value)

@@ -134,6 +134,22 @@ def test_stage_a_s_task_works_on_the_first_units_then_batches_follow_the_time_pe
     assert sum(tasks.batches) == 92
 
 
+@pytest.mark.parametrize("expansions", [1, 2])
+def test_stage_a_waits_while_units_of_an_expanded_item_are_waiting(clock, expansions):
+    # a count with a checkpoint (stage A's task works on no unit) and a wide window: the pool runs
+    # tasks first come first served, so no more than `expansions` stage-A tasks may be submitted
+    # before the first batch of units (a window of stage-A tasks held every unit of 8 items at once)
+    plan = _plan([30] * 6)
+    tasks = _Tasks(clock)
+    kinds = []
+    submit = lambda fn, arg: (kinds.append(fn is module._apply_batch), tasks.submit(fn, arg))[1]  # noqa: E731
+    keep_all = lambda unit: False  # noqa: E731
+    got = list(module._pipeline(list(enumerate(plan)), list, tasks.work, submit, keep_all, 8, 4 * UNIT,
+                                next_done=tasks.next_done, expansions=expansions))
+    assert sorted(got, key=repr) == sorted(_expected(plan), key=repr)
+    assert kinds.index(True) == expansions  # the first batch follows the first expansions
+
+
 def test_units_of_no_time_travel_512_a_batch(clock):
     plan = _plan([1500])
     tasks = _Tasks(clock)

@@ -21,7 +21,8 @@ from synth.synthesis import stage_b
 from synth.synthesis import type_synthesis as ts
 
 #: links -> units of each code (their chain counts), the CPU seconds the size takes, and of those the
-#: seconds of its units' own work (none where not given), spread over the units by their chains
+#: seconds of its units' own work (none where not given), spread over the units by their chains, and
+#: whether stage B counts those units without visiting their chains (no where not given)
 SIZES = {
     4: ([[1]], 0.0), 6: ([[2]], 0.0), 8: ([[16]], 0.0), 10: ([[230]], 0.01),
     12: ([[6000, 356], [500]], 0.01), 14: ([[100000, 100000, 18162], [100000]], 0.5, 0.4),
@@ -33,6 +34,7 @@ class _Calibrations:
 
     def __init__(self, monkeypatch, sizes):
         self.sizes, self.now, self.runs, self.kernels, self.planned = sizes, 100.0, [], 0, []
+        self.empty_unit_seconds = 0.0  # what a unit that finds no chain takes, within the units' work
         monkeypatch.setattr(est, "_COUNTED", {})
         monkeypatch.setattr(est, "time", types.SimpleNamespace(process_time=lambda: self.now))
         monkeypatch.setattr(ts, "plan_jobs", self.plan_jobs)
@@ -53,11 +55,15 @@ class _Calibrations:
         query's own work (recorded) replaced by one that takes the unit's share of the seconds."""
         n = jobs[0][0][0]
         query_work, units_seconds = work.work, (self.sizes[n][2] if len(self.sizes[n]) > 2 else 0.0)
+        tight = len(self.sizes[n]) > 3 and self.sizes[n][3]
         self.runs.append((n, query_work, workers, progress, jobs[0][1].kernel_loops))
         total = sum(map(sum, self.sizes[n][0]))
 
-        def run(chains):
+        def run(chains, stats):
             self.now += units_seconds * chains / total if total else 0.0
+            self.now += 0.0 if chains else self.empty_unit_seconds
+            if tight:
+                stats["tight"] = 1
             return ["chain"] * chains if query_work is ts.run_unit else {"7201/1": chains}
 
         work.work = run
@@ -85,8 +91,8 @@ def test_the_estimate_extrapolates_the_growth_ratio_linearly(monkeypatch):
     # the largest code's share of the units is that of the largest calibration: 3 of 4
     assert found.largest_code_units == pytest.approx(16 / 3 * 3 / 4, rel=1e-12)
     # time: the largest calibration's units' work per chain (0.4 s) times the chains, and the rest
-    # (0.1 s) per unit times the units
-    seconds = chains * 0.4 / 318162 + 16 / 3 * 0.1 / 4
+    # (0.1 s) per unit, 1.27 times more a loop (h = 3) beyond it, times the units
+    seconds = chains * 0.4 / 318162 + 16 / 3 * 0.1 / 4 * 1.27
     assert found.seconds == pytest.approx(seconds, rel=1e-12)
     assert found.log10_seconds == pytest.approx(math.log10(seconds), rel=1e-12)
 
@@ -97,7 +103,28 @@ def test_a_calibration_whose_time_is_all_in_one_part_scales_that_part_only(monke
     _Calibrations(monkeypatch, {**SIZES, 14: (SIZES[14][0], 0.5, units_seconds)})
     found = est.estimate(ChainQuery(1, 16))
     per_chain = 0.5 / 318162 * found.chains
-    assert found.seconds == pytest.approx(per_chain if units_seconds else 0.5 / 4 * found.units, rel=1e-12)
+    assert found.seconds == pytest.approx(per_chain if units_seconds else 0.5 / 4 * 1.27 * found.units, rel=1e-12)
+
+
+def test_units_counted_without_visiting_their_chains_are_timed_per_unit(monkeypatch):
+    """Stage B's tight count does not grow with the chains of a unit: all 0.5 s of 14 links are then
+    the units' (1.27 times more a unit at 16 links), none the chains'."""
+    _Calibrations(monkeypatch, {**SIZES, 14: (SIZES[14][0], 0.5, 0.4, True)})
+    found = est.estimate(ChainQuery(1, 16))
+    assert found.seconds == pytest.approx(0.5 / 4 * 1.27 * found.units, rel=1e-12)
+    assert found.seconds < 0.5 / 318162 * found.chains / 10  # (per chain, it would be 14 times longer)
+
+
+def test_a_unit_that_finds_no_chain_is_timed_per_unit(monkeypatch):
+    """14 links take 0.7 s: 0.4 s of units' work that found chains scale with the chains, the 0.1 s of a
+    unit that found none and the other 0.2 s (stage A, the plan) with the units (5 at 14 links, each
+    1.27 times longer at 16)."""
+    sizes = {**SIZES, 14: ([[100000, 100000, 18162, 0], [100000]], 0.6, 0.4)}
+    calibrations = _Calibrations(monkeypatch, sizes)
+    calibrations.empty_unit_seconds = 0.1
+    found = est.estimate(ChainQuery(1, 16))
+    assert [p for (_, n), p in est._COUNTED.items() if n == 14][0][3:] == pytest.approx((0.7, 4, 0.4), rel=1e-12)
+    assert found.seconds == pytest.approx(found.chains * 0.4 / 318162 + found.units * 0.3 / 5 * 1.27, rel=1e-12)
 
 
 def test_sizes_past_the_budget_are_not_counted_and_the_ratio_steps_on(monkeypatch):
@@ -109,7 +136,7 @@ def test_sizes_past_the_budget_are_not_counted_and_the_ratio_steps_on(monkeypatc
     d = r14 - r12
     assert found.basis == "exact counts at 10, 12, 14 links"
     assert found.chains == pytest.approx(318162 * (r14 + d) * (r14 + 2 * d), rel=1e-12)
-    assert found.seconds == pytest.approx(found.units * 3.0 / 4, rel=1e-12)  # (no time in the units' work given)
+    assert found.seconds == pytest.approx(found.units * 3.0 / 4 * 1.27**2, rel=1e-12)  # (no units' work given)
 
 
 @pytest.mark.parametrize("seconds_12, counted_14", [(0.09, True), (0.1, False)])
@@ -206,7 +233,8 @@ def test_growth_beyond_floating_point_is_infinite_with_a_finite_logarithm(monkey
     assert found.chains == math.inf and found.seconds == math.inf
     assert found.log10_chains == pytest.approx(log10, rel=1e-9)
     log10_units = math.log10(4 * (4 / 3) ** 193)  # the rest's 0.1 s per unit is far below the chains' share
-    assert found.log10_seconds == pytest.approx(log10 + math.log10(0.4 / 318162 + 10 ** (log10_units - log10) * 0.1 / 4),
+    log10_unit_time = log10_units + math.log10(0.1 / 4) + 193 * math.log10(1.27)
+    assert found.log10_seconds == pytest.approx(log10 + math.log10(0.4 / 318162 + 10 ** (log10_unit_time - log10)),
                                                 rel=1e-9)
     assert found.units == pytest.approx(4 * (4 / 3) ** 193, rel=1e-9)  # the units' ratio does not grow
 
@@ -476,12 +504,15 @@ def test_powers_of_ten_beyond_floating_point_are_infinite():
     assert est._power(5000.0) == math.inf
 
 
-def test_a_real_calibration_times_its_units_work_inside_its_own_time(monkeypatch):
-    """Run for real (14 links, 8 … 12 counted): each size's units' own work is timed, and takes
-    a share of the size's CPU seconds (stage A and the plan take the rest)."""
+def test_a_real_calibration_times_the_units_whose_chains_it_visits(monkeypatch):
+    """Run for real (14 links, 8 … 12 counted): a count's units are counted by stage B's tight count,
+    none visited; a listing's are visited chain by chain, a share of the size's CPU seconds (stage A
+    and the plan take the rest)."""
     monkeypatch.setattr(est, "_COUNTED", {})
     found = est.estimate(ChainQuery(1, 14))
     points = {n: point for (_, n), point in est._COUNTED.items()}
     assert found.basis == "exact counts at 8, 10, 12 links" and points[12][1:3] == (6856, 104)
-    assert all(0.0 <= point[5] <= point[3] for point in points.values())
-    assert points[12][5] > 0.0
+    assert [points[n][5] for n in (8, 10, 12)] == [0.0, 0.0, 0.0]
+    est.estimate(ChainQuery(1, 14), work="list")
+    listed = {n: point for ((_, work, _), n), point in est._COUNTED.items() if work == "list"}
+    assert listed[12][1:3] == (6856, 104) and 0.0 < listed[12][5] <= listed[12][3]

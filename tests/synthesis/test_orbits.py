@@ -153,10 +153,20 @@ def test_the_two_methods_count_alike_by_code_and_apart_in_the_store():
 
 @pytest.mark.parametrize("options, words", [
     (dict(prismatic="0..2"), "prismatic"), (dict(cranks=["3=2"]), "crank"),
-    (dict(h=2, rigid_subchains=True), "h = 2")])
-def test_orbits_are_refused_where_no_unit_could_use_them(options, words):
+    (dict(h=2, rigid_subchains=True), "h = 2"), (dict(v="0..6"), "multiple joints"), (dict(v="1.."), "multiple joints"),
+    (dict(links=None, code="7201/1"), "multiple joints")])
+def test_orbits_are_refused_where_a_chain_needs_what_they_do_not_check(options, words):
+    """Refused, never counted by another method under the name of orbits: prismatic pairs, cranks, two empty
+    parallel strings, and any chain with a multiple joint (a range of v reaching 1, or a code with v > 0)."""
     with pytest.raises(synth.InvalidOption, match=words):
-        synth.count_chains(1, 8, workers=1, method="orbits", **options)
+        synth.count_chains(1, options.pop("links", 8), workers=1, method="orbits", **options)
+
+
+@pytest.mark.parametrize("options", [dict(links=8, v=0), dict(links=8, v="0..0"), dict(code="440/0"),
+                                     dict(links=8, v="0..6", max_multiplicity=2)])
+def test_orbits_count_a_query_of_simple_joints_given_by_its_v_or_its_code(options):
+    """v = 0 (or a code of simple joints) is not refused, and counts what the listing counts."""
+    assert synth.count_chains(1, workers=1, method="orbits", **options) == synth.count_chains(1, workers=1, **options)
 
 
 def test_an_unknown_method_is_refused():
