@@ -11,8 +11,11 @@ not run again, so a killed run goes on where it stopped.  At the end a summary l
 what was checked: the trees, the trees agreeing, the trains they hold, the CPU seconds of
 each method and the peak memory of this process; with ``--rotation`` also the rotation graphs
 of the whole size by each method — the union over the trees of each method's own canonical
-forms (nauty for the engine, bliss for the second method) — when this run compared every tree
-(``null`` after a sample or a resumed run: the forms of the trees in the log are not kept).
+forms (nauty for the engine, bliss for the second method) — once every tree of the size has
+been compared (``null`` after a sample).  The forms are kept on disk, in the SQLite file
+``LOG.forms.sqlite`` beside the log (each tree's forms and the tree's number in one transaction,
+before its line is written to the log), so a run killed and started again loses no tree and still
+gives both unions; a tree in the log but not in that file (its forms lost) is run again.
 
 Run from the project root (one process; a progress bar on stderr, or a line a minute when it is a file)::
 
@@ -38,6 +41,7 @@ import json
 import random
 import resource
 import signal
+import sqlite3
 import subprocess
 import sys
 import time
@@ -63,8 +67,8 @@ def paired_trees(links: int) -> list[tuple[int, tuple, tuple]]:
     return [(k, axes, second[key]) for k, (axes, key) in enumerate(zip(engine, keys))]
 
 
-def compare_tree(dof: int, links: int, pair, rotation: bool, union: dict | None = None) -> dict:
-    """Both counts of one tree, and the CPU seconds of each; with ``union`` (two sets, ``engine``
+def compare_tree(dof: int, links: int, pair, rotation: bool, forms: dict | None = None) -> dict:
+    """Both counts of one tree, and the CPU seconds of each; with ``forms`` (two sets, ``engine``
     and ``second``) each method's canonical forms of the tree's rotation graphs are added to it."""
     from synth.gears import tree_census
     from tests.oracles import gear_trains_fast
@@ -73,16 +77,81 @@ def compare_tree(dof: int, links: int, pair, rotation: bool, union: dict | None 
     start = time.process_time()
     n, _, rotations = tree_census(dof, links, axes, rotation=rotation)
     middle = time.process_time()
-    second = gear_trains_fast.tree_census(dof, links, other, rotation=rotation, keys=union is not None)
+    second = gear_trains_fast.tree_census(dof, links, other, rotation=rotation, keys=forms is not None)
     end = time.process_time()
-    if union is not None:
-        union["engine"].update(rotations)
-        union["second"].update(second["keys"])
+    if forms is not None:
+        forms["engine"].update(rotations)
+        forms["second"].update(second["keys"])
     row = {"dof": dof, "links": links, "tree": k, "axes": [list(a) for a in axes], "engine": n,
            "second": second["displacement"], "engine_cpu": round(middle - start, 3), "second_cpu": round(end - middle, 3)}
     if rotation:
         row.update(engine_rotation=len(rotations), second_rotation=second["rotation"])
     return row
+
+
+class FormStore:
+    """Each method's canonical forms of the rotation graphs met so far on the trees of one size,
+    and the trees whose forms are all in: an SQLite file, so that the unions survive a killed run.
+
+    A tree's forms and its number go in together (one transaction), so the file never holds half a
+    tree.  Opening a file of another size or mobility is an error (:class:`ValueError`).
+
+    Example
+    -------
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "forms.sqlite"
+    >>> with FormStore(path, 2, 7) as store:
+    ...     store.add(3, {"engine": {b"ab", b"cd"}, "second": {b"xy"}})
+    ...     store.add(5, {"engine": {b"ab"}, "second": {b"zz"}})
+    >>> with FormStore(path, 2, 7) as store:
+    ...     sorted(store.trees()), store.totals()
+    ([3, 5], {'engine': 2, 'second': 2})
+    """
+
+    METHODS = ("engine", "second")
+
+    def __init__(self, path: Path, dof: int, links: int):
+        self.path = path
+        self.db = sqlite3.connect(path)
+        try:
+            self.db.executescript(
+                "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"
+                "CREATE TABLE IF NOT EXISTS size (dof INTEGER, links INTEGER);"
+                "CREATE TABLE IF NOT EXISTS forms (method INTEGER, form BLOB, PRIMARY KEY (method, form)) WITHOUT ROWID;"
+                "CREATE TABLE IF NOT EXISTS trees (tree INTEGER PRIMARY KEY);")
+            size = self.db.execute("SELECT dof, links FROM size").fetchall()
+        except sqlite3.DatabaseError:
+            self.db.close()
+            raise ValueError(f"{path} is not a store of rotation-graph forms (not an SQLite file of this script)") from None
+        if not size:
+            with self.db:
+                self.db.execute("INSERT INTO size VALUES (?, ?)", (dof, links))
+        elif size[0] != (dof, links):
+            self.db.close()
+            raise ValueError(f"{path} holds the forms of F = {size[0][0]}, {size[0][1]} links, not of F = {dof}, "
+                             f"{links} links: give the log of that size or a new log")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.db.close()
+
+    def add(self, tree: int, forms: dict) -> None:
+        """Put one tree's forms (a set of bytes a method) and its number in, at once."""
+        with self.db:
+            for m, method in enumerate(self.METHODS):
+                self.db.executemany("INSERT OR IGNORE INTO forms VALUES (?, ?)", ((m, f) for f in forms[method]))
+            self.db.execute("INSERT OR IGNORE INTO trees VALUES (?)", (tree,))
+
+    def trees(self) -> set[int]:
+        """The trees whose forms are in."""
+        return {t for (t,) in self.db.execute("SELECT tree FROM trees")}
+
+    def totals(self) -> dict:
+        """The size of each method's union of forms."""
+        return {method: self.db.execute("SELECT COUNT(*) FROM forms WHERE method = ?", (m,)).fetchone()[0]
+                for m, method in enumerate(self.METHODS)}
 
 
 def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list[dict]:
@@ -110,18 +179,21 @@ def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list
     done = next((d for d in reversed(summaries) if checked(d)), None)
     if done is None:
         raise ValueError(f"no summary of {log} shows every tree compared and agreeing"
-                         + (" with two equal totals of rotation graphs (run with --rotation on every tree at once)"
+                         + (" with two equal totals of rotation graphs (run with --rotation until every tree is compared)"
                             if rotation else "") + ": nothing to record")
-    if "commit" in done:  # the engine's commit when the run started
-        commit = [done["commit"], done["date"]]
+    if "commit" in done:  # the engine's commits of the runs that compared the trees (a killed run leaves no summary: its rows say)
+        upto = [r.get("summary", r) for r in rows[:rows.index({"summary": done}) + 1]]
+        ours = [r for r in upto if (r.get("dof"), r.get("links")) == (dof, links)]  # its rows and summaries
+        commit = [" ".join(dict.fromkeys(r["commit"] for r in ours if "commit" in r)), done["date"]]
+        done = dict(done, peak_mib=max(r.get("peak_mib", 0) for r in ours))
     else:  # a summary of before 29 Nov 2026: the commit that brought the log (the engine is the same there)
         commit = subprocess.run(["git", "log", "-1", "--format=%h %cs", "--", str(log)], cwd=ROOT, capture_output=True,
                                 text=True).stdout.split() or ["uncommitted", ""]
     shown = log.resolve().relative_to(ROOT) if log.resolve().is_relative_to(ROOT) else log
-    method = (f"engine synth.gears.tree_census tree by tree in one process beside the second method, nice -n 19 on the "
-              f"shared machine (CPU s: the engine's, {'both graphs' if done['rotation_compared'] else 'displacement graphs only'}; "
-              f"the second method's {done['second_cpu_s']}; "
-              f"peak MiB: both in one process)")
+    method = (f"engine synth.gears.tree_census tree by tree beside the second method in one process at a time (runs resumed "
+              f"from the log add up), niced on the shared machine (CPU s: the engine's, "
+              f"{'both graphs' if done['rotation_compared'] else 'displacement graphs only'}; "
+              f"the second method's {done['second_cpu_s']}; peak MiB: both in one process, the largest of the runs)")
     base = {"published": "", "source": "", "by_code_file": str(shown), "wall_s": "", "cpu_s": done["engine_cpu_s"],
             "peak_mib": done["peak_mib"], "method": method, "commit": commit[0], "date": commit[-1]}
     lines = [dict(base, query=f"gears --dof {dof} --links {links}", count=done["trains_on_agreeing_trees"],
@@ -214,6 +286,14 @@ def main(argv=None) -> int:
             if row.get("dof") == args.dof and row.get("links") == args.links and "tree" in row:
                 if "engine_rotation" in row or not args.rotation:
                     done[row["tree"]] = row
+    store = None
+    if args.rotation:  # the forms of the trees done, kept for the unions
+        try:
+            store = FormStore(args.log.with_name(args.log.name + ".forms.sqlite"), args.dof, args.links)
+        except ValueError as error:
+            parser.error(str(error))
+        stored = store.trees()
+        done = {k: row for k, row in done.items() if k in stored}  # a tree whose forms were lost is run again
     signal.signal(signal.SIGINT, signal.default_int_handler)  # Ctrl-C stops even a run started in the background
     try:
         pairs = paired_trees(args.links)
@@ -223,18 +303,21 @@ def main(argv=None) -> int:
     # a sample in its drawn order: a run stopped early has compared a random part of it
     chosen = pairs if args.sample is None else random.Random(args.seed).sample(pairs, min(args.sample, len(pairs)))
     todo = [p for p in chosen if p[0] not in done]
-    whole = args.rotation and len(todo) == len(pairs)  # every tree run here: each method's union is the size's count
-    union = {"engine": set(), "second": set()} if whole else None
     wall, cpu = time.perf_counter(), time.process_time()
     commit = _commit()
-    print(f"F={args.dof}, {args.links} links: {len(chosen)} of {len(pairs)} trees, {len(chosen) - len(todo)} in the log",
-          file=sys.stderr)
+    print(f"F={args.dof}, {args.links} links: {len(chosen)} of {len(pairs)} trees, {len(chosen) - len(todo)} in the log"
+          + (f" (rotation-graph forms in {store.path})" if store else ""), file=sys.stderr)
     from synth import Progress
 
     try:  # a bar on a terminal, a line a minute in a log
         with open(args.log, "a") as out, Progress(len(todo), "trees", desc="gears_two_methods_by_tree") as progress:
             for pair in todo:
-                row = compare_tree(args.dof, args.links, pair, args.rotation, union)
+                forms = {"engine": set(), "second": set()} if store else None
+                row = compare_tree(args.dof, args.links, pair, args.rotation, forms)
+                if store:
+                    store.add(row["tree"], forms)  # the forms first: a tree in the log has its forms kept
+                # which engine, and the memory so far: what a run killed before its summary leaves to record
+                row.update(commit=commit["commit"], peak_mib=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
                 out.write(json.dumps(row) + "\n")
                 out.flush()
                 done[row["tree"]] = row
@@ -250,10 +333,11 @@ def main(argv=None) -> int:
     seconds = {"this_run_cpu_s": round(time.process_time() - cpu, 1), "this_run_wall_s": round(time.perf_counter() - wall, 1),
                "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024,
                "sample": args.sample, "seed": args.seed, "interrupted": interrupted, **commit}
-    if args.rotation:
-        complete = union is not None and not interrupted
-        seconds.update(engine_rotation_total=len(union["engine"]) if complete else None,
-                       second_rotation_total=len(union["second"]) if complete else None)
+    if store:  # each method's union is the size's count once every tree's forms are in
+        complete = store.trees() >= {p[0] for p in pairs}
+        totals = store.totals() if complete else {}
+        store.db.close()
+        seconds.update(engine_rotation_total=totals.get("engine"), second_rotation_total=totals.get("second"))
     result = {"summary": {"dof": args.dof, "links": args.links, **summary(rows, len(pairs), seconds)}}
     with open(args.log, "a") as out:
         out.write(json.dumps(result) + "\n")

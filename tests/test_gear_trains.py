@@ -157,14 +157,17 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
     result = run(tmp_path / "missing" / "log.jsonl", "--dof", 1, "--links", 7)
     assert result.returncode == 2 and "cannot write" in result.stderr
     # rotation graphs: each method's union over every tree is the size's count (Tsai & Lin's 20 at F = 2,
-    # 7 links); a run that took trees from the log, or a sample, cannot give it
+    # 7 links), from the forms kept beside the log, so a resumed run gives it too; a sample cannot
     whole = run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation")
     summary = json.loads(whole.stdout)["summary"]
     assert whole.returncode == 0 and summary["engine_rotation_total"] == summary["second_rotation_total"] == 20
     assert sum(json.loads(line).get("second_rotation", 0) for line in (tmp_path / "rotation.jsonl").read_text().splitlines()) > 20
     resumed = json.loads(run(tmp_path / "rotation.jsonl", "--dof", 2, "--links", 7, "--rotation").stdout)["summary"]
     sampled = json.loads(run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--sample", 3, "--seed", 1).stdout)
-    assert resumed["second_rotation_total"] is None and sampled["summary"]["engine_rotation_total"] is None
+    assert resumed["second_rotation_total"] == 20 and resumed["this_run_cpu_s"] < summary["this_run_cpu_s"] + 1
+    assert sampled["summary"]["engine_rotation_total"] is None
+    wrong_size = run(tmp_path / "rotation.jsonl", "--dof", 1, "--links", 7, "--rotation")
+    assert wrong_size.returncode == 2 and "holds the forms of F = 2, 7 links" in wrong_size.stderr
     # --record: the counts a whole run checked go to the records table, its other lines kept; a sample records nothing
     table = tmp_path / "records.csv"
     table.write_text((Path(__file__).resolve().parent.parent / "benchmarks" / "records.csv").read_text())
@@ -176,6 +179,35 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
     assert table.read_text().splitlines()[:len(before)] == before and len(lines) == len(before) + 1
     refused = run(tmp_path / "sample.jsonl", "--dof", 2, "--links", 7, "--rotation", "--record", table)
     assert refused.returncode == 2 and "nothing to record" in refused.stderr and len(lines) == len(list(csv.DictReader(table.open())))
+
+
+def test_two_methods_script_resumes_a_killed_rotation_run_to_both_unions(tmp_path):
+    """A run killed outright (no summary written) and started again compares every tree once, and its
+    unions of rotation graphs are those of one uninterrupted run (1 070 at 8 links, Yang & Ding);
+    a tree whose forms were lost (here: every tree of a sample, the store deleted) is run again."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log = tmp_path / "log.jsonl"
+    args = [sys.executable, str(script), str(log), "--dof", "1", "--links", "8", "--rotation"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and (not log.exists() or len(log.read_text().splitlines()) < 20):
+        time.sleep(0.05)
+    proc.kill()
+    proc.communicate(timeout=60)
+    killed = [json.loads(line) for line in log.read_text().splitlines()]
+    assert 20 <= len(killed) < 165 and not any("summary" in r for r in killed)
+    again = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    summary = json.loads(again.stdout)["summary"]
+    assert again.returncode == 0, again.stderr
+    assert summary["engine_rotation_total"] == summary["second_rotation_total"] == 1070
+    assert summary["trees_compared"] == summary["trees_agreeing"] == summary["trees_of_the_size"] == 165
+    trees = [json.loads(line)["tree"] for line in log.read_text().splitlines() if "tree" in json.loads(line)]
+    assert sorted(trees) == list(range(165))  # each tree once: the killed run's rows kept, none run again
+    assert f"{len(killed)} in the log" in again.stderr  # (a row written before the kill is whole: its forms went in first)
+    for suffix in ("", "-wal", "-shm"):
+        (tmp_path / f"log.jsonl.forms.sqlite{suffix}").unlink(missing_ok=True)
+    lost = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    assert json.loads(lost.stdout)["summary"]["engine_rotation_total"] == 1070 and "0 in the log" in lost.stderr
 
 
 def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
