@@ -433,11 +433,13 @@ def _remove(path) -> None:
         pass
 
 
-def kept_units_folder(checkpoint) -> Path:
+def kept_units_folder(checkpoint, *, make: bool = True) -> Path:
     """The folder beside ``checkpoint`` (``FILE.units``) where a count keeps each code's units until the
-    code is complete, made if missing; what a killed run was writing there (``*.part``) is removed.
+    code is complete, made if missing (with ``make``); what a killed run was writing there (``*.part``)
+    is removed.
 
-    Raises :class:`~synth.execution.checkpoint.CheckpointError` when that name is taken by a file.
+    Raises :class:`~synth.execution.checkpoint.CheckpointError` when that name is taken by a file (with
+    ``make=False``, that is all it does: the count asks before it opens the checkpoint).
 
     >>> import tempfile
     >>> folder = kept_units_folder(Path(tempfile.mkdtemp()) / "c16.sqlite"); folder.name, folder.is_dir()
@@ -446,11 +448,13 @@ def kept_units_folder(checkpoint) -> Path:
     from ..execution.checkpoint import CheckpointError
 
     folder = Path(f"{checkpoint}.units")
+    if folder.exists() and not folder.is_dir():
+        raise CheckpointError(f"the checkpoint {checkpoint} keeps its units in the folder {folder}, but that is a "
+                              "file: move it away or give another checkpoint")
+    if not make:
+        return folder
     try:
         folder.mkdir(exist_ok=True)
-    except FileExistsError:
-        raise CheckpointError(f"the checkpoint {checkpoint} keeps its units in the folder {folder}, but that is a "
-                              "file: move it away or give another checkpoint") from None
     except OSError as exc:
         raise CheckpointError(f"cannot make the folder {folder} for the checkpoint's units ({exc.strerror})") from None
     for part in folder.glob("*.units.*.part"):
@@ -644,6 +648,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             from ..execution.checkpoint import Checkpoint
 
             identity = _identity(what, jobs)
+            if client is None:  # (before the checkpoint is opened: a refusal leaves no new file)
+                kept_units_folder(checkpoint, make=False)
             ck = stack.enter_context(Checkpoint(checkpoint, identity, _describe(what, query), log=log))
             for name, n in list(ck.codes.items()) + list(ck.unit_counts.items()):
                 totals[name] = totals.get(name, 0) + n

@@ -132,7 +132,7 @@ def test_what_a_killed_run_was_writing_is_removed_and_a_file_in_the_folder_s_pla
                           "--checkpoint", str(tmp_path / "d.sqlite")], capture_output=True, text=True)
     assert out.returncode == 2 and out.stdout == "" and out.stderr.count("\n") == 1
     assert "keeps its units in the folder" in out.stderr and "Traceback" not in out.stderr
-    assert (tmp_path / "d.sqlite.units").read_text() == "a file"
+    assert (tmp_path / "d.sqlite.units").read_text() == "a file" and not (tmp_path / "d.sqlite").exists()
 
 
 # ------------------------------------------------------------------ the file itself
