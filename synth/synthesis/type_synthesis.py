@@ -30,7 +30,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator
 from pathlib import Path
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from mechbase import Row
 
@@ -41,7 +41,7 @@ from ..execution.progress import Progress
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, contracted_graphs, contracted_stream, needs_solver, uses_kernel
+from .stage_a import Contracted, Conventions, Vertex, contracted_graphs, contracted_stream, needs_solver, uses_kernel
 from .stage_b import count_orbits, count_realised, count_reversed, load_kernel, realise
 from .number_synthesis import number_synthesis
 
@@ -221,10 +221,16 @@ class _StreamedUnits:
             return [Unit(code, None, conv)]
         if self.plan is None:
             return spill(_stage_a(code, conv), self.directory, chunk=self.window)
-        label = f"{self.plan}|{code}|{conv!r}"
+        label = f"{self.plan}|{code}|{conv!r}|{_UNIT_LAYOUT}"
         kept = read_kept(self.path(code), label)
         return kept if kept is not None else write_kept(_stage_a(code, conv), self.path(code), chunk=self.window,
                                                         label=label)
+
+
+# what a kept unit is pickled as: a file kept by an engine whose units had other fields is not read
+_UNIT_LAYOUT = ",".join(f"{cls.__name__}({' '.join(names)})" for cls, names in
+                        [(Unit, [f.name for f in fields(Unit)]), (Contracted, [f.name for f in fields(Contracted)]),
+                         (Vertex, Vertex._fields)])
 
 
 def _stage_a(code: Code, conv: Conventions) -> Iterator[Unit]:

@@ -78,7 +78,8 @@ def test_a_resumed_count_reads_a_code_s_units_back_instead_of_running_stage_a(tm
     assert not (tmp_path / "c.sqlite.units").exists()  # every file, and the folder, removed
 
 
-@pytest.mark.parametrize("spoil", ["truncated", "another plan", "another code", "not units", "empty"])
+@pytest.mark.parametrize("spoil", ["truncated", "another plan", "another code", "another engine",
+                                   "not units", "empty"])
 def test_a_spoilt_or_foreign_file_is_not_used(tmp_path, monkeypatch, reference, spoil):
     checkpoint = tmp_path / "c.sqlite"
     code = _interrupted_count(checkpoint, monkeypatch)
@@ -88,13 +89,18 @@ def test_a_spoilt_or_foreign_file_is_not_used(tmp_path, monkeypatch, reference, 
     if spoil == "truncated":
         path.write_bytes(data[:-7])
     elif spoil == "another plan":
-        write_kept(ts.job_units(job), str(path), chunk=4, label=f"another plan|{code}|{job[1]!r}")
+        write_kept(ts.job_units(job), str(path), chunk=4, label=f"another plan|{code}|{job[1]!r}|{ts._UNIT_LAYOUT}")
     elif spoil == "another code":  # the units of the next code of the same plan, under this code's name
         jobs = ts.plan_jobs(QUERY)
         other = jobs[jobs.index(job) + 1]
         expand = ts._StreamedUnits(str(tmp_path), 4, ts.count_identity(QUERY)[0])
         expand(other)
         os.replace(expand.path(other[0]), path)
+    elif spoil == "another engine":  # this code's units, by an engine whose units had other fields
+        with monkeypatch.context() as patch:
+            patch.setattr(ts, "_UNIT_LAYOUT", ts._UNIT_LAYOUT.replace("certificate", "certificate slack"))
+            ts._StreamedUnits(str(path.parent), 4, ts.count_identity(QUERY)[0])(job)
+        assert len(list(path.parent.iterdir())) == 1 and path.read_bytes() != data  # (written in its place)
     elif spoil == "not units":
         path.write_bytes(b"SQLite format 3\0" + bytes(range(256)) * 4)
     else:
