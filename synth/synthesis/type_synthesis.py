@@ -29,8 +29,8 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from pathlib import Path
 from dataclasses import dataclass, fields
+from pathlib import Path
 
 from mechbase import Row
 
@@ -423,20 +423,12 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
                         bar.update(0, units=1, chains=found)
                 yield event
                 if keeping and event[1] is None:  # the caller has committed the code complete
-                    _remove(expand.path(jobs[event[0]][0]))
+                    Path(expand.path(jobs[event[0]][0])).unlink(missing_ok=True)
         if keeping:
             _remove_kept_folder(kept[0])
     finally:
         if bar is not None:
             bar.close()
-
-
-def _remove(path) -> None:
-    """Delete a file; one already gone is no error."""
-    try:
-        os.unlink(path)
-    except FileNotFoundError:
-        pass
 
 
 def kept_units_folder(checkpoint, *, make: bool = True) -> Path:
@@ -464,7 +456,7 @@ def kept_units_folder(checkpoint, *, make: bool = True) -> Path:
     except OSError as exc:
         raise CheckpointError(f"cannot make the folder {folder} for the checkpoint's units ({exc.strerror})") from None
     for part in folder.glob("*.units.*.part"):
-        _remove(part)
+        part.unlink(missing_ok=True)
     return folder
 
 
@@ -472,7 +464,7 @@ def _remove_kept_folder(folder: Path) -> None:
     """Delete a count's folder of kept units once the count is through: its files (codes complete
     whose file a kill left behind) and the folder; a folder holding anything else is left."""
     for path in folder.glob("*.units"):
-        _remove(path)
+        path.unlink(missing_ok=True)
     try:
         folder.rmdir()
     except OSError:
