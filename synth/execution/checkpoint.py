@@ -5,7 +5,10 @@ conventions, requirements, the plan format).  While a count runs, every finished
 count is committed at least once a second and whenever a code is complete; a complete
 code replaces its units by one row.  A run killed at any instant (``kill -9``, power
 loss) leaves committed rows that are all exact, so the next run with the same file skips
-them and the total is identical to an uninterrupted run.
+them and the total is identical to an uninterrupted run.  A count on this machine also keeps each
+code's stage A beside the file (``FILE.units/``, see :func:`synth.execution.spill.write_kept` and
+``kept_units_folder`` in :mod:`synth.synthesis.type_synthesis`) until the code is complete, so a
+resumed run does not redo it.
 
 Example
 -------

@@ -26,7 +26,8 @@ whatever the backend:
   (h = 2: a few hundred of 70 µs) sends none of them out again;
 * an item's units may come as a :class:`~synth.execution.spill.Spilled` file (a count's large
   codes): they are read from it a batch at a time as they are submitted, never held whole, and
-  the file is removed once read through.
+  the file is removed once read through (but for a :class:`~synth.execution.spill.Kept` file,
+  which a count with a checkpoint removes once the item is complete).
 
 Example
 -------

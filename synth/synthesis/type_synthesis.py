@@ -29,7 +29,8 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from pathlib import Path
 
 from mechbase import Row
 
@@ -40,7 +41,7 @@ from ..execution.progress import Progress
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, contracted_graphs, contracted_stream, needs_solver, uses_kernel
+from .stage_a import Contracted, Conventions, Vertex, contracted_graphs, contracted_stream, needs_solver, uses_kernel
 from .stage_b import count_orbits, count_realised, count_reversed, load_kernel, realise
 from .number_synthesis import number_synthesis
 
@@ -192,19 +193,50 @@ def unit_window() -> int:
 class _StreamedUnits:
     """Stage A of one job for a count (a picklable expand function): its units in the order found
     (:func:`~synth.synthesis.stage_a.contracted_stream`), a list when there are at most ``window``
-    of them, else spilled to a file in ``directory`` ``window`` at a time (:func:`spill`)."""
+    of them, else spilled to a file in ``directory`` ``window`` at a time (:func:`spill`).
+
+    With ``plan`` (the identity of a checkpoint's plan), ``directory`` is the checkpoint's folder of
+    kept units: every code's units are written there whatever their number (:func:`write_kept`, one
+    file a code, :meth:`path`), and a code whose complete file is there already is read back from it
+    instead of running stage A again (a count resumed after a kill).
+    """
 
     directory: str
     window: int
+    plan: str | None = None
+
+    def path(self, code: Code) -> str:
+        """The file of ``code``'s kept units (its name made safe for a file, and told apart by a digest)."""
+        import hashlib
+
+        name = str(code)
+        safe = "".join(ch if ch.isalnum() or ch in "-." else "_" for ch in name)
+        return os.path.join(self.directory, f"{safe}-{hashlib.sha256(name.encode()).hexdigest()[:8]}.units")
 
     def __call__(self, job: tuple[Code, Conventions]):
-        from ..execution.spill import spill
+        from ..execution.spill import read_kept, spill, write_kept
 
         code, conv = job
         if code.count(2) == code.links and code.v == 0:  # a single loop of binary links
             return [Unit(code, None, conv)]
-        return spill((Unit(code, graph, conv) for graph in contracted_stream(code, conv)), self.directory,
-                     chunk=self.window)
+        if self.plan is None:
+            return spill(_stage_a(code, conv), self.directory, chunk=self.window)
+        label = f"{self.plan}|{code}|{conv!r}|{_UNIT_LAYOUT}"
+        kept = read_kept(self.path(code), label)
+        return kept if kept is not None else write_kept(_stage_a(code, conv), self.path(code), chunk=self.window,
+                                                        label=label)
+
+
+# what a kept unit is pickled as: a file kept by an engine whose units had other fields is not read
+_UNIT_LAYOUT = ",".join(f"{cls.__name__}({' '.join(names)})" for cls, names in
+                        [(Unit, [f.name for f in fields(Unit)]), (Contracted, [f.name for f in fields(Contracted)]),
+                         (Vertex, Vertex._fields)])
+
+
+def _stage_a(code: Code, conv: Conventions) -> Iterator[Unit]:
+    """The units of ``code`` as stage A finds them (begun at the first one asked for)."""
+    for graph in contracted_stream(code, conv):
+        yield Unit(code, graph, conv)
 
 
 def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:
@@ -341,7 +373,7 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
 
 def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, progress: bool, *,
                client=None, skip_code=None, skip_unit=None, ordered: bool = True,
-               expected: float | None = None) -> Iterator[tuple]:
+               expected: float | None = None, kept: tuple | None = None) -> Iterator[tuple]:
     """``(job index, unit, work(unit))`` for every unit of the stage-A ``jobs`` (code, conventions),
     then ``(index, None, units)`` when a job is complete: inline for a small query, else streamed to
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
@@ -351,7 +383,10 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
     line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either, and with
     ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted.
     Unordered on this machine (a count), a code's units are never held whole: stage A hands them on
-    as found, through a temporary folder when they are more than :func:`unit_window`.
+    as found, through a temporary folder when they are more than :func:`unit_window`; with ``kept``
+    (a checkpoint's folder of kept units and the identity of its plan) through that folder instead,
+    one file a code read back by a resumed run (:class:`_StreamedUnits`), each removed once the
+    caller has taken its code's completion, and the folder once the run is through.
     """
     from contextlib import ExitStack
 
@@ -368,7 +403,10 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
             from . import _cpsat  # noqa: F401 - likewise the solver (≈ 0.3 s), and outside the inline phase's clock
         with ExitStack() as stack:
             expand = job_units
-            if not ordered and client is None:  # (a Dask worker elsewhere could not write to this machine's folder)
+            keeping = kept is not None and not ordered and client is None
+            if keeping:
+                expand = _StreamedUnits(str(kept[0]), unit_window(), kept[1])
+            elif not ordered and client is None:  # (a Dask worker elsewhere could not write to this machine's folder)
                 import tempfile
 
                 folder = stack.enter_context(tempfile.TemporaryDirectory(prefix="mechsynth-units-"))
@@ -384,9 +422,53 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
                         found = sum(event[2].values()) if isinstance(event[2], dict) else len(event[2])
                         bar.update(0, units=1, chains=found)
                 yield event
+                if keeping and event[1] is None:  # the caller has committed the code complete
+                    Path(expand.path(jobs[event[0]][0])).unlink(missing_ok=True)
+        if keeping:
+            _remove_kept_folder(kept[0])
     finally:
         if bar is not None:
             bar.close()
+
+
+def kept_units_folder(checkpoint, *, make: bool = True) -> Path:
+    """The folder beside ``checkpoint`` (``FILE.units``) where a count keeps each code's units until the
+    code is complete, made if missing (with ``make``); what a killed run was writing there (``*.part``)
+    is removed.
+
+    Raises :class:`~synth.execution.checkpoint.CheckpointError` when that name is taken by a file (with
+    ``make=False``, that is all it does: the count asks before it opens the checkpoint).
+
+    >>> import tempfile
+    >>> folder = kept_units_folder(Path(tempfile.mkdtemp()) / "c16.sqlite"); folder.name, folder.is_dir()
+    ('c16.sqlite.units', True)
+    """
+    from ..execution.checkpoint import CheckpointError
+
+    folder = Path(f"{checkpoint}.units")
+    if folder.exists() and not folder.is_dir():
+        raise CheckpointError(f"the checkpoint {checkpoint} keeps its units in the folder {folder}, but that is a "
+                              "file: move it away or give another checkpoint")
+    if not make:
+        return folder
+    try:
+        folder.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise CheckpointError(f"cannot make the folder {folder} for the checkpoint's units ({exc.strerror})") from None
+    for part in folder.glob("*.units.*.part"):
+        part.unlink(missing_ok=True)
+    return folder
+
+
+def _remove_kept_folder(folder: Path) -> None:
+    """Delete a count's folder of kept units once the count is through: its files (codes complete
+    whose file a kill left behind) and the folder; a folder holding anything else is left."""
+    for path in folder.glob("*.units"):
+        path.unlink(missing_ok=True)
+    try:
+        folder.rmdir()
+    except OSError:
+        pass
 
 
 def count_by_code(items) -> dict[str, int]:
@@ -563,13 +645,17 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
         if checkpoint is not None:
             from ..execution.checkpoint import Checkpoint
 
-            ck = stack.enter_context(Checkpoint(checkpoint, _identity(what, jobs), _describe(what, query), log=log))
+            identity = _identity(what, jobs)
+            if client is None:  # (before the checkpoint is opened: a refusal leaves no new file)
+                kept_units_folder(checkpoint, make=False)
+            ck = stack.enter_context(Checkpoint(checkpoint, identity, _describe(what, query), log=log))
             for name, n in list(ck.codes.items()) + list(ck.unit_counts.items()):
                 totals[name] = totals.get(name, 0) + n
         events = _map_units(work, jobs, workers, progress, client=client,
                             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
                             skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False,
-                            expected=expected)
+                            expected=expected,
+                            kept=(kept_units_folder(checkpoint), identity) if ck and client is None else None)
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:

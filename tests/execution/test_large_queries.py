@@ -198,7 +198,7 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     reference = _run(*query)
     assert reference.returncode == 0
     ck = str(tmp_path / "count.sqlite")
-    # (the killed run's folder of spilled units, if any, is left in tmp_path, not in the system's)
+    # (the killed run's units are kept beside its checkpoint, in tmp_path; TMPDIR too, to be sure)
     children = _kill_after_first_commit([*query, "--checkpoint", ck], env=dict(os.environ, TMPDIR=str(tmp_path)))
     _, alive = psutil.wait_procs(children, timeout=60)
     assert not alive, "pool workers outlived their killed parent"
@@ -210,6 +210,7 @@ def test_checkpoint_resumes_after_sigkill(tmp_path, workers):
     assert done_before > 0, first
     again = _run(*query, "--checkpoint", ck)  # everything done: nothing runs, same answer
     assert again.stdout == reference.stdout
+    assert not os.path.exists(ck + ".units")  # the stage A kept for the resumed run, removed once it ended
 
 
 def test_a_code_larger_than_the_window_is_spilled_and_read_back_whole(tmp_path):
@@ -260,6 +261,7 @@ def test_a_tiny_window_counts_the_same_and_resumes_without_double_counting(tmp_p
     assert resumed.stdout == reference.stdout
     assert int(resumed.stderr.splitlines()[0].split(", ")[-1].split()[0]) > 0
     assert set(tmp_path.glob("mechsynth-units-*")) <= killed_runs_folders  # the resumed run left none
+    assert not os.path.exists(ck + ".units")  # nor any of the units kept beside the checkpoint
     bad = _run(*query, env=dict(env, MECHSYNTH_UNIT_WINDOW="0"))
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "MECHSYNTH_UNIT_WINDOW" in bad.stderr
 
