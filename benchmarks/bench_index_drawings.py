@@ -36,7 +36,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from synth import Chain, Mechanism  # noqa: E402
-from synth.atlas.search import PER_DRAWING, _Polish, _polish_topology, sampled_candidates, sampled_starts  # noqa: E402
+from synth.atlas.search import PER_DRAWING, TopologyPolish, polish_topology, sampled_candidates, sampled_starts  # noqa: E402
 from synth.dimension import Constraints, synthesize  # noqa: E402
 from tests.atlas.test_curve_search import _in_atlas, _random_crank, _target  # noqa: E402
 from bench_atlas_search import EIGHT_BAR  # noqa: E402
@@ -61,8 +61,8 @@ def atlas_polish(mechanism, tracer, withheld, target, drawings: int, samples: in
     clock = time.process_time()
     rows = sampled_candidates(mechanism, tracer, target, samples=samples, drawings=drawings)[:PER_DRAWING * drawings]
     sampled = time.process_time() - clock
-    task = _Polish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target, Constraints(), budget, 0)
-    result, candidate, tried, why, spent = _polish_topology(task)
+    task = TopologyPolish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target, Constraints(), budget, 0)
+    result, candidate, tried, why, spent = polish_topology(task)
     gap = np.abs(link_distances(withheld) - link_distances(result.linkage)).max() / target.size
     return {"candidates": len(rows), "sampling_cpu_seconds": round(sampled, 1), "tried": tried,
             "relative_max": float(f"{result.relative_max:.3g}"), "cpu_seconds": round(spent, 1),

@@ -337,7 +337,7 @@ def sampled_candidates(mechanism: Mechanism, tracer_link: int, target, seed: int
                        count: int | None = None, drawings: int = 1) -> list:
     """The samples of :func:`sampled_starts` before they are posed: (candidate, points, tracer point,
     slides) of each, nearest first, as the atlas search hands a topology's samples to its polish
-    (``_Polish.candidates``).
+    (``TopologyPolish.candidates``).
 
     Examples
     --------
@@ -416,8 +416,9 @@ def start_linkage(candidate: Candidate, chain: Chain, points: np.ndarray, tracer
 
 # ------------------------------------------------------------------ polish, per topology
 @dataclass(frozen=True)
-class _Polish:
-    """One topology's candidates as a worker receives them (picklable)."""
+class TopologyPolish:
+    """One topology's candidates as a worker receives them (picklable): the task of
+    :func:`polish_topology`, one a topology of the atlas search."""
 
     chain_json: str
     candidates: tuple  # (Candidate, points, tracer_at, slides), best misfit first
@@ -427,11 +428,11 @@ class _Polish:
     seed: int
 
 
-def _expand(task: _Polish) -> list:
+def _expand(task: TopologyPolish) -> list:
     return [task]
 
 
-def _polish_topology(task: _Polish):
+def polish_topology(task: TopologyPolish):
     """A topology's search within its share of the budget: its candidates polished in turn, each from
     its start linkage and for at most an equal slice of :data:`POLISH_SHARE` of the share, until one
     meets the target exactly; then the best goes on while the polishing share lasts and each polish
@@ -603,7 +604,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
                 points, at, slides = conn.execute(f"SELECT points, tracer, {slides_column} FROM curve_samples "
                                                   "WHERE id = ?", (c.row,)).fetchone()
                 rows.append((c, json.loads(points), json.loads(at), slides_of(slides)))
-            tasks.append(_Polish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1), seed))
+            tasks.append(TopologyPolish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1), seed))
     finally:
         conn.close()
     client = None
@@ -623,7 +624,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         from ..execution.executor import Executor, run_plan
 
         executor = Executor(workers, client)
-        for _, task, found in run_plan(tasks, _expand, _polish_topology, executor=executor,
+        for _, task, found in run_plan(tasks, _expand, polish_topology, executor=executor,
                                        inline_seconds=0 if workers > 1 else 0.25):
             if task is None:
                 continue

@@ -240,7 +240,7 @@ def test_each_sample_of_a_topology_gets_a_slice_of_the_polish_and_the_best_goes_
     monkeypatch.setattr(search, "start_linkage", lambda candidate, *_: linkage(candidate.row))
     rows = tuple((SimpleNamespace(row=i, tracer_link=2), None, None, None) for i in range(3))
     target = _target(_random_crank(FOUR_BAR, 2, seed=7), 24, True)
-    best, candidate, tried, _, _ = search._polish_topology(search._Polish(
+    best, candidate, tried, _, _ = search.polish_topology(search.TopologyPolish(
         json.dumps(FOUR_BAR.chain.to_dict()), rows, target, Constraints(), 60.0, 0))
     polishing = search.POLISH_SHARE * 60.0
     assert [name for name, _ in calls] == [0, 1, 2, "from 2"]
@@ -303,14 +303,14 @@ def test_a_random_eight_bar_is_found_from_its_timed_points_by_its_topologys_poli
     1e-6 of its size within a 120-CPU-s share (the nearest-first polish of main stopped at 5e-6).  The
     retrieval's ranking of this topology among all 153 eight-link mechanisms is not part of it (an index
     of them at ten drawings was not built)."""
-    from synth.atlas.search import PER_DRAWING, _Polish, _polish_topology, _rechecked, sampled_candidates
+    from synth.atlas.search import PER_DRAWING, TopologyPolish, polish_topology, _rechecked, sampled_candidates
 
     db = _atlas(tmp_path, "8")
     withheld = Mechanism(Chain.parse("0-1 0-2 0-4 1-3 1-5 2-5 2-6 3-4 3-7 6-7"), 2, 5)
     mechanism, tracer = _in_atlas(db, withheld, 7)
     target = _target(_random_crank(withheld, 7, seed=3), 72, True)
     rows = sampled_candidates(mechanism, tracer, target, samples=20, drawings=10)[:PER_DRAWING * 10]
-    best, _, _, _, _ = _polish_topology(_Polish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target,
+    best, _, _, _, _ = polish_topology(TopologyPolish(json.dumps(mechanism.chain.to_dict()), tuple(rows), target,
                                                 Constraints(), 120.0, 0))
     assert best.met and best.relative_max <= 1e-6
     assert _rechecked(best, target) <= 1e-9  # the motion layer moves the returned linkage along the reported curve
