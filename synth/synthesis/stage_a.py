@@ -516,13 +516,19 @@ def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     (215, True)
     """
     if _branch_vertices(code) and uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
-        return _kernel_stream(code, conv)
+        return _kernel_stream(code, conv, _LEAST_BUDGET)
     return iter(contracted_graphs(code, conv))
 
 
-def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
+# nodes the kernel's test of a least labelling may take on one labelled H before keeping it (a count's stream)
+_LEAST_BUDGET = 2000
+
+
+def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iterator[Contracted]:
     """The branch multigraphs of the compiled kernel's search, each once, in the order found (a class
-    is represented by its first labelled multigraph, as in the CP-SAT model's order)."""
+    is represented by its first labelled multigraph, as in the CP-SAT model's order).  With
+    ``least_budget`` the kernel drops labellings it shows are not the least of their class (a count's
+    stream: the same classes, fewer labellings to certify, but a class may come with another labelling)."""
     import numpy as np
 
     from ._stage_a_kernel import multigraphs, new_state
@@ -554,7 +560,7 @@ def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
-                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
+                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags, least_budget)
         X, Y = out_x[:found], out_y[:found]
         keep = np.ones(found, dtype=bool)
         marked = np.flatnonzero(flags[:found])
