@@ -16,6 +16,9 @@ degree equation fixes once row u is complete.  The search keeps the model's cond
   the slack rejects only what the final rule rejects (a pebble-game rejection exhibits a set T
   over its bound); a complete multigraph is then checked exactly by a fresh game.  Where the final
   l is negative the game does not apply, and the row is marked for the caller's exact check;
+* with ``least_budget`` (a count's stream), the least labelling of each class: every completed row
+  prefix that a relabelling of equal vertices puts lexicographically first is dropped
+  (:func:`_least_labelling`, docs/theory.md "The least labelling of H");
 * connectivity (union–find) on each complete multigraph.
 
 What is left to the caller: the isomorphism classes (nauty), fractionation and planarity.
@@ -95,8 +98,91 @@ def _rows_ordered(A, u, w, last):
 
 
 @njit(cache=True)
+def _least_labelling(A, m, known, first, budget, img, start, choice):
+    """Whether no relabelling of equal vertices puts the multigraph A (loops on the diagonal) lexicographically
+    before itself, A read row by row along the upper triangle, each row from its diagonal: the order in
+    which sb*ℓ is the least-labelling rule for each transposition of two equal vertices, so this rule
+    and sb*ℓ together keep the least labelling of every class.  ``first[u]``: u starts a class of equal
+    vertices (classes are runs of vertices).  Partition backtracking: position i is given each vertex
+    its cell allows, row i of the relabelled A is the least the cells allow (each cell sorted) and is
+    compared with row i of A — less: a smaller labelling exists (False); greater: that branch is left;
+    equal: the cells are split by value and position i + 1 is next.  After ``budget`` nodes the answer
+    is True (kept: the caller's nauty still tells classes apart), so only a labelling shown not least is
+    dropped.  Only rows 0 … ``known`` − 1 need be complete (a prefix of the search): positions are then
+    given only vertices of complete rows and rows from ``known`` on are not compared, so False still
+    means that every completion has a smaller labelling.  ``img``, ``start`` (m × m) and ``choice`` (m)
+    are work arrays."""
+    for j in range(m):
+        img[0, j] = j
+        start[0, j] = first[j]
+    i = 0
+    choice[0] = -1
+    nodes = 0
+    while i >= 0:
+        end = i + 1
+        while end < m and start[i, end] == 0:
+            end += 1
+        choice[i] = i if choice[i] < i else choice[i] + 1
+        while choice[i] < end and img[i, choice[i]] >= known:
+            choice[i] += 1
+        if choice[i] >= end:
+            i -= 1
+            continue
+        nodes += 1
+        if nodes > budget:
+            return True
+        if i == m - 1:  # the last position: one vertex left, only its loops to compare
+            a = img[i, choice[i]]
+            if A[a, a] < A[i, i]:
+                return False
+            i -= 1
+            continue
+        for j in range(m):
+            img[i + 1, j] = img[i, j]
+            start[i + 1, j] = start[i, j]
+        im = img[i + 1]
+        st = start[i + 1]
+        c = choice[i]
+        t = im[i]
+        im[i] = im[c]
+        im[c] = t
+        st[i + 1] = 1
+        a = im[i]
+        order = A[a, a] - A[i, i]
+        s = i + 1
+        while order == 0 and s < m:
+            e = s + 1
+            while e < m and st[e] == 0:
+                e += 1
+            for q in range(s + 1, e):  # insertion sort of the cell by A[a, ·]
+                b = im[q]
+                r = q
+                while r > s and A[a, im[r - 1]] > A[a, b]:
+                    im[r] = im[r - 1]
+                    r -= 1
+                im[r] = b
+            for q in range(s, e):
+                order = A[a, im[q]] - A[i, q]
+                if order != 0:
+                    break
+            s = e
+        if order < 0:
+            return False
+        if order > 0:
+            continue
+        if i + 1 >= known:  # equal as far as rows are known
+            continue
+        for q in range(i + 2, m):  # split the cells by value (the cell of i + 1 starts there already)
+            if st[q] == 0 and A[a, im[q]] != A[a, im[q - 1]]:
+                st[q] = 1
+        i += 1
+        choice[i] = -1
+    return True
+
+
+@njit(cache=True)
 def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, state,
-                out_x, out_y, out_flag):
+                out_x, out_y, out_flag, least_budget=0):
     """Fill ``out_x``/``out_y`` with the next labelled multigraphs (pair multiplicities, loops) and
     ``out_flag`` with 1 where the caller must check the sub-chain conditions itself; returns how
     many were written (fewer than ``len(out_x)``: the enumeration is complete).
@@ -104,7 +190,9 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     ``lb_of[p, x]``/``cost_of[p, x]``: least binary links and sub-chain cost of x strings on pair p;
     ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of
     vertices of one kind and degree (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
-    ``check``: whether the sub-chain conditions apply (as pebble games).
+    ``check``: whether the sub-chain conditions apply (as pebble games); ``least_budget`` > 0: each
+    completed row prefix is kept only if :func:`_least_labelling` does not show it smaller within that
+    many nodes (one labelling a class where the budget suffices, the least; the classes are the same).
     """
     P = len(pu)
     M = 0
@@ -131,6 +219,13 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     root = np.zeros(m, dtype=np.int64)
     fresh_pebbles = np.zeros(m, dtype=np.int64)
     fresh_arcs = np.zeros((m, m), dtype=np.int64)
+    first = np.ones(m, dtype=np.int64)  # the classes of equal vertices, as runs (pairs of ``same``)
+    for s in range(len(same)):
+        if same[s, 1] == same[s, 0] + 1:
+            first[same[s, 1]] = 0
+    img = np.zeros((m, m), dtype=np.int64)
+    start = np.zeros((m, m), dtype=np.int64)
+    choice = np.zeros(m, dtype=np.int64)
     written = 0
     if state[_STARTED] == 0:
         state[_STARTED] = 1
@@ -223,6 +318,8 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
                     elif not _rows_ordered(A, r1, r2, min(done, r1 - 1)):
                         ok = False
                         break
+                if ok and least_budget > 0:  # rows 0 … done already put a relabelling first: no completion is least
+                    ok = _least_labelling(A, m, done + 1, first, least_budget, img, start, choice)
         if not ok:
             continue
         if p == P - 1:  # a complete multigraph

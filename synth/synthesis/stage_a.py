@@ -504,11 +504,13 @@ def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
 
 
 def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
-    """Stage A for a count: every branch multigraph H of ``code`` once, as :func:`contracted_graphs`
-    finds them but in the order found, not sorted; where the compiled kernel runs, each is handed on
-    as soon as nauty has told it apart, so what stays held is the set of certificates met (as bytes, the
-    rows of the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H
-    themselves), never the code's H.
+    """Stage A for a count: every branch multigraph H of ``code`` once, the classes of
+    :func:`contracted_graphs` in the order found, not sorted; where the compiled kernel runs, each is
+    handed on as soon as nauty has told it apart, in its least labelling where the kernel's test shows
+    it (one labelling a class reaches nauty, not tens to hundreds: :data:`_LEAST_BUDGET`; the listing's
+    labelling may be another), so what stays held is the set of certificates met (as bytes, the rows of
+    the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H themselves),
+    never the code's H.
 
     >>> code, conv = Code.parse("662000/0"), Conventions()   # 14 links: the kernel's search
     >>> found = [g.certificate for g in contracted_stream(code, conv)]
@@ -516,13 +518,19 @@ def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     (215, True)
     """
     if _branch_vertices(code) and uses_kernel(code, conv) and _stage_a_kernel_applies(code, conv):
-        return _kernel_stream(code, conv)
+        return _kernel_stream(code, conv, _LEAST_BUDGET)
     return iter(contracted_graphs(code, conv))
 
 
-def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
+# nodes the kernel's test of a least labelling may take on one labelled H before keeping it (a count's stream)
+_LEAST_BUDGET = 2000
+
+
+def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iterator[Contracted]:
     """The branch multigraphs of the compiled kernel's search, each once, in the order found (a class
-    is represented by its first labelled multigraph, as in the CP-SAT model's order)."""
+    is represented by its first labelled multigraph, as in the CP-SAT model's order).  With
+    ``least_budget`` the kernel drops labellings it shows are not the least of their class (a count's
+    stream: the same classes, fewer labellings to certify, but a class may come with another labelling)."""
     import numpy as np
 
     from ._stage_a_kernel import multigraphs, new_state
@@ -554,7 +562,7 @@ def _kernel_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
-                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags)
+                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags, least_budget)
         X, Y = out_x[:found], out_y[:found]
         keep = np.ones(found, dtype=bool)
         marked = np.flatnonzero(flags[:found])
