@@ -118,8 +118,8 @@ ROWS = (
                   "1 min 36 s wall on 2 workers of a quiet machine, 186.5 user CPU s, the same 105 codes as the "
                   "runs of 26 Nov and of the morning (benchmarks/logs/count_18_links_c280dda.txt)")]
     + [_row("W = 1", 1, 20, None, "",
-            heavy="not run to the end: begun on 29 Nov 2026 and resumed from its checkpoint; 1 of 186 codes "
-                  "complete, another begun (section '20-link chains' below, where the time goes: stage A of a few codes)")]
+            heavy="not run to the end: begun on 29 Nov 2026 and resumed from its checkpoint, not finished "
+                  "(section '20-link chains' below: its state and its check)")]
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
