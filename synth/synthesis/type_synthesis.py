@@ -734,7 +734,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     instead of running its units (not with a checkpoint or a scheduler, which ask for the units run).
     ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
     counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
-    the group of H listed whole) and as the listing does elsewhere; ``"tight-reverse"`` is a second
+    the group of H listed whole) and as the listing does elsewhere (the result's ``by_search`` says
+    how many units, and why); ``"tight-reverse"`` is a second
     count sharing as little of the listing's arithmetic as can be arranged (simple joints only,
     :func:`~synth.synthesis.stage_b.count_reversed`); all give the same counts, each kept apart in
     the store and in a checkpoint.
