@@ -196,11 +196,12 @@ PROBLEMS = {
         bounds={"link": 5.0, "offset": 5.0, "pivot": (*EIGHTEEN_CENTRE, 5.0)},
         differs="the source's order r2 <= r3 <= r4 <= r1 with the crank turning (with the order, its r1 + r2 <= "
                 "r3 + r4); its box (links 0-5; rcx, rcy and the input pivot within +-5 of the points' mean) checked "
-                "on the answer, not posed. Not posable: its objective, the sum of the distances (ours the sum of "
-                "their squares; our answer's sum of distances is in the row), and its timing, the crank's angles "
-                "from the frame line at one unknown total turn T times each point's share of the polygon's length "
-                "(as coded the last point's share is 0), counter-clockwise, on the + root: ours passes the points "
-                "in order at free angles, either way, on either assembly branch"),
+                "on the answer, not posed. Not posable: its objective in its last version, the sum of the distances "
+                "(ours the sum of their squares, whose minimum its earlier version's root of the sum of squares "
+                "shares; our answer's sum of distances is in the row), and its timing, the crank's angles from the "
+                "frame line at one unknown total turn T times each point's share of the polygon's length (as coded "
+                "the last point's share is 0), counter-clockwise, on the + root: ours passes the points in order at "
+                "free angles, either way, on either assembly branch"),
     "eighteen points of a closed path, untimed, transmission 20 deg": Problem(
         EIGHTEEN, None, Constraints(crank=True, min_transmission=math.radians(20)),
         f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
@@ -290,9 +291,10 @@ def source_vector(linkage: Linkage, inputs) -> list[float]:
 def as_the_source_states_it(problem: Problem, linkage: Linkage, inputs) -> dict:
     """Our answer judged as the source judges its own: its vector (:func:`source_vector`); the
     coupler points the sources' closed form (the ``+`` root) gives at its crank angles, their sum of
-    squared and of plain distances to the points, and whether they are ours (the same branch); the
-    source's box; the crank's angles ascending within 0–2π from the frame line ([HNMED]) and within
-    a turn from the first point's ([ECA]).
+    squared distances to the points, and whether they are ours (the same branch); the sum of our
+    points' plain distances ([ECA]'s objective for the eighteen points); the source's box; the crank's
+    angles ascending within 0–2π from the frame line ([HNMED]) and within a turn from the first
+    point's ([ECA]).
 
     Examples
     --------
@@ -310,7 +312,8 @@ def as_the_source_states_it(problem: Problem, linkage: Linkage, inputs) -> dict:
     _, _, _, closed_form = source_model(vector, angles)
     mine = np.array([assemble(linkage, t).tracers["P"][1] for t in inputs])
     distances = np.hypot(*(closed_form - points).T)
-    said = {"vector": vector, "sum_squared_error": float(distances @ distances), "sum_distances": float(distances.sum()),
+    said = {"vector": vector, "sum_squared_error": float(distances @ distances),
+            "sum_distances": float(np.hypot(*(mine - points).T).sum()),
             "sources_branch": bool(np.abs(closed_form - mine).max() <= 1e-9 * np.ptp(points, axis=0).max()),
             "ascending_hnmed": bool((np.diff(angles) > 0).all()),
             "ascending_eca": bool((np.diff((angles - angles[0]) % (2 * math.pi)) > 0).all())}

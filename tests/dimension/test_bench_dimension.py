@@ -119,7 +119,10 @@ def test_the_source_vector_inverts_the_closed_form_and_tells_the_other_branch(be
         read = bench.source_vector(linkage, inputs)
         assert np.allclose(read[:9], vector, atol=1e-9)
         assert np.allclose(read[9:], angles, atol=1e-9)
-        assert bench.as_the_source_states_it(problem, linkage, inputs)["sources_branch"]
+        judged = bench.as_the_source_states_it(problem, linkage, inputs)
+        assert judged["sources_branch"]
+        traced = bench.source_model(vector, angles)[3]  # [ECA]'s objective, by the closed form: the motion layer's
+        assert judged["sum_distances"] == pytest.approx(np.hypot(*(traced - np.array(bench.EIGHTEEN)).T).sum(), rel=1e-9)
         u = (pivots[1] - a[0]) / np.linalg.norm(pivots[1] - a[0])
         w = b[0] - a[0]
         other = a[0] + 2 * (w @ u) * u - w  # the far joint on the other branch
