@@ -13,7 +13,7 @@ has our answer judged as the source judges its own (its vector, the source's clo
 crank-angle order: :func:`as_the_source_states_it`).  The problems, their sources
 and the results are in benchmarks/DIMENSION.md.
 
-``python benchmarks/bench_dimension.py --reliability SEEDS [--budget SECONDS]`` measures how often
+``python benchmarks/bench_dimension.py --reliability SEEDS [--budget SECONDS] [--samples N]`` measures how often
 the search finds a mechanism's own points again from no guess: for each seed (``0..9``) a crank-rocker
 with random dimensions gives ten points without timing (a whole turn), and an offset slider-crank
 with random dimensions eight timed points over 300° (the search given ``synth.atlas.sampled_starts``);
@@ -40,6 +40,7 @@ flatter it.  Ours is the distance at the point's own input, in order.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import subprocess
@@ -393,8 +394,10 @@ def random_slider_crank(seed: int) -> Linkage:
             return linkage
 
 
-def reliability(seeds: range, budget: float) -> None:
-    """A row per seed and case: the relative error the search reaches from no guess, and its CPU time."""
+def reliability(seeds: range, budget: float, samples: int | None = None) -> None:
+    """A row per seed and case: the relative error the search reaches from no guess, and its CPU time
+    (with ``samples``, the sampled starts take that many crank poses instead of their default)."""
+    starts = sampled_starts if samples is None else functools.partial(sampled_starts, samples=samples)
     for seed in seeds:
         rocker = random_crank_rocker(seed)
         slider = random_slider_crank(seed)
@@ -402,10 +405,10 @@ def reliability(seeds: range, budget: float) -> None:
         cases = {"crank-rocker, 10 points, untimed": (FOUR_BAR, PathTarget(sweep(rocker, steps=11).tracers["P"][:10])),
                  "slider-crank, 8 points, timed": (SLIDER_CRANK, PathTarget(timed.tracers["P"], timed.inputs[:, 0]))}
         for case, (mechanism, target) in cases.items():
-            result = synthesize(mechanism, target, budget=budget, seed=seed, starts=sampled_starts)
+            result = synthesize(mechanism, target, budget=budget, seed=seed, starts=starts)
             print(json.dumps({"case": case, "seed": seed, "relative_max": result.relative_max,
                               "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations,
-                              "met": result.met}), flush=True)
+                              "met": result.met} | ({} if samples is None else {"samples": samples})), flush=True)
 
 
 def seed_range(text: str) -> range:
@@ -418,6 +421,17 @@ def seed_range(text: str) -> range:
     if not seeds:
         raise argparse.ArgumentTypeError(f"the seed range {text!r} is empty")
     return seeds
+
+
+def whole(text: str) -> int:
+    """A whole number of at least 1, for --samples."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number of at least 1, not {text!r}")
+    return value
 
 
 def positive(text: str) -> float:
@@ -546,9 +560,13 @@ def main() -> None:
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
+    parser.add_argument("--samples", type=whole, metavar="N",
+                        help="with --reliability: the crank poses the sampled starts take (default theirs, 100)")
     parser.add_argument("--table", metavar="LOG", nargs="+",
                         help="print the Markdown tables of these logs' rows instead of running anything")
     args = parser.parse_args()
+    if args.samples is not None and args.reliability is None:
+        parser.error("--samples sets the reliability runs' sampled starts: give --reliability too")
     if args.table is not None:
         if args.reliability is not None or args.only is not None or args.reach is not None:
             parser.error("--table reads logs and runs nothing: --reliability, --only and --reach do not apply")
@@ -557,7 +575,7 @@ def main() -> None:
     if args.reliability is not None:
         if args.only is not None or args.reach is not None:
             parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")
-        reliability(args.reliability, args.budget)
+        reliability(args.reliability, args.budget, args.samples)
         return
     have_pylinkage = Path(args.pylinkage_python).exists()
     for name, problem in PROBLEMS.items():

@@ -211,3 +211,29 @@ def test_a_table_read_by_a_reader_that_stops_early_prints_no_traceback():
     shell = subprocess.run(f"{sys.executable} {script} --table {log} | true; exit ${{PIPESTATUS[0]}}", shell=True,
                            executable="/bin/bash", capture_output=True, text=True)
     assert shell.returncode == 0 and shell.stderr == ""
+
+
+def test_the_reliability_runs_take_the_sampled_starts_poses_asked_and_refuse_them_alone(bench, monkeypatch, capsys):
+    """--samples N reaches the sampled starts of both cases (and the rows say it); without --reliability it is
+    refused with one sentence and exit status 2."""
+    import json
+    from types import SimpleNamespace
+
+    given = []
+
+    def synthesize(mechanism, target, *, budget, seed, starts):
+        given.append(starts)
+        return SimpleNamespace(relative_max=1e-15, seconds=1.0, evaluations=3, met=True)
+
+    monkeypatch.setattr(bench, "synthesize", synthesize)
+    bench.reliability(range(2, 3), 1.0, samples=7)
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert [r["samples"] for r in rows] == [7, 7] and [r["seed"] for r in rows] == [2, 2]
+    assert all(s.func is bench.sampled_starts and s.keywords == {"samples": 7} for s in given)
+    bench.reliability(range(2, 3), 1.0)
+    assert given[-1] is bench.sampled_starts and "samples" not in capsys.readouterr().out
+    script = ROOT / "benchmarks" / "bench_dimension.py"
+    for args in (["--samples", "300"], ["--reliability", "1", "--samples", "0"]):
+        done = subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True)
+        assert done.returncode == 2 and done.stdout == "" and "Traceback" not in done.stderr
+        assert done.stderr.strip().splitlines()[-1].count(": error: ") == 1
