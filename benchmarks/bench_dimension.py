@@ -254,6 +254,19 @@ def source_model(vector, angles) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     return tuple(v @ turn.T + [x0, y0] for v in (pivots, crank, far, point))
 
 
+def source_linkage(vector, angle: float) -> Linkage:
+    """The sources' four-bar (:func:`source_model`) as a linkage of ours, posed at the crank angle
+    ``angle`` from the frame line, its coupler point the tracer "P".
+
+    Examples
+    --------
+    >>> np.round(source_linkage([4, 1, 3, 3, 1.5, 0], 0.0).tracers["P"][1], 6).tolist()
+    [1.75, 1.299038]
+    """
+    pivots, crank, far, point = source_model(vector, [angle])
+    return Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], crank[0], far[0]], tracers={"P": (2, tuple(point[0]))})
+
+
 def recorded_by_motion(problem: Problem, record: dict) -> tuple[float, float]:
     """A source's recorded answer, posed at its first point by :func:`source_model` and moved to
     the others by the motion layer: its sum of squared errors against the problem's points, and the
@@ -261,8 +274,8 @@ def recorded_by_motion(problem: Problem, record: dict) -> tuple[float, float]:
     vector = record["vector"]
     angles = np.array(vector[9:] if len(vector) > 9 else problem.inputs, dtype=float)
     theta0 = vector[6] if len(vector) >= 9 else 0.0
-    pivots, crank, far, point = source_model(vector, angles)
-    linkage = Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], crank[0], far[0]], tracers={"P": (2, tuple(point[0]))})
+    point = source_model(vector, angles)[3]
+    linkage = source_linkage(vector, angles[0])
     traced = np.array([assemble(linkage, theta0 + t).tracers["P"][1] for t in angles])
     residual = traced - np.array(problem.points, dtype=float)
     return float((residual ** 2).sum()), float(np.abs(traced - point).max())
@@ -274,9 +287,7 @@ def source_vector(linkage: Linkage, inputs) -> list[float]:
 
     Examples
     --------
-    >>> pivots, a, b, c = source_model([4, 1, 3, 3, 1.5, 0.5, 0.3, 2.0, -1.0], [0.5])
-    >>> lk = Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], a[0], b[0]], tracers={"P": (2, tuple(c[0]))})
-    >>> np.round(source_vector(lk, [0.3 + 0.5]), 9).tolist()
+    >>> np.round(source_vector(source_linkage([4, 1, 3, 3, 1.5, 0.5, 0.3, 2.0, -1.0], 0.5), [0.3 + 0.5]), 9).tolist()
     [4.0, 1.0, 3.0, 3.0, 1.5, 0.5, 0.3, 2.0, -1.0, 0.5]
     """
     input_pivot, far_pivot, pin, far = (np.asarray(p, dtype=float) for p in linkage.points)
@@ -301,9 +312,7 @@ def as_the_source_states_it(problem: Problem, linkage: Linkage, inputs) -> dict:
     --------
     >>> problem = PROBLEMS["six points on a line, untimed, as stated"]
     >>> record = problem.records[0]["vector"]
-    >>> pivots, a, b, c = source_model(record, record[9:10])
-    >>> lk = Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], a[0], b[0]], tracers={"P": (2, tuple(c[0]))})
-    >>> said = as_the_source_states_it(problem, lk, np.add(record[9:], record[6]))
+    >>> said = as_the_source_states_it(problem, source_linkage(record, record[9]), np.add(record[9:], record[6]))
     >>> said["sum_squared_error"] < 1e-24, said["sources_branch"], said["within_bounds"], said["ascending_hnmed"]
     (True, True, True, True)
     """

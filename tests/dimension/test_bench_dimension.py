@@ -89,8 +89,8 @@ def test_ce1_as_stated_holds_every_record_of_both_sources(bench):
     outside = 0
     for record in problem.records:
         v = record["vector"]
-        pivots, a, b, c = bench.source_model(v, v[9:10])
-        linkage = bench.Linkage(bench.FOUR_BAR, (0,), [pivots[0], pivots[1], a[0], b[0]], tracers={"P": (2, tuple(c[0]))})
+        linkage = bench.source_linkage(v, v[9])
+        pivots = bench.source_model(v, v[9:10])[0]
         judged = bench.as_the_source_states_it(problem, linkage, np.add(v[9:], v[6]))
         assert judged["sum_squared_error"] < 1e-19 and judged["sources_branch"] and judged["within_bounds"]
         assert judged["ascending_hnmed"] and judged["ascending_eca"]
@@ -114,7 +114,7 @@ def test_the_source_vector_inverts_the_closed_form_and_tells_the_other_branch(be
         vector = [r1, r2, r3, r4, *rng.uniform(-1, 1, 2), rng.uniform(0, 2 * math.pi), *rng.uniform(-1, 1, 2)]
         angles = np.sort(rng.uniform(0, 2 * math.pi, 18))
         pivots, a, b, c = bench.source_model(vector, angles[:1])
-        linkage = bench.Linkage(bench.FOUR_BAR, (0,), [pivots[0], pivots[1], a[0], b[0]], tracers={"P": (2, tuple(c[0]))})
+        linkage = bench.source_linkage(vector, angles[0])
         inputs = angles + vector[6]
         read = bench.source_vector(linkage, inputs)
         assert np.allclose(read[:9], vector, atol=1e-9)
