@@ -119,15 +119,18 @@ _A227117 = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132, 11: 203
 _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
          (3, True): {6: 1, 8: 7, 10: 98}, (3, False): {6: 1, 8: 5, 10: 74}}
 
-# h = 4 … 6 beyond 22 links: the engine's sizing misses the growth of a unit's time there (UNIT_GROWTH has no
-# factor for h >= 4): 26 links at h = 5 was sized at 1.4 CPU s and took 35 (`records.py --size`, 3ef3e6b)
+# h = 4 … 6 beyond 20 links: the engine's sizing misses the growth of a unit's time there (UNIT_GROWTH has no
+# factor for h >= 4): 26 links at h = 5 was sized at 1.4 CPU s and took 35, 23 links at h = 4 13 and 90
+# (`records.py --size`, 3ef3e6b); the counts' memory grows too (1.2 and 1.5 GiB at their peak)
 _SIZED_H = "the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about {} chains, {} CPU s, " \
            "but it sized {} at {} CPU s and that count took {}"
 _BEYOND = {
-    (4, 23): "run on its own (--only): " + _SIZED_H.format("3.6e9", 13, "this row", 13, "much longer"),
-    (4, 26): "not run: " + _SIZED_H.format("7.9e11", 197, "23 links", 13, "much longer"),
+    (4, 23): "run on its own (--only): sized at 13 CPU s (3.6e9 chains), counted in 90 CPU s and 1.5 GiB on 29 Nov "
+             "2026, and as much again for its second count",
+    (4, 26): "not run: " + _SIZED_H.format("7.9e11", 197, "23 links", 13, 90)
+             + ", so expect some 20 to 25 CPU min, and its memory may pass 2 GiB (1.5 GiB at 23 links)",
     (5, 30): "not run to the end: " + _SIZED_H.format("9.8e10", 9.6, "26 links", 1.4, 35.5)
-             + "; begun on 29 Nov, 441 units (2.9e9 chains) in about 50 CPU s, stopped for time",
+             + "; begun on 29 Nov, 441 of some 4 600 units (2.9e9 chains) in about 50 CPU s, stopped for time",
     (6, 32): "not run: " + _SIZED_H.format("5.6e9", "3 to 62", "27 links", "0.3 to 5", 4.8),
 }
 
@@ -168,7 +171,7 @@ ROWS = (
                   "of plan on 2 workers, not the code whole: PROFILE.md section 26); the engine's sizing "
                   "(`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 4.3e7 chains, 18 to 22 CPU min, but at 11 "
                   "links it gave 70 to 88 CPU s against the 106 measured the same day: expect some 27 CPU min "
-                  "(about 14 min on 2 quiet workers); for the lead: `nice -n 10 python benchmarks/records.py --only "
+                  "(about 14 min on 2 quiet workers); to run it: `nice -n 10 python benchmarks/records.py --only "
                   "\"links 12 --h 2\" --reverse-max 0` (the listing does not check it; the published value does)")]
     + [_row("h = 4", 1, n, h=4, oracle=n <= 8, heavy=_BEYOND.get((4, n), "")) for n in range(5, 27, 3)]
     + [_row("h = 5", 1, n, h=5, oracle=n <= 6, heavy=_BEYOND.get((5, n), "")) for n in range(6, 31, 4)]
@@ -740,6 +743,9 @@ def main(argv=None) -> int:
     if not rows:
         write_md(args.md, lines, args.figure)
     draw_growth(lines, args.figure)
+    if not rows:
+        print(f"records: every row chosen is recorded; {args.md} and {args.figure} written again from {args.csv}",
+              file=sys.stderr)
     return 1 if bad else 0
 
 
