@@ -150,7 +150,7 @@ ROWS = (
     + [_row("W = 2", 2, 19, None, "",
             heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 8.4e9 "
                   "chains, 1.8 CPU hours, but at 17 links it gave 86 CPU s against the 229 measured (1325c9d): "
-                  "expect some 5 CPU hours (2.5 h on 2 quiet workers); for the lead: `nice -n 10 python "
+                  "expect some 5 CPU hours (2.5 h on 2 quiet workers); to run it: `nice -n 10 python "
                   "benchmarks/records.py --only \"chains --dof 2 --links 19\" --reverse-max 0`")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
@@ -161,7 +161,7 @@ ROWS = (
     + [_row("W = 3", 3, 20, None, "",
             heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 3.3e10 "
                   "chains, 10.6 CPU hours, but at 18 links it gave 479 CPU s against the 753 measured (f66be84): "
-                  "expect some 17 CPU hours (8 to 9 h on 2 quiet workers); for the lead: `nice -n 10 python "
+                  "expect some 17 CPU hours (8 to 9 h on 2 quiet workers); to run it: `nice -n 10 python "
                   "benchmarks/records.py --only \"chains --dof 3 --links 20\" --reverse-max 0`")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
