@@ -149,7 +149,7 @@ ROWS = (
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
             heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 8.4e9 "
-                  "chains, 1.8 CPU hours, but at 17 links it gave 86 CPU s against the 229 measured (1325c9d): "
+                  "chains, 1.8 to 2.2 CPU hours, but at 17 links it gave 86 to 101 CPU s against the 229 measured (1325c9d): "
                   "expect some 5 CPU hours (2.5 h on 2 quiet workers); to run it: `nice -n 10 python "
                   "benchmarks/records.py --only \"chains --dof 2 --links 19\" --reverse-max 0`")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
