@@ -131,7 +131,7 @@ _BEYOND = {
              + ", so expect some 20 to 25 CPU min, and its memory may pass 2 GiB (1.5 GiB at 23 links)",
     (5, 30): "not run to the end: " + _SIZED_H.format("9.8e10", 9.6, "26 links", 1.4, 35.5)
              + "; begun on 29 Nov, 441 of some 4 600 units (2.9e9 chains) in about 50 CPU s, stopped for time",
-    (6, 32): "not run: " + _SIZED_H.format("5.6e9", "3 to 62", "27 links", "0.3 to 5", 4.8),
+    (6, 32): "not run: " + _SIZED_H.format("5.4e8 to 5.6e9", "3 to 70", "27 links", "0.5 to 5", 4.8),
 }
 
 ROWS = (
