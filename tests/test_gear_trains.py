@@ -17,6 +17,7 @@ import itertools
 import collections
 import csv
 import json
+import os
 import random
 import signal
 import subprocess
@@ -225,6 +226,72 @@ def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
     summary = json.loads(out)["summary"]
     rows = [json.loads(line) for line in log.read_text().splitlines()]
     assert summary["interrupted"] and summary["trees_compared"] == len(rows) - 1 < summary["trees_of_the_size"] == 1540
+
+
+def test_two_methods_script_docstring_examples():
+    result = doctest.testmod(_two_methods(), optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0 and result.attempted >= 2
+
+
+def test_two_methods_script_refuses_bad_logs_and_a_second_run_on_its_log(tmp_path):
+    """A file that is not a log (not text, a tree's line without its counts), or a forms store that
+    cannot be opened: one sentence, exit 2, nothing changed or left behind; and while one run writes a
+    log, a second on it is refused (it would compare the same trees again)."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+
+    def run(*args):
+        return subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True, text=True, timeout=300)
+
+    def refused(result, words):
+        return (result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and words in result.stderr
+                and "Traceback" not in result.stderr and not result.stdout)
+
+    binary, partial = tmp_path / "binary.jsonl", tmp_path / "partial.jsonl"
+    binary.write_bytes(b"\xff\xfe\x00 not text")
+    partial.write_text('{"dof": 2, "links": 6, "tree": 0, "engine": 1}\n')
+    for log in (binary, partial):
+        before = log.read_bytes()
+        assert refused(run(log, "--dof", 2, "--links", 6), "is not a log of this script")
+        assert refused(run(log, "--dof", 2, "--links", 6, "--record", tmp_path / "r.csv"), "is not a log of this script")
+        assert log.read_bytes() == before and not (tmp_path / "r.csv").exists()
+    (tmp_path / "new.jsonl.forms.sqlite").mkdir()
+    assert refused(run(tmp_path / "new.jsonl", "--dof", 2, "--links", 6, "--rotation"), "cannot open")
+    assert not (tmp_path / "new.jsonl").exists()
+    log = tmp_path / "log.jsonl"
+    first = subprocess.Popen([sys.executable, str(script), str(log), "--dof", "1", "--links", "10"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and (not log.exists() or not log.read_text()):
+            time.sleep(0.2)
+        second = run(log, "--dof", 1, "--links", 10)
+        assert refused(second, "another run is writing the log")
+    finally:
+        first.send_signal(signal.SIGINT)
+        first.communicate(timeout=60)
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    trees = [r["tree"] for r in rows if "tree" in r]
+    assert first.returncode == 130 and len(trees) == len(set(trees)) > 0 and "summary" in rows[-1]
+
+
+def test_two_methods_script_logs_its_niceness_and_records_it(tmp_path):
+    """Each tree's line says the niceness of its run, and the records line says it (rows of runs
+    before the niceness was logged are said to be so)."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log, table = tmp_path / "log.jsonl", tmp_path / "records.csv"
+    result = subprocess.run(["nice", "-n", "3", sys.executable, str(script), str(log), "--dof", "2", "--links", "6"],
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    assert {r.get("nice") for r in rows if "tree" in r} == {3 + os.nice(0)} and len(rows) == 23
+    bench = _two_methods()
+    (line,) = bench.record(log, 2, 6, False, table)
+    assert f"at nice {3 + os.nice(0)} on the shared machine" in line["method"] and line["count"] == 3
+    older = tmp_path / "older.jsonl"  # the first run's lines without the niceness, as logged before it was
+    older.write_text("".join(json.dumps({k: v for k, v in r.items() if k != "nice" or "summary" in r}) + "\n"
+                             for r in rows))
+    (line,) = bench.record(older, 2, 6, False, table)
+    assert "(the first runs: not logged)" in line["method"]
 
 
 @pytest.mark.slow
