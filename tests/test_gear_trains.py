@@ -118,6 +118,40 @@ def test_second_method_agrees_tree_by_tree_to_ten_links(dof, links, rotation):
     _agree_tree_by_tree(dof, links, rotation)
 
 
+@pytest.mark.parametrize("vertices", range(1, 7))
+def test_second_method_forests_are_every_forest_once(vertices):
+    """The unlabelled forests of the star's trains, against every edge set on labelled vertices
+    that is a forest of k trees, sorted into classes by networkx's isomorphism test."""
+    pairs = list(itertools.combinations(range(vertices), 2))
+    for trees in range(1, vertices + 1):
+        classes: list = []
+        for edges in itertools.combinations(pairs, vertices - trees):
+            g = nx.Graph(list(edges))
+            g.add_nodes_from(range(vertices))
+            if nx.is_forest(g) and not any(nx.is_isomorphic(g, h) for h in classes):
+                classes.append(g)
+        found = []
+        for edges in gear_trains_fast._forests(vertices, trees):
+            g = nx.Graph(edges)
+            g.add_nodes_from(range(vertices))
+            assert nx.is_forest(g) and nx.number_connected_components(g) == trees
+            found.append(g)
+        assert len(found) == len(classes) > 0
+        assert not any(nx.is_isomorphic(g, h) for g, h in itertools.combinations(found, 2))
+
+
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(4, 9)] + [(2, n) for n in range(5, 9)] + [(3, n) for n in range(6, 9)])
+def test_second_method_star_trains_equal_its_search(dof, links):
+    """On the star (a frame carrying every other link on an axis of its own) the second method lists
+    the unlabelled forests; its search of mesh sets, every symmetry listed at these sizes, finds as
+    many trains (as many rotation graphs)."""
+    axes = tuple((0, k) for k in range(1, links))
+    star, searched = gear_trains_fast._star_trains(links, 0, dof), gear_trains_fast._searched_trains(dof, links, axes)
+    assert gear_trains_fast.tree_trains(dof, links, axes) == star
+    assert len(star) == len(searched)
+    assert {gear_trains_fast.rotation_key(links, t) for t in star} == {gear_trains_fast.rotation_key(links, t) for t in searched}
+
+
 def test_second_method_tree_trains_are_valid_and_distinct():
     """The second method's trains on one tree: g = n − 1 − F meshes at tree distance 4 with their
     carriers, no rigid sub-chain (every subset), pairwise non-isomorphic (brute force)."""
