@@ -8,15 +8,23 @@ Every unit of the codes with multiple joints of ``chains --dof W --links N --v A
 kernel whatever the size (a count loads it for large queries only); the chains must agree unit by
 unit (exit 1 otherwise; 1 also where the query has no code with multiple joints, 2 for bad input).  Prints one row per code and the totals.
 
+With ``--stages`` each unit is counted once, as ``--count`` counts it (``count_unit``, the kernel as the
+query's size decides), and the CPU seconds go to stage A (the code's units), the kernel's search, the
+sets it checks (``sets_to_check``), the exact test and the rest of stage B; ``--records FILE`` (a
+by-code file of benchmarks/records/) compares each code's count with it (exit 1 where one differs).
+
 Run from the project root::
 
     nice -n 19 python benchmarks/multiple_joint_prune.py 12 --v 0..10 > benchmarks/logs/multiple_joint_prune_12.txt
     nice -n 19 python benchmarks/multiple_joint_prune.py 14 --v 0..12 --every 60 --first 8
+    python benchmarks/multiple_joint_prune.py 14 --v 0..12 --every 20 --first 3 --stages \
+        --records benchmarks/records/dof_1_links_14_v_0-12.json
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import subprocess
 import sys
 import time
@@ -42,6 +50,54 @@ def count_unit(unit, check_sets: bool) -> tuple[int, int, float, float]:
     return found, chains, t1 - t0, time.process_time() - t1
 
 
+def stages(jobs, records: dict | None) -> int:
+    """Count every unit of ``jobs`` once as ``--count`` does, timing stage A and stage B's parts (CPU
+    seconds of this process); print a row per code and the totals; 1 where a code differs from ``records``."""
+    from synth.structure import subchains
+    from synth.synthesis import _stage_b_kernel, stage_b
+    from synth.synthesis.type_synthesis import count_unit, job_units
+
+    spent = {"kernel": 0.0, "sets": 0.0, "test": 0.0}
+
+    def timed(name, function):
+        def wrapper(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                spent[name] += time.process_time() - t0
+        return wrapper
+
+    _stage_b_kernel.place = timed("kernel", _stage_b_kernel.place)  # (looked up at each call by stage B)
+    subchains.sets_to_check = timed("sets", subchains.sets_to_check)
+    stage_b._exact_test = timed("test", stage_b._exact_test)
+    columns = ("units", "chains", "placed", "stage A", "stage B", "kernel", "sets", "test", "rest")
+    print(f"{'code':>22} " + " ".join(f"{c:>9}" for c in columns))
+    total = dict.fromkeys(columns, 0)
+    bad = 0
+    for job in jobs:
+        before = dict(spent)
+        t0 = time.process_time()
+        units = job_units(job)
+        t1 = time.process_time()
+        stats: dict = {}
+        chains = sum(n for unit in units for n in count_unit(unit, "listing", stats).values())
+        row = {"units": len(units), "chains": chains, "placed": stats.get("candidates", 0), "stage A": t1 - t0,
+               "stage B": time.process_time() - t1, **{k: spent[k] - before[k] for k in spent}}
+        row["rest"] = row["stage B"] - row["kernel"] - row["sets"] - row["test"]
+        total = {k: total[k] + row[k] for k in columns}
+        print(f"{str(job[0]):>22} " + " ".join(f"{row[c]:>9}" if isinstance(row[c], int) else f"{row[c]:>9.2f}"
+                                               for c in columns), flush=True)
+        if records is not None and records.get(str(job[0]), 0) != chains:
+            bad += 1
+            print(f"DIFFERENT: {job[0]}: {chains} chains, {records.get(str(job[0]), 0)} recorded", file=sys.stderr)
+    print(f"{'total':>22} " + " ".join(f"{total[c]:>9}" if isinstance(total[c], int) else f"{total[c]:>9.2f}"
+                                        for c in columns))
+    print(f"placements per chain {total['placed'] / max(total['chains'], 1):.2f}; "
+          f"{'codes compared with the records: ' + str(bad) + ' differ' if records is not None else 'no records given'}")
+    return 1 if bad else 0
+
+
 def fail(sentence: str) -> None:
     """One sentence on stderr and exit status 2."""
     print(f"multiple_joint_prune: {sentence}", file=sys.stderr)
@@ -60,23 +116,35 @@ def main(argv=None) -> int:
     parser.add_argument("--v", default="0..10", help="range A..B of multiple joints (default: %(default)s)")
     parser.add_argument("--every", type=int, default=1, help="count every N-th code with multiple joints")
     parser.add_argument("--first", type=int, default=0, help="… starting from this one (0-based)")
+    parser.add_argument("--stages", action="store_true", help="count each unit once and time the stages instead")
+    parser.add_argument("--records", help="with --stages: a by-code JSON file to compare each code's count with")
     args = parser.parse_args(argv)
     if args.every < 1 or args.first < 0:
         fail(f"--every must be 1 or more and --first 0 or more, not {args.every} and {args.first}")
+    if args.records and not args.stages:
+        fail("--records compares the counts of --stages: give both or neither")
+    records = None
+    if args.records:
+        try:
+            records = json.loads(Path(args.records).read_text())["by_code"]
+        except (OSError, ValueError, KeyError, TypeError) as error:
+            fail(f"cannot read the counts by code of {args.records}: {error}")
     from synth import ChainQuery
     from synth.errors import SynthesisError
     from synth.synthesis.stage_b import _kernel_applies, load_kernel
     from synth.synthesis.type_synthesis import job_units, plan_jobs
 
     try:
-        jobs = [(code, replace(conv, kernel_loops=1))  # (the kernel on every code, as a large query runs it)
-                for code, conv in plan_jobs(ChainQuery(args.dof, args.links, v=args.v)) if code.v]
+        jobs = [(code, conv if args.stages else replace(conv, kernel_loops=1))  # (the kernel on every code, as a
+                for code, conv in plan_jobs(ChainQuery(args.dof, args.links, v=args.v)) if code.v]  # large query)
     except SynthesisError as error:
         fail(str(error))
     if not jobs[args.first::args.every]:
         print("multiple_joint_prune: no code with multiple joints in this query (or this sample of it)", file=sys.stderr)
         return 1
     load_kernel()
+    if args.stages:
+        return stages(jobs[args.first::args.every], records)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     jobs = jobs[args.first::args.every]
     print(f"W = {args.dof}, {args.links} links, v = {args.v}: {len(jobs)} codes with multiple joints; engine {commit}; "

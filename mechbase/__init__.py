@@ -1,5 +1,5 @@
 """The ground both engines stand on, and nothing else: one error base, one reader of text and of TOML files, one
-grammar of ranges ``A..B``, one way to quote a value as a file writes it, one way a typed result
+grammar of ranges ``A..B``, one reader of a pair of finite numbers (:func:`finite_pair`), one way to quote a value as a file writes it, one way a typed result
 becomes a row (:class:`Row`) and one way a figure is written (:func:`save_figure`, byte-reproducible);
 the dialect of TOML tables is :mod:`mechbase.schema`.
 
@@ -13,10 +13,11 @@ the dialect of TOML tables is :mod:`mechbase.schema`.
 from .errors import ProjectError
 from .figures import save_figure
 from .files import read_text
+from .pairs import finite_pair
 from .ranges import RangeSyntax, parse_range
 from .rows import Row, as_row
 from .text import show
 from .toml import read_toml, read_toml_text
 
-__all__ = ["ProjectError", "RangeSyntax", "parse_range", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text",
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "finite_pair", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text",
            "save_figure"]

@@ -117,14 +117,30 @@ def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(t
                              "--csv", str(csv_file), "--md", str(tmp_path / "R.md"), "--by-code", str(tmp_path)],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    time.sleep(4)  # the 16-link count takes about a minute of CPU: it is running now
-    assert proc.poll() is None
+    # Ctrl-C once the 16-link count (about a minute of CPU) is running: its workers are started. A fixed
+    # sleep (4 s) was not that under load: it could fall in records.py's or mechsynth's start-up, where
+    # Ctrl-C meets Python's imports (a traceback, exit -2), not their handlers.
+    deadline = time.monotonic() + allowed_seconds(120)
+    while not _count_workers(proc.pid):
+        assert proc.poll() is None and time.monotonic() < deadline, "the 16-link count did not start its workers"
+        time.sleep(0.05)
     os.killpg(proc.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole process group
     start = time.monotonic()
     _, err = proc.communicate(timeout=60)
     assert time.monotonic() - start < allowed_seconds(2.0)
     assert proc.returncode == 130 and "interrupted" in err.splitlines()[-1] and "Traceback" not in err
     assert not csv_file.exists()  # no row finished, none written
+
+
+def _count_workers(pid: int) -> bool:
+    """Whether the count that records.py (process ``pid``) runs has its worker processes (the children of
+    its mechsynth child): both are then past their start-up, inside their Ctrl-C handlers."""
+    import psutil
+
+    try:
+        return any(p.ppid() != pid for p in psutil.Process(pid).children(recursive=True))
+    except psutil.NoSuchProcess:  # (a process that ended while it was read)
+        return False
 
 
 def _multiple_joint_row(records, links):

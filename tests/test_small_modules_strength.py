@@ -1,6 +1,6 @@
 """The small helpers every floor leans on, each against values worked out by hand or a slow method:
 sizes and durations in words (every unit's boundary on both sides), the read-only SQLite address,
-union–find against a breadth-first search, one BLAS thread, lazy exports and notebook drawings.
+the pair of finite numbers every point and pair of limits is read by, union–find against a breadth-first search, one BLAS thread, lazy exports and notebook drawings.
 """
 
 from __future__ import annotations
@@ -11,8 +11,10 @@ import sqlite3
 import sys
 import types
 
+import numpy as np
 import pytest
 
+from mechbase.pairs import finite_pair
 from synth._lazy import lazy_exports
 from synth.display import register_drawing, svg_of
 from synth.execution.sizes import describe_seconds, magnitude
@@ -121,6 +123,35 @@ def _components(items, pairs):
         seen |= part
         parts.append(frozenset(part))
     return parts
+
+
+class _Refused(Exception):
+    pass
+
+
+@pytest.mark.parametrize("value, pair", [
+    ([1, 2.5], (1.0, 2.5)), ((-3, 0), (-3.0, 0.0)), (np.array([0.25, 1e300]), (0.25, 1e300)),
+    (("1.5", " -2 "), (1.5, -2.0)), (iter([4, 5]), (4.0, 5.0)), ((np.float32(0.5), np.int64(7)), (0.5, 7.0)),
+])
+def test_a_pair_of_finite_numbers_is_read_as_two_floats(value, pair):
+    got = finite_pair(value, error=_Refused, malformed="two numbers", not_finite="not finite")
+    assert got == pair and all(type(v) is float for v in got)
+
+
+@pytest.mark.parametrize("value, sentence", [
+    ("12", "two numbers"), (b"12", "two numbers"), ({1: 2, 3: 4}, "two numbers"),  # "12" is no point (1, 2)
+    (None, "two numbers"), (3, "two numbers"), ([1], "two numbers"), ([1, 2, 3], "two numbers"),
+    ([True, 0], "two numbers"), ([0, False], "two numbers"), ([0, "x"], "two numbers"), ([0, None], "two numbers"),
+    ([1j, 0], "two numbers"), (np.zeros((2, 2)), "two numbers"),
+    ([math.nan, 0], "not finite"), ([0, -math.inf], "not finite"), (["inf", 0], "not finite"),
+])
+def test_anything_but_two_finite_numbers_raises_the_callers_error_with_its_sentence(value, sentence):
+    with pytest.raises(_Refused) as raised:
+        finite_pair(value, error=_Refused, malformed="two numbers", not_finite="not finite")
+    assert str(raised.value) == sentence
+    with pytest.raises(_Refused) as raised:  # one sentence serves both faults where the caller gives one
+        finite_pair(value, error=_Refused, malformed="two finite numbers")
+    assert str(raised.value) == "two finite numbers"
 
 
 @pytest.mark.parametrize("seed", range(20))

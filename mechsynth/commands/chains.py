@@ -72,7 +72,8 @@ def add_commands(sub) -> None:
     p.add_argument("--method", choices=("listing", "orbits", "tight-reverse"),
                    help="with --count: how each branch multigraph's chains are counted — listing (default: one "
                    "placement of the binary links per chain, as a listing finds them), orbits (Burnside's lemma "
-                   "over the multigraph's automorphisms, without listing them) or tight-reverse (the second count "
+                   "over the multigraph's automorphisms, without listing them; stderr says which units it "
+                   "counted by the listing's search instead, and why) or tight-reverse (the second count "
                    "of a record: the counting programme over the strings in reverse, with another reading of the "
                    "automorphisms); the same counts; orbits and tight-reverse refused with multiple joints, "
                    "prismatic pairs or cranks")
@@ -275,7 +276,10 @@ def _run(args) -> int:
         finally:
             if log is not None:
                 log.flush()  # the checkpoint's last commit, held back by the minute, ends the log
-        if write_count(result.to_dict(), args.format or "json") == 0:
+        found = write_count(result.to_dict(), args.format or "json")
+        if result.by_search_note is not None:  # --method orbits says where it did not count by orbits
+            print(f"mechsynth: {result.by_search_note}", file=sys.stderr)
+        if found == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0
     if args.what == "chains":

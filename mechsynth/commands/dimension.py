@@ -27,6 +27,8 @@ import math
 import os
 import sys
 
+from mechbase import finite_pair
+
 from .._argtypes import finite, mechanism_of, number_range, output_file, seconds, whole, workers
 from .._output import pairs, write_document
 
@@ -63,14 +65,10 @@ def _box(text: str) -> tuple[float, float, float, float]:
 def _held(text: str) -> tuple[str, tuple[float, float]]:
     """``J=x,y``: a joint held at a point."""
     joint, _, at = text.rpartition("=")
-    parts = at.split(",")
-    try:
-        x, y = (float(v) for v in parts)
-    except ValueError:
-        x = y = math.nan
-    if not joint or len(parts) != 2 or not (math.isfinite(x) and math.isfinite(y)):
-        raise argparse.ArgumentTypeError(f"expected JOINT=x,y with finite x and y, e.g. 0-1=0,0, not {text!r}")
-    return joint, (x, y)
+    expected = f"expected JOINT=x,y with finite x and y, e.g. 0-1=0,0, not {text!r}"
+    if not joint:
+        raise argparse.ArgumentTypeError(expected)
+    return joint, finite_pair(at.split(","), error=argparse.ArgumentTypeError, malformed=expected)
 
 
 def add_commands(sub) -> None:

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechbase.pairs import finite_pair
+
 from ..errors import BadTarget, DimensionError, option
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..motion import Linkage, link_poses
@@ -116,9 +118,10 @@ class Constraints:
         if self.crank and self.rocker is not None:
             raise DimensionError("the input cannot be both a crank (a full turn) and a rocker within limits")
         if self.rocker is not None:
-            lo, hi = (float(v) for v in self.rocker)
-            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-                raise DimensionError(f"the rocker's limits must be two finite numbers, lower first, not {self.rocker}")
+            limits = f"the rocker's limits must be two finite numbers, lower first, not {self.rocker}"
+            lo, hi = finite_pair(self.rocker, error=DimensionError, malformed=limits)
+            if not lo < hi:
+                raise DimensionError(limits)
             object.__setattr__(self, "rocker", (lo, hi))
         if not 0 <= self.min_transmission < math.pi / 2:
             raise DimensionError(f"the least transmission angle must be 0 … 90° (exclusive), not "
@@ -145,12 +148,8 @@ class Constraints:
         given = self.pivot_at.items() if isinstance(self.pivot_at, dict) else self.pivot_at
         held = []
         for joint, at in given:
-            try:
-                x, y = (float(v) for v in at)
-            except (TypeError, ValueError):
-                raise DimensionError(f"a fixed pivot is a point (x, y), not {at!r} (joint {joint})") from None
-            if not (math.isfinite(x) and math.isfinite(y)):
-                raise DimensionError(f"the fixed pivot of joint {joint} must be at finite coordinates, not {at!r}")
+            x, y = finite_pair(at, error=DimensionError, malformed=f"a fixed pivot is a point (x, y), not {at!r} (joint {joint})",
+                               not_finite=f"the fixed pivot of joint {joint} must be at finite coordinates, not {at!r}")
             if self.pivots is not None:
                 x0, x1, y0, y1 = self.pivots
                 if not (x0 <= x <= x1 and y0 <= y <= y1):

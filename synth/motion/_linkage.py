@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from mechbase.files import read_text
+from mechbase.pairs import finite_pair
 from mechbase.toml import read_toml_text
 
 from ..display import svg_of
@@ -64,14 +65,9 @@ def _input_joint(chain: Chain, frame: int, key) -> tuple[int, int | None]:
 
 
 def _pair(value, what: str) -> tuple[float, float]:
-    """Two finite numbers."""
-    try:
-        x, y = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise BadPose(f"{what} must be two numbers [x, y], not {value!r}") from None
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise BadPose(f"{what} is not finite: {value!r}")
-    return x, y
+    """Two finite numbers: ``what`` (a position, a direction, two radii) as a pose gives it."""
+    return finite_pair(value, error=BadPose, malformed=f"{what} must be two numbers [x, y], not {value!r}",
+                       not_finite=f"{what} is not finite: {value!r}")
 
 
 @dataclass(frozen=True, eq=False)

@@ -23,7 +23,7 @@ from ..structure.chain import Chain
 from ..structure.code import Code
 from .stage_a import Contracted, Conventions, _contracted_by_kernel, _inner_links, _loop_lb, uses_kernel
 
-__all__ = ["count_listed", "count_orbits", "count_realised", "count_reversed", "load_kernel", "orbits_apply", "realise"]
+__all__ = ["BY_SEARCH", "count_listed", "count_orbits", "count_realised", "count_reversed", "load_kernel", "orbits_apply", "realise"]
 
 _LEX_BITS = 52  # keep lex-leader coefficients exact in CP-SAT's linear constraints
 # stage B lists the weight vectors directly up to this many (no model to build); 4096 -> 16384:
@@ -217,15 +217,42 @@ def load_kernel() -> None:
             count_orbits(code, graph, conv)
 
 
-def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
-    """Whether the kernel can find this unit's placements: no crank requirement, a (k, l) pebble
-    game (0 ≤ l = h + threshold), the set of all branch vertices not exempt, and loops never short
-    (their least weight at least h − 1).  With simple joints its conditions are stage B's; with
-    multiple joints they are weaker by one freedom (:mod:`synth.synthesis._stage_b_kernel`), so
-    there the exact test keeps the valid placements among the kernel's."""
+#: why a unit is counted by the search where Burnside's count was asked for (:func:`count_orbits`): the key
+#: ``stats`` gets 1 under (``"by_search_" + key``) and the reason in words (docs/theory.md, "Counting by orbits")
+BY_SEARCH = {
+    "group": "the permutations of their branch multigraph's bundles of parallel strings are more than 4 096, too "
+             "many to list",
+    "multiple_joint": "they have a multiple joint, where the pebble game is not the exact sub-chain test",
+    "empty_strings": "h + threshold ≤ 2, where two strings between the same links may both be empty",
+    "crank": "a crank requirement is checked on each chain",
+    "exempt": "the chain's W is below the least mobility its proper sub-chains must keep and it has no free end, "
+              "where the pebble game's rule, which would ask it of the whole chain too, is not the exact test",
+    "short_loop": "a loop through one link may hold fewer than h − 1 binary links",
+}
+
+
+def _kernel_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
+    """Why the kernel cannot find this unit's placements (a key of :data:`BY_SEARCH`), or None where it
+    can: no crank requirement, a (k, l) pebble game (0 ≤ l = h + threshold), the set of all branch
+    vertices not exempt, and loops never short (their least weight at least h − 1).  With simple joints
+    its conditions are stage B's; with multiple joints they are weaker by one freedom
+    (:mod:`synth.synthesis._stage_b_kernel`), so there the exact test keeps the valid placements among
+    the kernel's."""
+    if conv.cranks:
+        return "crank"
+    if conv.h + conv.threshold < 0:
+        return "empty_strings"
+    if code.dof(conv.h) < conv.threshold and code.n1 == 0:
+        return "exempt"
     loop_least, _ = _vertex_terms(graph.vertices, conv)
-    return (not conv.cranks and conv.h + conv.threshold >= 0 and (code.dof(conv.h) >= conv.threshold or code.n1 > 0)
-            and all(loop_least[u] >= conv.h - 1 for u, v in graph.edges if u == v))
+    if any(loop_least[u] < conv.h - 1 for u, v in graph.edges if u == v):
+        return "short_loop"
+    return None
+
+
+def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
+    """Whether the kernel can find this unit's placements (:func:`_kernel_fault` finds no fault)."""
+    return _kernel_fault(code, graph, conv) is None
 
 
 def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
@@ -265,7 +292,8 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
     if not listing:  # a count: any order of the strings keeps one placement per orbit
-        order = _search_order(edges, a_list, b_list, M)
+        joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
+        order = _search_order(edges, a_list, b_list, M, joints)
         a_end, b_end, least, after = a_end[order], b_end[order], least[order], after[order]
         back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
         if perms:  # bundle q_order[i] is bundle i of the search: relabel the permutations of the bundles
@@ -317,19 +345,24 @@ def _tight(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
     return l2 < 0 and M >= 2 and x_most == 0 and l < 2 * h
 
 
-def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.ndarray":
+def _search_order(edges, a_list: list[int], b_list: list[int], M: int, first: frozenset = frozenset()) -> "np.ndarray":
     """An order of the strings of H for counting its placements, bundles of parallel strings kept
     together and in their order: the strings the pebble game never sees first, then the game's
     vertices by maximum adjacency (next the vertex with the most strings to those taken, then the
     most strings), each vertex bringing the strings between it and those before it, the latest
     first.  Rigid groups of links then close early, so a placement that cannot be completed fails
     near the root of the search (14 links: 0.47 → 0.29 CPU s of the kernel against the strings'
-    own order; issue 41).
+    own order; issue 41).  The game's vertices in ``first`` (the multiple joints) are taken before
+    the others, by maximum adjacency among themselves: every set the kernel checks for the exact
+    rule holds one, and closes sooner (14 links, v ≤ 12, a sample: the kernel's steps 21.9 M →
+    19.3 M; benchmarks/PROFILE.md, section 32).
 
     >>> _search_order(((0, 1), (0, 2), (1, 2), (1, 2)), [0, 0, 1, 1], [1, 2, 2, 2], 3).tolist()
     [2, 3, 1, 0]
     >>> _search_order(((0, 1), (1, 2), (1, 3), (2, 3)), [0, 1, 1, 2], [1, 2, 3, 3], 4).tolist()
     [1, 3, 2, 0]
+    >>> _search_order(((0, 1), (1, 2), (1, 3), (2, 3)), [0, 1, 1, 2], [1, 2, 3, 3], 4, frozenset({0})).tolist()
+    [0, 1, 3, 2]
     """
     import numpy as np
 
@@ -341,7 +374,7 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int) -> "np.nd
     score = [len(n) for n in neighbours]  # strings to the vertices taken × 1024 + strings; −1 once taken
     rank = [0] * M
     for r in range(M):
-        v = score.index(max(score))  # (the first of the best)
+        v = max(range(M), key=lambda u: (score[u] >= 0 and u in first, score[u]))  # (the first of the best)
         rank[v], score[v] = r, -1
         for u in neighbours[v]:
             if score[u] >= 0:
@@ -412,8 +445,16 @@ def orbits_apply(code: Code, graph: Contracted, conv: Conventions) -> bool:
     kernel's pebble game is the exact rule (simple joints, :func:`_kernel_applies`) and two strings
     between the same two links never both hold no binary link (h + threshold > 2: the rule already
     refuses it, so the search need not order parallel strings)."""
-    return (all(vertex.is_link for vertex in graph.vertices) and conv.h + conv.threshold > 2
-            and _kernel_applies(code, graph, conv))
+    return _orbits_fault(code, graph, conv) is None
+
+
+def _orbits_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
+    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None."""
+    if not all(vertex.is_link for vertex in graph.vertices):
+        return "multiple_joint"
+    if conv.h + conv.threshold <= 2:
+        return "empty_strings"
+    return _kernel_fault(code, graph, conv)
 
 
 def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
@@ -427,23 +468,26 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
     no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or G/P is too
     large to list (more than 4096 elements, :meth:`Contracted.bundle_group`), the unit is counted
-    as :func:`count_realised` counts it (docs/theory.md).
+    as :func:`count_realised` counts it (docs/theory.md), and ``stats`` gets 1 under
+    ``"by_search_" + key``, the key of :data:`BY_SEARCH` that says why.
 
     >>> from synth.synthesis.stage_a import contracted_graphs
     >>> code = Code.parse("64200/0")
     >>> [count_orbits(code, g, Conventions()) for g in contracted_graphs(code, Conventions())][:6]
     [15, 104, 13, 6, 15, 681]
     """
-    if not orbits_apply(code, graph, conv):
+    fault = _orbits_fault(code, graph, conv)
+    if fault is None:
+        perms, whole_group = graph.bundle_group()
+        fault = None if whole_group else "group"
+    if fault is not None:
+        _add(stats, **{"by_search_" + fault: 1})
         return count_realised(code, graph, conv, stats)
     import numpy as np
 
     from ._stage_b_kernel import fixed_total
 
     edges = graph.edges
-    perms, whole_group = graph.bundle_group()
-    if not whole_group:
-        return count_realised(code, graph, conv, stats)
     t0 = perf_counter()
     picked = np.flatnonzero(_bundle_starts(edges))
     # the permutations of the bundles the automorphisms make (the identity among them), each once

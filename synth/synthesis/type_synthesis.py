@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 from mechbase import Row
@@ -510,14 +510,27 @@ def count_unit(unit: Unit, method: str = "listing", stats: dict | None = None) -
     return {str(unit.code): n} if n else {}
 
 
+class _UnitCount(dict):
+    """One unit's counts by code, and ``by_search``: why it was counted by the search where counting by
+    orbits was asked for (a key of :data:`~synth.synthesis.stage_b.BY_SEARCH`), else None."""
+
+    def __init__(self, counts: dict[str, int], by_search: str | None = None):
+        super().__init__(counts)
+        self.by_search = by_search
+
+
 @dataclass(frozen=True)
 class _ChainCount:
-    """The chains of one unit counted by ``method`` (a picklable work function)."""
+    """The chains of one unit counted by ``method`` (a picklable work function), with why the unit
+    was counted by the search if it was (:class:`_UnitCount`)."""
 
     method: str
 
-    def __call__(self, unit: Unit) -> dict[str, int]:
-        return count_unit(unit, self.method)
+    def __call__(self, unit: Unit) -> _UnitCount:
+        stats: dict = {}
+        counts = count_unit(unit, self.method, stats)
+        return _UnitCount(counts, next((key.removeprefix("by_search_") for key in stats
+                                        if key.startswith("by_search_")), None))
 
 
 def _check_method(method: str, query: ChainQuery) -> None:
@@ -584,9 +597,32 @@ class Counts(Row):
 
     count: int
     by_code: dict
+    #: the units of work this call ran (not those a checkpoint or the store of earlier runs gave); this and
+    #: ``by_search`` say how the count was made, not what it is: neither is in the row nor compared
+    units_run: int = field(default=0, compare=False)
+    #: of those, the units counted by the search where counting by orbits was asked for, by the key of
+    #: :data:`~synth.synthesis.stage_b.BY_SEARCH` that says why
+    by_search: dict = field(default_factory=dict, compare=False)
+
+    row_keys = ("count", "by_code")
 
     def __getitem__(self, key: str):
         return self.to_dict()[key]
+
+    @property
+    def by_search_note(self) -> str | None:
+        """One sentence on the units counted by the search instead of by orbits, or None if none was.
+
+        >>> print(Counts(9, {"6301/0": 9}, 4, {"group": 1}).by_search_note)  # doctest: +ELLIPSIS
+        1 of the 4 units run were counted by the search, not by orbits (...): 1 because the permutations ... to list
+        """
+        if not self.by_search:
+            return None
+        from .stage_b import BY_SEARCH
+
+        why = "; ".join(f"{n} because {BY_SEARCH[key]}" for key, n in self.by_search.items())
+        return (f"{sum(self.by_search.values())} of the {self.units_run} units run were counted by the search, not by "
+                f"orbits (the same counts, found as the listing finds them): {why}")
 
 
 def _identity(what: str, jobs: list[tuple[Code, Conventions]]) -> str:
@@ -634,6 +670,7 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
         for name, n in found.items():
             totals[name] = totals.get(name, 0) + n
     found_now: dict[int, dict[str, int]] = {}  # counts of the codes run here (with ``remember``)
+    units_run, by_search = 0, {}  # the units run here, and those counted by the search instead of by orbits
     with ExitStack() as stack:
         client = None
         if scheduler is not None:  # (before the checkpoint: an unreachable scheduler leaves no file behind)
@@ -663,6 +700,10 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
                 if remember:  # every unit of the code ran here: its counts are whole
                     keep("counts", repr((what, *jobs[index])), found_now.pop(index, {}))
                 continue
+            units_run += 1
+            why = getattr(result, "by_search", None)  # (a count by orbits says where it counted by the search)
+            if why is not None:
+                by_search[why] = by_search.get(why, 0) + 1
             for name, n in result.items():
                 totals[name] = totals.get(name, 0) + n
                 if remember:
@@ -675,7 +716,7 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
         return order.get(code, 0), [(k[0], int(k[1:])) for k in kinds]
 
     by_code = {name: totals[name] for name in sorted(totals, key=place) if totals[name]}
-    return Counts(sum(by_code.values()), by_code)
+    return Counts(sum(by_code.values()), by_code, units_run, dict(sorted(by_search.items())))
 
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
@@ -693,7 +734,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     instead of running its units (not with a checkpoint or a scheduler, which ask for the units run).
     ``method`` (:data:`COUNT_METHODS`): ``"listing"`` counts what stage B lists; ``"orbits"``
     counts each unit by Burnside's lemma where that applies (simple joints, no crank requirement,
-    the group of H listed whole) and as the listing does elsewhere; ``"tight-reverse"`` is a second
+    the group of H listed whole) and as the listing does elsewhere (the result's ``by_search`` says
+    how many units, and why); ``"tight-reverse"`` is a second
     count sharing as little of the listing's arithmetic as can be arranged (simple joints only,
     :func:`~synth.synthesis.stage_b.count_reversed`); all give the same counts, each kept apart in
     the store and in a checkpoint.

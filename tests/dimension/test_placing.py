@@ -112,6 +112,10 @@ def test_a_contradictory_placing_is_refused_in_one_sentence(mechanism, constrain
 
 @pytest.mark.parametrize("args, words", [
     (["--pivot-at", "0-1=0"], "JOINT=x,y"),
+    (["--pivot-at", "0-1=0,x"], "JOINT=x,y with finite x and y, e.g. 0-1=0,0, not '0-1=0,x'"),
+    (["--pivot-at", "0-1=0,inf"], "JOINT=x,y with finite x and y"),
+    (["--pivot-at", "0-1=0,0,0"], "JOINT=x,y with finite x and y"),
+    (["--pivot-at", "=0,0"], "JOINT=x,y with finite x and y"),
     (["--pivot-at", "0-1=0,0", "--pivot-at", "0-1=1,0"], "names one joint twice"),
     (["--timing", "absolute"], "--frame-angle ANGLE"),
     (["--order", "r2<=r9"], "joined by <= or >="),

@@ -34,7 +34,20 @@ def test_the_constraints_are_refused_in_one_sentence_each():
     assert refused(DimensionError, Constraints, rocker=(0, math.inf)) == \
         "the rocker's limits must be two finite numbers, lower first, not (0, inf)"
     assert refused(DimensionError, Constraints, rocker=(math.nan, 1)).startswith("the rocker's limits must be")
+    assert refused(DimensionError, Constraints, rocker=(0, "x")) == \
+        "the rocker's limits must be two finite numbers, lower first, not (0, 'x')"
+    assert refused(DimensionError, Constraints, rocker=1.5) == \
+        "the rocker's limits must be two finite numbers, lower first, not 1.5"
+    assert refused(DimensionError, Constraints, rocker="12") == \
+        "the rocker's limits must be two finite numbers, lower first, not 12"
     assert Constraints(rocker=("0.5", 2)).rocker == (0.5, 2.0)
+    assert refused(DimensionError, Constraints, pivot_at={"0-1": "12"}) == \
+        "a fixed pivot is a point (x, y), not '12' (joint 0-1)"  # no point (1, 2)
+    assert refused(DimensionError, Constraints, pivot_at={"0-1": (0, True)}) == \
+        "a fixed pivot is a point (x, y), not (0, True) (joint 0-1)"
+    assert refused(DimensionError, Constraints, pivot_at={"0-1": (0, math.nan)}) == \
+        "the fixed pivot of joint 0-1 must be at finite coordinates, not (0, nan)"
+    assert Constraints(pivot_at={"0-1": ("1", 2)}).pivot_at == (("0-1", (1.0, 2.0)),)
     assert refused(DimensionError, Constraints, min_transmission=-0.1) == \
         "the least transmission angle must be 0 … 90° (exclusive), not -5.72958°"
     assert refused(DimensionError, Constraints, min_transmission=math.pi / 2) == \

@@ -89,6 +89,10 @@ def test_slides_are_checked_and_made_unit():
         "a sliding direction is given for joint '0=3', which is not a prismatic joint"
     assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: "ab"}) == \
         "the sliding direction of joint 0=3 must be two numbers [x, y], not 'ab'"
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: "10"}) == \
+        "the sliding direction of joint 0=3 must be two numbers [x, y], not '10'"  # no direction (1, 0)
+    assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (True, 0)}) == \
+        "the sliding direction of joint 0=3 must be two numbers [x, y], not (True, 0)"
     assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (1, math.inf)}) == \
         "the sliding direction of joint 0=3 is not finite: (1, inf)"
     assert refused(BadPose, Linkage, SLIDER, (0,), SLIDER_POINTS, {1: (math.nan, 1)}) == \

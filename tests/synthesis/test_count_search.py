@@ -246,6 +246,50 @@ def test_the_check_of_the_exact_tests_sets_drops_no_chain(query, kernel_everywhe
     assert dropped > 0 if query["dof"] else dropped == 0
 
 
+@pytest.mark.parametrize("query", MULTIPLE_QUERIES + CHECKED_QUERIES[2:]  # (W = 0 at 11 links: 20 CPU s)
+                         + [pytest.param(CHECKED_QUERIES[1], marks=pytest.mark.slow)], ids=_ids)
+def test_the_searches_with_multiple_joints_keep_every_valid_placement(query, kernel_everywhere):
+    """Unit by unit with multiple joints: the chains the count finds (its search with the multiple joints
+    first, the deficit still to come bounded by its rank in either game, the exact test's sets checked)
+    and the valid placements among the listing's rows are as many as the direct listing of every weight
+    vector (no kernel, no pebble game) keeps after the exact test on every subset."""
+    compared = 0
+    for u, (code, graph, conv) in kernel_units(query):
+        lows, parallel = stage_b._string_limits(graph, conv)
+        spare = code.count(2) - sum(lows)
+        if all(vertex.is_link for vertex in graph.vertices) or spare < 0 or len(graph.edges) > 12:
+            continue
+        _, rows, whole = stage_b._kernel_placements(code, graph, conv, None, listing=True)
+        if not whole:
+            continue
+        valid = len(stage_b._passing(graph, conv, stage_b._few_distributions(lows, spare, parallel, graph, None)[0], None))
+        assert stage_b.count_realised(code, graph, conv) == valid, u.key
+        assert len(stage_b._passing(graph, conv, list(map(tuple, rows.tolist())), None)) == valid, u.key
+        compared += valid > 0
+    assert compared
+
+
+def test_the_count_order_takes_the_multiple_joints_first():
+    """On every unit with multiple joints of 10 links (v ≤ 8): among the strings the game sees, those
+    between two multiple joints come first in the count's order, and their bundles whole and in order;
+    without the joints named, the order is the links' maximum adjacency alone (some unit differs)."""
+    differ = 0
+    for u in synth.plan_units(dof=1, links=10, v=(1, 8), workers=1):
+        graph = u.contracted
+        if graph is None or all(vertex.is_link for vertex in graph.vertices):
+            continue
+        inner, *_ = stage_b._pebble_vertices(graph.vertices, u.conventions.h, u.conventions.threshold)
+        a_list, b_list = stage_b._game_ends(graph, inner)
+        joints = frozenset(i for v, i in inner.items() if graph.vertices[v].is_joint)
+        order = stage_b._search_order(graph.edges, a_list, b_list, len(inner), joints).tolist()
+        assert sorted(order) == list(range(len(graph.edges)))
+        seen = [e for e in order if a_list[e] >= 0]
+        between = [a_list[e] in joints and b_list[e] in joints for e in seen]
+        assert between == sorted(between, reverse=True), u.key
+        differ += order != stage_b._search_order(graph.edges, a_list, b_list, len(inner)).tolist()
+    assert differ
+
+
 @pytest.mark.parametrize("dof, links, v", [(1, 8, 6), (1, 6, 4), (2, 7, 5), (0, 7, 3)])
 def test_counts_with_multiple_joints_by_the_compiled_test_equal_the_brute_force(dof, links, v, kernel_everywhere):
     """Counts by code with multiple joints, the kernel's placements and the compiled exact test on every

@@ -142,7 +142,7 @@ def test_the_two_methods_count_alike_by_code_and_apart_in_the_store():
     ran = Counter()
     real = ts.count_unit
     try:
-        ts.count_unit = lambda unit, method="listing": ran.update([method]) or real(unit, method)
+        ts.count_unit = lambda unit, method="listing", stats=None: ran.update([method]) or real(unit, method, stats)
         listing = synth.count_chains(1, 10, workers=1, remember=True)
         orbits = synth.count_chains(1, 10, workers=1, remember=True, method="orbits")
     finally:
@@ -222,6 +222,57 @@ def test_a_group_too_large_to_list_falls_back_to_the_listing(monkeypatch):
     assert [stage_b.count_orbits(u.code, u.contracted, u.conventions) for u in units] == want
 
 
+def test_a_count_by_orbits_says_which_units_it_counted_by_the_search_and_why(monkeypatch):
+    """Counts.by_search: the units count_orbits handed to the search, by reason, each reason checked
+    against the units read one by one; the counts are the listing's all the same."""
+    from synth.synthesis import stage_a
+
+    plain = synth.count_chains(1, 10, workers=1, method="orbits")
+    assert (plain.count, plain.units_run, plain.by_search, plain.by_search_note) == (230, 16, {}, None)
+    assert plain.units_run == len(synth.plan_units(1, 10))
+    # W = 0 with no rigid sub-chain: the whole chain is below the threshold, the kernel's rule does not hold
+    exempt = synth.count_chains(0, 9, rigid_subchains=False, workers=1, method="orbits")
+    units = synth.plan_units(0, 9, rigid_subchains=False)
+    assert all(u.code.dof(3) < u.conventions.threshold for u in units)
+    assert exempt.by_search == {"exempt": len(units)} == {"exempt": 22} and exempt.units_run == 22
+    assert exempt.by_code == synth.count_chains(0, 9, rigid_subchains=False, workers=1).by_code
+    assert exempt.by_search_note.startswith("22 of the 22 units run were counted by the search, not by orbits")
+    assert "22 because the chain's W is below" in exempt.by_search_note and "\n" not in exempt.by_search_note
+    # groups "too large" (more than one element): every unit whose bundles some automorphism permutes
+    units = synth.plan_units(1, 10)
+    moved = sum(1 for u in units if u.contracted is not None and u.contracted.bundle_group()[0])
+    monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 1)
+    forced = synth.count_chains(1, 10, workers=2, method="orbits")  # (the pool's forks inherit the limit)
+    assert 0 < moved < len(units) and forced.by_search == {"group": moved} and forced.units_run == 16
+    assert forced == plain and forced.to_dict() == plain.to_dict()  # the count and its row (count, by_code) alike
+
+
+def test_the_command_says_once_on_stderr_which_units_it_counted_by_the_search(monkeypatch, capsys,
+                                                                               no_solver_store):
+    """``--method orbits``: one line on stderr after the count where some unit was counted by the search,
+    none where every unit was counted by orbits; stdout's count keeps its keys in every format."""
+    import json
+
+    from mechsynth.cli import main
+    from synth.synthesis import stage_a
+
+    argv = ["chains", "--dof", "1", "--links", "10", "--count", "--workers", "1", "--method", "orbits"]
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out) == synth.count_chains(1, 10, workers=1).to_dict() and "by the search" not in err
+    monkeypatch.setattr(stage_a, "_GROUP_LIMIT", 1)
+    moved = sum(1 for u in synth.plan_units(1, 10) if u.contracted is not None and not u.contracted.bundle_group()[1])
+    for fmt in ("json", "table"):
+        assert main([*argv, "--format", fmt]) == 0
+        out, err = capsys.readouterr()
+        if fmt == "json":
+            assert list(json.loads(out)) == ["count", "by_code"]
+        notes = [line for line in err.splitlines() if "by the search" in line]
+        assert notes == [f"mechsynth: {moved} of the 16 units run were counted by the search, not by orbits (the "
+                         f"same counts, found as the listing finds them): {moved} because the permutations of their "
+                         f"branch multigraph's bundles of parallel strings are more than 4 096, too many to list"]
+
+
 def test_a_count_by_orbits_resumes_from_its_checkpoint(tmp_path, monkeypatch):
     """Ctrl-C in the middle of a count by orbits with a checkpoint: the rerun computes only the units
     left and gives the whole count; the listing is refused that checkpoint (another method's)."""
@@ -229,11 +280,11 @@ def test_a_count_by_orbits_resumes_from_its_checkpoint(tmp_path, monkeypatch):
 
     real, calls = ts.count_unit, []
 
-    def interrupted(unit, method="listing"):
+    def interrupted(unit, method="listing", stats=None):
         if len(calls) == 7:
             raise KeyboardInterrupt
         calls.append(unit.key)
-        return real(unit, method)
+        return real(unit, method, stats)
 
     path = tmp_path / "c.sqlite"
     monkeypatch.setattr(ts, "count_unit", interrupted)
@@ -241,7 +292,8 @@ def test_a_count_by_orbits_resumes_from_its_checkpoint(tmp_path, monkeypatch):
         synth.count_chains(1, 10, workers=1, checkpoint=path, method="orbits")
     done = list(calls)
     calls.clear()
-    monkeypatch.setattr(ts, "count_unit", lambda unit, method="listing": (calls.append(unit.key), real(unit, method))[1])
+    monkeypatch.setattr(ts, "count_unit", lambda unit, method="listing", stats=None: (calls.append(unit.key),
+                                                                                       real(unit, method, stats))[1])
     assert synth.count_chains(1, 10, workers=1, checkpoint=path, method="orbits").count == 230
     assert len(done) == 7 and not set(done) & set(calls) and len(done) + len(calls) == len(synth.plan_units(1, 10))
     with pytest.raises(synth.SynthesisError, match="belongs to another query"):
