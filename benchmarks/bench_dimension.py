@@ -6,12 +6,14 @@ Usage: ``python benchmarks/bench_dimension.py [--budget SECONDS] [--seed N] [--o
 errors (the objective the literature reports), the largest and RMS error in the target's units,
 the relative error, CPU seconds and candidates evaluated, each constraint's value, and where the
 problem was read.  Ours is run as ``mechsynth synthesize`` runs it (the sampled starts included).
-Where a source records its own best answer (a vector of its four-bar model, :func:`source_model`),
-the row gives that answer's sum of squared errors as recorded and as the motion layer recomputes it,
-and says how our statement of the problem is freer than the source's.  The problems, their sources
+Where a source records its own answers (vectors of its four-bar model, :func:`source_model`), the row
+gives each one's sum of squared errors as recorded and as the motion layer recomputes it, and says how
+our statement of the problem differs from the source's; a problem posed as its source states it also
+has our answer judged as the source judges its own (its vector, the source's closed form, bounds and
+crank-angle order: :func:`as_the_source_states_it`).  The problems, their sources
 and the results are in benchmarks/DIMENSION.md.
 
-``python benchmarks/bench_dimension.py --reliability SEEDS [--budget SECONDS]`` measures how often
+``python benchmarks/bench_dimension.py --reliability SEEDS [--budget SECONDS] [--samples N]`` measures how often
 the search finds a mechanism's own points again from no guess: for each seed (``0..9``) a crank-rocker
 with random dimensions gives ten points without timing (a whole turn), and an offset slider-crank
 with random dimensions eight timed points over 300° (the search given ``synth.atlas.sampled_starts``);
@@ -38,6 +40,7 @@ flatter it.  Ours is the distance at the point's own input, in order.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import subprocess
@@ -69,31 +72,78 @@ HNMED = "roydes/HNMED-Implementacion-y-Pruebas"
 class Problem:
     """A classical path problem: the points, their timing, our constraints and where it was read.
 
-    ``recorded`` is the best answer a source records for the problem as *it* states it: the vector
+    ``records`` are the answers the sources record for the problem as *they* state it: each the vector
     ``(r1, r2, r3, r4, rcx, rcy[, θ0, x0, y0, θ2 at each point])`` of the sources' four-bar model
-    (:func:`source_points`), its sum of squared errors, the method and where.  ``differs`` says how
-    our statement of the problem is freer than the source's, where it is."""
+    (:func:`source_model`), its sum of squared errors, the method and where.  ``differs`` says how
+    our statement of the problem differs from the source's, where it does.  ``bounds`` is the source's
+    box, where our answer is checked against it (:func:`as_the_source_states_it`): the longest link,
+    the coupler point's largest offset in the coupler's frame, and the input pivot's centre and
+    half-width."""
 
     points: list
     inputs: list | None
     constraints: Constraints
     source: str
     pylinkage: bool = False
-    recorded: dict | None = None
+    records: tuple = ()
     differs: str | None = None
+    bounds: dict | None = None
 
 
 # CE2's five points and their timing, as both sources state them (the crank's angle from the frame line)
 ARC = [(3, 3), (2.759, 3.363), (2.372, 3.663), (1.890, 3.862), (1.355, 3.943)]
 ARC_TIMING = [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi / 2]
+HNMED_METHOD = "HNMED (hybrid Nelder-Mead and differential evolution)"
 ARC_RECORD = {"vector": [2.275311865, 2.085761231, 2.275311865, 2.275311865, 1.503900733, 1.725985126],
-              "sum_squared_error": 2.5643900e-4, "method": "HNMED (hybrid Nelder-Mead and differential evolution)",
+              "sum_squared_error": 2.5643900e-4, "method": HNMED_METHOD, "name": "HNMED6",
               "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE2"}
+# CE1's six points, and the answers the sources record for it: [HNMED]'s best of HNMED6, the five minima of its
+# Nelder-Mead variants (experiment A; two of them found twice), and [ECA]'s bestEver
+LINE = [(20, 20), (20, 25), (20, 30), (20, 35), (20, 40), (20, 45)]
+_MINIMA = f"{HNMED}: Resultados de Experimentos/A/Minimos P1.txt"
+LINE_RECORDS = (
+    {"vector": [36.20984565222868, 8.5122713957833192, 26.286150530546053, 36.133728484955391, 35.285017928880542,
+                15.856251446094324, 3.9425512258184425, -7.5517166964425364, 57.867501834179919, 1.6656403214572555,
+                2.4331171195675414, 2.9521145521903884, 3.4537405841629933, 4.0026514475284003, 5.3124518167904986],
+     "sum_squared_error": 3.7865323450608567e-29, "method": HNMED_METHOD, "name": "HNMED6",
+     "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE1"},
+    {"vector": [39.35432733966176, 8.738597335076454, 27.91020567579063, 38.41653206619049, 36.576759454887835,
+                18.058222622003274, 3.922197401424182, -9.015069651004032, 59.8594568458345, 1.6275724377055465,
+                2.42129538238649, 2.93021895068062, 3.4158306289051543, 3.9401612344766854, 5.428565504554411],
+     "sum_squared_error": 1e-20, "method": "ECA (Evolutionary Centers Algorithm)", "name": "ECA",
+     "where": f"{ECA}: tools.jl bestEver(1) (commits 6ef49b0-5f6fe15; the error written as 1e-20)"},
+    {"vector": [30.678548722521839, 7.586679649003891, 27.958699364892709, 29.544623899349318, 44.076107733464056,
+                20.242121958133389, 4.213461531964716, -18.616222237141834, 59.178201995688198, 1.780232945487026,
+                2.431480107064163, 2.928463126026752, 3.403600051451985, 3.908735043042637, 4.596039076717807],
+     "sum_squared_error": 4.964143904374783e-26, "method": "Nelder-Mead NM_RLE1", "name": "NM_RLE1", "where": _MINIMA},
+    {"vector": [28.894894002096127, 7.699362924662206, 28.789643790312432, 28.789648347014200, 50.009541789990848,
+                19.456595739558054, 4.341350883690305, -24.222221620732952, 59.428637366180538, 1.926846233130806,
+                2.470371173894058, 2.923724292683829, 3.359461194819953, 3.812814333970347, 4.356339339329878],
+     "sum_squared_error": 1.833186525988796e-25, "method": "Nelder-Mead NM_RLE1", "name": "NM_RLE1",
+     "where": _MINIMA},
+    {"vector": [58.954789874653642, 10.100561959281467, 22.130174828825229, 48.514150526927558, -22.687379427695106,
+                33.037006703955882, 5.952572594126479, 49.737533228753385, 4.591291798616073, 0.822695152391493,
+                1.017152238623345, 1.226984550277193, 1.467583986855584, 1.775153505509507, 2.566511912842474],
+     "sum_squared_error": 3.155064967649541e-25, "method": "Nelder-Mead NM_RLE2", "name": "NM_RLE2", "where": _MINIMA},
+    {"vector": [29.961378038287577, 7.814749260020724, 29.329511473127049, 29.795346154976343, 49.925375596851168,
+                19.901163156590947, 4.312498649861119, -24.006244292968709, 59.996496108794844, 1.936533768526645,
+                2.480037913641839, 2.932600016581741, 3.368080005161368, 3.822666733609230, 4.372707853323134],
+     "sum_squared_error": 6.856652770436199e-25, "method": "Nelder-Mead NM_RL2E", "name": "NM_RL2E",
+     "where": _MINIMA},
+    {"vector": [36.237821095763053, 8.184926111065355, 28.677920624923544, 35.522573128519056, 40.177509271725945,
+                18.480058451459460, 4.032174802373708, -12.806744148539320, 59.943184518757931, 1.756625828974676,
+                2.457199566226263, 2.966052653222432, 3.457711443210014, 3.996287284363052, 4.908210932894533],
+     "sum_squared_error": 3.056993779912465e-26, "method": "Nelder-Mead NM_RL2E", "name": "NM_RL2E",
+     "where": _MINIMA},
+)
 # Kunjur and Krishnamurty's eighteen points, as [ECA] states them
 EIGHTEEN = [(0.5, 1.1), (0.4, 1.1), (0.3, 1.1), (0.2, 1.0), (0.1, 0.9), (0.05, 0.75), (0.02, 0.6), (0, 0.5), (0, 0.4),
             (0.03, 0.3), (0.1, 0.25), (0.15, 0.2), (0.2, 0.3), (0.3, 0.4), (0.4, 0.5), (0.5, 0.7), (0.6, 0.9), (0.6, 1.0)]
+EIGHTEEN_CENTRE = tuple(np.mean(EIGHTEEN, axis=0).tolist())  # [ECA] moves the points' mean to the origin
 FIXED_FRAME = ("the source fixes the input pivot at the origin and the frame along +x, and times the crank from the "
                "frame line (6 unknowns for 10 equations)")
+#: the sources' crank-rocker with the frame longest (with the order, their r1 + r2 <= r3 + r4 is the crank turning)
+SOURCES_ORDER = ("r2 <= r3 <= r4 <= r1",)
 
 PROBLEMS = {
     "five points on a line, timed": Problem(
@@ -101,30 +151,34 @@ PROBLEMS = {
         [math.pi / 6, math.pi / 4, math.pi / 3, 5 * math.pi / 12, math.pi / 2], Constraints(),
         "none read: restated on 28 Nov from later papers' openings (points of CE1, timing of CE2)"),
     "six points on a line, untimed": Problem(
-        [(20, 20), (20, 25), (20, 30), (20, 35), (20, 40), (20, 45)], None, Constraints(crank=True),
-        f"{ECA}: tools.jl case 1; {HNMED}: Problema_1.m (CE1)",
-        recorded={"vector": [36.20984565222868, 8.5122713957833192, 26.286150530546053, 36.133728484955391,
-                             35.285017928880542, 15.856251446094324, 3.9425512258184425, -7.5517166964425364,
-                             57.867501834179919, 1.6656403214572555, 2.4331171195675414, 2.9521145521903884,
-                             3.4537405841629933, 4.0026514475284003, 5.3124518167904986],
-                  "sum_squared_error": 3.7865323450608567e-29,
-                  "method": "HNMED (hybrid Nelder-Mead and differential evolution)",
-                  "where": f"{HNMED}: Resultados de Experimentos/E/Mejores resultados HNMED6.xlsx, column MCE1"},
+        LINE, None, Constraints(crank=True), f"{ECA}: tools.jl case 1; {HNMED}: Problema_1.m (CE1)",
+        records=LINE_RECORDS[:1],
         differs="the source asks r2 <= r3 <= r4 <= r1 and r1 + r2 <= r3 + r4 (a crank-rocker, frame longest); "
                 "ours asks only that the crank turns"),
+    "six points on a line, untimed, as stated": Problem(
+        LINE, None, Constraints(crank=True, order=SOURCES_ORDER),
+        f"{ECA}: tools.jl case 1; {HNMED}: Problema_1.m (CE1), bounds in A_Experimentos.m", records=LINE_RECORDS,
+        bounds={"link": 60.0, "offset": 60.0, "pivot": (0.0, 0.0, 60.0)},
+        differs="the sources' order r2 <= r3 <= r4 <= r1 with the crank turning (with the order, their r1 + r2 <= "
+                "r3 + r4); their box (links 0-60; rcx, rcy, x0, y0 within +-60) is checked on the answer, not posed "
+                "(our pivots' region would hold the rocker's pivot too, which theirs bounds only through r1, and one "
+                "record has it at x = 105); the crank's angles pass the points one way within a turn, where [HNMED] "
+                "asks them ascending within 0-2pi from the frame line and [ECA] ascending from the first point's "
+                "within a turn (both checked on the answer); any assembly branch, where the sources take the + root "
+                "(checked on the answer)"),
     "five timed points on an arc, frame free": Problem(
         ARC, ARC_TIMING, Constraints(crank=True), f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)",
-        recorded=ARC_RECORD,
+        records=(ARC_RECORD,),
         differs=FIXED_FRAME + "; ours places the frame and the crank's first angle freely (10 unknowns)"),
     "five timed points on an arc, pivots on the x axis": Problem(
         ARC, ARC_TIMING, Constraints(crank=True, pivots=(-1e-3, 50.0, -1e-3, 1e-3)),
-        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", recorded=ARC_RECORD,
+        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", records=(ARC_RECORD,),
         differs=FIXED_FRAME + "; ours keeps both pivots within 0.001 of the x axis between x = 0 and 50, but the "
                 "input pivot may slide along it and the crank's first angle is free (8 unknowns)"),
     "five timed points on an arc, as stated": Problem(
         ARC, ARC_TIMING, Constraints(crank=True, pivot_at={"0-1": (0.0, 0.0)}, frame_angle=0.0, timing="absolute",
                                      order=("r2 <= r3 <= r4 <= r1",)),
-        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", recorded=ARC_RECORD,
+        f"{ECA}: tools.jl case 2; {HNMED}: Problema_2.m (CE2)", records=(ARC_RECORD,),
         differs="none: as the sources state it (input pivot at the origin, frame along +x, the crank's absolute "
                 "angles, r2 <= r3 <= r4 <= r1; with that order their r1 + r2 <= r3 + r4 is the crank turning fully), "
                 "but any assembly branch, where the sources take the + root"),
@@ -137,6 +191,18 @@ PROBLEMS = {
         f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
         differs="the source's box is links 0-5 and offsets and pivot within +-5; ours is 4 target sizes (4.3) "
                 "round the points' centre, and asks only that the crank turns"),
+    "eighteen points of a closed path, untimed, as stated": Problem(
+        EIGHTEEN, None, Constraints(crank=True, order=SOURCES_ORDER),
+        f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl, constraints in tools.jl (grashof)",
+        bounds={"link": 5.0, "offset": 5.0, "pivot": (*EIGHTEEN_CENTRE, 5.0)},
+        differs="the source's order r2 <= r3 <= r4 <= r1 with the crank turning (with the order, its r1 + r2 <= "
+                "r3 + r4); its box (links 0-5; rcx, rcy and the input pivot within +-5 of the points' mean) checked "
+                "on the answer, not posed. Not posable: its objective in its last version, the sum of the distances "
+                "(ours the sum of their squares, whose minimum its earlier version's root of the sum of squares "
+                "shares; our answer's sum of distances is in the row), and its timing, the crank's angles from the "
+                "frame line at one unknown total turn T times each point's share of the polygon's length (as coded "
+                "the last point's share is 0), counter-clockwise, on the + root: ours passes the points in order at "
+                "free angles, either way, on either assembly branch"),
     "eighteen points of a closed path, untimed, transmission 20 deg": Problem(
         EIGHTEEN, None, Constraints(crank=True, min_transmission=math.radians(20)),
         f"{ECA}: testTrajectories.jl case 12, bounds in experiments.jl",
@@ -188,18 +254,85 @@ def source_model(vector, angles) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     return tuple(v @ turn.T + [x0, y0] for v in (pivots, crank, far, point))
 
 
-def recorded_by_motion(problem: Problem) -> tuple[float, float]:
-    """The source's recorded answer, posed at its first point by :func:`source_model` and moved to
+def source_linkage(vector, angle: float) -> Linkage:
+    """The sources' four-bar (:func:`source_model`) as a linkage of ours, posed at the crank angle
+    ``angle`` from the frame line, its coupler point the tracer "P".
+
+    Examples
+    --------
+    >>> np.round(source_linkage([4, 1, 3, 3, 1.5, 0], 0.0).tracers["P"][1], 6).tolist()
+    [1.75, 1.299038]
+    """
+    pivots, crank, far, point = source_model(vector, [angle])
+    return Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], crank[0], far[0]], tracers={"P": (2, tuple(point[0]))})
+
+
+def recorded_by_motion(problem: Problem, record: dict) -> tuple[float, float]:
+    """A source's recorded answer, posed at its first point by :func:`source_model` and moved to
     the others by the motion layer: its sum of squared errors against the problem's points, and the
     largest gap between the motion layer's coupler points and the closed form's."""
-    vector = problem.recorded["vector"]
+    vector = record["vector"]
     angles = np.array(vector[9:] if len(vector) > 9 else problem.inputs, dtype=float)
     theta0 = vector[6] if len(vector) >= 9 else 0.0
-    pivots, crank, far, point = source_model(vector, angles)
-    linkage = Linkage(FOUR_BAR, (0,), [pivots[0], pivots[1], crank[0], far[0]], tracers={"P": (2, tuple(point[0]))})
+    point = source_model(vector, angles)[3]
+    linkage = source_linkage(vector, angles[0])
     traced = np.array([assemble(linkage, theta0 + t).tracers["P"][1] for t in angles])
     residual = traced - np.array(problem.points, dtype=float)
     return float((residual ** 2).sum()), float(np.abs(traced - point).max())
+
+
+def source_vector(linkage: Linkage, inputs) -> list[float]:
+    """Our four-bar as the sources' vector (r1, r2, r3, r4, rcx, rcy, θ0, x0, y0, θ2 at each point):
+    the inverse of :func:`source_model`, the crank's angles taken from the frame line in [0, 2π).
+
+    Examples
+    --------
+    >>> np.round(source_vector(source_linkage([4, 1, 3, 3, 1.5, 0.5, 0.3, 2.0, -1.0], 0.5), [0.3 + 0.5]), 9).tolist()
+    [4.0, 1.0, 3.0, 3.0, 1.5, 0.5, 0.3, 2.0, -1.0, 0.5]
+    """
+    input_pivot, far_pivot, pin, far = (np.asarray(p, dtype=float) for p in linkage.points)
+    frame, coupler = far_pivot - input_pivot, far - pin
+    theta0 = math.atan2(frame[1], frame[0]) % (2 * math.pi)
+    along = coupler / np.linalg.norm(coupler)
+    offset = np.asarray(linkage.tracers["P"][1], dtype=float) - pin
+    lengths = [float(np.linalg.norm(v)) for v in (frame, pin - input_pivot, coupler, far - far_pivot)]
+    return [*lengths, float(offset @ along), float(along[0] * offset[1] - along[1] * offset[0]), theta0,
+            *input_pivot.tolist(), *((np.asarray(inputs, dtype=float) - theta0) % (2 * math.pi)).tolist()]
+
+
+def as_the_source_states_it(problem: Problem, linkage: Linkage, inputs) -> dict:
+    """Our answer judged as the source judges its own: its vector (:func:`source_vector`); the
+    coupler points the sources' closed form (the ``+`` root) gives at its crank angles, their sum of
+    squared distances to the points, and whether they are ours (the same branch); the sum of our
+    points' plain distances ([ECA]'s objective for the eighteen points); the source's box; the crank's
+    angles ascending within 0–2π from the frame line ([HNMED]) and within a turn from the first
+    point's ([ECA]).
+
+    Examples
+    --------
+    >>> problem = PROBLEMS["six points on a line, untimed, as stated"]
+    >>> record = problem.records[0]["vector"]
+    >>> said = as_the_source_states_it(problem, source_linkage(record, record[9]), np.add(record[9:], record[6]))
+    >>> said["sum_squared_error"] < 1e-24, said["sources_branch"], said["within_bounds"], said["ascending_hnmed"]
+    (True, True, True, True)
+    """
+    vector = source_vector(linkage, inputs)
+    angles = np.array(vector[9:])
+    points = np.array(problem.points, dtype=float)
+    _, _, _, closed_form = source_model(vector, angles)
+    mine = np.array([assemble(linkage, t).tracers["P"][1] for t in inputs])
+    distances = np.hypot(*(closed_form - points).T)
+    said = {"vector": vector, "sum_squared_error": float(distances @ distances),
+            "sum_distances": float(np.hypot(*(mine - points).T).sum()),
+            "sources_branch": bool(np.abs(closed_form - mine).max() <= 1e-9 * np.ptp(points, axis=0).max()),
+            "ascending_hnmed": bool((np.diff(angles) > 0).all()),
+            "ascending_eca": bool((np.diff((angles - angles[0]) % (2 * math.pi)) > 0).all())}
+    if problem.bounds is not None:
+        bound = problem.bounds
+        cx, cy, half = bound["pivot"]
+        said["within_bounds"] = bool(max(vector[:4]) <= bound["link"] and max(map(abs, vector[4:6])) <= bound["offset"]
+                                     and abs(vector[7] - cx) <= half and abs(vector[8] - cy) <= half)
+    return said
 
 
 # The pylinkage side, run by its own interpreter: path_generation as documented, each solution moved
@@ -270,8 +403,10 @@ def random_slider_crank(seed: int) -> Linkage:
             return linkage
 
 
-def reliability(seeds: range, budget: float) -> None:
-    """A row per seed and case: the relative error the search reaches from no guess, and its CPU time."""
+def reliability(seeds: range, budget: float, samples: int | None = None) -> None:
+    """A row per seed and case: the relative error the search reaches from no guess, and its CPU time
+    (with ``samples``, the sampled starts take that many crank poses instead of their default)."""
+    starts = sampled_starts if samples is None else functools.partial(sampled_starts, samples=samples)
     for seed in seeds:
         rocker = random_crank_rocker(seed)
         slider = random_slider_crank(seed)
@@ -279,10 +414,10 @@ def reliability(seeds: range, budget: float) -> None:
         cases = {"crank-rocker, 10 points, untimed": (FOUR_BAR, PathTarget(sweep(rocker, steps=11).tracers["P"][:10])),
                  "slider-crank, 8 points, timed": (SLIDER_CRANK, PathTarget(timed.tracers["P"], timed.inputs[:, 0]))}
         for case, (mechanism, target) in cases.items():
-            result = synthesize(mechanism, target, budget=budget, seed=seed, starts=sampled_starts)
+            result = synthesize(mechanism, target, budget=budget, seed=seed, starts=starts)
             print(json.dumps({"case": case, "seed": seed, "relative_max": result.relative_max,
                               "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations,
-                              "met": result.met}), flush=True)
+                              "met": result.met} | ({} if samples is None else {"samples": samples})), flush=True)
 
 
 def seed_range(text: str) -> range:
@@ -295,6 +430,17 @@ def seed_range(text: str) -> range:
     if not seeds:
         raise argparse.ArgumentTypeError(f"the seed range {text!r} is empty")
     return seeds
+
+
+def whole(text: str) -> int:
+    """A whole number of at least 1, for --samples."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number of at least 1, not {text!r}")
+    return value
 
 
 def positive(text: str) -> float:
@@ -321,11 +467,12 @@ def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None 
            "error_max": result.error_max, "error_rms": result.error_rms, "relative_max": result.relative_max,
            "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations, "met": result.met,
            "constraints": result.constraints, "source": problem.source}
-    if problem.recorded is not None:
-        again, _ = recorded_by_motion(problem)
-        row.update({"recorded_sum_squared_error": problem.recorded["sum_squared_error"],
-                    "recorded_recomputed": again, "recorded_method": problem.recorded["method"],
-                    "recorded_where": problem.recorded["where"]})
+    if problem.records:
+        row["records"] = [{"name": record["name"], "method": record["method"], "where": record["where"],
+                           "recorded": record["sum_squared_error"], "recomputed": recorded_by_motion(problem, record)[0]}
+                          for record in problem.records]
+    if problem.bounds is not None:
+        row["as_the_source_judges"] = as_the_source_states_it(problem, result.linkage, result.inputs)
     if problem.differs is not None:
         row["differs"] = problem.differs
     row["linkage"] = result.linkage.to_dict()
@@ -339,6 +486,17 @@ FOUND = 1e-6
 def _constraints_said(row: dict) -> str:
     failed = [name for name, c in row["constraints"].items() if not c["met"]]
     return "met" if not failed else "**not met**: " + ", ".join(failed)
+
+
+def _records_said(row: dict) -> str:
+    """The sources' records of a problem's row as our motion layer recomputes them: one in full, several
+    each to two digits with its name (rows logged before there could be several hold one, unnamed)."""
+    if "recorded_recomputed" in row:
+        return f"{row['recorded_recomputed']:.8g}"
+    records = row.get("records", [])
+    if len(records) == 1:
+        return f"{records[0]['recomputed']:.8g}"
+    return "; ".join(f"{r['recomputed']:.2g} {r['name']}" for r in records) or "—"
 
 
 def table(rows: list[tuple[dict, str]]) -> str:
@@ -360,7 +518,7 @@ def table(rows: list[tuple[dict, str]]) -> str:
         out += ["| problem | ours: sum of squares | recorded, recomputed by our motion layer | ours: largest error "
                 "(relative) | candidates | CPU s | constraints | rows |", "|---|---|---|---|---|---|---|---|"]
         for r, log in problems:
-            recorded = f"{r['recorded_recomputed']:.8g}" if "recorded_recomputed" in r else "—"
+            recorded = _records_said(r)
             candidates = f"{r['evaluations']:,}".replace(",", " ")
             out.append(f"| {r['problem']} | {r['sum_squared_error']:.8g} | {recorded} | {r['error_max']:.2g} "
                        f"({r['relative_max']:.2g}) | {candidates} | {r['cpu_seconds']:.1f} | {_constraints_said(r)} | {log} |")
@@ -411,9 +569,13 @@ def main() -> None:
                         help=f"pylinkage's interpreter (default {DEFAULT_PYLINKAGE}; left out if absent)")
     parser.add_argument("--reliability", metavar="A..B", type=seed_range,
                         help="the reliability runs for these seeds instead")
+    parser.add_argument("--samples", type=whole, metavar="N",
+                        help="with --reliability: the crank poses the sampled starts take (default theirs, 100)")
     parser.add_argument("--table", metavar="LOG", nargs="+",
                         help="print the Markdown tables of these logs' rows instead of running anything")
     args = parser.parse_args()
+    if args.samples is not None and args.reliability is None:
+        parser.error("--samples sets the reliability runs' sampled starts: give --reliability too")
     if args.table is not None:
         if args.reliability is not None or args.only is not None or args.reach is not None:
             parser.error("--table reads logs and runs nothing: --reliability, --only and --reach do not apply")
@@ -422,7 +584,7 @@ def main() -> None:
     if args.reliability is not None:
         if args.only is not None or args.reach is not None:
             parser.error("--reliability runs its own cases in the default box: --only and --reach do not apply")
-        reliability(args.reliability, args.budget)
+        reliability(args.reliability, args.budget, args.samples)
         return
     have_pylinkage = Path(args.pylinkage_python).exists()
     for name, problem in PROBLEMS.items():

@@ -15,7 +15,9 @@ forms (nauty for the engine, bliss for the second method) — once every tree of
 been compared (``null`` after a sample).  The forms are kept on disk, in the SQLite file
 ``LOG.forms.sqlite`` beside the log (each tree's forms and the tree's number in one transaction,
 before its line is written to the log), so a run killed and started again loses no tree and still
-gives both unions; a tree in the log but not in that file (its forms lost) is run again.
+gives both unions; a tree in the log but not in that file (its forms lost) is run again.  A run
+holds a lock on its log: a second run on the same log, while the first is alive, is refused.
+Each line also says the commit and the niceness the run had.
 
 Run from the project root (one process; a progress bar on stderr, or a line a minute when it is a file)::
 
@@ -37,7 +39,9 @@ Exit status: 0 when every tree compared agrees, 1 when one does not, 2 for bad o
 from __future__ import annotations
 
 import argparse
+import fcntl
 import json
+import os
 import random
 import resource
 import signal
@@ -112,7 +116,10 @@ class FormStore:
 
     def __init__(self, path: Path, dof: int, links: int):
         self.path = path
-        self.db = sqlite3.connect(path)
+        try:
+            self.db = sqlite3.connect(path)
+        except sqlite3.Error:  # a folder, or a folder that is gone
+            raise ValueError(f"cannot open {path} as the store of rotation-graph forms (a folder, or not writable)") from None
         try:
             self.db.executescript(
                 "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;"
@@ -154,6 +161,46 @@ class FormStore:
                 for m, method in enumerate(self.METHODS)}
 
 
+ROW_FIELDS = ("engine", "second", "engine_cpu", "second_cpu")  # what every tree's line of a log holds
+
+
+def read_log(log: Path) -> list[dict]:
+    """The lines of a log of this script, each a JSON object; an error (:class:`ValueError`, one
+    sentence) when the file is not such a log: not text, a line not a JSON object, or a tree's line
+    (one with ``tree``) without its counts and times.
+
+    Example
+    -------
+    >>> import tempfile
+    >>> log = Path(tempfile.mkdtemp()) / "log.jsonl"
+    >>> _ = log.write_text('{"dof": 2, "links": 6, "tree": 0, "engine": 1, "second": 1, "engine_cpu": 0.1, "second_cpu": 0.2}\\n')
+    >>> [row["engine"] for row in read_log(log)]
+    [1]
+    >>> _ = log.write_text('{"dof": 2, "links": 6, "tree": 0}\\n')
+    >>> read_log(log)
+    Traceback (most recent call last):
+    ValueError: ... is not a log of this script (the line of tree 0 lacks its counts and times)
+    """
+    try:
+        text = log.read_text()
+    except UnicodeDecodeError:
+        raise ValueError(f"{log} is not a log of this script (not text)") from None
+    except OSError as error:
+        raise ValueError(f"cannot read the log {log}: {error.strerror}") from None
+    rows = []
+    for line in text.splitlines():
+        try:
+            row = json.loads(line)
+        except ValueError:
+            raise ValueError(f"{log} is not a log of this script (a line is not JSON)") from None
+        if not isinstance(row, dict):
+            raise ValueError(f"{log} is not a log of this script (a line is not a JSON object)")
+        if "tree" in row and (not isinstance(row["tree"], int) or not all(isinstance(row.get(k), (int, float)) for k in ROW_FIELDS)):
+            raise ValueError(f"{log} is not a log of this script (the line of tree {row['tree']} lacks its counts and times)")
+        rows.append(row)
+    return rows
+
+
 def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list[dict]:
     """The records-table lines (benchmarks/records.py's columns) of the engine's counts that the log's
     latest summary of ``dof``/``links`` showing a whole check covers, written to ``table``; an error
@@ -163,10 +210,7 @@ def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list
 
     if table.exists() and table.read_text().partition("\n")[0] != ",".join(COLUMNS):
         raise ValueError(f"{table} is not a records table (its first line is not the header {','.join(COLUMNS)})")
-    try:
-        rows = [json.loads(line) for line in log.read_text().splitlines()]
-    except ValueError:
-        raise ValueError(f"{log} is not a log of this script (a line is not JSON)") from None
+    rows = read_log(log)
     summaries = [r["summary"] for r in rows if "summary" in r and (r["summary"]["dof"], r["summary"]["links"]) == (dof, links)]
     if not summaries:
         raise ValueError(f"{log} has no summary of F = {dof}, {links} links: run the comparison first")
@@ -186,12 +230,17 @@ def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list
         ours = [r for r in upto if (r.get("dof"), r.get("links")) == (dof, links)]  # its rows and summaries
         commit = [" ".join(dict.fromkeys(r["commit"] for r in ours if "commit" in r)), done["date"]]
         done = dict(done, peak_mib=max(r.get("peak_mib", 0) for r in ours))
+        levels = sorted({r["nice"] for r in ours if "nice" in r})
+        unlogged = any("tree" in r and "nice" not in r for r in ours)
+        where = (f"at nice {' and '.join(map(str, levels))}{' (the first runs: not logged)' if unlogged else ''}"
+                 if levels else "niced") + " on the shared machine"
     else:  # a summary of before 29 Nov 2026: the commit that brought the log (the engine is the same there)
         commit = subprocess.run(["git", "log", "-1", "--format=%h %cs", "--", str(log)], cwd=ROOT, capture_output=True,
                                 text=True).stdout.split() or ["uncommitted", ""]
+        where = "niced on the shared machine"
     shown = log.resolve().relative_to(ROOT) if log.resolve().is_relative_to(ROOT) else log
     method = (f"engine synth.gears.tree_census tree by tree beside the second method in one process at a time (runs resumed "
-              f"from the log add up), niced on the shared machine (CPU s: the engine's, "
+              f"from the log add up), {where} (CPU s: the engine's, "
               f"{'both graphs' if done['rotation_compared'] else 'displacement graphs only'}; "
               f"the second method's {done['second_cpu_s']}; peak MiB: both in one process, the largest of the runs)")
     base = {"published": "", "source": "", "by_code_file": str(shown), "wall_s": "", "cpu_s": done["engine_cpu_s"],
@@ -210,13 +259,14 @@ def record(log: Path, dof: int, links: int, rotation: bool, table: Path) -> list
 
 
 def _commit() -> dict:
-    """The commit of this checkout (``+changes`` when synth/ or tests/oracles/ differ from it) and today's date."""
+    """The commit of this checkout (``+changes`` when synth/ or tests/oracles/ differ from it), today's date and
+    the niceness this process runs at."""
     def git(*args):
         return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
 
     dirty = git("status", "--porcelain", "--", "synth", "tests/oracles")
     return {"commit": git("rev-parse", "--short", "HEAD") + ("+changes" if dirty else ""),
-            "date": time.strftime("%Y-%m-%d", time.gmtime())}
+            "date": time.strftime("%Y-%m-%d", time.gmtime()), "nice": os.nice(0)}
 
 
 def _agrees(row: dict) -> bool:
@@ -233,6 +283,19 @@ def summary(rows: list[dict], trees: int, seconds: dict) -> dict:
             "second_cpu_s": round(sum(r["second_cpu"] for r in rows), 1), **seconds}
 
 
+EPILOG = """examples (from the project root):
+  python benchmarks/gears_two_methods_by_tree.py /tmp/f2n8.jsonl --dof 2 --links 8 --rotation
+      every 8-link tree of F = 2 by both methods; the same command again resumes a run stopped
+      by Ctrl-C or killed, comparing only the trees not in the log
+  python benchmarks/gears_two_methods_by_tree.py /tmp/s.jsonl --dof 1 --links 9 --sample 20 --seed 1
+      20 trees drawn at random
+  python benchmarks/gears_two_methods_by_tree.py /tmp/f2n8.jsonl --dof 2 --links 8 --rotation --record /tmp/records.csv
+      write the counts of a finished run to a records table (the project's: benchmarks/records.csv)
+
+One run a log at a time (a second is refused). Exit status: 0 every tree compared agrees,
+1 one does not, 2 bad options, 130 Ctrl-C (the summary written first)."""
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message):
         """One sentence on stderr and exit status 2 (no usage block)."""
@@ -241,13 +304,14 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv=None) -> int:
-    parser = _Parser(description=__doc__.splitlines()[0])
-    parser.add_argument("log", type=Path, help="JSON lines, appended to (a run goes on where the log stops)")
-    parser.add_argument("--dof", type=int, required=True, help="mobility F (1 or 2 …)")
+    parser = _Parser(description=__doc__.splitlines()[0], epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("log", type=Path, help="JSON lines, appended to (a run goes on where the log stops; with "
+                        "--rotation the forms are kept in LOG.forms.sqlite beside it)")
+    parser.add_argument("--dof", type=int, required=True, help="mobility F (1 … 3)")
     parser.add_argument("--links", type=int, required=True, help="number of links (4 … 12)")
     parser.add_argument("--sample", type=int, help="compare this many trees drawn at random (default: every tree)")
     parser.add_argument("--seed", type=int, help="seed of the sample (required with --sample)")
-    parser.add_argument("--rotation", action="store_true", help="compare the numbers of rotation graphs per tree too, and (every tree run at once) each method's total")
+    parser.add_argument("--rotation", action="store_true", help="compare the numbers of rotation graphs per tree too, and, once every tree is compared, each method's total")
     parser.add_argument("--record", type=Path, metavar="CSV",
                         help="run nothing: write the counts the log shows checked to this records table")
     args = parser.parse_args(argv)
@@ -274,23 +338,26 @@ def main(argv=None) -> int:
         return 0
     if args.log.is_dir() or not args.log.parent.is_dir():
         parser.error(f"cannot write the log {args.log}: not a file in an existing folder")
-    done = {}
-    if args.log.exists():
-        for line in args.log.read_text().splitlines():
-            try:
-                row = json.loads(line)
-            except ValueError:
-                parser.error(f"{args.log} is not a log of this script (a line is not JSON); give a new file or its log")
-            if not isinstance(row, dict):
-                parser.error(f"{args.log} is not a log of this script (a line is not a JSON object)")
-            if row.get("dof") == args.dof and row.get("links") == args.links and "tree" in row:
-                if "engine_rotation" in row or not args.rotation:
-                    done[row["tree"]] = row
+    created = not args.log.exists()
+    out = open(args.log, "a")  # (a log that exists is not changed before the checks below pass)
+    try:  # one run a log: a second one would compare the same trees again beside the first
+        fcntl.flock(out, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        parser.error(f"another run is writing the log {args.log}: let it end (or stop it by Ctrl-C), then start this "
+                     "one again, which goes on where it stopped")
+    try:
+        done = {row["tree"]: row for row in read_log(args.log)
+                if row.get("dof") == args.dof and row.get("links") == args.links and "tree" in row
+                and ("engine_rotation" in row or not args.rotation)}
+    except ValueError as error:
+        parser.error(f"{error}; give a new file or a log of this script")
     store = None
     if args.rotation:  # the forms of the trees done, kept for the unions
         try:
             store = FormStore(args.log.with_name(args.log.name + ".forms.sqlite"), args.dof, args.links)
         except ValueError as error:
+            if created:
+                args.log.unlink()
             parser.error(str(error))
         stored = store.trees()
         done = {k: row for k, row in done.items() if k in stored}  # a tree whose forms were lost is run again
@@ -310,14 +377,14 @@ def main(argv=None) -> int:
     from synth import Progress
 
     try:  # a bar on a terminal, a line a minute in a log
-        with open(args.log, "a") as out, Progress(len(todo), "trees", desc="gears_two_methods_by_tree") as progress:
+        with Progress(len(todo), "trees", desc="gears_two_methods_by_tree") as progress:
             for pair in todo:
                 forms = {"engine": set(), "second": set()} if store else None
                 row = compare_tree(args.dof, args.links, pair, args.rotation, forms)
                 if store:
                     store.add(row["tree"], forms)  # the forms first: a tree in the log has its forms kept
                 # which engine, and the memory so far: what a run killed before its summary leaves to record
-                row.update(commit=commit["commit"], peak_mib=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
+                row.update(commit=commit["commit"], nice=commit["nice"], peak_mib=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
                 out.write(json.dumps(row) + "\n")
                 out.flush()
                 done[row["tree"]] = row
@@ -339,8 +406,8 @@ def main(argv=None) -> int:
         store.db.close()
         seconds.update(engine_rotation_total=totals.get("engine"), second_rotation_total=totals.get("second"))
     result = {"summary": {"dof": args.dof, "links": args.links, **summary(rows, len(pairs), seconds)}}
-    with open(args.log, "a") as out:
-        out.write(json.dumps(result) + "\n")
+    out.write(json.dumps(result) + "\n")
+    out.close()
     print(json.dumps(result))
     if interrupted:
         print("interrupted: the trees compared so far are in the log and in the summary above", file=sys.stderr)

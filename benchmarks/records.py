@@ -15,11 +15,16 @@ to ``benchmarks/records.csv``, and checks the count by whatever independent mean
 * ``kernels off`` (multiple joints only): the counts by code equal those of the engine with its compiled
   kernels off (:func:`kernels_off_by_code`; up to ``--second-max`` chains, or every ``--second-every``-th
   code, a sample).  The count's search with multiple joints runs the stage-B kernel with the exact test's
-  sets checked inside it; this check shares neither, nor the listing's kernel.
+  sets checked inside it; this check shares neither, nor the listing's kernel;
+* ``tight-reverse`` (no multiple joints, counts the listing does not check, up to ``--reverse-max``): the
+  counts by code equal those of the same command with ``--method tight-reverse``, the second count of a
+  record (another programme over the strings, another reading of the automorphisms; units that are not
+  tight are counted by orbits), at about the cost of the count.
 
 A row with none of them says ``none``.  The table of the section "Published counts" of
 ``benchmarks/RECORDS.md`` is then written from the whole CSV (other sections of that file are left
-as they are), with the rows not run and why.
+as they are), with the rows not run and why, and the figure ``benchmarks/records_growth.png`` (chains
+against links, one line per series, published values ringed) is drawn again from the whole CSV.
 
 Run from the project root (a long row prints the command's own progress bar)::
 
@@ -28,6 +33,7 @@ Run from the project root (a long row prints the command's own progress bar)::
     nice -n 10 python benchmarks/records.py --only "links 14 --v" --recheck --list-max 0 --second-max 100000000 \
         --second-every 10                                 # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
+    python benchmarks/records.py --size --only "dof 3 --links"   # the engine's sizing of rows, beside the records
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
 keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
@@ -52,6 +58,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 LIST_MAX = 400_000  # the listing path checks a count up to this many chains by default (14 links: 21 CPU s)
+# … and the second count (--method tight-reverse, about the cost of the count) checks larger ones up to this many
+REVERSE_MAX = 10**10
 COLUMNS = ["query", "count", "published", "source", "check", "by_code_file", "wall_s", "cpu_s", "peak_mib",
            "method", "commit", "date"]
 SECTION = "## Published counts"
@@ -111,6 +119,21 @@ _A227117 = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132, 11: 203
 _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
          (3, True): {6: 1, 8: 7, 10: 98}, (3, False): {6: 1, 8: 5, 10: 74}}
 
+# h = 4 … 6 beyond 20 links: the engine's sizing misses the growth of a unit's time there (UNIT_GROWTH has no
+# factor for h >= 4): 26 links at h = 5 was sized at 1.4 CPU s and took 35, 23 links at h = 4 13 and 90
+# (`records.py --size`, 3ef3e6b); the counts' memory grows too (1.2 and 1.5 GiB at their peak)
+_SIZED_H = "the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about {} chains, {} CPU s, " \
+           "but it sized {} at {} CPU s and that count took {}"
+_BEYOND = {
+    (4, 23): "run on its own (--only): sized at 13 CPU s (3.6e9 chains), counted in 90 CPU s and 1.5 GiB on 29 Nov "
+             "2026, and as much again for its second count",
+    (4, 26): "not run: " + _SIZED_H.format("7.9e11", 197, "23 links", 13, 90)
+             + ", so expect some 20 to 25 CPU min, and its memory may pass 2 GiB (1.5 GiB at 23 links)",
+    (5, 30): "not run to the end: " + _SIZED_H.format("9.8e10", 9.6, "26 links", 1.4, 35.5)
+             + "; begun on 29 Nov, 441 of some 4 600 units (2.9e9 chains) in about 50 CPU s, stopped for time",
+    (6, 32): "not run: " + _SIZED_H.format("5.4e8 to 5.6e9", "3 to 70", "27 links", "0.5 to 5", 4.8),
+}
+
 ROWS = (
     [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
     + [_row("W = 1", 1, 18, _A233288[18], "A233288",
@@ -125,7 +148,10 @@ ROWS = (
     + [_row("W = 2", 2, 17, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
-            heavy="not run: 8 loops; the engine's sizing gives about 7.5e9 chains, 8 CPU hours")]
+            heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 8.4e9 "
+                  "chains, 1.8 to 2.2 CPU hours, but at 17 links it gave 86 to 101 CPU s against the 229 measured (1325c9d): "
+                  "expect some 5 CPU hours (2.5 h on 2 quiet workers); to run it: `nice -n 10 python "
+                  "benchmarks/records.py --only \"chains --dof 2 --links 19\" --reverse-max 0`")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
@@ -133,18 +159,23 @@ ROWS = (
     + [_row("W = 3", 3, 18, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
-            heavy="not run: 8 loops; the engine's sizing gives about 3.3e10 chains, 24 CPU hours")]
+            heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 3.3e10 "
+                  "chains, 10.6 CPU hours, but at 18 links it gave 479 CPU s against the 753 measured (f66be84): "
+                  "expect some 17 CPU hours (8 to 9 h on 2 quiet workers); to run it: `nice -n 10 python "
+                  "benchmarks/records.py --only \"chains --dof 3 --links 20\" --reverse-max 0`")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
             heavy="not run to the end: no longer refused (a count keeps its largest code's certificates, 0.6 GiB "
-                  "of plan on 2 workers, not the code whole: PROFILE.md section 26; sized at 27 min on 2 quiet "
-                  "workers); started on 29 Nov at nice 19 on the shared machine, where it got 3 CPU s a minute, "
-                  "and stopped")]
-    + [_row("h = 4", 1, n, h=4, oracle=n <= 8) for n in (5, 8, 11, 14, 17, 20)]
-    + [_row("h = 5", 1, n, h=5, oracle=n <= 6) for n in (6, 10, 14, 18, 22)]
-    + [_row("h = 6", 1, n, h=6, oracle=n <= 7) for n in (7, 12, 17, 22)]
+                  "of plan on 2 workers, not the code whole: PROFILE.md section 26); the engine's sizing "
+                  "(`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 4.3e7 chains, 18 to 22 CPU min, but at 11 "
+                  "links it gave 70 to 88 CPU s against the 106 measured the same day: expect some 27 CPU min "
+                  "(about 14 min on 2 quiet workers); to run it: `nice -n 10 python benchmarks/records.py --only "
+                  "\"links 12 --h 2\" --reverse-max 0` (the listing does not check it; the published value does)")]
+    + [_row("h = 4", 1, n, h=4, oracle=n <= 8, heavy=_BEYOND.get((4, n), "")) for n in range(5, 27, 3)]
+    + [_row("h = 5", 1, n, h=5, oracle=n <= 6, heavy=_BEYOND.get((5, n), "")) for n in range(6, 31, 4)]
+    + [_row("h = 6", 1, n, h=6, oracle=n <= 7, heavy=_BEYOND.get((6, n), "")) for n in range(7, 33, 5)]
     + [_row("W = 1, multiple joints", 1, n, None, "Ding2013", v=n - 2, oracle=n <= 8) for n in range(4, 13, 2)]
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
             heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
@@ -206,9 +237,11 @@ class _PeakMemory(threading.Thread):
             self.done.wait(0.2)
 
 
-def run_count(row: Row) -> dict:
-    """Run the row's count as the command line does; its counts, wall and CPU seconds and peak MiB."""
-    command = [sys.executable, "-m", "mechsynth", *row.query.split(), "--count", "--workers", "2", "--force"]
+def run_count(row: Row, method: str | None = None) -> dict:
+    """Run the row's count as the command line does (by ``--method method`` if given); its counts, wall and CPU
+    seconds and peak MiB."""
+    command = [sys.executable, "-m", "mechsynth", *row.query.split(), "--count", "--workers", "2", "--force",
+               *(["--method", method] if method else [])]
     env = dict(os.environ, MECHSYNTH_CACHE="off", PYTHONPATH=str(ROOT))
     cpu0, t0 = _children_cpu(), time.perf_counter()
     proc = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True)
@@ -228,7 +261,8 @@ def run_count(row: Row) -> dict:
         memory.done.set()
     wall, cpu = time.perf_counter() - t0, _children_cpu() - cpu0
     if proc.returncode not in (0, 1):
-        raise RuntimeError(f"`mechsynth {row.query} --count` failed with exit status {proc.returncode}")
+        raise RuntimeError(f"`mechsynth {row.query} --count{' --method ' + method if method else ''}` failed with "
+                           f"exit status {proc.returncode}")
     result = json.loads(out)
     return {"count": result["count"], "by_code": result["by_code"], "wall_s": round(wall, 2),
             "cpu_s": round(cpu, 2), "peak_mib": round(memory.peak / 2**20)}
@@ -308,10 +342,13 @@ def kernels_off_by_code(row: Row, every: int = 1) -> dict:
 
 
 def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
-           second_every: int = 1) -> tuple[str, bool]:
+           second_every: int = 1, reverse_max: int = 0) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
     the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
-    the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan)."""
+    the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan);
+    a count the listing does not check, of up to ``reverse_max`` chains and without multiple joints, is
+    counted again by ``--method tight-reverse`` (the second count of a record: another programme over the
+    strings, another reading of the automorphisms), code by code."""
     passed, ok = [], True
     if row.published is not None:
         ok &= found["count"] == row.published
@@ -324,6 +361,13 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
         same = listing_by_code(row) == found["by_code"]
         ok &= same
         passed.append("listing by code" if same else "LISTING DIFFERS")
+    elif not row.option("--v") and list_max < found["count"] <= reverse_max:
+        second = run_count(row, "tight-reverse")
+        same = second["by_code"] == found["by_code"]
+        ok &= same
+        print(f"records   tight-reverse: {second['count']} chains, {second['cpu_s']} CPU s, {second['wall_s']} s",
+              file=sys.stderr, flush=True)
+        passed.append("tight-reverse by code" if same else "TIGHT-REVERSE DIFFERS")
     if row.option("--v") and 0 < found["count"] <= second_max:
         second = kernels_off_by_code(row, second_every)
         whole = second_every == 1  # (then every code counted is in the plan's sample)
@@ -364,6 +408,7 @@ def read_csv(path: Path) -> dict[str, dict]:
 
 def write_csv(path: Path, lines: dict[str, dict]) -> None:
     order = {row.query: k for k, row in enumerate(ROWS)}
+    path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     with tmp.open("w", newline="") as f:
         writer = csv.DictWriter(f, COLUMNS)
@@ -377,8 +422,9 @@ def _number(text: str) -> str:
     return f"{int(text):,}".replace(",", " ") if text else ""
 
 
-def section(lines: dict[str, dict]) -> str:
-    """The text of the section "Published counts" of RECORDS.md, written from the CSV's lines."""
+def section(lines: dict[str, dict], figure: str | None = None) -> str:
+    """The text of the section "Published counts" of RECORDS.md, written from the CSV's lines, showing the growth
+    figure at the path ``figure`` (relative to RECORDS.md) if given."""
     out = [SECTION, "",
            "Written by `benchmarks/records.py` from `benchmarks/records.csv` (do not edit by hand). Each count is",
            "`mechsynth chains … --count --workers 2` run in a fresh process with the store of solver results off",
@@ -390,9 +436,16 @@ def section(lines: dict[str, dict]) -> str:
            "*kernels off* = with multiple joints, the engine with its compiled kernels of stages A and B turned",
            "off (plain search or CP-SAT, the exact test in numpy), code by code, in one process (`--second-max`;",
            "a sample of the codes where it says so; `--recheck` checks a recorded count again);",
+           "*tight-reverse* = the same command with `--method tight-reverse` (the second count of a record: another",
+           "programme over the strings, another reading of the automorphisms), code by code (`--reverse-max`);",
            "*none* = no independent check. A row without a published value goes beyond its source;",
            "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
-           "Counts by code: the JSON file of each query in `benchmarks/records/`.", "",
+           "Counts by code: the JSON file of each query in `benchmarks/records/`.", ""]
+    if figure:
+        out += [f"![The chains of each series against their links, on a log scale; published values ringed]({figure})",
+                "", f"`{figure}` is drawn from the CSV by every run of `records.py` (with every row recorded,",
+                "`python benchmarks/records.py` runs nothing and only writes this section and the figure again).", ""]
+    out += [
            "| series | query | chains | published | source | checks passed | wall s | CPU s | peak MiB | commit |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     keys = []
@@ -415,8 +468,9 @@ def section(lines: dict[str, dict]) -> str:
     return "\n".join(out) + "\n"
 
 
-def write_md(path: Path, lines: dict[str, dict]) -> None:
-    """Replace the section "Published counts" of ``path`` (created with every section if missing)."""
+def write_md(path: Path, lines: dict[str, dict], figure: Path | None = None) -> None:
+    """Replace the section "Published counts" of ``path`` (created with every section if missing), showing the
+    growth figure ``figure`` if given."""
     text = path.read_text() if path.exists() else "# Records\n\n" + "\n".join(f"{s}\n" for s in SECTIONS)
     if SECTION not in text:
         text = text.rstrip("\n") + f"\n\n{SECTION}\n"
@@ -424,8 +478,118 @@ def write_md(path: Path, lines: dict[str, dict]) -> None:
     following = rest.find("\n## ")
     tail = rest[following + 1:] if following >= 0 else ""
     tmp = path.with_suffix(".tmp")
-    tmp.write_text(head + section(lines) + ("\n" + tail if tail else ""))
+    shown = os.path.relpath(figure, path.parent) if figure else None
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp.write_text(head + section(lines, shown) + ("\n" + tail if tail else ""))
     tmp.replace(path)
+
+
+def sizing(row: Row):
+    """The engine's estimate of the row's count before it runs (:func:`synth.synthesis.estimate.estimate`, the
+    sizing ``mechsynth chains … --count`` prints before a long count: exact counts of the same query at smaller
+    sizes, extrapolated), or None where fewer than three smaller sizes have chains.  Nothing is run at the
+    row's own size, so a row of hours is sized in seconds.
+
+    >>> e = sizing(next(r for r in ROWS if r.query == "chains --dof 1 --links 14"))
+    >>> 2.5e5 < e.chains < 4e5, e.basis
+    (True, 'exact counts at 8, 10, 12 links')
+    """
+    from synth import ChainQuery
+    from synth.synthesis.estimate import estimate
+
+    return estimate(ChainQuery(**_query(row)))
+
+
+def size_table(rows: list[Row], lines: dict[str, dict]) -> int:
+    """Print on stdout, as a Markdown table, the engine's sizing of each row (:func:`sizing`) beside the count
+    and CPU seconds recorded for it in the CSV, if any, and the estimate's error against them; the time each
+    sizing took goes to stderr.  Returns 1 when no row could be sized, else 0."""
+    from synth.execution.sizes import describe_seconds, magnitude
+
+    print("| query | chains, estimated | chains, recorded | error | CPU s, estimated | CPU s, recorded | error | "
+          "estimated from |\n|---|---|---|---|---|---|---|---|", flush=True)
+    sized = 0
+    for row in rows:
+        t0 = time.process_time()
+        found = sizing(row)
+        print(f"records   sized `{row.query}` in {time.process_time() - t0:.1f} CPU s", file=sys.stderr, flush=True)
+        line = lines.get(row.query, {})
+        if found is None:
+            print(f"| `{row.query}` | — | {_number(line.get('count', ''))} |  | — | {line.get('cpu_s', '')} |  | "
+                  "fewer than three smaller sizes have chains |", flush=True)
+            continue
+        sized += 1
+
+        def cpu(found):
+            seconds = magnitude(found.seconds, found.log10_seconds) if found.seconds >= 1e7 else f"{found.seconds:.3g}"
+            return seconds + (f" ({describe_seconds(found.seconds, found.log10_seconds)})" if found.seconds >= 120 else "")
+
+        def error(estimated, recorded):
+            return f"{estimated / float(recorded) - 1:+.0%}" if recorded and float(recorded) > 0 else ""
+
+        print(f"| `{row.query}` | {magnitude(found.chains, found.log10_chains)} | {_number(line.get('count', ''))} | "
+              f"{error(found.chains, line.get('count'))} | {cpu(found)} | "
+              f"{line.get('cpu_s', '')} | {error(found.seconds, line.get('cpu_s'))} | {found.basis[len('exact counts at '):]} |",
+              flush=True)
+    return 0 if sized else 1
+
+
+#: the look of each series in the growth figure: colour, marker, line style
+STYLES = {"W = 1": ("tab:blue", "o", "-"), "W = 2": ("tab:orange", "s", "-"),
+          "W = 2, not fractionated": ("tab:orange", "s", ":"), "W = 3": ("tab:green", "^", "-"),
+          "W = 3, not fractionated": ("tab:green", "^", ":"), "h = 2 (Laman)": ("tab:red", "D", "-"),
+          "h = 4": ("tab:purple", "v", "-"), "h = 5": ("tab:brown", "P", "-"), "h = 6": ("tab:gray", "X", "-"),
+          "W = 1, multiple joints": ("tab:cyan", "*", "--")}
+
+
+def draw_growth(lines: dict[str, dict], path: Path) -> dict[str, list[tuple[int, int, int | None]]]:
+    """Draw ``path`` (PNG): the chains counted against the links, on a log scale, one line per series of
+    :data:`ROWS` with the rows of the CSV's ``lines`` (rows added later are drawn as they come), each
+    published value ringed.  Gear trains (not rows of :data:`ROWS`) are left out.  Returns the points
+    drawn: ``(links, chains, published or None)`` by series.
+
+    >>> import tempfile
+    >>> lines = {"chains --dof 1 --links 8": {"count": "16"}, "chains --dof 1 --links 10": {"count": "230"}}
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     draw_growth(lines, Path(folder) / "g.png"), (Path(folder) / "g.png").read_bytes()[:4]
+    ({'W = 1': [(8, 16, 16), (10, 230, 230)]}, b'\\x89PNG')
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
+
+    series: dict[str, list[tuple[int, int, int | None]]] = {}
+    for row in ROWS:
+        line = lines.get(row.query)
+        if line is not None and int(line["count"]) > 0:
+            series.setdefault(row.series, []).append((int(row.option("--links")), int(line["count"]), row.published))
+    fig, ax = plt.subplots(figsize=(10, 6), dpi=100)
+    for name, points in series.items():
+        colour, marker, style = STYLES.get(name, ("black", "o", "-"))
+        points.sort()
+        ax.plot([n for n, _, _ in points], [c for _, c, _ in points], linestyle=style, marker=marker, color=colour,
+                markersize=7, linewidth=1.6, label=name)
+    published = [(n, p) for points in series.values() for n, _, p in points if p]
+    if published:
+        ax.plot(*zip(*published), linestyle="none", marker="o", markersize=14, markerfacecolor="none",
+                markeredgecolor="black", markeredgewidth=1.2, label="published value")
+    ax.set_yscale("log")
+    ax.set_xlabel("links", fontsize=13)
+    ax.set_ylabel("non-isomorphic chains", fontsize=13)
+    ax.set_title("Chains counted by mechsynth chains … --count (benchmarks/records.csv)", fontsize=13)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.tick_params(labelsize=12)
+    ax.grid(True, which="major", alpha=0.35)
+    ax.legend(fontsize=11, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.png")
+    fig.savefig(tmp)
+    plt.close(fig)
+    tmp.replace(path)
+    return series
 
 
 def _writable(path: Path, what: str, directory: bool = False) -> None:
@@ -446,29 +610,54 @@ def main(argv=None) -> int:
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
     parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included)")
     parser.add_argument("--again", action="store_true", help="run rows already in the CSV again")
-    parser.add_argument("--list-max", type=int, default=LIST_MAX, metavar="N",
-                        help="check by the listing path the counts of up to N chains (default: %(default)s)")
-    parser.add_argument("--second-max", type=int, default=LIST_MAX, metavar="N",
+    parser.add_argument("--list-max", type=int, metavar="N",
+                        help=f"check by the listing path the counts of up to N chains (default: {LIST_MAX})")
+    parser.add_argument("--second-max", type=int, metavar="N",
                         help="with multiple joints, check by the count with the kernels off the counts of up to N "
-                        "chains (default: %(default)s)")
-    parser.add_argument("--second-every", type=int, default=1, metavar="K",
+                        f"chains (default: {LIST_MAX})")
+    parser.add_argument("--second-every", type=int, metavar="K",
                         help="… on every K-th code of the plan only, a sample (default: every code)")
+    parser.add_argument("--reverse-max", type=int, metavar="N",
+                        help="without multiple joints, check the counts the listing does not check, of up to N chains, "
+                        f"by a second count, --method tight-reverse (default: {REVERSE_MAX:.0e}; 0: none)")
     parser.add_argument("--recheck", action="store_true",
                         help="with --only: check again the counts already in the CSV (their by-code files), without "
                         "counting them again; only the checks column changes")
+    parser.add_argument("--size", action="store_true",
+                        help="count nothing: print the engine's sizing of the rows chosen (--only, --quick, or every "
+                        "row) as a Markdown table on stdout, beside the counts and CPU seconds recorded in the CSV; "
+                        "nothing is written")
     parser.add_argument("--csv", type=Path, default=ROOT / "benchmarks" / "records.csv",
                         help="the table of counts, one line a query, updated in place (default: %(default)s)")
     parser.add_argument("--md", type=Path, default=ROOT / "benchmarks" / "RECORDS.md",
                         help="its section 'Published counts' is written from the CSV (default: %(default)s)")
     parser.add_argument("--by-code", type=Path, default=ROOT / "benchmarks" / "records",
                         help="folder of the counts by code, one JSON file a query (default: %(default)s)")
+    parser.add_argument("--figure", type=Path,
+                        help="the growth figure (PNG), drawn from the whole CSV whenever the Markdown file is written "
+                        "(default: records_growth.png beside the Markdown file)")
     args = parser.parse_args(argv)
+    checking = {"--list-max": args.list_max, "--second-max": args.second_max, "--second-every": args.second_every,
+                "--reverse-max": args.reverse_max}
+    if args.size:
+        given = [name for name, value in [*checking.items(), ("--again", args.again or None),
+                                           ("--recheck", args.recheck or None), ("--figure", args.figure)]
+                 if value is not None]
+        if given:
+            fail(f"--size counts and writes nothing, so {given[0]} has no use with it")
+    args.list_max = LIST_MAX if args.list_max is None else args.list_max
+    args.second_max = LIST_MAX if args.second_max is None else args.second_max
+    args.second_every = 1 if args.second_every is None else args.second_every
+    args.reverse_max = REVERSE_MAX if args.reverse_max is None else args.reverse_max
+    args.figure = args.figure or args.md.parent / "records_growth.png"
     if args.quick and args.only is not None:
         fail("--quick and --only choose the rows in two different ways: give one of them")
     if args.list_max < 0:
         fail(f"--list-max must be 0 (no listing check) or more, not {args.list_max}")
     if args.second_max < 0:
         fail(f"--second-max must be 0 (no check with the kernels off) or more, not {args.second_max}")
+    if args.reverse_max < 0:
+        fail(f"--reverse-max must be 0 (no second count) or more, not {args.reverse_max}")
     if args.second_every < 1:
         fail(f"--second-every must be 1 (every code) or more, not {args.second_every}")
     if args.recheck and (args.only is None or args.again):
@@ -476,8 +665,11 @@ def main(argv=None) -> int:
     if args.only is not None and not args.only.strip():
         fail("--only needs some text of a query, such as 'dof 2 --links 11'")
     for path, what, directory in ((args.csv, "CSV file", False), (args.md, "Markdown file", False),
-                                  (args.by_code, "by-code folder", True)):
-        _writable(path, what, directory)
+                                  (args.by_code, "by-code folder", True), (args.figure, "figure", False)):
+        if not args.size:
+            _writable(path, what, directory)
+    if args.figure.suffix.lower() != ".png" and not args.size:
+        fail(f"the figure {args.figure} must be a .png file")
     if args.csv.exists():
         with args.csv.open(newline="") as f:
             header = next(csv.reader(f), None)
@@ -488,9 +680,18 @@ def main(argv=None) -> int:
         if not rows:
             print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
             return 1
+    elif args.size:
+        rows = [row for row in ROWS if row.quick or not args.quick]
     else:
         rows = [row for row in ROWS if (row.quick if args.quick else not row.heavy)]
     lines = read_csv(args.csv)
+    if args.size:
+        sys.path.insert(0, str(ROOT))
+        try:
+            return size_table(rows, lines)
+        except KeyboardInterrupt:
+            print("records: interrupted", file=sys.stderr)
+            return 130
     if args.recheck:
         missing = [row.query for row in rows if row.query not in lines]
         if missing:
@@ -506,16 +707,16 @@ def main(argv=None) -> int:
             if args.recheck:  # the counts recorded, checked again
                 line = lines[row.query]
                 found = json.loads((ROOT / line["by_code_file"]).read_text())
-                check, ok = checks(row, found, args.list_max, args.second_max, args.second_every)
+                check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max)
                 line["check"] = merge_checks(line["check"], check)
                 bad += not ok
                 write_csv(args.csv, lines)
-                write_md(args.md, lines)
+                write_md(args.md, lines, args.figure)
                 print(f"records   {found['count']} chains recorded at {line['commit']}, checked at {commit}: "
                       f"{line['check']}", file=sys.stderr, flush=True)
                 continue
             found = run_count(row)
-            check, ok = checks(row, found, args.list_max, args.second_max, args.second_every)
+            check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max)
             bad += not ok
             args.by_code.mkdir(parents=True, exist_ok=True)
             by_code_file = args.by_code / f"{row.slug}.json"
@@ -529,14 +730,22 @@ def main(argv=None) -> int:
                 "method": "count path (stage B vectors, no chain built), 2 workers, store off",
                 "commit": commit, "date": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M")}
             write_csv(args.csv, lines)
-            write_md(args.md, lines)
+            write_md(args.md, lines, args.figure)
             print(f"records   {found['count']} chains, {found['cpu_s']} CPU s, {found['wall_s']} s, "
                   f"{found['peak_mib']} MiB; {check}", file=sys.stderr, flush=True)
     except KeyboardInterrupt:
-        print("records: interrupted; the rows finished so far are written", file=sys.stderr)
+        print("records: interrupted; the rows finished so far are written (the figure is drawn by the next run)",
+              file=sys.stderr)
         return 130
+    except RuntimeError as failed:  # a count's command failed (killed, out of memory): its own stderr says why
+        print(f"records: {failed}; the rows finished so far are written", file=sys.stderr)
+        return 2
     if not rows:
-        write_md(args.md, lines)
+        write_md(args.md, lines, args.figure)
+    draw_growth(lines, args.figure)
+    if not rows:
+        print(f"records: every row chosen is recorded; {args.md} and {args.figure} written again from {args.csv}",
+              file=sys.stderr)
     return 1 if bad else 0
 
 

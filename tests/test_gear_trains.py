@@ -17,6 +17,7 @@ import itertools
 import collections
 import csv
 import json
+import os
 import random
 import signal
 import subprocess
@@ -115,6 +116,40 @@ def test_second_method_agrees_tree_by_tree(dof, links, rotation):
 @pytest.mark.parametrize("dof,links,rotation", [(1, 8, True), (1, 9, True), (2, 9, True), (1, 10, False), (2, 10, False)])
 def test_second_method_agrees_tree_by_tree_to_ten_links(dof, links, rotation):
     _agree_tree_by_tree(dof, links, rotation)
+
+
+@pytest.mark.parametrize("vertices", range(1, 7))
+def test_second_method_forests_are_every_forest_once(vertices):
+    """The unlabelled forests of the star's trains, against every edge set on labelled vertices
+    that is a forest of k trees, sorted into classes by networkx's isomorphism test."""
+    pairs = list(itertools.combinations(range(vertices), 2))
+    for trees in range(1, vertices + 1):
+        classes: list = []
+        for edges in itertools.combinations(pairs, vertices - trees):
+            g = nx.Graph(list(edges))
+            g.add_nodes_from(range(vertices))
+            if nx.is_forest(g) and not any(nx.is_isomorphic(g, h) for h in classes):
+                classes.append(g)
+        found = []
+        for edges in gear_trains_fast._forests(vertices, trees):
+            g = nx.Graph(edges)
+            g.add_nodes_from(range(vertices))
+            assert nx.is_forest(g) and nx.number_connected_components(g) == trees
+            found.append(g)
+        assert len(found) == len(classes) > 0
+        assert not any(nx.is_isomorphic(g, h) for g, h in itertools.combinations(found, 2))
+
+
+@pytest.mark.parametrize("dof,links", [(1, n) for n in range(4, 9)] + [(2, n) for n in range(5, 9)] + [(3, n) for n in range(6, 9)])
+def test_second_method_star_trains_equal_its_search(dof, links):
+    """On the star (a frame carrying every other link on an axis of its own) the second method lists
+    the unlabelled forests; its search of mesh sets, every symmetry listed at these sizes, finds as
+    many trains (as many rotation graphs)."""
+    axes = tuple((0, k) for k in range(1, links))
+    star, searched = gear_trains_fast._star_trains(links, 0, dof), gear_trains_fast._searched_trains(dof, links, axes)
+    assert gear_trains_fast.tree_trains(dof, links, axes) == star
+    assert len(star) == len(searched)
+    assert {gear_trains_fast.rotation_key(links, t) for t in star} == {gear_trains_fast.rotation_key(links, t) for t in searched}
 
 
 def test_second_method_tree_trains_are_valid_and_distinct():
@@ -225,6 +260,72 @@ def test_two_methods_script_stops_on_ctrl_c_with_what_it_compared(tmp_path):
     summary = json.loads(out)["summary"]
     rows = [json.loads(line) for line in log.read_text().splitlines()]
     assert summary["interrupted"] and summary["trees_compared"] == len(rows) - 1 < summary["trees_of_the_size"] == 1540
+
+
+def test_two_methods_script_docstring_examples():
+    result = doctest.testmod(_two_methods(), optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0 and result.attempted >= 2
+
+
+def test_two_methods_script_refuses_bad_logs_and_a_second_run_on_its_log(tmp_path):
+    """A file that is not a log (not text, a tree's line without its counts), or a forms store that
+    cannot be opened: one sentence, exit 2, nothing changed or left behind; and while one run writes a
+    log, a second on it is refused (it would compare the same trees again)."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+
+    def run(*args):
+        return subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True, text=True, timeout=300)
+
+    def refused(result, words):
+        return (result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1 and words in result.stderr
+                and "Traceback" not in result.stderr and not result.stdout)
+
+    binary, partial = tmp_path / "binary.jsonl", tmp_path / "partial.jsonl"
+    binary.write_bytes(b"\xff\xfe\x00 not text")
+    partial.write_text('{"dof": 2, "links": 6, "tree": 0, "engine": 1}\n')
+    for log in (binary, partial):
+        before = log.read_bytes()
+        assert refused(run(log, "--dof", 2, "--links", 6), "is not a log of this script")
+        assert refused(run(log, "--dof", 2, "--links", 6, "--record", tmp_path / "r.csv"), "is not a log of this script")
+        assert log.read_bytes() == before and not (tmp_path / "r.csv").exists()
+    (tmp_path / "new.jsonl.forms.sqlite").mkdir()
+    assert refused(run(tmp_path / "new.jsonl", "--dof", 2, "--links", 6, "--rotation"), "cannot open")
+    assert not (tmp_path / "new.jsonl").exists()
+    log = tmp_path / "log.jsonl"
+    first = subprocess.Popen([sys.executable, str(script), str(log), "--dof", "1", "--links", "10"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and (not log.exists() or not log.read_text()):
+            time.sleep(0.2)
+        second = run(log, "--dof", 1, "--links", 10)
+        assert refused(second, "another run is writing the log")
+    finally:
+        first.send_signal(signal.SIGINT)
+        first.communicate(timeout=60)
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    trees = [r["tree"] for r in rows if "tree" in r]
+    assert first.returncode == 130 and len(trees) == len(set(trees)) > 0 and "summary" in rows[-1]
+
+
+def test_two_methods_script_logs_its_niceness_and_records_it(tmp_path):
+    """Each tree's line says the niceness of its run, and the records line says it (rows of runs
+    before the niceness was logged are said to be so)."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log, table = tmp_path / "log.jsonl", tmp_path / "records.csv"
+    result = subprocess.run(["nice", "-n", "3", sys.executable, str(script), str(log), "--dof", "2", "--links", "6"],
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    rows = [json.loads(line) for line in log.read_text().splitlines()]
+    assert {r.get("nice") for r in rows if "tree" in r} == {3 + os.nice(0)} and len(rows) == 23
+    bench = _two_methods()
+    (line,) = bench.record(log, 2, 6, False, table)
+    assert f"at nice {3 + os.nice(0)} on the shared machine" in line["method"] and line["count"] == 3
+    older = tmp_path / "older.jsonl"  # the first run's lines without the niceness, as logged before it was
+    older.write_text("".join(json.dumps({k: v for k, v in r.items() if k != "nice" or "summary" in r}) + "\n"
+                             for r in rows))
+    (line,) = bench.record(older, 2, 6, False, table)
+    assert "(the first runs: not logged)" in line["method"]
 
 
 @pytest.mark.slow

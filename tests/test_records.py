@@ -34,10 +34,10 @@ def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
     records = _records()
     md = tmp_path / "RECORDS.md"
     md.write_text("# Records\n\n## Published counts\n\nold text\n\n## Gear trains\n\nthe gear rows stay\n")
-    p = _run("--quick", "--csv", tmp_path / "r.csv", "--md", md, "--by-code", tmp_path / "bc")
+    p = _run("--quick", "--csv", tmp_path / "new" / "r.csv", "--md", md, "--by-code", tmp_path / "bc")
     assert p.returncode == 0, p.stderr
     assert p.stdout == ""  # progress and results of the rows go to stderr; the data to the files
-    with (tmp_path / "r.csv").open(newline="") as f:
+    with (tmp_path / "new" / "r.csv").open(newline="") as f:  # (a folder not there yet is made)
         reader = csv.DictReader(f)
         assert reader.fieldnames == records.COLUMNS == [
             "query", "count", "published", "source", "check", "by_code_file", "wall_s", "cpu_s", "peak_mib",
@@ -57,6 +57,9 @@ def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
     assert text.index("## Published counts") < text.index("`chains --dof 3 --links 6`") < text.index("## Gear")
     assert "- `chains --dof 3 --links 16`: not run yet" in text  # every row not run is named, heavy ones with why
     assert "- `chains --dof 3 --links 20`: not run: 8 loops" in text
+    figure = tmp_path / "records_growth.png"  # beside the Markdown file, shown in its section
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "](records_growth.png)" in text.split("## Gear")[0]
 
 
 def test_each_check_reports_a_count_that_is_off():
@@ -94,6 +97,14 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--recheck"], "give --only"),
         (["--recheck", "--only", "links 8 --v", "--again"], "not --again"),
         (["--recheck", "--only", "links 8 --v", "--csv", tmp_path / "none.csv"], "has none of"),
+        (["--size", "--again"], "--again has no use with it"),
+        (["--size", "--only", "links 8", "--list-max", "5"], "--list-max has no use with it"),
+        (["--size", "--only", "links 8 --v", "--recheck"], "--recheck has no use with it"),
+        (["--size", "--figure", tmp_path / "g.png"], "--figure has no use with it"),
+        (["--size", "--quick", "--only", "dof 1"], "give one of them"),
+        (["--size", "--csv", other], "is not a records CSV"),
+        (["--figure", tmp_path / "g.svg"], "must be a .png file"),
+        (["--figure", other / "g.png"], "is not a folder"),
     ]
     for args, words in cases:
         p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
@@ -208,3 +219,52 @@ def test_a_recheck_keeps_the_count_and_merges_the_checks(tmp_path):
     _, found = _multiple_joint_row(_records(), 8)
     assert now["check"] == f"listing by code; oracle by code; kernels off by code (1 code in 2: {_sample(8, 2, found)})"
     assert not (tmp_path / "bc").exists()  # no count was run, so no by-code file was written
+
+
+def test_the_doctests_of_records_py_run():
+    """The examples of the script's docstrings (the sizing of a row, the figure's points) hold."""
+    import doctest
+
+    assert doctest.testmod(_records(), optionflags=doctest.ELLIPSIS).failed == 0
+
+
+def test_size_prints_the_engines_estimate_beside_the_recorded_count_and_writes_nothing(tmp_path):
+    """--size sizes each row chosen from exact counts at smaller sizes only, as the command line does before a
+    long count, beside the count and CPU seconds recorded; rows too small for a basis say so."""
+    csv_file = tmp_path / "records.csv"
+    csv_file.write_bytes((ROOT / "benchmarks" / "records.csv").read_bytes())
+    p = _run("--size", "--only", "dof 2 --links 11", "--csv", csv_file, "--md", tmp_path / "R.md",
+             "--by-code", tmp_path / "bc")
+    assert p.returncode == 0, p.stderr
+    head, rule, *rows = p.stdout.splitlines()
+    assert head.startswith("| query | chains, estimated | chains, recorded | error |") and rule.startswith("|---|")
+    recorded = {line["query"]: line for line in csv.DictReader(csv_file.open(newline=""))}
+    assert [r.split(" | ")[0] for r in rows] == ["| `chains --dof 2 --links 11`",
+                                                  "| `chains --dof 2 --links 11 --no-fractionated`"]
+    for r in rows:
+        query, estimated, counted, error, _, cpu, _, basis = r.strip("| ").split(" | ")
+        line = recorded[query.strip("`")]
+        assert counted.replace(" ", "") == line["count"] and cpu == line["cpu_s"]
+        assert 0.5 < int(estimated.replace(" ", "")) / int(line["count"]) < 2
+        assert error == f"{int(estimated.replace(' ', '')) / int(line['count']) - 1:+.0%}"
+        assert basis == "5, 7, 9 links"  # the row's own size is never counted
+    assert p.stderr.count("sized `chains --dof 2 --links 11") == 2
+    assert csv_file.read_bytes() == (ROOT / "benchmarks" / "records.csv").read_bytes()
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["records.csv"]  # no Markdown, figure or by-code file
+    small = _run("--size", "--quick")
+    assert small.returncode == 1 and small.stdout.count("fewer than three smaller sizes have chains") == 4
+
+
+def test_the_figure_draws_every_row_of_the_csv_rows_added_later_included(tmp_path):
+    """The growth figure is drawn from the CSV as it is: a row added to it (the 20-link W = 1 count, say) is a
+    new point of its series; published values are kept beside the counts to be ringed; gear trains stay out."""
+    records = _records()
+    lines = records.read_csv(ROOT / "benchmarks" / "records.csv")
+    before = records.draw_growth(lines, tmp_path / "g.png")
+    assert set(before) <= set(records.STYLES) and "h = 2 (Laman)" in before
+    assert before["W = 1"][:3] == [(4, 1, 1), (6, 2, 2), (8, 16, 16)]
+    assert sum(len(p) for p in before.values()) == sum(q.startswith("chains ") for q in lines)
+    added = dict(lines, **{"chains --dof 1 --links 20": {"count": "123456789012"}})
+    after = records.draw_growth(added, tmp_path / "g.png")
+    assert after["W = 1"] == before["W = 1"] + [(20, 123456789012, None)]
+    assert (tmp_path / "g.png").read_bytes()[:4] == b"\x89PNG" and not list(tmp_path.glob("*.tmp*"))

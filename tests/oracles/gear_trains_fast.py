@@ -8,7 +8,7 @@ trees of the brute force's list up, keeping one graph per rotation-graph class.
 It shares no code with ``synth`` (nor with nauty): trees come from :mod:`gear_trains` (the brute
 force's string canonical forms); the symmetries of a tree are listed by networkx's VF2 matcher
 (the first ``_CAP`` of them; the star, whose symmetries are all permutations of its n − 1 gears,
-has its 1-DOF trains counted as the unlabelled trees on those gears, see :func:`_star_trains`); mesh sets are grown in *another order* than the engine's (candidates
+has its trains counted as the unlabelled forests on those gears, see :func:`_star_trains`); mesh sets are grown in *another order* than the engine's (candidates
 sorted by carrier first, then by their gears, from the last to the first; a numba loop with a
 stack of slack tables) and kept when no listed symmetry maps them to a smaller set (a test that passes to every prefix, and that the least set
 of each class passes, for any list of symmetries); where the list is not the whole group the
@@ -27,6 +27,7 @@ Example
 
 from __future__ import annotations
 
+import itertools
 from multiprocessing import Pool
 
 import igraph
@@ -98,13 +99,53 @@ def _train_graph(links: int, axes, meshes) -> nx.Graph:
     return g
 
 
-def _star_trains(links: int, hub: int = 0) -> list[tuple]:
-    """F = 1 trains on the star (every other link on an axis of its own with link 0): every mesh has
-    carrier 0, a cycle of meshes C locks (S = C + link 0 has W = 3|C| − 2|C| − |C| = 0) and a forest
-    leaves every S a freedom, so the trains are the spanning trees of links 1 … n−1, one per
-    unlabelled tree (networkx's list of non-isomorphic trees)."""
+def _forests(vertices: int, trees: int) -> list[list[tuple[int, int]]]:
+    """Every forest of ``trees`` trees on ``vertices`` vertices up to isomorphism, as its edges on
+    0 … vertices − 1: a multiset of unlabelled trees (networkx's list of non-isomorphic trees) for
+    every partition of the vertices into ``trees`` sizes.
+
+    >>> [len(_forests(6, k)) for k in (1, 2, 3)]
+    [6, 6, 4]
+    """
+    def of_size(size):
+        return [[]] if size == 1 else [sorted(tuple(sorted(e)) for e in t.edges()) for t in nx.nonisomorphic_trees(size)]
+
+    def partitions(total, parts, largest):
+        if parts == 0:
+            yield from [()] if total == 0 else []
+            return
+        for size in range(min(largest, total - parts + 1), 0, -1):
+            yield from (((size,) + rest) for rest in partitions(total - size, parts - 1, size))
+
+    out = []
+    for sizes in partitions(vertices, trees, vertices):
+        groups = [(size, sum(1 for s in sizes if s == size)) for size in sorted(set(sizes), reverse=True)]
+        for choice in itertools.product(*(itertools.combinations_with_replacement(of_size(size), count)
+                                          for size, count in groups)):
+            edges, first = [], 0
+            for (size, _), chosen in zip(groups, choice):
+                for tree in chosen:
+                    edges += [(first + a, first + b) for a, b in tree]
+                    first += size
+            out.append(edges)
+    return out
+
+
+def _star_trains(links: int, hub: int = 0, dof: int = 1) -> list[tuple]:
+    """Trains on the star (every other link on an axis of its own with the hub): every mesh has the
+    hub as carrier and every permutation of the gears is a symmetry.  A cycle of meshes C locks
+    (S = C + hub has W = 3|C| − 2|C| − |C| = 0) and a forest leaves every S a freedom, so the
+    trains are the forests of n − 1 − F meshes on the n − 1 gears (F trees), one per unlabelled
+    forest; for F ≥ 2 those that are not fractionated (the brute force's test) — the hub joins
+    the trees only through itself, so none is.  For F = 1: the unlabelled spanning trees."""
     gears = [x for x in range(links) if x != hub]
-    return [tuple((gears[a], gears[b], hub) for a, b in tree.edges()) for tree in nx.nonisomorphic_trees(links - 1)]
+    carriers = {(min(a, b), max(a, b)): hub for a, b in itertools.combinations(gears, 2)}
+    trains = []
+    for forest in _forests(links - 1, dof):
+        meshes = [(gears[a], gears[b]) for a, b in forest]
+        if dof == 1 or brute.non_fractionated(links, (), meshes, carriers):
+            trains.append(tuple((a, b, hub) for a, b in meshes))
+    return trains
 
 
 def _slack_table(links: int, axes) -> np.ndarray:
@@ -189,8 +230,13 @@ def tree_trains(dof: int, links: int, axes) -> list[tuple[tuple[int, int, int], 
     2
     """
     hubs = set.intersection(*(set(a) for a in axes)) if axes else set()
-    if dof == 1 and links >= 4 and hubs and all(len(a) == 2 for a in axes):
-        return _star_trains(links, hubs.pop())
+    if links >= 4 and hubs and all(len(a) == 2 for a in axes):
+        return _star_trains(links, hubs.pop(), dof)
+    return _searched_trains(dof, links, axes)
+
+
+def _searched_trains(dof: int, links: int, axes) -> list[tuple[tuple[int, int, int], ...]]:
+    """:func:`tree_trains` by the search of mesh sets against the listed symmetries (any tree)."""
     pairs = brute.mesh_pairs(links, axes)  # {(a, b): carrier}
     order = sorted(pairs, key=lambda ab: (pairs[ab], ab), reverse=True)
     need = links - 1 - dof
