@@ -136,7 +136,12 @@ def main() -> int:
             path.write_text(json.dumps(record, indent=1))
             print(f"{name(q)}: {total} chains, {cpu:.1f} CPU s", flush=True)
         return 0
-    record = json.loads(path.read_text())["queries"]
+    try:
+        record = json.loads(path.read_text())["queries"]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        print(f"bycode: {path} is not a record of counts by code ({type(exc).__name__}); make one with "
+              f"'bycode.py record FILE'", file=sys.stderr)
+        return 2
     bad = skipped = 0
     for q in queries:
         if args.method == "orbits" and (q.get("prismatic") is not None or q.get("cranks") or q.get("v")):

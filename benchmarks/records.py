@@ -141,8 +141,7 @@ ROWS = (
                   "1 min 36 s wall on 2 workers of a quiet machine, 186.5 user CPU s, the same 105 codes as the "
                   "runs of 26 Nov and of the morning (benchmarks/logs/count_18_links_c280dda.txt)")]
     + [_row("W = 1", 1, 20, None, "",
-            heavy="not run to the end: begun on 29 Nov 2026 and resumed from its checkpoint, not finished "
-                  "(section '20-link chains' below: its state and its check)")]
+            heavy="run by hand, twice, with checkpoints (section '20-link chains' below)")]
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
@@ -167,12 +166,8 @@ ROWS = (
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
-            heavy="not run to the end: no longer refused (a count keeps its largest code's certificates, 0.6 GiB "
-                  "of plan on 2 workers, not the code whole: PROFILE.md section 26); the engine's sizing "
-                  "(`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 4.3e7 chains, 18 to 22 CPU min, but at 11 "
-                  "links it gave 70 to 88 CPU s against the 106 measured the same day: expect some 27 CPU min "
-                  "(about 14 min on 2 quiet workers); to run it: `nice -n 10 python benchmarks/records.py --only "
-                  "\"links 12 --h 2\" --reverse-max 0` (the listing does not check it; the published value does)")]
+            heavy="run by hand with a checkpoint on 29 Nov 2026: 19.5 min wall on 2 workers beside other work, 29 CPU "
+                  "min (benchmarks/logs/count_h2_12_links.txt)")]
     + [_row("h = 4", 1, n, h=4, oracle=n <= 8, heavy=_BEYOND.get((4, n), "")) for n in range(5, 27, 3)]
     + [_row("h = 5", 1, n, h=5, oracle=n <= 6, heavy=_BEYOND.get((5, n), "")) for n in range(6, 31, 4)]
     + [_row("h = 6", 1, n, h=6, oracle=n <= 7, heavy=_BEYOND.get((6, n), "")) for n in range(7, 33, 5)]
@@ -180,8 +175,8 @@ ROWS = (
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
             heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
-            heavy="not run: the engine's sizing (from 8, 10, 12 links) gives about 6.9e9 chains, 29 CPU hours "
-                  "(PROFILE.md section 28)")]
+            heavy="not run: the engine's sizing (from 8, 10, 12 links) gives about 6.9e9 chains, 15 CPU hours "
+                  "since the joints come first in the count's search (PROFILE.md section 32)")]
 )
 
 

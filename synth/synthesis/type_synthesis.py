@@ -614,14 +614,15 @@ class Counts(Row):
         """One sentence on the units counted by the search instead of by orbits, or None if none was.
 
         >>> print(Counts(9, {"6301/0": 9}, 4, {"group": 1}).by_search_note)  # doctest: +ELLIPSIS
-        1 of the 4 units run were counted by the search, not by orbits (...): 1 because the permutations ... to list
+        1 of the 4 units run was counted by the search, not by orbits (...): 1 because the permutations ... to list
         """
         if not self.by_search:
             return None
         from .stage_b import BY_SEARCH
 
         why = "; ".join(f"{n} because {BY_SEARCH[key]}" for key, n in self.by_search.items())
-        return (f"{sum(self.by_search.values())} of the {self.units_run} units run were counted by the search, not by "
+        searched = sum(self.by_search.values())
+        return (f"{searched} of the {self.units_run} units run {'was' if searched == 1 else 'were'} counted by the search, not by "
                 f"orbits (the same counts, found as the listing finds them): {why}")
 
 
