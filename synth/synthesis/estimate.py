@@ -74,8 +74,12 @@ NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it start
 # 29 Nov 2026 after PROFILE.md section 27, `time.process_time`, the shared 2-core machine at nice 10)
 # took 0.49 ms a unit at 14 and at 16 links and 0.80 at 18 (stage A 0.13, 0.18, 0.36 ms), a factor of
 # 1.27 a loop from 14 to 18 links.  With h = 2 it falls instead (0.28, 0.27, 0.22 ms at 8, 9, 10 links),
-# and h ≥ 4 was not measured: no growth there.
-UNIT_GROWTH = {3: 1.27}  # factor a loop on a unit's time beyond the largest calibration, by h
+# and for h = 4, 5, 6 it grows faster (benchmarks/PROFILE.md section 33: every unit counted without
+# visiting; one process; each factor from the sizing's largest calibration to the largest count run):
+# 0.76 → 4.17 ms a unit from 17 to 23 links at h = 4, 1.89 → 23.2 from 18 to 26 at h = 5, 1.06 → 25.4
+# from 17 to 27 at h = 6.  Measured on the compiled path (every sized query takes it) and applied
+# there only; h ≥ 7 was not measured: no growth there.
+UNIT_GROWTH = {3: 1.27, 4: 2.34, 5: 3.50, 6: 4.89}  # factor a loop on a unit's time beyond the largest calibration, by h
 # A listing (and a count on a Dask cluster) keeps every branch multigraph of a code until the code is
 # done (its output is in the order of their certificates), and its units travel whole to the parent:
 # about this many bytes per unit of the largest code, for each worker expanding a code at the same time
@@ -221,7 +225,7 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     event.Listener.register(_CompileClock)  # numba's listeners are its Listener's (virtual) subclasses
     clock = _CompileClock()  # a kernel compiled in a calibration (a cold cache) is the query's cost, not the calibration's
     with event.install_listener("numba:compile", clock):
-        return _extrapolated(query, _calibrations(query, conv, work, budget, compiled, clock))
+        return _extrapolated(query, _calibrations(query, conv, work, budget, compiled, clock), compiled)
 
 
 def _calibrations(query, conv, work: str, budget: float, compiled: bool, clock) -> list:
@@ -264,8 +268,9 @@ def _calibrations(query, conv, work: str, budget: float, compiled: bool, clock) 
     return points
 
 
-def _extrapolated(query, points: list) -> Estimate | None:
-    """:func:`estimate`'s extrapolation from its calibrations ``points`` (None: fewer than three)."""
+def _extrapolated(query, points: list, compiled: bool) -> Estimate | None:
+    """:func:`estimate`'s extrapolation from its calibrations ``points`` (None: fewer than three); a unit's
+    time grows by :data:`UNIT_GROWTH` on the ``compiled`` path, where it was measured."""
     links = query.links
     step = query.h - 1
     if len(points) < 3:
@@ -283,7 +288,7 @@ def _extrapolated(query, points: list) -> Estimate | None:
     # chains, the rest (stage A, the plan, the units counted without visiting) per unit, grown by
     # UNIT_GROWTH a loop, times the units
     parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
-    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0))
+    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0) if compiled else 1.0)
     parts += [log_units + math.log10((s2 - w2) / max(u2, 1)) + log_growth] if s2 > w2 else []
     top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
     log_seconds = top + math.log10(sum(10.0 ** (part - top) for part in parts) or 1.0)
