@@ -142,6 +142,13 @@ class Constraints:
         if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
             raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
         self._check_placing()
+        if self.max_length is not None:
+            held = self.pivot_at
+            for i, (a, p) in enumerate(held):
+                for b, q in held[i + 1:]:
+                    if math.dist(p, q) > self.max_length:
+                        raise DimensionError(f"the fixed pivots of joints {a} and {b} lie {math.dist(p, q):g} apart, "
+                                             f"beyond the link-length bound {self.max_length:g}")
         if isinstance(self.order, str):
             object.__setattr__(self, "order", (self.order,))
         object.__setattr__(self, "order", tuple(self.order))

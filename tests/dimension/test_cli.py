@@ -63,6 +63,7 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     ([*FOUR_BAR, "--max-length", "0"], "--max-length must be a positive length"),
     ([*FOUR_BAR, "--max-length", "-3"], "--max-length must be a positive length"),
     ([*FOUR_BAR, "--max-length", "inf"], "finite number"),
+    ([*FOUR_BAR, "--max-length", "5", "--pivot-at", "0-1=0,0", "--pivot-at", "0-3=6,8"], "lie 10 apart"),
     ([*FOUR_BAR, "--pivots", "0..1"], "x0..x1,y0..y1"),
     ([*FOUR_BAR, "--budget", "0"], "positive number of seconds"),
     ([*FOUR_BAR, "--out", "picture.gif"], "PNG or SVG"),

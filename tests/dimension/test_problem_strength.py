@@ -63,6 +63,9 @@ def test_the_constraints_are_refused_in_one_sentence_each():
         assert refused(DimensionError, Constraints, max_length=bad) == \
             f"the link-length bound must be a positive length, not {bad}"
     Constraints(max_length=1e-3)
+    assert refused(DimensionError, Constraints, max_length=80, pivot_at={"0-1": (0, 0), "0-3": (100, 0)}) == \
+        "the fixed pivots of joints 0-1 and 0-3 lie 100 apart, beyond the link-length bound 80"
+    Constraints(max_length=100, pivot_at={"0-1": (0, 0), "0-3": (100, 0)})
     assert refused(DimensionError, Constraints, pivots=(1, 1, 0, 1)) == \
         "the pivots' region must be x0 < x1 and y0 < y1, finite, not (1, 1, 0, 1)"
     assert refused(DimensionError, Constraints, pivots=(0, 1, 2, 1)) == \
