@@ -94,6 +94,8 @@ def add_commands(sub) -> None:
                    "dyad over the target (over the turn for a crank), degrees")
     p.add_argument("--max-ratio", type=finite, metavar="R", help="bound on the longest over the shortest "
                    "distance between two joints of one link")
+    p.add_argument("--max-length", type=finite, metavar="L", help="bound on every distance between two joints of "
+                   "one link, the frame's pivots included (target units)")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
     p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
                    "joint J at the point (x, y), e.g. 0-1=0,0 (repeatable)")
@@ -165,6 +167,8 @@ def _check(args) -> None:
         raise InvalidOption(f"--min-transmission must be between 0 and 90 degrees, not {args.min_transmission:g}")
     if args.max_ratio is not None and not args.max_ratio > 1:
         raise InvalidOption(f"--max-ratio must be above 1 (the longest over the shortest), not {args.max_ratio:g}")
+    if args.max_length is not None and not args.max_length > 0:
+        raise InvalidOption(f"--max-length must be a positive length (target units), not {args.max_length:g}")
     if args.reach is not None and not args.reach > 0:
         raise InvalidOption(f"--reach must be a positive number of target sizes, not {args.reach:g}")
     if args.seed < 0:
@@ -209,12 +213,13 @@ def _run(args) -> int:
 
         constraints = Constraints(crank=args.crank, rocker=args.rocker and tuple(math.radians(v) for v in args.rocker),
                                   min_transmission=math.radians(args.min_transmission or 0.0),
-                                  max_ratio=args.max_ratio, pivots=args.pivots, reach=args.reach, **_placing(args))
+                                  max_ratio=args.max_ratio, max_length=args.max_length, pivots=args.pivots,
+                                  reach=args.reach, **_placing(args))
         return run(args, target, constraints, save=_save, draw=_draw)
     mechanism = _mechanism(args)
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
-                              pivots=args.pivots, reach=args.reach, **_placing(args))
+                              max_length=args.max_length, pivots=args.pivots, reach=args.reach, **_placing(args))
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
               bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s {postfix}",
               disable=not sys.stderr.isatty()) as bar:

@@ -70,6 +70,9 @@ class Constraints:
     max_ratio : float, optional
         Bound on the longest over the shortest distance between two joints of one link (the frame
         included).
+    max_length : float, optional
+        Bound on every distance between two joints of one link, the frame's pivots included (target
+        units; the tracer point is no joint and is not bound).
     pivots : (x0, x1, y0, y1), optional
         A box the frame's joints (fixed pivots, slide lines' points) must lie in.
     reach : float, optional
@@ -106,6 +109,7 @@ class Constraints:
     rocker: tuple[float, float] | None = None
     min_transmission: float = 0.0
     max_ratio: float | None = None
+    max_length: float | None = None
     pivots: tuple[float, float, float, float] | None = None
     reach: float | None = None
     pivot_at: tuple = ()
@@ -128,6 +132,8 @@ class Constraints:
                                  f"{math.degrees(self.min_transmission):g}°")
         if self.max_ratio is not None and not (math.isfinite(self.max_ratio) and self.max_ratio > 1):
             raise DimensionError(f"the link-length ratio bound must be a number above 1, not {self.max_ratio}")
+        if self.max_length is not None and not (math.isfinite(self.max_length) and self.max_length > 0):
+            raise DimensionError(f"the link-length bound must be a positive length, not {self.max_length}")
         if self.pivots is not None:
             x0, x1, y0, y1 = (float(v) for v in self.pivots)
             if not all(map(math.isfinite, (x0, x1, y0, y1))) or x0 >= x1 or y0 >= y1:
@@ -136,6 +142,13 @@ class Constraints:
         if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
             raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
         self._check_placing()
+        if self.max_length is not None:
+            held = self.pivot_at
+            for i, (a, p) in enumerate(held):
+                for b, q in held[i + 1:]:
+                    if math.dist(p, q) > self.max_length:
+                        raise DimensionError(f"the fixed pivots of joints {a} and {b} lie {math.dist(p, q):g} apart, "
+                                             f"beyond the link-length bound {self.max_length:g}")
         if isinstance(self.order, str):
             object.__setattr__(self, "order", (self.order,))
         object.__setattr__(self, "order", tuple(self.order))
@@ -587,7 +600,7 @@ class Problem:
 
     def violations(self, linkage: Linkage, offsets: np.ndarray, g, mu) -> np.ndarray:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
-        transmission (rad), ratio (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
+        transmission (rad), ratio and length (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
         measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
         that binds settles a little beyond its limit."""
         c = self.constraints
@@ -596,6 +609,8 @@ class Problem:
             out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
         if c.max_ratio is not None:
             out.append(max(0.0, math.log(link_ratio(linkage) / (c.max_ratio * (1 - MARGIN)))))
+        if c.max_length is not None:
+            out.append(max(0.0, math.log(longest_link(linkage) / (c.max_length * (1 - MARGIN)))))
         if c.pivots is not None:
             inset = MARGIN * self.scale
             x0, x1, y0, y1 = c.pivots[0] + inset, c.pivots[1] - inset, c.pivots[2] + inset, c.pivots[3] - inset
@@ -705,13 +720,13 @@ def point_carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray
     return np.stack((c * p[0] - s * p[1], s * p[0] + c * p[1]), axis=1) + t
 
 
-def link_ratio(linkage: Linkage) -> float:
-    """The longest over the shortest distance between two joints of one link (the frame included).
+def link_lengths(linkage: Linkage) -> list[float]:
+    """Every distance between two revolute joints of one link (the frame included), 0 left out.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
-    >>> round(link_ratio(lk), 6)   # frame 4 over crank 1
-    4.0
+    >>> sorted(round(v, 6) for v in link_lengths(lk))   # crank, rocker, coupler, frame
+    [1.0, 2.236068, 2.828427, 4.0]
     """
     lengths = []
     for link in range(linkage.chain.links):
@@ -720,8 +735,30 @@ def link_ratio(linkage: Linkage) -> float:
         for a in range(len(pins)):
             for b in range(a + 1, len(pins)):
                 lengths.append(float(np.hypot(*(p[a] - p[b]))))
-    lengths = [v for v in lengths if v > 0]
+    return [v for v in lengths if v > 0]
+
+
+def link_ratio(linkage: Linkage) -> float:
+    """The longest over the shortest distance between two joints of one link (the frame included).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
+    >>> round(link_ratio(lk), 6)   # frame 4 over crank 1
+    4.0
+    """
+    lengths = link_lengths(linkage)
     return max(lengths) / min(lengths) if lengths else 1.0
+
+
+def longest_link(linkage: Linkage) -> float:
+    """The longest distance between two joints of one link (the frame included).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
+    >>> longest_link(lk)   # the frame
+    4.0
+    """
+    return max(link_lengths(linkage), default=0.0)
 
 
 def input_joint_of(mechanism, linkage: Linkage | None) -> tuple[int, int | None]:

@@ -17,7 +17,7 @@ from ..motion import Linkage, assemble, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
 from ._problem import (CURVE_SAMPLES, INFEASIBLE, MET, ORDER_MARGIN, Constraints, Problem, input_joint_of,
-                       link_ratio, point_carried)
+                       link_ratio, longest_link, point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["DimensionalResult", "synthesize"]
@@ -552,8 +552,8 @@ class _Evaluate:
     @property
     def n_violations(self) -> int:
         c = self.problem.constraints
-        return sum((c.min_transmission > 0, c.max_ratio is not None, c.pivots is not None, c.rocker is not None,
-                    self.problem.order_pairs))
+        return sum((c.min_transmission > 0, c.max_ratio is not None, c.max_length is not None, c.pivots is not None,
+                    c.rocker is not None, self.problem.order_pairs))
 
 
 def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Linkage | None]:
@@ -1092,6 +1092,9 @@ def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
     if c.max_ratio is not None:
         ratio = link_ratio(linkage)
         out["ratio"] = {"value": ratio, "limit": c.max_ratio, "met": ratio <= c.max_ratio * (1 + MET)}
+    if c.max_length is not None:
+        longest = longest_link(linkage)
+        out["length"] = {"value": longest, "limit": c.max_length, "met": longest <= c.max_length * (1 + MET)}
     if c.pivots is not None:
         x0, x1, y0, y1 = c.pivots
         p = linkage.points[problem.frame_joints]

@@ -21,7 +21,8 @@ from .test_synthesize import FOUR_BAR, random_crank_rocker
 
 
 @pytest.mark.parametrize("constraints", [Constraints(reach=8),
-                                         Constraints(reach=8, min_transmission=math.radians(80), max_ratio=2.0)])
+                                         Constraints(reach=8, min_transmission=math.radians(80), max_ratio=2.0),
+                                         Constraints(reach=8, max_length=1.0)])
 def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
     original = random_crank_rocker(3)
     motion = sweep(original, steps=9, stop=float(original.pose_inputs[0]) + math.radians(300))
@@ -37,7 +38,7 @@ def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
     def fun(x):
         return search.evaluate.vector(x, 1)
 
-    if constraints.max_ratio is not None:
+    if constraints.max_ratio is not None or constraints.max_length is not None:
         assert np.abs(fun(z)[2 * len(target.points):]).max() > 0  # the constraint rows are active
     fast = search.untimed_jacobian(fun, z, upper)
     full = approx_derivative(fun, z, method="3-point")  # every unknown on its own, central differences

@@ -59,6 +59,13 @@ def test_the_constraints_are_refused_in_one_sentence_each():
     assert refused(DimensionError, Constraints, max_ratio=math.inf) == \
         "the link-length ratio bound must be a number above 1, not inf"
     Constraints(max_ratio=1.01)
+    for bad in (0.0, -1.0, math.inf, math.nan):
+        assert refused(DimensionError, Constraints, max_length=bad) == \
+            f"the link-length bound must be a positive length, not {bad}"
+    Constraints(max_length=1e-3)
+    assert refused(DimensionError, Constraints, max_length=80, pivot_at={"0-1": (0, 0), "0-3": (100, 0)}) == \
+        "the fixed pivots of joints 0-1 and 0-3 lie 100 apart, beyond the link-length bound 80"
+    Constraints(max_length=100, pivot_at={"0-1": (0, 0), "0-3": (100, 0)})
     assert refused(DimensionError, Constraints, pivots=(1, 1, 0, 1)) == \
         "the pivots' region must be x0 < x1 and y0 < y1, finite, not (1, 1, 0, 1)"
     assert refused(DimensionError, Constraints, pivots=(0, 1, 2, 1)) == \
@@ -195,6 +202,10 @@ def test_each_violation_is_measured_inside_the_designers_limit():
     r = Problem(FOUR_BAR, 0, PATH, None, Constraints(max_ratio=2.0))
     assert r.violations(lk, np.array([0.5]), None, None).tolist() == pytest.approx([math.log(4 / (2 * (1 - MARGIN)))])
     assert Problem(FOUR_BAR, 0, PATH, None, Constraints(max_ratio=5.0)).violations(lk, np.array([0.5]), None, None) \
+        .tolist() == [0.0]
+    n = Problem(FOUR_BAR, 0, PATH, None, Constraints(max_length=2.0))  # the frame, 4, is the longest
+    assert n.violations(lk, np.array([0.5]), None, None).tolist() == pytest.approx([math.log(4 / (2 * (1 - MARGIN)))])
+    assert Problem(FOUR_BAR, 0, PATH, None, Constraints(max_length=4.5)).violations(lk, np.array([0.5]), None, None) \
         .tolist() == [0.0]
     # pivots (0, 0) and (4, 0) against the box x 1 … 3, y −1 … 1: 1 + MARGIN·5 out in x, each; over the size 5
     pv = Problem(FOUR_BAR, 0, PATH, None, Constraints(pivots=(1, 3, -1, 1)))
