@@ -18,7 +18,10 @@ with the unit's chains) or finds none.  A unit's own time grows with its branch 
 the calibration sizes (:data:`UNIT_GROWTH`, a factor a loop).  The calibrations run on the path
 the query will take (the compiled searches of stages A and B when the query is large enough for
 them, however small the calibration sizes are), with the engine of the day, so the estimate
-follows every change of speed.
+follows every change of speed.  Numba's compiling (a cold cache: a fresh checkout, or a kernel's
+first call with new types) is left out of every calibration's time and of the budget
+(:class:`_CompileClock`): it is paid once, not per unit, and once counted it stopped the sizing of
+the 12-link h = 2 query at 6 links, 8 times under in chains and 100 times over in time.
 
 For 1-DOF chains the ratio grows by 15–16 a step from 10 links on (2, 8, 14.4, 29.8, 46.4,
 62.3, 77.5 up to 18 links), so from the counts at 8, 10 and 12 links the estimate is
@@ -71,8 +74,12 @@ NOTE_SECONDS = 600.0  # a query estimated to take longer says so before it start
 # 29 Nov 2026 after PROFILE.md section 27, `time.process_time`, the shared 2-core machine at nice 10)
 # took 0.49 ms a unit at 14 and at 16 links and 0.80 at 18 (stage A 0.13, 0.18, 0.36 ms), a factor of
 # 1.27 a loop from 14 to 18 links.  With h = 2 it falls instead (0.28, 0.27, 0.22 ms at 8, 9, 10 links),
-# and h ≥ 4 was not measured: no growth there.
-UNIT_GROWTH = {3: 1.27}  # factor a loop on a unit's time beyond the largest calibration, by h
+# and for h = 4, 5, 6 it grows faster (benchmarks/PROFILE.md section 33: every unit counted without
+# visiting; one process; each factor from the sizing's largest calibration to the largest count run):
+# 0.76 → 4.17 ms a unit from 17 to 23 links at h = 4, 1.89 → 23.2 from 18 to 26 at h = 5, 1.06 → 25.4
+# from 17 to 27 at h = 6.  Measured on the compiled path (every sized query takes it) and applied
+# there only; h ≥ 7 was not measured: no growth there.
+UNIT_GROWTH = {3: 1.27, 4: 2.34, 5: 3.50, 6: 4.89}  # factor a loop on a unit's time beyond the largest calibration, by h
 # A listing (and a count on a Dask cluster) keeps every branch multigraph of a code until the code is
 # done (its output is in the order of their certificates), and its units travel whole to the parent:
 # about this many bytes per unit of the largest code, for each worker expanding a code at the same time
@@ -110,6 +117,40 @@ class Estimate:
     largest_code_units: float = 0.0  # units of the code with the most: its share of the units at the basis
 
 
+class _CompileClock:
+    """CPU seconds of this process without numba's compiling (a cold cache, or a kernel's first call
+    with new types): what a calibration costs once the kernels are compiled, as the query's workers
+    have them.  Install it with ``numba.core.event.install_listener("numba:compile", clock)``; a
+    compile nested in another is counted once.
+
+    >>> clock = _CompileClock()
+    >>> clock.on_start(None); clock.on_start(None); clock.on_end(None); clock.on_end(None)
+    >>> 0.0 <= clock.compiling < 0.01, clock() <= time.process_time()
+    (True, True)
+    """
+
+    def __init__(self):
+        self.compiling = 0.0  # CPU seconds spent compiling so far
+        self._depth = 0
+        self._started = 0.0
+
+    def on_start(self, event):
+        if not self._depth:
+            self._started = time.process_time()
+        self._depth += 1
+
+    def on_end(self, event):
+        self._depth -= 1
+        if not self._depth:
+            self.compiling += time.process_time() - self._started
+
+    def notify(self, event):  # numba's Listener protocol
+        (self.on_start if event.is_start else self.on_end)(event)
+
+    def __call__(self) -> float:
+        return time.process_time() - self.compiling
+
+
 @dataclass
 class _TimedWork:
     """A unit work (``count_unit``, ``run_unit``, …) that adds up the CPU seconds it takes: the
@@ -119,14 +160,15 @@ class _TimedWork:
     (stage B's tight count, ``stats["tight"]``) or found none, and their time is the unit's."""
 
     work: object
+    clock: object = time.process_time  # CPU seconds, numba's compiling left out (:class:`_CompileClock`)
     seconds: float = 0.0
     visited: float = 0.0
 
     def __call__(self, unit):
         stats: dict = {}
-        t0 = time.process_time()
+        t0 = self.clock()
         result = self.work(unit, stats=stats)
-        spent = time.process_time() - t0
+        spent = self.clock() - t0
         self.seconds += spent
         if not stats.get("tight") and (sum(result.values()) if isinstance(result, dict) else len(result)):
             self.visited += spent
@@ -178,21 +220,34 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     if compiled:
         load_kernel()  # before the clock, as the query loads it before its workers start
     from . import _cpsat  # noqa: F401 - the solver's import (≈ 0.3 s, pandas) is the query's, not a calibration's
+    from numba.core import event  # (numba's import, like the solver's, is the query's)
+
+    event.Listener.register(_CompileClock)  # numba's listeners are its Listener's (virtual) subclasses
+    clock = _CompileClock()  # a kernel compiled in a calibration (a cold cache) is the query's cost, not the calibration's
+    with event.install_listener("numba:compile", clock):
+        return _extrapolated(query, _calibrations(query, conv, work, budget, compiled, clock), compiled)
+
+
+def _calibrations(query, conv, work: str, budget: float, compiled: bool, clock) -> list:
+    """The exact counts of :func:`estimate`'s smaller sizes, (links, chains, units, seconds, units of the
+    largest code, seconds of the units visited one by one), timed on ``clock``, for about ``budget`` seconds."""
+    from . import type_synthesis as ts
+
     unit_work = {"count": ts.count_unit, "list": ts.run_unit, "mechanisms": ts._MechanismCount(False),
                  "mechanisms with input": ts._MechanismCount(True)}[work]
     links = query.links
     step = query.h - 1
     same = repr(query.to_dict() | {"links": None}), work, compiled  # the calibrations several grid cells share
-    start = time.process_time()
+    start = clock()
     points = []  # (links, chains, units, seconds)
     for n in range(links - step * ((links - 2) // step), links, step):  # the query's sizes, smallest first
-        if time.process_time() - start > budget and (points or n > 64):
+        if clock() - start > budget and (points or n > 64):
             break
-        elapsed = time.process_time() - start
+        elapsed = clock() - start
         if len(points) >= 2 and elapsed + points[-1][3] * points[-1][1] / points[-2][1] > 1.5 * budget:
             break  # the next size would overrun the budget by half
         if (same, n) not in _COUNTED:
-            t0 = time.process_time()
+            t0 = clock()
             try:
                 jobs = ts.plan_jobs(query.with_options(links=n))
             except ImpossibleParameters:
@@ -200,16 +255,24 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
             if compiled:
                 jobs = [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
             chains = units = largest = 0
-            timed = _TimedWork(unit_work)
+            timed = _TimedWork(unit_work, clock)
             for _, unit, result in ts._map_units(timed, jobs, 1, False):
                 if unit is not None:
                     chains += len(result) if isinstance(result, list) else sum(result.values())
                     units += 1
                 else:  # a code is complete: result is its number of units
                     largest = max(largest, result)
-            _COUNTED[same, n] = (n, chains, units, time.process_time() - t0, largest, timed.visited)
+            _COUNTED[same, n] = (n, chains, units, clock() - t0, largest, timed.visited)
         if _COUNTED[same, n][1]:
             points.append(_COUNTED[same, n])
+    return points
+
+
+def _extrapolated(query, points: list, compiled: bool) -> Estimate | None:
+    """:func:`estimate`'s extrapolation from its calibrations ``points`` (None: fewer than three); a unit's
+    time grows by :data:`UNIT_GROWTH` on the ``compiled`` path, where it was measured."""
+    links = query.links
+    step = query.h - 1
     if len(points) < 3:
         return None
     (_, c0, u0, *_), (_, c1, u1, *_), (n2, c2, u2, s2, l2, w2) = points[-3:]
@@ -225,7 +288,7 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     # chains, the rest (stage A, the plan, the units counted without visiting) per unit, grown by
     # UNIT_GROWTH a loop, times the units
     parts = [log_chains + math.log10(w2 / c2)] if w2 > 0 else []
-    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0))
+    log_growth = steps * math.log10(UNIT_GROWTH.get(query.h, 1.0) if compiled else 1.0)
     parts += [log_units + math.log10((s2 - w2) / max(u2, 1)) + log_growth] if s2 > w2 else []
     top = max(parts, default=log_chains - 9.0)  # (no time measured at all: a nanosecond a chain)
     log_seconds = top + math.log10(sum(10.0 ** (part - top) for part in parts) or 1.0)

@@ -17,7 +17,7 @@ import pytest
 from synth.errors import ImpossibleParameters, QueryTooLarge, flag
 from synth.structure.query import ChainQuery
 from synth.synthesis import estimate as est
-from synth.synthesis import stage_b
+from synth.synthesis import stage_a, stage_b
 from synth.synthesis import type_synthesis as ts
 
 #: links -> units of each code (their chain counts), the CPU seconds the size takes, and of those the
@@ -516,3 +516,22 @@ def test_a_real_calibration_times_the_units_whose_chains_it_visits(monkeypatch):
     est.estimate(ChainQuery(1, 14), work="list")
     listed = {n: point for ((_, work, _), n), point in est._COUNTED.items() if work == "list"}
     assert listed[12][1:3] == (6856, 104) and 0.0 < listed[12][5] <= listed[12][3]
+
+
+#: h = 4: a loop adds three links; sizes 5 … 17 as the 1-DOF counts (1, 3, 42, 1 798, 156 275 chains)
+SIZES_H4 = {5: ([[1]], 0.0), 8: ([[3]], 0.0), 11: ([[40, 2]], 0.0), 14: ([[1000, 798], [0]], 0.01),
+            17: ([[100000, 56275], [0, 0]], 0.1, 0.08, True)}
+
+
+@pytest.mark.parametrize("links, compiled", [(23, True), (17 + 3, False)])
+def test_a_unit_s_time_grows_by_h_s_factor_a_loop_on_the_compiled_path_only(monkeypatch, links, compiled):
+    """h = 4: 0.1 s over 4 units at 17 links, all counted without visiting, 2.34 times more a unit
+    each loop (three links) beyond on the compiled path (where the factor was measured); not at all
+    off it (the path of a query below the kernel's loops, here forced)."""
+    _Calibrations(monkeypatch, SIZES_H4)
+    if not compiled:
+        monkeypatch.setattr(stage_a, "kernel_loops", lambda conv, multiple=False: 99)
+    found = est.estimate(ChainQuery(1, links, h=4))
+    assert found.basis == "exact counts at 11, 14, 17 links"
+    steps = (links - 17) // 3
+    assert found.seconds == pytest.approx(found.units * 0.1 / 4 * (2.34 if compiled else 1.0) ** steps, rel=1e-12)
