@@ -261,6 +261,13 @@ CASES = [
 _SERVER = r"""
 import json, os, resource, signal, sys, time, traceback
 import mechsynth.cli, mechsynth.commands.balance, synth.synthesis.type_synthesis, synth.atlas.runs, synth.atlas.queries, synth.draw._render
+# A case that sizes a count (a query too large to run unasked) compiles the count's kernels on a cold numba cache
+# (a fresh clone): about 17 CPU s, which on a loaded machine passed a case's time limit, so the case was killed
+# before numba cached them and the next such case compiled again. Sized once here, before any case's clock, the
+# kernels are compiled (or loaded) in this process, which every case is forked from.
+from synth import ChainQuery
+from synth.synthesis.estimate import estimate
+estimate(ChainQuery(1, 16))
 for line in sys.stdin:
     job = json.loads(line)
     pid = os.fork()
