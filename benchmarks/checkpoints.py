@@ -108,6 +108,19 @@ def table_rows(state, plan: list[str] | None = None) -> list[dict]:
     return rows
 
 
+def _in_words(query: str) -> str:
+    """A query as a command line (benchmarks/records/*.json) in a checkpoint's words; other text unchanged.
+
+    >>> _in_words("chains --dof 1 --links 12 --h 2")
+    'chains dof=1 links=12 h=2'
+    """
+    words = query.split()
+    keys, values = words[1::2], words[2::2]
+    if len(words) % 2 == 0 or not all(k.startswith("--") for k in keys) or any(v.startswith("--") for v in values):
+        return query  # a flag (--no-fractionated) or other text: left as it is, so it matches no checkpoint
+    return " ".join([words[0]] + [f"{k[2:]}={v}" for k, v in zip(keys, values)])
+
+
 def read_counts(path: Path) -> tuple[dict, bool, str]:
     """(complete codes → count, whether the count is finished, its query in words) of a checkpoint or
     a count's JSON (finished; codes without chains left out)."""
@@ -136,7 +149,7 @@ def read_counts(path: Path) -> tuple[dict, bool, str]:
                 isinstance(n, int) and not isinstance(n, bool) for n in found["by_code"].values()):
             if "count" in found and found["count"] != sum(found["by_code"].values()):
                 fail(f"{path}: its count {found['count']} is not the sum of its counts by code")
-            return {code: n for code, n in found["by_code"].items() if n}, True, found.get("query", "")
+            return {code: n for code, n in found["by_code"].items() if n}, True, _in_words(found.get("query", ""))
     fail(f"{path} is neither a checkpoint nor a count's JSON (a line {{\"count\": …, \"by_code\": {{…}}}})")
 
 
@@ -198,7 +211,7 @@ def main(argv=None) -> int:
         if args.a.resolve() == args.b.resolve():
             fail(f"{args.a} compared with itself proves nothing: give the two counts to compare")
         *a, query_a = read_counts(args.a)
-        *b, query_b = read_counts(args.b)  # (a query in words comes from a checkpoint; a JSON count has none)
+        *b, query_b = read_counts(args.b)  # (a checkpoint's query in words; a records file's command line, put in words; a count's JSON has none)
         # a spot check's --code query has no links= (the code says them, and the sizes are checked below)
         bare = [" ".join(word for word in re.sub(r" by [\w-]+", "", q).split()  # (the method: " by orbits")
                          if not (args.part and word.startswith(("code=", "links=")))) for q in (query_a, query_b)]

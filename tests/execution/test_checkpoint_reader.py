@@ -208,3 +208,14 @@ def test_a_spot_check_of_some_codes_is_compared_as_a_part(counted, tmp_path):
     wrong = tmp_path / "wrong.json"
     wrong.write_text(json.dumps({"by_code": {"5410/0": 94}}))
     assert _script("compare", "--part", wrong, folder / "listing.json").returncode == 1
+
+
+def test_a_records_file_whose_query_is_a_command_line_is_compared_with_its_checkpoint(counted, tmp_path):
+    folder, listing, _ = counted
+    same = tmp_path / "dof_1_links_10.json"  # as benchmarks/records/*.json write it
+    same.write_text(json.dumps({"query": "chains --dof 1 --links 10", **listing.to_dict()}))
+    assert json.loads(_script("compare", same, folder / "listing.sqlite").stdout)["verdict"] == "equal"
+    other = tmp_path / "dof_1_links_12.json"
+    other.write_text(json.dumps({"query": "chains --dof 1 --links 12", **listing.to_dict()}))
+    refused = _script("compare", other, folder / "listing.sqlite")
+    assert refused.returncode == 2 and "counts another query" in refused.stderr
