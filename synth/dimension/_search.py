@@ -8,7 +8,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares
+from scipy.optimize import differential_evolution, least_squares, minimize
 
 from mechbase import Row
 
@@ -40,8 +40,12 @@ SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
 #: the share of the budget the given starts' ranking by the global stage's cost may take, and the
 #: share the best of their polishes may then go on with
 RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
-#: polishes of the final shifted penalty of the link-length constraints (:meth:`_Search.stiffen`)
-AIM_ROUNDS = 4
+#: runs of the final SLSQP polish of the link-length orders (:meth:`_Search.hold_orders`), 100 steps each; and
+#: polishes of the final shifted penalty of a length or ratio bound (:meth:`_Search.aim_bounds`)
+STIFF_RUNS, AIM_ROUNDS = 5, 4
+#: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
+#: after a budget of 60 without a limit)
+AIM_SHARE = 0.1
 
 
 class _OutOfTime(Exception):
@@ -916,8 +920,8 @@ class _Search:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
         curve, or, with a ``direction``, x a polished answer's unknowns and input steps); the result kept if it is
         the best yet, and returned as (cost, unknowns) (None where the polish found nothing on the branch).  With
-        ``grace`` the budget is not watched; with ``until`` the polish also stops once that many seconds of the
-        budget are used; ``central`` differences for its Jacobian (twice the evaluations, exact to eps^(2/3) rather
+        ``grace`` the budget is not watched; with ``until`` the polish also stops once that many seconds are used
+        (with ``grace`` too); ``central`` differences for its Jacobian (twice the evaluations, exact to eps^(2/3) rather
         than eps^(1/2)) where forward ones stall in a flat valley."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
@@ -938,7 +942,7 @@ class _Search:
         best = [math.inf, z0]
 
         def fun(z):
-            if (watch.over() or (until is not None and watch.used() >= until)) and not grace:
+            if (watch.over() and not grace) or (until is not None and watch.used() >= until):
                 raise _OutOfTime
             r = evaluate.vector(z, direction)
             cost = float(r @ r)
@@ -975,8 +979,8 @@ class _Search:
         return bool((np.asarray(z[p.dims:]) <= 1e-9 * p.input_span).any())
 
     def binding(self) -> bool:
-        """Whether the best answer's link-length constraints call for :meth:`stiffen`: an order (always
-        polished so), or a length or ratio bound within twice the search's margin of its limit."""
+        """Whether the best answer's link-length constraints call for a final polish (:meth:`stiffen`): an
+        order (always polished so), or a length or ratio bound within twice the search's margin of its limit."""
         p = self.problem
         if self.best is None or not p.length_bounds:
             return False
@@ -985,22 +989,67 @@ class _Search:
         return bool((p.length_gaps(p.linkage(self.best[1][:p.dims])) >= math.log1p(-2 * MARGIN)).any())
 
     def stiffen(self) -> None:
-        """Polish the best answer again with the link-length constraints (orders, the length and ratio
-        bounds) aimed at :data:`HELD_MARGIN` inside their bounds, each aim then moved inwards by the
-        overshoot its penalty leaves, for up to :data:`AIM_ROUNDS` polishes (a shifted penalty: the
-        least squares converge as the search's do, and the answer lands on the bound).  The search's
-        penalty, aimed 1e-4 inside (``MARGIN``), leaves a binding constraint that far inside it (0.6 % of
-        CE2's error under an order, 0.04 % of the ten points' of [HCDJ] under a length bound); a stiffer
-        penalty slides along a binding constraint too slowly, and SLSQP on the sum of squares crawled
-        (the ten points: 0.03 % short after 500 steps).  Kept if it meets the constraints (to ``MET``) and
-        errs no more, or the answer before did not meet them."""
+        """Polish the best answer once more so that a binding link-length constraint is met on its bound,
+        not the search's margin of 1e-4 inside it (``MARGIN``: 0.6 % of CE2's error under an order, 0.04 %
+        of the ten points' of [HCDJ] under a length bound); a stiffer penalty slides along a binding
+        constraint too slowly (or, from the start, misleads the search).  The orders are held by SLSQP
+        (:meth:`hold_orders`), a length or ratio bound without orders by a shifted penalty
+        (:meth:`aim_bounds`): on CE2 the shifted penalty ended 1.8e-4 (relative) above SLSQP's answer, and on
+        the ten points SLSQP crawled (0.03 % short after 500 steps) where the shifted penalty met the
+        published optimum.  Kept if it meets the constraints (to ``MET``) and errs no more, or the answer
+        before did not meet them."""
+        p, kept = self.problem, self.best
+        found = self.hold_orders() if p.order else self.aim_bounds()
+        if found is None:
+            return
+        after, before = self._fit(found), self._fit(kept)
+        met = (p.length_gaps(p.linkage(found[1][:p.dims])) <= MET).all()
+        if met and after < INFEASIBLE / 10 and (after <= before or (p.length_gaps(p.linkage(kept[1][:p.dims])) > MET).any()):
+            self.best = (after, found[1], found[2])
+
+    def hold_orders(self):
+        """The best answer polished by SLSQP on its squared residuals with the link-length orders as
+        inequality constraints of their own, each :data:`HELD_MARGIN` inside its bound (their penalty rows
+        dropped; restarted up to :data:`STIFF_RUNS` times where it stalls); (cost, unknowns, direction)."""
+        p, evaluate = self.problem, self.evaluate
+        _, z0, direction = self.best
+        p.aim = np.concatenate((np.full(p.order_pairs, -np.inf), p.aim[p.order_pairs:]))  # (the orders' rows 0)
+        extra = len(z0) - p.dims  # (untimed: the input steps)
+        bounds = list(zip(np.concatenate((p.lower, np.zeros(extra))),
+                          np.concatenate((p.upper, np.full(extra, p.input_span)))))
+
+        def cost(z):
+            r = evaluate.vector(z, direction)
+            return float(r @ r)
+
+        def inside(z):
+            try:
+                return -(p.order_gaps(p.linkage(z[:p.dims])) + HELD_MARGIN)
+            except MotionError:
+                return np.full(p.order_pairs, -1.0)
+
+        z = z0
+        for _ in range(STIFF_RUNS):  # (a run that stalls is restarted: its quasi-Newton matrix afresh)
+            found = minimize(cost, z, method="SLSQP", bounds=bounds, constraints={"type": "ineq", "fun": inside},
+                             options={"ftol": 1e-12 * cost(z0), "maxiter": 100})
+            z = np.clip(found.x, *np.array(bounds).T)
+            if found.status == 0:
+                break
+        return cost(z), z, direction
+
+    def aim_bounds(self):
+        """The best answer polished again with the length and ratio bounds aimed :data:`HELD_MARGIN` inside,
+        each aim then moved inwards by the overshoot its penalty leaves, for up to :data:`AIM_ROUNDS`
+        polishes with central differences, within :data:`AIM_SHARE` of the budget beyond it (a shifted
+        penalty: the least squares converge as the search's do, and the answer lands on the bound); (cost,
+        unknowns, direction), or None."""
         p, kept = self.problem, self.best
         aim = np.full(p.length_bounds, HELD_MARGIN)
-        best = kept
+        best, until = None, self.watch.used() + AIM_SHARE * self.watch.budget
         for _ in range(AIM_ROUNDS):
             p.aim = aim
             self.best = None
-            if self.polish(best[1], grace=True, direction=best[2], central=True) is None:
+            if self.polish((best or kept)[1], grace=True, until=until, direction=kept[2], central=True) is None:
                 break
             best = self.best
             gaps = p.length_gaps(p.linkage(best[1][:p.dims]))
@@ -1008,12 +1057,7 @@ class _Search:
                 break
             aim = aim + np.maximum(gaps + aim, 0.0) * (gaps > -HELD_MARGIN)  # (each active aim moved by its overshoot)
         self.best = kept
-        if best is kept:
-            return
-        after, before = self._fit(best), self._fit(kept)
-        met = (p.length_gaps(p.linkage(best[1][:p.dims])) <= MET).all()
-        if met and (after <= before or (p.length_gaps(p.linkage(kept[1][:p.dims])) > MET).any()):
-            self.best = (after, best[1], best[2])
+        return best
 
     def _fit(self, best) -> float:
         """The sum of squares of an answer's target rows alone (its constraints' rows left out)."""
