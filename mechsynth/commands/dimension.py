@@ -2,8 +2,8 @@
 (with or without timing), a function (input–output angles) or poses of a body.
 
 The target is a CSV or JSON file (columns ``x,y`` / ``x,y,input`` / ``input,output`` / ``x,y,angle``,
-a ``*_deg`` column in degrees, and last an optional ``weight`` column); the topology is a linkage file (its pose is a first guess) or a
-joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
+a ``*_deg`` column in degrees, and last an optional ``weight`` column); the topology is a linkage file
+(its pose is a first guess) or a joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
 linkage file that ``move`` and ``scene`` read, and drawn over the target.
 
 Example

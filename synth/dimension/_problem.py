@@ -716,7 +716,8 @@ class Problem:
 
 
 def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: complex | None = None,
-              turns: bool = True, similar: bool = True, weights: np.ndarray | None = None) -> tuple[complex, complex, complex]:
+              turns: bool = True, similar: bool = True,
+              weights: np.ndarray | None = None) -> tuple[complex, complex, complex]:
     """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
     link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
     the link's rotation e^{iθᵢ} and movesᵢ its translation at each point), each point's squared

@@ -385,7 +385,8 @@ class _Evaluate:
                 first = p.residuals(values[:1], rows[:1]).ravel()
                 weights = np.ones(len(rows)) if p.weights is None else p.weights
                 d2, where = self.project(values, rows[1:], weights[1:])
-                cost, moved, placed = (weights[0] * float(first @ first) + float((weights[1:] * d2).sum())) / len(rows), x, lk
+                cost = (weights[0] * float(first @ first) + float((weights[1:] * d2).sum())) / len(rows)
+                moved, placed = x, lk
                 offsets = np.interp(where, np.arange(len(xs)), xs)
             else:
                 fit = self.aligned(values, rows, link)
@@ -1004,7 +1005,8 @@ class _Search:
             return
         after, before = self._fit(found), self._fit(kept)
         met = (p.length_gaps(p.linkage(found[1][:p.dims])) <= MET).all()
-        if met and after < INFEASIBLE / 10 and (after <= before or (p.length_gaps(p.linkage(kept[1][:p.dims])) > MET).any()):
+        unmet_before = (p.length_gaps(p.linkage(kept[1][:p.dims])) > MET).any()
+        if met and after < INFEASIBLE / 10 and (after <= before or unmet_before):
             self.best = (after, found[1], found[2])
 
     def hold_orders(self):
