@@ -629,7 +629,6 @@ class Counts(Row):
         return (f"{searched} of the {self.units_run} units run {'was' if searched == 1 else 'were'} counted by the search, not by "
                 f"orbits (the same counts, found as the listing finds them): {why}")
 
-
     @property
     def shared_note(self) -> str | None:
         """One sentence on the units of a second count that were counted by the first count's path, or None.
