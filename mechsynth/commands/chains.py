@@ -277,8 +277,9 @@ def _run(args) -> int:
             if log is not None:
                 log.flush()  # the checkpoint's last commit, held back by the minute, ends the log
         found = write_count(result.to_dict(), args.format or "json")
-        if result.by_search_note is not None:  # --method orbits says where it did not count by orbits
-            print(f"mechsynth: {result.by_search_note}", file=sys.stderr)
+        for note in (result.by_search_note, result.shared_note):  # --method orbits says where it did not count by
+            if note is not None:  # orbits, --method tight-reverse where it shared the first count's path
+                print(f"mechsynth: {note}", file=sys.stderr)
         if found == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0

@@ -209,11 +209,15 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
 
 def load_kernel() -> None:
     """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``)."""
+    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``).
+    Their counts take Burnside's way (``tight_count``), so each is listed too: the listing runs
+    ``place``, the search of a count with a multiple joint or a partial group (left out, a cold cache had
+    each process that met such a unit compile it in the middle of the count: about 3 CPU s)."""
     conv = Conventions()
     for code in (Code.parse("440/0"), Code.parse("6020/0")):
         for graph in _contracted_by_kernel(code, conv):
-            _kernel_placements(code, graph, conv, None, listing=False)
+            for listing in (False, True):
+                _kernel_placements(code, graph, conv, None, listing=listing)
             count_orbits(code, graph, conv)
 
 

@@ -127,19 +127,19 @@ def test_a_command_mounts_only_its_module_and_the_table_names_every_command():
     import argparse
     import importlib
 
-    from mechsynth.cli import COMMANDS, _build_parser
+    from mechsynth._parser import COMMANDS, build_parser
 
     def choices(parser):
         return list(next(a for a in parser._actions if a.dest == "command").choices)
 
-    everything = choices(_build_parser())
+    everything = choices(build_parser())
     assert everything == list(COMMANDS)
     for module in dict.fromkeys(COMMANDS.values()):
         sub = argparse.ArgumentParser().add_subparsers()
         importlib.import_module(f"mechsynth.commands.{module}").add_commands(sub)
         assert list(sub.choices) == [name for name, m in COMMANDS.items() if m == module]
-    assert choices(_build_parser(["draw", "--code", "42/0"])) == ["draw"]  # one module per command
-    assert choices(_build_parser(["--help"])) == everything and choices(_build_parser(["nonsense"])) == everything
+    assert choices(build_parser(["draw", "--code", "42/0"])) == ["draw"]  # one module per command
+    assert choices(build_parser(["--help"])) == everything and choices(build_parser(["nonsense"])) == everything
 
 
 def test_a_command_that_is_not_one_lists_every_command(capsys):
