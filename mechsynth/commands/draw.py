@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._argtypes import inches, positive, where_conditions, whole
+from .._argtypes import inches, picture_file, positive, where_conditions, whole
 
 __all__ = ["add_commands"]
 
@@ -54,7 +54,8 @@ def add_commands(sub) -> None:
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
     p.add_argument("--title", help="sheet title (default: the selection)")
-    p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
+    p.add_argument("--out", required=True, type=picture_file,
+                   help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     p.set_defaults(run=_run_draw)
 
 
