@@ -179,7 +179,7 @@ def _run(args) -> int:
     _check(args)
     linkage = _linkage(args)
     _check_inputs(args, linkage)
-    if linkage.note:
+    if linkage.note and not args.linkage:  # a file's note tells what was done when it was saved, not now
         print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
     if args.save:
         with open(args.save, "w") as fh:
@@ -196,7 +196,7 @@ def _run(args) -> int:
     motion = sweep(linkage, steps=steps, start=start, stop=stop, velocities=args.velocities,
                    accelerations=args.accelerations)
     if motion.stopped:
-        print(f"mechsynth: the sweep stopped: {motion.stopped}", file=sys.stderr)
+        print(f"mechsynth: {motion.stopped}", file=sys.stderr)
     if args.out:
         from synth import draw_motion
 
@@ -341,7 +341,7 @@ def _write_long_sweep(linkage, args, steps: int, start: float | None, stop: floa
             written += len(rows)
             bar.update(len(rows))
             if piece.stopped:
-                print(f"mechsynth: the sweep stopped: {piece.stopped}", file=sys.stderr)
+                print(f"mechsynth: {piece.stopped}", file=sys.stderr)
                 break
     if fmt == "json":
         sys.stdout.write("]\n")
