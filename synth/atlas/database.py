@@ -174,6 +174,8 @@ def _check_version(conn: sqlite3.Connection, path: Path) -> int:
     upgrades): its tables and columns, and its version, which it returns."""
     try:
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if not tables:  # an empty file opens as an empty database
+            raise AtlasError(f"{path} is empty: no atlas there (run 'mechsynth grid GRID.toml --db {path}' first)")
         if "meta" not in tables:
             raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
         row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()

@@ -349,3 +349,15 @@ def test_a_dead_process_is_not_alive_and_a_live_one_is(monkeypatch):
 
     monkeypatch.setattr(os, "kill", kill)
     assert database._alive(dead.pid)
+
+
+def test_an_empty_file_is_said_to_be_empty_not_an_sqlite_file(tmp_path, capsys):
+    """`atlas --db empty.txt` said 'empty.txt is an SQLite file but not a mechsynth atlas'; the file
+    stays empty."""
+    from mechsynth.cli import main
+
+    empty = tmp_path / "empty.txt"
+    empty.write_bytes(b"")
+    assert main(["atlas", "--db", str(empty)]) == 2
+    err = capsys.readouterr().err
+    assert "is empty" in err and "SQLite file" not in err and empty.read_bytes() == b""
