@@ -146,3 +146,15 @@ def test_a_command_that_is_not_one_lists_every_command(capsys):
     assert main(["chain", "--dof", "1"]) == 2
     err = capsys.readouterr().err
     assert "invalid choice: 'chain'" in err and "'balance'" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("argv, command", [
+    (["codes", "--dof", "1", "--loops", "4", "--count"], "mechsynth codes"),
+    (["balance", "arm", "arm.toml", "--bogus"], "mechsynth balance arm"),
+])
+def test_an_unknown_option_points_at_its_commands_help(argv, command, capsys):
+    """'codes … --count' said 'unrecognized arguments: --count (see 'mechsynth --help')': the root's help,
+    which does not list the options of codes."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err == f"mechsynth: unrecognized arguments: {argv[-1]} (see '{command} --help')\n"
