@@ -330,7 +330,7 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
             columns[-2:-2] = ["guide", "swinging", "floating", "slider"]
     n = write_rows(_indexed(rows), columns, fmt)
     if fmt == "table":
-        print(f"{n} {what}")
+        print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain, 1 mechanism
     if n == 0:
         return nothing_found(f"{what} satisfy these parameters and conventions")
     return 0

@@ -128,7 +128,8 @@ def _run_codes(args) -> int:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
-        print(f"{sum(per_k.values())} codes ({summary})")
+        total = sum(per_k.values())
+        print(f"{total} code{'s' * (total != 1)} ({summary})")
     return 0
 
 
