@@ -181,6 +181,9 @@ def _check_version(conn: sqlite3.Connection, path: Path) -> int:
         row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
         version = row[0] if row else None
         if version is None:
+            query = conn.execute("SELECT value FROM meta WHERE key = 'query'").fetchone()
+            if query and {"codes", "units"} <= tables:  # a count's checkpoint (synth/execution/checkpoint.py)
+                raise AtlasError(f"{path} is the checkpoint of a count ({query[0]}), not an atlas")
             raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (its meta table names no schema "
                              "version)")
         if version not in (str(SCHEMA_VERSION), "3"):
