@@ -183,3 +183,16 @@ def test_ctrl_c_swallowed_by_a_finaliser_still_stops_the_command(monkeypatch, ca
     assert main(["codes", "--dof", "1", "--loops", "1"]) == 130
     err = capsys.readouterr().err
     assert err == "mechsynth: interrupted\n"
+
+
+@pytest.mark.parametrize("argv, flag", [
+    (["identify", "0-1 1-2 2-3 3-0", "--index", "--no-index"], "--index and --no-index"),
+    (["chains", "--dof", "1", "--links", "6", "--no-fractionated", "--fractionated"], "--fractionated and --no-fractionated"),
+    (["draw", "--chain", "0-1 1-2 2-3 3-0", "--labels", "--no-labels", "--out"], "--labels and --no-labels"),
+])
+def test_a_flag_and_its_negation_are_refused(argv, flag, capsys, tmp_path):
+    """'identify … --index --no-index' ran with the last of the two, as argparse keeps it."""
+    if argv[-1] == "--out":
+        argv = [*argv, str(tmp_path / "x.svg")]
+    assert main(argv) == 2 and not (tmp_path / "x.svg").exists()
+    assert f"{flag} contradict each other" in capsys.readouterr().err
