@@ -196,3 +196,24 @@ def test_a_flag_and_its_negation_are_refused(argv, flag, capsys, tmp_path):
         argv = [*argv, str(tmp_path / "x.svg")]
     assert main(argv) == 2 and not (tmp_path / "x.svg").exists()
     assert f"{flag} contradict each other" in capsys.readouterr().err
+
+
+def test_every_option_of_every_command_says_what_it_is():
+    """--help of 'balance prismatic' listed --mass m, --inertia I and --counter-mass M without a word or a unit;
+    22 options and arguments (each command's --format among them) had no help."""
+    import argparse
+
+    from mechsynth.cli import _build_parser
+
+    silent = []
+
+    def walk(parser, words):
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for name, sub in action.choices.items():
+                    walk(sub, [*words, name])
+            elif not action.help:
+                silent.append(f"{' '.join(words)} {action.option_strings or action.dest}")
+
+    walk(_build_parser(), ["mechsynth"])
+    assert silent == []
