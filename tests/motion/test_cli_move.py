@@ -260,3 +260,10 @@ def test_a_saved_linkage_read_back_does_not_repeat_the_note_of_its_drawing(capsy
     assert code == 0 and "note: the drawing's pose" in err and "note" in json.loads(saved.read_text())
     code, _, err = _run(capsys, "move", saved, "--range")
     assert code == 0 and "note" not in err
+
+
+def test_a_cranks_angles_are_read_in_one_turn_0_to_360(capsys):
+    """The four-bar's least transmission angle was reported 'at input 360°': a full turn from its pose,
+    359.9999999997°, printed to six digits."""
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range")
+    assert code == 0 and "at input 360°" not in out and "at input 0°" in out
