@@ -23,6 +23,20 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message):  # noqa: D401 - argparse API
         raise InvalidOption(f"{message} (see '{self.prog} --help')")
 
+    def parse_known_args(self, args=None, namespace=None):
+        """As argparse's, remembering the innermost command that left words unread: the root parser
+        refuses them, and its message points at that command's help, not the root's."""
+        namespace, extras = super().parse_known_args(args, namespace)
+        if extras and not hasattr(namespace, "unread_by"):
+            namespace.unread_by = self.prog
+        return namespace, extras
+
+    def parse_args(self, args=None, namespace=None):
+        namespace, extras = self.parse_known_args(args, namespace)
+        if extras:
+            raise InvalidOption(f"unrecognized arguments: {' '.join(extras)} (see '{namespace.unread_by} --help')")
+        return namespace
+
 
 class _Version(argparse.Action):
     """``--version``: the installed version, looked up only when asked."""

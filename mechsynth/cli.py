@@ -36,16 +36,32 @@ __all__ = ["main"]
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    interrupted, previous = [], None
+    interrupted, previous, pending = [], None, []
 
     def on_interrupt(signum, frame):
         interrupted.append(signum)
         raise KeyboardInterrupt
 
+    def on_unraisable(unraisable):
+        """A Ctrl-C raised inside a finaliser or a ctypes callback, where Python drops it after printing it:
+        raised again in the main thread a moment later, once that code has returned (from another thread:
+        in this one the handler would run at once, inside this hook, and be dropped again)."""
+        if interrupted and isinstance(unraisable.exc_value, KeyboardInterrupt):
+            import _thread
+
+            again = threading.Timer(0.05, _thread.interrupt_main)
+            again.daemon = True
+            pending.append(again)
+            again.start()
+        else:
+            previous_hook(unraisable)
+
     # Ctrl-C raises KeyboardInterrupt as Python's own handler does, and is remembered: an extension
     # interrupted in the middle of a call (nauty building a graph) may raise something else instead
+    previous_hook = sys.unraisablehook
     if threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
         previous = signal.signal(signal.SIGINT, on_interrupt)
+        sys.unraisablehook = on_unraisable
     try:
         return _run(argv)
     except KeyboardInterrupt:
@@ -59,8 +75,11 @@ def main(argv: list[str] | None = None) -> int:
         print("mechsynth: interrupted", file=sys.stderr)
         return 130
     finally:
+        for again in pending:  # none outlives the command
+            again.cancel()
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
+            sys.unraisablehook = previous_hook
 
 
 def _run(argv: list[str]) -> int:
