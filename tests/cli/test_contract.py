@@ -203,7 +203,7 @@ def test_every_option_of_every_command_says_what_it_is():
     22 options and arguments (each command's --format among them) had no help."""
     import argparse
 
-    from mechsynth.cli import _build_parser
+    from mechsynth._parser import build_parser
 
     silent = []
 
@@ -215,5 +215,5 @@ def test_every_option_of_every_command_says_what_it_is():
             elif not action.help:
                 silent.append(f"{' '.join(words)} {action.option_strings or action.dest}")
 
-    walk(_build_parser(), ["mechsynth"])
+    walk(build_parser(), ["mechsynth"])
     assert silent == []
