@@ -119,19 +119,23 @@ _A227117 = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132, 11: 203
 _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
          (3, True): {6: 1, 8: 7, 10: 98}, (3, False): {6: 1, 8: 5, 10: 74}}
 
-# h = 4 … 6 beyond 20 links: the engine's sizing misses the growth of a unit's time there (UNIT_GROWTH has no
-# factor for h >= 4): 26 links at h = 5 was sized at 1.4 CPU s and took 35, 23 links at h = 4 13 and 90
-# (`records.py --size`, 3ef3e6b); the counts' memory grows too (1.2 and 1.5 GiB at their peak)
-_SIZED_H = "the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about {} chains, {} CPU s, " \
-           "but it sized {} at {} CPU s and that count took {}"
+# h = 4 … 6 beyond 20 links, as sized on 29 Nov 2026 at a98900f (`records.py --size`, UNIT_GROWTH for h = 4, 5, 6:
+# PROFILE.md section 33), each count to be checked by its second count (--method tight-reverse) at about its cost;
+# their memory is bounded since a98900f (stage B's layers within 256 MiB a process: PROFILE.md section 34)
+_SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about {} chains, {} CPU s for the " \
+           "count and about as much again for its second count (--method tight-reverse)"
 _BEYOND = {
     (4, 23): "run on its own (--only): sized at 13 CPU s (3.6e9 chains), counted in 90 CPU s and 1.5 GiB on 29 Nov "
-             "2026, and as much again for its second count",
-    (4, 26): "not run: " + _SIZED_H.format("7.9e11", 197, "23 links", 13, 90)
-             + ", so expect some 20 to 25 CPU min, and its memory may pass 2 GiB (1.5 GiB at 23 links)",
-    (5, 30): "not run to the end: " + _SIZED_H.format("9.8e10", 9.6, "26 links", 1.4, 35.5)
-             + "; begun on 29 Nov, 441 of some 4 600 units (2.9e9 chains) in about 50 CPU s, stopped for time",
-    (6, 32): "not run: " + _SIZED_H.format("5.4e8 to 5.6e9", "3 to 70", "27 links", "0.5 to 5", 4.8),
+             "2026, and as much again for its second count (0.74 GiB since a98900f)",
+    (4, 26): "not run: " + _SIZED_H.format("7.9e11", "1 990")
+             + ", some 66 CPU min in all, past the 50 CPU min the h = 4…6 counts had on 29 Nov (at 23 links the sizing was 15 % "
+             "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
+    (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
+             + ", some 16 CPU min in all, which 2 workers at a load of 20 (29 Nov, evening) could not get in the session "
+             "(at 26 links the sizing, its growth factor fitted there, was 58 % under the count); to run it: `python "
+             "benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
+    (6, 32): "run on its own (--only): sized at 36 CPU s (5.6e9 chains) at a98900f; before a98900f one worker's layers "
+             "grew past 4 GiB and the run was stopped (PROFILE.md section 34)",
 }
 
 ROWS = (
