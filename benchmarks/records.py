@@ -34,6 +34,8 @@ Run from the project root (a long row prints the command's own progress bar)::
         --second-every 10                                 # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
     python benchmarks/records.py --size --only "dof 3 --links"   # the engine's sizing of rows, beside the records
+    python benchmarks/records.py --only "links 32 --h 6" --recheck --reverse-from reverse.json  # a second count
+        # run beside the first (`mechsynth chains --dof 1 --links 32 --h 6 --count --method tight-reverse > reverse.json`)
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
 keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
@@ -341,13 +343,14 @@ def kernels_off_by_code(row: Row, every: int = 1) -> dict:
 
 
 def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
-           second_every: int = 1, reverse_max: int = 0) -> tuple[str, bool]:
+           second_every: int = 1, reverse_max: int = 0, reverse: dict | None = None) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
     the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
     the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan);
     a count the listing does not check, of up to ``reverse_max`` chains and without multiple joints, is
     counted again by ``--method tight-reverse`` (the second count of a record: another programme over the
-    strings, another reading of the automorphisms), code by code."""
+    strings, another reading of the automorphisms), code by code; ``reverse`` is that second count run
+    already (its command's JSON, run beside the first), compared instead of running it."""
     passed, ok = [], True
     if row.published is not None:
         ok &= found["count"] == row.published
@@ -360,11 +363,12 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
         same = listing_by_code(row) == found["by_code"]
         ok &= same
         passed.append("listing by code" if same else "LISTING DIFFERS")
-    elif not row.option("--v") and list_max < found["count"] <= reverse_max:
-        second = run_count(row, "tight-reverse")
+    elif not row.option("--v") and (reverse is not None or list_max < found["count"] <= reverse_max):
+        second = reverse if reverse is not None else run_count(row, "tight-reverse")
         same = second["by_code"] == found["by_code"]
         ok &= same
-        print(f"records   tight-reverse: {second['count']} chains, {second['cpu_s']} CPU s, {second['wall_s']} s",
+        print(f"records   tight-reverse: {second['count']} chains"
+              + ("" if reverse is not None else f", {second['cpu_s']} CPU s, {second['wall_s']} s"),
               file=sys.stderr, flush=True)
         passed.append("tight-reverse by code" if same else "TIGHT-REVERSE DIFFERS")
     if row.option("--v") and 0 < found["count"] <= second_max:
@@ -604,6 +608,19 @@ def _writable(path: Path, what: str, directory: bool = False) -> None:
         fail(f"the {what} {path} cannot be written (no permission)")
 
 
+def _second_count(path: Path) -> dict:
+    """The counts in ``path``, the JSON of a ``mechsynth chains … --count`` command (``count``, ``by_code``)."""
+    try:
+        found = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        fail(f"--reverse-from {path} cannot be read as the JSON of a count ({type(exc).__name__})")
+    by_code = found.get("by_code") if isinstance(found, dict) else None
+    if not (isinstance(by_code, dict) and all(isinstance(n, int) for n in by_code.values())
+            and found.get("count") == sum(by_code.values())):
+        fail(f"--reverse-from {path} is not the JSON of a count (its count and counts by code)")
+    return found
+
+
 def main(argv=None) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
@@ -622,6 +639,10 @@ def main(argv=None) -> int:
     parser.add_argument("--recheck", action="store_true",
                         help="with --only: check again the counts already in the CSV (their by-code files), without "
                         "counting them again; only the checks column changes")
+    parser.add_argument("--reverse-from", type=Path, metavar="FILE",
+                        help="with --recheck of one row: its second count read from FILE, the JSON that `mechsynth "
+                        "<query> --count --method tight-reverse` printed (run beside the first count, on workers "
+                        "of its own), compared code by code instead of running it")
     parser.add_argument("--size", action="store_true",
                         help="count nothing: print the engine's sizing of the rows chosen (--only, --quick, or every "
                         "row) as a Markdown table on stdout, beside the counts and CPU seconds recorded in the CSV; "
@@ -663,6 +684,11 @@ def main(argv=None) -> int:
         fail("--recheck checks the rows chosen by --only again, without counting them: give --only, not --again")
     if args.only is not None and not args.only.strip():
         fail("--only needs some text of a query, such as 'dof 2 --links 11'")
+    reverse = None
+    if args.reverse_from is not None:
+        if not args.recheck or args.size:
+            fail("--reverse-from gives the second count of a recorded row: use it with --recheck and --only")
+        reverse = _second_count(args.reverse_from)
     for path, what, directory in ((args.csv, "CSV file", False), (args.md, "Markdown file", False),
                                   (args.by_code, "by-code folder", True), (args.figure, "figure", False)):
         if not args.size:
@@ -679,6 +705,10 @@ def main(argv=None) -> int:
         if not rows:
             print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
             return 1
+        if reverse is not None and (len(rows) > 1 or rows[0].option("--v")):
+            fail(f"--reverse-from is the second count of one row without multiple joints, and --only {args.only!r} "
+                 f"chooses {len(rows)} rows" if len(rows) > 1 else f"{rows[0].query} has multiple joints, which the "
+                 "second count (tight-reverse) does not cover")
     elif args.size:
         rows = [row for row in ROWS if row.quick or not args.quick]
     else:
@@ -706,7 +736,8 @@ def main(argv=None) -> int:
             if args.recheck:  # the counts recorded, checked again
                 line = lines[row.query]
                 found = json.loads((ROOT / line["by_code_file"]).read_text())
-                check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max)
+                check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max,
+                                   reverse)
                 line["check"] = merge_checks(line["check"], check)
                 bad += not ok
                 write_csv(args.csv, lines)
