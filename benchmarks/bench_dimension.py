@@ -66,6 +66,7 @@ DEFAULT_PYLINKAGE = "/tmp/pylinkage-synth/bin/python"
 #: The public code the problems below were read from (benchmarks/DIMENSION.md, "The literature").
 ECA = "jmejia8/eca-four-bar-mechanisms"
 HNMED = "roydes/HNMED-Implementacion-y-Pruebas"
+HCDJ = "sy-nguyen-van/DE_Jaya_Synthesis_Four_Bar_Mechanisms"
 
 
 @dataclass(frozen=True)
@@ -142,6 +143,18 @@ EIGHTEEN = [(0.5, 1.1), (0.4, 1.1), (0.3, 1.1), (0.2, 1.0), (0.1, 0.9), (0.05, 0
 EIGHTEEN_CENTRE = tuple(np.mean(EIGHTEEN, axis=0).tolist())  # [ECA] moves the points' mean to the origin
 FIXED_FRAME = ("the source fixes the input pivot at the origin and the frame along +x, and times the crank from the "
                "frame line (6 unknowns for 10 equations)")
+# [HCDJ]'s Case 4: six points on a half circle (radius 10 about (10, 0)), the crank at 30° … 180° from the frame
+# line; its best answer (x_best, reordered (r1 … rcy, θ0, x0, y0) from its (r1 … rcy, x0, y0, θ0))
+HALF_CIRCLE = [(0, 0), (1.9098, 5.8779), (6.9098, 9.5106), (13.09, 9.5106), (18.09, 5.8779), (20, 0)]
+HALF_CIRCLE_TIMING = [math.radians(30 * k) for k in range(1, 7)]
+HALF_CIRCLE_RECORDS = (
+    {"vector": [4.9999980e+01, 1.3484315e+00, 1.3484507e+00, 5.0000000e+01, 1.1384434e+01, 4.4424357e+00, 6.2158799e+00,
+                1.0194752e+01, -3.6941340e+00],
+     "sum_squared_error": 1.2162122, "method": "HCDJ (hybrid-combined differential evolution and Jaya)", "name": "HCDJ",
+     "where": f"{HCDJ}: Case4/x_best_HCDJ_Case4.txt, its error in Case4/Records_HCDJ_Case4.txt (best of 50 runs)"},
+)
+#: [HCDJ]'s Case 4 constraints (Cons4.m): Grashof's condition with the crank the shortest link (so the crank turns)
+CRANK_SHORTEST = ("r2 <= r1", "r2 <= r3", "r2 <= r4")
 #: the sources' crank-rocker with the frame longest (with the order, their r1 + r2 <= r3 + r4 is the crank turning)
 SOURCES_ORDER = ("r2 <= r3 <= r4 <= r1",)
 
@@ -182,6 +195,19 @@ PROBLEMS = {
         differs="none: as the sources state it (input pivot at the origin, frame along +x, the crank's absolute "
                 "angles, r2 <= r3 <= r4 <= r1; with that order their r1 + r2 <= r3 + r4 is the crank turning fully), "
                 "but any assembly branch, where the sources take the + root"),
+    "six timed points on a half circle, as stated": Problem(
+        HALF_CIRCLE, HALF_CIRCLE_TIMING, Constraints(crank=True, max_length=50.0, timing="absolute", order=CRANK_SHORTEST),
+        f"{HCDJ}: Case4/Objf4.m (points, timing, objective), Cons4.m (constraints), "
+        "Additional-functions/Mechanisms.m (bounds)", records=HALF_CIRCLE_RECORDS,
+        bounds={"link": 50.0, "offset": 50.0, "pivot": (0.0, 0.0, 50.0)},
+        differs="as the source states it (the crank's angles from the frame line, the frame's place and direction "
+                "free, 9 unknowns; the crank the shortest link and turning, which with that order is its Grashof "
+                "test; links at most 50), but any assembly branch, where the source takes one root; its bounds on "
+                "rcx, rcy, x0, y0 (+-50) are checked on the answer, not posed"),
+    "six timed points on a half circle, no length bound": Problem(
+        HALF_CIRCLE, HALF_CIRCLE_TIMING, Constraints(crank=True, timing="absolute", order=CRANK_SHORTEST),
+        f"{HCDJ}: Case4/Objf4.m, Cons4.m", records=HALF_CIRCLE_RECORDS,
+        differs="the source bounds every link by 50 (its best answers lie on that bound); ours here does not"),
     "ten points of a closed path, untimed": Problem(
         [(20, 10), (17.66, 15.142), (11.736, 17.878), (5, 16.928), (0.60307, 12.736), (0, 6.9519),
          (3.5396, 2.5171), (10, 0.2679), (16.736, 2.1216), (20, 6.5798)], None, Constraints(),

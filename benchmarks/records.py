@@ -16,6 +16,8 @@ to ``benchmarks/records.csv``, and checks the count by whatever independent mean
   kernels off (:func:`kernels_off_by_code`; up to ``--second-max`` chains, or every ``--second-every``-th
   code, a sample).  The count's search with multiple joints runs the stage-B kernel with the exact test's
   sets checked inside it; this check shares neither, nor the listing's kernel;
+* ``listing`` of a larger count's small codes (``--list-codes-max N``): each code of at most N chains
+  listed on its own and compared, the others not checked by this means;
 * ``tight-reverse`` (no multiple joints, counts the listing does not check, up to ``--reverse-max``): the
   counts by code equal those of the same command with ``--method tight-reverse``, the second count of a
   record (another programme over the strings, another reading of the automorphisms; units that are not
@@ -302,15 +304,36 @@ def _query(row: Row) -> dict:
     return {k: x for k, x in query.items() if x is not None}
 
 
-def listing_by_code(row: Row) -> dict:
-    """Counts by code of the listing path (every chain built, nauty certificates) for the row's query."""
+def listing_by_code(row: Row, code: str | None = None) -> dict:
+    """Counts by code of the listing path (every chain built, nauty certificates) for the row's query, or
+    for its one ``code``."""
     import synth
 
     out: dict[str, int] = {}
-    for chain in synth.type_synthesis(**_query(row), workers=2):
+    for chain in synth.type_synthesis(**_query(row), **({"code": code} if code else {}), workers=2):
         key = str(chain.code) + chain.kind_suffix
         out[key] = out.get(key, 0) + 1
     return out
+
+
+def listing_of_small_codes(row: Row, found: dict, most: int) -> tuple[str, bool]:
+    """The listing path's check, code by code, of the codes of a count that hold at most ``most`` chains
+    (each listed on its own), for a count too large to list whole: the check's text and whether it passed.
+    Each code's count and wall seconds go to stderr."""
+    codes = sorted((n, code) for code, n in found["by_code"].items() if 0 < n <= most)
+    differ = []
+    for k, (n, code) in enumerate(codes, 1):
+        t0 = time.monotonic()
+        listed = listing_by_code(row, code).get(code, 0)
+        print(f"records   listing [{k}/{len(codes)}] {code}: {listed} listed, {n} counted, "
+              f"{time.monotonic() - t0:.2f} s", file=sys.stderr, flush=True)
+        if listed != n:
+            differ.append(code)
+    chains = sum(n for n, _ in codes)
+    if differ:
+        return f"LISTING DIFFERS on {len(differ)} of {len(codes)} codes ({', '.join(differ[:3])})", False
+    return (f"listing by code on the {len(codes)} codes of at most {_number(str(most))} chains "
+            f"({_number(str(chains))} chains)", True)
 
 
 # kernel_loops for "never": the compiled kernels of stages A and B run from this many loops on
@@ -343,7 +366,8 @@ def kernels_off_by_code(row: Row, every: int = 1) -> dict:
 
 
 def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
-           second_every: int = 1, reverse_max: int = 0, reverse: dict | None = None) -> tuple[str, bool]:
+           second_every: int = 1, reverse_max: int = 0, list_codes_max: int = 0,
+           reverse: dict | None = None) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
     the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
     the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan);
@@ -371,6 +395,10 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
               + ("" if reverse is not None else f", {second['cpu_s']} CPU s, {second['wall_s']} s"),
               file=sys.stderr, flush=True)
         passed.append("tight-reverse by code" if same else "TIGHT-REVERSE DIFFERS")
+    if found["count"] > list_max and list_codes_max > 0:
+        text, same = listing_of_small_codes(row, found, list_codes_max)
+        ok &= same
+        passed.append(text)
     if row.option("--v") and 0 < found["count"] <= second_max:
         second = kernels_off_by_code(row, second_every)
         whole = second_every == 1  # (then every code counted is in the plan's sample)
@@ -435,7 +463,8 @@ def section(lines: dict[str, dict], figure: str | None = None) -> str:
            "those of the command and its workers, peak MiB the largest sum of their resident memory). Checks:",
            "*published* = the source's value; *oracle* = the brute force of tests/oracles/chains.py, code by",
            "code; *listing* = the listing path (every chain built and told apart by nauty), code by code",
-           f"(counts of up to {_number(str(LIST_MAX))} chains unless `--list-max` says otherwise);",
+           f"(counts of up to {_number(str(LIST_MAX))} chains unless `--list-max` says otherwise; of a larger count,",
+           "the codes of at most `--list-codes-max` chains where it says so, each code listed on its own);",
            "*kernels off* = with multiple joints, the engine with its compiled kernels of stages A and B turned",
            "off (plain search or CP-SAT, the exact test in numpy), code by code, in one process (`--second-max`;",
            "a sample of the codes where it says so; `--recheck` checks a recorded count again);",
@@ -624,10 +653,14 @@ def _second_count(path: Path) -> dict:
 def main(argv=None) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
-    parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included)")
+    parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included); a whole query, "
+                        "such as 'chains --dof 1 --links 20', chooses its row alone")
     parser.add_argument("--again", action="store_true", help="run rows already in the CSV again")
     parser.add_argument("--list-max", type=int, metavar="N",
                         help=f"check by the listing path the counts of up to N chains (default: {LIST_MAX})")
+    parser.add_argument("--list-codes-max", type=int, metavar="N",
+                        help="of a count larger than --list-max, check by the listing path each code of up to N chains, "
+                        "one code at a time (default: 0, none)")
     parser.add_argument("--second-max", type=int, metavar="N",
                         help="with multiple joints, check by the count with the kernels off the counts of up to N "
                         f"chains (default: {LIST_MAX})")
@@ -657,7 +690,7 @@ def main(argv=None) -> int:
                         help="the growth figure (PNG), drawn from the whole CSV whenever the Markdown file is written "
                         "(default: records_growth.png beside the Markdown file)")
     args = parser.parse_args(argv)
-    checking = {"--list-max": args.list_max, "--second-max": args.second_max, "--second-every": args.second_every,
+    checking = {"--list-max": args.list_max, "--list-codes-max": args.list_codes_max, "--second-max": args.second_max, "--second-every": args.second_every,
                 "--reverse-max": args.reverse_max}
     if args.size:
         given = [name for name, value in [*checking.items(), ("--again", args.again or None),
@@ -666,6 +699,7 @@ def main(argv=None) -> int:
         if given:
             fail(f"--size counts and writes nothing, so {given[0]} has no use with it")
     args.list_max = LIST_MAX if args.list_max is None else args.list_max
+    args.list_codes_max = 0 if args.list_codes_max is None else args.list_codes_max
     args.second_max = LIST_MAX if args.second_max is None else args.second_max
     args.second_every = 1 if args.second_every is None else args.second_every
     args.reverse_max = REVERSE_MAX if args.reverse_max is None else args.reverse_max
@@ -674,6 +708,8 @@ def main(argv=None) -> int:
         fail("--quick and --only choose the rows in two different ways: give one of them")
     if args.list_max < 0:
         fail(f"--list-max must be 0 (no listing check) or more, not {args.list_max}")
+    if args.list_codes_max < 0:
+        fail(f"--list-codes-max must be 0 (no listing of single codes) or more, not {args.list_codes_max}")
     if args.second_max < 0:
         fail(f"--second-max must be 0 (no check with the kernels off) or more, not {args.second_max}")
     if args.reverse_max < 0:
@@ -701,7 +737,8 @@ def main(argv=None) -> int:
         if header != COLUMNS:
             fail(f"{args.csv} is not a records CSV (its first line is not the header {','.join(COLUMNS)})")
     if args.only is not None:
-        rows = [row for row in ROWS if args.only in row.query]
+        rows = ([row for row in ROWS if row.query == args.only.strip()]  # a whole query: that row alone
+                or [row for row in ROWS if args.only in row.query])
         if not rows:
             print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
             return 1
@@ -737,7 +774,7 @@ def main(argv=None) -> int:
                 line = lines[row.query]
                 found = json.loads((ROOT / line["by_code_file"]).read_text())
                 check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max,
-                                   reverse)
+                                   args.list_codes_max, reverse)
                 line["check"] = merge_checks(line["check"], check)
                 bad += not ok
                 write_csv(args.csv, lines)
@@ -746,7 +783,8 @@ def main(argv=None) -> int:
                       f"{line['check']}", file=sys.stderr, flush=True)
                 continue
             found = run_count(row)
-            check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max)
+            check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max,
+                               args.list_codes_max)
             bad += not ok
             args.by_code.mkdir(parents=True, exist_ok=True)
             by_code_file = args.by_code / f"{row.slug}.json"

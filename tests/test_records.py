@@ -95,6 +95,8 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--frobnicate"], "unrecognized arguments"),
         (["--list-max", "-1"], "--list-max must be 0"),
         (["--list-max", "many"], "invalid int value"),
+        (["--list-codes-max", "-1"], "--list-codes-max must be 0"),
+        (["--size", "--only", "links 8", "--list-codes-max", "5"], "--list-codes-max has no use with it"),
         (["--second-max", "-1"], "--second-max must be 0"),
         (["--second-every", "0"], "--second-every must be 1"),
         (["--recheck"], "give --only"),
@@ -253,6 +255,30 @@ def test_a_second_count_run_beside_is_compared_code_by_code(tmp_path):
     assert done.returncode == 1 and check() == "TIGHT-REVERSE DIFFERS"
 
 
+def test_a_large_counts_small_codes_are_listed_one_by_one_and_a_code_off_is_named(tmp_path):
+    """--list-codes-max: the codes of at most N chains of a count the listing does not check whole are listed
+    one by one (W = 3 at 12 links, not fractionated, with --list-max 0: its codes of up to 300 chains), and a code
+    off is named."""
+    for name in ("records.csv", "RECORDS.md"):
+        (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
+    query = "chains --dof 3 --links 12 --no-fractionated"
+    done = _run("--only", query, "--recheck", "--list-max", "0", "--list-codes-max", "300", "--reverse-max", "0",
+                "--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md")
+    assert done.returncode == 0, done.stderr
+    with (tmp_path / "records.csv").open(newline="") as f:
+        line, = [x for x in csv.DictReader(f) if x["query"] == query]
+    found = json.loads((ROOT / line["by_code_file"]).read_text())
+    small = [n for n in found["by_code"].values() if 0 < n <= 300]
+    assert 3 <= len(small) < len(found["by_code"])  # some codes listed, not all
+    assert (f"listing by code on the {len(small)} codes of at most 300 chains ({sum(small)} chains)"
+            in line["check"].split("; "))
+    records = _records()
+    row = next(r for r in records.ROWS if r.query == "chains --dof 1 --links 8")
+    check, ok = records.checks(row, {"count": 17, "by_code": {"440/0": 3, "521/0": 14}}, list_max=0,
+                               list_codes_max=5)
+    assert not ok and check.endswith("LISTING DIFFERS on 1 of 1 codes (440/0)")
+
+
 def test_the_doctests_of_records_py_run():
     """The examples of the script's docstrings (the sizing of a row, the figure's points) hold."""
     import doctest
@@ -285,6 +311,8 @@ def test_size_prints_the_engines_estimate_beside_the_recorded_count_and_writes_n
     assert sorted(x.name for x in tmp_path.iterdir()) == ["records.csv"]  # no Markdown, figure or by-code file
     small = _run("--size", "--quick")
     assert small.returncode == 1 and small.stdout.count("fewer than three smaller sizes have chains") == 4
+    whole = _run("--size", "--only", "chains --dof 2 --links 11")  # a whole query chooses its row alone
+    assert [r.split(" | ")[0] for r in whole.stdout.splitlines()[2:]] == ["| `chains --dof 2 --links 11`"]
 
 
 def test_the_figure_draws_every_row_of_the_csv_rows_added_later_included(tmp_path):

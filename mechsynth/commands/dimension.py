@@ -102,10 +102,10 @@ def add_commands(sub) -> None:
     p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
                    "axis): from the input pivot to --frame-line")
     p.add_argument("--frame-line", metavar="JOINT", help="the frame line's far joint (default: the frame's only "
-                   "other joint)")
+                   "other joint), for --frame-angle or --timing absolute")
     p.add_argument("--timing", choices=("relative", "absolute"), default="relative", help="a timed path's inputs "
                    "counted from the first point's (relative, default) or the crank's angles from the frame line "
-                   "(absolute; needs --frame-angle)")
+                   "(absolute; the frame's direction free unless --frame-angle)")
     p.add_argument("--order", action="append", metavar="ORDER", help="a link-length order, e.g. 'r2<=r3<=r4<=r1' "
                    "(a four-bar's frame, input, coupler, output) or '1<=2<=3<=0' in link numbers (repeatable)")
     p.add_argument("--reach", type=finite, help="the search box: joints within this many target "

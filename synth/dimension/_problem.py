@@ -86,10 +86,11 @@ class Constraints:
         ``frame_line``.  Its far end then moves along it only.
     frame_line : joint, optional
         The revolute joint of the frame at the frame line's far end (default: the frame's only other
-        joint; named when the frame has more).
+        joint; named when the frame has more), for ``frame_angle`` or an absolute timing.
     timing : "relative" or "absolute"
         A timed path's inputs counted from the first point's (relative: the crank may start anywhere)
-        or the input's angles from the frame line (absolute: needs ``frame_angle``), as a function's are.
+        or the input's angles from the frame line (absolute), as a function's are; the frame line's
+        direction is then ``frame_angle`` where given, else free (found with the rest).
     order : tuple of str
         Link-length orders, each written ``"1 <= 2 <= 3 <= 0"`` (link numbers; ``>=`` for a
         descending one) or, for a four-bar, in its classical names ``"r2 <= r3 <= r4 <= r1"`` (r1 the
@@ -174,14 +175,12 @@ class Constraints:
             if not math.isfinite(self.frame_angle):
                 raise DimensionError(f"the frame's direction must be a finite angle, not {self.frame_angle}")
             object.__setattr__(self, "frame_angle", float(self.frame_angle))
-        elif self.frame_line is not None:
-            raise DimensionError(f"{option('frame_line', 'JOINT')} names the far end of a frame line whose direction is "
-                                 f"fixed: give {option('frame_angle', 'ANGLE')} too")
         if self.timing not in ("relative", "absolute"):
             raise DimensionError(f"the timing is 'relative' or 'absolute', not {self.timing!r}")
-        if self.timing == "absolute" and self.frame_angle is None:
-            raise DimensionError(f"{option('timing', 'absolute')} counts the input's angles from the frame line: fix "
-                                 f"its direction with {option('frame_angle', 'ANGLE')}")
+        if self.frame_line is not None and self.frame_angle is None and self.timing != "absolute":
+            raise DimensionError(f"{option('frame_line', 'JOINT')} names the far end of the frame line, which only a "
+                                 f"fixed direction ({option('frame_angle', 'ANGLE')}) or an absolute timing "
+                                 f"({option('timing', 'absolute')}) uses")
 
 
 def _wrap(a):
@@ -244,11 +243,12 @@ class Problem:
             values = target.inputs
             if np.ptp(values) >= 2 * math.pi:
                 raise BadTarget("the timing spans a full turn of the input or more: the points would repeat")
-        self.along = self._frame_line()
         self.absolute = constraints.timing == "absolute"
         if self.absolute and not (self.timed and self.revolute_input):
             raise DimensionError(f"{option('timing', 'absolute')} gives a crank's angles from the frame line: it needs a "
                                  "timed path (an input column) and a revolute input")
+        self.frame_line = self._frame_ends()
+        self.along = self._frame_line()
         self.order = tuple(read_order(text, chain, self.frame, self.input_link) for text in constraints.order)
         self.order_penalty = (1.0, MARGIN)  # (weight, margin) of the order's violation rows: STIFF_ORDER at the end
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
@@ -354,11 +354,11 @@ class Problem:
             raise DimensionError("two fixed pivots are held at one point: a link's pins must be apart")
         return fixed
 
-    def _frame_line(self) -> tuple[int, int, np.ndarray] | None:
-        """The frame line of a fixed direction: (its free end, the end it is measured from, the unit
-        vector from that end), the free end then an unknown distance along it; None without one."""
+    def _frame_ends(self) -> tuple[int, int] | None:
+        """The frame line (the input pivot, its far joint) where a fixed direction or an absolute timing
+        measures from it; None otherwise."""
         c = self.constraints
-        if c.frame_angle is None:
+        if c.frame_angle is None and not self.absolute:
             return None
         if isinstance(self.target, FunctionTarget):
             raise DimensionError("a function's frame is fixed by its gauge (the input pivot at (0, 0), the output's at "
@@ -378,7 +378,17 @@ class Problem:
             raise DimensionError(f"the frame has joints {', '.join(joint_name(chain, k) for k in others)} besides the "
                                  f"input: name the frame line's far end ({option('frame_line', 'JOINT')})")
         if self.kinds[far] != REVOLUTE or self.kinds[k_in] != REVOLUTE:
-            raise DimensionError("a frame line of fixed direction runs between two revolute joints of the frame")
+            raise DimensionError("the frame line, whose direction is fixed or from which the crank's angles are "
+                                 "counted, runs between two revolute joints of the frame")
+        return k_in, far
+
+    def _frame_line(self) -> tuple[int, int, np.ndarray] | None:
+        """The frame line of a fixed direction: (its free end, the end it is measured from, the unit
+        vector from that end), the free end then an unknown distance along it; None without one."""
+        c = self.constraints
+        if c.frame_angle is None:
+            return None
+        k_in, far = self.frame_line
         if k_in in self.fixed and far in self.fixed:
             raise DimensionError("the frame line's two pivots are both held at points: its direction is theirs, "
                                  f"{option('frame_angle', 'ANGLE')} contradicts or repeats it")
@@ -448,18 +458,32 @@ class Problem:
         if isinstance(target, FunctionTarget):
             return _wrap(target.inputs - linkage.pose_inputs[0])
         if self.absolute:  # the pose anywhere on its branch: the first point's turn from it, then the timing's
-            return _wrap(self.absolute_start - linkage.pose_inputs[0]) + target.inputs - target.inputs[0]
+            return _wrap(self.absolute_start(linkage) - linkage.pose_inputs[0]) + target.inputs - target.inputs[0]
         return target.inputs - target.inputs[0]
 
-    @property
-    def absolute_start(self) -> float | None:
+    def absolute_start(self, linkage: Linkage) -> float | None:
         """The input's angle from the x axis at the first target point, where it is prescribed (a
-        function's, an absolute timing's: the frame line's direction plus the first angle)."""
+        function's; an absolute timing's: the frame line's direction — fixed, or the linkage's own —
+        plus the first angle).
+
+        Examples
+        --------
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [0, 4], [1, 0], [2, 3]])
+        >>> target = PathTarget(np.array([[0.0, 0.0], [1.0, 1.0]]), np.radians([30.0, 60.0]))
+        >>> problem = Problem(lk.mechanism, 0, target, 2, Constraints(timing="absolute"))
+        >>> round(math.degrees(problem.absolute_start(lk)), 9)   # the frame line points up: 90° + 30°
+        120.0
+        """
         if isinstance(self.target, FunctionTarget):
             return float(self.target.inputs[0])
-        if self.absolute:
+        if not self.absolute:
+            return None
+        if self.constraints.frame_angle is not None:
             return self.constraints.frame_angle + float(self.target.inputs[0])
-        return None
+        k_in, far = self.frame_line
+        d = linkage.points[far] - linkage.points[k_in]
+        return math.atan2(d[1], d[0]) + float(self.target.inputs[0])
 
     def poses(self, linkage: Linkage, offsets: np.ndarray):
         """Every link's rotation θ (S, n) and translation t (S, n, 2) from the pose, g (S,) the least
@@ -660,9 +684,12 @@ class Problem:
             out["frame_angle"] = {"value": math.degrees(angle + turn), "limit": math.degrees(angle),
                                   "met": abs(turn) <= MET}
         if self.absolute:
-            first = float(_wrap(linkage.pose_inputs[0] - self.absolute_start))
-            out["timing"] = {"value": f"absolute: the input at {math.degrees(self.absolute_start + first):.9g}° from the "
-                                      f"x axis at the first point", "limit": None, "met": abs(first) <= MET}
+            start = self.absolute_start(linkage)
+            first = float(_wrap(linkage.pose_inputs[0] - start))
+            frame = math.degrees(start - float(self.target.inputs[0]))
+            out["timing"] = {"value": f"absolute: the input at {math.degrees(start + first):.9g}° from the x axis at "
+                                      f"the first point, the frame line at {frame:.9g}°", "limit": None,
+                             "met": abs(first) <= MET}
         if self.order:
             lengths = linkage.lengths()
             gaps = self.order_gaps(linkage)

@@ -1027,9 +1027,10 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     _, z, direction = best
     x = z[:problem.dims]
     linkage = problem.linkage(x)
-    if problem.absolute_start is not None:  # posed at the first input, as every other result
+    start = problem.absolute_start(linkage)
+    if start is not None:  # posed at the first input, as every other result
         try:
-            linkage = assemble(linkage, problem.absolute_start)
+            linkage = assemble(linkage, start)
         except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
             pass
     if problem.timed:

@@ -59,7 +59,8 @@ def test_the_closed_form_keeps_every_link_length(bench):
         assert np.allclose(np.linalg.norm(point - far, axis=1), math.hypot(vector[4] - r3, vector[5]))
 
 
-RECORDS = [(name, k) for name in ("six points on a line, untimed, as stated", "five timed points on an arc, frame free")
+RECORDS = [(name, k) for name in ("six points on a line, untimed, as stated", "five timed points on an arc, frame free",
+                                  "six timed points on a half circle, as stated")
            for k in range(7 if "line" in name else 1)]
 
 
