@@ -3,16 +3,14 @@ layers of states held within ``LAYER_BYTES``, a layer taken a part at a time whe
 it — the same counts, unit by unit and by code, whatever the budget.
 
 With a budget of one byte every part is as small as it can be (the successors of one state), so every
-layer of more than some 10–40 states is split.  Faults put by hand into the split (numba: not patchable
-from a test), each caught by ``test_a_byte_of_budget_counts_every_unit_the_same`` on the 13 queries:
+layer of more than some tens of states is split.  Faults put by hand into the kernel (numba: not patchable
+from a test), each caught:
 
-* the second half of a split part dropped (``level_next[i] = level_n[i]`` after a split): 9 of 13 queries
-  differ;
-* a split part taken from its first state again (``lo`` not moved on: ``level_next[i] = lo``): the count
-  never ends on a query with a split, stopped by the time limit (``hi`` does not move on, so every
-  part is counted again: 9 of 13 queries);
-* the vertices a bundle opens not reopened on a retry's states (the opening applied to states
-  ``lo`` … ``hi`` of the first try only): none differ — the opening is the same however often it runs.
+* the second half of a split part dropped (``level_next[i]`` set to the end of the layer after a split):
+  9 of the 13 queries of ``test_a_byte_of_budget_counts_every_unit_the_same`` fail (counts that differ, or
+  Burnside's sum no multiple of the group), and the count by code at 17 links;
+* no part refused (the cap on a part's successors never reached, the arrays grown as before):
+  ``test_a_part_with_too_many_successors_is_refused`` fails (the counts cannot show it: only the memory changes).
 """
 
 from __future__ import annotations
