@@ -135,11 +135,17 @@ _BEYOND = {
              + ", some 66 CPU min in all, past the 50 CPU min the h = 4…6 counts had on 29 Nov (at 23 links the sizing was 15 % "
              "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
     (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
-             + ", some 16 CPU min in all, which 2 workers at a load of 20 (29 Nov, evening) could not get in the session "
-             "(at 26 links the sizing, its growth factor fitted there, was 58 % under the count); to run it: `python "
+             + ", some 16 CPU min in all; not started on 29 Nov, the session's time going to the 32-link count at h = 6 "
+             "on 2 cores at a load of 16–31 (at 26 links the sizing, its growth factor fitted there, was 58 % under the count); to run it: `python "
              "benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
-    (6, 32): "run on its own (--only): sized at 36 CPU s (5.6e9 chains) at a98900f; before a98900f one worker's layers "
-             "grew past 4 GiB and the run was stopped (PROFILE.md section 34)",
+    (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
+             "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
+             "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "
+             "the first count, its memory within the budget of stage B's layers since a98900f (a worker had grown to "
+             "4.2 GiB before), stayed after 222 units (2.37e9 chains, some 56 CPU s a worker) in units of 10 branch "
+             "links of degree 3 (the layers held within the budget), and was stopped for time (PROFILE.md section 34); to run it: "
+             "`python benchmarks/records.py --only \"chains --dof 1 --links 32 --h 6\" --reverse-max 0`, then "
+             "`--recheck --reverse-from` that file",
 }
 
 ROWS = (
