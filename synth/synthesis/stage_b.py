@@ -272,7 +272,8 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     import numpy as np
 
     from ..structure.subchains import sets_to_check
-    from ._stage_b_kernel import place, tight_count
+    from . import _stage_b_kernel as kernel
+    from ._stage_b_kernel import place
 
     t0 = perf_counter()
     lows, parallel = _string_limits(graph, conv)
@@ -319,7 +320,8 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
         identity = np.zeros(0, dtype=np.int64)
         computed = np.zeros((0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
-        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g, computed) for g in (identity, *group))
+        found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, g, computed, kernel.LAYER_BYTES)
+                    for g in (identity, *group))
         found, rest = divmod(found, len(group) + 1)
         if rest:  # a fault of this engine
             raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
@@ -546,7 +548,7 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     """
     import numpy as np
 
-    from ._stage_b_kernel import tight_count
+    from . import _stage_b_kernel as kernel
 
     lows, parallel = _string_limits(graph, conv)
     inner, k, _, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
@@ -587,7 +589,7 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
             r += 1
         ways = _bundle_ways(C, tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)]))
         given[f, :len(ways)] = ways
-    total = sum(tight_count(M, a_end, b_end, least, after, k, C, l, g, given)
+    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, g, given, kernel.LAYER_BYTES)
                 for g in (np.zeros(0, dtype=np.int64), *rows))
     orbits, rest = divmod(total, len(bundles))
     if rest:  # a fault of this engine
