@@ -291,8 +291,9 @@ def _write(result, fmt: str) -> None:
     if result.angle_errors is not None:
         lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
     for name, c in result.constraints.items():
-        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}"
-                      + (f" (limit {_value(c['limit'])})" if c["limit"] is not None else "")))
+        unit = _UNITS.get(name, "")
+        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}{unit}"
+                      + (f" (limit {_value(c['limit'])}{unit})" if c["limit"] is not None else "")))
     for k in range(len(lk.chain.joints)):
         lines.append((f"joint {joint_name(lk.chain, k)}", f"{lk.points[k][0]:.10g}, {lk.points[k][1]:.10g}"))
     for name, (link, at) in lk.tracers.items():
@@ -303,11 +304,21 @@ def _write(result, fmt: str) -> None:
     write_document({}, "table", pairs(lines))
 
 
+_UNITS = {"transmission": "°", "frame_angle": "°", "length": " target units"}  # a constraint's value and limit
+
+
 def _value(v) -> str:
+    """A constraint's value as the table shows it.
+
+    >>> _value({"0-1": [0.0, 1.5]}), _value([[2.08576123, 2.2753]])
+    ('0-1 at [0, 1.5]', '[[2.08576, 2.2753]]')
+    """
     if isinstance(v, float):
         return f"{v:.6g}"
     if isinstance(v, list):
         return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):  # pivots held at points
+        return ", ".join(f"{k} at {_value(x)}" for k, x in v.items())
     return str(v)
 
 

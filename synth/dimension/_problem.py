@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -121,6 +122,8 @@ class Constraints:
     order: tuple[str, ...] = ()
 
     def __post_init__(self):
+        if not isinstance(self.crank, (bool, np.bool_)):
+            raise DimensionError(f"crank is True or False, not {self.crank!r}")
         if self.crank and self.rocker is not None:
             raise DimensionError("the input cannot be both a crank (a full turn) and a rocker within limits")
         if self.rocker is not None:
@@ -129,20 +132,24 @@ class Constraints:
             if not lo < hi:
                 raise DimensionError(limits)
             object.__setattr__(self, "rocker", (lo, hi))
-        if not 0 <= self.min_transmission < math.pi / 2:
-            raise DimensionError(f"the least transmission angle must be 0 … 90° (exclusive), not "
-                                 f"{math.degrees(self.min_transmission):g}°")
-        if self.max_ratio is not None and not (math.isfinite(self.max_ratio) and self.max_ratio > 1):
-            raise DimensionError(f"the link-length ratio bound must be a number above 1, not {self.max_ratio}")
-        if self.max_length is not None and not (math.isfinite(self.max_length) and self.max_length > 0):
-            raise DimensionError(f"the link-length bound must be a positive length, not {self.max_length}")
+        mu = _real(self.min_transmission, f"the least transmission angle must be a number (rad), not {self.min_transmission}")
+        if not 0 <= mu < math.pi / 2:
+            raise DimensionError(f"the least transmission angle must be 0 … 90° (exclusive), not {math.degrees(mu):g}°")
+        object.__setattr__(self, "min_transmission", mu)
+        self._number("max_ratio", f"the link-length ratio bound must be a number above 1, not {self.max_ratio}",
+                     lambda r: math.isfinite(r) and r > 1)
+        self._number("max_length", f"the link-length bound must be a positive length, not {self.max_length}",
+                     lambda length: math.isfinite(length) and length > 0)
+        self._number("reach", f"the search reach must be a positive number of target sizes, not {self.reach}",
+                     lambda r: math.isfinite(r) and r > 0)
         if self.pivots is not None:
-            x0, x1, y0, y1 = (float(v) for v in self.pivots)
+            box = f"the pivots' region must be four finite numbers x0 < x1, y0 < y1, not {self.pivots}"
+            if isinstance(self.pivots, (str, bytes, dict)) or not hasattr(self.pivots, "__len__") or len(self.pivots) != 4:
+                raise DimensionError(box)
+            x0, x1, y0, y1 = (_real(v, box) for v in self.pivots)
             if not all(map(math.isfinite, (x0, x1, y0, y1))) or x0 >= x1 or y0 >= y1:
-                raise DimensionError(f"the pivots' region must be x0 < x1 and y0 < y1, finite, not {self.pivots}")
+                raise DimensionError(box)
             object.__setattr__(self, "pivots", (x0, x1, y0, y1))
-        if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
-            raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
         self._check_placing()
         if self.max_length is not None:
             held = self.pivot_at
@@ -153,14 +160,32 @@ class Constraints:
                                              f"beyond the link-length bound {self.max_length:g}")
         if isinstance(self.order, str):
             object.__setattr__(self, "order", (self.order,))
+        if not isinstance(self.order, (tuple, list)):
+            raise DimensionError(f"the link-length orders are a text or a list of texts, e.g. ('r2 <= r3 <= r4 <= r1',), "
+                                 f"not {self.order!r}")
         object.__setattr__(self, "order", tuple(self.order))
         for text in self.order:
             _order_terms(text)
 
+    def _number(self, field: str, sentence: str, holds) -> None:
+        """Field ``field``, unless None, as a float for which ``holds`` is true; else ``sentence``."""
+        value = getattr(self, field)
+        if value is not None:
+            value = _real(value, sentence)
+            if not holds(value):
+                raise DimensionError(sentence)
+            object.__setattr__(self, field, value)
+
     def _check_placing(self) -> None:
         """The fixed pivots, the frame's direction and the timing: each well formed, none contradicting
         another or the pivots' box."""
-        given = self.pivot_at.items() if isinstance(self.pivot_at, dict) else self.pivot_at
+        pairs = f"the fixed pivots are a mapping joint -> (x, y), e.g. {{'0-1': (0, 0)}}, not {self.pivot_at!r}"
+        given = self.pivot_at.items() if isinstance(self.pivot_at, Mapping) else self.pivot_at
+        if isinstance(given, (str, bytes)) or not isinstance(given, Iterable):
+            raise DimensionError(pairs)
+        given = list(given)
+        if not all(isinstance(g, (tuple, list)) and len(g) == 2 for g in given):
+            raise DimensionError(pairs)
         held = []
         for joint, at in given:
             x, y = finite_pair(at, error=DimensionError, malformed=f"a fixed pivot is a point (x, y), not {at!r} (joint {joint})",
@@ -173,15 +198,29 @@ class Constraints:
             held.append((joint, (x, y)))
         object.__setattr__(self, "pivot_at", tuple(held))
         if self.frame_angle is not None:
-            if not math.isfinite(self.frame_angle):
-                raise DimensionError(f"the frame's direction must be a finite angle, not {self.frame_angle}")
-            object.__setattr__(self, "frame_angle", float(self.frame_angle))
+            self._number("frame_angle", f"the frame's direction must be a finite angle, not {self.frame_angle}",
+                         math.isfinite)
         if self.timing not in ("relative", "absolute"):
             raise DimensionError(f"the timing is 'relative' or 'absolute', not {self.timing!r}")
         if self.frame_line is not None and self.frame_angle is None and self.timing != "absolute":
             raise DimensionError(f"{option('frame_line', 'JOINT')} names the far end of the frame line, which only a "
                                  f"fixed direction ({option('frame_angle', 'ANGLE')}) or an absolute timing "
                                  f"({option('timing', 'absolute')}) uses")
+
+
+def _real(value, sentence: str) -> float:
+    """``value`` — a number or the text of one, as :func:`mechbase.finite_pair` reads them — as a float;
+    a truth value, None or anything else is ``DimensionError(sentence)``.
+
+    >>> _real(np.float32(0.5), "a number"), _real("2", "a number")
+    (0.5, 2.0)
+    """
+    if isinstance(value, (bool, np.bool_)):
+        raise DimensionError(sentence)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise DimensionError(sentence) from None
 
 
 def _wrap(a):

@@ -557,8 +557,12 @@ def _state_slot(table, mask, states, totals, row, width, W, P, total):
         slot = (slot + 1) & mask
 
 
+# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is taken a part at a time)
+LAYER_BYTES = 256 * 2**20
+
+
 @njit(cache=True)
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given):
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYER_BYTES):
     """The placements :func:`place` counts with no edge permutation and the excess bound
     ``x_most`` = 0 (every long string exactly at h − 1 = C binary links, every never-short string at
     its least: the rule's equality case, e.g. 1-DOF chains), counted without visiting them; or, with
@@ -587,7 +591,11 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given):
     of :func:`_bundle_deficits` (the second count, :func:`synth.synthesis.stage_b.count_reversed`).  The strings
     the game never sees each take their least weight: loops (parallel loops have one least weight)
     and the one string of a single-joint link.  The states of a layer are a few hundred where
-    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304).
+    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
+    2^(open vertices) values each at h = 4…6 beyond 20 links (a worker of the 32-link count at h = 6 grew to
+    4.2 GiB).  ``budget`` bounds the bytes the layers hold at once: past it, the programme goes on from a
+    part of a layer at a time, depth first, each part halved until its successors fit (a state reached from
+    two parts is carried on from each: the same sum, more work).
 
     >>> import numpy as np
     >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
@@ -650,109 +658,32 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given):
                 if i == hi:
                     free[i] = True
                     busy[keep[lo]] = False
+    # the frame of each bundle, the same for every state: the positions it opens (the vertices met for the
+    # first time, a then b) and their k, the sets holding both ends, the positions it closes (highest first)
     position = np.full(M, -1, dtype=np.int64)  # of an open vertex among the open ones; −1 before, −2 after
+    opens = np.full((nb, 2), -1, dtype=np.int64)
+    open_k = np.zeros((nb, 2), dtype=np.int64)
+    both = np.zeros(nb, dtype=np.int64)
+    shut = np.full((nb, 2), -1, dtype=np.int64)
+    n_open = np.zeros(nb + 1, dtype=np.int64)  # open after bundle i − 1's closing (n_open[0] = 0)
     widest = 0
-    n_open = 0
     for i in range(nb):
-        for v in (a_end[starts[i]], b_end[starts[i]]):
+        a, b = a_end[starts[i]], b_end[starts[i]]
+        now = n_open[i]
+        for x in range(2):
+            v = a if x == 0 else b
             if position[v] == -1:
-                position[v] = 0
-                n_open += 1
-        widest = max(widest, n_open)
-        for v in (a_end[starts[i]], b_end[starts[i]]):
-            if last[v] == i and position[v] == 0:
-                position[v] = -2
-                n_open -= 1
-    W = 1 << widest
-    states = np.zeros((64, W + P), dtype=np.int64)  # a layer: per state, its sets' values, then the kept t
-    totals = np.zeros(64, dtype=np.int64)
-    ways_in = np.zeros(64, dtype=np.int64)  # the placements that reach each state
-    new_states, new_totals, new_ways = states.copy(), totals.copy(), ways_in.copy()
-    n = 1
-    ways_in[0] = 1
-    position[:] = -1
-    n_open = 0
-    row = np.zeros(W + P, dtype=np.int64)
-    ways = np.zeros(C * E + 1, dtype=np.int64)
-    lows = np.zeros(E, dtype=np.int64)
-    table = np.full(128, -1, dtype=np.int64)
-    for i in range(nb):
-        f, r = starts[i], ends[i] - starts[i]
-        a, b = a_end[f], b_end[f]
-        for v in (a, b):  # opening v: the sets with it hold no unit at it yet
-            if position[v] == -1:
-                bit = 1 << n_open
-                position[v] = n_open
-                for s in range(n):
-                    for U in range(bit):
-                        states[s, U | bit] = states[s, U] - k[v]
-                n_open += 1
-        both = (1 << position[a]) | (1 << position[b])
-        for x in range(r):
-            lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
-        if given.shape[0]:
-            ways[:C * r + 1] = given[f, :C * r + 1]
-        else:
-            _bundle_deficits(C, lows[:r], ways)
-        shut0 = position[a] if last[a] == i else -1  # the positions closed after this bundle, highest first
+                position[v] = now
+                opens[i, x], open_k[i, x] = now, k[v]
+                now += 1
+        widest = max(widest, now)
+        both[i] = (1 << position[a]) | (1 << position[b])
+        shut0 = position[a] if last[a] == i else -1
         shut1 = position[b] if last[b] == i else -1
         if shut0 < shut1:
             shut0, shut1 = shut1, shut0
-        n_after = n_open - (shut0 >= 0) - (shut1 >= 0)
-        width = 1 << n_after
-        size = table.shape[0]
-        while size < 4 * n * (C * r + 1):
-            size *= 2
-        if size != table.shape[0]:
-            table = np.full(size, -1, dtype=np.int64)
-        else:
-            table[:] = -1
-        m = 0
-        for s in range(n):
-            most = -(1 << 60)  # the largest value of a set holding a and b
-            for U in range(1 << n_open):
-                if U & both == both and states[s, U] > most:
-                    most = states[s, U]
-            for t in range(C * r + 1):
-                d = totals[s] + t
-                if (t > 0 and most + t > -l) or d > full:
-                    break
-                if ways[t] == 0 or d + room_after[i + 1] < full or (same[i] >= 0 and t != states[s, W + same[i]]):
-                    continue
-                for U in range(1 << n_open):
-                    row[U] = states[s, U] + t if U & both == both else states[s, U]
-                span = 1 << n_open
-                for p in (shut0, shut1):
-                    if p >= 0:  # close the vertex at position p: the larger of each set with and without it
-                        span >>= 1
-                        below = (1 << p) - 1
-                        for U in range(span):
-                            at = (U & below) | ((U >> p) << (p + 1))
-                            row[U] = max(row[at], row[at | (1 << p)])
-                floor = -l - (full - d) - 1
-                for U in range(width):
-                    row[U] = max(row[U], floor)
-                row[W:] = states[s, W:]
-                if keep[i] >= 0:
-                    row[W + keep[i]] = t
-                if free[i]:
-                    row[W + same[i]] = 0
-                weight = ways_in[s] if same[i] >= 0 else ways_in[s] * ways[t]  # (a cycle's deficits: chosen once)
-                j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d)
-                if j >= 0:
-                    new_ways[j] += weight
-                    continue
-                if m == len(new_totals):  # a larger layer
-                    grown = np.zeros((2 * m, W + P), dtype=np.int64)
-                    grown[:m] = new_states
-                    new_states = grown
-                    new_totals = np.concatenate((new_totals, np.zeros(m, dtype=np.int64)))
-                    new_ways = np.concatenate((new_ways, np.zeros(m, dtype=np.int64)))
-                table[-j - 1] = m
-                new_states[m, :width] = row[:width]
-                new_states[m, W:] = row[W:]
-                new_totals[m], new_ways[m] = d, weight
-                m += 1
+        shut[i, 0], shut[i, 1] = shut0, shut1
+        n_open[i + 1] = now - (shut0 >= 0) - (shut1 >= 0)
         for p in (shut0, shut1):
             if p >= 0:
                 for v in range(M):
@@ -760,15 +691,141 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given):
                         position[v] = -2
                     elif position[v] > p:
                         position[v] -= 1
-        n_open = n_after
-        states, new_states = new_states, states
-        totals, new_totals = new_totals, totals
-        ways_in, new_ways = new_ways, ways_in
-        n = m
-        if n == 0:
-            return 0
+    W = 1 << widest
+    # the ways of each bundle's deficits to add up to t
+    ways = np.zeros((nb, C * E + 1), dtype=np.int64)
+    lows = np.zeros(E, dtype=np.int64)
+    for i in range(nb):
+        f, r = starts[i], ends[i] - starts[i]
+        if given.shape[0]:
+            ways[i, :C * r + 1] = given[f, :C * r + 1]
+        else:
+            for x in range(r):
+                lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
+            _bundle_deficits(C, lows[:r], ways[i])
+    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept t in [0, C·E]: 16 bits hold them
+    kmax = 0
+    for v in range(M):
+        kmax = max(kmax, k[v])
+    if full + l + 2 * kmax + 1 > 32767 or C * E > 32767:
+        raise ValueError("tight_count: a state's values pass 16 bits (a game of more than 10^4 pebbles)")
+    # The layers are taken depth first, a part of a layer at a time where the next would pass the budget:
+    # level i holds layer i (the states after i bundles) and how far it has been taken on; the count is
+    # linear in the placements reaching each state, so the parts add up to the whole.
+    row_bytes = 2 * (W + P) + 8 + 8 + 32  # a state, its total and ways, its share of the hash table
+    least_rows = C * E + 2  # one state's successors always fit in a part
+    level_states = [np.zeros((64 if x == 0 else 0, W + P), dtype=np.int16) for x in range(nb + 1)]
+    level_totals = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
+    level_ways = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
+    level_n = np.zeros(nb + 1, dtype=np.int64)
+    level_next = np.zeros(nb + 1, dtype=np.int64)
+    level_n[0] = 1
+    level_ways[0][0] = 1
+    row = np.zeros(W + P, dtype=np.int64)
     found = 0
-    for s in range(n):
-        if totals[s] == full:
-            found += ways_in[s]
+    i = 0
+    while i >= 0:
+        if i == nb or level_next[i] >= level_n[i]:
+            if i == nb:
+                for s in range(level_n[nb]):
+                    if level_totals[nb][s] == full:
+                        found += level_ways[nb][s]
+            level_states[i] = level_states[i][:0].copy()  # (let the layer go)
+            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
+            level_n[i] = level_next[i] = 0
+            i -= 1
+            continue
+        held = 0
+        for x in range(nb + 1):
+            if x != i + 1:
+                held += level_totals[x].shape[0] * row_bytes
+        cap = max(least_rows, (budget - held) // row_bytes)
+        lo, hi = level_next[i], level_n[i]
+        while True:
+            m, next_states, next_totals, next_ways = _tight_layer(
+                level_states[i], level_totals[i], level_ways[i], lo, hi, level_states[i + 1], level_totals[i + 1],
+                level_ways[i + 1], cap, opens[i], open_k[i], both[i], shut[i], n_open[i + 1], ways[i],
+                C * (ends[i] - starts[i]), keep[i], same[i], free[i], room_after[i + 1], full, l, W, P, row)
+            level_states[i + 1], level_totals[i + 1], level_ways[i + 1] = next_states, next_totals, next_ways
+            if m >= 0:
+                break
+            hi = lo + (hi - lo) // 2  # too many successors: half as many states at a time
+        level_next[i] = hi
+        if hi == level_n[i]:  # layer i is through: let it go before going on
+            level_states[i] = level_states[i][:0].copy()
+            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
+        level_n[i + 1], level_next[i + 1] = m, 0
+        i += 1
     return found
+
+
+@njit(cache=True)
+def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, cap, opens, open_k, both,
+                 shut, n_after, ways, T, keep, same, free, room_after, full, l, W, P, row):
+    """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer: the next layer's
+    states (in ``new_*``, grown as needed up to ``cap`` rows) and their number, or −1 where there would
+    be more than ``cap``."""
+    for x in range(2):  # opening a vertex: the sets with it hold no unit at it yet (the same on a retry)
+        if opens[x] >= 0:
+            bit = 1 << opens[x]
+            for s in range(lo, hi):
+                for U in range(bit):
+                    states[s, U | bit] = states[s, U] - open_k[x]
+    n_open = n_after + (shut[0] >= 0) + (shut[1] >= 0)
+    width = 1 << n_after
+    size = 128
+    while size < 2 * min((hi - lo) * (T + 1), cap):
+        size *= 2
+    table = np.full(size, -1, dtype=np.int64)
+    m = 0
+    for s in range(lo, hi):
+        most = -(1 << 60)  # the largest value of a set holding a and b
+        for U in range(1 << n_open):
+            if U & both == both and states[s, U] > most:
+                most = states[s, U]
+        for t in range(T + 1):
+            d = totals[s] + t
+            if (t > 0 and most + t > -l) or d > full:
+                break
+            if ways[t] == 0 or d + room_after < full or (same >= 0 and t != states[s, W + same]):
+                continue
+            for U in range(1 << n_open):
+                row[U] = states[s, U] + t if U & both == both else states[s, U]
+            span = 1 << n_open
+            for p in shut:
+                if p >= 0:  # close the vertex at position p: the larger of each set with and without it
+                    span >>= 1
+                    below = (1 << p) - 1
+                    for U in range(span):
+                        at = (U & below) | ((U >> p) << (p + 1))
+                        row[U] = max(row[at], row[at | (1 << p)])
+            floor = -l - (full - d) - 1
+            for U in range(width):
+                row[U] = max(row[U], floor)
+            row[W:] = states[s, W:]
+            if keep >= 0:
+                row[W + keep] = t
+            if free:
+                row[W + same] = 0
+            weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t]  # (a cycle's deficits: chosen once)
+            j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d)
+            if j >= 0:
+                new_ways[j] += weight
+                continue
+            if m >= cap:  # a part too large: the caller takes fewer states at a time
+                return -1, new_states, new_totals, new_ways
+            if m == len(new_totals):  # a larger layer, up to the cap
+                grown = max(64, min(2 * m, cap))
+                more = np.zeros((grown, W + P), dtype=np.int16)
+                more[:m] = new_states[:m]
+                new_states = more
+                new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
+                new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
+            table[-j - 1] = m
+            for U in range(width):
+                new_states[m, U] = row[U]
+            for U in range(W, W + P):
+                new_states[m, U] = row[U]
+            new_totals[m], new_ways[m] = d, weight
+            m += 1
+    return m, new_states, new_totals, new_ways
