@@ -2,8 +2,8 @@
 (with or without timing), a function (input–output angles) or poses of a body.
 
 The target is a CSV or JSON file (columns ``x,y`` / ``x,y,input`` / ``input,output`` / ``x,y,angle``,
-a ``*_deg`` column in degrees); the topology is a linkage file (its pose is a first guess) or a
-joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
+a ``*_deg`` column in degrees, and last an optional ``weight`` column); the topology is a linkage file
+(its pose is a first guess) or a joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
 linkage file that ``move`` and ``scene`` read, and drawn over the target.
 
 Example
@@ -76,7 +76,8 @@ def add_commands(sub) -> None:
     p = sub.add_parser("dimension", help="dimensional synthesis: the dimensions with which a mechanism traces a path, "
                                          "generates a function or guides a body")
     p.add_argument("target", metavar="TARGET", help="a .csv or .json target: columns x,y (a path), x,y,input (timed "
-                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees")
+                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees; a last "
+                   "column weight: how much each row counts")
     p.add_argument("--linkage", metavar="FILE", help="the mechanism as a linkage file (.toml or .json); its pose is a "
                    "first guess")
     p.add_argument("--mechanism", metavar="CHAIN", help="the mechanism as a joint list, e.g. '0-1 1-2 2-3 3-0'")
@@ -284,6 +285,9 @@ def _write(result, fmt: str) -> None:
              ("target", f"{result.kind}, {len(result.errors)} points, size {result.size:.6g}"),
              (f"error max ({unit})", result.error_max), (f"error rms ({unit})", result.error_rms),
              ("relative max", result.relative_max), ("relative rms", result.relative_rms)]
+    if result.weights is not None:
+        lines[3] = (f"error rms ({unit}, each point once)", result.error_rms)
+        lines.append((f"weighted sum of squares ({unit}², Σ weight × error²)", result.weighted_sum_squares))
     if result.angle_errors is not None:
         lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
     for name, c in result.constraints.items():

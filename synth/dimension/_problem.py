@@ -44,10 +44,11 @@ MARGIN = 1e-4
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 #: a link-length order's violation row in the search is (log(shorter / longer) + MARGIN)⁺, as the other
-#: constraints'; the answer is then polished with the orders as inequality constraints, held this far
-#: inside their bounds (``_Search.stiffen``): met to 1e-9 at a cost of 1e-10 of the lengths, where MARGIN
-#: alone cost 0.6 % of CE2's error
-ORDER_MARGIN = 1e-10
+#: constraints'; the answer is then polished with the link-length constraints (orders, the length and ratio
+#: bounds) as inequality constraints, held this far inside their bounds (``_Search.stiffen``): met to 1e-9
+#: at a cost of 1e-10 of the lengths, where MARGIN alone cost 0.6 % of CE2's error and 0.04 % of the ten
+#: points' of [HCDJ] under a length bound of 80
+HELD_MARGIN = 1e-10
 #: the least frame length along a fixed frame direction (target sizes)
 SHORTEST_FRAME = 1e-3
 #: a designer's constraint is met within this (rad, log-ratio, target sizes)
@@ -289,7 +290,10 @@ class Problem:
         self.frame_line = self._frame_ends()
         self.along = self._frame_line()
         self.order = tuple(read_order(text, chain, self.frame, self.input_link) for text in constraints.order)
-        self.order_penalty = (1.0, MARGIN)  # (weight, margin) of the order's violation rows: STIFF_ORDER at the end
+        # where the penalty rows of the link-length constraints (:meth:`length_gaps`) aim: this far inside each
+        # (log); the final polish moves each aim by the overshoot its penalty leaves (``_Search.stiffen``)
+        self.aim = np.concatenate((np.full(self.order_pairs, MARGIN),
+                                   np.full(self.length_bounds - self.order_pairs, -math.log1p(-MARGIN))))
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
@@ -322,9 +326,13 @@ class Problem:
         self.projected = isinstance(target, PathTarget)
         self.searched = self.dims - (2 if self.projected else 0)
         self.points = len(target)
+        # the target's weights over their mean (None: 1 each), so the cost is a weighted mean of squared errors
+        self.weights = None if target.weights is None else target.weights / target.weights.mean()
         self.input_span = 2 * math.pi if self.revolute_input else 2 * reach * self.scale
         self.unknowns = self._count_unknowns()
-        self.equations = self.points * {"path": 2, "function": 1, "motion": 3}[target.kind]
+        self.rows_per_point = {"path": 2, "function": 1, "motion": 3}[target.kind]
+        counted = self.points if self.weights is None else int(np.count_nonzero(self.weights))
+        self.equations = counted * self.rows_per_point  # (a point of weight 0 gives none)
 
     # ------------------------------------------------------------ set-up
     def _output_link(self, given: int | None) -> int:
@@ -573,12 +581,23 @@ class Problem:
         fixed: no similarity, the tracer point alone fitted), without a turn where the frame's
         direction is fixed.  Positions are complex, over the target's size."""
         if len(self.fixed) > 1:
-            return placement(turn, moves, w, similar=False)
+            return placement(turn, moves, w, similar=False, weights=self.weights)
         pivot = None
         if self.fixed:
             (at,) = self.fixed.values()
             pivot = complex(at[0], at[1]) / self.scale
-        return placement(turn, moves, w, pivot=pivot, turns=self.along is None)
+        return placement(turn, moves, w, pivot=pivot, turns=self.along is None, weights=self.weights)
+
+    def weighed(self, residuals: np.ndarray) -> np.ndarray:
+        """Residual rows (one per target point) times the square root of their point's weight: their
+        squares sum to the weighted sum the search minimises."""
+        if self.weights is None:
+            return residuals
+        return residuals * np.sqrt(self.weights).reshape((-1,) + (1,) * (residuals.ndim - 1))
+
+    def mean(self, squares: np.ndarray) -> float:
+        """The weighted mean of squared errors, one per target point (the plain mean without weights)."""
+        return float(np.mean(squares if self.weights is None else self.weights * squares))
 
     def output_reference(self, linkage: Linkage) -> int:
         """The joint of the output link whose direction from its pivot is the output angle."""
@@ -665,15 +684,18 @@ class Problem:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
         transmission (rad), ratio and length (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
         measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
-        that binds settles a little beyond its limit."""
+        that binds settles a little beyond its limit (the link-length ones: ``aim`` inside, which the final
+        polish moves)."""
         c = self.constraints
         out = []
         if c.min_transmission > 0:
             out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
+        # the link-length constraints' rows: (gap + aim)⁺ for the orders' pairs, the length and the ratio
+        lengths = np.maximum(self.length_gaps(linkage) + self.aim, 0.0) if self.length_bounds else None
         if c.max_ratio is not None:
-            out.append(max(0.0, math.log(link_ratio(linkage) / (c.max_ratio * (1 - MARGIN)))))
+            out.append(float(lengths[-1]))
         if c.max_length is not None:
-            out.append(max(0.0, math.log(longest_link(linkage) / (c.max_length * (1 - MARGIN)))))
+            out.append(float(lengths[self.order_pairs]))
         if c.pivots is not None:
             inset = MARGIN * self.scale
             x0, x1, y0, y1 = c.pivots[0] + inset, c.pivots[1] - inset, c.pivots[2] + inset, c.pivots[3] - inset
@@ -686,8 +708,7 @@ class Problem:
             over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
             out.append(over / unit)
         if self.order:
-            weight, margin = self.order_penalty
-            out += list(weight * np.maximum(self.order_gaps(linkage) + margin, 0.0))  # a row per pair
+            out += list(lengths[:self.order_pairs])  # a row per pair of an order
         return np.array(out)
 
     @property
@@ -702,6 +723,29 @@ class Problem:
         gaps = [math.log(max(lengths[a], 1e-300) / max(lengths[b], 1e-300))
                 for links in self.order for a, b in zip(links, links[1:])]
         return np.array(gaps)
+
+    @property
+    def length_bounds(self) -> int:
+        """The designer's link-length constraints: a row each in :meth:`length_gaps`."""
+        c = self.constraints
+        return self.order_pairs + (c.max_length is not None) + (c.max_ratio is not None)
+
+    def length_gaps(self, linkage: Linkage) -> np.ndarray:
+        """log(value / limit) of each link-length constraint — the orders' pairs (:meth:`order_gaps`), the
+        longest link over the length bound, the ratio over its bound — ≤ 0 where it holds.
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
+        >>> p = Problem(lk.mechanism, 0, PathTarget(np.eye(2)), 2, Constraints(max_length=8, order=("r2<=r1",)))
+        >>> np.round(p.length_gaps(lk), 6).tolist()   # crank 1 over frame 4; frame 4 over the bound 8
+        [-1.386294, -0.693147]
+        """
+        c, gaps = self.constraints, [self.order_gaps(linkage)]
+        if c.max_length is not None:
+            gaps.append([math.log(max(longest_link(linkage), 1e-300) / c.max_length)])
+        if c.max_ratio is not None:
+            gaps.append([math.log(link_ratio(linkage) / c.max_ratio)])
+        return np.concatenate(gaps)
 
     def placing(self, linkage: Linkage) -> dict:
         """The designer's fixed pivots, frame direction, absolute timing and link-length orders, each
@@ -738,12 +782,13 @@ class Problem:
 
 
 def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: complex | None = None,
-              turns: bool = True, similar: bool = True) -> tuple[complex, complex, complex]:
+              turns: bool = True, similar: bool = True,
+              weights: np.ndarray | None = None) -> tuple[complex, complex, complex]:
     """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
     link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
-    the link's rotation e^{iθᵢ} and movesᵢ its translation at each point).  Where λ is not
-    determined (a link turning about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is
-    fitted.
+    the link's rotation e^{iθᵢ} and movesᵢ its translation at each point), each point's squared
+    distance times its weight where ``weights`` are given.  Where λ is not determined (a link turning
+    about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is fitted.
 
     A similarity that keeps a ``pivot`` has s = pivot·(1 − λ); one that keeps the directions
     (``turns=False``) has λ real and positive; ``similar=False`` keeps the mechanism where it is.
@@ -757,10 +802,11 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
     >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 2, -1j))]
     [0.0, 0.0, 0.0]
     """
+    root = np.ones(len(w)) if weights is None else np.sqrt(weights)
     if similar:
         origin = 0j if pivot is None else pivot
-        columns = [turn, moves - origin] + ([np.ones(len(moves))] if pivot is None else [])
-        a, b = np.column_stack(columns), w - origin
+        columns = [root * turn, root * (moves - origin)] + ([root] if pivot is None else [])
+        a, b = np.column_stack(columns), root * (w - origin)
         if turns:
             coef, *_ = np.linalg.lstsq(a, b, rcond=None)
         else:  # λ real: the real and imaginary parts of every column but λ's are unknowns of their own
@@ -773,7 +819,7 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
         shift = complex(coef[2]) if pivot is None else origin * (1 - lam)
         if abs(lam) > 1e-6 and (turns or lam.real > 1e-6):
             return q, lam, shift
-    return complex(np.mean((w - moves) / turn)), 1.0 + 0j, 0j
+    return complex(np.average((w - moves) / turn, weights=weights)), 1.0 + 0j, 0j
 
 
 def point_carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:
