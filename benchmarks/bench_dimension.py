@@ -489,7 +489,8 @@ def run_problem(name: str, *, budget: float, seed: int = 0, reach: float | None 
     constraints = replace(problem.constraints, reach=reach)
     result = synthesize(FOUR_BAR, target, constraints=constraints, budget=budget, seed=seed,
                         underdetermined=True, starts=sampled_starts)
-    row = {"problem": name, "points": len(problem.points), "sum_squared_error": float(np.sum(result.errors ** 2)),
+    row = {"problem": name, "seed": seed, "budget": budget, "points": len(problem.points),
+           "sum_squared_error": float(np.sum(result.errors ** 2)),
            "error_max": result.error_max, "error_rms": result.error_rms, "relative_max": result.relative_max,
            "cpu_seconds": round(result.seconds, 1), "evaluations": result.evaluations, "met": result.met,
            "constraints": result.constraints, "source": problem.source}
@@ -546,7 +547,8 @@ def table(rows: list[tuple[dict, str]]) -> str:
         for r, log in problems:
             recorded = _records_said(r)
             candidates = f"{r['evaluations']:,}".replace(",", " ")
-            out.append(f"| {r['problem']} | {r['sum_squared_error']:.8g} | {recorded} | {r['error_max']:.2g} "
+            named = r["problem"] + (f", seed {r['seed']}" if "seed" in r else "")  # (rows logged before 29 Nov, dim9b: none)
+            out.append(f"| {named} | {r['sum_squared_error']:.8g} | {recorded} | {r['error_max']:.2g} "
                        f"({r['relative_max']:.2g}) | {candidates} | {r['cpu_seconds']:.1f} | {_constraints_said(r)} | {log} |")
     cases = {}
     for r, log in rows:

@@ -21,6 +21,10 @@ spot check of some of B's codes — ``--code`` queries — and only those are co
 one JSON object: the codes compared, equal, different (with both counts), complete in one count
 only, pending (complete in one of two counts still running), and whether each count is
 finished; the verdict is "equal" only when both are finished and agree on every code.
+``status`` and ``compare`` also give ``shared_path_units``: the units a second count
+(``--method tight-reverse``) counted by the first count's own path, so no independent check of it
+(``null`` for a count's JSON, which does not say; 0 for a checkpoint of before 29 Nov 2026, 18 h,
+which did not record them).
 
 Exit status: 0 when every code compared is equal (``status``, ``table``: the file was read),
 1 when a code differs or one side has a complete code the other lacks, 2 for bad input
@@ -89,7 +93,7 @@ def status(state) -> dict:
     """How far the count of a checkpoint is: units, chains, codes complete / partial / not begun."""
     codes = plan_codes_of(state)
     out = {"query": state.query, "created": state.created, "units_done": state.units, "chains_so_far": state.chains,
-           "codes_complete": len(state.complete), "codes_partial": len(state.partial)}
+           "shared_path_units": state.shared_units, "codes_complete": len(state.complete), "codes_partial": len(state.partial)}
     if codes is not None:
         out["codes_in_plan"] = len(codes)
         out["codes_not_begun"] = len([c for c in codes if c not in state.complete and c not in state.partial])
@@ -121,9 +125,10 @@ def _in_words(query: str) -> str:
     return " ".join([words[0]] + [f"{k[2:]}={v}" for k, v in zip(keys, values)])
 
 
-def read_counts(path: Path) -> tuple[dict, bool, str]:
-    """(complete codes → count, whether the count is finished, its query in words) of a checkpoint or
-    a count's JSON (finished; codes without chains left out)."""
+def read_counts(path: Path) -> tuple[dict, bool, str, int | None]:
+    """(complete codes → count, whether the count is finished, its query in words, its shared-path units)
+    of a checkpoint or a count's JSON (finished; codes without chains left out; the units a second count
+    counted by the first count's own path are in a checkpoint only: None for a JSON)."""
     if not path.is_file():
         fail(f"there is no file {path}" + (" (it is a folder)" if path.is_dir() else ""))
     try:
@@ -135,7 +140,7 @@ def read_counts(path: Path) -> tuple[dict, bool, str]:
         state = _state(path)  # a code complete with no chain is no row of a count's JSON: left out here too
         codes = plan_codes_of(state)
         finished = codes is not None and not state.partial and set(codes) <= set(state.complete)
-        return {code: n for code, (n, _) in state.complete.items() if n}, finished, state.query
+        return {code: n for code, (n, _) in state.complete.items() if n}, finished, state.query, state.shared_units
     try:
         text = path.read_text()
     except (OSError, UnicodeDecodeError) as exc:
@@ -149,7 +154,7 @@ def read_counts(path: Path) -> tuple[dict, bool, str]:
                 isinstance(n, int) and not isinstance(n, bool) for n in found["by_code"].values()):
             if "count" in found and found["count"] != sum(found["by_code"].values()):
                 fail(f"{path}: its count {found['count']} is not the sum of its counts by code")
-            return {code: n for code, n in found["by_code"].items() if n}, True, _in_words(found.get("query", ""))
+            return {code: n for code, n in found["by_code"].items() if n}, True, _in_words(found.get("query", "")), None
     fail(f"{path} is neither a checkpoint nor a count's JSON (a line {{\"count\": …, \"by_code\": {{…}}}})")
 
 
@@ -210,8 +215,8 @@ def main(argv=None) -> int:
     if args.command == "compare":
         if args.a.resolve() == args.b.resolve():
             fail(f"{args.a} compared with itself proves nothing: give the two counts to compare")
-        *a, query_a = read_counts(args.a)
-        *b, query_b = read_counts(args.b)  # (a checkpoint's query in words; a records file's command line, put in words; a count's JSON has none)
+        *a, query_a, shared_a = read_counts(args.a)
+        *b, query_b, shared_b = read_counts(args.b)  # (a checkpoint's query in words; a records file's command line, put in words; a count's JSON has none)
         # a spot check's --code query has no links= (the code says them, and the sizes are checked below)
         bare = [" ".join(word for word in re.sub(r" by [\w-]+", "", q).split()  # (the method: " by orbits")
                          if not (args.part and word.startswith(("code=", "links=")))) for q in (query_a, query_b)]
@@ -224,7 +229,9 @@ def main(argv=None) -> int:
         sizes = [sorted({_links(code) for code in side[0]} - {None}) for side in (a, b)]
         if all(sizes) and sizes[0] != sizes[1]:
             fail(f"{args.a} counts chains of {_words(sizes[0])} links and {args.b} of {_words(sizes[1])}")
-        result = {"a": str(args.a), "b": str(args.b), **compare(tuple(a), tuple(b))}
+        # the units of a second count (tight-reverse) counted by the first count's own path: no independent check
+        result = {"a": str(args.a), "b": str(args.b), **compare(tuple(a), tuple(b)),
+                  "shared_path_units": {"a": shared_a, "b": shared_b}}
         emit(json.dumps(result, indent=1))
         return 1 if result["verdict"] == "different" else 0
     state = _state(args.checkpoint)

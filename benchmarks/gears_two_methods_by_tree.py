@@ -25,7 +25,11 @@ Run from the project root (one process; a progress bar on stderr, or a line a mi
     python benchmarks/gears_two_methods_by_tree.py /tmp/t.jsonl --dof 2 --links 8 --rotation --sample 20 --seed 1
 
 A sample is compared in the order it was drawn, so a run stopped by Ctrl-C has compared a
-random part of it; the summary then says how many trees that was.
+random part of it; the summary then says how many trees that was.  A sample of more trees than the
+size has is refused (``--sample`` equal to their number compares every tree in a random order).
+
+The progress reckons the time to go by the trees' sizes, not by trees alike: a tree's size is its
+pairs of links on a common axis (:func:`tree_size`), which a tree's CPU follows (benchmarks/GEARS.md).
 
 ``--record CSV`` runs nothing: it reads the log's latest summary of the size that covers every
 tree of it with both methods agreeing (and with ``--rotation``, the two totals equal), and writes the
@@ -69,6 +73,16 @@ def paired_trees(links: int) -> list[tuple[int, tuple, tuple]]:
               file=sys.stderr)
         raise SystemExit(1)
     return [(k, axes, second[key]) for k, (axes, key) in enumerate(zip(engine, keys))]
+
+
+def tree_size(axes) -> int:
+    """The pairs of links on a common axis of a link–axis tree: the measure of its size by which the
+    progress reckons the time to go (a tree with few, crowded axes holds more trains and takes longer).
+
+    >>> tree_size([[0, 1, 2], [0, 3]]), tree_size([[0, 1], [1, 2], [2, 3]])
+    (4, 3)
+    """
+    return sum(len(axis) * (len(axis) - 1) // 2 for axis in axes)
 
 
 def compare_tree(dof: int, links: int, pair, rotation: bool, forms: dict | None = None) -> dict:
@@ -321,6 +335,12 @@ def main(argv=None) -> int:
         parser.error("--sample and --seed go together (a sample is drawn from its seed)")
     if args.sample is not None and args.sample < 1:
         parser.error("--sample takes a positive number of trees")
+    if args.record is None and args.sample is not None:
+        from synth.gears.enumeration import link_axis_trees
+
+        if args.sample > (trees := len(link_axis_trees(args.links))):
+            parser.error(f"--sample {args.sample} is more than the {trees} trees of {args.links} links: leave out --sample "
+                         f"and --seed to compare every tree, or give --sample {trees} to compare them in a random order")
     if args.record is not None:
         if args.sample is not None:
             parser.error("--record writes the count of every tree: a sample is not one (leave out --sample)")
@@ -368,7 +388,7 @@ def main(argv=None) -> int:
         print("gears_two_methods_by_tree: interrupted before any tree was compared", file=sys.stderr)
         return 130
     # a sample in its drawn order: a run stopped early has compared a random part of it
-    chosen = pairs if args.sample is None else random.Random(args.seed).sample(pairs, min(args.sample, len(pairs)))
+    chosen = pairs if args.sample is None else random.Random(args.seed).sample(pairs, args.sample)
     todo = [p for p in chosen if p[0] not in done]
     wall, cpu = time.perf_counter(), time.process_time()
     commit = _commit()
@@ -376,8 +396,8 @@ def main(argv=None) -> int:
           + (f" (rotation-graph forms in {store.path})" if store else ""), file=sys.stderr)
     from synth import Progress
 
-    try:  # a bar on a terminal, a line a minute in a log
-        with Progress(len(todo), "trees", desc="gears_two_methods_by_tree") as progress:
+    try:  # a bar on a terminal, a line a minute in a log; its steps are the trees' sizes, so is its time to go
+        with Progress(sum(tree_size(p[1]) for p in todo), "size (link pairs on an axis)", desc="gears_two_methods_by_tree") as progress:
             for pair in todo:
                 forms = {"engine": set(), "second": set()} if store else None
                 row = compare_tree(args.dof, args.links, pair, args.rotation, forms)
@@ -391,7 +411,7 @@ def main(argv=None) -> int:
                 if not _agrees(row):
                     progress.write(f"tree {row['tree']} {row['axes']}: engine {row['engine']}, "
                                    f"second method {row['second']}")
-                progress.update(1, disagreeing=not _agrees(row))
+                progress.update(tree_size(pair[1]), trees=1, disagreeing=not _agrees(row))
     except KeyboardInterrupt:
         interrupted = True
     else:

@@ -36,6 +36,8 @@ Run from the project root (a long row prints the command's own progress bar)::
         --second-every 10                                 # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
     python benchmarks/records.py --size --only "dof 3 --links"   # the engine's sizing of rows, beside the records
+    python benchmarks/records.py --only "links 32 --h 6" --recheck --reverse-from reverse.json  # a second count
+        # run beside the first (`mechsynth chains --dof 1 --links 32 --h 6 --count --method tight-reverse > reverse.json`)
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
 keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
@@ -121,19 +123,29 @@ _A227117 = {3: 1, 4: 1, 5: 3, 6: 13, 7: 70, 8: 608, 9: 7222, 10: 110132, 11: 203
 _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
          (3, True): {6: 1, 8: 7, 10: 98}, (3, False): {6: 1, 8: 5, 10: 74}}
 
-# h = 4 … 6 beyond 20 links: the engine's sizing misses the growth of a unit's time there (UNIT_GROWTH has no
-# factor for h >= 4): 26 links at h = 5 was sized at 1.4 CPU s and took 35, 23 links at h = 4 13 and 90
-# (`records.py --size`, 3ef3e6b); the counts' memory grows too (1.2 and 1.5 GiB at their peak)
-_SIZED_H = "the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about {} chains, {} CPU s, " \
-           "but it sized {} at {} CPU s and that count took {}"
+# h = 4 … 6 beyond 20 links, as sized on 29 Nov 2026 at a98900f (`records.py --size`, UNIT_GROWTH for h = 4, 5, 6:
+# PROFILE.md section 33), each count to be checked by its second count (--method tight-reverse) at about its cost;
+# their memory is bounded since a98900f (stage B's layers within 256 MiB a process: PROFILE.md section 36)
+_SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about {} chains, {} CPU s for the " \
+           "count and about as much again for its second count (--method tight-reverse)"
 _BEYOND = {
     (4, 23): "run on its own (--only): sized at 13 CPU s (3.6e9 chains), counted in 90 CPU s and 1.5 GiB on 29 Nov "
-             "2026, and as much again for its second count",
-    (4, 26): "not run: " + _SIZED_H.format("7.9e11", 197, "23 links", 13, 90)
-             + ", so expect some 20 to 25 CPU min, and its memory may pass 2 GiB (1.5 GiB at 23 links)",
-    (5, 30): "not run to the end: " + _SIZED_H.format("9.8e10", 9.6, "26 links", 1.4, 35.5)
-             + "; begun on 29 Nov, 441 of some 4 600 units (2.9e9 chains) in about 50 CPU s, stopped for time",
-    (6, 32): "not run: " + _SIZED_H.format("5.4e8 to 5.6e9", "3 to 70", "27 links", "0.5 to 5", 4.8),
+             "2026, and as much again for its second count (0.74 GiB since a98900f)",
+    (4, 26): "not run: " + _SIZED_H.format("7.9e11", "1 990")
+             + ", some 66 CPU min in all, past the 50 CPU min the h = 4…6 counts had on 29 Nov (at 23 links the sizing was 15 % "
+             "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
+    (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
+             + ", some 16 CPU min in all; not started on 29 Nov, the session's time going to the 32-link count at h = 6 "
+             "on 2 cores at a load of 16–31 (at 26 links the sizing, its growth factor fitted there, was 58 % under the count); to run it: `python "
+             "benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
+    (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
+             "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
+             "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "
+             "the first count, its memory within the budget of stage B's layers since a98900f (a worker had grown to "
+             "4.2 GiB before), stayed after 222 units (2.37e9 chains, some 56 CPU s a worker) in units of 10 branch "
+             "links of degree 3 (the layers held within the budget), and was stopped for time (PROFILE.md section 36); to run it: "
+             "`python benchmarks/records.py --only \"chains --dof 1 --links 32 --h 6\" --reverse-max 0`, then "
+             "`--recheck --reverse-from` that file",
 }
 
 ROWS = (
@@ -150,7 +162,7 @@ ROWS = (
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
             heavy="run on its own (--only): 8 loops; since every unit is counted without visiting (853192f, "
-                  "PROFILE.md section 34) the engine's sizing (`records.py --size`) gives about 8.4e9 chains, 394 CPU s "
+                  "PROFILE.md section 37) the engine's sizing (`records.py --size`) gives about 8.4e9 chains, 394 CPU s "
                   "(it sized 17 links at 17.4 CPU s); the second count by tight-reverse costs about as much")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
@@ -159,7 +171,7 @@ ROWS = (
     + [_row("W = 3", 3, 18, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
-            heavy="not run: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md section 34) "
+            heavy="not run: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md section 37) "
                   "the engine's sizing (`records.py --size`) gives about 3.3e10 chains, 426 CPU s (the old engine's: 10.6 CPU "
                   "hours, some 17 expected; the same sizing put 19 links W = 2 at 394 CPU s, which took 372); to run it, with its second count by tight-reverse at about the same cost: "
                   "`nice -n 10 python benchmarks/records.py --only \"chains --dof 3 --links 20\"`")]
@@ -359,13 +371,15 @@ def kernels_off_by_code(row: Row, every: int = 1) -> dict:
 
 
 def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
-           second_every: int = 1, reverse_max: int = 0, list_codes_max: int = 0) -> tuple[str, bool]:
+           second_every: int = 1, reverse_max: int = 0, list_codes_max: int = 0,
+           reverse: dict | None = None) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
     the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
     the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan);
     a count the listing does not check, of up to ``reverse_max`` chains and without multiple joints, is
     counted again by ``--method tight-reverse`` (the second count of a record: another programme over the
-    strings, another reading of the automorphisms), code by code."""
+    strings, another reading of the automorphisms), code by code; ``reverse`` is that second count run
+    already (its command's JSON, run beside the first), compared instead of running it."""
     passed, ok = [], True
     if row.published is not None:
         ok &= found["count"] == row.published
@@ -378,11 +392,12 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
         same = listing_by_code(row) == found["by_code"]
         ok &= same
         passed.append("listing by code" if same else "LISTING DIFFERS")
-    elif not row.option("--v") and list_max < found["count"] <= reverse_max:
-        second = run_count(row, "tight-reverse")
+    elif not row.option("--v") and (reverse is not None or list_max < found["count"] <= reverse_max):
+        second = reverse if reverse is not None else run_count(row, "tight-reverse")
         same = second["by_code"] == found["by_code"]
         ok &= same
-        print(f"records   tight-reverse: {second['count']} chains, {second['cpu_s']} CPU s, {second['wall_s']} s",
+        print(f"records   tight-reverse: {second['count']} chains"
+              + ("" if reverse is not None else f", {second['cpu_s']} CPU s, {second['wall_s']} s"),
               file=sys.stderr, flush=True)
         passed.append("tight-reverse by code" if same else "TIGHT-REVERSE DIFFERS")
     if found["count"] > list_max and list_codes_max > 0:
@@ -459,7 +474,13 @@ def section(lines: dict[str, dict], figure: str | None = None) -> str:
            "off (plain search or CP-SAT, the exact test in numpy), code by code, in one process (`--second-max`;",
            "a sample of the codes where it says so; `--recheck` checks a recorded count again);",
            "*tight-reverse* = the same command with `--method tight-reverse` (the second count of a record: another",
-           "programme over the strings, another reading of the automorphisms), code by code (`--reverse-max`);",
+           "programme over the strings, another reading of the automorphisms), code by code (`--reverse-max`); the",
+           "units it counts by the first count's own path (neither its programme nor the count by orbits applies:",
+           "a bundle group above 4 096 permutations, two empty parallel strings outside a tight count) are no",
+           "independent check, and the count says how many (`shared_path_units` of `benchmarks/checkpoints.py",
+           "status|compare`, a line on the command's stderr; not recorded by the runs before 29 Nov 2026, 18 h; at",
+           "W = 1 none is: 0 of the 104, 1 040 and 14 577 units of 12, 14 and 16 links, by `MECHSYNTH_CACHE=off python -c",
+           "\"import synth; c = synth.count_chains(1, 16, workers=2, method='tight-reverse'); print(c.units_run, c.shared_units)\"`);",
            "*none* = no independent check. A row without a published value goes beyond its source;",
            "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
            "Counts by code: the JSON file of each query in `benchmarks/records/`.", ""]
@@ -627,6 +648,19 @@ def _writable(path: Path, what: str, directory: bool = False) -> None:
         fail(f"the {what} {path} cannot be written (no permission)")
 
 
+def _second_count(path: Path) -> dict:
+    """The counts in ``path``, the JSON of a ``mechsynth chains … --count`` command (``count``, ``by_code``)."""
+    try:
+        found = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        fail(f"--reverse-from {path} cannot be read as the JSON of a count ({type(exc).__name__})")
+    by_code = found.get("by_code") if isinstance(found, dict) else None
+    if not (isinstance(by_code, dict) and all(isinstance(n, int) for n in by_code.values())
+            and found.get("count") == sum(by_code.values())):
+        fail(f"--reverse-from {path} is not the JSON of a count (its count and counts by code)")
+    return found
+
+
 def main(argv=None) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
@@ -649,6 +683,10 @@ def main(argv=None) -> int:
     parser.add_argument("--recheck", action="store_true",
                         help="with --only: check again the counts already in the CSV (their by-code files), without "
                         "counting them again; only the checks column changes")
+    parser.add_argument("--reverse-from", type=Path, metavar="FILE",
+                        help="with --recheck of one row: its second count read from FILE, the JSON that `mechsynth "
+                        "<query> --count --method tight-reverse` printed (run beside the first count, on workers "
+                        "of its own), compared code by code instead of running it")
     parser.add_argument("--size", action="store_true",
                         help="count nothing: print the engine's sizing of the rows chosen (--only, --quick, or every "
                         "row) as a Markdown table on stdout, beside the counts and CPU seconds recorded in the CSV; "
@@ -693,6 +731,11 @@ def main(argv=None) -> int:
         fail("--recheck checks the rows chosen by --only again, without counting them: give --only, not --again")
     if args.only is not None and not args.only.strip():
         fail("--only needs some text of a query, such as 'dof 2 --links 11'")
+    reverse = None
+    if args.reverse_from is not None:
+        if not args.recheck or args.size:
+            fail("--reverse-from gives the second count of a recorded row: use it with --recheck and --only")
+        reverse = _second_count(args.reverse_from)
     for path, what, directory in ((args.csv, "CSV file", False), (args.md, "Markdown file", False),
                                   (args.by_code, "by-code folder", True), (args.figure, "figure", False)):
         if not args.size:
@@ -710,6 +753,10 @@ def main(argv=None) -> int:
         if not rows:
             print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
             return 1
+        if reverse is not None and (len(rows) > 1 or rows[0].option("--v")):
+            fail(f"--reverse-from is the second count of one row without multiple joints, and --only {args.only!r} "
+                 f"chooses {len(rows)} rows" if len(rows) > 1 else f"{rows[0].query} has multiple joints, which the "
+                 "second count (tight-reverse) does not cover")
     elif args.size:
         rows = [row for row in ROWS if row.quick or not args.quick]
     else:
@@ -738,7 +785,7 @@ def main(argv=None) -> int:
                 line = lines[row.query]
                 found = json.loads((ROOT / line["by_code_file"]).read_text())
                 check, ok = checks(row, found, args.list_max, args.second_max, args.second_every, args.reverse_max,
-                               args.list_codes_max)
+                                   args.list_codes_max, reverse)
                 line["check"] = merge_checks(line["check"], check)
                 bad += not ok
                 write_csv(args.csv, lines)

@@ -13,10 +13,28 @@ import os
 from mechbase import RangeSyntax, parse_range
 
 __all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
-           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS"]
+           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS", "YesOrNo"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
+
+
+class YesOrNo(argparse.BooleanOptionalAction):
+    """``--x`` / ``--no-x``, refusing both on one command line (argparse would keep the last).
+
+    >>> parser = argparse.ArgumentParser(exit_on_error=False)
+    >>> _ = parser.add_argument("--labels", action=YesOrNo)
+    >>> parser.parse_args(["--no-labels", "--no-labels"]).labels
+    False
+    """
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        value = not option_string.startswith("--no-")
+        given = getattr(self, "_given", None)  # (the namespace, the value it was given)
+        if given is not None and given[0] is namespace and given[1] != value:
+            parser.error(f"{self.option_strings[0]} and {self.option_strings[1]} contradict each other")
+        self._given = (namespace, value)
+        super().__call__(parser, namespace, values, option_string)
 
 
 def _read(text: str, number, what: str):

@@ -27,7 +27,6 @@ from __future__ import annotations
 import html
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -671,9 +670,9 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
         images = []
         bar = None
         if progress:
-            from tqdm import tqdm
+            from .execution.progress import Progress
 
-            bar = tqdm(total=len(steps), unit="frame", file=sys.stderr, desc="animation")
+            bar = Progress(len(steps), "frames", desc="animation")
         fig, ax = _figure(canvas, 100)
         try:
             for i in range(len(steps)):

@@ -111,14 +111,14 @@ def test_every_subcommand_is_named_in_the_help_of_its_parent():
     subcommands (``balance compare`` was once missing from it)."""
     import argparse
 
-    from mechsynth.cli import _build_parser
+    from mechsynth._parser import build_parser
 
     def groups(parser):
         for action in parser._actions:
             if isinstance(action, argparse._SubParsersAction):
                 yield parser, action
 
-    root = _build_parser()
+    root = build_parser()
     text = root.format_help()
     (_, commands), = groups(root)
     for name, command in commands.choices.items():

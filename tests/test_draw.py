@@ -252,3 +252,18 @@ def test_draw_prismatic_variants(tmp_path, capsys):
         assert main(["draw", "--chain", watt, *bad, "--out", str(tmp_path / "x.png")]) == 2
         err = capsys.readouterr().err
         assert err.startswith("mechsynth:") and err.count("\n") == 1
+
+
+def test_cli_draw_checks_its_output_before_drawing(tmp_path, monkeypatch, capsys):
+    """An --out that cannot be written (a path under a file) is refused before any chain is drawn:
+    `draw --code 7201/1 --out /proc/x.png` once drew its 27 chains for seconds, then failed to save."""
+    (tmp_path / "plain").write_text("a file, not a folder")
+
+    def never(*args, **kwargs):
+        raise AssertionError("drawn before the output was checked")
+
+    monkeypatch.setattr(draw, "draw_sheet", never)
+    monkeypatch.setattr(draw, "draw_one", never)
+    assert main(["draw", "--code", "7201/1", "--out", str(tmp_path / "plain" / "x.png")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechsynth: ") and "plain" in err and "Traceback" not in err

@@ -216,6 +216,21 @@ def test_two_methods_script_samples_resumes_and_refuses_bad_options(tmp_path):
     assert refused.returncode == 2 and "nothing to record" in refused.stderr and len(lines) == len(list(csv.DictReader(table.open())))
 
 
+def test_two_methods_script_refuses_a_sample_larger_than_the_trees(tmp_path):
+    """--sample 999 of the 22 six-link trees compared the 22 and said nothing; now refused before a log
+    is written, and --sample 22 (every tree, in a random order) is taken."""
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "gears_two_methods_by_tree.py"
+    log = tmp_path / "log.jsonl"
+    refused = subprocess.run([sys.executable, str(script), log, "--dof", "1", "--links", "6", "--sample", "999", "--seed", "1"],
+                             capture_output=True, text=True, timeout=300)
+    assert refused.returncode == 2 and refused.stdout == "" and not log.exists()
+    assert refused.stderr == ("gears_two_methods_by_tree: --sample 999 is more than the 22 trees of 6 links: leave out "
+                              "--sample and --seed to compare every tree, or give --sample 22 to compare them in a random order\n")
+    taken = subprocess.run([sys.executable, str(script), log, "--dof", "1", "--links", "6", "--sample", "22", "--seed", "1"],
+                           capture_output=True, text=True, timeout=300)
+    assert taken.returncode == 0 and json.loads(taken.stdout)["summary"]["trees_compared"] == 22
+
+
 def test_two_methods_script_resumes_a_killed_rotation_run_to_both_unions(tmp_path):
     """A run killed outright (no summary written) and started again compares every tree once, and its
     unions of rotation graphs are those of one uninterrupted run (1 070 at 8 links, Yang & Ding);

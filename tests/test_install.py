@@ -117,8 +117,8 @@ def test_every_subcommand_runs_from_the_wheel(installed, argv):
 
 
 def test_the_smoke_list_names_every_subcommand():
-    from mechsynth.cli import _build_parser
+    from mechsynth._parser import build_parser
 
-    parser = _build_parser()
+    parser = build_parser()
     commands = set(next(a for a in parser._actions if a.dest == "command").choices)
     assert commands == {argv[0] for argv in SMOKE if not argv[0].startswith("-")}

@@ -83,6 +83,9 @@ def test_engine_codes_read_as_the_oracles_keys():
 def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path):
     other = tmp_path / "other.csv"
     other.write_text("a,b\n1,2\n")
+    not_a_count, a_count = tmp_path / "not_a_count.json", tmp_path / "a_count.json"
+    not_a_count.write_text('{"count": 3, "by_code": {"440/0": 2}}')
+    a_count.write_text('{"count": 2, "by_code": {"440/0": 2}}')
     cases = [
         (["--quick", "--only", "dof 1"], "give one of them"),
         (["--only", " "], "--only needs some text"),
@@ -107,6 +110,11 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--size", "--csv", other], "is not a records CSV"),
         (["--figure", tmp_path / "g.svg"], "must be a .png file"),
         (["--figure", other / "g.png"], "is not a folder"),
+        (["--reverse-from", other], "use it with --recheck"),
+        (["--recheck", "--only", "links 20 --h 4", "--reverse-from", other], "cannot be read as the JSON of a count"),
+        (["--recheck", "--only", "links 20 --h 4", "--reverse-from", not_a_count], "is not the JSON of a count"),
+        (["--recheck", "--only", "--h 4", "--reverse-from", a_count], "chooses 8 rows"),
+        (["--recheck", "--only", "links 8 --v", "--reverse-from", a_count], "has multiple joints"),
     ]
     for args, words in cases:
         p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
@@ -221,6 +229,30 @@ def test_a_recheck_keeps_the_count_and_merges_the_checks(tmp_path):
     _, found = _multiple_joint_row(_records(), 8)
     assert now["check"] == f"listing by code; oracle by code; kernels off by code (1 code in 2: {_sample(8, 2, found)})"
     assert not (tmp_path / "bc").exists()  # no count was run, so no by-code file was written
+
+
+def test_a_second_count_run_beside_is_compared_code_by_code(tmp_path):
+    """--recheck --reverse-from: the second count read from its command's JSON, compared code by code with the
+    recorded count; one code off by one is reported and the exit status is 1."""
+    for name in ("records.csv", "RECORDS.md"):
+        (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
+    recorded = json.loads((ROOT / "benchmarks" / "records" / "dof_1_links_20_h_4.json").read_text())
+    same, off = tmp_path / "same.json", tmp_path / "off.json"
+    same.write_text(json.dumps({"count": recorded["count"], "by_code": recorded["by_code"]}))
+    code = next(iter(recorded["by_code"]))
+    off.write_text(json.dumps({"count": recorded["count"] + 1,
+                               "by_code": {**recorded["by_code"], code: recorded["by_code"][code] + 1}}))
+    files = ("--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md", "--by-code", tmp_path / "bc")
+
+    def check():
+        with (tmp_path / "records.csv").open(newline="") as f:
+            return next(line for line in csv.DictReader(f) if line["query"] == "chains --dof 1 --links 20 --h 4")["check"]
+
+    done = _run("--only", "links 20 --h 4", "--recheck", "--reverse-from", same, *files)
+    assert done.returncode == 0 and "tight-reverse: 20329153 chains" in done.stderr, done.stderr
+    assert check() == "tight-reverse by code"
+    done = _run("--only", "links 20 --h 4", "--recheck", "--reverse-from", off, *files)
+    assert done.returncode == 1 and check() == "TIGHT-REVERSE DIFFERS"
 
 
 def test_a_large_counts_small_codes_are_listed_one_by_one_and_a_code_off_is_named(tmp_path):

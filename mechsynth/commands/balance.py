@@ -41,7 +41,7 @@ def add_commands(sub) -> None:
         return p
 
     def common(p, plot: bool = True):
-        p.add_argument("--format", choices=("table", "json"), default="table")
+        p.add_argument("--format", choices=("table", "json"), default="table", help="table (default) or json")
         if plot:
             p.add_argument("--plot", metavar="FILE", type=picture_file, help="write a figure (.png, .pdf or .svg)")
         p.add_argument("--force", action="store_true",
@@ -51,7 +51,7 @@ def add_commands(sub) -> None:
     a.add_argument("file", help="a TOML file with an [arm] table, or a .urdf file")
     a.add_argument("--samples", type=positive,
                    help="random configurations that start the searches for the largest residuals (default 1000)")
-    a.add_argument("--seed", type=int)
+    a.add_argument("--seed", type=int, help="seed of the random configurations (default: the file's, else 0)")
     a.add_argument("--transmission", action="store_true",
                    help="the gear trains (differentials, reducers, spur stages) forming each device shaft")
     common(a)
@@ -78,11 +78,13 @@ def add_commands(sub) -> None:
     s.add_argument("--rod", type=number_range, metavar="A..B", help="slider-crank: rod length range (m)")
     s.add_argument("--offset", type=number_range, metavar="A..B",
                    help="slider-crank: offset of the guide from the crank pivot (m, signed; default 0..0)")
-    s.add_argument("--max-force", type=float, metavar="F")
-    s.add_argument("--max-free-length", type=float, metavar="L")
+    s.add_argument("--max-force", type=float, metavar="F", help="largest spring force over the range (N)")
+    s.add_argument("--max-free-length", type=float, metavar="L", help="longest free length of the spring (m)")
     s.add_argument("--max-deflection", type=float, metavar="X", help="compression: largest (l0 − L_min)/l0")
-    s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"))
-    s.add_argument("--norm", choices=("max", "rms"), default="max")
+    s.add_argument("--method", choices=("trf", "slsqp", "nelder-mead", "de"),
+                   help="the fit's optimiser (default: one per --norm; a tension spring exact where a = r0 is allowed)")
+    s.add_argument("--norm", choices=("max", "rms"), default="max",
+                   help="minimise the largest (default) or the RMS deviation over the range")
     s.add_argument("--grid", type=int, default=None, help="fit grid points (default 61, at most 100001)")
     s.add_argument("--target-error", type=float, metavar="E",
                    help="requested relative error (e.g. 0.01); missed: a warning and exit status 1")
@@ -101,9 +103,10 @@ def add_commands(sub) -> None:
 
     pr = command("prismatic", "counter-masses for a sliding last link", _prismatic_problem, _table_prismatic,
                  "plot_prismatic")
-    pr.add_argument("--mass", required=True, type=float, metavar="m")
-    pr.add_argument("--inertia", required=True, type=float, metavar="I")
-    pr.add_argument("--counter-mass", required=True, type=float, metavar="M")
+    pr.add_argument("--mass", required=True, type=float, metavar="m", help="mass of the sliding link (kg)")
+    pr.add_argument("--inertia", required=True, type=float, metavar="I",
+                    help="the sliding link's transverse central moment of inertia (kg·m²)")
+    pr.add_argument("--counter-mass", required=True, type=float, metavar="M", help="each of the two counter-masses (kg)")
     pr.add_argument("--stroke", required=True, type=float, metavar="q_max", help="designed stroke half-amplitude (m)")
     pr.add_argument("--travel", type=float, metavar="S", help="stroke actually travelled (default q_max)")
     pr.add_argument("--C", type=float, dest="C", help="inertia constant (default C_min)")
@@ -114,7 +117,7 @@ def add_commands(sub) -> None:
 
     pa = command("pantograph", "pantograph balanced manipulator ([pantograph] TOML)", _file_problem,
                  _table_pantograph, "plot_pantograph")
-    pa.add_argument("file")
+    pa.add_argument("file", help="a TOML file with a [pantograph] table")
     common(pa)
 
     c = command("compare", "balancing hardware side by side: counterweights, a spring per joint, the harmonic "
@@ -130,12 +133,12 @@ def add_commands(sub) -> None:
     c.add_argument("--acceleration", type=float, metavar="A",
                    help="joint acceleration (rad/s²) at which the counterweights' motor torque is given (default 1)")
     c.add_argument("--samples", type=positive, help="random configurations (default 1000)")
-    c.add_argument("--seed", type=int)
+    c.add_argument("--seed", type=int, help="seed of the random configurations (default: the file's, else 0)")
     common(c)
 
     so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph] or "
                           "[compare]", _file_problem, None, None)
-    so.add_argument("file")
+    so.add_argument("file", help="a TOML file with [arm], [spring], [slider], [pantograph] or [compare]")
     common(so, plot=False)
 
 

@@ -10,10 +10,9 @@ Example
 
 from __future__ import annotations
 
-import argparse
 import sys
 
-from .._argtypes import seconds, whole, workers
+from .._argtypes import YesOrNo, seconds, whole, workers
 from .._output import FORMATS, nothing_found, write_count, write_rows
 
 WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # synth.exchange.WRITTEN, unloaded
@@ -37,7 +36,7 @@ def _add_selection(p) -> None:
                    help="required sub-structure: a link with I joints carrying ≥ C cranks (repeatable)")
     p.add_argument("--rigid-subchains", action="store_true", default=None,
                    help="allow rigid sub-chains, W(S) ≥ 0 (default only for W = 0)")
-    p.add_argument("--fractionated", action=argparse.BooleanOptionalAction, default=True,
+    p.add_argument("--fractionated", action=YesOrNo, default=True,
                    help="keep chains split by one link or joint (default: keep)")
     p.add_argument("--planar-only", action="store_true", help="keep only chains with planar graphs")
     p.add_argument("--prismatic", metavar="A..B",
@@ -277,8 +276,9 @@ def _run(args) -> int:
             if log is not None:
                 log.flush()  # the checkpoint's last commit, held back by the minute, ends the log
         found = write_count(result.to_dict(), args.format or "json")
-        if result.by_search_note is not None:  # --method orbits says where it did not count by orbits
-            print(f"mechsynth: {result.by_search_note}", file=sys.stderr)
+        for note in (result.by_search_note, result.shared_note):  # --method orbits says where it did not count by
+            if note is not None:  # orbits, --method tight-reverse where it shared the first count's path
+                print(f"mechsynth: {note}", file=sys.stderr)
         if found == 0:
             return nothing_found(f"{args.what} satisfy these parameters and conventions")
         return 0
@@ -330,7 +330,7 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
             columns[-2:-2] = ["guide", "swinging", "floating", "slider"]
     n = write_rows(_indexed(rows), columns, fmt)
     if fmt == "table":
-        print(f"{n} {what}")
+        print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain, 1 mechanism
     if n == 0:
         return nothing_found(f"{what} satisfy these parameters and conventions")
     return 0

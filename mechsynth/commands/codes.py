@@ -77,7 +77,7 @@ def _add_codes(sub):
                    help="design constraint on n_I, the links with I joints (repeatable)")
     p.add_argument("--force", action="store_true",
                    help=f"list a query that may have more than {MAX_CODES:_} codes (refused unasked)".replace("_", " "))
-    p.add_argument("--format", choices=FORMATS, default="table")
+    p.add_argument("--format", choices=FORMATS, default="table", help="table (default), jsonl, csv or json")
     p.set_defaults(run=_run_codes)
 
 
@@ -128,7 +128,8 @@ def _run_codes(args) -> int:
         return nothing_found("standard code satisfies these parameters and requirements")
     if args.format == "table":
         summary = ", ".join(f"K={k}: {m}" for k, m in sorted(per_k.items()))
-        print(f"{sum(per_k.values())} codes ({summary})")
+        total = sum(per_k.values())
+        print(f"{total} code{'s' * (total != 1)} ({summary})")
     return 0
 
 
@@ -167,7 +168,7 @@ def _add_analyze(sub):
     p.add_argument("--loop-classes", help="H=K_H,… for heterogeneous systems")
     p.add_argument("--repairs", type=positive, nargs="?", const=5, metavar="N",
                    help="the N (default 5) nearest valid codes or chains, fewest elementary edits first")
-    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--format", choices=("table", "json"), default="table", help="table (default) or json")
     p.set_defaults(run=_run_analyze)
 
 

@@ -2,8 +2,8 @@
 (with or without timing), a function (input–output angles) or poses of a body.
 
 The target is a CSV or JSON file (columns ``x,y`` / ``x,y,input`` / ``input,output`` / ``x,y,angle``,
-a ``*_deg`` column in degrees); the topology is a linkage file (its pose is a first guess) or a
-joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
+a ``*_deg`` column in degrees, and last an optional ``weight`` column); the topology is a linkage file
+(its pose is a first guess) or a joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
 linkage file that ``move`` and ``scene`` read, and drawn over the target.
 
 Example
@@ -76,7 +76,8 @@ def add_commands(sub) -> None:
     p = sub.add_parser("dimension", help="dimensional synthesis: the dimensions with which a mechanism traces a path, "
                                          "generates a function or guides a body")
     p.add_argument("target", metavar="TARGET", help="a .csv or .json target: columns x,y (a path), x,y,input (timed "
-                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees")
+                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees; a last "
+                   "column weight: how much each row counts")
     p.add_argument("--linkage", metavar="FILE", help="the mechanism as a linkage file (.toml or .json); its pose is a "
                    "first guess")
     p.add_argument("--mechanism", metavar="CHAIN", help="the mechanism as a joint list, e.g. '0-1 1-2 2-3 3-0'")
@@ -284,11 +285,15 @@ def _write(result, fmt: str) -> None:
              ("target", f"{result.kind}, {len(result.errors)} points, size {result.size:.6g}"),
              (f"error max ({unit})", result.error_max), (f"error rms ({unit})", result.error_rms),
              ("relative max", result.relative_max), ("relative rms", result.relative_rms)]
+    if result.weights is not None:
+        lines[3] = (f"error rms ({unit}, each point once)", result.error_rms)
+        lines.append((f"weighted sum of squares ({unit}², Σ weight × error²)", result.weighted_sum_squares))
     if result.angle_errors is not None:
         lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
     for name, c in result.constraints.items():
-        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}"
-                      + (f" (limit {_value(c['limit'])})" if c["limit"] is not None else "")))
+        unit = _UNITS.get(name, "")
+        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}{unit}"
+                      + (f" (limit {_value(c['limit'])}{unit})" if c["limit"] is not None else "")))
     for k in range(len(lk.chain.joints)):
         lines.append((f"joint {joint_name(lk.chain, k)}", f"{lk.points[k][0]:.10g}, {lk.points[k][1]:.10g}"))
     for name, (link, at) in lk.tracers.items():
@@ -299,11 +304,21 @@ def _write(result, fmt: str) -> None:
     write_document({}, "table", pairs(lines))
 
 
+_UNITS = {"transmission": "°", "frame_angle": "°", "length": " target units"}  # a constraint's value and limit
+
+
 def _value(v) -> str:
+    """A constraint's value as the table shows it.
+
+    >>> _value({"0-1": [0.0, 1.5]}), _value([[2.08576123, 2.2753]])
+    ('0-1 at [0, 1.5]', '[[2.08576, 2.2753]]')
+    """
     if isinstance(v, float):
         return f"{v:.6g}"
     if isinstance(v, list):
         return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):  # pivots held at points
+        return ", ".join(f"{k} at {_value(x)}" for k, x in v.items())
     return str(v)
 
 

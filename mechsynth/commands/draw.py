@@ -13,10 +13,9 @@ True
 
 from __future__ import annotations
 
-import argparse
 import sys
 
-from .._argtypes import inches, positive, where_conditions, whole
+from .._argtypes import YesOrNo, inches, picture_file, positive, where_conditions, whole
 
 __all__ = ["add_commands"]
 
@@ -50,11 +49,12 @@ def add_commands(sub) -> None:
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
     p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
     p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
-    p.add_argument("--labels", action=argparse.BooleanOptionalAction, default=None,
+    p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
     p.add_argument("--title", help="sheet title (default: the selection)")
-    p.add_argument("--out", required=True, help="output file, .svg or .png (or .pdf)")
+    p.add_argument("--out", required=True, type=picture_file,
+                   help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     p.set_defaults(run=_run_draw)
 
 

@@ -31,7 +31,7 @@ def add_commands(sub) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the units on a Dask scheduler, e.g. tcp://host:8786")
     p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true", help="run a grid estimated to take more than a day")
-    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--format", choices=("table", "json"), default="table", help="table (default) or json")
     p.set_defaults(run=_run_grid)
 
 

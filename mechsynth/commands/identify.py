@@ -20,10 +20,9 @@ Example
 
 from __future__ import annotations
 
-import argparse
 import sys
 
-from .._argtypes import whole, workers
+from .._argtypes import YesOrNo, whole, workers
 from .._output import pairs, write_document, write_rows
 
 __all__ = ["add_commands"]
@@ -42,7 +41,7 @@ def add_commands(sub) -> None:
     p.add_argument("--frame", help="fix this link (as the input names it): identify the mechanism")
     p.add_argument("--h", type=whole, help="motion space of the loops, 2 … 6, for a source that states none (default "
                    "the chain's own, 3 for a joint list); a source that states another is refused")
-    p.add_argument("--index", action=argparse.BooleanOptionalAction, default=None,
+    p.add_argument("--index", action=YesOrNo, default=None,
                    help="find the chain's row in its code's listing (default: where listing the chains of its link "
                         "count is estimated at a minute or less on one core)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table",
@@ -68,7 +67,7 @@ def add_commands(sub) -> None:
                    "cranks (repeatable)")
     p.add_argument("--rigid-subchains", action="store_true", default=None,
                    help="the atlas allows rigid sub-chains, W(S) ≥ 0 (default only for W = 0)")
-    p.add_argument("--fractionated", action=argparse.BooleanOptionalAction, default=True,
+    p.add_argument("--fractionated", action=YesOrNo, default=True,
                    help="the atlas holds fractionated chains (default: yes)")
     p.add_argument("--planar-only", action="store_true", help="the atlas holds planar chains only")
     p.add_argument("--prismatic", metavar="A..B", help="chains with A…B prismatic pairs")

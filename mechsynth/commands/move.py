@@ -179,7 +179,7 @@ def _run(args) -> int:
     _check(args)
     linkage = _linkage(args)
     _check_inputs(args, linkage)
-    if linkage.note:
+    if linkage.note and not args.linkage:  # a file's note tells what was done when it was saved, not now
         print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
     if args.save:
         with open(args.save, "w") as fh:
@@ -196,7 +196,7 @@ def _run(args) -> int:
     motion = sweep(linkage, steps=steps, start=start, stop=stop, velocities=args.velocities,
                    accelerations=args.accelerations)
     if motion.stopped:
-        print(f"mechsynth: the sweep stopped: {motion.stopped}", file=sys.stderr)
+        print(f"mechsynth: {motion.stopped}", file=sys.stderr)
     if args.out:
         from synth import draw_motion
 
@@ -341,7 +341,7 @@ def _write_long_sweep(linkage, args, steps: int, start: float | None, stop: floa
             written += len(rows)
             bar.update(len(rows))
             if piece.stopped:
-                print(f"mechsynth: the sweep stopped: {piece.stopped}", file=sys.stderr)
+                print(f"mechsynth: {piece.stopped}", file=sys.stderr)
                 break
     if fmt == "json":
         sys.stdout.write("]\n")
@@ -376,6 +376,11 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
     revolute = linkage.kind(k) == JointKind.REVOLUTE
     turns = revolute and reach.full_rotation  # a crank's positions are angles of one turn: 0 … 360°
     unit = (lambda v: math.degrees(v) % 360.0 if turns else math.degrees(v)) if revolute else (lambda v: v)
+
+    def shown(v: float, digits: int = 6) -> str:
+        """An input as printed; a crank's angle in one turn, so a full turn (359.9999993°) reads 0, not 360."""
+        text = f"{unit(v):.{digits}g}"
+        return "0" if turns and float(text) == 360.0 else text
     word = "°" if revolute else ""
     doc = {"input": joint_name(linkage.chain, k), "kind": linkage.kind(k), "full_rotation": reach.full_rotation,
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
@@ -391,21 +396,21 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
     if reach.full_rotation:
         motion_text = "turns fully (a crank)"
     elif reach.limits:
-        motion_text = f"rocks between {unit(reach.limits[0]):.6g}{word} and {unit(reach.limits[1]):.6g}{word}"
+        motion_text = f"rocks between {shown(reach.limits[0])}{word} and {shown(reach.limits[1])}{word}"
     else:
         motion_text = "does not move"
     lines = [("input", f"{doc['input']} ({doc['kind']})"), ("motion", motion_text)]
     if reach.grashof:
         lines.append(("Grashof", reach.grashof))
     for v, why in reach.dead_positions:
-        lines.append(("dead position", f"{unit(v):.10g}{word}: {why}"))
+        lines.append(("dead position", f"{shown(v, 10)}{word}: {why}"))
     for v, link in reach.toggles:
-        lines.append(("toggle", f"{unit(v):.10g}{word}: link {link} stops and turns back"))
+        lines.append(("toggle", f"{shown(v, 10)}{word}: link {link} stops and turns back"))
     if not motion.transmission:
         lines.append(("transmission", _NO_TRANSMISSION))
     for name, t in motion.transmission.items():
-        lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {unit(t['at_min']):.6g}{word}, "
-                                               f"max {math.degrees(t['max']):.4g}° at {unit(t['at_max']):.6g}{word}"))
+        lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {shown(t['at_min'])}{word}, "
+                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}"))
     for name, (x0, y0, x1, y1) in motion.extent().items():
         lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
     write_document(doc, "table", pairs(lines))

@@ -26,7 +26,8 @@ def add_commands(sub) -> None:
     p.add_argument("--satellites", required=True, metavar="A..B", help="number of satellites k0, or a range A..B")
     p.add_argument("--sun", choices=("floating", "fixed"), default="floating",
                    help="floating sun (held by its meshes, the default) or sun on a fixed axis")
-    p.add_argument("--format", choices=("table", "jsonl", "csv", "json"), default="table")
+    p.add_argument("--format", choices=("table", "jsonl", "csv", "json"), default="table",
+                   help="table (default), jsonl, csv or json")
     p.set_defaults(run=_run)
 
 

@@ -39,7 +39,6 @@ from __future__ import annotations
 import json
 import math
 import sqlite3
-import sys
 import time
 import zlib
 from dataclasses import dataclass, field
@@ -517,7 +516,7 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
     scheduler : str, optional
         A Dask scheduler's address: the mechanisms are sampled there.
     progress : bool
-        A bar on stderr (mechanisms, curves).
+        Progress on stderr (mechanisms, curves): a bar on a terminal, a line a minute in a log.
 
     Returns
     -------
@@ -586,9 +585,9 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
         start = time.perf_counter()
         bar = None
         if progress and todo:
-            from tqdm import tqdm
+            from ..execution.progress import Progress
 
-            bar = tqdm(total=len(todo), unit="mechanism", file=sys.stderr, desc="curve index")
+            bar = Progress(len(todo), "mechanisms", desc="curve index")
         run = skipped = 0
         runner = Executor(workers, client)
         try:
@@ -600,8 +599,7 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
                 run += 1
                 skipped += result.status == "skipped"
                 if bar is not None:
-                    bar.update()
-                    bar.set_postfix(curves=len(result.rows), refresh=False)
+                    bar.update(1, curves=len(result.rows))
         finally:
             runner.close()  # no worker outlives the index
             if bar is not None:

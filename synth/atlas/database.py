@@ -174,11 +174,16 @@ def _check_version(conn: sqlite3.Connection, path: Path) -> int:
     upgrades): its tables and columns, and its version, which it returns."""
     try:
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        if not tables:  # an empty file opens as an empty database
+            raise AtlasError(f"{path} is empty: no atlas there (run 'mechsynth grid GRID.toml --db {path}' first)")
         if "meta" not in tables:
             raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (no 'meta' table)")
         row = conn.execute("SELECT value FROM meta WHERE key = 'schema_version'").fetchone()
         version = row[0] if row else None
         if version is None:
+            query = conn.execute("SELECT value FROM meta WHERE key = 'query'").fetchone()
+            if query and {"codes", "units"} <= tables:  # a count's checkpoint (synth/execution/checkpoint.py)
+                raise AtlasError(f"{path} is the checkpoint of a count ({query[0]}), not an atlas")
             raise AtlasError(f"{path} is an SQLite file but not a mechsynth atlas (its meta table names no schema "
                              "version)")
         if version not in (str(SCHEMA_VERSION), "3"):

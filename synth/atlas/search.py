@@ -615,11 +615,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     matches, notes = [], []
     bar = executor = None
     if progress and tasks:
-        import sys
+        from ..execution.progress import Progress
 
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(tasks), unit="topology", file=sys.stderr, desc="polish")
+        bar = Progress(len(tasks), "topologies", desc="polish")
     try:
         from ..execution.executor import Executor, run_plan
 

@@ -31,7 +31,6 @@ import json
 import math
 import os
 import re
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -266,15 +265,14 @@ def _write(conn, out: Path, total: int, *, page_size: int, draw_limit: int, move
         lookup: dict[str, dict[str, str]] = {}
         pages = drawn = moved = 0
         if progress:
-            from tqdm import tqdm
-
+            from ..execution.progress import Progress
             from ..execution.sizes import describe_seconds
 
             seconds = min(draw_limit, total) * _SECONDS_PER_DRAWING / workers
             if seconds > 60 and note is not None:
                 note(f"{min(draw_limit, total)} of the {total} chains are drawn: about {describe_seconds(seconds)} "
                      f"on {workers} worker{'s' * (workers > 1)} (a lower drawing limit draws fewer)")
-            bar = tqdm(total=total, unit="chain", file=sys.stderr, desc="site")
+            bar = Progress(total, "chains", desc="site")
         rows = conn.execute(f"SELECT c.id, c.dof, c.h, c.links, c.v, c.code, c.prismatic, c.meshes, c.fractionated, "
                             f"c.chain, c.certificate, t.train, t.lever_code, t.rotation "
                             f"FROM chains c LEFT JOIN trains t ON t.chain = c.id {_ORDER}")

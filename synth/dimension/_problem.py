@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,10 +44,11 @@ MARGIN = 1e-4
 #: the cost of a candidate that cannot reach the target on its branch (plus the share of samples lost)
 INFEASIBLE = 1e3
 #: a link-length order's violation row in the search is (log(shorter / longer) + MARGIN)⁺, as the other
-#: constraints'; the answer is then polished with the orders as inequality constraints, held this far
-#: inside their bounds (``_Search.stiffen``): met to 1e-9 at a cost of 1e-10 of the lengths, where MARGIN
-#: alone cost 0.6 % of CE2's error
-ORDER_MARGIN = 1e-10
+#: constraints'; the answer is then polished with the link-length constraints (orders, the length and ratio
+#: bounds) as inequality constraints, held this far inside their bounds (``_Search.stiffen``): met to 1e-9
+#: at a cost of 1e-10 of the lengths, where MARGIN alone cost 0.6 % of CE2's error and 0.04 % of the ten
+#: points' of [HCDJ] under a length bound of 80
+HELD_MARGIN = 1e-10
 #: the least frame length along a fixed frame direction (target sizes)
 SHORTEST_FRAME = 1e-3
 #: a designer's constraint is met within this (rad, log-ratio, target sizes)
@@ -120,6 +122,8 @@ class Constraints:
     order: tuple[str, ...] = ()
 
     def __post_init__(self):
+        if not isinstance(self.crank, (bool, np.bool_)):
+            raise DimensionError(f"crank is True or False, not {self.crank!r}")
         if self.crank and self.rocker is not None:
             raise DimensionError("the input cannot be both a crank (a full turn) and a rocker within limits")
         if self.rocker is not None:
@@ -128,20 +132,24 @@ class Constraints:
             if not lo < hi:
                 raise DimensionError(limits)
             object.__setattr__(self, "rocker", (lo, hi))
-        if not 0 <= self.min_transmission < math.pi / 2:
-            raise DimensionError(f"the least transmission angle must be 0 … 90° (exclusive), not "
-                                 f"{math.degrees(self.min_transmission):g}°")
-        if self.max_ratio is not None and not (math.isfinite(self.max_ratio) and self.max_ratio > 1):
-            raise DimensionError(f"the link-length ratio bound must be a number above 1, not {self.max_ratio}")
-        if self.max_length is not None and not (math.isfinite(self.max_length) and self.max_length > 0):
-            raise DimensionError(f"the link-length bound must be a positive length, not {self.max_length}")
+        mu = _real(self.min_transmission, f"the least transmission angle must be a number (rad), not {self.min_transmission}")
+        if not 0 <= mu < math.pi / 2:
+            raise DimensionError(f"the least transmission angle must be 0 … 90° (exclusive), not {math.degrees(mu):g}°")
+        object.__setattr__(self, "min_transmission", mu)
+        self._number("max_ratio", f"the link-length ratio bound must be a number above 1, not {self.max_ratio}",
+                     lambda r: math.isfinite(r) and r > 1)
+        self._number("max_length", f"the link-length bound must be a positive length, not {self.max_length}",
+                     lambda length: math.isfinite(length) and length > 0)
+        self._number("reach", f"the search reach must be a positive number of target sizes, not {self.reach}",
+                     lambda r: math.isfinite(r) and r > 0)
         if self.pivots is not None:
-            x0, x1, y0, y1 = (float(v) for v in self.pivots)
+            box = f"the pivots' region must be four finite numbers x0 < x1, y0 < y1, not {self.pivots}"
+            if isinstance(self.pivots, (str, bytes, dict)) or not hasattr(self.pivots, "__len__") or len(self.pivots) != 4:
+                raise DimensionError(box)
+            x0, x1, y0, y1 = (_real(v, box) for v in self.pivots)
             if not all(map(math.isfinite, (x0, x1, y0, y1))) or x0 >= x1 or y0 >= y1:
-                raise DimensionError(f"the pivots' region must be x0 < x1 and y0 < y1, finite, not {self.pivots}")
+                raise DimensionError(box)
             object.__setattr__(self, "pivots", (x0, x1, y0, y1))
-        if self.reach is not None and not (math.isfinite(self.reach) and self.reach > 0):
-            raise DimensionError(f"the search reach must be a positive number of target sizes, not {self.reach}")
         self._check_placing()
         if self.max_length is not None:
             held = self.pivot_at
@@ -152,14 +160,32 @@ class Constraints:
                                              f"beyond the link-length bound {self.max_length:g}")
         if isinstance(self.order, str):
             object.__setattr__(self, "order", (self.order,))
+        if not isinstance(self.order, (tuple, list)):
+            raise DimensionError(f"the link-length orders are a text or a list of texts, e.g. ('r2 <= r3 <= r4 <= r1',), "
+                                 f"not {self.order!r}")
         object.__setattr__(self, "order", tuple(self.order))
         for text in self.order:
             _order_terms(text)
 
+    def _number(self, field: str, sentence: str, holds) -> None:
+        """Field ``field``, unless None, as a float for which ``holds`` is true; else ``sentence``."""
+        value = getattr(self, field)
+        if value is not None:
+            value = _real(value, sentence)
+            if not holds(value):
+                raise DimensionError(sentence)
+            object.__setattr__(self, field, value)
+
     def _check_placing(self) -> None:
         """The fixed pivots, the frame's direction and the timing: each well formed, none contradicting
         another or the pivots' box."""
-        given = self.pivot_at.items() if isinstance(self.pivot_at, dict) else self.pivot_at
+        pairs = f"the fixed pivots are a mapping joint -> (x, y), e.g. {{'0-1': (0, 0)}}, not {self.pivot_at!r}"
+        given = self.pivot_at.items() if isinstance(self.pivot_at, Mapping) else self.pivot_at
+        if isinstance(given, (str, bytes)) or not isinstance(given, Iterable):
+            raise DimensionError(pairs)
+        given = list(given)
+        if not all(isinstance(g, (tuple, list)) and len(g) == 2 for g in given):
+            raise DimensionError(pairs)
         held = []
         for joint, at in given:
             x, y = finite_pair(at, error=DimensionError, malformed=f"a fixed pivot is a point (x, y), not {at!r} (joint {joint})",
@@ -172,15 +198,29 @@ class Constraints:
             held.append((joint, (x, y)))
         object.__setattr__(self, "pivot_at", tuple(held))
         if self.frame_angle is not None:
-            if not math.isfinite(self.frame_angle):
-                raise DimensionError(f"the frame's direction must be a finite angle, not {self.frame_angle}")
-            object.__setattr__(self, "frame_angle", float(self.frame_angle))
+            self._number("frame_angle", f"the frame's direction must be a finite angle, not {self.frame_angle}",
+                         math.isfinite)
         if self.timing not in ("relative", "absolute"):
             raise DimensionError(f"the timing is 'relative' or 'absolute', not {self.timing!r}")
         if self.frame_line is not None and self.frame_angle is None and self.timing != "absolute":
             raise DimensionError(f"{option('frame_line', 'JOINT')} names the far end of the frame line, which only a "
                                  f"fixed direction ({option('frame_angle', 'ANGLE')}) or an absolute timing "
                                  f"({option('timing', 'absolute')}) uses")
+
+
+def _real(value, sentence: str) -> float:
+    """``value`` — a number or the text of one, as :func:`mechbase.finite_pair` reads them — as a float;
+    a truth value, None or anything else is ``DimensionError(sentence)``.
+
+    >>> _real(np.float32(0.5), "a number"), _real("2", "a number")
+    (0.5, 2.0)
+    """
+    if isinstance(value, (bool, np.bool_)):
+        raise DimensionError(sentence)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise DimensionError(sentence) from None
 
 
 def _wrap(a):
@@ -250,7 +290,10 @@ class Problem:
         self.frame_line = self._frame_ends()
         self.along = self._frame_line()
         self.order = tuple(read_order(text, chain, self.frame, self.input_link) for text in constraints.order)
-        self.order_penalty = (1.0, MARGIN)  # (weight, margin) of the order's violation rows: STIFF_ORDER at the end
+        # where the penalty rows of the link-length constraints (:meth:`length_gaps`) aim: this far inside each
+        # (log); the final polish moves each aim by the overshoot its penalty leaves (``_Search.stiffen``)
+        self.aim = np.concatenate((np.full(self.order_pairs, MARGIN),
+                                   np.full(self.length_bounds - self.order_pairs, -math.log1p(-MARGIN))))
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
@@ -283,9 +326,13 @@ class Problem:
         self.projected = isinstance(target, PathTarget)
         self.searched = self.dims - (2 if self.projected else 0)
         self.points = len(target)
+        # the target's weights over their mean (None: 1 each), so the cost is a weighted mean of squared errors
+        self.weights = None if target.weights is None else target.weights / target.weights.mean()
         self.input_span = 2 * math.pi if self.revolute_input else 2 * reach * self.scale
         self.unknowns = self._count_unknowns()
-        self.equations = self.points * {"path": 2, "function": 1, "motion": 3}[target.kind]
+        self.rows_per_point = {"path": 2, "function": 1, "motion": 3}[target.kind]
+        counted = self.points if self.weights is None else int(np.count_nonzero(self.weights))
+        self.equations = counted * self.rows_per_point  # (a point of weight 0 gives none)
 
     # ------------------------------------------------------------ set-up
     def _output_link(self, given: int | None) -> int:
@@ -534,12 +581,23 @@ class Problem:
         fixed: no similarity, the tracer point alone fitted), without a turn where the frame's
         direction is fixed.  Positions are complex, over the target's size."""
         if len(self.fixed) > 1:
-            return placement(turn, moves, w, similar=False)
+            return placement(turn, moves, w, similar=False, weights=self.weights)
         pivot = None
         if self.fixed:
             (at,) = self.fixed.values()
             pivot = complex(at[0], at[1]) / self.scale
-        return placement(turn, moves, w, pivot=pivot, turns=self.along is None)
+        return placement(turn, moves, w, pivot=pivot, turns=self.along is None, weights=self.weights)
+
+    def weighed(self, residuals: np.ndarray) -> np.ndarray:
+        """Residual rows (one per target point) times the square root of their point's weight: their
+        squares sum to the weighted sum the search minimises."""
+        if self.weights is None:
+            return residuals
+        return residuals * np.sqrt(self.weights).reshape((-1,) + (1,) * (residuals.ndim - 1))
+
+    def mean(self, squares: np.ndarray) -> float:
+        """The weighted mean of squared errors, one per target point (the plain mean without weights)."""
+        return float(np.mean(squares if self.weights is None else self.weights * squares))
 
     def output_reference(self, linkage: Linkage) -> int:
         """The joint of the output link whose direction from its pivot is the output angle."""
@@ -626,15 +684,18 @@ class Problem:
         """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
         transmission (rad), ratio and length (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
         measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
-        that binds settles a little beyond its limit."""
+        that binds settles a little beyond its limit (the link-length ones: ``aim`` inside, which the final
+        polish moves)."""
         c = self.constraints
         out = []
         if c.min_transmission > 0:
             out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
+        # the link-length constraints' rows: (gap + aim)⁺ for the orders' pairs, the length and the ratio
+        lengths = np.maximum(self.length_gaps(linkage) + self.aim, 0.0) if self.length_bounds else None
         if c.max_ratio is not None:
-            out.append(max(0.0, math.log(link_ratio(linkage) / (c.max_ratio * (1 - MARGIN)))))
+            out.append(float(lengths[-1]))
         if c.max_length is not None:
-            out.append(max(0.0, math.log(longest_link(linkage) / (c.max_length * (1 - MARGIN)))))
+            out.append(float(lengths[self.order_pairs]))
         if c.pivots is not None:
             inset = MARGIN * self.scale
             x0, x1, y0, y1 = c.pivots[0] + inset, c.pivots[1] - inset, c.pivots[2] + inset, c.pivots[3] - inset
@@ -647,8 +708,7 @@ class Problem:
             over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
             out.append(over / unit)
         if self.order:
-            weight, margin = self.order_penalty
-            out += list(weight * np.maximum(self.order_gaps(linkage) + margin, 0.0))  # a row per pair
+            out += list(lengths[:self.order_pairs])  # a row per pair of an order
         return np.array(out)
 
     @property
@@ -663,6 +723,29 @@ class Problem:
         gaps = [math.log(max(lengths[a], 1e-300) / max(lengths[b], 1e-300))
                 for links in self.order for a, b in zip(links, links[1:])]
         return np.array(gaps)
+
+    @property
+    def length_bounds(self) -> int:
+        """The designer's link-length constraints: a row each in :meth:`length_gaps`."""
+        c = self.constraints
+        return self.order_pairs + (c.max_length is not None) + (c.max_ratio is not None)
+
+    def length_gaps(self, linkage: Linkage) -> np.ndarray:
+        """log(value / limit) of each link-length constraint — the orders' pairs (:meth:`order_gaps`), the
+        longest link over the length bound, the ratio over its bound — ≤ 0 where it holds.
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3, 2]])
+        >>> p = Problem(lk.mechanism, 0, PathTarget(np.eye(2)), 2, Constraints(max_length=8, order=("r2<=r1",)))
+        >>> np.round(p.length_gaps(lk), 6).tolist()   # crank 1 over frame 4; frame 4 over the bound 8
+        [-1.386294, -0.693147]
+        """
+        c, gaps = self.constraints, [self.order_gaps(linkage)]
+        if c.max_length is not None:
+            gaps.append([math.log(max(longest_link(linkage), 1e-300) / c.max_length)])
+        if c.max_ratio is not None:
+            gaps.append([math.log(link_ratio(linkage) / c.max_ratio)])
+        return np.concatenate(gaps)
 
     def placing(self, linkage: Linkage) -> dict:
         """The designer's fixed pivots, frame direction, absolute timing and link-length orders, each
@@ -699,12 +782,13 @@ class Problem:
 
 
 def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: complex | None = None,
-              turns: bool = True, similar: bool = True) -> tuple[complex, complex, complex]:
+              turns: bool = True, similar: bool = True,
+              weights: np.ndarray | None = None) -> tuple[complex, complex, complex]:
     """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
     link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
-    the link's rotation e^{iθᵢ} and movesᵢ its translation at each point).  Where λ is not
-    determined (a link turning about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is
-    fitted.
+    the link's rotation e^{iθᵢ} and movesᵢ its translation at each point), each point's squared
+    distance times its weight where ``weights`` are given.  Where λ is not determined (a link turning
+    about a fixed point) the mechanism stays (λ = 1, s = 0) and only q is fitted.
 
     A similarity that keeps a ``pivot`` has s = pivot·(1 − λ); one that keeps the directions
     (``turns=False``) has λ real and positive; ``similar=False`` keeps the mechanism where it is.
@@ -718,10 +802,11 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
     >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 2, -1j))]
     [0.0, 0.0, 0.0]
     """
+    root = np.ones(len(w)) if weights is None else np.sqrt(weights)
     if similar:
         origin = 0j if pivot is None else pivot
-        columns = [turn, moves - origin] + ([np.ones(len(moves))] if pivot is None else [])
-        a, b = np.column_stack(columns), w - origin
+        columns = [root * turn, root * (moves - origin)] + ([root] if pivot is None else [])
+        a, b = np.column_stack(columns), root * (w - origin)
         if turns:
             coef, *_ = np.linalg.lstsq(a, b, rcond=None)
         else:  # λ real: the real and imaginary parts of every column but λ's are unknowns of their own
@@ -734,7 +819,7 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
         shift = complex(coef[2]) if pivot is None else origin * (1 - lam)
         if abs(lam) > 1e-6 and (turns or lam.real > 1e-6):
             return q, lam, shift
-    return complex(np.mean((w - moves) / turn)), 1.0 + 0j, 0j
+    return complex(np.average((w - moves) / turn, weights=weights)), 1.0 + 0j, 0j
 
 
 def point_carried(theta: np.ndarray, t: np.ndarray, p: np.ndarray) -> np.ndarray:

@@ -56,7 +56,23 @@ def _no_duplicates(rows: np.ndarray, scale: float, what: str) -> None:
     i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
     if gap[i, j] <= DUPLICATE * max(scale, 1e-300):
         i, j = sorted((int(i), int(j)))
-        raise BadTarget(f"{what} {i + 1} and {j + 1} are the same ({rows[i].tolist()}): give each once")
+        raise BadTarget(f"{what} {i + 1} and {j + 1} are the same ({rows[i].tolist()}): give each once (one that "
+                        f"counts twice: give it a weight of 2)")
+
+
+def _weights(values, count: int, what: str) -> np.ndarray | None:
+    """The per-point weights of a target (None: every point counts once), each finite and ≥ 0, not all 0."""
+    if values is None:
+        return None
+    weights = _array(values, None, "weights")
+    if len(weights) != count:
+        raise BadTarget(f"the target gives {len(weights)} weights for {count} {what}: give one per row")
+    bad = np.flatnonzero(weights < 0)
+    if bad.size:
+        raise BadTarget(f"a weight must be 0 or more: row {int(bad[0]) + 1} has {weights[bad[0]]:g}")
+    if not weights.any():
+        raise BadTarget("the weights are all 0: no point would count")
+    return weights
 
 
 def _monotonic(values: np.ndarray, what: str) -> None:
@@ -81,22 +97,30 @@ class PathTarget:
         prismatic one), strictly increasing or decreasing.  Only differences count: the input's
         value at the first point is an unknown of the synthesis (the crank's angle there is free).
         None: no timing — the inputs are unknowns too, kept in the points' order.
+    weights : array (N,), optional
+        How much each point counts: the synthesis minimises the sum of weight × squared distance (a
+        point of weight 2 counts as the point given twice; 0 ignores it).  Finite, ≥ 0, not all 0;
+        None: 1 each.
 
     Examples
     --------
     >>> t = PathTarget([[0, 0], [1, 0], [1, 1]], inputs=[0.0, 0.5, 1.0])
     >>> t.size, t.kind
     (1.4142135623730951, 'path')
+    >>> PathTarget([[0, 0], [1, 0], [1, 1]], weights=[2, 1, 1]).weights.tolist()
+    [2.0, 1.0, 1.0]
     """
 
     points: np.ndarray
     inputs: np.ndarray | None = None
+    weights: np.ndarray | None = None
     kind = "path"
 
     def __post_init__(self):
         points = _array(self.points, 2, "points")
         _no_duplicates(points, _size(points), "points")
         object.__setattr__(self, "points", points)
+        object.__setattr__(self, "weights", _weights(self.weights, len(points), "points"))
         if self.inputs is not None:
             inputs = _array(self.inputs, None, "input values")
             if len(inputs) != len(points):
@@ -127,6 +151,8 @@ class FunctionTarget:
         Input angles (strictly monotonic) and the output angles wanted there.
     output_link : int, optional
         The output link (a rocker or crank pivoted on the frame).
+    weights : array (N,), optional
+        How much each pair counts (weight × squared angle error), as a path's points' weights.
 
     Examples
     --------
@@ -137,6 +163,7 @@ class FunctionTarget:
     inputs: np.ndarray
     outputs: np.ndarray
     output_link: int | None = None
+    weights: np.ndarray | None = None
     kind = "function"
 
     def __post_init__(self):
@@ -149,6 +176,7 @@ class FunctionTarget:
         _monotonic(inputs, "input values")
         object.__setattr__(self, "inputs", inputs)
         object.__setattr__(self, "outputs", outputs)
+        object.__setattr__(self, "weights", _weights(self.weights, len(inputs), "pairs"))
 
     @property
     def size(self) -> float:
@@ -170,6 +198,9 @@ class MotionTarget:
     ----------
     poses : array (N, 3)
         x, y and angle (rad) of the body at each pose, in the order it passes them.
+    weights : array (N,), optional
+        How much each pose counts (weight × its squared position and angle errors), as a path's
+        points' weights.
 
     Examples
     --------
@@ -178,12 +209,14 @@ class MotionTarget:
     """
 
     poses: np.ndarray
+    weights: np.ndarray | None = None
     kind = "motion"
 
     def __post_init__(self):
         poses = _array(self.poses, 3, "poses")
         _no_duplicates(poses, _size(poses[:, :2]) or 1.0, "poses")
         object.__setattr__(self, "poses", poses)
+        object.__setattr__(self, "weights", _weights(self.weights, len(poses), "poses"))
 
     @property
     def points(self) -> np.ndarray:
@@ -237,13 +270,14 @@ def read_target(path: str | Path, *, output_link: int | None = None):
 
     The columns say the kind: ``x,y`` a path without timing; ``x,y,input`` (or ``input_deg``) a
     path with timing; ``input,output`` (or ``input_deg,output_deg``) a function; ``x,y,angle``
-    (or ``angle_deg``) a motion.
+    (or ``angle_deg``) a motion.  Any of them may end with a ``weight`` column: how much each row
+    counts (the target's ``weights``).
 
     Raises
     ------
     BadTarget
         One sentence: no such file, an empty one, unknown columns, a value that is not a finite
-        number, duplicate points, a timing that is not monotonic.
+        number, duplicate points, a timing that is not monotonic, a negative weight or all weights 0.
 
     Examples
     --------
@@ -257,11 +291,12 @@ def read_target(path: str | Path, *, output_link: int | None = None):
     if path.suffix.lower() not in (".csv", ".json"):
         raise BadTarget(f"a target file is .csv or .json, not {path.name!r}")
     header, body = _rows(path)
-    kind = COLUMNS.get(tuple(header))
+    weighted = header[-1:] == ["weight"]
+    kind = COLUMNS.get(tuple(header[:-1] if weighted else header))
     if kind is None:
         raise BadTarget(f"{path.name} has the columns {', '.join(header) or 'none'}; a target's are x,y (a path), "
                         "x,y,input (timed path), input,output (a function) or x,y,angle (a motion), an angle "
-                        "column named *_deg in degrees")
+                        "column named *_deg in degrees, and last an optional weight column")
     if not body:
         raise BadTarget(f"the target file {path.name} has a header but no rows")
     try:
@@ -272,11 +307,13 @@ def read_target(path: str | Path, *, output_link: int | None = None):
     for c, name in enumerate(header):
         if name.endswith("_deg"):
             values[:, c] = np.radians(values[:, c])
+    weights = values[:, -1] if weighted else None
+    values = values[:, :-1] if weighted else values
     if kind == "path":
-        return PathTarget(values[:, :2], values[:, 2] if values.shape[1] == 3 else None)
+        return PathTarget(values[:, :2], values[:, 2] if values.shape[1] == 3 else None, weights)
     if kind == "function":
-        return FunctionTarget(values[:, 0], values[:, 1], output_link)
-    return MotionTarget(values)
+        return FunctionTarget(values[:, 0], values[:, 1], output_link, weights)
+    return MotionTarget(values, weights)
 
 
 def _is_number(v) -> bool:

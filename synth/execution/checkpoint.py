@@ -44,7 +44,10 @@ _SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS codes (code TEXT PRIMARY KEY, count INTEGER NOT NULL, units INTEGER NOT NULL);
 CREATE TABLE IF NOT EXISTS units (unit TEXT PRIMARY KEY, code TEXT NOT NULL, count INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS shared_units (code TEXT PRIMARY KEY, units INTEGER NOT NULL);
 """
+# shared_units: by code, the units a second count (tight-reverse) counted by the first count's own path, so that
+# a comparison of the two can say how many were no independent check (a file of before it has none: read as 0)
 
 
 class CheckpointError(SynthesisError):
@@ -68,7 +71,9 @@ def _check_file(path: Path) -> tuple[str, str]:
         wanted = {"meta": {"key", "value"}, "codes": {"code", "count", "units"}, "units": {"unit", "code", "count"}}
         identity = (conn.execute("SELECT value FROM meta WHERE key = 'identity'").fetchone()
                     if "meta" in tables else None)
-        if set(tables) != set(wanted) or any(not wanted[t] <= tables[t] for t in wanted) or identity is None:
+        optional = {"shared_units"}  # (a checkpoint written before 29 Nov 2026, 18 h, has none)
+        if not set(wanted) <= set(tables) <= set(wanted) | optional or any(not wanted[t] <= tables[t] for t in wanted) \
+                or identity is None:
             what = "a mechsynth atlas" if "chains" in tables else "an SQLite file of something else"
             raise CheckpointError(f"{path} is not a checkpoint of mechsynth but {what}; it was not changed "
                                   f"(give a new {option('checkpoint', 'FILE')})")
@@ -160,9 +165,12 @@ class Checkpoint:
             return False
         return self._conn.execute("SELECT 1 FROM units WHERE unit = ?", (unit,)).fetchone() is not None
 
-    def add_unit(self, unit: str, code: str, count: int) -> None:
-        """Record a finished unit (committed within ``every`` seconds)."""
+    def add_unit(self, unit: str, code: str, count: int, *, shared: bool = False) -> None:
+        """Record a finished unit (committed within ``every`` seconds); ``shared``: a second count counted it by
+        the first count's own path (:attr:`CheckpointState.shared_units`)."""
         self._pending.append(("unit", unit, code, count))
+        if shared:
+            self._pending.append(("shared", code))
         if time.monotonic() - self._last >= self._every:
             self.commit()
 
@@ -182,6 +190,10 @@ class Checkpoint:
             for kind, *row in pending + [("end",)]:
                 if kind == "unit":
                     units.append(row)
+                    continue
+                if kind == "shared":  # (in the transaction of its unit: a unit lost in a kill loses its mark too)
+                    self._conn.execute("INSERT INTO shared_units VALUES (?, 1) "
+                                       "ON CONFLICT(code) DO UPDATE SET units = units + 1", row)
                     continue
                 self._conn.executemany("INSERT OR REPLACE INTO units VALUES (?, ?, ?)", units)
                 units = []
@@ -225,7 +237,9 @@ class CheckpointState:
 
     ``complete`` maps each complete code to (its count, its units); ``partial`` each code begun
     and not complete to (the count of its units done, those units).  ``identity`` is the plan
-    the file belongs to (plan format and digest), ``query`` that query in words.
+    the file belongs to (plan format and digest), ``query`` that query in words.  ``shared_units``:
+    of the units done, those a second count (``tight-reverse``) counted by the first count's own
+    path, no independent check of it (:func:`~synth.synthesis.stage_b.count_reversed`).
     """
 
     path: str
@@ -234,6 +248,7 @@ class CheckpointState:
     created: str
     complete: dict
     partial: dict
+    shared_units: int = 0
 
     @property
     def units(self) -> int:
@@ -272,8 +287,10 @@ def read_checkpoint(path) -> CheckpointState:
         complete = {code: (n, units) for code, n, units in conn.execute("SELECT code, count, units FROM codes")}
         partial = {code: (n, units) for code, n, units in
                    conn.execute("SELECT code, SUM(count), COUNT(*) FROM units GROUP BY code ORDER BY MIN(rowid)")}
+        has_shared = conn.execute("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'shared_units'").fetchone()
+        shared = conn.execute("SELECT COALESCE(SUM(units), 0) FROM shared_units").fetchone()[0] if has_shared else 0
     except sqlite3.DatabaseError as exc:
         raise CheckpointError(f"cannot read the checkpoint {path} ({exc})") from None
     finally:
         conn.close()
-    return CheckpointState(str(path), identity, query, created[0] if created else "", complete, partial)
+    return CheckpointState(str(path), identity, query, created[0] if created else "", complete, partial, shared)

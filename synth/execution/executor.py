@@ -77,18 +77,35 @@ def process_pool(workers: int):
 
     Ctrl-C is held back while the workers are forked: a KeyboardInterrupt raised inside a fork
     handler is printed and dropped by Python ("Exception ignored …"), so the run would go on.
-    Released afterwards, the held signal interrupts the caller as usual.
+    Blocking SIGINT in this thread is not enough where another thread runs (the progress lines):
+    the signal reaches that thread and Python runs the handler in the main thread all the same, so
+    there the handler is also replaced, for the fork, by one that only notes the signal.
+    Released afterwards, the held signal interrupts the caller as usual, the pool ended first
+    (the caller never holds it).
     """
     import multiprocessing  # (here: a query that stays inline never loads it)
+    import threading
 
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     hold = hasattr(signal, "pthread_sigmask")  # (in any thread: the forking thread's mask is what the fork sees)
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
+    noted: list[int] = []
+    main = threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is not None
+    handler = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum)) if main else None
     try:
-        return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
+        pool = ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
     finally:
-        if hold:
+        if hold:  # (a signal held by the mask reaches the noting handler, still in place)
             signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        if main:
+            signal.signal(signal.SIGINT, handler)
+    if noted:  # to the handler put back; the pool, which the caller will never hold, is ended first
+        try:
+            signal.raise_signal(signal.SIGINT)
+        except BaseException:
+            pool.terminate()
+            raise
+    return pool
 
 
 def _expand_and_work(args):

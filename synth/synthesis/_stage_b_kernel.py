@@ -562,8 +562,12 @@ def _state_slot(table, mask, states, totals, row, width, W, P, total):
         slot = (slot + 1) & mask
 
 
+# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is taken a part at a time)
+LAYER_BYTES = 256 * 2**20
+
+
 @njit(cache=True)
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=LAYER_BYTES):
     """The placements :func:`place` counts with no edge permutation, counted without visiting them;
     or, with a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to
     bundles, each read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's
@@ -597,7 +601,11 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
     ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
     elsewhere, in place of :func:`_bundle_deficits` (the second count,
     :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
-    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304).
+    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
+    2^(open vertices) values each at h = 4…6 beyond 20 links (a worker of the 32-link count at h = 6 grew to
+    4.2 GiB).  ``budget`` bounds the bytes the layers hold at once: past it, the programme goes on from a
+    part of a layer at a time, depth first, each part halved until its successors fit (a state reached from
+    two parts is carried on from each: the same sum, more work).
 
     >>> import numpy as np
     >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
@@ -664,8 +672,8 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
             if last[v] < 0:
                 last[v] = i
         room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), k[a] + k[b] - l)
-    # with g: the slot in the state that holds the (t, y) of bundle i's cycle while the cycle is partly
-    # placed, kept by its first bundle (keep), read by the others (same), freed by its last (free)
+    # with g: the slot in the state that holds the (t, y) of bundle i's cycle while the cycle is partly placed,
+    # kept by its first bundle (keep), read by the others (same), freed by its last (free)
     keep = np.full(nb, -1, dtype=np.int64)
     same = np.full(nb, -1, dtype=np.int64)
     free = np.zeros(nb, dtype=np.bool_)
@@ -690,117 +698,32 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
                 if i == hi:
                     free[i] = True
                     busy[keep[lo]] = False
+    # the frame of each bundle, the same for every state: the positions it opens (the vertices met for the
+    # first time, a then b) and their k, the sets holding both ends, the positions it closes (highest first)
     position = np.full(M, -1, dtype=np.int64)  # of an open vertex among the open ones; −1 before, −2 after
+    opens = np.full((nb, 2), -1, dtype=np.int64)
+    open_k = np.zeros((nb, 2), dtype=np.int64)
+    both = np.zeros(nb, dtype=np.int64)
+    shut = np.full((nb, 2), -1, dtype=np.int64)
+    n_open = np.zeros(nb + 1, dtype=np.int64)  # open after bundle i − 1's closing (n_open[0] = 0)
     widest = 0
-    n_open = 0
     for i in range(nb):
-        for v in (a_end[starts[i]], b_end[starts[i]]):
+        a, b = a_end[starts[i]], b_end[starts[i]]
+        now = n_open[i]
+        for x in range(2):
+            v = a if x == 0 else b
             if position[v] == -1:
-                position[v] = 0
-                n_open += 1
-        widest = max(widest, n_open)
-        for v in (a_end[starts[i]], b_end[starts[i]]):
-            if last[v] == i and position[v] == 0:
-                position[v] = -2
-                n_open -= 1
-    W = 1 << widest
-    states = np.zeros((64, W + P), dtype=np.int64)  # a layer: per state, its sets' values, then the kept (t, y)
-    totals = np.zeros(64, dtype=np.int64)
-    ways_in = np.zeros(64, dtype=np.int64)  # the placements that reach each state
-    new_states, new_totals, new_ways = states.copy(), totals.copy(), ways_in.copy()
-    n = 1
-    ways_in[0] = 1
-    position[:] = -1
-    n_open = 0
-    row = np.zeros(W + P, dtype=np.int64)
-    table = np.full(128, -1, dtype=np.int64)
-    for i in range(nb):
-        f, r = starts[i], ends[i] - starts[i]
-        a, b = a_end[f], b_end[f]
-        for v in (a, b):  # opening v: the sets with it hold no unit at it yet
-            if position[v] == -1:
-                bit = 1 << n_open
-                position[v] = n_open
-                for s in range(n):
-                    for U in range(bit):
-                        states[s, U | bit] = states[s, U] - k[v]
-                n_open += 1
-        both = (1 << position[a]) | (1 << position[b])
-        for x in range(r):
-            lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
-        ways = held[:C * r + 1]
-        if given.shape[0]:
-            ways[:, :] = given[f, :C * r + 1, :X1]
-        else:
-            _bundle_deficits(C, lows[:r], True, x_most, ways)
-        shut0 = position[a] if last[a] == i else -1  # the positions closed after this bundle, highest first
+                position[v] = now
+                opens[i, x], open_k[i, x] = now, k[v]
+                now += 1
+        widest = max(widest, now)
+        both[i] = (1 << position[a]) | (1 << position[b])
+        shut0 = position[a] if last[a] == i else -1
         shut1 = position[b] if last[b] == i else -1
         if shut0 < shut1:
             shut0, shut1 = shut1, shut0
-        n_after = n_open - (shut0 >= 0) - (shut1 >= 0)
-        width = 1 << n_after
-        size = table.shape[0]
-        while size < 4 * n * (C * r + 1) * X1:
-            size *= 2
-        if size != table.shape[0]:
-            table = np.full(size, -1, dtype=np.int64)
-        else:
-            table[:] = -1
-        m = 0
-        for s in range(n):
-            most = -(1 << 60)  # the largest value of a set holding a and b
-            for U in range(1 << n_open):
-                if U & both == both and states[s, U] > most:
-                    most = states[s, U]
-            for t in range(C * r + 1):
-                d = totals[s] // X1 + t
-                if (t > 0 and most + t > -l) or d > full:
-                    break
-                if d + room_after[i + 1] < full - x_most:
-                    continue
-                built = False
-                for y in range(X1):
-                    x = totals[s] % X1 + y
-                    if x > min(x_most, d + room_after[i + 1] - full + x_most):  # (X − D = x_most − full at the end)
-                        break
-                    if ways[t, y] == 0 or (same[i] >= 0 and t * X1 + y != states[s, W + same[i]]):
-                        continue
-                    if not built:  # the sets' values after t units on a–b (the same for every y)
-                        built = True
-                        for U in range(1 << n_open):
-                            row[U] = states[s, U] + t if U & both == both else states[s, U]
-                        span = 1 << n_open
-                        for p in (shut0, shut1):
-                            if p >= 0:  # close the vertex at position p: the larger of each set with and without it
-                                span >>= 1
-                                below = (1 << p) - 1
-                                for U in range(span):
-                                    at = (U & below) | ((U >> p) << (p + 1))
-                                    row[U] = max(row[at], row[at | (1 << p)])
-                        floor = -l - (full - d) - 1
-                        for U in range(width):
-                            row[U] = max(row[U], floor)
-                    row[W:] = states[s, W:]
-                    if keep[i] >= 0:
-                        row[W + keep[i]] = t * X1 + y
-                    if free[i]:
-                        row[W + same[i]] = 0
-                    weight = ways_in[s] if same[i] >= 0 else ways_in[s] * ways[t, y]  # (a cycle's weights: chosen once)
-                    j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d * X1 + x)
-                    if j >= 0:
-                        new_ways[j] += weight
-                        continue
-                    if m == len(new_totals):  # a larger layer
-                        grown = np.zeros((2 * m, W + P), dtype=np.int64)
-                        grown[:m] = new_states
-                        new_states = grown
-                        new_totals = np.concatenate((new_totals, np.zeros(m, dtype=np.int64)))
-                        new_ways = np.concatenate((new_ways, np.zeros(m, dtype=np.int64)))
-                    table[-j - 1] = m
-                    new_states[m, :width] = row[:width]
-                    new_states[m, W:] = row[W:]
-                    new_totals[m], new_ways[m] = d * X1 + x, weight
-                    m += 1
+        shut[i, 0], shut[i, 1] = shut0, shut1
+        n_open[i + 1] = now - (shut0 >= 0) - (shut1 >= 0)
         for p in (shut0, shut1):
             if p >= 0:
                 for v in range(M):
@@ -808,16 +731,151 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
                         position[v] = -2
                     elif position[v] > p:
                         position[v] -= 1
-        n_open = n_after
-        states, new_states = new_states, states
-        totals, new_totals = new_totals, totals
-        ways_in, new_ways = new_ways, ways_in
-        n = m
-        if n == 0:
-            return 0
+    W = 1 << widest
+    # the ways of each bundle's weights to give t units of deficit and y of excess
+    ways = np.zeros((nb, C * E + 1, X1), dtype=np.int64)
+    for i in range(nb):
+        f, r = starts[i], ends[i] - starts[i]
+        if given.shape[0]:
+            ways[i, :C * r + 1] = given[f, :C * r + 1, :X1]
+        else:
+            for x in range(r):
+                lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
+            _bundle_deficits(C, lows[:r], True, x_most, ways[i])
+    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept (t, y) in [0, C·E·X1 + x_most]: 16 bits hold them
+    kmax = 0
+    for v in range(M):
+        kmax = max(kmax, k[v])
+    if full + l + 2 * kmax + 1 > 32767 or C * E * X1 + x_most > 32767:
+        raise ValueError("tight_count: a state's values pass 16 bits (a game of more than 10^4 pebbles)")
+    # The layers are taken depth first, a part of a layer at a time where the next would pass the budget:
+    # level i holds layer i (the states after i bundles) and how far it has been taken on; the count is
+    # linear in the placements reaching each state, so the parts add up to the whole.
+    row_bytes = 2 * (W + P) + 8 + 8 + 32  # a state, its total and ways, its share of the hash table
+    least_rows = (C * E + 1) * X1 + 1  # one state's successors always fit in a part
+    level_states = [np.zeros((64 if x == 0 else 0, W + P), dtype=np.int16) for x in range(nb + 1)]
+    level_totals = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
+    level_ways = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
+    level_n = np.zeros(nb + 1, dtype=np.int64)
+    level_next = np.zeros(nb + 1, dtype=np.int64)
+    level_n[0] = 1
+    level_ways[0][0] = 1
+    row = np.zeros(W + P, dtype=np.int64)
     found = 0
-    for s in range(n):
-        y = totals[s] // X1 - full + x_most - totals[s] % X1  # the excess the strings the game never sees hold
-        if 0 <= y <= x_most:
-            found += ways_in[s] * outside[y]
+    i = 0
+    while i >= 0:
+        if i == nb or level_next[i] >= level_n[i]:
+            if i == nb:
+                for s in range(level_n[nb]):  # times the ways the strings the game never sees hold the excess missing
+                    y = level_totals[nb][s] // X1 - full + x_most - level_totals[nb][s] % X1
+                    if 0 <= y <= x_most:
+                        found += level_ways[nb][s] * outside[y]
+            level_states[i] = level_states[i][:0].copy()  # (let the layer go)
+            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
+            level_n[i] = level_next[i] = 0
+            i -= 1
+            continue
+        held = 0
+        for x in range(nb + 1):
+            if x != i + 1:
+                held += level_totals[x].shape[0] * row_bytes
+        cap = max(least_rows, (budget - held) // row_bytes)
+        lo, hi = level_next[i], level_n[i]
+        while True:
+            m, next_states, next_totals, next_ways = _tight_layer(
+                level_states[i], level_totals[i], level_ways[i], lo, hi, level_states[i + 1], level_totals[i + 1],
+                level_ways[i + 1], cap, opens[i], open_k[i], both[i], shut[i], n_open[i + 1], ways[i],
+                C * (ends[i] - starts[i]), keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
+            level_states[i + 1], level_totals[i + 1], level_ways[i + 1] = next_states, next_totals, next_ways
+            if m >= 0:
+                break
+            hi = lo + (hi - lo) // 2  # too many successors: half as many states at a time
+        level_next[i] = hi
+        if hi == level_n[i]:  # layer i is through: let it go before going on
+            level_states[i] = level_states[i][:0].copy()
+            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
+        level_n[i + 1], level_next[i + 1] = m, 0
+        i += 1
     return found
+
+
+@njit(cache=True)
+def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, cap, opens, open_k, both,
+                 shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W, P, row):
+    """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer: the next layer's
+    states (in ``new_*``, grown as needed up to ``cap`` rows) and their number, or −1 where there would
+    be more than ``cap``."""
+    for x in range(2):  # opening a vertex: the sets with it hold no unit at it yet (the same on a retry)
+        if opens[x] >= 0:
+            bit = 1 << opens[x]
+            for s in range(lo, hi):
+                for U in range(bit):
+                    states[s, U | bit] = states[s, U] - open_k[x]
+    n_open = n_after + (shut[0] >= 0) + (shut[1] >= 0)
+    width = 1 << n_after
+    size = 128
+    X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
+    while size < 2 * min((hi - lo) * (T + 1) * X1, cap):
+        size *= 2
+    table = np.full(size, -1, dtype=np.int64)
+    m = 0
+    for s in range(lo, hi):
+        most = -(1 << 60)  # the largest value of a set holding a and b
+        for U in range(1 << n_open):
+            if U & both == both and states[s, U] > most:
+                most = states[s, U]
+        for t in range(T + 1):
+            d = totals[s] // X1 + t
+            if (t > 0 and most + t > -l) or d > full:
+                break
+            if d + room_after < full - x_most:
+                continue
+            built = False
+            for y in range(X1):
+                x = totals[s] % X1 + y
+                if x > min(x_most, d + room_after - full + x_most):  # (X − D = x_most − full at the end)
+                    break
+                if ways[t, y] == 0 or (same >= 0 and t * X1 + y != states[s, W + same]):
+                    continue
+                if not built:  # the sets' values after t units on a–b (the same for every y)
+                    built = True
+                    for U in range(1 << n_open):
+                        row[U] = states[s, U] + t if U & both == both else states[s, U]
+                    span = 1 << n_open
+                    for p in shut:
+                        if p >= 0:  # close the vertex at position p: the larger of each set with and without it
+                            span >>= 1
+                            below = (1 << p) - 1
+                            for U in range(span):
+                                at = (U & below) | ((U >> p) << (p + 1))
+                                row[U] = max(row[at], row[at | (1 << p)])
+                    floor = -l - (full - d) - 1
+                    for U in range(width):
+                        row[U] = max(row[U], floor)
+                row[W:] = states[s, W:]
+                if keep >= 0:
+                    row[W + keep] = t * X1 + y
+                if free:
+                    row[W + same] = 0
+                weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t, y]  # (a cycle's weights: chosen once)
+                j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d * X1 + x)
+                if j >= 0:
+                    new_ways[j] += weight
+                    continue
+                if m >= cap:  # a part too large: the caller takes fewer states at a time
+                    return -1, new_states, new_totals, new_ways
+                if m == len(new_totals):  # a larger layer, up to the cap
+                    grown = max(64, min(2 * m, cap))
+                    more = np.zeros((grown, W + P), dtype=np.int16)
+                    more[:m] = new_states[:m]
+                    new_states = more
+                    new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
+                    new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
+                table[-j - 1] = m
+                for U in range(width):
+                    new_states[m, U] = row[U]
+                for U in range(W, W + P):
+                    new_states[m, U] = row[U]
+                new_totals[m], new_ways[m] = d * X1 + x, weight
+                m += 1
+    return m, new_states, new_totals, new_ways

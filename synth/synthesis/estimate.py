@@ -13,7 +13,7 @@ with: the CPU seconds of the units whose chains were visited one by one (stage B
 multiple joints, a listing, the mechanisms) per chain, times the
 chains; and the rest per unit, times the units: number synthesis, stage A, the plan, and stage B
 where it counts a unit's placements without visiting them (the programme of every unit of simple
-joints, benchmarks/PROFILE.md sections 27 and 34, whose cost does not grow with the unit's chains)
+joints, benchmarks/PROFILE.md sections 27 and 37, whose cost does not grow with the unit's chains)
 or finds none.  A unit's own time grows with its branch multigraph past
 the calibration sizes (:data:`UNIT_GROWTH`, a factor a loop).  The calibrations run on the path
 the query will take (the compiled searches of stages A and B when the query is large enough for

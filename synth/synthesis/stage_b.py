@@ -209,11 +209,15 @@ def _distributions(code: Code, graph: Contracted, conv: Conventions, stats: dict
 
 def load_kernel() -> None:
     """Load (or compile, the first time) the kernels of stages A and B in this process, before
-    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``)."""
+    workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``).
+    Their counts take Burnside's way (``tight_count``), so each is listed too: the listing runs
+    ``place``, the search of a count with a multiple joint or a partial group (left out, a cold cache had
+    each process that met such a unit compile it in the middle of the count: about 3 CPU s)."""
     conv = Conventions()
     for code in (Code.parse("440/0"), Code.parse("6020/0")):
         for graph in _contracted_by_kernel(code, conv):
-            _kernel_placements(code, graph, conv, None, listing=False)
+            for listing in (False, True):
+                _kernel_placements(code, graph, conv, None, listing=listing)
             count_orbits(code, graph, conv)
 
 
@@ -268,7 +272,8 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     import numpy as np
 
     from ..structure.subchains import sets_to_check
-    from ._stage_b_kernel import place, tight_count
+    from . import _stage_b_kernel as kernel
+    from ._stage_b_kernel import place
 
     t0 = perf_counter()
     lows, parallel = _string_limits(graph, conv)
@@ -315,7 +320,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
         identity = np.zeros(0, dtype=np.int64)
         computed = np.zeros((0, 0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
-        found = sum(tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, computed)
+        found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, computed, kernel.LAYER_BYTES)
                     for g in (identity, *group))
         found, rest = divmod(found, len(group) + 1)
         if rest:  # a fault of this engine
@@ -546,7 +551,7 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     """
     import numpy as np
 
-    from ._stage_b_kernel import tight_count
+    from . import _stage_b_kernel as kernel
 
     lows, parallel = _string_limits(graph, conv)
     inner, k, _, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
@@ -588,7 +593,7 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
         lows = tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)])
         ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0))
         given[f, :len(ways)] = ways
-    total = sum(tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given)
+    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES)
                 for g in (np.zeros(0, dtype=np.int64), *rows))
     orbits, rest = divmod(total, len(bundles))
     if rest:  # a fault of this engine

@@ -511,12 +511,13 @@ def count_unit(unit: Unit, method: str = "listing", stats: dict | None = None) -
 
 
 class _UnitCount(dict):
-    """One unit's counts by code, and ``by_search``: why it was counted by the search where counting by
-    orbits was asked for (a key of :data:`~synth.synthesis.stage_b.BY_SEARCH`), else None."""
+    """One unit's counts by code, ``by_search``: why it was counted by the search where counting by
+    orbits was asked for (a key of :data:`~synth.synthesis.stage_b.BY_SEARCH`), else None; and ``shared``:
+    whether the second count (tight-reverse) counted it by the first count's own path."""
 
-    def __init__(self, counts: dict[str, int], by_search: str | None = None):
+    def __init__(self, counts: dict[str, int], by_search: str | None = None, shared: bool = False):
         super().__init__(counts)
-        self.by_search = by_search
+        self.by_search, self.shared = by_search, shared
 
 
 @dataclass(frozen=True)
@@ -530,7 +531,7 @@ class _ChainCount:
         stats: dict = {}
         counts = count_unit(unit, self.method, stats)
         return _UnitCount(counts, next((key.removeprefix("by_search_") for key in stats
-                                        if key.startswith("by_search_")), None))
+                                        if key.startswith("by_search_")), None), bool(stats.get("shared")))
 
 
 def _check_method(method: str, query: ChainQuery) -> None:
@@ -603,6 +604,9 @@ class Counts(Row):
     #: of those, the units counted by the search where counting by orbits was asked for, by the key of
     #: :data:`~synth.synthesis.stage_b.BY_SEARCH` that says why
     by_search: dict = field(default_factory=dict, compare=False)
+    #: of those, the units the second count (tight-reverse) counted by the first count's own path
+    #: (:func:`~synth.synthesis.stage_b.count_reversed`): no independent check of the first count
+    shared_units: int = field(default=0, compare=False)
 
     row_keys = ("count", "by_code")
 
@@ -624,6 +628,19 @@ class Counts(Row):
         searched = sum(self.by_search.values())
         return (f"{searched} of the {self.units_run} units run {'was' if searched == 1 else 'were'} counted by the search, not by "
                 f"orbits (the same counts, found as the listing finds them): {why}")
+
+    @property
+    def shared_note(self) -> str | None:
+        """One sentence on the units of a second count that were counted by the first count's path, or None.
+
+        >>> print(Counts(9, {"6301/0": 9}, 4, shared_units=1).shared_note)  # doctest: +ELLIPSIS
+        1 of the 4 units run was counted by the first count's own path (...), not independently of it
+        """
+        if not self.shared_units:
+            return None
+        return (f"{self.shared_units} of the {self.units_run} units run {'was' if self.shared_units == 1 else 'were'} "
+                f"counted by the first count's own path (neither the reversed programme nor the count by orbits applies "
+                f"to them), not independently of it")
 
 
 def _identity(what: str, jobs: list[tuple[Code, Conventions]]) -> str:
@@ -671,7 +688,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
         for name, n in found.items():
             totals[name] = totals.get(name, 0) + n
     found_now: dict[int, dict[str, int]] = {}  # counts of the codes run here (with ``remember``)
-    units_run, by_search = 0, {}  # the units run here, and those counted by the search instead of by orbits
+    units_run, by_search, shared = 0, {}, 0  # the units run here, those counted by the search instead of by orbits,
+    # and those a second count counted by the first count's path
     with ExitStack() as stack:
         client = None
         if scheduler is not None:  # (before the checkpoint: an unreachable scheduler leaves no file behind)
@@ -705,19 +723,20 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             why = getattr(result, "by_search", None)  # (a count by orbits says where it counted by the search)
             if why is not None:
                 by_search[why] = by_search.get(why, 0) + 1
+            shared += getattr(result, "shared", False)
             for name, n in result.items():
                 totals[name] = totals.get(name, 0) + n
                 if remember:
                     found_now.setdefault(index, {})[name] = found_now.get(index, {}).get(name, 0) + n
             if ck is not None:
-                ck.add_unit(unit.key, names[index], result.get(names[index], 0))
+                ck.add_unit(unit.key, names[index], result.get(names[index], 0), shared=getattr(result, "shared", False))
     order = {name: i for i, name in enumerate(dict.fromkeys(names))}
     def place(name: str):  # plan order of the code, then its numbers of prismatic pairs and meshes
         code, *kinds = name.split(" ")
         return order.get(code, 0), [(k[0], int(k[1:])) for k in kinds]
 
     by_code = {name: totals[name] for name in sorted(totals, key=place) if totals[name]}
-    return Counts(sum(by_code.values()), by_code, units_run, dict(sorted(by_search.items())))
+    return Counts(sum(by_code.values()), by_code, units_run, dict(sorted(by_search.items())), shared)
 
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,

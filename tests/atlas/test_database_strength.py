@@ -349,3 +349,29 @@ def test_a_dead_process_is_not_alive_and_a_live_one_is(monkeypatch):
 
     monkeypatch.setattr(os, "kill", kill)
     assert database._alive(dead.pid)
+
+
+def test_an_empty_file_is_said_to_be_empty_not_an_sqlite_file(tmp_path, capsys):
+    """`atlas --db empty.txt` said 'empty.txt is an SQLite file but not a mechsynth atlas'; the file
+    stays empty."""
+    from mechsynth.cli import main
+
+    empty = tmp_path / "empty.txt"
+    empty.write_bytes(b"")
+    assert main(["atlas", "--db", str(empty)]) == 2
+    err = capsys.readouterr().err
+    assert "is empty" in err and "SQLite file" not in err and empty.read_bytes() == b""
+
+
+def test_a_counts_checkpoint_given_as_an_atlas_is_named(tmp_path, capsys):
+    """`atlas --db c16.sqlite` called a checkpoint 'an SQLite file but not a mechsynth atlas (its meta table
+    names no schema version)'; the checkpoint, unchanged, says the reverse of what --checkpoint says of an atlas."""
+    from mechsynth.cli import main
+
+    checkpoint = tmp_path / "c6.sqlite"
+    assert main(["chains", "--dof", "1", "--links", "6", "--count", "--checkpoint", str(checkpoint)]) == 0
+    before = checkpoint.read_bytes()
+    capsys.readouterr()
+    assert main(["atlas", "--db", str(checkpoint)]) == 2
+    assert capsys.readouterr().err == f"mechsynth: {checkpoint} is the checkpoint of a count (chains dof=1 links=6), not an atlas\n"
+    assert checkpoint.read_bytes() == before

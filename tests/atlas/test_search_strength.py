@@ -30,6 +30,39 @@ WATT = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
 STEPHENSON = Chain.parse("0-1 1-2 2-3 3-0 1-4 4-5 5-3")
 
 
+class _Terminal:
+    """A terminal's stderr: progress draws its bar there (in a log it writes a line a minute instead)."""
+
+    def __init__(self):
+        import io
+
+        self.text = io.StringIO()
+        self.write, self.flush, self.getvalue = self.text.write, self.text.flush, self.text.getvalue
+
+    def isatty(self):
+        return True
+
+
+@pytest.fixture
+def terminal(monkeypatch):
+    """A function that makes stderr a terminal and returns it (called in the test's body: pytest's capture
+    puts its own stderr back after the fixtures), with tqdm's lock and monitor thread left out (mutmut forks)."""
+    import sys
+    import threading
+
+    import tqdm
+
+    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)
+
+    def attach() -> _Terminal:
+        screen = _Terminal()
+        monkeypatch.setattr(sys, "stderr", screen)
+        return screen
+
+    return attach
+
+
 @pytest.fixture
 def index(tmp_path):
     """The 1-DOF atlas of 4 and 6 links with 3 crank poses per mechanism (built for each test, 1.5 CPU s: a
@@ -388,15 +421,9 @@ def _stored_curve(db, row: int, steps: int):
 
 
 @pytest.mark.parametrize("timed", [True, False])
-def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, monkeypatch, capsys):
-    import threading
-
-    import tqdm
-
-    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
-    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, terminal):
     db = _four_bar_index(tmp_path, 4)
-    capsys.readouterr()
+    screen = terminal()
     size = sql(db, "SELECT COUNT(*) FROM curve_samples")[0][0]
     row = sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
     mechanism, tracer, xy, phi = _stored_curve(db, row, 36)
@@ -406,8 +433,8 @@ def test_a_stored_curve_moved_and_mirrored_is_found_exactly(tmp_path, timed, mon
     target = PathTarget(np.c_[z.real, z.imag], inputs=-phi[:36] if timed else None)  # the mirror's crank turns back
     found = search_atlas(db, target, per_topology=2, budget=3, progress=timed)
     assert (found.index_curves, found.topologies, found.timed, found.notes) == (size, 1, timed, [])
-    bar = capsys.readouterr().err  # a bar of the topologies polished, when asked for
-    assert ("polish" in bar and "1/1" in bar and "topology" in bar) if timed else bar == ""
+    bar = screen.getvalue()  # a bar of the topologies polished, when asked for
+    assert ("polish" in bar and "/1 [" in bar and "topologies" in bar) if timed else bar == ""
     best = found.best
     # (without timing the target's 36-gon is walked by arc length, not the index's 256 steps: close, not exact)
     assert best.candidate.mirror and best.candidate.misfit < (1e-6 if timed else 1e-3) and best.candidate.row == row
@@ -469,20 +496,15 @@ def test_sampled_starts_are_the_index_samples_posed_on_the_target(tmp_path, seed
     assert sampled_starts(mechanism, tracer, NotAPath(), samples=4) == []
 
 
-def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, monkeypatch, capsys):
-    import threading
-
-    import tqdm
-
-    monkeypatch.setattr(tqdm.tqdm, "_lock", threading.RLock(), raising=False)  # (no multiprocessing lock,
-    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)                    # no monitor thread: mutmut forks)
+def test_an_index_of_some_link_counts_and_its_columns_as_stored(tmp_path, terminal):
     db = tmp_path / "a.sqlite"
     run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    screen = terminal()
     result = index_curves(db, settings=IndexSettings(samples=2), links=(4, 4), workers=1, progress=True)
     # only the four-bar's one mechanism with an input link, sampled twice with a curve of its coupler each
     assert (result.units_total, result.units_run, result.units_skipped, result.curves) == (1, 1, 0, 2)
-    bar = capsys.readouterr().err
-    assert "curve index" in bar and "1/1" in bar and "mechanism" in bar and "curves=2" in bar
+    bar = screen.getvalue()
+    assert "curve index" in bar and "/1 [" in bar and "mechanisms" in bar  # (a bar of 1 step, cleared at its end)
     ((chain, links, frame, input_link, joint, status, note, samples, tries, seconds),) = sql(
         db, "SELECT u.chain, c.links, u.frame, u.input_link, u.input_joint, u.status, u.note, u.samples, u.tries, "
             "u.seconds FROM curve_units u JOIN chains c ON c.id = u.chain")

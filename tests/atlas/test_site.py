@@ -157,3 +157,11 @@ def test_each_card_lists_one_mechanism_per_link_orbit(atlas, tmp_path):
         joints = re.search(r"joints: <code>(.*?)</code>", card).group(1)
         shown = int(re.search(r"mechanisms: (\d+) with a fixed link", card).group(1))
         assert shown == len(Chain.parse(html.unescape(joints)).link_orbits)
+
+
+def test_the_sites_progress_in_a_log_is_no_bar(atlas, tmp_path, capsys):
+    """`atlas --html` with stderr to a file: no tqdm bar (a '\\r' redraw per chain drawn), only the result line."""
+    assert main(["atlas", "--db", str(atlas), "--html", str(tmp_path / "s"), "--draw-limit", "3",
+                 "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "\r" not in err and "chain/s" not in err

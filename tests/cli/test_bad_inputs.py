@@ -389,8 +389,8 @@ def test_bad_input_is_one_sentence_and_exit_2(command, words, folder, server, tm
 
 
 def test_the_table_is_large_and_covers_every_subcommand():
-    from mechsynth.cli import _build_parser
+    from mechsynth._parser import build_parser
 
-    parser = _build_parser()
+    parser = build_parser()
     commands = set(next(a for a in parser._actions if a.dest == "command").choices)
     assert len(CASES) >= 60 and {c.split()[0] for c, _ in CASES} == commands

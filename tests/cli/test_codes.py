@@ -69,3 +69,13 @@ def test_analyze_json(capsys):
     code, out, _ = run(capsys, "analyze", "64200/0", "--dof", "1", "--format", "json")
     data = json.loads(out)
     assert (data["dof"], data["loops"], data["defect"]) == (1, 5, 0)
+
+
+def test_a_table_of_one_says_one_in_the_singular(capsys):
+    """The tables' last lines said '1 codes (K=5: 1)' and '1 chains'."""
+    assert main(["codes", "--dof", "1", "--loop-classes", "3=4,5=1", "--v", "6", "--max-link-degree", "3"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == "1 code (K=5: 1)"
+    assert main(["chains", "--dof", "1", "--links", "6", "--h", "5"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == "1 chain"
+    assert main(["mechanisms", "--dof", "1", "--links", "4"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == "1 mechanism"

@@ -137,6 +137,7 @@ def test_the_source_vector_inverts_the_closed_form_and_tells_the_other_branch(be
 def test_a_short_run_returns_a_row_with_the_record_beside_it(bench):
     row = bench.run_problem("five timed points on an arc, frame free", budget=2.0)
     assert row["points"] == 5 and row["cpu_seconds"] > 0  # timings are reported, never bounded here
+    assert row["seed"] == 0 and row["budget"] == 2.0  # the row says how it was run
     assert row["sum_squared_error"] == pytest.approx(5 * row["error_rms"] ** 2, rel=1e-9, abs=1e-300)
     assert row["error_max"] <= math.sqrt(row["sum_squared_error"]) + 1e-15
     [record] = row["records"]
@@ -194,6 +195,8 @@ def test_the_tables_are_made_from_the_rows(bench, tmp_path):
                         "| log.jsonl |")
     assert lines[-1] == ("| c | 3–5 | 1 of 3 | 2.5–2.5 (2.5) | seed 4: 0.002, seed 5: 1e-15 (a constraint failed) "
                          "| log.jsonl |")
+    seeded = bench.table([(dict(rows[0], seed=2), "log.jsonl")]).splitlines()[2]
+    assert seeded.startswith("| p, seed 2 | 0.00025643854 |")  # a row that names its seed shows it
 
 
 def test_a_problem_with_several_records_shows_each_by_name_and_one_shows_in_full(bench):

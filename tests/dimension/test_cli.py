@@ -104,3 +104,14 @@ def test_the_target_read_is_never_overwritten(tmp_path, capsys):
                  str(target)]) == 2
     assert target.read_text() == before
     capsys.readouterr()
+
+
+def test_the_tables_constraints_carry_their_units(capsys):
+    """'constraint transmission  met: 51.8704 (limit 20)' gave no unit: angles are in degrees, lengths in
+    the target's units."""
+    assert main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "3",
+                 "--min-transmission", "10", "--max-length", "3"]) == 0
+    rows = dict(line.split(None, 2)[1:] for line in capsys.readouterr().out.splitlines()
+                if line.startswith("constraint "))
+    assert rows["transmission"].startswith("met: ") and rows["transmission"].endswith("° (limit 10°)")
+    assert rows["length"].endswith(" target units (limit 3 target units)")

@@ -67,15 +67,49 @@ def test_the_constraints_are_refused_in_one_sentence_each():
         "the fixed pivots of joints 0-1 and 0-3 lie 100 apart, beyond the link-length bound 80"
     Constraints(max_length=100, pivot_at={"0-1": (0, 0), "0-3": (100, 0)})
     assert refused(DimensionError, Constraints, pivots=(1, 1, 0, 1)) == \
-        "the pivots' region must be x0 < x1 and y0 < y1, finite, not (1, 1, 0, 1)"
+        "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (1, 1, 0, 1)"
     assert refused(DimensionError, Constraints, pivots=(0, 1, 2, 1)) == \
-        "the pivots' region must be x0 < x1 and y0 < y1, finite, not (0, 1, 2, 1)"
+        "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (0, 1, 2, 1)"
     assert refused(DimensionError, Constraints, pivots=(0, 1, 0, math.nan)).startswith("the pivots' region")
     assert Constraints(pivots=(0, "1", 0, 1)).pivots == (0.0, 1.0, 0.0, 1.0)
     assert refused(DimensionError, Constraints, reach=0) == \
         "the search reach must be a positive number of target sizes, not 0"
     assert refused(DimensionError, Constraints, reach=math.inf) == \
         "the search reach must be a positive number of target sizes, not inf"
+
+
+@pytest.mark.parametrize("field, bad, sentence", [
+    ("pivots", (0, 1, 0), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (0, 1, 0)"),
+    ("pivots", (0, 1, 0, 1, 2), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (0, 1, 0, 1, 2)"),
+    ("pivots", ("a", 1, 0, 1), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not ('a', 1, 0, 1)"),
+    ("pivots", (None, 1, 0, 1), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (None, 1, 0, 1)"),
+    ("pivots", (True, 2, 0, 1), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (True, 2, 0, 1)"),
+    ("pivots", "0..1,0..1", "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not 0..1,0..1"),
+    ("pivots", 5, "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not 5"),
+    ("pivots", (0, math.inf, 0, 1), "the pivots' region must be four finite numbers x0 < x1, y0 < y1, not (0, inf, 0, 1)"),
+    ("pivot_at", 5, "the fixed pivots are a mapping joint -> (x, y), e.g. {'0-1': (0, 0)}, not 5"),
+    ("pivot_at", "0-1", "the fixed pivots are a mapping joint -> (x, y), e.g. {'0-1': (0, 0)}, not '0-1'"),
+    ("pivot_at", [("0-1",)], "the fixed pivots are a mapping joint -> (x, y), e.g. {'0-1': (0, 0)}, not [('0-1',)]"),
+    ("min_transmission", None, "the least transmission angle must be a number (rad), not None"),
+    ("min_transmission", "wide", "the least transmission angle must be a number (rad), not wide"),
+    ("max_ratio", [2], "the link-length ratio bound must be a number above 1, not [2]"),
+    ("max_length", "long", "the link-length bound must be a positive length, not long"),
+    ("reach", True, "the search reach must be a positive number of target sizes, not True"),
+    ("frame_angle", "east", "the frame's direction must be a finite angle, not east"),
+    ("crank", "no", "crank is True or False, not 'no'"),
+    ("order", 5, "the link-length orders are a text or a list of texts, e.g. ('r2 <= r3 <= r4 <= r1',), not 5"),
+])
+def test_a_field_of_the_wrong_kind_is_refused_in_one_sentence(field, bad, sentence):
+    """A non-number, a truth value, a wrong count or a wrong container raised Python's own TypeError or
+    ValueError (or, for a truth value in the pivots' box or crank='no', was taken) before."""
+    assert refused(DimensionError, Constraints, **{field: bad}) == sentence
+
+
+def test_numbers_of_any_kind_and_their_texts_are_taken_as_floats():
+    c = Constraints(pivots=(np.int64(0), "1", np.float32(0.5), 2), reach="4", max_ratio=np.float64(3), frame_angle=0)
+    assert (c.pivots, c.reach, c.max_ratio, c.frame_angle) == ((0.0, 1.0, 0.5, 2.0), 4.0, 3.0, 0.0)
+    assert all(type(v) is float for v in (*c.pivots, c.reach, c.max_ratio, c.frame_angle))
+    assert Constraints(crank=np.bool_(True)).crank
 
 
 def test_the_problems_refusals():

@@ -52,14 +52,14 @@ def test_arrays_are_refused_by_what_is_wrong_with_them():
 def test_a_duplicate_is_a_point_within_a_billionth_of_the_targets_size():
     # size √(3² + 4²) = 5: a gap of 4e-9 (below 5e-9) is a duplicate, 6e-9 is not
     assert refused(BadTarget, PathTarget, [[0, 0], [3, 4], [1, 1], [1 + 4e-9, 1]]) == \
-        "points 3 and 4 are the same ([1.0, 1.0]): give each once"
+        "points 3 and 4 are the same ([1.0, 1.0]): give each once (one that counts twice: give it a weight of 2)"
     assert len(PathTarget([[0, 0], [3, 4], [1, 1], [1 + 6e-9, 1]])) == 4
     # the pair found first is the closest one, named in the order of the rows
-    assert refused(BadTarget, PathTarget, [[2, 2], [0, 0], [3, 4], [2, 2]]) == "points 1 and 4 are the same ([2.0, 2.0]): give each once"
+    assert refused(BadTarget, PathTarget, [[2, 2], [0, 0], [3, 4], [2, 2]]) == "points 1 and 4 are the same ([2.0, 2.0]): give each once (one that counts twice: give it a weight of 2)"
     # a pose at the same point but another angle is another pose; the same angle is a duplicate
     assert len(MotionTarget([[1, 1, 0], [1, 1, 0.5]])) == 2
     assert refused(BadTarget, MotionTarget, [[1, 1, 0.5], [2, 1, 0], [1, 1, 0.5]]) == \
-        "poses 1 and 3 are the same ([1.0, 1.0, 0.5]): give each once"
+        "poses 1 and 3 are the same ([1.0, 1.0, 0.5]): give each once (one that counts twice: give it a weight of 2)"
 
 
 def test_the_timing_must_be_strictly_monotonic_and_says_where_it_is_not():
@@ -107,7 +107,7 @@ def test_files_say_their_kind_and_units_by_their_columns(tmp_path):
     ("e.csv", " \n\n", "the target file e.csv is empty"),
     ("h.csv", "x,y\n\n", "the target file h.csv has a header but no rows"),
     ("c.csv", "x,z\n0,0\n", "c.csv has the columns x, z; a target's are x,y (a path), x,y,input (timed path), "
-                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees"),
+                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees, and last an optional weight column"),
     ("r.csv", "x,y\n0,0\n1,1\n2\n", "r.csv line 4 has 1 values for the 2 columns x, y"),
     ("w.csv", "x,y\n0,0\n1,zero\n", "w.csv: 'zero' is not a number"),
     ("l.json", '{"x": 0}', 'l.json must hold a list of rows, each an object such as {"x": 0, "y": 1}'),
@@ -116,7 +116,7 @@ def test_files_say_their_kind_and_units_by_their_columns(tmp_path):
     ("k.json", '[{"x": 0, "y": 0}, {"y": 1, "x": 1}]', "k.json: every row must have the same keys as the first (x, y)"),
     ("j.json", '[{"x": 0,\n "y": }]', "j.json: not valid JSON (Expecting value at line 2)"),
     ("q.json", '[{"a": 0}]', "q.json has the columns a; a target's are x,y (a path), x,y,input (timed path), "
-                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees"),
+                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees, and last an optional weight column"),
     ("t.tsv", "x,y\n0,0\n1,1\n", "a target file is .csv or .json, not 't.tsv'"),
 ])
 def test_a_bad_file_is_refused_in_the_sentence_that_names_its_fault(tmp_path, name, text, sentence):

@@ -126,8 +126,8 @@ def test_ctrl_c_stops_a_site_and_its_drawing_workers(tmp_path):
                           text=True, cwd=tmp_path)
     assert made.returncode == 0, made.stderr
 
-    def drawing(proc, err_path):  # workers exist and the progress bar has moved
-        return bool(psutil.Process(proc.pid).children()) and "site:" in err_path.read_text()
+    def drawing(proc, err_path):  # the site is begun and its drawing workers exist
+        return bool(psutil.Process(proc.pid).children()) and (tmp_path / "site" / "style.css").exists()
 
     _check(*_interrupt(["atlas", "--db", "atlas.sqlite", "--html", "site", "--workers", "2"], tmp_path, drawing))
 
@@ -137,7 +137,7 @@ def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, caps
     error (pynauty once raised TypeError "missing 'vertex_coloring' attribute" when Ctrl-C came while it
     built a graph): the command still says "interrupted" and exits 130, with no traceback; the same
     error without a Ctrl-C is not hidden; and the handler of the calling process is put back."""
-    from mechsynth import cli
+    from mechsynth import _parser, cli
 
     class Parser:
         def __init__(self, error):
@@ -155,13 +155,13 @@ def test_ctrl_c_inside_an_extension_that_raises_something_else(monkeypatch, caps
             except KeyboardInterrupt:
                 raise TypeError("missing 'vertex_coloring' attribute") from None
 
-    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(None))
+    monkeypatch.setattr(_parser, "build_parser", lambda argv: Parser(None))
     before = signal.getsignal(signal.SIGINT)
     assert cli.main(["chains"]) == 130
     time.sleep(allowed_seconds(0.3))  # the search watcher's instant after this Ctrl-C passes before the next test
     assert capsys.readouterr().err == "mechsynth: interrupted\n"
     assert signal.getsignal(signal.SIGINT) is before
-    monkeypatch.setattr(cli, "_build_parser", lambda argv: Parser(ValueError("a bug")))
+    monkeypatch.setattr(_parser, "build_parser", lambda argv: Parser(ValueError("a bug")))
     with pytest.raises(ValueError, match="a bug"):
         cli.main(["chains"])
 
@@ -195,3 +195,31 @@ def test_a_search_begun_after_a_handled_ctrl_c_runs_to_its_end():
         time.sleep(1)
     time.sleep(0.25)
     assert solve_stoppably(Slow(), model=None) == "OPTIMAL"
+
+
+# the console script's own lines (pip writes them), with a tripwire that sends this process a Ctrl-C
+# when the module named is first imported, at a moment a person's Ctrl-C could come
+_SCRIPT_WITH_A_CTRL_C_AT_IMPORT = """
+import os, signal, sys
+
+class Tripwire:
+    def find_spec(self, name, path=None, target=None):
+        if name == sys.argv[1]:
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), signal.SIGINT)
+        return None
+
+sys.meta_path.insert(0, Tripwire())
+from mechsynth.cli import main
+sys.exit(main(["codes", "--dof", "1", "--loops", "2"]))
+"""
+
+
+@pytest.mark.parametrize("module", ["argparse", "synth", "mechbase", "mechsynth._parser", "mechsynth.commands.codes"])
+def test_ctrl_c_while_the_command_imports_is_one_line_and_130(module):
+    """A Ctrl-C while the console script imports the parser or the engine (the first 10-100 ms of
+    every command) printed a traceback: the handler was installed only after those imports."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    done = subprocess.run([sys.executable, "-c", _SCRIPT_WITH_A_CTRL_C_AT_IMPORT, module], capture_output=True,
+                          text=True, cwd=root, timeout=120)
+    assert (done.returncode, done.stdout, done.stderr) == (130, "", "mechsynth: interrupted\n")

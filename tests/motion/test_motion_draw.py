@@ -125,3 +125,9 @@ def test_a_sliders_block_is_drawn_where_the_slider_is_wherever_its_joint_lies_on
     assert any(np.allclose(a, [pin, foot], atol=1e-9) for a in arms)
     guide = [e for e in elements if e["tag"] == "polyline" and e["style"].get("stroke-dasharray") == "5 3"]
     assert len(guide) == 1  # dashed: the frame carries the guide
+
+
+def test_an_animations_progress_in_a_log_is_no_bar(four_bar, tmp_path, capsys):
+    """Where stderr is not a terminal (a log), drawing a GIF writes no tqdm bar ('\\r' redraws) there."""
+    assert animate_motion(sweep(four_bar, steps=37), tmp_path / "a.gif", frames=4, progress=True) == 4
+    assert "\r" not in capsys.readouterr().err

@@ -203,3 +203,42 @@ def test_the_second_count_keeps_its_own_checkpoint(tmp_path):
     with pytest.raises(synth.SynthesisError, match="belongs to another query"):
         synth.count_chains(1, 10, workers=1, checkpoint=second)
     assert synth.count_chains(1, 10, workers=1, checkpoint=second, method="tight-reverse").count == 230
+
+
+def test_the_units_the_second_count_shares_with_the_first_are_said(tmp_path, capsys):
+    """At W = 0 in the plane of wedges (6 links, h = 2) some units are neither tight nor countable by
+    orbits, and the second count counts them by the first count's own path: the result, the command's
+    stderr, the checkpoint and benchmarks/checkpoints.py's comparison say how many (it was silent),
+    the same number as the units' own figures."""
+    import json
+    import sqlite3
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from mechsynth.cli import main
+    from synth.execution.checkpoint import read_checkpoint
+
+    query = dict(dof=0, links=6, h=2)
+    stats: dict = {}
+    for _, args in _units(query):
+        stage_b.count_reversed(*args, stats)
+    shared = stats["shared"]
+    assert 0 < shared < len(_units(query))
+    second = synth.count_chains(**query, workers=1, method="tight-reverse", checkpoint=tmp_path / "second.sqlite")
+    first = synth.count_chains(**query, workers=1, checkpoint=tmp_path / "first.sqlite")
+    assert (first.shared_units, second.shared_units, first.shared_note) == (0, shared, None)
+    assert second.shared_note.startswith(f"{shared} of the {second.units_run} units run were counted by the first count's")
+    assert read_checkpoint(tmp_path / "second.sqlite").shared_units == shared
+    assert main(["chains", "--dof", "0", "--links", "6", "--h", "2", "--count", "--workers", "1", "--force",
+                 "--method", "tight-reverse"]) == 0
+    assert f"mechsynth: {second.shared_note}\n" in capsys.readouterr().err
+    script = Path(__file__).resolve().parents[2] / "benchmarks" / "checkpoints.py"
+    done = subprocess.run([sys.executable, str(script), "compare", str(tmp_path / "first.sqlite"),
+                           str(tmp_path / "second.sqlite")], capture_output=True, text=True, timeout=300)
+    found = json.loads(done.stdout)
+    assert found["verdict"] == "equal" and found["shared_path_units"] == {"a": 0, "b": shared}
+    # a checkpoint written before the units were recorded is still read (as 0)
+    with sqlite3.connect(tmp_path / "second.sqlite") as conn:
+        conn.execute("DROP TABLE shared_units")
+    assert read_checkpoint(tmp_path / "second.sqlite").shared_units == 0

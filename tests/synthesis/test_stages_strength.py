@@ -193,6 +193,39 @@ def test_loading_the_kernels_runs_both_stages_on_a_code():
     assert stage_b.load_kernel() is None
 
 
+_COMPILED_BY_A_COUNT = """
+from numba.core.registry import CPUDispatcher
+from synth.synthesis import _stage_a_kernel, _stage_b_kernel, stage_b
+from synth import count_chains
+
+def compiled():
+    return {name: len(kernel.signatures) for module in (_stage_a_kernel, _stage_b_kernel)
+            for name, kernel in vars(module).items() if isinstance(kernel, CPUDispatcher)}
+
+stage_b.load_kernel()
+before = compiled()
+assert count_chains(1, 12, v=1, workers=1).count == 34129
+after = compiled()
+print(sorted(name for name in after if after[name] != before[name]))
+"""
+
+
+def test_loading_the_kernels_loads_every_one_a_count_calls():
+    """After :func:`stage_b.load_kernel` (what the pool runs before it forks), a count of units with a
+    multiple joint (stage B's ``place``, once left out: each worker compiled it in the middle of a count)
+    loads no kernel of its own.  In a fresh process: this one's kernels may be loaded already."""
+    import os
+    import subprocess
+    import sys
+
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    env = {**os.environ, "MECHSYNTH_CACHE": "off"}
+    done = subprocess.run([sys.executable, "-c", _COMPILED_BY_A_COUNT], capture_output=True, text=True, cwd=root,
+                          env=env, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "[]"
+
+
 @pytest.mark.parametrize("path, candidates", [
     # the listing: the three ordered vectors (0, 1, 3), (0, 2, 2), (1, 1, 2) (two joints of the same two
     # links would be one: one string at most is empty), tested after
