@@ -171,10 +171,12 @@ ROWS = (
     + [_row("W = 3", 3, 18, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
-            heavy="not run: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md section 37) "
-                  "the engine's sizing (`records.py --size`) gives about 3.3e10 chains, 426 CPU s (the old engine's: 10.6 CPU "
-                  "hours, some 17 expected; the same sizing put 19 links W = 2 at 394 CPU s, which took 372); to run it, with its second count by tight-reverse at about the same cost: "
-                  "`nice -n 10 python benchmarks/records.py --only \"chains --dof 3 --links 20\"`")]
+            heavy="not run to the end: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md "
+                  "section 37) the engine's sizing (`records.py --size`) gives about 3.3e10 chains, 426 CPU s (the old "
+                  "engine's: 10.6 CPU hours); begun on 29 Nov at 19:20 (973f69f, load 3), 4 of 135 codes, 6.2e9 chains in "
+                  "3 min wall and some 235 CPU s of its workers, stopped for time: expect some 20 CPU min for the count "
+                  "and as much for its second count by tight-reverse; to run it: `nice -n 10 python benchmarks/records.py "
+                  "--only \"chains --dof 3 --links 20\"`")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
