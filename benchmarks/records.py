@@ -161,10 +161,9 @@ ROWS = (
     + [_row("W = 2", 2, 17, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
     + [_row("W = 2", 2, 19, None, "",
-            heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 8.4e9 "
-                  "chains, 1.8 to 2.2 CPU hours, but at 17 links it gave 86 to 101 CPU s against the 229 measured (1325c9d): "
-                  "expect some 5 CPU hours (2.5 h on 2 quiet workers); to run it: `nice -n 10 python "
-                  "benchmarks/records.py --only \"chains --dof 2 --links 19\" --reverse-max 0`")]
+            heavy="run on its own (--only): 8 loops; since every unit is counted without visiting (853192f, "
+                  "PROFILE.md section 37) the engine's sizing (`records.py --size`) gives about 8.4e9 chains, 394 CPU s "
+                  "(it sized 17 links at 17.4 CPU s); the second count by tight-reverse costs about as much")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
@@ -172,10 +171,12 @@ ROWS = (
     + [_row("W = 3", 3, 18, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
-            heavy="not run: 8 loops; the engine's sizing (`records.py --size`, 3ef3e6b, 29 Nov 2026) gives about 3.3e10 "
-                  "chains, 10.6 CPU hours, but at 18 links it gave 479 CPU s against the 753 measured (f66be84): "
-                  "expect some 17 CPU hours (8 to 9 h on 2 quiet workers); to run it: `nice -n 10 python "
-                  "benchmarks/records.py --only \"chains --dof 3 --links 20\" --reverse-max 0`")]
+            heavy="not run to the end: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md "
+                  "section 37) the engine's sizing (`records.py --size`) gives about 3.3e10 chains, 426 CPU s (the old "
+                  "engine's: 10.6 CPU hours); begun on 29 Nov at 19:20 (973f69f, load 3), 4 of 135 codes, 6.2e9 chains in "
+                  "3 min wall and some 235 CPU s of its workers, stopped for time: expect some 20 CPU min for the count "
+                  "and as much for its second count by tight-reverse; to run it: `nice -n 10 python benchmarks/records.py "
+                  "--only \"chains --dof 3 --links 20\"`")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]

@@ -503,29 +503,34 @@ def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, verte
 
 
 @njit(cache=True)
-def _bundle_deficits(C, lows, ways):
-    """``ways[t]``: the deficits d_0 ≥ d_1 ≥ … of a bundle of parallel strings (their binary links
-    non-decreasing), 0 ≤ d_x ≤ C − ``lows[x]``, that add up to t (t = 0 … C·len(lows))."""
+def _bundle_deficits(C, lows, game, X, ways):
+    """``ways[t, y]``: the weights w_0 ≤ w_1 ≤ … of a bundle of parallel strings, w_x ≥ ``lows[x]``,
+    whose deficits Σ max(C − w_x, 0) add up to t and whose excess Σ max(w_x − C, 0) to y ≤ ``X``
+    (t = 0 … C·len(lows): the first rows of ``ways``); a bundle the game never sees (``game`` false: loops, the string of a
+    single-joint link) has no deficit, its excess is Σ (w_x − lows[x])."""
     r = len(lows)
-    T = C * r
-    ways[:T + 1] = 0
-    if C < lows[0]:
-        return
-    last = np.zeros((C + 1, T + 1), dtype=np.int64)  # last[v, t]: the strings so far, the last one's deficit v, Σ t
-    nxt = np.zeros((C + 1, T + 1), dtype=np.int64)
-    for v in range(C - lows[0] + 1):
-        last[v, v] = 1
-    for x in range(1, r):
-        nxt[:, :] = 0
-        for v in range(C + 1):
-            for t in range(T + 1):
-                if last[v, t]:
-                    for v2 in range(min(v, C - lows[x]) + 1):
-                        nxt[v2, t + v2] += last[v, t]
-        last[:, :] = nxt
-    for v in range(C + 1):
-        for t in range(T + 1):
-            ways[t] += last[v, t]
+    ways[:C * r + 1, :] = 0
+    top = X + (max(C, lows[r - 1]) if game else lows[r - 1])  # no weight above it keeps y ≤ X
+    last = np.zeros((top + 1, C * r + 1, X + 1), dtype=np.int64)  # the strings so far: the last one's weight, Σ t, Σ y
+    nxt = np.zeros_like(last)
+    for x in range(r):
+        nxt[:, :, :] = 0
+        for v in range(lows[x], top + 1):
+            dt = max(C - v, 0) if game else 0
+            dy = max(v - C, 0) if game else v - lows[x]
+            if dy > X:
+                break
+            if x == 0:
+                nxt[v, dt, dy] += 1
+                continue
+            for u in range(v + 1):  # the string before weighs u ≤ v
+                for t in range(C * x + 1):
+                    for y in range(X + 1 - dy):
+                        if last[u, t, y]:
+                            nxt[v, t + dt, y + dy] += last[u, t, y]
+        last[:, :, :] = nxt
+    for v in range(top + 1):
+        ways[:C * r + 1] += last[v]
 
 
 @njit(cache=True)
@@ -562,35 +567,40 @@ LAYER_BYTES = 256 * 2**20
 
 
 @njit(cache=True)
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYER_BYTES):
-    """The placements :func:`place` counts with no edge permutation and the excess bound
-    ``x_most`` = 0 (every long string exactly at h − 1 = C binary links, every never-short string at
-    its least: the rule's equality case, e.g. 1-DOF chains), counted without visiting them; or, with
-    a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to bundles, each
-    read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's lemma.
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=LAYER_BYTES):
+    """The placements :func:`place` counts with no edge permutation, counted without visiting them;
+    or, with a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to
+    bundles, each read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's
+    lemma.  ``x_most`` is :func:`place`'s excess bound: 0 in the rule's equality case (every long
+    string exactly at h − 1 = C binary links, every never-short string at its least: e.g. 1-DOF
+    chains), W − threshold above it.
 
-    Such a placement is a choice of deficit d_e = C − w_e on each string between two of the game's
-    vertices such that the multigraph D holding each string d_e times is (k, l)-tight: Σ d =
-    Σ k − l, and every set X of vertices holds at most Σ_X k − l (docs/theory.md).  The bundles of
-    parallel strings are taken one after the other (as :func:`place` takes them); a bundle adds t
-    units on one pair a–b, in as many ways as its non-increasing deficits add up to t
+    Such a placement is a choice of deficit d_e = C − w_e on each short string between two of the
+    game's vertices such that the multigraph D holding each string d_e times is (k, l)-sparse —
+    every set X of vertices holds at most Σ_X k − l (docs/theory.md) — and of the excess
+    w_e − C on the long ones (and w_e − least on the strings the game never sees) such that
+    Σ w = n2: the excess X and D then satisfy X − D = x_most − (Σ k − l), so D lies between
+    Σ k − l − x_most and Σ k − l (tight where x_most = 0).  The bundles of parallel strings are
+    taken one after the other (as :func:`place` takes them); a bundle adds t units of deficit on one
+    pair a–b and y of excess, in as many ways as its non-decreasing weights give (t, y)
     (:func:`_bundle_deficits`).  A vertex is *open* from its first bundle to its last; the state
     after a bundle is, for every set U of open vertices, the most that i(U ∪ Z) − k·|U ∪ Z| reaches
-    over the sets Z of closed vertices, with the total Σ d so far.  A bundle on a–b adds t to the
+    over the sets Z of closed vertices, with Σ d and Σ x so far.  A bundle on a–b adds t to the
     sets that hold both and is allowed where none of them then exceeds −l (a set that holds no new
     unit was checked before); closing a vertex keeps the larger of a set with and without it.
     Values below −l less the deficit still to come can never matter and are raised to one level,
     so placements whose prefixes differ there share a state.  The count is the sum, over the
-    states of the last layer with Σ d = Σ k − l, of the placements that reach each.  With ``g``, the
-    first bundle of each cycle of g keeps its t in the state until the last, and every other
-    bundle of the cycle must take the same deficits (in one way).
+    states of the last layer, of the placements that reach each times the ways the strings the
+    game never sees hold the excess still missing.  With ``g``, the first bundle of each cycle of g
+    keeps its (t, y) in the state until the last, and every other bundle of the cycle must take
+    the same weights (in one way); a cycle of s bundles the game never sees takes s times one
+    bundle's excess.
 
     ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
-    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2; ``g`` empty for every placement.  ``given``: an
-    empty array, or per string (rows) the ways of the bundle it begins, found elsewhere, in place
-    of :func:`_bundle_deficits` (the second count, :func:`synth.synthesis.stage_b.count_reversed`).  The strings
-    the game never sees each take their least weight: loops (parallel loops have one least weight)
-    and the one string of a single-joint link.  The states of a layer are a few hundred where
+    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2, x_most ≥ 0; ``g`` empty for every placement.
+    ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
+    elsewhere, in place of :func:`_bundle_deficits` (the second count,
+    :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
     :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
     2^(open vertices) values each at h = 4…6 beyond 20 links (a worker of the 32-link count at h = 6 grew to
     4.2 GiB).  ``budget`` bounds the bytes the layers hold at once: past it, the programme goes on from a
@@ -600,19 +610,27 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
     >>> import numpy as np
     >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
     >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
-    >>> nothing = np.zeros((0, 0), dtype=np.int64)
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, none[:0], nothing)  # 5 units, ≤ 2 a pair
+    >>> nothing = np.zeros((0, 0, 0), dtype=np.int64)
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, none[:0], nothing)  # 5 units, ≤ 2 a pair
     3
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, np.array([1, 0, 2]), nothing)  # d_0 = d_1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, np.array([1, 0, 2]), nothing)  # d_0 = d_1
     1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 1, none[:0], nothing)  # or 4 units + 1 excess
+    6
     """
     E = len(a_end)
-    full = -l  # Σ d of a complete placement
+    X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
+    full = -l  # the most Σ d of a placement
     for v in range(M):
         full += k[v]
     starts = np.zeros(E, dtype=np.int64)  # the bundles the game sees: strings starts[i] … ends[i] − 1
     ends = np.zeros(E, dtype=np.int64)
     bundle = np.full(E, -1, dtype=np.int64)  # of the first string of each
+    outside = np.zeros(X1, dtype=np.int64)  # ways[y] the bundles the game never sees hold y of excess
+    outside[0] = 1
+    spare = np.zeros(X1, dtype=np.int64)
+    lows = np.zeros(E, dtype=np.int64)
+    held = np.zeros((C * E + 1, X1), dtype=np.int64)
     nb = 0
     e = 0
     while e < E:
@@ -624,6 +642,28 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
             starts[nb], ends[nb] = f, e
             bundle[f] = nb
             nb += 1
+            continue
+        s = 1  # a bundle the game never sees: its cycle under g, once (at its first string)
+        lowest = f
+        if len(g):
+            j = g[f]
+            while j != f:
+                lowest = min(lowest, j)
+                j = g[j]
+                s += 1
+        if lowest < f:
+            continue
+        for x in range(e - f):
+            lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
+        if given.shape[0]:
+            held[0, :] = given[f, 0, :X1]
+        else:
+            _bundle_deficits(C, lows[:e - f], False, x_most, held)
+        spare[:] = 0  # outside ← outside × (the bundle's ways, each y taken s times)
+        for y in range(X1):
+            for z in range(0, X1 - y, s):
+                spare[y + z] += outside[y] * held[0, z // s]
+        outside[:] = spare
     last = np.full(M, -1, dtype=np.int64)  # the last bundle at each vertex
     room_after = np.zeros(nb + 1, dtype=np.int64)  # the most deficit bundles i … can take
     for i in range(nb - 1, -1, -1):
@@ -632,7 +672,7 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
             if last[v] < 0:
                 last[v] = i
         room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), k[a] + k[b] - l)
-    # with g: the slot in the state that holds the t of bundle i's cycle while the cycle is partly placed,
+    # with g: the slot in the state that holds the (t, y) of bundle i's cycle while the cycle is partly placed,
     # kept by its first bundle (keep), read by the others (same), freed by its last (free)
     keep = np.full(nb, -1, dtype=np.int64)
     same = np.full(nb, -1, dtype=np.int64)
@@ -692,28 +732,27 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
                     elif position[v] > p:
                         position[v] -= 1
     W = 1 << widest
-    # the ways of each bundle's deficits to add up to t
-    ways = np.zeros((nb, C * E + 1), dtype=np.int64)
-    lows = np.zeros(E, dtype=np.int64)
+    # the ways of each bundle's weights to give t units of deficit and y of excess
+    ways = np.zeros((nb, C * E + 1, X1), dtype=np.int64)
     for i in range(nb):
         f, r = starts[i], ends[i] - starts[i]
         if given.shape[0]:
-            ways[i, :C * r + 1] = given[f, :C * r + 1]
+            ways[i, :C * r + 1] = given[f, :C * r + 1, :X1]
         else:
             for x in range(r):
                 lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
-            _bundle_deficits(C, lows[:r], ways[i])
-    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept t in [0, C·E]: 16 bits hold them
+            _bundle_deficits(C, lows[:r], True, x_most, ways[i])
+    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept (t, y) in [0, C·E·X1 + x_most]: 16 bits hold them
     kmax = 0
     for v in range(M):
         kmax = max(kmax, k[v])
-    if full + l + 2 * kmax + 1 > 32767 or C * E > 32767:
+    if full + l + 2 * kmax + 1 > 32767 or C * E * X1 + x_most > 32767:
         raise ValueError("tight_count: a state's values pass 16 bits (a game of more than 10^4 pebbles)")
     # The layers are taken depth first, a part of a layer at a time where the next would pass the budget:
     # level i holds layer i (the states after i bundles) and how far it has been taken on; the count is
     # linear in the placements reaching each state, so the parts add up to the whole.
     row_bytes = 2 * (W + P) + 8 + 8 + 32  # a state, its total and ways, its share of the hash table
-    least_rows = C * E + 2  # one state's successors always fit in a part
+    least_rows = (C * E + 1) * X1 + 1  # one state's successors always fit in a part
     level_states = [np.zeros((64 if x == 0 else 0, W + P), dtype=np.int16) for x in range(nb + 1)]
     level_totals = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
     level_ways = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
@@ -727,9 +766,10 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
     while i >= 0:
         if i == nb or level_next[i] >= level_n[i]:
             if i == nb:
-                for s in range(level_n[nb]):
-                    if level_totals[nb][s] == full:
-                        found += level_ways[nb][s]
+                for s in range(level_n[nb]):  # times the ways the strings the game never sees hold the excess missing
+                    y = level_totals[nb][s] // X1 - full + x_most - level_totals[nb][s] % X1
+                    if 0 <= y <= x_most:
+                        found += level_ways[nb][s] * outside[y]
             level_states[i] = level_states[i][:0].copy()  # (let the layer go)
             level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
             level_n[i] = level_next[i] = 0
@@ -745,7 +785,7 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
             m, next_states, next_totals, next_ways = _tight_layer(
                 level_states[i], level_totals[i], level_ways[i], lo, hi, level_states[i + 1], level_totals[i + 1],
                 level_ways[i + 1], cap, opens[i], open_k[i], both[i], shut[i], n_open[i + 1], ways[i],
-                C * (ends[i] - starts[i]), keep[i], same[i], free[i], room_after[i + 1], full, l, W, P, row)
+                C * (ends[i] - starts[i]), keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
             level_states[i + 1], level_totals[i + 1], level_ways[i + 1] = next_states, next_totals, next_ways
             if m >= 0:
                 break
@@ -761,7 +801,7 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, g, given, budget=LAYE
 
 @njit(cache=True)
 def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, cap, opens, open_k, both,
-                 shut, n_after, ways, T, keep, same, free, room_after, full, l, W, P, row):
+                 shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W, P, row):
     """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer: the next layer's
     states (in ``new_*``, grown as needed up to ``cap`` rows) and their number, or −1 where there would
     be more than ``cap``."""
@@ -774,7 +814,8 @@ def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_wa
     n_open = n_after + (shut[0] >= 0) + (shut[1] >= 0)
     width = 1 << n_after
     size = 128
-    while size < 2 * min((hi - lo) * (T + 1), cap):
+    X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
+    while size < 2 * min((hi - lo) * (T + 1) * X1, cap):
         size *= 2
     table = np.full(size, -1, dtype=np.int64)
     m = 0
@@ -784,48 +825,57 @@ def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_wa
             if U & both == both and states[s, U] > most:
                 most = states[s, U]
         for t in range(T + 1):
-            d = totals[s] + t
+            d = totals[s] // X1 + t
             if (t > 0 and most + t > -l) or d > full:
                 break
-            if ways[t] == 0 or d + room_after < full or (same >= 0 and t != states[s, W + same]):
+            if d + room_after < full - x_most:
                 continue
-            for U in range(1 << n_open):
-                row[U] = states[s, U] + t if U & both == both else states[s, U]
-            span = 1 << n_open
-            for p in shut:
-                if p >= 0:  # close the vertex at position p: the larger of each set with and without it
-                    span >>= 1
-                    below = (1 << p) - 1
-                    for U in range(span):
-                        at = (U & below) | ((U >> p) << (p + 1))
-                        row[U] = max(row[at], row[at | (1 << p)])
-            floor = -l - (full - d) - 1
-            for U in range(width):
-                row[U] = max(row[U], floor)
-            row[W:] = states[s, W:]
-            if keep >= 0:
-                row[W + keep] = t
-            if free:
-                row[W + same] = 0
-            weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t]  # (a cycle's deficits: chosen once)
-            j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d)
-            if j >= 0:
-                new_ways[j] += weight
-                continue
-            if m >= cap:  # a part too large: the caller takes fewer states at a time
-                return -1, new_states, new_totals, new_ways
-            if m == len(new_totals):  # a larger layer, up to the cap
-                grown = max(64, min(2 * m, cap))
-                more = np.zeros((grown, W + P), dtype=np.int16)
-                more[:m] = new_states[:m]
-                new_states = more
-                new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
-                new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
-            table[-j - 1] = m
-            for U in range(width):
-                new_states[m, U] = row[U]
-            for U in range(W, W + P):
-                new_states[m, U] = row[U]
-            new_totals[m], new_ways[m] = d, weight
-            m += 1
+            built = False
+            for y in range(X1):
+                x = totals[s] % X1 + y
+                if x > min(x_most, d + room_after - full + x_most):  # (X − D = x_most − full at the end)
+                    break
+                if ways[t, y] == 0 or (same >= 0 and t * X1 + y != states[s, W + same]):
+                    continue
+                if not built:  # the sets' values after t units on a–b (the same for every y)
+                    built = True
+                    for U in range(1 << n_open):
+                        row[U] = states[s, U] + t if U & both == both else states[s, U]
+                    span = 1 << n_open
+                    for p in shut:
+                        if p >= 0:  # close the vertex at position p: the larger of each set with and without it
+                            span >>= 1
+                            below = (1 << p) - 1
+                            for U in range(span):
+                                at = (U & below) | ((U >> p) << (p + 1))
+                                row[U] = max(row[at], row[at | (1 << p)])
+                    floor = -l - (full - d) - 1
+                    for U in range(width):
+                        row[U] = max(row[U], floor)
+                row[W:] = states[s, W:]
+                if keep >= 0:
+                    row[W + keep] = t * X1 + y
+                if free:
+                    row[W + same] = 0
+                weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t, y]  # (a cycle's weights: chosen once)
+                j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d * X1 + x)
+                if j >= 0:
+                    new_ways[j] += weight
+                    continue
+                if m >= cap:  # a part too large: the caller takes fewer states at a time
+                    return -1, new_states, new_totals, new_ways
+                if m == len(new_totals):  # a larger layer, up to the cap
+                    grown = max(64, min(2 * m, cap))
+                    more = np.zeros((grown, W + P), dtype=np.int16)
+                    more[:m] = new_states[:m]
+                    new_states = more
+                    new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
+                    new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
+                table[-j - 1] = m
+                for U in range(width):
+                    new_states[m, U] = row[U]
+                for U in range(W, W + P):
+                    new_states[m, U] = row[U]
+                new_totals[m], new_ways[m] = d * X1 + x, weight
+                m += 1
     return m, new_states, new_totals, new_ways

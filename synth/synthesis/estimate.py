@@ -10,11 +10,11 @@ the growth ratio r(n) = chains(n) / chains(n − 2) is extrapolated *linearly*:
 r(n + 2) = r(n) + (r(n) − r(n − 2)); chains and units are multiplied by it step by step.
 Time is measured in two parts at the largest calibration size, each scaled by what it grows
 with: the CPU seconds of the units whose chains were visited one by one (stage B's search with
-multiple joints or above the rule's equality case, a listing, the mechanisms) per chain, times the
+multiple joints, a listing, the mechanisms) per chain, times the
 chains; and the rest per unit, times the units: number synthesis, stage A, the plan, and stage B
-where it counts a unit's placements without visiting them (the tight count of 1-DOF chains and
-every chain at the rule's equality case, benchmarks/PROFILE.md section 27, whose cost does not grow
-with the unit's chains) or finds none.  A unit's own time grows with its branch multigraph past
+where it counts a unit's placements without visiting them (the programme of every unit of simple
+joints, benchmarks/PROFILE.md sections 27 and 37, whose cost does not grow with the unit's chains)
+or finds none.  A unit's own time grows with its branch multigraph past
 the calibration sizes (:data:`UNIT_GROWTH`, a factor a loop).  The calibrations run on the path
 the query will take (the compiled searches of stages A and B when the query is large enough for
 them, however small the calibration sizes are), with the engine of the day, so the estimate

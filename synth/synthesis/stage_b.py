@@ -316,11 +316,11 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         out = np.empty((max(_KERNEL_ROWS, _COUNT_ENTRIES // E), E), dtype=np.int64)
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
-    if not (listing or rows) and (whole_group or not len(group)) and _tight(M, l2, x_most, l, conv.h):
+    if not (listing or rows) and (whole_group or not len(group)) and _counted_without_visiting(M, l2, x_most, l, conv.h):
         # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
         identity = np.zeros(0, dtype=np.int64)
-        computed = np.zeros((0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
-        found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, g, computed, kernel.LAYER_BYTES)
+        computed = np.zeros((0, 0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
+        found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, computed, kernel.LAYER_BYTES)
                     for g in (identity, *group))
         found, rest = divmod(found, len(group) + 1)
         if rest:  # a fault of this engine
@@ -338,17 +338,19 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
 
 
-def _tight(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
+def _counted_without_visiting(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
     """Whether a count of one unit can count its placements instead of visiting them, the orbits by
     Burnside's lemma over the permutations of its bundles (:func:`synth.synthesis._stage_b_kernel.tight_count`):
-    simple joints (one pebble game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and no
-    excess on the long strings (``x_most`` = 0: the rule's equality case, e.g. every 1-DOF chain), so that every
-    valid placement's deficit multigraph is tight.
+    simple joints (one pebble game, ``l2`` < 0), two game vertices or more, the game exact (l < 2h), and an
+    excess bound ``x_most`` ≥ 0 on the long strings (0 in the rule's equality case, where every valid
+    placement's deficit multigraph is tight, e.g. every 1-DOF chain; W − threshold above it).
 
-    >>> _tight(6, -1, 0, 4, 3), _tight(6, -1, 1, 4, 3), _tight(6, 4, 0, 4, 3)
-    (True, False, False)
+    >>> _counted_without_visiting(6, -1, 0, 4, 3), _counted_without_visiting(6, -1, 1, 4, 3)
+    (True, True)
+    >>> _counted_without_visiting(6, 4, 0, 4, 3), _counted_without_visiting(6, -1, -1, 4, 3)
+    (False, False)
     """
-    return l2 < 0 and M >= 2 and x_most == 0 and l < 2 * h
+    return l2 < 0 and M >= 2 and x_most >= 0 and l < 2 * h
 
 
 def _search_order(edges, a_list: list[int], b_list: list[int], M: int, first: frozenset = frozenset()) -> "np.ndarray":
@@ -522,8 +524,8 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     """``count_realised`` by a second route that shares as little of the first count's arithmetic as
     can be arranged, so that an error in one is unlikely to be repeated by the other (issue 41).
 
-    Where the first count counts a unit's tight placements by the programme of
-    :func:`~synth.synthesis._stage_b_kernel.tight_count` (:func:`_tight`), this one runs that programme
+    Where the first count counts a unit's placements by the programme of
+    :func:`~synth.synthesis._stage_b_kernel.tight_count` (:func:`_counted_without_visiting`), this one runs that programme
 
     * over the bundles of parallel strings in the reverse of the first count's order: the cuts
       between bundles are the same, so the layers are as narrow, but each layer sums up the other
@@ -535,10 +537,11 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     * with each bundle's ways to hold t units of deficit listed from its weights
       (:func:`_bundle_ways`), not by the kernel's own programme.
 
-    A unit that is not tight is counted by orbits (:func:`count_orbits`: the search over patterns
-    and a coin-change count, where the first count visits placements); one that neither covers
-    (the group of the bundles above 4096, or two empty parallel strings to exclude outside the
-    tight case) as the first count does; ``stats`` counts the units of each kind (``reversed``,
+    Above the rule's equality case (the long strings may carry excess) the bundles' ways are listed
+    over the pairs (deficit, excess).  A unit the programme does not take is counted by orbits
+    (:func:`count_orbits`: the search over patterns and a coin-change count); one that neither
+    covers (the group of the bundles above 4096, or two empty parallel strings to exclude) as the
+    first count does; ``stats`` counts the units of each kind (``reversed``,
     ``by_orbits``, ``shared``).
 
     >>> from synth.synthesis.stage_a import contracted_graphs
@@ -558,7 +561,7 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     x_most, _ = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2, conv.h)
     simple = all(vertex.is_link for vertex in graph.vertices)
     bundles = _bundle_closure(graph) if simple and E else None
-    if bundles is None or not (_kernel_applies(code, graph, conv) and _tight(M, l2, x_most, l, conv.h)):
+    if bundles is None or not (_kernel_applies(code, graph, conv) and _counted_without_visiting(M, l2, x_most, l, conv.h)):
         if orbits_apply(code, graph, conv) and graph.bundle_group()[1]:
             _add(stats, by_orbits=1)
             return count_orbits(code, graph, conv, stats)
@@ -582,14 +585,15 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     for e, least_e in parallel:
         after[e] = least_e
     after = after[order]
-    given = np.zeros((E, C * E + 1), dtype=np.int64)
+    given = np.zeros((E, C * E + 1, x_most + 1), dtype=np.int64)
     for f in np.flatnonzero(_bundle_starts(edges)).tolist():
         r = 1
         while f + r < E and after[f + r] >= 0:
             r += 1
-        ways = _bundle_ways(C, tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)]))
+        lows = tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)])
+        ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0))
         given[f, :len(ways)] = ways
-    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, g, given, kernel.LAYER_BYTES)
+    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES)
                 for g in (np.zeros(0, dtype=np.int64), *rows))
     orbits, rest = divmod(total, len(bundles))
     if rest:  # a fault of this engine
@@ -626,21 +630,28 @@ def _bundle_closure(graph: Contracted) -> "np.ndarray | None":
 
 
 @lru_cache(maxsize=1024)
-def _bundle_ways(C: int, lows: tuple[int, ...]) -> tuple[int, ...]:
-    """How many ways a bundle of parallel strings holds t = 0 … C·r units of deficit in a tight
-    placement: its weights w_1 ≤ … ≤ w_r with w_x between ``lows[x]`` and C, t = Σ (C − w_x) —
-    found by listing every such tuple (the second count's check of the kernel's programme).
+def _bundle_ways(C: int, lows: tuple[int, ...], x_most: int = 0, game: bool = True) -> tuple[tuple[int, ...], ...]:
+    """How many ways a bundle of parallel strings holds t = 0 … C·r units of deficit and y = 0 …
+    ``x_most`` of excess: its weights w_1 ≤ … ≤ w_r with w_x ≥ ``lows[x]``, t = Σ max(C − w_x, 0),
+    y = Σ max(w_x − C, 0) (a bundle the game never sees, ``game`` false: t = 0, y = Σ (w_x − lows[x]))
+    — found by listing every such tuple (the second count's check of the kernel's programme); rows t.
 
     >>> _bundle_ways(2, (0, 1))  # (0, 1) (0, 2) (1, 1) (1, 2) (2, 2)
-    (1, 1, 2, 1, 0)
+    ((1,), (1,), (2,), (1,), (0,))
+    >>> _bundle_ways(2, (0, 1), 1)  # and (2, 3) (1, 3) (0, 3), one unit of excess each
+    ((1, 1), (1, 1), (2, 1), (1, 0), (0, 0))
     """
     from itertools import combinations_with_replacement
 
-    ways = [0] * (C * len(lows) + 1)
-    for weights in combinations_with_replacement(range(C + 1), len(lows)):
+    ways = [[0] * (x_most + 1) for _ in range(C * len(lows) + 1)]
+    top = (max(C, lows[-1]) if game else lows[-1]) + x_most
+    for weights in combinations_with_replacement(range(top + 1), len(lows)):
         if all(w >= low for w, low in zip(weights, lows)):
-            ways[sum(C - w for w in weights)] += 1
-    return tuple(ways)
+            t = sum(max(C - w, 0) for w in weights) if game else 0
+            y = sum(max(w - C, 0) for w in weights) if game else sum(w - low for w, low in zip(weights, lows))
+            if y <= x_most:
+                ways[t][y] += 1
+    return tuple(map(tuple, ways))
 
 
 @lru_cache(maxsize=256)

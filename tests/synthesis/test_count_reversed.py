@@ -72,20 +72,22 @@ def test_the_second_count_meets_automorphisms_and_bundles():
 @pytest.mark.parametrize("C", [1, 2, 3, 4, 5])
 def test_the_bundles_ways_listed_equal_the_kernels_programme(C):
     """Every bundle of one to five strings, the least weight of each string 0 … C + 1 (non-decreasing
-    after the first): the ways listed from the weights and the kernel's programme over the deficits."""
+    after the first), an excess bound of 0 … 2, strings the game sees or not: the ways listed from
+    the weights and the kernel's programme over the deficits and excess."""
     from itertools import product
 
     from synth.synthesis._stage_b_kernel import _bundle_deficits
 
     checked = 0
-    for r in range(1, 6):
+    for r in range(1, 6 if C < 4 else 5):
         for lows in product(range(C + 2), repeat=r):
             if list(lows[1:]) != sorted(lows[1:]):
                 continue
-            ways = np.zeros(C * r + 1, dtype=np.int64)
-            _bundle_deficits(C, np.array(lows, dtype=np.int64), ways)
-            assert stage_b._bundle_ways(C, lows) == tuple(ways.tolist()), (C, lows)
-            checked += 1
+            for x_most, game in product(range(3), (True, False)):
+                ways = np.zeros((C * r + 1, x_most + 1), dtype=np.int64)
+                _bundle_deficits(C, np.array(lows, dtype=np.int64), game, x_most, ways)
+                assert stage_b._bundle_ways(C, lows, x_most, game) == tuple(map(tuple, ways.tolist())), (C, lows)
+                checked += 1
     assert checked > 30
 
 
@@ -115,10 +117,10 @@ def test_a_fault_in_the_second_count_is_caught_by_the_first(monkeypatch, kernel_
     count of some 12-link unit, which the first count then contradicts."""
     listed = stage_b._bundle_ways.__wrapped__
 
-    def wrong(C, lows):
-        ways = list(listed(C, lows))
-        ways[0] -= len(lows) > 1  # a bundle of parallel strings loses the placement with every string long
-        return tuple(ways)
+    def wrong(C, lows, x_most=0, game=True):
+        ways = [list(row) for row in listed(C, lows, x_most, game)]
+        ways[0][0] -= len(lows) > 1  # a bundle of parallel strings loses the placement with every string long
+        return tuple(map(tuple, ways))
 
     monkeypatch.setattr(stage_b, "_bundle_ways", wrong)
     assert any(first != second for _, first, second in _both(dict(dof=1, links=12)))

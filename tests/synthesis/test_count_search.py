@@ -319,7 +319,7 @@ def _counts_both_ways(query, monkeypatch):
     pairs = []
     for u, args in kernel_units(query):
         with monkeypatch.context() as m:
-            m.setattr(stage_b, "_tight", lambda *_: False)
+            m.setattr(stage_b, "_counted_without_visiting", lambda *_: False)
             searched = stage_b._kernel_placements(*args, None, listing=False)[0]
         pairs.append((u.key, stage_b._kernel_placements(*args, None, listing=False)[0], searched))
     return pairs, len(calls)
@@ -328,14 +328,34 @@ def _counts_both_ways(query, monkeypatch):
 @pytest.mark.parametrize("query", QUERIES, ids=_ids)
 def test_the_tight_count_counts_what_the_search_visits(query, kernel_everywhere, monkeypatch):
     """Unit by unit, every automorphism left out (so every unit is counted by ``tight_count`` where
-    the rule's equality case holds, not only those of a trivial group): as many placements as the
-    kernel's search visits, on every query but two (10–100 % of their units: W = threshold, and
-    with the units of W > threshold whose excess bound is 0)."""
+    it applies, not only those of a trivial group): as many placements as the kernel's search
+    visits, on every query (W = threshold, where the deficits are tight, and above it, where the
+    long strings carry up to W − threshold binary links more)."""
     pairs, tight = _counts_both_ways(query, monkeypatch)
     assert pairs
     assert [(key, counted) for key, counted, _ in pairs] == [(key, searched) for key, _, searched in pairs]
-    if query.get("fractionated", True) and not query.get("rigid_subchains"):  # (else the long strings may carry excess)
-        assert tight and any(counted > 1 for key, counted, _ in pairs)
+    assert tight and any(counted > 1 for key, counted, _ in pairs)
+
+
+@pytest.mark.parametrize("query", [q for q in QUERIES if q["dof"] >= 2], ids=_ids)
+def test_units_with_excess_are_counted_without_visiting(query, kernel_everywhere, monkeypatch):
+    """Where W is above the threshold (the long strings may carry excess), the count counts the units
+    by the programme, automorphisms included (Burnside's lemma), and each unit's count is the
+    number of placements the listing writes out; some units carry excess bound 2 or more."""
+    bounds = []
+    real = stage_b._counted_without_visiting
+    monkeypatch.setattr(stage_b, "_counted_without_visiting",
+                        lambda M, l2, x_most, l, h: bounds.append(x_most) or real(M, l2, x_most, l, h))
+    counted_units, bounds_seen = 0, set()
+    for u, args in kernel_units(query):
+        stats, bounds[:] = {}, []
+        counted = stage_b._kernel_placements(*args, stats, listing=False)[0]
+        listed, rows, _ = stage_b._kernel_placements(*args, None, listing=True)
+        assert counted == listed == len(rows), u.key
+        if stats.get("tight") and bounds and bounds[0] > 0:
+            counted_units += 1
+            bounds_seen.add(bounds[0])
+    assert counted_units >= 10 and max(bounds_seen) >= (2 if query["dof"] >= 3 else 1)
 
 
 @pytest.mark.slow

@@ -55,14 +55,14 @@ def test_a_part_with_too_many_successors_is_refused():
     l = 0: each t a state of its own): five states where the cap allows five, −1 where it allows four."""
     k, l, W, P, T = 3, 0, 4, 0, 4
     states, totals, ways_in = np.zeros((1, W), dtype=np.int16), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64)
-    ways = np.ones(T + 1, dtype=np.int64)
+    ways = np.ones((T + 1, 1), dtype=np.int64)  # (no excess: x_most = 0)
     opens, open_k = np.array([0, 1], dtype=np.int64), np.array([k, k], dtype=np.int64)
     shut = np.array([-1, -1], dtype=np.int64)  # (both vertices stay open: no set is merged)
 
     def layer(cap):
         out = np.zeros((0, W), dtype=np.int16), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
         return _stage_b_kernel._tight_layer(states.copy(), totals, ways_in, 0, 1, *out, cap, opens, open_k, 3, shut, 2,
-                                            ways, T, -1, -1, False, 2 * k - l, 2 * k - l, l, W, P,
+                                            ways, T, -1, -1, False, 2 * k - l, 2 * k - l, l, 0, W, P,
                                             np.zeros(W + P, dtype=np.int64))
 
     m, new_states, new_totals, new_ways = layer(5)
