@@ -255,7 +255,7 @@ def read_listing(text: str, source: str) -> list[Entry]:
 
 
 _RULE = re.compile(r"^-+(?: +-+)*$")
-_FOOTER = re.compile(r"^\d+ (chains|mechanisms)$")
+_FOOTER = re.compile(r"^\d+ (chains?|mechanisms?)$")  # "1 chain", "2 chains"
 
 
 def looks_like_table(text: str) -> bool:
