@@ -173,12 +173,9 @@ ROWS = (
     + [_row("W = 3", 3, 18, None, "JMD2024",
             heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
     + [_row("W = 3", 3, 20, None, "",
-            heavy="not run to the end: 8 loops; since every unit is counted without visiting (853192f, PROFILE.md "
-                  "section 37) the engine's sizing (`records.py --size`) gives about 3.3e10 chains, 426 CPU s (the old "
-                  "engine's: 10.6 CPU hours); begun on 29 Nov at 19:20 (973f69f, load 3), 4 of 135 codes, 6.2e9 chains in "
-                  "3 min wall and some 235 CPU s of its workers, stopped for time: expect some 20 CPU min for the count "
-                  "and as much for its second count by tight-reverse; to run it: `nice -n 10 python benchmarks/records.py "
-                  "--only \"chains --dof 3 --links 20\"`")]
+            heavy="run on its own (--only): 8 loops; counted on 29 Nov 2026 (82b1d25) in 626 CPU s, sized at 426 "
+                  "(PROFILE.md section 37), and its second count (--method tight-reverse, 468 CPU s, beside it: "
+                  "`--recheck --reverse-from`) equal by code (benchmarks/logs/count_w3_20_links.txt)")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
