@@ -56,7 +56,7 @@ def test_quick_run_writes_the_csv_the_by_code_files_and_its_section(tmp_path):
     assert "old text" not in text and "the gear rows stay" in text
     assert text.index("## Published counts") < text.index("`chains --dof 3 --links 6`") < text.index("## Gear")
     assert "- `chains --dof 3 --links 16`: not run yet" in text  # every row not run is named, heavy ones with why
-    assert "- `chains --dof 3 --links 20`: not run to the end: 8 loops" in text  # begun, stopped for time
+    assert "- `chains --dof 3 --links 20`: run on its own (--only): 8 loops" in text  # heavy: run by hand
     figure = tmp_path / "records_growth.png"  # beside the Markdown file, shown in its section
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "](records_growth.png)" in text.split("## Gear")[0]
