@@ -73,12 +73,14 @@ SOURCES = {  # the keys of docs/theory.md, "Sources"
     "A233288": "OEIS A233288 (https://oeis.org/A233288): 12 and 14 links also Butcher & Hartman 2005, 16 links "
                "Sunkari & Schmidt 2006, 18 links M. Larsson (added 2025)",
     "T": "L.-W. Tsai, Mechanism Design (2001): the atlases of 2- and 3-DOF chains",
-    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops; only its abstract "
-               "could be read here, so no value of it is quoted",
+    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops as biconnected graphs "
+               "(so its counts go beside the not-fractionated rows), by link partition from 6 loops on; only its "
+               "abstract could be read here (benchmarks/LITERATURE.md, counts), so no value of it is quoted",
     "A227117": "OEIS A227117 (https://oeis.org/A227117): Laman graphs on n vertices, the 1-DOF chains of n links "
                "in h = 2",
-    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links; only its "
-                "abstract could be read here, so no value of it is quoted",
+    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links, every DOF; "
+                "only its abstract could be read here, so no value of it is quoted (whether its families include "
+                "the chains of simple joints and sum the DOF: benchmarks/LITERATURE.md, counts)",
 }
 
 
