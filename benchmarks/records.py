@@ -189,7 +189,11 @@ ROWS = (
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 753))]
-    + [_row("W = 3, not fractionated", 3, 20, None, "", frac=False, heavy=_NOT_FRACTIONATED.format(8, 626))]
+    + [_row("W = 3, not fractionated", 3, 20, None, "", frac=False,
+            heavy=_NOT_FRACTIONATED.format(8, 626).replace(" by code", " by code, run after it beside no other count and "
+                                                           "compared by `--recheck --reverse-from` "
+                                                           "benchmarks/logs/count_w3_20_links_no_fractionated_"
+                                                           "tight_reverse.json (past --reverse-max)"))]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
             heavy="run by hand with a checkpoint on 29 Nov 2026: 19.5 min wall on 2 workers beside other work, 29 CPU "
