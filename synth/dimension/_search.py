@@ -43,6 +43,9 @@ RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
 #: runs of the constrained polish of a link-length order (:meth:`_Search.constrained`), 100 steps each; and
 #: polishes of the final shifted penalty of a length or ratio bound (:meth:`_Search.aim_bounds`)
 STIFF_RUNS, AIM_ROUNDS = 5, 4
+#: the least dyad discriminant over the turn the final polish holds a crank to (normalised; :meth:`_Search.constrained`):
+#: held to 1e-10 the half circle's crank touched a dead position the motion layer counted as reached (seed 3)
+TURN_MARGIN = 1e-8
 #: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
@@ -1009,6 +1012,7 @@ class _Search:
         p, kept = self.problem, self.best
         _, z0, direction = kept
         if p.order:
+            z0 = self.posed(z0)
             p.aim = _dropped(p, every=True)
             found = self.constrained(z0, direction, final=True)
             before = float(np.sum(self.evaluate.vector(z0, direction) ** 2))
@@ -1024,6 +1028,23 @@ class _Search:
         if met and after < INFEASIBLE / 10 and (after <= before or unmet_before):
             self.best = (after, found[1], found[2])
 
+    def posed(self, z) -> np.ndarray:
+        """A timed answer's unknowns z with the mechanism posed at its first target input where that input is
+        prescribed (absolute timing, a function), as the result is returned: the dyads must close from the pose
+        to the points, and a pose beyond a dead position the points do not cross (the half circle's search
+        left its answers so) walls the polish in."""
+        p = self.problem
+        if not p.timed:
+            return z
+        linkage = p.linkage(z[:p.dims])
+        start = p.absolute_start(linkage)
+        if start is None:
+            return z
+        try:
+            return p.unknowns_of(assemble(linkage, start))
+        except (MotionError, ValueError):
+            return z
+
     def constrained(self, z0, direction: int, watched: bool = False,
                     final: bool = False) -> tuple[float, np.ndarray] | None:
         """The least squares from z0 with the link-length orders as inequality constraints of their own, held
@@ -1031,7 +1052,7 @@ class _Search:
         (cost, unknowns) where it meets them, else None.  With ``watched`` it stops with the budget.  The
         ``final`` polish of the answer holds a length or ratio bound beside the orders so too, and a crank's
         turning where :attr:`Problem.turn_held` (its least dyad discriminant over the turn at least
-        :data:`HELD_MARGIN`, the turn then left out of the residuals' samples, and the cost judged again with
+        :data:`TURN_MARGIN`, the turn then left out of the residuals' samples, and the cost judged again with
         it sampled), and takes central differences.
 
         SLSQP is given the cost's gradient 2·Jᵀr from the polish's own Jacobian (:meth:`jacobian`: forward
@@ -1056,7 +1077,10 @@ class _Search:
 
         def inside(z):
             lengths = self._inside(z, final)
-            return np.append(lengths, self._clearance(z) - HELD_MARGIN) if held else lengths
+            return np.append(lengths, self._clearance(z) - TURN_MARGIN) if held else lengths
+
+        def held_by(z):  # (SLSQP may end a run outside its constraints: the final polish keeps the last inside)
+            return bool((self._inside(z, final) >= -MET).all() and (not held or self._clearance(z) > 0))
 
         def fun(z):
             if watched and watch.over():
@@ -1081,7 +1105,7 @@ class _Search:
                                      options={"ftol": 1e-12 * value, "maxiter": 100})
                     moved = np.clip(found.x, *np.array(bounds).T)
                     again = cost(moved)
-                    if not again < value:
+                    if not (again < value and (not final or held_by(moved))):
                         break
                     z, value, tenfold = moved, again, again <= value / 10
                     if value <= EXACT ** 2 or (found.status == 0 and not tenfold):

@@ -1,16 +1,21 @@
 """The final polish meets the half circle's record ([HCDJ] Case 4): polished from the record, with the row's
 constraints (the crank the shortest link and turning, links at most 50), ours ends at or below its error,
-on the bound of 50 and on Grashof's bound — re-checked by the motion layer and by the source's closed form.
+on the bound of 50 and on Grashof's bound — re-checked by the motion layer and by the source's closed form —
+whether the record is posed at its first point or beyond the dead position at θ2 = 0 (the points lie at
+30°–180°), from where the dyads must close across that dead position to reach the points.
 
-Before the link-length bound and the crank's turn were held as inequalities of the constrained polish (and its
-gradient taken by central differences), the same polish ended at 1.2163819, 1.4e-4 above the record."""
+Before the link-length bound and the crank's turn were held as inequalities of the final polish (and its
+gradient taken by central differences), the same polish ended at 1.2163819, 1.4e-4 above the record; before
+the final polish posed the answer at its first point, from the pose at −10° it ended at 1.2163974."""
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from synth.dimension import PathTarget, synthesize
 from synth.motion import motion_range
@@ -23,10 +28,12 @@ ROW = PROBLEMS["six timed points on a half circle, as stated"]
 PRINTED = 1.2162122
 
 
-def test_the_polish_from_the_record_reaches_its_error_on_both_bounds():
+@pytest.mark.parametrize("pose", [ROW.inputs[0], math.radians(-10.0)],
+                         ids=["at the first point", "beyond the dead position"])
+def test_the_polish_from_the_record_reaches_its_error_on_both_bounds(pose):
     vector = list(HALF_CIRCLE_RECORDS[0]["vector"])
     vector[0] += 8.0e-7  # as printed the record exceeds Grashof's condition by 8.0e-7: its crank would not turn
-    start = source_linkage(vector, ROW.inputs[0])
+    start = source_linkage(vector, pose)  # (the crank at the angle pose from the frame line)
     target = PathTarget(np.array(ROW.points, dtype=float), np.array(ROW.inputs, dtype=float))
     result = synthesize(start, target, constraints=ROW.constraints, polish_only=True, budget=30, underdetermined=True)
     assert result.met, result.failed()
