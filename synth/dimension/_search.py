@@ -972,7 +972,7 @@ class _Search:
                               ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
                 # a bound reached is held from here on; a held one whose row ends below its aim pulls the answer
                 # inwards (the fit would leave it) and is let go for good
-                let_go |= held & (self.length_rows(best[1]) < 0)
+                let_go |= held & (self.length_gaps(best[1]) + problem.aim < 0)
                 wanted = self.binds(best[1]) & ~let_go
                 if best[0] <= EXACT ** 2 or (wanted == held).all():
                     break
@@ -991,12 +991,12 @@ class _Search:
             self.best = (best[0], best[1], direction)
         return best[0], best[1]
 
-    def length_rows(self, z) -> np.ndarray:
-        """The link-length rows gap + aim of the unknowns z (:meth:`Problem.violations`, signed; −∞ where z is no
+    def length_gaps(self, z) -> np.ndarray:
+        """The link-length constraints' gaps of the unknowns z (:meth:`Problem.length_gaps`; −∞ where z is no
         linkage)."""
         p = self.problem
         try:
-            return p.length_gaps(p.linkage(z[:p.dims])) + p.aim
+            return p.length_gaps(p.linkage(z[:p.dims]))
         except MotionError:
             return np.full(p.length_bounds, -np.inf)
 
@@ -1005,7 +1005,7 @@ class _Search:
         limit (a polish then holds each as an equality, :attr:`Problem.held`; the orders are held by
         :meth:`constrained`)."""
         p = self.problem
-        out = self.length_rows(z) - p.aim >= math.log1p(-2 * MARGIN)
+        out = self.length_gaps(z) >= math.log1p(-2 * MARGIN)
         out[:p.order_pairs] = False
         return out
 
