@@ -692,7 +692,7 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                              "candidates")
     if problem.equations < problem.unknowns and not underdetermined:
         per = problem.rows_per_point
-        need = problem.unknowns - (0 if problem.timed else problem.points - 1)
+        need = problem.unknowns - (0 if problem.timed else problem.points)  # (N points: per·N ≥ dims + N − 1)
         enough = math.ceil(need / (per - (0 if problem.timed else 1)))
         counted = problem.equations // per
         of_weight = f" ({counted} of weight above 0)" if counted < problem.points else ""
