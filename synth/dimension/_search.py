@@ -1087,7 +1087,8 @@ class _Search:
             return float(r @ r)
 
         def gradient(z):
-            return 2.0 * self.jacobian(fun, z, upper).T @ fun(z)
+            r = fun(z)
+            return 2.0 * self.jacobian(fun, z, upper, r).T @ r
 
         z, value = z0, cost(z0)
         try:
@@ -1119,13 +1120,13 @@ class _Search:
         except MotionError:
             return np.full(problem.order_pairs, -1.0)
 
-    def jacobian(self, fun, z, upper) -> np.ndarray:
-        """Forward differences of the residuals ``fun`` at z: every column for a timed target; without
-        timing z = (dimensions, input steps) and the steps' columns cost one evaluation for all
-        (:meth:`untimed_jacobian`)."""
+    def jacobian(self, fun, z, upper, r0=None) -> np.ndarray:
+        """Forward differences of the residuals ``fun`` at z (``r0``: ``fun(z)``, if the caller has it): every
+        column for a timed target; without timing z = (dimensions, input steps) and the steps' columns cost
+        one evaluation for all (:meth:`untimed_jacobian`)."""
         if not self.problem.timed:
-            return self.untimed_jacobian(fun, z, upper)
-        r0 = fun(z)
+            return self.untimed_jacobian(fun, z, upper, r0=r0)
+        r0 = fun(z) if r0 is None else r0
         return np.column_stack([(fun(moved) - r0) / h for moved, h in _forward_steps(z, upper, range(len(z)))])
 
     def aim_bounds(self):
@@ -1157,9 +1158,10 @@ class _Search:
         r = self.evaluate.vector(best[1], best[2])[:p.points * p.rows_per_point]
         return float(r @ r)
 
-    def untimed_jacobian(self, fun, z, upper, central: bool = False) -> np.ndarray:
+    def untimed_jacobian(self, fun, z, upper, central: bool = False, r0=None) -> np.ndarray:
         """Forward (or ``central``) differences of the untimed residuals ``fun`` at z = (dimensions, input
-        steps), at the cost of one evaluation (two) per dimension and one (two) for all the steps.
+        steps), at the cost of one evaluation (two) per dimension and one (two) for all the steps, and for
+        forward differences one at z unless the caller gives it (``r0``).
 
         Point i is reached at the input offset direction·(s₁ + … + sᵢ) and its residuals depend on that
         offset alone; the constraint rows depend on the last offset (the target's span).  So one step
@@ -1167,17 +1169,19 @@ class _Search:
         along its own offset, and the column of step k is that of s₁ with the points before k zeroed.
         """
         problem = self.problem
-        r0 = fun(z)
-        jac = np.empty((len(r0), len(z)))
-        columns = range(problem.dims + 1)
-        steps = _forward_steps(z, upper, columns, _CENTRAL_STEP if central else _STEP)
-        for j, (moved, h) in enumerate(steps):
+        if not central and r0 is None:
+            r0 = fun(z)
+        columns = []
+        for j, (moved, h) in enumerate(_forward_steps(z, upper, range(problem.dims + 1),
+                                                      _CENTRAL_STEP if central else _STEP)):
             if central:
                 back = np.array(z)
                 back[j] -= h
-                jac[:, j] = (fun(moved) - fun(back)) / (2 * h)
+                columns.append((fun(moved) - fun(back)) / (2 * h))
             else:
-                jac[:, j] = (fun(moved) - r0) / h
+                columns.append((fun(moved) - r0) / h)
+        jac = np.empty((len(columns[0]), len(z)))
+        jac[:, :problem.dims + 1] = np.column_stack(columns)
         rows = problem.rows_per_point  # residuals per target point
         block = np.arange(problem.points * rows) // rows  # the target point of each residual row
         later = block[:, None] >= np.arange(1, len(z) - problem.dims + 1)[None, :]
