@@ -169,7 +169,9 @@ ROWS = (
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
+            heavy="run on its own (--only): 7 loops; counted without visiting (PROFILE.md section 37) on 29 Nov 2026 "
+                  "(39aec68) in 14.3 CPU s, sized at 14.4 (`records.py --size`), its second count (--method "
+                  "tight-reverse) 19.4 CPU s, equal by code")]
     + [_row("W = 2", 2, 19, None, "",
             heavy="run on its own (--only): 8 loops; since every unit is counted without visiting (853192f, "
                   "PROFILE.md section 37) the engine's sizing (`records.py --size`) gives about 8.4e9 chains, 394 CPU s "
@@ -177,11 +179,13 @@ ROWS = (
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
     + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False,
-            heavy=_SEVEN_LOOPS.format("9.7e7", 229, 2, 17))]
+            heavy=_SEVEN_LOOPS.format("9.7e7", 14.3, 2, 17))]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
+            heavy="run on its own (--only): 7 loops; counted without visiting (PROFILE.md section 37) on 29 Nov 2026 "
+                  "(1b08d31) in 31.8 CPU s, sized at 20.3 (`records.py --size`), its second count (--method "
+                  "tight-reverse) 32.0 CPU s, equal by code")]
     + [_row("W = 3", 3, 20, None, "",
             heavy="run on its own (--only): 8 loops; counted on 29 Nov 2026 (82b1d25) in 626 CPU s, sized at 426 "
                   "(PROFILE.md section 37), and its second count (--method tight-reverse, 468 CPU s, beside it: "
@@ -189,7 +193,7 @@ ROWS = (
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
     + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False,
-            heavy=_SEVEN_LOOPS.format("3.7e8", 753, 3, 18))]
+            heavy=_SEVEN_LOOPS.format("3.7e8", 31.8, 3, 18))]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
             heavy="run by hand with a checkpoint on 29 Nov 2026: 19.5 min wall on 2 workers beside other work, 29 CPU "

@@ -695,7 +695,7 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                              "candidates")
     if problem.equations < problem.unknowns and not underdetermined:
         per = problem.rows_per_point
-        need = problem.unknowns - (0 if problem.timed else problem.points - 1)
+        need = problem.unknowns - (0 if problem.timed else problem.points)  # (N points: per·N ≥ dims + N − 1)
         enough = math.ceil(need / (per - (0 if problem.timed else 1)))
         counted = problem.equations // per
         of_weight = f" ({counted} of weight above 0)" if counted < problem.points else ""
@@ -1127,7 +1127,8 @@ class _Search:
             return float(r @ r)
 
         def gradient(z):  # (the final polish's central differences: see the docstring)
-            return 2.0 * self.jacobian(fun, z, upper, central=final).T @ fun(z)
+            r = fun(z)
+            return 2.0 * self.jacobian(fun, z, upper, central=final, r0=r).T @ r
 
         penalty, z, value = problem.aim, z0, math.inf
         try:
@@ -1174,13 +1175,13 @@ class _Search:
         except MotionError:
             return np.full(problem.length_bounds if every else problem.order_pairs, -1.0)
 
-    def jacobian(self, fun, z, upper, central: bool = False) -> np.ndarray:
-        """Forward (or ``central``) differences of the residuals ``fun`` at z, each of the step :data:`_STEP`:
-        every column for a timed target; without timing z = (dimensions, input steps) and the steps' columns
-        cost one evaluation (two) for all (:meth:`untimed_jacobian`)."""
+    def jacobian(self, fun, z, upper, central: bool = False, r0=None) -> np.ndarray:
+        """Forward (or ``central``) differences of the residuals ``fun`` at z (``r0``: ``fun(z)``, if the caller
+        has it), each of the step :data:`_STEP`: every column for a timed target; without timing z = (dimensions,
+        input steps) and the steps' columns cost one evaluation (two) for all (:meth:`untimed_jacobian`)."""
         if not self.problem.timed:
-            return self.untimed_jacobian(fun, z, upper, central, _STEP)
-        return _differences(fun, z, upper, range(len(z)), _STEP, central)
+            return self.untimed_jacobian(fun, z, upper, central, _STEP, r0)
+        return _differences(fun, z, upper, range(len(z)), _STEP, central, r0)
 
     def aim_bounds(self):
         """The best answer polished again with the length and ratio bounds aimed :data:`HELD_MARGIN` inside (a
@@ -1211,10 +1212,12 @@ class _Search:
         r = self.evaluate.vector(best[1], best[2])[:p.points * p.rows_per_point]
         return float(r @ r)
 
-    def untimed_jacobian(self, fun, z, upper, central: bool = False, step: float | None = None) -> np.ndarray:
+    def untimed_jacobian(self, fun, z, upper, central: bool = False, step: float | None = None,
+                         r0=None) -> np.ndarray:
         """Forward (or ``central``) differences of the untimed residuals ``fun`` at z = (dimensions, input
-        steps), at the cost of one evaluation (two) per dimension and one (two) for all the steps; the step
-        :data:`_STEP` (:data:`_CENTRAL_STEP` for central ones) unless ``step`` is given.
+        steps), at the cost of one evaluation (two) per dimension and one (two) for all the steps, and for
+        forward differences one at z unless the caller gives it (``r0``); the step :data:`_STEP`
+        (:data:`_CENTRAL_STEP` for central ones) unless ``step`` is given.
 
         Point i is reached at the input offset direction·(s₁ + … + sᵢ) and its residuals depend on that
         offset alone; the constraint rows depend on the last offset (the target's span).  So one step
@@ -1223,7 +1226,7 @@ class _Search:
         """
         problem = self.problem
         step = step if step is not None else _CENTRAL_STEP if central else _STEP
-        known = _differences(fun, z, upper, range(problem.dims + 1), step, central)  # (the dimensions and s₁)
+        known = _differences(fun, z, upper, range(problem.dims + 1), step, central, r0)  # (the dimensions and s₁)
         jac = np.empty((len(known), len(z)))
         jac[:, :problem.dims + 1] = known
         rows = problem.rows_per_point  # residuals per target point
@@ -1253,10 +1256,12 @@ def _forward_steps(z, upper, columns, step: float = _STEP):
         yield moved, h
 
 
-def _differences(fun, z, upper, columns, step: float, central: bool) -> np.ndarray:
+def _differences(fun, z, upper, columns, step: float, central: bool, r0=None) -> np.ndarray:
     """The columns of the residuals ``fun``'s Jacobian at z for the unknowns ``columns``: forward differences
-    of the relative ``step`` (backwards at the box's upper bound, :func:`_forward_steps`), or central ones."""
-    r0 = None if central else fun(z)
+    of the relative ``step`` (backwards at the box's upper bound, :func:`_forward_steps`; ``r0`` is ``fun(z)``
+    if the caller has it), or central ones."""
+    if not central and r0 is None:
+        r0 = fun(z)
     out = []
     for j, (moved, h) in zip(columns, _forward_steps(z, upper, columns, step)):
         if central:
