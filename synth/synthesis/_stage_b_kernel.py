@@ -825,11 +825,11 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
     6
     """
     budget = LAYER_BYTES if budget is None else budget
-    whole = _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget)
-    if whole[1] < 0:
-        return int(whole[0])
+    found, i, *handed = _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget)
+    if i < 0:
+        return int(found)
     frame = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
-    return _tight_split(frame, C, l, x_most, budget, *whole[1:])
+    return _tight_split(frame, C, l, x_most, budget, i, handed)
 
 
 def _spill_file():
@@ -850,6 +850,8 @@ class _Buckets:
         size = n * (2 * (self.W + self.P) + 16)
         if self.held + size <= self.room:
             self.held += size
+            if len(totals) == n:
+                return n, (states, totals, ways)
             return n, (states[:n].copy(), totals[:n].copy(), ways[:n].copy())
         f = _spill_file()
         self.files.add(f)
@@ -880,10 +882,10 @@ class _Buckets:
         self.files.clear()
 
 
-def _tight_split(frame, C, l, x_most, budget, i, states, totals, ways_in, n, part_states, part_totals, part_ways, m,
-                 stop):
-    """:func:`tight_count` on from layer i, whose successors passed the budget (part_*: layer i + 1 from its first
-    ``stop`` states).  Each layer from there is made in buckets: a bucket is the states whose hash has given low
+def _tight_split(frame, C, l, x_most, budget, i, handed):
+    """:func:`tight_count` on from layer i, whose successors passed the budget: ``handed`` is :func:`_tight_whole`'s
+    layer i and the part of layer i + 1 made from its first states (the list emptied, so that the layers go as soon
+    as they are in buckets).  Each layer from there is made in buckets: a bucket is the states whose hash has given low
     bits (bits 32 … of :func:`_state_code`), made by one pass over every bucket of the layer before (read one at a
     time), keeping only the successors that fall in it, merged in its own table as in a whole layer.  A bucket is
     first every state; where it would pass a third of the budget it is cut in two by its next bit: the half with
@@ -909,8 +911,11 @@ def _tight_split(frame, C, l, x_most, budget, i, states, totals, ways_in, n, par
             bits += 1
         return bits, m
 
+    states, totals, ways_in, n, part_states, part_totals, part_ways, m, stop = handed
+    handed.clear()
     try:
         layer = [store.put(states, totals, ways_in, n)]
+        states = totals = ways_in = None
         while True:
             T = C * (ends[i] - starts[i])
             each = (T + 1) * X1  # the most successors of one state
@@ -919,7 +924,7 @@ def _tight_split(frame, C, l, x_most, budget, i, states, totals, ways_in, n, par
             if part_states is not None:  # (the part of layer i + 1 handed over)
                 bits, m = cut(0, 0, 0, stop, part_states, part_totals, part_ways, m)
                 pending.append((0, bits, 0, stop, store.put(part_states, part_totals, part_ways, m)))
-                part_states = None
+                part_states = part_totals = part_ways = None
             else:
                 pending.append((0, 0, 0, 0, store.put(np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
                                                       np.zeros(0, dtype=np.int64), 0)))
@@ -930,10 +935,13 @@ def _tight_split(frame, C, l, x_most, budget, i, states, totals, ways_in, n, par
                 m = len(new_totals)
                 store.drop(part)
                 table = _rehash(new_states, new_totals, m, width, W, P)
+                read, bucket = -1, None
                 while b < len(layer):
-                    bucket_states, bucket_totals, bucket_ways = store.get(layer[b])
+                    if read != b:
+                        bucket = None  # (the bucket before let go first)
+                        read, bucket = b, store.get(layer[b])
                     m, s, new_states, new_totals, new_ways, table = _tight_layer(
-                        bucket_states, bucket_totals, bucket_ways, s, layer[b][0], new_states, new_totals, new_ways, m,
+                        *bucket, s, layer[b][0], new_states, new_totals, new_ways, m,
                         table, cap, (1 << bits) - 1, residue, opens[i], open_k[i], both[i], shut[i], n_open[i + 1],
                         ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
                     if s == layer[b][0]:
@@ -942,8 +950,9 @@ def _tight_split(frame, C, l, x_most, budget, i, states, totals, ways_in, n, par
                         bits, m = cut(residue, bits, b, s, new_states, new_totals, new_ways, m)
                         table = _rehash(new_states, new_totals, m, width, W, P)
                 made.append(store.put(new_states, new_totals, new_ways, m))
-            for bucket in layer:  # layer i is through
-                store.drop(bucket)
+                bucket = new_states = new_totals = new_ways = table = None  # (let them go before the next)
+            for old in layer:  # layer i is through
+                store.drop(old)
             layer = made
             i += 1
             if i == nb:
@@ -961,7 +970,7 @@ def _split_bucket(states, totals, ways_in, m, bit, width, W, P):
     for j in range(m):
         out[j] = (_state_code(states[j], width, W, P, totals[j]) >> (32 + bit)) & 1
     moved = np.flatnonzero(out)
-    half = states[moved].copy(), totals[moved].copy(), ways_in[moved].copy(), len(moved)
+    half = states[moved], totals[moved], ways_in[moved], len(moved)  # (copies)
     kept = 0
     for j in range(m):
         if not out[j]:
