@@ -1048,13 +1048,16 @@ def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_wa
                 if 2 * (m + 1) > len(table):  # a larger table
                     table = _rehash(new_states, new_totals, m, width, W, P)
                     j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
-                if m == len(new_totals):  # larger arrays, up to the cap
+                if m == len(new_totals):  # larger arrays: twice as large, or past 4 MiB the cap at once
                     grown = max(64, min(2 * m, cap))
-                    more = np.zeros((grown, W + P), dtype=np.int16)
+                    if 2 * grown * (W + P) > 1 << 22:  # (left empty: the pages are taken as rows are written)
+                        grown = cap
+                    more = np.empty((grown, W + P), dtype=np.int16)
                     more[:m] = new_states[:m]
                     new_states = more
-                    new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
-                    new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
+                    more_totals, more_ways = np.empty(grown, dtype=np.int64), np.empty(grown, dtype=np.int64)
+                    more_totals[:m], more_ways[:m] = new_totals[:m], new_ways[:m]
+                    new_totals, new_ways = more_totals, more_ways
                 table[-j - 1] = m
                 for U in range(width):
                     new_states[m, U] = row[U]
