@@ -73,12 +73,14 @@ SOURCES = {  # the keys of docs/theory.md, "Sources"
     "A233288": "OEIS A233288 (https://oeis.org/A233288): 12 and 14 links also Butcher & Hartman 2005, 16 links "
                "Sunkari & Schmidt 2006, 18 links M. Larsson (added 2025)",
     "T": "L.-W. Tsai, Mechanism Design (2001): the atlases of 2- and 3-DOF chains",
-    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops; only its abstract "
-               "could be read here, so no value of it is quoted",
+    "JMD2024": "J. Mech. Des. 146(11) 113302 (2024) counts 2- and 3-DOF chains to 7 loops as biconnected graphs "
+               "(so its counts go beside the not-fractionated rows), by link partition from 6 loops on; only its "
+               "abstract could be read here (benchmarks/LITERATURE.md, counts), so no value of it is quoted",
     "A227117": "OEIS A227117 (https://oeis.org/A227117): Laman graphs on n vertices, the 1-DOF chains of n links "
                "in h = 2",
-    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links; only its "
-                "abstract could be read here, so no value of it is quoted",
+    "Ding2013": "H. Ding et al., J. Mech. Des. 135(9) 091007 (2013): multiple-joint chains to 16 links, every DOF; "
+                "only its abstract could be read here, so no value of it is quoted (whether its families include "
+                "the chains of simple joints and sum the DOF: benchmarks/LITERATURE.md, counts)",
 }
 
 
@@ -154,6 +156,12 @@ _BEYOND = {
              "`--recheck --reverse-from` that file",
 }
 
+# 7 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go beside
+# these rows, not beside the rows with fractionated chains (benchmarks/LITERATURE.md, the second search for counts)
+_SEVEN_LOOPS = "not run: the engine's sizing (`records.py --size`, 29 Nov 2026) gives about {} chains; the row with " \
+               "fractionated chains took {} CPU s, and the second count (--method tight-reverse) about as much again; " \
+               "to run it: `python benchmarks/records.py --only \"chains --dof {} --links {} --no-fractionated\"`"
+
 ROWS = (
     [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
     + [_row("W = 1", 1, 18, _A233288[18], "A233288",
@@ -172,6 +180,8 @@ ROWS = (
                   "(it sized 17 links at 17.4 CPU s); the second count by tight-reverse costs about as much")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
+    + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False,
+            heavy=_SEVEN_LOOPS.format("9.7e7", 229, 2, 17))]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
@@ -182,6 +192,8 @@ ROWS = (
                   "`--recheck --reverse-from`) equal by code (benchmarks/logs/count_w3_20_links.txt)")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
+    + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False,
+            heavy=_SEVEN_LOOPS.format("3.7e8", 753, 3, 18))]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
             heavy="run by hand with a checkpoint on 29 Nov 2026: 19.5 min wall on 2 workers beside other work, 29 CPU "

@@ -180,6 +180,7 @@ def _draw(items, out: str, compound, teeth=None, titles=None) -> None:
         draw_train(items[0], out, teeth=teeth, compound=compound, title=titles[0] if titles else None)
     else:
         draw_train_sheet(items, out, limit=len(items), titles=titles)
+    print(f"{len(items)} schematic{'s' * (len(items) != 1)} -> {out}", file=sys.stderr)  # as draw says
 
 
 def _mechanisms_of(args, items, compound):

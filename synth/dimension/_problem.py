@@ -294,6 +294,9 @@ class Problem:
         # (log); the final polish moves each aim by the overshoot its penalty leaves (``_Search.stiffen``)
         self.aim = np.concatenate((np.full(self.order_pairs, MARGIN),
                                    np.full(self.length_bounds - self.order_pairs, -math.log1p(-MARGIN))))
+        # which of those rows are held as equalities, gap + aim signed rather than its hinge (gap + aim)⁺: a polish
+        # follows a binding length or ratio bound so (``_Search.polish``), where the hinge's kink makes it crawl
+        self.held = np.zeros(self.length_bounds, bool)
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
@@ -681,7 +684,7 @@ class Problem:
         return out
 
     def violations(self, linkage: Linkage, offsets: np.ndarray, g, mu) -> np.ndarray:
-        """Non-negative violations of the designer's constraints (0 where met), non-dimensional:
+        """Non-negative violations of the designer's constraints (0 where met; a ``held`` row signed), non-dimensional:
         transmission (rad), ratio and length (log), pivots (target sizes), rocker limits (rad or sizes).  Each is
         measured against a limit :data:`MARGIN` inside the designer's, since a penalised constraint
         that binds settles a little beyond its limit (the link-length ones: ``aim`` inside, which the final
@@ -690,8 +693,12 @@ class Problem:
         out = []
         if c.min_transmission > 0:
             out.append(max(0.0, c.min_transmission + MARGIN - float(np.min(mu))) if mu is not None else 0.0)
-        # the link-length constraints' rows: (gap + aim)⁺ for the orders' pairs, the length and the ratio
-        lengths = np.maximum(self.length_gaps(linkage) + self.aim, 0.0) if self.length_bounds else None
+        # the link-length constraints' rows: (gap + aim)⁺ for the orders' pairs, the length and the ratio (gap + aim
+        # where ``held``)
+        lengths = None
+        if self.length_bounds:
+            lengths = self.length_gaps(linkage) + self.aim
+            lengths = np.where(self.held, lengths, np.maximum(lengths, 0.0))
         if c.max_ratio is not None:
             out.append(float(lengths[-1]))
         if c.max_length is not None:

@@ -43,6 +43,9 @@ RANK_SHARE, GO_ON_SHARE = 0.1, 0.2
 #: runs of the constrained polish of a link-length order (:meth:`_Search.constrained`), 100 steps each; and
 #: polishes of the final shifted penalty of a length or ratio bound (:meth:`_Search.aim_bounds`)
 STIFF_RUNS, AIM_ROUNDS = 5, 4
+#: least squares of one polish, each holding the length and ratio bounds reached so far as equalities
+#: (:meth:`_Search.polish`): the first, then one after a bound is reached, and one after a held bound is let go
+HOLD_ROUNDS = 3
 #: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
@@ -689,7 +692,7 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
                              "candidates")
     if problem.equations < problem.unknowns and not underdetermined:
         per = problem.rows_per_point
-        need = problem.unknowns - (0 if problem.timed else problem.points - 1)
+        need = problem.unknowns - (0 if problem.timed else problem.points)  # (N points: per·N ≥ dims + N − 1)
         enough = math.ceil(need / (per - (0 if problem.timed else 1)))
         counted = problem.equations // per
         of_weight = f" ({counted} of weight above 0)" if counted < problem.points else ""
@@ -923,7 +926,11 @@ class _Search:
         the best yet, and returned as (cost, unknowns) (None where the polish found nothing on the branch).  With
         ``grace`` the budget is not watched; with ``until`` the polish also stops once that many seconds are used
         (with ``grace`` too); ``central`` differences for its Jacobian (twice the evaluations, exact to eps^(2/3)
-        rather than eps^(1/2)) where forward ones stall in a flat valley.  With a link-length order an inexact
+        rather than eps^(1/2)) where forward ones stall in a flat valley.  A length or ratio bound the polish ends on
+        (:meth:`binds`) is then held as an equality and the polish goes on along it (from a start on the bound, at
+        once): the penalty's hinge (gap + aim)⁺ has a kink there that cuts every step short, and on [HCDJ]'s ten
+        points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published optimum, 4.0199e-4
+        (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*).  With a link-length order an inexact
         answer is polished again with the orders as constraints (:meth:`constrained`): the penalty's hinge
         stalls where an order binds."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
@@ -956,11 +963,24 @@ class _Search:
 
         jac = ("3-point" if central else "2-point") if problem.timed else (
             lambda z: self.untimed_jacobian(fun, z, upper, central))
+        held = self.binds(z0)  # (a start on a length or ratio bound follows it at once)
+        let_go = np.zeros_like(held)
         try:
-            least_squares(fun, z0, jac=jac, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15,
-                          ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
+            for _ in range(HOLD_ROUNDS):
+                problem.held = held
+                least_squares(fun, best[1], jac=jac, bounds=(lower, upper), method="trf", x_scale="jac", xtol=1e-15,
+                              ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
+                # a bound reached is held from here on; a held one whose row ends below its aim pulls the answer
+                # inwards (the fit would leave it) and is let go for good
+                let_go |= held & (self.length_gaps(best[1]) + problem.aim < 0)
+                wanted = self.binds(best[1]) & ~let_go
+                if best[0] <= EXACT ** 2 or (wanted == held).all():
+                    break
+                held = wanted
         except _OutOfTime:
             pass
+        finally:
+            problem.held = np.zeros(problem.length_bounds, bool)
         if not (math.isfinite(best[0]) and best[0] < INFEASIBLE / 10):
             return None
         if problem.order and best[0] > EXACT ** 2:  # a binding order stalls the penalty: polish on it
@@ -970,6 +990,24 @@ class _Search:
         if self.best is None or best[0] < self.best[0]:
             self.best = (best[0], best[1], direction)
         return best[0], best[1]
+
+    def length_gaps(self, z) -> np.ndarray:
+        """The link-length constraints' gaps of the unknowns z (:meth:`Problem.length_gaps`; −∞ where z is no
+        linkage)."""
+        p = self.problem
+        try:
+            return p.length_gaps(p.linkage(z[:p.dims]))
+        except MotionError:
+            return np.full(p.length_bounds, -np.inf)
+
+    def binds(self, z) -> np.ndarray:
+        """Which link-length rows of the unknowns z are a length or ratio bound within twice :data:`MARGIN` of its
+        limit (a polish then holds each as an equality, :attr:`Problem.held`; the orders are held by
+        :meth:`constrained`)."""
+        p = self.problem
+        out = self.length_gaps(z) >= math.log1p(-2 * MARGIN)
+        out[:p.order_pairs] = False
+        return out
 
     def folded(self, found: tuple[float, np.ndarray]) -> bool:
         """Whether a polish's answer (cost, unknowns) meets an untimed target inexactly with two points
@@ -988,12 +1026,9 @@ class _Search:
     def binding(self) -> bool:
         """Whether the best answer's link-length constraints call for a final polish (:meth:`stiffen`): an
         order (always polished so), or a length or ratio bound within twice the search's margin of its limit."""
-        p = self.problem
-        if self.best is None or not p.length_bounds:
+        if self.best is None or not self.problem.length_bounds:
             return False
-        if p.order:
-            return True
-        return bool((p.length_gaps(p.linkage(self.best[1][:p.dims])) >= math.log1p(-2 * MARGIN)).any())
+        return bool(self.problem.order) or bool(self.binds(self.best[1]).any())
 
     def stiffen(self) -> None:
         """Polish the best answer once more so that a binding link-length constraint is met on its bound,
@@ -1094,8 +1129,9 @@ class _Search:
         return np.column_stack([(fun(moved) - r0) / h for moved, h in _forward_steps(z, upper, range(len(z)))])
 
     def aim_bounds(self):
-        """The best answer polished again with the length and ratio bounds aimed :data:`HELD_MARGIN` inside,
-        each aim then moved inwards by the overshoot its penalty leaves, for up to :data:`AIM_ROUNDS`
+        """The best answer polished again with the length and ratio bounds aimed :data:`HELD_MARGIN` inside (a
+        binding one held there as an equality, :meth:`polish`), each aim then moved inwards by the overshoot its
+        penalty leaves, for up to :data:`AIM_ROUNDS`
         polishes with central differences, within :data:`AIM_SHARE` of the budget beyond it (a shifted
         penalty: the least squares converge as the search's do, and the answer lands on the bound); (cost,
         unknowns, direction), or None."""
