@@ -238,7 +238,10 @@ def plot_pantograph(result, path: str, n: int = 61) -> str:
         nrm = np.array([-d[1], d[0]]) / max(np.hypot(*d), 1e-12)
         if (nrm[1] < 0) != (num in ("14", "15")):  # parallelogram bars labelled below, the rest above
             nrm = -nrm
-        ax.annotate(num, 0.5 * (P[a] + P[b]), textcoords="offset points", xytext=tuple(11 * nrm),
+        at, offset = 0.5 * (P[a] + P[b]), 11 * nrm
+        if num == "9":  # E–B spans the band between link 2 and bar 14, which a label beside it would sit on:
+            at, offset = (P["A"] + P["E"] + P["B"]) / 3, (0, 0)  # its label goes in the triangle A, E, B
+        ax.annotate(num, at, textcoords="offset points", xytext=tuple(offset),
                     fontsize=9, color="C0", fontweight="bold", ha="center", va="center")
     pts = np.array([v for v in P.values()])
     lo_y, hi_y = pts[:, 1].min(), pts[:, 1].max()

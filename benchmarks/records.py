@@ -139,9 +139,13 @@ _BEYOND = {
     (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
              + ", some 16 CPU min in all (at 26 links the sizing, its growth factor fitted there, was 58 % under the "
              "count); begun on 29 Nov at 19:01 (4085be8, load 3–6): 412 units, 2.15e9 chains in the first minute, then "
-             "no unit finished in 6 more minutes (like the first count at 32 links h = 6 under the layers' budget, PROFILE.md "
-             "section 36; the cause not examined here), stopped; to run it: `python "
-             "benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
+             "no unit finished in 6 more minutes, stopped; the cause, found by running the count again in one process at "
+             "a115c58 (29 Nov 20:31): 373 units in 4 min, then one unit for 2.6 CPU min and more, in stage B's programme "
+             "(py-spy: `tight_count`) at 600 MiB, on a branch multigraph that is a cubic graph on 12 vertices (12 ternary "
+             "links, 18 strings) — the layers' depth-first split of a98900f (PROFILE.md section 36), replaced since by "
+             "buckets (section 38); begun again at 1889f2d (21:42–21:55 UTC, load about 20, each worker getting 6–9 % of "
+             "a core): past that unit, 404 units and 8 449 037 196 chains after 12 min wall (some 70 CPU s a worker), "
+             "stopped for the session's time; to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
     (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
              "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
              "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "
@@ -169,26 +173,30 @@ ROWS = (
     + [_row("W = 2", 2, n, _TSAI[2, True].get(n), "T" if n <= 9 else "JMD2024", quick=n == 5, oracle=n <= 7)
        for n in range(5, 16, 2)]
     + [_row("W = 2", 2, 17, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 9.5e7 chains, 7 CPU min")]
+            heavy="run on its own (--only): 7 loops; counted without visiting (PROFILE.md section 37) on 29 Nov 2026 "
+                  "(39aec68) in 14.3 CPU s, sized at 14.4 (`records.py --size`), its second count (--method "
+                  "tight-reverse) 19.4 CPU s, equal by code")]
     + [_row("W = 2", 2, 19, None, "",
             heavy="run on its own (--only): 8 loops; since every unit is counted without visiting (853192f, "
                   "PROFILE.md section 37) the engine's sizing (`records.py --size`) gives about 8.4e9 chains, 394 CPU s "
                   "(it sized 17 links at 17.4 CPU s); the second count by tight-reverse costs about as much")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
-    + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 229))]
+    + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 14.3))]
     + [_row("W = 2, not fractionated", 2, 19, None, "", frac=False, heavy=_NOT_FRACTIONATED.format(8, 372))]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
-            heavy="run on its own (--only): 7 loops, the engine's sizing gives about 3.8e8 chains, 18 CPU min")]
+            heavy="run on its own (--only): 7 loops; counted without visiting (PROFILE.md section 37) on 29 Nov 2026 "
+                  "(1b08d31) in 31.8 CPU s, sized at 20.3 (`records.py --size`), its second count (--method "
+                  "tight-reverse) 32.0 CPU s, equal by code")]
     + [_row("W = 3", 3, 20, None, "",
             heavy="run on its own (--only): 8 loops; counted on 29 Nov 2026 (82b1d25) in 626 CPU s, sized at 426 "
                   "(PROFILE.md section 37), and its second count (--method tight-reverse, 468 CPU s, beside it: "
                   "`--recheck --reverse-from`) equal by code (benchmarks/logs/count_w3_20_links.txt)")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
-    + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 753))]
+    + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 31.8))]
     + [_row("W = 3, not fractionated", 3, 20, None, "", frac=False,
             heavy=_NOT_FRACTIONATED.format(8, 626).replace(" by code", " by code, run after it beside no other count and "
                                                            "compared by `--recheck --reverse-from` "

@@ -1,12 +1,14 @@
 """The ``mechsynth`` command: the error contract around the root parser (:mod:`mechsynth._parser`).
 
 Results go to stdout, progress to stderr, errors to stderr as one sentence with exit
-status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C).
+status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C, 143 on SIGTERM).
 
 The console script imports this module and calls :func:`main`; so that a Ctrl-C at any moment
 after the interpreter has started ends in one line and status 130, this module imports nothing
 the interpreter has not already loaded but :mod:`signal`: the parser, argparse and the engine are
-imported inside :func:`main`, under its Ctrl-C handler (tests/cli/test_contract.py).
+imported inside :func:`main`, under its Ctrl-C handler (tests/cli/test_contract.py).  SIGTERM (a
+``kill``, a batch system's time limit) stops a run the same way, through the same clean-up (the
+pool's workers ended, a count's temporary folder removed), with status 143.
 
 Example
 -------
@@ -36,20 +38,20 @@ __all__ = ["main"]
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    interrupted, previous, pending = [], None, []
+    interrupted, previous, pending = [], {}, []
 
     def on_interrupt(signum, frame):
         interrupted.append(signum)
         raise KeyboardInterrupt
 
     def on_unraisable(unraisable):
-        """A Ctrl-C raised inside a finaliser or a ctypes callback, where Python drops it after printing it:
+        """A Ctrl-C (or SIGTERM) raised inside a finaliser or a ctypes callback, where Python drops it after printing it:
         raised again in the main thread a moment later, once that code has returned (from another thread:
         in this one the handler would run at once, inside this hook, and be dropped again)."""
         if interrupted and isinstance(unraisable.exc_value, KeyboardInterrupt):
             import _thread
 
-            again = threading.Timer(0.05, _thread.interrupt_main)
+            again = threading.Timer(0.05, _thread.interrupt_main, (interrupted[0],))
             again.daemon = True
             pending.append(again)
             again.start()
@@ -57,29 +59,40 @@ def main(argv: list[str] | None = None) -> int:
             previous_hook(unraisable)
 
     # Ctrl-C raises KeyboardInterrupt as Python's own handler does, and is remembered: an extension
-    # interrupted in the middle of a call (nauty building a graph) may raise something else instead
+    # interrupted in the middle of a call (nauty building a graph) may raise something else instead;
+    # SIGTERM, whose default would end the process at once (its workers' temporary files left behind),
+    # does the same
     previous_hook = sys.unraisablehook
-    if threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-        previous = signal.signal(signal.SIGINT, on_interrupt)
-        sys.unraisablehook = on_unraisable
+    if threading.current_thread() is threading.main_thread():
+        if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            previous[signal.SIGINT] = signal.signal(signal.SIGINT, on_interrupt)
+        if signal.getsignal(signal.SIGTERM) == signal.SIG_DFL:
+            previous[signal.SIGTERM] = signal.signal(signal.SIGTERM, on_interrupt)
+        if previous:
+            sys.unraisablehook = on_unraisable
     try:
         return _run(argv)
     except KeyboardInterrupt:
-        print("mechsynth: interrupted", file=sys.stderr)
-        return 130
+        return _stopped(interrupted)
     except BrokenPipeError:
         return 0
     except Exception:
         if not interrupted:
             raise
-        print("mechsynth: interrupted", file=sys.stderr)
-        return 130
+        return _stopped(interrupted)
     finally:
         for again in pending:  # none outlives the command
             again.cancel()
-        if previous is not None:
-            signal.signal(signal.SIGINT, previous)
-            sys.unraisablehook = previous_hook
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        sys.unraisablehook = previous_hook
+
+
+def _stopped(signals: list[int]) -> int:
+    """Say that the run was stopped, in one line; the status is 128 + the first signal (130 for Ctrl-C)."""
+    terminated = bool(signals) and signals[0] == signal.SIGTERM
+    print(f"mechsynth: {'terminated' if terminated else 'interrupted'}", file=sys.stderr)
+    return 128 + (signal.SIGTERM if terminated else signal.SIGINT)
 
 
 def _run(argv: list[str]) -> int:

@@ -112,19 +112,19 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
         for k in sorted(inputs, key=lambda k: (kinds[k] != REVOLUTE, k)):
             try:
                 candidate = linkage_from_pose(mechanism, pose, inputs=(k,), slides=slides, nudge=attempt == 0)
-                score, why = _how_well(candidate)
+                score, why, measured = _how_well(candidate)
             except MotionError as exc:
-                score, why = None, str(exc)
+                score, why, measured = None, str(exc), None
             if attempt == 0 and first_why is None:
                 first_why = why
             if score is not None and (best is None or score > best[0]):
-                best = (score, candidate, attempt)
+                best = (score, candidate, attempt, measured)
         if best is not None and best[0][0]:
             break
     if best is None:
         raise MotionError(f"no pose near the drawing of {chain.compact()} with frame {mechanism.frame} moves "
                           f"({first_why})")
-    score, linkage, attempt = best
+    score, linkage, attempt, measured = best
     if attempt == 0:
         return linkage
     shift = float(np.hypot(*(linkage.points - drawn).T).max())
@@ -136,7 +136,9 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
         swing = f"slides {score[3] * linkage.scale / (2 * math.pi):.3g}"
     note = (f"the drawing's pose does not move well ({first_why}); its joints were moved by up to {shift:.3g} "
             f"({shift / size:.0%} of its size) to a pose whose input {swing}"
-            + (f" with transmission angles of at least {math.degrees(score[2]):.0f}°" if score[1] else ""))
+            # (whole degrees down: a bound of 23.7° is "at least 23°"; a group moved by Newton's method has none)
+            + (f" with transmission angles of at least {math.floor(math.degrees(measured))}°"
+               if score[1] and measured is not None else ""))
     return Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, linkage.tracers,
                    note)
 
@@ -145,9 +147,11 @@ def linkage_from_layout(mechanism: Mechanism, *, size: float = 100.0, tries: int
 _GOOD_TRANSMISSION = math.radians(20)
 
 
-def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
+def _how_well(linkage: Linkage) -> tuple[tuple, str | None, float | None]:
     """How well a linkage moves, as a sortable score (moves well, turns fully, worst transmission
-    angle, swing), and what is wrong with it in words (None when nothing is)."""
+    angle, swing), what is wrong with it in words (None when nothing is), and a crank's worst
+    transmission angle as measured (None where none is: a rocker, or a group moved by Newton's method,
+    which reports none and is scored as 90°)."""
     from .motion import pose_branch, sweep
 
     lo, hi, closed_form = pose_branch(linkage)
@@ -173,7 +177,7 @@ def _how_well(linkage: Linkage) -> tuple[tuple, str | None]:
         why = f"a transmission angle falls to {math.degrees(worst):.2g}°"
     else:
         why = "its input does not turn fully"
-    return (good, full, round(worst, 3), span), why
+    return (good, full, round(worst, 3), span), why, worst if full and closed_form else None
 
 
 # ------------------------------------------------------------------ the geometry of each frame

@@ -639,6 +639,11 @@ def test_design_refusals():
         design(simple, 0, 1, 2, "4", teeth=(5, 12))
     with pytest.raises(InvalidOption, match="the speed ratio must be"):
         design(simple, 0, 1, 2, "four")
+    # the tolerance bounds the relative error |i − R| ≤ tol·|R|: at 99 % the best design is exact, at 100 % refused
+    assert design(simple, 0, 1, 2, "4", tolerance="99%", teeth=(17, 60), best=1)[0].error == 0
+    for tolerance in ("100%", "1.5", "-1%"):
+        with pytest.raises(InvalidOption, match="the tolerance is the ratio's relative error allowed"):
+            design(simple, 0, 1, 2, "4", tolerance=tolerance)
     with pytest.raises(InvalidOption) as refused:  # the remedy names the argument, in the caller's words
         design(simple, 0, 1, 2, "4.123456789123456789", teeth=(17, 10**12))
     assert str(refused.value).endswith("narrow teeth=A..B") and refused.value.text(flag).endswith("narrow --teeth A..B")
@@ -690,6 +695,11 @@ def test_cli_mechanisms_and_ratio(tmp_path):
     (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.123456789123456789",
       "--teeth", "17..1000000000000"], "narrow --teeth A..B"),
     (["--links", "5", "--graphs", "rotation", "--ratio", "3"], "drop --graphs rotation"),
+    # a relative error of 100 % or more lets a ratio twice the one asked, or of the other sign, pass
+    (["--links", "7", "--ratio", "4", "--tolerance", "150%"], "0 … 100 % (exclusive), not 150%"),
+    (["--links", "7", "--ratio", "4", "--tolerance", "1"], "not 1 (at 100 % or more"),
+    (["--links", "7", "--ratio", "4", "--tolerance=-0.5%"], "not -0.5%"),
+    (["--links", "7", "--ratio", "abc"], "the speed ratio must be a number"),
     (["--links", "5", "--frame", "0"], "goes with --train"),
     (["--links", "5", "--out", "x.txt"], "written as PNG, PDF or SVG"),
     (["--links", "5", "--out", "/no/such/dir/x.png"], "cannot write"),

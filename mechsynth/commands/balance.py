@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import sys
 
 from .._argtypes import number_range, picture_file, positive
 from .._output import number, pairs, write_document
@@ -161,6 +162,7 @@ def _run(args) -> int:
             import balance
 
             getattr(balance, args.plot_with)(result, args.plot)
+            print(f"plot -> {args.plot}", file=sys.stderr)  # as move, dimension and draw say where they wrote
     except TooMuchWork as exc:
         raise InvalidOption(f"{str(exc).rstrip('.')}; give --force to run it anyway.") from None
     except BalanceError as exc:

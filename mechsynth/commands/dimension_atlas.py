@@ -25,8 +25,8 @@ def check(args) -> None:
 
     given = [name for name, value in (("--linkage", args.linkage), ("--mechanism", args.mechanism),
                                       ("--frame", args.frame), ("--input", args.input),
-                                      ("--tracer-link", args.tracer_link), ("--output-link", args.output_link),
-                                      ("--underdetermined", args.underdetermined or None)) if value is not None]
+                                      ("--tracer-link", args.tracer_link), ("--output-link", args.output_link))
+             if value is not None]
     if given:
         raise InvalidOption(f"--db searches every topology of the atlas: it does not go with {', '.join(given)} "
                             "(which name one topology)")
@@ -54,15 +54,16 @@ def run(args, target, constraints, *, save, draw) -> int:
     command's own writers of a result)."""
     from synth import InvalidOption
     from synth.atlas import search_atlas
+    from synth.errors import flag
 
     if target.kind != "path":
         raise InvalidOption(f"the atlas search looks for paths (its index holds coupler curves), not a {target.kind}: "
                             "give the topology with --mechanism or --linkage")
     found = search_atlas(args.db, target, links=links_range(args.links), top=args.top, budget=args.budget,
-                         constraints=constraints, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
-                         progress=sys.stderr.isatty())
+                         constraints=constraints, seed=args.seed, underdetermined=args.underdetermined,
+                         workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty())
     for note in found.notes:
-        print(f"mechsynth: {note}", file=sys.stderr)
+        print(f"mechsynth: {note.text(flag)}", file=sys.stderr)
     rows = []
     for rank, match in enumerate(found.matches, 1):
         row = {"rank": rank, **match.row()}

@@ -36,7 +36,7 @@ def add_commands(sub) -> None:
     p.add_argument("--output", type=whole, help="with --train and --frame: the output link")
     p.add_argument("--compound", default="", metavar="L,L", help="links that carry a wheel per mesh (stepped planets)")
     p.add_argument("--ratio", help="design tooth numbers for this speed ratio ω_in/ω_out, e.g. 4.25 or 17/4")
-    p.add_argument("--tolerance", help="with --ratio: relative error allowed, e.g. 1%% (default) or 0.002")
+    p.add_argument("--tolerance", help="with --ratio: relative error allowed, below 100%%, e.g. 1%% (default) or 0.002")
     p.add_argument("--teeth", metavar="A..B", help="with --ratio: tooth numbers allowed (default 17..150)")
     p.add_argument("--min-teeth", type=whole, help="with --ratio: fewest teeth without undercut (default 17)")
     p.add_argument("--planets", type=whole, help="with --ratio: k equally spaced planets that assemble "
@@ -63,6 +63,10 @@ def _check(args) -> None:
                   if getattr(args, name) is not None]
     if ratio_only and args.ratio is None:
         raise InvalidOption(f"--{ratio_only[0].replace('_', '-')} goes with --ratio")
+    if args.ratio is not None:  # (before the trains are enumerated)
+        from synth.gears import ratio_and_tolerance
+
+        ratio_and_tolerance(args.ratio, args.tolerance or "1%")
     if args.count and (args.ratio is not None or args.input_output or args.out):
         what = "--ratio" if args.ratio is not None else ("--input-output" if args.input_output else "--out")
         raise InvalidOption(f"--count and {what} contradict each other: --count prints one number per code")
@@ -180,6 +184,7 @@ def _draw(items, out: str, compound, teeth=None, titles=None) -> None:
         draw_train(items[0], out, teeth=teeth, compound=compound, title=titles[0] if titles else None)
     else:
         draw_train_sheet(items, out, limit=len(items), titles=titles)
+    print(f"{len(items)} schematic{'s' * (len(items) != 1)} -> {out}", file=sys.stderr)  # as draw says
 
 
 def _mechanisms_of(args, items, compound):

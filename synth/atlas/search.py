@@ -109,6 +109,8 @@ class AtlasSearchResult:
     topologies: int
     seconds: float
     timed: bool
+    #: what the search could not do, a :class:`synth.SynthesisError` each: ``str(note)`` is its sentence,
+    #: naming an option as a keyword (``underdetermined=True``); the command line writes it as a flag
     notes: list = field(default_factory=list)
 
     @property
@@ -426,6 +428,7 @@ class TopologyPolish:
     constraints: object
     budget: float
     seed: int
+    underdetermined: bool = False
 
 
 def _expand(task: TopologyPolish) -> list:
@@ -440,7 +443,8 @@ def polish_topology(task: TopologyPolish):
     would otherwise spend the whole share on the first candidate); then, if none met the target exactly, the
     global stage of :func:`synth.dimension.synthesize` (differential evolution, its first population
     seeded from the best polished linkage and the samples) for the rest of the share.  Returns (best
-    result or None, its candidate, candidates polished, why the last failed, CPU seconds)."""
+    result or None, its candidate, candidates polished, why the last failed (a sentence whose options
+    are marked as :func:`synth.errors.option` marks them), CPU seconds)."""
     from dataclasses import replace
 
     from ..dimension import synthesize
@@ -458,7 +462,7 @@ def polish_topology(task: TopologyPolish):
     def polish(start, tracer_link, budget):
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=widened([start]),
                           budget=min(budget, polishing - (time.process_time() - clock)), seed=task.seed,
-                          polish_only=True)
+                          underdetermined=task.underdetermined, polish_only=True)
 
     starts = []
     piece = polishing / max(len(task.candidates), 1)  # each candidate's first polish at most
@@ -470,7 +474,7 @@ def polish_topology(task: TopologyPolish):
             start = start_linkage(candidate, chain, points, at, task.target, slides)
             result = polish(start, candidate.tracer_link, piece)
         except SynthesisError as exc:
-            why = str(exc)
+            why = exc.args[0]  # its options still marked: the note names them as the caller writes them
             continue
         starts.append((candidate.tracer_link, start))
         if best is None or (result.met, -result.error_rms) > (best.met, -best.error_rms):
@@ -495,7 +499,8 @@ def polish_topology(task: TopologyPolish):
         seeds = [best.linkage] + [start for link, start in starts if link == tracer]
         try:
             found = synthesize(best.linkage.mechanism, task.target, tracer_link=tracer, constraints=widened(seeds),
-                               budget=left, seed=task.seed, starts=lambda *_: seeds)
+                               budget=left, seed=task.seed, underdetermined=task.underdetermined,
+                               starts=lambda *_: seeds)
         except SynthesisError:
             found = None
         if found is not None and (found.met, -found.error_rms) > (best.met, -best.error_rms) \
@@ -527,8 +532,8 @@ def _rechecked(result, target) -> float:
 
 def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None, top: int = 5,
                  per_topology: int | None = None, budget: float = 60.0, constraints=None, seed: int = 0,
-                 workers: int = 1, scheduler: str | None = None, progress: bool = False,
-                 connect_timeout: float = 5.0) -> AtlasSearchResult:
+                 underdetermined: bool = False, workers: int = 1, scheduler: str | None = None,
+                 progress: bool = False, connect_timeout: float = 5.0) -> AtlasSearchResult:
     """Which mechanisms of the atlas trace the target path, and with which dimensions.
 
     Parameters
@@ -549,6 +554,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         met exactly stops early).
     constraints : synth.dimension.Constraints, optional
         What the answer must also meet (the search box grows to hold each start).
+    underdetermined : bool
+        Polish topologies with more unknowns than the target gives equations (a six-bar through nine
+        points: one of infinitely many exact answers), as :func:`synth.dimension.synthesize` does.
     workers, scheduler
         Topologies are polished on the project's executor: local processes or a Dask cluster.
 
@@ -604,7 +612,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
                 points, at, slides = conn.execute(f"SELECT points, tracer, {slides_column} FROM curve_samples "
                                                   "WHERE id = ?", (c.row,)).fetchone()
                 rows.append((c, json.loads(points), json.loads(at), slides_of(slides)))
-            tasks.append(TopologyPolish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1), seed))
+            tasks.append(TopologyPolish(chain_json, tuple(rows), target, constraints, budget / max(len(by_topology), 1),
+                                        seed, underdetermined))
     finally:
         conn.close()
     client = None
@@ -631,14 +640,19 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             result, candidate, tried, why, spent = found
             chain = Chain.from_dict(json.loads(task.chain_json))
             if result is None:
-                notes.append(f"{chain.compact()} (frame {task.candidates[0][0].frame}): no polish reached the "
-                             f"target ({why})")
+                from ..motion import joint_name
+
+                first = task.candidates[0][0]
+                notes.append(SynthesisError(f"{chain.compact()} (frame {first.frame}, input "
+                                            f"{joint_name(chain, first.input_joint)}): no polish reached the "
+                                            f"target ({why})"))
                 continue
             gap = _rechecked(result, target)
             if gap > EXACT:
-                notes.append(f"{chain.compact()}: the linkage moved again departs from the reported curve by "
-                             f"{gap:.2g} of the target's size" if math.isfinite(gap) else
-                             f"{chain.compact()}: the linkage cannot be moved again to every reported input")
+                notes.append(SynthesisError(
+                    f"{chain.compact()}: the linkage moved again departs from the reported curve by "
+                    f"{gap:.2g} of the target's size" if math.isfinite(gap) else
+                    f"{chain.compact()}: the linkage cannot be moved again to every reported input"))
             matches.append(AtlasMatch(candidate, result.linkage.mechanism, result, tried, spent))
     finally:
         if bar is not None:

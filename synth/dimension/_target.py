@@ -304,6 +304,8 @@ def read_target(path: str | Path, *, output_link: int | None = None):
     except (TypeError, ValueError):
         bad = next(v for row in body for v in row if not _is_number(v))
         raise BadTarget(f"{path.name}: {bad!r} is not a number") from None
+    if "input_deg" in header:  # checked as written, so that a refusal quotes the file's degrees
+        _monotonic(values[:, header.index("input_deg")], "input_deg values")
     for c, name in enumerate(header):
         if name.endswith("_deg"):
             values[:, c] = np.radians(values[:, c])

@@ -47,7 +47,7 @@ from ._dot import read_dot, write_dot
 from ._entry import Entry, in_motion_space
 from ._graphs import describe, from_graph, read_gml, read_graphml, to_graph, write_gml, write_graphml
 from ._lists import (edge_words, looks_like_joint_list, looks_like_listing, looks_like_table, read_edgelist, read_json,
-                     read_listing, read_table, read_text_lists, write_edgelist, write_lines)
+                     read_linkage_file, read_listing, read_table, read_text_lists, write_edgelist, write_lines)
 from ._matrices import read_matrices, write_adjacency, write_incidence
 
 __all__ = ["FORMATS", "WRITTEN", "Entry", "in_motion_space", "read_chain", "read", "read_file", "read_text", "detect",
@@ -181,6 +181,8 @@ def read_file(path: str | Path, fmt: str | None = None) -> list[Entry]:
                              f"({', '.join(FORMATS)})") from None
     if "\x00" in text:
         raise MalformedChain(f"{path} is a binary file: chains are read from text formats ({', '.join(FORMATS)})")
+    if path.suffix.lower() == ".toml" and fmt is None:  # a linkage or scene file (move --save, dimension --save)
+        return read_linkage_file(text, str(path))
     return read_text(text, fmt, source=str(path), suffix=path.suffix)
 
 

@@ -168,6 +168,8 @@ def _link_of_row(row: dict, key: str, chain: Chain, where: str):
 def _entry_of_row(row, where: str) -> Entry:
     if isinstance(row, list):
         row = {"joints": row}
+    if isinstance(row, dict) and "joints" not in row:
+        row = _linkage_row(row, where)
     if isinstance(row, dict) and isinstance(row.get("joints"), list):
         check_distinct([j for j in row["joints"] if isinstance(j, list)], where)
     try:
@@ -179,6 +181,37 @@ def _entry_of_row(row, where: str) -> Entry:
     names = tuple(map(str, names)) if isinstance(names, list) and len(names) == chain.links else None
     entry = with_settings(chain, where, {"frame": frame, "input": moved, "h": stated_space(row)})
     return Entry(entry.chain, entry.frame, names, where, entry.h, entry.input_link)
+
+
+def _linkage_row(row: dict, where: str) -> dict:
+    """A linkage as a chain row: its joint list and frame (its dimensions are not part of the chain).  A
+    linkage is what ``move --save`` writes, a scene's ``[linkage]`` table and the ``linkage`` of
+    ``dimension --format json``; any other row is returned as it is.
+
+    >>> _linkage_row({"linkage": {"chain": "0-1 1-2 2-3 3-0", "frame": 0, "points": {}}}, "x")["joints"]
+    [[0, 1], [0, 3], [1, 2], [2, 3]]
+    """
+    linkage = row["linkage"] if isinstance(row.get("linkage"), dict) else row
+    if not isinstance(linkage.get("chain"), str):
+        return row
+    try:
+        chain = Chain.parse(linkage["chain"])
+    except MalformedChain as exc:
+        raise MalformedChain(f"{where}: the linkage's chain cannot be read: {exc}") from None
+    return {**chain.to_dict(), "frame": linkage.get("frame")}
+
+
+def read_linkage_file(text: str, source: str) -> list[Entry]:
+    """The chain and frame of a TOML scene or linkage file: its ``[linkage]`` table's (a file without one
+    is refused in one sentence)."""
+    from mechbase.toml import read_toml_text
+
+    data = read_toml_text(text, error=MalformedChain, source=source)
+    row = _linkage_row(data, source)
+    if "joints" not in row:
+        raise MalformedChain(f"{source} holds no chain: a TOML file is read for the chain of its [linkage] table (a "
+                             f"linkage or a scene that moves one); this one holds {', '.join(data) or 'nothing'}")
+    return [_entry_of_row(row, source)]
 
 
 def read_json(text: str, source: str) -> list[Entry]:

@@ -55,11 +55,27 @@ from .spill import Spilled
 __all__ = ["Executor", "process_pool", "run_plan"]
 
 
+#: the signals that stop a run (Ctrl-C, and the ``kill`` of a batch system's time limit): held back while
+#: the workers are forked, left by the workers to their parent
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
 def _worker_start(parent: int) -> None:
-    """Workers leave Ctrl-C to the parent and do not outlive it (``kill -9`` of a long count); the
-    parent's wake-up pipe for signals (:mod:`synth.execution.interrupt`), inherited by the fork, is
-    let go, so no signal a worker catches reads in the parent as its own."""
+    """Workers leave Ctrl-C and SIGTERM to the parent and do not outlive it (``kill -9`` of a long
+    count); the parent's wake-up pipe for signals (:mod:`synth.execution.interrupt`), inherited by the
+    fork, is let go, so no signal a worker catches reads in the parent as its own.
+
+    The pool ends its workers by SIGTERM, so a worker obeys the SIGTERM its parent sends, at once
+    (whatever its main thread is doing), and no other: one sent to the whole process group (``kill --
+    -PGID``, ``timeout``) would kill it in the middle of reading the pool's queue, holding the queue's
+    lock, and the parent, ending the pool, would wait for that lock for ever."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "sigwaitinfo"):  # SIGTERM blocked in every thread, read by one that checks who sent it
+        import threading
+
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+        threading.Thread(target=_obey_parent_only, args=(parent,), daemon=True, name="sigterm-from-parent").start()
     signal.set_wakeup_fd(-1)
     if sys.platform.startswith("linux"):
         try:
@@ -72,36 +88,47 @@ def _worker_start(parent: int) -> None:
         os._exit(1)
 
 
+def _obey_parent_only(parent: int) -> None:
+    """End this worker on a SIGTERM from ``parent`` (the pool's terminate), or once the parent is gone."""
+    while True:
+        sender = signal.sigwaitinfo({signal.SIGTERM}).si_pid
+        if sender == parent or os.getppid() != parent:
+            os._exit(128 + signal.SIGTERM)
+
+
 def process_pool(workers: int):
     """A process pool whose workers leave Ctrl-C to the parent and die with it (fork on Linux).
 
-    Ctrl-C is held back while the workers are forked: a KeyboardInterrupt raised inside a fork
-    handler is printed and dropped by Python ("Exception ignored …"), so the run would go on.
-    Blocking SIGINT in this thread is not enough where another thread runs (the progress lines):
-    the signal reaches that thread and Python runs the handler in the main thread all the same, so
-    there the handler is also replaced, for the fork, by one that only notes the signal.
-    Released afterwards, the held signal interrupts the caller as usual, the pool ended first
-    (the caller never holds it).
+    Ctrl-C (and SIGTERM: :data:`STOP_SIGNALS`) is held back while the workers are forked: a
+    KeyboardInterrupt raised inside a fork handler is printed and dropped by Python ("Exception
+    ignored …"), so the run would go on.  Blocking the signals in this thread is not enough where
+    another thread runs (the progress lines): a signal reaches that thread and Python runs the
+    handler in the main thread all the same, so there the handlers are also replaced, for the
+    fork, by one that only notes the signal.  Released afterwards, a held signal goes to the
+    handler put back (it interrupts the caller as usual), the pool ended first (the caller never
+    holds it).
     """
     import multiprocessing  # (here: a query that stays inline never loads it)
     import threading
 
     ctx = multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     hold = hasattr(signal, "pthread_sigmask")  # (in any thread: the forking thread's mask is what the fork sees)
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if hold else None
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, set(STOP_SIGNALS)) if hold else None
     noted: list[int] = []
-    main = threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is not None
-    handler = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum)) if main else None
+    handlers = {}
+    if threading.current_thread() is threading.main_thread():
+        handlers = {signum: signal.signal(signum, lambda signum, frame: noted.append(signum))
+                    for signum in STOP_SIGNALS if signal.getsignal(signum) is not None}
     try:
         pool = ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
     finally:
         if hold:  # (a signal held by the mask reaches the noting handler, still in place)
             signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-        if main:
-            signal.signal(signal.SIGINT, handler)
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
     if noted:  # to the handler put back; the pool, which the caller will never hold, is ended first
         try:
-            signal.raise_signal(signal.SIGINT)
+            signal.raise_signal(noted[0])
         except BaseException:
             pool.terminate()
             raise

@@ -5,8 +5,8 @@ the main thread: a search that finds no solution for minutes would hold Ctrl-C b
 minutes.  Python also writes the number of every caught signal to its wakeup file descriptor; a
 daemon thread reading it stops the searches running now, and the pending handler raises
 KeyboardInterrupt as soon as ``solve`` returns.  For one second after each Ctrl-C, the thread
-stops every search that began before it or in the instant after it, checking every 50 ms; other
-signals stop nothing, and a full descriptor is never reported on stderr.  (Pool workers ignore
+stops every search that began before it or in the instant after it, checking every 50 ms (SIGTERM,
+which the command handles as Ctrl-C, does the same); other signals stop nothing, and a full descriptor is never reported on stderr.  (Pool workers ignore
 SIGINT: their parent terminates them.)  The solver is whatever has ``solve(model, callback)`` and ``stop_search()``
 (OR-Tools' ``CpSolver``): this module never loads OR-Tools itself.
 
@@ -36,6 +36,8 @@ _RUNNING: dict = {}  # solver -> when its search began (time.monotonic)
 #: already (a notebook, a test) and runs to its end
 _INSTANT = 0.1
 _watching = False
+#: the signals that stop the searches: Ctrl-C, and SIGTERM (which the ``mechsynth`` command handles as it does Ctrl-C)
+_STOPPING = frozenset({signal.SIGINT, signal.SIGTERM})
 
 
 def solve_stoppably(solver, model, callback=None):
@@ -86,7 +88,7 @@ def _watch_interrupts() -> None:
 
 def _stop_on_interrupt(fd: int) -> None:
     while True:
-        if signal.SIGINT not in os.read(fd, 64):
+        if not _STOPPING.intersection(os.read(fd, 64)):
             continue
         caught = time.monotonic()
         for _ in range(20):  # a search started in the instant after the signal is caught too

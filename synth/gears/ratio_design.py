@@ -4,7 +4,8 @@ For a mechanism of a 1-DOF train (frame, input, output) the ratio i = ω_in/ω_o
 two polynomials in the tooth numbers (:func:`~synth.gears.ratios.speed_ratio`).  The model:
 
 * every wheel: ``min_teeth`` (no undercut; 17 for 20° full-depth teeth) ≤ z, and A ≤ z ≤ B;
-* ratio: |N − R·D| ≤ tolerance·|D| with R and the tolerance read as exact fractions;
+* ratio: |N − R·D| ≤ tolerance·|R·D|, a relative error |i − R| ≤ tolerance·|R| (below 100 %: the ratio keeps
+  its sign), with R and the tolerance read as exact fractions;
 * internal meshes: the ring has at least ``RING_MARGIN`` more teeth than its pinion;
 * coaxial condition, per carrier: the meshes a carrier holds between the same two of its axes
   have one centre distance (one module): z_a + z_b for an external pair, z_ring − z_pinion for
@@ -45,7 +46,7 @@ from ..errors import InvalidOption, option
 from .ratios import speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "NoDesign", "design", "parse_fraction", "planet_pairs", "carrier_cycles", "planet_clearance",
+__all__ = ["Design", "NoDesign", "design", "parse_fraction", "ratio_and_tolerance", "planet_pairs", "carrier_cycles", "planet_clearance",
            "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
@@ -102,6 +103,27 @@ def parse_fraction(text, what: str) -> Fraction:
         raise InvalidOption(f"{what} must be a number such as 4.25, 17/4 or 1%, not {text!r}") from None
 
 
+def ratio_and_tolerance(ratio, tolerance) -> tuple[Fraction, Fraction]:
+    """The speed ratio and its tolerance as exact fractions, refused where meaningless.
+
+    The tolerance is the ratio's relative error allowed, |i − R| ≤ tolerance·|R|: 0 ≤ tolerance < 100 %
+    (at 100 % any ratio of the same sign up to 2R would do; beyond it one of the other sign, the output
+    turning the wrong way).
+
+    >>> ratio_and_tolerance("17/4", "0.5%")
+    (Fraction(17, 4), Fraction(1, 200))
+    """
+    target = parse_fraction(ratio, "the speed ratio")
+    tol = parse_fraction(tolerance, "the tolerance")
+    if target == 0:
+        raise InvalidOption("a speed ratio of 0 would need an output that never turns")
+    if not 0 <= tol < 1:
+        raise InvalidOption(f"the tolerance is the ratio's relative error allowed, 0 … 100 % (exclusive), not "
+                            f"{tolerance}" + (" (at 100 % or more, a ratio twice the one asked, or of the other "
+                                               "sign, would pass)" if tol >= 1 else ""))
+    return target, tol
+
+
 def _axis_of(train: GearTrain, gear: int, carrier: int, other_axis) -> tuple:
     """The axis about which ``gear`` turns on ``carrier`` (a floating gear: the carrier's axis on
     the frame, or its first axis other than ``other_axis``)."""
@@ -136,12 +158,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     error and at most that sum (a search over many mechanisms passes the worst design it keeps).
     Raises :class:`NoDesign` when none qualifies.
     """
-    target = parse_fraction(ratio, "the speed ratio")
-    tol = parse_fraction(tolerance, "the tolerance")
-    if target == 0:
-        raise InvalidOption("a speed ratio of 0 would need an output that never turns")
-    if tol < 0:
-        raise InvalidOption(f"the tolerance must be ≥ 0, not {tolerance}")
+    target, tol = ratio_and_tolerance(ratio, tolerance)
     if teeth[0] < 1:
         raise InvalidOption(f"a gear has at least 1 tooth: the tooth range {teeth[0]}..{teeth[1]} starts below 1")
     lo, hi = max(teeth[0], min_teeth), teeth[1]

@@ -498,4 +498,10 @@ def read_linkage(path: str | Path) -> Linkage:
             raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno}).") from None
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
-    return Linkage.from_dict(data)
+    elif isinstance(data, dict) and not {"chain", "frame", "inputs", "points"} & set(data):  # an arm, a grid, …
+        raise MotionError(f"{path.name} holds no linkage: a linkage file has a [linkage] table, or chain, frame, "
+                          f"inputs and points at its top; this one holds {', '.join(data) or 'nothing'}")
+    try:
+        return Linkage.from_dict(data)
+    except MotionError as exc:  # the same sentence, naming the file
+        raise type(exc)(f"{path.name}: {exc.args[0]}") from None

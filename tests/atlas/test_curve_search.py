@@ -417,6 +417,25 @@ def test_the_command_finds_the_four_bar_saves_and_draws_it(four_bar_index, tmp_p
     assert moved.returncode == 0, moved.stderr
 
 
+def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_bar_index, tmp_path):
+    # 8 untimed points: 16 equations for a four-bar's 17 unknowns.  The note once told the command line to give
+    # "underdetermined=True" (the Python keyword), and --underdetermined was refused with --db
+    linkage = _random_crank(FOUR_BAR, 2, seed=7)
+    target = _target(linkage, 8, False)
+    csv = tmp_path / "eight.csv"
+    csv.write_text("x,y\n" + "".join(f"{x!r},{y!r}\n" for x, y in target.points.tolist()))
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "5")
+    assert done.returncode == 1 and done.stdout == "", done.stderr
+    (note,) = [line for line in done.stderr.splitlines() if "no polish reached" in line]
+    assert note.startswith("mechsynth: 0-1 0-2 1-3 2-3 (frame 0, input 0-1): no polish reached the target (8 target "
+                           "points give 16 equations for the 17 unknowns") and note.endswith(
+        "(or allow an underdetermined problem: --underdetermined))"), note
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "5", "--underdetermined", "--format", "jsonl")
+    assert done.returncode == 0 and "no polish reached" not in done.stderr, done.stderr
+    (row,) = [json.loads(line) for line in done.stdout.splitlines()]
+    assert row["links"] == 4 and row["relative_max"] <= 1e-9  # one of the four-bars through the eight points
+
+
 @pytest.mark.parametrize("args, message", [
     (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0"], "does not go with --mechanism, --frame"),
     (["--links", "4..6"], None),  # (without --db: below)

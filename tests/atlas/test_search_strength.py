@@ -547,9 +547,9 @@ def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(t
     monkeypatch.setattr(time, "process_time", _Clock(0.0, 10.0))
     found = search_atlas(db, target, budget=3, per_topology=1)
     chain = Chain.from_dict(json.loads(sql(db, "SELECT chain FROM chains")[0][0]))
-    assert found.matches == [] and found.notes == [
-        f"{chain.compact()} (frame 0): no polish reached the target (its share of the time budget was spent before "
-        "a polish began)"]
+    assert found.matches == [] and [str(note) for note in found.notes] == [
+        f"{chain.compact()} (frame 0, input 0-1): no polish reached the target (its share of the time budget was "
+        "spent before a polish began)"]
 
 
 def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):

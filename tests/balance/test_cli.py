@@ -37,8 +37,9 @@ def test_arm_json_has_terms_devices_residual(capsys):
 
 def test_arm_table_and_plot(capsys, tmp_path):
     png = tmp_path / "arm.png"
-    code, out, _ = run(capsys, ["arm", str(MODELS / "arm_prismatic.toml"), "--plot", str(png)])
+    code, out, err = run(capsys, ["arm", str(MODELS / "arm_prismatic.toml"), "--plot", str(png)])
     assert code == 0 and "gear ratio" in out and png.stat().st_size > 10_000
+    assert err == f"plot -> {png}\n"  # where the figure went, as every command that draws says
 
 
 @pytest.mark.parametrize("extra", [[], ["--norm", "rms"], ["--method", "trf"], ["--method", "nelder-mead"]])
@@ -144,7 +145,7 @@ def test_spring_design_lever_pareto_and_target(capsys, tmp_path):
                                            "--target-error", "0.03", "--design-spring", "--material", "oil-tempered",
                                            "--format", "json", "--plot", str(png)])
     d = json.loads(out)
-    assert code == 1 and err == ""  # the requested error is missed: a result, a warning, exit 1
+    assert code == 1 and err == f"plot -> {png}\n"  # the requested error is missed: a result, a warning, exit 1
     assert d["target_met"] is False and d["pareto"] and png.stat().st_size > 20_000
     for k in ("wire_diameter_m", "mean_diameter_m", "active_coils", "shear_modulus_Pa", "stiffness_N_per_m",
               "max_shear_stress_Pa", "allowed_shear_stress_Pa", "solid_length_m"):

@@ -14,6 +14,7 @@ so that a case which ignores its sizes cannot take the machine.
 from __future__ import annotations
 
 import hashlib
+import os
 import json
 import re
 import shlex
@@ -169,7 +170,7 @@ CASES = [
     # ---- identify and compare: files of chains in any format
     ("identify {d}/binary.toml", "binary.toml"),
     ("identify {d}/missing.graphml", "missing.graphml"),
-    ("identify {d}/grid_small.toml", "cannot tell"),
+    ("identify {d}/grid_small.toml", "grid_small.toml holds no chain"),
     ("identify '0-1 1-1 1-2'", "joined to itself"),
     ("identify '0-1 1-2 2-0' --input-format graphml", "GraphML"),
     ("identify '0-1 1-2 2-0' --frame 5", "frame 5"),
@@ -183,7 +184,7 @@ CASES = [
     ("analyze '0=1 1=2 2=3 3=0' --h 4", "planar"),
     ("draw --chain '0-1 1-2 2-3 3-4 4-5 5-0  # h 5' --h 3 --out {d}/x.svg", "h = 5, and --h 3"),
     ("compare {d}/binary.toml --dof 1 --links 8", "binary.toml"),
-    ("compare {d}/grid_small.toml --dof 1 --links 8", "cannot tell"),
+    ("compare {d}/grid_small.toml --dof 1 --links 8", "grid_small.toml holds no chain"),
     ("compare {d}/missing.txt --dof 1 --links 9", "no whole number of loops"),
     ("compare {d}/missing.txt --dof 1 --links 8 --idle-joints", "--idle-joints"),
     ("atlas --db {d}/atlas.sqlite --where id=xyz", "12 hex digits"),
@@ -204,7 +205,7 @@ CASES = [
     ("planetary --satellites -3", "'-3'"),
     # ---- move
     ("move {d}/binary.toml", "binary.toml"),
-    ("move {d}/grid_small.toml", "'dof'"),
+    ("move {d}/grid_small.toml", "grid_small.toml holds no linkage"),
     ("move {m}/motion_four_bar.toml --steps 0", "not 0"),
     ("move {m}/motion_four_bar.toml --steps 2000000", "--steps"),
     ("move {m}/motion_four_bar.toml --start inf", "'inf'"),
@@ -394,3 +395,34 @@ def test_the_table_is_large_and_covers_every_subcommand():
     parser = build_parser()
     commands = set(next(a for a in parser._actions if a.dest == "command").choices)
     assert len(CASES) >= 60 and {c.split()[0] for c, _ in CASES} == commands
+
+
+# one refusal of a bad argument per subcommand, each checked before the engine compiles anything
+COLD = ["codes --dof 1 --loops 30", "chains --dof 1 --loop-classes 3=4", "analyze '0-1 1-2 2-0 2-3 | h5: 0 1 2 3'",
+        "identify '0-1 1-2 2-0 | h5 0 1 2'", "mechanisms --dof 1 --links 4 --cylinders floating=1",
+        "gears --links 7 --ratio 4 --tolerance 150%", "draw --chain '0-1 1-2 2-3 3-0' --out /nonexistent/x.png",
+        "scene --all {m} --out /proc/figs", "planetary --satellites 1..40", "move {m}/motion_four_bar.toml --steps 0",
+        "dimension {m}/dimension_function.csv", "balance prismatic --mass -2 --inertia 0.1 --counter-mass 2 --stroke 0.5",
+        "grid {d}/missing.toml --db {d}/new.sqlite", "atlas --db {d}/missing.sqlite",
+        "compare {d}/missing.txt --dof 1 --links 9"]
+
+
+def test_bad_arguments_are_refused_before_any_kernel_compiles(tmp_path):
+    """On a fresh checkout (numba's cache cold) the compiled searches take some 14 CPU s to compile: an argument
+    refusal must come before that, so each runs here with an empty cache of its own and must leave it empty
+    (every kernel is cached, ``cache=True``: one compiled would be written there; numba makes a module's folder
+    there when the module is imported)."""
+    from mechsynth._parser import build_parser
+
+    parser = build_parser()
+    commands = set(next(a for a in parser._actions if a.dest == "command").choices)
+    assert {c.split()[0] for c in COLD} == commands
+    for k, command in enumerate(COLD):
+        cache = tmp_path / f"numba{k}"
+        cache.mkdir()
+        argv = [a.replace("{d}", str(tmp_path)).replace("{m}", str(MODELS)) for a in shlex.split(command)]
+        env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), "PYTHONPATH": str(ROOT)}
+        out = subprocess.run([sys.executable, "-m", "mechsynth", *argv], capture_output=True, text=True, env=env,
+                             cwd=tmp_path, timeout=allowed_seconds(60))
+        assert out.returncode == 2 and out.stderr.count("\n") == 1, (command, out.stderr[-500:])
+        assert not [f for f in cache.rglob("*") if f.is_file()], (command, "compiled something before refusing")

@@ -45,6 +45,20 @@ def test_the_untimed_jacobian_equals_the_full_finite_differences(constraints):
     assert fast.shape == full.shape == (len(fun(z)), len(z))
     assert np.abs(fast - full).max() <= 1e-5 * np.abs(full).max()
     assert np.abs(full[:, problem.dims + 2]).max() > 0  # a later step moves the points after it
+    calls = []
+
+    def counted(x):
+        calls.append(1)
+        return fun(x)
+
+    # the residuals at z, when the caller has them (SLSQP's gradient 2·Jᵀr), are not evaluated again, and central
+    # differences, which do not use them, never evaluate them: one evaluation (two) per column built
+    assert np.array_equal(search.untimed_jacobian(counted, z, upper, r0=fun(z)), fast)
+    assert len(calls) == problem.dims + 1
+    calls.clear()
+    central = search.untimed_jacobian(counted, z, upper, central=True)
+    assert len(calls) == 2 * (problem.dims + 1)
+    assert np.abs(central - full).max() <= 1e-5 * np.abs(full).max()
 
 
 @pytest.mark.parametrize("seed, budget", [(7, 30), (0, 30)])

@@ -51,9 +51,9 @@ def test_refusals_name_what_is_wrong():
 @pytest.mark.parametrize("target, sentence", [
     # timed path: 8 coordinates + the tracer's 2 = 10 unknowns, 2 equations a point: 5 points
     (TIMED, "3 target points give 6 equations for the 10 unknowns of this path synthesis: give at least 5 points"),
-    # untimed: 10 + the 3 inputs after the first = 13; each point adds 2 equations and 1 input: 10 points
+    # untimed: 10 + the 3 inputs after the first = 13; each point adds 2 equations and 1 input: 2N ≥ 9 + N, 9 points
     (PathTarget([[0, 0], [1, 0], [1, 1], [0, 1]]),
-     "4 target points give 8 equations for the 13 unknowns of this path synthesis: give at least 10 points"),
+     "4 target points give 8 equations for the 13 unknowns of this path synthesis: give at least 9 points"),
     # a function: the two moving pins (4) less the pose's place on its branch = 3 unknowns, 1 equation a pair
     (FunctionTarget([0.1, 0.2], [0.3, 0.5]),
      "2 target points give 2 equations for the 3 unknowns of this function synthesis: give at least 3 points"),
@@ -63,6 +63,22 @@ def test_refusals_name_what_is_wrong():
 ])
 def test_an_underdetermined_target_says_how_many_points_it_needs(target, sentence):
     assert refused(BadTarget, synthesize, FOUR_BAR, target, budget=1).startswith(sentence + " (or allow")
+
+
+@pytest.mark.parametrize("make", [
+    lambda n: PathTarget([[math.cos(t), math.sin(t)] for t in range(n)], [0.1 * t for t in range(n)]),
+    lambda n: PathTarget([[math.cos(t), math.sin(t)] for t in range(n)]),
+    lambda n: FunctionTarget([0.1 * t for t in range(n)], [0.2 * t for t in range(n)]),
+    lambda n: MotionTarget([[math.cos(t), math.sin(t), 0.1 * t] for t in range(n)]),
+])
+def test_the_points_a_refusal_asks_for_are_the_fewest_that_suffice(make):
+    # the number said is read from the refusal; that many points give at least as many equations as unknowns,
+    # one fewer do not (an untimed target's message once asked for one point more than it needs)
+    message = refused(BadTarget, synthesize, FOUR_BAR, make(2), budget=1)
+    enough = int(message.split("give at least ")[1].split()[0])
+    problem = _problem(FOUR_BAR, make(enough), None, Constraints())[0]
+    fewer = _problem(FOUR_BAR, make(enough - 1), None, Constraints())[0]
+    assert problem.equations >= problem.unknowns and fewer.equations < fewer.unknowns
 
 
 def test_a_polish_from_the_mechanism_that_traced_the_points_returns_it():

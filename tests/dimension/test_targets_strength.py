@@ -76,6 +76,16 @@ def test_the_timing_must_be_strictly_monotonic_and_says_where_it_is_not():
     assert PathTarget([[0, 0], [1, 0], [2, 0]], [0, -1, -5]).inputs.tolist() == [0, -1, -5]
 
 
+def test_a_timing_in_degrees_is_refused_in_the_files_degrees(tmp_path):
+    # a crank angle typed 700 for 70: the sentence quotes the column as written, not 12.2173048 → 1.57079633 rad
+    timed = write(tmp_path, "timed.csv", "x,y,input_deg\n1,2,0\n3,4,30\n5,1,700\n2,0,90\n")
+    assert refused(BadTarget, read_target, timed) == \
+        "the input_deg values must increase (or decrease) from row to row, but rows 3 and 4 go 700 → 90"
+    function = write(tmp_path, "function.csv", "input_deg,output_deg\n10,5\n10,7\n")
+    assert refused(BadTarget, read_target, function) == \
+        "the input_deg values must increase (or decrease) from row to row, but rows 1 and 2 go 10 → 10"
+
+
 def test_sizes_are_the_diagonal_of_the_points_box():
     t = PathTarget([[1, 1], [4, 1], [2, 5]])
     assert t.size == 5.0 and len(t) == 3 and t.kind == "path"

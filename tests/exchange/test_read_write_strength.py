@@ -77,6 +77,32 @@ def test_files_and_folders(tmp_path, monkeypatch):
     assert refused(MalformedChain, exchange.read_file, tmp_path / "folder") == f"{tmp_path / 'folder' / 'big.txt'} {too_large}"
 
 
+def test_a_linkage_file_is_read_as_its_chain_and_frame(tmp_path):
+    # what 'move --save' and 'dimension --save' write, given to identify: their chain with its frame (a TOML scene
+    # was once read as JSON, "JSON takes no '#' comment"; a linkage JSON as "a chain object needs 'joints'")
+    from synth.motion import Linkage
+
+    stephenson = Mechanism(Chain.parse("0-2 0-3 0-4 1-2 1-3 1-5 4-5"), 4)
+    points = [[0, 0], [1, 2], [3, 0], [4, 2], [5, 1], [2, 3], [6, 3]]
+    (tmp_path / "moved.json").write_text(Linkage(stephenson, (2,), points).to_json())
+    (tmp_path / "found.toml").write_text('# by dimension --save\n[scene]\nname = "found"\n\n[linkage]\n'
+                                         'chain = "0-1 1-2 2-3 3-0"\nframe = 2\ninputs = ["2-3"]\n'
+                                         'points = { "0-1" = [0, 0], "1-2" = [1, 1], "2-3" = [3, 1], "0-3" = [4, 0] }\n')
+    (tmp_path / "result.json").write_text('{"kind": "path", "chain": "0-1 0-3 1-2 2-3", "linkage": '
+                                          '{"chain": "0-1 1=2 2-3 3-0", "frame": 1, "inputs": ["1-2"], "points": {}}}')
+    read = {path: [(e.chain.compact(), e.frame) for e in exchange.read_file(tmp_path / path)]
+            for path in ("moved.json", "found.toml", "result.json")}
+    assert read == {"moved.json": [("0-2 0-3 0-4 1-2 1-3 1-5 4-5", 4)], "found.toml": [("0-1 0-3 1-2 2-3", 2)],
+                    "result.json": [("0-1 0-3 1=2 2-3", 1)]}
+    (tmp_path / "grid.toml").write_text('name = "small"\ndof = "1..3"\nlinks = "4..10"\n')
+    assert refused(MalformedChain, exchange.read_file, tmp_path / "grid.toml") == (
+        f"{tmp_path / 'grid.toml'} holds no chain: a TOML file is read for the chain of its [linkage] table (a linkage "
+        "or a scene that moves one); this one holds name, dof, links")
+    (tmp_path / "bad.toml").write_text('[linkage]\nchain = "0-1 1-1"\nframe = 0\n')
+    assert refused(MalformedChain, exchange.read_file, tmp_path / "bad.toml").startswith(
+        f"{tmp_path / 'bad.toml'}: the linkage's chain cannot be read: ")
+
+
 def test_a_folder_is_read_in_name_order_without_hidden_files(tmp_path):
     (tmp_path / "b.txt").write_text("0-1 1-2 2-3 3-0\n")
     (tmp_path / "a.edges").write_text("0 1\n1 2\n2 0\n")

@@ -358,10 +358,12 @@ def test_on_dask_there_is_no_inline_phase_and_tasks_aim_at_half_a_second(clock):
 
 # ------------------------------------------------------------------ the pool's workers
 def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
-    """In this process, with the calls a worker makes stood in for: SIGINT ignored, the kernel asked to
-    kill it with SIGKILL when its parent dies (PR_SET_PDEATHSIG = 1), and an orphan exits at once."""
+    """In this process, with the calls a worker makes stood in for: SIGINT ignored, SIGTERM blocked and
+    read by a thread of its own (which obeys the parent's only), the kernel asked to kill it with
+    SIGKILL when its parent dies (PR_SET_PDEATHSIG = 1), and an orphan exits at once."""
     import ctypes
     import signal
+    import threading
 
     calls = []
 
@@ -369,13 +371,24 @@ def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
         def prctl(self, option, value):
             calls.append(("prctl", option, value))
 
+    class Thread:
+        def __init__(self, target, args, daemon, name):
+            calls.append(("thread", target, args, daemon))
+
+        def start(self):
+            pass
+
     monkeypatch.setattr(module.signal, "signal", lambda sig, action: calls.append(("signal", sig, action)))
+    monkeypatch.setattr(module.signal, "pthread_sigmask", lambda how, sigs: calls.append(("mask", how, set(sigs))))
+    monkeypatch.setattr(threading, "Thread", Thread)
     monkeypatch.setattr(module.signal, "set_wakeup_fd", lambda fd: calls.append(("wakeup", fd)))
     monkeypatch.setattr(ctypes, "CDLL", lambda name: Libc())
     monkeypatch.setattr(module.os, "getppid", lambda: 4242)
     monkeypatch.setattr(module.os, "_exit", lambda status: calls.append(("exit", status)))
     module._worker_start(4242)
-    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("wakeup", -1), ("prctl", 1, signal.SIGKILL)]
+    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("signal", signal.SIGTERM, signal.SIG_DFL),
+                     ("mask", signal.SIG_BLOCK, {signal.SIGTERM}), ("thread", module._obey_parent_only, (4242,), True),
+                     ("wakeup", -1), ("prctl", 1, signal.SIGKILL)]
     calls.clear()
     module._worker_start(1)  # the parent died before prctl took effect: the worker is an orphan
     assert calls[-1] == ("exit", 1)
@@ -407,6 +420,29 @@ def test_pool_workers_are_forked_ignore_ctrl_c_and_die_with_this_process():
         os.close(read)
         os.close(write)
     assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # Ctrl-C no longer held back
+
+
+def _pid(_):
+    return os.getpid()
+
+
+def test_a_worker_ignores_a_sigterm_that_is_not_its_parents():
+    """A SIGTERM from another process (a group's ``kill``) leaves the workers working; the pool's own
+    terminate, SIGTERM from this process, ends them all."""
+    import signal
+    import subprocess
+
+    import psutil
+
+    with Executor(workers=2) as executor:
+        workers = [psutil.Process(pid) for pid in set(executor.map(_pid, range(8)))]
+        for worker in workers:
+            subprocess.run(["kill", "-TERM", str(worker.pid)], check=True)
+        assert sorted(executor.map(abs, range(-40, 0))) == list(range(1, 41))  # the workers work on
+        assert all(w.is_running() and w.status() != psutil.STATUS_ZOMBIE for w in workers)
+    _, alive = psutil.wait_procs(workers, timeout=30)
+    assert not alive
+    assert signal.SIGTERM not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # (this process's mask untouched)
 
 
 def test_ctrl_c_is_held_back_while_the_workers_are_forked(monkeypatch):

@@ -253,6 +253,15 @@ def test_a_ctrl_c_among_other_signals_read_at_once_stops_the_searches(monkeypatc
     assert search.stopped
 
 
+def test_a_sigterm_stops_the_searches_as_ctrl_c_does(monkeypatch):
+    """The command handles SIGTERM as Ctrl-C: a search running when it comes is stopped too."""
+    search = _Search()
+    clock, reads, write = _watch_by_hand(monkeypatch, 50.0, {search: 49.0})
+    os.write(write, bytes([signal.SIGTERM]))
+    assert reads.wait_for(2)
+    assert search.stopped
+
+
 def test_a_watcher_that_is_not_reading_prints_nothing_when_its_pipe_fills(monkeypatch):
     """The wakeup descriptor is written without complaint when full: a process where nothing reads it
     (a forked child has the descriptor but not the thread) must not print "Exception ignored when trying

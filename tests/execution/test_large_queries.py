@@ -266,6 +266,36 @@ def test_a_tiny_window_counts_the_same_and_resumes_without_double_counting(tmp_p
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "MECHSYNTH_UNIT_WINDOW" in bad.stderr
 
 
+@pytest.mark.parametrize("group", [False, True], ids=["kill-pid", "kill-group"])
+def test_sigterm_stops_a_count_cleanly(tmp_path, group):
+    """A ``kill`` (SIGTERM) of a count working on the pool, its temporary folder of units made: the
+    workers end, the folder is removed, one line, status 143 (SIGTERM's default used to end the
+    process at once and leave the folder behind, 115 MB after one long count).  Sent to the whole
+    process group (``timeout``, a batch system), the workers leave it to their parent: killed while
+    reading the pool's queue, they would leave its lock held and the parent waiting for ever."""
+    env = dict(os.environ, MECHSYNTH_CACHE="off", TMPDIR=str(tmp_path))
+    query = ["chains", "--dof", "1", "--links", "16", "--count", "--workers", "2", "--force"]
+    proc = subprocess.Popen([*CLI, *query], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            start_new_session=group)
+    try:
+        workers = []
+        while proc.poll() is None and not (workers and list(tmp_path.glob("mechsynth-units-*"))):
+            time.sleep(0.01)
+            workers = psutil.Process(proc.pid).children()
+        assert proc.poll() is None, "the count ended before it could be stopped"
+        if group:
+            os.killpg(proc.pid, signal.SIGTERM)
+        else:
+            proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 143 and out == "" and err == "mechsynth: terminated\n", err
+    _, alive = psutil.wait_procs(workers, timeout=30)
+    assert not alive, "pool workers outlived the terminated count"
+    assert not list(tmp_path.iterdir())
+
+
 def test_checkpoint_commit_keeps_the_order_of_units_and_codes(tmp_path):
     """Unit rows are written in runs between complete codes: a code's units recorded before it
     completes are gone with it, those of a code still running stay."""

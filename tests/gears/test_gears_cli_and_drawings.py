@@ -50,7 +50,8 @@ def test_the_same_sheet_twice_is_the_same_file(tmp_path, suffix):
     <dc:date> and ids drawn at random into an SVG)."""
     files = [tmp_path / f"{name}.{suffix}" for name in ("first", "second")]
     for path in files:
-        assert _cli("--links", "4", "--out", str(path)).returncode == 0
+        out = _cli("--links", "4", "--out", str(path))
+        assert out.returncode == 0 and out.stderr == f"{len(out.stdout.splitlines()) - 3} schematics -> {path}\n"
     first = files[0].read_bytes()
     assert first == files[1].read_bytes() and b"Matplotlib" not in first and b"dc:date" not in first
 
@@ -111,7 +112,7 @@ def test_design_schematic_shows_teeth_ratio_and_legend(tmp_path):
     picture = tmp_path / "reducer.svg"
     out = _cli("--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.2",
                "--tolerance", "0.5%", "--teeth", "17..100", "--planets", "3", "--out", str(picture), "--format", "jsonl")
-    assert out.returncode == 0
+    assert out.returncode == 0 and out.stderr == f"1 schematic -> {picture}\n"  # (it once wrote it in silence)
     best = json.loads(out.stdout.splitlines()[0])
     text = picture.read_text()
     for wheel, z in best["teeth"].items():

@@ -2,6 +2,7 @@
 is wrong (the joint, the link, the number), the pose's inputs, references, lengths, gear ratios
 and carriers, and the files' round trip of every entry."""
 
+import json
 import math
 
 import numpy as np
@@ -278,3 +279,18 @@ def test_files_are_read_as_toml_or_json_only(tmp_path):
     top = tmp_path / "top.JSON"
     top.write_text(Linkage(FOUR_BAR, (0,), GOOD).to_json())
     assert read_linkage(top).points.tolist() == [[0, 0], [4, 0], [1, 0], [3.5, 3]]
+
+
+def test_a_file_that_is_not_a_linkage_is_named_and_told_apart(tmp_path):
+    # another command's file given to 'move' (an arm to balance): it once read "a linkage has no entry 'arm'"
+    arm = tmp_path / "arm.toml"
+    arm.write_text('[arm]\nname = "two links"\n[[arm.links]]\njoint = "revolute"\nlength = 0.8\nweight = 50.0\n')
+    assert refused(MotionError, read_linkage, arm) == ("arm.toml holds no linkage: a linkage file has a [linkage] "
+                                                       "table, or chain, frame, inputs and points at its top; this "
+                                                       "one holds arm")
+    # a linkage with a mistake: the sentence of Linkage.from_dict, of the same class, after the file's name
+    pose = tmp_path / "pose.json"
+    pose.write_text(json.dumps({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {"0-1": [0, 0]}}))
+    with pytest.raises(BadPose) as e:
+        read_linkage(pose)
+    assert str(e.value) == "pose.json: joints 0-3, 1-2, 2-3 have no position in 'points'"

@@ -45,11 +45,12 @@ def _transmission_worst(a, b, c, d):
 
 
 def test_a_pose_is_scored_by_its_worst_transmission_angle():
-    score, why = _how_well(_four_bar())
+    score, why, measured = _how_well(_four_bar())
     assert why is None and score[:2] == (True, True) and score[3] == pytest.approx(2 * math.pi)
+    assert measured == pytest.approx(_transmission_worst(1, 3.5, 3, 4), abs=1e-9)  # the note's, unrounded
     assert score[2] == pytest.approx(_transmission_worst(1, 3.5, 3, 4), abs=1e-3)  # 54.31°
     # a crank 1.95 long: the coupler and rocker nearly stretch out, μ reaches 165.2°: 14.8° short of a line
-    score, why = _how_well(_four_bar(a=1.95, b=3, c=3))
+    score, why, _ = _how_well(_four_bar(a=1.95, b=3, c=3))
     worst = _transmission_worst(1.95, 3, 3, 4)
     assert score[:2] == (False, True) and score[2] == pytest.approx(worst, abs=1e-3)
     assert why == f"a transmission angle falls to {math.degrees(worst):.2g}°" == "a transmission angle falls to 15°"
@@ -62,7 +63,8 @@ def test_a_rocker_input_is_scored_by_its_swing():
     # coupler are in line, |O2 B| = b − a and b + a, B = O4 + c (cos φ, sin φ): |O2 B|² = d² + c² + 2dc cos φ
     lk = _four_bar()
     rocker = Linkage(FOUR_BAR_CHAIN, (1,), lk.points)
-    score, why = _how_well(rocker)
+    score, why, measured = _how_well(rocker)
+    assert measured is None  # a rocker's transmission angles are not what its pose is scored by
     phi = [math.acos(((b_a) ** 2 - 16 - 9) / 24) for b_a in (3.5 - 1, 3.5 + 1)]
     assert score[:3] == (False, False, 0.0) and why == "its input does not turn fully"
     assert score[3] == pytest.approx(phi[0] - phi[1], abs=1e-6)
@@ -308,7 +310,7 @@ def test_linkages_from_drawings_say_what_was_moved():
     worst = _transmission_worst(a, b, c, d)
     assert lk.note == ("the drawing's pose does not move well (its input does not turn fully); its joints were moved "
                        f"by up to {shift:.3g} ({shift / 100:.0%} of its size) to a pose whose input turns fully with "
-                       f"transmission angles of at least {math.degrees(worst):.0f}°")
+                       f"transmission angles of at least {math.floor(math.degrees(worst))}°")
     assert worst >= math.radians(20) and 0.05 * 100 <= shift
     # Stephenson's chain on link 0 driven at link 1: no pose tried turns fully; the note gives the swing of the
     # best, its input's travel between the two dead positions that motion_range finds
@@ -318,6 +320,15 @@ def test_linkages_from_drawings_say_what_was_moved():
     low, high = motion_range(rocker).limits
     assert rocker.note.endswith(f"to a pose whose input swings {math.degrees(high - low):.0f}°")
     assert "its input does not turn fully" in rocker.note
+    # Watt II from its drawing: its worst transmission angle, 23.7°, is "at least 23°" (it once read "at least 24°")
+    watt = linkage_from_layout(Mechanism(Chain.parse("0-3 0-4 1-2 1-4 2-5 3-5 4-5"), 4))
+    worst = min(min(t["min"], math.pi - t["max"]) for t in sweep(watt, steps=361).transmission.values())
+    assert 23 < math.degrees(worst) < 24 and watt.note.endswith("transmission angles of at least 23°")
+    # Stephenson III from its drawing: the crank drives a triad, moved by Newton's method, which has no transmission
+    # angle; the note claims none (it once said "at least 90°", the score's stand-in for an angle not measured)
+    triad = linkage_from_layout(Mechanism(Chain.parse("0-2 0-3 0-4 1-2 1-3 1-5 4-5"), 0))
+    assert motion_range(triad).full_rotation and sweep(triad, steps=5).transmission == {}
+    assert triad.note.endswith("to a pose whose input turns fully") and "transmission" not in triad.note
     # a 2-DOF chain takes the drawing's pose as it is (nudged off locked poses)
     five_bar = linkage_from_layout(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0))
     assert five_bar.dof == 2 and five_bar.inputs == (0, 1)
