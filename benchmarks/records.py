@@ -156,11 +156,11 @@ _BEYOND = {
              "`--recheck --reverse-from` that file",
 }
 
-# 7 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go beside
-# these rows, not beside the rows with fractionated chains (benchmarks/LITERATURE.md, the second search for counts)
-_SEVEN_LOOPS = "not run: the engine's sizing (`records.py --size`, 29 Nov 2026) gives about {} chains; the row with " \
-               "fractionated chains took {} CPU s, and the second count (--method tight-reverse) about as much again; " \
-               "to run it: `python benchmarks/records.py --only \"chains --dof {} --links {} --no-fractionated\"`"
+# 7 and 8 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go
+# beside these rows, not beside the rows with fractionated chains (benchmarks/LITERATURE.md, the second search for
+# counts); 8 loops is one beyond it
+_NOT_FRACTIONATED = "run on its own (--only): {} loops without fractionated chains, with its second count " \
+                    "(--method tight-reverse) by code; the row with fractionated chains took {} CPU s"
 
 ROWS = (
     [_row("W = 1", 1, n, _A233288[n], "A233288", quick=n <= 6, oracle=n <= 8) for n in range(4, 17, 2)]
@@ -182,8 +182,8 @@ ROWS = (
                   "(it sized 17 links at 17.4 CPU s); the second count by tight-reverse costs about as much")]
     + [_row("W = 2, not fractionated", 2, n, _TSAI[2, False].get(n), "T" if n <= 9 else "JMD2024", frac=False,
             oracle=n <= 7) for n in range(5, 16, 2)]
-    + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False,
-            heavy=_SEVEN_LOOPS.format("9.7e7", 14.3, 2, 17))]
+    + [_row("W = 2, not fractionated", 2, 17, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 14.3))]
+    + [_row("W = 2, not fractionated", 2, 19, None, "", frac=False, heavy=_NOT_FRACTIONATED.format(8, 372))]
     + [_row("W = 3", 3, n, _TSAI[3, True].get(n), "T" if n <= 10 else "JMD2024", quick=n == 6, oracle=n <= 8)
        for n in range(6, 17, 2)]
     + [_row("W = 3", 3, 18, None, "JMD2024",
@@ -196,8 +196,12 @@ ROWS = (
                   "`--recheck --reverse-from`) equal by code (benchmarks/logs/count_w3_20_links.txt)")]
     + [_row("W = 3, not fractionated", 3, n, _TSAI[3, False].get(n), "T" if n <= 10 else "JMD2024", frac=False,
             oracle=n <= 8) for n in range(6, 17, 2)]
-    + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False,
-            heavy=_SEVEN_LOOPS.format("3.7e8", 31.8, 3, 18))]
+    + [_row("W = 3, not fractionated", 3, 18, None, "JMD2024", frac=False, heavy=_NOT_FRACTIONATED.format(7, 31.8))]
+    + [_row("W = 3, not fractionated", 3, 20, None, "", frac=False,
+            heavy=_NOT_FRACTIONATED.format(8, 626).replace(" by code", " by code, run after it beside no other count and "
+                                                           "compared by `--recheck --reverse-from` "
+                                                           "benchmarks/logs/count_w3_20_links_no_fractionated_"
+                                                           "tight_reverse.json (past --reverse-max)"))]
     + [_row("h = 2 (Laman)", 1, n, _A227117[n], "A227117", h=2, oracle=n <= 7) for n in range(3, 12)]
     + [_row("h = 2 (Laman)", 1, 12, _A227117[12], "A227117", h=2,
             heavy="run by hand with a checkpoint on 29 Nov 2026: 19.5 min wall on 2 workers beside other work, 29 CPU "
