@@ -139,9 +139,13 @@ _BEYOND = {
     (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
              + ", some 16 CPU min in all (at 26 links the sizing, its growth factor fitted there, was 58 % under the "
              "count); begun on 29 Nov at 19:01 (4085be8, load 3–6): 412 units, 2.15e9 chains in the first minute, then "
-             "no unit finished in 6 more minutes (like the first count at 32 links h = 6 under the layers' budget, PROFILE.md "
-             "section 36; the cause not examined here), stopped; to run it: `python "
-             "benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
+             "no unit finished in 6 more minutes, stopped; the cause, found by running the count again in one process at "
+             "a115c58 (29 Nov 20:31): 373 units in 4 min, then one unit for 2.6 CPU min and more, in stage B's programme "
+             "(py-spy: `tight_count`) at 600 MiB, on a branch multigraph that is a cubic graph on 12 vertices (12 ternary "
+             "links, 18 strings) — the layers' depth-first split of a98900f (PROFILE.md section 36), replaced since by "
+             "buckets (section 38); begun again at 1889f2d (21:42–21:55 UTC, load about 20, each worker getting 6–9 % of "
+             "a core): past that unit, 404 units and 8 449 037 196 chains after 12 min wall (some 70 CPU s a worker), "
+             "stopped for the session's time; to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
     (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
              "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
              "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "

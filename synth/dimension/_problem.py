@@ -297,6 +297,9 @@ class Problem:
         # which of those rows are held as equalities, gap + aim signed rather than its hinge (gap + aim)⁺: a polish
         # follows a binding length or ratio bound so (``_Search.polish``), where the hinge's kink makes it crawl
         self.held = np.zeros(self.length_bounds, bool)
+        # whether a crank's whole turn is sampled where the dyads must close (:meth:`samples`); the final constrained
+        # polish of an answer holds the turn as an inequality instead (:meth:`turn_clearance`, ``_Search.constrained``)
+        self.turn_sampled = True
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
@@ -622,13 +625,56 @@ class Problem:
     # ------------------------------------------------------------ constraints
     def samples(self, offsets: np.ndarray) -> np.ndarray:
         """Inputs where the dyads must close: across the target's span (the pose included), and the
-        whole turn for a crank."""
+        whole turn for a crank (unless :attr:`turn_sampled` is off)."""
         lo, hi = min(0.0, float(offsets.min())), max(0.0, float(offsets.max()))
         step = SPAN_STEP * (1.0 if self.revolute_input else self.scale)
         parts = [np.linspace(lo, hi, 2 + int((hi - lo) / step))]
-        if self.constraints.crank and self.revolute_input:  # (one step before 0 too: every input lies between two)
+        if self.constraints.crank and self.revolute_input and self.turn_sampled:  # (one step before 0 too: every
             parts.append(np.linspace(-2 * math.pi / TURN_SAMPLES, 2 * math.pi, TURN_SAMPLES + 2))
         return np.concatenate(parts)
+
+    @property
+    def turn_held(self) -> bool:
+        """Whether a constrained polish may hold the crank's turning as an inequality (:meth:`turn_clearance`)
+        rather than refuse a candidate whose crank stops: a crank without a transmission limit (a limit above
+        0 keeps the answer off the dead positions anyway)."""
+        c = self.constraints
+        return bool(c.crank and self.revolute_input and c.min_transmission == 0)
+
+    def turn_clearance(self, linkage: Linkage) -> float | None:
+        """The least normalised dyad discriminant over a whole turn of the input: ≥ 0 where the crank turns,
+        0 on the verge (a four-bar on Grashof's bound), and smooth in the dimensions across it (a dyad that
+        cannot close has a negative discriminant, not a wall).  The turn is sampled and the least sample's
+        neighbourhood searched for the minimum (Brent's method); None for a linkage moved by Newton's method.
+
+        Examples
+        --------
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)
+        >>> problem = Problem(four_bar, 0, PathTarget(np.eye(2)), 2, Constraints(crank=True))
+        >>> turns = Linkage(four_bar, (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])   # 1 + 4 < 3.905 + 3.041
+        >>> stops = Linkage(four_bar, (0,), [[0, 0], [3, 0], [0, 1], [3.93586, 1.767531]])   # 1 + 4.01 > 3 + 2
+        >>> problem.turn_clearance(turns) > 0, problem.turn_clearance(stops) < 0
+        (True, True)
+        """
+        from scipy.optimize import minimize_scalar
+
+        def least(xs):
+            g = link_poses(linkage, np.atleast_1d(xs)).discriminants
+            if g is None:
+                return None
+            finite = np.isfinite(g)
+            return np.where(finite.any(axis=1), np.where(finite, g, np.inf).min(axis=1), -1.0)
+
+        step = 2 * math.pi / TURN_SAMPLES
+        xs = np.arange(TURN_SAMPLES) * step
+        sampled = least(xs)
+        if sampled is None:
+            return None
+        k = int(np.argmin(sampled))
+        found = minimize_scalar(lambda x: float(least(x)[0]), bounds=(xs[k] - step, xs[k] + step), method="bounded",
+                                options={"xatol": 1e-12})
+        return float(min(found.fun, sampled[k]))
 
     def dips(self, linkage: Linkage, xs: np.ndarray, g: np.ndarray | None) -> np.ndarray | None:
         """The least discriminants g (as :meth:`poses` gives them at the input offsets xs) with each

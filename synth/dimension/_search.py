@@ -46,6 +46,9 @@ STIFF_RUNS, AIM_ROUNDS = 5, 4
 #: least squares of one polish, each holding the length and ratio bounds reached so far as equalities
 #: (:meth:`_Search.polish`): the first, then one after a bound is reached, and one after a held bound is let go
 HOLD_ROUNDS = 3
+#: the least dyad discriminant over the turn the final polish holds a crank to (normalised; :meth:`_Search.constrained`):
+#: held to 1e-10 the half circle's crank touched a dead position the motion layer counted as reached (seed 3)
+TURN_MARGIN = 1e-8
 #: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
@@ -1034,19 +1037,21 @@ class _Search:
         """Polish the best answer once more so that a binding link-length constraint is met on its bound,
         not the search's margin of 1e-4 inside it (``MARGIN``: 0.6 % of CE2's error under an order, 0.04 %
         of the ten points' of [HCDJ] under a length bound); a stiffer penalty slides along a binding
-        constraint too slowly (or, from the start, misleads the search).  The orders are held as
-        constraints of their own (:meth:`constrained`, their penalty rows then dropped for good), a length
-        or ratio bound without orders by a shifted penalty (:meth:`aim_bounds`): on CE2 the shifted penalty
+        constraint too slowly (or, from the start, misleads the search).  With orders every link-length
+        constraint (a length or ratio bound beside them too) is held as a constraint of its own, and a crank's
+        turning (:meth:`constrained`, their penalty rows then dropped for good); a length or ratio bound
+        without orders by a shifted penalty (:meth:`aim_bounds`): on CE2 the shifted penalty
         ended 1.8e-4 (relative) above SLSQP's answer, and on the ten points SLSQP crawled (0.03 % short
         after 500 steps) where the shifted penalty met the published optimum.  Kept if it meets the
         constraints (to ``MET``) and errs no more, or the answer before did not meet them."""
         p, kept = self.problem, self.best
         _, z0, direction = kept
         if p.order:
-            p.aim = _orders_dropped(p)
-            found = self.constrained(z0, direction)
+            z0 = self.posed(z0)
+            p.aim = _dropped(p, every=True)
+            found = self.constrained(z0, direction, final=True)
             before = float(np.sum(self.evaluate.vector(z0, direction) ** 2))
-            if found is not None and (found[0] <= before or (self._inside(z0) < -MET).any()):
+            if found is not None and (found[0] <= before or (self._inside(z0, every=True) < -MET).any()):
                 self.best = (found[0], found[1], direction)
             return
         found = self.aim_bounds()
@@ -1058,24 +1063,59 @@ class _Search:
         if met and after < INFEASIBLE / 10 and (after <= before or unmet_before):
             self.best = (after, found[1], found[2])
 
-    def constrained(self, z0, direction: int, watched: bool = False) -> tuple[float, np.ndarray] | None:
-        """The least squares from z0 with the link-length orders as inequality constraints of their own,
-        held :data:`HELD_MARGIN` inside their bounds (SLSQP on the squared residuals, the orders'
-        penalty rows dropped): (cost, unknowns) where it meets the orders, else None.  With ``watched``
-        it stops with the budget.
+    def posed(self, z) -> np.ndarray:
+        """A timed answer's unknowns z with the mechanism posed at its first target input where that input is
+        prescribed (absolute timing, a function), as the result is returned: the dyads must close from the pose
+        to the points, and a pose beyond a dead position the points do not cross (the half circle's search
+        left its answers so) walls the polish in."""
+        p = self.problem
+        if not p.timed:
+            return z
+        linkage = p.linkage(z[:p.dims])
+        start = p.absolute_start(linkage)
+        if start is None:
+            return z
+        try:
+            return p.unknowns_of(assemble(linkage, start))
+        except (MotionError, ValueError):
+            return z
 
-        SLSQP is given the cost's gradient 2·Jᵀr from the polish's own Jacobian (:meth:`jacobian`), and
-        a run is restarted (its quasi-Newton matrix afresh, its tolerance 1e-12 of its own start's cost)
-        while the last one stalled or lowered the cost tenfold, up to :data:`STIFF_RUNS`, until the
-        target is met exactly.  The least squares' penalty (a hinge) stalls where an order binds: CE1 as
-        its sources state it stopped at 1.28e-9 with r4 = r1, and SLSQP on its own differences of the cost
-        did not move from there in 500 steps; with the gradient it is met exactly in 1.1 CPU s, the order
-        kept (benchmarks/DIMENSION.md, *CE1 as stated, met*)."""
+    def constrained(self, z0, direction: int, watched: bool = False,
+                    final: bool = False) -> tuple[float, np.ndarray] | None:
+        """The least squares from z0 with the link-length orders as inequality constraints of their own, held
+        :data:`HELD_MARGIN` inside their bounds (SLSQP on the squared residuals, the orders' penalty rows dropped):
+        (cost, unknowns) where it meets them, else None.  With ``watched`` it stops with the budget.  The
+        ``final`` polish of the answer holds a length or ratio bound beside the orders so too, and a crank's
+        turning where :attr:`Problem.turn_held` (its least dyad discriminant over the turn at least
+        :data:`TURN_MARGIN`, the turn then left out of the residuals' samples, and the cost judged again with
+        it sampled), and takes central differences.
+
+        SLSQP is given the cost's gradient 2·Jᵀr from the polish's own Jacobian (:meth:`jacobian`: forward
+        differences, in the final polish central ones, of the step :data:`_STEP`), and a run is restarted (its
+        quasi-Newton matrix afresh, its tolerance 1e-12 of its own start's cost) while the last one stalled or
+        lowered the cost tenfold, up to :data:`STIFF_RUNS`, until the target is met exactly. The least squares'
+        penalty (a hinge) stalls where an order binds: CE1 as its sources state it stopped at 1.28e-9 with r4 = r1,
+        and SLSQP on its own differences of the cost did not move from there in 500 steps; with the gradient it is
+        met exactly in 1.1 CPU s, the order kept (benchmarks/DIMENSION.md, *CE1 as stated, met*). A crank that stops
+        is refused by the residuals outright (a wall), so SLSQP's steps across Grashof's bound failed; held as an
+        inequality the bound is reached. And near a dead position the residuals' curvature grows without bound, so
+        forward differences (their error h·f″) mislead SLSQP, and central ones of the usual step eps^(1/3) (error
+        h²·f‴) more: on the half circle of [HCDJ], whose last point lies near a dead position, SLSQP from the least
+        squares' answer crawled to 3.8e-6 above the record in 10 CPU s with forward differences and went astray with
+        those central ones, and reaches the record in 0.2 CPU s with central differences of the step eps^(1/2)
+        (benchmarks/DIMENSION.md, *The half circle at its record*)."""
         problem, evaluate, watch = self.problem, self.evaluate, self.watch
         extra = len(z0) - problem.dims  # (untimed: the input steps)
         upper = np.concatenate((problem.upper, np.full(extra, problem.input_span)))
         bounds = list(zip(np.concatenate((problem.lower, np.zeros(extra))), upper))
-        penalty, problem.aim = problem.aim, _orders_dropped(problem)
+        held = final and problem.turn_held and self._clearance(z0) is not None  # the crank's turn held too
+
+        def inside(z):
+            lengths = self._inside(z, final)
+            return np.append(lengths, self._clearance(z) - TURN_MARGIN) if held else lengths
+
+        def held_by(z):  # (SLSQP may end a run outside its constraints: the final polish keeps the last inside)
+            return bool((self._inside(z, final) >= -MET).all() and (not held or self._clearance(z) > 0))
 
         def fun(z):
             if watched and watch.over():
@@ -1086,48 +1126,62 @@ class _Search:
             r = fun(z)
             return float(r @ r)
 
-        def gradient(z):
+        def gradient(z):  # (the final polish's central differences: see the docstring)
             r = fun(z)
-            return 2.0 * self.jacobian(fun, z, upper, r).T @ r
+            return 2.0 * self.jacobian(fun, z, upper, central=final, r0=r).T @ r
 
-        z, value = z0, cost(z0)
+        penalty, z, value = problem.aim, z0, math.inf
         try:
-            for _ in range(STIFF_RUNS):
-                found = minimize(cost, z, jac=gradient, method="SLSQP", bounds=bounds,
-                                 constraints={"type": "ineq", "fun": self._inside},
-                                 options={"ftol": 1e-12 * value, "maxiter": 100})
-                moved = np.clip(found.x, *np.array(bounds).T)
-                again = cost(moved)
-                if not again < value:
-                    break
-                z, value, tenfold = moved, again, again <= value / 10
-                if value <= EXACT ** 2 or (found.status == 0 and not tenfold):
-                    break
-        except _OutOfTime:
-            pass
+            problem.aim, problem.turn_sampled = _dropped(problem, final), not held
+            try:
+                value = cost(z0)
+                for _ in range(STIFF_RUNS):
+                    found = minimize(cost, z, jac=gradient, method="SLSQP", bounds=bounds,
+                                     constraints={"type": "ineq", "fun": inside},
+                                     options={"ftol": 1e-12 * value, "maxiter": 100})
+                    moved = np.clip(found.x, *np.array(bounds).T)
+                    again = cost(moved)
+                    if not (again < value and (not final or held_by(moved))):
+                        break
+                    z, value, tenfold = moved, again, again <= value / 10
+                    if value <= EXACT ** 2 or (found.status == 0 and not tenfold):
+                        break
+            except _OutOfTime:
+                pass
+            if held:  # (judged again with the whole turn sampled: a crank that stops is refused)
+                problem.turn_sampled = True
+                value = float(np.sum(evaluate.vector(z, direction) ** 2))
         finally:
-            problem.aim = penalty
-        if (self._inside(z) >= -MET).all() and value < INFEASIBLE / 10:
+            problem.aim, problem.turn_sampled = penalty, True
+        if (self._inside(z, final) >= -MET).all() and value < INFEASIBLE / 10:
             return value, z
         return None
 
-    def _inside(self, z) -> np.ndarray:
-        """How far inside each link-length order's bound less :data:`HELD_MARGIN` the unknowns z are (≥ 0
-        where held)."""
+    def _clearance(self, z) -> float | None:
+        """The least dyad discriminant over the crank's turn of the unknowns z (:meth:`Problem.turn_clearance`;
+        −1 where the mechanism cannot be built, None for one moved by Newton's method)."""
+        try:
+            return self.problem.turn_clearance(self.problem.linkage(z[:self.problem.dims]))
+        except MotionError:
+            return -1.0
+
+    def _inside(self, z, every: bool = False) -> np.ndarray:
+        """How far inside each link-length order's bound (with ``every``: each link-length constraint's,
+        :meth:`Problem.length_gaps`) less :data:`HELD_MARGIN` the unknowns z are (≥ 0 where held)."""
         problem = self.problem
         try:
-            return -(problem.order_gaps(problem.linkage(z[:problem.dims])) + HELD_MARGIN)
+            linkage = problem.linkage(z[:problem.dims])
+            return -((problem.length_gaps(linkage) if every else problem.order_gaps(linkage)) + HELD_MARGIN)
         except MotionError:
-            return np.full(problem.order_pairs, -1.0)
+            return np.full(problem.length_bounds if every else problem.order_pairs, -1.0)
 
-    def jacobian(self, fun, z, upper, r0=None) -> np.ndarray:
-        """Forward differences of the residuals ``fun`` at z (``r0``: ``fun(z)``, if the caller has it): every
-        column for a timed target; without timing z = (dimensions, input steps) and the steps' columns cost
-        one evaluation for all (:meth:`untimed_jacobian`)."""
+    def jacobian(self, fun, z, upper, central: bool = False, r0=None) -> np.ndarray:
+        """Forward (or ``central``) differences of the residuals ``fun`` at z (``r0``: ``fun(z)``, if the caller
+        has it), each of the step :data:`_STEP`: every column for a timed target; without timing z = (dimensions,
+        input steps) and the steps' columns cost one evaluation (two) for all (:meth:`untimed_jacobian`)."""
         if not self.problem.timed:
-            return self.untimed_jacobian(fun, z, upper, r0=r0)
-        r0 = fun(z) if r0 is None else r0
-        return np.column_stack([(fun(moved) - r0) / h for moved, h in _forward_steps(z, upper, range(len(z)))])
+            return self.untimed_jacobian(fun, z, upper, central, _STEP, r0)
+        return _differences(fun, z, upper, range(len(z)), _STEP, central, r0)
 
     def aim_bounds(self):
         """The best answer polished again with the length and ratio bounds aimed :data:`HELD_MARGIN` inside (a
@@ -1158,10 +1212,12 @@ class _Search:
         r = self.evaluate.vector(best[1], best[2])[:p.points * p.rows_per_point]
         return float(r @ r)
 
-    def untimed_jacobian(self, fun, z, upper, central: bool = False, r0=None) -> np.ndarray:
+    def untimed_jacobian(self, fun, z, upper, central: bool = False, step: float | None = None,
+                         r0=None) -> np.ndarray:
         """Forward (or ``central``) differences of the untimed residuals ``fun`` at z = (dimensions, input
         steps), at the cost of one evaluation (two) per dimension and one (two) for all the steps, and for
-        forward differences one at z unless the caller gives it (``r0``).
+        forward differences one at z unless the caller gives it (``r0``); the step :data:`_STEP`
+        (:data:`_CENTRAL_STEP` for central ones) unless ``step`` is given.
 
         Point i is reached at the input offset direction·(s₁ + … + sᵢ) and its residuals depend on that
         offset alone; the constraint rows depend on the last offset (the target's span).  So one step
@@ -1169,19 +1225,10 @@ class _Search:
         along its own offset, and the column of step k is that of s₁ with the points before k zeroed.
         """
         problem = self.problem
-        if not central and r0 is None:
-            r0 = fun(z)
-        columns = []
-        for j, (moved, h) in enumerate(_forward_steps(z, upper, range(problem.dims + 1),
-                                                      _CENTRAL_STEP if central else _STEP)):
-            if central:
-                back = np.array(z)
-                back[j] -= h
-                columns.append((fun(moved) - fun(back)) / (2 * h))
-            else:
-                columns.append((fun(moved) - r0) / h)
-        jac = np.empty((len(columns[0]), len(z)))
-        jac[:, :problem.dims + 1] = np.column_stack(columns)
+        step = step if step is not None else _CENTRAL_STEP if central else _STEP
+        known = _differences(fun, z, upper, range(problem.dims + 1), step, central, r0)  # (the dimensions and s₁)
+        jac = np.empty((len(known), len(z)))
+        jac[:, :problem.dims + 1] = known
         rows = problem.rows_per_point  # residuals per target point
         block = np.arange(problem.points * rows) // rows  # the target point of each residual row
         later = block[:, None] >= np.arange(1, len(z) - problem.dims + 1)[None, :]
@@ -1209,9 +1256,28 @@ def _forward_steps(z, upper, columns, step: float = _STEP):
         yield moved, h
 
 
-def _orders_dropped(problem: Problem) -> np.ndarray:
-    """The problem's aims with the link-length orders' rows dropped (aimed at −∞: their penalty 0), the
-    orders then held as constraints of their own."""
+def _differences(fun, z, upper, columns, step: float, central: bool, r0=None) -> np.ndarray:
+    """The columns of the residuals ``fun``'s Jacobian at z for the unknowns ``columns``: forward differences
+    of the relative ``step`` (backwards at the box's upper bound, :func:`_forward_steps`; ``r0`` is ``fun(z)``
+    if the caller has it), or central ones."""
+    if not central and r0 is None:
+        r0 = fun(z)
+    out = []
+    for j, (moved, h) in zip(columns, _forward_steps(z, upper, columns, step)):
+        if central:
+            back = np.array(z)
+            back[j] -= h
+            out.append((fun(moved) - fun(back)) / (2 * h))
+        else:
+            out.append((fun(moved) - r0) / h)
+    return np.column_stack(out)
+
+
+def _dropped(problem: Problem, every: bool = False) -> np.ndarray:
+    """The problem's aims with the link-length orders' rows (with ``every``: every link-length constraint's)
+    dropped (aimed at −∞: their penalty 0), those then held as constraints of their own."""
+    if every:
+        return np.full(problem.length_bounds, -np.inf)
     return np.concatenate((np.full(problem.order_pairs, -np.inf), problem.aim[problem.order_pairs:]))
 
 

@@ -56,6 +56,8 @@ takes about a second per process, so type synthesis uses it for large queries on
 
 from __future__ import annotations
 
+import tempfile
+
 import numpy as np
 from numba import njit
 
@@ -533,15 +535,24 @@ def _bundle_deficits(C, lows, game, X, ways):
         ways[:C * r + 1] += last[v]
 
 
+
 @njit(cache=True)
-def _state_slot(table, mask, states, totals, row, width, W, P, total):
-    """Where the state (``row[:width]``, ``row[W:W + P]``, ``total``) is in a layer (``states``,
-    ``totals``) hashed in ``table``: its index, or −(slot + 1) for the empty slot where it goes."""
+def _state_code(row, width, W, P, total):
+    """The hash of a state (``row[:width]``, ``row[W:W + P]``, ``total``): its slot in a layer's table comes from
+    its low bits, its bucket (:func:`_tight_split`) from bits 32 … 61."""
     code = np.int64(total) * np.int64(-7046029254386353131)
     for U in range(width):
-        code = (code ^ row[U]) * np.int64(1099511628211)
+        code = (code ^ np.int64(row[U])) * np.int64(1099511628211)
     for U in range(W, W + P):
-        code = (code ^ row[U]) * np.int64(1099511628211)
+        code = (code ^ np.int64(row[U])) * np.int64(1099511628211)
+    return code
+
+
+@njit(cache=True)
+def _state_slot(table, states, totals, row, width, W, P, total, code):
+    """Where the state (``row[:width]``, ``row[W:W + P]``, ``total``; hash ``code``) is in a layer
+    (``states``, ``totals``) hashed in ``table``: its index, or −(slot + 1) for the empty slot where it goes."""
+    mask = len(table) - 1
     slot = (code ^ (code >> 29)) & mask
     while True:
         j = table[slot]
@@ -562,62 +573,26 @@ def _state_slot(table, mask, states, totals, row, width, W, P, total):
         slot = (slot + 1) & mask
 
 
-# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is taken a part at a time)
+@njit(cache=True)
+def _rehash(states, totals, m, width, W, P):
+    """A table (a power of two, at least 128 and 4·m slots) holding the states 0 … m − 1 of a layer."""
+    size = 128
+    while size < 4 * m:
+        size *= 2
+    table = np.full(size, -1, dtype=np.int64)
+    for j in range(m):
+        table[-_state_slot(table, states, totals, states[j], width, W, P, totals[j],
+                           _state_code(states[j], width, W, P, totals[j])) - 1] = j
+    return table
+
+
+# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets)
 LAYER_BYTES = 256 * 2**20
 
 
 @njit(cache=True)
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=LAYER_BYTES):
-    """The placements :func:`place` counts with no edge permutation, counted without visiting them;
-    or, with a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to
-    bundles, each read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's
-    lemma.  ``x_most`` is :func:`place`'s excess bound: 0 in the rule's equality case (every long
-    string exactly at h − 1 = C binary links, every never-short string at its least: e.g. 1-DOF
-    chains), W − threshold above it.
-
-    Such a placement is a choice of deficit d_e = C − w_e on each short string between two of the
-    game's vertices such that the multigraph D holding each string d_e times is (k, l)-sparse —
-    every set X of vertices holds at most Σ_X k − l (docs/theory.md) — and of the excess
-    w_e − C on the long ones (and w_e − least on the strings the game never sees) such that
-    Σ w = n2: the excess X and D then satisfy X − D = x_most − (Σ k − l), so D lies between
-    Σ k − l − x_most and Σ k − l (tight where x_most = 0).  The bundles of parallel strings are
-    taken one after the other (as :func:`place` takes them); a bundle adds t units of deficit on one
-    pair a–b and y of excess, in as many ways as its non-decreasing weights give (t, y)
-    (:func:`_bundle_deficits`).  A vertex is *open* from its first bundle to its last; the state
-    after a bundle is, for every set U of open vertices, the most that i(U ∪ Z) − k·|U ∪ Z| reaches
-    over the sets Z of closed vertices, with Σ d and Σ x so far.  A bundle on a–b adds t to the
-    sets that hold both and is allowed where none of them then exceeds −l (a set that holds no new
-    unit was checked before); closing a vertex keeps the larger of a set with and without it.
-    Values below −l less the deficit still to come can never matter and are raised to one level,
-    so placements whose prefixes differ there share a state.  The count is the sum, over the
-    states of the last layer, of the placements that reach each times the ways the strings the
-    game never sees hold the excess still missing.  With ``g``, the first bundle of each cycle of g
-    keeps its (t, y) in the state until the last, and every other bundle of the cycle must take
-    the same weights (in one way); a cycle of s bundles the game never sees takes s times one
-    bundle's excess.
-
-    ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
-    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2, x_most ≥ 0; ``g`` empty for every placement.
-    ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
-    elsewhere, in place of :func:`_bundle_deficits` (the second count,
-    :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
-    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
-    2^(open vertices) values each at h = 4…6 beyond 20 links (a worker of the 32-link count at h = 6 grew to
-    4.2 GiB).  ``budget`` bounds the bytes the layers hold at once: past it, the programme goes on from a
-    part of a layer at a time, depth first, each part halved until its successors fit (a state reached from
-    two parts is carried on from each: the same sum, more work).
-
-    >>> import numpy as np
-    >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
-    >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
-    >>> nothing = np.zeros((0, 0, 0), dtype=np.int64)
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, none[:0], nothing)  # 5 units, ≤ 2 a pair
-    3
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, np.array([1, 0, 2]), nothing)  # d_0 = d_1
-    1
-    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 1, none[:0], nothing)  # or 4 units + 1 excess
-    6
-    """
+def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
+    """What :func:`tight_count`'s programme needs of each bundle, the same for every state."""
     E = len(a_end)
     X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
     full = -l  # the most Σ d of a placement
@@ -748,64 +723,271 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
         kmax = max(kmax, k[v])
     if full + l + 2 * kmax + 1 > 32767 or C * E * X1 + x_most > 32767:
         raise ValueError("tight_count: a state's values pass 16 bits (a game of more than 10^4 pebbles)")
-    # The layers are taken depth first, a part of a layer at a time where the next would pass the budget:
-    # level i holds layer i (the states after i bundles) and how far it has been taken on; the count is
-    # linear in the placements reaching each state, so the parts add up to the whole.
-    row_bytes = 2 * (W + P) + 8 + 8 + 32  # a state, its total and ways, its share of the hash table
-    least_rows = (C * E + 1) * X1 + 1  # one state's successors always fit in a part
-    level_states = [np.zeros((64 if x == 0 else 0, W + P), dtype=np.int16) for x in range(nb + 1)]
-    level_totals = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
-    level_ways = [np.zeros(64 if x == 0 else 0, dtype=np.int64) for x in range(nb + 1)]
-    level_n = np.zeros(nb + 1, dtype=np.int64)
-    level_next = np.zeros(nb + 1, dtype=np.int64)
-    level_n[0] = 1
-    level_ways[0][0] = 1
-    row = np.zeros(W + P, dtype=np.int64)
+    return (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends,
+            ways, W, P)
+
+
+@njit(cache=True)
+def _tight_total(totals, ways_in, n, outside, X1, full, x_most):
+    """The placements the states 0 … n − 1 of the last layer stand for: the prefixes reaching each, times the ways
+    the strings the game never sees hold the excess still missing."""
     found = 0
-    i = 0
-    while i >= 0:
-        if i == nb or level_next[i] >= level_n[i]:
-            if i == nb:
-                for s in range(level_n[nb]):  # times the ways the strings the game never sees hold the excess missing
-                    y = level_totals[nb][s] // X1 - full + x_most - level_totals[nb][s] % X1
-                    if 0 <= y <= x_most:
-                        found += level_ways[nb][s] * outside[y]
-            level_states[i] = level_states[i][:0].copy()  # (let the layer go)
-            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
-            level_n[i] = level_next[i] = 0
-            i -= 1
-            continue
-        held = 0
-        for x in range(nb + 1):
-            if x != i + 1:
-                held += level_totals[x].shape[0] * row_bytes
-        cap = max(least_rows, (budget - held) // row_bytes)
-        lo, hi = level_next[i], level_n[i]
-        while True:
-            m, next_states, next_totals, next_ways = _tight_layer(
-                level_states[i], level_totals[i], level_ways[i], lo, hi, level_states[i + 1], level_totals[i + 1],
-                level_ways[i + 1], cap, opens[i], open_k[i], both[i], shut[i], n_open[i + 1], ways[i],
-                C * (ends[i] - starts[i]), keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
-            level_states[i + 1], level_totals[i + 1], level_ways[i + 1] = next_states, next_totals, next_ways
-            if m >= 0:
-                break
-            hi = lo + (hi - lo) // 2  # too many successors: half as many states at a time
-        level_next[i] = hi
-        if hi == level_n[i]:  # layer i is through: let it go before going on
-            level_states[i] = level_states[i][:0].copy()
-            level_totals[i], level_ways[i] = level_totals[i][:0].copy(), level_ways[i][:0].copy()
-        level_n[i + 1], level_next[i + 1] = m, 0
-        i += 1
+    for s in range(n):
+        y = totals[s] // X1 - full + x_most - totals[s] % X1
+        if 0 <= y <= x_most:
+            found += ways_in[s] * outside[y]
     return found
 
 
 @njit(cache=True)
-def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, cap, opens, open_k, both,
-                 shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W, P, row):
-    """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer: the next layer's
-    states (in ``new_*``, grown as needed up to ``cap`` rows) and their number, or −1 where there would
-    be more than ``cap``."""
-    for x in range(2):  # opening a vertex: the sets with it hold no unit at it yet (the same on a retry)
+def _row_bytes(W, P):
+    """What a state costs the budget: its values, its total and ways, its share of the hash table."""
+    return 2 * (W + P) + 8 + 8 + 32
+
+
+@njit(cache=True)
+def _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget):
+    """:func:`tight_count` with every layer whole: the count and −1; or, where a layer would pass the budget, 0,
+    its index i, layer i (states, totals, ways, number) and the part of layer i + 1 made from its states
+    0 … stop − 1 (states, totals, ways, number, stop), for :func:`_tight_split` to go on from."""
+    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
+     P) = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
+    row_bytes = _row_bytes(W, P)
+    states = np.zeros((1, W + P), dtype=np.int16)
+    totals = np.zeros(1, dtype=np.int64)
+    ways_in = np.ones(1, dtype=np.int64)
+    n = 1
+    row = np.zeros(W + P, dtype=np.int64)
+    for i in range(nb):
+        T = C * (ends[i] - starts[i])
+        cap = max(2 * (T + 1) * X1, (budget - n * row_bytes) // row_bytes)
+        m, stop, new_states, new_totals, new_ways, _ = _tight_layer(
+            states, totals, ways_in, 0, n, np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
+            np.zeros(0, dtype=np.int64), 0, np.full(128, -1, dtype=np.int64), cap, 0, 0, opens[i], open_k[i], both[i],
+            shut[i], n_open[i + 1], ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P,
+            row)
+        if stop < n:
+            return 0, i, states, totals, ways_in, n, new_states, new_totals, new_ways, m, stop
+        states, totals, ways_in, n = new_states, new_totals, new_ways, m
+    return _tight_total(totals, ways_in, n, outside, X1, full, x_most), -1, states, totals, ways_in, n, states, totals, \
+        ways_in, n, n
+
+
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=None):
+    """The placements :func:`place` counts with no edge permutation, counted without visiting them;
+    or, with a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to
+    bundles, each read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's
+    lemma.  ``x_most`` is :func:`place`'s excess bound: 0 in the rule's equality case (every long
+    string exactly at h − 1 = C binary links, every never-short string at its least: e.g. 1-DOF
+    chains), W − threshold above it.
+
+    Such a placement is a choice of deficit d_e = C − w_e on each short string between two of the
+    game's vertices such that the multigraph D holding each string d_e times is (k, l)-sparse —
+    every set X of vertices holds at most Σ_X k − l (docs/theory.md) — and of the excess
+    w_e − C on the long ones (and w_e − least on the strings the game never sees) such that
+    Σ w = n2: the excess X and D then satisfy X − D = x_most − (Σ k − l), so D lies between
+    Σ k − l − x_most and Σ k − l (tight where x_most = 0).  The bundles of parallel strings are
+    taken one after the other (as :func:`place` takes them); a bundle adds t units of deficit on one
+    pair a–b and y of excess, in as many ways as its non-decreasing weights give (t, y)
+    (:func:`_bundle_deficits`).  A vertex is *open* from its first bundle to its last; the state
+    after a bundle is, for every set U of open vertices, the most that i(U ∪ Z) − k·|U ∪ Z| reaches
+    over the sets Z of closed vertices, with Σ d and Σ x so far.  A bundle on a–b adds t to the
+    sets that hold both and is allowed where none of them then exceeds −l (a set that holds no new
+    unit was checked before); closing a vertex keeps the larger of a set with and without it.
+    Values below −l less the deficit still to come can never matter and are raised to one level,
+    so placements whose prefixes differ there share a state.  The count is the sum, over the
+    states of the last layer, of the placements that reach each times the ways the strings the
+    game never sees hold the excess still missing.  With ``g``, the first bundle of each cycle of g
+    keeps its (t, y) in the state until the last, and every other bundle of the cycle must take
+    the same weights (in one way); a cycle of s bundles the game never sees takes s times one
+    bundle's excess.
+
+    ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
+    strings in bundles whole; 0 ≤ l < 2k, M ≥ 2, x_most ≥ 0; ``g`` empty for every placement.
+    ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
+    elsewhere, in place of :func:`_bundle_deficits` (the second count,
+    :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
+    :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
+    2^(open vertices) values each at h = 4…6 beyond 20 links (a worker of the 32-link count at h = 6 grew to
+    4.2 GiB).  ``budget`` bounds the bytes the layers hold at once: a layer whose states would pass it is
+    made in buckets by a hash of the state, each by a pass over the whole layer before it (:func:`_tight_split`:
+    every state once, merged as in a whole layer; the work the layer's times its buckets).
+
+    >>> import numpy as np
+    >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
+    >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
+    >>> nothing = np.zeros((0, 0, 0), dtype=np.int64)
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, none[:0], nothing)  # 5 units, ≤ 2 a pair
+    3
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, np.array([1, 0, 2]), nothing)  # d_0 = d_1
+    1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 1, none[:0], nothing)  # or 4 units + 1 excess
+    6
+    """
+    budget = LAYER_BYTES if budget is None else budget
+    found, i, *handed = _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget)
+    if i < 0:
+        return int(found)
+    frame = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
+    return _tight_split(frame, C, l, x_most, budget, i, handed)
+
+
+def _spill_file():
+    """A file for a bucket that the budget keeps out of memory: unlinked at once (O_TMPFILE where it can), so
+    nothing of it is left on disk once it is closed or the process ends, however it ends."""
+    return tempfile.TemporaryFile(prefix="mechsynth-layer-")
+
+
+class _Buckets:
+    """The buckets of the programme's layers: in memory while they hold at most ``room`` bytes, the rest each in a
+    file of its own (:func:`_spill_file`)."""
+
+    def __init__(self, room, W, P):
+        self.room, self.held, self.W, self.P, self.files = room, 0, W, P, set()
+
+    def put(self, states, totals, ways, n):
+        """Keep the first n states; a handle for :meth:`get`."""
+        size = n * (2 * (self.W + self.P) + 16)
+        if self.held + size <= self.room:
+            self.held += size
+            if len(totals) == n:
+                return n, (states, totals, ways)
+            return n, (states[:n].copy(), totals[:n].copy(), ways[:n].copy())
+        f = _spill_file()
+        self.files.add(f)
+        for a in (states[:n], totals[:n], ways[:n]):
+            np.ascontiguousarray(a).tofile(f)
+        return n, f
+
+    def get(self, bucket):
+        """The states, totals and ways of a bucket (read back from its file if it has one)."""
+        n, where = bucket
+        if isinstance(where, tuple):
+            return where
+        where.seek(0)
+        states = np.fromfile(where, dtype=np.int16, count=n * (self.W + self.P)).reshape(n, self.W + self.P)
+        return states, np.fromfile(where, dtype=np.int64, count=n), np.fromfile(where, dtype=np.int64, count=n)
+
+    def drop(self, bucket):
+        n, where = bucket
+        if isinstance(where, tuple):
+            self.held -= n * (2 * (self.W + self.P) + 16)
+        else:
+            self.files.discard(where)
+            where.close()
+
+    def close(self):
+        for f in self.files:
+            f.close()
+        self.files.clear()
+
+
+def _tight_split(frame, C, l, x_most, budget, i, handed):
+    """:func:`tight_count` on from layer i, whose successors passed the budget: ``handed`` is :func:`_tight_whole`'s
+    layer i and the part of layer i + 1 made from its first states (the list emptied, so that the layers go as soon
+    as they are in buckets).  Each layer from there is made in buckets: a bucket is the states whose hash has given low
+    bits (bits 32 … of :func:`_state_code`), made by one pass over every bucket of the layer before (read one at a
+    time), keeping only the successors that fall in it, merged in its own table as in a whole layer.  A bucket is
+    first every state; where it would pass a third of the budget it is cut in two by its next bit: the half with
+    the bit set is put aside (with where the pass had got to) and made later, the other goes on.  So every state
+    of a layer is in one bucket once, no bucket passes a third of the budget (or the successors of one state), and a
+    layer costs as many passes as it has buckets.  A third of the budget for the bucket being made, a third for one
+    bucket read back, a third for the buckets held in memory; the others wait in unlinked files."""
+    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
+     P) = frame
+    row = np.zeros(W + P, dtype=np.int64)
+    store = _Buckets(budget // 3, W, P)
+    pending = []  # the buckets of layer i + 1 to make: bits, their value, where the pass is, the states so far
+
+    def cut(residue, bits, b, s, states, totals, ways_in, m):
+        """Cut a bucket by its next bits until it has room for the successors of a state, the halves put aside
+        (each cut the same way); the bits and number of states of what is left."""
+        while m + each > cap:
+            if bits == 30:
+                raise RuntimeError("tight_count: a bucket of states alike in 30 bits of their hash")
+            m, half = _split_bucket(states, totals, ways_in, m, bits, width, W, P)
+            half_bits, half_m = cut(residue | 1 << bits, bits + 1, b, s, *half)
+            pending.append((residue | 1 << bits, half_bits, b, s, store.put(*half[:3], half_m)))
+            bits += 1
+        return bits, m
+
+    states, totals, ways_in, n, part_states, part_totals, part_ways, m, stop = handed
+    handed.clear()
+    try:
+        layer = [store.put(states, totals, ways_in, n)]
+        states = totals = ways_in = None
+        while True:
+            T = C * (ends[i] - starts[i])
+            each = (T + 1) * X1  # the most successors of one state
+            cap = max(budget // (3 * _row_bytes(W, P)), 4 * each)
+            width = 1 << n_open[i + 1]
+            if part_states is not None:  # (the part of layer i + 1 handed over)
+                bits, m = cut(0, 0, 0, stop, part_states, part_totals, part_ways, m)
+                pending.append((0, bits, 0, stop, store.put(part_states, part_totals, part_ways, m)))
+                part_states = part_totals = part_ways = None
+            else:
+                pending.append((0, 0, 0, 0, store.put(np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
+                                                      np.zeros(0, dtype=np.int64), 0)))
+            made = []
+            while pending:
+                residue, bits, b, s, part = pending.pop()
+                new_states, new_totals, new_ways = store.get(part)
+                m = len(new_totals)
+                store.drop(part)
+                table = _rehash(new_states, new_totals, m, width, W, P)
+                read, bucket = -1, None
+                while b < len(layer):
+                    if read != b:
+                        bucket = None  # (the bucket before let go first)
+                        read, bucket = b, store.get(layer[b])
+                    m, s, new_states, new_totals, new_ways, table = _tight_layer(
+                        *bucket, s, layer[b][0], new_states, new_totals, new_ways, m,
+                        table, cap, (1 << bits) - 1, residue, opens[i], open_k[i], both[i], shut[i], n_open[i + 1],
+                        ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
+                    if s == layer[b][0]:
+                        b, s = b + 1, 0
+                    else:  # too many: cut in two by the next bit, one half put aside
+                        bits, m = cut(residue, bits, b, s, new_states, new_totals, new_ways, m)
+                        table = _rehash(new_states, new_totals, m, width, W, P)
+                made.append(store.put(new_states, new_totals, new_ways, m))
+                bucket = new_states = new_totals = new_ways = table = None  # (let them go before the next)
+            for old in layer:  # layer i is through
+                store.drop(old)
+            layer = made
+            i += 1
+            if i == nb:
+                return sum(int(_tight_total(*store.get(bucket)[1:], bucket[0], outside, X1, full, x_most))
+                           for bucket in layer)
+    finally:
+        store.close()
+
+
+@njit(cache=True)
+def _split_bucket(states, totals, ways_in, m, bit, width, W, P):
+    """Cut the states 0 … m − 1 of a bucket by bit ``bit`` of their hash's bucket bits: those without it stay, at
+    the front; the number left, and the others (states, totals, ways, number)."""
+    out = np.zeros(m, dtype=np.bool_)
+    for j in range(m):
+        out[j] = (_state_code(states[j], width, W, P, totals[j]) >> (32 + bit)) & 1
+    moved = np.flatnonzero(out)
+    half = states[moved], totals[moved], ways_in[moved], len(moved)  # (copies)
+    kept = 0
+    for j in range(m):
+        if not out[j]:
+            states[kept], totals[kept], ways_in[kept] = states[j], totals[j], ways_in[j]
+            kept += 1
+    return kept, half
+
+
+@njit(cache=True)
+def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, m, table, cap, key_mask, key,
+                 opens, open_k, both, shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W, P, row):
+    """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer, adding their successors
+    whose bucket bits (:func:`_state_code`) masked by ``key_mask`` are ``key`` to the m states of the next layer
+    (``new_*``, hashed in ``table``; both grown as needed, the arrays up to ``cap`` rows).  Stops before a state
+    whose successors might pass ``cap``: the next layer's states so far, their number, where it stopped (``hi``
+    when through) and the arrays and table, which may be new."""
+    for x in range(2):  # opening a vertex: the sets with it hold no unit at it yet (the same on a second pass)
         if opens[x] >= 0:
             bit = 1 << opens[x]
             for s in range(lo, hi):
@@ -813,13 +995,10 @@ def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_wa
                     states[s, U | bit] = states[s, U] - open_k[x]
     n_open = n_after + (shut[0] >= 0) + (shut[1] >= 0)
     width = 1 << n_after
-    size = 128
     X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
-    while size < 2 * min((hi - lo) * (T + 1) * X1, cap):
-        size *= 2
-    table = np.full(size, -1, dtype=np.int64)
-    m = 0
     for s in range(lo, hi):
+        if m + (T + 1) * X1 > cap:
+            return m, s, new_states, new_totals, new_ways, table
         most = -(1 << 60)  # the largest value of a set holding a and b
         for U in range(1 << n_open):
             if U & both == both and states[s, U] > most:
@@ -857,25 +1036,33 @@ def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_wa
                     row[W + keep] = t * X1 + y
                 if free:
                     row[W + same] = 0
+                total = d * X1 + x
+                code = _state_code(row, width, W, P, total)
+                if (code >> 32) & key_mask != key:  # another bucket's
+                    continue
                 weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t, y]  # (a cycle's weights: chosen once)
-                j = _state_slot(table, size - 1, new_states, new_totals, row, width, W, P, d * X1 + x)
+                j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
                 if j >= 0:
                     new_ways[j] += weight
                     continue
-                if m >= cap:  # a part too large: the caller takes fewer states at a time
-                    return -1, new_states, new_totals, new_ways
-                if m == len(new_totals):  # a larger layer, up to the cap
+                if 2 * (m + 1) > len(table):  # a larger table
+                    table = _rehash(new_states, new_totals, m, width, W, P)
+                    j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
+                if m == len(new_totals):  # larger arrays: twice as large, or past 4 MiB the cap at once
                     grown = max(64, min(2 * m, cap))
-                    more = np.zeros((grown, W + P), dtype=np.int16)
+                    if 2 * grown * (W + P) > 1 << 22:  # (left empty: the pages are taken as rows are written)
+                        grown = cap
+                    more = np.empty((grown, W + P), dtype=np.int16)
                     more[:m] = new_states[:m]
                     new_states = more
-                    new_totals = np.concatenate((new_totals[:m], np.zeros(grown - m, dtype=np.int64)))
-                    new_ways = np.concatenate((new_ways[:m], np.zeros(grown - m, dtype=np.int64)))
+                    more_totals, more_ways = np.empty(grown, dtype=np.int64), np.empty(grown, dtype=np.int64)
+                    more_totals[:m], more_ways[:m] = new_totals[:m], new_ways[:m]
+                    new_totals, new_ways = more_totals, more_ways
                 table[-j - 1] = m
                 for U in range(width):
                     new_states[m, U] = row[U]
                 for U in range(W, W + P):
                     new_states[m, U] = row[U]
-                new_totals[m], new_ways[m] = d * X1 + x, weight
+                new_totals[m], new_ways[m] = total, weight
                 m += 1
-    return m, new_states, new_totals, new_ways
+    return m, hi, new_states, new_totals, new_ways, table
