@@ -47,7 +47,8 @@ def _add_selection(p) -> None:
                    "translator): a base holding the higher class's loops on a chain of the lower class; --dof is W by "
                    "the heterogeneous count; with --chain, every base on that chain")
     p.add_argument("--chain", help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
-                   "a command printed): its row, its mechanisms, or with --prismatic its variants")
+                   "a command printed): its row, its mechanisms, or with --prismatic its variants, renumbered as "
+                   "every listing and atlas numbers its id")
     p.add_argument("--idle-joints", action="store_true",
                    help="with --prismatic: keep chains with joints that never move, and list them")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
@@ -148,9 +149,9 @@ def _size_note(query, args) -> float | None:
 
 
 def _run_one_chain(args) -> int:
-    """``--chain C``: that one chain (any joint list or JSON row a command printed), normalised —
-    its row, or its mechanisms; with ``--prismatic A..B`` the variants of that chain (Fig. 6: a
-    drive's cylinders)."""
+    """``--chain C``: that one chain (any joint list or JSON row a command printed) in its canonical
+    numbering (the one its id has in every listing and atlas) — its row, or its mechanisms; with
+    ``--prismatic A..B`` the variants of that chain (Fig. 6: a drive's cylinders)."""
     from synth import mechanisms_of
     from synth.exchange import read_chain
     from synth import parse_range
@@ -174,6 +175,7 @@ def _run_one_chain(args) -> int:
         lo, hi = parse_range(args.prismatic, "--prismatic")
         prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
         items = variants_of([chain], (lo, hi), idle=args.idle_joints)
+    items = [c.canonical() for c in items]  # a frame printed names the link move --db --id fixes
     if args.what == "mechanisms":
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))

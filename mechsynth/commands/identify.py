@@ -111,6 +111,7 @@ def _table(row: dict) -> str:
     lines = [
         ("chain", joints),
         ("id", row["id"]),
+        ("as listed", row["listed_joints"] + "  (this id's numbering in every listing and atlas)"),
         ("code", row["code"] + ("" if row["h"] == 3 else f"  h = {row['h']}")),
         ("W", f"{row['dof']}" + ("" if row["dof"] == row["dof_count"] else f" (the count says {row['dof_count']})")),
         ("links, loops, v", f"{row['links']}, {row['loops']}, {row['v']}"),
@@ -132,6 +133,8 @@ def _table(row: dict) -> str:
     if "frame" in row:
         lines += [("frame", str(row["frame"]) + (f", input link {row['input_link']}" if "input_link" in row else "")),
                   ("frame's orbit", ", ".join(map(str, row["frame_orbit"]))),
+                  ("frame as listed", str(row["listed_frame"]) + (f", input link {row['listed_input_link']}"
+                                                                  if "listed_input_link" in row else "")),
                   ("inversion", "; ".join(row["inversion"]) or "-"),
                   ("mechanism listing", _listed(row, "mechanism_") if row.get("mechanism_listing") else "none")]
     lines.append(("certificate", row["certificate"]))

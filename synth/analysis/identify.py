@@ -6,7 +6,8 @@ and identified:
 
 * its **id** (the first 12 hex digits of the SHA-1 of its nauty certificate: the address of its
   page in an atlas web site, ``chain.html#<id>``, and the ``id`` column of every listing) and
-  its certificate;
+  its certificate, and its joints **as listed**: in the one numbering every listing and atlas
+  gives that id (:meth:`~synth.structure.chain.Chain.canonical`), a mechanism's frame too;
 * its **code** and its **place in the listing** of that code: the row number ``index`` in
   ``mechsynth chains --code C`` with the options its conventions need (``--rigid-subchains``
   for a chain with a rigid sub-chain, ``--dof W --prismatic P`` for prismatic pairs, …);
@@ -44,7 +45,7 @@ from functools import lru_cache
 from mechbase import Row
 
 from ..errors import MalformedChain
-from ..structure.chain import Chain, chain_id
+from ..structure.chain import Chain, Mechanism, chain_id
 from ..structure.joints import MESH, PRISMATIC
 
 __all__ = ["Identity", "identify_entry", "chain_id", "listing_query", "index_size", "INDEX_SECONDS"]
@@ -76,6 +77,7 @@ class Identity(Row):
     names: list | None
     id: str
     certificate: str
+    listed_joints: str
     code: str
     dof: int
     dof_count: int
@@ -99,6 +101,8 @@ class Identity(Row):
     frame: object = None
     input_link: object = None
     frame_orbit: list | None = None
+    listed_frame: int | None = None
+    listed_input_link: int | None = None
     mechanism_certificate: str | None = None
     mechanism_listing: str | None = None
     mechanism_index: int | None = None
@@ -111,9 +115,9 @@ class Identity(Row):
     def row_keys(self) -> tuple[str, ...]:
         """The row, a chain row again (``identify`` reads its own output back): every field but the chain,
         the kinds, input link and classes where there are some, the mechanism's fields where there is a frame."""
-        mechanism = {"frame", "frame_orbit", "mechanism_certificate", "mechanism_listing", "mechanism_index",
-                     "mechanisms_listed", "inversion"}
-        optional = {"kinds", "input_link", "classes"}
+        mechanism = {"frame", "frame_orbit", "listed_frame", "mechanism_certificate", "mechanism_listing",
+                     "mechanism_index", "mechanisms_listed", "inversion"}
+        optional = {"kinds", "input_link", "listed_input_link", "classes"}
         return tuple(f.name + "?" * (f.name in optional) for f in fields(self)
                      if f.name != "chain" and (self.frame is not None or f.name not in mechanism))
 
@@ -288,6 +292,20 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
     return out
 
 
+def _listed_mechanism(listed: Chain, mechanism: Mechanism) -> Mechanism:
+    """The mechanism as listings and atlases number it: the row of ``mechanisms`` (and of an atlas)
+    on the canonically numbered chain ``listed`` that is the same mechanism.
+
+    >>> _listed_mechanism(Chain.parse("0-1 0-2 0-4 1-3 1-5 2-3 4-5").canonical(),
+    ...                   Mechanism(Chain.parse("0-1 0-2 0-4 1-3 1-5 2-3 4-5"), 0)).frame   # Watt II: a ternary fixed
+    4
+    """
+    from ..synthesis.type_synthesis import mechanisms_of
+
+    return next(m for m in mechanisms_of(listed, input_link=mechanism.input_link is not None)
+                if m.certificate == mechanism.certificate)
+
+
 def identify_entry(entry, *, index: bool | None = None) -> Identity:
     """Identify one chain as read by :mod:`synth.exchange` (an entry: the chain, its frame and input
     link, the names its source gave its links, where it came from); :func:`synth.identify` reads
@@ -327,20 +345,23 @@ def identify_entry(entry, *, index: bool | None = None) -> Identity:
     else:
         place = _place(chain, entry.item if entry.frame is not None else None, dof, verdict, bool(idle), index)
     worst = list(own.worst) if own is not None else []
+    listed = chain.canonical()  # the numbering of every listing and atlas
     mechanism = {}
     if entry.frame is not None:
         frame = entry.frame
         orbit = [x for x in range(chain.links) if orbits[x] == orbits[frame]]
         moved = entry.input_link
+        same = _listed_mechanism(listed, entry.item)
         mechanism = dict(frame=_named(names, [frame])[0], frame_orbit=_named(names, orbit),
                          input_link=None if moved is None else _named(names, [moved])[0],
+                         listed_frame=same.frame, listed_input_link=same.input_link,
                          mechanism_certificate=entry.item.certificate, inversion=inversion_names(chain, frame))
         mechanism.update({k: place.pop(k) for k in ("mechanism_listing", "mechanism_index", "mechanisms_listed")
                           if k in place})
     return Identity(
         source=entry.source, links=chain.links, joints=[list(j) for j in chain.joints],
         kinds=None if chain.all_revolute else list(chain.kinds), h=chain.h, names=list(names) if names else None,
-        id=chain_id(chain.certificate), certificate=chain.certificate,
+        id=chain_id(chain.certificate), certificate=chain.certificate, listed_joints=listed.compact(),
         code=str(chain.code) + chain.kind_suffix + chain.class_suffix,
         dof=dof, dof_count=chain.dof, loops=chain.loops, v=chain.v, connected=connected,
         subchains=own.kind if own is not None else "not connected", worst_subchain=_named(names, worst),

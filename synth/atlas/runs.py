@@ -37,8 +37,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import pynauty
-
 from mechbase import Row
 
 from ..errors import InvalidOption, QueryTooLarge, option
@@ -82,15 +80,6 @@ class UnitRows:
     rotation: bool = False
 
 
-def _canonical(chain: Chain) -> Chain:
-    """The chain relabelled by nauty's canonical labelling (same joints for isomorphic chains)."""
-    labels = pynauty.canon_label(chain._nauty_graph())
-    permutation = [0] * chain.links
-    for position, link in enumerate(labels[: chain.links]):
-        permutation[link] = position
-    return chain.relabel(permutation)
-
-
 def _chain_rows(chain: Chain, fractionated: bool, input_link: bool, out: UnitRows) -> None:
     """Add a chain (in its canonical labelling) to a unit's rows: its chain row, link counts and mechanisms."""
     cert, code, degrees = chain.certificate, chain.code, chain.degrees
@@ -113,15 +102,14 @@ def compute_unit(task: UnitTask) -> UnitRows:
     if isinstance(task.unit, TrainUnit):
         out.rotation = task.unit.graphs == "rotation"
         for train, rank in unit_trains(task.unit):
-            chain = _canonical(train.to_chain())
+            chain = train.to_chain().canonical()
             _chain_rows(chain, train.is_fractionated(), False, out)
             out.trains.append(train_row(GearTrain.from_chain(chain), chain.certificate, rank))
     else:
         # a non-degenerate 1-DOF chain is never fractionated (each part would need W >= 1)
         conv = task.unit.conventions
         fractionable = conv.rigid_subchains or task.unit.code.dof(conv.h) + conv.slack != 1 or task.unit.code.n1
-        for found in run_unit(task.unit):  # (with prismatic pairs: the chains of the cell's W, wedge loops counted)
-            chain = _canonical(found)
+        for chain in run_unit(task.unit):  # canonical; with prismatic pairs the chains of the cell's W
             _chain_rows(chain, bool(fractionable and chain.is_fractionated()), task.input_link, out)
     out.seconds = time.perf_counter() - start
     return out

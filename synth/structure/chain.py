@@ -333,6 +333,25 @@ class Chain:
         return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h,
                      classes)
 
+    def canonical(self) -> "Chain":
+        """The chain in its canonical labelling (nauty's): isomorphic chains come out with the same
+        joints, so a chain id names one numbering of its links.  Every listing, the atlas and
+        ``move --db`` number a chain so, and a frame read from one names the same link in all.
+
+        >>> Chain.parse("0-1 0-2 0-4 1-3 1-5 2-3 4-5").canonical().compact()   # the Watt chain, id 814ad964fad2
+        '0-3 0-4 1-2 1-4 2-5 3-5 4-5'
+        >>> Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").canonical().compact()  # the same chain written otherwise
+        '0-3 0-4 1-2 1-4 2-5 3-5 4-5'
+        """
+        labels = pynauty.canon_label(self._nauty_graph())
+        permutation = [0] * self.links
+        for position, link in enumerate(labels[: self.links]):
+            permutation[link] = position
+        out = self.relabel(permutation)
+        if "_certificate" in self.__dict__:  # the same chain: its certificate is known
+            object.__setattr__(out, "_certificate", self._certificate)
+        return out
+
     def to_networkx(self):
         """Bipartite incidence graph: nodes ``("link", i)`` and ``("joint", k)`` with attribute ``kind``;
         the graph attribute ``h`` is the motion space.

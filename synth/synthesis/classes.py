@@ -251,18 +251,19 @@ def heterogeneous_synthesis(dof: int, loop_classes: Mapping[int, int], *, links:
     Yields
     ------
     Chain
-        Skeleton by skeleton in the order of type synthesis, each skeleton's bases by certificate.
+        Skeleton by skeleton in the order of type synthesis, each skeleton's bases by certificate,
+        each in its canonical labelling (:meth:`~synth.structure.chain.Chain.canonical`).
 
     Examples
     --------
     >>> for c in heterogeneous_synthesis(1, {2: 1, 3: 1}, workers=1):   # a lever loop on a wedge system
     ...     print(c.compact(), c.dof, c.loop_classes)
-    0-2 0-3 0-4 1-2 1-3 1-4 | h2; h3: 0 1 2 3 1 {2: 1, 3: 1}
-    0-1 0-2 0-3 1-2 1-4 3-4 | h2; h3: 0 1 3 4 1 {2: 1, 3: 1}
+    0-3 0-4 1-3 1-4 2-3 2-4 | h2; h3: 1 2 3 4 1 {2: 1, 3: 1}
+    0-3 0-4 1-2 1-4 2-3 3-4 | h2; h3: 1 2 3 4 1 {2: 1, 3: 1}
     """
     from .type_synthesis import type_synthesis
 
     skeletons = skeleton_query(dof, loop_classes, links=links, **options)
     _, _, x, k_x = split_classes(loop_classes)
     for skeleton in type_synthesis(skeletons, workers=workers, progress=progress):
-        yield from class_variants(skeleton, x, k_x, rigid_subchains=skeletons.rigid)
+        yield from (c.canonical() for c in class_variants(skeleton, x, k_x, rigid_subchains=skeletons.rigid))

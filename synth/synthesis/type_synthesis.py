@@ -19,10 +19,10 @@ Example
 {'42/0': 2, '51/1': 1, '60/2': 1}
 >>> for c in type_synthesis(1, 5, prismatic="1..6", workers=1):   # Task 3: a wedge loop and a lever loop
 ...     print(c.compact(), c.dof)
-0=2 0=3 0-4 1=2 1=3 1-4 1
-0=1 0=2 0-3 1=2 1-4 3-4 1
-0=1 0=2 0-3 1=2 1-4 3=4 1
-0=1 0=2 0=3 1=2 1-4 3-4 1
+0=2 0=3 1=2 1=3 2-4 3-4 1
+0=1 0=2 1=2 1-4 2-3 3-4 1
+0=3 0=4 1=2 1-4 2-3 3=4 1
+0=1 0=3 1=2 1=3 2-4 3-4 1
 """
 
 from __future__ import annotations
@@ -240,18 +240,19 @@ def _stage_a(code: Code, conv: Conventions) -> Iterator[Unit]:
 
 
 def run_unit(unit: Unit, stats: dict | None = None) -> list[Chain]:
-    """The chains of one unit, sorted by certificate (deterministic)."""
+    """The chains of one unit, sorted by certificate (deterministic), each in its canonical labelling
+    (:meth:`Chain.canonical`: the numbering the atlas stores, so one id has one numbering everywhere)."""
     conv = unit.conventions
     if unit.contracted is None:
         n = unit.code.links
         found = [Chain(n, tuple((i, (i + 1) % n) for i in range(n)), h=conv.h)] if n >= 3 else []
     else:
         found = realise(unit.code, unit.contracted, conv, stats)
-    if conv.prismatic is None:
-        return found
-    from .variants import assignments
+    if conv.prismatic is not None:
+        from .variants import assignments
 
-    return [c for skeleton in found for c in assignments(skeleton, conv)]
+        found = [c for skeleton in found for c in assignments(skeleton, conv)]
+    return [c.canonical() for c in found]
 
 
 def _check_workers(workers):

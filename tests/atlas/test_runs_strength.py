@@ -16,7 +16,7 @@ import pytest
 import synth
 from synth.atlas import parse_grid, run_grid
 from synth.atlas import runs
-from synth.atlas.runs import GridRunResult, UnitRows, _canonical, _commit, _log_sum, _power, size_grid
+from synth.atlas.runs import GridRunResult, UnitRows, _commit, _log_sum, _power, size_grid
 from synth.errors import InvalidOption, QueryTooLarge
 from synth.structure.chain import Chain
 from synth.synthesis.type_synthesis import mechanisms_of
@@ -87,12 +87,12 @@ def test_mechanisms_are_the_engines_inversions(atlas):
 def test_the_chain_is_stored_in_its_canonical_labelling():
     rng = random.Random(5)
     for chain in (WATT, STEPHENSON, Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-6 6-0")):
-        first = _canonical(chain)
+        first = chain.canonical()
         assert first.certificate == chain.certificate
         for _ in range(6):
             labels = list(range(chain.links))
             rng.shuffle(labels)
-            assert _canonical(chain.relabel(labels)).to_dict() == first.to_dict()
+            assert chain.relabel(labels).canonical().to_dict() == first.to_dict()
 
 
 def test_units_cells_and_the_run_row(atlas):

@@ -3,6 +3,8 @@ chain), its rows read back by ``identify`` and ``analyze``, ``draw`` with each c
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 
 from mechsynth.cli import main
@@ -36,10 +38,11 @@ def test_the_translator_among_the_bases_of_its_chain(capsys):
     """``--chain C --loop-classes``: every class-V loop of the translator's graph; identify names the
     translator's row in the query of its code."""
     code, out, _ = run(capsys, "chains", "--chain", TRANSLATOR, "--loop-classes", "3=4,5=1", "--format", "csv")
-    lines = out.splitlines()
-    assert code == 0 and len(lines) == 6 and lines[-1].split(",")[4].endswith("| h5: 0 1 2 3 4 5")
+    rows = list(csv.DictReader(io.StringIO(out)))
     code, out, _ = run(capsys, "identify", TRANSLATOR + " | h5: 0 1 2 3 4 5", "--format", "json")
     found = json.loads(out)
+    assert code == 0 and len(rows) == 5 and len({r["certificate"] for r in rows}) == 5
+    assert [r["joints"] for r in rows if r["id"] == found["id"]] == [found["listed_joints"]]  # numbered as listed
     assert found["code"] == "12.2.0.0.0/6 K3=4 K5=1" and found["dof"] == 1 and found["classes"][:6] == [5] * 6
     assert found["listing"] == "mechsynth chains --dof 1 --loop-classes 3=4,5=1 --code 12.2.0.0.0/6"
 

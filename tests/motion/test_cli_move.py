@@ -230,6 +230,45 @@ def test_a_chain_of_an_atlas_by_its_id(capsys, tmp_path):
     assert code == 2 and "000000000000" in err
 
 
+def test_an_id_and_frame_from_the_listings_move_the_same_mechanism_from_an_atlas(capsys, tmp_path):
+    """One numbering of a chain by id: the joints and frames printed by ``chains``, ``mechanisms``
+    and ``identify`` are the atlas's, so ``move --db --id --frame`` moves the very mechanism listed
+    (the Watt chain 814ad964fad2 was listed 0-1 0-2 0-4 … but stored 0-3 0-4 1-2 …)."""
+    from synth import Chain, Mechanism
+    from synth.atlas import run_grid
+    from synth.atlas.grid import parse_grid
+
+    db = tmp_path / "a.sqlite"
+    run_grid(parse_grid('dof = 1\nlinks = "6..8"'), str(db), workers=1)
+
+    def moved(chain_id, frame):
+        saved = tmp_path / f"{chain_id}_{frame}.json"
+        assert _run(capsys, "move", "--db", db, "--id", chain_id, "--frame", frame, "--save", saved)[0] == 0
+        linkage = json.loads(saved.read_text())
+        return Mechanism(Chain.parse(linkage["chain"]), linkage["frame"])
+
+    listed = []
+    for query in (["--links", "6"], ["--code", "602/0"]):
+        code, out, _ = _run(capsys, "chains", "--dof", "1", *query, "--format", "jsonl", "--workers", "1")
+        for row in map(json.loads, out.splitlines()):
+            code, stored, _ = _run(capsys, "atlas", "--db", db, "--where", f"id={row['id']}")
+            assert code == 0 and json.loads(stored)["joints"] == row["joints"]
+        code, out, _ = _run(capsys, "mechanisms", "--dof", "1", *query, "--format", "jsonl", "--workers", "1")
+        listed += [json.loads(line) for line in out.splitlines()]
+    assert len({(r["chain_id"], r["frame"]) for r in listed}) == len(listed) >= 8
+    for row in listed:
+        mechanism = moved(row["chain_id"], row["frame"])
+        assert mechanism.chain.compact() == Chain.from_dict(row).compact()
+        assert mechanism.certificate == row["certificate"], row  # the frame names the same link
+    # identify, given the Watt chain numbered another way with a ternary fixed (Watt II)
+    code, out, _ = _run(capsys, "identify", "0-1 0-2 0-4 1-3 1-5 2-3 4-5", "--frame", "0", "--format", "json")
+    found = json.loads(out)
+    assert code == 0 and found["id"] == "814ad964fad2" and found["inversion"] == ["Watt II"]
+    mechanism = moved(found["id"], found["listed_frame"])
+    assert mechanism.certificate == found["mechanism_certificate"]
+    assert mechanism.chain.compact() == found["listed_joints"] and mechanism.chain.degrees[mechanism.frame] == 3
+
+
 def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
     """More than 20 000 steps are computed a piece at a time (Ctrl-C is seen between pieces): the
     rows are those of one sweep over the same inputs."""
