@@ -18,7 +18,8 @@ SIMPLE = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, plan
 
 @pytest.mark.parametrize("call,kind,sentence", [
     (lambda: design(SIMPLE, 0, 1, 2, "0"), InvalidOption, "a speed ratio of 0 would need an output that never turns"),
-    (lambda: design(SIMPLE, 0, 1, 2, "4", tolerance="-1%"), InvalidOption, "the tolerance must be ≥ 0, not -1%"),
+    (lambda: design(SIMPLE, 0, 1, 2, "4", tolerance="-1%"), InvalidOption,
+     "the tolerance is the ratio's relative error allowed, 0 … 100 % (exclusive), not -1%"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", teeth=(5, 12)), InvalidOption,
      "no tooth number fits 5..12 with at least 17 teeth (fewer are undercut)"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", teeth=(5, 16), min_teeth=17), InvalidOption,
