@@ -232,6 +232,9 @@ def _run(args) -> int:
                             budget=args.budget, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
                             underdetermined=args.underdetermined, progress=progress, starts=sampled_starts)
     _write(result, args.format)
+    if result.on_reach and result.relative_max > 1e-9:
+        print(f"mechsynth: {' and '.join(result.on_reach)} lie{'s' * (len(result.on_reach) == 1)} on the edge of the "
+              f"search's reach (--reach, in target sizes): a larger reach may lower the error", file=sys.stderr)
     if not result.met:
         print(f"mechsynth: no mechanism met the constraints within the budget; the best found fails: "
               f"{'; '.join(result.failed())} (nothing saved or drawn)", file=sys.stderr)

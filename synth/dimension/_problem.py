@@ -448,6 +448,32 @@ class Problem:
         u = np.array([math.cos(c.frame_angle), math.sin(c.frame_angle)])
         return (k_in, far, -u) if far in self.fixed else (far, k_in, u)
 
+    def on_reach(self, x: np.ndarray) -> list[str]:
+        """The joints (and "the tracer point") whose unknowns ``x`` lie on the edge of the search's reach
+        (not on a pivots' region the designer set): there the box, not the target, stopped the search.
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> p = Problem(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), 0, PathTarget(np.eye(2)), 2, Constraints())
+        >>> x = np.zeros(p.dims)
+        >>> p.on_reach(x), [name for name, _ in p.layout]
+        ([], ['joint', 'joint', 'joint', 'joint', 'tracer'])
+        >>> x[2] = p.upper[2]; x[-1] = p.lower[-1]      # the second joint's x, the tracer's y
+        >>> p.on_reach(x)
+        ['0-3', 'the tracer point']
+        """
+        from ..motion._linkage import joint_name
+
+        edge = 1e-9 * (self.upper - self.lower)
+        touching = (x <= self.lower + edge) | (x >= self.upper - edge)
+        names, at = [], 0
+        for kind, k in self.layout:
+            width = 1 if kind in ("slide", "along") else 2
+            region = kind == "joint" and self.constraints.pivots is not None and k in self.frame_joints
+            if kind != "slide" and not region and touching[at:at + width].any():
+                names.append("the tracer point" if kind == "tracer" else joint_name(self.chain, k))
+            at += width
+        return names
+
     # ------------------------------------------------------------ unknowns → linkage
     def linkage(self, x: np.ndarray) -> Linkage:
         """The linkage of the unknowns ``x`` (its pose the mechanism at the first target point).

@@ -93,6 +93,9 @@ class DimensionalResult(Row):
         The target's weights (None: every point counts once).  ``error_max``, ``error_rms`` and the
         relative errors are over the points each counted once; ``weighted_sum_squares`` is what the
         search minimised.
+    on_reach : list of str
+        The joints (and "the tracer point") the search left on the edge of its reach (``reach``): there
+        the box, not the target, stopped it, and a larger reach may do better.
 
     Examples
     --------
@@ -117,6 +120,7 @@ class DimensionalResult(Row):
     constraints: dict = field(default_factory=dict)
     angle_errors: np.ndarray | None = None
     weights: np.ndarray | None = None
+    on_reach: list = field(default_factory=list)
 
     @property
     def error_max(self) -> float:
@@ -1344,7 +1348,8 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
         f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
         "timed" if problem.timed else "inputs as unknowns, in order")
     return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
-                             else 1.0, watch.used(), watch.count, method, constraints, angle_errors, target.weights)
+                             else 1.0, watch.used(), watch.count, method, constraints, angle_errors, target.weights,
+                             problem.on_reach(x))
 
 
 def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:

@@ -115,3 +115,24 @@ def test_the_tables_constraints_carry_their_units(capsys):
                 if line.startswith("constraint "))
     assert rows["transmission"].startswith("met: ") and rows["transmission"].endswith("° (limit 10°)")
     assert rows["length"].endswith(" target units (limit 3 target units)")
+
+
+def test_an_answer_on_the_edge_of_the_reach_says_so(tmp_path, capsys):
+    # eight timed points of a four-bar whose frame pivots lie 40 apart, its coupler point's path some 10 across:
+    # within a reach of half the target's size the search stops on the box's edge and must say which joint
+    import math
+
+    from synth.motion import Linkage, sweep
+    from synth.structure.chain import Chain, Mechanism
+
+    wide = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [40, 0], [1, 0], [35, 30]],
+                   tracers={"P": (2, (2.0, 3.0))})
+    motion = sweep(wide, steps=8, stop=float(wide.pose_inputs[0]) + math.radians(300))
+    target = tmp_path / "wide.csv"
+    target.write_text("x,y,input\n" + "".join(f"{x!r},{y!r},{t!r}\n" for (x, y), t in
+                                              zip(motion.tracers["P"].tolist(), motion.inputs[:, 0].tolist())))
+    main(["dimension", str(target), *FOUR_BAR, "--budget", "3", "--seed", "0", "--reach", "0.5", "--format", "json"])
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["relative_max"] > 1e-3
+    (note,) = [line for line in captured.err.splitlines() if "edge of the search's reach" in line]
+    assert note.startswith("mechsynth: 0-3 ") and "a larger reach may lower the error" in note
