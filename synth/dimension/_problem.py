@@ -461,7 +461,7 @@ class Problem:
         >>> p.on_reach(x)
         ['0-3', 'the tracer point']
         """
-        from ..motion._linkage import joint_name
+        from ..motion import joint_name
 
         edge = 1e-9 * (self.upper - self.lower)
         touching = (x <= self.lower + edge) | (x >= self.upper - edge)
