@@ -21,9 +21,9 @@ import numpy as np
 
 from mechbase.pairs import finite_pair
 
-from ..errors import BadTarget, DimensionError, option
+from ..errors import BadTarget, DimensionError, MotionError, option
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
-from ..motion import Linkage, link_poses
+from ..motion import Linkage, assemble, link_poses
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
 __all__ = ["Constraints", "Problem", "link_ratio", "input_joint_of", "placement", "read_order"]
@@ -539,6 +539,17 @@ class Problem:
         if self.absolute:  # the pose anywhere on its branch: the first point's turn from it, then the timing's
             return _wrap(self.absolute_start(linkage) - linkage.pose_inputs[0]) + target.inputs - target.inputs[0]
         return target.inputs - target.inputs[0]
+
+    def posed(self, linkage: Linkage) -> Linkage:
+        """The linkage posed at its first target input where that input is prescribed (:meth:`absolute_start`),
+        as results are returned; as it is where the motion layer cannot find that pose on its branch."""
+        start = self.absolute_start(linkage)
+        if start is None:
+            return linkage
+        try:
+            return assemble(linkage, start)
+        except (MotionError, ValueError):
+            return linkage
 
     def absolute_start(self, linkage: Linkage) -> float | None:
         """The input's angle from the x axis at the first target point, where it is prescribed (a

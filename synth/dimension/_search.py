@@ -13,7 +13,7 @@ from scipy.optimize import differential_evolution, least_squares, minimize
 from mechbase import Row
 
 from ..errors import DimensionError, MotionError
-from ..motion import Linkage, assemble, motion_range, sweep
+from ..motion import Linkage, motion_range, sweep
 from ..structure import single_threaded
 from ..structure.chain import Mechanism
 from ._problem import (CURVE_SAMPLES, HELD_MARGIN, INFEASIBLE, MARGIN, MET, Constraints, Problem, input_joint_of,
@@ -1076,13 +1076,8 @@ class _Search:
         if not p.timed:
             return z
         linkage = p.linkage(z[:p.dims])
-        start = p.absolute_start(linkage)
-        if start is None:
-            return z
-        try:
-            return p.unknowns_of(assemble(linkage, start))
-        except (MotionError, ValueError):
-            return z
+        posed = p.posed(linkage)
+        return z if posed is linkage else p.unknowns_of(posed)
 
     def constrained(self, z0, direction: int, watched: bool = False,
                     final: bool = False) -> tuple[float, np.ndarray] | None:
@@ -1313,13 +1308,7 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     """The best candidate as a linkage, its errors and constraints re-checked by the motion layer."""
     _, z, direction = best
     x = z[:problem.dims]
-    linkage = problem.linkage(x)
-    start = problem.absolute_start(linkage)
-    if start is not None:  # posed at the first input, as every other result
-        try:
-            linkage = assemble(linkage, start)
-        except (MotionError, ValueError):  # (the motion layer could not find the branch: kept as found)
-            pass
+    linkage = problem.posed(problem.linkage(x))  # at the first input where it is prescribed, as every result
     if problem.timed:
         offsets = problem.offsets_of_timing(linkage)
     else:
