@@ -586,7 +586,8 @@ def _rehash(states, totals, m, width, W, P):
     return table
 
 
-# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets)
+# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets; with
+# copies, at most 4/3 of it): a count on 2 workers then peaks within 2 GiB (benchmarks/PROFILE.md section 39)
 LAYER_BYTES = 256 * 2**20
 
 
