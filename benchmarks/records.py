@@ -127,7 +127,8 @@ _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
 
 # h = 4 … 6 beyond 20 links, as sized on 29 Nov 2026 at a98900f (`records.py --size`, UNIT_GROWTH for h = 4, 5, 6:
 # PROFILE.md section 33), each count to be checked by its second count (--method tight-reverse) at about its cost;
-# their memory is bounded since a98900f (stage B's layers within 256 MiB a process: PROFILE.md section 36)
+# their memory is bounded since a98900f (stage B's layers within a budget of 256 MiB a process: PROFILE.md section 36;
+# at most 4/3 of it with the copies since bbe428f, a count on 2 workers within 2 GiB: section 39)
 _SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about {} chains, {} CPU s for the " \
            "count and about as much again for its second count (--method tight-reverse)"
 _BEYOND = {
@@ -146,14 +147,10 @@ _BEYOND = {
              "buckets (section 38); begun again at 1889f2d (21:42–21:55 UTC, load about 20, each worker getting 6–9 % of "
              "a core): past that unit, 404 units and 8 449 037 196 chains after 12 min wall (some 70 CPU s a worker), "
              "stopped for the session's time; to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
-    (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
-             "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
-             "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "
-             "the first count, its memory within the budget of stage B's layers since a98900f (a worker had grown to "
-             "4.2 GiB before), stayed after 222 units (2.37e9 chains, some 56 CPU s a worker) in units of 10 branch "
-             "links of degree 3 (the layers held within the budget), and was stopped for time (PROFILE.md section 36); to run it: "
-             "`python benchmarks/records.py --only \"chains --dof 1 --links 32 --h 6\" --reverse-max 0`, then "
-             "`--recheck --reverse-from` that file",
+    (6, 32): "run on its own (--only): sized at 36 CPU s (5.6e9 chains), counted in 137 CPU s and 879 MiB on 30 Nov "
+             "2026 (bbe428f; 2 165 MiB at 892d43e, before stage B's layers were held within 4/3 of their budget: "
+             "PROFILE.md section 39), checked by `--recheck --reverse-from "
+             "benchmarks/logs/count_h6_32_links_tight_reverse.json`, its second count (tight-reverse, 98 CPU s)",
 }
 
 # 7 and 8 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go
