@@ -53,8 +53,9 @@ TURN_MARGIN = 1e-8
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
 #: a polish's least squares under a link-length order stop once their best cost falls less than this share over
-#: the last CRAWL_WINDOW evaluations per unknown (the constrained polish goes on from there): CE1 as stated, seed 4,
-#: crawled 11.5 CPU s on the hinge of two binding orders (1.5095e-4 → 1.5091e-4 over the last 10)
+#: the last CRAWL_WINDOW evaluations per unknown (the constrained polish goes on from there): CE1 as stated, seed 4's
+#: first polish took 14 CPU s of its 30, its least squares crawling 15 100 evaluations on the hinge of two binding
+#: orders (2 379 with the stop, the polish 2.4 CPU s)
 CRAWL, CRAWL_WINDOW = 1e-3, 20
 
 
@@ -969,9 +970,10 @@ class _Search:
         (:meth:`binds`) is then held as an equality and the polish goes on along it (from a start on the bound, at
         once): the penalty's hinge (gap + aim)⁺ has a kink there that cuts every step short, and on [HCDJ]'s ten
         points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published optimum, 4.0199e-4
-        (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*).  With a link-length order an inexact
-        answer is polished again with the orders as constraints (:meth:`constrained`): the penalty's hinge
-        stalls where an order binds."""
+        (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*).  With a link-length order the least squares
+        stop once they crawl (:class:`_Crawl`), and an inexact answer is polished again with the orders as constraints
+        (:meth:`constrained`; first, where the target has fewer equations than unknowns, slid into them along the
+        exact answers, :meth:`slide`): the penalty's hinge stalls where an order binds."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
             z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
