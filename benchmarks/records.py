@@ -41,7 +41,8 @@ Run from the project root (a long row prints the command's own progress bar)::
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
 keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
-row or a check failed, 2 for bad options, 130 on Ctrl-C.
+row or a check failed, 2 for bad options, 130 on Ctrl-C; a ``kill`` (SIGTERM, SIGHUP) stops it as Ctrl-C does
+(the count running stopped, its temporary folder removed), then ends it by that signal.
 """
 
 from __future__ import annotations
@@ -128,7 +129,7 @@ _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
 # h = 4 … 6 beyond 20 links, as sized on 29 Nov 2026 at a98900f (`records.py --size`, UNIT_GROWTH for h = 4, 5, 6:
 # PROFILE.md section 33), each count to be checked by its second count (--method tight-reverse) at about its cost;
 # their memory is bounded since a98900f (stage B's layers within a budget of 256 MiB a process: PROFILE.md section 36;
-# at most 4/3 of it with the copies since bbe428f, a count on 2 workers within 2 GiB: section 39)
+# at most 4/3 of it with the copies since bbe428f, a count on 2 workers within 2 GiB: section 40)
 _SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about {} chains, {} CPU s for the " \
            "count and about as much again for its second count (--method tight-reverse)"
 _BEYOND = {
@@ -139,11 +140,11 @@ _BEYOND = {
              "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
     (5, 30): "run on its own (--only): sized at 481 CPU s (2.1e11 chains); counted on 30 Nov 2026 (bbe428f) in 818 "
              "CPU s and 1.1 GiB, past the units of cubic graphs on 12 branch links where runs at 4085be8, 1889f2d and "
-             "2c5940b had been stopped (PROFILE.md sections 38, 39), and checked by `--recheck --reverse-from "
+             "2c5940b had been stopped (PROFILE.md sections 38, 40), and checked by `--recheck --reverse-from "
              "benchmarks/logs/count_h5_30_links_tight_reverse.json`, its second count (tight-reverse, 446 CPU s)",
     (6, 32): "run on its own (--only): sized at 36 CPU s (5.6e9 chains), counted in 137 CPU s and 879 MiB on 30 Nov "
              "2026 (bbe428f; 2 165 MiB at 892d43e, before stage B's layers were held within 4/3 of their budget: "
-             "PROFILE.md section 39), checked by `--recheck --reverse-from "
+             "PROFILE.md section 40), checked by `--recheck --reverse-from "
              "benchmarks/logs/count_h6_32_links_tight_reverse.json`, its second count (tight-reverse, 98 CPU s)",
 }
 
@@ -273,10 +274,10 @@ def run_count(row: Row, method: str | None = None) -> dict:
     memory.start()
     try:
         out, _ = proc.communicate()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # (Ctrl-C, or a kill: main) the command stops as on Ctrl-C, its temporary folder removed
         proc.send_signal(signal.SIGINT)
         try:
-            proc.wait(timeout=2)
+            proc.wait(timeout=60)  # (its pool ended, its folder removed: a second or two, longer on a loaded machine)
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait()
@@ -678,6 +679,16 @@ def _second_count(path: Path) -> dict:
 
 
 def main(argv=None) -> int:
+    """The script; a kill (SIGTERM, SIGHUP) stops it as Ctrl-C does (the count running stopped, its temporary
+    folder removed; an in-process listing's pool ended), then ends it by that signal."""
+    sys.path.insert(0, str(ROOT))
+    from synth.execution.interrupt import ending_signals_unwind
+
+    with ending_signals_unwind():
+        return _main(argv)
+
+
+def _main(argv) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
     parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included); a whole query, "
@@ -779,7 +790,6 @@ def main(argv=None) -> int:
         rows = [row for row in ROWS if (row.quick if args.quick else not row.heavy)]
     lines = read_csv(args.csv)
     if args.size:
-        sys.path.insert(0, str(ROOT))
         try:
             return size_table(rows, lines)
         except KeyboardInterrupt:
@@ -792,7 +802,6 @@ def main(argv=None) -> int:
     if args.only is None and not args.again:
         rows = [row for row in rows if row.query not in lines]
     rows.sort(key=lambda row: row.published is None)  # the published counts first, should the run be cut short
-    sys.path.insert(0, str(ROOT))
     commit, bad = _commit(), 0
     try:
         for k, row in enumerate(rows, 1):

@@ -587,7 +587,7 @@ def _rehash(states, totals, m, width, W, P):
 
 
 # the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets; with
-# copies, at most 4/3 of it): a count on 2 workers then peaks within 2 GiB (benchmarks/PROFILE.md section 39)
+# copies, at most 4/3 of it): a count on 2 workers then peaks within 2 GiB (benchmarks/PROFILE.md section 40)
 LAYER_BYTES = 256 * 2**20
 
 
