@@ -128,7 +128,8 @@ _TSAI = {(2, True): {5: 1, 7: 4, 9: 40}, (2, False): {5: 1, 7: 3, 9: 35},
 
 # h = 4 … 6 beyond 20 links, as sized on 29 Nov 2026 at a98900f (`records.py --size`, UNIT_GROWTH for h = 4, 5, 6:
 # PROFILE.md section 33), each count to be checked by its second count (--method tight-reverse) at about its cost;
-# their memory is bounded since a98900f (stage B's layers within 256 MiB a process: PROFILE.md section 36)
+# their memory is bounded since a98900f (stage B's layers within a budget of 256 MiB a process: PROFILE.md section 36;
+# at most 4/3 of it with the copies since bbe428f, a count on 2 workers within 2 GiB: section 40)
 _SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about {} chains, {} CPU s for the " \
            "count and about as much again for its second count (--method tight-reverse)"
 _BEYOND = {
@@ -137,24 +138,14 @@ _BEYOND = {
     (4, 26): "not run: " + _SIZED_H.format("7.9e11", "1 990")
              + ", some 66 CPU min in all, past the 50 CPU min the h = 4…6 counts had on 29 Nov (at 23 links the sizing was 15 % "
              "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
-    (5, 30): "not run: " + _SIZED_H.format("2.1e11", 481)
-             + ", some 16 CPU min in all (at 26 links the sizing, its growth factor fitted there, was 58 % under the "
-             "count); begun on 29 Nov at 19:01 (4085be8, load 3–6): 412 units, 2.15e9 chains in the first minute, then "
-             "no unit finished in 6 more minutes, stopped; the cause, found by running the count again in one process at "
-             "a115c58 (29 Nov 20:31): 373 units in 4 min, then one unit for 2.6 CPU min and more, in stage B's programme "
-             "(py-spy: `tight_count`) at 600 MiB, on a branch multigraph that is a cubic graph on 12 vertices (12 ternary "
-             "links, 18 strings) — the layers' depth-first split of a98900f (PROFILE.md section 36), replaced since by "
-             "buckets (section 38); begun again at 1889f2d (21:42–21:55 UTC, load about 20, each worker getting 6–9 % of "
-             "a core): past that unit, 404 units and 8 449 037 196 chains after 12 min wall (some 70 CPU s a worker), "
-             "stopped for the session's time; to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 30 --h 5\"`",
-    (6, 32): "not run to the end: the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) gives about 5.6e9 "
-             "chains, 36 CPU s; its second count (--method tight-reverse), run beside the first on 29 Nov, finished: "
-             "7 168 368 547 chains in 30 codes, 98 CPU s, 929 MiB (benchmarks/logs/count_h6_32_links_tight_reverse.json); "
-             "the first count, its memory within the budget of stage B's layers since a98900f (a worker had grown to "
-             "4.2 GiB before), stayed after 222 units (2.37e9 chains, some 56 CPU s a worker) in units of 10 branch "
-             "links of degree 3 (the layers held within the budget), and was stopped for time (PROFILE.md section 36); to run it: "
-             "`python benchmarks/records.py --only \"chains --dof 1 --links 32 --h 6\" --reverse-max 0`, then "
-             "`--recheck --reverse-from` that file",
+    (5, 30): "run on its own (--only): sized at 481 CPU s (2.1e11 chains); counted on 30 Nov 2026 (bbe428f) in 818 "
+             "CPU s and 1.1 GiB, past the units of cubic graphs on 12 branch links where runs at 4085be8, 1889f2d and "
+             "2c5940b had been stopped (PROFILE.md sections 38, 40), and checked by `--recheck --reverse-from "
+             "benchmarks/logs/count_h5_30_links_tight_reverse.json`, its second count (tight-reverse, 446 CPU s)",
+    (6, 32): "run on its own (--only): sized at 36 CPU s (5.6e9 chains), counted in 137 CPU s and 879 MiB on 30 Nov "
+             "2026 (bbe428f; 2 165 MiB at 892d43e, before stage B's layers were held within 4/3 of their budget: "
+             "PROFILE.md section 40), checked by `--recheck --reverse-from "
+             "benchmarks/logs/count_h6_32_links_tight_reverse.json`, its second count (tight-reverse, 98 CPU s)",
 }
 
 # 7 and 8 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go

@@ -586,7 +586,8 @@ def _rehash(states, totals, m, width, W, P):
     return table
 
 
-# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets)
+# the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets; with
+# copies, at most 4/3 of it): a count on 2 workers then peaks within 2 GiB (benchmarks/PROFILE.md section 40)
 LAYER_BYTES = 256 * 2**20
 
 
@@ -741,15 +742,16 @@ def _tight_total(totals, ways_in, n, outside, X1, full, x_most):
 
 @njit(cache=True)
 def _row_bytes(W, P):
-    """What a state costs the budget: its values, its total and ways, its share of the hash table."""
-    return 2 * (W + P) + 8 + 8 + 32
+    """What a state costs the budget: its values, its total and ways, and the most the hash table takes a state
+    (:func:`_rehash` makes at most 8 slots a state, of 8 bytes; one growth holds 2 + 4 a state while it is made)."""
+    return 2 * (W + P) + 8 + 8 + 64
 
 
 @njit(cache=True)
 def _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget):
     """:func:`tight_count` with every layer whole: the count and −1; or, where a layer would pass the budget, 0,
-    its index i, layer i (states, totals, ways, number) and the part of layer i + 1 made from its states
-    0 … stop − 1 (states, totals, ways, number, stop), for :func:`_tight_split` to go on from."""
+    its index i and layer i (states, totals, ways, number), for :func:`_tight_split` to go on from (the part of
+    layer i + 1 made so far let go: made again in buckets, it costs a part of one pass)."""
     (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
      P) = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
     row_bytes = _row_bytes(W, P)
@@ -767,10 +769,9 @@ def _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bu
             shut[i], n_open[i + 1], ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P,
             row)
         if stop < n:
-            return 0, i, states, totals, ways_in, n, new_states, new_totals, new_ways, m, stop
+            return 0, i, states, totals, ways_in, n
         states, totals, ways_in, n = new_states, new_totals, new_ways, m
-    return _tight_total(totals, ways_in, n, outside, X1, full, x_most), -1, states, totals, ways_in, n, states, totals, \
-        ways_in, n, n
+    return _tight_total(totals, ways_in, n, outside, X1, full, x_most), -1, states, totals, ways_in, n
 
 
 def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=None):
@@ -884,15 +885,16 @@ class _Buckets:
 
 def _tight_split(frame, C, l, x_most, budget, i, handed):
     """:func:`tight_count` on from layer i, whose successors passed the budget: ``handed`` is :func:`_tight_whole`'s
-    layer i and the part of layer i + 1 made from its first states (the list emptied, so that the layers go as soon
-    as they are in buckets).  Each layer from there is made in buckets: a bucket is the states whose hash has given low
-    bits (bits 32 … of :func:`_state_code`), made by one pass over every bucket of the layer before (read one at a
-    time), keeping only the successors that fall in it, merged in its own table as in a whole layer.  A bucket is
-    first every state; where it would pass a third of the budget it is cut in two by its next bit: the half with
-    the bit set is put aside (with where the pass had got to) and made later, the other goes on.  So every state
-    of a layer is in one bucket once, no bucket passes a third of the budget (or the successors of one state), and a
-    layer costs as many passes as it has buckets.  A third of the budget for the bucket being made, a third for one
-    bucket read back, a third for the buckets held in memory; the others wait in unlinked files."""
+    layer i (the list emptied, so that the layer goes as soon as it is in buckets).  Each layer from there is made
+    in buckets: a bucket is the states whose hash has given low bits (bits 32 … of :func:`_state_code`), made by one
+    pass over every bucket of the layer before (read one at a time), keeping only the successors that fall in it,
+    merged in its own table as in a whole layer.  A bucket is first every state; where it would pass a third of the
+    budget it is cut in two by its next bit: the half with the bit set is put aside (with where the pass had got to)
+    and made later, the other goes on.  So every state of a layer is in one bucket once, no bucket passes a third of
+    the budget (or the successors of one state), and a layer costs as many passes as it has buckets.  A third of the
+    budget for the bucket being made (its hash table counted), a third for one bucket read back, a third for the
+    buckets held in memory; the others wait in unlinked files.  Beside them, for a moment, one copy of the bucket
+    being made (grown from the one read back, or its half cut off): the layers hold at most 4/3 of the budget."""
     (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
      P) = frame
     row = np.zeros(W + P, dtype=np.int64)
@@ -908,10 +910,11 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
             m, half = _split_bucket(states, totals, ways_in, m, bits, width, W, P)
             half_bits, half_m = cut(residue | 1 << bits, bits + 1, b, s, *half)
             pending.append((residue | 1 << bits, half_bits, b, s, store.put(*half[:3], half_m)))
+            half = None  # (a half gone to a file let go before the next cut)
             bits += 1
         return bits, m
 
-    states, totals, ways_in, n, part_states, part_totals, part_ways, m, stop = handed
+    states, totals, ways_in, n = handed
     handed.clear()
     try:
         layer = [store.put(states, totals, ways_in, n)]
@@ -921,19 +924,15 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
             each = (T + 1) * X1  # the most successors of one state
             cap = max(budget // (3 * _row_bytes(W, P)), 4 * each)
             width = 1 << n_open[i + 1]
-            if part_states is not None:  # (the part of layer i + 1 handed over)
-                bits, m = cut(0, 0, 0, stop, part_states, part_totals, part_ways, m)
-                pending.append((0, bits, 0, stop, store.put(part_states, part_totals, part_ways, m)))
-                part_states = part_totals = part_ways = None
-            else:
-                pending.append((0, 0, 0, 0, store.put(np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
-                                                      np.zeros(0, dtype=np.int64), 0)))
+            pending.append((0, 0, 0, 0, store.put(np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
+                                                  np.zeros(0, dtype=np.int64), 0)))
             made = []
             while pending:
                 residue, bits, b, s, part = pending.pop()
                 new_states, new_totals, new_ways = store.get(part)
                 m = len(new_totals)
                 store.drop(part)
+                part = None  # (the arrays the bucket grows from let go once it has grown)
                 table = _rehash(new_states, new_totals, m, width, W, P)
                 read, bucket = -1, None
                 while b < len(layer):
@@ -947,6 +946,7 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
                     if s == layer[b][0]:
                         b, s = b + 1, 0
                     else:  # too many: cut in two by the next bit, one half put aside
+                        table = None  # (let go before the kept half's is made)
                         bits, m = cut(residue, bits, b, s, new_states, new_totals, new_ways, m)
                         table = _rehash(new_states, new_totals, m, width, W, P)
                 made.append(store.put(new_states, new_totals, new_ways, m))

@@ -85,6 +85,18 @@ def test_the_buckets_of_a_layer_share_out_its_states():
     assert max(len(bucket) for bucket in kept) < 5
 
 
+def test_the_hash_table_takes_no_more_than_the_budget_counts_a_state():
+    """The budget counts 64 bytes of hash table a state (``_row_bytes``): a table made for m states has at most
+    8 slots of 8 bytes a state (128 at least), and at least 4, so the layer may grow to twice m before the next."""
+    W, P = 4, 0
+    share = _stage_b_kernel._row_bytes(W, P) - (2 * (W + P) + 16)
+    for m in (16, 17, 31, 32, 33, 1000, 1025, 4096, 5000):
+        states, totals = np.zeros((m, W + P), dtype=np.int16), np.arange(m, dtype=np.int64)
+        table = _stage_b_kernel._rehash(states, totals, m, W, W, P)
+        assert 4 * m <= len(table) <= max(128, 8 * m) and table.itemsize * len(table) <= share * m
+        assert sorted(table[table >= 0].tolist()) == list(range(m))
+
+
 def test_a_count_by_code_is_the_same_at_64_kib(monkeypatch):
     """The 17-link chains of h = 4 (the listing checked these by code, benchmarks/RECORDS.md): 156 275, the same
     codes counted the same with the layers whole and in buckets of some 20 KiB (a byte would make a bucket of
