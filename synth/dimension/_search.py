@@ -52,6 +52,11 @@ TURN_MARGIN = 1e-8
 #: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
+#: a polish's least squares under a link-length order stop once their best cost falls less than this share over
+#: the last CRAWL_WINDOW evaluations per unknown (the constrained polish goes on from there): CE1 as stated, seed 4's
+#: first polish took 14 CPU s of its 30, its least squares crawling 15 100 evaluations on the hinge of two binding
+#: orders (2 379 with the stop, the polish 2.4 CPU s)
+CRAWL, CRAWL_WINDOW = 1e-3, 20
 
 
 class _OutOfTime(Exception):
@@ -60,6 +65,34 @@ class _OutOfTime(Exception):
 
 class _Reached(Exception):
     """A polish's least squares reached a length or ratio bound it does not yet hold (:meth:`_Search.polish`)."""
+
+
+class _Crawling(Exception):
+    pass
+
+
+class _Crawl:
+    """The best cost of a least squares after each evaluation, raising :class:`_Crawling` once it falls less than
+    :data:`CRAWL` (a share) over the last :data:`CRAWL_WINDOW` evaluations per unknown.
+
+    >>> crawl = _Crawl(unknowns=1)
+    >>> for cost in np.geomspace(1.0, 0.5, 25):   # halved over 25 evaluations: 2.8 % each 20
+    ...     crawl.seen(cost)
+    >>> try:
+    ...     for _ in range(21):
+    ...         crawl.seen(0.5)
+    ... except _Crawling:
+    ...     print("crawling")
+    crawling
+    """
+
+    def __init__(self, unknowns: int):
+        self.window, self.trail = CRAWL_WINDOW * unknowns, []
+
+    def seen(self, best: float) -> None:
+        self.trail.append(best)
+        if len(self.trail) > self.window and best > (1 - CRAWL) * self.trail[-self.window - 1]:
+            raise _Crawling
 
 
 @dataclass
@@ -942,8 +975,9 @@ class _Search:
         [HCDJ]'s ten points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published
         optimum, 4.0199e-4 (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*); held only once the
         least squares ended, the crawl first took them to their evaluation limit (12 CPU s of a 16-s polish; *more
-        starts*).  With a link-length order an inexact
-        answer is polished again with the orders as constraints (:meth:`constrained`): the penalty's hinge
+        starts*).  With a link-length order the least squares stop once they crawl (:class:`_Crawl`), and an inexact
+        answer is polished again with the orders as constraints (:meth:`constrained`; first, where the target has
+        fewer equations than unknowns, slid into them along the exact answers, :meth:`slide`): the penalty's hinge
         stalls where an order binds."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
@@ -963,6 +997,7 @@ class _Search:
             z0 = np.clip(np.concatenate((x, steps)), lower, upper)
         best = [math.inf, z0]
         bounded = problem.length_bounds > problem.order_pairs  # (a length or ratio bound: watched as it is reached)
+        crawl = _Crawl(len(z0))
 
         def fun(z):
             if (watch.over() and not grace) or (until is not None and watch.used() >= until):
@@ -974,6 +1009,8 @@ class _Search:
                 best[0], best[1] = cost, np.array(z)
                 if bounded and (self.binds(z) & ~problem.held & ~let_go).any():
                     raise _Reached  # (held from here: along the hinge the least squares crawl to their limit)
+            if problem.order:
+                crawl.seen(best[0])
             return r
 
         jac = ("3-point" if central else "2-point") if problem.timed else (
@@ -983,11 +1020,12 @@ class _Search:
         try:
             for _ in range(HOLD_ROUNDS):
                 problem.held = held
+                crawl.trail.clear()
                 try:
                     least_squares(fun, best[1], jac=jac, bounds=(lower, upper), method="trf", x_scale="jac",
                                   xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
-                except _Reached:
-                    pass
+                except (_Reached, _Crawling):  # (a bound reached is held below; a crawl under an order goes on
+                    pass                        # in the constrained polish)
                 # a bound reached is held from here on; a held one whose row ends below its aim pulls the answer
                 # inwards (the fit would leave it) and is let go for good
                 let_go |= held & (self.length_gaps(best[1]) + problem.aim < 0)
@@ -1001,6 +1039,10 @@ class _Search:
             problem.held = np.zeros(problem.length_bounds, bool)
         if not (math.isfinite(best[0]) and best[0] < INFEASIBLE / 10):
             return None
+        if problem.order and best[0] > EXACT ** 2 and problem.equations < problem.unknowns:
+            found = self.slide(best[1], direction, watched=not grace)  # exact answers all round: one into the order
+            if found is not None and found[0] < best[0]:
+                best = list(found)
         if problem.order and best[0] > EXACT ** 2:  # a binding order stalls the penalty: polish on it
             found = self.constrained(best[1], direction, watched=not grace)
             if found is not None and found[0] < best[0]:
@@ -1008,6 +1050,67 @@ class _Search:
         if self.best is None or best[0] < self.best[0]:
             self.best = (best[0], best[1], direction)
         return best[0], best[1]
+
+    def slide(self, z0, direction: int, watched: bool = False) -> tuple[float, np.ndarray] | None:
+        """For a target with fewer equations than unknowns (its exact answers a family) an answer stalled by a
+        link-length order: the least squares from z0 with the orders' rows dropped, and where they meet the target
+        exactly, again with each order they leave held as an equality twice the search's margin inside (its row
+        signed, :attr:`Problem.held`; an order left in a round joins those held, up to :data:`HOLD_ROUNDS`), so the
+        answer moves along the exact ones into the orders; (cost, unknowns) by the search's own cost, or None where
+        the target is not met without the orders or the least squares crawl (:class:`_Crawl`).  With ``watched``
+        it stops with the budget.
+
+        CE1 as its sources state it (15 unknowns for 12 equations), seed 5 of 30 CPU s: its polish stalled at
+        1.65e-8 (mean squared relative error) with r4 = r1, where the constrained polish does not move; from there
+        the least squares without the order meet the six points (3.9e-31) with r4 1.7 % longer than r1, and held
+        the order brings them back inside it, exact (benchmarks/DIMENSION.md, *CE1 as stated within 30 CPU s*)."""
+        problem, evaluate, watch = self.problem, self.evaluate, self.watch
+        extra = len(z0) - problem.dims  # (untimed: the input steps)
+        lower = np.concatenate((problem.lower, np.zeros(extra)))
+        upper = np.concatenate((problem.upper, np.full(extra, problem.input_span)))
+        orders = np.arange(problem.length_bounds) < problem.order_pairs
+
+        def solved(z, held):  # (the best of the least squares from z with these orders held, its cost; none held:
+            crawl, least = _Crawl(len(z)), [math.inf, z]  # the orders dropped)
+
+            def fun(x):
+                if watched and watch.over():
+                    raise _OutOfTime
+                r = evaluate.vector(x, direction)
+                if float(r @ r) < least[0]:
+                    least[:] = float(r @ r), np.array(x)
+                if least[0] > EXACT ** 2:
+                    crawl.seen(least[0])  # (the exact answers converge fast: a crawl is short of them)
+                return r
+
+            problem.held = held
+            problem.aim = deeper if held.any() else _dropped(problem)
+            try:
+                least_squares(fun, z, jac=lambda x: self.jacobian(fun, x, upper), bounds=(lower, upper), method="trf",
+                              x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z))
+            except _Crawling:
+                pass
+            return least[1], least[0]
+
+        penalty = problem.aim
+        deeper = np.where(orders, 2 * MARGIN, penalty)
+        held = np.zeros(problem.length_bounds, bool)
+        z = z0
+        try:
+            for _ in range(HOLD_ROUNDS + 1):
+                z, cost = solved(z, held)
+                if cost > EXACT ** 2:
+                    return None
+                left = orders & (self.length_gaps(z) > -MARGIN)  # (the search's penalty aims MARGIN inside)
+                if not left.any():
+                    break
+                held = held | left
+        except _OutOfTime:
+            return None
+        finally:
+            problem.aim, problem.held = penalty, np.zeros(problem.length_bounds, bool)
+        r = evaluate.vector(z, direction)
+        return float(r @ r), z
 
     def length_gaps(self, z) -> np.ndarray:
         """The link-length constraints' gaps of the unknowns z (:meth:`Problem.length_gaps`; −∞ where z is no

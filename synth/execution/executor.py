@@ -60,7 +60,7 @@ __all__ = ["Executor", "process_pool", "run_plan"]
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
-def _worker_start(parent: int) -> None:
+def _worker_start(parent: int, stopping=None) -> None:
     """Workers leave Ctrl-C and SIGTERM to the parent and do not outlive it (``kill -9`` of a long
     count); the parent's wake-up pipe for signals (:mod:`synth.execution.interrupt`), inherited by the
     fork, is let go, so no signal a worker catches reads in the parent as its own.
@@ -68,14 +68,18 @@ def _worker_start(parent: int) -> None:
     The pool ends its workers by SIGTERM, so a worker obeys the SIGTERM its parent sends, at once
     (whatever its main thread is doing), and no other: one sent to the whole process group (``kill --
     -PGID``, ``timeout``) would kill it in the middle of reading the pool's queue, holding the queue's
-    lock, and the parent, ending the pool, would wait for that lock for ever."""
+    lock, and the parent, ending the pool, would wait for that lock for ever.  Two SIGTERMs pending at
+    once are one (standard signals do not queue): the parent's, merged with the group's, reads as the
+    group's, so the parent raises ``stopping`` (shared memory; :func:`process_pool`) as it ends a worker,
+    once it holds that lock, and from then on a worker obeys any SIGTERM."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if hasattr(signal, "sigwaitinfo"):  # SIGTERM blocked in every thread, read by one that checks who sent it
         import threading
 
         signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
-        threading.Thread(target=_obey_parent_only, args=(parent,), daemon=True, name="sigterm-from-parent").start()
+        threading.Thread(target=_obey_parent_only, args=(parent, stopping), daemon=True,
+                         name="sigterm-from-parent").start()
     signal.set_wakeup_fd(-1)
     if sys.platform.startswith("linux"):
         try:
@@ -88,12 +92,35 @@ def _worker_start(parent: int) -> None:
         os._exit(1)
 
 
-def _obey_parent_only(parent: int) -> None:
-    """End this worker on a SIGTERM from ``parent`` (the pool's terminate), or once the parent is gone."""
+def _obey_parent_only(parent: int, stopping=None) -> None:
+    """End this worker on a SIGTERM from ``parent`` (the pool's terminate), on any SIGTERM once the parent
+    is ending the workers (``stopping`` raised), or once the parent is gone."""
     while True:
         sender = signal.sigwaitinfo({signal.SIGTERM}).si_pid
-        if sender == parent or os.getppid() != parent:
+        if sender == parent or (stopping is not None and stopping.value) or os.getppid() != parent:
             os._exit(128 + signal.SIGTERM)
+
+
+def _new_pool(ctx, workers: int):
+    """A pool of ``workers`` started by :func:`_worker_start`; forked, its workers' ``terminate`` raises
+    the pool's ``stopping`` flag before it sends SIGTERM (the pool calls it holding its queue's lock)."""
+    if ctx.get_start_method() != "fork":  # (spawned workers are pickled: no flag, no class made here)
+        return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
+    from multiprocessing.pool import Pool
+
+    stopping = ctx.RawValue("b", 0)
+
+    class Worker(ctx.Process):
+        def terminate(self):
+            stopping.value = 1
+            super().terminate()
+
+    class StoppingPool(Pool):
+        @staticmethod
+        def Process(ctx, *args, **kwds):  # noqa: N802 - multiprocessing's name
+            return Worker(*args, **kwds)
+
+    return StoppingPool(workers, initializer=_worker_start, initargs=(os.getpid(), stopping), context=ctx)
 
 
 def process_pool(workers: int):
@@ -120,7 +147,7 @@ def process_pool(workers: int):
         handlers = {signum: signal.signal(signum, lambda signum, frame: noted.append(signum))
                     for signum in STOP_SIGNALS if signal.getsignal(signum) is not None}
     try:
-        pool = ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
+        pool = _new_pool(ctx, workers)
     finally:
         if hold:  # (a signal held by the mask reaches the noting handler, still in place)
             signal.pthread_sigmask(signal.SIG_SETMASK, previous)
