@@ -241,6 +241,8 @@ def plot_pantograph(result, path: str, n: int = 61) -> str:
         at, offset = 0.5 * (P[a] + P[b]), 11 * nrm
         if num == "9":  # E–B spans the band between link 2 and bar 14, which a label beside it would sit on:
             at, offset = (P["A"] + P["E"] + P["B"]) / 3, (0, 0)  # its label goes in the triangle A, E, B
+        if num == "16":  # beside the short D–D1, link 3 leaving D and bar 8 crossing it touch a label: it goes
+            at, offset = P["D1"], 20 * d / max(np.hypot(*d), 1e-12)  # beyond D1, in the open angle of bars 14 and 15
         ax.annotate(num, at, textcoords="offset points", xytext=tuple(offset),
                     fontsize=9, color="C0", fontweight="bold", ha="center", va="center")
     pts = np.array([v for v in P.values()])

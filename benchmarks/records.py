@@ -41,7 +41,8 @@ Run from the project root (a long row prints the command's own progress bar)::
 
 Rows already in the CSV are run again only when asked by ``--only`` (or ``--again``); the others
 keep their line.  Exit status: 0 when every row run passed its checks, 1 when ``--only`` matched no
-row or a check failed, 2 for bad options, 130 on Ctrl-C.
+row or a check failed, 2 for bad options, 130 on Ctrl-C; a ``kill`` (SIGTERM, SIGHUP) stops it as Ctrl-C does
+(the count running stopped, its temporary folder removed), then ends it by that signal.
 """
 
 from __future__ import annotations
@@ -282,10 +283,10 @@ def run_count(row: Row, method: str | None = None) -> dict:
     memory.start()
     try:
         out, _ = proc.communicate()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # (Ctrl-C, or a kill: main) the command stops as on Ctrl-C, its temporary folder removed
         proc.send_signal(signal.SIGINT)
         try:
-            proc.wait(timeout=2)
+            proc.wait(timeout=60)  # (its pool ended, its folder removed: a second or two, longer on a loaded machine)
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait()
@@ -687,6 +688,16 @@ def _second_count(path: Path) -> dict:
 
 
 def main(argv=None) -> int:
+    """The script; a kill (SIGTERM, SIGHUP) stops it as Ctrl-C does (the count running stopped, its temporary
+    folder removed; an in-process listing's pool ended), then ends it by that signal."""
+    sys.path.insert(0, str(ROOT))
+    from synth.execution.interrupt import ending_signals_unwind
+
+    with ending_signals_unwind():
+        return _main(argv)
+
+
+def _main(argv) -> int:
     parser = _Parser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="only the smallest rows (a few seconds)")
     parser.add_argument("--only", help="only the rows whose query contains this text (heavy rows included); a whole query, "
@@ -788,7 +799,6 @@ def main(argv=None) -> int:
         rows = [row for row in ROWS if (row.quick if args.quick else not row.heavy)]
     lines = read_csv(args.csv)
     if args.size:
-        sys.path.insert(0, str(ROOT))
         try:
             return size_table(rows, lines)
         except KeyboardInterrupt:
@@ -801,7 +811,6 @@ def main(argv=None) -> int:
     if args.only is None and not args.again:
         rows = [row for row in rows if row.query not in lines]
     rows.sort(key=lambda row: row.published is None)  # the published counts first, should the run be cut short
-    sys.path.insert(0, str(ROOT))
     commit, bad = _commit(), 0
     try:
         for k, row in enumerate(rows, 1):

@@ -47,7 +47,7 @@ ANIMATION_SUFFIXES = (".gif", ".svg")
 
 _BODY, _EDGE, _INPUT, _FRAME = "#dbe6f4", "#1f3a5f", "#c0632b", "#6b7785"
 _CURVES = ("#c0392b", "#1e7a46", "#7d3c98", "#b9770e", "#2471a3")
-_PATH = "#b8c2cc"
+_PATH = "#8f9baa"
 _MARK = "#1f4e9c"  # target points of a synthesis
 
 
@@ -235,18 +235,18 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
     out: list[dict] = []
     colours = {name: _CURVES[i % len(_CURVES)] for i, name in enumerate(linkage.tracers)}
 
-    def curves(of_tracers: bool) -> None:  # grey pin paths under the links, coupler curves over them
+    def curves(of_tracers: bool) -> None:  # grey pin paths over the plates' fill, coupler curves over the links
         for name, lines in paths.items():
             for xy in lines:
                 ok = xy[np.isfinite(xy).all(axis=1)]
                 if len(ok) > 1 and (name in tracers) == of_tracers:
                     out.append({"tag": "polyline", "frames": ok[None], "static": True, "curve": True,
                                 "style": {"fill": "none", "stroke": colours[name] if of_tracers else _PATH,
-                                          "stroke-width": (1.8 if len(lines) == 1 else 0.9) if of_tracers else 0.8}})
+                                          "stroke-width": (1.8 if len(lines) == 1 else 0.9) if of_tracers else 1.0}})
 
-    curves(False)
     driven = {linkage.input_link(i) for i in range(linkage.dof)}
     slides = {k: np.array(v) for k, v in linkage.slides.items()}
+    links = []  # the moving links: a plate's outline or a bar, drawn over the pin paths
     for link in range(chain.links):
         on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]  # sliders: a block and a guide
         if link == linkage.frame or not on:
@@ -255,12 +255,16 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         pose = np.array([*linkage.points[on], *marks])
         order = _order(pose)
         colour = _INPUT if link in driven else _EDGE
-        if len(order) >= 3:
+        if len(order) >= 3:  # its fill under the pins' paths (a rocker's pin swings under the coupler), its outline over
             out.append({"tag": "polygon", "frames": place.place(link, pose[order]),
-                        "style": {"fill": _BODY, "stroke": colour, "stroke-width": 1.4, "stroke-linejoin": "round"}})
+                        "style": {"fill": _BODY, "stroke": "none"}})
+            links.append({"tag": "polygon", "frames": place.place(link, pose[order]),
+                          "style": {"fill": "none", "stroke": colour, "stroke-width": 1.4, "stroke-linejoin": "round"}})
         elif len(order) == 2:
-            out.append({"tag": "polyline", "frames": place.place(link, pose[order]),
-                        "style": {"fill": "none", "stroke": colour, "stroke-width": 3.2, "stroke-linecap": "round"}})
+            links.append({"tag": "polyline", "frames": place.place(link, pose[order]),
+                          "style": {"fill": "none", "stroke": colour, "stroke-width": 3.2, "stroke-linecap": "round"}})
+    curves(False)
+    out += links
     for k in range(len(chain.joints)):  # gears: pitch circle and a spoke that turns with the gear
         if linkage.kind(k) != MESH:
             continue
@@ -564,7 +568,7 @@ def _check_suffix(out: str | Path, allowed: tuple[str, ...], what: str) -> Path:
 def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> None:
     from matplotlib.patches import Circle, Polygon
 
-    for e in elements:
+    for order, e in enumerate(elements):  # painted in the order of the list, as in the SVG
         frames = canvas.pixels(e["frames"])
         at = frames[0 if e.get("static") or len(frames) == 1 else frame]
         st = e["style"]
@@ -573,17 +577,17 @@ def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> N
         if e["tag"] == "circle":
             fill = st.get("fill", "none")
             ax.add_patch(Circle(at[0], e["r"] * canvas.scale, facecolor="none" if fill == "none" else fill,
-                                edgecolor=st["stroke"], lw=width, zorder=4))
+                                edgecolor=st["stroke"], lw=width, zorder=order))
         elif e["tag"] == "text":
-            ax.text(at[0, 0], at[0, 1], e["text"], color=st["fill"], fontsize=9, fontweight="bold", zorder=6,
-                    va="bottom")
+            ax.text(at[0, 0], at[0, 1], e["text"], color=st["fill"], fontsize=9, fontweight="bold",
+                    zorder=len(elements) + order, va="bottom")  # (a name over everything, the marks too)
         elif e["tag"] == "polygon":
             fill = st.get("fill", "none")
             ax.add_patch(Polygon(at, closed=True, facecolor="none" if fill == "none" else fill, edgecolor=st["stroke"],
-                                 lw=width, linestyle=dash, joinstyle="round", zorder=3 if fill == "white" else 2))
+                                 lw=width, linestyle=dash, joinstyle="round", zorder=order))
         else:
-            ax.plot(at[:, 0], at[:, 1], color=st["stroke"], lw=width, linestyle=dash,
-                    solid_capstyle="round", zorder=(3.5 if st["stroke"] != _PATH else 1) if e.get("curve") else 3)
+            ax.plot(at[:, 0], at[:, 1], color=st["stroke"], lw=width, linestyle=dash, solid_capstyle="round",
+                    zorder=order)
     ax.set_xlim(0, canvas.width)
     ax.set_ylim(canvas.height, 0)
     ax.set_aspect("equal")

@@ -12,6 +12,7 @@ import importlib.util
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -134,7 +135,7 @@ def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(t
     from tests.load import allowed_seconds
 
     csv_file = tmp_path / "r.csv"
-    proc = subprocess.Popen([sys.executable, str(ROOT / "benchmarks" / "records.py"), "--only", "dof 1 --links 16",
+    proc = subprocess.Popen([sys.executable, str(ROOT / "benchmarks" / "records.py"), "--only", "chains --dof 1 --links 20",
                              "--csv", str(csv_file), "--md", str(tmp_path / "R.md"), "--by-code", str(tmp_path)],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
@@ -151,6 +152,44 @@ def test_ctrl_c_stops_a_long_row_within_two_seconds_and_keeps_the_rows_written(t
     assert time.monotonic() - start < allowed_seconds(2.0)
     assert proc.returncode == 130 and "interrupted" in err.splitlines()[-1] and "Traceback" not in err
     assert not csv_file.exists()  # no row finished, none written
+
+
+def test_a_kill_stops_the_count_it_runs_and_leaves_no_folder(tmp_path):
+    """A ``kill`` (SIGTERM) of records.py while its count runs: the count's command is stopped with it (it
+    used to run on, orphaned, to its end, its temporary folder of units on disk meanwhile: the 20-link count
+    for an hour), its folder is removed, and records.py still ends by SIGTERM."""
+    import os
+    import signal
+
+    import psutil
+
+    from tests.load import allowed_seconds
+
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    proc = subprocess.Popen([sys.executable, str(ROOT / "benchmarks" / "records.py"), "--only", "chains --dof 1 --links 20",
+                             "--csv", str(tmp_path / "r.csv"), "--md", str(tmp_path / "R.md"), "--by-code", str(tmp_path)],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=dict(os.environ, TMPDIR=str(temporary)))
+    count = []
+    try:
+        deadline = time.monotonic() + allowed_seconds(120)
+        while not (_count_workers(proc.pid) and list(temporary.glob("mechsynth-units-*"))):
+            assert proc.poll() is None and time.monotonic() < deadline, "the 20-link count did not start its workers"
+            time.sleep(0.05)
+        count = psutil.Process(proc.pid).children(recursive=True)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=allowed_seconds(60))
+        _, alive = psutil.wait_procs(count, timeout=allowed_seconds(30))
+    finally:
+        for process in [proc, *count]:  # (nothing left running, whatever failed)
+            try:
+                process.kill()
+            except psutil.NoSuchProcess:
+                pass
+    assert proc.returncode == -signal.SIGTERM and "Traceback" not in err, err
+    assert not alive, "the count's command or its workers outlived records.py"
+    assert not list(temporary.iterdir())
 
 
 def _count_workers(pid: int) -> bool:

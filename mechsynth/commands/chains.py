@@ -48,7 +48,7 @@ def _add_selection(p) -> None:
                    "the heterogeneous count; with --chain, every base on that chain")
     p.add_argument("--chain", help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
                    "a command printed): its row, its mechanisms, or with --prismatic its variants, renumbered as "
-                   "every listing and atlas numbers its id")
+                   "every listing and atlas numbers its id, with the chain as given beside (column as_given)")
     p.add_argument("--idle-joints", action="store_true",
                    help="with --prismatic: keep chains with joints that never move, and list them")
     p.add_argument("--count", action="store_true", help='print {"count": N, "by_code": {...}} only')
@@ -175,12 +175,31 @@ def _run_one_chain(args) -> int:
         lo, hi = parse_range(args.prismatic, "--prismatic")
         prismatic_variants(chain, lo)  # refuses a count beyond the chain's simple joints, with the reason
         items = variants_of([chain], (lo, hi), idle=args.idle_joints)
-    items = [c.canonical() for c in items]  # a frame printed names the link move --db --id fixes
+    # listed in the canonical numbering (a frame printed names the link move --db --id fixes), each row with the
+    # chain as the user numbered it beside (which of the user's links a base or a prismatic pair took)
+    back = {}  # id of a canonical chain listed -> (the chain as given, its links' numbers as given by canonical number)
+    listed = []
+    for given in items:
+        numbering = given.canonical_numbering()
+        listed.append(given.relabel(numbering))
+        back[id(listed[-1])] = given, [numbering.index(k) for k in range(given.links)]
+    items = listed
     if args.what == "mechanisms":
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))
     return write_items(items, args.what, fmt=args.format, count=args.count,
-                       kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h)
+                       kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
+                       as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]))
+
+
+def _as_given(item, given, as_given: list[int]) -> dict:
+    """The columns of a row of ``chains --chain C``: the chain in the user's numbering, and a mechanism's fixed
+    and input links by their numbers there."""
+    out = {"as_given": given.compact()}
+    if item is not getattr(item, "chain", item):
+        out["frame_as_given"] = as_given[item.frame]
+        out["input_link_as_given"] = None if item.input_link is None else as_given[item.input_link]
+    return out
 
 
 def _refuse_classless_format(args) -> None:
@@ -297,11 +316,12 @@ def _write(items, args) -> int:
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,
-                idle: bool = False, h: int = 3) -> int:
+                idle: bool = False, h: int = 3, as_given=None) -> int:
     """List chains or mechanisms (``what``) in the chosen format, or count them by code; with
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
     with ``idle`` the joints that never move, in motion space ``h`` ≠ 3 its column (a table or
-    CSV row is read back in its space).  Returns the exit status (1 when none)."""
+    CSV row is read back in its space); ``as_given`` (an item's extra columns: :func:`_as_given`) adds the
+    user's numbering of a chain given.  Returns the exit status (1 when none)."""
     if count:
         from synth import count_by_code
 
@@ -315,7 +335,7 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
 
         n = write(items, fmt)
         return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
-    rows = (_row(item, fmt, idle) for item in items)
+    rows = (_row(item, fmt, idle) | (as_given(item) if as_given else {}) for item in items)
     columns = ["index", "id", "code", "links", "joints", "certificate"]
     if h != 3:
         columns.insert(3, "h")
@@ -330,6 +350,9 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         columns[-2:-2] = ["frame", "input_link"]
         if kinds:
             columns[-2:-2] = ["guide", "swinging", "floating", "slider"]
+    if as_given:  # beside the joints as listed
+        at = columns.index("joints") + 1
+        columns[at:at] = ["as_given"] + (["frame_as_given", "input_link_as_given"] if what == "mechanisms" else [])
     n = write_rows(_indexed(rows), columns, fmt)
     if fmt == "table":
         print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain, 1 mechanism

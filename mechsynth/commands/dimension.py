@@ -29,7 +29,7 @@ import sys
 
 from mechbase import finite_pair
 
-from .._argtypes import finite, mechanism_of, number_range, output_file, seconds, whole, workers
+from .._argtypes import finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
 from .._output import pairs, write_document
 
 __all__ = ["add_commands"]
@@ -126,7 +126,7 @@ def add_commands(sub) -> None:
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
                    "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
     p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
-    p.add_argument("--top", type=workers, default=5, metavar="K", help="with --db: topologies polished (default 5; "
+    p.add_argument("--top", type=positive, default=5, metavar="K", help="with --db: topologies polished (default 5; "
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")

@@ -138,6 +138,16 @@ def _check(args) -> None:
         raise InvalidOption("--range prints one document: --format table or json, not " + args.format)
     if args.range and (args.velocities or args.accelerations):
         raise InvalidOption("--velocities and --accelerations add columns to the rows; --range prints no rows")
+    pictures = [name for name, value in (("--out", args.out), ("--animate", args.animate), ("--save", args.save))
+                if value]
+    if (args.velocities or args.accelerations) and pictures and not (args.format or args.range):
+        raise InvalidOption(f"--velocities and --accelerations add columns to the rows, and with {' and '.join(pictures)} "
+                            "no rows are printed unless asked: add --format table, csv, jsonl or json")
+    swept = [name for name, value in (("--steps", args.steps), ("--start", args.start), ("--stop", args.stop))
+             if value is not None]
+    if pictures == ["--save"] and swept and not (args.format or args.range):
+        raise InvalidOption(f"--save alone writes the linkage and moves nothing, so {swept[0]} has no use: the sweep's "
+                            "options go with rows (--format), --out, --animate or --range")
     if args.start is not None and args.stop is not None:
         if len(args.start) != len(args.stop):
             raise InvalidOption(f"--start gives {len(args.start)} value(s) and --stop {len(args.stop)}: one each per "

@@ -340,36 +340,44 @@ def size_grid(grid: Grid, *, processes: int, db, scheduler: bool = False) -> str
     import shutil
 
     from ..execution.sizes import describe_seconds, magnitude
-    from ..synthesis.estimate import estimate, sized_loops
+    from ..synthesis.estimate import FLOOR_SECONDS, PLAIN_MARGIN, estimate, needs_compiled, sized_loops
 
     large = [c for c in grid.cells if c.loops >= sized_loops(c.h, multiple=c.v != (0, 0))]
     if not large:
         return None
-    log_seconds, log_chains, worst = -math.inf, -math.inf, None
-    for cell in sorted(large, key=lambda c: -c.links):
-        found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large))
-        if found is None:
-            raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give {option('force')} "
-                                "to run it anyway")
-        log_seconds = _log_sum(log_seconds, found.log10_seconds)
-        log_chains = _log_sum(log_chains, found.log10_chains)
-        worst = worst or (cell, found)
-    wall = log_seconds - math.log10(processes)
-    log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
-    where = ("on the scheduler's workers (one core shown)" if scheduler
-             else f"on {processes} worker{'s' if processes != 1 else ''}")
-    cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} large cells hold"
-    size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
-            f"{describe_seconds(_power(wall), wall)} {where} and {magnitude(_power(log_bytes - 9), log_bytes - 9)} GB "
-            "in the atlas (extrapolated from exact runs at smaller sizes)")
-    if wall > math.log10(_GRID_LIMIT_SECONDS):
-        raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give {option('force')} to run it anyway "
-                            "(it can be stopped and resumed)")
-    folder = os.path.dirname(os.path.abspath(db))
-    free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
-    if log_bytes > math.log10(max(free, 1)):
-        raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
-                            f"{free / 1e9:.1f} GB free; give {option('force')} to run it anyway")
+    # first on the plain path, which compiles nothing (its time a floor, its counts with a margin: the query's
+    # sizing, estimate.FLOOR_SECONDS), then, if that refuses nothing, timed on the compiled path as the cells run
+    for plain in (True, False) if any(needs_compiled(c.query()) for c in large) else (False,):
+        log_seconds, log_chains, worst = -math.inf, -math.inf, None
+        for cell in sorted(large, key=lambda c: -c.links):
+            found = estimate(cell.query(), work="mechanisms", budget=1.2 / len(large), plain=plain)
+            if found is None:
+                if plain:  # (the compiled path's sizing says so)
+                    break
+                raise QueryTooLarge(f"the grid's cell {cell.key} is large and its size cannot be estimated; give "
+                                    f"{option('force')} to run it anyway")
+            log_seconds = _log_sum(log_seconds, found.log10_seconds)
+            log_chains = _log_sum(log_chains, found.log10_chains)
+            worst = worst or (cell, found)
+        else:
+            wall = log_seconds - math.log10(processes)
+            log_bytes = log_chains + math.log10(_BYTES_PER_MECHANISM)
+            where = ("on the scheduler's workers (one core shown)" if scheduler
+                     else f"on {processes} worker{'s' if processes != 1 else ''}")
+            cells = f"its cell {worst[0].key} holds" if len(large) == 1 else f"its {len(large)} large cells hold"
+            floor = f"at least (at {FLOOR_SECONDS * 1e6:g} µs a mechanism) " if plain else ""
+            size = (f"{cells} about {magnitude(_power(log_chains), log_chains)} mechanisms, "
+                    f"{floor}{describe_seconds(_power(wall), wall)} {where} and "
+                    f"{magnitude(_power(log_bytes - 9), log_bytes - 9)} GB in the atlas (extrapolated from exact runs at "
+                    "smaller sizes)")
+            if wall > math.log10(_GRID_LIMIT_SECONDS):
+                raise QueryTooLarge(f"this grid is too large to run unasked: {size}; give {option('force')} to run it "
+                                    "anyway (it can be stopped and resumed)")
+            folder = os.path.dirname(os.path.abspath(db))
+            free = shutil.disk_usage(folder).free if os.path.isdir(folder) else math.inf
+            if log_bytes > math.log10(max(free, 1)) + (math.log10(PLAIN_MARGIN) if plain else 0.0):
+                raise QueryTooLarge(f"this grid does not fit on the disk: {size}, and {folder} has "
+                                    f"{free / 1e9:.1f} GB free; give {option('force')} to run it anyway")
     if wall > math.log10(_GRID_NOTE_SECONDS):
         return f"a long grid: {size}"
     return None

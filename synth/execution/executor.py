@@ -55,13 +55,13 @@ from .spill import Spilled
 __all__ = ["Executor", "process_pool", "run_plan"]
 
 
-#: the signals that stop a run (Ctrl-C, and the ``kill`` of a batch system's time limit): held back while
-#: the workers are forked, left by the workers to their parent
-STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+#: the signals that stop a run (Ctrl-C, the ``kill`` of a batch system's time limit, a closed terminal): held
+#: back while the workers are forked, left by the workers to their parent
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
 def _worker_start(parent: int, stopping=None) -> None:
-    """Workers leave Ctrl-C and SIGTERM to the parent and do not outlive it (``kill -9`` of a long
+    """Workers leave Ctrl-C, SIGHUP and SIGTERM to the parent and do not outlive it (``kill -9`` of a long
     count); the parent's wake-up pipe for signals (:mod:`synth.execution.interrupt`), inherited by the
     fork, is let go, so no signal a worker catches reads in the parent as its own.
 
@@ -73,6 +73,7 @@ def _worker_start(parent: int, stopping=None) -> None:
     group's, so the parent raises ``stopping`` (shared memory; :func:`process_pool`) as it ends a worker,
     once it holds that lock, and from then on a worker obeys any SIGTERM."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if hasattr(signal, "sigwaitinfo"):  # SIGTERM blocked in every thread, read by one that checks who sent it
         import threading
@@ -126,7 +127,7 @@ def _new_pool(ctx, workers: int):
 def process_pool(workers: int):
     """A process pool whose workers leave Ctrl-C to the parent and die with it (fork on Linux).
 
-    Ctrl-C (and SIGTERM: :data:`STOP_SIGNALS`) is held back while the workers are forked: a
+    Ctrl-C (and SIGTERM, SIGHUP: :data:`STOP_SIGNALS`) is held back while the workers are forked: a
     KeyboardInterrupt raised inside a fork handler is printed and dropped by Python ("Exception
     ignored …"), so the run would go on.  Blocking the signals in this thread is not enough where
     another thread runs (the progress lines): a signal reaches that thread and Python runs the

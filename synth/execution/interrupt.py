@@ -8,7 +8,8 @@ KeyboardInterrupt as soon as ``solve`` returns.  For one second after each Ctrl-
 stops every search that began before it or in the instant after it, checking every 50 ms (SIGTERM,
 which the command handles as Ctrl-C, does the same); other signals stop nothing, and a full descriptor is never reported on stderr.  (Pool workers ignore
 SIGINT: their parent terminates them.)  The solver is whatever has ``solve(model, callback)`` and ``stop_search()``
-(OR-Tools' ``CpSolver``): this module never loads OR-Tools itself.
+(OR-Tools' ``CpSolver``): this module never loads OR-Tools itself.  :func:`ending_signals_unwind` has
+SIGTERM and SIGHUP, whose default ends a process at once, unwind a block first, as Ctrl-C does.
 
 Example
 -------
@@ -27,8 +28,9 @@ import os
 import signal
 import threading
 import time
+from contextlib import contextmanager
 
-__all__ = ["solve_stoppably"]
+__all__ = ["solve_stoppably", "ending_signals_unwind"]
 
 _RUNNING: dict = {}  # solver -> when its search began (time.monotonic)
 #: a search that began this long after a Ctrl-C was caught is stopped too (it was being entered as the
@@ -36,8 +38,12 @@ _RUNNING: dict = {}  # solver -> when its search began (time.monotonic)
 #: already (a notebook, a test) and runs to its end
 _INSTANT = 0.1
 _watching = False
-#: the signals that stop the searches: Ctrl-C, and SIGTERM (which the ``mechsynth`` command handles as it does Ctrl-C)
-_STOPPING = frozenset({signal.SIGINT, signal.SIGTERM})
+#: signals whose default action ends the process at once, without running a ``finally`` (a ``kill``, a batch
+#: system's time limit, a closed terminal): :func:`ending_signals_unwind` has them unwind first
+_ENDING = (signal.SIGTERM, signal.SIGHUP)
+#: the signals that stop the searches: Ctrl-C, and those (which the ``mechsynth`` command, or
+#: :func:`ending_signals_unwind`, handles as Ctrl-C)
+_STOPPING = frozenset({signal.SIGINT, *_ENDING})
 
 
 def solve_stoppably(solver, model, callback=None):
@@ -60,6 +66,41 @@ def solve_stoppably(solver, model, callback=None):
         return solver.solve(model, callback)
     finally:
         del _RUNNING[solver]
+
+
+@contextmanager
+def ending_signals_unwind():
+    """Inside the block, SIGTERM and SIGHUP unwind it as Ctrl-C does (KeyboardInterrupt), so that what
+    it holds is released (a count's temporary folder removed, its pool ended); on leaving it, the
+    signal is sent again, its default action restored: the process still ends, by that signal.
+
+    Only signals left at their default are taken (the ``mechsynth`` command's own SIGTERM handler is
+    kept), and only in the main thread (elsewhere Python cannot set a handler): a library call such as
+    ``count_chains`` leaves nothing on disk however a ``kill`` stops it (short of ``kill -9``).
+
+    >>> outside = signal.getsignal(signal.SIGTERM)   # (the default, unless the caller has a handler)
+    >>> with ending_signals_unwind():
+    ...     inside = signal.getsignal(signal.SIGTERM)
+    >>> signal.getsignal(signal.SIGTERM) is outside, inside is outside or outside == signal.SIG_DFL
+    (True, True)
+    """
+    caught, taken = [], {}
+
+    def unwind(signum, frame):
+        caught.append(signum)
+        raise KeyboardInterrupt
+
+    if threading.current_thread() is threading.main_thread():
+        for signum in _ENDING:
+            if signal.getsignal(signum) == signal.SIG_DFL:
+                taken[signum] = signal.signal(signum, unwind)
+    try:
+        yield
+    finally:
+        for signum, handler in taken.items():
+            signal.signal(signum, handler)
+        if caught:
+            signal.raise_signal(caught[0])
 
 
 def _watch_interrupts() -> None:

@@ -333,6 +333,19 @@ class Chain:
         return Chain(self.links, tuple(tuple(permutation[x] for x in j) for j in self.joints), self.kinds, self.h,
                      classes)
 
+    def canonical_numbering(self) -> list[int]:
+        """Where :meth:`canonical` puts each link: link ``i`` of this chain is link ``numbering[i]`` of the
+        canonical chain (a chain given by the user, listed canonical, is mapped back by it).
+
+        >>> Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").canonical_numbering()   # the Watt chain: its link 0 is link 5
+        [5, 4, 0, 3, 2, 1]
+        """
+        labels = pynauty.canon_label(self._nauty_graph())
+        numbering = [0] * self.links
+        for position, link in enumerate(labels[: self.links]):
+            numbering[link] = position
+        return numbering
+
     def canonical(self) -> "Chain":
         """The chain in its canonical labelling (nauty's): isomorphic chains come out with the same
         joints, so a chain id names one numbering of its links.  Every listing, the atlas and
@@ -343,11 +356,7 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1").canonical().compact()  # the same chain written otherwise
         '0-3 0-4 1-2 1-4 2-5 3-5 4-5'
         """
-        labels = pynauty.canon_label(self._nauty_graph())
-        permutation = [0] * self.links
-        for position, link in enumerate(labels[: self.links]):
-            permutation[link] = position
-        out = self.relabel(permutation)
+        out = self.relabel(self.canonical_numbering())
         if "_certificate" in self.__dict__:  # the same chain: its certificate is known
             object.__setattr__(out, "_certificate", self._certificate)
         return out

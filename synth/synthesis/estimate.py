@@ -56,7 +56,7 @@ from ..execution.sizes import describe_seconds, magnitude
 
 __all__ = ["BUDGET", "MULTIPLE_BUDGET", "UNIT_GROWTH", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
            "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
-           "CERTIFICATE_BYTES"]
+           "CERTIFICATE_BYTES", "FLOOR_SECONDS", "PLAIN_MARGIN", "needs_compiled"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -97,6 +97,17 @@ NOTE_BYTES = 2**30  # a query whose plan may hold more says so before it starts
 # refused without force above this: with the processes' own 150-250 MiB each (numpy, numba's kernels,
 # nauty), a run of 2 workers stays within 2 GiB
 MEMORY_LIMIT = 1.5 * 2**30
+# A query on the compiled path is sized first on the plain one (``estimate(plain=True)``), which compiles nothing
+# (numba's compiling of the kernels, some 25 CPU s on a cold cache, came before every refusal). Its counts are the
+# compiled path's (chains, units, the largest code's units: the same units, searched otherwise); its time is not
+# (the plain search: 20 links counted in 2.1e6 CPU s against 4 063), so it gives a floor of the time instead: this
+# many CPU seconds a unit, and a chain or mechanism visited one by one, over a hundred times under every rate
+# measured on the compiled path (0.28 to 25 ms a unit, PROFILE.md sections 27 and 33; 22 µs a mechanism counted
+# at 20 links).  A refusal on the plain estimate asks its counts to pass the limits PLAIN_MARGIN times over (an
+# extrapolation from smaller sizes: 8, 10, 12 links against the compiled path's 10, 12, 14); what it does not
+# refuse is sized again on the compiled path, as before.
+FLOOR_SECONDS = 1e-7
+PLAIN_MARGIN = 2.0
 
 
 @dataclass(frozen=True)
@@ -115,6 +126,7 @@ class Estimate:
     log10_units: float = 0.0
     log10_seconds: float = 0.0
     largest_code_units: float = 0.0  # units of the code with the most: its share of the units at the basis
+    floor: bool = False  # ``seconds`` is a floor of the time (the plain path's estimate: :data:`FLOOR_SECONDS`)
 
 
 class _CompileClock:
@@ -176,6 +188,7 @@ class _TimedWork:
 
 
 _COUNTED: dict = {}  # (query without links, work), links -> its calibration: several cells of a grid share them
+_NEVER = 10**6  # kernel_loops for "never": the plain searches at every size
 
 
 def _power(log10: float) -> float:
@@ -196,7 +209,25 @@ def _log10_growth(ratio: float, step: float, steps: int) -> float:
     return steps * math.log10(step) + (math.lgamma(start + steps + 1) - math.lgamma(start + 1)) / math.log(10)
 
 
-def estimate(query, *, budget: float | None = None, work: str = "count") -> Estimate | None:
+def _multiple(query) -> bool:
+    return query.v is not None and (query.v[1] is None or query.v[1] > 0)
+
+
+def needs_compiled(query) -> bool:
+    """Whether ``query`` runs the compiled searches (and :func:`estimate` times them, compiling them first on a
+    cold cache).
+
+    >>> from synth.structure.query import ChainQuery
+    >>> needs_compiled(ChainQuery(1, 12)), needs_compiled(ChainQuery(1, 14))
+    (False, True)
+    """
+    from . import type_synthesis as ts
+    from .stage_a import kernel_loops
+
+    return query.loops >= kernel_loops(ts._conventions(query), _multiple(query))
+
+
+def estimate(query, *, budget: float | None = None, work: str = "count", plain: bool = False) -> Estimate | None:
     """Estimate a :class:`~synth.structure.query.ChainQuery` (with ``links``; not its code).
 
     Only sizes below ``links`` with the same number of loops modulo one (n − (h − 1)·k) are
@@ -205,18 +236,20 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     grow with ``links``.  ``work`` is what the query does with each unit, timed the same way:
     ``"count"`` its chains, ``"list"`` them (each chain built), ``"mechanisms"`` or
     ``"mechanisms with input"`` count its mechanisms (then ``chains`` counts mechanisms).
+    With ``plain``, the calibrations run with the compiled searches off (nothing is compiled) and the
+    time is a floor (``floor``: :data:`FLOOR_SECONDS` a unit, and a chain visited where ``work`` visits
+    them or the query has multiple joints).
     Returns None when fewer than three smaller sizes have chains (no basis for a ratio).
     """
     from . import type_synthesis as ts
-    from .stage_a import kernel_loops
     from .stage_b import load_kernel
 
     conv = ts._conventions(query)
-    multiple = query.v is not None and (query.v[1] is None or query.v[1] > 0)
+    multiple = _multiple(query)
     if budget is None:
         budget = MULTIPLE_BUDGET if multiple else BUDGET
     # the calibrations run on the path the query will take: compiled searches for a large query
-    compiled = query.loops >= kernel_loops(conv, multiple)
+    compiled = not plain and needs_compiled(query)
     if compiled:
         load_kernel()  # before the clock, as the query loads it before its workers start
     from . import _cpsat  # noqa: F401 - the solver's import (≈ 0.3 s, pandas) is the query's, not a calibration's
@@ -225,7 +258,12 @@ def estimate(query, *, budget: float | None = None, work: str = "count") -> Esti
     event.Listener.register(_CompileClock)  # numba's listeners are its Listener's (virtual) subclasses
     clock = _CompileClock()  # a kernel compiled in a calibration (a cold cache) is the query's cost, not the calibration's
     with event.install_listener("numba:compile", clock):
-        return _extrapolated(query, _calibrations(query, conv, work, budget, compiled, clock), compiled)
+        found = _extrapolated(query, _calibrations(query, conv, work, budget, compiled, clock), compiled)
+    if found is None or not plain:
+        return found
+    visited = work != "count" or multiple
+    log_floor = math.log10(FLOOR_SECONDS) + (max(found.log10_units, found.log10_chains) if visited else found.log10_units)
+    return replace(found, seconds=_power(log_floor), log10_seconds=log_floor, floor=True)
 
 
 def _calibrations(query, conv, work: str, budget: float, compiled: bool, clock) -> list:
@@ -252,8 +290,8 @@ def _calibrations(query, conv, work: str, budget: float, compiled: bool, clock) 
                 jobs = ts.plan_jobs(query.with_options(links=n))
             except ImpossibleParameters:
                 continue
-            if compiled:
-                jobs = [(code, replace(conv, kernel_loops=1)) for code, conv in jobs]
+            # the compiled searches from one loop on, or never (the plain path: below its threshold a query takes it)
+            jobs = [(code, replace(conv, kernel_loops=1 if compiled else _NEVER)) for code, conv in jobs]
             chains = units = largest = 0
             timed = _TimedWork(unit_work, clock)
             for _, unit, result in ts._map_units(timed, jobs, 1, False):
@@ -345,31 +383,47 @@ def size_check(query, *, processes: int, count: bool, table: bool, force: bool =
         return None
     work = mechanisms or ("count" if count else "list")
     items = "mechanisms" if mechanisms else "chains"
+    if needs_compiled(query):  # refused first, if it can be, on the plain path: before anything is compiled
+        early = estimate(query, work=work, plain=True)
+        if early is not None:
+            _refuse(early, query, processes=processes, count=count, rows_held=rows_held, force=force, items=items,
+                    scheduler=scheduler, margin=PLAIN_MARGIN)
     found = estimate(query, work=work)
     if found is None:
         if not force and worth_sizing(query):  # (a table only: its rows are counted as it is written)
             raise QueryTooLarge(f"this query ({query.links} links) is large and its size cannot be estimated "
                                 f"(fewer than three smaller sizes have chains); give {option('force')} to run it anyway")
         return None
+    size, memory, held = _refuse(found, query, processes=processes, count=count, rows_held=rows_held, force=force,
+                                 items=items, scheduler=scheduler)
+    notes = ([f"a long query: {size}"] if found.seconds / processes > NOTE_SECONDS else []) + (
+        [memory] if held > NOTE_BYTES else [])
+    return "; ".join(notes) or None
+
+
+def _refuse(found: Estimate, query, *, processes: int, count: bool, rows_held: bool, force: bool, items: str,
+            scheduler: bool, margin: float = 1.0) -> tuple[str, str, float]:
+    """:func:`size_check`'s refusals of an estimate (its counts ``margin`` times over a limit; its time, a floor or
+    not, over a day); else the estimate in words, the memory in words, and its bytes."""
     size = describe_estimate(found, processes=processes, items=items, scheduler=scheduler)
-    if rows_held and found.chains > TABLE_ROWS:
+    if rows_held and found.chains > margin * TABLE_ROWS:
         raise QueryTooLarge(f"a table is held in memory to align it and this listing ({query.links} links) is too "
                             f"large for one ({size}); use {option('format', 'jsonl')} or csv (streamed), or {option('count')}")
     if not force and found.seconds / processes > LIMIT_SECONDS:
         hint = f" (with {option('checkpoint', 'FILE')} it can be stopped and resumed)" if count else ""
-        raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}; give {option('force')} to "
-                            f"run it anyway{hint}")
+        floor = (f"; even at {FLOOR_SECONDS * 1e6:g} µs a unit and a {items[:-1]} visited it would take at least "
+                 f"{_time_words(found, processes, scheduler)}") if found.floor else ""
+        raise QueryTooLarge(f"this query ({query.links} links) is too large to run unasked: {size}{floor}; give "
+                            f"{option('force')} to run it anyway{hint}")
     streamed = count and not scheduler
     held = plan_bytes(found, processes, streamed=streamed)
     kept = "whose certificates are kept" if streamed else "kept whole"
     memory = (f"its largest code has about {magnitude(found.largest_code_units)} branch multigraphs, {kept} "
               f"until the code is done: about {held / 2**30:.1f} GiB on {processes} worker{'s' * (processes > 1)}")
-    if not force and held > MEMORY_LIMIT:
+    if not force and held > margin * MEMORY_LIMIT:
         raise QueryTooLarge(f"this query ({query.links} links) would hold too much memory to run unasked: {memory} "
                             f"(more than {MEMORY_LIMIT / 2**30:g} GiB); {size}; give {option('force')} to run it anyway")
-    notes = ([f"a long query: {size}"] if found.seconds / processes > NOTE_SECONDS else []) + (
-        [memory] if held > NOTE_BYTES else [])
-    return "; ".join(notes) or None
+    return size, memory, held
 
 
 def describe_estimate(found: Estimate, *, processes: int, items: str = "chains", scheduler: bool = False) -> str:
@@ -378,12 +432,17 @@ def describe_estimate(found: Estimate, *, processes: int, items: str = "chains",
     >>> describe_estimate(Estimate(1.5e11, 4892940, 1.5e5, "exact counts at 10, 12, 14 links"), processes=2)
     'about 1.5e+11 chains in 4 892 940 units, 20.8 h on 2 workers, extrapolated from the exact counts at 10, 12, 14 links'
     """
+    time = "" if found.floor else f"{_time_words(found, processes, scheduler)}, "  # (a floor is said where it refuses)
+    return (f"about {magnitude(found.chains, found.log10_chains or None)} {items} in "
+            f"{magnitude(found.units, found.log10_units or None)} units, {time}extrapolated from the {found.basis}")
+
+
+def _time_words(found: Estimate, processes: int, scheduler: bool) -> str:
+    """The estimate's time on ``processes`` workers in words, as ``20.8 h on 2 workers``."""
     where = "on the scheduler's workers (one core shown)" if scheduler else \
         f"on {processes} worker{'s' * (processes > 1)}"
     log_wall = (found.log10_seconds or math.log10(found.seconds)) - math.log10(processes)
-    return (f"about {magnitude(found.chains, found.log10_chains or None)} {items} in "
-            f"{magnitude(found.units, found.log10_units or None)} units, "
-            f"{describe_seconds(found.seconds / processes, log_wall)} {where}, extrapolated from the {found.basis}")
+    return f"{describe_seconds(found.seconds / processes, log_wall)} {where}"
 
 
 def plan_bytes(found: Estimate, processes: int, *, streamed: bool = False) -> float:

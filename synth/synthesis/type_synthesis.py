@@ -671,7 +671,9 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
            remember: bool = False, expected: float | None = None) -> Counts:
     """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked; with
     ``remember``, each code's counts read from the store of earlier runs, or kept there once found."""
-    from contextlib import ExitStack
+    from contextlib import ExitStack, closing
+
+    from ..execution.interrupt import ending_signals_unwind
 
     _check_workers(workers)
     if query.prismatic is not None and (checkpoint is not None or scheduler is not None):
@@ -692,6 +694,9 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
     units_run, by_search, shared = 0, {}, 0  # the units run here, those counted by the search instead of by orbits,
     # and those a second count counted by the first count's path
     with ExitStack() as stack:
+        # a kill (SIGTERM, SIGHUP) unwinds the count before it ends the process, as Ctrl-C does: its pool ended,
+        # its temporary folder of units removed (the command has its own handler; a script calling this has none)
+        stack.enter_context(ending_signals_unwind())
         client = None
         if scheduler is not None:  # (before the checkpoint: an unreachable scheduler leaves no file behind)
             from ..execution.scheduler import connect
@@ -708,11 +713,11 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             ck = stack.enter_context(Checkpoint(checkpoint, identity, _describe(what, query), log=log))
             for name, n in list(ck.codes.items()) + list(ck.unit_counts.items()):
                 totals[name] = totals.get(name, 0) + n
-        events = _map_units(work, jobs, workers, progress, client=client,
-                            skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
-                            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False,
-                            expected=expected,
-                            kept=(kept_units_folder(checkpoint), identity) if ck and client is None else None)
+        events = stack.enter_context(closing(_map_units(
+            work, jobs, workers, progress, client=client,
+            skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
+            skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False, expected=expected,
+            kept=(kept_units_folder(checkpoint), identity) if ck and client is None else None)))
         for index, unit, result in events:
             if unit is None:
                 if ck is not None:

@@ -254,15 +254,15 @@ def test_pantograph_figure_draws_the_mechanism_forces_extremes_and_spring(drawn)
     for (u, v), (s, t) in ((ends[4], ends[0]), (ends[5], ends[1])):  # 14 ∥ 2 and 15 ∥ 3, as long
         assert np.allclose(v - u, t - s, atol=1e-12)
     assert [t.get_text() for t in mech.texts][:8] == ["2", "3", "9", "8", "14", "15", "16", "4"]
-    # link 9 (E–B) has its number clear of every bar, as drawn at the file's 110 dots an inch (it sat on link 2, which
-    # E–B meets at E); 16 beside the short D–D1, where link 3 leaves D and bar 8 passes, touches their lines
+    # every link's number is clear of every bar, as drawn at the file's 110 dots an inch (9 sat on link 2, which E–B
+    # meets at E; 16, beside the short D–D1, on link 3 leaving D and bar 8 crossing D–D1)
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     fig.set_dpi(110)
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     renderer = canvas.get_renderer()
-    for label in mech.texts[2:3]:
+    for label in mech.texts[:8]:
         box = label.get_window_extent(renderer)
         for x, y in bars:
             run = mech.transData.transform(np.column_stack([np.linspace(x[0], x[1], 400), np.linspace(y[0], y[1], 400)]))

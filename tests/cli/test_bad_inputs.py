@@ -211,6 +211,10 @@ CASES = [
     ("move {m}/motion_four_bar.toml --start inf", "'inf'"),
     ("move {m}/motion_four_bar.toml --out {d}/binary.toml", "binary.toml"),
     ("move {m}/motion_four_bar.toml --animate {d}/nowhere/m.gif", "nowhere"),
+    # (rates asked where no rows are printed, a sweep's options with --save alone: each was taken and ignored)
+    ("move {m}/motion_four_bar.toml --velocities --out {d}/m.png", "no rows are printed"),
+    ("move {m}/motion_four_bar.toml --accelerations --animate {d}/m.gif", "no rows are printed"),
+    ("move {m}/motion_four_bar.toml --steps 12 --save {d}/m.json", "--save alone"),
     ("move --db {d}/corrupt.sqlite --id 814ad964fad2 --frame 0", "corrupt.sqlite"),
     ("move --db {d}/atlas.sqlite --id 000000000000 --frame 0", "000000000000"),
     ("move --chain '0-1 1-2 2-0' --frame 0", "rigid"),
@@ -225,6 +229,9 @@ CASES = [
     ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --db {d}/atlas.sqlite", "--db"),
     ("dimension {m}/dimension_closed_path.csv --db {d}/corrupt.sqlite", "corrupt.sqlite"),
     ("dimension {m}/dimension_closed_path.csv --db {d}/atlas.sqlite", "no curve index"),
+    # --top K counts topologies, not processes: 500 was refused as more workers than the machine has cores
+    ("dimension {m}/dimension_closed_path.csv --db {d}/atlas.sqlite --top 500", "no curve index"),
+    ("dimension {m}/dimension_closed_path.csv --db {d}/atlas.sqlite --top 0", "not 0"),
     ("atlas --db {d}/corrupt.sqlite --index-curves", "corrupt.sqlite"),
     ("dimension {m}/dimension_path.csv --mechanism '0-1 1-2 2-3 3-0' --frame 0 --workers 2 --scheduler tcp://127.0.0.1:1",
      "contradict"),

@@ -47,6 +47,39 @@ def test_the_translator_among_the_bases_of_its_chain(capsys):
     assert found["listing"] == "mechsynth chains --dof 1 --loop-classes 3=4,5=1 --code 12.2.0.0.0/6"
 
 
+def test_the_bases_of_a_chain_given_are_shown_in_its_own_numbering(capsys):
+    """Each base listed in the canonical numbering (the id's) has beside it the user's chain, links numbered as
+    given: its class-V links are those of one base of the user's graph (the translator's toroidal loop 0 … 5
+    among them), and read back it is the chain of its row."""
+    code, out, _ = run(capsys, "chains", "--chain", TRANSLATOR, "--loop-classes", "3=4,5=1", "--format", "jsonl")
+    rows = [json.loads(line) for line in out.splitlines()]
+    graph = Chain.parse(TRANSLATOR).compact()
+    assert code == 0 and len(rows) == 5
+    bases = set()
+    for row in rows:
+        joints, _, h5 = row["as_given"].partition(" | h5: ")
+        assert joints == graph  # the user's joints, the user's link numbers
+        assert Chain.parse(row["as_given"]).certificate == row["certificate"]  # the same chain as the row's
+        bases.add(tuple(map(int, h5.split())))
+    assert len(bases) == 5 and (0, 1, 2, 3, 4, 5) in bases
+
+
+def test_a_mechanism_of_a_chain_given_names_its_links_as_given(capsys):
+    """``mechanisms --chain C``: the Watt chain written otherwise than the listing numbers it; each mechanism's
+    fixed link by its number in the chain as given is the same mechanism as the row's."""
+    from synth import Mechanism
+
+    watt = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
+    code, out, _ = run(capsys, "mechanisms", "--chain", watt, "--format", "jsonl")
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert code == 0 and len(rows) == 2 and {r["as_given"] for r in rows} == {Chain.parse(watt).compact()}
+    listed = {" ".join("-".join(map(str, j)) for j in r["joints"]) for r in rows}
+    assert listed == {"0-3 0-4 1-2 1-4 2-5 3-5 4-5"} != {r["as_given"] for r in rows}  # renumbered: the map is needed
+    for row in rows:
+        given = Mechanism(Chain.parse(row["as_given"]), row["frame_as_given"])
+        assert given.certificate == row["certificate"] and row["input_link_as_given"] is None
+
+
 def test_a_query_that_matches_nothing_exits_1(capsys):
     """W = 1 with K3 = 1, K5 = 1 and a four-joint link carrying two cranks: a valid query, no chain."""
     code, out, err = run(capsys, "chains", "--dof", "1", "--loop-classes", "3=1,5=1", "--cranks", "4=2", "--count")

@@ -358,7 +358,7 @@ def test_on_dask_there_is_no_inline_phase_and_tasks_aim_at_half_a_second(clock):
 
 # ------------------------------------------------------------------ the pool's workers
 def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
-    """In this process, with the calls a worker makes stood in for: SIGINT ignored, SIGTERM blocked and
+    """In this process, with the calls a worker makes stood in for: SIGINT and SIGHUP ignored, SIGTERM blocked and
     read by a thread of its own (which obeys the parent's only), the kernel asked to kill it with
     SIGKILL when its parent dies (PR_SET_PDEATHSIG = 1), and an orphan exits at once."""
     import ctypes
@@ -386,7 +386,8 @@ def test_a_worker_leaves_ctrl_c_to_its_parent_and_dies_with_it(monkeypatch):
     monkeypatch.setattr(module.os, "getppid", lambda: 4242)
     monkeypatch.setattr(module.os, "_exit", lambda status: calls.append(("exit", status)))
     module._worker_start(4242)
-    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("signal", signal.SIGTERM, signal.SIG_DFL),
+    assert calls == [("signal", signal.SIGINT, signal.SIG_IGN), ("signal", signal.SIGHUP, signal.SIG_IGN),
+                     ("signal", signal.SIGTERM, signal.SIG_DFL),
                      ("mask", signal.SIG_BLOCK, {signal.SIGTERM}), ("thread", module._obey_parent_only, (4242, None), True),
                      ("wakeup", -1), ("prctl", 1, signal.SIGKILL)]
     calls.clear()

@@ -296,6 +296,32 @@ def test_sigterm_stops_a_count_cleanly(tmp_path, group):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP], ids=["SIGTERM", "SIGHUP"])
+def test_a_kill_of_a_script_counting_leaves_no_folder(tmp_path, signum):
+    """``count_chains`` in a script with no handler of its own (benchmarks/bycode.py, a notebook's kernel):
+    a ``kill`` while its pool works removes the temporary folder of units (the signal's default used to end
+    the process at once and leave the folder behind), ends the workers, and still ends the process by
+    that signal."""
+    env = dict(os.environ, MECHSYNTH_CACHE="off", TMPDIR=str(tmp_path))
+    script = "import synth; synth.count_chains(1, 16, workers=2)"
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, env=env)
+    try:
+        workers = []
+        while proc.poll() is None and not (workers and list(tmp_path.glob("mechsynth-units-*"))):
+            time.sleep(0.01)
+            workers = psutil.Process(proc.pid).children()
+        assert proc.poll() is None, "the count ended before it could be stopped"
+        proc.send_signal(signum)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == -signum and "Traceback" not in err, err
+    _, alive = psutil.wait_procs(workers, timeout=30)
+    assert not alive, "pool workers outlived the count"
+    assert not list(tmp_path.iterdir())
+
+
 def test_checkpoint_commit_keeps_the_order_of_units_and_codes(tmp_path):
     """Unit rows are written in runs between complete codes: a code's units recorded before it
     completes are gone with it, those of a code still running stay."""

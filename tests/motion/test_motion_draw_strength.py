@@ -102,8 +102,11 @@ def test_a_four_bars_elements_by_kind():
     (rocker,) = _by(elements, "polyline", stroke=_EDGE, stroke_width=3.2)
     assert sorted(map(tuple, rocker["frames"][0])) == sorted([tuple(O4), tuple(B)])
     # the coupler carries the tracer: a plate through A, B and P
-    (plate,) = _by(elements, "polygon", stroke=_EDGE)
-    assert plate["style"]["fill"] == "#dbe6f4"
+    (plate,) = _by(elements, "polygon", stroke=_EDGE)  # its outline, and its fill under the pins' paths
+    (fill,) = _by(elements, "polygon", fill="#dbe6f4")
+    assert plate["style"]["fill"] == "none" and fill["style"]["stroke"] == "none"
+    assert np.array_equal(fill["frames"], plate["frames"])
+    assert [e is fill for e in elements].index(True) < [e is plate for e in elements].index(True)
     assert sorted(map(tuple, np.round(plate["frames"][0], 9))) == sorted(map(tuple, np.round([A, B, (2.5, 4.5)], 9)))
     # the frame: a dashed line O2 O4, a triangle and a base line under each pivot
     (base,) = _by(elements, "polyline", stroke_dasharray="6 4")
@@ -124,7 +127,7 @@ def test_a_four_bars_elements_by_kind():
     (name,) = _by(elements, "text")
     assert dot["r"] == pytest.approx(0.8 * pin) and np.allclose(dot["frames"][0, 0], (2.5, 4.5))
     assert name["text"] == "P" and np.allclose(name["frames"][0, 0], (2.5 + 1.6 * pin, 4.5 + 1.6 * pin))
-    assert len(elements) == 3 + 1 + 4 + 4 + 2
+    assert len(elements) == 3 + 1 + 1 + 4 + 4 + 2
     # the draw order: links under the frame's signs, pins over them, the tracer on top
     assert [e["tag"] for e in elements][-6:] == ["circle"] * 5 + ["text"]
 
@@ -253,22 +256,31 @@ def test_a_png_draws_each_element_as_an_artist(tmp_path, monkeypatch):
     marks = [c for c in circles if to_hex(c.get_edgecolor()) == "#1f4e9c"]
     assert len(marks) == 2 and all(c.get_facecolor()[3] == 0 for c in marks)
     white = [c for c in circles if to_hex(c.get_facecolor()) == "#ffffff"]
-    assert len(white) == 4 and all(c.zorder == 4 for c in white)
+    assert len(white) == 4 and min(c.zorder for c in white) > max(a.zorder for a in [*ax.lines, *ax.patches]
+                                                                       if a not in circles)  # pins over the links
     assert marks[0].radius == pytest.approx(white[0].radius * 0.014 / 0.018)  # 0.014 and 0.018 of the size
     (text,) = ax.texts
     assert text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
-    assert text.get_zorder() == 6 and text.get_va() == "bottom" and text.get_fontsize() == 9  # over everything
+    assert text.get_zorder() > max(a.zorder for a in [*ax.lines, *ax.patches])  # over everything
+    assert text.get_va() == "bottom" and text.get_fontsize() == 9
     (dot,) = [c for c in circles if to_hex(c.get_facecolor()) == "#c0392b"]
     beside = 1.6 / 0.8 * dot.radius  # the name 1.6 pin radii right of and above the dot (y down in pixels)
     assert text.get_position() == pytest.approx((dot.center[0] + beside, dot.center[1] - beside))
     dashed = [ln for ln in ax.lines if ln.get_linestyle() != "-"]
     assert len(dashed) == 1  # the frame's line O2 O4
     assert ax.get_ylim()[0] > ax.get_ylim()[1] and not ax.axison
-    # the paths of the two moving pins (grey, under everything) and the coupler curve (over the links)
-    grey = [ln for ln in ax.lines if to_hex(ln.get_color()) == "#b8c2cc"]
+    # the paths of the two moving pins (grey) over the coupler's fill and under the links' outlines and bars
+    # (the rocker's pin swings under the coupler: it was hidden by its fill), the coupler curve over the links
+    grey = [ln for ln in ax.lines if to_hex(ln.get_color()) == "#8f9baa"]
     curve = [ln for ln in ax.lines if to_hex(ln.get_color()) == "#c0392b"]
-    assert len(grey) == 2 and all(ln.zorder == 1 for ln in grey)
-    assert len(curve) == 1 and curve[0].zorder == 3.5 and len(curve[0].get_xdata()) == 37
+    (fill,) = [p for p in ax.patches if to_hex(p.get_facecolor()) == "#dbe6f4"]
+    (outline,) = [p for p in ax.patches if to_hex(p.get_edgecolor()) == "#1f3a5f" and p.get_facecolor()[3] == 0]
+    bars = [ln for ln in ax.lines if ln.get_linewidth() == pytest.approx(3.2 * 0.75)]
+    assert len(grey) == 2 and len(bars) == 2
+    assert fill.zorder < min(ln.zorder for ln in grey) < max(ln.zorder for ln in grey) < outline.zorder
+    assert max(ln.zorder for ln in grey) < min(ln.zorder for ln in bars)
+    assert len(curve) == 1 and curve[0].zorder > max(a.zorder for a in [outline, *bars])
+    assert len(curve[0].get_xdata()) == 37
 
 
 def test_refusals_are_one_sentence(tmp_path):
@@ -384,7 +396,7 @@ def test_an_svg_picture_holds_the_pin_paths_and_the_coupler_curve(tmp_path):
     draw_motion(motion, tmp_path / "m.svg", marks=[[1.0, 1.0]])
     root = ET.fromstring((tmp_path / "m.svg").read_text())
     lines = [el for el in root.iter() if el.tag.endswith("}polyline")]
-    grey = [el for el in lines if el.get("stroke") == "#b8c2cc"]
+    grey = [el for el in lines if el.get("stroke") == "#8f9baa"]
     curve = [el for el in lines if el.get("stroke") == "#c0392b"]
     # the two moving pins' paths and the tracer's coupler curve, a point per step of the sweep
     assert len(grey) == 2 and len(curve) == 1 and len(curve[0].get("points").split()) == 37

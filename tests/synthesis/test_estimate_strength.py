@@ -221,7 +221,11 @@ def test_the_calibrations_take_the_compiled_path_of_a_large_query(monkeypatch, q
     calibrations = _Calibrations(monkeypatch, SIZES)
     est.estimate(query)
     assert calibrations.kernels == compiled
-    assert {run[4] for run in calibrations.runs} == ({1} if compiled else {None})
+    assert {run[4] for run in calibrations.runs} == ({1} if compiled else {est._NEVER})  # (plain: never compiled)
+    calibrations.runs.clear()
+    est._COUNTED.clear()
+    est.estimate(query, plain=True)  # the plain path whatever the query: nothing compiled
+    assert {run[4] for run in calibrations.runs} == {est._NEVER}
 
 
 def test_growth_beyond_floating_point_is_infinite_with_a_finite_logarithm(monkeypatch):
@@ -270,9 +274,12 @@ def test_the_least_sized_loops_of_each_motion_space():
 
 # ------------------------------------------------------------------ size_check on estimates given by hand
 def _given(monkeypatch, found):
+    """``found`` for the compiled path's sizing; none for the plain path's (which then refuses nothing)."""
     asked = []
 
-    def fake(query, *, budget=2.0, work="count"):
+    def fake(query, *, budget=2.0, work="count", plain=False):
+        if plain:
+            return None
         asked.append(work)
         return found
 
@@ -283,6 +290,41 @@ def _given(monkeypatch, found):
 def _estimate(chains, units, seconds, largest=0.0):
     return est.Estimate(chains, units, seconds, "exact counts at 10, 12, 14 links", math.log10(chains),
                         math.log10(units), math.log10(seconds), largest)
+
+
+def test_a_refusal_on_the_plain_path_comes_before_the_compiled_sizing(monkeypatch):
+    """A query on the compiled path is sized first on the plain one: refused there when its counts pass a limit
+    PLAIN_MARGIN times over or its floor of time passes a day, the compiled sizing (which compiles the kernels on a
+    cold cache) is never asked; within the margin it is."""
+    from dataclasses import replace
+
+    asked = []
+    answers = {}
+
+    def fake(query, *, budget=2.0, work="count", plain=False):
+        asked.append(plain)
+        return answers[plain]
+
+    monkeypatch.setattr(est, "estimate", fake)
+    answers[True] = replace(_estimate(2.5e6, 1e3, 1e-4), floor=True)
+    answers[False] = _estimate(2.5e6, 1e3, 10.0)
+    with pytest.raises(QueryTooLarge, match="a table is held in memory") as refused:
+        est.size_check(ChainQuery(1, 16), processes=2, count=False, table=True)
+    assert asked == [True] and " s on 2 workers" not in str(refused.value)  # (no time said: it was a floor)
+    asked.clear()
+    answers[True] = replace(_estimate(1.5e6, 1e3, 1e-4), floor=True)  # within the margin: sized again, refused there
+    with pytest.raises(QueryTooLarge, match="a table is held in memory"):
+        est.size_check(ChainQuery(1, 16), processes=2, count=False, table=True)
+    assert asked == [True, False]
+    asked.clear()
+    answers[True] = replace(_estimate(1e12, 1e6, 2 * 86400 * 2.5), floor=True)  # a floor of 2.5 days on 2 workers
+    with pytest.raises(QueryTooLarge, match="it would take at least 2.5 days on 2 workers"):
+        est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False)
+    assert asked == [True]
+    asked.clear()
+    answers[True] = replace(_estimate(1e12, 1e6, 86400.0), floor=True)  # half a day on 2: the compiled path decides
+    assert est.size_check(ChainQuery(1, 16), processes=2, count=True, table=False) is None
+    assert asked == [True, False]
 
 
 def test_a_forced_count_and_a_small_query_are_not_sized(monkeypatch):
