@@ -34,8 +34,8 @@ ALIGN_ROUNDS = 4
 #: rounds of moving an untimed path's inputs onto the mechanism's own motion (Newton) and fitting its
 #: placement again, before the global stage's cost is taken
 SETTLE_STEPS = 2
-#: the given starts polished (least cost first), and the share of the budget they may take before
-#: differential evolution
+#: the given starts' share of the budget before differential evolution, polished one by one (least cost first)
+#: while it lasts, each for at most a SAMPLED_STARTS-th of it
 SAMPLED_STARTS, SAMPLED_SHARE = 5, 0.5
 #: the share of the budget the given starts' ranking by the global stage's cost may take, and the
 #: share the best of their polishes may then go on with
@@ -61,6 +61,10 @@ CRAWL, CRAWL_WINDOW = 1e-3, 20
 
 class _OutOfTime(Exception):
     pass
+
+
+class _Reached(Exception):
+    """A polish's least squares reached a length or ratio bound it does not yet hold (:meth:`_Search.polish`)."""
 
 
 class _Crawling(Exception):
@@ -813,10 +817,12 @@ class _Search:
         fits best and matches the points in order: a few points describe a curve's shape too coarsely
         to rank samples by their descriptors alone; the ranking stops once it has taken
         :data:`RANK_SHARE` of the budget, those left being the farthest by the source's own measure.
-        Each polish gets an equal part of :data:`SAMPLED_SHARE` of the budget, and the best of them
-        goes on with :data:`GO_ON_SHARE` more; the rest seed the first population.  A polish that ends
-        with two points folded onto one input (:meth:`folded`) is not counted among the
-        :data:`SAMPLED_STARTS`: the next start is polished in its stead."""
+        They are polished in that order while :data:`SAMPLED_SHARE` of the budget lasts, each for at most
+        a :data:`SAMPLED_STARTS`-th of it, and the best of them goes on with :data:`GO_ON_SHARE` more; the
+        rest seed the first population.  A polish that ends early (at its valley's floor) leaves its time to
+        the next starts, not to the one it cut short: on [HCDJ]'s ten points the start that reaches W.Y.
+        Lin's valley was the sixth (seed 4) behind one that crawls for all it is given
+        (benchmarks/DIMENSION.md, *The ten points of [HCDJ]: more starts*)."""
         problem, watch = self.problem, self.watch
         if problem.tracer_link is None or problem.driven is not None:
             return
@@ -831,15 +837,12 @@ class _Search:
             watch.seen(costs[-1], x[:problem.searched])
         order = np.argsort(costs, kind="stable")
         self.sampled = [starts[i][:problem.searched] for i in order if costs[i] < INFEASIBLE]
-        counted = 0
+        part = SAMPLED_SHARE * watch.budget / SAMPLED_STARTS
         for i in order:
-            if self.exact or counted == SAMPLED_STARTS or costs[i] >= INFEASIBLE:
+            left = SAMPLED_SHARE * watch.budget - watch.used()
+            if self.exact or costs[i] >= INFEASIBLE or left <= 0:
                 break
-            share = (SAMPLED_SHARE * watch.budget - watch.used()) / (SAMPLED_STARTS - counted)
-            if share <= 0:
-                break
-            found = self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + share)
-            counted += found is None or not self.folded(found)
+            self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + min(part, left))
         if self.best is not None and not self.exact:  # the best of them goes on, its polish cut by its share
             self.polish(self.best[1][:problem.dims], until=watch.used() + GO_ON_SHARE * watch.budget)
 
@@ -966,14 +969,16 @@ class _Search:
         the best yet, and returned as (cost, unknowns) (None where the polish found nothing on the branch).  With
         ``grace`` the budget is not watched; with ``until`` the polish also stops once that many seconds are used
         (with ``grace`` too); ``central`` differences for its Jacobian (twice the evaluations, exact to eps^(2/3)
-        rather than eps^(1/2)) where forward ones stall in a flat valley.  A length or ratio bound the polish ends on
-        (:meth:`binds`) is then held as an equality and the polish goes on along it (from a start on the bound, at
-        once): the penalty's hinge (gap + aim)⁺ has a kink there that cuts every step short, and on [HCDJ]'s ten
-        points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published optimum, 4.0199e-4
-        (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*).  With a link-length order the least squares
-        stop once they crawl (:class:`_Crawl`), and an inexact answer is polished again with the orders as constraints
-        (:meth:`constrained`; first, where the target has fewer equations than unknowns, slid into them along the
-        exact answers, :meth:`slide`): the penalty's hinge stalls where an order binds."""
+        rather than eps^(1/2)) where forward ones stall in a flat valley.  A length or ratio bound the polish reaches
+        (:meth:`binds`) is held as an equality from there on, the least squares started again along it (from a start
+        on the bound, at once): the penalty's hinge (gap + aim)⁺ has a kink there that cuts every step short, and on
+        [HCDJ]'s ten points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published
+        optimum, 4.0199e-4 (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*); held only once the
+        least squares ended, the crawl first took them to their evaluation limit (12 CPU s of a 16-s polish; *more
+        starts*).  With a link-length order the least squares stop once they crawl (:class:`_Crawl`), and an inexact
+        answer is polished again with the orders as constraints (:meth:`constrained`; first, where the target has
+        fewer equations than unknowns, slid into them along the exact answers, :meth:`slide`): the penalty's hinge
+        stalls where an order binds."""
         problem, watch, evaluate = self.problem, self.watch, self.evaluate
         if problem.timed:
             z0, lower, upper, direction = evaluate.complete(x), problem.lower, problem.upper, 0
@@ -991,6 +996,7 @@ class _Search:
             upper = np.concatenate((problem.upper, np.full(len(steps), problem.input_span)))
             z0 = np.clip(np.concatenate((x, steps)), lower, upper)
         best = [math.inf, z0]
+        bounded = problem.length_bounds > problem.order_pairs  # (a length or ratio bound: watched as it is reached)
         crawl = _Crawl(len(z0))
 
         def fun(z):
@@ -1001,6 +1007,8 @@ class _Search:
             watch.seen(cost, z[:problem.dims])
             if cost < best[0]:
                 best[0], best[1] = cost, np.array(z)
+                if bounded and (self.binds(z) & ~problem.held & ~let_go).any():
+                    raise _Reached  # (held from here: along the hinge the least squares crawl to their limit)
             if problem.order:
                 crawl.seen(best[0])
             return r
@@ -1016,8 +1024,8 @@ class _Search:
                 try:
                     least_squares(fun, best[1], jac=jac, bounds=(lower, upper), method="trf", x_scale="jac",
                                   xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=200 * len(z0))
-                except _Crawling:  # (under an order: the constrained polish goes on from here)
-                    pass
+                except (_Reached, _Crawling):  # (a bound reached is held below; a crawl under an order goes on
+                    pass                        # in the constrained polish)
                 # a bound reached is held from here on; a held one whose row ends below its aim pulls the answer
                 # inwards (the fit would leave it) and is let go for good
                 let_go |= held & (self.length_gaps(best[1]) + problem.aim < 0)
@@ -1121,20 +1129,6 @@ class _Search:
         out = self.length_gaps(z) >= math.log1p(-2 * MARGIN)
         out[:p.order_pairs] = False
         return out
-
-    def folded(self, found: tuple[float, np.ndarray]) -> bool:
-        """Whether a polish's answer (cost, unknowns) meets an untimed target inexactly with two points
-        at one input (a step at its bound 0: below 1e-9 of the input's span).
-
-        The in-order matching lets a point share its neighbour's place, and that corner of the box
-        traps polishes: of a random crank-rocker's ten points (seed 13 of ``--reliability``) the
-        eleven of its twelve sampled starts of least cost that ended inexact ended so, the first two
-        points on one input, 0.03 of the target's size off each, where the one that met the points
-        passed them all at least 22° apart."""
-        p, (cost, z) = self.problem, found
-        if p.timed or cost <= EXACT ** 2:
-            return False
-        return bool((np.asarray(z[p.dims:]) <= 1e-9 * p.input_span).any())
 
     def binding(self) -> bool:
         """Whether the best answer's link-length constraints call for a final polish (:meth:`stiffen`): an
