@@ -49,7 +49,10 @@ HOLD_ROUNDS = 3
 #: the least dyad discriminant over the turn the final polish holds a crank to (normalised; :meth:`_Search.constrained`):
 #: held to 1e-10 the half circle's crank touched a dead position the motion layer counted as reached (seed 3)
 TURN_MARGIN = 1e-8
-#: the share of the budget the shifted penalty's polishes may take after it (seed 0 of the ten points: 47 CPU s
+#: the steps of each constrained polish of a crank on the verge of stopping (:meth:`_Search.stiffen`: a run of 100
+#: took the eighteen points' 12 CPU s beyond a budget of 30)
+VERGE_STEPS = 20
+#: the share of the budget the shifted penalty's polishes (and a crank's on the verge) may take after it (seed 0 of the ten points: 47 CPU s
 #: after a budget of 60 without a limit)
 AIM_SHARE = 0.1
 #: a polish's least squares under a link-length order stop once their best cost falls less than this share over
@@ -1131,11 +1134,26 @@ class _Search:
         return out
 
     def binding(self) -> bool:
-        """Whether the best answer's link-length constraints call for a final polish (:meth:`stiffen`): an
-        order (always polished so), or a length or ratio bound within twice the search's margin of its limit."""
-        if self.best is None or not self.problem.length_bounds:
+        """Whether the best answer's constraints call for a final polish (:meth:`stiffen`): an order (always
+        polished so), a length or ratio bound within twice the search's margin of its limit, or a crank on the
+        verge of stopping (:meth:`on_the_verge`)."""
+        if self.best is None:
+            return False
+        if self.on_the_verge(self.best[1]):
+            return True
+        if not self.problem.length_bounds:
             return False
         return bool(self.problem.order) or bool(self.binds(self.best[1]).any())
+
+    def on_the_verge(self, z) -> bool:
+        """Whether the unknowns z make a crank that turns with less than :data:`TURN_MARGIN` to spare (its least
+        dyad discriminant over the turn): the eighteen points' best lies on Grashof's bound, where the coupler and
+        rocker fold flat once a turn, and an answer 2e-10 inside it (relative) passed the search's samples while
+        the motion layer found it rocking (benchmarks/DIMENSION.md, *A crank on the verge*)."""
+        if not self.problem.turn_held:
+            return False
+        clearance = self._clearance(z)
+        return clearance is not None and clearance < TURN_MARGIN
 
     def stiffen(self) -> None:
         """Polish the best answer once more so that a binding link-length constraint is met on its bound,
@@ -1146,16 +1164,20 @@ class _Search:
         turning (:meth:`constrained`, their penalty rows then dropped for good); a length or ratio bound
         without orders by a shifted penalty (:meth:`aim_bounds`): on CE2 the shifted penalty
         ended 1.8e-4 (relative) above SLSQP's answer, and on the ten points SLSQP crawled (0.03 % short
-        after 500 steps) where the shifted penalty met the published optimum.  Kept if it meets the
-        constraints (to ``MET``) and errs no more, or the answer before did not meet them."""
+        after 500 steps) where the shifted penalty met the published optimum.  A crank on the verge of stopping
+        without length bounds is polished as under orders, its turn held :data:`TURN_MARGIN` clear.  Kept if it
+        meets the constraints (to ``MET``) and errs no more, or the answer before did not meet them."""
         p, kept = self.problem, self.best
         _, z0, direction = kept
-        if p.order:
+        if p.order or not p.length_bounds:  # (without length bounds: a crank on the verge, its turn held)
             z0 = self.posed(z0)
             p.aim = _dropped(p, every=True)
-            found = self.constrained(z0, direction, final=True)
+            verge = not p.order  # (then its runs are short, within AIM_SHARE of the budget beyond it)
+            found = self.constrained(z0, direction, final=True, until=self.watch.used()
+                                     + AIM_SHARE * self.watch.budget if verge else None)
             before = float(np.sum(self.evaluate.vector(z0, direction) ** 2))
-            if found is not None and (found[0] <= before or (self._inside(z0, every=True) < -MET).any()):
+            unmet = (self._inside(z0, every=True) < -MET).any() or self.on_the_verge(z0)
+            if found is not None and (found[0] <= before or unmet):
                 self.best = (found[0], found[1], direction)
             return
         found = self.aim_bounds()
@@ -1179,8 +1201,8 @@ class _Search:
         posed = p.posed(linkage)
         return z if posed is linkage else p.unknowns_of(posed)
 
-    def constrained(self, z0, direction: int, watched: bool = False,
-                    final: bool = False) -> tuple[float, np.ndarray] | None:
+    def constrained(self, z0, direction: int, watched: bool = False, final: bool = False,
+                    until: float | None = None) -> tuple[float, np.ndarray] | None:
         """The least squares from z0 with the link-length orders as inequality constraints of their own, held
         :data:`HELD_MARGIN` inside their bounds (SLSQP on the squared residuals, the orders' penalty rows dropped):
         (cost, unknowns) where it meets them, else None.  With ``watched`` it stops with the budget.  The
@@ -1233,16 +1255,21 @@ class _Search:
         try:
             problem.aim, problem.turn_sampled = _dropped(problem, final), not held
             try:
-                value = cost(z0)
+                value = start = cost(z0)
+                if held and self._clearance(z0) < TURN_MARGIN:  # (a crank on the verge: held, at some cost)
+                    value = math.inf
                 for _ in range(STIFF_RUNS):
+                    if until is not None and watch.used() >= until:
+                        break
                     found = minimize(cost, z, jac=gradient, method="SLSQP", bounds=bounds,
                                      constraints={"type": "ineq", "fun": inside},
-                                     options={"ftol": 1e-12 * value, "maxiter": 100})
+                                     options={"ftol": 1e-12 * min(value, start), "maxiter": VERGE_STEPS
+                                              if until is not None else 100})
                     moved = np.clip(found.x, *np.array(bounds).T)
                     again = cost(moved)
                     if not (again < value and (not final or held_by(moved))):
                         break
-                    z, value, tenfold = moved, again, again <= value / 10
+                    z, value, tenfold = moved, again, again <= value / 10 < math.inf
                     if value <= EXACT ** 2 or (found.status == 0 and not tenfold):
                         break
             except _OutOfTime:
