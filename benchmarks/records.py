@@ -135,9 +135,9 @@ _SIZED_H = "the engine's sizing (`records.py --size`, a98900f, 29 Nov 2026) give
 _BEYOND = {
     (4, 23): "run on its own (--only): sized at 13 CPU s (3.6e9 chains), counted in 90 CPU s and 1.5 GiB on 29 Nov "
              "2026, and as much again for its second count (0.74 GiB since a98900f)",
-    (4, 26): "not run: " + _SIZED_H.format("7.9e11", "1 990")
-             + ", some 66 CPU min in all, past the 50 CPU min the h = 4…6 counts had on 29 Nov (at 23 links the sizing was 15 % "
-             "under the count); to run it: `python benchmarks/records.py --only \"chains --dof 1 --links 26 --h 4\"`",
+    (4, 26): "run on its own (--only): sized at 1 990 CPU s (7.9e11 chains); counted on 30 Nov 2026 (64d25a8) in "
+             "2 206 CPU s, 1 131 s wall and 1.6 GiB, and checked by `--recheck --reverse-from "
+             "benchmarks/logs/count_h4_26_links_tight_reverse.json`, its second count (tight-reverse, 947 CPU s)",
     (5, 30): "run on its own (--only): sized at 481 CPU s (2.1e11 chains); counted on 30 Nov 2026 (bbe428f) in 818 "
              "CPU s and 1.1 GiB, past the units of cubic graphs on 12 branch links where runs at 4085be8, 1889f2d and "
              "2c5940b had been stopped (PROFILE.md sections 38, 40), and checked by `--recheck --reverse-from "
