@@ -3,7 +3,6 @@ a short run's row."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import subprocess
 import sys
@@ -15,16 +14,6 @@ import pytest
 from synth.dimension import PathTarget
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture(scope="module")
-def bench():
-    spec = importlib.util.spec_from_file_location("bench_dimension", ROOT / "benchmarks" / "bench_dimension.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclass looks its module up there
-    spec.loader.exec_module(module)
-    yield module
-    del sys.modules[spec.name]
 
 
 def test_every_problem_loads_as_a_target_and_names_its_source(bench):

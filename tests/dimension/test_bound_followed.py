@@ -6,10 +6,8 @@ optimum, where before it stayed at 8.6e-4."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -21,16 +19,6 @@ from synth.motion import Linkage
 from synth.structure.chain import Chain, Mechanism
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture(scope="module")
-def hcdj():
-    spec = importlib.util.spec_from_file_location("hcdj_ten_points", ROOT / "benchmarks" / "hcdj_ten_points.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    yield module
-    del sys.modules[spec.name]
 
 
 def test_a_held_bound_is_signed_where_a_free_one_is_a_hinge():

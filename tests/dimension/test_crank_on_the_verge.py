@@ -6,19 +6,12 @@ bound passed the search's samples of the turn while the motion layer found its c
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
-
 import numpy as np
-import pytest
 
 from synth.dimension import Constraints, PathTarget, synthesize
 from synth.dimension._problem import Problem
 from synth.dimension._search import TURN_MARGIN
 from synth.motion import Linkage, motion_range
-
-ROOT = Path(__file__).resolve().parents[2]
 
 #: the answer of the search's seed 0 with 30 CPU s on the code before (its error 3.0388207e-3, the crank rocking)
 ON_THE_VERGE = {"chain": "0-1 0-3 1-2 2-3", "frame": 0, "inputs": ["0-1"],
@@ -29,17 +22,8 @@ ON_THE_VERGE = {"chain": "0-1 0-3 1-2 2-3", "frame": 0, "inputs": ["0-1"],
                 "tracers": {"P": {"link": 2, "at": [0.5008622986352458, 1.1044157343972478]}}}
 
 
-@pytest.fixture(scope="module")
-def eighteen():
-    spec = importlib.util.spec_from_file_location("bench_dimension_verge", ROOT / "benchmarks" / "bench_dimension.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    yield module.EIGHTEEN
-    del sys.modules[spec.name]
-
-
-def test_a_crank_on_the_verge_is_polished_clear_of_it(eighteen):
+def test_a_crank_on_the_verge_is_polished_clear_of_it(bench):
+    eighteen = bench.EIGHTEEN
     start = Linkage.from_dict(ON_THE_VERGE)
     constraints = Constraints(crank=True)
     problem = Problem(start.mechanism, 0, PathTarget(np.asarray(eighteen)), 2, constraints)

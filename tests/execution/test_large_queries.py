@@ -266,6 +266,17 @@ def test_a_tiny_window_counts_the_same_and_resumes_without_double_counting(tmp_p
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "MECHSYNTH_UNIT_WINDOW" in bad.stderr
 
 
+def _pool_at_work(proc, folder) -> list:
+    """The workers of the count ``proc`` once its pool works and its temporary folder of units is made in
+    ``folder`` (the moment a kill is to land in)."""
+    workers = []
+    while proc.poll() is None and not (workers and list(folder.glob("mechsynth-units-*"))):
+        time.sleep(0.01)
+        workers = psutil.Process(proc.pid).children()
+    assert proc.poll() is None, "the count ended before it could be stopped"
+    return workers
+
+
 @pytest.mark.parametrize("group", [False, True], ids=["kill-pid", "kill-group"])
 def test_sigterm_stops_a_count_cleanly(tmp_path, group):
     """A ``kill`` (SIGTERM) of a count working on the pool, its temporary folder of units made: the
@@ -278,11 +289,7 @@ def test_sigterm_stops_a_count_cleanly(tmp_path, group):
     proc = subprocess.Popen([*CLI, *query], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
                             start_new_session=group)
     try:
-        workers = []
-        while proc.poll() is None and not (workers and list(tmp_path.glob("mechsynth-units-*"))):
-            time.sleep(0.01)
-            workers = psutil.Process(proc.pid).children()
-        assert proc.poll() is None, "the count ended before it could be stopped"
+        workers = _pool_at_work(proc, tmp_path)
         if group:
             os.killpg(proc.pid, signal.SIGTERM)
         else:
@@ -307,11 +314,7 @@ def test_a_kill_of_a_script_counting_leaves_no_folder(tmp_path, signum):
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, env=env)
     try:
-        workers = []
-        while proc.poll() is None and not (workers and list(tmp_path.glob("mechsynth-units-*"))):
-            time.sleep(0.01)
-            workers = psutil.Process(proc.pid).children()
-        assert proc.poll() is None, "the count ended before it could be stopped"
+        workers = _pool_at_work(proc, tmp_path)
         proc.send_signal(signum)
         _, err = proc.communicate(timeout=120)
     finally:
