@@ -1205,7 +1205,8 @@ class _Search:
                     until: float | None = None) -> tuple[float, np.ndarray] | None:
         """The least squares from z0 with the link-length orders as inequality constraints of their own, held
         :data:`HELD_MARGIN` inside their bounds (SLSQP on the squared residuals, the orders' penalty rows dropped):
-        (cost, unknowns) where it meets them, else None.  With ``watched`` it stops with the budget.  The
+        (cost, unknowns) where it meets them, else None.  With ``watched`` it stops with the budget; with ``until``
+        no run starts once that many seconds are used, each run of :data:`VERGE_STEPS` steps.  The
         ``final`` polish of the answer holds a length or ratio bound beside the orders so too, and a crank's
         turning where :attr:`Problem.turn_held` (its least dyad discriminant over the turn at least
         :data:`TURN_MARGIN`, the turn then left out of the residuals' samples, and the cost judged again with
@@ -1256,14 +1257,14 @@ class _Search:
             problem.aim, problem.turn_sampled = _dropped(problem, final), not held
             try:
                 value = start = cost(z0)
-                if held and self._clearance(z0) < TURN_MARGIN:  # (a crank on the verge: held, at some cost)
+                if held and self.on_the_verge(z0):  # (its turn held at some cost: any step that holds it is kept)
                     value = math.inf
                 for _ in range(STIFF_RUNS):
                     if until is not None and watch.used() >= until:
                         break
                     found = minimize(cost, z, jac=gradient, method="SLSQP", bounds=bounds,
                                      constraints={"type": "ineq", "fun": inside},
-                                     options={"ftol": 1e-12 * min(value, start), "maxiter": VERGE_STEPS
+                                     options={"ftol": 1e-12 * start, "maxiter": VERGE_STEPS
                                               if until is not None else 100})
                     moved = np.clip(found.x, *np.array(bounds).T)
                     again = cost(moved)
