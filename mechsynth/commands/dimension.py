@@ -113,7 +113,8 @@ def add_commands(sub) -> None:
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned)")
-    p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")
+    p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
+                   "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
@@ -222,7 +223,7 @@ def _run(args) -> int:
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
                               max_length=args.max_length, pivots=args.pivots, reach=args.reach, **_placing(args))
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
-              bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s {postfix}",
+              bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s{postfix}",
               disable=not sys.stderr.isatty()) as bar:
         def progress(used: float, cost: float) -> None:
             bar.n = round(used, 1)
