@@ -275,6 +275,7 @@ def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
 
 
 def _write(result, fmt: str) -> None:
+    from synth import JointKind
     from synth.motion import joint_name
 
     if fmt == "jsonl":
@@ -294,10 +295,15 @@ def _write(result, fmt: str) -> None:
         lines.append((f"weighted sum of squares ({unit}², Σ weight × error²)", result.weighted_sum_squares))
     if result.angle_errors is not None:
         lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
+    revolute = lk.chain.kinds[lk.inputs[0]] == JointKind.REVOLUTE
     for name, c in result.constraints.items():
-        unit = _UNITS.get(name, "")
-        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}{unit}"
-                      + (f" (limit {_value(c['limit'])}{unit})" if c["limit"] is not None else "")))
+        unit, value, limit = _UNITS.get(name, ""), c["value"], c["limit"]
+        if name == "rocker":  # the library's radians (or lengths), in the option's degrees
+            unit = "°" if revolute else _UNITS["length"]
+            if revolute:
+                value, limit = [math.degrees(v) for v in value], [math.degrees(v) for v in limit]
+        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(value)}{unit}"
+                      + (f" (limit {_value(limit)}{unit})" if limit is not None else "")))
     for k in range(len(lk.chain.joints)):
         lines.append((f"joint {joint_name(lk.chain, k)}", f"{lk.points[k][0]:.10g}, {lk.points[k][1]:.10g}"))
     for name, (link, at) in lk.tracers.items():

@@ -76,6 +76,9 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     (["--mechanism", "0-1 1-2 2-3 3-0"], "needs --frame"),
     ([*FOUR_BAR, "--crank", "--rocker", "0..90"], "contradict"),
     ([*FOUR_BAR, "--rocker", "90..0"], "A < B"),
+    # the function's inputs span 45°: a rocker within 40° cannot pass them (the search ran its budget, then said
+    # to give a longer one)
+    ([*FOUR_BAR, "--rocker", "20..60"], "inputs span 45°, more than the 40° between the rocker's limits (--rocker"),
     ([*FOUR_BAR, "--min-transmission", "95"], "between 0 and 90"),
     ([*FOUR_BAR, "--max-ratio", "0.5"], "above 1"),
     ([*FOUR_BAR, "--max-length", "0"], "--max-length must be a positive length"),
@@ -128,11 +131,13 @@ def test_the_tables_constraints_carry_their_units(capsys):
     """'constraint transmission  met: 51.8704 (limit 20)' gave no unit: angles are in degrees, lengths in
     the target's units."""
     assert main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "3",
-                 "--min-transmission", "10", "--max-length", "3"]) == 0
+                 "--min-transmission", "10", "--max-length", "3", "--rocker", "30..90"]) == 0
     rows = dict(line.split(None, 2)[1:] for line in capsys.readouterr().out.splitlines()
                 if line.startswith("constraint "))
     assert rows["transmission"].startswith("met: ") and rows["transmission"].endswith("° (limit 10°)")
     assert rows["length"].endswith(" target units (limit 3 target units)")
+    # the rocker's limits, given in degrees, were shown in radians without a unit: [0.523599, 1.5708]
+    assert rows["rocker"] == "met: [35, 80]° (limit [30, 90]°)"  # the function's inputs, 35° … 80°
 
 
 def test_an_answer_on_the_edge_of_the_reach_says_so(tmp_path, capsys):
