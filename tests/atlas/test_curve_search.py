@@ -23,6 +23,8 @@ from synth.motion import Linkage, assemble, sweep
 from synth.motion_draw import linkage_from_layout
 from synth.structure.chain import Chain, Mechanism
 
+from ..oracles.motion import traced_by_the_oracle
+
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
 
 
@@ -97,6 +99,9 @@ def _assert_recovered(found, target, links: int):
     assert best.result.relative_max <= 1e-6
     # the returned linkage, moved by the motion layer to each reported input, traces the reported curve
     moved = np.array([assemble(best.result.linkage, float(v)).tracers["P"][1] for v in best.result.inputs])
+    assert np.abs(moved - best.result.traced).max() <= 1e-9 * target.size
+    # and so does the linkage moved by the independent reference solver (tests/oracles/motion.py)
+    moved = traced_by_the_oracle(best.result.linkage, best.result.inputs)
     assert np.abs(moved - best.result.traced).max() <= 1e-9 * target.size
     assert np.abs(moved - target.points).max() <= 1e-6 * target.size
 
