@@ -103,6 +103,16 @@ def test_a_contradiction_is_one_sentence_and_exit_2(tmp_path, capsys, monkeypatc
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f.csv"]  # nothing written
 
 
+def test_a_pivots_region_far_from_the_target_is_named_when_nothing_reaches_it(capsys):
+    """A region of the fixed pivots 140 target units away: the search ends with one sentence and exit 2, which
+    advised only a longer budget or a larger reach (the reach does not bound the frame's joints)."""
+    assert main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "1",
+                 "--pivots", "100..101,100..101", "--max-length", "5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.rstrip().endswith(
+        "or a region of the fixed pivots (--pivots x0..x1,y0..y1) nearer the target")
+
+
 def test_a_bad_target_file_is_one_sentence_and_exit_2(tmp_path, capsys):
     bad = tmp_path / "nan.csv"
     bad.write_text("x,y,input\n0,0,0\nnan,1,1\n")
