@@ -236,7 +236,7 @@ def test_columns_arrange_a_sheet_and_are_refused_for_one_drawing(tmp_path, capsy
         assert main([*watt, "--mechanisms", "--columns", columns, "--out", str(tmp_path / f"c{columns}.png")]) == 0
         with Image.open(tmp_path / f"c{columns}.png") as sheet:
             shapes.append(sheet.height / sheet.width)
-    assert shapes[0] > 1 > shapes[1]  # Watt's 3 mechanisms one above the other, then side by side
+    assert shapes[0] > 1 > shapes[1]  # Watt's two mechanisms (I and II) one above the other, then side by side
 
 
 def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
