@@ -273,8 +273,8 @@ def test_an_index_of_k_drawings_hands_k_times_the_samples_of_each_topology_to_th
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="not met (30 Nov 2026, audit12): the best row is this six-bar at 4.3e-5 of "
-                                       "the curve's size with the budget of 240 CPU s (docs/dimension.md)")
+@pytest.mark.xfail(strict=True, reason="not met (30 Nov 2026, audit12): the best row, a Stephenson six-bar, at 4.3e-5 "
+                                       "of the curve's size with the budget of 240 CPU s (docs/dimension.md)")
 def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     """Must show: a six-bar with dimensions picked at random, given only as points with timing (its
     topology withheld), found by the search of the 4- and 6-link atlas to 1e-6 of the curve's size."""
