@@ -1,7 +1,7 @@
 """Function generation with a slider's displacement (issue 40): a slider-crank's crank angle → slider
 displacement, and the inverse (the slider drives, the crank's angle is the output), each of random
-dimensions recovered from no guess and re-checked by the motion layer; every mismatch of a target's
-columns and the mechanism's joints refused in one sentence (exit 2)."""
+dimensions recovered from no guess and re-checked by the motion layer (and the reference solver); every
+mismatch of a target's columns and the mechanism's joints refused in one sentence (exit 2)."""
 
 from __future__ import annotations
 
@@ -18,6 +18,8 @@ from synth.dimension import Constraints, FunctionTarget, read_target, synthesize
 from synth.dimension._problem import Problem
 from synth.motion import assemble
 from synth.structure.chain import Chain, Mechanism
+
+from ..oracles.motion import follow, oracle_of
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
 SLIDER_CRANK = Chain.parse("0-1 1-2 2-3 3=0")  # joints 0-1, 0=3, 1-2, 2-3: crank 1, rod 2, slider 3
@@ -37,6 +39,9 @@ def test_a_random_slider_cranks_displacement_function_is_recovered_exactly(slide
     assert np.allclose(lk.slides[1], (1, 0)) and lk.points[0].tolist() == [0, 0]  # the gauge: pivot, line along x
     moved = np.array([assemble(lk, angle).points[SLIDER_PIN][0] for angle in theta])
     assert np.abs(moved - s).max() <= 1e-9 * np.ptp(s)
+    # and moved by the independent reference solver (tests/oracles/motion.py: Newton on absolute link poses)
+    oracle = follow(oracle_of(lk), theta - theta[0], step=math.radians(1))
+    assert np.abs(oracle[:, SLIDER_PIN, 0] - s).max() <= 1e-9 * np.ptp(s)
     turns = (result.inputs - theta) / (2 * math.pi)  # (the inputs as reported: each angle within a turn)
     assert np.abs(turns - np.round(turns)).max() <= 1e-12 and np.abs(result.traced - s).max() <= 1e-9 * np.ptp(s)
 
@@ -57,6 +62,19 @@ def test_a_slider_driving_a_crank_is_recovered_exactly(slider_bench):
     crank = [assemble(lk, value - pin).points[CRANK_PIN] for value in s]  # (the motion layer's: from the pose)
     assert np.abs(np.remainder(np.arctan2(*np.array(crank).T[::-1]) - theta + math.pi, 2 * math.pi) - math.pi).max() <= 1e-9
     assert np.allclose(result.inputs, s)
+
+
+def test_an_input_sliders_limits_are_its_displacements_as_the_target_measures_them(slider_bench):
+    """The rocker's limits of a slider input are displacements from the output pivot's foot, as the target's inputs
+    (the motion layer counts a slide from the pose): limits round the pairs are met and reported as the inputs'
+    span; limits that cut off the first pairs (wide enough for their span) are reported as failed."""
+    theta, s, _ = slider_bench.pairs(7, driven_by_slider=True)
+    m = Mechanism(SLIDER_CRANK, 0, input_link=3)
+    target = FunctionTarget(s, theta, input_is="displacement")
+    result = synthesize(m, target, constraints=Constraints(rocker=(s.min() - 0.1, s.max() + 0.1)), budget=10)
+    assert result.met and result.constraints["rocker"]["value"] == pytest.approx([s.min(), s.max()], abs=1e-9)
+    cut = synthesize(m, target, constraints=Constraints(rocker=(s.min() + 0.05, s.max() + 1.0)), budget=2)
+    assert not cut.constraints["rocker"]["met"] and cut.constraints["rocker"]["value"][0] < s.min() + 0.05
 
 
 def test_the_files_columns_say_which_side_is_a_displacement(tmp_path):
