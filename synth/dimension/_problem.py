@@ -369,8 +369,9 @@ class Problem:
                 raise DimensionError(f"the target gives the {side} as angles, but the {side} joint {name} is prismatic "
                                      f"(a slider): give its displacements (an {side}_displacement column)")
             if measure == "displacement" and self.kinds[k] != PRISMATIC:
+                other = " or drive a prismatic joint of the frame" if side == "input" else ""
                 raise DimensionError(f"the target gives the {side} as displacements, but the {side} joint {name} is "
-                                     f"revolute: give its angles (an {side} or {side}_deg column)")
+                                     f"revolute: give its angles (an {side} or {side}_deg column){other}")
 
     def _slider_pin(self, slide: int) -> int:
         """The slider's pin: the revolute joint of the link sliding at joint ``slide`` (the first, where it

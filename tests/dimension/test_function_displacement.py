@@ -119,7 +119,7 @@ FILES = {
     ("out.csv", "0-1 1-2 2-3 3-0", [], "the target gives the output as displacements, but the output joint 0-3 is "
      "revolute: give its angles (an output or output_deg column)"),
     ("in.csv", "0-1 1-2 2-3 3-0", [], "the target gives the input as displacements, but the input joint 0-1 is "
-     "revolute: give its angles (an input or input_deg column)"),
+     "revolute: give its angles (an input or input_deg column) or drive a prismatic joint of the frame"),
     ("angles.csv", "0-1 1-2 2-3 3=0", ["--input", "0=3"], "the target gives the input as angles, but the input joint "
      "0=3 is prismatic (a slider): give its displacements (an input_displacement column)"),
 ])
