@@ -307,11 +307,12 @@ class _Evaluate:
                 g = p.dips(lk, every, g)
                 if g is not None and (g < 0).any():
                     return float((g < 0).mean())
-                link = p.tracer_link
-                tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link])
+                link, c = p.tracer_link, p.constraints
+                longest = longest_link(lk) if c.max_length is not None else None
+                tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link], longest)
                 x = self.moved(np.concatenate((x, [0.0, 0.0])), lam, shift, tracer)
-                if p.constraints.pivots is not None or p.constraints.rocker is not None:
-                    lk = p.linkage(x)  # the designer's region and limits are measured where it stands
+                if c.pivots is not None or c.rocker is not None or c.max_length is not None:
+                    lk = p.linkage(x)  # the designer's region, limits and length bound are measured where it stands
             else:
                 values, g, mu = p.move(lk, every)
                 g = p.dips(lk, every, g)
