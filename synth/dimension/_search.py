@@ -291,9 +291,10 @@ class _Evaluate:
     def timed(self, x):
         """(residuals, violations, unknowns) of the unknowns x, or the share of samples where the dyads
         do not close (a float), or None where the pose contradicts the chain.  For a timed path x may
-        leave out the tracer point: the mechanism is then placed by the best similarity and its tracer
-        point is the best for the rest (:meth:`Problem.best_placement`), and the unknowns returned
-        are the placed mechanism's, its tracer point included."""
+        leave out the tracer point: the mechanism is then placed by the best similarity (no larger than a
+        length bound allows, which is then measured where it stands) and its tracer point is the best for
+        the rest (:meth:`Problem.best_placement`), and the unknowns returned are the placed mechanism's, its
+        tracer point included."""
         p = self.problem
         short = len(x) < p.dims
         try:
