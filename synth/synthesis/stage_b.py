@@ -226,7 +226,6 @@ def load_kernel() -> None:
 BY_SEARCH = {
     "group": "the permutations of their branch multigraph's bundles of parallel strings are more than 4 096, too "
              "many to list",
-    "multiple_joint": "they have a multiple joint, where the pebble game is not the exact sub-chain test",
     "empty_strings": "h + threshold ≤ 2, where two strings between the same links may both be empty",
     "crank": "a crank requirement is checked on each chain",
     "exempt": "the chain's W is below the least mobility its proper sub-chains must keep and it has no free end, "
@@ -289,10 +288,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         after[e] = least_e
     C, l = conv.h - 1, conv.h + conv.threshold
     b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
-    x_most, vertex_need = _deficit_bounds(k, l, b0, n2, conv.h)
-    if l2 >= 0:  # the tighter of the two games' bounds
-        x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, conv.h)
-        x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
+    x_most, vertex_need = _game_bounds(k, l, k2, l2, b0, n2, conv.h)
     perms, whole_group = graph.bundle_group()
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
@@ -441,6 +437,18 @@ def _deficit_bounds(k, l: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarr
     return (slack if M >= 2 else n2), (k - slack if M >= 3 else np.full(M, -n2 * h, dtype=np.int64))
 
 
+def _game_bounds(k, l: int, k2, l2: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarray"]:
+    """:func:`_deficit_bounds` of the first game, or with multiple joints (a second game, ``l2`` ≥ 0) the
+    tighter of the two games' bounds."""
+    import numpy as np
+
+    x_most, vertex_need = _deficit_bounds(k, l, b0, n2, h)
+    if l2 >= 0:
+        x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, h)
+        x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
+    return x_most, vertex_need
+
+
 def _game_ends(graph: Contracted, inner: dict[int, int]) -> tuple[list[int], list[int]]:
     """The ends of each string of H among the pebble game's vertices ``inner``; −1 for a string
     that is never short (a loop, a string to a single-joint link)."""
@@ -450,16 +458,17 @@ def _game_ends(graph: Contracted, inner: dict[int, int]) -> tuple[list[int], lis
 
 def orbits_apply(code: Code, graph: Contracted, conv: Conventions) -> bool:
     """Whether :func:`count_orbits` counts this unit's chains by Burnside's lemma: where the
-    kernel's pebble game is the exact rule (simple joints, :func:`_kernel_applies`) and two strings
-    between the same two links never both hold no binary link (h + threshold > 2: the rule already
-    refuses it, so the search need not order parallel strings)."""
+    kernel applies (:func:`_kernel_applies`) and two strings between the same two links never both
+    hold no binary link (h + threshold > 2: the rule already refuses it, so the search need not
+    order parallel strings).  With multiple joints the pebble games prune and the exact test decides
+    each pattern."""
     return _orbits_fault(code, graph, conv) is None
 
 
 def _orbits_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
-    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None."""
-    if not all(vertex.is_link for vertex in graph.vertices):
-        return "multiple_joint"
+    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None.  (h + threshold ≤ 2 is
+    also where two joints on the same links pass the sub-chain rule, W = 2 − h, and only the built chain
+    tells them from one joint: the case :func:`count_realised` leaves to the chains.)"""
     if conv.h + conv.threshold <= 2:
         return "empty_strings"
     return _kernel_fault(code, graph, conv)
@@ -504,20 +513,47 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
     for e, least in parallel:
         later[e - 1] = least
-    inner, k, _, _ = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     a_list, b_list = _game_ends(graph, inner)
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
-    x_most, vertex_need = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2,
-                                          conv.h)
+    b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
+    x_most, vertex_need = _game_bounds(k, l, k2, l2, b0, n2, conv.h)
     total = fixed_total(len(inner), np.array(a_list, dtype=np.int64)[picked], np.array(b_list, dtype=np.int64)[picked],
                         np.array(lows, dtype=np.int64)[picked], later[picked], np.diff(np.append(picked, len(edges))),
-                        n2, k, C, l, x_most, vertex_need, bundles)
+                        n2, k, C, l, x_most, vertex_need, bundles, k2, l2,
+                        _exact_arguments(graph, conv, lows, picked, n2) if l2 >= 0 else _no_exact_test())
     orbits, rest = divmod(int(total), len(bundles))
     if rest:  # Burnside's sum is a multiple of |G/P|; anything else is a fault of this engine
         raise RuntimeError(f"Burnside's sum {total} over the {len(bundles)} permutations of bundles of a branch "
                            f"multigraph of {code} is not a multiple of their number")
     _add(stats, cpsat_s=perf_counter() - t0)
     return orbits
+
+
+def _exact_arguments(graph: Contracted, conv: Conventions, lows: list[int], firsts, n2: int) -> tuple:
+    """The exact sub-chain test as :func:`~synth.synthesis._stage_b_kernel.fixed_placements` runs it on a
+    pattern with multiple joints: the test's core (:func:`_core`), its sets for weights from ``lows``
+    (:func:`synth.structure._subchain_kernel.exact_sets`), Σ of a placement's path lengths (the binary
+    links and one per string to a single-joint link), the threshold, and the first string of each bundle."""
+    import numpy as np
+
+    from ..structure._subchain_kernel import exact_sets
+
+    is_link, ends = _core(graph.vertices, graph.edges)
+    is_link = np.array(is_link, dtype=np.bool_)
+    core_a, core_b = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+    least = np.array(lows, dtype=np.int64) + (core_a < 0)
+    sets = exact_sets(conv.h, is_link, core_a, core_b, least, conv.threshold)
+    return is_link, core_a, core_b, sets, n2 + int((core_a < 0).sum()), conv.threshold, np.asarray(firsts, dtype=np.int64)
+
+
+@lru_cache(maxsize=1)
+def _no_exact_test() -> tuple:
+    """:func:`_exact_arguments` for simple joints, where the pebble game is the exact rule: no core."""
+    import numpy as np
+
+    empty, no = np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.bool_)
+    return no, empty, empty, (empty, empty, no, np.zeros(1, dtype=np.int64), empty, empty), 0, 0, empty
 
 
 def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
