@@ -483,7 +483,11 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     the placements up to the order of parallel strings: (1/|G/P|) Σ Fix(g) over G/P
     (:func:`synth.synthesis._stage_b_kernel.fixed_placements`: a search over the patterns
     min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
-    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or G/P is too
+    no lex-least test is made.  With multiple joints the patterns are min(w, h): the exact sub-chain
+    test reads a string of its core only through that (a string of exactly h − 1 brings its links to a
+    set at no cost, a longer one nothing), so validity is a property of the pattern; the two pebble
+    games and the exact test's sets with a multiple joint prune the search, and the exact test decides
+    each complete pattern on one of its placements (docs/theory.md, "Counting by orbits").  Where it does not apply (:func:`orbits_apply`) or G/P is too
     large to list (more than 4096 elements, :meth:`Contracted.bundle_group`), the unit is counted
     as :func:`count_realised` counts it (docs/theory.md), and ``stats`` gets 1 under
     ``"by_search_" + key``, the key of :data:`BY_SEARCH` that says why.
