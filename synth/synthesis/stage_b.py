@@ -293,14 +293,10 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
     if not listing:  # a count: any order of the strings keeps one placement per orbit
-        joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
-        order = _search_order(edges, a_list, b_list, M, joints)
+        order, _, perms = _count_order(graph, inner, a_list, b_list, perms)
         a_end, b_end, least, after = a_end[order], b_end[order], least[order], after[order]
         back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
-        if perms:  # bundle q_order[i] is bundle i of the search: relabel the permutations of the bundles
-            edges = tuple(edges[e] for e in order)
-            q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(edges)]
-            perms = np.argsort(q_order)[np.array(perms, dtype=np.int64)[:, q_order]]
+        edges = tuple(edges[e] for e in order)
     group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
     if rows and not listing and check_sets and conv.threshold > 0:  # (else the first game is the exact rule)
         is_link, ends = _core(graph.vertices, graph.edges)
@@ -332,6 +328,19 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
               conv.threshold, sets)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
+
+
+def _count_order(graph: Contracted, inner: dict[int, int], a_list: list[int], b_list: list[int], perms):
+    """The count's order of the strings of H (:func:`_search_order`, the multiple joints first), the
+    bundles of parallel strings in that order (bundle ``q_order[i]`` of H is bundle i of the search),
+    and the permutations of the bundles ``perms`` (rows) relabelled to it."""
+    import numpy as np
+
+    joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
+    order = _search_order(graph.edges, a_list, b_list, len(inner), joints)
+    q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(tuple(graph.edges[e] for e in order))]
+    perms = np.array(perms, dtype=np.int64).reshape(len(perms), len(q_order))
+    return order, q_order, np.argsort(q_order)[perms[:, q_order]]
 
 
 def _counted_without_visiting(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
@@ -511,21 +520,25 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     edges = graph.edges
     t0 = perf_counter()
     picked = np.flatnonzero(_bundle_starts(edges))
-    # the permutations of the bundles the automorphisms make (the identity among them), each once
-    bundles = np.vstack([np.arange(len(picked)), np.array(perms, dtype=np.int64).reshape(len(perms), len(picked))])
+    width = np.diff(np.append(picked, len(edges)))
     lows, parallel = _string_limits(graph, conv)
     later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
     for e, least in parallel:
         later[e - 1] = least
     inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     a_list, b_list = _game_ends(graph, inner)
+    perms = np.array(perms, dtype=np.int64).reshape(len(perms), len(picked))
+    if l2 >= 0:  # multiple joints: the bundles in the count's order, so that the exact test's sets close early
+        _, q_order, perms = _count_order(graph, inner, a_list, b_list, perms)
+        picked, width = picked[q_order], width[q_order]
+    # the permutations of the bundles the automorphisms make (the identity among them), each once
+    bundles = np.vstack([np.arange(len(picked)), perms])
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
     b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
     x_most, vertex_need = _game_bounds(k, l, k2, l2, b0, n2, conv.h)
     total = fixed_total(len(inner), np.array(a_list, dtype=np.int64)[picked], np.array(b_list, dtype=np.int64)[picked],
-                        np.array(lows, dtype=np.int64)[picked], later[picked], np.diff(np.append(picked, len(edges))),
-                        n2, k, C, l, x_most, vertex_need, bundles, k2, l2,
-                        _exact_arguments(graph, conv, lows, picked, n2) if l2 >= 0 else _no_exact_test())
+                        np.array(lows, dtype=np.int64)[picked], later[picked], width, n2, k, C, l, x_most, vertex_need,
+                        bundles, k2, l2, _exact_arguments(graph, conv, lows, picked, n2) if l2 >= 0 else _no_exact_test())
     orbits, rest = divmod(int(total), len(bundles))
     if rest:  # Burnside's sum is a multiple of |G/P|; anything else is a fault of this engine
         raise RuntimeError(f"Burnside's sum {total} over the {len(bundles)} permutations of bundles of a branch "
