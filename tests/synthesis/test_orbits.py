@@ -222,14 +222,18 @@ def test_an_unknown_method_is_refused():
         synth.count_chains(1, 8, workers=1, method="burnside")
 
 
-def test_the_command_counts_by_either_method(capsys):
+@pytest.mark.parametrize("query, count", [(["--links", "10"], 230), (["--links", "10", "--v", "0..8"], 2645)])
+def test_the_command_counts_by_either_method(capsys, query, count):
+    """The same counts by code by either method, with multiple joints too (no unit left to the search)."""
     from mechsynth.cli import main
 
     outputs = []
     for method in ("listing", "orbits"):
-        assert main(["chains", "--dof", "1", "--links", "10", "--count", "--workers", "1", "--method", method]) == 0
-        outputs.append(capsys.readouterr().out)
-    assert outputs[0] == outputs[1] and '"count": 230' in outputs[0]
+        assert main(["chains", "--dof", "1", *query, "--count", "--workers", "1", "--method", method]) == 0
+        out, err = capsys.readouterr()
+        outputs.append(out)
+        assert "counted by the search" not in err
+    assert outputs[0] == outputs[1] and f'"count": {count}' in outputs[0]
 
 
 @pytest.mark.parametrize("argv, words", [
