@@ -227,6 +227,8 @@ BY_SEARCH = {
     "group": "the permutations of their branch multigraph's bundles of parallel strings are more than 4 096, too "
              "many to list",
     "empty_strings": "h + threshold ≤ 2, where two strings between the same links may both be empty",
+    "joint_pairs": "they have a multiple joint and h + threshold ≤ 2, where two joints on the same links pass the "
+                   "sub-chain rule on the branch multigraph and only the built chain tells them from one joint",
     "crank": "a crank requirement is checked on each chain",
     "exempt": "the chain's W is below the least mobility its proper sub-chains must keep and it has no free end, "
               "where the pebble game's rule, which would ask it of the whole chain too, is not the exact test",
@@ -475,9 +477,11 @@ def orbits_apply(code: Code, graph: Contracted, conv: Conventions) -> bool:
 
 
 def _orbits_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
-    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None.  (h + threshold ≤ 2 is
-    also where two joints on the same links pass the sub-chain rule, W = 2 − h, and only the built chain
-    tells them from one joint: the case :func:`count_realised` leaves to the chains.)"""
+    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None.  With a multiple joint,
+    h + threshold ≤ 2 is also where two joints on the same links pass the sub-chain rule (W = 2 − h) and
+    only the built chain tells them from one joint: the case :func:`count_realised` leaves to the chains."""
+    if conv.h + conv.threshold <= 2 and any(vertex.is_joint for vertex in graph.vertices):
+        return "joint_pairs"
     if conv.h + conv.threshold <= 2:
         return "empty_strings"
     return _kernel_fault(code, graph, conv)

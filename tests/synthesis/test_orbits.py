@@ -195,6 +195,22 @@ def test_the_two_methods_count_alike_by_code_and_apart_in_the_store():
     assert ran["orbits"] == len(list(_units(dict(dof=1, links=10))))  # every unit ran: none read as the listing's
 
 
+def test_two_joints_on_the_same_links_leave_a_unit_to_the_search():
+    """h = 2 with rigid sub-chains allowed (refused by the query): a unit with a multiple joint that
+    count_orbits is given is counted as count_realised counts it (from the built chains), under its own
+    reason, and one of simple joints under the empty strings'."""
+    reasons = Counter()
+    for unit in _units(dict(dof=1, links=7, h=2, rigid_subchains=True, v=(0, 3))):
+        args = unit.code, unit.contracted, unit.conventions
+        stats = {}
+        assert stage_b.count_orbits(*args, stats) == stage_b.count_realised(*args), unit.key
+        joint = any(vertex.is_joint for vertex in unit.contracted.vertices)
+        assert [k for k in stats if k.startswith("by_search_")] == ["by_search_" + ("joint_pairs" if joint else
+                                                                                   "empty_strings")], unit.key
+        reasons[joint] += 1
+    assert reasons[True] and reasons[False]
+
+
 @pytest.mark.parametrize("options, words", [
     (dict(prismatic="0..2"), "prismatic"), (dict(cranks=["3=2"]), "crank"),
     (dict(h=2, rigid_subchains=True), "h = 2"), (dict(h=2, rigid_subchains=True, v="0..4"), "h = 2")])
