@@ -13,28 +13,55 @@ import os
 from mechbase import RangeSyntax, parse_range
 
 __all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
-           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS", "YesOrNo"]
+           "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS", "GivenOnce", "GIVEN",
+           "YesOrNo"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
 
 
-class YesOrNo(argparse.BooleanOptionalAction):
-    """``--x`` / ``--no-x``, refusing both on one command line (argparse would keep the last).
+class GivenOnce(argparse.Action):
+    """Base of every option of the command line that holds one value: given a second time (or with its
+    negation) it is refused in one sentence, where argparse would silently keep the last; options that
+    collect values (``action="append"``) stay repeatable.  :class:`mechsynth._parser._Parser` makes argparse's
+    own single-value actions of this kind; the values given are remembered on the namespace, under
+    :data:`GIVEN`, until the root parser removes them.
 
     >>> parser = argparse.ArgumentParser(exit_on_error=False)
-    >>> _ = parser.add_argument("--labels", action=YesOrNo)
-    >>> parser.parse_args(["--no-labels", "--no-labels"]).labels
-    False
+    >>> _ = parser.add_argument("--links", action=type("Once", (GivenOnce, argparse._StoreAction), {}))
+    >>> parser.parse_args(["--links", "8", "--links", "9"])
+    Traceback (most recent call last):
+    argparse.ArgumentError: --links is given twice: give it once
     """
 
     def __call__(self, parser, namespace, values, option_string=None):
-        value = not option_string.startswith("--no-")
-        given = getattr(self, "_given", None)  # (the namespace, the value it was given)
-        if given is not None and given[0] is namespace and given[1] != value:
-            parser.error(f"{self.option_strings[0]} and {self.option_strings[1]} contradict each other")
-        self._given = (namespace, value)
+        if option_string is not None:  # (a positional argument is read once)
+            given = namespace.__dict__.setdefault(GIVEN, {})
+            if self.dest in given:
+                action, earlier = given[self.dest]
+                if action is self and not (isinstance(self, argparse.BooleanOptionalAction) and earlier != option_string):
+                    raise argparse.ArgumentError(None, f"{option_string} is given twice: give it once")
+                both = sorted([earlier, option_string], key=lambda o: o.startswith("--no-"))
+                raise argparse.ArgumentError(None, f"{both[0]} and {both[1]} contradict each other")
+            given[self.dest] = (self, option_string)
         super().__call__(parser, namespace, values, option_string)
+
+
+#: the namespace's attribute that holds the single-value options given so far
+GIVEN = "_given_once"
+
+
+class YesOrNo(GivenOnce, argparse.BooleanOptionalAction):
+    """``--x`` / ``--no-x``, refusing both on one command line (argparse would keep the last), or either twice.
+
+    >>> parser = argparse.ArgumentParser(exit_on_error=False)
+    >>> _ = parser.add_argument("--labels", action=YesOrNo)
+    >>> parser.parse_args(["--no-labels"]).labels
+    False
+    >>> parser.parse_args(["--labels", "--no-labels"])
+    Traceback (most recent call last):
+    argparse.ArgumentError: --labels and --no-labels contradict each other
+    """
 
 
 def _read(text: str, number, what: str):

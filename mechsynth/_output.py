@@ -32,7 +32,8 @@ def _cell(value) -> str:
 def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None) -> int:
     """Write ``rows`` (dicts) in ``fmt``; tables and csv show ``columns``, jsonl and json the whole dict.
 
-    ``json`` is one array, written as the rows come (no row is held back). Returns the number of rows.
+    ``json`` is one array, written as the rows come (no row is held back); a table shows a float to six
+    significant digits (:func:`number`), csv and JSON every digit. Returns the number of rows.
     A table holds its rows to align its columns: beyond ``synth.TABLE_ROWS`` it writes nothing and
     raises :class:`synth.QueryTooLarge` (the listings size themselves first; this bounds any other).
 
@@ -41,6 +42,11 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
     44/0,0
     53/1,
     2
+    >>> write_rows([{"x": 4.499999999999999}], ["x"], "table")
+    x
+    ---
+    4.5
+    1
     >>> write_rows([{"code": "44/0"}, {"code": "53/1"}], ["code"], "json")
     [{"code": "44/0"},
      {"code": "53/1"}]
@@ -72,7 +78,7 @@ def write_rows(rows: Iterable[dict], columns: Sequence[str], fmt: str, out=None)
                 raise QueryTooLarge(f"a table is held in memory to align it and this one has more than "
                                     f"{TABLE_ROWS:,} rows".replace(",", " ")
                                     + "; use --format jsonl or csv (streamed), or --count")
-            cells.append(tuple(_cell(r.get(c, "")) for c in columns))
+            cells.append(tuple(number(v) if isinstance(v := r.get(c, ""), float) else _cell(v) for c in columns))
         widths = [max([len(c)] + [len(row[i]) for row in cells]) for i, c in enumerate(columns)]
         out.write("  ".join(c.ljust(w) for c, w in zip(columns, widths)).rstrip() + "\n")
         out.write("  ".join("-" * w for w in widths) + "\n")

@@ -14,11 +14,31 @@ import importlib
 
 from synth import InvalidOption
 
+from ._argtypes import GIVEN, GivenOnce
+
 __all__ = ["COMMANDS", "build_parser"]
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse that raises instead of printing usage and exiting."""
+    """argparse that raises instead of printing usage and exiting, and refuses an option that holds one value
+    given twice (:class:`mechsynth._argtypes.GivenOnce`), where argparse keeps the last.
+
+    >>> parser = _Parser(prog="mechsynth chains"); _ = parser.add_argument("--links", type=int)
+    >>> parser.parse_args(["--links", "8", "--links", "9"])
+    Traceback (most recent call last):
+    synth.errors.InvalidOption: --links is given twice: give it once (see 'mechsynth chains --help')
+    """
+
+    # argparse's actions that hold one value, each made to refuse a second (its argument groups share the registry)
+    _ONCE = {name: type(f"Once{cls.__name__}", (GivenOnce, cls), {})
+             for name, cls in [(None, argparse._StoreAction), ("store", argparse._StoreAction),
+                               ("store_const", argparse._StoreConstAction), ("store_true", argparse._StoreTrueAction),
+                               ("store_false", argparse._StoreFalseAction)]}
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        for name, cls in self._ONCE.items():
+            self.register("action", name, cls)
 
     def error(self, message):  # noqa: D401 - argparse API
         raise InvalidOption(f"{message} (see '{self.prog} --help')")
@@ -33,6 +53,7 @@ class _Parser(argparse.ArgumentParser):
 
     def parse_args(self, args=None, namespace=None):
         namespace, extras = self.parse_known_args(args, namespace)
+        vars(namespace).pop(GIVEN, None)
         if extras:
             raise InvalidOption(f"unrecognized arguments: {' '.join(extras)} (see '{namespace.unread_by} --help')")
         return namespace

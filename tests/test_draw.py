@@ -221,6 +221,24 @@ def test_cli_size_dpi_and_labels(tmp_path, capsys):
         assert err.startswith("mechsynth:") and err.count("\n") == 1 and "Traceback" not in err
 
 
+def test_columns_arrange_a_sheet_and_are_refused_for_one_drawing(tmp_path, capsys):
+    """'draw --chain … --columns 3' drew the one chain and ignored --columns: it is refused where the picture is
+    one drawing, and on a sheet it sets the drawings per row (one column: a sheet taller than wide)."""
+    from PIL import Image
+
+    watt = ["draw", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1"]
+    for one in ([], ["--frame", "0"]):
+        assert main([*watt, *one, "--columns", "3", "--out", str(tmp_path / "x.png")]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("mechsynth: --columns") and err.count("\n") == 1 and not (tmp_path / "x.png").exists()
+    shapes = []
+    for columns in ("1", "4"):
+        assert main([*watt, "--mechanisms", "--columns", columns, "--out", str(tmp_path / f"c{columns}.png")]) == 0
+        with Image.open(tmp_path / f"c{columns}.png") as sheet:
+            shapes.append(sheet.height / sheet.width)
+    assert shapes[0] > 1 > shapes[1]  # Watt's two mechanisms (I and II) one above the other, then side by side
+
+
 def test_mechanism_sheets_number_their_links(tmp_path, monkeypatch):
     """Captions of mechanisms name the fixed link, so the sheet numbers the links."""
     labels, real = [], _render._draw

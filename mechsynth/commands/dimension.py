@@ -113,7 +113,8 @@ def add_commands(sub) -> None:
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned)")
-    p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60)")
+    p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
+                   "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
@@ -222,7 +223,7 @@ def _run(args) -> int:
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
                               max_length=args.max_length, pivots=args.pivots, reach=args.reach, **_placing(args))
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
-              bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s {postfix}",
+              bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s{postfix}",
               disable=not sys.stderr.isatty()) as bar:
         def progress(used: float, cost: float) -> None:
             bar.n = round(used, 1)
@@ -274,6 +275,7 @@ def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
 
 
 def _write(result, fmt: str) -> None:
+    from synth import JointKind
     from synth.motion import joint_name
 
     if fmt == "jsonl":
@@ -293,10 +295,15 @@ def _write(result, fmt: str) -> None:
         lines.append((f"weighted sum of squares ({unit}², Σ weight × error²)", result.weighted_sum_squares))
     if result.angle_errors is not None:
         lines.append(("angle error max (deg)", math.degrees(float(result.angle_errors.max()))))
+    revolute = lk.chain.kinds[lk.inputs[0]] == JointKind.REVOLUTE
     for name, c in result.constraints.items():
-        unit = _UNITS.get(name, "")
-        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(c['value'])}{unit}"
-                      + (f" (limit {_value(c['limit'])}{unit})" if c["limit"] is not None else "")))
+        unit, value, limit = _UNITS.get(name, ""), c["value"], c["limit"]
+        if name == "rocker":  # the library's radians (or lengths), in the option's degrees
+            unit = "°" if revolute else _UNITS["length"]
+            if revolute:
+                value, limit = [math.degrees(v) for v in value], [math.degrees(v) for v in limit]
+        lines.append((f"constraint {name}", f"{'met' if c['met'] else 'NOT met'}: {_value(value)}{unit}"
+                      + (f" (limit {_value(limit)}{unit})" if limit is not None else "")))
     for k in range(len(lk.chain.joints)):
         lines.append((f"joint {joint_name(lk.chain, k)}", f"{lk.points[k][0]:.10g}, {lk.points[k][1]:.10g}"))
     for name, (link, at) in lk.tracers.items():

@@ -46,7 +46,7 @@ def add_commands(sub) -> None:
                         "(a slider is a block on a bar, a cylinder a dark barrel)")
     p.add_argument("--idle-joints", action="store_true",
                    help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
-    p.add_argument("--columns", type=positive, help="drawings per row of a sheet")
+    p.add_argument("--columns", type=positive, help="drawings per row of a sheet (refused for one drawing)")
     p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
     p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
     p.add_argument("--labels", action=YesOrNo, default=None,
@@ -97,6 +97,15 @@ def _at_most(chains, args):
     return chains if args.prismatic is not None else itertools.islice(chains, args.limit + 1)
 
 
+def _one_drawing_takes_no_columns(args, drawings: int) -> None:
+    """Refuse ``--columns`` where the picture holds one drawing (it sets the drawings per row of a sheet)."""
+    if args.columns is not None and drawings == 1:
+        from synth import InvalidOption
+
+        raise InvalidOption("--columns sets the drawings per row of a sheet, and this picture is one drawing "
+                            "(a sheet: --code, --db, --mechanisms or --prismatic)")
+
+
 def _draw_trains(rows, args) -> int:
     """Gear trains of an atlas as functional schematics (shafts, gears on their axes, carriers), as
     ``gears --out`` and the site draw them."""
@@ -112,6 +121,7 @@ def _draw_trains(rows, args) -> int:
     if unused:
         raise InvalidOption(f"gear trains are drawn as schematics, which take no {', '.join(unused)}"
                             + (" on a sheet" if unused == ["--size"] else ""))
+    _one_drawing_takes_no_columns(args, len(rows))
     trains = [GearTrain.parse(row["train"]) for row in rows]
     if len(trains) == 1:
         draw_train(trains[0], args.out, title=args.title, size=args.size or 6.0)
@@ -233,6 +243,7 @@ def _run_draw(args) -> int:
         size = (f"more than {args.limit} drawings (--limit)" if cut
                 else f"{len(items)} drawings, more than --limit {args.limit}")
         raise InvalidOption(f"the selection has {size}; narrow it with --where or raise --limit")
+    _one_drawing_takes_no_columns(args, len(items))
     if len(items) == 1 and not (args.code or (args.db and args.id is None)):
         size, dpi = SINGLE
         draw_one(items[0], args.out, title=title, labels=args.labels is not False,

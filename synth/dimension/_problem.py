@@ -283,6 +283,11 @@ class Problem:
             values = target.inputs
             if np.ptp(values) >= 2 * math.pi:
                 raise BadTarget("the timing spans a full turn of the input or more: the points would repeat")
+        if self.timed and constraints.rocker is not None and np.ptp(target.inputs) > np.ptp(constraints.rocker):
+            shown = (lambda v: f"{math.degrees(v):g}°") if self.revolute_input else (lambda v: f"{v:g}")
+            raise DimensionError(f"the target's inputs span {shown(np.ptp(target.inputs))}, more than the "
+                                 f"{shown(np.ptp(constraints.rocker))} between the rocker's limits "
+                                 f"({option('rocker', 'A..B')}): no input within them passes every point")
         self.absolute = constraints.timing == "absolute"
         if self.absolute and not (self.timed and self.revolute_input):
             raise DimensionError(f"{option('timing', 'absolute')} gives a crank's angles from the frame line: it needs a "

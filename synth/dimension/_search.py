@@ -785,15 +785,17 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         if search.binding():
             search.stiffen()
     if search.best is None:
+        region = "" if problem.constraints.pivots is None else \
+            f", or a region of the fixed pivots ({_option('pivots', 'x0..x1,y0..y1')}) nearer the target"
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
-                             f"within {budget:g} s: give a longer budget or a larger reach")
+                             f"within {budget:g} s: give a longer budget or a larger reach{region}")
     return _result(problem, search.evaluate, search.best, watch, search.runs, bool(search.sampled))
 
 
-def _option(name: str) -> str:
+def _option(name: str, value: str = "True") -> str:
     from ..errors import option
 
-    return option(name)
+    return option(name, value)
 
 
 class _Search:

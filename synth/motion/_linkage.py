@@ -498,6 +498,10 @@ def read_linkage(path: str | Path) -> Linkage:
             raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno}).") from None
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
+    elif isinstance(data, list) and data and all(isinstance(row, dict) and "linkage" in row for row in data):
+        # the rows of an atlas search ('dimension --db … --format json'), each with its linkage
+        raise MotionError(f"{path.name} holds {len(data)} row{'s' * (len(data) != 1)}, not one linkage: give one "
+                          "row's linkage, or the file 'dimension --save' writes")
     elif isinstance(data, dict) and not {"chain", "frame", "inputs", "points"} & set(data):  # an arm, a grid, …
         raise MotionError(f"{path.name} holds no linkage: a linkage file has a [linkage] table, or chain, frame, "
                           f"inputs and points at its top; this one holds {', '.join(data) or 'nothing'}")

@@ -23,6 +23,8 @@ from synth.motion import Linkage, assemble, sweep
 from synth.motion_draw import linkage_from_layout
 from synth.structure.chain import Chain, Mechanism
 
+from ..oracles.motion import traced_by_the_oracle
+
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0, 1)
 
 
@@ -97,6 +99,9 @@ def _assert_recovered(found, target, links: int):
     assert best.result.relative_max <= 1e-6
     # the returned linkage, moved by the motion layer to each reported input, traces the reported curve
     moved = np.array([assemble(best.result.linkage, float(v)).tracers["P"][1] for v in best.result.inputs])
+    assert np.abs(moved - best.result.traced).max() <= 1e-9 * target.size
+    # and so does the linkage moved by the independent reference solver (tests/oracles/motion.py)
+    moved = traced_by_the_oracle(best.result.linkage, best.result.inputs)
     assert np.abs(moved - best.result.traced).max() <= 1e-9 * target.size
     assert np.abs(moved - target.points).max() <= 1e-6 * target.size
 
@@ -268,17 +273,20 @@ def test_an_index_of_k_drawings_hands_k_times_the_samples_of_each_topology_to_th
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="not met (30 Nov 2026, audit12): the best row, a Stephenson six-bar, at 4.3e-5 "
+                                       "of the curve's size with the budget of 240 CPU s (docs/dimension.md)")
 def test_a_random_six_bar_is_found_from_its_timed_points(tmp_path):
     """Must show: a six-bar with dimensions picked at random, given only as points with timing (its
     topology withheld), found by the search of the 4- and 6-link atlas to 1e-6 of the curve's size."""
     db = _atlas(tmp_path, '"4..6"')
     index_curves(db, settings=IndexSettings(samples=100), workers=2)
-    from synth import mechanisms
-
-    watt = next(m for m in mechanisms(1, 6, input_link=True, workers=1)
-                if str(m.chain.code) == "42/0" and m.frame == 0 and m.input_link == 1)
-    coupler = [link for link in range(6) if not any(0 in j and link in j for j in watt.chain.joints) and link][-1]
-    linkage = _random_crank(watt, coupler, seed=11)
+    # a Watt six-bar on its ternary link 0 (Watt II, as identify names it), crank 3, the tracer on link 5, whose
+    # motion depends on all six links: written out.  It was "the mechanism of 42/0 with frame 0 and input 1" of the
+    # listing: before 93058b6 (nauty's canonical numbering) a Watt six-bar cranked by its other ternary link with the
+    # tracer on the coupler of its four-bar loop 0-1-5-4 (a four-bar's curve: the test passed), since then a
+    # Stephenson II moved by Newton's method, which the index skips (the test failed, a four-bar best).
+    watt = Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 0, 3)
+    linkage = _random_crank(watt, 5, seed=11)
     target = _target(linkage, 72, True)
     found = search_atlas(db, target, budget=240, workers=2)
     _assert_recovered(found, target, 6)

@@ -214,7 +214,8 @@ def test_compare_command_table_json_and_plot(capsys, tmp_path):
     (["--samples", "100000000"], "would take about"),
 ])
 def test_bad_input_one_sentence(capsys, argv, words):
-    code = main(["balance", "compare", str(MODELS / "arm_base_drives.toml"), "--payload", "0..3", *argv])
+    payload = [] if "--payload" in argv else ["--payload", "0..3"]  # (an option given twice is refused)
+    code = main(["balance", "compare", str(MODELS / "arm_base_drives.toml"), *payload, *argv])
     cap = capsys.readouterr()
     assert code == 2 and cap.out == "" and cap.err.count("\n") == 1 and words in cap.err
 

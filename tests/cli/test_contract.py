@@ -7,6 +7,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -196,6 +197,35 @@ def test_a_flag_and_its_negation_are_refused(argv, flag, capsys, tmp_path):
         argv = [*argv, str(tmp_path / "x.svg")]
     assert main(argv) == 2 and not (tmp_path / "x.svg").exists()
     assert f"{flag} contradict each other" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["chains", "--dof", "1", "--links", "8", "--links", "9", "--count"], "--links"),
+    (["chains", "--dof", "1", "--li", "8", "--links", "9", "--count"], "--links"),  # an abbreviation is the option
+    (["chains", "--dof", "1", "--links", "6", "--count", "--count"], "--count"),
+    (["codes", "--dof", "1", "--loops", "2", "--format", "csv", "--format=json"], "--format"),
+    (["draw", "--chain", "0-1 1-2 2-3 3-0", "--no-labels", "--no-labels", "--out"], "--no-labels"),
+    (["balance", "spring", "--kind", "compression", "--kind", "tension", "--moment", "1"], "--kind"),
+    (["move", "models/motion_four_bar.toml", "--steps", "3", "--steps", "4"], "--steps"),
+    (["dimension", "models/dimension_path.csv", "--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0", "--budget", "1",
+      "--budget", "2"], "--budget"),
+])
+def test_an_option_of_one_value_given_twice_is_refused(argv, option, capsys, tmp_path):
+    """'chains --links 8 --links 9' counted 9 links, as argparse keeps the last value: every option that holds
+    one value is refused when given twice, by one mechanism of the parser (mechsynth._argtypes.GivenOnce)."""
+    if argv[-1] == "--out":
+        argv = [*argv, str(tmp_path / "x.svg")]
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(Path(__file__).resolve().parents[2])
+        assert main(argv) == 2 and not (tmp_path / "x.svg").exists()
+    err = capsys.readouterr().err
+    assert err.startswith(f"mechsynth: {option} is given twice: give it once") and err.count("\n") == 1
+
+
+def test_options_that_collect_values_stay_repeatable(capsys):
+    """--require (action="append") is given once per bound: two of them are one query, not a refusal."""
+    assert main(["chains", "--dof", "1", "--links", "8", "--require", "3=2", "--require", "4=1", "--count"]) == 0
+    assert json.loads(capsys.readouterr().out)["by_code"] == {"521/0": 5}
 
 
 def test_every_option_of_every_command_says_what_it_is():

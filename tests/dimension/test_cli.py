@@ -42,6 +42,24 @@ def test_a_path_found_is_drawn_over_its_target(tmp_path, capsys):
     assert svg.count('stroke="#1f4e9c"') == 7  # the seven target points
 
 
+def test_the_bar_on_a_terminal_reads_seconds_then_the_best_error(monkeypatch, capsys):
+    """The search's bar read '2.8/3.0 s , best 0.00738' (tqdm puts its own ', ' before the postfix)."""
+    import io
+    import sys
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    terminal = Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    assert main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "1",
+                 "--min-transmission", "60"]) == 0
+    capsys.readouterr()
+    frames = [f for f in terminal.getvalue().split("\r") if "best" in f]
+    assert frames and all(" s, best " in f and " , " not in f for f in frames), frames[-1:]
+
+
 def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, capsys):
     saved = tmp_path / "none.toml"
     code = main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "2",
@@ -58,6 +76,9 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     (["--mechanism", "0-1 1-2 2-3 3-0"], "needs --frame"),
     ([*FOUR_BAR, "--crank", "--rocker", "0..90"], "contradict"),
     ([*FOUR_BAR, "--rocker", "90..0"], "A < B"),
+    # the function's inputs span 45°: a rocker within 40° cannot pass them (the search ran its budget, then said
+    # to give a longer one)
+    ([*FOUR_BAR, "--rocker", "20..60"], "inputs span 45°, more than the 40° between the rocker's limits (--rocker"),
     ([*FOUR_BAR, "--min-transmission", "95"], "between 0 and 90"),
     ([*FOUR_BAR, "--max-ratio", "0.5"], "above 1"),
     ([*FOUR_BAR, "--max-length", "0"], "--max-length must be a positive length"),
@@ -68,7 +89,7 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     ([*FOUR_BAR, "--budget", "0"], "positive number of seconds"),
     ([*FOUR_BAR, "--out", "picture.gif"], "PNG or SVG"),
     ([*FOUR_BAR, "--save", "x.txt"], "TOML or JSON"),
-    ([*FOUR_BAR, "--frame", "9"], "not a link"),
+    (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "9"], "not a link"),  # (FOUR_BAR has its --frame already)
     (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0", "--input", "1-2"], "must be a joint of the frame"),
     ([*FOUR_BAR, "--tracer-link", "2"], "this target is a function"),
     (["--mechanism", "0-1 1-2 2-0", "--frame", "0"], "W = 0"),
@@ -80,6 +101,16 @@ def test_a_contradiction_is_one_sentence_and_exit_2(tmp_path, capsys, monkeypatc
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1, err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f.csv"]  # nothing written
+
+
+def test_a_pivots_region_far_from_the_target_is_named_when_nothing_reaches_it(capsys):
+    """A region of the fixed pivots 140 target units away: the search ends with one sentence and exit 2, which
+    advised only a longer budget or a larger reach (the reach does not bound the frame's joints)."""
+    assert main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "1",
+                 "--pivots", "100..101,100..101", "--max-length", "5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.rstrip().endswith(
+        "or a region of the fixed pivots (--pivots x0..x1,y0..y1) nearer the target")
 
 
 def test_a_bad_target_file_is_one_sentence_and_exit_2(tmp_path, capsys):
@@ -110,11 +141,13 @@ def test_the_tables_constraints_carry_their_units(capsys):
     """'constraint transmission  met: 51.8704 (limit 20)' gave no unit: angles are in degrees, lengths in
     the target's units."""
     assert main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "3",
-                 "--min-transmission", "10", "--max-length", "3"]) == 0
+                 "--min-transmission", "10", "--max-length", "3", "--rocker", "30..90"]) == 0
     rows = dict(line.split(None, 2)[1:] for line in capsys.readouterr().out.splitlines()
                 if line.startswith("constraint "))
     assert rows["transmission"].startswith("met: ") and rows["transmission"].endswith("° (limit 10°)")
     assert rows["length"].endswith(" target units (limit 3 target units)")
+    # the rocker's limits, given in degrees, were shown in radians without a unit: [0.523599, 1.5708]
+    assert rows["rocker"] == "met: [35, 80]° (limit [30, 90]°)"  # the function's inputs, 35° … 80°
 
 
 def test_an_answer_on_the_edge_of_the_reach_says_so(tmp_path, capsys):

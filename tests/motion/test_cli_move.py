@@ -69,6 +69,12 @@ def test_every_format_gives_the_same_rows(capsys):
     assert [float(r["2-3.x"]) for r in from_csv] == [r["2-3.x"] for r in from_jsonl]
     code, table, _ = _run(capsys, "move", SLIDER, "--steps", "5")
     assert code == 0 and table.splitlines()[0].split()[:2] == ["step", "input"] and len(table.splitlines()) == 7
+    # a table is read by eye: six significant digits ('4.499999999999999' and '-1.2246467991473532e-16' were
+    # printed whole), the csv and JSON keep every digit
+    header, _, *lines = table.splitlines()
+    shown = [dict(zip(header.split(), line.split())) for line in lines]
+    assert [s["2-3.x"] for s in shown] == [f"{r['2-3.x']:.6g}" for r in from_jsonl]
+    assert any(len(r["2-3.x"]) > 8 for r in from_csv)
 
 
 def test_range_of_the_four_bar(capsys):

@@ -288,6 +288,12 @@ def test_a_file_that_is_not_a_linkage_is_named_and_told_apart(tmp_path):
     assert refused(MotionError, read_linkage, arm) == ("arm.toml holds no linkage: a linkage file has a [linkage] "
                                                        "table, or chain, frame, inputs and points at its top; this "
                                                        "one holds arm")
+    # the rows of an atlas search ('dimension --db … --format json'), each with its linkage: it read "a linkage must be
+    # an object (a table) with 'chain', …", which did not say which of them to give
+    rows = tmp_path / "rows.json"
+    rows.write_text(json.dumps([{"rank": k, "linkage": Linkage(FOUR_BAR, (0,), GOOD).to_dict()} for k in (1, 2)]))
+    assert refused(MotionError, read_linkage, rows) == (
+        "rows.json holds 2 rows, not one linkage: give one row's linkage, or the file 'dimension --save' writes")
     # a linkage with a mistake: the sentence of Linkage.from_dict, of the same class, after the file's name
     pose = tmp_path / "pose.json"
     pose.write_text(json.dumps({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {"0-1": [0, 0]}}))

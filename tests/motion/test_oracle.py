@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from synth.motion._sweep import _solver
-from synth.motion import linkage_from_pose, motion_range, sweep
+from synth.motion import assemble, linkage_from_pose, motion_range, sweep
 from synth.structure.chain import Chain, Mechanism
 
-from ..oracles.motion import OracleLinkage, follow
+from ..oracles.motion import follow, oracle_of, traced_by_the_oracle
 from .helpers import four_bar, inverted_slider_crank, scotch_yoke, slider_crank
 
 
@@ -22,12 +22,6 @@ def triad():
            (3, 5): (2.2, 2.8), (0, 5): (-0.6, 2.2)}
     points = np.array([pts[j] for j in chain.joints], dtype=float)
     return linkage_from_pose(Mechanism(chain, 0, 1), points)
-
-
-def oracle_of(lk):
-    kinds = [lk.kind(k) for k in range(len(lk.chain.joints))]
-    joints = [(kinds[k], lk.chain.joints[k], lk.points[k], lk.slides.get(k)) for k in range(len(kinds))]
-    return OracleLinkage(lk.chain.links, joints, lk.frame, (lk.inputs[0], lk.input_link(0)))
 
 
 CASES = {
@@ -57,3 +51,15 @@ def test_engine_agrees_with_the_independent_solver(name):
         assert np.abs(got - expected).max() < 1e-9, name
     if name == "triad":
         assert _solver(lk).plan is None  # it really is solved by Newton's method
+
+
+def test_a_tracer_moved_by_the_independent_solver_is_the_engines():
+    """The oracle's tracer point (tests/oracles/motion.py, a joint of its link alone), which re-checks the answers of
+    dimensional synthesis and of the atlas search, passes where the engine's sweep puts it, at inputs either side of
+    the pose, in any order."""
+    lk = four_bar(1.0, 3.5, 3.0, 4.0, tracer=(2.2, 3.1))
+    phi0 = float(lk.pose_inputs[0])
+    inputs = phi0 + np.array([0.0, 0.7, 2.9, 1.2, -0.8])
+    expected = np.array([assemble(lk, float(v)).tracers["P"][1] for v in inputs])
+    assert np.abs(traced_by_the_oracle(lk, inputs) - expected).max() < 1e-9
+    assert np.abs(expected - expected[0]).max() > 1  # (the point moves)

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-__all__ = ["OracleLinkage", "follow"]
+__all__ = ["OracleLinkage", "follow", "oracle_of", "traced_by_the_oracle"]
 
 
 class OracleLinkage:
@@ -97,3 +97,23 @@ def follow(oracle: OracleLinkage, turns, step=math.radians(0.25)):
         here = target
         out.append([oracle.world(z, members[0], point) for _, members, point, _ in oracle.joints])
     return np.array(out)
+
+
+def oracle_of(lk, tracers: bool = False) -> OracleLinkage:
+    """The oracle of an engine's linkage ``lk`` (a revolute input), read from its data only: joints,
+    kinds, pose and slides; with ``tracers``, each tracer point is a last joint of its link alone (no
+    equation: :func:`follow` gives its world position beside the joints')."""
+    kinds = [lk.kind(k) for k in range(len(lk.chain.joints))]
+    joints = [(kinds[k], lk.chain.joints[k], lk.points[k], lk.slides.get(k)) for k in range(len(kinds))]
+    if tracers:
+        joints += [("revolute", (link,), np.asarray(at, dtype=float), None) for link, at in lk.tracers.values()]
+    return OracleLinkage(lk.chain.links, joints, lk.frame, (lk.inputs[0], lk.input_link(0)))
+
+
+def traced_by_the_oracle(lk, inputs, tracer: str = "P", step=math.radians(1)) -> np.ndarray:
+    """The points the tracer ``tracer`` of ``lk`` passes at the input values ``inputs`` (absolute, as a
+    dimensional synthesis reports them), the linkage moved by the oracle from its pose, input after input
+    (steps of ``step``: each Newton solve still to 1e-13)."""
+    names = list(lk.tracers)
+    moved = follow(oracle_of(lk, tracers=True), np.asarray(inputs, dtype=float) - float(lk.pose_inputs[0]), step)
+    return moved[:, len(lk.chain.joints) + names.index(tracer)]
