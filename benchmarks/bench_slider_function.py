@@ -7,7 +7,8 @@ target's unit: length or rad), the error relative to the target's size, how far 
 lie from the drawn ones (over the rod), the CPU seconds of the search (``time.process_time``) and whether every
 constraint was met.  ``--six-bar`` instead dimensions a Watt six-bar whose rocker drives a slider (``SIX_BAR``),
 its function drawn from the pose ``SIX_BAR_POSE`` as 13 pairs over 40°–160° of crank angle: one row, its
-dimensions not compared (other six-bars may give the same pairs).  The results are in benchmarks/DIMENSION.md
+dimensions not compared (other six-bars may give the same pairs).  ``--free-origin`` gives the displacements
+from a datum 0.37 short of the first pair's place, the origin free (``origin="free"``).  The results are in benchmarks/DIMENSION.md
 (*Functions with a slider*).
 
 >>> r, l, e, _ = random_slider_crank(0)
@@ -89,21 +90,30 @@ def six_bar(budget: float) -> dict:
             "cpu_s": round(time.process_time() - start, 3), "met": result.met}
 
 
-def run(seed: int, driven_by_slider: bool, budget: float) -> dict:
+def run(seed: int, driven_by_slider: bool, budget: float, free: bool = False) -> dict:
+    """One search; with ``free`` the displacements are given from a datum 0.37 short of the first pair's, the origin
+    free (the row then says how far the found pivot lies from where the datum puts it, over the rod)."""
     from synth.dimension import FunctionTarget, synthesize
     from synth.structure.chain import Chain, Mechanism
 
     theta, s, dims = pairs(seed, driven_by_slider)
+    datum = s[0] - 0.37 if free else 0.0
+    origin = "free" if free else "pivot"
     if driven_by_slider:
-        mechanism, target = Mechanism(Chain.parse(CHAIN), 0, 3), FunctionTarget(s, theta, input_is="displacement")
+        mechanism = Mechanism(Chain.parse(CHAIN), 0, 3)
+        target = FunctionTarget(s - datum, theta, input_is="displacement", origin=origin)
     else:
-        mechanism, target = Mechanism(Chain.parse(CHAIN), 0), FunctionTarget(theta, s, output_is="displacement")
+        mechanism = Mechanism(Chain.parse(CHAIN), 0)
+        target = FunctionTarget(theta, s - datum, output_is="displacement", origin=origin)
     start = time.process_time()
     result = synthesize(mechanism, target, budget=budget, seed=0)
-    return {"seed": seed, "input": "slider" if driven_by_slider else "crank", "pairs": len(theta),
-            "error_max": result.error_max, "relative_max": result.relative_max,
-            "dimensions_off": recovered(result.linkage, dims), "cpu_s": round(time.process_time() - start, 3),
-            "met": result.met}
+    row = {"seed": seed, "input": "slider" if driven_by_slider else "crank", "origin": origin, "pairs": len(theta),
+           "error_max": result.error_max, "relative_max": result.relative_max,
+           "dimensions_off": recovered(result.linkage, dims), "cpu_s": round(time.process_time() - start, 3),
+           "met": result.met}
+    if free:
+        row["pivot_off"] = abs(float(result.linkage.points[0][0]) + datum) / dims[1]
+    return row
 
 
 def main() -> None:
@@ -111,6 +121,7 @@ def main() -> None:
     parser.add_argument("--seeds", default="0..9", help="A..B, the seeds drawn")
     parser.add_argument("--budget", type=float, default=10.0, help="CPU seconds per search")
     parser.add_argument("--six-bar", action="store_true", help="the six-bar driving a slider instead")
+    parser.add_argument("--free-origin", action="store_true", help="displacements from a datum, the origin free")
     args = parser.parse_args()
     if args.six_bar:
         print(json.dumps(six_bar(args.budget)), flush=True)
@@ -118,7 +129,7 @@ def main() -> None:
     a, _, b = args.seeds.partition("..")
     for seed in range(int(a), int(b or a) + 1):
         for driven_by_slider in (False, True):
-            print(json.dumps(run(seed, driven_by_slider, args.budget)), flush=True)
+            print(json.dumps(run(seed, driven_by_slider, args.budget, args.free_origin)), flush=True)
 
 
 if __name__ == "__main__":

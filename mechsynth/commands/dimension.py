@@ -91,6 +91,9 @@ def add_commands(sub) -> None:
                    "motion; default the coupler)")
     p.add_argument("--output-link", type=whole, metavar="L", help="a function's output link, pivoted or sliding on "
                    "the frame (default: the only other one)")
+    p.add_argument("--displacement-origin", choices=("pivot", "free"), help="where a slider's displacements are "
+                   "measured from: the foot of the other pivot on the slider's line (default), or a point the "
+                   "synthesis chooses (the target's own zero)")
     p.add_argument("--crank", action="store_true", help="the input must turn fully")
     p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
                    "length for a slide) over the target")
@@ -204,7 +207,13 @@ def _run(args) -> int:
     from synth.dimension import Constraints, read_target, synthesize
 
     _check(args)
-    target = read_target(args.target, output_link=args.output_link)
+    target = read_target(args.target, output_link=args.output_link, origin=args.displacement_origin or "pivot")
+    if args.displacement_origin is not None and not (target.kind == "function" and "displacement" in
+                                                     (target.input_is, target.output_is)):
+        from synth import InvalidOption
+
+        raise InvalidOption("--displacement-origin is where a slider's displacements are measured from; this target "
+                            "gives none (no input_displacement or output_displacement column)")
     if args.output_link is not None and target.kind != "function":
         from synth import InvalidOption
 

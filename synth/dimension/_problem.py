@@ -80,7 +80,7 @@ class Constraints:
     reach : float, optional
         The search box: every joint within ``reach`` target sizes of the target's centre (default 4;
         for a function, frame lengths from the input pivot, default 2; for a slider's function, its largest
-        displacement, default 2).
+        displacement, default 2, or with a free origin its stroke about the stroke's middle, default 8).
     pivot_at : dict joint -> (x, y), optional
         Revolute joints of the frame held at given points (a joint named by its links, ``"0-1"``, or by
         its index).  They are no unknowns: the search places the mechanism about them.
@@ -281,8 +281,13 @@ class Problem:
                                 else (input_joint, self.output_joint))
                 self.slider = (slide, self._slider_pin(slide))
                 lengths = target.outputs if target.output_is == "displacement" else target.inputs
-                self.centre, self.scale = np.zeros(2), float(np.abs(lengths).max()) or 1.0
-                self.fixed = {pivot: np.zeros(2)}
+                if target.origin == "pivot":
+                    self.centre, self.scale = np.zeros(2), float(np.abs(lengths).max()) or 1.0
+                    self.fixed = {pivot: np.zeros(2)}
+                else:  # the pivot on the x axis at an unknown place: the box about the stroke's middle, strokes wide
+                    self.centre = np.array([(lengths.min() + lengths.max()) / 2, 0.0])
+                    self.scale, self.fixed = float(np.ptp(lengths)), {}
+                    self.origin_pivot = pivot
         else:
             self.tracer_link = self._tracer_link(tracer_link)
             pts = target.points
@@ -319,9 +324,15 @@ class Problem:
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
-        reach = self.reach = constraints.reach or (2.0 if isinstance(target, FunctionTarget) else 4.0)
+        free = isinstance(target, FunctionTarget) and target.origin == "free"
+        reach = self.reach = constraints.reach or (8.0 if free else 2.0 if isinstance(target, FunctionTarget) else 4.0)
         for k in range(len(chain.joints)):
             if k in self.fixed or (self.slider is not None and k == self.slider[0]):  # (a slider's line: the x axis)
+                continue
+            if free and k == self.origin_pivot:  # the pivot's place along the x axis
+                self.layout.append(("origin", k))
+                lower.append(-reach)
+                upper.append(reach)
                 continue
             if self.along is not None and k == self.along[0]:  # the frame line's free end: its distance along it
                 self.layout.append(("along", k))
@@ -425,7 +436,7 @@ class Problem:
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
         count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1
-                    for kind, k in self.layout if kind in ("joint", "slide", "along"))
+                    for kind, k in self.layout if kind in ("joint", "slide", "along", "origin"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:
             count += self.points - 1
@@ -509,7 +520,7 @@ class Problem:
         touching = (x <= self.lower + edge) | (x >= self.upper - edge)
         names, at = [], 0
         for kind, k in self.layout:
-            width = 1 if kind in ("slide", "along") else 2
+            width = 1 if kind in ("slide", "along", "origin") else 2
             region = kind == "joint" and self.constraints.pivots is not None and k in self.frame_joints
             if kind != "slide" and not region and touching[at:at + width].any():
                 names.append("the tracer point" if kind == "tracer" else joint_name(self.chain, k))
@@ -540,6 +551,9 @@ class Problem:
             elif kind == "along":
                 distance = x[i]
                 i += 1
+            elif kind == "origin":  # a function's pivot on the slider's line, the x axis
+                points[k] = (self.centre[0] + self.scale * x[i], 0.0)
+                i += 1
             else:  # (the tracer's two are the layout's last)
                 tracer = self.centre + self.scale * x[i:i + 2]
         for k, p in self.fixed.items():
@@ -566,6 +580,8 @@ class Problem:
             elif kind == "along":
                 end, start, u = self.along
                 x.append(float((linkage.points[end] - linkage.points[start]) @ u) / self.scale)
+            elif kind == "origin":
+                x.append(float(linkage.points[k][0] - self.centre[0]) / self.scale)
             else:
                 at = linkage.tracers.get("P", next(iter(linkage.tracers.values()), None))
                 if at is None or at[0] != self.tracer_link:
@@ -578,7 +594,7 @@ class Problem:
     # ------------------------------------------------------------ the motion of a candidate
     def input_at_pose(self, linkage: Linkage) -> float:
         """The input's value in the pose as the target measures it: a revolute input's angle from the x axis;
-        a function's input slider's pin along the x axis (the slider's line) from the output pivot; else
+        a function's input slider's pin along the x axis (the slider's line); else
         the motion layer's prismatic input, 0 in the pose."""
         if self.slider is not None and self.slider[0] == self.input_joint:
             return float(linkage.points[self.slider[1]][0])

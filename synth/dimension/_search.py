@@ -934,7 +934,7 @@ class _Search:
         for kind, k in p.layout:
             if kind == "joint" and k in p.frame_joints:
                 at[k] = i
-            i += 1 if kind in ("slide", "along") else 2
+            i += 1 if kind in ("slide", "along", "origin") else 2
         other = [k for k in p.frame_joints if k != p.input_joint and k in at]
         if p.input_joint not in at or not other:
             return None

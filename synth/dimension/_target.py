@@ -163,6 +163,10 @@ class FunctionTarget:
         How much each pair counts (weight × squared error), as a path's points' weights.
     input_is, output_is : "angle" or "displacement"
         What each column measures (rad, or the target's length unit); at most one a displacement.
+    origin : "pivot" or "free"
+        Where a displacement is measured from: the pivot's foot on the slider's line, or a point of the
+        line the synthesis chooses (the pivot's place along the line an unknown, so that the target's
+        own zero — a first position, a machine's datum — is taken as it is).
 
     Examples
     --------
@@ -178,6 +182,7 @@ class FunctionTarget:
     weights: np.ndarray | None = None
     input_is: str = "angle"
     output_is: str = "angle"
+    origin: str = "pivot"
     kind = "function"
 
     def __post_init__(self):
@@ -197,6 +202,10 @@ class FunctionTarget:
         if self.input_is == self.output_is == "displacement":
             raise BadTarget("function generation relates two angles or an angle and a displacement: two "
                             "displacements are not offered")
+        if self.origin not in ("pivot", "free"):
+            raise BadTarget(f"a displacement's origin is 'pivot' or 'free', not {self.origin!r}")
+        if self.origin == "free" and self.input_is == self.output_is:
+            raise BadTarget("a free origin is a displacement's: this function relates two angles")
 
     @property
     def size(self) -> float:
@@ -290,14 +299,15 @@ def _rows(path: Path) -> tuple[list[str], list[list]]:
     return header, body
 
 
-def read_target(path: str | Path, *, output_link: int | None = None):
+def read_target(path: str | Path, *, output_link: int | None = None, origin: str = "pivot"):
     """Read a target from a CSV file (a header row, then one row per point) or a JSON list of rows.
 
     The columns say the kind: ``x,y`` a path without timing; ``x,y,input`` (or ``input_deg``) a
     path with timing; ``input,output`` (or ``input_deg,output_deg``) a function of angles,
     ``input_deg,output_displacement`` a slider's displacement against an angle and
     ``input_displacement,output_deg`` an angle against a slider's (each angle also in rad without
-    ``_deg``); ``x,y,angle`` (or ``angle_deg``) a motion.  Any of them may end with a ``weight`` column: how much each row
+    ``_deg``); ``x,y,angle`` (or ``angle_deg``) a motion.  ``origin`` is a slider function's (see
+    :class:`FunctionTarget`).  Any of them may end with a ``weight`` column: how much each row
     counts (the target's ``weights``).
 
     Raises
@@ -343,7 +353,7 @@ def read_target(path: str | Path, *, output_link: int | None = None):
         return PathTarget(values[:, :2], values[:, 2] if values.shape[1] == 3 else None, weights)
     if kind == "function":
         measures = ["displacement" if name.endswith("_displacement") else "angle" for name in header[:2]]
-        return FunctionTarget(values[:, 0], values[:, 1], output_link, weights, *measures)
+        return FunctionTarget(values[:, 0], values[:, 1], output_link, weights, *measures, origin)
     return MotionTarget(values, weights)
 
 

@@ -64,6 +64,27 @@ def test_a_slider_driving_a_crank_is_recovered_exactly(slider_bench):
     assert np.allclose(result.inputs, s)
 
 
+@pytest.mark.parametrize("seed, driven_by_slider", [(40, False), (3, True)])
+def test_displacements_from_the_targets_own_zero_are_met_with_a_free_origin(slider_bench, seed, driven_by_slider):
+    """Displacements given from a datum of the designer's (here the first pair's place, less 0.37): with a free
+    origin the pivot's place along the line is found too, at the datum's distance from it."""
+    theta, s, dims = slider_bench.pairs(seed, driven_by_slider)
+    datum = s[0] - 0.37
+    if driven_by_slider:
+        m, target = Mechanism(SLIDER_CRANK, 0, 3), FunctionTarget(s - datum, theta, input_is="displacement",
+                                                                  origin="free")
+    else:
+        m, target = Mechanism(SLIDER_CRANK, 0), FunctionTarget(theta, s - datum, output_is="displacement",
+                                                               origin="free")
+    result = synthesize(m, target, budget=30)
+    assert result.met and result.relative_max <= 1e-9 and slider_bench.recovered(result.linkage, dims) <= 1e-9
+    lk = result.linkage
+    assert lk.points[0][1] == 0 and abs(lk.points[0][0] + datum) <= 1e-9 * dims[1]  # on the line, the datum away
+    if not driven_by_slider:  # moved by the motion layer, the pin passes the displacements from the datum
+        moved = np.array([assemble(lk, angle).points[SLIDER_PIN][0] for angle in theta])
+        assert np.abs(moved - (s - datum)).max() <= 1e-9 * np.ptp(s)
+
+
 def test_an_input_sliders_limits_are_its_displacements_as_the_target_measures_them(slider_bench):
     """The rocker's limits of a slider input are displacements from the output pivot's foot, as the target's inputs
     (the motion layer counts a slide from the pose): limits round the pairs are met and reported as the inputs'
@@ -91,6 +112,10 @@ def test_the_files_columns_say_which_side_is_a_displacement(tmp_path):
 
 
 def test_the_targets_refusals():
+    with pytest.raises(BadTarget, match="^a free origin is a displacement's: this function relates two angles$"):
+        FunctionTarget([0, 1], [2, 3], origin="free")
+    with pytest.raises(BadTarget, match=r"^a displacement's origin is 'pivot' or 'free', not 'datum'$"):
+        FunctionTarget([0, 1], [2, 3], output_is="displacement", origin="datum")
     with pytest.raises(BadTarget, match="^function generation relates two angles or an angle and a displacement"):
         FunctionTarget([0, 1], [2, 3], input_is="displacement", output_is="displacement")
     with pytest.raises(BadTarget, match=r"^output_is is 'angle' or 'displacement', not 'length'$"):
@@ -104,6 +129,11 @@ def test_a_slider_cranks_unknowns_are_crank_rod_and_offset():
     p = Problem(Mechanism(SLIDER_CRANK, 0), 0, FunctionTarget([0, 1, 2], [4, 3, 2], output_is="displacement"), None,
                 Constraints())
     assert p.layout == [("joint", CRANK_PIN), ("joint", SLIDER_PIN)] and p.unknowns == 3 and p.scale == 4.0
+    free = Problem(Mechanism(SLIDER_CRANK, 0), 0, FunctionTarget([0, 1, 2, 3], [4, 3, 2, 1.5], output_is="displacement",
+                                                                 origin="free"), None, Constraints())
+    # the crank pivot's place along the line is a fourth; the box about the stroke's middle (2.75), a stroke (2.5) wide
+    assert free.layout == [("origin", 0), ("joint", CRANK_PIN), ("joint", SLIDER_PIN)] and free.unknowns == 4
+    assert free.centre.tolist() == [2.75, 0.0] and free.scale == 2.5 and free.reach == 8.0
 
 
 FILES = {
@@ -130,6 +160,15 @@ def test_a_displacement_where_the_joint_turns_or_an_angle_where_it_slides_is_one
     assert main(["dimension", target, "--mechanism", chain, "--frame", "0", *extra, "--save", "x.toml"]) == 2
     assert capsys.readouterr().err == f"mechsynth: {sentence}\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == [target]  # nothing written
+
+
+def test_a_displacement_origin_for_a_target_without_displacements_is_one_sentence_and_exit_2(tmp_path, capsys):
+    (tmp_path / "p.csv").write_text("x,y\n0,0\n1,0\n1,1\n")
+    assert main(["dimension", str(tmp_path / "p.csv"), "--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0",
+                 "--displacement-origin", "free"]) == 2
+    assert capsys.readouterr().err == ("mechsynth: --displacement-origin is where a slider's displacements are measured "
+                                       "from; this target gives none (no input_displacement or output_displacement "
+                                       "column)\n")
 
 
 def test_the_slider_crank_model_is_found_saved_and_moved(tmp_path, capsys):
