@@ -1496,7 +1496,7 @@ def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
         out["crank"] = {"value": "turns fully" if reach.full_rotation else
                         f"rocks between {_angle(reach.limits[0])} and {_angle(reach.limits[1])}",
                         "limit": None, "met": bool(reach.full_rotation)}
-    if c.rocker is not None:  # (in the target's measure: a function's input slider's from the output pivot)
+    if c.rocker is not None:  # (in the target's measure: a function's input slider's pin along its line)
         shift = problem.input_at_pose(linkage) - phi0
         lo, hi = lo_in + shift, hi_in + shift
         inside = c.rocker[0] - 1e-9 <= lo and hi <= c.rocker[1] + 1e-9
