@@ -144,7 +144,7 @@ def main() -> int:
         return 2
     bad = skipped = 0
     for q in queries:
-        if args.method == "orbits" and (q.get("prismatic") is not None or q.get("cranks") or q.get("v")):
+        if args.method == "orbits" and (q.get("prismatic") is not None or q.get("cranks")):
             print(f"{name(q)}: not counted by orbits (the method refuses it)")
             skipped += 1
             continue

@@ -12,12 +12,13 @@ Stage A runs once per code; each unit is then counted by each method asked (``--
 more; ``count,orbits`` by default) in this process, with the CPU seconds of each
 (``time.process_time``: other work on a shared machine hardly changes them). Prints one row per
 code (units, chains by each method, CPU seconds of stage A and of each method, µs per chain) and
-the totals; exit 1 if any code's counts differ.
+the totals; exit 1 if any code's counts differ.  ``--v A..B`` takes multiple joints (the query's
+``--v``), ``--every N`` every N-th code of the plan only, the first included (a sample of a large query).
 
 Run from the project root::
 
     nice -n 19 python benchmarks/orbits_vs_listing.py 16 [--dof 1] [--h 3] [--methods count,listing,orbits] \
-        > benchmarks/logs/orbits_vs_listing_16.txt
+        [--v 0..14] [--every 10] > benchmarks/logs/orbits_vs_listing_16.txt
 """
 
 from __future__ import annotations
@@ -32,8 +33,8 @@ ROOT = Path.cwd()
 sys.path.insert(0, str(ROOT))
 
 
-def compare(dof: int, links: int, h: int, methods: list[str]) -> int:
-    from synth import ChainQuery
+def compare(query, methods: list[str], every: int = 1) -> int:
+    """Count the codes of the :class:`~synth.ChainQuery` ``query`` (every ``every``-th) by each of ``methods``."""
     from synth.synthesis.stage_b import count_listed, count_orbits, count_realised, load_kernel
     from synth.synthesis.type_synthesis import job_units, plan_jobs
 
@@ -41,13 +42,16 @@ def compare(dof: int, links: int, h: int, methods: list[str]) -> int:
     count = [ways[m] for m in methods]
     load_kernel()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    print(f"W = {dof}, {links} links, h = {h}; engine {commit}; CPU seconds of one process")
+    sample = f", every {every}th code" if every > 1 else ""
+    v = "0" if query.v is None else f"{query.v[0]}..{'' if query.v[1] is None else query.v[1]}"
+    print(f"W = {query.dof}, {query.links} links, h = {query.h}, v {v}{sample}; engine {commit}; CPU seconds of one "
+          f"process")
     print(f"{'code':>20} {'units':>6} " + " ".join(f"{m:>11}" for m in methods) + f" {'stage A':>8} "
           + " ".join(f"{m + ' s':>9}" for m in methods) + " " + " ".join(f"{'µs/ch ' + m[0].upper():>10}" for m in methods))
     n = len(methods)
     totals = [0] * (1 + n) + [0.0] * (1 + n)
     bad = 0
-    for code, conv in plan_jobs(ChainQuery(dof, links, h=h)):
+    for code, conv in plan_jobs(query)[::every]:
         t0 = time.process_time()
         units = [u for u in job_units((code, conv)) if u.contracted is not None]
         stage_a = time.process_time() - t0
@@ -79,13 +83,24 @@ def main() -> int:
     parser.add_argument("links", type=int)
     parser.add_argument("--dof", type=int, default=1)
     parser.add_argument("--h", type=int, default=3)
+    parser.add_argument("--v", help="multiple joints, as the query's --v (A..B)")
+    parser.add_argument("--every", type=int, default=1, help="every N-th code of the plan only (a sample)")
     parser.add_argument("--methods", default="count,orbits",
                         help="two or more of count, listing, orbits, comma-separated (default count,orbits)")
     args = parser.parse_args()
     methods = args.methods.split(",")
     if len(methods) < 2 or len(set(methods)) < len(methods) or not set(methods) <= {"count", "listing", "orbits"}:
         parser.error("--methods takes two or more different ones of count, listing, orbits")
-    return compare(args.dof, args.links, args.h, methods)
+    if args.every < 1:
+        parser.error(f"--every takes a whole number of at least 1, not {args.every}")
+    from synth import ChainQuery, SynthesisError
+
+    try:
+        query = ChainQuery.of(dof=args.dof, links=args.links, h=args.h, v=args.v)
+        status = compare(query, methods, args.every)
+    except SynthesisError as exc:  # a query the engine refuses (a --v that is no range, impossible sizes)
+        parser.error(str(exc))
+    return status
 
 
 if __name__ == "__main__":

@@ -148,6 +148,17 @@ _BEYOND = {
              "benchmarks/logs/count_h6_32_links_tight_reverse.json`, its second count (tight-reverse, 98 CPU s)",
 }
 
+# the next size of each motion space past the last counted, sized on 30 Nov 2026 at 1cc856c (`estimate(ChainQuery.of(
+# dof=1, links=N, h=H))`, 1.2-1.7 CPU s each) and not run: the sizing was 10-41 % under the CPU of the last counts at
+# h = 4 and 5, and 3.8 times under at h = 6, 32 links (sized at 36 CPU s, counted in 137)
+_NEXT_SIZE = "not run: the next size past the last counted, sized on 30 Nov 2026 (1cc856c) at about {} chains and {} " \
+             "CPU s for the count, and as much again for its second count: {}"
+_NEXT = [("h = 2 (Laman)", 2, 13, ("1.1e9", "16 700", "beyond an hour of the 2 cores")),
+         ("h = 4", 4, 29, ("2.1e14", "93 500", "beyond an hour of the 2 cores")),
+         ("h = 5", 5, 34, ("9.6e13", "29 300", "beyond an hour of the 2 cores")),
+         ("h = 6", 6, 37, ("3.2e12", "1 790", "about 6 800 with the sizing's miss at 32 links, an hour of the 2 cores "
+                                             "for the count alone, and its memory not sized"))]
+
 # 7 and 8 loops without fractionated chains: the 2024 paper enumerates biconnected graphs, so its 7-loop counts go
 # beside these rows, not beside the rows with fractionated chains (benchmarks/LITERATURE.md, the second search for
 # counts); 8 loops is one beyond it
@@ -201,12 +212,15 @@ ROWS = (
     + [_row("h = 4", 1, n, h=4, oracle=n <= 8, heavy=_BEYOND.get((4, n), "")) for n in range(5, 27, 3)]
     + [_row("h = 5", 1, n, h=5, oracle=n <= 6, heavy=_BEYOND.get((5, n), "")) for n in range(6, 31, 4)]
     + [_row("h = 6", 1, n, h=6, oracle=n <= 7, heavy=_BEYOND.get((6, n), "")) for n in range(7, 33, 5)]
+    + [_row(series, 1, n, h=h, heavy=_NEXT_SIZE.format(*sized)) for series, h, n, sized in _NEXT]
     + [_row("W = 1, multiple joints", 1, n, None, "Ding2013", v=n - 2, oracle=n <= 8) for n in range(4, 13, 2)]
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
             heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
-            heavy="not run: the engine's sizing (from 8, 10, 12 links) gives about 6.9e9 chains, 15 CPU hours "
-                  "since the joints come first in the count's search (PROFILE.md section 32)")]
+            heavy="not run: the engine's sizing (from 8, 10, 12 links; 30 Nov 2026) gives about 6.9e9 chains in 8.5e6 "
+                  "units, 64 500 CPU s (17.9 CPU h) since the joints come first in the count's search (PROFILE.md "
+                  "section 32), and about 21.6 CPU h for its second count by orbits, which for W = 1 visits a "
+                  "placement a chain or more (PROFILE.md section 41)")]
 )
 
 

@@ -608,33 +608,56 @@ class Problem:
             return np.column_stack((xy, theta[:, link])), g, mu
         return xy, g, mu
 
-    def best_placement(self, theta: np.ndarray, t: np.ndarray):
+    def best_placement(self, theta: np.ndarray, t: np.ndarray, longest: float | None = None):
         """Where the mechanism and its tracer point best meet a timed path, for the tracer link's
         rotations θ (N,) and translations t (N, 2) at the target's inputs (variable projection).
 
         The whole mechanism may be moved by a similarity z ↦ λz + s (a turn, a scale and a shift:
         timing is relative, so its motion is the same) and the tracer put anywhere on its link; in
         complex numbers over the target's size the tracer then passes e^{iθᵢ}q + λtᵢ + s, linear
-        in q, λ, s, which least squares gives (:func:`placement`).  Returns (tracer, λ, s, traced
-        points (N, 2)): the tracer in the placed pose is q + s (both over the target's size, from the
-        origin).
+        in q, λ, s, which least squares gives (:func:`placement`; scaled within the length bound, given the
+        ``longest`` link unplaced, :meth:`place`).  Returns (tracer, λ, s, traced points (N, 2)): the tracer in
+        the placed pose is q + s (both over the target's size, from the origin).
         """
         turn, moves = np.exp(1j * theta), (t[:, 0] + 1j * t[:, 1]) / self.scale
-        q, lam, shift = self.place(turn, moves, (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale)
+        q, lam, shift = self.place(turn, moves, (self.target.points[:, 0] + 1j * self.target.points[:, 1]) / self.scale,
+                                   longest)
         z = turn * q + lam * moves + shift
         return complex(q + shift), complex(lam), complex(shift), np.column_stack((z.real, z.imag)) * self.scale
 
-    def place(self, turn: np.ndarray, moves: np.ndarray, w: np.ndarray) -> tuple[complex, complex, complex]:
+    def place(self, turn: np.ndarray, moves: np.ndarray, w: np.ndarray,
+              longest: float | None = None) -> tuple[complex, complex, complex]:
         """:func:`placement` as the designer's constraints allow it: about the fixed pivot (two or more
         fixed: no similarity, the tracer point alone fitted), without a turn where the frame's
-        direction is fixed.  Positions are complex, over the target's size."""
+        direction is fixed, and — given the ``longest`` link of the mechanism unplaced — scaled no
+        larger than the length bound allows (:meth:`largest_scale`).  Positions are complex, over the
+        target's size."""
         if len(self.fixed) > 1:
             return placement(turn, moves, w, similar=False, weights=self.weights)
         pivot = None
         if self.fixed:
             (at,) = self.fixed.values()
             pivot = complex(at[0], at[1]) / self.scale
-        return placement(turn, moves, w, pivot=pivot, turns=self.along is None, weights=self.weights)
+        return placement(turn, moves, w, pivot=pivot, turns=self.along is None, weights=self.weights,
+                         most=self.largest_scale(longest))
+
+    def largest_scale(self, longest: float | None) -> float | None:
+        """The largest scale a placement may give a mechanism whose longest link is ``longest``: the length
+        bound's, as its penalty row aims (None without a bound).  Measured where it stands, a candidate of the
+        right shape placed beyond the bound was penalised as far from the target, however close it came at the
+        bound: the half circle's record lies on the bound, its shapes' best fits beyond it
+        (benchmarks/DIMENSION.md, *The half circle at the default budget*).
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> p = Problem(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), 0, PathTarget(np.eye(2)), 2,
+        ...             Constraints(max_length=8))
+        >>> round(p.largest_scale(4.0), 6)   # a longest link of 4 doubles at most (1e-4 inside)
+        1.9998
+        """
+        limit = self.constraints.max_length
+        if limit is None or longest is None or not longest > 0:
+            return None
+        return limit * math.exp(-self.aim[self.order_pairs]) / longest
 
     def weighed(self, residuals: np.ndarray) -> np.ndarray:
         """Residual rows (one per target point) times the square root of their point's weight: their
@@ -877,8 +900,8 @@ class Problem:
 
 
 def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: complex | None = None,
-              turns: bool = True, similar: bool = True,
-              weights: np.ndarray | None = None) -> tuple[complex, complex, complex]:
+              turns: bool = True, similar: bool = True, weights: np.ndarray | None = None,
+              most: float | None = None) -> tuple[complex, complex, complex]:
     """The tracer point q of a link and the similarity (λ, s) of the whole mechanism that carry the
     link's points nearest the points w in least squares: w ≈ turnᵢ q + λ movesᵢ + s (complex; turnᵢ
     the link's rotation e^{iθᵢ} and movesᵢ its translation at each point), each point's squared
@@ -887,6 +910,9 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
 
     A similarity that keeps a ``pivot`` has s = pivot·(1 − λ); one that keeps the directions
     (``turns=False``) has λ real and positive; ``similar=False`` keeps the mechanism where it is.
+    With ``most`` the scale is at most that, |λ| ≤ most (a length bound: the best placement of a
+    mechanism whose best fit would be larger is the best at that scale, λ's direction then the one
+    the fit favours, the rest fitted again).
 
     >>> theta = np.array([0.0, 1.0, 2.0]); moves = np.array([0, 1 + 1j, 2])
     >>> q, lam, s = placement(np.exp(1j * theta), moves, np.exp(1j * theta) * (1 - 2j) + 3j * moves + 0.5)
@@ -896,6 +922,8 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
     >>> q, lam, s = placement(np.exp(1j * theta), moves, w, pivot=1j, turns=False)
     >>> [round(abs(v - want), 12) for v, want in zip((q, lam, s), (1 - 2j, 2, -1j))]
     [0.0, 0.0, 0.0]
+    >>> round(abs(placement(np.exp(1j * theta), moves, w, pivot=1j, turns=False, most=1.5)[1]), 12)  # scale held at 1.5
+    1.5
     """
     root = np.ones(len(w)) if weights is None else np.sqrt(weights)
     if similar:
@@ -911,6 +939,13 @@ def placement(turn: np.ndarray, moves: np.ndarray, w: np.ndarray, *, pivot: comp
             x, *_ = np.linalg.lstsq(real, np.concatenate((b.real, b.imag)), rcond=None)
             coef = [x[0] + 1j * x[1], x[2]] + ([x[3] + 1j * x[4]] if pivot is None else [])
         q, lam = complex(coef[0]), complex(coef[1])
+        if most is not None and abs(lam) > most:  # the bound holds the scale: λ on |λ| = most, the rest fitted again
+            others = np.delete(a, 1, axis=1)
+            apart = [v - others @ np.linalg.lstsq(others, v, rcond=None)[0] for v in (a[:, 1], b)]
+            lam = most * (np.exp(1j * np.angle(np.vdot(*apart))) if turns else 1.0)
+            rest, *_ = np.linalg.lstsq(others, b - lam * a[:, 1], rcond=None)
+            coef = [rest[0], lam] + list(rest[1:])
+            q = complex(coef[0])
         shift = complex(coef[2]) if pivot is None else origin * (1 - lam)
         if abs(lam) > 1e-6 and (turns or lam.real > 1e-6):
             return q, lam, shift

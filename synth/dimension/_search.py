@@ -291,9 +291,10 @@ class _Evaluate:
     def timed(self, x):
         """(residuals, violations, unknowns) of the unknowns x, or the share of samples where the dyads
         do not close (a float), or None where the pose contradicts the chain.  For a timed path x may
-        leave out the tracer point: the mechanism is then placed by the best similarity and its tracer
-        point is the best for the rest (:meth:`Problem.best_placement`), and the unknowns returned
-        are the placed mechanism's, its tracer point included."""
+        leave out the tracer point: the mechanism is then placed by the best similarity (no larger than a
+        length bound allows, which is then measured where it stands) and its tracer point is the best for
+        the rest (:meth:`Problem.best_placement`), and the unknowns returned are the placed mechanism's, its
+        tracer point included."""
         p = self.problem
         short = len(x) < p.dims
         try:
@@ -307,11 +308,12 @@ class _Evaluate:
                 g = p.dips(lk, every, g)
                 if g is not None and (g < 0).any():
                     return float((g < 0).mean())
-                link = p.tracer_link
-                tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link])
+                link, c = p.tracer_link, p.constraints
+                longest = longest_link(lk) if c.max_length is not None else None
+                tracer, lam, shift, values = p.best_placement(theta[:n, link], t[:n, link], longest)
                 x = self.moved(np.concatenate((x, [0.0, 0.0])), lam, shift, tracer)
-                if p.constraints.pivots is not None or p.constraints.rocker is not None:
-                    lk = p.linkage(x)  # the designer's region and limits are measured where it stands
+                if c.pivots is not None or c.rocker is not None or c.max_length is not None:
+                    lk = p.linkage(x)  # the designer's region, limits and length bound are measured where it stands
             else:
                 values, g, mu = p.move(lk, every)
                 g = p.dips(lk, every, g)
@@ -822,12 +824,14 @@ class _Search:
         fits best and matches the points in order: a few points describe a curve's shape too coarsely
         to rank samples by their descriptors alone; the ranking stops once it has taken
         :data:`RANK_SHARE` of the budget, those left being the farthest by the source's own measure.
-        They are polished in that order while :data:`SAMPLED_SHARE` of the budget lasts, each for at most
-        a :data:`SAMPLED_STARTS`-th of it, and the best of them goes on with :data:`GO_ON_SHARE` more; the
-        rest seed the first population.  A polish that ends early (at its valley's floor) leaves its time to
-        the next starts, not to the one it cut short: on [HCDJ]'s ten points the start that reaches W.Y.
-        Lin's valley was the sixth (seed 4) behind one that crawls for all it is given
-        (benchmarks/DIMENSION.md, *The ten points of [HCDJ]: more starts*)."""
+        They are polished in that order, a polish begun while :data:`SAMPLED_SHARE` of the budget lasts, each for at
+        most a :data:`SAMPLED_STARTS`-th of it (the last may end past the share) and stopped once its least squares
+        crawl (``brief``), and the best of them goes on with :data:`GO_ON_SHARE` more; the rest seed the first
+        population.  A polish that ends early (at its valley's floor, or crawling) leaves its time to the next
+        starts: on [HCDJ]'s ten points the start that reaches W.Y. Lin's valley was the sixth (seed 4) behind one
+        that crawls for all it is given (benchmarks/DIMENSION.md, *The ten points of [HCDJ]: more starts*), and the
+        27th (seed 3) behind polishes that crawled 6 CPU s each far from the points, the share's end then cutting
+        it short (*The half circle at the default budget*)."""
         problem, watch = self.problem, self.watch
         if problem.tracer_link is None or problem.driven is not None:
             return
@@ -847,7 +851,7 @@ class _Search:
             left = SAMPLED_SHARE * watch.budget - watch.used()
             if self.exact or costs[i] >= INFEASIBLE or left <= 0:
                 break
-            self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + min(part, left))
+            self.polish(self.evaluate.complete(starts[i][:problem.searched]), until=watch.used() + part, brief=True)
         if self.best is not None and not self.exact:  # the best of them goes on, its polish cut by its share
             self.polish(self.best[1][:problem.dims], until=watch.used() + GO_ON_SHARE * watch.budget)
 
@@ -968,7 +972,7 @@ class _Search:
         return np.clip(full[:p.searched], lower, upper)
 
     def polish(self, x, grace: bool = False, until: float | None = None, direction: int | None = None,
-               central: bool = False) -> tuple[float, np.ndarray] | None:
+               central: bool = False, brief: bool = False) -> tuple[float, np.ndarray] | None:
         """Bounded least squares from the dimensions ``x`` (untimed: with the inputs found on its
         curve, or, with a ``direction``, x a polished answer's unknowns and input steps); the result kept if it is
         the best yet, and returned as (cost, unknowns) (None where the polish found nothing on the branch).  With
@@ -980,7 +984,8 @@ class _Search:
         [HCDJ]'s ten points the polish crawled along the bound at 8.6e-4 where, held, it reaches the published
         optimum, 4.0199e-4 (benchmarks/DIMENSION.md, *The ten points of [HCDJ] from no guess*); held only once the
         least squares ended, the crawl first took them to their evaluation limit (12 CPU s of a 16-s polish; *more
-        starts*).  With a link-length order the least squares stop once they crawl (:class:`_Crawl`), and an inexact
+        starts*).  With a link-length order, or ``brief`` (a sampled start's polish, the next start waiting:
+        :meth:`from_samples`), the least squares stop once they crawl (:class:`_Crawl`), and under an order an inexact
         answer is polished again with the orders as constraints (:meth:`constrained`; first, where the target has
         fewer equations than unknowns, slid into them along the exact answers, :meth:`slide`): the penalty's hinge
         stalls where an order binds."""
@@ -1014,7 +1019,7 @@ class _Search:
                 best[0], best[1] = cost, np.array(z)
                 if bounded and (self.binds(z) & ~problem.held & ~let_go).any():
                     raise _Reached  # (held from here: along the hinge the least squares crawl to their limit)
-            if problem.order:
+            if problem.order or brief:
                 crawl.seen(best[0])
             return r
 

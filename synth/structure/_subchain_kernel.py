@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["partial_sets", "passes"]
+__all__ = ["by_last_path", "exact_sets", "partial_sets", "passes", "verdict"]
 
 
 @njit(cache=True)
@@ -87,6 +87,70 @@ def _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold):
 
 
 @njit(cache=True)
+def exact_sets(h, is_link, end_a, end_b, least, threshold):
+    """The sets T of :func:`_sets` for every candidate whose path p holds at least ``least[p]``
+    binary links (a short path costs the most at its least weight and brings at most h − 1 links):
+    (base, size, every, start, inside, mask) as :func:`_sets` gives them.  Arguments as :func:`passes`."""
+    P = len(end_a)
+    most_cost = np.zeros(P, dtype=np.int64)
+    most_taken = np.zeros(P, dtype=np.int64)
+    for p in range(P):
+        if end_a[p] >= 0 and least[p] <= h - 1:  # a short path: its least weight costs the most
+            most_cost[p], most_taken[p] = h - 1 - least[p], h - 1
+    return _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
+
+
+@njit(cache=True)
+def verdict(h, is_link, end_a, end_b, row, total, threshold, sets, order, cost, taken, binary_short):
+    """Whether the candidate ``row`` (binary links per path, Σ ``total``) has no proper sub-chain below
+    ``threshold``, decided on ``sets`` = (base, size, every, start, inside) (:func:`_sets` or
+    :func:`exact_sets`: every set that can refuse it).  A set that refuses moves to the front of
+    ``order``; ``cost``, ``taken``, ``binary_short`` are work arrays of one entry a path.  It reads a
+    path of the core only through min(L, h) (:func:`_terms`, and L ≥ 1 or not), a path with a free end
+    not at all, and the rest only through ``total``.  Arguments as :func:`passes`."""
+    base, size, every, start, inside = sets
+    neutral = False
+    n_links = 0
+    for v in range(len(is_link)):
+        neutral |= not is_link[v]
+        n_links += is_link[v]
+    n_binary, longest, ok = 0, 0, True
+    for p in range(len(end_a)):
+        L = row[p]
+        cost[p], taken[p] = _terms(h, neutral, end_a[p] >= 0, L)
+        binary_short[p] = taken[p] > 0  # a short path with binary links
+        n_binary += L >= 1
+        if binary_short[p]:
+            longest = max(longest, L)
+        if end_a[p] >= 0 and end_a[p] == end_b[p]:  # a path closed on one core vertex, alone
+            on_link = 1 if is_link[end_a[p]] else 0
+            if L + on_link >= 2 and L - (h - 1) - (1 - on_link) < threshold:
+                ok = False
+    if n_links + total >= 3 and 1 < threshold:  # two links on one joint: W = 1
+        ok = False
+    for r in range(len(base)):
+        if not ok:
+            break
+        t = order[r]
+        W, X, whole = base[t], size[t], 0
+        for q in range(start[t], start[t + 1]):
+            p = inside[q]
+            W -= cost[p]
+            X += taken[p]
+            whole += binary_short[p]
+        if every[t] and whole == n_binary:  # S_T is the whole chain: leave the longest short path out
+            if longest >= 1:
+                W += h - 1 - longest
+                X -= longest
+            else:
+                X = 0
+        if X >= 2 and W < threshold:
+            ok = False
+            order[r], order[0] = order[0], t  # the set that refused it first next time
+    return ok
+
+
+@njit(cache=True)
 def passes(h, is_link, end_a, end_b, lengths, threshold, out):
     """Write into ``out[i]`` whether candidate i (row i of ``lengths``: binary links per path) has
     no proper sub-chain below ``threshold``: ``least_mobilities(...)[i] >= threshold`` with no joint
@@ -94,10 +158,8 @@ def passes(h, is_link, end_a, end_b, lengths, threshold, out):
     runs from core vertex ``end_a[p]`` to ``end_b[p]`` (−1, −1: a path with a free end)."""
     N, P = lengths.shape
     neutral = False
-    n_links = 0
     for v in range(len(is_link)):
         neutral |= not is_link[v]
-        n_links += is_link[v]
     most_cost = np.zeros(P, dtype=np.int64)
     most_taken = np.zeros(P, dtype=np.int64)
     for i in range(N):
@@ -106,46 +168,14 @@ def passes(h, is_link, end_a, end_b, lengths, threshold, out):
             most_cost[p] = max(most_cost[p], d)
             most_taken[p] = max(most_taken[p], x)
     base, size, every, start, inside, _ = _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
+    sets = (base, size, every, start, inside)
     order = np.arange(len(base))
     cost = np.zeros(P, dtype=np.int64)
     taken = np.zeros(P, dtype=np.int64)
     binary_short = np.zeros(P, dtype=np.int64)
     for i in range(N):
-        n_binary, longest, total, ok = 0, 0, 0, True
-        for p in range(P):
-            L = lengths[i, p]
-            cost[p], taken[p] = _terms(h, neutral, end_a[p] >= 0, L)
-            binary_short[p] = taken[p] > 0  # a short path with binary links
-            n_binary += L >= 1
-            total += L
-            if binary_short[p]:
-                longest = max(longest, L)
-            if end_a[p] >= 0 and end_a[p] == end_b[p]:  # a path closed on one core vertex, alone
-                on_link = 1 if is_link[end_a[p]] else 0
-                if L + on_link >= 2 and L - (h - 1) - (1 - on_link) < threshold:
-                    ok = False
-        if n_links + total >= 3 and 1 < threshold:  # two links on one joint: W = 1
-            ok = False
-        for r in range(len(base)):
-            if not ok:
-                break
-            t = order[r]
-            W, X, whole = base[t], size[t], 0
-            for q in range(start[t], start[t + 1]):
-                p = inside[q]
-                W -= cost[p]
-                X += taken[p]
-                whole += binary_short[p]
-            if every[t] and whole == n_binary:  # S_T is the whole chain: leave the longest short path out
-                if longest >= 1:
-                    W += h - 1 - longest
-                    X -= longest
-                else:
-                    X = 0
-            if X >= 2 and W < threshold:
-                ok = False
-                order[r], order[0] = order[0], t  # the set that refused it first next time
-        out[i] = ok
+        out[i] = verdict(h, is_link, end_a, end_b, lengths[i], lengths[i].sum(), threshold, sets, order, cost, taken,
+                         binary_short)
     return out
 
 
@@ -157,13 +187,15 @@ def partial_sets(h, is_link, end_a, end_b, least, threshold, position):
     written as the positions ``position[p]`` of a search order, the sets ordered by the position of
     their last path: ``bucket[e]`` … ``bucket[e + 1] − 1`` are the sets whose paths are all placed
     once the path at position e is.  Arguments as :func:`passes`, ``least`` per path."""
-    P = len(end_a)
-    most_cost = np.zeros(P, dtype=np.int64)
-    most_taken = np.zeros(P, dtype=np.int64)
-    for p in range(P):
-        if end_a[p] >= 0 and least[p] <= h - 1:  # a short path: its least weight costs the most
-            most_cost[p], most_taken[p] = h - 1 - least[p], h - 1
-    base, size, every, start, inside, mask = _sets(h, is_link, end_a, end_b, most_cost, most_taken, threshold)
+    return by_last_path(is_link, exact_sets(h, is_link, end_a, end_b, least, threshold), position, len(end_a))
+
+
+@njit(cache=True)
+def by_last_path(is_link, sets, position, n_positions):
+    """:func:`partial_sets` of the sets ``sets`` (as :func:`exact_sets` gives them), for a search whose
+    ``n_positions`` positions ``position[p]`` may each place several paths."""
+    base, size, every, start, inside, mask = sets
+    P = n_positions
     joints = 0
     for v in range(len(is_link)):
         if not is_link[v]:

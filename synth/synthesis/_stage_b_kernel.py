@@ -61,6 +61,8 @@ import tempfile
 import numpy as np
 from numba import njit
 
+from ..structure._subchain_kernel import by_last_path, verdict
+
 __all__ = ["fixed_placements", "fixed_total", "place", "tight_count"]
 
 
@@ -341,28 +343,41 @@ def _ways(sizes, count, total, ways):
 
 
 @njit(cache=True)
-def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, g):
-    """Fix(g): the placements that pass the pebble game of :func:`place`, taken up to the order
-    of parallel strings, that the permutation ``g`` of the bundles of parallel strings leaves
-    unchanged.
+def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, g, k2, l2, exact):
+    """Fix(g): the placements that pass the pebble game of :func:`place` (and, with multiple joints,
+    its second game and the exact test), taken up to the order of parallel strings, that the
+    permutation ``g`` of the bundles of parallel strings leaves unchanged.
 
     Bundle q is ``width[q]`` parallel strings between the game's vertices ``a_end[q]`` and
     ``b_end[q]`` (−1 for strings that are never short: loops, strings to single-joint links), the
     first of at least ``least[q]`` binary links, the others of at least ``later[q]``; Σ w = n2.
     A placement up to the order of parallel strings is a non-decreasing vector per bundle, and g
-    leaves it unchanged when every bundle of a cycle of g holds the same vector.  The rule sees a string only through its *pattern*
-    min(w, C): a string of C = h − 1 binary links or more costs nothing.  So the search gives
-    each cycle's vector a non-decreasing pattern, slot by slot (every string of the slot, one per
-    bundle of the cycle, takes C − w units in the game), the long slots last; for a complete
-    pattern the long slots' weights are counted, not listed: r long slots of a cycle of s bundles
-    are a partition into at most r parts, coins s·1 … s·r of a coin change count (``_ways``).
+    leaves it unchanged when every bundle of a cycle of g holds the same vector.  The rule sees a
+    string only through its *pattern* min(w, P): with simple joints P = C = h − 1, a string of C
+    binary links or more costs nothing; with multiple joints P = h, since the exact test also tells
+    a string of exactly h − 1 (which brings its links to a set at no cost) from a longer one
+    (:func:`synth.structure._subchain_kernel.verdict` reads a string of the core only through
+    min(w, h), loops included).  So the search gives each cycle's vector a non-decreasing pattern,
+    slot by slot (every string of the slot, one per bundle of the cycle, takes C − w units in each
+    game), the long slots (pattern P) last; for a complete pattern the exact test, where given,
+    decides on one placement of it (each long slot at its least), and the long slots' weights are
+    counted, not listed: r long slots of a cycle of s bundles are a partition into at most r parts,
+    coins s·1 … s·r of a coin change count (``_ways``).
     Prunes: the binary links taken so far (long slots at their least, the slots to come at theirs)
-    at most n2; the excess the long slots will carry at most ``x_most`` (the slots to come taken
-    long at their least); ``vertex_need`` as in :func:`place`.  Other arguments as :func:`place`.
+    at most n2; the excess X the long strings will carry (above C, and above their least on strings
+    the game never sees) at most ``x_most`` (the slots to come taken at their most without excess);
+    ``vertex_need`` as in :func:`place`.  ``exact`` = (is_link, core_a, core_b, sets, total,
+    threshold, first): the exact test's core (its ends per string of H, loops on the core), its sets
+    (:func:`synth.structure._subchain_kernel.exact_sets`), Σ of a placement's path lengths, and the
+    first string of each bundle; an empty ``core_a`` for simple joints, where the game is the rule.
+    Other arguments as :func:`place`.
     """
     Q = len(a_end)
     if Q == 0:
         return 0
+    is_link, core_a, core_b, sets, total, threshold, first = exact
+    tested = len(core_a) > 0
+    P = C + 1 if tested else C  # the pattern of a long string
     # the cycles of g on the bundles; their slots, cycle after cycle (slot_cycle), first bundle first
     cycle_of = np.full(Q, -1, dtype=np.int64)
     size = np.zeros(Q, dtype=np.int64)
@@ -383,12 +398,12 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
     for c in range(nc):
         S += width[members[start[c]]]
     slot_cycle = np.zeros(S, dtype=np.int64)
-    first_slot = np.zeros(S, dtype=np.bool_)
+    slot_index = np.zeros(S, dtype=np.int64)  # the slot's place in its bundles
     i = 0
     for c in range(nc):
         for j in range(width[members[start[c]]]):
             slot_cycle[i] = c
-            first_slot[i] = j == 0
+            slot_index[i] = j
             i += 1
     lowest = np.zeros(S + 1, dtype=np.int64)  # binary links the slots i … take at least
     most = np.zeros(S + 1, dtype=np.int64)  # … and at most without excess (every one long at its least)
@@ -399,61 +414,127 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
         most[i] = most[i + 1] + size[c] * (least[q] if a_end[q] < 0 else max(C, least[q]))
     pebbles = k.copy()
     arcs = np.zeros((M, M), dtype=np.int64)
+    pebbles2 = k2.copy()
+    arcs2 = np.zeros((M, M), dtype=np.int64)
     seen = np.zeros(M, dtype=np.bool_)
     parent = np.zeros(M, dtype=np.int64)
     stack = np.zeros(M, dtype=np.int64)
+    # the deficit the slots i … can hold in the games on their own (the rank of their units, as in place)
+    rank = np.zeros(S + 1, dtype=np.int64)
+    rank2 = np.zeros(S + 1, dtype=np.int64)
+    for i in range(S - 1, -1, -1):
+        rank[i], rank2[i] = rank[i + 1], rank2[i + 1]
+        c = slot_cycle[i]
+        for m in range(start[c], start[c + 1] if a_end[members[start[c]]] >= 0 else start[c]):
+            q = members[m]
+            for _ in range(C):
+                if not _accept(a_end[q], b_end[q], l, pebbles, arcs, seen, parent, stack):
+                    break
+                rank[i] += 1
+            for _ in range(C if l2 >= 0 else 0):
+                if not _accept(a_end[q], b_end[q], l2, pebbles2, arcs2, seen, parent, stack):
+                    break
+                rank2[i] += 1
+        if l2 < 0:
+            rank2[i] = rank[i]
+    pebbles[:] = k
+    arcs[:, :] = 0
+    pebbles2[:] = k2
+    arcs2[:, :] = 0
+    B0 = n2  # X − D = B0 for every placement: X the excess, D the deficit (as in place)
+    for q in range(Q):
+        B0 -= width[q] * (C if a_end[q] >= 0 else least[q])
     at = np.zeros(M, dtype=np.int64)  # deficit on the strings of each vertex so far
     open_ = np.zeros(M, dtype=np.int64)  # short-able strings of each vertex not yet given a pattern
     for q in range(Q):
         if a_end[q] >= 0:
             open_[a_end[q]] += width[q]
             open_[b_end[q]] += width[q]
-    choice = np.full(S, -1, dtype=np.int64)  # pattern of slot i: 0 … C − 1 exact, C long
+    deficit = np.zeros(S + 1, dtype=np.int64)  # deficit of the slots before slot i
+    choice = np.full(S, -1, dtype=np.int64)  # pattern of slot i: 0 … P − 1 exact, P long
     placed = np.zeros(S, dtype=np.bool_)  # slot i's pattern is counted in ``at`` and ``open_``
     units = np.zeros(S, dtype=np.int64)  # units slot i holds in the game (over its bundles)
+    units2 = np.zeros(S, dtype=np.int64)  # … in the second game
+    weight = np.zeros(S, dtype=np.int64)  # the binary links of each string of slot i (long: its least)
     used = np.zeros(S + 1, dtype=np.int64)  # binary links taken before slot i (long slots: their least)
+    excess = np.zeros(S + 1, dtype=np.int64)  # excess those carry at least
     coins = np.zeros(S, dtype=np.int64)
     n_coins = np.zeros(S + 1, dtype=np.int64)  # coins before slot i
     run = np.zeros(S + 1, dtype=np.int64)  # long slots of slot i's cycle before it
     ways = np.zeros(n2 + 1, dtype=np.int64)
+    row = np.zeros(len(core_a), dtype=np.int64)  # one placement of a complete pattern, per string of H
+    base, size_t, every, start_t, inside, _ = sets
+    whole = (base, size_t, every, start_t, inside)  # every set that may refuse a pattern, for the end
+    order = np.arange(len(base))
+    position = np.zeros(len(core_a), dtype=np.int64)  # the slot that gives each string of H its pattern
+    for j in range(S if tested else 0):
+        cj = slot_cycle[j]
+        for m in range(start[cj], start[cj + 1]):
+            position[first[members[m]] + slot_index[j]] = j
+    # the sets with a multiple joint, checked as soon as their strings have patterns (as place does)
+    early = by_last_path(is_link, sets, position, S if tested else 0)
+    early_order = np.arange(len(early[1]))
+    cost = np.zeros(len(core_a), dtype=np.int64)
+    taken = np.zeros(len(core_a), dtype=np.int64)
+    binary_short = np.zeros(len(core_a), dtype=np.int64)
     fixed = 0
     i = 0
     while i >= 0:
         c = slot_cycle[i]
         q0 = members[start[c]]
         short_able = a_end[q0] >= 0
+        # a pattern below P for: the game's strings, and the exact test's loops (on its core)
+        patterned = short_able or (tested and core_a[first[q0]] >= 0)
         d = C - choice[i] if 0 <= choice[i] < C else 0
         if placed[i]:  # take slot i back, bundle by bundle
-            left = units[i]
+            left, left2 = units[i], units2[i]
             for m in range(start[c], start[c + 1]):
                 q = members[m]
                 for _ in range(min(left, d)):
                     _take_back(a_end[q], b_end[q], pebbles, arcs)
+                for _ in range(min(left2, d)):
+                    _take_back(a_end[q], b_end[q], pebbles2, arcs2)
                 left -= min(left, d)
+                left2 -= min(left2, d)
                 at[a_end[q]] -= d
                 at[b_end[q]] -= d
                 open_[a_end[q]] += 1
                 open_[b_end[q]] += 1
             placed[i] = False
             units[i] = 0
-        if choice[i] < 0 and not first_slot[i]:
+            units2[i] = 0
+        if choice[i] < 0 and slot_index[i]:
             choice[i] = choice[i - 1] - 1  # non-decreasing in a bundle
         choice[i] += 1
-        if not short_able and choice[i] < C:
-            choice[i] = C  # never short: long at once
-        if choice[i] > C:
+        if not patterned and choice[i] < P:
+            choice[i] = P  # never short: long at once
+        if choice[i] > P:
             choice[i] = -1
             i -= 1
             continue
         p = choice[i]
-        if p < C and p < (least[q0] if first_slot[i] else later[q0]):
+        if p < P and p < (later[q0] if slot_index[i] else least[q0]):
             continue
-        cost = size[c] * (p if p < C else max(C, least[q0]) if short_able else least[q0])
-        if used[i] + cost + lowest[i + 1] > n2:
-            choice[i] = C  # every later choice costs more: nothing left to try
+        if p < P:
+            w = p
+        elif slot_index[i] and choice[i - 1] == P:
+            w = weight[i - 1]  # (non-decreasing: at least the long slot before it)
+        else:
+            w = max(P, least[q0]) if patterned else least[q0]
+        weight[i] = w
+        if used[i] + size[c] * w + lowest[i + 1] > n2:
+            choice[i] = P  # every later choice costs more: nothing left to try
             continue
-        if n2 - used[i] - cost - most[i + 1] > x_most:
-            continue  # too much deficit: the long slots would carry more excess than the rule allows
+        x = excess[i] + size[c] * (max(w - C, 0) if short_able else w - least[q0])
+        x_least = x + max(n2 - used[i] - size[c] * w - most[i + 1], 0)  # the excess X will be at least
+        if x_least > x_most:
+            continue  # the long strings would carry more excess than the rule allows
+        dd = size[c] * (C - p) if short_able and p < C else 0
+        if x_least - B0 - deficit[i] - dd > min(rank[i + 1], rank2[i + 1]):
+            # the slots to come cannot hold the deficit still missing, nor with any later choice (each
+            # unit more on the slot takes a unit of deficit off it and a unit of excess at most)
+            choice[i] = P
+            continue
         if short_able:
             d = C - p if p < C else 0
             for m in range(start[c], start[c + 1]):
@@ -476,31 +557,47 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
                         ok = False
                         break
                     units[i] += 1
+                for _ in range(d if l2 >= 0 else 0):
+                    if not ok or not _accept(a_end[q], b_end[q], l2, pebbles2, arcs2, seen, parent, stack):
+                        ok = False
+                        break
+                    units2[i] += 1
             if not ok:
                 continue
-        used[i + 1] = used[i] + cost
+        if tested and not _sets_hold(weight, i, C, threshold, early, early_order):
+            continue
+        used[i + 1] = used[i] + size[c] * w
+        excess[i + 1] = x
+        deficit[i + 1] = deficit[i] + dd
         n_coins[i + 1] = n_coins[i]
         run[i + 1] = 0
-        if p == C:  # the r-th long slot of its cycle: a coin of r·s
-            run[i + 1] = (0 if first_slot[i] else run[i]) + 1
+        if p == P:  # the r-th long slot of its cycle: a coin of r·s
+            run[i + 1] = (run[i] if slot_index[i] else 0) + 1
             coins[n_coins[i]] = run[i + 1] * size[c]
             n_coins[i + 1] += 1
-        if i == S - 1:
-            fixed += _ways(coins, n_coins[i + 1], n2 - used[i + 1], ways)
+        if i < S - 1:
+            i += 1
             continue
-        i += 1
+        if tested:  # the exact test on one placement of the pattern (a string to a single-joint link holds it too)
+            for e in range(len(core_a)):
+                row[e] = weight[position[e]] + (core_a[e] < 0)
+            if not verdict(C + 1, is_link, core_a, core_b, row, total, threshold, whole, order, cost, taken,
+                           binary_short):
+                continue
+        fixed += _ways(coins, n_coins[i + 1], n2 - used[i + 1], ways)
     return fixed
 
 
 @njit(cache=True)
-def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group):
+def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group, k2, l2, exact):
     """Σ Fix(g) over the rows of ``group``, permutations of the bundles of parallel strings
     (:func:`fixed_placements`): by Burnside's lemma, the orbits of the valid placements times the
     number of rows when the rows are every permutation of the bundles that an automorphism of H
     makes (identity included)."""
     total = 0
     for r in range(group.shape[0]):
-        total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group[r])
+        total += fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, vertex_need, group[r],
+                                  k2, l2, exact)
     return total
 
 

@@ -226,8 +226,9 @@ def load_kernel() -> None:
 BY_SEARCH = {
     "group": "the permutations of their branch multigraph's bundles of parallel strings are more than 4 096, too "
              "many to list",
-    "multiple_joint": "they have a multiple joint, where the pebble game is not the exact sub-chain test",
     "empty_strings": "h + threshold ≤ 2, where two strings between the same links may both be empty",
+    "joint_pairs": "they have a multiple joint and h + threshold ≤ 2, where two joints on the same links pass the "
+                   "sub-chain rule on the branch multigraph and only the built chain tells them from one joint",
     "crank": "a crank requirement is checked on each chain",
     "exempt": "the chain's W is below the least mobility its proper sub-chains must keep and it has no free end, "
               "where the pebble game's rule, which would ask it of the whole chain too, is not the exact test",
@@ -289,22 +290,15 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         after[e] = least_e
     C, l = conv.h - 1, conv.h + conv.threshold
     b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
-    x_most, vertex_need = _deficit_bounds(k, l, b0, n2, conv.h)
-    if l2 >= 0:  # the tighter of the two games' bounds
-        x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, conv.h)
-        x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
+    x_most, vertex_need = _game_bounds(k, l, k2, l2, b0, n2, conv.h)
     perms, whole_group = graph.bundle_group()
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
     if not listing:  # a count: any order of the strings keeps one placement per orbit
-        joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
-        order = _search_order(edges, a_list, b_list, M, joints)
+        order, _, perms = _count_order(graph, inner, a_list, b_list, perms)
         a_end, b_end, least, after = a_end[order], b_end[order], least[order], after[order]
         back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
-        if perms:  # bundle q_order[i] is bundle i of the search: relabel the permutations of the bundles
-            edges = tuple(edges[e] for e in order)
-            q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(edges)]
-            perms = np.argsort(q_order)[np.array(perms, dtype=np.int64)[:, q_order]]
+        edges = tuple(edges[e] for e in order)
     group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
     if rows and not listing and check_sets and conv.threshold > 0:  # (else the first game is the exact rule)
         is_link, ends = _core(graph.vertices, graph.edges)
@@ -336,6 +330,19 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
               conv.threshold, sets)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
+
+
+def _count_order(graph: Contracted, inner: dict[int, int], a_list: list[int], b_list: list[int], perms):
+    """The count's order of the strings of H (:func:`_search_order`, the multiple joints first), the
+    bundles of parallel strings in that order (bundle ``q_order[i]`` of H is bundle i of the search),
+    and the permutations of the bundles ``perms`` (rows) relabelled to it."""
+    import numpy as np
+
+    joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
+    order = _search_order(graph.edges, a_list, b_list, len(inner), joints)
+    q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(tuple(graph.edges[e] for e in order))]
+    perms = np.array(perms, dtype=np.int64).reshape(len(perms), len(q_order))
+    return order, q_order, np.argsort(q_order)[perms[:, q_order]]
 
 
 def _counted_without_visiting(M: int, l2: int, x_most: int, l: int, h: int) -> bool:
@@ -441,6 +448,18 @@ def _deficit_bounds(k, l: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarr
     return (slack if M >= 2 else n2), (k - slack if M >= 3 else np.full(M, -n2 * h, dtype=np.int64))
 
 
+def _game_bounds(k, l: int, k2, l2: int, b0: int, n2: int, h: int) -> tuple[int, "np.ndarray"]:
+    """:func:`_deficit_bounds` of the first game, or with multiple joints (a second game, ``l2`` ≥ 0) the
+    tighter of the two games' bounds."""
+    import numpy as np
+
+    x_most, vertex_need = _deficit_bounds(k, l, b0, n2, h)
+    if l2 >= 0:
+        x_most2, vertex_need2 = _deficit_bounds(k2, l2, b0, n2, h)
+        x_most, vertex_need = min(x_most, x_most2), np.maximum(vertex_need, vertex_need2)
+    return x_most, vertex_need
+
+
 def _game_ends(graph: Contracted, inner: dict[int, int]) -> tuple[list[int], list[int]]:
     """The ends of each string of H among the pebble game's vertices ``inner``; −1 for a string
     that is never short (a loop, a string to a single-joint link)."""
@@ -450,16 +469,19 @@ def _game_ends(graph: Contracted, inner: dict[int, int]) -> tuple[list[int], lis
 
 def orbits_apply(code: Code, graph: Contracted, conv: Conventions) -> bool:
     """Whether :func:`count_orbits` counts this unit's chains by Burnside's lemma: where the
-    kernel's pebble game is the exact rule (simple joints, :func:`_kernel_applies`) and two strings
-    between the same two links never both hold no binary link (h + threshold > 2: the rule already
-    refuses it, so the search need not order parallel strings)."""
+    kernel applies (:func:`_kernel_applies`) and two strings between the same two links never both
+    hold no binary link (h + threshold > 2: the rule already refuses it, so the search need not
+    order parallel strings).  With multiple joints the pebble games prune and the exact test decides
+    each pattern."""
     return _orbits_fault(code, graph, conv) is None
 
 
 def _orbits_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
-    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None."""
-    if not all(vertex.is_link for vertex in graph.vertices):
-        return "multiple_joint"
+    """Why :func:`orbits_apply` says no (a key of :data:`BY_SEARCH`), or None.  With a multiple joint,
+    h + threshold ≤ 2 is also where two joints on the same links pass the sub-chain rule (W = 2 − h) and
+    only the built chain tells them from one joint: the case :func:`count_realised` leaves to the chains."""
+    if conv.h + conv.threshold <= 2 and any(vertex.is_joint for vertex in graph.vertices):
+        return "joint_pairs"
     if conv.h + conv.threshold <= 2:
         return "empty_strings"
     return _kernel_fault(code, graph, conv)
@@ -474,7 +496,11 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     the placements up to the order of parallel strings: (1/|G/P|) Σ Fix(g) over G/P
     (:func:`synth.synthesis._stage_b_kernel.fixed_placements`: a search over the patterns
     min(w, h − 1), the long strings' weights by a coin change count).  No placement is listed and
-    no lex-least test is made.  Where it does not apply (:func:`orbits_apply`) or G/P is too
+    no lex-least test is made.  With multiple joints the patterns are min(w, h): the exact sub-chain
+    test reads a string of its core only through that (a string of exactly h − 1 brings its links to a
+    set at no cost, a longer one nothing), so validity is a property of the pattern; the two pebble
+    games and the exact test's sets with a multiple joint prune the search, and the exact test decides
+    each complete pattern on one of its placements (docs/theory.md, "Counting by orbits").  Where it does not apply (:func:`orbits_apply`) or G/P is too
     large to list (more than 4096 elements, :meth:`Contracted.bundle_group`), the unit is counted
     as :func:`count_realised` counts it (docs/theory.md), and ``stats`` gets 1 under
     ``"by_search_" + key``, the key of :data:`BY_SEARCH` that says why.
@@ -498,26 +524,57 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
     edges = graph.edges
     t0 = perf_counter()
     picked = np.flatnonzero(_bundle_starts(edges))
-    # the permutations of the bundles the automorphisms make (the identity among them), each once
-    bundles = np.vstack([np.arange(len(picked)), np.array(perms, dtype=np.int64).reshape(len(perms), len(picked))])
+    width = np.diff(np.append(picked, len(edges)))
     lows, parallel = _string_limits(graph, conv)
     later = np.array(lows, dtype=np.int64)  # the least weight of the second string of a bundle on
     for e, least in parallel:
         later[e - 1] = least
-    inner, k, _, _ = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     a_list, b_list = _game_ends(graph, inner)
+    perms = np.array(perms, dtype=np.int64).reshape(len(perms), len(picked))
+    if l2 >= 0:  # multiple joints: the bundles in the count's order, so that the exact test's sets close early
+        _, q_order, perms = _count_order(graph, inner, a_list, b_list, perms)
+        picked, width = picked[q_order], width[q_order]
+    # the permutations of the bundles the automorphisms make (the identity among them), each once
+    bundles = np.vstack([np.arange(len(picked)), perms])
     C, l, n2 = conv.h - 1, conv.h + conv.threshold, code.count(2)
-    x_most, vertex_need = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2,
-                                          conv.h)
+    b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
+    x_most, vertex_need = _game_bounds(k, l, k2, l2, b0, n2, conv.h)
     total = fixed_total(len(inner), np.array(a_list, dtype=np.int64)[picked], np.array(b_list, dtype=np.int64)[picked],
-                        np.array(lows, dtype=np.int64)[picked], later[picked], np.diff(np.append(picked, len(edges))),
-                        n2, k, C, l, x_most, vertex_need, bundles)
+                        np.array(lows, dtype=np.int64)[picked], later[picked], width, n2, k, C, l, x_most, vertex_need,
+                        bundles, k2, l2, _exact_arguments(graph, conv, lows, picked, n2) if l2 >= 0 else _no_exact_test())
     orbits, rest = divmod(int(total), len(bundles))
     if rest:  # Burnside's sum is a multiple of |G/P|; anything else is a fault of this engine
         raise RuntimeError(f"Burnside's sum {total} over the {len(bundles)} permutations of bundles of a branch "
                            f"multigraph of {code} is not a multiple of their number")
     _add(stats, cpsat_s=perf_counter() - t0)
     return orbits
+
+
+def _exact_arguments(graph: Contracted, conv: Conventions, lows: list[int], firsts, n2: int) -> tuple:
+    """The exact sub-chain test as :func:`~synth.synthesis._stage_b_kernel.fixed_placements` runs it on a
+    pattern with multiple joints: the test's core (:func:`_core`), its sets for weights from ``lows``
+    (:func:`synth.structure._subchain_kernel.exact_sets`), Σ of a placement's path lengths (the binary
+    links and one per string to a single-joint link), the threshold, and the first string of each bundle."""
+    import numpy as np
+
+    from ..structure._subchain_kernel import exact_sets
+
+    is_link, ends = _core(graph.vertices, graph.edges)
+    is_link = np.array(is_link, dtype=np.bool_)
+    core_a, core_b = np.ascontiguousarray(ends[:, 0]), np.ascontiguousarray(ends[:, 1])
+    least = np.array(lows, dtype=np.int64) + (core_a < 0)
+    sets = exact_sets(conv.h, is_link, core_a, core_b, least, conv.threshold)
+    return is_link, core_a, core_b, sets, n2 + int((core_a < 0).sum()), conv.threshold, np.asarray(firsts, dtype=np.int64)
+
+
+@lru_cache(maxsize=1)
+def _no_exact_test() -> tuple:
+    """:func:`_exact_arguments` for simple joints, where the pebble game is the exact rule: no core."""
+    import numpy as np
+
+    empty, no = np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.bool_)
+    return no, empty, empty, (empty, empty, no, np.zeros(1, dtype=np.int64), empty, empty), 0, 0, empty
 
 
 def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:

@@ -537,17 +537,15 @@ class _ChainCount:
 
 def _check_method(method: str, query: ChainQuery) -> None:
     """Refuse an unknown counting method, and counting by orbits where some chain needs a rule or a check
-    Burnside's count over patterns does not make (prismatic pairs, cranks, multiple joints, two empty
-    parallel strings)."""
+    Burnside's count over patterns does not make (prismatic pairs, cranks, two empty parallel strings, which
+    with h = 2 and rigid sub-chains allowed is also two joints on the same links)."""
     if method not in COUNT_METHODS:
         raise InvalidOption(f"the counting method is one of {', '.join(COUNT_METHODS)}, not {method!r}")
     if method == "orbits":
         why = ("chains with prismatic pairs are counted from their revolute skeletons' listings" if query.prismatic
                is not None else "a crank requirement is checked on each chain" if query.cranks else
                "with h = 2 and rigid sub-chains allowed two strings between the same links may both be empty"
-               if query.h + (0 if query.rigid else 1) <= 2 else
-               "a chain with multiple joints needs the exact sub-chain test, which Burnside's count over patterns "
-               "does not make" if _allows_multiple_joints(query) else None)
+               if query.h + (0 if query.rigid else 1) <= 2 else None)
         if why:
             raise InvalidOption(f"these chains cannot be counted by orbits ({why}): use the listing method")
     if method == "tight-reverse":

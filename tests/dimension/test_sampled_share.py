@@ -44,9 +44,9 @@ def canned_polishes(search, seconds) -> list:
     polished = []
     dims, steps = search.problem.dims, search.problem.points - 1
 
-    def polish(x, grace=False, until=None):
+    def polish(x, grace=False, until=None, brief=False):
         given = until - search.watch.used()
-        polished.append((np.array(x), given))
+        polished.append((np.array(x), given, brief))
         search.watch.clock.now += min(seconds(len(polished) - 1), given)
         z = np.concatenate((x[:dims], np.full(steps, 0.3)))
         cost = 1e-4 / len(polished)
@@ -65,10 +65,12 @@ def test_the_starts_are_polished_while_the_share_lasts_each_for_a_part_of_it():
     polished = canned_polishes(search, lambda k: 1e9 if k == 0 else 4.0)
     search.from_samples(lambda *_: starts, 0)
     part = SAMPLED_SHARE * BUDGET / SAMPLED_STARTS
-    assert [given for _, given in polished[:2]] == [part, part]
+    assert [given for _, given, _ in polished[:2]] == [part, part]
     assert len(polished) == 1 + 10 + 1  # (50 − 10) / 4 more, then the going on
     assert polished[-1][1] == GO_ON_SHARE * BUDGET
-    assert len({tuple(np.round(x[:search.problem.searched], 12)) for x, _ in polished[:-1]}) == 11  # all distinct
+    assert len({tuple(np.round(x[:search.problem.searched], 12)) for x, _, _ in polished[:-1]}) == 11  # all distinct
+    # the starts' polishes stop once they crawl (the next start waits); the best's going on does not
+    assert [brief for _, _, brief in polished] == [True] * 11 + [False]
     assert search.best[0] == 1e-4 / 12
 
 
@@ -77,3 +79,16 @@ def test_polishes_that_end_at_once_let_every_start_be_polished():
     polished = canned_polishes(search, lambda k: 0.0)
     search.from_samples(lambda *_: starts, 0)
     assert len(polished) == len(starts) + 1
+
+
+def test_the_last_start_begun_within_the_share_is_given_its_whole_part():
+    """Begun 5 s before the share's end, the seventh start is given a whole part (10 s), not the 5 s left: on
+    [HCDJ]'s ten points (seed 3, 60 CPU s) the share's end cut the start that reaches W.Y. Lin's valley at 4.43e-4,
+    and the mirror valley's answer went on (benchmarks/DIMENSION.md, *The half circle at the default budget*)."""
+    search, starts = search_and_starts()
+    polished = canned_polishes(search, lambda k: 1e9 if k == 0 else 7.0)
+    search.from_samples(lambda *_: starts, 0)
+    part = SAMPLED_SHARE * BUDGET / SAMPLED_STARTS
+    begun = np.cumsum([part] + [7.0] * 5)  # 10, 17, …, 45: the seventh begins at 45
+    assert begun[-1] < SAMPLED_SHARE * BUDGET
+    assert len(polished) == 1 + 6 + 1 and polished[6][1] == part

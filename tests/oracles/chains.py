@@ -286,15 +286,20 @@ def count_by_code(chains) -> dict:
 
 
 def engine_counts_by_key(by_code: dict) -> dict:
-    """The engine's counts by code name (``'440/0'``) under the oracle's keys ``(assortment, ())``,
-    trailing zero counts stripped: only the names are read by the engine's parser, no count."""
+    """The engine's counts by code name (``'440/0'``, ``'6301/2'``) under the oracle's keys
+    ``(assortment, composition)``, trailing zero counts stripped (a code that writes no composition has
+    its v ternary joints): only the names are read by the engine's parser, no count."""
     from synth import Code
 
+    def stripped(counts):
+        counts = list(counts)
+        while counts and counts[-1] == 0:
+            counts.pop()
+        return tuple(counts)
+
     def key(name):
-        assortment = list(Code.parse(name).assortment)
-        while assortment and assortment[-1] == 0:
-            assortment.pop()
-        return tuple(assortment), ()
+        code = Code.parse(name)
+        return stripped(code.assortment), stripped(code.composition or ((code.v,) if code.v else ()))
 
     return {key(name): n for name, n in by_code.items()}
 
