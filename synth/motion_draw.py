@@ -382,15 +382,20 @@ def _frames(motion: Motion, count: int) -> np.ndarray:
     return ok[np.unique(np.linspace(0, len(ok) - 1, count).round().astype(int))]
 
 
+def _box(elements: list[dict]) -> tuple[np.ndarray, np.ndarray]:
+    """The lower-left and upper-right corners around every element at every frame (a circle whole)."""
+    corners = np.array([[0.0, 0.0], [-1.0, -1.0], [1.0, 1.0]])[:, None, :]
+    pts = np.concatenate([(e["frames"].reshape(-1, 2) + e.get("r", 0.0) * corners).reshape(-1, 2) for e in elements])
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    return pts.min(axis=0), pts.max(axis=0)
+
+
 class _Canvas:
     """World coordinates to pixels: the box around every element at every frame, ``size`` pixels on
     its longer side, y upwards on the page."""
 
     def __init__(self, elements: list[dict], size: int):
-        pts = np.concatenate([e["frames"].reshape(-1, 2) for e in elements])
-        pts = pts[np.isfinite(pts).all(axis=1)]
-        radii = max([e.get("r", 0.0) for e in elements] + [0.0])
-        lo, hi = pts.min(axis=0) - radii, pts.max(axis=0) + radii
+        lo, hi = _box(elements)
         span = max(float((hi - lo).max()), 1e-9)
         margin = 0.06 * span
         self.lo, self.scale = lo - margin, size / (span + 2 * margin)
@@ -594,14 +599,21 @@ def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> N
     ax.axis("off")
 
 
-def _figure(canvas: _Canvas, dpi: int):
+def _figure(canvas: _Canvas, dpi: int, title: str):
+    """A figure of the canvas's pixels at ``dpi`` under a strip with the title, wrapped to the
+    figure's width (a tall, narrow mechanism's title takes two lines rather than being cut)."""
+    import textwrap
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig = plt.figure(figsize=(canvas.width / dpi, canvas.height / dpi + 0.3), dpi=dpi)
-    ax = fig.add_axes([0, 0, 1, canvas.height / (canvas.height + 0.3 * dpi)])
+    lines = textwrap.wrap(title, max(20, int(canvas.width / dpi * 72 / (9 * 0.6)))) or [""]
+    strip = 0.3 + 0.16 * (len(lines) - 1)  # inches
+    fig = plt.figure(figsize=(canvas.width / dpi, canvas.height / dpi + strip), dpi=dpi)
+    ax = fig.add_axes([0, 0, 1, canvas.height / (canvas.height + strip * dpi)])
+    fig.suptitle("\n".join(lines), fontsize=9, y=0.995, va="top")
     return fig, ax
 
 
@@ -643,10 +655,9 @@ def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, 
             return
         import matplotlib.pyplot as plt
 
-        fig, ax = _figure(canvas, dpi)
+        fig, ax = _figure(canvas, dpi, title)
         try:
             _draw_matplotlib(ax, elements, canvas, 0)
-            fig.suptitle(title, fontsize=9, y=0.995, va="top")
             save_figure(fig, path, dpi=dpi)
         finally:
             plt.close(fig)
@@ -678,9 +689,7 @@ def _link_numbers(linkage: Linkage) -> list[dict]:
 def _scale_bar(elements: list[dict]) -> list[dict]:
     """A bar of a round length (1, 2 or 5 × 10^k, at most a third of the drawing's width) under the
     drawing, with its length written beside it: the drawing is to scale, in the linkage's unit."""
-    pts = np.concatenate([e["frames"].reshape(-1, 2) for e in elements])
-    pts = pts[np.isfinite(pts).all(axis=1)]
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    lo, hi = _box(elements)
     span = float((hi - lo).max())
     third = (float(hi[0] - lo[0]) or span) / 3
     unit = 10.0 ** math.floor(math.log10(third))
@@ -752,13 +761,11 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
             from .execution.progress import Progress
 
             bar = Progress(len(steps), "frames", desc="animation")
-        fig, ax = _figure(canvas, 100)
+        fig, ax = _figure(canvas, 100, _title(motion.linkage))
         try:
             for i in range(len(steps)):
                 ax.clear()
                 _draw_matplotlib(ax, elements, canvas, i)
-                if i == 0:
-                    fig.suptitle(_title(motion.linkage), fontsize=9, y=0.995, va="top")
                 fig.canvas.draw()
                 rgba = np.asarray(fig.canvas.buffer_rgba())
                 images.append(Image.fromarray(rgba[..., :3].copy()).quantize(colors=64))

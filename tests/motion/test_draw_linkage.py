@@ -71,9 +71,9 @@ def test_at_poses_the_input_on_the_branch_and_keeps_every_link_rigid(saved, tmp_
 
 def test_a_png_is_the_size_asked(saved, tmp_path):
     out = tmp_path / "watt.png"
-    assert main(["draw", str(saved), "--size", "2", "--dpi", "100", "--out", str(out)]) == 0
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", "Watt", "--out", str(out)]) == 0
     width, height = Image.open(out).size
-    assert max(width, height - 30) == pytest.approx(200, abs=1)  # 2 in at 100 dpi, a 0.3 in title strip over it
+    assert max(width, height - 15) == pytest.approx(200, abs=1)  # 4 in at 50 dpi, a 0.3 in title strip over it
 
 
 @pytest.mark.parametrize("extra, words", [
@@ -86,6 +86,15 @@ def test_what_does_not_apply_to_a_linkage_is_refused(saved, tmp_path, capsys, ex
     assert main(["draw", str(saved), *extra, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_a_title_wider_than_a_narrow_drawing_is_wrapped_not_cut(saved, tmp_path):
+    short, long = tmp_path / "short.png", tmp_path / "long.png"
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", "Watt", "--out", str(short)]) == 0
+    title = "a Watt six-bar with its frame 2, dimensioned from its drawing"  # about 4.5 in at 9 pt: wider than it
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", title, "--out", str(long)]) == 0
+    (w1, h1), (w2, h2) = Image.open(short).size, Image.open(long).size
+    assert w1 == w2 and h2 - h1 == 8  # the same drawing under a strip 0.16 in (a line) taller
 
 
 def test_at_is_refused_where_it_cannot_pose(saved, tmp_path, capsys):
