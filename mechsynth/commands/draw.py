@@ -1,4 +1,5 @@
-"""CLI command ``draw``: chains, mechanisms and gear trains drawn as a designer does (SVG, PNG, PDF).
+"""CLI command ``draw``: chains, mechanisms and gear trains drawn as a designer does (SVG, PNG, PDF),
+and a dimensioned mechanism (a linkage file) to scale at its pose or at an input value.
 
 Example
 -------
