@@ -1,5 +1,6 @@
-"""Pictures of mechanisms that move: the pose with its coupler curves (PNG, SVG), animations (GIF,
-animated SVG), the frames a web page plays, and every atlas mechanism as a linkage from its drawing.
+"""Pictures of mechanisms that move: the pose with its coupler curves (PNG, SVG), the pose alone to
+scale (``draw LINKAGE_FILE``), animations (GIF, animated SVG), the frames a web page plays, and every
+atlas mechanism as a linkage from its drawing.
 
 One geometry serves every output: :func:`_elements` turns a :class:`~synth.motion.Motion` (or a
 linkage's pose alone) into drawing elements — link bodies, pins, ground pivots, sliders on their
@@ -38,8 +39,8 @@ from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
 from .structure.joints import MESH, PRISMATIC, REVOLUTE
 
-__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_motion", "animate_motion", "player_svg",
-           "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
+__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_linkage", "draw_motion", "animate_motion",
+           "player_svg", "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
 
 #: what a still picture and an animation may be written as
 PICTURE_SUFFIXES = (".png", ".svg")
@@ -382,15 +383,20 @@ def _frames(motion: Motion, count: int) -> np.ndarray:
     return ok[np.unique(np.linspace(0, len(ok) - 1, count).round().astype(int))]
 
 
+def _box(elements: list[dict]) -> tuple[np.ndarray, np.ndarray]:
+    """The lower-left and upper-right corners around every element at every frame (a circle whole)."""
+    corners = np.array([[0.0, 0.0], [-1.0, -1.0], [1.0, 1.0]])[:, None, :]
+    pts = np.concatenate([(e["frames"].reshape(-1, 2) + e.get("r", 0.0) * corners).reshape(-1, 2) for e in elements])
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    return pts.min(axis=0), pts.max(axis=0)
+
+
 class _Canvas:
     """World coordinates to pixels: the box around every element at every frame, ``size`` pixels on
     its longer side, y upwards on the page."""
 
     def __init__(self, elements: list[dict], size: int):
-        pts = np.concatenate([e["frames"].reshape(-1, 2) for e in elements])
-        pts = pts[np.isfinite(pts).all(axis=1)]
-        radii = max([e.get("r", 0.0) for e in elements] + [0.0])
-        lo, hi = pts.min(axis=0) - radii, pts.max(axis=0) + radii
+        lo, hi = _box(elements)
         span = max(float((hi - lo).max()), 1e-9)
         margin = 0.06 * span
         self.lo, self.scale = lo - margin, size / (span + 2 * margin)
@@ -594,14 +600,21 @@ def _draw_matplotlib(ax, elements: list[dict], canvas: _Canvas, frame: int) -> N
     ax.axis("off")
 
 
-def _figure(canvas: _Canvas, dpi: int):
+def _figure(canvas: _Canvas, dpi: int, title: str):
+    """A figure of the canvas's pixels at ``dpi`` under a strip with the title, wrapped to the
+    figure's width (a tall, narrow mechanism's title takes two lines rather than being cut)."""
+    import textwrap
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig = plt.figure(figsize=(canvas.width / dpi, canvas.height / dpi + 0.3), dpi=dpi)
-    ax = fig.add_axes([0, 0, 1, canvas.height / (canvas.height + 0.3 * dpi)])
+    lines = textwrap.wrap(title, max(20, int(canvas.width / dpi * 72 / (9 * 0.6)))) or [""]
+    strip = 0.3 + 0.16 * (len(lines) - 1)  # inches
+    fig = plt.figure(figsize=(canvas.width / dpi, canvas.height / dpi + strip), dpi=dpi)
+    ax = fig.add_axes([0, 0, 1, canvas.height / (canvas.height + strip * dpi)])
+    fig.suptitle("\n".join(lines), fontsize=9, y=0.995, va="top")
     return fig, ax
 
 
@@ -632,23 +645,91 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
         elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
-    canvas = _Canvas(elements, size)
-    text = title or _title(linkage)
+    _write_still(elements, _Canvas(elements, size), path, title or _title(linkage), 100)
+
+
+def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, dpi: int) -> None:
+    """One still picture: SVG by this module's writer, PNG (or PDF) by matplotlib at ``dpi``."""
     try:
         if path.suffix.lower() == ".svg":
-            path.write_text(_svg(elements, canvas, 0, title=text))
+            path.write_text(_svg(elements, canvas, 0, title=title))
             return
         import matplotlib.pyplot as plt
 
-        fig, ax = _figure(canvas, 100)
+        fig, ax = _figure(canvas, dpi, title)
         try:
             _draw_matplotlib(ax, elements, canvas, 0)
-            fig.suptitle(text, fontsize=9, y=0.995, va="top")
-            save_figure(fig, path, dpi=100)
+            save_figure(fig, path, dpi=dpi)
         finally:
             plt.close(fig)
     except OSError as exc:
         raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
+
+
+def _link_numbers(linkage: Linkage) -> list[dict]:
+    """Each link's number (the chain's numbering) beside the middle of its pins in the pose, as a
+    chain's drawing numbers its links."""
+    out = []
+    lift = 0.045 * linkage.scale
+    for link in range(linkage.chain.links):
+        on = list(linkage.joints_of(link))
+        pins = [k for k in on if linkage.kind(k) == REVOLUTE] or on
+        at = linkage.points[pins].mean(axis=0)
+        if len(pins) == 2:  # a bar: beside it, not on it
+            d = linkage.points[pins[1]] - linkage.points[pins[0]]
+            n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-300)
+            at = at + lift * (n if n[1] >= 0 else -n)
+        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (and the frame's off its pivot's base)
+            at = at + lift * (np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0]))
+        out.append({"tag": "text", "text": str(link), "frames": at[None, None], "static": True,
+                    "style": {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12,
+                              "font-family": "sans-serif"}})
+    return out
+
+
+def _scale_bar(elements: list[dict]) -> list[dict]:
+    """A bar of a round length (1, 2 or 5 × 10^k, at most a third of the drawing's width) under the
+    drawing, with its length written beside it: the drawing is to scale, in the linkage's unit."""
+    lo, hi = _box(elements)
+    span = float((hi - lo).max())
+    third = (float(hi[0] - lo[0]) or span) / 3
+    unit = 10.0 ** math.floor(math.log10(third))
+    length = max(m * unit for m in (1, 2, 5) if m * unit <= third)
+    x, y, tick = float(lo[0]), float(lo[1]) - 0.08 * span, 0.02 * span
+    style = {"fill": "none", "stroke": _FRAME, "stroke-width": 1.4}
+    return [{"tag": "polyline", "static": True, "style": style,
+             "frames": np.array([[[x, y + tick], [x, y], [x + length, y], [x + length, y + tick]]])},
+            {"tag": "text", "text": f"{length:g}", "static": True, "frames": np.array([[[x + length + tick, y]]]),
+             "style": {"fill": _FRAME, "font-size": 12, "font-family": "sans-serif"}}]
+
+
+def draw_linkage(linkage: Linkage, out: str | Path, *, size: float = 3.6, dpi: int = 150, title: str | None = None,
+                 labels: bool = True) -> None:
+    """A dimensioned linkage in its pose, to scale (a scale bar of a round length in its unit under
+    it): links, ground pivots, sliders, gears, tracer points and, unless ``labels=False``, each
+    link's number; PNG, SVG or PDF, ``size`` inches on its longer side, ``dpi`` a PNG's resolution.
+    Pose it elsewhere first with :func:`synth.motion.assemble`.
+
+    >>> import os, re, tempfile
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]])
+    >>> out = os.path.join(tempfile.mkdtemp(), "four_bar.svg")
+    >>> draw_linkage(four_bar, out, labels=False)
+    >>> re.findall(r">([^<]+)</text>", open(out).read())  # the scale bar: 1 length unit (the links are 1 … 4)
+    ['1']
+    """
+    from .draw import check_pixels, check_size
+
+    path = _check_suffix(out, (".png", ".svg", ".pdf"), "a drawing of a linkage")
+    check_size(size, dpi)
+    per_inch = dpi if path.suffix.lower() == ".png" else 96  # a vector file's pixels are the CSS inch's 96
+    joints, angles, tracers = _still(linkage)
+    elements = _elements(linkage, joints, angles, tracers, {})
+    elements += _link_numbers(linkage) if labels else []
+    elements += _scale_bar(elements)
+    canvas = _Canvas(elements, round(size * per_inch))
+    check_pixels(path, canvas.width / per_inch, canvas.height / per_inch, per_inch)
+    _write_still(elements, canvas, path, title or _title(linkage), per_inch)
 
 
 def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds: float = 3.0, size: int = 480,
@@ -681,13 +762,11 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
             from .execution.progress import Progress
 
             bar = Progress(len(steps), "frames", desc="animation")
-        fig, ax = _figure(canvas, 100)
+        fig, ax = _figure(canvas, 100, _title(motion.linkage))
         try:
             for i in range(len(steps)):
                 ax.clear()
                 _draw_matplotlib(ax, elements, canvas, i)
-                if i == 0:
-                    fig.suptitle(_title(motion.linkage), fontsize=9, y=0.995, va="top")
                 fig.canvas.draw()
                 rgba = np.asarray(fig.canvas.buffer_rgba())
                 images.append(Image.fromarray(rgba[..., :3].copy()).quantize(colors=64))

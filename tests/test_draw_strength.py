@@ -383,15 +383,15 @@ def test_one_drawing_written_with_its_title_and_a_64_colour_png(tmp_path):
 def test_the_pixel_limit_by_hand():
     from pathlib import Path
 
-    from synth.draw._render import _check_pixels
+    from synth.draw._render import check_pixels
 
-    _check_pixels(Path("a.png"), 100, 100, 100)  # 10 000 × 10 000: exactly 100 megapixels
+    check_pixels(Path("a.png"), 100, 100, 100)  # 10 000 × 10 000: exactly 100 megapixels
     with pytest.raises(InvalidOption, match=r"^this picture would be 10001 × 10000 pixels"):
-        _check_pixels(Path("a.png"), 100.01, 100, 100)
-    _check_pixels(Path("a.png"), 655.35, 1, 100)  # 65 535 on a side
+        check_pixels(Path("a.png"), 100.01, 100, 100)
+    check_pixels(Path("a.png"), 655.35, 1, 100)  # 65 535 on a side
     with pytest.raises(InvalidOption, match=r"^this picture would be 65536 × 100 pixels"):
-        _check_pixels(Path("a.png"), 655.36, 1, 100)
-    _check_pixels(Path("a.PDF"), 1000, 1000, 1200)  # no pixels in a vector file
+        check_pixels(Path("a.png"), 655.36, 1, 100)
+    check_pixels(Path("a.PDF"), 1000, 1000, 1200)  # no pixels in a vector file
 
 
 def test_a_sheet_with_notes_and_loop_classes_grows_to_hold_them(monkeypatch, tmp_path):

@@ -148,6 +148,8 @@ def _run(args) -> int:
     from balance import BalanceError, TooMuchWork
     from synth import InvalidOption
 
+    if getattr(args, "file", None):
+        _refuse_linkage(args.file)
     try:
         problem = args.problem(args)
         if args.force:
@@ -170,6 +172,21 @@ def _run(args) -> int:
     except OSError as exc:  # e.g. the plot file cannot be written
         raise InvalidOption(f"cannot write or read a file ({exc.strerror}: {exc.filename}).") from None
     return 1 if out.get("target_met") is False else 0  # a valid query whose requested error is not reached
+
+
+def _refuse_linkage(path: str) -> None:
+    """A linkage file (a dimensioned mechanism, as ``move`` and ``dimension --save`` write it) refused
+    in one sentence naming what balance takes: balancing a linkage's links is not built."""
+    from synth import InvalidOption, MotionError
+    from synth.motion import read_linkage
+
+    try:
+        read_linkage(path)
+    except MotionError:  # not a linkage (an arm, a URDF, a file to refuse in its own words)
+        return
+    raise InvalidOption(f"{os.path.basename(path)} is a linkage (a dimensioned mechanism, as move and dimension --save "
+                        "write it), and balance takes arms (an [arm] TOML table or a URDF file), spring devices, "
+                        "sliding links and pantographs: balancing a linkage's links is not built")
 
 
 def _file_problem(args):

@@ -1,4 +1,5 @@
-"""CLI command ``draw``: chains, mechanisms and gear trains drawn as a designer does (SVG, PNG, PDF).
+"""CLI command ``draw``: chains, mechanisms and gear trains drawn as a designer does (SVG, PNG, PDF),
+and a dimensioned mechanism (a linkage file) to scale at its pose or at an input value.
 
 Example
 -------
@@ -13,9 +14,11 @@ True
 
 from __future__ import annotations
 
+import math
+import os
 import sys
 
-from .._argtypes import YesOrNo, inches, picture_file, positive, where_conditions, whole
+from .._argtypes import YesOrNo, finite, inches, picture_file, positive, where_conditions, whole
 
 __all__ = ["add_commands"]
 
@@ -24,6 +27,9 @@ def add_commands(sub) -> None:
     """Mount ``draw`` on the ``mechsynth`` parser."""
     p = sub.add_parser("draw", help="draw chains or mechanisms as a designer does (SVG/PNG)")
     g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
+                   help="a dimensioned mechanism (.toml or .json, as move --save and dimension --save write it), "
+                        "drawn to scale at its pose")
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
@@ -34,6 +40,9 @@ def add_commands(sub) -> None:
     p.add_argument("--where", action="append", nargs="+", default=[], metavar="FIELD OP VALUE",
                    help="with --db: filter (as for 'mechsynth atlas')")
     p.add_argument("--id", help="with --db: the chain with this id (12 hex digits, as listings and the site show it)")
+    p.add_argument("--at", type=finite, metavar="VALUE",
+                   help="with a linkage file: draw it with its input at VALUE (degrees for a revolute input, a "
+                        "length for a prismatic one, as move's --start), on the branch of its pose")
     p.add_argument("--frame", type=whole, help="with --chain: the fixed link (hatched)")
     p.add_argument("--loop-classes", metavar="H=K,H=K",
                    help="with --chain: every base of the higher class's loops on that chain (e.g. 3=4,5=1), "
@@ -132,11 +141,55 @@ def _draw_trains(rows, args) -> int:
     return 0
 
 
+def _draw_linkage(args) -> int:
+    """A linkage file drawn to scale by the motion layer's drawing, at its saved pose or at ``--at``."""
+    from synth import InvalidOption, JointKind
+    from synth.draw import SINGLE
+    from synth.motion import assemble, read_linkage
+    from synth.motion_draw import draw_linkage
+
+    chosen = [name for name, given in (
+        ("--frame", args.frame is not None), ("--mechanisms", args.mechanisms), ("--prismatic", args.prismatic),
+        ("--idle-joints", args.idle_joints), ("--repairs", args.repairs), ("--loop-classes", args.loop_classes),
+        ("--dof", args.dof is not None), ("--h", args.h is not None), ("--where", args.where),
+        ("--id", args.id is not None), ("--columns", args.columns is not None)) if given]
+    if chosen:
+        raise InvalidOption(f"a linkage file is one dimensioned mechanism, drawn as it is (its file names its frame "
+                            f"and inputs): {', '.join(chosen)} {'does' if len(chosen) == 1 else 'do'} not apply")
+    if args.dpi is not None and not args.out.lower().endswith(".png"):
+        raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
+    if not args.linkage.lower().endswith((".toml", ".json")) and not os.path.exists(args.linkage):
+        raise InvalidOption(f"a linkage file is .toml or .json, not {args.linkage!r}: a chain's drawing is "
+                            f"'mechsynth draw --chain \"{args.linkage}\" --out FILE'")
+    linkage = read_linkage(args.linkage)
+    title = args.title
+    if args.at is not None:
+        if linkage.dof != 1:
+            raise InvalidOption(f"--at poses a linkage of one input, and this one has W = {linkage.dof} inputs: draw it "
+                                "at its saved pose, or move it over a grid with 'mechsynth move'")
+        revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE
+        linkage = assemble(linkage, math.radians(args.at) if revolute else args.at)
+        title = title or f"{linkage.chain.compact()}, frame {linkage.frame}, input at {args.at:g}{'°' * revolute}"
+    size, dpi = SINGLE
+    draw_linkage(linkage, args.out, size=args.size or size, dpi=args.dpi or dpi, title=title,
+                 labels=args.labels is not False)
+    print(f"1 drawing -> {args.out}", file=sys.stderr)
+    return 0
+
+
 def _run_draw(args) -> int:
     from synth.draw import CELL, SINGLE, draw_one, draw_sheet, expand
     from synth import Chain, Mechanism
     from synth import InvalidOption
 
+    if args.linkage:
+        return _draw_linkage(args)
+    if args.at is not None:
+        raise InvalidOption("--at poses a linkage file's input: a chain's drawing has no dimensions to move (save "
+                            "one with 'mechsynth move --chain … --frame F --save L.json', then draw L.json --at)")
+    if args.chain and args.chain.lower().endswith((".json", ".toml")) and os.path.isfile(args.chain):
+        raise InvalidOption(f"--chain takes a joint list or a JSON row, and {args.chain} is a file: a linkage file (as "
+                            f"move and dimension --save write it) is drawn as 'mechsynth draw {args.chain} --out FILE'")
     args.where = where_conditions(args.where)
     if args.id is not None:
         if not args.db:

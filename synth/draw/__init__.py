@@ -28,6 +28,7 @@ _WHERE = {
     "Layout": "._layout", "layout": "._layout",
     "expand": "._render", "draw_one": "._render", "draw_sheet": "._render", "svg": "._render",
     "svg_inline": "._render", "DrawError": "._render", "SINGLE": "._render", "CELL": "._render",
+    "check_size": "._render", "check_pixels": "._render",
     "draw_train": "._gears", "draw_train_sheet": "._gears", "sheet_figure": "._gears", "schematic": "._gears",
     "svg_text": "._gears",
 }

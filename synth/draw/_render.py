@@ -31,7 +31,8 @@ from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..errors import InvalidOption, SynthesisError, option
 from ._layout import Layout, _sides, layout
 
-__all__ = ["expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError", "SINGLE", "CELL"]
+__all__ = ["expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError", "SINGLE", "CELL", "check_size",
+           "check_pixels"]
 
 _FORMATS = (".svg", ".png", ".pdf")
 
@@ -317,8 +318,12 @@ SINGLE, CELL = (3.6, 150), (1.9, 150)
 _MAX_PIXELS = 100_000_000  # a PNG is drawn in memory at 4 bytes a pixel: 400 MB
 
 
-def _check_pixels(path: Path, width: float, height: float, dpi: int) -> None:
-    """Refuse a PNG too large to draw in memory (a vector file has no pixels)."""
+def check_pixels(path: Path, width: float, height: float, dpi: int) -> None:
+    """Refuse a PNG of ``width`` × ``height`` inches at ``dpi`` too large to draw in memory (a vector
+    file has no pixels).
+
+    >>> check_pixels(Path("sheet.png"), 100, 100, 100)  # 10 000 × 10 000 pixels: the most allowed
+    """
     if path.suffix.lower() != ".png":
         return
     pixels = width * dpi * height * dpi
@@ -329,7 +334,11 @@ def _check_pixels(path: Path, width: float, height: float, dpi: int) -> None:
                             "the selection, or write .svg")
 
 
-def _check_size(size: float, dpi: int) -> None:
+def check_size(size: float, dpi: int) -> None:
+    """Refuse a drawing's edge outside 0.5 … 30 inches or a resolution outside 30 … 1200 dpi.
+
+    >>> check_size(3.6, 150)
+    """
     if not 0.5 <= size <= 30:
         raise InvalidOption(f"a drawing's size is 0.5 to 30 inches, not {size:g}")
     if not 30 <= dpi <= 1200:
@@ -358,8 +367,8 @@ def draw_one(item: Chain | Mechanism, out: str | Path, *, title: str | None = No
     import matplotlib.pyplot as plt
 
     path = _check_out(out)
-    _check_size(size, dpi)
-    _check_pixels(path, size, size * 19 / 18, dpi)
+    check_size(size, dpi)
+    check_pixels(path, size, size * 19 / 18, dpi)
     fig = _figure(item, labels, size)
     try:
         if title:
@@ -379,7 +388,7 @@ def svg(item: Chain | Mechanism, *, labels: bool = True, size: float = SINGLE[0]
 
     import matplotlib.pyplot as plt
 
-    _check_size(size, SINGLE[1])
+    check_size(size, SINGLE[1])
     fig = _figure(item, labels, size)
     try:
         out = io.StringIO()
@@ -407,7 +416,7 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
     import matplotlib.pyplot as plt
 
     path = _check_out(out)
-    _check_size(size, dpi)
+    check_size(size, dpi)
     if not items:
         raise InvalidOption("nothing to draw: the selection is empty")
     if notes is not None and len(notes) != len(items):
@@ -428,7 +437,7 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
     mixed = next((getattr(item, "chain", item) for item in items if getattr(item, "chain", item).classes), None)
     key = 0.3 if mixed is not None else 0  # inches under the sheet for the key of loop classes
     height = (size + extra) * rows + (0.45 if title else 0) + key
-    _check_pixels(path, size * columns, height, dpi)
+    check_pixels(path, size * columns, height, dpi)
     fig, axes = plt.subplots(rows, columns, figsize=(size * columns, height), squeeze=False)
     try:
         for i, ax in enumerate(axes.flat):

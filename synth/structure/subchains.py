@@ -184,14 +184,14 @@ def passing(h: int, is_link, ends, lengths, threshold: int) -> np.ndarray:
     kernel placements with multiple joints), where the scan computes every set for every candidate.
 
     Only the sets T of the core that can give a sub-chain below ``threshold`` for some candidate of
-    the batch are looked at (:mod:`synth.structure._subchain_kernel`).  Loads numba (about a second
+    the batch are looked at (:mod:`synth.structure.subchain_kernel`).  Loads numba (about a second
     the first time in a process).
 
     >>> joint = [[0, 3], [1, 3], [2, 3], [0, 1]]  # links 0, 1, 2 on a multiple joint (vertex 3), a path 0–1
     >>> passing(3, [True, True, True, False], joint, [[0, 0, 0, 2], [0, 0, 0, 1]], 1).tolist()
     [True, False]
     """
-    from ._subchain_kernel import passes
+    from .subchain_kernel import passes
 
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     lengths = np.ascontiguousarray(np.asarray(lengths, dtype=np.int64).reshape(-1, len(ends)))
@@ -217,7 +217,7 @@ def sets_to_check(h: int, is_link, ends, least, threshold: int, position) -> tup
     >>> base.tolist(), size.tolist(), inside[start[3]:start[4]].tolist()   # {0, 1, 2, J} holds every link
     ([2, 2, 2, 5], [1, 1, 1, 2], [0, 1, 3])
     """
-    from ._subchain_kernel import partial_sets
+    from .subchain_kernel import partial_sets
 
     ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
     return partial_sets(

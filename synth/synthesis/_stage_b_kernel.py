@@ -61,7 +61,7 @@ import tempfile
 import numpy as np
 from numba import njit
 
-from ..structure._subchain_kernel import by_last_path, verdict
+from ..structure.subchain_kernel import by_last_path, verdict
 
 __all__ = ["fixed_placements", "fixed_total", "place", "tight_count"]
 
@@ -151,7 +151,7 @@ def _sets_hold(w, e, C, threshold, sets, order):
     """Whether the placement w of strings 0 … e passes the exact rule on the sets T whose strings
     are all placed once string e is (``sets``: see :func:`place`): W_T = base − Σ (C − w) and
     X_T = size + Σ w over the strings of T with w ≤ C, refused where X_T ≥ 2 and W_T < threshold, the
-    exact test's own arithmetic (:mod:`synth.structure._subchain_kernel`).  A set that refuses moves
+    exact test's own arithmetic (:mod:`synth.structure.subchain_kernel`).  A set that refuses moves
     to the front of its group in ``order``: the next placement tried is usually refused by it too."""
     bucket, base, size, start, inside = sets
     for r in range(bucket[e], bucket[e + 1]):
@@ -356,7 +356,7 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
     string only through its *pattern* min(w, P): with simple joints P = C = h − 1, a string of C
     binary links or more costs nothing; with multiple joints P = h, since the exact test also tells
     a string of exactly h − 1 (which brings its links to a set at no cost) from a longer one
-    (:func:`synth.structure._subchain_kernel.verdict` reads a string of the core only through
+    (:func:`synth.structure.subchain_kernel.verdict` reads a string of the core only through
     min(w, h), loops included).  So the search gives each cycle's vector a non-decreasing pattern,
     slot by slot (every string of the slot, one per bundle of the cycle, takes C − w units in each
     game), the long slots (pattern P) last; for a complete pattern the exact test, where given,
@@ -368,7 +368,7 @@ def fixed_placements(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, 
     the game never sees) at most ``x_most`` (the slots to come taken at their most without excess);
     ``vertex_need`` as in :func:`place`.  ``exact`` = (is_link, core_a, core_b, sets, total,
     threshold, first): the exact test's core (its ends per string of H, loops on the core), its sets
-    (:func:`synth.structure._subchain_kernel.exact_sets`), Σ of a placement's path lengths, and the
+    (:func:`synth.structure.subchain_kernel.exact_sets`), Σ of a placement's path lengths, and the
     first string of each bundle; an empty ``core_a`` for simple joints, where the game is the rule.
     Other arguments as :func:`place`.
     """

@@ -554,11 +554,11 @@ def count_orbits(code: Code, graph: Contracted, conv: Conventions, stats: dict |
 def _exact_arguments(graph: Contracted, conv: Conventions, lows: list[int], firsts, n2: int) -> tuple:
     """The exact sub-chain test as :func:`~synth.synthesis._stage_b_kernel.fixed_placements` runs it on a
     pattern with multiple joints: the test's core (:func:`_core`), its sets for weights from ``lows``
-    (:func:`synth.structure._subchain_kernel.exact_sets`), Σ of a placement's path lengths (the binary
+    (:func:`synth.structure.subchain_kernel.exact_sets`), Σ of a placement's path lengths (the binary
     links and one per string to a single-joint link), the threshold, and the first string of each bundle."""
     import numpy as np
 
-    from ..structure._subchain_kernel import exact_sets
+    from ..structure.subchain_kernel import exact_sets
 
     is_link, ends = _core(graph.vertices, graph.edges)
     is_link = np.array(is_link, dtype=np.bool_)

@@ -153,13 +153,14 @@ def test_the_canvas_by_hand():
     elements = [{"tag": "polyline", "frames": np.array([[[0.0, 0.0], [10.0, 5.0]]]), "style": {}},
                 {"tag": "circle", "r": 1.0, "frames": np.array([[[10.0, 5.0]], [[np.nan, np.nan]]]), "style": {}}]
     canvas = _Canvas(elements, 120)
-    # the box −1 … 11 by −1 … 6 (the circle's radius), span 12, margins 0.72: 120 px over 13.44
-    scale = 120 / 13.44
+    # the box 0 … 11 by 0 … 6 (the circle whole, its radius about its own centre only), span 11, margins
+    # 0.66: 120 px over 12.32
+    scale = 120 / 12.32
     assert canvas.scale == pytest.approx(scale)
-    assert (canvas.width, canvas.height) == (120, math.ceil(8.44 * scale))
-    assert np.allclose(canvas.lo, (-1.72, -1.72))
-    assert np.allclose(canvas.pixels(np.array([[0.0, 0.0], [11.72, 6.72]])),
-                       [[1.72 * scale, canvas.height - 1.72 * scale], [13.44 * scale, canvas.height - 8.44 * scale]])
+    assert (canvas.width, canvas.height) == (120, math.ceil(7.32 * scale))
+    assert np.allclose(canvas.lo, (-0.66, -0.66))
+    assert np.allclose(canvas.pixels(np.array([[0.0, 0.0], [11.66, 6.66]])),
+                       [[0.66 * scale, canvas.height - 0.66 * scale], [12.32 * scale, canvas.height - 7.32 * scale]])
 
 
 def test_still_animated_and_player_svgs_by_hand():

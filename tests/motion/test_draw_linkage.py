@@ -1,0 +1,123 @@
+"""``mechsynth draw LINKAGE_FILE``: a dimensioned mechanism (as ``move``/``dimension --save`` write it)
+drawn to scale by the motion layer's drawing, at its saved pose or at ``--at``; what does not apply refused."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from mechsynth.cli import main
+from synth.motion import read_linkage
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _pins(svg: str) -> np.ndarray:
+    """The pin circles' centres in pixels (drawn in joint order), y turned upwards."""
+    found = re.findall(r'<circle cx="([-\d.]+)" cy="([-\d.]+)" r="[\d.]+" fill="white"', svg)
+    return np.array([(float(x), -float(y)) for x, y in found])
+
+
+@pytest.fixture(scope="module")
+def saved(tmp_path_factory) -> Path:
+    """A Watt six-bar with its frame 2, dimensioned from its drawing and saved by ``move --save``."""
+    path = tmp_path_factory.mktemp("linkage") / "watt.json"
+    assert main(["move", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--frame", "2", "--save", str(path)]) == 0
+    return path
+
+
+def test_a_saved_linkage_is_drawn_to_scale_at_its_pose(saved, tmp_path, capsys):
+    out = tmp_path / "watt.svg"
+    assert main(["draw", str(saved), "--out", str(out)]) == 0
+    svg = out.read_text()
+    pose = read_linkage(saved).points
+    px = _pins(svg)
+    assert len(px) == len(pose) == 7
+    # the pixels are a similarity of the saved pose: every distance in one ratio, to the pixel rounding
+    pairs = [(i, j) for i in range(7) for j in range(i)]
+    ratio = sum(np.hypot(*(px[i] - px[j])) for i, j in pairs) / sum(np.hypot(*(pose[i] - pose[j])) for i, j in pairs)
+    for i, j in pairs:  # (each centre is written to 0.1 px: a distance to 0.15 px)
+        assert np.hypot(*(px[i] - px[j])) == pytest.approx(ratio * np.hypot(*(pose[i] - pose[j])), abs=0.15)
+    # the scale bar's length in pixels is its written length at that ratio
+    bar = re.search(r'<polyline points="([-\d., ]+)" fill="none" stroke="#6b7785" stroke-width="1.4"', svg).group(1)
+    ends = [tuple(map(float, p.split(","))) for p in bar.split()]
+    written = float(re.findall(r">([\d.e+-]+)</text>", svg)[-1])
+    assert ends[2][0] - ends[1][0] == pytest.approx(ratio * written, abs=0.15)
+    assert all(f">{link}</text>" in svg for link in range(6))  # the links numbered as the chain numbers them
+    assert "1 drawing" in capsys.readouterr().err
+
+
+def test_at_poses_the_input_on_the_branch_and_keeps_every_link_rigid(saved, tmp_path):
+    linkage = read_linkage(saved)
+    out = tmp_path / "at.svg"
+    assert main(["draw", str(saved), "--at", "-75", "--out", str(out)]) == 0
+    px = _pins(out.read_text())
+    pose = linkage.points
+    ratio = [np.hypot(*(px[a] - px[b])) / np.hypot(*(pose[a] - pose[b]))
+             for link in range(6) for a in linkage.joints_of(link) for b in linkage.joints_of(link) if a < b]
+    assert np.ptp(ratio) < 0.01 * np.mean(ratio)  # each link keeps its saved dimensions
+    k, b = linkage.inputs[0], linkage.input_reference(0)
+    turned = math.degrees(math.atan2(*(px[b] - px[k])[::-1]))
+    assert turned == pytest.approx(-75, abs=0.2)  # the input's line at -75°, to the pixel rounding
+    saved_angle = math.degrees(math.atan2(*(pose[b] - pose[k])[::-1]))
+    assert abs(saved_angle + 75) > 5  # (the saved pose was elsewhere: the drawing moved it)
+
+
+def test_a_png_is_the_size_asked(saved, tmp_path):
+    out = tmp_path / "watt.png"
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", "Watt", "--out", str(out)]) == 0
+    width, height = Image.open(out).size
+    assert max(width, height - 15) == pytest.approx(200, abs=1)  # 4 in at 50 dpi, a 0.3 in title strip over it
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--frame", "1"], "--frame does not apply"),
+    (["--mechanisms", "--columns", "2"], "--mechanisms, --columns do not apply"),
+    (["--dpi", "300"], "--dpi sets the resolution of a .png"),
+])
+def test_what_does_not_apply_to_a_linkage_is_refused(saved, tmp_path, capsys, extra, words):
+    out = tmp_path / "x.svg"
+    assert main(["draw", str(saved), *extra, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_a_title_wider_than_a_narrow_drawing_is_wrapped_not_cut(saved, tmp_path):
+    short, long = tmp_path / "short.png", tmp_path / "long.png"
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", "Watt", "--out", str(short)]) == 0
+    title = "a Watt six-bar with its frame 2, dimensioned from its drawing"  # about 4.5 in at 9 pt: wider than it
+    assert main(["draw", str(saved), "--size", "4", "--dpi", "50", "--title", title, "--out", str(long)]) == 0
+    (w1, h1), (w2, h2) = Image.open(short).size, Image.open(long).size
+    assert w1 == w2 and h2 - h1 == 8  # the same drawing under a strip 0.16 in (a line) taller
+
+
+def test_at_is_refused_where_it_cannot_pose(saved, tmp_path, capsys):
+    triad = ROOT / "models" / "motion_triad.toml"  # rocks between 125.43° and 161.03°
+    assert main(["draw", str(triad), "--at", "170", "--out", str(tmp_path / "t.png")]) == 2
+    assert "cannot be assembled at input" in capsys.readouterr().err
+    assert main(["draw", "--chain", "0-1 1-2 2-3 3-0", "--at", "30", "--out", str(tmp_path / "c.png")]) == 2
+    assert "--at poses a linkage file's input" in capsys.readouterr().err
+    five = tmp_path / "five_bar.json"
+    assert main(["move", "--chain", "0-1 1-2 2-3 3-4 4-0", "--frame", "0", "--save", str(five)]) == 0
+    capsys.readouterr()
+    assert main(["draw", str(five), "--at", "30", "--out", str(tmp_path / "f.png")]) == 2
+    assert "W = 2 inputs" in capsys.readouterr().err
+    assert main(["draw", str(five), "--out", str(tmp_path / "f.png")]) == 0  # at its saved pose it is drawn
+    assert main(["draw", "--chain", str(saved), "--out", str(tmp_path / "c.png")]) == 2
+    assert f"drawn as 'mechsynth draw {saved} --out FILE'" in capsys.readouterr().err
+    assert main(["draw", "0-1 1-2 2-3 3-0", "--out", str(tmp_path / "c.png")]) == 2  # a chain given as a file
+    assert "a chain's drawing is 'mechsynth draw --chain \"0-1 1-2 2-3 3-0\"" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["arm", "solve", "compare", "pantograph"])
+def test_balance_refuses_a_linkage_naming_what_it_takes(saved, capsys, command):
+    assert main(["balance", command, str(saved)]) == 2
+    err = capsys.readouterr().err
+    assert "watt.json is a linkage" in err and "balance takes arms" in err and err.count("\n") == 1
+    json.loads(saved.read_text())  # (the file is untouched)
