@@ -1,8 +1,10 @@
 """CLI command ``dimension``: the dimensions with which a given mechanism meets a target — a path
-(with or without timing), a function (input–output angles) or poses of a body.
+(with or without timing), a function (input–output angles, or a slider's displacement against an
+angle) or poses of a body.
 
 The target is a CSV or JSON file (columns ``x,y`` / ``x,y,input`` / ``input,output`` / ``x,y,angle``,
-a ``*_deg`` column in degrees, and last an optional ``weight`` column); the topology is a linkage file
+``input_deg,output_displacement`` or ``input_displacement,output_deg`` for a slider's side, a ``*_deg``
+column in degrees, and last an optional ``weight`` column); the topology is a linkage file
 (its pose is a first guess) or a joint list with ``--frame`` and ``--input``.  The result is printed as a table or JSON, saved as a
 linkage file that ``move`` and ``scene`` read, and drawn over the target.
 
@@ -76,8 +78,9 @@ def add_commands(sub) -> None:
     p = sub.add_parser("dimension", help="dimensional synthesis: the dimensions with which a mechanism traces a path, "
                                          "generates a function or guides a body")
     p.add_argument("target", metavar="TARGET", help="a .csv or .json target: columns x,y (a path), x,y,input (timed "
-                   "path), input,output (a function) or x,y,angle (a motion); a *_deg column is in degrees; a last "
-                   "column weight: how much each row counts")
+                   "path), input,output (a function; input_displacement or output_displacement for a slider on the "
+                   "frame) or x,y,angle (a motion); a *_deg column is in degrees; a last column weight: how much each "
+                   "row counts")
     p.add_argument("--linkage", metavar="FILE", help="the mechanism as a linkage file (.toml or .json); its pose is a "
                    "first guess")
     p.add_argument("--mechanism", metavar="CHAIN", help="the mechanism as a joint list, e.g. '0-1 1-2 2-3 3-0'")
@@ -86,8 +89,11 @@ def add_commands(sub) -> None:
                    "(default: the frame's first revolute joint)")
     p.add_argument("--tracer-link", type=whole, metavar="L", help="the link carrying the tracer point P (path, "
                    "motion; default the coupler)")
-    p.add_argument("--output-link", type=whole, metavar="L", help="a function's output link, pivoted on the frame "
-                   "(default: the only other one)")
+    p.add_argument("--output-link", type=whole, metavar="L", help="a function's output link, pivoted or sliding on "
+                   "the frame (default: the only other one)")
+    p.add_argument("--displacement-origin", choices=("pivot", "free"), help="where a slider's displacements are "
+                   "measured from: the foot of the other pivot on the slider's line (default), or a point the "
+                   "synthesis chooses (the target's own zero)")
     p.add_argument("--crank", action="store_true", help="the input must turn fully")
     p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
                    "length for a slide) over the target")
@@ -201,7 +207,13 @@ def _run(args) -> int:
     from synth.dimension import Constraints, read_target, synthesize
 
     _check(args)
-    target = read_target(args.target, output_link=args.output_link)
+    target = read_target(args.target, output_link=args.output_link, origin=args.displacement_origin or "pivot")
+    if args.displacement_origin is not None and not (target.kind == "function" and "displacement" in
+                                                     (target.input_is, target.output_is)):
+        from synth import InvalidOption
+
+        raise InvalidOption("--displacement-origin is where a slider's displacements are measured from; this target "
+                            "gives none (no input_displacement or output_displacement column)")
     if args.output_link is not None and target.kind != "function":
         from synth import InvalidOption
 
@@ -285,7 +297,7 @@ def _write(result, fmt: str) -> None:
         write_document(result.to_dict(), "json", "")
         return
     lk = result.linkage
-    unit = "rad" if result.kind == "function" else "target units"
+    unit = "rad" if result.kind == "function" and result.target.output_is == "angle" else "target units"
     lines = [("mechanism", f"{lk.chain.compact()}, frame {lk.frame}, input {joint_name(lk.chain, lk.inputs[0])}"),
              ("target", f"{result.kind}, {len(result.errors)} points, size {result.size:.6g}"),
              (f"error max ({unit})", result.error_max), (f"error rms ({unit})", result.error_rms),

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -79,7 +79,8 @@ class Constraints:
         A box the frame's joints (fixed pivots, slide lines' points) must lie in.
     reach : float, optional
         The search box: every joint within ``reach`` target sizes of the target's centre (default 4;
-        for a function, frame lengths from the input pivot, default 2).
+        for a function, frame lengths from the input pivot, default 2; for a slider's function, its largest
+        displacement, default 2, or with a free origin its stroke about the stroke's middle, default 8).
     pivot_at : dict joint -> (x, y), optional
         Revolute joints of the frame held at given points (a joint named by its links, ``"0-1"``, or by
         its index).  They are no unknowns: the search places the mechanism about them.
@@ -260,18 +261,33 @@ class Problem:
         self.input_link = driven if driven is not None else next(x for x in chain.joints[input_joint] if x != self.frame)
         frame_joints = [k for k, j in enumerate(chain.joints) if self.frame in j]
         self.frame_joints = frame_joints
+        # a function's slider on the frame (its prismatic joint with the frame, the pin whose place along the line is
+        # the displacement), its line the x axis: None for angles against angles and for paths and motions
+        self.slider = None
         if isinstance(target, FunctionTarget):
             self.output_link = self._output_link(target.output_link)
             self.output_joint = next(k for k in frame_joints if self.output_link in chain.joints[k])
-            if kinds[self.output_joint] != REVOLUTE or not self.revolute_input:
-                raise DimensionError("function generation relates the angles of two links pivoted on the frame: the "
-                                     "input and the output joints must be revolute")
+            self._check_measures(target)
             self.tracer_link = None
             if constraints.pivot_at or constraints.timing == "absolute":
                 raise DimensionError("a function's frame is fixed by its gauge (the input pivot at (0, 0), the output's "
-                                     "at (1, 0)) and its angles are absolute: fixed pivots and a timing do not apply")
-            self.centre, self.scale = np.zeros(2), 1.0
-            self.fixed = {input_joint: np.zeros(2), self.output_joint: np.array([1.0, 0.0])}  # the frame line: x axis
+                                     "at (1, 0), or a slider's line along the x axis) and its values are absolute: fixed "
+                                     "pivots and a timing do not apply")
+            if target.input_is == target.output_is:  # angles: the frame line is the x axis, one long
+                self.centre, self.scale = np.zeros(2), 1.0
+                self.fixed = {input_joint: np.zeros(2), self.output_joint: np.array([1.0, 0.0])}
+            else:  # the revolute side's pivot at the origin, the slider's line along the x axis
+                slide, pivot = ((self.output_joint, input_joint) if target.output_is == "displacement"
+                                else (input_joint, self.output_joint))
+                self.slider = (slide, self._slider_pin(slide))
+                lengths = target.outputs if target.output_is == "displacement" else target.inputs
+                if target.origin == "pivot":
+                    self.centre, self.scale = np.zeros(2), float(np.abs(lengths).max()) or 1.0
+                    self.fixed = {pivot: np.zeros(2)}
+                else:  # the pivot on the x axis at an unknown place: the box about the stroke's middle, strokes wide
+                    self.centre = np.array([(lengths.min() + lengths.max()) / 2, 0.0])
+                    self.scale, self.fixed = float(np.ptp(lengths)), {}
+                    self.origin_pivot = pivot
         else:
             self.tracer_link = self._tracer_link(tracer_link)
             pts = target.points
@@ -308,9 +324,15 @@ class Problem:
         # the unknowns: per free joint x, y (and a prismatic joint's direction), then the tracer
         self.layout = []  # (joint, kind) or ("tracer", None)
         lower, upper = [], []
-        reach = self.reach = constraints.reach or (2.0 if isinstance(target, FunctionTarget) else 4.0)
+        free = isinstance(target, FunctionTarget) and target.origin == "free"
+        reach = self.reach = constraints.reach or (8.0 if free else 2.0 if isinstance(target, FunctionTarget) else 4.0)
         for k in range(len(chain.joints)):
-            if k in self.fixed:
+            if k in self.fixed or (self.slider is not None and k == self.slider[0]):  # (a slider's line: the x axis)
+                continue
+            if free and k == self.origin_pivot:  # the pivot's place along the x axis
+                self.layout.append(("origin", k))
+                lower.append(-reach)
+                upper.append(reach)
                 continue
             if self.along is not None and k == self.along[0]:  # the frame line's free end: its distance along it
                 self.layout.append(("along", k))
@@ -346,6 +368,32 @@ class Problem:
         self.equations = counted * self.rows_per_point  # (a point of weight 0 gives none)
 
     # ------------------------------------------------------------ set-up
+    def _check_measures(self, target: FunctionTarget) -> None:
+        """Each side of a function measured as its joint moves: an angle at a revolute joint, a displacement
+        at a prismatic one."""
+        from ..motion import joint_name
+
+        for side, k, measure in (("input", self.input_joint, target.input_is),
+                                 ("output", self.output_joint, target.output_is)):
+            name = joint_name(self.chain, k)
+            if measure == "angle" and self.kinds[k] != REVOLUTE:
+                raise DimensionError(f"the target gives the {side} as angles, but the {side} joint {name} is prismatic "
+                                     f"(a slider): give its displacements (an {side}_displacement column)")
+            if measure == "displacement" and self.kinds[k] != PRISMATIC:
+                other = " or drive a prismatic joint of the frame" if side == "input" else ""
+                raise DimensionError(f"the target gives the {side} as displacements, but the {side} joint {name} is "
+                                     f"revolute: give its angles (an {side} or {side}_deg column){other}")
+
+    def _slider_pin(self, slide: int) -> int:
+        """The slider's pin: the revolute joint of the link sliding at joint ``slide`` (the first, where it
+        has several) whose place along the line is the slider's displacement."""
+        link = next(x for x in self.chain.joints[slide] if x != self.frame)
+        pins = [k for k, j in enumerate(self.chain.joints) if link in j and self.kinds[k] == REVOLUTE]
+        if not pins:
+            raise DimensionError(f"the slider (link {link}) has no revolute joint: its displacement is measured at its "
+                                 "pin, which it lacks")
+        return pins[0]
+
     def _output_link(self, given: int | None) -> int:
         chain = self.chain
         pivoted = [x for k in self.frame_joints for x in chain.joints[k] if x not in (self.frame, self.input_link)]
@@ -388,7 +436,7 @@ class Problem:
         no unknown), the tracer's 2, the inputs of an untimed target after the first, and the body's
         reference angle of a motion."""
         count = sum(2 if kind == "joint" and self.kinds[k] == REVOLUTE else 1
-                    for kind, k in self.layout if kind in ("joint", "slide", "along"))
+                    for kind, k in self.layout if kind in ("joint", "slide", "along", "origin"))
         count += 2 if self.tracer_link is not None else 0
         if not self.timed:
             count += self.points - 1
@@ -472,7 +520,7 @@ class Problem:
         touching = (x <= self.lower + edge) | (x >= self.upper - edge)
         names, at = [], 0
         for kind, k in self.layout:
-            width = 1 if kind in ("slide", "along") else 2
+            width = 1 if kind in ("slide", "along", "origin") else 2
             region = kind == "joint" and self.constraints.pivots is not None and k in self.frame_joints
             if kind != "slide" and not region and touching[at:at + width].any():
                 names.append("the tracer point" if kind == "tracer" else joint_name(self.chain, k))
@@ -503,10 +551,16 @@ class Problem:
             elif kind == "along":
                 distance = x[i]
                 i += 1
+            elif kind == "origin":  # a function's pivot on the slider's line, the x axis
+                points[k] = (self.centre[0] + self.scale * x[i], 0.0)
+                i += 1
             else:  # (the tracer's two are the layout's last)
                 tracer = self.centre + self.scale * x[i:i + 2]
         for k, p in self.fixed.items():
             points[k] = p
+        if self.slider is not None:  # the slider's line along the x axis, through its pin
+            slide, pin = self.slider
+            points[slide], slides[slide] = points[pin], (1.0, 0.0)
         if self.along is not None:
             end, start, u = self.along
             points[end] = points[start] + self.scale * distance * u
@@ -526,6 +580,8 @@ class Problem:
             elif kind == "along":
                 end, start, u = self.along
                 x.append(float((linkage.points[end] - linkage.points[start]) @ u) / self.scale)
+            elif kind == "origin":
+                x.append(float(linkage.points[k][0] - self.centre[0]) / self.scale)
             else:
                 at = linkage.tracers.get("P", next(iter(linkage.tracers.values()), None))
                 if at is None or at[0] != self.tracer_link:
@@ -536,11 +592,20 @@ class Problem:
         return np.clip(np.array(x), self.lower, self.upper)
 
     # ------------------------------------------------------------ the motion of a candidate
+    def input_at_pose(self, linkage: Linkage) -> float:
+        """The input's value in the pose as the target measures it: a revolute input's angle from the x axis;
+        a function's input slider's pin along the x axis (the slider's line); else
+        the motion layer's prismatic input, 0 in the pose."""
+        if self.slider is not None and self.slider[0] == self.input_joint:
+            return float(linkage.points[self.slider[1]][0])
+        return float(linkage.pose_inputs[0])
+
     def offsets_of_timing(self, linkage: Linkage) -> np.ndarray:
         """Input offsets from the pose at each target point, for a timed target."""
         target = self.target
         if isinstance(target, FunctionTarget):
-            return _wrap(target.inputs - linkage.pose_inputs[0])
+            change = target.inputs - self.input_at_pose(linkage)
+            return _wrap(change) if self.revolute_input else change
         if self.absolute:  # the pose anywhere on its branch: the first point's turn from it, then the timing's
             return _wrap(self.absolute_start(linkage) - linkage.pose_inputs[0]) + target.inputs - target.inputs[0]
         return target.inputs - target.inputs[0]
@@ -552,14 +617,20 @@ class Problem:
         if start is None:
             return linkage
         try:
-            return assemble(linkage, start)
+            posed = assemble(linkage, start)
         except (MotionError, ValueError):
             return linkage
+        if self.slider is None:
+            return posed
+        slide, pin = self.slider  # (the slider's line drawn through its pin, as the unknowns place it)
+        points = np.array(posed.points)
+        points[slide] = points[pin]
+        return replace(posed, points=points)
 
     def absolute_start(self, linkage: Linkage) -> float | None:
         """The input's angle from the x axis at the first target point, where it is prescribed (a
         function's; an absolute timing's: the frame line's direction — fixed, or the linkage's own —
-        plus the first angle).
+        plus the first angle); a function's input slider's displacement there from the pose.
 
         Examples
         --------
@@ -571,7 +642,8 @@ class Problem:
         120.0
         """
         if isinstance(self.target, FunctionTarget):
-            return float(self.target.inputs[0])
+            return float(self.target.inputs[0] - self.input_at_pose(linkage) if not self.revolute_input
+                         else self.target.inputs[0])
         if not self.absolute:
             return None
         if self.constraints.frame_angle is not None:
@@ -599,6 +671,9 @@ class Problem:
         """(tracer points (S, 2), poses (S, 3: x, y and the body's turn) or output angles (S,), g, μ)
         at the input offsets (g and μ as :meth:`poses` gives them)."""
         theta, t, g, mu = self.poses(linkage, offsets)
+        if self.slider is not None and self.slider[0] == self.output_joint:  # the pin's place along the x axis
+            pin = linkage.points[self.slider[1]]
+            return point_carried(theta[:, self.output_link], t[:, self.output_link], pin)[:, 0], g, mu
         if self.tracer_link is None:
             ref = linkage.points[self.output_reference(linkage)] - linkage.points[self.output_joint]
             return math.atan2(ref[1], ref[0]) + theta[:, self.output_link], g, mu
@@ -679,6 +754,8 @@ class Problem:
         """Non-dimensional residuals (one row per target point) of traced values against the target."""
         target = self.target
         if isinstance(target, FunctionTarget):
+            if target.output_is == "displacement":
+                return ((values - target.outputs) / self.scale)[:, None]
             return _wrap(values - target.outputs)[:, None]
         if isinstance(target, MotionTarget):
             rows = target.poses if target_rows is None else target_rows
@@ -822,7 +899,7 @@ class Problem:
             out.append(float(np.hypot.reduce(gap)) / self.scale if len(gap) else 0.0)
         if c.rocker is not None:
             unit = 1.0 if self.revolute_input else self.scale
-            values = linkage.pose_inputs[0] + np.array([min(0.0, offsets.min()), max(0.0, offsets.max())])
+            values = self.input_at_pose(linkage) + np.array([min(0.0, offsets.min()), max(0.0, offsets.max())])
             over = max(0.0, c.rocker[0] + MARGIN * unit - values[0]) + max(0.0, values[1] - c.rocker[1] + MARGIN * unit)
             out.append(over / unit)
         if self.order:

@@ -113,13 +113,14 @@ class DimensionalResult(Row):
     inputs : ndarray (N,)
         The input's value at each target point (rad or length; on the pose's branch).
     traced : ndarray
-        What the linkage does there: tracer points (N, 2), output angles (N,), or poses (N, 3)
+        What the linkage does there: tracer points (N, 2), output angles or displacements (N,), or poses (N, 3)
         (the body's angle measured as the target's: the first pose's angle plus its turn).
     errors : ndarray (N,)
-        Each target point's error in the target's units (distance; rad for a function; for a
+        Each target point's error in the target's units (distance; rad or length for a function; for a
         motion the position error — the angle errors are in ``angle_errors``).
     size : float
-        The target's size (bounding-box diagonal; 1 for a function): relative errors are over it.
+        The target's size (bounding-box diagonal; 1 for a function of angles, the displacements'
+        range for a slider's): relative errors are over it.
     seconds : float
         CPU seconds of the search (this process).
     evaluations : int
@@ -164,7 +165,7 @@ class DimensionalResult(Row):
 
     @property
     def error_max(self) -> float:
-        """The largest point's error (target units; rad for a function)."""
+        """The largest point's error (target units; rad or length for a function)."""
         return float(self.errors.max())
 
     @property
@@ -933,7 +934,7 @@ class _Search:
         for kind, k in p.layout:
             if kind == "joint" and k in p.frame_joints:
                 at[k] = i
-            i += 1 if kind in ("slide", "along") else 2
+            i += 1 if kind in ("slide", "along", "origin") else 2
         other = [k for k in p.frame_joints if k != p.input_joint and k in at]
         if p.input_joint not in at or not other:
             return None
@@ -1448,13 +1449,14 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
         offsets = problem.offsets_of_timing(linkage)
     else:
         offsets = direction * np.concatenate(([0.0], np.cumsum(z[problem.dims:])))
-    inputs = linkage.pose_inputs[0] + offsets
+    inputs = problem.input_at_pose(linkage) + offsets
     values, _, _ = problem.move(linkage, offsets)
     target = problem.target
     angle_errors = None
     if isinstance(target, FunctionTarget):
         traced = values
-        errors = np.abs(problem.residuals(values)[:, 0])
+        errors = np.abs(values - target.outputs) if target.output_is == "displacement" else \
+            np.abs(problem.residuals(values)[:, 0])
     elif isinstance(target, MotionTarget):
         traced = np.column_stack((values[:, :2], target.poses[0, 2] + values[:, 2]))
         errors = np.hypot(*(values[:, :2] - target.points).T)
@@ -1471,8 +1473,8 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
         ("bounded least squares (trf) from " + ("them, " if sampled else "a given start, ")) if runs == 0 else
         f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
         "timed" if problem.timed else "inputs as unknowns, in order")
-    return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, problem.scale if target.kind != "function"
-                             else 1.0, watch.used(), watch.count, method, constraints, angle_errors, target.weights,
+    return DimensionalResult(linkage, target, target.kind, inputs, traced, errors, target.size if target.kind == "function"
+                             else problem.scale, watch.used(), watch.count, method, constraints, angle_errors, target.weights,
                              problem.on_reach(x))
 
 
@@ -1494,9 +1496,11 @@ def _checked(problem: Problem, linkage: Linkage, offsets: np.ndarray) -> dict:
         out["crank"] = {"value": "turns fully" if reach.full_rotation else
                         f"rocks between {_angle(reach.limits[0])} and {_angle(reach.limits[1])}",
                         "limit": None, "met": bool(reach.full_rotation)}
-    if c.rocker is not None:
-        inside = c.rocker[0] - 1e-9 <= lo_in and hi_in <= c.rocker[1] + 1e-9
-        out["rocker"] = {"value": [lo_in, hi_in], "limit": list(c.rocker), "met": bool(inside)}
+    if c.rocker is not None:  # (in the target's measure: a function's input slider's pin along its line)
+        shift = problem.input_at_pose(linkage) - phi0
+        lo, hi = lo_in + shift, hi_in + shift
+        inside = c.rocker[0] - 1e-9 <= lo and hi <= c.rocker[1] + 1e-9
+        out["rocker"] = {"value": [lo, hi], "limit": list(c.rocker), "met": bool(inside)}
     if c.min_transmission > 0:
         worst = _worst_transmission(linkage, lo_in, hi_in, c.crank and reach.full_rotation)
         out["transmission"] = {"value": None if worst is None else math.degrees(worst),

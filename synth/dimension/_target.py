@@ -21,6 +21,8 @@ from ..errors import BadTarget
 
 __all__ = ["PathTarget", "FunctionTarget", "MotionTarget", "read_target"]
 
+#: what a function's input or output measures: an angle (rad) or a slider's displacement (a length)
+MEASURES = ("angle", "displacement")
 #: two target points closer than this × the target's size are one point (a duplicate)
 DUPLICATE = 1e-9
 
@@ -139,31 +141,48 @@ class PathTarget:
 
 @dataclass(frozen=True, eq=False)
 class FunctionTarget:
-    """Input–output pairs a mechanism must generate: the output link's angle at each input angle.
+    """Input–output pairs a mechanism must generate: the output's angle or displacement at each
+    input angle or displacement.
 
-    Both angles (rad) are measured from the frame line, the line from the input's pivot to the
-    output's pivot on the frame, anticlockwise (Freudenstein's convention); the output link is a
-    link pivoted on the frame (``output_link``; by default the only other one).
+    Angles against angles (two links pivoted on the frame): both (rad) are measured from the frame
+    line, the line from the input's pivot to the output's pivot, anticlockwise (Freudenstein's
+    convention).  A displacement is a slider's, on a prismatic pair with the frame, against the
+    angle of a link pivoted there: it is the position of the slider's pin (its revolute joint) along
+    the slider's line, in the direction the line is drawn, measured from the foot of the pivot on
+    the line (the crank's pivot of a slider-crank: s = r cos θ + √(l² − (r sin θ − e)²)); the angle
+    is measured from that direction, anticlockwise.  Only one side may be a displacement.  The
+    output link is a link jointed to the frame (``output_link``; by default the only other one).
 
     Parameters
     ----------
     inputs, outputs : array (N,)
-        Input angles (strictly monotonic) and the output angles wanted there.
+        Input values (strictly monotonic) and the output values wanted there.
     output_link : int, optional
-        The output link (a rocker or crank pivoted on the frame).
+        The output link (a rocker, crank or slider on the frame).
     weights : array (N,), optional
-        How much each pair counts (weight × squared angle error), as a path's points' weights.
+        How much each pair counts (weight × squared error), as a path's points' weights.
+    input_is, output_is : "angle" or "displacement"
+        What each column measures (rad, or the target's length unit); at most one a displacement.
+    origin : "pivot" or "free"
+        Where a displacement is measured from: the pivot's foot on the slider's line, or a point of the
+        line the synthesis chooses (the pivot's place along the line an unknown, so that the target's
+        own zero — a first position, a machine's datum — is taken as it is).
 
     Examples
     --------
     >>> FunctionTarget([0.5, 1.0, 1.5], [1.2, 1.4, 1.7]).size
     1.0
+    >>> FunctionTarget([0.5, 1.0, 1.5], [3.25, 2.75, 2.5], output_is="displacement").size   # the displacements' range
+    0.75
     """
 
     inputs: np.ndarray
     outputs: np.ndarray
     output_link: int | None = None
     weights: np.ndarray | None = None
+    input_is: str = "angle"
+    output_is: str = "angle"
+    origin: str = "pivot"
     kind = "function"
 
     def __post_init__(self):
@@ -177,11 +196,24 @@ class FunctionTarget:
         object.__setattr__(self, "inputs", inputs)
         object.__setattr__(self, "outputs", outputs)
         object.__setattr__(self, "weights", _weights(self.weights, len(inputs), "pairs"))
+        for side in ("input_is", "output_is"):
+            if getattr(self, side) not in MEASURES:
+                raise BadTarget(f"{side} is 'angle' or 'displacement', not {getattr(self, side)!r}")
+        if self.input_is == self.output_is == "displacement":
+            raise BadTarget("function generation relates two angles or an angle and a displacement: two "
+                            "displacements are not offered")
+        if self.origin not in ("pivot", "free"):
+            raise BadTarget(f"a displacement's origin is 'pivot' or 'free', not {self.origin!r}")
+        if self.origin == "free" and self.input_is == self.output_is:
+            raise BadTarget("a free origin is a displacement's: this function relates two angles")
 
     @property
     def size(self) -> float:
-        """1: the function's errors are angles (rad), relative to one radian."""
-        return 1.0
+        """What the errors are relative to: 1 for angles (rad); the outputs' range for displacements
+        (their largest absolute value where they are all equal)."""
+        if self.output_is == "angle":
+            return 1.0
+        return float(np.ptp(self.outputs)) or float(np.abs(self.outputs).max()) or 1.0
 
     def __len__(self) -> int:
         return len(self.inputs)
@@ -235,6 +267,8 @@ class MotionTarget:
 COLUMNS = {
     ("x", "y"): "path", ("x", "y", "input"): "path", ("x", "y", "input_deg"): "path",
     ("input", "output"): "function", ("input_deg", "output_deg"): "function",
+    ("input", "output_displacement"): "function", ("input_deg", "output_displacement"): "function",
+    ("input_displacement", "output"): "function", ("input_displacement", "output_deg"): "function",
     ("x", "y", "angle"): "motion", ("x", "y", "angle_deg"): "motion",
 }
 
@@ -265,12 +299,15 @@ def _rows(path: Path) -> tuple[list[str], list[list]]:
     return header, body
 
 
-def read_target(path: str | Path, *, output_link: int | None = None):
+def read_target(path: str | Path, *, output_link: int | None = None, origin: str = "pivot"):
     """Read a target from a CSV file (a header row, then one row per point) or a JSON list of rows.
 
     The columns say the kind: ``x,y`` a path without timing; ``x,y,input`` (or ``input_deg``) a
-    path with timing; ``input,output`` (or ``input_deg,output_deg``) a function; ``x,y,angle``
-    (or ``angle_deg``) a motion.  Any of them may end with a ``weight`` column: how much each row
+    path with timing; ``input,output`` (or ``input_deg,output_deg``) a function of angles,
+    ``input_deg,output_displacement`` a slider's displacement against an angle and
+    ``input_displacement,output_deg`` an angle against a slider's (each angle also in rad without
+    ``_deg``); ``x,y,angle`` (or ``angle_deg``) a motion.  ``origin`` is a slider function's (see
+    :class:`FunctionTarget`).  Any of them may end with a ``weight`` column: how much each row
     counts (the target's ``weights``).
 
     Raises
@@ -295,8 +332,9 @@ def read_target(path: str | Path, *, output_link: int | None = None):
     kind = COLUMNS.get(tuple(header[:-1] if weighted else header))
     if kind is None:
         raise BadTarget(f"{path.name} has the columns {', '.join(header) or 'none'}; a target's are x,y (a path), "
-                        "x,y,input (timed path), input,output (a function) or x,y,angle (a motion), an angle "
-                        "column named *_deg in degrees, and last an optional weight column")
+                        "x,y,input (timed path), input,output (a function; input_displacement or "
+                        "output_displacement for a slider's side) or x,y,angle (a motion), an angle column named "
+                        "*_deg in degrees, and last an optional weight column")
     if not body:
         raise BadTarget(f"the target file {path.name} has a header but no rows")
     try:
@@ -314,7 +352,8 @@ def read_target(path: str | Path, *, output_link: int | None = None):
     if kind == "path":
         return PathTarget(values[:, :2], values[:, 2] if values.shape[1] == 3 else None, weights)
     if kind == "function":
-        return FunctionTarget(values[:, 0], values[:, 1], output_link, weights)
+        measures = ["displacement" if name.endswith("_displacement") else "angle" for name in header[:2]]
+        return FunctionTarget(values[:, 0], values[:, 1], output_link, weights, *measures, origin)
     return MotionTarget(values, weights)
 
 

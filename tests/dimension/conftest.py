@@ -32,3 +32,9 @@ def bench():
 def hcdj():
     """benchmarks/hcdj_ten_points.py: [HCDJ]'s ten points, their weights, bound and the source's closed form."""
     yield from _benchmark("hcdj_ten_points")
+
+
+@pytest.fixture(scope="module")
+def slider_bench():
+    """benchmarks/bench_slider_function.py: random offset slider-cranks' functions, their closed form."""
+    yield from _benchmark("bench_slider_function")

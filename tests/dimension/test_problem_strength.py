@@ -124,8 +124,8 @@ def test_the_problems_refusals():
         "dimensional synthesis moves a planar mechanism of one input (W = 1), not W = 1 in motion space h = 5"
     f = FunctionTarget([0, 1], [0, 1])
     assert refused(DimensionError, Problem, SLIDER_CRANK, 0, f, None, Constraints()) == (
-        "function generation relates the angles of two links pivoted on the frame: the input and the output joints "
-        "must be revolute")
+        "the target gives the output as angles, but the output joint 0=3 is prismatic (a slider): give its "
+        "displacements (an output_displacement column)")
     assert refused(DimensionError, Problem, FOUR_BAR, 0, FunctionTarget([0, 1], [0, 1], 2), None, Constraints()) == \
         ("the output link 2 must be pivoted on the frame (link 0) and not be the input link; links pivoted there: [3]")
     watt = Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-2"), 0)

@@ -117,7 +117,8 @@ def test_files_say_their_kind_and_units_by_their_columns(tmp_path):
     ("e.csv", " \n\n", "the target file e.csv is empty"),
     ("h.csv", "x,y\n\n", "the target file h.csv has a header but no rows"),
     ("c.csv", "x,z\n0,0\n", "c.csv has the columns x, z; a target's are x,y (a path), x,y,input (timed path), "
-                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees, and last an optional weight column"),
+                             "input,output (a function; input_displacement or output_displacement for a slider's side) or x,y,angle "
+                             "(a motion), an angle column named *_deg in degrees, and last an optional weight column"),
     ("r.csv", "x,y\n0,0\n1,1\n2\n", "r.csv line 4 has 1 values for the 2 columns x, y"),
     ("w.csv", "x,y\n0,0\n1,zero\n", "w.csv: 'zero' is not a number"),
     ("l.json", '{"x": 0}', 'l.json must hold a list of rows, each an object such as {"x": 0, "y": 1}'),
@@ -126,7 +127,8 @@ def test_files_say_their_kind_and_units_by_their_columns(tmp_path):
     ("k.json", '[{"x": 0, "y": 0}, {"y": 1, "x": 1}]', "k.json: every row must have the same keys as the first (x, y)"),
     ("j.json", '[{"x": 0,\n "y": }]', "j.json: not valid JSON (Expecting value at line 2)"),
     ("q.json", '[{"a": 0}]', "q.json has the columns a; a target's are x,y (a path), x,y,input (timed path), "
-                             "input,output (a function) or x,y,angle (a motion), an angle column named *_deg in degrees, and last an optional weight column"),
+                             "input,output (a function; input_displacement or output_displacement for a slider's side) or x,y,angle "
+                             "(a motion), an angle column named *_deg in degrees, and last an optional weight column"),
     ("t.tsv", "x,y\n0,0\n1,1\n", "a target file is .csv or .json, not 't.tsv'"),
 ])
 def test_a_bad_file_is_refused_in_the_sentence_that_names_its_fault(tmp_path, name, text, sentence):
