@@ -35,8 +35,8 @@ Run from the project root (a long row prints the command's own progress bar)::
 
     nice -n 19 python benchmarks/records.py                  # every row but the heavy ones
     nice -n 19 python benchmarks/records.py --only "dof 3 --links 18"   # one row, heavy or not
-    nice -n 10 python benchmarks/records.py --only "links 14 --v" --recheck --list-max 0 --second-max 100000000 \
-        --second-every 10                                 # a recorded count checked again on a sample of codes
+    nice -n 10 python benchmarks/records.py --only "links 14 --v 0..12" --recheck --list-max 0 --reverse-max 0 \
+        --second-max 100000000 --second-every 10      # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
     python benchmarks/records.py --size --only "dof 3 --links"   # the engine's sizing of rows, beside the records
     python benchmarks/records.py --only "links 32 --h 6" --recheck --reverse-from reverse.json  # a second count
@@ -227,8 +227,9 @@ ROWS = (
     # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
     + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
     + [_row("W = 1, one ternary joint", 1, 16, None, "Ding2013", v="1",
-            heavy="run on its own (--only): sized at about 1.8e8 chains and 900 CPU s (30 Nov 2026), its second "
-                  "count (--method orbits) run beside it and compared by `--recheck --reverse-from`")]
+            heavy="run on its own (--only): sized at about 1.8e8 chains and 900 CPU s (30 Nov 2026), counted in "
+                  "1 033 CPU s and 831 MiB, its second count (--method orbits) 1 318 CPU s, equal by code "
+                  "(benchmarks/logs/one_ternary_joint_6_16.txt)")]
 )
 
 
