@@ -103,7 +103,7 @@ def add_commands(sub) -> None:
     p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
-    p.add_argument("--frames", type=positive, help="with --animate: frames of the animation (2 … 1000, default 60)")
+    p.add_argument("--frames", type=whole, help="with --animate: frames of the animation (2 … 1000, default 60)")
     p.add_argument("--save", type=_saved, metavar="FILE.json",
                    help="write the linkage (as dimensioned, e.g. from a drawing) to a JSON file to edit and reuse")
     p.set_defaults(run=_run)

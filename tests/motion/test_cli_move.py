@@ -156,6 +156,8 @@ BAD = [
     (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
     (["move", str(FOUR_BAR), "--range", "--velocities"], "--range"),
     (["move", str(FOUR_BAR), "--frames", "10"], "--animate"),
+    # it said "expected a whole number ≥ 1, not 0" where the frames are 2 … 1000
+    (["move", str(FOUR_BAR), "--frames", "0", "--animate", "m.gif"], "--frames must be 2 … 1000, not 0"),
     (["move", str(FOUR_BAR), "--out", "curves.jpg"], "PNG or SVG"),
     (["move", str(FOUR_BAR), "--animate", "m.mp4"], "GIF or SVG"),
     (["move", str(FOUR_BAR), "--out", "/no/such/dir/c.png"], "cannot write"),
