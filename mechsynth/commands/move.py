@@ -93,8 +93,8 @@ def add_commands(sub) -> None:
                    "per input, like 80,100")
     p.add_argument("--stop", type=_numbers, help="last input value, as --start (default: one turn, or the upper "
                    "limit; a grid: half a turn (or the mechanism's size) each side of the pose)")
-    p.add_argument("--velocities", action="store_true", help="add each joint's velocity per unit input rate")
-    p.add_argument("--accelerations", action="store_true", help="add each joint's acceleration per unit input rate "
+    p.add_argument("--velocities", action="store_true", help="add each joint's and tracer's velocity per unit input rate")
+    p.add_argument("--accelerations", action="store_true", help="add each joint's and tracer's acceleration per unit input rate "
                    "squared (input turning steadily)")
     p.add_argument("--format", choices=("table", "jsonl", "csv", "json"),
                    help="rows per step (default table), or with --range: table or json")

@@ -37,6 +37,8 @@ class Motion:
     velocities, accelerations : ndarray (S, J, 2) or None
         Per unit input rate (rad/s or length/s), input accelerating at zero; None unless asked for.
         With W > 1, velocities are (S, W, J, 2): one per input.  NaN where the step is a dead position.
+    tracer_velocities, tracer_accelerations : dict str -> ndarray (S, 2) or None
+        The same for each tracer point ((S, W, 2) for W > 1); None unless asked for.
     stopped : str or None
         One sentence when the sweep ended at a dead or singular position (with the input there).
     grid : tuple of int or None
@@ -58,6 +60,8 @@ class Motion:
     grid: tuple[int, ...] | None = None
     #: the angles (S, n), or a function that computes them
     _angles: np.ndarray | Callable[[], np.ndarray] | None = field(default=None, repr=False)
+    tracer_velocities: dict | None = None
+    tracer_accelerations: dict | None = None
 
     @cached_property
     def angles(self) -> np.ndarray:
@@ -128,8 +132,9 @@ class Motion:
     def rows(self) -> Iterator[dict]:
         """One JSON-able dict per step: ``step``, ``input`` (for W > 1 one column per input joint,
         ``"input.0-1"``), each joint's ``x``/``y`` keyed by its name (``"1-2.x"``), each tracer's, and
-        velocities (``"1-2.vx"``; for W > 1 per unit rate of each input, ``"1-2.vx.0-1"``) and
-        accelerations (``"1-2.ax"``) where computed (None where undefined: beyond a grid's reach).
+        velocities (``"1-2.vx"``, a tracer's ``"P.vx"``; for W > 1 per unit rate of each input,
+        ``"1-2.vx.0-1"``) and accelerations (``"1-2.ax"``) where computed (None where undefined:
+        beyond a grid's reach).
 
         >>> from synth.structure.chain import Chain, Mechanism
         >>> five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
@@ -155,13 +160,17 @@ class Motion:
                 row[f"{name}.x"], row[f"{name}.y"] = num(self.joints[s, k, 0]), num(self.joints[s, k, 1])
             for name, xy in self.tracers.items():
                 row[f"{name}.x"], row[f"{name}.y"] = num(xy[s, 0]), num(xy[s, 1])
-            for label, values in (("v", self.velocities), ("a", self.accelerations)):
+            for label, values, of_tracers in (("v", self.velocities, self.tracer_velocities),
+                                              ("a", self.accelerations, self.tracer_accelerations)):
                 if values is None:
                     continue
-                for w, per in ([(None, values[s])] if values.ndim == 3 else zip(inputs, values[s])):
-                    tail = "" if w is None else f".{w}"
-                    for k, name in enumerate(names):
-                        row[f"{name}.{label}x{tail}"], row[f"{name}.{label}y{tail}"] = num(per[k, 0]), num(per[k, 1])
+                of_tracers = of_tracers or {}
+                per_input = ([("", values[s], {n: xy[s] for n, xy in of_tracers.items()})] if values.ndim == 3 else
+                             [(f".{w}", values[s, i], {n: xy[s, i] for n, xy in of_tracers.items()})
+                              for i, w in enumerate(inputs)])
+                for tail, at_joints, at_tracers in per_input:
+                    for name, (vx, vy) in [*zip(names, at_joints), *at_tracers.items()]:
+                        row[f"{name}.{label}x{tail}"], row[f"{name}.{label}y{tail}"] = num(vx), num(vy)
             yield row
 
 
@@ -651,17 +660,24 @@ def _point_rates(linkage: Linkage, theta, dtheta, dt, ddtheta=None, ddt=None):
 
 
 def _rates(linkage: Linkage, theta, t, accelerations: bool):
-    """Joint velocities and accelerations per unit rate of each input: (S, W, J, 2) each (or None)."""
+    """Velocities and accelerations per unit rate of each input: the joints' (S, W, J, 2) and each
+    tracer's (S, W, 2) by name, velocities then accelerations (None unless asked for)."""
     system = _solver(linkage).system
     qd, qdd = system.rates(theta, t, accelerations)
     vel, acc = [], []
     for i in range(linkage.dof):
         dtheta, dt = system.poses(qd[:, i])
-        vel.append(_point_rates(linkage, theta, dtheta, dt)[0])
+        vel.append(_point_rates(linkage, theta, dtheta, dt))
         if accelerations:
             ddtheta, ddt = system.poses(qdd[:, i])
-            acc.append(_point_rates(linkage, theta, dtheta, dt, ddtheta, ddt)[0])
-    return np.stack(vel, axis=1), (np.stack(acc, axis=1) if accelerations else None)
+            acc.append(_point_rates(linkage, theta, dtheta, dt, ddtheta, ddt))
+
+    def stacked(per_input):
+        if not per_input:
+            return None, None
+        return (np.stack([joints for joints, _ in per_input], axis=1),
+                {name: np.stack([tracers[name] for _, tracers in per_input], axis=1) for name in linkage.tracers})
+    return (*stacked(vel), *stacked(acc))
 
 
 def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, stop: float | None = None,
@@ -754,18 +770,17 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         else:
             tracers = {}
     inputs = (offsets + (start - x0))[:, None]
-    vel = acc = None
+    rates = [None] * 4  # the joints' and tracers' velocities, then accelerations
     if velocities or accelerations:
-        vel, acc = _rates(linkage, theta, t, accelerations)
-        vel = vel[:, 0]
-        acc = acc[:, 0] if acc is not None else None
         at_limit = np.isclose(offsets, lo, atol=1e-9, rtol=0) | np.isclose(offsets, hi, atol=1e-9, rtol=0)
-        vel[at_limit] = np.nan
-        if acc is not None:
-            acc[at_limit] = np.nan
-        if not velocities:
-            vel = None
-    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta)
+        for i, found in enumerate(_rates(linkage, theta, t, accelerations)):
+            if found is None or (i < 2 and not velocities):
+                continue
+            for values in ([found] if i % 2 == 0 else found.values()):
+                values[at_limit] = np.nan
+            rates[i] = found[:, 0] if i % 2 == 0 else {name: xy[:, 0] for name, xy in found.items()}
+    vel, tracer_vel, acc, tracer_acc = rates
+    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta, tracer_vel, tracer_acc)
 
 
 def _refined(f: Callable[[float], float], xs: np.ndarray, k: int, sampled: float) -> float:
@@ -909,11 +924,14 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     joints[~reached] = np.nan
     for xy in tracers.values():
         xy[~reached] = np.nan
-    vel = None
+    vel = tracer_vel = None
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
-        vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta)
+        tracer_vel = {name: np.full((total, w, 2), np.nan) for name in linkage.tracers}
+        vel[reached], found = _rates(linkage, theta[reached], t[reached], False)[:2]
+        for name, xy in found.items():
+            tracer_vel[name][reached] = xy
+    return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta, tracer_vel)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:

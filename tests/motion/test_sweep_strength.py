@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from synth.errors import BadSweep, CannotAssemble, WrongInputs
-from synth.motion import Linkage, Motion, sweep
+from synth.motion import Linkage, Motion, sweep, sweep_grid
 from synth.structure.chain import Chain, Mechanism
 
 from .helpers import four_bar, slider_crank
@@ -80,7 +80,8 @@ def test_every_column_of_a_row():
     rows = list(m.rows())
     names = ["0-1", "0-3", "1-2", "2-3"]
     assert list(rows[0]) == (["step", "input"] + [f"{n}.{c}" for n in names + ["P"] for c in "xy"]
-                             + [f"{n}.v{c}" for n in names for c in "xy"] + [f"{n}.a{c}" for n in names for c in "xy"])
+                             + [f"{n}.v{c}" for n in names + ["P"] for c in "xy"]
+                             + [f"{n}.a{c}" for n in names + ["P"] for c in "xy"])
     for s, row in enumerate(rows):
         assert row["step"] == s and row["input"] == m.inputs[s, 0]
         assert row["1-2.x"] == m.joints[s, 2, 0] and row["2-3.y"] == m.joints[s, 3, 1]
@@ -151,6 +152,32 @@ def test_the_extent_of_a_curve_is_the_curves_not_the_samples():
     r = sweep(rocker, steps=37)
     fine = sweep(rocker, steps=200_001).tracers["P"]
     assert r.extent()["P"] == pytest.approx((*fine.min(axis=0), *fine.max(axis=0)), abs=1e-9)
+
+
+def test_a_tracers_velocity_and_acceleration_are_in_the_rows():
+    # 'move --velocities --accelerations' gave every joint's rates but none of the coupler point's (P.x, P.y only):
+    # checked against central differences of the coupler point worked out apart from the motion layer
+    lk = four_bar(1, 3.5, 3, 4, phi=math.pi / 2, tracer=(2.5, 4.5))
+    m = sweep(lk, steps=13, velocities=True, accelerations=True)
+    angles = m.inputs[:, 0]
+    h, g = 1e-6, 1e-4
+    at = lambda shift: _coupler_points(1, 3.5, 3, 4, math.pi / 2, (2.5, 4.5), angles + shift)
+    velocity = (at(h) - at(-h)) / (2 * h)
+    acceleration = (at(g) - 2 * at(0.0) + at(-g)) / g ** 2
+    assert m.tracer_velocities["P"] == pytest.approx(velocity, abs=1e-8)
+    assert m.tracer_accelerations["P"] == pytest.approx(acceleration, abs=1e-6)
+    rows = list(m.rows())
+    assert [(r["P.vx"], r["P.vy"], r["P.ax"], r["P.ay"]) for r in rows] == [
+        (*v, *a) for v, a in zip(m.tracer_velocities["P"].tolist(), m.tracer_accelerations["P"].tolist())]
+    assert list(rows[0])[-4:] == ["2-3.ax", "2-3.ay", "P.ax", "P.ay"]  # after the joints', as the positions are
+    # W = 2: a five-bar's tracer per unit rate of each input, against differences of the grid's own points
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
+                       [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]], tracers={"T": (2, (1.0, 2.5))})
+    grid = sweep_grid(five_bar, [(1.5, 1.6), (1.5, 1.6)], steps=2, velocities=True)
+    row = next(grid.rows())
+    shifted = sweep_grid(five_bar, [(1.5 + h, 1.6), (1.5, 1.6)], steps=2).tracers["T"][0]
+    assert (row["T.vx.0-1"], row["T.vy.0-1"]) == pytest.approx(tuple((shifted - grid.tracers["T"][0]) / h), abs=1e-5)
+    assert "T.vx.0-4" in row and list(row).index("T.vy.0-1") < list(row).index("0-1.vx.0-4")
 
 
 def test_grashofs_classes_by_the_shortest_links_place():
