@@ -621,18 +621,19 @@ def _figure(canvas: _Canvas, dpi: int, title: str):
 def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None,
                 marks: np.ndarray | None = None) -> None:
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
-    paths of its moving pins (grey), to a PNG or SVG file; ``marks`` (N, 2) are drawn as hollow
-    circles over them (the points a synthesis was asked to pass).
+    paths of its moving pins (grey), to scale (a scale bar of a round length under it), to a PNG or
+    SVG file; ``marks`` (N, 2) are drawn as hollow circles over them (the points a synthesis was
+    asked to pass).
 
-    >>> import os, tempfile
+    >>> import os, re, tempfile
     >>> from synth.structure.chain import Chain, Mechanism
     >>> from synth.motion import sweep
     >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
     ...                    tracers={"P": (2, (2, 4))})
     >>> out = os.path.join(tempfile.mkdtemp(), "coupler.svg")
     >>> draw_motion(sweep(four_bar, steps=37), out)
-    >>> ">P</text>" in open(out).read()
-    True
+    >>> re.findall(r">([^<]+)</text>", open(out).read())  # the scale bar (1 length unit), the tracer's name
+    ['1', 'P']
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
     linkage = motion.linkage
@@ -645,6 +646,7 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
         elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
+    elements[:0] = _scale_bar(elements)  # under everything
     _write_still(elements, _Canvas(elements, size), path, title or _title(linkage), 100)
 
 

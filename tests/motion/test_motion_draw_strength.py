@@ -260,8 +260,8 @@ def test_a_png_draws_each_element_as_an_artist(tmp_path, monkeypatch):
     assert len(white) == 4 and min(c.zorder for c in white) > max(a.zorder for a in [*ax.lines, *ax.patches]
                                                                        if a not in circles)  # pins over the links
     assert marks[0].radius == pytest.approx(white[0].radius * 0.014 / 0.018)  # 0.014 and 0.018 of the size
-    (text,) = ax.texts
-    assert text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
+    length, text = ax.texts  # the scale bar's length (a round one under the drawing: it is to scale), the tracer's name
+    assert length.get_text() == "1" and text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
     assert text.get_zorder() > max(a.zorder for a in [*ax.lines, *ax.patches])  # over everything
     assert text.get_va() == "bottom" and text.get_fontsize() == 9
     (dot,) = [c for c in circles if to_hex(c.get_facecolor()) == "#c0392b"]
