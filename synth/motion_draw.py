@@ -668,22 +668,65 @@ def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, 
         raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
 
 
+#: a link number's box (width per digit, height) as a share of the drawing's size, at the default size
+_NUMBER_BOX = np.array([0.026, 0.036])
+
+
 def _link_numbers(linkage: Linkage) -> list[dict]:
     """Each link's number (the chain's numbering) beside the middle of its pins in the pose, as a
-    chain's drawing numbers its links."""
+    chain's drawing numbers its links: of a few places beside it (either side of a bar, along it; about
+    a plate's middle), the first clear of every pin, ground pivot, bar and number drawn, else the
+    clearest (a short crank's number once stood on its ground pivot, the frame's on a pivot's base)."""
+    scale = linkage.scale
+    lift = 0.045 * scale
+    p = linkage.points
+    pin = 0.018 * scale
+    # what a number must not stand on: each link's bars (the frame's dashed line), ground pivots, pins, tracers
+    segments = []
+    for link in range(linkage.chain.links):
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
+        segments += [(p[i], p[j]) for a, i in enumerate(on) for j in on[a + 1:]]
+    w = 2.6 * pin
+    for k, joint in enumerate(linkage.chain.joints):
+        if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
+            x, y = p[k]
+            base = np.array([[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]])
+            segments += [tuple(base), (p[k], base[0] + [0.6 * w, 0]), (p[k], base[1] - [0.6 * w, 0])]
+    dots = [*p[[k for k in range(len(p)) if linkage.kind(k) == REVOLUTE]], *(at for _, at in linkage.tracers.values())]
+    samples = [np.asarray(dot, dtype=float)[None] for dot in dots]
+    for a, b in segments:
+        count = 2 + int(math.dist(a, b) / (0.01 * scale))
+        samples.append(np.linspace(a, b, min(count, 400)))
+    obstacles = np.concatenate(samples) if samples else np.zeros((0, 2))
+    placed: list[np.ndarray] = []
+
+    def clearance(centre: np.ndarray, half: np.ndarray) -> float:
+        pts = np.concatenate([obstacles, *placed]) if placed else obstacles
+        gap = np.maximum(np.abs(pts - centre) - half, 0.0)
+        return float(np.hypot(gap[:, 0], gap[:, 1]).min(initial=math.inf))
+
     out = []
-    lift = 0.045 * linkage.scale
     for link in range(linkage.chain.links):
         on = list(linkage.joints_of(link))
         pins = [k for k in on if linkage.kind(k) == REVOLUTE] or on
-        at = linkage.points[pins].mean(axis=0)
-        if len(pins) == 2:  # a bar: beside it, not on it
-            d = linkage.points[pins[1]] - linkage.points[pins[0]]
+        middle = p[pins].mean(axis=0)
+        half = _NUMBER_BOX * [len(str(link)), 1] * scale / 2
+        if len(pins) == 2:  # a bar: beside it, not on it; the upper side first, its middle first
+            d = p[pins[1]] - p[pins[0]]
             n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-300)
-            at = at + lift * (n if n[1] >= 0 else -n)
-        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (and the frame's off its pivot's base)
-            at = at + lift * (np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0]))
-        out.append({"tag": "text", "text": str(link), "frames": at[None, None], "static": True,
+            n = n if n[1] >= 0 else -n
+            centres = [p[pins[0]] + t * d + side * (lift + float(np.abs(n) @ half)) * n
+                       for side, t in ((1, 0.5), (-1, 0.5), (1, 0.3), (1, 0.7), (-1, 0.3), (-1, 0.7))]
+        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (the frame's off its pivot's base)
+            first = np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0])
+            centres = [middle + lift * v + half for v in (first, [-2.0, -1.1], [1.0, -1.0], [-1.6, 1.0])]
+        else:  # a plate: its middle, else towards one of its pins
+            centres = [middle] + [middle + 0.35 * (p[k] - middle) for k in pins]
+        gaps = [clearance(c, half) for c in centres]
+        clear = [c for c, g in zip(centres, gaps) if g >= 0.25 * lift]
+        centre = clear[0] if clear else centres[int(np.argmax(gaps))]
+        placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
+        out.append({"tag": "text", "text": str(link), "frames": (centre - half)[None, None], "static": True,
                     "style": {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12,
                               "font-family": "sans-serif"}})
     return out
