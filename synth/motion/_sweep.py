@@ -801,9 +801,24 @@ def _refined(f: Callable[[float], float], xs: np.ndarray, k: int, sampled: float
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
-    """Each dyad's least and greatest transmission angle over the sweep, refined between samples."""
+    """Each dyad's least and greatest transmission angle over the sweep, refined between samples; at a
+    dead position where the branch ends because this dyad is aligned, exactly 0 or π (the end is
+    located to 1e-11 of the input, where the angle is still about its square root: 1e-4°)."""
     out = {}
     lo, hi = min(offsets[0], offsets[-1]), max(offsets[0], offsets[-1])
+    branch_lo, branch_hi, why_lo, why_hi = solver.branch
+
+    def aligned_end(x: float, d) -> bool:
+        """Whether offset x is an end of the branch (a turn on or back, for a revolute input) where dyad d
+        is aligned."""
+        for end, why in ((branch_lo, why_lo), (branch_hi, why_hi)):
+            gap = x - end
+            if solver.revolute[0]:
+                gap = (gap + math.pi) % (2 * math.pi) - math.pi
+            if abs(gap) <= 1e-9 and why.startswith(_dyad_name(solver.linkage, d)):
+                return True
+        return False
+
     for m, d in enumerate(solver.plan):
         if d.kind == "gear":
             continue
@@ -818,6 +833,9 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
                                         bounds=(a, b), method="bounded", options={"xatol": 1e-10})
                 if found.success and found.fun < sign * best:
                     best_x, best = float(found.x), sign * float(found.fun)
+            snap = 0.0 if best < math.pi / 2 else math.pi
+            if abs(best - snap) < 1e-3 and aligned_end(float(offsets[k]), d):
+                best, best_x = snap, float(offsets[k])
             entry[label], entry[f"at_{label}"] = best, float(phi0 + best_x)
         out[f"links {d.links[0]}, {d.links[1]}"] = entry
     return out

@@ -180,6 +180,21 @@ def test_a_tracers_velocity_and_acceleration_are_in_the_rows():
     assert "T.vx.0-4" in row and list(row).index("T.vy.0-1") < list(row).index("0-1.vx.0-4")
 
 
+def test_a_transmission_angle_at_a_dead_position_is_exactly_0_or_180_degrees():
+    # a double-rocker input stops where coupler and rocker fold (|b − c|: μ = 0) and stretch (b + c: μ = π);
+    # 'move --range' said "min 0.0001439°" there and the scene "worst transmission 4.572e-05°" (the end found to
+    # 1e-11 of the input, where μ is still about its square root)
+    a, b, c, d = 1.2, 0.7, 1.15, 1.0
+    folded = math.acos((a * a + d * d - (b - c) ** 2) / (2 * a * d))
+    stretched = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    t = sweep(four_bar(a, b, c, d, phi=1.0)).transmission["links 2, 3"]
+    assert (t["min"], t["max"]) == (0.0, math.pi)
+    assert (t["at_min"], t["at_max"]) == pytest.approx((folded, stretched), abs=1e-9)
+    # a sweep that stops short of the dead positions keeps the refined values
+    inside = sweep(four_bar(a, b, c, d, phi=1.0), start=folded + 0.1, stop=stretched - 0.1).transmission["links 2, 3"]
+    assert 0 < inside["min"] < inside["max"] < math.pi
+
+
 def test_grashofs_classes_by_the_shortest_links_place():
     from synth.motion import motion_range
     from synth.motion._sweep import _grashof
