@@ -99,7 +99,8 @@ def add_commands(sub) -> None:
     p.add_argument("--format", choices=("table", "jsonl", "csv", "json"),
                    help="rows per step (default table), or with --range: table or json")
     p.add_argument("--range", action="store_true", help="what a designer checks instead of rows: crank or rocker, "
-                   "limits, Grashof, dead and toggle positions, transmission angles, curve extent")
+                   "limits, Grashof, dead and toggle positions (of the whole branch), transmission angles and "
+                   "curve extent (over --start … --stop where given)")
     p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
