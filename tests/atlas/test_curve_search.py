@@ -17,7 +17,7 @@ from synth.atlas import AtlasError, NoCurveIndex, index_curves, parse_grid, run_
 from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
                                 untimed_parameter)
 from synth.atlas.search import Candidate, _form, _misfits, _refine, _variants, descriptor_of, start_linkage
-from synth.dimension import Constraints, PathTarget
+from synth.dimension import Constraints, FunctionTarget, MotionTarget, PathTarget
 from synth.errors import BadTarget
 from synth.motion import Linkage, assemble, sweep
 from synth.motion_draw import linkage_from_layout
@@ -190,6 +190,27 @@ def test_targets_the_index_cannot_serve_are_refused():
         descriptor_of(PathTarget(np.c_[np.cos(t / 2), np.sin(t / 2)], inputs=t / 2))
     with pytest.raises(BadTarget, match="at least 7"):
         descriptor_of(PathTarget(np.c_[np.cos(t[:5]), np.sin(t[:5])]))
+
+
+def test_a_function_or_a_motion_is_refused_by_the_atlas_search_in_one_sentence(four_bar_index, tmp_path):
+    """The index holds coupler curves, which do not serve a function (an output angle against the input) or
+    name a body's turn: from Python the search raised AttributeError ('FunctionTarget' has no 'points'), and
+    the command refused only after reading the target, with a sentence of its own."""
+    function = FunctionTarget(np.radians([35, 55, 75, 95]), np.radians([60, 72, 85, 99]))
+    with pytest.raises(BadTarget) as info:
+        search_atlas(four_bar_index, function, budget=1)
+    assert str(info.value) == ("the atlas search looks for paths (its index holds coupler curves), not a function: "
+                               "give the topology with mechanism=CHAIN or linkage=FILE")
+    with pytest.raises(BadTarget, match="not a motion: give the topology"):
+        search_atlas(four_bar_index, MotionTarget([[0, 0, 0], [1, 0, 0.1], [1, 1, 0.3]]), budget=1)
+    with pytest.raises(BadTarget, match="not list: give the topology"):
+        search_atlas(four_bar_index, [[0, 0], [1, 1]], budget=1)
+    csv = tmp_path / "f.csv"
+    csv.write_text("input_deg,output_deg\n35,60\n55,72\n75,85\n95,99\n")
+    done = _cli("dimension", str(csv), "--db", four_bar_index)
+    assert done.returncode == 2 and done.stderr == (
+        "mechsynth: the atlas search looks for paths (its index holds coupler curves), not a function: give the "
+        "topology with --mechanism CHAIN or --linkage FILE\n")
 
 
 # ------------------------------------------------------------------ exact recovery
