@@ -595,7 +595,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     (4, True)
     """
     from ..dimension import Constraints
-    from .curves import index_info
+    from .curves import index_gap, index_info
 
     given = [("top", top), ("workers", workers)]
     for name, value in given + ([("per_topology", per_topology)] if per_topology is not None else []):
@@ -633,7 +633,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         from ..execution.scheduler import connect
 
         client = connect(scheduler, connect_timeout)
-    matches, notes = [], []
+    matches = []
+    gap = index_gap(db, links)
+    notes = [SynthesisError(gap)] if gap else []
     bar = executor = None
     if progress and tasks:
         from ..execution.progress import Progress

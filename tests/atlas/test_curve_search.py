@@ -13,7 +13,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from synth.atlas import AtlasError, NoCurveIndex, index_curves, parse_grid, run_grid, search_atlas
+from synth.atlas import AtlasError, NoCurveIndex, index_curves, index_gap, parse_grid, run_grid, search_atlas
 from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
                                 untimed_parameter)
 from synth.atlas.search import Candidate, _form, _misfits, _refine, _variants, descriptor_of, start_linkage
@@ -444,6 +444,38 @@ def test_the_command_finds_the_four_bar_saves_and_draws_it(four_bar_index, tmp_p
     assert out.stat().st_size > 0 and "[linkage]" in saved.read_text()
     moved = _cli("move", str(saved), "--range", "--format", "json")
     assert moved.returncode == 0, moved.stderr
+
+
+def test_chains_a_grid_adds_after_the_index_are_named_by_the_grid_and_by_the_search(tmp_path):
+    """An atlas of the four-bar indexed, then a grid of 4..6 links run into it: the two six-bar chains it adds are
+    not in the index, and neither command said so (the search silently left them out)."""
+    db = _atlas(tmp_path, "4")
+    index_curves(db, settings=IndexSettings(samples=20), workers=1)
+    assert index_gap(db) is None
+    grid = tmp_path / "grid.toml"
+    grid.write_text('dof = 1\nlinks = "4..6"\n')
+    done = _cli("grid", str(grid), "--db", db, "--workers", "1")
+    command = f"mechsynth atlas --db {db} --index-curves --samples 20"
+    sentence = (f"the curve index of {db} does not cover 2 chains of the atlas (with 6 links): the atlas search "
+                f"does not see them until '{command}' indexes them")
+    assert done.returncode == 0 and f"mechsynth: {sentence}\n" in done.stderr, done.stderr
+    linkage = _random_crank(FOUR_BAR, 2, seed=7)
+    target = _target(linkage, 48, True)
+    found = search_atlas(db, target, budget=10)
+    assert [str(n) for n in found.notes if "curve index" in str(n)] == [sentence]
+    assert found.best.candidate.links == 4 and found.best.result.relative_max <= 1e-6  # the indexed part searched
+    assert not [n for n in search_atlas(db, target, links=(4, 5), budget=10).notes if "curve index" in str(n)]
+    csv = tmp_path / "timed.csv"
+    csv.write_text("x,y,input\n" + "".join(f"{x!r},{y!r},{a!r}\n" for (x, y), a in
+                                          zip(target.points.tolist(), target.inputs.tolist())))
+    done = _cli("dimension", str(csv), "--db", db, "--budget", "10")
+    assert done.returncode == 0 and f"mechsynth: {sentence}\n" in done.stderr, done.stderr
+    # the command named indexes them (the same settings: a build with others is refused), and the notes stop
+    done = _cli(*command.split()[1:], "--workers", "1")
+    assert done.returncode == 0, done.stderr
+    assert index_gap(db) is None
+    done = _cli("grid", str(grid), "--db", db, "--workers", "1")
+    assert done.returncode == 0 and "curve index" not in done.stderr, done.stderr
 
 
 def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_bar_index, tmp_path):
