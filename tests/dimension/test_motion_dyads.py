@@ -1,6 +1,6 @@
 """Motion generation from no guess: a random crank-rocker's coupler poses are met exactly from its dyads
-(Burmester's circle and centre points; the global stage alone ended at 0.7 % of their size after 20 CPU s, and
-and at 0.29 % after the default 60 on seed 0: benchmarks/DIMENSION.md)."""
+(Burmester's circle and centre points; the global stage alone ended 0.7 % of their size off after 20 CPU s, and
+0.29 % after the default 60, on seed 0: benchmarks/DIMENSION.md)."""
 
 from __future__ import annotations
 
