@@ -8,9 +8,10 @@ m alone — two unknowns, searched on a grid and polished by least squares in (m
 finitely many dyads (the Burmester points), six or more only those of a mechanism that passes them exactly;
 two of them, each jointed to the body and pivoted on the frame, are a four-bar posed at the first pose.
 
-The global stage of :func:`synthesize` searches the four-bar's eight joint coordinates together and did
-not find a random four-bar's six coupler poses (0.7 % of their size after 20 CPU s, benchmarks/DIMENSION.md);
-each dyad alone is a search in two unknowns, its exact zeros found in a tenth of a CPU second.
+The global stage of :func:`synthesize` searches the four-bar's eight joint coordinates together and left two of
+five random four-bars' six coupler poses 0.3–0.4 % of their size off after 60 CPU s (benchmarks/DIMENSION.md,
+*Motion generation from no guess*); each dyad alone is a search in two unknowns, its exact zeros found in a tenth
+of a CPU second.
 """
 
 from __future__ import annotations
