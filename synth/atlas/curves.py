@@ -658,8 +658,10 @@ def _index_command(db, settings: dict) -> str:
     lo, hi = settings.get("prismatic", (0, 0))
     drawings = settings.get("drawings", 1)
     return (f"mechsynth atlas --db {db} --index-curves --samples {settings['samples']}"
-            + (f" --drawings {drawings}" if drawings > 1 else "") + (f" --seed {settings['seed']}" if settings["seed"] else "")
-            + (" --triads" if settings.get("triads") else "") + (f" --prismatic {lo}..{hi}" if (lo, hi) != (0, 0) else ""))
+            + (f" --drawings {drawings}" if drawings > 1 else "")
+            + (f" --seed {settings['seed']}" if settings["seed"] else "")
+            + (" --triads" if settings.get("triads") else "")
+            + (f" --prismatic {lo}..{hi}" if (lo, hi) != (0, 0) else ""))
 
 
 def _said(settings: dict) -> str:

@@ -121,10 +121,11 @@ def dyad_starts(mechanism, tracer_link: int, target, seed: int = 0) -> list:
     pins = [k for k, j in enumerate(chain.joints) if tracer_link in j]
     if frame == tracer_link or any(frame in chain.joints[k] for k in pins) or len(pins) != 2:
         return []
-    # each pin of the coupler, the link there and that link's pivot on the frame
-    pivot = {k: next(g for g, j in enumerate(chain.joints) if frame in j and (set(chain.joints[k]) - {tracer_link}) & set(j))
-             for k in pins}
     from ..motion import Linkage
+
+    def pivot_of(pin: int) -> int:  # the frame's joint of the link jointed to the coupler at ``pin``
+        link = next(x for x in chain.joints[pin] if x != tracer_link)
+        return next(g for g, j in enumerate(chain.joints) if frame in j and link in j)
 
     joint, _ = input_joint_of(mechanism, None)
     first = target.poses[0, :2]
@@ -136,8 +137,8 @@ def dyad_starts(mechanism, tracer_link: int, target, seed: int = 0) -> list:
                 continue
             points = np.zeros((4, 2))
             (k1, k2) = pins
-            points[k1], points[pivot[k1]] = first + ma, fa
-            points[k2], points[pivot[k2]] = first + mb, fb
+            points[k1], points[pivot_of(k1)] = first + ma, fa
+            points[k2], points[pivot_of(k2)] = first + mb, fb
             try:
                 starts.append(Linkage(mechanism, (joint,), points, tracers={"P": (tracer_link, tuple(first))}))
             except MotionError:  # (two pins of one link at one point: no linkage)

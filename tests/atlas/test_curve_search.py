@@ -478,6 +478,21 @@ def test_chains_a_grid_adds_after_the_index_are_named_by_the_grid_and_by_the_sea
     assert done.returncode == 0 and "curve index" not in done.stderr, done.stderr
 
 
+def test_the_command_a_gap_names_resumes_an_index_of_other_settings(tmp_path, capsys):
+    """The named command carries the index's own settings (samples, drawings, seed): a build with others is
+    refused, so a command without them would not index the missing chains."""
+    from mechsynth.cli import main
+
+    db = _atlas(tmp_path, "4")
+    index_curves(db, settings=IndexSettings(samples=4, seed=3, drawings=2), workers=1)
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    command = index_gap(db).split("'")[1]
+    assert command == f"mechsynth atlas --db {db} --index-curves --samples 4 --drawings 2 --seed 3"
+    assert main([*command.split()[1:], "--workers", "1", "--links", "6"]) == 0
+    capsys.readouterr()
+    assert index_gap(db) is None
+
+
 def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_bar_index, tmp_path):
     # 8 untimed points: 16 equations for a four-bar's 17 unknowns.  The note once told the command line to give
     # "underdetermined=True" (the Python keyword), and --underdetermined was refused with --db
