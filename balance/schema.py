@@ -298,7 +298,7 @@ class LinkageBalanceTable(_Table):
     counter_radius: float | None = None
     gravity: Point | None = None
     range: Pair | None = None
-    samples: Annotated[int, Field(ge=3)] | None = None
+    samples: Annotated[int, Field(ge=9, le=100_000)] | None = None
 
 
 def linkage_table(doc: Mapping[str, Any], source: str = "<input>") -> LinkageBalanceTable:

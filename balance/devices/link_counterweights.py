@@ -94,7 +94,11 @@ def fit_counterweights(bodies: Sequence[LinkBody], on: Sequence[LinkBody], motio
         if b.pivot is None:
             m = mu[b.link]
         else:
-            m = counter_mass if counter_mass is not None else float(np.hypot(*d[b.link])) / (counter_radius or b.reach)
+            size, radius = float(np.hypot(*d[b.link])), counter_radius or b.reach
+            if counter_mass is None and size > 0 and radius == 0:
+                raise InvalidInput(f"link {b.link} reaches nowhere from its pivot {b.pivot}: give the counterweight's "
+                                   "radius or mass (--counter-radius, --counter-mass).")
+            m = counter_mass if counter_mass is not None else (size / radius if size > 0 else 0.0)
         out.append(_placed(b, d[b.link], m, scale))
     return tuple(out)
 
@@ -119,6 +123,9 @@ def _fit(bodies, on, motion, links, fixed: dict) -> tuple[dict, dict]:
                 columns.append(path)
                 bounds.append((0.0, np.inf))
                 unknowns.append((b.link, "mass"))
+    if 2 * (len(theta) - 1) < len(columns):
+        raise InvalidInput(f"{len(theta)} samples of the input cannot fix {len(columns)} unknowns of the counterweights: "
+                           "sample more inputs.")
     a = np.stack([col - col.mean(axis=0) for col in columns], axis=-1).reshape(-1, len(columns))
     rhs = -(target - target.mean(axis=0)).reshape(-1)
     lo, hi = np.array(bounds).T
@@ -146,7 +153,7 @@ def _placed(b: LinkBody, d: np.ndarray, mu: float, scale: float) -> LinkCounterw
     size = float(np.hypot(*d))
     if size <= NONE_NEEDED * scale:
         d, size = np.zeros(2), 0.0
-    if size == 0 and mu <= 0:
+    if size == 0 and (mu <= 0 or b.pivot is not None):  # none needed (on a pivot a mass would change nothing)
         mu = 0.0
     elif mu <= 0:
         raise InvalidInput(f"the counterweight of link {b.link} would need a moment of {size:.6g} kg·m with no mass "

@@ -42,6 +42,8 @@ __all__ = ["LinkageProblem", "LinkageBalance", "BalanceState"]
 
 #: full balance: what is left of the first moment's excursion, relative to the linkage's own, is rounding
 FULL_BALANCE = 1e-9
+#: the samples of the input a solve takes (the fit needs more equations than unknowns; memory bounds the most)
+MIN_SAMPLES, MAX_SAMPLES = 9, 100_000
 #: input pairs sampled for the centre of mass's largest excursion (a 2-D search)
 PAIRS = 2000
 #: the work of a solve, in moves of the linkage over its samples (measured: 5–20 on the models' linkages)
@@ -147,6 +149,8 @@ class LinkageProblem:
         lo, hi = self.input_range
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
             raise InvalidInput(f"the input's range must be two finite numbers, low below high, not {lo:g}..{hi:g}.")
+        if not MIN_SAMPLES <= self.samples <= MAX_SAMPLES:
+            raise InvalidInput(f"the samples of the input must be {MIN_SAMPLES} … {MAX_SAMPLES:,}, not {self.samples}.")
         if not all(math.isfinite(g) for g in self.gravity):
             raise InvalidInput("gravity must be two finite numbers [gx, gy] (m/s²).")
         on = self._on()

@@ -218,6 +218,9 @@ def test_saved_linkage_carries_the_counterweights_as_tracers(tmp_path, capsys):
     (["{neg}"], "mass -1 kg"),
     (["{tab}", "--density", "3"], "--density is also given"),
     (["{m}/motion_triad.toml", "--density", "2", "--range", "0..400"], "beyond the input's limits"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--samples", "2"], "9 … 100,000, not 2"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--range", "50..50"], "is empty"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--on", "1,1"], "named twice"),
 ])
 def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, args, words):
     five = tmp_path / "five.json"
