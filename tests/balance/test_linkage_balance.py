@@ -113,7 +113,7 @@ def test_four_bar_first_moment_is_constant_under_the_oracle(four_bar, capsys):
     size = sum(c["mass"] * math.hypot(*c["at"]) for c in out["counterweights"]) + \
         sum(b["mass"] * math.hypot(*b["centre"]) for b in out["links"])
     assert np.abs(after - after[0]).max() <= 1e-12 * size
-    assert np.abs(before - before[0]).max() > 0.1 * size / 10  # (the unbalanced linkage's moves: the check can fail)
+    assert np.abs(before - before[0]).max() > 0.01 * size  # (the unbalanced linkage's moves: the check can fail)
 
 
 def test_shaking_force_is_the_second_difference_of_the_oracle_moment(four_bar, capsys):
@@ -160,7 +160,7 @@ def test_watt_six_bar_is_fully_balanced_on_its_frame_pivots(capsys):
     assert out["full_balance"] is True and sorted(out["on"]) == [1, 3, 4]
     assert out["after"]["shaking_force"] <= 1e-12 * out["before"]["shaking_force"]
     after = _oracle_moment(lk, out, True, np.sort(np.random.default_rng(3).uniform(0, 2 * math.pi, 8)))
-    assert np.abs(after - after[0]).max() <= 1e-11 * out["before"]["moment_excursion"] * 10
+    assert np.abs(after - after[0]).max() <= 1e-12 * out["before"]["moment_excursion"]
 
 
 def test_slider_crank_keeps_a_residual_reported_as_its_true_maximum(tmp_path, capsys):
