@@ -643,8 +643,14 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
     elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
                          reach=(motion.joints[keep], motion.angles[keep]))
-    for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
-        elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
+    marks = np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float).reshape(-1, 2)
+    radius = 0.014 * linkage.scale
+    if len(marks) > 1:  # no wider than a third of the nearest two marks' gap (72 points of a closed path, their
+        gaps = np.hypot(*(marks[:, None] - marks[None]).transpose(2, 0, 1))  # circles overlapping, hid its curve)
+        np.fill_diagonal(gaps, np.inf)
+        radius = min(radius, max(gaps.min() / 3, 0.004 * linkage.scale))
+    for xy in marks:
+        elements.append({"tag": "circle", "r": radius, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
     elements[:0] = _scale_bar(elements)  # under everything
     _write_still(elements, _Canvas(elements, size), path, title or _title(linkage), 100)
