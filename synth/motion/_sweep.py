@@ -87,9 +87,9 @@ class Motion:
     def extent(self) -> dict[str, tuple[float, float, float, float]]:
         """Each tracer's curve extent ``(x_min, y_min, x_max, y_max)`` over the sweep (NaN steps left
         out).  For one input each extreme is refined between the steps beside it by a bounded search
-        (input to 1e-10), so it is the curve's own to about 1e-12 of its size, not the samples' (a
-        sampled extreme falls short by up to (step)² × the curvature: 1.4e-5 on a four-bar of size 2
-        at 360 steps); a grid's extent is its samples'.
+        (input to 1e-10), so where the steps are closer than the curve's turns it is the curve's own to
+        about 1e-12 of its size, not the samples' (a sampled extreme falls short by up to (step)² × the
+        curvature: 1.4e-5 on a four-bar of size 2 at 360 steps); a grid's extent is its samples'.
 
         >>> from synth.structure.chain import Chain, Mechanism
         >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3.5, 3]],
