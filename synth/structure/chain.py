@@ -390,7 +390,11 @@ class Chain:
         return g
 
     def is_planar(self) -> bool:
-        """Whether the link–joint incidence graph is planar."""
+        """Whether the link–joint incidence graph is planar (a listing's chain reads it off its branch
+        multigraph, decided once for all the chains on it)."""
+        branch = self.__dict__.get("_branch")
+        if branch is not None:
+            return branch.planar
         import networkx as nx
 
         return nx.check_planarity(self.to_networkx())[0]
@@ -425,6 +429,9 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-3 3-0 3-4").is_fractionated(), Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()
         (False, True)
         """
+        branch = self.__dict__.get("_branch")
+        if branch is not None:
+            return branch.fractionated
         import networkx as nx
 
         core = self.closed_part() if 1 in self.degrees else self

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from itertools import combinations
 from operator import itemgetter
 from typing import NamedTuple
@@ -745,16 +745,54 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     """Fractionation (of the closed part) and planarity of the chain, decided on H."""
     if conv.fractionated and not conv.planar_only:
         return True  # without importing networkx (0.1 s of a small query's start-up)
+    if not conv.fractionated and is_fractionated_multigraph(edges):
+        return False
+    return not conv.planar_only or is_planar_multigraph(edges)
+
+
+def is_fractionated_multigraph(edges) -> bool:
+    """Whether every chain on the branch multigraph with ``edges`` is fractionated: its closed part's
+    incidence graph (H with a vertex on every edge, two on a loop, is a subdivision of it) has a cut vertex.
+
+    >>> is_fractionated_multigraph([(0, 1), (0, 1), (0, 1)]), is_fractionated_multigraph([(0, 0), (0, 1), (1, 1)])
+    (False, True)
+    """
     import networkx as nx
 
-    if not conv.fractionated:
-        # H with a vertex on every edge (two on a loop) is a subdivision of the incidence graph
-        core = nx.Graph()
-        for k, (u, v) in enumerate(_closed_core(edges)):
-            core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
-                                else [(u, ("e", k)), (("e", k), v)])
-        if core.number_of_nodes() > 2 and not nx.is_biconnected(core):
-            return False
-    if conv.planar_only:
-        return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
-    return True
+    core = nx.Graph()
+    for k, (u, v) in enumerate(_closed_core(edges)):
+        core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
+                            else [(u, ("e", k)), (("e", k), v)])
+    return core.number_of_nodes() > 2 and not nx.is_biconnected(core)
+
+
+def is_planar_multigraph(edges) -> bool:
+    """Whether every chain on the branch multigraph with ``edges`` is planar (its incidence graph is a
+    subdivision of H; loops and parallel strings do not change planarity).
+
+    >>> is_planar_multigraph([(u, v) for u in range(3) for v in range(3, 6)])   # K3,3: the smallest non-planar H
+    False
+    """
+    import networkx as nx
+
+    return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
+
+
+class BranchFacts:
+    """Planarity and fractionation of the chains on one branch multigraph H, decided on H once, when first
+    asked, for all of them (a listing shares one among a unit's chains: :meth:`Chain.is_planar` reads it).
+
+    >>> facts = BranchFacts([(0, 1), (0, 1), (0, 1)]); facts.planar, facts.fractionated   # a theta: the six-bars' H
+    (True, False)
+    """
+
+    def __init__(self, edges) -> None:
+        self.edges = tuple(edges)
+
+    @cached_property
+    def planar(self) -> bool:
+        return is_planar_multigraph(self.edges)
+
+    @cached_property
+    def fractionated(self) -> bool:
+        return is_fractionated_multigraph(self.edges)
