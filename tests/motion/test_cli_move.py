@@ -128,6 +128,22 @@ def test_a_chain_dimensioned_by_its_drawing_moves_and_can_be_saved(capsys, tmp_p
     assert code == 0 and len(out.splitlines()) == 3
 
 
+def test_a_linkage_saved_as_toml_is_a_scene_that_moves_and_equals_the_json(capsys, tmp_path):
+    """move --save took .json only: a .toml is a scene whose [linkage] table is the linkage (note included)."""
+    watt = ["move", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--frame", "2", "--save"]
+    as_json, as_toml = tmp_path / "watt.json", tmp_path / "watt.toml"
+    assert _run(capsys, *watt, as_json)[0] == 0 and _run(capsys, *watt, as_toml)[0] == 0
+    import tomllib
+
+    scene = tomllib.loads(as_toml.read_text())
+    assert scene["linkage"] == json.loads(as_json.read_text()) and scene["scene"]["compute"] == ["motion"]
+    assert scene["linkage"]["note"].endswith("at least 32°")
+    rows = [_run(capsys, "move", f, "--steps", "5", "--format", "csv") for f in (as_json, as_toml)]
+    assert rows[0] == rows[1] and rows[0][0] == 0 and len(rows[0][1].splitlines()) == 6
+    code, out, _ = _run(capsys, "scene", as_toml)
+    assert code == 0 and "input turns fully, worst transmission 32.19°" in out
+
+
 def test_a_sweep_into_a_dead_position_stops_there_and_says_so(capsys):
     code, out, err = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--start", "130", "--stop", "200",
                           "--steps", "50", "--format", "jsonl")
