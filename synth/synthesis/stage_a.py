@@ -29,6 +29,7 @@ from typing import NamedTuple
 import pynauty
 
 from ..execution.memo import is_remembered, remembered
+from ..structure.nauty_graph import NautyGraph
 from ..structure.code import Code
 from ..structure.disjoint import DisjointSets
 
@@ -125,7 +126,7 @@ class Contracted:
     def _subdivided(self) -> pynauty.Graph:
         m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        return _NautyGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
+        return NautyGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -173,7 +174,7 @@ class Contracted:
             cells.setdefault(size, set()).add(m + q)
         adjacency = {m + q: [u] if u == v else [u, v] for q, (u, v) in enumerate(ends)}
         colours = _colour_cells(self.vertices, 0)[:-1] + [cells[size] for size in sorted(cells)]
-        return _listed_group(_NautyGraph(m + b, adjacency, colours), m, b)
+        return _listed_group(NautyGraph(m + b, adjacency, colours), m, b)
 
 
 def _listed_group(graph: pynauty.Graph, m: int, e: int) -> tuple[list[tuple[int, ...]], bool]:
@@ -200,24 +201,6 @@ def _listed_group(graph: pynauty.Graph, m: int, e: int) -> tuple[list[tuple[int,
         frontier = nxt
     group.discard(identity)
     return sorted(group), True
-
-
-class _NautyGraph(pynauty.Graph):
-    """A :class:`pynauty.Graph` built without pynauty's checks, which cost more than nauty itself on
-    the small graphs of stage A (20 links: 0.05 of 0.12 ms an H): ``adjacency`` maps a vertex to a
-    *list* of its neighbours (read in C as a list) and ``cells`` are the colour cells in order, two
-    or more covering every vertex, as :func:`_colour_cells` gives them; nauty sees the same graph
-    as through ``pynauty.Graph(n, adjacency_dict=adjacency, vertex_coloring=cells)``.
-
-    >>> g = _NautyGraph(3, {2: [0, 1]}, [{0, 1}, {2}])
-    >>> pynauty.certificate(g) == pynauty.certificate(pynauty.Graph(3, adjacency_dict={2: [0, 1]},
-    ...                                                              vertex_coloring=[{0, 1}, {2}]))
-    True
-    """
-
-    def __init__(self, n: int, adjacency: dict[int, list[int]], cells: list[set[int]]):  # noqa: super not called
-        self.number_of_vertices, self.directed = n, False
-        self._adjacency_dict, self._vertex_coloring = adjacency, cells
 
 
 @lru_cache(maxsize=256)
