@@ -305,6 +305,16 @@ def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
         assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
 
 
+@pytest.mark.parametrize("start, stop", [(0, 720), (350, 370), (355, -400)], ids=str)
+def test_a_cranks_rows_give_a_continuous_input_past_a_turn(capsys, start, stop):
+    """A crank turned more than once, or from near 360°: the rows' input (rad) runs on past 2π, never wrapped."""
+    for fmt in ("csv", "jsonl"):
+        code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "73", "--start", start, "--stop", stop, "--format", fmt)
+        rows = list(csv.DictReader(io.StringIO(out))) if fmt == "csv" else [json.loads(x) for x in out.splitlines()]
+        phi = np.array([float(r["input"]) for r in rows])
+        assert code == 0 and phi == pytest.approx(np.radians(np.linspace(start, stop, 73)), abs=1e-12)
+
+
 def test_a_triad_says_why_it_reports_no_transmission_angle(capsys):
     code, out, _ = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--range", "--format", "json")
     doc = json.loads(out)
