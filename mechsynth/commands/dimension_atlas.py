@@ -52,13 +52,9 @@ def links_range(text: str | None) -> tuple[int, int] | None:
 def run(args, target, constraints, *, save, draw) -> int:
     """Search the atlas for the target; print a row per topology; ``save`` and ``draw`` the best (the
     command's own writers of a result)."""
-    from synth import InvalidOption
     from synth.atlas import search_atlas
     from synth.errors import flag
 
-    if target.kind != "path":
-        raise InvalidOption(f"the atlas search looks for paths (its index holds coupler curves), not a {target.kind}: "
-                            "give the topology with --mechanism or --linkage")
     found = search_atlas(args.db, target, links=links_range(args.links), top=args.top, budget=args.budget,
                          constraints=constraints, seed=args.seed, underdetermined=args.underdetermined,
                          workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty())

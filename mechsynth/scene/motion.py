@@ -40,6 +40,9 @@ from .types import Count, Flag, Number, Numbers, NumberTable, Text
 __all__ = ["Sweep", "ClosedForm", "MotionSummary", "DyadCheck", "SliderCrankCheck", "SlottedLeverCheck",
            "WillisCheck"]
 
+# ``balance linkage``: the linkage's counterweights (balance.LinkageProblem, moved by synth.motion), from
+# [linkage] and [linkage_balance] (masses per link or a density, the options of ``mechsynth balance linkage``)
+
 
 class Sweep(Table):
     """The ``[sweep]`` table: how many input values the sweep visits."""
@@ -82,6 +85,22 @@ FAMILY = Family("motion")  # its tables and computations, registered by mechsynt
 FAMILY.table(SceneTable("linkage", _read_linkage, "the linkage: chain, frame, inputs, points (slides, meshes, tracers)"))
 FAMILY.table(SceneTable.typed("sweep", Sweep, "the number of steps"))
 FAMILY.table(SceneTable("closed_form", _read_closed_form, "the formula that checks the solver (kind = …)"))
+
+
+def _read_linkage_balance(raw, path: str, compute):
+    from balance import BalanceError, linkage_table
+
+    try:
+        table = linkage_table({"linkage_balance": raw}, path)
+    except BalanceError as exc:
+        raise SceneError(str(exc)) from None
+    if table.file is not None:
+        raise SceneError(f"{path}: [linkage_balance] 'file' has no place in a scene: its linkage is the [linkage] table.")
+    return table
+
+
+FAMILY.table(SceneTable("linkage_balance", _read_linkage_balance,
+                        "the links' masses (links = [{link, mass, centre}] or density) and the counterweights' options"))
 
 
 # --------------------------------------------------------------------------- motion
@@ -453,6 +472,33 @@ FAMILY.kind(ComputeKind(
             "min_transmission_angle": Expectation(Number), "rigidity_error": Expectation(Number, below=True),
             "dead_positions": Expectation(Number)},
     report=_report_motion))
+def _balance_linkage(run: Run):
+    from mechbase.errors import ProjectError
+
+    from .._linkage_balance import OPTIONS, linkage_problem
+
+    table = run.scene.tables["linkage_balance"]
+    try:
+        return linkage_problem(run.scene.tables["linkage"], {k: getattr(table, k) for k in OPTIONS}, table.links,
+                               run.scene.name, run.scene.path).solve()
+    except ProjectError as exc:  # the balance's or the motion layer's one sentence
+        raise SceneError(f"{run.scene.path}: [linkage_balance] {str(exc).rstrip('.')}.") from None
+
+
+def _report_balance(r: dict) -> list[str]:
+    weights = ", ".join(f"link {c['link']} {c['mass']:.6g} kg at {c['distance']:.6g} m from {c['joint']}"
+                        for c in r["counterweights"] if c["mass"] > 0)
+    state = "full balance" if r["full_balance"] else f"{100 * r['residual_share']:.3g}% of the excursion left"
+    return [f"counterweights: {weights or 'none'}; {state}"]
+
+
+FAMILY.kind(ComputeKind(
+    "balance linkage", "counterweights that make a linkage's first moment of mass constant (shaking force, gravity)",
+    "linkage_balance", _balance_linkage, reads=("linkage",),
+    expect={"full_balance": Expectation(Flag), "residual_share": Expectation(Number, below=True),
+            "added_mass": Expectation(Number),
+            "shaking_force_after": Expectation(Number, ("after", "shaking_force"), below=True)},
+    report=_report_balance))
 FAMILY.kind(ComputeKind(
     "closed form", "the solver against a textbook formula (dyads, slider-crank, slotted-lever, willis)", "closed_form",
     _closed_form, reads=("linkage", "sweep"),

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import BadTarget, InvalidOption, SynthesisError
+from ..errors import BadTarget, InvalidOption, SynthesisError, option
 from ..structure.chain import Chain, Mechanism
 from .curves import HARMONICS, _info, harmonics, slides_of, unblob, untimed_parameter
 from .database import open_atlas
@@ -119,14 +119,24 @@ class AtlasSearchResult:
 
 
 # ------------------------------------------------------------------ the target's descriptor
+def _path_only(target) -> None:
+    """Refuse a target the index cannot serve by its kind: it holds coupler curves, not functions or poses."""
+    kind = getattr(target, "kind", None)
+    if kind != "path":
+        raise BadTarget(f"the atlas search looks for paths (its index holds coupler curves), not "
+                        f"{'a ' + kind if isinstance(kind, str) else type(target).__name__}: give the topology with "
+                        f"{option('mechanism', 'CHAIN')} or {option('linkage', 'FILE')}")
+
+
 def descriptor_of(target) -> tuple[np.ndarray, int, bool]:
     """The target's Fourier coefficients (c_-h … c_h), h, and whether they are timed.
 
     Raises
     ------
     BadTarget
-        A target the index cannot serve: a timing that leaves a gap of more than 45° around the
-        turn, an open path without timing, too few points for three harmonics.
+        A target the index cannot serve: a function or a motion (the index holds coupler curves), a timing
+        that leaves a gap of more than 45° around the turn, an open path without timing, too few points for
+        three harmonics.
 
     Examples
     --------
@@ -136,6 +146,7 @@ def descriptor_of(target) -> tuple[np.ndarray, int, bool]:
     >>> h, timed, round(float(abs(c[h + 1])), 9)
     (12, True, 1.0)
     """
+    _path_only(target)
     points = np.asarray(target.points, dtype=float)
     z = points[:, 0] + 1j * points[:, 1]
     h = min(HARMONICS, (len(z) - 1) // 2)
@@ -584,7 +595,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     (4, True)
     """
     from ..dimension import Constraints
-    from .curves import index_info
+    from .curves import index_gap, index_info
 
     given = [("top", top), ("workers", workers)]
     for name, value in given + ([("per_topology", per_topology)] if per_topology is not None else []):
@@ -592,6 +603,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             raise InvalidOption(f"{name} must be a whole number ≥ 1, not {value!r}")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
         raise InvalidOption(f"the budget must be a positive number of seconds, not {budget!r}")
+    _path_only(target)
     constraints = constraints or Constraints()
     clock = time.process_time()
     if per_topology is None:
@@ -621,7 +633,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         from ..execution.scheduler import connect
 
         client = connect(scheduler, connect_timeout)
-    matches, notes = [], []
+    matches = []
+    gap = index_gap(db, links)
+    notes = [SynthesisError(gap)] if gap else []
     bar = executor = None
     if progress and tasks:
         from ..execution.progress import Progress

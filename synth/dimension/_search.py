@@ -768,8 +768,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         try:
             if polish_only:
                 search.polish(problem.unknowns_of(start))
-            elif start is None and starts is not None:
-                search.from_samples(starts, seed)
+            elif start is None and (starts is not None or isinstance(target, MotionTarget)):
+                search.from_samples(_with_dyads(starts) if isinstance(target, MotionTarget) else starts, seed)
             while not (polish_only or watch.over() or search.exact):
                 search.runs += 1
                 for x in search.evolve(rng, start if search.runs == 1 else None, executor):
@@ -793,6 +793,17 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach{region}")
     return _result(problem, search.evaluate, search.best, watch, search.runs, bool(search.sampled))
+
+
+def _with_dyads(starts):
+    """A motion's start linkages: a four-bar's from its dyads (:func:`~._dyads.dyad_starts`), then those of
+    ``starts``."""
+    from ._dyads import dyad_starts
+
+    def source(mechanism, tracer_link, target, seed):
+        return dyad_starts(mechanism, tracer_link, target, seed) + list(starts(mechanism, tracer_link, target, seed)
+                                                                       if starts is not None else [])
+    return source
 
 
 def _option(name: str, value: str = "True") -> str:
@@ -1469,7 +1480,8 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
         constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
                                   "met": False}}
-    method = ("sampled crank curves + " if sampled else "") + (
+    given = "the target's dyads + " if target.kind == "motion" else "sampled crank curves + "
+    method = (given if sampled else "") + (
         ("bounded least squares (trf) from " + ("them, " if sampled else "a given start, ")) if runs == 0 else
         f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
         "timed" if problem.timed else "inputs as unknowns, in order")

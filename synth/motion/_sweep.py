@@ -19,7 +19,7 @@ from ._linkage import Linkage, joint_name
 from ._system import System
 
 __all__ = ["Motion", "MotionRange", "LinkPoses", "Branch", "sweep", "sweep_grid", "motion_range", "pose_branch", "assemble",
-           "link_poses"]
+           "link_poses", "LinkRates", "link_rates"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -555,6 +555,52 @@ def link_poses(linkage: Linkage, offsets) -> LinkPoses:
         return LinkPoses(theta, t, None, None)
     theta, t, g, mu, _ = Closure(linkage, plan)(offsets[:, None])
     return LinkPoses(theta, t, g, mu)
+
+
+class LinkRates(NamedTuple):
+    """Every link's pose and its first and second derivatives with respect to the input (1-DOF).
+
+    The input's derivatives: per radian of a revolute input, per unit length of a prismatic one.
+    Multiplied by the input's rate ω (and ω²) they are the links' velocities (and their accelerations
+    at a constant ω).  A point p of link l is at R(θ) p + t; its derivative is θ' J R(θ) p + t'.
+
+    Attributes
+    ----------
+    rotations, translations : ndarray (S, n), (S, n, 2)
+        θ and t, as :class:`LinkPoses`.
+    rotation_rates, translation_rates : ndarray (S, n), (S, n, 2)
+        θ' = dθ/dq and t' = dt/dq.
+    rotation_accelerations, translation_accelerations : ndarray (S, n), (S, n, 2)
+        θ'' and t''; NaN with the rates where the input is at a dead position.
+    """
+
+    rotations: np.ndarray
+    translations: np.ndarray
+    rotation_rates: np.ndarray
+    translation_rates: np.ndarray
+    rotation_accelerations: np.ndarray
+    translation_accelerations: np.ndarray
+
+
+def link_rates(linkage: Linkage, offsets) -> LinkRates:
+    """The poses of every link at the given input offsets (as :func:`link_poses`) and their first and
+    second derivatives with respect to the input: linear solves of the closure Jacobian, as a sweep's
+    velocities and accelerations.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> r = link_rates(lk, [0.0, 1.0])
+    >>> r.rotation_rates[:, 1].tolist(), bool(np.abs(r.rotation_accelerations[:, 1]).max() < 1e-12)  # crank: θ' = 1, θ'' = 0
+    ([1.0, 1.0], True)
+    """
+    theta, t = link_poses(linkage, offsets)[:2]
+    system = _solver(linkage).system
+    qd, qdd = system.rates(theta, t, accelerations=True)
+    dtheta, dt = system.poses(qd[:, 0])
+    ddtheta, ddt = system.poses(qdd[:, 0])
+    return LinkRates(theta, t, dtheta, dt, ddtheta, ddt)
 
 
 def _check_steps(steps, name: str = "steps") -> int:

@@ -13,11 +13,11 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from synth.atlas import AtlasError, NoCurveIndex, index_curves, parse_grid, run_grid, search_atlas
+from synth.atlas import AtlasError, NoCurveIndex, index_curves, index_gap, parse_grid, run_grid, search_atlas
 from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
                                 untimed_parameter)
 from synth.atlas.search import Candidate, _form, _misfits, _refine, _variants, descriptor_of, start_linkage
-from synth.dimension import Constraints, PathTarget
+from synth.dimension import Constraints, FunctionTarget, MotionTarget, PathTarget
 from synth.errors import BadTarget
 from synth.motion import Linkage, assemble, sweep
 from synth.motion_draw import linkage_from_layout
@@ -190,6 +190,27 @@ def test_targets_the_index_cannot_serve_are_refused():
         descriptor_of(PathTarget(np.c_[np.cos(t / 2), np.sin(t / 2)], inputs=t / 2))
     with pytest.raises(BadTarget, match="at least 7"):
         descriptor_of(PathTarget(np.c_[np.cos(t[:5]), np.sin(t[:5])]))
+
+
+def test_a_function_or_a_motion_is_refused_by_the_atlas_search_in_one_sentence(four_bar_index, tmp_path):
+    """The index holds coupler curves, which do not serve a function (an output angle against the input) or
+    name a body's turn: from Python the search raised AttributeError ('FunctionTarget' has no 'points'), and
+    the command refused only after reading the target, with a sentence of its own."""
+    function = FunctionTarget(np.radians([35, 55, 75, 95]), np.radians([60, 72, 85, 99]))
+    with pytest.raises(BadTarget) as info:
+        search_atlas(four_bar_index, function, budget=1)
+    assert str(info.value) == ("the atlas search looks for paths (its index holds coupler curves), not a function: "
+                               "give the topology with mechanism=CHAIN or linkage=FILE")
+    with pytest.raises(BadTarget, match="not a motion: give the topology"):
+        search_atlas(four_bar_index, MotionTarget([[0, 0, 0], [1, 0, 0.1], [1, 1, 0.3]]), budget=1)
+    with pytest.raises(BadTarget, match="not list: give the topology"):
+        search_atlas(four_bar_index, [[0, 0], [1, 1]], budget=1)
+    csv = tmp_path / "f.csv"
+    csv.write_text("input_deg,output_deg\n35,60\n55,72\n75,85\n95,99\n")
+    done = _cli("dimension", str(csv), "--db", four_bar_index)
+    assert done.returncode == 2 and done.stderr == (
+        "mechsynth: the atlas search looks for paths (its index holds coupler curves), not a function: give the "
+        "topology with --mechanism CHAIN or --linkage FILE\n")
 
 
 # ------------------------------------------------------------------ exact recovery
@@ -423,6 +444,53 @@ def test_the_command_finds_the_four_bar_saves_and_draws_it(four_bar_index, tmp_p
     assert out.stat().st_size > 0 and "[linkage]" in saved.read_text()
     moved = _cli("move", str(saved), "--range", "--format", "json")
     assert moved.returncode == 0, moved.stderr
+
+
+def test_chains_a_grid_adds_after_the_index_are_named_by_the_grid_and_by_the_search(tmp_path):
+    """An atlas of the four-bar indexed, then a grid of 4..6 links run into it: the two six-bar chains it adds are
+    not in the index, and neither command said so (the search silently left them out)."""
+    db = _atlas(tmp_path, "4")
+    index_curves(db, settings=IndexSettings(samples=20), workers=1)
+    assert index_gap(db) is None
+    grid = tmp_path / "grid.toml"
+    grid.write_text('dof = 1\nlinks = "4..6"\n')
+    done = _cli("grid", str(grid), "--db", db, "--workers", "1")
+    command = f"mechsynth atlas --db {db} --index-curves --samples 20"
+    sentence = (f"the curve index of {db} does not cover 2 chains of the atlas (with 6 links): the atlas search "
+                f"does not see them until '{command}' indexes them")
+    assert done.returncode == 0 and f"mechsynth: {sentence}\n" in done.stderr, done.stderr
+    linkage = _random_crank(FOUR_BAR, 2, seed=7)
+    target = _target(linkage, 48, True)
+    found = search_atlas(db, target, budget=10)
+    assert [str(n) for n in found.notes if "curve index" in str(n)] == [sentence]
+    assert found.best.candidate.links == 4 and found.best.result.relative_max <= 1e-6  # the indexed part searched
+    assert not [n for n in search_atlas(db, target, links=(4, 5), budget=10).notes if "curve index" in str(n)]
+    csv = tmp_path / "timed.csv"
+    csv.write_text("x,y,input\n" + "".join(f"{x!r},{y!r},{a!r}\n" for (x, y), a in
+                                          zip(target.points.tolist(), target.inputs.tolist())))
+    done = _cli("dimension", str(csv), "--db", db, "--budget", "10")
+    assert done.returncode == 0 and f"mechsynth: {sentence}\n" in done.stderr, done.stderr
+    # the command named indexes them (the same settings: a build with others is refused), and the notes stop
+    done = _cli(*command.split()[1:], "--workers", "1")
+    assert done.returncode == 0, done.stderr
+    assert index_gap(db) is None
+    done = _cli("grid", str(grid), "--db", db, "--workers", "1")
+    assert done.returncode == 0 and "curve index" not in done.stderr, done.stderr
+
+
+def test_the_command_a_gap_names_resumes_an_index_of_other_settings(tmp_path, capsys):
+    """The named command carries the index's own settings (samples, drawings, seed): a build with others is
+    refused, so a command without them would not index the missing chains."""
+    from mechsynth.cli import main
+
+    db = _atlas(tmp_path, "4")
+    index_curves(db, settings=IndexSettings(samples=4, seed=3, drawings=2), workers=1)
+    run_grid(parse_grid('dof = 1\nlinks = "4..6"'), db, workers=1)
+    command = index_gap(db).split("'")[1]
+    assert command == f"mechsynth atlas --db {db} --index-curves --samples 4 --drawings 2 --seed 3"
+    assert main([*command.split()[1:], "--workers", "1", "--links", "6"]) == 0
+    capsys.readouterr()
+    assert index_gap(db) is None
 
 
 def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_bar_index, tmp_path):

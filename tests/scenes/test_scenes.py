@@ -481,6 +481,7 @@ def test_through_the_mechsynth_command(tmp_path, capsys):
     ("arm_prismatic.toml", {"balance arm": "Derived"}),
     ("spring_sine.toml", {"balance spring": "SpringDesign", "plot": "Figures"}),
     ("pantograph.toml", {"balance pantograph": "PantographBalance"}),
+    ("balance_four_bar.toml", {"balance linkage": "LinkageBalance"}),
 ])
 def test_every_computation_gives_a_typed_result_printed_as_its_row(scene, kinds):
     """Each computation (structure, gears, motion, balancing) returns a frozen Row; the scene's output is its row, and nothing

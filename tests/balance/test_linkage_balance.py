@@ -1,0 +1,236 @@
+"""``mechsynth balance linkage``: counterweights for a dimensioned linkage, checked independently.
+
+The first moment M(q) of the balanced linkage is recomputed from the positions the independent
+reference solver (``tests/oracles/motion.py``) gives the links' centres and the counterweights;
+the four-bar's counterweights are compared with Berkof & Lowen's closed form, derived here; the
+shaking force with central differences of M from the oracle; every reported largest value with a
+dense grid.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from balance import LinkBody, body_arrays, first_moment
+from mechsynth.cli import main
+from synth.motion import Linkage, link_rates, read_linkage
+from tests.oracles.motion import follow, oracle_of
+
+ROOT = Path(__file__).resolve().parents[2]
+MODELS = ROOT / "models"
+
+#: the four-bar's masses: centres off the bars' lines, so the closed form is no special case
+FOUR_BAR_MASSES = """
+[linkage_balance]
+file = "{file}"
+links = [{{ link = 1, mass = 0.8, centre = [0.3, 0.4] }},
+         {{ link = 2, mass = 2.5, centre = [1.9, 2.6] }},
+         {{ link = 3, mass = 1.7, centre = [3.2, 1.9] }}]
+"""
+
+#: the slider-crank with a heavy slider (link 3): counterweights on the crank cannot cancel it
+SLIDER_CRANK_MASSES = """
+[linkage_balance]
+file = "{file}"
+links = [{{ link = 1, mass = 0.5, centre = [0.0, 0.5] }},
+         {{ link = 2, mass = 1.2, centre = [1.7, 0.8] }},
+         {{ link = 3, mass = 2.0, centre = [3.4641016151377544, 0.5] }}]
+"""
+
+
+def _balance(capsys, *args) -> dict:
+    assert main(["balance", "linkage", *map(str, args), "--format", "json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def _masses(out: dict, links: int, balanced: bool) -> tuple[np.ndarray, np.ndarray]:
+    bodies = [LinkBody(b["link"], (), b["mass"], tuple(b["centre"]), b["pivot"]) for b in out["links"]]
+    mass, moment = body_arrays(bodies, links)
+    if balanced:
+        for c in out["counterweights"]:
+            mass[c["link"]] += c["mass"]
+            moment[c["link"]] += c["mass"] * np.array(c["at"])
+    return mass, moment
+
+
+def _oracle_moment(lk: Linkage, out: dict, balanced: bool, offsets) -> np.ndarray:
+    """M at the input offsets, every centre and counterweight moved by the oracle (as tracers)."""
+    points = {f"G{b['link']}": (b["link"], b["centre"], b["mass"]) for b in out["links"]}
+    if balanced:
+        points |= {f"W{c['link']}": (c["link"], c["at"], c["mass"]) for c in out["counterweights"]}
+    traced = Linkage(lk.mechanism, lk.inputs, lk.points, lk.slides, lk.meshes,
+                     {name: (link, at) for name, (link, at, _) in points.items()}, None, lk.driven)
+    moved = follow(oracle_of(traced, tracers=True), offsets)[:, len(lk.chain.joints):]
+    weights = np.array([m for _, _, m in points.values()])
+    return np.einsum("p,spx->sx", weights, moved)
+
+
+def _pairwise_widest(m: np.ndarray) -> float:
+    return float(max(np.hypot(*(m[i] - m[i + 1:]).T).max(initial=0.0) for i in range(len(m) - 1)))
+
+
+@pytest.fixture(scope="module")
+def four_bar(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("fourbar")
+    path = folder / "four_bar.toml"
+    path.write_text(FOUR_BAR_MASSES.format(file=MODELS / "motion_four_bar.toml"))
+    return path, read_linkage(MODELS / "motion_four_bar.toml")
+
+
+def test_four_bar_counterweights_are_berkof_lowen(four_bar, capsys):
+    """Crank A0A (link 1), coupler AB (2), rocker B0B (3); as complex numbers z1 = A − A0, z3 = B − B0 and
+    the coupler's centre G2 = A + k2 (B − A).  With z2 = z3 − z1 + (B0 − A0), the first moment is
+    const + z1 (m1 k1 + m2 − m2 k2) + z3 (m2 k2 + m3 k3), z1 and z3 independent: M is constant iff the
+    crank's total moment about A0 is m2 (k2 − 1) z1 and the rocker's about B0 is −m2 k2 z3."""
+    path, lk = four_bar
+    out = _balance(capsys, path)
+    p = {name: complex(*xy) for name, xy in json.loads(json.dumps(lk.to_dict()))["points"].items()}
+    a0, a, b, b0 = p["0-1"], p["1-2"], p["2-3"], p["0-3"]
+    masses = {x["link"]: (x["mass"], complex(*x["centre"])) for x in out["links"]}
+    (m1, g1), (m2, g2), (m3, g3) = masses[1], masses[2], masses[3]
+    k2 = (g2 - a) / (b - a)
+    needed = {1: m2 * (k2 - 1) * (a - a0) - m1 * (g1 - a0), 3: -m2 * k2 * (b - b0) - m3 * (g3 - b0)}
+    assert out["full_balance"] is True and out["on"] == [1, 3]
+    for cw in out["counterweights"]:
+        got = complex(*cw["moment"])
+        assert abs(got - needed[cw["link"]]) <= 1e-12 * abs(needed[cw["link"]])
+        pivot = {1: a0, 3: b0}[cw["link"]]
+        assert abs(complex(*cw["at"]) - pivot - got / cw["mass"]) <= 1e-12  # placed where its moment says
+        assert cw["distance"] == pytest.approx(abs(got) / cw["mass"], rel=1e-12)
+
+
+def test_four_bar_first_moment_is_constant_under_the_oracle(four_bar, capsys):
+    path, lk = four_bar
+    out = _balance(capsys, path)
+    offsets = np.sort(np.random.default_rng(7).uniform(0, 2 * math.pi, 12))
+    before = _oracle_moment(lk, out, False, offsets)
+    after = _oracle_moment(lk, out, True, offsets)
+    size = sum(c["mass"] * math.hypot(*c["at"]) for c in out["counterweights"]) + \
+        sum(b["mass"] * math.hypot(*b["centre"]) for b in out["links"])
+    assert np.abs(after - after[0]).max() <= 1e-12 * size
+    assert np.abs(before - before[0]).max() > 0.01 * size  # (the unbalanced linkage's moves: the check can fail)
+
+
+def test_shaking_force_is_the_second_difference_of_the_oracle_moment(four_bar, capsys):
+    """M'' from the links' rates (the motion layer) against central differences of M from the oracle."""
+    path, lk = four_bar
+    out = _balance(capsys, path)
+    mass, moment = _masses(out, lk.chain.links, balanced=False)
+    h = 1e-3
+    for x in (0.4, 2.1, 4.6):
+        m = _oracle_moment(lk, out, False, [x - h, x, x + h])
+        finite_difference = (m[0] - 2 * m[1] + m[2]) / h ** 2
+        analytic = first_moment(mass, moment, link_rates(lk, [x]), order=2)[0]
+        assert np.abs(analytic - finite_difference).max() <= 1e-5 * np.abs(analytic).max()
+        m1 = first_moment(mass, moment, link_rates(lk, [x]), order=1)[0]
+        assert np.abs(m1 - (m[2] - m[0]) / (2 * h)).max() <= 1e-5 * np.abs(m1).max()
+
+
+def test_reported_largest_values_are_the_true_ones(four_bar, capsys):
+    """The before state's largest shaking force, potential variation and excursion against a dense grid."""
+    path, lk = four_bar
+    out = _balance(capsys, path)
+    mass, moment = _masses(out, lk.chain.links, balanced=False)
+    phi0 = float(lk.pose_inputs[0])
+    grid = np.linspace(0, 2 * math.pi, 20001)
+    motion = link_rates(lk, grid)
+    force = np.hypot(*first_moment(mass, moment, motion, order=2).T)
+    m = first_moment(mass, moment, motion)
+    b = out["before"]
+    assert force.max() <= b["shaking_force"] <= force.max() * (1 + 1e-7)
+    at = np.hypot(*first_moment(mass, moment, link_rates(lk, [b["shaking_force_at"] - phi0]), order=2).T)[0]
+    assert at == pytest.approx(b["shaking_force"], rel=1e-12)
+    v = 9.81 * m[:, 1]
+    assert np.ptp(v) <= b["potential_variation"] <= np.ptp(v) * (1 + 1e-7)
+    widest = _pairwise_widest(m[::10])
+    assert widest <= b["moment_excursion"] + 1e-12 <= widest * (1 + 1e-4)
+    assert b["com_excursion"] == pytest.approx(b["moment_excursion"] / mass.sum(), rel=1e-12)
+
+
+def test_watt_six_bar_is_fully_balanced_on_its_frame_pivots(capsys):
+    """Watt II: two four-bars in series, each balanced by Berkof–Lowen on its grounded links, the shared
+    ternary rocker carrying the sum: frame-pivoted counterweights reach zero (checked by the oracle)."""
+    lk = read_linkage(MODELS / "motion_watt_ii.toml")
+    out = _balance(capsys, MODELS / "motion_watt_ii.toml", "--density", 1.5)
+    assert out["full_balance"] is True and sorted(out["on"]) == [1, 3, 4]
+    assert out["after"]["shaking_force"] <= 1e-12 * out["before"]["shaking_force"]
+    after = _oracle_moment(lk, out, True, np.sort(np.random.default_rng(3).uniform(0, 2 * math.pi, 8)))
+    assert np.abs(after - after[0]).max() <= 1e-12 * out["before"]["moment_excursion"]
+
+
+def test_slider_crank_keeps_a_residual_reported_as_its_true_maximum(tmp_path, capsys):
+    """A slider's mass moves along its guide: the crank's counterweight leaves part of the shaking force,
+    and what is left is reported as the true largest value (a dense grid below it, within 1e-7)."""
+    path = tmp_path / "slider.toml"
+    path.write_text(SLIDER_CRANK_MASSES.format(file=MODELS / "motion_slider_crank.toml"))
+    lk = read_linkage(MODELS / "motion_slider_crank.toml")
+    out = _balance(capsys, path)
+    assert out["full_balance"] is False and out["on"] == [1]
+    assert 0.05 < out["residual_share"] < 1
+    assert any("link 3 translates" in n for n in out["notes"])
+    mass, moment = _masses(out, lk.chain.links, balanced=True)
+    grid = np.linspace(0, 2 * math.pi, 20001)
+    motion = link_rates(lk, grid)
+    force = np.hypot(*first_moment(mass, moment, motion, order=2).T)
+    a = out["after"]
+    assert force.max() <= a["shaking_force"] <= force.max() * (1 + 1e-7)
+    widest = _pairwise_widest(first_moment(mass, moment, motion)[::10])
+    assert widest <= a["moment_excursion"] + 1e-12 <= widest * (1 + 1e-4)
+    # the fit is the least squares over the turn: moving the crank's moment only widens what is left
+    turn = link_rates(lk, np.linspace(0, 2 * math.pi, 3600, endpoint=False))
+
+    def spread(moments):
+        m = first_moment(mass, moments, turn)
+        return float(np.sum((m - m.mean(axis=0)) ** 2))
+
+    for step in ((1e-2, 0), (0, 1e-2), (-1e-2, 0), (0, -1e-2)):
+        nudged = moment.copy()
+        nudged[1] += np.array(step)  # the crank's pivot is the origin: its moment about the pivot
+        assert spread(nudged) > spread(moment)
+    assert out["counterweights"][0]["joint"] == "0-1"
+
+
+def test_saved_linkage_carries_the_counterweights_as_tracers(tmp_path, capsys):
+    saved = tmp_path / "balanced.json"
+    assert main(["balance", "linkage", str(MODELS / "motion_four_bar.toml"), "--density", "2", "--save",
+                 str(saved)]) == 0
+    capsys.readouterr()
+    lk = read_linkage(saved)
+    assert {"CW1", "CW3", "P"} <= set(lk.tracers) and "balanced by counterweights" in lk.note
+    assert main(["move", str(saved), "--steps", "3"]) == 0
+    assert "CW1.x" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, words", [
+    (["{five}", "--density", "2"], "W = 2"),
+    (["{m}/motion_four_bar.toml"], "has no masses"),
+    (["{m}/motion_four_bar.toml", "--density", "-2"], "not -2"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--on", "0"], "link 0 cannot carry a counterweight"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--on", "9"], "link 9 cannot carry a counterweight"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--counter-mass", "1", "--counter-radius", "1"], "not both"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--counter-mass", "-1"], "not -1"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--on", "1,2", "--counter-radius", "1"], "link 2 floats"),
+    (["{neg}"], "mass -1 kg"),
+    (["{tab}", "--density", "3"], "--density is also given"),
+    (["{m}/motion_triad.toml", "--density", "2", "--range", "0..400"], "beyond the input's limits"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--samples", "2"], "9 … 100,000, not 2"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--range", "50..50"], "is empty"),
+    (["{m}/motion_four_bar.toml", "--density", "2", "--on", "1,1"], "named twice"),
+])
+def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, args, words):
+    five = tmp_path / "five.json"
+    assert main(["move", "--chain", "0-1 1-2 2-3 3-4 4-0", "--frame", "0", "--save", str(five)]) == 0
+    neg = tmp_path / "neg.toml"
+    neg.write_text(FOUR_BAR_MASSES.format(file=MODELS / "motion_four_bar.toml").replace("mass = 0.8", "mass = -1"))
+    tab = tmp_path / "tab.toml"
+    tab.write_text(f'[linkage_balance]\nfile = "{MODELS / "motion_four_bar.toml"}"\ndensity = 2\n')
+    capsys.readouterr()
+    argv = [a.format(m=MODELS, five=five, neg=neg, tab=tab) for a in args]
+    assert main(["balance", "linkage", *argv]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1 and "Traceback" not in err, err
