@@ -32,7 +32,7 @@ import sys
 from mechbase import finite_pair
 
 from .._argtypes import finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
-from .._output import pairs, write_document
+from .._output import pairs, save_linkage, write_document
 
 __all__ = ["add_commands"]
 
@@ -344,33 +344,11 @@ def _value(v) -> str:
     return str(v)
 
 
-def _toml_value(v) -> str:
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return "{ " + ", ".join(f"{json.dumps(str(k))} = {_toml_value(x)}" for k, x in v.items()) + " }"
-
-
 def _save(result, path: str) -> None:
-    """The linkage as JSON, or as a TOML scene (``move`` reads its ``[linkage]``, ``scene`` runs it)."""
-    d = result.linkage.to_dict()
-    with open(path, "w", encoding="utf-8") as fh:
-        if path.lower().endswith(".json"):
-            json.dump(d, fh, indent=2)
-            fh.write("\n")
-            return
-        name = os.path.splitext(os.path.basename(path))[0]
-        fh.write(f"# Found by 'mechsynth dimension': {result.kind} target of {len(result.errors)} points, error max "
-                 f"{result.error_max:.6g} (relative {result.relative_max:.3g}).\n\n")
-        fh.write(f'[scene]\nname = {json.dumps(name)}\ndescription = "a linkage found by dimensional synthesis"\n'
-                 f'source = "mechsynth dimension"\ncompute = ["motion"]\n\n[linkage]\n')
-        for key, value in d.items():
-            fh.write(f"{key} = {_toml_value(value)}\n")
+    """The linkage found, as JSON or as a TOML scene that says how it was found."""
+    save_linkage(result.linkage, path, source="mechsynth dimension", description="a linkage found by dimensional "
+                 "synthesis", comment=f"Found by 'mechsynth dimension': {result.kind} target of {len(result.errors)} "
+                 f"points, error max {result.error_max:.6g} (relative {result.relative_max:.3g}).")
 
 
 def _draw(result, path: str) -> None:

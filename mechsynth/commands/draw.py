@@ -22,6 +22,8 @@ from .._argtypes import YesOrNo, finite, inches, picture_file, positive, where_c
 
 __all__ = ["add_commands"]
 
+SHEET_LIMIT = 400  # drawings of a sheet unless --limit says otherwise
+
 
 def add_commands(sub) -> None:
     """Mount ``draw`` on the ``mechsynth`` parser."""
@@ -60,8 +62,9 @@ def add_commands(sub) -> None:
     p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
     p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
-    p.add_argument("--limit", type=positive, help="refuse sheets larger than this (default 400)")
-    p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: its chain, frame and input)")
+    p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
+    p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: "
+                   "its chain, frame and input)")
     p.add_argument("--out", required=True, type=picture_file,
                    help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     p.set_defaults(run=_run_draw)
@@ -152,8 +155,8 @@ def _draw_linkage(args) -> int:
         ("--frame", args.frame is not None), ("--mechanisms", args.mechanisms), ("--prismatic", args.prismatic),
         ("--idle-joints", args.idle_joints), ("--repairs", args.repairs), ("--loop-classes", args.loop_classes),
         ("--dof", args.dof is not None), ("--h", args.h is not None), ("--where", args.where),
-        ("--id", args.id is not None), ("--columns", args.columns is not None),
-        ("--limit", args.limit is not None)) if given]
+        ("--id", args.id is not None), ("--columns", args.columns is not None), ("--limit", args.limit is not None))
+        if given]
     if chosen:
         raise InvalidOption(f"a linkage file is one dimensioned mechanism, drawn as it is (its file names its frame "
                             f"and inputs): {', '.join(chosen)} {'does' if len(chosen) == 1 else 'do'} not apply")
@@ -185,7 +188,7 @@ def _run_draw(args) -> int:
 
     if args.linkage:
         return _draw_linkage(args)
-    args.limit = args.limit or 400  # (a sheet's bound; a linkage file is one drawing and takes none)
+    args.limit = SHEET_LIMIT if args.limit is None else args.limit
     if args.at is not None:
         raise InvalidOption("--at poses a linkage file's input: a chain's drawing has no dimensions to move (save "
                             "one with 'mechsynth move --chain … --frame F --save L.json', then draw L.json --at)")

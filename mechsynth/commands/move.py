@@ -31,7 +31,7 @@ import os
 import sys
 
 from .._argtypes import finite, mechanism_of, output_file, positive, whole
-from .._output import pairs, write_document, write_rows
+from .._output import pairs, save_linkage, write_document, write_rows
 
 __all__ = ["add_commands"]
 
@@ -51,7 +51,7 @@ def _animation(text: str) -> str:
 
 
 def _saved(text: str) -> str:
-    return output_file(text, (".json",), "the linkage")
+    return output_file(text, (".toml", ".json"), "the linkage")
 
 
 def _numbers(text: str) -> tuple[float, ...]:
@@ -105,8 +105,9 @@ def add_commands(sub) -> None:
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
     p.add_argument("--frames", type=whole, help="with --animate: frames of the animation (2 … 1000, default 60)")
-    p.add_argument("--save", type=_saved, metavar="FILE.json",
-                   help="write the linkage (as dimensioned, e.g. from a drawing) to a JSON file to edit and reuse")
+    p.add_argument("--save", type=_saved, metavar="FILE",
+                   help="write the linkage (as dimensioned, e.g. from a drawing) to edit and reuse: .toml (a scene "
+                        "that move, draw and scene read) or .json")
     p.set_defaults(run=_run)
 
 
@@ -193,9 +194,8 @@ def _run(args) -> int:
     if linkage.note and not args.linkage:  # a file's note tells what was done when it was saved, not now
         print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
     if args.save:
-        with open(args.save, "w") as fh:
-            json.dump(linkage.to_dict(), fh, indent=2)
-            fh.write("\n")
+        save_linkage(linkage, args.save, source="mechsynth move", description=f"{linkage.chain.compact()}, frame "
+                     f"{linkage.frame}, saved by 'mechsynth move'")
     if linkage.dof != 1:
         return _grid(linkage, args)
     revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE

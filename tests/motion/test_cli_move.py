@@ -128,6 +128,22 @@ def test_a_chain_dimensioned_by_its_drawing_moves_and_can_be_saved(capsys, tmp_p
     assert code == 0 and len(out.splitlines()) == 3
 
 
+def test_a_linkage_saved_as_toml_is_a_scene_that_moves_and_equals_the_json(capsys, tmp_path):
+    """move --save took .json only: a .toml is a scene whose [linkage] table is the linkage (note included)."""
+    watt = ["move", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--frame", "2", "--save"]
+    as_json, as_toml = tmp_path / "watt.json", tmp_path / "watt.toml"
+    assert _run(capsys, *watt, as_json)[0] == 0 and _run(capsys, *watt, as_toml)[0] == 0
+    import tomllib
+
+    scene = tomllib.loads(as_toml.read_text())
+    assert scene["linkage"] == json.loads(as_json.read_text()) and scene["scene"]["compute"] == ["motion"]
+    assert scene["linkage"]["note"].endswith("at least 32°")
+    rows = [_run(capsys, "move", f, "--steps", "5", "--format", "csv") for f in (as_json, as_toml)]
+    assert rows[0] == rows[1] and rows[0][0] == 0 and len(rows[0][1].splitlines()) == 6
+    code, out, _ = _run(capsys, "scene", as_toml)
+    assert code == 0 and "input turns fully, worst transmission 32.19°" in out
+
+
 def test_a_sweep_into_a_dead_position_stops_there_and_says_so(capsys):
     code, out, err = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--start", "130", "--stop", "200",
                           "--steps", "50", "--format", "jsonl")
@@ -289,6 +305,16 @@ def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
     for s in (0, 19999, 20000, 20001, 45000):
         assert float(rows[s]["input"]) == pytest.approx(whole.inputs[s, 0], abs=1e-12)
         assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
+
+
+@pytest.mark.parametrize("start, stop", [(0, 720), (350, 370), (355, -400)], ids=str)
+def test_a_cranks_rows_give_a_continuous_input_past_a_turn(capsys, start, stop):
+    """A crank turned more than once, or from near 360°: the rows' input (rad) runs on past 2π, never wrapped."""
+    for fmt in ("csv", "jsonl"):
+        code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "73", "--start", start, "--stop", stop, "--format", fmt)
+        rows = list(csv.DictReader(io.StringIO(out))) if fmt == "csv" else [json.loads(x) for x in out.splitlines()]
+        phi = np.array([float(r["input"]) for r in rows])
+        assert code == 0 and phi == pytest.approx(np.radians(np.linspace(start, stop, 73)), abs=1e-12)
 
 
 def test_a_triad_says_why_it_reports_no_transmission_angle(capsys):

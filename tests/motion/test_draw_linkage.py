@@ -80,7 +80,7 @@ def test_a_png_is_the_size_asked(saved, tmp_path):
     (["--frame", "1"], "--frame does not apply"),
     (["--mechanisms", "--columns", "2"], "--mechanisms, --columns do not apply"),
     (["--dpi", "300"], "--dpi sets the resolution of a .png"),
-    (["--limit", "5"], "--limit does not apply"),  # a sheet's bound: it was taken and ignored
+    (["--limit", "400"], "--limit does not apply"),  # (the default's value, given: told apart from the default)
 ])
 def test_what_does_not_apply_to_a_linkage_is_refused(saved, tmp_path, capsys, extra, words):
     out = tmp_path / "x.svg"

@@ -402,7 +402,7 @@ def test_a_linkage_saved_as_json_is_told_apart_from_a_scene(tmp_path):
     with pytest.raises(SceneError) as info:
         run_scene(path)
     assert str(info.value) == (f"{path}: a scene file is TOML, and this is JSON (a linkage saved as .json moves with "
-                               "'mechsynth move'; 'mechsynth dimension … --save NAME.toml' writes one as a scene).")
+                               "'mechsynth move'; 'move' or 'dimension' with --save NAME.toml writes one as a scene).")
     code, out, err = run_cli(str(path))
     assert code == 2 and out == "" and err.count("\n") == 1
 
