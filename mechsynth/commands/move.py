@@ -397,7 +397,9 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
            "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
            "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
-           "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
+           "transmission": {name: {**t, "worst": min(t["min"], math.pi - t["max"])}  # (how far from a dead position)
+                            for name, t in motion.transmission.items()},
+           "extent": {n: list(e) for n, e in motion.extent().items()},
            "stopped": motion.stopped}
     if not motion.transmission:
         doc["transmission_note"] = _NO_TRANSMISSION
@@ -419,9 +421,10 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         lines.append(("toggle", f"{shown(v, 10)}{word}: link {link} stops and turns back"))
     if not motion.transmission:
         lines.append(("transmission", _NO_TRANSMISSION))
-    for name, t in motion.transmission.items():
+    for name, t in doc["transmission"].items():
         lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {shown(t['at_min'])}{word}, "
-                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}"))
-    for name, (x0, y0, x1, y1) in motion.extent().items():
+                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}; "
+                                               f"worst {math.degrees(t['worst']):.4g}°"))
+    for name, (x0, y0, x1, y1) in doc["extent"].items():
         lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
     write_document(doc, "table", pairs(lines))
