@@ -621,18 +621,19 @@ def _figure(canvas: _Canvas, dpi: int, title: str):
 def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None,
                 marks: np.ndarray | None = None) -> None:
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
-    paths of its moving pins (grey), to a PNG or SVG file; ``marks`` (N, 2) are drawn as hollow
-    circles over them (the points a synthesis was asked to pass).
+    paths of its moving pins (grey), to scale (a scale bar of a round length under it), to a PNG or
+    SVG file; ``marks`` (N, 2) are drawn as hollow circles over them (the points a synthesis was
+    asked to pass).
 
-    >>> import os, tempfile
+    >>> import os, re, tempfile
     >>> from synth.structure.chain import Chain, Mechanism
     >>> from synth.motion import sweep
     >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
     ...                    tracers={"P": (2, (2, 4))})
     >>> out = os.path.join(tempfile.mkdtemp(), "coupler.svg")
     >>> draw_motion(sweep(four_bar, steps=37), out)
-    >>> ">P</text>" in open(out).read()
-    True
+    >>> re.findall(r">([^<]+)</text>", open(out).read())  # the scale bar (1 length unit), the tracer's name
+    ['1', 'P']
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
     linkage = motion.linkage
@@ -642,9 +643,16 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
     elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
                          reach=(motion.joints[keep], motion.angles[keep]))
-    for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
-        elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
+    marks = np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float).reshape(-1, 2)
+    radius = 0.014 * linkage.scale
+    if len(marks) > 1:  # no wider than a third of the nearest two marks' gap (72 points of a closed path, their
+        gaps = np.hypot(*(marks[:, None] - marks[None]).transpose(2, 0, 1))  # circles overlapping, hid its curve)
+        np.fill_diagonal(gaps, np.inf)
+        radius = min(radius, max(gaps.min() / 3, 0.004 * linkage.scale))
+    for xy in marks:
+        elements.append({"tag": "circle", "r": radius, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
+    elements[:0] = _scale_bar(elements)  # under everything
     _write_still(elements, _Canvas(elements, size), path, title or _title(linkage), 100)
 
 
@@ -666,22 +674,65 @@ def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, 
         raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
 
 
+#: a link number's box (width per digit, height) as a share of the drawing's size, at the default size
+_NUMBER_BOX = np.array([0.026, 0.036])
+
+
 def _link_numbers(linkage: Linkage) -> list[dict]:
     """Each link's number (the chain's numbering) beside the middle of its pins in the pose, as a
-    chain's drawing numbers its links."""
+    chain's drawing numbers its links: of a few places beside it (either side of a bar, along it; about
+    a plate's middle), the first clear of every pin, ground pivot, bar and number drawn, else the
+    clearest (a short crank's number once stood on its ground pivot, the frame's on a pivot's base)."""
+    scale = linkage.scale
+    lift = 0.045 * scale
+    p = linkage.points
+    pin = 0.018 * scale
+    # what a number must not stand on: each link's bars (the frame's dashed line), ground pivots, pins, tracers
+    segments = []
+    for link in range(linkage.chain.links):
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
+        segments += [(p[i], p[j]) for a, i in enumerate(on) for j in on[a + 1:]]
+    w = 2.6 * pin
+    for k, joint in enumerate(linkage.chain.joints):
+        if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
+            x, y = p[k]
+            base = np.array([[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]])
+            segments += [tuple(base), (p[k], base[0] + [0.6 * w, 0]), (p[k], base[1] - [0.6 * w, 0])]
+    dots = [*p[[k for k in range(len(p)) if linkage.kind(k) == REVOLUTE]], *(at for _, at in linkage.tracers.values())]
+    samples = [np.asarray(dot, dtype=float)[None] for dot in dots]
+    for a, b in segments:
+        count = 2 + int(math.dist(a, b) / (0.01 * scale))
+        samples.append(np.linspace(a, b, min(count, 400)))
+    obstacles = np.concatenate(samples) if samples else np.zeros((0, 2))
+    placed: list[np.ndarray] = []
+
+    def clearance(centre: np.ndarray, half: np.ndarray) -> float:
+        pts = np.concatenate([obstacles, *placed]) if placed else obstacles
+        gap = np.maximum(np.abs(pts - centre) - half, 0.0)
+        return float(np.hypot(gap[:, 0], gap[:, 1]).min(initial=math.inf))
+
     out = []
-    lift = 0.045 * linkage.scale
     for link in range(linkage.chain.links):
         on = list(linkage.joints_of(link))
         pins = [k for k in on if linkage.kind(k) == REVOLUTE] or on
-        at = linkage.points[pins].mean(axis=0)
-        if len(pins) == 2:  # a bar: beside it, not on it
-            d = linkage.points[pins[1]] - linkage.points[pins[0]]
+        middle = p[pins].mean(axis=0)
+        half = _NUMBER_BOX * [len(str(link)), 1] * scale / 2
+        if len(pins) == 2:  # a bar: beside it, not on it; the upper side first, its middle first
+            d = p[pins[1]] - p[pins[0]]
             n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-300)
-            at = at + lift * (n if n[1] >= 0 else -n)
-        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (and the frame's off its pivot's base)
-            at = at + lift * (np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0]))
-        out.append({"tag": "text", "text": str(link), "frames": at[None, None], "static": True,
+            n = n if n[1] >= 0 else -n
+            centres = [p[pins[0]] + t * d + side * (lift + float(np.abs(n) @ half)) * n
+                       for side, t in ((1, 0.5), (-1, 0.5), (1, 0.3), (1, 0.7), (-1, 0.3), (-1, 0.7))]
+        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (the frame's off its pivot's base)
+            first = np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0])
+            centres = [middle + lift * v + half for v in (first, [-2.0, -1.1], [1.0, -1.0], [-1.6, 1.0])]
+        else:  # a plate: its middle, else towards one of its pins
+            centres = [middle] + [middle + 0.35 * (p[k] - middle) for k in pins]
+        gaps = [clearance(c, half) for c in centres]
+        clear = [c for c, g in zip(centres, gaps) if g >= 0.25 * lift]
+        centre = clear[0] if clear else centres[int(np.argmax(gaps))]
+        placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
+        out.append({"tag": "text", "text": str(link), "frames": (centre - half)[None, None], "static": True,
                     "style": {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12,
                               "font-family": "sans-serif"}})
     return out

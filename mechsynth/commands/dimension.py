@@ -98,16 +98,16 @@ def add_commands(sub) -> None:
     p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
                    "length for a slide) over the target")
     p.add_argument("--min-transmission", type=finite, metavar="DEG", help="least transmission angle of every "
-                   "dyad over the target (over the turn for a crank), degrees")
+                   "dyad over the target (over the turn for a crank), degrees (default: none)")
     p.add_argument("--max-ratio", type=finite, metavar="R", help="bound on the longest over the shortest "
-                   "distance between two joints of one link")
+                   "distance between two joints of one link (default: none)")
     p.add_argument("--max-length", type=finite, metavar="L", help="bound on every distance between two joints of "
-                   "one link, the frame's pivots included (target units)")
+                   "one link, the frame's pivots included (target units; default: none)")
     p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
     p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
-                   "joint J at the point (x, y), e.g. 0-1=0,0 (repeatable)")
+                   "joint J at the point (x, y) in target units, e.g. 0-1=0,0 (repeatable)")
     p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
-                   "axis): from the input pivot to --frame-line")
+                   "axis): from the input pivot to --frame-line (default: free)")
     p.add_argument("--frame-line", metavar="JOINT", help="the frame line's far joint (default: the frame's only "
                    "other joint), for --frame-angle or --timing absolute")
     p.add_argument("--timing", choices=("relative", "absolute"), default="relative", help="a timed path's inputs "

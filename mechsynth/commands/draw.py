@@ -63,7 +63,8 @@ def add_commands(sub) -> None:
     p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
-    p.add_argument("--title", help="sheet title (default: the selection)")
+    p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: "
+                   "its chain, frame and input)")
     p.add_argument("--out", required=True, type=picture_file,
                    help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     p.set_defaults(run=_run_draw)

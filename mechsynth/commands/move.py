@@ -93,17 +93,18 @@ def add_commands(sub) -> None:
                    "per input, like 80,100")
     p.add_argument("--stop", type=_numbers, help="last input value, as --start (default: one turn, or the upper "
                    "limit; a grid: half a turn (or the mechanism's size) each side of the pose)")
-    p.add_argument("--velocities", action="store_true", help="add each joint's velocity per unit input rate")
-    p.add_argument("--accelerations", action="store_true", help="add each joint's acceleration per unit input rate "
+    p.add_argument("--velocities", action="store_true", help="add each joint's and tracer's velocity per unit input rate")
+    p.add_argument("--accelerations", action="store_true", help="add each joint's and tracer's acceleration per unit input rate "
                    "squared (input turning steadily)")
     p.add_argument("--format", choices=("table", "jsonl", "csv", "json"),
                    help="rows per step (default table), or with --range: table or json")
     p.add_argument("--range", action="store_true", help="what a designer checks instead of rows: crank or rocker, "
-                   "limits, Grashof, dead and toggle positions, transmission angles, curve extent")
+                   "limits, Grashof, dead and toggle positions (of the whole branch), transmission angles and "
+                   "curve extent (over --start … --stop where given)")
     p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
-    p.add_argument("--frames", type=positive, help="with --animate: frames of the animation (2 … 1000, default 60)")
+    p.add_argument("--frames", type=whole, help="with --animate: frames of the animation (2 … 1000, default 60)")
     p.add_argument("--save", type=_saved, metavar="FILE",
                    help="write the linkage (as dimensioned, e.g. from a drawing) to edit and reuse: .toml (a scene "
                         "that move, draw and scene read) or .json")
@@ -396,7 +397,9 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
            "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
            "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
-           "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
+           "transmission": {name: {**t, "worst": min(t["min"], math.pi - t["max"])}  # (how far from a dead position)
+                            for name, t in motion.transmission.items()},
+           "extent": {n: list(e) for n, e in motion.extent().items()},
            "stopped": motion.stopped}
     if not motion.transmission:
         doc["transmission_note"] = _NO_TRANSMISSION
@@ -418,9 +421,10 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         lines.append(("toggle", f"{shown(v, 10)}{word}: link {link} stops and turns back"))
     if not motion.transmission:
         lines.append(("transmission", _NO_TRANSMISSION))
-    for name, t in motion.transmission.items():
+    for name, t in doc["transmission"].items():
         lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {shown(t['at_min'])}{word}, "
-                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}"))
-    for name, (x0, y0, x1, y1) in motion.extent().items():
+                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}; "
+                                               f"worst {math.degrees(t['worst']):.4g}°"))
+    for name, (x0, y0, x1, y1) in doc["extent"].items():
         lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
     write_document(doc, "table", pairs(lines))

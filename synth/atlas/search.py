@@ -470,10 +470,12 @@ def polish_topology(task: TopologyPolish):
         far = max(float(np.hypot(*(np.vstack((s.points, s.tracers["P"][1])) - centre).T).max()) for s in starts)
         return replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
 
-    def polish(start, tracer_link, budget):
+    def polish(start, tracer_link, budget):  # None once the polishing share is spent
+        left = min(budget, polishing - (time.process_time() - clock))
+        if left <= 0:  # (a start's placing may take the last of it: a search of no budget said "the budget must be
+            return None  # a positive number of seconds, not -0.0018" for every topology)
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=widened([start]),
-                          budget=min(budget, polishing - (time.process_time() - clock)), seed=task.seed,
-                          underdetermined=task.underdetermined, polish_only=True)
+                          budget=left, seed=task.seed, underdetermined=task.underdetermined, polish_only=True)
 
     starts = []
     piece = polishing / max(len(task.candidates), 1)  # each candidate's first polish at most
@@ -487,6 +489,8 @@ def polish_topology(task: TopologyPolish):
         except SynthesisError as exc:
             why = exc.args[0]  # its options still marked: the note names them as the caller writes them
             continue
+        if result is None:
+            break
         starts.append((candidate.tracer_link, start))
         if best is None or (result.met, -result.error_rms) > (best.met, -best.error_rms):
             best, best_candidate = result, candidate
@@ -499,7 +503,7 @@ def polish_topology(task: TopologyPolish):
             again = polish(best.linkage, best_candidate.tracer_link, polishing)
         except SynthesisError:
             break
-        if not again.error_rms < 0.5 * best.error_rms:
+        if again is None or not again.error_rms < 0.5 * best.error_rms:
             break
         best = again
     # no sample lay in the target's basin (eight links: a few random poses of twenty dimensions): the global

@@ -208,6 +208,10 @@ def read_linkage_file(text: str, source: str) -> list[Entry]:
 
     data = read_toml_text(text, error=MalformedChain, source=source)
     row = _linkage_row(data, source)
+    table = data.get("linkage")
+    if "joints" not in row and isinstance(table, dict):  # it said "holds no chain: … this one holds scene, linkage"
+        raise MalformedChain(f"{source}: its [linkage] table has no chain (a joint list, chain = \"0-1 1-2 2-3 3-0\"); "
+                             f"it has {', '.join(table) or 'nothing'}")
     if "joints" not in row:
         raise MalformedChain(f"{source} holds no chain: a TOML file is read for the chain of its [linkage] table (a "
                              f"linkage or a scene that moves one); this one holds {', '.join(data) or 'nothing'}")

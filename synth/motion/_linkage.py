@@ -502,6 +502,10 @@ def read_linkage(path: str | Path) -> Linkage:
         # the rows of an atlas search ('dimension --db … --format json'), each with its linkage
         raise MotionError(f"{path.name} holds {len(data)} row{'s' * (len(data) != 1)}, not one linkage: give one "
                           "row's linkage, or the file 'dimension --save' writes")
+    elif isinstance(data, dict) and "error_max" in data and not isinstance(data.get("points"), dict):
+        # one row of 'dimension' or of an atlas search's table ('--format jsonl' rows carry no dimensions)
+        raise MotionError(f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' "
+                          "gives each answer with its linkage, '--save FILE' the best one's")
     elif isinstance(data, dict) and not {"chain", "frame", "inputs", "points"} & set(data):  # an arm, a grid, …
         raise MotionError(f"{path.name} holds no linkage: a linkage file has a [linkage] table, or chain, frame, "
                           f"inputs and points at its top; this one holds {', '.join(data) or 'nothing'}")

@@ -98,6 +98,10 @@ def test_a_linkage_file_is_read_as_its_chain_and_frame(tmp_path):
     assert refused(MalformedChain, exchange.read_file, tmp_path / "grid.toml") == (
         f"{tmp_path / 'grid.toml'} holds no chain: a TOML file is read for the chain of its [linkage] table (a linkage "
         "or a scene that moves one); this one holds name, dof, links")
+    (tmp_path / "typo.toml").write_text('[scene]\nname = "t"\n[linkage]\nchian = "0-1 1-2 2-3 3-0"\nframe = 0\n')
+    assert refused(MalformedChain, exchange.read_file, tmp_path / "typo.toml") == (
+        f"{tmp_path / 'typo.toml'}: its [linkage] table has no chain (a joint list, chain = \"0-1 1-2 2-3 3-0\"); it has "
+        "chian, frame")
     (tmp_path / "bad.toml").write_text('[linkage]\nchain = "0-1 1-1"\nframe = 0\n')
     assert refused(MalformedChain, exchange.read_file, tmp_path / "bad.toml").startswith(
         f"{tmp_path / 'bad.toml'}: the linkage's chain cannot be read: ")

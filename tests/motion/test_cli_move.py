@@ -90,6 +90,23 @@ def test_range_of_the_four_bar(capsys):
     assert code == 0 and "turns fully" in table and "Grashof" in table and "curve P" in table
 
 
+def test_range_says_each_dyads_worst_transmission_angle(capsys, tmp_path):
+    # min and max alone left the designer's figure, how far the dyad stays from a dead position, to be worked out:
+    # crank 1.5, coupler 2.2, rocker 2.5, frame 3 (a crank-rocker): μ from acos(8.84/11) = 36.53° (crank pin
+    # nearest the rocker's pivot, |A O4| = 1.5) to acos(-9.16/11) = 146.38° (|A O4| = 4.5): the worst is 180 − 146.38
+    from .helpers import four_bar
+
+    path = tmp_path / "wide.json"
+    path.write_text(four_bar(1.5, 2.2, 2.5, 3).to_json())
+    code, out, _ = _run(capsys, "move", path, "--range", "--format", "json")
+    t = json.loads(out)["transmission"]["links 2, 3"]
+    low, high = math.acos((2.2 ** 2 + 2.5 ** 2 - 1.5 ** 2) / 11), math.acos((2.2 ** 2 + 2.5 ** 2 - 4.5 ** 2) / 11)
+    assert code == 0 and (t["min"], t["max"]) == pytest.approx((low, high), abs=1e-9)
+    assert t["worst"] == pytest.approx(math.pi - high, abs=1e-9)
+    code, table, _ = _run(capsys, "move", path, "--range")
+    assert f"; worst {math.degrees(math.pi - high):.4g}°" in table
+
+
 def test_a_rocker_reports_true_limits(capsys, tmp_path):
     """The triad scene's linkage rocks: its limits are dead positions, and a sweep ends at them."""
     triad = ROOT / "models" / "motion_triad.toml"
@@ -172,6 +189,8 @@ BAD = [
     (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
     (["move", str(FOUR_BAR), "--range", "--velocities"], "--range"),
     (["move", str(FOUR_BAR), "--frames", "10"], "--animate"),
+    # it said "expected a whole number ≥ 1, not 0" where the frames are 2 … 1000
+    (["move", str(FOUR_BAR), "--frames", "0", "--animate", "m.gif"], "--frames must be 2 … 1000, not 0"),
     (["move", str(FOUR_BAR), "--out", "curves.jpg"], "PNG or SVG"),
     (["move", str(FOUR_BAR), "--animate", "m.mp4"], "GIF or SVG"),
     (["move", str(FOUR_BAR), "--out", "/no/such/dir/c.png"], "cannot write"),

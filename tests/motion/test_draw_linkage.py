@@ -123,3 +123,28 @@ def test_balance_refuses_a_linkage_naming_what_it_takes(saved, capsys, command):
     assert "watt.json is a linkage" in err and "'mechsynth balance linkage watt.json --density" in err
     assert err.count("\n") == 1
     json.loads(saved.read_text())  # (the file is untouched)
+
+
+@pytest.mark.parametrize("at", [None, "30"])
+def test_no_link_number_stands_on_a_pin_or_a_ground_pivot(saved, tmp_path, monkeypatch, at):
+    # 'draw watt.json --at 30' wrote the frame's number 2 on a ground pivot's triangle and base (its two pivots one
+    # above the other, the number beside the middle of the line between them)
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_hex
+
+    figures = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: figures.append(fig))
+    assert main(["draw", str(saved), "--out", str(tmp_path / "w.png"), *(["--at", at] if at else [])]) == 0
+    (fig,) = figures
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    numbers = [t.get_window_extent(renderer) for t in ax.texts if t.get_text() in "012345"]
+    pivots = [p.get_window_extent(renderer) for p in ax.patches if type(p).__name__ == "Polygon"
+              and to_hex(p.get_facecolor()) == "#eef1f4"]
+    pins = [p.get_window_extent(renderer) for p in ax.patches if type(p).__name__ == "Circle"]
+    bases = [ln.get_window_extent(renderer) for ln in ax.lines if len(ln.get_xdata()) == 2
+             and ln.get_ydata()[0] == ln.get_ydata()[1] and ln.get_linewidth() == pytest.approx(2.4 * 0.75)]
+    assert len(numbers) == 6 and len(pivots) == 2 and len(bases) == 2 and len(pins) == 7
+    assert not [(n, o) for n in numbers for o in pivots + pins + bases if n.overlaps(o)]
+    assert not [(a, b) for i, a in enumerate(numbers) for b in numbers[:i] if a.overlaps(b)]

@@ -294,6 +294,18 @@ def test_a_file_that_is_not_a_linkage_is_named_and_told_apart(tmp_path):
     rows.write_text(json.dumps([{"rank": k, "linkage": Linkage(FOUR_BAR, (0,), GOOD).to_dict()} for k in (1, 2)]))
     assert refused(MotionError, read_linkage, rows) == (
         "rows.json holds 2 rows, not one linkage: give one row's linkage, or the file 'dimension --save' writes")
+    # one line of 'dimension --db … --format jsonl' (a row without dimensions): it read "a linkage has no entry
+    # 'chain_id'"; of 'dimension --mechanism … --format jsonl' (its 'points' a count of the target's): "no entry
+    # 'error_max'"
+    row, one = tmp_path / "row.json", tmp_path / "one.json"
+    row.write_text(json.dumps({"rank": 1, "chain": "0-1 0-2 1-3 2-3", "chain_id": "404959cfebdd", "frame": 0,
+                               "input": "0-1", "tracer_link": 3, "links": 4, "error_max": 2e-14}))
+    one.write_text(json.dumps({"kind": "function", "chain": "0-1 0-3 1-2 2-3", "frame": 0, "points": 3,
+                               "error_max": 7.5e-14}))
+    for path in (row, one):
+        assert refused(MotionError, read_linkage, path) == (
+            f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' gives each "
+            "answer with its linkage, '--save FILE' the best one's")
     # a linkage with a mistake: the sentence of Linkage.from_dict, of the same class, after the file's name
     pose = tmp_path / "pose.json"
     pose.write_text(json.dumps({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {"0-1": [0, 0]}}))
