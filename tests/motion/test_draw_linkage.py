@@ -148,3 +148,12 @@ def test_no_link_number_stands_on_a_pin_or_a_ground_pivot(saved, tmp_path, monke
     assert len(numbers) == 6 and len(pivots) == 2 and len(bases) == 2 and len(pins) == 7
     assert not [(n, o) for n in numbers for o in pivots + pins + bases if n.overlaps(o)]
     assert not [(a, b) for i, a in enumerate(numbers) for b in numbers[:i] if a.overlaps(b)]
+
+
+def test_a_slider_crank_is_drawn_with_its_links_numbered(tmp_path):
+    # a link with one pin (the slider's block) is numbered off its pin: 'draw models/motion_slider_crank.toml' (and any
+    # slider dimension --save wrote) ended in a TypeError there
+    out = tmp_path / "slider.svg"
+    assert main(["draw", str(ROOT / "models" / "motion_slider_crank.toml"), "--out", str(out)]) == 0
+    svg = out.read_text()
+    assert len(_pins(svg)) == 3 and all(f">{link}</text>" in svg for link in range(4))
