@@ -23,7 +23,7 @@ import os
 import re
 import sys
 
-from .._argtypes import finite, number_range, output_file, picture_file, positive
+from .._argtypes import add_row, finite, number_range, output_file, picture_file, positive
 from .._output import number, pairs, write_document
 
 #: ``--range -90..90``: a negative range is a value, not an option
@@ -143,7 +143,8 @@ def add_commands(sub) -> None:
     lb = command("linkage", "counterweights that balance a dimensioned 1-DOF linkage's shaking force and its gravity "
                             "potential: a linkage file (move/dimension --save) with --density, or a TOML file with a "
                             "[linkage_balance] table", _linkage_problem, _table_linkage, "plot_linkage")
-    lb.add_argument("file", help="a linkage file (.json or .toml), or a TOML file with a [linkage_balance] table "
+    lb.add_argument("file", help="a linkage file (.json or .toml; an atlas search's rows with --row K), or a TOML "
+                                 "file with a [linkage_balance] table "
                                  "(its linkage: 'file' or the file's [linkage]; per-link masses or a density)")
     lb.add_argument("--density", type=finite, metavar="KG_PER_M",
                     help="the links as bars of this many kg per metre between every two of their joints")
@@ -159,6 +160,7 @@ def add_commands(sub) -> None:
     lb.add_argument("--samples", type=positive, help="input values sampled for the fit and the searches (default 361)")
     lb.add_argument("--save", type=_saved, metavar="OUT.json",
                     help="write the linkage with its counterweights as tracers CW<link> (draw and move show them)")
+    add_row(lb)
     common(lb)
 
     so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph], "
@@ -402,7 +404,7 @@ def _linkage_problem(args):
         if both:
             raise InvalidOption(f"{both[0]} is also given in {args.file}'s [linkage_balance]: give it in one place")
         options = {key: getattr(table, key) if options[key] is None else options[key] for key in OPTIONS}
-    args.linkage = read_linkage(source)  # kept for --save
+    args.linkage = read_linkage(source, row=args.row)  # kept for --save
     return linkage_problem(args.linkage, options, None if table is None else table.links, os.path.basename(source),
                            args.file)
 

@@ -63,7 +63,7 @@ def run(args, target, constraints, *, save, draw) -> int:
     rows = []
     for rank, match in enumerate(found.matches, 1):
         row = {"rank": rank, **match.row()}
-        if args.format == "json":
+        if args.format in ("json", "jsonl"):  # rows that move, draw and balance linkage read (--row K)
             row["linkage"] = match.result.linkage.to_dict()
         rows.append(row)
     if not found.index_curves:
