@@ -14,6 +14,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from synth.atlas import AtlasError, NoCurveIndex, index_curves, index_gap, parse_grid, run_grid, search_atlas
 from synth.atlas.curves import (HARMONICS, IndexSettings, _by_arc_length, harmonics, periodic_harmonics,
@@ -406,13 +407,17 @@ def test_every_row_of_the_atlas_search_is_read_by_move_draw_and_balance(slider_i
     t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
     target = np.column_stack([np.cos(t), 0.6 * np.sin(t)])
     csv.write_text("x,y\n" + "".join(f"{x!r},{y!r}\n" for x, y in target.tolist()))
-    rows_json, rows_jsonl = tmp_path / "rows.json", tmp_path / "rows.jsonl"
-    for path, fmt in ((rows_json, "json"), (rows_jsonl, "jsonl")):
-        done = _cli("dimension", str(csv), "--db", slider_index, "--budget", "3", "--format", fmt)
+    rows_json, rows_jsonl, sheet = tmp_path / "rows.json", tmp_path / "rows.jsonl", tmp_path / "sheet.png"
+    for path, extra in ((rows_json, ["--format", "json", "--out", str(sheet)]), (rows_jsonl, ["--format", "jsonl"])):
+        done = _cli("dimension", str(csv), "--db", slider_index, "--budget", "3", *extra)
         assert done.returncode == 0, done.stderr
         path.write_text(done.stdout)
     rows = json.loads(rows_json.read_text())
     assert len(rows) >= 2 and [row["rank"] for row in rows] == list(range(1, len(rows) + 1))
+    # --out draws every row (it drew the best alone): a panel each, 3 to a row of the sheet, 3.6 in at 100 dpi
+    # under a title strip of 0.45 in
+    columns = min(3, len(rows))
+    assert Image.open(sheet).size == (360 * columns, 405 * math.ceil(len(rows) / columns))
     assert all("linkage" in json.loads(line) for line in rows_jsonl.read_text().splitlines())
 
     moved = _cli("move", str(rows_json), "--row", "2", "--range", "--format", "json")
