@@ -207,6 +207,10 @@ MAX_STEPS = 10_000_000
 SAMPLES = 4096
 #: the ends of a branch are located to this (rad, or this × the mechanism's size)
 LIMIT_TOL = 1e-11
+#: a sweep's start and stop are held to this (rad, or this × the mechanism's size) by a float, and their last
+#: place is at most STEP_PLACES of a step: else they are too far from zero to sweep (refused)
+RESOLVED = 1e-9
+STEP_PLACES = 1e-6
 #: Newton's method stops where every closure equation holds to this × the mechanism's size
 CLOSURE_TOL = 1e-14
 
@@ -667,6 +671,20 @@ def _check_value(value, name: str) -> float:
     return out
 
 
+def _check_resolved(linkage: Linkage, start: float, stop: float, steps: int, stop_given: bool) -> None:
+    """Refuse an input so far from zero that a float does not hold it to :data:`RESOLVED` (rad, or times the
+    mechanism's size), or does not tell the sweep's steps apart (a crank from 1e308°: start + one turn is start)."""
+    revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
+    step = abs(stop - start) / (steps - 1)
+    for name, value in (("start", start), ("stop", stop)) if stop_given else (("start", start),):
+        last = math.ulp(value)
+        if last > RESOLVED * (1.0 if revolute else linkage.scale) or last > STEP_PLACES * step:
+            shown = f"{math.degrees(value):.6g}° ({value:.6g} rad)" if revolute else f"{value:.6g}"
+            raise BadSweep(f"{name} {shown} is too far from zero to sweep: a float that large is known only to "
+                           f"{last:.3g}{' rad' if revolute else ''}; give an input within a few turns (or sizes) of "
+                           "the pose")
+
+
 def _describe(linkage: Linkage, value: float) -> str:
     """An input value as a designer reads it: degrees for a revolute input."""
     if linkage.kind(linkage.inputs[0]) == REVOLUTE:
@@ -783,12 +801,15 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
     start = None if start is None else _check_value(start, "start")
     stop = None if stop is None else _check_value(stop, "stop")
     crank = revolute and math.isinf(lo) and math.isinf(hi)
+    stop_given = stop is not None
+    both = start is not None and stop_given
     if start is None:
         start = phi0 if crank or math.isinf(lo) else phi0 + lo
     if stop is None:
         stop = start + 2 * math.pi if crank else (phi0 + hi if math.isfinite(hi) else start + 4 * linkage.scale)
-    if start == stop:
+    if both and start == stop:
         raise BadSweep("start and stop are the same input: a sweep needs a range")
+    _check_resolved(linkage, start, stop, steps, stop_given)
     x0 = start - phi0
     if revolute and not crank and not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:  # the same angle a turn on or back
         x0 -= 2 * math.pi * math.floor((x0 - lo) / (2 * math.pi))
