@@ -208,9 +208,8 @@ SAMPLES = 4096
 #: the ends of a branch are located to this (rad, or this × the mechanism's size)
 LIMIT_TOL = 1e-11
 #: a sweep's start and stop are held to this (rad, or this × the mechanism's size) by a float, and their last
-#: place is at most STEP_PLACES of a step: else they are too far from zero to sweep (refused)
+#: place is less than a step: else they are too far from zero to sweep (refused)
 RESOLVED = 1e-9
-STEP_PLACES = 1e-6
 #: Newton's method stops where every closure equation holds to this × the mechanism's size
 CLOSURE_TOL = 1e-14
 
@@ -678,7 +677,7 @@ def _check_resolved(linkage: Linkage, start: float, stop: float, steps: int, sto
     step = abs(stop - start) / (steps - 1)
     for name, value in (("start", start), ("stop", stop)) if stop_given else (("start", start),):
         last = math.ulp(value)
-        if last > RESOLVED * (1.0 if revolute else linkage.scale) or last > STEP_PLACES * step:
+        if last > RESOLVED * (1.0 if revolute else linkage.scale) or last >= step:
             shown = f"{math.degrees(value):.6g}° ({value:.6g} rad)" if revolute else f"{value:.6g}"
             raise BadSweep(f"{name} {shown} is too far from zero to sweep: a float that large is known only to "
                            f"{last:.3g}{' rad' if revolute else ''}; give an input within a few turns (or sizes) of "

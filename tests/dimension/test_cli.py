@@ -199,3 +199,11 @@ def test_underdetermined_is_taken_where_the_target_needs_it(tmp_path, capsys):
     assert main(["dimension", str(two), *FOUR_BAR, "--budget", "2", "--underdetermined", "--format", "jsonl"]) == 0
     row = json.loads(capsys.readouterr().out)
     assert row["points"] == 2 and row["error_max"] < 1e-9
+
+
+def test_the_help_gives_the_pivots_box_its_unit(capsys):
+    """--pivots said 'a box the frame's joints must lie in' and no unit (--pivot-at said target units)."""
+    with pytest.raises(SystemExit):
+        main(["dimension", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "a box the frame's joints must lie in, in target units (the target's x, y)" in text
