@@ -670,16 +670,16 @@ def _check_value(value, name: str) -> float:
     return out
 
 
-def _check_resolved(linkage: Linkage, start: float, stop: float, steps: int, stop_given: bool) -> None:
-    """Refuse an input so far from zero that a float does not hold it to :data:`RESOLVED` (rad, or times the
-    mechanism's size), or does not tell the sweep's steps apart (a crank from 1e308°: start + one turn is start)."""
+def _check_resolved(linkage: Linkage, ends, step: float) -> None:
+    """Refuse an input (``ends``: (name, value) pairs) so far from zero that a float does not hold it to
+    :data:`RESOLVED` (rad, or times the mechanism's size) or tells it from the next, ``step`` on (a crank
+    from 1e308°: start + one turn is start)."""
     revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
-    step = abs(stop - start) / (steps - 1)
-    for name, value in (("start", start), ("stop", stop)) if stop_given else (("start", start),):
+    for name, value in ends:
         last = math.ulp(value)
         if last > RESOLVED * (1.0 if revolute else linkage.scale) or last >= step:
             shown = f"{math.degrees(value):.6g}° ({value:.6g} rad)" if revolute else f"{value:.6g}"
-            raise BadSweep(f"{name} {shown} is too far from zero to sweep: a float that large is known only to "
+            raise BadSweep(f"{name} {shown} is too far from zero: a float that large is known only to "
                            f"{last:.3g}{' rad' if revolute else ''}; give an input within a few turns (or sizes) of "
                            "the pose")
 
@@ -808,7 +808,8 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         stop = start + 2 * math.pi if crank else (phi0 + hi if math.isfinite(hi) else start + 4 * linkage.scale)
     if both and start == stop:
         raise BadSweep("start and stop are the same input: a sweep needs a range")
-    _check_resolved(linkage, start, stop, steps, stop_given)
+    _check_resolved(linkage, (('start', start), ('stop', stop)) if stop_given else (('start', start),),
+                    abs(stop - start) / (steps - 1))
     x0 = start - phi0
     if revolute and not crank and not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:  # the same angle a turn on or back
         x0 -= 2 * math.pi * math.floor((x0 - lo) / (2 * math.pi))
@@ -1183,6 +1184,8 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     ------
     CannotAssemble
         The branch does not reach ``value`` (the sentence gives its range and the group that locks).
+    BadSweep
+        ``value`` is not finite, or too far from zero for a float to hold an input to 1e-9.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
@@ -1190,6 +1193,7 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     1.570796326795
     """
     value = _check_value(value, "the input")
+    _check_resolved(linkage, (("the input", value),), 1e-3)
     motion = sweep(linkage, steps=2, start=value, stop=value + (1e-3 if value < 1e300 else -1e-3))
     p = motion.joints[0]
     tracers = {name: (link, tuple(motion.tracers[name][0])) for name, (link, _) in linkage.tracers.items()}
