@@ -670,11 +670,11 @@ def _check_value(value, name: str) -> float:
     return out
 
 
-def _check_resolved(linkage: Linkage, ends, step: float) -> None:
-    """Refuse an input (``ends``: (name, value) pairs) so far from zero that a float does not hold it to
-    :data:`RESOLVED` (rad, or times the mechanism's size) or tells it from the next, ``step`` on (a crank
+def _check_resolved(linkage: Linkage, ends, step: float, i: int = 0) -> None:
+    """Refuse a value of input ``i`` (``ends``: (name, value) pairs) so far from zero that a float does not hold
+    it to :data:`RESOLVED` (rad, or times the mechanism's size) or tells it from the next, ``step`` on (a crank
     from 1e308°: start + one turn is start)."""
-    revolute = linkage.kind(linkage.inputs[0]) == REVOLUTE
+    revolute = linkage.kind(linkage.inputs[i]) == REVOLUTE
     for name, value in ends:
         last = math.ulp(value)
         if last > RESOLVED * (1.0 if revolute else linkage.scale) or last >= step:
@@ -954,6 +954,10 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     total = math.prod(steps)
     if total > MAX_STEPS:
         raise BadSweep(f"the grid has {total:,} steps; at most {MAX_STEPS:,}")
+    for i, ((a, b), count) in enumerate(zip(ranges, steps)):
+        name = joint_name(linkage.chain, linkage.inputs[i])
+        _check_resolved(linkage, ((f"input {name}'s start", a), (f"input {name}'s stop", b)),
+                        abs(b - a) / (count - 1) if a != b else math.inf, i)
     axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
     values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
     offsets = values - linkage.pose_inputs[None, :]

@@ -49,6 +49,11 @@ def test_the_sweeps_arguments_are_refused_in_one_sentence_each():
     crank = slider_crank(1.0, 3.0, 0.5)
     piston = Linkage(crank.mechanism, (1,), crank.points, crank.slides)  # (its size some 4: 1e-9 of it is 4e-9)
     assert refused(BadSweep, sweep, piston, start=1e8, stop=1e8 + 1).startswith("start 1e+08 is too far from zero")
+    # a grid's input too (a five-bar's crank 0-1 from 1e17°: rows of no meaning), the other input's range as it was
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
+    assert refused(BadSweep, sweep_grid, five_bar, [(1e15, 2e15), (0, 1)], steps=[3, 3]).startswith(
+        "input 0-1's start 5.72958e+16° (1e+15 rad) is too far from zero: a float that large is known only to 0.125 rad")
+    assert sweep_grid(five_bar, [(0.5, 0.5), (0, 1)], steps=[2, 2]).steps == 4  # (one value of an input: no step)
     # a pose at such an input too ('draw FILE --at 1e12' drew a garbage pose, then named a "start")
     assert refused(BadSweep, assemble, lk, 1e10).startswith("the input 5.72958e+11° (1e+10 rad) is too far from zero")
     five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
