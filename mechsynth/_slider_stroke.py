@@ -8,7 +8,7 @@ Example
 >>> offset = read_linkage("models/motion_slider_crank.toml")   # crank 1, rod 3.5, offset 0.5
 >>> sliders_on_frame(offset)                                     # the pair 0=3, slider 3, its pin 2-3
 [(1, 3, 3)]
->>> s = slider_stroke(offset, sweep(offset, steps=360), 3)
+>>> s = slider_stroke(offset, sweep(offset, steps=360), 3, offset.slides[1])
 >>> round(s.length, 10), round(s.quick_return_ratio, 7)       # √20 − √6 and (π + δ)/(π − δ)
 (2.0226462122, 1.058997)
 """
@@ -62,12 +62,11 @@ def dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[flo
     return out[0], out[1]
 
 
-def slider_stroke(linkage, motion, pin: int, along=None) -> Stroke:
-    """The stroke of joint ``pin`` (a slider's pin) along its line over a crank's turn (``motion`` a sweep
-    of it); ``along``: the line's direction (default the slide of the slider's pair with the frame)."""
+def slider_stroke(linkage, motion, pin: int, along) -> Stroke:
+    """The stroke of joint ``pin`` (a slider's pin) along the direction ``along`` (its slide on the frame) over
+    a crank's turn (``motion`` a sweep of it); ``far`` is the input where the pin is farthest along it."""
     p = linkage.points
-    u = np.asarray(along if along is not None else next(d for k, d in linkage.slides.items()
-                                                         if linkage.frame in linkage.chain.joints[k]), dtype=float)
+    u = np.asarray(along, dtype=float)
     u = u / np.hypot(*u)
 
     def slide(m):

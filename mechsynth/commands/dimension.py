@@ -103,7 +103,8 @@ def add_commands(sub) -> None:
                    "distance between two joints of one link (default: none)")
     p.add_argument("--max-length", type=finite, metavar="L", help="bound on every distance between two joints of "
                    "one link, the frame's pivots included (target units; default: none)")
-    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in, in target units (the target's x, y)")
+    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in, in "
+                   "target units (the target's x, y)")
     p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
                    "joint J at the point (x, y) in target units, e.g. 0-1=0,0 (repeatable)")
     p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
