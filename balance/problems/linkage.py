@@ -82,13 +82,17 @@ class BalanceState(Row):
 
 @dataclass(frozen=True)
 class LinkageBalance(Row):
-    """Counterweights found for a linkage, and its unbalance before and after (true extremes)."""
+    """Counterweights found for a linkage, and its unbalance before and after (true extremes).
+
+    ``carried``: the counterweights the links carried already (counted in ``before``); ``residual_share``:
+    the first moment's largest excursion after, relative to that of the links alone (no counterweight)."""
 
     name: str
     input: str
     input_kind: str
     input_range: tuple[float, float]
     links: tuple[LinkBody, ...]
+    carried: tuple[LinkBody, ...]
     on: tuple[int, ...]
     counterweights: tuple[LinkCounterweight, ...]
     before: BalanceState
@@ -100,7 +104,7 @@ class LinkageBalance(Row):
 
     kind: ClassVar[str] = "linkage"
     extremes: ClassVar[str] = EXTREMES_NOTE
-    row_keys = ("kind", "name", "input", "input_kind", "input_range", "shaking_force_unit", "links", "on",
+    row_keys = ("kind", "name", "input", "input_kind", "input_range", "shaking_force_unit", "links", "carried", "on",
                 "counterweights", "added_mass", "before", "after", "full_balance", "residual_share", "notes",
                 "extremes")
 
@@ -113,8 +117,9 @@ class LinkageBalance(Row):
         return "N per (rad/s)²" if self.input_kind == "revolute" else "N per (m/s)²"
 
     def masses(self, balanced: bool) -> tuple[np.ndarray, np.ndarray]:
-        """Mass (n,) and first moment (n, 2) per link, with the counterweights or without."""
-        mass, moment = body_arrays(self.links, self.problem.links)
+        """Mass (n,) and first moment (n, 2) per link (the counterweights it carried included), with the
+        counterweights found or without."""
+        mass, moment = body_arrays(self.links + self.carried, self.problem.links)
         if balanced:
             for c in self.counterweights:
                 mass[c.link] += c.mass
@@ -127,7 +132,9 @@ class LinkageProblem:
     """A linkage of ``links`` links (the moving ones in ``bodies``, with their masses) moved by ``motion``
     (input values → (θ, t, θ', t', θ'', t'')) over ``input_range``; counterweights on the links ``on``
     (default: those pivoted on the frame), of mass ``counter_mass`` or at ``counter_radius`` from their
-    pivot if given; gravity ``gravity`` (m/s², default −y).  ``dead_ends``: the range ends at dead
+    pivot if given; gravity ``gravity`` (m/s², default −y).  ``carried``: counterweights the links already
+    carry (a linkage balanced before: each a point mass, its ``centre`` where it sits in the pose), counted
+    in the unbalance before and in the fit.  ``dead_ends``: the range ends at dead
     positions (the shaking force per ω² is unbounded there and not reported)."""
 
     name: str
@@ -143,6 +150,7 @@ class LinkageProblem:
     counter_radius: float | None = None
     gravity: tuple[float, float] = (0.0, -9.81)
     samples: int = 361
+    carried: tuple[LinkBody, ...] = ()
     work_limit: float | None = WORK_LIMIT
 
     def solve(self) -> LinkageBalance:
@@ -160,15 +168,18 @@ class LinkageProblem:
         sampled = self.motion(qs)
         ensure_affordable(f"the fit and the searches for the largest values (about {MOVES} moves of the linkage over "
                           f"its {self.samples} samples)", MOVES, time.process_time() - start, self.work_limit)
-        weights = fit_counterweights(self.bodies, on, sampled, self.links, self.counter_mass, self.counter_radius)
-        draft = LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies,
+        weights = fit_counterweights(self.bodies + self.carried, on, sampled, self.links, self.counter_mass,
+                                     self.counter_radius)
+        draft = LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried,
                                tuple(b.link for b in on), weights, None, None, False, 0.0, (), self)
         before = self._state(*draft.masses(False), qs)
-        floor = 1e-12 * max(before.moment_excursion, before.shaking_force or 0.0, 1e-300)
+        own = self._state(*body_arrays(self.bodies, self.links), qs) if self.carried else before  # no counterweight
+        floor = 1e-12 * max(own.moment_excursion, own.shaking_force or 0.0, 1e-300)
         after = self._state(*draft.masses(True), qs, floor)
-        share = after.moment_excursion / before.moment_excursion if before.moment_excursion > 0 else 0.0
+        share = after.moment_excursion / own.moment_excursion if own.moment_excursion > 0 else 0.0
         full = share <= FULL_BALANCE
-        return LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, draft.on, weights,
+        return LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried, draft.on,
+                              weights,
                               before, after, full, share, self._notes(full, share, draft.on, sampled), self)
 
     def _on(self) -> list[LinkBody]:
@@ -216,6 +227,10 @@ class LinkageProblem:
 
     def _notes(self, full: bool, share: float, on: tuple[int, ...], sampled: tuple) -> tuple[str, ...]:
         notes = []
+        if self.carried:
+            notes.append("the links carry counterweights already (" + ", ".join(
+                f"{b.mass:.6g} kg on link {b.link}" for b in self.carried) + "), counted before; what is left is "
+                "measured against the links without any")
         if self.dead_ends:
             notes.append("the range ends at dead positions, where the links' rates per unit input rate are unbounded: "
                          "the shaking force per ω² is not reported (give a range inside the limits)")

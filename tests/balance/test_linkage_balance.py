@@ -195,15 +195,57 @@ def test_slider_crank_keeps_a_residual_reported_as_its_true_maximum(tmp_path, ca
     assert out["counterweights"][0]["joint"] == "0-1"
 
 
-def test_saved_linkage_carries_the_counterweights_as_tracers(tmp_path, capsys):
-    saved = tmp_path / "balanced.json"
-    assert main(["balance", "linkage", str(MODELS / "motion_four_bar.toml"), "--density", "2", "--save",
-                 str(saved)]) == 0
-    capsys.readouterr()
+@pytest.mark.parametrize("suffix", [".json", ".toml"])
+def test_saved_linkage_balanced_again_needs_no_counterweight(tmp_path, capsys, suffix):
+    """--save keeps the links' masses and the counterweights: balanced again, the linkage is in full balance
+    with nothing added, its first moment (links and counterweights moved by the oracle) constant; move and
+    draw read the file, the counterweights as tracers CW1, CW3; --density beside its masses is refused."""
+    saved = tmp_path / f"balanced{suffix}"
+    first = _balance(capsys, MODELS / "motion_four_bar.toml", "--density", 2, "--save", saved)
+    again = _balance(capsys, saved)
+    assert again["full_balance"] is True and again["added_mass"] == 0 <= again["residual_share"] <= 1e-12
+    assert all(c["mass"] == 0 for c in again["counterweights"])
+    assert [(b["link"], b["mass"], b["centre"]) for b in again["carried"]] == \
+        [(c["link"], pytest.approx(c["mass"], rel=1e-15), pytest.approx(c["at"], abs=1e-15))
+         for c in first["counterweights"]]
+    assert again["before"]["shaking_force"] <= 1e-12 * first["before"]["shaking_force"]
+    assert again["before"]["total_mass"] == pytest.approx(first["after"]["total_mass"], rel=1e-15)
     lk = read_linkage(saved)
     assert {"CW1", "CW3", "P"} <= set(lk.tracers) and "balanced by counterweights" in lk.note
+    carried = {"links": again["links"], "counterweights": [{"link": b["link"], "mass": b["mass"], "at": b["centre"]}
+                                                           for b in again["carried"]]}
+    m = _oracle_moment(lk, carried, True, np.sort(np.random.default_rng(5).uniform(0, 2 * math.pi, 8)))
+    assert np.abs(m - m[0]).max() <= 1e-12 * first["before"]["moment_excursion"]
     assert main(["move", str(saved), "--steps", "3"]) == 0
     assert "CW1.x" in capsys.readouterr().out
+    assert main(["draw", str(saved), "--out", str(tmp_path / "balanced.svg")]) == 0
+    capsys.readouterr()
+    assert main(["balance", "linkage", str(saved), "--density", "2"]) == 2
+    err = capsys.readouterr().err
+    assert "per-link masses and a density" in err and err.count("\n") == 1
+
+
+def test_counterweights_added_to_carried_ones_merge_on_their_link(tmp_path, capsys):
+    """The slider-crank balanced on its crank (part left), then again with the rod too: the crank's two
+    counterweights are saved as one at their centre of mass, and the scene of the file finds none needed."""
+    s1, s2 = tmp_path / "s1.toml", tmp_path / "s2.toml"
+    crank = _balance(capsys, MODELS / "motion_slider_crank.toml", "--density", 2, "--save", s1)
+    assert crank["full_balance"] is False
+    same = _balance(capsys, s1)  # the least squares' optimum: nothing to add, the same share left
+    assert same["added_mass"] == 0 and same["residual_share"] == pytest.approx(crank["residual_share"], rel=1e-9)
+    both = _balance(capsys, s1, "--on", "1,2", "--save", s2)
+    assert both["full_balance"] is True
+    (c1,) = [c for c in crank["counterweights"] if c["link"] == 1]
+    (n1,) = [c for c in both["counterweights"] if c["link"] == 1]
+    mass = c1["mass"] + n1["mass"]
+    at = (c1["mass"] * np.array(c1["at"]) + n1["mass"] * np.array(n1["at"])) / mass
+    again = _balance(capsys, s2)
+    assert again["full_balance"] is True and again["added_mass"] == 0
+    (m1,) = [b for b in again["carried"] if b["link"] == 1]
+    assert m1["mass"] == pytest.approx(mass, rel=1e-14) and m1["centre"] == pytest.approx(at, abs=1e-14)
+    assert sorted(read_linkage(s2).tracers) == ["CW1", "CW2"]
+    assert main(["scene", str(s2)]) == 0
+    assert "carried: link 1" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("args, words", [
@@ -221,6 +263,8 @@ def test_saved_linkage_carries_the_counterweights_as_tracers(tmp_path, capsys):
     (["{m}/motion_four_bar.toml", "--density", "2", "--samples", "2"], "9 … 100,000, not 2"),
     (["{m}/motion_four_bar.toml", "--density", "2", "--range", "50..50"], "is empty"),
     (["{m}/motion_four_bar.toml", "--density", "2", "--on", "1,1"], "named twice"),
+    (["{cw0}"], "link 0 carries no counterweight"),
+    (["{cw0}", "--density", "2"], "--density is also given"),
 ])
 def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, args, words):
     five = tmp_path / "five.json"
@@ -229,8 +273,10 @@ def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, args, words):
     neg.write_text(FOUR_BAR_MASSES.format(file=MODELS / "motion_four_bar.toml").replace("mass = 0.8", "mass = -1"))
     tab = tmp_path / "tab.toml"
     tab.write_text(f'[linkage_balance]\nfile = "{MODELS / "motion_four_bar.toml"}"\ndensity = 2\n')
+    cw0 = tmp_path / "cw0.toml"
+    cw0.write_text(tab.read_text() + "counterweights = [{ link = 0, mass = 1, at = [0, 0] }]\n")
     capsys.readouterr()
-    argv = [a.format(m=MODELS, five=five, neg=neg, tab=tab) for a in args]
+    argv = [a.format(m=MODELS, five=five, neg=neg, tab=tab, cw0=cw0) for a in args]
     assert main(["balance", "linkage", *argv]) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1 and "Traceback" not in err, err
