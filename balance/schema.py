@@ -279,11 +279,13 @@ Point = Annotated[list[float], Field(min_length=2, max_length=2), _POINT]
 
 
 class LinkMassTable(_Table):
-    """One link's mass (kg) and centre of mass [x, y] (m) in the linkage's pose."""
+    """One link's mass (kg), centre of mass [x, y] (m) in the linkage's pose and, for the shaking moment,
+    its moment of inertia about that centre (kg·m²)."""
 
     link: int
     mass: float
     centre: Point
+    inertia: float | None = None
 
 
 class CarriedWeightTable(_Table):

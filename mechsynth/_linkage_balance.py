@@ -64,7 +64,7 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
             raise InvalidInput(f"{source}: link{'s' * (len(missing) > 1)} {', '.join(missing)} "
                                f"{'have' if len(missing) > 1 else 'has'} no mass in [linkage_balance] (give 0 for a "
                                "massless link).")
-        bodies = [LinkBody(link, named, given[link].mass, tuple(given[link].centre), pivot)
+        bodies = [LinkBody(link, named, given[link].mass, tuple(given[link].centre), pivot, given[link].inertia)
                   for link, named, pivot in moving]
     elif options["density"] is not None:
         bodies = bar_bodies(moving, options["density"])
@@ -76,8 +76,8 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
         if row.link not in by_link:
             raise InvalidInput(f"{source}: link {row.link} carries no counterweight: it is the frame or no link of the "
                                f"linkage (the moving links are {', '.join(str(m[0]) for m in moving)}).")
-    weights = tuple(LinkBody(row.link, by_link[row.link][0], row.mass, tuple(row.at), by_link[row.link][1])
-                    for row in carried or ())
+    weights = tuple(LinkBody(row.link, by_link[row.link][0], row.mass, tuple(row.at), by_link[row.link][1], 0.0)
+                    for row in carried or ())  # point masses
     phi0 = float(linkage.pose_inputs[0])
     revolute = linkage.kind(linkage.inputs[0]) == "revolute"
     reach = motion_range(linkage)
@@ -100,7 +100,7 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
                           joint_name(chain, linkage.inputs[0]), tuple(limits), "revolute" if revolute else "prismatic",
                           dead, None if options["on"] is None else tuple(options["on"]), options["counter_mass"],
                           options["counter_radius"], tuple(options["gravity"] or (0.0, -9.81)), carried=weights,
-                          **extra)
+                          moment_about=tuple(map(float, linkage.points[linkage.inputs[0]])), **extra)
 
 
 def balanced_linkage(linkage, result, options: dict) -> tuple:
@@ -128,7 +128,8 @@ def balanced_linkage(linkage, result, options: dict) -> tuple:
     tracers = dict(linkage.tracers) | {f"CW{link}": (link, at) for link, (_, at) in placed.items()}
     note = "balanced by counterweights: " + ", ".join(f"CW{link} {m:.6g} kg on link {link}"
                                                       for link, (m, _) in placed.items())
-    table = {"links": [{"link": b.link, "mass": b.mass, "centre": list(b.centre)} for b in result.links],
+    table = {"links": [{"link": b.link, "mass": b.mass, "centre": list(b.centre)}
+                       | ({} if b.inertia is None else {"inertia": b.inertia}) for b in result.links],
              "counterweights": [{"link": link, "mass": m, "at": list(at)} for link, (m, at) in placed.items()]}
     table |= {key: list(value) if isinstance(value, tuple) else value for key, value in options.items()
               if key in ("on", "gravity", "range", "samples") and value is not None}

@@ -36,7 +36,7 @@ from ..budget import WORK_LIMIT, ensure_affordable
 from ..devices.link_counterweights import LinkCounterweight, fit_counterweights
 from ..errors import InvalidInput
 from ..extremes import EXTREMES_NOTE, box_extremes
-from ..model.linkage import LinkBody, Motion, body_arrays, first_moment
+from ..model.linkage import LinkBody, Motion, body_arrays, first_moment, moment_rate
 
 __all__ = ["LinkageProblem", "LinkageBalance", "BalanceState"]
 
@@ -70,6 +70,12 @@ class BalanceState(Row):
         The input where it is reached (rad or m).
     potential_variation : float
         The largest less the smallest gravity potential −g·M over the range (J).
+    shaking_moment : float or None
+        The largest |dH/dt| per ω² at a constant input speed, H the links' angular momentum about the input
+        joint's point (N·m per (rad/s)², or per (m/s)²); None at dead ends or where a link's inertia is not
+        known.  Reported, not minimised by the counterweights.
+    shaking_moment_at : float or None
+        The input where it is reached.
     """
 
     total_mass: float
@@ -78,6 +84,8 @@ class BalanceState(Row):
     shaking_force: float | None
     shaking_force_at: float | None
     potential_variation: float
+    shaking_moment: float | None = None
+    shaking_moment_at: float | None = None
 
 
 @dataclass(frozen=True)
@@ -116,15 +124,16 @@ class LinkageBalance(Row):
     def shaking_force_unit(self) -> str:
         return "N per (rad/s)²" if self.input_kind == "revolute" else "N per (m/s)²"
 
+    def bodies(self, balanced: bool) -> tuple[LinkBody, ...]:
+        """The links and the counterweights they carried, with the counterweights found (point masses) or
+        without."""
+        found = tuple(LinkBody(c.link, (), c.mass, c.at, None, 0.0) for c in self.counterweights if balanced)
+        return self.links + self.carried + found
+
     def masses(self, balanced: bool) -> tuple[np.ndarray, np.ndarray]:
         """Mass (n,) and first moment (n, 2) per link (the counterweights it carried included), with the
         counterweights found or without."""
-        mass, moment = body_arrays(self.links + self.carried, self.problem.links)
-        if balanced:
-            for c in self.counterweights:
-                mass[c.link] += c.mass
-                moment[c.link] += c.first_moment
-        return mass, moment
+        return body_arrays(self.bodies(balanced), self.problem.links)
 
 
 @dataclass(frozen=True)
@@ -134,7 +143,7 @@ class LinkageProblem:
     (default: those pivoted on the frame), of mass ``counter_mass`` or at ``counter_radius`` from their
     pivot if given; gravity ``gravity`` (m/s², default −y).  ``carried``: counterweights the links already
     carry (a linkage balanced before: each a point mass, its ``centre`` where it sits in the pose), counted
-    in the unbalance before and in the fit.  ``dead_ends``: the range ends at dead
+    in the unbalance before and in the fit.  ``moment_about``: the point of the shaking moment.  ``dead_ends``: the range ends at dead
     positions (the shaking force per ω² is unbounded there and not reported)."""
 
     name: str
@@ -151,6 +160,7 @@ class LinkageProblem:
     gravity: tuple[float, float] = (0.0, -9.81)
     samples: int = 361
     carried: tuple[LinkBody, ...] = ()
+    moment_about: tuple[float, float] = (0.0, 0.0)
     work_limit: float | None = WORK_LIMIT
 
     def solve(self) -> LinkageBalance:
@@ -172,10 +182,10 @@ class LinkageProblem:
                                      self.counter_radius)
         draft = LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried,
                                tuple(b.link for b in on), weights, None, None, False, 0.0, (), self)
-        before = self._state(*draft.masses(False), qs)
-        own = self._state(*body_arrays(self.bodies, self.links), qs) if self.carried else before  # no counterweight
+        before = self._state(draft.bodies(False), qs)
+        own = self._state(self.bodies, qs) if self.carried else before  # no counterweight
         floor = 1e-12 * max(own.moment_excursion, own.shaking_force or 0.0, 1e-300)
-        after = self._state(*draft.masses(True), qs, floor)
+        after = self._state(draft.bodies(True), qs, floor)
         share = after.moment_excursion / own.moment_excursion if own.moment_excursion > 0 else 0.0
         full = share <= FULL_BALANCE
         return LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried, draft.on,
@@ -199,16 +209,20 @@ class LinkageProblem:
             raise InvalidInput("a link is named twice in the links to carry counterweights.")
         return [by_link[k] for k in self.on]
 
-    def _state(self, mass: np.ndarray, moment: np.ndarray, qs: np.ndarray, floor: float = 0.0) -> BalanceState:
-        """The unbalance with these masses: each largest value polished from the samples ``qs``."""
+    def _state(self, bodies: tuple[LinkBody, ...], qs: np.ndarray, floor: float = 0.0) -> BalanceState:
+        """The unbalance with these bodies: each largest value polished from the samples ``qs``."""
         lo, hi = self.input_range
         gravity = np.asarray(self.gravity, dtype=float)
+        mass, moment = body_arrays(bodies, self.links)
+        turning = not self.dead_ends and all(b.inertia is not None for b in bodies)
 
         def per_input(x):
             motion = self.motion(x[:, 0])
             columns = [-(first_moment(mass, moment, motion) @ gravity)]
             if not self.dead_ends:
                 columns.append(np.hypot(*first_moment(mass, moment, motion, order=2).T))
+            if turning:
+                columns.append(np.abs(moment_rate(bodies, motion, self.moment_about)))
             return np.stack(columns, axis=1)
 
         def spread(x):
@@ -219,11 +233,12 @@ class LinkageProblem:
         found = box_extremes(per_input, [lo], [hi], qs[:, None], floor=floor)
         (v_min, v_max) = found[0]
         force, force_at = (None, None) if self.dead_ends else (found[1][1].value, found[1][1].at[0])
+        turn, turn_at = (found[-1][1].value, found[-1][1].at[0]) if turning else (None, None)
         pairs = np.random.default_rng(0).uniform(lo, hi, (PAIRS, 2))
         (_, widest), = box_extremes(spread, [lo, lo], [hi, hi], pairs, floor=floor)
         total = float(mass.sum())
         return BalanceState(total, widest.value, widest.value / total if total > 0 else 0.0, force, force_at,
-                            v_max.value - v_min.value)
+                            v_max.value - v_min.value, turn, turn_at)
 
     def _notes(self, full: bool, share: float, on: tuple[int, ...], sampled: tuple) -> tuple[str, ...]:
         notes = []
@@ -231,9 +246,13 @@ class LinkageProblem:
             notes.append("the links carry counterweights already (" + ", ".join(
                 f"{b.mass:.6g} kg on link {b.link}" for b in self.carried) + "), counted before; what is left is "
                 "measured against the links without any")
+        unknown = [str(b.link) for b in self.bodies if b.inertia is None]
+        if unknown and not self.dead_ends:
+            notes.append(f"the shaking moment is not reported: link{'s' * (len(unknown) > 1)} {', '.join(unknown)} "
+                         "give no inertia (kg·m² about the centre: 'inertia' beside its mass, or --density)")
         if self.dead_ends:
             notes.append("the range ends at dead positions, where the links' rates per unit input rate are unbounded: "
-                         "the shaking force per ω² is not reported (give a range inside the limits)")
+                         "the shaking force and moment per ω² are not reported (give a range inside the limits)")
         if not full:
             links = ", ".join(map(str, on))
             notes.append(f"not fully balanced: counterweights on link{'s' * (len(on) > 1)} {links} leave "

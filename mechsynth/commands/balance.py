@@ -453,6 +453,8 @@ def _table_linkage(out: dict) -> str:
     for label, key in (("total mass (kg)", "total_mass"), ("centre of mass's largest excursion (m)", "com_excursion"),
                        ("first moment's largest excursion (kg·m)", "moment_excursion"),
                        (f"shaking force's largest amplitude ({unit})", "shaking_force"),
+                       (f"shaking moment's largest, about {out['input']} ({unit.replace('N', 'N·m', 1)})",
+                        "shaking_moment"),
                        ("gravity potential's variation (J)", "potential_variation")):
         b, a = out["before"][key], out["after"][key]
         rows.append((label, f"{number(b) if b is not None else '—'}  →  {number(a) if a is not None else '—'}"))
