@@ -143,8 +143,9 @@ class LinkageProblem:
     (default: those pivoted on the frame), of mass ``counter_mass`` or at ``counter_radius`` from their
     pivot if given; gravity ``gravity`` (m/s², default −y).  ``carried``: counterweights the links already
     carry (a linkage balanced before: each a point mass, its ``centre`` where it sits in the pose), counted
-    in the unbalance before and in the fit.  ``moment_about``: the point of the shaking moment.  ``dead_ends``: the range ends at dead
-    positions (the shaking force per ω² is unbounded there and not reported)."""
+    in the unbalance before and in the fit.  ``moment_about``: the point of the shaking moment.
+    ``dead_ends``: the range ends at dead positions (the shaking force and moment per ω² are unbounded
+    there and not reported)."""
 
     name: str
     links: int

@@ -153,7 +153,8 @@ def test_no_link_number_stands_on_a_pin_or_a_ground_pivot(saved, tmp_path, monke
 @pytest.mark.parametrize("tracers, extra", [
     (None, []),  # the four-bar balanced: its counterweight CW3 the drawing's rightmost point ('CW3' was cut)
     ({"COUPLER_POINT": {"link": 2, "at": [2.5, 4.5]}, "FAR_RIGHT": {"link": 3, "at": [6.0, 0.0]}}, []),
-    ({"TOP": {"link": 2, "at": [1.0, 6.0]}, "RIGHT_SIDE": {"link": 3, "at": [5.0, -2.8]}}, ["--size", "2", "--dpi", "300"]),
+    ({"TOP": {"link": 2, "at": [1.0, 6.0]}, "RIGHT_SIDE": {"link": 3, "at": [5.0, -2.8]}},
+     ["--size", "2", "--dpi", "300"]),
 ])
 def test_every_name_lies_inside_the_picture(tmp_path, monkeypatch, capsys, tracers, extra):
     """Each text's box, as matplotlib's renderer sets it, inside the drawing (under the title), the title inside
