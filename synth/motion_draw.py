@@ -757,7 +757,7 @@ def _link_numbers(linkage: Linkage) -> list[dict]:
                        for side, t in ((1, 0.5), (-1, 0.5), (1, 0.3), (1, 0.7), (-1, 0.3), (-1, 0.7))]
         elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (the frame's off its pivot's base)
             first = np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0])
-            centres = [middle + lift * v + half for v in (first, [-2.0, -1.1], [1.0, -1.0], [-1.6, 1.0])]
+            centres = [middle + lift * v + half for v in np.array([first, [-2.0, -1.1], [1.0, -1.0], [-1.6, 1.0]])]
         else:  # a plate: its middle, else towards one of its pins
             centres = [middle] + [middle + 0.35 * (p[k] - middle) for k in pins]
         gaps = [clearance(c, half) for c in centres]

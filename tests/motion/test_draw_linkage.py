@@ -185,3 +185,12 @@ def test_every_name_lies_inside_the_picture(tmp_path, monkeypatch, capsys, trace
     assert whole.x0 <= title.x0 and title.x1 <= whole.x1 and title.y1 <= whole.y1 and title.y0 >= area.y1 - 1
     width, height = Image.open(tmp_path / "x.png").size
     assert (width, height) == (round(whole.width), round(whole.height))
+
+
+def test_a_slider_crank_is_drawn_with_its_links_numbered(tmp_path):
+    # a link with one pin (the slider's block) is numbered off its pin: 'draw models/motion_slider_crank.toml' (and any
+    # slider dimension --save wrote) ended in a TypeError there
+    out = tmp_path / "slider.svg"
+    assert main(["draw", str(ROOT / "models" / "motion_slider_crank.toml"), "--out", str(out)]) == 0
+    svg = out.read_text()
+    assert len(_pins(svg)) == 3 and all(f">{link}</text>" in svg for link in range(4))
