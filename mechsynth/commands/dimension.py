@@ -248,7 +248,7 @@ def _run(args) -> int:
         result = synthesize(mechanism, target, tracer_link=args.tracer_link, constraints=constraints,
                             budget=args.budget, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
                             underdetermined=args.underdetermined, progress=progress, starts=sampled_starts)
-    _write(result, args.format)
+    _write(result, args.format, wall=args.workers > 1 or bool(args.scheduler))
     if result.on_reach and result.relative_max > 1e-9:
         print(f"mechsynth: {' and '.join(result.on_reach)} lie{'s' * (len(result.on_reach) == 1)} on the edge of the "
               f"search's reach (--reach, in target sizes): a larger reach may lower the error", file=sys.stderr)
@@ -302,7 +302,8 @@ def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
     return tuple(math.radians(v) for v in limits) if chain.kinds[k] == JointKind.REVOLUTE else limits
 
 
-def _write(result, fmt: str) -> None:
+def _write(result, fmt: str, wall: bool = False) -> None:
+    """The result as a table, json or a jsonl row; ``wall``: its seconds are the clock's (generations on workers)."""
     from synth import JointKind
     from synth.motion import joint_name
 
@@ -338,7 +339,7 @@ def _write(result, fmt: str) -> None:
         lines.append((f"tracer {name} (link {link})", f"{at[0]:.10g}, {at[1]:.10g}"))
     for link, length in sorted(lk.lengths().items()):
         lines.append((f"link {link} length", length))
-    lines += [("CPU seconds", result.seconds), ("evaluations", result.evaluations), ("method", result.method)]
+    lines += [("seconds (wall clock: the search ran on workers)" if wall else "CPU seconds", result.seconds), ("evaluations", result.evaluations), ("method", result.method)]
     write_document({}, "table", pairs(lines))
 
 

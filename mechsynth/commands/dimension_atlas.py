@@ -69,7 +69,9 @@ def run(args, target, constraints, *, save, draw) -> int:
     if not found.index_curves:
         return nothing_found(f"curve of the index belongs to a mechanism with {args.links} links")
     print(f"mechsynth: {found.index_curves} indexed curves, {found.topologies} "
-          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.seconds:.1f} CPU s", file=sys.stderr)
+          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.polish_seconds:.1f} CPU s"
+          + (f" on {args.scheduler or f'{args.workers} processes'}" if args.scheduler or args.workers > 1 else ""),
+          file=sys.stderr)
     if not rows:
         return nothing_found("topology of the atlas could be dimensioned for this target within the budget")
     write_rows(rows, COLUMNS, {"table": "table", "json": "json", "jsonl": "jsonl", "csv": "csv"}[args.format])

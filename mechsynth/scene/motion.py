@@ -101,7 +101,8 @@ def _read_linkage_balance(raw, path: str, compute):
 
 
 FAMILY.table(SceneTable("linkage_balance", _read_linkage_balance,
-                        "the links' masses (links = [{link, mass, centre}] or density) and the counterweights' options"))
+                        "the links' masses (links = [{link, mass, centre}] or density), the counterweights they carry "
+                        "(counterweights = [{link, mass, at}]) and the options of those to add"))
 
 
 # --------------------------------------------------------------------------- motion
@@ -450,7 +451,7 @@ def _balance_linkage(run: Run):
     table = run.scene.tables["linkage_balance"]
     try:
         return linkage_problem(run.scene.tables["linkage"], {k: getattr(table, k) for k in OPTIONS}, table.links,
-                               run.scene.name, run.scene.path).solve()
+                               run.scene.name, run.scene.path, table.counterweights).solve()
     except ProjectError as exc:  # the balance's or the motion layer's one sentence
         raise SceneError(f"{run.scene.path}: [linkage_balance] {str(exc).rstrip('.')}.") from None
 
@@ -459,7 +460,8 @@ def _report_balance(r: dict) -> list[str]:
     weights = ", ".join(f"link {c['link']} {c['mass']:.6g} kg at {c['distance']:.6g} m from {c['joint']}"
                         for c in r["counterweights"] if c["mass"] > 0)
     state = "full balance" if r["full_balance"] else f"{100 * r['residual_share']:.3g}% of the excursion left"
-    return [f"counterweights: {weights or 'none'}; {state}"]
+    carried = ", ".join(f"link {b['link']} {b['mass']:.6g} kg" for b in r["carried"])
+    return [(f"carried: {carried}; " if carried else "") + f"counterweights: {weights or 'none'}; {state}"]
 
 
 FAMILY.kind(ComputeKind(

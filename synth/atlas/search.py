@@ -112,6 +112,9 @@ class AtlasSearchResult:
     #: what the search could not do, a :class:`synth.SynthesisError` each: ``str(note)`` is its sentence,
     #: naming an option as a keyword (``underdetermined=True``); the command line writes it as a flag
     notes: list = field(default_factory=list)
+    #: CPU seconds of the topologies' polishes wherever they ran (``seconds`` is this process's alone: with
+    #: ``workers`` > 1 or a scheduler the polishes ran elsewhere)
+    polish_seconds: float = 0.0
 
     @property
     def best(self) -> AtlasMatch | None:
@@ -637,7 +640,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         from ..execution.scheduler import connect
 
         client = connect(scheduler, connect_timeout)
-    matches = []
+    matches, polish_seconds = [], 0.0
     gap = index_gap(db, links)
     notes = [SynthesisError(gap)] if gap else []
     bar = executor = None
@@ -656,6 +659,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             if bar is not None:
                 bar.update()
             result, candidate, tried, why, spent = found
+            polish_seconds += spent
             chain = Chain.from_dict(json.loads(task.chain_json))
             if result is None:
                 from ..motion import joint_name
@@ -680,4 +684,5 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         if client is not None:
             client.close()
     matches.sort(key=lambda m: (not m.result.met, m.result.error_rms, m.candidate.links))
-    return AtlasSearchResult(matches, size, len(tasks), time.process_time() - clock, target.inputs is not None, notes)
+    return AtlasSearchResult(matches, size, len(tasks), time.process_time() - clock, target.inputs is not None, notes,
+                             polish_seconds)
