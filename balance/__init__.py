@@ -51,7 +51,7 @@ _WHERE = {
     "UrdfArm": "model.urdf", "load_urdf": "model.urdf", "Pantograph": "model.pantograph",
     "DHLink": "model.urdf", "urdf_from_dh": "model.urdf",
     "LinkBody": "model.linkage", "bar_bodies": "model.linkage", "first_moment": "model.linkage",
-    "body_arrays": "model.linkage",
+    "body_arrays": "model.linkage", "moment_rate": "model.linkage",
     # devices
     "SpringBounds": "devices.fit", "FitResult": "devices.fit", "fit_spring": "devices.fit",
     "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit", "DEVICES": "devices.fit",

@@ -434,16 +434,18 @@ def plot_linkage(result, path: str, n: int = 361) -> str:
             ax2.plot(*body.joint(body.pivot), "k^", ms=10, mfc="0.7")
         ax2.annotate(str(body.link), np.mean(pts, axis=0), fontsize=9, color="0.3", xytext=(4, 4),
                      textcoords="offset points")
-    biggest = max([c.mass for c in result.counterweights] + [1e-300])
-    for c in result.counterweights:
-        if c.mass > 0:
-            ax2.plot(*zip(c.at, dict(next(bd for bd in result.links if bd.link == c.link).joints)[c.joint]),
-                     "C0-", lw=1.5)
-            ax2.scatter(*c.at, s=60 + 240 * c.mass / biggest, color="C0", zorder=5)
-            ax2.annotate(f"{c.mass:.3g} kg", c.at, fontsize=8, color="C0", xytext=(6, -10), textcoords="offset points")
+    # the counterweights found (blue) and those the links carried already (grey), each on a rod to its link's joint
+    weights = [(c.at, c.mass, dict(next(bd for bd in result.links if bd.link == c.link).joints)[c.joint], "C0")
+               for c in result.counterweights] + [(b.centre, b.mass, b.joint(b.anchor), "0.55") for b in result.carried]
+    biggest = max([m for _, m, _, _ in weights] + [1e-300])
+    for at, mass, joint, colour in weights:
+        if mass > 0:
+            ax2.plot(*zip(at, joint), "-", color=colour, lw=1.5)
+            ax2.scatter(*at, s=60 + 240 * mass / biggest, color=colour, zorder=5)
+            ax2.annotate(f"{mass:.3g} kg", at, fontsize=8, color=colour, xytext=(6, -10), textcoords="offset points")
     ax2.set_aspect("equal", adjustable="datalim")
-    ax2.set_title("the pose: links (black), their centres (+), frame pivots (▲),\ncounterweights (blue, area ∝ mass)",
-                  fontsize=9)
+    ax2.set_title("the pose: links (black), their centres (+), frame pivots (▲),\ncounterweights (blue, area ∝ mass"
+                  + ("; grey: carried already)" if result.carried else ")"), fontsize=9)
     ax2.legend(loc="best", fontsize=8)
     ax2.grid(alpha=0.3)
     save_figure(fig, path, dpi=110)

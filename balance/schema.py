@@ -279,20 +279,33 @@ Point = Annotated[list[float], Field(min_length=2, max_length=2), _POINT]
 
 
 class LinkMassTable(_Table):
-    """One link's mass (kg) and centre of mass [x, y] (m) in the linkage's pose."""
+    """One link's mass (kg), centre of mass [x, y] (m) in the linkage's pose and, for the shaking moment,
+    its moment of inertia about that centre (kg·m²)."""
 
     link: int
     mass: float
     centre: Point
+    inertia: float | None = None
+
+
+class CarriedWeightTable(_Table):
+    """A counterweight a link already carries (as ``balance linkage --save`` writes it): ``mass`` kg at ``at``
+    [x, y] (m) in the linkage's pose."""
+
+    link: int
+    mass: float
+    at: Point
 
 
 class LinkageBalanceTable(_Table):
     """``[linkage_balance]``: the linkage (``file``, else the file's ``[linkage]``), its masses (``density``
-    of bars, or per-link ``links``) and the counterweights' options."""
+    of bars, or per-link ``links``), the counterweights the links already carry (``counterweights``) and the
+    options of the counterweights to add."""
 
     file: str | None = None
     density: float | None = None
     links: list[LinkMassTable] | None = None
+    counterweights: list[CarriedWeightTable] | None = None
     on: list[int] | None = None
     counter_mass: float | None = None
     counter_radius: float | None = None

@@ -25,9 +25,11 @@ OPTIONS = {"density": "--density", "on": "--on", "counter_mass": "--counter-mass
            "gravity": "--gravity", "range": "--range", "samples": "--samples"}
 
 
-def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", source: str | None = None):
+def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", source: str | None = None,
+                    carried=None):
     """The :class:`balance.LinkageProblem` of ``linkage`` (W = 1) with the masses of ``links`` (rows with
-    ``link``, ``mass``, ``centre``) or ``options["density"]``, and the other :data:`OPTIONS` (None: default;
+    ``link``, ``mass``, ``centre``) or ``options["density"]``, the counterweights ``carried`` (rows with
+    ``link``, ``mass``, ``at``: a linkage balanced before) and the other :data:`OPTIONS` (None: default;
     ``range`` in degrees, or m for a prismatic input).  ``source`` names the file in sentences."""
     import numpy as np
 
@@ -49,7 +51,8 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
                           if frame in chain.joints[k] and linkage.kind(k) == "revolute"), None)
             moving.append((link, named, pivot))
     if links is not None and options["density"] is not None:
-        raise InvalidOption(f"{source} gives per-link masses and a density: give the masses one way")
+        raise InvalidOption(f"{source} gives per-link masses and a density: give the masses one way (a linkage "
+                            "'balance linkage --save' wrote carries its links' masses: drop --density)")
     if links is not None:
         given = {row.link: row for row in links}
         wrong = [k for k in given if k == frame or not 0 <= k < chain.links]
@@ -61,13 +64,20 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
             raise InvalidInput(f"{source}: link{'s' * (len(missing) > 1)} {', '.join(missing)} "
                                f"{'have' if len(missing) > 1 else 'has'} no mass in [linkage_balance] (give 0 for a "
                                "massless link).")
-        bodies = [LinkBody(link, named, given[link].mass, tuple(given[link].centre), pivot)
+        bodies = [LinkBody(link, named, given[link].mass, tuple(given[link].centre), pivot, given[link].inertia)
                   for link, named, pivot in moving]
     elif options["density"] is not None:
         bodies = bar_bodies(moving, options["density"])
     else:
         raise InvalidOption(f"{source} has no masses: give --density KG_PER_M (the links as bars) or a TOML file with "
                             "a [linkage_balance] table of per-link masses")
+    by_link = {link: (named, pivot) for link, named, pivot in moving}
+    for row in carried or ():
+        if row.link not in by_link:
+            raise InvalidInput(f"{source}: link {row.link} carries no counterweight: it is the frame or no link of the "
+                               f"linkage (the moving links are {', '.join(str(m[0]) for m in moving)}).")
+    weights = tuple(LinkBody(row.link, by_link[row.link][0], row.mass, tuple(row.at), by_link[row.link][1], 0.0)
+                    for row in carried or ())  # point masses
     phi0 = float(linkage.pose_inputs[0])
     revolute = linkage.kind(linkage.inputs[0]) == "revolute"
     reach = motion_range(linkage)
@@ -89,16 +99,39 @@ def linkage_problem(linkage, options: dict, links=None, name: str = "linkage", s
                           lambda q: link_rates(linkage, np.asarray(q, dtype=float) - phi0),
                           joint_name(chain, linkage.inputs[0]), tuple(limits), "revolute" if revolute else "prismatic",
                           dead, None if options["on"] is None else tuple(options["on"]), options["counter_mass"],
-                          options["counter_radius"], tuple(options["gravity"] or (0.0, -9.81)), **extra)
+                          options["counter_radius"], tuple(options["gravity"] or (0.0, -9.81)), carried=weights,
+                          moment_about=tuple(map(float, linkage.points[linkage.inputs[0]])), **extra)
 
 
-def balanced_linkage(linkage, result):
-    """``linkage`` with each counterweight of ``result`` as a tracer ``CW<link>`` (so ``draw`` and ``move``
-    show it) and a note of their masses."""
+def balanced_linkage(linkage, result, options: dict) -> tuple:
+    """``linkage`` with each counterweight it carries as a tracer ``CW<link>`` (so ``draw`` and ``move`` show
+    it), and its ``[linkage_balance]`` table: the links' masses and the counterweights (those ``result`` found
+    and those the linkage carried, one per link at their centre of mass), with the ``options`` of
+    :data:`OPTIONS` that set the problem (the range, the samples, gravity, the links to carry them), so that
+    balancing it again finds none needed.
+
+    >>> from synth.motion import read_linkage
+    >>> lk = read_linkage("models/motion_four_bar.toml")
+    >>> res = linkage_problem(lk, {"density": 2.0}).solve()
+    >>> balanced, table = balanced_linkage(lk, res, {"density": 2.0})
+    >>> sorted(balanced.tracers), [(c["link"], round(c["mass"], 9)) for c in table["counterweights"]]
+    (['CW1', 'CW3', 'P'], [(1, 4.5), (3, 6.5)])
+    """
     from synth.motion import Linkage
 
-    placed = [c for c in result.counterweights if c.mass > 0]
-    tracers = dict(linkage.tracers) | {f"CW{c.link}": (c.link, c.at) for c in placed}
-    note = "balanced by counterweights: " + ", ".join(f"CW{c.link} {c.mass:.6g} kg on link {c.link}" for c in placed)
-    return Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, tracers,
-                   note if placed else linkage.note, linkage.driven)
+    merged = {}
+    for link, mass, at in [(b.link, b.mass, b.centre) for b in result.carried] + \
+                          [(c.link, c.mass, c.at) for c in result.counterweights]:
+        m, moment = merged.get(link, (0.0, (0.0, 0.0)))
+        merged[link] = (m + mass, (moment[0] + mass * at[0], moment[1] + mass * at[1]))
+    placed = {link: (m, (mx / m, my / m)) for link, (m, (mx, my)) in sorted(merged.items()) if m > 0}
+    tracers = dict(linkage.tracers) | {f"CW{link}": (link, at) for link, (_, at) in placed.items()}
+    note = "balanced by counterweights: " + ", ".join(f"CW{link} {m:.6g} kg on link {link}"
+                                                      for link, (m, _) in placed.items())
+    table = {"links": [{"link": b.link, "mass": b.mass, "centre": list(b.centre)}
+                       | ({} if b.inertia is None else {"inertia": b.inertia}) for b in result.links],
+             "counterweights": [{"link": link, "mass": m, "at": list(at)} for link, (m, at) in placed.items()]}
+    table |= {key: list(value) if isinstance(value, tuple) else value for key, value in options.items()
+              if key in ("on", "gravity", "range", "samples") and value is not None}
+    return (Linkage(linkage.mechanism, linkage.inputs, linkage.points, linkage.slides, linkage.meshes, tracers,
+                    note if placed else linkage.note, linkage.driven), table)

@@ -170,9 +170,11 @@ def pairs(rows: Sequence[tuple[str, Any]]) -> str:
     return "\n".join(f"{k:<{width}}  {number(v)}" for k, v in rows)
 
 
-def save_linkage(linkage, path: str, *, source: str, description: str, comment: str | None = None) -> None:
+def save_linkage(linkage, path: str, *, source: str, description: str, comment: str | None = None,
+                 tables: dict | None = None, compute: tuple = ("motion",)) -> None:
     """Write ``linkage`` to ``path``: as JSON (``.json``), or as a TOML scene (``.toml``) whose ``[linkage]``
-    table ``move`` and ``draw`` read and ``scene`` runs (``compute = ["motion"]``), under a ``comment`` line.
+    table ``move`` and ``draw`` read and ``scene`` runs (``compute``), under a ``comment`` line.  ``tables``:
+    more tables beside it (name → dict; in JSON the linkage is then under ``"linkage"``).
 
     >>> import os, tempfile
     >>> from synth.motion import Linkage, read_linkage
@@ -190,13 +192,15 @@ def save_linkage(linkage, path: str, *, source: str, description: str, comment: 
     d = linkage.to_dict()
     with open(path, "w", encoding="utf-8") as fh:
         if path.lower().endswith(".json"):
-            json.dump(d, fh, indent=2)
+            json.dump({"linkage": d} | tables if tables else d, fh, indent=2)
             fh.write("\n")
             return
         name = os.path.splitext(os.path.basename(path))[0]
         if comment:
             fh.write(f"# {comment}\n\n")
         fh.write(f"[scene]\nname = {toml_value(name)}\ndescription = {toml_value(description)}\n"
-                 f"source = {toml_value(source)}\ncompute = [\"motion\"]\n\n[linkage]\n")
-        for key, value in d.items():
-            fh.write(f"{key} = {toml_value(value)}\n")
+                 f"source = {toml_value(source)}\ncompute = {toml_value(list(compute))}\n")
+        for table, content in {"linkage": d, **(tables or {})}.items():
+            fh.write(f"\n[{table}]\n")
+            for key, value in content.items():
+                fh.write(f"{key} = {toml_value(value)}\n")

@@ -391,12 +391,44 @@ def _box(elements: list[dict]) -> tuple[np.ndarray, np.ndarray]:
     return pts.min(axis=0), pts.max(axis=0)
 
 
-class _Canvas:
-    """World coordinates to pixels: the box around every element at every frame, ``size`` pixels on
-    its longer side, y upwards on the page."""
+#: the drawings' text: 9 pt bold (12 px of an SVG at the CSS inch's 96 px), a line's height and depth in ems
+_FONT_PT, _LINE_EM, _DEPTH_EM = 9.0, 1.25, 0.3
 
-    def __init__(self, elements: list[dict], size: int):
+
+def _text_size(text: str, per_inch: float) -> tuple[float, float, float]:
+    """Width, height above the anchor and depth below it (px at ``per_inch``) of a drawing's text: the
+    width as matplotlib sets the bold sans-serif, a whole line's height (matplotlib anchors a name's box
+    bottom, an SVG its baseline: the box covers both)."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextToPath
+
+    font = FontProperties(family="sans-serif", weight="bold", size=_FONT_PT)
+    width = TextToPath().get_text_width_height_descent(text, font, ismath=False)[0]
+    em = per_inch / 72
+    return width * em, _LINE_EM * _FONT_PT * em, _DEPTH_EM * _FONT_PT * em
+
+
+class _Canvas:
+    """World coordinates to pixels: the box around every element at every frame, the texts' boxes
+    whole (their size in pixels fixed, ``per_inch`` to the inch), ``size`` pixels on its longer side,
+    y upwards on the page."""
+
+    def __init__(self, elements: list[dict], size: int, per_inch: float = 96):
         lo, hi = _box(elements)
+        texts = [(e["frames"].reshape(-1, 2), _text_size(e["text"], per_inch)) for e in elements if e["tag"] == "text"]
+        shape = lo, hi
+        for _ in range(20):  # the texts widen the box, which shrinks the scale, which widens the texts
+            span = max(float((hi - lo).max()), 1e-9)
+            scale = size / (1.12 * span)
+            grown = [shape[0], shape[1]]
+            for at, (w, h, d) in texts:
+                ok = at[np.isfinite(at).all(axis=1)]
+                if len(ok):
+                    grown += [ok.min(axis=0) - np.array([0.0, d / scale]), ok.max(axis=0) + np.array([w, h]) / scale]
+            wider_lo, wider_hi = np.min(grown, axis=0), np.max(grown, axis=0)
+            if np.allclose((wider_lo, wider_hi), (lo, hi), rtol=0, atol=1e-6 * span):
+                break
+            lo, hi = wider_lo, wider_hi
         span = max(float((hi - lo).max()), 1e-9)
         margin = 0.06 * span
         self.lo, self.scale = lo - margin, size / (span + 2 * margin)
@@ -637,7 +669,7 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
     elements = _motion_picture(motion, marks)
-    _write_still(elements, _Canvas(elements, size), path, title or _title(motion.linkage), 100)
+    _write_still(elements, _Canvas(elements, size, 100), path, title or _title(motion.linkage), 100)
 
 
 def _motion_picture(motion: Motion, marks: np.ndarray | None) -> list[dict]:
@@ -699,7 +731,7 @@ def draw_motion_sheet(panels: list[tuple[Motion, np.ndarray | None, str]], out: 
     try:
         for k, (motion, marks, title) in enumerate(panels):
             elements = _motion_picture(motion, marks)
-            canvas = _Canvas(elements, round(cell * dpi))
+            canvas = _Canvas(elements, round(cell * dpi), dpi)
             row, column = divmod(k, columns)
             ax = fig.add_axes([column / columns, 1 - (row + 1) / rows, 1 / columns, cell / (cell + strip) / rows])
             _draw_matplotlib(ax, elements, canvas, 0)
@@ -838,7 +870,7 @@ def draw_linkage(linkage: Linkage, out: str | Path, *, size: float = 3.6, dpi: i
     elements = _elements(linkage, joints, angles, tracers, {})
     elements += _link_numbers(linkage) if labels else []
     elements += _scale_bar(elements)
-    canvas = _Canvas(elements, round(size * per_inch))
+    canvas = _Canvas(elements, round(size * per_inch), per_inch)
     check_pixels(path, canvas.width / per_inch, canvas.height / per_inch, per_inch)
     _write_still(elements, canvas, path, title or _title(linkage), per_inch)
 
@@ -859,7 +891,7 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
     if not 2 <= frames <= 1000:
         raise InvalidOption(f"an animation has 2 … 1000 frames, not {frames}")
     elements, steps = _motion_elements(motion, frames)
-    canvas = _Canvas(elements, size)
+    canvas = _Canvas(elements, size, 100)
     try:
         if path.suffix.lower() == ".svg":
             path.write_text(_svg(elements, canvas, None, seconds=seconds, title=_title(motion.linkage)))

@@ -37,7 +37,8 @@ from ..model.linkage import LinkBody, body_arrays, first_moment
 
 __all__ = ["LinkCounterweight", "fit_counterweights"]
 
-#: a counterweight's moment below this share of the largest link moment is none at all
+#: a counterweight's moment (a floating one's mass, where it has no moment) below this share of the largest
+#: link moment (or mass) is none at all
 NONE_NEEDED = 1e-12
 
 
@@ -153,8 +154,8 @@ def _placed(b: LinkBody, d: np.ndarray, mu: float, scale: float) -> LinkCounterw
     size = float(np.hypot(*d))
     if size <= NONE_NEEDED * scale:
         d, size = np.zeros(2), 0.0
-    if size == 0 and (mu <= 0 or b.pivot is not None):  # none needed (on a pivot a mass would change nothing)
-        mu = 0.0
+    if size == 0 and (mu <= NONE_NEEDED * scale or b.pivot is not None):
+        mu = 0.0  # none needed: on a pivot a mass changes nothing; a floating one's mass of rounding is none
     elif mu <= 0:
         raise InvalidInput(f"the counterweight of link {b.link} would need a moment of {size:.6g} kg·m with no mass "
                            "(a mass at infinity): give its mass (--counter-mass) or leave the link out of --on.")

@@ -39,7 +39,7 @@ from mechbase import Row
 
 from ..errors import InvalidInput
 
-__all__ = ["LinkBody", "Motion", "body_arrays", "first_moment", "bar_bodies"]
+__all__ = ["LinkBody", "Motion", "body_arrays", "first_moment", "bar_bodies", "moment_rate"]
 
 #: the link poses at given input values q (S,): (θ, t, θ', t', θ'', t''), shapes (S, n), (S, n, 2) × 3,
 #: derivatives with respect to the input
@@ -62,6 +62,8 @@ class LinkBody(Row):
         Its centre of mass in the pose (m).
     pivot : str or None
         The joint pivoting it on the frame (a revolute joint to the frame), else None: it floats.
+    inertia : float or None
+        Its moment of inertia about its centre (kg·m²; 0 for a point mass), None where not known.
     """
 
     link: int
@@ -69,11 +71,15 @@ class LinkBody(Row):
     mass: float
     centre: tuple[float, float]
     pivot: str | None = None
-    row_keys = ("link", "mass", "centre", "pivot")
+    inertia: float | None = None
+    row_keys = ("link", "mass", "centre", "pivot", "inertia")
 
     def __post_init__(self):
         if not (math.isfinite(self.mass) and self.mass >= 0):
             raise InvalidInput(f"link {self.link} has mass {self.mass:g} kg: a mass is a finite number ≥ 0.")
+        if self.inertia is not None and not (math.isfinite(self.inertia) and self.inertia >= 0):
+            raise InvalidInput(f"link {self.link} has inertia {self.inertia:g} kg·m²: an inertia is a finite number "
+                               "≥ 0.")
         if not all(math.isfinite(v) for v in self.centre):
             raise InvalidInput(f"link {self.link} has a centre of mass that is not finite: {list(self.centre)}.")
 
@@ -95,27 +101,27 @@ class LinkBody(Row):
 
 def bar_bodies(joints: Sequence[tuple[int, tuple, str | None]], density: float) -> list[LinkBody]:
     """Links as bars of ``density`` kg per metre between every two of their joints, the centre at the
-    bars' centroid (a binary link: one bar, centre midway; a ternary link: the triangle's three sides).
+    bars' centroid (a binary link: one bar, centre midway; a ternary link: the triangle's three sides),
+    the inertia the bars' (m L²/12 each about its middle, moved to the centre).
 
     ``joints``: per moving link (link, ((name, (x, y)), …), pivot or None).
 
-    >>> bar_bodies([(1, (("0-1", (0, 0)), ("1-2", (3, 4))), "0-1")], 2.0)[0].to_dict()
-    {'link': 1, 'mass': 10.0, 'centre': [1.5, 2.0], 'pivot': '0-1'}
+    >>> bar_bodies([(1, (("0-1", (0, 0)), ("1-2", (3, 4))), "0-1")], 2.0)[0].to_dict()   # 10 kg · 25 m² / 12
+    {'link': 1, 'mass': 10.0, 'centre': [1.5, 2.0], 'pivot': '0-1', 'inertia': 20.833333333333336}
     """
     if not (math.isfinite(density) and density > 0):
         raise InvalidInput(f"the density of the bars must be a positive number of kg per metre, not {density:g}.")
     out = []
     for link, named, pivot in joints:
         pts = np.unique(np.array([p for _, p in named], dtype=float).reshape(-1, 2), axis=0)
-        mass, moment = 0.0, np.zeros(2)
-        for i in range(len(pts)):
-            for j in range(i + 1, len(pts)):
-                length = float(np.hypot(*(pts[j] - pts[i])))
-                mass += density * length
-                moment += density * length * (pts[i] + pts[j]) / 2
-        centre = moment / mass if mass > 0 else (pts[0] if len(pts) else np.zeros(2))
+        lengths = [(float(np.hypot(*(pts[j] - pts[i]))), (pts[i] + pts[j]) / 2)
+                   for i in range(len(pts)) for j in range(i + 1, len(pts))]
+        bars = [(density * length, mid, length) for length, mid in lengths]
+        mass = sum(m for m, _, _ in bars)
+        centre = sum(m * mid for m, mid, _ in bars) / mass if mass > 0 else (pts[0] if len(pts) else np.zeros(2))
+        inertia = sum(m * (length ** 2 / 12 + float(np.sum((mid - centre) ** 2))) for m, mid, length in bars)
         out.append(LinkBody(link, tuple((n, tuple(map(float, p))) for n, p in named), mass,
-                            (float(centre[0]), float(centre[1])), pivot))
+                            (float(centre[0]), float(centre[1])), pivot, float(inertia)))
     return out
 
 
@@ -151,3 +157,29 @@ def first_moment(mass: np.ndarray, moment: np.ndarray, motion: tuple, order: int
         else:
             raise ValueError(f"order must be 0, 1 or 2, not {order}")
     return per.sum(axis=1)
+
+
+def moment_rate(bodies: Sequence[LinkBody], motion: tuple, about) -> np.ndarray:
+    """The rate of the bodies' total angular momentum about the fixed point ``about`` (S,), per ω² of the
+    input at a constant input speed: Σ I θ'' + m (r − O) × r'' (N·m per (rad/s)²); the frame feels its
+    opposite, the shaking moment (gravity's moment aside).  Every body's ``inertia`` must be known.
+
+    >>> crank = LinkBody(1, (), 2.0, (0.5, 0.0), "0-1", 0.1)    # turning at constant speed about the origin
+    >>> z, q = np.zeros((1, 2, 2)), np.array([0.3])
+    >>> moment_rate([crank], (np.c_[0 * q, q], z, np.c_[0 * q, 1 + 0 * q], z, np.zeros((1, 2)), z), (0, 0))
+    array([0.])
+    """
+    theta, t, dtheta, dt, ddtheta, ddt = motion
+    out = np.zeros(len(theta))
+    origin = np.asarray(about, dtype=float)
+    for b in bodies:
+        if b.mass == 0 and not b.inertia:
+            continue
+        c, s = np.cos(theta[:, b.link]), np.sin(theta[:, b.link])
+        x, y = b.centre
+        rc = np.stack((c * x - s * y, s * x + c * y), axis=1)  # R(θ) c
+        r = rc + t[:, b.link] - origin
+        acc = ddtheta[:, b.link, None] * np.stack((-rc[:, 1], rc[:, 0]), axis=1) \
+            - dtheta[:, b.link, None] ** 2 * rc + ddt[:, b.link]
+        out += b.inertia * ddtheta[:, b.link] + b.mass * (r[:, 0] * acc[:, 1] - r[:, 1] * acc[:, 0])
+    return out

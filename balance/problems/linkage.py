@@ -36,7 +36,7 @@ from ..budget import WORK_LIMIT, ensure_affordable
 from ..devices.link_counterweights import LinkCounterweight, fit_counterweights
 from ..errors import InvalidInput
 from ..extremes import EXTREMES_NOTE, box_extremes
-from ..model.linkage import LinkBody, Motion, body_arrays, first_moment
+from ..model.linkage import LinkBody, Motion, body_arrays, first_moment, moment_rate
 
 __all__ = ["LinkageProblem", "LinkageBalance", "BalanceState"]
 
@@ -70,6 +70,12 @@ class BalanceState(Row):
         The input where it is reached (rad or m).
     potential_variation : float
         The largest less the smallest gravity potential −g·M over the range (J).
+    shaking_moment : float or None
+        The largest |dH/dt| per ω² at a constant input speed, H the links' angular momentum about the input
+        joint's point (N·m per (rad/s)², or per (m/s)²); None at dead ends or where a link's inertia is not
+        known.  Reported, not minimised by the counterweights.
+    shaking_moment_at : float or None
+        The input where it is reached.
     """
 
     total_mass: float
@@ -78,17 +84,23 @@ class BalanceState(Row):
     shaking_force: float | None
     shaking_force_at: float | None
     potential_variation: float
+    shaking_moment: float | None = None
+    shaking_moment_at: float | None = None
 
 
 @dataclass(frozen=True)
 class LinkageBalance(Row):
-    """Counterweights found for a linkage, and its unbalance before and after (true extremes)."""
+    """Counterweights found for a linkage, and its unbalance before and after (true extremes).
+
+    ``carried``: the counterweights the links carried already (counted in ``before``); ``residual_share``:
+    the first moment's largest excursion after, relative to that of the links alone (no counterweight)."""
 
     name: str
     input: str
     input_kind: str
     input_range: tuple[float, float]
     links: tuple[LinkBody, ...]
+    carried: tuple[LinkBody, ...]
     on: tuple[int, ...]
     counterweights: tuple[LinkCounterweight, ...]
     before: BalanceState
@@ -100,7 +112,7 @@ class LinkageBalance(Row):
 
     kind: ClassVar[str] = "linkage"
     extremes: ClassVar[str] = EXTREMES_NOTE
-    row_keys = ("kind", "name", "input", "input_kind", "input_range", "shaking_force_unit", "links", "on",
+    row_keys = ("kind", "name", "input", "input_kind", "input_range", "shaking_force_unit", "links", "carried", "on",
                 "counterweights", "added_mass", "before", "after", "full_balance", "residual_share", "notes",
                 "extremes")
 
@@ -112,14 +124,16 @@ class LinkageBalance(Row):
     def shaking_force_unit(self) -> str:
         return "N per (rad/s)²" if self.input_kind == "revolute" else "N per (m/s)²"
 
+    def bodies(self, balanced: bool) -> tuple[LinkBody, ...]:
+        """The links and the counterweights they carried, with the counterweights found (point masses) or
+        without."""
+        found = tuple(LinkBody(c.link, (), c.mass, c.at, None, 0.0) for c in self.counterweights if balanced)
+        return self.links + self.carried + found
+
     def masses(self, balanced: bool) -> tuple[np.ndarray, np.ndarray]:
-        """Mass (n,) and first moment (n, 2) per link, with the counterweights or without."""
-        mass, moment = body_arrays(self.links, self.problem.links)
-        if balanced:
-            for c in self.counterweights:
-                mass[c.link] += c.mass
-                moment[c.link] += c.first_moment
-        return mass, moment
+        """Mass (n,) and first moment (n, 2) per link (the counterweights it carried included), with the
+        counterweights found or without."""
+        return body_arrays(self.bodies(balanced), self.problem.links)
 
 
 @dataclass(frozen=True)
@@ -127,8 +141,11 @@ class LinkageProblem:
     """A linkage of ``links`` links (the moving ones in ``bodies``, with their masses) moved by ``motion``
     (input values → (θ, t, θ', t', θ'', t'')) over ``input_range``; counterweights on the links ``on``
     (default: those pivoted on the frame), of mass ``counter_mass`` or at ``counter_radius`` from their
-    pivot if given; gravity ``gravity`` (m/s², default −y).  ``dead_ends``: the range ends at dead
-    positions (the shaking force per ω² is unbounded there and not reported)."""
+    pivot if given; gravity ``gravity`` (m/s², default −y).  ``carried``: counterweights the links already
+    carry (a linkage balanced before: each a point mass, its ``centre`` where it sits in the pose), counted
+    in the unbalance before and in the fit.  ``moment_about``: the point of the shaking moment.
+    ``dead_ends``: the range ends at dead positions (the shaking force and moment per ω² are unbounded
+    there and not reported)."""
 
     name: str
     links: int
@@ -143,6 +160,8 @@ class LinkageProblem:
     counter_radius: float | None = None
     gravity: tuple[float, float] = (0.0, -9.81)
     samples: int = 361
+    carried: tuple[LinkBody, ...] = ()
+    moment_about: tuple[float, float] = (0.0, 0.0)
     work_limit: float | None = WORK_LIMIT
 
     def solve(self) -> LinkageBalance:
@@ -160,15 +179,18 @@ class LinkageProblem:
         sampled = self.motion(qs)
         ensure_affordable(f"the fit and the searches for the largest values (about {MOVES} moves of the linkage over "
                           f"its {self.samples} samples)", MOVES, time.process_time() - start, self.work_limit)
-        weights = fit_counterweights(self.bodies, on, sampled, self.links, self.counter_mass, self.counter_radius)
-        draft = LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies,
+        weights = fit_counterweights(self.bodies + self.carried, on, sampled, self.links, self.counter_mass,
+                                     self.counter_radius)
+        draft = LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried,
                                tuple(b.link for b in on), weights, None, None, False, 0.0, (), self)
-        before = self._state(*draft.masses(False), qs)
-        floor = 1e-12 * max(before.moment_excursion, before.shaking_force or 0.0, 1e-300)
-        after = self._state(*draft.masses(True), qs, floor)
-        share = after.moment_excursion / before.moment_excursion if before.moment_excursion > 0 else 0.0
+        before = self._state(draft.bodies(False), qs)
+        own = self._state(self.bodies, qs) if self.carried else before  # no counterweight
+        floor = 1e-12 * max(own.moment_excursion, own.shaking_force or 0.0, 1e-300)
+        after = self._state(draft.bodies(True), qs, floor)
+        share = after.moment_excursion / own.moment_excursion if own.moment_excursion > 0 else 0.0
         full = share <= FULL_BALANCE
-        return LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, draft.on, weights,
+        return LinkageBalance(self.name, self.input, self.input_kind, (lo, hi), self.bodies, self.carried, draft.on,
+                              weights,
                               before, after, full, share, self._notes(full, share, draft.on, sampled), self)
 
     def _on(self) -> list[LinkBody]:
@@ -188,16 +210,20 @@ class LinkageProblem:
             raise InvalidInput("a link is named twice in the links to carry counterweights.")
         return [by_link[k] for k in self.on]
 
-    def _state(self, mass: np.ndarray, moment: np.ndarray, qs: np.ndarray, floor: float = 0.0) -> BalanceState:
-        """The unbalance with these masses: each largest value polished from the samples ``qs``."""
+    def _state(self, bodies: tuple[LinkBody, ...], qs: np.ndarray, floor: float = 0.0) -> BalanceState:
+        """The unbalance with these bodies: each largest value polished from the samples ``qs``."""
         lo, hi = self.input_range
         gravity = np.asarray(self.gravity, dtype=float)
+        mass, moment = body_arrays(bodies, self.links)
+        turning = not self.dead_ends and all(b.inertia is not None for b in bodies)
 
         def per_input(x):
             motion = self.motion(x[:, 0])
             columns = [-(first_moment(mass, moment, motion) @ gravity)]
             if not self.dead_ends:
                 columns.append(np.hypot(*first_moment(mass, moment, motion, order=2).T))
+            if turning:
+                columns.append(np.abs(moment_rate(bodies, motion, self.moment_about)))
             return np.stack(columns, axis=1)
 
         def spread(x):
@@ -208,17 +234,26 @@ class LinkageProblem:
         found = box_extremes(per_input, [lo], [hi], qs[:, None], floor=floor)
         (v_min, v_max) = found[0]
         force, force_at = (None, None) if self.dead_ends else (found[1][1].value, found[1][1].at[0])
+        turn, turn_at = (found[-1][1].value, found[-1][1].at[0]) if turning else (None, None)
         pairs = np.random.default_rng(0).uniform(lo, hi, (PAIRS, 2))
         (_, widest), = box_extremes(spread, [lo, lo], [hi, hi], pairs, floor=floor)
         total = float(mass.sum())
         return BalanceState(total, widest.value, widest.value / total if total > 0 else 0.0, force, force_at,
-                            v_max.value - v_min.value)
+                            v_max.value - v_min.value, turn, turn_at)
 
     def _notes(self, full: bool, share: float, on: tuple[int, ...], sampled: tuple) -> tuple[str, ...]:
         notes = []
+        if self.carried:
+            notes.append("the links carry counterweights already (" + ", ".join(
+                f"{b.mass:.6g} kg on link {b.link}" for b in self.carried) + "), counted before; what is left is "
+                "measured against the links without any")
+        unknown = [str(b.link) for b in self.bodies if b.inertia is None]
+        if unknown and not self.dead_ends:
+            notes.append(f"the shaking moment is not reported: link{'s' * (len(unknown) > 1)} {', '.join(unknown)} "
+                         "give no inertia (kg·m² about the centre: 'inertia' beside its mass, or --density)")
         if self.dead_ends:
             notes.append("the range ends at dead positions, where the links' rates per unit input rate are unbounded: "
-                         "the shaking force per ω² is not reported (give a range inside the limits)")
+                         "the shaking force and moment per ω² are not reported (give a range inside the limits)")
         if not full:
             links = ", ".join(map(str, on))
             notes.append(f"not fully balanced: counterweights on link{'s' * (len(on) > 1)} {links} leave "

@@ -24,7 +24,7 @@ import re
 import sys
 
 from .._argtypes import add_row, finite, number_range, output_file, picture_file, positive
-from .._output import number, pairs, write_document
+from .._output import number, pairs, save_linkage, write_document
 
 #: ``--range -90..90``: a negative range is a value, not an option
 _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-[\d.]+\.\.")
@@ -158,8 +158,9 @@ def add_commands(sub) -> None:
                     help="the input's range (degrees, or m for a prismatic input; default a crank's turn or the "
                          "limits of a rocker)")
     lb.add_argument("--samples", type=positive, help="input values sampled for the fit and the searches (default 361)")
-    lb.add_argument("--save", type=_saved, metavar="OUT.json",
-                    help="write the linkage with its counterweights as tracers CW<link> (draw and move show them)")
+    lb.add_argument("--save", type=_saved, metavar="OUT.json|OUT.toml",
+                    help="write the balanced linkage: its counterweights as tracers CW<link> (draw and move show them) "
+                         "and the masses in [linkage_balance] (balance linkage OUT finds none needed); .toml: a scene")
     add_row(lb)
     common(lb)
 
@@ -193,7 +194,7 @@ def _run(args) -> int:
             getattr(balance, args.plot_with)(result, args.plot)
             print(f"plot -> {args.plot}", file=sys.stderr)  # as move, dimension and draw say where they wrote
         if getattr(args, "save", None):
-            _save_balanced(args.linkage, result, args.save)
+            _save_balanced(args, result)
             print(f"linkage -> {args.save}", file=sys.stderr)
     except TooMuchWork as exc:
         raise InvalidOption(f"{str(exc).rstrip('.')}; give --force to run it anyway.") from None
@@ -353,7 +354,7 @@ def _prismatic_problem(args):
 
 # ----------------------------------------------------------------- linkages
 def _saved(text: str) -> str:
-    return output_file(text, (".json",), "the balanced linkage")
+    return output_file(text, (".json", ".toml"), "the balanced linkage")
 
 
 def _link_list(text: str) -> tuple[int, ...]:
@@ -387,9 +388,9 @@ def _linkage_problem(args):
 
     options = {key: getattr(args, key, None) for key in OPTIONS}
     table, source = None, args.file
-    if args.file.lower().endswith(".toml"):
-        doc = load_toml(args.file)
-        if "linkage_balance" in doc:
+    if args.file.lower().endswith((".toml", ".json")):
+        doc = load_toml(args.file) if args.file.lower().endswith(".toml") else _load_json(args.file, args.row)
+        if isinstance(doc, dict) and "linkage_balance" in doc:
             table = linkage_table(doc, args.file)
             if table.file is not None and "linkage" in doc:
                 raise InvalidInput(f"{args.file} gives the linkage twice, as [linkage_balance] 'file' and as a [linkage] "
@@ -404,20 +405,31 @@ def _linkage_problem(args):
         if both:
             raise InvalidOption(f"{both[0]} is also given in {args.file}'s [linkage_balance]: give it in one place")
         options = {key: getattr(table, key) if options[key] is None else options[key] for key in OPTIONS}
-    args.linkage = read_linkage(source, row=args.row)  # kept for --save
+    args.linkage, args.options = read_linkage(source, row=args.row), options  # kept for --save
     return linkage_problem(args.linkage, options, None if table is None else table.links, os.path.basename(source),
-                           args.file)
+                           args.file, None if table is None else table.counterweights)
 
 
-def _save_balanced(linkage, result, path: str) -> None:
-    """The linkage with its counterweights as tracers, as JSON."""
+def _load_json(path: str, row: int | None):
+    """A JSON file's content (a linkage file, or one 'balance linkage --save' wrote with its masses)."""
     import json
 
+    from synth.motion import read_linkage
+
+    read_linkage(path, row=row)  # the file's own sentence when it is no linkage or no JSON (or --row is amiss)
+    with open(path, encoding="utf-8") as fh:
+        return json.load(fh)
+
+
+def _save_balanced(args, result) -> None:
+    """The linkage with its counterweights as tracers and its masses in [linkage_balance], as JSON or as a
+    TOML scene (``move`` and ``draw`` read either; ``balance linkage`` reads the masses back)."""
     from .._linkage_balance import balanced_linkage
 
-    with open(path, "w") as fh:
-        json.dump(balanced_linkage(linkage, result).to_dict(), fh, indent=2)
-        fh.write("\n")
+    balanced, table = balanced_linkage(args.linkage, result, args.options)
+    save_linkage(balanced, args.save, source="mechsynth balance linkage",
+                 description=f"{result.name} balanced by counterweights", tables={"linkage_balance": table},
+                 compute=("motion", "balance linkage"))
 
 
 def _table_linkage(out: dict) -> str:
@@ -427,6 +439,10 @@ def _table_linkage(out: dict) -> str:
     lines = [f"linkage: {out['name']}; input {out['input']} over {to_input(lo)} … {to_input(hi)}", ""]
     head = f"{'link':>4}  {'mass kg':>10}  {'from joint':>10}  {'distance m':>11}  {'angle°':>8}  {'(from line to)':<14}  " \
            f"{'at (pose) m':<24}"
+    if out["carried"]:
+        lines += ["counterweights carried already: " + "; ".join(
+            f"link {b['link']} {b['mass']:.6g} kg at ({number(b['centre'][0])}, {number(b['centre'][1])})"
+            for b in out["carried"]), ""]
     lines += ["counterweights:", head, "-" * len(head)]
     for c in out["counterweights"]:
         if c["mass"] == 0:
@@ -439,6 +455,8 @@ def _table_linkage(out: dict) -> str:
     for label, key in (("total mass (kg)", "total_mass"), ("centre of mass's largest excursion (m)", "com_excursion"),
                        ("first moment's largest excursion (kg·m)", "moment_excursion"),
                        (f"shaking force's largest amplitude ({unit})", "shaking_force"),
+                       (f"shaking moment's largest, about {out['input']} ({unit.replace('N', 'N·m', 1)})",
+                        "shaking_moment"),
                        ("gravity potential's variation (J)", "potential_variation")):
         b, a = out["before"][key], out["after"][key]
         rows.append((label, f"{number(b) if b is not None else '—'}  →  {number(a) if a is not None else '—'}"))

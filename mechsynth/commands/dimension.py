@@ -103,7 +103,8 @@ def add_commands(sub) -> None:
                    "distance between two joints of one link (default: none)")
     p.add_argument("--max-length", type=finite, metavar="L", help="bound on every distance between two joints of "
                    "one link, the frame's pivots included (target units; default: none)")
-    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
+    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in, in "
+                   "target units (the target's x, y)")
     p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
                    "joint J at the point (x, y) in target units, e.g. 0-1=0,0 (repeatable)")
     p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
@@ -118,7 +119,8 @@ def add_commands(sub) -> None:
     p.add_argument("--reach", type=finite, help="the search box: joints within this many target "
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
-                   "(one of infinitely many exact solutions is returned)")
+                   "(one of infinitely many exact solutions is returned); refused for a target that gives enough "
+                   "(with --db: for the topologies that need it)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
                    "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
@@ -235,6 +237,8 @@ def _run(args) -> int:
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
                               max_length=args.max_length, pivots=args.pivots, reach=args.reach, **_placing(args))
+    if args.underdetermined:
+        _check_underdetermined(mechanism, target, args.tracer_link, constraints)
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
               bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s{postfix}",
               disable=not sys.stderr.isatty()) as bar:
@@ -260,6 +264,18 @@ def _run(args) -> int:
         _draw(result, args.out)
         print(f"picture -> {args.out}", file=sys.stderr)
     return 0
+
+
+def _check_underdetermined(mechanism, target, tracer_link, constraints) -> None:
+    """Refuse --underdetermined where the target gives as many equations as the synthesis has unknowns."""
+    from synth import InvalidOption
+    from synth.dimension import equations_and_unknowns
+
+    equations, unknowns = equations_and_unknowns(mechanism, target, tracer_link=tracer_link, constraints=constraints)
+    if equations >= unknowns:
+        raise InvalidOption(f"--underdetermined allows fewer target equations than unknowns, and this target gives "
+                            f"{equations} equations for the {unknowns} unknowns of this {target.kind} synthesis: "
+                            "drop it")
 
 
 def _placing(args) -> dict:

@@ -101,7 +101,9 @@ def add_commands(sub) -> None:
                    help="rows per step (default table), or with --range: table or json")
     p.add_argument("--range", action="store_true", help="what a designer checks instead of rows: crank or rocker, "
                    "limits, Grashof, dead and toggle positions (of the whole branch), transmission angles and "
-                   "curve extent (over --start … --stop where given)")
+                   "curve extent (over --start … --stop where given), a crank-driven slider's stroke and quick-return "
+                   "ratio; the table's angles in degrees, the JSON's in radians, a crank's within one turn "
+                   "(0 … 360°, 0 … 2π) in both")
     p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
@@ -398,13 +400,22 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         text = f"{unit(v):.{digits}g}"
         return "0" if turns and float(text) == 360.0 else text
     word = "°" if revolute else ""
+
+    def unit_input(v: float) -> float:
+        """An input as the JSON gives it: a crank's angle within one turn, 0 … 2π, as the table's."""
+        return v % math.tau if turns else v
     doc = {"input": joint_name(linkage.chain, k), "kind": linkage.kind(k), "full_rotation": reach.full_rotation,
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
-           "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
-           "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
-           "transmission": {name: {**t, "worst": min(t["min"], math.pi - t["max"])}  # (how far from a dead position)
+           "dead_positions": [{"input": unit_input(v), "why": why} for v, why in reach.dead_positions],
+           "toggles": [{"input": unit_input(v), "link": link} for v, link in reach.toggles],
+           "transmission": {name: {**t, "at_min": unit_input(t["at_min"]), "at_max": unit_input(t["at_max"]),
+                                   "worst": min(t["min"], math.pi - t["max"])}  # (how far from a dead position)
                             for name, t in motion.transmission.items()},
            "extent": {n: list(e) for n, e in motion.extent().items()},
+           "strokes": {str(link): {"pair": joint_name(linkage.chain, pair), "stroke": s.length,
+                                   "quick_return_ratio": s.quick_return_ratio,
+                                   "dead_centres": [unit_input(s.far), unit_input(s.near)]}
+                       for pair, link, s in _strokes(linkage, reach)},
            "stopped": motion.stopped}
     if not motion.transmission:
         doc["transmission_note"] = _NO_TRANSMISSION
@@ -432,4 +443,23 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
                                                f"worst {math.degrees(t['worst']):.4g}°"))
     for name, (x0, y0, x1, y1) in doc["extent"].items():
         lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
+    for link, s in doc["strokes"].items():
+        far, near = s["dead_centres"]
+        lines.append((f"slider {link} ({s['pair']})", f"stroke {s['stroke']:.6g} between the dead centres at input "
+                      f"{shown(far)}° and {shown(near)}°; quick-return ratio {s['quick_return_ratio']:.6g}"))
     write_document(doc, "table", pairs(lines))
+
+
+def _strokes(linkage, reach) -> list:
+    """(pair, slider link, :class:`~mechsynth._slider_stroke.Stroke`) of each slider on the frame driven by a
+    crank, measured on a turn of the solver as the scene's closed form of a slider-crank measures them."""
+    from synth import JointKind
+    from synth.motion import sweep
+
+    from .._slider_stroke import slider_stroke, sliders_on_frame
+
+    if not (reach.full_rotation and linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE):
+        return []
+    found = sliders_on_frame(linkage)
+    turn = sweep(linkage, steps=360) if found else None
+    return [(pair, link, slider_stroke(linkage, turn, pin, linkage.slides[pair])) for pair, link, pin in found]

@@ -14,7 +14,7 @@ solver against the textbook's formulas, written here independently of :mod:`synt
     it checks a class III group (a triad) against the dyads of another inversion of its chain.
 ``slider-crank``
     the slider's pin on its line (circle–line intersection); stroke and quick-return ratio
-    measured on the solver's own positions (nested sweeps around each dead centre).
+    measured on the solver's own positions (nested sweeps around each dead centre, :mod:`mechsynth._slider_stroke`).
 ``slotted-lever``
     the crank-and-slotted-lever (an inverted slider-crank): the lever's angle and the slide; the
     lever's swing and the slide's extremes measured on the solver.
@@ -33,6 +33,7 @@ from pydantic import StrictStr
 from mechbase import Row
 from mechbase.schema import Table
 
+from .._slider_stroke import dead_centres, slider_stroke
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
 from .types import Count, Flag, Number, Numbers, NumberTable, Text
@@ -100,7 +101,8 @@ def _read_linkage_balance(raw, path: str, compute):
 
 
 FAMILY.table(SceneTable("linkage_balance", _read_linkage_balance,
-                        "the links' masses (links = [{link, mass, centre}] or density) and the counterweights' options"))
+                        "the links' masses (links = [{link, mass, centre}] or density), the counterweights they carry "
+                        "(counterweights = [{link, mass, at}]) and the options of those to add"))
 
 
 # --------------------------------------------------------------------------- motion
@@ -294,33 +296,6 @@ def _freudenstein(linkage, motion) -> float | None:
     return float(np.nanmax(np.abs(k1 * np.cos(t4) - k2 * np.cos(t2) + k3 - np.cos(t2 - t4))))
 
 
-def _extreme(linkage, value, lo: float, hi: float, sign: float) -> tuple[float, float]:
-    """The input in [lo, hi] where ``value(motion)`` (per step) is largest (sign = 1) or smallest
-    (−1), and that value, found by nested sweeps of the solver, each a tenth as wide."""
-    from synth.motion import sweep
-
-    for _ in range(60):
-        motion = sweep(linkage, steps=21, start=lo, stop=hi)
-        got = sign * value(motion)
-        i = int(np.nanargmax(got))
-        x, width = float(motion.inputs[i, 0]), (hi - lo) / 20
-        if width < 1e-13:
-            break
-        lo, hi = x - width, x + width
-    return x, sign * float(got[i])
-
-
-def _dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The inputs and values of the largest and smallest ``value`` over a crank's turn, refined."""
-    v = value(motion)
-    step = float(motion.inputs[1, 0] - motion.inputs[0, 0])
-    out = []
-    for sign in (1.0, -1.0):
-        x = float(motion.inputs[int(np.nanargmax(sign * v)), 0])
-        out.append(_extreme(linkage, value, x - 2 * step, x + 2 * step, sign))
-    return out[0], out[1]
-
-
 def _slider_crank(linkage, motion) -> SliderCrankCheck:
     """Roles: the input crank O–A, the rod A–B, the slider's pin B on the line along the slide of the
     slider–frame prismatic pair (through B as posed)."""
@@ -342,15 +317,11 @@ def _slider_crank(linkage, motion) -> SliderCrankCheck:
     b_cf = p[b_pin] + s[:, None] * u
     error = max(float(np.nanmax(np.hypot(*(j[:, a_pin] - a_cf).T))), float(np.nanmax(np.hypot(*(j[:, b_pin] - b_cf).T))))
 
-    def slide(m):
-        return (m.joints[:, b_pin] - p[b_pin]) @ u
-
-    (x_hi, s_hi), (x_lo, s_lo) = _dead_centres(linkage, motion, slide)
-    forward = (x_hi - x_lo) % (2 * math.pi)
-    ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
+    measured = slider_stroke(linkage, motion, b_pin, u)
     stroke = math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
     delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
-    return SliderCrankCheck(error, s_hi - s_lo, stroke, ratio, (math.pi + delta) / (math.pi - delta), r, l, e)
+    return SliderCrankCheck(error, measured.length, stroke, measured.quick_return_ratio,
+                            (math.pi + delta) / (math.pi - delta), r, l, e)
 
 
 def _slotted_lever(linkage, motion) -> SlottedLeverCheck:
@@ -390,8 +361,8 @@ def _slotted_lever(linkage, motion) -> SlottedLeverCheck:
     def turned(m):
         return m.angles[:, lever]
 
-    (_, psi_hi), (_, psi_lo) = _dead_centres(linkage, motion, turned)
-    (_, s_hi), (_, s_lo) = _dead_centres(linkage, motion, slide)
+    (_, psi_hi), (_, psi_lo) = dead_centres(linkage, motion, turned)
+    (_, s_hi), (_, s_lo) = dead_centres(linkage, motion, slide)
     r, d = math.dist(p[o], p[b_pin]), math.dist(p[o], p[c])
     return SlottedLeverCheck(error, math.degrees(psi_hi - psi_lo),
                              math.degrees(math.acos((e - r) / d) - math.acos((e + r) / d)), (s_lo, s_hi), r, d, abs(e))
@@ -480,7 +451,7 @@ def _balance_linkage(run: Run):
     table = run.scene.tables["linkage_balance"]
     try:
         return linkage_problem(run.scene.tables["linkage"], {k: getattr(table, k) for k in OPTIONS}, table.links,
-                               run.scene.name, run.scene.path).solve()
+                               run.scene.name, run.scene.path, table.counterweights).solve()
     except ProjectError as exc:  # the balance's or the motion layer's one sentence
         raise SceneError(f"{run.scene.path}: [linkage_balance] {str(exc).rstrip('.')}.") from None
 
@@ -489,7 +460,8 @@ def _report_balance(r: dict) -> list[str]:
     weights = ", ".join(f"link {c['link']} {c['mass']:.6g} kg at {c['distance']:.6g} m from {c['joint']}"
                         for c in r["counterweights"] if c["mass"] > 0)
     state = "full balance" if r["full_balance"] else f"{100 * r['residual_share']:.3g}% of the excursion left"
-    return [f"counterweights: {weights or 'none'}; {state}"]
+    carried = ", ".join(f"link {b['link']} {b['mass']:.6g} kg" for b in r["carried"])
+    return [(f"carried: {carried}; " if carried else "") + f"counterweights: {weights or 'none'}; {state}"]
 
 
 FAMILY.kind(ComputeKind(

@@ -400,8 +400,11 @@ class Problem:
         pivoted = [x for k in self.frame_joints for x in chain.joints[k] if x not in (self.frame, self.input_link)]
         if given is not None:
             if given not in pivoted:
-                raise DimensionError(f"the output link {given} must be pivoted on the frame (link {self.frame}) and "
-                                     f"not be the input link; links pivoted there: {sorted(set(pivoted))}")
+                why = (f"is not a link of the mechanism (links 0 … {chain.links - 1})" if not 0 <= given < chain.links
+                       else "is the frame" if given == self.frame else "is the input link" if given == self.input_link
+                       else f"is not pivoted on the frame (link {self.frame})")
+                raise DimensionError(f"the output link {given} {why}: it must be a link pivoted on the frame besides "
+                                     f"the input; links pivoted there: {sorted(set(pivoted))}")
             return given
         if len(set(pivoted)) != 1:
             raise DimensionError(f"name the output link: links {sorted(set(pivoted))} are pivoted on the frame besides "

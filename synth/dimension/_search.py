@@ -20,7 +20,7 @@ from ._problem import (CURVE_SAMPLES, HELD_MARGIN, INFEASIBLE, MARGIN, MET, Cons
                        link_ratio, longest_link, point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
-__all__ = ["DimensionalResult", "synthesize"]
+__all__ = ["DimensionalResult", "synthesize", "equations_and_unknowns"]
 
 #: weight of a constraint's squared violation against the mean squared relative error
 PENALTY = 1e2
@@ -663,6 +663,21 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
         raise DimensionError("constraints must be a Constraints object")
     joint, driven = input_joint_of(mech, linkage)
     return Problem(mech, joint, target, tracer_link, constraints, driven), linkage
+
+
+def equations_and_unknowns(mechanism, target, *, tracer_link: int | None = None,
+                           constraints: Constraints = Constraints()) -> tuple[int, int]:
+    """The equations the target gives and the unknowns of its synthesis (fewer equations: an underdetermined
+    problem, which :func:`synthesize` refuses unless asked).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.dimension import FunctionTarget
+    >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)
+    >>> equations_and_unknowns(four_bar, FunctionTarget(np.radians([40, 60, 80]), np.radians([70, 85, 105])))
+    (3, 3)
+    """
+    problem, _ = _problem(mechanism, target, tracer_link, constraints)
+    return problem.equations, problem.unknowns
 
 
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),

@@ -188,17 +188,21 @@ def _linkage_row(row: dict, where: str) -> dict:
     linkage is what ``move --save`` writes, a scene's ``[linkage]`` table and the ``linkage`` of
     ``dimension --format json``; any other row is returned as it is.
 
-    >>> _linkage_row({"linkage": {"chain": "0-1 1-2 2-3 3-0", "frame": 0, "points": {}}}, "x")["joints"]
+    >>> _linkage_row({"linkage": {"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"],
+    ...               "points": {"0-1": [0, 0], "1-2": [1, 0], "2-3": [3, 2], "0-3": [4, 0]}}}, "x")["joints"]
     [[0, 1], [0, 3], [1, 2], [2, 3]]
     """
+    from ..errors import MotionError
+    from ..motion import Linkage
+
     linkage = row["linkage"] if isinstance(row.get("linkage"), dict) else row
     if not isinstance(linkage.get("chain"), str):
         return row
-    try:
-        chain = Chain.parse(linkage["chain"])
-    except MalformedChain as exc:
-        raise MalformedChain(f"{where}: the linkage's chain cannot be read: {exc}") from None
-    return {**chain.to_dict(), "frame": linkage.get("frame")}
+    try:  # read whole, as 'move' reads it: a NaN point or a misspelt entry is refused, not passed over
+        read = Linkage.from_dict(linkage)
+    except MotionError as exc:
+        raise MalformedChain(f"{where}: {exc.args[0]}") from None
+    return {**read.chain.to_dict(), "frame": read.frame}
 
 
 def read_linkage_file(text: str, source: str) -> list[Entry]:

@@ -207,6 +207,9 @@ MAX_STEPS = 10_000_000
 SAMPLES = 4096
 #: the ends of a branch are located to this (rad, or this × the mechanism's size)
 LIMIT_TOL = 1e-11
+#: a sweep's start and stop are held to this (rad, or this × the mechanism's size) by a float, and their last
+#: place is less than a step: else they are too far from zero to sweep (refused)
+RESOLVED = 1e-9
 #: Newton's method stops where every closure equation holds to this × the mechanism's size
 CLOSURE_TOL = 1e-14
 
@@ -667,6 +670,20 @@ def _check_value(value, name: str) -> float:
     return out
 
 
+def _check_resolved(linkage: Linkage, ends, step: float, i: int = 0) -> None:
+    """Refuse a value of input ``i`` (``ends``: (name, value) pairs) so far from zero that a float does not hold
+    it to :data:`RESOLVED` (rad, or times the mechanism's size) or tells it from the next, ``step`` on (a crank
+    from 1e308°: start + one turn is start)."""
+    revolute = linkage.kind(linkage.inputs[i]) == REVOLUTE
+    for name, value in ends:
+        last = math.ulp(value)
+        if last > RESOLVED * (1.0 if revolute else linkage.scale) or last >= step:
+            shown = f"{math.degrees(value):.6g}° ({value:.6g} rad)" if revolute else f"{value:.6g}"
+            raise BadSweep(f"{name} {shown} is too far from zero: a float that large is known only to "
+                           f"{last:.3g}{' rad' if revolute else ''}; give an input within a few turns (or sizes) of "
+                           "the pose")
+
+
 def _describe(linkage: Linkage, value: float) -> str:
     """An input value as a designer reads it: degrees for a revolute input."""
     if linkage.kind(linkage.inputs[0]) == REVOLUTE:
@@ -783,12 +800,16 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
     start = None if start is None else _check_value(start, "start")
     stop = None if stop is None else _check_value(stop, "stop")
     crank = revolute and math.isinf(lo) and math.isinf(hi)
+    stop_given = stop is not None
+    both = start is not None and stop_given
     if start is None:
         start = phi0 if crank or math.isinf(lo) else phi0 + lo
     if stop is None:
         stop = start + 2 * math.pi if crank else (phi0 + hi if math.isfinite(hi) else start + 4 * linkage.scale)
-    if start == stop:
+    if both and start == stop:
         raise BadSweep("start and stop are the same input: a sweep needs a range")
+    _check_resolved(linkage, (('start', start), ('stop', stop)) if stop_given else (('start', start),),
+                    abs(stop - start) / (steps - 1))
     x0 = start - phi0
     if revolute and not crank and not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:  # the same angle a turn on or back
         x0 -= 2 * math.pi * math.floor((x0 - lo) / (2 * math.pi))
@@ -933,6 +954,10 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     total = math.prod(steps)
     if total > MAX_STEPS:
         raise BadSweep(f"the grid has {total:,} steps; at most {MAX_STEPS:,}")
+    for i, ((a, b), count) in enumerate(zip(ranges, steps)):
+        name = joint_name(linkage.chain, linkage.inputs[i])
+        _check_resolved(linkage, ((f"input {name}'s start", a), (f"input {name}'s stop", b)),
+                        abs(b - a) / (count - 1) if a != b else math.inf, i)
     axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
     values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
     offsets = values - linkage.pose_inputs[None, :]
@@ -1163,6 +1188,8 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     ------
     CannotAssemble
         The branch does not reach ``value`` (the sentence gives its range and the group that locks).
+    BadSweep
+        ``value`` is not finite, or too far from zero for a float to hold an input to 1e-9.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
@@ -1170,6 +1197,7 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     1.570796326795
     """
     value = _check_value(value, "the input")
+    _check_resolved(linkage, (("the input", value),), 1e-3)
     motion = sweep(linkage, steps=2, start=value, stop=value + (1e-3 if value < 1e300 else -1e-3))
     p = motion.joints[0]
     tracers = {name: (link, tuple(motion.tracers[name][0])) for name, (link, _) in linkage.tracers.items()}

@@ -402,3 +402,27 @@ def test_linkage_figure_draws_the_shaking_force_and_the_counterweights(drawn, mo
     expected = np.array([c.at for c in res.counterweights if c.mass > 0])
     assert np.allclose(np.sort(points, axis=0), np.sort(expected, axis=0))
     assert legend_texts(right) == ["centre of mass, before", "centre of mass, after"]
+
+
+def test_linkage_figure_draws_the_counterweights_a_saved_linkage_carries(drawn, tmp_path):
+    """The balanced four-bar saved and balanced again: no counterweight found, the two it carries drawn grey at
+    their points, sized by mass."""
+    import json
+
+    from balance import linkage_table, plot_linkage
+    from mechsynth._linkage_balance import linkage_problem
+    from mechsynth.cli import main
+    from synth.motion import read_linkage
+
+    saved = tmp_path / "balanced.json"
+    model = Path(__file__).resolve().parents[2] / "models" / "motion_four_bar.toml"
+    assert main(["balance", "linkage", str(model), "--density", "2", "--save", str(saved), "--format", "json"]) == 0
+    table = linkage_table(json.loads(saved.read_text()))
+    res = linkage_problem(read_linkage(saved), {}, table.links, "balanced", None, table.counterweights).solve()
+    assert res.added_mass == 0 and len(res.carried) == 2
+    right = drawn(plot_linkage, res).axes[1]
+    dots = [c for c in right.collections if len(c.get_offsets())]  # (the found ones: none, no dot)
+    points = np.concatenate([c.get_offsets() for c in dots])
+    assert np.allclose(np.sort(points, axis=0), np.sort([b.centre for b in res.carried], axis=0))
+    assert all(mcolors.to_hex(c.get_facecolor()[0]) == mcolors.to_hex("0.55") for c in dots)
+    assert "grey: carried already" in right.get_title()

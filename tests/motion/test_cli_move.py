@@ -186,6 +186,8 @@ BAD = [
     (["move", str(FOUR_BAR), "--steps", "30000"], "--format jsonl or csv"),
     (["move", str(FOUR_BAR), "--start", "nan"], "finite"),
     (["move", str(FOUR_BAR), "--start", "10", "--stop", "10"], "two different ends"),
+    # it said "start and stop are the same input" with no --stop given (1e308° plus a turn is 1e308°)
+    (["move", str(FOUR_BAR), "--start", "1e308"], "start 1e+308° (1.74533e+306 rad) is too far from zero"),
     (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
     (["move", str(FOUR_BAR), "--range", "--velocities"], "--range"),
     (["move", str(FOUR_BAR), "--frames", "10"], "--animate"),
@@ -357,3 +359,46 @@ def test_a_cranks_angles_are_read_in_one_turn_0_to_360(capsys):
     359.9999999997°, printed to six digits."""
     code, out, _ = _run(capsys, "move", FOUR_BAR, "--range")
     assert code == 0 and "at input 360°" not in out and "at input 0°" in out
+
+
+def test_range_gives_a_crank_driven_sliders_stroke_and_quick_return_ratio(capsys):
+    """Only the scene computed them; --range printed none.  The offset slider-crank (crank 1, rod 3.5, offset
+    0.5): stroke √((l + r)² − e²) − √((l − r)² − e²), ratio (π + δ)/(π − δ), dead centres where crank and rod
+    line up (written here from the geometry, independently of the solver)."""
+    r, l, e = 1.0, 3.5, 0.5
+    delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
+    code, out, _ = _run(capsys, "move", SLIDER, "--range", "--format", "json")
+    stroke = json.loads(out)["strokes"]["3"]
+    assert code == 0 and stroke["pair"] == "0=3"
+    assert stroke["stroke"] == pytest.approx(math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e),
+                                             abs=1e-12)
+    assert stroke["quick_return_ratio"] == pytest.approx((math.pi + delta) / (math.pi - delta), abs=1e-7)
+    outer = math.atan2(e, math.sqrt((l + r) ** 2 - e * e))  # the crank along the rod
+    inner = math.pi + math.atan2(e, math.sqrt((l - r) ** 2 - e * e))  # the crank folded back on it
+    assert stroke["dead_centres"] == pytest.approx([outer, inner], abs=1e-7)
+    code, out, _ = _run(capsys, "move", SLIDER, "--range")
+    assert code == 0 and ("slider 3 (0=3)           stroke 2.02265 between the dead centres at input 6.37937° and "
+                          "191.537°; quick-return ratio 1.059") in out
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--format", "json")
+    assert code == 0 and json.loads(out)["strokes"] == {}  # no slider
+
+
+def test_range_json_gives_a_cranks_angles_within_one_turn_as_the_table_does(capsys):
+    """A 350 … 1070° sweep gave the toggles within a turn but the transmission angles' inputs past 2π."""
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--start", "350", "--stop", "1070", "--format", "json")
+    doc = json.loads(out)
+    inputs = [t["input"] for t in doc["toggles"]] + [v for t in doc["transmission"].values()
+                                                      for v in (t["at_min"], t["at_max"])]
+    assert code == 0 and len(inputs) == 4 and all(0 <= v < 2 * math.pi for v in inputs), inputs
+    code, table, _ = _run(capsys, "move", FOUR_BAR, "--range", "--start", "350", "--stop", "1070")
+    t = next(iter(doc["transmission"].values()))
+    shown = [f"{math.degrees(v) % 360:.6g}".replace("360", "0") for v in (t["at_min"], t["at_max"])]
+    assert f"at input {shown[0]}°, max" in table and f"at {shown[1]}°; worst" in table
+
+
+def test_the_help_says_which_unit_and_turn_the_range_gives(capsys):
+    with pytest.raises(SystemExit):
+        main(["move", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "the table's angles in degrees, the JSON's in radians, a crank's within one turn (0 … 360°, 0 … 2π) in both" \
+        in text

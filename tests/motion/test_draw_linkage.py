@@ -150,6 +150,43 @@ def test_no_link_number_stands_on_a_pin_or_a_ground_pivot(saved, tmp_path, monke
     assert not [(a, b) for i, a in enumerate(numbers) for b in numbers[:i] if a.overlaps(b)]
 
 
+@pytest.mark.parametrize("tracers, extra", [
+    (None, []),  # the four-bar balanced: its counterweight CW3 the drawing's rightmost point ('CW3' was cut)
+    ({"COUPLER_POINT": {"link": 2, "at": [2.5, 4.5]}, "FAR_RIGHT": {"link": 3, "at": [6.0, 0.0]}}, []),
+    ({"TOP": {"link": 2, "at": [1.0, 6.0]}, "RIGHT_SIDE": {"link": 3, "at": [5.0, -2.8]}},
+     ["--size", "2", "--dpi", "300"]),
+])
+def test_every_name_lies_inside_the_picture(tmp_path, monkeypatch, capsys, tracers, extra):
+    """Each text's box, as matplotlib's renderer sets it, inside the drawing (under the title), the title inside
+    the figure: the drawing's extent counts the tracers' names, not only their points."""
+    import matplotlib.pyplot as plt
+
+    path = tmp_path / "linkage.json"
+    if tracers is None:
+        assert main(["balance", "linkage", str(ROOT / "models" / "motion_four_bar.toml"), "--density", "2",
+                     "--save", str(path)]) == 0
+    else:
+        lk = read_linkage(ROOT / "models" / "motion_four_bar.toml").to_dict()
+        path.write_text(json.dumps(lk | {"tracers": tracers}))
+    figures = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: figures.append(fig))
+    assert main(["draw", str(path), "--out", str(tmp_path / "x.png"), *extra]) == 0
+    (fig,) = figures
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    area, whole = ax.get_window_extent(renderer), fig.bbox
+    names = {t.get_text(): t.get_window_extent(renderer) for t in ax.texts}
+    assert set(tracers or {"CW1", "CW3", "P"}) <= set(names)
+    outside = {n: b.bounds for n, b in names.items() if not (area.x0 <= b.x0 and b.x1 <= area.x1 and area.y0 <= b.y0
+                                                            and b.y1 <= area.y1)}
+    assert not outside, (outside, area.bounds)
+    title = fig.texts[0].get_window_extent(renderer)
+    assert whole.x0 <= title.x0 and title.x1 <= whole.x1 and title.y1 <= whole.y1 and title.y0 >= area.y1 - 1
+    width, height = Image.open(tmp_path / "x.png").size
+    assert (width, height) == (round(whole.width), round(whole.height))
+
+
 def test_a_slider_crank_is_drawn_with_its_links_numbered(tmp_path):
     # a link with one pin (the slider's block) is numbered off its pin: 'draw models/motion_slider_crank.toml' (and any
     # slider dimension --save wrote) ended in a TypeError there

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from synth.errors import BadSweep, CannotAssemble, WrongInputs
-from synth.motion import Linkage, Motion, sweep, sweep_grid
+from synth.motion import Linkage, Motion, assemble, sweep, sweep_grid
 from synth.structure.chain import Chain, Mechanism
 
 from .helpers import four_bar, slider_crank
@@ -38,6 +38,24 @@ def test_the_sweeps_arguments_are_refused_in_one_sentence_each():
     assert refused(BadSweep, sweep, lk, start=True) == "start must be a finite number, not True"
     assert refused(BadSweep, sweep, lk, stop=-math.inf) == "stop must be a finite number, not -inf"
     assert refused(BadSweep, sweep, lk, start=0.5, stop=0.5) == "start and stop are the same input: a sweep needs a range"
+    # a start too far from zero for its float to hold an angle (1e308°: start + one turn is start; no stop was given)
+    assert refused(BadSweep, sweep, lk, start=math.radians(1e308)) == (
+        "start 1e+308° (1.74533e+306 rad) is too far from zero: a float that large is known only to "
+        "3.12e+290 rad; give an input within a few turns (or sizes) of the pose")
+    assert refused(BadSweep, sweep, lk, start=1.0, stop=1e300).startswith("stop 5.72958e+301° (1e+300 rad) is too far")
+    assert refused(BadSweep, sweep, lk, start=2e7).endswith("known only to 3.73e-09 rad; give an input within a few "
+                                                              "turns (or sizes) of the pose")  # (ulp 2⁻²⁸ > 1e-9)
+    assert sweep(lk, start=1e6, steps=3).steps == 3  # (ulp 1.2e-10: held)
+    crank = slider_crank(1.0, 3.0, 0.5)
+    piston = Linkage(crank.mechanism, (1,), crank.points, crank.slides)  # (its size some 4: 1e-9 of it is 4e-9)
+    assert refused(BadSweep, sweep, piston, start=1e8, stop=1e8 + 1).startswith("start 1e+08 is too far from zero")
+    # a grid's input too (a five-bar's crank 0-1 from 1e17°: rows of no meaning), the other input's range as it was
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
+    assert refused(BadSweep, sweep_grid, five_bar, [(1e15, 2e15), (0, 1)], steps=[3, 3]).startswith(
+        "input 0-1's start 5.72958e+16° (1e+15 rad) is too far from zero: a float that large is known only to 0.125 rad")
+    assert sweep_grid(five_bar, [(0.5, 0.5), (0, 1)], steps=[2, 2]).steps == 4  # (one value of an input: no step)
+    # a pose at such an input too ('draw FILE --at 1e12' drew a garbage pose, then named a "start")
+    assert refused(BadSweep, assemble, lk, 1e10).startswith("the input 5.72958e+11° (1e+10 rad) is too far from zero")
     five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
     assert refused(WrongInputs, sweep, five_bar) == "this linkage has 2 inputs: sweep a grid of them with sweep_grid"
 
