@@ -426,9 +426,13 @@ def test_every_row_of_the_atlas_search_is_read_by_move_draw_and_balance(slider_i
     traced = _cli("move", str(rows_json), "--row", "2", "--steps", "7201", "--format", "json")
     assert traced.returncode == 0, traced.stderr
     curve = np.array([[step["P.x"], step["P.y"]] for step in json.loads(traced.stdout)])
+    # each point's error in the row is its distance to the curve at the input the polish gave it (an unknown of an
+    # untimed target): never below its distance to the nearest point of the curve, and in our runs within 0.3 %
+    # (max within 1e-3 in both runs, RMS 4e-6 and 3e-3; the polyline's chords move it by ~1e-5)
     errors = _distance_to_polyline(target, curve)
-    assert errors.max() == pytest.approx(rows[1]["error_max"], rel=1e-3)  # (the polyline's chords: ~1e-5 of it)
-    assert math.sqrt((errors ** 2).mean()) == pytest.approx(rows[1]["error_rms"], rel=1e-3)
+    rms = math.sqrt((errors ** 2).mean())
+    assert rows[1]["error_max"] * 0.99 <= errors.max() <= rows[1]["error_max"] * (1 + 1e-4)
+    assert rows[1]["error_rms"] * 0.97 <= rms <= rows[1]["error_rms"] * (1 + 1e-4)
 
     for source in (rows_json, rows_jsonl):
         out = tmp_path / f"row1_{source.suffix[1:]}.png"
