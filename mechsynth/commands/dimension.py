@@ -31,7 +31,7 @@ import sys
 
 from mechbase import finite_pair
 
-from .._argtypes import finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
+from .._argtypes import add_row, finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
 from .._output import pairs, save_linkage, write_document
 
 __all__ = ["add_commands"]
@@ -140,6 +140,7 @@ def add_commands(sub) -> None:
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
+    add_row(p)
     p.set_defaults(run=_run)
 
 
@@ -170,6 +171,9 @@ def _check(args) -> None:
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
+    if args.row is not None and not args.linkage:
+        raise InvalidOption("--row picks the start of the search from a file of an atlas search's rows: it goes with "
+                            "--linkage ROWS.json")
     if args.mechanism and args.frame is None:
         raise InvalidOption("--mechanism needs --frame F: the fixed link")
     if args.crank and args.rocker:
@@ -198,7 +202,7 @@ def _mechanism(args):
     from synth.motion import read_linkage
 
     if args.linkage:
-        return read_linkage(args.linkage)
+        return read_linkage(args.linkage, row=args.row)
     chain = Chain.parse(args.mechanism)
     return mechanism_of(chain, args.frame, args.input)
 

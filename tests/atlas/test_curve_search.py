@@ -427,8 +427,8 @@ def test_every_row_of_the_atlas_search_is_read_by_move_draw_and_balance(slider_i
     assert traced.returncode == 0, traced.stderr
     curve = np.array([[step["P.x"], step["P.y"]] for step in json.loads(traced.stdout)])
     # each point's error in the row is its distance to the curve at the input the polish gave it (an unknown of an
-    # untimed target): never below its distance to the nearest point of the curve, and in our runs within 0.3 %
-    # (max within 1e-3 in both runs, RMS 4e-6 and 3e-3; the polyline's chords move it by ~1e-5)
+    # untimed target, kept in order): never below its distance to the nearest point of the curve, and in our runs
+    # within 0.3 % of it (max within 1e-3, RMS 4e-6 and 3e-3; the polyline's chords move it by ~1e-5)
     errors = _distance_to_polyline(target, curve)
     rms = math.sqrt((errors ** 2).mean())
     assert rows[1]["error_max"] * 0.99 <= errors.max() <= rows[1]["error_max"] * (1 + 1e-4)
@@ -440,6 +440,8 @@ def test_every_row_of_the_atlas_search_is_read_by_move_draw_and_balance(slider_i
         assert drawn.returncode == 0 and out.read_bytes().startswith(b"\x89PNG"), drawn.stderr
     balanced = _cli("balance", "linkage", str(rows_jsonl), "--row", "2", "--density", "2", "--format", "json")
     assert balanced.returncode == 0, balanced.stderr
+    again = _cli("dimension", str(csv), "--linkage", str(rows_json), "--row", "3", "--budget", "1", "--format", "jsonl")
+    assert again.returncode == 0 and json.loads(again.stdout)["chain"] == rows[2]["chain"], again.stderr
     for command in (["move", str(rows_json), "--range"], ["draw", str(rows_jsonl), "--out", str(tmp_path / "x.png")]):
         refusal = _cli(*command)
         assert refusal.returncode == 2 and refusal.stderr == (

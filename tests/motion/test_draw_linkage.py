@@ -204,7 +204,9 @@ def test_row_goes_with_a_file_of_rows_alone(saved, tmp_path, capsys):
                            (["move", "--chain", chain, "--frame", "0", "--row", "1", "--range"], "not --chain"),
                            (["draw", str(saved), "--row", "1", "--out", out], alone),
                            (["move", str(saved), "--row", "1", "--range"], alone),
-                           (["balance", "linkage", str(saved), "--row", "1", "--density", "2"], alone)):
+                           (["balance", "linkage", str(saved), "--row", "1", "--density", "2"], alone),
+                           (["dimension", str(ROOT / "models" / "dimension_path.csv"), "--mechanism", chain, "--frame",
+                             "0", "--row", "1"], "it goes with --linkage ROWS.json")):
         assert main(command) == 2
         err = capsys.readouterr().err
         assert words in err and err.count("\n") == 1, err
