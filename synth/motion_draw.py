@@ -39,8 +39,8 @@ from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
 from .structure.joints import MESH, PRISMATIC, REVOLUTE
 
-__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_linkage", "draw_motion", "animate_motion",
-           "player_svg", "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
+__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_linkage", "draw_motion", "draw_motion_sheet",
+           "animate_motion", "player_svg", "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
 
 #: what a still picture and an animation may be written as
 PICTURE_SUFFIXES = (".png", ".svg")
@@ -668,6 +668,13 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     ['1', 'P']
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
+    elements = _motion_picture(motion, marks)
+    _write_still(elements, _Canvas(elements, size, 100), path, title or _title(motion.linkage), 100)
+
+
+def _motion_picture(motion: Motion, marks: np.ndarray | None) -> list[dict]:
+    """The elements of :func:`draw_motion`'s picture: the pose over its paths and coupler curves, the
+    ``marks`` as hollow circles, a scale bar under them."""
     linkage = motion.linkage
     if len(_frames(motion, 2)) == 0:
         raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
@@ -685,7 +692,60 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
         elements.append({"tag": "circle", "r": radius, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
     elements[:0] = _scale_bar(elements)  # under everything
-    _write_still(elements, _Canvas(elements, size, 100), path, title or _title(linkage), 100)
+    return elements
+
+
+def draw_motion_sheet(panels: list[tuple[Motion, np.ndarray | None, str]], out: str | Path, *, columns: int = 3,
+                      size: float = 3.6, dpi: int = 100) -> None:
+    """A sheet of :func:`draw_motion`'s pictures, one panel per ``(motion, marks, title)``, ``columns``
+    to a row, each ``size`` inches on its longer side and to its own scale (a scale bar in each): the
+    rows of an atlas search side by side.  PNG or SVG (both by matplotlib).
+
+    >>> import os, tempfile
+    >>> from PIL import Image
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
+    ...                    tracers={"P": (2, (2, 4))})
+    >>> out = os.path.join(tempfile.mkdtemp(), "rows.png")
+    >>> motion = sweep(four_bar, steps=37)
+    >>> draw_motion_sheet([(motion, None, "1"), (motion, None, "2"), (motion, None, "3")], out, columns=2)
+    >>> Image.open(out).size  # two columns of 3.6 in, two rows of 3.6 in under a 0.45 in title, at 100 dpi
+    (720, 810)
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .draw import check_pixels
+
+    path = _check_suffix(out, PICTURE_SUFFIXES, "a sheet of motions")
+    if not panels:
+        raise InvalidOption("nothing to draw: the sheet has no panel")
+    columns = min(columns, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    cell, strip = size, 0.45  # inches: a panel's drawing, and its title's strip above it
+    check_pixels(path, columns * cell, rows * (cell + strip), dpi)
+    fig = plt.figure(figsize=(columns * cell, rows * (cell + strip)), dpi=dpi)
+    try:
+        for k, (motion, marks, title) in enumerate(panels):
+            elements = _motion_picture(motion, marks)
+            canvas = _Canvas(elements, round(cell * dpi), dpi)
+            row, column = divmod(k, columns)
+            ax = fig.add_axes([column / columns, 1 - (row + 1) / rows, 1 / columns, cell / (cell + strip) / rows])
+            _draw_matplotlib(ax, elements, canvas, 0)
+            side = round(cell * dpi)  # every panel the same square, its drawing in the middle
+            dx, dy = (side - canvas.width) / 2, (side - canvas.height) / 2
+            ax.set_xlim(-dx, canvas.width + dx)
+            ax.set_ylim(canvas.height + dy, -dy)
+            fig.text((column + 0.5) / columns, 1 - (row * (cell + strip) + 0.06) / (rows * (cell + strip)), title,
+                     ha="center", va="top", fontsize=9)
+        save_figure(fig, path, dpi=dpi)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
+    finally:
+        plt.close(fig)
 
 
 def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, dpi: int) -> None:

@@ -23,7 +23,7 @@ import os
 import re
 import sys
 
-from .._argtypes import finite, number_range, output_file, picture_file, positive
+from .._argtypes import add_row, finite, number_range, output_file, picture_file, positive
 from .._output import number, pairs, save_linkage, write_document
 
 #: ``--range -90..90``: a negative range is a value, not an option
@@ -143,7 +143,8 @@ def add_commands(sub) -> None:
     lb = command("linkage", "counterweights that balance a dimensioned 1-DOF linkage's shaking force and its gravity "
                             "potential: a linkage file (move/dimension --save) with --density, or a TOML file with a "
                             "[linkage_balance] table", _linkage_problem, _table_linkage, "plot_linkage")
-    lb.add_argument("file", help="a linkage file (.json or .toml), or a TOML file with a [linkage_balance] table "
+    lb.add_argument("file", help="a linkage file (.json or .toml; an atlas search's rows with --row K), or a TOML "
+                                 "file with a [linkage_balance] table "
                                  "(its linkage: 'file' or the file's [linkage]; per-link masses or a density)")
     lb.add_argument("--density", type=finite, metavar="KG_PER_M",
                     help="the links as bars of this many kg per metre between every two of their joints")
@@ -160,6 +161,7 @@ def add_commands(sub) -> None:
     lb.add_argument("--save", type=_saved, metavar="OUT.json|OUT.toml",
                     help="write the balanced linkage: its counterweights as tracers CW<link> (draw and move show them) "
                          "and the masses in [linkage_balance] (balance linkage OUT finds none needed); .toml: a scene")
+    add_row(lb)
     common(lb)
 
     so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph], "
@@ -387,7 +389,7 @@ def _linkage_problem(args):
     options = {key: getattr(args, key, None) for key in OPTIONS}
     table, source = None, args.file
     if args.file.lower().endswith((".toml", ".json")):
-        doc = load_toml(args.file) if args.file.lower().endswith(".toml") else _load_json(args.file)
+        doc = load_toml(args.file) if args.file.lower().endswith(".toml") else _load_json(args.file, args.row)
         if isinstance(doc, dict) and "linkage_balance" in doc:
             table = linkage_table(doc, args.file)
             if table.file is not None and "linkage" in doc:
@@ -403,18 +405,18 @@ def _linkage_problem(args):
         if both:
             raise InvalidOption(f"{both[0]} is also given in {args.file}'s [linkage_balance]: give it in one place")
         options = {key: getattr(table, key) if options[key] is None else options[key] for key in OPTIONS}
-    args.linkage, args.options = read_linkage(source), options  # kept for --save
+    args.linkage, args.options = read_linkage(source, row=args.row), options  # kept for --save
     return linkage_problem(args.linkage, options, None if table is None else table.links, os.path.basename(source),
                            args.file, None if table is None else table.counterweights)
 
 
-def _load_json(path: str):
+def _load_json(path: str, row: int | None):
     """A JSON file's content (a linkage file, or one 'balance linkage --save' wrote with its masses)."""
     import json
 
     from synth.motion import read_linkage
 
-    read_linkage(path)  # the file's own sentence when it is no linkage or no JSON
+    read_linkage(path, row=row)  # the file's own sentence when it is no linkage or no JSON (or --row is amiss)
     with open(path, encoding="utf-8") as fh:
         return json.load(fh)
 

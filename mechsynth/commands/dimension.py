@@ -31,7 +31,7 @@ import sys
 
 from mechbase import finite_pair
 
-from .._argtypes import finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
+from .._argtypes import add_row, finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
 from .._output import pairs, save_linkage, write_document
 
 __all__ = ["add_commands"]
@@ -127,11 +127,12 @@ def add_commands(sub) -> None:
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
-                   "(the result with its linkage) or jsonl (one row)")
+                   "(the result with its linkage) or jsonl (one row; with --db a row per topology, each with its "
+                   "linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
                    "and scene read; or .json)")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
-                   "(.png or .svg)")
+                   "(.png or .svg); with --db a sheet, a panel per row")
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
                    "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
     p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
@@ -139,6 +140,7 @@ def add_commands(sub) -> None:
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
+    add_row(p)
     p.set_defaults(run=_run)
 
 
@@ -169,6 +171,9 @@ def _check(args) -> None:
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
+    if args.row is not None and not args.linkage:
+        raise InvalidOption("--row picks the start of the search from a file of an atlas search's rows: it goes with "
+                            "--linkage ROWS.json")
     if args.mechanism and args.frame is None:
         raise InvalidOption("--mechanism needs --frame F: the fixed link")
     if args.crank and args.rocker:
@@ -197,7 +202,7 @@ def _mechanism(args):
     from synth.motion import read_linkage
 
     if args.linkage:
-        return read_linkage(args.linkage)
+        return read_linkage(args.linkage, row=args.row)
     chain = Chain.parse(args.mechanism)
     return mechanism_of(chain, args.frame, args.input)
 
@@ -231,7 +236,7 @@ def _run(args) -> int:
                                   min_transmission=math.radians(args.min_transmission or 0.0),
                                   max_ratio=args.max_ratio, max_length=args.max_length, pivots=args.pivots,
                                   reach=args.reach, **_placing(args))
-        return run(args, target, constraints, save=_save, draw=_draw)
+        return run(args, target, constraints, save=_save, draw=_draw_rows)
     mechanism = _mechanism(args)
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
@@ -368,10 +373,9 @@ def _save(result, path: str) -> None:
                  f"points, error max {result.error_max:.6g} (relative {result.relative_max:.3g}).")
 
 
-def _draw(result, path: str) -> None:
-    """The mechanism in its pose over the target's points and the traced curve."""
+def _swept(result):
+    """The found mechanism swept over its range (721 steps), and the target's points to mark (none for a function)."""
     from synth.motion import motion_range, sweep
-    from synth.motion_draw import draw_motion
 
     lk = result.linkage
     reach = motion_range(lk)
@@ -379,7 +383,24 @@ def _draw(result, path: str) -> None:
         motion = sweep(lk, steps=721)
     else:
         motion = sweep(lk, steps=721, start=reach.limits[0], stop=reach.limits[1])
-    marks = None if result.kind == "function" else result.target.points
-    draw_motion(motion, path, marks=marks,
-                title=f"{lk.chain.compact()}: {result.kind} target" + (" (circles)" if marks is not None else "")
-                + f", error max {result.error_max:.3g}")
+    return motion, None if result.kind == "function" else result.target.points
+
+
+def _draw(result, path: str) -> None:
+    """The mechanism in its pose over the target's points and the traced curve."""
+    from synth.motion_draw import draw_motion
+
+    motion, marks = _swept(result)
+    circles = " (circles)" if marks is not None else ""
+    draw_motion(motion, path, marks=marks, title=f"{result.linkage.chain.compact()}: {result.kind} target{circles}, "
+                f"error max {result.error_max:.3g}")
+
+
+def _draw_rows(rows: list, path: str) -> None:
+    """An atlas search's rows (``(rank, result)``, best first) on one sheet: each row's mechanism in its pose
+    over the target's points and its curve, titled with its rank, links and error."""
+    from synth.motion_draw import draw_motion_sheet
+
+    draw_motion_sheet([(*_swept(result), f"{rank}: {result.linkage.chain.compact()}, frame {result.linkage.frame}\n"
+                        f"{result.linkage.chain.links} links, error max {result.error_max:.3g}")
+                       for rank, result in rows], path)

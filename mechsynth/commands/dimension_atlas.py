@@ -50,8 +50,8 @@ def links_range(text: str | None) -> tuple[int, int] | None:
 
 
 def run(args, target, constraints, *, save, draw) -> int:
-    """Search the atlas for the target; print a row per topology; ``save`` and ``draw`` the best (the
-    command's own writers of a result)."""
+    """Search the atlas for the target; print a row per topology; ``save`` the best and ``draw`` every row on
+    one sheet (the command's own writers: of a result, and of ``(rank, result)`` pairs)."""
     from synth.atlas import search_atlas
     from synth.errors import flag
 
@@ -63,7 +63,7 @@ def run(args, target, constraints, *, save, draw) -> int:
     rows = []
     for rank, match in enumerate(found.matches, 1):
         row = {"rank": rank, **match.row()}
-        if args.format == "json":
+        if args.format in ("json", "jsonl"):  # rows that move, draw and balance linkage read (--row K)
             row["linkage"] = match.result.linkage.to_dict()
         rows.append(row)
     if not found.index_curves:
@@ -84,6 +84,6 @@ def run(args, target, constraints, *, save, draw) -> int:
         save(best.result, args.save)
         print(f"linkage -> {args.save}", file=sys.stderr)
     if args.out:
-        draw(best.result, args.out)
-        print(f"picture -> {args.out}", file=sys.stderr)
+        draw([(rank, match.result) for rank, match in enumerate(found.matches, 1)], args.out)
+        print(f"picture of {len(rows)} row{'s' * (len(rows) != 1)} -> {args.out}", file=sys.stderr)
     return 0

@@ -30,7 +30,7 @@ import math
 import os
 import sys
 
-from .._argtypes import finite, mechanism_of, output_file, positive, whole
+from .._argtypes import add_row, finite, mechanism_of, output_file, positive, whole
 from .._output import pairs, save_linkage, write_document, write_rows
 
 __all__ = ["add_commands"]
@@ -78,7 +78,8 @@ def add_commands(sub) -> None:
     p = sub.add_parser("move", help="move a dimensioned mechanism: positions, velocities, range, coupler curves, "
                                     "animations")
     p.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
-                   help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers)")
+                   help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers), or "
+                        "the rows of an atlas search (.json or .jsonl) with --row K")
     p.add_argument("--chain", help="any planar mechanism, as a joint list '0-1 1-2 2-3 3-0', dimensioned by its drawing")
     p.add_argument("--db", help="an atlas: the chain with --id, dimensioned by its drawing")
     p.add_argument("--id", help="with --db: the chain's id (12 hex digits, as listings and the site show it)")
@@ -110,6 +111,7 @@ def add_commands(sub) -> None:
     p.add_argument("--save", type=_saved, metavar="FILE",
                    help="write the linkage (as dimensioned, e.g. from a drawing) to edit and reuse: .toml (a scene "
                         "that move, draw and scene read) or .json")
+    add_row(p)
     p.set_defaults(run=_run)
 
 
@@ -124,6 +126,9 @@ def _check(args) -> None:
                             + (f" (not {' and '.join(sources)})" if sources else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --chain or --db; a linkage file names its frame and inputs")
+    if args.row is not None and not args.linkage:
+        raise InvalidOption("--row picks a row of a file of an atlas search's rows: give that file, not "
+                            + ("--chain" if args.chain else "--db"))
     if args.id is not None and not args.db:
         raise InvalidOption("--id names a chain of an atlas: give --db too")
     if args.db and args.id is None:
@@ -173,7 +178,7 @@ def _linkage(args):
     from synth import linkage_from_layout
 
     if args.linkage:
-        return read_linkage(args.linkage)
+        return read_linkage(args.linkage, row=args.row)
     if args.chain:
         chain = Chain.parse(args.chain)
     else:

@@ -194,3 +194,19 @@ def test_a_slider_crank_is_drawn_with_its_links_numbered(tmp_path):
     assert main(["draw", str(ROOT / "models" / "motion_slider_crank.toml"), "--out", str(out)]) == 0
     svg = out.read_text()
     assert len(_pins(svg)) == 3 and all(f">{link}</text>" in svg for link in range(4))
+
+
+def test_row_goes_with_a_file_of_rows_alone(saved, tmp_path, capsys):
+    """--row picks a row of an atlas search's rows: with a chain, an atlas or a file of one linkage it is refused
+    in one sentence (exit 2), by draw, move and balance linkage alike."""
+    out, chain, alone = str(tmp_path / "x.png"), "0-1 1-2 2-3 3-0", "holds one linkage: give it without --row"
+    for command, words in ((["draw", "--chain", chain, "--row", "1", "--out", out], "not a chain or an atlas"),
+                           (["move", "--chain", chain, "--frame", "0", "--row", "1", "--range"], "not --chain"),
+                           (["draw", str(saved), "--row", "1", "--out", out], alone),
+                           (["move", str(saved), "--row", "1", "--range"], alone),
+                           (["balance", "linkage", str(saved), "--row", "1", "--density", "2"], alone),
+                           (["dimension", str(ROOT / "models" / "dimension_path.csv"), "--mechanism", chain, "--frame",
+                             "0", "--row", "1"], "it goes with --linkage ROWS.json")):
+        assert main(command) == 2
+        err = capsys.readouterr().err
+        assert words in err and err.count("\n") == 1, err
