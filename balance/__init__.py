@@ -43,12 +43,15 @@ _WHERE = {
     "SliderProblem": "problems.slider", "SliderBalance": "problems.slider", "DynamicsCheck": "problems.slider",
     "PantographProblem": "problems.pantograph", "PantographBalance": "problems.pantograph",
     "solve_compare": "problems", "CompareProblem": "problems.compare", "Comparison": "problems.compare",
+    "LinkageProblem": "problems.linkage", "LinkageBalance": "problems.linkage", "BalanceState": "problems.linkage",
     # model
     "Arm": "model.arm", "Link": "model.arm", "Load": "model.arm", "Coordinate": "model.arm",
     "ArmModel": "model.arm", "gear_ratio_for_accuracy": "model.arm",
     "HarmonicTerm": "model.potential", "merge_terms": "model.potential",
     "UrdfArm": "model.urdf", "load_urdf": "model.urdf", "Pantograph": "model.pantograph",
     "DHLink": "model.urdf", "urdf_from_dh": "model.urdf",
+    "LinkBody": "model.linkage", "bar_bodies": "model.linkage", "first_moment": "model.linkage",
+    "body_arrays": "model.linkage", "moment_rate": "model.linkage",
     # devices
     "SpringBounds": "devices.fit", "FitResult": "devices.fit", "fit_spring": "devices.fit",
     "METHODS": "devices.fit", "NORMS": "devices.fit", "DEFAULT_METHOD": "devices.fit", "DEVICES": "devices.fit",
@@ -60,11 +63,12 @@ _WHERE = {
     "verify_counter_mass": "devices.countermass",
     "Counterweights": "devices.counterweights", "counterweights": "devices.counterweights",
     "place_counterweights": "devices.counterweights",
+    "LinkCounterweight": "devices.link_counterweights", "fit_counterweights": "devices.link_counterweights",
     # reading a problem's tables and writing its results
-    "parse": "schema", "arm_problem": "problems.arm", "pantograph_problem": "problems.pantograph",
+    "parse": "schema", "linkage_table": "schema", "arm_problem": "problems.arm", "pantograph_problem": "problems.pantograph",
     "compare_problem": "problems.compare", "DEFAULT_GRID": "devices.fit", "format_form": "model.potential",
     "plot_spring": "plots", "plot_arm": "plots", "plot_prismatic": "plots", "plot_pantograph": "plots",
-    "plot_compare": "plots",
+    "plot_compare": "plots", "plot_linkage": "plots",
     # the rest
     "Extreme": "extremes", "box_extremes": "extremes", "TooMuchWork": "budget",
     "BalanceError": "errors", "InvalidInput": "errors", "InvalidArm": "errors", "InvalidRange": "errors",

@@ -16,7 +16,7 @@ from .model.potential import terms_forces
 
 ZERO_SHARE = 1e-9  # a swept curve below this share of the joint's largest torque is rounding, drawn flat
 
-__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph", "plot_compare"]
+__all__ = ["plot_spring", "plot_arm", "plot_prismatic", "plot_pantograph", "plot_compare", "plot_linkage"]
 
 
 def _plt():
@@ -381,6 +381,73 @@ def plot_compare(result, path: str, n: int = 241) -> str:
 
         title += "\n" + "\n".join(textwrap.fill(u, 24 * max(cols, 4)) for u in unavailable)
     fig.suptitle(title, fontsize=10)
+    save_figure(fig, path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_linkage(result, path: str, n: int = 361) -> str:
+    """A :class:`~balance.problems.linkage.LinkageBalance`: left, the shaking force's amplitude per ω² over
+    the input before and after (or, where the range ends at a dead position, the first moment's distance
+    from its value at the range's start); right, the linkage in its pose with its centres of mass, the
+    counterweights (area ∝ mass) and the path of the centre of mass before and after."""
+    from .model.linkage import first_moment
+
+    plt = _plt()
+    problem = result.problem
+    lo, hi = result.input_range
+    q = np.linspace(lo, hi, n)
+    motion = problem.motion(q)
+    revolute = result.input_kind == "revolute"
+    x = np.degrees(q) if revolute else q
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.6), constrained_layout=True)
+    for balanced, style, label in ((False, "C3-", "before"), (True, "C0--", "after")):
+        mass, moment = result.masses(balanced)
+        if problem.dead_ends:
+            m = first_moment(mass, moment, motion)
+            ax1.plot(x, np.hypot(*(m - m[0]).T), style, lw=1.8, label=label)
+        else:
+            ax1.plot(x, np.hypot(*first_moment(mass, moment, motion, order=2).T), style, lw=1.8, label=label)
+        com = first_moment(mass, moment, motion) / mass.sum()
+        ax2.plot(com[:, 0], com[:, 1], style, lw=1.2, marker="." if balanced else None, markevery=[0],
+                 label=f"centre of mass, {label}")
+    ax1.set_xlabel(f"input {result.input} ({'deg' if revolute else 'm'})")
+    ax1.set_ylabel("|M(q) − M(start)| (kg·m)" if problem.dead_ends else
+                   f"shaking force per ω² ({result.shaking_force_unit})")
+    b, a = result.before, result.after
+    value = (lambda v: "—" if v is None else f"{v:.4g}")
+    first = (f"first moment's excursion {b.moment_excursion:.4g} → {a.moment_excursion:.3g} kg·m (dead positions at the "
+             "range's ends)" if problem.dead_ends else
+             f"shaking force per ω² {value(b.shaking_force)} → {value(a.shaking_force)}")
+    ax1.set_title(f"{result.name}: {first}\ncentre of mass's excursion {b.com_excursion:.3g} → {a.com_excursion:.3g} m",
+                  fontsize=9)
+    ax1.legend(loc="best", fontsize=8)
+    ax1.grid(alpha=0.3)
+    for body in result.links:
+        pts = np.array([p for _, p in body.joints], dtype=float)
+        ring = np.vstack([pts, pts[:1]]) if len(pts) > 2 else pts
+        ax2.plot(ring[:, 0], ring[:, 1], "k-", lw=2.5, solid_capstyle="round")
+        ax2.plot(pts[:, 0], pts[:, 1], "o", ms=5, mfc="white", mec="k")
+        if body.mass > 0:
+            ax2.plot(*body.centre, "k+", ms=8)
+        if body.pivot is not None:
+            ax2.plot(*body.joint(body.pivot), "k^", ms=10, mfc="0.7")
+        ax2.annotate(str(body.link), np.mean(pts, axis=0), fontsize=9, color="0.3", xytext=(4, 4),
+                     textcoords="offset points")
+    # the counterweights found (blue) and those the links carried already (grey), each on a rod to its link's joint
+    weights = [(c.at, c.mass, dict(next(bd for bd in result.links if bd.link == c.link).joints)[c.joint], "C0")
+               for c in result.counterweights] + [(b.centre, b.mass, b.joint(b.anchor), "0.55") for b in result.carried]
+    biggest = max([m for _, m, _, _ in weights] + [1e-300])
+    for at, mass, joint, colour in weights:
+        if mass > 0:
+            ax2.plot(*zip(at, joint), "-", color=colour, lw=1.5)
+            ax2.scatter(*at, s=60 + 240 * mass / biggest, color=colour, zorder=5)
+            ax2.annotate(f"{mass:.3g} kg", at, fontsize=8, color=colour, xytext=(6, -10), textcoords="offset points")
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_title("the pose: links (black), their centres (+), frame pivots (▲),\ncounterweights (blue, area ∝ mass"
+                  + ("; grey: carried already)" if result.carried else ")"), fontsize=9)
+    ax2.legend(loc="best", fontsize=8)
+    ax2.grid(alpha=0.3)
     save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path

@@ -32,7 +32,7 @@ from .errors import InvalidInput, SchemaError
 __all__ = [
     "parse", "load_toml", "show", "check_seed", "OWNED_BY_RUNNER",
     "ArmTable", "LinkTable", "LoadTable", "SpringTable", "SpringDesignTable", "SliderTable",
-    "PantographTable", "PayloadTable", "CompareTable",
+    "PantographTable", "PayloadTable", "CompareTable", "LinkMassTable", "LinkageBalanceTable", "linkage_table",
 ]
 
 #: top-level tables the scene runner owns; balance ignores them
@@ -271,6 +271,61 @@ class CompareTable(_Table):
     acceleration: Annotated[float, Field(ge=0)] = 1.0
     samples: Count = 1000
     seed: Seed = 0
+
+
+# -------------------------------------------------------------------------- linkage
+_POINT = expect("a point [x, y]", only=("too_short", "too_long", "list_type"))
+Point = Annotated[list[float], Field(min_length=2, max_length=2), _POINT]
+
+
+class LinkMassTable(_Table):
+    """One link's mass (kg), centre of mass [x, y] (m) in the linkage's pose and, for the shaking moment,
+    its moment of inertia about that centre (kg·m²)."""
+
+    link: int
+    mass: float
+    centre: Point
+    inertia: float | None = None
+
+
+class CarriedWeightTable(_Table):
+    """A counterweight a link already carries (as ``balance linkage --save`` writes it): ``mass`` kg at ``at``
+    [x, y] (m) in the linkage's pose."""
+
+    link: int
+    mass: float
+    at: Point
+
+
+class LinkageBalanceTable(_Table):
+    """``[linkage_balance]``: the linkage (``file``, else the file's ``[linkage]``), its masses (``density``
+    of bars, or per-link ``links``), the counterweights the links already carry (``counterweights``) and the
+    options of the counterweights to add."""
+
+    file: str | None = None
+    density: float | None = None
+    links: list[LinkMassTable] | None = None
+    counterweights: list[CarriedWeightTable] | None = None
+    on: list[int] | None = None
+    counter_mass: float | None = None
+    counter_radius: float | None = None
+    gravity: Point | None = None
+    range: Pair | None = None
+    samples: Annotated[int, Field(ge=9, le=100_000)] | None = None
+
+
+def linkage_table(doc: Mapping[str, Any], source: str = "<input>") -> LinkageBalanceTable:
+    """The ``[linkage_balance]`` table of a document that may also hold its ``[linkage]``.
+
+    >>> linkage_table({"linkage_balance": {"file": "L.json", "density": 2}}).density
+    2.0
+    """
+    for key in doc:
+        if key not in ("linkage_balance", "linkage") and key not in OWNED_BY_RUNNER:
+            raise SchemaError(f"{source}: the file has an unknown table [{key}] (allowed here: [linkage_balance], "
+                              f"[linkage], {', '.join(f'[{k}]' for k in sorted(OWNED_BY_RUNNER))}).")
+    return LinkageBalanceTable.read(doc["linkage_balance"], source=source, where="[linkage_balance]",
+                                    error=SchemaError)
 
 
 TABLES: dict[str, type[_Table]] = {

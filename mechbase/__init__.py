@@ -17,7 +17,7 @@ from .pairs import finite_pair
 from .ranges import RangeSyntax, parse_range
 from .rows import Row, as_row
 from .text import show
-from .toml import read_toml, read_toml_text
+from .toml import read_toml, read_toml_text, toml_value
 
-__all__ = ["ProjectError", "RangeSyntax", "parse_range", "finite_pair", "Row", "as_row", "show", "read_toml", "read_toml_text", "read_text",
+__all__ = ["ProjectError", "RangeSyntax", "parse_range", "finite_pair", "Row", "as_row", "show", "read_toml", "read_toml_text", "toml_value", "read_text",
            "save_figure"]

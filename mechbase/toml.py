@@ -1,4 +1,4 @@
-"""TOML files read in one way, every failure one sentence that names the file.
+"""TOML files read in one way, every failure one sentence that names the file; values written back.
 
 The caller says what the file is (``what``: "scene file", "grid file"…) and which error to raise;
 a directory given where a file is wanted can carry a hint of what to do instead.
@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["read_toml", "read_toml_text"]
+__all__ = ["read_toml", "read_toml_text", "toml_value"]
 
 
 def read_toml(path: str | Path, *, error: type[Exception], what: str = "file", directory: str = "") -> dict:
@@ -54,3 +54,24 @@ def read_toml_text(text: str, *, error: type[Exception], source: str) -> dict:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise error(f"{source}: not valid TOML ({exc}).") from None
+
+
+def toml_value(value) -> str:
+    """``value`` (strings, booleans, numbers, lists and dicts of them, as JSON holds) written as a TOML value:
+    a dict as an inline table, so that ``key = toml_value(v)`` is one line of a table that ``tomllib`` reads back.
+
+    >>> print(toml_value({"P": {"link": 2, "at": [2.5, 4.5]}, "on": True, "name": "Watt"}))
+    { "P" = { "link" = 2, "at" = [2.5, 4.5] }, "on" = true, "name" = "Watt" }
+    """
+    import json
+
+    if isinstance(value, str):
+        # a JSON string is a TOML basic string, escapes included, once DEL (a control character to TOML) is escaped
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(x) for x in value) + "]"
+    return "{ " + ", ".join(f"{toml_value(str(k))} = {toml_value(x)}" for k, x in value.items()) + " }"

@@ -14,7 +14,7 @@ from mechbase import RangeSyntax, parse_range
 
 __all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
            "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS", "GivenOnce", "GIVEN",
-           "YesOrNo"]
+           "YesOrNo", "add_row"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
@@ -83,6 +83,18 @@ def positive(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number ≥ 1, not {value}")
     return value
+
+
+def add_row(parser) -> None:
+    """``--row K``: which row of an atlas search's rows (``dimension --db … --format json`` or ``jsonl``) is
+    the linkage a command reads (:func:`synth.motion.read_linkage`).
+
+    >>> p = argparse.ArgumentParser(); add_row(p); p.parse_args(["--row", "2"]).row
+    2
+    """
+    parser.add_argument("--row", type=positive, metavar="K",
+                        help="with a file of an atlas search's rows (dimension --db … --format json or jsonl): the "
+                             "linkage of row K (1 = the best, as the table ranks them)")
 
 
 def real(text: str, what: str = "a number") -> float:

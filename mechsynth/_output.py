@@ -9,12 +9,13 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 import sys
 from collections.abc import Iterable, Sequence
 from typing import Any
 
 __all__ = ["FORMATS", "COUNT_FORMATS", "write_rows", "write_count", "nothing_found", "write_document", "pairs",
-           "number"]
+           "number", "save_linkage"]
 
 FORMATS = ("table", "jsonl", "csv", "json")
 COUNT_FORMATS = ("json", "table", "jsonl", "csv")  # --count: one JSON object by default (DESIGN contract)
@@ -167,3 +168,39 @@ def pairs(rows: Sequence[tuple[str, Any]]) -> str:
     """
     width = max(len(k) for k, _ in rows)
     return "\n".join(f"{k:<{width}}  {number(v)}" for k, v in rows)
+
+
+def save_linkage(linkage, path: str, *, source: str, description: str, comment: str | None = None,
+                 tables: dict | None = None, compute: tuple = ("motion",)) -> None:
+    """Write ``linkage`` to ``path``: as JSON (``.json``), or as a TOML scene (``.toml``) whose ``[linkage]``
+    table ``move`` and ``draw`` read and ``scene`` runs (``compute``), under a ``comment`` line.  ``tables``:
+    more tables beside it (name → dict; in JSON the linkage is then under ``"linkage"``).
+
+    >>> import os, tempfile
+    >>> from synth.motion import Linkage, read_linkage
+    >>> lk = Linkage.from_dict({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"],
+    ...                         "points": {"0-1": [0, 0], "1-2": [1, 0], "2-3": [3, 2], "0-3": [4, 0]}})
+    >>> path = os.path.join(tempfile.mkdtemp(), "four_bar.toml")
+    >>> save_linkage(lk, path, source="a doctest", description="a four-bar")
+    >>> print(open(path).read().split("[linkage]")[1].strip().splitlines()[:2])
+    ['chain = "0-1 0-3 1-2 2-3"', 'frame = 0']
+    >>> read_linkage(path).to_dict() == lk.to_dict()
+    True
+    """
+    from mechbase import toml_value
+
+    d = linkage.to_dict()
+    with open(path, "w", encoding="utf-8") as fh:
+        if path.lower().endswith(".json"):
+            json.dump({"linkage": d} | tables if tables else d, fh, indent=2)
+            fh.write("\n")
+            return
+        name = os.path.splitext(os.path.basename(path))[0]
+        if comment:
+            fh.write(f"# {comment}\n\n")
+        fh.write(f"[scene]\nname = {toml_value(name)}\ndescription = {toml_value(description)}\n"
+                 f"source = {toml_value(source)}\ncompute = {toml_value(list(compute))}\n")
+        for table, content in {"linkage": d, **(tables or {})}.items():
+            fh.write(f"\n[{table}]\n")
+            for key, value in content.items():
+                fh.write(f"{key} = {toml_value(value)}\n")

@@ -39,8 +39,8 @@ from .motion import Linkage, Motion, joint_name, linkage_from_pose
 from .structure.chain import Mechanism
 from .structure.joints import MESH, PRISMATIC, REVOLUTE
 
-__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_linkage", "draw_motion", "animate_motion",
-           "player_svg", "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
+__all__ = ["linkage_from_layout", "linkage_svg", "motion_svg", "draw_linkage", "draw_motion", "draw_motion_sheet",
+           "animate_motion", "player_svg", "PICTURE_SUFFIXES", "ANIMATION_SUFFIXES"]
 
 #: what a still picture and an animation may be written as
 PICTURE_SUFFIXES = (".png", ".svg")
@@ -391,12 +391,44 @@ def _box(elements: list[dict]) -> tuple[np.ndarray, np.ndarray]:
     return pts.min(axis=0), pts.max(axis=0)
 
 
-class _Canvas:
-    """World coordinates to pixels: the box around every element at every frame, ``size`` pixels on
-    its longer side, y upwards on the page."""
+#: the drawings' text: 9 pt bold (12 px of an SVG at the CSS inch's 96 px), a line's height and depth in ems
+_FONT_PT, _LINE_EM, _DEPTH_EM = 9.0, 1.25, 0.3
 
-    def __init__(self, elements: list[dict], size: int):
+
+def _text_size(text: str, per_inch: float) -> tuple[float, float, float]:
+    """Width, height above the anchor and depth below it (px at ``per_inch``) of a drawing's text: the
+    width as matplotlib sets the bold sans-serif, a whole line's height (matplotlib anchors a name's box
+    bottom, an SVG its baseline: the box covers both)."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextToPath
+
+    font = FontProperties(family="sans-serif", weight="bold", size=_FONT_PT)
+    width = TextToPath().get_text_width_height_descent(text, font, ismath=False)[0]
+    em = per_inch / 72
+    return width * em, _LINE_EM * _FONT_PT * em, _DEPTH_EM * _FONT_PT * em
+
+
+class _Canvas:
+    """World coordinates to pixels: the box around every element at every frame, the texts' boxes
+    whole (their size in pixels fixed, ``per_inch`` to the inch), ``size`` pixels on its longer side,
+    y upwards on the page."""
+
+    def __init__(self, elements: list[dict], size: int, per_inch: float = 96):
         lo, hi = _box(elements)
+        texts = [(e["frames"].reshape(-1, 2), _text_size(e["text"], per_inch)) for e in elements if e["tag"] == "text"]
+        shape = lo, hi
+        for _ in range(20):  # the texts widen the box, which shrinks the scale, which widens the texts
+            span = max(float((hi - lo).max()), 1e-9)
+            scale = size / (1.12 * span)
+            grown = [shape[0], shape[1]]
+            for at, (w, h, d) in texts:
+                ok = at[np.isfinite(at).all(axis=1)]
+                if len(ok):
+                    grown += [ok.min(axis=0) - np.array([0.0, d / scale]), ok.max(axis=0) + np.array([w, h]) / scale]
+            wider_lo, wider_hi = np.min(grown, axis=0), np.max(grown, axis=0)
+            if np.allclose((wider_lo, wider_hi), (lo, hi), rtol=0, atol=1e-6 * span):
+                break
+            lo, hi = wider_lo, wider_hi
         span = max(float((hi - lo).max()), 1e-9)
         margin = 0.06 * span
         self.lo, self.scale = lo - margin, size / (span + 2 * margin)
@@ -621,20 +653,28 @@ def _figure(canvas: _Canvas, dpi: int, title: str):
 def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str | None = None,
                 marks: np.ndarray | None = None) -> None:
     """The mechanism in its pose with every tracer's coupler curve (coloured, labelled) and the
-    paths of its moving pins (grey), to a PNG or SVG file; ``marks`` (N, 2) are drawn as hollow
-    circles over them (the points a synthesis was asked to pass).
+    paths of its moving pins (grey), to scale (a scale bar of a round length under it), to a PNG or
+    SVG file; ``marks`` (N, 2) are drawn as hollow circles over them (the points a synthesis was
+    asked to pass).
 
-    >>> import os, tempfile
+    >>> import os, re, tempfile
     >>> from synth.structure.chain import Chain, Mechanism
     >>> from synth.motion import sweep
     >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
     ...                    tracers={"P": (2, (2, 4))})
     >>> out = os.path.join(tempfile.mkdtemp(), "coupler.svg")
     >>> draw_motion(sweep(four_bar, steps=37), out)
-    >>> ">P</text>" in open(out).read()
-    True
+    >>> re.findall(r">([^<]+)</text>", open(out).read())  # the scale bar (1 length unit), the tracer's name
+    ['1', 'P']
     """
     path = _check_suffix(out, PICTURE_SUFFIXES, "a picture of a motion")
+    elements = _motion_picture(motion, marks)
+    _write_still(elements, _Canvas(elements, size, 100), path, title or _title(motion.linkage), 100)
+
+
+def _motion_picture(motion: Motion, marks: np.ndarray | None) -> list[dict]:
+    """The elements of :func:`draw_motion`'s picture: the pose over its paths and coupler curves, the
+    ``marks`` as hollow circles, a scale bar under them."""
     linkage = motion.linkage
     if len(_frames(motion, 2)) == 0:
         raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
@@ -642,10 +682,70 @@ def draw_motion(motion: Motion, out: str | Path, *, size: int = 600, title: str 
     keep = np.unique(np.linspace(0, motion.steps - 1, min(2000, motion.steps)).round().astype(int))
     elements = _elements(linkage, joints, angles, tracers, _paths(motion),  # the pose, over its paths
                          reach=(motion.joints[keep], motion.angles[keep]))
-    for xy in np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float):
-        elements.append({"tag": "circle", "r": 0.014 * linkage.scale, "frames": xy[None, None], "static": True,
+    marks = np.zeros((0, 2)) if marks is None else np.asarray(marks, dtype=float).reshape(-1, 2)
+    radius = 0.014 * linkage.scale
+    if len(marks) > 1:  # no wider than a third of the nearest two marks' gap (72 points of a closed path, their
+        gaps = np.hypot(*(marks[:, None] - marks[None]).transpose(2, 0, 1))  # circles overlapping, hid its curve)
+        np.fill_diagonal(gaps, np.inf)
+        radius = min(radius, max(gaps.min() / 3, 0.004 * linkage.scale))
+    for xy in marks:
+        elements.append({"tag": "circle", "r": radius, "frames": xy[None, None], "static": True,
                          "style": {"fill": "none", "stroke": _MARK, "stroke-width": 1.6}})
-    _write_still(elements, _Canvas(elements, size), path, title or _title(linkage), 100)
+    elements[:0] = _scale_bar(elements)  # under everything
+    return elements
+
+
+def draw_motion_sheet(panels: list[tuple[Motion, np.ndarray | None, str]], out: str | Path, *, columns: int = 3,
+                      size: float = 3.6, dpi: int = 100) -> None:
+    """A sheet of :func:`draw_motion`'s pictures, one panel per ``(motion, marks, title)``, ``columns``
+    to a row, each ``size`` inches on its longer side and to its own scale (a scale bar in each): the
+    rows of an atlas search side by side.  PNG or SVG (both by matplotlib).
+
+    >>> import os, tempfile
+    >>> from PIL import Image
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.motion import sweep
+    >>> four_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3, 3]],
+    ...                    tracers={"P": (2, (2, 4))})
+    >>> out = os.path.join(tempfile.mkdtemp(), "rows.png")
+    >>> motion = sweep(four_bar, steps=37)
+    >>> draw_motion_sheet([(motion, None, "1"), (motion, None, "2"), (motion, None, "3")], out, columns=2)
+    >>> Image.open(out).size  # two columns of 3.6 in, two rows of 3.6 in under a 0.45 in title, at 100 dpi
+    (720, 810)
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .draw import check_pixels
+
+    path = _check_suffix(out, PICTURE_SUFFIXES, "a sheet of motions")
+    if not panels:
+        raise InvalidOption("nothing to draw: the sheet has no panel")
+    columns = min(columns, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    cell, strip = size, 0.45  # inches: a panel's drawing, and its title's strip above it
+    check_pixels(path, columns * cell, rows * (cell + strip), dpi)
+    fig = plt.figure(figsize=(columns * cell, rows * (cell + strip)), dpi=dpi)
+    try:
+        for k, (motion, marks, title) in enumerate(panels):
+            elements = _motion_picture(motion, marks)
+            canvas = _Canvas(elements, round(cell * dpi), dpi)
+            row, column = divmod(k, columns)
+            ax = fig.add_axes([column / columns, 1 - (row + 1) / rows, 1 / columns, cell / (cell + strip) / rows])
+            _draw_matplotlib(ax, elements, canvas, 0)
+            side = round(cell * dpi)  # every panel the same square, its drawing in the middle
+            dx, dy = (side - canvas.width) / 2, (side - canvas.height) / 2
+            ax.set_xlim(-dx, canvas.width + dx)
+            ax.set_ylim(canvas.height + dy, -dy)
+            fig.text((column + 0.5) / columns, 1 - (row * (cell + strip) + 0.06) / (rows * (cell + strip)), title,
+                     ha="center", va="top", fontsize=9)
+        save_figure(fig, path, dpi=dpi)
+    except OSError as exc:
+        raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
+    finally:
+        plt.close(fig)
 
 
 def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, dpi: int) -> None:
@@ -666,22 +766,65 @@ def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, 
         raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None
 
 
+#: a link number's box (width per digit, height) as a share of the drawing's size, at the default size
+_NUMBER_BOX = np.array([0.026, 0.036])
+
+
 def _link_numbers(linkage: Linkage) -> list[dict]:
     """Each link's number (the chain's numbering) beside the middle of its pins in the pose, as a
-    chain's drawing numbers its links."""
+    chain's drawing numbers its links: of a few places beside it (either side of a bar, along it; about
+    a plate's middle), the first clear of every pin, ground pivot, bar and number drawn, else the
+    clearest (a short crank's number once stood on its ground pivot, the frame's on a pivot's base)."""
+    scale = linkage.scale
+    lift = 0.045 * scale
+    p = linkage.points
+    pin = 0.018 * scale
+    # what a number must not stand on: each link's bars (the frame's dashed line), ground pivots, pins, tracers
+    segments = []
+    for link in range(linkage.chain.links):
+        on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
+        segments += [(p[i], p[j]) for a, i in enumerate(on) for j in on[a + 1:]]
+    w = 2.6 * pin
+    for k, joint in enumerate(linkage.chain.joints):
+        if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
+            x, y = p[k]
+            base = np.array([[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]])
+            segments += [tuple(base), (p[k], base[0] + [0.6 * w, 0]), (p[k], base[1] - [0.6 * w, 0])]
+    dots = [*p[[k for k in range(len(p)) if linkage.kind(k) == REVOLUTE]], *(at for _, at in linkage.tracers.values())]
+    samples = [np.asarray(dot, dtype=float)[None] for dot in dots]
+    for a, b in segments:
+        count = 2 + int(math.dist(a, b) / (0.01 * scale))
+        samples.append(np.linspace(a, b, min(count, 400)))
+    obstacles = np.concatenate(samples) if samples else np.zeros((0, 2))
+    placed: list[np.ndarray] = []
+
+    def clearance(centre: np.ndarray, half: np.ndarray) -> float:
+        pts = np.concatenate([obstacles, *placed]) if placed else obstacles
+        gap = np.maximum(np.abs(pts - centre) - half, 0.0)
+        return float(np.hypot(gap[:, 0], gap[:, 1]).min(initial=math.inf))
+
     out = []
-    lift = 0.045 * linkage.scale
     for link in range(linkage.chain.links):
         on = list(linkage.joints_of(link))
         pins = [k for k in on if linkage.kind(k) == REVOLUTE] or on
-        at = linkage.points[pins].mean(axis=0)
-        if len(pins) == 2:  # a bar: beside it, not on it
-            d = linkage.points[pins[1]] - linkage.points[pins[0]]
+        middle = p[pins].mean(axis=0)
+        half = _NUMBER_BOX * [len(str(link)), 1] * scale / 2
+        if len(pins) == 2:  # a bar: beside it, not on it; the upper side first, its middle first
+            d = p[pins[1]] - p[pins[0]]
             n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-300)
-            at = at + lift * (n if n[1] >= 0 else -n)
-        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (and the frame's off its pivot's base)
-            at = at + lift * (np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0]))
-        out.append({"tag": "text", "text": str(link), "frames": at[None, None], "static": True,
+            n = n if n[1] >= 0 else -n
+            centres = [p[pins[0]] + t * d + side * (lift + float(np.abs(n) @ half)) * n
+                       for side, t in ((1, 0.5), (-1, 0.5), (1, 0.3), (1, 0.7), (-1, 0.3), (-1, 0.7))]
+        elif len(pins) == 1:  # a slider's block, a crank's frame: off the pin (the frame's off its pivot's base)
+            first = np.array([2.0, -1.1]) if link == linkage.frame else np.array([1.0, 1.0])
+            centres = [middle + lift * v + half for v in np.array([first, [-2.0, -1.1], [1.0, -1.0], [-1.6, 1.0]])]
+        else:  # a plate: its middle, else towards one of its pins
+            centres = [middle] + [middle + 0.35 * (p[k] - middle) for k in pins]
+        gaps = [clearance(c, half) for c in centres]
+        clear = [c for c, g in zip(centres, gaps) if g >= 0.25 * lift]
+        centre = clear[0] if clear else centres[int(np.argmax(gaps))]
+        placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
+        out.append({"tag": "text", "text": str(link), "frames": (centre - half)[None, None], "static": True,
                     "style": {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12,
                               "font-family": "sans-serif"}})
     return out
@@ -727,7 +870,7 @@ def draw_linkage(linkage: Linkage, out: str | Path, *, size: float = 3.6, dpi: i
     elements = _elements(linkage, joints, angles, tracers, {})
     elements += _link_numbers(linkage) if labels else []
     elements += _scale_bar(elements)
-    canvas = _Canvas(elements, round(size * per_inch))
+    canvas = _Canvas(elements, round(size * per_inch), per_inch)
     check_pixels(path, canvas.width / per_inch, canvas.height / per_inch, per_inch)
     _write_still(elements, canvas, path, title or _title(linkage), per_inch)
 
@@ -748,7 +891,7 @@ def animate_motion(motion: Motion, out: str | Path, *, frames: int = 60, seconds
     if not 2 <= frames <= 1000:
         raise InvalidOption(f"an animation has 2 … 1000 frames, not {frames}")
     elements, steps = _motion_elements(motion, frames)
-    canvas = _Canvas(elements, size)
+    canvas = _Canvas(elements, size, 100)
     try:
         if path.suffix.lower() == ".svg":
             path.write_text(_svg(elements, canvas, None, seconds=seconds, title=_title(motion.linkage)))

@@ -1,4 +1,5 @@
-"""CLI commands ``mechsynth balance arm|spring|prismatic|pantograph|compare|solve``: balancing of arms.
+"""CLI commands ``mechsynth balance arm|spring|prismatic|pantograph|compare|linkage|solve``: balancing of arms and
+of dimensioned linkages.
 
 Each command builds the problem of :mod:`balance.problems` from its file or options, solves it
 and writes the result (a readable table, or ``--format json``) and, with ``--plot FILE``, its
@@ -22,8 +23,8 @@ import os
 import re
 import sys
 
-from .._argtypes import number_range, picture_file, positive
-from .._output import number, pairs, write_document
+from .._argtypes import add_row, finite, number_range, output_file, picture_file, positive
+from .._output import number, pairs, save_linkage, write_document
 
 #: ``--range -90..90``: a negative range is a value, not an option
 _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-[\d.]+\.\.")
@@ -31,8 +32,10 @@ _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-[\d.]+\.\.")
 
 def add_commands(sub) -> None:
     """Mount ``balance`` and its subcommands on the ``mechsynth`` parser."""
-    top = sub.add_parser("balance", help="balancing of arms: arm, spring, prismatic, pantograph, compare, solve",
-                         description="Static and dynamic balancing of robot arms (docs/balance.md).")
+    top = sub.add_parser("balance", help="balancing of arms and linkages: arm, spring, prismatic, pantograph, compare, "
+                                         "linkage, solve",
+                         description="Static and dynamic balancing of robot arms and of dimensioned linkages "
+                                     "(docs/balance.md).")
     bsub = top.add_subparsers(dest="balance_command", metavar="COMMAND", required=True)
 
     def command(name: str, help: str, problem, table, plot: str | None):
@@ -137,9 +140,34 @@ def add_commands(sub) -> None:
     c.add_argument("--seed", type=int, help="seed of the random configurations (default: the file's, else 0)")
     common(c)
 
-    so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph] or "
-                          "[compare]", _file_problem, None, None)
-    so.add_argument("file", help="a TOML file with [arm], [spring], [slider], [pantograph] or [compare]")
+    lb = command("linkage", "counterweights that balance a dimensioned 1-DOF linkage's shaking force and its gravity "
+                            "potential: a linkage file (move/dimension --save) with --density, or a TOML file with a "
+                            "[linkage_balance] table", _linkage_problem, _table_linkage, "plot_linkage")
+    lb.add_argument("file", help="a linkage file (.json or .toml; an atlas search's rows with --row K), or a TOML "
+                                 "file with a [linkage_balance] table "
+                                 "(its linkage: 'file' or the file's [linkage]; per-link masses or a density)")
+    lb.add_argument("--density", type=finite, metavar="KG_PER_M",
+                    help="the links as bars of this many kg per metre between every two of their joints")
+    lb.add_argument("--on", type=_link_list, metavar="L,L",
+                    help="the links that carry counterweights (default: those pivoted on the frame)")
+    lb.add_argument("--counter-mass", type=finite, metavar="KG", help="every counterweight's mass")
+    lb.add_argument("--counter-radius", type=finite, metavar="M",
+                    help="every counterweight's distance from its frame pivot (default: the link's reach)")
+    lb.add_argument("--gravity", type=_vector, metavar="GX,GY", help="gravity in m/s² (default 0,-9.81)")
+    lb.add_argument("--range", type=number_range, metavar="A..B",
+                    help="the input's range (degrees, or m for a prismatic input; default a crank's turn or the "
+                         "limits of a rocker)")
+    lb.add_argument("--samples", type=positive, help="input values sampled for the fit and the searches (default 361)")
+    lb.add_argument("--save", type=_saved, metavar="OUT.json|OUT.toml",
+                    help="write the balanced linkage: its counterweights as tracers CW<link> (draw and move show them) "
+                         "and the masses in [linkage_balance] (balance linkage OUT finds none needed); .toml: a scene")
+    add_row(lb)
+    common(lb)
+
+    so = command("solve", "any balance problem: a TOML file with [arm], [spring], [slider], [pantograph], "
+                          "[compare] or [linkage_balance]", _file_problem, None, None)
+    so.add_argument("file", help="a TOML file with [arm], [spring], [slider], [pantograph], [compare] or "
+                                 "[linkage_balance]")
     common(so, plot=False)
 
 
@@ -148,7 +176,7 @@ def _run(args) -> int:
     from balance import BalanceError, TooMuchWork
     from synth import InvalidOption
 
-    if getattr(args, "file", None):
+    if getattr(args, "file", None) and args.balance_command != "linkage":
         _refuse_linkage(args.file)
     try:
         problem = args.problem(args)
@@ -165,6 +193,9 @@ def _run(args) -> int:
 
             getattr(balance, args.plot_with)(result, args.plot)
             print(f"plot -> {args.plot}", file=sys.stderr)  # as move, dimension and draw say where they wrote
+        if getattr(args, "save", None):
+            _save_balanced(args, result)
+            print(f"linkage -> {args.save}", file=sys.stderr)
     except TooMuchWork as exc:
         raise InvalidOption(f"{str(exc).rstrip('.')}; give --force to run it anyway.") from None
     except BalanceError as exc:
@@ -175,8 +206,8 @@ def _run(args) -> int:
 
 
 def _refuse_linkage(path: str) -> None:
-    """A linkage file (a dimensioned mechanism, as ``move`` and ``dimension --save`` write it) refused
-    in one sentence naming what balance takes: balancing a linkage's links is not built."""
+    """A linkage file (a dimensioned mechanism, as ``move`` and ``dimension --save`` write it) given to a
+    command for arms refused in one sentence naming the command that balances it."""
     from synth import InvalidOption, MotionError
     from synth.motion import read_linkage
 
@@ -184,15 +215,23 @@ def _refuse_linkage(path: str) -> None:
         read_linkage(path)
     except MotionError:  # not a linkage (an arm, a URDF, a file to refuse in its own words)
         return
-    raise InvalidOption(f"{os.path.basename(path)} is a linkage (a dimensioned mechanism, as move and dimension --save "
-                        "write it), and balance takes arms (an [arm] TOML table or a URDF file), spring devices, "
-                        "sliding links and pantographs: balancing a linkage's links is not built")
+    if path.lower().endswith(".toml"):
+        from balance import load_toml
+
+        if "linkage_balance" in load_toml(path):  # a linkage's balance problem, for solve
+            return
+    name = os.path.basename(path)
+    raise InvalidOption(f"{name} is a linkage (a dimensioned mechanism, as move and dimension --save write it): "
+                        f"balance it with 'mechsynth balance linkage {name} --density KG_PER_M' (or a TOML file with a "
+                        "[linkage_balance] table giving its masses)")
 
 
 def _file_problem(args):
     from balance import load_toml, read_problem
 
     doc = load_toml(args.file)
+    if "linkage_balance" in doc and args.balance_command == "solve":
+        return _linkage_problem(args)
     if args.balance_command == "pantograph":
         from balance import pantograph_problem
 
@@ -311,6 +350,122 @@ def _prismatic_problem(args):
 
     return SliderProblem(args.mass, args.inertia, args.counter_mass, args.stroke, args.travel, args.C,
                          dynamics=None if args.dynamics is None else DynamicsCheck(args.dynamics))
+
+
+# ----------------------------------------------------------------- linkages
+def _saved(text: str) -> str:
+    return output_file(text, (".json", ".toml"), "the balanced linkage")
+
+
+def _link_list(text: str) -> tuple[int, ...]:
+    """``1,3``: links by number."""
+    import argparse
+
+    try:
+        return tuple(int(part) for part in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected link numbers separated by commas (e.g. 1,3), not {text!r}") from None
+
+
+def _vector(text: str) -> tuple[float, float]:
+    """``0,-9.81``: two finite numbers."""
+    import argparse
+
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected two numbers GX,GY (e.g. 0,-9.81), not {text!r}")
+    return finite(parts[0]), finite(parts[1])
+
+
+def _linkage_problem(args):
+    """The balance problem of a linkage file, or of a TOML file with a [linkage_balance] table; an option given
+    both on the command line and in the table is refused."""
+    from balance import InvalidInput, linkage_table, load_toml
+    from synth import InvalidOption
+    from synth.motion import read_linkage
+
+    from .._linkage_balance import OPTIONS, linkage_problem
+
+    options = {key: getattr(args, key, None) for key in OPTIONS}
+    table, source = None, args.file
+    if args.file.lower().endswith((".toml", ".json")):
+        doc = load_toml(args.file) if args.file.lower().endswith(".toml") else _load_json(args.file, args.row)
+        if isinstance(doc, dict) and "linkage_balance" in doc:
+            table = linkage_table(doc, args.file)
+            if table.file is not None and "linkage" in doc:
+                raise InvalidInput(f"{args.file} gives the linkage twice, as [linkage_balance] 'file' and as a [linkage] "
+                                   "table: keep one.")
+            if table.file is not None:
+                source = os.path.join(os.path.dirname(args.file), table.file)
+            elif "linkage" not in doc:
+                raise InvalidInput(f"{args.file}: [linkage_balance] needs its linkage: 'file' = a linkage file, or a "
+                                   "[linkage] table in the same file.")
+    if table is not None:
+        both = [flag for key, flag in OPTIONS.items() if options[key] is not None and getattr(table, key) is not None]
+        if both:
+            raise InvalidOption(f"{both[0]} is also given in {args.file}'s [linkage_balance]: give it in one place")
+        options = {key: getattr(table, key) if options[key] is None else options[key] for key in OPTIONS}
+    args.linkage, args.options = read_linkage(source, row=args.row), options  # kept for --save
+    return linkage_problem(args.linkage, options, None if table is None else table.links, os.path.basename(source),
+                           args.file, None if table is None else table.counterweights)
+
+
+def _load_json(path: str, row: int | None):
+    """A JSON file's content (a linkage file, or one 'balance linkage --save' wrote with its masses)."""
+    import json
+
+    from synth.motion import read_linkage
+
+    read_linkage(path, row=row)  # the file's own sentence when it is no linkage or no JSON (or --row is amiss)
+    with open(path, encoding="utf-8") as fh:
+        return json.load(fh)
+
+
+def _save_balanced(args, result) -> None:
+    """The linkage with its counterweights as tracers and its masses in [linkage_balance], as JSON or as a
+    TOML scene (``move`` and ``draw`` read either; ``balance linkage`` reads the masses back)."""
+    from .._linkage_balance import balanced_linkage
+
+    balanced, table = balanced_linkage(args.linkage, result, args.options)
+    save_linkage(balanced, args.save, source="mechsynth balance linkage",
+                 description=f"{result.name} balanced by counterweights", tables={"linkage_balance": table},
+                 compute=("motion", "balance linkage"))
+
+
+def _table_linkage(out: dict) -> str:
+    unit = out["shaking_force_unit"]
+    to_input = (lambda v: f"{math.degrees(v):.6g}°") if out["input_kind"] == "revolute" else (lambda v: f"{v:.6g} m")
+    lo, hi = out["input_range"]
+    lines = [f"linkage: {out['name']}; input {out['input']} over {to_input(lo)} … {to_input(hi)}", ""]
+    head = f"{'link':>4}  {'mass kg':>10}  {'from joint':>10}  {'distance m':>11}  {'angle°':>8}  {'(from line to)':<14}  " \
+           f"{'at (pose) m':<24}"
+    if out["carried"]:
+        lines += ["counterweights carried already: " + "; ".join(
+            f"link {b['link']} {b['mass']:.6g} kg at ({number(b['centre'][0])}, {number(b['centre'][1])})"
+            for b in out["carried"]), ""]
+    lines += ["counterweights:", head, "-" * len(head)]
+    for c in out["counterweights"]:
+        if c["mass"] == 0:
+            lines.append(f"{c['link']:>4}  none needed")
+            continue
+        lines.append(f"{c['link']:>4}  {c['mass']:>10.6g}  {c['joint']:>10}  {c['distance']:>11.6g}  "
+                     f"{c['angle_deg']:>8.5g}  {c['towards'] or '':<14}  "
+                     f"({number(c['at'][0])}, {number(c['at'][1])})")
+    rows = []
+    for label, key in (("total mass (kg)", "total_mass"), ("centre of mass's largest excursion (m)", "com_excursion"),
+                       ("first moment's largest excursion (kg·m)", "moment_excursion"),
+                       (f"shaking force's largest amplitude ({unit})", "shaking_force"),
+                       (f"shaking moment's largest, about {out['input']} ({unit.replace('N', 'N·m', 1)})",
+                        "shaking_moment"),
+                       ("gravity potential's variation (J)", "potential_variation")):
+        b, a = out["before"][key], out["after"][key]
+        rows.append((label, f"{number(b) if b is not None else '—'}  →  {number(a) if a is not None else '—'}"))
+    lines += ["", "before  →  after:", pairs(rows), "",
+              "full balance: " + ("yes (what is left is rounding)" if out["full_balance"] else
+                                  f"no: {100 * out['residual_share']:.4g}% of the excursion is left")]
+    lines += [f"note: {n}" for n in out["notes"]]
+    lines.append(f"note: {out['extremes']}")
+    return "\n".join(lines)
 
 
 # ----------------------------------------------------------------- tables
@@ -573,4 +728,4 @@ def _table_compare(out: dict) -> str:
 
 #: the table of each result of ``balance solve``
 _TABLES = {"ArmBalance": _table_arm, "SpringDesign": _table_spring, "SliderBalance": _table_prismatic,
-           "PantographBalance": _table_pantograph, "Comparison": _table_compare}
+           "PantographBalance": _table_pantograph, "Comparison": _table_compare, "LinkageBalance": _table_linkage}

@@ -31,8 +31,8 @@ import sys
 
 from mechbase import finite_pair
 
-from .._argtypes import finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
-from .._output import pairs, write_document
+from .._argtypes import add_row, finite, mechanism_of, number_range, output_file, positive, seconds, whole, workers
+from .._output import pairs, save_linkage, write_document
 
 __all__ = ["add_commands"]
 
@@ -98,16 +98,17 @@ def add_commands(sub) -> None:
     p.add_argument("--rocker", type=_limits, metavar="A..B", help="the input must stay within A..B (degrees; "
                    "length for a slide) over the target")
     p.add_argument("--min-transmission", type=finite, metavar="DEG", help="least transmission angle of every "
-                   "dyad over the target (over the turn for a crank), degrees")
+                   "dyad over the target (over the turn for a crank), degrees (default: none)")
     p.add_argument("--max-ratio", type=finite, metavar="R", help="bound on the longest over the shortest "
-                   "distance between two joints of one link")
+                   "distance between two joints of one link (default: none)")
     p.add_argument("--max-length", type=finite, metavar="L", help="bound on every distance between two joints of "
-                   "one link, the frame's pivots included (target units)")
-    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in")
+                   "one link, the frame's pivots included (target units; default: none)")
+    p.add_argument("--pivots", type=_box, metavar="x0..x1,y0..y1", help="a box the frame's joints must lie in, in "
+                   "target units (the target's x, y)")
     p.add_argument("--pivot-at", type=_held, action="append", metavar="J=x,y", help="hold the frame's revolute "
-                   "joint J at the point (x, y), e.g. 0-1=0,0 (repeatable)")
+                   "joint J at the point (x, y) in target units, e.g. 0-1=0,0 (repeatable)")
     p.add_argument("--frame-angle", type=finite, metavar="DEG", help="the frame line's direction (degrees from the x "
-                   "axis): from the input pivot to --frame-line")
+                   "axis): from the input pivot to --frame-line (default: free)")
     p.add_argument("--frame-line", metavar="JOINT", help="the frame line's far joint (default: the frame's only "
                    "other joint), for --frame-angle or --timing absolute")
     p.add_argument("--timing", choices=("relative", "absolute"), default="relative", help="a timed path's inputs "
@@ -118,18 +119,20 @@ def add_commands(sub) -> None:
     p.add_argument("--reach", type=finite, help="the search box: joints within this many target "
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
-                   "(one of infinitely many exact solutions is returned)")
+                   "(one of infinitely many exact solutions is returned); refused for a target that gives enough "
+                   "(with --db: for the topologies that need it)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
                    "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
-                   "(the result with its linkage) or jsonl (one row)")
+                   "(the result with its linkage) or jsonl (one row; with --db a row per topology, each with its "
+                   "linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
                    "and scene read; or .json)")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
-                   "(.png or .svg)")
+                   "(.png or .svg); with --db a sheet, a panel per row")
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
                    "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
     p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")
@@ -137,6 +140,7 @@ def add_commands(sub) -> None:
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
+    add_row(p)
     p.set_defaults(run=_run)
 
 
@@ -167,6 +171,9 @@ def _check(args) -> None:
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
+    if args.row is not None and not args.linkage:
+        raise InvalidOption("--row picks the start of the search from a file of an atlas search's rows: it goes with "
+                            "--linkage ROWS.json")
     if args.mechanism and args.frame is None:
         raise InvalidOption("--mechanism needs --frame F: the fixed link")
     if args.crank and args.rocker:
@@ -195,7 +202,7 @@ def _mechanism(args):
     from synth.motion import read_linkage
 
     if args.linkage:
-        return read_linkage(args.linkage)
+        return read_linkage(args.linkage, row=args.row)
     chain = Chain.parse(args.mechanism)
     return mechanism_of(chain, args.frame, args.input)
 
@@ -229,11 +236,13 @@ def _run(args) -> int:
                                   min_transmission=math.radians(args.min_transmission or 0.0),
                                   max_ratio=args.max_ratio, max_length=args.max_length, pivots=args.pivots,
                                   reach=args.reach, **_placing(args))
-        return run(args, target, constraints, save=_save, draw=_draw)
+        return run(args, target, constraints, save=_save, draw=_draw_rows)
     mechanism = _mechanism(args)
     constraints = Constraints(crank=args.crank, rocker=args.rocker and _rocker(mechanism, args.rocker),
                               min_transmission=math.radians(args.min_transmission or 0.0), max_ratio=args.max_ratio,
                               max_length=args.max_length, pivots=args.pivots, reach=args.reach, **_placing(args))
+    if args.underdetermined:
+        _check_underdetermined(mechanism, target, args.tracer_link, constraints)
     with tqdm(total=round(args.budget, 1), unit="s", file=sys.stderr, desc="dimension", leave=False,
               bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} s{postfix}",
               disable=not sys.stderr.isatty()) as bar:
@@ -244,7 +253,7 @@ def _run(args) -> int:
         result = synthesize(mechanism, target, tracer_link=args.tracer_link, constraints=constraints,
                             budget=args.budget, seed=args.seed, workers=args.workers, scheduler=args.scheduler,
                             underdetermined=args.underdetermined, progress=progress, starts=sampled_starts)
-    _write(result, args.format)
+    _write(result, args.format, wall=args.workers > 1 or bool(args.scheduler))
     if result.on_reach and result.relative_max > 1e-9:
         print(f"mechsynth: {' and '.join(result.on_reach)} lie{'s' * (len(result.on_reach) == 1)} on the edge of the "
               f"search's reach (--reach, in target sizes): a larger reach may lower the error", file=sys.stderr)
@@ -259,6 +268,18 @@ def _run(args) -> int:
         _draw(result, args.out)
         print(f"picture -> {args.out}", file=sys.stderr)
     return 0
+
+
+def _check_underdetermined(mechanism, target, tracer_link, constraints) -> None:
+    """Refuse --underdetermined where the target gives as many equations as the synthesis has unknowns."""
+    from synth import InvalidOption
+    from synth.dimension import equations_and_unknowns
+
+    equations, unknowns = equations_and_unknowns(mechanism, target, tracer_link=tracer_link, constraints=constraints)
+    if equations >= unknowns:
+        raise InvalidOption(f"--underdetermined allows fewer target equations than unknowns, and this target gives "
+                            f"{equations} equations for the {unknowns} unknowns of this {target.kind} synthesis: "
+                            "drop it")
 
 
 def _placing(args) -> dict:
@@ -286,7 +307,8 @@ def _rocker(mechanism, limits: tuple[float, float]) -> tuple[float, float]:
     return tuple(math.radians(v) for v in limits) if chain.kinds[k] == JointKind.REVOLUTE else limits
 
 
-def _write(result, fmt: str) -> None:
+def _write(result, fmt: str, wall: bool = False) -> None:
+    """The result as a table, json or a jsonl row; ``wall``: its seconds are the clock's (generations on workers)."""
     from synth import JointKind
     from synth.motion import joint_name
 
@@ -322,7 +344,7 @@ def _write(result, fmt: str) -> None:
         lines.append((f"tracer {name} (link {link})", f"{at[0]:.10g}, {at[1]:.10g}"))
     for link, length in sorted(lk.lengths().items()):
         lines.append((f"link {link} length", length))
-    lines += [("CPU seconds", result.seconds), ("evaluations", result.evaluations), ("method", result.method)]
+    lines += [("seconds (wall clock: the search ran on workers)" if wall else "CPU seconds", result.seconds), ("evaluations", result.evaluations), ("method", result.method)]
     write_document({}, "table", pairs(lines))
 
 
@@ -344,39 +366,16 @@ def _value(v) -> str:
     return str(v)
 
 
-def _toml_value(v) -> str:
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return "{ " + ", ".join(f"{json.dumps(str(k))} = {_toml_value(x)}" for k, x in v.items()) + " }"
-
-
 def _save(result, path: str) -> None:
-    """The linkage as JSON, or as a TOML scene (``move`` reads its ``[linkage]``, ``scene`` runs it)."""
-    d = result.linkage.to_dict()
-    with open(path, "w", encoding="utf-8") as fh:
-        if path.lower().endswith(".json"):
-            json.dump(d, fh, indent=2)
-            fh.write("\n")
-            return
-        name = os.path.splitext(os.path.basename(path))[0]
-        fh.write(f"# Found by 'mechsynth dimension': {result.kind} target of {len(result.errors)} points, error max "
-                 f"{result.error_max:.6g} (relative {result.relative_max:.3g}).\n\n")
-        fh.write(f'[scene]\nname = {json.dumps(name)}\ndescription = "a linkage found by dimensional synthesis"\n'
-                 f'source = "mechsynth dimension"\ncompute = ["motion"]\n\n[linkage]\n')
-        for key, value in d.items():
-            fh.write(f"{key} = {_toml_value(value)}\n")
+    """The linkage found, as JSON or as a TOML scene that says how it was found."""
+    save_linkage(result.linkage, path, source="mechsynth dimension", description="a linkage found by dimensional "
+                 "synthesis", comment=f"Found by 'mechsynth dimension': {result.kind} target of {len(result.errors)} "
+                 f"points, error max {result.error_max:.6g} (relative {result.relative_max:.3g}).")
 
 
-def _draw(result, path: str) -> None:
-    """The mechanism in its pose over the target's points and the traced curve."""
+def _swept(result):
+    """The found mechanism swept over its range (721 steps), and the target's points to mark (none for a function)."""
     from synth.motion import motion_range, sweep
-    from synth.motion_draw import draw_motion
 
     lk = result.linkage
     reach = motion_range(lk)
@@ -384,7 +383,24 @@ def _draw(result, path: str) -> None:
         motion = sweep(lk, steps=721)
     else:
         motion = sweep(lk, steps=721, start=reach.limits[0], stop=reach.limits[1])
-    marks = None if result.kind == "function" else result.target.points
-    draw_motion(motion, path, marks=marks,
-                title=f"{lk.chain.compact()}: {result.kind} target" + (" (circles)" if marks is not None else "")
-                + f", error max {result.error_max:.3g}")
+    return motion, None if result.kind == "function" else result.target.points
+
+
+def _draw(result, path: str) -> None:
+    """The mechanism in its pose over the target's points and the traced curve."""
+    from synth.motion_draw import draw_motion
+
+    motion, marks = _swept(result)
+    circles = " (circles)" if marks is not None else ""
+    draw_motion(motion, path, marks=marks, title=f"{result.linkage.chain.compact()}: {result.kind} target{circles}, "
+                f"error max {result.error_max:.3g}")
+
+
+def _draw_rows(rows: list, path: str) -> None:
+    """An atlas search's rows (``(rank, result)``, best first) on one sheet: each row's mechanism in its pose
+    over the target's points and its curve, titled with its rank, links and error."""
+    from synth.motion_draw import draw_motion_sheet
+
+    draw_motion_sheet([(*_swept(result), f"{rank}: {result.linkage.chain.compact()}, frame {result.linkage.frame}\n"
+                        f"{result.linkage.chain.links} links, error max {result.error_max:.3g}")
+                       for rank, result in rows], path)

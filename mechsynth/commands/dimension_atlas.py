@@ -50,15 +50,11 @@ def links_range(text: str | None) -> tuple[int, int] | None:
 
 
 def run(args, target, constraints, *, save, draw) -> int:
-    """Search the atlas for the target; print a row per topology; ``save`` and ``draw`` the best (the
-    command's own writers of a result)."""
-    from synth import InvalidOption
+    """Search the atlas for the target; print a row per topology; ``save`` the best and ``draw`` every row on
+    one sheet (the command's own writers: of a result, and of ``(rank, result)`` pairs)."""
     from synth.atlas import search_atlas
     from synth.errors import flag
 
-    if target.kind != "path":
-        raise InvalidOption(f"the atlas search looks for paths (its index holds coupler curves), not a {target.kind}: "
-                            "give the topology with --mechanism or --linkage")
     found = search_atlas(args.db, target, links=links_range(args.links), top=args.top, budget=args.budget,
                          constraints=constraints, seed=args.seed, underdetermined=args.underdetermined,
                          workers=args.workers, scheduler=args.scheduler, progress=sys.stderr.isatty())
@@ -67,13 +63,15 @@ def run(args, target, constraints, *, save, draw) -> int:
     rows = []
     for rank, match in enumerate(found.matches, 1):
         row = {"rank": rank, **match.row()}
-        if args.format == "json":
+        if args.format in ("json", "jsonl"):  # rows that move, draw and balance linkage read (--row K)
             row["linkage"] = match.result.linkage.to_dict()
         rows.append(row)
     if not found.index_curves:
         return nothing_found(f"curve of the index belongs to a mechanism with {args.links} links")
     print(f"mechsynth: {found.index_curves} indexed curves, {found.topologies} "
-          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.seconds:.1f} CPU s", file=sys.stderr)
+          f"topolog{'y' if found.topologies == 1 else 'ies'} polished in {found.polish_seconds:.1f} CPU s"
+          + (f" on {args.scheduler or f'{args.workers} processes'}" if args.scheduler or args.workers > 1 else ""),
+          file=sys.stderr)
     if not rows:
         return nothing_found("topology of the atlas could be dimensioned for this target within the budget")
     write_rows(rows, COLUMNS, {"table": "table", "json": "json", "jsonl": "jsonl", "csv": "csv"}[args.format])
@@ -86,6 +84,6 @@ def run(args, target, constraints, *, save, draw) -> int:
         save(best.result, args.save)
         print(f"linkage -> {args.save}", file=sys.stderr)
     if args.out:
-        draw(best.result, args.out)
-        print(f"picture -> {args.out}", file=sys.stderr)
+        draw([(rank, match.result) for rank, match in enumerate(found.matches, 1)], args.out)
+        print(f"picture of {len(rows)} row{'s' * (len(rows) != 1)} -> {args.out}", file=sys.stderr)
     return 0

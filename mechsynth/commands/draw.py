@@ -18,9 +18,11 @@ import math
 import os
 import sys
 
-from .._argtypes import YesOrNo, finite, inches, picture_file, positive, where_conditions, whole
+from .._argtypes import YesOrNo, add_row, finite, inches, picture_file, positive, where_conditions, whole
 
 __all__ = ["add_commands"]
+
+SHEET_LIMIT = 400  # drawings of a sheet unless --limit says otherwise
 
 
 def add_commands(sub) -> None:
@@ -29,7 +31,7 @@ def add_commands(sub) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
                    help="a dimensioned mechanism (.toml or .json, as move --save and dimension --save write it), "
-                        "drawn to scale at its pose")
+                        "drawn to scale at its pose; or the rows of an atlas search (.json or .jsonl) with --row K")
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
     g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
@@ -60,10 +62,12 @@ def add_commands(sub) -> None:
     p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
     p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
-    p.add_argument("--limit", type=positive, default=400, help="refuse sheets larger than this (default 400)")
-    p.add_argument("--title", help="sheet title (default: the selection)")
+    p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
+    p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: "
+                   "its chain, frame and input)")
     p.add_argument("--out", required=True, type=picture_file,
                    help="output file, .svg or .png (or .pdf), checked writable before any drawing")
+    add_row(p)
     p.set_defaults(run=_run_draw)
 
 
@@ -152,16 +156,17 @@ def _draw_linkage(args) -> int:
         ("--frame", args.frame is not None), ("--mechanisms", args.mechanisms), ("--prismatic", args.prismatic),
         ("--idle-joints", args.idle_joints), ("--repairs", args.repairs), ("--loop-classes", args.loop_classes),
         ("--dof", args.dof is not None), ("--h", args.h is not None), ("--where", args.where),
-        ("--id", args.id is not None), ("--columns", args.columns is not None)) if given]
+        ("--id", args.id is not None), ("--columns", args.columns is not None), ("--limit", args.limit is not None))
+        if given]
     if chosen:
         raise InvalidOption(f"a linkage file is one dimensioned mechanism, drawn as it is (its file names its frame "
                             f"and inputs): {', '.join(chosen)} {'does' if len(chosen) == 1 else 'do'} not apply")
     if args.dpi is not None and not args.out.lower().endswith(".png"):
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
-    if not args.linkage.lower().endswith((".toml", ".json")) and not os.path.exists(args.linkage):
+    if not args.linkage.lower().endswith((".toml", ".json", ".jsonl")) and not os.path.exists(args.linkage):
         raise InvalidOption(f"a linkage file is .toml or .json, not {args.linkage!r}: a chain's drawing is "
                             f"'mechsynth draw --chain \"{args.linkage}\" --out FILE'")
-    linkage = read_linkage(args.linkage)
+    linkage = read_linkage(args.linkage, row=args.row)
     title = args.title
     if args.at is not None:
         if linkage.dof != 1:
@@ -184,9 +189,13 @@ def _run_draw(args) -> int:
 
     if args.linkage:
         return _draw_linkage(args)
+    args.limit = SHEET_LIMIT if args.limit is None else args.limit
     if args.at is not None:
         raise InvalidOption("--at poses a linkage file's input: a chain's drawing has no dimensions to move (save "
                             "one with 'mechsynth move --chain … --frame F --save L.json', then draw L.json --at)")
+    if args.row is not None:
+        raise InvalidOption("--row picks a row of a file of an atlas search's rows: give that file (draw ROWS.json "
+                            "--row K --out FILE), not a chain or an atlas")
     if args.chain and args.chain.lower().endswith((".json", ".toml")) and os.path.isfile(args.chain):
         raise InvalidOption(f"--chain takes a joint list or a JSON row, and {args.chain} is a file: a linkage file (as "
                             f"move and dimension --save write it) is drawn as 'mechsynth draw {args.chain} --out FILE'")

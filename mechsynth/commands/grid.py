@@ -39,7 +39,7 @@ def _run_grid(args) -> int:
     import os
 
     from synth import InvalidOption
-    from synth.atlas import load_grid, run_grid, size_grid
+    from synth.atlas import index_gap, load_grid, run_grid, size_grid
 
     if args.timeout is not None and args.scheduler is None:
         raise InvalidOption("--timeout goes with --scheduler (it is how long to wait for the scheduler)")
@@ -60,4 +60,7 @@ def _run_grid(args) -> int:
               f"({result.units_skipped} already done, {result.units_run} run) on {result.executor}; "
               f"{result.chains_found} chains found ({result.chains_new} new), {result.mechanisms_found} mechanisms; "
               f"{result.seconds:.1f} s, {result.chains_per_second:.0f} chains/s -> {args.db}")
+    gap = index_gap(args.db)  # (chains this run added to an atlas whose curve index was built before)
+    if gap:
+        print(f"mechsynth: {gap}", file=sys.stderr)
     return 0

@@ -30,8 +30,8 @@ import math
 import os
 import sys
 
-from .._argtypes import finite, mechanism_of, output_file, positive, whole
-from .._output import pairs, write_document, write_rows
+from .._argtypes import add_row, finite, mechanism_of, output_file, positive, whole
+from .._output import pairs, save_linkage, write_document, write_rows
 
 __all__ = ["add_commands"]
 
@@ -51,7 +51,7 @@ def _animation(text: str) -> str:
 
 
 def _saved(text: str) -> str:
-    return output_file(text, (".json",), "the linkage")
+    return output_file(text, (".toml", ".json"), "the linkage")
 
 
 def _numbers(text: str) -> tuple[float, ...]:
@@ -78,7 +78,8 @@ def add_commands(sub) -> None:
     p = sub.add_parser("move", help="move a dimensioned mechanism: positions, velocities, range, coupler curves, "
                                     "animations")
     p.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
-                   help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers)")
+                   help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers), or "
+                        "the rows of an atlas search (.json or .jsonl) with --row K")
     p.add_argument("--chain", help="any planar mechanism, as a joint list '0-1 1-2 2-3 3-0', dimensioned by its drawing")
     p.add_argument("--db", help="an atlas: the chain with --id, dimensioned by its drawing")
     p.add_argument("--id", help="with --db: the chain's id (12 hex digits, as listings and the site show it)")
@@ -93,19 +94,24 @@ def add_commands(sub) -> None:
                    "per input, like 80,100")
     p.add_argument("--stop", type=_numbers, help="last input value, as --start (default: one turn, or the upper "
                    "limit; a grid: half a turn (or the mechanism's size) each side of the pose)")
-    p.add_argument("--velocities", action="store_true", help="add each joint's velocity per unit input rate")
-    p.add_argument("--accelerations", action="store_true", help="add each joint's acceleration per unit input rate "
+    p.add_argument("--velocities", action="store_true", help="add each joint's and tracer's velocity per unit input rate")
+    p.add_argument("--accelerations", action="store_true", help="add each joint's and tracer's acceleration per unit input rate "
                    "squared (input turning steadily)")
     p.add_argument("--format", choices=("table", "jsonl", "csv", "json"),
                    help="rows per step (default table), or with --range: table or json")
     p.add_argument("--range", action="store_true", help="what a designer checks instead of rows: crank or rocker, "
-                   "limits, Grashof, dead and toggle positions, transmission angles, curve extent")
+                   "limits, Grashof, dead and toggle positions (of the whole branch), transmission angles and "
+                   "curve extent (over --start … --stop where given), a crank-driven slider's stroke and quick-return "
+                   "ratio; the table's angles in degrees, the JSON's in radians, a crank's within one turn "
+                   "(0 … 360°, 0 … 2π) in both")
     p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
-    p.add_argument("--frames", type=positive, help="with --animate: frames of the animation (2 … 1000, default 60)")
-    p.add_argument("--save", type=_saved, metavar="FILE.json",
-                   help="write the linkage (as dimensioned, e.g. from a drawing) to a JSON file to edit and reuse")
+    p.add_argument("--frames", type=whole, help="with --animate: frames of the animation (2 … 1000, default 60)")
+    p.add_argument("--save", type=_saved, metavar="FILE",
+                   help="write the linkage (as dimensioned, e.g. from a drawing) to edit and reuse: .toml (a scene "
+                        "that move, draw and scene read) or .json")
+    add_row(p)
     p.set_defaults(run=_run)
 
 
@@ -120,6 +126,9 @@ def _check(args) -> None:
                             + (f" (not {' and '.join(sources)})" if sources else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --chain or --db; a linkage file names its frame and inputs")
+    if args.row is not None and not args.linkage:
+        raise InvalidOption("--row picks a row of a file of an atlas search's rows: give that file, not "
+                            + ("--chain" if args.chain else "--db"))
     if args.id is not None and not args.db:
         raise InvalidOption("--id names a chain of an atlas: give --db too")
     if args.db and args.id is None:
@@ -169,7 +178,7 @@ def _linkage(args):
     from synth import linkage_from_layout
 
     if args.linkage:
-        return read_linkage(args.linkage)
+        return read_linkage(args.linkage, row=args.row)
     if args.chain:
         chain = Chain.parse(args.chain)
     else:
@@ -192,9 +201,8 @@ def _run(args) -> int:
     if linkage.note and not args.linkage:  # a file's note tells what was done when it was saved, not now
         print(f"mechsynth: note: {linkage.note}", file=sys.stderr)
     if args.save:
-        with open(args.save, "w") as fh:
-            json.dump(linkage.to_dict(), fh, indent=2)
-            fh.write("\n")
+        save_linkage(linkage, args.save, source="mechsynth move", description=f"{linkage.chain.compact()}, frame "
+                     f"{linkage.frame}, saved by 'mechsynth move'")
     if linkage.dof != 1:
         return _grid(linkage, args)
     revolute = linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE
@@ -392,11 +400,22 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         text = f"{unit(v):.{digits}g}"
         return "0" if turns and float(text) == 360.0 else text
     word = "°" if revolute else ""
+
+    def unit_input(v: float) -> float:
+        """An input as the JSON gives it: a crank's angle within one turn, 0 … 2π, as the table's."""
+        return v % math.tau if turns else v
     doc = {"input": joint_name(linkage.chain, k), "kind": linkage.kind(k), "full_rotation": reach.full_rotation,
            "limits": list(reach.limits) if reach.limits else None, "grashof": reach.grashof,
-           "dead_positions": [{"input": v, "why": why} for v, why in reach.dead_positions],
-           "toggles": [{"input": v % math.tau if turns else v, "link": link} for v, link in reach.toggles],
-           "transmission": motion.transmission, "extent": {n: list(e) for n, e in motion.extent().items()},
+           "dead_positions": [{"input": unit_input(v), "why": why} for v, why in reach.dead_positions],
+           "toggles": [{"input": unit_input(v), "link": link} for v, link in reach.toggles],
+           "transmission": {name: {**t, "at_min": unit_input(t["at_min"]), "at_max": unit_input(t["at_max"]),
+                                   "worst": min(t["min"], math.pi - t["max"])}  # (how far from a dead position)
+                            for name, t in motion.transmission.items()},
+           "extent": {n: list(e) for n, e in motion.extent().items()},
+           "strokes": {str(link): {"pair": joint_name(linkage.chain, pair), "stroke": s.length,
+                                   "quick_return_ratio": s.quick_return_ratio,
+                                   "dead_centres": [unit_input(s.far), unit_input(s.near)]}
+                       for pair, link, s in _strokes(linkage, reach)},
            "stopped": motion.stopped}
     if not motion.transmission:
         doc["transmission_note"] = _NO_TRANSMISSION
@@ -418,9 +437,29 @@ def _write_range(linkage, reach, motion, fmt: str) -> None:
         lines.append(("toggle", f"{shown(v, 10)}{word}: link {link} stops and turns back"))
     if not motion.transmission:
         lines.append(("transmission", _NO_TRANSMISSION))
-    for name, t in motion.transmission.items():
+    for name, t in doc["transmission"].items():
         lines.append((f"transmission {name}", f"min {math.degrees(t['min']):.4g}° at input {shown(t['at_min'])}{word}, "
-                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}"))
-    for name, (x0, y0, x1, y1) in motion.extent().items():
+                                               f"max {math.degrees(t['max']):.4g}° at {shown(t['at_max'])}{word}; "
+                                               f"worst {math.degrees(t['worst']):.4g}°"))
+    for name, (x0, y0, x1, y1) in doc["extent"].items():
         lines.append((f"curve {name}", f"x {x0:.6g} … {x1:.6g}, y {y0:.6g} … {y1:.6g}"))
+    for link, s in doc["strokes"].items():
+        far, near = s["dead_centres"]
+        lines.append((f"slider {link} ({s['pair']})", f"stroke {s['stroke']:.6g} between the dead centres at input "
+                      f"{shown(far)}° and {shown(near)}°; quick-return ratio {s['quick_return_ratio']:.6g}"))
     write_document(doc, "table", pairs(lines))
+
+
+def _strokes(linkage, reach) -> list:
+    """(pair, slider link, :class:`~mechsynth._slider_stroke.Stroke`) of each slider on the frame driven by a
+    crank, measured on a turn of the solver as the scene's closed form of a slider-crank measures them."""
+    from synth import JointKind
+    from synth.motion import sweep
+
+    from .._slider_stroke import slider_stroke, sliders_on_frame
+
+    if not (reach.full_rotation and linkage.kind(linkage.inputs[0]) == JointKind.REVOLUTE):
+        return []
+    found = sliders_on_frame(linkage)
+    turn = sweep(linkage, steps=360) if found else None
+    return [(pair, link, slider_stroke(linkage, turn, pin, linkage.slides[pair])) for pair, link, pin in found]

@@ -13,8 +13,8 @@ To add a balance problem, call :func:`balance_kind` once: its table, the
 ``balance.problems`` function that solves it, the ``[expect]`` keys of its result, its
 summary lines and, optionally, its figure.
 
->>> sorted(k for k in KINDS if k.startswith("balance"))
-['balance arm', 'balance compare', 'balance pantograph', 'balance prismatic', 'balance spring']
+>>> sorted(k for k in KINDS if k.startswith("balance"))    # (balance linkage moves a linkage: mechsynth.scene.motion)
+['balance arm', 'balance compare', 'balance linkage', 'balance pantograph', 'balance prismatic', 'balance spring']
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ solver against the textbook's formulas, written here independently of :mod:`synt
     it checks a class III group (a triad) against the dyads of another inversion of its chain.
 ``slider-crank``
     the slider's pin on its line (circle–line intersection); stroke and quick-return ratio
-    measured on the solver's own positions (nested sweeps around each dead centre).
+    measured on the solver's own positions (nested sweeps around each dead centre, :mod:`mechsynth._slider_stroke`).
 ``slotted-lever``
     the crank-and-slotted-lever (an inverted slider-crank): the lever's angle and the slide; the
     lever's swing and the slide's extremes measured on the solver.
@@ -33,12 +33,16 @@ from pydantic import StrictStr
 from mechbase import Row
 from mechbase.schema import Table
 
+from .._slider_stroke import dead_centres, slider_stroke
 from .registry import ComputeKind, Expectation, Family, Run, SceneTable
 from .results import SceneError
 from .types import Count, Flag, Number, Numbers, NumberTable, Text
 
 __all__ = ["Sweep", "ClosedForm", "MotionSummary", "DyadCheck", "SliderCrankCheck", "SlottedLeverCheck",
            "WillisCheck"]
+
+# ``balance linkage``: the linkage's counterweights (balance.LinkageProblem, moved by synth.motion), from
+# [linkage] and [linkage_balance] (masses per link or a density, the options of ``mechsynth balance linkage``)
 
 
 class Sweep(Table):
@@ -82,6 +86,23 @@ FAMILY = Family("motion")  # its tables and computations, registered by mechsynt
 FAMILY.table(SceneTable("linkage", _read_linkage, "the linkage: chain, frame, inputs, points (slides, meshes, tracers)"))
 FAMILY.table(SceneTable.typed("sweep", Sweep, "the number of steps"))
 FAMILY.table(SceneTable("closed_form", _read_closed_form, "the formula that checks the solver (kind = …)"))
+
+
+def _read_linkage_balance(raw, path: str, compute):
+    from balance import BalanceError, linkage_table
+
+    try:
+        table = linkage_table({"linkage_balance": raw}, path)
+    except BalanceError as exc:
+        raise SceneError(str(exc)) from None
+    if table.file is not None:
+        raise SceneError(f"{path}: [linkage_balance] 'file' has no place in a scene: its linkage is the [linkage] table.")
+    return table
+
+
+FAMILY.table(SceneTable("linkage_balance", _read_linkage_balance,
+                        "the links' masses (links = [{link, mass, centre}] or density), the counterweights they carry "
+                        "(counterweights = [{link, mass, at}]) and the options of those to add"))
 
 
 # --------------------------------------------------------------------------- motion
@@ -275,33 +296,6 @@ def _freudenstein(linkage, motion) -> float | None:
     return float(np.nanmax(np.abs(k1 * np.cos(t4) - k2 * np.cos(t2) + k3 - np.cos(t2 - t4))))
 
 
-def _extreme(linkage, value, lo: float, hi: float, sign: float) -> tuple[float, float]:
-    """The input in [lo, hi] where ``value(motion)`` (per step) is largest (sign = 1) or smallest
-    (−1), and that value, found by nested sweeps of the solver, each a tenth as wide."""
-    from synth.motion import sweep
-
-    for _ in range(60):
-        motion = sweep(linkage, steps=21, start=lo, stop=hi)
-        got = sign * value(motion)
-        i = int(np.nanargmax(got))
-        x, width = float(motion.inputs[i, 0]), (hi - lo) / 20
-        if width < 1e-13:
-            break
-        lo, hi = x - width, x + width
-    return x, sign * float(got[i])
-
-
-def _dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The inputs and values of the largest and smallest ``value`` over a crank's turn, refined."""
-    v = value(motion)
-    step = float(motion.inputs[1, 0] - motion.inputs[0, 0])
-    out = []
-    for sign in (1.0, -1.0):
-        x = float(motion.inputs[int(np.nanargmax(sign * v)), 0])
-        out.append(_extreme(linkage, value, x - 2 * step, x + 2 * step, sign))
-    return out[0], out[1]
-
-
 def _slider_crank(linkage, motion) -> SliderCrankCheck:
     """Roles: the input crank O–A, the rod A–B, the slider's pin B on the line along the slide of the
     slider–frame prismatic pair (through B as posed)."""
@@ -323,15 +317,11 @@ def _slider_crank(linkage, motion) -> SliderCrankCheck:
     b_cf = p[b_pin] + s[:, None] * u
     error = max(float(np.nanmax(np.hypot(*(j[:, a_pin] - a_cf).T))), float(np.nanmax(np.hypot(*(j[:, b_pin] - b_cf).T))))
 
-    def slide(m):
-        return (m.joints[:, b_pin] - p[b_pin]) @ u
-
-    (x_hi, s_hi), (x_lo, s_lo) = _dead_centres(linkage, motion, slide)
-    forward = (x_hi - x_lo) % (2 * math.pi)
-    ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
+    measured = slider_stroke(linkage, motion, b_pin, u)
     stroke = math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
     delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
-    return SliderCrankCheck(error, s_hi - s_lo, stroke, ratio, (math.pi + delta) / (math.pi - delta), r, l, e)
+    return SliderCrankCheck(error, measured.length, stroke, measured.quick_return_ratio,
+                            (math.pi + delta) / (math.pi - delta), r, l, e)
 
 
 def _slotted_lever(linkage, motion) -> SlottedLeverCheck:
@@ -371,8 +361,8 @@ def _slotted_lever(linkage, motion) -> SlottedLeverCheck:
     def turned(m):
         return m.angles[:, lever]
 
-    (_, psi_hi), (_, psi_lo) = _dead_centres(linkage, motion, turned)
-    (_, s_hi), (_, s_lo) = _dead_centres(linkage, motion, slide)
+    (_, psi_hi), (_, psi_lo) = dead_centres(linkage, motion, turned)
+    (_, s_hi), (_, s_lo) = dead_centres(linkage, motion, slide)
     r, d = math.dist(p[o], p[b_pin]), math.dist(p[o], p[c])
     return SlottedLeverCheck(error, math.degrees(psi_hi - psi_lo),
                              math.degrees(math.acos((e - r) / d) - math.acos((e + r) / d)), (s_lo, s_hi), r, d, abs(e))
@@ -453,6 +443,34 @@ FAMILY.kind(ComputeKind(
             "min_transmission_angle": Expectation(Number), "rigidity_error": Expectation(Number, below=True),
             "dead_positions": Expectation(Number)},
     report=_report_motion))
+def _balance_linkage(run: Run):
+    from mechbase.errors import ProjectError
+
+    from .._linkage_balance import OPTIONS, linkage_problem
+
+    table = run.scene.tables["linkage_balance"]
+    try:
+        return linkage_problem(run.scene.tables["linkage"], {k: getattr(table, k) for k in OPTIONS}, table.links,
+                               run.scene.name, run.scene.path, table.counterweights).solve()
+    except ProjectError as exc:  # the balance's or the motion layer's one sentence
+        raise SceneError(f"{run.scene.path}: [linkage_balance] {str(exc).rstrip('.')}.") from None
+
+
+def _report_balance(r: dict) -> list[str]:
+    weights = ", ".join(f"link {c['link']} {c['mass']:.6g} kg at {c['distance']:.6g} m from {c['joint']}"
+                        for c in r["counterweights"] if c["mass"] > 0)
+    state = "full balance" if r["full_balance"] else f"{100 * r['residual_share']:.3g}% of the excursion left"
+    carried = ", ".join(f"link {b['link']} {b['mass']:.6g} kg" for b in r["carried"])
+    return [(f"carried: {carried}; " if carried else "") + f"counterweights: {weights or 'none'}; {state}"]
+
+
+FAMILY.kind(ComputeKind(
+    "balance linkage", "counterweights that make a linkage's first moment of mass constant (shaking force, gravity)",
+    "linkage_balance", _balance_linkage, reads=("linkage",),
+    expect={"full_balance": Expectation(Flag), "residual_share": Expectation(Number, below=True),
+            "added_mass": Expectation(Number),
+            "shaking_force_after": Expectation(Number, ("after", "shaking_force"), below=True)},
+    report=_report_balance))
 FAMILY.kind(ComputeKind(
     "closed form", "the solver against a textbook formula (dyads, slider-crank, slotted-lever, willis)", "closed_form",
     _closed_form, reads=("linkage", "sweep"),

@@ -49,6 +49,9 @@ class _SceneTable(Table):
 
 # --------------------------------------------------------------------------- loading
 def _read_toml(path: Path) -> dict:
+    if Path(path).suffix.lower() == ".json":  # a linkage saved as JSON: it read "not valid TOML (Invalid statement …)"
+        raise SceneError(f"{path}: a scene file is TOML, and this is JSON (a linkage saved as .json moves with "
+                         "'mechsynth move'; 'move' or 'dimension' with --save NAME.toml writes one as a scene).")
     return read_toml(path, error=SceneError, what="scene file", directory="use --all for a directory of scenes")
 
 

@@ -29,7 +29,7 @@ _WHERE = {
     "GridRunResult": ".runs", "compute_unit": ".runs", "run_grid": ".runs", "size_grid": ".runs",
     "parse_where": ".queries", "export": ".queries", "summary": ".queries",
     "IndexSettings": ".curves", "IndexResult": ".curves", "NoCurveIndex": ".curves", "index_curves": ".curves",
-    "index_info": ".curves",
+    "index_info": ".curves", "index_gap": ".curves",
     "AtlasSearchResult": ".search", "AtlasMatch": ".search", "search_atlas": ".search", "retrieve": ".search",
     "sampled_starts": ".search",
     "write_site": ".site", "SiteResult": ".site", "EmptyAtlas": ".site", "MAX_PAGE_SIZE": ".site",

@@ -54,7 +54,7 @@ from ..structure.joints import PRISMATIC
 from .database import AtlasError, open_atlas, refuse_unwritable, transaction
 
 __all__ = ["INDEX_VERSION", "HARMONICS", "STEPS", "IndexSettings", "IndexResult", "CurveUnit", "harmonics",
-           "untimed_parameter", "periodic_harmonics", "tracer_links", "index_curves", "index_units", "sample_unit", "index_info", "NoCurveIndex"]
+           "untimed_parameter", "periodic_harmonics", "tracer_links", "index_curves", "index_units", "sample_unit", "index_info", "index_gap", "NoCurveIndex"]
 
 #: version of the curve index's tables (``meta.curve_index_version``)
 INDEX_VERSION = 1
@@ -610,6 +610,58 @@ def index_curves(db: str | Path, *, settings: IndexSettings = IndexSettings(), l
         if client is not None:
             client.close()
         conn.close()
+
+
+def index_gap(db: str | Path, links: tuple[int, int] | None = None) -> str | None:
+    """A sentence naming the atlas's chains its curve index does not cover — added by a grid run after the
+    index was built, or left out by ``links`` when it was — and the command that indexes them; None when it
+    covers every chain it could (with ``links`` in the given range), or the atlas has no index.
+
+    The atlas search sees only indexed chains; a chain is covered when the index has sampled (or skipped)
+    any of its mechanisms, so a build interrupted within a chain is not named (resuming it finishes it).
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> from synth.atlas import parse_grid, run_grid
+    >>> db = os.path.join(tempfile.mkdtemp(), "a.sqlite")
+    >>> _ = run_grid(parse_grid('dof = 1\\nlinks = "4..6"'), db, workers=1)
+    >>> _ = index_curves(db, settings=IndexSettings(samples=3), links=(4, 4), workers=1)
+    >>> print(index_gap(db).replace(db, "a.sqlite"))
+    the curve index of a.sqlite does not cover 2 chains of the atlas (with 6 links): the atlas search does not see them until 'mechsynth atlas --db a.sqlite --index-curves --samples 3' indexes them
+    >>> index_gap(db, links=(4, 5)) is None
+    True
+    """
+    conn = open_atlas(db)
+    try:
+        if conn.execute("SELECT value FROM meta WHERE key = 'curve_index_version'").fetchone() is None:
+            return None
+        settings = _settings_of(conn)
+        p_lo, p_hi = settings.get("prismatic", (0, 0))
+        lo, hi = links or (0, 10 ** 9)
+        missing = conn.execute(
+            "SELECT links, COUNT(*) FROM chains WHERE dof = 1 AND h = 3 AND prismatic BETWEEN ? AND ? AND meshes = 0 "
+            "AND links BETWEEN ? AND ? AND id NOT IN (SELECT chain FROM curve_units) GROUP BY links ORDER BY links",
+            (p_lo, p_hi, lo, hi)).fetchall()
+    finally:
+        conn.close()
+    if not missing:
+        return None
+    count = sum(n for _, n in missing)
+    sizes = ", ".join(str(n) for n, _ in missing)
+    return (f"the curve index of {db} does not cover {count} chain{'s' * (count > 1)} of the atlas (with {sizes} "
+            f"links): the atlas search does not see them until '{_index_command(db, settings)}' indexes them")
+
+
+def _index_command(db, settings: dict) -> str:
+    """The command that resumes the index of ``db`` with its own settings (a build with others is refused)."""
+    lo, hi = settings.get("prismatic", (0, 0))
+    drawings = settings.get("drawings", 1)
+    return (f"mechsynth atlas --db {db} --index-curves --samples {settings['samples']}"
+            + (f" --drawings {drawings}" if drawings > 1 else "")
+            + (f" --seed {settings['seed']}" if settings["seed"] else "")
+            + (" --triads" if settings.get("triads") else "")
+            + (f" --prismatic {lo}..{hi}" if (lo, hi) != (0, 0) else ""))
 
 
 def _said(settings: dict) -> str:

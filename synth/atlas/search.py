@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import BadTarget, InvalidOption, SynthesisError
+from ..errors import BadTarget, InvalidOption, SynthesisError, option
 from ..structure.chain import Chain, Mechanism
 from .curves import HARMONICS, _info, harmonics, slides_of, unblob, untimed_parameter
 from .database import open_atlas
@@ -112,6 +112,9 @@ class AtlasSearchResult:
     #: what the search could not do, a :class:`synth.SynthesisError` each: ``str(note)`` is its sentence,
     #: naming an option as a keyword (``underdetermined=True``); the command line writes it as a flag
     notes: list = field(default_factory=list)
+    #: CPU seconds of the topologies' polishes wherever they ran (``seconds`` is this process's alone: with
+    #: ``workers`` > 1 or a scheduler the polishes ran elsewhere)
+    polish_seconds: float = 0.0
 
     @property
     def best(self) -> AtlasMatch | None:
@@ -119,14 +122,24 @@ class AtlasSearchResult:
 
 
 # ------------------------------------------------------------------ the target's descriptor
+def _path_only(target) -> None:
+    """Refuse a target the index cannot serve by its kind: it holds coupler curves, not functions or poses."""
+    kind = getattr(target, "kind", None)
+    if kind != "path":
+        raise BadTarget(f"the atlas search looks for paths (its index holds coupler curves), not "
+                        f"{'a ' + kind if isinstance(kind, str) else type(target).__name__}: give the topology with "
+                        f"{option('mechanism', 'CHAIN')} or {option('linkage', 'FILE')}")
+
+
 def descriptor_of(target) -> tuple[np.ndarray, int, bool]:
     """The target's Fourier coefficients (c_-h … c_h), h, and whether they are timed.
 
     Raises
     ------
     BadTarget
-        A target the index cannot serve: a timing that leaves a gap of more than 45° around the
-        turn, an open path without timing, too few points for three harmonics.
+        A target the index cannot serve: a function or a motion (the index holds coupler curves), a timing
+        that leaves a gap of more than 45° around the turn, an open path without timing, too few points for
+        three harmonics.
 
     Examples
     --------
@@ -136,6 +149,7 @@ def descriptor_of(target) -> tuple[np.ndarray, int, bool]:
     >>> h, timed, round(float(abs(c[h + 1])), 9)
     (12, True, 1.0)
     """
+    _path_only(target)
     points = np.asarray(target.points, dtype=float)
     z = points[:, 0] + 1j * points[:, 1]
     h = min(HARMONICS, (len(z) - 1) // 2)
@@ -459,10 +473,12 @@ def polish_topology(task: TopologyPolish):
         far = max(float(np.hypot(*(np.vstack((s.points, s.tracers["P"][1])) - centre).T).max()) for s in starts)
         return replace(task.constraints, reach=max(task.constraints.reach or 0.0, 3.0 * far / task.target.size))
 
-    def polish(start, tracer_link, budget):
+    def polish(start, tracer_link, budget):  # None once the polishing share is spent
+        left = min(budget, polishing - (time.process_time() - clock))
+        if left <= 0:  # (a start's placing may take the last of it: a search of no budget said "the budget must be
+            return None  # a positive number of seconds, not -0.0018" for every topology)
         return synthesize(start, task.target, tracer_link=tracer_link, constraints=widened([start]),
-                          budget=min(budget, polishing - (time.process_time() - clock)), seed=task.seed,
-                          underdetermined=task.underdetermined, polish_only=True)
+                          budget=left, seed=task.seed, underdetermined=task.underdetermined, polish_only=True)
 
     starts = []
     piece = polishing / max(len(task.candidates), 1)  # each candidate's first polish at most
@@ -476,6 +492,8 @@ def polish_topology(task: TopologyPolish):
         except SynthesisError as exc:
             why = exc.args[0]  # its options still marked: the note names them as the caller writes them
             continue
+        if result is None:
+            break
         starts.append((candidate.tracer_link, start))
         if best is None or (result.met, -result.error_rms) > (best.met, -best.error_rms):
             best, best_candidate = result, candidate
@@ -488,7 +506,7 @@ def polish_topology(task: TopologyPolish):
             again = polish(best.linkage, best_candidate.tracer_link, polishing)
         except SynthesisError:
             break
-        if not again.error_rms < 0.5 * best.error_rms:
+        if again is None or not again.error_rms < 0.5 * best.error_rms:
             break
         best = again
     # no sample lay in the target's basin (eight links: a few random poses of twenty dimensions): the global
@@ -584,7 +602,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
     (4, True)
     """
     from ..dimension import Constraints
-    from .curves import index_info
+    from .curves import index_gap, index_info
 
     given = [("top", top), ("workers", workers)]
     for name, value in given + ([("per_topology", per_topology)] if per_topology is not None else []):
@@ -592,6 +610,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             raise InvalidOption(f"{name} must be a whole number ≥ 1, not {value!r}")
     if not (isinstance(budget, (int, float)) and math.isfinite(budget) and budget > 0):
         raise InvalidOption(f"the budget must be a positive number of seconds, not {budget!r}")
+    _path_only(target)
     constraints = constraints or Constraints()
     clock = time.process_time()
     if per_topology is None:
@@ -621,7 +640,9 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         from ..execution.scheduler import connect
 
         client = connect(scheduler, connect_timeout)
-    matches, notes = [], []
+    matches, polish_seconds = [], 0.0
+    gap = index_gap(db, links)
+    notes = [SynthesisError(gap)] if gap else []
     bar = executor = None
     if progress and tasks:
         from ..execution.progress import Progress
@@ -638,6 +659,7 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
             if bar is not None:
                 bar.update()
             result, candidate, tried, why, spent = found
+            polish_seconds += spent
             chain = Chain.from_dict(json.loads(task.chain_json))
             if result is None:
                 from ..motion import joint_name
@@ -662,4 +684,5 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
         if client is not None:
             client.close()
     matches.sort(key=lambda m: (not m.result.met, m.result.error_rms, m.candidate.links))
-    return AtlasSearchResult(matches, size, len(tasks), time.process_time() - clock, target.inputs is not None, notes)
+    return AtlasSearchResult(matches, size, len(tasks), time.process_time() - clock, target.inputs is not None, notes,
+                             polish_seconds)

@@ -24,7 +24,7 @@ from .._lazy import lazy_exports
 _WHERE = {
     "PathTarget": "._target", "FunctionTarget": "._target", "MotionTarget": "._target", "read_target": "._target",
     "Constraints": "._problem", "link_ratio": "._problem",
-    "DimensionalResult": "._search", "synthesize": "._search",
+    "DimensionalResult": "._search", "synthesize": "._search", "equations_and_unknowns": "._search",
 }
 
 __all__ = list(_WHERE)

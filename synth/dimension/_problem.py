@@ -269,10 +269,10 @@ class Problem:
             self.output_joint = next(k for k in frame_joints if self.output_link in chain.joints[k])
             self._check_measures(target)
             self.tracer_link = None
-            if constraints.pivot_at or constraints.timing == "absolute":
+            if constraints.pivot_at or constraints.pivots is not None or constraints.timing == "absolute":
                 raise DimensionError("a function's frame is fixed by its gauge (the input pivot at (0, 0), the output's "
                                      "at (1, 0), or a slider's line along the x axis) and its values are absolute: fixed "
-                                     "pivots and a timing do not apply")
+                                     "pivots, a pivots' region and a timing do not apply")
             if target.input_is == target.output_is:  # angles: the frame line is the x axis, one long
                 self.centre, self.scale = np.zeros(2), 1.0
                 self.fixed = {input_joint: np.zeros(2), self.output_joint: np.array([1.0, 0.0])}
@@ -366,6 +366,7 @@ class Problem:
         self.rows_per_point = {"path": 2, "function": 1, "motion": 3}[target.kind]
         counted = self.points if self.weights is None else int(np.count_nonzero(self.weights))
         self.equations = counted * self.rows_per_point  # (a point of weight 0 gives none)
+        self._check_region_reached()
 
     # ------------------------------------------------------------ set-up
     def _check_measures(self, target: FunctionTarget) -> None:
@@ -399,8 +400,11 @@ class Problem:
         pivoted = [x for k in self.frame_joints for x in chain.joints[k] if x not in (self.frame, self.input_link)]
         if given is not None:
             if given not in pivoted:
-                raise DimensionError(f"the output link {given} must be pivoted on the frame (link {self.frame}) and "
-                                     f"not be the input link; links pivoted there: {sorted(set(pivoted))}")
+                why = (f"is not a link of the mechanism (links 0 … {chain.links - 1})" if not 0 <= given < chain.links
+                       else "is the frame" if given == self.frame else "is the input link" if given == self.input_link
+                       else f"is not pivoted on the frame (link {self.frame})")
+                raise DimensionError(f"the output link {given} {why}: it must be a link pivoted on the frame besides "
+                                     f"the input; links pivoted there: {sorted(set(pivoted))}")
             return given
         if len(set(pivoted)) != 1:
             raise DimensionError(f"name the output link: links {sorted(set(pivoted))} are pivoted on the frame besides "
@@ -430,6 +434,33 @@ class Problem:
             cx, cy = self.centre
             box = ((x0 - cx) / self.scale, (x1 - cx) / self.scale, (y0 - cy) / self.scale, (y1 - cy) / self.scale)
         return box
+
+    def _check_region_reached(self) -> None:
+        """Refuse a pivots' region no link within the length bound can join to the search box: every moving
+        joint is sought within ``reach`` target sizes of the target's centre, each pivot of the frame is jointed
+        to a moving link with another pin, so a region farther from that box than the bound leaves no
+        candidate (the search would spend its budget and find none)."""
+        c = self.constraints
+        if c.pivots is None or c.max_length is None or self.tracer_link is None:
+            return
+        revolute = [k for k, kind in enumerate(self.kinds) if kind == REVOLUTE]
+        jointed = any(j not in self.frame_joints
+                      for k in self.frame_joints if self.kinds[k] == REVOLUTE
+                      for link in self.chain.joints[k] if link != self.frame
+                      for j in revolute if j != k and link in self.chain.joints[j])
+        if not jointed:
+            return
+        x0, x1, y0, y1 = c.pivots
+        half = self.reach * self.scale
+        (cx, cy) = self.centre
+        gap = math.hypot(max(0.0, x0 - (cx + half), (cx - half) - x1), max(0.0, y0 - (cy + half), (cy - half) - y1))
+        if gap > c.max_length:
+            raise DimensionError(
+                f"the pivots' region x {x0:g}..{x1:g}, y {y0:g}..{y1:g} lies {gap:.4g} from every place a moving joint "
+                f"is sought (within {self.reach:g} target sizes, {half:.4g}, of the target's centre "
+                f"({cx:.4g}, {cy:.4g})), beyond the link-length bound {c.max_length:g}: no link joins a pivot there "
+                f"to the mechanism; give a region of the fixed pivots ({option('pivots', 'x0..x1,y0..y1')}) nearer "
+                f"the target, or a larger {option('reach', 'R')} or {option('max_length', 'L')}")
 
     def _count_unknowns(self) -> int:
         """The problem's real unknowns: a pin's 2 coordinates, a slide's line (2: a point along it is

@@ -20,7 +20,7 @@ from ._problem import (CURVE_SAMPLES, HELD_MARGIN, INFEASIBLE, MARGIN, MET, Cons
                        link_ratio, longest_link, point_carried)
 from ._target import FunctionTarget, MotionTarget, PathTarget
 
-__all__ = ["DimensionalResult", "synthesize"]
+__all__ = ["DimensionalResult", "synthesize", "equations_and_unknowns"]
 
 #: weight of a constraint's squared violation against the mean squared relative error
 PENALTY = 1e2
@@ -665,6 +665,21 @@ def _problem(mechanism, target, tracer_link, constraints) -> tuple[Problem, Link
     return Problem(mech, joint, target, tracer_link, constraints, driven), linkage
 
 
+def equations_and_unknowns(mechanism, target, *, tracer_link: int | None = None,
+                           constraints: Constraints = Constraints()) -> tuple[int, int]:
+    """The equations the target gives and the unknowns of its synthesis (fewer equations: an underdetermined
+    problem, which :func:`synthesize` refuses unless asked).
+
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> from synth.dimension import FunctionTarget
+    >>> four_bar = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)
+    >>> equations_and_unknowns(four_bar, FunctionTarget(np.radians([40, 60, 80]), np.radians([70, 85, 105])))
+    (3, 3)
+    """
+    problem, _ = _problem(mechanism, target, tracer_link, constraints)
+    return problem.equations, problem.unknowns
+
+
 def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints: Constraints = Constraints(),
                budget: float = 60.0, seed: int = 0, workers: int = 1, scheduler: str | None = None,
                underdetermined: bool = False, progress=None, polish_only: bool = False,
@@ -683,7 +698,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
     budget : float
         CPU seconds of the search (this process's; with ``workers`` > 1 or a ``scheduler`` the
         parent's wall-clock seconds).  The search stops earlier once the target is met exactly
-        (relative RMS 1e-11).
+        (relative RMS 1e-11); one whose budget ends before any polish polishes the best candidate
+        it saw for at most one budget more.
     seed : int
         Seeds the search: the same seed and budget give the same result on an idle machine (the
         budget cuts the last run where the clock says).
@@ -768,8 +784,8 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         try:
             if polish_only:
                 search.polish(problem.unknowns_of(start))
-            elif start is None and starts is not None:
-                search.from_samples(starts, seed)
+            elif start is None and (starts is not None or isinstance(target, MotionTarget)):
+                search.from_samples(_with_dyads(starts) if isinstance(target, MotionTarget) else starts, seed)
             while not (polish_only or watch.over() or search.exact):
                 search.runs += 1
                 for x in search.evolve(rng, start if search.runs == 1 else None, executor):
@@ -784,7 +800,9 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
             if client is not None:
                 client.close()
         if search.best is None and watch.best[1] is not None and watch.best[0] < INFEASIBLE:
-            search.polish(watch.best[1], grace=True)  # the budget ran out before any polish: polish the best seen
+            # the budget ran out before any polish: polish the best seen, for one budget more at most (unbounded, a
+            # six-bar's share of 0.09 CPU s in 'dimension --db … --budget 1' polished for 94 s)
+            search.polish(watch.best[1], grace=True, until=watch.used() + watch.budget)
         if search.binding():
             search.stiffen()
     if search.best is None:
@@ -793,6 +811,17 @@ def synthesize(mechanism, target, *, tracer_link: int | None = None, constraints
         raise DimensionError("the search found no mechanism that reaches the target on one assembly branch "
                              f"within {budget:g} s: give a longer budget or a larger reach{region}")
     return _result(problem, search.evaluate, search.best, watch, search.runs, bool(search.sampled))
+
+
+def _with_dyads(starts):
+    """A motion's start linkages: a four-bar's from its dyads (:func:`~._dyads.dyad_starts`), then those of
+    ``starts``."""
+    from ._dyads import dyad_starts
+
+    def source(mechanism, tracer_link, target, seed):
+        return dyad_starts(mechanism, tracer_link, target, seed) + list(starts(mechanism, tracer_link, target, seed)
+                                                                       if starts is not None else [])
+    return source
 
 
 def _option(name: str, value: str = "True") -> str:
@@ -1469,7 +1498,8 @@ def _result(problem: Problem, evaluate: _Evaluate, best, watch: _Watch, runs: in
     except (MotionError, ValueError) as exc:  # the motion layer could not follow the found linkage's branch
         constraints = {"branch": {"value": f"the motion layer could not trace the branch: {exc}", "limit": None,
                                   "met": False}}
-    method = ("sampled crank curves + " if sampled else "") + (
+    given = "the target's dyads + " if target.kind == "motion" else "sampled crank curves + "
+    method = (given if sampled else "") + (
         ("bounded least squares (trf) from " + ("them, " if sampled else "a given start, ")) if runs == 0 else
         f"differential evolution ({runs} run{'s' * (runs > 1)}) + bounded least squares (trf), ") + (
         "timed" if problem.timed else "inputs as unknowns, in order")

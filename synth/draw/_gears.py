@@ -5,7 +5,8 @@ bottom, each other axis above the axis of the carrier that holds it.  Links on o
 concentric shafts, drawn a little apart.  A gear is a vertical bar on its shaft reaching to the
 pitch point of its mesh; an internal gear (a ring) reaches past its pinion and turns back, a
 bracket open towards the axis; a carrier is an arm from its own shaft up to the axis it holds;
-the frame is hatched.  Each link has its own colour and its number at its shaft's left end.
+the frame is hatched.  Each link has its own colour and its number at its shaft's left end (the numbers of
+concentric shafts a text line apart).
 With tooth numbers, bar heights follow the pitch radii.
 
 Example
@@ -31,6 +32,7 @@ __all__ = ["draw_train", "draw_train_sheet", "sheet_figure", "schematic", "svg_t
 
 _FORMATS = (".svg", ".png", ".pdf")
 _GAP = 0.16  # between concentric shafts
+_LINE = 1.35  # a link number's line, in its font's size (the digits' box and a little room)
 _PLATE = {"facecolor": "white", "edgecolor": "none", "pad": 0.6, "alpha": 0.85}  # a tooth number over the lines
 
 
@@ -159,9 +161,6 @@ def _draw_on(ax, train: GearTrain, teeth, compound, title: str, fontsize: float 
             for i in range(int((x1 - x0) / 0.15) + 1):
                 t = x0 + i * 0.15
                 ax.plot([t, t - 0.1], [shaft["y"] - 0.12, shaft["y"] - 0.24], color="black", lw=0.8)
-    for x, at, y in _label_places(shafts, left):  # link numbers in a column left of every shaft
-        ax.text(at, y, str(x), ha="right", va="center", fontsize=fontsize + 1, color=colour_of(x), fontweight="bold")
-        ax.plot([at + 0.04, shafts[x]["from"]], [y, y], color=colour_of(x), lw=0.6, ls=":")
     for arm in geometry["arms"]:
         ax.plot([arm["x"]] * 2, [arm["from"], arm["to"]], color=colour_of(arm["link"]), lw=2.2)
     for gear in geometry["gears"]:
@@ -183,18 +182,38 @@ def _draw_on(ax, train: GearTrain, teeth, compound, title: str, fontsize: float 
     ax.axis("off")
     ax.set_title(title, fontsize=fontsize)
     ax.margins(0.08)
+    line = _text_line(ax, fontsize + 1)  # (the drawing's scale known: the numbers are placed last)
+    for x, at, y in _label_places(shafts, left, line):  # link numbers in a column left of every shaft
+        ax.text(at, y, str(x), ha="right", va="center", fontsize=fontsize + 1, color=colour_of(x), fontweight="bold")
+        ax.plot([at + 0.04, shafts[x]["from"]], [y, shafts[x]["y"]], color=colour_of(x), lw=0.6, ls=":")
 
 
-def _label_places(shafts: dict, left: float) -> list[tuple[int, float, float]]:
-    """(link, x, y) of each link number: a column left of every shaft, a number stepped further
-    left when the one below it is closer than a text line (concentric shafts)."""
-    out, previous, step = [], None, 0
+def _text_line(ax, points: float) -> float:
+    """The height of a line of text of ``points`` in the data units of ``ax`` (equal aspect) as drawn so far, with
+    room for the limits the numbers' leaders add."""
+    ax.autoscale_view()
+    box = ax.get_window_extent()
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    per_pixel = max((x1 - x0) / box.width, (y1 - y0) / box.height)
+    return _LINE * points * ax.figure.dpi / 72 * per_pixel
+
+
+def _label_places(shafts: dict, left: float, line: float) -> list[tuple[int, float, float]]:
+    """(link, x, y) of each link number, in a column left of every shaft: each at its shaft's height, and
+    the numbers of shafts nearer than a text ``line`` (concentric shafts) spread a line apart about their
+    shafts' mean height (radially, as the shafts of an axis stand), a dotted leader to each shaft.
+
+    >>> _label_places({0: {"y": 0.0}, 1: {"y": 0.1}, 2: {"y": 2.0}}, 1.0, 0.5)   # 0 and 1 concentric
+    [(0, 0.8, -0.2), (1, 0.8, 0.3), (2, 0.8, 2.0)]
+    """
+    groups: list[list[int]] = []  # runs of numbers a line apart, from the lowest up
+    lowest = lambda group: sum(shafts[x]["y"] for x in group) / len(group) - line * (len(group) - 1) / 2  # noqa: E731
     for x in sorted(shafts, key=lambda x: (shafts[x]["y"], x)):
-        y = shafts[x]["y"]
-        step = step + 1 if previous is not None and y - previous < 0.45 else 0
-        out.append((x, left - 0.2 - 0.3 * step, y))
-        previous = y
-    return out
+        groups.append([x])
+        while len(groups) > 1 and lowest(groups[-1]) < lowest(groups[-2]) + line * len(groups[-2]) - 1e-12:
+            above = groups.pop()
+            groups[-1] += above  # too near the run below: one run
+    return [(x, left - 0.2, lowest(group) + line * k) for group in groups for k, x in enumerate(group)]
 
 
 def _legend(fig, frame: bool, fontsize: float = 8) -> None:

@@ -188,17 +188,21 @@ def _linkage_row(row: dict, where: str) -> dict:
     linkage is what ``move --save`` writes, a scene's ``[linkage]`` table and the ``linkage`` of
     ``dimension --format json``; any other row is returned as it is.
 
-    >>> _linkage_row({"linkage": {"chain": "0-1 1-2 2-3 3-0", "frame": 0, "points": {}}}, "x")["joints"]
+    >>> _linkage_row({"linkage": {"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"],
+    ...               "points": {"0-1": [0, 0], "1-2": [1, 0], "2-3": [3, 2], "0-3": [4, 0]}}}, "x")["joints"]
     [[0, 1], [0, 3], [1, 2], [2, 3]]
     """
+    from ..errors import MotionError
+    from ..motion import Linkage
+
     linkage = row["linkage"] if isinstance(row.get("linkage"), dict) else row
     if not isinstance(linkage.get("chain"), str):
         return row
-    try:
-        chain = Chain.parse(linkage["chain"])
-    except MalformedChain as exc:
-        raise MalformedChain(f"{where}: the linkage's chain cannot be read: {exc}") from None
-    return {**chain.to_dict(), "frame": linkage.get("frame")}
+    try:  # read whole, as 'move' reads it: a NaN point or a misspelt entry is refused, not passed over
+        read = Linkage.from_dict(linkage)
+    except MotionError as exc:
+        raise MalformedChain(f"{where}: {exc.args[0]}") from None
+    return {**read.chain.to_dict(), "frame": read.frame}
 
 
 def read_linkage_file(text: str, source: str) -> list[Entry]:
@@ -208,6 +212,10 @@ def read_linkage_file(text: str, source: str) -> list[Entry]:
 
     data = read_toml_text(text, error=MalformedChain, source=source)
     row = _linkage_row(data, source)
+    table = data.get("linkage")
+    if "joints" not in row and isinstance(table, dict):  # it said "holds no chain: … this one holds scene, linkage"
+        raise MalformedChain(f"{source}: its [linkage] table has no chain (a joint list, chain = \"0-1 1-2 2-3 3-0\"); "
+                             f"it has {', '.join(table) or 'nothing'}")
     if "joints" not in row:
         raise MalformedChain(f"{source} holds no chain: a TOML file is read for the chain of its [linkage] table (a "
                              f"linkage or a scene that moves one); this one holds {', '.join(data) or 'nothing'}")

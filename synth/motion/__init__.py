@@ -26,6 +26,7 @@ _WHERE = {
     "Motion": "._sweep", "MotionRange": "._sweep", "sweep": "._sweep", "sweep_grid": "._sweep",
     "motion_range": "._sweep", "assemble": "._sweep", "pose_branch": "._sweep", "Branch": "._sweep",
     "LinkPoses": "._sweep", "link_poses": "._sweep",
+    "LinkRates": "._sweep", "link_rates": "._sweep",
 }
 
 __all__ = list(_WHERE)

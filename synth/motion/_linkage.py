@@ -467,14 +467,17 @@ class Linkage:
         return json.dumps(self.to_dict())
 
 
-def read_linkage(path: str | Path) -> Linkage:
+def read_linkage(path: str | Path, row: int | None = None) -> Linkage:
     """Read a linkage from a ``.toml`` or ``.json`` file: the object of :meth:`Linkage.from_dict`,
-    at the top level or under a ``linkage`` key (a scene's ``[linkage]`` table).
+    at the top level or under a ``linkage`` key (a scene's ``[linkage]`` table); or row ``row`` (1-based,
+    the table's rank) of the rows of an atlas search (``dimension --db … --format json`` or ``jsonl``),
+    each of which carries its linkage.
 
     Raises
     ------
     MotionError
-        One sentence: the file cannot be read, or its content is not a linkage.
+        One sentence: the file cannot be read, its content is not a linkage, it holds several rows and
+        ``row`` is not given (or not one of them), or ``row`` is given for a file of one linkage.
 
     >>> import tempfile, os
     >>> with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as f:
@@ -485,23 +488,18 @@ def read_linkage(path: str | Path) -> Linkage:
     >>> os.unlink(f.name)
     """
     path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix not in (".toml", ".json"):
-        raise MotionError(f"a linkage file is .toml or .json, not {path.name!r}")
-    text = read_text(path, error=MotionError, what="linkage file")
-    if suffix == ".toml":
-        data = read_toml_text(text, error=MotionError, source=path.name)
-    else:
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno}).") from None
+    data = _rows_or_linkage(path)
+    if isinstance(data, list) and data and all(isinstance(one, dict) for one in data):
+        data = _row_of(data, row, path.name)
+    elif row is not None:
+        raise MotionError(f"--row picks one of the rows of an atlas search ('dimension --db … --format json'), and "
+                          f"{path.name} holds one linkage: give it without --row")
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
-    elif isinstance(data, list) and data and all(isinstance(row, dict) and "linkage" in row for row in data):
-        # the rows of an atlas search ('dimension --db … --format json'), each with its linkage
-        raise MotionError(f"{path.name} holds {len(data)} row{'s' * (len(data) != 1)}, not one linkage: give one "
-                          "row's linkage, or the file 'dimension --save' writes")
+    elif isinstance(data, dict) and "error_max" in data and not isinstance(data.get("points"), dict):
+        # one row of 'dimension' without its linkage ('dimension --mechanism … --format jsonl')
+        raise MotionError(f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' "
+                          "gives each answer with its linkage, '--save FILE' the best one's")
     elif isinstance(data, dict) and not {"chain", "frame", "inputs", "points"} & set(data):  # an arm, a grid, …
         raise MotionError(f"{path.name} holds no linkage: a linkage file has a [linkage] table, or chain, frame, "
                           f"inputs and points at its top; this one holds {', '.join(data) or 'nothing'}")
@@ -509,3 +507,41 @@ def read_linkage(path: str | Path) -> Linkage:
         return Linkage.from_dict(data)
     except MotionError as exc:  # the same sentence, naming the file
         raise type(exc)(f"{path.name}: {exc.args[0]}") from None
+
+
+def _rows_or_linkage(path: Path):
+    """The parsed content of a linkage file: a TOML or JSON document, or the rows of a ``.jsonl`` file."""
+    suffix = path.suffix.lower()
+    if suffix not in (".toml", ".json", ".jsonl"):
+        raise MotionError(f"a linkage file is .toml or .json (or the .json/.jsonl rows of an atlas search), not "
+                          f"{path.name!r}")
+    text = read_text(path, error=MotionError, what="linkage file")
+    if suffix == ".toml":
+        return read_toml_text(text, error=MotionError, source=path.name)
+    lines = [(n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip()] if suffix == ".jsonl" \
+        else [(1, text)]
+    parsed = []
+    for n, line in lines:
+        try:
+            parsed.append(json.loads(line))
+        except json.JSONDecodeError as exc:
+            raise MotionError(f"{path.name}: not valid JSON ({exc.msg} at line {exc.lineno + n - 1}).") from None
+    return parsed if suffix == ".jsonl" else parsed[0]
+
+
+def _row_of(rows: list[dict], row: int | None, name: str) -> dict:
+    """Row ``row`` (1-based, as the table ranks them) of an atlas search's rows, refused in one sentence
+    where it is not given for several rows or is not one of them."""
+    if not all("linkage" in one or "error_max" in one for one in rows):  # another command's rows
+        raise MotionError(f"{name} holds {len(rows)} row{'s' * (len(rows) != 1)} of another kind, not a linkage: a "
+                          "linkage file has a [linkage] table, or chain, frame, inputs and points at its top")
+    if row is None and len(rows) > 1:
+        raise MotionError(f"{name} holds {len(rows)} rows, not one linkage: pick one with --row K (1 to {len(rows)}, "
+                          "as the table ranks them)" if all("linkage" in one for one in rows) else
+                          f"{name} holds {len(rows)} rows of 'mechsynth dimension' without their linkages: with --db "
+                          "its '--format json' or '--format jsonl' gives each row with its linkage")
+    if row is not None and not 1 <= row <= len(rows):
+        raise MotionError(f"--row {row} is not a row of {name}: it holds row{'s 1 to ' if len(rows) > 1 else ' '}"
+                          f"{len(rows)}")
+    return rows[0 if row is None else row - 1]
+

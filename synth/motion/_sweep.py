@@ -19,7 +19,7 @@ from ._linkage import Linkage, joint_name
 from ._system import System
 
 __all__ = ["Motion", "MotionRange", "LinkPoses", "Branch", "sweep", "sweep_grid", "motion_range", "pose_branch", "assemble",
-           "link_poses"]
+           "link_poses", "LinkRates", "link_rates"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,6 +37,8 @@ class Motion:
     velocities, accelerations : ndarray (S, J, 2) or None
         Per unit input rate (rad/s or length/s), input accelerating at zero; None unless asked for.
         With W > 1, velocities are (S, W, J, 2): one per input.  NaN where the step is a dead position.
+    tracer_velocities, tracer_accelerations : dict str -> ndarray (S, 2) or None
+        The same for each tracer point ((S, W, 2) for W > 1); None unless asked for.
     stopped : str or None
         One sentence when the sweep ended at a dead or singular position (with the input there).
     grid : tuple of int or None
@@ -58,6 +60,8 @@ class Motion:
     grid: tuple[int, ...] | None = None
     #: the angles (S, n), or a function that computes them
     _angles: np.ndarray | Callable[[], np.ndarray] | None = field(default=None, repr=False)
+    tracer_velocities: dict | None = None
+    tracer_accelerations: dict | None = None
 
     @cached_property
     def angles(self) -> np.ndarray:
@@ -81,18 +85,56 @@ class Motion:
         return len(self.inputs)
 
     def extent(self) -> dict[str, tuple[float, float, float, float]]:
-        """Each tracer's curve extent ``(x_min, y_min, x_max, y_max)`` (NaN steps left out)."""
+        """Each tracer's curve extent ``(x_min, y_min, x_max, y_max)`` over the sweep (NaN steps left
+        out).  For one input each extreme is refined between the steps beside it by a bounded search
+        (input to 1e-10), so where the steps are closer than the curve's turns it is the curve's own to
+        about 1e-12 of its size, not the samples' (a sampled extreme falls short by up to (step)² × the
+        curvature: 1.4e-5 on a four-bar of size 2 at 360 steps); a grid's extent is its samples'.
+
+        >>> from synth.structure.chain import Chain, Mechanism
+        >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [0, 1], [3.5, 3]],
+        ...              tracers={"A": (1, (0.0, 1.0))})
+        >>> [round(v, 12) for v in sweep(lk, steps=7).extent()["A"]]  # samples 60° apart: the circle's own box
+        [-1.0, -1.0, 1.0, 1.0]
+        """
+        point = self._tracer_at if self.inputs.shape[1] == 1 and self.grid is None and self.steps >= 2 else None
         out = {}
         for name, xy in self.tracers.items():
-            ok = xy[np.isfinite(xy).all(axis=1)]
-            out[name] = tuple(float(v) for v in (*ok.min(axis=0), *ok.max(axis=0))) if len(ok) else (math.nan,) * 4
+            finite = np.flatnonzero(np.isfinite(xy).all(axis=1))
+            if not len(finite):
+                out[name] = (math.nan,) * 4
+                continue
+            box = []
+            for sign, axis in ((1.0, 0), (1.0, 1), (-1.0, 0), (-1.0, 1)):
+                k = int(finite[np.argmin(sign * xy[finite, axis])])
+                best = float(xy[k, axis])
+                if point is not None:
+                    best = sign * _refined(lambda x: sign * point(name, x)[axis], self.inputs[:, 0], k, sign * best)
+                box.append(best)
+            out[name] = tuple(box)
         return out
+
+    def _tracer_at(self, name: str, value: float) -> np.ndarray:
+        """Tracer ``name``'s point at input ``value`` on the sweep's branch (NaN where it does not close)."""
+        solver = _solver(self.linkage)
+        x = value - float(self.linkage.pose_inputs[0])
+        if solver.plan is not None:
+            return solver.closure.points(np.array([[x]]))[1][name][0]
+        lo, hi, _, _ = solver.branch
+        if solver.revolute[0] and math.isfinite(lo) and not lo <= x <= hi:  # the same angle a turn on or back
+            x -= 2 * math.pi * math.floor((x - lo) / (2 * math.pi))
+        try:
+            theta, t, _ = solver.poses_along(np.array([x]))
+        except CannotAssemble:
+            return np.full(2, math.nan)
+        return _points(self.linkage, theta, t)[1][name][0]
 
     def rows(self) -> Iterator[dict]:
         """One JSON-able dict per step: ``step``, ``input`` (for W > 1 one column per input joint,
         ``"input.0-1"``), each joint's ``x``/``y`` keyed by its name (``"1-2.x"``), each tracer's, and
-        velocities (``"1-2.vx"``; for W > 1 per unit rate of each input, ``"1-2.vx.0-1"``) and
-        accelerations (``"1-2.ax"``) where computed (None where undefined: beyond a grid's reach).
+        velocities (``"1-2.vx"``, a tracer's ``"P.vx"``; for W > 1 per unit rate of each input,
+        ``"1-2.vx.0-1"``) and accelerations (``"1-2.ax"``) where computed (None where undefined:
+        beyond a grid's reach).
 
         >>> from synth.structure.chain import Chain, Mechanism
         >>> five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
@@ -118,13 +160,17 @@ class Motion:
                 row[f"{name}.x"], row[f"{name}.y"] = num(self.joints[s, k, 0]), num(self.joints[s, k, 1])
             for name, xy in self.tracers.items():
                 row[f"{name}.x"], row[f"{name}.y"] = num(xy[s, 0]), num(xy[s, 1])
-            for label, values in (("v", self.velocities), ("a", self.accelerations)):
+            for label, values, of_tracers in (("v", self.velocities, self.tracer_velocities),
+                                              ("a", self.accelerations, self.tracer_accelerations)):
                 if values is None:
                     continue
-                for w, per in ([(None, values[s])] if values.ndim == 3 else zip(inputs, values[s])):
-                    tail = "" if w is None else f".{w}"
-                    for k, name in enumerate(names):
-                        row[f"{name}.{label}x{tail}"], row[f"{name}.{label}y{tail}"] = num(per[k, 0]), num(per[k, 1])
+                of_tracers = of_tracers or {}
+                per_input = ([("", values[s], {n: xy[s] for n, xy in of_tracers.items()})] if values.ndim == 3 else
+                             [(f".{w}", values[s, i], {n: xy[s, i] for n, xy in of_tracers.items()})
+                              for i, w in enumerate(inputs)])
+                for tail, at_joints, at_tracers in per_input:
+                    for name, (vx, vy) in [*zip(names, at_joints), *at_tracers.items()]:
+                        row[f"{name}.{label}x{tail}"], row[f"{name}.{label}y{tail}"] = num(vx), num(vy)
             yield row
 
 
@@ -161,6 +207,9 @@ MAX_STEPS = 10_000_000
 SAMPLES = 4096
 #: the ends of a branch are located to this (rad, or this × the mechanism's size)
 LIMIT_TOL = 1e-11
+#: a sweep's start and stop are held to this (rad, or this × the mechanism's size) by a float, and their last
+#: place is less than a step: else they are too far from zero to sweep (refused)
+RESOLVED = 1e-9
 #: Newton's method stops where every closure equation holds to this × the mechanism's size
 CLOSURE_TOL = 1e-14
 
@@ -557,6 +606,52 @@ def link_poses(linkage: Linkage, offsets) -> LinkPoses:
     return LinkPoses(theta, t, g, mu)
 
 
+class LinkRates(NamedTuple):
+    """Every link's pose and its first and second derivatives with respect to the input (1-DOF).
+
+    The input's derivatives: per radian of a revolute input, per unit length of a prismatic one.
+    Multiplied by the input's rate ω (and ω²) they are the links' velocities (and their accelerations
+    at a constant ω).  A point p of link l is at R(θ) p + t; its derivative is θ' J R(θ) p + t'.
+
+    Attributes
+    ----------
+    rotations, translations : ndarray (S, n), (S, n, 2)
+        θ and t, as :class:`LinkPoses`.
+    rotation_rates, translation_rates : ndarray (S, n), (S, n, 2)
+        θ' = dθ/dq and t' = dt/dq.
+    rotation_accelerations, translation_accelerations : ndarray (S, n), (S, n, 2)
+        θ'' and t''; NaN with the rates where the input is at a dead position.
+    """
+
+    rotations: np.ndarray
+    translations: np.ndarray
+    rotation_rates: np.ndarray
+    translation_rates: np.ndarray
+    rotation_accelerations: np.ndarray
+    translation_accelerations: np.ndarray
+
+
+def link_rates(linkage: Linkage, offsets) -> LinkRates:
+    """The poses of every link at the given input offsets (as :func:`link_poses`) and their first and
+    second derivatives with respect to the input: linear solves of the closure Jacobian, as a sweep's
+    velocities and accelerations.
+
+    Examples
+    --------
+    >>> from synth.structure.chain import Chain, Mechanism
+    >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
+    >>> r = link_rates(lk, [0.0, 1.0])
+    >>> r.rotation_rates[:, 1].tolist(), bool(np.abs(r.rotation_accelerations[:, 1]).max() < 1e-12)  # crank: θ' = 1, θ'' = 0
+    ([1.0, 1.0], True)
+    """
+    theta, t = link_poses(linkage, offsets)[:2]
+    system = _solver(linkage).system
+    qd, qdd = system.rates(theta, t, accelerations=True)
+    dtheta, dt = system.poses(qd[:, 0])
+    ddtheta, ddt = system.poses(qdd[:, 0])
+    return LinkRates(theta, t, dtheta, dt, ddtheta, ddt)
+
+
 def _check_steps(steps, name: str = "steps") -> int:
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)):
         raise BadSweep(f"{name} must be a whole number of steps, not {steps!r}")
@@ -573,6 +668,20 @@ def _check_value(value, name: str) -> float:
     if isinstance(value, bool) or not math.isfinite(out):
         raise BadSweep(f"{name} must be a finite number, not {value!r}")
     return out
+
+
+def _check_resolved(linkage: Linkage, ends, step: float, i: int = 0) -> None:
+    """Refuse a value of input ``i`` (``ends``: (name, value) pairs) so far from zero that a float does not hold
+    it to :data:`RESOLVED` (rad, or times the mechanism's size) or tells it from the next, ``step`` on (a crank
+    from 1e308°: start + one turn is start)."""
+    revolute = linkage.kind(linkage.inputs[i]) == REVOLUTE
+    for name, value in ends:
+        last = math.ulp(value)
+        if last > RESOLVED * (1.0 if revolute else linkage.scale) or last >= step:
+            shown = f"{math.degrees(value):.6g}° ({value:.6g} rad)" if revolute else f"{value:.6g}"
+            raise BadSweep(f"{name} {shown} is too far from zero: a float that large is known only to "
+                           f"{last:.3g}{' rad' if revolute else ''}; give an input within a few turns (or sizes) of "
+                           "the pose")
 
 
 def _describe(linkage: Linkage, value: float) -> str:
@@ -614,17 +723,24 @@ def _point_rates(linkage: Linkage, theta, dtheta, dt, ddtheta=None, ddt=None):
 
 
 def _rates(linkage: Linkage, theta, t, accelerations: bool):
-    """Joint velocities and accelerations per unit rate of each input: (S, W, J, 2) each (or None)."""
+    """Velocities and accelerations per unit rate of each input: the joints' (S, W, J, 2) and each
+    tracer's (S, W, 2) by name, velocities then accelerations (None unless asked for)."""
     system = _solver(linkage).system
     qd, qdd = system.rates(theta, t, accelerations)
     vel, acc = [], []
     for i in range(linkage.dof):
         dtheta, dt = system.poses(qd[:, i])
-        vel.append(_point_rates(linkage, theta, dtheta, dt)[0])
+        vel.append(_point_rates(linkage, theta, dtheta, dt))
         if accelerations:
             ddtheta, ddt = system.poses(qdd[:, i])
-            acc.append(_point_rates(linkage, theta, dtheta, dt, ddtheta, ddt)[0])
-    return np.stack(vel, axis=1), (np.stack(acc, axis=1) if accelerations else None)
+            acc.append(_point_rates(linkage, theta, dtheta, dt, ddtheta, ddt))
+
+    def stacked(per_input):
+        if not per_input:
+            return None, None
+        return (np.stack([joints for joints, _ in per_input], axis=1),
+                {name: np.stack([tracers[name] for _, tracers in per_input], axis=1) for name in linkage.tracers})
+    return (*stacked(vel), *stacked(acc))
 
 
 def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, stop: float | None = None,
@@ -684,12 +800,16 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
     start = None if start is None else _check_value(start, "start")
     stop = None if stop is None else _check_value(stop, "stop")
     crank = revolute and math.isinf(lo) and math.isinf(hi)
+    stop_given = stop is not None
+    both = start is not None and stop_given
     if start is None:
         start = phi0 if crank or math.isinf(lo) else phi0 + lo
     if stop is None:
         stop = start + 2 * math.pi if crank else (phi0 + hi if math.isfinite(hi) else start + 4 * linkage.scale)
-    if start == stop:
+    if both and start == stop:
         raise BadSweep("start and stop are the same input: a sweep needs a range")
+    _check_resolved(linkage, (('start', start), ('stop', stop)) if stop_given else (('start', start),),
+                    abs(stop - start) / (steps - 1))
     x0 = start - phi0
     if revolute and not crank and not lo - LIMIT_TOL <= x0 <= hi + LIMIT_TOL:  # the same angle a turn on or back
         x0 -= 2 * math.pi * math.floor((x0 - lo) / (2 * math.pi))
@@ -717,24 +837,55 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
         else:
             tracers = {}
     inputs = (offsets + (start - x0))[:, None]
-    vel = acc = None
+    rates = [None] * 4  # the joints' and tracers' velocities, then accelerations
     if velocities or accelerations:
-        vel, acc = _rates(linkage, theta, t, accelerations)
-        vel = vel[:, 0]
-        acc = acc[:, 0] if acc is not None else None
         at_limit = np.isclose(offsets, lo, atol=1e-9, rtol=0) | np.isclose(offsets, hi, atol=1e-9, rtol=0)
-        vel[at_limit] = np.nan
-        if acc is not None:
-            acc[at_limit] = np.nan
-        if not velocities:
-            vel = None
-    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta)
+        for i, found in enumerate(_rates(linkage, theta, t, accelerations)):
+            if found is None or (i < 2 and not velocities):
+                continue
+            for values in ([found] if i % 2 == 0 else found.values()):
+                values[at_limit] = np.nan
+            rates[i] = found[:, 0] if i % 2 == 0 else {name: xy[:, 0] for name, xy in found.items()}
+    vel, tracer_vel, acc, tracer_acc = rates
+    return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta, tracer_vel, tracer_acc)
+
+
+def _refined(f: Callable[[float], float], xs: np.ndarray, k: int, sampled: float) -> float:
+    """The least of ``f`` between the samples beside ``xs[k]`` (where ``f`` is ``sampled``), by a
+    bounded search to 1e-10 of the input; the sample where the search finds no less."""
+    lo, hi = min(xs[0], xs[-1]), max(xs[0], xs[-1])
+    a, b = xs[max(k - 1, 0)], xs[min(k + 1, len(xs) - 1)]
+    a, b = max(min(a, b), lo), min(max(a, b), hi)
+    if not b > a:
+        return sampled
+
+    def value(x):
+        v = float(f(x))
+        return v if math.isfinite(v) else math.inf
+
+    found = minimize_scalar(value, bounds=(a, b), method="bounded", options={"xatol": 1e-10})
+    return float(found.fun) if found.success and found.fun < sampled else sampled
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
-    """Each dyad's least and greatest transmission angle over the sweep, refined between samples."""
+    """Each dyad's least and greatest transmission angle over the sweep, refined between samples; at a
+    dead position where the branch ends because this dyad is aligned, exactly 0 or π (the end is
+    located to 1e-11 of the input, where the angle is still about its square root: 1e-4°)."""
     out = {}
     lo, hi = min(offsets[0], offsets[-1]), max(offsets[0], offsets[-1])
+    branch_lo, branch_hi, why_lo, why_hi = solver.branch
+
+    def aligned_end(x: float, d) -> bool:
+        """Whether offset x is an end of the branch (a turn on or back, for a revolute input) where dyad d
+        is aligned."""
+        for end, why in ((branch_lo, why_lo), (branch_hi, why_hi)):
+            gap = x - end
+            if solver.revolute[0]:
+                gap = (gap + math.pi) % (2 * math.pi) - math.pi
+            if abs(gap) <= 1e-9 and why.startswith(_dyad_name(solver.linkage, d)):
+                return True
+        return False
+
     for m, d in enumerate(solver.plan):
         if d.kind == "gear":
             continue
@@ -749,6 +900,9 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
                                         bounds=(a, b), method="bounded", options={"xatol": 1e-10})
                 if found.success and found.fun < sign * best:
                     best_x, best = float(found.x), sign * float(found.fun)
+            snap = 0.0 if best < math.pi / 2 else math.pi
+            if abs(best - snap) < 1e-3 and aligned_end(float(offsets[k]), d):
+                best, best_x = snap, float(offsets[k])
             entry[label], entry[f"at_{label}"] = best, float(phi0 + best_x)
         out[f"links {d.links[0]}, {d.links[1]}"] = entry
     return out
@@ -800,6 +954,10 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     total = math.prod(steps)
     if total > MAX_STEPS:
         raise BadSweep(f"the grid has {total:,} steps; at most {MAX_STEPS:,}")
+    for i, ((a, b), count) in enumerate(zip(ranges, steps)):
+        name = joint_name(linkage.chain, linkage.inputs[i])
+        _check_resolved(linkage, ((f"input {name}'s start", a), (f"input {name}'s stop", b)),
+                        abs(b - a) / (count - 1) if a != b else math.inf, i)
     axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
     values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
     offsets = values - linkage.pose_inputs[None, :]
@@ -855,11 +1013,14 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
     joints[~reached] = np.nan
     for xy in tracers.values():
         xy[~reached] = np.nan
-    vel = None
+    vel = tracer_vel = None
     if velocities:
         vel = np.full((total, w, len(linkage.chain.joints), 2), np.nan)
-        vel[reached] = _rates(linkage, theta[reached], t[reached], False)[0]
-    return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta)
+        tracer_vel = {name: np.full((total, w, 2), np.nan) for name in linkage.tracers}
+        vel[reached], found = _rates(linkage, theta[reached], t[reached], False)[:2]
+        for name, xy in found.items():
+            tracer_vel[name][reached] = xy
+    return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta, tracer_vel)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
@@ -1027,6 +1188,8 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     ------
     CannotAssemble
         The branch does not reach ``value`` (the sentence gives its range and the group that locks).
+    BadSweep
+        ``value`` is not finite, or too far from zero for a float to hold an input to 1e-9.
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [4, 0], [1, 0], [3.5, 3]])
@@ -1034,6 +1197,7 @@ def assemble(linkage: Linkage, value: float) -> Linkage:
     1.570796326795
     """
     value = _check_value(value, "the input")
+    _check_resolved(linkage, (("the input", value),), 1e-3)
     motion = sweep(linkage, steps=2, start=value, stop=value + (1e-3 if value < 1e300 else -1e-3))
     p = motion.joints[0]
     tracers = {name: (link, tuple(motion.tracers[name][0])) for name, (link, _) in linkage.tracers.items()}

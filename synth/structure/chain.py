@@ -26,6 +26,7 @@ from functools import cached_property
 import pynauty
 
 from ..errors import MalformedChain, UnknownJoint
+from .nauty_graph import NautyGraph
 from .code import Code
 from ..display import svg_of
 from .disjoint import DisjointSets
@@ -266,7 +267,9 @@ class Chain:
     def _nauty_graph(self, marked: Sequence[int] = ()) -> pynauty.Graph:
         """Incidence graph for nauty: links 0…n−1, joints n…; colour cells marked links, links, joints by kind."""
         n = self.links
-        adjacency = {n + k: list(j) for k, j in enumerate(self.joints)}
+        if len(set(marked)) != len(marked) or not all(0 <= m < n for m in marked):
+            raise MalformedChain(f"the links marked, {list(marked)}, must be distinct links of the chain (0 … {n - 1})")
+        adjacency = {n + k: list(j) for k, j in enumerate(self.joints)}  # (a joint's links are distinct)
         if self.classes is None:
             coloring = [{m} for m in marked] + [set(range(n)) - set(marked)]
         else:  # a cell of links per loop class: two class assignments of one graph are two chains
@@ -274,7 +277,7 @@ class Chain:
                                                 for x in sorted(set(self.classes))]
         # a cell per kind up to the last kind the chain has (joints.py: appending a kind keeps every id)
         coloring += [{n + k for k, kk in enumerate(self.kinds) if kk is kind} for kind in self._shown_kinds()]
-        return pynauty.Graph(n + len(self.joints), adjacency_dict=adjacency, vertex_coloring=coloring)
+        return NautyGraph(n + len(self.joints), adjacency, coloring)  # (the cells cover every vertex)
 
     @property
     def certificate(self) -> str:
@@ -390,7 +393,11 @@ class Chain:
         return g
 
     def is_planar(self) -> bool:
-        """Whether the link–joint incidence graph is planar."""
+        """Whether the link–joint incidence graph is planar (a listing's chain reads it off its branch
+        multigraph, decided once for all the chains on it)."""
+        branch = self.__dict__.get("_branch")
+        if branch is not None:
+            return branch.planar
         import networkx as nx
 
         return nx.check_planarity(self.to_networkx())[0]
@@ -425,6 +432,9 @@ class Chain:
         >>> Chain.parse("0-1 1-2 2-3 3-0 3-4").is_fractionated(), Chain.parse("0-1 1-2 2-0 0-3 3-4 4-0").is_fractionated()
         (False, True)
         """
+        branch = self.__dict__.get("_branch")
+        if branch is not None:
+            return branch.fractionated
         import networkx as nx
 
         core = self.closed_part() if 1 in self.degrees else self

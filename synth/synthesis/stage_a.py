@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from itertools import combinations
 from operator import itemgetter
 from typing import NamedTuple
@@ -29,6 +29,7 @@ from typing import NamedTuple
 import pynauty
 
 from ..execution.memo import is_remembered, remembered
+from ..structure.nauty_graph import NautyGraph
 from ..structure.code import Code
 from ..structure.disjoint import DisjointSets
 
@@ -125,7 +126,7 @@ class Contracted:
     def _subdivided(self) -> pynauty.Graph:
         m = len(self.vertices)
         adjacency = {m + k: [u] if u == v else [u, v] for k, (u, v) in enumerate(self.edges)}
-        return _NautyGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
+        return NautyGraph(m + len(self.edges), adjacency, _colour_cells(self.vertices, len(self.edges)))
 
     def edge_group(self) -> tuple[list[tuple[int, ...]], bool]:
         """Automorphisms of H acting on its edge list, and whether that is the whole group.
@@ -173,7 +174,7 @@ class Contracted:
             cells.setdefault(size, set()).add(m + q)
         adjacency = {m + q: [u] if u == v else [u, v] for q, (u, v) in enumerate(ends)}
         colours = _colour_cells(self.vertices, 0)[:-1] + [cells[size] for size in sorted(cells)]
-        return _listed_group(_NautyGraph(m + b, adjacency, colours), m, b)
+        return _listed_group(NautyGraph(m + b, adjacency, colours), m, b)
 
 
 def _listed_group(graph: pynauty.Graph, m: int, e: int) -> tuple[list[tuple[int, ...]], bool]:
@@ -200,24 +201,6 @@ def _listed_group(graph: pynauty.Graph, m: int, e: int) -> tuple[list[tuple[int,
         frontier = nxt
     group.discard(identity)
     return sorted(group), True
-
-
-class _NautyGraph(pynauty.Graph):
-    """A :class:`pynauty.Graph` built without pynauty's checks, which cost more than nauty itself on
-    the small graphs of stage A (20 links: 0.05 of 0.12 ms an H): ``adjacency`` maps a vertex to a
-    *list* of its neighbours (read in C as a list) and ``cells`` are the colour cells in order, two
-    or more covering every vertex, as :func:`_colour_cells` gives them; nauty sees the same graph
-    as through ``pynauty.Graph(n, adjacency_dict=adjacency, vertex_coloring=cells)``.
-
-    >>> g = _NautyGraph(3, {2: [0, 1]}, [{0, 1}, {2}])
-    >>> pynauty.certificate(g) == pynauty.certificate(pynauty.Graph(3, adjacency_dict={2: [0, 1]},
-    ...                                                              vertex_coloring=[{0, 1}, {2}]))
-    True
-    """
-
-    def __init__(self, n: int, adjacency: dict[int, list[int]], cells: list[set[int]]):  # noqa: super not called
-        self.number_of_vertices, self.directed = n, False
-        self._adjacency_dict, self._vertex_coloring = adjacency, cells
 
 
 @lru_cache(maxsize=256)
@@ -745,16 +728,54 @@ def _keep_multigraph(m: int, edges, conv: Conventions) -> bool:
     """Fractionation (of the closed part) and planarity of the chain, decided on H."""
     if conv.fractionated and not conv.planar_only:
         return True  # without importing networkx (0.1 s of a small query's start-up)
+    if not conv.fractionated and is_fractionated_multigraph(edges):
+        return False
+    return not conv.planar_only or is_planar_multigraph(edges)
+
+
+def is_fractionated_multigraph(edges) -> bool:
+    """Whether every chain on the branch multigraph with ``edges`` is fractionated: its closed part's
+    incidence graph (H with a vertex on every edge, two on a loop, is a subdivision of it) has a cut vertex.
+
+    >>> is_fractionated_multigraph([(0, 1), (0, 1), (0, 1)]), is_fractionated_multigraph([(0, 0), (0, 1), (1, 1)])
+    (False, True)
+    """
     import networkx as nx
 
-    if not conv.fractionated:
-        # H with a vertex on every edge (two on a loop) is a subdivision of the incidence graph
-        core = nx.Graph()
-        for k, (u, v) in enumerate(_closed_core(edges)):
-            core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
-                                else [(u, ("e", k)), (("e", k), v)])
-        if core.number_of_nodes() > 2 and not nx.is_biconnected(core):
-            return False
-    if conv.planar_only:
-        return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
-    return True
+    core = nx.Graph()
+    for k, (u, v) in enumerate(_closed_core(edges)):
+        core.add_edges_from([(u, ("e", k)), (("e", k), ("f", k)), (("f", k), v)] if u == v
+                            else [(u, ("e", k)), (("e", k), v)])
+    return core.number_of_nodes() > 2 and not nx.is_biconnected(core)
+
+
+def is_planar_multigraph(edges) -> bool:
+    """Whether every chain on the branch multigraph with ``edges`` is planar (its incidence graph is a
+    subdivision of H; loops and parallel strings do not change planarity).
+
+    >>> is_planar_multigraph([(u, v) for u in range(3) for v in range(3, 6)])   # K3,3: the smallest non-planar H
+    False
+    """
+    import networkx as nx
+
+    return nx.check_planarity(nx.Graph([(u, v) for u, v in edges if u != v]))[0]
+
+
+class BranchFacts:
+    """Planarity and fractionation of the chains on one branch multigraph H, decided on H once, when first
+    asked, for all of them (a listing shares one among a unit's chains: :meth:`Chain.is_planar` reads it).
+
+    >>> facts = BranchFacts([(0, 1), (0, 1), (0, 1)]); facts.planar, facts.fractionated   # a theta: the six-bars' H
+    (True, False)
+    """
+
+    def __init__(self, edges) -> None:
+        self.edges = tuple(edges)
+
+    @cached_property
+    def planar(self) -> bool:
+        return is_planar_multigraph(self.edges)
+
+    @cached_property
+    def fractionated(self) -> bool:
+        return is_fractionated_multigraph(self.edges)

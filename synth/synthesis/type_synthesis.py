@@ -41,7 +41,7 @@ from ..execution.progress import Progress
 from ..structure.chain import Chain, Mechanism
 from ..structure.code import Code
 from ..structure.query import ChainQuery, parse_requirements
-from .stage_a import Contracted, Conventions, Vertex, contracted_graphs, contracted_stream, needs_solver, uses_kernel
+from .stage_a import BranchFacts, Contracted, Conventions, Vertex, contracted_graphs, contracted_stream, needs_solver, uses_kernel
 from .stage_b import count_orbits, count_realised, count_reversed, load_kernel, realise
 from .number_synthesis import number_synthesis
 
@@ -369,6 +369,9 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
     _check_workers(workers)
     for _, unit, chains in _map_units(run_unit, plan_jobs(query), workers, progress):
         if unit is not None:
+            branch = BranchFacts(unit.contracted.edges if unit.contracted else ())  # (a single loop: no edge)
+            for chain in chains:  # planarity and fractionation, asked of a chain, decided once on its H
+                object.__setattr__(chain, "_branch", branch)
             yield from chains
 
 

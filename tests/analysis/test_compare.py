@@ -98,6 +98,8 @@ def test_the_command_on_files_of_several_formats(atlas, tmp_path, capsys):
     (["identify", "{d}/picture.png"], "not a text file"),
     (["identify", "0-1 1-1 1-2"], "link 1 is joined to itself"),
     (["identify", "{d}/toml.toml"], "holds no chain"),
+    # a linkage file is read whole, as move reads it: a NaN point was passed over (only its chain was read)
+    (["identify", "{d}/nan.toml"], "nan.toml: the position of joint 2-3 is not finite: [nan, 1]"),
     (["identify", "0-1 1-2", "--input-format", "graphml"], "not a GraphML document"),
     (["identify", "0-1 1-2 2-0", "--frame", "7"], "frame 7"),
 ])
@@ -105,6 +107,8 @@ def test_bad_input_is_one_sentence_and_exit_2(tmp_path, capsys, argv, words):
     (tmp_path / "picture.png").write_bytes(bytes(range(256)) * 4)
     (tmp_path / "self.txt").write_text("0-1 1-2 2-3 3-0\n0-1 1-1\n")
     (tmp_path / "toml.toml").write_text('dof = 1\nlinks = "4..8"\n')
+    (tmp_path / "nan.toml").write_text('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\n'
+                                       'points = { "0-1" = [0, 0], "1-2" = [1, 1], "2-3" = [nan, 1], "0-3" = [4, 0] }\n')
     assert main([a.replace("{d}", str(tmp_path)) for a in argv]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechsynth: ") and err.count("\n") == 1 and words in err and "Traceback" not in err

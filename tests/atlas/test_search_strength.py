@@ -552,6 +552,22 @@ def test_the_budget_is_counted_from_the_searchs_start_whatever_the_clock_reads(t
         "spent before a polish began)"]
 
 
+def test_a_share_spent_while_a_start_is_placed_is_said_as_spent_not_as_a_negative_budget(tmp_path, monkeypatch):
+    # a clock of 1 s a reading: the polishing share (1.5 s of 3) is left at the loop's check and spent by the
+    # polish's; it read "(the budget must be a positive number of seconds, not -0.5)", for every topology
+    import time
+
+    db = _four_bar_index(tmp_path, 4)
+    row = sql(db, "SELECT id FROM curve_samples ORDER BY id")[2][0]
+    _, _, xy, phi = _stored_curve(db, row, 36)
+    monkeypatch.setattr(time, "process_time", _Clock(0.0, 1.0))
+    found = search_atlas(db, PathTarget(xy[:36], inputs=phi[:36]), budget=3, per_topology=1)
+    chain = Chain.from_dict(json.loads(sql(db, "SELECT chain FROM chains")[0][0]))
+    assert found.matches == [] and [str(note) for note in found.notes] == [
+        f"{chain.compact()} (frame 0, input 0-1): no polish reached the target (its share of the time budget was "
+        "spent before a polish began)"]
+
+
 def test_a_curve_no_four_bar_traces_is_polished_again_from_the_best(tmp_path):
     # a timed ellipse: the first polish stops short of it, and the search goes on from its best while that halves
     # the error and time is left; what it returns is a four-bar the motion layer moves along its reported curve

@@ -370,3 +370,59 @@ def test_compare_figure_has_a_column_per_loaded_joint(drawn):
     assert len(fig.axes) == 4 and tuple(fig.get_size_inches()) == (9.0, 7.4)
     assert [ax.get_title().split(" swept")[0] for ax in fig.axes[:2]] == ["q1 (upper)", "q2 (fore)"]
     assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque over the workspace and payloads (N·m)"] * 2
+
+
+# --------------------------------------------------------------------------------------------- linkages
+@pytest.mark.parametrize("model, dead", [("motion_four_bar.toml", False), ("rocker", True)])
+def test_linkage_figure_draws_the_shaking_force_and_the_counterweights(drawn, model, dead):
+    """Left: before and after over the input (the shaking force, or the first moment's distance from its start
+    where the range ends at dead positions); right: the counterweights at their points, sized by mass."""
+    from balance import plot_linkage
+    from mechsynth._linkage_balance import linkage_problem
+    from synth.motion import Linkage, read_linkage
+    from synth.structure.chain import Chain, Mechanism
+
+    if model == "rocker":  # a triple-rocker's input: limits at dead positions
+        lk = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0), (0,), [[0, 0], [1, 0], [1.5, 1.5], [1.6, 1.0]])
+    else:
+        lk = read_linkage(Path(__file__).resolve().parents[2] / "models" / model)
+    res = linkage_problem(lk, {"density": 2.0}, None, model).solve()
+    assert res.problem.dead_ends is dead
+    fig = drawn(plot_linkage, res)
+    left, right = fig.axes
+    (_, before), (_, after) = lines(left)
+    if dead:
+        assert "M(start)" in left.get_ylabel()
+        assert before.max() <= res.before.moment_excursion * (1 + 1e-9)
+    else:
+        assert "shaking force" in left.get_ylabel()
+        assert res.before.shaking_force * 0.999 <= before.max() <= res.before.shaking_force * (1 + 1e-9)
+    assert np.abs(after).max() <= 1e-9 * np.abs(before).max()  # both balanced in full
+    points = np.concatenate([c.get_offsets() for c in right.collections])
+    expected = np.array([c.at for c in res.counterweights if c.mass > 0])
+    assert np.allclose(np.sort(points, axis=0), np.sort(expected, axis=0))
+    assert legend_texts(right) == ["centre of mass, before", "centre of mass, after"]
+
+
+def test_linkage_figure_draws_the_counterweights_a_saved_linkage_carries(drawn, tmp_path):
+    """The balanced four-bar saved and balanced again: no counterweight found, the two it carries drawn grey at
+    their points, sized by mass."""
+    import json
+
+    from balance import linkage_table, plot_linkage
+    from mechsynth._linkage_balance import linkage_problem
+    from mechsynth.cli import main
+    from synth.motion import read_linkage
+
+    saved = tmp_path / "balanced.json"
+    model = Path(__file__).resolve().parents[2] / "models" / "motion_four_bar.toml"
+    assert main(["balance", "linkage", str(model), "--density", "2", "--save", str(saved), "--format", "json"]) == 0
+    table = linkage_table(json.loads(saved.read_text()))
+    res = linkage_problem(read_linkage(saved), {}, table.links, "balanced", None, table.counterweights).solve()
+    assert res.added_mass == 0 and len(res.carried) == 2
+    right = drawn(plot_linkage, res).axes[1]
+    dots = [c for c in right.collections if len(c.get_offsets())]  # (the found ones: none, no dot)
+    points = np.concatenate([c.get_offsets() for c in dots])
+    assert np.allclose(np.sort(points, axis=0), np.sort([b.centre for b in res.carried], axis=0))
+    assert all(mcolors.to_hex(c.get_facecolor()[0]) == mcolors.to_hex("0.55") for c in dots)
+    assert "grey: carried already" in right.get_title()

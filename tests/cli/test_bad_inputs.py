@@ -259,6 +259,14 @@ CASES = [
     ("balance arm {m}/arm_base_drives.toml --seed 4294967296", "4294967296"),
     ("balance arm {d}/arm_seed.toml", "'seed'"),
     ("balance compare {m}/arm_ur5e.urdf --seed -1", "not -1"),
+    ("balance linkage {m}/motion_four_bar.toml", "has no masses"),
+    ("balance linkage {m}/motion_four_bar.toml --density nan", "nan"),
+    ("balance linkage {m}/motion_four_bar.toml --density 2 --on 0", "link 0"),
+    ("balance linkage {m}/motion_four_bar.toml --density 2 --on 1,x", "1,x"),
+    ("balance linkage {m}/motion_four_bar.toml --density 2 --gravity 0", "GX,GY"),
+    ("balance linkage {m}/motion_four_bar.toml --density 2 --save {d}/out.txt", "out.txt"),
+    ("balance linkage {m}/arm_base_drives.toml --density 2", "arm_base_drives.toml"),
+    ("balance linkage {d}/binary.toml --density 2", "binary.toml"),
 ]
 
 # cases that fail today because of the balance package (reported to the balance helper, not fixed here)

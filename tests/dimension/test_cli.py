@@ -86,6 +86,9 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     ([*FOUR_BAR, "--max-length", "inf"], "finite number"),
     ([*FOUR_BAR, "--max-length", "5", "--pivot-at", "0-1=0,0", "--pivot-at", "0-3=6,8"], "lie 10 apart"),
     ([*FOUR_BAR, "--pivots", "0..1"], "x0..x1,y0..y1"),
+    # a function's pivots are its gauge's, (0, 0) and (1, 0): a region excluding them ran the budget, then said
+    # that no mechanism was found
+    ([*FOUR_BAR, "--pivots", "5..6,5..6"], "fixed pivots, a pivots' region and a timing do not apply"),
     ([*FOUR_BAR, "--budget", "0"], "positive number of seconds"),
     ([*FOUR_BAR, "--out", "picture.gif"], "PNG or SVG"),
     ([*FOUR_BAR, "--save", "x.txt"], "TOML or JSON"),
@@ -93,6 +96,10 @@ def test_a_constraint_the_search_cannot_meet_exits_1_and_says_which(tmp_path, ca
     (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0", "--input", "1-2"], "must be a joint of the frame"),
     ([*FOUR_BAR, "--tracer-link", "2"], "this target is a function"),
     (["--mechanism", "0-1 1-2 2-0", "--frame", "0"], "W = 0"),
+    # three function pairs for a four-bar's three unknowns: nothing underdetermined to allow (it was accepted silently)
+    ([*FOUR_BAR, "--underdetermined"], "--underdetermined allows fewer target equations than unknowns, and this target "
+                                       "gives 3 equations for the 3 unknowns of this function synthesis: drop it"),
+    ([*FOUR_BAR, "--output-link", "9"], "the output link 9 is not a link of the mechanism (links 0 … 3)"),
 ])
 def test_a_contradiction_is_one_sentence_and_exit_2(tmp_path, capsys, monkeypatch, args, words):
     monkeypatch.chdir(tmp_path)
@@ -107,10 +114,22 @@ def test_a_pivots_region_far_from_the_target_is_named_when_nothing_reaches_it(ca
     """A region of the fixed pivots 140 target units away: the search ends with one sentence and exit 2, which
     advised only a longer budget or a larger reach (the reach does not bound the frame's joints)."""
     assert main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "1",
-                 "--pivots", "100..101,100..101", "--max-length", "5"]) == 2
+                 "--pivots", "100..101,100..101"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.rstrip().endswith(
         "or a region of the fixed pivots (--pivots x0..x1,y0..y1) nearer the target")
+
+
+def test_a_pivots_region_no_link_within_the_length_bound_reaches_is_refused_before_the_search(capsys):
+    """The same region with every link at most 5 long: no link joins it to the search box (the moving joints
+    within 4 target sizes of the target's centre), so it is refused at once — it spent the whole budget (the
+    default 60 CPU s), then said no mechanism was found."""
+    assert main(["dimension", str(MODELS / "dimension_path.csv"), *FOUR_BAR, "--budget", "86400",
+                 "--pivots", "100..101,100..101", "--max-length", "5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "lies 129.4 from every place a moving joint is sought" in err
+    assert err.rstrip().endswith("give a region of the fixed pivots (--pivots x0..x1,y0..y1) nearer the target, or a "
+                                 "larger --reach R or --max-length L")
 
 
 def test_a_bad_target_file_is_one_sentence_and_exit_2(tmp_path, capsys):
@@ -169,3 +188,22 @@ def test_an_answer_on_the_edge_of_the_reach_says_so(tmp_path, capsys):
     assert json.loads(captured.out)["relative_max"] > 1e-3
     (note,) = [line for line in captured.err.splitlines() if "edge of the search's reach" in line]
     assert note.startswith("mechsynth: 0-3 ") and "a larger reach may lower the error" in note
+
+
+def test_underdetermined_is_taken_where_the_target_needs_it(tmp_path, capsys):
+    """Two function pairs give 2 equations for a four-bar's 3 unknowns: refused without the option, met exactly with it."""
+    two = tmp_path / "two.csv"
+    two.write_text("input_deg,output_deg\n35,60\n55,72\n")
+    assert main(["dimension", str(two), *FOUR_BAR, "--budget", "2"]) == 2
+    assert "give at least 3 points (or allow an underdetermined problem: --underdetermined)" in capsys.readouterr().err
+    assert main(["dimension", str(two), *FOUR_BAR, "--budget", "2", "--underdetermined", "--format", "jsonl"]) == 0
+    row = json.loads(capsys.readouterr().out)
+    assert row["points"] == 2 and row["error_max"] < 1e-9
+
+
+def test_the_help_gives_the_pivots_box_its_unit(capsys):
+    """--pivots said 'a box the frame's joints must lie in' and no unit (--pivot-at said target units)."""
+    with pytest.raises(SystemExit):
+        main(["dimension", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "a box the frame's joints must lie in, in target units (the target's x, y)" in text

@@ -126,8 +126,11 @@ def test_the_problems_refusals():
     assert refused(DimensionError, Problem, SLIDER_CRANK, 0, f, None, Constraints()) == (
         "the target gives the output as angles, but the output joint 0=3 is prismatic (a slider): give its "
         "displacements (an output_displacement column)")
-    assert refused(DimensionError, Problem, FOUR_BAR, 0, FunctionTarget([0, 1], [0, 1], 2), None, Constraints()) == \
-        ("the output link 2 must be pivoted on the frame (link 0) and not be the input link; links pivoted there: [3]")
+    for given, why in ((2, "is not pivoted on the frame (link 0)"), (9, "is not a link of the mechanism (links 0 … 3)"),
+                       (0, "is the frame"), (1, "is the input link")):
+        assert refused(DimensionError, Problem, FOUR_BAR, 0, FunctionTarget([0, 1], [0, 1], given), None,
+                       Constraints()) == (f"the output link {given} {why}: it must be a link pivoted on the frame "
+                                          "besides the input; links pivoted there: [3]")
     watt = Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-2"), 0)
     assert refused(DimensionError, Problem, watt, 0, f, None, Constraints()) == \
         "name the output link: links [3, 4] are pivoted on the frame besides the input"

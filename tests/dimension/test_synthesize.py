@@ -14,7 +14,7 @@ from synth.errors import BadTarget, DimensionError
 from synth.motion import Linkage, assemble, motion_range, sweep
 from synth.structure.chain import Chain, Mechanism
 
-from ..oracles.motion import traced_by_the_oracle
+from ..oracles.motion import follow, oracle_of, traced_by_the_oracle
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), frame=0)  # joints 0-1, 0-3, 1-2, 2-3
 SLIDER_CRANK = Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), frame=0)
@@ -103,6 +103,10 @@ def test_function_generation_matches_freudensteins_closed_form():
         rocker = posed.points[3] - posed.points[1]
         assert abs(math.remainder(math.atan2(rocker[1], rocker[0]) - want, math.tau)) < 1e-9
     assert abs(float(lk.pose_inputs[0]) - phi[0]) < 1e-9  # posed at the first input
+    # and by the independent reference solver (tests/oracles/motion.py), moved input after input from the pose
+    moved = follow(oracle_of(lk), np.asarray(result.inputs) - float(lk.pose_inputs[0]), math.radians(1))
+    rocker = moved[:, 3] - moved[:, 1]
+    assert np.abs(np.remainder(np.arctan2(rocker[:, 1], rocker[:, 0]) - psi + math.pi, math.tau) - math.pi).max() < 1e-9
 
 
 @pytest.mark.slow  # up to 30–60 CPU seconds

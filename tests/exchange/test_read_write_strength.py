@@ -89,7 +89,9 @@ def test_a_linkage_file_is_read_as_its_chain_and_frame(tmp_path):
                                          'chain = "0-1 1-2 2-3 3-0"\nframe = 2\ninputs = ["2-3"]\n'
                                          'points = { "0-1" = [0, 0], "1-2" = [1, 1], "2-3" = [3, 1], "0-3" = [4, 0] }\n')
     (tmp_path / "result.json").write_text('{"kind": "path", "chain": "0-1 0-3 1-2 2-3", "linkage": '
-                                          '{"chain": "0-1 1=2 2-3 3-0", "frame": 1, "inputs": ["1-2"], "points": {}}}')
+                                          '{"chain": "0-1 1=2 2-3 3-0", "frame": 1, "inputs": ["1-2"], "points": '
+                                          '{"0-1": [0, 0], "0-3": [4, 0], "1=2": [1, 1], "2-3": [3, 2]}, '
+                                          '"slides": {"1=2": [1, 0]}}}')
     read = {path: [(e.chain.compact(), e.frame) for e in exchange.read_file(tmp_path / path)]
             for path in ("moved.json", "found.toml", "result.json")}
     assert read == {"moved.json": [("0-2 0-3 0-4 1-2 1-3 1-5 4-5", 4)], "found.toml": [("0-1 0-3 1-2 2-3", 2)],
@@ -98,9 +100,31 @@ def test_a_linkage_file_is_read_as_its_chain_and_frame(tmp_path):
     assert refused(MalformedChain, exchange.read_file, tmp_path / "grid.toml") == (
         f"{tmp_path / 'grid.toml'} holds no chain: a TOML file is read for the chain of its [linkage] table (a linkage "
         "or a scene that moves one); this one holds name, dof, links")
-    (tmp_path / "bad.toml").write_text('[linkage]\nchain = "0-1 1-1"\nframe = 0\n')
+    (tmp_path / "typo.toml").write_text('[scene]\nname = "t"\n[linkage]\nchian = "0-1 1-2 2-3 3-0"\nframe = 0\n')
+    assert refused(MalformedChain, exchange.read_file, tmp_path / "typo.toml") == (
+        f"{tmp_path / 'typo.toml'}: its [linkage] table has no chain (a joint list, chain = \"0-1 1-2 2-3 3-0\"); it has "
+        "chian, frame")
+    (tmp_path / "bad.toml").write_text('[linkage]\nchain = "0-1 1-1"\nframe = 0\ninputs = []\npoints = {}\n')
     assert refused(MalformedChain, exchange.read_file, tmp_path / "bad.toml").startswith(
         f"{tmp_path / 'bad.toml'}: the linkage's chain cannot be read: ")
+
+
+@pytest.mark.parametrize("change, sentence", [
+    # a NaN point and a misspelt entry were passed over: only the chain and frame were read
+    (('"2-3" = [3, 1]', '"2-3" = [nan, 1]'), "the position of joint 2-3 is not finite: [nan, 1]"),
+    (("[linkage.tracers]", "[linkage.tracer]"), "a linkage has no entry 'tracer' (it has chain, frame, inputs, "
+                                                "points, slides, meshes, tracers)"),
+    (("at = [2, 2]", "att = [2, 2]"), "'tracers' must map each name to {link = L, at = [x, y]}"),
+])
+def test_a_linkage_file_is_read_whole_as_move_reads_it(tmp_path, change, sentence):
+    text = ('[linkage]\nchain = "0-1 1-2 2-3 3-0"\nframe = 0\ninputs = ["0-1"]\n'
+            'points = { "0-1" = [0, 0], "1-2" = [1, 1], "2-3" = [3, 1], "0-3" = [4, 0] }\n'
+            '[linkage.tracers]\nP = { link = 2, at = [2, 2] }\n')
+    good, bad = tmp_path / "good.toml", tmp_path / "bad.toml"
+    good.write_text(text)
+    bad.write_text(text.replace(*change))
+    assert [e.chain.compact() for e in exchange.read_file(good)] == ["0-1 0-3 1-2 2-3"]
+    assert refused(MalformedChain, exchange.read_file, bad) == f"{bad}: {sentence}"
 
 
 def test_a_folder_is_read_in_name_order_without_hidden_files(tmp_path):

@@ -181,9 +181,10 @@ def test_the_drawing_puts_each_part_where_the_schematic_says():
     assert _colour(texts["z3=30"]) == colour[3] and _colour(texts["z0=80"]) == "#000000"
     # the link numbers, left of every shaft, in the link's colour, with a dotted leader to the shaft
     left = min(v["from"] for v in s["shafts"].values())
-    for x, at, y in _label_places(s["shafts"], left):
-        assert texts[str(x)].get_position() == pytest.approx((at, y)) and _colour(texts[str(x)]) == colour[x]
-        leader = line([at + 0.04, s["shafts"][x]["from"]], [y, y])
+    for x, shaft in s["shafts"].items():
+        at, y = texts[str(x)].get_position()
+        assert at == pytest.approx(left - 0.2) and _colour(texts[str(x)]) == colour[x]
+        leader = line([at + 0.04, shaft["from"]], [y, shaft["y"]])
         assert leader.get_linestyle() == ":"
     assert len(ax.texts) == 4 + 3
     assert ax.get_title() == "a planetary train" and not ax.axison and ax.get_aspect() == 1.0
@@ -208,14 +209,34 @@ def test_a_wheel_of_several_meshes_is_labelled_clear_of_its_bar():
     assert not [ln for ln in ax.lines if _colour(ln) == "#000000"]
 
 
-def test_link_numbers_step_left_where_shafts_are_close():
+def test_link_numbers_of_concentric_shafts_spread_a_line_apart():
     s = schematic(SPUR_CHAIN)
-    places = _label_places(s["shafts"], 0.2)
-    # from the lowest shaft up: 0 (−0.32), 4 (−0.16), 1 (0) are each within 0.45 of the one below: 0, 1, 2 steps
-    # left; 2 (2.0) and 3 (2.9) are far apart: back at the column
-    assert np.allclose(places, [(0, 0.0, -0.32), (4, -0.3, -0.16), (1, -0.6, 0.0), (2, 0.0, 2.0), (3, 0.0, 2.9)])
-    # exactly 0.45 apart is far enough
-    assert [at for _, at, _ in _label_places({0: {"y": 0.0}, 1: {"y": 0.45}}, 1.0)] == pytest.approx([0.8, 0.8])
+    places = _label_places(s["shafts"], 0.2, 0.3)
+    # from the lowest shaft up: 0 (−0.32), 4 (−0.16), 1 (0) are nearer than a line (0.3): one run a line apart
+    # about their mean −0.16; 2 (2.0) and 3 (2.9) are far apart: at their shafts; all in one column
+    assert np.allclose(places, [(0, 0.0, -0.46), (4, 0.0, -0.16), (1, 0.0, 0.14), (2, 0.0, 2.0), (3, 0.0, 2.9)])
+    # exactly a line apart is far enough
+    assert [y for *_, y in _label_places({0: {"y": 0.0}, 1: {"y": 0.45}}, 1.0, 0.45)] == pytest.approx([0.0, 0.45])
+    # a run spread about its mean that comes too near the one below joins it: 1 and 2 first, then 0
+    spread = _label_places({0: {"y": 0.0}, 1: {"y": 0.5}, 2: {"y": 0.55}}, 1.0, 0.5)
+    assert [y for *_, y in spread] == pytest.approx([-0.15, 0.35, 0.85])
+
+
+def test_link_numbers_never_overlap_on_the_small_inline_drawing():
+    """The site's schematics (2.6 in wide): the numbers of concentric shafts, once stepped left by a fixed
+    0.3, overprinted each other (154 pairs over the 81 six-link trains); now a text line apart as drawn."""
+    import matplotlib.pyplot as plt
+
+    from synth.gears import trains
+
+    for train in list(trains(1, 6))[::4]:
+        fig, ax = plt.subplots(figsize=(2.6, 2.6 * 0.75))
+        _draw_on(ax, train, None, (), "")
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        numbers = [t.get_window_extent(renderer) for t in ax.texts if t.get_text().isdigit()]
+        assert len(numbers) == 6 and not any(a.overlaps(b) for i, a in enumerate(numbers) for b in numbers[i + 1:])
+        plt.close(fig)
 
 
 def _legend_labels(fig):
@@ -319,11 +340,13 @@ def test_the_inline_svg_is_the_untitled_drawing_and_deterministic():
 
     text = svg_text(PLANETARY)
     assert text.startswith("<svg") and text == svg_text(PLANETARY)
-    # its only texts are the link numbers, bottom to top 0, 2, 1 (concentric, stepped left) and 3; no title
+    # its only texts are the link numbers, bottom to top 0, 2, 1 (concentric: a 10-point line apart) and 3, in a
+    # column; no title
     texts = re.findall(r'<text style="([^"]*)" x="([\d.]+)" y="([\d.]+)"[^>]*>([^<]*)</text>', text)
     assert [label for *_, label in sorted(texts, key=lambda t: -float(t[2]))] == ["0", "2", "1", "3"]
-    xs = {label: float(x) for _, x, _, label in texts}
-    assert xs["0"] == pytest.approx(xs["3"]) and xs["0"] > xs["2"] > xs["1"]
+    xs, ys = ({label: float(t[k]) for *t, label in texts} for k in (1, 2))
+    assert xs["0"] == pytest.approx(xs["3"]) == pytest.approx(xs["2"]) == pytest.approx(xs["1"])
+    assert ys["0"] - ys["2"] >= 10 and ys["2"] - ys["1"] >= 10
     assert "fill: #ff7f0e" in texts[[t[3] for t in texts].index("1")][0]
     width = float(re.search(r'width="([\d.]+)pt"', text).group(1))
     assert width <= 2.6 * 72  # cut to the drawing, never wider than asked

@@ -102,10 +102,10 @@ def test_link_numbers_stand_left_of_every_shaft():
     train = GearTrain.parse("0-1-4 0-2 0-3 1~2 2~3 3~4", frame=1)
     shafts = schematic(train)["shafts"]
     left = min(s["from"] for s in shafts.values())
-    places = _label_places(shafts, left)
+    places = _label_places(shafts, left, 0.45)
     assert sorted(x for x, _, _ in places) == list(range(5)) and all(at < left for _, at, _ in places)
-    close = [(a, b) for a in places for b in places if a[0] < b[0] and abs(a[2] - b[2]) < 0.45]
-    assert close and all(a[1] != b[1] for a, b in close)  # concentric shafts: numbers side by side
+    close = [(a, b) for a in places for b in places if a[0] < b[0] and abs(shafts[a[0]]["y"] - shafts[b[0]]["y"]) < 0.45]
+    assert close and all(abs(a[2] - b[2]) >= 0.45 - 1e-12 for a, b in close)  # concentric shafts: a line apart
 
 
 def test_design_schematic_shows_teeth_ratio_and_legend(tmp_path):

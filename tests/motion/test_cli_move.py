@@ -90,6 +90,23 @@ def test_range_of_the_four_bar(capsys):
     assert code == 0 and "turns fully" in table and "Grashof" in table and "curve P" in table
 
 
+def test_range_says_each_dyads_worst_transmission_angle(capsys, tmp_path):
+    # min and max alone left the designer's figure, how far the dyad stays from a dead position, to be worked out:
+    # crank 1.5, coupler 2.2, rocker 2.5, frame 3 (a crank-rocker): μ from acos(8.84/11) = 36.53° (crank pin
+    # nearest the rocker's pivot, |A O4| = 1.5) to acos(-9.16/11) = 146.38° (|A O4| = 4.5): the worst is 180 − 146.38
+    from .helpers import four_bar
+
+    path = tmp_path / "wide.json"
+    path.write_text(four_bar(1.5, 2.2, 2.5, 3).to_json())
+    code, out, _ = _run(capsys, "move", path, "--range", "--format", "json")
+    t = json.loads(out)["transmission"]["links 2, 3"]
+    low, high = math.acos((2.2 ** 2 + 2.5 ** 2 - 1.5 ** 2) / 11), math.acos((2.2 ** 2 + 2.5 ** 2 - 4.5 ** 2) / 11)
+    assert code == 0 and (t["min"], t["max"]) == pytest.approx((low, high), abs=1e-9)
+    assert t["worst"] == pytest.approx(math.pi - high, abs=1e-9)
+    code, table, _ = _run(capsys, "move", path, "--range")
+    assert f"; worst {math.degrees(math.pi - high):.4g}°" in table
+
+
 def test_a_rocker_reports_true_limits(capsys, tmp_path):
     """The triad scene's linkage rocks: its limits are dead positions, and a sweep ends at them."""
     triad = ROOT / "models" / "motion_triad.toml"
@@ -128,6 +145,22 @@ def test_a_chain_dimensioned_by_its_drawing_moves_and_can_be_saved(capsys, tmp_p
     assert code == 0 and len(out.splitlines()) == 3
 
 
+def test_a_linkage_saved_as_toml_is_a_scene_that_moves_and_equals_the_json(capsys, tmp_path):
+    """move --save took .json only: a .toml is a scene whose [linkage] table is the linkage (note included)."""
+    watt = ["move", "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1", "--frame", "2", "--save"]
+    as_json, as_toml = tmp_path / "watt.json", tmp_path / "watt.toml"
+    assert _run(capsys, *watt, as_json)[0] == 0 and _run(capsys, *watt, as_toml)[0] == 0
+    import tomllib
+
+    scene = tomllib.loads(as_toml.read_text())
+    assert scene["linkage"] == json.loads(as_json.read_text()) and scene["scene"]["compute"] == ["motion"]
+    assert scene["linkage"]["note"].endswith("at least 32°")
+    rows = [_run(capsys, "move", f, "--steps", "5", "--format", "csv") for f in (as_json, as_toml)]
+    assert rows[0] == rows[1] and rows[0][0] == 0 and len(rows[0][1].splitlines()) == 6
+    code, out, _ = _run(capsys, "scene", as_toml)
+    assert code == 0 and "input turns fully, worst transmission 32.19°" in out
+
+
 def test_a_sweep_into_a_dead_position_stops_there_and_says_so(capsys):
     code, out, err = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--start", "130", "--stop", "200",
                           "--steps", "50", "--format", "jsonl")
@@ -153,9 +186,13 @@ BAD = [
     (["move", str(FOUR_BAR), "--steps", "30000"], "--format jsonl or csv"),
     (["move", str(FOUR_BAR), "--start", "nan"], "finite"),
     (["move", str(FOUR_BAR), "--start", "10", "--stop", "10"], "two different ends"),
+    # it said "start and stop are the same input" with no --stop given (1e308° plus a turn is 1e308°)
+    (["move", str(FOUR_BAR), "--start", "1e308"], "start 1e+308° (1.74533e+306 rad) is too far from zero"),
     (["move", str(FOUR_BAR), "--range", "--format", "csv"], "--range"),
     (["move", str(FOUR_BAR), "--range", "--velocities"], "--range"),
     (["move", str(FOUR_BAR), "--frames", "10"], "--animate"),
+    # it said "expected a whole number ≥ 1, not 0" where the frames are 2 … 1000
+    (["move", str(FOUR_BAR), "--frames", "0", "--animate", "m.gif"], "--frames must be 2 … 1000, not 0"),
     (["move", str(FOUR_BAR), "--out", "curves.jpg"], "PNG or SVG"),
     (["move", str(FOUR_BAR), "--animate", "m.mp4"], "GIF or SVG"),
     (["move", str(FOUR_BAR), "--out", "/no/such/dir/c.png"], "cannot write"),
@@ -289,6 +326,16 @@ def test_a_long_sweep_written_piece_by_piece_is_the_one_sweep(capsys):
         assert float(rows[s]["2-3.x"]) == pytest.approx(whole.joints[s, 3, 0], abs=1e-9)
 
 
+@pytest.mark.parametrize("start, stop", [(0, 720), (350, 370), (355, -400)], ids=str)
+def test_a_cranks_rows_give_a_continuous_input_past_a_turn(capsys, start, stop):
+    """A crank turned more than once, or from near 360°: the rows' input (rad) runs on past 2π, never wrapped."""
+    for fmt in ("csv", "jsonl"):
+        code, out, _ = _run(capsys, "move", FOUR_BAR, "--steps", "73", "--start", start, "--stop", stop, "--format", fmt)
+        rows = list(csv.DictReader(io.StringIO(out))) if fmt == "csv" else [json.loads(x) for x in out.splitlines()]
+        phi = np.array([float(r["input"]) for r in rows])
+        assert code == 0 and phi == pytest.approx(np.radians(np.linspace(start, stop, 73)), abs=1e-12)
+
+
 def test_a_triad_says_why_it_reports_no_transmission_angle(capsys):
     code, out, _ = _run(capsys, "move", ROOT / "models" / "motion_triad.toml", "--range", "--format", "json")
     doc = json.loads(out)
@@ -312,3 +359,46 @@ def test_a_cranks_angles_are_read_in_one_turn_0_to_360(capsys):
     359.9999999997°, printed to six digits."""
     code, out, _ = _run(capsys, "move", FOUR_BAR, "--range")
     assert code == 0 and "at input 360°" not in out and "at input 0°" in out
+
+
+def test_range_gives_a_crank_driven_sliders_stroke_and_quick_return_ratio(capsys):
+    """Only the scene computed them; --range printed none.  The offset slider-crank (crank 1, rod 3.5, offset
+    0.5): stroke √((l + r)² − e²) − √((l − r)² − e²), ratio (π + δ)/(π − δ), dead centres where crank and rod
+    line up (written here from the geometry, independently of the solver)."""
+    r, l, e = 1.0, 3.5, 0.5
+    delta = math.asin(e / (l - r)) - math.asin(e / (l + r))
+    code, out, _ = _run(capsys, "move", SLIDER, "--range", "--format", "json")
+    stroke = json.loads(out)["strokes"]["3"]
+    assert code == 0 and stroke["pair"] == "0=3"
+    assert stroke["stroke"] == pytest.approx(math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e),
+                                             abs=1e-12)
+    assert stroke["quick_return_ratio"] == pytest.approx((math.pi + delta) / (math.pi - delta), abs=1e-7)
+    outer = math.atan2(e, math.sqrt((l + r) ** 2 - e * e))  # the crank along the rod
+    inner = math.pi + math.atan2(e, math.sqrt((l - r) ** 2 - e * e))  # the crank folded back on it
+    assert stroke["dead_centres"] == pytest.approx([outer, inner], abs=1e-7)
+    code, out, _ = _run(capsys, "move", SLIDER, "--range")
+    assert code == 0 and ("slider 3 (0=3)           stroke 2.02265 between the dead centres at input 6.37937° and "
+                          "191.537°; quick-return ratio 1.059") in out
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--format", "json")
+    assert code == 0 and json.loads(out)["strokes"] == {}  # no slider
+
+
+def test_range_json_gives_a_cranks_angles_within_one_turn_as_the_table_does(capsys):
+    """A 350 … 1070° sweep gave the toggles within a turn but the transmission angles' inputs past 2π."""
+    code, out, _ = _run(capsys, "move", FOUR_BAR, "--range", "--start", "350", "--stop", "1070", "--format", "json")
+    doc = json.loads(out)
+    inputs = [t["input"] for t in doc["toggles"]] + [v for t in doc["transmission"].values()
+                                                      for v in (t["at_min"], t["at_max"])]
+    assert code == 0 and len(inputs) == 4 and all(0 <= v < 2 * math.pi for v in inputs), inputs
+    code, table, _ = _run(capsys, "move", FOUR_BAR, "--range", "--start", "350", "--stop", "1070")
+    t = next(iter(doc["transmission"].values()))
+    shown = [f"{math.degrees(v) % 360:.6g}".replace("360", "0") for v in (t["at_min"], t["at_max"])]
+    assert f"at input {shown[0]}°, max" in table and f"at {shown[1]}°; worst" in table
+
+
+def test_the_help_says_which_unit_and_turn_the_range_gives(capsys):
+    with pytest.raises(SystemExit):
+        main(["move", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "the table's angles in degrees, the JSON's in radians, a crank's within one turn (0 … 360°, 0 … 2π) in both" \
+        in text

@@ -80,6 +80,7 @@ def test_a_png_is_the_size_asked(saved, tmp_path):
     (["--frame", "1"], "--frame does not apply"),
     (["--mechanisms", "--columns", "2"], "--mechanisms, --columns do not apply"),
     (["--dpi", "300"], "--dpi sets the resolution of a .png"),
+    (["--limit", "400"], "--limit does not apply"),  # (the default's value, given: told apart from the default)
 ])
 def test_what_does_not_apply_to_a_linkage_is_refused(saved, tmp_path, capsys, extra, words):
     out = tmp_path / "x.svg"
@@ -119,5 +120,93 @@ def test_at_is_refused_where_it_cannot_pose(saved, tmp_path, capsys):
 def test_balance_refuses_a_linkage_naming_what_it_takes(saved, capsys, command):
     assert main(["balance", command, str(saved)]) == 2
     err = capsys.readouterr().err
-    assert "watt.json is a linkage" in err and "balance takes arms" in err and err.count("\n") == 1
+    assert "watt.json is a linkage" in err and "'mechsynth balance linkage watt.json --density" in err
+    assert err.count("\n") == 1
     json.loads(saved.read_text())  # (the file is untouched)
+
+
+@pytest.mark.parametrize("at", [None, "30"])
+def test_no_link_number_stands_on_a_pin_or_a_ground_pivot(saved, tmp_path, monkeypatch, at):
+    # 'draw watt.json --at 30' wrote the frame's number 2 on a ground pivot's triangle and base (its two pivots one
+    # above the other, the number beside the middle of the line between them)
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_hex
+
+    figures = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: figures.append(fig))
+    assert main(["draw", str(saved), "--out", str(tmp_path / "w.png"), *(["--at", at] if at else [])]) == 0
+    (fig,) = figures
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    numbers = [t.get_window_extent(renderer) for t in ax.texts if t.get_text() in "012345"]
+    pivots = [p.get_window_extent(renderer) for p in ax.patches if type(p).__name__ == "Polygon"
+              and to_hex(p.get_facecolor()) == "#eef1f4"]
+    pins = [p.get_window_extent(renderer) for p in ax.patches if type(p).__name__ == "Circle"]
+    bases = [ln.get_window_extent(renderer) for ln in ax.lines if len(ln.get_xdata()) == 2
+             and ln.get_ydata()[0] == ln.get_ydata()[1] and ln.get_linewidth() == pytest.approx(2.4 * 0.75)]
+    assert len(numbers) == 6 and len(pivots) == 2 and len(bases) == 2 and len(pins) == 7
+    assert not [(n, o) for n in numbers for o in pivots + pins + bases if n.overlaps(o)]
+    assert not [(a, b) for i, a in enumerate(numbers) for b in numbers[:i] if a.overlaps(b)]
+
+
+@pytest.mark.parametrize("tracers, extra", [
+    (None, []),  # the four-bar balanced: its counterweight CW3 the drawing's rightmost point ('CW3' was cut)
+    ({"COUPLER_POINT": {"link": 2, "at": [2.5, 4.5]}, "FAR_RIGHT": {"link": 3, "at": [6.0, 0.0]}}, []),
+    ({"TOP": {"link": 2, "at": [1.0, 6.0]}, "RIGHT_SIDE": {"link": 3, "at": [5.0, -2.8]}},
+     ["--size", "2", "--dpi", "300"]),
+])
+def test_every_name_lies_inside_the_picture(tmp_path, monkeypatch, capsys, tracers, extra):
+    """Each text's box, as matplotlib's renderer sets it, inside the drawing (under the title), the title inside
+    the figure: the drawing's extent counts the tracers' names, not only their points."""
+    import matplotlib.pyplot as plt
+
+    path = tmp_path / "linkage.json"
+    if tracers is None:
+        assert main(["balance", "linkage", str(ROOT / "models" / "motion_four_bar.toml"), "--density", "2",
+                     "--save", str(path)]) == 0
+    else:
+        lk = read_linkage(ROOT / "models" / "motion_four_bar.toml").to_dict()
+        path.write_text(json.dumps(lk | {"tracers": tracers}))
+    figures = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: figures.append(fig))
+    assert main(["draw", str(path), "--out", str(tmp_path / "x.png"), *extra]) == 0
+    (fig,) = figures
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    area, whole = ax.get_window_extent(renderer), fig.bbox
+    names = {t.get_text(): t.get_window_extent(renderer) for t in ax.texts}
+    assert set(tracers or {"CW1", "CW3", "P"}) <= set(names)
+    outside = {n: b.bounds for n, b in names.items() if not (area.x0 <= b.x0 and b.x1 <= area.x1 and area.y0 <= b.y0
+                                                            and b.y1 <= area.y1)}
+    assert not outside, (outside, area.bounds)
+    title = fig.texts[0].get_window_extent(renderer)
+    assert whole.x0 <= title.x0 and title.x1 <= whole.x1 and title.y1 <= whole.y1 and title.y0 >= area.y1 - 1
+    width, height = Image.open(tmp_path / "x.png").size
+    assert (width, height) == (round(whole.width), round(whole.height))
+
+
+def test_a_slider_crank_is_drawn_with_its_links_numbered(tmp_path):
+    # a link with one pin (the slider's block) is numbered off its pin: 'draw models/motion_slider_crank.toml' (and any
+    # slider dimension --save wrote) ended in a TypeError there
+    out = tmp_path / "slider.svg"
+    assert main(["draw", str(ROOT / "models" / "motion_slider_crank.toml"), "--out", str(out)]) == 0
+    svg = out.read_text()
+    assert len(_pins(svg)) == 3 and all(f">{link}</text>" in svg for link in range(4))
+
+
+def test_row_goes_with_a_file_of_rows_alone(saved, tmp_path, capsys):
+    """--row picks a row of an atlas search's rows: with a chain, an atlas or a file of one linkage it is refused
+    in one sentence (exit 2), by draw, move and balance linkage alike."""
+    out, chain, alone = str(tmp_path / "x.png"), "0-1 1-2 2-3 3-0", "holds one linkage: give it without --row"
+    for command, words in ((["draw", "--chain", chain, "--row", "1", "--out", out], "not a chain or an atlas"),
+                           (["move", "--chain", chain, "--frame", "0", "--row", "1", "--range"], "not --chain"),
+                           (["draw", str(saved), "--row", "1", "--out", out], alone),
+                           (["move", str(saved), "--row", "1", "--range"], alone),
+                           (["balance", "linkage", str(saved), "--row", "1", "--density", "2"], alone),
+                           (["dimension", str(ROOT / "models" / "dimension_path.csv"), "--mechanism", chain, "--frame",
+                             "0", "--row", "1"], "it goes with --linkage ROWS.json")):
+        assert main(command) == 2
+        err = capsys.readouterr().err
+        assert words in err and err.count("\n") == 1, err

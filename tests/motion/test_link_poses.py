@@ -85,3 +85,26 @@ def test_two_inputs_are_refused():
     lk = Linkage(Mechanism(chain, 0), grounded, np.random.default_rng(0).normal(size=(5, 2)))
     with pytest.raises(BadSweep, match="one input"):
         link_poses(lk, [0.0])
+
+
+@pytest.mark.parametrize("model, offsets", [
+    ("motion_four_bar.toml", [0.3, 2.0, 4.4]),
+    ("motion_slider_crank.toml", [0.3, 2.0, 4.4]),
+    ("motion_triad.toml", [0.1, 0.25, 0.4]),   # a rocker moved by Newton's method, inside its limits
+])
+def test_link_rates_are_the_derivatives_of_the_poses(model, offsets):
+    """θ', t', θ'', t'' of ``link_rates`` against central differences of ``link_poses``, and its poses its own."""
+    from synth.motion import link_rates
+
+    lk = read_linkage(os.path.join(MODELS, model))
+    h = 1e-4
+    rates = link_rates(lk, offsets)
+    here = link_poses(lk, offsets)
+    assert np.array_equal(rates.rotations, here.rotations)
+    up, down = link_poses(lk, np.add(offsets, h)), link_poses(lk, np.subtract(offsets, h))
+    for value, first, second in ((here.rotations, rates.rotation_rates, rates.rotation_accelerations),
+                                 (here.translations, rates.translation_rates, rates.translation_accelerations)):
+        lo, hi = (down.rotations, up.rotations) if value is here.rotations else (down.translations, up.translations)
+        scale = 1 + np.abs(first).max()
+        assert np.abs((hi - lo) / (2 * h) - first).max() <= 1e-6 * scale
+        assert np.abs((hi - 2 * value + lo) / h ** 2 - second).max() <= 1e-4 * (1 + np.abs(second).max())

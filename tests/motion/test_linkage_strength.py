@@ -272,7 +272,8 @@ def test_an_input_inside_a_multiple_joint_is_named_by_the_frame_and_its_link():
 
 
 def test_files_are_read_as_toml_or_json_only(tmp_path):
-    assert refused(MotionError, read_linkage, tmp_path / "a.yaml") == "a linkage file is .toml or .json, not 'a.yaml'"
+    assert refused(MotionError, read_linkage, tmp_path / "a.yaml") == (
+        "a linkage file is .toml or .json (or the .json/.jsonl rows of an atlas search), not 'a.yaml'")
     bad = tmp_path / "a.json"
     bad.write_text('{"chain": ')
     assert refused(MotionError, read_linkage, bad) == "a.json: not valid JSON (Expecting value at line 1)."
@@ -293,10 +294,66 @@ def test_a_file_that_is_not_a_linkage_is_named_and_told_apart(tmp_path):
     rows = tmp_path / "rows.json"
     rows.write_text(json.dumps([{"rank": k, "linkage": Linkage(FOUR_BAR, (0,), GOOD).to_dict()} for k in (1, 2)]))
     assert refused(MotionError, read_linkage, rows) == (
-        "rows.json holds 2 rows, not one linkage: give one row's linkage, or the file 'dimension --save' writes")
+        "rows.json holds 2 rows, not one linkage: pick one with --row K (1 to 2, as the table ranks them)")
+    # one line of 'dimension --db … --format jsonl' (a row without dimensions): it read "a linkage has no entry
+    # 'chain_id'"; of 'dimension --mechanism … --format jsonl' (its 'points' a count of the target's): "no entry
+    # 'error_max'"
+    row, one = tmp_path / "row.json", tmp_path / "one.json"
+    row.write_text(json.dumps({"rank": 1, "chain": "0-1 0-2 1-3 2-3", "chain_id": "404959cfebdd", "frame": 0,
+                               "input": "0-1", "tracer_link": 3, "links": 4, "error_max": 2e-14}))
+    one.write_text(json.dumps({"kind": "function", "chain": "0-1 0-3 1-2 2-3", "frame": 0, "points": 3,
+                               "error_max": 7.5e-14}))
+    for path in (row, one):
+        assert refused(MotionError, read_linkage, path) == (
+            f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' gives each "
+            "answer with its linkage, '--save FILE' the best one's")
     # a linkage with a mistake: the sentence of Linkage.from_dict, of the same class, after the file's name
     pose = tmp_path / "pose.json"
     pose.write_text(json.dumps({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {"0-1": [0, 0]}}))
     with pytest.raises(BadPose) as e:
         read_linkage(pose)
     assert str(e.value) == "pose.json: joints 0-3, 1-2, 2-3 have no position in 'points'"
+
+
+def test_a_row_of_an_atlas_searchs_rows_is_picked_by_its_rank(tmp_path):
+    """'dimension --db … --format json' (an array) and '--format jsonl' (a line each) write a row per topology
+    with its linkage: row K (1-based, the table's rank) is read, and a row not given, not there, or given for a
+    file of one linkage is refused in one sentence (issue 40: 'results as rows any other command reads')."""
+    first, second = Linkage(FOUR_BAR, (0,), GOOD), Linkage(FOUR_BAR, (0,), np.array(GOOD) * 2.0)
+    rows = [{"rank": k, "error_max": 0.0, "linkage": lk.to_dict()} for k, lk in ((1, first), (2, second))]
+    array, lines = tmp_path / "rows.json", tmp_path / "rows.jsonl"
+    array.write_text(json.dumps(rows))
+    lines.write_text("".join(json.dumps(row) + "\n" for row in rows) + "\n")
+    for path in (array, lines):
+        assert read_linkage(path, row=2).points.tolist() == second.points.tolist()
+        assert read_linkage(path, row=1).points.tolist() == first.points.tolist()
+        assert refused(MotionError, read_linkage, path, row=3) == (
+            f"--row 3 is not a row of {path.name}: it holds rows 1 to 2")
+        assert refused(MotionError, read_linkage, path) == (
+            f"{path.name} holds 2 rows, not one linkage: pick one with --row K (1 to 2, as the table ranks them)")
+    single = tmp_path / "single.jsonl"  # an atlas search that found one topology: its row is the linkage
+    single.write_text(json.dumps(rows[1]) + "\n")
+    assert read_linkage(single).points.tolist() == second.points.tolist()
+    assert refused(MotionError, read_linkage, single, row=2) == "--row 2 is not a row of single.jsonl: it holds row 1"
+    one = tmp_path / "one.json"
+    one.write_text(first.to_json())
+    assert refused(MotionError, read_linkage, one, row=1) == (
+        "--row picks one of the rows of an atlas search ('dimension --db … --format json'), and one.json holds one "
+        "linkage: give it without --row")
+    bare = tmp_path / "bare.jsonl"  # rows without their linkages (written before jsonl rows carried them)
+    bare.write_text("".join(json.dumps({k: v for k, v in row.items() if k != "linkage"}) + "\n" for row in rows))
+    assert refused(MotionError, read_linkage, bare, row=1) == (
+        "bare.jsonl is a row of 'mechsynth dimension' without its linkage: its '--format json' gives each answer "
+        "with its linkage, '--save FILE' the best one's")
+    assert refused(MotionError, read_linkage, bare) == (
+        "bare.jsonl holds 2 rows of 'mechsynth dimension' without their linkages: with --db its '--format json' or "
+        "'--format jsonl' gives each row with its linkage")
+    steps = tmp_path / "steps.jsonl"  # another command's rows ('move --format jsonl')
+    steps.write_text('{"step": 0, "input": 0.0}\n{"step": 1, "input": 0.1}\n')
+    assert refused(MotionError, read_linkage, steps) == (
+        "steps.jsonl holds 2 rows of another kind, not a linkage: a linkage file has a [linkage] table, or chain, "
+        "frame, inputs and points at its top")
+    broken = tmp_path / "broken.jsonl"
+    broken.write_text(json.dumps(rows[0]) + "\n{oops\n")
+    said = refused(MotionError, read_linkage, broken)
+    assert said.startswith("broken.jsonl: not valid JSON (") and said.endswith("at line 2).")

@@ -260,8 +260,8 @@ def test_a_png_draws_each_element_as_an_artist(tmp_path, monkeypatch):
     assert len(white) == 4 and min(c.zorder for c in white) > max(a.zorder for a in [*ax.lines, *ax.patches]
                                                                        if a not in circles)  # pins over the links
     assert marks[0].radius == pytest.approx(white[0].radius * 0.014 / 0.018)  # 0.014 and 0.018 of the size
-    (text,) = ax.texts
-    assert text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
+    length, text = ax.texts  # the scale bar's length (a round one under the drawing: it is to scale), the tracer's name
+    assert length.get_text() == "1" and text.get_text() == "P" and to_hex(text.get_color()) == "#c0392b"
     assert text.get_zorder() > max(a.zorder for a in [*ax.lines, *ax.patches])  # over everything
     assert text.get_va() == "bottom" and text.get_fontsize() == 9
     (dot,) = [c for c in circles if to_hex(c.get_facecolor()) == "#c0392b"]
@@ -404,3 +404,27 @@ def test_an_svg_picture_holds_the_pin_paths_and_the_coupler_curve(tmp_path):
     assert [len(el.get("points").split()) for el in grey] == [37, 37]
     (mark,) = [el for el in root.iter() if el.tag.endswith("}circle") and el.get("stroke") == "#1f4e9c"]
     assert mark.get("fill") == "none"
+
+
+def test_dense_target_marks_shrink_so_that_none_overlaps(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    # 72 points 0.052 apart about a circle on a four-bar of size 4.6: rings of 0.014 × 4.6 = 0.064 overlapped, as
+    # 'dimension --out' of models/dimension_closed_path.csv (points about 1 apart, a six-bar of size 97: rings of
+    # 1.4) drew a band of rings over the curve
+    lk = _four_bar(tracers={"P": (2, (2.5, 4.5))})
+    motion = sweep(lk, steps=37)
+    t = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    marks = np.c_[2 + 0.6 * np.cos(t), 4 + 0.6 * np.sin(t)]
+    draw_motion(motion, tmp_path / "m.svg", marks=marks)
+    root = ET.fromstring((tmp_path / "m.svg").read_text())
+    rings = [el for el in root.iter() if el.tag.endswith("}circle") and el.get("stroke") == "#1f4e9c"]
+    centres = np.array([(float(el.get("cx")), float(el.get("cy"))) for el in rings])
+    gap = np.hypot(*np.diff(centres, axis=0).T).min()
+    assert len(rings) == 72 and all(2 * float(el.get("r")) < gap for el in rings)
+    # sparse marks keep their size: 0.014 of the mechanism's
+    draw_motion(motion, tmp_path / "s.svg", marks=[[1.0, 1.0], [2.0, 2.0]])
+    root = ET.fromstring((tmp_path / "s.svg").read_text())
+    pins = [float(el.get("r")) for el in root.iter() if el.tag.endswith("}circle") and el.get("fill") == "white"]
+    ring = [float(el.get("r")) for el in root.iter() if el.tag.endswith("}circle") and el.get("stroke") == "#1f4e9c"]
+    assert ring[0] == pytest.approx(pins[0] * 0.014 / 0.018, abs=0.1)  # (radii written to 0.1 px)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from synth.errors import BadSweep, CannotAssemble, WrongInputs
-from synth.motion import Linkage, Motion, sweep
+from synth.motion import Linkage, Motion, assemble, sweep, sweep_grid
 from synth.structure.chain import Chain, Mechanism
 
 from .helpers import four_bar, slider_crank
@@ -38,6 +38,24 @@ def test_the_sweeps_arguments_are_refused_in_one_sentence_each():
     assert refused(BadSweep, sweep, lk, start=True) == "start must be a finite number, not True"
     assert refused(BadSweep, sweep, lk, stop=-math.inf) == "stop must be a finite number, not -inf"
     assert refused(BadSweep, sweep, lk, start=0.5, stop=0.5) == "start and stop are the same input: a sweep needs a range"
+    # a start too far from zero for its float to hold an angle (1e308°: start + one turn is start; no stop was given)
+    assert refused(BadSweep, sweep, lk, start=math.radians(1e308)) == (
+        "start 1e+308° (1.74533e+306 rad) is too far from zero: a float that large is known only to "
+        "3.12e+290 rad; give an input within a few turns (or sizes) of the pose")
+    assert refused(BadSweep, sweep, lk, start=1.0, stop=1e300).startswith("stop 5.72958e+301° (1e+300 rad) is too far")
+    assert refused(BadSweep, sweep, lk, start=2e7).endswith("known only to 3.73e-09 rad; give an input within a few "
+                                                              "turns (or sizes) of the pose")  # (ulp 2⁻²⁸ > 1e-9)
+    assert sweep(lk, start=1e6, steps=3).steps == 3  # (ulp 1.2e-10: held)
+    crank = slider_crank(1.0, 3.0, 0.5)
+    piston = Linkage(crank.mechanism, (1,), crank.points, crank.slides)  # (its size some 4: 1e-9 of it is 4e-9)
+    assert refused(BadSweep, sweep, piston, start=1e8, stop=1e8 + 1).startswith("start 1e+08 is too far from zero")
+    # a grid's input too (a five-bar's crank 0-1 from 1e17°: rows of no meaning), the other input's range as it was
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
+    assert refused(BadSweep, sweep_grid, five_bar, [(1e15, 2e15), (0, 1)], steps=[3, 3]).startswith(
+        "input 0-1's start 5.72958e+16° (1e+15 rad) is too far from zero: a float that large is known only to 0.125 rad")
+    assert sweep_grid(five_bar, [(0.5, 0.5), (0, 1)], steps=[2, 2]).steps == 4  # (one value of an input: no step)
+    # a pose at such an input too ('draw FILE --at 1e12' drew a garbage pose, then named a "start")
+    assert refused(BadSweep, assemble, lk, 1e10).startswith("the input 5.72958e+11° (1e+10 rad) is too far from zero")
     five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1), [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]])
     assert refused(WrongInputs, sweep, five_bar) == "this linkage has 2 inputs: sweep a grid of them with sweep_grid"
 
@@ -80,7 +98,8 @@ def test_every_column_of_a_row():
     rows = list(m.rows())
     names = ["0-1", "0-3", "1-2", "2-3"]
     assert list(rows[0]) == (["step", "input"] + [f"{n}.{c}" for n in names + ["P"] for c in "xy"]
-                             + [f"{n}.v{c}" for n in names for c in "xy"] + [f"{n}.a{c}" for n in names for c in "xy"])
+                             + [f"{n}.v{c}" for n in names + ["P"] for c in "xy"]
+                             + [f"{n}.a{c}" for n in names + ["P"] for c in "xy"])
     for s, row in enumerate(rows):
         assert row["step"] == s and row["input"] == m.inputs[s, 0]
         assert row["1-2.x"] == m.joints[s, 2, 0] and row["2-3.y"] == m.joints[s, 3, 1]
@@ -114,6 +133,84 @@ def test_the_extent_of_a_curve_leaves_out_what_is_not_finite():
     # a crank pin's circle of radius 1 about the origin
     turned = sweep(Linkage(lk.mechanism, (0,), lk.points, tracers={"A": (1, (1.0, 0.0))}), steps=361)
     assert turned.extent()["A"] == pytest.approx((-1, -1, 1, 1), abs=1e-12)
+
+
+def _coupler_points(a, b, c, d, phi, tracer, angles):
+    """The four-bar's coupler point P at crank angles, worked out apart from the motion layer: the
+    coupler pin B where the circles about A (radius b) and O4 (radius c) meet on the pose's side, P
+    fixed in the frame of A → B as in the pose."""
+    def pins(t):
+        A = np.stack((a * np.cos(t), a * np.sin(t)), axis=-1)
+        v = np.array([d, 0.0]) - A
+        e = np.hypot(v[..., 0], v[..., 1])[..., None]
+        along = (b * b - c * c + e * e) / (2 * e)
+        B = A + along * v / e + np.sqrt(b * b - along * along) * np.stack((-v[..., 1], v[..., 0]), axis=-1) / e
+        return A, B
+    A0, B0 = pins(np.array(phi))
+    u0 = (B0 - A0) / b
+    rel = np.array(tracer) - A0
+    local = (rel @ u0, rel[0] * -u0[1] + rel[1] * u0[0])
+    A, B = pins(angles)
+    u = (B - A) / b
+    return A + local[0] * u + local[1] * np.stack((-u[:, 1], u[:, 0]), axis=-1)
+
+
+def test_the_extent_of_a_curve_is_the_curves_not_the_samples():
+    # the scene's crank-rocker (models/motion_four_bar.toml): 'move --range' printed x max 2.71272 from its
+    # 360 samples where the curve reaches 2.712734 (1.4e-5 short, wrong in the sixth digit it prints)
+    lk = four_bar(1, 3.5, 3, 4, phi=math.pi / 2, tracer=(2.5, 4.5))
+    dense = _coupler_points(1, 3.5, 3, 4, math.pi / 2, (2.5, 4.5), np.linspace(0, 2 * math.pi, 400_001))
+    truth = (*dense.min(axis=0), *dense.max(axis=0))  # samples 1.6e-5 rad apart: within 1e-9 of the curve's own
+    m = sweep(lk)
+    sampled = (*m.tracers["P"].min(axis=0), *m.tracers["P"].max(axis=0))
+    assert max(abs(s - t) for s, t in zip(sampled, truth)) > 1e-6
+    assert m.extent()["P"] == pytest.approx(truth, abs=1e-9)
+    # a rocker's sweep: the extremes inside its range refined too, those at its dead positions kept
+    rocker = four_bar(2.5, 3.2, 3, 4, phi=1.0, tracer=(1.0, 3.0))
+    r = sweep(rocker, steps=37)
+    fine = sweep(rocker, steps=200_001).tracers["P"]
+    assert r.extent()["P"] == pytest.approx((*fine.min(axis=0), *fine.max(axis=0)), abs=1e-9)
+
+
+def test_a_tracers_velocity_and_acceleration_are_in_the_rows():
+    # 'move --velocities --accelerations' gave every joint's rates but none of the coupler point's (P.x, P.y only):
+    # checked against central differences of the coupler point worked out apart from the motion layer
+    lk = four_bar(1, 3.5, 3, 4, phi=math.pi / 2, tracer=(2.5, 4.5))
+    m = sweep(lk, steps=13, velocities=True, accelerations=True)
+    angles = m.inputs[:, 0]
+    h, g = 1e-6, 1e-4
+    at = lambda shift: _coupler_points(1, 3.5, 3, 4, math.pi / 2, (2.5, 4.5), angles + shift)
+    velocity = (at(h) - at(-h)) / (2 * h)
+    acceleration = (at(g) - 2 * at(0.0) + at(-g)) / g ** 2
+    assert m.tracer_velocities["P"] == pytest.approx(velocity, abs=1e-8)
+    assert m.tracer_accelerations["P"] == pytest.approx(acceleration, abs=1e-6)
+    rows = list(m.rows())
+    assert [(r["P.vx"], r["P.vy"], r["P.ax"], r["P.ay"]) for r in rows] == [
+        (*v, *a) for v, a in zip(m.tracer_velocities["P"].tolist(), m.tracer_accelerations["P"].tolist())]
+    assert list(rows[0])[-4:] == ["2-3.ax", "2-3.ay", "P.ax", "P.ay"]  # after the joints', as the positions are
+    # W = 2: a five-bar's tracer per unit rate of each input, against differences of the grid's own points
+    five_bar = Linkage(Mechanism(Chain.parse("0-1 1-2 2-3 3-4 4-0"), 0), (0, 1),
+                       [[0, 0], [3, 0], [0, 1], [1.5, 2.5], [3, 1]], tracers={"T": (2, (1.0, 2.5))})
+    grid = sweep_grid(five_bar, [(1.5, 1.6), (1.5, 1.6)], steps=2, velocities=True)
+    row = next(grid.rows())
+    shifted = sweep_grid(five_bar, [(1.5 + h, 1.6), (1.5, 1.6)], steps=2).tracers["T"][0]
+    assert (row["T.vx.0-1"], row["T.vy.0-1"]) == pytest.approx(tuple((shifted - grid.tracers["T"][0]) / h), abs=1e-5)
+    assert "T.vx.0-4" in row and list(row).index("T.vy.0-1") < list(row).index("0-1.vx.0-4")
+
+
+def test_a_transmission_angle_at_a_dead_position_is_exactly_0_or_180_degrees():
+    # a double-rocker input stops where coupler and rocker fold (|b − c|: μ = 0) and stretch (b + c: μ = π);
+    # 'move --range' said "min 0.0001439°" there and the scene "worst transmission 4.572e-05°" (the end found to
+    # 1e-11 of the input, where μ is still about its square root)
+    a, b, c, d = 1.2, 0.7, 1.15, 1.0
+    folded = math.acos((a * a + d * d - (b - c) ** 2) / (2 * a * d))
+    stretched = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    t = sweep(four_bar(a, b, c, d, phi=1.0)).transmission["links 2, 3"]
+    assert (t["min"], t["max"]) == (0.0, math.pi)
+    assert (t["at_min"], t["at_max"]) == pytest.approx((folded, stretched), abs=1e-9)
+    # a sweep that stops short of the dead positions keeps the refined values
+    inside = sweep(four_bar(a, b, c, d, phi=1.0), start=folded + 0.1, stop=stretched - 0.1).transmission["links 2, 3"]
+    assert 0 < inside["min"] < inside["max"] < math.pi
 
 
 def test_grashofs_classes_by_the_shortest_links_place():

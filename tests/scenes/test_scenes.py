@@ -396,6 +396,17 @@ def test_out_folder_is_checked_without_being_left_behind(tmp_path):
     assert output_folder(str(tmp_path)) == str(tmp_path) and list(tmp_path.iterdir()) == []
 
 
+def test_a_linkage_saved_as_json_is_told_apart_from_a_scene(tmp_path):
+    path = tmp_path / "found.json"
+    path.write_text('{"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {}}')
+    with pytest.raises(SceneError) as info:
+        run_scene(path)
+    assert str(info.value) == (f"{path}: a scene file is TOML, and this is JSON (a linkage saved as .json moves with "
+                               "'mechsynth move'; 'move' or 'dimension' with --save NAME.toml writes one as a scene).")
+    code, out, err = run_cli(str(path))
+    assert code == 2 and out == "" and err.count("\n") == 1
+
+
 def test_grid_file_alone_is_not_a_scene():
     with pytest.raises(SceneError, match=r"grid_small\.toml: missing section \[scene\]"):
         run_scene(MODELS / "grid_small.toml")
@@ -481,6 +492,7 @@ def test_through_the_mechsynth_command(tmp_path, capsys):
     ("arm_prismatic.toml", {"balance arm": "Derived"}),
     ("spring_sine.toml", {"balance spring": "SpringDesign", "plot": "Figures"}),
     ("pantograph.toml", {"balance pantograph": "PantographBalance"}),
+    ("balance_four_bar.toml", {"balance linkage": "LinkageBalance"}),
 ])
 def test_every_computation_gives_a_typed_result_printed_as_its_row(scene, kinds):
     """Each computation (structure, gears, motion, balancing) returns a frozen Row; the scene's output is its row, and nothing
