@@ -21,7 +21,10 @@ to ``benchmarks/records.csv``, and checks the count by whatever independent mean
 * ``tight-reverse`` (no multiple joints, counts the listing does not check, up to ``--reverse-max``): the
   counts by code equal those of the same command with ``--method tight-reverse``, the second count of a
   record (another programme over the strings, another reading of the automorphisms; units that are not
-  tight are counted by orbits), at about the cost of the count.
+  tight are counted by orbits), at about the cost of the count;
+* ``orbits`` (multiple joints, the same bound ``--reverse-max``): the counts by code equal those of the same
+  command with ``--method orbits`` (Burnside over the bundles of parallel strings, each pattern decided once by
+  the exact test; not the count's lex-least search), at about 1.2 times its cost.
 
 A row with none of them says ``none``.  The table of the section "Published counts" of
 ``benchmarks/RECORDS.md`` is then written from the whole CSV (other sections of that file are left
@@ -32,8 +35,8 @@ Run from the project root (a long row prints the command's own progress bar)::
 
     nice -n 19 python benchmarks/records.py                  # every row but the heavy ones
     nice -n 19 python benchmarks/records.py --only "dof 3 --links 18"   # one row, heavy or not
-    nice -n 10 python benchmarks/records.py --only "links 14 --v" --recheck --list-max 0 --second-max 100000000 \
-        --second-every 10                                 # a recorded count checked again on a sample of codes
+    nice -n 10 python benchmarks/records.py --only "links 14 --v 0..12" --recheck --list-max 0 --reverse-max 0 \
+        --second-max 100000000 --second-every 10      # a recorded count checked again on a sample of codes
     python benchmarks/records.py --quick --csv /tmp/r.csv --md /tmp/R.md --by-code /tmp/r
     python benchmarks/records.py --size --only "dof 3 --links"   # the engine's sizing of rows, beside the records
     python benchmarks/records.py --only "links 32 --h 6" --recheck --reverse-from reverse.json  # a second count
@@ -114,8 +117,8 @@ def _row(series, dof, links, published=None, source="", *, h=None, v=None, frac=
     options = ["--dof", str(dof), "--links", str(links)]
     if h is not None:
         options += ["--h", str(h)]
-    if v is not None:
-        options += ["--v", f"0..{v}"]
+    if v is not None:  # up to v (an int), or exactly as written (a str: "1" = one ternary joint)
+        options += ["--v", v if isinstance(v, str) else f"0..{v}"]
     if not frac:
         options += ["--no-fractionated"]
     return Row(series, tuple(options), published, source, quick, oracle, heavy)
@@ -221,6 +224,12 @@ ROWS = (
                   "units, 64 500 CPU s (17.9 CPU h) since the joints come first in the count's search (PROFILE.md "
                   "section 32), and about 21.6 CPU h for its second count by orbits, which for W = 1 visits a "
                   "placement a chain or more (PROFILE.md section 41)")]
+    # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
+    + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
+    + [_row("W = 1, one ternary joint", 1, 16, None, "Ding2013", v="1",
+            heavy="run on its own (--only): sized at about 1.8e8 chains and 900 CPU s (30 Nov 2026), counted in "
+                  "1 033 CPU s and 831 MiB, its second count (--method orbits) 1 318 CPU s, equal by code "
+                  "(benchmarks/logs/one_ternary_joint_6_16.txt)")]
 )
 
 
@@ -320,23 +329,35 @@ def _oracle_key(code: str) -> tuple:
     return strip(synth.Code.parse(code).assortment), strip(int(x) for x in code.split("/")[1].split("-"))
 
 
+def _v_range(row: Row) -> tuple[int, int] | None:
+    """The row's ``--v`` as (least, most): ``0..12`` or ``1`` (exactly one ternary joint's worth).
+
+    >>> _v_range(_row("", 1, 8, v=6)), _v_range(_row("", 1, 8, v="1")), _v_range(_row("", 1, 8))
+    ((0, 6), (1, 1), None)
+    """
+    v = row.option("--v")
+    if v is None:
+        return None
+    lo, _, hi = v.partition("..")
+    return int(lo), int(hi or lo)
+
+
 def oracle_by_code(row: Row) -> dict:
-    """Counts by code key of the brute force (tests/oracles/chains.py) for the row's query."""
+    """Counts by code key of the brute force (tests/oracles/chains.py) for the row's query (a least ``--v``
+    above 0 keeps the chains whose joints' excess Σ (w − 2) reaches it)."""
     from tests.oracles.chains import brute_force_chains, count_by_code
 
     links, dof = int(row.option("--links")), int(row.option("--dof"))
-    v = row.option("--v")
-    return count_by_code(brute_force_chains(links, dof, v_max=int(v.split("..")[1]) if v else 0,
-                                            fractionated="--no-fractionated" not in row.options,
-                                            h=int(row.option("--h", 3))))
+    lo, hi = _v_range(row) or (0, 0)
+    found = count_by_code(brute_force_chains(links, dof, v_max=hi, fractionated="--no-fractionated" not in row.options,
+                                             h=int(row.option("--h", 3))))
+    return {key: n for key, n in found.items() if sum((k + 1) * c for k, c in enumerate(key[1])) >= lo}
 
 
 def _query(row: Row) -> dict:
     """The keyword arguments of ``synth`` for the row's query."""
-    v = row.option("--v")
     query = dict(dof=int(row.option("--dof")), links=int(row.option("--links")), h=int(row.option("--h", 3)),
-                 fractionated="--no-fractionated" not in row.options,
-                 v=(0, int(v.split("..")[1])) if v else None)
+                 fractionated="--no-fractionated" not in row.options, v=_v_range(row))
     return {k: x for k, x in query.items() if x is not None}
 
 
@@ -401,16 +422,21 @@ def kernels_off_by_code(row: Row, every: int = 1) -> dict:
     return out
 
 
+def _second_method(row: Row) -> str:
+    """The second count of a record: ``tight-reverse`` for chains of simple joints, ``orbits`` (Burnside over the
+    bundles of parallel strings, each pattern decided once by the exact test) with multiple joints."""
+    return "orbits" if row.option("--v") else "tight-reverse"
+
+
 def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LIST_MAX,
            second_every: int = 1, reverse_max: int = 0, list_codes_max: int = 0,
            reverse: dict | None = None) -> tuple[str, bool]:
     """The independent checks the row passed (``none`` if it has none) and whether all it had passed;
     the listing path checks counts of up to ``list_max`` chains, and with multiple joints the count with
     the kernels off counts of up to ``second_max`` chains (every ``second_every``-th code of the plan);
-    a count the listing does not check, of up to ``reverse_max`` chains and without multiple joints, is
-    counted again by ``--method tight-reverse`` (the second count of a record: another programme over the
-    strings, another reading of the automorphisms), code by code; ``reverse`` is that second count run
-    already (its command's JSON, run beside the first), compared instead of running it."""
+    a count the listing does not check, of up to ``reverse_max`` chains, is counted again by its second count
+    (:func:`_second_method`), code by code; ``reverse`` is that second count run already (its command's JSON,
+    run beside the first), compared instead of running it."""
     passed, ok = [], True
     if row.published is not None:
         ok &= found["count"] == row.published
@@ -423,14 +449,15 @@ def checks(row: Row, found: dict, list_max: int = LIST_MAX, second_max: int = LI
         same = listing_by_code(row) == found["by_code"]
         ok &= same
         passed.append("listing by code" if same else "LISTING DIFFERS")
-    elif not row.option("--v") and (reverse is not None or list_max < found["count"] <= reverse_max):
-        second = reverse if reverse is not None else run_count(row, "tight-reverse")
+    elif reverse is not None or list_max < found["count"] <= reverse_max:
+        method = _second_method(row)
+        second = reverse if reverse is not None else run_count(row, method)
         same = second["by_code"] == found["by_code"]
         ok &= same
-        print(f"records   tight-reverse: {second['count']} chains"
+        print(f"records   {method}: {second['count']} chains"
               + ("" if reverse is not None else f", {second['cpu_s']} CPU s, {second['wall_s']} s"),
               file=sys.stderr, flush=True)
-        passed.append("tight-reverse by code" if same else "TIGHT-REVERSE DIFFERS")
+        passed.append(f"{method} by code" if same else f"{method.upper()} DIFFERS")
     if found["count"] > list_max and list_codes_max > 0:
         text, same = listing_of_small_codes(row, found, list_codes_max)
         ok &= same
@@ -512,7 +539,9 @@ def section(lines: dict[str, dict], figure: str | None = None) -> str:
            "status|compare`, a line on the command's stderr; not recorded by the runs before 29 Nov 2026, 18 h; at",
            "W = 1 none is: 0 of the 104, 1 040 and 14 577 units of 12, 14 and 16 links, by `MECHSYNTH_CACHE=off python -c",
            "\"import synth; c = synth.count_chains(1, 16, workers=2, method='tight-reverse'); print(c.units_run, c.shared_units)\"`);",
-           "*none* = no independent check. A row without a published value goes beyond its source;",
+           "*orbits* = with multiple joints, the same command with `--method orbits` (Burnside over the bundles of",
+           "parallel strings, each pattern decided once by the exact test; not the count's search), code by code",
+           "(`--reverse-max`); *none* = no independent check. A row without a published value goes beyond its source;",
            "the rows of 7 loops (17 and 18 links at W = 2 and 3) are the literature's largest, run on their own.",
            "Counts by code: the JSON file of each query in `benchmarks/records/`.", ""]
     if figure:
@@ -613,7 +642,7 @@ STYLES = {"W = 1": ("tab:blue", "o", "-"), "W = 2": ("tab:orange", "s", "-"),
           "W = 2, not fractionated": ("tab:orange", "s", ":"), "W = 3": ("tab:green", "^", "-"),
           "W = 3, not fractionated": ("tab:green", "^", ":"), "h = 2 (Laman)": ("tab:red", "D", "-"),
           "h = 4": ("tab:purple", "v", "-"), "h = 5": ("tab:brown", "P", "-"), "h = 6": ("tab:gray", "X", "-"),
-          "W = 1, multiple joints": ("tab:cyan", "*", "--")}
+          "W = 1, multiple joints": ("tab:cyan", "*", "--"), "W = 1, one ternary joint": ("tab:pink", "*", ":")}
 
 
 def draw_growth(lines: dict[str, dict], path: Path) -> dict[str, list[tuple[int, int, int | None]]]:
@@ -719,14 +748,16 @@ def _main(argv) -> int:
     parser.add_argument("--second-every", type=int, metavar="K",
                         help="… on every K-th code of the plan only, a sample (default: every code)")
     parser.add_argument("--reverse-max", type=int, metavar="N",
-                        help="without multiple joints, check the counts the listing does not check, of up to N chains, "
-                        f"by a second count, --method tight-reverse (default: {REVERSE_MAX:.0e}; 0: none)")
+                        help="check the counts the listing does not check, of up to N chains, by a second count, "
+                        f"--method tight-reverse (--method orbits with multiple joints) (default: {REVERSE_MAX:.0e}; "
+                        "0: none)")
     parser.add_argument("--recheck", action="store_true",
                         help="with --only: check again the counts already in the CSV (their by-code files), without "
                         "counting them again; only the checks column changes")
     parser.add_argument("--reverse-from", type=Path, metavar="FILE",
                         help="with --recheck of one row: its second count read from FILE, the JSON that `mechsynth "
-                        "<query> --count --method tight-reverse` printed (run beside the first count, on workers "
+                        "<query> --count --method tight-reverse` (orbits with multiple joints) printed (run beside the "
+                        "first count, on workers "
                         "of its own), compared code by code instead of running it")
     parser.add_argument("--size", action="store_true",
                         help="count nothing: print the engine's sizing of the rows chosen (--only, --quick, or every "
@@ -794,10 +825,8 @@ def _main(argv) -> int:
         if not rows:
             print(f"records: no row's query contains {args.only!r}", file=sys.stderr)
             return 1
-        if reverse is not None and (len(rows) > 1 or rows[0].option("--v")):
-            fail(f"--reverse-from is the second count of one row without multiple joints, and --only {args.only!r} "
-                 f"chooses {len(rows)} rows" if len(rows) > 1 else f"{rows[0].query} has multiple joints, which the "
-                 "second count (tight-reverse) does not cover")
+        if reverse is not None and len(rows) > 1:
+            fail(f"--reverse-from is the second count of one row, and --only {args.only!r} chooses {len(rows)} rows")
     elif args.size:
         rows = [row for row in ROWS if row.quick or not args.quick]
     else:

@@ -116,7 +116,6 @@ def test_bad_options_are_refused_in_one_sentence_and_no_file_is_touched(tmp_path
         (["--recheck", "--only", "links 20 --h 4", "--reverse-from", other], "cannot be read as the JSON of a count"),
         (["--recheck", "--only", "links 20 --h 4", "--reverse-from", not_a_count], "is not the JSON of a count"),
         (["--recheck", "--only", "--h 4", "--reverse-from", a_count], f"chooses {h4_rows} rows"),
-        (["--recheck", "--only", "links 8 --v", "--reverse-from", a_count], "has multiple joints"),
     ]
     for args, words in cases:
         p = _run(*args, "--md", tmp_path / "R.md") if "--md" not in args else _run(*args)
@@ -258,7 +257,7 @@ def test_a_recheck_keeps_the_count_and_merges_the_checks(tmp_path):
             return list(csv.DictReader(f))
 
     before = lines()
-    done = _run("--only", "links 8 --v", "--recheck", "--list-max", "0", "--second-every", "2",
+    done = _run("--only", "links 8 --v 0..6", "--recheck", "--list-max", "0", "--reverse-max", "0", "--second-every", "2",
                 "--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md", "--by-code", tmp_path / "bc")
     assert done.returncode == 0, done.stderr
     after = lines()
@@ -293,6 +292,46 @@ def test_a_second_count_run_beside_is_compared_code_by_code(tmp_path):
     assert check() == "tight-reverse by code"
     done = _run("--only", "links 20 --h 4", "--recheck", "--reverse-from", off, *files)
     assert done.returncode == 1 and check() == "TIGHT-REVERSE DIFFERS"
+
+
+def test_a_multiple_joint_counts_second_count_is_by_orbits(tmp_path):
+    """--recheck --reverse-from of a row with multiple joints: its second count is the count by orbits, compared
+    code by code ("orbits by code"); a code off by one makes it "ORBITS DIFFERS" and exit status 1."""
+    for name in ("records.csv", "RECORDS.md"):
+        (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
+    query = "chains --dof 1 --links 12 --v 0..10"
+    recorded = json.loads((ROOT / "benchmarks" / "records" / "dof_1_links_12_v_0-10.json").read_text())
+    same, off = tmp_path / "same.json", tmp_path / "off.json"
+    same.write_text(json.dumps({"count": recorded["count"], "by_code": recorded["by_code"]}))
+    code = next(iter(recorded["by_code"]))
+    off.write_text(json.dumps({"count": recorded["count"] + 1,
+                               "by_code": {**recorded["by_code"], code: recorded["by_code"][code] + 1}}))
+    files = ("--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md", "--by-code", tmp_path / "bc")
+
+    def check():
+        with (tmp_path / "records.csv").open(newline="") as f:
+            return next(line for line in csv.DictReader(f) if line["query"] == query)["check"]
+
+    flags = ("--recheck", "--list-max", "0", "--second-max", "0")
+    done = _run("--only", query, *flags, "--reverse-from", same, *files)
+    assert done.returncode == 0 and f"orbits: {recorded['count']} chains" in done.stderr, done.stderr
+    assert "orbits by code" in check().split("; ")
+    done = _run("--only", query, *flags, "--reverse-from", off, *files)
+    assert done.returncode == 1 and "ORBITS DIFFERS" in check().split("; ")
+
+
+def test_one_ternary_joint_rows_keep_the_oracles_chains_of_that_excess():
+    """A row of exactly one ternary joint (``--v 1``) reads its query as v = (1, 1) and the brute force keeps only
+    the chains whose joints' excess Σ (w − 2) is 1: at 8 links the engine's count by code passes the oracle and
+    the listing, and the oracle's codes are those of compositions (1,) only."""
+    records = _records()
+    row = next(r for r in records.ROWS if r.query == "chains --dof 1 --links 8 --v 1")
+    import synth
+
+    found = synth.count_chains(1, 8, v=(1, 1)).to_dict()
+    assert found["count"] > 0 and all(code.endswith("/1") for code in found["by_code"])
+    assert set(key[1] for key in records.oracle_by_code(row)) == {(1,)}
+    assert records.checks(row, found) == ("oracle by code; listing by code; kernels off by code", True)
 
 
 def test_a_large_counts_small_codes_are_listed_one_by_one_and_a_code_off_is_named(tmp_path):

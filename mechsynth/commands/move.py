@@ -30,7 +30,7 @@ import math
 import os
 import sys
 
-from .._argtypes import add_row, finite, mechanism_of, output_file, positive, whole
+from .._argtypes import add_row, finite, mechanism_of, output_file, whole
 from .._output import pairs, save_linkage, write_document, write_rows
 
 __all__ = ["add_commands"]
