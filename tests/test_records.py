@@ -15,6 +15,8 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -270,37 +272,17 @@ def test_a_recheck_keeps_the_count_and_merges_the_checks(tmp_path):
     assert not (tmp_path / "bc").exists()  # no count was run, so no by-code file was written
 
 
-def test_a_second_count_run_beside_is_compared_code_by_code(tmp_path):
-    """--recheck --reverse-from: the second count read from its command's JSON, compared code by code with the
-    recorded count; one code off by one is reported and the exit status is 1."""
+@pytest.mark.parametrize("query, by_code, flags, method", [
+    ("chains --dof 1 --links 20 --h 4", "dof_1_links_20_h_4.json", (), "tight-reverse"),
+    ("chains --dof 1 --links 12 --v 0..10", "dof_1_links_12_v_0-10.json", ("--list-max", "0", "--second-max", "0"),
+     "orbits")])
+def test_a_second_count_run_beside_is_compared_code_by_code(tmp_path, query, by_code, flags, method):
+    """--recheck --reverse-from: the second count read from its command's JSON (tight-reverse for simple joints, the
+    count by orbits with multiple joints), compared code by code with the recorded count; one code off by one is
+    reported and the exit status is 1."""
     for name in ("records.csv", "RECORDS.md"):
         (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
-    recorded = json.loads((ROOT / "benchmarks" / "records" / "dof_1_links_20_h_4.json").read_text())
-    same, off = tmp_path / "same.json", tmp_path / "off.json"
-    same.write_text(json.dumps({"count": recorded["count"], "by_code": recorded["by_code"]}))
-    code = next(iter(recorded["by_code"]))
-    off.write_text(json.dumps({"count": recorded["count"] + 1,
-                               "by_code": {**recorded["by_code"], code: recorded["by_code"][code] + 1}}))
-    files = ("--csv", tmp_path / "records.csv", "--md", tmp_path / "RECORDS.md", "--by-code", tmp_path / "bc")
-
-    def check():
-        with (tmp_path / "records.csv").open(newline="") as f:
-            return next(line for line in csv.DictReader(f) if line["query"] == "chains --dof 1 --links 20 --h 4")["check"]
-
-    done = _run("--only", "links 20 --h 4", "--recheck", "--reverse-from", same, *files)
-    assert done.returncode == 0 and "tight-reverse: 20329153 chains" in done.stderr, done.stderr
-    assert check() == "tight-reverse by code"
-    done = _run("--only", "links 20 --h 4", "--recheck", "--reverse-from", off, *files)
-    assert done.returncode == 1 and check() == "TIGHT-REVERSE DIFFERS"
-
-
-def test_a_multiple_joint_counts_second_count_is_by_orbits(tmp_path):
-    """--recheck --reverse-from of a row with multiple joints: its second count is the count by orbits, compared
-    code by code ("orbits by code"); a code off by one makes it "ORBITS DIFFERS" and exit status 1."""
-    for name in ("records.csv", "RECORDS.md"):
-        (tmp_path / name).write_bytes((ROOT / "benchmarks" / name).read_bytes())
-    query = "chains --dof 1 --links 12 --v 0..10"
-    recorded = json.loads((ROOT / "benchmarks" / "records" / "dof_1_links_12_v_0-10.json").read_text())
+    recorded = json.loads((ROOT / "benchmarks" / "records" / by_code).read_text())
     same, off = tmp_path / "same.json", tmp_path / "off.json"
     same.write_text(json.dumps({"count": recorded["count"], "by_code": recorded["by_code"]}))
     code = next(iter(recorded["by_code"]))
@@ -312,12 +294,11 @@ def test_a_multiple_joint_counts_second_count_is_by_orbits(tmp_path):
         with (tmp_path / "records.csv").open(newline="") as f:
             return next(line for line in csv.DictReader(f) if line["query"] == query)["check"]
 
-    flags = ("--recheck", "--list-max", "0", "--second-max", "0")
-    done = _run("--only", query, *flags, "--reverse-from", same, *files)
-    assert done.returncode == 0 and f"orbits: {recorded['count']} chains" in done.stderr, done.stderr
-    assert "orbits by code" in check().split("; ")
-    done = _run("--only", query, *flags, "--reverse-from", off, *files)
-    assert done.returncode == 1 and "ORBITS DIFFERS" in check().split("; ")
+    done = _run("--only", query, "--recheck", *flags, "--reverse-from", same, *files)
+    assert done.returncode == 0 and f"{method}: {recorded['count']} chains" in done.stderr, done.stderr
+    assert f"{method} by code" in check().split("; ")
+    done = _run("--only", query, "--recheck", *flags, "--reverse-from", off, *files)
+    assert done.returncode == 1 and f"{method.upper()} DIFFERS" in check().split("; ")
 
 
 def test_one_ternary_joint_rows_keep_the_oracles_chains_of_that_excess():
