@@ -90,7 +90,7 @@ _WHERE = {
     "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
     # drawings of moving mechanisms (chains, mechanisms and gear trains: synth.draw)
     "linkage_from_layout": ".motion_draw", "draw_motion": ".motion_draw", "animate_motion": ".motion_draw",
-    "draw_linkage": ".motion_draw",
+    "draw_linkage": ".motion_draw", "draw_motion_sheet": ".motion_draw",
 }
 
 __all__ = [*_WHERE, *_errors_all]
