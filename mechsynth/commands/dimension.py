@@ -120,7 +120,7 @@ def add_commands(sub) -> None:
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned); refused for a target that gives enough "
-                   "(with --db: for the topologies that need it)")
+                   "(with --db: for the topologies that need it, refused when none of those searched does)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
                    "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")

@@ -575,6 +575,25 @@ def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_b
     assert row["links"] == 4 and row["relative_max"] <= 1e-9  # one of the four-bars through the eight points
 
 
+def test_underdetermined_is_refused_where_no_topology_searched_needs_it(four_bar_index, tmp_path):
+    """9 untimed points give 18 equations for a four-bar's 18 unknowns (8 points: 16 for 17, above): nothing to
+    allow, refused in one sentence before any polish (it was accepted silently, as it once was for one topology)."""
+    from synth.errors import InvalidOption
+
+    target = _target(_random_crank(FOUR_BAR, 2, seed=7), 9, False)
+    with pytest.raises(InvalidOption) as refused:
+        search_atlas(four_bar_index, target, budget=60, underdetermined=True)
+    assert refused.value.text() == ("underdetermined=True allows fewer target equations than unknowns, and the "
+                                    "target's 18 equations are at least the unknowns of each topology this search "
+                                    "polishes (1 topology, at most 18 unknowns): drop it")
+    csv = tmp_path / "nine.csv"
+    csv.write_text("x,y\n" + "".join(f"{x!r},{y!r}\n" for x, y in target.points.tolist()))
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "60", "--underdetermined")
+    assert done.returncode == 2 and done.stdout == "" and done.stderr == (
+        "mechsynth: --underdetermined allows fewer target equations than unknowns, and the target's 18 equations are "
+        "at least the unknowns of each topology this search polishes (1 topology, at most 18 unknowns): drop it\n")
+
+
 @pytest.mark.parametrize("args, message", [
     (["--mechanism", "0-1 1-2 2-3 3-0", "--frame", "0"], "does not go with --mechanism, --frame"),
     (["--links", "4..6"], None),  # (without --db: below)
