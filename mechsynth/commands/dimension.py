@@ -127,8 +127,8 @@ def add_commands(sub) -> None:
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
-                   "(the result with its linkage) or jsonl (one row; with --db a row per topology, each with its "
-                   "linkage)")
+                   "(the result with its linkage) or jsonl (one row with its linkage; with --db a row per topology, "
+                   "each with its linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
                    "and scene read; or .json)")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
@@ -312,8 +312,8 @@ def _write(result, fmt: str, wall: bool = False) -> None:
     from synth import JointKind
     from synth.motion import joint_name
 
-    if fmt == "jsonl":
-        sys.stdout.write(json.dumps(result.row()) + "\n")
+    if fmt == "jsonl":  # with its linkage, as the atlas search's rows: move, draw and balance linkage read it
+        sys.stdout.write(json.dumps({**result.row(), "linkage": result.linkage.to_dict()}) + "\n")
         return
     if fmt == "json":
         write_document(result.to_dict(), "json", "")

@@ -207,3 +207,29 @@ def test_the_help_gives_the_pivots_box_its_unit(capsys):
         main(["dimension", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "a box the frame's joints must lie in, in target units (the target's x, y)" in text
+
+
+def test_a_jsonl_row_of_one_mechanism_carries_its_linkage_and_a_csv_of_rows_is_refused_by_every_reader(
+        tmp_path, capsys):
+    """'dimension --mechanism … --format jsonl' wrote a row without the linkage (move, draw and balance linkage
+    could not read it, where the atlas search's rows carry theirs); a csv of rows with --row K said only that a
+    linkage file is .toml or .json: each reader of --row now names the formats that carry a linkage."""
+    assert main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "5",
+                 "--format", "jsonl"]) == 0
+    out = capsys.readouterr().out
+    one = tmp_path / "one.jsonl"
+    one.write_text(out)
+    row = json.loads(out)
+    assert row["error_max"] < 1e-9 and row["linkage"]["chain"] == "0-1 0-3 1-2 2-3"
+    for given in ([], ["--row", "1"]):
+        assert main(["move", str(one), *given, "--range", "--format", "json"]) == 0
+        assert json.loads(capsys.readouterr().out)["input"] == "0-1"
+    table = tmp_path / "rows.csv"
+    table.write_text("rank,links,error_max\n1,4,0.0\n2,4,0.0\n")
+    for command in (["move", str(table)], ["draw", str(table), "--out", str(tmp_path / "x.png")],
+                    ["balance", "linkage", str(table), "--density", "1"],
+                    ["dimension", str(MODELS / "dimension_function.csv"), "--linkage", str(table)]):
+        assert main([*command, "--row", "2"]) == 2
+        assert capsys.readouterr().err == (
+            "mechsynth: rows.csv is a csv file, whose rows carry no linkage: the rows of 'dimension … --format json' "
+            "or 'jsonl' carry each linkage (--row K picks one), a linkage file is .toml or .json\n"), command
