@@ -130,7 +130,7 @@ def add_commands(sub) -> None:
                    "(the result with its linkage) or jsonl (one row with its linkage; with --db a row per topology, "
                    "each with its linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
-                   "and scene read; or .json)")
+                   "and scene read; or .json); with --db the best row's, or row K's with --row K")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
                    "(.png or .svg); with --db a sheet, a panel per row")
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
@@ -140,7 +140,7 @@ def add_commands(sub) -> None:
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
-    add_row(p)
+    add_row(p, "; with --db and --save, the row saved (default 1)")
     p.set_defaults(run=_run)
 
 
@@ -171,9 +171,10 @@ def _check(args) -> None:
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
-    if args.row is not None and not args.linkage:
+    if args.row is not None and not args.linkage and not (args.db and args.save):
         raise InvalidOption("--row picks the start of the search from a file of an atlas search's rows: it goes with "
-                            "--linkage ROWS.json")
+                            "--linkage ROWS.json" + (" (with --db, it picks the row --save writes: give --save FILE)"
+                                                     if args.db else ""))
     if args.mechanism and args.frame is None:
         raise InvalidOption("--mechanism needs --frame F: the fixed link")
     if args.crank and args.rocker:
