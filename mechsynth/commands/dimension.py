@@ -402,6 +402,36 @@ def _draw_rows(rows: list, path: str) -> None:
     over the target's points and its curve, titled with its rank, links and error."""
     from synth.motion_draw import draw_motion_sheet
 
-    draw_motion_sheet([(*_swept(result), f"{rank}: {result.linkage.chain.compact()}, frame {result.linkage.frame}\n"
-                        f"{result.linkage.chain.links} links, error max {result.error_max:.3g}")
-                       for rank, result in rows], path)
+    panels = []
+    for rank, result in rows:
+        motion, marks = _swept(result)
+        panels.append((motion, marks, _panel_title(rank, result, motion)))
+    draw_motion_sheet(panels, path)
+
+
+#: a panel of the sheet whose mechanism is more than this many times the target's size says so in its title (each
+#: panel is drawn to its own scale: the target is then a speck, and a scale bar alone did not say why)
+_DWARFED = 10.0
+
+
+def _panel_title(rank: int, result, motion) -> str:
+    """A sheet panel's title: rank, chain, frame, links, error max, and the mechanism's size over the target's
+    (bounding-box diagonals; its joints and tracers over the sweep) where it is above :data:`_DWARFED`.
+
+    >>> from types import SimpleNamespace
+    >>> from synth.motion import read_linkage, sweep
+    >>> lk = read_linkage("models/motion_four_bar.toml")
+    >>> _panel_title(2, SimpleNamespace(linkage=lk, error_max=0.0122, size=0.05), sweep(lk, steps=90))
+    '2: 0-1 0-3 1-2 2-3, frame 0\\n4 links, error max 0.0122, mechanism 149× target'
+    """
+    import numpy as np
+
+    lk = result.linkage
+    title = f"{rank}: {lk.chain.compact()}, frame {lk.frame}\n{lk.chain.links} links, error max {result.error_max:.3g}"
+    points = np.vstack([motion.joints.reshape(-1, 2), *motion.tracers.values()])
+    points = points[np.isfinite(points).all(axis=1)]
+    times = float(np.hypot(*(points.max(axis=0) - points.min(axis=0)))) / result.size
+    if times > _DWARFED:
+        shown = f"{times:.0f}" if times < 1e4 else f"{times:.0e}".replace("e+0", "e").replace("e+", "e")  # 3e4
+        title += f", mechanism {shown}× target"  # (at most about 51 characters: the width of a panel)
+    return title

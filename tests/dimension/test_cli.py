@@ -233,3 +233,31 @@ def test_a_jsonl_row_of_one_mechanism_carries_its_linkage_and_a_csv_of_rows_is_r
         assert capsys.readouterr().err == (
             "mechsynth: rows.csv is a csv file, whose rows carry no linkage: the rows of 'dimension … --format json' "
             "or 'jsonl' carry each linkage (--row K picks one), a linkage file is .toml or .json\n"), command
+
+
+def test_a_sheet_panel_whose_mechanism_dwarfs_the_target_says_so_in_its_title():
+    """Each panel of the atlas search's sheet is drawn to its own scale: a four-bar thousands of times the target
+    drew the target as a speck under a title that did not say why.  Above 10× the target's size (bounding-box
+    diagonals) the title says how many times; the pivots alone are 4 k apart, so the mark is at least 4 k / size."""
+    import math
+    import re
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from mechsynth.commands.dimension import _panel_title
+    from synth.motion import sweep
+    from tests.motion.helpers import four_bar
+
+    curve = sweep(four_bar(1, 3.5, 3, 4, phi=math.pi / 2, tracer=(2.5, 4.5)), steps=90).tracers["P"]
+    size = float(np.hypot(*(curve.max(axis=0) - curve.min(axis=0))))  # the target: the unscaled curve
+    marks = {}
+    for k in (1, 2, 100, 1000):
+        lk = four_bar(k, 3.5 * k, 3 * k, 4 * k, phi=math.pi / 2, tracer=(2.5 * k, 4.5 * k))
+        title = _panel_title(3, SimpleNamespace(linkage=lk, error_max=0.0122, size=size), sweep(lk, steps=90))
+        assert title.startswith("3: 0-1 0-3 1-2 2-3, frame 0\n4 links, error max 0.0122")
+        found = re.fullmatch(r".*, mechanism (\d+)× target", title.splitlines()[1])
+        marks[k] = found and int(found.group(1))
+    assert marks[1] is None and marks[2] is None  # 3.0× and 5.9× the target: no mark
+    assert 4 * 100 / size <= marks[100] <= 3 * 4 * 100 / size
+    assert abs(marks[1000] - 10 * marks[100]) <= 10  # (rounded to a whole number each)
