@@ -968,11 +968,13 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
                         abs(b - a) / (count - 1) if a != b else math.inf, i)
     axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
     values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
-    offsets = values - linkage.pose_inputs[None, :]
     solver = _solver(linkage)
     shape = tuple(steps)
-    # the cell nearest the pose, then every cell reached from a solved neighbour
-    start = tuple(int(np.argmin(np.abs(axis - v))) for axis, v in zip(axes, linkage.pose_inputs))
+    # the cell nearest the pose, then every cell reached from a solved neighbour; the offsets from the pose less the
+    # whole turns between the pose and that cell (the same positions: Newton's method starts from the pose)
+    start, gap = _nearest_cell(axes, linkage.pose_inputs, solver.revolute)
+    offsets = values - linkage.pose_inputs[None, :]
+    offsets -= offsets[np.ravel_multi_index(start, shape)] - gap
     n = linkage.chain.links
     theta = np.full((total, n), np.nan)
     t = np.full((total, n, 2), np.nan)
@@ -1029,6 +1031,26 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
         for name, xy in found.items():
             tracer_vel[name][reached] = xy
     return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta, tracer_vel)
+
+
+def _nearest_cell(axes: list[np.ndarray], pose: np.ndarray, revolute: list[bool]) -> tuple[tuple[int, ...], np.ndarray]:
+    """The grid's cell nearest the pose's inputs, a revolute input's angles compared within a turn (a grid from
+    350° to 370° starts at 365° for a pose at 5°; of cells a whole turn apart, the nearer one), and the cell's
+    inputs less the pose's, so reduced.
+
+    >>> cell, gap = _nearest_cell([np.radians([340.0, 355.0, 370.0]), np.array([0.0, 1.0])],
+    ...                           np.array([math.radians(5.0), 0.8]), [True, False])  # an angle, a slide
+    >>> cell, round(math.degrees(gap[0]), 9), round(float(gap[1]), 12)  # 370° is 5° on (340°: 25° back)
+    ((2, 1), 5.0, 0.2)
+    """
+    cell, gap = [], []
+    for axis, value, turns in zip(axes, pose, revolute):
+        raw = axis - value
+        reduced = np.remainder(raw + math.pi, 2 * math.pi) - math.pi if turns else raw
+        k = int(np.lexsort((np.abs(raw), np.round(np.abs(reduced), 12)))[0])
+        cell.append(k)
+        gap.append(float(reduced[k]))
+    return tuple(cell), np.array(gap)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:
