@@ -63,6 +63,41 @@ def _sparse(M, inner, pu, pv, x, cost_of, k, l, pebbles, arcs, seen, parent, sta
 
 
 @njit(cache=True)
+def _joint_conditions_hold(m, pu, pv, x, cost_of, slack, within, links, joints, bound, reach, cost, ends):
+    """Whether the complete multigraph x meets every sub-chain condition with multiple joints: condition c
+    (vertex sets as bit masks: ``within`` all of T, ``links`` its links, ``joints`` its joints) fails where the
+    strings inside T cost more than ``slack`` + ``bound[c]`` and every joint of T is on a string from a link of
+    T (:meth:`synth.synthesis.stage_a._StringBounds.meet`, compiled).  ``reach`` (m), ``cost`` and ``ends``
+    (pairs) are work arrays."""
+    for u in range(m):
+        reach[u] = 0
+    n = 0
+    for p in range(len(pu)):
+        if x[p] > 0:
+            reach[pu[p]] |= 1 << pv[p]
+            reach[pv[p]] |= 1 << pu[p]
+            if cost_of[p, x[p]] != 0:
+                cost[n] = cost_of[p, x[p]]
+                ends[n] = (1 << pu[p]) | (1 << pv[p])
+                n += 1
+    for c in range(len(within)):
+        total = 0
+        for i in range(n):
+            if (ends[i] & within[c]) == ends[i]:
+                total += cost[i]
+        if total <= slack + bound[c]:
+            continue
+        touched = True
+        for J in range(m):
+            if (joints[c] >> J) & 1 and (reach[J] & links[c]) == 0:
+                touched = False
+                break
+        if touched:
+            return False
+    return True
+
+
+@njit(cache=True)
 def _connected(m, pu, pv, x, root):
     """Whether the pairs with x > 0 join the m vertices into one part: union–find on an array, the
     compiled form of :class:`synth.structure.disjoint.DisjointSets` (numba compiles no dict-based class)."""
@@ -181,8 +216,8 @@ def _least_labelling(A, m, known, first, budget, img, start, choice):
 
 
 @njit(cache=True)
-def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, state,
-                out_x, out_y, out_flag, least_budget=0):
+def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, joint_sets,
+                state, out_x, out_y, out_flag, least_budget=0):
     """Fill ``out_x``/``out_y`` with the next labelled multigraphs (pair multiplicities, loops) and
     ``out_flag`` with 1 where the caller must check the sub-chain conditions itself; returns how
     many were written (fewer than ``len(out_x)``: the enumeration is complete).
@@ -190,7 +225,9 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     ``lb_of[p, x]``/``cost_of[p, x]``: least binary links and sub-chain cost of x strings on pair p;
     ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of
     vertices of one kind and degree (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
-    ``check``: whether the sub-chain conditions apply (as pebble games); ``least_budget`` > 0: each
+    ``check``: whether the sub-chain conditions on sets of links apply (as pebble games); ``joint_sets``: the
+    conditions on sets with multiple joints (rows: bit masks of T, of its links and of its joints, then its
+    bound; none with simple joints), checked on each complete multigraph; ``least_budget`` > 0: each
     completed row prefix is kept only if :func:`_least_labelling` does not show it smaller within that
     many nodes (one labelling a class where the budget suffices, the least; the classes are the same).
     """
@@ -226,6 +263,9 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     img = np.zeros((m, m), dtype=np.int64)
     start = np.zeros((m, m), dtype=np.int64)
     choice = np.zeros(m, dtype=np.int64)
+    reach = np.zeros(m, dtype=np.int64)
+    string_cost = np.zeros(P, dtype=np.int64)
+    string_ends = np.zeros(P, dtype=np.int64)
     written = 0
     if state[_STARTED] == 0:
         state[_STARTED] = 1
@@ -333,6 +373,10 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
                 elif not _sparse(m, inner, pu, pv, x, cost_of, k, l, fresh_pebbles, fresh_arcs, seen, parent,
                                  stack):
                     continue
+            if len(joint_sets) and not _joint_conditions_hold(
+                    m, pu, pv, x, cost_of, n2 - used[0], joint_sets[:, 0], joint_sets[:, 1], joint_sets[:, 2],
+                    joint_sets[:, 3], reach, string_cost, string_ends):
+                continue
             out_x[written, :] = x
             out_y[written, :] = y
             out_flag[written] = flag
