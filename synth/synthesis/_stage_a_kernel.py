@@ -1,5 +1,5 @@
-"""Stage A's compiled kernel: the labelled branch multigraphs H of one code with simple joints,
-enumerated depth first pair by pair (numba), in batches.
+"""Stage A's compiled kernel: the labelled branch multigraphs H of one code, enumerated depth first
+pair by pair (numba), in batches.
 
 The variables are those of stage A's CP-SAT model (synth/synthesis/stage_a.py): the number
 x_uv of strings between each pair of branch vertices, row by row, and the loops y_u, which the
@@ -9,13 +9,15 @@ degree equation fixes once row u is complete.  The search keeps the model's cond
   weights and loops: at most n2);
 * the sb*ℓ rows of vertices of one kind and degree in lexicographic order (Codish et al.), checked on every
   prefix of columns known for both rows, and whole when the later row is complete;
-* the sub-chain conditions of stage B written on H: for simple joints they say that the
+* the sub-chain conditions of stage B written on H: on sets of links they say that the
   multigraph holding ``cost_p`` units on each pair p of inner links is (h, h + threshold − slack)-
   sparse, where cost_p = (h − 1)·x_p − lb_p and slack = n2 − Σ lb (docs/theory.md).  While the
   search runs the slack can only shrink, so a (k, l)-pebble game with the current upper bound of
   the slack rejects only what the final rule rejects (a pebble-game rejection exhibits a set T
   over its bound); a complete multigraph is then checked exactly by a fresh game.  Where the final
-  l is negative the game does not apply, and the row is marked for the caller's exact check;
+  l is negative the game does not apply, and the row is marked for the caller's exact check.  The
+  conditions on sets with multiple joints (with their touched-joint clause, not a sparsity) are
+  checked on each complete multigraph (:func:`_joint_conditions_hold`);
 * with ``least_budget`` (a count's stream), the least labelling of each class: every completed row
   prefix that a relabelling of equal vertices puts lexicographically first is dropped
   (:func:`_least_labelling`, docs/theory.md "The least labelling of H");

@@ -11,9 +11,9 @@ Stage A enumerates labelled multigraphs with the degree equations, the least wei
 parallel strings and loops, stage B's sub-chain conditions written on H and the sb*ℓ
 lexicographic row constraints of Codish et al. between branch vertices of one kind and degree;
 connectivity is checked on each solution and nauty removes the labelled copies that are left.
-A large query (:func:`uses_kernel`) with simple joints runs the compiled search of
-:mod:`synth.synthesis._stage_a_kernel`, where the sub-chain conditions are a pebble game; the
-others one CP-SAT model per code.  Planarity and fractionation are properties of H (a
+A large query (:func:`uses_kernel`) runs the compiled search of :mod:`synth.synthesis._stage_a_kernel`,
+where the sub-chain conditions on sets of links are a pebble game and those with multiple joints are
+checked on each complete multigraph; the others the plain search or one CP-SAT model per code.  Planarity and fractionation are properties of H (a
 subdivision keeps both), so they are decided once per H.
 """
 
@@ -543,8 +543,9 @@ def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iter
     loops_most = deg // 2 if conv.fractionated or code.n1 else np.zeros(m, dtype=np.int64)
     same = np.array([(u, v) for u, v in pairs if vertices[u] == vertices[v]], dtype=np.int64).reshape(-1, 2)
     conditions = _subset_conditions(vertices, code.dof(h), conv)
-    # the pebble game is the conditions on sets of links; those with multiple joints (whose joints must be
-    # on a string from a link of T) are checked on each complete multigraph, in the kernel
+    # the pebble game is the conditions on sets of links (every set of 3+ inner links, or none at h = 2, where
+    # the sets stop at 2 links; a pair is within its least weights); those with multiple joints (whose joints
+    # must be on a string from a link of T) are checked on each complete multigraph, in the kernel
     of_links = [c for c in conditions if not c[1]]
     joint_sets = np.array([(_mask(TL + TJ), _mask(TL), _mask(TJ), bound) for TL, TJ, bound in conditions if TJ],
                           dtype=np.int64).reshape(-1, 4)

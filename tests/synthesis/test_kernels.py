@@ -135,6 +135,26 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
     assert compared
 
 
+@pytest.mark.parametrize("query", [q for q in STAGE_A_QUERIES if q.get("v")], ids=_ids)
+def test_a_counts_stage_a_stream_with_multiple_joints_is_the_models_each_once(query, kernel_everywhere, monkeypatch):
+    """Codes with multiple joints: the stream a count reads (the kernel's least labellings, each class once)
+    holds the certificates of the model's or the plain search's branch multigraphs, none lost or doubled."""
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 5)
+    compared = 0
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
+        if not code.v or not stage_a._stage_a_kernel_applies(code, conv):
+            continue
+        stream = sorted(graph.certificate for graph in stage_a.contracted_stream(code, conv))
+        with monkeypatch.context() as model_only:
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
+        assert stream == model, code
+        compared += len(model)
+    assert compared
+
+
 @pytest.mark.parametrize("pairs, vertices", [(0, 1), (1, 2), (6, 4), (45, 10)])
 def test_stage_a_kernel_new_state_holds_every_slot_of_the_search(pairs, vertices):
     """The state :func:`multigraphs` lays out, counted from its slices: depth and started, five values

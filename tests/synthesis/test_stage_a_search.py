@@ -50,9 +50,10 @@ def _same_both_ways(jobs) -> int:
 
 
 def test_the_search_finds_what_the_model_finds_for_the_codes_of_the_benchmark_queries():
-    """Every code of up to 7 branch vertices (1 570 codes, about 12 CPU s both ways)."""
+    """Every code of up to 7 branch vertices (1 365 codes, 20 461 H; those of 5 loops or more with multiple
+    joints go to the kernel)."""
     jobs = [job for job in _model_jobs() if len(_branch_vertices(job[0])) <= 7]
-    assert len(jobs) > 1500
+    assert len(jobs) > 1300
     assert _same_both_ways(jobs) > 5000
 
 
