@@ -58,7 +58,7 @@ def test_a_random_four_bars_coupler_poses_are_met_exactly_from_no_guess(seed, co
     assert np.abs(np.angle(np.exp(1j * ((turns - turns[0]) - want)))).max() < 1e-9
 
 
-def test_dyad_starts_are_only_a_four_bars_for_a_motion():
+def test_dyad_starts_are_only_a_four_bars_or_slider_cranks_for_a_motion():
     made = random_crank_rocker(0)
     target = coupler_poses(made, 6)
     assert dyad_starts(FOUR_BAR, 2, target)
@@ -66,5 +66,6 @@ def test_dyad_starts_are_only_a_four_bars_for_a_motion():
     assert dyad_starts(FOUR_BAR, 1, target) == []  # the crank is pivoted on the frame: no dyad to it
     watt = Mechanism(Chain.parse("0-1 0-2 1-3 2-3 2-4 3-5 4-5"), 0, 1)
     assert dyad_starts(watt, 3, target) == []
-    slider_crank = Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), 0)
-    assert dyad_starts(slider_crank, 2, target) == []
+    slider_crank = Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), 0)  # its RP dyad: tests/dimension/test_motion_slider_dyads.py
+    assert dyad_starts(slider_crank, 2, target)
+    assert dyad_starts(Mechanism(Chain.parse("0-1 1-2 2=3 3-0"), 0), 2, target) == []  # the rod slides in a block
