@@ -32,6 +32,7 @@ from synth.structure.chain import Chain, Mechanism
 
 FOUR_BAR = Mechanism(Chain.parse("0-1 1-2 2-3 3-0"), 0)  # joints 0-1 0-3 1-2 2-3
 SLIDER_CRANK = Mechanism(Chain.parse("0-1 1-2 2-3 3=0"), 0)  # joints 0-1 0=3 1-2 2-3: the rod 2 slides on 3
+WATT = Mechanism(Chain.parse("0-1 0-2 1-3 2-3 2-4 3-5 4-5"), 0, 1)  # the four-bar 0-1-3-2 and the dyad 4-5 on 2, 3
 
 
 def random_four_bar(seed: int) -> Linkage:
@@ -79,7 +80,26 @@ def random_slider_crank(seed: int) -> Linkage:
     raise RuntimeError(f"no slider-crank drawn for seed {seed}")
 
 
-DRAWN = {"four-bar": (FOUR_BAR, random_four_bar), "slider-crank": (SLIDER_CRANK, random_slider_crank)}
+def random_watt(seed: int) -> Linkage:
+    """A Watt six-bar: the four-bar of :func:`random_four_bar` (its rocker 2, coupler 3 with P) and a dyad 4-5 jointed
+    to its rocker and coupler at random within the four-bar's size, drawn until the crank turns a full turn."""
+    base, rng = random_four_bar(seed), np.random.default_rng(10_000 + seed)
+    a, b, c, d = base.points  # the pivots 0-1, 0-3 and the pins 1-2, 2-3 of the four-bar
+    reach = np.ptp(base.points, axis=0).max()
+    for _ in range(10000):
+        on_rocker, on_coupler, elbow = (c + d) / 2 + reach * rng.uniform(-1, 1, (3, 2))
+        try:
+            lk = Linkage(WATT, (0,), [a, b, c, d, (b + d) / 2 + on_rocker - (c + d) / 2, on_coupler, elbow],
+                         tracers={"P": (3, base.tracers["P"][1])})
+            if motion_range(lk).full_rotation:
+                return lk
+        except Exception:  # (a zero-length link: draw again)
+            continue
+    raise RuntimeError(f"no Watt six-bar drawn for seed {seed}")
+
+
+DRAWN = {"four-bar": (FOUR_BAR, random_four_bar), "slider-crank": (SLIDER_CRANK, random_slider_crank),
+         "watt": (WATT, random_watt)}
 
 
 def poses(lk: Linkage, count: int, span_deg: float) -> MotionTarget:

@@ -176,12 +176,44 @@ def slider_dyads(target: MotionTarget) -> list[tuple[float, np.ndarray, np.ndarr
     return _dyads_of(target, KINDS[PRISMATIC])
 
 
+def _guided_loop(mechanism, tracer_link: int):
+    """The joints of a loop frame – A – tracer – B – frame that alone guides the tracer link: (its two pins on the
+    tracer link, the frame's joint of the link at each, the other joints), or None.  The loop guides it alone when
+    the other links, if any, are one RRR dyad (two links, three revolute joints of two links each: no freedom of
+    its own, so it follows the loop and does not move it)."""
+    chain, frame, kinds = mechanism.chain, mechanism.frame, mechanism.chain.kinds
+    if frame == tracer_link or any(len(j) != 2 for j in chain.joints):
+        return None
+
+    def on_frame(link):
+        return [g for g, j in enumerate(chain.joints) if frame in j and link in j]
+
+    pins = [k for k, j in enumerate(chain.joints) if tracer_link in j and frame not in j
+            and len(on_frame(next(x for x in j if x != tracer_link))) == 1]
+    if len(pins) != 2 or any(kinds[k] != REVOLUTE for k in pins):
+        return None
+    guides = [on_frame(next(x for x in chain.joints[k] if x != tracer_link))[0] for k in pins]
+    if any(kinds[g] not in KINDS for g in guides):
+        return None
+    rest = [k for k in range(len(chain.joints)) if k not in pins + guides]
+    links = {x for k in rest for x in chain.joints[k]} - {frame, tracer_link}.union(*(chain.joints[g] for g in guides))
+    if not (rest == [] or (len(rest) == 3 and len(links) == 2 and all(kinds[k] == REVOLUTE for k in rest))):
+        return None
+    return pins, guides, rest
+
+
+#: random placements of the joints of a six-bar's RRR dyad tried with each start of its guiding loop
+COMPLETIONS = 6
+
+
 def dyad_starts(mechanism, tracer_link: int, target, seed: int = 0) -> list:
-    """Four-bars or slider-cranks posed at the first pose from the target's best dyads (:func:`dyads`,
-    :func:`slider_dyads`), one for each pin of the tracer link, every pair both ways round: the ``starts``
-    :func:`synthesize` polishes first for a motion.  Empty unless the target is a motion and the mechanism a
-    four-link loop whose tracer link is jointed by revolute pins to two links, each jointed to the frame (a
-    revolute pair: an RR dyad; a prismatic one: an RP dyad).  (``seed`` is not used: the dyads are found on a grid.)
+    """Mechanisms posed at the first pose from the target's best dyads (:func:`dyads`, :func:`slider_dyads`), one
+    for each pin of the tracer link, every pair both ways round: the ``starts`` :func:`synthesize` polishes first
+    for a motion.  Empty unless the target is a motion and the tracer link is guided by a loop of four links
+    with the frame (:func:`_guided_loop`): jointed by revolute pins to two links, each jointed to the frame (a
+    revolute pair: an RR dyad; a prismatic one: an RP dyad) — a four-bar, a slider-crank, or a six-bar whose two
+    other links are an RRR dyad (its three joints placed at random within the target's size about the first pose,
+    ``COMPLETIONS`` times per pair of dyads, seeded by ``seed``).
 
     Examples
     --------
@@ -197,46 +229,35 @@ def dyad_starts(mechanism, tracer_link: int, target, seed: int = 0) -> list:
     >>> any(np.allclose(s.points, made.points, atol=1e-9) for s in starts)
     True
     """
-    if not isinstance(target, MotionTarget):
-        return []
-    chain, frame, kinds = mechanism.chain, mechanism.frame, mechanism.chain.kinds
-    if chain.links != 4 or len(chain.joints) != 4 or frame == tracer_link:
-        return []
-    pins = [k for k, j in enumerate(chain.joints) if tracer_link in j]
-    if len(pins) != 2 or any(frame in chain.joints[k] or kinds[k] != REVOLUTE for k in pins):
+    loop = _guided_loop(mechanism, tracer_link) if isinstance(target, MotionTarget) else None
+    if loop is None:
         return []
     from ..motion import Linkage
 
-    def guide_of(pin: int) -> int:  # the frame's joint of the link jointed to the tracer link at ``pin``
-        link = next(x for x in chain.joints[pin] if x != tracer_link)
-        return next(g for g, j in enumerate(chain.joints) if frame in j and link in j)
-
-    guides = [guide_of(k) for k in pins]
-    if any(kinds[g] not in KINDS for g in guides):
-        return []
-    try:
-        joint, _ = input_joint_of(mechanism, None)
-    except MotionError:
-        return []
-    first = target.poses[0, :2]
+    kinds, (pins, guides, rest) = mechanism.chain.kinds, loop
+    joint, _ = input_joint_of(mechanism, None)
+    first, size = target.poses[0, :2], target.size
+    rng = np.random.default_rng(seed)
     found = {kind: _dyads_of(target, KINDS[kind]) for kind in {kinds[g] for g in guides}}
     starts = []
-    for a, (_, ma, za) in enumerate(found[kinds[guides[0]]]):
-        for b, (_, mb, zb) in enumerate(found[kinds[guides[1]]]):
-            if np.hypot(*(ma - mb)) < 1e-9 * target.size:
+    for _, ma, za in found[kinds[guides[0]]]:
+        for _, mb, zb in found[kinds[guides[1]]]:
+            if np.hypot(*(ma - mb)) < 1e-9 * size:
                 continue  # (one dyad twice, or two at one pin)
-            if kinds[guides[0]] == kinds[guides[1]] == REVOLUTE and np.hypot(*(za - zb)) < 1e-9 * target.size:
+            if kinds[guides[0]] == kinds[guides[1]] == REVOLUTE and np.hypot(*(za - zb)) < 1e-9 * size:
                 continue
-            points, slides = np.zeros((4, 2)), {}
+            points, slides = np.zeros((len(kinds), 2)), {}
             for pin, guide, m, z in ((pins[0], guides[0], ma, za), (pins[1], guides[1], mb, zb)):
                 points[pin] = first + m
                 if kinds[guide] == PRISMATIC:  # the guide's line through the pin's first place
                     points[guide], slides[guide] = first + m, tuple(z)
                 else:
                     points[guide] = z
-            try:
-                starts.append(Linkage(mechanism, (joint,), points, slides,
-                                      tracers={"P": (tracer_link, tuple(first))}))
-            except MotionError:  # (two pins of one link at one point, two parallel guides: no linkage)
-                continue
+            for _ in range(COMPLETIONS if rest else 1):
+                points[rest] = first + size * rng.uniform(-1, 1, (len(rest), 2))
+                try:
+                    starts.append(Linkage(mechanism, (joint,), points.copy(), slides,
+                                          tracers={"P": (tracer_link, tuple(first))}))
+                except MotionError:  # (two pins of one link at one point, two parallel guides: no linkage)
+                    continue
     return starts
