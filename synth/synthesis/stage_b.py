@@ -711,20 +711,26 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     from . import _stage_b_kernel as kernel
 
     lows, parallel = _string_limits(graph, conv)
-    inner, k, _, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     M, E, n2 = len(inner), len(graph.edges), code.count(2)
     a_list, b_list = _game_ends(graph, inner)
     C, l = conv.h - 1, conv.h + conv.threshold
-    x_most, _ = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2, conv.h)
+    b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
+    x_most, _ = _deficit_bounds(k, l, b0, n2, conv.h)
     simple = all(vertex.is_link for vertex in graph.vertices)
-    bundles = _bundle_closure(graph) if simple and E else None
-    if bundles is None or not (_kernel_applies(code, graph, conv) and _counted_without_visiting(M, l2, x_most, l, conv.h)):
+    applies = _kernel_applies(code, graph, conv)
+    exact = not simple and applies and _programme_fault(code, graph, conv) is None  # multiple joints: the exact rule
+    links, classes = None, 1
+    if exact:  # the programme with the exact rule, as the first count runs it
+        k, links, classes, x_most = k2, _game_links(graph, inner), 3, b0 + int(k2.sum()) - l
+    bundles = _bundle_closure(graph) if (simple or exact) and E else None
+    if bundles is None or not (applies and (exact or _counted_without_visiting(M, l2, x_most, l, conv.h))):
         if orbits_apply(code, graph, conv) and graph.bundle_group()[1]:
             _add(stats, by_orbits=1)
             return count_orbits(code, graph, conv, stats)
         _add(stats, shared=1)
         return count_realised(code, graph, conv, stats)
-    if sum(lows) > n2:
+    if sum(lows) > n2 or x_most < 0:
         return 0
     t0 = perf_counter()
     order = _search_order(graph.edges, a_list, b_list, M)
@@ -742,16 +748,16 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     for e, least_e in parallel:
         after[e] = least_e
     after = after[order]
-    given = np.zeros((E, C * E + 1, x_most + 1), dtype=np.int64)
+    given = np.zeros((E, C * E + 1, x_most + 1, classes), dtype=np.int64)
     for f in np.flatnonzero(_bundle_starts(edges)).tolist():
         r = 1
         while f + r < E and after[f + r] >= 0:
             r += 1
         lows = tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)])
-        ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0))
+        ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0), classes)
         given[f, :len(ways)] = ways
-    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES)
-                for g in (np.zeros(0, dtype=np.int64), *rows))
+    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES,
+                                   links) for g in (np.zeros(0, dtype=np.int64), *rows))
     orbits, rest = divmod(total, len(bundles))
     if rest:  # a fault of this engine
         raise RuntimeError(f"Burnside's sum over the {len(bundles)} permutations of the bundles of a branch "
@@ -787,28 +793,35 @@ def _bundle_closure(graph: Contracted) -> "np.ndarray | None":
 
 
 @lru_cache(maxsize=1024)
-def _bundle_ways(C: int, lows: tuple[int, ...], x_most: int = 0, game: bool = True) -> tuple[tuple[int, ...], ...]:
+def _bundle_ways(C: int, lows: tuple[int, ...], x_most: int = 0, game: bool = True,
+                 classes: int = 1) -> tuple[tuple[tuple[int, ...], ...], ...]:
     """How many ways a bundle of parallel strings holds t = 0 … C·r units of deficit and y = 0 …
-    ``x_most`` of excess: its weights w_1 ≤ … ≤ w_r with w_x ≥ ``lows[x]``, t = Σ max(C − w_x, 0),
-    y = Σ max(w_x − C, 0) (a bundle the game never sees, ``game`` false: t = 0, y = Σ (w_x − lows[x]))
-    — found by listing every such tuple (the second count's check of the kernel's programme); rows t.
+    ``x_most`` of excess and brings z of ``classes`` classes of links: its weights w_1 ≤ … ≤ w_r with
+    w_x ≥ ``lows[x]``, t = Σ max(C − w_x, 0), y = Σ max(w_x − C, 0), z = min(Σ of the weights ≤ C,
+    classes − 1) (a bundle the game never sees, ``game`` false: t = z = 0, y = Σ (w_x − lows[x])) — found by
+    listing every such tuple (the second count's check of the kernel's programme); rows t, then y, then z.
 
     >>> _bundle_ways(2, (0, 1))  # (0, 1) (0, 2) (1, 1) (1, 2) (2, 2)
-    ((1,), (1,), (2,), (1,), (0,))
+    (((1,),), ((1,),), ((2,),), ((1,),), ((0,),))
     >>> _bundle_ways(2, (0, 1), 1)  # and (2, 3) (1, 3) (0, 3), one unit of excess each
-    ((1, 1), (1, 1), (2, 1), (1, 0), (0, 0))
+    (((1,), (1,)), ((1,), (1,)), ((2,), (1,)), ((1,), (0,)), ((0,), (0,)))
+    >>> _bundle_ways(2, (0, 1), 0, True, 3)[1]  # t = 1: (1, 2) brings three links (two or more), (0, 3) none
+    ((0, 0, 1),)
+    >>> _bundle_ways(2, (0, 1), 1, True, 3)[2]  # t = 2: (1, 1) and (0, 2) bring two links, (0, 3) none
+    ((0, 0, 2), (1, 0, 0))
     """
     from itertools import combinations_with_replacement
 
-    ways = [[0] * (x_most + 1) for _ in range(C * len(lows) + 1)]
+    ways = [[[0] * classes for _ in range(x_most + 1)] for _ in range(C * len(lows) + 1)]
     top = (max(C, lows[-1]) if game else lows[-1]) + x_most
     for weights in combinations_with_replacement(range(top + 1), len(lows)):
         if all(w >= low for w, low in zip(weights, lows)):
             t = sum(max(C - w, 0) for w in weights) if game else 0
             y = sum(max(w - C, 0) for w in weights) if game else sum(w - low for w, low in zip(weights, lows))
+            z = min(sum(w for w in weights if w <= C), classes - 1) if game else 0
             if y <= x_most:
-                ways[t][y] += 1
-    return tuple(map(tuple, ways))
+                ways[t][y][z] += 1
+    return tuple(tuple(map(tuple, row)) for row in ways)
 
 
 @lru_cache(maxsize=256)

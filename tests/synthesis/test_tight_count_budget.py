@@ -56,12 +56,13 @@ def _one_bundle_layer(cap, key_mask=0, key=0):
     each t a state of its own)."""
     k, l, W, P, T = 3, 0, 4, 0, 4
     states, totals, ways_in = np.zeros((1, W), dtype=np.int16), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64)
-    ways = np.ones((T + 1, 1), dtype=np.int64)  # (no excess: x_most = 0)
+    ways = np.ones((T + 1, 1, 1), dtype=np.int64)  # (no excess: x_most = 0; one class of sets)
     opens, open_k = np.array([0, 1], dtype=np.int64), np.array([k, k], dtype=np.int64)
+    open_link = np.zeros(2, dtype=np.int64)
     shut = np.array([-1, -1], dtype=np.int64)  # (both vertices stay open: no set is merged)
     out = np.zeros((0, W), dtype=np.int16), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     return _stage_b_kernel._tight_layer(states, totals, ways_in, 0, 1, *out, 0, np.full(128, -1, dtype=np.int64), cap,
-                                        key_mask, key, opens, open_k, 3, shut, 2, ways, T, -1, -1, False, 2 * k - l,
+                                        key_mask, key, opens, open_k, open_link, 3, shut, 2, ways, T, -1, -1, False, 2 * k - l,
                                         2 * k - l, l, 0, W, P, np.zeros(W + P, dtype=np.int64))
 
 
