@@ -47,7 +47,9 @@ A count with W ≥ 1 also checks the exact rule itself on the sets T with a mult
 refuse a placement (W_T below the threshold with two links or more; not the set of every link,
 whose rule depends on every string), each as soon as its last string is placed, so that a refused
 prefix is not completed (12 links: 10.9 placements written per chain → 1.4; benchmarks/PROFILE.md
-section 28).  The listing's search runs without it and stays a check of the count.
+section 28).  The listing's search runs without it and stays a check of the count.  Most such units are
+not searched at all: :func:`tight_count` with ``links`` counts them under the exact rule
+(docs/theory.md, "Counting tight placements without visiting them", *With multiple joints*).
 
 Numba compiles the kernel once (cached beside this file, or in numba's user cache); loading it
 takes about a second per process, so type synthesis uses it for large queries only
@@ -910,9 +912,17 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
     the same weights (in one way); a cycle of s bundles the game never sees takes s times one
     bundle's excess.
 
+    With ``links`` (whether each vertex is a link, 1, or a multiple joint, 0; ``k`` then h and h − 1) the rule is
+    the exact sub-chain test instead: only the sets holding two links or more are checked, a set's links being its
+    link vertices and the binary links its short strings (w ≤ C) bring.  Each set's value is then kept three times,
+    the most over the sets U ∪ Z with at least 0, 1 and 2 links; a bundle bringing z links moves the sets holding
+    both its ends up z classes, opening a link moves its sets up one, and a bundle is refused where a set of the
+    last class would pass −l (docs/theory.md; :func:`synth.synthesis.stage_b._programme_fault` says where this is
+    the exact test).
+
     ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
     strings in bundles whole; 0 ≤ l < 2k, M ≥ 2, x_most ≥ 0; ``g`` empty for every placement.
-    ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
+    ``given``: an empty array, or per string (rows) the ways[t, y, z] of the bundle it begins, found
     elsewhere, in place of :func:`_bundle_deficits` (the second count,
     :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
     :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
@@ -931,6 +941,12 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
     1
     >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 1, none[:0], nothing)  # or 4 units + 1 excess
     6
+    >>> joint, k2 = np.array([1, 1, 0], dtype=np.int64), np.array([3, 3, 2], dtype=np.int64)  # vertex 2 a joint
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k2, 2, 4, 0, none[:0], nothing)  # every set: (2, 1, 1)
+    1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k2, 2, 4, 0, none[:0], nothing, links=joint)
+    6
+    >>> # (a link and the joint hold one link where their string is empty: (2, 2, 0), (0, 2, 2), (1, 2, 1) … pass)
     """
     budget = LAYER_BYTES if budget is None else budget
     links = np.zeros(0, dtype=np.int64) if links is None else np.asarray(links, dtype=np.int64)

@@ -404,9 +404,9 @@ def _programme_fault(code: Code, graph: Contracted, conv: Conventions) -> str | 
       Σ k − l, as the programme takes it.
 
     >>> from synth.synthesis.stage_a import contracted_graphs
-    >>> code = Code.parse("4300/2")
-    >>> {_programme_fault(code, g, Conventions()) for g in contracted_graphs(code, Conventions())}
-    {None}
+    >>> code = Code.parse("53/1")  # 8 links, a ternary joint
+    >>> [_programme_fault(code, g, Conventions()) for g in contracted_graphs(code, Conventions())]
+    [None, None]
     """
     from .stage_a import _loop_lb
 
@@ -695,7 +695,9 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
       (:func:`_bundle_ways`), not by the kernel's own programme.
 
     Above the rule's equality case (the long strings may carry excess) the bundles' ways are listed
-    over the pairs (deficit, excess).  A unit the programme does not take is counted by orbits
+    over the pairs (deficit, excess); with multiple joints (where :func:`_programme_fault` finds nothing) the
+    programme holds the exact rule, as the first count runs it, and the ways are listed over (deficit, excess,
+    links brought).  A unit the programme does not take is counted by orbits
     (:func:`count_orbits`: the search over patterns and a coin-change count); one that neither
     covers (the group of the bundles above 4096, or two empty parallel strings to exclude) as the
     first count does; ``stats`` counts the units of each kind (``reversed``,
