@@ -37,12 +37,13 @@ sys.path.insert(0, str(ROOT))
 
 
 def count_unit(unit, check_sets: bool) -> tuple[int, int, float, float]:
-    """Placements, chains, kernel and exact-test CPU seconds of one unit counted as ``--count`` does."""
+    """Placements, chains, kernel and exact-test CPU seconds of one unit counted by the search and the exact test
+    (as ``--count`` did before it counted most such units without visiting them)."""
     from synth.synthesis.stage_b import _exact_test, _kernel_placements
 
     t0 = time.process_time()
     found, rows, whole = _kernel_placements(unit.code, unit.contracted, unit.conventions, None, listing=False,
-                                            rows=True, check_sets=check_sets)
+                                            rows=True, check_sets=check_sets, programme=False)
     t1 = time.process_time()
     if not whole:
         raise SystemExit(f"a unit of {unit.code} lists part of its group: not what this comparison measures")
