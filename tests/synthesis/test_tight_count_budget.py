@@ -111,9 +111,11 @@ def test_a_count_by_code_is_the_same_at_64_kib(monkeypatch):
     assert parts.by_code == whole.by_code
 
 
-# small queries whose layers pass a budget of a few kilobytes (h = 4…6; W = 2, with excess), and the budget
+# small queries whose layers pass a budget of a few kilobytes (h = 4…6; W = 2, with excess; multiple joints, three
+# values a set), and the budget
 SPLIT_QUERIES = [(dict(dof=1, links=14, h=5), 1), (dict(dof=1, links=17, h=6), 1), (dict(dof=1, links=14, h=4), 16 * 2**10),
-                 (dict(dof=1, links=17, h=6), 16 * 2**10), (dict(dof=2, links=13), 16 * 2**10)]
+                 (dict(dof=1, links=17, h=6), 16 * 2**10), (dict(dof=2, links=13), 16 * 2**10),
+                 (dict(dof=1, links=10, v=(1, 8)), 1), (dict(dof=2, links=11, v=(1, 9)), 1)]
 
 
 @pytest.mark.parametrize("query, budget", SPLIT_QUERIES, ids=lambda x: _ids(x) if isinstance(x, dict) else f"{x} B")
