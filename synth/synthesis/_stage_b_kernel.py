@@ -615,7 +615,7 @@ def _bundle_deficits(C, lows, game, X, ways):
     Q = ways.shape[2]
     ways[:C * r + 1, :, :] = 0
     top = X + (max(C, lows[r - 1]) if game else lows[r - 1])  # no weight above it keeps y ≤ X
-    last = np.zeros((top + 1, C * r + 1, X + 1, Q), dtype=np.int64)  # the strings so far: the last one's weight, Σ t, Σ y, z
+    last = np.zeros((top + 1, C * r + 1, X + 1, Q), dtype=np.int64)  # the strings so far: last weight, Σ t, Σ y, z
     nxt = np.zeros_like(last)
     for x in range(r):
         nxt[:, :, :, :] = 0
@@ -751,7 +751,7 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, li
         for v in (a, b):
             if last[v] < 0:
                 last[v] = i
-        pair = k[a] + k[b] - l if Q == 1 or (links[a] and links[b]) else C * E  # (a pair with a joint may hold < 2 links)
+        pair = k[a] + k[b] - l if Q == 1 or (links[a] and links[b]) else C * E  # (one with a joint: < 2 links)
         room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), pair)
     # with g: the slot in the state that holds the (t, y) of bundle i's cycle while the cycle is partly placed,
     # kept by its first bundle (keep), read by the others (same), freed by its last (free)
@@ -1107,8 +1107,8 @@ def _split_bucket(states, totals, ways_in, m, bit, width, W, P):
 
 @njit(cache=True)
 def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, m, table, cap, key_mask, key,
-                 opens, open_k, open_link, both, shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W,
-                 P, row):
+                 opens, open_k, open_link, both, shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most,
+                 W, P, row):
     """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer, adding their successors
     whose bucket bits (:func:`_state_code`) masked by ``key_mask`` are ``key`` to the m states of the next layer
     (``new_*``, hashed in ``table``; both grown as needed, the arrays up to ``cap`` rows).  Stops before a state

@@ -63,8 +63,8 @@ def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict
     if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
         simple = not any(_vertex_terms(graph.vertices, conv)[1])
         if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
-            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=False, rows=not simple,
-                                                                programme=programme)
+            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=False,
+                                                                rows=not simple, programme=programme)
             if whole_group and (simple or placements is None):  # (None: counted by the programme)
                 return found
             if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
@@ -293,7 +293,6 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     import numpy as np
 
     from ..structure.subchains import sets_to_check
-    from . import _stage_b_kernel as kernel
     from ._stage_b_kernel import place
 
     t0 = perf_counter()
