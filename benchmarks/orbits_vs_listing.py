@@ -17,7 +17,7 @@ more; ``count,orbits`` by default) in this process, with the CPU seconds of each
 code (units, chains by each method, CPU seconds of stage A and of each method, µs per chain) and
 the totals; exit 1 if any unit's counts differ (a code whose units differ is marked).  ``--v A..B`` takes multiple
 joints (the query's ``--v``), ``--every N`` every N-th code of the plan only, the first included (a sample of a
-large query); ``--kernel`` runs the compiled kernels on every code, as a large query does (a small query's
+large query), ``--codes A,B,…`` those codes of the plan only; ``--kernel`` runs the compiled kernels on every code, as a large query does (a small query's
 count otherwise takes CP-SAT and the plain searches).
 
 Run from the project root::
@@ -38,9 +38,9 @@ ROOT = Path.cwd()
 sys.path.insert(0, str(ROOT))
 
 
-def compare(query, methods: list[str], every: int = 1, kernel: bool = False) -> int:
-    """Count the codes of the :class:`~synth.ChainQuery` ``query`` (every ``every``-th) by each of ``methods``,
-    on the compiled kernels everywhere with ``kernel``."""
+def compare(query, methods: list[str], every: int = 1, kernel: bool = False, codes: set | None = None) -> int:
+    """Count the codes of the :class:`~synth.ChainQuery` ``query`` (every ``every``-th, or those named in ``codes``)
+    by each of ``methods``, on the compiled kernels everywhere with ``kernel``."""
     from dataclasses import replace
 
     from synth.synthesis import stage_b
@@ -61,7 +61,7 @@ def compare(query, methods: list[str], every: int = 1, kernel: bool = False) -> 
     n = len(methods)
     totals = [0] * (1 + n) + [0.0] * (1 + n)
     bad = units_bad = 0
-    for code, conv in plan_jobs(query)[::every]:
+    for code, conv in [job for job in plan_jobs(query) if codes is None or str(job[0]) in codes][::every]:
         conv = replace(conv, kernel_loops=1) if kernel else conv
         t0 = time.process_time()
         units = [u for u in job_units((code, conv)) if u.contracted is not None]
@@ -104,6 +104,7 @@ def main() -> int:
                         help="two or more of count, listing, orbits, search, reverse, comma-separated (default "
                              "count,orbits)")
     parser.add_argument("--kernel", action="store_true", help="the compiled kernels on every code")
+    parser.add_argument("--codes", help="only these codes of the plan (comma-separated)")
     args = parser.parse_args()
     methods = args.methods.split(",")
     if len(methods) < 2 or len(set(methods)) < len(methods) or not set(methods) <= {"count", "listing", "orbits",
@@ -115,7 +116,8 @@ def main() -> int:
 
     try:
         query = ChainQuery.of(dof=args.dof, links=args.links, h=args.h, v=args.v)
-        status = compare(query, methods, args.every, args.kernel)
+        codes = None if args.codes is None else set(args.codes.split(","))
+        status = compare(query, methods, args.every, args.kernel, codes)
     except SynthesisError as exc:  # a query the engine refuses (a --v that is no range, impossible sizes)
         parser.error(str(exc))
     return status
