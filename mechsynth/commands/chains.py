@@ -59,7 +59,7 @@ def _add_selection(p) -> None:
                    "e.g. tcp://host:8786")
     p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true",
-                   help="run a query estimated to take more than a day (see README, 'Large queries')")
+                   help="run a query estimated to take more than a day (see docs/cli.md, 'Large queries')")
     p.add_argument("--format", choices=FORMATS + WRITTEN,
                    help="table (default), jsonl, csv or json; graphml, gml, dot, edgelist, adjacency or incidence "
                    "(docs/exchange.md); with --count json (default), table, jsonl or csv")
@@ -75,8 +75,7 @@ def add_commands(sub) -> None:
                    "over the multigraph's automorphisms, without listing them; stderr says which units it "
                    "counted by the listing's search instead, and why) or tight-reverse (the second count "
                    "of a record: the counting programme over the strings in reverse, with another reading of the "
-                   "automorphisms); the same counts; orbits refused with prismatic pairs or cranks, tight-reverse also "
-                   "with multiple joints")
+                   "automorphisms); the same counts; orbits and tight-reverse refused with prismatic pairs or cranks")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)
