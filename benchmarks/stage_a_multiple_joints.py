@@ -27,6 +27,10 @@ def _timed(function, *args):
     return out, time.process_time() - t0
 
 
+def _seconds(value: float, args) -> str:
+    return f"{'-':>9}" if args.kernel_only else f"{value:>9.2f}"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("links", type=int, help="links of the chains")
@@ -48,7 +52,8 @@ def main(argv=None) -> int:
         print(f"stage_a_multiple_joints: {error}", file=sys.stderr)
         return 2
     if not jobs:
-        print("stage_a_multiple_joints: no code with multiple joints (and branch vertices) in this query", file=sys.stderr)
+        print("stage_a_multiple_joints: no code with multiple joints (and branch vertices) in this query",
+              file=sys.stderr)
         return 2
     if any(not stage_a._stage_a_kernel_applies(c, conv) for c, conv in jobs):
         print("note: the kernel does not apply to "
@@ -57,7 +62,8 @@ def main(argv=None) -> int:
     print(f"{'code':>24} {'H':>7} {'kernel s':>9} {'stream s':>9} {'old s':>9}  old path")
     bad, totals = 0, [0, 0.0, 0.0, 0.0]
     for code, conv in jobs:
-        stream, stream_s = _timed(lambda: [g.certificate for g in stage_a._kernel_stream(code, conv, stage_a._LEAST_BUDGET)])
+        stream, stream_s = _timed(lambda: [g.certificate
+                                           for g in stage_a._kernel_stream(code, conv, stage_a._LEAST_BUDGET)])
         row = [len(stream), 0.0, stream_s, 0.0]
         path = "-"
         if not args.kernel_only:
@@ -74,9 +80,9 @@ def main(argv=None) -> int:
             bad += 1
             path += "  DOUBLED"
         totals = [t + r for t, r in zip(totals, row)]
-        print(f"{str(code):>24} {row[0]:>7} {row[1]:>9.2f} {row[2]:>9.2f} {row[3]:>9.2f}  {path}")
-    print(f"{'total (' + str(len(jobs)) + ' codes)':>24} {totals[0]:>7} {totals[1]:>9.2f} {totals[2]:>9.2f} {totals[3]:>9.2f}"
-          f"  {bad} codes differ")
+        print(f"{str(code):>24} {row[0]:>7} {_seconds(row[1], args)} {row[2]:>9.2f} {_seconds(row[3], args)}  {path}")
+    print(f"{'total (' + str(len(jobs)) + ' codes)':>24} {totals[0]:>7} {_seconds(totals[1], args)} {totals[2]:>9.2f} "
+          f"{_seconds(totals[3], args)}  {bad} codes differ")
     return 1 if bad else 0
 
 

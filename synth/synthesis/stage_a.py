@@ -13,8 +13,9 @@ lexicographic row constraints of Codish et al. between branch vertices of one ki
 connectivity is checked on each solution and nauty removes the labelled copies that are left.
 A large query (:func:`uses_kernel`) runs the compiled search of :mod:`synth.synthesis._stage_a_kernel`,
 where the sub-chain conditions on sets of links are a pebble game and those with multiple joints are
-checked on each complete multigraph; the others the plain search or one CP-SAT model per code.  Planarity and fractionation are properties of H (a
-subdivision keeps both), so they are decided once per H.
+checked on each complete multigraph; the others the plain search or one CP-SAT model per code.
+Planarity and fractionation are properties of H (a subdivision keeps both), so they are decided once
+per H.
 """
 
 from __future__ import annotations
@@ -561,7 +562,8 @@ def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iter
     seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
-                            h + conv.threshold, bool(of_links), joint_sets, state, out_x, out_y, flags, least_budget)
+                            h + conv.threshold, bool(of_links), joint_sets, state, out_x, out_y, flags,
+                            least_budget)
         X, Y = out_x[:found], out_y[:found]
         keep = np.ones(found, dtype=bool)
         marked = np.flatnonzero(flags[:found])
