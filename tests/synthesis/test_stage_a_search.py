@@ -59,9 +59,9 @@ def test_the_search_finds_what_the_model_finds_for_the_codes_of_the_benchmark_qu
 
 @pytest.mark.slow
 def test_the_search_finds_what_the_model_finds_for_every_code_it_runs():
-    """… and every code the search runs (8 branch vertices too: 1 637 codes, about 25 CPU s)."""
+    """… and every code the search runs (8 branch vertices too: 1 420 codes)."""
     jobs = [job for job in _model_jobs() if stage_a._searched(*job)]
-    assert len(jobs) > 1600
+    assert len(jobs) > 1400
     assert _same_both_ways(jobs) > 5000
 
 
