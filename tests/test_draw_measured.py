@@ -187,3 +187,30 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
                     assert np.linalg.norm(base - number) > 1.5 * r, (frame, gid)
         finally:
             plt.close(fig)
+
+
+def _title_and_drawings(monkeypatch, run):
+    """The sheet title's box and the top of its highest drawing, in figure fractions, and the title's
+    band (0.45 inch) in the same unit, of the picture ``run`` writes."""
+    seen = {}
+
+    def keep(fig, path, dpi):
+        fig.canvas.draw()
+        seen["title"] = fig._suptitle.get_window_extent().transformed(fig.transFigure.inverted())
+        seen["top"] = max(ax.get_position().y1 for ax in fig.axes if ax.has_data())
+        seen["band"] = 0.45 / fig.get_size_inches()[1]
+
+    monkeypatch.setattr(_render, "_save", keep)
+    run()
+    return seen["title"], seen["top"], seen["band"]
+
+
+def test_a_sheet_title_sits_above_every_drawing(monkeypatch, tmp_path):
+    """`draw --code 7201/1` (6 columns, its multiple joints' numbers at the top of the first row) and the
+    same sheet two columns wide (14 rows): the title's box ends above every drawing's square — its first
+    row's "3"s were printed over the title."""
+    for columns in ("6", "2"):
+        title, top, band = _title_and_drawings(monkeypatch, lambda: main(
+            ["draw", "--code", "7201/1", "--columns", columns, "--out", str(tmp_path / "sheet.png")]))
+        assert top <= title.y0 < title.y1 <= 1, (columns, title, top)  # over the first row, on the sheet
+        assert title.y0 - top <= 2 * band  # and not far above it
