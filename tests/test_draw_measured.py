@@ -214,3 +214,14 @@ def test_a_sheet_title_sits_above_every_drawing(monkeypatch, tmp_path):
             ["draw", "--code", "7201/1", "--columns", columns, "--out", str(tmp_path / "sheet.png")]))
         assert top <= title.y0 < title.y1 <= 1, (columns, title, top)  # over the first row, on the sheet
         assert title.y0 - top <= 2 * band  # and not far above it
+
+
+def test_the_help_states_the_resolution_the_pictures_have(capsys):
+    """`draw --help` said a sheet's PNG had 100 dots per inch; sheets and single drawings have 150."""
+    try:
+        main(["draw", "--help"])
+    except SystemExit:
+        pass
+    text = " ".join(capsys.readouterr().out.split())
+    stated = re.search(r"--dpi DPI resolution of a \.png [^(]*\(default ([^)]*)\)", text).group(1)
+    assert {int(d) for d in re.findall(r"\d+", stated)} == {_render.SINGLE[1], _render.CELL[1]}, stated

@@ -59,7 +59,7 @@ def add_commands(sub) -> None:
                    help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet (refused for one drawing)")
     p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
-    p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
+    p.add_argument("--dpi", type=positive, help="resolution of a .png in dots per inch (default 150)")
     p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
