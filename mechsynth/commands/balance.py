@@ -400,6 +400,10 @@ def _linkage_problem(args):
             elif "linkage" not in doc:
                 raise InvalidInput(f"{args.file}: [linkage_balance] needs its linkage: 'file' = a linkage file, or a "
                                    "[linkage] table in the same file.")
+    if args.save is not None:  # as move and dimension: the files read are never written over
+        read = next((path for path in (args.file, source) if os.path.realpath(path) == os.path.realpath(args.save)), None)
+        if read is not None:
+            raise InvalidOption(f"{read} is read by this command: --save would overwrite it")
     if table is not None:
         both = [flag for key, flag in OPTIONS.items() if options[key] is not None and getattr(table, key) is not None]
         if both:
