@@ -426,3 +426,43 @@ def test_linkage_figure_draws_the_counterweights_a_saved_linkage_carries(drawn, 
     assert np.allclose(np.sort(points, axis=0), np.sort([b.centre for b in res.carried], axis=0))
     assert all(mcolors.to_hex(c.get_facecolor()[0]) == mcolors.to_hex("0.55") for c in dots)
     assert "grey: carried already" in right.get_title()
+
+
+@pytest.mark.parametrize("points", [
+    [[0, 0], [1, 0], [0.9714545931334975, 0.6802198291405213], [1.5818277369324332, 1.0077552016197229]],
+    None,  # models/motion_four_bar.toml
+])
+def test_linkage_figure_counterweight_labels_clear_of_their_dots_and_inside_the_panel(drawn, points):
+    """Each counterweight's mass label lies beside its dot, not under it, and dot and label lie inside the
+    panel: the README's four-bar (`dimension … --save freudenstein.toml`, then `balance linkage … --range 30..110
+    --plot`) had '1.86 kg' covered by its dot at the panel's lower edge, cut by it."""
+    from balance import plot_linkage
+    from mechsynth._linkage_balance import linkage_problem
+    from synth.motion import Linkage, read_linkage
+    from synth.structure.chain import Chain, Mechanism
+
+    if points is None:
+        lk, options = read_linkage(MODELS / "motion_four_bar.toml"), {"density": 2.0}
+    else:
+        lk = Linkage(Mechanism(Chain.parse("0-1 0-3 1-2 2-3"), 0), (0,), points)
+        options = {"density": 2.0, "range": (30.0, 110.0)}
+    res = linkage_problem(lk, options, None, "four-bar").solve()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = drawn(plot_linkage, res)
+    fig.set_dpi(110)  # as saved
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    right = fig.axes[1]
+    panel = right.get_window_extent(renderer)
+    labels = [t for t in right.texts if t.get_text().endswith(" kg")]
+    dots = [c for c in right.collections if len(c.get_offsets())]
+    assert len(labels) == len(dots) == len([c for c in res.counterweights if c.mass > 0]) > 0
+    for label, dot in zip(labels, dots):
+        centre = right.transData.transform(dot.get_offsets()[0])
+        radius = math.sqrt(dot.get_sizes()[0] / math.pi) * right.figure.dpi / 72  # the dot's area is in points²
+        box = label.get_window_extent(renderer)
+        nearest = np.clip(centre, [box.x0, box.y0], [box.x1, box.y1])  # the label's point nearest the dot's centre
+        assert np.hypot(*(nearest - centre)) >= radius, (label.get_text(), radius)
+        for x, y in ((box.x0, box.y0), (box.x1, box.y1), centre - radius, centre + radius):
+            assert panel.x0 <= x <= panel.x1 and panel.y0 <= y <= panel.y1, (label.get_text(), x, y, panel)
