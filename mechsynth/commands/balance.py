@@ -201,7 +201,9 @@ def _run(args) -> int:
     except BalanceError as exc:
         raise InvalidOption(str(exc)) from None
     except OSError as exc:  # e.g. the plot file cannot be written
-        raise InvalidOption(f"cannot write or read a file ({exc.strerror}: {exc.filename}).") from None
+        if exc.filename is None:  # stdout itself (a full disk): the command's own sentence
+            raise
+        raise InvalidOption(f"cannot write or read {exc.filename}: {exc.strerror}.") from None
     return 1 if out.get("target_met") is False else 0  # a valid query whose requested error is not reached
 
 
