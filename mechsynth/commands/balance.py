@@ -265,7 +265,7 @@ def _spring_problem(args):
              "--guided": args.guided or None}
     named = [k for k, v in given.items() if v is not None]
     if named and not args.design_spring:
-        raise InvalidInput(f"{', '.join(named)} only apply with --design-spring.")
+        raise InvalidInput(f"{' and '.join(named)} {'applies' if len(named) == 1 else 'apply'} only with --design-spring.")
     kind = _device_options(args)
     if kind == "tension" and (args.spring_ends is not None or args.guided):
         raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
