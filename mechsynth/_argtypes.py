@@ -101,16 +101,17 @@ def chain_text(text: str) -> str:
     return text
 
 
-def add_row(parser) -> None:
+def add_row(parser, also: str = "") -> None:
     """``--row K``: which row of an atlas search's rows (``dimension --db … --format json`` or ``jsonl``) is
-    the linkage a command reads (:func:`synth.motion.read_linkage`).
+    the linkage a command reads (:func:`synth.motion.read_linkage`); ``also`` ends its help with what else it
+    picks in this command.
 
     >>> p = argparse.ArgumentParser(); add_row(p); p.parse_args(["--row", "2"]).row
     2
     """
     parser.add_argument("--row", type=positive, metavar="K",
                         help="with a file of an atlas search's rows (dimension --db … --format json or jsonl): the "
-                             "linkage of row K (1 = the best, as the table ranks them)")
+                             "linkage of row K (1 = the best, as the table ranks them)" + also)
 
 
 def real(text: str, what: str = "a number") -> float:

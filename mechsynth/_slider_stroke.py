@@ -34,31 +34,22 @@ class Stroke:
     near: float
 
 
-def _extreme(linkage, value, lo: float, hi: float, sign: float) -> tuple[float, float]:
-    """The input in [lo, hi] where ``value(motion)`` (per step) is largest (sign = 1) or smallest
-    (−1), and that value, found by nested sweeps of the solver, each a tenth as wide."""
-    from synth.motion import sweep
-
-    for _ in range(60):
-        motion = sweep(linkage, steps=21, start=lo, stop=hi)
-        got = sign * value(motion)
-        i = int(np.nanargmax(got))
-        x, width = float(motion.inputs[i, 0]), (hi - lo) / 20
-        if width < 1e-13:
-            break
-        lo, hi = x - width, x + width
-    return x, sign * float(got[i])
-
-
 def dead_centres(linkage, motion, value) -> tuple[tuple[float, float], tuple[float, float]]:
     """The inputs and values of the largest and smallest ``value(motion)`` over a crank's turn (``motion``
-    a sweep of it), refined by nested sweeps."""
+    a sweep of it), each refined between the samples beside it by the motion layer's bounded search
+    (:func:`synth.motion.refine_extreme`), the solver posing the linkage at each input it tries."""
+    from synth.motion import refine_extreme, sweep
+
+    def at(x: float) -> float:
+        return float(value(sweep(linkage, steps=2, start=x, stop=x + 1e-3))[0])
+
     v = value(motion)
     step = float(motion.inputs[1, 0] - motion.inputs[0, 0])
     out = []
-    for sign in (1.0, -1.0):
-        x = float(motion.inputs[int(np.nanargmax(sign * v)), 0])
-        out.append(_extreme(linkage, value, x - 2 * step, x + 2 * step, sign))
+    for largest in (True, False):
+        i = int(np.nanargmax(v if largest else -v))
+        x = float(motion.inputs[i, 0])  # a crank turns on beyond its sweep's ends: the bracket is not cut there
+        out.append(refine_extreme(at, x - step, x + step, (x, float(v[i])), largest=largest))
     return out[0], out[1]
 
 

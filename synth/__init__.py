@@ -87,7 +87,7 @@ _WHERE = {
     # motion of dimensioned mechanisms
     "Linkage": ".motion._linkage", "read_linkage": ".motion._linkage", "linkage_from_pose": ".motion._pose",
     "Motion": ".motion._sweep", "MotionRange": ".motion._sweep", "sweep": ".motion._sweep",
-    "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep",
+    "sweep_grid": ".motion._sweep", "motion_range": ".motion._sweep", "refine_extreme": ".motion._sweep",
     # drawings of moving mechanisms (chains, mechanisms and gear trains: synth.draw)
     "linkage_from_layout": ".motion_draw", "draw_motion": ".motion_draw", "animate_motion": ".motion_draw",
     "draw_linkage": ".motion_draw", "draw_motion_sheet": ".motion_draw",

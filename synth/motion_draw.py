@@ -699,7 +699,8 @@ def draw_motion_sheet(panels: list[tuple[Motion, np.ndarray | None, str]], out: 
                       size: float = 3.6, dpi: int = 100) -> None:
     """A sheet of :func:`draw_motion`'s pictures, one panel per ``(motion, marks, title)``, ``columns``
     to a row, each ``size`` inches on its longer side and to its own scale (a scale bar in each): the
-    rows of an atlas search side by side.  PNG or SVG (both by matplotlib).
+    rows of an atlas search side by side.  A title wider than its panel is set smaller to fit it.  PNG or
+    SVG (both by matplotlib).
 
     >>> import os, tempfile
     >>> from PIL import Image
@@ -739,8 +740,11 @@ def draw_motion_sheet(panels: list[tuple[Motion, np.ndarray | None, str]], out: 
             dx, dy = (side - canvas.width) / 2, (side - canvas.height) / 2
             ax.set_xlim(-dx, canvas.width + dx)
             ax.set_ylim(canvas.height + dy, -dy)
-            fig.text((column + 0.5) / columns, 1 - (row * (cell + strip) + 0.06) / (rows * (cell + strip)), title,
-                     ha="center", va="top", fontsize=9)
+            text = fig.text((column + 0.5) / columns, 1 - (row * (cell + strip) + 0.06) / (rows * (cell + strip)),
+                            title, ha="center", va="top", fontsize=9)
+            wide = text.get_window_extent(fig.canvas.get_renderer()).width
+            if wide > 0.96 * side:  # a long chain's or a mark's line: smaller, within its panel
+                text.set_fontsize(9 * 0.96 * side / wide)
         save_figure(fig, path, dpi=dpi)
     except OSError as exc:
         raise InvalidOption(f"cannot write {path}: {exc.strerror or exc}") from None

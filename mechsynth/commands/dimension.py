@@ -120,17 +120,17 @@ def add_commands(sub) -> None:
                    "sizes of its centre (default 4; a function: frame lengths, default 2)")
     p.add_argument("--underdetermined", action="store_true", help="allow fewer target equations than unknowns "
                    "(one of infinitely many exact solutions is returned); refused for a target that gives enough "
-                   "(with --db: for the topologies that need it)")
+                   "(with --db: for the topologies that need it, refused when none of those searched does)")
     p.add_argument("--budget", type=seconds, default=60.0, help="CPU seconds of the search (default 60; with --db "
                    "shared by the topologies; of one mechanism with --workers N > 1 or --scheduler, wall-clock seconds)")
     p.add_argument("--seed", type=whole, default=0, help="seed of the search (default 0)")
     p.add_argument("--workers", type=workers, default=None, help="local processes evaluating the global search's "
                    "generations, or (with --db) polishing the topologies (default 1)")
     p.add_argument("--format", choices=("table", "json", "jsonl"), default="table", help="table (default), json "
-                   "(the result with its linkage) or jsonl (one row; with --db a row per topology, each with its "
-                   "linkage)")
+                   "(the result with its linkage) or jsonl (one row with its linkage; with --db a row per topology, "
+                   "each with its linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
-                   "and scene read; or .json)")
+                   "and scene read; or .json); with --db the best row's, or row K's with --row K")
     p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
                    "(.png or .svg); with --db a sheet, a panel per row")
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
@@ -140,7 +140,7 @@ def add_commands(sub) -> None:
                    "the best of every link count is always among them)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run the global search's generations (with --db: the "
                    "topologies' polish) on a Dask scheduler, tcp://HOST:PORT")
-    add_row(p)
+    add_row(p, "; with --db and --save, the row saved (default 1)")
     p.set_defaults(run=_run)
 
 
@@ -171,9 +171,10 @@ def _check(args) -> None:
                             + (" (not both)" if args.linkage else ""))
     if args.linkage and (args.frame is not None or args.input is not None):
         raise InvalidOption("--frame and --input go with --mechanism; a linkage file names its frame and input")
-    if args.row is not None and not args.linkage:
+    if args.row is not None and not args.linkage and not (args.db and args.save):
         raise InvalidOption("--row picks the start of the search from a file of an atlas search's rows: it goes with "
-                            "--linkage ROWS.json")
+                            "--linkage ROWS.json" + (" (with --db, it picks the row --save writes: give --save FILE)"
+                                                     if args.db else ""))
     if args.mechanism and args.frame is None:
         raise InvalidOption("--mechanism needs --frame F: the fixed link")
     if args.crank and args.rocker:
@@ -312,8 +313,8 @@ def _write(result, fmt: str, wall: bool = False) -> None:
     from synth import JointKind
     from synth.motion import joint_name
 
-    if fmt == "jsonl":
-        sys.stdout.write(json.dumps(result.row()) + "\n")
+    if fmt == "jsonl":  # with its linkage, as the atlas search's rows: move, draw and balance linkage read it
+        sys.stdout.write(json.dumps({**result.row(), "linkage": result.linkage.to_dict()}) + "\n")
         return
     if fmt == "json":
         write_document(result.to_dict(), "json", "")
@@ -401,6 +402,36 @@ def _draw_rows(rows: list, path: str) -> None:
     over the target's points and its curve, titled with its rank, links and error."""
     from synth.motion_draw import draw_motion_sheet
 
-    draw_motion_sheet([(*_swept(result), f"{rank}: {result.linkage.chain.compact()}, frame {result.linkage.frame}\n"
-                        f"{result.linkage.chain.links} links, error max {result.error_max:.3g}")
-                       for rank, result in rows], path)
+    panels = []
+    for rank, result in rows:
+        motion, marks = _swept(result)
+        panels.append((motion, marks, _panel_title(rank, result, motion)))
+    draw_motion_sheet(panels, path)
+
+
+#: a panel of the sheet whose mechanism is more than this many times the target's size says so in its title (each
+#: panel is drawn to its own scale: the target is then a speck, and a scale bar alone did not say why)
+_DWARFED = 10.0
+
+
+def _panel_title(rank: int, result, motion) -> str:
+    """A sheet panel's title: rank, chain, frame, links, error max, and the mechanism's size over the target's
+    (bounding-box diagonals; its joints and tracers over the sweep) where it is above :data:`_DWARFED`.
+
+    >>> from types import SimpleNamespace
+    >>> from synth.motion import read_linkage, sweep
+    >>> lk = read_linkage("models/motion_four_bar.toml")
+    >>> _panel_title(2, SimpleNamespace(linkage=lk, error_max=0.0122, size=0.05), sweep(lk, steps=90))
+    '2: 0-1 0-3 1-2 2-3, frame 0\\n4 links, error max 0.0122, mechanism 149× target'
+    """
+    import numpy as np
+
+    lk = result.linkage
+    title = f"{rank}: {lk.chain.compact()}, frame {lk.frame}\n{lk.chain.links} links, error max {result.error_max:.3g}"
+    points = np.vstack([motion.joints.reshape(-1, 2), *motion.tracers.values()])
+    points = points[np.isfinite(points).all(axis=1)]
+    times = float(np.hypot(*(points.max(axis=0) - points.min(axis=0)))) / result.size
+    if times > _DWARFED:
+        shown = f"{times:.0f}" if times < 1e4 else f"{times:.0e}".replace("e+0", "e").replace("e+", "e")  # 3e4
+        title += f", mechanism {shown}× target"  # (at most about 51 characters: the width of a panel)
+    return title

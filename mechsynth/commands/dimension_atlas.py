@@ -50,8 +50,8 @@ def links_range(text: str | None) -> tuple[int, int] | None:
 
 
 def run(args, target, constraints, *, save, draw) -> int:
-    """Search the atlas for the target; print a row per topology; ``save`` the best and ``draw`` every row on
-    one sheet (the command's own writers: of a result, and of ``(rank, result)`` pairs)."""
+    """Search the atlas for the target; print a row per topology; ``save`` the best (or row ``--row K``) and
+    ``draw`` every row on one sheet (the command's own writers: of a result, and of ``(rank, result)`` pairs)."""
     from synth.atlas import search_atlas
     from synth.errors import flag
 
@@ -80,10 +80,25 @@ def run(args, target, constraints, *, save, draw) -> int:
         print(f"mechsynth: no mechanism met the constraints within the budget; the best found fails: "
               f"{'; '.join(best.result.failed())} (nothing saved or drawn)", file=sys.stderr)
         return 1
+    status = 0
     if args.save:
-        save(best.result, args.save)
-        print(f"linkage -> {args.save}", file=sys.stderr)
+        status = _save_row(found.matches, args.row or 1, args.save, save)
     if args.out:
         draw([(rank, match.result) for rank, match in enumerate(found.matches, 1)], args.out)
         print(f"picture of {len(rows)} row{'s' * (len(rows) != 1)} -> {args.out}", file=sys.stderr)
+    return status
+
+
+def _save_row(matches, k: int, path: str, save) -> int:
+    """Save row ``k``'s linkage (1 = the best); 1 where the search found no row ``k`` or it fails a constraint."""
+    if k > len(matches):
+        print(f"mechsynth: --row {k} is not a row of this search: it found row{'s 1 to ' if len(matches) > 1 else ' '}"
+              f"{len(matches)} (nothing saved)", file=sys.stderr)
+        return 1
+    result = matches[k - 1].result
+    if not result.met:
+        print(f"mechsynth: row {k} fails the constraints: {'; '.join(result.failed())} (nothing saved)", file=sys.stderr)
+        return 1
+    save(result, path)
+    print(f"linkage{f' of row {k}' if k > 1 else ''} -> {path}", file=sys.stderr)
     return 0

@@ -163,7 +163,7 @@ def _draw_linkage(args) -> int:
                             f"and inputs): {', '.join(chosen)} {'does' if len(chosen) == 1 else 'do'} not apply")
     if args.dpi is not None and not args.out.lower().endswith(".png"):
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
-    if not args.linkage.lower().endswith((".toml", ".json", ".jsonl")) and not os.path.exists(args.linkage):
+    if not args.linkage.lower().endswith((".toml", ".json", ".jsonl", ".csv")) and not os.path.exists(args.linkage):
         raise InvalidOption(f"a linkage file is .toml or .json, not {args.linkage!r}: a chain's drawing is "
                             f"'mechsynth draw --chain \"{args.linkage}\" --out FILE'")
     linkage = read_linkage(args.linkage, row=args.row)

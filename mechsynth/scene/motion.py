@@ -14,7 +14,7 @@ solver against the textbook's formulas, written here independently of :mod:`synt
     it checks a class III group (a triad) against the dyads of another inversion of its chain.
 ``slider-crank``
     the slider's pin on its line (circle–line intersection); stroke and quick-return ratio
-    measured on the solver's own positions (nested sweeps around each dead centre, :mod:`mechsynth._slider_stroke`).
+    measured on the solver's own positions (each dead centre refined between steps, :mod:`mechsynth._slider_stroke`).
 ``slotted-lever``
     the crank-and-slotted-lever (an inverted slider-crank): the lever's angle and the slide; the
     lever's swing and the slide's extremes measured on the solver.

@@ -548,6 +548,33 @@ def _rechecked(result, target) -> float:
     return float(np.hypot(*(moved - result.traced).T).max() / target.size)
 
 
+def _refuse_underdetermined_without_use(tasks: list[TopologyPolish], target) -> None:
+    """Refuse ``underdetermined`` when no topology the search polishes has fewer target equations than
+    unknowns (a topology none of whose samples can be posed counts as one that might)."""
+    from ..dimension import equations_and_unknowns
+
+    unknowns = []
+    for task in tasks:
+        chain = Chain.from_dict(json.loads(task.chain_json))
+        for candidate, points, at, slides in task.candidates:
+            try:
+                start = start_linkage(candidate, chain, points, at, target, slides)
+                equations, count = equations_and_unknowns(start, target, tracer_link=candidate.tracer_link,
+                                                          constraints=task.constraints)
+            except SynthesisError:
+                continue
+            if equations < count:
+                return
+            unknowns.append(count)
+            break
+        else:
+            return
+    raise InvalidOption(f"{option('underdetermined')} allows fewer target equations than unknowns, and the "
+                        f"target's {equations} equations are at least the unknowns of each topology this search "
+                        f"polishes ({len(tasks)} topolog{'y' if len(tasks) == 1 else 'ies'}, at most "
+                        f"{max(unknowns)} unknowns): drop it")
+
+
 def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None, top: int = 5,
                  per_topology: int | None = None, budget: float = 60.0, constraints=None, seed: int = 0,
                  underdetermined: bool = False, workers: int = 1, scheduler: str | None = None,
@@ -635,6 +662,8 @@ def search_atlas(db: str | Path, target, *, links: tuple[int, int] | None = None
                                         seed, underdetermined))
     finally:
         conn.close()
+    if underdetermined and tasks:
+        _refuse_underdetermined_without_use(tasks, target)
     client = None
     if scheduler:
         from ..execution.scheduler import connect

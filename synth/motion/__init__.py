@@ -26,7 +26,7 @@ _WHERE = {
     "Motion": "._sweep", "MotionRange": "._sweep", "sweep": "._sweep", "sweep_grid": "._sweep",
     "motion_range": "._sweep", "assemble": "._sweep", "pose_branch": "._sweep", "Branch": "._sweep",
     "LinkPoses": "._sweep", "link_poses": "._sweep",
-    "LinkRates": "._sweep", "link_rates": "._sweep",
+    "LinkRates": "._sweep", "link_rates": "._sweep", "refine_extreme": "._sweep",
 }
 
 __all__ = list(_WHERE)

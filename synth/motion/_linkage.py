@@ -497,9 +497,9 @@ def read_linkage(path: str | Path, row: int | None = None) -> Linkage:
     if isinstance(data, dict) and "linkage" in data:
         data = data["linkage"]
     elif isinstance(data, dict) and "error_max" in data and not isinstance(data.get("points"), dict):
-        # one row of 'dimension' without its linkage ('dimension --mechanism … --format jsonl')
-        raise MotionError(f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' "
-                          "gives each answer with its linkage, '--save FILE' the best one's")
+        # one row of 'dimension' without its linkage (a jsonl row of one mechanism carried none before 30 Nov 2026)
+        raise MotionError(f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' or "
+                          "'jsonl' gives each answer with its linkage, '--save FILE' the best one's")
     elif isinstance(data, dict) and not {"chain", "frame", "inputs", "points"} & set(data):  # an arm, a grid, …
         raise MotionError(f"{path.name} holds no linkage: a linkage file has a [linkage] table, or chain, frame, "
                           f"inputs and points at its top; this one holds {', '.join(data) or 'nothing'}")
@@ -512,6 +512,9 @@ def read_linkage(path: str | Path, row: int | None = None) -> Linkage:
 def _rows_or_linkage(path: Path):
     """The parsed content of a linkage file: a TOML or JSON document, or the rows of a ``.jsonl`` file."""
     suffix = path.suffix.lower()
+    if suffix == ".csv":
+        raise MotionError(f"{path.name} is a csv file, whose rows carry no linkage: the rows of 'dimension … --format "
+                          "json' or 'jsonl' carry each linkage (--row K picks one), a linkage file is .toml or .json")
     if suffix not in (".toml", ".json", ".jsonl"):
         raise MotionError(f"a linkage file is .toml or .json (or the .json/.jsonl rows of an atlas search), not "
                           f"{path.name!r}")
@@ -538,8 +541,8 @@ def _row_of(rows: list[dict], row: int | None, name: str) -> dict:
     if row is None and len(rows) > 1:
         raise MotionError(f"{name} holds {len(rows)} rows, not one linkage: pick one with --row K (1 to {len(rows)}, "
                           "as the table ranks them)" if all("linkage" in one for one in rows) else
-                          f"{name} holds {len(rows)} rows of 'mechsynth dimension' without their linkages: with --db "
-                          "its '--format json' or '--format jsonl' gives each row with its linkage")
+                          f"{name} holds {len(rows)} rows of 'mechsynth dimension' without their linkages: its "
+                          "'--format json' or 'jsonl' gives each row with its linkage")
     if row is not None and not 1 <= row <= len(rows):
         raise MotionError(f"--row {row} is not a row of {name}: it holds row{'s 1 to ' if len(rows) > 1 else ' '}"
                           f"{len(rows)}")

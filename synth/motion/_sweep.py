@@ -19,7 +19,7 @@ from ._linkage import Linkage, joint_name
 from ._system import System
 
 __all__ = ["Motion", "MotionRange", "LinkPoses", "Branch", "sweep", "sweep_grid", "motion_range", "pose_branch", "assemble",
-           "link_poses", "LinkRates", "link_rates"]
+           "link_poses", "LinkRates", "link_rates", "refine_extreme"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,7 +109,8 @@ class Motion:
                 k = int(finite[np.argmin(sign * xy[finite, axis])])
                 best = float(xy[k, axis])
                 if point is not None:
-                    best = sign * _refined(lambda x: sign * point(name, x)[axis], self.inputs[:, 0], k, sign * best)
+                    best = refine_extreme(lambda x: point(name, x)[axis], *_beside(self.inputs[:, 0], k),
+                                          (self.inputs[k, 0], best), largest=sign < 0)[1]
                 box.append(best)
             out[name] = tuple(box)
         return out
@@ -850,21 +851,35 @@ def sweep(linkage: Linkage, *, steps: int = 360, start: float | None = None, sto
     return Motion(linkage, inputs, joints, tracers, vel, acc, stopped, None, theta, tracer_vel, tracer_acc)
 
 
-def _refined(f: Callable[[float], float], xs: np.ndarray, k: int, sampled: float) -> float:
-    """The least of ``f`` between the samples beside ``xs[k]`` (where ``f`` is ``sampled``), by a
-    bounded search to 1e-10 of the input; the sample where the search finds no less."""
-    lo, hi = min(xs[0], xs[-1]), max(xs[0], xs[-1])
-    a, b = xs[max(k - 1, 0)], xs[min(k + 1, len(xs) - 1)]
-    a, b = max(min(a, b), lo), min(max(a, b), hi)
+def refine_extreme(f: Callable[[float], float], a: float, b: float, sample: tuple[float, float], *,
+                   largest: bool = False) -> tuple[float, float]:
+    """Refine an extreme found by sampling: the input and value of the least ``f`` on [a, b] (the
+    greatest with ``largest=True``) by a bounded search to 1e-10 of the input; ``sample``, the sampled
+    (input, value), where the search finds none better (a value that is not finite counts as worst).
+
+    >>> x, v = refine_extreme(math.cos, 3.0, 3.3, (3.0, math.cos(3.0)))   # cos is least at π
+    >>> round(x, 7), v
+    (3.1415927, -1.0)
+    """
+    sign = -1.0 if largest else 1.0
     if not b > a:
-        return sampled
+        return sample
 
     def value(x):
-        v = float(f(x))
+        v = sign * float(f(x))
         return v if math.isfinite(v) else math.inf
 
     found = minimize_scalar(value, bounds=(a, b), method="bounded", options={"xatol": 1e-10})
-    return float(found.fun) if found.success and found.fun < sampled else sampled
+    if found.success and found.fun < sign * sample[1]:
+        return float(found.x), sign * float(found.fun)
+    return sample
+
+
+def _beside(xs: np.ndarray, k: int) -> tuple[float, float]:
+    """The samples beside ``xs[k]`` (within the sweep's range): the bracket of a sampled extreme."""
+    lo, hi = min(xs[0], xs[-1]), max(xs[0], xs[-1])
+    a, b = xs[max(k - 1, 0)], xs[min(k + 1, len(xs) - 1)]
+    return max(min(a, b), lo), min(max(a, b), hi)
 
 
 def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: float) -> dict:
@@ -872,7 +887,6 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
     dead position where the branch ends because this dyad is aligned, exactly 0 or π (the end is
     located to 1e-11 of the input, where the angle is still about its square root: 1e-4°)."""
     out = {}
-    lo, hi = min(offsets[0], offsets[-1]), max(offsets[0], offsets[-1])
     branch_lo, branch_hi, why_lo, why_hi = solver.branch
 
     def aligned_end(x: float, d) -> bool:
@@ -892,14 +906,8 @@ def _transmission(solver: _Solver, offsets: np.ndarray, mu: np.ndarray, phi0: fl
         entry = {"kind": d.kind}
         for label, sign in (("min", 1.0), ("max", -1.0)):
             k = int(np.nanargmin(sign * mu[:, m]))
-            a, b = offsets[max(k - 1, 0)], offsets[min(k + 1, len(offsets) - 1)]
-            a, b = max(min(a, b), lo), min(max(a, b), hi)
-            best_x, best = offsets[k], float(mu[k, m])
-            if b > a:
-                found = minimize_scalar(lambda x: sign * float(solver.closed(np.array([[x]]))[3][0, m]),
-                                        bounds=(a, b), method="bounded", options={"xatol": 1e-10})
-                if found.success and found.fun < sign * best:
-                    best_x, best = float(found.x), sign * float(found.fun)
+            best_x, best = refine_extreme(lambda x: solver.closed(np.array([[x]]))[3][0, m], *_beside(offsets, k),
+                                          (float(offsets[k]), float(mu[k, m])), largest=sign < 0)
             snap = 0.0 if best < math.pi / 2 else math.pi
             if abs(best - snap) < 1e-3 and aligned_end(float(offsets[k]), d):
                 best, best_x = snap, float(offsets[k])
@@ -960,11 +968,13 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
                         abs(b - a) / (count - 1) if a != b else math.inf, i)
     axes = [np.linspace(a, b, s) for (a, b), s in zip(ranges, steps)]
     values = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, w)
-    offsets = values - linkage.pose_inputs[None, :]
     solver = _solver(linkage)
     shape = tuple(steps)
-    # the cell nearest the pose, then every cell reached from a solved neighbour
-    start = tuple(int(np.argmin(np.abs(axis - v))) for axis, v in zip(axes, linkage.pose_inputs))
+    # the cell nearest the pose, then every cell reached from a solved neighbour; the offsets from the pose less the
+    # whole turns between the pose and that cell (the same positions: Newton's method starts from the pose)
+    start, gap = _nearest_cell(axes, linkage.pose_inputs, solver.revolute)
+    offsets = values - linkage.pose_inputs[None, :]
+    offsets -= offsets[np.ravel_multi_index(start, shape)] - gap
     n = linkage.chain.links
     theta = np.full((total, n), np.nan)
     t = np.full((total, n, 2), np.nan)
@@ -1021,6 +1031,26 @@ def sweep_grid(linkage: Linkage, ranges, *, steps=None, velocities: bool = False
         for name, xy in found.items():
             tracer_vel[name][reached] = xy
     return Motion(linkage, values, joints, tracers, vel, None, None, shape, theta, tracer_vel)
+
+
+def _nearest_cell(axes: list[np.ndarray], pose: np.ndarray, revolute: list[bool]) -> tuple[tuple[int, ...], np.ndarray]:
+    """The grid's cell nearest the pose's inputs, a revolute input's angles compared within a turn (a grid from
+    350° to 370° starts at 365° for a pose at 5°; of cells a whole turn apart, the nearer one), and the cell's
+    inputs less the pose's, so reduced.
+
+    >>> cell, gap = _nearest_cell([np.radians([340.0, 355.0, 370.0]), np.array([0.0, 1.0])],
+    ...                           np.array([math.radians(5.0), 0.8]), [True, False])  # an angle, a slide
+    >>> cell, round(math.degrees(gap[0]), 9), round(float(gap[1]), 12)  # 370° is 5° on (340°: 25° back)
+    ((2, 1), 5.0, 0.2)
+    """
+    cell, gap = [], []
+    for axis, value, turns in zip(axes, pose, revolute):
+        raw = axis - value
+        reduced = np.remainder(raw + math.pi, 2 * math.pi) - math.pi if turns else raw
+        k = int(np.lexsort((np.abs(raw), np.round(np.abs(reduced), 12)))[0])
+        cell.append(k)
+        gap.append(float(reduced[k]))
+    return tuple(cell), np.array(gap)
 
 
 def _step(solver: _Solver, q: np.ndarray, x_from: np.ndarray, x_to: np.ndarray) -> np.ndarray | None:

@@ -452,6 +452,32 @@ def test_every_row_of_the_atlas_search_is_read_by_move_draw_and_balance(slider_i
         f"mechsynth: --row {len(rows) + 1} is not a row of rows.json: it holds rows 1 to {len(rows)}\n")
 
 
+def test_the_atlas_searchs_save_writes_row_k_with_row_k(slider_index, four_bar_index, tmp_path):
+    """--save wrote the best row alone (another row: 'move rows.json --row K --save'); with --row K it writes row
+    K's linkage, the one row K of the same run's json carries.  --row with --db without --save, and a row the
+    search did not find, are said in one sentence."""
+    from synth.motion import Linkage, read_linkage
+
+    csv = tmp_path / "ellipse.csv"
+    t = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    csv.write_text("x,y\n" + "".join(f"{math.cos(a)!r},{0.6 * math.sin(a)!r}\n" for a in t))
+    saved = tmp_path / "row2.toml"
+    done = _cli("dimension", str(csv), "--db", slider_index, "--budget", "3", "--format", "json", "--save", str(saved),
+                "--row", "2")
+    assert done.returncode == 0 and f"linkage of row 2 -> {saved}\n" in done.stderr, done.stderr
+    rows = json.loads(done.stdout)
+    assert len(rows) >= 2 and rows[0]["linkage"] != rows[1]["linkage"]
+    assert read_linkage(saved).to_dict() == Linkage.from_dict(rows[1]["linkage"]).to_dict()
+    refused = _cli("dimension", str(csv), "--db", slider_index, "--row", "2")
+    assert refused.returncode == 2 and refused.stderr == (
+        "mechsynth: --row picks the start of the search from a file of an atlas search's rows: it goes with --linkage "
+        "ROWS.json (with --db, it picks the row --save writes: give --save FILE)\n")
+    beyond = tmp_path / "row3.toml"
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "1", "--save", str(beyond), "--row", "3")
+    assert done.returncode == 1 and not beyond.exists()
+    assert "mechsynth: --row 3 is not a row of this search: it found row 1 (nothing saved)\n" in done.stderr
+
+
 @pytest.mark.slow
 def test_a_random_six_bar_with_a_slider_is_found_from_its_timed_points(tmp_path):
     """A six-bar with a slider on its frame (a slider-crank driving a dyad), dimensions and line picked at
@@ -573,6 +599,25 @@ def test_a_topology_short_of_points_is_named_with_the_flag_that_allows_it(four_b
     assert done.returncode == 0 and "no polish reached" not in done.stderr, done.stderr
     (row,) = [json.loads(line) for line in done.stdout.splitlines()]
     assert row["links"] == 4 and row["relative_max"] <= 1e-9  # one of the four-bars through the eight points
+
+
+def test_underdetermined_is_refused_where_no_topology_searched_needs_it(four_bar_index, tmp_path):
+    """9 untimed points give 18 equations for a four-bar's 18 unknowns (8 points: 16 for 17, above): nothing to
+    allow, refused in one sentence before any polish (it was accepted silently, as it once was for one topology)."""
+    from synth.errors import InvalidOption
+
+    target = _target(_random_crank(FOUR_BAR, 2, seed=7), 9, False)
+    with pytest.raises(InvalidOption) as refused:
+        search_atlas(four_bar_index, target, budget=60, underdetermined=True)
+    assert refused.value.text() == ("underdetermined=True allows fewer target equations than unknowns, and the "
+                                    "target's 18 equations are at least the unknowns of each topology this search "
+                                    "polishes (1 topology, at most 18 unknowns): drop it")
+    csv = tmp_path / "nine.csv"
+    csv.write_text("x,y\n" + "".join(f"{x!r},{y!r}\n" for x, y in target.points.tolist()))
+    done = _cli("dimension", str(csv), "--db", four_bar_index, "--budget", "60", "--underdetermined")
+    assert done.returncode == 2 and done.stdout == "" and done.stderr == (
+        "mechsynth: --underdetermined allows fewer target equations than unknowns, and the target's 18 equations are "
+        "at least the unknowns of each topology this search polishes (1 topology, at most 18 unknowns): drop it\n")
 
 
 @pytest.mark.parametrize("args, message", [

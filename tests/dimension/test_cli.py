@@ -207,3 +207,57 @@ def test_the_help_gives_the_pivots_box_its_unit(capsys):
         main(["dimension", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "a box the frame's joints must lie in, in target units (the target's x, y)" in text
+
+
+def test_a_jsonl_row_of_one_mechanism_carries_its_linkage_and_a_csv_of_rows_is_refused_by_every_reader(
+        tmp_path, capsys):
+    """'dimension --mechanism … --format jsonl' wrote a row without the linkage (move, draw and balance linkage
+    could not read it, where the atlas search's rows carry theirs); a csv of rows with --row K said only that a
+    linkage file is .toml or .json: each reader of --row now names the formats that carry a linkage."""
+    assert main(["dimension", str(MODELS / "dimension_function.csv"), *FOUR_BAR, "--budget", "5",
+                 "--format", "jsonl"]) == 0
+    out = capsys.readouterr().out
+    one = tmp_path / "one.jsonl"
+    one.write_text(out)
+    row = json.loads(out)
+    assert row["error_max"] < 1e-9 and row["linkage"]["chain"] == "0-1 0-3 1-2 2-3"
+    for given in ([], ["--row", "1"]):
+        assert main(["move", str(one), *given, "--range", "--format", "json"]) == 0
+        assert json.loads(capsys.readouterr().out)["input"] == "0-1"
+    table = tmp_path / "rows.csv"
+    table.write_text("rank,links,error_max\n1,4,0.0\n2,4,0.0\n")
+    for command in (["move", str(table)], ["draw", str(table), "--out", str(tmp_path / "x.png")],
+                    ["balance", "linkage", str(table), "--density", "1"],
+                    ["dimension", str(MODELS / "dimension_function.csv"), "--linkage", str(table)]):
+        assert main([*command, "--row", "2"]) == 2
+        assert capsys.readouterr().err == (
+            "mechsynth: rows.csv is a csv file, whose rows carry no linkage: the rows of 'dimension … --format json' "
+            "or 'jsonl' carry each linkage (--row K picks one), a linkage file is .toml or .json\n"), command
+
+
+def test_a_sheet_panel_whose_mechanism_dwarfs_the_target_says_so_in_its_title():
+    """Each panel of the atlas search's sheet is drawn to its own scale: a four-bar thousands of times the target
+    drew the target as a speck under a title that did not say why.  Above 10× the target's size (bounding-box
+    diagonals) the title says how many times; the pivots alone are 4 k apart, so the mark is at least 4 k / size."""
+    import math
+    import re
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from mechsynth.commands.dimension import _panel_title
+    from synth.motion import sweep
+    from tests.motion.helpers import four_bar
+
+    curve = sweep(four_bar(1, 3.5, 3, 4, phi=math.pi / 2, tracer=(2.5, 4.5)), steps=90).tracers["P"]
+    size = float(np.hypot(*(curve.max(axis=0) - curve.min(axis=0))))  # the target: the unscaled curve
+    marks = {}
+    for k in (1, 2, 100, 1000):
+        lk = four_bar(k, 3.5 * k, 3 * k, 4 * k, phi=math.pi / 2, tracer=(2.5 * k, 4.5 * k))
+        title = _panel_title(3, SimpleNamespace(linkage=lk, error_max=0.0122, size=size), sweep(lk, steps=90))
+        assert title.startswith("3: 0-1 0-3 1-2 2-3, frame 0\n4 links, error max 0.0122")
+        found = re.fullmatch(r".*, mechanism (\d+)× target", title.splitlines()[1])
+        marks[k] = found and int(found.group(1))
+    assert marks[1] is None and marks[2] is None  # 3.0× and 5.9× the target: no mark
+    assert 4 * 100 / size <= marks[100] <= 3 * 4 * 100 / size
+    assert abs(marks[1000] - 10 * marks[100]) <= 10  # (rounded to a whole number each)

@@ -213,3 +213,18 @@ def test_the_sweeps_crank_table_agrees_with_each_angles_own_cosine():
     assert np.abs(m.joints - joints).max() < 1e-13
     turned = np.remainder(m.angles - theta + math.pi, 2 * math.pi) - math.pi
     assert np.abs(turned).max() < 1e-13
+
+
+@pytest.mark.parametrize("past", [1e-3, -1e-3])
+def test_a_stroke_measured_from_a_sweep_that_starts_at_a_dead_centre(past):
+    """The crank posed a hair past the slider's far dead centre (the extreme between the sweep's last sample and
+    its first: refined across the turn's seam, where a bracket cut at the sweep's ends left the stroke 6.5e-7
+    short), or a hair short of it (between the first sample and the second)."""
+    from mechsynth._slider_stroke import slider_stroke
+
+    r, l, e = 1.0, 3.5, 0.5
+    far = math.atan2(e, math.sqrt((l + r) ** 2 - e * e))
+    lk = slider_crank(r, l, e, phi=far + past)
+    s = slider_stroke(lk, sweep(lk, steps=360), 3, (1.0, 0.0))
+    assert s.length == pytest.approx(math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e), abs=1e-12)
+    assert abs(math.remainder(s.far - far, 2 * math.pi)) < 1e-7

@@ -305,8 +305,8 @@ def test_a_file_that_is_not_a_linkage_is_named_and_told_apart(tmp_path):
                                "error_max": 7.5e-14}))
     for path in (row, one):
         assert refused(MotionError, read_linkage, path) == (
-            f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' gives each "
-            "answer with its linkage, '--save FILE' the best one's")
+            f"{path.name} is a row of 'mechsynth dimension' without its linkage: its '--format json' or 'jsonl' gives "
+            "each answer with its linkage, '--save FILE' the best one's")
     # a linkage with a mistake: the sentence of Linkage.from_dict, of the same class, after the file's name
     pose = tmp_path / "pose.json"
     pose.write_text(json.dumps({"chain": "0-1 1-2 2-3 3-0", "frame": 0, "inputs": ["0-1"], "points": {"0-1": [0, 0]}}))
@@ -343,11 +343,18 @@ def test_a_row_of_an_atlas_searchs_rows_is_picked_by_its_rank(tmp_path):
     bare = tmp_path / "bare.jsonl"  # rows without their linkages (written before jsonl rows carried them)
     bare.write_text("".join(json.dumps({k: v for k, v in row.items() if k != "linkage"}) + "\n" for row in rows))
     assert refused(MotionError, read_linkage, bare, row=1) == (
-        "bare.jsonl is a row of 'mechsynth dimension' without its linkage: its '--format json' gives each answer "
-        "with its linkage, '--save FILE' the best one's")
+        "bare.jsonl is a row of 'mechsynth dimension' without its linkage: its '--format json' or 'jsonl' gives each "
+        "answer with its linkage, '--save FILE' the best one's")
     assert refused(MotionError, read_linkage, bare) == (
-        "bare.jsonl holds 2 rows of 'mechsynth dimension' without their linkages: with --db its '--format json' or "
-        "'--format jsonl' gives each row with its linkage")
+        "bare.jsonl holds 2 rows of 'mechsynth dimension' without their linkages: its '--format json' or 'jsonl' "
+        "gives each row with its linkage")
+    # a csv of rows ('move rows.csv --row 2' said only that a linkage file is .toml or .json): it names what works
+    table = tmp_path / "rows.csv"
+    table.write_text("rank,links,error_max\n1,4,0.0\n2,4,0.0\n")
+    for row in (2, None):
+        assert refused(MotionError, read_linkage, table, row=row) == (
+            "rows.csv is a csv file, whose rows carry no linkage: the rows of 'dimension … --format json' or 'jsonl' "
+            "carry each linkage (--row K picks one), a linkage file is .toml or .json")
     steps = tmp_path / "steps.jsonl"  # another command's rows ('move --format jsonl')
     steps.write_text('{"step": 0, "input": 0.0}\n{"step": 1, "input": 0.1}\n')
     assert refused(MotionError, read_linkage, steps) == (

@@ -428,3 +428,23 @@ def test_dense_target_marks_shrink_so_that_none_overlaps(tmp_path):
     pins = [float(el.get("r")) for el in root.iter() if el.tag.endswith("}circle") and el.get("fill") == "white"]
     ring = [float(el.get("r")) for el in root.iter() if el.tag.endswith("}circle") and el.get("stroke") == "#1f4e9c"]
     assert ring[0] == pytest.approx(pins[0] * 0.014 / 0.018, abs=0.1)  # (radii written to 0.1 px)
+
+
+def test_a_sheets_long_titles_stay_within_their_panels(tmp_path):
+    """A row of ten links ('1: 0-1 0-2 … 8-9, frame 0', 60 characters) or a mark of a mechanism that dwarfs its
+    target ran past its panel's 3.6 in into the next title at 9 pt: a title wider than its panel is set smaller.
+    Checked on the picture: no ink in the title strip on the border between two panels, nor at the sheet's
+    edges."""
+    from PIL import Image
+
+    from synth.motion_draw import draw_motion_sheet
+
+    motion = sweep(_four_bar(tracers={"P": (2, (2.5, 4.5))}), steps=37)
+    long = ("1: 0-1 0-2 1-3 2-4 3-5 4-6 5-7 6-8 7-9 8-9 1-4 2-7, frame 0\n"
+            "10 links, error max 1.23e-05, mechanism 9999× target")
+    out = tmp_path / "sheet.png"
+    draw_motion_sheet([(motion, None, long), (motion, None, long)], out, columns=2)
+    strip = np.asarray(Image.open(out).convert("L"))[:45]  # the titles' 0.45 in at 100 dpi
+    assert strip.shape == (45, 720) and strip.min() < 128  # the titles are there
+    for x in (0, 1, 358, 359, 360, 361, 718, 719):
+        assert strip[:, x].min() > 200, x

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from synth.errors import BadSweep, CannotAssemble, WrongInputs
-from synth.motion import Linkage, Motion, assemble, sweep, sweep_grid
+from synth.motion import Linkage, Motion, assemble, refine_extreme, sweep, sweep_grid
 from synth.structure.chain import Chain, Mechanism
 
 from .helpers import four_bar, slider_crank
@@ -170,6 +170,19 @@ def test_the_extent_of_a_curve_is_the_curves_not_the_samples():
     r = sweep(rocker, steps=37)
     fine = sweep(rocker, steps=200_001).tracers["P"]
     assert r.extent()["P"] == pytest.approx((*fine.min(axis=0), *fine.max(axis=0)), abs=1e-9)
+
+
+def test_an_extreme_is_refined_between_samples_by_one_public_search():
+    """refine_extreme, the motion layer's one way of refining a sampled extreme (the curve's extent, the
+    transmission angle and the application's dead centres all use it): the least or greatest to 1e-10 of the
+    input, the sample kept where the search finds none better or has no room."""
+    x, v = refine_extreme(lambda t: (t - 1.3) ** 2, 1.0, 2.0, (1.0, 0.09))
+    assert x == pytest.approx(1.3, abs=1e-8) and v == pytest.approx(0.0, abs=1e-15)
+    x, v = refine_extreme(math.sin, 1.0, 2.0, (2.0, math.sin(2.0)), largest=True)
+    assert x == pytest.approx(math.pi / 2, abs=1e-7) and v == 1.0
+    assert refine_extreme(lambda t: t, 1.0, 2.0, (1.0, 1.0)) == (1.0, 1.0)  # least at the sample itself
+    assert refine_extreme(lambda t: math.nan, 1.0, 2.0, (1.5, 7.0), largest=True) == (1.5, 7.0)  # nowhere finite
+    assert refine_extreme(math.sin, 2.0, 2.0, (2.0, 0.5)) == (2.0, 0.5)  # no bracket
 
 
 def test_a_tracers_velocity_and_acceleration_are_in_the_rows():
