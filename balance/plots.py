@@ -370,7 +370,7 @@ def plot_compare(result, path: str, n: int = 241) -> str:
             j = s.joints[i]
             bot.text(j.max, yy, f" {j.max:.3g} ({round(100 * j.removed_max) + 0:.0f} %)", va="center", fontsize=7)
         bot.set_yticks(y, names, fontsize=8)
-        bot.set_xlabel(f"residual torque over the workspace and payloads ({unit})")
+        bot.set_xlabel(f"residual torque ({unit})\nover the workspace and payloads")  # (one line ran off the page)
         bot.set_xlim(0, 1.3 * max(s.joints[i].max for s in strategies))
         bot.grid(alpha=0.3, axis="x")
         if c == 0:

@@ -353,7 +353,7 @@ def test_compare_figure_draws_each_strategys_torque_and_its_bars(drawn):
     ticks = dict(zip(bot.get_yticks(), (t.get_text() for t in bot.get_yticklabels())))
     assert ticks == dict(zip([4, 3, 2, 1, 0], names))  # "none" on top
     assert bot.get_xlim() == pytest.approx((0, 1.3 * (8 + 2 * G)))
-    assert bot.get_xlabel() == "residual torque over the workspace and payloads (N·m)"
+    assert bot.get_xlabel() == "residual torque (N·m)\nover the workspace and payloads"
     assert legend_texts(bot) == ["largest (true extreme)", "RMS"]
     assert fig._suptitle.get_text() == "arm: gravity torque before and after each strategy (payload 1 … 4 kg)"
     assert fig._suptitle.get_fontsize() == 10 and top.title.get_fontsize() == 9
@@ -369,7 +369,7 @@ def test_compare_figure_has_a_column_per_loaded_joint(drawn):
     fig = drawn(plot_compare, CompareProblem(arm, samples=100).solve())
     assert len(fig.axes) == 4 and tuple(fig.get_size_inches()) == (9.0, 7.4)
     assert [ax.get_title().split(" swept")[0] for ax in fig.axes[:2]] == ["q1 (upper)", "q2 (fore)"]
-    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque over the workspace and payloads (N·m)"] * 2
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque (N·m)\nover the workspace and payloads"] * 2
 
 
 # --------------------------------------------------------------------------------------------- linkages
@@ -466,3 +466,28 @@ def test_linkage_figure_counterweight_labels_clear_of_their_dots_and_inside_the_
         assert np.hypot(*(nearest - centre)) >= radius, (label.get_text(), radius)
         for x, y in ((box.x0, box.y0), (box.x1, box.y1), centre - radius, centre + radius):
             assert panel.x0 <= x <= panel.x1 and panel.y0 <= y <= panel.y1, (label.get_text(), x, y, panel)
+
+
+def test_compare_figure_keeps_every_label_on_the_page(monkeypatch, tmp_path):
+    """The scene compare_example1 (three loaded joints, a column each): every axis label, title and bar label
+    lies on the page — the bars' x label of the last column ran past the right edge, '(N·m)' cut off."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from mechsynth.cli import main
+
+    saved = []
+    keep = Figure.savefig
+    monkeypatch.setattr(Figure, "savefig", lambda self, path, **kw: (saved.append(self), keep(self, path, **kw))[1])
+    assert main(["balance", "compare", str(MODELS / "compare_example1.toml"), "--plot", str(tmp_path / "c.png")]) == 0
+    (fig,) = saved
+    fig.set_dpi(110)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    page = fig.bbox
+    assert len(fig.axes) == 6
+    for ax in fig.axes:
+        for text in [ax.xaxis.label, ax.yaxis.label, ax.title, *ax.texts]:
+            if text.get_visible() and text.get_text():
+                box = text.get_window_extent(renderer)
+                assert page.x0 - 0.5 <= box.x0 and box.x1 <= page.x1 + 0.5, (text.get_text(), box, page)
