@@ -75,8 +75,7 @@ def add_commands(sub) -> None:
                    "over the multigraph's automorphisms, without listing them; stderr says which units it "
                    "counted by the listing's search instead, and why) or tight-reverse (the second count "
                    "of a record: the counting programme over the strings in reverse, with another reading of the "
-                   "automorphisms); the same counts; orbits refused with prismatic pairs or cranks, tight-reverse also "
-                   "with multiple joints")
+                   "automorphisms); the same counts; orbits and tight-reverse refused with prismatic pairs or cranks")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p)

@@ -47,7 +47,9 @@ A count with W ≥ 1 also checks the exact rule itself on the sets T with a mult
 refuse a placement (W_T below the threshold with two links or more; not the set of every link,
 whose rule depends on every string), each as soon as its last string is placed, so that a refused
 prefix is not completed (12 links: 10.9 placements written per chain → 1.4; benchmarks/PROFILE.md
-section 28).  The listing's search runs without it and stays a check of the count.
+section 28).  The listing's search runs without it and stays a check of the count.  Most such units are
+not searched at all: :func:`tight_count` with ``links`` counts them under the exact rule
+(docs/theory.md, "Counting tight placements without visiting them", *With multiple joints*).
 
 Numba compiles the kernel once (cached beside this file, or in numba's user cache); loading it
 takes about a second per process, so type synthesis uses it for large queries only
@@ -603,34 +605,38 @@ def fixed_total(M, a_end, b_end, least, later, width, n2, k, C, l, x_most, verte
 
 @njit(cache=True)
 def _bundle_deficits(C, lows, game, X, ways):
-    """``ways[t, y]``: the weights w_0 ≤ w_1 ≤ … of a bundle of parallel strings, w_x ≥ ``lows[x]``,
+    """``ways[t, y, z]``: the weights w_0 ≤ w_1 ≤ … of a bundle of parallel strings, w_x ≥ ``lows[x]``,
     whose deficits Σ max(C − w_x, 0) add up to t and whose excess Σ max(w_x − C, 0) to y ≤ ``X``
     (t = 0 … C·len(lows): the first rows of ``ways``); a bundle the game never sees (``game`` false: loops, the string of a
-    single-joint link) has no deficit, its excess is Σ (w_x − lows[x])."""
+    single-joint link) has no deficit, its excess is Σ (w_x − lows[x]).  With Q = ``ways.shape[2]`` above 1
+    (multiple joints, :func:`tight_count`'s ``links``) z is the binary links its short strings (w ≤ C) bring to a
+    set that holds both its ends, Σ w_x over them, capped at Q − 1; with Q = 1 it is 0."""
     r = len(lows)
-    ways[:C * r + 1, :] = 0
+    Q = ways.shape[2]
+    ways[:C * r + 1, :, :] = 0
     top = X + (max(C, lows[r - 1]) if game else lows[r - 1])  # no weight above it keeps y ≤ X
-    last = np.zeros((top + 1, C * r + 1, X + 1), dtype=np.int64)  # the strings so far: the last one's weight, Σ t, Σ y
+    last = np.zeros((top + 1, C * r + 1, X + 1, Q), dtype=np.int64)  # the strings so far: last weight, Σ t, Σ y, z
     nxt = np.zeros_like(last)
     for x in range(r):
-        nxt[:, :, :] = 0
+        nxt[:, :, :, :] = 0
         for v in range(lows[x], top + 1):
             dt = max(C - v, 0) if game else 0
             dy = max(v - C, 0) if game else v - lows[x]
+            dz = min(v, Q - 1) if game and v <= C else 0
             if dy > X:
                 break
             if x == 0:
-                nxt[v, dt, dy] += 1
+                nxt[v, dt, dy, dz] += 1
                 continue
             for u in range(v + 1):  # the string before weighs u ≤ v
                 for t in range(C * x + 1):
                     for y in range(X + 1 - dy):
-                        if last[u, t, y]:
-                            nxt[v, t + dt, y + dy] += last[u, t, y]
-        last[:, :, :] = nxt
+                        for z in range(Q):
+                            if last[u, t, y, z]:
+                                nxt[v, t + dt, y + dy, min(z + dz, Q - 1)] += last[u, t, y, z]
+        last[:, :, :, :] = nxt
     for v in range(top + 1):
         ways[:C * r + 1] += last[v]
-
 
 
 @njit(cache=True)
@@ -689,9 +695,10 @@ LAYER_BYTES = 256 * 2**20
 
 
 @njit(cache=True)
-def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
+def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, links):
     """What :func:`tight_count`'s programme needs of each bundle, the same for every state."""
     E = len(a_end)
+    Q = 3 if len(links) else 1  # a set's values: one, or by the links it holds (0, 1, 2 or more)
     X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
     full = -l  # the most Σ d of a placement
     for v in range(M):
@@ -703,7 +710,7 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
     outside[0] = 1
     spare = np.zeros(X1, dtype=np.int64)
     lows = np.zeros(E, dtype=np.int64)
-    held = np.zeros((C * E + 1, X1), dtype=np.int64)
+    held = np.zeros((C * E + 1, X1, Q), dtype=np.int64)
     nb = 0
     e = 0
     while e < E:
@@ -729,13 +736,13 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
         for x in range(e - f):
             lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
         if given.shape[0]:
-            held[0, :] = given[f, 0, :X1]
+            held[0, :, 0] = given[f, 0, :X1, 0]
         else:
             _bundle_deficits(C, lows[:e - f], False, x_most, held)
         spare[:] = 0  # outside ← outside × (the bundle's ways, each y taken s times)
         for y in range(X1):
             for z in range(0, X1 - y, s):
-                spare[y + z] += outside[y] * held[0, z // s]
+                spare[y + z] += outside[y] * held[0, z // s, 0]
         outside[:] = spare
     last = np.full(M, -1, dtype=np.int64)  # the last bundle at each vertex
     room_after = np.zeros(nb + 1, dtype=np.int64)  # the most deficit bundles i … can take
@@ -744,7 +751,8 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
         for v in (a, b):
             if last[v] < 0:
                 last[v] = i
-        room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), k[a] + k[b] - l)
+        pair = k[a] + k[b] - l if Q == 1 or (links[a] and links[b]) else C * E  # (one with a joint: < 2 links)
+        room_after[i] = room_after[i + 1] + min(C * (ends[i] - starts[i]), pair)
     # with g: the slot in the state that holds the (t, y) of bundle i's cycle while the cycle is partly placed,
     # kept by its first bundle (keep), read by the others (same), freed by its last (free)
     keep = np.full(nb, -1, dtype=np.int64)
@@ -776,6 +784,7 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
     position = np.full(M, -1, dtype=np.int64)  # of an open vertex among the open ones; −1 before, −2 after
     opens = np.full((nb, 2), -1, dtype=np.int64)
     open_k = np.zeros((nb, 2), dtype=np.int64)
+    open_link = np.zeros((nb, 2), dtype=np.int64)  # with Q > 1: whether the vertex opened is a link
     both = np.zeros(nb, dtype=np.int64)
     shut = np.full((nb, 2), -1, dtype=np.int64)
     n_open = np.zeros(nb + 1, dtype=np.int64)  # open after bundle i − 1's closing (n_open[0] = 0)
@@ -788,6 +797,7 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
             if position[v] == -1:
                 position[v] = now
                 opens[i, x], open_k[i, x] = now, k[v]
+                open_link[i, x] = links[v] if Q > 1 else 0
                 now += 1
         widest = max(widest, now)
         both[i] = (1 << position[a]) | (1 << position[b])
@@ -804,25 +814,25 @@ def _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given):
                         position[v] = -2
                     elif position[v] > p:
                         position[v] -= 1
-    W = 1 << widest
-    # the ways of each bundle's weights to give t units of deficit and y of excess
-    ways = np.zeros((nb, C * E + 1, X1), dtype=np.int64)
+    W = Q << widest  # a state's values: set U's class c at U·Q + c
+    # the ways of each bundle's weights to give t units of deficit, y of excess and bring z links
+    ways = np.zeros((nb, C * E + 1, X1, Q), dtype=np.int64)
     for i in range(nb):
         f, r = starts[i], ends[i] - starts[i]
         if given.shape[0]:
-            ways[i, :C * r + 1] = given[f, :C * r + 1, :X1]
+            ways[i, :C * r + 1] = given[f, :C * r + 1, :X1, :Q]
         else:
             for x in range(r):
                 lows[x] = least[f] if x == 0 else max(least[f + x], parallel[f + x])
             _bundle_deficits(C, lows[:r], True, x_most, ways[i])
-    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept (t, y) in [0, C·E·X1 + x_most]: 16 bits hold them
+    # a state's values lie in [−(Σ k + 2 max k + 1), 0] and its kept (t, y, z) in [0, (C·E·X1 + x_most + 1)·Q): 16 bits
     kmax = 0
     for v in range(M):
         kmax = max(kmax, k[v])
-    if full + l + 2 * kmax + 1 > 32767 or C * E * X1 + x_most > 32767:
+    if full + l + 2 * kmax + 1 > 32767 or (C * E * X1 + x_most + 1) * Q > 32767:
         raise ValueError("tight_count: a state's values pass 16 bits (a game of more than 10^4 pebbles)")
-    return (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends,
-            ways, W, P)
+    return (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, open_link, both, shut, n_open, starts,
+            ends, ways, W, P)
 
 
 @njit(cache=True)
@@ -845,33 +855,35 @@ def _row_bytes(W, P):
 
 
 @njit(cache=True)
-def _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget):
+def _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, links, budget):
     """:func:`tight_count` with every layer whole: the count and −1; or, where a layer would pass the budget, 0,
     its index i and layer i (states, totals, ways, number), for :func:`_tight_split` to go on from (the part of
     layer i + 1 made so far let go: made again in buckets, it costs a part of one pass)."""
-    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
-     P) = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
+    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, open_link, both, shut, n_open, starts, ends,
+     ways, W, P) = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, links)
+    Q = ways.shape[3]
     row_bytes = _row_bytes(W, P)
     states = np.zeros((1, W + P), dtype=np.int16)
+    states[0, 1:Q] = -l - full - 1  # no set yet holds a link: below the floor (never matters)
     totals = np.zeros(1, dtype=np.int64)
     ways_in = np.ones(1, dtype=np.int64)
     n = 1
     row = np.zeros(W + P, dtype=np.int64)
     for i in range(nb):
         T = C * (ends[i] - starts[i])
-        cap = max(2 * (T + 1) * X1, (budget - n * row_bytes) // row_bytes)
+        cap = max(2 * (T + 1) * X1 * Q, (budget - n * row_bytes) // row_bytes)
         m, stop, new_states, new_totals, new_ways, _ = _tight_layer(
             states, totals, ways_in, 0, n, np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
-            np.zeros(0, dtype=np.int64), 0, np.full(128, -1, dtype=np.int64), cap, 0, 0, opens[i], open_k[i], both[i],
-            shut[i], n_open[i + 1], ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P,
-            row)
+            np.zeros(0, dtype=np.int64), 0, np.full(128, -1, dtype=np.int64), cap, 0, 0, opens[i], open_k[i],
+            open_link[i], both[i], shut[i], n_open[i + 1], ways[i], T, keep[i], same[i], free[i], room_after[i + 1],
+            full, l, x_most, W, P, row)
         if stop < n:
             return 0, i, states, totals, ways_in, n
         states, totals, ways_in, n = new_states, new_totals, new_ways, m
     return _tight_total(totals, ways_in, n, outside, X1, full, x_most), -1, states, totals, ways_in, n
 
 
-def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=None):
+def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget=None, links=None):
     """The placements :func:`place` counts with no edge permutation, counted without visiting them;
     or, with a permutation ``g`` of the strings (a row of :func:`place`'s ``group``: bundles to
     bundles, each read in order), those of them that ``g`` leaves unchanged: Fix(g) of Burnside's
@@ -900,9 +912,17 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
     the same weights (in one way); a cycle of s bundles the game never sees takes s times one
     bundle's excess.
 
+    With ``links`` (whether each vertex is a link, 1, or a multiple joint, 0; ``k`` then h and h − 1) the rule is
+    the exact sub-chain test instead: only the sets holding two links or more are checked, a set's links being its
+    link vertices and the binary links its short strings (w ≤ C) bring.  Each set's value is then kept three times,
+    the most over the sets U ∪ Z with at least 0, 1 and 2 links; a bundle bringing z links moves the sets holding
+    both its ends up z classes, opening a link moves its sets up one, and a bundle is refused where a set of the
+    last class would pass −l (docs/theory.md; :func:`synth.synthesis.stage_b._programme_fault` says where this is
+    the exact test).
+
     ``least``, ``parallel``, ``a_end``, ``b_end``, ``k``, ``C``, ``l``, ``M`` as :func:`place`, the
     strings in bundles whole; 0 ≤ l < 2k, M ≥ 2, x_most ≥ 0; ``g`` empty for every placement.
-    ``given``: an empty array, or per string (rows) the ways[t, y] of the bundle it begins, found
+    ``given``: an empty array, or per string (rows) the ways[t, y, z] of the bundle it begins, found
     elsewhere, in place of :func:`_bundle_deficits` (the second count,
     :func:`synth.synthesis.stage_b.count_reversed`).  The states of a layer are a few hundred where
     :func:`place` visits 10⁴–10⁵ placements (18 links, 1-DOF: at most 5 304), but tens of thousands of
@@ -914,19 +934,26 @@ def tight_count(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, bud
     >>> import numpy as np
     >>> ends = np.array([0, 0, 1], dtype=np.int64), np.array([1, 2, 2], dtype=np.int64)  # a triangle
     >>> none, k = np.full(3, -1, dtype=np.int64), np.full(3, 3, dtype=np.int64)
-    >>> nothing = np.zeros((0, 0, 0), dtype=np.int64)
+    >>> nothing = np.zeros((0, 0, 0, 0), dtype=np.int64)
     >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, none[:0], nothing)  # 5 units, ≤ 2 a pair
     3
     >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 0, np.array([1, 0, 2]), nothing)  # d_0 = d_1
     1
     >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k, 2, 4, 1, none[:0], nothing)  # or 4 units + 1 excess
     6
+    >>> joint, k2 = np.array([1, 1, 0], dtype=np.int64), np.array([3, 3, 2], dtype=np.int64)  # vertex 2 a joint
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k2, 2, 4, 0, none[:0], nothing)  # every set: (2, 1, 1)
+    1
+    >>> tight_count(3, *ends, np.zeros(3, dtype=np.int64), none, k2, 2, 4, 0, none[:0], nothing, links=joint)
+    6
+    >>> # (a link and the joint hold one link where their string is empty: (2, 2, 0), (0, 2, 2), (1, 2, 1) … pass)
     """
     budget = LAYER_BYTES if budget is None else budget
-    found, i, *handed = _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, budget)
+    links = np.zeros(0, dtype=np.int64) if links is None else np.asarray(links, dtype=np.int64)
+    found, i, *handed = _tight_whole(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, links, budget)
     if i < 0:
         return int(found)
-    frame = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given)
+    frame = _tight_frame(M, a_end, b_end, least, parallel, k, C, l, x_most, g, given, links)
     return _tight_split(frame, C, l, x_most, budget, i, handed)
 
 
@@ -992,8 +1019,9 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
     budget for the bucket being made (its hash table counted), a third for one bucket read back, a third for the
     buckets held in memory; the others wait in unlinked files.  Beside them, for a moment, one copy of the bucket
     being made (grown from the one read back, or its half cut off): the layers hold at most 4/3 of the budget."""
-    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, both, shut, n_open, starts, ends, ways, W,
-     P) = frame
+    (nb, X1, full, outside, room_after, keep, same, free, opens, open_k, open_link, both, shut, n_open, starts, ends,
+     ways, W, P) = frame
+    Q = ways.shape[3]
     row = np.zeros(W + P, dtype=np.int64)
     store = _Buckets(budget // 3, W, P)
     pending = []  # the buckets of layer i + 1 to make: bits, their value, where the pass is, the states so far
@@ -1018,9 +1046,9 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
         states = totals = ways_in = None
         while True:
             T = C * (ends[i] - starts[i])
-            each = (T + 1) * X1  # the most successors of one state
+            each = (T + 1) * X1 * Q  # the most successors of one state
             cap = max(budget // (3 * _row_bytes(W, P)), 4 * each)
-            width = 1 << n_open[i + 1]
+            width = Q << n_open[i + 1]
             pending.append((0, 0, 0, 0, store.put(np.zeros((0, W + P), dtype=np.int16), np.zeros(0, dtype=np.int64),
                                                   np.zeros(0, dtype=np.int64), 0)))
             made = []
@@ -1038,8 +1066,9 @@ def _tight_split(frame, C, l, x_most, budget, i, handed):
                         read, bucket = b, store.get(layer[b])
                     m, s, new_states, new_totals, new_ways, table = _tight_layer(
                         *bucket, s, layer[b][0], new_states, new_totals, new_ways, m,
-                        table, cap, (1 << bits) - 1, residue, opens[i], open_k[i], both[i], shut[i], n_open[i + 1],
-                        ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P, row)
+                        table, cap, (1 << bits) - 1, residue, opens[i], open_k[i], open_link[i], both[i], shut[i],
+                        n_open[i + 1], ways[i], T, keep[i], same[i], free[i], room_after[i + 1], full, l, x_most, W, P,
+                        row)
                     if s == layer[b][0]:
                         b, s = b + 1, 0
                     else:  # too many: cut in two by the next bit, one half put aside
@@ -1078,88 +1107,102 @@ def _split_bucket(states, totals, ways_in, m, bit, width, W, P):
 
 @njit(cache=True)
 def _tight_layer(states, totals, ways_in, lo, hi, new_states, new_totals, new_ways, m, table, cap, key_mask, key,
-                 opens, open_k, both, shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most, W, P, row):
+                 opens, open_k, open_link, both, shut, n_after, ways, T, keep, same, free, room_after, full, l, x_most,
+                 W, P, row):
     """One bundle of :func:`tight_count` on the states ``lo`` … ``hi`` − 1 of a layer, adding their successors
     whose bucket bits (:func:`_state_code`) masked by ``key_mask`` are ``key`` to the m states of the next layer
     (``new_*``, hashed in ``table``; both grown as needed, the arrays up to ``cap`` rows).  Stops before a state
     whose successors might pass ``cap``: the next layer's states so far, their number, where it stopped (``hi``
-    when through) and the arrays and table, which may be new."""
+    when through) and the arrays and table, which may be new.  With Q = ``ways.shape[2]`` classes a set U's values
+    are ``U·Q + c``: the most over the sets with at least c links (the last class: the sets the rule checks)."""
+    Q = ways.shape[2]
     for x in range(2):  # opening a vertex: the sets with it hold no unit at it yet (the same on a second pass)
         if opens[x] >= 0:
             bit = 1 << opens[x]
             for s in range(lo, hi):
                 for U in range(bit):
-                    states[s, U | bit] = states[s, U] - open_k[x]
+                    for c in range(Q):
+                        states[s, (U | bit) * Q + c] = states[s, U * Q + max(c - open_link[x], 0)] - open_k[x]
     n_open = n_after + (shut[0] >= 0) + (shut[1] >= 0)
-    width = 1 << n_after
+    width = Q << n_after
     X1 = x_most + 1  # a state's total: Σ d · X1 + Σ x
+    most = np.zeros(Q, dtype=np.int64)  # the largest value of a set holding a and b, by class
     for s in range(lo, hi):
-        if m + (T + 1) * X1 > cap:
+        if m + (T + 1) * X1 * Q > cap:
             return m, s, new_states, new_totals, new_ways, table
-        most = -(1 << 60)  # the largest value of a set holding a and b
+        most[:] = -(1 << 60)
         for U in range(1 << n_open):
-            if U & both == both and states[s, U] > most:
-                most = states[s, U]
+            if U & both == both:
+                for c in range(Q):
+                    most[c] = max(most[c], states[s, U * Q + c])
         for t in range(T + 1):
             d = totals[s] // X1 + t
-            if (t > 0 and most + t > -l) or d > full:
+            if (t > 0 and most[Q - 1] + t > -l) or d > full:
                 break
             if d + room_after < full - x_most:
                 continue
-            built = False
-            for y in range(X1):
-                x = totals[s] % X1 + y
-                if x > min(x_most, d + room_after - full + x_most):  # (X − D = x_most − full at the end)
+            for z in range(Q):  # the bundle brings z links to the sets holding a and b: those then checked
+                if (t > 0 or z > 0) and most[max(Q - 1 - z, 0)] + t > -l:
                     break
-                if ways[t, y] == 0 or (same >= 0 and t * X1 + y != states[s, W + same]):
-                    continue
-                if not built:  # the sets' values after t units on a–b (the same for every y)
-                    built = True
-                    for U in range(1 << n_open):
-                        row[U] = states[s, U] + t if U & both == both else states[s, U]
-                    span = 1 << n_open
-                    for p in shut:
-                        if p >= 0:  # close the vertex at position p: the larger of each set with and without it
-                            span >>= 1
-                            below = (1 << p) - 1
-                            for U in range(span):
-                                at = (U & below) | ((U >> p) << (p + 1))
-                                row[U] = max(row[at], row[at | (1 << p)])
-                    floor = -l - (full - d) - 1
-                    for U in range(width):
-                        row[U] = max(row[U], floor)
-                row[W:] = states[s, W:]
-                if keep >= 0:
-                    row[W + keep] = t * X1 + y
-                if free:
-                    row[W + same] = 0
-                total = d * X1 + x
-                code = _state_code(row, width, W, P, total)
-                if (code >> 32) & key_mask != key:  # another bucket's
-                    continue
-                weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t, y]  # (a cycle's weights: chosen once)
-                j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
-                if j >= 0:
-                    new_ways[j] += weight
-                    continue
-                if 2 * (m + 1) > len(table):  # a larger table
-                    table = _rehash(new_states, new_totals, m, width, W, P)
+                built = False
+                for y in range(X1):
+                    x = totals[s] % X1 + y
+                    if x > min(x_most, d + room_after - full + x_most):  # (X − D = x_most − full at the end)
+                        break
+                    if ways[t, y, z] == 0 or (same >= 0 and (t * X1 + y) * Q + z != states[s, W + same]):
+                        continue
+                    if not built:  # the sets' values after t units and z links on a–b (the same for every y)
+                        built = True
+                        for U in range(1 << n_open):
+                            for c in range(Q):
+                                if U & both == both:
+                                    row[U * Q + c] = states[s, U * Q + max(c - z, 0)] + t
+                                else:
+                                    row[U * Q + c] = states[s, U * Q + c]
+                        span = 1 << n_open
+                        for p in shut:
+                            if p >= 0:  # close the vertex at position p: the larger of each set with and without it
+                                span >>= 1
+                                below = (1 << p) - 1
+                                for U in range(span):
+                                    at = (U & below) | ((U >> p) << (p + 1))
+                                    for c in range(Q):
+                                        row[U * Q + c] = max(row[at * Q + c], row[(at | (1 << p)) * Q + c])
+                        floor = -l - (full - d) - 1
+                        for U in range(width):
+                            row[U] = max(row[U], floor)
+                    row[W:] = states[s, W:]
+                    if keep >= 0:
+                        row[W + keep] = (t * X1 + y) * Q + z
+                    if free:
+                        row[W + same] = 0
+                    total = d * X1 + x
+                    code = _state_code(row, width, W, P, total)
+                    if (code >> 32) & key_mask != key:  # another bucket's
+                        continue
+                    weight = ways_in[s] if same >= 0 else ways_in[s] * ways[t, y, z]  # (a cycle's weights: chosen once)
                     j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
-                if m == len(new_totals):  # larger arrays: twice as large, or past 4 MiB the cap at once
-                    grown = max(64, min(2 * m, cap))
-                    if 2 * grown * (W + P) > 1 << 22:  # (left empty: the pages are taken as rows are written)
-                        grown = cap
-                    more = np.empty((grown, W + P), dtype=np.int16)
-                    more[:m] = new_states[:m]
-                    new_states = more
-                    more_totals, more_ways = np.empty(grown, dtype=np.int64), np.empty(grown, dtype=np.int64)
-                    more_totals[:m], more_ways[:m] = new_totals[:m], new_ways[:m]
-                    new_totals, new_ways = more_totals, more_ways
-                table[-j - 1] = m
-                for U in range(width):
-                    new_states[m, U] = row[U]
-                for U in range(W, W + P):
-                    new_states[m, U] = row[U]
-                new_totals[m], new_ways[m] = total, weight
-                m += 1
+                    if j >= 0:
+                        new_ways[j] += weight
+                        continue
+                    if 2 * (m + 1) > len(table):  # a larger table
+                        table = _rehash(new_states, new_totals, m, width, W, P)
+                        j = _state_slot(table, new_states, new_totals, row, width, W, P, total, code)
+                    if m == len(new_totals):  # larger arrays: twice as large, or past 4 MiB the cap at once
+                        grown = max(64, min(2 * m, cap))
+                        if 2 * grown * (W + P) > 1 << 22:  # (left empty: the pages are taken as rows are written)
+                            grown = cap
+                        more = np.empty((grown, W + P), dtype=np.int16)
+                        more[:m] = new_states[:m]
+                        new_states = more
+                        more_totals, more_ways = np.empty(grown, dtype=np.int64), np.empty(grown, dtype=np.int64)
+                        more_totals[:m], more_ways[:m] = new_totals[:m], new_ways[:m]
+                        new_totals, new_ways = more_totals, more_ways
+                    table[-j - 1] = m
+                    for U in range(width):
+                        new_states[m, U] = row[U]
+                    for U in range(W, W + P):
+                        new_states[m, U] = row[U]
+                    new_totals[m], new_ways[m] = total, weight
+                    m += 1
     return m, hi, new_states, new_totals, new_ways, table

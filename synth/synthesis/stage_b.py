@@ -42,7 +42,8 @@ def realise(code: Code, graph: Contracted, conv: Conventions, stats: dict | None
     return _distinct(graph, conv, _passing(graph, conv, solutions, stats, checked), stats)
 
 
-def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None) -> int:
+def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict | None = None, *,
+                   programme: bool = True) -> int:
     """``len(realise(code, graph, conv))``, without chains or certificates where they are not needed.
 
     Chains with the branch multigraph H are isomorphic exactly when an automorphism of H maps
@@ -55,12 +56,16 @@ def count_realised(code: Code, graph: Contracted, conv: Conventions, stats: dict
     >>> code = Code((4, 2), 0, ())
     >>> count_realised(code, graph, Conventions()), len(realise(code, graph, Conventions()))
     (2, 2)
+
+    With multiple joints a unit is counted without visiting its placements where :func:`_programme_fault` finds
+    nothing (``programme`` off: always by the search and the exact test, the check of the programme).
     """
     if uses_kernel(code, conv) and _kernel_applies(code, graph, conv):
         simple = not any(_vertex_terms(graph.vertices, conv)[1])
         if simple or 2 - conv.h < conv.threshold:  # (else two joints on the same links need the chains)
-            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=False, rows=not simple)
-            if whole_group and simple:
+            found, placements, whole_group = _kernel_placements(code, graph, conv, stats, listing=False,
+                                                                rows=not simple, programme=programme)
+            if whole_group and (simple or placements is None):  # (None: counted by the programme)
                 return found
             if whole_group:  # multiple joints: the exact test keeps the valid ones among the kernel's
                 t0 = perf_counter()
@@ -273,7 +278,8 @@ def _kernel_applies(code: Code, graph: Contracted, conv: Conventions) -> bool:
 
 
 def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: dict | None,
-                       listing: bool, rows: bool = False, check_sets: bool = True) -> tuple[int, "np.ndarray", bool]:
+                       listing: bool, rows: bool = False, check_sets: bool = True,
+                       programme: bool = True) -> tuple[int, "np.ndarray | None", bool]:
     """Stage B by the compiled kernel: how many placements pass its rule and are lex-least under
     Aut(H) (one per orbit where the whole group is listed), those placements (rows) if ``listing``,
     and whether the group was whole.  With ``rows`` (a count that tests each placement: multiple
@@ -281,11 +287,12 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     one per orbit but not the lex-least in H's own order, with their columns in H's order; there
     the search also checks the exact test's sets with a multiple joint as soon as their strings are
     placed, unless ``check_sets`` is off (the tests compare both: the check drops only placements
-    the exact test refuses).  The listing's search stays without it, a check of the count's."""
+    the exact test refuses).  The listing's search stays without it, a check of the count's.  Such a
+    count (``rows``, ``programme`` on) counts a unit :func:`_programme_fault` passes by the programme
+    with the exact rule instead, and gives None for its placements (the count already exact)."""
     import numpy as np
 
     from ..structure.subchains import sets_to_check
-    from . import _stage_b_kernel as kernel
     from ._stage_b_kernel import place
 
     t0 = perf_counter()
@@ -312,6 +319,14 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
         back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
         edges = tuple(edges[e] for e in order)
     group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
+    if rows and not listing and programme and whole_group:
+        fault = _programme_fault(code, graph, conv)
+        if fault is None:  # multiple joints, counted without visiting: the programme holds the exact rule
+            found = _burnside(code, M, a_end, b_end, least, after, k2, C, conv.h + conv.threshold,
+                              b0 + int(k2.sum()) - conv.h - conv.threshold, group, _game_links(graph, inner))
+            _add(stats, tight=1, candidates=found, cpsat_s=perf_counter() - t0)
+            return found, None, whole_group
+        _add(stats, **{"visited_" + fault: 1})
     if rows and not listing and check_sets and conv.threshold > 0:  # (else the first game is the exact rule)
         is_link, ends = _core(graph.vertices, graph.edges)
         sets = sets_to_check(conv.h, is_link, ends, lows, conv.threshold, back)
@@ -323,15 +338,7 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     else:
         out = np.zeros((_KERNEL_ROWS if listing else 0, E), dtype=np.int64)
     if not (listing or rows) and (whole_group or not len(group)) and _counted_without_visiting(M, l2, x_most, l, conv.h):
-        # counted, not visited: the orbits by Burnside's lemma, Σ Fix(g) over the permutations of the bundles
-        identity = np.zeros(0, dtype=np.int64)
-        computed = np.zeros((0, 0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
-        found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, computed, kernel.LAYER_BYTES)
-                    for g in (identity, *group))
-        found, rest = divmod(found, len(group) + 1)
-        if rest:  # a fault of this engine
-            raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
-                               f"multigraph of {code} is not a multiple of their number")
+        found = _burnside(code, M, a_end, b_end, least, after, k, C, l, x_most, group)
         _add(stats, tight=1)  # (the sizing times these units per unit, the others per placement visited)
     else:
         found = place(M, a_end, b_end, least, after, n2, k, C, l, k2, l2, x_most, vertex_need, group, out,
@@ -342,6 +349,86 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
               conv.threshold, sets)
     _add(stats, candidates=found, cpsat_s=perf_counter() - t0)
     return found, out[:found] if listing or not rows else out[:found, back], whole_group
+
+
+def _burnside(code: Code, M: int, a_end, b_end, least, after, k, C: int, l: int, x_most: int, group,
+              links=None) -> int:
+    """A unit's chains without visiting its placements: Burnside's lemma, Σ Fix(g) over the permutations of the
+    bundles ``group`` (rows, the identity left out) by the programme (:func:`_stage_b_kernel.tight_count`; ``links``
+    with multiple joints), over |G/P|; no valid placement where the excess bound ``x_most`` is negative."""
+    import numpy as np
+
+    from . import _stage_b_kernel as kernel
+
+    if x_most < 0:
+        return 0
+    computed = np.zeros((0, 0, 0, 0), dtype=np.int64)  # (the bundles' ways found by the programme itself)
+    found = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, computed, kernel.LAYER_BYTES,
+                                   links) for g in (np.zeros(0, dtype=np.int64), *group))
+    found, rest = divmod(found, len(group) + 1)
+    if rest:  # a fault of this engine
+        raise RuntimeError(f"Burnside's sum over the {len(group) + 1} permutations of the bundles of a branch "
+                           f"multigraph of {code} is not a multiple of their number")
+    return found
+
+
+#: why a count with multiple joints visits a unit's placements (the kernel's search, then the exact test) instead of
+#: counting them by the programme with the exact rule (:func:`_programme_fault`): ``stats`` gets 1 under
+#: ``"visited_" + key``
+VISITED = {
+    "threshold": "the least mobility of a proper sub-chain is above 1, or h is below it + 2, or two joints on the "
+                 "same links may pass the rule",
+    "exempt": "the chain's W is below the least mobility of its proper sub-chains (the whole chain's own rule)",
+    "short_loop": "a loop may hold h − 1 binary links or fewer, and so bring links to a set",
+    "few_links": "the exact test's core holds fewer than two links",
+}
+
+
+def _programme_fault(code: Code, graph: Contracted, conv: Conventions) -> str | None:
+    """Why a unit with a multiple joint cannot be counted by the programme with the exact rule (a key of
+    :data:`VISITED`), or None.  The programme (``tight_count`` with ``links``: k = h on a link, h − 1 on a joint,
+    l = h + threshold, every set's values kept by the links it holds, 0, 1 or ≥ 2) checks every set T of the
+    exact test's core with X_T ≥ 2 against W_T ≥ threshold, and nothing else; it is the exact test
+    (:func:`synth.structure.subchain_kernel.verdict`) where
+
+    * threshold ≤ 1, 2 − h < threshold and h ≥ threshold + 2: the test's clause for two links on one joint
+      never refuses; the parallel strings between two joints keep their least 2 (:func:`_string_limits`); and a
+      vertex with no string inside a set T (its first string placed after T's last) cannot make T refuse
+      where T without it does not (T without it holds 1 link at most only with W ≥ 0, docs/theory.md);
+    * the chain's W ≥ threshold: a set whose sub-chain is the whole chain then has W_T ≥ W, so the test's
+      correction there (the longest short string left out) never decides;
+    * every loop's least weight above h − 1: loops are long, bring no link to a set and cost none, and their
+      own clause holds from their least weight on (:func:`synth.synthesis.stage_a._loop_lb`);
+    * the core holds two links or more: the set of every core vertex is checked, so the deficit is at most
+      Σ k − l, as the programme takes it.
+
+    >>> from synth.synthesis.stage_a import contracted_graphs
+    >>> code = Code.parse("53/1")  # 8 links, a ternary joint
+    >>> [_programme_fault(code, g, Conventions()) for g in contracted_graphs(code, Conventions())]
+    [None, None]
+    """
+    from .stage_a import _loop_lb
+
+    h, threshold = conv.h, conv.threshold
+    if threshold > 1 or 2 - h >= threshold or h < threshold + 2:
+        return "threshold"
+    if code.dof(h) < threshold:
+        return "exempt"
+    if any(_loop_lb(graph.vertices[u], conv) <= h - 1 for u, v in graph.edges if u == v):
+        return "short_loop"
+    if sum(_core(graph.vertices, graph.edges)[0]) < 2:
+        return "few_links"
+    return None
+
+
+def _game_links(graph: Contracted, inner: dict[int, int]) -> "np.ndarray":
+    """Whether each of the games' vertices (``inner``) is a link (1) or a multiple joint (0)."""
+    import numpy as np
+
+    links = np.zeros(len(inner), dtype=np.int64)
+    for u, i in inner.items():
+        links[i] = graph.vertices[u].is_link
+    return links
 
 
 def _count_order(graph: Contracted, inner: dict[int, int], a_list: list[int], b_list: list[int], perms):
@@ -607,7 +694,9 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
       (:func:`_bundle_ways`), not by the kernel's own programme.
 
     Above the rule's equality case (the long strings may carry excess) the bundles' ways are listed
-    over the pairs (deficit, excess).  A unit the programme does not take is counted by orbits
+    over the pairs (deficit, excess); with multiple joints (where :func:`_programme_fault` finds nothing) the
+    programme holds the exact rule, as the first count runs it, and the ways are listed over (deficit, excess,
+    links brought).  A unit the programme does not take is counted by orbits
     (:func:`count_orbits`: the search over patterns and a coin-change count); one that neither
     covers (the group of the bundles above 4096, or two empty parallel strings to exclude) as the
     first count does; ``stats`` counts the units of each kind (``reversed``,
@@ -623,20 +712,26 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     from . import _stage_b_kernel as kernel
 
     lows, parallel = _string_limits(graph, conv)
-    inner, k, _, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
+    inner, k, k2, l2 = _pebble_vertices(graph.vertices, conv.h, conv.threshold)
     M, E, n2 = len(inner), len(graph.edges), code.count(2)
     a_list, b_list = _game_ends(graph, inner)
     C, l = conv.h - 1, conv.h + conv.threshold
-    x_most, _ = _deficit_bounds(k, l, n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows)), n2, conv.h)
+    b0 = n2 - sum(C if a >= 0 else low for a, low in zip(a_list, lows))
+    x_most, _ = _deficit_bounds(k, l, b0, n2, conv.h)
     simple = all(vertex.is_link for vertex in graph.vertices)
-    bundles = _bundle_closure(graph) if simple and E else None
-    if bundles is None or not (_kernel_applies(code, graph, conv) and _counted_without_visiting(M, l2, x_most, l, conv.h)):
+    applies = _kernel_applies(code, graph, conv)
+    exact = not simple and applies and _programme_fault(code, graph, conv) is None  # multiple joints: the exact rule
+    links, classes = None, 1
+    if exact:  # the programme with the exact rule, as the first count runs it
+        k, links, classes, x_most = k2, _game_links(graph, inner), 3, b0 + int(k2.sum()) - l
+    bundles = _bundle_closure(graph) if (simple or exact) and E else None
+    if bundles is None or not (applies and (exact or _counted_without_visiting(M, l2, x_most, l, conv.h))):
         if orbits_apply(code, graph, conv) and graph.bundle_group()[1]:
             _add(stats, by_orbits=1)
             return count_orbits(code, graph, conv, stats)
         _add(stats, shared=1)
         return count_realised(code, graph, conv, stats)
-    if sum(lows) > n2:
+    if sum(lows) > n2 or x_most < 0:
         return 0
     t0 = perf_counter()
     order = _search_order(graph.edges, a_list, b_list, M)
@@ -654,16 +749,16 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     for e, least_e in parallel:
         after[e] = least_e
     after = after[order]
-    given = np.zeros((E, C * E + 1, x_most + 1), dtype=np.int64)
+    given = np.zeros((E, C * E + 1, x_most + 1, classes), dtype=np.int64)
     for f in np.flatnonzero(_bundle_starts(edges)).tolist():
         r = 1
         while f + r < E and after[f + r] >= 0:
             r += 1
         lows = tuple([int(least[f])] + [max(int(least[f + x]), int(after[f + x])) for x in range(1, r)])
-        ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0))
+        ways = _bundle_ways(C, lows, x_most, bool(a_end[f] >= 0), classes)
         given[f, :len(ways)] = ways
-    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES)
-                for g in (np.zeros(0, dtype=np.int64), *rows))
+    total = sum(kernel.tight_count(M, a_end, b_end, least, after, k, C, l, x_most, g, given, kernel.LAYER_BYTES,
+                                   links) for g in (np.zeros(0, dtype=np.int64), *rows))
     orbits, rest = divmod(total, len(bundles))
     if rest:  # a fault of this engine
         raise RuntimeError(f"Burnside's sum over the {len(bundles)} permutations of the bundles of a branch "
@@ -699,28 +794,35 @@ def _bundle_closure(graph: Contracted) -> "np.ndarray | None":
 
 
 @lru_cache(maxsize=1024)
-def _bundle_ways(C: int, lows: tuple[int, ...], x_most: int = 0, game: bool = True) -> tuple[tuple[int, ...], ...]:
+def _bundle_ways(C: int, lows: tuple[int, ...], x_most: int = 0, game: bool = True,
+                 classes: int = 1) -> tuple[tuple[tuple[int, ...], ...], ...]:
     """How many ways a bundle of parallel strings holds t = 0 … C·r units of deficit and y = 0 …
-    ``x_most`` of excess: its weights w_1 ≤ … ≤ w_r with w_x ≥ ``lows[x]``, t = Σ max(C − w_x, 0),
-    y = Σ max(w_x − C, 0) (a bundle the game never sees, ``game`` false: t = 0, y = Σ (w_x − lows[x]))
-    — found by listing every such tuple (the second count's check of the kernel's programme); rows t.
+    ``x_most`` of excess and brings z of ``classes`` classes of links: its weights w_1 ≤ … ≤ w_r with
+    w_x ≥ ``lows[x]``, t = Σ max(C − w_x, 0), y = Σ max(w_x − C, 0), z = min(Σ of the weights ≤ C,
+    classes − 1) (a bundle the game never sees, ``game`` false: t = z = 0, y = Σ (w_x − lows[x])) — found by
+    listing every such tuple (the second count's check of the kernel's programme); rows t, then y, then z.
 
     >>> _bundle_ways(2, (0, 1))  # (0, 1) (0, 2) (1, 1) (1, 2) (2, 2)
-    ((1,), (1,), (2,), (1,), (0,))
+    (((1,),), ((1,),), ((2,),), ((1,),), ((0,),))
     >>> _bundle_ways(2, (0, 1), 1)  # and (2, 3) (1, 3) (0, 3), one unit of excess each
-    ((1, 1), (1, 1), (2, 1), (1, 0), (0, 0))
+    (((1,), (1,)), ((1,), (1,)), ((2,), (1,)), ((1,), (0,)), ((0,), (0,)))
+    >>> _bundle_ways(2, (0, 1), 0, True, 3)[1]  # t = 1: (1, 2) brings three links (two or more), (0, 3) none
+    ((0, 0, 1),)
+    >>> _bundle_ways(2, (0, 1), 1, True, 3)[2]  # t = 2: (1, 1) and (0, 2) bring two links, (0, 3) none
+    ((0, 0, 2), (1, 0, 0))
     """
     from itertools import combinations_with_replacement
 
-    ways = [[0] * (x_most + 1) for _ in range(C * len(lows) + 1)]
+    ways = [[[0] * classes for _ in range(x_most + 1)] for _ in range(C * len(lows) + 1)]
     top = (max(C, lows[-1]) if game else lows[-1]) + x_most
     for weights in combinations_with_replacement(range(top + 1), len(lows)):
         if all(w >= low for w, low in zip(weights, lows)):
             t = sum(max(C - w, 0) for w in weights) if game else 0
             y = sum(max(w - C, 0) for w in weights) if game else sum(w - low for w, low in zip(weights, lows))
+            z = min(sum(w for w in weights if w <= C), classes - 1) if game else 0
             if y <= x_most:
-                ways[t][y] += 1
-    return tuple(map(tuple, ways))
+                ways[t][y][z] += 1
+    return tuple(tuple(map(tuple, row)) for row in ways)
 
 
 @lru_cache(maxsize=256)

@@ -553,28 +553,10 @@ def _check_method(method: str, query: ChainQuery) -> None:
             raise InvalidOption(f"these chains cannot be counted by orbits ({why}): use the listing method")
     if method == "tight-reverse":
         why = ("chains with prismatic pairs are counted from their revolute skeletons' listings" if query.prismatic
-               is not None else "a crank requirement is checked on each chain" if query.cranks else
-               "each placement with a multiple joint goes through the exact test, as in the first count"
-               if _allows_multiple_joints(query) else None)
+               is not None else "a crank requirement is checked on each chain" if query.cranks else None)
         if why:
             raise InvalidOption(f"the second count (tight-reverse) does not cover these chains ({why}): use the "
                                 f"listing method")
-
-
-def _allows_multiple_joints(query: ChainQuery) -> bool:
-    """Whether some chain of ``query`` may have a multiple joint (its code's v, else its range of v, unless
-    no joint may join more than two links).
-
-    >>> _allows_multiple_joints(ChainQuery(1, 8)), _allows_multiple_joints(ChainQuery(1, 8, v="0..6"))
-    (False, True)
-    >>> _allows_multiple_joints(ChainQuery(1, 8, v="0..6", max_multiplicity=2))
-    False
-    """
-    if query.max_multiplicity == 2:
-        return False
-    if query.code is not None:
-        return query.code.v > 0
-    return query.v is not None and (query.v[1] is None or query.v[1] > 0)
 
 
 @dataclass(frozen=True)

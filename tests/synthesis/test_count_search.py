@@ -179,13 +179,14 @@ def test_the_lex_least_vectors_are_those_no_image_undercuts(most):
 
 
 def _with_and_without_the_check(query):
-    """Each unit of ``query`` with a multiple joint: its args and the count's search with and without
-    the check of the exact test's sets (placements, rows, whole group)."""
+    """Each unit of ``query`` with a multiple joint: its args and the count's search (not the programme that
+    counts most such units without it, tests/synthesis/test_count_exact_programme.py) with and without the check
+    of the exact test's sets (placements, rows, whole group)."""
     for u, args in kernel_units(query):
         if all(vertex.is_link for vertex in args[1].vertices):
             continue
-        yield (u, args, stage_b._kernel_placements(*args, None, listing=False, rows=True),
-               stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False))
+        yield (u, args, stage_b._kernel_placements(*args, None, listing=False, rows=True, programme=False),
+               stage_b._kernel_placements(*args, None, listing=False, rows=True, check_sets=False, programme=False))
 
 
 # multiple joints: the kernel's weaker rule, every placement then through the exact test

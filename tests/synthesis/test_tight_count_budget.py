@@ -56,12 +56,13 @@ def _one_bundle_layer(cap, key_mask=0, key=0):
     each t a state of its own)."""
     k, l, W, P, T = 3, 0, 4, 0, 4
     states, totals, ways_in = np.zeros((1, W), dtype=np.int16), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64)
-    ways = np.ones((T + 1, 1), dtype=np.int64)  # (no excess: x_most = 0)
+    ways = np.ones((T + 1, 1, 1), dtype=np.int64)  # (no excess: x_most = 0; one class of sets)
     opens, open_k = np.array([0, 1], dtype=np.int64), np.array([k, k], dtype=np.int64)
+    open_link = np.zeros(2, dtype=np.int64)
     shut = np.array([-1, -1], dtype=np.int64)  # (both vertices stay open: no set is merged)
     out = np.zeros((0, W), dtype=np.int16), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     return _stage_b_kernel._tight_layer(states, totals, ways_in, 0, 1, *out, 0, np.full(128, -1, dtype=np.int64), cap,
-                                        key_mask, key, opens, open_k, 3, shut, 2, ways, T, -1, -1, False, 2 * k - l,
+                                        key_mask, key, opens, open_k, open_link, 3, shut, 2, ways, T, -1, -1, False, 2 * k - l,
                                         2 * k - l, l, 0, W, P, np.zeros(W + P, dtype=np.int64))
 
 
@@ -110,9 +111,11 @@ def test_a_count_by_code_is_the_same_at_64_kib(monkeypatch):
     assert parts.by_code == whole.by_code
 
 
-# small queries whose layers pass a budget of a few kilobytes (h = 4…6; W = 2, with excess), and the budget
+# small queries whose layers pass a budget of a few kilobytes (h = 4…6; W = 2, with excess; multiple joints, three
+# values a set), and the budget
 SPLIT_QUERIES = [(dict(dof=1, links=14, h=5), 1), (dict(dof=1, links=17, h=6), 1), (dict(dof=1, links=14, h=4), 16 * 2**10),
-                 (dict(dof=1, links=17, h=6), 16 * 2**10), (dict(dof=2, links=13), 16 * 2**10)]
+                 (dict(dof=1, links=17, h=6), 16 * 2**10), (dict(dof=2, links=13), 16 * 2**10),
+                 (dict(dof=1, links=10, v=(1, 8)), 1), (dict(dof=2, links=11, v=(1, 9)), 1)]
 
 
 @pytest.mark.parametrize("query, budget", SPLIT_QUERIES, ids=lambda x: _ids(x) if isinstance(x, dict) else f"{x} B")
