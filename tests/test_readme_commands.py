@@ -1,8 +1,8 @@
-"""Every command of README.md works as written.
+"""Every command of README.md and of docs/cli.md (the full tour, command by command) works as written.
 
-Each ``mechsynth …`` command of the README's ```bash blocks runs, in the README's order, in one
-folder where ``models/`` is this checkout's (the tour writes ``atlas.sqlite`` before it reads it),
-and must exit 0; the ``$ mechsynth …`` examples of its output blocks must print what the README
+Each ``mechsynth …`` command of a page's ```bash blocks runs, in the page's order, in one folder of
+that page where ``models/`` is this checkout's (the tour writes ``atlas.sqlite`` before it reads it),
+and must exit 0; the ``$ mechsynth …`` examples of its output blocks must print what the page
 shows (a line ``…`` stands for lines left out).  Commands too long for the default suite are
 marked slow, and those that need a running Dask scheduler are skipped: each with its reason.
 """
@@ -19,6 +19,8 @@ from mechsynth.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
+TOUR = ROOT / "docs" / "cli.md"
+PAGES = (README, TOUR)  # the README's short tour, then the full one
 
 # why a command is not run in the default suite (matched against the command's text)
 SLOW = {
@@ -95,7 +97,12 @@ def shown_outputs(text: str) -> list[tuple[str, list[str]]]:
     return found
 
 
-COMMANDS = bash_commands(README.read_text(encoding="utf-8"))
+def _read(page: Path) -> str:
+    return page.read_text(encoding="utf-8")
+
+
+COMMANDS = [(page, argv) for page in PAGES for argv in bash_commands(_read(page))]
+SHOWN = [(page, command, shown) for page in PAGES for command, shown in shown_outputs(_read(page))]
 
 
 def _marks(text: str):
@@ -106,17 +113,20 @@ def _marks(text: str):
 
 
 @pytest.fixture(scope="module")
-def tour(tmp_path_factory):
-    """The folder the tour runs in: models/ is the checkout's, files the commands write stay here."""
-    folder = tmp_path_factory.mktemp("tour")
-    (folder / "models").symlink_to(ROOT / "models")
-    return folder
+def tours(tmp_path_factory):
+    """The folder each page's tour runs in: models/ is the checkout's, files the commands write stay there."""
+    folders = {}
+    for page in PAGES:
+        folders[page] = tmp_path_factory.mktemp(f"tour_{page.stem}")
+        (folders[page] / "models").symlink_to(ROOT / "models")
+    return folders
 
 
-@pytest.mark.parametrize("argv", [pytest.param(c, marks=_marks(shlex.join(c)), id=shlex.join(c[1:4]))
-                                  for c in COMMANDS])
-def test_readme_command_runs_as_written(argv, tour, monkeypatch, capsys):
-    monkeypatch.chdir(tour)
+@pytest.mark.parametrize("page, argv", [pytest.param(page, c, marks=_marks(shlex.join(c)),
+                                                     id=f"{page.stem}:{shlex.join(c[1:4])}")
+                                        for page, c in COMMANDS])
+def test_readme_command_runs_as_written(page, argv, tours, monkeypatch, capsys):
+    monkeypatch.chdir(tours[page])
     status = main(argv[1:])
     out, err = capsys.readouterr()
     assert status == 0, (shlex.join(argv), err[-1500:])
@@ -124,12 +134,12 @@ def test_readme_command_runs_as_written(argv, tour, monkeypatch, capsys):
     assert out.strip() or any(a in argv for a in ("--out", "--animate", "--save", "--html", "--plot", "grid")), shlex.join(argv)
 
 
-@pytest.mark.parametrize("argv", [c for c in COMMANDS if any(key in shlex.join(c) for key in SMALLER)],
-                         ids=lambda c: shlex.join(c[1:4]))
-def test_a_slow_readme_command_runs_on_a_smaller_case(argv, tour, monkeypatch, capsys):
+@pytest.mark.parametrize("page, argv", [pytest.param(page, c, id=f"{page.stem}:{shlex.join(c[1:4])}")
+                                        for page, c in COMMANDS if any(key in shlex.join(c) for key in SMALLER)])
+def test_a_slow_readme_command_runs_on_a_smaller_case(page, argv, tours, monkeypatch, capsys):
     (words, smaller), = [change for key, change in SMALLER.items() if key in shlex.join(argv)]
     assert words in argv
-    monkeypatch.chdir(tour)
+    monkeypatch.chdir(tours[page])
     status = main([smaller if a == words else a for a in argv[1:]])
     out, err = capsys.readouterr()
     assert status == 0 and out.strip() and "Traceback" not in err, (shlex.join(argv), err[-1500:])
@@ -155,7 +165,8 @@ def assert_same_sentence(shown: str, printed: str) -> None:
         assert a["size"] == b["size"], (shown, printed)
 
 
-@pytest.mark.parametrize("command, shown", shown_outputs(README.read_text(encoding="utf-8")), ids=lambda x: str(x)[:40])
+@pytest.mark.parametrize("command, shown", [pytest.param(command, shown, id=f"{page.stem}:{command[10:40]}")
+                                            for page, command, shown in SHOWN])
 def test_readme_output_examples_are_what_the_command_prints(command, shown, capsys):
     if shown and shown[0].startswith("mechsynth: a long query"):  # the note, without the long run
         from synth import ChainQuery, size_check
@@ -184,9 +195,16 @@ def test_readme_output_examples_are_what_the_command_prints(command, shown, caps
 
 
 def test_the_readme_has_commands_to_run():
-    """The tests above would pass on a README without commands: make sure they see them."""
-    assert len(COMMANDS) > 40 and len(shown_outputs(README.read_text(encoding="utf-8"))) >= 4
-    assert any(c[1] == "balance" for c in COMMANDS) and any(c[1] == "grid" for c in COMMANDS)
+    """The tests above would pass on pages without commands: make sure they see them — the README's short
+    tour a command or two of each command, the full tour every command the README's tour held before it
+    moved to docs/cli.md (119 besides the quick start's, with 6 output examples)."""
+    readme = [argv for page, argv in COMMANDS if page == README]
+    tour = [argv for page, argv in COMMANDS if page == TOUR]
+    assert len(readme) >= 15 and len(shown_outputs(_read(README))) >= 4
+    assert len(tour) >= 119 and len(shown_outputs(_read(TOUR))) >= 6
+    for commands in (readme, tour):
+        for name in ("codes", "chains", "grid", "identify", "gears", "move", "dimension", "balance"):
+            assert any(c[1] == name for c in commands), name
 
 
 def test_ci_runs_exactly_the_readme_test_command():

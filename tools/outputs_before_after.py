@@ -1,9 +1,11 @@
-"""Run the README's commands and every scene in two checkouts and compare what they print.
+"""Run the README's commands (and docs/cli.md's, the full tour) and every scene in two checkouts and compare
+what they print.
 
 A refactoring that must not change any output (keys, columns, table text) is checked with this:
-each command of the README's ``bash`` blocks runs in each checkout (``python -m mechsynth``, the
-checkout on ``PYTHONPATH``, one scratch folder per checkout with a copy of ``models/``, commands in
-README order so that the atlases the first ones write are there for the later ones), again with
+each command of the ``bash`` blocks of README.md, then of docs/cli.md where the checkout has it, runs
+once in each checkout (``python -m mechsynth``, the checkout on ``PYTHONPATH``, one scratch folder per
+checkout with a copy of ``models/``, commands in the pages' order so that the atlases the first ones
+write are there for the later ones), again with
 ``--format json``, ``jsonl`` and ``csv`` where it writes no file, and ``scene --all models/`` in
 both of its formats. Standard output, standard error, the exit status and the bytes of every file
 written are compared; run times printed by the program (``"seconds": 1.234``, ``(0.31 s)``) are
@@ -160,7 +162,8 @@ def main() -> int:
         ap.error(f"--compare reads a saved run, and {args.compare} is no file")
     commands, skipped = [], []
     only = None if args.only is None else set(args.only.split(","))
-    for c in readme_commands(args.checkout / "README.md"):
+    pages = [args.checkout / "README.md", args.checkout / "docs" / "cli.md"]
+    for c in dict.fromkeys(c for page in pages if page.is_file() for c in readme_commands(page)):
         if only is not None and c.split()[1] not in only:
             continue
         reason = next((r for k, r in SKIP.items() if k in c), None)

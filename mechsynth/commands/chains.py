@@ -59,7 +59,7 @@ def _add_selection(p) -> None:
                    "e.g. tcp://host:8786")
     p.add_argument("--timeout", type=seconds, help="with --scheduler: seconds to wait for it (default 5)")
     p.add_argument("--force", action="store_true",
-                   help="run a query estimated to take more than a day (see README, 'Large queries')")
+                   help="run a query estimated to take more than a day (see docs/cli.md, 'Large queries')")
     p.add_argument("--format", choices=FORMATS + WRITTEN,
                    help="table (default), jsonl, csv or json; graphml, gml, dot, edgelist, adjacency or incidence "
                    "(docs/exchange.md); with --count json (default), table, jsonl or csv")

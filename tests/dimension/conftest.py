@@ -38,3 +38,9 @@ def hcdj():
 def slider_bench():
     """benchmarks/bench_slider_function.py: random offset slider-cranks' functions, their closed form."""
     yield from _benchmark("bench_slider_function")
+
+
+@pytest.fixture(scope="module")
+def motion_poses():
+    """benchmarks/bench_motion_poses.py: random four-bars and slider-cranks and their coupler poses."""
+    yield from _benchmark("bench_motion_poses")
