@@ -7,6 +7,8 @@ evaluated for the picture.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from mechbase import save_figure
@@ -368,7 +370,7 @@ def plot_compare(result, path: str, n: int = 241) -> str:
             j = s.joints[i]
             bot.text(j.max, yy, f" {j.max:.3g} ({round(100 * j.removed_max) + 0:.0f} %)", va="center", fontsize=7)
         bot.set_yticks(y, names, fontsize=8)
-        bot.set_xlabel(f"residual torque over the workspace and payloads ({unit})")
+        bot.set_xlabel(f"residual torque ({unit})\nover the workspace and payloads")  # (one line ran off the page)
         bot.set_xlim(0, 1.3 * max(s.joints[i].max for s in strategies))
         bot.grid(alpha=0.3, axis="x")
         if c == 0:
@@ -438,12 +440,17 @@ def plot_linkage(result, path: str, n: int = 361) -> str:
     weights = [(c.at, c.mass, dict(next(bd for bd in result.links if bd.link == c.link).joints)[c.joint], "C0")
                for c in result.counterweights] + [(b.centre, b.mass, b.joint(b.anchor), "0.55") for b in result.carried]
     biggest = max([m for _, m, _, _ in weights] + [1e-300])
+    middle = np.mean([p for body in result.links for _, p in body.joints], axis=0)[0]
     for at, mass, joint, colour in weights:
         if mass > 0:
             ax2.plot(*zip(at, joint), "-", color=colour, lw=1.5)
-            ax2.scatter(*at, s=60 + 240 * mass / biggest, color=colour, zorder=5)
-            ax2.annotate(f"{mass:.3g} kg", at, fontsize=8, color=colour, xytext=(6, -10), textcoords="offset points")
-    ax2.set_aspect("equal", adjustable="datalim")
+            area = 60 + 240 * mass / biggest  # points²: the label starts beyond the dot's radius, on the side of
+            ax2.scatter(*at, s=area, color=colour, zorder=5)  # the linkage's middle (inwards)
+            side = 1 if at[0] <= middle else -1
+            ax2.annotate(f"{mass:.3g} kg", at, fontsize=8, color=colour, textcoords="offset points", va="center",
+                         xytext=(side * (math.sqrt(area / math.pi) + 3), 0), ha="left" if side > 0 else "right")
+    ax2.margins(0.15)  # room in the panel for the dots (drawn in points) and their labels at its edges,
+    ax2.set_aspect("equal", adjustable="box")  # kept: the panel's box takes the aspect, not its limits
     ax2.set_title("the pose: links (black), their centres (+), frame pivots (▲),\ncounterweights (blue, area ∝ mass"
                   + ("; grey: carried already)" if result.carried else ")"), fontsize=9)
     ax2.legend(loc="best", fontsize=8)

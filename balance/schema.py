@@ -113,7 +113,7 @@ class LinkTable(_Table):
     stroke: float = 0.0
     accuracy: float | None = None
     gear_ratio: float | None = None
-    counterweight_arm: float | None = None
+    counterweight_arm: Positive | None = None
 
 
 class LoadTable(_Table):
@@ -138,7 +138,7 @@ class DevicesTable(_Table):
 
 
 class CounterweightsTable(_Table):
-    arm: float | None = None
+    arm: Positive | None = None
 
 
 class PayloadTable(_Table):

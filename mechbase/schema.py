@@ -134,7 +134,7 @@ def _file_name(name: str) -> str:
 
 
 #: A picture's file name without directories, ending in .svg, .png or .pdf.
-FileName = Annotated[StrictStr, AfterValidator(_file_name), expect("a file name ending in .svg, .png or .pdf")]
+FileName = Annotated[StrictStr, AfterValidator(_file_name), expect("a file name ending in .svg, .png or .pdf, without a folder (the pictures go into one folder)")]
 
 
 class Table(BaseModel):

@@ -85,6 +85,22 @@ def positive(text: str) -> int:
     return value
 
 
+def chain_text(text: str) -> str:
+    """A chain as the command line writes it (a joint list or a JSON row), refused in one sentence when the
+    word names a file (a file's chains are read by ``identify``), where the chain's reader would say it
+    cannot read a joint or a code of that name.
+
+    >>> chain_text("0-1 1-2 2-3 3-0")
+    '0-1 1-2 2-3 3-0'
+    """
+    word = text.strip()
+    if word and not any(c.isspace() for c in word) and os.path.isfile(word):
+        raise argparse.ArgumentTypeError(
+            f"{word} is a file, and a chain is read here as it is written (a joint list '0-1 1-2 …' or a JSON row): "
+            f"'mechsynth identify {word}' reads the chains of a file, or give a row's text, \"$(cat {word})\"")
+    return text
+
+
 def add_row(parser, also: str = "") -> None:
     """``--row K``: which row of an atlas search's rows (``dimension --db … --format json`` or ``jsonl``) is
     the linkage a command reads (:func:`synth.motion.read_linkage`); ``also`` ends its help with what else it

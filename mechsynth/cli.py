@@ -1,7 +1,8 @@
 """The ``mechsynth`` command: the error contract around the root parser (:mod:`mechsynth._parser`).
 
 Results go to stdout, progress to stderr, errors to stderr as one sentence with exit
-status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C, 143 on SIGTERM).
+status 2 (1 when a query is valid but has no answer, 130 on Ctrl-C, 143 on SIGTERM; a stdout that
+cannot be written, a full disk, is an error too).
 
 The console script imports this module and calls :func:`main`; so that a Ctrl-C at any moment
 after the interpreter has started ends in one line and status 130, this module imports nothing
@@ -76,6 +77,13 @@ def main(argv: list[str] | None = None) -> int:
         return _stopped(interrupted)
     except BrokenPipeError:
         return 0
+    except OSError as exc:
+        if interrupted:
+            return _stopped(interrupted)
+        if not _output_lost(exc):
+            raise
+        print(f"mechsynth: cannot write the output: {exc.strerror}", file=sys.stderr)
+        return 2
     except Exception:
         if not interrupted:
             raise
@@ -86,6 +94,23 @@ def main(argv: list[str] | None = None) -> int:
         for signum, handler in previous.items():
             signal.signal(signum, handler)
         sys.unraisablehook = previous_hook
+
+
+def _output_lost(exc: OSError) -> bool:
+    """Whether ``exc`` is stdout failing (a full disk or quota, a file too large, an I/O error: no file named):
+    then nothing more reaches it — it is pointed at the null device, so that the interpreter's last flush at
+    exit raises no second error — and the command ends in one sentence."""
+    import errno
+
+    if exc.filename is not None or exc.errno not in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO):
+        return False
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError):  # stdout without a file descriptor (a test's capture): nothing to silence
+        pass
+    return True
 
 
 def _stopped(signals: list[int]) -> int:

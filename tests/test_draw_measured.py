@@ -187,3 +187,70 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
                     assert np.linalg.norm(base - number) > 1.5 * r, (frame, gid)
         finally:
             plt.close(fig)
+
+
+def _title_and_drawings(monkeypatch, run):
+    """The sheet title's box and the top of its highest drawing, in figure fractions, and the title's
+    band (0.45 inch) in the same unit, of the picture ``run`` writes."""
+    seen = {}
+
+    def keep(fig, path, dpi):
+        fig.canvas.draw()
+        seen["title"] = fig._suptitle.get_window_extent().transformed(fig.transFigure.inverted())
+        seen["top"] = max(ax.get_position().y1 for ax in fig.axes if ax.has_data())
+        seen["band"] = 0.45 / fig.get_size_inches()[1]
+
+    monkeypatch.setattr(_render, "_save", keep)
+    run()
+    return seen["title"], seen["top"], seen["band"]
+
+
+def test_a_sheet_title_sits_above_every_drawing(monkeypatch, tmp_path):
+    """`draw --code 7201/1` (6 columns, its multiple joints' numbers at the top of the first row) and the
+    same sheet two columns wide (14 rows): the title's box ends above every drawing's square — its first
+    row's "3"s were printed over the title."""
+    for columns in ("6", "2"):
+        title, top, band = _title_and_drawings(monkeypatch, lambda: main(
+            ["draw", "--code", "7201/1", "--columns", columns, "--out", str(tmp_path / "sheet.png")]))
+        assert top <= title.y0 < title.y1 <= 1, (columns, title, top)  # over the first row, on the sheet
+        assert title.y0 - top <= 2 * band  # and not far above it
+
+
+def test_the_help_states_the_resolution_the_pictures_have(capsys):
+    """`draw --help` said a sheet's PNG had 100 dots per inch; sheets and single drawings have 150."""
+    try:
+        main(["draw", "--help"])
+    except SystemExit:
+        pass
+    text = " ".join(capsys.readouterr().out.split())
+    stated = re.search(r"--dpi DPI resolution of a \.png [^(]*\(default ([^)]*)\)", text).group(1)
+    assert {int(d) for d in re.findall(r"\d+", stated)} == {_render.SINGLE[1], _render.CELL[1]}, stated
+
+
+def _texts_of_other_drawings_overlapping(monkeypatch, run) -> list:
+    """Pairs of texts (captions, link and multiplicity numbers, the title) of two different drawings of the
+    sheet ``run`` writes whose boxes overlap, in pixels at the sheet's own resolution."""
+    seen = []
+
+    def keep(fig, path, dpi):
+        fig.set_dpi(dpi)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        boxes = [(k, t.get_text(), t.get_window_extent(renderer)) for k, ax in enumerate(fig.axes)
+                 for t in [*ax.texts, ax.title] if t.get_visible() and t.get_text()]
+        boxes.append((-1, "title", fig._suptitle.get_window_extent(renderer)))
+        seen.extend((a[:2], b[:2]) for a, b in itertools.combinations(boxes, 2) if a[0] != b[0] and a[2].overlaps(b[2]))
+
+    monkeypatch.setattr(_render, "_save", keep)
+    run()
+    return seen
+
+
+def test_no_caption_runs_into_the_next_row(monkeypatch, tmp_path):
+    """`draw --code 530/1` and the linear translator's bases (loop classes, labels, a key): no text of one
+    drawing overlaps a text of another — the captions of 530/1's first two rows lay over the '3's at the tops
+    of the rows below (tight_layout set the rows before their equal aspect shrank them; a second pass holds)."""
+    translator = "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13"
+    for argv in (["--code", "530/1"], ["--chain", translator, "--loop-classes", "3=4,5=1", "--labels", "--title", "t"]):
+        assert _texts_of_other_drawings_overlapping(
+            monkeypatch, lambda: main(["draw", *argv, "--out", str(tmp_path / "sheet.png")])) == [], argv

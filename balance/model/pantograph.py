@@ -94,9 +94,10 @@ class Pantograph:
             v = getattr(self, name)
             if not (math.isfinite(v) and v >= 0):
                 raise InvalidArm(f"the pantograph weight {name} must be a finite number ≥ 0, not {v}.")
-        for rng in (self.range2, self.range3):
-            if not (math.isfinite(rng[0]) and math.isfinite(rng[1]) and rng[0] < rng[1]):
-                raise InvalidArm(f"a pantograph angle range must be finite with low < high, not {rng}.")
+        for name, rng in (("upper arm's (θ2)", self.range2), ("forearm's (θ3)", self.range3)):
+            if not (math.isfinite(rng[0]) and math.isfinite(rng[1]) and rng[0] < rng[1]):  # said in degrees, as given
+                raise InvalidArm(f"the pantograph's {name} angle range must be finite with low < high, not "
+                                 f"{math.degrees(rng[0]):g}° .. {math.degrees(rng[1]):g}°.")
 
     # ------------------------------------------------------------------ geometry
     @property

@@ -201,7 +201,9 @@ def _run(args) -> int:
     except BalanceError as exc:
         raise InvalidOption(str(exc)) from None
     except OSError as exc:  # e.g. the plot file cannot be written
-        raise InvalidOption(f"cannot write or read a file ({exc.strerror}: {exc.filename}).") from None
+        if exc.filename is None:  # stdout itself (a full disk): the command's own sentence
+            raise
+        raise InvalidOption(f"cannot write or read {exc.filename}: {exc.strerror}.") from None
     return 1 if out.get("target_met") is False else 0  # a valid query whose requested error is not reached
 
 
@@ -263,7 +265,7 @@ def _spring_problem(args):
              "--guided": args.guided or None}
     named = [k for k, v in given.items() if v is not None]
     if named and not args.design_spring:
-        raise InvalidInput(f"{', '.join(named)} only apply with --design-spring.")
+        raise InvalidInput(f"{' and '.join(named)} {'applies' if len(named) == 1 else 'apply'} only with --design-spring.")
     kind = _device_options(args)
     if kind == "tension" and (args.spring_ends is not None or args.guided):
         raise InvalidInput("--spring-ends and --guided concern compression springs; a tension device gets an "
@@ -400,6 +402,10 @@ def _linkage_problem(args):
             elif "linkage" not in doc:
                 raise InvalidInput(f"{args.file}: [linkage_balance] needs its linkage: 'file' = a linkage file, or a "
                                    "[linkage] table in the same file.")
+    if args.save is not None:  # as move and dimension: the files read are never written over
+        read = next((path for path in (args.file, source) if os.path.realpath(path) == os.path.realpath(args.save)), None)
+        if read is not None:
+            raise InvalidOption(f"{read} is read by this command: --save would overwrite it")
     if table is not None:
         both = [flag for key, flag in OPTIONS.items() if options[key] is not None and getattr(table, key) is not None]
         if both:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import sys
 
-from .._argtypes import YesOrNo, seconds, whole, workers
+from .._argtypes import YesOrNo, chain_text, seconds, whole, workers
 from .._output import FORMATS, nothing_found, write_count, write_rows
 
 WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # synth.exchange.WRITTEN, unloaded
@@ -46,7 +46,7 @@ def _add_selection(p) -> None:
                    help="heterogeneous chains with K loops of each class H, two classes (e.g. 3=4,5=1: the linear "
                    "translator): a base holding the higher class's loops on a chain of the lower class; --dof is W by "
                    "the heterogeneous count; with --chain, every base on that chain")
-    p.add_argument("--chain", help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
+    p.add_argument("--chain", type=chain_text, help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
                    "a command printed): its row, its mechanisms, or with --prismatic its variants, renumbered as "
                    "every listing and atlas numbers its id, with the chain as given beside (column as_given)")
     p.add_argument("--idle-joints", action="store_true",

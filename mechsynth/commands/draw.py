@@ -18,7 +18,7 @@ import math
 import os
 import sys
 
-from .._argtypes import YesOrNo, add_row, finite, inches, picture_file, positive, where_conditions, whole
+from .._argtypes import YesOrNo, add_row, chain_text, finite, inches, picture_file, positive, where_conditions, whole
 
 __all__ = ["add_commands"]
 
@@ -33,7 +33,7 @@ def add_commands(sub) -> None:
                    help="a dimensioned mechanism (.toml or .json, as move --save and dimension --save write it), "
                         "drawn to scale at its pose; or the rows of an atlas search (.json or .jsonl) with --row K")
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
-    g.add_argument("--chain", help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
+    g.add_argument("--chain", type=chain_text, help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
@@ -59,7 +59,7 @@ def add_commands(sub) -> None:
                    help="with --prismatic: keep revolute pairs whose links are also joined by prismatic pairs")
     p.add_argument("--columns", type=positive, help="drawings per row of a sheet (refused for one drawing)")
     p.add_argument("--size", type=inches, help="edge of each drawing in inches (default 3.6 alone, 1.9 on a sheet)")
-    p.add_argument("--dpi", type=positive, help="resolution of a .png (default 150 alone, 100 on a sheet)")
+    p.add_argument("--dpi", type=positive, help="resolution of a .png in dots per inch (default 150)")
     p.add_argument("--labels", action=YesOrNo, default=None,
                    help="number the links (default: on for one drawing and for mechanisms, off on chain sheets)")
     p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")

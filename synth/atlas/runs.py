@@ -39,13 +39,13 @@ from pathlib import Path
 
 from mechbase import Row
 
-from ..errors import InvalidOption, QueryTooLarge, option
+from ..errors import ImpossibleParameters, InvalidOption, QueryTooLarge, option
 from ..execution.scheduler import SchedulerUnreachable, connect as _connect
 from ..structure.chain import Chain
 from ..structure.code import Code
 from ..execution.executor import Executor
 from ..structure.joints import MESH, PRISMATIC
-from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_many, run_unit
+from ..synthesis.type_synthesis import Unit, mechanisms_of, plan_jobs, plan_many, run_unit
 from ..gears.train import GearTrain
 from .database import acquire_run, open_atlas, refuse_unwritable, release_run, transaction
 from .grid import Cell, GearCell, Grid
@@ -195,6 +195,30 @@ def _register(conn: sqlite3.Connection, plans: Sequence[tuple[Cell | GearCell, l
                              [(cell.key, u.key, str(u.code)) for u in units])
 
 
+def _refuse_impossible(grid: Grid, plans) -> None:
+    """A grid none of whose cells can hold a chain (every one ruled out by the counting equations: a v, a
+    requirement or a link count no chain meets) is refused with the first cell's reason, as ``chains``
+    refuses that query; a grid with one possible cell runs, its impossible cells left empty.
+
+    >>> from synth.atlas.grid import parse_grid
+    >>> _refuse_impossible(parse_grid('dof = 1\\nlinks = 8\\nv = "50..60"'), [])
+    Traceback (most recent call last):
+    synth.errors.ImpossibleParameters: no cell of grid 'grid' can hold a chain: W=1 n=8 v=50..60 rigid=0 frac=1 planar=0: v = 50 is too large: a chain with K = 3 loops and 8 links has v ≤ 2(K − 1) + n1 = 4
+    """
+    if grid.gear_cells or any(units for _, units in plans):
+        return
+    reasons = []
+    for cell in grid.cells:
+        try:
+            plan_jobs(cell.query())
+        except ImpossibleParameters as exc:
+            reasons.append(f"{cell.key}: {exc}")
+        else:
+            return
+    if reasons:
+        raise ImpossibleParameters(f"no cell of grid {grid.name!r} can hold a chain: {reasons[0]}")
+
+
 def run_grid(
     grid: Grid,
     db: str | Path,
@@ -251,6 +275,7 @@ def run_grid(
         plans = list(zip(grid.cells, plan_many([cell.query() for cell in grid.cells], skip_impossible=True,
                                                executor=executor if client is None else None)))
         plans += [(cell, plan_gear_cell(cell)) for cell in grid.gear_cells]
+        _refuse_impossible(grid, plans)
         conn = open_atlas(path, write=True)
     except BaseException:
         if client is not None:

@@ -445,9 +445,11 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
                 _draw(ax, items[i], labels=labels, caption=captions[i], legend=False)
             else:
                 ax.axis("off")
+        top = 1 - (0.45 / height if title else 0)  # the title's own band: tight_layout leaves the drawings under it
         if title:
-            fig.suptitle(title, fontsize=11)
-        fig.tight_layout(pad=0.4, rect=(0, key / height, 1, 1))
+            fig.suptitle(title, fontsize=11, y=1 - 0.1 / height, va="top")
+        for _ in range(2):  # twice: the first pass sets the drawings before their equal aspect shrinks them, and
+            fig.tight_layout(pad=0.4, rect=(0, key / height, 1, top))  # left a caption over the next row's top
         if mixed is not None:  # one key for the sheet, under it
             keys = _class_keys(mixed, counted=False)
             fig.legend(handles=keys, loc="lower center", ncol=len(keys), fontsize=7, frameon=False)

@@ -32,6 +32,25 @@ MAX_LOOPS = 10_000  # the most loops a code is read or written with: it is writt
 _CODE_RE = re.compile(r"^\s*(?:(\d+)\|)?([0-9.,]+)\s*/\s*([0-9]+(?:-[0-9]+)*)\s*$")
 
 
+#: What a listing writes after a code, and the option that asks for it.
+_SUFFIXES = {"K": "--loop-classes H=K,H=K", "P": "--prismatic N", "G": "mechsynth gears"}
+
+
+def _unreadable(text: str) -> str:
+    """The sentence for a text that is no code; a code copied from a listing with what the listing writes
+    beside it (``62/0 K3=1 K5=1``, ``4/0 P1``, ``221/0 G3``) is told which option asks for that.
+
+    >>> _unreadable("4/0 P1")
+    "cannot read code '4/0 P1': the code is '4/0'; 'P1' is written beside it by a listing (asked with --prismatic N)"
+    """
+    head, *rest = text.split() or [""]
+    if rest and _CODE_RE.match(head) and all(re.fullmatch(r"K\d+=\d+|[PG]\d+", word) for word in rest):
+        asked = " and ".join(dict.fromkeys(_SUFFIXES[word[0]] for word in rest))
+        return (f"cannot read code {text!r}: the code is {head!r}; {' '.join(rest)!r} is written beside it by a "
+                f"listing (asked with {asked})")
+    return f"cannot read code {text!r}: expected digits n2n3…/v such as '6301/0', '12.2.0.0.0/6' or '12,000/4-1'"
+
+
 def _strip(counts) -> tuple[int, ...]:
     counts = [int(c) for c in counts]
     while counts and counts[-1] == 0:
@@ -183,10 +202,7 @@ class Code:
             raise MalformedCode(f"a code must be text such as '6301/0', not {text!r}")
         m = _CODE_RE.match(text)
         if not m:
-            raise MalformedCode(
-                f"cannot read code {text!r}: expected digits n2n3…/v such as '6301/0', "
-                "'12.2.0.0.0/6' or '12,000/4-1'"
-            )
+            raise MalformedCode(_unreadable(text))
         n1_text, left, right = m.groups()
         parts = re.split(r"[.,]", left)
         if any(p == "" for p in parts):

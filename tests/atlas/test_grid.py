@@ -118,3 +118,25 @@ def test_every_shipped_grid_file_reads(path):
     grid = load_grid(path)
     assert grid.cells or grid.gear_cells
     assert all(cell.plan() for cell in grid.cells if cell.links <= 8)
+
+
+@pytest.mark.parametrize("text, words", [
+    ('dof = 1\nlinks = 8\nv = "50..60"\n', "v = 50 is too large"),
+    ('dof = 1\nlinks = "6..8"\nrequire = ["9=1"]\n', "a link with 9 joints"),
+])
+def test_a_grid_no_cell_of_which_can_hold_a_chain_is_refused(tmp_path, capsys, text, words):
+    """Every cell ruled out by the counting equations: one sentence naming the first cell and why, exit 2 and
+    no atlas written — as `chains` refuses the same query (the grid ran, stored nothing and exited 0)."""
+    grid, db = tmp_path / "impossible.toml", tmp_path / "atlas.sqlite"
+    grid.write_text(text)
+    assert main(["grid", str(grid), "--db", str(db), "--workers", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "no cell of grid 'impossible' can hold a chain" in err and words in err and err.count("\n") == 1, err
+    assert not db.exists()
+
+
+def test_a_grid_with_one_possible_cell_runs_and_leaves_the_others_empty(tmp_path, capsys):
+    grid, db = tmp_path / "partly.toml", tmp_path / "atlas.sqlite"
+    grid.write_text('dof = 1\nlinks = "4..6"\nv = "2..2"\n')  # four links: no multiple joint; six: one chain (60/2)
+    assert main(["grid", str(grid), "--db", str(db), "--workers", "1"]) == 0
+    assert "1 chains found" in capsys.readouterr().out

@@ -121,6 +121,9 @@ LINK = {"joint": "revolute", "length": 1.0, "weight": 2.0}
      "s.toml: [[arm.loads]] #1 gives both 'weight' (N) and 'mass' (kg); keep one."),
     ({"links": []}, "s.toml: [arm] needs at least one [[arm.links]] table (or the key 'urdf')."),
     ({"urdf": URDF, "payload": {"mass": [2, 1]}}, "s.toml: [arm.payload] range 2 .. 1 kg must have 0 ≤ low ≤ high."),
+    # a counterweight's distance named by its key and file (it read "joint q4: … distance from the axis …")
+    ({"links": [LINK], "counterweights": {"arm": -0.2}}, "s.toml: [arm.counterweights] key 'arm' must be > 0, not -0.2."),
+    ({"links": [{**LINK, "counterweight_arm": 0}]}, "s.toml: [[arm.links]] #1 key 'counterweight_arm' must be > 0, not 0."),
 ])
 def test_a_table_that_contradicts_itself_is_refused_in_one_sentence(arm, words):
     with pytest.raises(Exception) as err:

@@ -330,3 +330,20 @@ def test_shaking_moment_is_the_rate_of_the_oracle_angular_momentum(four_bar, cap
     dense = np.abs(moment_rate(bodies, link_rates(lk, np.linspace(0, 2 * math.pi, 20001)), about))
     assert dense.max() <= state["shaking_moment"] <= dense.max() * (1 + 1e-7)
     assert out["after"]["shaking_moment"] > 2 * out["before"]["shaking_moment"]
+
+
+def test_save_never_writes_over_a_file_it_reads(tmp_path, capsys):
+    """`--save` naming the linkage file given, or the linkage a [linkage_balance] table names, is refused in
+    one sentence before any work, and the file stays as it was (it used to be written over, exit 0)."""
+    linkage = tmp_path / "four_bar.toml"
+    linkage.write_bytes((MODELS / "motion_four_bar.toml").read_bytes())
+    table = tmp_path / "masses.toml"
+    table.write_text('[linkage_balance]\nfile = "four_bar.toml"\ndensity = 2\n')
+    before = linkage.read_bytes(), table.read_bytes()
+    for argv in ([linkage, "--density", "2", "--save", linkage], [table, "--save", linkage],
+                 [table, "--save", table], [linkage, "--density", "2", "--save", tmp_path / "." / "four_bar.toml"]):
+        capsys.readouterr()
+        assert main(["balance", "linkage", *map(str, argv)]) == 2
+        err = capsys.readouterr().err
+        assert "--save would overwrite it" in err and err.count("\n") == 1, err
+    assert (linkage.read_bytes(), table.read_bytes()) == before

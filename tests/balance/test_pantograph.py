@@ -205,7 +205,11 @@ def test_sample_fills_the_ranges():
     (dict(range2=(0.5, 0.5)), "angle range must be finite with low < high"),
     (dict(range3=(math.nan, 1.0)), "angle range"), (dict(range3=(0.0, math.inf)), "angle range"),
     (dict(range2=(-math.inf, 1.0)), "angle range"),
-    (dict(range2=(1.0, 0.0)), "angle range")])
+    (dict(range2=(1.0, 0.0)), "angle range"),
+    # in degrees and named, as the TOML file gives them (it printed the radians as a tuple)
+    (dict(range2=(math.radians(80), math.radians(-30))), "the pantograph's upper arm's (θ2) angle range must be finite "
+                                                         "with low < high, not 80° .. -30°."),
+    (dict(range3=(0.5, 0.5)), "the pantograph's forearm's (θ3) angle range")])
 def test_bad_pantograph_geometry(bad, match):
     with pytest.raises(InvalidArm, match=match.replace("(", r"\(").replace(")", r"\)")):
         Pantograph(**{"l2": 0.8, "l3": 1.0, "k": 3.0, **bad})

@@ -353,7 +353,7 @@ def test_compare_figure_draws_each_strategys_torque_and_its_bars(drawn):
     ticks = dict(zip(bot.get_yticks(), (t.get_text() for t in bot.get_yticklabels())))
     assert ticks == dict(zip([4, 3, 2, 1, 0], names))  # "none" on top
     assert bot.get_xlim() == pytest.approx((0, 1.3 * (8 + 2 * G)))
-    assert bot.get_xlabel() == "residual torque over the workspace and payloads (N·m)"
+    assert bot.get_xlabel() == "residual torque (N·m)\nover the workspace and payloads"
     assert legend_texts(bot) == ["largest (true extreme)", "RMS"]
     assert fig._suptitle.get_text() == "arm: gravity torque before and after each strategy (payload 1 … 4 kg)"
     assert fig._suptitle.get_fontsize() == 10 and top.title.get_fontsize() == 9
@@ -369,7 +369,7 @@ def test_compare_figure_has_a_column_per_loaded_joint(drawn):
     fig = drawn(plot_compare, CompareProblem(arm, samples=100).solve())
     assert len(fig.axes) == 4 and tuple(fig.get_size_inches()) == (9.0, 7.4)
     assert [ax.get_title().split(" swept")[0] for ax in fig.axes[:2]] == ["q1 (upper)", "q2 (fore)"]
-    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque over the workspace and payloads (N·m)"] * 2
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["residual torque (N·m)\nover the workspace and payloads"] * 2
 
 
 # --------------------------------------------------------------------------------------------- linkages
@@ -426,3 +426,68 @@ def test_linkage_figure_draws_the_counterweights_a_saved_linkage_carries(drawn, 
     assert np.allclose(np.sort(points, axis=0), np.sort([b.centre for b in res.carried], axis=0))
     assert all(mcolors.to_hex(c.get_facecolor()[0]) == mcolors.to_hex("0.55") for c in dots)
     assert "grey: carried already" in right.get_title()
+
+
+@pytest.mark.parametrize("points", [
+    [[0, 0], [1, 0], [0.9714545931334975, 0.6802198291405213], [1.5818277369324332, 1.0077552016197229]],
+    None,  # models/motion_four_bar.toml
+])
+def test_linkage_figure_counterweight_labels_clear_of_their_dots_and_inside_the_panel(drawn, points):
+    """Each counterweight's mass label lies beside its dot, not under it, and dot and label lie inside the
+    panel: the README's four-bar (`dimension … --save freudenstein.toml`, then `balance linkage … --range 30..110
+    --plot`) had '1.86 kg' covered by its dot at the panel's lower edge, cut by it."""
+    from balance import plot_linkage
+    from mechsynth._linkage_balance import linkage_problem
+    from synth.motion import Linkage, read_linkage
+    from synth.structure.chain import Chain, Mechanism
+
+    if points is None:
+        lk, options = read_linkage(MODELS / "motion_four_bar.toml"), {"density": 2.0}
+    else:
+        lk = Linkage(Mechanism(Chain.parse("0-1 0-3 1-2 2-3"), 0), (0,), points)
+        options = {"density": 2.0, "range": (30.0, 110.0)}
+    res = linkage_problem(lk, options, None, "four-bar").solve()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = drawn(plot_linkage, res)
+    fig.set_dpi(110)  # as saved
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    right = fig.axes[1]
+    panel = right.get_window_extent(renderer)
+    labels = [t for t in right.texts if t.get_text().endswith(" kg")]
+    dots = [c for c in right.collections if len(c.get_offsets())]
+    assert len(labels) == len(dots) == len([c for c in res.counterweights if c.mass > 0]) > 0
+    for label, dot in zip(labels, dots):
+        centre = right.transData.transform(dot.get_offsets()[0])
+        radius = math.sqrt(dot.get_sizes()[0] / math.pi) * right.figure.dpi / 72  # the dot's area is in points²
+        box = label.get_window_extent(renderer)
+        nearest = np.clip(centre, [box.x0, box.y0], [box.x1, box.y1])  # the label's point nearest the dot's centre
+        assert np.hypot(*(nearest - centre)) >= radius, (label.get_text(), radius)
+        for x, y in ((box.x0, box.y0), (box.x1, box.y1), centre - radius, centre + radius):
+            assert panel.x0 <= x <= panel.x1 and panel.y0 <= y <= panel.y1, (label.get_text(), x, y, panel)
+
+
+def test_compare_figure_keeps_every_label_on_the_page(monkeypatch, tmp_path):
+    """The scene compare_example1 (three loaded joints, a column each): every axis label, title and bar label
+    lies on the page — the bars' x label of the last column ran past the right edge, '(N·m)' cut off."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from mechsynth.cli import main
+
+    saved = []
+    keep = Figure.savefig
+    monkeypatch.setattr(Figure, "savefig", lambda self, path, **kw: (saved.append(self), keep(self, path, **kw))[1])
+    assert main(["balance", "compare", str(MODELS / "compare_example1.toml"), "--plot", str(tmp_path / "c.png")]) == 0
+    (fig,) = saved
+    fig.set_dpi(110)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    page = fig.bbox
+    assert len(fig.axes) == 6
+    for ax in fig.axes:
+        for text in [ax.xaxis.label, ax.yaxis.label, ax.title, *ax.texts]:
+            if text.get_visible() and text.get_text():
+                box = text.get_window_extent(renderer)
+                assert page.x0 - 0.5 <= box.x0 and box.x1 <= page.x1 + 0.5, (text.get_text(), box, page)

@@ -267,6 +267,11 @@ CASES = [
     ("balance linkage {m}/motion_four_bar.toml --density 2 --save {d}/out.txt", "out.txt"),
     ("balance linkage {m}/arm_base_drives.toml --density 2", "arm_base_drives.toml"),
     ("balance linkage {d}/binary.toml --density 2", "binary.toml"),
+    # ---- a file where a chain's text is read (a listing saved, then given to --chain): say so, name identify
+    ("analyze {d}/kinds.edges", "kinds.edges is a file"),
+    ("chains --chain {d}/kinds.edges --count", "kinds.edges is a file"),
+    ("draw --chain {d}/kinds.edges --out {d}/x.png", "mechsynth identify"),
+    ("move --chain {d}/kinds.edges --frame 0", "kinds.edges is a file"),
 ]
 
 # cases that fail today because of the balance package (reported to the balance helper, not fixed here)

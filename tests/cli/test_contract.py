@@ -247,3 +247,20 @@ def test_every_option_of_every_command_says_what_it_is():
 
     walk(build_parser(), ["mechsynth"])
     assert silent == []
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full to stand for a full disk")
+@pytest.mark.parametrize("argv", [["analyze", "6301/0"], ["codes", "--dof", "1", "--loops", "1..5"],
+                                  ["chains", "--dof", "1", "--links", "10", "--format", "jsonl", "--workers", "1"]])
+def test_a_full_disk_under_stdout_is_one_sentence_and_exit_2(argv, tmp_path):
+    """`mechsynth … > file` on a full disk (/dev/full): one sentence and exit 2, no traceback, no second error from
+    the interpreter's last flush, nothing left running (each ended with a traceback before)."""
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    with open("/dev/full", "w") as full:
+        p = subprocess.Popen([sys.executable, "-m", "mechsynth", *argv], stdout=full, stderr=subprocess.PIPE,
+                             text=True, env=env, start_new_session=True)
+        _, err = p.communicate(timeout=120)
+    assert p.returncode == 2, err[-800:]
+    assert err == "mechsynth: cannot write the output: No space left on device\n"
+    left = subprocess.run(["pgrep", "-g", str(p.pid)], capture_output=True, text=True).stdout.split()
+    assert left == [], left

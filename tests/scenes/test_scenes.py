@@ -285,6 +285,9 @@ MALFORMED = {
     "plot without balance": (GOOD.replace('["codes"]', '["codes", "plot"]'), ["'plot'", "balance"]),
     "bad drawing file name": (GOOD.replace('["codes"]', '["count", "drawing"]').replace("[expect]", "[drawing]\nout = \"a/b.gif\"\n[expect]")
                               .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["[drawing]", "'out'", "a/b.gif"]),
+    # a folder in a name with the right suffix: the sentence said the name must end in .svg, and it did
+    "drawing file in a folder": (GOOD.replace('["codes"]', '["count", "drawing"]').replace("[expect]", "[drawing]\nout = \"/proc/b.svg\"\n[expect]")
+                                 .replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"), ["[drawing]", "'out'", "without a folder"]),
     "dof is true": (GOOD.replace("dof = 1", "dof = true"), ["[structure] key 'dof' must be a whole number ≥ 0, not true."]),
     "empty range": (GOOD.replace("loops = 2", 'loops = "5..2"'), ["'loops'", "empty range '5..2'"]),
     "empty compute": (GOOD.replace('["codes"]', "[]"), ["'compute'", "empty"]),

@@ -99,6 +99,13 @@ def test_dict_and_json():
     (lambda: Code.parse("63a1/0"), "cannot read code '63a1/0': expected digits n2n3…/v such as '6301/0', "
                                    "'12.2.0.0.0/6' or '12,000/4-1'"),
     (lambda: Code.parse("12../0"), "cannot read code '12../0': empty count between separators"),
+    # a code copied from a listing with what the listing writes beside it: the option that asks for it named
+    (lambda: Code.parse("62/0 K3=1 K5=1"), "cannot read code '62/0 K3=1 K5=1': the code is '62/0'; 'K3=1 K5=1' is "
+                                           "written beside it by a listing (asked with --loop-classes H=K,H=K)"),
+    (lambda: Code.parse("8310/1 P3"), "cannot read code '8310/1 P3': the code is '8310/1'; 'P3' is written"),
+    (lambda: Code.parse("221/0 G3"), "cannot read code '221/0 G3': the code is '221/0'; 'G3' is written beside it by "
+                                     "a listing (asked with mechsynth gears)"),
+    (lambda: Code.parse("6301/0 x"), "cannot read code '6301/0 x': expected digits"),
     (lambda: Code.parse("7201/0"), "code 7201/0 is impossible: the joint incidences Σ i·n_i + v must be even"),
     (lambda: Code.parse("2|5/1"), "code 2|5/1 is impossible"),
     (lambda: Code((12,), 5, (4, 1)), "composition 4-1 gives v = 6, not v = 5"),
