@@ -95,9 +95,12 @@ def chain_text(text: str) -> str:
     """
     word = text.strip()
     if word and not any(c.isspace() for c in word) and os.path.isfile(word):
+        linkage = (f"; a linkage file (as move and dimension --save write it) is the command's first argument, e.g. "
+                   f"'mechsynth draw {word} --out FILE' or 'mechsynth move {word}'"
+                   if word.lower().endswith((".json", ".toml")) else "")
         raise argparse.ArgumentTypeError(
             f"{word} is a file, and a chain is read here as it is written (a joint list '0-1 1-2 …' or a JSON row): "
-            f"'mechsynth identify {word}' reads the chains of a file, or give a row's text, \"$(cat {word})\"")
+            f"'mechsynth identify {word}' reads the chains of a file, or give a row's text, \"$(cat {word})\"{linkage}")
     return text
 
 

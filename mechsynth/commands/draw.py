@@ -196,9 +196,6 @@ def _run_draw(args) -> int:
     if args.row is not None:
         raise InvalidOption("--row picks a row of a file of an atlas search's rows: give that file (draw ROWS.json "
                             "--row K --out FILE), not a chain or an atlas")
-    if args.chain and args.chain.lower().endswith((".json", ".toml")) and os.path.isfile(args.chain):
-        raise InvalidOption(f"--chain takes a joint list or a JSON row, and {args.chain} is a file: a linkage file (as "
-                            f"move and dimension --save write it) is drawn as 'mechsynth draw {args.chain} --out FILE'")
     args.where = where_conditions(args.where)
     if args.id is not None:
         if not args.db:

@@ -111,7 +111,7 @@ def test_at_is_refused_where_it_cannot_pose(saved, tmp_path, capsys):
     assert "W = 2 inputs" in capsys.readouterr().err
     assert main(["draw", str(five), "--out", str(tmp_path / "f.png")]) == 0  # at its saved pose it is drawn
     assert main(["draw", "--chain", str(saved), "--out", str(tmp_path / "c.png")]) == 2
-    assert f"drawn as 'mechsynth draw {saved} --out FILE'" in capsys.readouterr().err
+    assert f"a linkage file (as move and dimension --save write it) is the command's first argument, e.g. 'mechsynth draw {saved} --out FILE'" in capsys.readouterr().err
     assert main(["draw", "0-1 1-2 2-3 3-0", "--out", str(tmp_path / "c.png")]) == 2  # a chain given as a file
     assert "a chain's drawing is 'mechsynth draw --chain \"0-1 1-2 2-3 3-0\"" in capsys.readouterr().err
 
