@@ -104,15 +104,20 @@ def _obey_parent_only(parent: int, stopping=None) -> None:
 
 def _new_pool(ctx, workers: int):
     """A pool of ``workers`` started by :func:`_worker_start`; forked, its workers' ``terminate`` raises
-    the pool's ``stopping`` flag before it sends SIGTERM (the pool calls it holding its queue's lock)."""
+    the pool's ``stopping`` flag before it sends SIGTERM (the pool calls it holding its queue's lock), and
+    the pool ends through :class:`_Ending`, so that no thread of this process waits for a lock a worker
+    held as it was ended."""
     if ctx.get_start_method() != "fork":  # (spawned workers are pickled: no flag, no class made here)
         return ctx.Pool(workers, initializer=_worker_start, initargs=(os.getpid(),))
     from multiprocessing.pool import Pool
 
     stopping = ctx.RawValue("b", 0)
+    ending: list[_Ending] = []  # the pool's, once it is being ended
 
     class Worker(ctx.Process):
         def terminate(self):
+            if ending:  # (ending the pool: not the interpreter's exit ending a worker left behind)
+                ending[0].settle()
             stopping.value = 1
             super().terminate()
 
@@ -121,7 +126,68 @@ def _new_pool(ctx, workers: int):
         def Process(ctx, *args, **kwds):  # noqa: N802 - multiprocessing's name
             return Worker(*args, **kwds)
 
+        @classmethod
+        def _terminate_pool(cls, taskqueue, inqueue, outqueue, pool, change_notifier, worker_handler,
+                            task_handler, result_handler, cache):
+            ending.append(_Ending(inqueue, outqueue, task_handler, result_handler))
+            super()._terminate_pool(taskqueue, inqueue, ending[0], pool, change_notifier, worker_handler,
+                                    task_handler, result_handler, cache)
+
     return StoppingPool(workers, initializer=_worker_start, initargs=(os.getpid(), stopping), context=ctx)
+
+
+class _Ending:
+    """The end of a forked pool (``Pool.terminate``) without a hang when a worker is in the middle of
+    sending a result (cpython#96995: a result larger than a pipe holds waits, holding the result queue's
+    lock, for a reader).  The pool stops its result thread first; ended then, the worker keeps the lock
+    for ever, and the pool's task thread, posting its last sentinel to that queue, waits for it for ever
+    (as ``terminate`` itself may, posting its own while that thread has stopped reading).  So this
+    process posts its sentinel only while the result thread still reads (:meth:`put`, which stands for
+    the result queue in ``_terminate_pool``), and before the first worker is ended it reads and drops
+    what the workers and the task thread still send until both threads have ended (:meth:`settle`):
+    no thread of this process touches the queues after a worker is ended.
+
+    >>> import multiprocessing, threading
+    >>> queue, ended = multiprocessing.SimpleQueue(), threading.Thread(target=int)
+    >>> ended.start(); ended.join()
+    >>> _Ending(queue, queue, ended, ended).put(None)   # no result thread left to tell: nothing posted
+    >>> queue.empty()
+    True
+    """
+
+    def __init__(self, inqueue, outqueue, task_handler, result_handler):
+        self.inqueue, self.outqueue = inqueue, outqueue
+        self.task_handler, self.result_handler = task_handler, result_handler
+        self._settled = False
+
+    def put(self, obj) -> None:
+        """Post ``obj`` (the result thread's stop sentinel) while that thread still reads: a worker
+        holding the queue's lock then finishes sending; once the thread has ended there is no one to tell."""
+        from multiprocessing.reduction import ForkingPickler
+
+        lock = self.outqueue._wlock
+        while self.result_handler.is_alive():
+            if lock.acquire(timeout=0.01):
+                try:
+                    self.outqueue._writer.send_bytes(ForkingPickler.dumps(obj))
+                finally:
+                    lock.release()
+                return
+
+    def settle(self) -> None:
+        """Once, before the first worker is ended: wait for the result thread to end (it reads what is
+        being sent, then the sentinel), then read and drop what is sent on both queues (this process
+        holds the task queue's read lock by now) until the task thread has posted its sentinels and ended."""
+        from multiprocessing.connection import wait
+
+        if self._settled:
+            return
+        self._settled = True
+        self.result_handler.join()
+        readers = [self.outqueue._reader, self.inqueue._reader]
+        while self.task_handler.is_alive():
+            for reader in wait(readers, timeout=0.01):
+                reader.recv_bytes()
 
 
 def process_pool(workers: int):

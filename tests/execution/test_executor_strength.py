@@ -487,6 +487,31 @@ def test_the_pools_sigterm_merged_with_a_group_one_still_ends_a_worker(monkeypat
     assert not ending.is_alive() and worker.exitcode in (-signal.SIGTERM, 128 + signal.SIGTERM)
 
 
+def _large_result(seconds):
+    time.sleep(seconds)
+    return b"x" * 1_000_000  # far more than a pipe holds: its worker sends it holding the queue's lock
+
+
+def test_a_pool_ends_while_its_workers_send_results_larger_than_a_pipe():
+    """A result larger than a pipe holds is sent holding the result queue's lock, the worker waiting for a
+    reader; ``terminate`` stops its result thread first, so a worker ended then kept that lock for ever and
+    the pool's task thread (or ``terminate`` itself), posting its sentinel, waited for it for ever
+    (cpython#96995: 1 run in 300 of a 2-worker listing onto a full disk or a closed pipe hung so).  Six
+    workers finish such tasks as their pool ends, 20 times: before :class:`~synth.execution.executor._Ending`,
+    5 series of 10 such ends out of 5 hung."""
+    rng = random.Random(7)
+    for _ in range(20):
+        pool = module.process_pool(6)
+        for _ in range(24):
+            pool.apply_async(_large_result, (rng.uniform(0, 0.003),))
+        time.sleep(rng.uniform(0, 0.003))
+        ending = threading.Thread(target=lambda: (pool.terminate(), pool.join()), daemon=True)
+        ending.start()
+        ending.join(allowed_seconds(30))
+        assert not ending.is_alive(), "the pool's end waits for a lock a worker held as it was ended"
+        assert all(worker.exitcode is not None for worker in pool._pool)
+
+
 def test_ctrl_c_is_held_back_while_the_workers_are_forked(monkeypatch):
     import multiprocessing
     import signal
