@@ -241,9 +241,10 @@ def _run_ratio(args, items, compound) -> int:
     items = list(items)  # the bar's total
     with tqdm(items, unit=" trains", file=sys.stderr, disable=None, delay=1.0, leave=False, desc="ratio design") as bar:
         kept = _best_designs(args, bar, compound, lo, hi, kinds)
-    if not kept:
-        raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "
-                            f"{args.tolerance or '1%'} in these trains (coaxial, assembly and undercut conditions)")
+    if not kept:  # a valid question without an answer: exit 1, as any query that matches nothing
+        where = "this mechanism" if args.input is not None else "these trains"
+        return nothing_found(f"tooth numbers in {lo}..{hi} give the ratio {args.ratio} within {args.tolerance or '1%'} "
+                             f"in {where} (coaxial, assembly and undercut conditions)")
     designs = [(d, m) for *_, d, m in kept]
     fmt = args.format or "table"
     rows = []
@@ -275,7 +276,7 @@ def _run_ratio(args, items, compound) -> int:
 def _best_designs(args, items, compound, lo: int, hi: int, kinds: str) -> list:
     """The ``--best`` designs over every mechanism of ``items``: (error, teeth sum, order, design,
     mechanism), the worst kept so far bounding the next searches."""
-    from synth.gears import MIN_TEETH, NoDesign, design
+    from synth.gears import MIN_TEETH, NoDesign, RatioUnreached, design
 
     kept: list = []
     for order, m in enumerate(_mechanisms_of(args, items, compound)):
@@ -284,10 +285,12 @@ def _best_designs(args, items, compound, lo: int, hi: int, kinds: str) -> list:
             found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
                            teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
                            planets=args.planets, compound=compound, best=args.best, kinds=kinds, beat=beat)
-        except NoDesign:
+        except RatioUnreached:
+            continue  # another mechanism may reach the ratio
+        except NoDesign:  # the one mechanism asked cannot be designed so: say why
             if args.train is not None and args.input is not None:
                 raise
-            continue  # another mechanism may reach the ratio
+            continue
         kept = sorted(kept + [(d.error, sum(d.teeth.values()), order, d, m) for d in found],
                          key=lambda x: x[:3])[:args.best]
     return kept
