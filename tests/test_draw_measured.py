@@ -13,6 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 from matplotlib.path import Path as MplPath  # noqa: E402
 
 import synth  # noqa: E402
@@ -189,6 +190,10 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
             plt.close(fig)
 
 
+WATT = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
+TRANSLATOR = "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13"
+
+
 def _title_and_drawings(monkeypatch, run):
     """The sheet title's box and the top of its highest drawing, in figure fractions, and the title's
     band (0.45 inch) in the same unit, of the picture ``run`` writes."""
@@ -197,6 +202,8 @@ def _title_and_drawings(monkeypatch, run):
     def keep(fig, path, dpi):
         fig.canvas.draw()
         seen["title"] = fig._suptitle.get_window_extent().transformed(fig.transFigure.inverted())
+        seen["title"].text = fig._suptitle.get_text()
+        seen["title"].drawn = sum(1 for ax in fig.axes if ax.has_data())
         seen["top"] = max(ax.get_position().y1 for ax in fig.axes if ax.has_data())
         seen["band"] = 0.45 / fig.get_size_inches()[1]
 
@@ -250,7 +257,22 @@ def test_no_caption_runs_into_the_next_row(monkeypatch, tmp_path):
     """`draw --code 530/1` and the linear translator's bases (loop classes, labels, a key): no text of one
     drawing overlaps a text of another — the captions of 530/1's first two rows lay over the '3's at the tops
     of the rows below (tight_layout set the rows before their equal aspect shrank them; a second pass holds)."""
-    translator = "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13"
-    for argv in (["--code", "530/1"], ["--chain", translator, "--loop-classes", "3=4,5=1", "--labels", "--title", "t"]):
+    for argv in (["--code", "530/1"], ["--chain", TRANSLATOR, "--loop-classes", "3=4,5=1", "--labels", "--title", "t"]):
         assert _texts_of_other_drawings_overlapping(
             monkeypatch, lambda: main(["draw", *argv, "--out", str(tmp_path / "sheet.png")])) == [], argv
+
+
+@pytest.mark.parametrize("args,title", [
+    (["--chain", WATT, "--prismatic", "1..2"], "42/0 (W = 1): {n} variants with 1..2 prismatic pairs"),
+    (["--chain", WATT, "--prismatic", "1", "--mechanisms"], "42/0 (W = 1): {n} mechanisms of its variants with 1 "
+                                                              "prismatic pair"),
+    (["--chain", WATT, "--mechanisms"], "42/0 (W = 1): {n} mechanisms"),
+    (["--chain", TRANSLATOR, "--loop-classes", "3=4,5=1"], "12.2.0.0.0/6 (W = 1): {n} bases of loop classes 3=4,5=1"),
+])
+def test_a_sheet_of_one_chain_has_a_title_as_a_code_sheet_has(monkeypatch, tmp_path, args, title):
+    """`draw --chain … --prismatic` / `--loop-classes` / `--mechanisms` sheets had no title (a `--code`
+    sheet says its code, W and how many it draws): the title names the chain's code, its W, and what the
+    sheet's drawings are, counted, over the first row."""
+    box, top, _ = _title_and_drawings(monkeypatch, lambda: main(["draw", *args, "--out", str(tmp_path / "s.png")]))
+    assert top <= box.y0 < box.y1 <= 1  # over the first row, on the sheet
+    assert box.text == title.format(n=box.drawn) and box.drawn > 1
