@@ -163,7 +163,8 @@ def _draw_trains(rows, args) -> int:
         draw_train(trains[0], args.out, title=args.title, size=args.size or 6.0)
     else:
         draw_train_sheet(trains, args.out, columns=args.columns or 4, limit=args.limit,
-                   titles=[f"{k + 1}: {row['code']}  id {row['id']}" for k, row in enumerate(rows)])
+                   titles=[f"{k + 1}: {row['code']} (lever analogue {row['lever_code']})\nid {row['id']}"
+                           for k, row in enumerate(rows)])
     print(f"{len(trains)} schematic{'s' if len(trains) != 1 else ''} -> {args.out}", file=sys.stderr)
     return 0
 

@@ -106,7 +106,11 @@ def _compound(text: str) -> tuple[int, ...]:
 
 
 def _train_row(train, fmt: str) -> dict:
+    """A train's listing row: ``code`` is its lever analogue's (as ``--count`` counts them), ``train_code``
+    the train's own, with its meshes, as an atlas stores and captions it (530/1 and 230/1 G3)."""
     row = train.to_dict()
+    chain = train.to_chain()
+    row["train_code"] = str(chain.code) + chain.kind_suffix
     if fmt == "table":
         row["certificate"] = "…" + row["certificate"][-12:]
     return row
@@ -147,10 +151,11 @@ def _run(args) -> int:
     if args.out:
         items = list(items)
         _check_sheet(args, len(items), "gear trains")
-    columns = ["index", "train", "code", "dof", "carriers", "certificate"]
+    columns = ["index", "train", "code", "train_code", "dof", "carriers", "certificate"]
     n = write_rows(_indexed(_train_row(t, fmt) for t in items), columns, fmt)
     if fmt == "table":
-        print(f"{n} gear trains ({args.graphs} graphs)" if args.train is None else f"{n} gear train")
+        print((f"{n} gear trains ({args.graphs} graphs)" if args.train is None else f"{n} gear train")
+              + "; code: the lever analogue's, train_code: the train's own, as an atlas lists and draws it")
     if args.out and n:
         _draw(items, args.out, compound)
     return 0 if n else nothing_found("gear trains satisfy these parameters")
