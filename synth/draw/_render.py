@@ -275,7 +275,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
             inside = [c for c in centres if any(plate.contains_point(c) for plate in plates)]
             centres = [c for c in centres if not any(c is i for i in inside)] + inside + [middle]  # not read as a plate's
         else:  # a plate: its middle, else towards one of its corners
-            centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55) for p in ends]
+            sides = [(a + b) / 2 for a, b in zip(ends, ends[1:] + ends[:1])]
+            centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55, 0.75) for p in ends + sides]
         gaps = [clearance(c, half) for c in centres]
         clear = [c for c, g in zip(centres, gaps) if g >= 0.3 * r]
         centre = clear[0] if clear else centres[int(np.argmax(gaps))]
