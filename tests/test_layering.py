@@ -66,7 +66,8 @@ def test_engines_never_import_each_other_nor_the_application():
 
 #: the stage profiler wraps the engine's internal stages with timers: reaching inside is its job
 _PROFILERS = {"profile_stages.py", "multiple_joint_prune.py",  # they time stage B's own parts
-              "memory_by_unit.py"}  # it reads the memory of stage A and of each stage-B unit, and sets B's budget
+              "memory_by_unit.py",  # it reads the memory of stage A and of each stage-B unit, and sets B's budget
+              "stage_a_multiple_joints.py"}  # it runs stage A's kernel against the model and the plain search
 
 
 def test_the_application_and_the_benchmarks_use_public_names_only():

@@ -1,5 +1,5 @@
-"""Stage A's compiled kernel: the labelled branch multigraphs H of one code with simple joints,
-enumerated depth first pair by pair (numba), in batches.
+"""Stage A's compiled kernel: the labelled branch multigraphs H of one code, enumerated depth first
+pair by pair (numba), in batches.
 
 The variables are those of stage A's CP-SAT model (synth/synthesis/stage_a.py): the number
 x_uv of strings between each pair of branch vertices, row by row, and the loops y_u, which the
@@ -9,13 +9,15 @@ degree equation fixes once row u is complete.  The search keeps the model's cond
   weights and loops: at most n2);
 * the sb*ℓ rows of vertices of one kind and degree in lexicographic order (Codish et al.), checked on every
   prefix of columns known for both rows, and whole when the later row is complete;
-* the sub-chain conditions of stage B written on H: for simple joints they say that the
+* the sub-chain conditions of stage B written on H: on sets of links they say that the
   multigraph holding ``cost_p`` units on each pair p of inner links is (h, h + threshold − slack)-
   sparse, where cost_p = (h − 1)·x_p − lb_p and slack = n2 − Σ lb (docs/theory.md).  While the
   search runs the slack can only shrink, so a (k, l)-pebble game with the current upper bound of
   the slack rejects only what the final rule rejects (a pebble-game rejection exhibits a set T
   over its bound); a complete multigraph is then checked exactly by a fresh game.  Where the final
-  l is negative the game does not apply, and the row is marked for the caller's exact check;
+  l is negative the game does not apply, and the row is marked for the caller's exact check.  The
+  conditions on sets with multiple joints (with their touched-joint clause, not a sparsity) are
+  checked on each complete multigraph (:func:`_joint_conditions_hold`);
 * with ``least_budget`` (a count's stream), the least labelling of each class: every completed row
   prefix that a relabelling of equal vertices puts lexicographically first is dropped
   (:func:`_least_labelling`, docs/theory.md "The least labelling of H");
@@ -59,6 +61,41 @@ def _sparse(M, inner, pu, pv, x, cost_of, k, l, pebbles, arcs, seen, parent, sta
         for _ in range(cost_of[p, x[p]]):
             if not _accept(a, b, l, pebbles, arcs, seen, parent, stack):
                 return False
+    return True
+
+
+@njit(cache=True)
+def _joint_conditions_hold(m, pu, pv, x, cost_of, slack, within, links, joints, bound, reach, cost, ends):
+    """Whether the complete multigraph x meets every sub-chain condition with multiple joints: condition c
+    (vertex sets as bit masks: ``within`` all of T, ``links`` its links, ``joints`` its joints) fails where the
+    strings inside T cost more than ``slack`` + ``bound[c]`` and every joint of T is on a string from a link of
+    T (:meth:`synth.synthesis.stage_a._StringBounds.meet`, compiled).  ``reach`` (m), ``cost`` and ``ends``
+    (pairs) are work arrays."""
+    for u in range(m):
+        reach[u] = 0
+    n = 0
+    for p in range(len(pu)):
+        if x[p] > 0:
+            reach[pu[p]] |= 1 << pv[p]
+            reach[pv[p]] |= 1 << pu[p]
+            if cost_of[p, x[p]] != 0:
+                cost[n] = cost_of[p, x[p]]
+                ends[n] = (1 << pu[p]) | (1 << pv[p])
+                n += 1
+    for c in range(len(within)):
+        total = 0
+        for i in range(n):
+            if (ends[i] & within[c]) == ends[i]:
+                total += cost[i]
+        if total <= slack + bound[c]:
+            continue
+        touched = True
+        for J in range(m):
+            if (joints[c] >> J) & 1 and (reach[J] & links[c]) == 0:
+                touched = False
+                break
+        if touched:
+            return False
     return True
 
 
@@ -181,8 +218,8 @@ def _least_labelling(A, m, known, first, budget, img, start, choice):
 
 
 @njit(cache=True)
-def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, state,
-                out_x, out_y, out_flag, least_budget=0):
+def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same, n2, k, l0, check, joint_sets,
+                state, out_x, out_y, out_flag, least_budget=0):
     """Fill ``out_x``/``out_y`` with the next labelled multigraphs (pair multiplicities, loops) and
     ``out_flag`` with 1 where the caller must check the sub-chain conditions itself; returns how
     many were written (fewer than ``len(out_x)``: the enumeration is complete).
@@ -190,7 +227,9 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     ``lb_of[p, x]``/``cost_of[p, x]``: least binary links and sub-chain cost of x strings on pair p;
     ``inner[u]``: u's index among the inner links (−1 for others); ``same``: (u, w) pairs of
     vertices of one kind and degree (u < w) whose rows are ordered; ``l0`` = h + threshold (the game's l is l0 − slack);
-    ``check``: whether the sub-chain conditions apply (as pebble games); ``least_budget`` > 0: each
+    ``check``: whether the sub-chain conditions on sets of links apply (as pebble games); ``joint_sets``: the
+    conditions on sets with multiple joints (rows: bit masks of T, of its links and of its joints, then its
+    bound; none with simple joints), checked on each complete multigraph; ``least_budget`` > 0: each
     completed row prefix is kept only if :func:`_least_labelling` does not show it smaller within that
     many nodes (one labelling a class where the budget suffices, the least; the classes are the same).
     """
@@ -226,6 +265,9 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
     img = np.zeros((m, m), dtype=np.int64)
     start = np.zeros((m, m), dtype=np.int64)
     choice = np.zeros(m, dtype=np.int64)
+    reach = np.zeros(m, dtype=np.int64)
+    string_cost = np.zeros(P, dtype=np.int64)
+    string_ends = np.zeros(P, dtype=np.int64)
     written = 0
     if state[_STARTED] == 0:
         state[_STARTED] = 1
@@ -333,6 +375,10 @@ def multigraphs(m, deg, loops_most, loop_lb, pu, pv, lb_of, cost_of, inner, same
                 elif not _sparse(m, inner, pu, pv, x, cost_of, k, l, fresh_pebbles, fresh_arcs, seen, parent,
                                  stack):
                     continue
+            if len(joint_sets) and not _joint_conditions_hold(
+                    m, pu, pv, x, cost_of, n2 - used[0], joint_sets[:, 0], joint_sets[:, 1], joint_sets[:, 2],
+                    joint_sets[:, 3], reach, string_cost, string_ends):
+                continue
             out_x[written, :] = x
             out_y[written, :] = y
             out_flag[written] = flag

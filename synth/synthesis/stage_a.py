@@ -11,10 +11,11 @@ Stage A enumerates labelled multigraphs with the degree equations, the least wei
 parallel strings and loops, stage B's sub-chain conditions written on H and the sb*ℓ
 lexicographic row constraints of Codish et al. between branch vertices of one kind and degree;
 connectivity is checked on each solution and nauty removes the labelled copies that are left.
-A large query (:func:`uses_kernel`) with simple joints runs the compiled search of
-:mod:`synth.synthesis._stage_a_kernel`, where the sub-chain conditions are a pebble game; the
-others one CP-SAT model per code.  Planarity and fractionation are properties of H (a
-subdivision keeps both), so they are decided once per H.
+A large query (:func:`uses_kernel`) runs the compiled search of :mod:`synth.synthesis._stage_a_kernel`,
+where the sub-chain conditions on sets of links are a pebble game and those with multiple joints are
+checked on each complete multigraph; the others the plain search or one CP-SAT model per code.
+Planarity and fractionation are properties of H (a subdivision keeps both), so they are decided once
+per H.
 """
 
 from __future__ import annotations
@@ -473,10 +474,20 @@ def _contracted_by_search(code: Code, conv: Conventions) -> list[Contracted]:
 
 
 def _stage_a_kernel_applies(code: Code, conv: Conventions) -> bool:
-    """Whether stage A's compiled kernel writes this code's conditions: simple joints, two branch
-    vertices or more, and no exemption of the whole chain (then the sub-chain conditions of stage A
-    are the sparsity that its pebble game checks)."""
-    return not code.v and len(_branch_vertices(code)) >= 2 and code.dof(conv.h) >= conv.threshold
+    """Whether stage A's compiled kernel writes this code's conditions: two branch vertices or more
+    and no exemption of the whole chain (then the sub-chain conditions of stage A on sets of links are
+    the sparsity that its pebble game checks; those with multiple joints it checks on each complete
+    multigraph, its vertex sets as bit masks: a query has at most 18 branch vertices)."""
+    return len(_branch_vertices(code)) >= 2 and code.dof(conv.h) >= conv.threshold
+
+
+def _mask(vertices) -> int:
+    """A set of branch vertices as a bit mask.
+
+    >>> _mask((0, 3))
+    9
+    """
+    return sum(1 << u for u in vertices)
 
 
 def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
@@ -533,6 +544,12 @@ def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iter
     loops_most = deg // 2 if conv.fractionated or code.n1 else np.zeros(m, dtype=np.int64)
     same = np.array([(u, v) for u, v in pairs if vertices[u] == vertices[v]], dtype=np.int64).reshape(-1, 2)
     conditions = _subset_conditions(vertices, code.dof(h), conv)
+    # the pebble game is the conditions on sets of links (every set of 3+ inner links, or none at h = 2, where
+    # the sets stop at 2 links; a pair is within its least weights); those with multiple joints (whose joints
+    # must be on a string from a link of T) are checked on each complete multigraph, in the kernel
+    of_links = [c for c in conditions if not c[1]]
+    joint_sets = np.array([(_mask(TL + TJ), _mask(TL), _mask(TJ), bound) for TL, TJ, bound in conditions if TJ],
+                          dtype=np.int64).reshape(-1, 4)
     pu, pv = np.array(pairs, dtype=np.int64).reshape(-1, 2).T.copy()
     state = new_state(len(pairs), m)
     out_x = np.zeros((_CONDITION_BATCH, len(pairs)), dtype=np.int64)
@@ -545,12 +562,13 @@ def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iter
     seen: set[bytes] = set()
     while True:
         found = multigraphs(m, deg, loops_most, bounds.loop, pu, pv, lb_of, cost_of, inner, same, n2, h,
-                            h + conv.threshold, bool(conditions), state, out_x, out_y, flags, least_budget)
+                            h + conv.threshold, bool(of_links), joint_sets, state, out_x, out_y, flags,
+                            least_budget)
         X, Y = out_x[:found], out_y[:found]
         keep = np.ones(found, dtype=bool)
         marked = np.flatnonzero(flags[:found])
-        if len(marked):  # the slack is too large for a pebble game: every condition by the numbers
-            keep[marked] = bounds.meet(X[marked], Y[marked], conditions)
+        if len(marked):  # the slack is too large for a pebble game: the conditions on sets of links by the numbers
+            keep[marked] = bounds.meet(X[marked], Y[marked], of_links)
         for row_x, row_y in zip(X[keep].tolist(), Y[keep].tolist()):
             edges = [p for p, k in zip(pairs, row_x) if k for _ in range(k)]
             edges += [(u, u) for u, k in enumerate(row_y) if k for _ in range(k)]

@@ -108,7 +108,7 @@ def test_counts_and_listings_by_code_are_the_same_with_the_kernel(query, monkeyp
 
 
 # 8 links of h = 2 here, 10 in the slow set (17 CPU s)
-STAGE_A_QUERIES = [q for q in QUERIES if not q.get("v")] + [dict(dof=1, links=14), dict(dof=1, links=8, h=2), dict(dof=0, links=11),
+STAGE_A_QUERIES = QUERIES + [dict(dof=1, links=14), dict(dof=1, links=8, h=2), dict(dof=0, links=11),
                              dict(dof=1, links=12, planar_only=True), dict(dof=1, links=8, prismatic="0.."),
                              dict(dof=2, links=9, fractionated=False, n1=(0, 2))]
 
@@ -116,8 +116,10 @@ STAGE_A_QUERIES = [q for q in QUERIES if not q.get("v")] + [dict(dof=1, links=14
 @pytest.mark.parametrize("query", STAGE_A_QUERIES + SLOW_QUERIES + [
     pytest.param(dict(dof=1, links=10, h=2), marks=pytest.mark.slow, id="dof=1,links=10,h=2")], ids=_ids)
 def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywhere, monkeypatch):
-    """Code by code (simple joints: multiple joints keep the model), the kernel's branch multigraphs (pebble games for the sub-chain conditions,
-    batches of 3 to exercise the resumed search) are the CP-SAT model's, in the same order and with the same labelling (chains drawn from them are numbered alike)."""
+    """Code by code, the kernel's branch multigraphs (pebble games for the sub-chain conditions on sets of links,
+    those with multiple joints on each complete multigraph, batches of 3 to exercise the resumed search) are the
+    CP-SAT model's or the plain search's, in the same order and with the same labelling (chains drawn from them
+    are numbered alike)."""
     from synth.synthesis.type_synthesis import plan_jobs
 
     monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 3)
@@ -132,6 +134,61 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
         assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
         compared += len(model)
     assert compared
+
+
+@pytest.mark.parametrize("query", [q for q in STAGE_A_QUERIES if q.get("v")], ids=_ids)
+def test_a_counts_stage_a_stream_with_multiple_joints_is_the_models_each_once(query, kernel_everywhere, monkeypatch):
+    """Codes with multiple joints: the stream a count reads (the kernel's least labellings, each class once)
+    holds the certificates of the model's or the plain search's branch multigraphs, none lost or doubled."""
+    from synth.synthesis.type_synthesis import plan_jobs
+
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 5)
+    compared = 0
+    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
+        if not code.v or not stage_a._stage_a_kernel_applies(code, conv):
+            continue
+        stream = sorted(graph.certificate for graph in stage_a.contracted_stream(code, conv))
+        with monkeypatch.context() as model_only:
+            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
+            model = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
+        assert stream == model, code
+        compared += len(model)
+    assert compared
+
+
+@pytest.mark.parametrize("code", ["8800000/2-1", "760100/1", "10.4.0.0.0.0/2-2", "941000/2-1", "530/1"])
+def test_stage_a_kernels_joint_conditions_are_meet_compiled(code):
+    """The kernel's check of the sub-chain conditions with multiple joints against ``_StringBounds.meet`` (numpy,
+    the model's and the plain search's) on 3 000 random multiplicity rows of each code: the same verdicts, and
+    both ways met (a check that always says yes or no would fail)."""
+    import numpy as np
+    from itertools import combinations
+
+    from synth.structure.code import Code
+    from synth.synthesis._stage_a_kernel import _joint_conditions_hold
+
+    code, conv = Code.parse(code), stage_a.Conventions()
+    vertices = stage_a._branch_vertices(code)
+    m = len(vertices)
+    pairs = list(combinations(range(m), 2))
+    bounds = stage_a._StringBounds(vertices, pairs, code, conv)
+    conditions = [c for c in stage_a._subset_conditions(vertices, code.dof(conv.h), conv) if c[1]]
+    sets = np.array([(stage_a._mask(TL + TJ), stage_a._mask(TL), stage_a._mask(TJ), bound)
+                     for TL, TJ, bound in conditions], dtype=np.int64)
+    rng = np.random.default_rng(7)
+    X = rng.choice(3, size=(3000, len(pairs)), p=[0.75, 0.2, 0.05]).astype(np.int64)
+    Y = rng.choice(2, size=(3000, m), p=[0.9, 0.1]).astype(np.int64)
+    strings = np.arange(int(X.max()) + 1)
+    lb_of = np.maximum(0, bounds.slope[:, None] * strings[None, :] + bounds.offset[:, None])
+    cost_of = (conv.h - 1) * strings[None, :] - lb_of
+    pu, pv = np.array(pairs, dtype=np.int64).T.copy()
+    slack = code.count(2) - lb_of[np.arange(len(pairs)), X].sum(axis=1) - Y @ bounds.loop
+    work = np.zeros(m, dtype=np.int64), np.zeros(len(pairs), dtype=np.int64), np.zeros(len(pairs), dtype=np.int64)
+    compiled = [_joint_conditions_hold(m, pu, pv, x, cost_of, s, sets[:, 0], sets[:, 1], sets[:, 2], sets[:, 3], *work)
+                for x, s in zip(X, slack)]
+    expected = bounds.meet(X, Y, conditions)
+    assert compiled == expected.tolist()
+    assert 0 < expected.sum() < len(expected)
 
 
 @pytest.mark.parametrize("pairs, vertices", [(0, 1), (1, 2), (6, 4), (45, 10)])

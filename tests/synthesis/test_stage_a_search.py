@@ -50,17 +50,18 @@ def _same_both_ways(jobs) -> int:
 
 
 def test_the_search_finds_what_the_model_finds_for_the_codes_of_the_benchmark_queries():
-    """Every code of up to 7 branch vertices (1 570 codes, about 12 CPU s both ways)."""
+    """Every code of up to 7 branch vertices (1 365 codes, 20 461 H; those of 5 loops or more with multiple
+    joints go to the kernel)."""
     jobs = [job for job in _model_jobs() if len(_branch_vertices(job[0])) <= 7]
-    assert len(jobs) > 1500
+    assert len(jobs) > 1300
     assert _same_both_ways(jobs) > 5000
 
 
 @pytest.mark.slow
 def test_the_search_finds_what_the_model_finds_for_every_code_it_runs():
-    """… and every code the search runs (8 branch vertices too: 1 637 codes, about 25 CPU s)."""
+    """… and every code the search runs (8 branch vertices too: 1 420 codes)."""
     jobs = [job for job in _model_jobs() if stage_a._searched(*job)]
-    assert len(jobs) > 1600
+    assert len(jobs) > 1400
     assert _same_both_ways(jobs) > 5000
 
 
