@@ -13,6 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 from matplotlib.path import Path as MplPath  # noqa: E402
 
 import synth  # noqa: E402
@@ -189,6 +190,10 @@ def test_every_frame_pivot_carries_a_fixed_pivot_sign_nothing_covers():
             plt.close(fig)
 
 
+WATT = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
+TRANSLATOR = "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13"
+
+
 def _title_and_drawings(monkeypatch, run):
     """The sheet title's box and the top of its highest drawing, in figure fractions, and the title's
     band (0.45 inch) in the same unit, of the picture ``run`` writes."""
@@ -197,6 +202,8 @@ def _title_and_drawings(monkeypatch, run):
     def keep(fig, path, dpi):
         fig.canvas.draw()
         seen["title"] = fig._suptitle.get_window_extent().transformed(fig.transFigure.inverted())
+        seen["title"].text = fig._suptitle.get_text()
+        seen["title"].drawn = sum(1 for ax in fig.axes if ax.has_data())
         seen["top"] = max(ax.get_position().y1 for ax in fig.axes if ax.has_data())
         seen["band"] = 0.45 / fig.get_size_inches()[1]
 
@@ -250,7 +257,68 @@ def test_no_caption_runs_into_the_next_row(monkeypatch, tmp_path):
     """`draw --code 530/1` and the linear translator's bases (loop classes, labels, a key): no text of one
     drawing overlaps a text of another — the captions of 530/1's first two rows lay over the '3's at the tops
     of the rows below (tight_layout set the rows before their equal aspect shrank them; a second pass holds)."""
-    translator = "0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13"
-    for argv in (["--code", "530/1"], ["--chain", translator, "--loop-classes", "3=4,5=1", "--labels", "--title", "t"]):
+    for argv in (["--code", "530/1"], ["--chain", TRANSLATOR, "--loop-classes", "3=4,5=1", "--labels", "--title", "t"]):
         assert _texts_of_other_drawings_overlapping(
             monkeypatch, lambda: main(["draw", *argv, "--out", str(tmp_path / "sheet.png")])) == [], argv
+
+
+@pytest.mark.parametrize("args,title", [
+    (["--chain", WATT, "--prismatic", "1..2"], "42/0 (W = 1): {n} variants with 1..2 prismatic pairs"),
+    (["--chain", WATT, "--prismatic", "1", "--mechanisms"], "42/0 (W = 1): {n} mechanisms of its variants with 1 "
+                                                              "prismatic pair"),
+    (["--chain", WATT, "--mechanisms"], "42/0 (W = 1): {n} mechanisms"),
+    (["--chain", TRANSLATOR, "--loop-classes", "3=4,5=1"], "12.2.0.0.0/6 (W = 1): {n} bases of loop classes 3=4,5=1"),
+])
+def test_a_sheet_of_one_chain_has_a_title_as_a_code_sheet_has(monkeypatch, tmp_path, args, title):
+    """`draw --chain … --prismatic` / `--loop-classes` / `--mechanisms` sheets had no title (a `--code`
+    sheet says its code, W and how many it draws): the title names the chain's code, its W, and what the
+    sheet's drawings are, counted, over the first row."""
+    box, top, _ = _title_and_drawings(monkeypatch, lambda: main(["draw", *args, "--out", str(tmp_path / "s.png")]))
+    assert top <= box.y0 < box.y1 <= 1  # over the first row, on the sheet
+    assert box.text == title.format(n=box.drawn) and box.drawn > 1
+
+
+#: the first four drawings of the fig6_cylinders scene's sheet (8310/1 drives, one floating and two swinging cylinders)
+FIG6 = ["0-1-2 0-10 1-5 1-6 2=11 3-5 3-7 4-5 4-6 6-7 6-8 7-9 8=9 10=11",
+        "0-1-2 0-3 0-6 1=10 2=11 3-4 3-5 4-7 5-6 6-7 6-8 7-9 8=9 10-11",
+        "0-1-2 0-10 1-4 1-6 2=11 3-4 3-6 4-7 5-6 5-7 6-8 7-9 8=9 10=11",
+        "0-1-2 0-3 0-6 1=10 2=11 3-5 3-7 4-6 4-7 5-6 6-8 7-9 8=9 10-11"]
+
+
+def _numbers_over_symbols(monkeypatch, run) -> list:
+    """(drawing, link number, what it covers) for each link number of the sheet ``run`` writes whose box
+    (shrunk by a tenth) meets a pin, slider, cylinder, free end or fixed-pivot sign, or another number."""
+    seen = []
+
+    def keep(fig, path, dpi):
+        fig.set_dpi(dpi)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        for k, ax in enumerate(fig.axes):
+            numbers = [t for t in ax.texts if (t.get_gid() or "").startswith("label")]
+            symbols = [p for p in ax.patches if (p.get_gid() or "").startswith(("pin", "slider", "cylinder", "ground",
+                                                                                 "end"))]
+            for t in numbers:
+                box = t.get_window_extent(renderer).shrunk(0.9, 0.9)
+                seen.extend((k, t.get_text(), p.get_gid()) for p in symbols
+                            if p.get_path().transformed(p.get_transform()).intersects_bbox(box, filled=True))
+            seen.extend((k, a.get_text(), b.get_text()) for a, b in itertools.combinations(numbers, 2)
+                        if a.get_window_extent(renderer).overlaps(b.get_window_extent(renderer)))
+
+    monkeypatch.setattr(_render, "_save", keep)
+    run()
+    return seen
+
+
+def test_link_numbers_stand_clear_of_cylinders_pins_and_pivot_signs(monkeypatch, tmp_path):
+    """A link's number stood at the middle of its joints: on 12-link drawings (the fig6_cylinders scene) under
+    its cylinder, a slider, a pin or a fixed-pivot sign (18 overlaps in these four drawings). Placed as the
+    motion drawings place them — beside a bar, in a plate, where no symbol is — none is covered, on that
+    sheet and on labelled open chains."""
+    fig6 = [synth.Mechanism(Chain.parse(text), 0) for text in FIG6]
+    assert _numbers_over_symbols(monkeypatch, lambda: draw.draw_sheet(fig6, tmp_path / "f.png", columns=4)) == []
+    arm = draw.expand([Chain.parse("0-1 1-2 2-3 3-4")], mechanisms=True)
+    assert _numbers_over_symbols(monkeypatch, lambda: draw.draw_sheet(arm, tmp_path / "a.png")) == []
+    # open chains with free ends (docs/cli.md's robot_arm.png, labelled): "1" stood over "2" on #3
+    assert _numbers_over_symbols(monkeypatch, lambda: main(["draw", "--code", "2|5/2", "--labels", "--out",
+                                                            str(tmp_path / "r.png")])) == []

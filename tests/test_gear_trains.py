@@ -31,7 +31,7 @@ import pytest
 
 from synth.errors import InvalidOption, MalformedChain, flag
 from synth.gears import GearTrain
-from synth.gears.ratio_design import design
+from synth.gears.ratio_design import RatioUnreached, design
 from synth.gears import enumeration
 from synth.gears.enumeration import census, count_trains, link_axis_trees, trains
 from synth.gears.train import fractionated
@@ -633,7 +633,7 @@ def test_design_two_stage_train():
 
 def test_design_refusals():
     simple = GearTrain.parse("0-1-2 2-3 0~3i 1~3")
-    with pytest.raises(InvalidOption, match="no tooth numbers"):
+    with pytest.raises(RatioUnreached, match="no tooth numbers"):  # a valid question without an answer
         design(simple, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60))
     with pytest.raises(InvalidOption, match="undercut"):
         design(simple, 0, 1, 2, "4", teeth=(5, 12))
@@ -677,6 +677,21 @@ def test_cli_mechanisms_and_ratio(tmp_path):
 
 
 @pytest.mark.parametrize("args,words", [
+    (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "1.01",
+      "--tolerance", "0.1%"], "no tooth numbers in 17..150 give the ratio 1.01 within 0.1% in this mechanism"),
+    (["--links", "5", "--ratio", "1000", "--teeth", "17..20"], "no tooth numbers in 17..20 give the ratio 1000"),
+])
+def test_cli_a_ratio_no_teeth_reach_exits_1(args, words):
+    """A ratio no tooth numbers reach is a valid query that matched nothing (exit 1, as the README's
+    contract says), not bad input (exit 2)."""
+    out = _cli(*args)
+    assert out.returncode == 1, out.stdout + out.stderr
+    assert out.stdout == "" and out.stderr.startswith(f"mechsynth: {words}") and len(out.stderr.splitlines()) == 1
+
+
+@pytest.mark.parametrize("args,words", [
+    (["--train", "0-1 0-2 1~2", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "2", "--planets", "3"],
+     "equally spaced planets need a planet wheel"),  # the train cannot be designed so: bad input
     (["--links", "1"], "at least 2 links"),
     (["--links", "2"], "at least 3 links"),
     (["--links", "-3"], "at least 2 links"),
@@ -688,8 +703,6 @@ def test_cli_mechanisms_and_ratio(tmp_path):
     (["--links", "8", "--ratio", "3"], "up to 7 links"),
     (["--links", "5", "--ratio", "3", "--mesh-kinds", "any"], "invalid choice"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--links", "4"], "contradicts --train"),
-    (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "1.01",
-      "--tolerance", "0.1%"], "no tooth numbers"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4",
       "--teeth", "5..12"], "undercut"),
     (["--train", "0-1-2 2-3 0~3i 1~3", "--frame", "0", "--input", "1", "--output", "2", "--ratio", "4.123456789123456789",

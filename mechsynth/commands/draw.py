@@ -90,6 +90,29 @@ def _variants(args, chains: list) -> list:
     return list(variants_of(chains, (lo, simple if hi is None else min(hi, simple)), idle=args.idle_joints))
 
 
+def _chain_sheet_title(chain, items: list, args) -> str:
+    """The title of a sheet drawn from one ``--chain``, as a ``--code`` sheet's: the chain's code, its
+    W and what the drawings are.
+
+    >>> from argparse import Namespace; from synth import Chain
+    >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
+    >>> _chain_sheet_title(watt, [watt] * 11, Namespace(loop_classes=None, prismatic="1..2", mechanisms=False))
+    '42/0 (W = 1): 11 variants with 1..2 prismatic pairs'
+    """
+    n, s = len(items), "s" * (len(items) != 1)
+    dofs = {getattr(item, "chain", item).dof for item in items}  # the bases of loop classes carry their own W
+    kind, detail = (("base", f" of loop classes {args.loop_classes}") if args.loop_classes is not None
+                    else ("variant", f" with {args.prismatic} prismatic pair{'s' * (args.prismatic != '1')}") if args.prismatic is not None
+                    else ("chain", ""))
+    if not args.mechanisms:
+        what = f"{kind}{s}{detail}"
+    else:
+        what = f"mechanism{s}" + ("" if kind == "chain" else f" of its {kind}s{detail}")
+    w = f"W = {dofs.pop()}" if len(dofs) == 1 else "W = " + ", ".join(map(str, sorted(dofs)))
+    h = "" if chain.h == 3 else f", h = {chain.h}"
+    return f"{chain.code} ({w}{h}): {n} {what}"
+
+
 def _defect(chain, dof) -> str:
     """What is wrong with a chain to repair, in a few words (the caption of its drawing)."""
     from synth import check_subchains
@@ -140,7 +163,8 @@ def _draw_trains(rows, args) -> int:
         draw_train(trains[0], args.out, title=args.title, size=args.size or 6.0)
     else:
         draw_train_sheet(trains, args.out, columns=args.columns or 4, limit=args.limit,
-                   titles=[f"{k + 1}: {row['code']}  id {row['id']}" for k, row in enumerate(rows)])
+                   titles=[f"{k + 1}: {row['code']} (lever analogue {row['lever_code']})\nid {row['id']}"
+                           for k, row in enumerate(rows)])
     print(f"{len(trains)} schematic{'s' if len(trains) != 1 else ''} -> {args.out}", file=sys.stderr)
     return 0
 
@@ -270,7 +294,7 @@ def _run_draw(args) -> int:
             items = [Mechanism(chain, args.frame)]
         else:
             items = expand(_variants(args, [chain]), mechanisms=args.mechanisms)
-        title = args.title
+        title = args.title or (_chain_sheet_title(chain, items, args) if len(items) > 1 else None)  # one: its caption
     elif args.code:
         import synth
 

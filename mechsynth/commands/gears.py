@@ -106,7 +106,11 @@ def _compound(text: str) -> tuple[int, ...]:
 
 
 def _train_row(train, fmt: str) -> dict:
+    """A train's listing row: ``code`` is its lever analogue's (as ``--count`` counts them), ``train_code``
+    the train's own, with its meshes, as an atlas stores and captions it (530/1 and 230/1 G3)."""
     row = train.to_dict()
+    chain = train.to_chain()
+    row["train_code"] = str(chain.code) + chain.kind_suffix
     if fmt == "table":
         row["certificate"] = "…" + row["certificate"][-12:]
     return row
@@ -147,10 +151,11 @@ def _run(args) -> int:
     if args.out:
         items = list(items)
         _check_sheet(args, len(items), "gear trains")
-    columns = ["index", "train", "code", "dof", "carriers", "certificate"]
+    columns = ["index", "train", "code", "train_code", "dof", "carriers", "certificate"]
     n = write_rows(_indexed(_train_row(t, fmt) for t in items), columns, fmt)
     if fmt == "table":
-        print(f"{n} gear trains ({args.graphs} graphs)" if args.train is None else f"{n} gear train")
+        print((f"{n} gear trains ({args.graphs} graphs)" if args.train is None else f"{n} gear train")
+              + "; code: the lever analogue's, train_code: the train's own, as an atlas lists and draws it")
     if args.out and n:
         _draw(items, args.out, compound)
     return 0 if n else nothing_found("gear trains satisfy these parameters")
@@ -241,9 +246,10 @@ def _run_ratio(args, items, compound) -> int:
     items = list(items)  # the bar's total
     with tqdm(items, unit=" trains", file=sys.stderr, disable=None, delay=1.0, leave=False, desc="ratio design") as bar:
         kept = _best_designs(args, bar, compound, lo, hi, kinds)
-    if not kept:
-        raise InvalidOption(f"no tooth numbers in {lo}..{hi} give the ratio {args.ratio} within "
-                            f"{args.tolerance or '1%'} in these trains (coaxial, assembly and undercut conditions)")
+    if not kept:  # a valid question without an answer: exit 1, as any query that matches nothing
+        where = "this mechanism" if args.input is not None else "these trains"
+        return nothing_found(f"tooth numbers in {lo}..{hi} give the ratio {args.ratio} within {args.tolerance or '1%'} "
+                             f"in {where} (coaxial, assembly and undercut conditions)")
     designs = [(d, m) for *_, d, m in kept]
     fmt = args.format or "table"
     rows = []
@@ -275,7 +281,7 @@ def _run_ratio(args, items, compound) -> int:
 def _best_designs(args, items, compound, lo: int, hi: int, kinds: str) -> list:
     """The ``--best`` designs over every mechanism of ``items``: (error, teeth sum, order, design,
     mechanism), the worst kept so far bounding the next searches."""
-    from synth.gears import MIN_TEETH, NoDesign, design
+    from synth.gears import MIN_TEETH, NoDesign, RatioUnreached, design
 
     kept: list = []
     for order, m in enumerate(_mechanisms_of(args, items, compound)):
@@ -284,10 +290,12 @@ def _best_designs(args, items, compound, lo: int, hi: int, kinds: str) -> list:
             found = design(m.train, m.frame, m.input_link, m.output_link, args.ratio, tolerance=args.tolerance or "1%",
                            teeth=(lo, hi), min_teeth=MIN_TEETH if args.min_teeth is None else args.min_teeth,
                            planets=args.planets, compound=compound, best=args.best, kinds=kinds, beat=beat)
-        except NoDesign:
+        except RatioUnreached:
+            continue  # another mechanism may reach the ratio
+        except NoDesign:  # the one mechanism asked cannot be designed so: say why
             if args.train is not None and args.input is not None:
                 raise
-            continue  # another mechanism may reach the ratio
+            continue
         kept = sorted(kept + [(d.error, sum(d.teeth.values()), order, d, m) for d in found],
                          key=lambda x: x[:3])[:args.best]
     return kept

@@ -271,7 +271,7 @@ def draw_train(train: GearTrain, path, *, teeth: dict | None = None, compound=()
 
 
 def draw_train_sheet(trains, path, *, columns: int = 4, limit: int = 48, titles=None) -> int:
-    """Several schematics on one sheet, each captioned (wrapped to its cell) and a legend under
+    """Several schematics on one sheet, each captioned (each line wrapped to its cell) and a legend under
     them; more than ``limit`` trains are refused (a sheet never drops trains silently).
     Returns how many were drawn."""
     path = _target(path)
@@ -306,7 +306,8 @@ def sheet_figure(trains, *, columns: int = 4, titles=None):
     for k, ax in enumerate(axes.flat):
         if k < len(trains):  # captions wrap at 11 characters an inch (at 8 points about 15 fit)
             title = titles[k] if titles else f"{k + 1}: {_caption(trains[k])}"
-            _draw_on(ax, trains[k], None, (), textwrap.fill(title, int(width * 11)), fontsize=8)
+            title = "\n".join(textwrap.fill(line, int(width * 11)) for line in title.splitlines())  # its own breaks kept
+            _draw_on(ax, trains[k], None, (), title, fontsize=8)
         else:
             fig.delaxes(ax)
     share = foot / (height * rows + foot)

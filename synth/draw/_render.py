@@ -158,10 +158,6 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.add_patch(Polygon(pts, closed=True, facecolor="white" if frame else _FILL, edgecolor=edge,
                                  hatch="////" if frame else None, lw=2.4 if based else 1.4, joinstyle="round",
                                  zorder=1))
-        if labels:
-            x, y = marks.labels[link]
-            ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
-                    gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     for k, joint in enumerate(chain.joints):
         x, y = pos[k]
         kind = chain.kinds[k]
@@ -184,6 +180,10 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
                 _fixed_pivot(ax, pos[k], marks.ground(k), r, gid=f"ground{k}")
+    if labels:
+        for link, (x, y) in _label_places(ax, marks, mech).items():
+            ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
+                    gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -201,6 +201,88 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.set_title(caption, fontsize=8, pad=0, y=-0.02, va="top")
         else:
             ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
+
+
+def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.ndarray]:
+    """Where each link's number goes, as the motion drawings place them: of a few places (either side of
+    a bar, along it; a plate's middle, towards its pins), the first clear of every pin, ring, slider,
+    cylinder, fixed-pivot sign, bar, multiplicity number and number placed before, else the clearest
+    (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings).
+    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet."""
+    from matplotlib.path import Path as MplPath
+
+    chain, lay, pos, r = marks.chain, marks.lay, marks.pos, marks.r
+    _, columns = ax.get_subplotspec().get_gridspec().get_geometry()
+    inches = 0.95 * ax.figure.get_figwidth() / columns  # a cell's width, as the sheet's layout leaves the drawing
+    unit = 2 * marks.reach / inches * 7 / 72  # the drawing's length of one 7-point em
+    half_height, half_char = 0.62 * unit, 0.36 * unit  # the text and its white box's padding
+    samples = []
+
+    def segment(a, b):
+        samples.append(np.linspace(a, b, 2 + int(np.linalg.norm(b - a) / (0.4 * r))))
+
+    def outline(corners):
+        for a, b in zip(corners, [*corners[1:], corners[0]]):
+            segment(np.asarray(a, float), np.asarray(b, float))
+
+    circle = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 12, endpoint=False)])
+    for link, poly in enumerate(lay.polygons):
+        ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
+        if len(ends) == 2:
+            segment(*ends)
+        else:
+            outline(ends)
+        if len(poly) == 1:
+            outline(marks.free_ends[link] + r * np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]]))
+    for k, joint in enumerate(chain.joints):
+        samples.append(pos[k] + (1.75 if len(joint) > 2 else 1.0) * r * np.vstack([circle, [0, 0]]))
+        if k in marks.numbers:
+            samples.append(marks.numbers[k] + 0.9 * unit * np.vstack([circle, [0, 0]]))
+        if chain.kinds[k] == PRISMATIC:
+            corners = _slider(chain, lay, k, r)[0]
+            outline(corners)
+            segment((corners[0] + corners[3]) / 2, (corners[1] + corners[2]) / 2)
+        if mech is not None and mech.frame in joint:
+            d = marks.ground(k)
+            across = np.array([-d[1], d[0]])
+            base = pos[k] + d * 2.4 * r
+            outline([pos[k], base + across * 2.1 * r, base + across * 2.1 * r + d * 0.8 * r,
+                     base - across * 2.1 * r + d * 0.8 * r, base - across * 2.1 * r])
+    obstacles = np.concatenate(samples)
+    placed: list[np.ndarray] = []
+    plates = [MplPath(pos[poly]) for poly in lay.polygons if len(poly) > 2]
+
+    def clearance(centre: np.ndarray, half: np.ndarray) -> float:
+        if np.any(np.abs(centre) + half > marks.reach):  # off the drawing
+            return -math.inf
+        pts = np.concatenate([obstacles, *placed]) if placed else obstacles
+        gap = np.maximum(np.abs(pts - centre) - half, 0.0)
+        return float(np.hypot(gap[:, 0], gap[:, 1]).min(initial=math.inf))
+
+    out = {}
+    for link, poly in enumerate(lay.polygons):
+        half = np.array([half_char * len(str(link)) + 0.2 * unit, half_height])
+        ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
+        middle = np.mean(ends, axis=0)
+        if len(ends) == 2:  # a bar: beside it, the upper side and its middle first; on it last
+            d = ends[1] - ends[0]
+            n = np.array([-d[1], d[0]]) / max(float(np.linalg.norm(d)), 1e-12)
+            n = n if n[1] >= 0 else -n
+            lift = 0.4 * r + float(np.abs(n) @ half)
+            centres = [ends[0] + t * d + side * (lift + wide) * n for wide in (0, 1.4 * r) for side, t in
+                       ((1, 0.5), (-1, 0.5), (1, 0.3), (1, 0.7), (-1, 0.3), (-1, 0.7), (1, 0.15), (1, 0.85),
+                        (-1, 0.15), (-1, 0.85))]  # beside a cylinder's barrel, 1.3 r wide, too
+            inside = [c for c in centres if any(plate.contains_point(c) for plate in plates)]
+            centres = [c for c in centres if not any(c is i for i in inside)] + inside + [middle]  # not read as a plate's
+        else:  # a plate: its middle, else towards one of its corners
+            sides = [(a + b) / 2 for a, b in zip(ends, ends[1:] + ends[:1])]
+            centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55, 0.75) for p in ends + sides]
+        gaps = [clearance(c, half) for c in centres]
+        clear = [c for c, g in zip(centres, gaps) if g >= 0.3 * r]
+        centre = clear[0] if clear else centres[int(np.argmax(gaps))]
+        placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
+        out[link] = centre
+    return out
 
 
 def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, gid: str) -> None:

@@ -20,7 +20,7 @@ _WHERE = {
     "check_query": ".enumeration", "estimate_trains": ".enumeration", "size_check_trains": ".enumeration",
     "GearMechanism": ".ratios", "RatioFormula": ".ratios", "mechanisms": ".ratios",
     "speed_ratio": ".ratios",
-    "Design": ".ratio_design", "NoDesign": ".ratio_design", "design": ".ratio_design", "MIN_TEETH": ".ratio_design",
+    "Design": ".ratio_design", "NoDesign": ".ratio_design", "RatioUnreached": ".ratio_design", "design": ".ratio_design", "MIN_TEETH": ".ratio_design",
     "ratio_and_tolerance": ".ratio_design",
     "planetary_row": ".planetary", "planetary_rows": ".planetary", "planetary_table": ".planetary",
 }

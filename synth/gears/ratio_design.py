@@ -46,7 +46,7 @@ from ..errors import InvalidOption, option
 from .ratios import speed_ratio, wheel_names
 from .train import GearTrain
 
-__all__ = ["Design", "NoDesign", "design", "parse_fraction", "ratio_and_tolerance", "planet_pairs", "carrier_cycles", "planet_clearance",
+__all__ = ["Design", "NoDesign", "RatioUnreached", "design", "parse_fraction", "ratio_and_tolerance", "planet_pairs", "carrier_cycles", "planet_clearance",
            "MIN_TEETH", "RING_MARGIN"]
 
 MIN_TEETH = 17  # 20° full-depth involute teeth cut by a rack: fewer are undercut
@@ -55,7 +55,12 @@ _BOUND = 1 << 61  # CP-SAT integers
 
 
 class NoDesign(InvalidOption):
-    """No tooth numbers meet the ratio and the conditions (or the train has no planet for ``planets``)."""
+    """The train cannot be designed as asked (e.g. it has no planet for ``planets``)."""
+
+
+class RatioUnreached(NoDesign):
+    """The search ran and no tooth numbers of the range meet the ratio and the conditions: a valid
+    question without an answer (the command line's exit status 1, not a refusal)."""
 
 
 @dataclass(frozen=True)
@@ -156,7 +161,8 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
     ``kinds``: "given" (the train's own internal and external meshes) or "free" (each mesh as the
     solver chooses).  ``beat``: (error, tooth sum) — only designs of a smaller error, or of that
     error and at most that sum (a search over many mechanisms passes the worst design it keeps).
-    Raises :class:`NoDesign` when none qualifies.
+    Raises :class:`RatioUnreached` when none qualifies, :class:`NoDesign` when the train cannot be
+    designed as asked.
     """
     target, tol = ratio_and_tolerance(ratio, tolerance)
     if teeth[0] < 1:
@@ -174,7 +180,7 @@ def design(train: GearTrain, frame: int, input_link: int, output_link: int, rati
                          kinds == "free", beat)
     found = model.best(best)
     if not found:
-        raise NoDesign(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
+        raise RatioUnreached(f"no tooth numbers in {lo}..{hi} give the ratio {ratio} within {tolerance} under the "
                        "coaxial, assembly and undercut conditions")
     return found
 

@@ -213,6 +213,27 @@ def test_draw_from_the_atlas_gives_schematics(atlas, tmp_path, capsys):
     assert "take no --dpi" in capsys.readouterr().err
 
 
+def test_a_listing_row_is_found_on_the_atlas_sheet_by_its_codes(atlas, tmp_path, capsys):
+    """`gears` listed a train by its lever analogue's code (530/1), `draw --db` captioned it with the
+    train's own (230/1 G3), and nothing said which was which: the listing gives both (`code` the lever
+    analogue's, `train_code` the train's own) and each caption names the lever analogue's, so every row
+    of `gears --links 5` has its drawing, found by either code."""
+    assert main(["gears", "--links", "5", "--format", "jsonl"]) == 0
+    listed = {r["certificate"]: r for r in map(json.loads, capsys.readouterr().out.splitlines())}
+    rows = list(export(atlas, "chains", where=["kind=gears", "n=5"]))
+    sheet = tmp_path / "five.svg"
+    assert main(["draw", "--db", str(atlas), "--where", "kind=gears", "--where", "n=5", "--out", str(sheet)]) == 0
+    text = sheet.read_text()
+    assert len(rows) == len(listed) == 13
+    for row in rows:
+        mine = listed[GearTrain.parse(row["train"]).certificate]  # the same train, however numbered
+        assert (mine["train_code"], mine["code"]) == (row["code"], row["lever_code"])
+        assert f"{row['code']} (lever analogue {row['lever_code']})" in text
+    assert main(["gears", "--links", "5"]) == 0
+    out = capsys.readouterr().out
+    assert "code: the lever analogue's, train_code: the train's own" in out.splitlines()[-1]
+
+
 def test_site_pages_draw_every_train(atlas, tmp_path):
     db = tmp_path / "five.sqlite"
     run_grid(parse_grid("[[gears]]\nlinks = 5\n"), db, workers=1)

@@ -10,7 +10,7 @@ import pytest
 
 from synth.errors import InvalidOption
 from synth.gears import GearTrain
-from synth.gears.ratio_design import NoDesign, carrier_cycles, design, parse_fraction, planet_clearance, planet_pairs
+from synth.gears.ratio_design import NoDesign, RatioUnreached, carrier_cycles, design, parse_fraction, planet_clearance, planet_pairs
 from synth.gears.ratios import wheel_names
 
 SIMPLE = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, planet 3
@@ -39,7 +39,7 @@ SIMPLE = GearTrain.parse("0-1-2 2-3 0~3i 1~3")  # ring 0, sun 1, carrier 2, plan
      "narrow teeth=A..B"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", planets=0), InvalidOption, "the number of planets must be a whole number ≥ 1, not 0"),
     (lambda: design(SIMPLE, 0, 1, 2, "4", kinds="any"), InvalidOption, "mesh kinds are given or free, not 'any'"),
-    (lambda: design(SIMPLE, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60)), NoDesign,
+    (lambda: design(SIMPLE, 0, 1, 2, "1.01", tolerance="0.1%", teeth=(17, 60)), RatioUnreached,
      "no tooth numbers in 17..60 give the ratio 1.01 within 0.1% under the coaxial, assembly and undercut conditions"),
     (lambda: design(GearTrain.parse("0-1 0-2 1~2"), 0, 1, 2, "2", planets=3), NoDesign,
      "equally spaced planets need a planet wheel that meshes a sun and a ring on one carrier, and this train has none"),
