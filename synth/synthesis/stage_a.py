@@ -504,9 +504,9 @@ def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     """Stage A for a count: every branch multigraph H of ``code`` once, the classes of
     :func:`contracted_graphs` in the order found, not sorted; where the compiled kernel runs, each is
     handed on as soon as nauty has told it apart, in its least labelling where the kernel's test shows
-    it (one labelling a class reaches nauty, not tens to hundreds: :data:`_LEAST_BUDGET`), so what stays held is the set of certificates met (as bytes, the rows of
-    the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H themselves),
-    never the code's H.
+    it (one labelling a class reaches nauty, not tens to hundreds: :data:`_LEAST_BUDGET`), so what stays
+    held is the set of certificates met (as bytes, the rows of the strings' vertices only: under 300 B an
+    H at 20 links, against some 3 kB for the H themselves), never the code's H.
 
     >>> code, conv = Code.parse("662000/0"), Conventions()   # 14 links: the kernel's search
     >>> found = [g.certificate for g in contracted_stream(code, conv)]

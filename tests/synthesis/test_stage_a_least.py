@@ -122,8 +122,8 @@ def test_a_listings_chains_do_not_depend_on_the_labelling_of_h(query, monkeypatc
     """The listing's units (the least labelling of each H, the compiled stage A on every code) are the units of
     each class's first labelling (the listing's stage A before) in the same order, and where the two labellings
     of an H differ (39 and 6 H of these queries, 27 of the 39 with 57 chains: the first labelling found is
-    mostly the least) they give the same chains, numbered and ordered alike — each renumbered canonically, a unit's sorted
-    by certificate."""
+    mostly the least) they give the same chains, numbered and ordered alike — each renumbered canonically, a
+    unit's sorted by certificate."""
     from synth.synthesis.type_synthesis import Unit, job_units, run_unit
 
     monkeypatch.setattr(stage_a, "_KERNEL_LOOPS", {None: 0})
