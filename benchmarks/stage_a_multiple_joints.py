@@ -1,7 +1,7 @@
 """Stage A of the codes with multiple joints, the compiled kernel against the path it replaced (the plain
 search of a code of few branch vertices, else the CP-SAT model): the set of branch multigraphs (nauty's
-certificates) of each code must be the same from the kernel's listing, from a count's stream (its least
-labellings) and from the old path, and each once; CPU seconds of each (``time.process_time`` of this one
+certificates) of each code must be the same from the kernel's listing (sorted), from a count's stream (both
+the least labellings, since PROFILE.md section 46) and from the old path, and each once; CPU seconds of each (``time.process_time`` of this one
 process).  Exit 1 where a code differs, 2 for bad input.
 
 Run from the project root::

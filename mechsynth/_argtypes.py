@@ -14,7 +14,7 @@ from mechbase import RangeSyntax, parse_range
 
 __all__ = ["whole", "positive", "real", "finite", "seconds", "inches", "workers", "number_range", "picture_file",
            "output_file", "output_folder", "where_conditions", "PICTURE_FORMATS", "GivenOnce", "GIVEN",
-           "YesOrNo", "add_row"]
+           "YesOrNo", "add_row", "chain_text", "LINKAGE_FILE_USES"]
 
 #: what a picture may be written as
 PICTURE_FORMATS = (".png", ".pdf", ".svg")
@@ -85,23 +85,62 @@ def positive(text: str) -> int:
     return value
 
 
-def chain_text(text: str) -> str:
-    """A chain as the command line writes it (a joint list or a JSON row), refused in one sentence when the
-    word names a file (a file's chains are read by ``identify``), where the chain's reader would say it
-    cannot read a joint or a code of that name.
+#: what each command that reads a chain's text can do with a linkage file given there instead: the command
+#: that reads it (and for a .json file, the chain read from its text, where the command in hand can use it)
+LINKAGE_FILE_USES = {
+    "analyze": ("'mechsynth identify {file}' gives its chain's code, W, sub-chains and name",
+                "mechsynth analyze \"$(cat {file})\""),
+    "chains": ("'mechsynth identify {file}' gives its chain's id and row in its code's listing",
+               "mechsynth chains --chain \"$(cat {file})\""),
+    "mechanisms": ("'mechsynth identify {file}' gives its mechanism's row in its code's listing (its frame too)",
+                   "mechsynth mechanisms --chain \"$(cat {file})\""),
+    "draw": ("draw takes it as its first argument and draws it to scale: 'mechsynth draw {file} --out FILE'", None),
+    "move": ("move takes it as its first argument: 'mechsynth move {file}'", None),
+}
 
-    >>> chain_text("0-1 1-2 2-3 3-0")
+
+def chain_text(command: str):
+    """The argparse type of a chain given as text to ``command`` (a joint list or a JSON row), refusing in one
+    sentence a word that names a file, where the chain's reader would say it cannot read a joint or a code of
+    that name: a linkage file is named with what ``command`` can do with it (:data:`LINKAGE_FILE_USES`), any
+    other file with ``identify``, which reads the chains of a file.
+
+    >>> chain_text("analyze")("0-1 1-2 2-3 3-0")
     '0-1 1-2 2-3 3-0'
+    >>> chain_text("move")("models/motion_four_bar.toml")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: models/motion_four_bar.toml is a linkage file, and move --chain reads a chain as it is written (a joint list '0-1 1-2 …' or a JSON row): move takes it as its first argument: 'mechsynth move models/motion_four_bar.toml'
     """
-    word = text.strip()
-    if word and not any(c.isspace() for c in word) and os.path.isfile(word):
-        linkage = (f"; a linkage file (as move and dimension --save write it) is the command's first argument, e.g. "
-                   f"'mechsynth draw {word} --out FILE' or 'mechsynth move {word}'"
-                   if word.lower().endswith((".json", ".toml")) else "")
-        raise argparse.ArgumentTypeError(
-            f"{word} is a file, and a chain is read here as it is written (a joint list '0-1 1-2 …' or a JSON row): "
-            f"'mechsynth identify {word}' reads the chains of a file, or give a row's text, \"$(cat {word})\"{linkage}")
-    return text
+    use, text_use = LINKAGE_FILE_USES[command]
+    where = command if command == "analyze" else f"{command} --chain"
+
+    def chain(text: str) -> str:
+        word = text.strip()
+        if not word or any(c.isspace() for c in word) or not os.path.isfile(word):
+            return text
+        read_here = f"{where} reads a chain as it is written (a joint list '0-1 1-2 …' or a JSON row)"
+        if not _is_linkage_file(word):
+            raise argparse.ArgumentTypeError(f"{word} is a file, and {read_here}: 'mechsynth identify {word}' reads "
+                                             "the chains of a file")
+        as_text = f", or '{text_use.format(file=word)}' reads its chain" if text_use and word.lower().endswith(
+            ".json") else ""
+        raise argparse.ArgumentTypeError(f"{word} is a linkage file, and {read_here}: {use.format(file=word)}{as_text}")
+
+    return chain
+
+
+def _is_linkage_file(path: str) -> bool:
+    """Whether ``path`` holds one linkage (as move and dimension --save write it)."""
+    if not path.lower().endswith((".json", ".toml")):
+        return False
+    from synth import SynthesisError
+    from synth.motion import read_linkage
+
+    try:
+        read_linkage(path)
+    except SynthesisError:  # no linkage, or rows of several (the caller names identify)
+        return False
+    return True
 
 
 def add_row(parser, also: str = "") -> None:

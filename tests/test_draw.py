@@ -285,3 +285,20 @@ def test_cli_draw_checks_its_output_before_drawing(tmp_path, monkeypatch, capsys
     assert main(["draw", "--code", "7201/1", "--out", str(tmp_path / "plain" / "x.png")]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechsynth: ") and "plain" in err and "Traceback" not in err
+
+
+def test_a_structure_has_no_mechanisms_to_draw_or_list(tmp_path, capsys):
+    """A chain of W = −1 by the count (a four-bar with a diagonal) is a structure: its mechanisms are refused,
+    drawn or listed, as a code of W < 0 is; the chain itself is still drawn, and its R/P variants that move
+    (wedge loops add to W) keep their mechanisms."""
+    braced = "0-1 1-2 2-3 3-0 1-3"
+    out = tmp_path / "m.png"
+    assert main(["draw", "--chain", braced, "--mechanisms", "--out", str(out)]) == 2
+    assert "is a structure, not a mechanism's chain: W = -1 by the count" in capsys.readouterr().err
+    assert not out.exists()
+    assert main(["mechanisms", "--chain", braced]) == 2
+    assert "is a structure, not a mechanism's chain: W = -1" in capsys.readouterr().err
+    assert main(["draw", "--chain", braced, "--out", str(out)]) == 0  # the chain, drawn as analyze reports it
+    assert main(["draw", "--chain", braced, "--mechanisms", "--prismatic", "1..5", "--out", str(out)]) == 0
+    assert "11 drawings" in capsys.readouterr().err  # the 11 mechanisms of its variants of W ≥ 0
+    assert main(["draw", "--chain", "0-1 1-2 2-0", "--mechanisms", "--out", str(out)]) == 0  # W = 0: a truss, fixed

@@ -18,7 +18,7 @@ from .._output import FORMATS, nothing_found, write_count, write_rows
 WRITTEN = ("graphml", "gml", "dot", "edgelist", "adjacency", "incidence")  # synth.exchange.WRITTEN, unloaded
 
 
-def _add_selection(p) -> None:
+def _add_selection(p, command: str) -> None:
     p.add_argument("--dof", type=whole, help="mobility W of every chain listed (0 = trusses); default: the code's W")
     p.add_argument("--links", type=whole, help="number of links n (frame included)")
     p.add_argument("--v", help="multiple-joint count or range A..B (default 0: simple joints; with --code its own)")
@@ -46,7 +46,7 @@ def _add_selection(p) -> None:
                    help="heterogeneous chains with K loops of each class H, two classes (e.g. 3=4,5=1: the linear "
                    "translator): a base holding the higher class's loops on a chain of the lower class; --dof is W by "
                    "the heterogeneous count; with --chain, every base on that chain")
-    p.add_argument("--chain", type=chain_text, help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
+    p.add_argument("--chain", type=chain_text(command), help="one given chain instead of a query (a joint list '0-1 1=2 2~3 …' or a JSON row "
                    "a command printed): its row, its mechanisms, or with --prismatic its variants, renumbered as "
                    "every listing and atlas numbers its id, with the chain as given beside (column as_given)")
     p.add_argument("--idle-joints", action="store_true",
@@ -68,7 +68,7 @@ def _add_selection(p) -> None:
 def add_commands(sub) -> None:
     """Mount ``chains`` and ``mechanisms`` on the ``mechsynth`` parser."""
     p = sub.add_parser("chains", help="type synthesis: every non-isomorphic chain")
-    _add_selection(p)
+    _add_selection(p, "chains")
     p.add_argument("--method", choices=("listing", "orbits", "tight-reverse"),
                    help="with --count: how each branch multigraph's chains are counted — listing (default: one "
                    "placement of the binary links per chain, as a listing finds them), orbits (Burnside's lemma "
@@ -78,7 +78,7 @@ def add_commands(sub) -> None:
                    "automorphisms); the same counts; orbits and tight-reverse refused with prismatic pairs or cranks")
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
-    _add_selection(p)
+    _add_selection(p, "mechanisms")
     p.add_argument("--input-link", action="store_true", help="also choose the input link, jointed to the frame")
     p.add_argument("--cylinders", metavar="KIND=N,…",
                    help="with --prismatic: prismatic pairs by kind, e.g. floating=1,swinging=2 (guide: on the frame; "
@@ -184,11 +184,31 @@ def _run_one_chain(args) -> int:
         back[id(listed[-1])] = given, [numbering.index(k) for k in range(given.links)]
     items = listed
     if args.what == "mechanisms":
+        refuse_structure(chain, items)
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
                                                          cylinders=getattr(args, "cylinders", None)))
     return write_items(items, args.what, fmt=args.format, count=args.count,
                        kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
                        as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]))
+
+
+def refuse_structure(given, chains) -> None:
+    """Refuse the mechanisms of a chain ``given`` whose W by the count is below 0 (one of ``chains``, the
+    chain itself or its variants, to be fixed by each link in turn): it is a structure, over-constrained,
+    and a mechanism fixes a link of a chain with W ≥ 0 — as a code of W < 0 is refused.
+
+    >>> from synth import Chain
+    >>> refuse_structure(Chain.parse("0-1 1-2 2-3 3-0 1-3"), [Chain.parse("0-1 1-2 2-3 3-0 1-3")])
+    Traceback (most recent call last):
+    synth.errors.ImpossibleParameters: the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained), and a mechanism fixes a link of a chain with W ≥ 0 ('mechsynth analyze' says why and how to mend it)
+    """
+    from synth import ImpossibleParameters
+
+    dof = min((c.dof for c in chains), default=0)
+    if dof < 0:
+        raise ImpossibleParameters(f"the chain {given.compact()} is a structure, not a mechanism's chain: W = {dof} "
+                                   "by the count (over-constrained), and a mechanism fixes a link of a chain with "
+                                   "W ≥ 0 ('mechsynth analyze' says why and how to mend it)")
 
 
 def _as_given(item, given, as_given: list[int]) -> dict:

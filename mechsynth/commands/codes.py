@@ -157,7 +157,7 @@ def _note_left_out(args, listed: set) -> None:
 # ----------------------------------------------------------------- analyze
 def _add_analyze(sub):
     p = sub.add_parser("analyze", help="W, K, Y, D of a code, counts or chain, and how to remove defects")
-    p.add_argument("subject", type=chain_text, help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …' "
+    p.add_argument("subject", type=chain_text("analyze"), help="a code (6301/0), counts (2=4,3=2), a chain as JSON or joint list '0-1 1-2 …' "
                    "('0=1 1=2 2=3 3=0': words a=b are a chain where they number links 0 … n − 1, counts where every "
                    "I ≥ 1)")
     p.add_argument("--dof", type=whole, help="required W (for D and the criterion)")

@@ -33,7 +33,7 @@ def add_commands(sub) -> None:
                    help="a dimensioned mechanism (.toml or .json, as move --save and dimension --save write it), "
                         "drawn to scale at its pose; or the rows of an atlas search (.json or .jsonl) with --row K")
     g.add_argument("--code", help="every chain of this code, e.g. 7201/1 (synthesised now)")
-    g.add_argument("--chain", type=chain_text, help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
+    g.add_argument("--chain", type=chain_text("draw"), help="one chain as a joint list '0-1 1-2 2-3 3-0' or JSON")
     g.add_argument("--db", help="chains of an atlas selected with --where or --id")
     p.add_argument("--dof", type=whole, help="with --code: W (default: the code's own in motion space h); "
                    "with --repairs: the intended W")
@@ -293,7 +293,12 @@ def _run_draw(args) -> int:
         elif args.frame is not None:
             items = [Mechanism(chain, args.frame)]
         else:
-            items = expand(_variants(args, [chain]), mechanisms=args.mechanisms)
+            chains = _variants(args, [chain])
+            if args.mechanisms:
+                from .chains import refuse_structure
+
+                refuse_structure(chain, chains)
+            items = expand(chains, mechanisms=args.mechanisms)
         title = args.title or (_chain_sheet_title(chain, items, args) if len(items) > 1 else None)  # one: its caption
     elif args.code:
         import synth

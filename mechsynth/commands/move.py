@@ -80,7 +80,7 @@ def add_commands(sub) -> None:
     p.add_argument("linkage", nargs="?", metavar="LINKAGE_FILE",
                    help="a linkage file (.toml or .json: chain, frame, inputs, points, slides, meshes, tracers), or "
                         "the rows of an atlas search (.json or .jsonl) with --row K")
-    p.add_argument("--chain", type=chain_text, help="any planar mechanism, as a joint list '0-1 1-2 2-3 3-0', dimensioned by its drawing")
+    p.add_argument("--chain", type=chain_text("move"), help="any planar mechanism, as a joint list '0-1 1-2 2-3 3-0', dimensioned by its drawing")
     p.add_argument("--db", help="an atlas: the chain with --id, dimensioned by its drawing")
     p.add_argument("--id", help="with --db: the chain's id (12 hex digits, as listings and the site show it)")
     p.add_argument("--frame", type=whole, help="with --chain or --db: the fixed link")

@@ -18,9 +18,9 @@ degree equation fixes once row u is complete.  The search keeps the model's cond
   l is negative the game does not apply, and the row is marked for the caller's exact check.  The
   conditions on sets with multiple joints (with their touched-joint clause, not a sparsity) are
   checked on each complete multigraph (:func:`_joint_conditions_hold`);
-* with ``least_budget`` (a count's stream), the least labelling of each class: every completed row
-  prefix that a relabelling of equal vertices puts lexicographically first is dropped
-  (:func:`_least_labelling`, docs/theory.md "The least labelling of H");
+* with ``least_budget`` (a count's stream and a listing's stage A), the least labelling of each
+  class: every completed row prefix that a relabelling of equal vertices puts lexicographically
+  first is dropped (:func:`_least_labelling`, docs/theory.md "The least labelling of H");
 * connectivity (union–find) on each complete multigraph.
 
 What is left to the caller: the isomorphism classes (nauty), fractionation and planarity.

@@ -493,18 +493,20 @@ def _mask(vertices) -> int:
 def _contracted_by_kernel(code: Code, conv: Conventions) -> list[Contracted]:
     """Stage A by the compiled kernel (:mod:`synth.synthesis._stage_a_kernel`): the same branch
     multigraphs as the CP-SAT model, from labelled ones found batch by batch and told apart by nauty,
-    in the order of their certificates."""
-    return sorted(_kernel_stream(code, conv), key=lambda graph: graph.certificate)
+    in the order of their certificates.  As a count's stream, the kernel hands on the least labelling of
+    each class where its test shows it (:data:`_LEAST_BUDGET`), not the model's first: a listing's chains
+    do not depend on which labelling of H they are placed on (each is renumbered canonically and sorted by
+    certificate, :func:`~synth.synthesis.type_synthesis.run_unit`; docs/theory.md, "The least labelling of H")."""
+    return sorted(_kernel_stream(code, conv, _LEAST_BUDGET), key=lambda graph: graph.certificate)
 
 
 def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     """Stage A for a count: every branch multigraph H of ``code`` once, the classes of
     :func:`contracted_graphs` in the order found, not sorted; where the compiled kernel runs, each is
     handed on as soon as nauty has told it apart, in its least labelling where the kernel's test shows
-    it (one labelling a class reaches nauty, not tens to hundreds: :data:`_LEAST_BUDGET`; the listing's
-    labelling may be another), so what stays held is the set of certificates met (as bytes, the rows of
-    the strings' vertices only: under 300 B an H at 20 links, against some 3 kB for the H themselves),
-    never the code's H.
+    it (one labelling a class reaches nauty, not tens to hundreds: :data:`_LEAST_BUDGET`), so what stays
+    held is the set of certificates met (as bytes, the rows of the strings' vertices only: under 300 B an
+    H at 20 links, against some 3 kB for the H themselves), never the code's H.
 
     >>> code, conv = Code.parse("662000/0"), Conventions()   # 14 links: the kernel's search
     >>> found = [g.certificate for g in contracted_stream(code, conv)]
@@ -516,7 +518,8 @@ def contracted_stream(code: Code, conv: Conventions) -> Iterator[Contracted]:
     return iter(contracted_graphs(code, conv))
 
 
-# nodes the kernel's test of a least labelling may take on one labelled H before keeping it (a count's stream)
+# nodes the kernel's test of a least labelling may take on one labelled H before keeping it (a count's stream and a
+# listing's stage A alike)
 _LEAST_BUDGET = 2000
 
 
@@ -524,7 +527,8 @@ def _kernel_stream(code: Code, conv: Conventions, least_budget: int = 0) -> Iter
     """The branch multigraphs of the compiled kernel's search, each once, in the order found (a class
     is represented by its first labelled multigraph, as in the CP-SAT model's order).  With
     ``least_budget`` the kernel drops labellings it shows are not the least of their class (a count's
-    stream: the same classes, fewer labellings to certify, but a class may come with another labelling)."""
+    stream and a listing: the same classes, fewer labellings to certify, but a class may come with another
+    labelling than the model's)."""
     import numpy as np
 
     from ._stage_a_kernel import multigraphs, new_state

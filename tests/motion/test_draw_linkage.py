@@ -111,9 +111,47 @@ def test_at_is_refused_where_it_cannot_pose(saved, tmp_path, capsys):
     assert "W = 2 inputs" in capsys.readouterr().err
     assert main(["draw", str(five), "--out", str(tmp_path / "f.png")]) == 0  # at its saved pose it is drawn
     assert main(["draw", "--chain", str(saved), "--out", str(tmp_path / "c.png")]) == 2
-    assert f"a linkage file (as move and dimension --save write it) is the command's first argument, e.g. 'mechsynth draw {saved} --out FILE'" in capsys.readouterr().err
+    assert f"draws it to scale: 'mechsynth draw {saved} --out FILE'" in capsys.readouterr().err
     assert main(["draw", "0-1 1-2 2-3 3-0", "--out", str(tmp_path / "c.png")]) == 2  # a chain given as a file
     assert "a chain's drawing is 'mechsynth draw --chain \"0-1 1-2 2-3 3-0\"" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("words, hint, elsewhere", [
+    (["analyze", "{f}"], "'mechsynth identify {f}' gives its chain's code, W", "mechsynth analyze \"$(cat {f})\""),
+    (["chains", "--chain", "{f}"], "'mechsynth identify {f}' gives its chain's id and row",
+     "mechsynth chains --chain \"$(cat {f})\""),
+    (["mechanisms", "--chain", "{f}"], "'mechsynth identify {f}' gives its mechanism's row",
+     "mechsynth mechanisms --chain \"$(cat {f})\""),
+    (["draw", "--chain", "{f}", "--out", "{d}/x.png"], "'mechsynth draw {f} --out FILE'", None),
+    (["move", "--chain", "{f}"], "'mechsynth move {f}'", None),
+])
+def test_a_linkage_file_given_as_a_chain_is_named_with_what_the_command_can_do(saved, tmp_path, capsys, words, hint,
+                                                                               elsewhere):
+    """Each command that reads a chain's text names, for a linkage file, what it (or identify) does with that
+    file — no other command's use; a .json linkage's text is the chain that analyze, chains and mechanisms read."""
+    argv = [w.format(f=saved, d=tmp_path) for w in words]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert f"{saved} is a linkage file, and {words[0]}" in err and hint.format(f=saved) in err
+    others = {"analyze", "chains", "mechanisms", "draw", "move"} - {words[0]}
+    assert not [c for c in others if f"mechsynth {c} " in err.replace(f"mechsynth {words[0]} --help", "")]
+    if elsewhere is not None:
+        assert elsewhere.format(f=saved) in err
+        text = ["$(cat)" if w == "{f}" else w for w in words]  # the hint's command line, run: it reads the chain
+        assert main([saved.read_text() if w == "$(cat)" else w for w in text]) == 0
+    toml = ROOT / "models" / "motion_four_bar.toml"  # a TOML linkage's text is no chain: only identify's hint
+    assert main([str(toml) if w == "{f}" else w.format(d=tmp_path) for w in words]) == 2
+    err = capsys.readouterr().err
+    assert hint.format(f=toml) in err and "$(cat" not in err
+
+
+def test_a_file_that_holds_no_linkage_is_named_with_identify(tmp_path, capsys):
+    rows = tmp_path / "rows.txt"
+    rows.write_text("0-1 1-2 2-3 3-0\n")
+    assert main(["analyze", str(rows)]) == 2
+    err = capsys.readouterr().err
+    assert f"{rows} is a file, and analyze reads a chain" in err and f"'mechsynth identify {rows}' reads" in err
+    assert "linkage" not in err
 
 
 @pytest.mark.parametrize("command", ["arm", "solve", "compare", "pantograph"])

@@ -118,8 +118,9 @@ STAGE_A_QUERIES = QUERIES + [dict(dof=1, links=14), dict(dof=1, links=8, h=2), d
 def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywhere, monkeypatch):
     """Code by code, the kernel's branch multigraphs (pebble games for the sub-chain conditions on sets of links,
     those with multiple joints on each complete multigraph, batches of 3 to exercise the resumed search) are the
-    CP-SAT model's or the plain search's, in the same order and with the same labelling (chains drawn from them
-    are numbered alike)."""
+    CP-SAT model's or the plain search's, each once, in the same order; each in its least labelling where the
+    kernel's test shows it, which need not be the model's first (a listing's chains do not depend on it:
+    tests/synthesis/test_stage_a_least.py)."""
     from synth.synthesis.type_synthesis import plan_jobs
 
     monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 3)
@@ -127,11 +128,11 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
         if not stage_a._stage_a_kernel_applies(code, conv):
             continue
-        kernel = [(graph.certificate, graph.edges) for graph in stage_a.contracted_graphs(code, conv)]
+        kernel = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
         with monkeypatch.context() as model_only:
             model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
-            model = [(graph.certificate, graph.edges) for graph in stage_a.contracted_graphs(code, conv)]
-        assert kernel == model, code  # the same labelling too: the first labelled copy of each class in one order
+            model = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
+        assert kernel == model, code
         compared += len(model)
     assert compared
 
