@@ -36,6 +36,14 @@ SLOW = {
                                                   "(tests/atlas/test_curve_search.py finds a four-bar again)",
     "dimension models/dimension_path.csv": "a path synthesis with a 30 CPU-second budget "
                                            "(tests/dimension finds the same points again in the default suite)",
+    "dimension models/dimension_half_circle.csv": "six timed points with the frame line free, the default 60 CPU-second "
+                                                  "budget (tests/dimension/test_placing.py runs the same command "
+                                                  "for two CPU seconds in the default suite)",
+    "dimension models/dimension_ce2.csv": "CE2 as its sources state it, a 20 CPU-second budget "
+                                          "(tests/dimension/test_placing.py finds it from no guess in the default suite)",
+    "dimension models/dimension_slider_crank.csv --db": "an atlas search with a 20 CPU-second budget "
+                                                        "(tests/atlas/test_curve_search.py finds a random slider-crank "
+                                                        "again in the default suite)",
     "--code 12.2000/6-0 --cranks 3=3": "the translator's query, 21 841 heterogeneous chains: about 13 CPU seconds "
                                        "(tests/synthesis/test_classes_vs_oracle.py runs it in the slow set too)",
     "--code 8310/1 --prismatic 3 --cylinders": "Fig. 6's query, 8 096 mechanisms of 4 617 chains: about 30 CPU seconds",

@@ -34,6 +34,7 @@ def _estimate_in_subprocess(cache_dir):
     return json.loads(proc.stdout)
 
 
+@pytest.mark.slow  # compiles every kernel into an empty cache: about a CPU minute
 def test_a_cold_numba_cache_sizes_a_query_as_a_warm_one_does(tmp_path):
     cold = _estimate_in_subprocess(tmp_path)
     assert any(tmp_path.rglob("*.nbi")), "the first run did not compile into the fresh cache"
