@@ -110,12 +110,20 @@ def chain_text(command: str):
     >>> chain_text("move")("models/motion_four_bar.toml")
     Traceback (most recent call last):
     argparse.ArgumentTypeError: models/motion_four_bar.toml is a linkage file, and move --chain reads a chain as it is written (a joint list '0-1 1-2 …' or a JSON row): move takes it as its first argument: 'mechsynth move models/motion_four_bar.toml'
+    >>> chain_text("analyze")("a = 1\\nb = 2")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: the text given is 2 lines, beginning 'a = 1' (a file's text?), and analyze reads a chain written on one line ('0-1 1-2 …') or a JSON row: 'mechsynth identify FILE' reads the chains of a file
     """
     use, text_use = LINKAGE_FILE_USES[command]
     where = command if command == "analyze" else f"{command} --chain"
 
     def chain(text: str) -> str:
         word = text.strip()
+        if "\n" in word and not word.startswith(("{", "[")):  # a file's text, as "$(cat L.toml)" gives it
+            raise argparse.ArgumentTypeError(
+                f"the text given is {len(word.splitlines())} lines, beginning {word.splitlines()[0][:40]!r} (a file's "
+                f"text?), and {where} reads a chain written on one line ('0-1 1-2 …') or a JSON row: "
+                "'mechsynth identify FILE' reads the chains of a file")
         if not word or any(c.isspace() for c in word) or not os.path.isfile(word):
             return text
         read_here = f"{where} reads a chain as it is written (a joint list '0-1 1-2 …' or a JSON row)"

@@ -145,6 +145,18 @@ def test_a_linkage_file_given_as_a_chain_is_named_with_what_the_command_can_do(s
     assert hint.format(f=toml) in err and "$(cat" not in err
 
 
+@pytest.mark.parametrize("command", [["analyze"], ["chains", "--chain"], ["mechanisms", "--chain"], ["move", "--chain"]])
+def test_a_files_text_given_as_a_chain_is_named_as_such_not_echoed(command, capsys):
+    """'analyze "$(cat L.toml)"' quoted the whole file back in a sentence about counts; a text of several lines
+    (not JSON, whose rows a chain may be) is named by its first line, once."""
+    toml = (ROOT / "models" / "motion_four_bar.toml").read_text()
+    assert main([*command, toml]) == 2
+    err = capsys.readouterr().err
+    first = toml.strip().splitlines()[0][:40]
+    assert f"the text given is {len(toml.strip().splitlines())} lines, beginning {first!r}" in err
+    assert "'mechsynth identify FILE'" in err and len(err.splitlines()) == 1 and len(err) < 400
+
+
 def test_a_file_that_holds_no_linkage_is_named_with_identify(tmp_path, capsys):
     rows = tmp_path / "rows.txt"
     rows.write_text("0-1 1-2 2-3 3-0\n")
