@@ -65,7 +65,7 @@ from numba import njit
 
 from ..structure.subchain_kernel import by_last_path, verdict
 
-__all__ = ["fixed_placements", "fixed_total", "place", "tight_count"]
+__all__ = ["fixed_placements", "fixed_total", "narrow_ranks", "place", "tight_count"]
 
 
 @njit(cache=True)
@@ -687,6 +687,65 @@ def _rehash(states, totals, m, width, W, P):
         table[-_state_slot(table, states, totals, states[j], width, W, P, totals[j],
                            _state_code(states[j], width, W, P, totals[j])) - 1] = j
     return table
+
+
+@njit(cache=True)
+def narrow_ranks(M, a_end, b_end, given):
+    """A rank for each of the game's ``M`` vertices (strings ``a_end``–``b_end``, −1 where the game never sees
+    one) that keeps few vertices open (met, with a string still to come) when the vertices are taken in that
+    order, each with its strings to those before it: the order with the least, over all orders, of the most open
+    while a vertex's strings are placed, then of Σ 2^that (:func:`tight_count`'s states hold 2^(open) values a
+    class); or the rank ``given`` where its most open is within one of that least (a narrower order is not always
+    the faster: benchmarks/PROFILE.md section 47).  A search over the sets of vertices taken first (2^M of them:
+    for M ≤ 16 or so).
+
+    >>> import numpy as np
+    >>> path = np.array([0, 3, 1], dtype=np.int64), np.array([3, 1, 2], dtype=np.int64)  # 0 – 3 – 1 – 2
+    >>> narrow_ranks(4, *path, np.array([0, 1, 2, 3])).tolist()  # 0, 1, 2, 3 leaves 3 open: within one, kept
+    [0, 1, 2, 3]
+    >>> star = np.array([0, 0, 0, 0, 0], dtype=np.int64), np.array([1, 2, 3, 4, 5], dtype=np.int64)
+    >>> narrow_ranks(6, *star, np.array([5, 4, 3, 2, 1, 0])).tolist()  # the centre last: 5 open; first: 1
+    [0, 1, 2, 3, 4, 5]
+    """
+    adjacent = np.zeros(M, dtype=np.int64)
+    for e in range(len(a_end)):
+        a, b = a_end[e], b_end[e]
+        if a >= 0 and a != b:
+            adjacent[a] |= np.int64(1) << b
+            adjacent[b] |= np.int64(1) << a
+    size = 1 << M
+    everything = size - 1
+    unreached = np.int64(1) << 62
+    worst = np.full(size, unreached, dtype=np.int64)
+    total = np.full(size, unreached, dtype=np.int64)
+    back = np.full(size, -1, dtype=np.int64)
+    opens = np.zeros(size, dtype=np.int64)  # open after the set S is taken, + 1
+    worst[0], total[0] = 0, 0
+    for S in range(size):  # (every subset of S comes before S)
+        for u in range(M):
+            if (S >> u) & 1 and adjacent[u] & ~S & everything:
+                opens[S] += 1
+        w = opens[S] + 1  # open while the next vertex's strings are placed
+        for v in range(M):
+            if (S >> v) & 1:
+                continue
+            T = S | (1 << v)
+            most, spent = max(worst[S], w), total[S] + (np.int64(1) << w)
+            if most < worst[T] or (most == worst[T] and spent < total[T]):
+                worst[T], total[T], back[T] = most, spent, v
+    given_most, S = 0, 0
+    for v in np.argsort(given):
+        given_most = max(given_most, opens[S] + 1)
+        S |= 1 << v
+    if given_most <= worst[everything] + 1:
+        return given.copy()
+    rank = np.zeros(M, dtype=np.int64)
+    S = everything
+    for r in range(M - 1, -1, -1):
+        v = back[S]
+        rank[v] = r
+        S &= ~(1 << v)
+    return rank
 
 
 # the bytes the layers of one :func:`tight_count` may hold at once (beyond it, a layer is made in buckets; with

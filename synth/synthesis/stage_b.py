@@ -217,13 +217,15 @@ def load_kernel() -> None:
     workers are forked: small codes through each (6020/0's one H has no automorphism: ``tight_count``).
     Their counts take Burnside's way (``tight_count``), so each is listed too: the listing runs
     ``place``, the search of a count with a multiple joint or a partial group (left out, a cold cache had
-    each process that met such a unit compile it in the middle of the count: about 3 CPU s)."""
+    each process that met such a unit compile it in the middle of the count: about 3 CPU s); and the
+    programme's order of a unit with multiple joints (``narrow_ranks``)."""
     conv = Conventions()
     for code in (Code.parse("440/0"), Code.parse("6020/0")):
         for graph in _contracted_by_kernel(code, conv):
             for listing in (False, True):
                 _kernel_placements(code, graph, conv, None, listing=listing)
             count_orbits(code, graph, conv)
+    _narrow_rank([0], [1], [0, 1])  # (the programme's order with multiple joints)
     _freeze_compiled()
 
 
@@ -313,14 +315,15 @@ def _kernel_placements(code: Code, graph: Contracted, conv: Conventions, stats: 
     perms, whole_group = graph.bundle_group()
     a_end, b_end = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
     edges = graph.edges
+    by_programme = rows and not listing and programme and whole_group  # (multiple joints: perhaps the programme)
+    fault = _programme_fault(code, graph, conv) if by_programme else None
     if not listing:  # a count: any order of the strings keeps one placement per orbit
-        order, _, perms = _count_order(graph, inner, a_list, b_list, perms)
+        order, _, perms = _count_order(graph, inner, a_list, b_list, perms, narrow=by_programme and fault is None)
         a_end, b_end, least, after = a_end[order], b_end[order], least[order], after[order]
         back = np.argsort(order)  # string order[i] is string i of the search: the rows' columns back in H's order
         edges = tuple(edges[e] for e in order)
     group = _coset_rows(edges, np.array(perms, dtype=np.int64)) if len(perms) else np.zeros((0, E), dtype=np.int64)
-    if rows and not listing and programme and whole_group:
-        fault = _programme_fault(code, graph, conv)
+    if by_programme:
         if fault is None:  # multiple joints, counted without visiting: the programme holds the exact rule
             found = _burnside(code, M, a_end, b_end, least, after, k2, C, conv.h + conv.threshold,
                               b0 + int(k2.sum()) - conv.h - conv.threshold, group, _game_links(graph, inner))
@@ -431,14 +434,17 @@ def _game_links(graph: Contracted, inner: dict[int, int]) -> "np.ndarray":
     return links
 
 
-def _count_order(graph: Contracted, inner: dict[int, int], a_list: list[int], b_list: list[int], perms):
-    """The count's order of the strings of H (:func:`_search_order`, the multiple joints first), the
-    bundles of parallel strings in that order (bundle ``q_order[i]`` of H is bundle i of the search),
-    and the permutations of the bundles ``perms`` (rows) relabelled to it."""
+def _count_order(graph: Contracted, inner: dict[int, int], a_list: list[int], b_list: list[int], perms,
+                 narrow: bool = False):
+    """The count's order of the strings of H (:func:`_search_order` by :func:`_adjacency_rank`, the multiple
+    joints first; with ``narrow``, a unit the programme counts, :func:`_narrow_rank` of that), the bundles of
+    parallel strings in that order (bundle ``q_order[i]`` of H is bundle i of the search), and the permutations of
+    the bundles ``perms`` (rows) relabelled to it."""
     import numpy as np
 
     joints = frozenset(i for u, i in inner.items() if graph.vertices[u].is_joint)
-    order = _search_order(graph.edges, a_list, b_list, len(inner), joints)
+    rank = _adjacency_rank(a_list, b_list, len(inner), joints)
+    order = _search_order(graph.edges, a_list, b_list, _narrow_rank(a_list, b_list, rank) if narrow else rank)
     q_order = (np.cumsum(_bundle_starts(graph.edges)) - 1)[order][_bundle_starts(tuple(graph.edges[e] for e in order))]
     perms = np.array(perms, dtype=np.int64).reshape(len(perms), len(q_order))
     return order, q_order, np.argsort(q_order)[perms[:, q_order]]
@@ -459,27 +465,41 @@ def _counted_without_visiting(M: int, l2: int, x_most: int, l: int, h: int) -> b
     return l2 < 0 and M >= 2 and x_most >= 0 and l < 2 * h
 
 
-def _search_order(edges, a_list: list[int], b_list: list[int], M: int, first: frozenset = frozenset()) -> "np.ndarray":
-    """An order of the strings of H for counting its placements, bundles of parallel strings kept
-    together and in their order: the strings the pebble game never sees first, then the game's
-    vertices by maximum adjacency (next the vertex with the most strings to those taken, then the
-    most strings), each vertex bringing the strings between it and those before it, the latest
-    first.  Rigid groups of links then close early, so a placement that cannot be completed fails
-    near the root of the search (14 links: 0.47 → 0.29 CPU s of the kernel against the strings'
-    own order; issue 41).  The game's vertices in ``first`` (the multiple joints) are taken before
-    the others, by maximum adjacency among themselves: every set the kernel checks for the exact
-    rule holds one, and closes sooner (14 links, v ≤ 12, a sample: the kernel's steps 21.9 M →
-    19.3 M; benchmarks/PROFILE.md, section 32).
+#: the most game vertices :func:`_narrow_rank` orders by its search over their sets (2^M × M steps: 0.03 ms at 10,
+#: 0.2 ms at 12, 1 ms at 14; benchmarks/PROFILE.md section 47); above it the rank given is kept
+_NARROW_MOST = 14
 
-    >>> _search_order(((0, 1), (0, 2), (1, 2), (1, 2)), [0, 0, 1, 1], [1, 2, 2, 2], 3).tolist()
-    [2, 3, 1, 0]
-    >>> _search_order(((0, 1), (1, 2), (1, 3), (2, 3)), [0, 1, 1, 2], [1, 2, 3, 3], 4).tolist()
-    [1, 3, 2, 0]
-    >>> _search_order(((0, 1), (1, 2), (1, 3), (2, 3)), [0, 1, 1, 2], [1, 2, 3, 3], 4, frozenset({0})).tolist()
-    [0, 1, 3, 2]
+
+def _narrow_rank(a_list: list[int], b_list: list[int], rank: list[int]) -> list[int]:
+    """For the programme (``tight_count``, whose states hold 2^(open vertices) values a class): the order of the
+    game's vertices that keeps the fewest open (:func:`synth.synthesis._stage_b_kernel.narrow_ranks`) where it
+    keeps at least two fewer open than ``rank`` does, else ``rank`` (also above :data:`_NARROW_MOST` vertices).
+    Any order of the bundles counts the same placements.
+
+    >>> _narrow_rank([0, 0, 0, 0, 0], [1, 2, 3, 4, 5], [5, 4, 3, 2, 1, 0])  # a star's centre first, not last
+    [0, 1, 2, 3, 4, 5]
     """
     import numpy as np
 
+    from ._stage_b_kernel import narrow_ranks
+
+    if len(rank) > _NARROW_MOST:
+        return rank
+    ends = np.array(a_list, dtype=np.int64), np.array(b_list, dtype=np.int64)
+    return narrow_ranks(len(rank), *ends, np.array(rank, dtype=np.int64)).tolist()
+
+
+def _adjacency_rank(a_list: list[int], b_list: list[int], M: int, first: frozenset = frozenset()) -> list[int]:
+    """The game's ``M`` vertices by maximum adjacency (next the vertex with the most strings to those taken, then
+    the most strings), those in ``first`` (the multiple joints) before the others, by maximum adjacency among
+    themselves: each vertex's rank.  Rigid groups of links then close early, so a placement that cannot be
+    completed fails near the root of the search (14 links: 0.47 → 0.29 CPU s of the kernel against the strings'
+    own order; issue 41); every set the kernel checks for the exact rule holds a multiple joint, and closes sooner
+    (14 links, v ≤ 12, a sample: the kernel's steps 21.9 M → 19.3 M; benchmarks/PROFILE.md, section 32).
+
+    >>> _adjacency_rank([0, 1, 1, 2], [1, 2, 3, 3], 4), _adjacency_rank([0, 1, 1, 2], [1, 2, 3, 3], 4, frozenset({0}))
+    ([3, 0, 1, 2], [0, 1, 2, 3])
+    """
     neighbours: list[list[int]] = [[] for _ in range(M)]
     for a, b in zip(a_list, b_list):
         if a >= 0:
@@ -493,6 +513,22 @@ def _search_order(edges, a_list: list[int], b_list: list[int], M: int, first: fr
         for u in neighbours[v]:
             if score[u] >= 0:
                 score[u] += 1024
+    return rank
+
+
+def _search_order(edges, a_list: list[int], b_list: list[int], rank: list[int]) -> "np.ndarray":
+    """An order of the strings of H for counting its placements, bundles of parallel strings kept
+    together and in their order: the strings the pebble game never sees first, then the game's
+    vertices by ``rank`` (:func:`_adjacency_rank`, :func:`_narrow_rank`), each vertex bringing the strings
+    between it and those before it, the latest first.
+
+    >>> _search_order(((0, 1), (0, 2), (1, 2), (1, 2)), [0, 0, 1, 1], [1, 2, 2, 2], [2, 0, 1]).tolist()
+    [2, 3, 1, 0]
+    >>> _search_order(((0, 1), (1, 2), (1, 3), (2, 3)), [0, 1, 1, 2], [1, 2, 3, 3], [3, 0, 1, 2]).tolist()
+    [1, 3, 2, 0]
+    """
+    import numpy as np
+
     firsts = np.flatnonzero(_bundle_starts(edges)).tolist() + [len(edges)]
 
     def key(q):  # bundles the game never sees first, then by the later end's rank, the earlier's last
@@ -683,9 +719,10 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     Where the first count counts a unit's placements by the programme of
     :func:`~synth.synthesis._stage_b_kernel.tight_count` (:func:`_counted_without_visiting`), this one runs that programme
 
-    * over the bundles of parallel strings in the reverse of the first count's order: the cuts
-      between bundles are the same, so the layers are as narrow, but each layer sums up the other
-      side of every cut, so no state of one run is a state of the other;
+    * over the bundles of parallel strings in the reverse of an order of the first count's kind (maximum
+      adjacency; with multiple joints without the joints first, and :func:`_narrow_rank`'s where that is
+      narrower): reversed, the cuts between bundles are the same, so the layers are as narrow, but each layer
+      sums up the other side of every cut, so no state of one run is a state of the other;
     * with Burnside's lemma over the permutations of the bundles read off nauty's group of H acting
       on its strings (:meth:`Contracted.edge_group`, the subdivided multigraph) and closed under
       composition here (:func:`_bundle_closure`), where the first asks nauty of H with one vertex
@@ -734,7 +771,8 @@ def count_reversed(code: Code, graph: Contracted, conv: Conventions, stats: dict
     if sum(lows) > n2 or x_most < 0:
         return 0
     t0 = perf_counter()
-    order = _search_order(graph.edges, a_list, b_list, M)
+    rank = _adjacency_rank(a_list, b_list, M)
+    order = _search_order(graph.edges, a_list, b_list, _narrow_rank(a_list, b_list, rank) if exact else rank)
     searched = tuple(graph.edges[e] for e in order)
     # the first count's bundles, each still read in order, taken last first
     order = np.concatenate(np.split(order, np.flatnonzero(_bundle_starts(searched))[1:])[::-1])

@@ -88,7 +88,7 @@ def test_the_search_order_keeps_bundles_whole_and_relabels_the_automorphisms():
         graph = u.contracted
         inner, *_ = stage_b._pebble_vertices(graph.vertices, u.conventions.h, u.conventions.threshold)
         a_list, b_list = stage_b._game_ends(graph, inner)
-        order = stage_b._search_order(graph.edges, a_list, b_list, len(inner))
+        order = stage_b._search_order(graph.edges, a_list, b_list, stage_b._adjacency_rank(a_list, b_list, len(inner)))
         assert sorted(order.tolist()) == list(range(len(graph.edges)))
         edges = [graph.edges[e] for e in order]
         runs = [e for i, e in enumerate(edges) if not i or e != edges[i - 1]]
@@ -282,12 +282,14 @@ def test_the_count_order_takes_the_multiple_joints_first():
         inner, *_ = stage_b._pebble_vertices(graph.vertices, u.conventions.h, u.conventions.threshold)
         a_list, b_list = stage_b._game_ends(graph, inner)
         joints = frozenset(i for v, i in inner.items() if graph.vertices[v].is_joint)
-        order = stage_b._search_order(graph.edges, a_list, b_list, len(inner), joints).tolist()
+        order = stage_b._search_order(graph.edges, a_list, b_list,
+                                      stage_b._adjacency_rank(a_list, b_list, len(inner), joints)).tolist()
         assert sorted(order) == list(range(len(graph.edges)))
         seen = [e for e in order if a_list[e] >= 0]
         between = [a_list[e] in joints and b_list[e] in joints for e in seen]
         assert between == sorted(between, reverse=True), u.key
-        differ += order != stage_b._search_order(graph.edges, a_list, b_list, len(inner)).tolist()
+        differ += order != stage_b._search_order(graph.edges, a_list, b_list,
+                                                 stage_b._adjacency_rank(a_list, b_list, len(inner))).tolist()
     assert differ
 
 
