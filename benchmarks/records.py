@@ -220,10 +220,10 @@ ROWS = (
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
             heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
-            heavy="not run: the engine's sizing (from 8, 10, 12 links; 30 Nov 2026) gives about 6.9e9 chains in 8.5e6 "
-                  "units, 64 500 CPU s (17.9 CPU h) since the joints come first in the count's search (PROFILE.md "
-                  "section 32), and about 21.6 CPU h for its second count by orbits, which for W = 1 visits a "
-                  "placement a chain or more (PROFILE.md section 41)")]
+            heavy="not run to its end yet: two checkpointed counts under way since 30 Nov 2026, the first and "
+                  "--method tight-reverse, equal on every code both have finished (RECORDS.md, 'Every multiple-joint "
+                  "chain of 16 links'; about 1.5 and 2.0 CPU ms a unit, PROFILE.md section 47); the engine's sizing "
+                  "from 8, 10, 12 links: about 6.9e9 chains in 8.5e6 units")]
     # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
     + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
     + [_row("W = 1, one ternary joint", 1, 16, None, "Ding2013", v="1",
