@@ -1,4 +1,5 @@
-"""What the benchmarks share: their tables under ``benchmarks/out`` and the ``--quick`` command line.
+"""What the benchmarks share: their tables under ``benchmarks/out``, the ``--quick`` command line and a
+script's refusals (one sentence, exit status 2).
 
 >>> import tempfile, pathlib; folder = pathlib.Path(tempfile.mkdtemp())
 >>> write_csv(folder / "demo.csv", [{"links": 8, "chains": 16}]).read_text().splitlines()
@@ -14,7 +15,7 @@ import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-__all__ = ["OUT", "write_csv", "print_rows", "emit"]
+__all__ = ["OUT", "write_csv", "print_rows", "emit", "refusals"]
 
 #: where every benchmark writes its tables and figures
 OUT = Path(__file__).resolve().parent / "out"
@@ -46,3 +47,23 @@ def emit(text: str) -> None:
         print(text, flush=True)
     except BrokenPipeError:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+
+
+def refusals(script: str):
+    """``fail`` (one sentence on stderr after ``script:``, exit status 2) and an ``argparse.ArgumentParser``
+    class whose errors go through it: how a benchmark script refuses bad input.
+
+    >>> fail, Parser = refusals("demo")
+    >>> Parser(prog="demo").parse_args(["--nope"])
+    Traceback (most recent call last):
+    SystemExit: 2
+    """
+    def fail(sentence: str) -> None:
+        print(f"{script}: {sentence}", file=sys.stderr)
+        raise SystemExit(2)
+
+    class Parser(argparse.ArgumentParser):
+        def error(self, message):
+            fail(message)
+
+    return fail, Parser

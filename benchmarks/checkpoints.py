@@ -44,20 +44,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from benchmarks._out import emit  # noqa: E402
+from benchmarks._out import emit, refusals  # noqa: E402
 
 SQLITE_HEADER = b"SQLite format 3\x00"
 
 
-def fail(sentence: str) -> None:
-    """One sentence on stderr and exit status 2."""
-    print(f"checkpoints: {sentence}", file=sys.stderr)
-    raise SystemExit(2)
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        fail(message)
+fail, _Parser = refusals("checkpoints")
 
 
 def _state(path: Path):

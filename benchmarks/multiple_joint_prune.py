@@ -34,6 +34,9 @@ from pathlib import Path
 
 ROOT = Path.cwd()
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from benchmarks._out import refusals  # noqa: E402
 
 
 def count_unit(unit, check_sets: bool) -> tuple[int, int, float, float]:
@@ -101,15 +104,7 @@ def stages(jobs, records: dict | None) -> int:
     return 1 if bad else 0
 
 
-def fail(sentence: str) -> None:
-    """One sentence on stderr and exit status 2."""
-    print(f"multiple_joint_prune: {sentence}", file=sys.stderr)
-    raise SystemExit(2)
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        fail(message)
+fail, _Parser = refusals("multiple_joint_prune")
 
 
 def main(argv=None) -> int:

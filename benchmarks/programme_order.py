@@ -19,17 +19,11 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path.cwd()))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from benchmarks._out import refusals  # noqa: E402
 
-def fail(sentence: str) -> None:
-    """One sentence on stderr and exit status 2."""
-    print(f"programme_order: {sentence}", file=sys.stderr)
-    raise SystemExit(2)
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        fail(message)
+fail, _Parser = refusals("programme_order")
 
 
 def compare(job, every: int, method: str) -> dict:

@@ -65,6 +65,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from benchmarks._out import refusals  # noqa: E402
+
 LIST_MAX = 400_000  # the listing path checks a count up to this many chains by default (14 links: 21 CPU s)
 # … and the second count (--method tight-reverse, about the cost of the count) checks larger ones up to this many
 REVERSE_MAX = 10**10
@@ -233,15 +237,7 @@ ROWS = (
 )
 
 
-def fail(sentence: str) -> None:
-    """One sentence on stderr and exit status 2."""
-    print(f"records: {sentence}", file=sys.stderr)
-    raise SystemExit(2)
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        fail(message)
+fail, _Parser = refusals("records")
 
 
 def _commit() -> str:
@@ -724,7 +720,6 @@ def _second_count(path: Path) -> dict:
 def main(argv=None) -> int:
     """The script; a kill (SIGTERM, SIGHUP) stops it as Ctrl-C does (the count running stopped, its temporary
     folder removed; an in-process listing's pool ended), then ends it by that signal."""
-    sys.path.insert(0, str(ROOT))
     from synth.execution.interrupt import ending_signals_unwind
 
     with ending_signals_unwind():
