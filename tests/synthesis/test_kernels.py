@@ -121,14 +121,22 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
     CP-SAT model's or the plain search's, each once, in the same order; each in its least labelling where the
     kernel's test shows it, which need not be the model's first (a listing's chains do not depend on it:
     tests/synthesis/test_stage_a_least.py)."""
+    _kernel_against_model(query, monkeypatch, 3, lambda code, conv: [
+        graph.certificate for graph in stage_a.contracted_graphs(code, conv)])
+
+
+def _kernel_against_model(query, monkeypatch, batch, kernel_certificates, joints_only=False):
+    """Code by code of ``query`` where the kernel applies (with a multiple joint only, if asked), the certificates
+    ``kernel_certificates(code, conv)`` gives with the kernel's search in batches of ``batch`` equal those of the
+    CP-SAT model's or the plain search's branch multigraphs, in order; some are compared."""
     from synth.synthesis.type_synthesis import plan_jobs
 
-    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 3)
+    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", batch)
     compared = 0
     for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
-        if not stage_a._stage_a_kernel_applies(code, conv):
+        if (joints_only and not code.v) or not stage_a._stage_a_kernel_applies(code, conv):
             continue
-        kernel = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
+        kernel = kernel_certificates(code, conv)
         with monkeypatch.context() as model_only:
             model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
             model = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
@@ -141,20 +149,8 @@ def test_stage_a_kernel_finds_the_model_branch_multigraphs(query, kernel_everywh
 def test_a_counts_stage_a_stream_with_multiple_joints_is_the_models_each_once(query, kernel_everywhere, monkeypatch):
     """Codes with multiple joints: the stream a count reads (the kernel's least labellings, each class once)
     holds the certificates of the model's or the plain search's branch multigraphs, none lost or doubled."""
-    from synth.synthesis.type_synthesis import plan_jobs
-
-    monkeypatch.setattr(stage_a, "_CONDITION_BATCH", 5)
-    compared = 0
-    for code, conv in plan_jobs(synth.ChainQuery.of(**query)):
-        if not code.v or not stage_a._stage_a_kernel_applies(code, conv):
-            continue
-        stream = sorted(graph.certificate for graph in stage_a.contracted_stream(code, conv))
-        with monkeypatch.context() as model_only:
-            model_only.setattr(stage_a, "_KERNEL_LOOPS", {None: 10**6})
-            model = [graph.certificate for graph in stage_a.contracted_graphs(code, conv)]
-        assert stream == model, code
-        compared += len(model)
-    assert compared
+    _kernel_against_model(query, monkeypatch, 5, lambda code, conv: sorted(
+        graph.certificate for graph in stage_a.contracted_stream(code, conv)), joints_only=True)
 
 
 @pytest.mark.parametrize("code", ["8800000/2-1", "760100/1", "10.4.0.0.0.0/2-2", "941000/2-1", "530/1"])
