@@ -65,7 +65,7 @@ def add_commands(sub) -> None:
     p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
     p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: "
                    "its chain, frame and input)")
-    p.add_argument("--out", required=True, type=picture_file,
+    p.add_argument("-o", "--out", required=True, type=picture_file,
                    help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     add_row(p)
     p.set_defaults(run=_run_draw)
