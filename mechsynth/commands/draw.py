@@ -303,8 +303,10 @@ def _run_draw(args) -> int:
             chains = _variants(args, [chain])
             if args.mechanisms or args.frame is not None:
                 refuse_structure(chain, chains)
-            items = [Mechanism(chain, args.frame)] if args.frame is not None else expand(chains,
-                                                                                          mechanisms=args.mechanisms)
+            if args.frame is not None:
+                items = [Mechanism(chain, args.frame)]
+            else:
+                items = expand(chains, mechanisms=args.mechanisms)
         title = args.title or (_chain_sheet_title(chain, items, args) if len(items) > 1 else None)  # one: its caption
     elif args.code:
         import synth
