@@ -360,3 +360,20 @@ def test_a_truss_has_no_input_link(words, capsys):
     assert "W = 0 by the count: on a frame a truss is a statically determinate structure" in err
     assert err.count("\n") == 1
     assert main(["mechanisms", "--dof", "1", "--links", "4", "--input-link"]) == 0  # a crank-rocker's crank
+
+
+def test_among_variants_that_move_a_truss_gets_no_input_link(capsys):
+    """The braced four-bar's variants with --input-link: each of W = 1 with its input links, each truss (W = 0)
+    on its frame alone, as without --input-link."""
+    braced = ["mechanisms", "--chain", "0-1 1-2 2-3 3-0 1-3", "--prismatic", "1..5", "--format", "csv"]
+
+    def rows(*more):
+        assert main([*braced, *more]) == 0
+        return list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
+
+    plain, driven = rows(), rows("--input-link")
+    trusses = [(r["chain_id"], r["frame"]) for r in driven if r["dof"] == "0"]
+    assert trusses == [(r["chain_id"], r["frame"]) for r in plain if r["dof"] == "0"] and len(trusses) == 9
+    assert all(r["input_link"] == "" for r in driven if r["dof"] == "0")
+    moving = [r for r in driven if r["dof"] != "0"]
+    assert moving and all(r["input_link"] not in ("", r["frame"]) for r in moving)

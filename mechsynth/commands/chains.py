@@ -186,8 +186,8 @@ def _run_one_chain(args) -> int:
     items = listed
     if args.what == "mechanisms":
         refuse_structure(chain, items, input_link=args.input_link)
-        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
-                                                         cylinders=getattr(args, "cylinders", None)))
+        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link and c.dof != 0,  # a truss:
+                                                         cylinders=getattr(args, "cylinders", None)))  # no input
     return write_items(items, args.what, fmt=args.format, count=args.count,
                        kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
                        as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]))
