@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import csv
+import io
+
 import numpy as np
 import pytest
 
@@ -300,5 +303,77 @@ def test_a_structure_has_no_mechanisms_to_draw_or_list(tmp_path, capsys):
     assert "is a structure, not a mechanism's chain: W = -1" in capsys.readouterr().err
     assert main(["draw", "--chain", braced, "--out", str(out)]) == 0  # the chain, drawn as analyze reports it
     assert main(["draw", "--chain", braced, "--mechanisms", "--prismatic", "1..5", "--out", str(out)]) == 0
-    assert "11 drawings" in capsys.readouterr().err  # the 11 mechanisms of its variants of W ≥ 0
+    assert "11 drawings" in capsys.readouterr().err  # its 11 variants of W ≥ 0 on each frame
     assert main(["draw", "--chain", "0-1 1-2 2-0", "--mechanisms", "--out", str(out)]) == 0  # W = 0: a truss, fixed
+
+
+def test_a_structure_is_not_drawn_on_a_frame(tmp_path, capsys):
+    """`draw --chain C --frame F` drew a chain of W = −1 by the count as a mechanism on F, without a word, where
+    --mechanisms refused it: one fixed link is refused as every one is."""
+    out = tmp_path / "f.png"
+    assert main(["draw", "--chain", "0-1 1-2 2-3 3-0 1-3", "--frame", "0", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "is a structure, not a mechanism's chain: W = -1 by the count" in err and err.count("\n") == 1
+    assert not out.exists()
+    assert main(["draw", "--chain", "0-1 1-2 2-3 3-0", "--frame", "0", "--out", str(out)]) == 0 and out.exists()
+
+
+TRUSS = "0-3 0-4 1-3 1-4 2-3 2-4"  # 32/0, the five-link statically determinate truss (W = 0)
+
+
+def _table_end(capsys, *words) -> tuple[int, str]:
+    """The rows and the last line of a ``mechanisms`` table."""
+    assert main(["mechanisms", *words]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    return len(lines) - 3, lines[-1]  # the heading, its rule, the last line
+
+
+def test_a_chain_of_w_0_on_a_frame_is_named_a_truss(tmp_path, capsys):
+    """A chain of W = 0 on a frame is a statically determinate structure, not a mechanism: the listings, the
+    sheets and the captions named them "N mechanisms"; they say trusses on a frame, and a listing mixing both
+    counts each (against the W column of the same rows as CSV)."""
+    assert _table_end(capsys, "--chain", TRUSS) == (2, "2 trusses on a frame (W = 0: statically determinate, nothing "
+                                                       "moves)")
+    assert _table_end(capsys, "--dof", "0", "--links", "5") == (7, "7 trusses on a frame (W = 0: statically "
+                                                                   "determinate, nothing moves)")
+    assert _table_end(capsys, "--dof", "1", "--links", "6") == (5, "5 mechanisms")
+    braced = ["--chain", "0-1 1-2 2-3 3-0 1-3", "--prismatic", "1..5"]  # W = -1: its variants of W = 0 and 1
+    rows, end = _table_end(capsys, *braced)
+    assert main(["mechanisms", *braced, "--format", "csv"]) == 0
+    dofs = [row["dof"] for row in csv.DictReader(io.StringIO(capsys.readouterr().out))]
+    assert len(dofs) == rows == 11
+    assert end == (f"{sum(w != '0' for w in dofs)} mechanisms and {dofs.count('0')} trusses on a frame (W = 0: "
+                   "statically determinate, nothing moves)") == ("2 mechanisms and 9 trusses on a frame (W = 0: "
+                                                                 "statically determinate, nothing moves)")
+    out = tmp_path / "t.png"
+    assert main(["draw", "--chain", TRUSS, "--frame", "0", "--out", str(out)]) == 0  # a truss on its frame: drawn
+    assert main(["draw", "--chain", TRUSS, "--mechanisms", "--out", str(out)]) == 0
+    assert "2 drawings" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("words", [["--chain", TRUSS], ["--dof", "0", "--links", "5"], ["--code", "32/0", "--count"],
+                                   ["--dof", "0", "--links", "5", "--prismatic", "1"]])
+def test_a_truss_has_no_input_link(words, capsys):
+    """--input-link chose an input link of each truss on a frame (11 of W = 0 at 5 links), which nothing moves."""
+    assert main(["mechanisms", *words, "--input-link"]) == 2
+    err = capsys.readouterr().err
+    assert "W = 0 by the count: on a frame a truss is a statically determinate structure" in err
+    assert err.count("\n") == 1
+    assert main(["mechanisms", "--dof", "1", "--links", "4", "--input-link"]) == 0  # a crank-rocker's crank
+
+
+def test_among_variants_that_move_a_truss_gets_no_input_link(capsys):
+    """The braced four-bar's variants with --input-link: each of W = 1 with its input links, each truss (W = 0)
+    on its frame alone, as without --input-link."""
+    braced = ["mechanisms", "--chain", "0-1 1-2 2-3 3-0 1-3", "--prismatic", "1..5", "--format", "csv"]
+
+    def rows(*more):
+        assert main([*braced, *more]) == 0
+        return list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
+
+    plain, driven = rows(), rows("--input-link")
+    trusses = [(r["chain_id"], r["frame"]) for r in driven if r["dof"] == "0"]
+    assert trusses == [(r["chain_id"], r["frame"]) for r in plain if r["dof"] == "0"] and len(trusses) == 9
+    assert all(r["input_link"] == "" for r in driven if r["dof"] == "0")
+    moving = [r for r in driven if r["dof"] != "0"]
+    assert moving and all(r["input_link"] not in ("", r["frame"]) for r in moving)

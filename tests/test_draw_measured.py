@@ -267,6 +267,7 @@ def test_no_caption_runs_into_the_next_row(monkeypatch, tmp_path):
     (["--chain", WATT, "--prismatic", "1", "--mechanisms"], "42/0 (W = 1): {n} mechanisms of its variants with 1 "
                                                               "prismatic pair"),
     (["--chain", WATT, "--mechanisms"], "42/0 (W = 1): {n} mechanisms"),
+    (["--chain", "0-3 0-4 1-3 1-4 2-3 2-4", "--mechanisms"], "32/0 (W = 0): {n} trusses on a frame"),
     (["--chain", TRANSLATOR, "--loop-classes", "3=4,5=1"], "12.2.0.0.0/6 (W = 1): {n} bases of loop classes 3=4,5=1"),
 ])
 def test_a_sheet_of_one_chain_has_a_title_as_a_code_sheet_has(monkeypatch, tmp_path, args, title):

@@ -183,6 +183,7 @@ def test_a_single_joint_link_ends_free_in_a_square():
 def test_captions_by_hand():
     assert _caption(Mechanism(WATT_MULTIPLE, 0, 4), 3) == "51/1  #3  fixed 0, input 4"
     assert _caption(Mechanism(WATT_MULTIPLE, 2), None) == "51/1  fixed 2"
+    assert _caption(Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 3), None) == "32/0  fixed 3 (truss)"  # W = 0
     assert _caption(SLIDER_CRANK, None) == "4/0 P1"
     assert _caption(Chain.parse("0-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5"), 1) == "0600/0  non-planar  #1"
     assert _caption(Chain(5, ((0, 1), (1, 2), (2, 3), (3, 4), (4, 0)), h=4), None) == "5/0  h=4"

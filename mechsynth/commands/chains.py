@@ -79,7 +79,8 @@ def add_commands(sub) -> None:
     p.set_defaults(run=_run, what="chains")
     p = sub.add_parser("mechanisms", help="chains with a fixed link (and input link) up to symmetry")
     _add_selection(p, "mechanisms")
-    p.add_argument("--input-link", action="store_true", help="also choose the input link, jointed to the frame")
+    p.add_argument("--input-link", action="store_true", help="also choose the input link, jointed to the frame "
+                   "(refused for trusses, W = 0: nothing moves)")
     p.add_argument("--cylinders", metavar="KIND=N,…",
                    help="with --prismatic: prismatic pairs by kind, e.g. floating=1,swinging=2 (guide: on the frame; "
                    "swinging: a cylinder pinned to the frame; floating: a cylinder between moving links; slider: "
@@ -184,31 +185,66 @@ def _run_one_chain(args) -> int:
         back[id(listed[-1])] = given, [numbering.index(k) for k in range(given.links)]
     items = listed
     if args.what == "mechanisms":
-        refuse_structure(chain, items)
-        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link,
-                                                         cylinders=getattr(args, "cylinders", None)))
+        refuse_structure(chain, items, input_link=args.input_link)
+        items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link and c.dof != 0,  # a truss:
+                                                         cylinders=getattr(args, "cylinders", None)))  # no input
     return write_items(items, args.what, fmt=args.format, count=args.count,
                        kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
                        as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]))
 
 
-def refuse_structure(given, chains) -> None:
+def refuse_structure(given, chains, *, input_link: bool = False) -> None:
     """Refuse the mechanisms of a chain ``given`` whose W by the count is below 0 (one of ``chains``, the
-    chain itself or its variants, to be fixed by each link in turn): it is a structure, over-constrained,
-    and a mechanism fixes a link of a chain with W ≥ 0 — as a code of W < 0 is refused.
+    chain itself or its variants, to be fixed by each link in turn): it is a structure, over-constrained, and a
+    link is fixed in a chain of W ≥ 0 only (a mechanism, W ≥ 1, or a truss on a frame, W = 0) — as a code of
+    W < 0 is refused.  With ``input_link``, refuse too chains that are all trusses (W = 0): on a frame nothing
+    moves, so no link drives them.
 
     >>> from synth import Chain
     >>> refuse_structure(Chain.parse("0-1 1-2 2-3 3-0 1-3"), [Chain.parse("0-1 1-2 2-3 3-0 1-3")])
     Traceback (most recent call last):
-    synth.errors.ImpossibleParameters: the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained), and a mechanism fixes a link of a chain with W ≥ 0 ('mechsynth analyze' says why and how to mend it)
+    synth.errors.ImpossibleParameters: the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)
     """
     from synth import ImpossibleParameters
 
-    dof = min((c.dof for c in chains), default=0)
+    dofs = [c.dof for c in chains]
+    dof = min(dofs, default=0)
     if dof < 0:
         raise ImpossibleParameters(f"the chain {given.compact()} is a structure, not a mechanism's chain: W = {dof} "
-                                   "by the count (over-constrained), and a mechanism fixes a link of a chain with "
-                                   "W ≥ 0 ('mechsynth analyze' says why and how to mend it)")
+                                   "by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, "
+                                   "a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)")
+    if input_link and dofs and max(dofs) == 0:
+        raise truss_has_no_input(f"the chain {given.compact()} has")
+
+
+def truss_has_no_input(subject: str):
+    """The refusal of ``--input-link`` for chains of W = 0, whose ``subject`` is named (e.g. 'these chains have').
+
+    >>> print(truss_has_no_input("these chains have"))
+    these chains have W = 0 by the count: on a frame a truss is a statically determinate structure, it does not move, so --input-link has no link to drive (list them without it)
+    """
+    from synth import InvalidOption
+
+    return InvalidOption(f"{subject} W = 0 by the count: on a frame a truss is a statically determinate structure, "
+                         "it does not move, so --input-link has no link to drive (list them without it)")
+
+
+def on_a_frame(items: int, trusses: int) -> str:
+    """What ``items`` chains fixed by a link are, ``trusses`` of them of W = 0: mechanisms (W ≥ 1), and
+    trusses on a frame (W = 0: a statically determinate structure, that does not move).
+
+    >>> on_a_frame(2, 0), on_a_frame(1, 1), on_a_frame(4, 2)
+    ('2 mechanisms', '1 truss on a frame', '2 mechanisms and 2 trusses on a frame')
+    """
+    moving = items - trusses
+    named = [f"{moving} mechanism{'s' * (moving != 1)}"] if moving or not trusses else []
+    if trusses:
+        named.append(f"{trusses} truss{'es' * (trusses != 1)} on a frame")
+    return " and ".join(named)
+
+
+#: what a listing or a sheet adds after its count of trusses on a frame
+TRUSS_NOTE = "W = 0: statically determinate, nothing moves"
 
 
 def _as_given(item, given, as_given: list[int]) -> dict:
@@ -269,6 +305,7 @@ def _run_classes(args) -> int:
                      fractionated=args.fractionated, planar_only=args.planar_only)
     import os
 
+    _refuse_input_of_trusses(args, args.dof)
     skeletons = skeleton_query(args.dof, classes, links=args.links, **selection)
     note = size_note(skeletons, processes=args.workers or os.cpu_count() or 1, force=args.force)
     if note:
@@ -278,6 +315,12 @@ def _run_classes(args) -> int:
     if args.what == "mechanisms":
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link))
     return _write(items, args)
+
+
+def _refuse_input_of_trusses(args, dof: int) -> None:
+    """``mechanisms --input-link`` of a query whose chains have W = ``dof`` = 0: trusses, with nothing to drive."""
+    if args.what == "mechanisms" and args.input_link and dof == 0:
+        raise truss_has_no_input("the chains of this query have")
 
 
 def _run(args) -> int:
@@ -293,6 +336,7 @@ def _run(args) -> int:
     if args.loop_classes is not None:
         return _run_classes(args)
     query = query_of(args)
+    _refuse_input_of_trusses(args, query.dof)
     most_v = query.code.v if query.code is not None else (query.v or (0, 0))[1]
     if args.format == "adjacency" and most_v != 0:
         raise _invalid("an adjacency matrix holds simple joints only, and this query lists multiple joints (--v): "
@@ -354,6 +398,15 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
 
         n = write(items, fmt)
         return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
+    trusses = [0]  # a listing of mechanisms names its trusses on a frame (W = 0) as such
+
+    def counted(items):
+        for item in items:
+            trusses[0] += item.chain.dof == 0
+            yield item
+
+    if what == "mechanisms" and fmt == "table":
+        items = counted(items)
     rows = (_row(item, fmt, idle) | (as_given(item) if as_given else {}) for item in items)
     columns = ["index", "id", "code", "links", "joints", "certificate"]
     if h != 3:
@@ -373,8 +426,10 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         at = columns.index("joints") + 1
         columns[at:at] = ["as_given"] + (["frame_as_given", "input_link_as_given"] if what == "mechanisms" else [])
     n = write_rows(_indexed(rows), columns, fmt)
-    if fmt == "table":
-        print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain, 1 mechanism
+    if fmt == "table" and what == "mechanisms":
+        print(on_a_frame(n, trusses[0]) + (f" ({TRUSS_NOTE})" if trusses[0] else ""))
+    elif fmt == "table":
+        print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain
     if n == 0:
         return nothing_found(f"{what} satisfy these parameters and conventions")
     return 0

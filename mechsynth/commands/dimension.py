@@ -131,8 +131,8 @@ def add_commands(sub) -> None:
                    "each with its linkage)")
     p.add_argument("--save", type=_saved, metavar="FILE", help="write the linkage found (.toml: a scene that move "
                    "and scene read; or .json); with --db the best row's, or row K's with --row K")
-    p.add_argument("--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its curve "
-                   "(.png or .svg); with --db a sheet, a panel per row")
+    p.add_argument("-o", "--out", type=_picture, metavar="FILE", help="draw the mechanism over the target and its "
+                   "curve (.png or .svg); with --db a sheet, a panel per row")
     p.add_argument("--db", metavar="ATLAS", help="search every topology of this atlas (its curve index: 'mechsynth "
                    "atlas --db ATLAS --index-curves') instead of one mechanism; a closed path's target only")
     p.add_argument("--links", metavar="A..B", help="with --db: only mechanisms with this many links, e.g. 4..6")

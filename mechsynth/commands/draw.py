@@ -65,7 +65,7 @@ def add_commands(sub) -> None:
     p.add_argument("--limit", type=positive, help=f"refuse sheets larger than this (default {SHEET_LIMIT})")
     p.add_argument("--title", help="the title over the sheet or drawing (default: the selection; a linkage file: "
                    "its chain, frame and input)")
-    p.add_argument("--out", required=True, type=picture_file,
+    p.add_argument("-o", "--out", required=True, type=picture_file,
                    help="output file, .svg or .png (or .pdf), checked writable before any drawing")
     add_row(p)
     p.set_defaults(run=_run_draw)
@@ -94,10 +94,14 @@ def _chain_sheet_title(chain, items: list, args) -> str:
     """The title of a sheet drawn from one ``--chain``, as a ``--code`` sheet's: the chain's code, its
     W and what the drawings are.
 
-    >>> from argparse import Namespace; from synth import Chain
+    >>> from argparse import Namespace; from synth import Chain, Mechanism
     >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
     >>> _chain_sheet_title(watt, [watt] * 11, Namespace(loop_classes=None, prismatic="1..2", mechanisms=False))
     '42/0 (W = 1): 11 variants with 1..2 prismatic pairs'
+    >>> truss = Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4")
+    >>> _chain_sheet_title(truss, [Mechanism(truss, 0), Mechanism(truss, 3)], Namespace(loop_classes=None,
+    ...                    prismatic=None, mechanisms=True))
+    '32/0 (W = 0): 2 trusses on a frame'
     """
     n, s = len(items), "s" * (len(items) != 1)
     dofs = {getattr(item, "chain", item).dof for item in items}  # the bases of loop classes carry their own W
@@ -105,12 +109,15 @@ def _chain_sheet_title(chain, items: list, args) -> str:
                     else ("variant", f" with {args.prismatic} prismatic pair{'s' * (args.prismatic != '1')}") if args.prismatic is not None
                     else ("chain", ""))
     if not args.mechanisms:
-        what = f"{kind}{s}{detail}"
-    else:
-        what = f"mechanism{s}" + ("" if kind == "chain" else f" of its {kind}s{detail}")
+        what = f"{n} {kind}{s}{detail}"
+    else:  # a chain of W = 0 on a frame is a truss, not a mechanism
+        from .chains import on_a_frame
+
+        what = on_a_frame(n, sum(item.chain.dof == 0 for item in items)) + ("" if kind == "chain" else
+                                                                             f" of its {kind}s{detail}")
     w = f"W = {dofs.pop()}" if len(dofs) == 1 else "W = " + ", ".join(map(str, sorted(dofs)))
     h = "" if chain.h == 3 else f", h = {chain.h}"
-    return f"{chain.code} ({w}{h}): {n} {what}"
+    return f"{chain.code} ({w}{h}): {what}"
 
 
 def _defect(chain, dof) -> str:
@@ -290,15 +297,16 @@ def _run_draw(args) -> int:
             if not items:
                 print("mechsynth: no base of those loop classes passes the exact test on this chain", file=sys.stderr)
                 return 1
-        elif args.frame is not None:
-            items = [Mechanism(chain, args.frame)]
         else:
-            chains = _variants(args, [chain])
-            if args.mechanisms:
-                from .chains import refuse_structure
+            from .chains import refuse_structure
 
+            chains = _variants(args, [chain])
+            if args.mechanisms or args.frame is not None:
                 refuse_structure(chain, chains)
-            items = expand(chains, mechanisms=args.mechanisms)
+            if args.frame is not None:
+                items = [Mechanism(chain, args.frame)]
+            else:
+                items = expand(chains, mechanisms=args.mechanisms)
         title = args.title or (_chain_sheet_title(chain, items, args) if len(items) > 1 else None)  # one: its caption
     elif args.code:
         import synth

@@ -45,7 +45,7 @@ def add_commands(sub) -> None:
     p.add_argument("--mesh-kinds", choices=("given", "free"),
                    help="with --ratio: 'free' lets each mesh be external or internal (either gear the ring), "
                         "'given' keeps the train's (default: free for the atlas, given for --train)")
-    p.add_argument("--out", metavar="FILE", type=picture_file,
+    p.add_argument("-o", "--out", metavar="FILE", type=picture_file,
                    help="draw the functional schematics (.svg, .png, .pdf), checked before any work")
     p.add_argument("--limit", type=positive,
                    help=f"with --out: most schematics on one sheet (default {_SHEET}); a larger selection is refused")

@@ -104,7 +104,8 @@ def add_commands(sub) -> None:
                    "curve extent (over --start … --stop where given), a crank-driven slider's stroke and quick-return "
                    "ratio; the table's angles in degrees, the JSON's in radians, a crank's within one turn "
                    "(0 … 360°, 0 … 2π) in both")
-    p.add_argument("--out", type=_picture, help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
+    p.add_argument("-o", "--out", type=_picture,
+                   help="draw the coupler curves over the mechanism in its pose (.png or .svg)")
     p.add_argument("--animate", type=_animation, metavar="FILE", help="write an animation (.gif, or .svg that plays "
                    "in a browser)")
     p.add_argument("--frames", type=whole, help="with --animate: frames of the animation (2 … 1000, default 60)")

@@ -35,8 +35,9 @@ def add_commands(sub) -> None:
     p.add_argument("file", nargs="?", help="the scene file (TOML)")
     p.add_argument("--all", metavar="DIR", help="run every scene *.toml of DIR (files without [scene] are skipped)")
     p.add_argument("--format", choices=("table", "json"), default="table", help="table (default) or json")
-    p.add_argument("--out", metavar="DIR", type=output_folder, help="write drawings and plots to DIR (default: none is written, "
-                                                 "and their expectations are skipped)")
+    p.add_argument("-o", "--out", metavar="DIR", type=output_folder,
+                   help="write drawings and plots to DIR (default: none is written, and their expectations are "
+                   "skipped)")
     p.add_argument("--workers", type=workers, default=1, help="processes for type synthesis (default 1)")
     p.set_defaults(run=run_scene_command)
 

@@ -382,6 +382,12 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 
 def _caption(item, index: int | None) -> str:
+    """The words under a drawing: the chain's code, its number on a sheet, the fixed and input links; a chain of
+    W = 0 on a frame is a truss (a statically determinate structure), and says so.
+
+    >>> _caption(Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 0), 2)
+    '32/0  #2  fixed 0 (truss)'
+    """
     chain = item.chain if isinstance(item, Mechanism) else item
     text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix + chain.class_suffix
     if not chain.is_planar():
@@ -390,6 +396,7 @@ def _caption(item, index: int | None) -> str:
         text += f"  #{index}"
     if isinstance(item, Mechanism):
         text += f"  fixed {item.frame}" + (f", input {item.input_link}" if item.input_link is not None else "")
+        text += " (truss)" if chain.dof == 0 else ""
     return text
 
 

@@ -228,25 +228,46 @@ def test_options_that_collect_values_stay_repeatable(capsys):
     assert json.loads(capsys.readouterr().out)["by_code"] == {"521/0": 5}
 
 
+def _commands(parser=None, words=("mechsynth",)):
+    """(words, parser) of the root parser and of every command and sub-command under it."""
+    import argparse
+
+    from mechsynth._parser import build_parser
+
+    parser = parser or build_parser()
+    yield list(words), parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                yield from _commands(sub, [*words, name])
+
+
 def test_every_option_of_every_command_says_what_it_is():
     """--help of 'balance prismatic' listed --mass m, --inertia I and --counter-mass M without a word or a unit;
     22 options and arguments (each command's --format among them) had no help."""
     import argparse
 
-    from mechsynth._parser import build_parser
-
-    silent = []
-
-    def walk(parser, words):
-        for action in parser._actions:
-            if isinstance(action, argparse._SubParsersAction):
-                for name, sub in action.choices.items():
-                    walk(sub, [*words, name])
-            elif not action.help:
-                silent.append(f"{' '.join(words)} {action.option_strings or action.dest}")
-
-    walk(build_parser(), ["mechsynth"])
+    silent = [f"{' '.join(words)} {action.option_strings or action.dest}" for words, parser in _commands()
+              for action in parser._actions if not isinstance(action, argparse._SubParsersAction) and not action.help]
     assert silent == []
+
+
+WRITERS = [words[1:] for words, parser in _commands() if "--out" in parser._option_string_actions]
+
+
+def test_o_writes_a_drawing_and_means_nothing_else(tmp_path):
+    assert WRITERS and ["draw"] in WRITERS  # the parametrised test below runs over something
+    assert not [w for w, p in _commands() if "-o" in p._option_string_actions and "--out" not in p._option_string_actions]
+    assert main(["draw", "--chain", "0-1 1-2 2-3 3-0", "-o", str(tmp_path / "x.svg")]) == 0
+    assert (tmp_path / "x.svg").read_text().lstrip().startswith("<?xml")
+
+
+@pytest.mark.parametrize("words", WRITERS, ids=" ".join)
+def test_o_is_the_short_form_of_out(words):
+    """'draw --chain … -o x.png' was read as a LINKAGE_FILE and refused against it: -o is --out on every command
+    that has --out, and no command takes -o for anything else."""
+    parser = dict((tuple(w[1:]), p) for w, p in _commands())[tuple(words)]
+    assert parser._option_string_actions["-o"] is parser._option_string_actions["--out"]
 
 
 @pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full to stand for a full disk")
