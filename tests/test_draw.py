@@ -377,3 +377,41 @@ def test_among_variants_that_move_a_truss_gets_no_input_link(capsys):
     assert all(r["input_link"] == "" for r in driven if r["dof"] == "0")
     moving = [r for r in driven if r["dof"] != "0"]
     assert moving and all(r["input_link"] not in ("", r["frame"]) for r in moving)
+
+
+MOVING = "0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-2"  # a braced four-bar (W(S) = -1) beside a five-bar loop: W = 0, moves
+
+
+def test_a_chain_of_w_0_by_the_count_that_moves_is_no_truss(capsys):
+    """The truss wording went by the count: this chain, which moves with one degree of freedom, was listed as
+    "4 trusses on a frame (W = 0: statically determinate, nothing moves)", its sheet titled '4 trusses on a frame'
+    and its drawings captioned 'fixed 0 (truss)'; --input-link was refused as for a truss that does not move."""
+    from mechsynth.commands.draw import _chain_sheet_title
+    from argparse import Namespace
+
+    assert _table_end(capsys, "--chain", MOVING) == (4, "4 chains on a frame, not trusses: W = 0 by the count, but a "
+                                                        "sub-chain is over-constrained (W(S) = -1) and the links move "
+                                                        "with W = 1 ('mechsynth analyze' says where)")
+    chain = Chain.parse(MOVING)
+    items = synth.mechanisms_of(chain)
+    sheet = Namespace(loop_classes=None, prismatic=None, mechanisms=True)
+    assert _chain_sheet_title(chain, items, sheet) == "340/0 (W = 0 by the count): 4 chains on a frame, not trusses"
+    assert [_render._caption(m, None)[-len("(not a truss)"):] for m in items] == ["(not a truss)"] * 4
+    truss = Chain.parse(TRUSS)
+    assert _render._caption(Mechanism(truss, 0), None).endswith("fixed 0 (truss)")
+    assert main(["mechanisms", "--chain", MOVING, "--input-link"]) == 2
+    err = capsys.readouterr().err
+    assert ("has W = 0 by the count, not a truss: a sub-chain is over-constrained (W(S) = -1) and the links move "
+            "with W = 1; an input link is chosen by the count's W ≥ 1, so --input-link has no link to drive") in err
+    assert err.count("\n") == 1
+
+
+def test_mechanisms_of_a_listing_of_trusses_are_not_checked_again(capsys):
+    """Listed chains passed the exact sub-chain test in type synthesis: a listing of trusses names them by their
+    count without testing each again (the test runs on a chain given by hand only)."""
+    from unittest import mock
+
+    with mock.patch("synth.structure.trusses.check_subchains", side_effect=AssertionError("tested again")):
+        assert _table_end(capsys, "--dof", "0", "--links", "5", "--workers", "1")[1].startswith("7 trusses on a frame")
+        with pytest.raises(AssertionError, match="tested again"):  # where a chain given by hand is
+            main(["mechanisms", "--chain", TRUSS])

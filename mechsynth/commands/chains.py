@@ -152,7 +152,7 @@ def _run_one_chain(args) -> int:
     """``--chain C``: that one chain (any joint list or JSON row a command printed) in its canonical
     numbering (the one its id has in every listing and atlas) — its row, or its mechanisms; with
     ``--prismatic A..B`` the variants of that chain (Fig. 6: a drive's cylinders)."""
-    from synth import mechanisms_of
+    from synth import mechanisms_of, truss_defect
     from synth.exchange import read_chain
     from synth import parse_range
     from synth import prismatic_variants, variants_of
@@ -184,28 +184,32 @@ def _run_one_chain(args) -> int:
         listed.append(given.relabel(numbering))
         back[id(listed[-1])] = given, [numbering.index(k) for k in range(given.links)]
     items = listed
+    defect = None
     if args.what == "mechanisms":
-        refuse_structure(chain, items, input_link=args.input_link)
+        if chain.dof == 0 and args.prismatic is None and args.loop_classes is None:  # the chain as given: is it a
+            defect = truss_defect(chain)  # truss? (variants and bases passed the exact test: their count is true)
+        refuse_structure(chain, items, input_link=args.input_link, defect=defect)
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link and c.dof != 0,  # a truss:
                                                          cylinders=getattr(args, "cylinders", None)))  # no input
     return write_items(items, args.what, fmt=args.format, count=args.count,
                        kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
-                       as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]))
+                       as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]), defect=defect)
 
 
-def refuse_structure(given, chains, *, input_link: bool = False) -> None:
+def refuse_structure(given, chains, *, input_link: bool = False, defect: str | None = None) -> None:
     """Refuse the mechanisms of a chain ``given`` whose W by the count is below 0 (one of ``chains``, the
     chain itself or its variants, to be fixed by each link in turn): it is a structure, over-constrained, and a
     link is fixed in a chain of W ≥ 0 only (a mechanism, W ≥ 1, or a truss on a frame, W = 0) — as a code of
-    W < 0 is refused.  With ``input_link``, refuse too chains that are all trusses (W = 0): on a frame nothing
-    moves, so no link drives them.
+    W < 0 is refused.  With ``input_link``, refuse too chains that are all of W = 0: trusses on a frame, where
+    nothing moves, so no link drives them — or, with ``defect`` (:func:`synth.truss_defect` of ``given``), a chain
+    whose count misleads.
 
     >>> from synth import Chain
     >>> refuse_structure(Chain.parse("0-1 1-2 2-3 3-0 1-3"), [Chain.parse("0-1 1-2 2-3 3-0 1-3")])
     Traceback (most recent call last):
     synth.errors.ImpossibleParameters: the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)
     """
-    from synth import ImpossibleParameters
+    from synth import ImpossibleParameters, truss_has_no_input
 
     dofs = [c.dof for c in chains]
     dof = min(dofs, default=0)
@@ -214,37 +218,7 @@ def refuse_structure(given, chains, *, input_link: bool = False) -> None:
                                    "by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, "
                                    "a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)")
     if input_link and dofs and max(dofs) == 0:
-        raise truss_has_no_input(f"the chain {given.compact()} has")
-
-
-def truss_has_no_input(subject: str):
-    """The refusal of ``--input-link`` for chains of W = 0, whose ``subject`` is named (e.g. 'these chains have').
-
-    >>> print(truss_has_no_input("these chains have"))
-    these chains have W = 0 by the count: on a frame a truss is a statically determinate structure, it does not move, so --input-link has no link to drive (list them without it)
-    """
-    from synth import InvalidOption
-
-    return InvalidOption(f"{subject} W = 0 by the count: on a frame a truss is a statically determinate structure, "
-                         "it does not move, so --input-link has no link to drive (list them without it)")
-
-
-def on_a_frame(items: int, trusses: int) -> str:
-    """What ``items`` chains fixed by a link are, ``trusses`` of them of W = 0: mechanisms (W ≥ 1), and
-    trusses on a frame (W = 0: a statically determinate structure, that does not move).
-
-    >>> on_a_frame(2, 0), on_a_frame(1, 1), on_a_frame(4, 2)
-    ('2 mechanisms', '1 truss on a frame', '2 mechanisms and 2 trusses on a frame')
-    """
-    moving = items - trusses
-    named = [f"{moving} mechanism{'s' * (moving != 1)}"] if moving or not trusses else []
-    if trusses:
-        named.append(f"{trusses} truss{'es' * (trusses != 1)} on a frame")
-    return " and ".join(named)
-
-
-#: what a listing or a sheet adds after its count of trusses on a frame
-TRUSS_NOTE = "W = 0: statically determinate, nothing moves"
+        raise truss_has_no_input(f"the chain {given.compact()} has", "--input-link", defect)
 
 
 def _as_given(item, given, as_given: list[int]) -> dict:
@@ -320,7 +294,9 @@ def _run_classes(args) -> int:
 def _refuse_input_of_trusses(args, dof: int) -> None:
     """``mechanisms --input-link`` of a query whose chains have W = ``dof`` = 0: trusses, with nothing to drive."""
     if args.what == "mechanisms" and args.input_link and dof == 0:
-        raise truss_has_no_input("the chains of this query have")
+        from synth import truss_has_no_input
+
+        raise truss_has_no_input("the chains of this query have", "--input-link")
 
 
 def _run(args) -> int:
@@ -379,12 +355,13 @@ def _write(items, args) -> int:
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,
-                idle: bool = False, h: int = 3, as_given=None) -> int:
+                idle: bool = False, h: int = 3, as_given=None, defect: str | None = None) -> int:
     """List chains or mechanisms (``what``) in the chosen format, or count them by code; with
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
     with ``idle`` the joints that never move, in motion space ``h`` ≠ 3 its column (a table or
     CSV row is read back in its space); ``as_given`` (an item's extra columns: :func:`_as_given`) adds the
-    user's numbering of a chain given.  Returns the exit status (1 when none)."""
+    user's numbering of a chain given; ``defect`` (:func:`synth.truss_defect`) says why mechanisms of one
+    chain of W = 0 by the count are no trusses.  Returns the exit status (1 when none)."""
     if count:
         from synth import count_by_code
 
@@ -427,7 +404,11 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         columns[at:at] = ["as_given"] + (["frame_as_given", "input_link_as_given"] if what == "mechanisms" else [])
     n = write_rows(_indexed(rows), columns, fmt)
     if fmt == "table" and what == "mechanisms":
-        print(on_a_frame(n, trusses[0]) + (f" ({TRUSS_NOTE})" if trusses[0] else ""))
+        from synth import TRUSS_NOTE, on_a_frame
+
+        note = (f": W = 0 by the count, but {defect} ('mechsynth analyze' says where)" if defect
+                else f" ({TRUSS_NOTE})" if trusses[0] else "")
+        print(on_a_frame(n, trusses[0], not_trusses=defect is not None) + note)
     elif fmt == "table":
         print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain
     if n == 0:

@@ -92,7 +92,8 @@ def _variants(args, chains: list) -> list:
 
 def _chain_sheet_title(chain, items: list, args) -> str:
     """The title of a sheet drawn from one ``--chain``, as a ``--code`` sheet's: the chain's code, its
-    W and what the drawings are.
+    W and what the drawings are (a chain of W = 0 by the count given alone, fixed by each link: trusses, or
+    what it is if its count misleads).
 
     >>> from argparse import Namespace; from synth import Chain, Mechanism
     >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
@@ -102,20 +103,27 @@ def _chain_sheet_title(chain, items: list, args) -> str:
     >>> _chain_sheet_title(truss, [Mechanism(truss, 0), Mechanism(truss, 3)], Namespace(loop_classes=None,
     ...                    prismatic=None, mechanisms=True))
     '32/0 (W = 0): 2 trusses on a frame'
+    >>> moving = Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-2")  # a braced four-bar beside a five-bar loop
+    >>> _chain_sheet_title(moving, [Mechanism(moving, 0), Mechanism(moving, 4)], Namespace(loop_classes=None,
+    ...                    prismatic=None, mechanisms=True))
+    '340/0 (W = 0 by the count): 2 chains on a frame, not trusses'
     """
     n, s = len(items), "s" * (len(items) != 1)
     dofs = {getattr(item, "chain", item).dof for item in items}  # the bases of loop classes carry their own W
     kind, detail = (("base", f" of loop classes {args.loop_classes}") if args.loop_classes is not None
                     else ("variant", f" with {args.prismatic} prismatic pair{'s' * (args.prismatic != '1')}") if args.prismatic is not None
                     else ("chain", ""))
+    counted = False  # W = 0 by the count only: no truss
     if not args.mechanisms:
         what = f"{n} {kind}{s}{detail}"
     else:  # a chain of W = 0 on a frame is a truss, not a mechanism
-        from .chains import on_a_frame
+        from synth import on_a_frame, truss_defect
 
-        what = on_a_frame(n, sum(item.chain.dof == 0 for item in items)) + ("" if kind == "chain" else
-                                                                             f" of its {kind}s{detail}")
+        counted = kind == "chain" and chain.dof == 0 and truss_defect(chain) is not None  # (variants: exact test)
+        what = on_a_frame(n, sum(item.chain.dof == 0 for item in items), not_trusses=counted) + (
+            "" if kind == "chain" else f" of its {kind}s{detail}")
     w = f"W = {dofs.pop()}" if len(dofs) == 1 else "W = " + ", ".join(map(str, sorted(dofs)))
+    w += " by the count" if counted else ""
     h = "" if chain.h == 3 else f", h = {chain.h}"
     return f"{chain.code} ({w}{h}): {what}"
 

@@ -158,6 +158,10 @@ def _check_codes(scene: Scene) -> None:
 def _check_chains(scene: Scene) -> None:
     s = scene.tables["structure"]
     _needs_dof(scene, s, "chains, mechanisms and drawings")
+    if s.input_link and s.dof == 0:  # as 'mechanisms --input-link' refuses it: the chains are trusses
+        from synth import truss_has_no_input
+
+        raise scene.error(str(truss_has_no_input("the chains of [structure] have", "the key 'input_link'")))
     if s.f != 0:
         raise scene.error("[structure] key 'f' must be 0 for chains, mechanisms and drawings "
                           "(type synthesis builds chains with one-DOF pairs)")
@@ -299,11 +303,13 @@ class ChainListing(ChainCount):
 
 @dataclass(frozen=True)
 class MechanismCount(Row):
-    """``mechanisms``: the mechanisms of the chains (fixed link, and input link if asked) by code."""
+    """``mechanisms``: the mechanisms of the chains (fixed link, and input link if asked) by code, and how many
+    of them are trusses on a frame (W = 0: statically determinate, nothing moves)."""
 
     count: int
     by_code: dict[str, int]
     input_link: bool
+    trusses: int
 
 
 @dataclass(frozen=True)
@@ -449,7 +455,8 @@ def _mechanisms(run: Run) -> MechanismCount:
     by_code: dict[str, int] = {}
     for m in mechs:
         by_code[str(m.chain.code)] = by_code.get(str(m.chain.code), 0) + 1
-    return MechanismCount(len(mechs), by_code, run.scene.tables["structure"].input_link)
+    trusses = sum(m.chain.dof == 0 for m in mechs)  # (type synthesis's chains pass the exact test: W is true)
+    return MechanismCount(len(mechs), by_code, run.scene.tables["structure"].input_link, trusses)
 
 
 def _analysis(run: Run) -> Row:
@@ -507,6 +514,18 @@ def _report_chains(r: dict) -> list[str]:
     return lines
 
 
+def _report_mechanisms(r: dict) -> list[str]:
+    """What the mechanisms are, as ``mechsynth mechanisms`` says it: mechanisms and trusses on a frame.
+
+    >>> _report_mechanisms({"count": 7, "trusses": 7, "by_code": {"32/0": 5, "401/0": 2}})  # dof = 0, links = 5
+    ['7 trusses on a frame (W = 0: statically determinate, nothing moves): 32/0: 5, 401/0: 2']
+    """
+    from synth import TRUSS_NOTE, on_a_frame
+
+    note = f" ({TRUSS_NOTE})" if r["trusses"] else ""
+    return [f"{on_a_frame(r['count'], r['trusses'])}{note}: {table_text(r['by_code'])}"]
+
+
 def _report_analysis(r: dict) -> list[str]:
     keys = ["code", "links", "loops", "complexity", "v", "dof", "defect", "criterion_holds", "subchain_defect"]
     lines = [", ".join(f"{k} = {r[k]}" for k in keys if r.get(k) is not None)]
@@ -557,7 +576,7 @@ FAMILY.kind(ComputeKind(
     "mechanisms", "chains with a fixed link (and input link) up to symmetry", "structure", _mechanisms,
     expect={"mechanisms": Expectation(Whole, ("count",)),
             "mechanisms_by_code": Expectation(CodeTable, ("by_code",), _codes_table)},
-    check=_check_chains, report=lambda r: [f"{r['count']} mechanisms: {table_text(r['by_code'])}"]))
+    check=_check_chains, report=_report_mechanisms))
 FAMILY.kind(ComputeKind(
     "analysis", "W, K, Y, D of a code, of explicit counts or of a chain", "structure", _analysis,
     expect={

@@ -25,7 +25,7 @@ from mechbase import Row
 from ..errors import ImpossibleParameters, InvalidOption, MalformedChain, QueryTooLarge
 from ..structure.chain import Chain
 from ..structure.joints import MESH, PRISMATIC
-from ..structure.kinds import generic_mobility, idle_joints, kind_count, lever_analogue, wedge_loops
+from ..structure.kinds import idle_joints, kind_count, lever_analogue, mobility_of, wedge_loops
 from ..structure.query import MAX_CODE_LINKS
 from ..structure.subchains import check_subchains
 from ..synthesis.number_synthesis import number_synthesis
@@ -76,16 +76,6 @@ class ChainAnalysis(Row):
     defect: int | None = None
     redundant_joints: list | None = None
     loop_classes: dict | None = None
-
-
-def mobility_of(chain: Chain) -> int:
-    """The chain's true mobility: generic for a planar chain, the count in other motion spaces and
-    in heterogeneous chains (whose loops' motion spaces are the designer's statement).
-
-    >>> mobility_of(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced four-bar: rigid
-    0
-    """
-    return generic_mobility(chain) if chain.h == 3 and chain.classes is None else chain.dof
 
 
 def _standard(chain: Chain) -> bool:

@@ -283,7 +283,7 @@ def _place(chain: Chain, mechanism, dof: int, verdict, idle: bool, index: bool |
     out.update(index=rows.get(_digest(chain.certificate)), listed=len(rows))
     if out["index"] is None:  # the conventions say it is there: a chain the engine misses
         out["note"] = "not found in its listing: the engine misses this chain (please report it)"
-    if mechanism is not None:
+    if mechanism is not None and (mechanism.input_link is None or chain.dof != 0):  # a truss's input: in no listing
         moved = mechanism.input_link is not None
         mechs = _mechanism_rows(query, moved)
         listing = said.replace("mechsynth chains", "mechsynth mechanisms", 1) + (" --input-link" if moved else "")
@@ -302,6 +302,9 @@ def _listed_mechanism(listed: Chain, mechanism: Mechanism) -> Mechanism:
     """
     from ..synthesis.type_synthesis import mechanisms_of
 
+    if mechanism.input_link is not None and listed.dof == 0:  # a truss has no input link in a listing
+        found = (Mechanism(listed, f, x) for j in listed.joints for f in j for x in j if x != f)
+        return next(m for m in found if m.certificate == mechanism.certificate)
     return next(m for m in mechanisms_of(listed, input_link=mechanism.input_link is not None)
                 if m.certificate == mechanism.certificate)
 

@@ -15,7 +15,7 @@ key                  value                                                  defa
 ===================  =====================================================  ==============
 ``name``             text (top level only)                                  file stem
 ``description``      text (top level only)                                  ""
-``input_link``       also store input-link mechanisms (top level only)      false
+``input_link``       also store input-link mechanisms, W ≥ 1 (top level)     false
 ``dof``              W: integer, ``"A..B"`` or list of integers             required
 ``links``            n: integer, ``"A..B"`` or list of integers             one of the two
 ``loops``            K: integer, ``"A..B"`` or list of integers             one of the two

@@ -90,7 +90,7 @@ def _chain_rows(chain: Chain, fractionated: bool, input_link: bool, out: UnitRow
                        json.dumps(chain.to_dict(), separators=(",", ":")), kinds.count(MESH)))
     out.link_counts += [(cert, i + 2, n) for i, n in enumerate(code.assortment) if n]
     mechanisms = mechanisms_of(chain)
-    if input_link:
+    if input_link and chain.dof != 0:  # a truss on a frame (W = 0) has no input link: nothing moves
         mechanisms += mechanisms_of(chain, input_link=True)
     out.mechanisms += [(cert, m.frame, -1 if m.input_link is None else m.input_link) for m in mechanisms]
 

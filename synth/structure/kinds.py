@@ -46,7 +46,7 @@ if TYPE_CHECKING:  # the chain calls the counts below; they read a chain and nev
     from .chain import Chain
 
 __all__ = ["kind_count", "cycle_rank", "restricted_pairs", "wedge_loops", "kind_loops", "class_loops",
-           "structural_mobility", "generic_mobility",
+           "structural_mobility", "generic_mobility", "mobility_of",
            "redundant_constraints", "idle_joints", "motion", "lever_analogue", "prismatic_roles"]
 
 _PRIME = 2_147_483_647  # 2^31 − 1: a product of two residues fits in a 64-bit integer
@@ -251,6 +251,17 @@ def generic_mobility(chain: Chain, links=None, *, seed: int = 0) -> int:
     if links is None and seed == 0:
         return motion(chain)[0]
     return 3 * (len(s) - 1) - len(_best_draw(chain, s, seed)[1])
+
+
+def mobility_of(chain: Chain) -> int:
+    """The chain's true mobility: generic for a planar chain, the count in other motion spaces and
+    in heterogeneous chains (whose loops' motion spaces are the designer's statement).
+
+    >>> from synth.structure.chain import Chain
+    >>> mobility_of(Chain.parse("0-1 1-2 2-3 3-0 0-2 1-3"))   # over-braced four-bar: rigid
+    0
+    """
+    return generic_mobility(chain) if chain.h == 3 and chain.classes is None else chain.dof
 
 
 def redundant_constraints(chain: Chain, links=None) -> int:

@@ -774,9 +774,18 @@ def count_mechanisms(query: ChainQuery | int | None = None, links: int | None = 
     71
     """
     query = ChainQuery.of(query, links, **options)
+    _no_input_of_trusses(query, input_link)
     what = "mechanisms with input link" if input_link else "mechanisms"
     return _count(_MechanismCount(input_link, query.cylinders), what, query, workers, progress, checkpoint,
                   scheduler, timeout, log)
+
+
+def _no_input_of_trusses(query: ChainQuery, input_link: bool) -> None:
+    """Refuse input links of a query whose chains have W = 0: trusses on a frame, nothing to drive."""
+    if input_link and query.dof == 0:
+        from ..structure.trusses import truss_has_no_input
+
+        raise truss_has_no_input("the chains of this query have")
 
 
 def mechanisms_of(chain: Chain, *, input_link: bool = False, cylinders=()) -> list[Mechanism]:
@@ -784,14 +793,27 @@ def mechanisms_of(chain: Chain, *, input_link: bool = False, cylinders=()) -> li
     with ``cylinders`` (``(("floating", (1, 1)), …)``, see :class:`ChainQuery`) only those whose
     prismatic pairs are of those kinds.
 
+    ``input_link`` of a chain of W = 0 by the count raises :class:`InvalidOption`, as the command line
+    refuses ``--input-link``: fixed by a link such a chain is a truss and nothing moves (or, given by hand,
+    its count misleads and an input link is chosen by the count).  The mechanisms without an input link
+    would be a silent answer to another question, which a caller mixing chains of W = 0 and W ≥ 1 asks
+    by ``input_link=chain.dof != 0``.
+
     >>> [m.frame for m in mechanisms_of(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"))]  # Watt I and II
     [0, 2]
     >>> [m.frame for m in mechanisms_of(Chain.parse("0-1 1-2 2=3 3-0"), cylinders=["swinging=1"])]
     [0]
+    >>> mechanisms_of(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), input_link=True)
+    Traceback (most recent call last):
+    synth.errors.InvalidOption: the chain 0-3 0-4 1-3 1-4 2-3 2-4 has W = 0 by the count: on a frame a truss is a statically determinate structure, it does not move, so input_link has no link to drive (list them without it)
     """
     from ..structure.kinds import prismatic_roles
     from ..structure.query import parse_cylinders
 
+    if input_link and chain.dof == 0:  # (the sub-chain test only on the way out: it costs a listing nothing)
+        from ..structure.trusses import truss_defect, truss_has_no_input
+
+        raise truss_has_no_input(f"the chain {chain.compact()} has", defect=truss_defect(chain))
     wanted = parse_cylinders(cylinders)
     out = []
     for orbit in chain.link_orbits:
@@ -823,5 +845,6 @@ def mechanisms(query: ChainQuery | int | None = None, links: int | None = None, 
     5
     """
     query = ChainQuery.of(query, links, **options)
+    _no_input_of_trusses(query, input_link)
     for chain in type_synthesis(query, workers=workers, progress=progress):
         yield from mechanisms_of(chain, input_link=input_link, cylinders=query.cylinders)

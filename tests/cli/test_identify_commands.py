@@ -104,3 +104,16 @@ def test_identify_table_of_a_mechanism(capsys):
     for words in ("Watt chain", "Watt I", "#2 of 2 in 'mechsynth chains --code 42/0'", "frame's orbit       2, 3, 4, 5",
                   "|Aut| = 4", "mechanisms --code 42/0"):
         assert words in out, words
+
+
+def test_a_truss_with_an_input_link_is_identified_in_no_mechanism_listing(tmp_path, capsys):
+    """A truss on a frame with an input link (a file may say so) was placed in 'mechanisms --code 32/0
+    --input-link', a listing the command refuses (a truss has no input link); it is identified, in no listing."""
+    assert main(["mechanisms", "--chain", "0-3 0-4 1-3 1-4 2-3 2-4", "--format", "jsonl"]) == 0
+    row = json.loads(capsys.readouterr().out.splitlines()[0])
+    given = tmp_path / "truss.json"
+    given.write_text(json.dumps(row | {"input_link": 3}))
+    assert main(["identify", str(given), "--format", "json"]) == 0
+    found = json.loads(capsys.readouterr().out)
+    assert (found["frame"], found["input_link"], found["listed_input_link"]) == (0, 3, 3)
+    assert found.get("mechanism_listing") is None and found["listing"] == "mechsynth chains --code 32/0"

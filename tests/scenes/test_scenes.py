@@ -308,6 +308,12 @@ MALFORMED = {
     "closed-form driver no joint": ((MODELS / "motion_triad.toml").read_text().replace(
         'driver = "0-2"', 'driver = "0-5"'),
         ["[closed_form] driver names joint '0-5', which is not a joint of the chain"]),
+    # a truss on a frame (W = 0) does not move: 'mechanisms --input-link' refuses it, and so does a scene
+    "input link of trusses": (GOOD.replace('["codes"]', '["mechanisms"]').replace("dof = 1\nloops = 2",
+                              "dof = 0\nlinks = 5\ninput_link = true").replace('codes = ["42/0", "51/1", "60/2"]',
+                                                                         "mechanisms = 7"),
+                              ["the chains of [structure] have W = 0 by the count", "a truss is a statically "
+                               "determinate structure", "the key 'input_link' has no link to drive"]),
     "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                             "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
 }
@@ -512,3 +518,16 @@ def test_every_computation_gives_a_typed_result_printed_as_its_row(scene, kinds)
         with pytest.raises(dataclasses.FrozenInstanceError):
             setattr(typed, dataclasses.fields(typed)[0].name, None)
         assert result.rows[name] == as_row(typed) == result.to_dict()["results"][name]
+
+
+def test_a_scene_names_trusses_as_the_command_line_does(tmp_path):
+    """A scene of W = 0 reported "7 mechanisms" where 'mechsynth mechanisms' says trusses on a frame."""
+    path = tmp_path / "trusses.toml"
+    path.write_text(GOOD.replace('["codes"]', '["mechanisms"]').replace("dof = 1\nloops = 2", "dof = 0\nlinks = 5")
+                    .replace('codes = ["42/0", "51/1", "60/2"]', "mechanisms = 7"))
+    result = run_scene(path)
+    assert result.ok and result.results["mechanisms"].trusses == 7
+    code, out, _ = run_cli(str(path))
+    assert code == 0 and "7 trusses on a frame (W = 0: statically determinate, nothing moves): 32/0: 5, 401/0: 2" in out
+    code, out, _ = run_cli(str(MODELS / "mechanisms_1dof_8links.toml"))
+    assert code == 0 and "71 mechanisms: 440/0: 35" in out
