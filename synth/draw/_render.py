@@ -28,7 +28,7 @@ from mechbase import save_figure
 
 from ..structure.chain import Chain, Mechanism
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
-from ..structure.trusses import truss_defect
+from ..structure.trusses import count_defect
 from ..errors import InvalidOption, SynthesisError, option
 from ._layout import Layout, _sides, layout
 
@@ -384,13 +384,15 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 def _caption(item, index: int | None) -> str:
     """The words under a drawing: the chain's code, its number on a sheet, the fixed and input links; a chain of
-    W = 0 on a frame is a truss (a statically determinate structure), and says so — or that it is none, where
-    its count misleads (:func:`~synth.structure.trusses.truss_defect`).
+    W = 0 on a frame is a truss (a statically determinate structure), and says so — or, where its count
+    misleads, what it is (:func:`~synth.structure.trusses.count_defect`: not a truss, not of its W, degenerate).
 
     >>> _caption(Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 0), 2)
     '32/0  #2  fixed 0 (truss)'
     >>> _caption(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-2"), 0), None)
     '340/0  fixed 0 (not a truss)'
+    >>> _caption(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-7 7-2"), 0), None)  # moves with W = 2
+    '440/0  fixed 0 (not W = 1)'
     """
     chain = item.chain if isinstance(item, Mechanism) else item
     text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix + chain.class_suffix
@@ -400,8 +402,8 @@ def _caption(item, index: int | None) -> str:
         text += f"  #{index}"
     if isinstance(item, Mechanism):
         text += f"  fixed {item.frame}" + (f", input {item.input_link}" if item.input_link is not None else "")
-        if chain.dof == 0:
-            text += " (truss)" if truss_defect(chain) is None else " (not a truss)"
+        defect = count_defect(chain)  # (a millisecond beside the drawing's tens)
+        text += f" ({defect.caption})" if defect else " (truss)" if chain.dof == 0 else ""
     return text
 
 
