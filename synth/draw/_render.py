@@ -151,7 +151,7 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                 d = b - a
                 nrm = np.array([-d[1], d[0]]) / (np.linalg.norm(d) + 1e-12) * r * 0.9
                 ax.add_patch(Polygon([a + nrm, b + nrm, b - nrm, a - nrm], closed=True, facecolor="white",
-                                     edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2))
+                                     edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2, gid=f"framebar{link}"))
             else:
                 ax.plot(pts[:, 0], pts[:, 1], color=bar, lw=lw * (1.4 if based else 1), solid_capstyle="round",
                         zorder=2, gid=f"bar{link}")
@@ -180,11 +180,13 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     if mech is not None:  # the frame's pivots as a designer marks them: a support on a hatched base at each
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
-                _fixed_pivot(ax, pos[k], marks.ground(k), r, gid=f"ground{k}")
-    if labels:
+                _fixed_pivot(ax, pos[k], marks.ground(k), r, k)
+    if labels:  # the frame's number stands on its hatching: in a white box wide enough to keep the lines off it
         for link, (x, y) in _label_places(ax, marks, mech).items():
+            hatched = mech is not None and link == mech.frame
             ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
-                    gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+                    gid=f"label{link}", bbox=dict(boxstyle=f"round,pad={_HATCH_PAD if hatched else 0.1}", fc="white",
+                                                  ec="none", alpha=0.8))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -204,12 +206,17 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
 
 
+#: the padding, in ems, of the frame's number over its hatching (the others': 0.1)
+_HATCH_PAD = 0.4
+
+
 def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.ndarray]:
     """Where each link's number goes, as the motion drawings place them: of a few places (either side of
     a bar, along it; a plate's middle, towards its pins), the first clear of every pin, ring, slider,
     cylinder, fixed-pivot sign, bar, multiplicity number and number placed before, else the clearest
     (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings).
-    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet."""
+    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet; the
+    frame's number, in its wider box over the hatching, counts that box, and a frame's bar its hatched width."""
     from matplotlib.path import Path as MplPath
 
     chain, lay, pos, r = marks.chain, marks.lay, marks.pos, marks.r
@@ -229,7 +236,11 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     circle = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 12, endpoint=False)])
     for link, poly in enumerate(lay.polygons):
         ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
-        if len(ends) == 2:
+        if len(ends) == 2 and mech is not None and link == mech.frame:  # a hatched bar, 1.8 r wide
+            a, b = ends
+            across = np.array([a[1] - b[1], b[0] - a[0]]) / (np.linalg.norm(b - a) + 1e-12) * r * 0.9
+            outline([a + across, b + across, b - across, a - across])
+        elif len(ends) == 2:
             segment(*ends)
         else:
             outline(ends)
@@ -263,6 +274,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     out = {}
     for link, poly in enumerate(lay.polygons):
         half = np.array([half_char * len(str(link)) + 0.2 * unit, half_height])
+        if mech is not None and link == mech.frame:
+            half = half + (_HATCH_PAD - 0.1) * unit
         ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
         middle = np.mean(ends, axis=0)
         if len(ends) == 2:  # a bar: beside it, the upper side and its middle first; on it last
@@ -280,24 +293,30 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
             centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55, 0.75) for p in ends + sides]
         gaps = [clearance(c, half) for c in centres]
         clear = [c for c, g in zip(centres, gaps) if g >= 0.3 * r]
+        if not clear and len(ends) > 2:  # a narrow plate: the clearest of a grid over it
+            low, high = np.min(ends, axis=0), np.max(ends, axis=0)
+            grid = [c for c in (low + (high - low) * [i / 8, j / 8] for i in range(1, 8) for j in range(1, 8))
+                    if MplPath(np.array(ends)).contains_point(c)]
+            centres, gaps = centres + grid, gaps + [clearance(c, half) for c in grid]
         centre = clear[0] if clear else centres[int(np.argmax(gaps))]
         placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
         out[link] = centre
     return out
 
 
-def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, gid: str) -> None:
-    """A fixed pivot's sign at ``at``: two struts from the pin to a base line across ``direction``,
+def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, k: int) -> None:
+    """A fixed pivot's sign at ``at`` (joint ``k``): two struts from the pin to a base line across ``direction``,
     hatched beyond it (under the pin, over a multiple joint's ring)."""
     from matplotlib.patches import Polygon
 
     across = np.array([-direction[1], direction[0]])
     base, half, depth = at + direction * 2.4 * r, 1.5 * r, 0.8 * r
     ax.add_patch(Polygon([at, base + across * half, base - across * half], closed=True, facecolor="white",
-                         edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=gid))
+                         edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=f"ground{k}"))
     ax.add_patch(Polygon([base + across * half * 1.4, base - across * half * 1.4,
                           base - across * half * 1.4 + direction * depth, base + across * half * 1.4 + direction * depth],
-                         closed=True, facecolor="white", edgecolor=_EDGE, hatch="////", lw=1.2, zorder=3.5))
+                         closed=True, facecolor="white", edgecolor=_EDGE, hatch="////", lw=1.2, zorder=3.5,
+                         gid=f"pivotbase{k}"))
 
 
 def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarray], bool]:
