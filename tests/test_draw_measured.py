@@ -357,3 +357,17 @@ def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeyp
         monkeypatch.setattr(_render, "_save", keep)
         run()
     assert len(padding) == 2 + 2 + 10 and min(padding) >= 0.3, padding
+
+
+def test_a_fixed_pivot_sign_points_out_of_the_plates_at_its_pin():
+    """The sign went into the widest free angle at its pin, which could be a plate's own corner: drawn over
+    that plate (the frame's, under its number; a moving one's) in 2 of the 182 pivots of the 1-DOF 8-link
+    mechanisms and 6 of the 281 of the 7-link trusses. Every one now points out of the plates there (each
+    pin of these has an angle wide enough for it outside them), as matplotlib's point-in-polygon test finds."""
+    for dof, links in ((1, 8), (0, 7)):
+        for chain in synth.type_synthesis(dof, links, workers=1):
+            marks = _render._Marks(chain)
+            plates = [poly for poly in marks.lay.polygons if len(poly) > 2]
+            for k in {k for m in synth.mechanisms_of(chain) for k, j in enumerate(chain.joints) if m.frame in j}:
+                at = marks.pos[k] + 0.01 * marks.ground(k)
+                assert not any(MplPath(marks.pos[p]).contains_point(at) for p in plates if k in p), (chain, k)

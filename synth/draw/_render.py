@@ -82,13 +82,16 @@ class _Marks:
 
     def ground(self, k: int) -> np.ndarray:
         """The unit direction of the fixed-pivot sign at joint ``k`` of the frame: into the widest
-        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it."""
+        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it, and
+        out of the plates at it where an angle outside them has the sign's room (a sign in a plate
+        stood under its number)."""
         pos = self.pos
         also = [math.atan2(*(end - pos[k])[::-1]) for link, end in self.free_ends.items()
                 if self.lay.polygons[link] == [k]]
         if k in self.numbers:
             also.append(math.atan2(*(self.numbers[k] - pos[k])[::-1]))
-        turn, _ = _widest_gap(pos, self.sides, k, also)
+        plates = [poly for poly in self.lay.polygons if len(poly) > 2 and k in poly]  # a sign in one hides it
+        turn, _ = _widest_gap(pos, self.sides, k, also, plates, room=_SIGN_ANGLE)
         return np.array([math.cos(turn), math.sin(turn)])
 
 
@@ -214,7 +217,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     """Where each link's number goes, as the motion drawings place them: of a few places (either side of
     a bar, along it; a plate's middle, towards its pins), the first clear of every pin, ring, slider,
     cylinder, fixed-pivot sign, bar, multiplicity number and number placed before, else the clearest
-    (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings).
+    (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings); a plate
+    too narrow for any of them takes the clearest point of a grid over it.
     The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet; the
     frame's number, in its wider box over the hatching, counts that box, and a frame's bar its hatched width."""
     from matplotlib.path import Path as MplPath
@@ -293,8 +297,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
             centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55, 0.75) for p in ends + sides]
         gaps = [clearance(c, half) for c in centres]
         clear = [c for c, g in zip(centres, gaps) if g >= 0.3 * r]
-        if not clear and len(ends) > 2:  # a narrow plate: the clearest of a grid over it
-            low, high = np.min(ends, axis=0), np.max(ends, axis=0)
+        if not clear and len(ends) > 2:  # a narrow plate: the clearest of a grid over it (outside, a number
+            low, high = np.min(ends, axis=0), np.max(ends, axis=0)  # would be read as a neighbour's)
             grid = [c for c in (low + (high - low) * [i / 8, j / 8] for i in range(1, 8) for j in range(1, 8))
                     if MplPath(np.array(ends)).contains_point(c)]
             centres, gaps = centres + grid, gaps + [clearance(c, half) for c in grid]
@@ -302,6 +306,10 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
         placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
         out[link] = centre
     return out
+
+
+#: the angle a fixed-pivot sign spans at its pin (its hatched base, 2.1 r either side, 2.4 r out)
+_SIGN_ANGLE = 2 * math.atan2(2.1, 2.4)
 
 
 def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, k: int) -> None:
@@ -338,17 +346,41 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarra
     return [start + across * half, end + across * half, end - across * half, start - across * half], cylinder
 
 
-def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=()) -> tuple[float, float]:
+def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=(), plates=(),
+                room: float = 0.0) -> tuple[float, float]:
     """Direction (radians) of the middle of the widest free angle at a joint between the sides
     drawn there (and the directions ``also``), and that angle; away from the drawing's centre
-    where nothing meets the joint."""
+    where nothing meets the joint.  With ``plates`` (polygons of joints), the widest angle outside
+    them where one is ``room`` wide (radians).
+
+    >>> pos = np.array([[0, 0], [1, 0], [-1, 0.1], [-1, -0.36], [1, -0.36]])  # bars at 0°, 174°, 200°, 340°
+    >>> sides = [(0, 1), (0, 2), (0, 3), (0, 4)]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0)]  # 0° … 174°: the widest
+    [87, 174]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]])]  # a plate's: under it
+    [-90, 140]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]], room=math.pi)]  # none so wide
+    [87, 174]
+    """
     turns = sorted([math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
                     for a, b in sides if joint in (a, b)] + list(also))
     if not turns:
         away = pos[joint] - pos.mean(axis=0)
         return (math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2), math.pi
     gaps = [((turns[(i + 1) % len(turns)] - t) % (2 * math.pi)) or 2 * math.pi for i, t in enumerate(turns)]
-    i = int(np.argmax(gaps))
+    wedges = []  # each plate's corner at the joint (convex): from one side's direction, its angle
+    for plate in plates:
+        at = plate.index(joint)
+        ends = [pos[plate[at - 1]] - pos[joint], pos[plate[(at + 1) % len(plate)]] - pos[joint]]
+        ta, tb = (math.atan2(e[1], e[0]) for e in ends)
+        wedge = (tb - ta) % (2 * math.pi)
+        wedges.append((ta, wedge) if wedge <= math.pi else (tb, 2 * math.pi - wedge))
+
+    def outside(i: int) -> bool:
+        turn = turns[i] + gaps[i] / 2
+        return gaps[i] >= room and not any(0 < (turn - start) % (2 * math.pi) < wide for start, wide in wedges)
+
+    i = max((i for i in range(len(gaps)) if outside(i)), key=gaps.__getitem__, default=int(np.argmax(gaps)))
     return turns[i] + gaps[i] / 2, gaps[i]
 
 
