@@ -453,3 +453,18 @@ def test_mechanisms_of_a_listing_of_trusses_are_not_checked_again(capsys):
         assert _table_end(capsys, "--dof", "0", "--links", "5", "--workers", "1")[1].startswith("7 trusses on a frame")
         with pytest.raises(AssertionError, match="tested again"):  # where a chain given by hand is
             main(["mechanisms", "--chain", TRUSS])
+
+
+def test_a_chain_beyond_the_exact_test_is_listed_by_its_count_with_a_note(capsys):
+    """The check of a chain given by hand ran at W ≥ 1 too, and the exact test takes 24 non-binary links: a
+    ladder of 15 rungs (26) would have been refused where it was listed before; it is listed by its count, with
+    a note that the count is not checked, and its drawings' captions claim nothing."""
+    rungs = 15
+    joints = [f"{i}-{i + 1} {rungs + i}-{rungs + i + 1}" for i in range(rungs - 1)] + [f"{i}-{rungs + i}"
+                                                                                       for i in range(rungs)]
+    ladder = " ".join(joints)
+    rows, end = _table_end(capsys, "--chain", ladder)
+    assert rows == 8 and end == "8 mechanisms"
+    assert main(["mechanisms", "--chain", ladder, "--count"]) == 0
+    assert "not 26, so this chain's W by the count is not checked" in capsys.readouterr().err
+    assert _render._caption(Mechanism(Chain.parse(ladder), 0), 1).endswith("fixed 0")

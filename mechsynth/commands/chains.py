@@ -152,7 +152,7 @@ def _run_one_chain(args) -> int:
     """``--chain C``: that one chain (any joint list or JSON row a command printed) in its canonical
     numbering (the one its id has in every listing and atlas) — its row, or its mechanisms; with
     ``--prismatic A..B`` the variants of that chain (Fig. 6: a drive's cylinders)."""
-    from synth import count_defect, mechanisms_of
+    from synth import mechanisms_of
     from synth.exchange import read_chain
     from synth import parse_range
     from synth import prismatic_variants, variants_of
@@ -187,13 +187,25 @@ def _run_one_chain(args) -> int:
     defect = None
     if args.what == "mechanisms":
         if args.prismatic is None and args.loop_classes is None:  # the chain as given: a truss or a mechanism of its
-            defect = count_defect(chain)  # W? (variants and bases passed the exact test: their count is true)
+            defect = _count_defect(chain)  # W? (variants and bases passed the exact test: their count is true)
         refuse_structure(chain, items, input_link=args.input_link, defect=defect)
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link and c.dof != 0,  # a truss:
                                                          cylinders=getattr(args, "cylinders", None)))  # no input
     return write_items(items, args.what, fmt=args.format, count=args.count,
                        kinds=args.prismatic is not None or not chain.all_revolute, idle=args.idle_joints, h=chain.h,
                        as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]), defect=defect)
+
+
+def _count_defect(chain):
+    """:func:`synth.count_defect` of a chain given by hand, or None with a note on stderr where the exact test
+    cannot run (more non-binary links than it takes): its mechanisms are then listed by the count."""
+    from synth import MalformedChain, count_defect
+
+    try:
+        return count_defect(chain)
+    except MalformedChain as err:
+        print(f"mechsynth: note: {err}, so this chain's W by the count is not checked", file=sys.stderr)
+        return None
 
 
 def refuse_structure(given, chains, *, input_link: bool = False, defect=None) -> None:

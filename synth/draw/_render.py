@@ -18,6 +18,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -29,7 +30,7 @@ from mechbase import save_figure
 from ..structure.chain import Chain, Mechanism
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
 from ..structure.trusses import count_defect
-from ..errors import InvalidOption, SynthesisError, option
+from ..errors import InvalidOption, MalformedChain, SynthesisError, option
 from ._layout import Layout, _sides, layout
 
 __all__ = ["expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError", "SINGLE", "CELL", "check_size",
@@ -453,9 +454,25 @@ def _caption(item, index: int | None) -> str:
         text += f"  #{index}"
     if isinstance(item, Mechanism):
         text += f"  fixed {item.frame}" + (f", input {item.input_link}" if item.input_link is not None else "")
-        defect = count_defect(chain)  # (a millisecond beside the drawing's tens)
-        text += f" ({defect.caption})" if defect else " (truss)" if chain.dof == 0 else ""
+        word = _count_word(chain)
+        text += f" ({word})" if word else ""
     return text
+
+
+@functools.lru_cache(maxsize=16)
+def _count_word(chain: Chain) -> str:
+    """What a caption adds of a chain on a frame: 'truss', or what it is where its count misleads
+    (:func:`~synth.structure.trusses.count_defect`, once a chain for a sheet of its mechanisms: a millisecond
+    beside a drawing's tens); nothing for a mechanism of its W, or beyond the exact test's 24 non-binary links.
+
+    >>> _count_word(Chain.parse("0-1 1-2 2-0 2-3 3-4 4-5 5-0")), _count_word(Chain.parse("0-1 1-2 2-3 3-0"))
+    ('degenerate', '')
+    """
+    try:
+        defect = count_defect(chain)
+    except MalformedChain:  # too large to test: no word rather than a guess
+        return ""
+    return defect.caption if defect else "truss" if chain.dof == 0 else ""
 
 
 #: the edge of one drawing in inches, and the PNG resolution: a single drawing, a sheet's cell
