@@ -51,9 +51,9 @@ _WHERE = {
     "prismatic_roles": ".structure.kinds", "lever_analogue": ".structure.kinds",
     "SubchainReport": ".structure.subchains", "check_subchains": ".structure.subchains",
     "subchain_mobility": ".structure.subchains",
-    # a chain of W = 0 fixed by a link: a truss or not, and the words for both
-    "truss_defect": ".structure.trusses", "truss_has_no_input": ".structure.trusses", "on_a_frame": ".structure.trusses",
-    "TRUSS_NOTE": ".structure.trusses",
+    # a chain fixed by a link: a mechanism, a truss, or a chain whose count misleads, and the words for each
+    "count_defect": ".structure.trusses", "CountDefect": ".structure.trusses",
+    "truss_has_no_input": ".structure.trusses", "on_a_frame": ".structure.trusses", "TRUSS_NOTE": ".structure.trusses",
     # number and type synthesis, mechanisms
     "number_synthesis": ".synthesis.number_synthesis", "iter_codes": ".synthesis.number_synthesis",
     "MAX_CODES": ".synthesis.number_synthesis", "CodeQuery": ".synthesis.number_synthesis",

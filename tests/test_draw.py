@@ -402,8 +402,46 @@ def test_a_chain_of_w_0_by_the_count_that_moves_is_no_truss(capsys):
     assert main(["mechanisms", "--chain", MOVING, "--input-link"]) == 2
     err = capsys.readouterr().err
     assert ("has W = 0 by the count, not a truss: a sub-chain is over-constrained (W(S) = -1) and the links move "
-            "with W = 1; an input link is chosen by the count's W ≥ 1, so --input-link has no link to drive") in err
+            "with W = 1; an input link is chosen by the count's W, so --input-link would name links that cannot "
+            "drive it") in err
     assert err.count("\n") == 1
+
+
+MOVES_2 = "0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-7 7-2"  # a braced four-bar beside a six-bar loop: W = 1, moves with 2
+RIGID = "0-1 1-2 2-0 2-3 3-4 4-5 5-0"  # a four-bar whose frame is a triangle of three links: W = 1, degenerate
+
+
+def test_a_chain_of_w_1_whose_count_misleads_is_not_named_a_mechanism_of_w_1(tmp_path, capsys):
+    """The check of a chain given by hand ran at W = 0 only: a chain of W = 1 by the count that moves with two
+    degrees of freedom was listed as "4 mechanisms", its sheet titled so; and a four-bar whose frame is a rigid
+    triangle was listed as a plain mechanism.  Now the listing, the sheet's title, the captions and
+    --input-link say what each is."""
+    from mechsynth.commands.draw import _chain_sheet_title
+    from argparse import Namespace
+
+    assert _table_end(capsys, "--chain", MOVES_2) == (4, "4 chains on a frame, not mechanisms of W = 1: W = 1 by the "
+                                                         "count, but a sub-chain is over-constrained (W(S) = -1) and "
+                                                         "the links move with W = 2 ('mechsynth analyze' says where)")
+    assert _table_end(capsys, "--chain", RIGID) == (4, "4 degenerate mechanisms: W = 1, but a sub-chain is rigid "
+                                                       "(W(S) = 0), one link in effect ('mechsynth analyze' says where)")
+    sheet = Namespace(loop_classes=None, prismatic=None, mechanisms=True)
+    for given, title, caption in ((MOVES_2, "440/0 (W = 1 by the count): 4 chains on a frame, not mechanisms of "
+                                   "W = 1", "(not W = 1)"), (RIGID, "42/0 (W = 1): 4 degenerate mechanisms",
+                                                             "(degenerate)")):
+        chain = Chain.parse(given)
+        items = synth.mechanisms_of(chain)
+        assert _chain_sheet_title(chain, items, sheet) == title
+        assert all(_render._caption(m, 1).endswith(caption) for m in items)
+        assert main(["mechanisms", "--chain", given, "--input-link"]) == 2
+        err = capsys.readouterr().err
+        assert "has W = 1 by the count, " in err and "so --input-link would name links that cannot drive it" in err
+        assert err.count("\n") == 1
+    watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")  # the engine's Watt chain: no word more
+    assert [_render._caption(m, 1) for m in synth.mechanisms_of(watt)] == ["42/0  #1  fixed 0", "42/0  #1  fixed 2"]
+    assert _table_end(capsys, "--chain", "0-1 1-2 2-3 3-0 0-4 4-5 5-1") == (2, "2 mechanisms")
+    out = tmp_path / "m.png"
+    assert main(["draw", "--chain", MOVES_2, "--mechanisms", "--out", str(out)]) == 0 and out.exists()
+    assert main(["draw", "--chain", MOVES_2, "--frame", "0", "--out", str(out)]) == 0
 
 
 def test_mechanisms_of_a_listing_of_trusses_are_not_checked_again(capsys):
@@ -415,3 +453,18 @@ def test_mechanisms_of_a_listing_of_trusses_are_not_checked_again(capsys):
         assert _table_end(capsys, "--dof", "0", "--links", "5", "--workers", "1")[1].startswith("7 trusses on a frame")
         with pytest.raises(AssertionError, match="tested again"):  # where a chain given by hand is
             main(["mechanisms", "--chain", TRUSS])
+
+
+def test_a_chain_beyond_the_exact_test_is_listed_by_its_count_with_a_note(capsys):
+    """The check of a chain given by hand ran at W ≥ 1 too, and the exact test takes 24 non-binary links: a
+    ladder of 15 rungs (26) would have been refused where it was listed before; it is listed by its count, with
+    a note that the count is not checked, and its drawings' captions claim nothing."""
+    rungs = 15
+    joints = [f"{i}-{i + 1} {rungs + i}-{rungs + i + 1}" for i in range(rungs - 1)] + [f"{i}-{rungs + i}"
+                                                                                       for i in range(rungs)]
+    ladder = " ".join(joints)
+    rows, end = _table_end(capsys, "--chain", ladder)
+    assert rows == 8 and end == "8 mechanisms"
+    assert main(["mechanisms", "--chain", ladder, "--count"]) == 0
+    assert "not 26, so this chain's W by the count is not checked" in capsys.readouterr().err
+    assert _render._caption(Mechanism(Chain.parse(ladder), 0), 1).endswith("fixed 0")

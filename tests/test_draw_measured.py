@@ -288,7 +288,8 @@ FIG6 = ["0-1-2 0-10 1-5 1-6 2=11 3-5 3-7 4-5 4-6 6-7 6-8 7-9 8=9 10=11",
 
 def _numbers_over_symbols(monkeypatch, run) -> list:
     """(drawing, link number, what it covers) for each link number of the sheet ``run`` writes whose box
-    (shrunk by a tenth) meets a pin, slider, cylinder, free end or fixed-pivot sign, or another number."""
+    (shrunk by a tenth) meets a pin, slider, cylinder, free end, fixed-pivot sign (struts or hatched base) or
+    hatched frame bar, or another number."""
     seen = []
 
     def keep(fig, path, dpi):
@@ -298,7 +299,7 @@ def _numbers_over_symbols(monkeypatch, run) -> list:
         for k, ax in enumerate(fig.axes):
             numbers = [t for t in ax.texts if (t.get_gid() or "").startswith("label")]
             symbols = [p for p in ax.patches if (p.get_gid() or "").startswith(("pin", "slider", "cylinder", "ground",
-                                                                                 "end"))]
+                                                                                 "end", "pivotbase", "framebar"))]
             for t in numbers:
                 box = t.get_window_extent(renderer).shrunk(0.9, 0.9)
                 seen.extend((k, t.get_text(), p.get_gid()) for p in symbols
@@ -323,3 +324,50 @@ def test_link_numbers_stand_clear_of_cylinders_pins_and_pivot_signs(monkeypatch,
     # open chains with free ends (docs/cli.md's robot_arm.png, labelled): "1" stood over "2" on #3
     assert _numbers_over_symbols(monkeypatch, lambda: main(["draw", "--code", "2|5/2", "--labels", "--out",
                                                             str(tmp_path / "r.png")])) == []
+
+
+def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeypatch, tmp_path):
+    """On `draw --chain "0-3 0-4 1-3 1-4 2-3 2-4" --mechanisms`, #2, the number 3 of the hatched frame plate stood
+    in a box as tight as the other numbers' (a tenth of an em), the hatching's lines running up to it beside a
+    pivot sign, and the Watt chain's number 2 touched its hatched frame bar: the frame's number is padded clear
+    of the hatching, placed counting that box, and a frame bar counts its hatched width. No number meets a
+    symbol — a pivot sign's hatched base and a hatched bar counted now — on these sheets and a 10-link one."""
+    from matplotlib.patches import FancyBboxPatch
+
+    padding = []
+
+    def keep(fig, path, dpi):
+        fig.set_dpi(dpi)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        for ax in fig.axes:
+            if not ax.texts:  # a sheet's empty cell
+                continue
+            frame = int(re.search(r"fixed (\d+)", ax.get_title()).group(1))
+            number = next(t for t in ax.texts if t.get_gid() == f"label{frame}")
+            glyph, box = number.get_window_extent(renderer), number.get_bbox_patch().get_window_extent(renderer)
+            assert isinstance(number.get_bbox_patch(), FancyBboxPatch)
+            em = 7 * dpi / 72
+            padding.append(min(glyph.x0 - box.x0, box.x1 - glyph.x1, glyph.y0 - box.y0, box.y1 - glyph.y1) / em)
+
+    for chain in ("0-3 0-4 1-3 1-4 2-3 2-4", "0-1 1-2 2-3 3-0 0-4 4-5 5-1",
+                  "0-5 0-7 1-5 1-6 2-3 2-7 3-9 4-6 4-9 5-8 6-8 7-9 8-9"):
+        run = lambda: main(["draw", "--chain", chain, "--mechanisms", "--out", str(tmp_path / "s.png")])  # noqa: E731
+        assert _numbers_over_symbols(monkeypatch, run) == [], chain
+        monkeypatch.setattr(_render, "_save", keep)
+        run()
+    assert len(padding) == 2 + 2 + 10 and min(padding) >= 0.3, padding
+
+
+def test_a_fixed_pivot_sign_points_out_of_the_plates_at_its_pin():
+    """The sign went into the widest free angle at its pin, which could be a plate's own corner: drawn over
+    that plate (the frame's, under its number; a moving one's) in 2 of the 182 pivots of the 1-DOF 8-link
+    mechanisms and 6 of the 281 of the 7-link trusses. Every one now points out of the plates there (each
+    pin of these has an angle wide enough for it outside them), as matplotlib's point-in-polygon test finds."""
+    for dof, links in ((1, 8), (0, 7)):
+        for chain in synth.type_synthesis(dof, links, workers=1):
+            marks = _render._Marks(chain)
+            plates = [poly for poly in marks.lay.polygons if len(poly) > 2]
+            for k in {k for m in synth.mechanisms_of(chain) for k, j in enumerate(chain.joints) if m.frame in j}:
+                at = marks.pos[k] + 0.01 * marks.ground(k)
+                assert not any(MplPath(marks.pos[p]).contains_point(at) for p in plates if k in p), (chain, k)

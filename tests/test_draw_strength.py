@@ -181,8 +181,10 @@ def test_a_single_joint_link_ends_free_in_a_square():
 
 
 def test_captions_by_hand():
-    assert _caption(Mechanism(WATT_MULTIPLE, 0, 4), 3) == "51/1  #3  fixed 0, input 4"
-    assert _caption(Mechanism(WATT_MULTIPLE, 2), None) == "51/1  fixed 2"
+    # links 0, 2 and 3 of WATT_MULTIPLE form a rigid triangle (W(S) = 0): a degenerate mechanism, and says so
+    assert _caption(Mechanism(WATT_MULTIPLE, 0, 4), 3) == "51/1  #3  fixed 0, input 4 (degenerate)"
+    assert _caption(Mechanism(WATT_MULTIPLE, 2), None) == "51/1  fixed 2 (degenerate)"
+    assert _caption(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1"), 2), None) == "42/0  fixed 2"  # Watt
     assert _caption(Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 3), None) == "32/0  fixed 3 (truss)"  # W = 0
     assert _caption(SLIDER_CRANK, None) == "4/0 P1"
     assert _caption(Chain.parse("0-3 0-4 0-5 1-3 1-4 1-5 2-3 2-4 2-5"), 1) == "0600/0  non-planar  #1"
@@ -326,9 +328,8 @@ def test_a_fixed_pivot_sign_and_a_fixed_bar_by_hand():
     marks = _Marks(mechanism.chain)
     pos, r = marks.pos, marks.r
     a, b = pos[marks.lay.polygons[3]]
-    hatched = [p for p in ax.patches if p.get_hatch() == "////" and not (p.get_gid() or "")]
-    bars = [p for p in hatched if p.get_zorder() == 2]
-    (bar,) = bars
+    hatched = [p for p in ax.patches if p.get_hatch() == "////" and not (p.get_gid() or "").startswith("end")]
+    (bar,) = [p for p in hatched if p.get_gid() == "framebar3"]
     corners = bar.get_xy()[:4]
     normal = np.array([-(b - a)[1], (b - a)[0]]) / np.linalg.norm(b - a) * 0.9 * r
     assert np.allclose(corners, [a + normal, b + normal, b - normal, a - normal])
@@ -339,8 +340,8 @@ def test_a_fixed_pivot_sign_and_a_fixed_bar_by_hand():
         base = pos[k] + 2.4 * r * direction
         (strut,) = [p for p in ax.patches if p.get_gid() == f"ground{k}"]
         assert np.allclose(strut.get_xy()[:3], [pos[k], base + 1.5 * r * across, base - 1.5 * r * across])
-        (plate,) = [p for p in hatched if p.get_zorder() == 3.5 and np.allclose(
-            p.get_xy()[0], base + 2.1 * r * across)]
+        (plate,) = [p for p in hatched if p.get_gid() == f"pivotbase{k}"]
+        assert plate.get_zorder() == 3.5
         assert np.allclose(plate.get_xy()[:4], [base + 2.1 * r * across, base - 2.1 * r * across,
                                                  base - 2.1 * r * across + 0.8 * r * direction,
                                                  base + 2.1 * r * across + 0.8 * r * direction])

@@ -152,7 +152,7 @@ def _run_one_chain(args) -> int:
     """``--chain C``: that one chain (any joint list or JSON row a command printed) in its canonical
     numbering (the one its id has in every listing and atlas) — its row, or its mechanisms; with
     ``--prismatic A..B`` the variants of that chain (Fig. 6: a drive's cylinders)."""
-    from synth import mechanisms_of, truss_defect
+    from synth import mechanisms_of
     from synth.exchange import read_chain
     from synth import parse_range
     from synth import prismatic_variants, variants_of
@@ -186,8 +186,8 @@ def _run_one_chain(args) -> int:
     items = listed
     defect = None
     if args.what == "mechanisms":
-        if chain.dof == 0 and args.prismatic is None and args.loop_classes is None:  # the chain as given: is it a
-            defect = truss_defect(chain)  # truss? (variants and bases passed the exact test: their count is true)
+        if args.prismatic is None and args.loop_classes is None:  # the chain as given: a truss or a mechanism of its
+            defect = _count_defect(chain)  # W? (variants and bases passed the exact test: their count is true)
         refuse_structure(chain, items, input_link=args.input_link, defect=defect)
         items = (m for c in items for m in mechanisms_of(c, input_link=args.input_link and c.dof != 0,  # a truss:
                                                          cylinders=getattr(args, "cylinders", None)))  # no input
@@ -196,13 +196,25 @@ def _run_one_chain(args) -> int:
                        as_given=lambda item: _as_given(item, *back[id(getattr(item, "chain", item))]), defect=defect)
 
 
-def refuse_structure(given, chains, *, input_link: bool = False, defect: str | None = None) -> None:
+def _count_defect(chain):
+    """:func:`synth.count_defect` of a chain given by hand, or None with a note on stderr where the exact test
+    cannot run (more non-binary links than it takes): its mechanisms are then listed by the count."""
+    from synth import MalformedChain, count_defect
+
+    try:
+        return count_defect(chain)
+    except MalformedChain as err:
+        print(f"mechsynth: note: {err}, so this chain's W by the count is not checked", file=sys.stderr)
+        return None
+
+
+def refuse_structure(given, chains, *, input_link: bool = False, defect=None) -> None:
     """Refuse the mechanisms of a chain ``given`` whose W by the count is below 0 (one of ``chains``, the
     chain itself or its variants, to be fixed by each link in turn): it is a structure, over-constrained, and a
     link is fixed in a chain of W ≥ 0 only (a mechanism, W ≥ 1, or a truss on a frame, W = 0) — as a code of
-    W < 0 is refused.  With ``input_link``, refuse too chains that are all of W = 0: trusses on a frame, where
-    nothing moves, so no link drives them — or, with ``defect`` (:func:`synth.truss_defect` of ``given``), a chain
-    whose count misleads.
+    W < 0 is refused.  With ``input_link``, refuse too chains that are all of W = 0 (trusses on a frame, where
+    nothing moves, so no link drives them) and, with ``defect`` (:func:`synth.count_defect` of ``given``), a chain
+    whose count misleads, whatever its W: its input links would be chosen by that count.
 
     >>> from synth import Chain
     >>> refuse_structure(Chain.parse("0-1 1-2 2-3 3-0 1-3"), [Chain.parse("0-1 1-2 2-3 3-0 1-3")])
@@ -217,7 +229,7 @@ def refuse_structure(given, chains, *, input_link: bool = False, defect: str | N
         raise ImpossibleParameters(f"the chain {given.compact()} is a structure, not a mechanism's chain: W = {dof} "
                                    "by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, "
                                    "a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)")
-    if input_link and dofs and max(dofs) == 0:
+    if input_link and (defect is not None or dofs and max(dofs) == 0):
         raise truss_has_no_input(f"the chain {given.compact()} has", "--input-link", defect)
 
 
@@ -355,13 +367,13 @@ def _write(items, args) -> int:
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,
-                idle: bool = False, h: int = 3, as_given=None, defect: str | None = None) -> int:
+                idle: bool = False, h: int = 3, as_given=None, defect=None) -> int:
     """List chains or mechanisms (``what``) in the chosen format, or count them by code; with
     ``kinds`` the columns of joint kinds (W, K_2, K_3; the prismatic pairs of mechanisms by kind),
     with ``idle`` the joints that never move, in motion space ``h`` ≠ 3 its column (a table or
     CSV row is read back in its space); ``as_given`` (an item's extra columns: :func:`_as_given`) adds the
-    user's numbering of a chain given; ``defect`` (:func:`synth.truss_defect`) says why mechanisms of one
-    chain of W = 0 by the count are no trusses.  Returns the exit status (1 when none)."""
+    user's numbering of a chain given; ``defect`` (:func:`synth.count_defect`) says why the mechanisms of one
+    chain given are no trusses or not of its W by the count.  Returns the exit status (1 when none)."""
     if count:
         from synth import count_by_code
 
@@ -406,9 +418,9 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
     if fmt == "table" and what == "mechanisms":
         from synth import TRUSS_NOTE, on_a_frame
 
-        note = (f": W = 0 by the count, but {defect} ('mechsynth analyze' says where)" if defect
-                else f" ({TRUSS_NOTE})" if trusses[0] else "")
-        print(on_a_frame(n, trusses[0], not_trusses=defect is not None) + note)
+        note = ("" if not defect else f": W = {defect.dof}, but {defect} ('mechsynth analyze' says where)" if defect.degenerate_only
+                else f": W = {defect.dof} by the count, but {defect} ('mechsynth analyze' says where)")
+        print(on_a_frame(n, trusses[0], defect=defect) + (note or f" ({TRUSS_NOTE})" * bool(trusses[0])))
     elif fmt == "table":
         print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain
     if n == 0:

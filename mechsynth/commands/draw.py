@@ -92,8 +92,8 @@ def _variants(args, chains: list) -> list:
 
 def _chain_sheet_title(chain, items: list, args) -> str:
     """The title of a sheet drawn from one ``--chain``, as a ``--code`` sheet's: the chain's code, its
-    W and what the drawings are (a chain of W = 0 by the count given alone, fixed by each link: trusses, or
-    what it is if its count misleads).
+    W and what the drawings are (a chain given alone, fixed by each link: mechanisms, trusses, or what it is
+    where its count misleads).
 
     >>> from argparse import Namespace; from synth import Chain, Mechanism
     >>> watt = Chain.parse("0-1 1-2 2-3 3-0 0-4 4-5 5-1")
@@ -107,23 +107,26 @@ def _chain_sheet_title(chain, items: list, args) -> str:
     >>> _chain_sheet_title(moving, [Mechanism(moving, 0), Mechanism(moving, 4)], Namespace(loop_classes=None,
     ...                    prismatic=None, mechanisms=True))
     '340/0 (W = 0 by the count): 2 chains on a frame, not trusses'
+    >>> _chain_sheet_title(Chain.parse("0-1 1-2 2-0 2-3 3-4 4-5 5-0"), [Mechanism(watt, 0)] * 4,
+    ...                    Namespace(loop_classes=None, prismatic=None, mechanisms=True))  # a four-bar's frame a triangle
+    '42/0 (W = 1): 4 degenerate mechanisms'
     """
     n, s = len(items), "s" * (len(items) != 1)
     dofs = {getattr(item, "chain", item).dof for item in items}  # the bases of loop classes carry their own W
     kind, detail = (("base", f" of loop classes {args.loop_classes}") if args.loop_classes is not None
                     else ("variant", f" with {args.prismatic} prismatic pair{'s' * (args.prismatic != '1')}") if args.prismatic is not None
                     else ("chain", ""))
-    counted = False  # W = 0 by the count only: no truss
+    defect = None  # of the chain given, where its count misleads
     if not args.mechanisms:
         what = f"{n} {kind}{s}{detail}"
     else:  # a chain of W = 0 on a frame is a truss, not a mechanism
-        from synth import on_a_frame, truss_defect
+        from synth import count_defect, on_a_frame
 
-        counted = kind == "chain" and chain.dof == 0 and truss_defect(chain) is not None  # (variants: exact test)
-        what = on_a_frame(n, sum(item.chain.dof == 0 for item in items), not_trusses=counted) + (
+        defect = count_defect(chain) if kind == "chain" else None  # (variants and bases passed the exact test)
+        what = on_a_frame(n, sum(item.chain.dof == 0 for item in items), defect=defect) + (
             "" if kind == "chain" else f" of its {kind}s{detail}")
     w = f"W = {dofs.pop()}" if len(dofs) == 1 else "W = " + ", ".join(map(str, sorted(dofs)))
-    w += " by the count" if counted else ""
+    w += " by the count" if defect and not defect.degenerate_only else ""
     h = "" if chain.h == 3 else f", h = {chain.h}"
     return f"{chain.code} ({w}{h}): {what}"
 

@@ -18,6 +18,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -28,8 +29,8 @@ from mechbase import save_figure
 
 from ..structure.chain import Chain, Mechanism
 from ..structure.joints import MESH, PRISMATIC, REVOLUTE
-from ..structure.trusses import truss_defect
-from ..errors import InvalidOption, SynthesisError, option
+from ..structure.trusses import count_defect
+from ..errors import InvalidOption, MalformedChain, SynthesisError, option
 from ._layout import Layout, _sides, layout
 
 __all__ = ["expand", "draw_one", "draw_sheet", "svg", "svg_inline", "DrawError", "SINGLE", "CELL", "check_size",
@@ -82,13 +83,16 @@ class _Marks:
 
     def ground(self, k: int) -> np.ndarray:
         """The unit direction of the fixed-pivot sign at joint ``k`` of the frame: into the widest
-        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it."""
+        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it, and
+        out of the plates at it where an angle outside them has the sign's room (a sign in a plate
+        stood under its number)."""
         pos = self.pos
         also = [math.atan2(*(end - pos[k])[::-1]) for link, end in self.free_ends.items()
                 if self.lay.polygons[link] == [k]]
         if k in self.numbers:
             also.append(math.atan2(*(self.numbers[k] - pos[k])[::-1]))
-        turn, _ = _widest_gap(pos, self.sides, k, also)
+        plates = [poly for poly in self.lay.polygons if len(poly) > 2 and k in poly]  # a sign in one hides it
+        turn, _ = _widest_gap(pos, self.sides, k, also, plates, room=_SIGN_ANGLE)
         return np.array([math.cos(turn), math.sin(turn)])
 
 
@@ -151,7 +155,7 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
                 d = b - a
                 nrm = np.array([-d[1], d[0]]) / (np.linalg.norm(d) + 1e-12) * r * 0.9
                 ax.add_patch(Polygon([a + nrm, b + nrm, b - nrm, a - nrm], closed=True, facecolor="white",
-                                     edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2))
+                                     edgecolor=_EDGE, hatch="////", lw=1.2, zorder=2, gid=f"framebar{link}"))
             else:
                 ax.plot(pts[:, 0], pts[:, 1], color=bar, lw=lw * (1.4 if based else 1), solid_capstyle="round",
                         zorder=2, gid=f"bar{link}")
@@ -180,11 +184,13 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     if mech is not None:  # the frame's pivots as a designer marks them: a support on a hatched base at each
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
-                _fixed_pivot(ax, pos[k], marks.ground(k), r, gid=f"ground{k}")
-    if labels:
+                _fixed_pivot(ax, pos[k], marks.ground(k), r, k)
+    if labels:  # the frame's number stands on its hatching: in a white box wide enough to keep the lines off it
         for link, (x, y) in _label_places(ax, marks, mech).items():
+            hatched = mech is not None and link == mech.frame
             ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
-                    gid=f"label{link}", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+                    gid=f"label{link}", bbox=dict(boxstyle=f"round,pad={_HATCH_PAD if hatched else 0.1}", fc="white",
+                                                  ec="none", alpha=0.8))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -204,12 +210,18 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
 
 
+#: the padding, in ems, of the frame's number over its hatching (the others': 0.1)
+_HATCH_PAD = 0.4
+
+
 def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.ndarray]:
     """Where each link's number goes, as the motion drawings place them: of a few places (either side of
     a bar, along it; a plate's middle, towards its pins), the first clear of every pin, ring, slider,
     cylinder, fixed-pivot sign, bar, multiplicity number and number placed before, else the clearest
-    (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings).
-    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet."""
+    (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings); a plate
+    too narrow for any of them takes the clearest point of a grid over it.
+    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet; the
+    frame's number, in its wider box over the hatching, counts that box, and a frame's bar its hatched width."""
     from matplotlib.path import Path as MplPath
 
     chain, lay, pos, r = marks.chain, marks.lay, marks.pos, marks.r
@@ -229,7 +241,11 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     circle = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 12, endpoint=False)])
     for link, poly in enumerate(lay.polygons):
         ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
-        if len(ends) == 2:
+        if len(ends) == 2 and mech is not None and link == mech.frame:  # a hatched bar, 1.8 r wide
+            a, b = ends
+            across = np.array([a[1] - b[1], b[0] - a[0]]) / (np.linalg.norm(b - a) + 1e-12) * r * 0.9
+            outline([a + across, b + across, b - across, a - across])
+        elif len(ends) == 2:
             segment(*ends)
         else:
             outline(ends)
@@ -263,6 +279,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     out = {}
     for link, poly in enumerate(lay.polygons):
         half = np.array([half_char * len(str(link)) + 0.2 * unit, half_height])
+        if mech is not None and link == mech.frame:
+            half = half + (_HATCH_PAD - 0.1) * unit
         ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
         middle = np.mean(ends, axis=0)
         if len(ends) == 2:  # a bar: beside it, the upper side and its middle first; on it last
@@ -280,24 +298,34 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
             centres = [middle] + [middle + f * (p - middle) for f in (0.3, 0.55, 0.75) for p in ends + sides]
         gaps = [clearance(c, half) for c in centres]
         clear = [c for c, g in zip(centres, gaps) if g >= 0.3 * r]
+        if not clear and len(ends) > 2:  # a narrow plate: the clearest of a grid over it (outside, a number
+            low, high = np.min(ends, axis=0), np.max(ends, axis=0)  # would be read as a neighbour's)
+            grid = [c for c in (low + (high - low) * [i / 8, j / 8] for i in range(1, 8) for j in range(1, 8))
+                    if MplPath(np.array(ends)).contains_point(c)]
+            centres, gaps = centres + grid, gaps + [clearance(c, half) for c in grid]
         centre = clear[0] if clear else centres[int(np.argmax(gaps))]
         placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
         out[link] = centre
     return out
 
 
-def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, gid: str) -> None:
-    """A fixed pivot's sign at ``at``: two struts from the pin to a base line across ``direction``,
+#: the angle a fixed-pivot sign spans at its pin (its hatched base, 2.1 r either side, 2.4 r out)
+_SIGN_ANGLE = 2 * math.atan2(2.1, 2.4)
+
+
+def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, k: int) -> None:
+    """A fixed pivot's sign at ``at`` (joint ``k``): two struts from the pin to a base line across ``direction``,
     hatched beyond it (under the pin, over a multiple joint's ring)."""
     from matplotlib.patches import Polygon
 
     across = np.array([-direction[1], direction[0]])
     base, half, depth = at + direction * 2.4 * r, 1.5 * r, 0.8 * r
     ax.add_patch(Polygon([at, base + across * half, base - across * half], closed=True, facecolor="white",
-                         edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=gid))
+                         edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=f"ground{k}"))
     ax.add_patch(Polygon([base + across * half * 1.4, base - across * half * 1.4,
                           base - across * half * 1.4 + direction * depth, base + across * half * 1.4 + direction * depth],
-                         closed=True, facecolor="white", edgecolor=_EDGE, hatch="////", lw=1.2, zorder=3.5))
+                         closed=True, facecolor="white", edgecolor=_EDGE, hatch="////", lw=1.2, zorder=3.5,
+                         gid=f"pivotbase{k}"))
 
 
 def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarray], bool]:
@@ -319,17 +347,41 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarra
     return [start + across * half, end + across * half, end - across * half, start - across * half], cylinder
 
 
-def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=()) -> tuple[float, float]:
+def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=(), plates=(),
+                room: float = 0.0) -> tuple[float, float]:
     """Direction (radians) of the middle of the widest free angle at a joint between the sides
     drawn there (and the directions ``also``), and that angle; away from the drawing's centre
-    where nothing meets the joint."""
+    where nothing meets the joint.  With ``plates`` (polygons of joints), the widest angle outside
+    them where one is ``room`` wide (radians).
+
+    >>> pos = np.array([[0, 0], [1, 0], [-1, 0.1], [-1, -0.36], [1, -0.36]])  # bars at 0°, 174°, 200°, 340°
+    >>> sides = [(0, 1), (0, 2), (0, 3), (0, 4)]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0)]  # 0° … 174°: the widest
+    [87, 174]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]])]  # a plate's: under it
+    [-90, 140]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]], room=math.pi)]  # none so wide
+    [87, 174]
+    """
     turns = sorted([math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
                     for a, b in sides if joint in (a, b)] + list(also))
     if not turns:
         away = pos[joint] - pos.mean(axis=0)
         return (math.atan2(away[1], away[0]) if np.linalg.norm(away) > 1e-9 else -math.pi / 2), math.pi
     gaps = [((turns[(i + 1) % len(turns)] - t) % (2 * math.pi)) or 2 * math.pi for i, t in enumerate(turns)]
-    i = int(np.argmax(gaps))
+    wedges = []  # each plate's corner at the joint (convex): from one side's direction, its angle
+    for plate in plates:
+        at = plate.index(joint)
+        ends = [pos[plate[at - 1]] - pos[joint], pos[plate[(at + 1) % len(plate)]] - pos[joint]]
+        ta, tb = (math.atan2(e[1], e[0]) for e in ends)
+        wedge = (tb - ta) % (2 * math.pi)
+        wedges.append((ta, wedge) if wedge <= math.pi else (tb, 2 * math.pi - wedge))
+
+    def outside(i: int) -> bool:
+        turn = turns[i] + gaps[i] / 2
+        return gaps[i] >= room and not any(0 < (turn - start) % (2 * math.pi) < wide for start, wide in wedges)
+
+    i = max((i for i in range(len(gaps)) if outside(i)), key=gaps.__getitem__, default=int(np.argmax(gaps)))
     return turns[i] + gaps[i] / 2, gaps[i]
 
 
@@ -384,13 +436,15 @@ def _save(fig, path: Path, dpi: int) -> None:
 
 def _caption(item, index: int | None) -> str:
     """The words under a drawing: the chain's code, its number on a sheet, the fixed and input links; a chain of
-    W = 0 on a frame is a truss (a statically determinate structure), and says so — or that it is none, where
-    its count misleads (:func:`~synth.structure.trusses.truss_defect`).
+    W = 0 on a frame is a truss (a statically determinate structure), and says so — or, where its count
+    misleads, what it is (:func:`~synth.structure.trusses.count_defect`: not a truss, not of its W, degenerate).
 
     >>> _caption(Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 0), 2)
     '32/0  #2  fixed 0 (truss)'
     >>> _caption(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-2"), 0), None)
     '340/0  fixed 0 (not a truss)'
+    >>> _caption(Mechanism(Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-7 7-2"), 0), None)  # moves with W = 2
+    '440/0  fixed 0 (not W = 1)'
     """
     chain = item.chain if isinstance(item, Mechanism) else item
     text = str(chain.code) + ("" if chain.h == 3 else f"  h={chain.h}") + chain.kind_suffix + chain.class_suffix
@@ -400,9 +454,25 @@ def _caption(item, index: int | None) -> str:
         text += f"  #{index}"
     if isinstance(item, Mechanism):
         text += f"  fixed {item.frame}" + (f", input {item.input_link}" if item.input_link is not None else "")
-        if chain.dof == 0:
-            text += " (truss)" if truss_defect(chain) is None else " (not a truss)"
+        word = _count_word(chain)
+        text += f" ({word})" if word else ""
     return text
+
+
+@functools.lru_cache(maxsize=16)
+def _count_word(chain: Chain) -> str:
+    """What a caption adds of a chain on a frame: 'truss', or what it is where its count misleads
+    (:func:`~synth.structure.trusses.count_defect`, once a chain for a sheet of its mechanisms: a millisecond
+    beside a drawing's tens); nothing for a mechanism of its W, or beyond the exact test's 24 non-binary links.
+
+    >>> _count_word(Chain.parse("0-1 1-2 2-0 2-3 3-4 4-5 5-0")), _count_word(Chain.parse("0-1 1-2 2-3 3-0"))
+    ('degenerate', '')
+    """
+    try:
+        defect = count_defect(chain)
+    except MalformedChain:  # too large to test: no word rather than a guess
+        return ""
+    return defect.caption if defect else "truss" if chain.dof == 0 else ""
 
 
 #: the edge of one drawing in inches, and the PNG resolution: a single drawing, a sheet's cell

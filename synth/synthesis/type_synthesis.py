@@ -811,9 +811,9 @@ def mechanisms_of(chain: Chain, *, input_link: bool = False, cylinders=()) -> li
     from ..structure.query import parse_cylinders
 
     if input_link and chain.dof == 0:  # (the sub-chain test only on the way out: it costs a listing nothing)
-        from ..structure.trusses import truss_defect, truss_has_no_input
+        from ..structure.trusses import count_defect, truss_has_no_input
 
-        raise truss_has_no_input(f"the chain {chain.compact()} has", defect=truss_defect(chain))
+        raise truss_has_no_input(f"the chain {chain.compact()} has", defect=count_defect(chain))
     wanted = parse_cylinders(cylinders)
     out = []
     for orbit in chain.link_orbits:

@@ -1,4 +1,5 @@
-"""A chain of W = 0 by the count fixed by a link is a truss only when it is one: ``truss_defect`` against
+"""A chain fixed by a link is a truss (W = 0 by the count) or a mechanism of its W (W ≥ 1) only when it is one:
+``count_defect`` against
 brute force (every subset of links by the definition, ``tests/oracles/chains.py``; the true mobility as the
 exact rank of the pins' velocity equations at a random rational geometry, ``tests/oracles/gear_mobility.py``),
 neither sharing code with the engine."""
@@ -11,7 +12,7 @@ from collections import Counter
 import pytest
 
 import synth
-from synth import Chain, InvalidOption, mechanisms_of, truss_defect
+from synth import Chain, InvalidOption, count_defect, mechanisms_of
 
 from tests.oracles.chains import subchain_ok  # noqa: E402
 from tests.oracles.gear_mobility import generic_geometry, mobility  # noqa: E402
@@ -39,25 +40,54 @@ def test_a_truss_is_what_brute_force_says(links):
     for k in range(120):
         chain = Chain(links, _random_graph(rng, links, 3 * (links - 1) // 2, multiple=k % 2 == 1))
         assert chain.dof == 0
-        defect, truss = truss_defect(chain), _is_truss(chain)
+        defect, truss = count_defect(chain), _is_truss(chain)
         assert (defect is None) == truss, (chain.compact(), defect)
         moving = _true_mobility(chain)
-        assert (f"the links move with W = {moving}" in (defect or "")) == (moving > 0), (chain.compact(), defect)
+        assert (f"the links move with W = {moving}" in str(defect)) == (moving > 0), (chain.compact(), defect)
         seen[truss] += 1
     assert seen[True] >= 2 and seen[False] >= 100  # both verdicts put to the test (engine trusses: below)
 
 
-def test_every_truss_type_synthesis_lists_is_one():
-    """The listings name W = 0 chains trusses by their count alone: the exact sub-chain test they pass makes the
-    count true (brute force agrees, chain by chain, at 5 and 7 links with multiple joints)."""
-    chains = [c for n in (5, 7) for c in synth.type_synthesis(0, n, v=(0, 1), workers=1)]
-    assert len(chains) > 20 and all(_is_truss(c) and truss_defect(c) is None for c in chains)
+@pytest.mark.parametrize("dof, links", [(1, 6), (1, 8), (1, 10), (2, 7), (2, 9)])
+def test_a_mechanism_of_its_w_is_what_brute_force_says(dof, links):
+    """Random chains of W = 1 and 2 by the count, simple and multiple joints: no defect exactly when every proper
+    subset of links has W(S) ≥ 1 and the links move with W; the defect's true W is brute force's, and a chain
+    found only degenerate (a rigid sub-chain, no over-constrained one) moves as counted (the chains with no defect:
+    the engine's own, below)."""
+    rng = random.Random(100 * dof + links)
+    seen = Counter()
+    for k in range(100):
+        chain = Chain(links, _random_graph(rng, links, (3 * (links - 1) - dof) // 2, multiple=k % 2 == 1))
+        assert chain.dof == dof
+        defect, moving = count_defect(chain), _true_mobility(chain)
+        mechanism = subchain_ok(chain.joints, links, rigid_subchains=False) and moving == dof
+        assert (defect is None) == mechanism, (chain.compact(), defect)
+        if defect is not None:
+            no_overconstrained = subchain_ok(chain.joints, links, rigid_subchains=True)
+            assert defect.moves == moving and defect.degenerate_only == (no_overconstrained and moving == dof), (
+                chain.compact(), defect)
+            assert (f"the links move with W = {moving}" in str(defect)) == (moving != dof), (chain.compact(), defect)
+        seen["mechanism" if mechanism else "degenerate" if defect.degenerate_only else "misleads"] += 1
+    assert seen["misleads"] >= 50 and seen["degenerate"] >= 3, seen  # both defects put to the test
+
+
+def test_every_chain_type_synthesis_lists_is_what_its_count_says():
+    """The listings name chains trusses or mechanisms of their W by their count alone: the exact sub-chain test
+    they pass makes the count true (brute force agrees, chain by chain: W = 0 at 5 and 7 links, W = 1 at 6 and 8,
+    W = 2 at 7, with multiple joints)."""
+    for dof, sizes in ((0, (5, 7)), (1, (6, 8)), (2, (7,))):
+        chains = [c for n in sizes for c in synth.type_synthesis(dof, n, v=(0, 1), workers=1)]
+        assert len(chains) >= 7
+        for c in chains:
+            assert count_defect(c) is None, c.compact()
+            assert _is_truss(c) if dof == 0 else (subchain_ok(c.joints, c.links, rigid_subchains=False)
+                                                  and _true_mobility(c) == dof), c.compact()
 
 
 def test_a_braced_four_bar_beside_a_five_bar_loop_is_no_truss():
     chain = Chain.parse(MOVING)
     assert (chain.dof, _true_mobility(chain)) == (0, 1)
-    assert truss_defect(chain) == "a sub-chain is over-constrained (W(S) = -1) and the links move with W = 1"
+    assert str(count_defect(chain)) == "a sub-chain is over-constrained (W(S) = -1) and the links move with W = 1"
     assert synth.analyze_chain(MOVING).dof == 1  # analyze says the same
 
 
