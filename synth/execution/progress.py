@@ -106,17 +106,23 @@ class Progress:
     expected : (str, float), optional
         A counter and the total an estimate expects of it (``("chains", 1.5e11)``): the time to go
         is then reckoned from that counter's share of it, not from the steps.
+    before : dict, optional
+        What a resumed run found done by the runs before it: ``"steps"`` and counters
+        (``{"steps": 468, "chains": 6_051_000_000}``). The line shows the whole run's totals, and the
+        time to go is reckoned from the rate of this run alone.
 
     ``update(n, **counters)`` adds ``n`` steps and adds each counter (``chains=12``) to its total;
     ``write(text)`` prints a line without breaking the bar; ``close()`` clears the bar.
     """
 
     def __init__(self, total: int | None, unit: str, *, desc: str = "", every: float | None = None, stream=None,
-                 clock=time.monotonic, expected: tuple[str, float] | None = None):
+                 clock=time.monotonic, expected: tuple[str, float] | None = None, before: dict | None = None):
         self.stream = stream if stream is not None else sys.stderr
         self.expected = expected
         self.total, self.unit, self.desc = total, unit, desc
-        self.done, self.counters = 0, {}
+        self._before = {name: n for name, n in (before or {}).items() if n}
+        self.done = self._before.get("steps", 0)
+        self.counters = {name: n for name, n in self._before.items() if name != "steps"}
         self._clock = clock
         self._start = clock()
         self._gate = Every(self._print, LOG_EVERY if every is None else every, clock=clock)
@@ -127,7 +133,7 @@ class Progress:
         if self.stream.isatty():  # tqdm is imported only where it draws
             import tqdm
 
-            self._bar = tqdm.tqdm(total=total, unit=f" {unit}", file=self.stream, leave=False,
+            self._bar = tqdm.tqdm(total=total, initial=self.done, unit=f" {unit}", file=self.stream, leave=False,
                                   desc=desc or None)
         elif clock is time.monotonic and self._gate.every > 0:  # (a test's own clock moves only when it says)
             self._ticker = threading.Thread(target=self._tick, daemon=True, name="progress-lines")
@@ -161,13 +167,15 @@ class Progress:
         if self.expected is not None:
             name, total = self.expected
             done = self.counters.get(name, 0)
-            if 0 < done < total:
-                text += (f", about {describe_seconds(elapsed * (total - done) / done)} to go if the {name} are "
-                         f"the {magnitude(total)} estimated")
-            elif done:
+            here = done - self._before.get(name, 0)  # (the rate is this run's: a resumed run's start took no time)
+            if done >= total:
                 text += f", past the {magnitude(total)} {name} estimated"
-        elif self.total is not None and 0 < self.done < self.total:
-            text += f", about {describe_seconds(elapsed * (self.total - self.done) / self.done)} to go at the rate so far"
+            elif here > 0:
+                text += (f", about {describe_seconds(elapsed * (total - done) / here)} to go if the {name} are "
+                         f"the {magnitude(total)} estimated")
+        elif self.total is not None and self.done < self.total and self.done > self._before.get("steps", 0):
+            here = self.done - self._before.get("steps", 0)
+            text += f", about {describe_seconds(elapsed * (self.total - self.done) / here)} to go at the rate so far"
         return text
 
     def _state(self) -> str:

@@ -377,7 +377,7 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
 
 def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, progress: bool, *,
                client=None, skip_code=None, skip_unit=None, ordered: bool = True,
-               expected: float | None = None, kept: tuple | None = None) -> Iterator[tuple]:
+               expected: float | None = None, kept: tuple | None = None, before: dict | None = None) -> Iterator[tuple]:
     """``(job index, unit, work(unit))`` for every unit of the stage-A ``jobs`` (code, conventions),
     then ``(index, None, units)`` when a job is complete: inline for a small query, else streamed to
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
@@ -385,7 +385,9 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
 
     ``work`` returns the unit's chains or its counts by code; the progress (a bar on a terminal, a
     line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either, and with
-    ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted.
+    ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted; ``before``
+    (``{"units": …, "chains": …}``, what a resumed run's checkpoint or the store already holds) starts its totals,
+    the codes skipped counted as done, so the line reads the whole count's and its time to go this run's rate.
     Unordered on this machine (a count), a code's units are never held whole: stage A hands them on
     as found, through a temporary folder when they are more than :func:`unit_window`; with ``kept``
     (a checkpoint's folder of kept units and the identity of its plan) through that folder instead,
@@ -397,7 +399,7 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
     # stage A of one code grows steeply with its branch vertices (12 at 16 links: minutes):
     # a plan with such codes goes to the pool at once, a smaller one starts inline
     to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
-    bar = Progress(len(to_run), "codes", desc="mechsynth",  # (the codes of this run: a resumed one has fewer)
+    bar = Progress(len(jobs), "codes", desc="mechsynth", before={"steps": len(jobs) - len(to_run), **(before or {})},
                    expected=None if expected is None else ("chains", expected)) if progress else None
     try:
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
@@ -700,6 +702,7 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
             work, jobs, workers, progress, client=client,
             skip_code=(lambda i: names[i] in ck.codes) if ck else stored.__contains__,
             skip_unit=(lambda u: ck.has_unit(u.key)) if ck else None, ordered=False, expected=expected,
+            before={"units": ck.resumed_units if ck else 0, "chains": sum(totals.values())},
             kept=(kept_units_folder(checkpoint), identity) if ck and client is None else None)))
         for index, unit, result in events:
             if unit is None:

@@ -147,3 +147,41 @@ def test_the_gear_census_script_logs_no_line_per_tree_to_a_file(tmp_path):
                               timeout=300)
     assert done.returncode == 0
     assert err.read_text().splitlines() == ["F=1, 7 links: 5 of 59 trees, 0 in the log"]  # a short run: no progress line
+
+
+def test_a_resumed_run_shows_the_whole_count_and_its_own_rate():
+    """A run resumed from a checkpoint starts from what the runs before it did: its line reads the whole count's
+    codes and chains, and the time to go is this run's rate (the 16-link count resumed with 6.05e9 of an estimated
+    6.9e9 chains said '12.5 h to go', reckoned as if the chains of this run were all)."""
+    log, clock = io.StringIO(), Clock()
+    progress = Progress(100, "codes", desc="mechsynth", stream=log, clock=clock, expected=("chains", 1000.0),
+                        before={"steps": 40, "chains": 600, "units": 0})
+    clock.now += 60
+    progress.update(10, chains=100)  # 300 chains to go at 100 a minute
+    clock.now += 60
+    progress.update(0, chains=400)
+    log2, clock2 = io.StringIO(), Clock()
+    steps = Progress(100, "codes", desc="mechsynth", stream=log2, clock=clock2, before={"steps": 40})
+    clock2.now += 60
+    steps.update(20)  # 40 codes to go at 20 a minute
+    assert log.getvalue().splitlines() + log2.getvalue().splitlines() == [
+        "mechsynth: 50/100 codes, 700 chains; 60 s elapsed, about 3 min to go if the chains are the 1 000 estimated",
+        "mechsynth: 50/100 codes, 1 100 chains; 2 min elapsed, past the 1 000 chains estimated",
+        "mechsynth: 60/100 codes; 60 s elapsed, about 2 min to go at the rate so far"]
+
+
+def test_a_count_resumed_from_its_checkpoint_logs_the_whole_count(monkeypatch, tmp_path):
+    import sqlite3
+
+    path = tmp_path / "c.sqlite"
+    assert synth.count_chains(1, 10, workers=1, checkpoint=path)["count"] == 230
+    with sqlite3.connect(path) as db:  # one code lost, as if the run had been stopped before it
+        lost = db.execute("SELECT code, count, units FROM codes ORDER BY count DESC").fetchone()
+        db.execute("DELETE FROM codes WHERE code = ?", lost[:1])
+    monkeypatch.setattr(_progress, "LOG_EVERY", 0.0)
+    log = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", log)
+    assert synth.count_chains(1, 10, workers=1, progress=True, checkpoint=path)["count"] == 230
+    last = log.getvalue().splitlines()[-1].split(";")[0].split(", ")
+    units = synth.count_chains(1, 10, workers=1).units_run
+    assert last == ["mechsynth: 7/7 codes", f"{units} units", "230 chains"], (lost, last)
