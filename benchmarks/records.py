@@ -224,10 +224,10 @@ ROWS = (
     + [_row("W = 1, multiple joints", 1, 14, None, "Ding2013", v=12,
             heavy="run on its own (--only): 10 CPU min on 2 workers (PROFILE.md section 28)")]
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
-            heavy="not run to its end yet: two checkpointed counts under way since 30 Nov 2026, the first and "
-                  "--method tight-reverse, equal on every code both have finished (RECORDS.md, 'Every multiple-joint "
-                  "chain of 16 links'; about 1.5 and 2.0 CPU ms a unit, PROFILE.md section 47); the engine's sizing "
-                  "from 8, 10, 12 links: about 6.9e9 chains in 8.5e6 units")]
+            heavy="run by hand with a checkpoint in five parts on 30 Nov 2026 (RECORDS.md, 'Every multiple-joint "
+                  "chain of 16 links'), its second count (--method tight-reverse) by hand beside it, equal on every "
+                  "code both have finished; the engine's sizing from 8, 10, 12 links said about 6.9e9 chains in "
+                  "8.5e6 units (6.7e9 in 9.8e6 counted)")]
     # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
     + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
     + [_row("W = 1, one ternary joint", 1, 16, None, "Ding2013", v="1",
