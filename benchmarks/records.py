@@ -226,7 +226,7 @@ ROWS = (
     + [_row("W = 1, multiple joints", 1, 16, None, "Ding2013", v=14,
             heavy="run by hand with a checkpoint in five parts on 30 Nov 2026 (RECORDS.md, 'Every multiple-joint "
                   "chain of 16 links'), its second count (--method tight-reverse) by hand beside it, equal on every "
-                  "code both have finished; the engine's sizing from 8, 10, 12 links said about 6.9e9 chains in "
+                  "code; the engine's sizing from 8, 10, 12 links said about 6.9e9 chains in "
                   "8.5e6 units (6.7e9 in 9.8e6 counted)")]
     # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
     + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
