@@ -21,8 +21,6 @@ line has every code done); a part ended early ends at its last line.  Exit statu
 
 from __future__ import annotations
 
-import argparse
-import math
 import re
 import statistics
 import sys
@@ -36,7 +34,7 @@ from benchmarks._out import emit, refusals  # noqa: E402
 fail, _Parser = refusals("time_to_go")
 
 LINE = re.compile(r"mechsynth: (\d+)/(\d+) codes, ([\d ]+) units, ([\d ]+) chains; ([\d.]+) (s|min|h|days) elapsed")
-ESTIMATE = re.compile(r"a long query: about ([\d.e+]+) chains in ([\d ]+) units")
+ESTIMATE = re.compile(r"a long query: about ([\d.e+ ]+) chains in ([\d ]+) units")  # 6.9e+09, or 318 162
 BEFORE = re.compile(r"committed in this run, (\d+) units done before")
 WALL = re.compile(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)")
 SECONDS = {"s": 1, "min": 60, "h": 3600, "days": 86400}
@@ -67,7 +65,7 @@ def read_part(spec: str) -> dict:
     part = {"estimate": None, "before": 0, "rows": [], "wall": None}
     for text in _lines(spec):
         if (m := ESTIMATE.search(text)) and part["estimate"] is None:
-            part["estimate"] = (float(m[1]), _number(m[2]))
+            part["estimate"] = (float(m[1].replace(" ", "")), _number(m[2]))
         elif (m := BEFORE.search(text)) and not part["rows"]:
             part["before"] = int(m[1])
         elif m := LINE.search(text):
