@@ -370,11 +370,20 @@ def test_a_fixed_pivot_sign_points_out_of_the_plates_at_its_pin():
     Where no angle outside the plates has the sign's room but one has its struts' (64°), the sign goes there
     too, not into the wider corner of a plate: 440/0's MOVES_2 on its tiny frame plate (fixed 1) and the 10-link
     4600/0 at its frame 4's middle pin (of the 4 840 frame pivots of the 1-DOF 10-link mechanisms 10 pointed into a
-    plate, 2 do: no angle there is 64° wide outside the plates; benchmarks/logs/pivot_signs_in_plates.txt)."""
+    plate, 2 do: no angle there is 64° wide outside the plates; benchmarks/logs/pivot_signs_in_plates.txt) —
+    narrowed to the angle, so that its hatched base too stays out of every plate (at full width it reached over
+    the tiny plate's side)."""
     tight = [Chain.parse(MOVES_2), Chain.parse("0-3 0-6 1-2 1-8 2-9 3-7 4-5 4-6 4-7 5-8 5-9 6-9 7-8")]
     for chain in [*synth.type_synthesis(1, 8, workers=1), *synth.type_synthesis(0, 7, workers=1), *tight]:
         marks = _render._Marks(chain)
-        plates = [poly for poly in marks.lay.polygons if len(poly) > 2]
+        plates = [MplPath(marks.pos[poly]) for poly in marks.lay.polygons if len(poly) > 2]
+        at_pin = [[MplPath(marks.pos[poly]) for poly in marks.lay.polygons if len(poly) > 2 and k in poly]
+                  for k in range(len(chain.joints))]
         for k in {k for m in synth.mechanisms_of(chain) for k, j in enumerate(chain.joints) if m.frame in j}:
-            at = marks.pos[k] + 0.01 * marks.ground(k)
-            assert not any(MplPath(marks.pos[p]).contains_point(at) for p in plates if k in p), (chain, k)
+            direction, width = marks.sign(k)
+            assert not any(p.contains_point(marks.pos[k] + 0.01 * direction) for p in at_pin[k]), (chain, k)
+            if chain in tight:  # the base's four corners
+                across = np.array([-direction[1], direction[0]]) * 2.1 * marks.r * width
+                base = marks.pos[k] + 2.4 * marks.r * direction
+                corners = [base + s * across + t * marks.r * direction for s in (-1, 1) for t in (0, 0.8)]
+                assert not any(p.contains_point(c) for p in plates for c in corners), (chain, k)
