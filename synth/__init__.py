@@ -54,6 +54,7 @@ _WHERE = {
     # a chain fixed by a link: a mechanism, a truss, or a chain whose count misleads, and the words for each
     "count_defect": ".structure.trusses", "CountDefect": ".structure.trusses",
     "truss_has_no_input": ".structure.trusses", "on_a_frame": ".structure.trusses", "TRUSS_NOTE": ".structure.trusses",
+    "mechanisms_summary": ".structure.trusses", "not_a_mechanisms_chain": ".structure.trusses",
     # number and type synthesis, mechanisms
     "number_synthesis": ".synthesis.number_synthesis", "iter_codes": ".synthesis.number_synthesis",
     "MAX_CODES": ".synthesis.number_synthesis", "CodeQuery": ".synthesis.number_synthesis",

@@ -222,14 +222,12 @@ def refuse_structure(given, chains, *, input_link: bool = False, defect=None) ->
     Traceback (most recent call last):
     synth.errors.ImpossibleParameters: the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)
     """
-    from synth import ImpossibleParameters, truss_has_no_input
+    from synth import not_a_mechanisms_chain, truss_has_no_input
 
     dofs = [c.dof for c in chains]
     dof = min(dofs, default=0)
     if dof < 0:
-        raise ImpossibleParameters(f"the chain {given.compact()} is a structure, not a mechanism's chain: W = {dof} "
-                                   "by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, "
-                                   "a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)")
+        raise not_a_mechanisms_chain(given, dof)
     if input_link and (defect is not None or dofs and max(dofs) == 0):
         raise truss_has_no_input(f"the chain {given.compact()} has", "--input-link", defect)
 
@@ -388,15 +386,8 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
 
         n = write(items, fmt)
         return 0 if n else nothing_found(f"{what} satisfy these parameters and conventions")
-    trusses = [0]  # a listing of mechanisms names its trusses on a frame (W = 0) as such
-
-    def counted(items):
-        for item in items:
-            trusses[0] += item.chain.dof == 0
-            yield item
-
-    if what == "mechanisms" and fmt == "table":
-        items = counted(items)
+    if what == "mechanisms" and fmt == "table":  # its last line names its trusses on a frame (W = 0) as such
+        items = TrussCounter(items)
     rows = (_row(item, fmt, idle) | (as_given(item) if as_given else {}) for item in items)
     columns = ["index", "id", "code", "links", "joints", "certificate"]
     if h != 3:
@@ -417,16 +408,39 @@ def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds
         columns[at:at] = ["as_given"] + (["frame_as_given", "input_link_as_given"] if what == "mechanisms" else [])
     n = write_rows(_indexed(rows), columns, fmt)
     if fmt == "table" and what == "mechanisms":
-        from synth import TRUSS_NOTE, on_a_frame
+        from synth import mechanisms_summary
 
-        note = ("" if not defect else f": W = {defect.dof}, but {defect} ('mechsynth analyze' says where)" if defect.degenerate_only
-                else f": W = {defect.dof} by the count, but {defect} ('mechsynth analyze' says where)")
-        print(on_a_frame(n, trusses[0], defect=defect) + (note or f" ({TRUSS_NOTE})" * bool(trusses[0])))
+        print(mechanisms_summary(n, items.trusses, defect=defect))
     elif fmt == "table":
         print(f"{n} {what if n != 1 else what[:-1]}")  # 1 chain
     if n == 0:
         return nothing_found(f"{what} satisfy these parameters and conventions")
     return 0
+
+
+class TrussCounter:
+    """Mechanisms passed through one at a time (a listing streams), counting the trusses on a frame (W = 0)
+    among them in ``trusses``.
+
+    >>> from synth import Chain, Mechanism
+    >>> counter = TrussCounter(Mechanism(Chain.parse(c), 0) for c in ("0-3 0-4 1-3 1-4 2-3 2-4", "0-1 1-2 2-3 3-0"))
+    >>> len(list(counter)), counter.trusses
+    (2, 1)
+    >>> import itertools
+    >>> truss = Mechanism(Chain.parse("0-3 0-4 1-3 1-4 2-3 2-4"), 0)
+    >>> counter = TrussCounter(itertools.repeat(truss)); stream = iter(counter)
+    >>> next(stream) is truss, next(stream) is truss, counter.trusses   # an endless stream, counted as it goes
+    (True, True, 2)
+    """
+
+    def __init__(self, mechanisms):
+        self.mechanisms = mechanisms
+        self.trusses = 0
+
+    def __iter__(self):
+        for mechanism in self.mechanisms:
+            self.trusses += mechanism.chain.dof == 0
+            yield mechanism
 
 
 def _indexed(rows):

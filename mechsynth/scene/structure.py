@@ -15,6 +15,7 @@ computation is refused.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Annotated, Any
 
@@ -157,8 +158,10 @@ def _check_codes(scene: Scene) -> None:
 
 def _check_chains(scene: Scene) -> None:
     s = scene.tables["structure"]
-    _needs_dof(scene, s, "chains, mechanisms and drawings")
-    if s.input_link and s.dof == 0:  # as 'mechanisms --input-link' refuses it: the chains are trusses
+    given = s.chain is not None and s.loop_classes is None  # one chain given by hand: its W is its count's
+    if not given:
+        _needs_dof(scene, s, "chains, mechanisms and drawings")
+    if s.input_link and s.dof == 0 and not given:  # as 'mechanisms --input-link' refuses it: the chains are trusses
         from synth import truss_has_no_input
 
         raise scene.error(str(truss_has_no_input("the chains of [structure] have", "the key 'input_link'")))
@@ -172,6 +175,8 @@ def _check_chains(scene: Scene) -> None:
         if isinstance(value, str) and ".." in value:
             raise scene.error(f"[structure] key '{name}' must be one whole number for chains, mechanisms and "
                               f"drawings, not the range {value!r}")
+    if given:
+        return _check_given_chain(scene, s)
     if s.loop_classes is not None:
         if s.h != 3 or s.loops is not None or s.prismatic is not None or s.n1 is not None:
             raise scene.error("[structure] key 'loop_classes' gives each loop's motion space and the links: it does "
@@ -184,11 +189,64 @@ def _check_chains(scene: Scene) -> None:
                 raise scene.error(f"[structure] key 'chain' has {loops} loop{'s' * (loops != 1)} and 'loop_classes' "
                                   f"asks for {asked}")
         return
-    if s.chain is not None:
-        raise scene.error("[structure] key 'chain' gives chains only with 'loop_classes' (every base on it); "
-                          "for its analysis, compute 'analysis'")
     if s.links is None and s.loops is None and s.code is None:
         raise scene.error("[structure] needs 'links', 'loops' or 'code' for chains, mechanisms and drawings")
+
+
+#: [structure] keys that select the chains of a query: a chain given by hand contradicts them
+_QUERY_KEYS = ("links", "loops", "code", "v", "n1", "max_multiplicity", "require", "cranks", "rigid_subchains",
+               "fractionated", "planar_only", "prismatic", "idle_joints", "cylinders")
+
+
+def _check_given_chain(scene: Scene, s: Structure) -> None:
+    """A chain given by hand (``chain`` without ``loop_classes``) is listed, fixed and drawn as ``chains --chain C``
+    and ``mechanisms --chain C`` take it: a structure (W < 0) has no mechanisms, and ``input_link`` is refused for a
+    truss (W = 0) and for a chain whose W by the count misleads (:func:`synth.count_defect`), in the CLI's words."""
+    from synth import SynthesisError, not_a_mechanisms_chain, truss_has_no_input
+
+    selecting = [name for name in _QUERY_KEYS if name in s.given()]
+    if selecting:
+        raise scene.error(f"[structure] key '{selecting[0]}' selects the chains of a query and contradicts 'chain' "
+                          "(the one chain given) for chains, mechanisms and drawings")
+    try:
+        chain = _given_chain(s)
+    except SynthesisError as exc:
+        raise scene.error(str(exc).rstrip(".")) from None
+    if s.dof is not None and s.dof != chain.dof:
+        raise scene.error(f"[structure] key 'dof' asks for W = {s.dof} and the chain has W = {chain.dof} by the "
+                          "count: chains, mechanisms and drawings list the chain as it is (its analysis says how to "
+                          "mend it)")
+    drawing = scene.tables.get("drawing")
+    if "mechanisms" not in scene.compute and not ("drawing" in scene.compute and drawing and drawing.mechanisms):
+        return
+    if chain.dof < 0:
+        raise scene.error(str(not_a_mechanisms_chain(chain, chain.dof)))
+    if s.input_link:
+        defect = _count_defect(chain)
+        if defect is not None or chain.dof == 0:
+            raise scene.error(str(truss_has_no_input(f"the chain {chain.compact()} has", "the key 'input_link'",
+                                                     defect)))
+
+
+def _given_chain(s: Structure):
+    """The chain ``[structure]`` gives by hand for chains, mechanisms and drawings (``chain`` without
+    ``loop_classes``), read as ``chains --chain C`` reads it; None for a query."""
+    if s.chain is None or s.loop_classes is not None:
+        return None
+    from synth.exchange import read_chain
+
+    return read_chain(s.chain, None if s.h == 3 else s.h, source="[structure] key 'chain'").chain
+
+
+def _count_defect(chain):
+    """:func:`synth.count_defect` of a chain given by hand, or None beyond the exact test's 24 non-binary links
+    (its mechanisms are then counted by its W, as ``mechanisms --chain`` lists them)."""
+    from synth import MalformedChain, count_defect
+
+    try:
+        return count_defect(chain)
+    except MalformedChain:
+        return None
 
 
 #: [expect] keys of the analysis that only a code or counts give, and those only a chain gives.
@@ -310,6 +368,8 @@ class MechanismCount(Row):
     by_code: dict[str, int]
     input_link: bool
     trusses: int
+    count_defect: dict | None = None  # a chain given by hand whose W by the count misleads: synth.CountDefect's fields
+    row_keys = ("count", "by_code", "input_link", "trusses", "count_defect?")
 
 
 @dataclass(frozen=True)
@@ -360,6 +420,9 @@ def _chain_list(run: Run) -> list:
         s = run.scene.tables["structure"]
         if s.loop_classes is not None:
             return _heterogeneous(s, run.workers)
+        given = _given_chain(s)
+        if given is not None:  # in its canonical numbering, as 'chains --chain C' lists it
+            return [given.relabel(given.canonical_numbering())]
         query = _query(s)
         _refuse_large(query, run.workers)
         return list(type_synthesis(query, workers=run.workers))
@@ -426,7 +489,7 @@ def _mechanism_list(run: Run) -> list:
         from synth import mechanisms_of
 
         s = run.scene.tables["structure"]
-        cylinders = () if s.loop_classes is not None else _query(s).cylinders
+        cylinders = () if s.loop_classes is not None or s.chain is not None else _query(s).cylinders
         return [m for ch in _chain_list(run) for m in mechanisms_of(ch, input_link=s.input_link, cylinders=cylinders)]
 
     return run.shared("mechanisms", make)
@@ -455,8 +518,12 @@ def _mechanisms(run: Run) -> MechanismCount:
     by_code: dict[str, int] = {}
     for m in mechs:
         by_code[str(m.chain.code)] = by_code.get(str(m.chain.code), 0) + 1
-    trusses = sum(m.chain.dof == 0 for m in mechs)  # (type synthesis's chains pass the exact test: W is true)
-    return MechanismCount(len(mechs), by_code, run.scene.tables["structure"].input_link, trusses)
+    trusses = sum(m.chain.dof == 0 for m in mechs)  # (type synthesis's chains and bases pass the exact test)
+    s = run.scene.tables["structure"]
+    given = _given_chain(s)
+    defect = None if given is None else _count_defect(given)  # a chain given by hand: is its W by the count true?
+    return MechanismCount(len(mechs), by_code, s.input_link, trusses,
+                          None if defect is None else dataclasses.asdict(defect))
 
 
 def _analysis(run: Run) -> Row:
@@ -506,7 +573,7 @@ def _report_codes(r: dict) -> list[str]:
 
 
 def _report_chains(r: dict) -> list[str]:
-    lines = [f"{r['count']} chains: {table_text(r['by_code'])}",
+    lines = [f"{r['count']} chain{'s' * (r['count'] != 1)}: {table_text(r['by_code'])}",
              f"by v: {table_text(r['by_v'])}; non-planar {r['nonplanar']}; fractionated {r['fractionated']}"]
     lines += [f"  {ch['code']:<12} {ch['joints']}" for ch in r.get("chains", [])[:10]]
     if len(r.get("chains", [])) > 10:
@@ -515,15 +582,22 @@ def _report_chains(r: dict) -> list[str]:
 
 
 def _report_mechanisms(r: dict) -> list[str]:
-    """What the mechanisms are, as ``mechsynth mechanisms`` says it: mechanisms and trusses on a frame.
+    """What the mechanisms are, as ``mechsynth mechanisms`` says it: mechanisms and trusses on a frame, or
+    what a chain given by hand is where its count misleads (its words, then the count by code).
 
     >>> _report_mechanisms({"count": 7, "trusses": 7, "by_code": {"32/0": 5, "401/0": 2}})  # dof = 0, links = 5
     ['7 trusses on a frame (W = 0: statically determinate, nothing moves): 32/0: 5, 401/0: 2']
+    >>> _report_mechanisms({"count": 4, "trusses": 0, "by_code": {"42/0": 4}, "count_defect": {  # a triangle's four-bar
+    ...     "dof": 1, "moves": 1, "kind": "rigid sub-chain", "worst_mobility": 0}})
+    ["4 degenerate mechanisms: W = 1, but a sub-chain is rigid (W(S) = 0), one link in effect ('mechsynth analyze' says where)", 'by code: 42/0: 4']
     """
-    from synth import TRUSS_NOTE, on_a_frame
+    from synth import CountDefect, mechanisms_summary
 
-    note = f" ({TRUSS_NOTE})" if r["trusses"] else ""
-    return [f"{on_a_frame(r['count'], r['trusses'])}{note}: {table_text(r['by_code'])}"]
+    defect = r.get("count_defect")
+    line = mechanisms_summary(r["count"], r["trusses"], defect=defect and CountDefect(**defect))
+    if defect:
+        return [line, f"by code: {table_text(r['by_code'])}"]
+    return [f"{line}: {table_text(r['by_code'])}"]
 
 
 def _report_analysis(r: dict) -> list[str]:

@@ -24,14 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from ..errors import InvalidOption
+from ..errors import ImpossibleParameters, InvalidOption
 from .kinds import mobility_of
 from .subchains import check_subchains
 
 if TYPE_CHECKING:
     from .chain import Chain
 
-__all__ = ["TRUSS_NOTE", "CountDefect", "count_defect", "on_a_frame", "truss_has_no_input"]
+__all__ = ["TRUSS_NOTE", "CountDefect", "count_defect", "mechanisms_summary", "on_a_frame", "not_a_mechanisms_chain",
+           "truss_has_no_input"]
 
 #: what a listing of mechanisms adds after its count of trusses on a frame
 TRUSS_NOTE = "W = 0: statically determinate, nothing moves"
@@ -118,6 +119,35 @@ def on_a_frame(items: int, trusses: int, *, defect: CountDefect | None = None) -
     if trusses:
         named.append(f"{trusses} truss{'es' * (trusses != 1)} on a frame")
     return " and ".join(named)
+
+
+def mechanisms_summary(items: int, trusses: int, *, defect: CountDefect | None = None) -> str:
+    """The line under a listing of ``items`` mechanisms, ``trusses`` of them of W = 0 (:func:`on_a_frame`, and
+    what a truss is); with ``defect`` (:func:`count_defect` of the one chain given) why its count misleads.
+
+    >>> mechanisms_summary(4, 2)
+    '2 mechanisms and 2 trusses on a frame (W = 0: statically determinate, nothing moves)'
+    >>> print(mechanisms_summary(2, 0, defect=CountDefect(1, 2, "over-constrained sub-chain", -1)))
+    2 chains on a frame, not mechanisms of W = 1: W = 1 by the count, but a sub-chain is over-constrained (W(S) = -1) and the links move with W = 2 ('mechsynth analyze' says where)
+    """
+    if defect is None:
+        return on_a_frame(items, trusses) + (f" ({TRUSS_NOTE})" if trusses else "")
+    count = "" if defect.degenerate_only else " by the count"
+    return (f"{on_a_frame(items, trusses, defect=defect)}: W = {defect.dof}{count}, but {defect} "
+            "('mechsynth analyze' says where)")
+
+
+def not_a_mechanisms_chain(chain: Chain, dof: int) -> ImpossibleParameters:
+    """The refusal of the mechanisms of ``chain`` given by hand, W = ``dof`` < 0 by the count (it, or the least
+    of its variants): a structure, over-constrained; a link is fixed in a chain of W ≥ 0 only.
+
+    >>> from synth.structure.chain import Chain
+    >>> print(not_a_mechanisms_chain(Chain.parse("0-1 1-2 2-3 3-0 1-3"), -1))
+    the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, a truss on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)
+    """
+    return ImpossibleParameters(f"the chain {chain.compact()} is a structure, not a mechanism's chain: W = {dof} by "
+                                "the count (over-constrained): a mechanism fixes a link of a chain with W ≥ 1, a truss "
+                                "on a frame one of W = 0 ('mechsynth analyze' says why and how to mend it)")
 
 
 def truss_has_no_input(subject: str, option: str = "input_link", defect: CountDefect | None = None) -> InvalidOption:

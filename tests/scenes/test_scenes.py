@@ -314,6 +314,29 @@ MALFORMED = {
                                                                          "mechanisms = 7"),
                               ["the chains of [structure] have W = 0 by the count", "a truss is a statically "
                                "determinate structure", "the key 'input_link' has no link to drive"]),
+    # a chain given by hand is one chain, as 'mechanisms --chain C' takes it: a query's keys and another W contradict
+    # it, a structure (W < 0) has no mechanisms, and a chain whose count misleads drives nothing by its count
+    "chain with a query key": (GOOD.replace('["codes"]', '["chains"]').replace(
+        "dof = 1\nloops = 2", 'links = 6\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] key 'links' selects the chains of a query and contradicts 'chain'"]),
+    "chain unreadable": (GOOD.replace('["codes"]', '["chains"]').replace("dof = 1\nloops = 2", 'chain = "0-1 1-x"')
+                         .replace('codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+                         ["[structure] key 'chain': cannot read joint '1-x'"]),
+    "chain of another W": (GOOD.replace('["codes"]', '["mechanisms"]').replace(
+        "loops = 2", 'chain = "0-1 1-2 2-3 3-0 0-4 4-5 5-6 6-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "mechanisms = 7"),
+        ["key 'dof' asks for W = 1 and the chain has W = 2 by the count"]),
+    "mechanisms of a structure": (GOOD.replace('["codes"]', '["mechanisms"]').replace(
+        "dof = 1\nloops = 2", 'chain = "0-1 1-2 2-3 3-0 1-3"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "mechanisms = 1"),
+        ["the chain 0-1 0-3 1-2 1-3 2-3 is a structure, not a mechanism's chain: W = -1 by the count"]),
+    "input link of a degenerate chain drawn": (GOOD.replace('["codes"]', '["drawing"]').replace(
+        "dof = 1\nloops = 2", 'chain = "0-1 1-2 2-0 2-3 3-4 4-5 5-0"\ninput_link = true').replace(
+        "[expect]", "[drawing]\nmechanisms = true\n\n[expect]").replace(
+        'codes = ["42/0", "51/1", "60/2"]', "drawn = 4"),
+        ["the chain 0-1 0-2 0-5 1-2 2-3 3-4 4-5 has W = 1 by the count, degenerate: a sub-chain is rigid",
+         "so the key 'input_link' would name links that cannot drive it"]),
     "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                             "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
 }
@@ -531,3 +554,65 @@ def test_a_scene_names_trusses_as_the_command_line_does(tmp_path):
     assert code == 0 and "7 trusses on a frame (W = 0: statically determinate, nothing moves): 32/0: 5, 401/0: 2" in out
     code, out, _ = run_cli(str(MODELS / "mechanisms_1dof_8links.toml"))
     assert code == 0 and "71 mechanisms: 440/0: 35" in out
+
+
+def _chain_scene(tmp_path, chain: str, mechanisms: int, extra: str = "") -> Path:
+    """A scene of the mechanisms of one chain given by hand, expecting that many."""
+    path = tmp_path / "one_chain.toml"
+    path.write_text(GOOD.replace('["codes"]', '["mechanisms"]').replace("dof = 1\nloops = 2", f'chain = "{chain}"{extra}')
+                    .replace('codes = ["42/0", "51/1", "60/2"]', f"mechanisms = {mechanisms}"))
+    return path
+
+
+def _mechanisms_cli(capsys, *argv: str) -> tuple[int, str, str]:
+    """``mechsynth mechanisms …`` run as the console script runs it: its exit status, stdout and stderr."""
+    from mechsynth.cli import main
+
+    code = main(["mechanisms", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("chain, words, by_code, defect", [
+    # a braced four-bar beside a five-link loop: W = 1 by the count, the links move with W = 2
+    ("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-7 7-2", "4 chains on a frame, not mechanisms of W = 1: W = 1 by the count, "
+     "but a sub-chain is over-constrained (W(S) = -1) and the links move with W = 2", "440/0: 4",
+     {"dof": 1, "moves": 2, "kind": "over-constrained sub-chain", "worst_mobility": -1}),
+    # a four-bar whose frame is a triangle: a rigid sub-chain, one link in effect
+    ("0-1 1-2 2-0 2-3 3-4 4-5 5-0", "4 degenerate mechanisms: W = 1, but a sub-chain is rigid (W(S) = 0)", "42/0: 4",
+     {"dof": 1, "moves": 1, "kind": "rigid sub-chain", "worst_mobility": 0}),
+])
+def test_a_scene_names_a_chain_whose_count_misleads_as_the_command_line_does(chain, words, by_code, defect, tmp_path,
+                                                                             capsys):
+    """A scene of the mechanisms of a chain given by hand said nothing of a count that misleads (polish19)."""
+    from synth import Chain
+
+    path = _chain_scene(tmp_path, chain, 4)
+    result = run_scene(path)
+    assert result.ok and result.rows["mechanisms"]["count_defect"] == defect
+    code, out, _ = run_cli(str(path))
+    said = out.split("mechanisms  ", 1)[1].splitlines()
+    assert code == 0 and said[0].startswith(words) and said[1].strip() == f"by code: {by_code}"
+    code, out, _ = _mechanisms_cli(capsys, "--chain", chain)
+    assert code == 0 and out.splitlines()[-1] == said[0]  # the command's last line, word for word
+    # input_link = true refused before any work, in the command's sentence
+    path = _chain_scene(tmp_path, chain, 4, "\ninput_link = true")
+    with pytest.raises(SceneError) as info:
+        load_scene(path)
+    code, _, err = _mechanisms_cli(capsys, "--chain", chain, "--input-link")
+    assert code == 2 and err.startswith(f"mechsynth: the chain {Chain.parse(chain).compact()} has W = 1 by the count, ")
+    assert str(info.value) == f"{path}: {err.removeprefix('mechsynth: ').strip()}.".replace(
+        "--input-link", "the key 'input_link'")
+
+
+def test_a_sound_chain_given_by_hand_is_listed_as_the_command_line_lists_it(tmp_path, capsys):
+    """Watt's chain: its two mechanisms, and with input_link its four, as 'mechanisms --chain C' lists them."""
+    watt = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"
+    for extra, argv, count in (("", [], 2), ("\ninput_link = true", ["--input-link"], 4)):
+        path = _chain_scene(tmp_path, watt, count, extra)
+        result = run_scene(path)
+        assert result.ok and "count_defect" not in result.rows["mechanisms"]
+        code, out, _ = run_cli(str(path))
+        _, cli, _ = _mechanisms_cli(capsys, "--chain", watt, *argv)
+        assert cli.splitlines()[-1] == f"{count} mechanisms"
+        assert code == 0 and f"mechanisms  {count} mechanisms: 42/0: {count}\n" in out
