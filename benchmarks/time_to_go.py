@@ -9,14 +9,15 @@ line, each at the rate of the part so far: the **chains** counted against the ch
 30 Nov 2026), the **units** counted against the units estimated, and the **larger** of the two::
 
     python benchmarks/time_to_go.py count16v.log count16v_part2.log … count16v_part5.log
-    python benchmarks/time_to_go.py benchmarks/logs/count_w3_20_links.txt:4-27 --units 1.1e6
+    python benchmarks/time_to_go.py benchmarks/logs/count_w3_20_links.txt:4-31 --chains 3.3e10 --units 612338
 
 ``PATH:FIRST-LAST`` takes those lines of a file only (one run of several in a log); ``--units`` and ``--chains``
-give the estimate where the log has no first line.  It prints one row every ``--every`` lines (and the last before the end),
-then for each predictor the median and the largest factor it was off by (``pred / actual`` or its inverse,
-each at least a minute: the lines' grain) and how many lines it gave no time (past its estimate).  The last
+give the estimate where the log has no first line.  It prints one row every ``--every`` lines (and the last
+before the end), then for each predictor the median and the largest factor it was off by (``pred / actual``
+or its inverse, each at least a minute: the lines' grain) and how many lines it gave no time (past its estimate).  The last
 line, every code done, is left out (nothing to go).  The last part must have ended by itself (its last
-line has every code done); a part ended early ends at its last line.  Exit status 2 for bad input.
+line has every code done); a part ends at its ``/usr/bin/time -v`` wall clock, else at its last line.  Exit
+status 2 for bad input.
 """
 
 from __future__ import annotations
