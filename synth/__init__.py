@@ -73,6 +73,7 @@ _WHERE = {
     "Estimate": ".synthesis.estimate", "estimate": ".synthesis.estimate", "size_check": ".synthesis.estimate",
     "worth_sizing": ".synthesis.estimate", "TABLE_ROWS": ".synthesis.estimate",
     "describe_estimate": ".synthesis.estimate", "NOTE_SECONDS": ".synthesis.estimate",
+    "time_to_go_from": ".synthesis.estimate",
     "describe_seconds": ".execution.sizes", "magnitude": ".execution.sizes",
     # a long run's progress (a bar on a terminal, a line a minute in a log) and its checkpoint read back
     "Progress": ".execution.progress", "Every": ".execution.progress",

@@ -22,6 +22,8 @@ from synth.draw import _render  # noqa: E402
 from synth.structure.chain import Chain  # noqa: E402
 from mechsynth.cli import main  # noqa: E402
 
+from .test_draw import MOVES_2  # noqa: E402  (440/0, a braced four-bar beside a six-bar loop: a tiny frame plate)
+
 
 def _drawn(item, labels=True):
     """Draw one item on an axes and return the axes (closed by the caller through plt.close)."""
@@ -331,7 +333,8 @@ def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeyp
     in a box as tight as the other numbers' (a tenth of an em), the hatching's lines running up to it beside a
     pivot sign, and the Watt chain's number 2 touched its hatched frame bar: the frame's number is padded clear
     of the hatching, placed counting that box, and a frame bar counts its hatched width. No number meets a
-    symbol — a pivot sign's hatched base and a hatched bar counted now — on these sheets and a 10-link one."""
+    symbol — a pivot sign's hatched base and a hatched bar counted now — on these sheets and a 10-link one, and on
+    440/0's sheet of MOVES_2, whose tiny frame plate #2 had a pivot sign inside it under its number 1."""
     from matplotlib.patches import FancyBboxPatch
 
     padding = []
@@ -351,23 +354,36 @@ def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeyp
             padding.append(min(glyph.x0 - box.x0, box.x1 - glyph.x1, glyph.y0 - box.y0, box.y1 - glyph.y1) / em)
 
     for chain in ("0-3 0-4 1-3 1-4 2-3 2-4", "0-1 1-2 2-3 3-0 0-4 4-5 5-1",
-                  "0-5 0-7 1-5 1-6 2-3 2-7 3-9 4-6 4-9 5-8 6-8 7-9 8-9"):
+                  "0-5 0-7 1-5 1-6 2-3 2-7 3-9 4-6 4-9 5-8 6-8 7-9 8-9", MOVES_2):
         run = lambda: main(["draw", "--chain", chain, "--mechanisms", "--out", str(tmp_path / "s.png")])  # noqa: E731
         assert _numbers_over_symbols(monkeypatch, run) == [], chain
         monkeypatch.setattr(_render, "_save", keep)
         run()
-    assert len(padding) == 2 + 2 + 10 and min(padding) >= 0.3, padding
+    assert len(padding) == 2 + 2 + 10 + 4 and min(padding) >= 0.3, padding
 
 
 def test_a_fixed_pivot_sign_points_out_of_the_plates_at_its_pin():
     """The sign went into the widest free angle at its pin, which could be a plate's own corner: drawn over
     that plate (the frame's, under its number; a moving one's) in 2 of the 182 pivots of the 1-DOF 8-link
     mechanisms and 6 of the 281 of the 7-link trusses. Every one now points out of the plates there (each
-    pin of these has an angle wide enough for it outside them), as matplotlib's point-in-polygon test finds."""
-    for dof, links in ((1, 8), (0, 7)):
-        for chain in synth.type_synthesis(dof, links, workers=1):
-            marks = _render._Marks(chain)
-            plates = [poly for poly in marks.lay.polygons if len(poly) > 2]
-            for k in {k for m in synth.mechanisms_of(chain) for k, j in enumerate(chain.joints) if m.frame in j}:
-                at = marks.pos[k] + 0.01 * marks.ground(k)
-                assert not any(MplPath(marks.pos[p]).contains_point(at) for p in plates if k in p), (chain, k)
+    pin of these has an angle wide enough for it outside them), as matplotlib's point-in-polygon test finds.
+    Where no angle outside the plates has the sign's room but one has its struts' (64°), the sign goes there
+    too, not into the wider corner of a plate: 440/0's MOVES_2 on its tiny frame plate (fixed 1) and the 10-link
+    4600/0 at its frame 4's middle pin (of the 4 840 frame pivots of the 1-DOF 10-link mechanisms 10 pointed into a
+    plate, 2 do: no angle there is 64° wide outside the plates; benchmarks/logs/pivot_signs_in_plates.txt) —
+    narrowed to the angle, so that its hatched base too stays out of every plate (at full width it reached over
+    the tiny plate's side)."""
+    tight = [Chain.parse(MOVES_2), Chain.parse("0-3 0-6 1-2 1-8 2-9 3-7 4-5 4-6 4-7 5-8 5-9 6-9 7-8")]
+    for chain in [*synth.type_synthesis(1, 8, workers=1), *synth.type_synthesis(0, 7, workers=1), *tight]:
+        marks = _render._Marks(chain)
+        plates = [MplPath(marks.pos[poly]) for poly in marks.lay.polygons if len(poly) > 2]
+        at_pin = [[MplPath(marks.pos[poly]) for poly in marks.lay.polygons if len(poly) > 2 and k in poly]
+                  for k in range(len(chain.joints))]
+        for k in {k for m in synth.mechanisms_of(chain) for k, j in enumerate(chain.joints) if m.frame in j}:
+            direction, width = marks.sign(k)
+            assert not any(p.contains_point(marks.pos[k] + 0.01 * direction) for p in at_pin[k]), (chain, k)
+            if chain in tight:  # the base's four corners
+                across = np.array([-direction[1], direction[0]]) * 2.1 * marks.r * width
+                base = marks.pos[k] + 2.4 * marks.r * direction
+                corners = [base + s * across + t * marks.r * direction for s in (-1, 1) for t in (0, 0.8)]
+                assert not any(p.contains_point(c) for p in plates for c in corners), (chain, k)

@@ -125,12 +125,13 @@ def _check_options(args) -> None:
         raise _invalid(f"--count prints a count as json, table, jsonl or csv, not {args.format} (a format of chains)")
 
 
-def _size_note(query, args) -> float | None:
+def _size_note(query, args) -> tuple[str, float] | None:
     """Refuse a query too large to run unasked, and say how long a long one takes (stderr), with
-    ``--force`` too; return the chains a count of chains is expected to find (None: not sized)."""
+    ``--force`` too; return what a count of chains reckons its time to go from: the units, with multiple
+    joints, or the chains, and how many are expected (:func:`synth.time_to_go_from`; None: not sized)."""
     import os
 
-    from synth import NOTE_SECONDS, describe_estimate, estimate, plan_jobs, size_check, worth_sizing
+    from synth import NOTE_SECONDS, describe_estimate, estimate, plan_jobs, size_check, time_to_go_from, worth_sizing
 
     processes = 1 if args.scheduler else (args.workers or os.cpu_count() or 1)
     mechanisms = None if args.what == "chains" else ("mechanisms with input" if args.input_link else "mechanisms")
@@ -145,7 +146,7 @@ def _size_note(query, args) -> float | None:
     if note:
         resumable = "" if not args.count or args.checkpoint else " (give --checkpoint FILE to make it resumable)"
         print(f"mechsynth: {note}{resumable}", file=sys.stderr)
-    return None if found is None else found.chains
+    return None if found is None else time_to_go_from(query, found)
 
 
 def _run_one_chain(args) -> int:

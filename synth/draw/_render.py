@@ -82,18 +82,23 @@ class _Marks:
 
 
     def ground(self, k: int) -> np.ndarray:
-        """The unit direction of the fixed-pivot sign at joint ``k`` of the frame: into the widest
-        free angle there, clear of the sides, free-end bars and multiplicity number drawn at it, and
-        out of the plates at it where an angle outside them has the sign's room (a sign in a plate
-        stood under its number)."""
+        """The unit direction of the fixed-pivot sign at joint ``k`` of the frame (:meth:`sign`)."""
+        return self.sign(k)[0]
+
+    def sign(self, k: int) -> tuple[np.ndarray, float]:
+        """The fixed-pivot sign at joint ``k`` of the frame: its unit direction, into the widest free angle
+        there, clear of the sides, free-end bars and multiplicity number drawn at it, and out of the plates at
+        it where an angle outside them has the sign's room, else its struts' (a sign in a plate stood under
+        its number, at a tiny plate's corner too: 440/0's braced four-bar); and its width, 1, or less where
+        the angle is narrower than the sign, to fit it (:func:`_sign_width`)."""
         pos = self.pos
         also = [math.atan2(*(end - pos[k])[::-1]) for link, end in self.free_ends.items()
                 if self.lay.polygons[link] == [k]]
         if k in self.numbers:
             also.append(math.atan2(*(self.numbers[k] - pos[k])[::-1]))
         plates = [poly for poly in self.lay.polygons if len(poly) > 2 and k in poly]  # a sign in one hides it
-        turn, _ = _widest_gap(pos, self.sides, k, also, plates, room=_SIGN_ANGLE)
-        return np.array([math.cos(turn), math.sin(turn)])
+        turn, angle = _widest_gap(pos, self.sides, k, also, plates, room=_SIGN_ANGLE, least=_STRUTS_ANGLE)
+        return np.array([math.cos(turn), math.sin(turn)]), _sign_width(angle)
 
 
 def _pitch_circles(chain: Chain, lay: Layout, k: int, r: float) -> list[tuple[np.ndarray, float]]:
@@ -184,7 +189,7 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
     if mech is not None:  # the frame's pivots as a designer marks them: a support on a hatched base at each
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
-                _fixed_pivot(ax, pos[k], marks.ground(k), r, k)
+                _fixed_pivot(ax, pos[k], *marks.sign(k), r, k)
     if labels:  # the frame's number stands on its hatching: in a white box wide enough to keep the lines off it
         for link, (x, y) in _label_places(ax, marks, mech).items():
             hatched = mech is not None and link == mech.frame
@@ -260,8 +265,8 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
             outline(corners)
             segment((corners[0] + corners[3]) / 2, (corners[1] + corners[2]) / 2)
         if mech is not None and mech.frame in joint:
-            d = marks.ground(k)
-            across = np.array([-d[1], d[0]])
+            d, width = marks.sign(k)
+            across = np.array([-d[1], d[0]]) * width
             base = pos[k] + d * 2.4 * r
             outline([pos[k], base + across * 2.1 * r, base + across * 2.1 * r + d * 0.8 * r,
                      base - across * 2.1 * r + d * 0.8 * r, base - across * 2.1 * r])
@@ -309,16 +314,29 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
     return out
 
 
-#: the angle a fixed-pivot sign spans at its pin (its hatched base, 2.1 r either side, 2.4 r out)
-_SIGN_ANGLE = 2 * math.atan2(2.1, 2.4)
+#: the angles a fixed-pivot sign spans at its pin: its hatched base (2.1 r either side, 2.4 r out), its struts (1.5 r)
+_SIGN_ANGLE, _STRUTS_ANGLE = 2 * math.atan2(2.1, 2.4), 2 * math.atan2(1.5, 2.4)
+_SIGN_MARGIN = math.radians(4)  # a narrowed sign's base stops this far inside each side of its angle (their width)
 
 
-def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, r: float, k: int) -> None:
+def _sign_width(angle: float) -> float:
+    """The width of a fixed-pivot sign in a free angle of ``angle`` radians, as a fraction of its own: 1 where the
+    angle has its 82°, else narrowed so its hatched base ends 4° inside each side, down to a half.
+
+    >>> [round(_sign_width(math.radians(a)), 2) for a in (120, 82, 78, 64, 30)]
+    [1.0, 0.86, 0.8, 0.61, 0.5]
+    """
+    if angle >= _SIGN_ANGLE:
+        return 1.0
+    return max(0.5, math.tan(angle / 2 - _SIGN_MARGIN) / math.tan(_SIGN_ANGLE / 2))
+
+
+def _fixed_pivot(ax, at: np.ndarray, direction: np.ndarray, width: float, r: float, k: int) -> None:
     """A fixed pivot's sign at ``at`` (joint ``k``): two struts from the pin to a base line across ``direction``,
-    hatched beyond it (under the pin, over a multiple joint's ring)."""
+    hatched beyond it (under the pin, over a multiple joint's ring); ``width`` a fraction of its usual width."""
     from matplotlib.patches import Polygon
 
-    across = np.array([-direction[1], direction[0]])
+    across = np.array([-direction[1], direction[0]]) * width
     base, half, depth = at + direction * 2.4 * r, 1.5 * r, 0.8 * r
     ax.add_patch(Polygon([at, base + across * half, base - across * half], closed=True, facecolor="white",
                          edgecolor=_EDGE, lw=1.2, zorder=3.5, gid=f"ground{k}"))
@@ -348,11 +366,11 @@ def _slider(chain: Chain, lay: Layout, k: int, r: float) -> tuple[list[np.ndarra
 
 
 def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=(), plates=(),
-                room: float = 0.0) -> tuple[float, float]:
+                room: float = 0.0, least: float | None = None) -> tuple[float, float]:
     """Direction (radians) of the middle of the widest free angle at a joint between the sides
     drawn there (and the directions ``also``), and that angle; away from the drawing's centre
     where nothing meets the joint.  With ``plates`` (polygons of joints), the widest angle outside
-    them where one is ``room`` wide (radians).
+    them where one is ``room`` wide (radians), else where one is ``least`` wide (default ``room``).
 
     >>> pos = np.array([[0, 0], [1, 0], [-1, 0.1], [-1, -0.36], [1, -0.36]])  # bars at 0°, 174°, 200°, 340°
     >>> sides = [(0, 1), (0, 2), (0, 3), (0, 4)]
@@ -362,6 +380,8 @@ def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=
     [-90, 140]
     >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]], room=math.pi)]  # none so wide
     [87, 174]
+    >>> [round(math.degrees(t)) for t in _widest_gap(pos, sides, 0, plates=[[0, 1, 2]], room=math.pi, least=2)]
+    [-90, 140]
     """
     turns = sorted([math.atan2(*(pos[b if a == joint else a] - pos[joint])[::-1])
                     for a, b in sides if joint in (a, b)] + list(also))
@@ -379,9 +399,15 @@ def _widest_gap(pos: np.ndarray, sides: list[tuple[int, int]], joint: int, also=
 
     def outside(i: int) -> bool:
         turn = turns[i] + gaps[i] / 2
-        return gaps[i] >= room and not any(0 < (turn - start) % (2 * math.pi) < wide for start, wide in wedges)
+        return not any(0 < (turn - start) % (2 * math.pi) < wide for start, wide in wedges)
 
-    i = max((i for i in range(len(gaps)) if outside(i)), key=gaps.__getitem__, default=int(np.argmax(gaps)))
+    # the widest angle outside the plates with the room; else the widest outside them with ``least`` (a tiny
+    # plate's corner is wider than a free angle beside it, and a sign in it stood under the plate's number); else
+    # the widest of all (a joint ringed by plates)
+    least = room if least is None else least
+    free = [i for i in range(len(gaps)) if outside(i)]
+    i = max([i for i in free if gaps[i] >= room] or [i for i in free if gaps[i] >= least] or range(len(gaps)),
+            key=gaps.__getitem__)
     return turns[i] + gaps[i] / 2, gaps[i]
 
 

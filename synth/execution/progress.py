@@ -104,8 +104,9 @@ class Progress:
     clock : callable
         Seconds, monotonic (tests give their own).
     expected : (str, float), optional
-        A counter and the total an estimate expects of it (``("chains", 1.5e11)``): the time to go
-        is then reckoned from that counter's share of it, not from the steps.
+        A counter and the total an estimate expects of it (``("units", 8.5e6)``: the units of a count with
+        multiple joints, the chains of one without, :func:`~synth.synthesis.estimate.time_to_go_from`): the time
+        to go is then reckoned from that counter's share of it, not from the steps.
     before : dict, optional
         What a resumed run found done by the runs before it: ``"steps"`` and counters
         (``{"steps": 468, "chains": 6_051_000_000}``). The line shows the whole run's totals, and the
@@ -170,7 +171,7 @@ class Progress:
             here = done - self._before.get(name, 0)  # (the rate is this run's: a resumed run's start took no time)
             if done >= total:
                 text += f", past the {magnitude(total)} {name} estimated"
-            elif here > 0:
+            elif here > 0 and (self.total is None or self.done < self.total):  # (every step done: nothing to go)
                 text += (f", about {describe_seconds(elapsed * (total - done) / here)} to go if the {name} are "
                          f"the {magnitude(total)} estimated")
         elif self.total is not None and self.done < self.total and self.done > self._before.get("steps", 0):

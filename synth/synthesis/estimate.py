@@ -56,7 +56,7 @@ from ..execution.sizes import describe_seconds, magnitude
 
 __all__ = ["BUDGET", "MULTIPLE_BUDGET", "UNIT_GROWTH", "Estimate", "estimate", "worth_sizing", "sized_loops", "size_check",
            "describe_estimate", "plan_bytes", "TABLE_ROWS", "MEMORY_LIMIT", "NOTE_SECONDS", "BYTES_PER_UNIT",
-           "CERTIFICATE_BYTES", "FLOOR_SECONDS", "PLAIN_MARGIN", "needs_compiled"]
+           "CERTIFICATE_BYTES", "FLOOR_SECONDS", "PLAIN_MARGIN", "needs_compiled", "time_to_go_from"]
 
 # Queries at least this large (loops K of their largest skeleton, one fewer with multiple joints:
 # they grow faster) are sized before they run: the first sized size takes tens of CPU seconds,
@@ -424,6 +424,22 @@ def _refuse(found: Estimate, query, *, processes: int, count: bool, rows_held: b
         raise QueryTooLarge(f"this query ({query.links} links) would hold too much memory to run unasked: {memory} "
                             f"(more than {MEMORY_LIMIT / 2**30:g} GiB); {size}; give {option('force')} to run it anyway")
     return size, memory, held
+
+
+def time_to_go_from(query, found: Estimate) -> tuple[str, float]:
+    """The counter, and its total ``found`` expects, from whose share a count's progress line reckons the time to
+    go (:class:`~synth.execution.progress.Progress` ``expected``): the units where ``query`` has multiple joints,
+    the chains otherwise.  With multiple joints the chains a unit holds fall from about 2 000 to 0.07 as the joint
+    excess grows (the 16-link count, benchmarks/RECORDS.md), so a count's last hours add few chains: on that
+    count's logs the units' share erred by a median factor of 1.3 and the chains' by 2.1–2.2 (benchmarks/RECORDS.md,
+    "The time to go of a count with multiple joints"); with simple joints the chains' share is kept.
+
+    >>> from synth.structure.query import ChainQuery
+    >>> found = Estimate(chains=6.9e9, units=8.5e6, seconds=1e4, basis="exact counts at 8, 10, 12 links")
+    >>> time_to_go_from(ChainQuery(1, 16, v=(0, 14)), found), time_to_go_from(ChainQuery(1, 16), found)
+    (('units', 8500000.0), ('chains', 6900000000.0))
+    """
+    return ("units", found.units) if _multiple(query) else ("chains", found.chains)
 
 
 def describe_estimate(found: Estimate, *, processes: int, items: str = "chains", scheduler: bool = False) -> str:

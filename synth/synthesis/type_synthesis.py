@@ -377,7 +377,8 @@ def type_synthesis(query: ChainQuery | int | None = None, links: int | None = No
 
 def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, progress: bool, *,
                client=None, skip_code=None, skip_unit=None, ordered: bool = True,
-               expected: float | None = None, kept: tuple | None = None, before: dict | None = None) -> Iterator[tuple]:
+               expected: tuple[str, float] | None = None, kept: tuple | None = None,
+               before: dict | None = None) -> Iterator[tuple]:
     """``(job index, unit, work(unit))`` for every unit of the stage-A ``jobs`` (code, conventions),
     then ``(index, None, units)`` when a job is complete: inline for a small query, else streamed to
     a process pool (or a Dask ``client``) with a bounded number of tasks in flight (see
@@ -385,7 +386,8 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
 
     ``work`` returns the unit's chains or its counts by code; the progress (a bar on a terminal, a
     line a minute in a log: :class:`~synth.execution.progress.Progress`) adds up either, and with
-    ``expected`` (the chains an estimate expects) reckons the time to go from the chains counted; ``before``
+    ``expected`` (a counter and the total an estimate expects of it: :func:`~synth.synthesis.estimate.time_to_go_from`)
+    reckons the time to go from that counter's share; ``before``
     (``{"units": …, "chains": …}``, what a resumed run's checkpoint or the store already holds) starts its totals,
     the codes skipped counted as done, so the line reads the whole count's and its time to go this run's rate.
     Unordered on this machine (a count), a code's units are never held whole: stage A hands them on
@@ -400,7 +402,7 @@ def _map_units(work, jobs: list[tuple[Code, Conventions]], workers: int | None, 
     # a plan with such codes goes to the pool at once, a smaller one starts inline
     to_run = [job for i, job in enumerate(jobs) if not (skip_code and skip_code(i))]
     bar = Progress(len(jobs), "codes", desc="mechsynth", before={"steps": len(jobs) - len(to_run), **(before or {})},
-                   expected=None if expected is None else ("chains", expected)) if progress else None
+                   expected=expected) if progress else None
     try:
         inline = _INLINE_SECONDS if max((_branch_vertices(c) for c, _ in to_run), default=0) <= _INLINE_BRANCH else 0.0
         if any(uses_kernel(c, conv) for c, conv in to_run):
@@ -653,7 +655,7 @@ def count_identity(query: ChainQuery, what: str = "chains") -> tuple[str, str]:
 
 
 def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, scheduler, timeout, log,
-           remember: bool = False, expected: float | None = None) -> Counts:
+           remember: bool = False, expected: tuple[str, float] | None = None) -> Counts:
     """Counts by code of ``work`` over the units of ``query``, resumable and on Dask if asked; with
     ``remember``, each code's counts read from the store of earlier runs, or kept there once found."""
     from contextlib import ExitStack, closing
@@ -733,8 +735,8 @@ def _count(work, what: str, query: ChainQuery, workers, progress, checkpoint, sc
 
 def count_chains(query: ChainQuery | int | None = None, links: int | None = None, *, workers: int | None = None,
                  progress: bool = False, checkpoint=None, scheduler: str | None = None, timeout: float = 5.0,
-                 log=None, remember: bool = False, method: str = "listing", expected: float | None = None,
-                 **options) -> Counts:
+                 log=None, remember: bool = False, method: str = "listing",
+                 expected: tuple[str, float] | None = None, **options) -> Counts:
     """How many chains :func:`type_synthesis` gives, in all and by code (:class:`Counts`).
 
     Chains are counted by the processes that find them, so memory stays flat however many there are.
@@ -751,8 +753,8 @@ def count_chains(query: ChainQuery | int | None = None, links: int | None = None
     count sharing as little of the listing's arithmetic as can be arranged (simple joints only,
     :func:`~synth.synthesis.stage_b.count_reversed`); all give the same counts, each kept apart in
     the store and in a checkpoint.
-    ``expected``: the chains an estimate expects (:func:`~synth.synthesis.estimate.estimate`), from
-    which the progress reckons the time to go.
+    ``expected``: a counter and the total an estimate expects of it (``("units", 8.5e6)``:
+    :func:`~synth.synthesis.estimate.time_to_go_from`), from whose share the progress reckons the time to go.
 
     >>> count_chains(1, 8, workers=1).to_dict()
     {'count': 16, 'by_code': {'440/0': 9, '521/0': 5, '602/0': 2}}

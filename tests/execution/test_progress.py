@@ -122,6 +122,28 @@ def test_the_time_to_go_is_reckoned_from_the_chains_an_estimate_expects():
         "mechsynth: 100/100 codes, 1 150 chains; 2 min elapsed, past the 1 000 chains estimated"]
 
 
+def test_a_count_with_multiple_joints_reckons_its_time_to_go_from_the_units():
+    """The chains a unit holds fall by orders of magnitude along a count with multiple joints (the 16-link count
+    said hours where minutes were left): its line reckons from the units an estimate expects, and says so; once
+    every code is done it gives no time to go, short of the estimate as it may be."""
+    from synth.structure.query import ChainQuery
+    from synth.synthesis.estimate import Estimate
+
+    found = Estimate(chains=6.9e9, units=8_511_997, seconds=2e4, basis="exact counts at 8, 10, 12 links")
+    expected = synth.time_to_go_from(ChainQuery(1, 16, v=(0, 14)), found)
+    log, clock = io.StringIO(), Clock()
+    progress = Progress(10, "codes", desc="mechsynth", stream=log, clock=clock, expected=expected)
+    clock.now += 60
+    progress.update(2, units=3_000_000, chains=5_000_000_000)  # 72 % of the chains (23 s to go), 35 % of the units
+    clock.now += 60
+    progress.update(8, units=5_000_000, chains=1_700_000_000)  # every code done, 6 % short of the units
+    assert log.getvalue().splitlines() == [
+        "mechsynth: 2/10 codes, 3 000 000 units, 5 000 000 000 chains; 60 s elapsed, about 110 s to go if the "
+        "units are the 8 511 997 estimated",
+        "mechsynth: 10/10 codes, 8 000 000 units, 6 700 000 000 chains; 2 min elapsed"]
+    assert synth.time_to_go_from(ChainQuery(1, 16), found) == ("chains", 6.9e9)  # simple joints: as before
+
+
 def test_a_forced_long_count_still_says_its_estimate_before_it_starts():
     """--force skips the refusal, not the estimate (the 20-link count's log began with nothing)."""
     proc = subprocess.Popen([*CLI, "chains", "--dof", "1", "--links", "20", "--count", "--force", "--workers", "1"],
@@ -185,3 +207,31 @@ def test_a_count_resumed_from_its_checkpoint_logs_the_whole_count(monkeypatch, t
     last = log.getvalue().splitlines()[-1].split(";")[0].split(", ")
     units = synth.count_chains(1, 10, workers=1).units_run
     assert last == ["mechsynth: 7/7 codes", f"{units} units", "230 chains"], (lost, last)
+
+
+def test_the_time_to_go_script_reads_a_count_in_parts_back(tmp_path):
+    """benchmarks/time_to_go.py: a count stopped and resumed (the first part's lines count that part alone, as
+    before 30 Nov 2026; the second's the whole count), the time really left and what each predictor said."""
+    from pathlib import Path
+
+    first, second = tmp_path / "part1.log", tmp_path / "part2.log"
+    first.write_text("mechsynth: a long query: about 1e+06 chains in 1 000 units, 3 min on 2 workers, …\n"
+                     "mechsynth: 1/4 codes, 200 units, 600 000 chains; 60 s elapsed, about 40 s to go if …\n"
+                     "mechsynth: 2/4 codes, 300 units, 700 000 chains; 2 min elapsed, about 51 s to go if …\n")
+    second.write_text("mechsynth: checkpoint c.sqlite: 1 units (0 codes complete) committed in this run, "
+                      "300 units done before\n"
+                      "mechsynth: 3/4 codes, 800 units, 950 000 chains; 60 s elapsed\n"
+                      "mechsynth: 4/4 codes, 1 000 units, 1 000 000 chains; 2 min elapsed\n")
+    script = Path(__file__).resolve().parents[2] / "benchmarks" / "time_to_go.py"
+    done = subprocess.run([sys.executable, str(script), str(first), str(second), "--every", "1"],
+                          capture_output=True, text=True, timeout=60)
+    rows = [line for line in done.stdout.splitlines() if line.startswith("| 1 ") or line.startswith("| 2 ")]
+    # 3 min left at the first line (1 min of part 1, 2 of part 2): 40 s by the chains, 4 min by the units
+    assert rows == ["| 1 | 1 min | 200 | 600,000 | 3 min | 1 min | 4 min | 4 min |",
+                    "| 1 | 2 min | 300 | 700,000 | 2 min | 1 min | 5 min | 5 min |",
+                    "| 2 | 1 min | 800 | 950,000 | 1 min | 0 min | 0 min | 0 min |"], done.stdout
+    # off by 3, 2, 1 (the chains; 40 s and 51 s taken as the lines' minute) and 4/3, 7/3, 1 (the units)
+    assert "chains: off by a median factor 2.00, at most 3.0, within a factor 2 at 2 of 3 lines" in done.stdout
+    assert "units: off by a median factor 1.33, at most 2.3, within a factor 2 at 2 of 3 lines" in done.stdout
+    refused = subprocess.run([sys.executable, str(script), str(first)], capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and refused.stderr.count("\n") == 1 and "did not end by itself" in refused.stderr
