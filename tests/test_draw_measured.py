@@ -332,7 +332,7 @@ def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeyp
     """On `draw --chain "0-3 0-4 1-3 1-4 2-3 2-4" --mechanisms`, #2, the number 3 of the hatched frame plate stood
     in a box as tight as the other numbers' (a tenth of an em), the hatching's lines running up to it beside a
     pivot sign, and the Watt chain's number 2 touched its hatched frame bar: the frame's number is padded clear
-    of the hatching, placed counting that box, and a frame bar counts its hatched width. No number meets a
+    of the hatching (by an opaque box under it), placed counting that box, and a frame bar counts its hatched width. No number meets a
     symbol — a pivot sign's hatched base and a hatched bar counted now — on these sheets and a 10-link one, and on
     440/0's sheet of MOVES_2, whose tiny frame plate #2 had a pivot sign inside it under its number 1."""
     from matplotlib.patches import FancyBboxPatch
@@ -348,8 +348,9 @@ def test_the_frames_number_is_read_clear_of_its_hatching_and_pivot_signs(monkeyp
                 continue
             frame = int(re.search(r"fixed (\d+)", ax.get_title()).group(1))
             number = next(t for t in ax.texts if t.get_gid() == f"label{frame}")
-            glyph, box = number.get_window_extent(renderer), number.get_bbox_patch().get_window_extent(renderer)
-            assert isinstance(number.get_bbox_patch(), FancyBboxPatch)
+            gap = next(t for t in ax.texts if t.get_gid() == f"hatchgap{frame}")  # the opaque box under it
+            glyph, box = number.get_window_extent(renderer), gap.get_bbox_patch().get_window_extent(renderer)
+            assert isinstance(gap.get_bbox_patch(), FancyBboxPatch)
             em = 7 * dpi / 72
             padding.append(min(glyph.x0 - box.x0, box.x1 - glyph.x1, glyph.y0 - box.y0, box.y1 - glyph.y1) / em)
 
@@ -387,3 +388,60 @@ def test_a_fixed_pivot_sign_points_out_of_the_plates_at_its_pin():
                 base = marks.pos[k] + 2.4 * marks.r * direction
                 corners = [base + s * across + t * marks.r * direction for s in (-1, 1) for t in (0, 0.8)]
                 assert not any(p.contains_point(c) for p in plates for c in corners), (chain, k)
+
+
+def _numbers_on_hatching(monkeypatch, run) -> list:
+    """(drawing, link number, hatched shape or line, what is wrong) for each link number of the sheet ``run``
+    writes whose glyph box meets a hatched shape (a frame plate's or bar's hatching, a pivot sign's base, a fixed
+    free end): only the frame's number on its own plate may, with an opaque box drawn between the hatching and
+    the number, 0.3 em clear of the glyph all round, that hides no line or pin."""
+    seen = []
+
+    def keep(fig, path, dpi):
+        fig.set_dpi(dpi)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        em = 7 * dpi / 72
+        for k, ax in enumerate(fig.axes):
+            if not ax.texts:  # a sheet's empty cell
+                continue
+            frame = re.search(r"fixed (\d+)", ax.get_title()).group(1)
+            hatched = [p for p in ax.patches if p.get_hatch()]
+            drawn = [p for p in ax.patches if not p.get_hatch()] + list(ax.lines)
+            boxes = [t for t in ax.texts if t.get_bbox_patch() is not None and t.get_bbox_patch().get_alpha() in (None, 1)]
+            for t in (t for t in ax.texts if (t.get_gid() or "").startswith("label")):
+                glyph = t.get_window_extent(renderer)
+                for p in hatched:
+                    if not p.get_path().transformed(p.get_transform()).intersects_bbox(glyph, filled=True):
+                        continue
+                    if t.get_text() != frame or (p.get_gid() or "").startswith(("framebar", "pivotbase", "end")):
+                        seen.append((k, t.get_text(), p.get_gid(), "a number on hatching not its plate's"))
+                        continue
+                    around = glyph.padded(0.3 * em)
+                    cover = [b for b in boxes if p.get_zorder() < b.get_zorder() <= t.get_zorder()
+                             and all(b.get_bbox_patch().get_window_extent(renderer).contains(x, y)
+                                     for x, y in around.corners())]
+                    if not cover:
+                        seen.append((k, t.get_text(), p.get_gid(), "the hatching seen through its box"))
+                    for b in cover:
+                        box = b.get_bbox_patch().get_window_extent(renderer)
+                        seen.extend((k, t.get_text(), q.get_gid(), "its box over a line") for q in drawn
+                                    if q.get_zorder() < b.get_zorder() and q is not p
+                                    and q.get_path().transformed(q.get_transform()).intersects_bbox(box, filled=False))
+
+    monkeypatch.setattr(_render, "_save", keep)
+    run()
+    return seen
+
+
+@pytest.mark.parametrize("chain", [MOVES_2, WATT, "0-3 0-4 1-3 1-4 2-3 2-4",
+                                   "0-5 0-7 1-5 1-6 2-3 2-7 3-9 4-6 4-9 5-8 6-8 7-9 8-9"])
+def test_no_number_is_read_through_a_frames_hatching(monkeypatch, tmp_path, chain):
+    """`draw --chain MOVES_2 --mechanisms` (440/0): the numbers 0 and 1 of its hatched frame plates (#1, #2) stood in
+    boxes at 0.8 over the hatching, whose lines ran through them a fifth as dark; made opaque over everything, the
+    box of 1 on the tiny plate of #2 hid a pin. The frame plate's number stands over an opaque box drawn over its
+    hatching and under every line and pin; every other number is clear of every hatched shape (the frame's bar, its
+    free ends, the pivot signs' bases), on these sheets: the braced four-bar, the Watt chain, 32/0 and a 10-link
+    chain. (Main's 440/0 #3, fixed 4: its number 4 stood 13 px clear of the hatched bar, and stands so.)"""
+    run = lambda: main(["draw", "--chain", chain, "--mechanisms", "--out", str(tmp_path / "s.png")])  # noqa: E731
+    assert _numbers_on_hatching(monkeypatch, run) == []

@@ -156,41 +156,78 @@ def _check_codes(scene: Scene) -> None:
         raise scene.error("[structure] needs exactly one of 'loops', 'links' or 'loop_classes' for the codes")
 
 
+#: each computation that lists chains, as a refusal names it
+_CHAIN_WORDS = {"count": "the count of chains", "chains": "chains", "mechanisms": "mechanisms", "drawing": "drawings"}
+
+
+def _asked(scene: Scene) -> str:
+    """The computations listing chains that the scene asks for, in words: a refusal names those, not the others.
+
+    >>> _asked(Scene("t.toml", "t", "", ("count", "drawing"), {}, {}))
+    'the count of chains and drawings'
+    """
+    words = [_CHAIN_WORDS[c] for c in CHAINS if c in scene.compute]
+    return " and ".join([", ".join(words[:-1]), words[-1]] if len(words) > 1 else words)
+
+
 def _check_chains(scene: Scene) -> None:
     s = scene.tables["structure"]
     given = s.chain is not None and s.loop_classes is None  # one chain given by hand: its W is its count's
+    asked = _asked(scene)
     if not given:
-        _needs_dof(scene, s, "chains, mechanisms and drawings")
+        _needs_dof(scene, s, asked)
     if s.input_link and s.dof == 0 and not given:  # as 'mechanisms --input-link' refuses it: the chains are trusses
         from synth import truss_has_no_input
 
         raise scene.error(str(truss_has_no_input("the chains of [structure] have", "the key 'input_link'")))
     if s.f != 0:
-        raise scene.error("[structure] key 'f' must be 0 for chains, mechanisms and drawings "
+        raise scene.error(f"[structure] key 'f' must be 0 for {asked} "
                           "(type synthesis builds chains with one-DOF pairs)")
     if not 2 <= s.h <= 6:
-        raise scene.error(f"[structure] key 'h' must be 2 … 6 for chains, mechanisms and drawings, not {s.h}")
+        raise scene.error(f"[structure] key 'h' must be 2 … 6 for {asked}, not {s.h}")
     for name in ("loops", "links"):
         value = getattr(s, name)
         if isinstance(value, str) and ".." in value:
-            raise scene.error(f"[structure] key '{name}' must be one whole number for chains, mechanisms and "
-                              f"drawings, not the range {value!r}")
+            raise scene.error(f"[structure] key '{name}' must be one whole number for {asked}, not the range "
+                              f"{value!r}")
     if given:
         return _check_given_chain(scene, s)
     if s.loop_classes is not None:
         if s.h != 3 or s.loops is not None or s.prismatic is not None or s.n1 is not None:
             raise scene.error("[structure] key 'loop_classes' gives each loop's motion space and the links: it does "
-                              "not go with 'h', 'loops', 'prismatic' or 'n1' for chains, mechanisms and drawings")
+                              f"not go with 'h', 'loops', 'prismatic' or 'n1' for {asked}")
         if s.chain is not None:
-            from synth import Chain
-
-            loops, asked = Chain.parse(s.chain).loops, sum(s.loop_classes.values())
-            if loops != asked:
-                raise scene.error(f"[structure] key 'chain' has {loops} loop{'s' * (loops != 1)} and 'loop_classes' "
-                                  f"asks for {asked}")
+            _check_chain_of_bases(scene, s)
         return
     if s.links is None and s.loops is None and s.code is None:
-        raise scene.error("[structure] needs 'links', 'loops' or 'code' for chains, mechanisms and drawings")
+        raise scene.error(f"[structure] needs 'links', 'loops' or 'code' for {asked}")
+
+
+def _check_chain_of_bases(scene: Scene, s: Structure) -> None:
+    """A chain with ``loop_classes`` (every base on it): its loops are the classes', and ``dof`` the bases' W by the
+    count in their motion spaces, the chain's own in the lower class less (x − h)·K_x (:func:`synth.class_variants`)."""
+    from synth import Chain, SynthesisError, split_classes
+
+    try:
+        chain = Chain.parse(s.chain)
+    except SynthesisError as exc:  # (it came out without the scene's name)
+        raise scene.error(f"[structure] key 'chain': {str(exc).rstrip('.')}") from None
+    try:
+        h, _, x, k_x = split_classes(s.loop_classes)
+    except SynthesisError as exc:
+        raise scene.error(f"[structure] {str(exc).rstrip('.')}") from None
+    loops = sum(s.loop_classes.values())
+    if chain.loops != loops:
+        raise scene.error(f"[structure] key 'chain' has {chain.loops} loop{'s' * (chain.loops != 1)} and "
+                          f"'loop_classes' asks for {loops}")
+    _refuse_another_dof(scene, s, dataclasses.replace(chain, h=h, classes=None).dof - (x - h) * k_x, "its bases have")
+
+
+def _refuse_another_dof(scene: Scene, s: Structure, dof: int, whose: str, mend: str = "") -> None:
+    """Refuses a ``dof`` other than ``dof``, the W by the count of the chain given or of the bases on it."""
+    if s.dof is not None and s.dof != dof:
+        raise scene.error(f"[structure] key 'dof' asks for W = {s.dof} and {whose} W = {dof} by the count: for "
+                          f"{_asked(scene)} the chain is taken as it is{mend}")
 
 
 #: [structure] keys that select the chains of a query: a chain given by hand contradicts them
@@ -207,15 +244,12 @@ def _check_given_chain(scene: Scene, s: Structure) -> None:
     selecting = [name for name in _QUERY_KEYS if name in s.given()]
     if selecting:
         raise scene.error(f"[structure] key '{selecting[0]}' selects the chains of a query and contradicts 'chain' "
-                          "(the one chain given) for chains, mechanisms and drawings")
+                          f"(the one chain given) for {_asked(scene)}")
     try:
         chain = _given_chain(s)
     except SynthesisError as exc:
         raise scene.error(str(exc).rstrip(".")) from None
-    if s.dof is not None and s.dof != chain.dof:
-        raise scene.error(f"[structure] key 'dof' asks for W = {s.dof} and the chain has W = {chain.dof} by the "
-                          "count: chains, mechanisms and drawings list the chain as it is (its analysis says how to "
-                          "mend it)")
+    _refuse_another_dof(scene, s, chain.dof, "the chain has", " (its analysis says how to mend it)")
     drawing = scene.tables.get("drawing")
     if "mechanisms" not in scene.compute and not ("drawing" in scene.compute and drawing and drawing.mechanisms):
         return

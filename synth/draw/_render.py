@@ -164,10 +164,12 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             else:
                 ax.plot(pts[:, 0], pts[:, 1], color=bar, lw=lw * (1.4 if based else 1), solid_capstyle="round",
                         zorder=2, gid=f"bar{link}")
-        else:
-            ax.add_patch(Polygon(pts, closed=True, facecolor="white" if frame else _FILL, edgecolor=edge,
-                                 hatch="////" if frame else None, lw=2.4 if based else 1.4, joinstyle="round",
-                                 zorder=1))
+        else:  # a frame plate's hatching under the box around its number (_HATCH_GAP), every plate's outline over it
+            if frame:
+                ax.add_patch(Polygon(pts, closed=True, facecolor="white", edgecolor=edge, hatch="////", lw=0,
+                                     zorder=_HATCH_GAP - 0.1, gid=f"hatching{link}"))
+            ax.add_patch(Polygon(pts, closed=True, facecolor=_FILL, fill=not frame, edgecolor=edge,
+                                 lw=2.4 if based else 1.4, joinstyle="round", zorder=1, gid=f"plate{link}"))
     for k, joint in enumerate(chain.joints):
         x, y = pos[k]
         kind = chain.kinds[k]
@@ -190,12 +192,14 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
         for k, joint in enumerate(chain.joints):  # (a short fixed link's own hatching hides under its pins)
             if mech.frame in joint:
                 _fixed_pivot(ax, pos[k], *marks.sign(k), r, k)
-    if labels:  # the frame's number stands on its hatching: in a white box wide enough to keep the lines off it
-        for link, (x, y) in _label_places(ax, marks, mech).items():
-            hatched = mech is not None and link == mech.frame
-            ax.text(x, y, str(link), fontsize=7, color="#555555", ha="center", va="center", zorder=5,
-                    gid=f"label{link}", bbox=dict(boxstyle=f"round,pad={_HATCH_PAD if hatched else 0.1}", fc="white",
-                                                  ec="none", alpha=0.8))
+    if labels:  # over everything, in a light box; the frame's number on its hatching, which a wider opaque box
+        for link, (x, y) in _label_places(ax, marks, mech).items():  # under every line and pin keeps off it
+            number = dict(s=str(link), fontsize=7, ha="center", va="center")
+            if mech is not None and link == mech.frame:
+                ax.text(x, y, color="none", zorder=_HATCH_GAP, gid=f"hatchgap{link}", **number,
+                        bbox=dict(boxstyle=f"round,pad={_HATCH_PAD}", fc="white", ec="none"))
+            ax.text(x, y, color="#555555", zorder=5, gid=f"label{link}", **number,
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     if mech is not None and mech.input_link is not None:
         k = next(i for i, j in enumerate(chain.joints) if mech.frame in j and mech.input_link in j)
         x, y = pos[k]
@@ -215,8 +219,12 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             ax.set_title(caption, fontsize=8, pad=2, y=-0.08)
 
 
-#: the padding, in ems, of the frame's number over its hatching (the others': 0.1)
+#: the padding, in ems, of the opaque box that keeps the frame's hatching off its number (the numbers' own: 0.1)
 _HATCH_PAD = 0.4
+#: the layer of that box: over a frame plate's hatching, under every plate, line and pin (1 up). The number's own
+#: box at 0.8 let the hatch lines run through it a fifth as dark (440/0's tiny frame plate, #2); opaque over
+#: everything it hid a pin there; the number under the lines, a pivot sign crossed it (4600/0's tiny plates)
+_HATCH_GAP = 0.9
 
 
 def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.ndarray]:

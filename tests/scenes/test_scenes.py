@@ -319,14 +319,31 @@ MALFORMED = {
     "chain with a query key": (GOOD.replace('["codes"]', '["chains"]').replace(
         "dof = 1\nloops = 2", 'links = 6\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
         'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
-        ["[structure] key 'links' selects the chains of a query and contradicts 'chain'"]),
+        ["[structure] key 'links' selects the chains of a query and contradicts 'chain' (the one chain given) for "
+         "chains."]),
+    "bases on an unreadable chain": (GOOD.replace('["codes"]', '["chains"]').replace(
+        "loops = 2", 'loop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-x"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"), ["[structure] key 'chain': cannot read joint '1-x'"]),
+    # a refusal names the computations the scene asks for ('chains, mechanisms and drawings' for a count alone)
+    "chain with a query key counted": (GOOD.replace('["codes"]', '["count"]').replace(
+        "dof = 1\nloops = 2", 'links = 6\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] key 'links' selects the chains of a query and contradicts 'chain' (the one chain given) for "
+         "the count of chains."]),
+    # every base on a chain has the W its loop classes give it: another dof contradicts them, as it does one chain
+    "bases of another W": (GOOD.replace('["codes"]', '["chains", "drawing"]').replace(
+        "loops = 2", 'loop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] key 'dof' asks for W = 1 and its bases have W = 0 by the count: for chains and drawings the "
+         "chain is taken as it is."]),
     "chain unreadable": (GOOD.replace('["codes"]', '["chains"]').replace("dof = 1\nloops = 2", 'chain = "0-1 1-x"')
                          .replace('codes = ["42/0", "51/1", "60/2"]', "count = 1"),
                          ["[structure] key 'chain': cannot read joint '1-x'"]),
     "chain of another W": (GOOD.replace('["codes"]', '["mechanisms"]').replace(
         "loops = 2", 'chain = "0-1 1-2 2-3 3-0 0-4 4-5 5-6 6-1"').replace(
         'codes = ["42/0", "51/1", "60/2"]', "mechanisms = 7"),
-        ["key 'dof' asks for W = 1 and the chain has W = 2 by the count"]),
+        ["key 'dof' asks for W = 1 and the chain has W = 2 by the count: for mechanisms the chain is taken as it is "
+         "(its analysis says how to mend it)."]),
     "mechanisms of a structure": (GOOD.replace('["codes"]', '["mechanisms"]').replace(
         "dof = 1\nloops = 2", 'chain = "0-1 1-2 2-3 3-0 1-3"').replace(
         'codes = ["42/0", "51/1", "60/2"]', "mechanisms = 1"),
@@ -359,6 +376,35 @@ def test_malformed_scene_gives_one_sentence(case, tmp_path):
     code, out, err = run_cli(str(path))
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and "Traceback" not in err and str(path) in err
+
+
+@pytest.mark.parametrize("chain,classes", [("0-1 1-2 2-3 3-0 0-4 4-5 5-1", {3: 1, 4: 1}),
+                                           ("0-1 1-2 2-3 3-0 0-4 4-5 5-2", {3: 1, 4: 1}),
+                                           ("0-1-6 1-2-7 2-3-8 3-4-9 4-5-10 5-0-11 6-12 8-12 10-12 7-13 9-13 11-13",
+                                            {3: 4, 5: 1})])
+def test_a_chain_with_loop_classes_takes_the_w_of_its_bases(tmp_path, chain, classes):
+    """A [structure] chain with loop_classes lists every base on it; its dof was never compared with their W. The
+    W it names is the one every base listed has by Chain.dof in its motion spaces: that dof lists them, one more
+    is refused naming it."""
+    from dataclasses import replace
+
+    from synth import Chain, class_variants
+
+    (h, _), (x, k_x) = sorted(classes.items())
+    bases = class_variants(replace(Chain.parse(chain), h=h), x, k_x)
+    (w,) = {base.dof for base in bases}
+    table = ", ".join(f"{c} = {k}" for c, k in classes.items())
+    path = tmp_path / "bases.toml"
+    for dof in (w, w + 1):
+        path.write_text(GOOD.replace('["codes"]', '["count"]').replace("dof = 1\nloops = 2", f"dof = {dof}\n"
+                        f'loop_classes = {{ {table} }}\nchain = "{chain}"').replace(
+                        'codes = ["42/0", "51/1", "60/2"]', f"count = {len(bases)}"))
+        if dof == w:
+            assert run_scene(path).ok
+        else:
+            with pytest.raises(SceneError, match=f"asks for W = {w + 1} and its bases have W = {w} by the count: "
+                                                 "for the count of chains the chain"):
+                run_scene(path)
 
 
 def test_impossible_expectation_is_a_failed_check_with_both_values(tmp_path):
