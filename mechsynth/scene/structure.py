@@ -255,11 +255,11 @@ def _left_unused(scene: Scene, s: Structure, compute: str) -> dict[str, str]:
                     for name in (("v", "loop_classes", "f") if s.f else ("v", "loop_classes"))}
         unused = {"h": _CLASSES_AND_H} if s.loop_classes is not None else {}
         return unused | ({"v": str(not_for_the_subject("key 'v' beside 'code'", "code"))} if s.code is not None else {})
-    unused = {}
+    unused: dict[str, str] = {}
     drawing = scene.tables.get("drawing")
-    if compute == "drawing" and not (drawing and drawing.mechanisms):
-        unused |= {name: f"key '{name}' is for mechanisms and [drawing] draws the chains (mechanisms = true draws "
-                         "the mechanisms)" for name in ("input_link", "cylinders")}
+    if compute == "drawing" and not (drawing and drawing.mechanisms):  # ('cylinders' can narrow a query's chains)
+        unused["input_link"] = ("key 'input_link' is for mechanisms and [drawing] draws the chains (mechanisms = true "
+                                "draws the mechanisms)")
     if s.loop_classes is not None and s.chain is not None:
         return unused | {name: f"key '{name}' selects the chains of a query, and 'chain' with 'loop_classes' lays "
                                "every base on the one chain given" for name in _QUERY_KEYS if name not in _BASE_KEYS}
@@ -355,8 +355,8 @@ def _check_classes_of_chain(scene: Scene, s: Structure) -> None:
     named = chain.loop_classes if chain.classes is not None else None
     if named != s.loop_classes and (named is not None or max(s.loop_classes) > 3):
         raise scene.error(f"[structure] for the analysis, 'chain' has loop classes {chain.loop_classes} and "
-                          f"'loop_classes' gives {s.loop_classes}: the analysis takes a chain's classes from its text, a base "
-                          "written after '|' ('… | h5: 0 1 2 3', docs/exchange.md)")
+                          f"'loop_classes' gives {s.loop_classes}: the analysis takes a chain's classes from its "
+                          "text, a base written after '|' ('… | h5: 0 1 2 3', docs/exchange.md)")
 
 
 #: [expect] keys of the analysis that only a code or counts give, and those only a chain gives.
