@@ -81,6 +81,7 @@ _WHERE = {
     "PLAN_FORMAT": ".execution.checkpoint", "count_identity": ".synthesis.type_synthesis", "plan_jobs": ".synthesis.type_synthesis",
     # analysis and repair
     "Analysis": ".analysis.codes", "analyze": ".analysis.codes", "mobility": ".analysis.codes",
+    "not_for_the_subject": ".analysis.codes",
     "ChainAnalysis": ".analysis.chains", "analyze_chain": ".analysis.chains",
     "chain_repairs": ".analysis.repair", "code_repairs": ".analysis.repair", "Repair": ".analysis.repair",
     "ChainRepair": ".analysis.repair",

@@ -602,8 +602,9 @@ def test_the_inline_svg_places_each_mark_at_its_size():
                                                for a in pitch)
         labels = {t.text: t for t in ET.fromstring(svg_inline(chain, labels=True)).iter() if t.tag.endswith("text")
                   and t.get("font-size") == "8"}
+        places = _render._label_places(marks, None, 8 / scale)  # where a sheet puts them, for 8-pixel numbers
         for link in range(chain.links):
-            assert (float(labels[str(link)].get("x")), float(labels[str(link)].get("y"))) == at(marks.labels[link])
+            assert (float(labels[str(link)].get("x")), float(labels[str(link)].get("y"))) == at(places[link])
     # a single-joint link: a bar from its joint to its free end and a square of side 2r there
     marks = _Marks(OPEN)
     scale = 160 / (2 * marks.reach)
@@ -615,6 +616,36 @@ def test_the_inline_svg_places_each_mark_at_its_size():
     assert float(square["width"]) == float(square["height"]) == pytest.approx(2 * marks.r * scale, abs=0.06)
     (bar,) = [a for tag, a in parsed(OPEN) if tag == "polyline"]
     assert bar["points"].split()[1] == f"{x:.1f},{y:.1f}"
+
+
+def test_the_inline_frame_number_stands_on_a_gap_in_its_hatching():
+    """As on the sheets: the frame plate's hatching, then an opaque white gap 0.3 em wider on each side than its
+    number's light box, then every plate's outline, bar and pin over them, and every number on top in its light box
+    (no white outline round its text). On main the number stood on the hatching in a white outline, the hatch lines
+    running up to it, and no gap was drawn."""
+    braced = Chain.parse("0-1 1-2 2-3 3-0 1-3 0-4 4-5 5-6 6-7 7-2")  # 440/0: a tiny frame plate beside a four-bar
+    for mechanism in (Mechanism(WATT_MULTIPLE, 0), Mechanism(braced, 0), Mechanism(braced, 1)):
+        root = ET.fromstring(svg_inline(mechanism, size=200, labels=True))
+        elements = [(el.tag.split("}")[1], el.attrib, el.text) for el in root.iter()][1:]
+        (hatching,) = [i for i, (_, a, _) in enumerate(elements) if a.get("fill") == "url(#hatch)"]
+        (gap,) = [i for i, (_, a, _) in enumerate(elements) if a.get("class") == "hatchgap"]
+        drawn = [i for i, (tag, a, _) in enumerate(elements) if tag in ("polygon", "line", "circle", "polyline")
+                 and i > hatching]  # (the pattern's own line comes before)
+        numbers = {text: i for i, (tag, a, text) in enumerate(elements) if tag == "text" and a["font-size"] == "8"}
+        assert sorted(map(int, numbers)) == list(range(mechanism.chain.links))
+        assert hatching < gap < min(drawn) and max(drawn) < min(numbers.values()), mechanism
+        assert elements[gap][1]["fill"] == "white" and "fill-opacity" not in elements[gap][1]
+        for i in numbers.values():  # each just after its light box, centred in it, without an outline
+            tag, box, _ = elements[i - 1]
+            x, y = float(elements[i][1]["x"]), float(elements[i][1]["y"])
+            assert tag == "rect" and box["fill-opacity"] == "0.8" and "stroke" not in elements[i][1]
+            assert float(box["x"]) + float(box["width"]) / 2 == pytest.approx(x, abs=0.11)
+            assert float(box["y"]) + float(box["height"]) / 2 == pytest.approx(y, abs=0.11)
+        wide, light = elements[gap][1], elements[numbers[str(mechanism.frame)] - 1][1]
+        for start, side in (("x", "width"), ("y", "height")):  # the same middle, 0.3 em of 8 px more each side
+            assert float(wide[side]) - float(light[side]) == pytest.approx(2 * 0.3 * 8, abs=0.11)
+            assert float(wide[start]) + float(wide[side]) / 2 == pytest.approx(
+                float(light[start]) + float(light[side]) / 2, abs=0.11)
 
 
 def test_the_input_arrow_turns_at_the_input_joint():

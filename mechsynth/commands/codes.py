@@ -174,10 +174,12 @@ def _add_analyze(sub):
 
 def _refuse_for_chain(args) -> None:
     """A chain carries its own links, joints and v: options that describe counts do not apply."""
+    from synth import not_for_the_subject
+
     given = [name for name, value in (("--v", args.v), ("--f", args.f or None), ("--loop-classes", args.loop_classes))
              if value is not None]
     if given:
-        raise InvalidOption(f"{given[0]} does not apply to a chain (it describes codes and counts)")
+        raise not_for_the_subject(given[0], "chain")
 
 
 def _subject(text: str) -> str:
@@ -264,7 +266,9 @@ def _run_analyze(args) -> int:
                          loop_classes=classes).to_dict()
     else:
         if args.v is not None:
-            raise InvalidOption("--v goes with explicit counts: a code carries its own v")
+            from synth import not_for_the_subject
+
+            raise not_for_the_subject("--v", "code")
         result = analyze(subject, dof=args.dof, h=3 if h is None else h, f=args.f, loop_classes=classes).to_dict()
         if args.repairs:
             from synth import Code

@@ -151,13 +151,25 @@ def _needs_dof(scene: Scene, s: Structure, what: str) -> None:
 
 def _check_codes(scene: Scene) -> None:
     s = scene.tables["structure"]
+    _refuse_unused(scene, s)
     _needs_dof(scene, s, "the codes")
     if sum(x is not None for x in (s.loops, s.links, s.loop_classes)) != 1:
         raise scene.error("[structure] needs exactly one of 'loops', 'links' or 'loop_classes' for the codes")
 
 
-#: each computation that lists chains, as a refusal names it
-_CHAIN_WORDS = {"count": "the count of chains", "chains": "chains", "mechanisms": "mechanisms", "drawing": "drawings"}
+#: each structural computation, as a refusal names it
+_WORDS = {"codes": "the codes", "count": "the count of chains", "chains": "chains", "mechanisms": "mechanisms",
+          "drawing": "drawings", "analysis": "the analysis"}
+
+
+def _named(computes) -> str:
+    """Structural computations in words, in the order of :data:`_WORDS`.
+
+    >>> _named(["drawing", "count"])
+    'the count of chains and drawings'
+    """
+    words = [_WORDS[c] for c in _WORDS if c in computes]
+    return " and ".join([", ".join(words[:-1]), words[-1]] if len(words) > 1 else words)
 
 
 def _asked(scene: Scene) -> str:
@@ -166,12 +178,12 @@ def _asked(scene: Scene) -> str:
     >>> _asked(Scene("t.toml", "t", "", ("count", "drawing"), {}, {}))
     'the count of chains and drawings'
     """
-    words = [_CHAIN_WORDS[c] for c in CHAINS if c in scene.compute]
-    return " and ".join([", ".join(words[:-1]), words[-1]] if len(words) > 1 else words)
+    return _named([c for c in CHAINS if c in scene.compute])
 
 
 def _check_chains(scene: Scene) -> None:
     s = scene.tables["structure"]
+    _refuse_unused(scene, s)
     given = s.chain is not None and s.loop_classes is None  # one chain given by hand: its W is its count's
     asked = _asked(scene)
     if not given:
@@ -230,6 +242,53 @@ def _refuse_another_dof(scene: Scene, s: Structure, dof: int, whose: str, mend: 
                           f"{_asked(scene)} the chain is taken as it is{mend}")
 
 
+def _left_unused(scene: Scene, s: Structure, compute: str) -> dict[str, str]:
+    """The ``[structure]`` keys that ``compute`` declares but leaves unused with the others given, each with the
+    sentence that refuses it when no other computation asked uses it."""
+    from synth import not_for_the_subject
+
+    if compute == "codes":
+        return {"h": _CLASSES_AND_H} if s.loop_classes is not None else {}
+    if compute == "analysis":
+        if s.chain is not None:
+            return {name: str(not_for_the_subject(f"key '{name}' beside 'chain'", "chain"))
+                    for name in (("v", "loop_classes", "f") if s.f else ("v", "loop_classes"))}
+        unused = {"h": _CLASSES_AND_H} if s.loop_classes is not None else {}
+        return unused | ({"v": str(not_for_the_subject("key 'v' beside 'code'", "code"))} if s.code is not None else {})
+    unused: dict[str, str] = {}
+    drawing = scene.tables.get("drawing")
+    if compute == "drawing" and not (drawing and drawing.mechanisms):  # ('cylinders' can narrow a query's chains)
+        unused["input_link"] = ("key 'input_link' is for mechanisms and [drawing] draws the chains (mechanisms = true "
+                                "draws the mechanisms)")
+    if s.loop_classes is not None and s.chain is not None:
+        return unused | {name: f"key '{name}' selects the chains of a query, and 'chain' with 'loop_classes' lays "
+                               "every base on the one chain given" for name in _QUERY_KEYS if name not in _BASE_KEYS}
+    if s.loop_classes is not None:
+        return unused | {name: f"key '{name}' goes with 'prismatic', which 'loop_classes' does not take"
+                         for name in ("idle_joints", "cylinders")}
+    if s.chain is None and s.loops is not None and (s.links is not None or s.code is not None):
+        fixed = "'links'" if s.links is not None else "'code'"
+        unused["loops"] = f"key 'loops' is fixed by {fixed}: give one of them"
+    return unused
+
+
+#: the query keys that 'chain' with 'loop_classes' reads (rigid_subchains) or refuses in its own words
+_BASE_KEYS = ("rigid_subchains", "loops", "n1", "prismatic")
+#: the keys that give the motion space twice
+_CLASSES_AND_H = "keys 'h' and 'loop_classes' contradict each other: the classes give each loop's motion space"
+
+
+def _refuse_unused(scene: Scene, s: Structure) -> None:
+    """Refuses a ``[structure]`` key that every computation asked that declares it leaves unused with the others
+    given (the analysis of a chain its ``loop_classes``, a query's chains ``loops`` beside ``links``, …), in the
+    first one's words; ``Structure`` refuses a key that none of them declares."""
+    for name in sorted(s.given(), key=list(Structure.model_fields).index):
+        users = [c for c in scene.compute if c in Structure.model_fields[name].json_schema_extra["used_by"]]
+        reasons = [_left_unused(scene, s, c).get(name) for c in users]
+        if users and all(reasons):
+            raise scene.error(f"[structure] for {_named(users)}, {reasons[0]}")
+
+
 #: [structure] keys that select the chains of a query: a chain given by hand contradicts them
 _QUERY_KEYS = ("links", "loops", "code", "v", "n1", "max_multiplicity", "require", "cranks", "rigid_subchains",
                "fractionated", "planar_only", "prismatic", "idle_joints", "cylinders")
@@ -283,6 +342,23 @@ def _count_defect(chain):
         return None
 
 
+def _check_classes_of_chain(scene: Scene, s: Structure) -> None:
+    """The analysis takes a chain's loop classes from its text (a base after ``|``): where ``loop_classes`` serve the
+    codes or the chains, a chain that names classes must name those, and a chain without them must have a base to
+    name (a class above 3; the analysis finds wedge loops, class 2, itself)."""
+    from synth import Chain, SynthesisError
+
+    try:
+        chain = Chain.parse(s.chain)
+    except SynthesisError:
+        return  # (refused in the chain's own words by the analysis and the chains' checks)
+    named = chain.loop_classes if chain.classes is not None else None
+    if named != s.loop_classes and (named is not None or max(s.loop_classes) > 3):
+        raise scene.error(f"[structure] for the analysis, 'chain' has loop classes {chain.loop_classes} and "
+                          f"'loop_classes' gives {s.loop_classes}: the analysis takes a chain's classes from its "
+                          "text, a base written after '|' ('… | h5: 0 1 2 3', docs/exchange.md)")
+
+
 #: [expect] keys of the analysis that only a code or counts give, and those only a chain gives.
 _CODE_ONLY = frozenset({"simple_joint_equivalents", "criterion_holds", "defect", "formulas_agree"})
 _CHAIN_ONLY = frozenset({"standard_code", "subchain_defect", "planar", "fractionated", "worst_subchain_mobility",
@@ -291,12 +367,15 @@ _CHAIN_ONLY = frozenset({"standard_code", "subchain_defect", "planar", "fraction
 
 def _check_analysis(scene: Scene) -> None:
     s = scene.tables["structure"]
+    _refuse_unused(scene, s)
     given = [k for k in ("code", "counts", "chain") if getattr(s, k) is not None]
     if len(given) != 1:
         raise scene.error(f"[structure] needs exactly one of 'code', 'counts' or 'chain' for the analysis, "
                           f"not {given or 'none'}")
     if s.v is not None and not isinstance(s.v, int):
         raise scene.error(f"[structure] key 'v' must be one whole number for the analysis, not {s.v!r}")
+    if s.chain is not None and s.loop_classes is not None:  # loop_classes serve another computation: the same system
+        _check_classes_of_chain(scene, s)
     for name in scene.expect:
         if name in _CODE_ONLY and s.chain is not None:
             raise scene.error(f"[expect] key '{name}' belongs to the analysis of a code or counts, "

@@ -18,7 +18,24 @@ from ..structure import check_dof, check_extra_mobility, check_motion_space
 from ..structure.code import Code
 from ..errors import ImpossibleParameters, InvalidOption
 
-__all__ = ["Analysis", "analyze", "mobility"]
+__all__ = ["Analysis", "analyze", "mobility", "not_for_the_subject"]
+
+
+def not_for_the_subject(option: str, subject: str) -> InvalidOption:
+    """The refusal of ``option`` (``--v``, ``--f``, ``--loop-classes``, or a scene's key so named) that the analysis
+    of ``subject``, ``"chain"`` or ``"code"``, would ignore: a chain carries its links, joints, v and loop classes
+    (a base of a higher class is written in its text after ``|``), a code its v.
+
+    >>> print(not_for_the_subject("--loop-classes", "chain"))
+    --loop-classes does not apply to a chain (it describes codes and counts): write a base of a higher class in the chain's text after '|' ('… | h5: 0 1 2 3', docs/exchange.md)
+    >>> print(not_for_the_subject("--v", "code"))
+    --v goes with explicit counts: a code carries its own v
+    """
+    if subject == "code":
+        return InvalidOption(f"{option} goes with explicit counts: a code carries its own v")
+    base = (": write a base of a higher class in the chain's text after '|' ('… | h5: 0 1 2 3', docs/exchange.md)"
+            if "classes" in option else "")
+    return InvalidOption(f"{option} does not apply to a chain (it describes codes and counts){base}")
 
 
 def mobility(links: int, loops: int, *, h: int = 3, f: int = 0, loop_classes: Mapping[int, int] | None = None) -> int:

@@ -193,7 +193,7 @@ def _draw(ax, item: Chain | Mechanism, *, labels: bool = False, caption: str | N
             if mech.frame in joint:
                 _fixed_pivot(ax, pos[k], *marks.sign(k), r, k)
     if labels:  # over everything, in a light box; the frame's number on its hatching, which a wider opaque box
-        for link, (x, y) in _label_places(ax, marks, mech).items():  # under every line and pin keeps off it
+        for link, (x, y) in _label_places(marks, mech, _em(ax, marks)).items():  # under every line and pin keeps off it
             number = dict(s=str(link), fontsize=7, ha="center", va="center")
             if mech is not None and link == mech.frame:
                 ax.text(x, y, color="none", zorder=_HATCH_GAP, gid=f"hatchgap{link}", **number,
@@ -227,21 +227,36 @@ _HATCH_PAD = 0.4
 _HATCH_GAP = 0.9
 
 
-def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.ndarray]:
+def _em(ax, marks: _Marks) -> float:
+    """The drawing's length of one 7-point em of the numbers on ``ax``, by the width of a cell of the sheet (as the
+    sheet's layout leaves the drawing)."""
+    _, columns = ax.get_subplotspec().get_gridspec().get_geometry()
+    inches = 0.95 * ax.figure.get_figwidth() / columns
+    return 2 * marks.reach / inches * 7 / 72
+
+
+def _number_half(link: int, unit: float, hatched: bool) -> np.ndarray:
+    """Half the width and height of link ``link``'s number in its light box, ``unit`` the drawing's length of one
+    em; on the frame's hatching, of the opaque gap around it, :data:`_HATCH_PAD` em wide.
+
+    >>> _number_half(12, 1.0, False).round(2).tolist(), _number_half(0, 1.0, True).round(2).tolist()
+    ([0.92, 0.62], [0.86, 0.92])
+    """
+    half = np.array([0.36 * unit * len(str(link)) + 0.2 * unit, 0.62 * unit])
+    return half + (_HATCH_PAD - 0.1) * unit if hatched else half
+
+
+def _label_places(marks: _Marks, mech: Mechanism | None, unit: float) -> dict[int, np.ndarray]:
     """Where each link's number goes, as the motion drawings place them: of a few places (either side of
     a bar, along it; a plate's middle, towards its pins), the first clear of every pin, ring, slider,
     cylinder, fixed-pivot sign, bar, multiplicity number and number placed before, else the clearest
     (numbers at the middle of each link stood under the cylinders and pivot signs of 12-link drawings); a plate
     too narrow for any of them takes the clearest point of a grid over it.
-    The numbers' size, in points, is turned into the drawing's units by the width of a cell of the sheet; the
-    frame's number, in its wider box over the hatching, counts that box, and a frame's bar its hatched width."""
+    ``unit`` is the drawing's length of one em of the numbers (:func:`_em` on a sheet); the frame's number, in
+    its wider box over the hatching, counts that box, and a frame's bar its hatched width."""
     from matplotlib.path import Path as MplPath
 
     chain, lay, pos, r = marks.chain, marks.lay, marks.pos, marks.r
-    _, columns = ax.get_subplotspec().get_gridspec().get_geometry()
-    inches = 0.95 * ax.figure.get_figwidth() / columns  # a cell's width, as the sheet's layout leaves the drawing
-    unit = 2 * marks.reach / inches * 7 / 72  # the drawing's length of one 7-point em
-    half_height, half_char = 0.62 * unit, 0.36 * unit  # the text and its white box's padding
     samples = []
 
     def segment(a, b):
@@ -291,9 +306,7 @@ def _label_places(ax, marks: _Marks, mech: Mechanism | None) -> dict[int, np.nda
 
     out = {}
     for link, poly in enumerate(lay.polygons):
-        half = np.array([half_char * len(str(link)) + 0.2 * unit, half_height])
-        if mech is not None and link == mech.frame:
-            half = half + (_HATCH_PAD - 0.1) * unit
+        half = _number_half(link, unit, mech is not None and link == mech.frame)
         ends = [pos[j] for j in poly] + ([marks.free_ends[link]] if len(poly) == 1 else [])
         middle = np.mean(ends, axis=0)
         if len(ends) == 2:  # a bar: beside it, the upper side and its middle first; on it last
@@ -656,9 +669,15 @@ def draw_sheet(items: Sequence[Chain | Mechanism], out: str | Path, *, columns: 
         plt.close(fig)
 
 
+#: the inline drawing's numbers, in pixels
+_INLINE_FONT = 8
+
+
 def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False) -> str:
     """A small ``<svg>`` element of a chain or mechanism written directly, without matplotlib
-    (about a tenth of the time): the same drawing for web pages of many chains.
+    (about a tenth of the time): the same drawing for web pages of many chains.  Numbered, its
+    numbers stand where the sheets put them, in the same light boxes, the frame's on the same
+    opaque gap in its hatching under every line and pin (no fixed-pivot signs or input arrow).
 
     >>> svg_inline(Chain.parse("0-1 1-2 2-3 3-0")).startswith("<svg")
     True
@@ -672,11 +691,23 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
     def xy(p) -> str:
         return f"{(p[0] + reach) * scale:.1f},{(reach - p[1]) * scale:.1f}"
 
+    unit = _INLINE_FONT / scale  # the drawing's length of one em of the numbers
+    numbers = _label_places(marks, mech, unit) if labels else {}
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">']
-    for link, poly in enumerate(lay.polygons):  # polygons first, bars over them, joints on top
-        frame = mech is not None and link == mech.frame
+
+    def box(link: int, hatched: bool, fill: str) -> str:  # a number's light box, or the frame's gap in its hatching
+        (x, y), (w, h) = numbers[link], _number_half(link, unit, hatched)
+        return (f'<rect x="{(x - w + reach) * scale:.1f}" y="{(reach - y - h) * scale:.1f}" width="{2 * w * scale:.1f}" '
+                f'height="{2 * h * scale:.1f}" rx="{0.3 * _INLINE_FONT:.1f}" {fill}/>')
+
+    for link, poly in enumerate(lay.polygons):  # as on the sheets: a frame plate's hatching, the gap in it under
+        if mech is not None and link == mech.frame and len(poly) >= 3:  # its number, then every plate's outline
+            out.append(f'<polygon points="{" ".join(xy(pos[k]) for k in poly)}" fill="url(#hatch)" stroke="none"/>')
+            if labels:
+                out.append(box(link, True, 'fill="white" class="hatchgap"'))
+    for link, poly in enumerate(lay.polygons):  # plates first, bars over them, joints on top
         if len(poly) >= 3:
-            fill = "url(#hatch)" if frame else _FILL
+            fill = "none" if mech is not None and link == mech.frame else _FILL
             out.append(f'<polygon points="{" ".join(xy(pos[k]) for k in poly)}" fill="{fill}" stroke="{_EDGE}" '
                        'stroke-width="1.2" stroke-linejoin="round"/>')
     dash = ' stroke-dasharray="3 2"'  # a fixed binary link: a wide dashed bar
@@ -714,11 +745,11 @@ def svg_inline(item: Chain | Mechanism, *, size: int = 160, labels: bool = False
         else:
             out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * scale:.1f}" fill="white" stroke="{REVOLUTE.stroke}" '
                        'stroke-width="1.1"/>')
-    if labels:
-        for link in range(chain.links):
-            x, y = xy(marks.labels[link]).split(",")
-            out.append(f'<text x="{x}" y="{y}" font-size="8" fill="#444" text-anchor="middle" '
-                       f'dominant-baseline="central" paint-order="stroke" stroke="white" stroke-width="2">{link}</text>')
+    for link, place in numbers.items():  # over everything, in a light box
+        x, y = xy(place).split(",")
+        out.append(box(link, False, 'fill="white" fill-opacity="0.8"'))
+        out.append(f'<text x="{x}" y="{y}" font-size="{_INLINE_FONT}" fill="#444" text-anchor="middle" '
+                   f'dominant-baseline="central">{link}</text>')
     if mech is not None:
         out.insert(1, f'<defs><pattern id="hatch" width="5" height="5" patternUnits="userSpaceOnUse" '
                       f'patternTransform="rotate(45)"><rect width="5" height="5" fill="white"/>'

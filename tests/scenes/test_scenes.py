@@ -354,6 +354,43 @@ MALFORMED = {
         'codes = ["42/0", "51/1", "60/2"]', "drawn = 4"),
         ["the chain 0-1 0-2 0-5 1-2 2-3 3-4 4-5 has W = 1 by the count, degenerate: a sub-chain is rigid",
          "so the key 'input_link' would name links that cannot drive it"]),
+    # a key that every computation asked leaves unused beside the others is refused, naming the computation and
+    # both keys: the analysis of a chain takes no loop_classes (as 'analyze C --loop-classes' refuses them), the
+    # base is written in the chain's text
+    "loop classes beside a chain analysed": (GOOD.replace('["codes"]', '["analysis"]').replace(
+        "loops = 2", 'loop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "dof = 1"),
+        ["[structure] for the analysis, key 'loop_classes' beside 'chain' does not apply to a chain (it describes "
+         "codes and counts): write a base of a higher class in the chain's text after '|' ('… | h5: 0 1 2 3'"]),
+    "v beside a code analysed": (GOOD.replace('["codes"]', '["analysis"]').replace(
+        "dof = 1\nloops = 2", 'code = "42/0"\nv = 0').replace('codes = ["42/0", "51/1", "60/2"]', "dof = 1"),
+        ["[structure] for the analysis, key 'v' beside 'code' goes with explicit counts: a code carries its own v."]),
+    "loops beside links counted": (GOOD.replace('["codes"]', '["count"]').replace(
+        "loops = 2", "loops = 2\nlinks = 6").replace('codes = ["42/0", "51/1", "60/2"]', "count = 2"),
+        ["[structure] for the count of chains, key 'loops' is fixed by 'links': give one of them."]),
+    "query key beside bases": (GOOD.replace('["codes"]', '["count"]').replace("dof = 1\nloops = 2",
+        'dof = 0\nloop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"\nplanar_only = true').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] for the count of chains, key 'planar_only' selects the chains of a query, and 'chain' with "
+         "'loop_classes' lays every base on the one chain given."]),
+    "idle joints beside loop classes": (GOOD.replace('["codes"]', '["count"]').replace(
+        "loops = 2", "loop_classes = { 3 = 1, 4 = 1 }\nlinks = 6\nidle_joints = true").replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] for the count of chains, key 'idle_joints' goes with 'prismatic', which 'loop_classes' does "
+         "not take."]),
+    "input link on a sheet of chains": (GOOD.replace('["codes"]', '["drawing"]').replace(
+        "loops = 2", "links = 6\ninput_link = true").replace('codes = ["42/0", "51/1", "60/2"]', "drawn = 2"),
+        ["[structure] for drawings, key 'input_link' is for mechanisms and [drawing] draws the chains "
+         "(mechanisms = true draws the mechanisms)."]),
+    "h beside loop classes": (GOOD.replace("loops = 2", "loop_classes = { 3 = 1, 4 = 1 }\nh = 4"),
+        ["[structure] for the codes, keys 'h' and 'loop_classes' contradict each other: the classes give each "
+         "loop's motion space."]),
+    # where loop_classes serve the chains, the analysis beside them takes the chain's classes from its text
+    "chain analysed in other classes than its bases": (GOOD.replace('["codes"]', '["analysis", "count"]').replace(
+        "dof = 1\nloops = 2", 'dof = 0\nloop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"')
+        .replace('codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] for the analysis, 'chain' has loop classes {3: 2} and 'loop_classes' gives {3: 1, 4: 1}: the "
+         "analysis takes a chain's classes from its text, a base written after '|'"]),
     "balance unknown key": ("[scene]\nname = \"t\"\ndescription = \"d\"\ncompute = [\"balance prismatic\"]\n"
                             "[slider]\nmass = 2.0\ncounter_mass = 2.0\nq_max = 0.5\nmas = 3\n", ["'mas'"]),
 }
