@@ -66,7 +66,7 @@ _WHERE = {
     "run_unit": ".synthesis.type_synthesis", "count_unit": ".synthesis.type_synthesis",
     "count_by_code": ".synthesis.type_synthesis",
     "prismatic_variants": ".synthesis.variants", "variants_of": ".synthesis.variants",
-    "split_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
+    "split_classes": ".synthesis.classes", "h_beside_classes": ".synthesis.classes", "class_variants": ".synthesis.classes",
     "heterogeneous_synthesis": ".synthesis.classes", "skeleton_query": ".synthesis.classes",
     "size_note": ".synthesis.classes", "class_loops": ".structure.kinds",
     # how large a query is

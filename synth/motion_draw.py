@@ -321,13 +321,13 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
                     "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 1.0, "stroke-dasharray": "6 4"}})
     for k, joint in enumerate(chain.joints):  # ground pivots under the frame's pins
         if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
-            x, y = linkage.points[k]
-            w = 2.6 * pin
-            out.append({"tag": "polygon", "frames": np.array([[[x, y], [x - w, y - 1.8 * w], [x + w, y - 1.8 * w]]]),
-                        "static": True, "style": {"fill": "#eef1f4", "stroke": _FRAME, "stroke-width": 1.2}})
-            out.append({"tag": "polyline", "static": True,
-                        "frames": np.array([[[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]]]),
+            support, base, *hatch = _ground_sign(linkage.points[k], pin)
+            out.append({"tag": "polygon", "frames": support[None], "static": True,
+                        "style": {"fill": "#eef1f4", "stroke": _FRAME, "stroke-width": 1.2}})
+            out.append({"tag": "polyline", "static": True, "frames": base[None],
                         "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 2.4}})
+            out += [{"tag": "polyline", "static": True, "frames": stroke[None],
+                     "style": {"fill": "none", "stroke": _FRAME, "stroke-width": 1.2}} for stroke in hatch]
     curves(True)
     for k, joint in enumerate(chain.joints):
         if linkage.kind(k) == REVOLUTE:
@@ -341,6 +341,26 @@ def _elements(linkage: Linkage, joints: np.ndarray, angles: np.ndarray, tracers:
         out.append({"tag": "text", "text": name, "frames": xy[:, None] + np.array([1.6 * pin, 1.6 * pin]),
                     "style": {"fill": colour, "font-size": 12, "font-family": "sans-serif", "font-weight": "bold"}})
     return out
+
+
+#: the hatch strokes under a ground pivot's base
+_HATCH_STROKES = 5
+
+
+def _ground_sign(at, pin: float) -> list[np.ndarray]:
+    """A ground pivot's sign at ``at`` as a designer draws a fixed pivot (the sheets' sign, pointing down): its
+    support (a triangle under the pin), its base line, and the short strokes hatched under the base that mark it
+    fixed, ``pin`` the pins' radius.
+
+    >>> [len(part) for part in _ground_sign((0.0, 0.0), 1.0)]
+    [3, 2, 2, 2, 2, 2, 2]
+    """
+    x, y = at
+    w = 2.6 * pin
+    foot, half, step = y - 1.8 * w, 1.6 * w, 3.2 * w / _HATCH_STROKES
+    return [np.array([[x, y], [x - w, foot], [x + w, foot]]), np.array([[x - half, foot], [x + half, foot]]),
+            *(np.array([[x - half + (i + 1) * step, foot], [x - half + i * step, foot - 0.5 * w]])
+              for i in range(_HATCH_STROKES))]
 
 
 def _guide_and_block(linkage: Linkage, k: int) -> tuple[int, int]:
@@ -518,13 +538,18 @@ def _grid_lines(grid: np.ndarray, most: int = 25) -> list[np.ndarray]:
     return lines
 
 
-def _motion_elements(motion: Motion, frames: int) -> tuple[list[dict], np.ndarray]:
-    """The elements of up to ``frames`` frames spread over the sweep, and the steps they show."""
+def _motion_elements(motion: Motion, frames: int, numbers: bool = False) -> tuple[list[dict], np.ndarray]:
+    """The elements of up to ``frames`` frames spread over the sweep (with ``numbers`` each link's number moving
+    with it), and the steps they show."""
     steps = _frames(motion, frames)
     if len(steps) == 0:
         raise InvalidOption("the sweep has no step where the mechanism is assembled: there is nothing to draw")
     tracers = {name: xy[steps] for name, xy in motion.tracers.items()}
-    return _elements(motion.linkage, motion.joints[steps], motion.angles[steps], tracers, _paths(motion)), steps
+    joints, angles = motion.joints[steps], motion.angles[steps]
+    elements = _elements(motion.linkage, joints, angles, tracers, _paths(motion))
+    if numbers:
+        elements += _link_numbers(motion.linkage, _Placement(motion.linkage, joints, angles))
+    return elements, steps
 
 
 # ------------------------------------------------------------------ public writers
@@ -560,7 +585,8 @@ def motion_svg(motion: Motion, *, size: int = 480, frames: int = 90, seconds: fl
 def player_svg(motion: Motion, *, size: int = 300, frames: int = 36, seconds: float = 3.0) -> str:
     """The SVG of a sweep for a web page's script: its moving elements carry ``data-k`` and the
     frames (pixels, one decimal) are in ``data-motion`` as JSON ``{"n": frames, "e": [...]}``; the
-    script :data:`PLAYER_SCRIPT` plays them, ``seconds`` a cycle.
+    script :data:`PLAYER_SCRIPT` plays them, ``seconds`` a cycle (a click pauses and resumes it).  Each
+    link's number moves with it (the page names links and joints by them).
 
     >>> from synth.structure.chain import Chain, Mechanism
     >>> from synth.motion import sweep
@@ -568,16 +594,20 @@ def player_svg(motion: Motion, *, size: int = 300, frames: int = 36, seconds: fl
     >>> 'data-motion="{&quot;n&quot;:12' in player_svg(sweep(four_bar, steps=37), frames=12)
     True
     """
-    elements, _ = _motion_elements(motion, frames)
+    elements, _ = _motion_elements(motion, frames, numbers=True)
     svg = _svg(elements, _Canvas(elements, size), 0, player=True, title=_title(motion.linkage))
     return svg.replace('class="moving"', f'class="moving" data-ms="{1000 * seconds / max(frames, 1):.0f}"', 1)
 
 
-#: plays every ``svg.moving`` of a page: each tick puts the next frame's points on its elements
+#: plays every ``svg.moving`` of a page: each tick puts the next frame's points on its elements; a click on the
+#: drawing pauses it, another resumes it
 PLAYER_SCRIPT = """
 document.querySelectorAll('svg.moving').forEach(function (svg) {
-  var m = JSON.parse(svg.getAttribute('data-motion')), els = svg.querySelectorAll('[data-k]'), f = 0;
+  var m = JSON.parse(svg.getAttribute('data-motion')), els = svg.querySelectorAll('[data-k]'), f = 0, paused = false;
+  svg.style.cursor = 'pointer';
+  svg.addEventListener('click', function () { paused = !paused; });
   setInterval(function () {
+    if (paused) { return; }
     f = (f + 1) % m.n; svg.setAttribute('data-frame', f);
     els.forEach(function (el) {
       var v = m.e[+el.getAttribute('data-k')][f], t = el.tagName;
@@ -774,11 +804,13 @@ def _write_still(elements: list[dict], canvas: _Canvas, path: Path, title: str, 
 _NUMBER_BOX = np.array([0.026, 0.036])
 
 
-def _link_numbers(linkage: Linkage) -> list[dict]:
+def _link_numbers(linkage: Linkage, place: _Placement | None = None) -> list[dict]:
     """Each link's number (the chain's numbering) beside the middle of its pins in the pose, as a
     chain's drawing numbers its links: of a few places beside it (either side of a bar, along it; about
     a plate's middle), the first clear of every pin, ground pivot, bar and number drawn, else the
-    clearest (a short crank's number once stood on its ground pivot, the frame's on a pivot's base)."""
+    clearest (a short crank's number once stood on its ground pivot, the frame's on a pivot's base).
+    With ``place`` (the frames of a motion) each number moves with its link, on a light box as the sheets'
+    numbers stand (the other links pass under it)."""
     scale = linkage.scale
     lift = 0.045 * scale
     p = linkage.points
@@ -788,12 +820,10 @@ def _link_numbers(linkage: Linkage) -> list[dict]:
     for link in range(linkage.chain.links):
         on = [k for k in linkage.joints_of(link) if linkage.kind(k) == REVOLUTE]
         segments += [(p[i], p[j]) for a, i in enumerate(on) for j in on[a + 1:]]
-    w = 2.6 * pin
     for k, joint in enumerate(linkage.chain.joints):
         if linkage.frame in joint and linkage.kind(k) == REVOLUTE:
-            x, y = p[k]
-            base = np.array([[x - 1.6 * w, y - 1.8 * w], [x + 1.6 * w, y - 1.8 * w]])
-            segments += [tuple(base), (p[k], base[0] + [0.6 * w, 0]), (p[k], base[1] - [0.6 * w, 0])]
+            support, *lines = _ground_sign(p[k], pin)
+            segments += [(support[0], support[1]), (support[0], support[2]), *map(tuple, lines)]
     dots = [*p[[k for k in range(len(p)) if linkage.kind(k) == REVOLUTE]], *(at for _, at in linkage.tracers.values())]
     samples = [np.asarray(dot, dtype=float)[None] for dot in dots]
     for a, b in segments:
@@ -828,9 +858,17 @@ def _link_numbers(linkage: Linkage) -> list[dict]:
         clear = [c for c, g in zip(centres, gaps) if g >= 0.25 * lift]
         centre = clear[0] if clear else centres[int(np.argmax(gaps))]
         placed.append(np.array([centre + half * [sx, sy] for sx in (-1, 0, 1) for sy in (-1, 0, 1)]))
-        out.append({"tag": "text", "text": str(link), "frames": (centre - half)[None, None], "static": True,
-                    "style": {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12,
-                              "font-family": "sans-serif"}})
+        style = {"fill": _FRAME if link == linkage.frame else _EDGE, "font-size": 12, "font-family": "sans-serif"}
+        if place is None:
+            out.append({"tag": "text", "text": str(link), "frames": (centre - half)[None, None], "static": True,
+                        "style": style})
+            continue
+        fixed = link == linkage.frame
+        at = centre[None, None] if fixed else place.place(link, centre)  # the box's centre at every frame, upright
+        pad = half + 0.1 * _NUMBER_BOX[1] * scale
+        out.append({"tag": "polygon", "frames": at + pad * np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]]),
+                    "static": fixed, "style": {"fill": "white", "fill-opacity": 0.8, "stroke": "none"}})
+        out.append({"tag": "text", "text": str(link), "frames": at - half, "static": fixed, "style": style})
     return out
 
 

@@ -24,8 +24,9 @@ def _add_selection(p, command: str) -> None:
     p.add_argument("--v", help="multiple-joint count or range A..B (default 0: simple joints; with --code its own)")
     p.add_argument("--code", help="only this code, e.g. 6301/0, 620/0-1 or the open 2|5/2 (with --prismatic: the "
                    "revolute skeleton's code)")
-    p.add_argument("--h", type=whole, default=3,
-                   help="motion space of the loops, 2 … 6 (default 3: planar and spherical; 5 Bricard; 6 spatial)")
+    p.add_argument("--h", type=whole,
+                   help="motion space of the loops, 2 … 6 (default 3: planar and spherical; 5 Bricard; 6 spatial; not "
+                   "with --loop-classes, which give each loop's)")
     p.add_argument("--n1", help="single-joint links (open chains: arms, grippers), N or A..B (default 0; "
                    "with --code its own)")
     p.add_argument("--max-multiplicity", type=whole,
@@ -94,7 +95,7 @@ def query_of(args):
 
     if args.links is None and args.code is None:
         raise _invalid("give --links N (or --code C)" if args.dof is not None else "give --dof (and --links), or --code")
-    return ChainQuery.of(args.dof, args.links, code=args.code, v=args.v, n1=args.n1, h=args.h,
+    return ChainQuery.of(args.dof, args.links, code=args.code, v=args.v, n1=args.n1, h=3 if args.h is None else args.h,
                          require=args.require, cranks=args.cranks, max_multiplicity=args.max_multiplicity,
                          rigid_subchains=args.rigid_subchains, fractionated=args.fractionated,
                          planar_only=args.planar_only, prismatic=args.prismatic, idle_joints=args.idle_joints,
@@ -275,12 +276,12 @@ def _run_classes(args) -> int:
 
     from .codes import parse_classes
 
-    refused = [name for name, value in (("--h", args.h != 3), ("--prismatic", args.prismatic is not None),
+    refused = [name for name, value in (("--prismatic", args.prismatic is not None),
                                         ("--n1", args.n1 is not None), ("--checkpoint", args.checkpoint is not None),
                                         ("--scheduler", args.scheduler is not None)) if value]
     if refused:
-        raise _invalid(f"{refused[0]} contradicts --loop-classes (the classes give each loop's motion space; "
-                       "heterogeneous chains are closed, revolute and listed on this machine)")
+        raise _invalid(f"{refused[0]} contradicts --loop-classes (heterogeneous chains are closed, revolute and "
+                       "listed on this machine)")
     if args.dof is None:
         raise _invalid("give --dof W (the heterogeneous count's W) with --loop-classes")
     _refuse_classless_format(args)
@@ -313,7 +314,10 @@ def _refuse_input_of_trusses(args, dof: int) -> None:
 def _run(args) -> int:
     from synth import count_chains, count_mechanisms, mechanisms, type_synthesis
 
+    from .codes import motion_space
+
     _check_options(args)
+    motion_space(args)  # (refuses --h beside --loop-classes)
     if getattr(args, "cylinders", None) and args.prismatic is None:
         raise _invalid("--cylinders goes with --prismatic (a revolute chain has no cylinder)")
     if args.chain is not None:
@@ -362,7 +366,7 @@ def _run(args) -> int:
 
 def _write(items, args) -> int:
     return write_items(items, args.what, fmt=args.format, count=args.count, kinds=args.prismatic is not None,
-                       idle=args.idle_joints, h=args.h)
+                       idle=args.idle_joints, h=3 if args.h is None else args.h)
 
 
 def write_items(items, what: str, *, fmt: str | None, count: bool = False, kinds: bool = False,

@@ -85,7 +85,7 @@ def _run_codes(args) -> int:
     from synth import QueryTooLarge
     from synth import iter_codes
 
-    h = _motion_space(args)
+    h = motion_space(args)
     args.h = 3 if h is None else h
 
     bar = None
@@ -227,17 +227,21 @@ def _subject(text: str) -> str:
     return "chain" if as_chain is None else "counts"
 
 
-def _motion_space(args) -> int | None:
-    """``--h`` or None (a chain's own; 3 for codes and counts); loop classes name each loop's motion space themselves."""
+def motion_space(args) -> int | None:
+    """``--h`` or None (a chain's own; 3 for codes and counts), for ``codes``, ``analyze``, ``chains``,
+    ``mechanisms`` and ``draw``: any ``--h`` beside ``--loop-classes`` is refused, as a scene refuses it
+    (:func:`synth.h_beside_classes`), since loop classes name each loop's motion space themselves."""
+    from synth import h_beside_classes
+
     if args.h is not None and args.loop_classes:
-        raise InvalidOption("--h and --loop-classes contradict each other: the classes give each loop's motion space")
+        raise h_beside_classes("--h", "--loop-classes")
     return args.h
 
 
 def _run_analyze(args) -> int:
     from synth import analyze
 
-    h = _motion_space(args)
+    h = motion_space(args)
     classes = parse_classes(args.loop_classes) if args.loop_classes else None
     subject = args.subject.strip()
     kind = _subject(subject)

@@ -248,6 +248,9 @@ def _run_draw(args) -> int:
         raise InvalidOption("--dpi sets the resolution of a .png; .svg and .pdf drawings are vector files")
     if args.where and not args.db:
         raise InvalidOption("--where filters an atlas: give --db too")
+    from .codes import motion_space
+
+    motion_space(args)  # (refuses --h beside --loop-classes)
     if args.loop_classes is not None and not args.chain:
         raise InvalidOption("--loop-classes goes with --chain (for a query: mechsynth chains --loop-classes … "
                             "--format jsonl, then draw a row with --chain)")

@@ -205,9 +205,9 @@ def _check_chains(scene: Scene) -> None:
     if given:
         return _check_given_chain(scene, s)
     if s.loop_classes is not None:
-        if s.h != 3 or s.loops is not None or s.prismatic is not None or s.n1 is not None:
+        if s.loops is not None or s.prismatic is not None or s.n1 is not None:  # (an 'h' beside it: _refuse_unused)
             raise scene.error("[structure] key 'loop_classes' gives each loop's motion space and the links: it does "
-                              f"not go with 'h', 'loops', 'prismatic' or 'n1' for {asked}")
+                              f"not go with 'loops', 'prismatic' or 'n1' for {asked}")
         if s.chain is not None:
             _check_chain_of_bases(scene, s)
         return
@@ -245,17 +245,17 @@ def _refuse_another_dof(scene: Scene, s: Structure, dof: int, whose: str, mend: 
 def _left_unused(scene: Scene, s: Structure, compute: str) -> dict[str, str]:
     """The ``[structure]`` keys that ``compute`` declares but leaves unused with the others given, each with the
     sentence that refuses it when no other computation asked uses it."""
-    from synth import not_for_the_subject
+    from synth import h_beside_classes, not_for_the_subject
 
+    if compute == "analysis" and s.chain is not None:
+        return {name: str(not_for_the_subject(f"key '{name}' beside 'chain'", "chain"))
+                for name in (("v", "loop_classes", "f") if s.f else ("v", "loop_classes"))}
+    # every computation takes the motion spaces from loop_classes, as 'codes' and 'chains --loop-classes' do
+    unused = {"h": str(h_beside_classes("keys 'h'", "'loop_classes'"))} if s.loop_classes is not None else {}
     if compute == "codes":
-        return {"h": _CLASSES_AND_H} if s.loop_classes is not None else {}
+        return unused
     if compute == "analysis":
-        if s.chain is not None:
-            return {name: str(not_for_the_subject(f"key '{name}' beside 'chain'", "chain"))
-                    for name in (("v", "loop_classes", "f") if s.f else ("v", "loop_classes"))}
-        unused = {"h": _CLASSES_AND_H} if s.loop_classes is not None else {}
         return unused | ({"v": str(not_for_the_subject("key 'v' beside 'code'", "code"))} if s.code is not None else {})
-    unused: dict[str, str] = {}
     drawing = scene.tables.get("drawing")
     if compute == "drawing" and not (drawing and drawing.mechanisms):  # ('cylinders' can narrow a query's chains)
         unused["input_link"] = ("key 'input_link' is for mechanisms and [drawing] draws the chains (mechanisms = true "
@@ -274,8 +274,6 @@ def _left_unused(scene: Scene, s: Structure, compute: str) -> dict[str, str]:
 
 #: the query keys that 'chain' with 'loop_classes' reads (rigid_subchains) or refuses in its own words
 _BASE_KEYS = ("rigid_subchains", "loops", "n1", "prismatic")
-#: the keys that give the motion space twice
-_CLASSES_AND_H = "keys 'h' and 'loop_classes' contradict each other: the classes give each loop's motion space"
 
 
 def _refuse_unused(scene: Scene, s: Structure) -> None:

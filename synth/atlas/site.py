@@ -181,7 +181,10 @@ def _moving_page(chain: Chain, cid: str, frame: int) -> tuple[str | None, str, s
     compact = html.escape(chain.compact())
     title = f"{chain.compact()} with link {frame} fixed"
     body = (f"<h1>{html.escape(title)}</h1><p class='nav'><a href='../index.html'>index</a> · "
-            f"<a href='../chain.html#{cid}'>the chain {cid}</a></p><figure class='moving'>{picture}</figure>"
+            f"<a href='../chain.html#{cid}'>the chain {cid}</a></p><figure class='moving'>{picture}<figcaption>"
+            f"link {frame} fixed (hatched pivots, dashed lines); the input link "
+            f"{linkage.input_link(0)} in orange; grey: the paths of the moving pins. A click pauses the drawing."
+            "</figcaption></figure>"
             "<table>" + "".join(f"<tr><th class='c'>{html.escape(a)}</th><td class='c'>{html.escape(b)}</td></tr>"
                                 for a, b in rows) + "</table>"
             f"<p>Dimensioned by the atlas's drawing (a linkage of size 100). The same in a terminal:<br>"

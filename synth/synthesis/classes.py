@@ -64,6 +64,18 @@ def split_classes(loop_classes: Mapping[int, int]) -> tuple[int, int, int, int]:
     return h, k_h, x, k_x
 
 
+def h_beside_classes(h: str, classes: str) -> InvalidOption:
+    """The refusal of a motion space ``h`` (``--h``, or a scene's key so named) given beside loop classes
+    ``classes``, whatever its value, 3 too: the classes give each loop's motion space, the lower one the chain's,
+    so an h beside them is ignored (a code's, a count's and the chains' h come from them) or contradicts them.
+
+    >>> print(h_beside_classes("--h", "--loop-classes"))
+    --h and --loop-classes contradict each other: the classes give each loop's motion space (the lower class is the chain's h)
+    """
+    return InvalidOption(f"{h} and {classes} contradict each other: the classes give each loop's motion space (the "
+                         "lower class is the chain's h)")
+
+
 def _cycles(chain: Chain) -> list[frozenset[int]]:
     """The link sets of the simple loops of a chain: the elements of the cycle space of its
     link–joint incidence graph (sums of fundamental cycles) that are single cycles.

@@ -46,3 +46,12 @@ def test_the_frames_change_in_headless_chromium(site):
     (frame_a, points_a), (frame_b, points_b) = _frame(early), _frame(late)
     assert frame_a and frame_b and frame_a != frame_b
     assert points_a and points_b and points_a != points_b
+
+
+def test_a_click_pauses_the_player(site, tmp_path):
+    page = sorted((site / "moving").iterdir())[0]
+    clicked = tmp_path / page.name  # (the style sheet is not needed: the frames are the DOM's)
+    clicked.write_text(page.read_text().replace(
+        "</body>", "<script>document.querySelector('svg.moving').dispatchEvent(new MouseEvent('click'))</script></body>"))
+    frame, _ = _frame(_browse("--dump-dom", "--virtual-time-budget=1500", clicked.as_uri()).stdout)
+    assert "</body>" in page.read_text() and frame == ""  # paused before its first tick

@@ -45,7 +45,7 @@ CASES = [
     # ---- heterogeneous chains: loop classes on chains, analyze, identify, draw
     ("chains --dof 1 --loop-classes 3=4", "two classes"),
     ("chains --dof 1 --loop-classes 3=4,5=1,6=1", "two classes"),
-    ("chains --dof 1 --loop-classes 3=4,5=1 --h 5", "--h contradicts --loop-classes"),
+    ("chains --dof 1 --loop-classes 3=4,5=1 --h 5", "--h and --loop-classes contradict each other"),
     ("chains --dof 1 --loop-classes 3=4,5=1 --prismatic 1", "--prismatic contradicts"),
     ("chains --dof 1 --loop-classes 3=4,5=1 --links 12", "n = W + 1"),
     ("chains --loop-classes 3=4,5=1 --code 12.2000/6", "--dof"),

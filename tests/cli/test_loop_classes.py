@@ -7,6 +7,8 @@ import csv
 import io
 import json
 
+import pytest
+
 from mechsynth.cli import main
 from synth import Chain
 
@@ -107,3 +109,22 @@ def test_fig_6v_wedge_loop_from_the_command_line(capsys):
     assert code == 0 and out.splitlines()[1:] == ["3/0,3,1,0,3"]
     code, out, _ = run(capsys, "analyze", "2=4,3=2", "--format", "json")
     assert code == 0 and json.loads(out)["code"] == "42/0"  # counts stay counts
+
+
+@pytest.mark.parametrize("argv", [
+    ["codes", "--dof", "1", "--loop-classes", "3=1,5=1"],
+    ["chains", "--dof", "1", "--loop-classes", "3=1,5=1", "--count"],
+    ["mechanisms", "--dof", "1", "--loop-classes", "3=1,5=1", "--count"],
+    ["chains", "--chain", TRANSLATOR, "--loop-classes", "3=4,5=1"],
+    ["draw", "--chain", TRANSLATOR, "--loop-classes", "3=4,5=1", "--out", "never.svg"],
+])
+@pytest.mark.parametrize("h", ["3", "5"])
+def test_any_h_beside_loop_classes_is_refused(capsys, tmp_path, monkeypatch, argv, h):
+    """The classes give each loop's motion space: codes refused any --h beside them, chains and mechanisms took
+    --h 3 (the listing in the classes' h), as a scene took h = 3 beside loop_classes for the chains; one sentence
+    (synth.h_beside_classes) for every command and the scene, exit 2, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run(capsys, *argv, "--h", h)
+    assert (code, out) == (2, "") and not list(tmp_path.iterdir())
+    assert err == ("mechsynth: --h and --loop-classes contradict each other: the classes give each loop's motion "
+                   "space (the lower class is the chain's h)\n")

@@ -131,3 +131,45 @@ def test_an_animations_progress_in_a_log_is_no_bar(four_bar, tmp_path, capsys):
     """Where stderr is not a terminal (a log), drawing a GIF writes no tqdm bar ('\\r' redraws) there."""
     assert animate_motion(sweep(four_bar, steps=37), tmp_path / "a.gif", frames=4, progress=True) == 4
     assert "\r" not in capsys.readouterr().err
+
+
+def test_player_numbers_the_links_moving_with_them_and_hatches_the_ground_pivots(four_bar):
+    # the site's page says 'link 0 fixed', 'input joint 0-1' and showed no number; its pivots were a triangle on a
+    # line, nothing marked them fixed
+    import xml.etree.ElementTree as ET
+
+    svg = player_svg(sweep(four_bar, steps=73), size=300, frames=24)
+    root = ET.fromstring(svg)
+    data = json.loads(root.get("data-motion"))["e"]
+    shapes = list(root)[1:]  # (after the title)
+
+    def frames(el) -> np.ndarray:  # the element's points at every frame, in pixels
+        if el.get("data-k") is not None:
+            return np.array(data[int(el.get("data-k"))]).reshape(24, -1, 2)
+        if el.tag.endswith("text"):
+            return np.array([[[float(el.get("x")), float(el.get("y"))]]] * 24)
+        return np.array([[list(map(float, p.split(","))) for p in el.get("points").split()]] * 24)
+
+    numbers = {el.text: i for i, el in enumerate(shapes) if el.tag.endswith("text") and el.text.isdigit()}
+    assert sorted(numbers) == ["0", "1", "2", "3"]
+    pivot = np.array(_circles(svg)[0][:2])  # joint 0-1, the crank's pivot
+    for link, i in numbers.items():  # each on a light box, the box around its text at every frame
+        box = shapes[i - 1]
+        assert box.get("fill") == "white" and box.get("fill-opacity") == "0.8"
+        corners, anchor = frames(box), frames(shapes[i])[:, 0]
+        assert ((corners.min(axis=1) < anchor) & (anchor < corners.max(axis=1))).all()
+    # the crank's number turns with the crank about its pivot: its box's centre keeps its distance (to the pixel
+    # rounding) while it goes round; the frame's stands still
+    crank = frames(shapes[numbers["1"] - 1]).mean(axis=1)
+    reach = np.hypot(*(crank - pivot).T)
+    assert np.ptp(reach) < 0.2 and np.ptp(crank, axis=0).min() > reach.mean()
+    assert shapes[numbers["0"]].get("data-k") is None
+    # under each ground pivot's base line, strokes hatched within its width
+    bases = [frames(el)[0] for el in shapes if el.tag.endswith("polyline") and el.get("stroke-width") == "2.4"]
+    strokes = [frames(el)[0] for el in shapes if el.tag.endswith("polyline") and el.get("stroke-width") == "1.2"
+               and el.get("data-k") is None]
+    assert len(bases) == 2
+    for base in bases:
+        under = [s for s in strokes if base[:, 0].min() - 1 < s[:, 0].min() and s[:, 0].max() < base[:, 0].max() + 1
+                 and abs(s[:, 1].min() - base[0, 1]) < 0.2 and s[:, 1].max() > base[0, 1] + 2]
+        assert len(under) == 5

@@ -118,6 +118,11 @@ def test_a_four_bars_elements_by_kind():
     feet = _by(elements, "polyline", stroke=_FRAME, stroke_width=2.4)
     assert np.allclose([f["frames"][0] for f in feet], [[[x - 1.6 * w, -1.8 * w], [x + 1.6 * w, -1.8 * w]]
                                                         for x in (0.0, 4.0)])
+    # five strokes hatched under each base (marking the pivot fixed), from the base down-left, 0.64 w apart
+    hatch = _by(elements, "polyline", stroke=_FRAME, stroke_width=1.2)
+    assert np.allclose([h["frames"][0] for h in hatch],
+                       [[[x - 1.6 * w + (i + 1) * 0.64 * w, -1.8 * w], [x - 1.6 * w + i * 0.64 * w, -2.3 * w]]
+                        for x in (0.0, 4.0) for i in range(5)])
     # four pins where the joints are, the tracer's dot and name beside it
     pins = _by(elements, "circle", fill="white")
     assert [p["r"] for p in pins] == pytest.approx([pin] * 4)
@@ -127,7 +132,7 @@ def test_a_four_bars_elements_by_kind():
     (name,) = _by(elements, "text")
     assert dot["r"] == pytest.approx(0.8 * pin) and np.allclose(dot["frames"][0, 0], (2.5, 4.5))
     assert name["text"] == "P" and np.allclose(name["frames"][0, 0], (2.5 + 1.6 * pin, 4.5 + 1.6 * pin))
-    assert len(elements) == 3 + 1 + 1 + 4 + 4 + 2
+    assert len(elements) == 3 + 1 + 1 + 4 + 4 + 10 + 2
     # the draw order: links under the frame's signs, pins over them, the tracer on top
     assert [e["tag"] for e in elements][-6:] == ["circle"] * 5 + ["text"]
 

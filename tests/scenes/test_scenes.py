@@ -384,7 +384,16 @@ MALFORMED = {
          "(mechanisms = true draws the mechanisms)."]),
     "h beside loop classes": (GOOD.replace("loops = 2", "loop_classes = { 3 = 1, 4 = 1 }\nh = 4"),
         ["[structure] for the codes, keys 'h' and 'loop_classes' contradict each other: the classes give each "
-         "loop's motion space."]),
+         "loop's motion space (the lower class is the chain's h)."]),
+    # any h, 3 too, beside loop_classes, for every computation (as 'chains --loop-classes … --h 3' refuses it): the
+    # chains took h = 3 beside them, where the classes give the lower class's h
+    "h = 3 beside loop classes counted": (GOOD.replace('["codes"]', '["count"]').replace(
+        "loops = 2", "loop_classes = { 3 = 1, 4 = 1 }\nh = 3").replace('codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] for the count of chains, keys 'h' and 'loop_classes' contradict each other"]),
+    "h = 3 beside bases drawn": (GOOD.replace('["codes"]', '["chains", "drawing"]').replace("dof = 1\nloops = 2",
+        'dof = 0\nh = 3\nloop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"').replace(
+        'codes = ["42/0", "51/1", "60/2"]', "count = 1"),
+        ["[structure] for chains and drawings, keys 'h' and 'loop_classes' contradict each other"]),
     # where loop_classes serve the chains, the analysis beside them takes the chain's classes from its text
     "chain analysed in other classes than its bases": (GOOD.replace('["codes"]', '["analysis", "count"]').replace(
         "dof = 1\nloops = 2", 'dof = 0\nloop_classes = { 3 = 1, 4 = 1 }\nchain = "0-1 1-2 2-3 3-0 0-4 4-5 5-1"')
