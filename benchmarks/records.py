@@ -228,12 +228,22 @@ ROWS = (
                   "chain of 16 links'), its second count (--method tight-reverse) by hand beside it, equal on every "
                   "code; the engine's sizing from 8, 10, 12 links said about 6.9e9 chains in "
                   "8.5e6 units (6.7e9 in 9.8e6 counted)")]
+    + [_row("W = 1, multiple joints", 1, 18, None, "Ding2013", v=16,
+            heavy="not run: sized on 30 Nov 2026 (f30f3a8; `estimate(ChainQuery.of(dof=1, links=18, v=(0, 16)))`, "
+                  "basis 8, 10, 12 links, 5.1 CPU s) at about 1.7e12 chains in 4.2e8 units and 416 000 CPU s; at the "
+                  "16-link counts' 0.92 and 1.30 CPU ms a unit (the sizing was 13 % under on units there) the count and "
+                  "its second count would take about 108 and 153 CPU hours, some 5 days of both cores: out of reach "
+                  "here (RECORDS.md, 'Every multiple-joint chain of 16 links')")]
     # exactly one ternary joint (--v 1): a family of multiple-joint chains that reaches 16 links on 2 cores
     + [_row("W = 1, one ternary joint", 1, n, None, "Ding2013", v="1", oracle=n <= 8) for n in range(6, 15, 2)]
     + [_row("W = 1, one ternary joint", 1, 16, None, "Ding2013", v="1",
             heavy="run on its own (--only): sized at about 1.8e8 chains and 900 CPU s (30 Nov 2026), counted in "
                   "1 033 CPU s and 831 MiB, its second count (--method orbits) 1 318 CPU s, equal by code "
                   "(benchmarks/logs/one_ternary_joint_6_16.txt)")]
+    + [_row("W = 1, one ternary joint", 1, 18, None, "Ding2013", v="1",
+            heavy="run by hand with a checkpoint in two parts on 30 Nov 2026 beside its second count (--method "
+                  "tight-reverse), equal on all 82 codes (RECORDS.md, 'One ternary joint at 18 links'); sized at about "
+                  "1.6e10 chains in 1.9e6 units (1.64e10 in 1.92e6 counted)")]
 )
 
 
