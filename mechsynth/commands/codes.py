@@ -231,9 +231,9 @@ def motion_space(args) -> int | None:
     """``--h`` or None (a chain's own; 3 for codes and counts), for ``codes``, ``analyze``, ``chains``,
     ``mechanisms`` and ``draw``: any ``--h`` beside ``--loop-classes`` is refused, as a scene refuses it
     (:func:`synth.h_beside_classes`), since loop classes name each loop's motion space themselves."""
-    from synth import h_beside_classes
+    if args.h is not None and args.loop_classes:  # (imported here: a count read from the store loads no numpy)
+        from synth import h_beside_classes
 
-    if args.h is not None and args.loop_classes:
         raise h_beside_classes("--h", "--loop-classes")
     return args.h
 

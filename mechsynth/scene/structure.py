@@ -245,13 +245,17 @@ def _refuse_another_dof(scene: Scene, s: Structure, dof: int, whose: str, mend: 
 def _left_unused(scene: Scene, s: Structure, compute: str) -> dict[str, str]:
     """The ``[structure]`` keys that ``compute`` declares but leaves unused with the others given, each with the
     sentence that refuses it when no other computation asked uses it."""
-    from synth import h_beside_classes, not_for_the_subject
+    from synth import not_for_the_subject
 
     if compute == "analysis" and s.chain is not None:
         return {name: str(not_for_the_subject(f"key '{name}' beside 'chain'", "chain"))
                 for name in (("v", "loop_classes", "f") if s.f else ("v", "loop_classes"))}
     # every computation takes the motion spaces from loop_classes, as 'codes' and 'chains --loop-classes' do
-    unused = {"h": str(h_beside_classes("keys 'h'", "'loop_classes'"))} if s.loop_classes is not None else {}
+    unused = {}
+    if s.loop_classes is not None:  # (synth.synthesis.classes is loaded for the classes only: it loads chains and nauty)
+        from synth import h_beside_classes
+
+        unused["h"] = str(h_beside_classes("keys 'h'", "'loop_classes'"))
     if compute == "codes":
         return unused
     if compute == "analysis":
